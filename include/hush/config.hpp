@@ -1,0 +1,50 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Version and configuration. User-facing switches are HUSH_* macros that a
+// program may define before including hush; they are normalised here, once,
+// into HUSH_CONFIG_* macros that are always defined (0 or 1), so the rest of
+// the library never asks `#ifdef` twice (the GLM `detail/setup.hpp` idea).
+#ifndef HUSH_CONFIG_HPP
+#define HUSH_CONFIG_HPP
+
+// The version lives here and nowhere else; CMake reads it from this file.
+#define HUSH_VERSION_MAJOR 0
+#define HUSH_VERSION_MINOR 1
+#define HUSH_VERSION_PATCH 0
+#define HUSH_VERSION_STRING "0.1.0"
+
+// HUSH_NO_GLM: define to keep hush from converting to and from glm vectors even
+// when GLM's headers are reachable. Otherwise the conversions are enabled when
+// <glm/vec2.hpp> can be found (libglm-dev), and can be forced with HUSH_FORCE_GLM.
+#if defined(HUSH_NO_GLM)
+#define HUSH_CONFIG_GLM 0
+#elif defined(HUSH_FORCE_GLM)
+#define HUSH_CONFIG_GLM 1
+#elif defined(__has_include)
+#if __has_include(<glm/vec2.hpp>)
+#define HUSH_CONFIG_GLM 1
+#else
+#define HUSH_CONFIG_GLM 0
+#endif
+#else
+#define HUSH_CONFIG_GLM 0
+#endif
+
+// HUSH_STRICT_FP: the build promises no floating-point contraction (the CMake
+// option of the same name adds -ffp-contract=off). Code may rely on it to
+// claim bit-identical results between evaluation paths.
+#if defined(HUSH_STRICT_FP)
+#define HUSH_CONFIG_STRICT_FP 1
+#else
+#define HUSH_CONFIG_STRICT_FP 0
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define HUSH_INLINE inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define HUSH_INLINE __forceinline
+#else
+#define HUSH_INLINE inline
+#endif
+
+#endif  // HUSH_CONFIG_HPP

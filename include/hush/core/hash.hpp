@@ -1,0 +1,61 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Integer hashing from 32-bit unsigned operations only (multiply, xor, shift,
+// all modulo 2^32), so GLSL 330's `uint` arithmetic reproduces every bit. No
+// signed arithmetic anywhere: no overflow UB for any input (HARD_CASES row 4).
+#ifndef HUSH_CORE_HASH_HPP
+#define HUSH_CORE_HASH_HPP
+
+#include <cstdint>
+
+#include "hush/config.hpp"
+#include "hush/detail/constants.hpp"
+
+static_assert(sizeof(unsigned) == 4, "hush assumes a 32-bit unsigned int (constants.hpp)");
+
+namespace hush {
+
+// hash32: a bijection on 32-bit words with full avalanche (flipping any input
+// bit flips each output bit with probability 1/2 +- 0.006, measured in
+// tests/core/hash_test.cpp). Wellons' lowbias32; constants in detail/constants.hpp.
+HUSH_INLINE constexpr std::uint32_t hash32(std::uint32_t x) {
+  namespace c = detail::constants;
+  x ^= x >> c::kHashShift1;
+  x *= c::kHashMul1;
+  x ^= x >> c::kHashShift2;
+  x *= c::kHashMul2;
+  x ^= x >> c::kHashShift3;
+  return x;
+}
+
+// hash32(a, b): hashes an ordered pair; for a fixed a it is a bijection in b
+// and vice versa. Used to derive independent seeds (seed, stream) -> key.
+HUSH_INLINE constexpr std::uint32_t hash32(std::uint32_t a, std::uint32_t b) {
+  return hash32(hash32(a + detail::constants::kGoldenGamma) ^ b);
+}
+
+// seed_key: the per-noise-object key all lattice hashes start from. Hashing
+// the seed makes nearby seeds (7, 8) give unrelated fields.
+HUSH_INLINE constexpr std::uint32_t seed_key(std::uint32_t seed) {
+  return hash32(seed + detail::constants::kGoldenGamma);
+}
+
+// lattice_hash: the hash of an integer lattice cell under a key. Cells are
+// 32-bit unsigned (coordinates wrap modulo 2^32; see core/lattice.hpp). The
+// cell is folded to one word with odd multipliers (each a bijection) and then
+// finished with hash32, so every input bit reaches every output bit.
+HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
+                                                 std::uint32_t j) {
+  namespace c = detail::constants;
+  return hash32(key ^ (i * c::kLatticePrimeX) ^ (j * c::kLatticePrimeY));
+}
+HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
+                                                 std::uint32_t j, std::uint32_t k) {
+  namespace c = detail::constants;
+  return hash32(key ^ (i * c::kLatticePrimeX) ^ (j * c::kLatticePrimeY) ^
+                (k * c::kLatticePrimeZ));
+}
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_HASH_HPP

@@ -1,0 +1,102 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The single source of every numeric constant hush's algorithms use: hash
+// multipliers, gradient tables, normalisation factors. The scalar path, the
+// SIMD kernels and the generated GLSL all read these; no number is typed twice.
+// This header includes nothing, so generators can use it without the library.
+#ifndef HUSH_DETAIL_CONSTANTS_HPP
+#define HUSH_DETAIL_CONSTANTS_HPP
+
+namespace hush {
+namespace detail {
+namespace constants {
+
+// ---- hash32: Chris Wellons' "lowbias32" integer finalizer (public domain,
+// "Prospecting for hash functions", 2018): x ^= x >> 16; x *= M1; x ^= x >> 15;
+// x *= M2; x ^= x >> 16. Measured avalanche bias 0.17 (on the scale where 0 is
+// ideal), better than MurmurHash3's fmix32; uses only 32-bit unsigned ops, so
+// GLSL 330 `uint` arithmetic reproduces it bit for bit.
+constexpr unsigned kHashShift1 = 16;
+constexpr unsigned kHashMul1 = 0x7feb352dU;
+constexpr unsigned kHashShift2 = 15;
+constexpr unsigned kHashMul2 = 0x846ca68bU;
+constexpr unsigned kHashShift3 = 16;
+
+// ---- Lattice hashing: a cell (i, j, k) is first folded to one word as
+// key ^ i*Px ^ j*Py ^ k*Pz (odd multipliers are bijections mod 2^32, so each
+// axis alone never collides), then finished with hash32. These are the 32-bit
+// xxHash primes 1, 2 and 3: odd, with well-spread bits.
+constexpr unsigned kLatticePrimeX = 0x9E3779B1U;
+constexpr unsigned kLatticePrimeY = 0x85EBCA77U;
+constexpr unsigned kLatticePrimeZ = 0xC2B2AE3DU;
+
+// Stream separation for derived seeds (octaves, RNG streams): added before
+// hashing so that seed 0 / stream 0 do not map to the fixed point of hash32(0).
+constexpr unsigned kGoldenGamma = 0x9E3779B9U;  // 2^32 / golden ratio
+
+// ---- Improved Perlin noise (Perlin 2002, "Improving Noise").
+// Quintic fade s(t) = 6t^5 - 15t^4 + 10t^3 (C2 at the lattice; Perlin 2002 sec. 3).
+constexpr double kFade5 = 6.0;
+constexpr double kFade4 = -15.0;
+constexpr double kFade3 = 10.0;
+
+// 2D gradients: the 8 unit vectors at multiples of 45 degrees, selected by the
+// top 3 bits of the lattice hash (exactly uniform). E[g g^T] = I/2.
+constexpr double kInvSqrt2 = 0.70710678118654752440;
+constexpr int kPerlin2GradCount = 8;
+constexpr double kPerlin2GradX[kPerlin2GradCount] = {1.0, kInvSqrt2, 0.0, -kInvSqrt2,
+                                                     -1.0, -kInvSqrt2, 0.0, kInvSqrt2};
+constexpr double kPerlin2GradY[kPerlin2GradCount] = {0.0, kInvSqrt2, 1.0, kInvSqrt2,
+                                                     0.0, -kInvSqrt2, -1.0, -kInvSqrt2};
+constexpr unsigned kPerlin2GradShift = 29;  // index = hash >> 29
+
+// 3D gradients: Perlin's 12 cube-edge midpoints (length sqrt 2). Perlin 2002
+// pads the table to 16 by repeating four, which makes the y axis carry 20% more
+// variance; hush instead maps the top 16 hash bits onto 12 buckets,
+// index = ((hash >> 16) * 12) >> 16 (bucket sizes differ by 1 in 5461), so
+// E[g g^T] = (2/3) I to within 2e-4.
+constexpr int kPerlin3GradCount = 12;
+constexpr double kPerlin3GradX[kPerlin3GradCount] = {1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0};
+constexpr double kPerlin3GradY[kPerlin3GradCount] = {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1};
+constexpr double kPerlin3GradZ[kPerlin3GradCount] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1};
+constexpr unsigned kPerlin3IndexShift = 16;
+
+// Output scale: the raw noise sum_i w_i g_i.(x - c_i) is bounded by
+// sum_i w_i max_g g.(x - c_i), whose maximum over the cell is at its centre:
+// sqrt(2)/2 in 2D (unit gradients aimed at the centre), 1 in 3D (edge gradients).
+// The bound is attained, so these scales map the noise onto exactly [-1, 1].
+constexpr double kPerlin2Scale = 1.41421356237309504880;  // sqrt(2)
+constexpr double kPerlin3Scale = 1.0;
+
+// Variance of the scaled noise over space and seeds, derived in docs/design.md:
+// Var = c * D * (2 I0)^(D-1) * (2 I2) * scale^2 with I0 = int (1-s)^2 = 181/462,
+// I2 = int (1-s)^2 t^2 = 535/18018 and c = E[g_k^2].
+constexpr double kPerlin2Variance = 193670.0 / 2081079.0;       // 0.0930623...
+constexpr double kPerlin3Variance = 35054270.0 / 480729249.0;   // 0.0729189...
+
+// ---- Poisson sampling (core/rng.hpp).
+// Means below kPoissonInversionLimit use sequential inversion (expected
+// mean + 1 steps); larger means use Hoermann's PTRS transformed rejection
+// ("The transformed rejection method for generating Poisson random
+// variables", Insurance: Mathematics and Economics 12, 1993), whose
+// acceptance rate exceeds 0.88 for every mean >= 10.
+constexpr double kPoissonInversionLimit = 12.0;
+constexpr double kPoissonMaxMean = 1e9;  // beyond it, uint32 counts could overflow
+constexpr double kPtrsB0 = 0.931, kPtrsB1 = 2.53;           // b = B0 + B1 sqrt(mu)
+constexpr double kPtrsA0 = -0.059, kPtrsA1 = 0.02483;       // a = A0 + A1 b
+constexpr double kPtrsAlpha0 = 1.1239, kPtrsAlpha1 = 1.1328, kPtrsAlphaB = 3.4;
+constexpr double kPtrsVr0 = 0.9277, kPtrsVr1 = 3.6224, kPtrsVrB = 2.0;
+constexpr double kPtrsKOffset = 0.43;
+constexpr double kPtrsUsAccept = 0.07, kPtrsUsReject = 0.013;
+// Stirling's series for ln(n!) = (n + 1/2) ln n - n + ln(2 pi)/2 + sum_k c_k / n^(2k-1),
+// c_k = B_2k / (2k (2k - 1)); used for n > kLogFactorialTable, where the
+// first omitted term is below 1e-16.
+constexpr double kHalfLog2Pi = 0.91893853320467274178;
+constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
+constexpr int kLogFactorialTable = 20;
+
+}  // namespace constants
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_CONSTANTS_HPP

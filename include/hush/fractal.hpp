@@ -1,0 +1,206 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Fractal sums of a base noise over octaves ("bands"): fBm and turbulence.
+//
+//   fbm(x)        = (1/K) sum_i w_i n_i(f_i x + o_i)
+//   turbulence(x) = (1/K) sum_i w_i |n_i(f_i x + o_i)|
+//
+// with f_i = frequency * lacunarity^i, per-band weights w_i (gain^i by default,
+// or given explicitly), and per-band independent fields n_i: band i uses seed
+// hash32(seed, i) and a lattice offset o_i in [0, 1)^D derived from it, so
+// bands are uncorrelated and their lattices do not all meet at the origin.
+//
+// Variance (Perlin base, over space and seeds; docs/design.md):
+//   Var[sum_i w_i n_i] = sigma^2 sum_i w_i^2,  sigma^2 = Noise::variance(),
+// because independent bands have zero covariance. The normalisation K makes
+// the output
+//   - normalization::unit_variance (fBm only): variance exactly 1, mean 0;
+//     |fbm| <= sum|w_i| / (sigma sqrt(sum w_i^2)) (bound(), analytic);
+//   - normalization::unit_range: |output| <= 1 (K = sum |w_i| * Noise::bound());
+//     turbulence with non-negative weights then lies in [0, 1];
+//   - normalization::none: K = 1, the raw sum.
+// Periodic: with period[a] = p > 0 band i uses period p * lacunarity^i, so the
+// sum repeats every p / frequency along axis a (lacunarity must be an integer).
+#ifndef HUSH_FRACTAL_HPP
+#define HUSH_FRACTAL_HPP
+
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hush/core/error.hpp"
+#include "hush/core/hash.hpp"
+#include "hush/core/vec.hpp"
+
+namespace hush {
+
+enum class fractal_kind { fbm, turbulence };
+enum class normalization { unit_variance, unit_range, none };
+
+template <class Noise>
+class fractal {
+ public:
+  static constexpr int D = Noise::dimension;
+  static constexpr int kMaxOctaves = 32;
+
+  struct params {
+    std::uint32_t seed = 0;
+    fractal_kind kind = fractal_kind::fbm;
+    int octaves = 5;          // 1 ... 32
+    double frequency = 1.0;   // of band 0, > 0 and finite
+    double lacunarity = 2.0;  // frequency ratio between bands, 1 < l <= 16
+    double gain = 0.5;        // w_i = gain^i when weights is empty; finite, > 0
+    std::vector<double> weights;  // explicit band weights: empty, or `octaves` finite values
+    normalization norm = normalization::unit_variance;
+    std::array<int, D> period{};  // per axis, in band-0 lattice units; 0 = not periodic
+  };
+
+  // Throws hush::invalid_argument naming the first parameter out of range.
+  explicit fractal(const params& prm) : prm_(prm) {
+    validate();
+    double sum_sq = 0, sum_abs = 0;
+    // Powers by repeated multiplication, not std::pow: IEEE multiplication is
+    // the same everywhere, libm's pow is not (determinism across platforms).
+    double gain_i = 1.0, lac_i = 1.0;
+    for (int i = 0; i < prm_.octaves; ++i, gain_i *= prm_.gain, lac_i *= prm_.lacunarity) {
+      const double w = prm_.weights.empty() ? gain_i : prm_.weights[i];
+      const std::uint32_t band_seed = hash32(prm_.seed, static_cast<std::uint32_t>(i));
+      typename Noise::params np{};
+      np.seed = band_seed;
+      for (int a = 0; a < D; ++a)
+        np.period[a] = prm_.period[a] == 0
+                           ? 0
+                           : static_cast<int>(prm_.period[a] * lac_i);
+      vec<double, D> offset;
+      for (int a = 0; a < D; ++a)  // 24 hash bits: an exact fraction in [0, 1)
+        offset[a] = (hash32(band_seed, static_cast<std::uint32_t>(a)) >> 8) * 0x1p-24;
+      bands_.push_back({Noise(np), prm_.frequency * lac_i, w, offset});
+      sum_sq += w * w;
+      sum_abs += std::fabs(w);
+    }
+    switch (prm_.norm) {
+      case normalization::unit_variance: scale_ = 1.0 / std::sqrt(Noise::variance() * sum_sq); break;
+      case normalization::unit_range: scale_ = 1.0 / (sum_abs * Noise::bound()); break;
+      case normalization::none: scale_ = 1.0; break;
+    }
+    bound_ = scale_ * sum_abs * Noise::bound();
+    variance_ = prm_.kind == fractal_kind::fbm ? scale_ * scale_ * Noise::variance() * sum_sq : -1;
+  }
+
+  const params& parameters() const { return prm_; }
+  // |output| <= bound() for every input (analytic, from |n_i| <= Noise::bound()).
+  double bound() const { return bound_; }
+  // Variance over space and seeds of fBm (1 under unit_variance); turbulence: -1 (not derived).
+  double variance() const { return variance_; }
+  // The weight and frequency of band i, after normalisation.
+  double band_weight(int i) const { return bands_[i].weight * scale_; }
+  double band_frequency(int i) const { return bands_[i].frequency; }
+
+  float operator()(const vec<float, D>& p) const { return value<float>(vec_cast<double>(p)); }
+  double operator()(const vec<double, D>& p) const { return value<double>(p); }
+  value_gradient<float, D> gradient(const vec<float, D>& p) const {
+    return value_and_gradient<float>(vec_cast<double>(p));
+  }
+  value_gradient<double, D> gradient(const vec<double, D>& p) const {
+    return value_and_gradient<double>(p);
+  }
+
+  // Band positions f_i x + o_i are formed in double; each band evaluates in T.
+  template <class T>
+  T value(const vec<double, D>& p) const {
+    T sum = 0;
+    for (const band& b : bands_) {
+      const T n = b.noise.template value<T>(b.position(p));
+      sum += T(b.weight) * (prm_.kind == fractal_kind::fbm ? n : std::fabs(n));
+    }
+    return T(scale_) * sum;
+  }
+  // Gradient of the sum. For turbulence, |n| is not differentiable where n = 0;
+  // there the gradient of +n is returned.
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
+    value_gradient<T, D> r{T(0), {}};
+    for (const band& b : bands_) {
+      auto ng = b.noise.template value_and_gradient<T>(b.position(p));
+      T sign = T(1);
+      if (prm_.kind == fractal_kind::turbulence && ng.value < T(0)) sign = T(-1);
+      r.value += T(b.weight) * sign * ng.value;
+      const T chain = T(b.weight * b.frequency) * sign;  // d(f x + o)/dx = f
+      for (int a = 0; a < D; ++a) r.gradient[a] += chain * ng.gradient[a];
+    }
+    r.value *= T(scale_);
+    for (int a = 0; a < D; ++a) r.gradient[a] *= T(scale_);
+    return r;
+  }
+
+ private:
+  struct band {
+    Noise noise;
+    double frequency;
+    double weight;
+    vec<double, D> offset;
+    vec<double, D> position(const vec<double, D>& p) const {
+      vec<double, D> q;
+      for (int a = 0; a < D; ++a) q[a] = p[a] * frequency + offset[a];
+      return q;
+    }
+  };
+
+  void validate() const {
+    const char* where = "hush::fractal";
+    detail::require_in_range(where, "octaves", prm_.octaves, 1, kMaxOctaves, "1 ... 32");
+    if (!(std::isfinite(prm_.frequency) && prm_.frequency > 0))
+      detail::throw_out_of_range(where, "frequency", prm_.frequency, "finite and > 0");
+    if (!(prm_.lacunarity > 1.0 && prm_.lacunarity <= 16.0))
+      detail::throw_out_of_range(where, "lacunarity", prm_.lacunarity, "1 < lacunarity <= 16");
+    if (prm_.weights.empty()) {
+      if (!(std::isfinite(prm_.gain) && prm_.gain > 0))
+        detail::throw_out_of_range(where, "gain", prm_.gain, "finite and > 0");
+      // gain^(octaves-1) must stay a normal double for the weights to mean anything.
+      const double smallest = std::pow(prm_.gain, prm_.octaves - 1);
+      if (!(std::isfinite(smallest) && smallest >= 1e-300))
+        detail::throw_out_of_range(where, "gain", prm_.gain,
+                                   "gain^(octaves-1) finite and >= 1e-300");
+    } else {
+      if (prm_.weights.size() != static_cast<std::size_t>(prm_.octaves))
+        detail::throw_out_of_range(where, "weights.size()", prm_.weights.size(),
+                                   "empty (use gain) or equal to octaves");
+      bool any = false;
+      for (std::size_t i = 0; i < prm_.weights.size(); ++i) {
+        if (!std::isfinite(prm_.weights[i]))
+          detail::throw_out_of_range(where, "weights[" + std::to_string(i) + "]", prm_.weights[i],
+                                     "a finite number");
+        any = any || prm_.weights[i] != 0.0;
+      }
+      if (!any) throw hush::invalid_argument("hush::fractal: weights are all zero; valid: at least one non-zero weight");
+    }
+    if (prm_.kind == fractal_kind::turbulence && prm_.norm == normalization::unit_variance)
+      throw hush::invalid_argument(
+          "hush::fractal: norm = unit_variance is not available for turbulence; valid: "
+          "unit_range or none");
+    for (int a = 0; a < D; ++a) {
+      const std::string name = "period[" + std::to_string(a) + "]";
+      if (prm_.period[a] < 0)
+        detail::throw_out_of_range(where, name, prm_.period[a], "0 (not periodic) or >= 1");
+      if (prm_.period[a] == 0) continue;
+      if (prm_.lacunarity != std::floor(prm_.lacunarity))
+        detail::throw_out_of_range(where, "lacunarity", prm_.lacunarity,
+                                   "an integer (2 ... 16) when a period is set");
+      const double top = prm_.period[a] * std::pow(prm_.lacunarity, prm_.octaves - 1);
+      if (top > INT_MAX)
+        detail::throw_out_of_range(where, name, prm_.period[a],
+                                   "period * lacunarity^(octaves-1) <= 2147483647");
+    }
+  }
+
+  params prm_;
+  std::vector<band> bands_;
+  double scale_ = 1, bound_ = 1, variance_ = 1;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_FRACTAL_HPP

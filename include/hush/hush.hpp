@@ -1,0 +1,18 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Umbrella header: everything hush offers. Include the one-concept headers
+// (hush/perlin.hpp, hush/core/rng.hpp, ...) instead to compile less.
+#ifndef HUSH_HUSH_HPP
+#define HUSH_HUSH_HPP
+
+#include "hush/config.hpp"
+#include "hush/core/error.hpp"
+#include "hush/core/hash.hpp"
+#include "hush/core/lattice.hpp"
+#include "hush/core/rng.hpp"
+#include "hush/core/vec.hpp"
+#include "hush/core/views.hpp"
+#include "hush/perlin.hpp"
+#include "hush/fractal.hpp"
+
+#endif  // HUSH_HUSH_HPP
