@@ -49,10 +49,10 @@ class fractal {
   struct params {
     std::uint32_t seed = 0;
     fractal_kind kind = fractal_kind::fbm;
-    int octaves = 5;          // 1 ... 32
-    double frequency = 1.0;   // of band 0, > 0 and finite
-    double lacunarity = 2.0;  // frequency ratio between bands, 1 < l <= 16
-    double gain = 0.5;        // w_i = gain^i when weights is empty; finite, > 0
+    int octaves = 5;              // 1 ... 32
+    double frequency = 1.0;       // of band 0, > 0 and finite
+    double lacunarity = 2.0;      // frequency ratio between bands, 1 < l <= 16
+    double gain = 0.5;            // w_i = gain^i when weights is empty; finite, > 0
     std::vector<double> weights;  // explicit band weights: empty, or `octaves` finite values
     normalization norm = normalization::unit_variance;
     std::array<int, D> period{};  // per axis, in band-0 lattice units; 0 = not periodic
@@ -71,9 +71,7 @@ class fractal {
       typename Noise::params np{};
       np.seed = band_seed;
       for (int a = 0; a < D; ++a)
-        np.period[a] = prm_.period[a] == 0
-                           ? 0
-                           : static_cast<int>(prm_.period[a] * lac_i);
+        np.period[a] = prm_.period[a] == 0 ? 0 : static_cast<int>(prm_.period[a] * lac_i);
       vec<double, D> offset;
       for (int a = 0; a < D; ++a)  // 24 hash bits: an exact fraction in [0, 1)
         offset[a] = (hash32(band_seed, static_cast<std::uint32_t>(a)) >> 8) * 0x1p-24;
@@ -82,9 +80,15 @@ class fractal {
       sum_abs += std::fabs(w);
     }
     switch (prm_.norm) {
-      case normalization::unit_variance: scale_ = 1.0 / std::sqrt(Noise::variance() * sum_sq); break;
-      case normalization::unit_range: scale_ = 1.0 / (sum_abs * Noise::bound()); break;
-      case normalization::none: scale_ = 1.0; break;
+      case normalization::unit_variance:
+        scale_ = 1.0 / std::sqrt(Noise::variance() * sum_sq);
+        break;
+      case normalization::unit_range:
+        scale_ = 1.0 / (sum_abs * Noise::bound());
+        break;
+      case normalization::none:
+        scale_ = 1.0;
+        break;
     }
     bound_ = scale_ * sum_abs * Noise::bound();
     variance_ = prm_.kind == fractal_kind::fbm ? scale_ * scale_ * Noise::variance() * sum_sq : -1;
@@ -175,7 +179,9 @@ class fractal {
                                      "a finite number");
         any = any || prm_.weights[i] != 0.0;
       }
-      if (!any) throw hush::invalid_argument("hush::fractal: weights are all zero; valid: at least one non-zero weight");
+      if (!any)
+        throw hush::invalid_argument(
+            "hush::fractal: weights are all zero; valid: at least one non-zero weight");
     }
     if (prm_.kind == fractal_kind::turbulence && prm_.norm == normalization::unit_variance)
       throw hush::invalid_argument(

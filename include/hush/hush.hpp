@@ -12,7 +12,7 @@
 #include "hush/core/rng.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
-#include "hush/perlin.hpp"
 #include "hush/fractal.hpp"
+#include "hush/perlin.hpp"
 
 #endif  // HUSH_HUSH_HPP

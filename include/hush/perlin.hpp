@@ -208,9 +208,9 @@ class perlin {
     if constexpr (WithGradient) {
       // Trilinear blend of a per-corner quantity q[n] with the fade weights.
       auto blend = [&](const T* q) {
-        return detail::lerp(detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
-                            detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v),
-                            w);
+        return detail::lerp(
+            detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
+            detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
       };
       T gxs[8], gys[8], gzs[8], ddx[4], ddy[4];
       for (int n = 0; n < 8; ++n) {
@@ -223,7 +223,8 @@ class perlin {
       const T dv = detail::fade_derivative(f[0][1]);
       const T dw = detail::fade_derivative(f[0][2]);
       // d/dx of lerp over x: du * (d[a=1] - d[a=0]), then blended in y and z.
-      const T ex = detail::lerp(detail::lerp(ddx[0], ddx[1], v), detail::lerp(ddx[2], ddx[3], v), w);
+      const T ex =
+          detail::lerp(detail::lerp(ddx[0], ddx[1], v), detail::lerp(ddx[2], ddx[3], v), w);
       ddy[0] = x10 - x00;
       ddy[1] = x11 - x01;
       const T ey = detail::lerp(ddy[0], ddy[1], w);

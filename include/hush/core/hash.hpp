@@ -52,8 +52,7 @@ HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_
 HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
                                                  std::uint32_t j, std::uint32_t k) {
   namespace c = detail::constants;
-  return hash32(key ^ (i * c::kLatticePrimeX) ^ (j * c::kLatticePrimeY) ^
-                (k * c::kLatticePrimeZ));
+  return hash32(key ^ (i * c::kLatticePrimeX) ^ (j * c::kLatticePrimeY) ^ (k * c::kLatticePrimeZ));
 }
 
 }  // namespace hush

@@ -36,8 +36,9 @@ inline double log_factorial(std::uint32_t n) {
   }
   const double x = static_cast<double>(n);
   const double r = 1.0 / x, r2 = r * r;
-  const double series = r * (c::kStirling[0] + r2 * (c::kStirling[1] +
-                                                     r2 * (c::kStirling[2] + r2 * c::kStirling[3])));
+  const double series =
+      r *
+      (c::kStirling[0] + r2 * (c::kStirling[1] + r2 * (c::kStirling[2] + r2 * c::kStirling[3])));
   return (x + 0.5) * std::log(x) - x + c::kHalfLog2Pi + series;
 }
 

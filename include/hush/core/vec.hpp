@@ -34,8 +34,8 @@
 
 // Members shared by the three sizes. Indexing goes through the named members
 // (not pointer arithmetic across them) so it stays well defined.
-#define HUSH_VEC_COMMON(N)                                                        \
-  static constexpr int size() { return N; }                                       \
+#define HUSH_VEC_COMMON(N)                  \
+  static constexpr int size() { return N; } \
   HUSH_VEC_GLM_INTEROP(N)
 
 namespace hush {
@@ -68,9 +68,7 @@ struct vec<T, 4> {
   T x{}, y{}, z{}, w{};
   constexpr vec() = default;
   constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
-  constexpr T& operator[](std::size_t i) {
-    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
-  }
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
   constexpr const T& operator[](std::size_t i) const {
     return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
   }

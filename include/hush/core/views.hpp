@@ -67,8 +67,8 @@ class span {
 // position into lattice cell and fraction in double before going to float.
 template <int N>
 struct grid {
-  vec<double, N> origin;       // position of sample (0, 0[, 0])
-  vec<double, N> step;         // spacing along each axis (may be negative, not zero)
+  vec<double, N> origin;              // position of sample (0, 0[, 0])
+  vec<double, N> step;                // spacing along each axis (may be negative, not zero)
   std::array<std::size_t, N> size{};  // samples along each axis (nx, ny[, nz])
 
   // Number of samples; 0 when any axis is empty.

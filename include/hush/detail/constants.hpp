@@ -44,9 +44,9 @@ constexpr double kFade3 = 10.0;
 // top 3 bits of the lattice hash (exactly uniform). E[g g^T] = I/2.
 constexpr double kInvSqrt2 = 0.70710678118654752440;
 constexpr int kPerlin2GradCount = 8;
-constexpr double kPerlin2GradX[kPerlin2GradCount] = {1.0, kInvSqrt2, 0.0, -kInvSqrt2,
+constexpr double kPerlin2GradX[kPerlin2GradCount] = {1.0,  kInvSqrt2,  0.0, -kInvSqrt2,
                                                      -1.0, -kInvSqrt2, 0.0, kInvSqrt2};
-constexpr double kPerlin2GradY[kPerlin2GradCount] = {0.0, kInvSqrt2, 1.0, kInvSqrt2,
+constexpr double kPerlin2GradY[kPerlin2GradCount] = {0.0, kInvSqrt2,  1.0,  kInvSqrt2,
                                                      0.0, -kInvSqrt2, -1.0, -kInvSqrt2};
 constexpr unsigned kPerlin2GradShift = 29;  // index = hash >> 29
 
@@ -71,8 +71,8 @@ constexpr double kPerlin3Scale = 1.0;
 // Variance of the scaled noise over space and seeds, derived in docs/design.md:
 // Var = c * D * (2 I0)^(D-1) * (2 I2) * scale^2 with I0 = int (1-s)^2 = 181/462,
 // I2 = int (1-s)^2 t^2 = 535/18018 and c = E[g_k^2].
-constexpr double kPerlin2Variance = 193670.0 / 2081079.0;       // 0.0930623...
-constexpr double kPerlin3Variance = 35054270.0 / 480729249.0;   // 0.0729189...
+constexpr double kPerlin2Variance = 193670.0 / 2081079.0;      // 0.0930623...
+constexpr double kPerlin3Variance = 35054270.0 / 480729249.0;  // 0.0729189...
 
 // ---- Poisson sampling (core/rng.hpp).
 // Means below kPoissonInversionLimit use sequential inversion (expected
@@ -81,9 +81,9 @@ constexpr double kPerlin3Variance = 35054270.0 / 480729249.0;   // 0.0729189...
 // variables", Insurance: Mathematics and Economics 12, 1993), whose
 // acceptance rate exceeds 0.88 for every mean >= 10.
 constexpr double kPoissonInversionLimit = 12.0;
-constexpr double kPoissonMaxMean = 1e9;  // beyond it, uint32 counts could overflow
-constexpr double kPtrsB0 = 0.931, kPtrsB1 = 2.53;           // b = B0 + B1 sqrt(mu)
-constexpr double kPtrsA0 = -0.059, kPtrsA1 = 0.02483;       // a = A0 + A1 b
+constexpr double kPoissonMaxMean = 1e9;                // beyond it, uint32 counts could overflow
+constexpr double kPtrsB0 = 0.931, kPtrsB1 = 2.53;      // b = B0 + B1 sqrt(mu)
+constexpr double kPtrsA0 = -0.059, kPtrsA1 = 0.02483;  // a = A0 + A1 b
 constexpr double kPtrsAlpha0 = 1.1239, kPtrsAlpha1 = 1.1328, kPtrsAlphaB = 3.4;
 constexpr double kPtrsVr0 = 0.9277, kPtrsVr1 = 3.6224, kPtrsVrB = 2.0;
 constexpr double kPtrsKOffset = 0.43;
