@@ -11,14 +11,15 @@
 //   double r = p(hush::dvec3{x, y, z});          // the double-precision reference
 //
 // Contract (both dimensions, float and double):
-//  - range: [-1, 1]; the bound is attained (docs/design.md derives it). Float
-//    results stay within 1 + 2^-20 (tests/perlin_test.cpp measures 1e6+ points).
+//  - range: [-1, 1]; the bound is attained (constants.hpp, docs/design.md).
+//    Float results may exceed it by the float error budget below.
 //  - mean 0 and variance variance() over space and seeds (0.0931 in 2D,
-//    0.0729 in 3D; derived in docs/design.md, measured in the tests).
+//    0.0679 in 3D; derived in docs/design.md, measured in the tests).
 //  - C2 in position; gradient() returns the exact analytic derivative.
 //  - zero at every lattice point.
-//  - float evaluation is within 4e-7 of the double reference at the same
-//    position (measured: tests/perlin_test.cpp).
+//  - float evaluation is within 2^-16 (1.5e-5, a forward error bound) of the
+//    double reference at the same position; measured max 2.4e-6, RMS 1.9e-7
+//    (tests/perlin_test.cpp).
 //  - domain: every finite coordinate (core/lattice.hpp); NaN or +-Inf in any
 //    coordinate gives NaN (value and gradient). Evaluation never throws.
 //  - periodic mode: with period[a] = p > 0, noise(x + p e_a) == noise(x)

@@ -40,19 +40,26 @@ HUSH_INLINE constexpr std::uint32_t seed_key(std::uint32_t seed) {
   return hash32(seed + detail::constants::kGoldenGamma);
 }
 
+// rotl: rotate left by r in 1 ... 31 (GLSL: (x << r) | (x >> (32 - r))).
+HUSH_INLINE constexpr std::uint32_t rotl(std::uint32_t x, unsigned r) {
+  return (x << r) | (x >> (32u - r));
+}
+
 // lattice_hash: the hash of an integer lattice cell under a key. Cells are
 // 32-bit unsigned (coordinates wrap modulo 2^32; see core/lattice.hpp). The
-// cell is folded to one word with odd multipliers (each a bijection) and then
-// finished with hash32, so every input bit reaches every output bit.
+// cell is folded to one word with odd multipliers (each a bijection) and
+// per-axis rotations (constants.hpp says why), then finished with hash32, so
+// every input bit reaches every output bit.
 HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
                                                  std::uint32_t j) {
   namespace c = detail::constants;
-  return hash32(key ^ (i * c::kLatticePrimeX) ^ (j * c::kLatticePrimeY));
+  return hash32(key ^ (i * c::kLatticePrimeX) ^ rotl(j * c::kLatticePrimeY, c::kLatticeRotateY));
 }
 HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
                                                  std::uint32_t j, std::uint32_t k) {
   namespace c = detail::constants;
-  return hash32(key ^ (i * c::kLatticePrimeX) ^ (j * c::kLatticePrimeY) ^ (k * c::kLatticePrimeZ));
+  return hash32(key ^ (i * c::kLatticePrimeX) ^ rotl(j * c::kLatticePrimeY, c::kLatticeRotateY) ^
+                rotl(k * c::kLatticePrimeZ, c::kLatticeRotateZ));
 }
 
 }  // namespace hush

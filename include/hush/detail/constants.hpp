@@ -23,12 +23,22 @@ constexpr unsigned kHashMul2 = 0x846ca68bU;
 constexpr unsigned kHashShift3 = 16;
 
 // ---- Lattice hashing: a cell (i, j, k) is first folded to one word as
-// key ^ i*Px ^ j*Py ^ k*Pz (odd multipliers are bijections mod 2^32, so each
-// axis alone never collides), then finished with hash32. These are the 32-bit
-// xxHash primes 1, 2 and 3: odd, with well-spread bits.
+// key ^ i*Px ^ rotl(j*Py, Ry) ^ rotl(k*Pz, Rz) (odd multipliers are bijections
+// mod 2^32, so each axis alone never collides), then finished with hash32.
+// The rotations matter: every odd P maps a lag of 2^31 to a flip of the top
+// bit alone, so with a plain xor fold the field repeats exactly at lag
+// (2^31, 2^31); and hash32's first step collapses the difference 0x80008000
+// to a single top-bit flip, so a rotation of 16 still leaves a correlation of
+// 0.56 there. Ry = 11, Rz = 21 (no rotation or difference of rotations is 16)
+// keep the gradient correlation at every lag 2^k, k = 0 ... 31, on every
+// subset of axes at the sampling noise floor (scan of 4e4 cells per lag;
+// tests/perlin_test.cpp checks the lags of HARD_CASES row 7).
+// The multipliers are the 32-bit xxHash primes 1, 2 and 3.
 constexpr unsigned kLatticePrimeX = 0x9E3779B1U;
 constexpr unsigned kLatticePrimeY = 0x85EBCA77U;
 constexpr unsigned kLatticePrimeZ = 0xC2B2AE3DU;
+constexpr unsigned kLatticeRotateY = 11;
+constexpr unsigned kLatticeRotateZ = 21;
 
 // Stream separation for derived seeds (octaves, RNG streams): added before
 // hashing so that seed 0 / stream 0 do not map to the fixed point of hash32(0).
@@ -61,18 +71,28 @@ constexpr double kPerlin3GradY[kPerlin3GradCount] = {1, 1, -1, -1, 0, 0, 0, 0, 1
 constexpr double kPerlin3GradZ[kPerlin3GradCount] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1};
 constexpr unsigned kPerlin3IndexShift = 16;
 
-// Output scale: the raw noise sum_i w_i g_i.(x - c_i) is bounded by
-// sum_i w_i max_g g.(x - c_i), whose maximum over the cell is at its centre:
-// sqrt(2)/2 in 2D (unit gradients aimed at the centre), 1 in 3D (edge gradients).
-// The bound is attained, so these scales map the noise onto exactly [-1, 1].
-constexpr double kPerlin2Scale = 1.41421356237309504880;  // sqrt(2)
-constexpr double kPerlin3Scale = 1.0;
+// Output scale. The raw noise sum_i w_i g_i.(x - c_i) is bounded by
+// B = max over the cell of sum_i w_i max_g g.(x - c_i) (each corner taking its
+// best gradient; some lattice cell realises any assignment, so B is attained).
+// 2D, unit gradients: the maximum is at the cell centre, B = sqrt(2)/2.
+// 3D, edge gradients: the maximum is NOT at the centre (value 1 there) but at
+// (1/2, 0.35526, 0.48149) and its mirror images, B = 1.0363538112118029,
+// found by grid search plus refinement and re-derived by
+// tests/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
+// exactly [-1, 1].
+constexpr double kPerlin2RawBound = 0.70710678118654752440;  // sqrt(2)/2
+constexpr double kPerlin3RawBound = 1.0363538112118029;
+constexpr double kPerlin2Scale = 1.0 / kPerlin2RawBound;
+constexpr double kPerlin3Scale = 1.0 / kPerlin3RawBound;
 
-// Variance of the scaled noise over space and seeds, derived in docs/design.md:
-// Var = c * D * (2 I0)^(D-1) * (2 I2) * scale^2 with I0 = int (1-s)^2 = 181/462,
-// I2 = int (1-s)^2 t^2 = 535/18018 and c = E[g_k^2].
-constexpr double kPerlin2Variance = 193670.0 / 2081079.0;      // 0.0930623...
-constexpr double kPerlin3Variance = 35054270.0 / 480729249.0;  // 0.0729189...
+// Variance of the raw noise over space and seeds, derived in docs/design.md:
+// Var = c * D * (2 I0)^(D-1) * (2 I2) with I0 = int_0^1 (1-s)^2 = 181/462,
+// I2 = int_0^1 (1-s)^2 t^2 = 535/18018, c = E[g_k^2] (1/2 in 2D, 2/3 in 3D).
+// The output's variance is this times the scale squared.
+constexpr double kPerlin2RawVariance = 96835.0 / 2081079.0;       // 0.046531...
+constexpr double kPerlin3RawVariance = 35054270.0 / 480729249.0;  // 0.072918...
+constexpr double kPerlin2Variance = kPerlin2RawVariance * kPerlin2Scale * kPerlin2Scale;
+constexpr double kPerlin3Variance = kPerlin3RawVariance * kPerlin3Scale * kPerlin3Scale;
 
 // ---- Poisson sampling (core/rng.hpp).
 // Means below kPoissonInversionLimit use sequential inversion (expected
