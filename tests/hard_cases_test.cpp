@@ -1,0 +1,178 @@
+// HARD_CASES.md rows 1, 3, 5 and 14, checked on every noise hush offers (Perlin
+// 2D/3D, fBm, turbulence) in float and double. Rows 2, 6 and 7 live in
+// perlin_test.cpp, row 10 in golden_test.cpp, row 11 in core/rng_test.cpp,
+// row 1 for the lattice split itself in core/lattice_test.cpp. Row 4 (no
+// signed overflow) is this whole suite run under UBSan in CI.
+#include <doctest/doctest.h>
+
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "hush/hush.hpp"
+
+namespace {
+
+// One noise under test, type-erased to "evaluate at (x, y, z)" in float and
+// double (2D noises ignore z), with its analytic output bound.
+struct subject {
+  std::string name;
+  std::function<float(float, float, float)> f;
+  std::function<double(double, double, double)> d;
+  std::function<hush::vec3(float, float, float)> grad;  // gradient in float; z = 0 for 2D
+  double bound;
+  double lipschitz;  // a bound on |gradient| (perlin_test derives Perlin's)
+};
+
+template <class Noise>
+subject make_subject(const std::string& name, const Noise& n, double bound, double lipschitz) {
+  constexpr int D = Noise::dimension;
+  subject s;
+  s.name = name;
+  s.bound = bound;
+  s.lipschitz = lipschitz;
+  if constexpr (D == 2) {
+    s.f = [n](float x, float y, float) { return n(hush::vec2{x, y}); };
+    s.d = [n](double x, double y, double) { return n(hush::dvec2{x, y}); };
+    s.grad = [n](float x, float y, float) {
+      const auto g = n.gradient(hush::vec2{x, y}).gradient;
+      return hush::vec3{g.x, g.y, 0.0f};
+    };
+  } else {
+    s.f = [n](float x, float y, float z) { return n(hush::vec3{x, y, z}); };
+    s.d = [n](double x, double y, double z) { return n(hush::dvec3{x, y, z}); };
+    s.grad = [n](float x, float y, float z) { return n.gradient(hush::vec3{x, y, z}).gradient; };
+  }
+  return s;
+}
+
+template <int D>
+hush::fractal<hush::perlin<D>> make_fractal(hush::fractal_kind kind) {
+  typename hush::fractal<hush::perlin<D>>::params prm;
+  prm.seed = 77;
+  prm.octaves = 5;
+  prm.kind = kind;
+  prm.norm = hush::normalization::unit_range;
+  return hush::fractal<hush::perlin<D>>(prm);
+}
+
+std::vector<subject> subjects() {
+  // Lipschitz bounds: Perlin's analytic ones (perlin_test.cpp) times, for the
+  // fractals, sum_i |w_i| f_i / K = sum 0.5^i 2^i / sum 0.5^i = 5 / 1.9375.
+  const double l2 = 7.31, l3 = 10.05, frac = 5 / 1.9375;
+  return {make_subject("perlin<2>", hush::perlin<2>(3), 1.0, l2),
+          make_subject("perlin<3>", hush::perlin<3>(3), 1.0, l3),
+          make_subject("fbm<2>", make_fractal<2>(hush::fractal_kind::fbm), 1.0, l2 * frac),
+          make_subject("fbm<3>", make_fractal<3>(hush::fractal_kind::fbm), 1.0, l3 * frac),
+          make_subject("turbulence<3>", make_fractal<3>(hush::fractal_kind::turbulence), 1.0,
+                       l3 * frac)};
+}
+
+const double kFloatSlack = std::ldexp(1.0, -15);
+
+}  // namespace
+
+TEST_CASE("hard cases row 1: values at tricky coordinates match the double reference") {
+  // Cells must be picked exactly as std::floor does; a wrong cell changes the
+  // value by O(0.1), while float rounding stays below 2^-15.
+  const float xs[] = {-1.0f,
+                      -0.0f,
+                      0.0f,
+                      std::nextafter(-1.0f, -2.0f),
+                      std::nextafter(-1.0f, 0.0f),
+                      4.9999998f,
+                      8388608.5f - 1.0f,  // 2^23 - 0.5
+                      -8388607.5f,
+                      16777216.0f,
+                      -16777216.0f,
+                      0.5f,
+                      -0.5f};
+  for (const subject& s : subjects()) {
+    for (float x : xs)
+      for (float y : {0.25f, -0.75f, -1.0f}) {
+        INFO(s.name << " at (" << x << ", " << y << ")");
+        const double ref = s.d(x, y, -0.3125);  // same position in double
+        CHECK(std::fabs(double(s.f(x, y, -0.3125f)) - ref) <= kFloatSlack);
+      }
+    // -0 and +0 are the same point.
+    CHECK(s.f(-0.0f, 0.25f, -0.0f) == s.f(0.0f, 0.25f, 0.0f));
+  }
+}
+
+TEST_CASE("hard cases row 3: far coordinates stay finite and within the bound") {
+  // float: 1e6 ... 2^24 and beyond; double: 2^31 ... 2^53 and beyond. The
+  // lattice wraps at 2^32 cells (documented), the fraction is exact.
+  const float fx[] = {1e6f, 1e6f + 0.375f, 4194304.25f,    8388607.5f,   16777215.0f, 16777216.0f,
+                      3e9f, 1e20f,         -1e6f - 0.375f, -16777215.0f, -3e9f,       -1e30f};
+  const double dx[] = {2147483647.25,       2147483648.5, 4294967296.75, 9007199254740991.0,
+                       9007199254740992.0,  1e17,         1e300,         -2147483648.5,
+                       -9007199254740991.0, -1e300};
+  for (const subject& s : subjects()) {
+    for (float x : fx) {
+      const float v = s.f(x, 0.5f * x, -x);
+      INFO(s.name << " float x = " << x);
+      CHECK(std::isfinite(v));
+      CHECK(std::fabs(v) <= s.bound + kFloatSlack);
+    }
+    for (double x : dx) {
+      const double v = s.d(x, x / 3.0, -0.25);
+      INFO(s.name << " double x = " << x);
+      CHECK(std::isfinite(v));
+      CHECK(std::fabs(v) <= s.bound);
+    }
+  }
+}
+
+TEST_CASE("hard cases row 5: NaN and Inf give NaN; FLT_MAX, denormals and -0 give finite values") {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  for (const subject& s : subjects()) {
+    INFO(s.name);
+    // Documented result: any non-finite coordinate gives NaN, value and gradient.
+    for (float bad : {nan, inf, -inf}) {
+      CHECK(std::isnan(s.f(bad, 0.5f, 0.5f)));
+      CHECK(std::isnan(s.f(0.5f, bad, 0.5f)));
+      CHECK(std::isnan(s.d(double(bad), 0.5, 0.5)));
+      CHECK(std::isnan(s.grad(bad, 0.5f, 0.5f).x));
+    }
+    if (s.name.find("<3>") != std::string::npos) CHECK(std::isnan(s.f(0.5f, 0.5f, nan)));
+    for (float big : {FLT_MAX, -FLT_MAX}) {
+      CHECK(std::isfinite(s.f(big, big, big)));
+      CHECK(std::fabs(s.f(big, 0.5f, -big)) <= s.bound + kFloatSlack);
+    }
+    CHECK(std::isfinite(s.d(DBL_MAX, -DBL_MAX, DBL_MAX)));
+    // Denormals: continuity at the origin says |n(x) - n(0)| <= L |x|.
+    const float den[] = {std::numeric_limits<float>::denorm_min(), -1e-40f, FLT_MIN, -FLT_MIN};
+    for (float x : den) {
+      const double dv = std::fabs(double(s.f(x, x, x)) - double(s.f(0.0f, 0.0f, 0.0f)));
+      CHECK(dv <= s.lipschitz * std::fabs(double(x)) * 2 + kFloatSlack);
+      CHECK(std::isfinite(s.grad(x, x, x).x));
+    }
+  }
+}
+
+TEST_CASE("hard cases row 14: tiny, odd and huge periods tile exactly") {
+  // Perlin's tiles are periods: 1 (a single cell), odd sizes, and the largest
+  // int. Each must repeat bit for bit (dyadic points keep x + p exact).
+  for (int p : {1, 3, 7, 9, 1023, 2147483647}) {
+    hush::perlin<2>::params prm;
+    prm.seed = 5;
+    prm.period = {p, p};
+    const hush::perlin<2> n(prm);
+    hush::perlin<3>::params prm3;
+    prm3.seed = 5;
+    prm3.period = {p, p, p};
+    const hush::perlin<3> n3(prm3);
+    for (int i = -40; i < 40; ++i) {
+      const double x = i * 0.40625, y = -i * 0.15625, z = i * 0.0625;
+      INFO("period " << p << " at " << x);
+      CHECK(n(hush::dvec2{x, y}) == n(hush::dvec2{x + p, y - p}));
+      CHECK(n3(hush::dvec3{x, y, z}) == n3(hush::dvec3{x - p, y + p, z + p}));
+      CHECK(std::fabs(n(hush::dvec2{x, y})) <= 1.0);
+    }
+  }
+}
