@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs hush's build, test and example dependencies from Debian 12's archive.
+# Safe to rerun: when every package is already present it changes nothing.
+set -euo pipefail
+
+packages=(
+  cmake g++ make python3   # toolchain; the amalgamation script needs only python3
+  doctest-dev              # tests
+  libglm-dev               # optional glm::vec interop (tested)
+  libeigen3-dev            # FFT for the gallery's power spectra
+  libstb-dev               # stb_image_write for PNG output
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+echo "install-deps: installing ${missing[*]}"
+"${sudo_cmd[@]}" apt-get update
+DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
