@@ -817,6 +817,8 @@ struct image_view {
 //   - normalization::none: K = 1, the raw sum.
 // Periodic: with period[a] = p > 0 band i uses period p * lacunarity^i, so the
 // sum repeats every p / frequency along axis a (lacunarity must be an integer).
+// Domain: as the base noise; every finite input gives a finite output, and a
+// NaN or infinite coordinate gives NaN.
 #ifndef HUSH_FRACTAL_HPP
 #define HUSH_FRACTAL_HPP
 
@@ -836,7 +838,8 @@ enum class normalization { unit_variance, unit_range, none };
 template <class Noise>
 class fractal {
  public:
-  static constexpr int D = Noise::dimension;
+  static constexpr int dimension = Noise::dimension;
+  static constexpr int D = dimension;
   static constexpr int kMaxOctaves = 32;
 
   struct params {
@@ -939,9 +942,16 @@ class fractal {
     double frequency;
     double weight;
     vec<double, D> offset;
+    // f x + o in double. Where a finite x overflows (|x f| > DBL_MAX), the
+    // exact product is a multiple of 2^32, i.e. lattice cell 0 with fraction
+    // 0 under the 2^32-cell wrap (core/lattice.hpp), so 0 is the exact band
+    // coordinate, and a finite input keeps giving a finite output.
     vec<double, D> position(const vec<double, D>& p) const {
       vec<double, D> q;
-      for (int a = 0; a < D; ++a) q[a] = p[a] * frequency + offset[a];
+      for (int a = 0; a < D; ++a) {
+        q[a] = p[a] * frequency + offset[a];
+        if (!std::isfinite(q[a]) && std::isfinite(p[a])) q[a] = 0.0;
+      }
       return q;
     }
   };
