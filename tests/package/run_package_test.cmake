@@ -14,7 +14,8 @@ foreach(var MODE HUSH_SOURCE_DIR CONSUMER_DIR WORK_DIR GENERATOR CXX_COMPILER)
   endif()
 endforeach()
 if(NOT MODE MATCHES "^(add_subdirectory|find_package)$")
-  message(FATAL_ERROR "run_package_test.cmake: MODE is add_subdirectory or find_package, not ${MODE}")
+  message(FATAL_ERROR
+          "run_package_test.cmake: MODE is add_subdirectory or find_package, not ${MODE}")
 endif()
 
 # The version, read from config.hpp as the top-level CMakeLists.txt does.
