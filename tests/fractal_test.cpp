@@ -68,7 +68,7 @@ TEST_CASE_TEMPLATE("fractal: unit_variance fBm has mean 0 and variance 1 over sp
   }
 }
 
-TEST_CASE_TEMPLATE("fractal: outputs stay within bound(); unit_range within [-1, 1]", N,
+TEST_CASE_TEMPLATE("fractal: outputs stay within bound(), unit_range within -1 ... 1", N,
                    std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
   constexpr int D = N::value;
   const double float_slack = std::ldexp(1.0, -15);  // 2^-16 per band, summed weights <= 2

@@ -127,7 +127,7 @@ TEST_CASE("hard cases row 3: far coordinates stay finite and within the bound") 
   }
 }
 
-TEST_CASE("hard cases row 5: NaN and Inf give NaN; FLT_MAX, denormals and -0 give finite values") {
+TEST_CASE("hard cases row 5: NaN and Inf give NaN, FLT_MAX, denormals and -0 give finite values") {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   for (const subject& s : subjects()) {

@@ -71,10 +71,13 @@ class rng {
     }
   }
 
-  // Uniform in [lo, hi). Requires lo < hi, both finite (not checked: a hot path).
+  // Uniform in [lo, hi). Requires lo < hi, both finite (not checked: a hot
+  // path). lo + (hi - lo) u can round up to hi when u is the largest value
+  // below 1; that one case returns the largest value below hi.
   template <class T>
   T uniform(T lo, T hi) {
-    return lo + (hi - lo) * uniform<T>();
+    const T r = lo + (hi - lo) * uniform<T>();
+    return r < hi ? r : std::nextafter(hi, lo);
   }
 
   // Standard normal deviate (mean 0, variance 1) by Marsaglia's polar method,

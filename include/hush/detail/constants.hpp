@@ -110,7 +110,7 @@ constexpr double kPtrsKOffset = 0.43;
 constexpr double kPtrsUsAccept = 0.07, kPtrsUsReject = 0.013;
 // Stirling's series for ln(n!) = (n + 1/2) ln n - n + ln(2 pi)/2 + sum_k c_k / n^(2k-1),
 // c_k = B_2k / (2k (2k - 1)); used for n > kLogFactorialTable, where the
-// first omitted term is below 1e-16.
+// first omitted term is below 1.1e-15 absolute (2.3e-17 relative) at n = 21.
 constexpr double kHalfLog2Pi = 0.91893853320467274178;
 constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
 constexpr int kLogFactorialTable = 20;
