@@ -1,0 +1,29 @@
+// hush — the `hush` program: its commands (DESIGN.md, "The `hush` program").
+//
+// Each command receives the arguments after its name and returns the exit code. Mistakes
+// are thrown: usage_error (exit 2) or run_error (exit 1); main prints them as one line.
+#ifndef HUSH_CLI_COMMANDS_HPP
+#define HUSH_CLI_COMMANDS_HPP
+
+#include <string>
+#include <vector>
+
+#include "args.hpp"
+
+namespace hush_cli {
+
+// hush info: version, compiler, build options, backends and optional features.
+int run_info(const std::vector<std::string>& args);
+
+// hush sample NOISE [options] --out FILE.npy|FILE.png: a noise sampled on a grid.
+int run_sample(const std::vector<std::string>& args);
+// The options every noise takes (the noise's own come from its noise_entry).
+const std::vector<option_spec>& sample_options();
+
+// hush gallery [--out DIR]: the showcase PNG images.
+int run_gallery(const std::vector<std::string>& args);
+const std::vector<option_spec>& gallery_options();
+
+}  // namespace hush_cli
+
+#endif  // HUSH_CLI_COMMANDS_HPP

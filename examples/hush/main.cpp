@@ -1,0 +1,137 @@
+// hush — the `hush` program: usage text and command dispatch.
+//
+//   hush info
+//   hush sample NOISE [--dim 2|3] [--size N|NxM|NxMxK] [--origin x,y[,z]] [--step s]
+//                     [--seed n] [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
+//   hush gallery [--out DIR]
+//
+// Exit codes: 0 success, 1 a failure doing valid work (e.g. an unwritable file), 2 a
+// usage error. Every error is one line on stderr: "hush <command>: <what is wrong>".
+#include <cstdio>
+#include <iostream>
+#include <new>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "args.hpp"
+#include "commands.hpp"
+#include "hush/core/error.hpp"
+#include "noises.hpp"
+
+namespace hush_cli {
+namespace {
+
+struct command {
+  const char* name;
+  const char* synopsis;
+  const char* summary;
+  int (*run)(const std::vector<std::string>& args);
+};
+
+const std::vector<command>& commands() {
+  static const std::vector<command> table = {
+      {"info", "hush info", "version, compiler, build options, backends", run_info},
+      {"sample", "hush sample NOISE [options] --out FILE.npy|FILE.png",
+       "sample a noise on a uniform grid", run_sample},
+      {"gallery", "hush gallery [--out DIR]", "render the showcase images (PNG)", run_gallery},
+  };
+  return table;
+}
+
+// "  --name metavar   help", the help wrapped under its own column; an option too long
+// for the first column gets its help on the next line.
+void print_options(std::ostream& os, const std::vector<option_spec>& options) {
+  constexpr std::size_t kHelpColumn = 30, kWidth = 96;
+  for (const option_spec& o : options) {
+    std::string line = std::string("  ") + o.name + " " + o.metavar;
+    if (line.size() + 2 > kHelpColumn) {
+      os << line << '\n';
+      line.clear();
+    }
+    line.resize(kHelpColumn, ' ');
+    for (const std::string& word : split(o.help, ' ')) {
+      if (line.size() > kHelpColumn && line.size() + 1 + word.size() > kWidth) {
+        os << line << '\n';
+        line.assign(kHelpColumn, ' ');
+      }
+      if (line.size() > kHelpColumn) line += ' ';
+      line += word;
+    }
+    os << line << '\n';
+  }
+}
+
+void print_usage(std::ostream& os) {
+  os << "usage: hush <command> [options]      (hush --help shows this)\n\ncommands:\n";
+  for (const command& c : commands())
+    os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << '\n';
+  os << "\nhush info\n"
+        "\nhush sample NOISE [options] --out FILE.npy|FILE.png\n"
+        "  Sample (i, j, k) is at origin + step * (i, j, k), i along x. FILE.npy holds float32\n"
+        "  (little-endian, C order) of shape (ny, nx) or (nz, ny, nx); FILE.png (one 2D image)\n"
+        "  shows signed noise over [-1, 1] ((v + 1) / 2) and non-negative noise (turbulence)\n"
+        "  over [0, 1], from black to white, with j = 0 at the top.\n";
+  print_options(os, sample_options());
+  for (const noise_entry& n : noise_table()) {
+    os << "  NOISE " << n.name << ": " << n.summary << '\n';
+    print_options(os, n.options);
+  }
+  os << "\nhush gallery [--out DIR]\n";
+  print_options(os, gallery_options());
+  os << "\nEvery option takes one value: '--seed 7' or '--seed=7'.\n"
+        "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";
+}
+
+bool asks_for_help(const std::vector<std::string>& args) {
+  for (const std::string& a : args)
+    if (a == "--help" || a == "-h") return true;
+  return false;
+}
+
+int run(const std::vector<std::string>& args) {
+  if (args.empty()) {
+    print_usage(std::cerr);
+    return 2;
+  }
+  if (args[0] == "help" || asks_for_help(args)) {
+    print_usage(std::cout);
+    return 0;
+  }
+  std::string names;
+  for (const command& c : commands()) {
+    if (args[0] != c.name) {
+      names += (names.empty() ? "" : ", ") + std::string(c.name);
+      continue;
+    }
+    const std::string who = std::string("hush ") + c.name + ": ";
+    try {
+      return c.run(std::vector<std::string>(args.begin() + 1, args.end()));
+    } catch (const usage_error& e) {
+      std::cerr << who << e.what() << '\n';
+      return 2;
+    } catch (const hush::invalid_argument& e) {  // a parameter no option check caught
+      std::cerr << who << e.what() << '\n';
+      return 2;
+    } catch (const run_error& e) {
+      std::cerr << who << e.what() << '\n';
+      return 1;
+    } catch (const std::bad_alloc&) {
+      std::cerr << who << "out of memory\n";
+      return 1;
+    } catch (const std::exception& e) {
+      std::cerr << who << e.what() << '\n';
+      return 1;
+    }
+  }
+  std::cerr << "hush: unknown command '" << args[0] << "'; valid: " << names
+            << " (hush --help shows usage)\n";
+  return 2;
+}
+
+}  // namespace
+}  // namespace hush_cli
+
+int main(int argc, char** argv) {
+  return hush_cli::run(std::vector<std::string>(argv + 1, argv + argc));
+}

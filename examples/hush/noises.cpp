@@ -1,0 +1,166 @@
+// hush — the `hush` program: the noises it samples, one table entry each (see noises.hpp).
+#include "noises.hpp"
+
+#include <climits>
+#include <utility>
+
+namespace hush_cli {
+namespace {
+
+// Any hush noise of dimension D with `template <class T> T value(const vec<double, D>&)`.
+template <class Noise, int D>
+class field final : public noise_field {
+ public:
+  field(Noise noise, bool is_signed) : noise_(std::move(noise)), signed_(is_signed) {}
+  bool is_signed() const override { return signed_; }
+  void sample_row(const sample_grid& grid, std::size_t j, std::size_t k,
+                  float* out) const override {
+    for (std::size_t i = 0; i < grid.size[0]; ++i) {
+      const hush::dvec3 p = grid.position({i, j, k});
+      if constexpr (D == 2)
+        out[i] = noise_.template value<float>(hush::dvec2{p.x, p.y});
+      else
+        out[i] = noise_.template value<float>(p);
+    }
+  }
+
+ private:
+  Noise noise_;
+  bool signed_;
+};
+
+template <int D>
+std::unique_ptr<noise_field> make_perlin_d(std::uint32_t seed, const perlin_options& o) {
+  std::array<int, D> period{};
+  for (int a = 0; a < D; ++a) period[a] = o.period[a];
+  if (!o.fractal) {
+    typename hush::perlin<D>::params prm;
+    prm.seed = seed;
+    prm.period = period;
+    return std::make_unique<field<hush::perlin<D>, D>>(hush::perlin<D>(prm), true);
+  }
+  using fractal = hush::fractal<hush::perlin<D>>;
+  typename fractal::params prm;
+  prm.seed = seed;
+  prm.kind = o.kind;
+  prm.octaves = o.octaves;
+  prm.lacunarity = o.lacunarity;
+  prm.gain = o.gain;
+  const bool fbm = o.kind == hush::fractal_kind::fbm;
+  prm.norm =
+      o.norm.value_or(fbm ? hush::normalization::unit_variance : hush::normalization::unit_range);
+  prm.period = period;
+  return std::make_unique<field<fractal, D>>(fractal(prm), fbm);
+}
+
+// `hush sample perlin`: the options are parsed here; their ranges are the library's.
+std::unique_ptr<noise_field> make_perlin_from_options(const noise_setup& setup,
+                                                      const option_values& given) {
+  perlin_options o;
+  if (const std::string* v = find_value(given, "--period")) {
+    const std::vector<long long> p =
+        parse_integer_list("--period", *v, static_cast<std::size_t>(setup.dim), 0, INT_MAX);
+    for (int a = 0; a < setup.dim; ++a) o.period[a] = static_cast<int>(p[a]);
+  }
+  if (const std::string* v = find_value(given, "--octaves"))
+    o.octaves = static_cast<int>(
+        parse_integer("--octaves", *v, 1, hush::fractal<hush::perlin<2>>::kMaxOctaves));
+  if (const std::string* v = find_value(given, "--lacunarity"))
+    o.lacunarity = parse_finite("--lacunarity", *v);
+  if (const std::string* v = find_value(given, "--gain")) o.gain = parse_finite("--gain", *v);
+  if (const std::string* v = find_value(given, "--fractal"))
+    o.kind = parse_choice<hush::fractal_kind>(
+        "--fractal", *v,
+        {{"fbm", hush::fractal_kind::fbm}, {"turbulence", hush::fractal_kind::turbulence}});
+  if (const std::string* v = find_value(given, "--norm"))
+    o.norm =
+        parse_choice<hush::normalization>("--norm", *v,
+                                          {{"unit_variance", hush::normalization::unit_variance},
+                                           {"unit_range", hush::normalization::unit_range},
+                                           {"none", hush::normalization::none}});
+  // Any fractal option asks for the octave sum, even with one octave (turbulence and the
+  // normalisations change a single octave too); with none of them this is plain Perlin.
+  o.fractal = o.octaves > 1;
+  for (const char* f : {"--lacunarity", "--gain", "--fractal", "--norm"})
+    o.fractal = o.fractal || find_value(given, f) != nullptr;
+  return make_perlin(setup, o);
+}
+
+}  // namespace
+
+std::vector<float> sample_all(const noise_field& field, const sample_grid& grid) {
+  std::vector<float> values(grid.count());
+  const std::size_t nx = grid.size[0];
+  for (std::size_t k = 0; k < grid.size[2]; ++k)
+    for (std::size_t j = 0; j < grid.size[1]; ++j)
+      field.sample_row(grid, j, k, values.data() + (k * grid.size[1] + j) * nx);
+  return values;
+}
+
+std::unique_ptr<noise_field> make_perlin(const noise_setup& setup, const perlin_options& options) {
+  return setup.dim == 2 ? make_perlin_d<2>(setup.seed, options)
+                        : make_perlin_d<3>(setup.seed, options);
+}
+
+const std::vector<noise_entry>& noise_table() {
+  static const std::vector<noise_entry> table = {
+      {"perlin",
+       "improved Perlin noise (Perlin 2002); with fractal options an fBm or turbulence sum",
+       {{"--period", "px,py[,pz]",
+         "period per axis in lattice cells, one integer >= 0 per dimension; 0 = not periodic "
+         "(default 0)",
+         "period"},
+        {"--octaves", "N",
+         "octaves, 1 ... 32 (default 1 = plain Perlin; more sums octaves with hush::fractal)",
+         "octaves"},
+        {"--lacunarity", "L",
+         "frequency ratio between octaves, 1 < L <= 16, an integer with --period (default 2)",
+         "lacunarity"},
+        {"--gain", "G", "amplitude ratio between octaves, > 0 (default 0.5)", "gain"},
+        {"--fractal", "fbm|turbulence", "sum signed octaves or their absolute values (default fbm)",
+         nullptr},
+        {"--norm", "unit_variance|unit_range|none",
+         "scaling of the sum (default unit_variance for fbm, unit_range for turbulence); "
+         "any of these fractal options selects the octave sum",
+         "norm"}},
+       make_perlin_from_options},
+  };
+  return table;
+}
+
+std::string noise_names() {
+  std::string names;
+  for (const noise_entry& e : noise_table())
+    names += (names.empty() ? "" : ", ") + std::string(e.name);
+  return names;
+}
+
+const noise_entry& find_noise(const std::string& name) {
+  for (const noise_entry& e : noise_table())
+    if (name == e.name) return e;
+  throw usage_error("unknown noise '" + name + "'; valid: " + noise_names());
+}
+
+std::unique_ptr<noise_field> make_noise(const noise_entry& entry, const noise_setup& setup,
+                                        const option_values& given) {
+  try {
+    return entry.make(setup, given);
+  } catch (const hush::invalid_argument& e) {
+    // Library messages read "hush::<type>: <param>[...] = <value> ...; valid: <range>".
+    const std::string message = e.what();
+    for (const option_spec& o : entry.options) {
+      if (!o.library_param) continue;
+      const std::string key = std::string(": ") + o.library_param;
+      const std::size_t at = message.find(key), after = at + key.size();
+      if (at == std::string::npos || after >= message.size() ||
+          (message[after] != ' ' && message[after] != '['))
+        continue;
+      const std::string* value = find_value(given, o.name);
+      throw usage_error(std::string(o.name) + (value ? " '" + *value + "'" : " (default)") +
+                        " is invalid: " + message);
+    }
+    throw usage_error(message);
+  }
+}
+
+}  // namespace hush_cli

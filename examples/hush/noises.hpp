@@ -1,0 +1,87 @@
+// hush — the `hush` program: the noises it samples, one table entry each.
+//
+// A noise_entry names a noise, lists its own options and builds a noise_field from them.
+// `hush sample NOISE` looks NOISE up in noise_table(), and usage text and option errors
+// are generated from the entries, so adding a noise to the program is one entry plus the
+// function that builds it.
+#ifndef HUSH_CLI_NOISES_HPP
+#define HUSH_CLI_NOISES_HPP
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "args.hpp"
+#include "hush/hush.hpp"
+
+namespace hush_cli {
+
+// The samples a command asks for: sample (i, j, k) sits at grid.position({i, j, k}),
+// i.e. origin + step * (i, j, k) in double. 2D noises read x and y (size[2] is then 1).
+using sample_grid = hush::grid<3>;
+
+// A configured noise, sampled one row of a grid at a time.
+class noise_field {
+ public:
+  virtual ~noise_field() = default;
+  // True for values symmetric about 0; false for values >= 0 (turbulence). PNG output
+  // shows [-1, 1], respectively [0, 1], from black to white.
+  virtual bool is_signed() const = 0;
+  // out[i] = noise.value<float>(grid.position({i, j, k})) for i in [0, grid.size[0]):
+  // the position in double precision, the arithmetic in float.
+  virtual void sample_row(const sample_grid& grid, std::size_t j, std::size_t k,
+                          float* out) const = 0;
+};
+
+// Every sample of `grid`, in C order (i fastest, then j, then k).
+std::vector<float> sample_all(const noise_field& field, const sample_grid& grid);
+
+// What every noise is built from: the common options of `hush sample`.
+struct noise_setup {
+  int dim = 2;
+  std::uint32_t seed = 0;
+};
+
+struct noise_entry {
+  const char* name;     // as typed after `hush sample`
+  const char* summary;  // one line for the usage text
+  std::vector<option_spec> options;
+  // Builds the noise. Throws usage_error for a value it cannot parse, and lets the
+  // library's hush::invalid_argument through (make_noise reports it against the option).
+  std::unique_ptr<noise_field> (*make)(const noise_setup& setup, const option_values& given);
+};
+
+const std::vector<noise_entry>& noise_table();
+// "perlin, ..." for messages.
+std::string noise_names();
+// The entry called `name`; throws usage_error listing the valid names.
+const noise_entry& find_noise(const std::string& name);
+
+// entry.make(setup, given), with a hush::invalid_argument turned into a usage_error naming
+// the option that carries the refused library parameter.
+std::unique_ptr<noise_field> make_noise(const noise_entry& entry, const noise_setup& setup,
+                                        const option_values& given);
+
+// ---- Perlin noise (hush/perlin.hpp), plain or summed over octaves (hush/fractal.hpp).
+struct perlin_options {
+  std::array<int, 3> period{};  // per axis, the first `dim` are used; 0 = not periodic
+  // Sum octaves with hush::fractal; otherwise plain hush::perlin (the fields below unused).
+  bool fractal = false;
+  hush::fractal_kind kind = hush::fractal_kind::fbm;
+  int octaves = 1;
+  double lacunarity = hush::fractal<hush::perlin<2>>::params{}.lacunarity;
+  double gain = hush::fractal<hush::perlin<2>>::params{}.gain;
+  // Default: unit_variance for fBm, unit_range for turbulence (which has no unit_variance).
+  std::optional<hush::normalization> norm;
+};
+
+// Throws hush::invalid_argument for parameters the library refuses.
+std::unique_ptr<noise_field> make_perlin(const noise_setup& setup, const perlin_options& options);
+
+}  // namespace hush_cli
+
+#endif  // HUSH_CLI_NOISES_HPP

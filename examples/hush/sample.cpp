@@ -1,0 +1,181 @@
+// hush — the `hush` program: `hush sample NOISE [options] --out FILE.npy|FILE.png`.
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "image.hpp"
+#include "noises.hpp"
+#include "npy.hpp"
+#include "progress.hpp"
+
+namespace hush_cli {
+namespace {
+
+// 32 samples per lattice cell: Perlin noise looks smooth and nothing aliases.
+constexpr double kDefaultStep = 1.0 / 32;
+constexpr const char* kDefaultSize = "256";
+// A bound on the work one command may ask for (8 GiB of float32).
+constexpr std::uint64_t kMaxSamples = std::uint64_t(1) << 31;
+
+enum class format { npy, png };
+
+// A parsed `hush sample` command line.
+struct request {
+  const noise_entry* noise = nullptr;
+  option_values noise_options;
+  noise_setup setup;
+  sample_grid grid;
+  std::vector<std::size_t> shape;  // of the output, C order: (ny, nx) or (nz, ny, nx)
+  std::string out;
+  format out_format = format::npy;
+};
+
+// --size N | NxM | NxMxK: grid.size and the output shape. N alone means N along every
+// axis of the noise; NxM is one plane (with --dim 3, the z-plane at the origin's z).
+void parse_size(const std::string& token, request& r) {
+  const std::string max = std::to_string(kMaxSamples);
+  const std::vector<std::string> parts = split(token, 'x');
+  const std::size_t axes = parts.size();
+  if (axes > 3 || (axes == 3 && r.setup.dim == 2))
+    throw_bad_value("--size", token,
+                    r.setup.dim == 2 ? "N or NxM (NxMxK needs --dim 3)" : "N, NxM or NxMxK");
+  std::vector<std::size_t> n;
+  for (const std::string& p : parts) {
+    long long e = 0;
+    if (!to_integer(p, e) || e < 1 || e > static_cast<long long>(kMaxSamples))
+      throw_bad_value("--size", token, "N, NxM or NxMxK, each extent an integer in 1 ... " + max);
+    n.push_back(static_cast<std::size_t>(e));
+  }
+  if (axes == 1) n.assign(static_cast<std::size_t>(r.setup.dim), n[0]);  // square or cube
+  std::uint64_t count = 1;
+  for (std::size_t e : n) {
+    count *= e;  // cannot overflow: both factors are <= 2^31
+    if (count > kMaxSamples) throw_bad_value("--size", token, "at most " + max + " samples in all");
+  }
+  r.grid.size = {n[0], n[1], n.size() == 3 ? n[2] : 1};
+  r.shape.assign(n.rbegin(), n.rend());
+}
+
+format parse_out(const std::string& path) {
+  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".npy") return format::npy;
+  if (ext == ".png") return format::png;
+  throw_bad_value("--out", path, "a file name ending in .npy or .png");
+}
+
+request parse_request(const std::vector<std::string>& args) {
+  request r;
+  arg_reader in(args);
+  r.noise = &find_noise(in.positional("NOISE", noise_names()));
+  std::vector<option_spec> options = sample_options();
+  options.insert(options.end(), r.noise->options.begin(), r.noise->options.end());
+  option_values given;
+  while (!in.done()) {
+    const option_spec& o = in.option(options);
+    given[o.name] = in.value();
+  }
+  // Read in dependency order (--dim first), not command-line order.
+  auto take = [&given](const char* name) { return find_value(given, name); };
+  if (const std::string* v = take("--dim"))
+    r.setup.dim = parse_choice<int>("--dim", *v, {{"2", 2}, {"3", 3}});
+  const std::size_t dim = static_cast<std::size_t>(r.setup.dim);
+  if (const std::string* v = take("--seed"))
+    r.setup.seed = static_cast<std::uint32_t>(parse_integer("--seed", *v, 0, UINT32_MAX));
+  if (const std::string* v = take("--backend")) {
+    const std::string backend = parse_choice<std::string>(
+        "--backend", *v, {{"scalar", "scalar"}, {"simd", "simd"}, {"glsl", "glsl"}});
+    if (backend != "scalar")
+      throw usage_error("--backend " + backend +
+                        " is not available in this build; available: scalar");
+  }
+  parse_size(take("--size") ? *take("--size") : kDefaultSize, r);
+  if (const std::string* v = take("--origin")) {
+    const std::vector<double> o = parse_finite_list("--origin", *v, dim);
+    for (std::size_t a = 0; a < dim; ++a) r.grid.origin[a] = o[a];
+  }
+  double step = kDefaultStep;
+  if (const std::string* v = take("--step")) {
+    const char* valid = "a finite non-zero number";
+    step = parse_finite("--step", *v, valid);
+    if (step == 0) throw_bad_value("--step", *v, valid);
+  }
+  r.grid.step = {step, step, step};
+  const std::string* out = take("--out");
+  if (!out) throw usage_error("missing --out FILE.npy|FILE.png (where to write the samples)");
+  r.out = *out;
+  r.out_format = parse_out(r.out);
+  if (r.out_format == format::png) {
+    if (!png_supported())
+      throw usage_error("--out " + r.out + ": " + png_unavailable_reason() +
+                        "; write .npy instead");
+    if (r.grid.size[2] != 1)
+      throw usage_error("--out " + r.out + ": a PNG holds one 2D image but --size gives " +
+                        std::to_string(r.grid.size[2]) + " z-planes; write .npy instead");
+    if (r.grid.count() > kMaxPngPixels)
+      throw usage_error("--out " + r.out + ": a PNG holds at most " +
+                        std::to_string(kMaxPngPixels) + " pixels; write .npy instead");
+  }
+  // The noise's own options, as the noise entry parses them.
+  for (const option_spec& o : r.noise->options)
+    if (const std::string* v = take(o.name)) r.noise_options[o.name] = *v;
+  return r;
+}
+
+// Calls on_row(row, values) for every row of the grid in C order, with progress.
+template <class OnRow>
+void for_each_row(const noise_field& field, const sample_grid& grid, OnRow on_row) {
+  const std::size_t rows = grid.size[1] * grid.size[2];
+  progress bar("hush sample", rows);
+  std::vector<float> values(grid.size[0]);
+  for (std::size_t row = 0; row < rows; ++row) {
+    field.sample_row(grid, row % grid.size[1], row / grid.size[1], values.data());
+    on_row(row, values);
+    bar.update(row + 1);
+  }
+}
+
+}  // namespace
+
+const std::vector<option_spec>& sample_options() {
+  static const std::vector<option_spec> options = {
+      {"--dim", "2|3", "the dimension of the noise (default 2)"},
+      {"--size", "N|NxM|NxMxK",
+       "samples along x, y[, z] (default 256: NxN in 2D, NxNxN in 3D; NxM with --dim 3 is the "
+       "z-plane at the origin's z); at most 2^31 samples"},
+      {"--origin", "x,y[,z]",
+       "the position of sample (0, 0[, 0]), one finite number per dimension (default 0)"},
+      {"--step", "s", "the spacing of the samples, finite and non-zero (default 0.03125 = 1/32)"},
+      {"--seed", "n", "an integer in 0 ... 4294967295 (default 0)"},
+      {"--backend", "scalar|simd|glsl", "the evaluation backend (default scalar)"},
+      {"--out", "FILE.npy|FILE.png", "the output file (required)"},
+  };
+  return options;
+}
+
+int run_sample(const std::vector<std::string>& args) {
+  const request r = parse_request(args);
+  const std::unique_ptr<noise_field> field = make_noise(*r.noise, r.setup, r.noise_options);
+  const std::size_t nx = r.grid.size[0];
+  if (r.out_format == format::npy) {
+    npy_writer npy(r.out, r.shape);
+    for_each_row(*field, r.grid, [&](std::size_t, const std::vector<float>& row) {
+      npy.write(row.data(), row.size());
+    });
+    npy.close();
+  } else {
+    gray_image image(nx, r.grid.size[1]);
+    const double lo = field->is_signed() ? -1.0 : 0.0;  // shown over [lo, 1]
+    for_each_row(*field, r.grid, [&](std::size_t j, const std::vector<float>& row) {
+      for (std::size_t i = 0; i < nx; ++i) image.at(i, j) = to_gray(row[i], lo, 1.0);
+    });
+    write_png(r.out, image);
+  }
+  return 0;
+}
+
+}  // namespace hush_cli

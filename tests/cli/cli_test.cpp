@@ -1,0 +1,649 @@
+// Tests of the `hush` program (DESIGN.md, "The `hush` program"): each test runs the built
+// binary (HUSH_CLI_EXE), then checks what it wrote against the library itself: .npy samples
+// bit for bit against hush::perlin / hush::fractal, PNG headers and pixels, the periodic
+// option, the gallery, and that every bad input fails with one line naming the option.
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "hush/hush.hpp"
+
+#if HUSH_CLI_TEST_DECODE
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include "stb_image.h"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- Running the program.
+
+struct result {
+  int exit_code = -1;  // -1: did not exit normally (a signal, e.g. a sanitizer abort)
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A fresh scratch directory per test case, so that test cases may run in parallel.
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(HUSH_CLI_SCRATCH) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Runs `hush <args>` (args as typed in a shell), capturing stdout and stderr in `dir`.
+result run_hush(const std::string& args, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command = std::string("'") + HUSH_CLI_EXE + "' " + args + " >'" + out.string() +
+                              "' 2>'" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  result r;
+  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+// ---- Reading .npy files (NPY 1.0, as numpy.lib.format defines it).
+
+struct npy_file {
+  std::string header;  // the dict literal, padding and '\n' included
+  std::size_t data_offset = 0;
+  std::vector<std::size_t> shape;
+  std::vector<float> values;  // C order
+};
+
+npy_file read_npy(const fs::path& path) {
+  const std::string bytes = slurp(path);
+  npy_file f;
+  REQUIRE(bytes.size() >= 10);
+  REQUIRE(bytes.compare(0, 6, "\x93NUMPY") == 0);
+  REQUIRE(bytes[6] == 1);  // version 1.0
+  REQUIRE(bytes[7] == 0);
+  const std::size_t len = static_cast<unsigned char>(bytes[8]) |
+                          static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8;
+  f.data_offset = 10 + len;
+  REQUIRE(bytes.size() >= f.data_offset);
+  f.header = bytes.substr(10, len);
+  const std::size_t open = f.header.find("'shape': (");
+  REQUIRE(open != std::string::npos);
+  std::size_t at = open + 10;
+  while (f.header[at] != ')') {
+    std::size_t used = 0;
+    f.shape.push_back(std::stoul(f.header.substr(at), &used));
+    at += used;
+    while (f.header[at] == ',' || f.header[at] == ' ') ++at;
+  }
+  std::size_t count = 1;
+  for (std::size_t n : f.shape) count *= n;
+  REQUIRE(bytes.size() == f.data_offset + 4 * count);
+  f.values.resize(count);
+  for (std::size_t n = 0; n < count; ++n) {
+    std::uint32_t bits = 0;  // little-endian, whatever the host's byte order
+    for (int b = 0; b < 4; ++b)
+      bits |= std::uint32_t(static_cast<unsigned char>(bytes[f.data_offset + 4 * n + b]))
+              << (8 * b);
+    std::memcpy(&f.values[n], &bits, 4);
+  }
+  return f;
+}
+
+std::uint32_t bits(float v) {
+  std::uint32_t b;
+  std::memcpy(&b, &v, 4);
+  return b;
+}
+
+// Counts the samples of `f` (shape (nz,) ny, nx) that differ, bit for bit, from
+// expected(i, j, k), which gets the indices as doubles (as the program converts them).
+template <class Expected>
+std::size_t count_mismatches(const npy_file& f, Expected expected) {
+  const std::size_t nx = f.shape.back(), ny = f.shape[f.shape.size() - 2];
+  const std::size_t nz = f.shape.size() == 3 ? f.shape[0] : 1;
+  std::size_t bad = 0;
+  for (std::size_t k = 0; k < nz; ++k)
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i)
+        if (bits(f.values[(k * ny + j) * nx + i]) !=
+            bits(expected(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k))))
+          ++bad;
+  return bad;
+}
+
+#if HUSH_CLI_TEST_PNG
+// ---- Reading PNG files: the signature and IHDR; pixels through stb_image when available.
+
+struct png_header {
+  std::uint32_t width = 0, height = 0;
+  int bit_depth = 0, color_type = 0;
+};
+
+png_header read_png_header(const fs::path& path) {
+  const std::string bytes = slurp(path);
+  REQUIRE(bytes.size() >= 33);
+  REQUIRE(bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0);
+  REQUIRE(bytes.compare(12, 4, "IHDR") == 0);  // the first chunk, as the PNG spec requires
+  auto be32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int b = 0; b < 4; ++b) v = v << 8 | static_cast<unsigned char>(bytes[at + b]);
+    return v;
+  };
+  png_header h;
+  h.width = be32(16);
+  h.height = be32(20);
+  h.bit_depth = static_cast<unsigned char>(bytes[24]);
+  h.color_type = static_cast<unsigned char>(bytes[25]);
+  return h;
+}
+
+#if HUSH_CLI_TEST_DECODE
+struct gray_pixels {
+  int width = 0, height = 0;
+  std::vector<int> pixels;  // row-major, row 0 at the top
+  int at(int x, int y) const { return pixels[static_cast<std::size_t>(y * width + x)]; }
+};
+
+gray_pixels decode_png(const fs::path& path) {
+  int w = 0, h = 0, channels = 0;
+  unsigned char* data = stbi_load(path.string().c_str(), &w, &h, &channels, 1);
+  REQUIRE(data != nullptr);
+  gray_pixels g{w, h, std::vector<int>(data, data + w * h)};
+  stbi_image_free(data);
+  return g;
+}
+#endif
+#endif  // HUSH_CLI_TEST_PNG
+
+const char* const kSampleArgs2d = "--dim 2 --size 16x8 --origin 1.5,-2 --step 0.25 --seed 7";
+
+}  // namespace
+
+// ---- (a) .npy output: format and bit-exact values.
+
+TEST_CASE("sample 2D writes an NPY 1.0 float32 file of shape (ny, nx), 64-byte aligned") {
+  const fs::path dir = scratch("npy_format");
+  const result r = run_hush(
+      std::string("sample perlin ") + kSampleArgs2d + " --out '" + (dir / "x.npy").string() + "'",
+      dir);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.empty());
+  CHECK(r.out.empty());
+  const npy_file f = read_npy(dir / "x.npy");
+  CHECK(f.data_offset % 64 == 0);
+  CHECK(f.header.back() == '\n');
+  CHECK(f.header.find("'descr': '<f4'") != std::string::npos);
+  CHECK(f.header.find("'fortran_order': False") != std::string::npos);
+  CHECK(f.header.find("'shape': (8, 16)") != std::string::npos);
+  CHECK(f.shape == std::vector<std::size_t>{8, 16});
+}
+
+TEST_CASE(
+    "sample 2D values equal hush::perlin<2>::value<float> at origin + step * (i, j), bit for bit") {
+  const fs::path dir = scratch("npy_2d_values");
+  const fs::path out = dir / "x.npy";
+  const result r = run_hush(
+      std::string("sample perlin ") + kSampleArgs2d + " --out '" + out.string() + "'", dir);
+  REQUIRE(r.exit_code == 0);
+  const npy_file f = read_npy(out);
+  REQUIRE(f.shape == std::vector<std::size_t>{8, 16});
+  const hush::perlin<2> p{7};
+  CHECK(count_mismatches(f, [&](double i, double j, double) {
+          return p.value<float>(hush::dvec2{1.5 + 0.25 * i, -2.0 + 0.25 * j});
+        }) == 0);
+  // Not trivially zero: the noise varies over the grid.
+  CHECK(f.values[1] != f.values[2]);
+}
+
+TEST_CASE("sample 3D volume has shape (nz, ny, nx) and equals hush::perlin<3>, bit for bit") {
+  const fs::path dir = scratch("npy_3d_values");
+  const fs::path out = dir / "v.npy";
+  // --origin before --dim: options are read in dependency order, not command-line order.
+  const result r = run_hush(
+      "sample perlin --origin -1,2.5,0.75 --dim 3 --size 5x4x3 --step 0.3 "
+      "--seed=123 --out '" +
+          out.string() + "'",
+      dir);
+  REQUIRE(r.exit_code == 0);
+  const npy_file f = read_npy(out);
+  REQUIRE(f.shape == std::vector<std::size_t>{3, 4, 5});
+  CHECK(f.header.find("'shape': (3, 4, 5)") != std::string::npos);
+  const hush::perlin<3> p{123};
+  CHECK(count_mismatches(f, [&](double i, double j, double k) {
+          return p.value<float>(hush::dvec3{-1.0 + 0.3 * i, 2.5 + 0.3 * j, 0.75 + 0.3 * k});
+        }) == 0);
+}
+
+TEST_CASE("sample 3D --size N is a cube and --size NxM is the z-plane at the origin's z") {
+  const fs::path dir = scratch("npy_3d_sizes");
+  const hush::perlin<3> p{0};
+  SUBCASE("N") {
+    REQUIRE(run_hush("sample perlin --dim 3 --size 6 --out '" + (dir / "c.npy").string() + "'", dir)
+                .exit_code == 0);
+    const npy_file f = read_npy(dir / "c.npy");
+    REQUIRE(f.shape == std::vector<std::size_t>{6, 6, 6});
+    CHECK(count_mismatches(f, [&](double i, double j, double k) {
+            return p.value<float>(hush::dvec3{i / 32.0, j / 32.0, k / 32.0});  // default step
+          }) == 0);
+  }
+  SUBCASE("NxM") {
+    REQUIRE(run_hush("sample perlin --dim 3 --size 7x5 --origin 0,0,0.4 --out '" +
+                         (dir / "s.npy").string() + "'",
+                     dir)
+                .exit_code == 0);
+    const npy_file f = read_npy(dir / "s.npy");
+    REQUIRE(f.shape == std::vector<std::size_t>{5, 7});
+    CHECK(count_mismatches(f, [&](double i, double j, double) {
+            return p.value<float>(hush::dvec3{i / 32.0, j / 32.0, 0.4});
+          }) == 0);
+  }
+}
+
+TEST_CASE("sample 2D defaults: 256 x 256 samples from the origin, step 1/32, seed 0") {
+  const fs::path dir = scratch("npy_defaults");
+  REQUIRE(run_hush("sample perlin --out '" + (dir / "d.npy").string() + "'", dir).exit_code == 0);
+  const npy_file f = read_npy(dir / "d.npy");
+  REQUIRE(f.shape == std::vector<std::size_t>{256, 256});
+  const hush::perlin<2> p{0};
+  CHECK(count_mismatches(f, [&](double i, double j, double) {
+          return p.value<float>(hush::dvec2{i * 0.03125, j * 0.03125});
+        }) == 0);
+}
+
+TEST_CASE("sample with fractal options equals hush::fractal<hush::perlin<D>>, bit for bit") {
+  const fs::path dir = scratch("npy_fractal");
+  const fs::path out = dir / "f.npy";
+  SUBCASE("fBm, default lacunarity, gain and normalisation (unit variance)") {
+    REQUIRE(run_hush(std::string("sample perlin ") + kSampleArgs2d + " --octaves 5 --out '" +
+                         out.string() + "'",
+                     dir)
+                .exit_code == 0);
+    hush::fractal<hush::perlin<2>>::params prm;
+    prm.seed = 7;
+    prm.octaves = 5;
+    const hush::fractal<hush::perlin<2>> fbm{prm};
+    CHECK(count_mismatches(read_npy(out), [&](double i, double j, double) {
+            return fbm.value<float>(hush::dvec2{1.5 + 0.25 * i, -2.0 + 0.25 * j});
+          }) == 0);
+  }
+  SUBCASE("turbulence with every option given, 3D") {
+    REQUIRE(run_hush("sample perlin --dim 3 --size 6x5x4 --origin 3,-1,2 --step 0.21 --seed 9 "
+                     "--octaves 4 --lacunarity 2.5 --gain 0.6 --fractal turbulence --norm none "
+                     "--out '" +
+                         out.string() + "'",
+                     dir)
+                .exit_code == 0);
+    hush::fractal<hush::perlin<3>>::params prm;
+    prm.seed = 9;
+    prm.kind = hush::fractal_kind::turbulence;
+    prm.octaves = 4;
+    prm.lacunarity = 2.5;
+    prm.gain = 0.6;
+    prm.norm = hush::normalization::none;
+    const hush::fractal<hush::perlin<3>> turb{prm};
+    CHECK(count_mismatches(read_npy(out), [&](double i, double j, double k) {
+            return turb.value<float>(hush::dvec3{3 + 0.21 * i, -1 + 0.21 * j, 2 + 0.21 * k});
+          }) == 0);
+  }
+  SUBCASE("turbulence defaults to unit_range normalisation") {
+    REQUIRE(run_hush(std::string("sample perlin ") + kSampleArgs2d +
+                         " --octaves 3 --fractal turbulence --out '" + out.string() + "'",
+                     dir)
+                .exit_code == 0);
+    hush::fractal<hush::perlin<2>>::params prm;
+    prm.seed = 7;
+    prm.kind = hush::fractal_kind::turbulence;
+    prm.octaves = 3;
+    prm.norm = hush::normalization::unit_range;
+    const hush::fractal<hush::perlin<2>> turb{prm};
+    const npy_file f = read_npy(out);
+    CHECK(count_mismatches(f, [&](double i, double j, double) {
+            return turb.value<float>(hush::dvec2{1.5 + 0.25 * i, -2.0 + 0.25 * j});
+          }) == 0);
+    for (float v : f.values) CHECK((v >= 0 && v <= 1));
+  }
+}
+
+// ---- (b) The periodic option.
+
+TEST_CASE("sample --period repeats exactly: plain and fractal, 2D and 3D") {
+  const fs::path dir = scratch("periodic");
+  const fs::path out = dir / "p.npy";
+  // Period 4 cells at step 1/32 = 128 samples along x; 2 cells = 64 samples along y.
+  auto repeats = [](const npy_file& f, std::size_t px, std::size_t py) {
+    const std::size_t nx = f.shape[1], ny = f.shape[0];
+    std::size_t bad = 0;
+    for (std::size_t j = 0; j + py < ny; ++j)
+      for (std::size_t i = 0; i + px < nx; ++i) {
+        const float v = f.values[j * nx + i];
+        if (bits(v) != bits(f.values[j * nx + i + px])) ++bad;
+        if (bits(v) != bits(f.values[(j + py) * nx + i])) ++bad;
+      }
+    return bad;
+  };
+  SUBCASE("plain Perlin") {
+    REQUIRE(
+        run_hush("sample perlin --size 256x160 --seed 3 --period 4,2 --out '" + out.string() + "'",
+                 dir)
+            .exit_code == 0);
+    const npy_file f = read_npy(out);
+    CHECK(repeats(f, 128, 64) == 0);
+    hush::perlin<2>::params prm;
+    prm.seed = 3;
+    prm.period = {4, 2};
+    const hush::perlin<2> p{prm};
+    CHECK(count_mismatches(f, [&](double i, double j, double) {
+            return p.value<float>(hush::dvec2{i / 32.0, j / 32.0});
+          }) == 0);
+  }
+  SUBCASE("fBm of 3 octaves") {
+    REQUIRE(run_hush("sample perlin --size 256x160 --seed 3 --period 4,2 --octaves 3 --out '" +
+                         out.string() + "'",
+                     dir)
+                .exit_code == 0);
+    CHECK(repeats(read_npy(out), 128, 64) == 0);
+  }
+  SUBCASE("without --period the same grid does not repeat") {
+    REQUIRE(run_hush("sample perlin --size 256x160 --seed 3 --out '" + out.string() + "'", dir)
+                .exit_code == 0);
+    CHECK(repeats(read_npy(out), 128, 64) > 1000);
+  }
+  SUBCASE("3D, periodic in x and z only") {
+    REQUIRE(run_hush("sample perlin --dim 3 --size 16x6x8 --step 0.25 --period 2,0,1 --out '" +
+                         out.string() + "'",
+                     dir)
+                .exit_code == 0);
+    const npy_file f = read_npy(out);
+    REQUIRE(f.shape == std::vector<std::size_t>{8, 6, 16});
+    std::size_t bad = 0;
+    for (std::size_t k = 0; k < 8; ++k)
+      for (std::size_t j = 0; j < 6; ++j)
+        for (std::size_t i = 0; i < 16; ++i) {
+          const float v = f.values[(k * 6 + j) * 16 + i];
+          if (i + 8 < 16 && bits(v) != bits(f.values[(k * 6 + j) * 16 + i + 8])) ++bad;
+          if (k + 4 < 8 && bits(v) != bits(f.values[((k + 4) * 6 + j) * 16 + i])) ++bad;
+        }
+    CHECK(bad == 0);
+  }
+}
+
+// ---- (c) PNG output.
+
+#if HUSH_CLI_TEST_PNG
+TEST_CASE("sample to .png writes an 8-bit grayscale PNG of nx x ny pixels, j = 0 at the top") {
+  const fs::path dir = scratch("png");
+  const fs::path out = dir / "x.png";
+  REQUIRE(
+      run_hush(std::string("sample perlin ") + kSampleArgs2d + " --out '" + out.string() + "'", dir)
+          .exit_code == 0);
+  const png_header h = read_png_header(out);
+  CHECK(h.width == 16);
+  CHECK(h.height == 8);
+  CHECK(h.bit_depth == 8);
+  CHECK(h.color_type == 0);  // grayscale
+#if HUSH_CLI_TEST_DECODE
+  // Pixel (i, j) shows v = noise(origin + step * (i, j)) as 255 * (v + 1) / 2.
+  const gray_pixels g = decode_png(out);
+  const hush::perlin<2> p{7};
+  int worst = 0;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const float v = p.value<float>(hush::dvec2{1.5 + 0.25 * i, -2.0 + 0.25 * j});
+      const double expected = 255.0 * (v + 1.0) / 2.0;
+      worst = std::max(worst, static_cast<int>(std::abs(g.at(i, j) - expected) + 0.5));
+    }
+  CHECK(worst <= 1);
+#endif
+}
+
+TEST_CASE("sample to .png takes a 3D noise's single z-plane (NxM or NxMx1)") {
+  const fs::path dir = scratch("png_3d_plane");
+  REQUIRE(
+      run_hush("sample perlin --dim 3 --size 12x10x1 --out '" + (dir / "a.png").string() + "'", dir)
+          .exit_code == 0);
+  const png_header h = read_png_header(dir / "a.png");
+  CHECK(h.width == 12);
+  CHECK(h.height == 10);
+}
+
+#if HUSH_CLI_TEST_DECODE
+TEST_CASE("sample to .png shows turbulence (values >= 0) over [0, 1]") {
+  const fs::path dir = scratch("png_turbulence");
+  const fs::path out = dir / "t.png";
+  REQUIRE(run_hush("sample perlin --size 20x20 --octaves 3 --fractal turbulence --out '" +
+                       out.string() + "'",
+                   dir)
+              .exit_code == 0);
+  hush::fractal<hush::perlin<2>>::params prm;
+  prm.octaves = 3;
+  prm.kind = hush::fractal_kind::turbulence;
+  prm.norm = hush::normalization::unit_range;
+  const hush::fractal<hush::perlin<2>> turb{prm};
+  const gray_pixels g = decode_png(out);
+  int worst = 0;
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 20; ++i) {
+      const float v = turb.value<float>(hush::dvec2{i / 32.0, j / 32.0});
+      worst = std::max(worst, static_cast<int>(std::abs(g.at(i, j) - 255.0 * v) + 0.5));
+    }
+  CHECK(worst <= 1);
+}
+#endif
+#else
+TEST_CASE("sample to .png in a build without stb_image_write fails, saying what is missing") {
+  const fs::path dir = scratch("png_missing");
+  const result r = run_hush("sample perlin --out '" + (dir / "x.png").string() + "'", dir);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("stb_image_write") != std::string::npos);
+  CHECK(r.err.find(".npy") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "x.png"));
+}
+#endif
+
+// ---- (d) Bad input: one line on stderr naming the option, non-zero exit, no output file.
+
+TEST_CASE("sample rejects each bad input with exit code 2 and one line naming the option") {
+  const fs::path dir = scratch("bad_input");
+  const std::string out = " --out '" + (dir / "never.npy").string() + "'";
+  struct bad {
+    std::string args;   // after "sample"
+    std::string names;  // must appear in the message
+  };
+  const bad cases[] = {
+      {"perlin --dim 4" + out, "--dim"},
+      {"perlin --dim" + out, "--dim"},  // the value is missing (the next token is an option)
+      {"perlin --size 0" + out, "--size"},
+      {"perlin --size 16x0" + out, "--size"},
+      {"perlin --size 16x" + out, "--size"},
+      {"perlin --size 65536x65536" + out, "--size"},   // 2^32 samples
+      {"perlin --dim 3 --size 2048" + out, "--size"},  // 2^33 samples
+      {"perlin --size 4x4x4" + out, "--size"},         // NxMxK needs --dim 3
+      {"perlin --seed -1" + out, "--seed"},
+      {"perlin --seed 4294967296" + out, "--seed"},
+      {"perlin --seed 1.5" + out, "--seed"},
+      {"perlin --seed 7x" + out, "--seed"},
+      {"perlin --seed ''" + out, "--seed"},
+      {"perlin --backend simd" + out, "--backend"},
+      {"perlin --backend glsl" + out, "--backend"},
+      {"perlin --backend cuda" + out, "--backend"},
+      {"perlin --period -3,1" + out, "--period"},
+      {"perlin --period 4" + out, "--period"},  // one value per dimension
+      {"perlin --period 99999999999,1" + out, "--period"},
+      {"perlin --octaves 0" + out, "--octaves"},
+      {"perlin --octaves 33" + out, "--octaves"},
+      {"perlin --octaves 3 --lacunarity 1" + out, "--lacunarity"},  // the library refuses it
+      {"perlin --octaves 3 --lacunarity 2.5 --period 4,4" + out, "--lacunarity"},
+      {"perlin --octaves 3 --gain 0" + out, "--gain"},
+      {"perlin --fractal brownian" + out, "--fractal"},
+      {"perlin --fractal turbulence --norm unit_variance" + out, "--norm"},
+      {"perlin --norm unit" + out, "--norm"},
+      {"perlin --step 0" + out, "--step"},
+      {"perlin --step nan" + out, "--step"},
+      {"perlin --step inf" + out, "--step"},
+      {"perlin --step 1/32" + out, "--step"},
+      {"perlin --origin 1,2,3" + out, "--origin"},  // 3 values for --dim 2
+      {"perlin --origin 1,nan" + out, "--origin"},
+      {"perlin --bogus 3" + out, "--bogus"},
+      {"perlin --seed 1 --seed 2" + out, "--seed"},
+      {"perlin --out x.txt", "--out"},
+      {"perlin --out x", "--out"},
+      {"perlin", "--out"},
+      {"perlin --dim 3 --size 4x4x4 --out '" + (dir / "v.png").string() + "'", ".npy"},
+      {"perlin --seed" + out + " --seed", "--seed"},  // the value is missing at the end
+      {"", "NOISE"},
+      {"simplex" + out, "simplex"},
+  };
+  for (const bad& c : cases) {
+    CAPTURE(c.args);
+    const result r = run_hush("sample " + c.args, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(c.names) != std::string::npos);
+    CHECK(r.err.rfind("hush sample: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);  // exactly one line
+    CHECK(r.out.empty());
+  }
+  CHECK_FALSE(fs::exists(dir / "never.npy"));
+  CHECK_FALSE(fs::exists(dir / "v.png"));
+}
+
+TEST_CASE("sample --backend simd says exactly which backends this build has") {
+  const fs::path dir = scratch("backend");
+  const result r =
+      run_hush("sample perlin --backend simd --out '" + (dir / "x.npy").string() + "'", dir);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err == "hush sample: --backend simd is not available in this build; available: scalar\n");
+  // --backend scalar is accepted and changes nothing.
+  CHECK(run_hush("sample perlin --backend scalar --size 4 --out '" + (dir / "x.npy").string() + "'",
+                 dir)
+            .exit_code == 0);
+}
+
+TEST_CASE("sample to an unwritable file fails with exit code 1 and names the file") {
+  const fs::path dir = scratch("unwritable");
+  const std::string path = (dir / "no_such_dir" / "x.npy").string();
+  const result r = run_hush("sample perlin --out '" + path + "'", dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find(path) != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+}
+
+TEST_CASE(
+    "usage: no command fails with exit code 2, --help succeeds, an unknown command is named") {
+  const fs::path dir = scratch("usage");
+  const result none = run_hush("", dir);
+  CHECK(none.exit_code == 2);
+  CHECK(none.err.find("hush sample") != std::string::npos);
+  const result help = run_hush("--help", dir);
+  CHECK(help.exit_code == 0);
+  CHECK(help.out.find("hush sample NOISE") != std::string::npos);
+  CHECK(help.out.find("--period") != std::string::npos);  // noise options come from the table
+  const result sample_help = run_hush("sample --help", dir);
+  CHECK(sample_help.exit_code == 0);
+  const result unknown = run_hush("frobnicate", dir);
+  CHECK(unknown.exit_code == 2);
+  CHECK(unknown.err.find("frobnicate") != std::string::npos);
+  CHECK(unknown.err.find("sample") != std::string::npos);  // lists the valid commands
+}
+
+// ---- (e) hush info.
+
+TEST_CASE("info exits 0 and prints the version, the standard and the backends") {
+  const fs::path dir = scratch("info");
+  const result r = run_hush("info", dir);
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find(std::string("hush ") + HUSH_VERSION_STRING) != std::string::npos);
+  CHECK(r.out.find("C++17") != std::string::npos);
+  CHECK(r.out.find("scalar:     yes") != std::string::npos);
+  CHECK(r.out.find("simd:       not compiled in this build") != std::string::npos);
+  CHECK(r.out.find("glsl:       not compiled in this build") != std::string::npos);
+  CHECK(r.out.find(HUSH_CLI_TEST_GALLERY ? "gallery:      yes" : "gallery:      no") !=
+        std::string::npos);
+  CHECK(run_hush("info --verbose", dir).exit_code == 2);
+}
+
+// ---- (f) hush gallery.
+
+#if HUSH_CLI_TEST_GALLERY
+TEST_CASE("gallery writes its 5 PNGs with the expected sizes and lists them") {
+  const fs::path dir = scratch("gallery");
+  const fs::path out = dir / "images" / "nested";  // created, parents included
+  const result r = run_hush("gallery --out '" + out.string() + "'", dir);
+  REQUIRE(r.exit_code == 0);
+  struct expected {
+    const char* file;
+    std::uint32_t width, height;
+  };
+  const expected images[] = {{"perlin2d.png", 1024, 512},
+                             {"perlin3d_slice.png", 1024, 512},
+                             {"fbm.png", 1024, 512},
+                             {"turbulence.png", 1024, 512},
+                             {"perlin_periodic_tiled.png", 256, 256}};
+  for (const expected& e : images) {
+    CAPTURE(e.file);
+    const png_header h = read_png_header(out / e.file);
+    CHECK(h.width == e.width);
+    CHECK(h.height == e.height);
+    CHECK(h.bit_depth == 8);
+    CHECK(h.color_type == 0);
+    CHECK(r.out.find(e.file) != std::string::npos);
+  }
+  CHECK(r.out.find(fs::canonical(out).string()) != std::string::npos);  // the absolute directory
+  CHECK(r.err.find("gallery: [2/5] perlin3d_slice.png") != std::string::npos);
+
+#if HUSH_CLI_TEST_DECODE
+  SUBCASE("the spectrum half is brightest around zero frequency, at its centre") {
+    const gray_pixels g = decode_png(out / "perlin2d.png");
+    auto mean = [&](int x0, int y0, int size) {
+      double sum = 0;
+      for (int y = y0; y < y0 + size; ++y)
+        for (int x = x0; x < x0 + size; ++x) sum += g.at(x, y);
+      return sum / (size * size);
+    };
+    CHECK(mean(512 + 256 - 8, 256 - 8, 16) > 150);  // the centre of the right half
+    CHECK(mean(512, 0, 64) < 20);                   // its highest frequencies (a corner)
+  }
+  SUBCASE("the periodic tiles meet without a seam") {
+    const gray_pixels g = decode_png(out / "perlin_periodic_tiled.png");
+    // Neighbours across the seams (x or y = 128) differ no more than neighbours inside a
+    // tile: the largest step between adjacent pixels, in each class.
+    int inside = 0, seam = 0;
+    for (int y = 0; y < 256; ++y)
+      for (int x = 0; x < 256; ++x) {
+        if (x > 0) {
+          const int d = std::abs(g.at(x, y) - g.at(x - 1, y));
+          (x == 128 ? seam : inside) = std::max(x == 128 ? seam : inside, d);
+        }
+        if (y > 0) {
+          const int d = std::abs(g.at(x, y) - g.at(x, y - 1));
+          (y == 128 ? seam : inside) = std::max(y == 128 ? seam : inside, d);
+        }
+      }
+    CHECK(inside > 0);
+    CHECK(seam <= inside);
+  }
+#endif
+}
+#else
+TEST_CASE("gallery in a build without stb_image_write or Eigen fails, saying what is missing") {
+  const fs::path dir = scratch("gallery_missing");
+  const result r = run_hush("gallery --out '" + (dir / "g").string() + "'", dir);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("not available in this build") != std::string::npos);
+}
+#endif
