@@ -9,18 +9,14 @@
 #include <vector>
 
 #include "hush/hush.hpp"
+#include "test_util.hpp"
 
 namespace {
 
 template <int D>
 using fractal = hush::fractal<hush::perlin<D>>;
 
-template <int D>
-hush::vec<double, D> random_point(hush::rng& r, double extent) {
-  hush::vec<double, D> p;
-  for (int a = 0; a < D; ++a) p[a] = r.uniform<double>(-extent, extent);
-  return p;
-}
+using hush_test::random_point;
 
 template <int D>
 typename fractal<D>::params make_params(std::uint32_t seed, int octaves) {

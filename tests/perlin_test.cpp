@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hush/hush.hpp"
+#include "test_util.hpp"
 
 namespace {
 
@@ -25,13 +26,7 @@ const double kDoubleBudget = std::ldexp(1.0, -45);
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Uniform random position in [-extent, extent]^D, from hush's own tested RNG.
-template <int D>
-hush::vec<double, D> random_point(hush::rng& r, double extent) {
-  hush::vec<double, D> p;
-  for (int a = 0; a < D; ++a) p[a] = r.uniform<double>(-extent, extent);
-  return p;
-}
+using hush_test::random_point;
 
 template <int D>
 hush::vec<double, D> offset(hush::vec<double, D> p, int axis, double h) {

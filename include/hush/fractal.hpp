@@ -35,6 +35,7 @@
 
 #include "hush/core/error.hpp"
 #include "hush/core/hash.hpp"
+#include "hush/core/point_noise.hpp"
 #include "hush/core/vec.hpp"
 
 namespace hush {
@@ -43,10 +44,10 @@ enum class fractal_kind { fbm, turbulence };
 enum class normalization { unit_variance, unit_range, none };
 
 template <class Noise>
-class fractal {
+class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
+  static constexpr int D = Noise::dimension;
+
  public:
-  static constexpr int dimension = Noise::dimension;
-  static constexpr int D = dimension;
   static constexpr int kMaxOctaves = 32;
 
   struct params {
@@ -105,15 +106,6 @@ class fractal {
   // The weight and frequency of band i, after normalisation.
   double band_weight(int i) const { return bands_[i].weight * scale_; }
   double band_frequency(int i) const { return bands_[i].frequency; }
-
-  float operator()(const vec<float, D>& p) const { return value<float>(vec_cast<double>(p)); }
-  double operator()(const vec<double, D>& p) const { return value<double>(p); }
-  value_gradient<float, D> gradient(const vec<float, D>& p) const {
-    return value_and_gradient<float>(vec_cast<double>(p));
-  }
-  value_gradient<double, D> gradient(const vec<double, D>& p) const {
-    return value_and_gradient<double>(p);
-  }
 
   // Band positions f_i x + o_i are formed in double; each band evaluates in T.
   template <class T>

@@ -9,6 +9,7 @@
 #include "hush/core/error.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/lattice.hpp"
+#include "hush/core/point_noise.hpp"
 #include "hush/core/rng.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"

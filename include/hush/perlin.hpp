@@ -36,6 +36,7 @@
 #include "hush/core/error.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/lattice.hpp"
+#include "hush/core/point_noise.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/detail/constants.hpp"
 
@@ -87,12 +88,10 @@ HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
 }  // namespace detail
 
 template <int D>
-class perlin {
+class perlin : public point_noise<perlin<D>, D> {
   static_assert(D == 2 || D == 3, "hush::perlin is 2D or 3D");
 
  public:
-  static constexpr int dimension = D;
-
   struct params {
     std::uint32_t seed = 0;
     // Per-axis period in lattice units: 0 = not periodic, p in 1 ... INT_MAX =
@@ -118,17 +117,8 @@ class perlin {
     return D == 2 ? detail::constants::kPerlin2Variance : detail::constants::kPerlin3Variance;
   }
 
-  // Noise value at p. float in, float out; double in, double out (the reference).
-  float operator()(const vec<float, D>& p) const { return value<float>(vec_cast<double>(p)); }
-  double operator()(const vec<double, D>& p) const { return value<double>(p); }
-
-  // Value and analytic gradient at p.
-  value_gradient<float, D> gradient(const vec<float, D>& p) const {
-    return value_and_gradient<float>(vec_cast<double>(p));
-  }
-  value_gradient<double, D> gradient(const vec<double, D>& p) const {
-    return value_and_gradient<double>(p);
-  }
+  // p(vec) -> value and p.gradient(vec) -> value and analytic gradient, in
+  // float or double (the reference), come from core/point_noise.hpp.
 
   // Evaluation at a double-precision position with arithmetic in T: the
   // position is split into cell and fraction in double, the rest runs in T.

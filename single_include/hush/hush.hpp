@@ -386,6 +386,169 @@ HUSH_INLINE lattice_coord<T> lattice_split(double x, std::uint32_t period = 0) {
 
 #endif  // HUSH_CORE_LATTICE_HPP
 // ---- end hush/core/lattice.hpp
+// ---- begin hush/core/point_noise.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The evaluation interface every point noise offers, written once.
+//
+// A noise N derives from point_noise<N, D> and defines two templates:
+//   template <class T> T value(const vec<double, D>& p) const;
+//   template <class T> value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const;
+// which split the position into lattice cell and fraction in double and then
+// compute in T. This base turns them into the public overloads:
+//   noise(vec<float, D>)  -> float    (float arithmetic)
+//   noise(vec<double, D>) -> double   (the double-precision reference)
+//   noise.gradient(...)   -> value_gradient<T, D>
+// Non-template overloads, so glm::vec arguments convert implicitly.
+#ifndef HUSH_CORE_POINT_NOISE_HPP
+#define HUSH_CORE_POINT_NOISE_HPP
+
+// ---- begin hush/core/vec.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Tiny fixed-size vectors: just enough to pass points, gradients and steps.
+// hush::vec<T, N> holds N values of T (N = 2, 3, 4) with members x, y, z, w and
+// indexing; vec2/vec3/vec4 are float, dvec2/dvec3/dvec4 double. When GLM is
+// available (config.hpp) they convert implicitly from and to glm::vec<N, T, Q>,
+// so `noise(glm::vec3{...})` works and a hush vector assigns to a glm one.
+// Arithmetic is deliberately minimal: this is not a math library.
+#ifndef HUSH_CORE_VEC_HPP
+#define HUSH_CORE_VEC_HPP
+
+#include <cstddef>
+
+
+#if HUSH_CONFIG_GLM
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#define HUSH_VEC_GLM_INTEROP(N)                                                   \
+  template <glm::qualifier Q>                                                     \
+  constexpr vec(const glm::vec<N, T, Q>& g) { /* NOLINT: implicit by design */    \
+    for (int i = 0; i < N; ++i) (*this)[i] = g[i];                                \
+  }                                                                               \
+  template <glm::qualifier Q>                                                     \
+  constexpr operator glm::vec<N, T, Q>() const { /* NOLINT: implicit by design */ \
+    glm::vec<N, T, Q> g{};                                                        \
+    for (int i = 0; i < N; ++i) g[i] = (*this)[i];                                \
+    return g;                                                                     \
+  }
+#else
+#define HUSH_VEC_GLM_INTEROP(N)
+#endif
+
+// Members shared by the three sizes. Indexing goes through the named members
+// (not pointer arithmetic across them) so it stays well defined.
+#define HUSH_VEC_COMMON(N)                  \
+  static constexpr int size() { return N; } \
+  HUSH_VEC_GLM_INTEROP(N)
+
+namespace hush {
+
+template <class T, int N>
+struct vec;
+
+template <class T>
+struct vec<T, 2> {
+  T x{}, y{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_) : x(x_), y(y_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : y; }
+  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : y; }
+  HUSH_VEC_COMMON(2)
+};
+
+template <class T>
+struct vec<T, 3> {
+  T x{}, y{}, z{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  HUSH_VEC_COMMON(3)
+};
+
+template <class T>
+struct vec<T, 4> {
+  T x{}, y{}, z{}, w{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
+  constexpr const T& operator[](std::size_t i) const {
+    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
+  }
+  HUSH_VEC_COMMON(4)
+};
+
+#undef HUSH_VEC_COMMON
+#undef HUSH_VEC_GLM_INTEROP
+
+using vec2 = vec<float, 2>;
+using vec3 = vec<float, 3>;
+using vec4 = vec<float, 4>;
+using dvec2 = vec<double, 2>;
+using dvec3 = vec<double, 3>;
+using dvec4 = vec<double, 4>;
+
+// Exact component-wise equality (NaN != NaN, -0 == +0, as for the elements).
+template <class T, int N>
+constexpr bool operator==(const vec<T, N>& a, const vec<T, N>& b) {
+  for (int i = 0; i < N; ++i)
+    if (!(a[i] == b[i])) return false;
+  return true;
+}
+template <class T, int N>
+constexpr bool operator!=(const vec<T, N>& a, const vec<T, N>& b) {
+  return !(a == b);
+}
+
+// Component-wise conversion between element types (float <-> double).
+template <class To, class From, int N>
+constexpr vec<To, N> vec_cast(const vec<From, N>& a) {
+  vec<To, N> r;
+  for (int i = 0; i < N; ++i) r[i] = static_cast<To>(a[i]);
+  return r;
+}
+
+// A noise value together with its gradient (d value / d position), returned by
+// gradient() of the differentiable noises: `auto [v, g] = noise.gradient(p);`.
+template <class T, int N>
+struct value_gradient {
+  T value;
+  vec<T, N> gradient;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_VEC_HPP
+// ---- end hush/core/vec.hpp
+
+namespace hush {
+
+template <class Derived, int D>
+class point_noise {
+ public:
+  static constexpr int dimension = D;
+
+  float operator()(const vec<float, D>& p) const {
+    return self().template value<float>(vec_cast<double>(p));
+  }
+  double operator()(const vec<double, D>& p) const { return self().template value<double>(p); }
+  value_gradient<float, D> gradient(const vec<float, D>& p) const {
+    return self().template value_and_gradient<float>(vec_cast<double>(p));
+  }
+  value_gradient<double, D> gradient(const vec<double, D>& p) const {
+    return self().template value_and_gradient<double>(p);
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_POINT_NOISE_HPP
+// ---- end hush/core/point_noise.hpp
 // ---- begin hush/core/rng.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -551,125 +714,6 @@ class rng {
 
 #endif  // HUSH_CORE_RNG_HPP
 // ---- end hush/core/rng.hpp
-// ---- begin hush/core/vec.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Tiny fixed-size vectors: just enough to pass points, gradients and steps.
-// hush::vec<T, N> holds N values of T (N = 2, 3, 4) with members x, y, z, w and
-// indexing; vec2/vec3/vec4 are float, dvec2/dvec3/dvec4 double. When GLM is
-// available (config.hpp) they convert implicitly from and to glm::vec<N, T, Q>,
-// so `noise(glm::vec3{...})` works and a hush vector assigns to a glm one.
-// Arithmetic is deliberately minimal: this is not a math library.
-#ifndef HUSH_CORE_VEC_HPP
-#define HUSH_CORE_VEC_HPP
-
-#include <cstddef>
-
-
-#if HUSH_CONFIG_GLM
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
-#define HUSH_VEC_GLM_INTEROP(N)                                                   \
-  template <glm::qualifier Q>                                                     \
-  constexpr vec(const glm::vec<N, T, Q>& g) { /* NOLINT: implicit by design */    \
-    for (int i = 0; i < N; ++i) (*this)[i] = g[i];                                \
-  }                                                                               \
-  template <glm::qualifier Q>                                                     \
-  constexpr operator glm::vec<N, T, Q>() const { /* NOLINT: implicit by design */ \
-    glm::vec<N, T, Q> g{};                                                        \
-    for (int i = 0; i < N; ++i) g[i] = (*this)[i];                                \
-    return g;                                                                     \
-  }
-#else
-#define HUSH_VEC_GLM_INTEROP(N)
-#endif
-
-// Members shared by the three sizes. Indexing goes through the named members
-// (not pointer arithmetic across them) so it stays well defined.
-#define HUSH_VEC_COMMON(N)                  \
-  static constexpr int size() { return N; } \
-  HUSH_VEC_GLM_INTEROP(N)
-
-namespace hush {
-
-template <class T, int N>
-struct vec;
-
-template <class T>
-struct vec<T, 2> {
-  T x{}, y{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_) : x(x_), y(y_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : y; }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : y; }
-  HUSH_VEC_COMMON(2)
-};
-
-template <class T>
-struct vec<T, 3> {
-  T x{}, y{}, z{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
-  HUSH_VEC_COMMON(3)
-};
-
-template <class T>
-struct vec<T, 4> {
-  T x{}, y{}, z{}, w{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
-  constexpr const T& operator[](std::size_t i) const {
-    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
-  }
-  HUSH_VEC_COMMON(4)
-};
-
-#undef HUSH_VEC_COMMON
-#undef HUSH_VEC_GLM_INTEROP
-
-using vec2 = vec<float, 2>;
-using vec3 = vec<float, 3>;
-using vec4 = vec<float, 4>;
-using dvec2 = vec<double, 2>;
-using dvec3 = vec<double, 3>;
-using dvec4 = vec<double, 4>;
-
-// Exact component-wise equality (NaN != NaN, -0 == +0, as for the elements).
-template <class T, int N>
-constexpr bool operator==(const vec<T, N>& a, const vec<T, N>& b) {
-  for (int i = 0; i < N; ++i)
-    if (!(a[i] == b[i])) return false;
-  return true;
-}
-template <class T, int N>
-constexpr bool operator!=(const vec<T, N>& a, const vec<T, N>& b) {
-  return !(a == b);
-}
-
-// Component-wise conversion between element types (float <-> double).
-template <class To, class From, int N>
-constexpr vec<To, N> vec_cast(const vec<From, N>& a) {
-  vec<To, N> r;
-  for (int i = 0; i < N; ++i) r[i] = static_cast<To>(a[i]);
-  return r;
-}
-
-// A noise value together with its gradient (d value / d position), returned by
-// gradient() of the differentiable noises: `auto [v, g] = noise.gradient(p);`.
-template <class T, int N>
-struct value_gradient {
-  T value;
-  vec<T, N> gradient;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_VEC_HPP
-// ---- end hush/core/vec.hpp
 // ---- begin hush/core/views.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -840,10 +884,10 @@ enum class fractal_kind { fbm, turbulence };
 enum class normalization { unit_variance, unit_range, none };
 
 template <class Noise>
-class fractal {
+class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
+  static constexpr int D = Noise::dimension;
+
  public:
-  static constexpr int dimension = Noise::dimension;
-  static constexpr int D = dimension;
   static constexpr int kMaxOctaves = 32;
 
   struct params {
@@ -902,15 +946,6 @@ class fractal {
   // The weight and frequency of band i, after normalisation.
   double band_weight(int i) const { return bands_[i].weight * scale_; }
   double band_frequency(int i) const { return bands_[i].frequency; }
-
-  float operator()(const vec<float, D>& p) const { return value<float>(vec_cast<double>(p)); }
-  double operator()(const vec<double, D>& p) const { return value<double>(p); }
-  value_gradient<float, D> gradient(const vec<float, D>& p) const {
-    return value_and_gradient<float>(vec_cast<double>(p));
-  }
-  value_gradient<double, D> gradient(const vec<double, D>& p) const {
-    return value_and_gradient<double>(p);
-  }
 
   // Band positions f_i x + o_i are formed in double; each band evaluates in T.
   template <class T>
@@ -1102,12 +1137,10 @@ HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
 }  // namespace detail
 
 template <int D>
-class perlin {
+class perlin : public point_noise<perlin<D>, D> {
   static_assert(D == 2 || D == 3, "hush::perlin is 2D or 3D");
 
  public:
-  static constexpr int dimension = D;
-
   struct params {
     std::uint32_t seed = 0;
     // Per-axis period in lattice units: 0 = not periodic, p in 1 ... INT_MAX =
@@ -1133,17 +1166,8 @@ class perlin {
     return D == 2 ? detail::constants::kPerlin2Variance : detail::constants::kPerlin3Variance;
   }
 
-  // Noise value at p. float in, float out; double in, double out (the reference).
-  float operator()(const vec<float, D>& p) const { return value<float>(vec_cast<double>(p)); }
-  double operator()(const vec<double, D>& p) const { return value<double>(p); }
-
-  // Value and analytic gradient at p.
-  value_gradient<float, D> gradient(const vec<float, D>& p) const {
-    return value_and_gradient<float>(vec_cast<double>(p));
-  }
-  value_gradient<double, D> gradient(const vec<double, D>& p) const {
-    return value_and_gradient<double>(p);
-  }
+  // p(vec) -> value and p.gradient(vec) -> value and analytic gradient, in
+  // float or double (the reference), come from core/point_noise.hpp.
 
   // Evaluation at a double-precision position with arithmetic in T: the
   // position is split into cell and fraction in double, the rest runs in T.

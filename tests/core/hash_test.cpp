@@ -17,22 +17,13 @@
 #include <vector>
 
 #include "hush/core/hash.hpp"
+#include "test_util.hpp"
 
 namespace {
 
 namespace c = hush::detail::constants;
 
-// splitmix64 (Steele, Lea & Flood 2014): the tests' own input generator, independent of hush.
-struct splitmix64 {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  std::uint32_t next_u32() { return static_cast<std::uint32_t>(next() >> 32); }
-};
+using hush_test::splitmix64;
 
 // Flip counts: rows are input-bit flips (or input relations), columns the 32 output bits.
 struct flip_matrix {

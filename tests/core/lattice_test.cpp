@@ -19,21 +19,13 @@
 #include <vector>
 
 #include "hush/core/lattice.hpp"
+#include "test_util.hpp"
 
 namespace {
 
 constexpr std::uint64_t kWrap = std::uint64_t(1) << 32;
 
-// splitmix64 (Steele, Lea & Flood 2014): the tests' own generator, independent of hush.
-struct splitmix64 {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-};
+using hush_test::splitmix64;
 
 // 2^e modulo m (m <= 2^32, so products of residues fit in 64 bits).
 std::uint64_t pow2_mod(int e, std::uint64_t m) {
