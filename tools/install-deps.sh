@@ -9,6 +9,7 @@ packages=(
   libglm-dev               # optional glm::vec interop (tested)
   libeigen3-dev            # FFT for the gallery's power spectra
   libstb-dev               # stb_image_write for PNG output
+  clang-tidy               # the lint test (.clang-tidy)
 )
 
 missing=()

@@ -8,11 +8,8 @@
 #include "features.hpp"
 #include "output_file.hpp"
 
-// The one translation unit that compiles stb_image_write's implementation.
 #if HUSH_CLI_HAVE_PNG
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include "stb_image_write.h"
+#include "stb_image_write.h"  // declarations; stb_image_write_impl.cpp compiles the code
 #endif
 
 namespace hush_cli {

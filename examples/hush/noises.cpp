@@ -83,6 +83,7 @@ std::unique_ptr<noise_field> make_perlin_from_options(const noise_setup& setup,
   o.fractal = o.octaves > 1;
   for (const char* f : {"--lacunarity", "--gain", "--fractal", "--norm"})
     o.fractal = o.fractal || find_value(given, f) != nullptr;
+  // NOLINTNEXTLINE(clang-analyzer-cplusplus.NewDeleteLeaks): analyzer false positive on unique_ptr
   return make_perlin(setup, o);
 }
 

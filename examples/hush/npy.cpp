@@ -32,7 +32,8 @@ std::string npy_header(const std::vector<std::size_t>& shape) {
   return header + dict;
 }
 
-npy_writer::npy_writer(const std::string& path, std::vector<std::size_t> shape) : file_(path) {
+npy_writer::npy_writer(const std::string& path, const std::vector<std::size_t>& shape)
+    : file_(path) {
   for (std::size_t n : shape) expected_ *= n;
   const std::string header = npy_header(shape);
   file_.write(header.data(), header.size());

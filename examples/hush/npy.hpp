@@ -23,7 +23,7 @@ std::string npy_header(const std::vector<std::size_t>& shape);
 class npy_writer {
  public:
   // Creates `path` and writes the header; throws run_error when the file cannot be created.
-  npy_writer(const std::string& path, std::vector<std::size_t> shape);
+  npy_writer(const std::string& path, const std::vector<std::size_t>& shape);
   // Appends `count` values in C order.
   void write(const float* values, std::size_t count);
   // Finishes the file; throws run_error on I/O failure or when the number of values

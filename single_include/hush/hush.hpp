@@ -422,16 +422,16 @@ HUSH_INLINE lattice_coord<T> lattice_split(double x, std::uint32_t period = 0) {
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
-#define HUSH_VEC_GLM_INTEROP(N)                                                   \
-  template <glm::qualifier Q>                                                     \
-  constexpr vec(const glm::vec<N, T, Q>& g) { /* NOLINT: implicit by design */    \
-    for (int i = 0; i < N; ++i) (*this)[i] = g[i];                                \
-  }                                                                               \
-  template <glm::qualifier Q>                                                     \
-  constexpr operator glm::vec<N, T, Q>() const { /* NOLINT: implicit by design */ \
-    glm::vec<N, T, Q> g{};                                                        \
-    for (int i = 0; i < N; ++i) g[i] = (*this)[i];                                \
-    return g;                                                                     \
+#define HUSH_VEC_GLM_INTEROP(N)                                                     \
+  template <glm::qualifier Q>                                                       \
+  constexpr vec(const glm::vec<(N), T, Q>& g) { /* NOLINT: implicit by design */    \
+    for (int i = 0; i < (N); ++i) (*this)[i] = g[i];                                \
+  }                                                                                 \
+  template <glm::qualifier Q>                                                       \
+  constexpr operator glm::vec<(N), T, Q>() const { /* NOLINT: implicit by design */ \
+    glm::vec<(N), T, Q> g{};                                                        \
+    for (int i = 0; i < (N); ++i) g[i] = (*this)[i];                                \
+    return g;                                                                       \
   }
 #else
 #define HUSH_VEC_GLM_INTEROP(N)
