@@ -217,7 +217,11 @@ TEST_CASE("fractal: bad parameters are rejected with a message naming them") {
   expect(prm, "period * lacunarity^(octaves-1) <= 2147483647");
 }
 
-TEST_CASE("fractal: a value type: copies evaluate identically, seeds differ") {
+TEST_CASE(
+    "fractal: a value type: default-constructible, copies evaluate identically, seeds differ") {
+  const fractal<2> d;  // the documented defaults
+  CHECK(d.parameters().octaves == 5);
+  CHECK(d.variance() == doctest::Approx(1.0));
   const fractal<3> a(make_params<3>(1, 5));
   const fractal<3> b = a;
   const fractal<3> c(make_params<3>(2, 5));

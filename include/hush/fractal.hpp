@@ -62,6 +62,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
     std::array<int, D> period{};  // per axis, in band-0 lattice units; 0 = not periodic
   };
 
+  fractal() : fractal(params{}) {}  // 5 octaves of fBm, unit variance, seed 0
   // Throws hush::invalid_argument naming the first parameter out of range.
   explicit fractal(const params& prm) : prm_(prm) {
     validate();
