@@ -175,20 +175,21 @@ TEST_CASE("rng: skip(n) equals n draws and position() counts draws") {
 
 // ---- Uniform -----------------------------------------------------------------------------
 
-TEST_CASE(
-    "rng::uniform<float>: values 0 <= u < 1, multiples of 2^-24, with mean 1/2 and "
-    "variance 1/12 and flat over 64 bins") {
-  constexpr std::size_t kN = std::size_t(1) << 20;
-  const auto u = draw_uniform<float>(hush::rng(11), kN);
-  const double n = static_cast<double>(kN);
+namespace {
+
+// The checks both uniform<T>() suites share, for draws u that should be uniform on [0, 1) on
+// a grid of `scale`^-1: every value in [0, 1) and on the grid, the extremes approached,
+// mean and variance within 5 SE, and a flat 64-bin histogram. Returns each value's grid
+// index (u * scale, exact) for the callers' bit-level checks.
+std::vector<std::uint64_t> check_unit_uniform(const std::vector<double>& u, double scale) {
+  const double n = static_cast<double>(u.size());
   int outside = 0, off_grid = 0;
-  std::vector<double> low_bits(kN);
-  for (std::size_t k = 0; k < kN; ++k) {
+  std::vector<std::uint64_t> index(u.size());
+  for (std::size_t k = 0; k < u.size(); ++k) {
     outside += !(u[k] >= 0.0 && u[k] < 1.0);
-    const double scaled = u[k] * 0x1p24;  // exact
+    const double scaled = u[k] * scale;  // exact: scale is a power of two
     off_grid += scaled != std::floor(scaled);
-    const auto bits = static_cast<std::uint64_t>(scaled);
-    low_bits[k] = static_cast<double>(bits & 63u) / 64.0;  // the lowest 6 of the 24 bits
+    index[k] = static_cast<std::uint64_t>(scaled);
   }
   CHECK(outside == 0);
   CHECK(off_grid == 0);
@@ -199,41 +200,39 @@ TEST_CASE(
   const moments m = sample_moments(u);
   // SE(mean) = sqrt(Var / N) = sqrt(1 / (12 N)). SE(variance) = sqrt((mu4 - sigma^4) / N) with
   // mu4 = 1/80 for the uniform distribution: sqrt((1/80 - 1/144) / N) = sqrt(1 / (180 N)).
-  // (The 2^-24 grid shifts the mean by 2^-25 and the variance by 2^-48/12: far below the SEs.)
+  // (A 2^-24 grid shifts the mean by 2^-25 and the variance by 2^-48/12: far below the SEs.)
   CHECK(std::fabs(m.mean - 0.5) <= 5.0 * std::sqrt(1.0 / (12.0 * n)));
   CHECK(std::fabs(m.var - 1.0 / 12.0) <= 5.0 * std::sqrt(1.0 / (180.0 * n)));
   CHECK(uniform_chi_square(u, 64) <= chi_square_bound(63));
-  CHECK(uniform_chi_square(low_bits, 64) <= chi_square_bound(63));
+  return index;
+}
+
+// Bits [first, first + 6) of each grid index, as a value in [0, 1) for a histogram.
+std::vector<double> six_bits(const std::vector<std::uint64_t>& index, int first) {
+  std::vector<double> r(index.size());
+  for (std::size_t k = 0; k < index.size(); ++k)
+    r[k] = static_cast<double>((index[k] >> first) & 63u) / 64.0;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "rng::uniform<float>: values 0 <= u < 1, multiples of 2^-24, with mean 1/2 and "
+    "variance 1/12 and flat over 64 bins") {
+  const auto u = draw_uniform<float>(hush::rng(11), std::size_t(1) << 20);
+  const auto index = check_unit_uniform(u, 0x1p24);
+  CHECK(uniform_chi_square(six_bits(index, 0), 64) <= chi_square_bound(63));  // lowest 6 of 24
 }
 
 TEST_CASE(
     "rng::uniform<double>: values 0 <= u < 1, multiples of 2^-53, with mean 1/2 and "
     "variance 1/12 and flat over 64 bins, low bits included") {
-  constexpr std::size_t kN = std::size_t(1) << 20;
-  const auto u = draw_uniform<double>(hush::rng(12), kN);
-  const double n = static_cast<double>(kN);
-  int outside = 0, off_grid = 0;
-  std::vector<double> low_bits(kN), mid_bits(kN);
-  for (std::size_t k = 0; k < kN; ++k) {
-    outside += !(u[k] >= 0.0 && u[k] < 1.0);
-    const double scaled = u[k] * 0x1p53;  // exact
-    off_grid += scaled != std::floor(scaled);
-    const auto bits = static_cast<std::uint64_t>(scaled);
-    low_bits[k] = static_cast<double>(bits & 63u) / 64.0;  // bits 0..5: from the second draw
-    mid_bits[k] = static_cast<double>((bits >> 23) & 63u) / 64.0;  // bits 23..28: both draws
-  }
-  CHECK(outside == 0);
-  CHECK(off_grid == 0);
-  CHECK(*std::max_element(u.begin(), u.end()) > 1.0 - 20.0 / n);
-  CHECK(*std::min_element(u.begin(), u.end()) < 20.0 / n);
-
-  const moments m = sample_moments(u);
-  // Standard errors as for uniform<float>: sqrt(1 / (12 N)) and sqrt(1 / (180 N)).
-  CHECK(std::fabs(m.mean - 0.5) <= 5.0 * std::sqrt(1.0 / (12.0 * n)));
-  CHECK(std::fabs(m.var - 1.0 / 12.0) <= 5.0 * std::sqrt(1.0 / (180.0 * n)));
-  CHECK(uniform_chi_square(u, 64) <= chi_square_bound(63));
-  CHECK(uniform_chi_square(low_bits, 64) <= chi_square_bound(63));
-  CHECK(uniform_chi_square(mid_bits, 64) <= chi_square_bound(63));
+  const auto u = draw_uniform<double>(hush::rng(12), std::size_t(1) << 20);
+  const auto index = check_unit_uniform(u, 0x1p53);
+  // Bits 0..5 come from the second draw; bits 23..28 straddle both draws.
+  CHECK(uniform_chi_square(six_bits(index, 0), 64) <= chi_square_bound(63));
+  CHECK(uniform_chi_square(six_bits(index, 23), 64) <= chi_square_bound(63));
 }
 
 // uniform(lo, hi) promises [lo, hi). lo + (hi - lo) * u rounds up to hi when u is the largest
