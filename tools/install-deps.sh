@@ -10,6 +10,11 @@ packages=(
   libeigen3-dev            # FFT for the gallery's power spectra
   libstb-dev               # stb_image_write for PNG output
   clang-tidy               # the lint test (.clang-tidy)
+  libhwy-dev               # Highway: the SIMD backend (exec::simd)
+  libosmesa6-dev           # headless GL 4.5 (llvmpipe) for the GLSL backend and GL G-buffers
+  libbenchmark-dev         # Google Benchmark: bench/
+  libnoise-dev             # peer row in the benchmark (libnoise Perlin)
+  libtinyobjloader-dev     # Wavefront OBJ scenes (examples/scene)
 )
 
 missing=()

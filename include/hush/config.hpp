@@ -39,6 +39,13 @@
 #define HUSH_CONFIG_STRICT_FP 0
 #endif
 
+// HUSH_CONFIG_SIMD: 1 when exec::simd runs Highway kernels (hush/simd/),
+// 0 when it runs the scalar loop. The kernels land with the backends issue;
+// until then this is 0.
+#ifndef HUSH_CONFIG_SIMD
+#define HUSH_CONFIG_SIMD 0
+#endif
+
 #if defined(__GNUC__) || defined(__clang__)
 #define HUSH_INLINE inline __attribute__((always_inline))
 #elif defined(_MSC_VER)

@@ -15,5 +15,6 @@
 #include "hush/core/views.hpp"
 #include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
+#include "hush/exec.hpp"
 
 #endif  // HUSH_HUSH_HPP

@@ -55,6 +55,13 @@
 #define HUSH_CONFIG_STRICT_FP 0
 #endif
 
+// HUSH_CONFIG_SIMD: 1 when exec::simd runs Highway kernels (hush/simd/),
+// 0 when it runs the scalar loop. The kernels land with the backends issue;
+// until then this is 0.
+#ifndef HUSH_CONFIG_SIMD
+#define HUSH_CONFIG_SIMD 0
+#endif
+
 #if defined(__GNUC__) || defined(__clang__)
 #define HUSH_INLINE inline __attribute__((always_inline))
 #elif defined(_MSC_VER)
@@ -1284,6 +1291,207 @@ class perlin : public point_noise<perlin<D>, D> {
 
 #endif  // HUSH_PERLIN_HPP
 // ---- end hush/perlin.hpp
+// ---- begin hush/exec.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Execution policies and batch evaluation: the caller picks the backend per
+// call site, the noise object stays the same.
+//
+//   hush::perlin<3> p{7};
+//   hush::evaluate(p, hush::exec::scalar, points, out);        // reference loop
+//   hush::evaluate(p, hush::exec::simd, points, out);          // Highway kernels
+//   hush::evaluate_grid(p, hush::exec::glsl{device}, g, out);  // GL compute shader
+//
+// Policies are empty tag types (Highway's sort/order.h style), except glsl,
+// which carries the device it runs on (backends/glsl, hush/glsl/device.hpp).
+//
+// Contract of every overload:
+//  - points: span of vec<float, D>; out.size() must equal points.size(), and
+//    gradients (when given) too, else hush::invalid_argument naming the span.
+//  - grids: grid<D> (origin and step in double); out has grid.count()
+//    elements in C order, i fastest (core/views.hpp). The grid is validated.
+//  - scalar: exactly noise(point) per element, in float.
+//  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
+//    the noise's stated SIMD budget (perlin: docs/performance.md). Without
+//    Highway (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
+//  - glsl: within the GLSL tolerance stated by the backend
+//    (backends/glsl/include/hush/glsl/device.hpp).
+//  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
+//    after validation, and no output element is left unwritten.
+#ifndef HUSH_EXEC_HPP
+#define HUSH_EXEC_HPP
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <type_traits>
+
+
+namespace hush {
+namespace exec {
+
+// Plain C++ loop over the noise's point evaluation: the reference backend.
+struct scalar_t {
+  static constexpr const char* name = "scalar";
+};
+// Highway SIMD kernels, dynamically dispatched to the best compiled target
+// (or statically, see hush/simd/dispatch.hpp).
+struct simd_t {
+  static constexpr const char* name = "simd";
+};
+inline constexpr scalar_t scalar{};
+inline constexpr simd_t simd{};
+
+// GLSL compute shaders on a GL device: hush::exec::glsl{device}. Device is
+// any type with the batch members hush::glsl::device has; the core does not
+// depend on GL.
+template <class Device>
+struct glsl {
+  static constexpr const char* name = "glsl";
+  Device& device;
+};
+template <class Device>
+glsl(Device&) -> glsl<Device>;
+
+}  // namespace exec
+
+namespace detail {
+
+// The SIMD kernels of a noise type. Noises with kernels specialise this in
+// hush/simd/dispatch.hpp; the primary template says "none", and exec::simd
+// then runs the scalar loop.
+template <class Noise>
+struct simd_kernel {
+  static constexpr bool available = false;
+};
+
+template <class Noise>
+using point_span = span<const vec<float, Noise::dimension>>;
+template <class Noise>
+using gradient_span = span<vec<float, Noise::dimension>>;
+
+inline void require_same_size(const char* where, const char* name, std::size_t got,
+                              std::size_t want) {
+  if (got != want)
+    throw_out_of_range(where, name, got,
+                       ("exactly " + std::to_string(want) + " elements (one per sample)").c_str());
+}
+
+template <class Noise>
+void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
+                   vec<float, Noise::dimension>* grad) {
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (grad) {
+      const auto r = n.gradient(pts[i]);
+      out[i] = r.value;
+      grad[i] = r.gradient;
+    } else {
+      out[i] = n(pts[i]);
+    }
+  }
+}
+
+template <class Noise>
+void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  constexpr int D = Noise::dimension;
+  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  std::size_t idx = 0;
+  for (std::size_t k = 0; k < nz; ++k)
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i, ++idx) {
+        std::array<std::size_t, D> ijk{};
+        ijk[0] = i;
+        ijk[1] = j;
+        if constexpr (D == 3) ijk[D - 1] = k;
+        const vec<double, D> p = g.position(ijk);
+        if (grad) {
+          const auto r = n.template value_and_gradient<float>(p);
+          out[idx] = r.value;
+          grad[idx] = r.gradient;
+        } else {
+          out[idx] = n.template value<float>(p);
+        }
+      }
+}
+
+template <class Noise, class Exec>
+void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* out,
+                vec<float, Noise::dimension>* grad) {
+  if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
+    scalar_points(n, pts, out, grad);
+  } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+    if constexpr (simd_kernel<Noise>::available)
+      simd_kernel<Noise>::points(n, pts.data(), pts.size(), out, grad);
+    else
+      scalar_points(n, pts, out, grad);
+  } else {
+    ex.device.evaluate_points(n, pts.data(), pts.size(), out, grad);
+  }
+}
+
+template <class Noise, class Exec>
+void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, float* out,
+              vec<float, Noise::dimension>* grad) {
+  if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
+    scalar_grid(n, g, out, grad);
+  } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+    if constexpr (simd_kernel<Noise>::available)
+      simd_kernel<Noise>::grid(n, g, out, grad);
+    else
+      scalar_grid(n, g, out, grad);
+  } else {
+    ex.device.evaluate_grid(n, g, out, grad);
+  }
+}
+
+}  // namespace detail
+
+// Values of `noise` at `points` into `out` (same size), on backend `ex`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points,
+              span<float> out) {
+  detail::require_same_size("hush::evaluate", "out", out.size(), points.size());
+  if (points.empty()) return;
+  detail::run_points(noise, ex, points, out.data(), nullptr);
+}
+
+// Values and analytic gradients (d noise / d position) at `points`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points,
+              span<float> out, detail::gradient_span<Noise> gradients) {
+  detail::require_same_size("hush::evaluate", "out", out.size(), points.size());
+  detail::require_same_size("hush::evaluate", "gradients", gradients.size(), points.size());
+  if (points.empty()) return;
+  detail::run_points(noise, ex, points, out.data(), gradients.data());
+}
+
+// Values of `noise` on the uniform grid `g` into `out` (g.count() elements,
+// C order, i fastest).
+template <class Noise, class Exec>
+void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimension>& g,
+                   span<float> out) {
+  g.validate("hush::evaluate_grid");
+  detail::require_same_size("hush::evaluate_grid", "out", out.size(), g.count());
+  if (g.count() == 0) return;
+  detail::run_grid(noise, ex, g, out.data(), nullptr);
+}
+
+// Values and analytic gradients on the uniform grid `g`.
+template <class Noise, class Exec>
+void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimension>& g,
+                   span<float> out, detail::gradient_span<Noise> gradients) {
+  g.validate("hush::evaluate_grid");
+  detail::require_same_size("hush::evaluate_grid", "out", out.size(), g.count());
+  detail::require_same_size("hush::evaluate_grid", "gradients", gradients.size(), g.count());
+  if (g.count() == 0) return;
+  detail::run_grid(noise, ex, g, out.data(), gradients.data());
+}
+
+}  // namespace hush
+
+#endif  // HUSH_EXEC_HPP
+// ---- end hush/exec.hpp
 
 #endif  // HUSH_HUSH_HPP
 // ---- end hush/hush.hpp

@@ -1,0 +1,80 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// A headless OpenGL 4.5 core context through Mesa's OSMesa (llvmpipe), for
+// tests, CI and command-line tools on machines without a GPU or display.
+//
+//   hush::glsl::osmesa_context ctx;          // created and made current
+//   hush::glsl::device dev{ctx.loader()};    // GL runner on this context
+//
+// Needs libOSMesa (Debian: libosmesa6-dev; CMake target hush::glsl_osmesa).
+// The context renders into a small RGBA8 buffer it owns; compute work and
+// framebuffer objects do not need it to be large. Not copyable; the context
+// is destroyed with the object. Throws std::runtime_error when OSMesa cannot
+// create a GL >= 4.3 core context (compute shaders need 4.3).
+#ifndef HUSH_GLSL_OSMESA_CONTEXT_HPP
+#define HUSH_GLSL_OSMESA_CONTEXT_HPP
+
+#include <GL/osmesa.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace hush {
+namespace glsl {
+
+class osmesa_context {
+ public:
+  // Loader signature the GL runner takes: name -> function address.
+  using loader_fn = void* (*)(const char*);
+
+  explicit osmesa_context(int width = 16, int height = 16, int depth_bits = 24)
+      : width_(width), height_(height), pixels_(static_cast<std::size_t>(width * height) * 4u) {
+    if (width < 1 || height < 1)
+      throw std::runtime_error("hush::glsl::osmesa_context: width and height must be >= 1");
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           depth_bits,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           4,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           5,
+                           0};
+    ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
+    if (!ctx_)
+      throw std::runtime_error(
+          "hush::glsl::osmesa_context: OSMesa could not create a GL 4.5 core context");
+    make_current();
+  }
+  osmesa_context(const osmesa_context&) = delete;
+  osmesa_context& operator=(const osmesa_context&) = delete;
+  ~osmesa_context() {
+    if (ctx_) OSMesaDestroyContext(ctx_);
+  }
+
+  // Makes this context current on the calling thread.
+  void make_current() {
+    if (!OSMesaMakeCurrent(ctx_, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_))
+      throw std::runtime_error("hush::glsl::osmesa_context: OSMesaMakeCurrent failed");
+  }
+
+  // GL function loader for this context (OSMesaGetProcAddress).
+  static loader_fn loader() { return &get_proc; }
+
+ private:
+  static void* get_proc(const char* name) {
+    return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+  }
+
+  int width_, height_;
+  std::vector<unsigned char> pixels_;
+  OSMesaContext ctx_ = nullptr;
+};
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_OSMESA_CONTEXT_HPP
