@@ -15,14 +15,9 @@
 
 namespace {
 
-// Float error budget for values (perlin.hpp contract), from a forward error
-// analysis: the fade's Horner terms reach 15 for a result near 1 (about 20
-// ulp), each lerp multiplies that by a difference of up to 2 sqrt(2), and two
-// (2D) or three (3D) lerp levels plus the corner dots add their own rounding:
-// under 128 ulp of 1 in all, i.e. 2^-16.
-const double kFloatBudget = std::ldexp(1.0, -16);
-// The same analysis for the double reference: 2^-16 * 2^-29.
-const double kDoubleBudget = std::ldexp(1.0, -45);
+using hush_test::kDoubleBudget;
+using hush_test::kFloatBudget;
+using hush_test::lipschitz_bound;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -32,19 +27,6 @@ template <int D>
 hush::vec<double, D> offset(hush::vec<double, D> p, int axis, double h) {
   p[axis] += h;
   return p;
-}
-
-// Analytic Lipschitz bounds of the scaled noise (docs/design.md, "Perlin noise
-// bounds"): |dn/dx_a| <= scale * (max|g| + max s' * max|g| * max|d|), with
-// max s' = 15/8 (the fade's slope at t = 1/2) and |d| <= sqrt(D); the gradient
-// norm is at most sqrt(D) times that.
-template <int D>
-double lipschitz_bound() {
-  const double max_ds = 15.0 / 8.0;
-  const double g = D == 2 ? 1.0 : std::sqrt(2.0);
-  const double scale =
-      D == 2 ? hush::detail::constants::kPerlin2Scale : hush::detail::constants::kPerlin3Scale;
-  return std::sqrt(double(D)) * scale * (g + max_ds * g * std::sqrt(double(D)));
 }
 
 // sup over gradient choices of sum_i w_i(f) g_i.(f - c_i) at a position f in

@@ -44,6 +44,19 @@ std::string build_type() {
 
 const char* yes_no(bool b) { return b ? "yes" : "no"; }
 
+// "dynamic dispatch; compiled: AVX3 AVX2 ...; chosen: AVX2", or why there is none.
+std::string simd_status() {
+#if HUSH_CONFIG_SIMD
+  std::string compiled;
+  for (const std::string& t : hush::simd::compiled_targets())
+    compiled += (compiled.empty() ? "" : " ") + t;
+  return std::string("yes, ") + hush::simd::dispatch_mode() + " dispatch; compiled: " + compiled +
+         "; chosen: " + hush::simd::chosen_target();
+#else
+  return "no (built without Highway; exec::simd runs the scalar loop)";
+#endif
+}
+
 std::string gallery_status() {
   if (!png_supported()) return "no (needs stb_image_write.h: apt-get install libstb-dev)";
   if (!spectrum_supported()) return "no (needs Eigen3's FFT: apt-get install libeigen3-dev)";
@@ -68,7 +81,7 @@ int run_info(const std::vector<std::string>& args) {
      << "noises:       " << noise_names() << '\n'
      << "backends:\n"
      << "  scalar:     yes\n"
-     << "  simd:       not compiled in this build\n"
+     << "  simd:       " << simd_status() << '\n'
      << "  glsl:       not compiled in this build\n"
      << "png output:   "
      << (png_supported() ? "yes (stb_image_write)" : "no (stb_image_write.h not found)") << '\n'

@@ -7,21 +7,36 @@
 namespace hush_cli {
 namespace {
 
-// Any hush noise of dimension D with `template <class T> T value(const vec<double, D>&)`.
+// Any hush noise of dimension D that hush::evaluate_grid takes.
 template <class Noise, int D>
 class field final : public noise_field {
  public:
   field(Noise noise, bool is_signed) : noise_(std::move(noise)), signed_(is_signed) {}
   bool is_signed() const override { return signed_; }
-  void sample_row(const sample_grid& grid, std::size_t j, std::size_t k,
-                  float* out) const override {
-    for (std::size_t i = 0; i < grid.size[0]; ++i) {
-      const hush::dvec3 p = grid.position({i, j, k});
-      if constexpr (D == 2)
-        out[i] = noise_.template value<float>(hush::dvec2{p.x, p.y});
-      else
-        out[i] = noise_.template value<float>(p);
+  std::string unsupported_reason(backend b) const override {
+    if (b == backend::glsl) return "the GLSL backend is not in this build";
+    if (b == backend::simd && !HUSH_CONFIG_SIMD)
+      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
+    return "";
+  }
+  void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
+                   float* out, backend b) const override {
+    // The block as a grid of its own: its origin is the exact double position
+    // of sample (0, j0, k), so every sample keeps the position it has in `grid`.
+    hush::grid<D> block;
+    const hush::dvec3 o = grid.position({0, j0, k});
+    for (int a = 0; a < D; ++a) {
+      block.origin[a] = o[a];
+      block.step[a] = grid.step[a];
     }
+    block.size[0] = grid.size[0];
+    block.size[1] = rows;
+    if constexpr (D == 3) block.size[2] = 1;
+    const hush::span<float> dst(out, block.count());
+    if (b == backend::simd)
+      hush::evaluate_grid(noise_, hush::exec::simd, block, dst);
+    else
+      hush::evaluate_grid(noise_, hush::exec::scalar, block, dst);
   }
 
  private:
@@ -89,12 +104,23 @@ std::unique_ptr<noise_field> make_perlin_from_options(const noise_setup& setup,
 
 }  // namespace
 
-std::vector<float> sample_all(const noise_field& field, const sample_grid& grid) {
+const char* backend_name(backend b) {
+  switch (b) {
+    case backend::scalar:
+      return "scalar";
+    case backend::simd:
+      return "simd";
+    case backend::glsl:
+      return "glsl";
+  }
+  return "?";
+}
+
+std::vector<float> sample_all(const noise_field& field, const sample_grid& grid, backend b) {
   std::vector<float> values(grid.count());
-  const std::size_t nx = grid.size[0];
+  const std::size_t plane = grid.size[0] * grid.size[1];
   for (std::size_t k = 0; k < grid.size[2]; ++k)
-    for (std::size_t j = 0; j < grid.size[1]; ++j)
-      field.sample_row(grid, j, k, values.data() + (k * grid.size[1] + j) * nx);
+    field.sample_rows(grid, 0, grid.size[1], k, values.data() + k * plane, b);
   return values;
 }
 

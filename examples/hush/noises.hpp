@@ -24,21 +24,29 @@ namespace hush_cli {
 // i.e. origin + step * (i, j, k) in double. 2D noises read x and y (size[2] is then 1).
 using sample_grid = hush::grid<3>;
 
-// A configured noise, sampled one row of a grid at a time.
+// Where a noise is evaluated: hush::exec::scalar, hush::exec::simd or hush::exec::glsl.
+enum class backend { scalar, simd, glsl };
+const char* backend_name(backend b);
+
+// A configured noise, sampled a block of grid rows at a time.
 class noise_field {
  public:
   virtual ~noise_field() = default;
   // True for values symmetric about 0; false for values >= 0 (turbulence). PNG output
   // shows [-1, 1], respectively [0, 1], from black to white.
   virtual bool is_signed() const = 0;
-  // out[i] = noise.value<float>(grid.position({i, j, k})) for i in [0, grid.size[0]):
-  // the position in double precision, the arithmetic in float.
-  virtual void sample_row(const sample_grid& grid, std::size_t j, std::size_t k,
-                          float* out) const = 0;
+  // Empty when this noise runs on backend `b` in this build, else why not (one phrase).
+  virtual std::string unsupported_reason(backend b) const = 0;
+  // Rows j0 ... j0 + rows - 1 of z-plane k into out (rows * grid.size[0] floats, C order):
+  // out = noise.value<float>(grid.position({i, j, k})) up to the backend's stated
+  // agreement (hush/exec.hpp), through hush::evaluate_grid on backend `b`.
+  virtual void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
+                           float* out, backend b) const = 0;
 };
 
 // Every sample of `grid`, in C order (i fastest, then j, then k).
-std::vector<float> sample_all(const noise_field& field, const sample_grid& grid);
+std::vector<float> sample_all(const noise_field& field, const sample_grid& grid,
+                              backend b = backend::scalar);
 
 // What every noise is built from: the common options of `hush sample`.
 struct noise_setup {

@@ -31,6 +31,7 @@ struct request {
   std::vector<std::size_t> shape;  // of the output, C order: (ny, nx) or (nz, ny, nx)
   std::string out;
   format out_format = format::npy;
+  backend where = backend::scalar;
 };
 
 // --size N | NxM | NxMxK: grid.size and the output shape. N alone means N along every
@@ -86,13 +87,10 @@ request parse_request(const std::vector<std::string>& args) {
   const std::size_t dim = static_cast<std::size_t>(r.setup.dim);
   if (const std::string* v = take("--seed"))
     r.setup.seed = static_cast<std::uint32_t>(parse_integer("--seed", *v, 0, UINT32_MAX));
-  if (const std::string* v = take("--backend")) {
-    const std::string backend = parse_choice<std::string>(
-        "--backend", *v, {{"scalar", "scalar"}, {"simd", "simd"}, {"glsl", "glsl"}});
-    if (backend != "scalar")
-      throw usage_error("--backend " + backend +
-                        " is not available in this build; available: scalar");
-  }
+  if (const std::string* v = take("--backend"))
+    r.where = parse_choice<backend>(
+        "--backend", *v,
+        {{"scalar", backend::scalar}, {"simd", backend::simd}, {"glsl", backend::glsl}});
   parse_size(take("--size") ? *take("--size") : kDefaultSize, r);
   if (const std::string* v = take("--origin")) {
     const std::vector<double> o = parse_finite_list("--origin", *v, dim);
@@ -126,17 +124,26 @@ request parse_request(const std::vector<std::string>& args) {
   return r;
 }
 
-// Calls on_row(row, values) for every row of the grid in C order, with progress.
+// Calls on_row(row, values) for every row of the grid in C order, evaluating blocks of
+// rows on the request's backend (one call per block keeps per-call costs small), with
+// progress per block.
 template <class OnRow>
-void for_each_row(const noise_field& field, const sample_grid& grid, OnRow on_row) {
-  const std::size_t rows = grid.size[1] * grid.size[2];
-  progress bar("hush sample", rows);
-  std::vector<float> values(grid.size[0]);
-  for (std::size_t row = 0; row < rows; ++row) {
-    field.sample_row(grid, row % grid.size[1], row / grid.size[1], values.data());
-    on_row(row, values);
-    bar.update(row + 1);
-  }
+void for_each_row(const noise_field& field, const request& r, OnRow on_row) {
+  const sample_grid& grid = r.grid;
+  const std::size_t nx = grid.size[0], ny = grid.size[1];
+  // About a million samples per block, at least one row.
+  const std::size_t block_rows = std::max<std::size_t>(1, (std::size_t(1) << 20) / nx);
+  progress bar("hush sample", ny * grid.size[2]);
+  std::vector<float> values(std::min(block_rows, ny) * nx);
+  std::size_t done = 0;
+  for (std::size_t k = 0; k < grid.size[2]; ++k)
+    for (std::size_t j0 = 0; j0 < ny; j0 += block_rows) {
+      const std::size_t rows = std::min(block_rows, ny - j0);
+      field.sample_rows(grid, j0, rows, k, values.data(), r.where);
+      for (std::size_t j = 0; j < rows; ++j) on_row(k * ny + j0 + j, values.data() + j * nx, nx);
+      done += rows;
+      bar.update(done);
+    }
 }
 
 }  // namespace
@@ -151,7 +158,9 @@ const std::vector<option_spec>& sample_options() {
        "the position of sample (0, 0[, 0]), one finite number per dimension (default 0)"},
       {"--step", "s", "the spacing of the samples, finite and non-zero (default 0.03125 = 1/32)"},
       {"--seed", "n", "an integer in 0 ... 4294967295 (default 0)"},
-      {"--backend", "scalar|simd|glsl", "the evaluation backend (default scalar)"},
+      {"--backend", "scalar|simd|glsl",
+       "the evaluation backend (default scalar): scalar C++, SIMD (Highway), or GLSL compute "
+       "shaders"},
       {"--out", "FILE.npy|FILE.png", "the output file (required)"},
   };
   return options;
@@ -160,17 +169,19 @@ const std::vector<option_spec>& sample_options() {
 int run_sample(const std::vector<std::string>& args) {
   const request r = parse_request(args);
   const std::unique_ptr<noise_field> field = make_noise(*r.noise, r.setup, r.noise_options);
+  const std::string why_not = field->unsupported_reason(r.where);
+  if (!why_not.empty())
+    throw usage_error(std::string("--backend ") + backend_name(r.where) + ": " + why_not);
   const std::size_t nx = r.grid.size[0];
   if (r.out_format == format::npy) {
     npy_writer npy(r.out, r.shape);
-    for_each_row(*field, r.grid, [&](std::size_t, const std::vector<float>& row) {
-      npy.write(row.data(), row.size());
-    });
+    for_each_row(*field, r,
+                 [&](std::size_t, const float* row, std::size_t n) { npy.write(row, n); });
     npy.close();
   } else {
     gray_image image(nx, r.grid.size[1]);
     const double lo = field->is_signed() ? -1.0 : 0.0;  // shown over [lo, 1]
-    for_each_row(*field, r.grid, [&](std::size_t j, const std::vector<float>& row) {
+    for_each_row(*field, r, [&](std::size_t j, const float* row, std::size_t) {
       for (std::size_t i = 0; i < nx; ++i) image.at(i, j) = to_gray(row[i], lo, 1.0);
     });
     write_png(r.out, image);

@@ -39,11 +39,24 @@
 #define HUSH_CONFIG_STRICT_FP 0
 #endif
 
-// HUSH_CONFIG_SIMD: 1 when exec::simd runs Highway kernels (hush/simd/),
-// 0 when it runs the scalar loop. The kernels land with the backends issue;
-// until then this is 0.
-#ifndef HUSH_CONFIG_SIMD
+// HUSH_CONFIG_SIMD: 1 when exec::simd runs the Highway kernels (hush/simd/),
+// 0 when it runs the scalar loop. The user opts in with HUSH_SIMD_DYNAMIC
+// (run-time dispatch; one .cpp includes hush/simd/dispatch_impl.hpp, as the
+// CMake target hush::simd does) or HUSH_SIMD_STATIC (compile-time target,
+// e.g. -march=native builds); HUSH_NO_SIMD overrides both. Opt-in, so that a
+// header-only user never has to link Highway without asking for it.
+// HUSH_CONFIG_SIMD_STATIC tells the two routes apart.
+#if defined(HUSH_NO_SIMD) || !(defined(HUSH_SIMD_DYNAMIC) || defined(HUSH_SIMD_STATIC))
 #define HUSH_CONFIG_SIMD 0
+#define HUSH_CONFIG_SIMD_STATIC 0
+#elif defined(HUSH_SIMD_DYNAMIC) && defined(HUSH_SIMD_STATIC)
+#error "hush: define one of HUSH_SIMD_DYNAMIC and HUSH_SIMD_STATIC, not both"
+#elif defined(HUSH_SIMD_STATIC)
+#define HUSH_CONFIG_SIMD 1
+#define HUSH_CONFIG_SIMD_STATIC 1
+#else
+#define HUSH_CONFIG_SIMD 1
+#define HUSH_CONFIG_SIMD_STATIC 0
 #endif
 
 #if defined(__GNUC__) || defined(__clang__)

@@ -36,6 +36,7 @@
 #include "hush/core/error.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
+#include "hush/simd/dispatch.hpp"  // detail::simd_kernel and its specialisations
 
 namespace hush {
 namespace exec {
@@ -66,14 +67,6 @@ glsl(Device&) -> glsl<Device>;
 }  // namespace exec
 
 namespace detail {
-
-// The SIMD kernels of a noise type. Noises with kernels specialise this in
-// hush/simd/dispatch.hpp; the primary template says "none", and exec::simd
-// then runs the scalar loop.
-template <class Noise>
-struct simd_kernel {
-  static constexpr bool available = false;
-};
 
 template <class Noise>
 using point_span = span<const vec<float, Noise::dimension>>;
@@ -168,8 +161,8 @@ void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> poin
 
 // Values and analytic gradients (d noise / d position) at `points`.
 template <class Noise, class Exec>
-void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points,
-              span<float> out, detail::gradient_span<Noise> gradients) {
+void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points, span<float> out,
+              detail::gradient_span<Noise> gradients) {
   detail::require_same_size("hush::evaluate", "out", out.size(), points.size());
   detail::require_same_size("hush::evaluate", "gradients", gradients.size(), points.size());
   if (points.empty()) return;

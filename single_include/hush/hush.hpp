@@ -55,11 +55,24 @@
 #define HUSH_CONFIG_STRICT_FP 0
 #endif
 
-// HUSH_CONFIG_SIMD: 1 when exec::simd runs Highway kernels (hush/simd/),
-// 0 when it runs the scalar loop. The kernels land with the backends issue;
-// until then this is 0.
-#ifndef HUSH_CONFIG_SIMD
+// HUSH_CONFIG_SIMD: 1 when exec::simd runs the Highway kernels (hush/simd/),
+// 0 when it runs the scalar loop. The user opts in with HUSH_SIMD_DYNAMIC
+// (run-time dispatch; one .cpp includes hush/simd/dispatch_impl.hpp, as the
+// CMake target hush::simd does) or HUSH_SIMD_STATIC (compile-time target,
+// e.g. -march=native builds); HUSH_NO_SIMD overrides both. Opt-in, so that a
+// header-only user never has to link Highway without asking for it.
+// HUSH_CONFIG_SIMD_STATIC tells the two routes apart.
+#if defined(HUSH_NO_SIMD) || !(defined(HUSH_SIMD_DYNAMIC) || defined(HUSH_SIMD_STATIC))
 #define HUSH_CONFIG_SIMD 0
+#define HUSH_CONFIG_SIMD_STATIC 0
+#elif defined(HUSH_SIMD_DYNAMIC) && defined(HUSH_SIMD_STATIC)
+#error "hush: define one of HUSH_SIMD_DYNAMIC and HUSH_SIMD_STATIC, not both"
+#elif defined(HUSH_SIMD_STATIC)
+#define HUSH_CONFIG_SIMD 1
+#define HUSH_CONFIG_SIMD_STATIC 1
+#else
+#define HUSH_CONFIG_SIMD 1
+#define HUSH_CONFIG_SIMD_STATIC 0
 #endif
 
 #if defined(__GNUC__) || defined(__clang__)
@@ -1326,6 +1339,709 @@ class perlin : public point_noise<perlin<D>, D> {
 #include <string>
 #include <type_traits>
 
+// ---- begin hush/simd/dispatch.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The SIMD backend's target-independent face: the entry points exec::simd
+// calls, which SIMD targets were compiled and which one runs.
+//
+// Three ways to build, chosen by macro (config.hpp normalises them into
+// HUSH_CONFIG_SIMD and HUSH_CONFIG_SIMD_STATIC):
+//  - HUSH_SIMD_DYNAMIC: kernels for every target Highway compiles (SSE4,
+//    AVX2, AVX-512 on x86), the best one the CPU supports chosen at run time.
+//    Exactly one .cpp of the program includes hush/simd/dispatch_impl.hpp;
+//    the CMake target hush::simd is that file, defines the macro and links
+//    Highway. This is the route for portable binaries.
+//  - HUSH_SIMD_STATIC: kernels for the compiler's baseline target only
+//    (HWY_STATIC_TARGET; AVX2 under -march=haswell or -march=native), inlined
+//    where called; no extra translation unit. The route for -march=native
+//    builds and for the single header.
+//  - neither (or HUSH_NO_SIMD): exec::simd runs the scalar loop, and nothing
+//    needs Highway.
+#ifndef HUSH_SIMD_DISPATCH_HPP
+#define HUSH_SIMD_DISPATCH_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+
+namespace hush {
+namespace detail {
+
+// The SIMD kernels of a noise type (used by exec.hpp). Noises with kernels
+// specialise it below; the primary template says "none", and exec::simd then
+// runs the scalar loop.
+template <class Noise>
+struct simd_kernel {
+  static constexpr bool available = false;
+};
+
+}  // namespace detail
+}  // namespace hush
+
+#if HUSH_CONFIG_SIMD
+
+#if HUSH_CONFIG_SIMD_STATIC
+#include <hwy/highway.h>
+
+// ---- begin hush/simd/perlin-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for improved Perlin noise in 2D and 3D: batches of points
+// and uniform grids, values and optionally analytic gradients. Compiled once
+// per SIMD target (the "-inl.h" convention: toggle include guard below, no
+// normal guard); reached through hush/simd/dispatch.hpp, never included
+// directly by users.
+//
+// The kernels repeat perlin.hpp's float algorithm operation by operation:
+// same lattice split (in double for grids, exact float floor for points),
+// same hash words, gradient index and table, Horner fade, lerp a + t(b - a),
+// dot products summed left to right, and the same final scale. So:
+//  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
+//    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
+//    compiled target);
+//  - otherwise multiply-adds are fused where that is faster, and results
+//    stay within perlin.hpp's float budget of the double reference (2^-16);
+//    measured differences to scalar are a few float ulps (docs/performance.md).
+// Points whose coordinates are all finite and below 2^31 in magnitude take
+// the vector split; other vectors (NaN, Inf, huge, or periodic noise) split
+// lane by lane through core/lattice.hpp, so hard cases behave exactly like
+// scalar evaluation (NaN in gives NaN out).
+
+// Toggle guard: included once per target by foreach_target.h (Highway's
+// hwy/examples/skeleton-inl.h pattern).
+#if defined(HUSH_SIMD_PERLIN_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_PERLIN_INL_H_
+#undef HUSH_SIMD_PERLIN_INL_H_
+#else
+#define HUSH_SIMD_PERLIN_INL_H_
+#endif
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace perlin_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+
+// Largest lane count any target has (AVX-512: 16 floats; SVE may have more,
+// up to 2048 bits). Lookup tables are padded to it so every chunk load is in
+// bounds.
+constexpr std::size_t kMaxLanes = 64;
+
+// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
+// compiled), one fused rounding otherwise.
+HWY_INLINE VF mul_add(VF a, VF b, VF c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), c);
+#else
+  return hn::MulAdd(a, b, c);
+#endif
+}
+// lerp(a, b, t) = a + t * (b - a), as detail::lerp.
+HWY_INLINE VF lerp(VF a, VF b, VF t) { return mul_add(t, hn::Sub(b, a), a); }
+
+// detail::fade: t^3 (t (6t - 15) + 10), Horner form in the same order.
+HWY_INLINE VF fade(VF t) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF inner =
+      mul_add(t, mul_add(t, hn::Set(df, float(c::kFade5)), hn::Set(df, float(c::kFade4))),
+              hn::Set(df, float(c::kFade3)));
+  return hn::Mul(hn::Mul(hn::Mul(t, t), t), inner);
+}
+HWY_INLINE VF fade_derivative(VF t) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF inner =
+      mul_add(t, mul_add(t, hn::Set(df, float(5 * c::kFade5)), hn::Set(df, float(4 * c::kFade4))),
+              hn::Set(df, float(3 * c::kFade3)));
+  return hn::Mul(hn::Mul(t, t), inner);
+}
+
+// hash32 (core/hash.hpp) in 32-bit lanes.
+HWY_INLINE VU hash32(VU x) {
+  namespace c = detail::constants;
+  const DU du;
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
+  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
+}
+
+// The per-axis words lattice_hash folds: i * P_x, rotl(j * P_y, R_y), rotl(k * P_z, R_z).
+HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
+HWY_INLINE VU word_y(VU j) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
+}
+HWY_INLINE VU word_z(VU k) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
+}
+template <int kAxis>
+HWY_INLINE VU word(VU i) {
+  if constexpr (kAxis == 0) return word_x(i);
+  if constexpr (kAxis == 1) return word_y(i);
+  if constexpr (kAxis == 2) return word_z(i);
+}
+// Scalar versions for per-column / per-row precomputation.
+HWY_INLINE std::uint32_t word_x(std::uint32_t i) { return i * detail::constants::kLatticePrimeX; }
+HWY_INLINE std::uint32_t word_y(std::uint32_t j) {
+  namespace c = detail::constants;
+  return rotl(j * c::kLatticePrimeY, c::kLatticeRotateY);
+}
+HWY_INLINE std::uint32_t word_z(std::uint32_t k) {
+  namespace c = detail::constants;
+  return rotl(k * c::kLatticePrimeZ, c::kLatticeRotateZ);
+}
+
+// Gradient tables padded to kMaxLanes (zeros past the real entries).
+struct tables {
+  float g2x[kMaxLanes], g2y[kMaxLanes], g3x[kMaxLanes], g3y[kMaxLanes], g3z[kMaxLanes];
+};
+inline const tables& gradient_tables() {
+  static const tables t = [] {
+    namespace c = detail::constants;
+    tables r{};
+    for (int n = 0; n < c::kPerlin2GradCount; ++n) {
+      r.g2x[n] = float(c::kPerlin2GradX[n]);
+      r.g2y[n] = float(c::kPerlin2GradY[n]);
+    }
+    for (int n = 0; n < c::kPerlin3GradCount; ++n) {
+      r.g3x[n] = float(c::kPerlin3GradX[n]);
+      r.g3y[n] = float(c::kPerlin3GradY[n]);
+      r.g3z[n] = float(c::kPerlin3GradZ[n]);
+    }
+    return r;
+  }();
+  return t;
+}
+
+// table[idx] per lane for idx < kEntries: one in-register permute per chunk
+// of Lanes entries (one for 8 entries on AVX2, two for 12), then a select.
+template <int kEntries>
+HWY_INLINE VF lookup(const float* HWY_RESTRICT table, VU idx) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t n = hn::Lanes(df);
+  const VU lane_mask = hn::Set(du, static_cast<std::uint32_t>(n - 1));
+  const auto within = hn::IndicesFromVec(df, hn::BitCast(di, hn::And(idx, lane_mask)));
+  VF r = hn::TableLookupLanes(hn::LoadU(df, table), within);
+  for (std::size_t base = n; base < static_cast<std::size_t>(kEntries); base += n) {
+    // Indices are small, so a signed compare (the one every target has) is exact.
+    const auto in_chunk = hn::RebindMask(
+        df, hn::Gt(hn::BitCast(di, idx), hn::Set(di, static_cast<std::int32_t>(base) - 1)));
+    r = hn::IfThenElse(in_chunk, hn::TableLookupLanes(hn::LoadU(df, table + base), within), r);
+  }
+  return r;
+}
+
+HWY_INLINE VU grad_index2(VU h) { return hn::ShiftRight<detail::constants::kPerlin2GradShift>(h); }
+HWY_INLINE VU grad_index3(VU h) {
+  namespace c = detail::constants;
+  const VU top = hn::ShiftRight<c::kPerlin3IndexShift>(h);
+  return hn::ShiftRight<c::kPerlin3IndexShift>(
+      hn::Mul(top, hn::Set(DU(), static_cast<std::uint32_t>(c::kPerlin3GradCount))));
+}
+
+// One axis of a batch of lattice lookups: hash words of the two cells, the
+// fraction, its fade and (for gradients) the fade's derivative.
+struct axis {
+  VU w0, w1;
+  VF f, s, ds;
+};
+
+// ---- 2D core: perlin<2>::eval2 in lanes. ky0/ky1 already hold key ^ word_y.
+template <bool kGradient>
+HWY_INLINE void core2(const axis& x, VU ky0, VU ky1, const axis& y, VF& value, VF& gx_out,
+                      VF& gy_out) {
+  const DF df;
+  const tables& tab = gradient_tables();
+  const VF one = hn::Set(df, 1.0f);
+  const VF fx = x.f, fy = y.f, fx1 = hn::Sub(fx, one), fy1 = hn::Sub(fy, one);
+  const VU g00 = grad_index2(hash32(hn::Xor(x.w0, ky0)));
+  const VU g10 = grad_index2(hash32(hn::Xor(x.w1, ky0)));
+  const VU g01 = grad_index2(hash32(hn::Xor(x.w0, ky1)));
+  const VU g11 = grad_index2(hash32(hn::Xor(x.w1, ky1)));
+  constexpr int kN = detail::constants::kPerlin2GradCount;
+  const VF ax00 = lookup<kN>(tab.g2x, g00), ay00 = lookup<kN>(tab.g2y, g00);
+  const VF ax10 = lookup<kN>(tab.g2x, g10), ay10 = lookup<kN>(tab.g2y, g10);
+  const VF ax01 = lookup<kN>(tab.g2x, g01), ay01 = lookup<kN>(tab.g2y, g01);
+  const VF ax11 = lookup<kN>(tab.g2x, g11), ay11 = lookup<kN>(tab.g2y, g11);
+  const VF d00 = mul_add(ax00, fx, hn::Mul(ay00, fy));
+  const VF d10 = mul_add(ax10, fx1, hn::Mul(ay10, fy));
+  const VF d01 = mul_add(ax01, fx, hn::Mul(ay01, fy1));
+  const VF d11 = mul_add(ax11, fx1, hn::Mul(ay11, fy1));
+  const VF u = x.s, v = y.s;
+  const VF x0 = lerp(d00, d10, u), x1 = lerp(d01, d11, u);
+  const VF scale = hn::Set(df, float(detail::constants::kPerlin2Scale));
+  value = hn::Mul(scale, lerp(x0, x1, v));
+  if constexpr (kGradient) {
+    const VF gx = mul_add(x.ds, lerp(hn::Sub(d10, d00), hn::Sub(d11, d01), v),
+                          lerp(lerp(ax00, ax10, u), lerp(ax01, ax11, u), v));
+    const VF gy = mul_add(y.ds, hn::Sub(x1, x0), lerp(lerp(ay00, ay10, u), lerp(ay01, ay11, u), v));
+    gx_out = hn::Mul(scale, gx);
+    gy_out = hn::Mul(scale, gy);
+  } else {
+    (void)gx_out;
+    (void)gy_out;
+  }
+}
+
+// ---- 3D core: perlin<3>::eval3 in lanes. kyz[b + 2c] = key ^ word_y(j_b) ^ word_z(k_c).
+template <bool kGradient>
+HWY_INLINE void core3(const axis& x, const VU* kyz, const axis& y, const axis& z, VF& value,
+                      VF* grad) {
+  const DF df;
+  const tables& tab = gradient_tables();
+  const VF one = hn::Set(df, 1.0f);
+  const VF f[2][3] = {{x.f, y.f, z.f}, {hn::Sub(x.f, one), hn::Sub(y.f, one), hn::Sub(z.f, one)}};
+  constexpr int kN = detail::constants::kPerlin3GradCount;
+  VF d[8], gxs[8], gys[8], gzs[8];
+  for (int n = 0; n < 8; ++n) {
+    const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+    const VU g = grad_index3(hash32(hn::Xor(a ? x.w1 : x.w0, kyz[b + 2 * c])));
+    gxs[n] = lookup<kN>(tab.g3x, g);
+    gys[n] = lookup<kN>(tab.g3y, g);
+    gzs[n] = lookup<kN>(tab.g3z, g);
+    // (gx fx + gy fy) + gz fz, summed left to right as in eval3.
+    d[n] = mul_add(gzs[n], f[c][2], mul_add(gxs[n], f[a][0], hn::Mul(gys[n], f[b][1])));
+  }
+  const VF u = x.s, v = y.s, w = z.s;
+  const VF x00 = lerp(d[0], d[1], u), x10 = lerp(d[2], d[3], u);
+  const VF x01 = lerp(d[4], d[5], u), x11 = lerp(d[6], d[7], u);
+  const VF y0 = lerp(x00, x10, v), y1 = lerp(x01, x11, v);
+  const VF scale = hn::Set(df, float(detail::constants::kPerlin3Scale));
+  value = hn::Mul(scale, lerp(y0, y1, w));
+  if constexpr (kGradient) {
+    auto blend = [&](const VF* q) {
+      return lerp(lerp(lerp(q[0], q[1], u), lerp(q[2], q[3], u), v),
+                  lerp(lerp(q[4], q[5], u), lerp(q[6], q[7], u), v), w);
+    };
+    const VF ex = lerp(lerp(hn::Sub(d[1], d[0]), hn::Sub(d[3], d[2]), v),
+                       lerp(hn::Sub(d[5], d[4]), hn::Sub(d[7], d[6]), v), w);
+    const VF ey = lerp(hn::Sub(x10, x00), hn::Sub(x11, x01), w);
+    const VF ez = hn::Sub(y1, y0);
+    grad[0] = hn::Mul(scale, mul_add(x.ds, ex, blend(gxs)));
+    grad[1] = hn::Mul(scale, mul_add(y.ds, ey, blend(gys)));
+    grad[2] = hn::Mul(scale, mul_add(z.ds, ez, blend(gzs)));
+  }
+}
+
+}  // namespace perlin_simd
+
+namespace perlin_simd {
+
+// ---- Points: splitting float coordinates into lattice axes.
+
+// Vector split, valid when every lane is finite with |x| < 2^31: floor and
+// x - floor(x) are exact in float, so this equals lattice_split's double
+// computation (including its clamp below 1 for tiny negative x).
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split_fast(VF xv) {
+  const DF df;
+  const DI di;
+  const DU du;
+  const VF fl = hn::Floor(xv);
+  const VF f = hn::Min(hn::Sub(xv, fl), hn::Set(df, detail::one_minus_ulp<float>()));
+  const VU i0 = hn::BitCast(du, hn::ConvertTo(di, fl));
+  axis a;
+  a.w0 = word<kAxis>(i0);
+  a.w1 = word<kAxis>(hn::Add(i0, hn::Set(du, 1u)));
+  a.f = f;
+  a.s = fade(f);
+  if constexpr (kGradient) a.ds = fade_derivative(f);
+  return a;
+}
+
+// Lane-by-lane split through core/lattice.hpp: NaN, Inf, |x| >= 2^31 and
+// periodic axes. Same result as scalar evaluation by construction.
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split_lanes(VF xv, std::uint32_t period) {
+  const DF df;
+  const DU du;
+  HWY_ALIGN float xs[kMaxLanes], fs[kMaxLanes];
+  HWY_ALIGN std::uint32_t i0s[kMaxLanes], i1s[kMaxLanes];
+  hn::Store(xv, df, xs);
+  for (std::size_t l = 0; l < hn::Lanes(df); ++l) {
+    const lattice_coord<float> c = lattice_split<float>(double(xs[l]), period);
+    i0s[l] = c.i0;
+    i1s[l] = c.i1;
+    fs[l] = c.f;
+  }
+  axis a;
+  a.w0 = word<kAxis>(hn::Load(du, i0s));
+  a.w1 = word<kAxis>(hn::Load(du, i1s));
+  a.f = hn::Load(df, fs);
+  a.s = fade(a.f);
+  if constexpr (kGradient) a.ds = fade_derivative(a.f);
+  return a;
+}
+
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split(VF xv, std::uint32_t period) {
+  const DF df;
+  if (period == 0 && hn::AllTrue(df, hn::Lt(hn::Abs(xv), hn::Set(df, 2147483648.0f))))
+    return split_fast<kGradient, kAxis>(xv);
+  return split_lanes<kGradient, kAxis>(xv, period);
+}
+
+// One vector of 2D points (interleaved x, y) -> values (and interleaved gradients).
+template <bool kGradient>
+HWY_INLINE void points2_vector(std::uint32_t key, const std::uint32_t* period,
+                               const float* HWY_RESTRICT xy, float* HWY_RESTRICT value,
+                               float* HWY_RESTRICT grad) {
+  const DF df;
+  const DU du;
+  VF xv, yv;
+  hn::LoadInterleaved2(df, xy, xv, yv);
+  const axis ax = split<kGradient, 0>(xv, period[0]);
+  const axis ay = split<kGradient, 1>(yv, period[1]);
+  const VU k = hn::Set(du, key);
+  VF v, gx, gy;
+  core2<kGradient>(ax, hn::Xor(k, ay.w0), hn::Xor(k, ay.w1), ay, v, gx, gy);
+  hn::StoreU(v, df, value);
+  if constexpr (kGradient) hn::StoreInterleaved2(gx, gy, df, grad);
+}
+
+template <bool kGradient>
+HWY_INLINE void points3_vector(std::uint32_t key, const std::uint32_t* period,
+                               const float* HWY_RESTRICT xyz, float* HWY_RESTRICT value,
+                               float* HWY_RESTRICT grad) {
+  const DF df;
+  const DU du;
+  VF xv, yv, zv;
+  hn::LoadInterleaved3(df, xyz, xv, yv, zv);
+  const axis ax = split<kGradient, 0>(xv, period[0]);
+  const axis ay = split<kGradient, 1>(yv, period[1]);
+  const axis az = split<kGradient, 2>(zv, period[2]);
+  const VU k = hn::Set(du, key);
+  const VU kyz[4] = {hn::Xor(k, hn::Xor(ay.w0, az.w0)), hn::Xor(k, hn::Xor(ay.w1, az.w0)),
+                     hn::Xor(k, hn::Xor(ay.w0, az.w1)), hn::Xor(k, hn::Xor(ay.w1, az.w1))};
+  VF v, g[3];
+  core3<kGradient>(ax, kyz, ay, az, v, g);
+  hn::StoreU(v, df, value);
+  if constexpr (kGradient) hn::StoreInterleaved3(g[0], g[1], g[2], df, grad);
+}
+
+// Runs `vector_fn` over n points of D floats each; the last partial vector
+// goes through zero-padded buffers, so no lane reads or writes out of bounds.
+template <int D, class Fn>
+HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
+                                      Fn vector_fn) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  std::size_t i = 0;
+  for (; i + lanes <= n; i += lanes)
+    vector_fn(pts + i * D, value + i, grad ? grad + i * D : nullptr);
+  if (i == n) return;
+  const std::size_t rest = n - i;
+  HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
+  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+  vector_fn(in, out, g);
+  std::memcpy(value + i, out, rest * sizeof(float));
+  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
+}
+
+}  // namespace perlin_simd
+
+// Perlin 2D at n interleaved points (x0, y0, x1, y1, ...); values into
+// `value[n]`, and interleaved gradients into `grad[2n]` unless grad is null.
+inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
+                           std::size_t n, float* value, float* grad) {
+  using namespace perlin_simd;  // NOLINT(google-build-using-namespace): kernel-local helpers
+  if (grad)
+    for_each_point_vector<2>(n, xy, value, grad, [&](const float* p, float* v, float* g) {
+      points2_vector<true>(key, period, p, v, g);
+    });
+  else
+    for_each_point_vector<2>(n, xy, value, nullptr, [&](const float* p, float* v, float*) {
+      points2_vector<false>(key, period, p, v, nullptr);
+    });
+}
+
+// Perlin 3D at n interleaved points; gradients interleaved (3n) unless null.
+inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float* xyz,
+                           std::size_t n, float* value, float* grad) {
+  using namespace perlin_simd;  // NOLINT(google-build-using-namespace)
+  if (grad)
+    for_each_point_vector<3>(n, xyz, value, grad, [&](const float* p, float* v, float* g) {
+      points3_vector<true>(key, period, p, v, g);
+    });
+  else
+    for_each_point_vector<3>(n, xyz, value, nullptr, [&](const float* p, float* v, float*) {
+      points3_vector<false>(key, period, p, v, nullptr);
+    });
+}
+
+namespace perlin_simd {
+
+// ---- Grids: the x axis is split once per column (in double, by
+// lattice_split, exactly as scalar evaluation does) and reused by every row;
+// y (and z) are split once per row (slice) and broadcast.
+struct column_table {
+  std::vector<float> f, s, ds;
+  std::vector<std::uint32_t> w0, w1;
+  std::size_t padded = 0;
+
+  column_table(double origin, double step, std::size_t n, std::uint32_t period, bool gradient) {
+    const std::size_t lanes = hn::Lanes(DF());
+    padded = (n + lanes - 1) / lanes * lanes;
+    f.assign(padded, 0.0f);
+    s.assign(padded, 0.0f);
+    w0.assign(padded, 0u);
+    w1.assign(padded, 0u);
+    if (gradient) ds.assign(padded, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      const lattice_coord<float> c = lattice_split<float>(origin + step * double(i), period);
+      f[i] = c.f;
+      s[i] = detail::fade(c.f);
+      if (gradient) ds[i] = detail::fade_derivative(c.f);
+      w0[i] = word_x(c.i0);
+      w1[i] = word_x(c.i1);
+    }
+  }
+  template <bool kGradient>
+  HWY_INLINE axis load(std::size_t i) const {
+    const DF df;
+    const DU du;
+    axis a;
+    a.w0 = hn::LoadU(du, w0.data() + i);
+    a.w1 = hn::LoadU(du, w1.data() + i);
+    a.f = hn::LoadU(df, f.data() + i);
+    a.s = hn::LoadU(df, s.data() + i);
+    if constexpr (kGradient) a.ds = hn::LoadU(df, ds.data() + i);
+    return a;
+  }
+};
+
+// A row-constant axis (y or z): scalar split broadcast to all lanes.
+struct row_axis {
+  std::uint32_t w0, w1;
+  axis a;
+};
+template <bool kGradient, int kAxis>
+HWY_INLINE row_axis broadcast_axis(double p, std::uint32_t period) {
+  const DF df;
+  const lattice_coord<float> c = lattice_split<float>(p, period);
+  row_axis r;
+  r.w0 = kAxis == 1 ? word_y(c.i0) : word_z(c.i0);
+  r.w1 = kAxis == 1 ? word_y(c.i1) : word_z(c.i1);
+  r.a.f = hn::Set(df, c.f);
+  r.a.s = hn::Set(df, detail::fade(c.f));
+  if constexpr (kGradient) r.a.ds = hn::Set(df, detail::fade_derivative(c.f));
+  return r;
+}
+
+// Stores one vector of results for columns [i, i + lanes) of a row, through
+// a buffer when the row ends inside the vector.
+template <int D>
+HWY_INLINE void store_row(std::size_t i, std::size_t nx, VF v, const VF* g, float* row_value,
+                          float* row_grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const bool full = i + lanes <= nx;
+  HWY_ALIGN float vb[kMaxLanes], gb[kMaxLanes * D];
+  hn::StoreU(v, df, full ? row_value + i : vb);
+  if (row_grad) {
+    float* gdst = full ? row_grad + i * D : gb;
+    if constexpr (D == 2)
+      hn::StoreInterleaved2(g[0], g[1], df, gdst);
+    else
+      hn::StoreInterleaved3(g[0], g[1], g[2], df, gdst);
+  }
+  if (full) return;
+  std::memcpy(row_value + i, vb, (nx - i) * sizeof(float));
+  if (row_grad) std::memcpy(row_grad + i * D, gb, (nx - i) * D * sizeof(float));
+}
+
+template <bool kGradient>
+void grid2(std::uint32_t key, const std::uint32_t* period, const grid<2>& g, float* value,
+           float* grad) {
+  const DU du;
+  const std::size_t nx = g.size[0], ny = g.size[1], lanes = hn::Lanes(DF());
+  const column_table cols(g.origin[0], g.step[0], nx, period[0], kGradient);
+  for (std::size_t j = 0; j < ny; ++j) {
+    const row_axis y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
+    const VU ky0 = hn::Set(du, key ^ y.w0), ky1 = hn::Set(du, key ^ y.w1);
+    float* row_value = value + j * nx;
+    float* row_grad = kGradient ? grad + j * nx * 2 : nullptr;
+    for (std::size_t i = 0; i < nx; i += lanes) {
+      VF v, gr[2];
+      core2<kGradient>(cols.load<kGradient>(i), ky0, ky1, y.a, v, gr[0], gr[1]);
+      store_row<2>(i, nx, v, gr, row_value, row_grad);
+    }
+  }
+}
+
+template <bool kGradient>
+void grid3(std::uint32_t key, const std::uint32_t* period, const grid<3>& g, float* value,
+           float* grad) {
+  const DU du;
+  const std::size_t nx = g.size[0], ny = g.size[1], nz = g.size[2], lanes = hn::Lanes(DF());
+  const column_table cols(g.origin[0], g.step[0], nx, period[0], kGradient);
+  for (std::size_t k = 0; k < nz; ++k) {
+    const row_axis z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
+    for (std::size_t j = 0; j < ny; ++j) {
+      const row_axis y =
+          broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
+      const VU kyz[4] = {hn::Set(du, key ^ y.w0 ^ z.w0), hn::Set(du, key ^ y.w1 ^ z.w0),
+                         hn::Set(du, key ^ y.w0 ^ z.w1), hn::Set(du, key ^ y.w1 ^ z.w1)};
+      const std::size_t row = k * ny + j;
+      float* row_value = value + row * nx;
+      float* row_grad = kGradient ? grad + row * nx * 3 : nullptr;
+      for (std::size_t i = 0; i < nx; i += lanes) {
+        VF v, gr[3];
+        core3<kGradient>(cols.load<kGradient>(i), kyz, y.a, z.a, v, gr);
+        store_row<3>(i, nx, v, gr, row_value, row_grad);
+      }
+    }
+  }
+}
+
+}  // namespace perlin_simd
+
+// Perlin 2D on a uniform grid (C order, i fastest); gradients interleaved
+// (2 per sample) unless grad is null.
+inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
+                         float* value, float* grad) {
+  if (grad)
+    perlin_simd::grid2<true>(key, period, g, value, grad);
+  else
+    perlin_simd::grid2<false>(key, period, g, value, nullptr);
+}
+
+// Perlin 3D on a uniform grid; gradients interleaved (3 per sample) unless null.
+inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
+                         float* value, float* grad) {
+  if (grad)
+    perlin_simd::grid3<true>(key, period, g, value, grad);
+  else
+    perlin_simd::grid3<false>(key, period, g, value, nullptr);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_PERLIN_INL_H_ toggle
+// ---- end hush/simd/perlin-inl.h
+#endif
+
+namespace hush {
+namespace simd {
+
+// Kernel entry points. Points are interleaved floats (x0, y0[, z0], x1, ...),
+// gradients are written interleaved the same way unless `grad` is null.
+// `period` has one entry per axis (0 = not periodic). Results follow
+// hush::perlin's contract; see hush/simd/perlin-inl.h for the agreement with
+// scalar evaluation.
+#if HUSH_CONFIG_SIMD_STATIC
+#define HUSH_SIMD_ENTRY inline
+#else
+#define HUSH_SIMD_ENTRY
+#endif
+HUSH_SIMD_ENTRY void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
+                                    std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void perlin3_points(std::uint32_t key, const std::uint32_t* period,
+                                    const float* xyz, std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
+                                  float* value, float* grad);
+HUSH_SIMD_ENTRY void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
+                                  float* value, float* grad);
+
+// Names of the targets compiled into this program ("AVX2", "SSE4", ...),
+// best first, and of the one the kernels run on, on this CPU.
+HUSH_SIMD_ENTRY std::vector<std::string> compiled_targets();
+HUSH_SIMD_ENTRY std::string chosen_target();
+// "dynamic" or "static".
+inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" : "dynamic"; }
+
+#if HUSH_CONFIG_SIMD_STATIC
+inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
+                           std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin2_points)(key, period, xy, n, value, grad);
+}
+inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float* xyz,
+                           std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin3_points)(key, period, xyz, n, value, grad);
+}
+inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
+                         float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin2_grid)(key, period, g, value, grad);
+}
+inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
+                         float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin3_grid)(key, period, g, value, grad);
+}
+inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
+inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
+#endif
+#undef HUSH_SIMD_ENTRY
+
+}  // namespace simd
+
+namespace detail {
+
+template <int D>
+struct simd_kernel<perlin<D>> {
+  static constexpr bool available = true;
+  static_assert(sizeof(vec<float, D>) == D * sizeof(float),
+                "vec<float, D> must be D packed floats");
+
+  static void config(const perlin<D>& n, std::uint32_t& key, std::uint32_t (&period)[3]) {
+    key = seed_key(n.parameters().seed);
+    for (int a = 0; a < 3; ++a)
+      period[a] = a < D ? static_cast<std::uint32_t>(n.parameters().period[a]) : 0u;
+  }
+  static void points(const perlin<D>& n, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    std::uint32_t key, period[3];
+    config(n, key, period);
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::perlin2_points(key, period, p, count, out, g);
+    else
+      simd::perlin3_points(key, period, p, count, out, g);
+  }
+  static void grid(const perlin<D>& n, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    std::uint32_t key, period[3];
+    config(n, key, period);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::perlin2_grid(key, period, gr, out, g);
+    else
+      simd::perlin3_grid(key, period, gr, out, g);
+  }
+};
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_CONFIG_SIMD
+
+#endif  // HUSH_SIMD_DISPATCH_HPP
+// ---- end hush/simd/dispatch.hpp
 
 namespace hush {
 namespace exec {
@@ -1356,14 +2072,6 @@ glsl(Device&) -> glsl<Device>;
 }  // namespace exec
 
 namespace detail {
-
-// The SIMD kernels of a noise type. Noises with kernels specialise this in
-// hush/simd/dispatch.hpp; the primary template says "none", and exec::simd
-// then runs the scalar loop.
-template <class Noise>
-struct simd_kernel {
-  static constexpr bool available = false;
-};
 
 template <class Noise>
 using point_span = span<const vec<float, Noise::dimension>>;
@@ -1458,8 +2166,8 @@ void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> poin
 
 // Values and analytic gradients (d noise / d position) at `points`.
 template <class Noise, class Exec>
-void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points,
-              span<float> out, detail::gradient_span<Noise> gradients) {
+void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points, span<float> out,
+              detail::gradient_span<Noise> gradients) {
   detail::require_same_size("hush::evaluate", "out", out.size(), points.size());
   detail::require_same_size("hush::evaluate", "gradients", gradients.size(), points.size());
   if (points.empty()) return;

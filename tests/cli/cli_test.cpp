@@ -479,7 +479,6 @@ TEST_CASE("sample rejects each bad input with exit code 2 and one line naming th
       {"perlin --seed 1.5" + out, "--seed"},
       {"perlin --seed 7x" + out, "--seed"},
       {"perlin --seed ''" + out, "--seed"},
-      {"perlin --backend simd" + out, "--backend"},
       {"perlin --backend glsl" + out, "--backend"},
       {"perlin --backend cuda" + out, "--backend"},
       {"perlin --period -3,1" + out, "--period"},
@@ -522,16 +521,34 @@ TEST_CASE("sample rejects each bad input with exit code 2 and one line naming th
   CHECK_FALSE(fs::exists(dir / "v.png"));
 }
 
-TEST_CASE("sample --backend simd says exactly which backends this build has") {
+TEST_CASE("sample --backend simd equals scalar sampling within the SIMD budget, 2D and 3D") {
   const fs::path dir = scratch("backend");
+  for (int dim : {2, 3}) {
+    const std::string common =
+        "sample perlin --dim " + std::to_string(dim) +
+        (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
+        " --step 0.173 --seed 9 ";
+    REQUIRE(run_hush(common + "--backend simd --out '" + (dir / "simd.npy").string() + "'", dir)
+                .exit_code == 0);
+    REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
+                .exit_code == 0);
+    const npy_file a = read_npy(dir / "simd.npy"), b = read_npy(dir / "scalar.npy");
+    REQUIRE(a.values.size() == b.values.size());
+    // Both are within the float budget 2^-16 of the double reference
+    // (hush/simd/perlin-inl.h), hence within 2^-15 of each other; bit for bit
+    // under HUSH_STRICT_FP (tests/simd).
+    double worst = 0;
+    for (std::size_t i = 0; i < a.values.size(); ++i)
+      worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
+    CHECK(worst <= std::ldexp(1.0, -15));
+  }
+#if !HUSH_CLI_TEST_SIMD
+  // Without Highway the program says so instead of silently running scalar code.
   const result r =
       run_hush("sample perlin --backend simd --out '" + (dir / "x.npy").string() + "'", dir);
   CHECK(r.exit_code == 2);
-  CHECK(r.err == "hush sample: --backend simd is not available in this build; available: scalar\n");
-  // --backend scalar is accepted and changes nothing.
-  CHECK(run_hush("sample perlin --backend scalar --size 4 --out '" + (dir / "x.npy").string() + "'",
-                 dir)
-            .exit_code == 0);
+  CHECK(r.err.find("Highway") != std::string::npos);
+#endif
 }
 
 TEST_CASE("sample to an unwritable file fails with exit code 1 and names the file") {
@@ -570,7 +587,9 @@ TEST_CASE("info exits 0 and prints the version, the standard and the backends") 
   CHECK(r.out.find(std::string("hush ") + HUSH_VERSION_STRING) != std::string::npos);
   CHECK(r.out.find("C++17") != std::string::npos);
   CHECK(r.out.find("scalar:     yes") != std::string::npos);
-  CHECK(r.out.find("simd:       not compiled in this build") != std::string::npos);
+  CHECK(r.out.find(HUSH_CLI_TEST_SIMD
+                       ? "simd:       yes, dynamic dispatch; compiled: "
+                       : "simd:       no (built without Highway") != std::string::npos);
   CHECK(r.out.find("glsl:       not compiled in this build") != std::string::npos);
   CHECK(r.out.find(HUSH_CLI_TEST_GALLERY ? "gallery:      yes" : "gallery:      no") !=
         std::string::npos);

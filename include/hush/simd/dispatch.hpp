@@ -1,0 +1,148 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The SIMD backend's target-independent face: the entry points exec::simd
+// calls, which SIMD targets were compiled and which one runs.
+//
+// Three ways to build, chosen by macro (config.hpp normalises them into
+// HUSH_CONFIG_SIMD and HUSH_CONFIG_SIMD_STATIC):
+//  - HUSH_SIMD_DYNAMIC: kernels for every target Highway compiles (SSE4,
+//    AVX2, AVX-512 on x86), the best one the CPU supports chosen at run time.
+//    Exactly one .cpp of the program includes hush/simd/dispatch_impl.hpp;
+//    the CMake target hush::simd is that file, defines the macro and links
+//    Highway. This is the route for portable binaries.
+//  - HUSH_SIMD_STATIC: kernels for the compiler's baseline target only
+//    (HWY_STATIC_TARGET; AVX2 under -march=haswell or -march=native), inlined
+//    where called; no extra translation unit. The route for -march=native
+//    builds and for the single header.
+//  - neither (or HUSH_NO_SIMD): exec::simd runs the scalar loop, and nothing
+//    needs Highway.
+#ifndef HUSH_SIMD_DISPATCH_HPP
+#define HUSH_SIMD_DISPATCH_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hush/config.hpp"
+#include "hush/core/hash.hpp"
+#include "hush/core/vec.hpp"
+#include "hush/core/views.hpp"
+#include "hush/perlin.hpp"
+
+namespace hush {
+namespace detail {
+
+// The SIMD kernels of a noise type (used by exec.hpp). Noises with kernels
+// specialise it below; the primary template says "none", and exec::simd then
+// runs the scalar loop.
+template <class Noise>
+struct simd_kernel {
+  static constexpr bool available = false;
+};
+
+}  // namespace detail
+}  // namespace hush
+
+#if HUSH_CONFIG_SIMD
+
+#if HUSH_CONFIG_SIMD_STATIC
+#include <hwy/highway.h>
+
+#include "hush/simd/perlin-inl.h"
+#endif
+
+namespace hush {
+namespace simd {
+
+// Kernel entry points. Points are interleaved floats (x0, y0[, z0], x1, ...),
+// gradients are written interleaved the same way unless `grad` is null.
+// `period` has one entry per axis (0 = not periodic). Results follow
+// hush::perlin's contract; see hush/simd/perlin-inl.h for the agreement with
+// scalar evaluation.
+#if HUSH_CONFIG_SIMD_STATIC
+#define HUSH_SIMD_ENTRY inline
+#else
+#define HUSH_SIMD_ENTRY
+#endif
+HUSH_SIMD_ENTRY void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
+                                    std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void perlin3_points(std::uint32_t key, const std::uint32_t* period,
+                                    const float* xyz, std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
+                                  float* value, float* grad);
+HUSH_SIMD_ENTRY void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
+                                  float* value, float* grad);
+
+// Names of the targets compiled into this program ("AVX2", "SSE4", ...),
+// best first, and of the one the kernels run on, on this CPU.
+HUSH_SIMD_ENTRY std::vector<std::string> compiled_targets();
+HUSH_SIMD_ENTRY std::string chosen_target();
+// "dynamic" or "static".
+inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" : "dynamic"; }
+
+#if HUSH_CONFIG_SIMD_STATIC
+inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
+                           std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin2_points)(key, period, xy, n, value, grad);
+}
+inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float* xyz,
+                           std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin3_points)(key, period, xyz, n, value, grad);
+}
+inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
+                         float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin2_grid)(key, period, g, value, grad);
+}
+inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
+                         float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin3_grid)(key, period, g, value, grad);
+}
+inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
+inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
+#endif
+#undef HUSH_SIMD_ENTRY
+
+}  // namespace simd
+
+namespace detail {
+
+template <int D>
+struct simd_kernel<perlin<D>> {
+  static constexpr bool available = true;
+  static_assert(sizeof(vec<float, D>) == D * sizeof(float),
+                "vec<float, D> must be D packed floats");
+
+  static void config(const perlin<D>& n, std::uint32_t& key, std::uint32_t (&period)[3]) {
+    key = seed_key(n.parameters().seed);
+    for (int a = 0; a < 3; ++a)
+      period[a] = a < D ? static_cast<std::uint32_t>(n.parameters().period[a]) : 0u;
+  }
+  static void points(const perlin<D>& n, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    std::uint32_t key, period[3];
+    config(n, key, period);
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::perlin2_points(key, period, p, count, out, g);
+    else
+      simd::perlin3_points(key, period, p, count, out, g);
+  }
+  static void grid(const perlin<D>& n, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    std::uint32_t key, period[3];
+    config(n, key, period);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::perlin2_grid(key, period, gr, out, g);
+    else
+      simd::perlin3_grid(key, period, gr, out, g);
+  }
+};
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_CONFIG_SIMD
+
+#endif  // HUSH_SIMD_DISPATCH_HPP

@@ -1,0 +1,76 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Dynamic dispatch of the SIMD backend: include this in exactly ONE .cpp of
+// a program built with HUSH_SIMD_DYNAMIC, and link Highway (libhwy). It
+// compiles every kernel once per SIMD target Highway builds for (Highway's
+// HWY_TARGET_INCLUDE + foreach_target.h pattern) and defines the entry
+// points of hush/simd/dispatch.hpp, which pick the best target the CPU
+// supports on first use. The CMake target hush::simd is exactly this.
+//
+// No include guard on purpose: foreach_target.h re-includes this file once
+// per target; the HWY_ONCE part at the end is compiled once.
+#if !defined(HUSH_SIMD_DYNAMIC)
+#error "hush/simd/dispatch_impl.hpp needs HUSH_SIMD_DYNAMIC defined for the whole program"
+#endif
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "hush/simd/dispatch_impl.hpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "hush/simd/perlin-inl.h"
+
+#if HWY_ONCE
+#ifndef HUSH_SIMD_DISPATCH_IMPL_ONCE
+#define HUSH_SIMD_DISPATCH_IMPL_ONCE
+
+#include <string>
+#include <vector>
+
+#include <hwy/targets.h>
+
+#include "hush/simd/dispatch.hpp"
+
+namespace hush {
+
+HWY_EXPORT(perlin2_points);
+HWY_EXPORT(perlin3_points);
+HWY_EXPORT(perlin2_grid);
+HWY_EXPORT(perlin3_grid);
+
+namespace simd {
+
+void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy, std::size_t n,
+                    float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(perlin2_points)(key, period, xy, n, value, grad);
+}
+void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float* xyz, std::size_t n,
+                    float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(perlin3_points)(key, period, xyz, n, value, grad);
+}
+void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g, float* value,
+                  float* grad) {
+  HWY_DYNAMIC_DISPATCH(perlin2_grid)(key, period, g, value, grad);
+}
+void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g, float* value,
+                  float* grad) {
+  HWY_DYNAMIC_DISPATCH(perlin3_grid)(key, period, g, value, grad);
+}
+
+std::vector<std::string> compiled_targets() {
+  std::vector<std::string> names;
+  // Lower bits are better targets in Highway's encoding.
+  for (std::int64_t t = HWY_TARGETS; t != 0; t &= t - 1) names.push_back(hwy::TargetName(t & -t));
+  return names;
+}
+
+std::string chosen_target() {
+  const std::int64_t usable = hwy::SupportedTargets() & HWY_TARGETS;
+  return usable ? hwy::TargetName(usable & -usable) : "none";
+}
+
+}  // namespace simd
+}  // namespace hush
+
+#endif  // HUSH_SIMD_DISPATCH_IMPL_ONCE
+#endif  // HWY_ONCE
