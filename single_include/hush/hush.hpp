@@ -1384,6 +1384,12 @@ struct simd_kernel {
 #if HUSH_CONFIG_SIMD
 
 #if HUSH_CONFIG_SIMD_STATIC
+// Highway 1.0.3 leaves AVX3_DL out of its target list even when it is the
+// compiler's baseline (-march=native on Ice Lake or Zen 4), then stops with
+// "best baseline should be included in dynamic targets". Opting in fixes it.
+#ifndef HWY_WANT_AVX3_DL
+#define HWY_WANT_AVX3_DL
+#endif
 #include <hwy/highway.h>
 
 // ---- begin hush/simd/perlin-inl.h

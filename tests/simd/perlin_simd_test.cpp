@@ -38,6 +38,9 @@ using hush_test::kFloatBudget;
 using hush_test::lipschitz_bound;
 
 static_assert(HUSH_CONFIG_SIMD, "the SIMD suites need HUSH_SIMD_DYNAMIC or HUSH_SIMD_STATIC");
+#if defined(HUSH_TEST_EXPECT_SINGLE_HEADER)
+static_assert(HUSH_SINGLE_HEADER == 1, "this suite must compile against single_include/ only");
+#endif
 
 // Runs `check` once per SIMD target this program can run (dynamic dispatch),
 // or once (static route), with the target's name in every failure message.
