@@ -108,6 +108,19 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   double band_weight(int i) const { return bands_[i].weight * scale_; }
   double band_frequency(int i) const { return bands_[i].frequency; }
 
+  // The bands as evaluated, for backends that run them themselves (hush/simd):
+  // band i's noise, its raw weight w_i (before the normalisation scale()),
+  // its frequency, and its position f_i x + o_i in double, exactly as value()
+  // forms it.
+  int band_count() const { return static_cast<int>(bands_.size()); }
+  const Noise& band_noise(int i) const { return bands_[i].noise; }
+  double band_raw_weight(int i) const { return bands_[i].weight; }
+  vec<double, D> band_position(int i, const vec<double, D>& p) const {
+    return bands_[i].position(p);
+  }
+  // The normalisation factor K applied to the weighted sum.
+  double scale() const { return scale_; }
+
   // Band positions f_i x + o_i are formed in double; each band evaluates in T.
   template <class T>
   T value(const vec<double, D>& p) const {

@@ -113,31 +113,39 @@ double gradient_budget() {
   return 2 * kFloatBudget * (1 + lipschitz_bound<D>());
 }
 
-template <int D>
-void check_points(const hush::perlin<D>& p, const std::vector<hush::vec<float, D>>& pts) {
+// SIMD against scalar for any noise with SIMD kernels, at points and on a grid:
+// values alone, values with gradients, and gradients.
+template <class Noise>
+void check_points(const Noise& p, const std::vector<hush::vec<float, Noise::dimension>>& pts,
+                  double vbudget = value_budget<Noise::dimension>(),
+                  double gbudget = gradient_budget<Noise::dimension>()) {
+  constexpr int D = Noise::dimension;
   const std::size_t n = pts.size();
   std::vector<float> vs(n), vv(n), vg(n);
   std::vector<hush::vec<float, D>> gs(n), gv(n);
   hush::evaluate(p, hush::exec::scalar, pts, vs, gs);
   hush::evaluate(p, hush::exec::simd, pts, vv);
-  compare(vv, vs, value_budget<D>());
+  compare(vv, vs, vbudget);
   // The value+gradient kernel's values are the value kernel's values.
   hush::evaluate(p, hush::exec::simd, pts, vg, gv);
-  compare(vg, vs, value_budget<D>());
-  compare(flatten<D>(gv), flatten<D>(gs), gradient_budget<D>());
+  compare(vg, vs, vbudget);
+  compare(flatten<D>(gv), flatten<D>(gs), gbudget);
 }
 
-template <int D>
-void check_grid(const hush::perlin<D>& p, const hush::grid<D>& g) {
+template <class Noise>
+void check_grid(const Noise& p, const hush::grid<Noise::dimension>& g,
+                double vbudget = value_budget<Noise::dimension>(),
+                double gbudget = gradient_budget<Noise::dimension>()) {
+  constexpr int D = Noise::dimension;
   const std::size_t n = g.count();
   std::vector<float> vs(n), vv(n), vg(n);
   std::vector<hush::vec<float, D>> gs(n), gv(n);
   hush::evaluate_grid(p, hush::exec::scalar, g, vs, gs);
   hush::evaluate_grid(p, hush::exec::simd, g, vv);
-  compare(vv, vs, value_budget<D>());
+  compare(vv, vs, vbudget);
   hush::evaluate_grid(p, hush::exec::simd, g, vg, gv);
-  compare(vg, vs, value_budget<D>());
-  compare(flatten<D>(gv), flatten<D>(gs), gradient_budget<D>());
+  compare(vg, vs, vbudget);
+  compare(flatten<D>(gv), flatten<D>(gs), gbudget);
 }
 
 template <int D>
@@ -170,8 +178,8 @@ TEST_CASE_TEMPLATE("simd perlin: random point batches agree with scalar evaluati
   constexpr int D = N::value;
   const hush::perlin<D> p(11);
   for_each_target([&] {
-    check_points<D>(p, random_points<D>(4096, 50.0, 1));
-    check_points<D>(p, random_points<D>(4096, 3e6, 2));  // fractions with few bits
+    check_points(p, random_points<D>(4096, 50.0, 1));
+    check_points(p, random_points<D>(4096, 3e6, 2));  // fractions with few bits
   });
 }
 
@@ -182,10 +190,10 @@ TEST_CASE_TEMPLATE("simd perlin: every batch length up to three vectors, tails i
   for_each_target([&] {
     for (std::size_t n = 0; n <= kMaxTail; ++n) {
       INFO("points " << n);
-      check_points<D>(p, random_points<D>(n, 20.0, static_cast<std::uint32_t>(n)));
+      check_points(p, random_points<D>(n, 20.0, static_cast<std::uint32_t>(n)));
       if (n == 0) continue;
       INFO("grid width " << n);
-      check_grid<D>(p, make_grid<D>(-1.3, 1.0 / 7, n, 3, 2));
+      check_grid(p, make_grid<D>(-1.3, 1.0 / 7, n, 3, 2));
     }
   });
 }
@@ -195,11 +203,11 @@ TEST_CASE_TEMPLATE("simd perlin: grids agree with scalar evaluation, near and fa
   constexpr int D = N::value;
   const hush::perlin<D> p(13);
   for_each_target([&] {
-    check_grid<D>(p, make_grid<D>(0.0, 1.0 / 37, 67, 33, 5));
-    check_grid<D>(p, make_grid<D>(-4.5, -0.25, 40, 9, 4));         // negative steps
-    check_grid<D>(p, make_grid<D>(1e9 + 0.5, 1.0 / 3, 35, 7, 3));  // far from the origin
-    check_grid<D>(p, make_grid<D>(-3e15, 0.125, 21, 5, 3));        // beyond float's integers
-    check_grid<D>(p, make_grid<D>(1e300, 1e290, 19, 4, 2));        // cells wrap modulo 2^32
+    check_grid(p, make_grid<D>(0.0, 1.0 / 37, 67, 33, 5));
+    check_grid(p, make_grid<D>(-4.5, -0.25, 40, 9, 4));         // negative steps
+    check_grid(p, make_grid<D>(1e9 + 0.5, 1.0 / 3, 35, 7, 3));  // far from the origin
+    check_grid(p, make_grid<D>(-3e15, 0.125, 21, 5, 3));        // beyond float's integers
+    check_grid(p, make_grid<D>(1e300, 1e290, 19, 4, 2));        // cells wrap modulo 2^32
   });
 }
 
@@ -211,8 +219,8 @@ TEST_CASE_TEMPLATE("simd perlin: periodic noise agrees with scalar and repeats",
   for (int a = 0; a < D; ++a) prm.period[a] = 3 + 2 * a;
   const hush::perlin<D> p(prm);
   for_each_target([&] {
-    check_points<D>(p, random_points<D>(1000, 40.0, 3));
-    check_grid<D>(p, make_grid<D>(-7.25, 0.3, 41, 6, 3));
+    check_points(p, random_points<D>(1000, 40.0, 3));
+    check_grid(p, make_grid<D>(-7.25, 0.3, 41, 6, 3));
     // One period apart along x: the same values, bit for bit.
     hush::grid<D> g = make_grid<D>(0.5, 0.25, 33, 4, 2), h = g;
     h.origin[0] += prm.period[0];
@@ -242,7 +250,7 @@ TEST_CASE_TEMPLATE("simd perlin: hard-case coordinates behave as in scalar evalu
           std::vector<hush::vec<float, D>> q = pts;
           q[lane][a] = s;
           INFO("value " << s << " on axis " << a << " in lane " << lane);
-          check_points<D>(p, q);
+          check_points(p, q);
           std::vector<float> out(q.size());
           hush::evaluate(p, hush::exec::simd, q, out);
           CHECK(std::isnan(out[lane]) == !std::isfinite(s));
@@ -273,4 +281,63 @@ TEST_CASE("simd perlin: the target list names what this build compiled and chose
   CHECK(std::find(compiled.begin(), compiled.end(), chosen) != compiled.end());
   CHECK(std::string(hush::simd::dispatch_mode()) ==
         (HUSH_CONFIG_SIMD_STATIC ? "static" : "dynamic"));
+}
+
+TEST_CASE_TEMPLATE("simd fractal: fBm and turbulence agree with scalar evaluation", N,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int D = N::value;
+  using fractal = hush::fractal<hush::perlin<D>>;
+  std::vector<typename fractal::params> configs(5);
+  configs[0].seed = 21;  // default: 5 octaves of fBm, unit variance
+  configs[1].seed = 22;
+  configs[1].kind = hush::fractal_kind::turbulence;
+  configs[1].norm = hush::normalization::unit_range;
+  configs[1].octaves = 7;
+  configs[2].seed = 23;  // explicit weights, a zero and a negative one, no normalisation
+  configs[2].octaves = 4;
+  configs[2].weights = {1.0, 0.0, -0.75, 0.3};
+  configs[2].norm = hush::normalization::none;
+  configs[2].frequency = 0.37;
+  configs[2].lacunarity = 2.7;
+  configs[3].seed = 24;  // periodic
+  configs[3].octaves = 3;
+  for (int a = 0; a < D; ++a) configs[3].period[a] = 2 + a;
+  configs[4].seed = 25;  // a single octave
+  configs[4].octaves = 1;
+  for (const auto& prm : configs) {
+    const fractal fr(prm);
+    // Per band the float budget, scaled by the band's normalised weight (and
+    // frequency for gradients), on each side of the comparison.
+    double wsum = 0, wfsum = 0;
+    for (int b = 0; b < fr.band_count(); ++b) {
+      wsum += std::fabs(fr.band_weight(b));
+      wfsum += std::fabs(fr.band_weight(b)) * fr.band_frequency(b);
+    }
+    const double vbudget = 2 * kFloatBudget * (wsum + 1);
+    const double gbudget = 2 * kFloatBudget * (1 + lipschitz_bound<D>()) * (wfsum + 1);
+    INFO("octaves " << prm.octaves << ", seed " << prm.seed);
+    for_each_target([&] {
+      check_points(fr, random_points<D>(700, 30.0, 5), vbudget, gbudget);
+      check_points(fr, random_points<D>(kMaxTail, 1e5, 6), vbudget, gbudget);
+      for (std::size_t w : {1, 7, 16, 33})
+        check_grid(fr, make_grid<D>(-2.2, 0.173, w, 5, 3), vbudget, gbudget);
+      check_grid(fr, make_grid<D>(4e8, -0.31, 19, 4, 2), vbudget, gbudget);
+    });
+  }
+}
+
+TEST_CASE("simd fractal: hard-case coordinates behave as in scalar evaluation") {
+  const hush::fractal<hush::perlin<3>> fr{};
+  std::vector<hush::vec3> pts = random_points<3>(40, 5.0, 7);
+  const float specials[] = {NAN, INFINITY, -INFINITY, 3e9f, -1.0f, -0.0f, -1e-30f, FLT_MAX};
+  for_each_target([&] {
+    for (float s : specials)
+      for (std::size_t lane = 0; lane < 17; ++lane) {
+        std::vector<hush::vec3> q = pts;
+        q[lane].y = s;
+        INFO("value " << s << " in lane " << lane);
+        check_points(fr, q, 2 * kFloatBudget * (fr.bound() + 1),
+                     2 * kFloatBudget * (1 + lipschitz_bound<3>()) * 64);
+      }
+  });
 }

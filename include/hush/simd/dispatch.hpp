@@ -28,6 +28,7 @@
 #include "hush/core/hash.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
+#include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
 
 namespace hush {
@@ -79,6 +80,14 @@ HUSH_SIMD_ENTRY void perlin2_grid(std::uint32_t key, const std::uint32_t* period
                                   float* value, float* grad);
 HUSH_SIMD_ENTRY void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
                                   float* value, float* grad);
+HUSH_SIMD_ENTRY void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
+                                     float* value, float* grad);
+HUSH_SIMD_ENTRY void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
+                                     float* value, float* grad);
+HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
+                                   float* grad);
 
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
 // best first, and of the one the kernels run on, on this CPU.
@@ -103,6 +112,22 @@ inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const g
 inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
                          float* value, float* grad) {
   HWY_STATIC_DISPATCH(perlin3_grid)(key, period, g, value, grad);
+}
+inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
+                            float* value, float* grad) {
+  HWY_STATIC_DISPATCH(fractal2_points)(fr, xy, n, value, grad);
+}
+inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
+                            float* value, float* grad) {
+  HWY_STATIC_DISPATCH(fractal3_points)(fr, xyz, n, value, grad);
+}
+inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
+                          float* grad) {
+  HWY_STATIC_DISPATCH(fractal2_grid)(fr, g, value, grad);
+}
+inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
+                          float* grad) {
+  HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -143,6 +168,29 @@ struct simd_kernel<perlin<D>> {
       simd::perlin2_grid(key, period, gr, out, g);
     else
       simd::perlin3_grid(key, period, gr, out, g);
+  }
+};
+
+template <int D>
+struct simd_kernel<fractal<perlin<D>>> {
+  static constexpr bool available = true;
+
+  static void points(const fractal<perlin<D>>& fr, const vec<float, D>* pts, std::size_t count,
+                     float* out, vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::fractal2_points(fr, p, count, out, g);
+    else
+      simd::fractal3_points(fr, p, count, out, g);
+  }
+  static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
+                   vec<float, D>* grad) {
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::fractal2_grid(fr, gr, out, g);
+    else
+      simd::fractal3_grid(fr, gr, out, g);
   }
 };
 

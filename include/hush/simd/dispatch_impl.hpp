@@ -37,6 +37,10 @@ HWY_EXPORT(perlin2_points);
 HWY_EXPORT(perlin3_points);
 HWY_EXPORT(perlin2_grid);
 HWY_EXPORT(perlin3_grid);
+HWY_EXPORT(fractal2_points);
+HWY_EXPORT(fractal3_points);
+HWY_EXPORT(fractal2_grid);
+HWY_EXPORT(fractal3_grid);
 
 namespace simd {
 
@@ -55,6 +59,21 @@ void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>&
 void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g, float* value,
                   float* grad) {
   HWY_DYNAMIC_DISPATCH(perlin3_grid)(key, period, g, value, grad);
+}
+
+void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n, float* value,
+                     float* grad) {
+  HWY_DYNAMIC_DISPATCH(fractal2_points)(fr, xy, n, value, grad);
+}
+void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n, float* value,
+                     float* grad) {
+  HWY_DYNAMIC_DISPATCH(fractal3_points)(fr, xyz, n, value, grad);
+}
+void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(fractal2_grid)(fr, g, value, grad);
+}
+void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
 }
 
 std::vector<std::string> compiled_targets() {

@@ -30,6 +30,7 @@
 #define HUSH_SIMD_PERLIN_INL_H_
 #endif
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -42,6 +43,7 @@
 #include "hush/core/lattice.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
+#include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -290,17 +292,16 @@ HWY_INLINE axis split_fast(VF xv) {
   return a;
 }
 
-// Lane-by-lane split through core/lattice.hpp: NaN, Inf, |x| >= 2^31 and
-// periodic axes. Same result as scalar evaluation by construction.
+// Lane-by-lane split of double coordinates q[lane] through core/lattice.hpp:
+// exactly what scalar evaluation computes.
 template <bool kGradient, int kAxis>
-HWY_INLINE axis split_lanes(VF xv, std::uint32_t period) {
+HWY_INLINE axis split_doubles(const double* q, std::uint32_t period) {
   const DF df;
   const DU du;
-  HWY_ALIGN float xs[kMaxLanes], fs[kMaxLanes];
+  HWY_ALIGN float fs[kMaxLanes];
   HWY_ALIGN std::uint32_t i0s[kMaxLanes], i1s[kMaxLanes];
-  hn::Store(xv, df, xs);
   for (std::size_t l = 0; l < hn::Lanes(df); ++l) {
-    const lattice_coord<float> c = lattice_split<float>(double(xs[l]), period);
+    const lattice_coord<float> c = lattice_split<float>(q[l], period);
     i0s[l] = c.i0;
     i1s[l] = c.i1;
     fs[l] = c.f;
@@ -312,6 +313,18 @@ HWY_INLINE axis split_lanes(VF xv, std::uint32_t period) {
   a.s = fade(a.f);
   if constexpr (kGradient) a.ds = fade_derivative(a.f);
   return a;
+}
+
+// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^31 and
+// periodic axes. Same result as scalar evaluation by construction.
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split_lanes(VF xv, std::uint32_t period) {
+  const DF df;
+  HWY_ALIGN float xs[kMaxLanes];
+  double q[kMaxLanes];
+  hn::Store(xv, df, xs);
+  for (std::size_t l = 0; l < hn::Lanes(df); ++l) q[l] = double(xs[l]);
+  return split_doubles<kGradient, kAxis>(q, period);
 }
 
 template <bool kGradient, int kAxis>
@@ -420,7 +433,9 @@ struct column_table {
   std::vector<std::uint32_t> w0, w1;
   std::size_t padded = 0;
 
-  column_table(double origin, double step, std::size_t n, std::uint32_t period, bool gradient) {
+  // Column i's x coordinate is position(i), a double.
+  template <class Position>
+  column_table(std::size_t n, std::uint32_t period, bool gradient, Position position) {
     const std::size_t lanes = hn::Lanes(DF());
     padded = (n + lanes - 1) / lanes * lanes;
     f.assign(padded, 0.0f);
@@ -429,7 +444,7 @@ struct column_table {
     w1.assign(padded, 0u);
     if (gradient) ds.assign(padded, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
-      const lattice_coord<float> c = lattice_split<float>(origin + step * double(i), period);
+      const lattice_coord<float> c = lattice_split<float>(position(i), period);
       f[i] = c.f;
       s[i] = detail::fade(c.f);
       if (gradient) ds[i] = detail::fade_derivative(c.f);
@@ -496,7 +511,8 @@ void grid2(std::uint32_t key, const std::uint32_t* period, const grid<2>& g, flo
            float* grad) {
   const DU du;
   const std::size_t nx = g.size[0], ny = g.size[1], lanes = hn::Lanes(DF());
-  const column_table cols(g.origin[0], g.step[0], nx, period[0], kGradient);
+  const column_table cols(nx, period[0], kGradient,
+                          [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
   for (std::size_t j = 0; j < ny; ++j) {
     const row_axis y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
     const VU ky0 = hn::Set(du, key ^ y.w0), ky1 = hn::Set(du, key ^ y.w1);
@@ -515,7 +531,8 @@ void grid3(std::uint32_t key, const std::uint32_t* period, const grid<3>& g, flo
            float* grad) {
   const DU du;
   const std::size_t nx = g.size[0], ny = g.size[1], nz = g.size[2], lanes = hn::Lanes(DF());
-  const column_table cols(g.origin[0], g.step[0], nx, period[0], kGradient);
+  const column_table cols(nx, period[0], kGradient,
+                          [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
   for (std::size_t k = 0; k < nz; ++k) {
     const row_axis z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
     for (std::size_t j = 0; j < ny; ++j) {
@@ -554,6 +571,213 @@ inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const g
     perlin_simd::grid3<true>(key, period, g, value, grad);
   else
     perlin_simd::grid3<false>(key, period, g, value, nullptr);
+}
+
+namespace perlin_simd {
+
+// ---- Fractal sums of Perlin bands (fractal.hpp): each band is a Perlin
+// field evaluated by the cores above at the band position f_i x + o_i, which
+// fractal::band_position forms in double exactly as scalar evaluation does;
+// the weighted sum is accumulated band by band in the same order and with
+// the same operations as fractal::value / value_and_gradient.
+template <int D>
+struct band_config {
+  std::uint32_t key;
+  std::uint32_t period[3];
+  float weight;  // T(w_i)
+  float chain;   // T(w_i f_i): the band gradient's factor
+};
+
+template <int D>
+std::vector<band_config<D>> band_configs(const fractal<perlin<D>>& fr) {
+  std::vector<band_config<D>> r(static_cast<std::size_t>(fr.band_count()));
+  for (int b = 0; b < fr.band_count(); ++b) {
+    const auto& prm = fr.band_noise(b).parameters();
+    band_config<D>& c = r[static_cast<std::size_t>(b)];
+    c.key = seed_key(prm.seed);
+    for (int a = 0; a < 3; ++a)
+      c.period[a] = a < D ? static_cast<std::uint32_t>(prm.period[a]) : 0u;
+    c.weight = float(fr.band_raw_weight(b));
+    c.chain = float(fr.band_raw_weight(b) * fr.band_frequency(b));
+  }
+  return r;
+}
+
+// acc += band value (and gradient) with fractal.hpp's operations.
+template <bool kGradient, int D>
+HWY_INLINE void accumulate(bool turbulence, const band_config<D>& c, VF v, const VF* g, VF& acc,
+                           VF* gacc) {
+  const DF df;
+  const VF w = hn::Set(df, c.weight);
+  if constexpr (kGradient) {
+    // sign = -1 where turbulence folds a negative value; w sign v, chain sign g.
+    const VF sign =
+        turbulence ? hn::IfThenElse(hn::Lt(v, hn::Zero(df)), hn::Set(df, -1.0f), hn::Set(df, 1.0f))
+                   : hn::Set(df, 1.0f);
+    acc = hn::Add(acc, hn::Mul(hn::Mul(w, sign), v));
+    const VF chain = hn::Mul(hn::Set(df, c.chain), sign);
+    for (int a = 0; a < D; ++a) gacc[a] = hn::Add(gacc[a], hn::Mul(chain, g[a]));
+  } else {
+    (void)g;
+    (void)gacc;
+    acc = hn::Add(acc, hn::Mul(w, turbulence ? hn::Abs(v) : v));
+  }
+}
+
+// One vector of fractal points: band positions per lane in double.
+template <bool kGradient, int D>
+HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
+                                      const std::vector<band_config<D>>& bands,
+                                      const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                                      float* HWY_RESTRICT grad) {
+  const DF df;
+  const DU du;
+  const std::size_t lanes = hn::Lanes(df);
+  const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
+  VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+  double q[3][kMaxLanes];
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    for (std::size_t l = 0; l < lanes; ++l) {
+      vec<double, D> p;
+      for (int a = 0; a < D; ++a) p[a] = double(pts[l * D + a]);
+      const vec<double, D> qb = fr.band_position(static_cast<int>(b), p);
+      for (int a = 0; a < D; ++a) q[a][l] = qb[a];
+    }
+    const band_config<D>& c = bands[b];
+    const VU k = hn::Set(du, c.key);
+    const axis ax = split_doubles<kGradient, 0>(q[0], c.period[0]);
+    const axis ay = split_doubles<kGradient, 1>(q[1], c.period[1]);
+    VF v, g[3];
+    if constexpr (D == 2) {
+      core2<kGradient>(ax, hn::Xor(k, ay.w0), hn::Xor(k, ay.w1), ay, v, g[0], g[1]);
+    } else {
+      const axis az = split_doubles<kGradient, 2>(q[2], c.period[2]);
+      const VU kyz[4] = {hn::Xor(k, hn::Xor(ay.w0, az.w0)), hn::Xor(k, hn::Xor(ay.w1, az.w0)),
+                         hn::Xor(k, hn::Xor(ay.w0, az.w1)), hn::Xor(k, hn::Xor(ay.w1, az.w1))};
+      core3<kGradient>(ax, kyz, ay, az, v, g);
+    }
+    accumulate<kGradient, D>(turbulence, c, v, g, acc, gacc);
+  }
+  const VF scale = hn::Set(df, float(fr.scale()));
+  if constexpr (kGradient) {
+    hn::StoreU(hn::Mul(acc, scale), df, value);
+    if constexpr (D == 2)
+      hn::StoreInterleaved2(hn::Mul(gacc[0], scale), hn::Mul(gacc[1], scale), df, grad);
+    else
+      hn::StoreInterleaved3(hn::Mul(gacc[0], scale), hn::Mul(gacc[1], scale),
+                            hn::Mul(gacc[2], scale), df, grad);
+  } else {
+    hn::StoreU(hn::Mul(scale, acc), df, value);
+  }
+}
+
+// A fractal on a grid: per band, a column table of the band's x positions
+// and a per-row split of its y (and z) positions.
+template <bool kGradient, int D>
+void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, float* value, float* grad) {
+  const DF df;
+  const DU du;
+  const std::size_t lanes = hn::Lanes(df);
+  const std::vector<band_config<D>> bands = band_configs(fr);
+  const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
+  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  auto position = [&](int b, int axis_index, double coordinate) {
+    vec<double, D> p;  // axes are independent in f x + o: the other coordinates do not matter
+    p[axis_index] = coordinate;
+    return fr.band_position(b, p)[axis_index];
+  };
+  std::vector<column_table> cols;
+  cols.reserve(bands.size());
+  for (std::size_t b = 0; b < bands.size(); ++b)
+    cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
+      return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
+    });
+  const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
+  std::vector<float> acc(padded), gacc(kGradient ? padded * D : 0);
+  const VF scale = hn::Set(df, float(fr.scale()));
+  for (std::size_t k = 0; k < nz; ++k)
+    for (std::size_t j = 0; j < ny; ++j) {
+      std::fill(acc.begin(), acc.end(), 0.0f);
+      std::fill(gacc.begin(), gacc.end(), 0.0f);
+      for (std::size_t b = 0; b < bands.size(); ++b) {
+        const band_config<D>& c = bands[b];
+        const int bi = static_cast<int>(b);
+        const row_axis y = broadcast_axis<kGradient, 1>(
+            position(bi, 1, g.origin[1] + g.step[1] * double(j)), c.period[1]);
+        row_axis z{};
+        if constexpr (D == 3)
+          z = broadcast_axis<kGradient, 2>(position(bi, 2, g.origin[2] + g.step[2] * double(k)),
+                                           c.period[2]);
+        const std::uint32_t kz0 = D == 3 ? z.w0 : 0u, kz1 = D == 3 ? z.w1 : 0u;
+        const VU kyz[4] = {hn::Set(du, c.key ^ y.w0 ^ kz0), hn::Set(du, c.key ^ y.w1 ^ kz0),
+                           hn::Set(du, c.key ^ y.w0 ^ kz1), hn::Set(du, c.key ^ y.w1 ^ kz1)};
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          VF v, gr[3];
+          if constexpr (D == 2)
+            core2<kGradient>(cols[b].load<kGradient>(i), kyz[0], kyz[1], y.a, v, gr[0], gr[1]);
+          else
+            core3<kGradient>(cols[b].load<kGradient>(i), kyz, y.a, z.a, v, gr);
+          VF a = hn::LoadU(df, acc.data() + i), ga[3];
+          if constexpr (kGradient)
+            for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
+          accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
+          hn::StoreU(a, df, acc.data() + i);
+          if constexpr (kGradient)
+            for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
+        }
+      }
+      const std::size_t row = k * ny + j;
+      for (std::size_t i = 0; i < nx; i += lanes) {
+        const VF a = hn::LoadU(df, acc.data() + i);
+        VF gs[3];
+        if constexpr (kGradient)
+          for (int d = 0; d < D; ++d)
+            gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
+        store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs, value + row * nx,
+                     kGradient ? grad + row * nx * D : nullptr);
+      }
+    }
+}
+
+}  // namespace perlin_simd
+
+// Fractal sums of Perlin (fBm, turbulence) at interleaved points or on a
+// grid; same layout conventions as the Perlin entry points above.
+template <int D>
+void fractal_points(const fractal<perlin<D>>& fr, const float* pts, std::size_t n, float* value,
+                    float* grad) {
+  using namespace perlin_simd;  // NOLINT(google-build-using-namespace)
+  const std::vector<band_config<D>> bands = band_configs(fr);
+  if (grad)
+    for_each_point_vector<D>(n, pts, value, grad, [&](const float* p, float* v, float* g) {
+      fractal_points_vector<true, D>(fr, bands, p, v, g);
+    });
+  else
+    for_each_point_vector<D>(n, pts, value, nullptr, [&](const float* p, float* v, float*) {
+      fractal_points_vector<false, D>(fr, bands, p, v, nullptr);
+    });
+}
+inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
+                            float* value, float* grad) {
+  fractal_points<2>(fr, xy, n, value, grad);
+}
+inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
+                            float* value, float* grad) {
+  fractal_points<3>(fr, xyz, n, value, grad);
+}
+inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
+                          float* grad) {
+  if (grad)
+    perlin_simd::fractal_grid<true, 2>(fr, g, value, grad);
+  else
+    perlin_simd::fractal_grid<false, 2>(fr, g, value, nullptr);
+}
+inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
+                          float* grad) {
+  if (grad)
+    perlin_simd::fractal_grid<true, 3>(fr, g, value, grad);
+  else
+    perlin_simd::fractal_grid<false, 3>(fr, g, value, nullptr);
 }
 
 }  // namespace HWY_NAMESPACE
