@@ -1,0 +1,233 @@
+// hush — temporal-coherence metrics: flatness (see flatness.hpp).
+#include "coherence/flatness.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <tuple>
+#include <unsupported/Eigen/FFT>
+
+namespace hush {
+namespace coherence {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = 3.14159265358979323846;
+
+// One analysis window's contribution to its region.
+struct window_stats {
+  std::uint32_t object;
+  double depth;       // mean depth of its pixels
+  double power;       // sum of P(k) over 0 < |k| <= 0.5
+  double power_freq;  // sum of |k| P(k) over the same k
+  double variance;
+  std::size_t order;  // scan order, the tie-break that keeps the sort deterministic
+};
+
+// Population coefficient of variation and max/min of `v` (size >= 2).
+void spread(const std::vector<double>& v, double& cv, double& ratio) {
+  double mean = 0;
+  for (double x : v) mean += x;
+  mean /= static_cast<double>(v.size());
+  double sq = 0;
+  for (double x : v) sq += (x - mean) * (x - mean);
+  cv = std::sqrt(sq / static_cast<double>(v.size())) / mean;
+  const auto mm = std::minmax_element(v.begin(), v.end());
+  ratio = *mm.second / *mm.first;  // +inf when a region is constant (variance 0)
+}
+
+// FFT plan, window tables and buffers, made once per sequence.
+class window_analyser {
+ public:
+  explicit window_analyser(int size) : n_(static_cast<std::size_t>(size)) {
+    hann_.resize(n_);
+    for (std::size_t i = 0; i < n_; ++i)
+      hann_[i] = 0.5 - 0.5 * std::cos(2 * kPi * (static_cast<double>(i) + 0.5) /
+                                      static_cast<double>(n_));
+    radius_.resize(n_ * n_);
+    for (std::size_t ky = 0; ky < n_; ++ky)
+      for (std::size_t kx = 0; kx < n_; ++kx) {
+        // Signed frequency index (numpy's fftfreq): 0 ... n/2 - 1, then -n/2 ... -1.
+        const double sx = kx < n_ / 2 ? static_cast<double>(kx) : static_cast<double>(kx) - static_cast<double>(n_);
+        const double sy = ky < n_ / 2 ? static_cast<double>(ky) : static_cast<double>(ky) - static_cast<double>(n_);
+        radius_[ky * n_ + kx] = std::sqrt(sx * sx + sy * sy) / static_cast<double>(n_);
+      }
+    a_.resize(n_ * n_);
+    in_.resize(n_);
+    out_.resize(n_);
+  }
+
+  // Spectrum statistics of the window whose top-left pixel is `origin` in `values` (row
+  // length `stride`).
+  void analyse(const float* values, std::size_t origin, std::size_t stride, window_stats& s) {
+    double mean = 0;
+    for (std::size_t y = 0; y < n_; ++y)
+      for (std::size_t x = 0; x < n_; ++x) mean += values[origin + y * stride + x];
+    mean /= static_cast<double>(n_ * n_);
+    double sq = 0;
+    for (std::size_t y = 0; y < n_; ++y)
+      for (std::size_t x = 0; x < n_; ++x) {
+        const double v = values[origin + y * stride + x] - mean;
+        sq += v * v;
+        a_[y * n_ + x] = v * hann_[x] * hann_[y];
+      }
+    s.variance = sq / static_cast<double>(n_ * n_);
+    // 2D FFT: rows, then columns.
+    for (std::size_t y = 0; y < n_; ++y) {
+      std::copy(a_.begin() + static_cast<std::ptrdiff_t>(y * n_),
+                a_.begin() + static_cast<std::ptrdiff_t>((y + 1) * n_), in_.begin());
+      fft_.fwd(out_, in_);
+      std::copy(out_.begin(), out_.end(), a_.begin() + static_cast<std::ptrdiff_t>(y * n_));
+    }
+    for (std::size_t x = 0; x < n_; ++x) {
+      for (std::size_t y = 0; y < n_; ++y) in_[y] = a_[y * n_ + x];
+      fft_.fwd(out_, in_);
+      for (std::size_t y = 0; y < n_; ++y) a_[y * n_ + x] = out_[y];
+    }
+    s.power = s.power_freq = 0;
+    for (std::size_t k = 0; k < n_ * n_; ++k) {
+      const double f = radius_[k];
+      if (f <= 0 || f > 0.5) continue;  // DC and the corners beyond Nyquist's circle
+      const double p = std::norm(a_[k]);
+      s.power += p;
+      s.power_freq += f * p;
+    }
+  }
+
+ private:
+  std::size_t n_;
+  std::vector<double> hann_, radius_;
+  std::vector<std::complex<double>> a_, in_, out_;
+  Eigen::FFT<double> fft_;
+};
+
+flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g,
+                             const options& o, window_analyser& analyser,
+                             std::vector<window_stats>& windows) {
+  flatness_frame f;
+  const std::size_t w = static_cast<std::size_t>(g.width), n = static_cast<std::size_t>(o.window);
+  const std::size_t step = static_cast<std::size_t>(o.window_stride);
+  windows.clear();
+  for (std::size_t y0 = 0; y0 + n <= static_cast<std::size_t>(g.height); y0 += step)
+    for (std::size_t x0 = 0; x0 + n <= w; x0 += step) {
+      const std::size_t origin = y0 * w + x0;
+      const std::uint32_t id = g.object_id[origin];
+      if (id == 0) continue;
+      bool inside = true;
+      double depth = 0;
+      for (std::size_t y = 0; y < n && inside; ++y)
+        for (std::size_t x = 0; x < n; ++x) {
+          const std::size_t p = origin + y * w + x;
+          if (g.object_id[p] != id) {
+            inside = false;
+            break;
+          }
+          depth += g.depth[p];
+        }
+      if (!inside) continue;
+      window_stats s{id, depth / static_cast<double>(n * n), 0, 0, 0, windows.size()};
+      analyser.analyse(values.data(), origin, w, s);
+      windows.push_back(s);
+    }
+  f.windows = windows.size();
+  std::sort(windows.begin(), windows.end(), [](const window_stats& a, const window_stats& b) {
+    return std::tie(a.object, a.depth, a.order) < std::tie(b.object, b.depth, b.order);
+  });
+
+  // Quantile bins per object: bin b of an object's m windows holds ranks [b m / B, (b+1) m / B).
+  const std::size_t bins = static_cast<std::size_t>(o.depth_bins);
+  for (std::size_t begin = 0; begin < windows.size();) {
+    std::size_t end = begin;
+    while (end < windows.size() && windows[end].object == windows[begin].object) ++end;
+    const std::size_t m = end - begin;
+    for (std::size_t b = 0; b < bins; ++b) {
+      const std::size_t lo = begin + b * m / bins, hi = begin + (b + 1) * m / bins;
+      if (hi - lo < o.min_windows) {
+        ++f.dropped_regions;
+        continue;
+      }
+      flatness_region r;
+      r.object = windows[begin].object;
+      r.depth_bin = static_cast<int>(b);
+      r.windows = hi - lo;
+      double power = 0, power_freq = 0;
+      for (std::size_t k = lo; k < hi; ++k) {
+        r.mean_depth += windows[k].depth;
+        r.variance += windows[k].variance;
+        power += windows[k].power;
+        power_freq += windows[k].power_freq;
+      }
+      r.mean_depth /= static_cast<double>(r.windows);
+      r.variance /= static_cast<double>(r.windows);
+      r.mean_frequency = power > 0 ? power_freq / power : kNaN;
+      f.regions.push_back(r);
+    }
+    begin = end;
+  }
+
+  f.frequency_cv = f.frequency_ratio = f.variance_cv = f.variance_ratio = kNaN;
+  if (f.regions.size() < 2) {
+    f.reason = std::to_string(f.regions.size()) + " region(s) with >= " +
+               std::to_string(o.min_windows) + " windows of " + std::to_string(o.window) +
+               "x" + std::to_string(o.window) + " pixels inside one object (need 2)";
+    return f;
+  }
+  std::vector<double> freq, var;
+  for (const flatness_region& r : f.regions) {
+    if (!(r.variance > 0)) {
+      f.reason = "a region has constant noise (zero variance)";
+      return f;
+    }
+    freq.push_back(r.mean_frequency);
+    var.push_back(r.variance);
+  }
+  spread(freq, f.frequency_cv, f.frequency_ratio);
+  spread(var, f.variance_cv, f.variance_ratio);
+  return f;
+}
+
+}  // namespace
+
+flatness_metrics measure_flatness(const std::vector<noise_frame>& frames,
+                                  const std::vector<scene::gbuffer>& gbuffers,
+                                  const options& o) {
+  validate(o);
+  validate_sequence(frames, gbuffers);
+  flatness_metrics m;
+  window_analyser analyser(o.window);
+  std::vector<window_stats> windows;
+  std::size_t valued = 0;
+  m.frequency_cv_max = m.variance_cv_max = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    flatness_frame f = measure_frame(frames[i], gbuffers[i], o, analyser, windows);
+    f.frame = static_cast<int>(i);
+    if (f.reason.empty()) {
+      ++valued;
+      m.frequency_cv += f.frequency_cv;
+      m.frequency_ratio += f.frequency_ratio;
+      m.variance_cv += f.variance_cv;
+      m.variance_ratio += f.variance_ratio;
+      m.frequency_cv_max = std::max(m.frequency_cv_max, f.frequency_cv);
+      m.variance_cv_max = std::max(m.variance_cv_max, f.variance_cv);
+    } else {
+      ++m.frames_without_value;
+    }
+    m.frames.push_back(std::move(f));
+  }
+  if (valued == 0) {
+    m.reason = "no frame has 2 measurable regions (see frames[].reason)";
+    m.frequency_cv = m.frequency_ratio = m.variance_cv = m.variance_ratio = kNaN;
+    m.frequency_cv_max = m.variance_cv_max = kNaN;
+    return m;
+  }
+  const double v = static_cast<double>(valued);
+  m.frequency_cv /= v;
+  m.frequency_ratio /= v;
+  m.variance_cv /= v;
+  m.variance_ratio /= v;
+  return m;
+}
+
+}  // namespace coherence
+}  // namespace hush

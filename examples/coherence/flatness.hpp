@@ -1,0 +1,72 @@
+// hush — temporal-coherence metrics: flatness, the stationarity of the screen-space spectrum.
+//
+// Bénard et al. 2010 sec. 1: flatness is "the ability to convey the 2D aspect" of a pattern:
+// its features keep one size, distribution and contrast on screen whatever the depth and the
+// surface. A texture-mapped pattern shrinks with depth (perspective), a screen-space pattern
+// does not. Their conclusion proposes "statistical texture measures to quantify flatness".
+//
+// Measure, per frame (definitions in docs/coherence.md):
+//  1. Analysis windows: window x window squares on a grid of step window_stride, kept when all
+//     their pixels are covered by one object (silhouettes would add the edge's spectrum).
+//  2. Regions: each object's windows, sorted by mean depth, split into depth_bins quantile
+//     bins of (nearly) equal counts; a region with fewer than min_windows windows is dropped.
+//  3. Per window: values minus the window's mean, times a separable Hann window, 2D FFT (Eigen),
+//     power |F|^2. Per region: the powers summed over its windows; its mean radial frequency
+//     f = sum |k| P(k) / sum P(k) over 0 < |k| <= 0.5 cycles/pixel; its local variance = mean
+//     over its windows of the (unwindowed) variance.
+//  4. Spread across the regions: coefficient of variation (population std / mean) and
+//     max / min ratio of f and of the local variance. Ideal (flat): CV 0, ratio 1.
+#ifndef HUSH_COHERENCE_FLATNESS_HPP
+#define HUSH_COHERENCE_FLATNESS_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "coherence/options.hpp"
+#include "coherence/temporal.hpp"
+#include "scene/gbuffer.hpp"
+
+namespace hush {
+namespace coherence {
+
+struct flatness_region {
+  std::uint32_t object = 0;
+  int depth_bin = 0;            // 0 = nearest
+  std::size_t windows = 0;
+  double mean_depth = 0;        // mean of the windows' mean depths (world units)
+  double mean_frequency = 0;    // cycles per pixel, in (0, 0.5]
+  double variance = 0;          // noise units squared
+};
+
+struct flatness_frame {
+  int frame = 0;
+  std::vector<flatness_region> regions;
+  std::size_t windows = 0;           // windows kept (inside one object)
+  std::size_t dropped_regions = 0;   // regions with fewer than min_windows windows
+  double frequency_cv = 0, frequency_ratio = 0;  // NaN with `reason` when < 2 regions
+  double variance_cv = 0, variance_ratio = 0;
+  std::string reason;
+};
+
+struct flatness_metrics {
+  std::vector<flatness_frame> frames;
+  // Means over the frames that have values, and the worst (largest) frame.
+  double frequency_cv = 0, frequency_ratio = 0, variance_cv = 0, variance_ratio = 0;
+  double frequency_cv_max = 0, variance_cv_max = 0;
+  std::size_t frames_without_value = 0;
+  std::string reason;  // set (aggregates NaN) when no frame has a value
+};
+
+// Flatness of every frame of the sequence (validated as in measure_temporal; N >= 1).
+// Throws hush::invalid_argument on invalid options or sequences. Deterministic; the FFT
+// plan and buffers are made once and reused for every window.
+flatness_metrics measure_flatness(const std::vector<noise_frame>& frames,
+                                  const std::vector<scene::gbuffer>& gbuffers,
+                                  const options& o = {});
+
+}  // namespace coherence
+}  // namespace hush
+
+#endif  // HUSH_COHERENCE_FLATNESS_HPP
