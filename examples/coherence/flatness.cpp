@@ -19,8 +19,8 @@ constexpr double kPi = 3.14159265358979323846;
 struct window_stats {
   std::uint32_t object;
   double depth;       // mean depth of its pixels
-  double power;       // sum of P(k) over 0 < |k| <= 0.5
-  double power_freq;  // sum of |k| P(k) over the same k
+  double power;         // sum of P(k) over every frequency k
+  double power_moment;  // sum of |k|^2 P(k), k in cycles per pixel (signed, fftfreq)
   double variance;
   std::size_t order;  // scan order, the tie-break that keeps the sort deterministic
 };
@@ -56,15 +56,33 @@ class window_analyser {
     a_.resize(n_ * n_);
     in_.resize(n_);
     out_.resize(n_);
+    // The window's own spectrum |W|^2: the spectrum of constant 1 seen through it.
+    const std::vector<float> ones(n_ * n_, 1.0f);
+    window_stats s{};
+    transform(ones.data(), 0, n_, 0.0, s);
+    window_moment_ = s.power_moment / s.power;
   }
 
+  // Second moment of the window's power spectrum, sum |k|^2 |W(k)|^2 / sum |W(k)|^2. The
+  // expected periodogram of windowed stationary noise is its spectrum convolved with |W|^2,
+  // and second moments of a convolution add (both are centred), so subtracting this from a
+  // region's measured moment leaves the noise's own (up to wrap-around at Nyquist).
+  double window_moment() const { return window_moment_; }
+
   // Spectrum statistics of the window whose top-left pixel is `origin` in `values` (row
-  // length `stride`).
+  // length `stride`), its mean removed.
   void analyse(const float* values, std::size_t origin, std::size_t stride, window_stats& s) {
     double mean = 0;
     for (std::size_t y = 0; y < n_; ++y)
       for (std::size_t x = 0; x < n_; ++x) mean += values[origin + y * stride + x];
     mean /= static_cast<double>(n_ * n_);
+    transform(values, origin, stride, mean, s);
+  }
+
+ private:
+  // Variance of (values - mean) and the power moments of its Hann-windowed 2D FFT.
+  void transform(const float* values, std::size_t origin, std::size_t stride, double mean,
+                 window_stats& s) {
     double sq = 0;
     for (std::size_t y = 0; y < n_; ++y)
       for (std::size_t x = 0; x < n_; ++x) {
@@ -85,20 +103,18 @@ class window_analyser {
       fft_.fwd(out_, in_);
       for (std::size_t y = 0; y < n_; ++y) a_[y * n_ + x] = out_[y];
     }
-    s.power = s.power_freq = 0;
+    s.power = s.power_moment = 0;
     for (std::size_t k = 0; k < n_ * n_; ++k) {
-      const double f = radius_[k];
-      if (f <= 0 || f > 0.5) continue;  // DC and the corners beyond Nyquist's circle
       const double p = std::norm(a_[k]);
       s.power += p;
-      s.power_freq += f * p;
+      s.power_moment += radius_[k] * radius_[k] * p;
     }
   }
 
- private:
   std::size_t n_;
   std::vector<double> hann_, radius_;
   std::vector<std::complex<double>> a_, in_, out_;
+  double window_moment_ = 0;
   Eigen::FFT<double> fft_;
 };
 
@@ -151,16 +167,20 @@ flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g,
       r.object = windows[begin].object;
       r.depth_bin = static_cast<int>(b);
       r.windows = hi - lo;
-      double power = 0, power_freq = 0;
+      double power = 0, power_moment = 0;
       for (std::size_t k = lo; k < hi; ++k) {
         r.mean_depth += windows[k].depth;
         r.variance += windows[k].variance;
         power += windows[k].power;
-        power_freq += windows[k].power_freq;
+        power_moment += windows[k].power_moment;
       }
       r.mean_depth /= static_cast<double>(r.windows);
       r.variance /= static_cast<double>(r.windows);
-      r.mean_frequency = power > 0 ? power_freq / power : kNaN;
+      // The window's own second moment is subtracted (see window_analyser); a negative
+      // difference (noise band-limited below the window's resolution) is clamped to 0.
+      r.frequency = power > 0 ? std::sqrt(std::max(0.0, power_moment / power -
+                                                            analyser.window_moment()))
+                              : kNaN;
       f.regions.push_back(r);
     }
     begin = end;
@@ -179,7 +199,7 @@ flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g,
       f.reason = "a region has constant noise (zero variance)";
       return f;
     }
-    freq.push_back(r.mean_frequency);
+    freq.push_back(r.frequency);
     var.push_back(r.variance);
   }
   spread(freq, f.frequency_cv, f.frequency_ratio);

@@ -10,10 +10,14 @@
 //     their pixels are covered by one object (silhouettes would add the edge's spectrum).
 //  2. Regions: each object's windows, sorted by mean depth, split into depth_bins quantile
 //     bins of (nearly) equal counts; a region with fewer than min_windows windows is dropped.
-//  3. Per window: values minus the window's mean, times a separable Hann window, 2D FFT (Eigen),
-//     power |F|^2. Per region: the powers summed over its windows; its mean radial frequency
-//     f = sum |k| P(k) / sum P(k) over 0 < |k| <= 0.5 cycles/pixel; its local variance = mean
-//     over its windows of the (unwindowed) variance.
+//  3. Per window: values minus the window's mean, times a separable Hann window w, 2D FFT
+//     (Eigen), power P(k) = |F(k)|^2 with k the signed frequency in cycles per pixel. Per
+//     region, with P summed over its windows: its RMS radial frequency
+//       f = sqrt( sum |k|^2 P(k) / sum P(k)  -  m_w ),
+//     m_w the same moment of the window's own spectrum |W|^2 (the expected windowed spectrum
+//     is the true one convolved with |W|^2, and second moments add under convolution, so f
+//     estimates the noise's RMS frequency free of the window's blur); its local variance:
+//     the mean over its windows of the (unwindowed) variance.
 //  4. Spread across the regions: coefficient of variation (population std / mean) and
 //     max / min ratio of f and of the local variance. Ideal (flat): CV 0, ratio 1.
 #ifndef HUSH_COHERENCE_FLATNESS_HPP
@@ -36,7 +40,7 @@ struct flatness_region {
   int depth_bin = 0;            // 0 = nearest
   std::size_t windows = 0;
   double mean_depth = 0;        // mean of the windows' mean depths (world units)
-  double mean_frequency = 0;    // cycles per pixel, in (0, 0.5]
+  double frequency = 0;         // RMS radial frequency f, cycles per pixel, 0 ... 0.71
   double variance = 0;          // noise units squared
 };
 

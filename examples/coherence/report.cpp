@@ -70,6 +70,7 @@ std::string to_markdown(const report& r) {
   };
   row("motion coherence (mean)", t.coherence_mean, "1");
   row("motion coherence (min)", t.coherence_min, "1");
+  row("screen coherence, no compensation (mean)", t.screen_coherence_mean, "< coherence");
   row("change mean abs (sigma)", t.change_mean, "0");
   row("change p50 (sigma)", t.change_p50, "0");
   row("change p95 (sigma)", t.change_p95, "0");
@@ -105,6 +106,7 @@ std::string to_json(const report& r) {
      << ", \"depth_bins\": " << o.depth_bins << ", \"min_windows\": " << o.min_windows << "},\n";
   os << "  \"motion_coherence\": {\"mean\": " << json_number(t.coherence_mean)
      << ", \"min\": " << json_number(t.coherence_min)
+     << ", \"screen_mean\": " << json_number(t.screen_coherence_mean)
      << ", \"pairs_without_value\": " << t.pairs_without_coherence << "},\n";
   os << "  \"continuity\": {\"changes\": " << t.changes
      << ", \"mean_abs\": " << json_number(t.change_mean)
@@ -124,7 +126,8 @@ std::string to_json(const report& r) {
   for (std::size_t i = 0; i < t.pairs.size(); ++i) {
     const pair_metrics& p = t.pairs[i];
     os << (i ? ",\n    " : "\n    ") << "{\"frame\": " << p.frame
-       << ", \"coherence\": " << json_number(p.coherence) << ", \"covered\": " << p.covered
+       << ", \"coherence\": " << json_number(p.coherence)
+       << ", \"screen_coherence\": " << json_number(p.screen_coherence) << ", \"covered\": " << p.covered
        << ", \"compared\": " << p.compared << ", \"offscreen\": " << p.offscreen
        << ", \"disoccluded\": " << p.disoccluded << ", \"sigma\": " << json_number(p.sigma)
        << ", \"reason\": " << json_string(p.reason) << "}";

@@ -96,8 +96,8 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
   std::vector<std::uint8_t> visible(n);
   std::vector<std::uint64_t> histogram(
       static_cast<std::size_t>(kChangeBinsPerSigma) * kChangeHistogramSigmas);
-  double change_sum = 0, coherence_sum = 0;
-  std::size_t pops = 0, coherent_pairs = 0;
+  double change_sum = 0, coherence_sum = 0, screen_sum = 0;
+  std::size_t pops = 0, coherent_pairs = 0, screen_nan = 0;
   t.coherence_min = kNaN;
 
   for (std::size_t i = 1; i < frames.size(); ++i) {
@@ -109,7 +109,7 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
     covered_stats(frames[i], cur, mean_cur, pm.sigma, pm.covered);
 
     // Pass 1: visibility, the motion-compensated value and the correlation sums.
-    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, sz = 0, szz = 0, sxz = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
@@ -127,6 +127,10 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
         sxx += a * a;
         syy += b * b;
         sxy += a * b;
+        const double z = frames[i - 1][p] - mean_cur;  // same pixel, no motion compensation
+        sz += z;
+        szz += z * z;
+        sxz += a * z;
         change[p] = static_cast<float>((a - b) / pm.sigma);  // inf/NaN when sigma is 0
       }
 
@@ -139,13 +143,20 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
       pm.reason = "constant noise over the compared pixels (zero variance)";
     }
     if (!pm.reason.empty()) {
-      pm.coherence = kNaN;
+      pm.coherence = pm.screen_coherence = kNaN;
       ++t.pairs_without_coherence;
       t.pairs.push_back(pm);
       continue;
     }
     pm.coherence = (sxy - sx * sy / c) / std::sqrt(vx * vy);
+    const double vz = szz - sz * sz / c;
+    pm.screen_coherence = vz > 0 ? (sxz - sx * sz / c) / std::sqrt(vx * vz) : kNaN;
     coherence_sum += pm.coherence;
+    if (std::isnan(pm.screen_coherence)) {
+      ++screen_nan;
+    } else {
+      screen_sum += pm.screen_coherence;
+    }
     ++coherent_pairs;
     if (!(pm.coherence >= t.coherence_min)) t.coherence_min = pm.coherence;  // NaN start
 
@@ -185,9 +196,10 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
 
   if (coherent_pairs == 0) {
     t.reason = "no frame pair has a coherence value (see pairs[].reason)";
-    t.coherence_mean = t.coherence_min = kNaN;
+    t.coherence_mean = t.coherence_min = t.screen_coherence_mean = kNaN;
   } else {
     t.coherence_mean = coherence_sum / static_cast<double>(coherent_pairs);
+    t.screen_coherence_mean = screen_nan ? kNaN : screen_sum / static_cast<double>(coherent_pairs);
   }
   if (t.changes == 0) {
     t.change_mean = t.change_p50 = t.change_p95 = t.change_p99 = t.change_p999 = kNaN;

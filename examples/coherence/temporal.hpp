@@ -9,6 +9,7 @@
 // For frames i = 1 ... N-1 and every pixel p visible in both i-1 and i (reprojection.hpp):
 //   m(p)  = n_{i-1}(p - v(p)), bilinear        (motion-compensated previous noise)
 //   C_i   = Pearson correlation of n_i(p) and m(p) over those pixels   (motion coherence)
+//   S_i   = the same with n_{i-1}(p), no motion compensation            (screen coherence)
 //   s_i   = standard deviation of n_i over all covered pixels of frame i
 //   D(p)  = (n_i(p) - m(p)) / s_i                               (normalised change)
 //   pop   = |D(p) - mean of D over p's visible 4-neighbours| > popping_threshold, for pixels
@@ -34,6 +35,7 @@ using noise_frame = std::vector<float>;
 struct pair_metrics {
   int frame = 0;                  // i
   double coherence = 0;           // C_i in [-1, 1]; NaN when `reason` is set
+  double screen_coherence = 0;    // S_i in [-1, 1]; NaN also when frame i-1 is constant there
   std::size_t covered = 0;        // pixels covered in frame i
   std::size_t compared = 0;       // of those, visible in both frames
   std::size_t offscreen = 0;      // excluded: reprojection leaves the image
@@ -46,6 +48,10 @@ struct temporal_metrics {
   std::vector<pair_metrics> pairs;  // frames 1 ... N-1
   // Motion coherence over the pairs that have one (ideal 1; independent frames 0).
   double coherence_mean = 0, coherence_min = 0;
+  // Mean S_i over the same pairs (NaN if any is NaN). Not a goal in itself: it tells whether
+  // the noise follows the surfaces (C > S, texture mapping) or stays on the screen (C < S,
+  // shower door: S = 1), independently of how fast the scene moves.
+  double screen_coherence_mean = 0;
   std::size_t pairs_without_coherence = 0;
   // Continuity: |D| over every compared pixel of every pair (ideal 0; independent Gaussian
   // frames moved by whole pixels: mean 2 / sqrt(pi) = 1.128, p50 0.954, p95 2.772, p99 3.643,
