@@ -72,15 +72,15 @@ baseline_kind parse_baseline(const std::string& name) {
 std::vector<noise_frame> make_baseline(baseline_kind kind,
                                        const std::vector<scene::gbuffer>& gbuffers,
                                        const baseline_options& o) {
-  detail::require_in_range(kWhere, "feature_pixels", o.feature_pixels, 1.0, 4096.0,
-                           "1 ... 4096");
+  detail::require_in_range(kWhere, "feature_pixels", o.feature_pixels, 1.0, 4096.0, "1 ... 4096");
   for (std::size_t i = 0; i < gbuffers.size(); ++i) {
     const scene::gbuffer& g = gbuffers[i];
     if (g.width <= 0 || g.height <= 0)
       throw hush::invalid_argument(std::string(kWhere) + ": gbuffer " + std::to_string(i) +
                                    " has no pixels");
     check_size(g.object_id.size(), g.pixels(), i, "object_id");
-    if (kind == baseline_kind::texture) check_size(g.position.size(), 3 * g.pixels(), i, "position");
+    if (kind == baseline_kind::texture)
+      check_size(g.position.size(), 3 * g.pixels(), i, "position");
   }
   std::vector<noise_frame> frames;
   frames.reserve(gbuffers.size());

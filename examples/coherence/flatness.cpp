@@ -18,7 +18,7 @@ constexpr double kPi = 3.14159265358979323846;
 // One analysis window's contribution to its region.
 struct window_stats {
   std::uint32_t object;
-  double depth;       // mean depth of its pixels
+  double depth;         // mean depth of its pixels
   double power;         // sum of P(k) over every frequency k
   double power_moment;  // sum of |k|^2 P(k), k in cycles per pixel (signed, fftfreq)
   double variance;
@@ -43,19 +43,18 @@ class window_analyser {
   explicit window_analyser(int size) : n_(static_cast<std::size_t>(size)) {
     hann_.resize(n_);
     for (std::size_t i = 0; i < n_; ++i)
-      hann_[i] = 0.5 - 0.5 * std::cos(2 * kPi * (static_cast<double>(i) + 0.5) /
-                                      static_cast<double>(n_));
-    radius_.resize(n_ * n_);
-    for (std::size_t ky = 0; ky < n_; ++ky)
-      for (std::size_t kx = 0; kx < n_; ++kx) {
-        // Signed frequency index (numpy's fftfreq): 0 ... n/2 - 1, then -n/2 ... -1.
-        const double sx = kx < n_ / 2 ? static_cast<double>(kx) : static_cast<double>(kx) - static_cast<double>(n_);
-        const double sy = ky < n_ / 2 ? static_cast<double>(ky) : static_cast<double>(ky) - static_cast<double>(n_);
-        radius_[ky * n_ + kx] = std::sqrt(sx * sx + sy * sy) / static_cast<double>(n_);
-      }
+      hann_[i] =
+          0.5 - 0.5 * std::cos(2 * kPi * (static_cast<double>(i) + 0.5) / static_cast<double>(n_));
+    // Squared frequency (cycles per pixel) of half-spectrum bin k = 0 ... n/2, times the
+    // number of full-spectrum bins it stands for (k and n - k; once for 0 and n/2).
+    weighted_f2_.resize(n_ / 2 + 1);
+    for (std::size_t k = 0; k <= n_ / 2; ++k) {
+      const double f = static_cast<double>(k) / static_cast<double>(n_);
+      weighted_f2_[k] = f * f * ((k == 0 || 2 * k == n_) ? 1 : 2);
+    }
     a_.resize(n_ * n_);
-    in_.resize(n_);
-    out_.resize(n_);
+    line_.resize(n_);
+    fft_.SetFlag(Eigen::FFT<double>::HalfSpectrum);
     // The window's own spectrum |W|^2: the spectrum of constant 1 seen through it.
     const std::vector<float> ones(n_ * n_, 1.0f);
     window_stats s{};
@@ -80,47 +79,51 @@ class window_analyser {
   }
 
  private:
-  // Variance of (values - mean) and the power moments of its Hann-windowed 2D FFT.
+  // Variance of (values - mean) and the power moments of its Hann-windowed 2D DFT F:
+  //   power        = sum_k |F(k)|^2                 = n^2 sum_x a(x)^2          (Parseval)
+  //   power_moment = sum_k (kx^2 + ky^2) |F(k)|^2
+  //                = n sum_rows sum_kx kx^2 |R(kx)|^2 + n sum_cols sum_ky ky^2 |C(ky)|^2,
+  // with R, C the 1D DFTs of the rows and columns of a: the DFT along the other axis only
+  // multiplies each frequency's energy by n (Parseval again). So the 2D spectrum's moments
+  // take 2n real 1D FFTs (Eigen, half spectrum) instead of 2n complex ones.
   void transform(const float* values, std::size_t origin, std::size_t stride, double mean,
                  window_stats& s) {
-    double sq = 0;
+    double sq = 0, windowed_sq = 0;
     for (std::size_t y = 0; y < n_; ++y)
       for (std::size_t x = 0; x < n_; ++x) {
         const double v = values[origin + y * stride + x] - mean;
         sq += v * v;
-        a_[y * n_ + x] = v * hann_[x] * hann_[y];
+        const double w = v * hann_[x] * hann_[y];
+        a_[y * n_ + x] = w;
+        windowed_sq += w * w;
       }
     s.variance = sq / static_cast<double>(n_ * n_);
-    // 2D FFT: rows, then columns.
-    for (std::size_t y = 0; y < n_; ++y) {
+    const double n = static_cast<double>(n_);
+    s.power = n * n * windowed_sq;
+    double moment = 0;
+    for (std::size_t y = 0; y < n_; ++y) {  // rows: the kx part
       std::copy(a_.begin() + static_cast<std::ptrdiff_t>(y * n_),
-                a_.begin() + static_cast<std::ptrdiff_t>((y + 1) * n_), in_.begin());
-      fft_.fwd(out_, in_);
-      std::copy(out_.begin(), out_.end(), a_.begin() + static_cast<std::ptrdiff_t>(y * n_));
+                a_.begin() + static_cast<std::ptrdiff_t>((y + 1) * n_), line_.begin());
+      fft_.fwd(spectrum_, line_);
+      for (std::size_t k = 0; k <= n_ / 2; ++k) moment += weighted_f2_[k] * std::norm(spectrum_[k]);
     }
-    for (std::size_t x = 0; x < n_; ++x) {
-      for (std::size_t y = 0; y < n_; ++y) in_[y] = a_[y * n_ + x];
-      fft_.fwd(out_, in_);
-      for (std::size_t y = 0; y < n_; ++y) a_[y * n_ + x] = out_[y];
+    for (std::size_t x = 0; x < n_; ++x) {  // columns: the ky part
+      for (std::size_t y = 0; y < n_; ++y) line_[y] = a_[y * n_ + x];
+      fft_.fwd(spectrum_, line_);
+      for (std::size_t k = 0; k <= n_ / 2; ++k) moment += weighted_f2_[k] * std::norm(spectrum_[k]);
     }
-    s.power = s.power_moment = 0;
-    for (std::size_t k = 0; k < n_ * n_; ++k) {
-      const double p = std::norm(a_[k]);
-      s.power += p;
-      s.power_moment += radius_[k] * radius_[k] * p;
-    }
+    s.power_moment = n * moment;
   }
 
   std::size_t n_;
-  std::vector<double> hann_, radius_;
-  std::vector<std::complex<double>> a_, in_, out_;
+  std::vector<double> hann_, weighted_f2_, a_, line_;
+  std::vector<std::complex<double>> spectrum_;
   double window_moment_ = 0;
   Eigen::FFT<double> fft_;
 };
 
-flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g,
-                             const options& o, window_analyser& analyser,
-                             std::vector<window_stats>& windows) {
+flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g, const options& o,
+                             window_analyser& analyser, std::vector<window_stats>& windows) {
   flatness_frame f;
   const std::size_t w = static_cast<std::size_t>(g.width), n = static_cast<std::size_t>(o.window);
   const std::size_t step = static_cast<std::size_t>(o.window_stride);
@@ -178,9 +181,9 @@ flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g,
       r.variance /= static_cast<double>(r.windows);
       // The window's own second moment is subtracted (see window_analyser); a negative
       // difference (noise band-limited below the window's resolution) is clamped to 0.
-      r.frequency = power > 0 ? std::sqrt(std::max(0.0, power_moment / power -
-                                                            analyser.window_moment()))
-                              : kNaN;
+      r.frequency = power > 0
+                        ? std::sqrt(std::max(0.0, power_moment / power - analyser.window_moment()))
+                        : kNaN;
       f.regions.push_back(r);
     }
     begin = end;
@@ -188,9 +191,10 @@ flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g,
 
   f.frequency_cv = f.frequency_ratio = f.variance_cv = f.variance_ratio = kNaN;
   if (f.regions.size() < 2) {
-    f.reason = std::to_string(f.regions.size()) + " region(s) with >= " +
-               std::to_string(o.min_windows) + " windows of " + std::to_string(o.window) +
-               "x" + std::to_string(o.window) + " pixels inside one object (need 2)";
+    f.reason = std::to_string(f.regions.size()) +
+               " region(s) with >= " + std::to_string(o.min_windows) + " windows of " +
+               std::to_string(o.window) + "x" + std::to_string(o.window) +
+               " pixels inside one object (need 2)";
     return f;
   }
   std::vector<double> freq, var;
@@ -210,8 +214,7 @@ flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g,
 }  // namespace
 
 flatness_metrics measure_flatness(const std::vector<noise_frame>& frames,
-                                  const std::vector<scene::gbuffer>& gbuffers,
-                                  const options& o) {
+                                  const std::vector<scene::gbuffer>& gbuffers, const options& o) {
   validate(o);
   validate_sequence(frames, gbuffers);
   flatness_metrics m;

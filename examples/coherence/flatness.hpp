@@ -37,18 +37,18 @@ namespace coherence {
 
 struct flatness_region {
   std::uint32_t object = 0;
-  int depth_bin = 0;            // 0 = nearest
+  int depth_bin = 0;  // 0 = nearest
   std::size_t windows = 0;
-  double mean_depth = 0;        // mean of the windows' mean depths (world units)
-  double frequency = 0;         // RMS radial frequency f, cycles per pixel, 0 ... 0.71
-  double variance = 0;          // noise units squared
+  double mean_depth = 0;  // mean of the windows' mean depths (world units)
+  double frequency = 0;   // RMS radial frequency f, cycles per pixel, 0 ... 0.71
+  double variance = 0;    // noise units squared
 };
 
 struct flatness_frame {
   int frame = 0;
   std::vector<flatness_region> regions;
-  std::size_t windows = 0;           // windows kept (inside one object)
-  std::size_t dropped_regions = 0;   // regions with fewer than min_windows windows
+  std::size_t windows = 0;                       // windows kept (inside one object)
+  std::size_t dropped_regions = 0;               // regions with fewer than min_windows windows
   double frequency_cv = 0, frequency_ratio = 0;  // NaN with `reason` when < 2 regions
   double variance_cv = 0, variance_ratio = 0;
   std::string reason;

@@ -134,8 +134,9 @@ noise_sequence load_noise_frames(const std::string& dir) {
       s.width = w;
       s.height = h;
     } else if (w != s.width || h != s.height) {
-      fail(path, "is " + std::to_string(h) + "x" + std::to_string(w) + " (H x W); the first frame is " +
-                     std::to_string(s.height) + "x" + std::to_string(s.width));
+      fail(path, "is " + std::to_string(h) + "x" + std::to_string(w) +
+                     " (H x W); the first frame is " + std::to_string(s.height) + "x" +
+                     std::to_string(s.width));
     }
   }
   return s;
@@ -154,7 +155,14 @@ void save_noise_frame(const std::string& path, const noise_frame& f, int width, 
   header += '\n';
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) fail(path, "cannot create");
-  const unsigned char prefix[10] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0,
+  const unsigned char prefix[10] = {0x93,
+                                    'N',
+                                    'U',
+                                    'M',
+                                    'P',
+                                    'Y',
+                                    1,
+                                    0,
                                     static_cast<unsigned char>(header.size() & 0xff),
                                     static_cast<unsigned char>(header.size() >> 8)};
   out.write(reinterpret_cast<const char*>(prefix), sizeof prefix);

@@ -16,7 +16,7 @@ namespace hush {
 namespace coherence {
 
 struct noise_sequence {
-  int first = 0;                    // index of frames[0] (NNNN of its file)
+  int first = 0;  // index of frames[0] (NNNN of its file)
   int width = 0, height = 0;
   std::vector<noise_frame> frames;  // consecutive indices first, first + 1, ...
 };

@@ -81,10 +81,11 @@ std::string to_markdown(const report& r) {
   row("flatness frequency max/min", f.frequency_ratio, "1");
   row("flatness variance CV", f.variance_cv, "0");
   row("flatness variance max/min", f.variance_ratio, "1");
-  os << "\n" << r.frames << " frames of " << r.width << "x" << r.height << "; pixel pairs: "
-     << compared << " compared of " << covered << " covered (" << offscreen << " off-screen, "
-     << disoccluded << " disoccluded); flatness: " << (f.frames.size() - f.frames_without_value)
-     << " of " << f.frames.size() << " frames measured.\n";
+  os << "\n"
+     << r.frames << " frames of " << r.width << "x" << r.height << "; pixel pairs: " << compared
+     << " compared of " << covered << " covered (" << offscreen << " off-screen, " << disoccluded
+     << " disoccluded); flatness: " << (f.frames.size() - f.frames_without_value) << " of "
+     << f.frames.size() << " frames measured.\n";
   for (const pair_metrics& p : t.pairs)
     if (!p.reason.empty()) os << "- frame " << p.frame << ": no coherence: " << p.reason << "\n";
   for (const flatness_frame& ff : f.frames)
@@ -111,8 +112,7 @@ std::string to_json(const report& r) {
   os << "  \"continuity\": {\"changes\": " << t.changes
      << ", \"mean_abs\": " << json_number(t.change_mean)
      << ", \"p50\": " << json_number(t.change_p50) << ", \"p95\": " << json_number(t.change_p95)
-     << ", \"p99\": " << json_number(t.change_p99)
-     << ", \"p99_9\": " << json_number(t.change_p999)
+     << ", \"p99\": " << json_number(t.change_p99) << ", \"p99_9\": " << json_number(t.change_p999)
      << ", \"popping\": " << json_number(t.popping)
      << ", \"popping_candidates\": " << t.popping_candidates << "},\n";
   os << "  \"flatness\": {\"frequency_cv\": " << json_number(f.frequency_cv)
@@ -127,10 +127,11 @@ std::string to_json(const report& r) {
     const pair_metrics& p = t.pairs[i];
     os << (i ? ",\n    " : "\n    ") << "{\"frame\": " << p.frame
        << ", \"coherence\": " << json_number(p.coherence)
-       << ", \"screen_coherence\": " << json_number(p.screen_coherence) << ", \"covered\": " << p.covered
-       << ", \"compared\": " << p.compared << ", \"offscreen\": " << p.offscreen
-       << ", \"disoccluded\": " << p.disoccluded << ", \"sigma\": " << json_number(p.sigma)
-       << ", \"reason\": " << json_string(p.reason) << "}";
+       << ", \"screen_coherence\": " << json_number(p.screen_coherence)
+       << ", \"covered\": " << p.covered << ", \"compared\": " << p.compared
+       << ", \"offscreen\": " << p.offscreen << ", \"disoccluded\": " << p.disoccluded
+       << ", \"sigma\": " << json_number(p.sigma) << ", \"reason\": " << json_string(p.reason)
+       << "}";
   }
   os << "],\n  \"flatness_frames\": [";
   for (std::size_t i = 0; i < f.frames.size(); ++i) {

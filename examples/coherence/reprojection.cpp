@@ -7,8 +7,8 @@
 namespace hush {
 namespace coherence {
 
-reprojection reproject(const scene::gbuffer& previous, const scene::gbuffer& current, int x,
-                       int y, double depth_epsilon) {
+reprojection reproject(const scene::gbuffer& previous, const scene::gbuffer& current, int x, int y,
+                       double depth_epsilon) {
   reprojection r;
   const std::size_t w = static_cast<std::size_t>(current.width);
   const std::size_t pixel = static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x);
@@ -35,7 +35,8 @@ reprojection reproject(const scene::gbuffer& previous, const scene::gbuffer& cur
   r.taps = {index(i0, j0), index(i1, j0), index(i0, j1), index(i1, j1)};
   r.weights = {(1 - tu) * (1 - tv), tu * (1 - tv), (1 - tu) * tv, tu * tv};
 
-  const double expected = static_cast<double>(current.depth[pixel]) - current.velocity[3 * pixel + 2];
+  const double expected =
+      static_cast<double>(current.depth[pixel]) - current.velocity[3 * pixel + 2];
   double depth = 0;
   for (int k = 0; k < 4; ++k) {
     if (r.weights[k] == 0) continue;  // never read: background depth is +inf, 0 * inf is NaN

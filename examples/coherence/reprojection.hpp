@@ -26,8 +26,8 @@ enum class visibility {
 // (taps with weight 0 are never read, so an exact integer shift next to an edge is fine).
 struct reprojection {
   visibility status = visibility::background;
-  std::array<std::size_t, 4> taps{};   // pixel indices in the previous frame
-  std::array<double, 4> weights{};     // bilinear weights, sum 1 (visible only)
+  std::array<std::size_t, 4> taps{};  // pixel indices in the previous frame
+  std::array<double, 4> weights{};    // bilinear weights, sum 1 (visible only)
 };
 
 // Classifies pixel (x, y) of `current` against `previous` (same size; not checked here, the
@@ -35,8 +35,8 @@ struct reprojection {
 // [0.5, width - 0.5] x [0.5, height - 0.5]; every tap with a non-zero weight is covered by the
 // same object_id; and the bilinearly interpolated previous depth d' satisfies
 // |d' - (depth - dz)| <= depth_epsilon * (depth - dz), with depth - dz > 0.
-reprojection reproject(const scene::gbuffer& previous, const scene::gbuffer& current, int x,
-                       int y, double depth_epsilon);
+reprojection reproject(const scene::gbuffer& previous, const scene::gbuffer& current, int x, int y,
+                       double depth_epsilon);
 
 // The bilinear value of `image` (previous frame's pixels) at the reprojection's taps.
 inline double sample(const float* image, const reprojection& r) {

@@ -38,8 +38,8 @@ double percentile(const std::vector<std::uint64_t>& histogram, std::size_t n, do
 }
 
 // Mean and standard deviation of `values` over the covered pixels of `g` (two passes).
-void covered_stats(const noise_frame& values, const scene::gbuffer& g, double& mean,
-                   double& sigma, std::size_t& count) {
+void covered_stats(const noise_frame& values, const scene::gbuffer& g, double& mean, double& sigma,
+                   std::size_t& count) {
   double sum = 0;
   count = 0;
   for (std::size_t p = 0; p < g.pixels(); ++p)
@@ -83,8 +83,7 @@ void validate_sequence(const std::vector<noise_frame>& frames,
 }
 
 temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
-                                  const std::vector<scene::gbuffer>& gbuffers,
-                                  const options& o) {
+                                  const std::vector<scene::gbuffer>& gbuffers, const options& o) {
   validate(o);
   validate_sequence(frames, gbuffers);
   temporal_metrics t;
@@ -92,10 +91,10 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
 
   const int w = gbuffers[0].width, h = gbuffers[0].height;
   const std::size_t n = gbuffers[0].pixels();
-  std::vector<float> change(n);                  // D(p), valid where `visible`
+  std::vector<float> change(n);  // D(p), valid where `visible`
   std::vector<std::uint8_t> visible(n);
-  std::vector<std::uint64_t> histogram(
-      static_cast<std::size_t>(kChangeBinsPerSigma) * kChangeHistogramSigmas);
+  std::vector<std::uint64_t> histogram(static_cast<std::size_t>(kChangeBinsPerSigma) *
+                                       kChangeHistogramSigmas);
   double change_sum = 0, coherence_sum = 0, screen_sum = 0;
   std::size_t pops = 0, coherent_pairs = 0, screen_nan = 0;
   t.coherence_min = kNaN;
@@ -112,8 +111,8 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
     double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, sz = 0, szz = 0, sxz = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
-                              static_cast<std::size_t>(x);
+        const std::size_t p =
+            static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
         const reprojection r = reproject(prev, cur, x, y, o.depth_epsilon);
         visible[p] = r.status == visibility::visible;
         if (r.status == visibility::offscreen) ++pm.offscreen;
@@ -164,15 +163,14 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
     const std::size_t last_bin = histogram.size() - 1;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
-                              static_cast<std::size_t>(x);
+        const std::size_t p =
+            static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
         if (!visible[p]) continue;
         const double d = std::abs(static_cast<double>(change[p]));
         change_sum += d;
         ++t.changes;
         const double bin = std::floor(d * kChangeBinsPerSigma);
-        ++histogram[bin < static_cast<double>(last_bin) ? static_cast<std::size_t>(bin)
-                                                        : last_bin];
+        ++histogram[bin < static_cast<double>(last_bin) ? static_cast<std::size_t>(bin) : last_bin];
         double neighbours = 0;
         int count = 0;
         auto add = [&](int nx, int ny) {
@@ -210,9 +208,9 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
     t.change_p99 = percentile(histogram, t.changes, 0.99);
     t.change_p999 = percentile(histogram, t.changes, 0.999);
   }
-  t.popping = t.popping_candidates ? static_cast<double>(pops) /
-                                         static_cast<double>(t.popping_candidates)
-                                   : kNaN;
+  t.popping = t.popping_candidates
+                  ? static_cast<double>(pops) / static_cast<double>(t.popping_candidates)
+                  : kNaN;
   return t;
 }
 

@@ -33,15 +33,15 @@ using noise_frame = std::vector<float>;
 
 // Frame pair (i-1, i).
 struct pair_metrics {
-  int frame = 0;                  // i
-  double coherence = 0;           // C_i in [-1, 1]; NaN when `reason` is set
-  double screen_coherence = 0;    // S_i in [-1, 1]; NaN also when frame i-1 is constant there
-  std::size_t covered = 0;        // pixels covered in frame i
-  std::size_t compared = 0;       // of those, visible in both frames
-  std::size_t offscreen = 0;      // excluded: reprojection leaves the image
-  std::size_t disoccluded = 0;    // excluded: another surface or depth mismatch
-  double sigma = 0;               // s_i
-  std::string reason;             // why coherence is NaN ("" when it is not)
+  int frame = 0;                // i
+  double coherence = 0;         // C_i in [-1, 1]; NaN when `reason` is set
+  double screen_coherence = 0;  // S_i in [-1, 1]; NaN also when frame i-1 is constant there
+  std::size_t covered = 0;      // pixels covered in frame i
+  std::size_t compared = 0;     // of those, visible in both frames
+  std::size_t offscreen = 0;    // excluded: reprojection leaves the image
+  std::size_t disoccluded = 0;  // excluded: another surface or depth mismatch
+  double sigma = 0;             // s_i
+  std::string reason;           // why coherence is NaN ("" when it is not)
 };
 
 struct temporal_metrics {

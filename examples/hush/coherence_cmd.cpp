@@ -32,8 +32,7 @@ const std::vector<option_spec>& coherence_options() {
        "the scene's G-buffers DIR/frame_NNNN/ as written by hush scene (required); frame "
        "NNNN.npy is measured against frame_NNNN"},
       {"--json", "FILE", "also write every number, per frame too, as JSON"},
-      {"--depth-epsilon", "e",
-       "relative depth tolerance of reprojection, 0 ... 1 (default 0.02)"},
+      {"--depth-epsilon", "e", "relative depth tolerance of reprojection, 0 ... 1 (default 0.02)"},
       {"--popping-threshold", "t",
        "isolated-jump threshold in spatial standard deviations, >= 0 (default 1)"},
       {"--window", "n", "flatness analysis window in pixels, 4 ... 4096 (default 32)"},
@@ -81,8 +80,7 @@ const std::string& required(const option_values& given, const char* name, const 
 // from `first` when count < 0).
 std::vector<hush::scene::gbuffer> load_gbuffers(const std::string& dir, int first, int count) {
   std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    throw usage_error("--gbuffer '" + dir + "' is not a directory");
+  if (!fs::is_directory(dir, ec)) throw usage_error("--gbuffer '" + dir + "' is not a directory");
   std::vector<hush::scene::gbuffer> g;
   for (int i = first; count < 0 || i < first + count; ++i) {
     const std::string frame = hush::scene::frame_directory(dir, i);
@@ -105,15 +103,14 @@ std::vector<hush::scene::gbuffer> load_gbuffers(const std::string& dir, int firs
 
 int run_baseline(const std::vector<std::string>& args) {
   const option_values given = read_options(args, coherence_baseline_options());
-  const std::string& kind_name =
-      required(given, "--kind", "white, shower-door or texture");
+  const std::string& kind_name = required(given, "--kind", "white, shower-door or texture");
   const std::string& gdir = required(given, "--gbuffer", "a directory of frame_NNNN/");
   const std::string& out = required(given, "--out", "a directory for the noise frames");
-  const hc::baseline_kind kind = parse_choice<hc::baseline_kind>(
-      "--kind", kind_name,
-      {{"white", hc::baseline_kind::white},
-       {"shower-door", hc::baseline_kind::shower_door},
-       {"texture", hc::baseline_kind::texture}});
+  const hc::baseline_kind kind =
+      parse_choice<hc::baseline_kind>("--kind", kind_name,
+                                      {{"white", hc::baseline_kind::white},
+                                       {"shower-door", hc::baseline_kind::shower_door},
+                                       {"texture", hc::baseline_kind::texture}});
   hc::baseline_options o;
   if (const std::string* v = find_value(given, "--seed"))
     o.seed = static_cast<std::uint32_t>(parse_integer("--seed", *v, 0, 4294967295LL));

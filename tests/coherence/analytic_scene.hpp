@@ -19,16 +19,16 @@ namespace hush_test {
 
 struct moving_plane {
   std::uint32_t id = 1;
-  double depth = 4;        // z at frame 0
-  double dz = 0;           // per frame
-  double tx = 0, ty = 0;   // world translation per frame
+  double depth = 4;       // z at frame 0
+  double dz = 0;          // per frame
+  double tx = 0, ty = 0;  // world translation per frame
 };
 
 struct plane_scene {
   int width = 160, height = 120;
   double focal = 160;
   moving_plane a, b;
-  int split = 1 << 30;     // column where plane B starts (default: only A)
+  int split = 1 << 30;  // column where plane B starts (default: only A)
   int frames = 2;
 };
 

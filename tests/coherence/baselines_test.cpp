@@ -6,12 +6,12 @@
 #include <cmath>
 #include <vector>
 
+#include <cstdint>
 #include "analytic_scene.hpp"
 #include "coherence/baselines.hpp"
 #include "coherence/report.hpp"
 #include "hush/core/error.hpp"
 #include "hush/core/vec.hpp"
-#include <cstdint>
 #include "hush/perlin.hpp"
 
 namespace {
@@ -81,8 +81,8 @@ TEST_CASE("Table 1 ordering on a translating and zooming plane pair") {
   const hush::coherence::options o;
   const auto white =
       hush::coherence::measure(hush::coherence::make_baseline(baseline_kind::white, g), g, o);
-  const auto sd = hush::coherence::measure(
-      hush::coherence::make_baseline(baseline_kind::shower_door, g), g, o);
+  const auto sd =
+      hush::coherence::measure(hush::coherence::make_baseline(baseline_kind::shower_door, g), g, o);
   const auto tex =
       hush::coherence::measure(hush::coherence::make_baseline(baseline_kind::texture, g), g, o);
   // Coherent motion: texture ~1 (bilinear resampling only); shower door correlates better

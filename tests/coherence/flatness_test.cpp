@@ -16,8 +16,8 @@ TEST_CASE("stationary noise on a fronto-parallel plane has flatness spread near 
   s.frames = 3;
   const auto g = hush_test::plane_sequence(s);
   const hush::coherence::options o;
-  for (auto kind : {hush::coherence::baseline_kind::shower_door,
-                    hush::coherence::baseline_kind::texture}) {
+  for (auto kind :
+       {hush::coherence::baseline_kind::shower_door, hush::coherence::baseline_kind::texture}) {
     const auto frames = hush::coherence::make_baseline(kind, g);
     const auto f = hush::coherence::measure_flatness(frames, g, o);
     REQUIRE(f.reason.empty());

@@ -27,7 +27,8 @@ TEST_CASE("noise frames round-trip bit for bit through NNNN.npy files in index o
   const std::string dir = scratch("roundtrip");
   for (int i = 3; i < 6; ++i) {
     hush::coherence::noise_frame f(12);
-    for (std::size_t k = 0; k < f.size(); ++k) f[k] = static_cast<float>(i) + 0.1f * static_cast<float>(k) - 0.7f;
+    for (std::size_t k = 0; k < f.size(); ++k)
+      f[k] = static_cast<float>(i) + 0.1f * static_cast<float>(k) - 0.7f;
     hush::coherence::save_noise_frame(hush::coherence::noise_frame_path(dir, i), f, 4, 3);
   }
   std::ofstream(dir + "/notes.txt") << "ignored";
@@ -52,8 +53,8 @@ TEST_CASE("bad noise-frame directories and files throw with the path in the mess
   CHECK_THROWS_WITH_AS(hush::coherence::load_noise_frames(dir),
                        doctest::Contains("not consecutive"), std::runtime_error);
   std::ofstream(hush::coherence::noise_frame_path(dir, 1)) << "not numpy";
-  CHECK_THROWS_WITH_AS(hush::coherence::load_noise_frames(dir),
-                       doctest::Contains("0001.npy"), std::runtime_error);
+  CHECK_THROWS_WITH_AS(hush::coherence::load_noise_frames(dir), doctest::Contains("0001.npy"),
+                       std::runtime_error);
   CHECK_THROWS_AS(hush::coherence::save_noise_frame(dir + "/x.npy", f, 4, 2),
                   hush::invalid_argument);
   fs::remove_all(dir);

@@ -45,7 +45,8 @@ TEST_CASE("an exactly shifted image with the matching velocity has coherence 1 a
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       if (x - vx >= 0 && x - vx < w && y - vy >= 0 && y - vy < h)
-        f1[static_cast<std::size_t>(y * w + x)] = f0[static_cast<std::size_t>((y - vy) * w + x - vx)];
+        f1[static_cast<std::size_t>(y * w + x)] =
+            f0[static_cast<std::size_t>((y - vy) * w + x - vx)];
   const auto t = hush::coherence::measure_temporal({f0, f1}, g);
   REQUIRE(t.pairs.size() == 1);
   // Only rounding of the correlation sums separates it from 1.
