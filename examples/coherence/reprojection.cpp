@@ -18,7 +18,13 @@ reprojection reproject(const scene::gbuffer& previous, const scene::gbuffer& cur
   const double u = x + 0.5 - current.velocity[3 * pixel] - 0.5;
   const double v = y + 0.5 - current.velocity[3 * pixel + 1] - 0.5;
   const double max_u = previous.width - 1, max_v = previous.height - 1;
-  if (!(u >= 0 && u <= max_u && v >= 0 && v <= max_v)) {  // also false for NaN
+  // NaN velocity: the point had no previous screen position (behind frame i-1's camera);
+  // gbuffer.hpp says to treat it as disoccluded.
+  if (!std::isfinite(u) || !std::isfinite(v) || !std::isfinite(current.velocity[3 * pixel + 2])) {
+    r.status = visibility::disoccluded;
+    return r;
+  }
+  if (!(u >= 0 && u <= max_u && v >= 0 && v <= max_v)) {
     r.status = visibility::offscreen;
     return r;
   }

@@ -18,8 +18,9 @@ namespace coherence {
 enum class visibility {
   background,   // pixel not covered in frame i (object_id 0): not part of any metric
   visible,      // visible in both frames: compared
-  offscreen,    // p - v leaves the area between the outer pixel centres, or is not finite
-  disoccluded,  // a bilinear tap is background or another object, or the depth disagrees
+  offscreen,    // p - v leaves the area between the outer pixel centres
+  disoccluded,  // a bilinear tap is background or another object, the depth disagrees, or
+                // the velocity is NaN (no previous position, scene/gbuffer.hpp)
 };
 
 // Where pixel (x, y) of `current` was in `previous`: the four bilinear taps and weights
