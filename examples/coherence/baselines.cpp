@@ -48,6 +48,39 @@ double object_units_per_pixel(const std::vector<scene::gbuffer>& gbuffers) {
   return *mid;
 }
 
+// Object-space distance from pixel p to its neighbour at offset (dx, dy) on the same object
+// (the forward neighbour, else the backward one); 0 when neither is on p's object.
+double neighbour_distance(const scene::gbuffer& g, std::size_t p, int dx, int dy) {
+  const int w = g.width, h = g.height;
+  const int x = static_cast<int>(p % static_cast<std::size_t>(w));
+  const int y = static_cast<int>(p / static_cast<std::size_t>(w));
+  for (int sign : {1, -1}) {
+    const int nx = x + sign * dx, ny = y + sign * dy;
+    if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+    const std::size_t q =
+        static_cast<std::size_t>(ny) * static_cast<std::size_t>(w) + static_cast<std::size_t>(nx);
+    if (g.object_id[q] != g.object_id[p]) continue;
+    double d2 = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = static_cast<double>(g.position[3 * q + c]) - g.position[3 * p + c];
+      d2 += d * d;
+    }
+    return std::sqrt(d2);
+  }
+  return 0;
+}
+
+// Frequency clamping (Norton, Rockwood & Skolmoski 1982), the procedural counterpart of
+// mipmapping: the noise fades out where one lattice cell covers fewer than 2 pixels (its
+// highest frequencies would alias) and is gone at 1 pixel per cell. Linear in the cell's
+// screen size c = 1 / (scale * object units per pixel): weight clamp(c - 1, 0, 1).
+float clamp_weight(const scene::gbuffer& g, std::size_t p, double scale) {
+  const double footprint =
+      std::max(neighbour_distance(g, p, 1, 0), neighbour_distance(g, p, 0, 1)) * scale;
+  if (!(footprint > 0)) return 1.0f;  // no neighbour on this object: nothing to measure
+  return static_cast<float>(std::clamp(1 / footprint - 1, 0.0, 1.0));
+}
+
 }  // namespace
 
 const char* baseline_name(baseline_kind kind) {
@@ -135,7 +168,7 @@ std::vector<noise_frame> make_baseline(baseline_kind kind,
       const hush::vec3 x{static_cast<float>(g.position[3 * p] * scale),
                          static_cast<float>(g.position[3 * p + 1] * scale),
                          static_cast<float>(g.position[3 * p + 2] * scale)};
-      f[p] = it->second(x);
+      f[p] = it->second(x) * (o.antialias ? clamp_weight(g, p, scale) : 1.0f);
     }
     frames.push_back(std::move(f));
   }

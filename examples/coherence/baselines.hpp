@@ -9,7 +9,9 @@
 //                 Meier 1996; Bénard et al. sec. 1).
 //  - texture:     3D Perlin of the object-space position (solid texturing, so UV seams do not
 //                 matter): attached to the surfaces, so coherent, but it shrinks with depth and
-//                 follows perspective, so not flat.
+//                 follows perspective, so not flat. Where a lattice cell covers fewer than 2
+//                 pixels the noise fades out (frequency clamping, the procedural mipmap):
+//                 unfiltered, distant and grazing surfaces alias into flickering noise.
 // Background pixels (object_id 0) are 0 in every baseline.
 #ifndef HUSH_COHERENCE_BASELINES_HPP
 #define HUSH_COHERENCE_BASELINES_HPP
@@ -33,6 +35,9 @@ struct baseline_options {
   // surface the median screen footprint of one lattice cell is this many pixels (one scale
   // for every object, as a texture authored in object units would be). Range 1 ... 4096.
   double feature_pixels = 8;
+  // texture: fade the noise out linearly from 2 to 1 pixels per lattice cell (the cell's
+  // screen size from the object-space distance to the neighbouring pixels). Off: aliasing.
+  bool antialias = true;
 };
 
 // "white", "shower-door", "texture"; and back (throws hush::invalid_argument naming `kind`).

@@ -154,18 +154,17 @@ flatness_frame measure_frame(const noise_frame& values, const scene::gbuffer& g,
     return std::tie(a.object, a.depth, a.order) < std::tie(b.object, b.depth, b.order);
   });
 
-  // Quantile bins per object: bin b of an object's m windows holds ranks [b m / B, (b+1) m / B).
-  const std::size_t bins = static_cast<std::size_t>(o.depth_bins);
+  // Quantile bins per object: as many as hold min_windows windows each, at most depth_bins;
+  // bin b of an object's m windows holds ranks [b m / B, (b + 1) m / B). An object with
+  // fewer than min_windows windows has no region (counted in dropped_objects).
   for (std::size_t begin = 0; begin < windows.size();) {
     std::size_t end = begin;
     while (end < windows.size() && windows[end].object == windows[begin].object) ++end;
     const std::size_t m = end - begin;
+    const std::size_t bins = std::min(static_cast<std::size_t>(o.depth_bins), m / o.min_windows);
+    if (bins == 0) ++f.dropped_objects;
     for (std::size_t b = 0; b < bins; ++b) {
       const std::size_t lo = begin + b * m / bins, hi = begin + (b + 1) * m / bins;
-      if (hi - lo < o.min_windows) {
-        ++f.dropped_regions;
-        continue;
-      }
       flatness_region r;
       r.object = windows[begin].object;
       r.depth_bin = static_cast<int>(b);
@@ -220,12 +219,17 @@ flatness_metrics measure_flatness(const std::vector<noise_frame>& frames,
   flatness_metrics m;
   window_analyser analyser(o.window);
   std::vector<window_stats> windows;
+  std::vector<double> all_freq, all_var;  // every region of every frame
   std::size_t valued = 0;
   m.frequency_cv_max = m.variance_cv_max = 0;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     flatness_frame f = measure_frame(frames[i], gbuffers[i], o, analyser, windows);
     f.frame = static_cast<int>(i);
     if (f.reason.empty()) {
+      for (const flatness_region& r : f.regions) {
+        all_freq.push_back(r.frequency);
+        all_var.push_back(r.variance);
+      }
       ++valued;
       m.frequency_cv += f.frequency_cv;
       m.frequency_ratio += f.frequency_ratio;
@@ -242,8 +246,12 @@ flatness_metrics measure_flatness(const std::vector<noise_frame>& frames,
     m.reason = "no frame has 2 measurable regions (see frames[].reason)";
     m.frequency_cv = m.frequency_ratio = m.variance_cv = m.variance_ratio = kNaN;
     m.frequency_cv_max = m.variance_cv_max = kNaN;
+    m.pooled_frequency_cv = m.pooled_frequency_ratio = kNaN;
+    m.pooled_variance_cv = m.pooled_variance_ratio = kNaN;
     return m;
   }
+  spread(all_freq, m.pooled_frequency_cv, m.pooled_frequency_ratio);
+  spread(all_var, m.pooled_variance_cv, m.pooled_variance_ratio);
   const double v = static_cast<double>(valued);
   m.frequency_cv /= v;
   m.frequency_ratio /= v;

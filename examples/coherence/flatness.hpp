@@ -8,8 +8,9 @@
 // Measure, per frame (definitions in docs/coherence.md):
 //  1. Analysis windows: window x window squares on a grid of step window_stride, kept when all
 //     their pixels are covered by one object (silhouettes would add the edge's spectrum).
-//  2. Regions: each object's windows, sorted by mean depth, split into depth_bins quantile
-//     bins of (nearly) equal counts; a region with fewer than min_windows windows is dropped.
+//  2. Regions: each object's windows, sorted by mean depth, split into quantile bins of
+//     (nearly) equal counts: depth_bins of them, or fewer so that each holds at least
+//     min_windows windows; an object with fewer than min_windows windows has no region.
 //  3. Per window: values minus the window's mean, times a separable Hann window w, 2D FFT
 //     (Eigen), power P(k) = |F(k)|^2 with k the signed frequency in cycles per pixel. Per
 //     region, with P summed over its windows: its RMS radial frequency
@@ -20,6 +21,9 @@
 //     the mean over its windows of the (unwindowed) variance.
 //  4. Spread across the regions: coefficient of variation (population std / mean) and
 //     max / min ratio of f and of the local variance. Ideal (flat): CV 0, ratio 1.
+//  5. Over the sequence: the mean of the frames' spreads, and the pooled spread over every
+//     region of every frame (a zoom keeps each frame flat but changes the feature size over
+//     time; the pooled spread sees that).
 #ifndef HUSH_COHERENCE_FLATNESS_HPP
 #define HUSH_COHERENCE_FLATNESS_HPP
 
@@ -48,7 +52,7 @@ struct flatness_frame {
   int frame = 0;
   std::vector<flatness_region> regions;
   std::size_t windows = 0;                       // windows kept (inside one object)
-  std::size_t dropped_regions = 0;               // regions with fewer than min_windows windows
+  std::size_t dropped_objects = 0;  // objects with fewer than min_windows windows
   double frequency_cv = 0, frequency_ratio = 0;  // NaN with `reason` when < 2 regions
   double variance_cv = 0, variance_ratio = 0;
   std::string reason;
@@ -59,6 +63,9 @@ struct flatness_metrics {
   // Means over the frames that have values, and the worst (largest) frame.
   double frequency_cv = 0, frequency_ratio = 0, variance_cv = 0, variance_ratio = 0;
   double frequency_cv_max = 0, variance_cv_max = 0;
+  // Spread over every region of every frame that has values.
+  double pooled_frequency_cv = 0, pooled_frequency_ratio = 0;
+  double pooled_variance_cv = 0, pooled_variance_ratio = 0;
   std::size_t frames_without_value = 0;
   std::string reason;  // set (aggregates NaN) when no frame has a value
 };

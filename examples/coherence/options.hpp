@@ -35,6 +35,10 @@ struct options {
 constexpr int kChangeBinsPerSigma = 256;
 constexpr int kChangeHistogramSigmas = 32;
 
+// Motion following F is NaN when (1 - C) + (1 - S) is below this: nothing measurably moved
+// (double rounding of the correlations is ~1e-15; 1e-9 leaves a wide guard).
+constexpr double kFollowingMinLoss = 1e-9;
+
 // Validates `o`; throws hush::invalid_argument naming the member and its valid range.
 void validate(const options& o);
 

@@ -71,6 +71,7 @@ std::string to_markdown(const report& r) {
   row("motion coherence (mean)", t.coherence_mean, "1");
   row("motion coherence (min)", t.coherence_min, "1");
   row("screen coherence, no compensation (mean)", t.screen_coherence_mean, "< coherence");
+  row("motion following (mean)", t.following_mean, "1");
   row("change mean abs (sigma)", t.change_mean, "0");
   row("change p50 (sigma)", t.change_p50, "0");
   row("change p95 (sigma)", t.change_p95, "0");
@@ -81,6 +82,8 @@ std::string to_markdown(const report& r) {
   row("flatness frequency max/min", f.frequency_ratio, "1");
   row("flatness variance CV", f.variance_cv, "0");
   row("flatness variance max/min", f.variance_ratio, "1");
+  row("flatness frequency CV, all frames pooled", f.pooled_frequency_cv, "0");
+  row("flatness variance CV, all frames pooled", f.pooled_variance_cv, "0");
   os << "\n"
      << r.frames << " frames of " << r.width << "x" << r.height << "; pixel pairs: " << compared
      << " compared of " << covered << " covered (" << offscreen << " off-screen, " << disoccluded
@@ -108,6 +111,7 @@ std::string to_json(const report& r) {
   os << "  \"motion_coherence\": {\"mean\": " << json_number(t.coherence_mean)
      << ", \"min\": " << json_number(t.coherence_min)
      << ", \"screen_mean\": " << json_number(t.screen_coherence_mean)
+     << ", \"following_mean\": " << json_number(t.following_mean)
      << ", \"pairs_without_value\": " << t.pairs_without_coherence << "},\n";
   os << "  \"continuity\": {\"changes\": " << t.changes
      << ", \"mean_abs\": " << json_number(t.change_mean)
@@ -121,6 +125,10 @@ std::string to_json(const report& r) {
      << ", \"variance_ratio\": " << json_number(f.variance_ratio)
      << ", \"frequency_cv_max\": " << json_number(f.frequency_cv_max)
      << ", \"variance_cv_max\": " << json_number(f.variance_cv_max)
+     << ", \"pooled_frequency_cv\": " << json_number(f.pooled_frequency_cv)
+     << ", \"pooled_frequency_ratio\": " << json_number(f.pooled_frequency_ratio)
+     << ", \"pooled_variance_cv\": " << json_number(f.pooled_variance_cv)
+     << ", \"pooled_variance_ratio\": " << json_number(f.pooled_variance_ratio)
      << ", \"frames_without_value\": " << f.frames_without_value << "},\n";
   os << "  \"pairs\": [";
   for (std::size_t i = 0; i < t.pairs.size(); ++i) {
@@ -128,6 +136,7 @@ std::string to_json(const report& r) {
     os << (i ? ",\n    " : "\n    ") << "{\"frame\": " << p.frame
        << ", \"coherence\": " << json_number(p.coherence)
        << ", \"screen_coherence\": " << json_number(p.screen_coherence)
+       << ", \"following\": " << json_number(p.following)
        << ", \"covered\": " << p.covered << ", \"compared\": " << p.compared
        << ", \"offscreen\": " << p.offscreen << ", \"disoccluded\": " << p.disoccluded
        << ", \"sigma\": " << json_number(p.sigma) << ", \"reason\": " << json_string(p.reason)
@@ -138,7 +147,7 @@ std::string to_json(const report& r) {
     const flatness_frame& ff = f.frames[i];
     os << (i ? ",\n    " : "\n    ") << "{\"frame\": " << ff.frame
        << ", \"windows\": " << ff.windows << ", \"regions\": " << ff.regions.size()
-       << ", \"dropped_regions\": " << ff.dropped_regions
+       << ", \"dropped_objects\": " << ff.dropped_objects
        << ", \"frequency_cv\": " << json_number(ff.frequency_cv)
        << ", \"variance_cv\": " << json_number(ff.variance_cv)
        << ", \"reason\": " << json_string(ff.reason) << "}";

@@ -95,8 +95,8 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
   std::vector<std::uint8_t> visible(n);
   std::vector<std::uint64_t> histogram(static_cast<std::size_t>(kChangeBinsPerSigma) *
                                        kChangeHistogramSigmas);
-  double change_sum = 0, coherence_sum = 0, screen_sum = 0;
-  std::size_t pops = 0, coherent_pairs = 0, screen_nan = 0;
+  double change_sum = 0, coherence_sum = 0, screen_sum = 0, following_sum = 0;
+  std::size_t pops = 0, coherent_pairs = 0, screen_nan = 0, following_pairs = 0;
   t.coherence_min = kNaN;
 
   for (std::size_t i = 1; i < frames.size(); ++i) {
@@ -142,8 +142,9 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
       pm.reason = "constant noise over the compared pixels (zero variance)";
     }
     if (!pm.reason.empty()) {
-      pm.coherence = pm.screen_coherence = kNaN;
+      pm.coherence = pm.screen_coherence = pm.following = kNaN;
       ++t.pairs_without_coherence;
+      ++t.pairs_without_following;
       t.pairs.push_back(pm);
       continue;
     }
@@ -155,6 +156,16 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
       ++screen_nan;
     } else {
       screen_sum += pm.screen_coherence;
+    }
+    // F_i = (C - S) / ((1 - C) + (1 - S)); undefined when both are 1 (nothing moved, or
+    // constant-in-time noise on a static scene): then NaN.
+    const double loss = (1 - pm.coherence) + (1 - pm.screen_coherence);
+    pm.following = loss > kFollowingMinLoss ? (pm.coherence - pm.screen_coherence) / loss : kNaN;
+    if (std::isnan(pm.following)) {
+      ++t.pairs_without_following;
+    } else {
+      following_sum += pm.following;
+      ++following_pairs;
     }
     ++coherent_pairs;
     if (!(pm.coherence >= t.coherence_min)) t.coherence_min = pm.coherence;  // NaN start
@@ -199,6 +210,8 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
     t.coherence_mean = coherence_sum / static_cast<double>(coherent_pairs);
     t.screen_coherence_mean = screen_nan ? kNaN : screen_sum / static_cast<double>(coherent_pairs);
   }
+  t.following_mean =
+      following_pairs ? following_sum / static_cast<double>(following_pairs) : kNaN;
   if (t.changes == 0) {
     t.change_mean = t.change_p50 = t.change_p95 = t.change_p99 = t.change_p999 = kNaN;
   } else {

@@ -10,6 +10,7 @@
 //   m(p)  = n_{i-1}(p - v(p)), bilinear        (motion-compensated previous noise)
 //   C_i   = Pearson correlation of n_i(p) and m(p) over those pixels   (motion coherence)
 //   S_i   = the same with n_{i-1}(p), no motion compensation            (screen coherence)
+//   F_i   = (C_i - S_i) / ((1 - C_i) + (1 - S_i))                        (motion following)
 //   s_i   = standard deviation of n_i over all covered pixels of frame i
 //   D(p)  = (n_i(p) - m(p)) / s_i                               (normalised change)
 //   pop   = |D(p) - mean of D over p's visible 4-neighbours| > popping_threshold, for pixels
@@ -36,6 +37,7 @@ struct pair_metrics {
   int frame = 0;                // i
   double coherence = 0;         // C_i in [-1, 1]; NaN when `reason` is set
   double screen_coherence = 0;  // S_i in [-1, 1]; NaN also when frame i-1 is constant there
+  double following = 0;         // F_i in [-1, 1]; NaN also when C_i = S_i = 1 (no motion)
   std::size_t covered = 0;      // pixels covered in frame i
   std::size_t compared = 0;     // of those, visible in both frames
   std::size_t offscreen = 0;    // excluded: reprojection leaves the image
@@ -52,6 +54,12 @@ struct temporal_metrics {
   // the noise follows the surfaces (C > S, texture mapping) or stays on the screen (C < S,
   // shower door: S = 1), independently of how fast the scene moves.
   double screen_coherence_mean = 0;
+  // Motion following, mean F_i over the pairs that have one: +1 when the noise moves exactly
+  // with the surfaces (C = 1 < S), -1 when it stays exactly on the screen (S = 1 > C), ~0
+  // for independent frames (C ~ S ~ 0). Scale free: C and S both approach 1 as the motion
+  // per frame shrinks, F does not. Ideal 1.
+  double following_mean = 0;
+  std::size_t pairs_without_following = 0;
   std::size_t pairs_without_coherence = 0;
   // Continuity: |D| over every compared pixel of every pair (ideal 0; independent Gaussian
   // frames moved by whole pixels: mean 2 / sqrt(pi) = 1.128, p50 0.954, p95 2.772, p99 3.643,
