@@ -25,7 +25,7 @@ report measure(const std::vector<noise_frame>& frames, const std::vector<scene::
                const options& o = {});
 
 // A Markdown table: one row per metric with its value and its ideal value, then the
-// exclusion counts and the reasons for any NaN. Numbers with 4 significant digits.
+// exclusion counts and the reasons for any NaN. Numbers with 6 significant digits.
 std::string to_markdown(const report& r);
 // The same numbers as one JSON object (NaN and infinities as null), including per-pair
 // coherence and per-frame flatness; full double precision.
