@@ -52,7 +52,7 @@ struct flatness_frame {
   int frame = 0;
   std::vector<flatness_region> regions;
   std::size_t windows = 0;                       // windows kept (inside one object)
-  std::size_t dropped_objects = 0;  // objects with fewer than min_windows windows
+  std::size_t dropped_objects = 0;               // objects with fewer than min_windows windows
   double frequency_cv = 0, frequency_ratio = 0;  // NaN with `reason` when < 2 regions
   double variance_cv = 0, variance_ratio = 0;
   std::string reason;

@@ -136,11 +136,10 @@ std::string to_json(const report& r) {
     os << (i ? ",\n    " : "\n    ") << "{\"frame\": " << p.frame
        << ", \"coherence\": " << json_number(p.coherence)
        << ", \"screen_coherence\": " << json_number(p.screen_coherence)
-       << ", \"following\": " << json_number(p.following)
-       << ", \"covered\": " << p.covered << ", \"compared\": " << p.compared
-       << ", \"offscreen\": " << p.offscreen << ", \"disoccluded\": " << p.disoccluded
-       << ", \"sigma\": " << json_number(p.sigma) << ", \"reason\": " << json_string(p.reason)
-       << "}";
+       << ", \"following\": " << json_number(p.following) << ", \"covered\": " << p.covered
+       << ", \"compared\": " << p.compared << ", \"offscreen\": " << p.offscreen
+       << ", \"disoccluded\": " << p.disoccluded << ", \"sigma\": " << json_number(p.sigma)
+       << ", \"reason\": " << json_string(p.reason) << "}";
   }
   os << "],\n  \"flatness_frames\": [";
   for (std::size_t i = 0; i < f.frames.size(); ++i) {

@@ -55,8 +55,8 @@ int main(int argc, char** argv) {
       std::vector<hush::scene::gbuffer> g;
       for (int i = first; i < first + count; ++i)
         g.push_back(hush::scene::render_cpu(s, i, width, height));
-      for (auto kind : {hc::baseline_kind::white, hc::baseline_kind::shower_door,
-                        hc::baseline_kind::texture}) {
+      for (auto kind :
+           {hc::baseline_kind::white, hc::baseline_kind::shower_door, hc::baseline_kind::texture}) {
         const std::vector<hc::noise_frame> frames = hc::make_baseline(kind, g);
         const auto t0 = std::chrono::steady_clock::now();
         const hc::report r = hc::measure(frames, g);

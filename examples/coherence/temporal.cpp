@@ -210,8 +210,7 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
     t.coherence_mean = coherence_sum / static_cast<double>(coherent_pairs);
     t.screen_coherence_mean = screen_nan ? kNaN : screen_sum / static_cast<double>(coherent_pairs);
   }
-  t.following_mean =
-      following_pairs ? following_sum / static_cast<double>(following_pairs) : kNaN;
+  t.following_mean = following_pairs ? following_sum / static_cast<double>(following_pairs) : kNaN;
   if (t.changes == 0) {
     t.change_mean = t.change_p50 = t.change_p95 = t.change_p99 = t.change_p999 = kNaN;
   } else {

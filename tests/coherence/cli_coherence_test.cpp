@@ -44,8 +44,8 @@ fs::path scratch(const std::string& name) {
 
 result run_hush(const std::string& args, const fs::path& dir) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string("'") + HUSH_CLI_EXE + "' " + args + " >'" +
-                              out.string() + "' 2>'" + err.string() + "'";
+  const std::string command = std::string("'") + HUSH_CLI_EXE + "' " + args + " >'" + out.string() +
+                              "' 2>'" + err.string() + "'";
   const int status = std::system(command.c_str());
   result r;
   if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
@@ -85,8 +85,8 @@ void check_usage_error(const result& r, const std::string& option) {
 TEST_CASE("hush coherence baseline writes the library's baseline frames bit for bit") {
   const fs::path dir = scratch("baseline");
   const auto g = write_gbuffers(dir / "g");
-  for (auto kind : {hc::baseline_kind::white, hc::baseline_kind::shower_door,
-                    hc::baseline_kind::texture}) {
+  for (auto kind :
+       {hc::baseline_kind::white, hc::baseline_kind::shower_door, hc::baseline_kind::texture}) {
     const fs::path out = dir / hc::baseline_name(kind);
     const result r = run_hush(std::string("coherence baseline --kind ") + hc::baseline_name(kind) +
                                   " --gbuffer '" + (dir / "g").string() + "' --out '" +
@@ -110,11 +110,11 @@ TEST_CASE("hush coherence prints the library's metrics and writes them as JSON")
   const auto frames = hc::make_baseline(hc::baseline_kind::texture, g);
   fs::create_directories(dir / "f");
   for (std::size_t i = 0; i < frames.size(); ++i)
-    hc::save_noise_frame(hc::noise_frame_path((dir / "f").string(), static_cast<int>(i)),
-                         frames[i], 96, 72);
+    hc::save_noise_frame(hc::noise_frame_path((dir / "f").string(), static_cast<int>(i)), frames[i],
+                         96, 72);
   const result r = run_hush("coherence --frames '" + (dir / "f").string() + "' --gbuffer '" +
-                                (dir / "g").string() + "' --json '" +
-                                (dir / "m.json").string() + "' --window 16",
+                                (dir / "g").string() + "' --json '" + (dir / "m.json").string() +
+                                "' --window 16",
                             dir);
   REQUIRE(r.exit_code == 0);
   hc::options o;
@@ -133,10 +133,9 @@ TEST_CASE("hush coherence refuses bad input with exit code 2 and one line naming
   const auto g = write_gbuffers(dir / "g");
   const std::string gdir = "'" + (dir / "g").string() + "'";
   check_usage_error(run_hush("coherence --gbuffer " + gdir, dir), "--frames");
-  check_usage_error(run_hush("coherence --frames '" + (dir / "none").string() + "' --gbuffer " +
-                                 gdir,
-                             dir),
-                    "--frames");
+  check_usage_error(
+      run_hush("coherence --frames '" + (dir / "none").string() + "' --gbuffer " + gdir, dir),
+      "--frames");
   check_usage_error(run_hush("coherence baseline --kind grey --gbuffer " + gdir + " --out x", dir),
                     "--kind");
   check_usage_error(run_hush("coherence baseline --kind white --gbuffer '" +
