@@ -112,7 +112,8 @@ std::string to_json(const report& r) {
      << ", \"min\": " << json_number(t.coherence_min)
      << ", \"screen_mean\": " << json_number(t.screen_coherence_mean)
      << ", \"following_mean\": " << json_number(t.following_mean)
-     << ", \"pairs_without_value\": " << t.pairs_without_coherence << "},\n";
+     << ", \"pairs_without_value\": " << t.pairs_without_coherence
+     << ", \"pairs_without_following\": " << t.pairs_without_following << "},\n";
   os << "  \"continuity\": {\"changes\": " << t.changes
      << ", \"mean_abs\": " << json_number(t.change_mean)
      << ", \"p50\": " << json_number(t.change_p50) << ", \"p95\": " << json_number(t.change_p95)
