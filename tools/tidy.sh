@@ -10,7 +10,7 @@ if [ ! -f "$build/compile_commands.json" ]; then
   cmake -S . -B "$build" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DHUSH_BUILD_TESTS=OFF >/dev/null
 fi
 status=0
-for f in examples/basic_usage.cpp examples/hush/*.cpp; do
+for f in examples/basic_usage.cpp examples/hush/*.cpp examples/coherence/*.cpp; do
   case "$f" in *stb_image_write_impl.cpp) continue ;; esac
   # GCC 12 defaults to C++17, so CMake passes no -std flag; clang-tidy needs it.
   clang-tidy -p "$build" --quiet --extra-arg=-std=c++17 \

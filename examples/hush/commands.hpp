@@ -24,6 +24,12 @@ const std::vector<option_spec>& sample_options();
 int run_gallery(const std::vector<std::string>& args);
 const std::vector<option_spec>& gallery_options();
 
+// hush coherence --frames DIR --gbuffer DIR [--json FILE]: temporal-coherence metrics;
+// hush coherence baseline --kind K --gbuffer DIR --out DIR: calibration baselines.
+int run_coherence(const std::vector<std::string>& args);
+const std::vector<option_spec>& coherence_options();
+const std::vector<option_spec>& coherence_baseline_options();
+
 }  // namespace hush_cli
 
 #endif  // HUSH_CLI_COMMANDS_HPP

@@ -35,6 +35,8 @@ const std::vector<command>& commands() {
       {"sample", "hush sample NOISE [options] --out FILE.npy|FILE.png",
        "sample a noise on a uniform grid", run_sample},
       {"gallery", "hush gallery [--out DIR]", "render the showcase images (PNG)", run_gallery},
+      {"coherence", "hush coherence --frames DIR --gbuffer DIR [--json FILE]",
+       "temporal-coherence metrics of noise frames (docs/coherence.md)", run_coherence},
   };
   return table;
 }
@@ -79,6 +81,13 @@ void print_usage(std::ostream& os) {
   }
   os << "\nhush gallery [--out DIR]\n";
   print_options(os, gallery_options());
+  os << "\nhush coherence --frames DIR --gbuffer DIR [--json FILE] [options]\n"
+        "  Motion coherence, temporal continuity and flatness of the noise frames DIR/NNNN.npy\n"
+        "  (float32 (H, W)) over the G-buffers DIR/frame_NNNN/ (docs/coherence.md).\n";
+  print_options(os, coherence_options());
+  os << "\nhush coherence baseline --kind K --gbuffer DIR --out DIR [options]\n"
+        "  Writes a calibration baseline's noise frames OUT/NNNN.npy for the G-buffers.\n";
+  print_options(os, coherence_baseline_options());
   os << "\nEvery option takes one value: '--seed 7' or '--seed=7'.\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";
 }

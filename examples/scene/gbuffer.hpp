@@ -18,7 +18,9 @@
 //    dz the change of its linear depth per frame. So the point seen at pixel
 //    centre p in frame i was at p - (dx, dy), with depth depth - dz, in frame
 //    i-1 (backward reprojection, Kass & Pesare 2011 sec. 3). Frame 0 uses
-//    frame 0's transforms for i-1 (velocity 0). Background: 0.
+//    frame 0's transforms for i-1 (velocity 0). Background: 0. If the point
+//    was not in front of frame i-1's camera (no previous screen position),
+//    all three are NaN: treat such pixels as disoccluded.
 //  - triangle_id: index of the triangle in its object's mesh. Background:
 //    0xFFFFFFFF.
 //  - barycentric (3): perspective-correct weights of the triangle's vertices
