@@ -24,6 +24,12 @@ const std::vector<option_spec>& sample_options();
 int run_gallery(const std::vector<std::string>& args);
 const std::vector<option_spec>& gallery_options();
 
+// hush glsl-export DIR: the generated GLSL library and compute runners.
+int run_glsl_export(const std::vector<std::string>& args);
+// The GLSL backend's line in `hush info`: the GL renderer and version of an
+// OSMesa context, or "unavailable: <reason>".
+std::string glsl_status();
+
 }  // namespace hush_cli
 
 #endif  // HUSH_CLI_COMMANDS_HPP

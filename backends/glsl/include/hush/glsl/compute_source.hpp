@@ -40,14 +40,14 @@ std::string compute_source(batch_layout layout, bool gradient) {
   using np = noise_program<Noise>;
   constexpr int D = np::dimension;
   const std::string d = std::to_string(D);
-  std::string s = "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
-                  std::string(np::name) + (gradient ? ", values and gradients" : ", values") +
-                  (layout == batch_layout::points ? ", points" : ", grid") +
-                  " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " +
-                  std::to_string(kLocalSize) + ") in;\n" + library() +
-                  "\n// ---- Runner.\n" + np::uniforms() +
-                  "uniform uint hush_first;  // first sample of this dispatch\n"
-                  "uniform uint hush_count;  // samples in the batch\n";
+  std::string s =
+      "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
+      std::string(np::name) + (gradient ? ", values and gradients" : ", values") +
+      (layout == batch_layout::points ? ", points" : ", grid") +
+      " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
+      ") in;\n" + library() + "\n// ---- Runner.\n" + np::uniforms() +
+      "uniform uint hush_first;  // first sample of this dispatch\n"
+      "uniform uint hush_count;  // samples in the batch\n";
   if (layout == batch_layout::points) {
     s += "layout(std430, binding = 0) readonly buffer hush_input { float hush_in[]; };\n";
   } else {
@@ -81,8 +81,8 @@ std::string compute_source(batch_layout layout, bool gradient) {
     s += "  uvec" + d + " i0 = uvec" + d + "(" + i0 + ");\n  uvec" + d + " i1 = uvec" + d + "(" +
          i1 + ");\n  vec" + d + " f = vec" + d + "(" + f + ");\n";
   }
-  const std::string call = layout == batch_layout::points ? np::point_call(gradient)
-                                                          : np::cells_call(gradient);
+  const std::string call =
+      layout == batch_layout::points ? np::point_call(gradient) : np::cells_call(gradient);
   if (!gradient) {
     s += "  hush_out[n] = " + call + ";\n";
   } else {

@@ -29,17 +29,18 @@
 //  - The lattice split of a float coordinate is exact (floor, x - floor(x) and
 //    the cell modulo 2^32 or the period, also for |x| >= 2^31), so cells and
 //    fractions equal the CPU's hush::lattice_split<float> of the same float.
-//  - The remaining float arithmetic follows the CPU's order, but GLSL lets the
-//    compiler fuse a * b + c into one fma and GPUs need not round every op
-//    correctly (GLSL 4.60 sec. 4.7.1: + - * are "correctly rounded" only in
-//    their IEEE sense as an upper bound; many GPUs flush denormals to zero).
-//    The forward error analysis behind the CPU's 2^-16 budget holds for any
-//    op with relative error <= 2^-23 (two ulp), so on a GPU meeting the GLSL
-//    precision rules values are within 2^-15 of the double reference, and
-//    within 2^-14 of the CPU float result; gradients within the same budgets
-//    times (1 + the noise's Lipschitz bound). Denormal flushing only touches
-//    results below 1.2e-38 in magnitude. Measured on llvmpipe: see
-//    tests/glsl/glsl_test.cpp and hush/glsl/device.hpp.
+//  - The remaining float arithmetic follows the CPU's order. GLSL lets the
+//    compiler fuse a * b + c into one fma (no `precise` before 4.00), GLSL
+//    4.x asks only that +, -, * be correctly rounded (3.30 states no operation
+//    precision at all), and many GPUs flush denormals to zero. The forward
+//    error analysis behind the CPU's 2^-16 budget bounds each op's rounding by
+//    2^-24 relative, which a fused op also meets: with correctly rounded ops
+//    (llvmpipe) values are within 2^-16 of the double reference and 2^-15 of
+//    the CPU float result; a GPU whose ops err by up to 2 ulp doubles both
+//    (2^-15, 2^-14). Gradients: the same times (1 + the noise's Lipschitz
+//    bound). Denormal flushing only changes results below 1.2e-38 in
+//    magnitude, and the split of a denormal coordinate (cell 0 or -1) on such
+//    GPUs. Measured on llvmpipe: tests/glsl/glsl_test.cpp, hush/glsl/device.hpp.
 //  - NaN or +-Inf in any coordinate gives NaN in every output component (the
 //    point functions test the exponent bits, so fast-math folding cannot lose it).
 #ifndef HUSH_GLSL_LIBRARY_HPP

@@ -238,7 +238,8 @@ inline gl_program link_program(const gl_api& gl,
   cleanup();  // flagged for deletion; freed with the program
   gl_int ok = 0;
   gl.GetProgramiv(prog.id(), kGlLinkStatus, &ok);
-  if (!ok) throw std::runtime_error("hush::glsl: the program does not link:\n" + log_of(prog.id(), true));
+  if (!ok)
+    throw std::runtime_error("hush::glsl: the program does not link:\n" + log_of(prog.id(), true));
   gl.check("hush::glsl: linking a program");
   return prog;
 }
