@@ -68,7 +68,7 @@ void print_options(std::ostream& os, const std::vector<option_spec>& options) {
 void print_usage(std::ostream& os) {
   os << "usage: hush <command> [options]      (hush --help shows this)\n\ncommands:\n";
   for (const command& c : commands())
-    os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << '\n';
+    os << "  " << c.name << std::string(13 - std::string(c.name).size(), ' ') << c.summary << '\n';
   os << "\nhush info\n"
         "\nhush sample NOISE [options] --out FILE.npy|FILE.png\n"
         "  Sample (i, j, k) is at origin + step * (i, j, k), i along x. FILE.npy holds float32\n"

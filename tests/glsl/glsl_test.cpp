@@ -121,9 +121,9 @@ std::vector<std::uint32_t> run_kernel(const std::string& main_body,
 }
 
 // Hash inputs: the edge words every operand should see, then random words.
-const std::vector<std::uint32_t> kEdgeWords = {0u,          1u,          2u,          0x7FFFFFFFu,
-                                               0x80000000u, 0x80000001u, 0xFFFFFFFEu, 0xFFFFFFFFu,
-                                               0x9E3779B9u, 0x0000FFFFu, 0xFFFF0000u, 12345u};
+constexpr std::array<std::uint32_t, 12> kEdgeWords = {
+    0u,          1u,          2u,          0x7FFFFFFFu, 0x80000000u, 0x80000001u,
+    0xFFFFFFFEu, 0xFFFFFFFFu, 0x9E3779B9u, 0x0000FFFFu, 0xFFFF0000u, 12345u};
 constexpr std::size_t kRandomHashInputs = 100000;
 
 // `arity`-word tuples: all combinations of edge words (up to 12^3), then random ones.

@@ -178,7 +178,7 @@ inline std::string constants_block() {
     const std::string n = std::to_string(k.bits.size());
     out += std::string("const ") + type + " " + k.name;
     if (k.array) {
-      out += "[" + n + "] = " + type + "[" + n + "](";
+      out.append("[").append(n).append("] = ").append(type).append("[").append(n).append("](");
       for (std::size_t i = 0; i < k.bits.size(); ++i)
         out += (i ? ", " : "") + glsl_literal(k.kind, k.bits[i]);
       out += ")";
