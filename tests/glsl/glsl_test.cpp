@@ -661,12 +661,24 @@ TEST_CASE("an empty batch dispatches nothing and writes nothing") {
   CHECK(dev.dispatches() == before);
 }
 
-TEST_CASE("a grid of 2^32 samples or more is refused with hush::invalid_argument") {
+TEST_CASE(
+    "a grid of 2^32 samples or too long for one SSBO is refused with hush::invalid_argument") {
   std::vector<float> out(1);
   CHECK_THROWS_AS(
       env().dev.evaluate_grid(hush::perlin<2>(1), hush::grid<2>{{0, 0}, {1, 1}, {65536, 65537}},
                               out.data(), nullptr),
       hush::invalid_argument);
+  // The per-axis table must fit one SSBO: 12 bytes per sample index along each axis.
+  hush::glsl::device::options opt;
+  opt.max_buffer_bytes = 4096;
+  hush::glsl::device small(env().context.loader(), opt);
+  std::vector<float> row(400);
+  CHECK_THROWS_AS(small.evaluate_grid(hush::perlin<2>(1), hush::grid<2>{{0, 0}, {1, 1}, {400, 1}},
+                                      row.data(), nullptr),
+                  hush::invalid_argument);
+  small.evaluate_grid(hush::perlin<2>(1), hush::grid<2>{{0, 0}, {1, 1}, {300, 1}}, row.data(),
+                      nullptr);
+  CHECK(row[299] == 0.0f);  // x = 299, y = 0: a lattice point
 }
 
 TEST_CASE("a batch split across many dispatches and buffers equals one dispatch bit for bit") {

@@ -39,7 +39,8 @@
 // missing or the context is older than 4.3; evaluation throws
 // std::runtime_error with the driver's log when a program does not compile or
 // link, or with the GL error code when GL reports one, and
-// hush::invalid_argument for a grid of 2^32 or more samples.
+// hush::invalid_argument for a grid of 2^32 or more samples, or with more
+// samples summed over its axes than max_buffer_bytes() / 12 (11 million on llvmpipe).
 // Not thread-safe; destroy the device while its context is still alive.
 #ifndef HUSH_GLSL_DEVICE_HPP
 #define HUSH_GLSL_DEVICE_HPP
@@ -157,8 +158,17 @@ class device {
       hush::detail::throw_out_of_range("hush::glsl::device::evaluate_grid", "grid.count()", count,
                                        "at most 4294967295 samples per call");
     // Each axis position split in double on the CPU, exactly as the scalar
-    // grid path splits it: (i0, i1, fraction bits) per sample index.
+    // grid path splits it: (i0, i1, fraction bits) per sample index, in one SSBO.
+    std::size_t axis_samples = 0;
+    for (int a = 0; a < D; ++a) axis_samples += g.size[a];
+    if (axis_samples > max_bytes_ / (3 * sizeof(std::uint32_t)))
+      hush::detail::throw_out_of_range(
+          "hush::glsl::device::evaluate_grid", "grid.size (summed over the axes)", axis_samples,
+          ("at most " + std::to_string(max_bytes_ / (3 * sizeof(std::uint32_t))) +
+           " on this device (its SSBO size limit)")
+              .c_str());
     std::vector<std::uint32_t> axes;
+    axes.reserve(3 * axis_samples);
     for (int a = 0; a < D; ++a) {
       const std::uint32_t period = noise_program<Noise>::period(noise, a);
       for (std::size_t i = 0; i < g.size[a]; ++i) {
