@@ -393,6 +393,9 @@ TEST_CASE("float literals round-trip: the emitted decimal is the float, also for
   CHECK_THROWS_AS(hush::glsl::glsl_literal(t::f32, bits_of(std::numeric_limits<float>::infinity())),
                   std::logic_error);
   CHECK(hush::glsl::glsl_literal(t::u32, 0x7feb352du) == "0x7feb352du");
+  CHECK(hush::glsl::glsl_literal(t::u32, 16u) == "16u");
+  CHECK(hush::glsl::glsl_literal(t::f32, bits_of(-15.0f)) == "-15.0");
+  CHECK(hush::glsl::glsl_literal(t::f32, bits_of(2147483648.0f)) == "2147483648.0");
 }
 
 // ---- The library in other stages.

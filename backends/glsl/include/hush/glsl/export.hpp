@@ -52,9 +52,10 @@ inline std::vector<export_file> export_files() {
        "// Keys: hush_seed_key(seed) equals hush::seed_key(seed) on the CPU, so a\n"
        "// shader and hush::perlin<D>{seed} give the same field. Periods: uvecD,\n"
        "// 0 = not periodic. The *_gradient functions return (value, gradient).\n"
-       "// Hashes equal the CPU bit for bit; values are within 2^-15 of hush's\n"
-       "// double reference on GPUs meeting GLSL precision (2^-16 measured bound on\n"
-       "// llvmpipe). The *.comp files beside this one are the batch runners of\n"
+       "// Hashes equal the CPU bit for bit; values are within 2^-16 of hush's\n"
+       "// double reference where float +, -, * are correctly rounded (tested on\n"
+       "// llvmpipe), 2^-15 where they err by up to 2 ulp; hush/glsl/library.hpp\n"
+       "// derives the bounds. The *.comp files beside this one are the batch runners of\n"
        "// hush::glsl::device (interface: hush/glsl/compute_source.hpp).\n"
        "// Regenerate with the same hush version instead of editing by hand.\n" +
            library()});

@@ -146,22 +146,26 @@ inline std::vector<glsl_constant> constant_table() {
   };
 }
 
-// A GLSL literal equal to the constant: `0x7feb352du` for uint; for float the
-// shortest round-trip decimal (at most 9 significant digits) with a `.` or
+// A GLSL literal equal to the constant: `16u` or `0x7feb352du` for uint; for
+// float the integer with ".0" when the value is one (up to 2^32), else the
+// shortest round-trip decimal (at most 9 significant digits) with a `.` or an
 // exponent so it parses as float. Throws std::logic_error for a non-finite float.
 inline std::string glsl_literal(glsl_constant::type kind, std::uint32_t bits) {
   char buf[48];
   if (kind == glsl_constant::type::u32) {
-    std::snprintf(buf, sizeof buf, "0x%08xu", bits);
+    // Shifts and counts read best in decimal, multipliers and masks in hex.
+    std::snprintf(buf, sizeof buf, bits < 0x10000u ? "%uu" : "0x%08xu", bits);
     return buf;
   }
   const float f = detail::bits_float(bits);
   if (!std::isfinite(f)) throw std::logic_error("hush::glsl: non-finite float constant");
+  if (std::floor(f) == f && std::fabs(f) <= 4294967296.0f) {
+    std::snprintf(buf, sizeof buf, "%.1f", static_cast<double>(f));  // exact: "-15.0"
+    return buf;
+  }
   for (int digits = 1; digits <= 9; ++digits) {
     std::snprintf(buf, sizeof buf, "%.*g", digits, static_cast<double>(f));
-    if (std::strtof(buf, nullptr) == f &&
-        std::signbit(std::strtof(buf, nullptr)) == std::signbit(f))
-      break;
+    if (std::strtof(buf, nullptr) == f) break;
   }
   std::string s = buf;
   if (s.find_first_of(".eE") == std::string::npos) s += ".0";
