@@ -718,6 +718,29 @@ TEST_CASE("a batch split across many dispatches and buffers equals one dispatch 
   CHECK(c == d);
 }
 
+TEST_CASE("a grid beyond GL_MAX_COMPUTE_WORK_GROUP_COUNT groups takes several dispatches") {
+  hush::glsl::device& dev = env().dev;
+  // Just over one full dispatch at the GL limit (65535 groups of 64 on llvmpipe).
+  const std::size_t per_dispatch = dev.max_groups_per_dispatch() * hush::glsl::kLocalSize;
+  const std::size_t nx = 2048, ny = per_dispatch / nx + 2;
+  const hush::grid<2> gr{{-7.25, 3.5}, {0.03, -0.01}, {nx, ny}};
+  const std::size_t n = gr.count();
+  REQUIRE(n * sizeof(float) <= dev.max_buffer_bytes());  // one batch
+  std::vector<float> v(n);
+  const hush::perlin<2> p(8);
+  const std::size_t before = dev.dispatches();
+  hush::evaluate_grid(p, hush::exec::glsl{dev}, gr, v);
+  CHECK(dev.dispatches() - before == (n + per_dispatch - 1) / per_dispatch);
+  // Spot checks across both dispatches, including the last sample.
+  double max = 0;
+  for (std::size_t i = n - 1; i < n; i = i >= 997 ? i - 997 : n) {
+    const hush::vec<double, 2> x{gr.origin[0] + gr.step[0] * double(i % nx),
+                                 gr.origin[1] + gr.step[1] * double(i / nx)};
+    max = std::max(max, std::fabs(double(v[i]) - p(x)));
+  }
+  CHECK(max <= kValueBudget);
+}
+
 // ---- The device's contract around the context.
 
 TEST_CASE("the device names the renderer and restores the caller's program and SSBO binding") {
