@@ -734,8 +734,9 @@ TEST_CASE("a grid beyond GL_MAX_COMPUTE_WORK_GROUP_COUNT groups takes several di
   // Spot checks across both dispatches, including the last sample.
   double max = 0;
   for (std::size_t i = n - 1; i < n; i = i >= 997 ? i - 997 : n) {
+    const std::size_t row = i / nx;  // the grid's j index
     const hush::vec<double, 2> x{gr.origin[0] + gr.step[0] * double(i % nx),
-                                 gr.origin[1] + gr.step[1] * double(i / nx)};
+                                 gr.origin[1] + gr.step[1] * double(row)};
     max = std::max(max, std::fabs(double(v[i]) - p(x)));
   }
   CHECK(max <= kValueBudget);
