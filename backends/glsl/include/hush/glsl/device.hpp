@@ -41,6 +41,7 @@
 // link, or with the GL error code when GL reports one, and
 // hush::invalid_argument for a grid of 2^32 or more samples, or with more
 // samples summed over its axes than max_buffer_bytes() / 12 (11 million on llvmpipe).
+// A GL error already pending when a call starts is reported by that call too.
 // Not thread-safe; destroy the device while its context is still alive.
 #ifndef HUSH_GLSL_DEVICE_HPP
 #define HUSH_GLSL_DEVICE_HPP

@@ -18,6 +18,7 @@
 namespace hush {
 namespace glsl {
 
+// One file of the export: its name and its complete text.
 struct export_file {
   std::string name;     // file name, no directory
   std::string content;  // the text, ending in a newline
