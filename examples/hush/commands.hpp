@@ -29,6 +29,11 @@ const std::vector<option_spec>& gallery_options();
 int run_coherence(const std::vector<std::string>& args);
 const std::vector<option_spec>& coherence_options();
 const std::vector<option_spec>& coherence_baseline_options();
+// hush glsl-export DIR: the generated GLSL library and compute runners.
+int run_glsl_export(const std::vector<std::string>& args);
+// The GLSL backend's line in `hush info`: the GL renderer and version of an
+// OSMesa context, or "unavailable: <reason>".
+std::string glsl_status();
 
 }  // namespace hush_cli
 

@@ -82,7 +82,7 @@ int run_info(const std::vector<std::string>& args) {
      << "backends:\n"
      << "  scalar:     yes\n"
      << "  simd:       " << simd_status() << '\n'
-     << "  glsl:       not compiled in this build\n"
+     << "  glsl:       " << glsl_status() << '\n'
      << "png output:   "
      << (png_supported() ? "yes (stb_image_write)" : "no (stb_image_write.h not found)") << '\n'
      << "gallery:      " << gallery_status() << '\n';

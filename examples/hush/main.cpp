@@ -4,6 +4,7 @@
 //   hush sample NOISE [--dim 2|3] [--size N|NxM|NxMxK] [--origin x,y[,z]] [--step s]
 //                     [--seed n] [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
 //   hush gallery [--out DIR]
+//   hush glsl-export DIR
 //
 // Exit codes: 0 success, 1 a failure doing valid work (e.g. an unwritable file), 2 a
 // usage error. Every error is one line on stderr: "hush <command>: <what is wrong>".
@@ -37,6 +38,8 @@ const std::vector<command>& commands() {
       {"gallery", "hush gallery [--out DIR]", "render the showcase images (PNG)", run_gallery},
       {"coherence", "hush coherence --frames DIR --gbuffer DIR [--json FILE]",
        "temporal-coherence metrics of noise frames (docs/coherence.md)", run_coherence},
+      {"glsl-export", "hush glsl-export DIR", "write the generated GLSL library and runners",
+       run_glsl_export},
   };
   return table;
 }
@@ -67,7 +70,7 @@ void print_options(std::ostream& os, const std::vector<option_spec>& options) {
 void print_usage(std::ostream& os) {
   os << "usage: hush <command> [options]      (hush --help shows this)\n\ncommands:\n";
   for (const command& c : commands())
-    os << "  " << c.name << std::string(10 - std::string(c.name).size(), ' ') << c.summary << '\n';
+    os << "  " << c.name << std::string(13 - std::string(c.name).size(), ' ') << c.summary << '\n';
   os << "\nhush info\n"
         "\nhush sample NOISE [options] --out FILE.npy|FILE.png\n"
         "  Sample (i, j, k) is at origin + step * (i, j, k), i along x. FILE.npy holds float32\n"
@@ -88,6 +91,9 @@ void print_usage(std::ostream& os) {
   os << "\nhush coherence baseline --kind K --gbuffer DIR --out DIR [options]\n"
         "  Writes a calibration baseline's noise frames OUT/NNNN.npy for the G-buffers.\n";
   print_options(os, coherence_baseline_options());
+  os << "\nhush glsl-export DIR\n"
+        "  Writes hush_noise.glsl (the function library, no #version line) and the compute\n"
+        "  runners (*.comp) into DIR, created if needed.\n";
   os << "\nEvery option takes one value: '--seed 7' or '--seed=7'.\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";
 }

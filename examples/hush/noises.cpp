@@ -2,10 +2,23 @@
 #include "noises.hpp"
 
 #include <climits>
+#include <type_traits>
 #include <utility>
+
+#include "glsl_device.hpp"
 
 namespace hush_cli {
 namespace {
+
+// Whether the GLSL backend has a program for Noise (hush::glsl::noise_program is
+// specialised for it; the primary template is declared, never defined).
+template <class Noise, class = void>
+struct has_glsl_program : std::false_type {};
+#if HUSH_CLI_HAVE_GLSL
+template <class Noise>
+struct has_glsl_program<Noise, std::void_t<decltype(sizeof(hush::glsl::noise_program<Noise>))>>
+    : std::true_type {};
+#endif
 
 // Any hush noise of dimension D that hush::evaluate_grid takes.
 template <class Noise, int D>
@@ -14,7 +27,11 @@ class field final : public noise_field {
   field(Noise noise, bool is_signed) : noise_(std::move(noise)), signed_(is_signed) {}
   bool is_signed() const override { return signed_; }
   std::string unsupported_reason(backend b) const override {
-    if (b == backend::glsl) return "the GLSL backend is not in this build";
+    if (b == backend::glsl) {
+      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (OSMesa not found)";
+      if (!has_glsl_program<Noise>::value)
+        return "the GLSL backend runs plain perlin (no --octaves, --fractal, ...) so far";
+    }
     if (b == backend::simd && !HUSH_CONFIG_SIMD)
       return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
     return "";
@@ -33,10 +50,19 @@ class field final : public noise_field {
     block.size[1] = rows;
     if constexpr (D == 3) block.size[2] = 1;
     const hush::span<float> dst(out, block.count());
-    if (b == backend::simd)
+    if (b == backend::simd) {
       hush::evaluate_grid(noise_, hush::exec::simd, block, dst);
-    else
-      hush::evaluate_grid(noise_, hush::exec::scalar, block, dst);
+      return;
+    }
+#if HUSH_CLI_HAVE_GLSL
+    if constexpr (has_glsl_program<Noise>::value) {
+      if (b == backend::glsl) {
+        hush::evaluate_grid(noise_, hush::exec::glsl{glsl_device()}, block, dst);
+        return;
+      }
+    }
+#endif
+    hush::evaluate_grid(noise_, hush::exec::scalar, block, dst);
   }
 
  private:

@@ -479,7 +479,7 @@ TEST_CASE("sample rejects each bad input with exit code 2 and one line naming th
       {"perlin --seed 1.5" + out, "--seed"},
       {"perlin --seed 7x" + out, "--seed"},
       {"perlin --seed ''" + out, "--seed"},
-      {"perlin --backend glsl" + out, "--backend"},
+      {"perlin --octaves 3 --backend glsl" + out, "--backend"},
       {"perlin --backend cuda" + out, "--backend"},
       {"perlin --period -3,1" + out, "--period"},
       {"perlin --period 4" + out, "--period"},  // one value per dimension
@@ -551,6 +551,29 @@ TEST_CASE("sample --backend simd equals scalar sampling within the SIMD budget, 
 #endif
 }
 
+#if HUSH_CLI_TEST_GLSL
+TEST_CASE("sample --backend glsl equals scalar sampling within the GLSL budget, 2D and 3D") {
+  const fs::path dir = scratch("backend_glsl");
+  for (int dim : {2, 3}) {
+    const std::string common =
+        "sample perlin --dim " + std::to_string(dim) +
+        (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
+        " --step 0.173 --seed 9 ";
+    REQUIRE(run_hush(common + "--backend glsl --out '" + (dir / "glsl.npy").string() + "'", dir)
+                .exit_code == 0);
+    REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
+                .exit_code == 0);
+    const npy_file a = read_npy(dir / "glsl.npy"), b = read_npy(dir / "scalar.npy");
+    REQUIRE(a.values.size() == b.values.size());
+    // Within 2^-15 of the CPU float path (backends/glsl, hush/glsl/device.hpp).
+    double worst = 0;
+    for (std::size_t i = 0; i < a.values.size(); ++i)
+      worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
+    CHECK(worst <= std::ldexp(1.0, -15));
+  }
+}
+#endif
+
 TEST_CASE("sample to an unwritable file fails with exit code 1 and names the file") {
   const fs::path dir = scratch("unwritable");
   const std::string path = (dir / "no_such_dir" / "x.npy").string();
@@ -590,7 +613,8 @@ TEST_CASE("info exits 0 and prints the version, the standard and the backends") 
   CHECK(r.out.find(HUSH_CLI_TEST_SIMD
                        ? "simd:       yes, dynamic dispatch; compiled: "
                        : "simd:       no (built without Highway") != std::string::npos);
-  CHECK(r.out.find("glsl:       not compiled in this build") != std::string::npos);
+  CHECK((r.out.find("glsl:       yes (") != std::string::npos ||
+         r.out.find("glsl:       unavailable: ") != std::string::npos));
   CHECK(r.out.find(HUSH_CLI_TEST_GALLERY ? "gallery:      yes" : "gallery:      no") !=
         std::string::npos);
   CHECK(run_hush("info --verbose", dir).exit_code == 2);

@@ -1,0 +1,102 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The `#version 430 core` compute shaders hush::glsl::device runs, one per
+// (noise, values or values + gradient, points or grid). They are plain text,
+// so `hush glsl-export` writes the same sources for engines that dispatch
+// them themselves. Interface of every runner (std430 SSBOs, 1D dispatch of
+// kLocalSize-wide groups):
+//   uniform uint hush_first, hush_count: this dispatch evaluates samples
+//     n = hush_first + gl_GlobalInvocationID.x for n < hush_count;
+//   points: binding 0 `float hush_in[]`, D floats per point (x, y[, z]);
+//   grid:   binding 0 `uint hush_axis[]`, per sample index along each axis
+//     (x axis, then y, then z) the triple (cell i0, next cell i1, floatBitsToUint
+//     of the fraction), i.e. hush::lattice_split<float> of origin + step * i done
+//     on the CPU in double; uniform uint hush_base (grid index of sample 0 of
+//     the batch) and uvec3 hush_size (nx, ny, nz; nz = 1 in 2D);
+//   binding 1 `float hush_out[]`: the value per sample, or with gradients
+//     D + 1 floats per sample (value, d/dx, d/dy[, d/dz]);
+//   plus the noise's own uniforms (noise_program<Noise>::uniforms()).
+#ifndef HUSH_GLSL_COMPUTE_SOURCE_HPP
+#define HUSH_GLSL_COMPUTE_SOURCE_HPP
+
+#include <string>
+
+#include "hush/glsl/library.hpp"
+#include "hush/glsl/noise_program.hpp"
+
+namespace hush {
+namespace glsl {
+
+// What a runner reads: an array of points, or a uniform grid.
+enum class batch_layout { points, grid };
+
+// Invocations per work group of every runner (a multiple of the SIMD widths
+// of GPUs (32, 64) and of llvmpipe's 8 or 16 lanes).
+constexpr unsigned kLocalSize = 64;
+
+// The compute shader source for Noise (see the file comment for its interface).
+template <class Noise>
+std::string compute_source(batch_layout layout, bool gradient) {
+  using np = noise_program<Noise>;
+  constexpr int D = np::dimension;
+  const std::string d = std::to_string(D);
+  std::string s =
+      "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
+      std::string(np::name) + (gradient ? ", values and gradients" : ", values") +
+      (layout == batch_layout::points ? ", points" : ", grid") +
+      " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
+      ") in;\n" + library() + "\n// ---- Runner.\n" + np::uniforms() +
+      "uniform uint hush_first;  // first sample of this dispatch\n"
+      "uniform uint hush_count;  // samples in the batch\n";
+  if (layout == batch_layout::points) {
+    s += "layout(std430, binding = 0) readonly buffer hush_input { float hush_in[]; };\n";
+  } else {
+    s += "uniform uint hush_base;   // grid index of the batch's first sample\n"
+         "uniform uvec3 hush_size;  // samples along x, y, z\n"
+         "layout(std430, binding = 0) readonly buffer hush_axes { uint hush_axis[]; };\n";
+  }
+  s += "layout(std430, binding = 1) writeonly buffer hush_output { float hush_out[]; };\n"
+       "void main() {\n"
+       "  uint n = hush_first + gl_GlobalInvocationID.x;\n"
+       "  if (n >= hush_count) return;\n";
+  if (layout == batch_layout::points) {
+    s += "  vec" + d + " p = vec" + d + "(";
+    for (int a = 0; a < D; ++a)
+      s += std::string(a ? ", " : "") + "hush_in[" + d + "u * n + " + std::to_string(a) + "u]";
+    s += ");\n";
+  } else {
+    // Index along each axis from the C-order grid index (i fastest).
+    s += "  uint g = hush_base + n;\n"
+         "  uint t[3] = uint[3](3u * (g % hush_size.x),\n"
+         "                      3u * (hush_size.x + (g / hush_size.x) % hush_size.y),\n"
+         "                      3u * (hush_size.x + hush_size.y + g / (hush_size.x * "
+         "hush_size.y)));\n";
+    std::string i0, i1, f;
+    for (int a = 0; a < D; ++a) {
+      const std::string ta = "t[" + std::to_string(a) + "]";
+      i0 += std::string(a ? ", " : "") + "hush_axis[" + ta + "]";
+      i1 += std::string(a ? ", " : "") + "hush_axis[" + ta + " + 1u]";
+      f += std::string(a ? ", " : "") + "uintBitsToFloat(hush_axis[" + ta + " + 2u])";
+    }
+    s += "  uvec" + d + " i0 = uvec" + d + "(" + i0 + ");\n  uvec" + d + " i1 = uvec" + d + "(" +
+         i1 + ");\n  vec" + d + " f = vec" + d + "(" + f + ");\n";
+  }
+  const std::string call =
+      layout == batch_layout::points ? np::point_call(gradient) : np::cells_call(gradient);
+  if (!gradient) {
+    s += "  hush_out[n] = " + call + ";\n";
+  } else {
+    const std::string stride = std::to_string(D + 1);
+    s += "  vec" + std::to_string(D + 1) + " r = " + call + ";\n";
+    for (int c = 0; c <= D; ++c)
+      s += "  hush_out[" + stride + "u * n + " + std::to_string(c) + "u] = r." +
+           (c == 0 ? 'x' : "yzw"[c - 1]) + ";\n";
+  }
+  s += "}\n";
+  return s;
+}
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_COMPUTE_SOURCE_HPP

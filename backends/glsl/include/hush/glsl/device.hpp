@@ -1,0 +1,301 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::glsl::device: batch evaluation of hush noises with GLSL 4.30 compute
+// shaders, in any OpenGL >= 4.3 context current on the calling thread.
+//
+//   hush::glsl::osmesa_context ctx;                      // or the application's context
+//   hush::glsl::device dev{ctx.loader()};                // or glfwGetProcAddress, ...
+//   hush::evaluate(p, hush::exec::glsl{dev}, points, out);
+//   hush::evaluate_grid(p, hush::exec::glsl{dev}, grid, out, gradients);
+//
+// GL functions come from the loader (name -> address); no GL library is linked.
+// The device compiles one program per (noise, values or gradients, points or
+// grid) on first use and caches it, uploads the inputs to SSBOs, dispatches in
+// chunks of at most GL_MAX_COMPUTE_WORK_GROUP_COUNT groups, splits batches
+// larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE, and reads the results back
+// (synchronously). It leaves the current program and the generic
+// GL_SHADER_STORAGE_BUFFER binding as it found them; it rebinds the indexed
+// SSBO bindings 0 and 1.
+//
+// Accuracy (tests/glsl/glsl_test.cpp; see also hush/glsl/library.hpp):
+//  - points: the float position as given, split exactly on the GPU; grids: each
+//    axis position origin + step * i is formed and split into cell and fraction
+//    in double on the CPU (hush::lattice_split<float>, exactly as the scalar
+//    grid path does), so far-from-origin grids (1e6, -1e9) and negative steps
+//    lose nothing: cells and fractions equal the CPU's bit for bit.
+//  - hashes are bit-identical to the CPU; the remaining float arithmetic
+//    follows the CPU's order, with GLSL's freedom to fuse multiply-adds
+//    (hush/glsl/library.hpp derives the bounds). Tolerance, tested on
+//    llvmpipe: values within 2^-16 (1.5e-5) of the double reference and
+//    2^-15 of the CPU float path; gradients within 2^-16 (1 + L), L the
+//    noise's Lipschitz bound (L = 7.3 in 2D, 10.0 in 3D). On GPUs whose float
+//    ops err by up to 2 ulp, twice that. Measured on llvmpipe (Mesa 22.3.6):
+//    values max 1.8e-6 / RMS 2e-7 from the double reference, gradients max
+//    4.8e-6; Perlin 3D equals the CPU float path bit for bit there, 2D within
+//    2.1e-7 (fused multiply-adds).
+//  - NaN or +-Inf in a point gives NaN in its value and gradient.
+//
+// Errors: the constructor throws std::runtime_error when an entry point is
+// missing or the context is older than 4.3; evaluation throws
+// std::runtime_error with the driver's log when a program does not compile or
+// link, or with the GL error code when GL reports one, and
+// hush::invalid_argument for a grid of 2^32 or more samples, or with more
+// samples summed over its axes than max_buffer_bytes() / 12 (11 million on llvmpipe).
+// A GL error already pending when a call starts is reported by that call too.
+// Not thread-safe; destroy the device while its context is still alive.
+#ifndef HUSH_GLSL_DEVICE_HPP
+#define HUSH_GLSL_DEVICE_HPP
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hush/core/error.hpp"
+#include "hush/core/lattice.hpp"
+#include "hush/core/vec.hpp"
+#include "hush/core/views.hpp"
+#include "hush/glsl/compute_source.hpp"
+#include "hush/glsl/detail/gl.hpp"
+#include "hush/glsl/noise_program.hpp"
+
+namespace hush {
+namespace glsl {
+
+class device {
+ public:
+  using loader_fn = detail::loader_fn;
+
+  // Limits below the GL ones, for tests and for sharing a GPU politely.
+  struct options {
+    // Work groups per glDispatchCompute; 0 = GL_MAX_COMPUTE_WORK_GROUP_COUNT[0].
+    std::size_t max_groups_per_dispatch = 0;
+    // Bytes per SSBO (input or output of one batch); 0 = GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+    std::size_t max_buffer_bytes = 0;
+  };
+
+  // Loads the GL entry points through `loader` from the context current on
+  // this thread and checks that it is OpenGL >= 4.3.
+  explicit device(loader_fn loader) : device(loader, options{}) {}
+  device(loader_fn loader, const options& opt) : gl_(std::make_unique<detail::gl_api>(loader)) {
+    detail::gl_int major = 0, minor = 0;
+    gl_->GetIntegerv(detail::kGlMajorVersion, &major);
+    gl_->GetIntegerv(detail::kGlMinorVersion, &minor);
+    while (gl_->GetError() != detail::kGlNoError) {
+    }  // a pre-3.0 context rejects the version queries
+    renderer_ = gl_->string(detail::kGlRenderer) + ", OpenGL " + gl_->string(detail::kGlVersion);
+    if (major < 4 || (major == 4 && minor < 3))
+      throw std::runtime_error(
+          "hush::glsl::device: needs OpenGL >= 4.3 (compute shaders); the "
+          "current context is " +
+          renderer_);
+    detail::gl_int groups = 0;
+    gl_->GetIntegeri_v(detail::kGlMaxComputeWorkGroupCount, 0, &groups);
+    long long block = 0;
+    gl_->GetInteger64v(detail::kGlMaxShaderStorageBlockSize, &block);
+    gl_->check("hush::glsl::device: querying limits");
+    max_groups_ = static_cast<std::size_t>(groups);
+    if (opt.max_groups_per_dispatch != 0)
+      max_groups_ = std::min(max_groups_, opt.max_groups_per_dispatch);
+    max_bytes_ = static_cast<std::size_t>(block);
+    if (opt.max_buffer_bytes != 0) max_bytes_ = std::min(max_bytes_, opt.max_buffer_bytes);
+    if (max_groups_ == 0 || max_bytes_ < 4 * sizeof(float))
+      throw std::runtime_error("hush::glsl::device: the GL limits leave no room for a batch");
+    gl_->GenBuffers(2, buffers_);
+    gl_->check("hush::glsl::device: creating buffers");
+  }
+  device(const device&) = delete;
+  device& operator=(const device&) = delete;
+  ~device() {
+    programs_.clear();
+    gl_->DeleteBuffers(2, buffers_);
+  }
+
+  // GL_RENDERER and GL_VERSION of the context, e.g. "llvmpipe (LLVM 15.0.6,
+  // 256 bits), OpenGL 4.5 (Core Profile) Mesa 22.3.6".
+  const std::string& renderer() const { return renderer_; }
+  // glDispatchCompute calls made so far (tests check the chunking with it).
+  std::size_t dispatches() const { return dispatches_; }
+  // Work groups per dispatch and bytes per buffer this device uses.
+  std::size_t max_groups_per_dispatch() const { return max_groups_; }
+  std::size_t max_buffer_bytes() const { return max_bytes_; }
+  // The loaded GL functions (for code that adds its own shaders to the context).
+  const detail::gl_api& gl() const { return *gl_; }
+
+  // Values (and, when grad is not null, gradients) of `noise` at n float
+  // points: what hush::evaluate(noise, hush::exec::glsl{dev}, ...) calls.
+  template <class Noise>
+  void evaluate_points(const Noise& noise, const vec<float, Noise::dimension>* pts, std::size_t n,
+                       float* out, vec<float, Noise::dimension>* grad) {
+    constexpr int D = Noise::dimension;
+    static_assert(sizeof(vec<float, D>) == D * sizeof(float), "vec<float, D> is D packed floats");
+    if (n == 0) return;
+    const state_guard guard(*gl_);
+    const detail::gl_uint prog = use_program<Noise>(noise, batch_layout::points, grad != nullptr);
+    const std::size_t stride = grad ? D + 1 : 1;
+    const std::size_t batch = batch_samples(std::max<std::size_t>(stride, D));
+    for (std::size_t first = 0; first < n; first += batch) {
+      const std::size_t m = std::min(batch, n - first);
+      upload(0, pts + first, m * sizeof(vec<float, D>));
+      run_batch<D>(prog, m, stride, out + first, grad ? grad + first : nullptr);
+    }
+  }
+
+  // Values (and gradients) of `noise` on grid g, C order (i fastest): what
+  // hush::evaluate_grid(noise, hush::exec::glsl{dev}, ...) calls.
+  template <class Noise>
+  void evaluate_grid(const Noise& noise, const grid<Noise::dimension>& g, float* out,
+                     vec<float, Noise::dimension>* grad) {
+    constexpr int D = Noise::dimension;
+    g.validate("hush::glsl::device::evaluate_grid");
+    const std::size_t count = g.count();
+    if (count == 0) return;
+    if (count > UINT32_MAX)
+      hush::detail::throw_out_of_range("hush::glsl::device::evaluate_grid", "grid.count()", count,
+                                       "at most 4294967295 samples per call");
+    // Each axis position split in double on the CPU, exactly as the scalar
+    // grid path splits it: (i0, i1, fraction bits) per sample index, in one SSBO.
+    std::size_t axis_samples = 0;
+    for (int a = 0; a < D; ++a) axis_samples += g.size[a];
+    if (axis_samples > max_bytes_ / (3 * sizeof(std::uint32_t)))
+      hush::detail::throw_out_of_range(
+          "hush::glsl::device::evaluate_grid", "grid.size (summed over the axes)", axis_samples,
+          ("at most " + std::to_string(max_bytes_ / (3 * sizeof(std::uint32_t))) +
+           " on this device (its SSBO size limit)")
+              .c_str());
+    std::vector<std::uint32_t> axes;
+    axes.reserve(3 * axis_samples);
+    for (int a = 0; a < D; ++a) {
+      const std::uint32_t period = noise_program<Noise>::period(noise, a);
+      for (std::size_t i = 0; i < g.size[a]; ++i) {
+        const double x = g.origin[a] + g.step[a] * static_cast<double>(i);
+        const lattice_coord<float> c = lattice_split<float>(x, period);
+        std::uint32_t fbits = 0;
+        std::memcpy(&fbits, &c.f, sizeof fbits);
+        axes.insert(axes.end(), {c.i0, c.i1, fbits});
+      }
+    }
+    const state_guard guard(*gl_);
+    const detail::gl_uint prog = use_program<Noise>(noise, batch_layout::grid, grad != nullptr);
+    upload(0, axes.data(), axes.size() * sizeof(std::uint32_t));
+    gl_->Uniform3ui(gl_->GetUniformLocation(prog, "hush_size"),
+                    static_cast<detail::gl_uint>(g.size[0]),
+                    static_cast<detail::gl_uint>(g.size[1]),
+                    static_cast<detail::gl_uint>(D == 3 ? g.size[D - 1] : 1));
+    const detail::gl_int base = gl_->GetUniformLocation(prog, "hush_base");
+    const std::size_t stride = grad ? D + 1 : 1;
+    const std::size_t batch = batch_samples(stride);
+    for (std::size_t first = 0; first < count; first += batch) {
+      gl_->Uniform1ui(base, static_cast<detail::gl_uint>(first));
+      run_batch<D>(prog, std::min(batch, count - first), stride, out + first,
+                   grad ? grad + first : nullptr);
+    }
+  }
+
+ private:
+  // Restores the caller's program and generic SSBO binding on scope exit.
+  class state_guard {
+   public:
+    explicit state_guard(const detail::gl_api& gl) : gl_(gl) {
+      gl.GetIntegerv(detail::kGlCurrentProgram, &program_);
+      gl.GetIntegerv(detail::kGlShaderStorageBufferBinding, &buffer_);
+    }
+    state_guard(const state_guard&) = delete;
+    state_guard& operator=(const state_guard&) = delete;
+    ~state_guard() {
+      gl_.UseProgram(static_cast<detail::gl_uint>(program_));
+      gl_.BindBuffer(detail::kGlShaderStorageBuffer, static_cast<detail::gl_uint>(buffer_));
+    }
+
+   private:
+    const detail::gl_api& gl_;
+    detail::gl_int program_ = 0, buffer_ = 0;
+  };
+
+  // The cached program of (Noise, layout, gradient), made current with the noise's uniforms set.
+  template <class Noise>
+  detail::gl_uint use_program(const Noise& noise, batch_layout layout, bool gradient) {
+    using np = noise_program<Noise>;
+    const std::string key = std::string(np::name) +
+                            (layout == batch_layout::points ? "/points" : "/grid") +
+                            (gradient ? "/gradient" : "/value");
+    auto it = programs_.find(key);
+    if (it == programs_.end()) {
+      detail::gl_program prog = detail::link_program(
+          *gl_, {{detail::kGlComputeShader, compute_source<Noise>(layout, gradient)}});
+      it = programs_.emplace(key, std::move(prog)).first;
+    }
+    const detail::gl_uint id = it->second.id();
+    gl_->UseProgram(id);
+    np::set_uniforms(*gl_, id, noise);
+    gl_->Uniform1ui(gl_->GetUniformLocation(id, "hush_first"), 0u);
+    return id;
+  }
+
+  // Samples per batch: each buffer holds at most max_bytes_, and the
+  // shader's sample indices are 32-bit.
+  std::size_t batch_samples(std::size_t floats_per_sample) const {
+    const std::size_t by_bytes = max_bytes_ / (floats_per_sample * sizeof(float));
+    return std::min<std::size_t>(by_bytes, UINT32_MAX);
+  }
+
+  void upload(int slot, const void* data, std::size_t bytes,
+              detail::gl_enum usage = detail::kGlStreamDraw) {
+    gl_->BindBuffer(detail::kGlShaderStorageBuffer, buffers_[slot]);
+    gl_->BufferData(detail::kGlShaderStorageBuffer, static_cast<detail::gl_sizeiptr>(bytes), data,
+                    usage);
+    gl_->BindBufferBase(detail::kGlShaderStorageBuffer, static_cast<detail::gl_uint>(slot),
+                        buffers_[slot]);
+  }
+
+  // Dispatches samples [0, m) of the current batch (input already bound) in
+  // chunks of max_groups_ groups and reads the results into out (and grad).
+  template <int D>
+  void run_batch(detail::gl_uint prog, std::size_t m, std::size_t stride, float* out,
+                 vec<float, D>* grad) {
+    const std::size_t out_bytes = m * stride * sizeof(float);
+    upload(1, nullptr, out_bytes, detail::kGlDynamicRead);  // leaves buffer 1 bound for reading
+    gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_count"), static_cast<detail::gl_uint>(m));
+    const detail::gl_int first_loc = gl_->GetUniformLocation(prog, "hush_first");
+    const std::size_t groups = (m + kLocalSize - 1) / kLocalSize;
+    for (std::size_t g0 = 0; g0 < groups; g0 += max_groups_) {
+      gl_->Uniform1ui(first_loc, static_cast<detail::gl_uint>(g0 * kLocalSize));
+      gl_->DispatchCompute(static_cast<detail::gl_uint>(std::min(max_groups_, groups - g0)), 1u,
+                           1u);
+      ++dispatches_;
+    }
+    gl_->MemoryBarrier(detail::kGlBufferUpdateBarrierBit);
+    if (!grad) {
+      gl_->GetBufferSubData(detail::kGlShaderStorageBuffer, 0,
+                            static_cast<detail::gl_sizeiptr>(out_bytes), out);
+    } else {
+      scratch_.resize(m * stride);
+      gl_->GetBufferSubData(detail::kGlShaderStorageBuffer, 0,
+                            static_cast<detail::gl_sizeiptr>(out_bytes), scratch_.data());
+      for (std::size_t i = 0; i < m; ++i) {
+        out[i] = scratch_[i * stride];
+        for (int a = 0; a < D; ++a)
+          grad[i][static_cast<std::size_t>(a)] =
+              scratch_[i * stride + 1 + static_cast<std::size_t>(a)];
+      }
+    }
+    gl_->check("hush::glsl::device: evaluating a batch");
+  }
+
+  std::unique_ptr<detail::gl_api> gl_;
+  std::string renderer_;
+  std::size_t max_groups_ = 0, max_bytes_ = 0, dispatches_ = 0;
+  detail::gl_uint buffers_[2] = {0, 0};
+  std::map<std::string, detail::gl_program> programs_;
+  std::vector<float> scratch_;
+};
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_DEVICE_HPP

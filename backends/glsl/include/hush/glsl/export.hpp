@@ -1,0 +1,71 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The files `hush glsl-export DIR` writes, for engines that compile their own
+// shaders: the function library (no #version line, so the engine prepends its
+// own, 330 core or later) and the compute runners hush::glsl::device uses.
+// Each starts with a comment naming the hush version and how to use it.
+#ifndef HUSH_GLSL_EXPORT_HPP
+#define HUSH_GLSL_EXPORT_HPP
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hush/glsl/compute_source.hpp"
+#include "hush/glsl/library.hpp"
+#include "hush/perlin.hpp"
+
+namespace hush {
+namespace glsl {
+
+// One file of the export: its name and its complete text.
+struct export_file {
+  std::string name;     // file name, no directory
+  std::string content;  // the text, ending in a newline
+};
+
+namespace detail {
+
+template <class Noise>
+void add_runners(std::vector<export_file>& files) {
+  const std::string base = std::string("hush_") + noise_program<Noise>::name;
+  for (batch_layout layout : {batch_layout::points, batch_layout::grid})
+    for (bool gradient : {false, true})
+      files.push_back({base + (layout == batch_layout::points ? "_points" : "_grid") +
+                           (gradient ? "_gradient" : "") + ".comp",
+                       compute_source<Noise>(layout, gradient)});
+}
+
+}  // namespace detail
+
+// hush_noise.glsl, then hush_<noise>_<points|grid>[_gradient].comp for every
+// noise with a GLSL program (perlin2, perlin3).
+inline std::vector<export_file> export_files() {
+  std::vector<export_file> files;
+  files.push_back(
+      {"hush_noise.glsl",
+       "// hush " HUSH_VERSION_STRING " GLSL noise library, written by `hush glsl-export`.\n"
+       "//\n"
+       "// Usage: prepend your own #version line (330 core or later; any shader stage):\n"
+       "//   #version 330 core\n"
+       "//   #include or paste this file\n"
+       "//   float n = hush_perlin3(p, hush_seed_key(7u), uvec3(0u));  // in [-1, 1]\n"
+       "// Keys: hush_seed_key(seed) equals hush::seed_key(seed) on the CPU, so a\n"
+       "// shader and hush::perlin<D>{seed} give the same field. Periods: uvecD,\n"
+       "// 0 = not periodic. The *_gradient functions return (value, gradient).\n"
+       "// Hashes equal the CPU bit for bit; values are within 2^-16 of hush's\n"
+       "// double reference where float +, -, * are correctly rounded (tested on\n"
+       "// llvmpipe), 2^-15 where they err by up to 2 ulp; hush/glsl/library.hpp\n"
+       "// derives the bounds. The *.comp files beside this one are the batch runners of\n"
+       "// hush::glsl::device (interface: hush/glsl/compute_source.hpp).\n"
+       "// Regenerate with the same hush version instead of editing by hand.\n" +
+           library()});
+  detail::add_runners<perlin<2>>(files);
+  detail::add_runners<perlin<3>>(files);
+  return files;
+}
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_EXPORT_HPP

@@ -1,0 +1,200 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The generated part of hush's GLSL: every number the shader bodies use,
+// written at run time from the C++ constants (hush/detail/constants.hpp and
+// the float-format facts of std::numeric_limits<float>), in the style of
+// Filament's CodeGenerator. No number is typed twice: the GLSL block below is
+// produced from constant_table(), the tests read back every entry from a
+// shader and compare it bit for bit with the table, and they check that the
+// hand-written bodies (hush/glsl/library.hpp) contain no other number.
+//
+// Exactness: a float constant is emitted as the shortest decimal of at most
+// 9 significant digits that converts back to the same float (9 digits always
+// suffice for IEEE binary32). A conforming compiler's conversion of that
+// literal yields float(constant) bit for bit; even a compiler converting via
+// double cannot double-round it, because such a decimal lies within 1e-9
+// relative of the float and never near a rounding midpoint (2^-25 relative).
+#ifndef HUSH_GLSL_GENERATOR_HPP
+#define HUSH_GLSL_GENERATOR_HPP
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hush/config.hpp"
+#include "hush/core/lattice.hpp"
+#include "hush/detail/constants.hpp"
+
+namespace hush {
+namespace glsl {
+
+// One generated GLSL constant: `const uint NAME = ...;` or `const float NAME = ...;`,
+// or an array of them when values has more than one element.
+struct glsl_constant {
+  enum class type { u32, f32 };
+  std::string name;                 // HUSH_*
+  type kind;                        // GLSL uint or float
+  bool array;                       // declared as NAME[values.size()]
+  std::vector<std::uint32_t> bits;  // the uint values, or the floats' IEEE bit patterns
+  std::string what;                 // one-line comment: where it comes from
+};
+
+namespace detail {
+
+inline std::uint32_t float_bits(float f) {
+  std::uint32_t u = 0;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+inline float bits_float(std::uint32_t u) {
+  float f = 0;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+
+inline glsl_constant uint_constant(const char* name, std::uint32_t v, const char* what) {
+  return {name, glsl_constant::type::u32, false, {v}, what};
+}
+// Scalars and tables of floats: each double constant rounded to float once, as
+// the CPU float path does (T(c) in perlin.hpp).
+inline glsl_constant float_constant(const char* name, double v, const char* what) {
+  return {name, glsl_constant::type::f32, false, {float_bits(static_cast<float>(v))}, what};
+}
+template <int N>
+glsl_constant float_table(const char* name, const double (&v)[N], const char* what) {
+  glsl_constant c{name, glsl_constant::type::f32, true, {}, what};
+  for (int i = 0; i < N; ++i) c.bits.push_back(float_bits(static_cast<float>(v[i])));
+  return c;
+}
+
+}  // namespace detail
+
+// Every constant of the generated GLSL block, in emission order. Values come
+// from hush::detail::constants (the algorithms' numbers) and from
+// std::numeric_limits<float> (the IEEE binary32 layout the lattice split's
+// large-coordinate path decodes).
+inline std::vector<glsl_constant> constant_table() {
+  namespace c = hush::detail::constants;
+  using detail::float_bits;
+  using detail::float_constant;
+  using detail::float_table;
+  using detail::uint_constant;
+  using flt = std::numeric_limits<float>;
+  const std::uint32_t inf_bits = float_bits(flt::infinity());
+  const std::uint32_t mantissa_bits = static_cast<std::uint32_t>(flt::digits - 1);
+  return {
+      uint_constant("HUSH_HASH_SHIFT1", c::kHashShift1, "hash32 (lowbias32) first xor-shift"),
+      uint_constant("HUSH_HASH_MUL1", c::kHashMul1, "hash32 first multiplier"),
+      uint_constant("HUSH_HASH_SHIFT2", c::kHashShift2, "hash32 second xor-shift"),
+      uint_constant("HUSH_HASH_MUL2", c::kHashMul2, "hash32 second multiplier"),
+      uint_constant("HUSH_HASH_SHIFT3", c::kHashShift3, "hash32 third xor-shift"),
+      uint_constant("HUSH_LATTICE_PRIME_X", c::kLatticePrimeX, "lattice fold multiplier, x"),
+      uint_constant("HUSH_LATTICE_PRIME_Y", c::kLatticePrimeY, "lattice fold multiplier, y"),
+      uint_constant("HUSH_LATTICE_PRIME_Z", c::kLatticePrimeZ, "lattice fold multiplier, z"),
+      uint_constant("HUSH_LATTICE_ROTATE_Y", c::kLatticeRotateY, "lattice fold rotation, y"),
+      uint_constant("HUSH_LATTICE_ROTATE_Z", c::kLatticeRotateZ, "lattice fold rotation, z"),
+      uint_constant("HUSH_GOLDEN_GAMMA", c::kGoldenGamma, "seed/stream separation, 2^32/phi"),
+      uint_constant("HUSH_WORD_BITS",
+                    static_cast<std::uint32_t>(std::numeric_limits<std::uint32_t>::digits),
+                    "bits of a hash word (rotations)"),
+      float_constant("HUSH_FADE5", c::kFade5, "quintic fade s(t) = 6t^5 - 15t^4 + 10t^3"),
+      float_constant("HUSH_FADE4", c::kFade4, "fade, t^4 coefficient"),
+      float_constant("HUSH_FADE3", c::kFade3, "fade, t^3 coefficient"),
+      float_constant("HUSH_FADE_DERIV4", 5 * c::kFade5, "fade derivative, t^4 coefficient"),
+      float_constant("HUSH_FADE_DERIV3", 4 * c::kFade4, "fade derivative, t^3 coefficient"),
+      float_constant("HUSH_FADE_DERIV2", 3 * c::kFade3, "fade derivative, t^2 coefficient"),
+      float_table("HUSH_PERLIN2_GRAD_X", c::kPerlin2GradX, "2D gradients (unit, 45 degrees), x"),
+      float_table("HUSH_PERLIN2_GRAD_Y", c::kPerlin2GradY, "2D gradients, y"),
+      uint_constant("HUSH_PERLIN2_GRAD_SHIFT", c::kPerlin2GradShift, "2D index = hash >> shift"),
+      float_table("HUSH_PERLIN3_GRAD_X", c::kPerlin3GradX, "3D gradients (cube edges), x"),
+      float_table("HUSH_PERLIN3_GRAD_Y", c::kPerlin3GradY, "3D gradients, y"),
+      float_table("HUSH_PERLIN3_GRAD_Z", c::kPerlin3GradZ, "3D gradients, z"),
+      uint_constant("HUSH_PERLIN3_GRAD_COUNT", static_cast<std::uint32_t>(c::kPerlin3GradCount),
+                    "3D gradient count"),
+      uint_constant("HUSH_PERLIN3_INDEX_SHIFT", c::kPerlin3IndexShift,
+                    "3D index = ((hash >> s) * count) >> s"),
+      float_constant("HUSH_PERLIN2_SCALE", c::kPerlin2Scale, "2D output scale 1/B"),
+      float_constant("HUSH_PERLIN3_SCALE", c::kPerlin3Scale, "3D output scale 1/B"),
+      {"HUSH_ONE_MINUS_ULP",
+       glsl_constant::type::f32,
+       false,
+       {float_bits(hush::detail::one_minus_ulp<float>())},
+       "largest float below 1: the fraction's clamp (core/lattice.hpp)"},
+      {"HUSH_INT_LIMIT",
+       glsl_constant::type::f32,
+       false,
+       {float_bits(
+           static_cast<float>(std::uint32_t(1) << std::numeric_limits<std::int32_t>::digits))},
+       "2^31: cells below it in magnitude convert through int"},
+      uint_constant("HUSH_FLOAT_EXP_MASK", inf_bits, "IEEE binary32 exponent field (bits of +inf)"),
+      uint_constant("HUSH_FLOAT_EXP_FIELD", inf_bits >> mantissa_bits,
+                    "exponent field after the shift"),
+      uint_constant("HUSH_FLOAT_MANTISSA_BITS", mantissa_bits, "stored mantissa bits"),
+      uint_constant("HUSH_FLOAT_MANTISSA_MASK", (std::uint32_t(1) << mantissa_bits) - 1u,
+                    "stored mantissa field"),
+      uint_constant("HUSH_FLOAT_EXP_BIAS", static_cast<std::uint32_t>(flt::max_exponent - 1),
+                    "exponent bias"),
+      uint_constant("HUSH_FLOAT_SIGN_MASK", float_bits(-0.0f), "sign bit (bits of -0.0)"),
+      uint_constant("HUSH_FLOAT_QNAN", float_bits(flt::quiet_NaN()),
+                    "quiet NaN returned for non-finite input"),
+  };
+}
+
+// A GLSL literal equal to the constant: `16u` or `0x7feb352du` for uint; for
+// float the integer with ".0" when the value is one (up to 2^32), else the
+// shortest round-trip decimal (at most 9 significant digits) with a `.` or an
+// exponent so it parses as float. Throws std::logic_error for a non-finite float.
+inline std::string glsl_literal(glsl_constant::type kind, std::uint32_t bits) {
+  char buf[48];
+  if (kind == glsl_constant::type::u32) {
+    // Shifts and counts read best in decimal, multipliers and masks in hex.
+    std::snprintf(buf, sizeof buf, bits < 0x10000u ? "%uu" : "0x%08xu", bits);
+    return buf;
+  }
+  const float f = detail::bits_float(bits);
+  if (!std::isfinite(f)) throw std::logic_error("hush::glsl: non-finite float constant");
+  if (std::floor(f) == f && std::fabs(f) <= 4294967296.0f) {
+    std::snprintf(buf, sizeof buf, "%.1f", static_cast<double>(f));  // exact: "-15.0"
+    return buf;
+  }
+  for (int digits = 1; digits <= 9; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, static_cast<double>(f));
+    if (std::strtof(buf, nullptr) == f) break;
+  }
+  std::string s = buf;
+  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+  return s;
+}
+
+// The GLSL declaration block of constant_table(): one `const` per line with
+// its origin as a comment. Valid in every stage under #version 330 core.
+inline std::string constants_block() {
+  std::string out = "// ---- Constants, generated by hush " HUSH_VERSION_STRING
+                    " from hush/detail/constants.hpp (hush::glsl::constant_table()).\n";
+  for (const glsl_constant& k : constant_table()) {
+    const char* type = k.kind == glsl_constant::type::u32 ? "uint" : "float";
+    const std::string n = std::to_string(k.bits.size());
+    out += std::string("const ") + type + " " + k.name;
+    if (k.array) {
+      out.append("[").append(n).append("] = ").append(type).append("[").append(n).append("](");
+      for (std::size_t i = 0; i < k.bits.size(); ++i)
+        out += (i ? ", " : "") + glsl_literal(k.kind, k.bits[i]);
+      out += ")";
+    } else {
+      out += " = " + glsl_literal(k.kind, k.bits[0]);
+    }
+    out += ";  // " + k.what + "\n";
+  }
+  return out;
+}
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_GENERATOR_HPP

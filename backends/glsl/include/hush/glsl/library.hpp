@@ -1,0 +1,262 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush's GLSL function library: the generated constants (generator.hpp)
+// followed by hand-written bodies that reference only generated names. The
+// text compiles in every shader stage under `#version 330 core` (no SSBOs,
+// images or other 4.x features) and carries no #version line, so it can be
+// pasted or #included after the application's own.
+//
+//   std::string src = "#version 330 core\n" + hush::glsl::library() + my_shader;
+//
+// Functions (all names hush_*; D = 2 or 3; key = hush::seed_key(seed) on the CPU,
+// or hush_seed_key(seed) here; period = uvecD per axis, 0 = not periodic):
+//   uint  hush_hash32(uint x), hush_hash32(uint a, uint b), hush_seed_key(uint seed)
+//   uint  hush_rotl(uint x, uint r), hush_lattice_hash(uint key, uint i, uint j[, uint k])
+//   hush_lattice_coord hush_lattice_split(float x, uint period)   {i0, i1, f}
+//   float hush_fade(float t), hush_fade_derivative(float t), hush_lerp(float a, float b, float t)
+//   float hush_perlin2(vec2 p, uint key, uvec2 period)          value in [-1, 1]
+//   vec3  hush_perlin2_gradient(vec2 p, uint key, uvec2 period) (value, d/dx, d/dy)
+//   float hush_perlin3(vec3 p, uint key, uvec3 period)
+//   vec4  hush_perlin3_gradient(vec3 p, uint key, uvec3 period) (value, d/dx, d/dy, d/dz)
+//   hush_perlinD_cells[_gradient](uvecD i0, uvecD i1, vecD f, uint key): the same
+//   from an already split position (cells i0, i1 = i0 + 1 wrapped; fraction f).
+//
+// Contract: the bodies mirror the CPU float algorithm (include/hush/perlin.hpp,
+// core/hash.hpp, core/lattice.hpp) operation by operation: the same gradient
+// index mapping, Horner fade, lerp a + t * (b - a), dot order and final scale.
+//  - Hashes use 32-bit `uint` arithmetic only, which GLSL defines modulo 2^32:
+//    hush_hash32 and hush_lattice_hash equal the CPU's bit for bit.
+//  - The lattice split of a float coordinate is exact (floor, x - floor(x) and
+//    the cell modulo 2^32 or the period, also for |x| >= 2^31), so cells and
+//    fractions equal the CPU's hush::lattice_split<float> of the same float.
+//  - The remaining float arithmetic follows the CPU's order. GLSL lets the
+//    compiler fuse a * b + c into one fma (no `precise` before 4.00), GLSL
+//    4.x asks only that +, -, * be correctly rounded (3.30 states no operation
+//    precision at all), and many GPUs flush denormals to zero. The forward
+//    error analysis behind the CPU's 2^-16 budget bounds each op's rounding by
+//    2^-24 relative, which a fused op also meets: with correctly rounded ops
+//    (llvmpipe) values are within 2^-16 of the double reference and 2^-15 of
+//    the CPU float result; a GPU whose ops err by up to 2 ulp doubles both
+//    (2^-15, 2^-14). Gradients: the same times (1 + the noise's Lipschitz
+//    bound). Denormal flushing only changes results below 1.2e-38 in
+//    magnitude, and the split of a denormal coordinate (cell 0 or -1) on such
+//    GPUs. Measured on llvmpipe: tests/glsl/glsl_test.cpp, hush/glsl/device.hpp.
+//  - NaN or +-Inf in any coordinate gives NaN in every output component (the
+//    point functions test the exponent bits, so fast-math folding cannot lose it).
+#ifndef HUSH_GLSL_LIBRARY_HPP
+#define HUSH_GLSL_LIBRARY_HPP
+
+#include <string>
+
+#include "hush/glsl/generator.hpp"
+
+namespace hush {
+namespace glsl {
+namespace detail {
+
+// Hashing: core/hash.hpp, operation by operation.
+constexpr const char* kHashBody = R"glsl(
+// ---- Hashing (core/hash.hpp): 32-bit uint arithmetic only, equal to the CPU bit for bit.
+uint hush_hash32(uint x) {
+  x ^= x >> HUSH_HASH_SHIFT1;
+  x *= HUSH_HASH_MUL1;
+  x ^= x >> HUSH_HASH_SHIFT2;
+  x *= HUSH_HASH_MUL2;
+  x ^= x >> HUSH_HASH_SHIFT3;
+  return x;
+}
+uint hush_hash32(uint a, uint b) { return hush_hash32(hush_hash32(a + HUSH_GOLDEN_GAMMA) ^ b); }
+uint hush_seed_key(uint seed) { return hush_hash32(seed + HUSH_GOLDEN_GAMMA); }
+uint hush_rotl(uint x, uint r) { return (x << r) | (x >> (HUSH_WORD_BITS - r)); }
+uint hush_lattice_hash(uint key, uint i, uint j) {
+  return hush_hash32(key ^ (i * HUSH_LATTICE_PRIME_X) ^
+                     hush_rotl(j * HUSH_LATTICE_PRIME_Y, HUSH_LATTICE_ROTATE_Y));
+}
+uint hush_lattice_hash(uint key, uint i, uint j, uint k) {
+  return hush_hash32(key ^ (i * HUSH_LATTICE_PRIME_X) ^
+                     hush_rotl(j * HUSH_LATTICE_PRIME_Y, HUSH_LATTICE_ROTATE_Y) ^
+                     hush_rotl(k * HUSH_LATTICE_PRIME_Z, HUSH_LATTICE_ROTATE_Z));
+}
+)glsl";
+
+// The lattice split: core/lattice.hpp for a float coordinate.
+constexpr const char* kLatticeBody = R"glsl(
+// ---- Lattice split (core/lattice.hpp).
+bool hush_is_nonfinite(float x) {
+  return (floatBitsToUint(x) & HUSH_FLOAT_EXP_MASK) == HUSH_FLOAT_EXP_MASK;
+}
+float hush_nan() { return uintBitsToFloat(HUSH_FLOAT_QNAN); }
+// floor(x) modulo the period (0: modulo 2^32) for an integral finite float fl.
+// |fl| < 2^31 converts through int; beyond, fl = m * 2^e with a 24-bit m and
+// e >= 8 is decoded from its bits and reduced exactly (m << e wraps mod 2^32;
+// mod a period, e doublings mod p), like the CPU's exact fmod.
+uint hush_floor_mod(float fl, uint period) {
+  if (abs(fl) < HUSH_INT_LIMIT) {
+    int i = int(fl);
+    if (period == 0u) return uint(i);  // two's complement: i mod 2^32
+    uint r = uint(abs(i)) % period;
+    return (i < 0 && r != 0u) ? period - r : r;
+  }
+  uint b = floatBitsToUint(fl);
+  uint e = ((b >> HUSH_FLOAT_MANTISSA_BITS) & HUSH_FLOAT_EXP_FIELD) -
+           (HUSH_FLOAT_EXP_BIAS + HUSH_FLOAT_MANTISSA_BITS);
+  uint m = (b & HUSH_FLOAT_MANTISSA_MASK) | (1u << HUSH_FLOAT_MANTISSA_BITS);
+  uint r;
+  if (period == 0u) {
+    r = e >= HUSH_WORD_BITS ? 0u : m << e;
+  } else {
+    r = m % period;
+    for (uint s = 0u; s < e; ++s) {  // period <= 2^31 - 1, so r << 1 cannot overflow
+      r <<= 1u;
+      if (r >= period) r -= period;
+    }
+  }
+  if ((b & HUSH_FLOAT_SIGN_MASK) == 0u || r == 0u) return r;
+  return period == 0u ? 0u - r : period - r;
+}
+struct hush_lattice_coord {
+  uint i0;  // floor(x) modulo 2^32 (or the period)
+  uint i1;  // the next cell, wrapped the same way
+  float f;  // x - floor(x) in [0, 1); NaN when x is not finite
+};
+hush_lattice_coord hush_lattice_split(float x, uint period) {
+  hush_lattice_coord c;
+  if (hush_is_nonfinite(x)) {
+    c.i0 = 0u;
+    c.i1 = period == 1u ? 0u : 1u;
+    c.f = hush_nan();
+    return c;
+  }
+  float fl = floor(x);
+  c.f = min(x - fl, HUSH_ONE_MINUS_ULP);  // exact difference; rounds to 1 only for tiny negative x
+  c.i0 = hush_floor_mod(fl, period);
+  c.i1 = c.i0 + 1u;
+  if (period != 0u && c.i1 == period) c.i1 = 0u;
+  return c;
+}
+)glsl";
+
+// Improved Perlin noise: include/hush/perlin.hpp eval2 / eval3.
+constexpr const char* kPerlinBody = R"glsl(
+// ---- Improved Perlin noise (Perlin 2002; include/hush/perlin.hpp).
+float hush_fade(float t) {
+  return t * t * t * (t * (t * HUSH_FADE5 + HUSH_FADE4) + HUSH_FADE3);
+}
+float hush_fade_derivative(float t) {
+  return t * t * (t * (t * HUSH_FADE_DERIV4 + HUSH_FADE_DERIV3) + HUSH_FADE_DERIV2);
+}
+float hush_lerp(float a, float b, float t) { return a + t * (b - a); }
+uint hush_perlin2_grad_index(uint h) { return h >> HUSH_PERLIN2_GRAD_SHIFT; }
+uint hush_perlin3_grad_index(uint h) {
+  return ((h >> HUSH_PERLIN3_INDEX_SHIFT) * HUSH_PERLIN3_GRAD_COUNT) >> HUSH_PERLIN3_INDEX_SHIFT;
+}
+
+// (value, d/dx, d/dy) from cells i0, i1 and fraction f; the value alone is .x
+// (the compiler drops the gradient terms when only .x is used).
+vec3 hush_perlin2_cells_gradient(uvec2 i0, uvec2 i1, vec2 f, uint key) {
+  float fx = f.x, fy = f.y, fx1 = fx - 1.0, fy1 = fy - 1.0;
+  uint g00 = hush_perlin2_grad_index(hush_lattice_hash(key, i0.x, i0.y));
+  uint g10 = hush_perlin2_grad_index(hush_lattice_hash(key, i1.x, i0.y));
+  uint g01 = hush_perlin2_grad_index(hush_lattice_hash(key, i0.x, i1.y));
+  uint g11 = hush_perlin2_grad_index(hush_lattice_hash(key, i1.x, i1.y));
+  float d00 = HUSH_PERLIN2_GRAD_X[g00] * fx + HUSH_PERLIN2_GRAD_Y[g00] * fy;
+  float d10 = HUSH_PERLIN2_GRAD_X[g10] * fx1 + HUSH_PERLIN2_GRAD_Y[g10] * fy;
+  float d01 = HUSH_PERLIN2_GRAD_X[g01] * fx + HUSH_PERLIN2_GRAD_Y[g01] * fy1;
+  float d11 = HUSH_PERLIN2_GRAD_X[g11] * fx1 + HUSH_PERLIN2_GRAD_Y[g11] * fy1;
+  float u = hush_fade(fx), v = hush_fade(fy);
+  float x0 = hush_lerp(d00, d10, u), x1 = hush_lerp(d01, d11, u);
+  float value = HUSH_PERLIN2_SCALE * hush_lerp(x0, x1, v);
+  float du = hush_fade_derivative(fx), dv = hush_fade_derivative(fy);
+  float gx = hush_lerp(hush_lerp(HUSH_PERLIN2_GRAD_X[g00], HUSH_PERLIN2_GRAD_X[g10], u),
+                       hush_lerp(HUSH_PERLIN2_GRAD_X[g01], HUSH_PERLIN2_GRAD_X[g11], u), v) +
+             du * hush_lerp(d10 - d00, d11 - d01, v);
+  float gy = hush_lerp(hush_lerp(HUSH_PERLIN2_GRAD_Y[g00], HUSH_PERLIN2_GRAD_Y[g10], u),
+                       hush_lerp(HUSH_PERLIN2_GRAD_Y[g01], HUSH_PERLIN2_GRAD_Y[g11], u), v) +
+             dv * (x1 - x0);
+  return vec3(value, HUSH_PERLIN2_SCALE * gx, HUSH_PERLIN2_SCALE * gy);
+}
+float hush_perlin2_cells(uvec2 i0, uvec2 i1, vec2 f, uint key) {
+  return hush_perlin2_cells_gradient(i0, i1, f, key).x;
+}
+
+// Trilinear blend of eight corner quantities (corner n = a + 2b + 4c).
+float hush_blend8(float q[8], float u, float v, float w) {
+  return hush_lerp(hush_lerp(hush_lerp(q[0], q[1], u), hush_lerp(q[2], q[3], u), v),
+                   hush_lerp(hush_lerp(q[4], q[5], u), hush_lerp(q[6], q[7], u), v), w);
+}
+// (value, d/dx, d/dy, d/dz); corner n = a + 2b + 4c sits at offset (a, b, c).
+vec4 hush_perlin3_cells_gradient(uvec3 i0, uvec3 i1, vec3 f, uint key) {
+  vec3 fo[2] = vec3[2](f, f - vec3(1.0));
+  uvec3 io[2] = uvec3[2](i0, i1);
+  float d[8], gxs[8], gys[8], gzs[8];
+  for (int n = 0; n < 8; ++n) {
+    int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+    uint g = hush_perlin3_grad_index(hush_lattice_hash(key, io[a].x, io[b].y, io[c].z));
+    gxs[n] = HUSH_PERLIN3_GRAD_X[g];
+    gys[n] = HUSH_PERLIN3_GRAD_Y[g];
+    gzs[n] = HUSH_PERLIN3_GRAD_Z[g];
+    d[n] = gxs[n] * fo[a].x + gys[n] * fo[b].y + gzs[n] * fo[c].z;
+  }
+  float u = hush_fade(f.x), v = hush_fade(f.y), w = hush_fade(f.z);
+  float x00 = hush_lerp(d[0], d[1], u), x10 = hush_lerp(d[2], d[3], u);
+  float x01 = hush_lerp(d[4], d[5], u), x11 = hush_lerp(d[6], d[7], u);
+  float y0 = hush_lerp(x00, x10, v), y1 = hush_lerp(x01, x11, v);
+  float value = HUSH_PERLIN3_SCALE * hush_lerp(y0, y1, w);
+  float du = hush_fade_derivative(f.x), dv = hush_fade_derivative(f.y);
+  float dw = hush_fade_derivative(f.z);
+  // d/dx of the lerp over x: du * (d[a=1] - d[a=0]), blended in y and z.
+  float ex = hush_lerp(hush_lerp(d[1] - d[0], d[3] - d[2], v), hush_lerp(d[5] - d[4], d[7] - d[6], v), w);
+  float ey = hush_lerp(x10 - x00, x11 - x01, w);
+  float ez = y1 - y0;
+  return vec4(value, HUSH_PERLIN3_SCALE * (hush_blend8(gxs, u, v, w) + du * ex),
+              HUSH_PERLIN3_SCALE * (hush_blend8(gys, u, v, w) + dv * ey),
+              HUSH_PERLIN3_SCALE * (hush_blend8(gzs, u, v, w) + dw * ez));
+}
+float hush_perlin3_cells(uvec3 i0, uvec3 i1, vec3 f, uint key) {
+  return hush_perlin3_cells_gradient(i0, i1, f, key).x;
+}
+
+// Point evaluation: split each coordinate, then evaluate; NaN for non-finite input.
+vec3 hush_perlin2_gradient(vec2 p, uint key, uvec2 period) {
+  if (hush_is_nonfinite(p.x) || hush_is_nonfinite(p.y)) return vec3(hush_nan());
+  hush_lattice_coord cx = hush_lattice_split(p.x, period.x);
+  hush_lattice_coord cy = hush_lattice_split(p.y, period.y);
+  return hush_perlin2_cells_gradient(uvec2(cx.i0, cy.i0), uvec2(cx.i1, cy.i1), vec2(cx.f, cy.f), key);
+}
+float hush_perlin2(vec2 p, uint key, uvec2 period) {
+  return hush_perlin2_gradient(p, key, period).x;
+}
+vec4 hush_perlin3_gradient(vec3 p, uint key, uvec3 period) {
+  if (hush_is_nonfinite(p.x) || hush_is_nonfinite(p.y) || hush_is_nonfinite(p.z))
+    return vec4(hush_nan());
+  hush_lattice_coord cx = hush_lattice_split(p.x, period.x);
+  hush_lattice_coord cy = hush_lattice_split(p.y, period.y);
+  hush_lattice_coord cz = hush_lattice_split(p.z, period.z);
+  return hush_perlin3_cells_gradient(uvec3(cx.i0, cy.i0, cz.i0), uvec3(cx.i1, cy.i1, cz.i1),
+                                     vec3(cx.f, cy.f, cz.f), key);
+}
+float hush_perlin3(vec3 p, uint key, uvec3 period) {
+  return hush_perlin3_gradient(p, key, period).x;
+}
+)glsl";
+
+}  // namespace detail
+
+// The hand-written bodies, in order; tests check they hold no numeric literal
+// besides the 2^D-cell structure integers (0, 1, 2, 4, 8).
+inline std::string library_bodies() {
+  return std::string(detail::kHashBody) + detail::kLatticeBody + detail::kPerlinBody;
+}
+
+// The whole function library: a header comment naming the hush version, the
+// generated constants, then the bodies. No #version line.
+inline std::string library() {
+  return "// hush " HUSH_VERSION_STRING
+         " GLSL function library (generated; #version 330 core or later, any stage).\n" +
+         constants_block() + library_bodies();
+}
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_LIBRARY_HPP

@@ -1,0 +1,32 @@
+// hush — the `hush` program: the GL device `--backend glsl` runs on (glsl_device.hpp).
+#include "glsl_device.hpp"
+
+#if HUSH_CLI_HAVE_GLSL
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "args.hpp"
+#include "hush/glsl/osmesa_context.hpp"
+
+namespace hush_cli {
+
+hush::glsl::device& glsl_device() {
+  // The context outlives the device (destruction in reverse order of creation).
+  struct holder {
+    hush::glsl::osmesa_context context;
+    hush::glsl::device device{hush::glsl::osmesa_context::loader()};
+  };
+  static std::unique_ptr<holder> h;
+  if (!h) {
+    try {
+      h = std::make_unique<holder>();
+    } catch (const std::exception& e) {
+      throw run_error(std::string("--backend glsl: no GL context: ") + e.what());
+    }
+  }
+  return h->device;
+}
+
+}  // namespace hush_cli
+#endif

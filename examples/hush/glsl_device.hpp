@@ -1,0 +1,21 @@
+// hush — the `hush` program: the GL device `--backend glsl` runs on.
+#ifndef HUSH_CLI_GLSL_DEVICE_HPP
+#define HUSH_CLI_GLSL_DEVICE_HPP
+
+#ifndef HUSH_CLI_HAVE_GLSL
+#define HUSH_CLI_HAVE_GLSL 0  // set to 1 by examples/CMakeLists.txt when OSMesa is found
+#endif
+
+#if HUSH_CLI_HAVE_GLSL
+#include "hush/glsl/device.hpp"
+
+namespace hush_cli {
+
+// One headless OSMesa GL 4.5 context and its hush::glsl::device for the whole process,
+// created on first use. Throws run_error when no GL context can be created.
+hush::glsl::device& glsl_device();
+
+}  // namespace hush_cli
+#endif
+
+#endif  // HUSH_CLI_GLSL_DEVICE_HPP
