@@ -1,5 +1,8 @@
 #!/usr/bin/env python3
-"""Checks that README.md's usage example is examples/basic_usage.cpp verbatim.
+"""Checks that README.md's usage examples are the example programs verbatim.
+
+The block under '## Use' is examples/basic_usage.cpp; any other ```cpp block
+right after a line `<!-- example: examples/NAME.cpp -->` is that file.
 
 The README quotes the example; CI builds and runs the example, so keeping the
 two identical means the README's code is known to compile and run.
@@ -18,4 +21,13 @@ if not match:
 if match.group(1) != example:
     sys.exit("check_readme_example: README.md's usage example differs from "
              "examples/basic_usage.cpp; make them identical")
-print("check_readme_example: README.md quotes examples/basic_usage.cpp verbatim")
+quoted = ["examples/basic_usage.cpp"]
+for name, code in re.findall(r"<!-- example: (examples/[\w./-]+) -->\n```cpp\n(.*?)```", readme, re.S):
+    path = root / name
+    if not path.is_file():
+        sys.exit(f"check_readme_example: README.md quotes {name}, which does not exist")
+    if code != path.read_text(encoding="utf-8"):
+        sys.exit(f"check_readme_example: README.md's quote of {name} differs from the file; "
+                 "make them identical")
+    quoted.append(name)
+print("check_readme_example: README.md quotes " + ", ".join(quoted) + " verbatim")
