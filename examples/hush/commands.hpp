@@ -24,6 +24,10 @@ const std::vector<option_spec>& sample_options();
 int run_gallery(const std::vector<std::string>& args);
 const std::vector<option_spec>& gallery_options();
 
+// hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]: speed vs error.
+int run_bench(const std::vector<std::string>& args);
+const std::vector<option_spec>& bench_options();
+
 }  // namespace hush_cli
 
 #endif  // HUSH_CLI_COMMANDS_HPP

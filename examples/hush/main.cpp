@@ -4,6 +4,7 @@
 //   hush sample NOISE [--dim 2|3] [--size N|NxM|NxMxK] [--origin x,y[,z]] [--step s]
 //                     [--seed n] [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
 //   hush gallery [--out DIR]
+//   hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]
 //
 // Exit codes: 0 success, 1 a failure doing valid work (e.g. an unwritable file), 2 a
 // usage error. Every error is one line on stderr: "hush <command>: <what is wrong>".
@@ -35,6 +36,8 @@ const std::vector<command>& commands() {
       {"sample", "hush sample NOISE [options] --out FILE.npy|FILE.png",
        "sample a noise on a uniform grid", run_sample},
       {"gallery", "hush gallery [--out DIR]", "render the showcase images (PNG)", run_gallery},
+      {"bench", "hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]",
+       "speed-vs-error table of every noise and backend", run_bench},
   };
   return table;
 }
@@ -79,6 +82,10 @@ void print_usage(std::ostream& os) {
   }
   os << "\nhush gallery [--out DIR]\n";
   print_options(os, gallery_options());
+  os << "\nhush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]\n"
+        "  Times every noise x backend x workload (ns/sample, median of repetitions, one\n"
+        "  thread) next to its error against the double reference; Markdown on stdout.\n";
+  print_options(os, bench_options());
   os << "\nEvery option takes one value: '--seed 7' or '--seed=7'.\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";
 }
