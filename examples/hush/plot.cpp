@@ -14,7 +14,7 @@ namespace {
 
 // Layout in SVG user units (pixels).
 constexpr double kWidth = 960, kHeight = 640;
-constexpr double kLeft = 90, kRight = 200, kTop = 50, kBottom = 90;  // margins; legend right
+constexpr double kLeft = 90, kRight = 230, kTop = 50, kBottom = 90;  // margins; legend right
 constexpr double kMarker = 5;       // marker half-size
 constexpr double kFontSize = 10;    // labels
 constexpr double kCharWidth = 5.6;  // average glyph width at kFontSize, to size label boxes
@@ -69,7 +69,7 @@ log_axis make_axis(double min, double max, double pixel_lo, double pixel_hi) {
 }
 
 std::string decade_label(int e) {
-  if (e >= 0 && e <= 3) return std::to_string(static_cast<int>(std::pow(10.0, e) + 0.5));
+  if (e >= 0 && e <= 3) return std::to_string(std::lround(std::pow(10.0, e)));
   return "1e" + std::to_string(e);
 }
 
@@ -165,8 +165,12 @@ std::string to_svg(const scatter_plot& plot) {
      << "<text transform=\"translate(24," << num((py0 + py1) / 2)
      << ") rotate(-90)\" font-size=\"13\" text-anchor=\"middle\">" << escape(plot.y_label)
      << "</text>\n";
+  // Boxes of what is drawn so far that labels should not cover.
+  std::vector<box> placed;
   if (any_floor) {
     const double y = ay.map(floor_y);
+    placed.push_back({px0 + 6, y - 6 - kFontSize, px0 + 6 + kCharWidth * 1.1 *
+                      static_cast<double>(plot.floor_note.size()), y - 4});
     os << "<line x1=\"" << num(px0) << "\" y1=\"" << num(y) << "\" x2=\"" << num(px1) << "\" y2=\""
        << num(y) << "\" stroke=\"#888\" stroke-dasharray=\"6,4\"/>\n"
        << "<text x=\"" << num(px0 + 6) << "\" y=\"" << num(y - 6)
@@ -174,7 +178,7 @@ std::string to_svg(const scatter_plot& plot) {
   }
 
   // Points, then labels placed where they overlap neither a placed label nor the frame.
-  std::vector<box> placed;
+  const std::size_t first_marker = placed.size();
   for (const plot_point& p : plot.points) {
     if (!(std::isfinite(p.x) && p.x > 0) || p.series >= plot.series.size()) continue;
     const double x = ax.map(p.x);
@@ -182,7 +186,7 @@ std::string to_svg(const scatter_plot& plot) {
     draw_marker(os, plot.series[p.series], x, y);
     placed.push_back({x - kMarker, y - kMarker, x + kMarker, y + kMarker});
   }
-  std::size_t marker_index = 0;
+  std::size_t marker_index = first_marker;
   for (const plot_point& p : plot.points) {
     if (!(std::isfinite(p.x) && p.x > 0) || p.series >= plot.series.size()) continue;
     const box self = placed[marker_index++];
