@@ -192,26 +192,32 @@ std::string to_svg(const scatter_plot& plot) {
     const box self = placed[marker_index++];
     const double x = (self.x0 + self.x1) / 2, y = (self.y0 + self.y1) / 2;
     const double w = kCharWidth * static_cast<double>(p.label.size()), h = kFontSize + 2;
-    // Candidates: right, left, above, below, then further out.
+    // Candidates: right, left, above, below (next to the marker), then further out.
     const double d = kMarker + 3;
     const std::vector<std::pair<double, double>> offsets = {
         {d, h / 2 - 2},       {-d - w, h / 2 - 2}, {-w / 2, -d},         {-w / 2, d + h - 2},
         {d, -h + 2},          {d, h + 2},          {-d - w, -h + 2},     {-d - w, h + 2},
         {-w / 2, -d - h},     {-w / 2, d + 2 * h}, {d, -2 * h},          {d, 2 * h + 2}};
-    std::pair<double, double> best = offsets[0];
-    for (const auto& o : offsets) {
+    std::size_t best = 0;
+    for (std::size_t n = 0; n < offsets.size(); ++n) {
+      const auto& o = offsets[n];
       const box b{x + o.first, y + o.second - h + 2, x + o.first + w, y + o.second + 2};
       const bool inside = b.x0 >= px0 && b.x1 <= px1 && b.y0 >= py1 && b.y1 <= py0;
       bool free = inside;
       for (const box& q : placed)
         if (free && b.overlaps(q) && !(q.x0 == self.x0 && q.y0 == self.y0)) free = false;
       if (free) {
-        best = o;
+        best = n;
         break;
       }
     }
-    const double lx = x + best.first, ly = y + best.second;
+    const double lx = x + offsets[best].first, ly = y + offsets[best].second;
     placed.push_back({lx, ly - h + 2, lx + w, ly + 2});
+    if (best >= 4) {  // away from its point: a thin leader line to the label's nearer end
+      const double ex = lx > x ? lx : lx + w, ey = ly - h / 2 + 2;
+      os << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(ex)
+         << "\" y2=\"" << num(ey) << "\" stroke=\"#999\" stroke-width=\"0.6\"/>\n";
+    }
     os << "<text x=\"" << num(lx) << "\" y=\"" << num(ly) << "\" font-size=\"" << kFontSize
        << "\" fill=\"#333\">" << escape(p.label) << "</text>\n";
   }
