@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
+#include "hush/core/rng.hpp"
 #include "hush/exec.hpp"
 #include "hush/fractal.hpp"
-#include "hush/core/rng.hpp"
 #include "hush/perlin.hpp"
 
 #if HUSH_BENCH_HAVE_GLM
@@ -134,8 +134,7 @@ prepared_case prepare_hush_grid(const Noise& noise, const Exec& ex,
     if (b->grad.empty())
       hush::evaluate_grid(noise, ex, g, hush::span<float>(b->out));
     else
-      hush::evaluate_grid(noise, ex, g, hush::span<float>(b->out),
-                          hush::span<fvec<D>>(b->grad));
+      hush::evaluate_grid(noise, ex, g, hush::span<float>(b->out), hush::span<fvec<D>>(b->grad));
     keep(b->out);
   };
   p.run();
@@ -162,7 +161,8 @@ prepared_case prepare_hush_points(const Noise& noise, const Exec& ex, std::size_
     keep(b->out);
   };
   p.run();
-  for (std::size_t i = 0; i < n; ++i) measure(noise, i, hush::vec_cast<double>(b->points[i]), *b, p);
+  for (std::size_t i = 0; i < n; ++i)
+    measure(noise, i, hush::vec_cast<double>(b->points[i]), *b, p);
   return p;
 }
 
@@ -290,8 +290,7 @@ void add_glm_rows(std::vector<bench_case>& cases, const sizes& s) {
   row.backend = "glm::perlin";
   row.reference = error_reference::glm_double;
   add_peer_rows<D>(
-      cases, s, row,
-      [] { return [](const dvec<D>& p) { return glm::perlin(to_glm_float(p)); }; },
+      cases, s, row, [] { return [](const dvec<D>& p) { return glm::perlin(to_glm_float(p)); }; },
       &glm_error<D>);
 }
 #endif

@@ -53,13 +53,13 @@ struct prepared_case {
 };
 
 struct bench_case {
-  std::string noise;     // "perlin 2D", "fbm 3D"
-  std::string backend;   // "scalar", "simd", "glm::perlin", "libnoise"
-  std::string workload;  // "grid 512x512", "points 262144"
+  std::string noise;      // "perlin 2D", "fbm 3D"
+  std::string backend;    // "scalar", "simd", "glm::perlin", "libnoise"
+  std::string workload;   // "grid 512x512", "points 262144"
   bool gradient = false;  // value + analytic gradient
   bool peer = false;      // another library, for comparison
   error_reference reference = error_reference::hush_double;
-  std::string note;       // how a peer row was configured, when that matters
+  std::string note;  // how a peer row was configured, when that matters
   std::function<prepared_case()> prepare;
   // "perlin2D/scalar/grid/value": the Google Benchmark name, unique in the table.
   std::string id() const;
@@ -85,13 +85,13 @@ void register_benchmarks(const std::vector<bench_case>& cases, double min_time, 
 
 // The machine a run measured, for the report.
 struct machine_info {
-  std::string cpu;        // "model name" from /proc/cpuinfo
-  int cpus = 0;           // logical CPUs
-  double mhz = 0;         // as Google Benchmark measures it
-  std::string compiler;   // e.g. "GCC 12.2.0"
-  std::string build;      // "Release -O2" etc.: what this program was compiled with
+  std::string cpu;       // "model name" from /proc/cpuinfo
+  int cpus = 0;          // logical CPUs
+  double mhz = 0;        // as Google Benchmark measures it
+  std::string compiler;  // e.g. "GCC 12.2.0"
+  std::string build;     // "Release -O2" etc.: what this program was compiled with
   std::string simd_target;
-  std::string peers;      // the peer libraries compiled in
+  std::string peers;  // the peer libraries compiled in
 };
 machine_info describe_machine();
 

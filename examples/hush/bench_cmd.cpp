@@ -63,7 +63,8 @@ bench_request parse_bench(const std::vector<std::string>& args) {
   while (!in.done()) {
     const std::string name = in.option(bench_options()).name;
     const std::string v = in.value();
-    if (name == "--quick") throw usage_error("--quick is a flag and takes no value; got '" + v + "'");
+    if (name == "--quick")
+      throw usage_error("--quick is a flag and takes no value; got '" + v + "'");
     if (name == "--json") r.json = v;
     if (name == "--markdown") r.markdown = v;
     if (name == "--filter") r.filter = v;
@@ -91,7 +92,7 @@ bench_request parse_bench(const std::vector<std::string>& args) {
 // One row of the report: a case and what its run measured.
 struct bench_row {
   const hush_bench::bench_case* c = nullptr;
-  double ns = NAN;  // median ns/sample
+  double ns = NAN;                                                      // median ns/sample
   double max_abs = NAN, rms = NAN, grad_max_abs = NAN, grad_rms = NAN;  // NaN: not applicable
   int repetitions = 0;
 };
@@ -99,8 +100,7 @@ struct bench_row {
 // Keeps the median aggregate of each case (or its only run when there is one repetition).
 class row_reporter : public benchmark::BenchmarkReporter {
  public:
-  row_reporter(const std::vector<hush_bench::bench_case>& cases, progress& bar)
-      : bar_(bar) {
+  row_reporter(const std::vector<hush_bench::bench_case>& cases, progress& bar) : bar_(bar) {
     for (const hush_bench::bench_case& c : cases) {
       index_[c.id()] = rows_.size();
       rows_.push_back(bench_row{&c});
@@ -215,8 +215,9 @@ std::string json(const std::vector<bench_row>& rows, const hush_bench::machine_i
      << "  \"date\": " << json_string(date) << ",\n"
      << "  \"machine\": {\"cpu\": " << json_string(m.cpu) << ", \"logical_cpus\": " << m.cpus
      << ", \"mhz\": " << json_number(m.mhz) << ", \"compiler\": " << json_string(m.compiler)
-     << ", \"build\": " << json_string(m.build) << ", \"simd_target\": "
-     << json_string(m.simd_target) << ", \"peers\": " << json_string(m.peers) << "},\n"
+     << ", \"build\": " << json_string(m.build)
+     << ", \"simd_target\": " << json_string(m.simd_target)
+     << ", \"peers\": " << json_string(m.peers) << "},\n"
      << "  \"settings\": {\"quick\": " << (r.quick ? "true" : "false")
      << ", \"repetitions\": " << r.repetitions
      << ", \"min_time_s\": " << json_number(r.quick ? kQuickMinTime : kMinTime)
@@ -231,8 +232,7 @@ std::string json(const std::vector<bench_row>& rows, const hush_bench::machine_i
        << ", \"noise\": " << json_string(c.noise) << ", \"backend\": " << json_string(c.backend)
        << ", \"workload\": " << json_string(c.workload)
        << ", \"output\": " << json_string(c.gradient ? "value+gradient" : "value")
-       << ", \"peer\": " << (c.peer ? "true" : "false")
-       << ", \"repetitions\": " << row.repetitions
+       << ", \"peer\": " << (c.peer ? "true" : "false") << ", \"repetitions\": " << row.repetitions
        << ", \"ns_per_sample\": " << json_number(row.ns)
        << ", \"max_abs_error\": " << json_number(row.max_abs)
        << ", \"rms_error\": " << json_number(row.rms)
@@ -261,7 +261,8 @@ scatter_plot plot(const std::vector<bench_row>& rows, const hush_bench::machine_
   std::size_t peers = 0;
   for (const bench_row& row : rows) {
     const hush_bench::bench_case& c = *row.c;
-    const std::string key = c.peer ? c.backend : c.backend + (c.gradient ? ", value + gradient" : ", value");
+    const std::string key =
+        c.peer ? c.backend : c.backend + (c.gradient ? ", value + gradient" : ", value");
     if (!series.count(key)) {
       if (!colours.count(c.backend)) colours[c.backend] = colours.size();
       plot_series s;

@@ -86,7 +86,8 @@ void print_usage(std::ostream& os) {
         "  Times every noise x backend x workload (ns/sample, median of repetitions, one\n"
         "  thread) next to its error against the double reference; Markdown on stdout.\n";
   print_options(os, bench_options());
-  os << "\nEvery option takes one value: '--seed 7' or '--seed=7'.\n"
+  os << "\nEvery option takes one value: '--seed 7' or '--seed=7' (bench --quick is the one "
+        "flag).\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";
 }
 

@@ -15,8 +15,8 @@ namespace {
 // Layout in SVG user units (pixels).
 constexpr double kWidth = 960, kHeight = 640;
 constexpr double kLeft = 90, kRight = 230, kTop = 50, kBottom = 90;  // margins; legend right
-constexpr double kMarker = 5;       // marker half-size
-constexpr double kFontSize = 10;    // labels
+constexpr double kMarker = 5;                                        // marker half-size
+constexpr double kFontSize = 10;                                     // labels
 constexpr double kCharWidth = 5.6;  // average glyph width at kFontSize, to size label boxes
 
 std::string escape(const std::string& s) {
@@ -74,8 +74,9 @@ std::string decade_label(int e) {
 }
 
 void draw_marker(std::ostringstream& os, const plot_series& s, double x, double y) {
-  const std::string style = s.hollow ? "fill=\"white\" stroke=\"" + s.colour + "\" stroke-width=\"1.5\""
-                                     : "fill=\"" + s.colour + "\" stroke=\"black\" stroke-width=\"0.5\"";
+  const std::string style = s.hollow
+                                ? "fill=\"white\" stroke=\"" + s.colour + "\" stroke-width=\"1.5\""
+                                : "fill=\"" + s.colour + "\" stroke=\"black\" stroke-width=\"0.5\"";
   const double r = kMarker;
   switch (s.shape) {
     case marker::circle:
@@ -130,9 +131,8 @@ std::string to_svg(const scatter_plot& plot) {
   const log_axis ay = make_axis(floor_y, y_max, kHeight - kBottom, kTop);
 
   std::ostringstream os;
-  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\""
-     << kHeight << "\" viewBox=\"0 0 " << kWidth << " " << kHeight
-     << "\" font-family=\"sans-serif\">\n"
+  os << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << kHeight
+     << "\" viewBox=\"0 0 " << kWidth << " " << kHeight << "\" font-family=\"sans-serif\">\n"
      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
      << "<text x=\"" << num(kWidth / 2) << "\" y=\"24\" font-size=\"16\" text-anchor=\"middle\">"
      << escape(plot.title) << "</text>\n";
@@ -147,8 +147,7 @@ std::string to_svg(const scatter_plot& plot) {
          << num(py1) << "\" stroke=\"" << (m == 1 ? "#bbb" : "#e4e4e4") << "\"/>\n"
          << "<text x=\"" << num(x) << "\" y=\"" << num(py0 + 16)
          << "\" font-size=\"11\" text-anchor=\"middle\">"
-         << std::to_string(m) + decade_label(e).substr(1)
-         << "</text>\n";
+         << std::to_string(m) + decade_label(e).substr(1) << "</text>\n";
       if (e == ax.hi) break;
     }
   for (int e = ay.lo; e <= ay.hi; ++e) {
@@ -169,8 +168,9 @@ std::string to_svg(const scatter_plot& plot) {
   std::vector<box> placed;
   if (any_floor) {
     const double y = ay.map(floor_y);
-    placed.push_back({px0 + 6, y - 6 - kFontSize, px0 + 6 + kCharWidth * 1.1 *
-                      static_cast<double>(plot.floor_note.size()), y - 4});
+    placed.push_back({px0 + 6, y - 6 - kFontSize,
+                      px0 + 6 + kCharWidth * 1.1 * static_cast<double>(plot.floor_note.size()),
+                      y - 4});
     os << "<line x1=\"" << num(px0) << "\" y1=\"" << num(y) << "\" x2=\"" << num(px1) << "\" y2=\""
        << num(y) << "\" stroke=\"#888\" stroke-dasharray=\"6,4\"/>\n"
        << "<text x=\"" << num(px0 + 6) << "\" y=\"" << num(y - 6)
@@ -195,9 +195,9 @@ std::string to_svg(const scatter_plot& plot) {
     // Candidates: right, left, above, below (next to the marker), then further out.
     const double d = kMarker + 3;
     const std::vector<std::pair<double, double>> offsets = {
-        {d, h / 2 - 2},       {-d - w, h / 2 - 2}, {-w / 2, -d},         {-w / 2, d + h - 2},
-        {d, -h + 2},          {d, h + 2},          {-d - w, -h + 2},     {-d - w, h + 2},
-        {-w / 2, -d - h},     {-w / 2, d + 2 * h}, {d, -2 * h},          {d, 2 * h + 2}};
+        {d, h / 2 - 2},   {-d - w, h / 2 - 2}, {-w / 2, -d},     {-w / 2, d + h - 2},
+        {d, -h + 2},      {d, h + 2},          {-d - w, -h + 2}, {-d - w, h + 2},
+        {-w / 2, -d - h}, {-w / 2, d + 2 * h}, {d, -2 * h},      {d, 2 * h + 2}};
     std::size_t best = 0;
     for (std::size_t n = 0; n < offsets.size(); ++n) {
       const auto& o = offsets[n];
@@ -215,8 +215,8 @@ std::string to_svg(const scatter_plot& plot) {
     placed.push_back({lx, ly - h + 2, lx + w, ly + 2});
     if (best >= 4) {  // away from its point: a thin leader line to the label's nearer end
       const double ex = lx > x ? lx : lx + w, ey = ly - h / 2 + 2;
-      os << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(ex)
-         << "\" y2=\"" << num(ey) << "\" stroke=\"#999\" stroke-width=\"0.6\"/>\n";
+      os << "<line x1=\"" << num(x) << "\" y1=\"" << num(y) << "\" x2=\"" << num(ex) << "\" y2=\""
+         << num(ey) << "\" stroke=\"#999\" stroke-width=\"0.6\"/>\n";
     }
     os << "<text x=\"" << num(lx) << "\" y=\"" << num(ly) << "\" font-size=\"" << kFontSize
        << "\" fill=\"#333\">" << escape(p.label) << "</text>\n";
