@@ -8,6 +8,7 @@
 // stdout (and --markdown FILE), the same rows with machine information to --json FILE, and a
 // speed-vs-error scatter plot to --plot FILE.svg. Progress goes to stderr.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
