@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -441,6 +442,12 @@ machine_info describe_machine() {
   const benchmark::CPUInfo& info = benchmark::CPUInfo::Get();
   m.cpus = info.num_cpus;
   m.mhz = info.cycles_per_second / 1e6;
+  for (const double l : info.load_avg) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", l);
+    m.load += (m.load.empty() ? "" : ", ") + std::string(buf);
+  }
+  if (m.load.empty()) m.load = "unknown";
 #if defined(__clang__)
   m.compiler = "Clang " __clang_version__;
 #elif defined(__GNUC__)

@@ -92,6 +92,8 @@ struct machine_info {
   std::string build;     // "Release -O2" etc.: what this program was compiled with
   std::string simd_target;
   std::string peers;  // the peer libraries compiled in
+  std::string load;   // 1, 5 and 15 minute load averages when asked: timings on a busy machine
+                      // are noisier
 };
 machine_info describe_machine();
 

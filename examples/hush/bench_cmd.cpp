@@ -169,8 +169,8 @@ std::string markdown(const std::vector<bench_row>& rows, const hush_bench::machi
                      const bench_request& r, const std::string& date) {
   std::ostringstream os;
   os << "Measured " << date << " by `" << r.command << "` on " << m.cpu << " (" << m.cpus
-     << " logical CPUs), " << m.compiler << ", " << m.build << "; SIMD target: " << m.simd_target
-     << ". ns/sample: median of " << r.repetitions
+     << " logical CPUs, load average " << m.load << "), " << m.compiler << ", " << m.build
+     << "; SIMD target: " << m.simd_target << ". ns/sample: median of " << r.repetitions
      << " repetition(s), CPU time, one thread. Errors: against the double-precision reference"
         " named in the last column, at the same positions.\n\n"
      << "| noise | backend | workload | output | ns/sample | max abs error | RMS error | "
@@ -218,7 +218,8 @@ std::string json(const std::vector<bench_row>& rows, const hush_bench::machine_i
      << ", \"mhz\": " << json_number(m.mhz) << ", \"compiler\": " << json_string(m.compiler)
      << ", \"build\": " << json_string(m.build)
      << ", \"simd_target\": " << json_string(m.simd_target)
-     << ", \"peers\": " << json_string(m.peers) << "},\n"
+     << ", \"peers\": " << json_string(m.peers) << ", \"load_average\": " << json_string(m.load)
+     << "},\n"
      << "  \"settings\": {\"quick\": " << (r.quick ? "true" : "false")
      << ", \"repetitions\": " << r.repetitions
      << ", \"min_time_s\": " << json_number(r.quick ? kQuickMinTime : kMinTime)
