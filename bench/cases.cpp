@@ -208,8 +208,8 @@ void add_backend_rows(std::vector<bench_case>& cases, const sizes& s, const Exec
 // ---- Peer rows: the same positions through another library, value only (neither offers
 // gradients). Grid rows form each position in double as hush's grid path does.
 
-// A peer case from its per-position evaluation `eval(dvec<D>) -> float or double` and, when
-// it has one, its float-vs-double error `err(dvec<D>, stats)`.
+// A peer case from its per-position evaluation `eval(dvec<D>) -> float or double`; the loop
+// reads double positions, as hush's grid path forms them (a float peer converts each).
 template <int D, class Eval>
 prepared_case prepare_peer(std::vector<dvec<D>> positions, Eval eval) {
   auto pos = std::make_shared<std::vector<dvec<D>>>(std::move(positions));
