@@ -10,11 +10,14 @@ if [ ! -f "$build/compile_commands.json" ]; then
   cmake -S . -B "$build" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DHUSH_BUILD_TESTS=OFF >/dev/null
 fi
 status=0
-for f in examples/basic_usage.cpp examples/hush/*.cpp examples/coherence/*.cpp; do
+# bench/ is built only with Google Benchmark; its files are checked when the build has them.
+bench_files=$(grep -o '"file": *"[^"]*/bench/[^"]*\.cpp"' "$build/compile_commands.json" |
+              sed 's/.*"\([^"]*\)"$/\1/' | sort -u || true)
+for f in examples/basic_usage.cpp examples/hush/*.cpp examples/coherence/*.cpp $bench_files; do
   case "$f" in *stb_image_write_impl.cpp) continue ;; esac
   # GCC 12 defaults to C++17, so CMake passes no -std flag; clang-tidy needs it.
   clang-tidy -p "$build" --quiet --extra-arg=-std=c++17 \
-    --header-filter='.*/(include/hush|examples|backends/glsl)/.*' "$f" || status=1
+    --header-filter='.*/(include/hush|examples|backends/glsl|bench)/.*' "$f" || status=1
 done
 [ "$status" -eq 0 ] && echo "tidy: clean"
 exit "$status"

@@ -5,6 +5,7 @@
 //                     [--seed n] [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
 //   hush gallery [--out DIR]
 //   hush glsl-export DIR
+//   hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]
 //
 // Exit codes: 0 success, 1 a failure doing valid work (e.g. an unwritable file), 2 a
 // usage error. Every error is one line on stderr: "hush <command>: <what is wrong>".
@@ -40,6 +41,8 @@ const std::vector<command>& commands() {
        "temporal-coherence metrics of noise frames (docs/coherence.md)", run_coherence},
       {"glsl-export", "hush glsl-export DIR", "write the generated GLSL library and runners",
        run_glsl_export},
+      {"bench", "hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]",
+       "speed-vs-error table of every noise and backend", run_bench},
   };
   return table;
 }
@@ -94,7 +97,12 @@ void print_usage(std::ostream& os) {
   os << "\nhush glsl-export DIR\n"
         "  Writes hush_noise.glsl (the function library, no #version line) and the compute\n"
         "  runners (*.comp) into DIR, created if needed.\n";
-  os << "\nEvery option takes one value: '--seed 7' or '--seed=7'.\n"
+  os << "\nhush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]\n"
+        "  Times every noise x backend x workload (ns/sample, median of repetitions, one\n"
+        "  thread) next to its error against the double reference; Markdown on stdout.\n";
+  print_options(os, bench_options());
+  os << "\nEvery option takes one value: '--seed 7' or '--seed=7' (bench --quick is the one "
+        "flag).\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";
 }
 

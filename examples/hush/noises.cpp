@@ -2,7 +2,6 @@
 #include "noises.hpp"
 
 #include <climits>
-#include <type_traits>
 #include <utility>
 
 #include "glsl_device.hpp"
@@ -10,15 +9,15 @@
 namespace hush_cli {
 namespace {
 
-// Whether the GLSL backend has a program for Noise (hush::glsl::noise_program is
-// specialised for it; the primary template is declared, never defined).
-template <class Noise, class = void>
-struct has_glsl_program : std::false_type {};
-#if HUSH_CLI_HAVE_GLSL
+// Whether the GLSL backend has a program for Noise.
 template <class Noise>
-struct has_glsl_program<Noise, std::void_t<decltype(sizeof(hush::glsl::noise_program<Noise>))>>
-    : std::true_type {};
+constexpr bool has_glsl_program() {
+#if HUSH_CLI_HAVE_GLSL
+  return hush::glsl::has_program_v<Noise>;
+#else
+  return false;
 #endif
+}
 
 // Any hush noise of dimension D that hush::evaluate_grid takes.
 template <class Noise, int D>
@@ -29,7 +28,7 @@ class field final : public noise_field {
   std::string unsupported_reason(backend b) const override {
     if (b == backend::glsl) {
       if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (OSMesa not found)";
-      if (!has_glsl_program<Noise>::value)
+      if (!has_glsl_program<Noise>())
         return "the GLSL backend runs plain perlin (no --octaves, --fractal, ...) so far";
     }
     if (b == backend::simd && !HUSH_CONFIG_SIMD)
@@ -55,7 +54,7 @@ class field final : public noise_field {
       return;
     }
 #if HUSH_CLI_HAVE_GLSL
-    if constexpr (has_glsl_program<Noise>::value) {
+    if constexpr (has_glsl_program<Noise>()) {
       if (b == backend::glsl) {
         hush::evaluate_grid(noise_, hush::exec::glsl{glsl_device()}, block, dst);
         return;

@@ -690,3 +690,54 @@ TEST_CASE("gallery in a build without stb_image_write or Eigen fails, saying wha
   CHECK(r.err.find("not available in this build") != std::string::npos);
 }
 #endif
+
+// ---- (f) hush bench: its options (the timing run itself is the bench_quick_json smoke test,
+// tests/cli/check_bench.py, in Release builds only).
+
+TEST_CASE("bench rejects each bad option with exit code 2 and one line naming it") {
+  const fs::path dir = scratch("bench_bad_input");
+  struct bad {
+    std::string args;   // after "bench"
+    std::string names;  // must appear in the message
+  };
+  const bad cases[] = {
+      {"--repetitions 0", "--repetitions"},
+      {"--repetitions 101", "--repetitions"},
+      {"--repetitions 2.5", "--repetitions"},
+      {"--plot x.png", "--plot"},
+      {"--plot .svg", "--plot"},
+      {"--quick=1", "--quick"},
+      {"--json", "--json"},  // the value is missing
+      {"--bogus 3", "--bogus"},
+      {"--json a.json --json b.json", "--json"},
+      {"extra", "extra"},
+  };
+  for (const bad& c : cases) {
+    CAPTURE(c.args);
+    const result r = run_hush("bench " + c.args, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(c.names) != std::string::npos);
+    CHECK(r.err.rfind("hush bench: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.out.empty());
+  }
+}
+
+TEST_CASE("bench --filter matching no case and an uncreatable output fail before measuring") {
+  const fs::path dir = scratch("bench_filter");
+  const result none = run_hush("bench --quick --filter no_such_case", dir);
+#if HUSH_CLI_TEST_BENCH
+  CHECK(none.exit_code == 2);
+  CHECK(none.err.find("--filter") != std::string::npos);
+#else
+  CHECK(none.exit_code == 2);  // not in this build: says what is missing
+  CHECK(none.err.find("libbenchmark-dev") != std::string::npos);
+#endif
+  CHECK(std::count(none.err.begin(), none.err.end(), '\n') == 1);
+  CHECK(none.out.empty());
+  const std::string path = (dir / "no_such_dir" / "b.json").string();
+  const result unwritable = run_hush("bench --quick --json '" + path + "'", dir);
+  CHECK(unwritable.exit_code == 1);
+  CHECK(unwritable.err.find(path) != std::string::npos);
+  CHECK(unwritable.out.empty());  // nothing was measured
+}

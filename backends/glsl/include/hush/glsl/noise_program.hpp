@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <string>
+#include <type_traits>
 
 #include "hush/core/hash.hpp"
 #include "hush/glsl/detail/gl.hpp"
@@ -62,6 +63,15 @@ struct noise_program<perlin<D>> {
       gl.Uniform3ui(loc, period(noise, 0), period(noise, 1), period(noise, 2));
   }
 };
+
+// True when the GLSL backend has a program for Noise (noise_program is
+// specialised for it), e.g. to pick a backend at compile time.
+template <class Noise, class = void>
+struct has_program : std::false_type {};
+template <class Noise>
+struct has_program<Noise, std::void_t<decltype(sizeof(noise_program<Noise>))>> : std::true_type {};
+template <class Noise>
+inline constexpr bool has_program_v = has_program<Noise>::value;
 
 }  // namespace glsl
 }  // namespace hush

@@ -1,0 +1,544 @@
+// hush — the speed-vs-error benchmark's cases (see cases.hpp).
+#include "cases.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hush/core/rng.hpp"
+#include "hush/exec.hpp"
+#include "hush/fractal.hpp"
+#include "hush/perlin.hpp"
+
+#if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
+#include <hwy/targets.h>
+#endif
+#if HUSH_BENCH_HAVE_GLSL
+#include "hush/glsl/device.hpp"
+#include "hush/glsl/osmesa_context.hpp"
+#endif
+
+#if HUSH_BENCH_HAVE_GLM
+#include <glm/gtc/noise.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#endif
+#if HUSH_BENCH_HAVE_LIBNOISE
+#include <noise.h>
+#endif
+
+namespace hush_bench {
+namespace {
+
+// ---- The workloads. Every constant of the benchmark is here, once.
+
+constexpr std::uint32_t kNoiseSeed = 7;
+constexpr std::uint32_t kPointSeed = 2024;  // of the random point sets (hush::rng)
+constexpr int kFbmOctaves = 4;              // lacunarity 2, gain 0.5: fractal's defaults
+// Grid spacing 1/37 lattice units: not a power of two, so sample positions fall at ever
+// different fractions and every cell is exercised; the origin is off the lattice too.
+constexpr double kGridStep = 1.0 / 37;
+constexpr std::array<double, 3> kGridOrigin = {0.3125, -2.71875, 5.0625};
+// Random points fill [-kPointRange, kPointRange)^D.
+constexpr float kPointRange = 128;
+// The full and quick sizes (sizes's defaults are the full ones).
+constexpr std::size_t kQuickGrid2 = 64, kQuickGrid3 = 16, kQuickPoints = 4096;
+
+template <int D>
+using fvec = hush::vec<float, D>;
+template <int D>
+using dvec = hush::vec<double, D>;
+
+template <int D>
+hush::grid<D> make_grid(const sizes& s) {
+  hush::grid<D> g;
+  for (int a = 0; a < D; ++a) {
+    g.origin[a] = kGridOrigin[a];
+    g.step[a] = kGridStep;
+    g.size[a] = D == 2 ? s.grid2 : s.grid3;
+  }
+  return g;
+}
+
+template <int D>
+std::string grid_name(const hush::grid<D>& g) {
+  std::string name = "grid ";
+  for (int a = 0; a < D; ++a) name += (a ? "x" : "") + std::to_string(g.size[a]);
+  return name;
+}
+
+template <int D>
+std::vector<fvec<D>> make_points(std::size_t n) {
+  hush::rng r(kPointSeed, static_cast<std::uint32_t>(D));
+  std::vector<fvec<D>> pts(n);
+  for (fvec<D>& p : pts)
+    for (int a = 0; a < D; ++a) p[a] = r.uniform(-kPointRange, kPointRange);
+  return pts;
+}
+
+// Calls f(index, position) for every sample of g, in the output's C order (i fastest).
+template <int D, class F>
+void for_each_sample(const hush::grid<D>& g, F f) {
+  const std::size_t nz = D == 3 ? g.size[D - 1] : 1;
+  std::size_t idx = 0;
+  for (std::size_t k = 0; k < nz; ++k)
+    for (std::size_t j = 0; j < g.size[1]; ++j)
+      for (std::size_t i = 0; i < g.size[0]; ++i, ++idx) {
+        std::array<std::size_t, D> ijk{};
+        ijk[0] = i;
+        ijk[1] = j;
+        if constexpr (D == 3) ijk[D - 1] = k;
+        f(idx, g.position(ijk));
+      }
+}
+
+// The buffers a case evaluates into; shared by the case's run() closures.
+template <int D>
+struct buffers {
+  std::vector<fvec<D>> points;
+  std::vector<float> out;
+  std::vector<fvec<D>> grad;
+};
+
+// Keeps the results observable, so the compiler cannot drop the evaluation.
+template <class T>
+void keep(std::vector<T>& v) {
+  benchmark::DoNotOptimize(v.data());
+  benchmark::ClobberMemory();
+}
+
+// Error of the evaluated (out, grad) against noise's double reference at `pos(idx)`.
+template <class Noise, int D>
+void measure(const Noise& noise, std::size_t idx, const dvec<D>& pos, const buffers<D>& b,
+             prepared_case& p) {
+  if (b.grad.empty()) {
+    p.value_error.add(b.out[idx], noise.template value<double>(pos));
+    return;
+  }
+  const auto ref = noise.template value_and_gradient<double>(pos);
+  p.value_error.add(b.out[idx], ref.value);
+  for (int a = 0; a < D; ++a) p.gradient_error.add(b.grad[idx][a], ref.gradient[a]);
+}
+
+// ---- hush's rows.
+
+template <class Noise, class Exec>
+prepared_case prepare_hush_grid(const Noise& noise, const Exec& ex,
+                                const hush::grid<Noise::dimension>& g, bool gradient) {
+  constexpr int D = Noise::dimension;
+  auto b = std::make_shared<buffers<D>>();
+  b->out.resize(g.count());
+  if (gradient) b->grad.resize(g.count());
+  prepared_case p;
+  p.samples = g.count();
+  p.run = [noise, ex, g, b] {
+    if (b->grad.empty())
+      hush::evaluate_grid(noise, ex, g, hush::span<float>(b->out));
+    else
+      hush::evaluate_grid(noise, ex, g, hush::span<float>(b->out), hush::span<fvec<D>>(b->grad));
+    keep(b->out);
+  };
+  p.run();
+  for_each_sample(g, [&](std::size_t idx, const dvec<D>& pos) { measure(noise, idx, pos, *b, p); });
+  return p;
+}
+
+template <class Noise, class Exec>
+prepared_case prepare_hush_points(const Noise& noise, const Exec& ex, std::size_t n,
+                                  bool gradient) {
+  constexpr int D = Noise::dimension;
+  auto b = std::make_shared<buffers<D>>();
+  b->points = make_points<D>(n);
+  b->out.resize(n);
+  if (gradient) b->grad.resize(n);
+  prepared_case p;
+  p.samples = n;
+  p.run = [noise, ex, b] {
+    const hush::span<const fvec<D>> pts(b->points.data(), b->points.size());
+    if (b->grad.empty())
+      hush::evaluate(noise, ex, pts, hush::span<float>(b->out));
+    else
+      hush::evaluate(noise, ex, pts, hush::span<float>(b->out), hush::span<fvec<D>>(b->grad));
+    keep(b->out);
+  };
+  p.run();
+  for (std::size_t i = 0; i < n; ++i)
+    measure(noise, i, hush::vec_cast<double>(b->points[i]), *b, p);
+  return p;
+}
+
+// Rows of one noise on one backend: {grid, points} x {value, value + gradient}.
+template <class Noise, class Exec>
+void add_noise_rows(std::vector<bench_case>& cases, const sizes& s, const std::string& name,
+                    const Noise& noise, const Exec& ex) {
+  constexpr int D = Noise::dimension;
+  const hush::grid<D> g = make_grid<D>(s);
+  for (const bool gradient : {false, true}) {
+    bench_case c;
+    c.noise = name;
+    c.backend = Exec::name;
+    c.wall_clock = std::string(Exec::name) == "glsl";
+    c.gradient = gradient;
+    c.workload = grid_name(g);
+    c.prepare = [noise, ex, g, gradient] { return prepare_hush_grid(noise, ex, g, gradient); };
+    cases.push_back(c);
+    const std::size_t n = s.points;
+    c.workload = "points " + std::to_string(n);
+    c.prepare = [noise, ex, n, gradient] { return prepare_hush_points(noise, ex, n, gradient); };
+    cases.push_back(c);
+  }
+}
+
+template <int D>
+hush::fractal<hush::perlin<D>> make_fbm() {
+  typename hush::fractal<hush::perlin<D>>::params prm;
+  prm.seed = kNoiseSeed;
+  prm.octaves = kFbmOctaves;
+  return hush::fractal<hush::perlin<D>>(prm);
+}
+
+// A backend is a row generator: every noise x workload x output on `ex`.
+template <class Exec>
+void add_backend_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex) {
+  add_noise_rows(cases, s, "perlin 2D", hush::perlin<2>(kNoiseSeed), ex);
+  add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), ex);
+  add_noise_rows(cases, s, "fbm 2D", make_fbm<2>(), ex);
+  add_noise_rows(cases, s, "fbm 3D", make_fbm<3>(), ex);
+}
+
+// ---- Peer rows: the same positions through another library, value only (neither offers
+// gradients). Grid rows form each position in double as hush's grid path does.
+
+// A peer case from its per-position evaluation `eval(dvec<D>) -> float or double`; the loop
+// reads double positions, as hush's grid path forms them (a float peer converts each).
+template <int D, class Eval>
+prepared_case prepare_peer(std::vector<dvec<D>> positions, Eval eval) {
+  auto pos = std::make_shared<std::vector<dvec<D>>>(std::move(positions));
+  auto out = std::make_shared<std::vector<float>>(pos->size());
+  prepared_case p;
+  p.samples = pos->size();
+  p.run = [pos, out, eval] {
+    float* o = out->data();
+    for (std::size_t i = 0; i < pos->size(); ++i) o[i] = static_cast<float>(eval((*pos)[i]));
+    keep(*out);
+  };
+  p.run();
+  return p;
+}
+
+template <int D>
+std::vector<dvec<D>> grid_positions(const hush::grid<D>& g) {
+  std::vector<dvec<D>> pos(g.count());
+  for_each_sample(g, [&](std::size_t idx, const dvec<D>& q) { pos[idx] = q; });
+  return pos;
+}
+
+template <int D>
+std::vector<dvec<D>> point_positions(std::size_t n) {
+  std::vector<dvec<D>> pos;
+  for (const fvec<D>& q : make_points<D>(n)) pos.push_back(hush::vec_cast<double>(q));
+  return pos;
+}
+
+// Adds a peer's {grid, points} rows for one noise; `make_eval` returns the evaluator and
+// `add_error(positions, stats)` measures its float error (nullptr: double only).
+template <int D, class MakeEval>
+void add_peer_rows(std::vector<bench_case>& cases, const sizes& s, bench_case row,
+                   MakeEval make_eval,
+                   void (*add_error)(const std::vector<dvec<D>>&, error_stats&)) {
+  const hush::grid<D> g = make_grid<D>(s);
+  const std::size_t n = s.points;
+  auto prepare = [make_eval, add_error](std::vector<dvec<D>> pos) {
+    prepared_case p = prepare_peer<D>(pos, make_eval());
+    if (add_error) add_error(pos, p.value_error);
+    return p;
+  };
+  row.peer = true;
+  row.workload = grid_name(g);
+  row.prepare = [prepare, g] { return prepare(grid_positions(g)); };
+  cases.push_back(row);
+  row.workload = "points " + std::to_string(n);
+  row.prepare = [prepare, n] { return prepare(point_positions<D>(n)); };
+  cases.push_back(row);
+}
+
+#if HUSH_BENCH_HAVE_GLM
+// glm::perlin takes float vectors; its error is float against glm's own double evaluation at
+// the same float-rounded positions (like for like: what float arithmetic costs glm).
+template <int D>
+using glm_vec = glm::vec<D, float, glm::defaultp>;
+template <int D>
+using glm_dvec = glm::vec<D, double, glm::defaultp>;
+
+template <int D>
+glm_vec<D> to_glm_float(const dvec<D>& p) {
+  glm_vec<D> v;
+  for (int a = 0; a < D; ++a) v[a] = static_cast<float>(p[a]);
+  return v;
+}
+
+template <int D>
+void glm_error(const std::vector<dvec<D>>& positions, error_stats& e) {
+  for (const dvec<D>& p : positions) {
+    const glm_vec<D> f = to_glm_float(p);
+    e.add(glm::perlin(f), glm::perlin(glm_dvec<D>(f)));
+  }
+}
+
+template <int D>
+void add_glm_rows(std::vector<bench_case>& cases, const sizes& s) {
+  bench_case row;
+  row.noise = D == 2 ? "perlin 2D" : "perlin 3D";
+  row.backend = "glm::perlin";
+  row.reference = error_reference::glm_double;
+  add_peer_rows<D>(
+      cases, s, row, [] { return [](const dvec<D>& p) { return glm::perlin(to_glm_float(p)); }; },
+      &glm_error<D>);
+}
+#endif
+
+#if HUSH_BENCH_HAVE_LIBNOISE
+// libnoise's Perlin module is 3D and double only; 2D rows evaluate the plane z = 0.
+// QUALITY_BEST is the quintic fade of improved Perlin noise, as hush uses.
+template <int D>
+void add_libnoise_rows(std::vector<bench_case>& cases, const sizes& s, int octaves) {
+  bench_case row;
+  row.noise = std::string(octaves == 1 ? "perlin " : "fbm ") + (D == 2 ? "2D" : "3D");
+  row.backend = "libnoise";
+  row.reference = error_reference::none;
+  row.note = "QUALITY_BEST, " + std::to_string(octaves) + " octave" + (octaves > 1 ? "s" : "") +
+             (D == 2 ? ", 3D module at z = 0" : "");
+  add_peer_rows<D>(
+      cases, s, row,
+      [octaves] {
+        auto module = std::make_shared<noise::module::Perlin>();
+        module->SetSeed(static_cast<int>(kNoiseSeed));
+        module->SetOctaveCount(octaves);
+        module->SetNoiseQuality(noise::QUALITY_BEST);
+        return [module](const dvec<D>& p) {
+          return module->GetValue(p[0], p[1], D == 3 ? p[D - 1] : 0.0);
+        };
+      },
+      nullptr);
+}
+#endif
+
+}  // namespace
+
+sizes full_sizes() { return sizes{}; }
+sizes quick_sizes() { return sizes{kQuickGrid2, kQuickGrid3, kQuickPoints}; }
+
+void error_stats::add(double measured, double reference) {
+  const double e = measured - reference;
+  max_abs = std::fmax(max_abs, std::fabs(e));
+  sum_sq += e * e;
+  ++count;
+}
+
+double error_stats::rms() const {
+  return count ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+}
+
+const char* describe(error_reference r) {
+  switch (r) {
+    case error_reference::hush_double:
+      return "hush double";
+    case error_reference::glm_double:
+      return "glm double";
+    case error_reference::none:
+      return "n.a. (double only)";
+  }
+  return "?";
+}
+
+std::string bench_case::id() const {
+  std::string n = noise + "/" + backend + "/" + workload.substr(0, workload.find(' ')) + "/" +
+                  (gradient ? "value+gradient" : "value");
+  std::string id;
+  for (const char ch : n)
+    if (ch != ' ') id += ch == ':' ? '_' : ch;
+  return id;
+}
+
+#if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
+// The SIMD rows again with dispatch pinned to one target (e.g. AVX2 on an AVX-512 machine),
+// named "simd AVX2": the targets are stated per machine, and a program may run on either.
+void add_pinned_simd_rows(std::vector<bench_case>& cases, std::int64_t target) {
+  std::vector<bench_case> pinned;
+  for (const bench_case& c : cases) {
+    if (c.backend != hush::exec::simd_t::name) continue;
+    bench_case p = c;
+    p.backend = std::string(c.backend) + " " + hwy::TargetName(target);
+    p.prepare = [prepare = c.prepare, target] {
+      hwy::SetSupportedTargetsForTest(target);
+      prepared_case r = prepare();
+      hwy::SetSupportedTargetsForTest(0);
+      r.run = [run = r.run, target] {
+        hwy::SetSupportedTargetsForTest(target);
+        run();
+        hwy::SetSupportedTargetsForTest(0);
+      };
+      return r;
+    };
+    pinned.push_back(std::move(p));
+  }
+  cases.insert(cases.end(), pinned.begin(), pinned.end());
+}
+#endif
+
+#if HUSH_BENCH_HAVE_GLSL
+// The GLSL rows run on one headless OSMesa context for the whole process (llvmpipe here).
+hush::glsl::device& bench_glsl_device() {
+  struct holder {
+    hush::glsl::osmesa_context context;
+    hush::glsl::device device{hush::glsl::osmesa_context::loader()};
+  };
+  static holder h;
+  return h.device;
+}
+#endif
+
+std::vector<bench_case> all_cases(const sizes& s) {
+  std::vector<bench_case> cases;
+  add_backend_rows(cases, s, hush::exec::scalar);
+  add_backend_rows(cases, s, hush::exec::simd);
+#if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
+  // AVX2 pinned when the machine would pick something better: the targets are AVX2's.
+  const std::int64_t usable = hwy::SupportedTargets() & HWY_TARGETS;
+  if ((usable & HWY_AVX2) && (usable & (HWY_AVX2 - 1))) add_pinned_simd_rows(cases, HWY_AVX2);
+#endif
+#if HUSH_BENCH_HAVE_GLSL
+  {
+    const hush::exec::glsl<hush::glsl::device> gpu{bench_glsl_device()};
+    add_noise_rows(cases, s, "perlin 2D", hush::perlin<2>(kNoiseSeed), gpu);
+    add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), gpu);
+    // fBm has no GLSL program yet (hush::glsl::has_program_v); no rows rather than a fallback.
+  }
+#endif
+#if HUSH_BENCH_HAVE_GLM
+  add_glm_rows<2>(cases, s);
+  add_glm_rows<3>(cases, s);
+#endif
+#if HUSH_BENCH_HAVE_LIBNOISE
+  for (const int octaves : {1, kFbmOctaves}) {
+    add_libnoise_rows<2>(cases, s, octaves);
+    add_libnoise_rows<3>(cases, s, octaves);
+  }
+#endif
+  return cases;
+}
+
+namespace {
+
+// Runs one case under Google Benchmark. A case is prepared on its first call (Google
+// Benchmark calls again per repetition and while it sizes the iteration count) and its
+// buffers are freed when the next case starts, so one case's memory is held at a time.
+void run_case(benchmark::State& state, const bench_case& c) {
+  static const bench_case* current = nullptr;
+  static prepared_case prepared;
+  if (current != &c) {
+    prepared = prepared_case{};
+    prepared = c.prepare();
+    current = &c;
+  }
+  for (auto _ : state)  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's idiom
+    prepared.run();
+  const double samples = static_cast<double>(prepared.samples);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(prepared.samples));
+  // Samples per iteration as a rate, inverted: CPU seconds per sample (printed "25.8ns").
+  state.counters[kSecondsPerSample] = benchmark::Counter(
+      samples, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  if (c.reference == error_reference::none) return;
+  state.counters[kMaxAbs] = prepared.value_error.max_abs;
+  state.counters[kRms] = prepared.value_error.rms();
+  if (prepared.gradient_error.count) {
+    state.counters[kGradMaxAbs] = prepared.gradient_error.max_abs;
+    state.counters[kGradRms] = prepared.gradient_error.rms();
+  }
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      const std::size_t colon = line.find(':');
+      if (colon != std::string::npos && colon + 2 <= line.size()) return line.substr(colon + 2);
+    }
+  return "unknown";
+}
+
+}  // namespace
+
+void register_benchmarks(const std::vector<bench_case>& cases, double min_time, int repetitions) {
+  for (const bench_case& c : cases) {
+    // Google Benchmark's registry owns what RegisterBenchmark allocates; the analyzer cannot
+    // see that (the registry is in the compiled library).
+    // NOLINTNEXTLINE(clang-analyzer-cplusplus.NewDeleteLeaks)
+    benchmark::internal::Benchmark* b = benchmark::RegisterBenchmark(
+        c.id().c_str(), [&c](benchmark::State& state) { run_case(state, c); });
+    b->Unit(benchmark::kMillisecond);
+    if (c.wall_clock) b->UseRealTime();
+    if (repetitions > 0) b->Repetitions(repetitions);
+    if (repetitions > 1) b->ReportAggregatesOnly(true);
+    if (min_time > 0) b->MinTime(min_time);
+  }
+}
+
+std::string simd_target() {
+#if HUSH_CONFIG_SIMD
+  return hush::simd::chosen_target() + " (" + hush::simd::dispatch_mode() + " dispatch)";
+#else
+  return "none (built without Highway: exec::simd runs the scalar loop)";
+#endif
+}
+
+machine_info describe_machine() {
+  machine_info m;
+  m.cpu = cpu_model();
+  const benchmark::CPUInfo& info = benchmark::CPUInfo::Get();
+  m.cpus = info.num_cpus;
+  m.mhz = info.cycles_per_second / 1e6;
+  for (const double l : info.load_avg) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", l);
+    m.load += (m.load.empty() ? "" : ", ") + std::string(buf);
+  }
+  if (m.load.empty()) m.load = "unknown";
+#if defined(__clang__)
+  m.compiler = "Clang " __clang_version__;
+#elif defined(__GNUC__)
+  m.compiler = "GCC " __VERSION__;
+#else
+  m.compiler = "unknown";
+#endif
+  m.build = HUSH_BENCH_BUILD;
+#if defined(__AVX2__)
+  m.build += ", compiled for AVX2";
+#elif defined(__SSE4_2__)
+  m.build += ", compiled for SSE4.2";
+#else
+  m.build += ", baseline x86-64 ISA (no -march)";
+#endif
+  m.simd_target = simd_target();
+  m.peers = "";
+#if HUSH_BENCH_HAVE_GLM
+  m.peers += "glm " + std::to_string(GLM_VERSION_MAJOR) + "." + std::to_string(GLM_VERSION_MINOR) +
+             "." + std::to_string(GLM_VERSION_PATCH) + "." + std::to_string(GLM_VERSION_REVISION);
+#endif
+#if HUSH_BENCH_HAVE_LIBNOISE
+  m.peers += std::string(m.peers.empty() ? "" : ", ") + "libnoise (no version macro)";
+#endif
+  if (m.peers.empty()) m.peers = "none found at build time";
+  return m;
+}
+
+}  // namespace hush_bench

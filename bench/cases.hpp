@@ -1,0 +1,109 @@
+// hush — the speed-vs-error benchmark: the table of cases both the Google Benchmark program
+// (bench/speed_vs_error.cpp) and `hush bench` run (DESIGN.md principle 4: throughput is
+// reported next to the error against the double-precision reference).
+//
+// A case is one row of the table: a noise (Perlin 2D/3D, fBm of 4 Perlin octaves 2D/3D), a
+// backend (hush::exec::scalar, hush::exec::simd, or a peer library), a workload (a uniform
+// grid or random points) and an output (value, or value + gradient). Preparing a case
+// allocates its buffers, evaluates it once and measures its error against the reference;
+// the timed loop then only re-runs the evaluation.
+#ifndef HUSH_BENCH_CASES_HPP
+#define HUSH_BENCH_CASES_HPP
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace hush_bench {
+
+// Workload sizes. The full sizes are the issue's: 2D grid 512x512, 3D grid 64x64x64, and as
+// many random points as a grid has samples (2^18), so every row does the same work.
+struct sizes {
+  std::size_t grid2 = 512;      // 2D grid: grid2 x grid2
+  std::size_t grid3 = 64;       // 3D grid: grid3^3
+  std::size_t points = 262144;  // random points, per dimension
+};
+sizes full_sizes();
+sizes quick_sizes();  // for `hush bench --quick` and the smoke test: a few seconds in all
+
+// Max abs and RMS of (measured - reference) over every sample (and every gradient component).
+struct error_stats {
+  double max_abs = 0;
+  double sum_sq = 0;
+  std::size_t count = 0;
+  void add(double measured, double reference);
+  double rms() const;
+};
+
+// What a row's error column compares against.
+enum class error_reference {
+  hush_double,  // hush's double-precision evaluation at the same positions
+  glm_double,   // glm::perlin on glm::dvec at the same (float-rounded) positions: like for like
+  none,         // the library computes in double only (libnoise): no float error to report
+};
+const char* describe(error_reference r);
+
+// A case ready to time: run() evaluates the whole workload once, into buffers the case owns.
+struct prepared_case {
+  std::size_t samples = 0;
+  std::function<void()> run;
+  error_stats value_error;
+  error_stats gradient_error;  // count 0 when the case computes no gradient
+};
+
+struct bench_case {
+  std::string noise;      // "perlin 2D", "fbm 3D"
+  std::string backend;    // "scalar", "simd", "glm::perlin", "libnoise"
+  std::string workload;   // "grid 512x512", "points 262144"
+  bool gradient = false;  // value + analytic gradient
+  bool peer = false;      // another library, for comparison
+  error_reference reference = error_reference::hush_double;
+  std::string note;  // how a peer row was configured, when that matters
+  // Time by the wall clock, not this thread's CPU time: for backends whose work runs on other
+  // threads (GLSL on llvmpipe's worker threads, or a GPU).
+  bool wall_clock = false;
+  std::function<prepared_case()> prepare;
+  // "perlin2D/scalar/grid/value": the Google Benchmark name, unique in the table.
+  std::string id() const;
+};
+
+// Every case: hush's noises on each backend, then the peer libraries found at build time.
+std::vector<bench_case> all_cases(const sizes& s);
+
+// The Google Benchmark counters each case reports: CPU seconds per sample (single thread; wall
+// seconds for wall_clock cases), and
+// its error against the reference (none for error_reference::none; gradient ones only for
+// gradient cases).
+inline constexpr const char* kSecondsPerSample = "s/sample";
+inline constexpr const char* kMaxAbs = "max_abs";
+inline constexpr const char* kRms = "rms";
+inline constexpr const char* kGradMaxAbs = "grad_max_abs";
+inline constexpr const char* kGradRms = "grad_rms";
+
+// Registers `cases` with Google Benchmark under their id(), reporting the counters above.
+// `cases` must outlive the run.
+// min_time: seconds per repetition; repetitions: > 1 reports only the aggregates (mean,
+// median, ...). Either <= 0 leaves it to Google Benchmark's flags.
+void register_benchmarks(const std::vector<bench_case>& cases, double min_time, int repetitions);
+
+// The machine a run measured, for the report.
+struct machine_info {
+  std::string cpu;       // "model name" from /proc/cpuinfo
+  int cpus = 0;          // logical CPUs
+  double mhz = 0;        // as Google Benchmark measures it
+  std::string compiler;  // e.g. "GCC 12.2.0"
+  std::string build;     // "Release -O2" etc.: what this program was compiled with
+  std::string simd_target;
+  std::string peers;  // the peer libraries compiled in
+  std::string load;   // 1, 5 and 15 minute load averages when asked: timings on a busy machine
+                      // are noisier
+};
+machine_info describe_machine();
+
+// The SIMD target hush::exec::simd dispatches to on this machine, and the dispatch mode.
+std::string simd_target();
+
+}  // namespace hush_bench
+
+#endif  // HUSH_BENCH_CASES_HPP

@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""Smoke test of `hush bench --quick` (DESIGN.md principle 4): runs it once with every output
+and checks what it wrote.
+
+  - JSON parses; every row has a finite ns_per_sample > 0 and the error fields; hush rows have
+    finite errors (rms <= max abs) within the noise's float budget, gradient rows gradient
+    errors; libnoise rows (double only) have null errors; the rows cover every noise x backend
+    x workload x output of hush plus the peer rows, and the machine fields are there.
+  - stdout and --markdown hold the same Markdown table, one line per JSON row.
+  - the SVG parses as XML and draws one marker per row plus one per legend entry.
+
+Usage: check_bench.py HUSH_EXE SCRATCH_DIR   (exit 0: all checks pass)
+"""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+# Loose float budgets against the double reference, to catch a broken backend or reference
+# (those miss by O(1)), not to restate the tests' bounds. perlin.hpp states 2^-16 for the
+# value; the gradient gets 8 times that. A 4-octave fBm of unit variance weighs its bands
+# 1, 1/2, 1/4, 1/8 (sum < 2) times 1/sqrt(variance * 1.33) < 3.4, so < 4 * 3.4 bands' worth;
+# its gradient multiplies band i by frequency 2^i (sum of weight * frequency = 4).
+PERLIN_VALUE, PERLIN_GRADIENT, FBM_SCALE = 2.0 ** -16, 8 * 2.0 ** -16, 4 * 3.4
+VALUE_BUDGET = {"perlin": PERLIN_VALUE, "fbm": FBM_SCALE * PERLIN_VALUE}
+GRADIENT_BUDGET = {"perlin": PERLIN_GRADIENT, "fbm": FBM_SCALE * PERLIN_GRADIENT}
+
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+
+
+def main():
+    exe, scratch = sys.argv[1], sys.argv[2]
+    shutil.rmtree(scratch, ignore_errors=True)
+    os.makedirs(scratch)
+    paths = {k: os.path.join(scratch, "bench." + k) for k in ("json", "md", "svg")}
+    cmd = [exe, "bench", "--quick", "--json", paths["json"], "--markdown", paths["md"],
+           "--plot", paths["svg"]]
+    run = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    check(run.returncode == 0, "exit code %d, stderr: %s" % (run.returncode, run.stderr))
+    if run.returncode != 0:
+        return
+
+    with open(paths["json"]) as f:
+        doc = json.load(f)
+    for key in ("cpu", "compiler", "build", "simd_target", "peers"):
+        check(isinstance(doc["machine"].get(key), str) and doc["machine"][key],
+              "machine." + key)
+    check(doc["settings"]["quick"] is True and doc["settings"]["repetitions"] == 1, "settings")
+    rows = doc["rows"]
+    fields = ("ns_per_sample", "max_abs_error", "rms_error", "gradient_max_abs_error",
+              "gradient_rms_error", "error_reference")
+    hush_keys = set()
+    for r in rows:
+        name = r.get("id", "?")
+        for k in fields:
+            check(k in r, name + ": field " + k)
+        ns = r["ns_per_sample"]
+        check(isinstance(ns, (int, float)) and math.isfinite(ns) and ns > 0,
+              name + ": ns_per_sample %r" % ns)
+        if r["error_reference"].startswith("n.a."):
+            check(r["max_abs_error"] is None and r["rms_error"] is None, name + ": n.a. error")
+            continue
+        mx, rms = r["max_abs_error"], r["rms_error"]
+        check(isinstance(mx, (int, float)) and math.isfinite(mx) and 0 <= rms <= mx,
+              name + ": errors %r %r" % (mx, rms))
+        if r["peer"]:
+            continue
+        family = r["noise"].split()[0]
+        check(mx <= VALUE_BUDGET[family], name + ": max abs %g over budget" % mx)
+        gmx, grms = r["gradient_max_abs_error"], r["gradient_rms_error"]
+        if r["output"] == "value+gradient":
+            check(gmx is not None and 0 <= grms <= gmx <= GRADIENT_BUDGET[family],
+                  name + ": gradient errors %r %r" % (gmx, grms))
+        else:
+            check(gmx is None and grms is None, name + ": gradient error without gradient")
+        hush_keys.add((r["noise"], r["backend"], r["workload"].split()[0], r["output"]))
+    want = {(n, b, w, o) for n in ("perlin 2D", "perlin 3D", "fbm 2D", "fbm 3D")
+            for b in ("scalar", "simd") for w in ("grid", "points")
+            for o in ("value", "value+gradient")}
+    check(want <= hush_keys, "missing hush rows: %s" % sorted(want - hush_keys))
+    peers = {r["backend"] for r in rows if r["peer"]}
+    check({"glm::perlin", "libnoise"} <= peers or doc["machine"]["peers"].startswith("none"),
+          "peer rows: %s" % sorted(peers))
+
+    # The Markdown table: a header, a rule, one line per row; stdout equals --markdown.
+    with open(paths["md"]) as f:
+        md = f.read()
+    check(md == run.stdout, "--markdown differs from stdout")
+    table = [line for line in md.splitlines() if line.startswith("|")]
+    check(len(table) == len(rows) + 2, "markdown has %d table lines for %d rows"
+          % (len(table), len(rows)))
+
+    svg = ET.parse(paths["svg"]).getroot()
+    ns = "{http://www.w3.org/2000/svg}"
+    markers = [e for e in svg.iter() if e.tag in (ns + "circle", ns + "rect", ns + "polygon")]
+    # Markers: one per row and one per legend entry, plus the background and the frame rects.
+    series = {(r["backend"], r["output"] if not r["peer"] else "") for r in rows}
+    check(len(markers) == len(rows) + len(series) + 2,
+          "svg has %d markers for %d rows and %d series" % (len(markers), len(rows), len(series)))
+
+
+if __name__ == "__main__":
+    main()
+    for f in failures:
+        print("FAIL:", f)
+    print("%d failure(s)" % len(failures))
+    sys.exit(1 if failures else 0)
