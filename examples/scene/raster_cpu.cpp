@@ -228,7 +228,9 @@ struct rasterizer {
   }
 };
 
-void check_size(int width, int height, int frame) {
+}  // namespace
+
+void check_render_arguments(int frame, int width, int height) {
   if (width < 1 || width > kMaxImageSize || height < 1 || height > kMaxImageSize)
     throw hush::invalid_argument("render: size " + std::to_string(width) + "x" +
                                  std::to_string(height) + " is out of range; valid: 1 ... " +
@@ -237,6 +239,8 @@ void check_size(int width, int height, int frame) {
     throw hush::invalid_argument("render: frame = " + std::to_string(frame) +
                                  " is out of range; valid: >= 0");
 }
+
+namespace {
 
 void write_background(gbuffer& g, std::size_t pixel) {
   g.depth[pixel] = std::numeric_limits<float>::infinity();
@@ -284,7 +288,7 @@ gbuffer render_cpu(const scene& s, int frame, int width, int height,
 
 void render_cpu(const scene& s, int frame, int width, int height, const raster_options& options,
                 gbuffer& g) {
-  check_size(width, height, frame);
+  check_render_arguments(frame, width, height);
   const int prev_frame = frame > 0 ? frame - 1 : frame;
   const camera_pose pose = s.camera(frame), prev_pose = s.camera(prev_frame);
   if (!(pose.near_depth > 0.0) || !(prev_pose.near_depth > 0.0))

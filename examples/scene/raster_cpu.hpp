@@ -61,6 +61,10 @@ gbuffer render_cpu(const scene& s, int frame, int width, int height, const raste
 void render_cpu(const scene& s, int frame, int width, int height, const raster_options& options,
                 gbuffer& out);
 
+// Throws hush::invalid_argument unless frame >= 0 and 1 <= width, height <= kMaxImageSize
+// (every rasterizer checks its arguments with this).
+void check_render_arguments(int frame, int width, int height);
+
 // An empty G-buffer of the given size holding the background values of gbuffer.hpp.
 gbuffer make_background(int width, int height);
 
