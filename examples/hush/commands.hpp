@@ -24,6 +24,10 @@ const std::vector<option_spec>& sample_options();
 int run_gallery(const std::vector<std::string>& args);
 const std::vector<option_spec>& gallery_options();
 
+// hush scene list | hush scene render --scene NAME ... --out DIR: test-scene G-buffers.
+int run_scene(const std::vector<std::string>& args);
+const std::vector<option_spec>& scene_options();
+
 }  // namespace hush_cli
 
 #endif  // HUSH_CLI_COMMANDS_HPP

@@ -4,6 +4,8 @@
 //   hush sample NOISE [--dim 2|3] [--size N|NxM|NxMxK] [--origin x,y[,z]] [--step s]
 //                     [--seed n] [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
 //   hush gallery [--out DIR]
+//   hush scene list | hush scene render --scene NAME [--frames N] [--size WxH]
+//                                       [--backend cpu|gl] --out DIR
 //
 // Exit codes: 0 success, 1 a failure doing valid work (e.g. an unwritable file), 2 a
 // usage error. Every error is one line on stderr: "hush <command>: <what is wrong>".
@@ -35,6 +37,8 @@ const std::vector<command>& commands() {
       {"sample", "hush sample NOISE [options] --out FILE.npy|FILE.png",
        "sample a noise on a uniform grid", run_sample},
       {"gallery", "hush gallery [--out DIR]", "render the showcase images (PNG)", run_gallery},
+      {"scene", "hush scene list | render --scene NAME [options] --out DIR",
+       "render test scenes to G-buffer files (.npy per channel)", run_scene},
   };
   return table;
 }
@@ -79,6 +83,11 @@ void print_usage(std::ostream& os) {
   }
   os << "\nhush gallery [--out DIR]\n";
   print_options(os, gallery_options());
+  os << "\nhush scene list\n"
+        "hush scene render --scene NAME [--frames N] [--size WxH] [--backend cpu|gl] --out DIR\n"
+        "  Writes DIR/frame_NNNN/<channel>.npy (float32 or uint32, shape (H, W) or (H, W, C),\n"
+        "  row 0 at the top; examples/scene/gbuffer.hpp) and preview PNGs for frames 0 ... N-1.\n";
+  print_options(os, scene_options());
   os << "\nEvery option takes one value: '--seed 7' or '--seed=7'.\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";
 }
