@@ -348,8 +348,9 @@ void render_cpu(const scene& s, int frame, int width, int height, const raster_o
       // d(f_k / S)/dx = (a_k S - f_k S_x) / S^2, and likewise in y.
       const dvec3 dbary_dx = (t.a * sum - f * sum_x) * inv_sum2;
       const dvec3 dbary_dy = (t.b * sum - f * sum_y) * inv_sum2;
-      const std::uint32_t i0 = m.indices[3 * t.triangle], i1 = m.indices[3 * t.triangle + 1],
-                          i2 = m.indices[3 * t.triangle + 2];
+      const std::size_t first = 3 * static_cast<std::size_t>(t.triangle);
+      const std::uint32_t i0 = m.indices[first], i1 = m.indices[first + 1],
+                          i2 = m.indices[first + 2];
       const dvec3 position = bary.x * dvec3(m.positions[i0]) + bary.y * dvec3(m.positions[i1]) +
                              bary.z * dvec3(m.positions[i2]);
       dvec3 normal =

@@ -254,24 +254,28 @@ struct gl_rasterizer::impl {
     gpu_mesh g;
     g.shape = shape;
     g.vertices = static_cast<GLsizei>(m.indices.size());
+    // Separate attribute formats (GL 4.3): one buffer binding, attributes at relative
+    // offsets. (libOSMesa does not export the 4.5 direct-state-access entry points.)
     glGenVertexArrays(1, &g.vao);
     glBindVertexArray(g.vao);
     glGenBuffers(1, &g.vbo);
     glBindBuffer(GL_ARRAY_BUFFER, g.vbo);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(),
                  GL_STATIC_DRAW);
-    const GLsizei stride = kFloatsPerVertex * sizeof(float);
+    glBindVertexBuffer(0, g.vbo, 0, kFloatsPerVertex * sizeof(float));
     const char* const names[4] = {"a_position", "a_normal", "a_uv", "a_corner"};
     const int sizes[4] = {3, 3, 2, 3};
-    std::size_t offset = 0;
+    GLuint offset = 0;
     for (int a = 0; a < 4; ++a) {
       const GLint location = glGetAttribLocation(program, names[a]);
       if (location < 0)
         throw std::runtime_error(std::string("raster_gl: no attribute ") + names[a]);
-      glEnableVertexAttribArray(static_cast<GLuint>(location));
-      glVertexAttribPointer(static_cast<GLuint>(location), sizes[a], GL_FLOAT, GL_FALSE, stride,
-                            reinterpret_cast<const void*>(offset * sizeof(float)));
-      offset += static_cast<std::size_t>(sizes[a]);
+      const GLuint l = static_cast<GLuint>(location);
+      glEnableVertexAttribArray(l);
+      glVertexAttribFormat(l, sizes[a], GL_FLOAT, GL_FALSE,
+                           offset * static_cast<GLuint>(sizeof(float)));
+      glVertexAttribBinding(l, 0);
+      offset += static_cast<GLuint>(sizes[a]);
     }
     check_gl("upload");
     return meshes.emplace(shape.get(), g).first->second;

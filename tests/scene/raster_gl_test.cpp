@@ -90,7 +90,8 @@ agreement compare(const hs::scene& s, int frame, int w, int h) {
       const glm::dmat4 view_model = view * o.model(frame);
       double min_w = INFINITY, max_pos = 0, max_uv = 0;
       for (int k = 0; k < 3; ++k) {
-        const std::uint32_t v = m.indices[3 * c.triangle_id[p] + static_cast<std::size_t>(k)];
+        const std::uint32_t v =
+            m.indices[3 * static_cast<std::size_t>(c.triangle_id[p]) + static_cast<std::size_t>(k)];
         const glm::dvec4 e = view_model * glm::dvec4(glm::dvec3(m.positions[v]), 1.0);
         min_w = std::min(min_w, std::max(-e.z, pose.near_depth));
         for (int i = 0; i < 3; ++i)

@@ -33,7 +33,7 @@ std::string slurp(const fs::path& path) {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(HUSH_SCENE_SCRATCH) / name;
+  fs::path dir = fs::path(HUSH_SCENE_SCRATCH) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
