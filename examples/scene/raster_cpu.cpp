@@ -10,6 +10,7 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
@@ -230,6 +231,19 @@ struct rasterizer {
 
 }  // namespace
 
+void check_scene(const scene& s, const camera_pose& pose) {
+  if (!(pose.near_depth > 0.0) || !std::isfinite(pose.near_depth))
+    throw hush::invalid_argument("render: camera near_depth must be finite and > 0");
+  if (!(pose.fov_y > 0.0 && pose.fov_y < glm::pi<double>()))
+    throw hush::invalid_argument("render: camera fov_y must be in (0, pi) radians");
+  for (const object& o : s.objects) {
+    if (!o.shape || !o.model)
+      throw hush::invalid_argument("render: an object has no mesh or no transform");
+    validate(*o.shape);
+  }
+  if (!s.camera) throw hush::invalid_argument("render: the scene has no camera");
+}
+
 void check_render_arguments(int frame, int width, int height) {
   if (width < 1 || width > kMaxImageSize || height < 1 || height > kMaxImageSize)
     throw hush::invalid_argument("render: size " + std::to_string(width) + "x" +
@@ -290,9 +304,10 @@ void render_cpu(const scene& s, int frame, int width, int height, const raster_o
                 gbuffer& g) {
   check_render_arguments(frame, width, height);
   const int prev_frame = frame > 0 ? frame - 1 : frame;
+  if (!s.camera) throw hush::invalid_argument("render: the scene has no camera");
   const camera_pose pose = s.camera(frame), prev_pose = s.camera(prev_frame);
-  if (!(pose.near_depth > 0.0) || !(prev_pose.near_depth > 0.0))
-    throw hush::invalid_argument("render: camera near_depth must be > 0");
+  check_scene(s, pose);
+  check_scene(s, prev_pose);
   const dmat4 clip_from_world = projection_matrix(pose, width, height) * view_matrix(pose);
   const dmat4 prev_clip_from_world =
       projection_matrix(prev_pose, width, height) * view_matrix(prev_pose);

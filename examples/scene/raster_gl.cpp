@@ -324,7 +324,10 @@ gbuffer gl_rasterizer::render(const scene& s, int frame, int width, int height) 
   glClearBufferfv(GL_DEPTH, 0, &far_depth);
 
   const int prev_frame = frame > 0 ? frame - 1 : frame;
+  if (!s.camera) throw hush::invalid_argument("render: the scene has no camera");
   const camera_pose pose = s.camera(frame), prev_pose = s.camera(prev_frame);
+  check_scene(s, pose);
+  check_scene(s, prev_pose);
   const glm::dmat4 clip_from_world = projection_matrix(pose, width, height) * view_matrix(pose);
   const glm::dmat4 prev_clip_from_world =
       projection_matrix(prev_pose, width, height) * view_matrix(prev_pose);

@@ -421,4 +421,30 @@ TEST_CASE("out-of-range sizes and frames throw hush::invalid_argument") {
   CHECK_THROWS_AS(hs::render_cpu(s, -1, 10, 10), hush::invalid_argument);
 }
 
+TEST_CASE(
+    "malformed meshes and cameras throw hush::invalid_argument instead of reading out of bounds") {
+  hs::mesh m = hs::make_box(glm::vec3(1.0f));
+  m.indices.back() = static_cast<std::uint32_t>(m.vertices());
+  hs::camera_pose pose;
+  CHECK_THROWS_AS(hs::render_cpu(hush_scene_test::single(m, dmat4(1.0), pose), 0, 8, 8),
+                  hush::invalid_argument);
+  hs::mesh short_normals = hs::make_box(glm::vec3(1.0f));
+  short_normals.normals.pop_back();
+  CHECK_THROWS_AS(hs::render_cpu(hush_scene_test::single(short_normals, dmat4(1.0), pose), 0, 8, 8),
+                  hush::invalid_argument);
+  for (double fov : {0.0, 3.2}) {
+    pose.fov_y = fov;
+    CHECK_THROWS_AS(
+        hs::render_cpu(hush_scene_test::single(hs::make_box(glm::vec3(1.0f)), dmat4(1.0), pose), 0,
+                       8, 8),
+        hush::invalid_argument);
+  }
+  pose = hs::camera_pose();
+  pose.near_depth = 0.0;
+  CHECK_THROWS_AS(
+      hs::render_cpu(hush_scene_test::single(hs::make_box(glm::vec3(1.0f)), dmat4(1.0), pose), 0, 8,
+                     8),
+      hush::invalid_argument);
+}
+
 }  // namespace
