@@ -6,6 +6,8 @@
 //   hush gallery [--out DIR]
 //   hush glsl-export DIR
 //   hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]
+//   hush scene list | hush scene render --scene NAME [--frames N] [--size WxH]
+//                                       [--backend cpu|gl] --out DIR
 //
 // Exit codes: 0 success, 1 a failure doing valid work (e.g. an unwritable file), 2 a
 // usage error. Every error is one line on stderr: "hush <command>: <what is wrong>".
@@ -43,6 +45,8 @@ const std::vector<command>& commands() {
        run_glsl_export},
       {"bench", "hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]",
        "speed-vs-error table of every noise and backend", run_bench},
+      {"scene", "hush scene list | render --scene NAME [options] --out DIR",
+       "render test scenes to G-buffer files (.npy per channel)", run_scene},
   };
   return table;
 }
@@ -101,6 +105,11 @@ void print_usage(std::ostream& os) {
         "  Times every noise x backend x workload (ns/sample, median of repetitions, one\n"
         "  thread) next to its error against the double reference; Markdown on stdout.\n";
   print_options(os, bench_options());
+  os << "\nhush scene list\n"
+        "hush scene render --scene NAME [--frames N] [--size WxH] [--backend cpu|gl] --out DIR\n"
+        "  Writes DIR/frame_NNNN/<channel>.npy (float32 or uint32, shape (H, W) or (H, W, C),\n"
+        "  row 0 at the top; examples/scene/gbuffer.hpp) and preview PNGs for frames 0 ... N-1.\n";
+  print_options(os, scene_options());
   os << "\nEvery option takes one value: '--seed 7' or '--seed=7' (bench --quick is the one "
         "flag).\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";

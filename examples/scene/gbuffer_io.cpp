@@ -217,7 +217,8 @@ void write_previews(const gbuffer& g, const fs::path& dir) {
     std::uint32_t h = g.object_id[p] * 0x9E3779B1u;
     h ^= h >> 15;
     for (int c = 0; c < 3; ++c)
-      rgb[3 * p + c] = g.covered(p) ? static_cast<std::uint8_t>(64 + ((h >> (8 * c)) & 0xbfu)) : 0;
+      rgb[3 * p + c] =
+          static_cast<std::uint8_t>(g.covered(p) ? 64u + ((h >> (8 * c)) & 0xbfu) : 0u);
   }
   preview(dir / "preview_object_id.png", g, 3, rgb);
 }

@@ -65,6 +65,14 @@ void require(bool ok, const char* what) {
 
 }  // namespace
 
+void validate(const mesh& m) {
+  require(m.normals.size() == m.positions.size() && m.uvs.size() == m.positions.size(),
+          "mesh: needs one normal and one uv per position");
+  require(m.indices.size() % 3 == 0, "mesh: the index count must be a multiple of 3");
+  for (std::uint32_t i : m.indices)
+    require(i < m.positions.size(), "mesh: an index is out of range (>= the vertex count)");
+}
+
 void append(mesh& m, const mesh& part) {
   const std::uint32_t base = static_cast<std::uint32_t>(m.positions.size());
   m.positions.insert(m.positions.end(), part.positions.begin(), part.positions.end());

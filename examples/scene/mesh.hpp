@@ -32,6 +32,10 @@ struct mesh {
   std::size_t vertices() const { return positions.size(); }
 };
 
+// Throws hush::invalid_argument unless `m` is well formed: one normal and one uv per
+// position, a multiple of 3 indices, every index < vertices(). The rasterizers call it.
+void validate(const mesh& m);
+
 // Appends `part` to `m` (indices renumbered); `m.closed` stays as it was.
 void append(mesh& m, const mesh& part);
 

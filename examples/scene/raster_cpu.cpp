@@ -10,6 +10,7 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
@@ -228,7 +229,22 @@ struct rasterizer {
   }
 };
 
-void check_size(int width, int height, int frame) {
+}  // namespace
+
+void check_scene(const scene& s, const camera_pose& pose) {
+  if (!(pose.near_depth > 0.0) || !std::isfinite(pose.near_depth))
+    throw hush::invalid_argument("render: camera near_depth must be finite and > 0");
+  if (!(pose.fov_y > 0.0 && pose.fov_y < glm::pi<double>()))
+    throw hush::invalid_argument("render: camera fov_y must be in (0, pi) radians");
+  for (const object& o : s.objects) {
+    if (!o.shape || !o.model)
+      throw hush::invalid_argument("render: an object has no mesh or no transform");
+    validate(*o.shape);
+  }
+  if (!s.camera) throw hush::invalid_argument("render: the scene has no camera");
+}
+
+void check_render_arguments(int frame, int width, int height) {
   if (width < 1 || width > kMaxImageSize || height < 1 || height > kMaxImageSize)
     throw hush::invalid_argument("render: size " + std::to_string(width) + "x" +
                                  std::to_string(height) + " is out of range; valid: 1 ... " +
@@ -237,6 +253,8 @@ void check_size(int width, int height, int frame) {
     throw hush::invalid_argument("render: frame = " + std::to_string(frame) +
                                  " is out of range; valid: >= 0");
 }
+
+namespace {
 
 void write_background(gbuffer& g, std::size_t pixel) {
   g.depth[pixel] = std::numeric_limits<float>::infinity();
@@ -284,11 +302,12 @@ gbuffer render_cpu(const scene& s, int frame, int width, int height,
 
 void render_cpu(const scene& s, int frame, int width, int height, const raster_options& options,
                 gbuffer& g) {
-  check_size(width, height, frame);
+  check_render_arguments(frame, width, height);
   const int prev_frame = frame > 0 ? frame - 1 : frame;
+  if (!s.camera) throw hush::invalid_argument("render: the scene has no camera");
   const camera_pose pose = s.camera(frame), prev_pose = s.camera(prev_frame);
-  if (!(pose.near_depth > 0.0) || !(prev_pose.near_depth > 0.0))
-    throw hush::invalid_argument("render: camera near_depth must be > 0");
+  check_scene(s, pose);
+  check_scene(s, prev_pose);
   const dmat4 clip_from_world = projection_matrix(pose, width, height) * view_matrix(pose);
   const dmat4 prev_clip_from_world =
       projection_matrix(prev_pose, width, height) * view_matrix(prev_pose);
@@ -344,8 +363,9 @@ void render_cpu(const scene& s, int frame, int width, int height, const raster_o
       // d(f_k / S)/dx = (a_k S - f_k S_x) / S^2, and likewise in y.
       const dvec3 dbary_dx = (t.a * sum - f * sum_x) * inv_sum2;
       const dvec3 dbary_dy = (t.b * sum - f * sum_y) * inv_sum2;
-      const std::uint32_t i0 = m.indices[3 * t.triangle], i1 = m.indices[3 * t.triangle + 1],
-                          i2 = m.indices[3 * t.triangle + 2];
+      const std::size_t first = 3 * static_cast<std::size_t>(t.triangle);
+      const std::uint32_t i0 = m.indices[first], i1 = m.indices[first + 1],
+                          i2 = m.indices[first + 2];
       const dvec3 position = bary.x * dvec3(m.positions[i0]) + bary.y * dvec3(m.positions[i1]) +
                              bary.z * dvec3(m.positions[i2]);
       dvec3 normal =

@@ -61,6 +61,14 @@ gbuffer render_cpu(const scene& s, int frame, int width, int height, const raste
 void render_cpu(const scene& s, int frame, int width, int height, const raster_options& options,
                 gbuffer& out);
 
+// Throws hush::invalid_argument unless frame >= 0 and 1 <= width, height <= kMaxImageSize
+// (every rasterizer checks its arguments with this).
+void check_render_arguments(int frame, int width, int height);
+
+// Throws hush::invalid_argument unless `pose` has a finite near_depth > 0 and fov_y in
+// (0, pi), and every object of `s` has a valid mesh (validate) and a transform.
+void check_scene(const scene& s, const camera_pose& pose);
+
 // An empty G-buffer of the given size holding the background values of gbuffer.hpp.
 gbuffer make_background(int width, int height);
 

@@ -101,10 +101,14 @@ scene walkthrough_scene() {
           {},
           {}};
   s.objects.push_back(
-      still("ground", make_plane(40.0f, 200.0f, 20, 100, 20.0f), translation(0.0, 0.0, -90.0)));
+      // 2 x 2 unit quads out to 200 units: the far edge is the horizon, seen at grazing angles.
+      still("ground", make_plane(200.0f, 200.0f, 100, 100, 50.0f), translation(0.0, 0.0, -90.0)));
   s.objects.push_back(object{"pitcher", std::make_shared<const mesh>(make_pitcher(96)), [](int f) {
-                               return translation(0.9, 0.0, -5.0) *
-                                      rotation(150.0 + 1.0 * f, dvec3(0, 1, 0));
+                               // Half size: its rim (0.59) below the eye (0.6), so the near
+                               // wall hides part of the inside, the handle part of the body.
+                               return translation(0.7, 0.0, -5.0) *
+                                      rotation(150.0 + 1.0 * f, dvec3(0, 1, 0)) *
+                                      glm::scale(dmat4(1.0), dvec3(0.5));
                              }});
   s.objects.push_back(still("box", make_box(glm::vec3(0.4f, 0.8f, 0.4f)),
                             translation(-1.1, 0.8, -8.0) * rotation(25.0, dvec3(0, 1, 0))));

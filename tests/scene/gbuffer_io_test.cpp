@@ -21,7 +21,7 @@ namespace hs = hush::scene;
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(HUSH_SCENE_SCRATCH) / name;
+  fs::path dir = fs::path(HUSH_SCENE_SCRATCH) / name;
   fs::remove_all(dir);
   return dir;
 }
@@ -80,7 +80,7 @@ TEST_CASE("channel files are NPY 1.0 with the documented dtype and shape, data 6
   // Row 0 is the top: the first stored depth is pixel (0, 0), little-endian float32.
   const std::string depth = slurp(dir / "depth.npy");
   float first;
-  std::memcpy(&first, depth.data() + depth.size() - 4 * 35, 4);
+  std::memcpy(&first, depth.data() + depth.size() - std::size_t{140}, 4);
   CHECK(first == g.depth[0]);
   if (hs::previews_supported())
     for (const char* p : {"preview_depth.png", "preview_normal.png", "preview_uv.png",

@@ -123,7 +123,8 @@ TEST_CASE("near plane: a ground plane through the camera is clipped without crac
   for (int x = 0; x < w; ++x) {
     bool seen = false;  // below the horizon every pixel is covered, exactly once
     for (int y = 0; y < h; ++y) {
-      const std::size_t p = static_cast<std::size_t>(y * w + x);
+      const std::size_t p =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
       CHECK(coverage[p] <= 1u);
       if (seen) CHECK(g.covered(p));
       if (!g.covered(p)) continue;
@@ -160,7 +161,8 @@ TEST_CASE("depth, position, uv and the uv Jacobian equal analytic ray casts on a
   double max_depth = 0.0, max_uv = 0.0, max_jacobian = 0.0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const std::size_t p = static_cast<std::size_t>(y * w + x);
+      const std::size_t p =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
       REQUIRE(g.covered(p));
       const dvec3 world = hit(x + 0.5, y + 0.5);
       const dvec3 object = dvec3(inv_model * dvec4(world, 1.0));
@@ -284,13 +286,20 @@ TEST_CASE("velocity is zero in frame 0 and on static objects under a static came
 // (1/4)(|g_x||d_x| + |g_y||d_y|)/d. The derivatives come from the cell's differences
 // (x2 for their variation over the cell), plus float32 rounding of the stored values
 // and of the velocity.
+// Exactly, too: the ray through q of frame i-1's camera meets the triangle, placed
+// by frame i-1's model transform, at the object-space point stored at p (tolerance:
+// float32 rounding of the stored position, 4 eps |position|, and of the velocity,
+// 2 eps (|v| + width + height) pixels times the position's change per pixel).
 struct reprojection_result {
   std::size_t checked = 0, covered = 0;
   double max_position_error = 0.0, max_depth_error = 0.0, max_ratio = 0.0;
+  double max_exact_error = 0.0, max_exact_ratio = 0.0;
 };
 
-reprojection_result reproject(const hs::gbuffer& cur, const hs::gbuffer& prev) {
+reprojection_result reproject(const hs::scene& s, int frame, const hs::gbuffer& cur,
+                              const hs::gbuffer& prev) {
   reprojection_result r;
+  const hs::camera_pose prev_pose = s.camera(frame - 1);
   const int w = cur.width, h = cur.height;
   const auto at = [w](int x, int y) {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
@@ -353,6 +362,32 @@ reprojection_result reproject(const hs::gbuffer& cur, const hs::gbuffer& prev) {
       r.max_ratio = std::max(r.max_ratio, depth_error / depth_tol);
       r.max_position_error = std::max(r.max_position_error, position_error);
       r.max_depth_error = std::max(r.max_depth_error, depth_error);
+
+      const hs::object& o = s.objects[cur.object_id[p] - 1];
+      const glm::dmat4 model = o.model(frame - 1);
+      dvec3 corner[3];
+      double size = 0.0, change = 0.0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const glm::vec3& v =
+            o.shape
+                ->positions[o.shape->indices[3 * static_cast<std::size_t>(cur.triangle_id[p]) + k]];
+        corner[k] = dvec3(model * dvec4(dvec3(v), 1.0));
+        size = std::max(size, static_cast<double>(std::fabs(cur.position[3 * p + k])));
+        change = std::max(change, diff(prev.position, 3, static_cast<int>(k), 1, 0) +
+                                      diff(prev.position, 3, static_cast<int>(k), 2, 0));
+      }
+      const ray q = pixel_ray(prev_pose, w, h, x + 0.5 - vx, y + 0.5 - vy);
+      const dvec3 n = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
+      const dvec3 hit =
+          q.origin + (glm::dot(corner[0] - q.origin, n) / glm::dot(q.direction, n)) * q.direction;
+      const dvec3 object = dvec3(glm::inverse(model) * dvec4(hit, 1.0));
+      double exact_error = 0.0;
+      for (std::size_t k = 0; k < 3; ++k)
+        exact_error =
+            std::max(exact_error, std::fabs(cur.position[3 * p + k] - object[static_cast<int>(k)]));
+      const double exact_tol = 4 * kFloatEps * size + change * 2 * kFloatEps * (speed + w + h);
+      r.max_exact_error = std::max(r.max_exact_error, exact_error);
+      r.max_exact_ratio = std::max(r.max_exact_ratio, exact_error / exact_tol);
     }
   return r;
 }
@@ -363,13 +398,18 @@ TEST_CASE("velocity reprojection: frame i seen through its velocity matches fram
     const hs::scene s = hs::make_scene(name);
     for (int f : {1, 25}) {
       const reprojection_result r =
-          reproject(hs::render_cpu(s, f, w, h), hs::render_cpu(s, f - 1, w, h));
+          reproject(s, f, hs::render_cpu(s, f, w, h), hs::render_cpu(s, f - 1, w, h));
       MESSAGE(std::string(name) << " frame " << f << ": checked " << r.checked << " of "
-                                << r.covered << " covered pixels, max position error "
-                                << r.max_position_error << ", max depth error " << r.max_depth_error
-                                << ", max error / tolerance " << r.max_ratio);
+                                << r.covered << " covered pixels; against frame i-1's G-buffer "
+                                << "(bilinear): max position error " << r.max_position_error
+                                << ", max depth error " << r.max_depth_error
+                                << ", max error / tolerance " << r.max_ratio
+                                << "; against frame i-1's exact surface: max position error "
+                                << r.max_exact_error << ", max error / tolerance "
+                                << r.max_exact_ratio);
       CHECK(r.checked > r.covered / 2);
       CHECK(r.max_ratio <= 1.0);
+      CHECK(r.max_exact_ratio <= 1.0);
     }
   }
 }
@@ -379,6 +419,32 @@ TEST_CASE("out-of-range sizes and frames throw hush::invalid_argument") {
   CHECK_THROWS_AS(hs::render_cpu(s, 0, 0, 10), hush::invalid_argument);
   CHECK_THROWS_AS(hs::render_cpu(s, 0, 10, hs::kMaxImageSize + 1), hush::invalid_argument);
   CHECK_THROWS_AS(hs::render_cpu(s, -1, 10, 10), hush::invalid_argument);
+}
+
+TEST_CASE(
+    "malformed meshes and cameras throw hush::invalid_argument instead of reading out of bounds") {
+  hs::mesh m = hs::make_box(glm::vec3(1.0f));
+  m.indices.back() = static_cast<std::uint32_t>(m.vertices());
+  hs::camera_pose pose;
+  CHECK_THROWS_AS(hs::render_cpu(hush_scene_test::single(m, dmat4(1.0), pose), 0, 8, 8),
+                  hush::invalid_argument);
+  hs::mesh short_normals = hs::make_box(glm::vec3(1.0f));
+  short_normals.normals.pop_back();
+  CHECK_THROWS_AS(hs::render_cpu(hush_scene_test::single(short_normals, dmat4(1.0), pose), 0, 8, 8),
+                  hush::invalid_argument);
+  for (double fov : {0.0, 3.2}) {
+    pose.fov_y = fov;
+    CHECK_THROWS_AS(
+        hs::render_cpu(hush_scene_test::single(hs::make_box(glm::vec3(1.0f)), dmat4(1.0), pose), 0,
+                       8, 8),
+        hush::invalid_argument);
+  }
+  pose = hs::camera_pose();
+  pose.near_depth = 0.0;
+  CHECK_THROWS_AS(
+      hs::render_cpu(hush_scene_test::single(hs::make_box(glm::vec3(1.0f)), dmat4(1.0), pose), 0, 8,
+                     8),
+      hush::invalid_argument);
 }
 
 }  // namespace
