@@ -1338,8 +1338,9 @@ class perlin : public point_noise<perlin<D>, D> {
 //    elements in C order, i fastest (core/views.hpp). The grid is validated.
 //  - scalar: exactly noise(point) per element, in float.
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
-//    the noise's stated SIMD budget (perlin: docs/performance.md). Without
-//    Highway (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
+//    the noise's float budget of the double reference (perlin, fractal:
+//    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
+//    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
 //  - glsl: within the GLSL tolerance stated by the backend
 //    (backends/glsl/include/hush/glsl/device.hpp).
 //  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
