@@ -9,22 +9,23 @@ build=${1:-build/tidy}
 if [ ! -f "$build/compile_commands.json" ]; then
   cmake -S . -B "$build" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DHUSH_BUILD_TESTS=OFF >/dev/null
 fi
-status=0
-# bench/ is built only with Google Benchmark; its files are checked when the build has them.
-bench_files=$(grep -o '"file": *"[^"]*/bench/[^"]*\.cpp"' "$build/compile_commands.json" |
-              sed 's/.*"\([^"]*\)"$/\1/' | sort -u || true)
-for f in examples/basic_usage.cpp examples/hush/*.cpp examples/coherence/*.cpp $bench_files; do
-  case "$f" in *stb_image_write_impl.cpp) continue ;; esac
-  # GCC 12 defaults to C++17, so CMake passes no -std flag; clang-tidy needs it.
-  clang-tidy -p "$build" --quiet --extra-arg=-std=c++17 \
-    --header-filter='.*/(include/hush|examples|backends/glsl|bench)/.*' "$f" || status=1
-done
-# The test scenes (examples/scene), where this build compiles them (raster_gl.cpp needs OSMesa).
-for f in examples/scene/*.cpp; do
-  case "$f" in *png_write.cpp) continue ;; esac  # stb_image_write's implementation
+# The translation units to check: the examples, the program, the scene and coherence
+# libraries, and bench/ -- each where this build compiles it (bench needs Google Benchmark,
+# raster_gl.cpp needs OSMesa). Third-party implementation files are left out.
+files=()
+for f in examples/*.cpp examples/hush/*.cpp examples/coherence/*.cpp examples/scene/*.cpp \
+         bench/*.cpp; do
+  case "$f" in *stb_image_write_impl.cpp | *png_write.cpp) continue ;; esac
   grep -q "/$f\"" "$build/compile_commands.json" || continue
-  clang-tidy -p "$build" --quiet --extra-arg=-std=c++17 \
-    --header-filter='.*/(include/hush|examples)/.*' "$f" || status=1
+  files+=("$f")
 done
+# One clang-tidy per file, as many at once as there are cores. GCC 12 defaults to C++17, so
+# CMake passes no -std flag; clang-tidy needs it.
+status=0
+printf '%s\n' "${files[@]}" |
+  xargs -P "$(nproc 2>/dev/null || echo 2)" -n 1 clang-tidy -p "$build" --quiet \
+    --extra-arg=-std=c++17 \
+    --header-filter='.*/(include/hush|examples|backends/glsl|bench)/.*' || status=1
+echo "tidy: ${#files[@]} files checked"
 [ "$status" -eq 0 ] && echo "tidy: clean"
 exit "$status"
