@@ -13,6 +13,7 @@
 
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
+#include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
 
 namespace hush {
@@ -39,7 +40,7 @@ void add_runners(std::vector<export_file>& files) {
 }  // namespace detail
 
 // hush_noise.glsl, then hush_<noise>_<points|grid>[_gradient].comp for every
-// noise with a GLSL program (perlin2, perlin3).
+// noise with a GLSL program (perlin2, perlin3, fractal_perlin2, fractal_perlin3).
 inline std::vector<export_file> export_files() {
   std::vector<export_file> files;
   files.push_back(
@@ -62,6 +63,8 @@ inline std::vector<export_file> export_files() {
            library()});
   detail::add_runners<perlin<2>>(files);
   detail::add_runners<perlin<3>>(files);
+  detail::add_runners<fractal<perlin<2>>>(files);
+  detail::add_runners<fractal<perlin<3>>>(files);
   return files;
 }
 
