@@ -60,7 +60,7 @@ template <int D>
 using fractal_t = hush::fractal<hush::perlin<D>>;
 
 const double kNoiseBudget = std::ldexp(1.0, -16);  // one band's Perlin value (file comment)
-const double kUlp = std::ldexp(1.0, -24);           // float unit roundoff
+const double kUlp = std::ldexp(1.0, -24);          // float unit roundoff
 
 static_assert(hush::glsl::has_program_v<fractal_t<2>> && hush::glsl::has_program_v<fractal_t<3>>,
               "fractal sums of Perlin noise have GLSL programs");
@@ -308,8 +308,8 @@ TEST_CASE("fractal perlin grids near and far match the double reference and the 
     check_grid(fr, hush::grid<2>{{1e6 + 0.3, 1e6}, {0.01, -0.02}, {128, 64}}, "at 1e6");
     check_grid(fr, hush::grid<2>{{-1e9, -1e9 + 0.5}, {-0.013, 0.011}, {128, 64}}, "at -1e9");
   }
-  for (const auto& fr : {fractal_t<3>(), fractal_t<3>(turbulence_7<3>()),
-                         fractal_t<3>(explicit_weights<3>())}) {
+  for (const auto& fr :
+       {fractal_t<3>(), fractal_t<3>(turbulence_7<3>()), fractal_t<3>(explicit_weights<3>())}) {
     check_grid(fr, hush::grid<3>{{0.1, -0.2, 0.3}, {0.037, 0.05, 0.11}, {24, 20, 10}}, "at 0");
     check_grid(fr, hush::grid<3>{{1e6, 1e6 + 0.25, -1e6}, {0.01, -0.02, 0.03}, {24, 20, 10}},
                "at 1e6");
@@ -339,8 +339,8 @@ TEST_CASE("fractal perlin: NaN and infinite coordinates give NaN values and grad
               inf = std::numeric_limits<float>::infinity();
   const std::vector<hush::vec2> p2 = {{nan, 0.5f}, {0.5f, inf}, {-inf, -inf}, {0.5f, 0.25f}};
   const std::vector<hush::vec3> p3 = {{nan, 0.5f, 0.5f}, {0.5f, 0.5f, -inf}, {0.5f, 0.25f, 0.75f}};
-  for (const fractal_t<2>& fr : {fractal_t<2>(), fractal_t<2>(turbulence_7<2>()),
-                                 fractal_t<2>(periodic<2>())}) {
+  for (const fractal_t<2>& fr :
+       {fractal_t<2>(), fractal_t<2>(turbulence_7<2>()), fractal_t<2>(periodic<2>())}) {
     std::vector<float> v(p2.size());
     std::vector<hush::vec2> g(p2.size());
     hush::evaluate(fr, hush::exec::glsl{env().dev}, p2, v, g);
@@ -375,7 +375,8 @@ TEST_CASE("fractal perlin: huge coordinates up to FLT_MAX agree with the CPU wit
   }
 }
 
-TEST_CASE("fractal perlin batches split across buffers and dispatches equal one batch bit for bit") {
+TEST_CASE(
+    "fractal perlin batches split across buffers and dispatches equal one batch bit for bit") {
   const fractal_t<3> fr(turbulence_7<3>());
   const auto pts = random_points<3>(3000, 21);
   std::vector<float> one(pts.size()), many(pts.size());
@@ -391,8 +392,8 @@ TEST_CASE("fractal perlin batches split across buffers and dispatches equal one 
 }
 
 TEST_CASE("a fractal grid whose band tables exceed the buffer limit is refused") {
-  hush::glsl::device small(env().context.loader(), {0, 12 * 1000});  // 1000 triples
-  std::vector<float> out(100 * 100);
+  hush::glsl::device small(env().context.loader(), {0, std::size_t{12} * 1000});  // 1000 triples
+  std::vector<float> out(std::size_t{100} * 100);
   // 200 axis samples x 5 bands = 1000 triples fit; 6 bands do not.
   hush::evaluate_grid(fractal_t<2>(), hush::exec::glsl{small},
                       hush::grid<2>{{0, 0}, {0.1, 0.1}, {100, 100}}, out);

@@ -69,7 +69,8 @@ std::string banded_source(batch_layout layout, bool gradient) {
        "  if (n >= hush_count) return;\n";
   if (layout == batch_layout::points) {
     // Triple of axis a of band b at t[a] + band_stride * b.
-    s += "  uint band_stride = 3u * " + d + "u;\n  uint t0 = band_stride * hush_bands * n;\n"
+    s += "  uint band_stride = 3u * " + d +
+         "u;\n  uint t0 = band_stride * hush_bands * n;\n"
          "  uint t[3] = uint[3](t0, t0 + 3u, t0 + 6u);\n";
   } else {
     s += "  uint g = hush_base + n;\n"
@@ -87,8 +88,8 @@ std::string banded_source(batch_layout layout, bool gradient) {
     i1 += std::string(a ? ", " : "") + "hush_axis[" + ta + " + 1u]";
     f += std::string(a ? ", " : "") + "uintBitsToFloat(hush_axis[" + ta + " + 2u])";
   }
-  s += "    uvec" + d + " i0 = uvec" + d + "(" + i0 + ");\n    uvec" + d + " i1 = uvec" + d +
-       "(" + i1 + ");\n    vec" + d + " f = vec" + d + "(" + f + ");\n" + np::band_step(gradient) +
+  s += "    uvec" + d + " i0 = uvec" + d + "(" + i0 + ");\n    uvec" + d + " i1 = uvec" + d + "(" +
+       i1 + ");\n    vec" + d + " f = vec" + d + "(" + f + ");\n" + np::band_step(gradient) +
        "  }\n";
   if (!gradient) {
     s += "  hush_out[n] = " + np::band_result(gradient) + ";\n";

@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
+#include "hush/fractal.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
-#include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
 
 namespace hush {
@@ -58,7 +58,9 @@ inline std::vector<export_file> export_files() {
        "// double reference where float +, -, * are correctly rounded (tested on\n"
        "// llvmpipe), 2^-15 where they err by up to 2 ulp; hush/glsl/library.hpp\n"
        "// derives the bounds. The *.comp files beside this one are the batch runners of\n"
-       "// hush::glsl::device (interface: hush/glsl/compute_source.hpp).\n"
+       "// hush::glsl::device (interface: hush/glsl/compute_source.hpp); the\n"
+       "// hush_fractal_perlin* runners (fBm, turbulence) read band coordinates split on\n"
+       "// the CPU (hush::fractal::band_position, hush::lattice_split<float>).\n"
        "// Regenerate with the same hush version instead of editing by hand.\n" +
            library()});
   detail::add_runners<perlin<2>>(files);

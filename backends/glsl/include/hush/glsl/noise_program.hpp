@@ -122,7 +122,8 @@ struct noise_program<fractal<perlin<D>>> {
   }
   static std::string band_step(bool gradient) {
     const std::string cells = std::string("hush_perlin") + std::to_string(D) +
-                              (gradient ? "_cells_gradient" : "_cells") + "(i0, i1, f, hush_key[b])";
+                              (gradient ? "_cells_gradient" : "_cells") +
+                              "(i0, i1, f, hush_key[b])";
     std::string s = "    bad = bad || hush_any_nonfinite(f);\n";
     if (gradient)
       s += "    acc = hush_fractal_add_gradient(acc, " + cells +
