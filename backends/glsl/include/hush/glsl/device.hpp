@@ -256,13 +256,14 @@ class device {
       const std::size_t m = std::min(batch, n - first);
       triples.resize(m * words);
       std::uint32_t* w = triples.data();
-      for (std::size_t i = 0; i < m; ++i)
-        for (int b = 0; b < bands; ++b)
-          for (int a = 0; a < D; ++a, w += 3) {
-            const double x = static_cast<double>(pts[first + i][static_cast<std::size_t>(a)]);
-            split_into(w, np::band_coordinate(noise, b, a, x),
-                       period[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)]);
-          }
+      for (std::size_t i = 0; i < m; ++i) {
+        const vec<double, D> p = vec_cast<double>(pts[first + i]);
+        for (int b = 0; b < bands; ++b) {
+          const vec<double, D> q = np::band_position(noise, b, p);
+          for (int a = 0; a < D; ++a, w += 3)
+            split_into(w, q[a], period[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)]);
+        }
+      }
       upload(0, triples.data(), triples.size() * sizeof(std::uint32_t));
       run_batch<D>(prog, m, stride, out + first, grad ? grad + first : nullptr);
     }
@@ -287,8 +288,10 @@ class device {
       for (int a = 0; a < D; ++a) {
         const std::uint32_t period = np::band_period(noise, b, a);
         for (std::size_t i = 0; i < g.size[a]; ++i, w += 3) {
-          const double x = g.origin[a] + g.step[a] * static_cast<double>(i);
-          split_into(w, np::band_coordinate(noise, b, a, x), period);
+          // Component a of the band position depends on component a of p only.
+          vec<double, D> p;
+          for (int c = 0; c < D; ++c) p[c] = g.origin[a] + g.step[a] * static_cast<double>(i);
+          split_into(w, np::band_position(noise, b, p)[a], period);
         }
       }
     const state_guard guard(*gl_);

@@ -17,9 +17,9 @@
 // and cells_call and period:
 //   static int band_count(const Noise&);
 //   static std::uint32_t band_period(const Noise&, int band, int axis);
-//   static double band_coordinate(const Noise&, int band, int axis, double x);
-//                                              the band's lattice coordinate of
-//                                              position x along axis, in double
+//   static vec<double, D> band_position(const Noise&, int band, const vec<double, D>& p);
+//                                              the band's lattice position of p, in
+//                                              double; component a depends on p[a] only
 //   static std::string band_begin(bool grad);  GLSL statements before the band loop
 //   static std::string band_step(bool grad);   statements of `b` (uint band),
 //                                              `i0`, `i1` (uvecD), `f` (vecD)
@@ -108,12 +108,8 @@ struct noise_program<fractal<perlin<D>>> {
     return static_cast<std::uint32_t>(
         fr.band_noise(band).parameters().period[static_cast<std::size_t>(axis)]);
   }
-  // fractal::band_position is per axis (q_a = p_a f + o_a), so any other
-  // components of the position do not matter.
-  static double band_coordinate(const noise_type& fr, int band, int axis, double x) {
-    vec<double, D> p;
-    for (int a = 0; a < D; ++a) p[a] = x;
-    return fr.band_position(band, p)[axis];
+  static vec<double, D> band_position(const noise_type& fr, int band, const vec<double, D>& p) {
+    return fr.band_position(band, p);
   }
   static std::string band_begin(bool gradient) {
     return gradient ? "  vec" + std::to_string(D + 1) + " acc = vec" + std::to_string(D + 1) +
