@@ -420,7 +420,8 @@ std::vector<bench_case> all_cases(const sizes& s) {
     const hush::exec::glsl<hush::glsl::device> gpu{bench_glsl_device()};
     add_noise_rows(cases, s, "perlin 2D", hush::perlin<2>(kNoiseSeed), gpu);
     add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), gpu);
-    // fBm has no GLSL program yet (hush::glsl::has_program_v); no rows rather than a fallback.
+    add_noise_rows(cases, s, "fbm 2D", make_fbm<2>(), gpu);
+    add_noise_rows(cases, s, "fbm 3D", make_fbm<3>(), gpu);
   }
 #endif
 #if HUSH_BENCH_HAVE_GLM

@@ -29,7 +29,7 @@ class field final : public noise_field {
     if (b == backend::glsl) {
       if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (OSMesa not found)";
       if (!has_glsl_program<Noise>())
-        return "the GLSL backend runs plain perlin (no --octaves, --fractal, ...) so far";
+        return "the GLSL backend has no program for this noise (hush::glsl::has_program_v)";
     }
     if (b == backend::simd && !HUSH_CONFIG_SIMD)
       return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";

@@ -479,7 +479,6 @@ TEST_CASE("sample rejects each bad input with exit code 2 and one line naming th
       {"perlin --seed 1.5" + out, "--seed"},
       {"perlin --seed 7x" + out, "--seed"},
       {"perlin --seed ''" + out, "--seed"},
-      {"perlin --octaves 3 --backend glsl" + out, "--backend"},
       {"perlin --backend cuda" + out, "--backend"},
       {"perlin --period -3,1" + out, "--period"},
       {"perlin --period 4" + out, "--period"},  // one value per dimension
@@ -571,6 +570,40 @@ TEST_CASE("sample --backend glsl equals scalar sampling within the GLSL budget, 
       worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
     CHECK(worst <= std::ldexp(1.0, -15));
   }
+}
+#endif
+
+#if HUSH_CLI_TEST_GLSL
+TEST_CASE("sample --backend glsl with --octaves equals scalar sampling within the GLSL budget") {
+  const fs::path dir = scratch("backend_glsl_fractal");
+  for (int dim : {2, 3})
+    for (const char* kind : {"fbm", "turbulence"}) {
+      const std::string common =
+          "sample perlin --dim " + std::to_string(dim) +
+          (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
+          " --step 0.173 --seed 9 --octaves 6 --fractal " + kind + " ";
+      REQUIRE(run_hush(common + "--backend glsl --out '" + (dir / "glsl.npy").string() + "'", dir)
+                  .exit_code == 0);
+      REQUIRE(
+          run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
+              .exit_code == 0);
+      const npy_file a = read_npy(dir / "glsl.npy"), b = read_npy(dir / "scalar.npy");
+      REQUIRE(a.values.size() == b.values.size());
+      // Within twice the fractal budget of the CPU float path (tests/glsl/glsl_fractal_test.cpp):
+      // bound() (2^-16 + (octaves + 4) 2^-24), bound() = K sum |w_i|.
+      hush::fractal<hush::perlin<2>>::params prm;
+      prm.octaves = 6;
+      if (std::string(kind) == "turbulence") {
+        prm.kind = hush::fractal_kind::turbulence;
+        prm.norm = hush::normalization::unit_range;
+      }
+      const double budget = 2 * hush::fractal<hush::perlin<2>>(prm).bound() *
+                            (std::ldexp(1.0, -16) + (6 + 4) * std::ldexp(1.0, -24));
+      double worst = 0;
+      for (std::size_t i = 0; i < a.values.size(); ++i)
+        worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
+      CHECK_MESSAGE(worst <= budget, dim << "D " << kind << ": " << worst);
+    }
 }
 #endif
 

@@ -276,10 +276,11 @@ std::vector<std::string> numeric_literals(const std::string& text) {
 }
 
 // Literals the bodies may hold: the integers of a 2^D cell's structure
-// (corner indices and bits 0 ... 8), unsigned 0 and 1, and 1.0 (a cell's width).
+// (corner indices and bits 0 ... 8), unsigned 0 and 1, 1.0 (a cell's width)
+// and 0.0 (the sign test of a turbulence band).
 bool structural_literal(const std::string& lit) {
-  static const char* const kAllowed[] = {"0", "1", "2", "3",  "4",  "5",
-                                         "6", "7", "8", "0u", "1u", "1.0"};
+  static const char* const kAllowed[] = {"0", "1", "2",  "3",  "4",   "5",  "6",
+                                         "7", "8", "0u", "1u", "1.0", "0.0"};
   return std::find_if(std::begin(kAllowed), std::end(kAllowed),
                       [&](const char* a) { return lit == a; }) != std::end(kAllowed);
 }
@@ -815,7 +816,7 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
                                    "out vec4 c;\nvoid main() { c = "
                                    "hush_perlin3_gradient(gl_FragCoord.xyz, 1u, uvec3(0u)); }\n"}});
   const auto files = hush::glsl::export_files();
-  CHECK(files.size() == 9);
+  CHECK(files.size() == 17);  // the library, 4 runners each of perlin2, perlin3 and their fractals
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);

@@ -16,6 +16,13 @@
 //   binding 1 `float hush_out[]`: the value per sample, or with gradients
 //     D + 1 floats per sample (value, d/dx, d/dy[, d/dz]);
 //   plus the noise's own uniforms (noise_program<Noise>::uniforms()).
+// Banded noises (noise_program<Noise>::banded, e.g. fractal sums) read, for
+// `uniform uint hush_bands` bands, band b's triples instead:
+//   points: binding 0 `uint hush_axis[]`, per point, per band, per axis the
+//     triple of the band coordinate split on the CPU in double
+//     (3 D hush_bands words per point);
+//   grid: the grid triples above for band 0 (nx + ny + nz triples), then
+//     band 1's, ...
 #ifndef HUSH_GLSL_COMPUTE_SOURCE_HPP
 #define HUSH_GLSL_COMPUTE_SOURCE_HPP
 
@@ -34,9 +41,72 @@ enum class batch_layout { points, grid };
 // of GPUs (32, 64) and of llvmpipe's 8 or 16 lanes).
 constexpr unsigned kLocalSize = 64;
 
-// The compute shader source for Noise (see the file comment for its interface).
+namespace detail {
+
+// The runner of a banded noise (file comment): the band loop around the
+// noise's band_step, on CPU-split triples for points and grids alike.
 template <class Noise>
-std::string compute_source(batch_layout layout, bool gradient) {
+std::string banded_source(batch_layout layout, bool gradient) {
+  using np = noise_program<Noise>;
+  constexpr int D = np::dimension;
+  const std::string d = std::to_string(D);
+  std::string s =
+      "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
+      std::string(np::name) + (gradient ? ", values and gradients" : ", values") +
+      (layout == batch_layout::points ? ", points" : ", grid") +
+      " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
+      ") in;\n" + library() + "\n// ---- Runner.\n" + np::uniforms() +
+      "uniform uint hush_bands;  // bands summed\n"
+      "uniform uint hush_first;  // first sample of this dispatch\n"
+      "uniform uint hush_count;  // samples in the batch\n";
+  if (layout == batch_layout::grid)
+    s += "uniform uint hush_base;   // grid index of the batch's first sample\n"
+         "uniform uvec3 hush_size;  // samples along x, y, z\n";
+  s += "layout(std430, binding = 0) readonly buffer hush_axes { uint hush_axis[]; };\n"
+       "layout(std430, binding = 1) writeonly buffer hush_output { float hush_out[]; };\n"
+       "void main() {\n"
+       "  uint n = hush_first + gl_GlobalInvocationID.x;\n"
+       "  if (n >= hush_count) return;\n";
+  if (layout == batch_layout::points) {
+    // Triple of axis a of band b at t[a] + band_stride * b.
+    s += "  uint band_stride = 3u * " + d +
+         "u;\n  uint t0 = band_stride * hush_bands * n;\n"
+         "  uint t[3] = uint[3](t0, t0 + 3u, t0 + 6u);\n";
+  } else {
+    s += "  uint g = hush_base + n;\n"
+         "  uint band_stride = 3u * (hush_size.x + hush_size.y + hush_size.z);\n"
+         "  uint t[3] = uint[3](3u * (g % hush_size.x),\n"
+         "                      3u * (hush_size.x + (g / hush_size.x) % hush_size.y),\n"
+         "                      3u * (hush_size.x + hush_size.y + g / (hush_size.x * "
+         "hush_size.y)));\n";
+  }
+  s += np::band_begin(gradient) + "  for (uint b = 0u; b < hush_bands; ++b) {\n";
+  std::string i0, i1, f;
+  for (int a = 0; a < D; ++a) {
+    const std::string ta = "band_stride * b + t[" + std::to_string(a) + "]";
+    i0 += std::string(a ? ", " : "") + "hush_axis[" + ta + "]";
+    i1 += std::string(a ? ", " : "") + "hush_axis[" + ta + " + 1u]";
+    f += std::string(a ? ", " : "") + "uintBitsToFloat(hush_axis[" + ta + " + 2u])";
+  }
+  s += "    uvec" + d + " i0 = uvec" + d + "(" + i0 + ");\n    uvec" + d + " i1 = uvec" + d + "(" +
+       i1 + ");\n    vec" + d + " f = vec" + d + "(" + f + ");\n" + np::band_step(gradient) +
+       "  }\n";
+  if (!gradient) {
+    s += "  hush_out[n] = " + np::band_result(gradient) + ";\n";
+  } else {
+    const std::string stride = std::to_string(D + 1);
+    s += "  vec" + std::to_string(D + 1) + " r = " + np::band_result(gradient) + ";\n";
+    for (int c = 0; c <= D; ++c)
+      s += "  hush_out[" + stride + "u * n + " + std::to_string(c) + "u] = r." +
+           (c == 0 ? 'x' : "yzw"[c - 1]) + ";\n";
+  }
+  s += "}\n";
+  return s;
+}
+
+// The runner of a plain noise (point_call / cells_call).
+template <class Noise>
+std::string plain_source(batch_layout layout, bool gradient) {
   using np = noise_program<Noise>;
   constexpr int D = np::dimension;
   const std::string d = std::to_string(D);
@@ -94,6 +164,17 @@ std::string compute_source(batch_layout layout, bool gradient) {
   }
   s += "}\n";
   return s;
+}
+
+}  // namespace detail
+
+// The compute shader source for Noise (see the file comment for its interface).
+template <class Noise>
+std::string compute_source(batch_layout layout, bool gradient) {
+  if constexpr (is_banded<noise_program<Noise>>::value)
+    return detail::banded_source<Noise>(layout, gradient);
+  else
+    return detail::plain_source<Noise>(layout, gradient);
 }
 
 }  // namespace glsl

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "hush/fractal.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/perlin.hpp"
@@ -39,7 +40,7 @@ void add_runners(std::vector<export_file>& files) {
 }  // namespace detail
 
 // hush_noise.glsl, then hush_<noise>_<points|grid>[_gradient].comp for every
-// noise with a GLSL program (perlin2, perlin3).
+// noise with a GLSL program (perlin2, perlin3, fractal_perlin2, fractal_perlin3).
 inline std::vector<export_file> export_files() {
   std::vector<export_file> files;
   files.push_back(
@@ -57,11 +58,15 @@ inline std::vector<export_file> export_files() {
        "// double reference where float +, -, * are correctly rounded (tested on\n"
        "// llvmpipe), 2^-15 where they err by up to 2 ulp; hush/glsl/library.hpp\n"
        "// derives the bounds. The *.comp files beside this one are the batch runners of\n"
-       "// hush::glsl::device (interface: hush/glsl/compute_source.hpp).\n"
+       "// hush::glsl::device (interface: hush/glsl/compute_source.hpp); the\n"
+       "// hush_fractal_perlin* runners (fBm, turbulence) read band coordinates split on\n"
+       "// the CPU (hush::fractal::band_position, hush::lattice_split<float>).\n"
        "// Regenerate with the same hush version instead of editing by hand.\n" +
            library()});
   detail::add_runners<perlin<2>>(files);
   detail::add_runners<perlin<3>>(files);
+  detail::add_runners<fractal<perlin<2>>>(files);
+  detail::add_runners<fractal<perlin<3>>>(files);
   return files;
 }
 

@@ -20,6 +20,10 @@
 //   vec4  hush_perlin3_gradient(vec3 p, uint key, uvec3 period) (value, d/dx, d/dy, d/dz)
 //   hush_perlinD_cells[_gradient](uvecD i0, uvecD i1, vecD f, uint key): the same
 //   from an already split position (cells i0, i1 = i0 + 1 wrapped; fraction f).
+//   bool  hush_any_nonfinite(vecD v)
+//   float hush_fractal_add(float sum, float n, float w, bool turbulence)   sum + w n (or w |n|)
+//   vecD+1 hush_fractal_add_gradient(acc, vecD+1 ng, float w, float chain, bool turbulence)
+//   one band's term of a fractal sum (include/hush/fractal.hpp), the CPU's operations.
 //
 // Contract: the bodies mirror the CPU float algorithm (include/hush/perlin.hpp,
 // core/hash.hpp, core/lattice.hpp) operation by operation: the same gradient
@@ -240,12 +244,36 @@ float hush_perlin3(vec3 p, uint key, uvec3 period) {
 }
 )glsl";
 
+// Fractal sums: include/hush/fractal.hpp value / value_and_gradient, one band at a time.
+constexpr const char* kFractalBody = R"glsl(
+// ---- Fractal sums (include/hush/fractal.hpp): one band's term, in the CPU's order.
+bool hush_any_nonfinite(vec2 v) { return hush_is_nonfinite(v.x) || hush_is_nonfinite(v.y); }
+bool hush_any_nonfinite(vec3 v) {
+  return hush_is_nonfinite(v.x) || hush_is_nonfinite(v.y) || hush_is_nonfinite(v.z);
+}
+// sum + w * n (fBm) or sum + w * |n| (turbulence), as fractal::value.
+float hush_fractal_add(float sum, float n, float weight, bool turbulence) {
+  return sum + weight * (turbulence ? abs(n) : n);
+}
+// (value, gradient) + the band's (w n, chain g), chain = w f; turbulence
+// negates a band whose value is negative (the CPU's sign -1: exact).
+vec3 hush_fractal_add_gradient(vec3 acc, vec3 ng, float weight, float chain, bool turbulence) {
+  if (turbulence && ng.x < 0.0) ng = -ng;
+  return vec3(acc.x + weight * ng.x, acc.yz + chain * ng.yz);
+}
+vec4 hush_fractal_add_gradient(vec4 acc, vec4 ng, float weight, float chain, bool turbulence) {
+  if (turbulence && ng.x < 0.0) ng = -ng;
+  return vec4(acc.x + weight * ng.x, acc.yzw + chain * ng.yzw);
+}
+)glsl";
+
 }  // namespace detail
 
 // The hand-written bodies, in order; tests check they hold no numeric literal
 // besides the 2^D-cell structure integers (0, 1, 2, 4, 8).
 inline std::string library_bodies() {
-  return std::string(detail::kHashBody) + detail::kLatticeBody + detail::kPerlinBody;
+  return std::string(detail::kHashBody) + detail::kLatticeBody + detail::kPerlinBody +
+         detail::kFractalBody;
 }
 
 // The whole function library: a header comment naming the hush version, the

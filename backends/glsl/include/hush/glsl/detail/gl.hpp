@@ -83,6 +83,7 @@ struct gl_api {
   void(HUSH_GLAPI* Uniform1ui)(gl_int, gl_uint) = nullptr;
   void(HUSH_GLAPI* Uniform2ui)(gl_int, gl_uint, gl_uint) = nullptr;
   void(HUSH_GLAPI* Uniform3ui)(gl_int, gl_uint, gl_uint, gl_uint) = nullptr;
+  void(HUSH_GLAPI* Uniform1uiv)(gl_int, gl_sizei, const gl_uint*) = nullptr;
   void(HUSH_GLAPI* GenBuffers)(gl_sizei, gl_uint*) = nullptr;
   void(HUSH_GLAPI* DeleteBuffers)(gl_sizei, const gl_uint*) = nullptr;
   void(HUSH_GLAPI* BindBuffer)(gl_enum, gl_uint) = nullptr;
@@ -119,6 +120,7 @@ struct gl_api {
     load(loader, Uniform1ui, "glUniform1ui");
     load(loader, Uniform2ui, "glUniform2ui");
     load(loader, Uniform3ui, "glUniform3ui");
+    load(loader, Uniform1uiv, "glUniform1uiv");
     load(loader, GenBuffers, "glGenBuffers");
     load(loader, DeleteBuffers, "glDeleteBuffers");
     load(loader, BindBuffer, "glBindBuffer");
