@@ -2,13 +2,15 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "image.hpp"
 #include "noises.hpp"
-#include "npy.hpp"
+#include "npy/npy.hpp"
 #include "progress.hpp"
 
 namespace hush_cli {
@@ -146,6 +148,17 @@ void for_each_row(const noise_field& field, const request& r, OnRow on_row) {
     }
 }
 
+// Runs `io`, a call of the .npy writer: its file errors (std::runtime_error) are run errors
+// of the program (exit code 1, the message unchanged).
+template <class Io>
+void npy_io(Io io) {
+  try {
+    io();
+  } catch (const std::runtime_error& e) {
+    throw run_error(e.what());
+  }
+}
+
 }  // namespace
 
 const std::vector<option_spec>& sample_options() {
@@ -174,10 +187,12 @@ int run_sample(const std::vector<std::string>& args) {
     throw usage_error(std::string("--backend ") + backend_name(r.where) + ": " + why_not);
   const std::size_t nx = r.grid.size[0];
   if (r.out_format == format::npy) {
-    npy_writer npy(r.out, r.shape);
-    for_each_row(*field, r,
-                 [&](std::size_t, const float* row, std::size_t n) { npy.write(row, n); });
-    npy.close();
+    std::optional<hush::npy::writer> npy;  // streamed by rows: any size without holding it
+    npy_io([&] { npy.emplace(r.out, hush::npy::dtype::float32, r.shape); });
+    for_each_row(*field, r, [&](std::size_t, const float* row, std::size_t n) {
+      npy_io([&] { npy->write(row, n); });
+    });
+    npy_io([&] { npy->close(); });
   } else {
     gray_image image(nx, r.grid.size[1]);
     const double lo = field->is_signed() ? -1.0 : 0.0;  // shown over [lo, 1]
