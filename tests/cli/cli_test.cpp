@@ -3,7 +3,6 @@
 // bit for bit against hush::perlin / hush::fractal, PNG headers and pixels, the periodic
 // option, the gallery, and that every bad input fails with one line naming the option.
 #include <doctest/doctest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +10,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include "hush/hush.hpp"
+#include "run_hush.hpp"
 
 #if HUSH_CLI_TEST_DECODE
 #define STB_IMAGE_IMPLEMENTATION
@@ -28,38 +26,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// ---- Running the program.
+// ---- Running the program (run_hush.hpp).
 
-struct result {
-  int exit_code = -1;  // -1: did not exit normally (a signal, e.g. a sanitizer abort)
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-// A fresh scratch directory per test case, so that test cases may run in parallel.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(HUSH_CLI_SCRATCH) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-// Runs `hush <args>` (args as typed in a shell), capturing stdout and stderr in `dir`.
-result run_hush(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string("'") + HUSH_CLI_EXE + "' " + args + " >'" + out.string() +
-                              "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  result r;
-  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+using hush_cli_test::result;
+using hush_cli_test::run_hush;
+using hush_cli_test::scratch;
+using hush_cli_test::slurp;
 
 // ---- Reading .npy files (NPY 1.0, as numpy.lib.format defines it).
 
