@@ -3,7 +3,6 @@
 #include <cctype>
 #include <cstdint>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -11,6 +10,7 @@
 #include "image.hpp"
 #include "noises.hpp"
 #include "npy/npy.hpp"
+#include "output_file.hpp"
 #include "progress.hpp"
 
 namespace hush_cli {
@@ -148,17 +148,6 @@ void for_each_row(const noise_field& field, const request& r, OnRow on_row) {
     }
 }
 
-// Runs `io`, a call of the .npy writer: its file errors (std::runtime_error) are run errors
-// of the program (exit code 1, the message unchanged).
-template <class Io>
-void npy_io(Io io) {
-  try {
-    io();
-  } catch (const std::runtime_error& e) {
-    throw run_error(e.what());
-  }
-}
-
 }  // namespace
 
 const std::vector<option_spec>& sample_options() {
@@ -188,11 +177,11 @@ int run_sample(const std::vector<std::string>& args) {
   const std::size_t nx = r.grid.size[0];
   if (r.out_format == format::npy) {
     std::optional<hush::npy::writer> npy;  // streamed by rows: any size without holding it
-    npy_io([&] { npy.emplace(r.out, hush::npy::dtype::float32, r.shape); });
+    as_run_error([&] { npy.emplace(r.out, hush::npy::dtype::float32, r.shape); });
     for_each_row(*field, r, [&](std::size_t, const float* row, std::size_t n) {
-      npy_io([&] { npy->write(row, n); });
+      as_run_error([&] { npy->write(row, n); });
     });
-    npy_io([&] { npy->close(); });
+    as_run_error([&] { npy->close(); });
   } else {
     gray_image image(nx, r.grid.size[1]);
     const double lo = field->is_signed() ? -1.0 : 0.0;  // shown over [lo, 1]

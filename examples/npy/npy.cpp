@@ -145,19 +145,10 @@ std::string header(dtype type, const std::vector<std::size_t>& shape) {
 }
 
 writer::writer(std::string path, dtype type, std::vector<std::size_t> shape)
-    : path_(std::move(path)), type_(type), expected_(element_count(shape)) {
-  const std::string head = header(type, shape);  // before creating the file: may throw
-  file_ = std::fopen(path_.c_str(), "wb");
-  if (!file_) fail("cannot open '" + path_ + "' for writing");
-  if (std::fwrite(head.data(), 1, head.size(), file_) != head.size())
-    fail("cannot write '" + path_ + "'");
-}
-
-writer::~writer() {
-  if (file_) {
-    std::fclose(file_);
-    std::remove(path_.c_str());
-  }
+    : type_(type), expected_(element_count(shape)), file_(std::move(path)) {
+  // A header that cannot be written throws here; file_'s destructor removes the file.
+  const std::string head = header(type, shape);
+  file_.write(head.data(), head.size());
 }
 
 void writer::write(const float* values, std::size_t count) {
@@ -173,44 +164,19 @@ void writer::write(const std::uint32_t* values, std::size_t count) {
 }
 
 void writer::write_words(const void* values, std::size_t count) {
-  if (!file_) throw hush::invalid_argument("hush::npy::writer: write after close");
   buffer_.resize(kWordSize * count);
   encode(values, count, buffer_.data());
-  if (count != 0 && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
-    fail("cannot write '" + path_ + "'");
+  file_.write(buffer_.data(), buffer_.size());
   written_ += count;
 }
 
 void writer::close() {
-  if (!file_) throw hush::invalid_argument("hush::npy::writer: closed twice");
   if (written_ != expected_) {
-    std::fclose(file_);
-    file_ = nullptr;
-    std::remove(path_.c_str());
+    file_.discard();
     throw std::runtime_error("internal error: wrote " + std::to_string(written_) + " of " +
-                             std::to_string(expected_) + " values to '" + path_ + "'");
+                             std::to_string(expected_) + " values to '" + file_.path() + "'");
   }
-  bool ok = std::fflush(file_) == 0 && !std::ferror(file_);
-  int error = ok ? 0 : errno;
-  if (std::fclose(file_) != 0 && ok) {
-    ok = false;
-    error = errno;
-  }
-  file_ = nullptr;
-  if (!ok) {
-    std::remove(path_.c_str());
-    throw std::runtime_error("cannot write '" + path_ + "': " + std::strerror(error));
-  }
-}
-
-void writer::fail(const std::string& what) {
-  const int error = errno;  // before fclose and remove may change it
-  if (file_) {
-    std::fclose(file_);
-    file_ = nullptr;
-    std::remove(path_.c_str());  // complete or absent, also when thrown from the constructor
-  }
-  throw std::runtime_error(what + ": " + std::strerror(error));
+  file_.close();
 }
 
 template <class T>

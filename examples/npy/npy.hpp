@@ -19,9 +19,10 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <vector>
+
+#include "npy/output_file.hpp"
 
 namespace hush {
 namespace npy {
@@ -58,17 +59,14 @@ std::string header(dtype type, const std::vector<std::size_t>& shape);
 
 // Streams one array into a file, so that an array of any size is written without holding it:
 // the header on construction, then the values in C order in blocks of any length. The file is
-// complete or absent: unless close() succeeds (an error, an exception unwinding past the
-// writer), the destructor removes it.
+// complete or absent (output_file.hpp): unless close() succeeds (an error, an exception
+// unwinding past the writer), it is removed.
 class writer {
  public:
   // Creates or truncates `path` and writes the header. Throws std::runtime_error
   // "cannot open '<path>' for writing: <system reason>" or "cannot write '<path>': <reason>",
   // hush::invalid_argument as header() does.
   writer(std::string path, dtype type, std::vector<std::size_t> shape);
-  ~writer();
-  writer(const writer&) = delete;
-  writer& operator=(const writer&) = delete;
 
   // Appends `count` values in C order. The overload must match the writer's dtype (else
   // hush::invalid_argument). Throws std::runtime_error "cannot write '<path>': <reason>".
@@ -80,18 +78,15 @@ class writer {
   // shape's element count, "internal error: wrote <n> of <m> values to '<path>'".
   void close();
 
-  const std::string& path() const { return path_; }
+  const std::string& path() const { return file_.path(); }
 
  private:
   void write_words(const void* values, std::size_t count);
-  // Closes and removes the file, then throws runtime_error: what + strerror(errno).
-  [[noreturn]] void fail(const std::string& what);
 
-  std::string path_;
   dtype type_;
   std::size_t expected_ = 1;
   std::size_t written_ = 0;
-  std::FILE* file_ = nullptr;
+  output_file file_;
   std::vector<unsigned char> buffer_;  // one block, little-endian
 };
 

@@ -16,6 +16,7 @@
 
 #include "hush/core/error.hpp"
 #include "npy/npy.hpp"
+#include "npy/output_file.hpp"
 
 namespace {
 
@@ -168,6 +169,34 @@ TEST_CASE("an unfinished or miscounted streaming write leaves no file") {
   w.write(v.data(), 3);
   CHECK_THROWS_WITH_AS(w.close(), doctest::Contains("wrote 3 of 4 values"), std::runtime_error);
   CHECK_FALSE(fs::exists(dir / "short.npy"));
+}
+
+TEST_CASE("an output file is complete after close, absent otherwise, and failures name it") {
+  const fs::path dir = scratch("output_file");
+  {
+    npy::output_file f((dir / "kept.bin").string());
+    f.write("abc", 3);
+    f.write("", 0);
+    f.write("de", 2);
+    f.close();
+  }
+  CHECK(slurp(dir / "kept.bin") == "abcde");
+  {
+    npy::output_file f((dir / "dropped.bin").string());
+    f.write("abc", 3);
+  }
+  CHECK_FALSE(fs::exists(dir / "dropped.bin"));
+  npy::output_file discarded((dir / "discarded.bin").string());
+  discarded.discard();
+  CHECK_FALSE(fs::exists(dir / "discarded.bin"));
+  const std::string after = "cannot write '" + (dir / "discarded.bin").string() + "': ";
+  CHECK_THROWS_WITH_AS(discarded.write("x", 1), doctest::Contains(after.c_str()),
+                       std::runtime_error);
+  CHECK_THROWS_WITH_AS(discarded.close(), doctest::Contains(after.c_str()), std::runtime_error);
+  const std::string missing = (dir / "no_such_dir" / "x.bin").string();
+  const std::string why = "cannot open '" + missing + "' for writing: ";
+  CHECK_THROWS_WITH_AS(npy::output_file{missing}, doctest::Contains(why.c_str()),
+                       std::runtime_error);
 }
 
 TEST_CASE("writer misuse and unwritable paths throw") {
