@@ -493,27 +493,33 @@ TEST_CASE("sample rejects each bad input with exit code 2 and one line naming th
   CHECK_FALSE(fs::exists(dir / "v.png"));
 }
 
+// The largest |difference| between `hush sample` on `backend` and on scalar, over the same
+// (off-lattice, negative-origin) grid of dimension `dim`.
+double backend_vs_scalar(const std::string& backend, int dim, const fs::path& dir) {
+  const std::string common =
+      "sample perlin --dim " + std::to_string(dim) +
+      (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
+      " --step 0.173 --seed 9 ";
+  const fs::path out = dir / (backend + ".npy");
+  REQUIRE(
+      run_hush(common + "--backend " + backend + " --out '" + out.string() + "'", dir).exit_code ==
+      0);
+  REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
+              .exit_code == 0);
+  const npy_file a = read_npy(out), b = read_npy(dir / "scalar.npy");
+  REQUIRE(a.values.size() == b.values.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < a.values.size(); ++i)
+    worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
+  return worst;
+}
+
 TEST_CASE("sample --backend simd equals scalar sampling within the SIMD budget, 2D and 3D") {
   const fs::path dir = scratch("backend");
-  for (int dim : {2, 3}) {
-    const std::string common =
-        "sample perlin --dim " + std::to_string(dim) +
-        (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
-        " --step 0.173 --seed 9 ";
-    REQUIRE(run_hush(common + "--backend simd --out '" + (dir / "simd.npy").string() + "'", dir)
-                .exit_code == 0);
-    REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
-                .exit_code == 0);
-    const npy_file a = read_npy(dir / "simd.npy"), b = read_npy(dir / "scalar.npy");
-    REQUIRE(a.values.size() == b.values.size());
-    // Both are within the float budget 2^-16 of the double reference
-    // (hush/simd/perlin-inl.h), hence within 2^-15 of each other; bit for bit
-    // under HUSH_STRICT_FP (tests/simd).
-    double worst = 0;
-    for (std::size_t i = 0; i < a.values.size(); ++i)
-      worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
-    CHECK(worst <= std::ldexp(1.0, -15));
-  }
+  // Both are within the float budget 2^-16 of the double reference
+  // (hush/simd/perlin-inl.h), hence within 2^-15 of each other; bit for bit
+  // under HUSH_STRICT_FP (tests/simd).
+  for (int dim : {2, 3}) CHECK(backend_vs_scalar("simd", dim, dir) <= std::ldexp(1.0, -15));
 #if !HUSH_CLI_TEST_SIMD
   // Without Highway the program says so instead of silently running scalar code.
   const result r =
@@ -526,23 +532,8 @@ TEST_CASE("sample --backend simd equals scalar sampling within the SIMD budget, 
 #if HUSH_CLI_TEST_GLSL
 TEST_CASE("sample --backend glsl equals scalar sampling within the GLSL budget, 2D and 3D") {
   const fs::path dir = scratch("backend_glsl");
-  for (int dim : {2, 3}) {
-    const std::string common =
-        "sample perlin --dim " + std::to_string(dim) +
-        (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
-        " --step 0.173 --seed 9 ";
-    REQUIRE(run_hush(common + "--backend glsl --out '" + (dir / "glsl.npy").string() + "'", dir)
-                .exit_code == 0);
-    REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
-                .exit_code == 0);
-    const npy_file a = read_npy(dir / "glsl.npy"), b = read_npy(dir / "scalar.npy");
-    REQUIRE(a.values.size() == b.values.size());
-    // Within 2^-15 of the CPU float path (backends/glsl, hush/glsl/device.hpp).
-    double worst = 0;
-    for (std::size_t i = 0; i < a.values.size(); ++i)
-      worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
-    CHECK(worst <= std::ldexp(1.0, -15));
-  }
+  // Within 2^-15 of the CPU float path (backends/glsl, hush/glsl/device.hpp).
+  for (int dim : {2, 3}) CHECK(backend_vs_scalar("glsl", dim, dir) <= std::ldexp(1.0, -15));
 }
 #endif
 
