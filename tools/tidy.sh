@@ -26,5 +26,10 @@ for f in examples/scene/*.cpp; do
   clang-tidy -p "$build" --quiet --extra-arg=-std=c++17 \
     --header-filter='.*/(include/hush|examples)/.*' "$f" || status=1
 done
+# The NPY library (examples/npy) that the program, the scenes and the coherence metrics use.
+for f in examples/npy/*.cpp; do
+  clang-tidy -p "$build" --quiet --extra-arg=-std=c++17 \
+    --header-filter='.*/(include/hush|examples)/.*' "$f" || status=1
+done
 [ "$status" -eq 0 ] && echo "tidy: clean"
 exit "$status"

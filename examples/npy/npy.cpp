@@ -144,7 +144,7 @@ std::string header(dtype type, const std::vector<std::size_t>& shape) {
   return out + dict;
 }
 
-writer::writer(std::string path, dtype type, std::vector<std::size_t> shape)
+writer::writer(std::string path, dtype type, const std::vector<std::size_t>& shape)
     : type_(type), expected_(element_count(shape)), file_(std::move(path)) {
   // A header that cannot be written throws here; file_'s destructor removes the file.
   const std::string head = header(type, shape);

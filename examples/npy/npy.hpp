@@ -66,7 +66,7 @@ class writer {
   // Creates or truncates `path` and writes the header. Throws std::runtime_error
   // "cannot open '<path>' for writing: <system reason>" or "cannot write '<path>': <reason>",
   // hush::invalid_argument as header() does.
-  writer(std::string path, dtype type, std::vector<std::size_t> shape);
+  writer(std::string path, dtype type, const std::vector<std::size_t>& shape);
 
   // Appends `count` values in C order. The overload must match the writer's dtype (else
   // hush::invalid_argument). Throws std::runtime_error "cannot write '<path>': <reason>".

@@ -36,7 +36,7 @@ inline std::string slurp(const std::filesystem::path& path) {
 // HUSH_CLI_SCRATCH/name, emptied and created: a fresh scratch directory per test case, so that
 // test cases may run in parallel.
 inline std::filesystem::path scratch(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(HUSH_CLI_SCRATCH) / name;
+  std::filesystem::path dir = std::filesystem::path(HUSH_CLI_SCRATCH) / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

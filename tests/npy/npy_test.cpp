@@ -25,7 +25,7 @@ namespace npy = hush::npy;
 
 // A fresh scratch directory per test case, so that test cases may run in parallel.
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(HUSH_NPY_SCRATCH) / name;
+  fs::path dir = fs::path(HUSH_NPY_SCRATCH) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -89,12 +89,11 @@ std::string file_with_dict(std::string dict, std::size_t data_bytes = 24) {
   return bytes + dict + std::string(data_bytes, '\0');
 }
 
-const std::vector<std::vector<std::size_t>> kShapes = {{},        {1},          {7}, {5, 7},
-                                                       {3, 4, 2}, {2, 3, 2, 2}, {0}, {4, 0, 3}};
-
 TEST_CASE("float32 and uint32 arrays of several shapes round-trip bit for bit") {
   const fs::path dir = scratch("roundtrip");
-  for (const std::vector<std::size_t>& shape : kShapes) {
+  const std::vector<std::vector<std::size_t>> shapes = {{},        {1},          {7}, {5, 7},
+                                                        {3, 4, 2}, {2, 3, 2, 2}, {0}, {4, 0, 3}};
+  for (const std::vector<std::size_t>& shape : shapes) {
     INFO("shape " << npy::shape_text(shape));
     const std::size_t n = npy::element_count(shape);
     const std::vector<float> f = float_values(n);
