@@ -3,7 +3,7 @@
 // A noise sequence is a directory of NNNN.npy files (NNNN = the frame index, at least 4
 // digits, the index of the matching G-buffer frame_NNNN/ directory), each a NumPy NPY 1.0
 // array of little-endian float32 ('<f4'), C order, shape (H, W), row 0 at the top. This is
-// what `hush sample` and numpy.save(path, a.astype('<f4')) write.
+// what `hush sample` and numpy.save(path, a.astype('<f4')) write (examples/npy/npy.hpp).
 #ifndef HUSH_COHERENCE_FRAME_IO_HPP
 #define HUSH_COHERENCE_FRAME_IO_HPP
 
@@ -21,8 +21,9 @@ struct noise_sequence {
   std::vector<noise_frame> frames;  // consecutive indices first, first + 1, ...
 };
 
-// Reads one (H, W) float32 NPY file. Throws std::runtime_error naming the file when it
-// cannot be read, is not NPY 1.0/2.0 '<f4' C-order 2D, or is truncated.
+// Reads one (H, W) float32 NPY file (hush::npy::load). Throws std::runtime_error
+// "'<path>': <what>" when it cannot be read, is not NPY 1.0 '<f4' C-order 2D with
+// 1 <= H, W <= 2^20, or its data size disagrees with its shape.
 noise_frame load_noise_frame(const std::string& path, int& width, int& height);
 
 // Every NNNN.npy in `dir` (other files are ignored), in index order. Throws
@@ -33,9 +34,9 @@ noise_sequence load_noise_frames(const std::string& dir);
 // "DIR/NNNN.npy" for frame `index` (>= 0), at least 4 digits.
 std::string noise_frame_path(const std::string& dir, int index);
 
-// Writes `f` (width * height values) as an (H, W) '<f4' NPY 1.0 file; throws
-// std::runtime_error naming the file when it cannot be written completely,
-// hush::invalid_argument when f.size() != width * height.
+// Writes `f` (width * height values) as an (H, W) '<f4' NPY 1.0 file (hush::npy::save);
+// throws std::runtime_error naming the file when it cannot be written completely (the file
+// is then removed), hush::invalid_argument when f.size() != width * height.
 void save_noise_frame(const std::string& path, const noise_frame& f, int width, int height);
 
 }  // namespace coherence

@@ -2,13 +2,15 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "image.hpp"
 #include "noises.hpp"
-#include "npy.hpp"
+#include "npy/npy.hpp"
+#include "output_file.hpp"
 #include "progress.hpp"
 
 namespace hush_cli {
@@ -174,10 +176,12 @@ int run_sample(const std::vector<std::string>& args) {
     throw usage_error(std::string("--backend ") + backend_name(r.where) + ": " + why_not);
   const std::size_t nx = r.grid.size[0];
   if (r.out_format == format::npy) {
-    npy_writer npy(r.out, r.shape);
-    for_each_row(*field, r,
-                 [&](std::size_t, const float* row, std::size_t n) { npy.write(row, n); });
-    npy.close();
+    std::optional<hush::npy::writer> npy;  // streamed by rows: any size without holding it
+    as_run_error([&] { npy.emplace(r.out, hush::npy::dtype::float32, r.shape); });
+    for_each_row(*field, r, [&](std::size_t, const float* row, std::size_t n) {
+      as_run_error([&] { npy->write(row, n); });
+    });
+    as_run_error([&] { npy->close(); });
   } else {
     gray_image image(nx, r.grid.size[1]);
     const double lo = field->is_signed() ? -1.0 : 0.0;  // shown over [lo, 1]

@@ -3,7 +3,6 @@
 // bit for bit against hush::perlin / hush::fractal, PNG headers and pixels, the periodic
 // option, the gallery, and that every bad input fails with one line naming the option.
 #include <doctest/doctest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +10,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include "hush/hush.hpp"
+#include "run_hush.hpp"
 
 #if HUSH_CLI_TEST_DECODE
 #define STB_IMAGE_IMPLEMENTATION
@@ -28,38 +26,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// ---- Running the program.
+// ---- Running the program (run_hush.hpp).
 
-struct result {
-  int exit_code = -1;  // -1: did not exit normally (a signal, e.g. a sanitizer abort)
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-// A fresh scratch directory per test case, so that test cases may run in parallel.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(HUSH_CLI_SCRATCH) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-// Runs `hush <args>` (args as typed in a shell), capturing stdout and stderr in `dir`.
-result run_hush(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string("'") + HUSH_CLI_EXE + "' " + args + " >'" + out.string() +
-                              "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  result r;
-  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+using hush_cli_test::result;
+using hush_cli_test::run_hush;
+using hush_cli_test::scratch;
+using hush_cli_test::slurp;
 
 // ---- Reading .npy files (NPY 1.0, as numpy.lib.format defines it).
 
@@ -520,27 +492,33 @@ TEST_CASE("sample rejects each bad input with exit code 2 and one line naming th
   CHECK_FALSE(fs::exists(dir / "v.png"));
 }
 
+// The largest |difference| between `hush sample` on `backend` and on scalar, over the same
+// (off-lattice, negative-origin) grid of dimension `dim`.
+double backend_vs_scalar(const std::string& backend, int dim, const fs::path& dir) {
+  const std::string common =
+      "sample perlin --dim " + std::to_string(dim) +
+      (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
+      " --step 0.173 --seed 9 ";
+  const fs::path out = dir / (backend + ".npy");
+  REQUIRE(
+      run_hush(common + "--backend " + backend + " --out '" + out.string() + "'", dir).exit_code ==
+      0);
+  REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
+              .exit_code == 0);
+  const npy_file a = read_npy(out), b = read_npy(dir / "scalar.npy");
+  REQUIRE(a.values.size() == b.values.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < a.values.size(); ++i)
+    worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
+  return worst;
+}
+
 TEST_CASE("sample --backend simd equals scalar sampling within the SIMD budget, 2D and 3D") {
   const fs::path dir = scratch("backend");
-  for (int dim : {2, 3}) {
-    const std::string common =
-        "sample perlin --dim " + std::to_string(dim) +
-        (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
-        " --step 0.173 --seed 9 ";
-    REQUIRE(run_hush(common + "--backend simd --out '" + (dir / "simd.npy").string() + "'", dir)
-                .exit_code == 0);
-    REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
-                .exit_code == 0);
-    const npy_file a = read_npy(dir / "simd.npy"), b = read_npy(dir / "scalar.npy");
-    REQUIRE(a.values.size() == b.values.size());
-    // Both are within the float budget 2^-16 of the double reference
-    // (hush/simd/perlin-inl.h), hence within 2^-15 of each other; bit for bit
-    // under HUSH_STRICT_FP (tests/simd).
-    double worst = 0;
-    for (std::size_t i = 0; i < a.values.size(); ++i)
-      worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
-    CHECK(worst <= std::ldexp(1.0, -15));
-  }
+  // Both are within the float budget 2^-16 of the double reference
+  // (hush/simd/perlin-inl.h), hence within 2^-15 of each other; bit for bit
+  // under HUSH_STRICT_FP (tests/simd).
+  for (int dim : {2, 3}) CHECK(backend_vs_scalar("simd", dim, dir) <= std::ldexp(1.0, -15));
 #if !HUSH_CLI_TEST_SIMD
   // Without Highway the program says so instead of silently running scalar code.
   const result r =
@@ -553,23 +531,8 @@ TEST_CASE("sample --backend simd equals scalar sampling within the SIMD budget, 
 #if HUSH_CLI_TEST_GLSL
 TEST_CASE("sample --backend glsl equals scalar sampling within the GLSL budget, 2D and 3D") {
   const fs::path dir = scratch("backend_glsl");
-  for (int dim : {2, 3}) {
-    const std::string common =
-        "sample perlin --dim " + std::to_string(dim) +
-        (dim == 2 ? " --size 37x5 --origin -3.3,7.1" : " --size 37x5x3 --origin -3.3,7.1,0.2") +
-        " --step 0.173 --seed 9 ";
-    REQUIRE(run_hush(common + "--backend glsl --out '" + (dir / "glsl.npy").string() + "'", dir)
-                .exit_code == 0);
-    REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
-                .exit_code == 0);
-    const npy_file a = read_npy(dir / "glsl.npy"), b = read_npy(dir / "scalar.npy");
-    REQUIRE(a.values.size() == b.values.size());
-    // Within 2^-15 of the CPU float path (backends/glsl, hush/glsl/device.hpp).
-    double worst = 0;
-    for (std::size_t i = 0; i < a.values.size(); ++i)
-      worst = std::max(worst, std::fabs(double(a.values[i]) - b.values[i]));
-    CHECK(worst <= std::ldexp(1.0, -15));
-  }
+  // Within 2^-15 of the CPU float path (backends/glsl, hush/glsl/device.hpp).
+  for (int dim : {2, 3}) CHECK(backend_vs_scalar("glsl", dim, dir) <= std::ldexp(1.0, -15));
 }
 #endif
 

@@ -3,16 +3,13 @@
 // numbers against the library, and that every bad input fails with exit code 2 and one line
 // naming the option.
 #include <doctest/doctest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
+#include "cli/run_hush.hpp"
 #include "coherence/baselines.hpp"
 #include "coherence/frame_io.hpp"
 #include "coherence/report.hpp"
@@ -25,34 +22,10 @@ namespace {
 namespace fs = std::filesystem;
 namespace hc = hush::coherence;
 
-struct result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(HUSH_CLI_SCRATCH) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-result run_hush(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string("'") + HUSH_CLI_EXE + "' " + args + " >'" + out.string() +
-                              "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  result r;
-  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+using hush_cli_test::result;
+using hush_cli_test::run_hush;
+using hush_cli_test::scratch;
+using hush_cli_test::slurp;
 
 // Frames 0 ... 3 of the translate scene at 96x72, written as G-buffer files and read back.
 std::vector<hush::scene::gbuffer> write_gbuffers(const fs::path& dir) {

@@ -2,14 +2,12 @@
 // read back what it wrote with load_gbuffer and compare it, bit for bit, with the
 // library's own rasterizers; every bad option fails with exit code 2 and one line naming it.
 #include <doctest/doctest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 
+#include "cli/run_hush.hpp"
 #include "gbuffer_io.hpp"
 #include "raster_cpu.hpp"
 #include "scene_test_util.hpp"
@@ -22,35 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 namespace hs = hush::scene;
 
-struct result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-fs::path scratch(const std::string& name) {
-  fs::path dir = fs::path(HUSH_SCENE_SCRATCH) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-// Runs `hush <args>` (as typed in a shell), capturing stdout and stderr in `dir`.
-result run_hush(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string("'") + HUSH_CLI_EXE + "' " + args + " >'" + out.string() +
-                              "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  result r;
-  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+using hush_cli_test::result;
+using hush_cli_test::run_hush;
+using hush_cli_test::scratch;
 
 std::size_t lines(const std::string& s) {
   std::size_t n = 0;

@@ -113,39 +113,39 @@ double gradient_budget() {
   return 2 * kFloatBudget * (1 + lipschitz_bound<D>());
 }
 
-// SIMD against scalar for any noise with SIMD kernels, at points and on a grid:
-// values alone, values with gradients, and gradients.
+// SIMD against scalar for any noise with SIMD kernels: values alone, values with gradients,
+// and gradients. evaluate(policy, values[, gradients]) evaluates the noise on the n points or
+// grid samples under test.
+template <int D, class Evaluate>
+void check_against_scalar(std::size_t n, Evaluate evaluate, double vbudget, double gbudget) {
+  std::vector<float> vs(n), vv(n), vg(n);
+  std::vector<hush::vec<float, D>> gs(n), gv(n);
+  evaluate(hush::exec::scalar, vs, gs);
+  evaluate(hush::exec::simd, vv);
+  compare(vv, vs, vbudget);
+  // The value+gradient kernel's values are the value kernel's values.
+  evaluate(hush::exec::simd, vg, gv);
+  compare(vg, vs, vbudget);
+  compare(flatten<D>(gv), flatten<D>(gs), gbudget);
+}
+
+// ... at points (hush::evaluate) and on a grid (hush::evaluate_grid).
 template <class Noise>
 void check_points(const Noise& p, const std::vector<hush::vec<float, Noise::dimension>>& pts,
                   double vbudget = value_budget<Noise::dimension>(),
                   double gbudget = gradient_budget<Noise::dimension>()) {
-  constexpr int D = Noise::dimension;
-  const std::size_t n = pts.size();
-  std::vector<float> vs(n), vv(n), vg(n);
-  std::vector<hush::vec<float, D>> gs(n), gv(n);
-  hush::evaluate(p, hush::exec::scalar, pts, vs, gs);
-  hush::evaluate(p, hush::exec::simd, pts, vv);
-  compare(vv, vs, vbudget);
-  // The value+gradient kernel's values are the value kernel's values.
-  hush::evaluate(p, hush::exec::simd, pts, vg, gv);
-  compare(vg, vs, vbudget);
-  compare(flatten<D>(gv), flatten<D>(gs), gbudget);
+  check_against_scalar<Noise::dimension>(
+      pts.size(), [&](auto policy, auto&... out) { hush::evaluate(p, policy, pts, out...); },
+      vbudget, gbudget);
 }
 
 template <class Noise>
 void check_grid(const Noise& p, const hush::grid<Noise::dimension>& g,
                 double vbudget = value_budget<Noise::dimension>(),
                 double gbudget = gradient_budget<Noise::dimension>()) {
-  constexpr int D = Noise::dimension;
-  const std::size_t n = g.count();
-  std::vector<float> vs(n), vv(n), vg(n);
-  std::vector<hush::vec<float, D>> gs(n), gv(n);
-  hush::evaluate_grid(p, hush::exec::scalar, g, vs, gs);
-  hush::evaluate_grid(p, hush::exec::simd, g, vv);
-  compare(vv, vs, vbudget);
-  hush::evaluate_grid(p, hush::exec::simd, g, vg, gv);
-  compare(vg, vs, vbudget);
-  compare(flatten<D>(gv), flatten<D>(gs), gbudget);
+  check_against_scalar<Noise::dimension>(
+      g.count(), [&](auto policy, auto&... out) { hush::evaluate_grid(p, policy, g, out...); },
+      vbudget, gbudget);
 }
 
 template <int D>
