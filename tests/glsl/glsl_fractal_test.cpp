@@ -39,22 +39,21 @@
 #include <string>
 #include <vector>
 
+#include "glsl_test_util.hpp"
 #include "hush/exec.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/device.hpp"
 #include "hush/glsl/noise_program.hpp"
 #include "hush/glsl/osmesa_context.hpp"
 #include "hush/hush.hpp"
-
-// Mesa's OSMesa keeps a few hundred bytes of per-process state after the
-// context is destroyed (see glsl_test.cpp); only those leaks are suppressed.
-#if defined(__SANITIZE_ADDRESS__)
-extern "C" const char* __lsan_default_suppressions() {  // NOLINT: the sanitizer hook's name
-  return "leak:libOSMesa.so\n";
-}
-#endif
+#include "test_util.hpp"
 
 namespace {
+
+using hush_glsl_test::env;
+using hush_glsl_test::error_stats;
+using hush_glsl_test::random_points;
+using hush_test::lipschitz_bound;
 
 template <int D>
 using fractal_t = hush::fractal<hush::perlin<D>>;
@@ -65,16 +64,6 @@ const double kUlp = std::ldexp(1.0, -24);          // float unit roundoff
 static_assert(hush::glsl::has_program_v<fractal_t<2>> && hush::glsl::has_program_v<fractal_t<3>>,
               "fractal sums of Perlin noise have GLSL programs");
 static_assert(!hush::glsl::has_program_v<fractal_t<2>*>, "a pointer is no noise");
-
-// |d perlin / d x_a| bound (perlin_test.cpp, glsl_test.cpp).
-template <int D>
-double lipschitz_bound() {
-  const double max_ds = 15.0 / 8.0;
-  const double g = D == 2 ? 1.0 : std::sqrt(2.0);
-  const double scale =
-      D == 2 ? hush::detail::constants::kPerlin2Scale : hush::detail::constants::kPerlin3Scale;
-  return std::sqrt(double(D)) * scale * (g + max_ds * g * std::sqrt(double(D)));
-}
 
 // The budgets of the file comment.
 template <int D>
@@ -90,39 +79,6 @@ double gradient_budget(const fractal_t<D>& fr) {
     sum += std::fabs(fr.band_raw_weight(i)) * fr.band_frequency(i);
   return fr.scale() * sum * (kNoiseBudget + (fr.band_count() + 4) * kUlp) *
          (1 + lipschitz_bound<D>());
-}
-
-// One OSMesa context and device per test process (CTest runs each case alone).
-struct gl_env {
-  hush::glsl::osmesa_context context;
-  hush::glsl::device dev{context.loader()};
-};
-gl_env& env() {
-  static gl_env e;
-  return e;
-}
-
-struct error_stats {
-  double max = 0, sum_sq = 0;
-  std::size_t n = 0;
-  void add(double e) {
-    max = std::max(max, e);
-    sum_sq += e * e;
-    ++n;
-  }
-  double rms() const { return n ? std::sqrt(sum_sq / double(n)) : 0.0; }
-};
-
-template <int D>
-std::vector<hush::vec<float, D>> random_points(std::size_t n, std::uint32_t seed) {
-  hush::rng r(seed, D);
-  std::vector<hush::vec<float, D>> pts(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double extent = i % 4 == 3 ? 1e6 : 100.0;  // a quarter far out
-    for (int a = 0; a < D; ++a)
-      pts[i][std::size_t(a)] = static_cast<float>(r.uniform<double>(-extent, extent));
-  }
-  return pts;
 }
 
 // Whether some band of fr is within 2 kNoiseBudget of 0 at x (turbulence's

@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "glsl_test_util.hpp"
 #include "hush/exec.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/device.hpp"
@@ -45,42 +46,17 @@
 #include "hush/hush.hpp"
 #include "test_util.hpp"
 
-// Mesa's OSMesa keeps a few hundred bytes of per-process state (allocated in
-// OSMesaMakeCurrent) after the context is destroyed; LeakSanitizer would
-// report them at exit. Only leaks whose allocation stack is inside libOSMesa
-// are suppressed.
-#if defined(__SANITIZE_ADDRESS__)
-extern "C" const char* __lsan_default_suppressions() {  // NOLINT: the sanitizer hook's name
-  return "leak:libOSMesa.so\n";
-}
-#endif
-
 namespace {
+
+using hush_glsl_test::env;
+using hush_glsl_test::error_stats;
+using hush_glsl_test::random_points;
+using hush_test::lipschitz_bound;
 
 namespace gd = hush::glsl::detail;
 using hush_test::splitmix64;
 
 const double kValueBudget = std::ldexp(1.0, -16);  // GPU vs double reference (header comment)
-
-// |d noise / d x_a| bounds (perlin_test.cpp): the gradient budget's factor.
-template <int D>
-double lipschitz_bound() {
-  const double max_ds = 15.0 / 8.0;
-  const double g = D == 2 ? 1.0 : std::sqrt(2.0);
-  const double scale =
-      D == 2 ? hush::detail::constants::kPerlin2Scale : hush::detail::constants::kPerlin3Scale;
-  return std::sqrt(double(D)) * scale * (g + max_ds * g * std::sqrt(double(D)));
-}
-
-// One OSMesa context and device per test process (CTest runs each case alone).
-struct gl_env {
-  hush::glsl::osmesa_context context;
-  hush::glsl::device dev{context.loader()};
-};
-gl_env& env() {
-  static gl_env e;
-  return e;
-}
 
 std::uint32_t bits_of(float f) {
   std::uint32_t u = 0;
@@ -453,29 +429,6 @@ TEST_CASE("a shader that does not compile throws std::runtime_error carrying the
 }
 
 // ---- Perlin through hush::evaluate / evaluate_grid.
-
-struct error_stats {
-  double max = 0, sum_sq = 0;
-  std::size_t n = 0;
-  void add(double e) {
-    max = std::max(max, e);
-    sum_sq += e * e;
-    ++n;
-  }
-  double rms() const { return n ? std::sqrt(sum_sq / double(n)) : 0.0; }
-};
-
-template <int D>
-std::vector<hush::vec<float, D>> random_points(std::size_t n, std::uint32_t seed) {
-  hush::rng r(seed, D);
-  std::vector<hush::vec<float, D>> pts(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double extent = i % 4 == 3 ? 1e6 : 100.0;  // a quarter far out
-    for (int a = 0; a < D; ++a)
-      pts[i][std::size_t(a)] = static_cast<float>(r.uniform<double>(-extent, extent));
-  }
-  return pts;
-}
 
 // Compares GPU values/gradients with the double reference and the CPU float
 // path at the same double positions; checks the budgets of the file comment.

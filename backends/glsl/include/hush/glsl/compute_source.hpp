@@ -43,6 +43,55 @@ constexpr unsigned kLocalSize = 64;
 
 namespace detail {
 
+// "#version 430 core", the header comment, the work-group size and the
+// library: the start of every runner.
+template <class Noise>
+std::string runner_preamble(batch_layout layout, bool gradient) {
+  using np = noise_program<Noise>;
+  return "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
+         std::string(np::name) + (gradient ? ", values and gradients" : ", values") +
+         (layout == batch_layout::points ? ", points" : ", grid") +
+         " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
+         ") in;\n" + library() + "\n// ---- Runner.\n" + np::uniforms();
+}
+
+// GLSL: t[a] = offset of axis a's (i0, i1, fraction bits) triple in the axis
+// table, from the C-order grid index g = hush_base + n (i fastest).
+inline const char* grid_axis_offsets() {
+  return "  uint g = hush_base + n;\n"
+         "  uint t[3] = uint[3](3u * (g % hush_size.x),\n"
+         "                      3u * (hush_size.x + (g / hush_size.x) % hush_size.y),\n"
+         "                      3u * (hush_size.x + hush_size.y + g / (hush_size.x * "
+         "hush_size.y)));\n";
+}
+
+// GLSL: i0, i1 (uvecD) and f (vecD) read from the triples at `base` + t[a].
+inline std::string read_cells(int dimension, const std::string& base, const std::string& indent) {
+  const std::string d = std::to_string(dimension);
+  std::string i0, i1, f;
+  for (int a = 0; a < dimension; ++a) {
+    const std::string ta = base + "t[" + std::to_string(a) + "]";
+    i0 += std::string(a ? ", " : "") + "hush_axis[" + ta + "]";
+    i1 += std::string(a ? ", " : "") + "hush_axis[" + ta + " + 1u]";
+    f += std::string(a ? ", " : "") + "uintBitsToFloat(hush_axis[" + ta + " + 2u])";
+  }
+  return indent + "uvec" + d + " i0 = uvec" + d + "(" + i0 + ");\n" + indent + "uvec" + d +
+         " i1 = uvec" + d + "(" + i1 + ");\n" + indent + "vec" + d + " f = vec" + d + "(" + f +
+         ");\n";
+}
+
+// GLSL: the sample's result `expr` (float, or vec(D+1) value and gradient)
+// into hush_out, then the end of main().
+inline std::string store_result(int dimension, bool gradient, const std::string& expr) {
+  if (!gradient) return "  hush_out[n] = " + expr + ";\n}\n";
+  const std::string stride = std::to_string(dimension + 1);
+  std::string s = "  vec" + stride + " r = " + expr + ";\n";
+  for (int c = 0; c <= dimension; ++c)
+    s += "  hush_out[" + stride + "u * n + " + std::to_string(c) + "u] = r." +
+         (c == 0 ? 'x' : "yzw"[c - 1]) + ";\n";
+  return s + "}\n";
+}
+
 // The runner of a banded noise (file comment): the band loop around the
 // noise's band_step, on CPU-split triples for points and grids alike.
 template <class Noise>
@@ -50,15 +99,10 @@ std::string banded_source(batch_layout layout, bool gradient) {
   using np = noise_program<Noise>;
   constexpr int D = np::dimension;
   const std::string d = std::to_string(D);
-  std::string s =
-      "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
-      std::string(np::name) + (gradient ? ", values and gradients" : ", values") +
-      (layout == batch_layout::points ? ", points" : ", grid") +
-      " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
-      ") in;\n" + library() + "\n// ---- Runner.\n" + np::uniforms() +
-      "uniform uint hush_bands;  // bands summed\n"
-      "uniform uint hush_first;  // first sample of this dispatch\n"
-      "uniform uint hush_count;  // samples in the batch\n";
+  std::string s = runner_preamble<Noise>(layout, gradient) +
+                  "uniform uint hush_bands;  // bands summed\n"
+                  "uniform uint hush_first;  // first sample of this dispatch\n"
+                  "uniform uint hush_count;  // samples in the batch\n";
   if (layout == batch_layout::grid)
     s += "uniform uint hush_base;   // grid index of the batch's first sample\n"
          "uniform uvec3 hush_size;  // samples along x, y, z\n";
@@ -73,35 +117,12 @@ std::string banded_source(batch_layout layout, bool gradient) {
          "u;\n  uint t0 = band_stride * hush_bands * n;\n"
          "  uint t[3] = uint[3](t0, t0 + 3u, t0 + 6u);\n";
   } else {
-    s += "  uint g = hush_base + n;\n"
-         "  uint band_stride = 3u * (hush_size.x + hush_size.y + hush_size.z);\n"
-         "  uint t[3] = uint[3](3u * (g % hush_size.x),\n"
-         "                      3u * (hush_size.x + (g / hush_size.x) % hush_size.y),\n"
-         "                      3u * (hush_size.x + hush_size.y + g / (hush_size.x * "
-         "hush_size.y)));\n";
+    s += std::string(grid_axis_offsets()) +
+         "  uint band_stride = 3u * (hush_size.x + hush_size.y + hush_size.z);\n";
   }
-  s += np::band_begin(gradient) + "  for (uint b = 0u; b < hush_bands; ++b) {\n";
-  std::string i0, i1, f;
-  for (int a = 0; a < D; ++a) {
-    const std::string ta = "band_stride * b + t[" + std::to_string(a) + "]";
-    i0 += std::string(a ? ", " : "") + "hush_axis[" + ta + "]";
-    i1 += std::string(a ? ", " : "") + "hush_axis[" + ta + " + 1u]";
-    f += std::string(a ? ", " : "") + "uintBitsToFloat(hush_axis[" + ta + " + 2u])";
-  }
-  s += "    uvec" + d + " i0 = uvec" + d + "(" + i0 + ");\n    uvec" + d + " i1 = uvec" + d + "(" +
-       i1 + ");\n    vec" + d + " f = vec" + d + "(" + f + ");\n" + np::band_step(gradient) +
-       "  }\n";
-  if (!gradient) {
-    s += "  hush_out[n] = " + np::band_result(gradient) + ";\n";
-  } else {
-    const std::string stride = std::to_string(D + 1);
-    s += "  vec" + std::to_string(D + 1) + " r = " + np::band_result(gradient) + ";\n";
-    for (int c = 0; c <= D; ++c)
-      s += "  hush_out[" + stride + "u * n + " + std::to_string(c) + "u] = r." +
-           (c == 0 ? 'x' : "yzw"[c - 1]) + ";\n";
-  }
-  s += "}\n";
-  return s;
+  s += np::band_begin(gradient) + "  for (uint b = 0u; b < hush_bands; ++b) {\n" +
+       read_cells(D, "band_stride * b + ", "    ") + np::band_step(gradient) + "  }\n";
+  return s + store_result(D, gradient, np::band_result(gradient));
 }
 
 // The runner of a plain noise (point_call / cells_call).
@@ -110,14 +131,9 @@ std::string plain_source(batch_layout layout, bool gradient) {
   using np = noise_program<Noise>;
   constexpr int D = np::dimension;
   const std::string d = std::to_string(D);
-  std::string s =
-      "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
-      std::string(np::name) + (gradient ? ", values and gradients" : ", values") +
-      (layout == batch_layout::points ? ", points" : ", grid") +
-      " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
-      ") in;\n" + library() + "\n// ---- Runner.\n" + np::uniforms() +
-      "uniform uint hush_first;  // first sample of this dispatch\n"
-      "uniform uint hush_count;  // samples in the batch\n";
+  std::string s = runner_preamble<Noise>(layout, gradient) +
+                  "uniform uint hush_first;  // first sample of this dispatch\n"
+                  "uniform uint hush_count;  // samples in the batch\n";
   if (layout == batch_layout::points) {
     s += "layout(std430, binding = 0) readonly buffer hush_input { float hush_in[]; };\n";
   } else {
@@ -135,35 +151,11 @@ std::string plain_source(batch_layout layout, bool gradient) {
       s += std::string(a ? ", " : "") + "hush_in[" + d + "u * n + " + std::to_string(a) + "u]";
     s += ");\n";
   } else {
-    // Index along each axis from the C-order grid index (i fastest).
-    s += "  uint g = hush_base + n;\n"
-         "  uint t[3] = uint[3](3u * (g % hush_size.x),\n"
-         "                      3u * (hush_size.x + (g / hush_size.x) % hush_size.y),\n"
-         "                      3u * (hush_size.x + hush_size.y + g / (hush_size.x * "
-         "hush_size.y)));\n";
-    std::string i0, i1, f;
-    for (int a = 0; a < D; ++a) {
-      const std::string ta = "t[" + std::to_string(a) + "]";
-      i0 += std::string(a ? ", " : "") + "hush_axis[" + ta + "]";
-      i1 += std::string(a ? ", " : "") + "hush_axis[" + ta + " + 1u]";
-      f += std::string(a ? ", " : "") + "uintBitsToFloat(hush_axis[" + ta + " + 2u])";
-    }
-    s += "  uvec" + d + " i0 = uvec" + d + "(" + i0 + ");\n  uvec" + d + " i1 = uvec" + d + "(" +
-         i1 + ");\n  vec" + d + " f = vec" + d + "(" + f + ");\n";
+    s += std::string(grid_axis_offsets()) + read_cells(D, "", "  ");
   }
-  const std::string call =
-      layout == batch_layout::points ? np::point_call(gradient) : np::cells_call(gradient);
-  if (!gradient) {
-    s += "  hush_out[n] = " + call + ";\n";
-  } else {
-    const std::string stride = std::to_string(D + 1);
-    s += "  vec" + std::to_string(D + 1) + " r = " + call + ";\n";
-    for (int c = 0; c <= D; ++c)
-      s += "  hush_out[" + stride + "u * n + " + std::to_string(c) + "u] = r." +
-           (c == 0 ? 'x' : "yzw"[c - 1]) + ";\n";
-  }
-  s += "}\n";
-  return s;
+  return s + store_result(D, gradient,
+                          layout == batch_layout::points ? np::point_call(gradient)
+                                                         : np::cells_call(gradient));
 }
 
 }  // namespace detail
