@@ -301,21 +301,32 @@ HUSH_INLINE constexpr std::uint32_t rotl(std::uint32_t x, unsigned r) {
   return (x << r) | (x >> (32u - r));
 }
 
+// The per-axis words lattice_hash folds: the cell index times an odd
+// multiplier (a bijection), rotated per axis (constants.hpp says why). Batch
+// evaluation precomputes them per column and row (hush/simd).
+HUSH_INLINE constexpr std::uint32_t lattice_word_x(std::uint32_t i) {
+  return i * detail::constants::kLatticePrimeX;
+}
+HUSH_INLINE constexpr std::uint32_t lattice_word_y(std::uint32_t j) {
+  namespace c = detail::constants;
+  return rotl(j * c::kLatticePrimeY, c::kLatticeRotateY);
+}
+HUSH_INLINE constexpr std::uint32_t lattice_word_z(std::uint32_t k) {
+  namespace c = detail::constants;
+  return rotl(k * c::kLatticePrimeZ, c::kLatticeRotateZ);
+}
+
 // lattice_hash: the hash of an integer lattice cell under a key. Cells are
 // 32-bit unsigned (coordinates wrap modulo 2^32; see core/lattice.hpp). The
-// cell is folded to one word with odd multipliers (each a bijection) and
-// per-axis rotations (constants.hpp says why), then finished with hash32, so
-// every input bit reaches every output bit.
+// cell is folded to one word by xor of the per-axis words above, then
+// finished with hash32, so every input bit reaches every output bit.
 HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
                                                  std::uint32_t j) {
-  namespace c = detail::constants;
-  return hash32(key ^ (i * c::kLatticePrimeX) ^ rotl(j * c::kLatticePrimeY, c::kLatticeRotateY));
+  return hash32(key ^ lattice_word_x(i) ^ lattice_word_y(j));
 }
 HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
                                                  std::uint32_t j, std::uint32_t k) {
-  namespace c = detail::constants;
-  return hash32(key ^ (i * c::kLatticePrimeX) ^ rotl(j * c::kLatticePrimeY, c::kLatticeRotateY) ^
-                rotl(k * c::kLatticePrimeZ, c::kLatticeRotateZ));
+  return hash32(key ^ lattice_word_x(i) ^ lattice_word_y(j) ^ lattice_word_z(k));
 }
 
 }  // namespace hush
@@ -1443,6 +1454,7 @@ struct simd_kernel {
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include <hwy/highway.h>
@@ -1507,7 +1519,8 @@ HWY_INLINE VU hash32(VU x) {
   return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
 }
 
-// The per-axis words lattice_hash folds: i * P_x, rotl(j * P_y, R_y), rotl(k * P_z, R_z).
+// lattice_word_x/y/z (core/hash.hpp) in lanes: i * P_x, rotl(j * P_y, R_y),
+// rotl(k * P_z, R_z).
 HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
 HWY_INLINE VU word_y(VU j) {
   namespace c = detail::constants;
@@ -1523,34 +1536,21 @@ HWY_INLINE VU word(VU i) {
   if constexpr (kAxis == 1) return word_y(i);
   if constexpr (kAxis == 2) return word_z(i);
 }
-// Scalar versions for per-column / per-row precomputation.
-HWY_INLINE std::uint32_t word_x(std::uint32_t i) { return i * detail::constants::kLatticePrimeX; }
-HWY_INLINE std::uint32_t word_y(std::uint32_t j) {
-  namespace c = detail::constants;
-  return rotl(j * c::kLatticePrimeY, c::kLatticeRotateY);
-}
-HWY_INLINE std::uint32_t word_z(std::uint32_t k) {
-  namespace c = detail::constants;
-  return rotl(k * c::kLatticePrimeZ, c::kLatticeRotateZ);
-}
 
-// Gradient tables padded to kMaxLanes (zeros past the real entries).
+// perlin.hpp's float gradient tables, padded to kMaxLanes (zeros past the
+// real entries) so that every chunk load in lookup() stays in bounds.
 struct tables {
   float g2x[kMaxLanes], g2y[kMaxLanes], g3x[kMaxLanes], g3y[kMaxLanes], g3z[kMaxLanes];
 };
 inline const tables& gradient_tables() {
   static const tables t = [] {
-    namespace c = detail::constants;
+    using src = detail::perlin_tables<float>;
     tables r{};
-    for (int n = 0; n < c::kPerlin2GradCount; ++n) {
-      r.g2x[n] = float(c::kPerlin2GradX[n]);
-      r.g2y[n] = float(c::kPerlin2GradY[n]);
-    }
-    for (int n = 0; n < c::kPerlin3GradCount; ++n) {
-      r.g3x[n] = float(c::kPerlin3GradX[n]);
-      r.g3y[n] = float(c::kPerlin3GradY[n]);
-      r.g3z[n] = float(c::kPerlin3GradZ[n]);
-    }
+    std::copy(src::g2x.begin(), src::g2x.end(), r.g2x);
+    std::copy(src::g2y.begin(), src::g2y.end(), r.g2y);
+    std::copy(src::g3x.begin(), src::g3x.end(), r.g3x);
+    std::copy(src::g3y.begin(), src::g3y.end(), r.g3y);
+    std::copy(src::g3z.begin(), src::g3z.end(), r.g3z);
     return r;
   }();
   return t;
@@ -1668,6 +1668,53 @@ HWY_INLINE void core3(const axis& x, const VU* kyz, const axis& y, const axis& z
   }
 }
 
+// perlin<D>'s core on one vector. kyz[b + 2c] = key ^ word_y(j_b) ^
+// word_z(k_c) (2D: kyz[0], kyz[1]; z unused).
+template <bool kGradient, int D>
+HWY_INLINE void core(const axis& x, const VU* kyz, const axis& y, const axis& z, VF& value,
+                     VF* grad) {
+  if constexpr (D == 2) {
+    (void)z;
+    core2<kGradient>(x, kyz[0], kyz[1], y, value, grad[0], grad[1]);
+  } else {
+    core3<kGradient>(x, kyz, y, z, value, grad);
+  }
+}
+
+// kyz for core() from per-lane axes (points) ...
+template <int D>
+HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
+  kyz[0] = hn::Xor(key, y.w0);
+  kyz[1] = hn::Xor(key, y.w1);
+  if constexpr (D == 3) {
+    kyz[2] = hn::Xor(kyz[0], z.w1);
+    kyz[3] = hn::Xor(kyz[1], z.w1);
+    kyz[0] = hn::Xor(kyz[0], z.w0);
+    kyz[1] = hn::Xor(kyz[1], z.w0);
+  } else {
+    (void)z;
+  }
+}
+// ... and from row-constant words (grids; z words 0 in 2D).
+HWY_INLINE void key_words(std::uint32_t key, std::uint32_t y0, std::uint32_t y1, std::uint32_t z0,
+                          std::uint32_t z1, VU* kyz) {
+  const DU du;
+  kyz[0] = hn::Set(du, key ^ y0 ^ z0);
+  kyz[1] = hn::Set(du, key ^ y1 ^ z0);
+  kyz[2] = hn::Set(du, key ^ y0 ^ z1);
+  kyz[3] = hn::Set(du, key ^ y1 ^ z1);
+}
+
+// D interleaved vectors (gradients) to dst.
+template <int D>
+HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
+  const DF df;
+  if constexpr (D == 2)
+    hn::StoreInterleaved2(g[0], g[1], df, dst);
+  else
+    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
+}
+
 }  // namespace perlin_simd
 
 namespace perlin_simd {
@@ -1737,42 +1784,27 @@ HWY_INLINE axis split(VF xv, std::uint32_t period) {
   return split_lanes<kGradient, kAxis>(xv, period);
 }
 
-// One vector of 2D points (interleaved x, y) -> values (and interleaved gradients).
-template <bool kGradient>
-HWY_INLINE void points2_vector(std::uint32_t key, const std::uint32_t* period,
-                               const float* HWY_RESTRICT xy, float* HWY_RESTRICT value,
-                               float* HWY_RESTRICT grad) {
+// One vector of D-dimensional points (interleaved) -> values (and interleaved gradients).
+template <bool kGradient, int D>
+HWY_INLINE void points_vector(std::uint32_t key, const std::uint32_t* period,
+                              const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                              float* HWY_RESTRICT grad) {
   const DF df;
-  const DU du;
-  VF xv, yv;
-  hn::LoadInterleaved2(df, xy, xv, yv);
-  const axis ax = split<kGradient, 0>(xv, period[0]);
-  const axis ay = split<kGradient, 1>(yv, period[1]);
-  const VU k = hn::Set(du, key);
-  VF v, gx, gy;
-  core2<kGradient>(ax, hn::Xor(k, ay.w0), hn::Xor(k, ay.w1), ay, v, gx, gy);
-  hn::StoreU(v, df, value);
-  if constexpr (kGradient) hn::StoreInterleaved2(gx, gy, df, grad);
-}
-
-template <bool kGradient>
-HWY_INLINE void points3_vector(std::uint32_t key, const std::uint32_t* period,
-                               const float* HWY_RESTRICT xyz, float* HWY_RESTRICT value,
-                               float* HWY_RESTRICT grad) {
-  const DF df;
-  const DU du;
-  VF xv, yv, zv;
-  hn::LoadInterleaved3(df, xyz, xv, yv, zv);
-  const axis ax = split<kGradient, 0>(xv, period[0]);
-  const axis ay = split<kGradient, 1>(yv, period[1]);
-  const axis az = split<kGradient, 2>(zv, period[2]);
-  const VU k = hn::Set(du, key);
-  const VU kyz[4] = {hn::Xor(k, hn::Xor(ay.w0, az.w0)), hn::Xor(k, hn::Xor(ay.w1, az.w0)),
-                     hn::Xor(k, hn::Xor(ay.w0, az.w1)), hn::Xor(k, hn::Xor(ay.w1, az.w1))};
+  VF c[3];
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, c[0], c[1]);
+  else
+    hn::LoadInterleaved3(df, pts, c[0], c[1], c[2]);
+  const axis ax = split<kGradient, 0>(c[0], period[0]);
+  const axis ay = split<kGradient, 1>(c[1], period[1]);
+  axis az{};
+  if constexpr (D == 3) az = split<kGradient, 2>(c[2], period[2]);
+  VU kyz[4];
+  key_words<D>(hn::Set(DU(), key), ay, az, kyz);
   VF v, g[3];
-  core3<kGradient>(ax, kyz, ay, az, v, g);
+  core<kGradient, D>(ax, kyz, ay, az, v, g);
   hn::StoreU(v, df, value);
-  if constexpr (kGradient) hn::StoreInterleaved3(g[0], g[1], g[2], df, grad);
+  if constexpr (kGradient) store_interleaved<D>(g, grad);
 }
 
 // Runs `vector_fn` over n points of D floats each; the last partial vector
@@ -1794,35 +1826,40 @@ HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* va
   if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
 }
 
-}  // namespace perlin_simd
-
-// Perlin 2D at n interleaved points (x0, y0, x1, y1, ...); values into
-// `value[n]`, and interleaved gradients into `grad[2n]` unless grad is null.
-inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
-                           std::size_t n, float* value, float* grad) {
-  using namespace perlin_simd;  // NOLINT(google-build-using-namespace): kernel-local helpers
+// for_each_point_vector with the gradient choice made once per batch:
+// vector_fn(std::bool_constant<kGradient>, pts, value, grad).
+template <int D, class Fn>
+HWY_INLINE void run_points(std::size_t n, const float* pts, float* value, float* grad,
+                           Fn vector_fn) {
   if (grad)
-    for_each_point_vector<2>(n, xy, value, grad, [&](const float* p, float* v, float* g) {
-      points2_vector<true>(key, period, p, v, g);
+    for_each_point_vector<D>(n, pts, value, grad, [&](const float* p, float* v, float* g) {
+      vector_fn(std::true_type{}, p, v, g);
     });
   else
-    for_each_point_vector<2>(n, xy, value, nullptr, [&](const float* p, float* v, float*) {
-      points2_vector<false>(key, period, p, v, nullptr);
+    for_each_point_vector<D>(n, pts, value, nullptr, [&](const float* p, float* v, float*) {
+      vector_fn(std::false_type{}, p, v, nullptr);
     });
 }
 
-// Perlin 3D at n interleaved points; gradients interleaved (3n) unless null.
+}  // namespace perlin_simd
+
+// Perlin at n interleaved points (x0, y0[, z0], x1, ...); values into
+// `value[n]`, and interleaved gradients into `grad[D n]` unless grad is null.
+template <int D>
+void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts, std::size_t n,
+                   float* value, float* grad) {
+  perlin_simd::run_points<D>(
+      n, pts, value, grad, [&](auto gradient, const float* p, float* v, float* g) {
+        perlin_simd::points_vector<decltype(gradient)::value, D>(key, period, p, v, g);
+      });
+}
+inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
+                           std::size_t n, float* value, float* grad) {
+  perlin_points<2>(key, period, xy, n, value, grad);
+}
 inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float* xyz,
                            std::size_t n, float* value, float* grad) {
-  using namespace perlin_simd;  // NOLINT(google-build-using-namespace)
-  if (grad)
-    for_each_point_vector<3>(n, xyz, value, grad, [&](const float* p, float* v, float* g) {
-      points3_vector<true>(key, period, p, v, g);
-    });
-  else
-    for_each_point_vector<3>(n, xyz, value, nullptr, [&](const float* p, float* v, float*) {
-      points3_vector<false>(key, period, p, v, nullptr);
-    });
+  perlin_points<3>(key, period, xyz, n, value, grad);
 }
 
 namespace perlin_simd {
@@ -1850,8 +1887,8 @@ struct column_table {
       f[i] = c.f;
       s[i] = detail::fade(c.f);
       if (gradient) ds[i] = detail::fade_derivative(c.f);
-      w0[i] = word_x(c.i0);
-      w1[i] = word_x(c.i1);
+      w0[i] = lattice_word_x(c.i0);
+      w1[i] = lattice_word_x(c.i1);
     }
   }
   template <bool kGradient>
@@ -1878,8 +1915,8 @@ HWY_INLINE row_axis broadcast_axis(double p, std::uint32_t period) {
   const DF df;
   const lattice_coord<float> c = lattice_split<float>(p, period);
   row_axis r;
-  r.w0 = kAxis == 1 ? word_y(c.i0) : word_z(c.i0);
-  r.w1 = kAxis == 1 ? word_y(c.i1) : word_z(c.i1);
+  r.w0 = kAxis == 1 ? lattice_word_y(c.i0) : lattice_word_z(c.i0);
+  r.w1 = kAxis == 1 ? lattice_word_y(c.i1) : lattice_word_z(c.i1);
   r.a.f = hn::Set(df, c.f);
   r.a.s = hn::Set(df, detail::fade(c.f));
   if constexpr (kGradient) r.a.ds = hn::Set(df, detail::fade_derivative(c.f));
@@ -1896,59 +1933,33 @@ HWY_INLINE void store_row(std::size_t i, std::size_t nx, VF v, const VF* g, floa
   const bool full = i + lanes <= nx;
   HWY_ALIGN float vb[kMaxLanes], gb[kMaxLanes * D];
   hn::StoreU(v, df, full ? row_value + i : vb);
-  if (row_grad) {
-    float* gdst = full ? row_grad + i * D : gb;
-    if constexpr (D == 2)
-      hn::StoreInterleaved2(g[0], g[1], df, gdst);
-    else
-      hn::StoreInterleaved3(g[0], g[1], g[2], df, gdst);
-  }
+  if (row_grad) store_interleaved<D>(g, full ? row_grad + i * D : gb);
   if (full) return;
   std::memcpy(row_value + i, vb, (nx - i) * sizeof(float));
   if (row_grad) std::memcpy(row_grad + i * D, gb, (nx - i) * D * sizeof(float));
 }
 
-template <bool kGradient>
-void grid2(std::uint32_t key, const std::uint32_t* period, const grid<2>& g, float* value,
-           float* grad) {
-  const DU du;
-  const std::size_t nx = g.size[0], ny = g.size[1], lanes = hn::Lanes(DF());
-  const column_table cols(nx, period[0], kGradient,
-                          [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
-  for (std::size_t j = 0; j < ny; ++j) {
-    const row_axis y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
-    const VU ky0 = hn::Set(du, key ^ y.w0), ky1 = hn::Set(du, key ^ y.w1);
-    float* row_value = value + j * nx;
-    float* row_grad = kGradient ? grad + j * nx * 2 : nullptr;
-    for (std::size_t i = 0; i < nx; i += lanes) {
-      VF v, gr[2];
-      core2<kGradient>(cols.load<kGradient>(i), ky0, ky1, y.a, v, gr[0], gr[1]);
-      store_row<2>(i, nx, v, gr, row_value, row_grad);
-    }
-  }
-}
-
-template <bool kGradient>
-void grid3(std::uint32_t key, const std::uint32_t* period, const grid<3>& g, float* value,
-           float* grad) {
-  const DU du;
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = g.size[2], lanes = hn::Lanes(DF());
+template <bool kGradient, int D>
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g, float* value,
+                 float* grad) {
+  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  const std::size_t lanes = hn::Lanes(DF());
   const column_table cols(nx, period[0], kGradient,
                           [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
   for (std::size_t k = 0; k < nz; ++k) {
-    const row_axis z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
+    row_axis z{};
+    if constexpr (D == 3)
+      z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
     for (std::size_t j = 0; j < ny; ++j) {
       const row_axis y =
           broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
-      const VU kyz[4] = {hn::Set(du, key ^ y.w0 ^ z.w0), hn::Set(du, key ^ y.w1 ^ z.w0),
-                         hn::Set(du, key ^ y.w0 ^ z.w1), hn::Set(du, key ^ y.w1 ^ z.w1)};
+      VU kyz[4];
+      key_words(key, y.w0, y.w1, z.w0, z.w1, kyz);
       const std::size_t row = k * ny + j;
-      float* row_value = value + row * nx;
-      float* row_grad = kGradient ? grad + row * nx * 3 : nullptr;
       for (std::size_t i = 0; i < nx; i += lanes) {
         VF v, gr[3];
-        core3<kGradient>(cols.load<kGradient>(i), kyz, y.a, z.a, v, gr);
-        store_row<3>(i, nx, v, gr, row_value, row_grad);
+        core<kGradient, D>(cols.load<kGradient>(i), kyz, y.a, z.a, v, gr);
+        store_row<D>(i, nx, v, gr, value + row * nx, kGradient ? grad + row * nx * D : nullptr);
       }
     }
   }
@@ -1956,23 +1967,23 @@ void grid3(std::uint32_t key, const std::uint32_t* period, const grid<3>& g, flo
 
 }  // namespace perlin_simd
 
-// Perlin 2D on a uniform grid (C order, i fastest); gradients interleaved
-// (2 per sample) unless grad is null.
+// Perlin on a uniform grid (C order, i fastest); gradients interleaved (D
+// per sample) unless grad is null.
+template <int D>
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g, float* value,
+                 float* grad) {
+  if (grad)
+    perlin_simd::perlin_grid<true, D>(key, period, g, value, grad);
+  else
+    perlin_simd::perlin_grid<false, D>(key, period, g, value, nullptr);
+}
 inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
                          float* value, float* grad) {
-  if (grad)
-    perlin_simd::grid2<true>(key, period, g, value, grad);
-  else
-    perlin_simd::grid2<false>(key, period, g, value, nullptr);
+  perlin_grid<2>(key, period, g, value, grad);
 }
-
-// Perlin 3D on a uniform grid; gradients interleaved (3 per sample) unless null.
 inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
                          float* value, float* grad) {
-  if (grad)
-    perlin_simd::grid3<true>(key, period, g, value, grad);
-  else
-    perlin_simd::grid3<false>(key, period, g, value, nullptr);
+  perlin_grid<3>(key, period, g, value, grad);
 }
 
 namespace perlin_simd {
@@ -2033,41 +2044,34 @@ HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
                                       const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
                                       float* HWY_RESTRICT grad) {
   const DF df;
-  const DU du;
   const std::size_t lanes = hn::Lanes(df);
   const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
   VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+  vec<double, D> p[kMaxLanes];  // the lanes' points in double, once for all bands
+  for (std::size_t l = 0; l < lanes; ++l)
+    for (int a = 0; a < D; ++a) p[l][a] = double(pts[l * D + a]);
   double q[3][kMaxLanes];
   for (std::size_t b = 0; b < bands.size(); ++b) {
     for (std::size_t l = 0; l < lanes; ++l) {
-      vec<double, D> p;
-      for (int a = 0; a < D; ++a) p[a] = double(pts[l * D + a]);
-      const vec<double, D> qb = fr.band_position(static_cast<int>(b), p);
+      const vec<double, D> qb = fr.band_position(static_cast<int>(b), p[l]);
       for (int a = 0; a < D; ++a) q[a][l] = qb[a];
     }
     const band_config<D>& c = bands[b];
-    const VU k = hn::Set(du, c.key);
     const axis ax = split_doubles<kGradient, 0>(q[0], c.period[0]);
     const axis ay = split_doubles<kGradient, 1>(q[1], c.period[1]);
+    axis az{};
+    if constexpr (D == 3) az = split_doubles<kGradient, 2>(q[2], c.period[2]);
+    VU kyz[4];
+    key_words<D>(hn::Set(DU(), c.key), ay, az, kyz);
     VF v, g[3];
-    if constexpr (D == 2) {
-      core2<kGradient>(ax, hn::Xor(k, ay.w0), hn::Xor(k, ay.w1), ay, v, g[0], g[1]);
-    } else {
-      const axis az = split_doubles<kGradient, 2>(q[2], c.period[2]);
-      const VU kyz[4] = {hn::Xor(k, hn::Xor(ay.w0, az.w0)), hn::Xor(k, hn::Xor(ay.w1, az.w0)),
-                         hn::Xor(k, hn::Xor(ay.w0, az.w1)), hn::Xor(k, hn::Xor(ay.w1, az.w1))};
-      core3<kGradient>(ax, kyz, ay, az, v, g);
-    }
+    core<kGradient, D>(ax, kyz, ay, az, v, g);
     accumulate<kGradient, D>(turbulence, c, v, g, acc, gacc);
   }
   const VF scale = hn::Set(df, float(fr.scale()));
   if constexpr (kGradient) {
     hn::StoreU(hn::Mul(acc, scale), df, value);
-    if constexpr (D == 2)
-      hn::StoreInterleaved2(hn::Mul(gacc[0], scale), hn::Mul(gacc[1], scale), df, grad);
-    else
-      hn::StoreInterleaved3(hn::Mul(gacc[0], scale), hn::Mul(gacc[1], scale),
-                            hn::Mul(gacc[2], scale), df, grad);
+    for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], scale);
+    store_interleaved<D>(gacc, grad);
   } else {
     hn::StoreU(hn::Mul(scale, acc), df, value);
   }
@@ -2078,7 +2082,6 @@ HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
 template <bool kGradient, int D>
 void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, float* value, float* grad) {
   const DF df;
-  const DU du;
   const std::size_t lanes = hn::Lanes(df);
   const std::vector<band_config<D>> bands = band_configs(fr);
   const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
@@ -2110,15 +2113,11 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, float* value, 
         if constexpr (D == 3)
           z = broadcast_axis<kGradient, 2>(position(bi, 2, g.origin[2] + g.step[2] * double(k)),
                                            c.period[2]);
-        const std::uint32_t kz0 = D == 3 ? z.w0 : 0u, kz1 = D == 3 ? z.w1 : 0u;
-        const VU kyz[4] = {hn::Set(du, c.key ^ y.w0 ^ kz0), hn::Set(du, c.key ^ y.w1 ^ kz0),
-                           hn::Set(du, c.key ^ y.w0 ^ kz1), hn::Set(du, c.key ^ y.w1 ^ kz1)};
+        VU kyz[4];
+        key_words(c.key, y.w0, y.w1, z.w0, z.w1, kyz);
         for (std::size_t i = 0; i < nx; i += lanes) {
           VF v, gr[3];
-          if constexpr (D == 2)
-            core2<kGradient>(cols[b].load<kGradient>(i), kyz[0], kyz[1], y.a, v, gr[0], gr[1]);
-          else
-            core3<kGradient>(cols[b].load<kGradient>(i), kyz, y.a, z.a, v, gr);
+          core<kGradient, D>(cols[b].load<kGradient>(i), kyz, y.a, z.a, v, gr);
           VF a = hn::LoadU(df, acc.data() + i), ga[3];
           if constexpr (kGradient)
             for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
@@ -2148,16 +2147,11 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, float* value, 
 template <int D>
 void fractal_points(const fractal<perlin<D>>& fr, const float* pts, std::size_t n, float* value,
                     float* grad) {
-  using namespace perlin_simd;  // NOLINT(google-build-using-namespace)
-  const std::vector<band_config<D>> bands = band_configs(fr);
-  if (grad)
-    for_each_point_vector<D>(n, pts, value, grad, [&](const float* p, float* v, float* g) {
-      fractal_points_vector<true, D>(fr, bands, p, v, g);
-    });
-  else
-    for_each_point_vector<D>(n, pts, value, nullptr, [&](const float* p, float* v, float*) {
-      fractal_points_vector<false, D>(fr, bands, p, v, nullptr);
-    });
+  const std::vector<perlin_simd::band_config<D>> bands = perlin_simd::band_configs(fr);
+  perlin_simd::run_points<D>(
+      n, pts, value, grad, [&](auto gradient, const float* p, float* v, float* g) {
+        perlin_simd::fractal_points_vector<decltype(gradient)::value, D>(fr, bands, p, v, g);
+      });
 }
 inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
                             float* value, float* grad) {

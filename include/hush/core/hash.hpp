@@ -46,21 +46,32 @@ HUSH_INLINE constexpr std::uint32_t rotl(std::uint32_t x, unsigned r) {
   return (x << r) | (x >> (32u - r));
 }
 
+// The per-axis words lattice_hash folds: the cell index times an odd
+// multiplier (a bijection), rotated per axis (constants.hpp says why). Batch
+// evaluation precomputes them per column and row (hush/simd).
+HUSH_INLINE constexpr std::uint32_t lattice_word_x(std::uint32_t i) {
+  return i * detail::constants::kLatticePrimeX;
+}
+HUSH_INLINE constexpr std::uint32_t lattice_word_y(std::uint32_t j) {
+  namespace c = detail::constants;
+  return rotl(j * c::kLatticePrimeY, c::kLatticeRotateY);
+}
+HUSH_INLINE constexpr std::uint32_t lattice_word_z(std::uint32_t k) {
+  namespace c = detail::constants;
+  return rotl(k * c::kLatticePrimeZ, c::kLatticeRotateZ);
+}
+
 // lattice_hash: the hash of an integer lattice cell under a key. Cells are
 // 32-bit unsigned (coordinates wrap modulo 2^32; see core/lattice.hpp). The
-// cell is folded to one word with odd multipliers (each a bijection) and
-// per-axis rotations (constants.hpp says why), then finished with hash32, so
-// every input bit reaches every output bit.
+// cell is folded to one word by xor of the per-axis words above, then
+// finished with hash32, so every input bit reaches every output bit.
 HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
                                                  std::uint32_t j) {
-  namespace c = detail::constants;
-  return hash32(key ^ (i * c::kLatticePrimeX) ^ rotl(j * c::kLatticePrimeY, c::kLatticeRotateY));
+  return hash32(key ^ lattice_word_x(i) ^ lattice_word_y(j));
 }
 HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
                                                  std::uint32_t j, std::uint32_t k) {
-  namespace c = detail::constants;
-  return hash32(key ^ (i * c::kLatticePrimeX) ^ rotl(j * c::kLatticePrimeY, c::kLatticeRotateY) ^
-                rotl(k * c::kLatticePrimeZ, c::kLatticeRotateZ));
+  return hash32(key ^ lattice_word_x(i) ^ lattice_word_y(j) ^ lattice_word_z(k));
 }
 
 }  // namespace hush
