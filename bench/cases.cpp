@@ -397,11 +397,7 @@ void add_pinned_simd_rows(std::vector<bench_case>& cases, std::int64_t target) {
 #if HUSH_BENCH_HAVE_GLSL
 // The GLSL rows run on one headless OSMesa context for the whole process (llvmpipe here).
 hush::glsl::device& bench_glsl_device() {
-  struct holder {
-    hush::glsl::osmesa_context context;
-    hush::glsl::device device{hush::glsl::osmesa_context::loader()};
-  };
-  static holder h;
+  static hush::glsl::headless_device h;
   return h.device;
 }
 #endif

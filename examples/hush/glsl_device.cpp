@@ -12,15 +12,10 @@
 namespace hush_cli {
 
 hush::glsl::device& glsl_device() {
-  // The context outlives the device (destruction in reverse order of creation).
-  struct holder {
-    hush::glsl::osmesa_context context;
-    hush::glsl::device device{hush::glsl::osmesa_context::loader()};
-  };
-  static std::unique_ptr<holder> h;
+  static std::unique_ptr<hush::glsl::headless_device> h;
   if (!h) {
     try {
-      h = std::make_unique<holder>();
+      h = std::make_unique<hush::glsl::headless_device>();
     } catch (const std::exception& e) {
       throw run_error(std::string("--backend glsl: no GL context: ") + e.what());
     }

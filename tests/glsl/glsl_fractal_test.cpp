@@ -50,8 +50,8 @@
 
 namespace {
 
-using hush_glsl_test::env;
 using hush_glsl_test::error_stats;
+using hush_glsl_test::headless;
 using hush_glsl_test::random_points;
 using hush_test::lipschitz_bound;
 
@@ -145,8 +145,8 @@ void check_points(const fractal_t<D>& fr, std::size_t n, std::uint32_t seed,
   const auto pts = random_points<D>(n, seed);
   std::vector<float> v(n), v_only(n);
   std::vector<hush::vec<float, D>> g(n);
-  hush::evaluate(fr, hush::exec::glsl{env().dev}, pts, v, g);
-  hush::evaluate(fr, hush::exec::glsl{env().dev}, pts, v_only);
+  hush::evaluate(fr, hush::exec::glsl{headless().device}, pts, v, g);
+  hush::evaluate(fr, hush::exec::glsl{headless().device}, pts, v_only);
   auto pos = [&](std::size_t i) { return hush::vec_cast<double>(pts[i]); };
   check_against_cpu<D>(fr, n, pos, v.data(), g.data(), what + " points");
   check_against_cpu<D>(fr, n, pos, v_only.data(), nullptr, what + " points, values only");
@@ -168,8 +168,8 @@ void check_grid(const fractal_t<D>& fr, const hush::grid<D>& gr, const std::stri
   const std::size_t n = gr.count();
   std::vector<float> v(n), v_only(n), cpu(n);
   std::vector<hush::vec<float, D>> g(n), cpu_g(n);
-  hush::evaluate_grid(fr, hush::exec::glsl{env().dev}, gr, v, g);
-  hush::evaluate_grid(fr, hush::exec::glsl{env().dev}, gr, v_only);
+  hush::evaluate_grid(fr, hush::exec::glsl{headless().device}, gr, v, g);
+  hush::evaluate_grid(fr, hush::exec::glsl{headless().device}, gr, v_only);
   hush::evaluate_grid(fr, hush::exec::scalar, gr, cpu, cpu_g);
   check_against_cpu<D>(
       fr, n, [&](std::size_t i) { return grid_position<D>(gr, i); }, v.data(), g.data(),
@@ -282,8 +282,8 @@ TEST_CASE("periodic fractal perlin grids tile: grids a whole period apart are eq
   const hush::grid<2> a{{0.25, 0.5}, {0.125, 0.125}, {48, 48}},
       b{{0.25 + 3 * 7, 0.5 - 5 * 3}, {0.125, 0.125}, {48, 48}};
   std::vector<float> va(a.count()), vb(b.count());
-  hush::evaluate_grid(f2, hush::exec::glsl{env().dev}, a, va);
-  hush::evaluate_grid(f2, hush::exec::glsl{env().dev}, b, vb);
+  hush::evaluate_grid(f2, hush::exec::glsl{headless().device}, a, va);
+  hush::evaluate_grid(f2, hush::exec::glsl{headless().device}, b, vb);
   CHECK(va == vb);
   check_grid(f2, b, "periodic, shifted by whole periods");
   const fractal_t<3> f3(periodic<3>());
@@ -299,16 +299,16 @@ TEST_CASE("fractal perlin: NaN and infinite coordinates give NaN values and grad
        {fractal_t<2>(), fractal_t<2>(turbulence_7<2>()), fractal_t<2>(periodic<2>())}) {
     std::vector<float> v(p2.size());
     std::vector<hush::vec2> g(p2.size());
-    hush::evaluate(fr, hush::exec::glsl{env().dev}, p2, v, g);
+    hush::evaluate(fr, hush::exec::glsl{headless().device}, p2, v, g);
     for (std::size_t i = 0; i + 1 < p2.size(); ++i)
       CHECK((std::isnan(v[i]) && std::isnan(g[i].x) && std::isnan(g[i].y)));
     CHECK(std::isfinite(v.back()));
-    hush::evaluate(fr, hush::exec::glsl{env().dev}, p2, v);
+    hush::evaluate(fr, hush::exec::glsl{headless().device}, p2, v);
     for (std::size_t i = 0; i + 1 < p2.size(); ++i) CHECK(std::isnan(v[i]));
   }
   std::vector<float> v(p3.size());
   std::vector<hush::vec3> g(p3.size());
-  hush::evaluate(fractal_t<3>(turbulence_7<3>()), hush::exec::glsl{env().dev}, p3, v, g);
+  hush::evaluate(fractal_t<3>(turbulence_7<3>()), hush::exec::glsl{headless().device}, p3, v, g);
   for (std::size_t i = 0; i + 1 < p3.size(); ++i)
     CHECK((std::isnan(v[i]) && std::isnan(g[i].x) && std::isnan(g[i].y) && std::isnan(g[i].z)));
   CHECK(std::isfinite(v.back()));
@@ -324,7 +324,7 @@ TEST_CASE("fractal perlin: huge coordinates up to FLT_MAX agree with the CPU wit
                                  fractal_t<3>(periodic<3>()), fractal_t<3>(turbulence_7<3>())}) {
     std::vector<float> v(pts.size());
     std::vector<hush::vec3> g(pts.size());
-    hush::evaluate(fr, hush::exec::glsl{env().dev}, pts, v, g);
+    hush::evaluate(fr, hush::exec::glsl{headless().device}, pts, v, g);
     for (float x : v) CHECK(std::isfinite(x));
     auto pos = [&](std::size_t i) { return hush::vec_cast<double>(pts[i]); };
     check_against_cpu<3>(fr, pts.size(), pos, v.data(), g.data(), "huge coordinates", false);
@@ -337,9 +337,9 @@ TEST_CASE(
   const auto pts = random_points<3>(3000, 21);
   std::vector<float> one(pts.size()), many(pts.size());
   std::vector<hush::vec3> g_one(pts.size()), g_many(pts.size());
-  hush::evaluate(fr, hush::exec::glsl{env().dev}, pts, one, g_one);
+  hush::evaluate(fr, hush::exec::glsl{headless().device}, pts, one, g_one);
   // 7 bands x 3 axes x 3 words = 252 bytes per point: 16 KiB holds 65 points.
-  hush::glsl::device small(env().context.loader(), {2, 16384});
+  hush::glsl::device small(headless().context.loader(), {2, 16384});
   const std::size_t before = small.dispatches();
   hush::evaluate(fr, hush::exec::glsl{small}, pts, many, g_many);
   CHECK(small.dispatches() - before >= pts.size() / 65);
@@ -348,7 +348,8 @@ TEST_CASE(
 }
 
 TEST_CASE("a fractal grid whose band tables exceed the buffer limit is refused") {
-  hush::glsl::device small(env().context.loader(), {0, std::size_t{12} * 1000});  // 1000 triples
+  hush::glsl::device small(headless().context.loader(),
+                           {0, std::size_t{12} * 1000});  // 1000 triples
   std::vector<float> out(std::size_t{100} * 100);
   // 200 axis samples x 5 bands = 1000 triples fit; 6 bands do not.
   hush::evaluate_grid(fractal_t<2>(), hush::exec::glsl{small},

@@ -48,8 +48,8 @@
 
 namespace {
 
-using hush_glsl_test::env;
 using hush_glsl_test::error_stats;
+using hush_glsl_test::headless;
 using hush_glsl_test::random_points;
 using hush_test::lipschitz_bound;
 
@@ -74,7 +74,7 @@ float float_of(std::uint32_t u) {
 std::vector<std::uint32_t> run_kernel(const std::string& main_body,
                                       const std::vector<std::uint32_t>& src, std::size_t dst_words,
                                       std::size_t threads) {
-  const gd::gl_api& gl = env().dev.gl();
+  const gd::gl_api& gl = headless().device.gl();
   const std::string source =
       "#version 430 core\nlayout(local_size_x = 64) in;\n" + hush::glsl::library() +
       "layout(std430, binding = 0) readonly buffer src_block { uint src[]; };\n"
@@ -407,14 +407,14 @@ TEST_CASE("the library compiles and links in a vertex and a fragment shader unde
       "  float h = float(hush_lattice_hash(key, 1u, 2u, 3u) >> 24) / 255.0;\n"
       "  color = vec4(hush_perlin2(gl_FragCoord.xy, key, uvec2(0u)), g.yz, h) + v_noise;\n"
       "}\n";
-  const gd::gl_api& gl = env().dev.gl();
+  const gd::gl_api& gl = headless().device.gl();
   const gd::gl_program prog =
       gd::link_program(gl, {{gd::kGlVertexShader, vertex}, {gd::kGlFragmentShader, fragment}});
   CHECK(prog.id() != 0u);
 }
 
 TEST_CASE("a shader that does not compile throws std::runtime_error carrying the driver log") {
-  const gd::gl_api& gl = env().dev.gl();
+  const gd::gl_api& gl = headless().device.gl();
   try {
     gd::link_program(
         gl,
@@ -470,8 +470,8 @@ void check_points(const hush::perlin<D>& p, std::size_t n, std::uint32_t seed, c
   const auto pts = random_points<D>(n, seed);
   std::vector<float> v(n), v_only(n);
   std::vector<hush::vec<float, D>> g(n);
-  hush::evaluate(p, hush::exec::glsl{env().dev}, pts, v, g);
-  hush::evaluate(p, hush::exec::glsl{env().dev}, pts, v_only);
+  hush::evaluate(p, hush::exec::glsl{headless().device}, pts, v, g);
+  hush::evaluate(p, hush::exec::glsl{headless().device}, pts, v_only);
   auto pos = [&](std::size_t i) { return hush::vec_cast<double>(pts[i]); };
   check_against_cpu<D>(p, n, pos, v.data(), g.data(), what);
   check_against_cpu<D>(p, n, pos, v_only.data(), nullptr, what);
@@ -498,8 +498,8 @@ void check_grid(const hush::perlin<D>& p, const hush::grid<D>& gr, const char* w
   const std::size_t n = gr.count();
   std::vector<float> v(n), v_only(n), cpu(n);
   std::vector<hush::vec<float, D>> g(n);
-  hush::evaluate_grid(p, hush::exec::glsl{env().dev}, gr, v, g);
-  hush::evaluate_grid(p, hush::exec::glsl{env().dev}, gr, v_only);
+  hush::evaluate_grid(p, hush::exec::glsl{headless().device}, gr, v, g);
+  hush::evaluate_grid(p, hush::exec::glsl{headless().device}, gr, v_only);
   auto pos = [&](std::size_t i) {
     std::array<std::size_t, D> ijk{};
     ijk[0] = i % gr.size[0];
@@ -545,8 +545,8 @@ TEST_CASE("perlin grids equal the CPU float grid to float rounding, and tile wit
   const hush::grid<2> a{{0.25, 0.5}, {0.125, 0.125}, {64, 64}},
       b{{4.25, -3.5}, {0.125, 0.125}, {64, 64}};
   std::vector<float> va(a.count()), vb(b.count()), cpu(a.count());
-  hush::evaluate_grid(p, hush::exec::glsl{env().dev}, a, va);
-  hush::evaluate_grid(p, hush::exec::glsl{env().dev}, b, vb);
+  hush::evaluate_grid(p, hush::exec::glsl{headless().device}, a, va);
+  hush::evaluate_grid(p, hush::exec::glsl{headless().device}, b, vb);
   hush::evaluate_grid(p, hush::exec::scalar, a, cpu);
   CHECK(va == vb);
   double max = 0;
@@ -570,7 +570,7 @@ TEST_CASE("NaN and infinite coordinates give NaN values and gradients") {
   hush::perlin<2>::params pp;
   pp.period = {3, 1};
   for (const hush::perlin<2>& p : {hush::perlin<2>(1), hush::perlin<2>(pp)}) {
-    hush::evaluate(p, hush::exec::glsl{env().dev}, p2, v2, g2);
+    hush::evaluate(p, hush::exec::glsl{headless().device}, p2, v2, g2);
     for (std::size_t i = 0; i + 1 < p2.size(); ++i) {
       CHECK(std::isnan(v2[i]));
       CHECK(std::isnan(g2[i].x));
@@ -578,7 +578,7 @@ TEST_CASE("NaN and infinite coordinates give NaN values and gradients") {
     }
     CHECK(std::isfinite(v2.back()));
   }
-  hush::evaluate(hush::perlin<3>(1), hush::exec::glsl{env().dev}, p3, v3, g3);
+  hush::evaluate(hush::perlin<3>(1), hush::exec::glsl{headless().device}, p3, v3, g3);
   for (std::size_t i = 0; i + 1 < p3.size(); ++i) {
     CHECK(std::isnan(v3[i]));
     CHECK((std::isnan(g3[i].x) && std::isnan(g3[i].y) && std::isnan(g3[i].z)));
@@ -600,14 +600,14 @@ TEST_CASE("coordinates of magnitude 2^31 and beyond, -1 and tiny negatives agree
   for (const hush::perlin<3>& p : {hush::perlin<3>(2), hush::perlin<3>(pp)}) {
     std::vector<float> v(pts.size());
     std::vector<hush::vec3> g(pts.size());
-    hush::evaluate(p, hush::exec::glsl{env().dev}, pts, v, g);
+    hush::evaluate(p, hush::exec::glsl{headless().device}, pts, v, g);
     auto pos = [&](std::size_t i) { return hush::vec_cast<double>(pts[i]); };
     check_against_cpu<3>(p, pts.size(), pos, v.data(), g.data(), "hard coordinates");
   }
 }
 
 TEST_CASE("an empty batch dispatches nothing and writes nothing") {
-  hush::glsl::device& dev = env().dev;
+  hush::glsl::device& dev = headless().device;
   const std::size_t before = dev.dispatches();
   std::vector<hush::vec2> none;
   std::vector<float> out;
@@ -622,13 +622,13 @@ TEST_CASE(
     "a grid of 2^32 samples or too long for one SSBO is refused with hush::invalid_argument") {
   std::vector<float> out(1);
   CHECK_THROWS_AS(
-      env().dev.evaluate_grid(hush::perlin<2>(1), hush::grid<2>{{0, 0}, {1, 1}, {65536, 65537}},
-                              out.data(), nullptr),
+      headless().device.evaluate_grid(
+          hush::perlin<2>(1), hush::grid<2>{{0, 0}, {1, 1}, {65536, 65537}}, out.data(), nullptr),
       hush::invalid_argument);
   // The per-axis table must fit one SSBO: 12 bytes per sample index along each axis.
   hush::glsl::device::options opt;
   opt.max_buffer_bytes = 4096;
-  hush::glsl::device small(env().context.loader(), opt);
+  hush::glsl::device small(headless().context.loader(), opt);
   std::vector<float> row(400);
   CHECK_THROWS_AS(small.evaluate_grid(hush::perlin<2>(1), hush::grid<2>{{0, 0}, {1, 1}, {400, 1}},
                                       row.data(), nullptr),
@@ -642,8 +642,8 @@ TEST_CASE("a batch split across many dispatches and buffers equals one dispatch 
   hush::glsl::device::options opt;
   opt.max_groups_per_dispatch = 3;
   opt.max_buffer_bytes = 4096;
-  hush::glsl::device small(env().context.loader(), opt);
-  hush::glsl::device& big = env().dev;
+  hush::glsl::device small(headless().context.loader(), opt);
+  hush::glsl::device& big = headless().device;
   const hush::perlin<2> p2(4);
   const hush::perlin<3> p3(4);
   const auto pts = random_points<2>(10000, 9);
@@ -673,7 +673,7 @@ TEST_CASE("a batch split across many dispatches and buffers equals one dispatch 
 }
 
 TEST_CASE("a grid beyond GL_MAX_COMPUTE_WORK_GROUP_COUNT groups takes several dispatches") {
-  hush::glsl::device& dev = env().dev;
+  hush::glsl::device& dev = headless().device;
   // Just over one full dispatch at the GL limit (65535 groups of 64 on llvmpipe).
   const std::size_t per_dispatch = dev.max_groups_per_dispatch() * hush::glsl::kLocalSize;
   const std::size_t nx = 2048, ny = per_dispatch / nx + 2;
@@ -699,7 +699,7 @@ TEST_CASE("a grid beyond GL_MAX_COMPUTE_WORK_GROUP_COUNT groups takes several di
 // ---- The device's contract around the context.
 
 TEST_CASE("the device names the renderer and restores the caller's program and SSBO binding") {
-  hush::glsl::device& dev = env().dev;
+  hush::glsl::device& dev = headless().device;
   CHECK(dev.renderer().find("OpenGL 4.") != std::string::npos);
   const gd::gl_api& gl = dev.gl();
   const gd::gl_program mine =
@@ -727,7 +727,7 @@ void* loader_without_dispatch(const char* name) {
 }
 
 TEST_CASE("a loader missing an entry point or a null loader is refused with the name") {
-  env();  // a current context
+  headless();  // a current context
   try {
     hush::glsl::device dev{&loader_without_dispatch};
     FAIL("no exception");
@@ -759,7 +759,7 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
   for (const auto& k : hush::glsl::constant_table()) CHECK(lib.find(k.name) != std::string::npos);
   CHECK(lib.find("0x7feb352du") != std::string::npos);
   // The written library compiles in a fragment shader; each runner compiles and links.
-  const gd::gl_api& gl = env().dev.gl();
+  const gd::gl_api& gl = headless().device.gl();
   gd::link_program(
       gl,
       {{gd::kGlVertexShader,

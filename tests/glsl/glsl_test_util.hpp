@@ -27,13 +27,9 @@ extern "C" const char* __lsan_default_suppressions() {  // NOLINT: the sanitizer
 namespace hush_glsl_test {
 
 // One OSMesa context and device per test process (CTest runs each case alone).
-struct gl_env {
-  hush::glsl::osmesa_context context;
-  hush::glsl::device dev{context.loader()};
-};
-inline gl_env& env() {
-  static gl_env e;
-  return e;
+inline hush::glsl::headless_device& headless() {
+  static hush::glsl::headless_device h;
+  return h;
 }
 
 // Max and RMS of a stream of absolute errors.

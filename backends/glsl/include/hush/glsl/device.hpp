@@ -194,40 +194,18 @@ class device {
   void plain_grid(const Noise& noise, const grid<Noise::dimension>& g, std::size_t axis_samples,
                   float* out, vec<float, Noise::dimension>* grad) {
     constexpr int D = Noise::dimension;
-    const std::size_t count = g.count();
-    if (axis_samples > max_bytes_ / (3 * sizeof(std::uint32_t)))
-      hush::detail::throw_out_of_range(
-          "hush::glsl::device::evaluate_grid", "grid.size (summed over the axes)", axis_samples,
-          ("at most " + std::to_string(max_bytes_ / (3 * sizeof(std::uint32_t))) +
-           " on this device (its SSBO size limit)")
-              .c_str());
-    std::vector<std::uint32_t> axes;
-    axes.reserve(3 * axis_samples);
+    require_axis_table(axis_samples, "grid.size (summed over the axes)");
+    std::vector<std::uint32_t> axes(3 * axis_samples);
+    std::uint32_t* w = axes.data();
     for (int a = 0; a < D; ++a) {
       const std::uint32_t period = noise_program<Noise>::period(noise, a);
-      for (std::size_t i = 0; i < g.size[a]; ++i) {
-        const double x = g.origin[a] + g.step[a] * static_cast<double>(i);
-        const lattice_coord<float> c = lattice_split<float>(x, period);
-        std::uint32_t fbits = 0;
-        std::memcpy(&fbits, &c.f, sizeof fbits);
-        axes.insert(axes.end(), {c.i0, c.i1, fbits});
-      }
+      for (std::size_t i = 0; i < g.size[a]; ++i, w += 3)
+        split_into(w, g.origin[a] + g.step[a] * static_cast<double>(i), period);
     }
     const state_guard guard(*gl_);
     const detail::gl_uint prog = use_program<Noise>(noise, batch_layout::grid, grad != nullptr);
     upload(0, axes.data(), axes.size() * sizeof(std::uint32_t));
-    gl_->Uniform3ui(gl_->GetUniformLocation(prog, "hush_size"),
-                    static_cast<detail::gl_uint>(g.size[0]),
-                    static_cast<detail::gl_uint>(g.size[1]),
-                    static_cast<detail::gl_uint>(D == 3 ? g.size[D - 1] : 1));
-    const detail::gl_int base = gl_->GetUniformLocation(prog, "hush_base");
-    const std::size_t stride = grad ? D + 1 : 1;
-    const std::size_t batch = batch_samples(stride);
-    for (std::size_t first = 0; first < count; first += batch) {
-      gl_->Uniform1ui(base, static_cast<detail::gl_uint>(first));
-      run_batch<D>(prog, std::min(batch, count - first), stride, out + first,
-                   grad ? grad + first : nullptr);
-    }
+    run_grid<D>(prog, g, D == 3 ? g.size[D - 1] : 1, out, grad);
   }
 
   // Banded noises (noise_program::banded): every band's coordinate of every
@@ -276,12 +254,8 @@ class device {
     using np = noise_program<Noise>;
     constexpr int D = Noise::dimension;
     const int bands = np::band_count(noise);
-    const std::size_t limit = max_bytes_ / (3 * sizeof(std::uint32_t));
-    if (axis_samples * static_cast<std::size_t>(bands) > limit)
-      hush::detail::throw_out_of_range(
-          "hush::glsl::device::evaluate_grid", "grid.size (summed over the axes) * bands",
-          axis_samples * static_cast<std::size_t>(bands),
-          ("at most " + std::to_string(limit) + " on this device (its SSBO size limit)").c_str());
+    require_axis_table(axis_samples * static_cast<std::size_t>(bands),
+                       "grid.size (summed over the axes) * bands");
     std::vector<std::uint32_t> axes(3 * axis_samples * static_cast<std::size_t>(bands));
     std::uint32_t* w = axes.data();
     for (int b = 0; b < bands; ++b)
@@ -300,10 +274,27 @@ class device {
                     static_cast<detail::gl_uint>(bands));
     upload(0, axes.data(), axes.size() * sizeof(std::uint32_t));
     // hush_size.z is the z axis' triple count: 0 in 2D (no z triples).
+    run_grid<D>(prog, g, D == 3 ? g.size[D - 1] : 0, out, grad);
+  }
+
+  // Refuses a grid whose axis table (`triples` (i0, i1, fraction) triples)
+  // does not fit one SSBO.
+  void require_axis_table(std::size_t triples, const char* name) const {
+    const std::size_t limit = max_bytes_ / (3 * sizeof(std::uint32_t));
+    if (triples > limit)
+      hush::detail::throw_out_of_range(
+          "hush::glsl::device::evaluate_grid", name, triples,
+          ("at most " + std::to_string(limit) + " on this device (its SSBO size limit)").c_str());
+  }
+
+  // Runs grid program `prog` (axis table uploaded) over every sample of g in
+  // batches; z_size is hush_size.z as the program reads it.
+  template <int D>
+  void run_grid(detail::gl_uint prog, const grid<D>& g, std::size_t z_size, float* out,
+                vec<float, D>* grad) {
     gl_->Uniform3ui(gl_->GetUniformLocation(prog, "hush_size"),
                     static_cast<detail::gl_uint>(g.size[0]),
-                    static_cast<detail::gl_uint>(g.size[1]),
-                    static_cast<detail::gl_uint>(D == 3 ? g.size[D - 1] : 0));
+                    static_cast<detail::gl_uint>(g.size[1]), static_cast<detail::gl_uint>(z_size));
     const detail::gl_int base = gl_->GetUniformLocation(prog, "hush_base");
     const std::size_t stride = grad ? D + 1 : 1;
     const std::size_t batch = batch_samples(stride);

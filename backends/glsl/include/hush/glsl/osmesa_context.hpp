@@ -11,10 +11,16 @@
 // framebuffer objects do not need it to be large. Not copyable; the context
 // is destroyed with the object. Throws std::runtime_error when OSMesa cannot
 // create a GL >= 4.3 core context (compute shaders need 4.3).
+//
+// headless_device bundles a context with a hush::glsl::device on it, for
+// programs that own no GL context of their own (tools, tests, benchmarks).
 #ifndef HUSH_GLSL_OSMESA_CONTEXT_HPP
 #define HUSH_GLSL_OSMESA_CONTEXT_HPP
 
 #include <GL/osmesa.h>
+
+#include "hush/core/error.hpp"
+#include "hush/glsl/device.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -28,10 +34,11 @@ class osmesa_context {
   // Loader signature the GL runner takes: name -> function address.
   using loader_fn = void* (*)(const char*);
 
+  // Throws hush::invalid_argument when width or height is outside 1 ... 16384.
   explicit osmesa_context(int width = 16, int height = 16, int depth_bits = 24)
-      : width_(width), height_(height), pixels_(static_cast<std::size_t>(width * height) * 4u) {
-    if (width < 1 || height < 1)
-      throw std::runtime_error("hush::glsl::osmesa_context: width and height must be >= 1");
+      : width_(checked_size("width", width)),
+        height_(checked_size("height", height)),
+        pixels_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4u) {
     const int attribs[] = {OSMESA_FORMAT,
                            OSMESA_RGBA,
                            OSMESA_DEPTH_BITS,
@@ -65,6 +72,13 @@ class osmesa_context {
   static loader_fn loader() { return &get_proc; }
 
  private:
+  // Validated before the pixel buffer is sized from it.
+  static int checked_size(const char* name, int v) {
+    constexpr int kMaxSize = 16384;  // llvmpipe's largest framebuffer side
+    hush::detail::require_in_range("hush::glsl::osmesa_context", name, v, 1, kMaxSize,
+                                   "1 ... 16384");
+    return v;
+  }
   static void* get_proc(const char* name) {
     return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
   }
@@ -72,6 +86,13 @@ class osmesa_context {
   int width_, height_;
   std::vector<unsigned char> pixels_;
   OSMesaContext ctx_ = nullptr;
+};
+
+// An OSMesa context and a device on it, destroyed in the right order (device
+// first). Not copyable; create once per thread that evaluates.
+struct headless_device {
+  osmesa_context context;
+  hush::glsl::device device{osmesa_context::loader()};
 };
 
 }  // namespace glsl
