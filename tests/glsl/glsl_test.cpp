@@ -413,6 +413,15 @@ TEST_CASE("the library compiles and links in a vertex and a fragment shader unde
   CHECK(prog.id() != 0u);
 }
 
+TEST_CASE("osmesa_context refuses a width or height outside 1 ... 16384, naming it") {
+  CHECK_THROWS_WITH_AS(hush::glsl::osmesa_context(0, 16), doctest::Contains("width = 0"),
+                       hush::invalid_argument);
+  CHECK_THROWS_WITH_AS(hush::glsl::osmesa_context(16, -3), doctest::Contains("height = -3"),
+                       hush::invalid_argument);
+  CHECK_THROWS_WITH_AS(hush::glsl::osmesa_context(16385, 16),
+                       doctest::Contains("valid: 1 ... 16384"), hush::invalid_argument);
+}
+
 TEST_CASE("a shader that does not compile throws std::runtime_error carrying the driver log") {
   const gd::gl_api& gl = headless().device.gl();
   try {
