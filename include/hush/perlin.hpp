@@ -76,7 +76,10 @@ struct perlin_tables {
 };
 
 // Gradient index of a lattice hash: 2D takes the top 3 bits (uniform over 8);
-// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply.
+// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply. Both
+// read only bits 16 ... 31, so lattice_hash_high serves (core/hash.hpp).
+static_assert(constants::kPerlin2GradShift >= 16 && constants::kPerlin3IndexShift >= 16,
+              "the gradient index may read only the bits lattice_hash_high shares");
 HUSH_INLINE constexpr std::uint32_t perlin2_grad_index(std::uint32_t h) {
   return h >> constants::kPerlin2GradShift;
 }
@@ -148,10 +151,10 @@ class perlin : public point_noise<perlin<D>, D> {
   value_gradient<T, 2> eval2(const lattice_coord<T>& cx, const lattice_coord<T>& cy) const {
     using tab = detail::perlin_tables<T>;
     const T fx = cx.f, fy = cy.f, fx1 = fx - T(1), fy1 = fy - T(1);
-    const std::uint32_t g00 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i0));
-    const std::uint32_t g10 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i0));
-    const std::uint32_t g01 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i1));
-    const std::uint32_t g11 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i1));
+    const std::uint32_t g00 = detail::perlin2_grad_index(lattice_hash_high(key_, cx.i0, cy.i0));
+    const std::uint32_t g10 = detail::perlin2_grad_index(lattice_hash_high(key_, cx.i1, cy.i0));
+    const std::uint32_t g01 = detail::perlin2_grad_index(lattice_hash_high(key_, cx.i0, cy.i1));
+    const std::uint32_t g11 = detail::perlin2_grad_index(lattice_hash_high(key_, cx.i1, cy.i1));
     // Corner contributions g . (x - corner).
     const T d00 = tab::g2x[g00] * fx + tab::g2y[g00] * fy;
     const T d10 = tab::g2x[g10] * fx1 + tab::g2y[g10] * fy;
@@ -187,15 +190,22 @@ class perlin : public point_noise<perlin<D>, D> {
     std::uint32_t g[8];
     for (int n = 0; n < 8; ++n) {
       const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
-      g[n] = detail::perlin3_grad_index(lattice_hash(key_, ix[a], iy[b], iz[cc]));
-      d[n] = tab::g3x[g[n]] * f[a][0] + tab::g3y[g[n]] * f[b][1] + tab::g3z[g[n]] * f[cc][2];
+      g[n] = detail::perlin3_grad_index(lattice_hash_high(key_, ix[a], iy[b], iz[cc]));
+      // g . f with the y and z terms summed first: every product is exact (the
+      // components are 0 or +-1), so this is the single rounding of +-f_p +-
+      // f_q, the form grid kernels split into a per-row part (y, z) and an x
+      // term (hush/simd/perlin-inl.h).
+      d[n] = tab::g3x[g[n]] * f[a][0] + (tab::g3y[g[n]] * f[b][1] + tab::g3z[g[n]] * f[cc][2]);
     }
     const T u = detail::fade(f[0][0]), v = detail::fade(f[0][1]), w = detail::fade(f[0][2]);
     const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
     const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
     const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
     constexpr T kScale = T(detail::constants::kPerlin3Scale);
-    value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w), {}};
+    // "+ 0" turns a zero result into +0: kernels that form the same dot
+    // products another way (sign flips instead of products) can differ only in
+    // the sign of zeros, and this makes every backend agree bit for bit.
+    value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w) + T(0), {}};
     if constexpr (WithGradient) {
       // Trilinear blend of a per-corner quantity q[n] with the fade weights.
       auto blend = [&](const T* q) {
@@ -220,8 +230,8 @@ class perlin : public point_noise<perlin<D>, D> {
       ddy[1] = x11 - x01;
       const T ey = detail::lerp(ddy[0], ddy[1], w);
       const T ez = y1 - y0;
-      r.gradient = {kScale * (blend(gxs) + du * ex), kScale * (blend(gys) + dv * ey),
-                    kScale * (blend(gzs) + dw * ez)};
+      r.gradient = {kScale * (blend(gxs) + du * ex) + T(0), kScale * (blend(gys) + dv * ey) + T(0),
+                    kScale * (blend(gzs) + dw * ez) + T(0)};
     }
     return r;
   }
