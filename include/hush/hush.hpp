@@ -7,10 +7,13 @@
 
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
+#include "hush/core/footprint.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/lattice.hpp"
 #include "hush/core/point_noise.hpp"
 #include "hush/core/rng.hpp"
+#include "hush/core/samples.hpp"
+#include "hush/core/tile_cache.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/fractal.hpp"

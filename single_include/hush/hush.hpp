@@ -130,17 +130,172 @@ inline void require_in_range(const char* where, const std::string& name, const T
 
 #endif  // HUSH_CORE_ERROR_HPP
 // ---- end hush/core/error.hpp
-// ---- begin hush/core/hash.hpp
+// ---- begin hush/core/footprint.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Integer hashing from 32-bit unsigned operations only (multiply, xor, shift,
-// all modulo 2^32), so GLSL 330's `uint` arithmetic reproduces every bit. No
-// signed arithmetic anywhere: no overflow UB for any input (HARD_CASES row 4).
-#ifndef HUSH_CORE_HASH_HPP
-#define HUSH_CORE_HASH_HPP
+// hush::footprint<D>: a sample's filter footprint in noise space, built from
+// what a shader has at that sample (DESIGN.md "Per-sample inputs").
+//
+// A renderer knows, per sample, how noise-space position changes from one
+// pixel to the next: the screen-to-noise Jacobian J = [dP/dx  dP/dy] (D x 2;
+// in GLSL, dFdx(P) and dFdy(P)), or at least a width w, the noise-space size
+// of one pixel. The footprint stores the one quantity every filtering noise
+// needs from that, the symmetric positive semi-definite D x D matrix
+//
+//   S = J J^T = dP/dx dP/dx^T + dP/dy dP/dy^T     (from derivatives), or
+//   S = w^2 I                                      (isotropic width w),
+//
+// in squared noise units per pixel: a screen offset d (in pixels) moves the
+// noise position by J d, and |J^T u|^2 = u^T S u is the squared pixel extent
+// along unit direction u. A Gaussian pixel filter of standard deviation sigma
+// pixels maps to the noise-space Gaussian of covariance sigma^2 S, and its
+// frequency response at noise frequency k is exp(-2 pi^2 sigma^2 k^T S k).
+// hush's noises filter with sigma = constants::kPixelFilterSigma (1/2 pixel)
+// unless they say otherwise; each states which bands or kernels it keeps.
+//
+// The default footprint is a point (S = 0): nothing is filtered.
+//
+// Robustness (HARD_CASES row 12; footprints are per-sample data, so nothing
+// here throws): every input gives a finite footprint.
+//  - NaN or +-Inf in a derivative or width: the footprint is "everything",
+//    S = W^2 I with W = constants::kFootprintMaxWidth (2^32, the lattice's
+//    period: nothing narrower survives filtering), so filtering noises return
+//    their mean (0) there, the limit of an ever larger footprint.
+//  - a footprint wider than W is scaled down (same shape) until its largest
+//    entry is W^2 (for derivatives: until no component exceeds W), so its
+//    largest width lies in [W, sqrt(D) W]: again everything is filtered.
+//  - zero, rank 1 (e.g. dP/dy = 0, an edge-on surface) and nearly singular
+//    footprints are stored as they are; consumers must accept singular S.
+//  - a negative width means its magnitude.
+// S is formed in double and rounded to float once; entries lie in
+// [-2^64, 2^64], so consumers compute determinants and inverses in double,
+// or scale first (float overflows beyond 2^128).
+#ifndef HUSH_CORE_FOOTPRINT_HPP
+#define HUSH_CORE_FOOTPRINT_HPP
 
-#include <cstdint>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 
+// ---- begin hush/core/vec.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Tiny fixed-size vectors: just enough to pass points, gradients and steps.
+// hush::vec<T, N> holds N values of T (N = 2, 3, 4) with members x, y, z, w and
+// indexing; vec2/vec3/vec4 are float, dvec2/dvec3/dvec4 double. When GLM is
+// available (config.hpp) they convert implicitly from and to glm::vec<N, T, Q>,
+// so `noise(glm::vec3{...})` works and a hush vector assigns to a glm one.
+// Arithmetic is deliberately minimal: this is not a math library.
+#ifndef HUSH_CORE_VEC_HPP
+#define HUSH_CORE_VEC_HPP
+
+#include <cstddef>
+
+
+#if HUSH_CONFIG_GLM
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#define HUSH_VEC_GLM_INTEROP(N)                                                     \
+  template <glm::qualifier Q>                                                       \
+  constexpr vec(const glm::vec<(N), T, Q>& g) { /* NOLINT: implicit by design */    \
+    for (int i = 0; i < (N); ++i) (*this)[i] = g[i];                                \
+  }                                                                                 \
+  template <glm::qualifier Q>                                                       \
+  constexpr operator glm::vec<(N), T, Q>() const { /* NOLINT: implicit by design */ \
+    glm::vec<(N), T, Q> g{};                                                        \
+    for (int i = 0; i < (N); ++i) g[i] = (*this)[i];                                \
+    return g;                                                                       \
+  }
+#else
+#define HUSH_VEC_GLM_INTEROP(N)
+#endif
+
+// Members shared by the three sizes. Indexing goes through the named members
+// (not pointer arithmetic across them) so it stays well defined.
+#define HUSH_VEC_COMMON(N)                  \
+  static constexpr int size() { return N; } \
+  HUSH_VEC_GLM_INTEROP(N)
+
+namespace hush {
+
+template <class T, int N>
+struct vec;
+
+template <class T>
+struct vec<T, 2> {
+  T x{}, y{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_) : x(x_), y(y_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : y; }
+  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : y; }
+  HUSH_VEC_COMMON(2)
+};
+
+template <class T>
+struct vec<T, 3> {
+  T x{}, y{}, z{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  HUSH_VEC_COMMON(3)
+};
+
+template <class T>
+struct vec<T, 4> {
+  T x{}, y{}, z{}, w{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
+  constexpr const T& operator[](std::size_t i) const {
+    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
+  }
+  HUSH_VEC_COMMON(4)
+};
+
+#undef HUSH_VEC_COMMON
+#undef HUSH_VEC_GLM_INTEROP
+
+using vec2 = vec<float, 2>;
+using vec3 = vec<float, 3>;
+using vec4 = vec<float, 4>;
+using dvec2 = vec<double, 2>;
+using dvec3 = vec<double, 3>;
+using dvec4 = vec<double, 4>;
+
+// Exact component-wise equality (NaN != NaN, -0 == +0, as for the elements).
+template <class T, int N>
+constexpr bool operator==(const vec<T, N>& a, const vec<T, N>& b) {
+  for (int i = 0; i < N; ++i)
+    if (!(a[i] == b[i])) return false;
+  return true;
+}
+template <class T, int N>
+constexpr bool operator!=(const vec<T, N>& a, const vec<T, N>& b) {
+  return !(a == b);
+}
+
+// Component-wise conversion between element types (float <-> double).
+template <class To, class From, int N>
+constexpr vec<To, N> vec_cast(const vec<From, N>& a) {
+  vec<To, N> r;
+  for (int i = 0; i < N; ++i) r[i] = static_cast<To>(a[i]);
+  return r;
+}
+
+// A noise value together with its gradient (d value / d position), returned by
+// gradient() of the differentiable noises: `auto [v, g] = noise.gradient(p);`.
+template <class T, int N>
+struct value_gradient {
+  T value;
+  vec<T, N> gradient;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_VEC_HPP
+// ---- end hush/core/vec.hpp
 // ---- begin hush/detail/constants.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -238,6 +393,18 @@ constexpr double kPerlin3RawVariance = 35054270.0 / 480729249.0;  // 0.072918...
 constexpr double kPerlin2Variance = kPerlin2RawVariance * kPerlin2Scale * kPerlin2Scale;
 constexpr double kPerlin3Variance = kPerlin3RawVariance * kPerlin3Scale * kPerlin3Scale;
 
+// ---- Footprints (core/footprint.hpp).
+// The widest footprint kept, in noise units: 2^32, the lattice's period
+// (core/lattice.hpp). A pixel that wide covers every lattice cell, so
+// filtering leaves nothing but the mean; wider, NaN or infinite footprints
+// are stored as this one. Squared (2^64) it is still a normal float.
+constexpr double kFootprintMaxWidth = 4294967296.0;
+// Standard deviation, in pixels, of the Gaussian pixel filter the filtering
+// noises apply through the footprint: its amplitude response is
+// exp(-2 pi^2 sigma^2 k^2) = 0.29 at the Nyquist frequency (1/2 cycle per
+// pixel) and 0.0072 at 1 cycle per pixel.
+constexpr double kPixelFilterSigma = 0.5;
+
 // ---- Poisson sampling (core/rng.hpp).
 // Means below kPoissonInversionLimit use sequential inversion (expected
 // mean + 1 steps); larger means use Hoermann's PTRS transformed rejection
@@ -265,6 +432,180 @@ constexpr int kLogFactorialTable = 20;
 
 #endif  // HUSH_DETAIL_CONSTANTS_HPP
 // ---- end hush/detail/constants.hpp
+
+namespace hush {
+
+template <int D>
+class footprint {
+  static_assert(D == 2 || D == 3, "hush::footprint is 2D or 3D");
+
+ public:
+  static constexpr int dimension = D;
+  // Stored entries: the upper triangle of S, row by row
+  // (2D: xx, xy, yy; 3D: xx, xy, xz, yy, yz, zz).
+  static constexpr int kEntries = D * (D + 1) / 2;
+
+  // A point sample: S = 0.
+  constexpr footprint() = default;
+
+  // One pixel spans `width` noise units in every direction: S = width^2 I.
+  static footprint isotropic(double width) {
+    footprint f;
+    double w = std::fabs(width);
+    if (!(w <= kMaxWidth())) w = kMaxWidth();  // NaN, Inf and beyond the cap
+    for (int a = 0; a < D; ++a) f.s_[index(a, a)] = static_cast<float>(w * w);
+    return f;
+  }
+
+  // From the screen-space derivatives of the noise-space position (noise
+  // units per pixel): S = dpdx dpdx^T + dpdy dpdy^T.
+  static footprint from_derivatives(const vec<double, D>& dpdx, const vec<double, D>& dpdy) {
+    if (!finite(dpdx) || !finite(dpdy)) return isotropic(kMaxWidth());
+    double m = 0;  // largest magnitude: both columns are scaled by one factor to the cap
+    for (int a = 0; a < D; ++a) m = std::max({m, std::fabs(dpdx[a]), std::fabs(dpdy[a])});
+    const double k = m > kMaxWidth() ? kMaxWidth() / m : 1.0;
+    double upper[kEntries];
+    for (int r = 0; r < D; ++r)
+      for (int c = r; c < D; ++c)
+        upper[index(r, c)] = (k * dpdx[r]) * (k * dpdx[c]) + (k * dpdy[r]) * (k * dpdy[c]);
+    return from_upper(upper);
+  }
+  static footprint from_derivatives(const vec<float, D>& dpdx, const vec<float, D>& dpdy) {
+    return from_derivatives(vec_cast<double>(dpdx), vec_cast<double>(dpdy));
+  }
+
+  // From a symmetric matrix S given by its upper triangle (the stored layout).
+  // Non-finite entries give "everything"; a matrix with an entry beyond W^2
+  // is scaled down until its largest entry is W^2. Not checked for positive
+  // semi-definiteness: pass one.
+  static footprint from_covariance(const float (&upper)[kEntries]) {
+    double u[kEntries];
+    for (int e = 0; e < kEntries; ++e) u[e] = static_cast<double>(upper[e]);
+    return from_upper(u);
+  }
+
+  // S(r, c), r and c in 0 ... D-1.
+  float covariance(int r, int c) const { return s_[r <= c ? index(r, c) : index(c, r)]; }
+  // The stored upper triangle (kEntries floats; batch layouts copy it as is).
+  const float* data() const { return s_; }
+
+  // True when S = 0 (nothing to filter).
+  bool is_point() const {
+    for (float v : s_)
+      if (v != 0.0f) return false;
+    return true;
+  }
+
+  // The pixel's extent along unit direction u: sqrt(u^T S u), in noise units.
+  double width_along(const vec<double, D>& u) const {
+    double q = 0;
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c) q += u[r] * static_cast<double>(covariance(r, c)) * u[c];
+    return std::sqrt(std::max(q, 0.0));
+  }
+
+  // The largest and smallest extent: the square roots of the largest and
+  // smallest eigenvalues of S (the footprint ellipse's semi-axes), computed in
+  // double in closed form (2D: the quadratic; 3D: the trigonometric solution
+  // of the characteristic cubic), to within 1e-12 relative of the largest.
+  double max_width() const { return std::sqrt(std::max(eigenvalues()[D - 1], 0.0)); }
+  double min_width() const { return std::sqrt(std::max(eigenvalues()[0], 0.0)); }
+
+  // The footprint of the same pixel for a noise evaluated at s * P (a band of
+  // frequency s): S s^2, capped like every footprint.
+  footprint scaled(double s) const {
+    double u[kEntries];
+    for (int e = 0; e < kEntries; ++e) u[e] = static_cast<double>(s_[e]) * s * s;
+    return from_upper(u);
+  }
+
+  // Eigenvalues of S in ascending order (double; clamped below at 0 is up to the caller).
+  vec<double, D> eigenvalues() const {
+    if constexpr (D == 2) {
+      const double a = s_[0], b = s_[1], c = s_[2];
+      const double mean = 0.5 * (a + c), half = 0.5 * (a - c);
+      const double r = std::hypot(half, b);
+      return {mean - r, mean + r};
+    } else {
+      return symmetric3_eigenvalues();
+    }
+  }
+
+  friend bool operator==(const footprint& x, const footprint& y) {
+    for (int e = 0; e < kEntries; ++e)
+      if (!(x.s_[e] == y.s_[e])) return false;
+    return true;
+  }
+  friend bool operator!=(const footprint& x, const footprint& y) { return !(x == y); }
+
+ private:
+  static constexpr double kMaxWidth() { return detail::constants::kFootprintMaxWidth; }
+  static constexpr double kMaxVariance() { return kMaxWidth() * kMaxWidth(); }
+  // Position of S(r, c), r <= c, in the upper triangle stored row by row.
+  static constexpr int index(int r, int c) { return r * D - r * (r - 1) / 2 + (c - r); }
+  static bool finite(const vec<double, D>& v) {
+    for (int a = 0; a < D; ++a)
+      if (!std::isfinite(v[a])) return false;
+    return true;
+  }
+  // The footprint of upper triangle u (double): "everything" when an entry is
+  // not finite, scaled down (shape kept) when an entry exceeds W^2, then
+  // rounded to float once.
+  static footprint from_upper(const double (&u)[kEntries]) {
+    double m = 0;
+    for (int e = 0; e < kEntries; ++e) {
+      if (!std::isfinite(u[e])) return isotropic(kMaxWidth());
+      m = std::max(m, std::fabs(u[e]));
+    }
+    const double k = m > kMaxVariance() ? kMaxVariance() / m : 1.0;
+    footprint f;
+    for (int e = 0; e < kEntries; ++e) f.s_[e] = static_cast<float>(k * u[e]);
+    return f;
+  }
+
+  // Smith's closed form for a symmetric 3x3 matrix (Smith 1961, "Eigenvalues of a
+  // symmetric 3 x 3 matrix", CACM 4(4)): the trigonometric roots of the
+  // characteristic cubic of B = (S - q I) / p.
+  vec<double, 3> symmetric3_eigenvalues() const {
+    const double a00 = s_[0], a01 = s_[1], a02 = s_[2], a11 = s_[3], a12 = s_[4], a22 = s_[5];
+    const double off = a01 * a01 + a02 * a02 + a12 * a12;
+    const double q = (a00 + a11 + a22) / 3.0;
+    const double d0 = a00 - q, d1 = a11 - q, d2 = a22 - q;
+    const double p2 = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * off;
+    if (p2 <= 0.0) return {q, q, q};  // a multiple of I
+    const double p = std::sqrt(p2 / 6.0);
+    // det(B) / 2 with B = (S - q I) / p.
+    const double b00 = d0 / p, b11 = d1 / p, b22 = d2 / p, b01 = a01 / p, b02 = a02 / p,
+                 b12 = a12 / p;
+    const double det = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
+                       b02 * (b01 * b12 - b11 * b02);
+    const double r = std::clamp(det / 2.0, -1.0, 1.0);
+    const double phi = std::acos(r) / 3.0;
+    constexpr double kTwoPiOver3 = 2.0943951023931954923;
+    const double hi = q + 2.0 * p * std::cos(phi);
+    const double lo = q + 2.0 * p * std::cos(phi + kTwoPiOver3);
+    const double mid = 3.0 * q - hi - lo;
+    return {lo, mid, hi};
+  }
+
+  float s_[kEntries] = {};
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_FOOTPRINT_HPP
+// ---- end hush/core/footprint.hpp
+// ---- begin hush/core/hash.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Integer hashing from 32-bit unsigned operations only (multiply, xor, shift,
+// all modulo 2^32), so GLSL 330's `uint` arithmetic reproduces every bit. No
+// signed arithmetic anywhere: no overflow UB for any input (HARD_CASES row 4).
+#ifndef HUSH_CORE_HASH_HPP
+#define HUSH_CORE_HASH_HPP
+
+#include <cstdint>
+
 
 static_assert(sizeof(unsigned) == 4, "hush assumes a 32-bit unsigned int (constants.hpp)");
 
@@ -434,125 +775,6 @@ HUSH_INLINE lattice_coord<T> lattice_split(double x, std::uint32_t period = 0) {
 #ifndef HUSH_CORE_POINT_NOISE_HPP
 #define HUSH_CORE_POINT_NOISE_HPP
 
-// ---- begin hush/core/vec.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Tiny fixed-size vectors: just enough to pass points, gradients and steps.
-// hush::vec<T, N> holds N values of T (N = 2, 3, 4) with members x, y, z, w and
-// indexing; vec2/vec3/vec4 are float, dvec2/dvec3/dvec4 double. When GLM is
-// available (config.hpp) they convert implicitly from and to glm::vec<N, T, Q>,
-// so `noise(glm::vec3{...})` works and a hush vector assigns to a glm one.
-// Arithmetic is deliberately minimal: this is not a math library.
-#ifndef HUSH_CORE_VEC_HPP
-#define HUSH_CORE_VEC_HPP
-
-#include <cstddef>
-
-
-#if HUSH_CONFIG_GLM
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
-#define HUSH_VEC_GLM_INTEROP(N)                                                     \
-  template <glm::qualifier Q>                                                       \
-  constexpr vec(const glm::vec<(N), T, Q>& g) { /* NOLINT: implicit by design */    \
-    for (int i = 0; i < (N); ++i) (*this)[i] = g[i];                                \
-  }                                                                                 \
-  template <glm::qualifier Q>                                                       \
-  constexpr operator glm::vec<(N), T, Q>() const { /* NOLINT: implicit by design */ \
-    glm::vec<(N), T, Q> g{};                                                        \
-    for (int i = 0; i < (N); ++i) g[i] = (*this)[i];                                \
-    return g;                                                                       \
-  }
-#else
-#define HUSH_VEC_GLM_INTEROP(N)
-#endif
-
-// Members shared by the three sizes. Indexing goes through the named members
-// (not pointer arithmetic across them) so it stays well defined.
-#define HUSH_VEC_COMMON(N)                  \
-  static constexpr int size() { return N; } \
-  HUSH_VEC_GLM_INTEROP(N)
-
-namespace hush {
-
-template <class T, int N>
-struct vec;
-
-template <class T>
-struct vec<T, 2> {
-  T x{}, y{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_) : x(x_), y(y_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : y; }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : y; }
-  HUSH_VEC_COMMON(2)
-};
-
-template <class T>
-struct vec<T, 3> {
-  T x{}, y{}, z{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
-  HUSH_VEC_COMMON(3)
-};
-
-template <class T>
-struct vec<T, 4> {
-  T x{}, y{}, z{}, w{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
-  constexpr const T& operator[](std::size_t i) const {
-    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
-  }
-  HUSH_VEC_COMMON(4)
-};
-
-#undef HUSH_VEC_COMMON
-#undef HUSH_VEC_GLM_INTEROP
-
-using vec2 = vec<float, 2>;
-using vec3 = vec<float, 3>;
-using vec4 = vec<float, 4>;
-using dvec2 = vec<double, 2>;
-using dvec3 = vec<double, 3>;
-using dvec4 = vec<double, 4>;
-
-// Exact component-wise equality (NaN != NaN, -0 == +0, as for the elements).
-template <class T, int N>
-constexpr bool operator==(const vec<T, N>& a, const vec<T, N>& b) {
-  for (int i = 0; i < N; ++i)
-    if (!(a[i] == b[i])) return false;
-  return true;
-}
-template <class T, int N>
-constexpr bool operator!=(const vec<T, N>& a, const vec<T, N>& b) {
-  return !(a == b);
-}
-
-// Component-wise conversion between element types (float <-> double).
-template <class To, class From, int N>
-constexpr vec<To, N> vec_cast(const vec<From, N>& a) {
-  vec<To, N> r;
-  for (int i = 0; i < N; ++i) r[i] = static_cast<To>(a[i]);
-  return r;
-}
-
-// A noise value together with its gradient (d value / d position), returned by
-// gradient() of the differentiable noises: `auto [v, g] = noise.gradient(p);`.
-template <class T, int N>
-struct value_gradient {
-  T value;
-  vec<T, N> gradient;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_VEC_HPP
-// ---- end hush/core/vec.hpp
 
 namespace hush {
 
@@ -745,6 +967,40 @@ class rng {
 
 #endif  // HUSH_CORE_RNG_HPP
 // ---- end hush/core/rng.hpp
+// ---- begin hush/core/samples.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Per-sample inputs beyond the position (DESIGN.md "Per-sample inputs"):
+//  - hush::sample_input<D>: one sample as a noise's scalar code sees it: the
+//    position (double), the footprint (core/footprint.hpp; a point by default)
+//    and, for surface noises in 3D, the surface normal;
+//  - hush::samples<D>: a batch of them as spans beside the positions, what
+//    hush::evaluate(noise, exec, samples, out[, gradients]) takes on every
+//    backend (exec.hpp);
+//  - hush::sample_noise<Derived, D>: the public overloads every noise that
+//    uses these inputs offers, written once (like core/point_noise.hpp):
+//      n.sample(p, footprint)                 -> float / double (by p's type)
+//      n.sample(p, normal, footprint)         -> the same on a surface (3D noises
+//                                                with takes_normal)
+//      n.sample_gradient(p, footprint), n.sample_gradient(p, normal, footprint)
+//                                             -> value and d/d(position) of
+//                                                the filtered noise, footprint fixed
+// A noise derives from sample_noise<Derived, D> (which derives from
+// point_noise<Derived, D>: n(p) and n.gradient(p) stay the unfiltered point
+// evaluation) and defines, besides point_noise's two templates,
+//   static constexpr bool takes_footprint;  // uses sample_input::fp
+//   static constexpr bool takes_normal;     // uses sample_input::normal (D == 3)
+//   template <class T> T sample_value(const sample_input<D>& s) const;
+//   template <class T> value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s)
+//   const;
+// with the same result class as point evaluation for NaN/Inf positions.
+#ifndef HUSH_CORE_SAMPLES_HPP
+#define HUSH_CORE_SAMPLES_HPP
+
+#include <cstddef>
+#include <string>
+#include <type_traits>
+
 // ---- begin hush/core/views.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -872,6 +1128,239 @@ struct image_view {
 
 #endif  // HUSH_CORE_VIEWS_HPP
 // ---- end hush/core/views.hpp
+
+namespace hush {
+
+// One sample: position, footprint, and optionally the surface normal (any
+// length; a noise documents what it does with a zero or non-finite normal).
+template <int D>
+struct sample_input {
+  vec<double, D> position{};
+  footprint<D> fp{};
+  vec<double, 3> normal{};
+  bool has_normal = false;
+};
+
+// A batch of samples: positions and, optionally, one footprint and one
+// normal per position. An empty span means "not given": point samples, no
+// normal. Normals exist for 3D noises only.
+template <int D>
+struct samples {
+  span<const vec<float, D>> positions;
+  span<const footprint<D>> footprints;
+  span<const vec<float, 3>> normals;
+
+  std::size_t size() const { return positions.size(); }
+  bool has_footprints() const { return !footprints.empty(); }
+  bool has_normals() const { return !normals.empty(); }
+
+  // Sample i as the scalar code sees it.
+  sample_input<D> at(std::size_t i) const {
+    sample_input<D> s;
+    s.position = vec_cast<double>(positions[i]);
+    if (has_footprints()) s.fp = footprints[i];
+    if (has_normals()) {
+      s.normal = vec_cast<double>(normals[i]);
+      s.has_normal = true;
+    }
+    return s;
+  }
+};
+
+namespace detail {
+
+// What a noise type takes per sample (false for noises that do not say).
+template <class Noise, class = void>
+struct takes_footprint : std::false_type {};
+template <class Noise>
+struct takes_footprint<Noise, std::void_t<decltype(Noise::takes_footprint)>>
+    : std::integral_constant<bool, Noise::takes_footprint> {};
+template <class Noise, class = void>
+struct takes_normal : std::false_type {};
+template <class Noise>
+struct takes_normal<Noise, std::void_t<decltype(Noise::takes_normal)>>
+    : std::integral_constant<bool, Noise::takes_normal> {};
+
+// Throws hush::invalid_argument naming the first span that does not fit:
+// footprints and normals must be empty or have one element per position, and
+// only inputs the noise takes may be given.
+template <class Noise>
+void validate_samples(const char* where, const samples<Noise::dimension>& s) {
+  const std::size_t n = s.positions.size();
+  const std::string per = "exactly " + std::to_string(n) + " elements (one per position) or none";
+  if (s.has_footprints()) {
+    if (!takes_footprint<Noise>::value)
+      throw hush::invalid_argument(std::string(where) +
+                                   ": samples.footprints given, but this noise does not filter; "
+                                   "valid: none (an empty span)");
+    if (s.footprints.size() != n)
+      throw_out_of_range(where, "samples.footprints.size()", s.footprints.size(), per.c_str());
+  }
+  if (s.has_normals()) {
+    if (!takes_normal<Noise>::value)
+      throw hush::invalid_argument(std::string(where) +
+                                   ": samples.normals given, but this noise takes no normal; "
+                                   "valid: none (an empty span)");
+    if (s.normals.size() != n)
+      throw_out_of_range(where, "samples.normals.size()", s.normals.size(), per.c_str());
+  }
+}
+
+}  // namespace detail
+
+template <class Derived, int D>
+class sample_noise : public point_noise<Derived, D> {
+ public:
+  // The filtered value at p over footprint fp (float arithmetic, or the double reference).
+  float sample(const vec<float, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value<float>(input(vec_cast<double>(p), fp));
+  }
+  double sample(const vec<double, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value<double>(input(p, fp));
+  }
+  value_gradient<float, D> sample_gradient(const vec<float, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value_and_gradient<float>(input(vec_cast<double>(p), fp));
+  }
+  value_gradient<double, D> sample_gradient(const vec<double, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value_and_gradient<double>(input(p, fp));
+  }
+
+  // On a surface with the given normal (3D noises with takes_normal).
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  float sample(const vec<float, 3>& p, const vec<float, 3>& normal,
+               const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value<float>(
+        input(vec_cast<double>(p), fp, vec_cast<double>(normal)));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  double sample(const vec<double, 3>& p, const vec<double, 3>& normal,
+                const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value<double>(input(p, fp, normal));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  value_gradient<float, 3> sample_gradient(const vec<float, 3>& p, const vec<float, 3>& normal,
+                                           const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value_and_gradient<float>(
+        input(vec_cast<double>(p), fp, vec_cast<double>(normal)));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  value_gradient<double, 3> sample_gradient(const vec<double, 3>& p, const vec<double, 3>& normal,
+                                            const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value_and_gradient<double>(input(p, fp, normal));
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+  static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp) {
+    sample_input<D> s;
+    s.position = p;
+    s.fp = fp;
+    return s;
+  }
+  static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp,
+                               const vec<double, 3>& normal) {
+    static_assert(detail::takes_normal<Derived>::value, "this noise takes no surface normal");
+    sample_input<D> s = input(p, fp);
+    s.normal = normal;
+    s.has_normal = true;
+    return s;
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_SAMPLES_HPP
+// ---- end hush/core/samples.hpp
+// ---- begin hush/core/tile_cache.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::tile_cache<Key, Tile>: large precomputed data (wavelet noise tiles,
+// anisotropic subband tiles) built lazily, once per key, immutable, and
+// shared between every noise object that asks for the same key (DESIGN.md:
+// "built once per (params, seed), shared between copies, memory reported").
+//
+//   static hush::tile_cache<my_key, my_tile>& cache() { static hush::tile_cache<...> c; return c; }
+//   std::shared_ptr<const my_tile> t = cache().get(key, [&] { return my_tile(key); });
+//
+// The cache holds weak references: a tile lives as long as some noise object
+// holds it, and is rebuilt (bit for bit the same: tiles are deterministic) if
+// asked for again after the last holder went away. get() is thread-safe;
+// the build runs outside the lock, so two threads asking for the same new
+// key at once may both build it, and both receive the one stored first.
+// Tile must be constructible by the builder and report its memory as
+// `std::size_t bytes() const`. Key needs operator<.
+#ifndef HUSH_CORE_TILE_CACHE_HPP
+#define HUSH_CORE_TILE_CACHE_HPP
+
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <utility>
+
+namespace hush {
+
+template <class Key, class Tile>
+class tile_cache {
+ public:
+  tile_cache() = default;
+  tile_cache(const tile_cache&) = delete;
+  tile_cache& operator=(const tile_cache&) = delete;
+
+  // The tile of `key`, built by build() (returning a Tile) when no live one exists.
+  template <class Build>
+  std::shared_ptr<const Tile> get(const Key& key, Build&& build) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (auto live = find_live(key)) return live;
+    }
+    auto made = std::make_shared<const Tile>(std::forward<Build>(build)());
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (auto live = find_live(key)) return live;  // another thread stored it meanwhile
+    tiles_[key] = made;
+    ++builds_;
+    return made;
+  }
+
+  // Number of tiles alive now, and their memory in bytes (Tile::bytes()).
+  std::size_t live_tiles() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::size_t n = 0;
+    for (const auto& kv : tiles_) n += kv.second.expired() ? 0 : 1;
+    return n;
+  }
+  std::size_t live_bytes() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::size_t bytes = 0;
+    for (const auto& kv : tiles_)
+      if (auto t = kv.second.lock()) bytes += t->bytes();
+    return bytes;
+  }
+  // Tiles built so far (a tile rebuilt after expiring counts again).
+  std::size_t builds() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return builds_;
+  }
+
+ private:
+  // The live tile of key, or null; drops an expired entry. Caller holds the lock.
+  std::shared_ptr<const Tile> find_live(const Key& key) {
+    const auto it = tiles_.find(key);
+    if (it == tiles_.end()) return nullptr;
+    if (auto t = it->second.lock()) return t;
+    tiles_.erase(it);
+    return nullptr;
+  }
+
+  mutable std::mutex mutex_;
+  std::map<Key, std::weak_ptr<const Tile>> tiles_;
+  std::size_t builds_ = 0;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_TILE_CACHE_HPP
+// ---- end hush/core/tile_cache.hpp
 // ---- begin hush/fractal.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -1354,6 +1843,12 @@ class perlin : public point_noise<perlin<D>, D> {
 //    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
 //  - glsl: within the GLSL tolerance stated by the backend
 //    (backends/glsl/include/hush/glsl/device.hpp).
+//  - samples (core/samples.hpp): positions plus optional per-sample
+//    footprints and normals. Each given span must have one element per
+//    position, and only inputs the noise takes (Noise::takes_footprint,
+//    Noise::takes_normal) may be given, else hush::invalid_argument naming
+//    the span. scalar computes noise.sample_value<float>(samples.at(i));
+//    with positions only, exactly what the points overload computes.
 //  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
 //    after validation, and no output element is left unwritten.
 #ifndef HUSH_EXEC_HPP
@@ -2422,6 +2917,53 @@ void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* ou
   }
 }
 
+// The scalar loop over samples with extra inputs (footprints or normals).
+template <class Noise>
+void scalar_samples(const Noise& n, const samples<Noise::dimension>& s, float* out,
+                    vec<float, Noise::dimension>* grad) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const sample_input<Noise::dimension> in = s.at(i);
+    if (grad) {
+      const auto r = n.template sample_value_and_gradient<float>(in);
+      out[i] = r.value;
+      grad[i] = r.gradient;
+    } else {
+      out[i] = n.template sample_value<float>(in);
+    }
+  }
+}
+
+// Whether the SIMD kernels of Noise take per-sample inputs (simd_kernel<Noise>::samples).
+template <class Kernel, class = void>
+struct has_simd_samples : std::false_type {};
+template <class Kernel>
+struct has_simd_samples<Kernel, std::void_t<decltype(Kernel::has_samples)>>
+    : std::integral_constant<bool, Kernel::has_samples> {};
+
+// Samples with extra inputs on backend ex; positions-only batches go to run_points.
+template <class Noise, class Exec>
+void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  // Positions only (always so for a noise that takes no extras: validated) is a points batch.
+  constexpr bool kExtras = takes_footprint<Noise>::value || takes_normal<Noise>::value;
+  if (!kExtras || (!s.has_footprints() && !s.has_normals())) {
+    run_points(n, ex, s.positions, out, grad);
+    return;
+  }
+  if constexpr (kExtras) {
+    if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
+      scalar_samples(n, s, out, grad);
+    } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+      if constexpr (has_simd_samples<simd_kernel<Noise>>::value)
+        simd_kernel<Noise>::samples(n, s, out, grad);
+      else
+        scalar_samples(n, s, out, grad);
+    } else {
+      ex.device.evaluate_samples(n, s, out, grad);
+    }
+  }
+}
+
 template <class Noise, class Exec>
 void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, float* out,
               vec<float, Noise::dimension>* grad) {
@@ -2456,6 +2998,28 @@ void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> poin
   detail::require_same_size("hush::evaluate", "gradients", gradients.size(), points.size());
   if (points.empty()) return;
   detail::run_points(noise, ex, points, out.data(), gradients.data());
+}
+
+// Values of `noise` at `s` (positions with optional footprints and normals,
+// core/samples.hpp) into `out` (one per position), on backend `ex`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
+              span<float> out) {
+  detail::validate_samples<Noise>("hush::evaluate", s);
+  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
+  if (s.size() == 0) return;
+  detail::run_samples(noise, ex, s, out.data(), nullptr);
+}
+
+// Values and gradients (d value / d position, the footprint held fixed) at `s`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
+              span<float> out, detail::gradient_span<Noise> gradients) {
+  detail::validate_samples<Noise>("hush::evaluate", s);
+  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
+  detail::require_same_size("hush::evaluate", "gradients", gradients.size(), s.size());
+  if (s.size() == 0) return;
+  detail::run_samples(noise, ex, s, out.data(), gradients.data());
 }
 
 // Values of `noise` on the uniform grid `g` into `out` (g.count() elements,
