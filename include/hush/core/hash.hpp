@@ -34,7 +34,8 @@ HUSH_INLINE constexpr std::uint32_t hash32(std::uint32_t x) {
   x = hash32_high(x);
   return x ^ (x >> detail::constants::kHashShift3);
 }
-static_assert(detail::constants::kHashShift3 >= 16, "hash32_high: the last step must spare bits 16+");
+static_assert(detail::constants::kHashShift3 >= 16,
+              "hash32_high: the last step must spare bits 16+");
 
 // hash32(a, b): hashes an ordered pair; for a fixed a it is a bijection in b
 // and vice versa. Used to derive independent seeds (seed, stream) -> key.

@@ -203,8 +203,8 @@ HWY_INLINE VU grad_index3_high(VU h) {
   return hn::Mul(hn::ShiftRight<16>(h), hn::Set(DU(), std::uint32_t(c::kPerlin3GradCount)));
 #else
   const DU16 d16;
-  return hn::BitCast(DU(), hn::MulHigh(hn::BitCast(d16, h),
-                                       hn::Set(d16, std::uint16_t(c::kPerlin3GradCount))));
+  return hn::BitCast(
+      DU(), hn::MulHigh(hn::BitCast(d16, h), hn::Set(d16, std::uint16_t(c::kPerlin3GradCount))));
 #endif
 }
 HWY_INLINE VU grad_index3(VU h) { return hn::ShiftRight<16>(grad_index3_high(h)); }
@@ -519,7 +519,9 @@ HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* va
     const bool full = rest == lanes;
     if (!full) std::memcpy(in, pts + i * D, rest * D * sizeof(float));
     vector_fn(full ? pts + i * D : in, full ? value + i : out,
-              !kGradient ? nullptr : full ? grad + i * D : g);
+              !kGradient ? nullptr
+              : full     ? grad + i * D
+                         : g);
     if (full) continue;
     std::memcpy(value + i, out, rest * sizeof(float));
     if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
@@ -532,10 +534,10 @@ HWY_NOINLINE void perlin_points(std::uint32_t key, const std::uint32_t* period, 
   const VU vkey = hn::Set(DU(), key);
   bool plain = true;
   for (int a = 0; a < D; ++a) plain = plain && period[a] == 0;
-  for_each_point_vector<kGradient, D>(
-      n, pts, value, grad, [&](const float* p, float* v, float* g) HWY_ATTR {
-        points_vector<kGradient, D>(vkey, plain, period, p, v, g);
-      });
+  for_each_point_vector<kGradient, D>(n, pts, value, grad,
+                                      [&](const float* p, float* v, float* g) HWY_ATTR {
+                                        points_vector<kGradient, D>(vkey, plain, period, p, v, g);
+                                      });
 }
 
 }  // namespace perlin_simd
@@ -667,9 +669,7 @@ struct grid_row {
   std::uint32_t key;
   row_axis y, z;
   // key ^ word_y(j_b) ^ word_z(k_c) for corner offsets (b, c), index b + 2c.
-  std::uint32_t kyz(int b, int c) const {
-    return key ^ (b ? y.w1 : y.w0) ^ (c ? z.w1 : z.w0);
-  }
+  std::uint32_t kyz(int b, int c) const { return key ^ (b ? y.w1 : y.w0) ^ (c ? z.w1 : z.w0); }
 };
 
 // Per-row, per-cell corner data for the shared-cell path: for corner n and
@@ -802,48 +802,60 @@ HWY_INLINE void store_row(std::size_t i, std::size_t nx, VF v, const VF* g, floa
   if (row_grad) std::memcpy(row_grad + i * D, gb, (nx - i) * D * sizeof(float));
 }
 
+// The rows (j, k) of the slab [first, first + count) of the slowest axis, in
+// output order: f(j, k, r) with r the row's index inside the slab.
+template <int D, class F>
+HWY_INLINE void for_each_row(const grid<D>& g, std::size_t first, std::size_t count, const F& f) {
+  const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+  const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+  std::size_t r = 0;
+  for (std::size_t k = k0; k < k1; ++k)
+    for (std::size_t j = j0; j < j1; ++j, ++r) f(j, k, r);
+}
+
 template <bool kGradient, int D>
-void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g, float* value,
-                 float* grad) {
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
+                 std::size_t first, std::size_t count, float* value, float* grad) {
+  const std::size_t nx = g.size[0];
   const grid_columns cols(nx, period[0], kGradient,
                           [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
   row_evaluator<kGradient, D> rows(cols);
   grid_row row{key, {}, {}};
-  for (std::size_t k = 0; k < nz; ++k) {
-    if constexpr (D == 3)
-      row.z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
-    for (std::size_t j = 0; j < ny; ++j) {
-      row.y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
-      const std::size_t r = k * ny + j;
-      float* row_value = value + r * nx;
-      float* row_grad = kGradient ? grad + r * nx * D : nullptr;
-      rows.run(row, [&](std::size_t i, VF v, const VF* gr) HWY_ATTR {
-        store_row<D>(i, nx, v, gr, row_value, row_grad);
-      });
+  std::size_t split_k = ~std::size_t(0);  // the slice row.z holds
+  for_each_row<D>(g, first, count, [&](std::size_t j, std::size_t k, std::size_t r) HWY_ATTR {
+    if constexpr (D == 3) {
+      if (k != split_k)
+        row.z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
+      split_k = k;
     }
-  }
+    row.y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
+    float* row_value = value + r * nx;
+    float* row_grad = kGradient ? grad + r * nx * D : nullptr;
+    rows.run(row, [&](std::size_t i, VF v, const VF* gr)
+                      HWY_ATTR { store_row<D>(i, nx, v, gr, row_value, row_grad); });
+  });
 }
 
 }  // namespace perlin_simd
 
 // Perlin on a uniform grid (C order, i fastest); gradients interleaved (D
-// per sample) unless grad is null.
+// per sample) unless grad is null; the slab [first, first + count) of the
+// slowest axis (hush/simd/dispatch.hpp).
 template <int D>
-void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g, float* value,
-                 float* grad) {
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
+                 std::size_t first, std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::perlin_grid<true, D>(key, period, g, value, grad);
+    perlin_simd::perlin_grid<true, D>(key, period, g, first, count, value, grad);
   else
-    perlin_simd::perlin_grid<false, D>(key, period, g, value, nullptr);
+    perlin_simd::perlin_grid<false, D>(key, period, g, first, count, value, nullptr);
 }
 inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                         float* value, float* grad) {
-  perlin_grid<2>(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  perlin_grid<2>(key, period, g, first, count, value, grad);
 }
 inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                         float* value, float* grad) {
-  perlin_grid<3>(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  perlin_grid<3>(key, period, g, first, count, value, grad);
 }
 
 namespace perlin_simd {
@@ -943,11 +955,12 @@ HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
 // and a per-row split of its y (and z) positions, evaluated like a Perlin
 // grid row and accumulated into the row's sums.
 template <bool kGradient, int D>
-void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, float* value, float* grad) {
+void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t first,
+                  std::size_t count, float* value, float* grad) {
   const DF df;
   const std::vector<band_config<D>> bands = band_configs(fr);
   const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  const std::size_t nx = g.size[0];
   const std::size_t lanes = hn::Lanes(df);
   auto position = [&](int b, int axis_index, double coordinate) {
     vec<double, D> p;  // axes are independent in f x + o: the other coordinates do not matter
@@ -966,40 +979,39 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, float* value, 
   const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
   std::vector<float> acc(padded), gacc(kGradient ? padded * D : 0);
   const VF scale = hn::Set(df, float(fr.scale()));
-  for (std::size_t k = 0; k < nz; ++k)
-    for (std::size_t j = 0; j < ny; ++j) {
-      std::fill(acc.begin(), acc.end(), 0.0f);
-      std::fill(gacc.begin(), gacc.end(), 0.0f);
-      for (std::size_t b = 0; b < bands.size(); ++b) {
-        const band_config<D>& c = bands[b];
-        const int bi = static_cast<int>(b);
-        grid_row row{c.key, {}, {}};
-        row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
-                                             c.period[1]);
-        if constexpr (D == 3)
-          row.z = broadcast_axis<kGradient, 2>(
-              position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
-        rows[b].run(row, [&](std::size_t i, VF v, const VF* gr) HWY_ATTR {
-          VF a = hn::LoadU(df, acc.data() + i), ga[3];
+  for_each_row<D>(
+      g, first, count, [&](std::size_t j, std::size_t k, std::size_t row_index) HWY_ATTR {
+        std::fill(acc.begin(), acc.end(), 0.0f);
+        std::fill(gacc.begin(), gacc.end(), 0.0f);
+        for (std::size_t b = 0; b < bands.size(); ++b) {
+          const band_config<D>& c = bands[b];
+          const int bi = static_cast<int>(b);
+          grid_row row{c.key, {}, {}};
+          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
+                                               c.period[1]);
+          if constexpr (D == 3)
+            row.z = broadcast_axis<kGradient, 2>(
+                position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+          rows[b].run(row, [&](std::size_t i, VF v, const VF* gr) HWY_ATTR {
+            VF a = hn::LoadU(df, acc.data() + i), ga[3];
+            if constexpr (kGradient)
+              for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
+            accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
+            hn::StoreU(a, df, acc.data() + i);
+            if constexpr (kGradient)
+              for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
+          });
+        }
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          const VF a = hn::LoadU(df, acc.data() + i);
+          VF gs[3];
           if constexpr (kGradient)
-            for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
-          accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
-          hn::StoreU(a, df, acc.data() + i);
-          if constexpr (kGradient)
-            for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
-        });
-      }
-      const std::size_t row_index = k * ny + j;
-      for (std::size_t i = 0; i < nx; i += lanes) {
-        const VF a = hn::LoadU(df, acc.data() + i);
-        VF gs[3];
-        if constexpr (kGradient)
-          for (int d = 0; d < D; ++d)
-            gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
-        store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
-                     value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
-      }
-    }
+            for (int d = 0; d < D; ++d)
+              gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
+          store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
+                       value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
+        }
+      });
 }
 
 }  // namespace perlin_simd
@@ -1029,19 +1041,19 @@ inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std:
                             float* value, float* grad) {
   fractal_points<3>(fr, xyz, n, value, grad);
 }
-inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
-                          float* grad) {
+inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::fractal_grid<true, 2>(fr, g, value, grad);
+    perlin_simd::fractal_grid<true, 2>(fr, g, first, count, value, grad);
   else
-    perlin_simd::fractal_grid<false, 2>(fr, g, value, nullptr);
+    perlin_simd::fractal_grid<false, 2>(fr, g, first, count, value, nullptr);
 }
-inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
-                          float* grad) {
+inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::fractal_grid<true, 3>(fr, g, value, grad);
+    perlin_simd::fractal_grid<true, 3>(fr, g, first, count, value, grad);
   else
-    perlin_simd::fractal_grid<false, 3>(fr, g, value, nullptr);
+    perlin_simd::fractal_grid<false, 3>(fr, g, first, count, value, nullptr);
 }
 
 }  // namespace HWY_NAMESPACE
