@@ -16,7 +16,8 @@
 //    gradients (when given) too, else hush::invalid_argument naming the span.
 //  - grids: grid<D> (origin and step in double); out has grid.count()
 //    elements in C order, i fastest (core/views.hpp). The grid is validated.
-//  - scalar: exactly noise(point) per element, in float.
+//  - scalar: exactly noise(point) per element, in float (a noise may share
+//    work between the samples of a grid: detail::has_grid_values).
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
@@ -45,6 +46,7 @@
 #include <string>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "hush/config.hpp"
@@ -150,32 +152,51 @@ void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
   }
 }
 
+// Whether Noise evaluates grid slabs itself: a member
+//   void grid_values(const grid<D>& g, std::size_t first, std::size_t count,
+//                    float* out, vec<float, D>* grad) const;
+// with the values and gradients of its point evaluation at every sample (bit
+// for bit unless the compiler contracts multiply-adds), faster than the
+// sample loop below by sharing work between samples (perlin.hpp).
+template <class Noise, class = void>
+struct has_grid_values : std::false_type {};
+template <class Noise>
+struct has_grid_values<
+    Noise, std::void_t<decltype(std::declval<const Noise&>().grid_values(
+               std::declval<const grid<Noise::dimension>&>(), std::size_t{}, std::size_t{},
+               std::declval<float*>(), std::declval<vec<float, Noise::dimension>*>()))>>
+    : std::true_type {};
+
 // The grid's samples with slowest-axis index (j in 2D, k in 3D) in
 // [first, first + count) into out, which starts at sample (0, 0[, 0]) of that slab.
 template <class Noise>
 void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, std::size_t first,
                  std::size_t count, float* out, vec<float, Noise::dimension>* grad) {
   constexpr int D = Noise::dimension;
-  const std::size_t nx = g.size[0];
-  const std::size_t j0 = D == 2 ? first : 0, ny = D == 2 ? first + count : g.size[1];
-  const std::size_t k0 = D == 3 ? first : 0, nz = D == 3 ? first + count : 1;
-  std::size_t idx = 0;
-  for (std::size_t k = k0; k < nz; ++k)
-    for (std::size_t j = j0; j < ny; ++j)
-      for (std::size_t i = 0; i < nx; ++i, ++idx) {
-        std::array<std::size_t, D> ijk{};
-        ijk[0] = i;
-        ijk[1] = j;
-        if constexpr (D == 3) ijk[D - 1] = k;
-        const vec<double, D> p = g.position(ijk);
-        if (grad) {
-          const auto r = n.template value_and_gradient<float>(p);
-          out[idx] = r.value;
-          grad[idx] = r.gradient;
-        } else {
-          out[idx] = n.template value<float>(p);
+  if constexpr (has_grid_values<Noise>::value) {
+    n.grid_values(g, first, count, out, grad);
+  } else {
+    const std::size_t nx = g.size[0];
+    const std::size_t j0 = D == 2 ? first : 0, ny = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, nz = D == 3 ? first + count : 1;
+    std::size_t idx = 0;
+    for (std::size_t k = k0; k < nz; ++k)
+      for (std::size_t j = j0; j < ny; ++j)
+        for (std::size_t i = 0; i < nx; ++i, ++idx) {
+          std::array<std::size_t, D> ijk{};
+          ijk[0] = i;
+          ijk[1] = j;
+          if constexpr (D == 3) ijk[D - 1] = k;
+          const vec<double, D> p = g.position(ijk);
+          if (grad) {
+            const auto r = n.template value_and_gradient<float>(p);
+            out[idx] = r.value;
+            grad[idx] = r.gradient;
+          } else {
+            out[idx] = n.template value<float>(p);
+          }
         }
-      }
+  }
 }
 template <class Noise>
 void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, float* out,
