@@ -25,7 +25,7 @@
 //  - otherwise multiply-adds are fused where that is faster, and results
 //    stay within perlin.hpp's float budget of the double reference (2^-16);
 //    measured differences to scalar are a few float ulps (docs/design.md).
-// Points whose coordinates are all finite and below 2^31 in magnitude take
+// Points whose coordinates are all finite and below 2^22 in magnitude take
 // the vector split; other vectors (NaN, Inf, huge, or periodic noise) split
 // lane by lane through core/lattice.hpp, so hard cases behave exactly like
 // scalar evaluation (NaN in gives NaN out).
@@ -269,6 +269,7 @@ template <bool kGradient, int D>
 HWY_INLINE void hashed_corners(const axis& x, const VU* kyz, const axis& y, const axis& z,
                                corners& k) {
   constexpr int kCorners = 1 << D;
+  HWY_UNROLL(8)
   for (int n = 0; n < kCorners; ++n) {
     const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
     const VU h = hash32_high(hn::Xor(a ? x.w1 : x.w0, kyz[b + 2 * c]));
@@ -392,22 +393,43 @@ HWY_INLINE void fill_axis(VF f, axis& a) {
   if constexpr (kGradient) a.ds = fade_derivative(f);
 }
 
-// Vector split, valid when every lane is finite with |x| < 2^31: floor and
+// Vector split, valid when every lane is finite with |x| < 2^22: floor and
 // x - floor(x) are exact in float, so this equals lattice_split's double
-// computation (including its clamp below 1 for tiny negative x).
+// computation (including its clamp below 1 for tiny negative x). The cell
+// comes from the float's bits: floor(x) + 1.5 * 2^23 is exact for
+// |floor(x)| <= 2^22 and its bit pattern is 0x4B400000 + floor(x), two's
+// complement (cheaper than a conversion with overflow handling).
+constexpr float kFastSplitLimit = 4194304.0f;  // 2^22
+constexpr float kCellMagic = 12582912.0f;      // 1.5 * 2^23
+constexpr std::uint32_t kCellMagicBits = 0x4B400000u;
 template <bool kGradient, int kAxis>
 HWY_INLINE axis split_fast(VF xv) {
+  namespace c = detail::constants;
   const DF df;
-  const DI di;
   const DU du;
   const VF fl = hn::Floor(xv);
-  const VU i0 = hn::BitCast(du, hn::ConvertTo(di, fl));
+  const VU i0 =
+      hn::Sub(hn::BitCast(du, hn::Add(fl, hn::Set(df, kCellMagic))), hn::Set(du, kCellMagicBits));
+  // (i + 1) P = i P + P: the second cell's product is one add away.
+  constexpr std::uint32_t kPrime = kAxis == 0   ? c::kLatticePrimeX
+                                   : kAxis == 1 ? c::kLatticePrimeY
+                                                : c::kLatticePrimeZ;
+  const VU m0 = hn::Mul(i0, hn::Set(du, kPrime));
+  const VU m1 = hn::Add(m0, hn::Set(du, kPrime));
   axis a;
-  a.w0 = word<kAxis>(i0);
-  a.w1 = word<kAxis>(hn::Add(i0, hn::Set(du, 1u)));
+  if constexpr (kAxis == 0) {
+    a.w0 = m0;
+    a.w1 = m1;
+  } else {
+    constexpr int kRotate = kAxis == 1 ? c::kLatticeRotateY : c::kLatticeRotateZ;
+    a.w0 = hn::RotateRight<32 - kRotate>(m0);
+    a.w1 = hn::RotateRight<32 - kRotate>(m1);
+  }
   fill_axis<kGradient>(hn::Min(hn::Sub(xv, fl), hn::Set(df, detail::one_minus_ulp<float>())), a);
   return a;
 }
+static_assert(detail::constants::kLatticeRotateY > 0 && detail::constants::kLatticeRotateZ > 0,
+              "split_fast rotates by 32 - R");
 
 // Lane-by-lane split of double coordinates q[lane] through core/lattice.hpp:
 // exactly what scalar evaluation computes.
@@ -430,7 +452,7 @@ HWY_INLINE axis split_doubles(const double* q, std::uint32_t period) {
   return a;
 }
 
-// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^31 and
+// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^22 and
 // periodic axes. Same result as scalar evaluation by construction.
 template <bool kGradient, int kAxis>
 HWY_NOINLINE axis split_lanes(VF xv, std::uint32_t period) {
@@ -442,15 +464,15 @@ HWY_NOINLINE axis split_lanes(VF xv, std::uint32_t period) {
   return split_doubles<kGradient, kAxis>(q, period);
 }
 
-// Lanes with |x| < 2^31 (false for NaN): where the vector split is exact.
-HWY_INLINE hn::Mask<DF> in_int_range(VF x) {
+// Lanes with |x| < 2^22 (false for NaN): where the vector split is exact.
+HWY_INLINE hn::Mask<DF> in_fast_range(VF x) {
   const DF df;
-  return hn::Lt(hn::Abs(x), hn::Set(df, 2147483648.0f));
+  return hn::Lt(hn::Abs(x), hn::Set(df, kFastSplitLimit));
 }
 
 template <bool kGradient, int kAxis>
 HWY_INLINE axis split(VF xv, std::uint32_t period) {
-  if (period == 0 && hn::AllTrue(DF(), in_int_range(xv))) return split_fast<kGradient, kAxis>(xv);
+  if (period == 0 && hn::AllTrue(DF(), in_fast_range(xv))) return split_fast<kGradient, kAxis>(xv);
   return split_lanes<kGradient, kAxis>(xv, period);
 }
 
@@ -472,37 +494,50 @@ HWY_INLINE void points_from_axes(VU key, const axis& ax, const axis& ay, const a
 // axis splits by the vector or lane by lane, whichever is exact. Out of line,
 // so that the common path keeps its registers.
 template <bool kGradient, int D>
-HWY_NOINLINE void points_vector_lanes(VU key, const std::uint32_t* period, const VF* c,
+HWY_NOINLINE void points_vector_lanes(VU key, const std::uint32_t* period, VF x, VF y, VF z,
                                       float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
-  const axis ax = split<kGradient, 0>(c[0], period[0]);
-  const axis ay = split<kGradient, 1>(c[1], period[1]);
+  const axis ax = split<kGradient, 0>(x, period[0]);
+  const axis ay = split<kGradient, 1>(y, period[1]);
   axis az{};
-  if constexpr (D == 3) az = split<kGradient, 2>(c[2], period[2]);
+  if constexpr (D == 3) az = split<kGradient, 2>(z, period[2]);
   points_from_axes<kGradient, D>(key, ax, ay, az, value, grad);
 }
 
 // One vector of D-dimensional points (interleaved) -> values (and
-// interleaved gradients). `plain`: no axis is periodic.
+// interleaved gradients), if every lane can take the vector split: returns
+// false, writing nothing, if one cannot (then points_vector_lanes does it).
+template <bool kGradient, int D>
+HWY_INLINE bool points_vector_fast(VU key, const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                                   float* HWY_RESTRICT grad) {
+  const DF df;
+  VF x, y, z = hn::Zero(df);
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, x, y);
+  else
+    hn::LoadInterleaved3(df, pts, x, y, z);
+  auto fast = hn::And(in_fast_range(x), in_fast_range(y));
+  if constexpr (D == 3) fast = hn::And(fast, in_fast_range(z));
+  if (HWY_UNLIKELY(!hn::AllTrue(df, fast))) return false;
+  axis az{};
+  if constexpr (D == 3) az = split_fast<kGradient, 2>(z);
+  points_from_axes<kGradient, D>(key, split_fast<kGradient, 0>(x), split_fast<kGradient, 1>(y), az,
+                                 value, grad);
+  return true;
+}
+
+// Any vector of points, periodic noise included.
 template <bool kGradient, int D>
 HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
                               const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
                               float* HWY_RESTRICT grad) {
+  if (plain && points_vector_fast<kGradient, D>(key, pts, value, grad)) return;
   const DF df;
-  VF c[3];
+  VF x, y, z = hn::Zero(df);
   if constexpr (D == 2)
-    hn::LoadInterleaved2(df, pts, c[0], c[1]);
+    hn::LoadInterleaved2(df, pts, x, y);
   else
-    hn::LoadInterleaved3(df, pts, c[0], c[1], c[2]);
-  auto fast = hn::And(in_int_range(c[0]), in_int_range(c[1]));
-  if constexpr (D == 3) fast = hn::And(fast, in_int_range(c[2]));
-  if (HWY_UNLIKELY(!plain || !hn::AllTrue(df, fast))) {
-    points_vector_lanes<kGradient, D>(key, period, c, value, grad);
-    return;
-  }
-  axis az{};
-  if constexpr (D == 3) az = split_fast<kGradient, 2>(c[2]);
-  points_from_axes<kGradient, D>(key, split_fast<kGradient, 0>(c[0]),
-                                 split_fast<kGradient, 1>(c[1]), az, value, grad);
+    hn::LoadInterleaved3(df, pts, x, y, z);
+  points_vector_lanes<kGradient, D>(key, period, x, y, z, value, grad);
 }
 
 // Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
@@ -534,10 +569,30 @@ HWY_NOINLINE void perlin_points(std::uint32_t key, const std::uint32_t* period, 
   const VU vkey = hn::Set(DU(), key);
   bool plain = true;
   for (int a = 0; a < D; ++a) plain = plain && period[a] == 0;
-  for_each_point_vector<kGradient, D>(n, pts, value, grad,
-                                      [&](const float* p, float* v, float* g) HWY_ATTR {
-                                        points_vector<kGradient, D>(vkey, plain, period, p, v, g);
-                                      });
+  // Whole vectors, then the rest through zero-padded buffers (no lane reads
+  // or writes out of bounds). points_vector inlines at both sites.
+  const std::size_t lanes = hn::Lanes(DF());
+  std::size_t i = 0;
+  while (i + lanes <= n) {
+    // The common case runs in a loop without calls, which keeps its constants
+    // in registers; a vector it cannot take leaves it for points_vector.
+    if (plain)
+      for (; i + lanes <= n; i += lanes)
+        if (!points_vector_fast<kGradient, D>(vkey, pts + i * D, value + i,
+                                              kGradient ? grad + i * D : nullptr))
+          break;
+    if (i + lanes > n) break;
+    points_vector<kGradient, D>(vkey, plain, period, pts + i * D, value + i,
+                                kGradient ? grad + i * D : nullptr);
+    i += lanes;
+  }
+  if (i == n) return;
+  const std::size_t rest = n - i;
+  HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
+  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+  points_vector<kGradient, D>(vkey, plain, period, in, out, g);
+  std::memcpy(value + i, out, rest * sizeof(float));
+  if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
 }
 
 }  // namespace perlin_simd
@@ -616,6 +671,9 @@ struct grid_columns {
       if (i % lanes == 0) base[i / lanes] = rank;
       local[i] = rank - base[i / lanes];  // < lanes: each column adds at most one cell
     }
+    // Padding lanes repeat the last column's cell: a vector's lanes then share
+    // one cell exactly when its last lane's local rank is 0 (corners_at).
+    for (std::size_t i = n; i < padded; ++i) local[i] = local[n - 1];
     cells = cw0.size();
     cw0.resize((cells + lanes - 1) / lanes * lanes, 0u);
     cw1.resize(cw0.size(), 0u);
@@ -697,11 +755,14 @@ struct row_tables {
     const DF df;
     const DU du;
     const std::size_t lanes = hn::Lanes(df);
+    const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
+                       hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
     for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
       const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
+      HWY_UNROLL(8)
       for (int n = 0; n < kCorners; ++n) {
         const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
-        const VU h = hash32_high(hn::Xor(wx[a], hn::Set(du, row.kyz(b, c))));
+        const VU h = hash32_high(hn::Xor(wx[a], kyz[b + 2 * c]));
         const VF fy = hn::Set(df, b ? row.y.f1 : row.y.f);
         const std::size_t at = static_cast<std::size_t>(n) * stride + r;
         VF cx, cy, kk;
@@ -727,23 +788,41 @@ struct row_tables {
     }
   }
 
-  // Corner data for the vector of columns starting at column i.
+  // Corner data for the vector of columns starting at column i: per lane,
+  // the entries of its cell. Where all lanes share one cell (most vectors
+  // when cells hold many samples) a broadcast replaces the permute.
   HWY_INLINE void corners_at(const grid_columns& cols, std::size_t i, const axis& x,
                              corners& out) const {
     const DF df;
-    const DU du;
-    const DI di;
-    const std::size_t b = cols.base[i / hn::Lanes(df)];
-    const auto idx = hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
+    const std::size_t lanes = hn::Lanes(df);
+    const std::size_t b = cols.base[i / lanes];
+    if (cols.local[i + lanes - 1] == 0) {
+      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+        return hn::Set(df, t[at]);
+      });
+    } else {
+      const DU du;
+      const DI di;
+      const auto idx =
+          hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
+      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+        return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx);
+      });
+    }
+  }
+  // out from the entries at cell rank b, read per corner by entry(table, index).
+  template <class Entry>
+  HWY_INLINE void corners_from(std::size_t b, const axis& x, corners& out,
+                               const Entry& entry) const {
+    HWY_UNROLL(8)
     for (int n = 0; n < kCorners; ++n) {
       const std::size_t at = static_cast<std::size_t>(n) * stride + b;
-      const VF cx = hn::TableLookupLanes(hn::LoadU(df, gx.data() + at), idx);
-      const VF kk = hn::TableLookupLanes(hn::LoadU(df, k.data() + at), idx);
-      out.d[n] = mul_add(cx, (n & 1) ? x.f1 : x.f, kk);
+      const VF cx = entry(gx, at);
+      out.d[n] = mul_add(cx, (n & 1) ? x.f1 : x.f, entry(k, at));
       if constexpr (kGradient) {
         out.gx[n] = cx;
-        out.gy[n] = hn::TableLookupLanes(hn::LoadU(df, gy.data() + at), idx);
-        if constexpr (D == 3) out.gz[n] = hn::TableLookupLanes(hn::LoadU(df, gz.data() + at), idx);
+        out.gy[n] = entry(gy, at);
+        if constexpr (D == 3) out.gz[n] = entry(gz, at);
       }
     }
   }
