@@ -737,6 +737,11 @@ struct row_tables {
   static constexpr int kCorners = 1 << D;
   std::size_t stride = 0;
   std::vector<float> gx, k, gy, gz;
+  // The y/z words the gradients were hashed for: consecutive rows in the same
+  // y (and z) cell keep them and only recompute k (the benchmark's grids have
+  // 37 rows per cell).
+  std::uint32_t hashed_kyz[4] = {};
+  bool hashed = false;
 
   explicit row_tables(const grid_columns& cols) {
     const std::size_t lanes = hn::Lanes(DF());
@@ -744,46 +749,50 @@ struct row_tables {
     const std::size_t size = stride * kCorners;
     gx.assign(size, 0.0f);
     k.assign(size, 0.0f);
-    if (kGradient) {
-      gy.assign(size, 0.0f);
-      if (D == 3) gz.assign(size, 0.0f);
-    }
+    gy.assign(size, 0.0f);
+    if (D == 3) gz.assign(size, 0.0f);
   }
 
-  // Hashes the row's lattice points: cells' x words against the row's y/z words.
+  // Hashes the row's lattice points (cells' x words against the row's y/z
+  // words) unless the previous row had the same ones, then forms k.
   HWY_INLINE void build(const grid_columns& cols, const grid_row& row) {
     const DF df;
     const DU du;
     const std::size_t lanes = hn::Lanes(df);
-    const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
-                       hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
+    const std::uint32_t words[4] = {row.kyz(0, 0), row.kyz(1, 0), row.kyz(0, 1), row.kyz(1, 1)};
+    const bool same = hashed && std::equal(words, words + 4, hashed_kyz);
+    std::copy(words, words + 4, hashed_kyz);
+    hashed = true;
     for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
       const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
       HWY_UNROLL(8)
       for (int n = 0; n < kCorners; ++n) {
         const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
-        const VU h = hash32_high(hn::Xor(wx[a], kyz[b + 2 * c]));
-        const VF fy = hn::Set(df, b ? row.y.f1 : row.y.f);
         const std::size_t at = static_cast<std::size_t>(n) * stride + r;
-        VF cx, cy, kk;
-        if constexpr (D == 2) {
-          constexpr int kN = detail::constants::kPerlin2GradCount;
-          const VU g = grad_index2(h);
-          cx = lookup<kN>(kG2x, g);
-          cy = lookup<kN>(kG2y, g);
-          kk = hn::Mul(cy, fy);
-        } else {
-          constexpr int kN = detail::constants::kPerlin3GradCount;
-          const VU g = grad_index3(h);
-          cx = lookup<kN>(kG3x, g);
-          cy = lookup<kN>(kG3y, g);
-          const VF cz = lookup<kN>(kG3z, g);
-          kk = mul_add(cy, fy, hn::Mul(cz, hn::Set(df, c ? row.z.f1 : row.z.f)));
-          if constexpr (kGradient) hn::StoreU(cz, df, gz.data() + at);
+        if (!same) {
+          const VU h = hash32_high(hn::Xor(wx[a], hn::Set(du, words[b + 2 * c])));
+          if constexpr (D == 2) {
+            constexpr int kN = detail::constants::kPerlin2GradCount;
+            const VU g = grad_index2(h);
+            hn::StoreU(lookup<kN>(kG2x, g), df, gx.data() + at);
+            hn::StoreU(lookup<kN>(kG2y, g), df, gy.data() + at);
+          } else {
+            constexpr int kN = detail::constants::kPerlin3GradCount;
+            const VU g = grad_index3(h);
+            hn::StoreU(lookup<kN>(kG3x, g), df, gx.data() + at);
+            hn::StoreU(lookup<kN>(kG3y, g), df, gy.data() + at);
+            hn::StoreU(lookup<kN>(kG3z, g), df, gz.data() + at);
+          }
         }
-        hn::StoreU(cx, df, gx.data() + at);
+        const VF cy = hn::LoadU(df, gy.data() + at);
+        const VF fy = hn::Set(df, b ? row.y.f1 : row.y.f);
+        VF kk;
+        if constexpr (D == 2)
+          kk = hn::Mul(cy, fy);
+        else
+          kk = mul_add(cy, fy,
+                       hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
         hn::StoreU(kk, df, k.data() + at);
-        if constexpr (kGradient) hn::StoreU(cy, df, gy.data() + at);
       }
     }
   }
