@@ -1982,8 +1982,10 @@ class perlin : public point_noise<perlin<D>, D> {
 //    gradients (when given) too, else hush::invalid_argument naming the span.
 //  - grids: grid<D> (origin and step in double); out has grid.count()
 //    elements in C order, i fastest (core/views.hpp). The grid is validated.
-//  - scalar: exactly noise(point) per element, in float (a noise may share
-//    work between the samples of a grid: detail::has_grid_values).
+//  - scalar: exactly noise(point) per element, in float. A noise may share
+//    work between the samples of a grid (detail::has_grid_values); its
+//    results are still point evaluation's, bit for bit unless the compiler
+//    contracts multiply-adds (HUSH_STRICT_FP forbids it).
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
@@ -2000,7 +2002,7 @@ class perlin : public point_noise<perlin<D>, D> {
 //    running `inner` (scalar or simd) on a contiguous part: points and
 //    samples in chunks, grids in slabs along the slowest axis (rows in 2D,
 //    slices in 3D). Results are identical, bit for bit, to `inner` on the
-//    whole batch (tests/exec_test.cpp).
+//    whole batch (tests/simd/parallel_test.cpp).
 //  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
 //    after validation, and no output element is left unwritten.
 #ifndef HUSH_EXEC_HPP
