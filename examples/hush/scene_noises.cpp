@@ -13,8 +13,7 @@
 #include "hush/detail/constants.hpp"
 #include "hush/exec.hpp"
 
-#define HUSH_CLI_RENDER_GLSL 0  // TODO(coherent): GLSL program
-#if HUSH_CLI_RENDER_GLSL
+#if HUSH_CLI_HAVE_GLSL
 #include "hush/glsl/coherent.hpp"
 #endif
 
@@ -30,7 +29,7 @@ class coherent_noise final : public scene_noise {
   }
   int channels() const override { return prm_.channels; }
   std::string unsupported_reason(backend b) const override {
-    if (b == backend::glsl && !HUSH_CLI_RENDER_GLSL)
+    if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
       return "the GLSL backend is not in this build (OSMesa not found)";
     if (b == backend::simd && !HUSH_CONFIG_SIMD)
       return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
@@ -45,7 +44,7 @@ class coherent_noise final : public scene_noise {
         run(hush::exec::simd, frames, sink);
         break;
       case backend::glsl:
-#if HUSH_CLI_RENDER_GLSL
+#if HUSH_CLI_HAVE_GLSL
         run(hush::exec::glsl<hush::glsl::device>{glsl_device()}, frames, sink);
 #endif
         break;

@@ -226,12 +226,15 @@ inline float coherent_float_parameter(double v) {
 // in [0, 1)^2 cells taken from the key (so the variance, zero at lattice points, is
 // stationary in expectation), scaled to unit variance. Sample (x, y) of the plane is at
 // pixel centre (x + 0.5, y + 0.5).
+inline float coherent_bandpass_scale() {
+  return static_cast<float>(1.0 / std::sqrt(perlin<2>::variance()));
+}
 struct coherent_bandpass {
   perlin<2> noise;
   grid<2> g;
   float scale;
   coherent_bandpass(std::uint32_t key, double pixels, std::size_t nx, std::size_t ny)
-      : noise(key), scale(static_cast<float>(1.0 / std::sqrt(perlin<2>::variance()))) {
+      : noise(key), scale(coherent_bandpass_scale()) {
     const double ox = static_cast<double>(hash32(key, 1u) >> 8) * 0x1p-24;
     const double oy = static_cast<double>(hash32(key, 2u) >> 8) * 0x1p-24;
     g.origin = {0.5 / pixels + ox, 0.5 / pixels + oy};
@@ -477,8 +480,10 @@ class basic_coherent_stream {
   // Forgets the history: the next frame starts afresh (c = k(alpha) w, Kass & Pesare
   // eq. 6) at any size, with frame index `next_frame`.
   void reset(std::uint32_t next_frame = 0) {
+    std::shared_ptr<detail::coherent_device_state> device = std::move(st_.device);
     st_ = detail::coherent_state<T>{};
     st_.next_frame = next_frame;
+    st_.device = std::move(device);  // a GPU backend's buffers and program are kept
   }
 
   // Filters the next frame: `out` holds one view per channel (parameters().channels), each
