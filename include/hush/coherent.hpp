@@ -179,6 +179,8 @@ struct coherent_state {
   bool reference_has_ids = false;
   std::vector<float> ref_depth;
   std::vector<std::uint32_t> ref_ids;
+  std::vector<float> next_depth;  // scratch: this frame's depth, the next reference
+  std::vector<std::uint32_t> next_ids;
   std::vector<T> history;           // channels planes, packed
   std::vector<T> next;              // scratch: the history being written
   std::vector<std::uint8_t> fresh;  // last frame: 1 where fresh noise was taken
@@ -268,21 +270,16 @@ void coherent_run_pass(const Exec& ex, const coherent_pass_job<T>& job) {
   }
 }
 
-// Copies the frame's depth and ids into the state as the next step's reference.
+// The frame's depth and ids become the next step's reference: the pass wrote their copies
+// into next_depth / next_ids (the caller's views need not outlive the call).
 template <class T>
-void coherent_keep_reference(coherent_state<T>& st, const frame& f) {
-  const std::size_t w = st.width, h = st.height;
-  st.ref_depth.resize(w * h);
-  for (std::size_t y = 0; y < h; ++y)
-    std::memcpy(st.ref_depth.data() + y * w, f.depth.row(y), w * sizeof(float));
-  st.reference_has_ids = f.object_id.data != nullptr;
-  if (st.reference_has_ids) {
-    st.ref_ids.resize(w * h);
-    for (std::size_t y = 0; y < h; ++y)
-      std::memcpy(st.ref_ids.data() + y * w, f.object_id.row(y), w * sizeof(std::uint32_t));
-  } else {
+void coherent_keep_reference(coherent_state<T>& st, bool has_ids) {
+  std::swap(st.ref_depth, st.next_depth);
+  st.reference_has_ids = has_ids;
+  if (has_ids)
+    std::swap(st.ref_ids, st.next_ids);
+  else
     st.ref_ids.clear();
-  }
   st.has_reference = true;
 }
 
@@ -361,6 +358,8 @@ void coherent_cpu_step(const Exec& ex, coherent_state<T>& st, const coherent_ste
   st.history.resize(n * static_cast<std::size_t>(nc));
   st.next.resize(n * static_cast<std::size_t>(nc));
   st.fresh.resize(n);
+  st.next_depth.resize(n);
+  st.next_ids.resize(f.object_id.data ? n : 0);
   coherent_pass_job<T> job;
   job.width = st.width;
   job.height = st.height;
@@ -386,6 +385,8 @@ void coherent_cpu_step(const Exec& ex, coherent_state<T>& st, const coherent_ste
   job.stationary = prm.filter == coherent_filter::stationary;
   job.channels = nc;
   job.fresh = st.fresh.data();
+  job.depth_copy = st.next_depth.data();
+  job.ids_copy = f.object_id.data ? st.next_ids.data() : nullptr;
   // Band-pass planes live for the step.
   std::vector<float> planes[c::kCoherentMaxChannels][3];
   const unsigned fx = s.backward ? c::kCoherentFieldBackRefillX : c::kCoherentFieldRefillX;
@@ -431,7 +432,7 @@ void coherent_cpu_step(const Exec& ex, coherent_state<T>& st, const coherent_ste
       for (std::size_t y = 0; y < h; ++y)
         for (std::size_t x = 0; x < w; ++x)
           s.out[ch](x, y) = s.gain * st.history[n * static_cast<std::size_t>(ch) + y * w + x];
-  coherent_keep_reference(st, f);
+  coherent_keep_reference(st, f.object_id.data != nullptr);
   ++st.next_frame;
 }
 
@@ -824,15 +825,20 @@ void coherent_combine(const Exec& ex, const coherent_params& prm, std::uint32_t 
       pl = plane.data();
     }
     const coherent_field field{key, pl, stride};
+    std::vector<float> row_values(w);
     for (std::size_t y = 0; y < h; ++y) {
       const std::uint32_t row = coherent_row_key(key, static_cast<std::uint32_t>(y));
+      for (std::size_t x = 0; x < w; ++x)
+        row_values[x] = coherent_field_value(field, row, static_cast<std::uint32_t>(x),
+                                             static_cast<std::uint32_t>(y));
+      T* dst = out[ch].row(y);
+      const std::size_t p0 = y * w;
       for (std::size_t x = 0; x < w; ++x) {
-        const std::size_t p = y * w + x;
-        const T wv = T(coherent_field_value(field, row, static_cast<std::uint32_t>(x),
-                                            static_cast<std::uint32_t>(y)));
+        const std::size_t p = p0 + x;
+        const T wv = T(row_values[x]);
         const T sum =
             (fwd_fresh[p] && bwd_fresh[p]) ? both * wv : fwd[off + p] + bwd[off + p] - beta * wv;
-        out[ch](x, y) = gain * sum;
+        dst[x] = gain * sum;
       }
     }
   }
@@ -861,7 +867,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm,
   const std::size_t nc = static_cast<std::size_t>(prm.channels);
   std::size_t w = 0, h = 0;
   basic_coherent_stream<T> pass(prm);
-  std::vector<std::uint8_t> memory, record;
+  std::vector<std::uint8_t> record;
   std::vector<image_view<const float>> input;
   auto load = [&](std::size_t i) {
     const frame f = io.frame_at(i);
@@ -900,25 +906,28 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm,
       coherent_glsl_step(ex.device, st, s);
     st.sync_host();
   };
-  // Forward pass: keep each frame's history and fresh flags.
+  // Forward pass: keep each frame's history and fresh flags (in memory, or through keep()).
+  std::vector<std::vector<T>> kept_values(io.keep ? 0 : io.frames);
+  std::vector<std::vector<std::uint8_t>> kept_fresh(io.keep ? 0 : io.frames);
   for (std::size_t i = 0; i < io.frames; ++i) {
     const frame f = load(i);
     step(f, false, io.first_frame + static_cast<std::uint32_t>(i));
     const auto& st = pass.state();
     const std::size_t n = w * h;
-    record.resize(coherent_record_bytes<T>(prm, w, h));
-    std::memcpy(record.data(), st.history.data(), n * nc * sizeof(T));
-    std::memcpy(record.data() + n * nc * sizeof(T), st.fresh.data(), n);
     if (io.keep) {
+      record.resize(coherent_record_bytes<T>(prm, w, h));
+      std::memcpy(record.data(), st.history.data(), n * nc * sizeof(T));
+      std::memcpy(record.data() + n * nc * sizeof(T), st.fresh.data(), n);
       io.keep(i, span<const std::uint8_t>(record.data(), record.size()));
     } else {
-      if (memory.empty()) memory.resize(record.size() * io.frames);
-      std::memcpy(memory.data() + record.size() * i, record.data(), record.size());
+      kept_values[i].assign(st.history.begin(), st.history.end());
+      kept_fresh[i].assign(st.fresh.begin(), st.fresh.end());
     }
   }
   // Backward pass, combined frame by frame with the kept forward result.
   pass.reset();
-  std::vector<T> out_planes(w * h * nc);
+  std::vector<T> out_planes(w * h * nc), fwd;
+  std::vector<std::uint8_t> fwd_fresh;
   std::vector<image_view<T>> out(nc);
   for (std::size_t c = 0; c < nc; ++c) out[c] = image_view<T>(out_planes.data() + w * h * c, w, h);
   for (std::size_t r = io.frames; r-- > 0;) {
@@ -926,17 +935,28 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm,
     const std::uint32_t index = io.first_frame + static_cast<std::uint32_t>(r);
     step(f, true, index);
     const std::size_t n = w * h;
-    record.resize(coherent_record_bytes<T>(prm, w, h));
-    if (io.recall)
+    const T* forward = nullptr;
+    const std::uint8_t* forward_fresh = nullptr;
+    if (io.recall) {
+      record.resize(coherent_record_bytes<T>(prm, w, h));
       io.recall(r, span<std::uint8_t>(record.data(), record.size()));
-    else
-      std::memcpy(record.data(), memory.data() + record.size() * r, record.size());
-    std::vector<T> fwd(n * nc);
-    std::memcpy(fwd.data(), record.data(), n * nc * sizeof(T));
+      fwd.resize(n * nc);
+      fwd_fresh.resize(n);
+      std::memcpy(fwd.data(), record.data(), n * nc * sizeof(T));
+      std::memcpy(fwd_fresh.data(), record.data() + n * nc * sizeof(T), n);
+      forward = fwd.data();
+      forward_fresh = fwd_fresh.data();
+    } else {
+      forward = kept_values[r].data();
+      forward_fresh = kept_fresh[r].data();
+    }
     const auto& st = pass.state();
-    detail::coherent_combine(ex, prm, index, w, h, fwd.data(), record.data() + n * nc * sizeof(T),
-                             st.history.data(), st.fresh.data(),
-                             io.input_at ? input.data() : nullptr, out.data());
+    detail::coherent_combine(ex, prm, index, w, h, forward, forward_fresh, st.history.data(),
+                             st.fresh.data(), io.input_at ? input.data() : nullptr, out.data());
+    if (!io.recall) {  // frame r's record has served: free it
+      std::vector<T>().swap(kept_values[r]);
+      std::vector<std::uint8_t>().swap(kept_fresh[r]);
+    }
     for (std::size_t c = 0; c < nc; ++c) detail::coherent_smooth(out[c], prm.smoothing);
     io.write(r, span<const image_view<T>>(out.data(), out.size()));
   }

@@ -101,6 +101,9 @@ struct coherent_pass_job {
   T* out[constants::kCoherentMaxChannels] = {};                // null: not written
   std::size_t out_stride = 0;
   std::uint8_t* fresh = nullptr;  // packed: 1 where the pixel took fresh noise, else 0
+  // Packed copies of this frame's depth and ids (the next frame's reference), or null.
+  float* depth_copy = nullptr;
+  std::uint32_t* ids_copy = nullptr;
 };
 
 // ---- The reprojection, in float: the same operations in every backend.
@@ -219,6 +222,8 @@ HUSH_INLINE void coherent_pixel(const coherent_pass_job<T>& j, const coherent_ro
   const coherent_taps g = coherent_reproject(j, x, y);
   const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
   if (j.fresh) j.fresh[p] = g.visible ? 0u : 1u;
+  if (j.depth_copy) j.depth_copy[p] = j.depth[y * j.depth_stride + x];
+  if (j.ids_copy) j.ids_copy[p] = j.ids[y * j.ids_stride + x];
   for (int c = 0; c < j.channels; ++c) {
     const T w = T(coherent_field_value(j.input[c], keys.input[c], x, y));
     T value;

@@ -27,6 +27,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include <hwy/highway.h>
 
@@ -113,15 +115,36 @@ HWY_INLINE VF field(const detail::coherent_field& f, std::uint32_t row_key, std:
   return hn::IfThenElseZero(is_finite(v), v);
 }
 
+// The refill fields' values of rows y and y + 1 when they are hashed white noise: each
+// value is used by four pixels (x, x - 1 and the rows y - 1, y), so a row is hashed once
+// into a buffer and read by both rows (null: the field is a plane, read directly).
+struct refill_rows {
+  const float* x0[detail::constants::kCoherentMaxChannels] = {};  // X, row y (width + 1)
+  const float* x1[detail::constants::kCoherentMaxChannels] = {};  // X, row y + 1
+  const float* y0[detail::constants::kCoherentMaxChannels] = {};  // Y, row y (width)
+  const float* y1[detail::constants::kCoherentMaxChannels] = {};  // Y, row y + 1
+};
+
+// Values of a white field in row y, pixels 0 ... count - 1 (count rounded up to lanes).
+HWY_INLINE void white_row(std::uint32_t row_key, std::size_t count, float* out) {
+  const DF df;
+  const DU du;
+  const std::size_t lanes = hn::Lanes(df);
+  for (std::size_t x = 0; x < count; x += lanes)
+    hn::StoreU(white(row_key, hn::Iota(du, static_cast<std::uint32_t>(x))), df, out + x);
+}
+
 // Pixels x ... x + lanes - 1 of row y (all inside the row).
 HWY_INLINE void pixels(const detail::coherent_pass_job<float>& j,
-                       const detail::coherent_row_keys& keys, std::uint32_t x, std::uint32_t y) {
+                       const detail::coherent_row_keys& keys, const refill_rows& rows,
+                       std::uint32_t x, std::uint32_t y) {
   const DF df;
   const DU du;
   const DI di;
   const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
   // ---- Reprojection (coherent_reproject), in float, never fused.
   const VF depth = hn::LoadU(df, j.depth + static_cast<std::size_t>(y) * j.depth_stride + x);
+  if (j.depth_copy) hn::StoreU(depth, df, j.depth_copy + p);
   VF mx, my, mz;
   hn::LoadInterleaved3(df, j.motion + 3 * (static_cast<std::size_t>(y) * j.motion_stride + x), mx,
                        my, mz);
@@ -151,17 +174,33 @@ HWY_INLINE void pixels(const detail::coherent_pass_job<float>& j,
   t[1] = hn::Add(t[0], sx);
   t[2] = hn::Add(t[0], sy);
   t[3] = hn::Add(t[2], sx);
+  // The taps of most vectors are contiguous: every lane's cell is its neighbour's plus one
+  // column, in one row (smooth motion moves neighbouring pixels alike). Then each tap is one
+  // unaligned load instead of a gather; the values are the same.
+  const std::int32_t i_first = hn::GetLane(i0i), j_first = hn::GetLane(j0i);
+  const bool contiguous =
+      hn::AllTrue(di, ok_i) &&
+      hn::AllTrue(di, hn::Eq(hn::Sub(i0i, hn::Iota(di, 0)), hn::Set(di, i_first))) &&
+      hn::AllTrue(di, hn::Eq(j0i, hn::Set(di, j_first)));
+  const std::size_t base =
+      static_cast<std::size_t>(j_first) * j.width + static_cast<std::size_t>(i_first);
+  const std::size_t offset[4] = {0, j.width > 1 ? 1u : 0u, j.height > 1 ? j.width : 0u,
+                                 (j.height > 1 ? j.width : 0u) + (j.width > 1 ? 1u : 0u)};
+  auto tap = [&](auto d, const auto* plane, int k) {
+    return contiguous ? hn::LoadU(d, plane + base + offset[k]) : hn::GatherIndex(d, plane, t[k]);
+  };
   const bool use_ids = j.ids && j.ref_ids;
   VU id = hn::Zero(du);
-  if (use_ids) id = hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x);
+  if (j.ids) {
+    id = hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x);
+    if (j.ids_copy) hn::StoreU(id, du, j.ids_copy + p);
+  }
   VF interpolated = zero;
   for (int k = 0; k < 4; ++k) {
     const MF used = hn::Ne(w[k], zero);
-    const VF d = hn::GatherIndex(df, j.ref_depth, t[k]);
+    const VF d = tap(df, j.ref_depth, k);
     MF tap_ok = is_surface(d);
-    if (use_ids)
-      tap_ok =
-          hn::And(tap_ok, hn::RebindMask(df, hn::Eq(hn::GatherIndex(du, j.ref_ids, t[k]), id)));
+    if (use_ids) tap_ok = hn::And(tap_ok, hn::RebindMask(df, hn::Eq(tap(du, j.ref_ids, k), id)));
     ok = hn::And(ok, hn::Or(hn::Not(used), tap_ok));
     interpolated = hn::IfThenElse(used, hn::Add(interpolated, hn::Mul(w[k], d)), interpolated);
   }
@@ -180,20 +219,32 @@ HWY_INLINE void pixels(const detail::coherent_pass_job<float>& j,
   for (int c = 0; c < j.channels; ++c) {
     const VF wv = field(j.input[c], keys.input[c], x, 0, y);
     const float* hist = j.ref_history[c];
-    const VF h = mul_add(w[3], hn::GatherIndex(df, hist, t[3]),
-                         mul_add(w[2], hn::GatherIndex(df, hist, t[2]),
-                                 mul_add(w[1], hn::GatherIndex(df, hist, t[1]),
-                                         hn::Mul(w[0], hn::GatherIndex(df, hist, t[0])))));
+    const VF h = mul_add(w[3], tap(df, hist, 3),
+                         mul_add(w[2], tap(df, hist, 2),
+                                 mul_add(w[1], tap(df, hist, 1), hn::Mul(w[0], tap(df, hist, 0)))));
     VF value;
     if (!j.stationary) {
       value = mul_add(alpha, h, hn::Mul(beta, wv));
     } else {
-      const VF x00 = field(j.refill_x[c], keys.x0[c], x, 0, y);
-      const VF x10 = field(j.refill_x[c], keys.x0[c], x, 1, y);
-      const VF x01 = field(j.refill_x[c], keys.x1[c], x, 0, y + 1);
-      const VF x11 = field(j.refill_x[c], keys.x1[c], x, 1, y + 1);
-      const VF y00 = field(j.refill_y[c], keys.y0[c], x, 0, y);
-      const VF y01 = field(j.refill_y[c], keys.y1[c], x, 0, y + 1);
+      VF x00, x10, x01, x11, y00, y01;
+      if (rows.x0[c]) {
+        x00 = hn::LoadU(df, rows.x0[c] + x);
+        x10 = hn::LoadU(df, rows.x0[c] + x + 1);
+        x01 = hn::LoadU(df, rows.x1[c] + x);
+        x11 = hn::LoadU(df, rows.x1[c] + x + 1);
+      } else {
+        x00 = field(j.refill_x[c], keys.x0[c], x, 0, y);
+        x10 = field(j.refill_x[c], keys.x0[c], x, 1, y);
+        x01 = field(j.refill_x[c], keys.x1[c], x, 0, y + 1);
+        x11 = field(j.refill_x[c], keys.x1[c], x, 1, y + 1);
+      }
+      if (rows.y0[c]) {
+        y00 = hn::LoadU(df, rows.y0[c] + x);
+        y01 = hn::LoadU(df, rows.y1[c] + x);
+      } else {
+        y00 = field(j.refill_y[c], keys.y0[c], x, 0, y);
+        y01 = field(j.refill_y[c], keys.y1[c], x, 0, y + 1);
+      }
       const VF dx = mul_add(ty, hn::Sub(x01, x11), hn::Mul(b, hn::Sub(x00, x10)));
       const VF d = hn::Mul(kk, mul_add(sqy, hn::Sub(y00, y01), hn::Mul(sqx, dx)));
       value = mul_add(alpha, hn::Add(h, d), hn::Mul(beta, wv));
@@ -211,11 +262,18 @@ HWY_INLINE void fresh_pixels(const detail::coherent_pass_job<float>& j,
                              const detail::coherent_row_keys& keys, std::uint32_t x,
                              std::uint32_t y) {
   const DF df;
+  const DU du;
   const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
   if (j.fresh) {
     const hn::Rebind<std::uint8_t, DF> d8;
     hn::StoreU(hn::Set(d8, std::uint8_t{1}), d8, j.fresh + p);
   }
+  if (j.depth_copy)
+    hn::StoreU(hn::LoadU(df, j.depth + static_cast<std::size_t>(y) * j.depth_stride + x), df,
+               j.depth_copy + p);
+  if (j.ids_copy)
+    hn::StoreU(hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x), du,
+               j.ids_copy + p);
   for (int c = 0; c < j.channels; ++c) {
     const VF value = flush(hn::Mul(hn::Set(df, j.k), field(j.input[c], keys.input[c], x, 0, y)));
     hn::StoreU(value, df, j.history[c] + p);
@@ -230,16 +288,49 @@ HWY_INLINE void fresh_pixels(const detail::coherent_pass_job<float>& j,
 // One pass over a frame (detail::coherent_pass_job): full vectors of each row in
 // lanes, the rest of the row (fewer pixels than lanes) through the scalar pixel code.
 inline void coherent_pass(const detail::coherent_pass_job<float>& j) {
-  const std::size_t lanes = hn::Lanes(coherent_simd::DF());
+  namespace cs = coherent_simd;
+  const std::size_t lanes = hn::Lanes(cs::DF());
   const std::uint32_t full = static_cast<std::uint32_t>(j.width / lanes * lanes);
+  // Row buffers of the white refill fields (stationary filter, with a reference frame).
+  const std::size_t padded = (j.width + 1 + lanes - 1) / lanes * lanes;
+  const bool refill = j.stationary && j.ref_depth;
+  std::vector<float> buffers;
+  float* rows_of[detail::constants::kCoherentMaxChannels][4] = {};  // x0, x1, y0, y1
+  if (refill) {
+    buffers.resize(4 * padded * static_cast<std::size_t>(j.channels));
+    for (int c = 0; c < j.channels; ++c)
+      for (int k = 0; k < 4; ++k)
+        rows_of[c][k] = buffers.data() + (4 * static_cast<std::size_t>(c) + k) * padded;
+  }
   for (std::uint32_t y = 0; y < j.height; ++y) {
     const detail::coherent_row_keys keys = detail::coherent_keys(j, y);
+    cs::refill_rows rows;
+    for (int c = 0; refill && c < j.channels; ++c) {
+      // Row y is the previous row's y + 1 (swapped in), except on the first row.
+      if (y == 0) {
+        if (!j.refill_x[c].plane) cs::white_row(keys.x0[c], j.width + 1, rows_of[c][0]);
+        if (!j.refill_y[c].plane) cs::white_row(keys.y0[c], j.width, rows_of[c][2]);
+      } else {
+        std::swap(rows_of[c][0], rows_of[c][1]);
+        std::swap(rows_of[c][2], rows_of[c][3]);
+      }
+      if (!j.refill_x[c].plane) {
+        cs::white_row(keys.x1[c], j.width + 1, rows_of[c][1]);
+        rows.x0[c] = rows_of[c][0];
+        rows.x1[c] = rows_of[c][1];
+      }
+      if (!j.refill_y[c].plane) {
+        cs::white_row(keys.y1[c], j.width, rows_of[c][3]);
+        rows.y0[c] = rows_of[c][2];
+        rows.y1[c] = rows_of[c][3];
+      }
+    }
     std::uint32_t x = 0;
     for (; x < full; x += static_cast<std::uint32_t>(lanes)) {
       if (j.ref_depth)
-        coherent_simd::pixels(j, keys, x, y);
+        cs::pixels(j, keys, rows, x, y);
       else
-        coherent_simd::fresh_pixels(j, keys, x, y);
+        cs::fresh_pixels(j, keys, x, y);
     }
     for (; x < j.width; ++x) detail::coherent_pixel(j, keys, x, y);
   }

@@ -31,8 +31,10 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hush/coherent.hpp"
@@ -45,6 +47,9 @@
 
 namespace hush {
 namespace glsl {
+
+// Where a field's values come from (the program's HUSH_COHERENT_INPUT / _REFILL).
+enum class coherent_field_mode : std::uint32_t { white = 0, bandpass = 1, plane = 2 };
 
 // The uniform arrays of the pass hold kCoherentFieldUniforms fields per channel (input,
 // refill x, refill y), for every channel a stream may have.
@@ -80,6 +85,13 @@ inline std::vector<glsl_constant> coherent_constant_table() {
                     "fields per channel in the uniforms: input, refill x, refill y"),
       uint_constant("HUSH_COHERENT_FIELD_SLOTS", kCoherentFieldSlots,
                     "field uniforms: fields per channel times the most channels"),
+      uint_constant("HUSH_COHERENT_WHITE", static_cast<std::uint32_t>(coherent_field_mode::white),
+                    "field source: hashed white noise"),
+      uint_constant("HUSH_COHERENT_BANDPASS",
+                    static_cast<std::uint32_t>(coherent_field_mode::bandpass),
+                    "field source: Perlin of CPU-split lattice triples"),
+      uint_constant("HUSH_COHERENT_PLANE", static_cast<std::uint32_t>(coherent_field_mode::plane),
+                    "field source: the caller's image"),
   };
 }
 
@@ -89,6 +101,11 @@ namespace detail {
 // statement. Reads only generated names and the uniforms below.
 constexpr const char* kCoherentBody = R"glsl(
 // ---- Coherent noise pass (hush/glsl/coherent.hpp; hush/detail/coherent_kernel.hpp).
+// HUSH_COHERENT_INPUT and HUSH_COHERENT_REFILL (defined before this text) say where the input
+// and the refill fields come from: HUSH_COHERENT_WHITE (hashed), HUSH_COHERENT_BANDPASS (Perlin
+// of CPU-split lattice triples in hush_planes) or, for the input, HUSH_COHERENT_PLANE (the
+// caller's images in hush_planes); one program per combination, so no lane runs a path it
+// does not need.
 uniform uint hush_first;       // first pixel of this dispatch
 uniform uint hush_count;       // pixels of the frame
 uniform uvec2 hush_size;       // width, height
@@ -102,10 +119,8 @@ uniform uint hush_beta;
 uniform uint hush_k;
 uniform uint hush_scale;       // band-pass scale 1 / sqrt(Perlin variance), float bits
 // Per channel c and field f (0 input, 1 refill x, 2 refill y), index HUSH_COHERENT_FIELDS c + f:
-// mode 0: hashed white noise of frame key `key`; 1: band-pass, Perlin key `key`, lattice
-// triples at `offset` in hush_planes ((width + 1) columns, then (height + 1) rows);
-// 2: a plane of width x height floats at `offset`.
-uniform uint hush_field_mode[HUSH_COHERENT_FIELD_SLOTS];
+// the frame key (white), the Perlin key (band-pass), and the field's offset in hush_planes
+// (band-pass: (width + 1) column triples, then (height + 1) row triples; plane: width x height).
 uniform uint hush_field_key[HUSH_COHERENT_FIELD_SLOTS];
 uniform uint hush_field_offset[HUSH_COHERENT_FIELD_SLOTS];
 layout(std430, binding = 0) readonly buffer hush_depth_b { float hush_depth[]; };
@@ -126,19 +141,21 @@ float hush_coherent_white(uint row_key, uint x) {
   float centred = float(2u * (h >> HUSH_COHERENT_WHITE_SHIFT)) - HUSH_COHERENT_WHITE_CENTRE;
   return centred * HUSH_COHERENT_WHITE_SCALE;
 }
-float hush_coherent_field(uint index, uint x, uint y) {
-  uint mode = hush_field_mode[index], key = hush_field_key[index], base = hush_field_offset[index];
-  if (mode == 0u) return hush_coherent_white(hush_hash32(key, y), x);
-  if (mode == 2u) {
-    float v = uintBitsToFloat(hush_planes[base + y * hush_size.x + x]);
-    return hush_coherent_finite(v) ? v : 0.0;
-  }
+float hush_coherent_bandpass(uint index, uint x, uint y) {
+  uint base = hush_field_offset[index];
   uint tx = base + 3u * x, ty = base + 3u * (hush_size.x + 1u + y);
   float v = hush_perlin2_cells(uvec2(hush_planes[tx], hush_planes[ty]),
                                uvec2(hush_planes[tx + 1u], hush_planes[ty + 1u]),
                                vec2(uintBitsToFloat(hush_planes[tx + 2u]),
-                                    uintBitsToFloat(hush_planes[ty + 2u])), key);
+                                    uintBitsToFloat(hush_planes[ty + 2u])), hush_field_key[index]);
   return v * uintBitsToFloat(hush_scale);
+}
+// Field `index` (input or refill, see HUSH_COHERENT_INPUT / _REFILL) at (x, y), as `mode` says.
+float hush_coherent_field(uint mode, uint index, uint x, uint y) {
+  if (mode == HUSH_COHERENT_WHITE) return hush_coherent_white(hush_hash32(hush_field_key[index], y), x);
+  if (mode == HUSH_COHERENT_BANDPASS) return hush_coherent_bandpass(index, x, y);
+  float v = uintBitsToFloat(hush_planes[hush_field_offset[index] + y * hush_size.x + x]);
+  return hush_coherent_finite(v) ? v : 0.0;
 }
 
 void main() {
@@ -153,8 +170,8 @@ void main() {
   precise float my = hush_coherent_flush(sgn * hush_motion[3u * n + 1u]);
   precise float mz = hush_coherent_flush(sgn * hush_motion[3u * n + 2u]);
   bool visible = false;
-  uint taps[4] = uint[4](0u, 0u, 0u, 0u);
-  precise float w[4] = float[4](0.0, 0.0, 0.0, 0.0);
+  uint t00 = 0u, t10 = 0u, t01 = 0u, t11 = 0u;
+  precise float w00 = 0.0, w10 = 0.0, w01 = 0.0, w11 = 0.0;
   precise float tx = 0.0, ty = 0.0, a = 1.0, b = 1.0;
   if ((hush_flags & 1u) != 0u && hush_coherent_surface(depth) && hush_coherent_finite(mx) &&
       hush_coherent_finite(my) && hush_coherent_finite(mz)) {
@@ -167,24 +184,39 @@ void main() {
       ty = v - j0;
       a = 1.0 - tx;
       b = 1.0 - ty;
-      w[0] = a * b;
-      w[1] = tx * b;
-      w[2] = a * ty;
-      w[3] = tx * ty;
-      uint step_x = width > 1u ? 1u : 0u, step_y = height > 1u ? width : 0u;
-      taps[0] = uint(j0) * width + uint(i0);
-      taps[1] = taps[0] + step_x;
-      taps[2] = taps[0] + step_y;
-      taps[3] = taps[2] + step_x;
+      w00 = a * b;
+      w10 = tx * b;
+      w01 = a * ty;
+      w11 = tx * ty;
+      t00 = uint(j0) * width + uint(i0);
+      t10 = t00 + (width > 1u ? 1u : 0u);
+      t01 = t00 + (height > 1u ? width : 0u);
+      t11 = t01 + (t10 - t00);
       bool use_ids = (hush_flags & 2u) != 0u;
       uint id = use_ids ? hush_ids[n] : 0u;
       bool ok = true;
+      // Taps with weight 0 are never read (a background tap must not matter).
       precise float interpolated = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        if (w[k] == 0.0) continue;
-        float d = hush_ref_depth[taps[k]];
-        if (!hush_coherent_surface(d) || (use_ids && hush_ref_ids[taps[k]] != id)) ok = false;
-        interpolated = interpolated + w[k] * d;
+      float d;
+      if (w00 != 0.0) {
+        d = hush_ref_depth[t00];
+        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_ids[t00] == id);
+        interpolated = interpolated + w00 * d;
+      }
+      if (w10 != 0.0) {
+        d = hush_ref_depth[t10];
+        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_ids[t10] == id);
+        interpolated = interpolated + w10 * d;
+      }
+      if (w01 != 0.0) {
+        d = hush_ref_depth[t01];
+        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_ids[t01] == id);
+        interpolated = interpolated + w01 * d;
+      }
+      if (w11 != 0.0) {
+        d = hush_ref_depth[t11];
+        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_ids[t11] == id);
+        interpolated = interpolated + w11 * d;
       }
       precise float expected = depth - mz;
       precise float tolerance = uintBitsToFloat(hush_eps_rel) * expected + uintBitsToFloat(hush_eps_abs);
@@ -197,24 +229,27 @@ void main() {
   float alpha = uintBitsToFloat(hush_alpha), beta = uintBitsToFloat(hush_beta);
   float kk = uintBitsToFloat(hush_k);
   float sx = sqrt(tx * a), sy = sqrt(ty * b);
+  bool stationary = (hush_flags & 4u) != 0u;
   for (uint c = 0u; c < hush_channels; ++c) {
     uint f = HUSH_COHERENT_FIELDS * c;
-    float wv = hush_coherent_field(f, x, y);
+    float wv = hush_coherent_field(HUSH_COHERENT_INPUT, f, x, y);
     float value = kk * wv;
     if (visible) {
       uint o = c * plane;
-      float h = w[0] * hush_history_in[o + taps[0]] + w[1] * hush_history_in[o + taps[1]] +
-                w[2] * hush_history_in[o + taps[2]] + w[3] * hush_history_in[o + taps[3]];
-      if ((hush_flags & 4u) == 0u) {
+      float h = w00 * hush_history_in[o + t00] + w10 * hush_history_in[o + t10] +
+                w01 * hush_history_in[o + t01] + w11 * hush_history_in[o + t11];
+      if (!stationary) {
         value = alpha * h + beta * wv;
       } else {
-        float x00 = hush_coherent_field(f + 1u, x, y), x10 = hush_coherent_field(f + 1u, x + 1u, y);
-        float x01 = hush_coherent_field(f + 1u, x, y + 1u);
-        float x11 = hush_coherent_field(f + 1u, x + 1u, y + 1u);
-        float y00 = hush_coherent_field(f + 2u, x, y), y01 = hush_coherent_field(f + 2u, x, y + 1u);
+        float x00 = hush_coherent_field(HUSH_COHERENT_REFILL, f + 1u, x, y);
+        float x10 = hush_coherent_field(HUSH_COHERENT_REFILL, f + 1u, x + 1u, y);
+        float x01 = hush_coherent_field(HUSH_COHERENT_REFILL, f + 1u, x, y + 1u);
+        float x11 = hush_coherent_field(HUSH_COHERENT_REFILL, f + 1u, x + 1u, y + 1u);
+        float y00 = hush_coherent_field(HUSH_COHERENT_REFILL, f + 2u, x, y);
+        float y01 = hush_coherent_field(HUSH_COHERENT_REFILL, f + 2u, x, y + 1u);
         float dx = b * (x00 - x10) + ty * (x01 - x11);
-        float d = kk * (sx * dx + sy * (y00 - y01));
-        value = alpha * (h + d) + beta * wv;
+        float dd = kk * (sx * dx + sy * (y00 - y01));
+        value = alpha * (h + dd) + beta * wv;
       }
     }
     hush_history_out[c * plane + n] = hush_coherent_flush(value);
@@ -224,17 +259,27 @@ void main() {
 
 }  // namespace detail
 
-// The compute shader of the pass (#version 430 core): the library, the coherent constants,
-// the body. `hush glsl-export` writes it as hush_coherent_pass.comp.
-inline std::string coherent_source() {
+// The compute shader of the pass (#version 430 core) for input and refill fields taken from
+// `input` and `refill` (white or band-pass; the input also from the caller's plane): the
+// library, the coherent constants, the two field sources, the body. `hush glsl-export`
+// writes the white / white one as hush_coherent_pass.comp.
+inline std::string coherent_source(coherent_field_mode input = coherent_field_mode::white,
+                                   coherent_field_mode refill = coherent_field_mode::white) {
   std::string constants =
       "// ---- Coherent-noise constants (hush::glsl::coherent_constant_table()).\n";
   for (const glsl_constant& k : coherent_constant_table())
     constants += std::string("const ") + (k.kind == glsl_constant::type::u32 ? "uint " : "float ") +
                  k.name + " = " + glsl_literal(k.kind, k.bits[0]) + ";  // " + k.what + "\n";
+  auto source = [](coherent_field_mode m) {
+    return m == coherent_field_mode::white      ? "HUSH_COHERENT_WHITE"
+           : m == coherent_field_mode::bandpass ? "HUSH_COHERENT_BANDPASS"
+                                                : "HUSH_COHERENT_PLANE";
+  };
   return "#version 430 core\n// hush " HUSH_VERSION_STRING
          " coherent-noise pass (hush/glsl/coherent.hpp).\nlayout(local_size_x = " +
-         std::to_string(kLocalSize) + ") in;\n" + library() + constants + detail::kCoherentBody;
+         std::to_string(kLocalSize) + ") in;\n" + library() + constants +
+         "#define HUSH_COHERENT_INPUT " + source(input) + "\n#define HUSH_COHERENT_REFILL " +
+         source(refill) + "\n" + detail::kCoherentBody;
 }
 
 namespace detail {
@@ -248,7 +293,6 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
     frames_[0] = std::make_unique<frame_upload>(gl_, dev.max_buffer_bytes());
     frames_[1] = std::make_unique<frame_upload>(gl_, dev.max_buffer_bytes());
     gl_.GenBuffers(3, buffers_);
-    program_ = link_program(gl_, {{kGlComputeShader, coherent_source()}});
     gl_.check("hush::glsl::coherent: setting up");
   }
   coherent_gpu_state(const coherent_gpu_state&) = delete;
@@ -312,8 +356,13 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
                       : frame_view::depth | motion_view);
     // Fields: white keys, band-pass lattice tables, or the caller's planes.
     std::vector<std::uint32_t> planes;
-    gl_uint mode[kCoherentFieldSlots] = {}, key[kCoherentFieldSlots] = {},
-            offset[kCoherentFieldSlots] = {};
+    gl_uint key[kCoherentFieldSlots] = {}, offset[kCoherentFieldSlots] = {};
+    const bool bandpass = prm.input == coherent_input::bandpass && !s.input;
+    const coherent_field_mode input_mode = s.input    ? coherent_field_mode::plane
+                                           : bandpass ? coherent_field_mode::bandpass
+                                                      : coherent_field_mode::white;
+    const coherent_field_mode refill_mode =
+        bandpass ? coherent_field_mode::bandpass : coherent_field_mode::white;
     const unsigned fx = s.backward ? c::kCoherentFieldBackRefillX : c::kCoherentFieldRefillX;
     const unsigned fy = s.backward ? c::kCoherentFieldBackRefillY : c::kCoherentFieldRefillY;
     for (int ch = 0; ch < prm.channels; ++ch) {
@@ -324,7 +373,6 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
             prm.seed, static_cast<unsigned>(ch), roles[k], st.next_frame);
         key[i] = fk;
         if (k == 0 && s.input) {
-          mode[i] = 2;
           offset[i] = static_cast<gl_uint>(planes.size());
           const image_view<const float>& in = s.input[ch];
           for (std::size_t y = 0; y < in.height; ++y)
@@ -333,8 +381,7 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
               std::memcpy(&bits, &in(x, y), 4);
               planes.push_back(bits);
             }
-        } else if (prm.input == coherent_input::bandpass && !(k > 0 && s.input)) {
-          mode[i] = 1;
+        } else if (bandpass) {
           key[i] = seed_key(fk);  // hush::perlin<2>(fk)'s key
           offset[i] = static_cast<gl_uint>(planes.size());
           const hush::detail::coherent_bandpass bp(fk, prm.bandpass_pixels, width_ + 1,
@@ -365,7 +412,7 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
     gl_.BindBufferBase(kGlShaderStorageBuffer, 6, buffers_[kHistory + 1 - cur_]);
     gl_.BindBufferBase(kGlShaderStorageBuffer, 7, buffers_[kPlanes]);
     // Uniforms: the float parameters as the CPU forms them (coherent_cpu_step).
-    const gl_uint prog = program_.id();
+    const gl_uint prog = program(input_mode, refill_mode);
     gl_int previous = 0;
     gl_.GetIntegerv(kGlCurrentProgram, &previous);
     gl_.UseProgram(prog);
@@ -391,7 +438,6 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
     uf("hush_k", static_cast<float>(coherent_k(alpha)));
     uf("hush_scale", hush::detail::coherent_bandpass_scale());
     const auto slots = static_cast<gl_sizei>(kCoherentFieldSlots);
-    gl_.Uniform1uiv(gl_.GetUniformLocation(prog, "hush_field_mode"), slots, mode);
     gl_.Uniform1uiv(gl_.GetUniformLocation(prog, "hush_field_key"), slots, key);
     gl_.Uniform1uiv(gl_.GetUniformLocation(prog, "hush_field_offset"), slots, offset);
     const gl_int first = gl_.GetUniformLocation(prog, "hush_first");
@@ -417,6 +463,17 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
           for (std::size_t x = 0; x < width_; ++x)
             s.out[ch](x, y) = s.gain * out_[ch * n + y * width_ + x];
     }
+  }
+
+  // The program for these field sources, compiled on first use.
+  gl_uint program(coherent_field_mode input, coherent_field_mode refill) {
+    auto it = programs_.find({input, refill});
+    if (it == programs_.end())
+      it = programs_
+               .emplace(std::make_pair(input, refill),
+                        link_program(gl_, {{kGlComputeShader, coherent_source(input, refill)}}))
+               .first;
+    return it->second.id();
   }
 
   // Throws hush::invalid_argument when `bytes` exceed one storage block.
@@ -455,7 +512,7 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
   int channels_;
   std::unique_ptr<frame_upload> frames_[2];
   gl_uint buffers_[3] = {};
-  gl_program program_;
+  std::map<std::pair<coherent_field_mode, coherent_field_mode>, gl_program> programs_;
   int cur_ = 0;    // history buffer holding the current history
   int frame_ = 0;  // frame_upload the next frame goes to (the other holds the reference)
   bool ref_ids_ = false;
