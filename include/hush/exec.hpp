@@ -23,6 +23,12 @@
 //    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
 //  - glsl: within the GLSL tolerance stated by the backend
 //    (backends/glsl/include/hush/glsl/device.hpp).
+//  - samples (core/samples.hpp): positions plus optional per-sample
+//    footprints and normals. Each given span must have one element per
+//    position, and only inputs the noise takes (Noise::takes_footprint,
+//    Noise::takes_normal) may be given, else hush::invalid_argument naming
+//    the span. scalar computes noise.sample_value<float>(samples.at(i));
+//    with positions only, exactly what the points overload computes.
 //  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
 //    after validation, and no output element is left unwritten.
 #ifndef HUSH_EXEC_HPP
@@ -35,6 +41,7 @@
 
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
+#include "hush/core/samples.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/simd/dispatch.hpp"  // detail::simd_kernel and its specialisations
@@ -134,6 +141,53 @@ void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* ou
   }
 }
 
+// The scalar loop over samples with extra inputs (footprints or normals).
+template <class Noise>
+void scalar_samples(const Noise& n, const samples<Noise::dimension>& s, float* out,
+                    vec<float, Noise::dimension>* grad) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const sample_input<Noise::dimension> in = s.at(i);
+    if (grad) {
+      const auto r = n.template sample_value_and_gradient<float>(in);
+      out[i] = r.value;
+      grad[i] = r.gradient;
+    } else {
+      out[i] = n.template sample_value<float>(in);
+    }
+  }
+}
+
+// Whether the SIMD kernels of Noise take per-sample inputs (simd_kernel<Noise>::samples).
+template <class Kernel, class = void>
+struct has_simd_samples : std::false_type {};
+template <class Kernel>
+struct has_simd_samples<Kernel, std::void_t<decltype(Kernel::has_samples)>>
+    : std::integral_constant<bool, Kernel::has_samples> {};
+
+// Samples with extra inputs on backend ex; positions-only batches go to run_points.
+template <class Noise, class Exec>
+void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  // Positions only (always so for a noise that takes no extras: validated) is a points batch.
+  constexpr bool kExtras = takes_footprint<Noise>::value || takes_normal<Noise>::value;
+  if (!kExtras || (!s.has_footprints() && !s.has_normals())) {
+    run_points(n, ex, s.positions, out, grad);
+    return;
+  }
+  if constexpr (kExtras) {
+    if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
+      scalar_samples(n, s, out, grad);
+    } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+      if constexpr (has_simd_samples<simd_kernel<Noise>>::value)
+        simd_kernel<Noise>::samples(n, s, out, grad);
+      else
+        scalar_samples(n, s, out, grad);
+    } else {
+      ex.device.evaluate_samples(n, s, out, grad);
+    }
+  }
+}
+
 template <class Noise, class Exec>
 void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, float* out,
               vec<float, Noise::dimension>* grad) {
@@ -168,6 +222,28 @@ void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> poin
   detail::require_same_size("hush::evaluate", "gradients", gradients.size(), points.size());
   if (points.empty()) return;
   detail::run_points(noise, ex, points, out.data(), gradients.data());
+}
+
+// Values of `noise` at `s` (positions with optional footprints and normals,
+// core/samples.hpp) into `out` (one per position), on backend `ex`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
+              span<float> out) {
+  detail::validate_samples<Noise>("hush::evaluate", s);
+  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
+  if (s.size() == 0) return;
+  detail::run_samples(noise, ex, s, out.data(), nullptr);
+}
+
+// Values and gradients (d value / d position, the footprint held fixed) at `s`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
+              span<float> out, detail::gradient_span<Noise> gradients) {
+  detail::validate_samples<Noise>("hush::evaluate", s);
+  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
+  detail::require_same_size("hush::evaluate", "gradients", gradients.size(), s.size());
+  if (s.size() == 0) return;
+  detail::run_samples(noise, ex, s, out.data(), gradients.data());
 }
 
 // Values of `noise` on the uniform grid `g` into `out` (g.count() elements,

@@ -13,84 +13,6 @@
 #ifndef HUSH_HUSH_HPP
 #define HUSH_HUSH_HPP
 
-// ---- begin hush/coherent.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Coherent noise (Michael Kass and Davide Pesare, "Coherent Noise for
-// Non-Photorealistic Rendering", SIGGRAPH 2011): screen-space noise that moves
-// with the surfaces of an animated scene. Each frame alone looks like white
-// (or band-pass) noise; from frame to frame the noise follows the motion given
-// by the renderer's depth and velocity, so it is neither flickering white
-// noise nor a "shower door" pattern fixed to the screen. A scene-driven noise
-// (hush::frame, core/frame.hpp): it reads per-pixel depth and velocity, and
-// object ids when given.
-//
-//   hush::coherent_params prm;                 // alpha 0.98, stationary filter, 1 channel
-//   hush::coherent_stream stream{prm};         // the history, owned by the caller
-//   for (each frame) {
-//     hush::frame f;                           // views of the renderer's G-buffer
-//     f.depth = {depth, w, h};  f.velocity = {velocity, w, h};  f.object_id = {ids, w, h};
-//     stream.advance(hush::exec::simd, f, hush::image_view<float>{out, w, h});
-//   }
-//   // Offline, time-symmetric (needs forward velocity too):
-//   hush::coherent_symmetric(hush::exec::simd, prm, frames, outputs);
-//
-// The filters (docs/coherent.md derives every claim below):
-//  - causal, paper: Kass & Pesare eq. 7. c_0 = k(alpha) w_0 (eq. 6); then per pixel
-//    c_i = alpha c_{i-1}(x', y') + (1 - alpha) w_i where the surface point was visible in
-//    frame i-1 at (x', y') (bilinear), else k(alpha) w_i (disocclusion, sec. 3.2).
-//    Stationary for still scenes; under sub-pixel motion the bilinear resampling of
-//    c_{i-1} averages neighbours, so moving surfaces lose variance and sharpness frame
-//    after frame (HARD_CASES row 13).
-//  - causal, stationary (the default): the same plus a refill term, fresh noise shaped
-//    like exactly what bilinear resampling removed (its spectrum 1 - |H|^2): the output
-//    keeps the variance and spectrum of the input on moving surfaces as on still ones
-//    (exactly for translation, to second order in the motion's gradient otherwise).
-//  - time-symmetric (sec. 3.3): forward and backward causal passes over the same w,
-//    summed, minus (1 - alpha) w_i: impulse response (1 - alpha) alpha^|i|. With the
-//    k(alpha) start of both passes every frame, the first and last included, has the
-//    same variance.
-// Contract:
-//  - output: per channel, variance 1 for white input (the filters' variance is divided
-//    out: gain 1 / k(alpha) causal, 1 / sqrt((1 - alpha)(1 + alpha^2) / (1 + alpha))
-//    symmetric), mean 0; stationary filter: on still and moving surfaces alike.
-//    Channels are independent fields sharing the reprojection.
-//  - input w_i: white (a hash of seed, channel, frame index and pixel: deterministic,
-//    independent per frame, uniform with variance 1), band-pass (Perlin noise in screen
-//    space, cells of bandpass_pixels pixels, per-frame seed and lattice offset, scaled to
-//    variance 1), or the caller's images (advance's `input`; NaN/Inf read as 0).
-//  - disocclusion: a pixel takes fresh noise k(alpha) w_i (the stationary variance) when
-//    its depth or motion is not finite, its depth is not positive, its reprojection leaves
-//    the reference frame's outer pixel centres, a bilinear tap shows no surface or (with
-//    object ids in both frames) another object, or the interpolated depth differs from
-//    the expected one by more than epsilon * depth + epsilon_absolute (both ways: the paper
-//    tests only "farther"; a nearer one means the footprint straddles an edge).
-//  - robust: NaN/Inf/negative depth or velocity never reach the history, which holds
-//    finite values only (tested, also after deserialisation); no denormal is formed at
-//    any alpha in [0, 1).
-//  - float vs the double reference (basic_coherent_stream<double>): the reprojection is
-//    the same float computation; values differ by rounding only, a recursion contracting
-//    by alpha: within 2^-18 / (1 - alpha) (tests/coherent_test.cpp; measured far below).
-//  - backends: exec::scalar is the reference; exec::simd equals it bit for bit under
-//    HUSH_STRICT_FP (hush/simd/coherent-inl.h); exec::glsl{device} (include
-//    hush/glsl/coherent.hpp) keeps the history on the GPU; tolerance there.
-#ifndef HUSH_COHERENT_HPP
-#define HUSH_COHERENT_HPP
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <cstring>
-#include <functional>
-#include <limits>
-#include <memory>
-#include <string>
-#include <type_traits>
-#include <utility>
-#include <vector>
-
 // ---- begin hush/config.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -208,39 +130,52 @@ inline void require_in_range(const char* where, const std::string& name, const T
 
 #endif  // HUSH_CORE_ERROR_HPP
 // ---- end hush/core/error.hpp
-// ---- begin hush/core/frame.hpp
+// ---- begin hush/core/footprint.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// hush::frame: what a renderer already has for one frame, as views of its
-// G-buffer channels, for the scene-driven noises (coherent noise, Kass &
-// Pesare 2011; NPR Gabor noise, Benard et al. 2010). No scene graph, camera or
-// file format: pointers to pixels the caller owns, valid for the call.
+// hush::footprint<D>: a sample's filter footprint in noise space, built from
+// what a shader has at that sample (DESIGN.md "Per-sample inputs").
 //
-// Conventions (the same as examples/scene/gbuffer.hpp, which produces them):
-//  - width x height pixels, row y at data + y * stride (elements), row 0 at
-//    the TOP of the image; pixel (x, y) has its centre at (x + 0.5, y + 0.5)
-//    in screen pixels, x right, y down.
-//  - depth: linear view depth (distance from the camera plane along the view
-//    axis), > 0 where a surface is seen. +inf (background), NaN, 0 or
-//    negative values mean "no usable surface here": noises treat the pixel as
-//    disoccluded (coherent noise gives it fresh noise).
-//  - velocity (backward 3D velocity): (dx, dy) in pixels per frame and dz in
-//    depth units per frame, such that the surface point seen at pixel centre p
-//    in this frame was at p - (dx, dy) with depth depth - dz in the previous
-//    frame. NaN or +-Inf in any component: no previous position (disoccluded).
-//  - forward_velocity: the same towards the NEXT frame: the point seen at p
-//    is at p + (dx, dy) with depth depth + dz in frame i + 1 (what a backward
-//    pass over a sequence needs; examples/scene writes both).
-//  - object_id: an id per pixel (examples/scene: 0 = background); two pixels
-//    show the same object when their ids are equal.
-//  - triangle_id: the triangle index within the object (NPR Gabor noise).
-// NPR Gabor noise will add its triangle list beside these views.
-#ifndef HUSH_CORE_FRAME_HPP
-#define HUSH_CORE_FRAME_HPP
+// A renderer knows, per sample, how noise-space position changes from one
+// pixel to the next: the screen-to-noise Jacobian J = [dP/dx  dP/dy] (D x 2;
+// in GLSL, dFdx(P) and dFdy(P)), or at least a width w, the noise-space size
+// of one pixel. The footprint stores the one quantity every filtering noise
+// needs from that, the symmetric positive semi-definite D x D matrix
+//
+//   S = J J^T = dP/dx dP/dx^T + dP/dy dP/dy^T     (from derivatives), or
+//   S = w^2 I                                      (isotropic width w),
+//
+// in squared noise units per pixel: a screen offset d (in pixels) moves the
+// noise position by J d, and |J^T u|^2 = u^T S u is the squared pixel extent
+// along unit direction u. A Gaussian pixel filter of standard deviation sigma
+// pixels maps to the noise-space Gaussian of covariance sigma^2 S, and its
+// frequency response at noise frequency k is exp(-2 pi^2 sigma^2 k^T S k).
+// hush's noises filter with sigma = constants::kPixelFilterSigma (1/2 pixel)
+// unless they say otherwise; each states which bands or kernels it keeps.
+//
+// The default footprint is a point (S = 0): nothing is filtered.
+//
+// Robustness (HARD_CASES row 12; footprints are per-sample data, so nothing
+// here throws): every input gives a finite footprint.
+//  - NaN or +-Inf in a derivative or width: the footprint is "everything",
+//    S = W^2 I with W = constants::kFootprintMaxWidth (2^32, the lattice's
+//    period: nothing narrower survives filtering), so filtering noises return
+//    their mean (0) there, the limit of an ever larger footprint.
+//  - a footprint wider than W is scaled down (same shape) until its largest
+//    entry is W^2 (for derivatives: until no component exceeds W), so its
+//    largest width lies in [W, sqrt(D) W]: again everything is filtered.
+//  - zero, rank 1 (e.g. dP/dy = 0, an edge-on surface) and nearly singular
+//    footprints are stored as they are; consumers must accept singular S.
+//  - a negative width means its magnitude.
+// S is formed in double and rounded to float once; entries lie in
+// [-2^64, 2^64], so consumers compute determinants and inverses in double,
+// or scale first (float overflows beyond 2^128).
+#ifndef HUSH_CORE_FOOTPRINT_HPP
+#define HUSH_CORE_FOOTPRINT_HPP
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <string>
 
 // ---- begin hush/core/vec.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
@@ -361,6 +296,373 @@ struct value_gradient {
 
 #endif  // HUSH_CORE_VEC_HPP
 // ---- end hush/core/vec.hpp
+// ---- begin hush/detail/constants.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The single source of every numeric constant hush's algorithms use: hash
+// multipliers, gradient tables, normalisation factors. The scalar path, the
+// SIMD kernels and the generated GLSL all read these; no number is typed twice.
+// This header includes nothing, so generators can use it without the library.
+#ifndef HUSH_DETAIL_CONSTANTS_HPP
+#define HUSH_DETAIL_CONSTANTS_HPP
+
+namespace hush {
+namespace detail {
+namespace constants {
+
+// ---- hash32: Chris Wellons' "lowbias32" integer finalizer (public domain,
+// "Prospecting for hash functions", 2018): x ^= x >> 16; x *= M1; x ^= x >> 15;
+// x *= M2; x ^= x >> 16. Measured avalanche bias 0.17 (on the scale where 0 is
+// ideal), better than MurmurHash3's fmix32; uses only 32-bit unsigned ops, so
+// GLSL 330 `uint` arithmetic reproduces it bit for bit.
+constexpr unsigned kHashShift1 = 16;
+constexpr unsigned kHashMul1 = 0x7feb352dU;
+constexpr unsigned kHashShift2 = 15;
+constexpr unsigned kHashMul2 = 0x846ca68bU;
+constexpr unsigned kHashShift3 = 16;
+
+// ---- Lattice hashing: a cell (i, j, k) is first folded to one word as
+// key ^ i*Px ^ rotl(j*Py, Ry) ^ rotl(k*Pz, Rz) (odd multipliers are bijections
+// mod 2^32, so each axis alone never collides), then finished with hash32.
+// The rotations matter: every odd P maps a lag of 2^31 to a flip of the top
+// bit alone, so with a plain xor fold the field repeats exactly at lag
+// (2^31, 2^31); and hash32's first step collapses the difference 0x80008000
+// to a single top-bit flip, so a rotation of 16 still leaves a correlation of
+// 0.56 there. Ry = 11, Rz = 21 (no rotation or difference of rotations is 16)
+// keep the gradient correlation at every lag 2^k, k = 0 ... 31, on every
+// subset of axes at the sampling noise floor (scan of 4e4 cells per lag;
+// tests/perlin_test.cpp checks the lags of HARD_CASES row 7).
+// The multipliers are the 32-bit xxHash primes 1, 2 and 3.
+constexpr unsigned kLatticePrimeX = 0x9E3779B1U;
+constexpr unsigned kLatticePrimeY = 0x85EBCA77U;
+constexpr unsigned kLatticePrimeZ = 0xC2B2AE3DU;
+constexpr unsigned kLatticeRotateY = 11;
+constexpr unsigned kLatticeRotateZ = 21;
+
+// Stream separation for derived seeds (octaves, RNG streams): added before
+// hashing so that seed 0 / stream 0 do not map to the fixed point of hash32(0).
+constexpr unsigned kGoldenGamma = 0x9E3779B9U;  // 2^32 / golden ratio
+
+// ---- Improved Perlin noise (Perlin 2002, "Improving Noise").
+// Quintic fade s(t) = 6t^5 - 15t^4 + 10t^3 (C2 at the lattice; Perlin 2002 sec. 3).
+constexpr double kFade5 = 6.0;
+constexpr double kFade4 = -15.0;
+constexpr double kFade3 = 10.0;
+
+// 2D gradients: the 8 unit vectors at multiples of 45 degrees, selected by the
+// top 3 bits of the lattice hash (exactly uniform). E[g g^T] = I/2.
+constexpr double kInvSqrt2 = 0.70710678118654752440;
+constexpr int kPerlin2GradCount = 8;
+constexpr double kPerlin2GradX[kPerlin2GradCount] = {1.0,  kInvSqrt2,  0.0, -kInvSqrt2,
+                                                     -1.0, -kInvSqrt2, 0.0, kInvSqrt2};
+constexpr double kPerlin2GradY[kPerlin2GradCount] = {0.0, kInvSqrt2,  1.0,  kInvSqrt2,
+                                                     0.0, -kInvSqrt2, -1.0, -kInvSqrt2};
+constexpr unsigned kPerlin2GradShift = 29;  // index = hash >> 29
+
+// 3D gradients: Perlin's 12 cube-edge midpoints (length sqrt 2). Perlin 2002
+// pads the table to 16 by repeating four, which makes the y axis carry 20% more
+// variance; hush instead maps the top 16 hash bits onto 12 buckets,
+// index = ((hash >> 16) * 12) >> 16 (bucket sizes differ by 1 in 5461), so
+// E[g g^T] = (2/3) I to within 2e-4.
+constexpr int kPerlin3GradCount = 12;
+constexpr double kPerlin3GradX[kPerlin3GradCount] = {1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0};
+constexpr double kPerlin3GradY[kPerlin3GradCount] = {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1};
+constexpr double kPerlin3GradZ[kPerlin3GradCount] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1};
+constexpr unsigned kPerlin3IndexShift = 16;
+
+// Output scale. The raw noise sum_i w_i g_i.(x - c_i) is bounded by
+// B = max over the cell of sum_i w_i max_g g.(x - c_i) (each corner taking its
+// best gradient; some lattice cell realises any assignment, so B is attained).
+// 2D, unit gradients: the maximum is at the cell centre, B = sqrt(2)/2.
+// 3D, edge gradients: the maximum is NOT at the centre (value 1 there) but at
+// (1/2, 0.35526, 0.48149) and its mirror images, B = 1.0363538112118029,
+// found by grid search plus refinement and re-derived by
+// tests/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
+// exactly [-1, 1].
+constexpr double kPerlin2RawBound = 0.70710678118654752440;  // sqrt(2)/2
+constexpr double kPerlin3RawBound = 1.0363538112118029;
+constexpr double kPerlin2Scale = 1.0 / kPerlin2RawBound;
+constexpr double kPerlin3Scale = 1.0 / kPerlin3RawBound;
+
+// Variance of the raw noise over space and seeds, derived in docs/design.md:
+// Var = c * D * (2 I0)^(D-1) * (2 I2) with I0 = int_0^1 (1-s)^2 = 181/462,
+// I2 = int_0^1 (1-s)^2 t^2 = 535/18018, c = E[g_k^2] (1/2 in 2D, 2/3 in 3D).
+// The output's variance is this times the scale squared.
+constexpr double kPerlin2RawVariance = 96835.0 / 2081079.0;       // 0.046531...
+constexpr double kPerlin3RawVariance = 35054270.0 / 480729249.0;  // 0.072918...
+constexpr double kPerlin2Variance = kPerlin2RawVariance * kPerlin2Scale * kPerlin2Scale;
+constexpr double kPerlin3Variance = kPerlin3RawVariance * kPerlin3Scale * kPerlin3Scale;
+
+// ---- Footprints (core/footprint.hpp).
+// The widest footprint kept, in noise units: 2^32, the lattice's period
+// (core/lattice.hpp). A pixel that wide covers every lattice cell, so
+// filtering leaves nothing but the mean; wider, NaN or infinite footprints
+// are stored as this one. Squared (2^64) it is still a normal float.
+constexpr double kFootprintMaxWidth = 4294967296.0;
+// Standard deviation, in pixels, of the Gaussian pixel filter the filtering
+// noises apply through the footprint: its amplitude response is
+// exp(-2 pi^2 sigma^2 k^2) = 0.29 at the Nyquist frequency (1/2 cycle per
+// pixel) and 0.0072 at 1 cycle per pixel.
+constexpr double kPixelFilterSigma = 0.5;
+
+// ---- Poisson sampling (core/rng.hpp).
+// Means below kPoissonInversionLimit use sequential inversion (expected
+// mean + 1 steps); larger means use Hoermann's PTRS transformed rejection
+// ("The transformed rejection method for generating Poisson random
+// variables", Insurance: Mathematics and Economics 12, 1993), whose
+// acceptance rate exceeds 0.88 for every mean >= 10.
+constexpr double kPoissonInversionLimit = 12.0;
+constexpr double kPoissonMaxMean = 1e9;                // beyond it, uint32 counts could overflow
+constexpr double kPtrsB0 = 0.931, kPtrsB1 = 2.53;      // b = B0 + B1 sqrt(mu)
+constexpr double kPtrsA0 = -0.059, kPtrsA1 = 0.02483;  // a = A0 + A1 b
+constexpr double kPtrsAlpha0 = 1.1239, kPtrsAlpha1 = 1.1328, kPtrsAlphaB = 3.4;
+constexpr double kPtrsVr0 = 0.9277, kPtrsVr1 = 3.6224, kPtrsVrB = 2.0;
+constexpr double kPtrsKOffset = 0.43;
+constexpr double kPtrsUsAccept = 0.07, kPtrsUsReject = 0.013;
+// Stirling's series for ln(n!) = (n + 1/2) ln n - n + ln(2 pi)/2 + sum_k c_k / n^(2k-1),
+// c_k = B_2k / (2k (2k - 1)); used for n > kLogFactorialTable, where the
+// first omitted term is below 1.1e-15 absolute (2.3e-17 relative) at n = 21.
+constexpr double kHalfLog2Pi = 0.91893853320467274178;
+constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
+constexpr int kLogFactorialTable = 20;
+
+// ---- Coherent noise (Kass & Pesare 2011, "Coherent Noise for Non-Photorealistic
+// Rendering"; include/hush/coherent.hpp, docs/coherent.md).
+// White noise: w = kCoherentWhiteScale * (2 (h >> kCoherentWhiteShift) + 1 - 2^24) for a
+// 32-bit hash h: the odd multiples of 2^-24 in (-1, 1), times sqrt(3); mean exactly 0,
+// variance 1 - 2^-48 (a discrete uniform over 2^24 values), never denormal.
+constexpr unsigned kCoherentWhiteShift = 8;
+constexpr double kCoherentWhiteScale = 1.7320508075688772935 * 0x1p-24;  // sqrt(3) * 2^-24
+constexpr double kCoherentWhiteCentre = 16777215.0;                      // 2^24 - 1
+// Pixel hash of a field: hash32(hash32(frame_key, y) ^ x * kCoherentPixelPrime). The odd
+// multiplier (the 32-bit xxHash prime 4) scatters the columns, so two rows' keys can never
+// line up a run of pixels (a plain xor of x would repeat shifted row segments).
+constexpr unsigned kCoherentPixelPrime = 0x27D4EB2FU;
+// Fields per channel, each with its own stream: the input w, the refill fields of the
+// stationary filter (x and y; separate ones for the backward pass of the symmetric filter),
+// and the band-pass input's lattice offsets.
+constexpr unsigned kCoherentFieldInput = 0;
+constexpr unsigned kCoherentFieldRefillX = 1;
+constexpr unsigned kCoherentFieldRefillY = 2;
+constexpr unsigned kCoherentFieldBackRefillX = 3;
+constexpr unsigned kCoherentFieldBackRefillY = 4;
+constexpr unsigned kCoherentFields = 5;
+// Parameter defaults and limits. alpha = 0.98 is the paper's (sec. 4). epsilon is relative:
+// the previous depth must lie within epsilon * e of the expected depth e (2% accepts bilinear
+// interpolation of depth across a pixel of a plane tilted up to ~60 degrees and rejects a
+// surface 2% farther; the same tolerance as the coherence metrics, docs/coherence.md).
+constexpr double kCoherentDefaultAlpha = 0.98;
+constexpr double kCoherentDefaultEpsilon = 0.02;
+constexpr double kCoherentDefaultBandpassPixels = 4.0;  // band-pass input: Perlin cell, pixels
+constexpr double kCoherentMaxBandpassPixels = 1024.0;
+constexpr double kCoherentMaxSmoothing = 2.0;     // output Gaussian sigma, pixels
+constexpr double kCoherentSmoothingRadius = 3.0;  // kernel radius in sigmas
+constexpr int kCoherentMaxChannels = 4;
+constexpr unsigned kCoherentMaxSide = 16384;  // frame side limit (keeps pixel indices in int32)
+
+}  // namespace constants
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_CONSTANTS_HPP
+// ---- end hush/detail/constants.hpp
+
+namespace hush {
+
+template <int D>
+class footprint {
+  static_assert(D == 2 || D == 3, "hush::footprint is 2D or 3D");
+
+ public:
+  static constexpr int dimension = D;
+  // Stored entries: the upper triangle of S, row by row
+  // (2D: xx, xy, yy; 3D: xx, xy, xz, yy, yz, zz).
+  static constexpr int kEntries = D * (D + 1) / 2;
+
+  // A point sample: S = 0.
+  constexpr footprint() = default;
+
+  // One pixel spans `width` noise units in every direction: S = width^2 I.
+  static footprint isotropic(double width) {
+    footprint f;
+    double w = std::fabs(width);
+    if (!(w <= kMaxWidth())) w = kMaxWidth();  // NaN, Inf and beyond the cap
+    for (int a = 0; a < D; ++a) f.s_[index(a, a)] = static_cast<float>(w * w);
+    return f;
+  }
+
+  // From the screen-space derivatives of the noise-space position (noise
+  // units per pixel): S = dpdx dpdx^T + dpdy dpdy^T.
+  static footprint from_derivatives(const vec<double, D>& dpdx, const vec<double, D>& dpdy) {
+    if (!finite(dpdx) || !finite(dpdy)) return isotropic(kMaxWidth());
+    double m = 0;  // largest magnitude: both columns are scaled by one factor to the cap
+    for (int a = 0; a < D; ++a) m = std::max({m, std::fabs(dpdx[a]), std::fabs(dpdy[a])});
+    const double k = m > kMaxWidth() ? kMaxWidth() / m : 1.0;
+    double upper[kEntries];
+    for (int r = 0; r < D; ++r)
+      for (int c = r; c < D; ++c)
+        upper[index(r, c)] = (k * dpdx[r]) * (k * dpdx[c]) + (k * dpdy[r]) * (k * dpdy[c]);
+    return from_upper(upper);
+  }
+  static footprint from_derivatives(const vec<float, D>& dpdx, const vec<float, D>& dpdy) {
+    return from_derivatives(vec_cast<double>(dpdx), vec_cast<double>(dpdy));
+  }
+
+  // From a symmetric matrix S given by its upper triangle (the stored layout).
+  // Non-finite entries give "everything"; a matrix with an entry beyond W^2
+  // is scaled down until its largest entry is W^2. Not checked for positive
+  // semi-definiteness: pass one.
+  static footprint from_covariance(const float (&upper)[kEntries]) {
+    double u[kEntries];
+    for (int e = 0; e < kEntries; ++e) u[e] = static_cast<double>(upper[e]);
+    return from_upper(u);
+  }
+
+  // S(r, c), r and c in 0 ... D-1.
+  float covariance(int r, int c) const { return s_[r <= c ? index(r, c) : index(c, r)]; }
+  // The stored upper triangle (kEntries floats; batch layouts copy it as is).
+  const float* data() const { return s_; }
+
+  // True when S = 0 (nothing to filter).
+  bool is_point() const {
+    for (float v : s_)
+      if (v != 0.0f) return false;
+    return true;
+  }
+
+  // The pixel's extent along unit direction u: sqrt(u^T S u), in noise units.
+  double width_along(const vec<double, D>& u) const {
+    double q = 0;
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c) q += u[r] * static_cast<double>(covariance(r, c)) * u[c];
+    return std::sqrt(std::max(q, 0.0));
+  }
+
+  // The largest and smallest extent: the square roots of the largest and
+  // smallest eigenvalues of S (the footprint ellipse's semi-axes), computed in
+  // double in closed form (2D: the quadratic; 3D: the trigonometric solution
+  // of the characteristic cubic), to within 1e-12 relative of the largest.
+  double max_width() const { return std::sqrt(std::max(eigenvalues()[D - 1], 0.0)); }
+  double min_width() const { return std::sqrt(std::max(eigenvalues()[0], 0.0)); }
+
+  // The footprint of the same pixel for a noise evaluated at s * P (a band of
+  // frequency s): S s^2, capped like every footprint.
+  footprint scaled(double s) const {
+    double u[kEntries];
+    for (int e = 0; e < kEntries; ++e) u[e] = static_cast<double>(s_[e]) * s * s;
+    return from_upper(u);
+  }
+
+  // Eigenvalues of S in ascending order (double; clamped below at 0 is up to the caller).
+  vec<double, D> eigenvalues() const {
+    if constexpr (D == 2) {
+      const double a = s_[0], b = s_[1], c = s_[2];
+      const double mean = 0.5 * (a + c), half = 0.5 * (a - c);
+      const double r = std::hypot(half, b);
+      return {mean - r, mean + r};
+    } else {
+      return symmetric3_eigenvalues();
+    }
+  }
+
+  friend bool operator==(const footprint& x, const footprint& y) {
+    for (int e = 0; e < kEntries; ++e)
+      if (!(x.s_[e] == y.s_[e])) return false;
+    return true;
+  }
+  friend bool operator!=(const footprint& x, const footprint& y) { return !(x == y); }
+
+ private:
+  static constexpr double kMaxWidth() { return detail::constants::kFootprintMaxWidth; }
+  static constexpr double kMaxVariance() { return kMaxWidth() * kMaxWidth(); }
+  // Position of S(r, c), r <= c, in the upper triangle stored row by row.
+  static constexpr int index(int r, int c) { return r * D - r * (r - 1) / 2 + (c - r); }
+  static bool finite(const vec<double, D>& v) {
+    for (int a = 0; a < D; ++a)
+      if (!std::isfinite(v[a])) return false;
+    return true;
+  }
+  // The footprint of upper triangle u (double): "everything" when an entry is
+  // not finite, scaled down (shape kept) when an entry exceeds W^2, then
+  // rounded to float once.
+  static footprint from_upper(const double (&u)[kEntries]) {
+    double m = 0;
+    for (int e = 0; e < kEntries; ++e) {
+      if (!std::isfinite(u[e])) return isotropic(kMaxWidth());
+      m = std::max(m, std::fabs(u[e]));
+    }
+    const double k = m > kMaxVariance() ? kMaxVariance() / m : 1.0;
+    footprint f;
+    for (int e = 0; e < kEntries; ++e) f.s_[e] = static_cast<float>(k * u[e]);
+    return f;
+  }
+
+  // Smith's closed form for a symmetric 3x3 matrix (Smith 1961, "Eigenvalues of a
+  // symmetric 3 x 3 matrix", CACM 4(4)): the trigonometric roots of the
+  // characteristic cubic of B = (S - q I) / p.
+  vec<double, 3> symmetric3_eigenvalues() const {
+    const double a00 = s_[0], a01 = s_[1], a02 = s_[2], a11 = s_[3], a12 = s_[4], a22 = s_[5];
+    const double off = a01 * a01 + a02 * a02 + a12 * a12;
+    const double q = (a00 + a11 + a22) / 3.0;
+    const double d0 = a00 - q, d1 = a11 - q, d2 = a22 - q;
+    const double p2 = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * off;
+    if (p2 <= 0.0) return {q, q, q};  // a multiple of I
+    const double p = std::sqrt(p2 / 6.0);
+    // det(B) / 2 with B = (S - q I) / p.
+    const double b00 = d0 / p, b11 = d1 / p, b22 = d2 / p, b01 = a01 / p, b02 = a02 / p,
+                 b12 = a12 / p;
+    const double det = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
+                       b02 * (b01 * b12 - b11 * b02);
+    const double r = std::clamp(det / 2.0, -1.0, 1.0);
+    const double phi = std::acos(r) / 3.0;
+    constexpr double kTwoPiOver3 = 2.0943951023931954923;
+    const double hi = q + 2.0 * p * std::cos(phi);
+    const double lo = q + 2.0 * p * std::cos(phi + kTwoPiOver3);
+    const double mid = 3.0 * q - hi - lo;
+    return {lo, mid, hi};
+  }
+
+  float s_[kEntries] = {};
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_FOOTPRINT_HPP
+// ---- end hush/core/footprint.hpp
+// ---- begin hush/core/frame.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::frame: what a renderer already has for one frame, as views of its
+// G-buffer channels, for the scene-driven noises (coherent noise, Kass &
+// Pesare 2011; NPR Gabor noise, Benard et al. 2010). No scene graph, camera or
+// file format: pointers to pixels the caller owns, valid for the call.
+//
+// Conventions (the same as examples/scene/gbuffer.hpp, which produces them):
+//  - width x height pixels, row y at data + y * stride (elements), row 0 at
+//    the TOP of the image; pixel (x, y) has its centre at (x + 0.5, y + 0.5)
+//    in screen pixels, x right, y down.
+//  - depth: linear view depth (distance from the camera plane along the view
+//    axis), > 0 where a surface is seen. +inf (background), NaN, 0 or
+//    negative values mean "no usable surface here": noises treat the pixel as
+//    disoccluded (coherent noise gives it fresh noise).
+//  - velocity (backward 3D velocity): (dx, dy) in pixels per frame and dz in
+//    depth units per frame, such that the surface point seen at pixel centre p
+//    in this frame was at p - (dx, dy) with depth depth - dz in the previous
+//    frame. NaN or +-Inf in any component: no previous position (disoccluded).
+//  - forward_velocity: the same towards the NEXT frame: the point seen at p
+//    is at p + (dx, dy) with depth depth + dz in frame i + 1 (what a backward
+//    pass over a sequence needs; examples/scene writes both).
+//  - object_id: an id per pixel (examples/scene: 0 = background); two pixels
+//    show the same object when their ids are equal.
+//  - triangle_id: the triangle index within the object (NPR Gabor noise).
+// NPR Gabor noise will add its triangle list beside these views.
+#ifndef HUSH_CORE_FRAME_HPP
+#define HUSH_CORE_FRAME_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
 // ---- begin hush/core/views.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -587,164 +889,6 @@ struct frame {
 
 #include <cstdint>
 
-// ---- begin hush/detail/constants.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The single source of every numeric constant hush's algorithms use: hash
-// multipliers, gradient tables, normalisation factors. The scalar path, the
-// SIMD kernels and the generated GLSL all read these; no number is typed twice.
-// This header includes nothing, so generators can use it without the library.
-#ifndef HUSH_DETAIL_CONSTANTS_HPP
-#define HUSH_DETAIL_CONSTANTS_HPP
-
-namespace hush {
-namespace detail {
-namespace constants {
-
-// ---- hash32: Chris Wellons' "lowbias32" integer finalizer (public domain,
-// "Prospecting for hash functions", 2018): x ^= x >> 16; x *= M1; x ^= x >> 15;
-// x *= M2; x ^= x >> 16. Measured avalanche bias 0.17 (on the scale where 0 is
-// ideal), better than MurmurHash3's fmix32; uses only 32-bit unsigned ops, so
-// GLSL 330 `uint` arithmetic reproduces it bit for bit.
-constexpr unsigned kHashShift1 = 16;
-constexpr unsigned kHashMul1 = 0x7feb352dU;
-constexpr unsigned kHashShift2 = 15;
-constexpr unsigned kHashMul2 = 0x846ca68bU;
-constexpr unsigned kHashShift3 = 16;
-
-// ---- Lattice hashing: a cell (i, j, k) is first folded to one word as
-// key ^ i*Px ^ rotl(j*Py, Ry) ^ rotl(k*Pz, Rz) (odd multipliers are bijections
-// mod 2^32, so each axis alone never collides), then finished with hash32.
-// The rotations matter: every odd P maps a lag of 2^31 to a flip of the top
-// bit alone, so with a plain xor fold the field repeats exactly at lag
-// (2^31, 2^31); and hash32's first step collapses the difference 0x80008000
-// to a single top-bit flip, so a rotation of 16 still leaves a correlation of
-// 0.56 there. Ry = 11, Rz = 21 (no rotation or difference of rotations is 16)
-// keep the gradient correlation at every lag 2^k, k = 0 ... 31, on every
-// subset of axes at the sampling noise floor (scan of 4e4 cells per lag;
-// tests/perlin_test.cpp checks the lags of HARD_CASES row 7).
-// The multipliers are the 32-bit xxHash primes 1, 2 and 3.
-constexpr unsigned kLatticePrimeX = 0x9E3779B1U;
-constexpr unsigned kLatticePrimeY = 0x85EBCA77U;
-constexpr unsigned kLatticePrimeZ = 0xC2B2AE3DU;
-constexpr unsigned kLatticeRotateY = 11;
-constexpr unsigned kLatticeRotateZ = 21;
-
-// Stream separation for derived seeds (octaves, RNG streams): added before
-// hashing so that seed 0 / stream 0 do not map to the fixed point of hash32(0).
-constexpr unsigned kGoldenGamma = 0x9E3779B9U;  // 2^32 / golden ratio
-
-// ---- Improved Perlin noise (Perlin 2002, "Improving Noise").
-// Quintic fade s(t) = 6t^5 - 15t^4 + 10t^3 (C2 at the lattice; Perlin 2002 sec. 3).
-constexpr double kFade5 = 6.0;
-constexpr double kFade4 = -15.0;
-constexpr double kFade3 = 10.0;
-
-// 2D gradients: the 8 unit vectors at multiples of 45 degrees, selected by the
-// top 3 bits of the lattice hash (exactly uniform). E[g g^T] = I/2.
-constexpr double kInvSqrt2 = 0.70710678118654752440;
-constexpr int kPerlin2GradCount = 8;
-constexpr double kPerlin2GradX[kPerlin2GradCount] = {1.0,  kInvSqrt2,  0.0, -kInvSqrt2,
-                                                     -1.0, -kInvSqrt2, 0.0, kInvSqrt2};
-constexpr double kPerlin2GradY[kPerlin2GradCount] = {0.0, kInvSqrt2,  1.0,  kInvSqrt2,
-                                                     0.0, -kInvSqrt2, -1.0, -kInvSqrt2};
-constexpr unsigned kPerlin2GradShift = 29;  // index = hash >> 29
-
-// 3D gradients: Perlin's 12 cube-edge midpoints (length sqrt 2). Perlin 2002
-// pads the table to 16 by repeating four, which makes the y axis carry 20% more
-// variance; hush instead maps the top 16 hash bits onto 12 buckets,
-// index = ((hash >> 16) * 12) >> 16 (bucket sizes differ by 1 in 5461), so
-// E[g g^T] = (2/3) I to within 2e-4.
-constexpr int kPerlin3GradCount = 12;
-constexpr double kPerlin3GradX[kPerlin3GradCount] = {1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0};
-constexpr double kPerlin3GradY[kPerlin3GradCount] = {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1};
-constexpr double kPerlin3GradZ[kPerlin3GradCount] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1};
-constexpr unsigned kPerlin3IndexShift = 16;
-
-// Output scale. The raw noise sum_i w_i g_i.(x - c_i) is bounded by
-// B = max over the cell of sum_i w_i max_g g.(x - c_i) (each corner taking its
-// best gradient; some lattice cell realises any assignment, so B is attained).
-// 2D, unit gradients: the maximum is at the cell centre, B = sqrt(2)/2.
-// 3D, edge gradients: the maximum is NOT at the centre (value 1 there) but at
-// (1/2, 0.35526, 0.48149) and its mirror images, B = 1.0363538112118029,
-// found by grid search plus refinement and re-derived by
-// tests/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
-// exactly [-1, 1].
-constexpr double kPerlin2RawBound = 0.70710678118654752440;  // sqrt(2)/2
-constexpr double kPerlin3RawBound = 1.0363538112118029;
-constexpr double kPerlin2Scale = 1.0 / kPerlin2RawBound;
-constexpr double kPerlin3Scale = 1.0 / kPerlin3RawBound;
-
-// Variance of the raw noise over space and seeds, derived in docs/design.md:
-// Var = c * D * (2 I0)^(D-1) * (2 I2) with I0 = int_0^1 (1-s)^2 = 181/462,
-// I2 = int_0^1 (1-s)^2 t^2 = 535/18018, c = E[g_k^2] (1/2 in 2D, 2/3 in 3D).
-// The output's variance is this times the scale squared.
-constexpr double kPerlin2RawVariance = 96835.0 / 2081079.0;       // 0.046531...
-constexpr double kPerlin3RawVariance = 35054270.0 / 480729249.0;  // 0.072918...
-constexpr double kPerlin2Variance = kPerlin2RawVariance * kPerlin2Scale * kPerlin2Scale;
-constexpr double kPerlin3Variance = kPerlin3RawVariance * kPerlin3Scale * kPerlin3Scale;
-
-// ---- Poisson sampling (core/rng.hpp).
-// Means below kPoissonInversionLimit use sequential inversion (expected
-// mean + 1 steps); larger means use Hoermann's PTRS transformed rejection
-// ("The transformed rejection method for generating Poisson random
-// variables", Insurance: Mathematics and Economics 12, 1993), whose
-// acceptance rate exceeds 0.88 for every mean >= 10.
-constexpr double kPoissonInversionLimit = 12.0;
-constexpr double kPoissonMaxMean = 1e9;                // beyond it, uint32 counts could overflow
-constexpr double kPtrsB0 = 0.931, kPtrsB1 = 2.53;      // b = B0 + B1 sqrt(mu)
-constexpr double kPtrsA0 = -0.059, kPtrsA1 = 0.02483;  // a = A0 + A1 b
-constexpr double kPtrsAlpha0 = 1.1239, kPtrsAlpha1 = 1.1328, kPtrsAlphaB = 3.4;
-constexpr double kPtrsVr0 = 0.9277, kPtrsVr1 = 3.6224, kPtrsVrB = 2.0;
-constexpr double kPtrsKOffset = 0.43;
-constexpr double kPtrsUsAccept = 0.07, kPtrsUsReject = 0.013;
-// Stirling's series for ln(n!) = (n + 1/2) ln n - n + ln(2 pi)/2 + sum_k c_k / n^(2k-1),
-// c_k = B_2k / (2k (2k - 1)); used for n > kLogFactorialTable, where the
-// first omitted term is below 1.1e-15 absolute (2.3e-17 relative) at n = 21.
-constexpr double kHalfLog2Pi = 0.91893853320467274178;
-constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
-constexpr int kLogFactorialTable = 20;
-
-// ---- Coherent noise (Kass & Pesare 2011, "Coherent Noise for Non-Photorealistic
-// Rendering"; include/hush/coherent.hpp, docs/coherent.md).
-// White noise: w = kCoherentWhiteScale * (2 (h >> kCoherentWhiteShift) + 1 - 2^24) for a
-// 32-bit hash h: the odd multiples of 2^-24 in (-1, 1), times sqrt(3); mean exactly 0,
-// variance 1 - 2^-48 (a discrete uniform over 2^24 values), never denormal.
-constexpr unsigned kCoherentWhiteShift = 8;
-constexpr double kCoherentWhiteScale = 1.7320508075688772935 * 0x1p-24;  // sqrt(3) * 2^-24
-constexpr double kCoherentWhiteCentre = 16777215.0;                      // 2^24 - 1
-// Pixel hash of a field: hash32(hash32(frame_key, y) ^ x * kCoherentPixelPrime). The odd
-// multiplier (the 32-bit xxHash prime 4) scatters the columns, so two rows' keys can never
-// line up a run of pixels (a plain xor of x would repeat shifted row segments).
-constexpr unsigned kCoherentPixelPrime = 0x27D4EB2FU;
-// Fields per channel, each with its own stream: the input w, the refill fields of the
-// stationary filter (x and y; separate ones for the backward pass of the symmetric filter),
-// and the band-pass input's lattice offsets.
-constexpr unsigned kCoherentFieldInput = 0;
-constexpr unsigned kCoherentFieldRefillX = 1;
-constexpr unsigned kCoherentFieldRefillY = 2;
-constexpr unsigned kCoherentFieldBackRefillX = 3;
-constexpr unsigned kCoherentFieldBackRefillY = 4;
-constexpr unsigned kCoherentFields = 5;
-// Parameter defaults and limits. alpha = 0.98 is the paper's (sec. 4). epsilon is relative:
-// the previous depth must lie within epsilon * e of the expected depth e (2% accepts bilinear
-// interpolation of depth across a pixel of a plane tilted up to ~60 degrees and rejects a
-// surface 2% farther; the same tolerance as the coherence metrics, docs/coherence.md).
-constexpr double kCoherentDefaultAlpha = 0.98;
-constexpr double kCoherentDefaultEpsilon = 0.02;
-constexpr double kCoherentDefaultBandpassPixels = 4.0;  // band-pass input: Perlin cell, pixels
-constexpr double kCoherentMaxBandpassPixels = 1024.0;
-constexpr double kCoherentMaxSmoothing = 2.0;     // output Gaussian sigma, pixels
-constexpr double kCoherentSmoothingRadius = 3.0;  // kernel radius in sigmas
-constexpr int kCoherentMaxChannels = 4;
-constexpr unsigned kCoherentMaxSide = 16384;  // frame side limit (keeps pixel indices in int32)
-
-}  // namespace constants
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_DETAIL_CONSTANTS_HPP
-// ---- end hush/detail/constants.hpp
 
 static_assert(sizeof(unsigned) == 4, "hush assumes a 32-bit unsigned int (constants.hpp)");
 
@@ -813,6 +957,1091 @@ HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_
 
 #endif  // HUSH_CORE_HASH_HPP
 // ---- end hush/core/hash.hpp
+// ---- begin hush/core/lattice.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Splitting a coordinate into lattice cell and fraction, robustly.
+//
+// Fast floors elsewhere got x = -1 wrong (returned cell -2), mirrored negative
+// cells by truncating, or produced NaN past INT_MAX (HARD_CASES rows 1 and 3).
+// hush splits in double: for any finite float or double x,
+//   cell = floor(x) exactly as std::floor picks it, reduced modulo 2^32
+//          (or modulo the period in periodic mode), and
+//   frac = x - floor(x), computed exactly in double, then rounded to T and
+//          clamped below 1, so frac is in [0, 1) for every finite x.
+// Domain: every finite x. The noise lattice is 2^32 cells wide: cell indices
+// wrap, so noise(x + 2^32) == noise(x) for exactly representable x. For float
+// x with |x| >= 2^24 every value is an integer (frac = 0); double keeps
+// fraction bits up to 2^52. Non-finite x (NaN, +-Inf) gives cell 0 and a NaN
+// fraction, so every noise built on this returns NaN for them.
+#ifndef HUSH_CORE_LATTICE_HPP
+#define HUSH_CORE_LATTICE_HPP
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+
+namespace hush {
+
+// One axis of a lattice lookup: the cell containing x, its successor (after
+// wrapping), and the position inside the cell.
+template <class T>
+struct lattice_coord {
+  std::uint32_t i0;  // floor(x) modulo 2^32 (or modulo the period)
+  std::uint32_t i1;  // the next cell: i0 + 1, wrapped the same way
+  T f;               // x - floor(x) in [0, 1); NaN when x is not finite
+};
+
+namespace detail {
+
+// The largest T below 1: where frac rounds up to 1 (x just below an integer,
+// e.g. x = -1e-30), it is clamped here so that frac stays inside its cell.
+template <class T>
+constexpr T one_minus_ulp() {
+  return T(1) - std::numeric_limits<T>::epsilon() / T(2);
+}
+
+// floor(x) of a finite double modulo m (m in 1 ... 2^32), in [0, m).
+// |fl| < 2^63 takes the integer path; beyond, std::fmod is exact.
+HUSH_INLINE std::uint64_t floor_mod(double fl, std::uint64_t m) {
+  constexpr double kInt64Limit = 9223372036854775808.0;  // 2^63
+  if (fl > -kInt64Limit && fl < kInt64Limit) {
+    const std::int64_t i = static_cast<std::int64_t>(fl);
+    const std::int64_t r = i % static_cast<std::int64_t>(m);
+    return static_cast<std::uint64_t>(r < 0 ? r + static_cast<std::int64_t>(m) : r);
+  }
+  double r = std::fmod(fl, static_cast<double>(m));  // exact; sign of fl
+  if (r < 0) r += static_cast<double>(m);            // exact: |r| < m <= 2^32
+  return static_cast<std::uint64_t>(r);
+}
+
+}  // namespace detail
+
+// Splits x into cell and fraction (see the file comment for the contract).
+// period = 0: the plain lattice (cells modulo 2^32);
+// period = p in 1 ... 2^32 - 1: cells modulo p, so the noise repeats every p units.
+template <class T>
+HUSH_INLINE lattice_coord<T> lattice_split(double x, std::uint32_t period = 0) {
+  if (!std::isfinite(x)) return {0u, period == 1u ? 0u : 1u, std::numeric_limits<T>::quiet_NaN()};
+  const double fl = std::floor(x);
+  const double fd = x - fl;  // exact except for tiny negative x, where it rounds to 1
+  T f = static_cast<T>(fd);
+  if (f >= T(1)) f = detail::one_minus_ulp<T>();
+  constexpr std::uint64_t kWrap = std::uint64_t(1) << 32;
+  if (period == 0) {
+    const auto i0 = static_cast<std::uint32_t>(detail::floor_mod(fl, kWrap));
+    return {i0, i0 + 1u, f};  // unsigned: wraps at 2^32 by definition
+  }
+  const auto i0 = static_cast<std::uint32_t>(detail::floor_mod(fl, period));
+  return {i0, i0 + 1u == period ? 0u : i0 + 1u, f};
+}
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_LATTICE_HPP
+// ---- end hush/core/lattice.hpp
+// ---- begin hush/core/point_noise.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The evaluation interface every point noise offers, written once.
+//
+// A noise N derives from point_noise<N, D> and defines two templates:
+//   template <class T> T value(const vec<double, D>& p) const;
+//   template <class T> value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const;
+// which split the position into lattice cell and fraction in double and then
+// compute in T. This base turns them into the public overloads:
+//   noise(vec<float, D>)  -> float    (float arithmetic)
+//   noise(vec<double, D>) -> double   (the double-precision reference)
+//   noise.gradient(...)   -> value_gradient<T, D>
+// Non-template overloads, so glm::vec arguments convert implicitly.
+#ifndef HUSH_CORE_POINT_NOISE_HPP
+#define HUSH_CORE_POINT_NOISE_HPP
+
+
+namespace hush {
+
+template <class Derived, int D>
+class point_noise {
+ public:
+  static constexpr int dimension = D;
+
+  float operator()(const vec<float, D>& p) const {
+    return self().template value<float>(vec_cast<double>(p));
+  }
+  double operator()(const vec<double, D>& p) const { return self().template value<double>(p); }
+  value_gradient<float, D> gradient(const vec<float, D>& p) const {
+    return self().template value_and_gradient<float>(vec_cast<double>(p));
+  }
+  value_gradient<double, D> gradient(const vec<double, D>& p) const {
+    return self().template value_and_gradient<double>(p);
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_POINT_NOISE_HPP
+// ---- end hush/core/point_noise.hpp
+// ---- begin hush/core/rng.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::rng: a small deterministic random number generator. Counter-based:
+// draw n of stream (seed, stream) is hash32(key ^ hash32(n)), with
+// key = hash32(seed, stream). That makes it
+//  - reproducible bit for bit on every compiler and standard library (no
+//    std::*_distribution anywhere; HARD_CASES row 10) and in GLSL (32-bit
+//    unsigned operations only),
+//  - splittable: a triangle, pixel or octave gets its own stream by id, and
+//    streams are independent, with no state shared between them,
+//  - random access: skip(n) is O(1).
+// Each stream is a permutation of all 2^32 words over its period of 2^32 draws.
+#ifndef HUSH_CORE_RNG_HPP
+#define HUSH_CORE_RNG_HPP
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+
+namespace hush {
+
+// ln(n!) for n >= 0: exact-factorial logarithms up to n = 20, Stirling's series
+// above (relative error < 1e-16 in the series). Own code rather than
+// std::lgamma, which is not thread-safe in glibc (it writes `signgam`).
+inline double log_factorial(std::uint32_t n) {
+  namespace c = detail::constants;
+  if (n <= static_cast<std::uint32_t>(c::kLogFactorialTable)) {
+    double f = 1.0;
+    for (std::uint32_t i = 2; i <= n; ++i) f *= static_cast<double>(i);
+    return std::log(f);
+  }
+  const double x = static_cast<double>(n);
+  const double r = 1.0 / x, r2 = r * r;
+  const double series =
+      r *
+      (c::kStirling[0] + r2 * (c::kStirling[1] + r2 * (c::kStirling[2] + r2 * c::kStirling[3])));
+  return (x + 0.5) * std::log(x) - x + c::kHalfLog2Pi + series;
+}
+
+class rng {
+ public:
+  // A stream of random numbers. Different (seed, stream) pairs give
+  // independent streams; the default stream is 0.
+  constexpr explicit rng(std::uint32_t seed, std::uint32_t stream = 0)
+      : key_(hash32(seed, stream)) {}
+
+  // Uniform 32-bit word.
+  constexpr std::uint32_t next_u32() { return hash32(key_ ^ hash32(counter_++)); }
+
+  // Number of draws made so far, and O(1) skipping ahead (wraps at 2^32).
+  constexpr std::uint32_t position() const { return counter_; }
+  constexpr void skip(std::uint32_t n) { counter_ += n; }
+
+  // Uniform in [0, 1): float from 24 bits (one draw), double from 53 bits
+  // (two draws); every value is a multiple of 2^-24 or 2^-53.
+  template <class T = float>
+  T uniform() {
+    static_assert(std::is_same<T, float>::value || std::is_same<T, double>::value,
+                  "hush::rng::uniform<T>: T is float or double");
+    if constexpr (std::is_same<T, float>::value) {
+      return static_cast<float>(next_u32() >> 8) * 0x1p-24f;
+    } else {
+      const std::uint64_t hi = next_u32() >> 5;  // 27 bits
+      const std::uint64_t lo = next_u32() >> 6;  // 26 bits
+      return static_cast<double>((hi << 26) | lo) * 0x1p-53;
+    }
+  }
+
+  // Uniform in [lo, hi). Requires lo < hi, both finite (not checked: a hot
+  // path). lo + (hi - lo) u can round up to hi when u is the largest value
+  // below 1; that one case returns the largest value below hi.
+  template <class T>
+  T uniform(T lo, T hi) {
+    const T r = lo + (hi - lo) * uniform<T>();
+    return r < hi ? r : std::nextafter(hi, lo);
+  }
+
+  // Standard normal deviate (mean 0, variance 1) by Marsaglia's polar method,
+  // computed in double. Each try succeeds with probability pi/4; after 64
+  // failed tries (probability 2e-43) it returns 0, so it always terminates.
+  template <class T = float>
+  T gaussian() {
+    constexpr int kMaxTries = 64;
+    for (int t = 0; t < kMaxTries; ++t) {
+      const double u = 2.0 * uniform<double>() - 1.0;
+      const double v = 2.0 * uniform<double>() - 1.0;
+      const double s = u * u + v * v;
+      if (s > 0.0 && s < 1.0) return static_cast<T>(u * std::sqrt(-2.0 * std::log(s) / s));
+    }
+    return T(0);
+  }
+
+  // Poisson-distributed count with the given mean, for any mean in
+  // [0, 1e9]. Throws hush::invalid_argument for a negative, NaN, infinite or
+  // larger mean. Always terminates: inversion below mean 12 is bounded by a
+  // step cap, and PTRS rejection above gives up after 10^4 tries (probability
+  // below 1e-9000) by returning round(mean).
+  std::uint32_t poisson(double mean) {
+    namespace c = detail::constants;
+    if (!(mean >= 0.0 && mean <= c::kPoissonMaxMean))
+      detail::throw_out_of_range("hush::rng::poisson", "mean", mean,
+                                 "0 <= mean <= 1e9 (finite, not NaN)");
+    if (mean == 0.0) return 0;
+    if (mean < c::kPoissonInversionLimit) return poisson_inversion(mean);
+    return poisson_ptrs(mean);
+  }
+
+ private:
+  // Sequential search of the CDF. For mean < 12, P(k > 200) < 1e-150, so the
+  // cap changes nothing but guarantees termination even if rounding keeps the
+  // summed CDF below u.
+  std::uint32_t poisson_inversion(double mean) {
+    constexpr std::uint32_t kMaxK = 200;
+    const double u = uniform<double>();
+    double p = std::exp(-mean);  // >= exp(-12): no underflow
+    double cdf = p;
+    std::uint32_t k = 0;
+    while (u >= cdf && k < kMaxK) {
+      ++k;
+      p *= mean / static_cast<double>(k);
+      cdf += p;
+    }
+    return k;
+  }
+
+  // Hoermann 1993, PTRS; symbols as in the paper (a, b, v_r, alpha).
+  std::uint32_t poisson_ptrs(double mean) {
+    namespace c = detail::constants;
+    constexpr int kMaxTries = 10000;
+    const double slam = std::sqrt(mean);
+    const double loglam = std::log(mean);
+    const double b = c::kPtrsB0 + c::kPtrsB1 * slam;
+    const double a = c::kPtrsA0 + c::kPtrsA1 * b;
+    const double inv_alpha = c::kPtrsAlpha0 + c::kPtrsAlpha1 / (b - c::kPtrsAlphaB);
+    const double vr = c::kPtrsVr0 - c::kPtrsVr1 / (b - c::kPtrsVrB);
+    const double log_inv_alpha = std::log(inv_alpha);
+    constexpr double kMaxCount = 4294967295.0;
+    for (int t = 0; t < kMaxTries; ++t) {
+      const double u = uniform<double>() - 0.5;
+      const double v = uniform<double>();
+      const double us = 0.5 - std::fabs(u);
+      if (us <= 0.0) continue;  // u = -0.5 exactly: the transform is singular
+      const double kd = std::floor((2.0 * a / us + b) * u + mean + c::kPtrsKOffset);
+      if (kd < 0.0 || kd > kMaxCount) continue;
+      if (us >= c::kPtrsUsAccept && v <= vr) return static_cast<std::uint32_t>(kd);
+      if (us < c::kPtrsUsReject && v > us) continue;
+      const auto k = static_cast<std::uint32_t>(kd);
+      if (std::log(v) + log_inv_alpha - std::log(a / (us * us) + b) <=
+          -mean + kd * loglam - log_factorial(k))
+        return k;
+    }
+    return static_cast<std::uint32_t>(std::floor(mean + 0.5));
+  }
+
+  std::uint32_t key_;
+  std::uint32_t counter_ = 0;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_RNG_HPP
+// ---- end hush/core/rng.hpp
+// ---- begin hush/core/samples.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Per-sample inputs beyond the position (DESIGN.md "Per-sample inputs"):
+//  - hush::sample_input<D>: one sample as a noise's scalar code sees it: the
+//    position (double), the footprint (core/footprint.hpp; a point by default)
+//    and, for surface noises in 3D, the surface normal;
+//  - hush::samples<D>: a batch of them as spans beside the positions, what
+//    hush::evaluate(noise, exec, samples, out[, gradients]) takes on every
+//    backend (exec.hpp);
+//  - hush::sample_noise<Derived, D>: the public overloads every noise that
+//    uses these inputs offers, written once (like core/point_noise.hpp):
+//      n.sample(p, footprint)                 -> float / double (by p's type)
+//      n.sample(p, normal, footprint)         -> the same on a surface (3D noises
+//                                                with takes_normal)
+//      n.sample_gradient(p, footprint), n.sample_gradient(p, normal, footprint)
+//                                             -> value and d/d(position) of
+//                                                the filtered noise, footprint fixed
+// A noise derives from sample_noise<Derived, D> (which derives from
+// point_noise<Derived, D>: n(p) and n.gradient(p) stay the unfiltered point
+// evaluation) and defines, besides point_noise's two templates,
+//   static constexpr bool takes_footprint;  // uses sample_input::fp
+//   static constexpr bool takes_normal;     // uses sample_input::normal (D == 3)
+//   template <class T> T sample_value(const sample_input<D>& s) const;
+//   template <class T> value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s)
+//   const;
+// with the same result class as point evaluation for NaN/Inf positions.
+#ifndef HUSH_CORE_SAMPLES_HPP
+#define HUSH_CORE_SAMPLES_HPP
+
+#include <cstddef>
+#include <string>
+#include <type_traits>
+
+
+namespace hush {
+
+// One sample: position, footprint, and optionally the surface normal (any
+// length; a noise documents what it does with a zero or non-finite normal).
+template <int D>
+struct sample_input {
+  vec<double, D> position{};
+  footprint<D> fp{};
+  vec<double, 3> normal{};
+  bool has_normal = false;
+};
+
+// A batch of samples: positions and, optionally, one footprint and one
+// normal per position. An empty span means "not given": point samples, no
+// normal. Normals exist for 3D noises only.
+template <int D>
+struct samples {
+  span<const vec<float, D>> positions;
+  span<const footprint<D>> footprints;
+  span<const vec<float, 3>> normals;
+
+  std::size_t size() const { return positions.size(); }
+  bool has_footprints() const { return !footprints.empty(); }
+  bool has_normals() const { return !normals.empty(); }
+
+  // Sample i as the scalar code sees it.
+  sample_input<D> at(std::size_t i) const {
+    sample_input<D> s;
+    s.position = vec_cast<double>(positions[i]);
+    if (has_footprints()) s.fp = footprints[i];
+    if (has_normals()) {
+      s.normal = vec_cast<double>(normals[i]);
+      s.has_normal = true;
+    }
+    return s;
+  }
+};
+
+namespace detail {
+
+// What a noise type takes per sample (false for noises that do not say).
+template <class Noise, class = void>
+struct takes_footprint : std::false_type {};
+template <class Noise>
+struct takes_footprint<Noise, std::void_t<decltype(Noise::takes_footprint)>>
+    : std::integral_constant<bool, Noise::takes_footprint> {};
+template <class Noise, class = void>
+struct takes_normal : std::false_type {};
+template <class Noise>
+struct takes_normal<Noise, std::void_t<decltype(Noise::takes_normal)>>
+    : std::integral_constant<bool, Noise::takes_normal> {};
+
+// Throws hush::invalid_argument naming the first span that does not fit:
+// footprints and normals must be empty or have one element per position, and
+// only inputs the noise takes may be given.
+template <class Noise>
+void validate_samples(const char* where, const samples<Noise::dimension>& s) {
+  const std::size_t n = s.positions.size();
+  const std::string per = "exactly " + std::to_string(n) + " elements (one per position) or none";
+  if (s.has_footprints()) {
+    if (!takes_footprint<Noise>::value)
+      throw hush::invalid_argument(std::string(where) +
+                                   ": samples.footprints given, but this noise does not filter; "
+                                   "valid: none (an empty span)");
+    if (s.footprints.size() != n)
+      throw_out_of_range(where, "samples.footprints.size()", s.footprints.size(), per.c_str());
+  }
+  if (s.has_normals()) {
+    if (!takes_normal<Noise>::value)
+      throw hush::invalid_argument(std::string(where) +
+                                   ": samples.normals given, but this noise takes no normal; "
+                                   "valid: none (an empty span)");
+    if (s.normals.size() != n)
+      throw_out_of_range(where, "samples.normals.size()", s.normals.size(), per.c_str());
+  }
+}
+
+}  // namespace detail
+
+template <class Derived, int D>
+class sample_noise : public point_noise<Derived, D> {
+ public:
+  // The filtered value at p over footprint fp (float arithmetic, or the double reference).
+  float sample(const vec<float, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value<float>(input(vec_cast<double>(p), fp));
+  }
+  double sample(const vec<double, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value<double>(input(p, fp));
+  }
+  value_gradient<float, D> sample_gradient(const vec<float, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value_and_gradient<float>(input(vec_cast<double>(p), fp));
+  }
+  value_gradient<double, D> sample_gradient(const vec<double, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value_and_gradient<double>(input(p, fp));
+  }
+
+  // On a surface with the given normal (3D noises with takes_normal).
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  float sample(const vec<float, 3>& p, const vec<float, 3>& normal,
+               const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value<float>(
+        input(vec_cast<double>(p), fp, vec_cast<double>(normal)));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  double sample(const vec<double, 3>& p, const vec<double, 3>& normal,
+                const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value<double>(input(p, fp, normal));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  value_gradient<float, 3> sample_gradient(const vec<float, 3>& p, const vec<float, 3>& normal,
+                                           const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value_and_gradient<float>(
+        input(vec_cast<double>(p), fp, vec_cast<double>(normal)));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  value_gradient<double, 3> sample_gradient(const vec<double, 3>& p, const vec<double, 3>& normal,
+                                            const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value_and_gradient<double>(input(p, fp, normal));
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+  static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp) {
+    sample_input<D> s;
+    s.position = p;
+    s.fp = fp;
+    return s;
+  }
+  static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp,
+                               const vec<double, 3>& normal) {
+    static_assert(detail::takes_normal<Derived>::value, "this noise takes no surface normal");
+    sample_input<D> s = input(p, fp);
+    s.normal = normal;
+    s.has_normal = true;
+    return s;
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_SAMPLES_HPP
+// ---- end hush/core/samples.hpp
+// ---- begin hush/core/tile_cache.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::tile_cache<Key, Tile>: large precomputed data (wavelet noise tiles,
+// anisotropic subband tiles) built lazily, once per key, immutable, and
+// shared between every noise object that asks for the same key (DESIGN.md:
+// "built once per (params, seed), shared between copies, memory reported").
+//
+//   static hush::tile_cache<my_key, my_tile>& cache() { static hush::tile_cache<...> c; return c; }
+//   std::shared_ptr<const my_tile> t = cache().get(key, [&] { return my_tile(key); });
+//
+// The cache holds weak references: a tile lives as long as some noise object
+// holds it, and is rebuilt (bit for bit the same: tiles are deterministic) if
+// asked for again after the last holder went away. get() is thread-safe;
+// the build runs outside the lock, so two threads asking for the same new
+// key at once may both build it, and both receive the one stored first.
+// Tile must be constructible by the builder and report its memory as
+// `std::size_t bytes() const`. Key needs operator<.
+#ifndef HUSH_CORE_TILE_CACHE_HPP
+#define HUSH_CORE_TILE_CACHE_HPP
+
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <utility>
+
+namespace hush {
+
+template <class Key, class Tile>
+class tile_cache {
+ public:
+  tile_cache() = default;
+  tile_cache(const tile_cache&) = delete;
+  tile_cache& operator=(const tile_cache&) = delete;
+
+  // The tile of `key`, built by build() (returning a Tile) when no live one exists.
+  template <class Build>
+  std::shared_ptr<const Tile> get(const Key& key, Build&& build) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (auto live = find_live(key)) return live;
+    }
+    auto made = std::make_shared<const Tile>(std::forward<Build>(build)());
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (auto live = find_live(key)) return live;  // another thread stored it meanwhile
+    tiles_[key] = made;
+    ++builds_;
+    return made;
+  }
+
+  // Number of tiles alive now, and their memory in bytes (Tile::bytes()).
+  std::size_t live_tiles() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::size_t n = 0;
+    for (const auto& kv : tiles_) n += kv.second.expired() ? 0 : 1;
+    return n;
+  }
+  std::size_t live_bytes() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::size_t bytes = 0;
+    for (const auto& kv : tiles_)
+      if (auto t = kv.second.lock()) bytes += t->bytes();
+    return bytes;
+  }
+  // Tiles built so far (a tile rebuilt after expiring counts again).
+  std::size_t builds() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return builds_;
+  }
+
+ private:
+  // The live tile of key, or null; drops an expired entry. Caller holds the lock.
+  std::shared_ptr<const Tile> find_live(const Key& key) {
+    const auto it = tiles_.find(key);
+    if (it == tiles_.end()) return nullptr;
+    if (auto t = it->second.lock()) return t;
+    tiles_.erase(it);
+    return nullptr;
+  }
+
+  mutable std::mutex mutex_;
+  std::map<Key, std::weak_ptr<const Tile>> tiles_;
+  std::size_t builds_ = 0;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_TILE_CACHE_HPP
+// ---- end hush/core/tile_cache.hpp
+// ---- begin hush/fractal.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Fractal sums of a base noise over octaves ("bands"): fBm and turbulence.
+//
+//   fbm(x)        = (1/K) sum_i w_i n_i(f_i x + o_i)
+//   turbulence(x) = (1/K) sum_i w_i |n_i(f_i x + o_i)|
+//
+// with f_i = frequency * lacunarity^i, per-band weights w_i (gain^i by default,
+// or given explicitly), and per-band independent fields n_i: band i uses seed
+// hash32(seed, i) and a lattice offset o_i in [0, 1)^D derived from it, so
+// bands are uncorrelated and their lattices do not all meet at the origin.
+//
+// Variance (Perlin base, over space and seeds; docs/design.md):
+//   Var[sum_i w_i n_i] = sigma^2 sum_i w_i^2,  sigma^2 = Noise::variance(),
+// because independent bands have zero covariance. The normalisation K makes
+// the output
+//   - normalization::unit_variance (fBm only): variance exactly 1, mean 0;
+//     |fbm| <= sum|w_i| / (sigma sqrt(sum w_i^2)) (bound(), analytic);
+//   - normalization::unit_range: |output| <= 1 (K = sum |w_i| * Noise::bound());
+//     turbulence with non-negative weights then lies in [0, 1];
+//   - normalization::none: K = 1, the raw sum.
+// Periodic: with period[a] = p > 0 band i uses period p * lacunarity^i, so the
+// sum repeats every p / frequency along axis a (lacunarity must be an integer).
+// Domain: as the base noise; every finite input gives a finite output, and a
+// NaN or infinite coordinate gives NaN.
+#ifndef HUSH_FRACTAL_HPP
+#define HUSH_FRACTAL_HPP
+
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+
+namespace hush {
+
+enum class fractal_kind { fbm, turbulence };
+enum class normalization { unit_variance, unit_range, none };
+
+template <class Noise>
+class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
+  static constexpr int D = Noise::dimension;
+
+ public:
+  static constexpr int kMaxOctaves = 32;
+
+  struct params {
+    std::uint32_t seed = 0;
+    fractal_kind kind = fractal_kind::fbm;
+    int octaves = 5;              // 1 ... 32
+    double frequency = 1.0;       // of band 0, > 0 and finite
+    double lacunarity = 2.0;      // frequency ratio between bands, 1 < l <= 16
+    double gain = 0.5;            // w_i = gain^i when weights is empty; finite, > 0
+    std::vector<double> weights;  // explicit band weights: empty, or `octaves` finite values
+    normalization norm = normalization::unit_variance;
+    std::array<int, D> period{};  // per axis, in band-0 lattice units; 0 = not periodic
+  };
+
+  fractal() : fractal(params{}) {}  // 5 octaves of fBm, unit variance, seed 0
+  // Throws hush::invalid_argument naming the first parameter out of range.
+  explicit fractal(const params& prm) : prm_(prm) {
+    validate();
+    double sum_sq = 0, sum_abs = 0;
+    // Powers by repeated multiplication, not std::pow: IEEE multiplication is
+    // the same everywhere, libm's pow is not (determinism across platforms).
+    double gain_i = 1.0, lac_i = 1.0;
+    for (int i = 0; i < prm_.octaves; ++i, gain_i *= prm_.gain, lac_i *= prm_.lacunarity) {
+      const double w = prm_.weights.empty() ? gain_i : prm_.weights[i];
+      const std::uint32_t band_seed = hash32(prm_.seed, static_cast<std::uint32_t>(i));
+      typename Noise::params np{};
+      np.seed = band_seed;
+      for (int a = 0; a < D; ++a)
+        np.period[a] = prm_.period[a] == 0 ? 0 : static_cast<int>(prm_.period[a] * lac_i);
+      vec<double, D> offset;
+      for (int a = 0; a < D; ++a)  // 24 hash bits: an exact fraction in [0, 1)
+        offset[a] = (hash32(band_seed, static_cast<std::uint32_t>(a)) >> 8) * 0x1p-24;
+      bands_.push_back({Noise(np), prm_.frequency * lac_i, w, offset});
+      sum_sq += w * w;
+      sum_abs += std::fabs(w);
+    }
+    switch (prm_.norm) {
+      case normalization::unit_variance:
+        scale_ = 1.0 / std::sqrt(Noise::variance() * sum_sq);
+        break;
+      case normalization::unit_range:
+        scale_ = 1.0 / (sum_abs * Noise::bound());
+        break;
+      case normalization::none:
+        scale_ = 1.0;
+        break;
+    }
+    bound_ = scale_ * sum_abs * Noise::bound();
+    variance_ = prm_.kind == fractal_kind::fbm ? scale_ * scale_ * Noise::variance() * sum_sq : -1;
+  }
+
+  const params& parameters() const { return prm_; }
+  // |output| <= bound() for every input (analytic, from |n_i| <= Noise::bound()).
+  double bound() const { return bound_; }
+  // Variance over space and seeds of fBm (1 under unit_variance); turbulence: -1 (not derived).
+  double variance() const { return variance_; }
+  // The weight and frequency of band i, after normalisation.
+  double band_weight(int i) const { return bands_[i].weight * scale_; }
+  double band_frequency(int i) const { return bands_[i].frequency; }
+
+  // The bands as evaluated, for backends that run them themselves (hush/simd):
+  // band i's noise, its raw weight w_i (before the normalisation scale()),
+  // its frequency, and its position f_i x + o_i in double, exactly as value()
+  // forms it.
+  int band_count() const { return static_cast<int>(bands_.size()); }
+  const Noise& band_noise(int i) const { return bands_[i].noise; }
+  double band_raw_weight(int i) const { return bands_[i].weight; }
+  vec<double, D> band_position(int i, const vec<double, D>& p) const {
+    return bands_[i].position(p);
+  }
+  // The normalisation factor K applied to the weighted sum.
+  double scale() const { return scale_; }
+
+  // Band positions f_i x + o_i are formed in double; each band evaluates in T.
+  template <class T>
+  T value(const vec<double, D>& p) const {
+    T sum = 0;
+    for (const band& b : bands_) {
+      const T n = b.noise.template value<T>(b.position(p));
+      sum += T(b.weight) * (prm_.kind == fractal_kind::fbm ? n : std::fabs(n));
+    }
+    return T(scale_) * sum;
+  }
+  // Gradient of the sum. For turbulence, |n| is not differentiable where n = 0;
+  // there the gradient of +n is returned.
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
+    value_gradient<T, D> r{T(0), {}};
+    for (const band& b : bands_) {
+      auto ng = b.noise.template value_and_gradient<T>(b.position(p));
+      T sign = T(1);
+      if (prm_.kind == fractal_kind::turbulence && ng.value < T(0)) sign = T(-1);
+      r.value += T(b.weight) * sign * ng.value;
+      const T chain = T(b.weight * b.frequency) * sign;  // d(f x + o)/dx = f
+      for (int a = 0; a < D; ++a) r.gradient[a] += chain * ng.gradient[a];
+    }
+    r.value *= T(scale_);
+    for (int a = 0; a < D; ++a) r.gradient[a] *= T(scale_);
+    return r;
+  }
+
+ private:
+  struct band {
+    Noise noise;
+    double frequency;
+    double weight;
+    vec<double, D> offset;
+    // f x + o in double. Where a finite x overflows (|x f| > DBL_MAX), the
+    // exact product is a multiple of 2^32, i.e. lattice cell 0 with fraction
+    // 0 under the 2^32-cell wrap (core/lattice.hpp), so 0 is the exact band
+    // coordinate, and a finite input keeps giving a finite output.
+    vec<double, D> position(const vec<double, D>& p) const {
+      vec<double, D> q;
+      for (int a = 0; a < D; ++a) {
+        q[a] = p[a] * frequency + offset[a];
+        if (!std::isfinite(q[a]) && std::isfinite(p[a])) q[a] = 0.0;
+      }
+      return q;
+    }
+  };
+
+  void validate() const {
+    const char* where = "hush::fractal";
+    detail::require_in_range(where, "octaves", prm_.octaves, 1, kMaxOctaves, "1 ... 32");
+    if (!(std::isfinite(prm_.frequency) && prm_.frequency > 0))
+      detail::throw_out_of_range(where, "frequency", prm_.frequency, "finite and > 0");
+    if (!(prm_.lacunarity > 1.0 && prm_.lacunarity <= 16.0))
+      detail::throw_out_of_range(where, "lacunarity", prm_.lacunarity, "1 < lacunarity <= 16");
+    if (prm_.weights.empty()) {
+      if (!(std::isfinite(prm_.gain) && prm_.gain > 0))
+        detail::throw_out_of_range(where, "gain", prm_.gain, "finite and > 0");
+      // gain^(octaves-1) must stay a normal double for the weights to mean anything.
+      const double smallest = std::pow(prm_.gain, prm_.octaves - 1);
+      if (!(std::isfinite(smallest) && smallest >= 1e-300))
+        detail::throw_out_of_range(where, "gain", prm_.gain,
+                                   "gain^(octaves-1) finite and >= 1e-300");
+    } else {
+      if (prm_.weights.size() != static_cast<std::size_t>(prm_.octaves))
+        detail::throw_out_of_range(where, "weights.size()", prm_.weights.size(),
+                                   "empty (use gain) or equal to octaves");
+      bool any = false;
+      for (std::size_t i = 0; i < prm_.weights.size(); ++i) {
+        if (!std::isfinite(prm_.weights[i]))
+          detail::throw_out_of_range(where, "weights[" + std::to_string(i) + "]", prm_.weights[i],
+                                     "a finite number");
+        any = any || prm_.weights[i] != 0.0;
+      }
+      if (!any)
+        throw hush::invalid_argument(
+            "hush::fractal: weights are all zero; valid: at least one non-zero weight");
+    }
+    if (prm_.kind == fractal_kind::turbulence && prm_.norm == normalization::unit_variance)
+      throw hush::invalid_argument(
+          "hush::fractal: norm = unit_variance is not available for turbulence; valid: "
+          "unit_range or none");
+    for (int a = 0; a < D; ++a) {
+      const std::string name = "period[" + std::to_string(a) + "]";
+      if (prm_.period[a] < 0)
+        detail::throw_out_of_range(where, name, prm_.period[a], "0 (not periodic) or >= 1");
+      if (prm_.period[a] == 0) continue;
+      if (prm_.lacunarity != std::floor(prm_.lacunarity))
+        detail::throw_out_of_range(where, "lacunarity", prm_.lacunarity,
+                                   "an integer (2 ... 16) when a period is set");
+      const double top = prm_.period[a] * std::pow(prm_.lacunarity, prm_.octaves - 1);
+      if (top > INT_MAX)
+        detail::throw_out_of_range(where, name, prm_.period[a],
+                                   "period * lacunarity^(octaves-1) <= 2147483647");
+    }
+  }
+
+  params prm_;
+  std::vector<band> bands_;
+  double scale_ = 1, bound_ = 1, variance_ = 1;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_FRACTAL_HPP
+// ---- end hush/fractal.hpp
+// ---- begin hush/perlin.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Improved Perlin noise (Ken Perlin, "Improving Noise", SIGGRAPH 2002) in 2D
+// and 3D: gradient noise on the integer lattice with the quintic fade, seeded
+// through hush's lattice hash (any 32-bit seed gives an independent field, not
+// a reshuffle of one 256-entry table), optionally periodic per axis.
+//
+//   hush::perlin<3> p{7};                        // seed 7
+//   float v = p(hush::vec3{x, y, z});            // in [-1, 1]
+//   auto [v2, g] = p.gradient(hush::vec3{x, y, z});
+//   double r = p(hush::dvec3{x, y, z});          // the double-precision reference
+//
+// Contract (both dimensions, float and double):
+//  - range: [-1, 1]; the bound is attained (constants.hpp, docs/design.md).
+//    Float results may exceed it by the float error budget below.
+//  - mean 0 and variance variance() over space and seeds (0.0931 in 2D,
+//    0.0679 in 3D; derived in docs/design.md, measured in the tests).
+//  - C2 in position; gradient() returns the exact analytic derivative.
+//  - zero at every lattice point.
+//  - float evaluation is within 2^-16 (1.5e-5, a forward error bound) of the
+//    double reference at the same position; measured max 2.4e-6, RMS 1.9e-7
+//    (tests/perlin_test.cpp).
+//  - domain: every finite coordinate (core/lattice.hpp); NaN or +-Inf in any
+//    coordinate gives NaN (value and gradient). Evaluation never throws.
+//  - periodic mode: with period[a] = p > 0, noise(x + p e_a) == noise(x)
+//    exactly (bit for bit where x and x + p are both representable).
+#ifndef HUSH_PERLIN_HPP
+#define HUSH_PERLIN_HPP
+
+#include <array>
+#include <climits>
+#include <cstdint>
+#include <string>
+
+
+namespace hush {
+namespace detail {
+
+// Quintic fade s(t) and its derivative, from the coefficients in constants.hpp.
+template <class T>
+HUSH_INLINE T fade(T t) {
+  namespace c = constants;
+  return t * t * t * (t * (t * T(c::kFade5) + T(c::kFade4)) + T(c::kFade3));
+}
+template <class T>
+HUSH_INLINE T fade_derivative(T t) {
+  namespace c = constants;
+  return t * t * (t * (t * T(5 * c::kFade5) + T(4 * c::kFade4)) + T(3 * c::kFade3));
+}
+template <class T>
+HUSH_INLINE T lerp(T a, T b, T t) {
+  return a + t * (b - a);
+}
+
+// Gradient tables in T, converted at compile time from the double constants.
+template <class T, int N>
+constexpr std::array<T, N> table_cast(const double (&src)[N]) {
+  std::array<T, N> r{};
+  for (int i = 0; i < N; ++i) r[i] = static_cast<T>(src[i]);
+  return r;
+}
+template <class T>
+struct perlin_tables {
+  static constexpr auto g2x = table_cast<T>(constants::kPerlin2GradX);
+  static constexpr auto g2y = table_cast<T>(constants::kPerlin2GradY);
+  static constexpr auto g3x = table_cast<T>(constants::kPerlin3GradX);
+  static constexpr auto g3y = table_cast<T>(constants::kPerlin3GradY);
+  static constexpr auto g3z = table_cast<T>(constants::kPerlin3GradZ);
+};
+
+// Gradient index of a lattice hash: 2D takes the top 3 bits (uniform over 8);
+// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply.
+HUSH_INLINE constexpr std::uint32_t perlin2_grad_index(std::uint32_t h) {
+  return h >> constants::kPerlin2GradShift;
+}
+HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
+  return ((h >> constants::kPerlin3IndexShift) * std::uint32_t(constants::kPerlin3GradCount)) >>
+         constants::kPerlin3IndexShift;
+}
+
+}  // namespace detail
+
+template <int D>
+class perlin : public point_noise<perlin<D>, D> {
+  static_assert(D == 2 || D == 3, "hush::perlin is 2D or 3D");
+
+ public:
+  struct params {
+    std::uint32_t seed = 0;
+    // Per-axis period in lattice units: 0 = not periodic, p in 1 ... INT_MAX =
+    // the noise repeats every p units along that axis (tileable noise).
+    std::array<int, D> period{};
+  };
+
+  perlin() : perlin(params{}) {}
+  explicit perlin(std::uint32_t seed) : perlin(params{seed, {}}) {}
+  // Throws hush::invalid_argument when a period is negative.
+  explicit perlin(const params& prm) : prm_(prm), key_(seed_key(prm.seed)) {
+    for (int a = 0; a < D; ++a)
+      if (prm.period[a] < 0)
+        detail::throw_out_of_range("hush::perlin", "period[" + std::to_string(a) + "]",
+                                   prm.period[a], "0 (not periodic) or 1 ... 2147483647");
+  }
+
+  const params& parameters() const { return prm_; }
+
+  // Output bound and variance of the noise over space and seeds (see header comment).
+  static constexpr double bound() { return 1.0; }
+  static constexpr double variance() {
+    return D == 2 ? detail::constants::kPerlin2Variance : detail::constants::kPerlin3Variance;
+  }
+
+  // p(vec) -> value and p.gradient(vec) -> value and analytic gradient, in
+  // float or double (the reference), come from core/point_noise.hpp.
+
+  // Evaluation at a double-precision position with arithmetic in T: the
+  // position is split into cell and fraction in double, the rest runs in T.
+  // This is what grids far from the origin use.
+  template <class T>
+  T value(const vec<double, D>& p) const {
+    return eval<T, false>(p).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
+    return eval<T, true>(p);
+  }
+
+ private:
+  template <class T, bool WithGradient>
+  value_gradient<T, D> eval(const vec<double, D>& p) const {
+    lattice_coord<T> c[D];
+    for (int a = 0; a < D; ++a)
+      c[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
+    if constexpr (D == 2)
+      return eval2<T, WithGradient>(c[0], c[1]);
+    else
+      return eval3<T, WithGradient>(c[0], c[1], c[2]);
+  }
+
+  template <class T, bool WithGradient>
+  value_gradient<T, 2> eval2(const lattice_coord<T>& cx, const lattice_coord<T>& cy) const {
+    using tab = detail::perlin_tables<T>;
+    const T fx = cx.f, fy = cy.f, fx1 = fx - T(1), fy1 = fy - T(1);
+    const std::uint32_t g00 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i0));
+    const std::uint32_t g10 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i0));
+    const std::uint32_t g01 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i1));
+    const std::uint32_t g11 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i1));
+    // Corner contributions g . (x - corner).
+    const T d00 = tab::g2x[g00] * fx + tab::g2y[g00] * fy;
+    const T d10 = tab::g2x[g10] * fx1 + tab::g2y[g10] * fy;
+    const T d01 = tab::g2x[g01] * fx + tab::g2y[g01] * fy1;
+    const T d11 = tab::g2x[g11] * fx1 + tab::g2y[g11] * fy1;
+    const T u = detail::fade(fx), v = detail::fade(fy);
+    const T x0 = detail::lerp(d00, d10, u), x1 = detail::lerp(d01, d11, u);
+    constexpr T kScale = T(detail::constants::kPerlin2Scale);
+    value_gradient<T, 2> r{kScale * detail::lerp(x0, x1, v), {}};
+    if constexpr (WithGradient) {
+      // d/dx: interpolated gradients plus the fade's derivative times the
+      // difference of the contributions it blends (product rule).
+      const T du = detail::fade_derivative(fx), dv = detail::fade_derivative(fy);
+      const T gx = detail::lerp(detail::lerp(tab::g2x[g00], tab::g2x[g10], u),
+                                detail::lerp(tab::g2x[g01], tab::g2x[g11], u), v) +
+                   du * detail::lerp(d10 - d00, d11 - d01, v);
+      const T gy = detail::lerp(detail::lerp(tab::g2y[g00], tab::g2y[g10], u),
+                                detail::lerp(tab::g2y[g01], tab::g2y[g11], u), v) +
+                   dv * (x1 - x0);
+      r.gradient = {kScale * gx, kScale * gy};
+    }
+    return r;
+  }
+
+  template <class T, bool WithGradient>
+  value_gradient<T, 3> eval3(const lattice_coord<T>& cx, const lattice_coord<T>& cy,
+                             const lattice_coord<T>& cz) const {
+    using tab = detail::perlin_tables<T>;
+    const T f[2][3] = {{cx.f, cy.f, cz.f}, {cx.f - T(1), cy.f - T(1), cz.f - T(1)}};
+    const std::uint32_t ix[2] = {cx.i0, cx.i1}, iy[2] = {cy.i0, cy.i1}, iz[2] = {cz.i0, cz.i1};
+    // Corner n = a + 2b + 4c is at offset (a, b, c) from the cell's origin.
+    T d[8];
+    std::uint32_t g[8];
+    for (int n = 0; n < 8; ++n) {
+      const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
+      g[n] = detail::perlin3_grad_index(lattice_hash(key_, ix[a], iy[b], iz[cc]));
+      d[n] = tab::g3x[g[n]] * f[a][0] + tab::g3y[g[n]] * f[b][1] + tab::g3z[g[n]] * f[cc][2];
+    }
+    const T u = detail::fade(f[0][0]), v = detail::fade(f[0][1]), w = detail::fade(f[0][2]);
+    const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
+    const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
+    const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
+    constexpr T kScale = T(detail::constants::kPerlin3Scale);
+    value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w), {}};
+    if constexpr (WithGradient) {
+      // Trilinear blend of a per-corner quantity q[n] with the fade weights.
+      auto blend = [&](const T* q) {
+        return detail::lerp(
+            detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
+            detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
+      };
+      T gxs[8], gys[8], gzs[8], ddx[4], ddy[4];
+      for (int n = 0; n < 8; ++n) {
+        gxs[n] = tab::g3x[g[n]];
+        gys[n] = tab::g3y[g[n]];
+        gzs[n] = tab::g3z[g[n]];
+      }
+      for (int m = 0; m < 4; ++m) ddx[m] = d[2 * m + 1] - d[2 * m];  // along x, per (b, c)
+      const T du = detail::fade_derivative(f[0][0]);
+      const T dv = detail::fade_derivative(f[0][1]);
+      const T dw = detail::fade_derivative(f[0][2]);
+      // d/dx of lerp over x: du * (d[a=1] - d[a=0]), then blended in y and z.
+      const T ex =
+          detail::lerp(detail::lerp(ddx[0], ddx[1], v), detail::lerp(ddx[2], ddx[3], v), w);
+      ddy[0] = x10 - x00;
+      ddy[1] = x11 - x01;
+      const T ey = detail::lerp(ddy[0], ddy[1], w);
+      const T ez = y1 - y0;
+      r.gradient = {kScale * (blend(gxs) + du * ex), kScale * (blend(gys) + dv * ey),
+                    kScale * (blend(gzs) + dw * ez)};
+    }
+    return r;
+  }
+
+  params prm_;
+  std::uint32_t key_;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_PERLIN_HPP
+// ---- end hush/perlin.hpp
+// ---- begin hush/exec.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Execution policies and batch evaluation: the caller picks the backend per
+// call site, the noise object stays the same.
+//
+//   hush::perlin<3> p{7};
+//   hush::evaluate(p, hush::exec::scalar, points, out);        // reference loop
+//   hush::evaluate(p, hush::exec::simd, points, out);          // Highway kernels
+//   hush::evaluate_grid(p, hush::exec::glsl{device}, g, out);  // GL compute shader
+//
+// Policies are empty tag types (Highway's sort/order.h style), except glsl,
+// which carries the device it runs on (backends/glsl, hush/glsl/device.hpp).
+//
+// Contract of every overload:
+//  - points: span of vec<float, D>; out.size() must equal points.size(), and
+//    gradients (when given) too, else hush::invalid_argument naming the span.
+//  - grids: grid<D> (origin and step in double); out has grid.count()
+//    elements in C order, i fastest (core/views.hpp). The grid is validated.
+//  - scalar: exactly noise(point) per element, in float.
+//  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
+//    the noise's float budget of the double reference (perlin, fractal:
+//    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
+//    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
+//  - glsl: within the GLSL tolerance stated by the backend
+//    (backends/glsl/include/hush/glsl/device.hpp).
+//  - samples (core/samples.hpp): positions plus optional per-sample
+//    footprints and normals. Each given span must have one element per
+//    position, and only inputs the noise takes (Noise::takes_footprint,
+//    Noise::takes_normal) may be given, else hush::invalid_argument naming
+//    the span. scalar computes noise.sample_value<float>(samples.at(i));
+//    with positions only, exactly what the points overload computes.
+//  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
+//    after validation, and no output element is left unwritten.
+#ifndef HUSH_EXEC_HPP
+#define HUSH_EXEC_HPP
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <type_traits>
+
+// ---- begin hush/simd/dispatch.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The SIMD backend's target-independent face: the entry points exec::simd
+// calls, which SIMD targets were compiled and which one runs.
+//
+// Three ways to build, chosen by macro (config.hpp normalises them into
+// HUSH_CONFIG_SIMD and HUSH_CONFIG_SIMD_STATIC):
+//  - HUSH_SIMD_DYNAMIC: kernels for every target Highway compiles (SSE4,
+//    AVX2, AVX-512 on x86), the best one the CPU supports chosen at run time.
+//    Exactly one .cpp of the program includes hush/simd/dispatch_impl.hpp;
+//    the CMake target hush::simd is that file, defines the macro and links
+//    Highway. This is the route for portable binaries.
+//  - HUSH_SIMD_STATIC: kernels for the compiler's baseline target only
+//    (HWY_STATIC_TARGET; AVX2 under -march=haswell or -march=native), inlined
+//    where called; no extra translation unit. The route for -march=native
+//    builds and for the single header.
+//  - neither (or HUSH_NO_SIMD): exec::simd runs the scalar loop, and nothing
+//    needs Highway.
+#ifndef HUSH_SIMD_DISPATCH_HPP
+#define HUSH_SIMD_DISPATCH_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
 // ---- begin hush/detail/coherent_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -1082,653 +2311,6 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 
 #endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
 // ---- end hush/detail/coherent_kernel.hpp
-// ---- begin hush/exec.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Execution policies and batch evaluation: the caller picks the backend per
-// call site, the noise object stays the same.
-//
-//   hush::perlin<3> p{7};
-//   hush::evaluate(p, hush::exec::scalar, points, out);        // reference loop
-//   hush::evaluate(p, hush::exec::simd, points, out);          // Highway kernels
-//   hush::evaluate_grid(p, hush::exec::glsl{device}, g, out);  // GL compute shader
-//
-// Policies are empty tag types (Highway's sort/order.h style), except glsl,
-// which carries the device it runs on (backends/glsl, hush/glsl/device.hpp).
-//
-// Contract of every overload:
-//  - points: span of vec<float, D>; out.size() must equal points.size(), and
-//    gradients (when given) too, else hush::invalid_argument naming the span.
-//  - grids: grid<D> (origin and step in double); out has grid.count()
-//    elements in C order, i fastest (core/views.hpp). The grid is validated.
-//  - scalar: exactly noise(point) per element, in float.
-//  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
-//    the noise's float budget of the double reference (perlin, fractal:
-//    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
-//    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
-//  - glsl: within the GLSL tolerance stated by the backend
-//    (backends/glsl/include/hush/glsl/device.hpp).
-//  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
-//    after validation, and no output element is left unwritten.
-#ifndef HUSH_EXEC_HPP
-#define HUSH_EXEC_HPP
-
-#include <array>
-#include <cstddef>
-#include <string>
-#include <type_traits>
-
-// ---- begin hush/simd/dispatch.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The SIMD backend's target-independent face: the entry points exec::simd
-// calls, which SIMD targets were compiled and which one runs.
-//
-// Three ways to build, chosen by macro (config.hpp normalises them into
-// HUSH_CONFIG_SIMD and HUSH_CONFIG_SIMD_STATIC):
-//  - HUSH_SIMD_DYNAMIC: kernels for every target Highway compiles (SSE4,
-//    AVX2, AVX-512 on x86), the best one the CPU supports chosen at run time.
-//    Exactly one .cpp of the program includes hush/simd/dispatch_impl.hpp;
-//    the CMake target hush::simd is that file, defines the macro and links
-//    Highway. This is the route for portable binaries.
-//  - HUSH_SIMD_STATIC: kernels for the compiler's baseline target only
-//    (HWY_STATIC_TARGET; AVX2 under -march=haswell or -march=native), inlined
-//    where called; no extra translation unit. The route for -march=native
-//    builds and for the single header.
-//  - neither (or HUSH_NO_SIMD): exec::simd runs the scalar loop, and nothing
-//    needs Highway.
-#ifndef HUSH_SIMD_DISPATCH_HPP
-#define HUSH_SIMD_DISPATCH_HPP
-
-#include <cstddef>
-#include <cstdint>
-#include <string>
-#include <vector>
-
-// ---- begin hush/fractal.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Fractal sums of a base noise over octaves ("bands"): fBm and turbulence.
-//
-//   fbm(x)        = (1/K) sum_i w_i n_i(f_i x + o_i)
-//   turbulence(x) = (1/K) sum_i w_i |n_i(f_i x + o_i)|
-//
-// with f_i = frequency * lacunarity^i, per-band weights w_i (gain^i by default,
-// or given explicitly), and per-band independent fields n_i: band i uses seed
-// hash32(seed, i) and a lattice offset o_i in [0, 1)^D derived from it, so
-// bands are uncorrelated and their lattices do not all meet at the origin.
-//
-// Variance (Perlin base, over space and seeds; docs/design.md):
-//   Var[sum_i w_i n_i] = sigma^2 sum_i w_i^2,  sigma^2 = Noise::variance(),
-// because independent bands have zero covariance. The normalisation K makes
-// the output
-//   - normalization::unit_variance (fBm only): variance exactly 1, mean 0;
-//     |fbm| <= sum|w_i| / (sigma sqrt(sum w_i^2)) (bound(), analytic);
-//   - normalization::unit_range: |output| <= 1 (K = sum |w_i| * Noise::bound());
-//     turbulence with non-negative weights then lies in [0, 1];
-//   - normalization::none: K = 1, the raw sum.
-// Periodic: with period[a] = p > 0 band i uses period p * lacunarity^i, so the
-// sum repeats every p / frequency along axis a (lacunarity must be an integer).
-// Domain: as the base noise; every finite input gives a finite output, and a
-// NaN or infinite coordinate gives NaN.
-#ifndef HUSH_FRACTAL_HPP
-#define HUSH_FRACTAL_HPP
-
-#include <array>
-#include <climits>
-#include <cmath>
-#include <cstdint>
-#include <string>
-#include <vector>
-
-// ---- begin hush/core/point_noise.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The evaluation interface every point noise offers, written once.
-//
-// A noise N derives from point_noise<N, D> and defines two templates:
-//   template <class T> T value(const vec<double, D>& p) const;
-//   template <class T> value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const;
-// which split the position into lattice cell and fraction in double and then
-// compute in T. This base turns them into the public overloads:
-//   noise(vec<float, D>)  -> float    (float arithmetic)
-//   noise(vec<double, D>) -> double   (the double-precision reference)
-//   noise.gradient(...)   -> value_gradient<T, D>
-// Non-template overloads, so glm::vec arguments convert implicitly.
-#ifndef HUSH_CORE_POINT_NOISE_HPP
-#define HUSH_CORE_POINT_NOISE_HPP
-
-
-namespace hush {
-
-template <class Derived, int D>
-class point_noise {
- public:
-  static constexpr int dimension = D;
-
-  float operator()(const vec<float, D>& p) const {
-    return self().template value<float>(vec_cast<double>(p));
-  }
-  double operator()(const vec<double, D>& p) const { return self().template value<double>(p); }
-  value_gradient<float, D> gradient(const vec<float, D>& p) const {
-    return self().template value_and_gradient<float>(vec_cast<double>(p));
-  }
-  value_gradient<double, D> gradient(const vec<double, D>& p) const {
-    return self().template value_and_gradient<double>(p);
-  }
-
- private:
-  const Derived& self() const { return static_cast<const Derived&>(*this); }
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_POINT_NOISE_HPP
-// ---- end hush/core/point_noise.hpp
-
-namespace hush {
-
-enum class fractal_kind { fbm, turbulence };
-enum class normalization { unit_variance, unit_range, none };
-
-template <class Noise>
-class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
-  static constexpr int D = Noise::dimension;
-
- public:
-  static constexpr int kMaxOctaves = 32;
-
-  struct params {
-    std::uint32_t seed = 0;
-    fractal_kind kind = fractal_kind::fbm;
-    int octaves = 5;              // 1 ... 32
-    double frequency = 1.0;       // of band 0, > 0 and finite
-    double lacunarity = 2.0;      // frequency ratio between bands, 1 < l <= 16
-    double gain = 0.5;            // w_i = gain^i when weights is empty; finite, > 0
-    std::vector<double> weights;  // explicit band weights: empty, or `octaves` finite values
-    normalization norm = normalization::unit_variance;
-    std::array<int, D> period{};  // per axis, in band-0 lattice units; 0 = not periodic
-  };
-
-  fractal() : fractal(params{}) {}  // 5 octaves of fBm, unit variance, seed 0
-  // Throws hush::invalid_argument naming the first parameter out of range.
-  explicit fractal(const params& prm) : prm_(prm) {
-    validate();
-    double sum_sq = 0, sum_abs = 0;
-    // Powers by repeated multiplication, not std::pow: IEEE multiplication is
-    // the same everywhere, libm's pow is not (determinism across platforms).
-    double gain_i = 1.0, lac_i = 1.0;
-    for (int i = 0; i < prm_.octaves; ++i, gain_i *= prm_.gain, lac_i *= prm_.lacunarity) {
-      const double w = prm_.weights.empty() ? gain_i : prm_.weights[i];
-      const std::uint32_t band_seed = hash32(prm_.seed, static_cast<std::uint32_t>(i));
-      typename Noise::params np{};
-      np.seed = band_seed;
-      for (int a = 0; a < D; ++a)
-        np.period[a] = prm_.period[a] == 0 ? 0 : static_cast<int>(prm_.period[a] * lac_i);
-      vec<double, D> offset;
-      for (int a = 0; a < D; ++a)  // 24 hash bits: an exact fraction in [0, 1)
-        offset[a] = (hash32(band_seed, static_cast<std::uint32_t>(a)) >> 8) * 0x1p-24;
-      bands_.push_back({Noise(np), prm_.frequency * lac_i, w, offset});
-      sum_sq += w * w;
-      sum_abs += std::fabs(w);
-    }
-    switch (prm_.norm) {
-      case normalization::unit_variance:
-        scale_ = 1.0 / std::sqrt(Noise::variance() * sum_sq);
-        break;
-      case normalization::unit_range:
-        scale_ = 1.0 / (sum_abs * Noise::bound());
-        break;
-      case normalization::none:
-        scale_ = 1.0;
-        break;
-    }
-    bound_ = scale_ * sum_abs * Noise::bound();
-    variance_ = prm_.kind == fractal_kind::fbm ? scale_ * scale_ * Noise::variance() * sum_sq : -1;
-  }
-
-  const params& parameters() const { return prm_; }
-  // |output| <= bound() for every input (analytic, from |n_i| <= Noise::bound()).
-  double bound() const { return bound_; }
-  // Variance over space and seeds of fBm (1 under unit_variance); turbulence: -1 (not derived).
-  double variance() const { return variance_; }
-  // The weight and frequency of band i, after normalisation.
-  double band_weight(int i) const { return bands_[i].weight * scale_; }
-  double band_frequency(int i) const { return bands_[i].frequency; }
-
-  // The bands as evaluated, for backends that run them themselves (hush/simd):
-  // band i's noise, its raw weight w_i (before the normalisation scale()),
-  // its frequency, and its position f_i x + o_i in double, exactly as value()
-  // forms it.
-  int band_count() const { return static_cast<int>(bands_.size()); }
-  const Noise& band_noise(int i) const { return bands_[i].noise; }
-  double band_raw_weight(int i) const { return bands_[i].weight; }
-  vec<double, D> band_position(int i, const vec<double, D>& p) const {
-    return bands_[i].position(p);
-  }
-  // The normalisation factor K applied to the weighted sum.
-  double scale() const { return scale_; }
-
-  // Band positions f_i x + o_i are formed in double; each band evaluates in T.
-  template <class T>
-  T value(const vec<double, D>& p) const {
-    T sum = 0;
-    for (const band& b : bands_) {
-      const T n = b.noise.template value<T>(b.position(p));
-      sum += T(b.weight) * (prm_.kind == fractal_kind::fbm ? n : std::fabs(n));
-    }
-    return T(scale_) * sum;
-  }
-  // Gradient of the sum. For turbulence, |n| is not differentiable where n = 0;
-  // there the gradient of +n is returned.
-  template <class T>
-  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
-    value_gradient<T, D> r{T(0), {}};
-    for (const band& b : bands_) {
-      auto ng = b.noise.template value_and_gradient<T>(b.position(p));
-      T sign = T(1);
-      if (prm_.kind == fractal_kind::turbulence && ng.value < T(0)) sign = T(-1);
-      r.value += T(b.weight) * sign * ng.value;
-      const T chain = T(b.weight * b.frequency) * sign;  // d(f x + o)/dx = f
-      for (int a = 0; a < D; ++a) r.gradient[a] += chain * ng.gradient[a];
-    }
-    r.value *= T(scale_);
-    for (int a = 0; a < D; ++a) r.gradient[a] *= T(scale_);
-    return r;
-  }
-
- private:
-  struct band {
-    Noise noise;
-    double frequency;
-    double weight;
-    vec<double, D> offset;
-    // f x + o in double. Where a finite x overflows (|x f| > DBL_MAX), the
-    // exact product is a multiple of 2^32, i.e. lattice cell 0 with fraction
-    // 0 under the 2^32-cell wrap (core/lattice.hpp), so 0 is the exact band
-    // coordinate, and a finite input keeps giving a finite output.
-    vec<double, D> position(const vec<double, D>& p) const {
-      vec<double, D> q;
-      for (int a = 0; a < D; ++a) {
-        q[a] = p[a] * frequency + offset[a];
-        if (!std::isfinite(q[a]) && std::isfinite(p[a])) q[a] = 0.0;
-      }
-      return q;
-    }
-  };
-
-  void validate() const {
-    const char* where = "hush::fractal";
-    detail::require_in_range(where, "octaves", prm_.octaves, 1, kMaxOctaves, "1 ... 32");
-    if (!(std::isfinite(prm_.frequency) && prm_.frequency > 0))
-      detail::throw_out_of_range(where, "frequency", prm_.frequency, "finite and > 0");
-    if (!(prm_.lacunarity > 1.0 && prm_.lacunarity <= 16.0))
-      detail::throw_out_of_range(where, "lacunarity", prm_.lacunarity, "1 < lacunarity <= 16");
-    if (prm_.weights.empty()) {
-      if (!(std::isfinite(prm_.gain) && prm_.gain > 0))
-        detail::throw_out_of_range(where, "gain", prm_.gain, "finite and > 0");
-      // gain^(octaves-1) must stay a normal double for the weights to mean anything.
-      const double smallest = std::pow(prm_.gain, prm_.octaves - 1);
-      if (!(std::isfinite(smallest) && smallest >= 1e-300))
-        detail::throw_out_of_range(where, "gain", prm_.gain,
-                                   "gain^(octaves-1) finite and >= 1e-300");
-    } else {
-      if (prm_.weights.size() != static_cast<std::size_t>(prm_.octaves))
-        detail::throw_out_of_range(where, "weights.size()", prm_.weights.size(),
-                                   "empty (use gain) or equal to octaves");
-      bool any = false;
-      for (std::size_t i = 0; i < prm_.weights.size(); ++i) {
-        if (!std::isfinite(prm_.weights[i]))
-          detail::throw_out_of_range(where, "weights[" + std::to_string(i) + "]", prm_.weights[i],
-                                     "a finite number");
-        any = any || prm_.weights[i] != 0.0;
-      }
-      if (!any)
-        throw hush::invalid_argument(
-            "hush::fractal: weights are all zero; valid: at least one non-zero weight");
-    }
-    if (prm_.kind == fractal_kind::turbulence && prm_.norm == normalization::unit_variance)
-      throw hush::invalid_argument(
-          "hush::fractal: norm = unit_variance is not available for turbulence; valid: "
-          "unit_range or none");
-    for (int a = 0; a < D; ++a) {
-      const std::string name = "period[" + std::to_string(a) + "]";
-      if (prm_.period[a] < 0)
-        detail::throw_out_of_range(where, name, prm_.period[a], "0 (not periodic) or >= 1");
-      if (prm_.period[a] == 0) continue;
-      if (prm_.lacunarity != std::floor(prm_.lacunarity))
-        detail::throw_out_of_range(where, "lacunarity", prm_.lacunarity,
-                                   "an integer (2 ... 16) when a period is set");
-      const double top = prm_.period[a] * std::pow(prm_.lacunarity, prm_.octaves - 1);
-      if (top > INT_MAX)
-        detail::throw_out_of_range(where, name, prm_.period[a],
-                                   "period * lacunarity^(octaves-1) <= 2147483647");
-    }
-  }
-
-  params prm_;
-  std::vector<band> bands_;
-  double scale_ = 1, bound_ = 1, variance_ = 1;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_FRACTAL_HPP
-// ---- end hush/fractal.hpp
-// ---- begin hush/perlin.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Improved Perlin noise (Ken Perlin, "Improving Noise", SIGGRAPH 2002) in 2D
-// and 3D: gradient noise on the integer lattice with the quintic fade, seeded
-// through hush's lattice hash (any 32-bit seed gives an independent field, not
-// a reshuffle of one 256-entry table), optionally periodic per axis.
-//
-//   hush::perlin<3> p{7};                        // seed 7
-//   float v = p(hush::vec3{x, y, z});            // in [-1, 1]
-//   auto [v2, g] = p.gradient(hush::vec3{x, y, z});
-//   double r = p(hush::dvec3{x, y, z});          // the double-precision reference
-//
-// Contract (both dimensions, float and double):
-//  - range: [-1, 1]; the bound is attained (constants.hpp, docs/design.md).
-//    Float results may exceed it by the float error budget below.
-//  - mean 0 and variance variance() over space and seeds (0.0931 in 2D,
-//    0.0679 in 3D; derived in docs/design.md, measured in the tests).
-//  - C2 in position; gradient() returns the exact analytic derivative.
-//  - zero at every lattice point.
-//  - float evaluation is within 2^-16 (1.5e-5, a forward error bound) of the
-//    double reference at the same position; measured max 2.4e-6, RMS 1.9e-7
-//    (tests/perlin_test.cpp).
-//  - domain: every finite coordinate (core/lattice.hpp); NaN or +-Inf in any
-//    coordinate gives NaN (value and gradient). Evaluation never throws.
-//  - periodic mode: with period[a] = p > 0, noise(x + p e_a) == noise(x)
-//    exactly (bit for bit where x and x + p are both representable).
-#ifndef HUSH_PERLIN_HPP
-#define HUSH_PERLIN_HPP
-
-#include <array>
-#include <climits>
-#include <cstdint>
-#include <string>
-
-// ---- begin hush/core/lattice.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Splitting a coordinate into lattice cell and fraction, robustly.
-//
-// Fast floors elsewhere got x = -1 wrong (returned cell -2), mirrored negative
-// cells by truncating, or produced NaN past INT_MAX (HARD_CASES rows 1 and 3).
-// hush splits in double: for any finite float or double x,
-//   cell = floor(x) exactly as std::floor picks it, reduced modulo 2^32
-//          (or modulo the period in periodic mode), and
-//   frac = x - floor(x), computed exactly in double, then rounded to T and
-//          clamped below 1, so frac is in [0, 1) for every finite x.
-// Domain: every finite x. The noise lattice is 2^32 cells wide: cell indices
-// wrap, so noise(x + 2^32) == noise(x) for exactly representable x. For float
-// x with |x| >= 2^24 every value is an integer (frac = 0); double keeps
-// fraction bits up to 2^52. Non-finite x (NaN, +-Inf) gives cell 0 and a NaN
-// fraction, so every noise built on this returns NaN for them.
-#ifndef HUSH_CORE_LATTICE_HPP
-#define HUSH_CORE_LATTICE_HPP
-
-#include <cmath>
-#include <cstdint>
-#include <limits>
-
-
-namespace hush {
-
-// One axis of a lattice lookup: the cell containing x, its successor (after
-// wrapping), and the position inside the cell.
-template <class T>
-struct lattice_coord {
-  std::uint32_t i0;  // floor(x) modulo 2^32 (or modulo the period)
-  std::uint32_t i1;  // the next cell: i0 + 1, wrapped the same way
-  T f;               // x - floor(x) in [0, 1); NaN when x is not finite
-};
-
-namespace detail {
-
-// The largest T below 1: where frac rounds up to 1 (x just below an integer,
-// e.g. x = -1e-30), it is clamped here so that frac stays inside its cell.
-template <class T>
-constexpr T one_minus_ulp() {
-  return T(1) - std::numeric_limits<T>::epsilon() / T(2);
-}
-
-// floor(x) of a finite double modulo m (m in 1 ... 2^32), in [0, m).
-// |fl| < 2^63 takes the integer path; beyond, std::fmod is exact.
-HUSH_INLINE std::uint64_t floor_mod(double fl, std::uint64_t m) {
-  constexpr double kInt64Limit = 9223372036854775808.0;  // 2^63
-  if (fl > -kInt64Limit && fl < kInt64Limit) {
-    const std::int64_t i = static_cast<std::int64_t>(fl);
-    const std::int64_t r = i % static_cast<std::int64_t>(m);
-    return static_cast<std::uint64_t>(r < 0 ? r + static_cast<std::int64_t>(m) : r);
-  }
-  double r = std::fmod(fl, static_cast<double>(m));  // exact; sign of fl
-  if (r < 0) r += static_cast<double>(m);            // exact: |r| < m <= 2^32
-  return static_cast<std::uint64_t>(r);
-}
-
-}  // namespace detail
-
-// Splits x into cell and fraction (see the file comment for the contract).
-// period = 0: the plain lattice (cells modulo 2^32);
-// period = p in 1 ... 2^32 - 1: cells modulo p, so the noise repeats every p units.
-template <class T>
-HUSH_INLINE lattice_coord<T> lattice_split(double x, std::uint32_t period = 0) {
-  if (!std::isfinite(x)) return {0u, period == 1u ? 0u : 1u, std::numeric_limits<T>::quiet_NaN()};
-  const double fl = std::floor(x);
-  const double fd = x - fl;  // exact except for tiny negative x, where it rounds to 1
-  T f = static_cast<T>(fd);
-  if (f >= T(1)) f = detail::one_minus_ulp<T>();
-  constexpr std::uint64_t kWrap = std::uint64_t(1) << 32;
-  if (period == 0) {
-    const auto i0 = static_cast<std::uint32_t>(detail::floor_mod(fl, kWrap));
-    return {i0, i0 + 1u, f};  // unsigned: wraps at 2^32 by definition
-  }
-  const auto i0 = static_cast<std::uint32_t>(detail::floor_mod(fl, period));
-  return {i0, i0 + 1u == period ? 0u : i0 + 1u, f};
-}
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_LATTICE_HPP
-// ---- end hush/core/lattice.hpp
-
-namespace hush {
-namespace detail {
-
-// Quintic fade s(t) and its derivative, from the coefficients in constants.hpp.
-template <class T>
-HUSH_INLINE T fade(T t) {
-  namespace c = constants;
-  return t * t * t * (t * (t * T(c::kFade5) + T(c::kFade4)) + T(c::kFade3));
-}
-template <class T>
-HUSH_INLINE T fade_derivative(T t) {
-  namespace c = constants;
-  return t * t * (t * (t * T(5 * c::kFade5) + T(4 * c::kFade4)) + T(3 * c::kFade3));
-}
-template <class T>
-HUSH_INLINE T lerp(T a, T b, T t) {
-  return a + t * (b - a);
-}
-
-// Gradient tables in T, converted at compile time from the double constants.
-template <class T, int N>
-constexpr std::array<T, N> table_cast(const double (&src)[N]) {
-  std::array<T, N> r{};
-  for (int i = 0; i < N; ++i) r[i] = static_cast<T>(src[i]);
-  return r;
-}
-template <class T>
-struct perlin_tables {
-  static constexpr auto g2x = table_cast<T>(constants::kPerlin2GradX);
-  static constexpr auto g2y = table_cast<T>(constants::kPerlin2GradY);
-  static constexpr auto g3x = table_cast<T>(constants::kPerlin3GradX);
-  static constexpr auto g3y = table_cast<T>(constants::kPerlin3GradY);
-  static constexpr auto g3z = table_cast<T>(constants::kPerlin3GradZ);
-};
-
-// Gradient index of a lattice hash: 2D takes the top 3 bits (uniform over 8);
-// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply.
-HUSH_INLINE constexpr std::uint32_t perlin2_grad_index(std::uint32_t h) {
-  return h >> constants::kPerlin2GradShift;
-}
-HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
-  return ((h >> constants::kPerlin3IndexShift) * std::uint32_t(constants::kPerlin3GradCount)) >>
-         constants::kPerlin3IndexShift;
-}
-
-}  // namespace detail
-
-template <int D>
-class perlin : public point_noise<perlin<D>, D> {
-  static_assert(D == 2 || D == 3, "hush::perlin is 2D or 3D");
-
- public:
-  struct params {
-    std::uint32_t seed = 0;
-    // Per-axis period in lattice units: 0 = not periodic, p in 1 ... INT_MAX =
-    // the noise repeats every p units along that axis (tileable noise).
-    std::array<int, D> period{};
-  };
-
-  perlin() : perlin(params{}) {}
-  explicit perlin(std::uint32_t seed) : perlin(params{seed, {}}) {}
-  // Throws hush::invalid_argument when a period is negative.
-  explicit perlin(const params& prm) : prm_(prm), key_(seed_key(prm.seed)) {
-    for (int a = 0; a < D; ++a)
-      if (prm.period[a] < 0)
-        detail::throw_out_of_range("hush::perlin", "period[" + std::to_string(a) + "]",
-                                   prm.period[a], "0 (not periodic) or 1 ... 2147483647");
-  }
-
-  const params& parameters() const { return prm_; }
-
-  // Output bound and variance of the noise over space and seeds (see header comment).
-  static constexpr double bound() { return 1.0; }
-  static constexpr double variance() {
-    return D == 2 ? detail::constants::kPerlin2Variance : detail::constants::kPerlin3Variance;
-  }
-
-  // p(vec) -> value and p.gradient(vec) -> value and analytic gradient, in
-  // float or double (the reference), come from core/point_noise.hpp.
-
-  // Evaluation at a double-precision position with arithmetic in T: the
-  // position is split into cell and fraction in double, the rest runs in T.
-  // This is what grids far from the origin use.
-  template <class T>
-  T value(const vec<double, D>& p) const {
-    return eval<T, false>(p).value;
-  }
-  template <class T>
-  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
-    return eval<T, true>(p);
-  }
-
- private:
-  template <class T, bool WithGradient>
-  value_gradient<T, D> eval(const vec<double, D>& p) const {
-    lattice_coord<T> c[D];
-    for (int a = 0; a < D; ++a)
-      c[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
-    if constexpr (D == 2)
-      return eval2<T, WithGradient>(c[0], c[1]);
-    else
-      return eval3<T, WithGradient>(c[0], c[1], c[2]);
-  }
-
-  template <class T, bool WithGradient>
-  value_gradient<T, 2> eval2(const lattice_coord<T>& cx, const lattice_coord<T>& cy) const {
-    using tab = detail::perlin_tables<T>;
-    const T fx = cx.f, fy = cy.f, fx1 = fx - T(1), fy1 = fy - T(1);
-    const std::uint32_t g00 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i0));
-    const std::uint32_t g10 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i0));
-    const std::uint32_t g01 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i1));
-    const std::uint32_t g11 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i1));
-    // Corner contributions g . (x - corner).
-    const T d00 = tab::g2x[g00] * fx + tab::g2y[g00] * fy;
-    const T d10 = tab::g2x[g10] * fx1 + tab::g2y[g10] * fy;
-    const T d01 = tab::g2x[g01] * fx + tab::g2y[g01] * fy1;
-    const T d11 = tab::g2x[g11] * fx1 + tab::g2y[g11] * fy1;
-    const T u = detail::fade(fx), v = detail::fade(fy);
-    const T x0 = detail::lerp(d00, d10, u), x1 = detail::lerp(d01, d11, u);
-    constexpr T kScale = T(detail::constants::kPerlin2Scale);
-    value_gradient<T, 2> r{kScale * detail::lerp(x0, x1, v), {}};
-    if constexpr (WithGradient) {
-      // d/dx: interpolated gradients plus the fade's derivative times the
-      // difference of the contributions it blends (product rule).
-      const T du = detail::fade_derivative(fx), dv = detail::fade_derivative(fy);
-      const T gx = detail::lerp(detail::lerp(tab::g2x[g00], tab::g2x[g10], u),
-                                detail::lerp(tab::g2x[g01], tab::g2x[g11], u), v) +
-                   du * detail::lerp(d10 - d00, d11 - d01, v);
-      const T gy = detail::lerp(detail::lerp(tab::g2y[g00], tab::g2y[g10], u),
-                                detail::lerp(tab::g2y[g01], tab::g2y[g11], u), v) +
-                   dv * (x1 - x0);
-      r.gradient = {kScale * gx, kScale * gy};
-    }
-    return r;
-  }
-
-  template <class T, bool WithGradient>
-  value_gradient<T, 3> eval3(const lattice_coord<T>& cx, const lattice_coord<T>& cy,
-                             const lattice_coord<T>& cz) const {
-    using tab = detail::perlin_tables<T>;
-    const T f[2][3] = {{cx.f, cy.f, cz.f}, {cx.f - T(1), cy.f - T(1), cz.f - T(1)}};
-    const std::uint32_t ix[2] = {cx.i0, cx.i1}, iy[2] = {cy.i0, cy.i1}, iz[2] = {cz.i0, cz.i1};
-    // Corner n = a + 2b + 4c is at offset (a, b, c) from the cell's origin.
-    T d[8];
-    std::uint32_t g[8];
-    for (int n = 0; n < 8; ++n) {
-      const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
-      g[n] = detail::perlin3_grad_index(lattice_hash(key_, ix[a], iy[b], iz[cc]));
-      d[n] = tab::g3x[g[n]] * f[a][0] + tab::g3y[g[n]] * f[b][1] + tab::g3z[g[n]] * f[cc][2];
-    }
-    const T u = detail::fade(f[0][0]), v = detail::fade(f[0][1]), w = detail::fade(f[0][2]);
-    const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
-    const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
-    const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
-    constexpr T kScale = T(detail::constants::kPerlin3Scale);
-    value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w), {}};
-    if constexpr (WithGradient) {
-      // Trilinear blend of a per-corner quantity q[n] with the fade weights.
-      auto blend = [&](const T* q) {
-        return detail::lerp(
-            detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
-            detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
-      };
-      T gxs[8], gys[8], gzs[8], ddx[4], ddy[4];
-      for (int n = 0; n < 8; ++n) {
-        gxs[n] = tab::g3x[g[n]];
-        gys[n] = tab::g3y[g[n]];
-        gzs[n] = tab::g3z[g[n]];
-      }
-      for (int m = 0; m < 4; ++m) ddx[m] = d[2 * m + 1] - d[2 * m];  // along x, per (b, c)
-      const T du = detail::fade_derivative(f[0][0]);
-      const T dv = detail::fade_derivative(f[0][1]);
-      const T dw = detail::fade_derivative(f[0][2]);
-      // d/dx of lerp over x: du * (d[a=1] - d[a=0]), then blended in y and z.
-      const T ex =
-          detail::lerp(detail::lerp(ddx[0], ddx[1], v), detail::lerp(ddx[2], ddx[3], v), w);
-      ddy[0] = x10 - x00;
-      ddy[1] = x11 - x01;
-      const T ey = detail::lerp(ddy[0], ddy[1], w);
-      const T ez = y1 - y0;
-      r.gradient = {kScale * (blend(gxs) + du * ex), kScale * (blend(gys) + dv * ey),
-                    kScale * (blend(gzs) + dw * ez)};
-    }
-    return r;
-  }
-
-  params prm_;
-  std::uint32_t key_;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_PERLIN_HPP
-// ---- end hush/perlin.hpp
 
 namespace hush {
 namespace detail {
@@ -3108,6 +3690,53 @@ void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* ou
   }
 }
 
+// The scalar loop over samples with extra inputs (footprints or normals).
+template <class Noise>
+void scalar_samples(const Noise& n, const samples<Noise::dimension>& s, float* out,
+                    vec<float, Noise::dimension>* grad) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const sample_input<Noise::dimension> in = s.at(i);
+    if (grad) {
+      const auto r = n.template sample_value_and_gradient<float>(in);
+      out[i] = r.value;
+      grad[i] = r.gradient;
+    } else {
+      out[i] = n.template sample_value<float>(in);
+    }
+  }
+}
+
+// Whether the SIMD kernels of Noise take per-sample inputs (simd_kernel<Noise>::samples).
+template <class Kernel, class = void>
+struct has_simd_samples : std::false_type {};
+template <class Kernel>
+struct has_simd_samples<Kernel, std::void_t<decltype(Kernel::has_samples)>>
+    : std::integral_constant<bool, Kernel::has_samples> {};
+
+// Samples with extra inputs on backend ex; positions-only batches go to run_points.
+template <class Noise, class Exec>
+void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  // Positions only (always so for a noise that takes no extras: validated) is a points batch.
+  constexpr bool kExtras = takes_footprint<Noise>::value || takes_normal<Noise>::value;
+  if (!kExtras || (!s.has_footprints() && !s.has_normals())) {
+    run_points(n, ex, s.positions, out, grad);
+    return;
+  }
+  if constexpr (kExtras) {
+    if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
+      scalar_samples(n, s, out, grad);
+    } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+      if constexpr (has_simd_samples<simd_kernel<Noise>>::value)
+        simd_kernel<Noise>::samples(n, s, out, grad);
+      else
+        scalar_samples(n, s, out, grad);
+    } else {
+      ex.device.evaluate_samples(n, s, out, grad);
+    }
+  }
+}
+
 template <class Noise, class Exec>
 void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, float* out,
               vec<float, Noise::dimension>* grad) {
@@ -3144,6 +3773,28 @@ void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> poin
   detail::run_points(noise, ex, points, out.data(), gradients.data());
 }
 
+// Values of `noise` at `s` (positions with optional footprints and normals,
+// core/samples.hpp) into `out` (one per position), on backend `ex`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
+              span<float> out) {
+  detail::validate_samples<Noise>("hush::evaluate", s);
+  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
+  if (s.size() == 0) return;
+  detail::run_samples(noise, ex, s, out.data(), nullptr);
+}
+
+// Values and gradients (d value / d position, the footprint held fixed) at `s`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
+              span<float> out, detail::gradient_span<Noise> gradients) {
+  detail::validate_samples<Noise>("hush::evaluate", s);
+  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
+  detail::require_same_size("hush::evaluate", "gradients", gradients.size(), s.size());
+  if (s.size() == 0) return;
+  detail::run_samples(noise, ex, s, out.data(), gradients.data());
+}
+
 // Values of `noise` on the uniform grid `g` into `out` (g.count() elements,
 // C order, i fastest).
 template <class Noise, class Exec>
@@ -3170,6 +3821,86 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 
 #endif  // HUSH_EXEC_HPP
 // ---- end hush/exec.hpp
+
+// Scene-driven noises (hush::frame: per-frame G-buffer views).
+// ---- begin hush/coherent.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Coherent noise (Michael Kass and Davide Pesare, "Coherent Noise for
+// Non-Photorealistic Rendering", SIGGRAPH 2011): screen-space noise that moves
+// with the surfaces of an animated scene. Each frame alone looks like white
+// (or band-pass) noise; from frame to frame the noise follows the motion given
+// by the renderer's depth and velocity, so it is neither flickering white
+// noise nor a "shower door" pattern fixed to the screen. A scene-driven noise
+// (hush::frame, core/frame.hpp): it reads per-pixel depth and velocity, and
+// object ids when given.
+//
+//   hush::coherent_params prm;                 // alpha 0.98, stationary filter, 1 channel
+//   hush::coherent_stream stream{prm};         // the history, owned by the caller
+//   for (each frame) {
+//     hush::frame f;                           // views of the renderer's G-buffer
+//     f.depth = {depth, w, h};  f.velocity = {velocity, w, h};  f.object_id = {ids, w, h};
+//     stream.advance(hush::exec::simd, f, hush::image_view<float>{out, w, h});
+//   }
+//   // Offline, time-symmetric (needs forward velocity too):
+//   hush::coherent_symmetric(hush::exec::simd, prm, frames, outputs);
+//
+// The filters (docs/coherent.md derives every claim below):
+//  - causal, paper: Kass & Pesare eq. 7. c_0 = k(alpha) w_0 (eq. 6); then per pixel
+//    c_i = alpha c_{i-1}(x', y') + (1 - alpha) w_i where the surface point was visible in
+//    frame i-1 at (x', y') (bilinear), else k(alpha) w_i (disocclusion, sec. 3.2).
+//    Stationary for still scenes; under sub-pixel motion the bilinear resampling of
+//    c_{i-1} averages neighbours, so moving surfaces lose variance and sharpness frame
+//    after frame (HARD_CASES row 13).
+//  - causal, stationary (the default): the same plus a refill term, fresh noise shaped
+//    like exactly what bilinear resampling removed (its spectrum 1 - |H|^2): the output
+//    keeps the variance and spectrum of the input on moving surfaces as on still ones
+//    (exactly for translation, to second order in the motion's gradient otherwise).
+//  - time-symmetric (sec. 3.3): forward and backward causal passes over the same w,
+//    summed, minus (1 - alpha) w_i: impulse response (1 - alpha) alpha^|i|. With the
+//    k(alpha) start of both passes every frame, the first and last included, has the
+//    same variance.
+// Contract:
+//  - output: per channel, variance 1 for white input (the filters' variance is divided
+//    out: gain 1 / k(alpha) causal, 1 / sqrt((1 - alpha)(1 + alpha^2) / (1 + alpha))
+//    symmetric), mean 0; stationary filter: on still and moving surfaces alike.
+//    Channels are independent fields sharing the reprojection.
+//  - input w_i: white (a hash of seed, channel, frame index and pixel: deterministic,
+//    independent per frame, uniform with variance 1), band-pass (Perlin noise in screen
+//    space, cells of bandpass_pixels pixels, per-frame seed and lattice offset, scaled to
+//    variance 1), or the caller's images (advance's `input`; NaN/Inf read as 0).
+//  - disocclusion: a pixel takes fresh noise k(alpha) w_i (the stationary variance) when
+//    its depth or motion is not finite, its depth is not positive, its reprojection leaves
+//    the reference frame's outer pixel centres, a bilinear tap shows no surface or (with
+//    object ids in both frames) another object, or the interpolated depth differs from
+//    the expected one by more than epsilon * depth + epsilon_absolute (both ways: the paper
+//    tests only "farther"; a nearer one means the footprint straddles an edge).
+//  - robust: NaN/Inf/negative depth or velocity never reach the history, which holds
+//    finite values only (tested, also after deserialisation); no denormal is formed at
+//    any alpha in [0, 1).
+//  - float vs the double reference (basic_coherent_stream<double>): the reprojection is
+//    the same float computation; values differ by rounding only, a recursion contracting
+//    by alpha: within 2^-18 / (1 - alpha) (tests/coherent_test.cpp; measured far below).
+//  - backends: exec::scalar is the reference; exec::simd equals it bit for bit under
+//    HUSH_STRICT_FP (hush/simd/coherent-inl.h); exec::glsl{device} (include
+//    hush/glsl/coherent.hpp) keeps the history on the GPU; tolerance there.
+#ifndef HUSH_COHERENT_HPP
+#define HUSH_COHERENT_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
 
 namespace hush {
 
@@ -4080,171 +4811,6 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 
 #endif  // HUSH_COHERENT_HPP
 // ---- end hush/coherent.hpp
-// ---- begin hush/core/rng.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// hush::rng: a small deterministic random number generator. Counter-based:
-// draw n of stream (seed, stream) is hash32(key ^ hash32(n)), with
-// key = hash32(seed, stream). That makes it
-//  - reproducible bit for bit on every compiler and standard library (no
-//    std::*_distribution anywhere; HARD_CASES row 10) and in GLSL (32-bit
-//    unsigned operations only),
-//  - splittable: a triangle, pixel or octave gets its own stream by id, and
-//    streams are independent, with no state shared between them,
-//  - random access: skip(n) is O(1).
-// Each stream is a permutation of all 2^32 words over its period of 2^32 draws.
-#ifndef HUSH_CORE_RNG_HPP
-#define HUSH_CORE_RNG_HPP
-
-#include <cmath>
-#include <cstdint>
-#include <limits>
-#include <type_traits>
-
-
-namespace hush {
-
-// ln(n!) for n >= 0: exact-factorial logarithms up to n = 20, Stirling's series
-// above (relative error < 1e-16 in the series). Own code rather than
-// std::lgamma, which is not thread-safe in glibc (it writes `signgam`).
-inline double log_factorial(std::uint32_t n) {
-  namespace c = detail::constants;
-  if (n <= static_cast<std::uint32_t>(c::kLogFactorialTable)) {
-    double f = 1.0;
-    for (std::uint32_t i = 2; i <= n; ++i) f *= static_cast<double>(i);
-    return std::log(f);
-  }
-  const double x = static_cast<double>(n);
-  const double r = 1.0 / x, r2 = r * r;
-  const double series =
-      r *
-      (c::kStirling[0] + r2 * (c::kStirling[1] + r2 * (c::kStirling[2] + r2 * c::kStirling[3])));
-  return (x + 0.5) * std::log(x) - x + c::kHalfLog2Pi + series;
-}
-
-class rng {
- public:
-  // A stream of random numbers. Different (seed, stream) pairs give
-  // independent streams; the default stream is 0.
-  constexpr explicit rng(std::uint32_t seed, std::uint32_t stream = 0)
-      : key_(hash32(seed, stream)) {}
-
-  // Uniform 32-bit word.
-  constexpr std::uint32_t next_u32() { return hash32(key_ ^ hash32(counter_++)); }
-
-  // Number of draws made so far, and O(1) skipping ahead (wraps at 2^32).
-  constexpr std::uint32_t position() const { return counter_; }
-  constexpr void skip(std::uint32_t n) { counter_ += n; }
-
-  // Uniform in [0, 1): float from 24 bits (one draw), double from 53 bits
-  // (two draws); every value is a multiple of 2^-24 or 2^-53.
-  template <class T = float>
-  T uniform() {
-    static_assert(std::is_same<T, float>::value || std::is_same<T, double>::value,
-                  "hush::rng::uniform<T>: T is float or double");
-    if constexpr (std::is_same<T, float>::value) {
-      return static_cast<float>(next_u32() >> 8) * 0x1p-24f;
-    } else {
-      const std::uint64_t hi = next_u32() >> 5;  // 27 bits
-      const std::uint64_t lo = next_u32() >> 6;  // 26 bits
-      return static_cast<double>((hi << 26) | lo) * 0x1p-53;
-    }
-  }
-
-  // Uniform in [lo, hi). Requires lo < hi, both finite (not checked: a hot
-  // path). lo + (hi - lo) u can round up to hi when u is the largest value
-  // below 1; that one case returns the largest value below hi.
-  template <class T>
-  T uniform(T lo, T hi) {
-    const T r = lo + (hi - lo) * uniform<T>();
-    return r < hi ? r : std::nextafter(hi, lo);
-  }
-
-  // Standard normal deviate (mean 0, variance 1) by Marsaglia's polar method,
-  // computed in double. Each try succeeds with probability pi/4; after 64
-  // failed tries (probability 2e-43) it returns 0, so it always terminates.
-  template <class T = float>
-  T gaussian() {
-    constexpr int kMaxTries = 64;
-    for (int t = 0; t < kMaxTries; ++t) {
-      const double u = 2.0 * uniform<double>() - 1.0;
-      const double v = 2.0 * uniform<double>() - 1.0;
-      const double s = u * u + v * v;
-      if (s > 0.0 && s < 1.0) return static_cast<T>(u * std::sqrt(-2.0 * std::log(s) / s));
-    }
-    return T(0);
-  }
-
-  // Poisson-distributed count with the given mean, for any mean in
-  // [0, 1e9]. Throws hush::invalid_argument for a negative, NaN, infinite or
-  // larger mean. Always terminates: inversion below mean 12 is bounded by a
-  // step cap, and PTRS rejection above gives up after 10^4 tries (probability
-  // below 1e-9000) by returning round(mean).
-  std::uint32_t poisson(double mean) {
-    namespace c = detail::constants;
-    if (!(mean >= 0.0 && mean <= c::kPoissonMaxMean))
-      detail::throw_out_of_range("hush::rng::poisson", "mean", mean,
-                                 "0 <= mean <= 1e9 (finite, not NaN)");
-    if (mean == 0.0) return 0;
-    if (mean < c::kPoissonInversionLimit) return poisson_inversion(mean);
-    return poisson_ptrs(mean);
-  }
-
- private:
-  // Sequential search of the CDF. For mean < 12, P(k > 200) < 1e-150, so the
-  // cap changes nothing but guarantees termination even if rounding keeps the
-  // summed CDF below u.
-  std::uint32_t poisson_inversion(double mean) {
-    constexpr std::uint32_t kMaxK = 200;
-    const double u = uniform<double>();
-    double p = std::exp(-mean);  // >= exp(-12): no underflow
-    double cdf = p;
-    std::uint32_t k = 0;
-    while (u >= cdf && k < kMaxK) {
-      ++k;
-      p *= mean / static_cast<double>(k);
-      cdf += p;
-    }
-    return k;
-  }
-
-  // Hoermann 1993, PTRS; symbols as in the paper (a, b, v_r, alpha).
-  std::uint32_t poisson_ptrs(double mean) {
-    namespace c = detail::constants;
-    constexpr int kMaxTries = 10000;
-    const double slam = std::sqrt(mean);
-    const double loglam = std::log(mean);
-    const double b = c::kPtrsB0 + c::kPtrsB1 * slam;
-    const double a = c::kPtrsA0 + c::kPtrsA1 * b;
-    const double inv_alpha = c::kPtrsAlpha0 + c::kPtrsAlpha1 / (b - c::kPtrsAlphaB);
-    const double vr = c::kPtrsVr0 - c::kPtrsVr1 / (b - c::kPtrsVrB);
-    const double log_inv_alpha = std::log(inv_alpha);
-    constexpr double kMaxCount = 4294967295.0;
-    for (int t = 0; t < kMaxTries; ++t) {
-      const double u = uniform<double>() - 0.5;
-      const double v = uniform<double>();
-      const double us = 0.5 - std::fabs(u);
-      if (us <= 0.0) continue;  // u = -0.5 exactly: the transform is singular
-      const double kd = std::floor((2.0 * a / us + b) * u + mean + c::kPtrsKOffset);
-      if (kd < 0.0 || kd > kMaxCount) continue;
-      if (us >= c::kPtrsUsAccept && v <= vr) return static_cast<std::uint32_t>(kd);
-      if (us < c::kPtrsUsReject && v > us) continue;
-      const auto k = static_cast<std::uint32_t>(kd);
-      if (std::log(v) + log_inv_alpha - std::log(a / (us * us) + b) <=
-          -mean + kd * loglam - log_factorial(k))
-        return k;
-    }
-    return static_cast<std::uint32_t>(std::floor(mean + 0.5));
-  }
-
-  std::uint32_t key_;
-  std::uint32_t counter_ = 0;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_RNG_HPP
-// ---- end hush/core/rng.hpp
 
 #endif  // HUSH_HUSH_HPP
 // ---- end hush/hush.hpp

@@ -94,6 +94,18 @@ constexpr double kPerlin3RawVariance = 35054270.0 / 480729249.0;  // 0.072918...
 constexpr double kPerlin2Variance = kPerlin2RawVariance * kPerlin2Scale * kPerlin2Scale;
 constexpr double kPerlin3Variance = kPerlin3RawVariance * kPerlin3Scale * kPerlin3Scale;
 
+// ---- Footprints (core/footprint.hpp).
+// The widest footprint kept, in noise units: 2^32, the lattice's period
+// (core/lattice.hpp). A pixel that wide covers every lattice cell, so
+// filtering leaves nothing but the mean; wider, NaN or infinite footprints
+// are stored as this one. Squared (2^64) it is still a normal float.
+constexpr double kFootprintMaxWidth = 4294967296.0;
+// Standard deviation, in pixels, of the Gaussian pixel filter the filtering
+// noises apply through the footprint: its amplitude response is
+// exp(-2 pi^2 sigma^2 k^2) = 0.29 at the Nyquist frequency (1/2 cycle per
+// pixel) and 0.0072 at 1 cycle per pixel.
+constexpr double kPixelFilterSigma = 0.5;
+
 // ---- Poisson sampling (core/rng.hpp).
 // Means below kPoissonInversionLimit use sequential inversion (expected
 // mean + 1 steps); larger means use Hoermann's PTRS transformed rejection

@@ -16,6 +16,17 @@
 //   binding 1 `float hush_out[]`: the value per sample, or with gradients
 //     D + 1 floats per sample (value, d/dx, d/dy[, d/dz]);
 //   plus the noise's own uniforms (noise_program<Noise>::uniforms()).
+// Samples (batch_layout::samples; hush::samples, core/samples.hpp): the
+// points input above, plus per-sample footprints and normals, each present
+// when its uniform says so (the device binds a dummy buffer otherwise):
+//   uniform uint hush_has_footprint: 1u when binding 2 `float hush_fp[]`
+//     holds footprint<D>::kEntries floats per sample (the upper triangle of
+//     the footprint matrix S, row by row: 2D xx, xy, yy; 3D xx, xy, xz, yy, yz, zz);
+//   uniform uint hush_has_normal: 1u when binding 3 `float hush_nrm[]` holds
+//     3 floats per sample;
+// and the noise sees `matD fp` (S, symmetric; zero when absent), `vec3 nrm`
+// (zero when absent) and `bool has_nrm`, besides `p`:
+// noise_program<Noise>::sample_call(bool gradient) is its expression.
 // Banded noises (noise_program<Noise>::banded, e.g. fractal sums) read, for
 // `uniform uint hush_bands` bands, band b's triples instead:
 //   points: binding 0 `uint hush_axis[]`, per point, per band, per axis the
@@ -34,8 +45,22 @@
 namespace hush {
 namespace glsl {
 
-// What a runner reads: an array of points, or a uniform grid.
-enum class batch_layout { points, grid };
+// What a runner reads: an array of points, a uniform grid, or an array of
+// samples (points with optional footprints and normals).
+enum class batch_layout { points, grid, samples };
+
+// The name of a layout: "points", "grid", "samples".
+inline const char* layout_name(batch_layout layout) {
+  switch (layout) {
+    case batch_layout::points:
+      return "points";
+    case batch_layout::grid:
+      return "grid";
+    case batch_layout::samples:
+      return "samples";
+  }
+  return "?";
+}
 
 // Invocations per work group of every runner (a multiple of the SIMD widths
 // of GPUs (32, 64) and of llvmpipe's 8 or 16 lanes).
@@ -49,8 +74,8 @@ template <class Noise>
 std::string runner_preamble(batch_layout layout, bool gradient) {
   using np = noise_program<Noise>;
   return "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
-         std::string(np::name) + (gradient ? ", values and gradients" : ", values") +
-         (layout == batch_layout::points ? ", points" : ", grid") +
+         std::string(np::name) + (gradient ? ", values and gradients" : ", values") + ", " +
+         layout_name(layout) +
          " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
          ") in;\n" + library() + "\n// ---- Runner.\n" + np::uniforms();
 }
@@ -63,6 +88,37 @@ inline const char* grid_axis_offsets() {
          "                      3u * (hush_size.x + (g / hush_size.x) % hush_size.y),\n"
          "                      3u * (hush_size.x + hush_size.y + g / (hush_size.x * "
          "hush_size.y)));\n";
+}
+
+// GLSL: the declarations of the samples layout's optional inputs (bindings
+// 2 and 3, their presence uniforms).
+inline const char* sample_input_declarations() {
+  return "uniform uint hush_has_footprint;  // 1u: hush_fp holds a footprint per sample\n"
+         "uniform uint hush_has_normal;     // 1u: hush_nrm holds a normal per sample\n"
+         "layout(std430, binding = 2) readonly buffer hush_footprints { float hush_fp[]; };\n"
+         "layout(std430, binding = 3) readonly buffer hush_normals { float hush_nrm[]; };\n";
+}
+
+// GLSL: fp (matD, the symmetric footprint matrix; zero when absent), nrm
+// (vec3) and has_nrm for sample n.
+inline std::string read_sample_inputs(int dimension) {
+  const std::string d = std::to_string(dimension);
+  const int entries = dimension * (dimension + 1) / 2;
+  std::string s = "  mat" + d + " fp = mat" + d + "(0.0);\n  if (hush_has_footprint != 0u) {\n";
+  s += "    uint e = " + std::to_string(entries) + "u * n;\n";
+  int e = 0;
+  for (int r = 0; r < dimension; ++r)
+    for (int c = r; c < dimension; ++c, ++e) {
+      const std::string v = "hush_fp[e + " + std::to_string(e) + "u]";
+      // GLSL matrices are indexed [column][row]; S is symmetric.
+      s += "    fp[" + std::to_string(c) + "][" + std::to_string(r) + "] = " + v + ";\n";
+      if (r != c)
+        s += "    fp[" + std::to_string(r) + "][" + std::to_string(c) + "] = " + v + ";\n";
+    }
+  s += "  }\n  bool has_nrm = hush_has_normal != 0u;\n"
+       "  vec3 nrm = has_nrm ? vec3(hush_nrm[3u * n], hush_nrm[3u * n + 1u], hush_nrm[3u * n + "
+       "2u]) : vec3(0.0);\n";
+  return s;
 }
 
 // GLSL: i0, i1 (uvecD) and f (vecD) read from the triples at `base` + t[a].
@@ -106,12 +162,14 @@ std::string banded_source(batch_layout layout, bool gradient) {
   if (layout == batch_layout::grid)
     s += "uniform uint hush_base;   // grid index of the batch's first sample\n"
          "uniform uvec3 hush_size;  // samples along x, y, z\n";
+  if (layout == batch_layout::samples) s += sample_input_declarations();
   s += "layout(std430, binding = 0) readonly buffer hush_axes { uint hush_axis[]; };\n"
        "layout(std430, binding = 1) writeonly buffer hush_output { float hush_out[]; };\n"
        "void main() {\n"
        "  uint n = hush_first + gl_GlobalInvocationID.x;\n"
        "  if (n >= hush_count) return;\n";
-  if (layout == batch_layout::points) {
+  if (layout == batch_layout::samples) s += read_sample_inputs(D);
+  if (layout != batch_layout::grid) {
     // Triple of axis a of band b at t[a] + band_stride * b.
     s += "  uint band_stride = 3u * " + d +
          "u;\n  uint t0 = band_stride * hush_bands * n;\n"
@@ -134,8 +192,9 @@ std::string plain_source(batch_layout layout, bool gradient) {
   std::string s = runner_preamble<Noise>(layout, gradient) +
                   "uniform uint hush_first;  // first sample of this dispatch\n"
                   "uniform uint hush_count;  // samples in the batch\n";
-  if (layout == batch_layout::points) {
+  if (layout != batch_layout::grid) {
     s += "layout(std430, binding = 0) readonly buffer hush_input { float hush_in[]; };\n";
+    if (layout == batch_layout::samples) s += sample_input_declarations();
   } else {
     s += "uniform uint hush_base;   // grid index of the batch's first sample\n"
          "uniform uvec3 hush_size;  // samples along x, y, z\n"
@@ -145,7 +204,7 @@ std::string plain_source(batch_layout layout, bool gradient) {
        "void main() {\n"
        "  uint n = hush_first + gl_GlobalInvocationID.x;\n"
        "  if (n >= hush_count) return;\n";
-  if (layout == batch_layout::points) {
+  if (layout != batch_layout::grid) {
     s += "  vec" + d + " p = vec" + d + "(";
     for (int a = 0; a < D; ++a)
       s += std::string(a ? ", " : "") + "hush_in[" + d + "u * n + " + std::to_string(a) + "u]";
@@ -153,9 +212,16 @@ std::string plain_source(batch_layout layout, bool gradient) {
   } else {
     s += std::string(grid_axis_offsets()) + read_cells(D, "", "  ");
   }
-  return s + store_result(D, gradient,
-                          layout == batch_layout::points ? np::point_call(gradient)
-                                                         : np::cells_call(gradient));
+  if (layout == batch_layout::points)
+    return s + store_result(D, gradient, np::point_call(gradient));
+  if (layout == batch_layout::grid) return s + store_result(D, gradient, np::cells_call(gradient));
+  if constexpr (has_sample_call<np>::value) {
+    return s + read_sample_inputs(D) + store_result(D, gradient, np::sample_call(gradient));
+  } else {
+    // A noise that takes no footprint or normal: the extras are never given
+    // (exec.hpp validates), so the point evaluation is its sample evaluation.
+    return s + read_sample_inputs(D) + store_result(D, gradient, np::point_call(gradient));
+  }
 }
 
 }  // namespace detail

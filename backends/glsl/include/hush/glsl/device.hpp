@@ -15,7 +15,7 @@
 // larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE, and reads the results back
 // (synchronously). It leaves the current program and the generic
 // GL_SHADER_STORAGE_BUFFER binding as it found them; it rebinds the indexed
-// SSBO bindings 0 and 1.
+// SSBO bindings 0 to 3.
 //
 // Accuracy (tests/glsl/glsl_test.cpp; see also hush/glsl/library.hpp):
 //  - points: the float position as given, split exactly on the GPU; grids: each
@@ -47,6 +47,11 @@
 //    position is formed on the GPU). Measured on llvmpipe: default fBm values
 //    max 5.9e-6 from the double reference, 8.3e-7 from the CPU float path in
 //    2D, equal to it bit for bit in 3D.
+//  - samples (hush::samples: positions with per-sample footprints and
+//    normals, core/samples.hpp): positions as for points; footprints (their
+//    stored float upper triangle) and normals (floats) are uploaded as given,
+//    so the GPU sees the CPU's inputs bit for bit. Each noise states its own
+//    tolerance for filtered evaluation.
 //  - NaN or +-Inf in a point gives NaN in its value and gradient.
 //
 // Errors: the constructor throws std::runtime_error when an entry point is
@@ -55,7 +60,9 @@
 // link, or with the GL error code when GL reports one, and
 // hush::invalid_argument for a grid of 2^32 or more samples, or with more
 // samples summed over its axes (times the bands of a fractal) than
-// max_buffer_bytes() / 12 (11 million on llvmpipe).
+// max_buffer_bytes() / 12 (11 million on llvmpipe), or when one sample's
+// input or output does not fit max_buffer_bytes() (a device made with a tiny
+// options::max_buffer_bytes).
 // A GL error already pending when a call starts is reported by that call too.
 // Not thread-safe; destroy the device while its context is still alive.
 #ifndef HUSH_GLSL_DEVICE_HPP
@@ -73,7 +80,9 @@
 #include <vector>
 
 #include "hush/core/error.hpp"
+#include "hush/core/footprint.hpp"
 #include "hush/core/lattice.hpp"
+#include "hush/core/samples.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/glsl/compute_source.hpp"
@@ -122,14 +131,14 @@ class device {
     if (opt.max_buffer_bytes != 0) max_bytes_ = std::min(max_bytes_, opt.max_buffer_bytes);
     if (max_groups_ == 0 || max_bytes_ < 4 * sizeof(float))
       throw std::runtime_error("hush::glsl::device: the GL limits leave no room for a batch");
-    gl_->GenBuffers(2, buffers_);
+    gl_->GenBuffers(kBuffers, buffers_);
     gl_->check("hush::glsl::device: creating buffers");
   }
   device(const device&) = delete;
   device& operator=(const device&) = delete;
   ~device() {
     programs_.clear();
-    gl_->DeleteBuffers(2, buffers_);
+    gl_->DeleteBuffers(kBuffers, buffers_);
   }
 
   // GL_RENDERER and GL_VERSION of the context, e.g. "llvmpipe (LLVM 15.0.6,
@@ -163,6 +172,64 @@ class device {
       const std::size_t m = std::min(batch, n - first);
       upload(0, pts + first, m * sizeof(vec<float, D>));
       run_batch<D>(prog, m, stride, out + first, grad ? grad + first : nullptr);
+    }
+  }
+
+  // Values (and gradients) of `noise` at samples s (positions with optional
+  // footprints and normals, core/samples.hpp; validated by the caller): what
+  // hush::evaluate(noise, hush::exec::glsl{dev}, samples, ...) calls. Footprints
+  // go to binding 2 as their stored upper triangle, normals to binding 3
+  // (compute_source.hpp, samples layout).
+  template <class Noise>
+  void evaluate_samples(const Noise& noise, const samples<Noise::dimension>& s, float* out,
+                        vec<float, Noise::dimension>* grad) {
+    constexpr int D = Noise::dimension;
+    constexpr std::size_t kEntries = footprint<D>::kEntries;
+    static_assert(sizeof(footprint<D>) == kEntries * sizeof(float),
+                  "footprint<D> is its kEntries packed floats");
+    const std::size_t n = s.size();
+    if (n == 0) return;
+    if constexpr (!hush::detail::takes_footprint<Noise>::value &&
+                  !hush::detail::takes_normal<Noise>::value) {
+      evaluate_points(noise, s.positions.data(), n, out, grad);  // no extras can be given
+    } else {
+      using np = noise_program<Noise>;
+      const bool fps = s.has_footprints(), normals = s.has_normals();
+      const state_guard guard(*gl_);
+      const detail::gl_uint prog =
+          use_program<Noise>(noise, batch_layout::samples, grad != nullptr);
+      gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_has_footprint"), fps ? 1u : 0u);
+      gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_has_normal"), normals ? 1u : 0u);
+      const std::size_t stride = grad ? D + 1 : 1;
+      std::size_t words = std::max<std::size_t>({stride, kEntries, 3});
+      int bands = 0;
+      if constexpr (is_banded<np>::value) {
+        bands = np::band_count(noise);
+        words = std::max(words, std::size_t{3} * D * static_cast<std::size_t>(bands));
+        gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_bands"),
+                        static_cast<detail::gl_uint>(bands));
+      }
+      const std::size_t batch = batch_samples(words);
+      std::vector<std::uint32_t> triples;
+      const float dummy[4] = {0, 0, 0, 0};
+      for (std::size_t first = 0; first < n; first += batch) {
+        const std::size_t m = std::min(batch, n - first);
+        if constexpr (is_banded<np>::value) {
+          split_bands(noise, bands, s.positions.data() + first, m, triples);
+          upload(0, triples.data(), triples.size() * sizeof(std::uint32_t));
+        } else {
+          upload(0, s.positions.data() + first, m * sizeof(vec<float, D>));
+        }
+        if (fps)
+          upload(2, s.footprints.data() + first, m * sizeof(footprint<D>));
+        else
+          upload(2, dummy, sizeof dummy);  // bound, never read: hush_has_footprint is 0
+        if (normals)
+          upload(3, s.normals.data() + first, m * sizeof(vec<float, 3>));
+        else
+          upload(3, dummy, sizeof dummy);
+        run_batch<D>(prog, m, stride, out + first, grad ? grad + first : nullptr);
+      }
     }
   }
 
@@ -217,11 +284,6 @@ class device {
     using np = noise_program<Noise>;
     constexpr int D = Noise::dimension;
     const int bands = np::band_count(noise);
-    std::vector<std::array<std::uint32_t, D>> period(static_cast<std::size_t>(bands));
-    for (int b = 0; b < bands; ++b)
-      for (int a = 0; a < D; ++a)
-        period[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] =
-            np::band_period(noise, b, a);
     const std::size_t words = std::size_t{3} * D * static_cast<std::size_t>(bands);  // per point
     const state_guard guard(*gl_);
     const detail::gl_uint prog = use_program<Noise>(noise, batch_layout::points, grad != nullptr);
@@ -232,18 +294,33 @@ class device {
     std::vector<std::uint32_t> triples;
     for (std::size_t first = 0; first < n; first += batch) {
       const std::size_t m = std::min(batch, n - first);
-      triples.resize(m * words);
-      std::uint32_t* w = triples.data();
-      for (std::size_t i = 0; i < m; ++i) {
-        const vec<double, D> p = vec_cast<double>(pts[first + i]);
-        for (int b = 0; b < bands; ++b) {
-          const vec<double, D> q = np::band_position(noise, b, p);
-          for (int a = 0; a < D; ++a, w += 3)
-            split_into(w, q[a], period[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)]);
-        }
-      }
+      split_bands(noise, bands, pts + first, m, triples);
       upload(0, triples.data(), triples.size() * sizeof(std::uint32_t));
       run_batch<D>(prog, m, stride, out + first, grad ? grad + first : nullptr);
+    }
+  }
+
+  // Every band coordinate of m points, formed and split on the CPU in double:
+  // (i0, i1, fraction bits) per point, per band, per axis, into `triples`.
+  template <class Noise>
+  static void split_bands(const Noise& noise, int bands, const vec<float, Noise::dimension>* pts,
+                          std::size_t m, std::vector<std::uint32_t>& triples) {
+    using np = noise_program<Noise>;
+    constexpr int D = Noise::dimension;
+    const auto nb = static_cast<std::size_t>(bands);
+    std::vector<std::array<std::uint32_t, D>> period(nb);
+    for (std::size_t b = 0; b < nb; ++b)
+      for (int a = 0; a < D; ++a)
+        period[b][static_cast<std::size_t>(a)] = np::band_period(noise, static_cast<int>(b), a);
+    triples.resize(m * std::size_t{3} * D * nb);
+    std::uint32_t* w = triples.data();
+    for (std::size_t i = 0; i < m; ++i) {
+      const vec<double, D> p = vec_cast<double>(pts[i]);
+      for (std::size_t b = 0; b < nb; ++b) {
+        const vec<double, D> q = np::band_position(noise, static_cast<int>(b), p);
+        for (int a = 0; a < D; ++a, w += 3)
+          split_into(w, q[a], period[b][static_cast<std::size_t>(a)]);
+      }
     }
   }
 
@@ -337,9 +414,8 @@ class device {
   template <class Noise>
   detail::gl_uint use_program(const Noise& noise, batch_layout layout, bool gradient) {
     using np = noise_program<Noise>;
-    const std::string key = std::string(np::name) +
-                            (layout == batch_layout::points ? "/points" : "/grid") +
-                            (gradient ? "/gradient" : "/value");
+    const std::string key =
+        std::string(np::name) + "/" + layout_name(layout) + (gradient ? "/gradient" : "/value");
     auto it = programs_.find(key);
     if (it == programs_.end()) {
       detail::gl_program prog = detail::link_program(
@@ -355,9 +431,15 @@ class device {
 
   // Samples per batch: each buffer holds at most max_bytes_, and the
   // shader's sample indices are 32-bit.
+  // Throws hush::invalid_argument when not even one sample fits a buffer
+  // (a device made with a tiny options::max_buffer_bytes).
   std::size_t batch_samples(std::size_t floats_per_sample) const {
-    const std::size_t by_bytes = max_bytes_ / (floats_per_sample * sizeof(float));
-    return std::min<std::size_t>(by_bytes, UINT32_MAX);
+    const std::size_t bytes = floats_per_sample * sizeof(float);
+    if (bytes > max_bytes_)
+      hush::detail::throw_out_of_range(
+          "hush::glsl::device", "max_buffer_bytes()", max_bytes_,
+          ("at least " + std::to_string(bytes) + " (one sample's input or output)").c_str());
+    return std::min<std::size_t>(max_bytes_ / bytes, UINT32_MAX);
   }
 
   void upload(int slot, const void* data, std::size_t bytes,
@@ -406,7 +488,9 @@ class device {
   std::unique_ptr<detail::gl_api> gl_;
   std::string renderer_;
   std::size_t max_groups_ = 0, max_bytes_ = 0, dispatches_ = 0;
-  detail::gl_uint buffers_[2] = {0, 0};
+  // SSBO bindings 0 (input), 1 (output), 2 (footprints), 3 (normals).
+  static constexpr int kBuffers = 4;
+  detail::gl_uint buffers_[kBuffers] = {0, 0, 0, 0};
   std::map<std::string, detail::gl_program> programs_;
   std::vector<float> scratch_;
 };

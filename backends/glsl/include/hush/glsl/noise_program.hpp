@@ -12,6 +12,13 @@
 //   static std::uint32_t period(const Noise&, int axis);  lattice period (0 = none),
 //                                              for the CPU-side split of grid axes
 //   static void set_uniforms(const detail::gl_api&, detail::gl_uint program, const Noise&);
+// A noise that takes per-sample inputs (core/samples.hpp: footprints, normals)
+// also provides
+//   static std::string sample_call(bool grad); the same of `p` (vecD), `fp` (matD,
+//                                              the footprint matrix S; zero when
+//                                              not given), `nrm` (vec3) and `has_nrm`
+// for the samples layout (compute_source.hpp); banded noises see fp, nrm and
+// has_nrm in band_begin, band_step and band_result instead.
 // A *banded* noise (a sum over bands of a lattice noise, e.g. hush::fractal)
 // declares `static constexpr bool banded = true` and, instead of point_call
 // and cells_call and period:
@@ -170,6 +177,13 @@ struct is_banded : std::false_type {};
 template <class Program>
 struct is_banded<Program, std::void_t<decltype(Program::banded)>>
     : std::integral_constant<bool, Program::banded> {};
+
+// Whether a program declares sample_call (per-sample footprints and normals).
+template <class Program, class = void>
+struct has_sample_call : std::false_type {};
+template <class Program>
+struct has_sample_call<Program, std::void_t<decltype(Program::sample_call(false))>>
+    : std::true_type {};
 
 // True when the GLSL backend has a program for Noise (noise_program is
 // specialised for it), e.g. to pick a backend at compile time.

@@ -1,0 +1,180 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Per-sample inputs beyond the position (DESIGN.md "Per-sample inputs"):
+//  - hush::sample_input<D>: one sample as a noise's scalar code sees it: the
+//    position (double), the footprint (core/footprint.hpp; a point by default)
+//    and, for surface noises in 3D, the surface normal;
+//  - hush::samples<D>: a batch of them as spans beside the positions, what
+//    hush::evaluate(noise, exec, samples, out[, gradients]) takes on every
+//    backend (exec.hpp);
+//  - hush::sample_noise<Derived, D>: the public overloads every noise that
+//    uses these inputs offers, written once (like core/point_noise.hpp):
+//      n.sample(p, footprint)                 -> float / double (by p's type)
+//      n.sample(p, normal, footprint)         -> the same on a surface (3D noises
+//                                                with takes_normal)
+//      n.sample_gradient(p, footprint), n.sample_gradient(p, normal, footprint)
+//                                             -> value and d/d(position) of
+//                                                the filtered noise, footprint fixed
+// A noise derives from sample_noise<Derived, D> (which derives from
+// point_noise<Derived, D>: n(p) and n.gradient(p) stay the unfiltered point
+// evaluation) and defines, besides point_noise's two templates,
+//   static constexpr bool takes_footprint;  // uses sample_input::fp
+//   static constexpr bool takes_normal;     // uses sample_input::normal (D == 3)
+//   template <class T> T sample_value(const sample_input<D>& s) const;
+//   template <class T> value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s)
+//   const;
+// with the same result class as point evaluation for NaN/Inf positions.
+#ifndef HUSH_CORE_SAMPLES_HPP
+#define HUSH_CORE_SAMPLES_HPP
+
+#include <cstddef>
+#include <string>
+#include <type_traits>
+
+#include "hush/core/error.hpp"
+#include "hush/core/footprint.hpp"
+#include "hush/core/point_noise.hpp"
+#include "hush/core/vec.hpp"
+#include "hush/core/views.hpp"
+
+namespace hush {
+
+// One sample: position, footprint, and optionally the surface normal (any
+// length; a noise documents what it does with a zero or non-finite normal).
+template <int D>
+struct sample_input {
+  vec<double, D> position{};
+  footprint<D> fp{};
+  vec<double, 3> normal{};
+  bool has_normal = false;
+};
+
+// A batch of samples: positions and, optionally, one footprint and one
+// normal per position. An empty span means "not given": point samples, no
+// normal. Normals exist for 3D noises only.
+template <int D>
+struct samples {
+  span<const vec<float, D>> positions;
+  span<const footprint<D>> footprints;
+  span<const vec<float, 3>> normals;
+
+  std::size_t size() const { return positions.size(); }
+  bool has_footprints() const { return !footprints.empty(); }
+  bool has_normals() const { return !normals.empty(); }
+
+  // Sample i as the scalar code sees it.
+  sample_input<D> at(std::size_t i) const {
+    sample_input<D> s;
+    s.position = vec_cast<double>(positions[i]);
+    if (has_footprints()) s.fp = footprints[i];
+    if (has_normals()) {
+      s.normal = vec_cast<double>(normals[i]);
+      s.has_normal = true;
+    }
+    return s;
+  }
+};
+
+namespace detail {
+
+// What a noise type takes per sample (false for noises that do not say).
+template <class Noise, class = void>
+struct takes_footprint : std::false_type {};
+template <class Noise>
+struct takes_footprint<Noise, std::void_t<decltype(Noise::takes_footprint)>>
+    : std::integral_constant<bool, Noise::takes_footprint> {};
+template <class Noise, class = void>
+struct takes_normal : std::false_type {};
+template <class Noise>
+struct takes_normal<Noise, std::void_t<decltype(Noise::takes_normal)>>
+    : std::integral_constant<bool, Noise::takes_normal> {};
+
+// Throws hush::invalid_argument naming the first span that does not fit:
+// footprints and normals must be empty or have one element per position, and
+// only inputs the noise takes may be given.
+template <class Noise>
+void validate_samples(const char* where, const samples<Noise::dimension>& s) {
+  const std::size_t n = s.positions.size();
+  const std::string per = "exactly " + std::to_string(n) + " elements (one per position) or none";
+  if (s.has_footprints()) {
+    if (!takes_footprint<Noise>::value)
+      throw hush::invalid_argument(std::string(where) +
+                                   ": samples.footprints given, but this noise does not filter; "
+                                   "valid: none (an empty span)");
+    if (s.footprints.size() != n)
+      throw_out_of_range(where, "samples.footprints.size()", s.footprints.size(), per.c_str());
+  }
+  if (s.has_normals()) {
+    if (!takes_normal<Noise>::value)
+      throw hush::invalid_argument(std::string(where) +
+                                   ": samples.normals given, but this noise takes no normal; "
+                                   "valid: none (an empty span)");
+    if (s.normals.size() != n)
+      throw_out_of_range(where, "samples.normals.size()", s.normals.size(), per.c_str());
+  }
+}
+
+}  // namespace detail
+
+template <class Derived, int D>
+class sample_noise : public point_noise<Derived, D> {
+ public:
+  // The filtered value at p over footprint fp (float arithmetic, or the double reference).
+  float sample(const vec<float, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value<float>(input(vec_cast<double>(p), fp));
+  }
+  double sample(const vec<double, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value<double>(input(p, fp));
+  }
+  value_gradient<float, D> sample_gradient(const vec<float, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value_and_gradient<float>(input(vec_cast<double>(p), fp));
+  }
+  value_gradient<double, D> sample_gradient(const vec<double, D>& p, const footprint<D>& fp) const {
+    return self().template sample_value_and_gradient<double>(input(p, fp));
+  }
+
+  // On a surface with the given normal (3D noises with takes_normal).
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  float sample(const vec<float, 3>& p, const vec<float, 3>& normal,
+               const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value<float>(
+        input(vec_cast<double>(p), fp, vec_cast<double>(normal)));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  double sample(const vec<double, 3>& p, const vec<double, 3>& normal,
+                const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value<double>(input(p, fp, normal));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  value_gradient<float, 3> sample_gradient(const vec<float, 3>& p, const vec<float, 3>& normal,
+                                           const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value_and_gradient<float>(
+        input(vec_cast<double>(p), fp, vec_cast<double>(normal)));
+  }
+  template <int E = D, class = std::enable_if_t<E == 3>>
+  value_gradient<double, 3> sample_gradient(const vec<double, 3>& p, const vec<double, 3>& normal,
+                                            const footprint<3>& fp = footprint<3>{}) const {
+    return self().template sample_value_and_gradient<double>(input(p, fp, normal));
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+  static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp) {
+    sample_input<D> s;
+    s.position = p;
+    s.fp = fp;
+    return s;
+  }
+  static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp,
+                               const vec<double, 3>& normal) {
+    static_assert(detail::takes_normal<Derived>::value, "this noise takes no surface normal");
+    sample_input<D> s = input(p, fp);
+    s.normal = normal;
+    s.has_normal = true;
+    return s;
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_SAMPLES_HPP
