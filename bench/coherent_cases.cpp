@@ -157,6 +157,7 @@ prepared_case prepare_symmetric(const Exec& ex, const sizes& s) {
   auto run = [ex, scene, planes, w, h] {
     const std::vector<hush::frame> frames(kSequence, scene->view());
     std::vector<hush::image_view<float>> out;
+    out.reserve(kSequence);
     for (int i = 0; i < kSequence; ++i) out.emplace_back(planes->data() + w * h * i, w, h);
     hush::coherent_symmetric(ex, params(hush::coherent_filter::stationary, 0.98),
                              hush::span<const hush::frame>(frames),
@@ -169,6 +170,7 @@ prepared_case prepare_symmetric(const Exec& ex, const sizes& s) {
     const std::vector<hush::frame> frames(kSequence, scene->view());
     std::vector<double> ref(w * h * kSequence);
     std::vector<hush::image_view<double>> out;
+    out.reserve(kSequence);
     for (int i = 0; i < kSequence; ++i) out.emplace_back(ref.data() + w * h * i, w, h);
     hush::coherent_symmetric(hush::exec::scalar, params(hush::coherent_filter::stationary, 0.98),
                              hush::span<const hush::frame>(frames),

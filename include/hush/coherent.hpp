@@ -293,10 +293,10 @@ void coherent_smooth(const image_view<T>& img, double sigma) {
   std::vector<T> weight(static_cast<std::size_t>(2 * radius + 1));
   double sum_sq = 0.0;
   std::vector<double> wd(weight.size());
-  for (int k = -radius; k <= radius; ++k) {
-    const double g = std::exp(-0.5 * k * k / (sigma * sigma));
-    wd[static_cast<std::size_t>(k + radius)] = g;
-    sum_sq += g * g;
+  for (std::size_t i = 0; i < wd.size(); ++i) {
+    const double k = static_cast<double>(i) - radius;
+    wd[i] = std::exp(-0.5 * k * k / (sigma * sigma));
+    sum_sq += wd[i] * wd[i];
   }
   for (std::size_t i = 0; i < wd.size(); ++i) weight[i] = T(wd[i] / std::sqrt(sum_sq));
   const std::size_t w = img.width, h = img.height;
@@ -309,8 +309,8 @@ void coherent_smooth(const image_view<T>& img, double sigma) {
     std::copy(row, row + w, line.begin());
     for (std::size_t x = 0; x < w; ++x) {
       T s = T(0);
-      for (int k = -radius; k <= radius; ++k)
-        s += weight[static_cast<std::size_t>(k + radius)] * line[clamp_index(long(x) + k, w)];
+      for (std::size_t i = 0; i < weight.size(); ++i)
+        s += weight[i] * line[clamp_index(long(x) + long(i) - radius, w)];
       row[x] = s;
     }
   }
@@ -318,8 +318,8 @@ void coherent_smooth(const image_view<T>& img, double sigma) {
     for (std::size_t y = 0; y < h; ++y) line[y] = img(x, y);
     for (std::size_t y = 0; y < h; ++y) {
       T s = T(0);
-      for (int k = -radius; k <= radius; ++k)
-        s += weight[static_cast<std::size_t>(k + radius)] * line[clamp_index(long(y) + k, h)];
+      for (std::size_t i = 0; i < weight.size(); ++i)
+        s += weight[i] * line[clamp_index(long(y) + long(i) - radius, h)];
       tmp[y] = s;
     }
     for (std::size_t y = 0; y < h; ++y) img(x, y) = tmp[y];
