@@ -421,15 +421,16 @@ TEST_CASE(
   };
   for (const motion& m : {motion{"translate", 0.5}, motion{"translate", 0.31},
                           motion{"rotate", 0.02}, motion{"zoom", 1.01}, motion{"zoom", 0.99}}) {
-    CAPTURE(m.kind);
+    const std::string kind = m.kind;
+    CAPTURE(kind);
     CAPTURE(m.amount);
     const motion_result hush_filter =
         measure_motion(hush::coherent_filter::stationary, m.kind, m.amount, 0.9, 64, 600, 40);
     const motion_result paper =
         measure_motion(hush::coherent_filter::paper, m.kind, m.amount, 0.9, 64, 600, 40);
-    MESSAGE(m.kind << " " << m.amount << ": stationary sd ratio " << hush_filter.sd_ratio
-                   << ", sharpness ratio " << hush_filter.sharp_ratio << "; paper sd ratio "
-                   << paper.sd_ratio << ", sharpness ratio " << paper.sharp_ratio);
+    MESSAGE(kind << " " << m.amount << ": stationary sd ratio " << hush_filter.sd_ratio
+                 << ", sharpness ratio " << hush_filter.sharp_ratio << "; paper sd ratio "
+                 << paper.sd_ratio << ", sharpness ratio " << paper.sharp_ratio);
     CHECK(std::fabs(hush_filter.sd_ratio - 1) < 0.03);
     CHECK(hush_filter.sharp_ratio > 0.85);
     CHECK(std::fabs(hush_filter.still_var - 1) < 5 * 0.007);
