@@ -156,3 +156,38 @@ TEST_CASE("render --symmetric refuses G-buffers without forward velocity") {
                  dir)
             .exit_code == 0);
 }
+
+TEST_CASE("gallery writes coherent noise's animations (GIF) and Kass & Pesare's figures") {
+  const fs::path dir = scratch("gallery_coherent");
+  const result r = run_hush("gallery --out '" + (dir / "g").string() + "'", dir);
+  if (r.exit_code == 2) {  // a build without PNG output or Eigen has no gallery at all
+    MESSAGE("gallery unavailable in this build: " << r.err);
+    return;
+  }
+  REQUIRE(r.exit_code == 0);
+  struct expected {
+    const char* file;
+    unsigned width, height;
+  };
+  for (const expected& e :
+       {expected{"coherent_rotate.gif", 256, 192}, expected{"coherent_walkthrough.gif", 256, 192},
+        expected{"coherent_fig3a.gif", 128, 96}, expected{"coherent_fig3b.gif", 128, 96}}) {
+    CAPTURE(e.file);
+    const std::string bytes = hush_cli_test::slurp(dir / "g" / e.file);
+    REQUIRE(bytes.size() > 13);
+    CHECK(bytes.compare(0, 6, "GIF89a") == 0);
+    const auto u16 = [&](std::size_t at) {
+      return unsigned(static_cast<unsigned char>(bytes[at])) |
+             unsigned(static_cast<unsigned char>(bytes[at + 1])) << 8;
+    };
+    CHECK(u16(6) == e.width);
+    CHECK(u16(8) == e.height);
+    CHECK(bytes.back() == ';');  // the trailer: a complete file
+    CHECK(r.out.find(std::string(e.file) + " (" + std::to_string(e.width) + "x" +
+                     std::to_string(e.height) + ", 32 frames)") != std::string::npos);
+  }
+  for (const char* still : {"coherent_fig2.png", "coherent_fig6.png"}) {
+    CAPTURE(still);
+    CHECK(hush_cli_test::slurp(dir / "g" / still).compare(1, 3, "PNG") == 0);
+  }
+}
