@@ -37,8 +37,10 @@ namespace {
 // --quick (a few seconds, for the smoke test).
 constexpr int kRepetitions = 5;
 constexpr int kMaxRepetitions = 100;
+#if HUSH_CLI_HAVE_BENCH
 constexpr double kMinTime = 0.1;
 constexpr double kQuickMinTime = 0.002;
+#endif
 
 struct bench_request {
   bool quick = false;
