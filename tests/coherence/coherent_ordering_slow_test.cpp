@@ -11,6 +11,8 @@
 // Slow (rendering 100 frames of four scenes): label `slow`, Release run only.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -141,4 +143,60 @@ TEST_CASE("coherent noise on rotate: follows the motion, stays flat") { check_sc
 TEST_CASE("coherent noise on zoom: follows the motion, stays flat") { check_scene("zoom"); }
 TEST_CASE("coherent noise on walkthrough: follows the motion, stays flat") {
   check_scene("walkthrough");
+}
+
+TEST_CASE(
+    "coherent noise on the rotate scene at 64 x 48 over 10,000 frames: the torus keeps the "
+    "wall's standard deviation and sharpness (the issue's measurement)") {
+  // The paper's filter (Kass & Pesare eq. 7) on this set-up measured, per the issue, an sd
+  // 0.43 of the wall's after 100 frames, sharpness 1.2 against 2.0. Measured here over
+  // frames 100 ... 9999 on pixels whose 4-neighbours show the same object. The torus turns
+  // 2 degrees per frame (180 frames per turn), so 10,000 frames hold ~55 turns: the ratios'
+  // standard errors are below 0.005.
+  const hush::scene::scene s = hush::scene::make_scene("rotate");
+  const int w = 64, h = 48, frames = 10000;
+  for (auto filter : {hush::coherent_filter::stationary, hush::coherent_filter::paper}) {
+    hush::coherent_params p;
+    p.filter = filter;
+    hush::coherent_stream st(p);
+    hush::scene::gbuffer g;
+    std::vector<float> out(std::size_t(w) * h);
+    double sum[2] = {0, 0}, count[2] = {0, 0}, diff[2] = {0, 0}, pairs[2] = {0, 0};
+    for (int i = 0; i < frames; ++i) {
+      hush::scene::render_cpu(s, i, w, h, {}, g);
+      st.advance(hush::exec::simd, hush::scene::as_frame(g),
+                 hush::image_view<float>(out.data(), w, h));
+      if (i < 100) continue;
+      for (int y = 1; y + 1 < h; ++y)
+        for (int x = 1; x + 1 < w; ++x) {
+          const std::size_t q = std::size_t(y) * w + x;
+          const std::uint32_t id = g.object_id[q];
+          if ((id != 1 && id != 2) || g.object_id[q - 1] != id || g.object_id[q + 1] != id ||
+              g.object_id[q - w] != id || g.object_id[q + w] != id)
+            continue;
+          const int k = id == 1 ? 0 : 1;
+          sum[k] += double(out[q]) * out[q];
+          count[k] += 1;
+          for (const std::size_t r : {q + 1, q + std::size_t(w)}) {
+            diff[k] += (double(out[r]) - out[q]) * (double(out[r]) - out[q]);
+            pairs[k] += 1;
+          }
+        }
+    }
+    const double var[2] = {sum[0] / count[0], sum[1] / count[1]};
+    const double sharp[2] = {diff[0] / pairs[0] / var[0], diff[1] / pairs[1] / var[1]};
+    const double sd_ratio = std::sqrt(var[0] / var[1]), sharp_ratio = sharp[0] / sharp[1];
+    const std::string name = filter == hush::coherent_filter::paper ? "paper" : "stationary";
+    const std::string line = name + " filter: torus sd / wall sd " + std::to_string(sd_ratio) +
+                             ", sharpness torus " + std::to_string(sharp[0]) + " / wall " +
+                             std::to_string(sharp[1]) + " = " + std::to_string(sharp_ratio);
+    MESSAGE(line);
+    if (filter == hush::coherent_filter::stationary) {
+      CHECK(std::fabs(sd_ratio - 1) < 0.03);
+      CHECK(sharp_ratio >= 0.85);
+    } else {
+      CHECK(sd_ratio < 0.6);
+      CHECK(sharp_ratio < 0.85);  // misses the target the stationary filter meets
+    }
+  }
 }
