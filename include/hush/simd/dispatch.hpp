@@ -28,6 +28,7 @@
 #include "hush/core/hash.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
+#include "hush/detail/coherent_kernel.hpp"
 #include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
 
@@ -56,6 +57,7 @@ struct simd_kernel {
 #endif
 #include <hwy/highway.h>
 
+#include "hush/simd/coherent-inl.h"
 #include "hush/simd/perlin-inl.h"
 #endif
 
@@ -90,6 +92,9 @@ HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& 
                                    std::size_t first, std::size_t count, float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g,
                                    std::size_t first, std::size_t count, float* value, float* grad);
+// Coherent noise: one recursive-filter pass over a frame (hush/simd/coherent-inl.h;
+// the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
+HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
 
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
 // best first, and of the one the kernels run on, on this CPU.
@@ -130,6 +135,9 @@ inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::s
 inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
                           std::size_t count, float* value, float* grad) {
   HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, first, count, value, grad);
+}
+inline void coherent_pass(const detail::coherent_pass_job<float>& job) {
+  HWY_STATIC_DISPATCH(coherent_pass)(job);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }

@@ -18,6 +18,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "hush/simd/coherent-inl.h"
 #include "hush/simd/perlin-inl.h"
 
 #if HWY_ONCE
@@ -41,6 +42,7 @@ HWY_EXPORT(fractal2_points);
 HWY_EXPORT(fractal3_points);
 HWY_EXPORT(fractal2_grid);
 HWY_EXPORT(fractal3_grid);
+HWY_EXPORT(coherent_pass);
 
 namespace simd {
 
@@ -76,6 +78,10 @@ void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t f
 void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
                    std::size_t count, float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(fractal3_grid)(fr, g, first, count, value, grad);
+}
+
+void coherent_pass(const detail::coherent_pass_job<float>& job) {
+  HWY_DYNAMIC_DISPATCH(coherent_pass)(job);
 }
 
 std::vector<std::string> compiled_targets() {
