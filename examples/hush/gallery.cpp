@@ -146,6 +146,7 @@ int run_gallery(const std::vector<std::string>& args) {
       write_png(path, frames[0]);
     } else {
       std::vector<std::vector<std::uint8_t>> bytes;
+      bytes.reserve(frames.size());
       for (const gray_image& f : frames) bytes.push_back(f.pixels);
       try {
         hush::gif::save(path, bytes, static_cast<int>(frames[0].width),

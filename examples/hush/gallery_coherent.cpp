@@ -35,6 +35,7 @@ constexpr std::uint8_t kLevelMask = 0xf8;
 std::vector<hs::gbuffer> render_frames(const std::string& scene, int frames) {
   const hs::scene s = hs::make_scene(scene);
   std::vector<hs::gbuffer> g;
+  g.reserve(static_cast<std::size_t>(frames));
   for (int i = 0; i < frames; ++i) g.push_back(hs::render_cpu(s, i, int(kW), int(kH)));
   return g;
 }
