@@ -240,7 +240,7 @@ TEST_CASE("points are a prefix: growing a triangle within one level only reweigh
   CHECK(noise.point_of(3, 17, 0).b[1] != noise.point_of(4, 17, 0).b[1]);
 }
 
-TEST_CASE("visibility: object, triangle and depth tests cut the kernels; back faces emit nothing") {
+TEST_CASE("visibility: object, triangle and depth tests cut the kernels, back faces emit nothing") {
   const std::size_t w = 64, h = 64;
   grid_scene sc(w, h, 8, 8, 12, 4, 4);
   auto p = small_kernel();

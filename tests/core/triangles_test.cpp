@@ -28,7 +28,7 @@ struct two_triangles {
 
 }  // namespace
 
-TEST_CASE("triangle_list: a well-formed list validates; object ids are optional") {
+TEST_CASE("triangle_list: a well-formed list validates, object ids are optional") {
   two_triangles s;
   CHECK(s.list().triangles() == 2);
   CHECK(s.list().vertices() == 4);
