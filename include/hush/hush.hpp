@@ -16,6 +16,7 @@
 #include "hush/core/rng.hpp"
 #include "hush/core/samples.hpp"
 #include "hush/core/tile_cache.hpp"
+#include "hush/core/triangles.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/fractal.hpp"
@@ -26,5 +27,6 @@
 
 // Scene-driven noises (hush::frame: per-frame G-buffer views).
 #include "hush/coherent.hpp"
+#include "hush/npr_gabor.hpp"
 
 #endif  // HUSH_HUSH_HPP

@@ -23,7 +23,7 @@
 //  - object_id: an id per pixel (examples/scene: 0 = background); two pixels
 //    show the same object when their ids are equal.
 //  - triangle_id: the triangle index within the object (NPR Gabor noise).
-// NPR Gabor noise will add its triangle list beside these views.
+// NPR Gabor noise reads its triangle list beside these views (core/triangles.hpp).
 #ifndef HUSH_CORE_FRAME_HPP
 #define HUSH_CORE_FRAME_HPP
 
