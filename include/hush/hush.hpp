@@ -6,6 +6,7 @@
 #define HUSH_HUSH_HPP
 
 #include "hush/config.hpp"
+#include "hush/core/bspline.hpp"
 #include "hush/core/error.hpp"
 #include "hush/core/footprint.hpp"
 #include "hush/core/hash.hpp"
@@ -18,6 +19,8 @@
 #include "hush/core/views.hpp"
 #include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
+#include "hush/wavelet.hpp"
+#include "hush/wavelet_tile.hpp"
 #include "hush/exec.hpp"
 
 #endif  // HUSH_HUSH_HPP
