@@ -692,6 +692,22 @@ class wavelet : public sample_noise<wavelet<D>, D> {
            8.0 * u * bound_;
   }
 
+  // The same for the gradient: the derivative weights of a tap triple sum to at most 2
+  // in magnitude (|f - 1| + |1 - 2f| + |f|), and band b's gradient is multiplied by
+  // 2^b, so the bound is the value's with max_abs replaced by 2 max_abs 2^b per band.
+  double float_gradient_budget(bool plain_kernel = true) const {
+    double wf = 0, w = 0;
+    for (const band& b : bands_) {
+      wf += std::fabs(b.weight) * b.frequency;
+      w += std::fabs(b.weight);
+    }
+    if (prm_.relative_weights) {  // at most K + 1 bands, each up to the top frequency
+      wf = (static_cast<double>(prm_.weights.size()) + 1.0) * bands_.back().frequency;
+      w = static_cast<double>(prm_.weights.size()) + 1.0;
+    }
+    return 2.0 * float_budget(plain_kernel) * wf / std::max(w, 1e-300);
+  }
+
   // ---- Evaluation (core/point_noise.hpp, core/samples.hpp give the public overloads).
   template <class T>
   T value(const vec<double, D>& p) const {
@@ -980,7 +996,10 @@ class wavelet : public sample_noise<wavelet<D>, D> {
         return r;
       }
     const plan pl = make_plan(s);
-    if (pl.everything) return r;
+    if (pl.everything) {  // filtered to the mean: 0 before the remapping, constant after
+      remap<T>(r.value, nullptr);
+      return r;
+    }
     const int nb = band_count();
     for (int i = 0; i < nb; ++i) {
       if (pl.weight[i] == 0.0) continue;
