@@ -159,12 +159,10 @@ inline void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value, f
 inline void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value, float* grad) {
   HWY_STATIC_DISPATCH(wavelet3_grid)(w, g, value, grad);
 }
-inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value,
-                             float* grad) {
+inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value, float* grad) {
   HWY_STATIC_DISPATCH(wavelet2_samples)(w, s, value, grad);
 }
-inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value,
-                             float* grad) {
+inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
   HWY_STATIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
