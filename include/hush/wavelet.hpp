@@ -72,7 +72,8 @@
 // projection::exact evaluates N_u exactly for any u: separably with beta when u
 // is axis-aligned, otherwise by splitting the line integral where its
 // polynomial pieces change and integrating each piece with 5-point
-// Gauss-Legendre quadrature (exact: degree <= 8). projection::approximate is
+// Gauss-Legendre quadrature (exact: degree <= 8; with basis widening, over B2's
+// three pieces only, docs/wavelet.md). projection::approximate is
 // the paper's: B2 in place of beta along the normal (6 coefficients wide), and
 // for any u the tensor B-spline at the coefficient moved halfway towards the
 // position along u (Appendix 2), normalised to weights summing to 1. The
@@ -137,8 +138,6 @@ enum class wavelet_distribution { gaussian, uniform, table };
 
 namespace detail {
 
-constexpr int kWaveletMaxTaps = 9;  // beta's support: the widest kernel along one axis
-
 // One band's kernel along one axis: taps at cells i0 + first ... i0 + first + count - 1.
 template <class T>
 struct wavelet_axis {
@@ -164,14 +163,12 @@ HUSH_INLINE void wavelet_axis_plain(T f, wavelet_axis<T>& ax) {
 template <class T, bool G, int P, int O>
 HUSH_INLINE void wavelet_axis_fixed(T f, const piecewise_kernel<P, O>& k,
                                     const piecewise_kernel<P, O - 1>& dk, wavelet_axis<T>& ax) {
-  // floor(1/2 - P/2) + 1 and ceil(3/2 + P/2) - 1: -2 ... 4 for B2 (P = 6), -3 ... 5 for beta.
-  constexpr int kFirst = P % 2 == 0 ? 1 - P / 2 : (3 - P) / 2;
-  constexpr int kLast = (P + 2) / 2;
-  static_assert(kLast - kFirst + 1 <= kWaveletMaxTaps, "taps fit");
+  constexpr int kFirst = fixed_kernel_first_tap<P>();
+  static_assert(fixed_kernel_taps<P>() <= kWaveletMaxTaps, "taps fit");
   ax.first = kFirst;
-  ax.count = kLast - kFirst + 1;
+  ax.count = fixed_kernel_taps<P>();
   for (int j = 0; j < ax.count; ++j) {
-    const T d = f + T(0.5) - T(kFirst + j);
+    const T d = f + T(constants::kWaveletCellOffset) - T(kFirst + j);
     ax.w[j] = kernel_at(k, d);
     if constexpr (G) ax.dw[j] = kernel_at(dk, d);
   }
@@ -205,8 +202,8 @@ HUSH_INLINE void wavelet_axis_widened(T y, T s, wavelet_axis<T>& ax) {
 // The plain B-spline at relative position y (any real): taps floor(y - 1/2) ... + 2.
 template <class T, bool G>
 HUSH_INLINE void wavelet_axis_at(T y, wavelet_axis<T>& ax) {
-  const T c = std::floor(y - T(0.5));
-  wavelet_axis_plain<T, G>(y - T(0.5) - c, ax);
+  const T c = std::floor(y - T(constants::kWaveletCellOffset));
+  wavelet_axis_plain<T, G>(y - T(constants::kWaveletCellOffset) - c, ax);
   ax.first = static_cast<int>(c);
 }
 
@@ -233,32 +230,32 @@ struct wavelet_periodic_access {
 };
 
 // Coefficients of the hashed tile variants (wavelet_blend_tile): the sum over the
-// (at most 2^D) overlapping cells that cover a global coefficient index.
+// (at most 2^D) overlapping cells that cover a global coefficient index. The
+// global index of tap 0 is the band cell modulo 2^32 (period 0); cell T and
+// offset l of i0 + k follow from i0 = T0 L + r0 with 32-bit unsigned arithmetic
+// (T = T0 + carry, the carry from r0 + k), as the GPU computes them.
 template <int D>
 struct wavelet_variant_access {
   const float* c;
   int n, cell;  // tile size and cell pitch L = n - overlap
   std::uint32_t key;
-  long long g0[3];  // global index of tap offset 0 along each axis
+  std::uint32_t i0[3];
   HUSH_INLINE float at(const int (&k)[D]) const {
-    long long t[3][2] = {}, l[3][2] = {};
-    int count[3];
+    std::uint32_t t[3][2] = {};
+    int l[3][2] = {}, count[3] = {};
+    const auto pitch = static_cast<std::uint32_t>(cell);
     for (int a = 0; a < D; ++a) {
-      const long long g = g0[a] + k[a];
-      long long t0 = g / cell;
-      if (g % cell < 0) --t0;
-      t[a][0] = t0;
-      l[a][0] = g - t0 * cell;
-      count[a] = 1;
-      if (l[a][0] + cell < n) {  // also inside the previous cell's overlap
-        t[a][1] = t0 - 1;
-        l[a][1] = l[a][0] + cell;
-        count[a] = 2;
-      }
+      int r = static_cast<int>(i0[a] % pitch) + k[a];  // |k| < L: at most one carry
+      const int carry = r < 0 ? -1 : (r >= cell ? 1 : 0);
+      r -= carry * cell;
+      t[a][0] = i0[a] / pitch + static_cast<std::uint32_t>(carry);
+      l[a][0] = r;
+      t[a][1] = t[a][0] - 1u;  // the previous cell covers r + L when that is inside it
+      l[a][1] = r + cell;
+      count[a] = r + cell < n ? 2 : 1;
     }
     float sum = 0;
-    const int combos = 1 << D;
-    for (int m = 0; m < combos; ++m) {
+    for (int m = 0; m < (1 << D); ++m) {
       int pick[3] = {0, 0, 0};
       bool ok = true;
       for (int a = 0; a < D; ++a) {
@@ -268,29 +265,34 @@ struct wavelet_variant_access {
       if (!ok) continue;
       std::uint32_t h;
       if constexpr (D == 2)
-        h = lattice_hash(key, static_cast<std::uint32_t>(t[0][pick[0]]),
-                         static_cast<std::uint32_t>(t[1][pick[1]]));
+        h = lattice_hash(key, t[0][pick[0]], t[1][pick[1]]);
       else
-        h = lattice_hash(key, static_cast<std::uint32_t>(t[0][pick[0]]),
-                         static_cast<std::uint32_t>(t[1][pick[1]]),
-                         static_cast<std::uint32_t>(t[2][pick[2]]));
-      sum += c[variant_index(h, l, pick)];
+        h = lattice_hash(key, t[0][pick[0]], t[1][pick[1]], t[2][pick[2]]);
+      int local[3] = {0, 0, 0};
+      for (int a = 0; a < D; ++a) local[a] = l[a][pick[a]];
+      sum += c[variant_index(h, local)];
     }
     return sum;
   }
-  // Storage index of local coordinates l (world axes) under variant h: storage
-  // axis a reads world axis perm[a], reflected (n - 1 - l) when bit a of h is set.
-  HUSH_INLINE std::size_t variant_index(std::uint32_t h, const long long (&l)[3][2],
-                                        const int (&pick)[3]) const {
-    static constexpr int kPerm2[2][2] = {{0, 1}, {1, 0}};
-    static constexpr int kPerm3[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
-                                         {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    constexpr std::uint32_t kPerms = D == 2 ? 2u : 6u;
-    const std::uint32_t p = ((h >> 16) * kPerms) >> 16;
+  // Storage index of local coordinates (world axes) under variant h: the permutation
+  // of lexicographic rank p = ((h >> s) D!) >> s (storage axis a reads world axis
+  // src[a]), then storage axis a reflected (n - 1 - l) when bit a of h is set.
+  HUSH_INLINE std::size_t variant_index(std::uint32_t h, const int (&local)[3]) const {
+    constexpr unsigned kShift = constants::kWaveletVariantShift;
+    const std::uint32_t p = ((h >> kShift) * wavelet_permutations(D)) >> kShift;
+    int src[3] = {0, 1, 2};
+    if constexpr (D == 2) {
+      src[0] = static_cast<int>(p);
+      src[1] = 1 - src[0];
+    } else {
+      const int first = static_cast<int>(p / 2), lo = first == 0 ? 1 : 0, hi = first == 2 ? 1 : 2;
+      src[0] = first;
+      src[1] = (p & 1u) != 0 ? hi : lo;
+      src[2] = (p & 1u) != 0 ? lo : hi;
+    }
     std::size_t idx = 0, stride = 1;
     for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
-      const int src = D == 2 ? kPerm2[p][a] : kPerm3[p][a];
-      long long v = l[src][pick[src]];
+      int v = local[src[a]];
       if ((h >> a) & 1u) v = n - 1 - v;
       idx += static_cast<std::size_t>(v) * stride;
     }
@@ -461,16 +463,18 @@ value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], co
   return r;
 }
 
-// The exact projection along any unit normal u: integral N_s(y + t u) B2(t) dt
-// over t in [-3, 3], N_s the band with the (widened) B-spline. The integrand is
-// one polynomial between consecutive knots: those of B2 (t = -3, -1, 1, 3) and
-// the crossings of the knot planes of N_s along each axis (y_a + t u_a = k + delta,
-// delta in {+-1/2, +-3/2} s_a, k an integer); each piece gets 5-point
-// Gauss-Legendre quadrature, exact for its degree (<= 8).
+// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
+// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
+// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
+// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
+// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
+// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
+// not exact: widening itself approximates the pixel filter); the widened knot
+// families would cost up to 7^3 taps at each of ~250 nodes.
 template <class T, bool G, class Access>
 value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
                                            const Access& acc) {
-  constexpr int kMaxKnots = 128;
+  constexpr int kMaxKnots = constants::kWaveletMaxKnots;
   const T reach = T(kBspline2.half_support());
   T knots[kMaxKnots];
   int nk = 0;
@@ -478,8 +482,12 @@ value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], con
        j += static_cast<int>(constants::kWaveletProjectionStretch))
     knots[nk++] = T(j) - reach;  // B2's knots: -3, -1, 1, 3
   const T half = T(kBspline.half_support());
+  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
   for (int a = 0; a < 3; ++a) {
-    if (u[a] == T(0)) continue;
+    // Widened, only B2's pieces (5 nodes each): the widened basis' own knots would
+    // need 4 families per axis and up to 7^3 taps per node (the GPU's loop budget,
+    // hush/glsl/wavelet_glsl.hpp); widening is an approximation of the pixel filter.
+    if (u[a] == T(0) || !plain) continue;
     const T span = reach * std::fabs(u[a]);
     // Knot offsets of the widened B-spline about its centre, as fractions of a coefficient.
     T deltas[4];
@@ -502,11 +510,10 @@ value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], con
   }
   std::sort(knots, knots + nk);
   value_gradient<T, 3> r{T(0), {}};
-  bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
   for (int i = 0; i + 1 < nk; ++i) {
     const T t0 = knots[i], t1 = knots[i + 1];
     if (!(t1 > t0)) continue;
-    const T mid = T(0.5) * (t0 + t1), h = T(0.5) * (t1 - t0);
+    const T mid = (t0 + t1) / T(2), h = (t1 - t0) / T(2);
     for (int q = 0; q < constants::kGaussLegendreOrder; ++q) {
       const T t = mid + h * T(constants::kGaussLegendreNode[q]);
       const T wq = h * T(constants::kGaussLegendreWeight[q]) * kernel_at(kBspline2, t);
@@ -571,6 +578,11 @@ class wavelet : public sample_noise<wavelet<D>, D> {
   explicit wavelet(const params& prm) : prm_(prm) {
     validate();
     tile_ = wavelet_tile<D>::get({prm_.tile_size, prm_.seed, prm_.even_odd_fix});
+    if (prm_.distribution == wavelet_distribution::table) {
+      auto t = std::make_shared<std::vector<float>>();
+      for (double v : prm_.table) t->push_back(static_cast<float>(v));
+      table_ = std::move(t);
+    }
     if (prm_.variant_overlap > 0)
       blend_ = wavelet_blend_tile<D>::get(
           {{prm_.tile_size, prm_.seed, prm_.even_odd_fix}, prm_.variant_overlap});
@@ -593,7 +605,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
           o = prm_.offsets[static_cast<std::size_t>(i)][a];
         }
         // The tap-0 cell of y is floor(y - 1/2): fold the half into the offset.
-        b.offset[a] = o - 0.5;
+        b.offset[a] = o - detail::constants::kWaveletCellOffset;
       }
       bands_.push_back(b);
       sum_sq += b.weight * b.weight;
@@ -650,6 +662,9 @@ class wavelet : public sample_noise<wavelet<D>, D> {
   const wavelet_tile<D>& tile() const { return *tile_; }
   std::shared_ptr<const wavelet_tile<D>> tile_ptr() const { return tile_; }
   std::shared_ptr<const wavelet_blend_tile<D>> blend_tile_ptr() const { return blend_; }
+  // The distribution table in float (the float path's T(table[i])), shared with the GPU
+  // backend; null unless distribution == table.
+  std::shared_ptr<const std::vector<float>> table_floats() const { return table_; }
   std::size_t memory_bytes() const {
     return sizeof(*this) + tile_->bytes() + (blend_ ? blend_->bytes() : 0) +
            bands_.capacity() * sizeof(band);
@@ -666,6 +681,10 @@ class wavelet : public sample_noise<wavelet<D>, D> {
   double band_raw_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight; }
   vec<double, D> band_position(int i, const vec<double, D>& p) const {
     return bands_[static_cast<std::size_t>(i)].position(p);
+  }
+  // Tile variants: the key hashing band i's cells (hash32(seed_key, b)).
+  std::uint32_t variant_key(int i) const {
+    return hash32(key_, static_cast<std::uint32_t>(bands_[static_cast<std::size_t>(i)].index));
   }
   // The normalisation K of the point noise (1 under relative_weights: per sample).
   double scale() const { return scale_; }
@@ -823,7 +842,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       for (int a = 0; a < 3; ++a) pl.widen[i][a] = 1.0;
       if (prm_.widen && w != 0.0) {
         const double c0 = detail::constants::kWaveletWidenStart;
-        const double smax2 = 1.0 + 4.0 - c0 * c0;  // at c = 2, where the fade reaches 0
+        const double c1 = detail::constants::kWaveletWidenEnd;  // where the fade reaches 0
+        const double smax2 = 1.0 + c1 * c1 - c0 * c0;
         for (int a = 0; a < D; ++a) {
           const double c2 = extent2[a] * b.frequency * b.frequency;
           const double s2 = std::min(1.0 + std::max(0.0, c2 - c0 * c0), smax2);
@@ -854,7 +874,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       }
       case wavelet_distribution::table: {
         const T x = v * T(detail::constants::kInvSqrt2);
-        const T u = T(0.5) * std::erfc(-x);  // Phi(v)
+        const T u = std::erfc(-x) / T(2);  // Phi(v)
         const std::size_t m = prm_.table.size();
         if (!(u >= T(0) && u <= T(1))) {  // NaN
           if (dv) *dv = u;
@@ -938,7 +958,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       if (pl.project && pl.normal_axis < 0) {
         T y[3], u[3], s[3];
         for (int a = 0; a < 3; ++a) {
-          y[a] = c[a].f + T(0.5);
+          y[a] = c[a].f + T(detail::constants::kWaveletCellOffset);
           u[a] = T(pl.normal[a]);
           s[a] = T(pl.widen[i][a]);
         }
@@ -955,7 +975,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
           detail::wavelet_axis_fixed<T, G>(c[a].f, detail::kBspline2, detail::kBspline2Derivative,
                                            ax[a]);
       } else if (widened && pl.widen[i][a] != 1.0) {
-        detail::wavelet_axis_widened<T, G>(c[a].f + T(0.5), T(pl.widen[i][a]), ax[a]);
+        detail::wavelet_axis_widened<T, G>(c[a].f + T(detail::constants::kWaveletCellOffset),
+                                           T(pl.widen[i][a]), ax[a]);
       } else {
         detail::wavelet_axis_plain<T, G>(c[a].f, ax[a]);
       }
@@ -980,9 +1001,9 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     detail::wavelet_variant_access<D> acc{blend_->coefficients(),
                                           prm_.tile_size,
                                           prm_.tile_size - prm_.variant_overlap,
-                                          hash32(key_, static_cast<std::uint32_t>(b.index)),
+                                          variant_key(i),
                                           {0, 0, 0}};
-    for (int a = 0; a < D; ++a) acc.g0[a] = static_cast<long long>(c[a].i0);
+    for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
     return band_kernel<T, G>(c, pl, i, acc);
   }
 
@@ -1081,6 +1102,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
   params prm_;
   std::shared_ptr<const wavelet_tile<D>> tile_;
   std::shared_ptr<const wavelet_blend_tile<D>> blend_;
+  std::shared_ptr<const std::vector<float>> table_;
   std::vector<band> bands_;
   std::uint32_t key_ = 0;
   double scale_ = 1, bound_ = 1, pre_bound_ = 1, slope_ = 1;

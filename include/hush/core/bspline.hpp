@@ -186,6 +186,25 @@ HUSH_INLINE T kernel_at(const piecewise_kernel<P, O>& k, T d) {
   return piece_value(k, p, u - T(p));
 }
 
+// A fixed kernel of support P (B2: 6, beta: 9) read at fraction f in [0, 1): tap j sits
+// at distance f + 1/2 - j, and the taps j = floor(1/2 - P/2) + 1 ... ceil(3/2 + P/2) - 1
+// (-2 ... 4 for B2, -3 ... 5 for beta) cover every f (some weights are 0).
+template <int P>
+constexpr int fixed_kernel_first_tap() {
+  return P % 2 == 0 ? 1 - P / 2 : (3 - P) / 2;
+}
+template <int P>
+constexpr int fixed_kernel_taps() {
+  return (P + 2) / 2 - fixed_kernel_first_tap<P>() + 1;
+}
+// The most taps any kernel has along one axis (beta's 9; the widened B-spline is
+// limited to it).
+constexpr int kWaveletMaxTaps = fixed_kernel_taps<kBeta.pieces>();
+
+// The number of axis permutations of a D-dimensional tile (D!: 2 or 6), for the
+// hashed tile variants of wavelet noise.
+constexpr std::uint32_t wavelet_permutations(int d) { return d == 2 ? 2u : 6u; }
+
 // The plain 3-tap weights of B at fraction f in [0, 1): the position y lies at
 // distance f + 1/2 - j from coefficient i0 + j, j = 0, 1, 2 (i0 = floor(y - 1/2),
 // f = y - 1/2 - i0), so tap j reads piece 2 - j at t = f.
