@@ -787,8 +787,9 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
                                    "out vec4 c;\nvoid main() { c = "
                                    "hush_perlin3_gradient(gl_FragCoord.xyz, 1u, uvec3(0u)); }\n"}});
   const auto files = hush::glsl::export_files();
-  // The library, 4 runners each of perlin2, perlin3, their fractals, wavelet2 and wavelet3.
-  CHECK(files.size() == 25);
+  // The library, 4 runners each of perlin2, perlin3, their fractals, wavelet2 and wavelet3,
+  // the coherent pass.
+  CHECK(files.size() == 26);
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);
