@@ -943,7 +943,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     if (i >= k - 1) return prm_.weights[static_cast<std::size_t>(k - 1)];
     const double t = detail::fade(o - i);
     const double a = prm_.weights[static_cast<std::size_t>(i)];
-    const double b = prm_.weights[static_cast<std::size_t>(i + 1)];
+    const double b = prm_.weights[static_cast<std::size_t>(i) + 1];
     return a + t * (b - a);
   }
 

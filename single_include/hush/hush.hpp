@@ -4386,12 +4386,12 @@ inline const std::vector<double>& wavelet_analysis_filter() {
       }
       return s;
     };
-    std::vector<double> a(2 * R);
+    std::vector<double> a(static_cast<std::size_t>(2 * R));
     for (int d = 1 - R; d <= R; ++d) {
       double s = 0;
       // h is non-zero for |d - 1/2| < 4: the terms with |l| > R + 4 are below 1e-40.
       for (int l = -R - 4; l <= R + 4; ++l) s += bspline_gram_inverse(l) * h(d + 2 * l);
-      a[static_cast<std::size_t>(d - 1 + R)] = 0.5 * s;
+      a[static_cast<std::size_t>(d + R) - 1] = 0.5 * s;
     }
     return a;
   }();
@@ -4411,7 +4411,7 @@ inline void wavelet_down_up(std::vector<double>& x, int n, std::size_t stride) {
   // The filter periodised to n: taps (offset mod n, weight), merged.
   std::vector<double> per(static_cast<std::size_t>(n), 0.0);
   for (int d = 1 - R; d <= R; ++d)
-    per[static_cast<std::size_t>(wavelet_mod(d, n))] += a[static_cast<std::size_t>(d - 1 + R)];
+    per[static_cast<std::size_t>(wavelet_mod(d, n))] += a[static_cast<std::size_t>(d + R) - 1];
   std::vector<int> off;
   std::vector<double> wt;
   for (int j = 0; j < n; ++j)
@@ -4640,7 +4640,7 @@ class wavelet_blend_tile {
     for (int j = 0; j < m; ++j) {
       const double theta = (j + 0.5) / m * kQuarterTurn;
       alpha[static_cast<std::size_t>(j)] = std::sin(theta);
-      alpha[static_cast<std::size_t>(n - m + j)] = std::cos(theta);
+      alpha[static_cast<std::size_t>(n - m) + static_cast<std::size_t>(j)] = std::cos(theta);
     }
     coef_.resize(base->count());
     for (std::size_t i = 0; i < coef_.size(); ++i) {
@@ -5492,7 +5492,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     if (i >= k - 1) return prm_.weights[static_cast<std::size_t>(k - 1)];
     const double t = detail::fade(o - i);
     const double a = prm_.weights[static_cast<std::size_t>(i)];
-    const double b = prm_.weights[static_cast<std::size_t>(i + 1)];
+    const double b = prm_.weights[static_cast<std::size_t>(i) + 1];
     return a + t * (b - a);
   }
 
