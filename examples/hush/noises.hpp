@@ -90,6 +90,10 @@ struct perlin_options {
 // Throws hush::invalid_argument for parameters the library refuses.
 std::unique_ptr<noise_field> make_perlin(const noise_setup& setup, const perlin_options& options);
 
+// ---- Wavelet noise (hush/wavelet.hpp): `hush sample wavelet` (noise_wavelet.cpp).
+std::unique_ptr<noise_field> make_wavelet_from_options(const noise_setup& setup,
+                                                       const option_values& given);
+
 }  // namespace hush_cli
 
 #endif  // HUSH_CLI_NOISES_HPP

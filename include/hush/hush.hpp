@@ -6,6 +6,7 @@
 #define HUSH_HUSH_HPP
 
 #include "hush/config.hpp"
+#include "hush/core/bspline.hpp"
 #include "hush/core/error.hpp"
 #include "hush/core/footprint.hpp"
 #include "hush/core/frame.hpp"
@@ -23,6 +24,8 @@
 #include "hush/gabor.hpp"
 #include "hush/gabor_kernel.hpp"
 #include "hush/perlin.hpp"
+#include "hush/wavelet.hpp"
+#include "hush/wavelet_tile.hpp"
 #include "hush/exec.hpp"
 
 // Scene-driven noises (hush::frame: per-frame G-buffer views).

@@ -85,6 +85,577 @@
 
 #endif  // HUSH_CONFIG_HPP
 // ---- end hush/config.hpp
+// ---- begin hush/core/bspline.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The kernels of wavelet noise (Cook & DeRose 2005), all uniform B-splines, and
+// their exact piecewise-polynomial forms, derived at compile time.
+//
+// Every kernel here is the density of a sum of independent centred uniform
+// variables of integer widths c_1 ... c_m, i.e. the convolution of boxes:
+//   B     = box1 * box1 * box1                 the quadratic B-spline (support 3)
+//   B2    = box2 * box2 * box2                 B stretched by 2: B2(u) = B(u / 2) / 2
+//   beta  = B * B2 (six boxes)                 the exact projection kernel, a quintic
+//                                               (Cook & DeRose eq. 36, support 9)
+//   g     = B * B, gb = B2 * B2, gbeta = beta * beta   their autocorrelations
+// Such a density is (Schoenberg's truncated-power formula)
+//   f(x) = sum over subsets e of the widths (-1)^|e| (u - sum e)_+^(m-1) / ((m-1)! prod c),
+// with u = x + (sum c) / 2. On each unit piece u in [k, k + 1] it is one polynomial
+// in t = u - k, whose coefficients are integer sums divided once by (m-1)! prod c:
+// exact to the last bit of a double. The widths are the only input
+// (constants.hpp: kBsplineUniforms, kWaveletProjectionStretch); no polynomial
+// coefficient is typed anywhere, and the tests re-derive each kernel's defining
+// property (partition of unity, refinement, convolution, integral).
+//
+// Conventions: kernels are centred (symmetric about 0) and arguments are
+// distances d = y - i from a coefficient i to the position y, in coefficient
+// units. Outside the support every kernel is 0.
+#ifndef HUSH_CORE_BSPLINE_HPP
+#define HUSH_CORE_BSPLINE_HPP
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+// ---- begin hush/detail/constants.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The single source of every numeric constant hush's algorithms use: hash
+// multipliers, gradient tables, normalisation factors. The scalar path, the
+// SIMD kernels and the generated GLSL all read these; no number is typed twice.
+// This header includes nothing, so generators can use it without the library.
+#ifndef HUSH_DETAIL_CONSTANTS_HPP
+#define HUSH_DETAIL_CONSTANTS_HPP
+
+namespace hush {
+namespace detail {
+namespace constants {
+
+// ---- hash32: Chris Wellons' "lowbias32" integer finalizer (public domain,
+// "Prospecting for hash functions", 2018): x ^= x >> 16; x *= M1; x ^= x >> 15;
+// x *= M2; x ^= x >> 16. Measured avalanche bias 0.17 (on the scale where 0 is
+// ideal), better than MurmurHash3's fmix32; uses only 32-bit unsigned ops, so
+// GLSL 330 `uint` arithmetic reproduces it bit for bit.
+constexpr unsigned kHashShift1 = 16;
+constexpr unsigned kHashMul1 = 0x7feb352dU;
+constexpr unsigned kHashShift2 = 15;
+constexpr unsigned kHashMul2 = 0x846ca68bU;
+constexpr unsigned kHashShift3 = 16;
+
+// ---- Lattice hashing: a cell (i, j, k) is first folded to one word as
+// key ^ i*Px ^ rotl(j*Py, Ry) ^ rotl(k*Pz, Rz) (odd multipliers are bijections
+// mod 2^32, so each axis alone never collides), then finished with hash32.
+// The rotations matter: every odd P maps a lag of 2^31 to a flip of the top
+// bit alone, so with a plain xor fold the field repeats exactly at lag
+// (2^31, 2^31); and hash32's first step collapses the difference 0x80008000
+// to a single top-bit flip, so a rotation of 16 still leaves a correlation of
+// 0.56 there. Ry = 11, Rz = 21 (no rotation or difference of rotations is 16)
+// keep the gradient correlation at every lag 2^k, k = 0 ... 31, on every
+// subset of axes at the sampling noise floor (scan of 4e4 cells per lag;
+// tests/perlin_test.cpp checks the lags of HARD_CASES row 7).
+// The multipliers are the 32-bit xxHash primes 1, 2 and 3.
+constexpr unsigned kLatticePrimeX = 0x9E3779B1U;
+constexpr unsigned kLatticePrimeY = 0x85EBCA77U;
+constexpr unsigned kLatticePrimeZ = 0xC2B2AE3DU;
+constexpr unsigned kLatticeRotateY = 11;
+constexpr unsigned kLatticeRotateZ = 21;
+
+// Stream separation for derived seeds (octaves, RNG streams): added before
+// hashing so that seed 0 / stream 0 do not map to the fixed point of hash32(0).
+constexpr unsigned kGoldenGamma = 0x9E3779B9U;  // 2^32 / golden ratio
+
+// ---- Improved Perlin noise (Perlin 2002, "Improving Noise").
+// Quintic fade s(t) = 6t^5 - 15t^4 + 10t^3 (C2 at the lattice; Perlin 2002 sec. 3).
+constexpr double kFade5 = 6.0;
+constexpr double kFade4 = -15.0;
+constexpr double kFade3 = 10.0;
+
+// 2D gradients: the 8 unit vectors at multiples of 45 degrees, selected by the
+// top 3 bits of the lattice hash (exactly uniform). E[g g^T] = I/2.
+constexpr double kInvSqrt2 = 0.70710678118654752440;
+constexpr int kPerlin2GradCount = 8;
+constexpr double kPerlin2GradX[kPerlin2GradCount] = {1.0,  kInvSqrt2,  0.0, -kInvSqrt2,
+                                                     -1.0, -kInvSqrt2, 0.0, kInvSqrt2};
+constexpr double kPerlin2GradY[kPerlin2GradCount] = {0.0, kInvSqrt2,  1.0,  kInvSqrt2,
+                                                     0.0, -kInvSqrt2, -1.0, -kInvSqrt2};
+constexpr unsigned kPerlin2GradShift = 29;  // index = hash >> 29
+
+// 3D gradients: Perlin's 12 cube-edge midpoints (length sqrt 2). Perlin 2002
+// pads the table to 16 by repeating four, which makes the y axis carry 20% more
+// variance; hush instead maps the top 16 hash bits onto 12 buckets,
+// index = ((hash >> 16) * 12) >> 16 (bucket sizes differ by 1 in 5461), so
+// E[g g^T] = (2/3) I to within 2e-4.
+constexpr int kPerlin3GradCount = 12;
+constexpr double kPerlin3GradX[kPerlin3GradCount] = {1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0};
+constexpr double kPerlin3GradY[kPerlin3GradCount] = {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1};
+constexpr double kPerlin3GradZ[kPerlin3GradCount] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1};
+constexpr unsigned kPerlin3IndexShift = 16;
+
+// Output scale. The raw noise sum_i w_i g_i.(x - c_i) is bounded by
+// B = max over the cell of sum_i w_i max_g g.(x - c_i) (each corner taking its
+// best gradient; some lattice cell realises any assignment, so B is attained).
+// 2D, unit gradients: the maximum is at the cell centre, B = sqrt(2)/2.
+// 3D, edge gradients: the maximum is NOT at the centre (value 1 there) but at
+// (1/2, 0.35526, 0.48149) and its mirror images, B = 1.0363538112118029,
+// found by grid search plus refinement and re-derived by
+// tests/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
+// exactly [-1, 1].
+constexpr double kPerlin2RawBound = 0.70710678118654752440;  // sqrt(2)/2
+constexpr double kPerlin3RawBound = 1.0363538112118029;
+constexpr double kPerlin2Scale = 1.0 / kPerlin2RawBound;
+constexpr double kPerlin3Scale = 1.0 / kPerlin3RawBound;
+
+// Variance of the raw noise over space and seeds, derived in docs/design.md:
+// Var = c * D * (2 I0)^(D-1) * (2 I2) with I0 = int_0^1 (1-s)^2 = 181/462,
+// I2 = int_0^1 (1-s)^2 t^2 = 535/18018, c = E[g_k^2] (1/2 in 2D, 2/3 in 3D).
+// The output's variance is this times the scale squared.
+constexpr double kPerlin2RawVariance = 96835.0 / 2081079.0;       // 0.046531...
+constexpr double kPerlin3RawVariance = 35054270.0 / 480729249.0;  // 0.072918...
+constexpr double kPerlin2Variance = kPerlin2RawVariance * kPerlin2Scale * kPerlin2Scale;
+constexpr double kPerlin3Variance = kPerlin3RawVariance * kPerlin3Scale * kPerlin3Scale;
+
+// ---- Footprints (core/footprint.hpp).
+// The widest footprint kept, in noise units: 2^32, the lattice's period
+// (core/lattice.hpp). A pixel that wide covers every lattice cell, so
+// filtering leaves nothing but the mean; wider, NaN or infinite footprints
+// are stored as this one. Squared (2^64) it is still a normal float.
+constexpr double kFootprintMaxWidth = 4294967296.0;
+// Standard deviation, in pixels, of the Gaussian pixel filter the filtering
+// noises apply through the footprint: its amplitude response is
+// exp(-2 pi^2 sigma^2 k^2) = 0.29 at the Nyquist frequency (1/2 cycle per
+// pixel) and 0.0072 at 1 cycle per pixel.
+constexpr double kPixelFilterSigma = 0.5;
+// 2 pi / 3: Smith's trigonometric roots of a symmetric 3x3 matrix's characteristic
+// cubic (footprint<3>::eigenvalues; the GLSL footprint width of wavelet noise).
+constexpr double kTwoPiOver3 = 2.0943951023931954923;
+
+// ---- Poisson sampling (core/rng.hpp).
+// Means below kPoissonInversionLimit use sequential inversion (expected
+// mean + 1 steps); larger means use Hoermann's PTRS transformed rejection
+// ("The transformed rejection method for generating Poisson random
+// variables", Insurance: Mathematics and Economics 12, 1993), whose
+// acceptance rate exceeds 0.88 for every mean >= 10.
+constexpr double kPoissonInversionLimit = 12.0;
+constexpr double kPoissonMaxMean = 1e9;                // beyond it, uint32 counts could overflow
+constexpr double kPtrsB0 = 0.931, kPtrsB1 = 2.53;      // b = B0 + B1 sqrt(mu)
+constexpr double kPtrsA0 = -0.059, kPtrsA1 = 0.02483;  // a = A0 + A1 b
+constexpr double kPtrsAlpha0 = 1.1239, kPtrsAlpha1 = 1.1328, kPtrsAlphaB = 3.4;
+constexpr double kPtrsVr0 = 0.9277, kPtrsVr1 = 3.6224, kPtrsVrB = 2.0;
+constexpr double kPtrsKOffset = 0.43;
+constexpr double kPtrsUsAccept = 0.07, kPtrsUsReject = 0.013;
+// Stirling's series for ln(n!) = (n + 1/2) ln n - n + ln(2 pi)/2 + sum_k c_k / n^(2k-1),
+// c_k = B_2k / (2k (2k - 1)); used for n > kLogFactorialTable, where the
+// first omitted term is below 1.1e-15 absolute (2.3e-17 relative) at n = 21.
+constexpr double kHalfLog2Pi = 0.91893853320467274178;
+constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
+constexpr int kLogFactorialTable = 20;
+
+// ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp, wavelet_tile.hpp,
+// core/bspline.hpp). The basis is the uniform quadratic B-spline B(u), centred (support
+// [-3/2, 3/2]): the density of a sum of three independent uniforms on [-1/2, 1/2]. Every
+// kernel of the noise is such a density (core/bspline.hpp derives their polynomial
+// pieces from the widths below, so no polynomial coefficient is typed anywhere).
+constexpr int kBsplineUniforms = 3;  // B = box * box * box (quadratic B-spline)
+// Coefficient i of a band sits at y = i; the three taps of y start at the cell
+// floor(y - kWaveletCellOffset), at distances f + kWaveletCellOffset - j (f the fraction).
+constexpr double kWaveletCellOffset = 0.5;
+// Refinement (Cook & DeRose eq. 10, 13): B(x/2 - 1/4) = sum_k p_k B(x - k), k = -1 ... 2,
+// p_k = binom(3, k + 1) / 4: the half-resolution basis in terms of the full-resolution one.
+constexpr int kWaveletRefineFirst = -1;
+constexpr double kWaveletRefine[4] = {0.25, 0.75, 0.75, 0.25};
+// The analysis (least-squares downsampling) filter a_d is infinite; hush keeps
+// |d| <= kWaveletAnalysisRadius, where |a_d| < 2e-18 (it decays as 0.656^|d|), and
+// periodises it to the tile (wavelet_tile.hpp derives it from the B-spline Gram matrix).
+constexpr int kWaveletAnalysisRadius = 100;
+// Tile sizes: even (the half-resolution tile must have a whole number of coefficients,
+// paper footnote 4) and at least 16 (the widest evaluation kernel spans 9 coefficients;
+// the even/odd correction adds a copy shifted by about half a tile, which must lie beyond
+// that reach). At most 2^22 coefficients (16 MiB as float; the build holds two double
+// copies).
+constexpr int kWaveletMinTile = 16;
+constexpr int kWaveletMaxTile2 = 2048;
+constexpr int kWaveletMaxTile3 = 128;
+// Bands: frequencies 2^b, b in [kWaveletMinBand, kWaveletMaxBand], at most
+// kWaveletMaxBands of them in one noise.
+constexpr int kWaveletMaxBands = 32;
+constexpr int kWaveletMinBand = -32;
+constexpr int kWaveletMaxBand = 32;
+// Projection onto a surface (paper sec. 3.7, eq. 32): the band is averaged along the
+// normal with the B-spline at half its resolution, i.e. stretched by this factor.
+constexpr double kWaveletProjectionStretch = 2.0;
+// Tile variants (sec. 4.3): a cell's permutation is ((h >> 16) * D!) >> 16 of its hash h
+// (uniform to 1 part in 2^16), its reflections the low D bits of h.
+constexpr unsigned kWaveletVariantShift = 16;
+// Basis widening (paper sec. 4.1): a band whose coefficient spacing spans c pixels is
+// widened by s = sqrt(1 + max(0, c^2 - c0^2)) with c0 = kWaveletWidenStart (the paper's
+// j = -2), so that from c0 on its variance grows like that of B convolved with the
+// pixel filter (hush's Gaussian of sigma = kPixelFilterSigma pixels).
+constexpr double kWaveletWidenStart = 0.5;
+// Widening stops growing at c = kWaveletWidenEnd pixels, where the band has faded out.
+constexpr double kWaveletWidenEnd = 2.0;
+// Exact projection along a normal that is not axis-aligned: the line integral is split
+// where the integrand's polynomial pieces change and each piece is integrated by
+// 5-point Gauss-Legendre quadrature (exact for polynomials of degree <= 9; the
+// integrand has degree <= 8). Nodes on [-1, 1] and weights, 20 digits.
+constexpr int kGaussLegendreOrder = 5;
+// Knots of that line integral: B2's 4, plus per axis a and knot family (at most 4
+// with widening) the crossings of 6 |u_a| + 1 planes: at most 4 + 4 (6 sqrt(3) + 3) = 57.
+constexpr int kWaveletMaxKnots = 128;
+constexpr double kGaussLegendreNode[5] = {-0.90617984593866399280, -0.53846931010568309104, 0.0,
+                                          0.53846931010568309104, 0.90617984593866399280};
+constexpr double kGaussLegendreWeight[5] = {0.23692688505618908751, 0.47862867049936646804,
+                                            0.56888888888888888889, 0.47862867049936646804,
+                                            0.23692688505618908751};
+// erf(x) on the GPU (GLSL has no erf): Abramowitz & Stegun 7.1.26,
+// erf(x) = 1 - (a1 t + ... + a5 t^5) exp(-x^2), t = 1 / (1 + p x), x >= 0; |error| <= 1.5e-7.
+constexpr double kErfP = 0.3275911;
+constexpr double kErfA[5] = {0.254829592, -0.284496736, 1.421413741, -1.453152027, 1.061405429};
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;  // 1 / sqrt(2 pi): the normal density
+// ---- Coherent noise (Kass & Pesare 2011, "Coherent Noise for Non-Photorealistic
+// Rendering"; include/hush/coherent.hpp, docs/coherent.md).
+// White noise: w = kCoherentWhiteScale * (2 (h >> kCoherentWhiteShift) + 1 - 2^24) for a
+// 32-bit hash h: the odd multiples of 2^-24 in (-1, 1), times sqrt(3); mean exactly 0,
+// variance 1 - 2^-48 (a discrete uniform over 2^24 values), never denormal.
+constexpr unsigned kCoherentWhiteShift = 8;
+constexpr double kCoherentWhiteScale = 1.7320508075688772935 * 0x1p-24;  // sqrt(3) * 2^-24
+constexpr double kCoherentWhiteCentre = 16777215.0;                      // 2^24 - 1
+// Pixel hash of a field: hash32(hash32(frame_key, y) ^ x * kCoherentPixelPrime). The odd
+// multiplier (the 32-bit xxHash prime 4) scatters the columns, so two rows' keys can never
+// line up a run of pixels (a plain xor of x would repeat shifted row segments).
+constexpr unsigned kCoherentPixelPrime = 0x27D4EB2FU;
+// Fields per channel, each with its own stream: the input w, the refill fields of the
+// stationary filter (x and y; separate ones for the backward pass of the symmetric filter),
+// and the band-pass input's lattice offsets.
+constexpr unsigned kCoherentFieldInput = 0;
+constexpr unsigned kCoherentFieldRefillX = 1;
+constexpr unsigned kCoherentFieldRefillY = 2;
+constexpr unsigned kCoherentFieldBackRefillX = 3;
+constexpr unsigned kCoherentFieldBackRefillY = 4;
+constexpr unsigned kCoherentFields = 5;
+// Parameter defaults and limits. alpha = 0.98 is the paper's (sec. 4). epsilon is relative:
+// the previous depth must lie within epsilon * e of the expected depth e (2% accepts bilinear
+// interpolation of depth across a pixel of a plane tilted up to ~60 degrees and rejects a
+// surface 2% farther; the same tolerance as the coherence metrics, docs/coherence.md).
+constexpr double kCoherentDefaultAlpha = 0.98;
+constexpr double kCoherentDefaultEpsilon = 0.02;
+constexpr double kCoherentDefaultBandpassPixels = 4.0;  // band-pass input: Perlin cell, pixels
+constexpr double kCoherentMaxBandpassPixels = 1024.0;
+constexpr double kCoherentMaxSmoothing = 2.0;     // output Gaussian sigma, pixels
+constexpr double kCoherentSmoothingRadius = 3.0;  // kernel radius in sigmas
+constexpr int kCoherentMaxChannels = 4;
+constexpr unsigned kCoherentMaxSide = 16384;  // frame side limit (keeps pixel indices in int32)
+
+// ---- Poisson counts by table (core/poisson_table.hpp): thresholds of the CDF,
+// built once per mean on the CPU, compared with one uniform word per draw.
+// The mean is capped so that a table stays small (about mean + 7 sqrt(mean)
+// + 20 thresholds: 11000 at the cap).
+constexpr double kPoissonTableMaxMean = 1e4;
+
+// ---- Float exp and sin/cos (detail/elementary.hpp): polynomials hush owns, so
+// that scalar code, every SIMD target and GLSL evaluate the same operations
+// (std::exp and Highway's Exp differ in their last bits). Coefficients are
+// Chebyshev fits (mpmath.chebyfit, 40 digits), printed to 20 digits.
+// exp(x), x <= 0: x = n ln2 + r with n = floor(x log2(e) + 1/2) and
+// |r| <= ln2 / 2 (Cody-Waite: n ln2_hi is exact for |n| < 2^15), then
+// e^r = P(r) of degree 6 (relative error 2.5e-9, below float rounding), and
+// 2^n from the exponent bits. Below kExpFloor the result is 0 (no denormals).
+constexpr double kLog2E = 1.4426950408889634074;
+constexpr double kLn2Hi = 0.693359375;              // 355/512: 9 significant bits
+constexpr double kLn2Lo = -2.12194440054690583e-4;  // ln 2 - kLn2Hi
+constexpr double kExpFloor = -87.0;                 // e^-87 = 1.6e-38, just above FLT_MIN
+constexpr int kExpDegree = 6;
+constexpr double kExpPoly[kExpDegree + 1] = {1.0,
+                                             1.0000000377162138425,
+                                             0.50000000471177576744,
+                                             0.16666415514653275427,
+                                             0.041666352896775156786,
+                                             0.008375126398153335682,
+                                             0.0013941108433972674608};
+// sin(2 pi t) and cos(2 pi t) for t in turns: t = q/4 + r with q = floor(4t + 1/2)
+// (quarter turns, exact; t - floor(t) first when |t| >= 2^22) and |r| <= 1/8,
+// then with z = r^2
+//   sin(2 pi r) = r S(z), S of degree 3 (relative error 3.4e-9),
+//   cos(2 pi r) = C(z),   C of degree 4 (absolute error 4.8e-11),
+// rotated by the quadrant q mod 4.
+constexpr int kSinDegree = 3;
+constexpr double kSinPoly[kSinDegree + 1] = {6.2831852878129467414, -41.341662570547954912,
+                                             81.592542871301543294, -75.401612702747458455};
+constexpr int kCosDegree = 4;
+constexpr double kCosPoly[kCosDegree + 1] = {0.99999999995248941669, -19.739208650130595513,
+                                             64.939316135709049629, -85.442844673081659515,
+                                             59.220168958296096218};
+// Above this |t| (2^22) sincos_turns first reduces t - floor(t): 4t + 1/2 is
+// exact below it, and a float above it has at most one fractional bit.
+constexpr double kTurnsReduceLimit = 4194304.0;
+constexpr double kTwoPi = 6.283185307179586476925;
+constexpr double kPi = 3.141592653589793238463;
+
+// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor_kernel.hpp,
+// gabor.hpp). Kernels are truncated where their envelope e^{-pi a^2 |x|^2}
+// falls to t (the `truncation` parameter): radius r = sqrt(ln(1/t) / pi) / a.
+// Instead of cutting there (a jump of t K, which the paper accepts), the
+// kernel is multiplied by a smoothstep taper over the last part of its
+// support, s = |x|^2 / r^2 in [kGaborTaperStart, 1]: C1 everywhere, equal to
+// the Gabor kernel for |x| <= r sqrt(kGaborTaperStart), within K t^0.8 of it
+// beyond.
+constexpr double kGaborTaperStart = 0.8;
+constexpr double kGaborDefaultTruncation = 0.05;  // the paper's value
+constexpr double kGaborMinTruncation = 1e-9, kGaborMaxTruncation = 0.5;
+constexpr double kGaborMinBandwidth = 1e-6, kGaborMaxBandwidth = 1e6;
+constexpr double kGaborMaxFrequency = 1e6;
+// N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
+// The cap keeps every Poisson table within kGaborMaxThresholds entries (the
+// GLSL uniform arrays).
+constexpr double kGaborMaxImpulses = 256.0;
+constexpr int kGaborMaxThresholds = 192;
+// Impulse marks from the cell stream's words, cut into fields: an 8-bit
+// field m is the value (2m + 1) 2^-9 in (0, 1), a 16-bit field (2m + 1) 2^-17;
+// both exact in float and GLSL, symmetric about 1/2. One impulse takes:
+//   2D: word 0 = [x:8 | y:8 | weight:8 | orientation:8] (high to low bits),
+//       hybrid: word 1 = [frequency:16 | unused:16];
+//   3D: word 0 = [x:8 | y:8 | z:8 | weight:8], isotropic and hybrid:
+//       word 1 = [polar cosine:16 | azimuth:16], hybrid: word 2 = [frequency:16 | -].
+// Positions on a lattice of 256 steps per cell change the process only at
+// frequencies of 256 cycles per kernel radius, where the kernel's spectrum is
+// below e^-2000; weights w = 2u - 1 have E[w] = 0 and E[w^2] = (1 - 2^-16) / 3.
+// One hash per impulse instead of four (docs/gabor.md).
+constexpr unsigned kGaborByteBits = 8;
+constexpr unsigned kGaborByteMask = 0xFFU;
+constexpr double kGaborByteScale = 1.0 / 512.0;  // 2^-9
+constexpr unsigned kGaborHalfBits = 16;
+constexpr unsigned kGaborHalfMask = 0xFFFFU;
+constexpr double kGaborHalfScale = 1.0 / 131072.0;  // 2^-17
+// Streams of the per-cell hush::rng: solid (2D and 3D) and surface noise.
+constexpr unsigned kGaborSolidStream = 0;
+constexpr unsigned kGaborSurfaceStream = 1;
+// Surface noise (paper sec. 4.3): a 3D process whose impulses within a slab of
+// half-thickness h = rho / sqrt 2 around the tangent plane contribute the 2D
+// kernel of their projection; cells of size rho sqrt(3/2) hold the whole
+// slab-and-disk cylinder (radius rho, half-height h) in the 3 x 3 x 3
+// neighbourhood. This h minimises the impulses examined per sample.
+constexpr double kGaborSurfaceSlab = 0.70710678118654752440;  // h / rho = 1 / sqrt 2
+constexpr double kGaborSurfaceCell = 1.2247448713915890491;   // cell / rho = sqrt(3/2)
+
+// ---- NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot
+// 2010; npr_gabor.hpp). Parameters are in screen pixels: frequency F0 in
+// cycles per pixel up to Nyquist, bandwidth a in 1/pixel (kernel radius
+// r = sqrt(ln(1/t) / pi) / a: from 0.047 px at a = 10, t = 0.5, to 257 px at
+// a = 0.01, t = 1e-9), N' up to Gabor noise's cap.
+constexpr double kNprGaborMaxFrequency = 0.5;
+constexpr double kNprGaborMinBandwidth = 0.01, kNprGaborMaxBandwidth = 10.0;
+constexpr double kNprGaborDefaultFrequency = 0.125;      // 8-pixel period
+constexpr double kNprGaborDefaultBandwidth = 0.08;       // r = 12.2 px for t = 0.05
+constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ... 128)
+constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
+constexpr double kNprGaborMaxDepthTolerance = 1.0;
+// At most this many points per triangle (2M <= 2^22): N above it is clamped,
+// so a triangle of more than 2^22 / lambda square pixels (several screens at
+// the defaults) gets a lower density. Bounds the work per triangle.
+constexpr double kNprGaborMaxPoints = 4194304.0;
+constexpr unsigned kNprGaborMaxTriangles = 1u << 28;
+constexpr unsigned kNprGaborMaxImageSide = 32768;
+// Each point takes 2 words of its triangle's stream (hush::rng, stream
+// kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
+constexpr unsigned kNprGaborWordsPerPoint = 2;
+constexpr unsigned kNprGaborStream = 2;
+
+}  // namespace constants
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_CONSTANTS_HPP
+// ---- end hush/detail/constants.hpp
+
+namespace hush {
+namespace detail {
+
+// A kernel as Pieces unit polynomial pieces of Order coefficients (degree
+// Order - 1), ascending powers of the local variable t in [0, 1]; piece k
+// covers d in [k - Pieces / 2, k + 1 - Pieces / 2].
+template <int Pieces, int Order>
+struct piecewise_kernel {
+  static constexpr int pieces = Pieces;
+  static constexpr int order = Order;
+  std::array<std::array<double, Order>, Pieces> c{};
+  static constexpr double half_support() { return Pieces / 2.0; }
+};
+
+// n choose k, for the small n used here.
+constexpr std::int64_t binomial(int n, int k) {
+  std::int64_t r = 1;
+  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+  return r;
+}
+constexpr std::int64_t ipow(std::int64_t b, int e) {
+  std::int64_t r = 1;
+  for (int i = 0; i < e; ++i) r *= b;
+  return r;
+}
+
+// The pieces of the density of a sum of M centred uniforms of integer widths w.
+template <int M, int S>
+constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w) {
+  piecewise_kernel<S, M> r{};
+  std::int64_t denom = 1;
+  for (int i = 1; i < M; ++i) denom *= i;  // (M - 1)!
+  for (int i = 0; i < M; ++i) denom *= w[i];
+  for (int k = 0; k < S; ++k) {
+    std::int64_t num[M] = {};
+    for (unsigned e = 0; e < (1u << M); ++e) {
+      int s = 0, sign = 1;
+      for (int i = 0; i < M; ++i)
+        if (e >> i & 1u) {
+          s += w[i];
+          sign = -sign;
+        }
+      if (s > k) continue;  // (u - s)_+ vanishes on this piece
+      // (t + k - s)^(M-1) = sum_j binom(M-1, j) t^j (k - s)^(M-1-j)
+      for (int j = 0; j < M; ++j) num[j] += sign * binomial(M - 1, j) * ipow(k - s, M - 1 - j);
+    }
+    for (int j = 0; j < M; ++j)
+      r.c[k][j] = static_cast<double>(num[j]) / static_cast<double>(denom);
+  }
+  return r;
+}
+
+// The density of that sum where u = x + S / 2 is the integer `u`, exactly:
+// f = sum_e (-1)^|e| (u - s_e)_+^(M-1) / ((M-1)! prod w). Every term is an
+// integer below 2^47 for the kernels here, so the sum is exact in int64.
+template <int M>
+constexpr double uniform_sum_density_at(const std::array<int, M>& w, int u) {
+  std::int64_t num = 0, denom = 1;
+  for (int i = 1; i < M; ++i) denom *= i;
+  for (int i = 0; i < M; ++i) denom *= w[i];
+  for (unsigned e = 0; e < (1u << M); ++e) {
+    int s = 0, sign = 1;
+    for (int i = 0; i < M; ++i)
+      if (e >> i & 1u) {
+        s += w[i];
+        sign = -sign;
+      }
+    if (u > s) num += sign * ipow(u - s, M - 1);
+  }
+  return static_cast<double>(num) / static_cast<double>(denom);
+}
+
+namespace bspline_widths {
+constexpr int kN = constants::kBsplineUniforms;
+constexpr int kStretch = static_cast<int>(constants::kWaveletProjectionStretch);
+static_assert(kStretch == constants::kWaveletProjectionStretch, "an integer stretch");
+template <int M>
+constexpr std::array<int, M> boxes(int width) {
+  std::array<int, M> r{};
+  for (int i = 0; i < M; ++i) r[i] = width;
+  return r;
+}
+template <int A, int B>
+constexpr std::array<int, A + B> concat(const std::array<int, A>& a, const std::array<int, B>& b) {
+  std::array<int, A + B> r{};
+  for (int i = 0; i < A; ++i) r[i] = a[i];
+  for (int i = 0; i < B; ++i) r[A + i] = b[i];
+  return r;
+}
+constexpr auto kB = boxes<kN>(1);                              // B
+constexpr auto kB2 = boxes<kN>(kStretch);                      // B2 = B(u / 2) / 2
+constexpr auto kBeta = concat<kN, kN>(kB, kB2);                // beta = B * B2
+constexpr auto kG = concat<kN, kN>(kB, kB);                    // B * B
+constexpr auto kGb2 = concat<kN, kN>(kB2, kB2);                // B2 * B2
+constexpr auto kGbeta = concat<2 * kN, 2 * kN>(kBeta, kBeta);  // beta * beta
+}  // namespace bspline_widths
+
+// The quadratic B-spline B (3 pieces), B2 (6 pieces) and the quintic beta (9 pieces).
+inline constexpr auto kBspline =
+    uniform_sum_kernel<bspline_widths::kN, bspline_widths::kN>(bspline_widths::kB);
+inline constexpr auto kBspline2 =
+    uniform_sum_kernel<bspline_widths::kN, bspline_widths::kN * bspline_widths::kStretch>(
+        bspline_widths::kB2);
+inline constexpr auto kBeta =
+    uniform_sum_kernel<2 * bspline_widths::kN, bspline_widths::kN*(1 + bspline_widths::kStretch)>(
+        bspline_widths::kBeta);
+
+// Autocorrelations at integer lags d (0 <= d < support): the Gram entries of the
+// basis (g), and of the two projection kernels along the normal (for variances).
+constexpr double bspline_gram(int d) {
+  return uniform_sum_density_at<2 * bspline_widths::kN>(bspline_widths::kG, d + bspline_widths::kN);
+}
+constexpr double bspline2_gram(int d) {
+  return uniform_sum_density_at<2 * bspline_widths::kN>(
+      bspline_widths::kGb2, d + bspline_widths::kN * bspline_widths::kStretch);
+}
+constexpr double beta_gram(int d) {
+  return uniform_sum_density_at<4 * bspline_widths::kN>(
+      bspline_widths::kGbeta, d + bspline_widths::kN * (1 + bspline_widths::kStretch));
+}
+// Lags where they are non-zero: |d| < reach.
+constexpr int kBsplineGramReach = bspline_widths::kN;                                // 3
+constexpr int kBspline2GramReach = bspline_widths::kN * bspline_widths::kStretch;    // 6
+constexpr int kBetaGramReach = bspline_widths::kN * (1 + bspline_widths::kStretch);  // 9
+
+// The derivative's pieces (coefficients j c_j, shifted down one power).
+template <int P, int O>
+constexpr piecewise_kernel<P, O - 1> derivative(const piecewise_kernel<P, O>& k) {
+  piecewise_kernel<P, O - 1> r{};
+  for (int p = 0; p < P; ++p)
+    for (int j = 1; j < O; ++j) r.c[p][j - 1] = k.c[p][j] * j;
+  return r;
+}
+inline constexpr auto kBsplineDerivative = derivative(kBspline);
+inline constexpr auto kBspline2Derivative = derivative(kBspline2);
+inline constexpr auto kBetaDerivative = derivative(kBeta);
+
+// Piece p of kernel k at local t, Horner form (highest power first), in T.
+template <class T, int P, int O>
+HUSH_INLINE T piece_value(const piecewise_kernel<P, O>& k, int p, T t) {
+  T r = T(k.c[p][O - 1]);
+  for (int j = O - 2; j >= 0; --j) r = r * t + T(k.c[p][j]);
+  return r;
+}
+
+// Kernel k at distance d (0 outside its support), in T.
+template <class T, int P, int O>
+HUSH_INLINE T kernel_at(const piecewise_kernel<P, O>& k, T d) {
+  const T u = d + T(P / 2.0);
+  if (!(u > T(0) && u < T(P))) return T(0);  // also 0 for NaN
+  const int p = static_cast<int>(std::floor(u));
+  return piece_value(k, p, u - T(p));
+}
+
+// A fixed kernel of support P (B2: 6, beta: 9) read at fraction f in [0, 1): tap j sits
+// at distance f + 1/2 - j, and the taps j = floor(1/2 - P/2) + 1 ... ceil(3/2 + P/2) - 1
+// (-2 ... 4 for B2, -3 ... 5 for beta) cover every f (some weights are 0).
+template <int P>
+constexpr int fixed_kernel_first_tap() {
+  return P % 2 == 0 ? 1 - P / 2 : (3 - P) / 2;
+}
+template <int P>
+constexpr int fixed_kernel_taps() {
+  return (P + 2) / 2 - fixed_kernel_first_tap<P>() + 1;
+}
+// The most taps any kernel has along one axis (beta's 9; the widened B-spline is
+// limited to it).
+constexpr int kWaveletMaxTaps = fixed_kernel_taps<kBeta.pieces>();
+
+// The number of axis permutations of a D-dimensional tile (D!: 2 or 6), for the
+// hashed tile variants of wavelet noise.
+constexpr std::uint32_t wavelet_permutations(int d) { return d == 2 ? 2u : 6u; }
+
+// The plain 3-tap weights of B at fraction f in [0, 1): the position y lies at
+// distance f + 1/2 - j from coefficient i0 + j, j = 0, 1, 2 (i0 = floor(y - 1/2),
+// f = y - 1/2 - i0), so tap j reads piece 2 - j at t = f.
+template <class T>
+HUSH_INLINE void bspline_weights(T f, T (&w)[3]) {
+  for (int j = 0; j < 3; ++j) w[j] = piece_value(kBspline, 2 - j, f);
+}
+template <class T>
+HUSH_INLINE void bspline_derivative_weights(T f, T (&w)[3]) {
+  for (int j = 0; j < 3; ++j) w[j] = piece_value(kBsplineDerivative, 2 - j, f);
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_CORE_BSPLINE_HPP
+// ---- end hush/core/bspline.hpp
 // ---- begin hush/core/error.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -296,290 +867,6 @@ struct value_gradient {
 
 #endif  // HUSH_CORE_VEC_HPP
 // ---- end hush/core/vec.hpp
-// ---- begin hush/detail/constants.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The single source of every numeric constant hush's algorithms use: hash
-// multipliers, gradient tables, normalisation factors. The scalar path, the
-// SIMD kernels and the generated GLSL all read these; no number is typed twice.
-// This header includes nothing, so generators can use it without the library.
-#ifndef HUSH_DETAIL_CONSTANTS_HPP
-#define HUSH_DETAIL_CONSTANTS_HPP
-
-namespace hush {
-namespace detail {
-namespace constants {
-
-// ---- hash32: Chris Wellons' "lowbias32" integer finalizer (public domain,
-// "Prospecting for hash functions", 2018): x ^= x >> 16; x *= M1; x ^= x >> 15;
-// x *= M2; x ^= x >> 16. Measured avalanche bias 0.17 (on the scale where 0 is
-// ideal), better than MurmurHash3's fmix32; uses only 32-bit unsigned ops, so
-// GLSL 330 `uint` arithmetic reproduces it bit for bit.
-constexpr unsigned kHashShift1 = 16;
-constexpr unsigned kHashMul1 = 0x7feb352dU;
-constexpr unsigned kHashShift2 = 15;
-constexpr unsigned kHashMul2 = 0x846ca68bU;
-constexpr unsigned kHashShift3 = 16;
-
-// ---- Lattice hashing: a cell (i, j, k) is first folded to one word as
-// key ^ i*Px ^ rotl(j*Py, Ry) ^ rotl(k*Pz, Rz) (odd multipliers are bijections
-// mod 2^32, so each axis alone never collides), then finished with hash32.
-// The rotations matter: every odd P maps a lag of 2^31 to a flip of the top
-// bit alone, so with a plain xor fold the field repeats exactly at lag
-// (2^31, 2^31); and hash32's first step collapses the difference 0x80008000
-// to a single top-bit flip, so a rotation of 16 still leaves a correlation of
-// 0.56 there. Ry = 11, Rz = 21 (no rotation or difference of rotations is 16)
-// keep the gradient correlation at every lag 2^k, k = 0 ... 31, on every
-// subset of axes at the sampling noise floor (scan of 4e4 cells per lag;
-// tests/perlin_test.cpp checks the lags of HARD_CASES row 7).
-// The multipliers are the 32-bit xxHash primes 1, 2 and 3.
-constexpr unsigned kLatticePrimeX = 0x9E3779B1U;
-constexpr unsigned kLatticePrimeY = 0x85EBCA77U;
-constexpr unsigned kLatticePrimeZ = 0xC2B2AE3DU;
-constexpr unsigned kLatticeRotateY = 11;
-constexpr unsigned kLatticeRotateZ = 21;
-
-// Stream separation for derived seeds (octaves, RNG streams): added before
-// hashing so that seed 0 / stream 0 do not map to the fixed point of hash32(0).
-constexpr unsigned kGoldenGamma = 0x9E3779B9U;  // 2^32 / golden ratio
-
-// ---- Improved Perlin noise (Perlin 2002, "Improving Noise").
-// Quintic fade s(t) = 6t^5 - 15t^4 + 10t^3 (C2 at the lattice; Perlin 2002 sec. 3).
-constexpr double kFade5 = 6.0;
-constexpr double kFade4 = -15.0;
-constexpr double kFade3 = 10.0;
-
-// 2D gradients: the 8 unit vectors at multiples of 45 degrees, selected by the
-// top 3 bits of the lattice hash (exactly uniform). E[g g^T] = I/2.
-constexpr double kInvSqrt2 = 0.70710678118654752440;
-constexpr int kPerlin2GradCount = 8;
-constexpr double kPerlin2GradX[kPerlin2GradCount] = {1.0,  kInvSqrt2,  0.0, -kInvSqrt2,
-                                                     -1.0, -kInvSqrt2, 0.0, kInvSqrt2};
-constexpr double kPerlin2GradY[kPerlin2GradCount] = {0.0, kInvSqrt2,  1.0,  kInvSqrt2,
-                                                     0.0, -kInvSqrt2, -1.0, -kInvSqrt2};
-constexpr unsigned kPerlin2GradShift = 29;  // index = hash >> 29
-
-// 3D gradients: Perlin's 12 cube-edge midpoints (length sqrt 2). Perlin 2002
-// pads the table to 16 by repeating four, which makes the y axis carry 20% more
-// variance; hush instead maps the top 16 hash bits onto 12 buckets,
-// index = ((hash >> 16) * 12) >> 16 (bucket sizes differ by 1 in 5461), so
-// E[g g^T] = (2/3) I to within 2e-4.
-constexpr int kPerlin3GradCount = 12;
-constexpr double kPerlin3GradX[kPerlin3GradCount] = {1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0};
-constexpr double kPerlin3GradY[kPerlin3GradCount] = {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1};
-constexpr double kPerlin3GradZ[kPerlin3GradCount] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1};
-constexpr unsigned kPerlin3IndexShift = 16;
-
-// Output scale. The raw noise sum_i w_i g_i.(x - c_i) is bounded by
-// B = max over the cell of sum_i w_i max_g g.(x - c_i) (each corner taking its
-// best gradient; some lattice cell realises any assignment, so B is attained).
-// 2D, unit gradients: the maximum is at the cell centre, B = sqrt(2)/2.
-// 3D, edge gradients: the maximum is NOT at the centre (value 1 there) but at
-// (1/2, 0.35526, 0.48149) and its mirror images, B = 1.0363538112118029,
-// found by grid search plus refinement and re-derived by
-// tests/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
-// exactly [-1, 1].
-constexpr double kPerlin2RawBound = 0.70710678118654752440;  // sqrt(2)/2
-constexpr double kPerlin3RawBound = 1.0363538112118029;
-constexpr double kPerlin2Scale = 1.0 / kPerlin2RawBound;
-constexpr double kPerlin3Scale = 1.0 / kPerlin3RawBound;
-
-// Variance of the raw noise over space and seeds, derived in docs/design.md:
-// Var = c * D * (2 I0)^(D-1) * (2 I2) with I0 = int_0^1 (1-s)^2 = 181/462,
-// I2 = int_0^1 (1-s)^2 t^2 = 535/18018, c = E[g_k^2] (1/2 in 2D, 2/3 in 3D).
-// The output's variance is this times the scale squared.
-constexpr double kPerlin2RawVariance = 96835.0 / 2081079.0;       // 0.046531...
-constexpr double kPerlin3RawVariance = 35054270.0 / 480729249.0;  // 0.072918...
-constexpr double kPerlin2Variance = kPerlin2RawVariance * kPerlin2Scale * kPerlin2Scale;
-constexpr double kPerlin3Variance = kPerlin3RawVariance * kPerlin3Scale * kPerlin3Scale;
-
-// ---- Footprints (core/footprint.hpp).
-// The widest footprint kept, in noise units: 2^32, the lattice's period
-// (core/lattice.hpp). A pixel that wide covers every lattice cell, so
-// filtering leaves nothing but the mean; wider, NaN or infinite footprints
-// are stored as this one. Squared (2^64) it is still a normal float.
-constexpr double kFootprintMaxWidth = 4294967296.0;
-// Standard deviation, in pixels, of the Gaussian pixel filter the filtering
-// noises apply through the footprint: its amplitude response is
-// exp(-2 pi^2 sigma^2 k^2) = 0.29 at the Nyquist frequency (1/2 cycle per
-// pixel) and 0.0072 at 1 cycle per pixel.
-constexpr double kPixelFilterSigma = 0.5;
-
-// ---- Poisson sampling (core/rng.hpp).
-// Means below kPoissonInversionLimit use sequential inversion (expected
-// mean + 1 steps); larger means use Hoermann's PTRS transformed rejection
-// ("The transformed rejection method for generating Poisson random
-// variables", Insurance: Mathematics and Economics 12, 1993), whose
-// acceptance rate exceeds 0.88 for every mean >= 10.
-constexpr double kPoissonInversionLimit = 12.0;
-constexpr double kPoissonMaxMean = 1e9;                // beyond it, uint32 counts could overflow
-constexpr double kPtrsB0 = 0.931, kPtrsB1 = 2.53;      // b = B0 + B1 sqrt(mu)
-constexpr double kPtrsA0 = -0.059, kPtrsA1 = 0.02483;  // a = A0 + A1 b
-constexpr double kPtrsAlpha0 = 1.1239, kPtrsAlpha1 = 1.1328, kPtrsAlphaB = 3.4;
-constexpr double kPtrsVr0 = 0.9277, kPtrsVr1 = 3.6224, kPtrsVrB = 2.0;
-constexpr double kPtrsKOffset = 0.43;
-constexpr double kPtrsUsAccept = 0.07, kPtrsUsReject = 0.013;
-// Stirling's series for ln(n!) = (n + 1/2) ln n - n + ln(2 pi)/2 + sum_k c_k / n^(2k-1),
-// c_k = B_2k / (2k (2k - 1)); used for n > kLogFactorialTable, where the
-// first omitted term is below 1.1e-15 absolute (2.3e-17 relative) at n = 21.
-constexpr double kHalfLog2Pi = 0.91893853320467274178;
-constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
-constexpr int kLogFactorialTable = 20;
-
-// ---- Coherent noise (Kass & Pesare 2011, "Coherent Noise for Non-Photorealistic
-// Rendering"; include/hush/coherent.hpp, docs/coherent.md).
-// White noise: w = kCoherentWhiteScale * (2 (h >> kCoherentWhiteShift) + 1 - 2^24) for a
-// 32-bit hash h: the odd multiples of 2^-24 in (-1, 1), times sqrt(3); mean exactly 0,
-// variance 1 - 2^-48 (a discrete uniform over 2^24 values), never denormal.
-constexpr unsigned kCoherentWhiteShift = 8;
-constexpr double kCoherentWhiteScale = 1.7320508075688772935 * 0x1p-24;  // sqrt(3) * 2^-24
-constexpr double kCoherentWhiteCentre = 16777215.0;                      // 2^24 - 1
-// Pixel hash of a field: hash32(hash32(frame_key, y) ^ x * kCoherentPixelPrime). The odd
-// multiplier (the 32-bit xxHash prime 4) scatters the columns, so two rows' keys can never
-// line up a run of pixels (a plain xor of x would repeat shifted row segments).
-constexpr unsigned kCoherentPixelPrime = 0x27D4EB2FU;
-// Fields per channel, each with its own stream: the input w, the refill fields of the
-// stationary filter (x and y; separate ones for the backward pass of the symmetric filter),
-// and the band-pass input's lattice offsets.
-constexpr unsigned kCoherentFieldInput = 0;
-constexpr unsigned kCoherentFieldRefillX = 1;
-constexpr unsigned kCoherentFieldRefillY = 2;
-constexpr unsigned kCoherentFieldBackRefillX = 3;
-constexpr unsigned kCoherentFieldBackRefillY = 4;
-constexpr unsigned kCoherentFields = 5;
-// Parameter defaults and limits. alpha = 0.98 is the paper's (sec. 4). epsilon is relative:
-// the previous depth must lie within epsilon * e of the expected depth e (2% accepts bilinear
-// interpolation of depth across a pixel of a plane tilted up to ~60 degrees and rejects a
-// surface 2% farther; the same tolerance as the coherence metrics, docs/coherence.md).
-constexpr double kCoherentDefaultAlpha = 0.98;
-constexpr double kCoherentDefaultEpsilon = 0.02;
-constexpr double kCoherentDefaultBandpassPixels = 4.0;  // band-pass input: Perlin cell, pixels
-constexpr double kCoherentMaxBandpassPixels = 1024.0;
-constexpr double kCoherentMaxSmoothing = 2.0;     // output Gaussian sigma, pixels
-constexpr double kCoherentSmoothingRadius = 3.0;  // kernel radius in sigmas
-constexpr int kCoherentMaxChannels = 4;
-constexpr unsigned kCoherentMaxSide = 16384;  // frame side limit (keeps pixel indices in int32)
-
-// ---- Poisson counts by table (core/poisson_table.hpp): thresholds of the CDF,
-// built once per mean on the CPU, compared with one uniform word per draw.
-// The mean is capped so that a table stays small (about mean + 7 sqrt(mean)
-// + 20 thresholds: 11000 at the cap).
-constexpr double kPoissonTableMaxMean = 1e4;
-
-// ---- Float exp and sin/cos (detail/elementary.hpp): polynomials hush owns, so
-// that scalar code, every SIMD target and GLSL evaluate the same operations
-// (std::exp and Highway's Exp differ in their last bits). Coefficients are
-// Chebyshev fits (mpmath.chebyfit, 40 digits), printed to 20 digits.
-// exp(x), x <= 0: x = n ln2 + r with n = floor(x log2(e) + 1/2) and
-// |r| <= ln2 / 2 (Cody-Waite: n ln2_hi is exact for |n| < 2^15), then
-// e^r = P(r) of degree 6 (relative error 2.5e-9, below float rounding), and
-// 2^n from the exponent bits. Below kExpFloor the result is 0 (no denormals).
-constexpr double kLog2E = 1.4426950408889634074;
-constexpr double kLn2Hi = 0.693359375;              // 355/512: 9 significant bits
-constexpr double kLn2Lo = -2.12194440054690583e-4;  // ln 2 - kLn2Hi
-constexpr double kExpFloor = -87.0;                 // e^-87 = 1.6e-38, just above FLT_MIN
-constexpr int kExpDegree = 6;
-constexpr double kExpPoly[kExpDegree + 1] = {1.0,
-                                             1.0000000377162138425,
-                                             0.50000000471177576744,
-                                             0.16666415514653275427,
-                                             0.041666352896775156786,
-                                             0.008375126398153335682,
-                                             0.0013941108433972674608};
-// sin(2 pi t) and cos(2 pi t) for t in turns: t = q/4 + r with q = floor(4t + 1/2)
-// (quarter turns, exact; t - floor(t) first when |t| >= 2^22) and |r| <= 1/8,
-// then with z = r^2
-//   sin(2 pi r) = r S(z), S of degree 3 (relative error 3.4e-9),
-//   cos(2 pi r) = C(z),   C of degree 4 (absolute error 4.8e-11),
-// rotated by the quadrant q mod 4.
-constexpr int kSinDegree = 3;
-constexpr double kSinPoly[kSinDegree + 1] = {6.2831852878129467414, -41.341662570547954912,
-                                             81.592542871301543294, -75.401612702747458455};
-constexpr int kCosDegree = 4;
-constexpr double kCosPoly[kCosDegree + 1] = {0.99999999995248941669, -19.739208650130595513,
-                                             64.939316135709049629, -85.442844673081659515,
-                                             59.220168958296096218};
-// Above this |t| (2^22) sincos_turns first reduces t - floor(t): 4t + 1/2 is
-// exact below it, and a float above it has at most one fractional bit.
-constexpr double kTurnsReduceLimit = 4194304.0;
-constexpr double kTwoPi = 6.283185307179586476925;
-constexpr double kPi = 3.141592653589793238463;
-
-// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor_kernel.hpp,
-// gabor.hpp). Kernels are truncated where their envelope e^{-pi a^2 |x|^2}
-// falls to t (the `truncation` parameter): radius r = sqrt(ln(1/t) / pi) / a.
-// Instead of cutting there (a jump of t K, which the paper accepts), the
-// kernel is multiplied by a smoothstep taper over the last part of its
-// support, s = |x|^2 / r^2 in [kGaborTaperStart, 1]: C1 everywhere, equal to
-// the Gabor kernel for |x| <= r sqrt(kGaborTaperStart), within K t^0.8 of it
-// beyond.
-constexpr double kGaborTaperStart = 0.8;
-constexpr double kGaborDefaultTruncation = 0.05;  // the paper's value
-constexpr double kGaborMinTruncation = 1e-9, kGaborMaxTruncation = 0.5;
-constexpr double kGaborMinBandwidth = 1e-6, kGaborMaxBandwidth = 1e6;
-constexpr double kGaborMaxFrequency = 1e6;
-// N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
-// The cap keeps every Poisson table within kGaborMaxThresholds entries (the
-// GLSL uniform arrays).
-constexpr double kGaborMaxImpulses = 256.0;
-constexpr int kGaborMaxThresholds = 192;
-// Impulse marks from the cell stream's words, cut into fields: an 8-bit
-// field m is the value (2m + 1) 2^-9 in (0, 1), a 16-bit field (2m + 1) 2^-17;
-// both exact in float and GLSL, symmetric about 1/2. One impulse takes:
-//   2D: word 0 = [x:8 | y:8 | weight:8 | orientation:8] (high to low bits),
-//       hybrid: word 1 = [frequency:16 | unused:16];
-//   3D: word 0 = [x:8 | y:8 | z:8 | weight:8], isotropic and hybrid:
-//       word 1 = [polar cosine:16 | azimuth:16], hybrid: word 2 = [frequency:16 | -].
-// Positions on a lattice of 256 steps per cell change the process only at
-// frequencies of 256 cycles per kernel radius, where the kernel's spectrum is
-// below e^-2000; weights w = 2u - 1 have E[w] = 0 and E[w^2] = (1 - 2^-16) / 3.
-// One hash per impulse instead of four (docs/gabor.md).
-constexpr unsigned kGaborByteBits = 8;
-constexpr unsigned kGaborByteMask = 0xFFU;
-constexpr double kGaborByteScale = 1.0 / 512.0;  // 2^-9
-constexpr unsigned kGaborHalfBits = 16;
-constexpr unsigned kGaborHalfMask = 0xFFFFU;
-constexpr double kGaborHalfScale = 1.0 / 131072.0;  // 2^-17
-// Streams of the per-cell hush::rng: solid (2D and 3D) and surface noise.
-constexpr unsigned kGaborSolidStream = 0;
-constexpr unsigned kGaborSurfaceStream = 1;
-// Surface noise (paper sec. 4.3): a 3D process whose impulses within a slab of
-// half-thickness h = rho / sqrt 2 around the tangent plane contribute the 2D
-// kernel of their projection; cells of size rho sqrt(3/2) hold the whole
-// slab-and-disk cylinder (radius rho, half-height h) in the 3 x 3 x 3
-// neighbourhood. This h minimises the impulses examined per sample.
-constexpr double kGaborSurfaceSlab = 0.70710678118654752440;  // h / rho = 1 / sqrt 2
-constexpr double kGaborSurfaceCell = 1.2247448713915890491;   // cell / rho = sqrt(3/2)
-
-// ---- NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot
-// 2010; npr_gabor.hpp). Parameters are in screen pixels: frequency F0 in
-// cycles per pixel up to Nyquist, bandwidth a in 1/pixel (kernel radius
-// r = sqrt(ln(1/t) / pi) / a: from 0.047 px at a = 10, t = 0.5, to 257 px at
-// a = 0.01, t = 1e-9), N' up to Gabor noise's cap.
-constexpr double kNprGaborMaxFrequency = 0.5;
-constexpr double kNprGaborMinBandwidth = 0.01, kNprGaborMaxBandwidth = 10.0;
-constexpr double kNprGaborDefaultFrequency = 0.125;      // 8-pixel period
-constexpr double kNprGaborDefaultBandwidth = 0.08;       // r = 12.2 px for t = 0.05
-constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ... 128)
-constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
-constexpr double kNprGaborMaxDepthTolerance = 1.0;
-// At most this many points per triangle (2M <= 2^22): N above it is clamped,
-// so a triangle of more than 2^22 / lambda square pixels (several screens at
-// the defaults) gets a lower density. Bounds the work per triangle.
-constexpr double kNprGaborMaxPoints = 4194304.0;
-constexpr unsigned kNprGaborMaxTriangles = 1u << 28;
-constexpr unsigned kNprGaborMaxImageSide = 32768;
-// Each point takes 2 words of its triangle's stream (hush::rng, stream
-// kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
-constexpr unsigned kNprGaborWordsPerPoint = 2;
-constexpr unsigned kNprGaborStream = 2;
-
-}  // namespace constants
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_DETAIL_CONSTANTS_HPP
-// ---- end hush/detail/constants.hpp
 
 namespace hush {
 
@@ -729,9 +1016,8 @@ class footprint {
                        b02 * (b01 * b12 - b11 * b02);
     const double r = std::clamp(det / 2.0, -1.0, 1.0);
     const double phi = std::acos(r) / 3.0;
-    constexpr double kTwoPiOver3 = 2.0943951023931954923;
     const double hi = q + 2.0 * p * std::cos(phi);
-    const double lo = q + 2.0 * p * std::cos(phi + kTwoPiOver3);
+    const double lo = q + 2.0 * p * std::cos(phi + detail::constants::kTwoPiOver3);
     const double mid = 3.0 * q - hi - lo;
     return {lo, mid, hi};
   }
@@ -3974,6 +4260,1513 @@ class perlin : public point_noise<perlin<D>, D> {
 
 #endif  // HUSH_PERLIN_HPP
 // ---- end hush/perlin.hpp
+// ---- begin hush/wavelet.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Wavelet noise (Robert L. Cook and Tony DeRose, "Wavelet Noise", SIGGRAPH 2005),
+// 2D and 3D: band-limited noise from a tile of quadratic B-spline coefficients
+// with the coarser half of its spectrum projected out (wavelet_tile.hpp), summed
+// over octave bands, anti-aliased by the sample's footprint, and, in 3D,
+// projectable onto a surface so that the band limit survives texturing a
+// surface with a 3D noise.
+//
+//   hush::wavelet<2>::params prm;            // one band, 128^2 tile, seed 0
+//   prm.weights = {1, 0.5, 0.25};            // bands 0, 1, 2 (frequencies 1, 2, 4)
+//   hush::wavelet<2> w{prm};
+//   float v = w(hush::vec2{x, y});                               // all bands
+//   float a = w.sample(hush::vec2{x, y}, hush::footprint<2>::from_derivatives(dpdx, dpdy));
+//   hush::wavelet<3> s{7};
+//   float b = s.sample(hush::vec3{x, y, z}, normal, fp);         // projected onto the surface
+//
+// Definitions (paper symbols in brackets). A band is
+//   N(y) = sum_i n_i B(y - i)                    [eq. 27, 29]
+// over the tile's coefficients n_i (periodic, period n = tile_size) with the
+// centred quadratic B-spline B; it holds frequencies between 1/4 and 1/2 cycle
+// per coefficient. Band b of the noise is N at y = 2^b x + o_b (frequency 2^b,
+// decorrelating offset o_b), so band 0 has one coefficient per unit, like
+// Perlin noise has one lattice cell per unit. The noise is
+//   M(x) = K sum_b w_b N(2^b x + o_b)            [eq. 1]
+// with K = 1 / sqrt(sigma_N^2 sum_b w_b^2)      [eq. 39]
+// so that M has variance 1 (sigma_N^2 is computed by hush from its own tile:
+// wavelet_tile<D>::variance()), followed by the distribution remapping
+// (sec. 4.2): a Gaussian scale, erf to the uniform distribution on (-1, 1), or
+// a user table of the inverse CDF.
+//
+// Footprints (n.sample(p, footprint); core/footprint.hpp; paper sec. 3.1, 3.5):
+// with w the footprint's largest width (noise units per pixel), band b's
+// coefficients are c = 2^b w pixels apart. The band is fully representable for
+// c <= 1 (its highest frequency, 2^(b-1), is at most the Nyquist frequency
+// 1 / (2w)), and entirely above Nyquist for c >= 2 (the paper's j >= 0, which the
+// renderer's B-spline pixel filter removes exactly, eq. 6). hush keeps the band
+// with weight s(1 - log2 c) (s = the quintic fade of constants.hpp, clamped to
+// [0, 1]): 1 below c = 1, 0 from c = 2 on, C2 in between, so a continuous zoom
+// never pops and bands with weight 0 cost nothing. K is not renormalised: the
+// filtered noise has less variance, as the pixel's average of the noise has.
+// Why the largest width: a band is kept only where it is representable along
+// every direction of the pixel, which excludes aliasing; along the footprint's
+// short axis this loses detail (anisotropic filtering would need anisotropic
+// noise, hush::anisotropic). A NaN, infinite or wider-than-2^32 footprint
+// ("everything", core/footprint.hpp) gives the mean, 0, in every mode.
+//
+// Basis widening (params::widen, paper sec. 4.1): for renderers that take one
+// sample per pixel, each kept band is interpolated with B widened along tile
+// axis a by s_a = sqrt(1 + max(0, c_a^2 - c0^2)) (c_a the pixel's extent along
+// axis a in band coefficients, c0 = 1/2), so that the basis' variance grows
+// like that of B convolved with the Gaussian pixel filter (sigma = 1/2 pixel,
+// kPixelFilterSigma) from the paper's j = -2 on. The widened weights are
+// normalised to sum to 1. With a surface normal, the footprint is first
+// projected onto the tangent plane.
+//
+// Infinite noise (params::relative_weights, paper sec. 5.4): weights[k] is the
+// weight of the band k octaves below the finest representable one, i.e. band b
+// gets W(o) with o = -(b + log2 w), linearly... (quintic) interpolated between
+// integer o, faded in over o in [-1, 0] (the anti-aliasing fade above) and out
+// over o in [K - 1, K], and the sum is normalised per sample by
+// 1 / sqrt(sigma^2 sum W^2): zooming never changes the look, low octaves fade out
+// as fine ones fade in. Bands b run over [first_band, first_band + relative_bands).
+// Point evaluation (no footprint) uses w = 1.
+//
+// Projection (3D, n.sample(p, normal, fp); paper sec. 3.7, 4.1, eq. 32-36): the
+// band is averaged along the unit normal u with the B-spline at half its
+// resolution, B2(t) = B(t / 2) / 2:
+//   N_u(y) = integral N(y + t u) B2(t) dt.
+// For an axis-aligned u this is sum_i n_i B(.)B(.) beta(.) with the exact
+// quintic beta = B * B2 along the normal (9 coefficients wide, eq. 36).
+// projection::exact evaluates N_u exactly for any u: separably with beta when u
+// is axis-aligned, otherwise by splitting the line integral where its
+// polynomial pieces change and integrating each piece with 5-point
+// Gauss-Legendre quadrature (exact: degree <= 8; with basis widening, over B2's
+// three pieces only, docs/wavelet.md). projection::approximate is
+// the paper's: B2 in place of beta along the normal (6 coefficients wide), and
+// for any u the tensor B-spline at the coefficient moved halfway towards the
+// position along u (Appendix 2), normalised to weights summing to 1. The
+// approximation's error against the exact projection is measured in
+// docs/wavelet.md. The normal may have any length (it is normalised); a zero,
+// NaN or infinite normal gives the unprojected 3D noise (a point not on a
+// surface). The projected noise is normalised by its own variance
+// (tile.projected_variance along axis a, sum_a u_a^2 sigma_a^2 for other u).
+//
+// No repetition (params::variant_overlap > 0, paper sec. 4.3): the tile is laid
+// out in cells of variants with blended overlaps (wavelet_blend_tile); the
+// noise then does not repeat (cells are hashed over 2^32 coefficients per
+// axis, where the global coefficient index wraps).
+//
+// Contract (D = 2, 3; float and double from one template):
+//  - mean 0; variance 1 over space for the point noise (exactly over a whole
+//    tile period with one band; the tests measure it within +-3 %), less where a
+//    footprint filters bands out; then the distribution's (gaussian_scale^2, 1/3
+//    for uniform).
+//  - range: |M| <= bound() (analytic: K sum|w_b| max_i |n_i|, every kernel being
+//    an average of coefficients); uniform: (-1, 1); table: its range.
+//  - C1 in position (the quadratic B-spline); gradient() and sample_gradient()
+//    return the exact derivative of what is evaluated (footprint held fixed).
+//  - periodic with period tile_size / 2^first_band along every axis when every
+//    band's offset is a multiple of... (offsets are exact multiples of 2^-24, so
+//    M(x + n / 2^b0) == M(x) wherever the band positions are exact in double,
+//    |2^b x| < 2^28), unless variant_overlap > 0.
+//  - float evaluation is within float_budget() of the double reference.
+//  - domain: every finite coordinate; a band coordinate 2^b x that overflows a
+//    double is taken as 0 (like hush::fractal). NaN or +-Inf in a coordinate
+//    gives NaN (value and gradient). Evaluation never throws.
+#ifndef HUSH_WAVELET_HPP
+#define HUSH_WAVELET_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+// ---- begin hush/wavelet_tile.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::wavelet_tile<D>: the periodic tile of noise coefficients of wavelet noise
+// (Cook & DeRose, "Wavelet Noise", SIGGRAPH 2005, sec. 3.4, 3.6, 4.2, 4.3,
+// Appendix 1), 2D or 3D, built once per (size, seed, even/odd correction) and
+// shared (core/tile_cache.hpp).
+//
+// Construction (n = size, the tile is periodic with period n on every axis):
+//  1. R: n^D independent standard Gaussians r_i from hush::rng (seed, stream D),
+//     read in index order (x fastest). R(y) = sum_i r_i B(y - i) lies in the
+//     full-resolution space S^1 of the quadratic B-spline B (core/bspline.hpp).
+//  2. Along every axis in turn, each line is projected onto the half-resolution
+//     space S^0 spanned by B((y - 1/2)/2 - m), m = 0 ... n/2 - 1: the analysis
+//     (least-squares) filter c_m = sum_k a_(k - 2m) x_k (eq. 16), then refined
+//     back to S^1 by u_k = sum_m p_(k - 2m) c_m (eq. 12, p = constants.hpp
+//     kWaveletRefine). After all D axes this is the projection Q of R onto the
+//     coarse tensor space (S^0)^D.
+//  3. N = R - Q R (eq. 20, 26): the band, orthogonal to (S^0)^D (eq. 30, 31).
+//  4. The even/odd correction (sec. 4.3, Appendix 1): the analysis and
+//     refinement treat even and odd coefficients differently, so the variance of
+//     N(y) is periodic with period 2, not 1 (in 2D the cells [2m, 2m + 1) between
+//     coefficients, inside a coarse basis function, have 16 to 18 % less variance
+//     than their neighbours). Adding a copy of N shifted by an odd number of
+//     coefficients o (n/2, or n/2 + 1 when that is even) along every axis makes
+//     it 1-periodic (equal within 1 %; tests/wavelet_tile_test.cpp). The copy
+//     lies in a shifted wavelet space whose components near the coarse Nyquist
+//     frequency are no longer cancelled by the coarse basis, so the corrected
+//     tile is not orthogonal to (S^0)^D any more: 11 % of its energy projects
+//     onto it (2D, measured there), against 1e-15 without the correction. The
+//     spectrum, what a renderer sees, is unchanged by shifts. even_odd_fix =
+//     false keeps the exact orthogonality and the period-2 variance.
+//
+// The analysis filter (eq. 16). Let g(d) = <B(. - i), B(. - i - d)> be the
+// B-spline Gram entries (66, 26, 1 / 120 for d = 0, 1, 2; core/bspline.hpp) and
+// h_d = sum_i p_i g(i - d). The normal equations of the least-squares problem
+// min || sum_k x_k B(y - k) - sum_m c_m B((y - 1/2)/2 - m) ||^2 read
+//   2 sum_j g(m - j) c_j = sum_k h_(k - 2m) x_k,
+// so a_d = (1/2) sum_l G^-1(l) h_(d + 2l), with G^-1 the inverse of the Toeplitz
+// Gram matrix. Its symbol is 120 z^2 / Q(z), Q(z) = z^4 + 26 z^3 + 66 z^2 + 26 z
+// + 1, whose roots inside the unit circle are lambda = 2 / (w - sqrt(w^2 - 4)),
+// w = -13 +- sqrt(105) (Q / z^2 = w^2 + 26 w + 64, w = z + 1/z). By residues,
+//   G^-1(l) = 120 sum_lambda lambda^(|l| + 1) / Q'(lambda),
+// which converges to the last bit of a double; |a_d| decays as 0.656^|d|
+// (sqrt of the larger root) and is kept for |d| <= kWaveletAnalysisRadius (tail
+// below 2e-18). a is symmetric about 1/2 and sums to 1 (even and odd taps to 1/2
+// each); a composed with the refinement is the identity on S^0 (tested).
+// Against the paper's 6-digit table (Appendix 1, symmetric about -1/2 in its
+// indexing): every tap agrees within 8e-6 except the outermost pair, where the
+// table has 0.000334 and the exact value is -0.000173 (and the appendix's loop
+// over k = 2i - 16 ... 2i + 16 reads a 33rd tap past the end of its 32-entry
+// array); the table's 0.003546 against 0.003545 (exact 0.0035446) breaks its
+// symmetry. Effect, measured on 1D bands (mean of 20
+// seeds, n = 256; tests/wavelet_tile_test.cpp): the band keeps 4.7e-6 of its
+// energy in S^0 with the table, 2.8e-6 with the exact taps cut to the same 32,
+// and 1e-29 with hush's.
+//
+// Periodic tiles use the filter periodised to n (taps d and d + n summed), which
+// is the exact least-squares projection for periodic coefficient sequences.
+//
+// Statistics: the coefficients are Gaussian (linear in the r_i). variance() is
+// sigma_N^2, the spatial average of N(y)^2 over the whole tile, computed exactly
+// from the stored float coefficients: (1/n^D) sum_i n_i (G n)_i with G the
+// tensor Gram matrix. projected_variance(axis, exact) is the same for the noise
+// projected along that axis (beta or the double-width B-spline along it).
+// Expected values over seeds (n -> infinity) are in docs/wavelet.md beside the
+// paper's 0.265 (2D), 0.210 (3D), 0.296 (projected).
+#ifndef HUSH_WAVELET_TILE_HPP
+#define HUSH_WAVELET_TILE_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+
+namespace hush {
+namespace detail {
+
+// G^-1(l): the inverse of the B-spline Gram matrix (Toeplitz, entries g(d)), by
+// the residue formula in the file comment.
+inline double bspline_gram_inverse(int l) {
+  const double q0 = bspline_gram(0), q1 = bspline_gram(1), q2 = bspline_gram(2);
+  // Q(z) = (q2 z^4 + q1 z^3 + q0 z^2 + q1 z + q2) / q2; Q / z^2 = w^2 + (q1/q2) w + q0/q2 - 2.
+  const double b = q1 / q2, c = q0 / q2 - 2.0;
+  const double disc = std::sqrt(b * b - 4.0 * c);
+  double sum = 0;
+  for (const double w : {(-b + disc) / 2.0, (-b - disc) / 2.0}) {
+    const double lambda = 2.0 / (w - std::sqrt(w * w - 4.0));  // the root inside |z| < 1
+    const double dq = 4.0 * lambda * lambda * lambda + 3.0 * b * lambda * lambda +
+                      2.0 * (q0 / q2) * lambda + b;  // Q'(lambda)
+    sum += std::pow(lambda, std::abs(l) + 1) / (q2 * dq);
+  }
+  return sum;
+}
+
+// The analysis filter a_d for d in [1 - R, R] (R = kWaveletAnalysisRadius), index d - 1 + R.
+inline const std::vector<double>& wavelet_analysis_filter() {
+  static const std::vector<double> taps = [] {
+    constexpr int R = constants::kWaveletAnalysisRadius;
+    constexpr int kFirst = constants::kWaveletRefineFirst;
+    auto h = [](int d) {
+      double s = 0;
+      for (int i = 0; i < 4; ++i) {
+        const int k = kFirst + i, lag = std::abs(k - d);
+        if (lag < kBsplineGramReach) s += constants::kWaveletRefine[i] * bspline_gram(lag);
+      }
+      return s;
+    };
+    std::vector<double> a(static_cast<std::size_t>(2 * R));
+    for (int d = 1 - R; d <= R; ++d) {
+      double s = 0;
+      // h is non-zero for |d - 1/2| < 4: the terms with |l| > R + 4 are below 1e-40.
+      for (int l = -R - 4; l <= R + 4; ++l) s += bspline_gram_inverse(l) * h(d + 2 * l);
+      a[static_cast<std::size_t>(d + R) - 1] = 0.5 * s;
+    }
+    return a;
+  }();
+  return taps;
+}
+
+inline int wavelet_mod(long long x, int n) {
+  const long long r = x % n;
+  return static_cast<int>(r < 0 ? r + n : r);
+}
+
+// Projects every line of `x` along one axis (stride, n coefficients, period n)
+// onto S^0 and back: x <- P A x, line by line.
+inline void wavelet_down_up(std::vector<double>& x, int n, std::size_t stride) {
+  const std::vector<double>& a = wavelet_analysis_filter();
+  constexpr int R = constants::kWaveletAnalysisRadius;
+  // The filter periodised to n: taps (offset mod n, weight), merged.
+  std::vector<double> per(static_cast<std::size_t>(n), 0.0);
+  for (int d = 1 - R; d <= R; ++d)
+    per[static_cast<std::size_t>(wavelet_mod(d, n))] += a[static_cast<std::size_t>(d + R) - 1];
+  std::vector<int> off;
+  std::vector<double> wt;
+  for (int j = 0; j < n; ++j)
+    if (per[static_cast<std::size_t>(j)] != 0.0) {
+      off.push_back(j);
+      wt.push_back(per[static_cast<std::size_t>(j)]);
+    }
+  const int half = n / 2;
+  std::vector<double> line(static_cast<std::size_t>(n)), coarse(static_cast<std::size_t>(half));
+  const std::size_t count = x.size();
+  for (std::size_t base = 0; base < count; ++base) {
+    if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;  // not a line start
+    for (int k = 0; k < n; ++k) line[static_cast<std::size_t>(k)] = x[base + k * stride];
+    for (int m = 0; m < half; ++m) {  // c_m = sum_j per_j x_(2m + j)
+      double s = 0;
+      for (std::size_t t = 0; t < off.size(); ++t) {
+        int k = 2 * m + off[t];
+        if (k >= n) k -= n;
+        s += wt[t] * line[static_cast<std::size_t>(k)];
+      }
+      coarse[static_cast<std::size_t>(m)] = s;
+    }
+    for (int k = 0; k < n; ++k) {  // u_k = sum_t p_t c_((k - t) / 2), k - t even
+      double s = 0;
+      for (int i = 0; i < 4; ++i) {
+        const int t = constants::kWaveletRefineFirst + i;
+        if (((k - t) & 1) != 0) continue;
+        s += constants::kWaveletRefine[i] *
+             coarse[static_cast<std::size_t>(wavelet_mod((k - t) / 2, half))];
+      }
+      x[base + k * stride] = s;
+    }
+  }
+}
+
+// Applies the circulant kernel k(d), |d| < reach, along one axis of the periodic array x.
+template <class Kernel>
+void wavelet_convolve_axis(std::vector<double>& x, int n, std::size_t stride, int reach, Kernel k) {
+  std::vector<double> line(static_cast<std::size_t>(n)), kd(static_cast<std::size_t>(reach));
+  for (int d = 0; d < reach; ++d) kd[static_cast<std::size_t>(d)] = k(d);
+  for (std::size_t base = 0; base < x.size(); ++base) {
+    if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;
+    for (int i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = x[base + i * stride];
+    for (int i = 0; i < n; ++i) {
+      double s = 0;
+      for (int d = 1 - reach; d < reach; ++d)
+        s += kd[static_cast<std::size_t>(std::abs(d))] *
+             line[static_cast<std::size_t>(wavelet_mod(i + d, n))];
+      x[base + i * stride] = s;
+    }
+  }
+}
+
+}  // namespace detail
+
+template <int D>
+class wavelet_tile {
+  static_assert(D == 2 || D == 3, "hush::wavelet_tile is 2D or 3D");
+
+ public:
+  // What determines a tile: its size, its seed and whether the even/odd
+  // correction is applied.
+  struct key {
+    int size = 0;
+    std::uint32_t seed = 0;
+    bool even_odd_fix = true;
+    friend bool operator<(const key& a, const key& b) {
+      if (a.size != b.size) return a.size < b.size;
+      if (a.seed != b.seed) return a.seed < b.seed;
+      return a.even_odd_fix < b.even_odd_fix;
+    }
+  };
+
+  // The largest tile size of this dimension.
+  static constexpr int max_size() {
+    return D == 2 ? detail::constants::kWaveletMaxTile2 : detail::constants::kWaveletMaxTile3;
+  }
+  // Throws hush::invalid_argument (naming `where` and `name`) unless n is an even
+  // number in [kWaveletMinTile, max_size()] (HARD_CASES row 14).
+  static void validate_size(const char* where, const char* name, int n) {
+    const std::string valid = "an even number from " +
+                              std::to_string(detail::constants::kWaveletMinTile) + " to " +
+                              std::to_string(max_size()) +
+                              " (the tile must be even, Cook & DeRose footnote 4, and at least "
+                              "16 coefficients, wider than the widest kernel's reach)";
+    if (n < detail::constants::kWaveletMinTile || n > max_size() || n % 2 != 0)
+      detail::throw_out_of_range(where, name, n, valid.c_str());
+  }
+
+  // Builds the tile (see the file comment). Throws hush::invalid_argument for a bad size.
+  explicit wavelet_tile(const key& k) : key_(k) {
+    validate_size("hush::wavelet_tile", "size", k.size);
+    const int n = k.size;
+    std::size_t count = 1;
+    for (int a = 0; a < D; ++a) count *= static_cast<std::size_t>(n);
+    std::vector<double> r(count);
+    rng gen(k.seed, static_cast<std::uint32_t>(D));
+    for (double& v : r) v = gen.gaussian<double>();
+    std::vector<double> q = r;
+    std::size_t stride = 1;
+    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n))
+      detail::wavelet_down_up(q, n, stride);
+    for (std::size_t i = 0; i < count; ++i) q[i] = r[i] - q[i];  // N = R - Q R
+    r.clear();
+    r.shrink_to_fit();
+    coef_.resize(count);
+    int offset = n / 2;
+    if (offset % 2 == 0) ++offset;
+    for (std::size_t i = 0; i < count; ++i) {
+      double v = q[i];
+      if (k.even_odd_fix) {
+        std::size_t j = 0, s = 1, rest = i;
+        for (int a = 0; a < D; ++a, s *= static_cast<std::size_t>(n)) {
+          const std::size_t c = rest % static_cast<std::size_t>(n);
+          rest /= static_cast<std::size_t>(n);
+          j += ((c + static_cast<std::size_t>(offset)) % static_cast<std::size_t>(n)) * s;
+        }
+        v += q[j];
+      }
+      coef_[i] = static_cast<float>(v);
+      max_abs_ = std::max(max_abs_, std::fabs(static_cast<double>(coef_[i])));
+    }
+    variance_ = quadratic_form(-1, false);
+    if constexpr (D == 3)
+      for (int a = 0; a < 3; ++a) {
+        projected_[a][0] = quadratic_form(a, true);
+        projected_[a][1] = quadratic_form(a, false);
+      }
+  }
+
+  // The shared tile of `k` (built on first use; core/tile_cache.hpp).
+  static std::shared_ptr<const wavelet_tile> get(const key& k) {
+    return cache().get(k, [&] { return wavelet_tile(k); });
+  }
+  static tile_cache<key, wavelet_tile>& cache() {
+    static tile_cache<key, wavelet_tile> c;
+    return c;
+  }
+
+  const key& id() const { return key_; }
+  int size() const { return key_.size; }
+  // n^D coefficients, index i_x + n (i_y + n i_z).
+  const float* coefficients() const { return coef_.data(); }
+  std::size_t count() const { return coef_.size(); }
+  float coefficient(std::size_t i) const { return coef_[i]; }
+  // max |n_i|: |N(y)| never exceeds it (every kernel is an average of coefficients).
+  double max_abs() const { return max_abs_; }
+  // sigma_N^2: the mean of N(y)^2 over the tile (file comment).
+  double variance() const { return variance_; }
+  // The same for the noise projected along tile axis `axis` (3D): with the exact
+  // kernel beta (exact = true) or the double-width B-spline.
+  double projected_variance(int axis, bool exact) const { return projected_[axis][exact ? 0 : 1]; }
+  // Memory held, in bytes.
+  std::size_t bytes() const { return sizeof(*this) + coef_.capacity() * sizeof(float); }
+
+ private:
+  // (1/n^D) sum_i n_i (K n)_i with K the tensor product of the Gram kernel along
+  // every axis except `along`, where it is beta's (exact) or B2's autocorrelation.
+  double quadratic_form(int along, bool exact) const {
+    const int n = key_.size;
+    std::vector<double> x(coef_.begin(), coef_.end());
+    std::size_t stride = 1;
+    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
+      if (a != along)
+        detail::wavelet_convolve_axis(x, n, stride, detail::kBsplineGramReach,
+                                      detail::bspline_gram);
+      else if (exact)
+        detail::wavelet_convolve_axis(x, n, stride, detail::kBetaGramReach, detail::beta_gram);
+      else
+        detail::wavelet_convolve_axis(x, n, stride, detail::kBspline2GramReach,
+                                      detail::bspline2_gram);
+    }
+    double s = 0;
+    for (std::size_t i = 0; i < coef_.size(); ++i) s += static_cast<double>(coef_[i]) * x[i];
+    return s / static_cast<double>(coef_.size());
+  }
+
+  key key_;
+  std::vector<float> coef_;
+  double max_abs_ = 0;
+  double variance_ = 0;
+  double projected_[3][2] = {};
+};
+
+// hush::wavelet_blend_tile<D>: the tile of wavelet_tile<D> prepared for hashed
+// tile variants without visible repetition (Cook & DeRose sec. 4.3).
+//
+// Space is covered by tile cells of L = n - m coefficients per axis (m = the
+// overlap); cell T holds a copy of the tile, transformed by its own variant (an
+// axis permutation and per-axis reflection chosen by a hash of T: 8 variants in
+// 2D, 48 in 3D), covering the global coefficients [T L, T L + n). Neighbouring
+// copies overlap by m coefficients and are cross-faded there with weights
+// sin(theta), cos(theta), theta = (j + 1/2) / m * pi / 2 for the j-th overlapping
+// coefficient, so the squared weights sum to 1 and the blend keeps the variance
+// (the paper divides an alpha / (1 - alpha) blend by sqrt(alpha^2 + (1 -
+// alpha)^2) for the same effect). As the paper suggests, the weights are
+// multiplied into the coefficients here, once: the profile is the same on every
+// axis and symmetric under reflection, so one premultiplied tile serves every
+// variant. Outside [0, n) a copy is 0.
+template <int D>
+class wavelet_blend_tile {
+ public:
+  struct key {
+    typename wavelet_tile<D>::key tile;
+    int overlap = 0;
+    friend bool operator<(const key& a, const key& b) {
+      if (a.tile < b.tile) return true;
+      if (b.tile < a.tile) return false;
+      return a.overlap < b.overlap;
+    }
+  };
+  // Throws hush::invalid_argument unless 1 <= overlap <= size / 4.
+  static void validate_overlap(const char* where, const char* name, int size, int overlap) {
+    if (overlap < 1 || overlap > size / 4)
+      detail::throw_out_of_range(
+          where, name, overlap,
+          ("0 (no variants) or 1 ... tile_size / 4 = " + std::to_string(size / 4)).c_str());
+  }
+
+  explicit wavelet_blend_tile(const key& k) : key_(k) {
+    const std::shared_ptr<const wavelet_tile<D>> base = wavelet_tile<D>::get(k.tile);
+    const int n = base->size(), m = k.overlap;
+    validate_overlap("hush::wavelet_blend_tile", "overlap", n, m);
+    std::vector<double> alpha(static_cast<std::size_t>(n), 1.0);
+    constexpr double kQuarterTurn = 1.5707963267948966192;  // pi / 2
+    for (int j = 0; j < m; ++j) {
+      const double theta = (j + 0.5) / m * kQuarterTurn;
+      alpha[static_cast<std::size_t>(j)] = std::sin(theta);
+      alpha[static_cast<std::size_t>(n - m) + static_cast<std::size_t>(j)] = std::cos(theta);
+    }
+    coef_.resize(base->count());
+    for (std::size_t i = 0; i < coef_.size(); ++i) {
+      double w = 1;
+      std::size_t rest = i;
+      for (int a = 0; a < D; ++a) {
+        w *= alpha[rest % static_cast<std::size_t>(n)];
+        rest /= static_cast<std::size_t>(n);
+      }
+      coef_[i] = static_cast<float>(w * static_cast<double>(base->coefficient(i)));
+    }
+  }
+
+  static std::shared_ptr<const wavelet_blend_tile> get(const key& k) {
+    return cache().get(k, [&] { return wavelet_blend_tile(k); });
+  }
+  static tile_cache<key, wavelet_blend_tile>& cache() {
+    static tile_cache<key, wavelet_blend_tile> c;
+    return c;
+  }
+
+  int size() const { return key_.tile.size; }
+  int overlap() const { return key_.overlap; }
+  const float* coefficients() const { return coef_.data(); }
+  std::size_t count() const { return coef_.size(); }
+  std::size_t bytes() const { return sizeof(*this) + coef_.capacity() * sizeof(float); }
+
+ private:
+  key key_;
+  std::vector<float> coef_;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_WAVELET_TILE_HPP
+// ---- end hush/wavelet_tile.hpp
+
+namespace hush {
+
+// How 3D wavelet noise is projected onto a surface (see wavelet.hpp).
+enum class wavelet_projection { exact, approximate };
+// The output distribution (paper sec. 4.2).
+enum class wavelet_distribution { gaussian, uniform, table };
+
+namespace detail {
+
+// One band's kernel along one axis: taps at cells i0 + first ... i0 + first + count - 1.
+template <class T>
+struct wavelet_axis {
+  int first = 0;
+  int count = 0;
+  T w[kWaveletMaxTaps] = {};
+  T dw[kWaveletMaxTaps] = {};  // d w / d y (y the position in coefficient units)
+};
+
+// The plain quadratic B-spline: taps 0, 1, 2 (core/bspline.hpp).
+template <class T, bool G>
+HUSH_INLINE void wavelet_axis_plain(T f, wavelet_axis<T>& ax) {
+  ax.first = 0;
+  ax.count = 3;
+  for (int j = 0; j < 3; ++j) ax.w[j] = piece_value(kBspline, 2 - j, f);
+  if constexpr (G)
+    for (int j = 0; j < 3; ++j) ax.dw[j] = piece_value(kBsplineDerivative, 2 - j, f);
+}
+
+// A fixed kernel k of support P (beta or B2, along the normal) at fraction f: tap
+// j sits at distance f + 1/2 - j; taps j = floor(1/2 - P/2) + 1 ... ceil(3/2 + P/2) - 1
+// cover every f in [0, 1) (some are 0).
+template <class T, bool G, int P, int O>
+HUSH_INLINE void wavelet_axis_fixed(T f, const piecewise_kernel<P, O>& k,
+                                    const piecewise_kernel<P, O - 1>& dk, wavelet_axis<T>& ax) {
+  constexpr int kFirst = fixed_kernel_first_tap<P>();
+  static_assert(fixed_kernel_taps<P>() <= kWaveletMaxTaps, "taps fit");
+  ax.first = kFirst;
+  ax.count = fixed_kernel_taps<P>();
+  for (int j = 0; j < ax.count; ++j) {
+    const T d = f + T(constants::kWaveletCellOffset) - T(kFirst + j);
+    ax.w[j] = kernel_at(k, d);
+    if constexpr (G) ax.dw[j] = kernel_at(dk, d);
+  }
+}
+
+// The quadratic B-spline widened by s >= 1 (B(d / s), weights normalised to sum
+// 1) at relative position y (coefficient k sits at k): taps k in (y - 3s/2, y + 3s/2).
+template <class T, bool G>
+HUSH_INLINE void wavelet_axis_widened(T y, T s, wavelet_axis<T>& ax) {
+  const T half = T(kBspline.half_support()) * s;
+  ax.first = static_cast<int>(std::floor(y - half)) + 1;
+  ax.count = std::min(static_cast<int>(std::ceil(y + half)) - ax.first, kWaveletMaxTaps);
+  const T inv = T(1) / s;
+  T sum = 0, dsum = 0;
+  for (int j = 0; j < ax.count; ++j) {
+    const T u = (y - T(ax.first + j)) * inv;
+    ax.w[j] = kernel_at(kBspline, u);
+    sum += ax.w[j];
+    if constexpr (G) {
+      ax.dw[j] = kernel_at(kBsplineDerivative, u) * inv;
+      dsum += ax.dw[j];
+    }
+  }
+  const T norm = T(1) / sum;
+  for (int j = 0; j < ax.count; ++j) {
+    if constexpr (G) ax.dw[j] = (ax.dw[j] - ax.w[j] * norm * dsum) * norm;
+    ax.w[j] *= norm;
+  }
+}
+
+// The plain B-spline at relative position y (any real): taps floor(y - 1/2) ... + 2.
+template <class T, bool G>
+HUSH_INLINE void wavelet_axis_at(T y, wavelet_axis<T>& ax) {
+  const T c = std::floor(y - T(constants::kWaveletCellOffset));
+  wavelet_axis_plain<T, G>(y - T(constants::kWaveletCellOffset) - c, ax);
+  ax.first = static_cast<int>(c);
+}
+
+// Coefficients of the periodic tile around cell i0 (relative offsets k).
+template <int D>
+struct wavelet_periodic_access {
+  const float* c;
+  int n;
+  std::uint32_t i0[3];
+  HUSH_INLINE int wrap(long long x) const {
+    long long r = x % n;
+    return static_cast<int>(r < 0 ? r + n : r);
+  }
+  HUSH_INLINE std::size_t index(int a, int k) const {
+    std::size_t stride = 1;
+    for (int b = 0; b < a; ++b) stride *= static_cast<std::size_t>(n);
+    return static_cast<std::size_t>(wrap(static_cast<long long>(i0[a]) + k)) * stride;
+  }
+  HUSH_INLINE float at(const int (&k)[D]) const {
+    std::size_t i = 0;
+    for (int a = 0; a < D; ++a) i += index(a, k[a]);
+    return c[i];
+  }
+};
+
+// Coefficients of the hashed tile variants (wavelet_blend_tile): the sum over the
+// (at most 2^D) overlapping cells that cover a global coefficient index. The
+// global index of tap 0 is the band cell modulo 2^32 (period 0); cell T and
+// offset l of i0 + k follow from i0 = T0 L + r0 with 32-bit unsigned arithmetic
+// (T = T0 + carry, the carry from r0 + k), as the GPU computes them.
+template <int D>
+struct wavelet_variant_access {
+  const float* c;
+  int n, cell;  // tile size and cell pitch L = n - overlap
+  std::uint32_t key;
+  std::uint32_t i0[3];
+  HUSH_INLINE float at(const int (&k)[D]) const {
+    std::uint32_t t[3][2] = {};
+    int l[3][2] = {}, count[3] = {};
+    const auto pitch = static_cast<std::uint32_t>(cell);
+    for (int a = 0; a < D; ++a) {
+      int r = static_cast<int>(i0[a] % pitch) + k[a];  // |k| < L: at most one carry
+      const int carry = r < 0 ? -1 : (r >= cell ? 1 : 0);
+      r -= carry * cell;
+      t[a][0] = i0[a] / pitch + static_cast<std::uint32_t>(carry);
+      l[a][0] = r;
+      t[a][1] = t[a][0] - 1u;  // the previous cell covers r + L when that is inside it
+      l[a][1] = r + cell;
+      count[a] = r + cell < n ? 2 : 1;
+    }
+    float sum = 0;
+    for (int m = 0; m < (1 << D); ++m) {
+      int pick[3] = {0, 0, 0};
+      bool ok = true;
+      for (int a = 0; a < D; ++a) {
+        pick[a] = (m >> a) & 1;
+        ok = ok && pick[a] < count[a];
+      }
+      if (!ok) continue;
+      std::uint32_t h;
+      if constexpr (D == 2)
+        h = lattice_hash(key, t[0][pick[0]], t[1][pick[1]]);
+      else
+        h = lattice_hash(key, t[0][pick[0]], t[1][pick[1]], t[2][pick[2]]);
+      int local[3] = {0, 0, 0};
+      for (int a = 0; a < D; ++a) local[a] = l[a][pick[a]];
+      sum += c[variant_index(h, local)];
+    }
+    return sum;
+  }
+  // Storage index of local coordinates (world axes) under variant h: the permutation
+  // of lexicographic rank p = ((h >> s) D!) >> s (storage axis a reads world axis
+  // src[a]), then storage axis a reflected (n - 1 - l) when bit a of h is set.
+  HUSH_INLINE std::size_t variant_index(std::uint32_t h, const int (&local)[3]) const {
+    constexpr unsigned kShift = constants::kWaveletVariantShift;
+    const std::uint32_t p = ((h >> kShift) * wavelet_permutations(D)) >> kShift;
+    int src[3] = {0, 1, 2};
+    if constexpr (D == 2) {
+      src[0] = static_cast<int>(p);
+      src[1] = 1 - src[0];
+    } else {
+      const int first = static_cast<int>(p / 2), lo = first == 0 ? 1 : 0, hi = first == 2 ? 1 : 2;
+      src[0] = first;
+      src[1] = (p & 1u) != 0 ? hi : lo;
+      src[2] = (p & 1u) != 0 ? lo : hi;
+    }
+    std::size_t idx = 0, stride = 1;
+    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
+      int v = local[src[a]];
+      if ((h >> a) & 1u) v = n - 1 - v;
+      idx += static_cast<std::size_t>(v) * stride;
+    }
+    return idx;
+  }
+};
+
+// Sum over separable taps: the value and the gradient in coefficient units, z
+// innermost (value = sum_a wx (sum_b wy (sum_c wz n))), the order every backend uses.
+template <class T, bool G, int D, class Access>
+HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
+                                                   const Access& acc) {
+  value_gradient<T, D> r{T(0), {}};
+  int k[D];
+  if constexpr (D == 2) {
+    for (int a = 0; a < ax[0].count; ++a) {
+      k[0] = ax[0].first + a;
+      T s = 0, sy = 0;
+      for (int b = 0; b < ax[1].count; ++b) {
+        k[1] = ax[1].first + b;
+        const T c = T(acc.at(k));
+        s += ax[1].w[b] * c;
+        if constexpr (G) sy += ax[1].dw[b] * c;
+      }
+      r.value += ax[0].w[a] * s;
+      if constexpr (G) {
+        r.gradient[0] += ax[0].dw[a] * s;
+        r.gradient[1] += ax[0].w[a] * sy;
+      }
+    }
+  } else {
+    for (int a = 0; a < ax[0].count; ++a) {
+      k[0] = ax[0].first + a;
+      T t = 0, ty = 0, tz = 0;
+      for (int b = 0; b < ax[1].count; ++b) {
+        k[1] = ax[1].first + b;
+        T s = 0, sz = 0;
+        for (int c = 0; c < ax[2].count; ++c) {
+          k[2] = ax[2].first + c;
+          const T v = T(acc.at(k));
+          s += ax[2].w[c] * v;
+          if constexpr (G) sz += ax[2].dw[c] * v;
+        }
+        t += ax[1].w[b] * s;
+        if constexpr (G) {
+          ty += ax[1].dw[b] * s;
+          tz += ax[1].w[b] * sz;
+        }
+      }
+      r.value += ax[0].w[a] * t;
+      if constexpr (G) {
+        r.gradient[0] += ax[0].dw[a] * t;
+        r.gradient[1] += ax[0].w[a] * ty;
+        r.gradient[2] += ax[0].w[a] * tz;
+      }
+    }
+  }
+  return r;
+}
+
+// The same over the periodic tile, with the wrapped, stride-scaled index of
+// every tap precomputed per axis (the sums are the generic ones, operation by operation).
+template <class T, bool G, int D>
+HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
+                                                   const wavelet_periodic_access<D>& acc) {
+  std::size_t off[D][kWaveletMaxTaps];
+  for (int a = 0; a < D; ++a)
+    for (int j = 0; j < ax[a].count; ++j) off[a][j] = acc.index(a, ax[a].first + j);
+  struct table_access {
+    const float* c;
+    const std::size_t (*off)[kWaveletMaxTaps];
+    const wavelet_axis<T>* ax;
+    HUSH_INLINE float at(const int (&k)[D]) const {
+      std::size_t i = 0;
+      for (int a = 0; a < D; ++a) i += off[a][k[a] - ax[a].first];
+      return c[i];
+    }
+  };
+  return wavelet_separable<T, G, D>(ax, table_access{acc.c, off, ax});
+}
+
+// The paper's approximate projection along a normal that is not axis-aligned
+// (Appendix 2, WProjectedNoise): the tensor B-spline at the offset d = y - k moved
+// halfway along the unit normal u, e_a = (d_a - u_a (u . d) / 2) / s_a (s_a the
+// widening), with weights normalised to sum 1. y: position relative to the
+// cell (coefficient offset k sits at k). Coefficients are visited per column
+// along the normal's dominant axis, over the interval where all three factors
+// are non-zero (a few extra zero-weight taps at the ends are harmless).
+template <class T, bool G, class Access>
+value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                                            const Access& acc) {
+  int w = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::fabs(u[a]) > std::fabs(u[w])) w = a;
+  const int ax_u = w == 0 ? 1 : 0, ax_v = w == 2 ? 1 : 2;
+  const T half = T(kBspline.half_support());
+  T l1 = 0;
+  for (int a = 0; a < 3; ++a) l1 += std::fabs(u[a]) * s[a];
+  T reach[3];
+  for (int a = 0; a < 3; ++a) reach[a] = half * (s[a] + std::fabs(u[a]) * l1);
+  const T stretch = T(1) / T(constants::kWaveletProjectionStretch);
+  T sw = 0, sv = 0, sdw[3] = {0, 0, 0}, sg[3] = {0, 0, 0};
+  const int u_lo = static_cast<int>(std::ceil(y[ax_u] - reach[ax_u]));
+  const int u_hi = static_cast<int>(std::floor(y[ax_u] + reach[ax_u]));
+  const int v_lo = static_cast<int>(std::ceil(y[ax_v] - reach[ax_v]));
+  const int v_hi = static_cast<int>(std::floor(y[ax_v] + reach[ax_v]));
+  int k[3];
+  T d[3];
+  for (int ku = u_lo; ku <= u_hi; ++ku) {
+    k[ax_u] = ku;
+    d[ax_u] = y[ax_u] - T(ku);
+    for (int kv = v_lo; kv <= v_hi; ++kv) {
+      k[ax_v] = kv;
+      d[ax_v] = y[ax_v] - T(kv);
+      // e_a = A_a + C_a d_w with d_u, d_v fixed; |e_a| < half.
+      const T p = u[ax_u] * d[ax_u] + u[ax_v] * d[ax_v];
+      T lo = -std::numeric_limits<T>::infinity(), hi = std::numeric_limits<T>::infinity();
+      bool empty = false;
+      for (int a = 0; a < 3; ++a) {
+        const T A = ((a == w ? T(0) : d[a]) - u[a] * p * stretch) / s[a];
+        const T C = ((a == w ? T(1) : T(0)) - u[a] * u[w] * stretch) / s[a];
+        if (C == T(0)) {
+          empty = empty || !(std::fabs(A) < half);
+          continue;
+        }
+        T e0 = (-half - A) / C, e1 = (half - A) / C;
+        if (e0 > e1) std::swap(e0, e1);
+        lo = std::max(lo, e0);
+        hi = std::min(hi, e1);
+      }
+      if (empty || !(lo < hi)) continue;
+      const int w_lo = static_cast<int>(std::floor(y[w] - hi));
+      const int w_hi = static_cast<int>(std::ceil(y[w] - lo));
+      for (int kw = w_lo; kw <= w_hi; ++kw) {
+        k[w] = kw;
+        d[w] = y[w] - T(kw);
+        const T ud = u[0] * d[0] + u[1] * d[1] + u[2] * d[2];
+        T e[3], b[3];
+        for (int a = 0; a < 3; ++a) {
+          e[a] = (d[a] - u[a] * ud * stretch) / s[a];
+          b[a] = kernel_at(kBspline, e[a]);
+        }
+        const T weight = b[0] * b[1] * b[2];
+        if (weight == T(0)) continue;
+        const T c = T(acc.at(k));
+        sw += weight;
+        sv += weight * c;
+        if constexpr (G) {
+          T q[3];
+          for (int a = 0; a < 3; ++a)
+            q[a] = kernel_at(kBsplineDerivative, e[a]) * b[(a + 1) % 3] * b[(a + 2) % 3] / s[a];
+          const T uq = u[0] * q[0] + u[1] * q[1] + u[2] * q[2];
+          for (int a = 0; a < 3; ++a) {
+            const T gw = q[a] - u[a] * uq * stretch;  // d weight / d y_a
+            sdw[a] += gw;
+            sg[a] += gw * c;
+          }
+        }
+      }
+    }
+  }
+  value_gradient<T, 3> r{T(0), {}};
+  if (!(sw > T(0))) return r;
+  const T inv = T(1) / sw;
+  r.value = sv * inv;
+  if constexpr (G)
+    for (int a = 0; a < 3; ++a) r.gradient[a] = (sg[a] - r.value * sdw[a]) * inv;
+  return r;
+}
+
+// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
+// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
+// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
+// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
+// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
+// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
+// not exact: widening itself approximates the pixel filter); the widened knot
+// families would cost up to 7^3 taps at each of ~250 nodes.
+template <class T, bool G, class Access>
+value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                                           const Access& acc) {
+  constexpr int kMaxKnots = constants::kWaveletMaxKnots;
+  const T reach = T(kBspline2.half_support());
+  T knots[kMaxKnots];
+  int nk = 0;
+  for (int j = 0; j <= kBspline2.pieces;
+       j += static_cast<int>(constants::kWaveletProjectionStretch))
+    knots[nk++] = T(j) - reach;  // B2's knots: -3, -1, 1, 3
+  const T half = T(kBspline.half_support());
+  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
+  for (int a = 0; a < 3; ++a) {
+    // Widened, only B2's pieces (5 nodes each): the widened basis' own knots would
+    // need 4 families per axis and up to 7^3 taps per node (the GPU's loop budget,
+    // hush/glsl/wavelet_glsl.hpp); widening is an approximation of the pixel filter.
+    if (u[a] == T(0) || !plain) continue;
+    const T span = reach * std::fabs(u[a]);
+    // Knot offsets of the widened B-spline about its centre, as fractions of a coefficient.
+    T deltas[4];
+    int nd = 0;
+    for (int m = 0; m < 4; ++m) {
+      const T delta = (T(m) - half) * s[a];  // -3/2, -1/2, 1/2, 3/2 times s
+      const T frac = delta - std::floor(delta);
+      bool seen = false;
+      for (int q = 0; q < nd; ++q) seen = seen || deltas[q] == frac;
+      if (!seen) deltas[nd++] = frac;
+    }
+    for (int q = 0; q < nd; ++q) {
+      const int lo = static_cast<int>(std::ceil(y[a] - span - deltas[q]));
+      const int hi = static_cast<int>(std::floor(y[a] + span - deltas[q]));
+      for (int k = lo; k <= hi && nk < kMaxKnots; ++k) {
+        const T t = (T(k) + deltas[q] - y[a]) / u[a];
+        if (t > -reach && t < reach) knots[nk++] = t;
+      }
+    }
+  }
+  std::sort(knots, knots + nk);
+  value_gradient<T, 3> r{T(0), {}};
+  for (int i = 0; i + 1 < nk; ++i) {
+    const T t0 = knots[i], t1 = knots[i + 1];
+    if (!(t1 > t0)) continue;
+    const T mid = (t0 + t1) / T(2), h = (t1 - t0) / T(2);
+    for (int q = 0; q < constants::kGaussLegendreOrder; ++q) {
+      const T t = mid + h * T(constants::kGaussLegendreNode[q]);
+      const T wq = h * T(constants::kGaussLegendreWeight[q]) * kernel_at(kBspline2, t);
+      wavelet_axis<T> ax[3];
+      for (int a = 0; a < 3; ++a) {
+        const T ya = y[a] + t * u[a];
+        if (plain)
+          wavelet_axis_at<T, G>(ya, ax[a]);
+        else
+          wavelet_axis_widened<T, G>(ya, s[a], ax[a]);
+      }
+      const value_gradient<T, 3> n = wavelet_separable<T, G, 3>(ax, acc);
+      r.value += wq * n.value;
+      if constexpr (G)
+        for (int a = 0; a < 3; ++a) r.gradient[a] += wq * n.gradient[a];
+    }
+  }
+  return r;
+}
+
+}  // namespace detail
+
+template <int D>
+class wavelet : public sample_noise<wavelet<D>, D> {
+  static_assert(D == 2 || D == 3, "hush::wavelet is 2D or 3D");
+
+ public:
+  static constexpr bool takes_footprint = true;
+  static constexpr bool takes_normal = D == 3;
+  static constexpr int kMaxBands = detail::constants::kWaveletMaxBands;
+
+  struct params {
+    std::uint32_t seed = 0;
+    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet_tile.hpp).
+    int tile_size = D == 2 ? 128 : 64;
+    // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
+    int first_band = 0;
+    // Band weights w_i (1 ... 32 finite values, not all zero); one band by default.
+    // With relative_weights: the weight k octaves below the finest representable band.
+    std::vector<double> weights = {1.0};
+    // Per-band decorrelating offsets (sec. 3, footnote 1), in coefficient units:
+    // empty = derived from the seed (independent per band and axis), or one per band.
+    std::vector<vec<double, D>> offsets;
+    bool even_odd_fix = true;  // the paper's even/odd variance correction (sec. 4.3)
+    wavelet_distribution distribution = wavelet_distribution::gaussian;
+    double gaussian_scale = 1.0;  // standard deviation of the gaussian output; finite, > 0
+    // The inverse CDF of the wanted distribution at u = 0, 1/(m-1), ..., 1 (2 ... 65536
+    // finite values), for wavelet_distribution::table.
+    std::vector<double> table;
+    wavelet_projection projection = wavelet_projection::exact;  // 3D with a normal
+    bool widen = false;             // basis widening for one sample per pixel (sec. 4.1)
+    bool relative_weights = false;  // infinite noise (sec. 5.4)
+    int relative_bands = 16;        // with relative_weights: bands first_band ... + this - 1
+    // 0: the tile repeats (period tile_size); 1 ... tile_size / 4: hashed tile
+    // variants blended over this many coefficients (sec. 4.3), no repetition.
+    int variant_overlap = 0;
+  };
+
+  wavelet() : wavelet(params{}) {}
+  explicit wavelet(std::uint32_t seed) : wavelet(make_params(seed)) {}
+  // Throws hush::invalid_argument naming the first parameter out of range.
+  explicit wavelet(const params& prm) : prm_(prm) {
+    validate();
+    tile_ = wavelet_tile<D>::get({prm_.tile_size, prm_.seed, prm_.even_odd_fix});
+    if (prm_.distribution == wavelet_distribution::table) {
+      auto t = std::make_shared<std::vector<float>>();
+      for (double v : prm_.table) t->push_back(static_cast<float>(v));
+      table_ = std::move(t);
+    }
+    if (prm_.variant_overlap > 0)
+      blend_ = wavelet_blend_tile<D>::get(
+          {{prm_.tile_size, prm_.seed, prm_.even_odd_fix}, prm_.variant_overlap});
+    const int nb = band_count();
+    double sum_sq = 0, sum_abs = 0;
+    for (int i = 0; i < nb; ++i) {
+      band b;
+      b.index = prm_.first_band + i;
+      b.frequency = std::ldexp(1.0, b.index);
+      b.weight = prm_.relative_weights ? 0.0 : prm_.weights[static_cast<std::size_t>(i)];
+      const std::uint32_t band_seed = hash32(prm_.seed, static_cast<std::uint32_t>(b.index));
+      for (int a = 0; a < D; ++a) {
+        double o;
+        if (prm_.offsets.empty()) {
+          // A whole cell in [0, n) plus an exact 24-bit fraction.
+          const std::uint32_t h = hash32(band_seed, static_cast<std::uint32_t>(a));
+          o = static_cast<double>(hash32(h) % static_cast<std::uint32_t>(prm_.tile_size)) +
+              static_cast<double>(h >> 8) * 0x1p-24;
+        } else {
+          o = prm_.offsets[static_cast<std::size_t>(i)][a];
+        }
+        // The tap-0 cell of y is floor(y - 1/2): fold the half into the offset.
+        b.offset[a] = o - detail::constants::kWaveletCellOffset;
+      }
+      bands_.push_back(b);
+      sum_sq += b.weight * b.weight;
+      sum_abs += std::fabs(b.weight);
+    }
+    key_ = seed_key(prm_.seed);
+    // The smallest kernel variance (3D: projected noise has less) bounds every scale.
+    double smallest = tile_->variance();
+    if constexpr (D == 3)
+      for (int a = 0; a < 3; ++a)
+        for (bool exact : {true, false})
+          smallest = std::min(smallest, tile_->projected_variance(a, exact));
+    if (!prm_.relative_weights) {
+      scale_ = 1.0 / std::sqrt(tile_->variance() * sum_sq);
+      bound_ = sum_abs * tile_->max_abs() / std::sqrt(smallest * sum_sq);
+    } else {
+      // Per sample K = 1 / sqrt(sigma^2 sum W^2); at most K + 1 bands have W != 0
+      // (octaves o in (-1, K)), so sum |W| <= sqrt(K + 1) sqrt(sum W^2) (Cauchy-Schwarz).
+      scale_ = 1.0;
+      bound_ =
+          std::sqrt((static_cast<double>(prm_.weights.size()) + 1.0) / smallest) * tile_->max_abs();
+    }
+    pre_bound_ = bound_;
+    switch (prm_.distribution) {
+      case wavelet_distribution::gaussian:
+        slope_ = prm_.gaussian_scale;
+        bound_ *= prm_.gaussian_scale;
+        break;
+      case wavelet_distribution::uniform:
+        slope_ = 2 * detail::constants::kInvSqrt2Pi;  // erf(v / sqrt 2)' <= sqrt(2 / pi)
+        bound_ = 1.0;
+        break;
+      case wavelet_distribution::table: {
+        double steepest = 0;
+        bound_ = 0;
+        for (std::size_t i = 0; i < prm_.table.size(); ++i) {
+          bound_ = std::max(bound_, std::fabs(prm_.table[i]));
+          if (i + 1 < prm_.table.size())
+            steepest = std::max(steepest, std::fabs(prm_.table[i + 1] - prm_.table[i]));
+        }
+        // Phi'(v) <= 1 / sqrt(2 pi); the table's slope in u is steepest * (m - 1).
+        slope_ =
+            steepest * static_cast<double>(prm_.table.size() - 1) * detail::constants::kInvSqrt2Pi;
+        break;
+      }
+    }
+  }
+
+  const params& parameters() const { return prm_; }
+  // |output| <= bound() for every input (see the file comment).
+  double bound() const { return bound_; }
+  // The shared tile and the memory this noise holds (tiles shared with other noises count
+  // once per holder).
+  const wavelet_tile<D>& tile() const { return *tile_; }
+  std::shared_ptr<const wavelet_tile<D>> tile_ptr() const { return tile_; }
+  std::shared_ptr<const wavelet_blend_tile<D>> blend_tile_ptr() const { return blend_; }
+  // The distribution table in float (the float path's T(table[i])), shared with the GPU
+  // backend; null unless distribution == table.
+  std::shared_ptr<const std::vector<float>> table_floats() const { return table_; }
+  std::size_t memory_bytes() const {
+    return sizeof(*this) + tile_->bytes() + (blend_ ? blend_->bytes() : 0) +
+           bands_.capacity() * sizeof(band);
+  }
+
+  // The bands as evaluated, for the SIMD and GLSL backends: band i's index b
+  // (frequency 2^b), its raw weight (0 under relative_weights), and the
+  // position of tap 0 of p, 2^b p + o_b - 1/2 (double; component a depends on p[a] only).
+  int band_count() const {
+    return prm_.relative_weights ? prm_.relative_bands : static_cast<int>(prm_.weights.size());
+  }
+  int band_index(int i) const { return bands_[static_cast<std::size_t>(i)].index; }
+  double band_frequency(int i) const { return bands_[static_cast<std::size_t>(i)].frequency; }
+  double band_raw_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight; }
+  vec<double, D> band_position(int i, const vec<double, D>& p) const {
+    return bands_[static_cast<std::size_t>(i)].position(p);
+  }
+  // Tile variants: the key hashing band i's cells (hash32(seed_key, b)).
+  std::uint32_t variant_key(int i) const {
+    return hash32(key_, static_cast<std::uint32_t>(bands_[static_cast<std::size_t>(i)].index));
+  }
+  // The normalisation K of the point noise (1 under relative_weights: per sample).
+  double scale() const { return scale_; }
+  // The lattice period a backend splits band positions with: the tile size, or 0
+  // (2^32) with tile variants, which need the global coefficient index.
+  std::uint32_t split_period() const {
+    return prm_.variant_overlap > 0 ? 0u : static_cast<std::uint32_t>(prm_.tile_size);
+  }
+
+  // The float budget: |float - double| at any position (forward error analysis,
+  // docs/wavelet.md). A plain band is an average of coefficients (|n| <= max_abs)
+  // whose weights come from a degree-2 Horner step (error <= 6 u each, u = 2^-24)
+  // and whose D nested sums of 3 terms add 3 u each level on top of the weights'
+  // error: at most 21 D u max_abs per band. Summing nb bands and scaling adds
+  // nb + 2 roundings of the result, so |error| <= (21 D + nb + 2) u bound().
+  // Kernels with more taps and higher degree (projection, widening) get the
+  // loose constant 512 in place of 21 D (beta alone: 9 taps of degree 5).
+  double float_budget(bool plain_kernel = true) const {
+    const double per_band = plain_kernel ? 21.0 * D : 512.0;
+    // The remap multiplies the error by at most its slope and adds 8 roundings of its own
+    // (erf, erfc and exp are within a few ulp in float).
+    const double u = std::ldexp(1.0, -24);
+    return (per_band + static_cast<double>(band_count()) + 2.0) * u * pre_bound_ * slope_ +
+           8.0 * u * bound_;
+  }
+
+  // The same for the gradient: the derivative weights of a tap triple sum to at most 2
+  // in magnitude (|f - 1| + |1 - 2f| + |f|), and band b's gradient is multiplied by
+  // 2^b, so the bound is the value's with max_abs replaced by 2 max_abs 2^b per band.
+  double float_gradient_budget(bool plain_kernel = true) const {
+    double wf = 0, w = 0;
+    for (const band& b : bands_) {
+      wf += std::fabs(b.weight) * b.frequency;
+      w += std::fabs(b.weight);
+    }
+    if (prm_.relative_weights) {  // at most K + 1 bands, each up to the top frequency
+      wf = (static_cast<double>(prm_.weights.size()) + 1.0) * bands_.back().frequency;
+      w = static_cast<double>(prm_.weights.size()) + 1.0;
+    }
+    return 2.0 * float_budget(plain_kernel) * wf / std::max(w, 1e-300);
+  }
+
+  // ---- Evaluation (core/point_noise.hpp, core/samples.hpp give the public overloads).
+  template <class T>
+  T value(const vec<double, D>& p) const {
+    return eval<T, false>(point_input(p)).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
+    return eval<T, true>(point_input(p));
+  }
+  template <class T>
+  T sample_value(const sample_input<D>& s) const {
+    return eval<T, false>(s).value;
+  }
+  template <class T>
+  value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s) const {
+    return eval<T, true>(s);
+  }
+
+  // ---- The per-sample plan, shared with the backends: what eval() does for one
+  // sample, as data. `weight[i]` is band i's weight in the sum (0: skipped),
+  // `scale` the normalisation (after the sum), `everything` a footprint that
+  // filters everything (output 0), and the kernel: the normal (unit, double;
+  // projected when `project`), its axis when axis-aligned (-1 otherwise), and
+  // the per-band widening factors.
+  struct plan {
+    double weight[kMaxBands] = {};
+    double scale = 0;
+    bool everything = false;
+    bool project = false;
+    int normal_axis = -1;
+    vec<double, 3> normal{};
+    double widen[kMaxBands][3] = {};
+  };
+  plan make_plan(const sample_input<D>& s) const {
+    plan pl;
+    const int nb = band_count();
+    // Footprint width: the largest extent (file comment).
+    double log2w = -std::numeric_limits<double>::infinity();
+    const double wmax = s.fp.max_width();
+    if (!(wmax < detail::constants::kFootprintMaxWidth)) {
+      pl.everything = true;
+      return pl;
+    }
+    if (wmax > 0) log2w = std::log2(wmax);
+    if constexpr (D == 3) {
+      if (s.has_normal) {
+        double m = 0;
+        bool finite = true;
+        for (int a = 0; a < 3; ++a) {
+          finite = finite && std::isfinite(s.normal[a]);
+          m = std::max(m, std::fabs(s.normal[a]));
+        }
+        if (finite && m > 0) {
+          double len = 0;
+          for (int a = 0; a < 3; ++a) {
+            pl.normal[a] = s.normal[a] / m;
+            len += pl.normal[a] * pl.normal[a];
+          }
+          len = std::sqrt(len);
+          int zeros = 0, axis = 0;
+          for (int a = 0; a < 3; ++a) {
+            pl.normal[a] /= len;
+            if (pl.normal[a] == 0.0)
+              ++zeros;
+            else
+              axis = a;
+          }
+          pl.project = true;
+          if (zeros == 2) {
+            pl.normal_axis = axis;
+            pl.normal = {};
+            pl.normal[axis] = 1.0;
+          }
+        }
+      }
+    }
+    double variance = tile_->variance();
+    if constexpr (D == 3) {
+      if (pl.project) {
+        const bool exact = prm_.projection == wavelet_projection::exact;
+        variance = 0;
+        for (int a = 0; a < 3; ++a)
+          variance += pl.normal[a] * pl.normal[a] * tile_->projected_variance(a, exact);
+      }
+    }
+    // Tangent-plane extents per tile axis, for widening: (P S P)_aa, P = I - u u^T.
+    double extent2[3] = {0, 0, 0};
+    if (prm_.widen) {
+      for (int a = 0; a < D; ++a) {
+        double pa[D];
+        for (int c = 0; c < D; ++c) pa[c] = (c == a ? 1.0 : 0.0);
+        if constexpr (D == 3)
+          if (pl.project)
+            for (int c = 0; c < 3; ++c) pa[c] -= pl.normal[c] * pl.normal[a];
+        double q = 0;
+        for (int r = 0; r < D; ++r)
+          for (int c = 0; c < D; ++c)
+            q += pa[r] * static_cast<double>(s.fp.covariance(r, c)) * pa[c];
+        extent2[a] = std::max(q, 0.0);
+      }
+    }
+    double sum_sq = 0;
+    for (int i = 0; i < nb; ++i) {
+      const band& b = bands_[static_cast<std::size_t>(i)];
+      const double level = static_cast<double>(b.index) + log2w;  // log2 of c = 2^b w
+      double w;
+      if (prm_.relative_weights)
+        w = relative_weight(wmax > 0 ? level : static_cast<double>(b.index));
+      else
+        w = b.weight * fade_weight(level);
+      pl.weight[i] = w;
+      sum_sq += w * w;
+      for (int a = 0; a < 3; ++a) pl.widen[i][a] = 1.0;
+      if (prm_.widen && w != 0.0) {
+        const double c0 = detail::constants::kWaveletWidenStart;
+        const double c1 = detail::constants::kWaveletWidenEnd;  // where the fade reaches 0
+        const double smax2 = 1.0 + c1 * c1 - c0 * c0;
+        for (int a = 0; a < D; ++a) {
+          const double c2 = extent2[a] * b.frequency * b.frequency;
+          const double s2 = std::min(1.0 + std::max(0.0, c2 - c0 * c0), smax2);
+          pl.widen[i][a] = std::sqrt(s2);
+        }
+      }
+    }
+    if (prm_.relative_weights)
+      pl.scale = sum_sq > 0 ? 1.0 / std::sqrt(variance * sum_sq) : 0.0;
+    else
+      pl.scale = scale_ * std::sqrt(tile_->variance() / variance);
+    return pl;
+  }
+
+  // The distribution remapping of a unit-variance value v (and d/dv), in T.
+  template <class T>
+  void remap(T& v, T* dv) const {
+    switch (prm_.distribution) {
+      case wavelet_distribution::gaussian:
+        v *= T(prm_.gaussian_scale);
+        if (dv) *dv = T(prm_.gaussian_scale);
+        return;
+      case wavelet_distribution::uniform: {
+        const T x = v * T(detail::constants::kInvSqrt2);
+        if (dv) *dv = T(2 * detail::constants::kInvSqrt2Pi) * std::exp(-x * x);
+        v = std::erf(x);
+        return;
+      }
+      case wavelet_distribution::table: {
+        const T x = v * T(detail::constants::kInvSqrt2);
+        const T u = std::erfc(-x) / T(2);  // Phi(v)
+        const std::size_t m = prm_.table.size();
+        if (!(u >= T(0) && u <= T(1))) {  // NaN
+          if (dv) *dv = u;
+          v = u;
+          return;
+        }
+        const T pos = u * T(static_cast<double>(m - 1));
+        std::size_t i = static_cast<std::size_t>(pos);
+        if (i > m - 2) i = m - 2;
+        const T t = pos - T(static_cast<double>(i));
+        const T a = T(prm_.table[i]), b = T(prm_.table[i + 1]);
+        if (dv)
+          *dv = (b - a) * T(static_cast<double>(m - 1)) * T(detail::constants::kInvSqrt2Pi) *
+                std::exp(-x * x);
+        v = a + t * (b - a);
+        return;
+      }
+    }
+  }
+
+ private:
+  struct band {
+    int index = 0;
+    double frequency = 1;
+    double weight = 0;
+    vec<double, D> offset{};
+    // 2^b p + o_b - 1/2 in double (exact products); a coordinate whose product
+    // overflows is taken as 0 (file comment).
+    vec<double, D> position(const vec<double, D>& p) const {
+      vec<double, D> q;
+      for (int a = 0; a < D; ++a) {
+        double x = p[a] * frequency;
+        if (!std::isfinite(x) && std::isfinite(p[a])) x = 0.0;
+        q[a] = x + offset[a];
+      }
+      return q;
+    }
+  };
+
+  static params make_params(std::uint32_t seed) {
+    params p;
+    p.seed = seed;
+    return p;
+  }
+  static sample_input<D> point_input(const vec<double, D>& p) {
+    sample_input<D> s;
+    s.position = p;
+    return s;
+  }
+
+  // The anti-aliasing fade of a band whose coefficients are 2^level pixels apart.
+  static double fade_weight(double level) {
+    if (!(level > 0)) return 1.0;  // also for -inf (a point footprint)
+    if (level >= 1) return 0.0;
+    return detail::fade(1.0 - level);
+  }
+  // Infinite noise: the weight of a band `level` = log2(2^b w) (octave -level
+  // below the finest representable band).
+  double relative_weight(double level) const {
+    const double o = -level;
+    const int k = static_cast<int>(prm_.weights.size());
+    if (!(o > -1.0) || !(o < static_cast<double>(k))) return 0.0;
+    if (o < 0) return prm_.weights[0] * detail::fade(o + 1.0);
+    if (o > k - 1) return prm_.weights[static_cast<std::size_t>(k - 1)] * detail::fade(k - o);
+    const int i = static_cast<int>(std::floor(o));
+    if (i >= k - 1) return prm_.weights[static_cast<std::size_t>(k - 1)];
+    const double t = detail::fade(o - i);
+    const double a = prm_.weights[static_cast<std::size_t>(i)];
+    const double b = prm_.weights[static_cast<std::size_t>(i) + 1];
+    return a + t * (b - a);
+  }
+
+  // One band at tile-coordinate position q (tap 0 at floor(q)), in coefficient units.
+  template <class T, bool G, class Access>
+  value_gradient<T, D> band_kernel(const lattice_coord<T> (&c)[D], const plan& pl, int i,
+                                   const Access& acc) const {
+    detail::wavelet_axis<T> ax[D];
+    bool widened = false;
+    for (int a = 0; a < D; ++a) widened = widened || pl.widen[i][a] != 1.0;
+    if constexpr (D == 3) {
+      if (pl.project && pl.normal_axis < 0) {
+        T y[3], u[3], s[3];
+        for (int a = 0; a < 3; ++a) {
+          y[a] = c[a].f + T(detail::constants::kWaveletCellOffset);
+          u[a] = T(pl.normal[a]);
+          s[a] = T(pl.widen[i][a]);
+        }
+        if (prm_.projection == wavelet_projection::exact)
+          return detail::wavelet_general_exact<T, G>(y, u, s, acc);
+        return detail::wavelet_general_approx<T, G>(y, u, s, acc);
+      }
+    }
+    for (int a = 0; a < D; ++a) {
+      if (D == 3 && pl.project && a == pl.normal_axis) {
+        if (prm_.projection == wavelet_projection::exact)
+          detail::wavelet_axis_fixed<T, G>(c[a].f, detail::kBeta, detail::kBetaDerivative, ax[a]);
+        else
+          detail::wavelet_axis_fixed<T, G>(c[a].f, detail::kBspline2, detail::kBspline2Derivative,
+                                           ax[a]);
+      } else if (widened && pl.widen[i][a] != 1.0) {
+        detail::wavelet_axis_widened<T, G>(c[a].f + T(detail::constants::kWaveletCellOffset),
+                                           T(pl.widen[i][a]), ax[a]);
+      } else {
+        detail::wavelet_axis_plain<T, G>(c[a].f, ax[a]);
+      }
+    }
+    return detail::wavelet_separable<T, G, D>(ax, acc);
+  }
+
+  // One band of the sample: the cells of its position, then the kernel on the
+  // periodic tile or on the hashed variants.
+  template <class T, bool G>
+  value_gradient<T, D> band_value(const vec<double, D>& p, const plan& pl, int i) const {
+    const band& b = bands_[static_cast<std::size_t>(i)];
+    const vec<double, D> q = b.position(p);
+    lattice_coord<T> c[D];
+    const std::uint32_t period = split_period();
+    for (int a = 0; a < D; ++a) c[a] = lattice_split<T>(q[a], period);
+    if (prm_.variant_overlap == 0) {
+      detail::wavelet_periodic_access<D> acc{tile_->coefficients(), prm_.tile_size, {0, 0, 0}};
+      for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
+      return band_kernel<T, G>(c, pl, i, acc);
+    }
+    detail::wavelet_variant_access<D> acc{blend_->coefficients(),
+                                          prm_.tile_size,
+                                          prm_.tile_size - prm_.variant_overlap,
+                                          variant_key(i),
+                                          {0, 0, 0}};
+    for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
+    return band_kernel<T, G>(c, pl, i, acc);
+  }
+
+  template <class T, bool G>
+  value_gradient<T, D> eval(const sample_input<D>& s) const {
+    value_gradient<T, D> r{T(0), {}};
+    for (int a = 0; a < D; ++a)
+      if (!std::isfinite(s.position[a])) {
+        r.value = std::numeric_limits<T>::quiet_NaN();
+        for (int c = 0; c < D; ++c) r.gradient[c] = r.value;
+        return r;
+      }
+    const plan pl = make_plan(s);
+    if (pl.everything) {  // filtered to the mean: 0 before the remapping, constant after
+      remap<T>(r.value, nullptr);
+      return r;
+    }
+    const int nb = band_count();
+    for (int i = 0; i < nb; ++i) {
+      if (pl.weight[i] == 0.0) continue;
+      const value_gradient<T, D> n = band_value<T, G>(s.position, pl, i);
+      r.value += T(pl.weight[i]) * n.value;
+      if constexpr (G) {
+        const T chain = T(pl.weight[i] * bands_[static_cast<std::size_t>(i)].frequency);
+        for (int a = 0; a < D; ++a) r.gradient[a] += chain * n.gradient[a];
+      }
+    }
+    r.value *= T(pl.scale);
+    if constexpr (G) {
+      for (int a = 0; a < D; ++a) r.gradient[a] *= T(pl.scale);
+      T dv = T(1);
+      remap<T>(r.value, &dv);
+      for (int a = 0; a < D; ++a) r.gradient[a] *= dv;
+    } else {
+      remap<T>(r.value, nullptr);
+    }
+    return r;
+  }
+
+  void validate() const {
+    const char* where = "hush::wavelet";
+    wavelet_tile<D>::validate_size(where, "tile_size", prm_.tile_size);
+    namespace c = detail::constants;
+    const std::string band_range =
+        std::to_string(c::kWaveletMinBand) + " ... " + std::to_string(c::kWaveletMaxBand);
+    detail::require_in_range(where, "first_band", prm_.first_band, c::kWaveletMinBand,
+                             c::kWaveletMaxBand, band_range.c_str());
+    const std::size_t nw = prm_.weights.size();
+    if (nw < 1 || nw > static_cast<std::size_t>(kMaxBands))
+      detail::throw_out_of_range(where, "weights.size()", nw, "1 ... 32");
+    bool any = false;
+    for (std::size_t i = 0; i < nw; ++i) {
+      if (!std::isfinite(prm_.weights[i]))
+        detail::throw_out_of_range(where, "weights[" + std::to_string(i) + "]", prm_.weights[i],
+                                   "a finite number");
+      any = any || prm_.weights[i] != 0.0;
+    }
+    if (!any)
+      throw hush::invalid_argument(
+          "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
+    if (prm_.relative_weights)
+      detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,
+                               "1 ... 32");
+    const int nb = prm_.relative_weights ? prm_.relative_bands : static_cast<int>(nw);
+    if (prm_.first_band + nb - 1 > c::kWaveletMaxBand)
+      detail::throw_out_of_range(
+          where, "first_band", prm_.first_band,
+          ("first_band + bands - 1 <= " + std::to_string(c::kWaveletMaxBand)).c_str());
+    if (!prm_.offsets.empty()) {
+      if (prm_.offsets.size() != static_cast<std::size_t>(nb))
+        detail::throw_out_of_range(where, "offsets.size()", prm_.offsets.size(),
+                                   "0 (derived from the seed) or one per band");
+      for (std::size_t i = 0; i < prm_.offsets.size(); ++i)
+        for (int a = 0; a < D; ++a)
+          if (!std::isfinite(prm_.offsets[i][a]))
+            detail::throw_out_of_range(
+                where, "offsets[" + std::to_string(i) + "][" + std::to_string(a) + "]",
+                prm_.offsets[i][a], "a finite number");
+    }
+    if (!(std::isfinite(prm_.gaussian_scale) && prm_.gaussian_scale > 0))
+      detail::throw_out_of_range(where, "gaussian_scale", prm_.gaussian_scale, "finite and > 0");
+    if (prm_.distribution == wavelet_distribution::table) {
+      if (prm_.table.size() < 2 || prm_.table.size() > 65536)
+        detail::throw_out_of_range(where, "table.size()", prm_.table.size(),
+                                   "2 ... 65536 values (with distribution = table)");
+      for (std::size_t i = 0; i < prm_.table.size(); ++i)
+        if (!std::isfinite(prm_.table[i]))
+          detail::throw_out_of_range(where, "table[" + std::to_string(i) + "]", prm_.table[i],
+                                     "a finite number");
+    }
+    if (prm_.variant_overlap != 0)
+      wavelet_blend_tile<D>::validate_overlap(where, "variant_overlap", prm_.tile_size,
+                                              prm_.variant_overlap);
+  }
+
+  params prm_;
+  std::shared_ptr<const wavelet_tile<D>> tile_;
+  std::shared_ptr<const wavelet_blend_tile<D>> blend_;
+  std::shared_ptr<const std::vector<float>> table_;
+  std::vector<band> bands_;
+  std::uint32_t key_ = 0;
+  double scale_ = 1, bound_ = 1, pre_bound_ = 1, slope_ = 1;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_WAVELET_HPP
+// ---- end hush/wavelet.hpp
 // ---- begin hush/exec.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -5838,6 +7631,677 @@ HWY_AFTER_NAMESPACE();
 
 #endif  // HUSH_SIMD_PERLIN_INL_H_ toggle
 // ---- end hush/simd/perlin-inl.h
+// ---- begin hush/simd/wavelet-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for wavelet noise (include/hush/wavelet.hpp), 2D and 3D:
+// batches of points, uniform grids, and samples with footprints and normals;
+// values and optionally analytic gradients. Compiled once per SIMD target (the
+// "-inl.h" convention); reached through hush/simd/dispatch.hpp.
+//
+// The kernels repeat wavelet.hpp's float algorithm operation by operation, so
+// under HUSH_STRICT_FP every value and gradient is bit for bit the scalar
+// result (tests/simd/wavelet_simd_test.cpp, every compiled target):
+//  - band positions 2^b x + o_b - 1/2 are formed in double and split into cell
+//    and fraction as lattice_split<float> does (in f64 lanes; lanes that are
+//    not finite or beyond 2^31 take core/lattice.hpp lane by lane);
+//  - the B-spline weights by the same Horner steps, the same nested sums
+//    (z innermost), the same band accumulation, scale and gradient chain;
+//  - the distribution remapping (erf, the table) runs lane by lane through
+//    wavelet::remap, the scalar code itself.
+// Points gather the 3^D coefficients of each band. Grids use the separability
+// of the basis (the "3D single band" fast path of the issue): per slice the
+// z contraction S(x, y) = sum_c wz_c n(x, y, z_c) for the coefficients the grid
+// touches, per row T(x) = sum_b wy_b S(x, y_b), per sample sum_a wx_a T(x_a):
+// three gathers from a small table per sample and band, whatever D is. The
+// scalar code sums in exactly this order, so the shortcut changes no bit.
+// Samples with footprints take the points path with per-lane band weights and
+// scales (wavelet::make_plan, computed in double per lane as scalar code does);
+// lanes that project onto a surface, widen the basis, or see a footprint that
+// filters everything are evaluated lane by lane by the scalar code, and so is
+// any batch of a noise with tile variants (variant_overlap > 0): those paths
+// are correct everywhere but not vectorised.
+#if defined(HUSH_SIMD_WAVELET_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_WAVELET_INL_H_
+#undef HUSH_SIMD_WAVELET_INL_H_
+#else
+#define HUSH_SIMD_WAVELET_INL_H_
+#endif
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace wavelet_simd {
+
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VI = hn::Vec<DI>;
+using perlin_simd::kMaxLanes;
+using perlin_simd::mul_add;
+
+// detail::piece_value in lanes: Horner, highest power first.
+template <int P, int O>
+HWY_INLINE VF piece(const detail::piecewise_kernel<P, O>& k, int p, VF t) {
+  const DF df;
+  VF r = hn::Set(df, static_cast<float>(k.c[p][O - 1]));
+  for (int j = O - 2; j >= 0; --j) r = mul_add(r, t, hn::Set(df, static_cast<float>(k.c[p][j])));
+  return r;
+}
+
+// One axis of a band in lanes: the stride-scaled, wrapped index of each of the
+// three taps, their weights and (for gradients) the weights' derivatives.
+struct axis {
+  VI idx[3];
+  VF w[3], dw[3];
+};
+
+// cell -> the three tap indices (cell + j modulo n) times the axis stride.
+HWY_INLINE void tap_indices(VI cell, int n, int stride, VI (&idx)[3]) {
+  const DI di;
+  const VI nv = hn::Set(di, n), sv = hn::Set(di, stride);
+  VI c = cell;
+  for (int j = 0; j < 3; ++j) {
+    idx[j] = hn::Mul(c, sv);
+    c = hn::Add(c, hn::Set(di, 1));
+    c = hn::IfThenElse(hn::Lt(c, nv), c, hn::Sub(c, nv));
+  }
+}
+
+template <bool kGradient>
+HWY_INLINE void weights(VF f, axis& a) {
+  for (int j = 0; j < 3; ++j) a.w[j] = piece(detail::kBspline, 2 - j, f);
+  if constexpr (kGradient)
+    for (int j = 0; j < 3; ++j) a.dw[j] = piece(detail::kBsplineDerivative, 2 - j, f);
+}
+
+// Band coordinate q = x freq + off of every lane, split as lattice_split<float>(q, n):
+// cell in [0, n) and fraction in [0, 1). Returns false (nothing written) when a lane
+// is not finite or |q| >= 2^31; the caller then splits lane by lane.
+HWY_INLINE bool split_vector(VF x, double freq, double off, int n, VI& cell, VF& f) {
+#if HWY_TARGET == HWY_SCALAR
+  (void)x;
+  (void)freq;
+  (void)off;
+  (void)n;
+  (void)cell;
+  (void)f;
+  return false;
+#else
+  const DF df;
+  const DI di;
+  const hn::Half<DF> dh;
+  const hn::Half<DI> dih;
+  const hn::Repartition<double, DF> dd;
+  using VD = hn::Vec<decltype(dd)>;
+  const VD fv = hn::Set(dd, freq), ov = hn::Set(dd, off), nv = hn::Set(dd, double(n));
+  const VD limit = hn::Set(dd, 2147483648.0);
+  const VD lo = hn::Add(hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), fv), ov);
+  const VD hi = hn::Add(hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), fv), ov);
+  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
+    return false;
+  const auto part = [&](VD q, hn::Vec<decltype(dh)>& fh, hn::Vec<decltype(dih)>& ch) {
+    const VD fl = hn::Floor(q);
+    fh = hn::Min(hn::DemoteTo(dh, hn::Sub(q, fl)), hn::Set(dh, detail::one_minus_ulp<float>()));
+    // floor(q) mod n, exact for |q| < 2^31 (the quotient's rounding error is below 1/n).
+    ch = hn::DemoteTo(dih, hn::Sub(fl, hn::Mul(nv, hn::Floor(hn::Div(fl, nv)))));
+  };
+  hn::Vec<decltype(dh)> flo, fhi;
+  hn::Vec<decltype(dih)> clo, chi;
+  part(lo, flo, clo);
+  part(hi, fhi, chi);
+  f = hn::Combine(df, fhi, flo);
+  cell = hn::Combine(di, chi, clo);
+  return true;
+#endif
+}
+
+// The band's D axes for one vector of points (coordinates xs[a], the lanes' double
+// positions p for the lane-by-lane fallback).
+template <bool kGradient, int D>
+HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, const vec<double, D>* p,
+                          axis* ax) {
+  const DF df;
+  const DI di;
+  const int n = w.parameters().tile_size;
+  const std::size_t lanes = hn::Lanes(df);
+  int stride = 1;
+  for (int a = 0; a < D; ++a, stride *= n) {
+    VI cell;
+    VF f;
+    const vec<double, D> zero{};
+    const double off = w.band_position(band, zero)[a];
+    if (!split_vector(xs[a], w.band_frequency(band), off, n, cell, f)) {
+      HWY_ALIGN float fs[kMaxLanes];
+      HWY_ALIGN std::int32_t cs[kMaxLanes];
+      for (std::size_t l = 0; l < lanes; ++l) {
+        const lattice_coord<float> c =
+            lattice_split<float>(w.band_position(band, p[l])[a], w.split_period());
+        fs[l] = c.f;
+        cs[l] = static_cast<std::int32_t>(c.i0);
+      }
+      f = hn::Load(df, fs);
+      cell = hn::Load(di, cs);
+    }
+    tap_indices(cell, n, stride, ax[a].idx);
+    weights<kGradient>(f, ax[a]);
+  }
+}
+
+// wavelet_separable over gathered coefficients: value and gradient (coefficient units).
+template <bool kGradient, int D>
+HWY_INLINE void separable(const float* tile, const axis* ax, VF& v, VF* g) {
+  const DF df;
+  v = hn::Zero(df);
+  for (int a = 0; a < D; ++a) g[a] = hn::Zero(df);
+  if constexpr (D == 2) {
+    for (int a = 0; a < 3; ++a) {
+      VF s = hn::Zero(df), sy = hn::Zero(df);
+      for (int b = 0; b < 3; ++b) {
+        const VF c = hn::GatherIndex(df, tile, hn::Add(ax[0].idx[a], ax[1].idx[b]));
+        s = mul_add(ax[1].w[b], c, s);
+        if constexpr (kGradient) sy = mul_add(ax[1].dw[b], c, sy);
+      }
+      v = mul_add(ax[0].w[a], s, v);
+      if constexpr (kGradient) {
+        g[0] = mul_add(ax[0].dw[a], s, g[0]);
+        g[1] = mul_add(ax[0].w[a], sy, g[1]);
+      }
+    }
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      VF t = hn::Zero(df), ty = hn::Zero(df), tz = hn::Zero(df);
+      for (int b = 0; b < 3; ++b) {
+        const VI xy = hn::Add(ax[0].idx[a], ax[1].idx[b]);
+        VF s = hn::Zero(df), sz = hn::Zero(df);
+        for (int c = 0; c < 3; ++c) {
+          const VF cf = hn::GatherIndex(df, tile, hn::Add(xy, ax[2].idx[c]));
+          s = mul_add(ax[2].w[c], cf, s);
+          if constexpr (kGradient) sz = mul_add(ax[2].dw[c], cf, sz);
+        }
+        t = mul_add(ax[1].w[b], s, t);
+        if constexpr (kGradient) {
+          ty = mul_add(ax[1].dw[b], s, ty);
+          tz = mul_add(ax[1].w[b], sz, tz);
+        }
+      }
+      v = mul_add(ax[0].w[a], t, v);
+      if constexpr (kGradient) {
+        g[0] = mul_add(ax[0].dw[a], t, g[0]);
+        g[1] = mul_add(ax[0].w[a], ty, g[1]);
+        g[2] = mul_add(ax[0].w[a], tz, g[2]);
+      }
+    }
+  }
+}
+
+// The sum over bands, scale and remapping of wavelet::eval for one vector of points
+// with per-lane band weights, chains and scales (plans), into value and interleaved
+// gradients. Lanes flagged in `skip` are left for the caller.
+template <bool kGradient, int D>
+HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts,
+                              const double (*weight)[kMaxLanes], const double* scale,
+                              float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  VF xs[3];
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, xs[0], xs[1]);
+  else
+    hn::LoadInterleaved3(df, pts, xs[0], xs[1], xs[2]);
+  vec<double, D> p[kMaxLanes];
+  for (std::size_t l = 0; l < lanes; ++l)
+    for (int a = 0; a < D; ++a) p[l][a] = static_cast<double>(pts[l * D + a]);
+  VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+  const float* tile = w.tile().coefficients();
+  for (int b = 0; b < w.band_count(); ++b) {
+    HWY_ALIGN float wl[kMaxLanes], cl[kMaxLanes];
+    bool any = false;
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const double wb = weight[b][l];
+      any = any || wb != 0.0;
+      wl[l] = static_cast<float>(wb);
+      cl[l] = static_cast<float>(wb * w.band_frequency(b));
+    }
+    if (!any) continue;
+    axis ax[3];
+    band_axes<kGradient, D>(w, b, xs, p, ax);
+    VF v, g[3];
+    separable<kGradient, D>(tile, ax, v, g);
+    acc = mul_add(hn::Load(df, wl), v, acc);
+    if constexpr (kGradient) {
+      const VF chain = hn::Load(df, cl);
+      for (int a = 0; a < D; ++a) gacc[a] = mul_add(chain, g[a], gacc[a]);
+    }
+  }
+  HWY_ALIGN float sl[kMaxLanes];
+  for (std::size_t l = 0; l < lanes; ++l) sl[l] = static_cast<float>(scale[l]);
+  const VF sv = hn::Load(df, sl);
+  acc = hn::Mul(acc, sv);
+  if constexpr (kGradient)
+    for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], sv);
+  const auto& prm = w.parameters();
+  if (prm.distribution == wavelet_distribution::gaussian) {
+    const VF gs = hn::Set(df, static_cast<float>(prm.gaussian_scale));
+    hn::StoreU(hn::Mul(acc, gs), df, value);
+    if constexpr (kGradient) {
+      for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], gs);
+      perlin_simd::store_interleaved<D>(gacc, grad);
+    }
+    return;
+  }
+  // Other distributions: the scalar remap, lane by lane.
+  hn::StoreU(acc, df, value);
+  if constexpr (kGradient) perlin_simd::store_interleaved<D>(gacc, grad);
+  for (std::size_t l = 0; l < lanes; ++l) {
+    float dv = 1.0f;
+    w.template remap<float>(value[l], kGradient ? &dv : nullptr);
+    if constexpr (kGradient)
+      for (int a = 0; a < D; ++a) grad[l * D + a] *= dv;
+  }
+}
+
+// Runs fn(pts, value, grad) over n points in vectors; the tail through padded buffers.
+template <int D, class Fn>
+HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad, Fn fn) {
+  const std::size_t lanes = hn::Lanes(DF());
+  std::size_t i = 0;
+  for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);
+  if (i == n) return;
+  const std::size_t rest = n - i;
+  HWY_ALIGN float in[kMaxLanes * 3] = {}, out[kMaxLanes] = {}, g[kMaxLanes * 3] = {};
+  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+  fn(i, in, out, grad ? g : nullptr);
+  std::memcpy(value + i, out, rest * sizeof(float));
+  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
+}
+
+// The scalar evaluation of one sample (the lane-by-lane path).
+template <int D>
+HWY_INLINE void scalar_sample(const wavelet<D>& w, const sample_input<D>& s, float* value,
+                              float* grad) {
+  if (grad) {
+    const value_gradient<float, D> r = w.template sample_value_and_gradient<float>(s);
+    *value = r.value;
+    for (int a = 0; a < D; ++a) grad[a] = r.gradient[a];
+  } else {
+    *value = w.template sample_value<float>(s);
+  }
+}
+
+// Whether a sample's plan is the vectorised kind: finite position, no projection, no
+// widening, not "everything".
+template <int D>
+HWY_INLINE bool plain_plan(const wavelet<D>& w, const typename wavelet<D>::plan& pl) {
+  if (pl.everything || pl.project) return false;
+  for (int b = 0; b < w.band_count(); ++b)
+    for (int a = 0; a < 3; ++a)
+      if (pl.widen[b][a] != 1.0) return false;
+  return true;
+}
+
+}  // namespace wavelet_simd
+
+// Wavelet noise at n interleaved points; values into value[n], interleaved
+// gradients into grad[D n] unless grad is null.
+template <int D>
+void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float* value,
+                    float* grad) {
+  namespace ws = wavelet_simd;
+  if (w.parameters().variant_overlap > 0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      sample_input<D> s;
+      for (int a = 0; a < D; ++a) s.position[a] = static_cast<double>(pts[i * D + a]);
+      ws::scalar_sample<D>(w, s, value + i, grad ? grad + i * D : nullptr);
+    }
+    return;
+  }
+  const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
+  const std::size_t lanes = hn::Lanes(ws::DF());
+  double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
+  for (int b = 0; b < w.band_count(); ++b)
+    for (std::size_t l = 0; l < lanes; ++l) weight[b][l] = pl.weight[b];
+  for (std::size_t l = 0; l < lanes; ++l) scale[l] = pl.scale;
+  ws::for_each_vector<D>(n, pts, value, grad,
+                         [&](std::size_t first, const float* p, float* v, float* g) {
+                           // Non-finite lanes: the scalar code (its NaN, exactly).
+                           bool finite = true;
+                           for (std::size_t l = 0; l < lanes * D; ++l)
+                             finite = finite && std::isfinite(p[l]);
+                           if (g)
+                             ws::points_vector<true, D>(w, p, weight, scale, v, g);
+                           else
+                             ws::points_vector<false, D>(w, p, weight, scale, v, nullptr);
+                           if (finite) return;
+                           for (std::size_t l = 0; l < lanes && first + l < n; ++l) {
+                             sample_input<D> s;
+                             bool lane_finite = true;
+                             for (int a = 0; a < D; ++a) {
+                               s.position[a] = static_cast<double>(p[l * D + a]);
+                               lane_finite = lane_finite && std::isfinite(s.position[a]);
+                             }
+                             if (!lane_finite)
+                               ws::scalar_sample<D>(w, s, v + l, g ? g + l * D : nullptr);
+                           }
+                         });
+}
+
+// Samples with footprints and normals (core/samples.hpp).
+template <int D>
+void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, float* grad) {
+  namespace ws = wavelet_simd;
+  const std::size_t n = s.size(), lanes = hn::Lanes(ws::DF());
+  if (w.parameters().variant_overlap > 0) {
+    for (std::size_t i = 0; i < n; ++i)
+      ws::scalar_sample<D>(w, s.at(i), value + i, grad ? grad + i * D : nullptr);
+    return;
+  }
+  const float* pts = reinterpret_cast<const float*>(s.positions.data());
+  double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
+  bool special[perlin_simd::kMaxLanes];
+  ws::for_each_vector<D>(
+      n, pts, value, grad, [&](std::size_t first, const float* p, float* v, float* g) {
+        bool any_plain = false;
+        HWY_ALIGN float pv[perlin_simd::kMaxLanes * 3] = {};
+        for (std::size_t l = 0; l < lanes; ++l) {
+          special[l] = true;
+          if (first + l >= n) continue;
+          const sample_input<D> in = s.at(first + l);
+          bool finite = true;
+          for (int a = 0; a < D; ++a) finite = finite && std::isfinite(in.position[a]);
+          const typename wavelet<D>::plan pl = w.make_plan(in);
+          special[l] = !finite || !ws::plain_plan<D>(w, pl);
+          for (int b = 0; b < w.band_count(); ++b) weight[b][l] = special[l] ? 0.0 : pl.weight[b];
+          scale[l] = special[l] ? 0.0 : pl.scale;
+          if (!special[l]) {
+            any_plain = true;
+            for (int a = 0; a < D; ++a) pv[l * D + a] = p[l * D + a];
+          }
+        }
+        if (any_plain) {
+          if (g)
+            ws::points_vector<true, D>(w, pv, weight, scale, v, g);
+          else
+            ws::points_vector<false, D>(w, pv, weight, scale, v, nullptr);
+        }
+        for (std::size_t l = 0; l < lanes && first + l < n; ++l)
+          if (special[l]) ws::scalar_sample<D>(w, s.at(first + l), v + l, g ? g + l * D : nullptr);
+      });
+}
+
+namespace wavelet_simd {
+
+// ---- Grids: per band, the x axis split once per column (lattice_split<float> in
+// double, as scalar evaluation does), y once per row, z once per slice; the
+// contraction follows the separable order (file comment).
+struct column_table {
+  std::vector<std::int32_t> idx[3];  // wrapped tap cells
+  std::vector<float> w[3], dw[3];
+  std::vector<char> needed;  // x cells some column reads
+  std::size_t padded = 0;
+};
+
+template <bool kGradient>
+column_table make_columns(std::size_t nx, int n, std::uint32_t period, double freq, double off,
+                          double origin, double step) {
+  column_table t;
+  const std::size_t lanes = hn::Lanes(DF());
+  t.padded = (nx + lanes - 1) / lanes * lanes;
+  for (int j = 0; j < 3; ++j) {
+    t.idx[j].assign(t.padded, 0);
+    t.w[j].assign(t.padded, 0.0f);
+    if (kGradient) t.dw[j].assign(t.padded, 0.0f);
+  }
+  t.needed.assign(static_cast<std::size_t>(n), 0);
+  for (std::size_t i = 0; i < nx; ++i) {
+    double x = (origin + step * static_cast<double>(i)) * freq;
+    if (!std::isfinite(x)) x = 0.0;  // as wavelet::band::position for finite input
+    const lattice_coord<float> c = lattice_split<float>(x + off, period);
+    detail::wavelet_axis<float> ax;
+    detail::wavelet_axis_plain<float, kGradient>(c.f, ax);
+    for (int j = 0; j < 3; ++j) {
+      const int cell =
+          static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % static_cast<std::uint32_t>(n));
+      t.idx[j][i] = cell;
+      t.needed[static_cast<std::size_t>(cell)] = 1;
+      t.w[j][i] = ax.w[j];
+      if (kGradient) t.dw[j][i] = ax.dw[j];
+    }
+  }
+  return t;
+}
+
+// One row or slice coordinate of a band: three wrapped cells and their weights.
+struct line_axis {
+  int cell[3];
+  detail::wavelet_axis<float> ax;
+};
+template <bool kGradient>
+line_axis make_line(int n, std::uint32_t period, double freq, double off, double coordinate) {
+  line_axis r;
+  double x = coordinate * freq;
+  if (!std::isfinite(x)) x = 0.0;
+  const lattice_coord<float> c = lattice_split<float>(x + off, period);
+  detail::wavelet_axis_plain<float, kGradient>(c.f, r.ax);
+  for (int j = 0; j < 3; ++j)
+    r.cell[j] =
+        static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % static_cast<std::uint32_t>(n));
+  return r;
+}
+
+template <bool kGradient, int D>
+void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* grad) {
+  const DF df;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const int n = w.parameters().tile_size;
+  const std::size_t un = static_cast<std::size_t>(n);
+  const std::uint32_t period = w.split_period();
+  const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
+  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  const float* tile = w.tile().coefficients();
+  std::vector<int> bands;
+  for (int b = 0; b < w.band_count(); ++b)
+    if (pl.weight[b] != 0.0) bands.push_back(b);
+  const vec<double, D> zero{};
+  std::vector<column_table> cols;
+  for (int b : bands)
+    cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
+                                           w.band_position(b, zero)[0], g.origin[0], g.step[0]));
+  const std::size_t padded = cols.empty() ? nx : cols[0].padded;
+  // Per band: S (3D: the z contraction per (x, y) cell, and its z derivative) and T
+  // (the row's contraction per x cell: value, d/dy, d/dz).
+  std::vector<std::vector<float>> S(bands.size()), Sz(bands.size());
+  std::vector<float> T(un), Ty(un), Tz(un);
+  std::vector<float> acc(padded), gacc[3];
+  for (int a = 0; a < D; ++a) gacc[a].assign(kGradient ? padded : 0, 0.0f);
+  std::vector<std::vector<char>> yneeded(bands.size());
+  if constexpr (D == 3) {
+    for (std::size_t q = 0; q < bands.size(); ++q) {
+      const int b = bands[q];
+      S[q].assign(un * un, 0.0f);
+      if (kGradient) Sz[q].assign(un * un, 0.0f);
+      yneeded[q].assign(un, 0);
+      for (std::size_t j = 0; j < ny; ++j) {
+        const line_axis y =
+            make_line<false>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
+                             g.origin[1] + g.step[1] * static_cast<double>(j));
+        for (int c : y.cell) yneeded[q][static_cast<std::size_t>(c)] = 1;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < nz; ++k) {
+    if constexpr (D == 3) {
+      for (std::size_t q = 0; q < bands.size(); ++q) {
+        const int b = bands[q];
+        const line_axis z =
+            make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[2],
+                                 g.origin[2] + g.step[2] * static_cast<double>(k));
+        for (std::size_t yc = 0; yc < un; ++yc) {
+          if (!yneeded[q][yc]) continue;
+          for (std::size_t xc = 0; xc < un; ++xc) {
+            if (!cols[q].needed[xc]) continue;
+            float s = 0, sz = 0;
+            for (int c = 0; c < 3; ++c) {
+              const float v = tile[xc + un * (yc + un * static_cast<std::size_t>(z.cell[c]))];
+              s += z.ax.w[c] * v;
+              if (kGradient) sz += z.ax.dw[c] * v;
+            }
+            S[q][yc * un + xc] = s;
+            if (kGradient) Sz[q][yc * un + xc] = sz;
+          }
+        }
+      }
+    }
+    for (std::size_t j = 0; j < ny; ++j) {
+      std::fill(acc.begin(), acc.end(), 0.0f);
+      for (int a = 0; a < D; ++a) std::fill(gacc[a].begin(), gacc[a].end(), 0.0f);
+      for (std::size_t q = 0; q < bands.size(); ++q) {
+        const int b = bands[q];
+        const line_axis y =
+            make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
+                                 g.origin[1] + g.step[1] * static_cast<double>(j));
+        // T(x) = sum_b wy_b S(x, y_b) (2D: S(x, y) is the coefficient itself).
+        for (std::size_t xc = 0; xc < un; ++xc) {
+          if (!cols[q].needed[xc]) continue;
+          float t = 0, ty = 0, tz = 0;
+          for (int bb = 0; bb < 3; ++bb) {
+            const std::size_t yc = static_cast<std::size_t>(y.cell[bb]);
+            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + un * yc];
+            t += y.ax.w[bb] * s;
+            if (kGradient) {
+              ty += y.ax.dw[bb] * s;
+              if (D == 3) tz += y.ax.w[bb] * Sz[q][yc * un + xc];
+            }
+          }
+          T[xc] = t;
+          if (kGradient) {
+            Ty[xc] = ty;
+            Tz[xc] = tz;
+          }
+        }
+        const float wb = static_cast<float>(pl.weight[b]);
+        const float chain = static_cast<float>(pl.weight[b] * w.band_frequency(b));
+        const column_table& ct = cols[q];
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          VF v = hn::Zero(df), gx = hn::Zero(df), gy = hn::Zero(df), gz = hn::Zero(df);
+          for (int a = 0; a < 3; ++a) {
+            const VI idx = hn::LoadU(di, ct.idx[a].data() + i);
+            const VF wa = hn::LoadU(df, ct.w[a].data() + i);
+            const VF t = hn::GatherIndex(df, T.data(), idx);
+            v = mul_add(wa, t, v);
+            if constexpr (kGradient) {
+              gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
+              gy = mul_add(wa, hn::GatherIndex(df, Ty.data(), idx), gy);
+              if (D == 3) gz = mul_add(wa, hn::GatherIndex(df, Tz.data(), idx), gz);
+            }
+          }
+          hn::StoreU(mul_add(hn::Set(df, wb), v, hn::LoadU(df, acc.data() + i)), df,
+                     acc.data() + i);
+          if constexpr (kGradient) {
+            const VF cv = hn::Set(df, chain);
+            const VF gs[3] = {gx, gy, gz};
+            for (int a = 0; a < D; ++a)
+              hn::StoreU(mul_add(cv, gs[a], hn::LoadU(df, gacc[a].data() + i)), df,
+                         gacc[a].data() + i);
+          }
+        }
+      }
+      // Scale and remap, as wavelet::eval.
+      const std::size_t row = k * ny + j;
+      float* out = value + row * nx;
+      float* gout = kGradient ? grad + row * nx * D : nullptr;
+      const float scale = static_cast<float>(pl.scale);
+      const auto& prm = w.parameters();
+      for (std::size_t i = 0; i < nx; ++i) {
+        float v = acc[i] * scale;
+        float gr[3];
+        for (int a = 0; a < D; ++a) gr[a] = kGradient ? gacc[a][i] * scale : 0.0f;
+        if (prm.distribution == wavelet_distribution::gaussian) {
+          const float gs = static_cast<float>(prm.gaussian_scale);
+          v = v * gs;
+          for (int a = 0; a < D; ++a) gr[a] = gr[a] * gs;
+        } else {
+          float dv = 1.0f;
+          w.template remap<float>(v, kGradient ? &dv : nullptr);
+          for (int a = 0; a < D; ++a) gr[a] = gr[a] * dv;
+        }
+        out[i] = v;
+        if (kGradient)
+          for (int a = 0; a < D; ++a) gout[i * D + a] = gr[a];
+      }
+    }
+  }
+}
+
+}  // namespace wavelet_simd
+
+// Wavelet noise on a uniform grid (C order, i fastest); interleaved gradients unless
+// grad is null.
+template <int D>
+void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* grad) {
+  if (w.parameters().variant_overlap > 0) {
+    const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+    std::size_t idx = 0;
+    for (std::size_t k = 0; k < nz; ++k)
+      for (std::size_t j = 0; j < ny; ++j)
+        for (std::size_t i = 0; i < nx; ++i, ++idx) {
+          std::array<std::size_t, D> ijk{};
+          ijk[0] = i;
+          ijk[1] = j;
+          if constexpr (D == 3) ijk[D - 1] = k;
+          sample_input<D> s;
+          s.position = g.position(ijk);
+          wavelet_simd::scalar_sample<D>(w, s, value + idx, grad ? grad + idx * D : nullptr);
+        }
+    return;
+  }
+  if (grad)
+    wavelet_simd::wavelet_grid<true, D>(w, g, value, grad);
+  else
+    wavelet_simd::wavelet_grid<false, D>(w, g, value, nullptr);
+}
+
+inline void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n, float* value,
+                            float* grad) {
+  wavelet_points<2>(w, xy, n, value, grad);
+}
+inline void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n, float* value,
+                            float* grad) {
+  wavelet_points<3>(w, xyz, n, value, grad);
+}
+inline void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value, float* grad) {
+  wavelet_grid<2>(w, g, value, grad);
+}
+inline void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value, float* grad) {
+  wavelet_grid<3>(w, g, value, grad);
+}
+inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value, float* grad) {
+  wavelet_samples<2>(w, s, value, grad);
+}
+inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
+  wavelet_samples<3>(w, s, value, grad);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_WAVELET_INL_H_ toggle
+// ---- end hush/simd/wavelet-inl.h
 #endif
 
 namespace hush {
@@ -5867,6 +8331,20 @@ HUSH_SIMD_ENTRY void fractal2_points(const fractal<perlin<2>>& fr, const float* 
                                      float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
                                      float* value, float* grad);
+// Wavelet noise (hush/simd/wavelet-inl.h): points and gradients interleaved as above;
+// samples as hush::samples (footprints, normals).
+HUSH_SIMD_ENTRY void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n,
+                                     float* value, float* grad);
+HUSH_SIMD_ENTRY void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n,
+                                     float* value, float* grad);
+HUSH_SIMD_ENTRY void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value,
+                                      float* grad);
+HUSH_SIMD_ENTRY void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value,
+                                      float* grad);
 HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g,
                                    std::size_t first, std::size_t count, float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g,
@@ -5917,6 +8395,26 @@ inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::s
 }
 inline void coherent_pass(const detail::coherent_pass_job<float>& job) {
   HWY_STATIC_DISPATCH(coherent_pass)(job);
+}
+inline void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n, float* value,
+                            float* grad) {
+  HWY_STATIC_DISPATCH(wavelet2_points)(w, xy, n, value, grad);
+}
+inline void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n, float* value,
+                            float* grad) {
+  HWY_STATIC_DISPATCH(wavelet3_points)(w, xyz, n, value, grad);
+}
+inline void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(wavelet2_grid)(w, g, value, grad);
+}
+inline void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(wavelet3_grid)(w, g, value, grad);
+}
+inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(wavelet2_samples)(w, s, value, grad);
+}
+inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -5991,6 +8489,38 @@ struct simd_kernel<fractal<perlin<D>>> {
   static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
                    vec<float, D>* grad) {
     grid_slab(fr, gr, 0, gr.size[D - 1], out, grad);
+  }
+};
+
+// Wavelet noise: points, grids and samples (footprints, normals) have kernels.
+template <int D>
+struct simd_kernel<wavelet<D>> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void points(const wavelet<D>& w, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::wavelet2_points(w, p, count, out, g);
+    else
+      simd::wavelet3_points(w, p, count, out, g);
+  }
+  static void grid(const wavelet<D>& w, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::wavelet2_grid(w, gr, out, g);
+    else
+      simd::wavelet3_grid(w, gr, out, g);
+  }
+  static void samples(const wavelet<D>& w, const hush::samples<D>& s, float* out,
+                      vec<float, D>* grad) {
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::wavelet2_samples(w, s, out, g);
+    else
+      simd::wavelet3_samples(w, s, out, g);
   }
 };
 

@@ -737,3 +737,86 @@ TEST_CASE("bench --filter matching no case and an uncreatable output fail before
   CHECK(unwritable.err.find(path) != std::string::npos);
   CHECK(unwritable.out.empty());  // nothing was measured
 }
+
+// ---- `hush sample wavelet` (examples/hush/noise_wavelet.cpp).
+
+TEST_CASE("sample wavelet 2D with --bands equals hush::wavelet<2>::value<float>, bit for bit") {
+  const fs::path dir = scratch("wavelet_2d");
+  const fs::path out = dir / "w.npy";
+  const result r =
+      run_hush(std::string("sample wavelet ") + kSampleArgs2d +
+                   " --tile-size 32 --first-band -1 --bands 3 --out '" + out.string() + "'",
+               dir);
+  REQUIRE(r.exit_code == 0);
+  const npy_file f = read_npy(out);
+  hush::wavelet<2>::params prm;
+  prm.seed = 7;
+  prm.tile_size = 32;
+  prm.first_band = -1;
+  prm.weights = {1, 0.5, 0.25};
+  const hush::wavelet<2> w{prm};
+  CHECK(count_mismatches(f, [&](double i, double j, double) {
+          return w.value<float>(hush::dvec2{1.5 + 0.25 * i, -2.0 + 0.25 * j});
+        }) == 0);
+  CHECK(f.values[1] != f.values[2]);
+}
+
+TEST_CASE("sample wavelet 3D with --normal and --footprint is hush::evaluate over samples") {
+  const fs::path dir = scratch("wavelet_3d_samples");
+  const fs::path out = dir / "w.npy";
+  const result r = run_hush(
+      "sample wavelet --dim 3 --size 6x5 --origin 0.5,1,2 --step 0.3 "
+      "--seed 3 --tile-size 16 --weights 1,-0.5 --normal 1,2,0.5 "
+      "--footprint 0.7 --out '" +
+          out.string() + "'",
+      dir);
+  REQUIRE(r.exit_code == 0);
+  const npy_file f = read_npy(out);
+  hush::wavelet<3>::params prm;
+  prm.seed = 3;
+  prm.tile_size = 16;
+  prm.weights = {1, -0.5};
+  const hush::wavelet<3> w{prm};
+  CHECK(count_mismatches(f, [&](double i, double j, double) {
+          const hush::vec3 p{static_cast<float>(0.5 + 0.3 * i), static_cast<float>(1 + 0.3 * j),
+                             2.0f};
+          const hush::vec3 n{1, 2, 0.5f};
+          const auto fp = hush::footprint<3>::isotropic(0.7);
+          hush::samples<3> s;
+          s.positions = hush::span<const hush::vec3>(&p, 1);
+          s.footprints = hush::span<const hush::footprint<3>>(&fp, 1);
+          s.normals = hush::span<const hush::vec3>(&n, 1);
+          float v = 0;
+          hush::evaluate(w, hush::exec::scalar, s, hush::span<float>(&v, 1));
+          return v;
+        }) == 0);
+}
+
+TEST_CASE("sample wavelet refuses bad options with exit 2 naming the option") {
+  const fs::path dir = scratch("wavelet_bad");
+  const std::string o = " --out '" + (dir / "x.npy").string() + "'";
+  struct bad {
+    std::string args, names;
+  };
+  const bad cases[] = {{"--tile-size 17", "--tile-size '17'"},
+                       {"--tile-size 8", "--tile-size '8'"},
+                       {"--normal 0,0,1", "--normal needs --dim 3"},
+                       {"--dim 3 --normal 0,0,0", "--normal '0,0,0'"},
+                       {"--dim 3 --normal 1,x,0", "--normal"},
+                       {"--bands 0", "--bands '0'"},
+                       {"--bands 2 --weights 1,2", "--bands and --weights"},
+                       {"--weights 0,0", "--weights"},
+                       {"--footprint -1", "--footprint '-1'"},
+                       {"--first-band 40", "--first-band '40'"},
+                       {"--variants 99", "--variants '99'"},
+                       {"--widen maybe", "--widen 'maybe'"},
+                       {"--projection fast", "--projection 'fast'"},
+                       {"--distribution table", "--distribution 'table'"}};
+  for (const bad& c : cases) {
+    CAPTURE(c.args);
+    const result r = run_hush("sample wavelet " + c.args + o, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(c.names) != std::string::npos);
+    CHECK(r.err.rfind("hush sample: ", 0) == 0);
+  }
+}

@@ -195,9 +195,8 @@ class footprint {
                        b02 * (b01 * b12 - b11 * b02);
     const double r = std::clamp(det / 2.0, -1.0, 1.0);
     const double phi = std::acos(r) / 3.0;
-    constexpr double kTwoPiOver3 = 2.0943951023931954923;
     const double hi = q + 2.0 * p * std::cos(phi);
-    const double lo = q + 2.0 * p * std::cos(phi + kTwoPiOver3);
+    const double lo = q + 2.0 * p * std::cos(phi + detail::constants::kTwoPiOver3);
     const double mid = 3.0 * q - hi - lo;
     return {lo, mid, hi};
   }

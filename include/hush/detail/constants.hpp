@@ -105,6 +105,9 @@ constexpr double kFootprintMaxWidth = 4294967296.0;
 // exp(-2 pi^2 sigma^2 k^2) = 0.29 at the Nyquist frequency (1/2 cycle per
 // pixel) and 0.0072 at 1 cycle per pixel.
 constexpr double kPixelFilterSigma = 0.5;
+// 2 pi / 3: Smith's trigonometric roots of a symmetric 3x3 matrix's characteristic
+// cubic (footprint<3>::eigenvalues; the GLSL footprint width of wavelet noise).
+constexpr double kTwoPiOver3 = 2.0943951023931954923;
 
 // ---- Poisson sampling (core/rng.hpp).
 // Means below kPoissonInversionLimit use sequential inversion (expected
@@ -127,6 +130,67 @@ constexpr double kHalfLog2Pi = 0.91893853320467274178;
 constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
 constexpr int kLogFactorialTable = 20;
 
+// ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp, wavelet_tile.hpp,
+// core/bspline.hpp). The basis is the uniform quadratic B-spline B(u), centred (support
+// [-3/2, 3/2]): the density of a sum of three independent uniforms on [-1/2, 1/2]. Every
+// kernel of the noise is such a density (core/bspline.hpp derives their polynomial
+// pieces from the widths below, so no polynomial coefficient is typed anywhere).
+constexpr int kBsplineUniforms = 3;  // B = box * box * box (quadratic B-spline)
+// Coefficient i of a band sits at y = i; the three taps of y start at the cell
+// floor(y - kWaveletCellOffset), at distances f + kWaveletCellOffset - j (f the fraction).
+constexpr double kWaveletCellOffset = 0.5;
+// Refinement (Cook & DeRose eq. 10, 13): B(x/2 - 1/4) = sum_k p_k B(x - k), k = -1 ... 2,
+// p_k = binom(3, k + 1) / 4: the half-resolution basis in terms of the full-resolution one.
+constexpr int kWaveletRefineFirst = -1;
+constexpr double kWaveletRefine[4] = {0.25, 0.75, 0.75, 0.25};
+// The analysis (least-squares downsampling) filter a_d is infinite; hush keeps
+// |d| <= kWaveletAnalysisRadius, where |a_d| < 2e-18 (it decays as 0.656^|d|), and
+// periodises it to the tile (wavelet_tile.hpp derives it from the B-spline Gram matrix).
+constexpr int kWaveletAnalysisRadius = 100;
+// Tile sizes: even (the half-resolution tile must have a whole number of coefficients,
+// paper footnote 4) and at least 16 (the widest evaluation kernel spans 9 coefficients;
+// the even/odd correction adds a copy shifted by about half a tile, which must lie beyond
+// that reach). At most 2^22 coefficients (16 MiB as float; the build holds two double
+// copies).
+constexpr int kWaveletMinTile = 16;
+constexpr int kWaveletMaxTile2 = 2048;
+constexpr int kWaveletMaxTile3 = 128;
+// Bands: frequencies 2^b, b in [kWaveletMinBand, kWaveletMaxBand], at most
+// kWaveletMaxBands of them in one noise.
+constexpr int kWaveletMaxBands = 32;
+constexpr int kWaveletMinBand = -32;
+constexpr int kWaveletMaxBand = 32;
+// Projection onto a surface (paper sec. 3.7, eq. 32): the band is averaged along the
+// normal with the B-spline at half its resolution, i.e. stretched by this factor.
+constexpr double kWaveletProjectionStretch = 2.0;
+// Tile variants (sec. 4.3): a cell's permutation is ((h >> 16) * D!) >> 16 of its hash h
+// (uniform to 1 part in 2^16), its reflections the low D bits of h.
+constexpr unsigned kWaveletVariantShift = 16;
+// Basis widening (paper sec. 4.1): a band whose coefficient spacing spans c pixels is
+// widened by s = sqrt(1 + max(0, c^2 - c0^2)) with c0 = kWaveletWidenStart (the paper's
+// j = -2), so that from c0 on its variance grows like that of B convolved with the
+// pixel filter (hush's Gaussian of sigma = kPixelFilterSigma pixels).
+constexpr double kWaveletWidenStart = 0.5;
+// Widening stops growing at c = kWaveletWidenEnd pixels, where the band has faded out.
+constexpr double kWaveletWidenEnd = 2.0;
+// Exact projection along a normal that is not axis-aligned: the line integral is split
+// where the integrand's polynomial pieces change and each piece is integrated by
+// 5-point Gauss-Legendre quadrature (exact for polynomials of degree <= 9; the
+// integrand has degree <= 8). Nodes on [-1, 1] and weights, 20 digits.
+constexpr int kGaussLegendreOrder = 5;
+// Knots of that line integral: B2's 4, plus per axis a and knot family (at most 4
+// with widening) the crossings of 6 |u_a| + 1 planes: at most 4 + 4 (6 sqrt(3) + 3) = 57.
+constexpr int kWaveletMaxKnots = 128;
+constexpr double kGaussLegendreNode[5] = {-0.90617984593866399280, -0.53846931010568309104, 0.0,
+                                          0.53846931010568309104, 0.90617984593866399280};
+constexpr double kGaussLegendreWeight[5] = {0.23692688505618908751, 0.47862867049936646804,
+                                            0.56888888888888888889, 0.47862867049936646804,
+                                            0.23692688505618908751};
+// erf(x) on the GPU (GLSL has no erf): Abramowitz & Stegun 7.1.26,
+// erf(x) = 1 - (a1 t + ... + a5 t^5) exp(-x^2), t = 1 / (1 + p x), x >= 0; |error| <= 1.5e-7.
+constexpr double kErfP = 0.3275911;
+constexpr double kErfA[5] = {0.254829592, -0.284496736, 1.421413741, -1.453152027, 1.061405429};
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;  // 1 / sqrt(2 pi): the normal density
 // ---- Coherent noise (Kass & Pesare 2011, "Coherent Noise for Non-Photorealistic
 // Rendering"; include/hush/coherent.hpp, docs/coherent.md).
 // White noise: w = kCoherentWhiteScale * (2 (h >> kCoherentWhiteShift) + 1 - 2^24) for a

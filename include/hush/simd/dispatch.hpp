@@ -31,6 +31,7 @@
 #include "hush/detail/coherent_kernel.hpp"
 #include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
+#include "hush/wavelet.hpp"
 
 namespace hush {
 namespace detail {
@@ -59,6 +60,7 @@ struct simd_kernel {
 
 #include "hush/simd/coherent-inl.h"
 #include "hush/simd/perlin-inl.h"
+#include "hush/simd/wavelet-inl.h"
 #endif
 
 namespace hush {
@@ -88,6 +90,20 @@ HUSH_SIMD_ENTRY void fractal2_points(const fractal<perlin<2>>& fr, const float* 
                                      float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
                                      float* value, float* grad);
+// Wavelet noise (hush/simd/wavelet-inl.h): points and gradients interleaved as above;
+// samples as hush::samples (footprints, normals).
+HUSH_SIMD_ENTRY void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n,
+                                     float* value, float* grad);
+HUSH_SIMD_ENTRY void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n,
+                                     float* value, float* grad);
+HUSH_SIMD_ENTRY void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value,
+                                      float* grad);
+HUSH_SIMD_ENTRY void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value,
+                                      float* grad);
 HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g,
                                    std::size_t first, std::size_t count, float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g,
@@ -138,6 +154,26 @@ inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::s
 }
 inline void coherent_pass(const detail::coherent_pass_job<float>& job) {
   HWY_STATIC_DISPATCH(coherent_pass)(job);
+}
+inline void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n, float* value,
+                            float* grad) {
+  HWY_STATIC_DISPATCH(wavelet2_points)(w, xy, n, value, grad);
+}
+inline void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n, float* value,
+                            float* grad) {
+  HWY_STATIC_DISPATCH(wavelet3_points)(w, xyz, n, value, grad);
+}
+inline void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(wavelet2_grid)(w, g, value, grad);
+}
+inline void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(wavelet3_grid)(w, g, value, grad);
+}
+inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(wavelet2_samples)(w, s, value, grad);
+}
+inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -212,6 +248,38 @@ struct simd_kernel<fractal<perlin<D>>> {
   static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
                    vec<float, D>* grad) {
     grid_slab(fr, gr, 0, gr.size[D - 1], out, grad);
+  }
+};
+
+// Wavelet noise: points, grids and samples (footprints, normals) have kernels.
+template <int D>
+struct simd_kernel<wavelet<D>> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void points(const wavelet<D>& w, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::wavelet2_points(w, p, count, out, g);
+    else
+      simd::wavelet3_points(w, p, count, out, g);
+  }
+  static void grid(const wavelet<D>& w, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::wavelet2_grid(w, gr, out, g);
+    else
+      simd::wavelet3_grid(w, gr, out, g);
+  }
+  static void samples(const wavelet<D>& w, const hush::samples<D>& s, float* out,
+                      vec<float, D>* grad) {
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::wavelet2_samples(w, s, out, g);
+    else
+      simd::wavelet3_samples(w, s, out, g);
   }
 };
 

@@ -20,6 +20,7 @@
 
 #include "hush/simd/coherent-inl.h"
 #include "hush/simd/perlin-inl.h"
+#include "hush/simd/wavelet-inl.h"
 
 #if HWY_ONCE
 #ifndef HUSH_SIMD_DISPATCH_IMPL_ONCE
@@ -42,6 +43,12 @@ HWY_EXPORT(fractal2_points);
 HWY_EXPORT(fractal3_points);
 HWY_EXPORT(fractal2_grid);
 HWY_EXPORT(fractal3_grid);
+HWY_EXPORT(wavelet2_points);
+HWY_EXPORT(wavelet3_points);
+HWY_EXPORT(wavelet2_grid);
+HWY_EXPORT(wavelet3_grid);
+HWY_EXPORT(wavelet2_samples);
+HWY_EXPORT(wavelet3_samples);
 HWY_EXPORT(coherent_pass);
 
 namespace simd {
@@ -82,6 +89,27 @@ void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t f
 
 void coherent_pass(const detail::coherent_pass_job<float>& job) {
   HWY_DYNAMIC_DISPATCH(coherent_pass)(job);
+}
+
+void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n, float* value,
+                     float* grad) {
+  HWY_DYNAMIC_DISPATCH(wavelet2_points)(w, xy, n, value, grad);
+}
+void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n, float* value,
+                     float* grad) {
+  HWY_DYNAMIC_DISPATCH(wavelet3_points)(w, xyz, n, value, grad);
+}
+void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(wavelet2_grid)(w, g, value, grad);
+}
+void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(wavelet3_grid)(w, g, value, grad);
+}
+void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(wavelet2_samples)(w, s, value, grad);
+}
+void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
 }
 
 std::vector<std::string> compiled_targets() {

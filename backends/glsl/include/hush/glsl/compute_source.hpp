@@ -27,6 +27,8 @@
 // and the noise sees `matD fp` (S, symmetric; zero when absent), `vec3 nrm`
 // (zero when absent) and `bool has_nrm`, besides `p`:
 // noise_program<Noise>::sample_call(bool gradient) is its expression.
+// A noise's own data (noise_program::preamble, data_buffers) sits at SSBO bindings
+// 4 and up, declared before the library.
 // Banded noises (noise_program<Noise>::banded, e.g. fractal sums) read, for
 // `uniform uint hush_bands` bands, band b's triples instead:
 //   points: binding 0 `uint hush_axis[]`, per point, per band, per axis the
@@ -73,11 +75,13 @@ namespace detail {
 template <class Noise>
 std::string runner_preamble(batch_layout layout, bool gradient) {
   using np = noise_program<Noise>;
+  std::string data;  // the noise's data buffers and macros, before the library reads them
+  if constexpr (has_preamble<np>::value) data = np::preamble();
   return "#version 430 core\n// hush " HUSH_VERSION_STRING " compute runner: " +
          std::string(np::name) + (gradient ? ", values and gradients" : ", values") + ", " +
          layout_name(layout) +
          " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
-         ") in;\n" + library() + "\n// ---- Runner.\n" + np::uniforms();
+         ") in;\n" + data + library() + "\n// ---- Runner.\n" + np::uniforms();
 }
 
 // GLSL: t[a] = offset of axis a's (i0, i1, fraction bits) triple in the axis
@@ -168,7 +172,11 @@ std::string banded_source(batch_layout layout, bool gradient) {
        "void main() {\n"
        "  uint n = hush_first + gl_GlobalInvocationID.x;\n"
        "  if (n >= hush_count) return;\n";
-  if (layout == batch_layout::samples) s += read_sample_inputs(D);
+  if (layout == batch_layout::samples)
+    s += read_sample_inputs(D);
+  else  // points and grids: no footprint, no normal (band programs may read them)
+    s += "  mat" + d + " fp = mat" + d +
+         "(0.0);\n  vec3 nrm = vec3(0.0);\n  bool has_nrm = false;\n";
   if (layout != batch_layout::grid) {
     // Triple of axis a of band b at t[a] + band_stride * b.
     s += "  uint band_stride = 3u * " + d +

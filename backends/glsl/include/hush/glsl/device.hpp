@@ -15,7 +15,9 @@
 // larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE, and reads the results back
 // (synchronously). It leaves the current program and the generic
 // GL_SHADER_STORAGE_BUFFER binding as it found them; it rebinds the indexed
-// SSBO bindings 0 to 3.
+// SSBO bindings 0 to 3, and the bindings of the noises' own data (4 and up:
+// noise_program::data_buffers, e.g. wavelet tiles), which it keeps uploaded
+// while their owner stays the same (data_uploads() counts the uploads).
 //
 // Accuracy (tests/glsl/glsl_test.cpp; see also hush/glsl/library.hpp):
 //  - points: the float position as given, split exactly on the GPU; grids: each
@@ -123,6 +125,7 @@ class device {
     gl_->GetIntegeri_v(detail::kGlMaxComputeWorkGroupCount, 0, &groups);
     long long block = 0;
     gl_->GetInteger64v(detail::kGlMaxShaderStorageBlockSize, &block);
+    gl_->GetIntegerv(detail::kGlMaxShaderStorageBufferBindings, &max_bindings_);
     gl_->check("hush::glsl::device: querying limits");
     max_groups_ = static_cast<std::size_t>(groups);
     if (opt.max_groups_per_dispatch != 0)
@@ -139,6 +142,7 @@ class device {
   ~device() {
     programs_.clear();
     gl_->DeleteBuffers(kBuffers, buffers_);
+    for (const auto& d : data_) gl_->DeleteBuffers(1, &d.second.buffer);
   }
 
   // GL_RENDERER and GL_VERSION of the context, e.g. "llvmpipe (LLVM 15.0.6,
@@ -149,6 +153,9 @@ class device {
   // Work groups per dispatch and bytes per buffer this device uses.
   std::size_t max_groups_per_dispatch() const { return max_groups_; }
   std::size_t max_buffer_bytes() const { return max_bytes_; }
+  // Uploads of noise data buffers so far (noise_program::data_buffers): a tile shared
+  // by many noises is uploaded once per device.
+  std::size_t data_uploads() const { return data_uploads_; }
   // The loaded GL functions (for code that adds its own shaders to the context).
   const detail::gl_api& gl() const { return *gl_; }
 
@@ -425,8 +432,39 @@ class device {
     const detail::gl_uint id = it->second.id();
     gl_->UseProgram(id);
     np::set_uniforms(*gl_, id, noise);
+    if constexpr (has_data_buffers<Noise>::value)
+      for (const data_buffer& b : np::data_buffers(noise)) bind_data(b);
     gl_->Uniform1ui(gl_->GetUniformLocation(id, "hush_first"), 0u);
     return id;
+  }
+
+  // Binds a noise's data buffer, uploading it unless this binding already holds the
+  // same owner's data. Throws hush::invalid_argument when the binding is not one the
+  // noises may use on this context or the data exceeds the SSBO size limit.
+  void bind_data(const data_buffer& b) {
+    const char* where = "hush::glsl::device";
+    if (b.binding < kFirstDataBinding || b.binding >= static_cast<unsigned>(max_bindings_))
+      hush::detail::throw_out_of_range(
+          where, "data_buffer.binding", b.binding,
+          ("4 ... GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS - 1 = " + std::to_string(max_bindings_ - 1))
+              .c_str());
+    if (b.bytes > max_bytes_)
+      hush::detail::throw_out_of_range(
+          where, "data_buffer.bytes", b.bytes,
+          ("at most " + std::to_string(max_bytes_) + " (this device's SSBO size limit)").c_str());
+    data_slot& slot = data_[b.binding];
+    if (slot.buffer == 0) gl_->GenBuffers(1, &slot.buffer);
+    const bool same = !slot.owner.expired() && !slot.owner.owner_before(b.owner) &&
+                      !b.owner.owner_before(slot.owner) && slot.bytes == b.bytes;
+    gl_->BindBuffer(detail::kGlShaderStorageBuffer, slot.buffer);
+    if (!same) {
+      gl_->BufferData(detail::kGlShaderStorageBuffer, static_cast<detail::gl_sizeiptr>(b.bytes),
+                      b.data, detail::kGlStaticDraw);
+      slot.owner = b.owner;
+      slot.bytes = b.bytes;
+      ++data_uploads_;
+    }
+    gl_->BindBufferBase(detail::kGlShaderStorageBuffer, b.binding, slot.buffer);
   }
 
   // Samples per batch: each buffer holds at most max_bytes_, and the
@@ -492,6 +530,15 @@ class device {
   static constexpr int kBuffers = 4;
   detail::gl_uint buffers_[kBuffers] = {0, 0, 0, 0};
   std::map<std::string, detail::gl_program> programs_;
+  // Noise data buffers (bindings >= 4): the GL buffer and whose data it holds.
+  struct data_slot {
+    detail::gl_uint buffer = 0;
+    std::weak_ptr<const void> owner;
+    std::size_t bytes = 0;
+  };
+  std::map<unsigned, data_slot> data_;
+  std::size_t data_uploads_ = 0;
+  detail::gl_int max_bindings_ = 0;
   std::vector<float> scratch_;
 };
 

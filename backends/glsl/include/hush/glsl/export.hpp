@@ -16,6 +16,7 @@
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/perlin.hpp"
+#include "hush/wavelet.hpp"
 
 namespace hush {
 namespace glsl {
@@ -41,7 +42,8 @@ void add_runners(std::vector<export_file>& files) {
 }  // namespace detail
 
 // hush_noise.glsl, then hush_<noise>_<points|grid>[_gradient].comp for every
-// noise with a GLSL program (perlin2, perlin3, fractal_perlin2, fractal_perlin3), and
+// noise with a GLSL program (perlin2, perlin3, fractal_perlin2, fractal_perlin3,
+// wavelet2, wavelet3), and
 // hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent.hpp).
 inline std::vector<export_file> export_files() {
   std::vector<export_file> files;
@@ -62,13 +64,19 @@ inline std::vector<export_file> export_files() {
        "// derives the bounds. The *.comp files beside this one are the batch runners of\n"
        "// hush::glsl::device (interface: hush/glsl/compute_source.hpp); the\n"
        "// hush_fractal_perlin* runners (fBm, turbulence) read band coordinates split on\n"
-       "// the CPU (hush::fractal::band_position, hush::lattice_split<float>).\n"
+       "// the CPU (hush::fractal::band_position, hush::lattice_split<float>); so do the\n"
+       "// hush_wavelet* runners (hush::wavelet::band_position), which also read the tile at\n"
+       "// SSBO binding 4 (and variants at 5, the distribution table at 6). The wavelet\n"
+       "// functions of this library exist where the shader defines HUSH_WAVELET_TILE(i)\n"
+       "// before it (hush/glsl/wavelet_glsl.hpp).\n"
        "// Regenerate with the same hush version instead of editing by hand.\n" +
            library()});
   detail::add_runners<perlin<2>>(files);
   detail::add_runners<perlin<3>>(files);
   detail::add_runners<fractal<perlin<2>>>(files);
   detail::add_runners<fractal<perlin<3>>>(files);
+  detail::add_runners<wavelet<2>>(files);
+  detail::add_runners<wavelet<3>>(files);
   files.push_back({"hush_coherent_pass.comp", coherent_source()});
   return files;
 }

@@ -28,6 +28,8 @@
 #include <vector>
 
 #include "hush/config.hpp"
+#include "hush/core/bspline.hpp"
+#include "hush/core/footprint.hpp"
 #include "hush/core/lattice.hpp"
 #include "hush/detail/constants.hpp"
 
@@ -73,6 +75,80 @@ glsl_constant float_table(const char* name, const double (&v)[N], const char* wh
   return c;
 }
 
+// A piecewise kernel of core/bspline.hpp as one flat table, piece after piece,
+// coefficients in ascending powers.
+template <int P, int O>
+glsl_constant kernel_table(const char* name, const hush::detail::piecewise_kernel<P, O>& k,
+                           const char* what) {
+  glsl_constant c{name, glsl_constant::type::f32, true, {}, what};
+  for (int p = 0; p < P; ++p)
+    for (int j = 0; j < O; ++j) c.bits.push_back(float_bits(static_cast<float>(k.c[p][j])));
+  return c;
+}
+
+// Wavelet noise (include/hush/wavelet.hpp, hush/glsl/wavelet_glsl.hpp): its kernels'
+// piece tables and layout, quadrature and erf constants.
+inline std::vector<glsl_constant> wavelet_constants() {
+  namespace c = hush::detail::constants;
+  namespace h = hush::detail;
+  auto u = [](const char* name, int v, const char* what) {
+    return uint_constant(name, static_cast<std::uint32_t>(v), what);
+  };
+  return {
+      kernel_table("HUSH_BSPLINE_PIECES", h::kBspline, "quadratic B-spline B, 3 pieces"),
+      kernel_table("HUSH_BSPLINE_DPIECES", h::kBsplineDerivative, "B', 3 pieces"),
+      kernel_table("HUSH_BSPLINE2_PIECES", h::kBspline2, "B2(u) = B(u / 2) / 2, 6 pieces"),
+      kernel_table("HUSH_BSPLINE2_DPIECES", h::kBspline2Derivative, "B2', 6 pieces"),
+      kernel_table("HUSH_BETA_PIECES", h::kBeta, "beta = B * B2, the exact projection, 9 quintics"),
+      kernel_table("HUSH_BETA_DPIECES", h::kBetaDerivative, "beta', 9 pieces"),
+      u("HUSH_BSPLINE_ORDER", h::kBspline.order, "coefficients per piece of B"),
+      u("HUSH_BSPLINE_PIECE_COUNT", h::kBspline.pieces, "pieces of B (its support)"),
+      u("HUSH_BSPLINE2_PIECE_COUNT", h::kBspline2.pieces, "pieces of B2"),
+      u("HUSH_BETA_ORDER", h::kBeta.order, "coefficients per piece of beta"),
+      u("HUSH_BETA_PIECE_COUNT", h::kBeta.pieces, "pieces of beta"),
+      float_constant("HUSH_BSPLINE_HALF_SUPPORT", h::kBspline.half_support(), "B's half support"),
+      float_constant("HUSH_BSPLINE2_HALF_SUPPORT", h::kBspline2.half_support(),
+                     "B2's half support"),
+      float_constant("HUSH_BETA_HALF_SUPPORT", h::kBeta.half_support(), "beta's half support"),
+      float_constant("HUSH_BETA_FIRST_TAP", h::fixed_kernel_first_tap<h::kBeta.pieces>(),
+                     "first tap of beta along the normal"),
+      u("HUSH_BETA_TAPS", h::fixed_kernel_taps<h::kBeta.pieces>(), "taps of beta"),
+      float_constant("HUSH_BSPLINE2_FIRST_TAP", h::fixed_kernel_first_tap<h::kBspline2.pieces>(),
+                     "first tap of B2 along the normal"),
+      u("HUSH_BSPLINE2_TAPS", h::fixed_kernel_taps<h::kBspline2.pieces>(), "taps of B2"),
+      u("HUSH_WAVELET_MAX_TAPS", h::kWaveletMaxTaps, "most taps of a kernel along one axis"),
+      u("HUSH_WAVELET_MAX_KNOTS", c::kWaveletMaxKnots, "knots of the exact general projection"),
+      uint_constant("HUSH_WAVELET_VARIANT_SHIFT", c::kWaveletVariantShift,
+                    "tile variants: permutation = ((h >> s) * D!) >> s"),
+      uint_constant("HUSH_WAVELET_PERMUTATIONS2", h::wavelet_permutations(2), "2!"),
+      uint_constant("HUSH_WAVELET_PERMUTATIONS3", h::wavelet_permutations(3), "3!"),
+      float_constant("HUSH_WAVELET_CELL_OFFSET", c::kWaveletCellOffset,
+                     "coefficient i sits at y = i; taps start at floor(y - offset)"),
+      float_constant("HUSH_WAVELET_STRETCH", c::kWaveletProjectionStretch,
+                     "projection: B stretched along the normal"),
+      float_constant("HUSH_WAVELET_WIDEN_START", c::kWaveletWidenStart,
+                     "widening starts at this coefficient spacing in pixels"),
+      float_constant("HUSH_WAVELET_WIDEN_END", c::kWaveletWidenEnd,
+                     "widening stops growing at this spacing in pixels"),
+      float_constant("HUSH_FOOTPRINT_MAX_WIDTH", c::kFootprintMaxWidth,
+                     "the widest footprint: filters everything"),
+      float_constant("HUSH_THREE", static_cast<double>(hush::footprint<3>::dimension),
+                     "the dimension of a 3D footprint (Smith's eigenvalue formula)"),
+      {"HUSH_FLOAT_HUGE",
+       glsl_constant::type::f32,
+       false,
+       {float_bits(std::numeric_limits<float>::max())},
+       "the largest float, for open interval ends"},
+      float_constant("HUSH_INV_SQRT2", c::kInvSqrt2, "1 / sqrt(2)"),
+      float_constant("HUSH_INV_SQRT_2PI", c::kInvSqrt2Pi, "1 / sqrt(2 pi), the normal density"),
+      u("HUSH_GAUSS_ORDER", c::kGaussLegendreOrder, "Gauss-Legendre nodes per piece"),
+      float_table("HUSH_GAUSS_NODE", c::kGaussLegendreNode, "Gauss-Legendre nodes on [-1, 1]"),
+      float_table("HUSH_GAUSS_WEIGHT", c::kGaussLegendreWeight, "Gauss-Legendre weights"),
+      float_constant("HUSH_ERF_P", c::kErfP, "erf, Abramowitz & Stegun 7.1.26: p"),
+      float_table("HUSH_ERF_A", c::kErfA, "erf, Abramowitz & Stegun 7.1.26: a1 ... a5"),
+  };
+}
+
 }  // namespace detail
 
 // Every constant of the generated GLSL block, in emission order. Values come
@@ -88,7 +164,7 @@ inline std::vector<glsl_constant> constant_table() {
   using flt = std::numeric_limits<float>;
   const std::uint32_t inf_bits = float_bits(flt::infinity());
   const std::uint32_t mantissa_bits = static_cast<std::uint32_t>(flt::digits - 1);
-  return {
+  std::vector<glsl_constant> table = {
       uint_constant("HUSH_HASH_SHIFT1", c::kHashShift1, "hash32 (lowbias32) first xor-shift"),
       uint_constant("HUSH_HASH_MUL1", c::kHashMul1, "hash32 first multiplier"),
       uint_constant("HUSH_HASH_SHIFT2", c::kHashShift2, "hash32 second xor-shift"),
@@ -144,6 +220,8 @@ inline std::vector<glsl_constant> constant_table() {
       uint_constant("HUSH_FLOAT_QNAN", float_bits(flt::quiet_NaN()),
                     "quiet NaN returned for non-finite input"),
   };
+  for (glsl_constant& k : detail::wavelet_constants()) table.push_back(std::move(k));
+  return table;
 }
 
 // A GLSL literal equal to the constant: `16u` or `0x7feb352du` for uint; for

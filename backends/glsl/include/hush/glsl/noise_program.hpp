@@ -33,14 +33,32 @@
 //   static std::string band_result(bool grad); the result: float or vec(D+1)
 // The runner then splits every band coordinate on the CPU in double
 // (hush::lattice_split<float>) for points and grids alike (compute_source.hpp).
+// A noise whose evaluation reads large precomputed data (wavelet tiles,
+// anisotropic subband tiles) may also provide
+//   static std::string preamble();             GLSL emitted before the function library
+//                                              (e.g. its SSBO declarations and the
+//                                              macros the library's bodies read them by)
+//   static std::vector<data_buffer> data_buffers(const Noise&);
+//                                              the SSBOs the program reads, at bindings
+//                                              >= kFirstDataBinding (0 ... 3 are the
+//                                              runner's): each with its bytes and an
+//                                              owner identity (data_buffer below)
+// hush::glsl::device uploads a data buffer the first time it sees its owner at a
+// binding and keeps it there: evaluating any number of noises that share one
+// tile uploads it once per device; a different owner (another tile, or a new
+// one at a reused address after the old was freed) is uploaded again.
 // The runner validates nothing about a noise: noise objects are valid by construction.
 #ifndef HUSH_GLSL_NOISE_PROGRAM_HPP
 #define HUSH_GLSL_NOISE_PROGRAM_HPP
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "hush/core/hash.hpp"
 #include "hush/fractal.hpp"
@@ -49,6 +67,27 @@
 
 namespace hush {
 namespace glsl {
+
+// The first SSBO binding free for a noise's data (bindings 0 ... 3 are the runner's
+// input, output, footprints and normals; compute_source.hpp).
+constexpr unsigned kFirstDataBinding = 4;
+
+// One SSBO a noise program reads (noise_program::data_buffers): `bytes` bytes at
+// `data`, bound at `binding`. `owner` identifies the data and keeps it alive while
+// the device may still upload it: the device compares owners, never contents.
+struct data_buffer {
+  unsigned binding = kFirstDataBinding;
+  const void* data = nullptr;
+  std::size_t bytes = 0;
+  std::shared_ptr<const void> owner;
+};
+
+// A 16-byte buffer of zeros for a binding a program declares but does not read
+// with these parameters (every declared SSBO must have a buffer bound).
+inline data_buffer unused_data_buffer(unsigned binding) {
+  static const auto zeros = std::make_shared<const std::array<float, 4>>();
+  return {binding, zeros->data(), sizeof(*zeros), zeros};
+}
 
 // Primary template: not a GLSL-capable noise (no specialisation).
 template <class Noise>
@@ -178,6 +217,18 @@ template <class Program>
 struct is_banded<Program, std::void_t<decltype(Program::banded)>>
     : std::integral_constant<bool, Program::banded> {};
 
+// Whether a program declares preamble() (GLSL before the library) and data_buffers().
+template <class Program, class = void>
+struct has_preamble : std::false_type {};
+template <class Program>
+struct has_preamble<Program, std::void_t<decltype(Program::preamble())>> : std::true_type {};
+template <class Noise, class = void>
+struct has_data_buffers : std::false_type {};
+template <class Noise>
+struct has_data_buffers<
+    Noise, std::void_t<decltype(noise_program<Noise>::data_buffers(std::declval<const Noise&>()))>>
+    : std::true_type {};
+
 // Whether a program declares sample_call (per-sample footprints and normals).
 template <class Program, class = void>
 struct has_sample_call : std::false_type {};
@@ -196,5 +247,8 @@ inline constexpr bool has_program_v = has_program<Noise>::value;
 
 }  // namespace glsl
 }  // namespace hush
+
+// The programs of the noises that live in their own headers.
+#include "hush/glsl/wavelet_program.hpp"
 
 #endif  // HUSH_GLSL_NOISE_PROGRAM_HPP

@@ -1,0 +1,674 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for wavelet noise (include/hush/wavelet.hpp), 2D and 3D:
+// batches of points, uniform grids, and samples with footprints and normals;
+// values and optionally analytic gradients. Compiled once per SIMD target (the
+// "-inl.h" convention); reached through hush/simd/dispatch.hpp.
+//
+// The kernels repeat wavelet.hpp's float algorithm operation by operation, so
+// under HUSH_STRICT_FP every value and gradient is bit for bit the scalar
+// result (tests/simd/wavelet_simd_test.cpp, every compiled target):
+//  - band positions 2^b x + o_b - 1/2 are formed in double and split into cell
+//    and fraction as lattice_split<float> does (in f64 lanes; lanes that are
+//    not finite or beyond 2^31 take core/lattice.hpp lane by lane);
+//  - the B-spline weights by the same Horner steps, the same nested sums
+//    (z innermost), the same band accumulation, scale and gradient chain;
+//  - the distribution remapping (erf, the table) runs lane by lane through
+//    wavelet::remap, the scalar code itself.
+// Points gather the 3^D coefficients of each band. Grids use the separability
+// of the basis (the "3D single band" fast path of the issue): per slice the
+// z contraction S(x, y) = sum_c wz_c n(x, y, z_c) for the coefficients the grid
+// touches, per row T(x) = sum_b wy_b S(x, y_b), per sample sum_a wx_a T(x_a):
+// three gathers from a small table per sample and band, whatever D is. The
+// scalar code sums in exactly this order, so the shortcut changes no bit.
+// Samples with footprints take the points path with per-lane band weights and
+// scales (wavelet::make_plan, computed in double per lane as scalar code does);
+// lanes that project onto a surface, widen the basis, or see a footprint that
+// filters everything are evaluated lane by lane by the scalar code, and so is
+// any batch of a noise with tile variants (variant_overlap > 0): those paths
+// are correct everywhere but not vectorised.
+#if defined(HUSH_SIMD_WAVELET_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_WAVELET_INL_H_
+#undef HUSH_SIMD_WAVELET_INL_H_
+#else
+#define HUSH_SIMD_WAVELET_INL_H_
+#endif
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include <hwy/highway.h>
+
+#include "hush/core/lattice.hpp"
+#include "hush/core/samples.hpp"
+#include "hush/core/views.hpp"
+#include "hush/simd/perlin-inl.h"  // perlin_simd::mul_add, kMaxLanes, store_interleaved
+#include "hush/wavelet.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace wavelet_simd {
+
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VI = hn::Vec<DI>;
+using perlin_simd::kMaxLanes;
+using perlin_simd::mul_add;
+
+// detail::piece_value in lanes: Horner, highest power first.
+template <int P, int O>
+HWY_INLINE VF piece(const detail::piecewise_kernel<P, O>& k, int p, VF t) {
+  const DF df;
+  VF r = hn::Set(df, static_cast<float>(k.c[p][O - 1]));
+  for (int j = O - 2; j >= 0; --j) r = mul_add(r, t, hn::Set(df, static_cast<float>(k.c[p][j])));
+  return r;
+}
+
+// One axis of a band in lanes: the stride-scaled, wrapped index of each of the
+// three taps, their weights and (for gradients) the weights' derivatives.
+struct axis {
+  VI idx[3];
+  VF w[3], dw[3];
+};
+
+// cell -> the three tap indices (cell + j modulo n) times the axis stride.
+HWY_INLINE void tap_indices(VI cell, int n, int stride, VI (&idx)[3]) {
+  const DI di;
+  const VI nv = hn::Set(di, n), sv = hn::Set(di, stride);
+  VI c = cell;
+  for (int j = 0; j < 3; ++j) {
+    idx[j] = hn::Mul(c, sv);
+    c = hn::Add(c, hn::Set(di, 1));
+    c = hn::IfThenElse(hn::Lt(c, nv), c, hn::Sub(c, nv));
+  }
+}
+
+template <bool kGradient>
+HWY_INLINE void weights(VF f, axis& a) {
+  for (int j = 0; j < 3; ++j) a.w[j] = piece(detail::kBspline, 2 - j, f);
+  if constexpr (kGradient)
+    for (int j = 0; j < 3; ++j) a.dw[j] = piece(detail::kBsplineDerivative, 2 - j, f);
+}
+
+// Band coordinate q = x freq + off of every lane, split as lattice_split<float>(q, n):
+// cell in [0, n) and fraction in [0, 1). Returns false (nothing written) when a lane
+// is not finite or |q| >= 2^31; the caller then splits lane by lane.
+HWY_INLINE bool split_vector(VF x, double freq, double off, int n, VI& cell, VF& f) {
+#if HWY_TARGET == HWY_SCALAR
+  (void)x;
+  (void)freq;
+  (void)off;
+  (void)n;
+  (void)cell;
+  (void)f;
+  return false;
+#else
+  const DF df;
+  const DI di;
+  const hn::Half<DF> dh;
+  const hn::Half<DI> dih;
+  const hn::Repartition<double, DF> dd;
+  using VD = hn::Vec<decltype(dd)>;
+  const VD fv = hn::Set(dd, freq), ov = hn::Set(dd, off), nv = hn::Set(dd, double(n));
+  const VD limit = hn::Set(dd, 2147483648.0);
+  const VD lo = hn::Add(hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), fv), ov);
+  const VD hi = hn::Add(hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), fv), ov);
+  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
+    return false;
+  const auto part = [&](VD q, hn::Vec<decltype(dh)>& fh, hn::Vec<decltype(dih)>& ch) {
+    const VD fl = hn::Floor(q);
+    fh = hn::Min(hn::DemoteTo(dh, hn::Sub(q, fl)), hn::Set(dh, detail::one_minus_ulp<float>()));
+    // floor(q) mod n, exact for |q| < 2^31 (the quotient's rounding error is below 1/n).
+    ch = hn::DemoteTo(dih, hn::Sub(fl, hn::Mul(nv, hn::Floor(hn::Div(fl, nv)))));
+  };
+  hn::Vec<decltype(dh)> flo, fhi;
+  hn::Vec<decltype(dih)> clo, chi;
+  part(lo, flo, clo);
+  part(hi, fhi, chi);
+  f = hn::Combine(df, fhi, flo);
+  cell = hn::Combine(di, chi, clo);
+  return true;
+#endif
+}
+
+// The band's D axes for one vector of points (coordinates xs[a], the lanes' double
+// positions p for the lane-by-lane fallback).
+template <bool kGradient, int D>
+HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, const vec<double, D>* p,
+                          axis* ax) {
+  const DF df;
+  const DI di;
+  const int n = w.parameters().tile_size;
+  const std::size_t lanes = hn::Lanes(df);
+  int stride = 1;
+  for (int a = 0; a < D; ++a, stride *= n) {
+    VI cell;
+    VF f;
+    const vec<double, D> zero{};
+    const double off = w.band_position(band, zero)[a];
+    if (!split_vector(xs[a], w.band_frequency(band), off, n, cell, f)) {
+      HWY_ALIGN float fs[kMaxLanes];
+      HWY_ALIGN std::int32_t cs[kMaxLanes];
+      for (std::size_t l = 0; l < lanes; ++l) {
+        const lattice_coord<float> c =
+            lattice_split<float>(w.band_position(band, p[l])[a], w.split_period());
+        fs[l] = c.f;
+        cs[l] = static_cast<std::int32_t>(c.i0);
+      }
+      f = hn::Load(df, fs);
+      cell = hn::Load(di, cs);
+    }
+    tap_indices(cell, n, stride, ax[a].idx);
+    weights<kGradient>(f, ax[a]);
+  }
+}
+
+// wavelet_separable over gathered coefficients: value and gradient (coefficient units).
+template <bool kGradient, int D>
+HWY_INLINE void separable(const float* tile, const axis* ax, VF& v, VF* g) {
+  const DF df;
+  v = hn::Zero(df);
+  for (int a = 0; a < D; ++a) g[a] = hn::Zero(df);
+  if constexpr (D == 2) {
+    for (int a = 0; a < 3; ++a) {
+      VF s = hn::Zero(df), sy = hn::Zero(df);
+      for (int b = 0; b < 3; ++b) {
+        const VF c = hn::GatherIndex(df, tile, hn::Add(ax[0].idx[a], ax[1].idx[b]));
+        s = mul_add(ax[1].w[b], c, s);
+        if constexpr (kGradient) sy = mul_add(ax[1].dw[b], c, sy);
+      }
+      v = mul_add(ax[0].w[a], s, v);
+      if constexpr (kGradient) {
+        g[0] = mul_add(ax[0].dw[a], s, g[0]);
+        g[1] = mul_add(ax[0].w[a], sy, g[1]);
+      }
+    }
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      VF t = hn::Zero(df), ty = hn::Zero(df), tz = hn::Zero(df);
+      for (int b = 0; b < 3; ++b) {
+        const VI xy = hn::Add(ax[0].idx[a], ax[1].idx[b]);
+        VF s = hn::Zero(df), sz = hn::Zero(df);
+        for (int c = 0; c < 3; ++c) {
+          const VF cf = hn::GatherIndex(df, tile, hn::Add(xy, ax[2].idx[c]));
+          s = mul_add(ax[2].w[c], cf, s);
+          if constexpr (kGradient) sz = mul_add(ax[2].dw[c], cf, sz);
+        }
+        t = mul_add(ax[1].w[b], s, t);
+        if constexpr (kGradient) {
+          ty = mul_add(ax[1].dw[b], s, ty);
+          tz = mul_add(ax[1].w[b], sz, tz);
+        }
+      }
+      v = mul_add(ax[0].w[a], t, v);
+      if constexpr (kGradient) {
+        g[0] = mul_add(ax[0].dw[a], t, g[0]);
+        g[1] = mul_add(ax[0].w[a], ty, g[1]);
+        g[2] = mul_add(ax[0].w[a], tz, g[2]);
+      }
+    }
+  }
+}
+
+// The sum over bands, scale and remapping of wavelet::eval for one vector of points
+// with per-lane band weights, chains and scales (plans), into value and interleaved
+// gradients. Lanes flagged in `skip` are left for the caller.
+template <bool kGradient, int D>
+HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts,
+                              const double (*weight)[kMaxLanes], const double* scale,
+                              float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  VF xs[3];
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, xs[0], xs[1]);
+  else
+    hn::LoadInterleaved3(df, pts, xs[0], xs[1], xs[2]);
+  vec<double, D> p[kMaxLanes];
+  for (std::size_t l = 0; l < lanes; ++l)
+    for (int a = 0; a < D; ++a) p[l][a] = static_cast<double>(pts[l * D + a]);
+  VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+  const float* tile = w.tile().coefficients();
+  for (int b = 0; b < w.band_count(); ++b) {
+    HWY_ALIGN float wl[kMaxLanes], cl[kMaxLanes];
+    bool any = false;
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const double wb = weight[b][l];
+      any = any || wb != 0.0;
+      wl[l] = static_cast<float>(wb);
+      cl[l] = static_cast<float>(wb * w.band_frequency(b));
+    }
+    if (!any) continue;
+    axis ax[3];
+    band_axes<kGradient, D>(w, b, xs, p, ax);
+    VF v, g[3];
+    separable<kGradient, D>(tile, ax, v, g);
+    acc = mul_add(hn::Load(df, wl), v, acc);
+    if constexpr (kGradient) {
+      const VF chain = hn::Load(df, cl);
+      for (int a = 0; a < D; ++a) gacc[a] = mul_add(chain, g[a], gacc[a]);
+    }
+  }
+  HWY_ALIGN float sl[kMaxLanes];
+  for (std::size_t l = 0; l < lanes; ++l) sl[l] = static_cast<float>(scale[l]);
+  const VF sv = hn::Load(df, sl);
+  acc = hn::Mul(acc, sv);
+  if constexpr (kGradient)
+    for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], sv);
+  const auto& prm = w.parameters();
+  if (prm.distribution == wavelet_distribution::gaussian) {
+    const VF gs = hn::Set(df, static_cast<float>(prm.gaussian_scale));
+    hn::StoreU(hn::Mul(acc, gs), df, value);
+    if constexpr (kGradient) {
+      for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], gs);
+      perlin_simd::store_interleaved<D>(gacc, grad);
+    }
+    return;
+  }
+  // Other distributions: the scalar remap, lane by lane.
+  hn::StoreU(acc, df, value);
+  if constexpr (kGradient) perlin_simd::store_interleaved<D>(gacc, grad);
+  for (std::size_t l = 0; l < lanes; ++l) {
+    float dv = 1.0f;
+    w.template remap<float>(value[l], kGradient ? &dv : nullptr);
+    if constexpr (kGradient)
+      for (int a = 0; a < D; ++a) grad[l * D + a] *= dv;
+  }
+}
+
+// Runs fn(pts, value, grad) over n points in vectors; the tail through padded buffers.
+template <int D, class Fn>
+HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad, Fn fn) {
+  const std::size_t lanes = hn::Lanes(DF());
+  std::size_t i = 0;
+  for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);
+  if (i == n) return;
+  const std::size_t rest = n - i;
+  HWY_ALIGN float in[kMaxLanes * 3] = {}, out[kMaxLanes] = {}, g[kMaxLanes * 3] = {};
+  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+  fn(i, in, out, grad ? g : nullptr);
+  std::memcpy(value + i, out, rest * sizeof(float));
+  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
+}
+
+// The scalar evaluation of one sample (the lane-by-lane path).
+template <int D>
+HWY_INLINE void scalar_sample(const wavelet<D>& w, const sample_input<D>& s, float* value,
+                              float* grad) {
+  if (grad) {
+    const value_gradient<float, D> r = w.template sample_value_and_gradient<float>(s);
+    *value = r.value;
+    for (int a = 0; a < D; ++a) grad[a] = r.gradient[a];
+  } else {
+    *value = w.template sample_value<float>(s);
+  }
+}
+
+// Whether a sample's plan is the vectorised kind: finite position, no projection, no
+// widening, not "everything".
+template <int D>
+HWY_INLINE bool plain_plan(const wavelet<D>& w, const typename wavelet<D>::plan& pl) {
+  if (pl.everything || pl.project) return false;
+  for (int b = 0; b < w.band_count(); ++b)
+    for (int a = 0; a < 3; ++a)
+      if (pl.widen[b][a] != 1.0) return false;
+  return true;
+}
+
+}  // namespace wavelet_simd
+
+// Wavelet noise at n interleaved points; values into value[n], interleaved
+// gradients into grad[D n] unless grad is null.
+template <int D>
+void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float* value,
+                    float* grad) {
+  namespace ws = wavelet_simd;
+  if (w.parameters().variant_overlap > 0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      sample_input<D> s;
+      for (int a = 0; a < D; ++a) s.position[a] = static_cast<double>(pts[i * D + a]);
+      ws::scalar_sample<D>(w, s, value + i, grad ? grad + i * D : nullptr);
+    }
+    return;
+  }
+  const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
+  const std::size_t lanes = hn::Lanes(ws::DF());
+  double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
+  for (int b = 0; b < w.band_count(); ++b)
+    for (std::size_t l = 0; l < lanes; ++l) weight[b][l] = pl.weight[b];
+  for (std::size_t l = 0; l < lanes; ++l) scale[l] = pl.scale;
+  ws::for_each_vector<D>(n, pts, value, grad,
+                         [&](std::size_t first, const float* p, float* v, float* g) {
+                           // Non-finite lanes: the scalar code (its NaN, exactly).
+                           bool finite = true;
+                           for (std::size_t l = 0; l < lanes * D; ++l)
+                             finite = finite && std::isfinite(p[l]);
+                           if (g)
+                             ws::points_vector<true, D>(w, p, weight, scale, v, g);
+                           else
+                             ws::points_vector<false, D>(w, p, weight, scale, v, nullptr);
+                           if (finite) return;
+                           for (std::size_t l = 0; l < lanes && first + l < n; ++l) {
+                             sample_input<D> s;
+                             bool lane_finite = true;
+                             for (int a = 0; a < D; ++a) {
+                               s.position[a] = static_cast<double>(p[l * D + a]);
+                               lane_finite = lane_finite && std::isfinite(s.position[a]);
+                             }
+                             if (!lane_finite)
+                               ws::scalar_sample<D>(w, s, v + l, g ? g + l * D : nullptr);
+                           }
+                         });
+}
+
+// Samples with footprints and normals (core/samples.hpp).
+template <int D>
+void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, float* grad) {
+  namespace ws = wavelet_simd;
+  const std::size_t n = s.size(), lanes = hn::Lanes(ws::DF());
+  if (w.parameters().variant_overlap > 0) {
+    for (std::size_t i = 0; i < n; ++i)
+      ws::scalar_sample<D>(w, s.at(i), value + i, grad ? grad + i * D : nullptr);
+    return;
+  }
+  const float* pts = reinterpret_cast<const float*>(s.positions.data());
+  double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
+  bool special[perlin_simd::kMaxLanes];
+  ws::for_each_vector<D>(
+      n, pts, value, grad, [&](std::size_t first, const float* p, float* v, float* g) {
+        bool any_plain = false;
+        HWY_ALIGN float pv[perlin_simd::kMaxLanes * 3] = {};
+        for (std::size_t l = 0; l < lanes; ++l) {
+          special[l] = true;
+          if (first + l >= n) continue;
+          const sample_input<D> in = s.at(first + l);
+          bool finite = true;
+          for (int a = 0; a < D; ++a) finite = finite && std::isfinite(in.position[a]);
+          const typename wavelet<D>::plan pl = w.make_plan(in);
+          special[l] = !finite || !ws::plain_plan<D>(w, pl);
+          for (int b = 0; b < w.band_count(); ++b) weight[b][l] = special[l] ? 0.0 : pl.weight[b];
+          scale[l] = special[l] ? 0.0 : pl.scale;
+          if (!special[l]) {
+            any_plain = true;
+            for (int a = 0; a < D; ++a) pv[l * D + a] = p[l * D + a];
+          }
+        }
+        if (any_plain) {
+          if (g)
+            ws::points_vector<true, D>(w, pv, weight, scale, v, g);
+          else
+            ws::points_vector<false, D>(w, pv, weight, scale, v, nullptr);
+        }
+        for (std::size_t l = 0; l < lanes && first + l < n; ++l)
+          if (special[l]) ws::scalar_sample<D>(w, s.at(first + l), v + l, g ? g + l * D : nullptr);
+      });
+}
+
+namespace wavelet_simd {
+
+// ---- Grids: per band, the x axis split once per column (lattice_split<float> in
+// double, as scalar evaluation does), y once per row, z once per slice; the
+// contraction follows the separable order (file comment).
+struct column_table {
+  std::vector<std::int32_t> idx[3];  // wrapped tap cells
+  std::vector<float> w[3], dw[3];
+  std::vector<char> needed;  // x cells some column reads
+  std::size_t padded = 0;
+};
+
+template <bool kGradient>
+column_table make_columns(std::size_t nx, int n, std::uint32_t period, double freq, double off,
+                          double origin, double step) {
+  column_table t;
+  const std::size_t lanes = hn::Lanes(DF());
+  t.padded = (nx + lanes - 1) / lanes * lanes;
+  for (int j = 0; j < 3; ++j) {
+    t.idx[j].assign(t.padded, 0);
+    t.w[j].assign(t.padded, 0.0f);
+    if (kGradient) t.dw[j].assign(t.padded, 0.0f);
+  }
+  t.needed.assign(static_cast<std::size_t>(n), 0);
+  for (std::size_t i = 0; i < nx; ++i) {
+    double x = (origin + step * static_cast<double>(i)) * freq;
+    if (!std::isfinite(x)) x = 0.0;  // as wavelet::band::position for finite input
+    const lattice_coord<float> c = lattice_split<float>(x + off, period);
+    detail::wavelet_axis<float> ax;
+    detail::wavelet_axis_plain<float, kGradient>(c.f, ax);
+    for (int j = 0; j < 3; ++j) {
+      const int cell =
+          static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % static_cast<std::uint32_t>(n));
+      t.idx[j][i] = cell;
+      t.needed[static_cast<std::size_t>(cell)] = 1;
+      t.w[j][i] = ax.w[j];
+      if (kGradient) t.dw[j][i] = ax.dw[j];
+    }
+  }
+  return t;
+}
+
+// One row or slice coordinate of a band: three wrapped cells and their weights.
+struct line_axis {
+  int cell[3];
+  detail::wavelet_axis<float> ax;
+};
+template <bool kGradient>
+line_axis make_line(int n, std::uint32_t period, double freq, double off, double coordinate) {
+  line_axis r;
+  double x = coordinate * freq;
+  if (!std::isfinite(x)) x = 0.0;
+  const lattice_coord<float> c = lattice_split<float>(x + off, period);
+  detail::wavelet_axis_plain<float, kGradient>(c.f, r.ax);
+  for (int j = 0; j < 3; ++j)
+    r.cell[j] =
+        static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % static_cast<std::uint32_t>(n));
+  return r;
+}
+
+template <bool kGradient, int D>
+void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* grad) {
+  const DF df;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const int n = w.parameters().tile_size;
+  const std::size_t un = static_cast<std::size_t>(n);
+  const std::uint32_t period = w.split_period();
+  const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
+  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  const float* tile = w.tile().coefficients();
+  std::vector<int> bands;
+  for (int b = 0; b < w.band_count(); ++b)
+    if (pl.weight[b] != 0.0) bands.push_back(b);
+  const vec<double, D> zero{};
+  std::vector<column_table> cols;
+  for (int b : bands)
+    cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
+                                           w.band_position(b, zero)[0], g.origin[0], g.step[0]));
+  const std::size_t padded = cols.empty() ? nx : cols[0].padded;
+  // Per band: S (3D: the z contraction per (x, y) cell, and its z derivative) and T
+  // (the row's contraction per x cell: value, d/dy, d/dz).
+  std::vector<std::vector<float>> S(bands.size()), Sz(bands.size());
+  std::vector<float> T(un), Ty(un), Tz(un);
+  std::vector<float> acc(padded), gacc[3];
+  for (int a = 0; a < D; ++a) gacc[a].assign(kGradient ? padded : 0, 0.0f);
+  std::vector<std::vector<char>> yneeded(bands.size());
+  if constexpr (D == 3) {
+    for (std::size_t q = 0; q < bands.size(); ++q) {
+      const int b = bands[q];
+      S[q].assign(un * un, 0.0f);
+      if (kGradient) Sz[q].assign(un * un, 0.0f);
+      yneeded[q].assign(un, 0);
+      for (std::size_t j = 0; j < ny; ++j) {
+        const line_axis y =
+            make_line<false>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
+                             g.origin[1] + g.step[1] * static_cast<double>(j));
+        for (int c : y.cell) yneeded[q][static_cast<std::size_t>(c)] = 1;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < nz; ++k) {
+    if constexpr (D == 3) {
+      for (std::size_t q = 0; q < bands.size(); ++q) {
+        const int b = bands[q];
+        const line_axis z =
+            make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[2],
+                                 g.origin[2] + g.step[2] * static_cast<double>(k));
+        for (std::size_t yc = 0; yc < un; ++yc) {
+          if (!yneeded[q][yc]) continue;
+          for (std::size_t xc = 0; xc < un; ++xc) {
+            if (!cols[q].needed[xc]) continue;
+            float s = 0, sz = 0;
+            for (int c = 0; c < 3; ++c) {
+              const float v = tile[xc + un * (yc + un * static_cast<std::size_t>(z.cell[c]))];
+              s += z.ax.w[c] * v;
+              if (kGradient) sz += z.ax.dw[c] * v;
+            }
+            S[q][yc * un + xc] = s;
+            if (kGradient) Sz[q][yc * un + xc] = sz;
+          }
+        }
+      }
+    }
+    for (std::size_t j = 0; j < ny; ++j) {
+      std::fill(acc.begin(), acc.end(), 0.0f);
+      for (int a = 0; a < D; ++a) std::fill(gacc[a].begin(), gacc[a].end(), 0.0f);
+      for (std::size_t q = 0; q < bands.size(); ++q) {
+        const int b = bands[q];
+        const line_axis y =
+            make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
+                                 g.origin[1] + g.step[1] * static_cast<double>(j));
+        // T(x) = sum_b wy_b S(x, y_b) (2D: S(x, y) is the coefficient itself).
+        for (std::size_t xc = 0; xc < un; ++xc) {
+          if (!cols[q].needed[xc]) continue;
+          float t = 0, ty = 0, tz = 0;
+          for (int bb = 0; bb < 3; ++bb) {
+            const std::size_t yc = static_cast<std::size_t>(y.cell[bb]);
+            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + un * yc];
+            t += y.ax.w[bb] * s;
+            if (kGradient) {
+              ty += y.ax.dw[bb] * s;
+              if (D == 3) tz += y.ax.w[bb] * Sz[q][yc * un + xc];
+            }
+          }
+          T[xc] = t;
+          if (kGradient) {
+            Ty[xc] = ty;
+            Tz[xc] = tz;
+          }
+        }
+        const float wb = static_cast<float>(pl.weight[b]);
+        const float chain = static_cast<float>(pl.weight[b] * w.band_frequency(b));
+        const column_table& ct = cols[q];
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          VF v = hn::Zero(df), gx = hn::Zero(df), gy = hn::Zero(df), gz = hn::Zero(df);
+          for (int a = 0; a < 3; ++a) {
+            const VI idx = hn::LoadU(di, ct.idx[a].data() + i);
+            const VF wa = hn::LoadU(df, ct.w[a].data() + i);
+            const VF t = hn::GatherIndex(df, T.data(), idx);
+            v = mul_add(wa, t, v);
+            if constexpr (kGradient) {
+              gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
+              gy = mul_add(wa, hn::GatherIndex(df, Ty.data(), idx), gy);
+              if (D == 3) gz = mul_add(wa, hn::GatherIndex(df, Tz.data(), idx), gz);
+            }
+          }
+          hn::StoreU(mul_add(hn::Set(df, wb), v, hn::LoadU(df, acc.data() + i)), df,
+                     acc.data() + i);
+          if constexpr (kGradient) {
+            const VF cv = hn::Set(df, chain);
+            const VF gs[3] = {gx, gy, gz};
+            for (int a = 0; a < D; ++a)
+              hn::StoreU(mul_add(cv, gs[a], hn::LoadU(df, gacc[a].data() + i)), df,
+                         gacc[a].data() + i);
+          }
+        }
+      }
+      // Scale and remap, as wavelet::eval.
+      const std::size_t row = k * ny + j;
+      float* out = value + row * nx;
+      float* gout = kGradient ? grad + row * nx * D : nullptr;
+      const float scale = static_cast<float>(pl.scale);
+      const auto& prm = w.parameters();
+      for (std::size_t i = 0; i < nx; ++i) {
+        float v = acc[i] * scale;
+        float gr[3];
+        for (int a = 0; a < D; ++a) gr[a] = kGradient ? gacc[a][i] * scale : 0.0f;
+        if (prm.distribution == wavelet_distribution::gaussian) {
+          const float gs = static_cast<float>(prm.gaussian_scale);
+          v = v * gs;
+          for (int a = 0; a < D; ++a) gr[a] = gr[a] * gs;
+        } else {
+          float dv = 1.0f;
+          w.template remap<float>(v, kGradient ? &dv : nullptr);
+          for (int a = 0; a < D; ++a) gr[a] = gr[a] * dv;
+        }
+        out[i] = v;
+        if (kGradient)
+          for (int a = 0; a < D; ++a) gout[i * D + a] = gr[a];
+      }
+    }
+  }
+}
+
+}  // namespace wavelet_simd
+
+// Wavelet noise on a uniform grid (C order, i fastest); interleaved gradients unless
+// grad is null.
+template <int D>
+void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* grad) {
+  if (w.parameters().variant_overlap > 0) {
+    const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+    std::size_t idx = 0;
+    for (std::size_t k = 0; k < nz; ++k)
+      for (std::size_t j = 0; j < ny; ++j)
+        for (std::size_t i = 0; i < nx; ++i, ++idx) {
+          std::array<std::size_t, D> ijk{};
+          ijk[0] = i;
+          ijk[1] = j;
+          if constexpr (D == 3) ijk[D - 1] = k;
+          sample_input<D> s;
+          s.position = g.position(ijk);
+          wavelet_simd::scalar_sample<D>(w, s, value + idx, grad ? grad + idx * D : nullptr);
+        }
+    return;
+  }
+  if (grad)
+    wavelet_simd::wavelet_grid<true, D>(w, g, value, grad);
+  else
+    wavelet_simd::wavelet_grid<false, D>(w, g, value, nullptr);
+}
+
+inline void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n, float* value,
+                            float* grad) {
+  wavelet_points<2>(w, xy, n, value, grad);
+}
+inline void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n, float* value,
+                            float* grad) {
+  wavelet_points<3>(w, xyz, n, value, grad);
+}
+inline void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value, float* grad) {
+  wavelet_grid<2>(w, g, value, grad);
+}
+inline void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value, float* grad) {
+  wavelet_grid<3>(w, g, value, grad);
+}
+inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value, float* grad) {
+  wavelet_samples<2>(w, s, value, grad);
+}
+inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
+  wavelet_samples<3>(w, s, value, grad);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_WAVELET_INL_H_ toggle
