@@ -24,11 +24,12 @@
 //  - glsl: within the GLSL tolerance stated by the backend
 //    (backends/glsl/include/hush/glsl/device.hpp).
 //  - samples (core/samples.hpp): positions plus optional per-sample
-//    footprints and normals. Each given span must have one element per
-//    position, and only inputs the noise takes (Noise::takes_footprint,
-//    Noise::takes_normal) may be given, else hush::invalid_argument naming
-//    the span. scalar computes noise.sample_value<float>(samples.at(i));
-//    with positions only, exactly what the points overload computes.
+//    footprints, normals and surface maps. Each given span must have one
+//    element per position, and only inputs the noise takes
+//    (Noise::takes_footprint, Noise::takes_normal, Noise::takes_surface_map)
+//    may be given, else hush::invalid_argument naming the span. scalar computes
+//    noise.sample_value<float>(samples.at(i)); with positions only, exactly what the points
+//    overload computes.
 //  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
 //    after validation, and no output element is left unwritten.
 #ifndef HUSH_EXEC_HPP
@@ -141,7 +142,7 @@ void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* ou
   }
 }
 
-// The scalar loop over samples with extra inputs (footprints or normals).
+// The scalar loop over samples with extra inputs (footprints, normals, maps).
 template <class Noise>
 void scalar_samples(const Noise& n, const samples<Noise::dimension>& s, float* out,
                     vec<float, Noise::dimension>* grad) {
@@ -168,9 +169,9 @@ struct has_simd_samples<Kernel, std::void_t<decltype(Kernel::has_samples)>>
 template <class Noise, class Exec>
 void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
                  vec<float, Noise::dimension>* grad) {
-  if constexpr (!takes_footprint<Noise>::value && !takes_normal<Noise>::value) {
+  if constexpr (!takes_sample_inputs<Noise>::value) {
     run_points(n, ex, s.positions, out, grad);  // validated: no extras were given
-  } else if (!s.has_footprints() && !s.has_normals()) {
+  } else if (!s.has_extras()) {
     run_points(n, ex, s.positions, out, grad);
   } else if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
     scalar_samples(n, s, out, grad);
@@ -220,8 +221,8 @@ void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> poin
   detail::run_points(noise, ex, points, out.data(), gradients.data());
 }
 
-// Values of `noise` at `s` (positions with optional footprints and normals,
-// core/samples.hpp) into `out` (one per position), on backend `ex`.
+// Values of `noise` at `s` (positions with optional footprints, normals and
+// surface maps, core/samples.hpp) into `out` (one per position), on backend `ex`.
 template <class Noise, class Exec>
 void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
               span<float> out) {

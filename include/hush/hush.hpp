@@ -5,6 +5,7 @@
 #ifndef HUSH_HUSH_HPP
 #define HUSH_HUSH_HPP
 
+#include "hush/anisotropic.hpp"
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
 #include "hush/core/footprint.hpp"
@@ -13,11 +14,14 @@
 #include "hush/core/point_noise.hpp"
 #include "hush/core/rng.hpp"
 #include "hush/core/samples.hpp"
+#include "hush/core/surface_map.hpp"
 #include "hush/core/tile_cache.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
+#include "hush/exec.hpp"
 #include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
-#include "hush/exec.hpp"
+#include "hush/steerable.hpp"
+#include "hush/subband_fit.hpp"
 
 #endif  // HUSH_HUSH_HPP

@@ -15,7 +15,7 @@
 // larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE, and reads the results back
 // (synchronously). It leaves the current program and the generic
 // GL_SHADER_STORAGE_BUFFER binding as it found them; it rebinds the indexed
-// SSBO bindings 0 to 3.
+// SSBO bindings 0 to 4.
 //
 // Accuracy (tests/glsl/glsl_test.cpp; see also hush/glsl/library.hpp):
 //  - points: the float position as given, split exactly on the GPU; grids: each
@@ -47,11 +47,11 @@
 //    position is formed on the GPU). Measured on llvmpipe: default fBm values
 //    max 5.9e-6 from the double reference, 8.3e-7 from the CPU float path in
 //    2D, equal to it bit for bit in 3D.
-//  - samples (hush::samples: positions with per-sample footprints and
-//    normals, core/samples.hpp): positions as for points; footprints (their
-//    stored float upper triangle) and normals (floats) are uploaded as given,
-//    so the GPU sees the CPU's inputs bit for bit. Each noise states its own
-//    tolerance for filtered evaluation.
+//  - samples (hush::samples: positions with per-sample footprints, normals
+//    and surface maps, core/samples.hpp): positions as for points; footprints
+//    (their stored float upper triangle), normals and surface maps (floats)
+//    are uploaded as given, so the GPU sees the CPU's inputs bit for bit.
+//    Each noise states its own tolerance for filtered evaluation.
 //  - NaN or +-Inf in a point gives NaN in its value and gradient.
 //
 // Errors: the constructor throws std::runtime_error when an entry point is
@@ -176,10 +176,10 @@ class device {
   }
 
   // Values (and gradients) of `noise` at samples s (positions with optional
-  // footprints and normals, core/samples.hpp; validated by the caller): what
-  // hush::evaluate(noise, hush::exec::glsl{dev}, samples, ...) calls. Footprints
-  // go to binding 2 as their stored upper triangle, normals to binding 3
-  // (compute_source.hpp, samples layout).
+  // footprints, normals and surface maps, core/samples.hpp; validated by the
+  // caller): what hush::evaluate(noise, hush::exec::glsl{dev}, samples, ...)
+  // calls. Footprints go to binding 2 as their stored upper triangle, normals
+  // to binding 3, surface maps to binding 4 (compute_source.hpp, samples layout).
   template <class Noise>
   void evaluate_samples(const Noise& noise, const samples<Noise::dimension>& s, float* out,
                         vec<float, Noise::dimension>* grad) {
@@ -189,19 +189,20 @@ class device {
                   "footprint<D> is its kEntries packed floats");
     const std::size_t n = s.size();
     if (n == 0) return;
-    if constexpr (!hush::detail::takes_footprint<Noise>::value &&
-                  !hush::detail::takes_normal<Noise>::value) {
+    static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
+    if constexpr (!hush::detail::takes_sample_inputs<Noise>::value) {
       evaluate_points(noise, s.positions.data(), n, out, grad);  // no extras can be given
     } else {
       using np = noise_program<Noise>;
-      const bool fps = s.has_footprints(), normals = s.has_normals();
+      const bool fps = s.has_footprints(), normals = s.has_normals(), maps = s.has_surface_maps();
       const state_guard guard(*gl_);
       const detail::gl_uint prog =
           use_program<Noise>(noise, batch_layout::samples, grad != nullptr);
       gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_has_footprint"), fps ? 1u : 0u);
       gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_has_normal"), normals ? 1u : 0u);
+      gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_has_map"), maps ? 1u : 0u);
       const std::size_t stride = grad ? D + 1 : 1;
-      std::size_t words = std::max<std::size_t>({stride, kEntries, 3});
+      std::size_t words = std::max<std::size_t>({stride, kEntries, 4});
       int bands = 0;
       if constexpr (is_banded<np>::value) {
         bands = np::band_count(noise);
@@ -228,6 +229,10 @@ class device {
           upload(3, s.normals.data() + first, m * sizeof(vec<float, 3>));
         else
           upload(3, dummy, sizeof dummy);
+        if (maps)
+          upload(4, s.surface_maps.data() + first, m * sizeof(surface_map));
+        else
+          upload(4, dummy, sizeof dummy);
         run_batch<D>(prog, m, stride, out + first, grad ? grad + first : nullptr);
       }
     }
@@ -488,9 +493,9 @@ class device {
   std::unique_ptr<detail::gl_api> gl_;
   std::string renderer_;
   std::size_t max_groups_ = 0, max_bytes_ = 0, dispatches_ = 0;
-  // SSBO bindings 0 (input), 1 (output), 2 (footprints), 3 (normals).
-  static constexpr int kBuffers = 4;
-  detail::gl_uint buffers_[kBuffers] = {0, 0, 0, 0};
+  // SSBO bindings 0 (input), 1 (output), 2 (footprints), 3 (normals), 4 (surface maps).
+  static constexpr int kBuffers = 5;
+  detail::gl_uint buffers_[kBuffers] = {0, 0, 0, 0, 0};
   std::map<std::string, detail::gl_program> programs_;
   std::vector<float> scratch_;
 };
