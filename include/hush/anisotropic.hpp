@@ -21,11 +21,15 @@
 //  - gamma_{k,i,s}: octave k's target, the isotropic band B of scale
 //    base_scale + k in surface space, moved to texture space by the sample's
 //    surface map T (core/surface_map.hpp): sqrt|det T| B(log2(|T^T w| /
-//    f_{base_scale + k})), fitted by params::compensation. Without a map (the
-//    identity) gamma_{k,i,s} = 1 for s = base_scale + k and 0 otherwise. The
-//    heuristic rules cap each gamma at the value that would give one subband
-//    all of the target's power (docs/anisotropic.md): strongly anisotropic
-//    maps otherwise blow the centre rule up.
+//    f_{base_scale + k})), fitted by params::compensation, times
+//    2^(s - base_scale - k): every scale's tiles have unit variance rather
+//    than the paper's common white spectrum, so a subband's amplitude is its
+//    filter over f_s (docs/anisotropic.md, "Distortion compensation"). Without
+//    a map (the identity) gamma_{k,i,s} = 1 for s = base_scale + k, else 0.
+//    The heuristic rules cap each gamma at sqrt(2 pi / A_K), the weight at
+//    which one subband alone carries all of the octave's variance (A_K =
+//    integral of G_i^2): strongly anisotropic maps otherwise blow the centre
+//    rule up.
 //  - f_k: fbm, f_k(t) = gain^k t (linear: the octave weights are summed
 //    first, the paper's "optimized" form, one lookup per subband); or
 //    turbulence, f_k(t) = gain^k |t| (one sum per octave, the "unoptimized" form).
@@ -276,10 +280,10 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       dyy_[i] = d.y * d.y;
       dxy2_[i] = 2.0 * d.x * d.y;
     }
-    // Caps of the heuristic compensation weights: a subband of scale s
-    // carrying all of octave k's target power has gamma = 2^(b + k - s)
-    // sqrt(2 pi / A_K), A_K = integral of G_i^2 over the circle
-    // = alpha_K^4 2 pi C(4K - 4, 2K - 2) / 4^(2K - 2) (docs/anisotropic.md).
+    // Cap of the heuristic compensation weights: one subband (variance
+    // A_K / 2 pi, unit-variance tiles) carrying all of an octave's unit
+    // variance has gamma = sqrt(2 pi / A_K), A_K = integral of G_i^2 over the
+    // circle = alpha_K^4 2 pi C(4K - 4, 2K - 2) / 4^(2K - 2) (docs/anisotropic.md).
     const int kk = prm_.orientations;
     double binom = 1.0;  // C(4K - 4, 2K - 2) / 4^(2K - 2), as a running product
     for (int m = 1; m <= 2 * kk - 2; ++m)
@@ -310,8 +314,8 @@ class anisotropic : public sample_noise<anisotropic, 2> {
   const dvec2& direction(int i) const { return dir_[i]; }
   double octave_weight(int k) const { return norm_ * octave_gain_[k]; }
   double normalization() const { return norm_; }
-  // Cap of a heuristic compensation weight of octave k at scale s.
-  double gamma_cap(int k, int s) const { return std::ldexp(cap_unit_, prm_.base_scale + k - s); }
+  // Cap of a heuristic compensation weight.
+  double gamma_cap() const { return cap_unit_; }
 
   // Variance without map and filter (fbm): 1.
   static constexpr double variance() { return 1.0; }
@@ -323,14 +327,15 @@ class anisotropic : public sample_noise<anisotropic, 2> {
     for (int k = 0; k < prm_.octaves; ++k) g += octave_weight(k);
     return t * g;
   }
-  // |n| <= bound_with_maps() for every surface map under the heuristic rules.
+  // |n| <= bound_with_maps() for every surface map under the heuristic rules:
+  // per octave and orientation at most 3 scales have a weight (2 for the
+  // centre rule), each at most gamma_cap().
   double bound_with_maps() const {
     double t = 0;
     for (int i = 0; i < prm_.orientations; ++i) t += tile_->max_abs(i);
     double g = 0;
-    for (int k = 0; k < prm_.octaves; ++k)
-      for (int s = 0; s < prm_.scales; ++s) g += octave_weight(k) * gamma_cap(k, s);
-    return t * g;
+    for (int k = 0; k < prm_.octaves; ++k) g += octave_weight(k);
+    return t * g * std::min(prm_.scales, 3) * cap_unit_;
   }
   // |float - double| at the same input is within float_budget() (no map,
   // heuristic rules): the float weights' relative error (2^-20: the
@@ -484,6 +489,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       return;
     }
     const bool three = prm_.compensation == weight_rule::three_point;
+    const T cap = T(cap_unit_);
     const T sd = std::sqrt(std::fabs(T(m.m00) * T(m.m11) - T(m.m01) * T(m.m10)));
     for (int i = 0; i < prm_.orientations; ++i) {
       const T dx = T(dir_[i].x), dy = T(dir_[i].y);
@@ -497,7 +503,9 @@ class anisotropic : public sample_noise<anisotropic, 2> {
                                   T(c::kAnisoThreePointCentre) * detail::band_profile(x)) +
                                      T(c::kAnisoThreePointSide) * detail::band_profile(x + T(0.5))
                                : detail::band_profile(x);
-          const T gamma = prof > T(0) ? std::min(sd * prof, T(gamma_cap(k, s))) : T(0);
+          // 2^(s - b - k) sqrt|det T| prof, capped (exact power of two in T).
+          const T gamma =
+              prof > T(0) ? std::min(T(std::ldexp(1.0, s - b - k)) * (sd * prof), cap) : T(0);
           acc = acc + ow(k) * gamma;
         }
         w[i + kc * s] = acc * lam[i + kc * s];
