@@ -139,7 +139,8 @@ TEST_CASE("anisotropic: each tile holds its orientation's subband: in band, arou
       double in_band = 0, out_band = 0, cos2 = 0;
       for (std::size_t y = 0; y < n; ++y)
         for (std::size_t x = 0; x < n; ++x) {
-          const double fx = hush::detail::bin_frequency(x, n), fy = hush::detail::bin_frequency(y, n);
+          const double fx = hush::detail::bin_frequency(x, n),
+                       fy = hush::detail::bin_frequency(y, n);
           const double r = std::hypot(fx, fy);
           const double v = p[y * n + x];
           // The band of the tile's filter: (1/16, 1/4) cycles per texel.
@@ -216,8 +217,10 @@ TEST_CASE("anisotropic: the orientations of a scale sum to isotropic noise (fig.
     CAPTURE(k);
     CHECK(worst_z < 5);
     CHECK(spread1 > 0.9);  // one orientation: sectors differ by about their whole mean
-    MESSAGE("K = " << k << ": angular power spread of the orientation sum (max |sector / mean - 1|, "
-                   "16 sectors, 256^2 tile) " << spread << ", of one orientation " << spread1);
+    MESSAGE("K = " << k
+                   << ": angular power spread of the orientation sum (max |sector / mean - 1|, "
+                      "16 sectors, 256^2 tile) "
+                   << spread << ", of one orientation " << spread1);
   }
 }
 
@@ -231,7 +234,8 @@ TEST_CASE("anisotropic: one octave has variance 1 and mean 0 over the plane") {
     moments([&](const hush::dvec2& p) { return noise(p); }, 200000, 64.0, 5, mean, var, se);
     CAPTURE(k);
     CHECK(std::fabs(var - 1) < 5 * se);
-    CHECK(std::fabs(mean) < 5 * std::sqrt(var / 200000) + 0.02);  // 0.02: a fixed tile's mean in space
+    CHECK(std::fabs(mean) <
+          5 * std::sqrt(var / 200000) + 0.02);  // 0.02: a fixed tile's mean in space
   }
 }
 
@@ -277,9 +281,9 @@ TEST_CASE("anisotropic: float evaluation stays within float_budget() of the doub
               hush::dvec2{w * r.uniform<double>(-1, 1), w * r.uniform<double>(-1, 1)});
           const double v = noise.sample(pf, fp), ref = noise.sample(hush::vec_cast<double>(pf), fp);
           worst = std::max(worst, std::fabs(v - ref));
-          const auto map = hush::surface_map::from_matrix(
-              r.uniform<double>(-3, 3), r.uniform<double>(-3, 3), r.uniform<double>(-3, 3),
-              r.uniform<double>(-3, 3));
+          const auto map =
+              hush::surface_map::from_matrix(r.uniform<double>(-3, 3), r.uniform<double>(-3, 3),
+                                             r.uniform<double>(-3, 3), r.uniform<double>(-3, 3));
           const double vm = noise.sample(pf, fp, map),
                        refm = noise.sample(hush::vec_cast<double>(pf), fp, map);
           worst_maps = std::max(worst_maps, std::fabs(vm - refm));
@@ -299,11 +303,10 @@ TEST_CASE("anisotropic: output stays within bound() and bound_with_maps()") {
   for (int q = 0; q < 100000; ++q) {
     const hush::vec2 p = hush::vec_cast<float>(hush_test::random_point<2>(r, 100));
     worst = std::max(worst, static_cast<double>(std::fabs(noise(p))));
-    const auto map = hush::surface_map::from_matrix(
-        r.uniform<double>(-8, 8), r.uniform<double>(-8, 8), r.uniform<double>(-0.1, 0.1),
-        r.uniform<double>(-8, 8));
-    worst_maps =
-        std::max(worst_maps, static_cast<double>(std::fabs(noise.sample(p, {}, map))));
+    const auto map =
+        hush::surface_map::from_matrix(r.uniform<double>(-8, 8), r.uniform<double>(-8, 8),
+                                       r.uniform<double>(-0.1, 0.1), r.uniform<double>(-8, 8));
+    worst_maps = std::max(worst_maps, static_cast<double>(std::fabs(noise.sample(p, {}, map))));
   }
   CHECK(worst <= noise.bound());
   CHECK(worst_maps <= noise.bound_with_maps());
@@ -314,8 +317,8 @@ TEST_CASE("anisotropic: output stays within bound() and bound_with_maps()") {
 TEST_CASE("anisotropic: hard cases: NaN and Inf positions give NaN, huge ones stay finite") {
   const hush::anisotropic noise = make(4, 3, 3, 16, 1);
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = INFINITY;
-  for (const hush::vec2 p : {hush::vec2{nan, 0}, hush::vec2{0, nan}, hush::vec2{inf, 1},
-                             hush::vec2{1, -inf}}) {
+  for (const hush::vec2 p :
+       {hush::vec2{nan, 0}, hush::vec2{0, nan}, hush::vec2{inf, 1}, hush::vec2{1, -inf}}) {
     CHECK(std::isnan(noise(p)));
     CHECK(std::isnan(noise.sample(p, hush::footprint<2>::isotropic(0.1))));
     const auto g = noise.gradient(p);
@@ -331,15 +334,17 @@ TEST_CASE("anisotropic: hard cases: NaN and Inf positions give NaN, huge ones st
   }
 }
 
-TEST_CASE("anisotropic: hard cases: footprints NaN, Inf, huge give the mean; singular ones stay finite") {
+TEST_CASE(
+    "anisotropic: hard cases: footprints NaN, Inf, huge give the mean; singular ones stay finite") {
   // HARD_CASES row 12.
   const hush::anisotropic noise = make(4, 3, 3, 16, 2);
   const hush::vec2 p{0.3f, 0.7f};
   const double nan = std::nan("");
-  for (const auto& fp : {hush::footprint<2>::isotropic(nan), hush::footprint<2>::isotropic(INFINITY),
-                         hush::footprint<2>::isotropic(1e30),
-                         hush::footprint<2>::from_derivatives(hush::dvec2{1e30, 0}, hush::dvec2{0, 1e30}),
-                         hush::footprint<2>::from_derivatives(hush::dvec2{nan, 0}, hush::dvec2{0, 1})})
+  for (const auto& fp :
+       {hush::footprint<2>::isotropic(nan), hush::footprint<2>::isotropic(INFINITY),
+        hush::footprint<2>::isotropic(1e30),
+        hush::footprint<2>::from_derivatives(hush::dvec2{1e30, 0}, hush::dvec2{0, 1e30}),
+        hush::footprint<2>::from_derivatives(hush::dvec2{nan, 0}, hush::dvec2{0, 1})})
     CHECK(noise.sample(p, fp) == 0.0f);
   // Zero, rank 1 (filters along x only), nearly singular, tiny.
   const auto zero = hush::footprint<2>::from_derivatives(hush::dvec2{0, 0}, hush::dvec2{0, 0});
@@ -352,9 +357,10 @@ TEST_CASE("anisotropic: hard cases: footprints NaN, Inf, huge give the mean; sin
   noise.filter_weights<float>(rank1, lam);
   for (int s = 0; s < 3; ++s)
     for (int i = 0; i < 4; ++i) CHECK(lam[i + 4 * s] == (i == 2 ? 1.0f : 0.0f));
-  for (const auto& fp : {hush::footprint<2>::from_derivatives(hush::dvec2{1e-15, 0}, hush::dvec2{0, 1e-15}),
-                         hush::footprint<2>::from_derivatives(hush::dvec2{1, 1}, hush::dvec2{1, 1 + 1e-30}),
-                         hush::footprint<2>::from_derivatives(hush::dvec2{0.01, 0}, hush::dvec2{0, 0})})
+  for (const auto& fp :
+       {hush::footprint<2>::from_derivatives(hush::dvec2{1e-15, 0}, hush::dvec2{0, 1e-15}),
+        hush::footprint<2>::from_derivatives(hush::dvec2{1, 1}, hush::dvec2{1, 1 + 1e-30}),
+        hush::footprint<2>::from_derivatives(hush::dvec2{0.01, 0}, hush::dvec2{0, 0})})
     CHECK(std::isfinite(noise.sample(p, fp)));
 }
 
@@ -398,7 +404,8 @@ TEST_CASE("anisotropic: surface_map::from_triangle is the linear map of the tria
   CHECK(t.m10 * l1 == doctest::Approx(-0.3).epsilon(1e-6));
   // |det T| = uv area / surface area.
   const double uv_area = 0.5 * std::fabs((0.4) * (0.8) - (-0.3) * (-0.4));
-  const hush::dvec3 n{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
+  const hush::dvec3 n{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                      e1.x * e2.y - e1.y * e2.x};
   const double area = 0.5 * std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   CHECK(std::fabs(t.determinant()) == doctest::Approx(uv_area / area).epsilon(1e-6));
 }
@@ -473,8 +480,10 @@ TEST_CASE("anisotropic: gradients equal central differences inside texels") {
     const hush::dvec2 p = hush_test::random_point<2>(r, 10);
     const auto g = noise.gradient(p);
     const double h = 1e-7;
-    const double dx = (noise(hush::dvec2{p.x + h, p.y}) - noise(hush::dvec2{p.x - h, p.y})) / (2 * h);
-    const double dy = (noise(hush::dvec2{p.x, p.y + h}) - noise(hush::dvec2{p.x, p.y - h})) / (2 * h);
+    const double dx =
+        (noise(hush::dvec2{p.x + h, p.y}) - noise(hush::dvec2{p.x - h, p.y})) / (2 * h);
+    const double dy =
+        (noise(hush::dvec2{p.x, p.y + h}) - noise(hush::dvec2{p.x, p.y - h})) / (2 * h);
     // Skip the rare point within h of a texel edge of some scale (a kink).
     if (std::fabs(dx - g.gradient.x) > 1e-4 * (1 + std::fabs(dx)) ||
         std::fabs(dy - g.gradient.y) > 1e-4 * (1 + std::fabs(dy)))

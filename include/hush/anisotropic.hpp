@@ -149,9 +149,9 @@ class anisotropic_tile {
     // F: Hermitian complex Gaussian white noise, F(k) = (g(k) + conj g(-k)) / sqrt 2
     // with g i.i.d. complex Gaussian of unit power: E|F(k)|^2 = 1 on every bin.
     std::vector<cd> g(n * n);
-    rng r(seed, 0x7a11e5u);  // the tiles' own stream of the seed
+    rng gen(seed, 0x7a11e5u);  // the tiles' own stream of the seed
     for (cd& v : g) {
-      const double re = r.gaussian<double>(), im = r.gaussian<double>();
+      const double re = gen.gaussian<double>(), im = gen.gaussian<double>();
       v = cd(re, im) * std::sqrt(0.5);
     }
     std::vector<cd> f(n * n);
@@ -165,53 +165,61 @@ class anisotropic_tile {
     bp.scales = 1;
     bp.base_frequency = detail::constants::kAnisoTileBand;
     const steerable_bank bank(bp);
-    // Normalisation: the continuous-plane variance of the bilinear interpolant
-    // of s = sum_i n_i is (1/N^4) sum_k |S(k)|^2 a(k_x) a(k_y) with
-    // a(k) = (2 + cos(2 pi k / N)) / 3 (the mean of |(1 - t) + t e^{i w}|^2 over t).
-    double var = 0;
+    // Per bin: the radial band B (shared by the orientations) and cos(theta -
+    // theta_i) for each orientation; D_i = G(cos) B, as steerable_bank::subband.
+    const std::size_t kk = static_cast<std::size_t>(orientations_);
+    std::vector<double> filter(n * n * kk, 0.0);
     for (std::size_t y = 0; y < n; ++y)
       for (std::size_t x = 0; x < n; ++x) {
         const dvec2 w{detail::bin_frequency(x, n), detail::bin_frequency(y, n)};
+        const double b = bank.scale_band(0, w);
+        if (b == 0.0) continue;
+        const double r = std::hypot(w.x, w.y);
+        for (std::size_t i = 0; i < kk; ++i) {
+          const dvec2& d = bank.direction(static_cast<int>(i));
+          filter[(y * n + x) * kk + i] =
+              steerable_bank::angular(orientations_, (w.x * d.x + w.y * d.y) / r) * b;
+        }
+      }
+    // Normalisation: the continuous-plane variance of the bilinear interpolant
+    // of s = sum_i n_i is (1/N^4) sum_k |S(k)|^2 a(k_x) a(k_y) with
+    // a(k) = (2 + cos(2 pi k / N)) / 3 (the mean of |(1 - t) + t e^{i w}|^2 over t).
+    std::vector<double> a1(n);
+    for (std::size_t x = 0; x < n; ++x)
+      a1[x] = (2.0 + std::cos(2.0 * detail::constants::kPi * detail::bin_frequency(x, n))) / 3.0;
+    double var = 0;
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x) {
         double d = 0;
-        for (int i = 0; i < orientations_; ++i) d += bank.subband(i, 0, w);
-        const double ax = (2.0 + std::cos(2.0 * detail::constants::kPi * w.x)) / 3.0;
-        const double ay = (2.0 + std::cos(2.0 * detail::constants::kPi * w.y)) / 3.0;
-        var += std::norm(f[y * n + x] * d) * ax * ay;
+        for (std::size_t i = 0; i < kk; ++i) d += filter[(y * n + x) * kk + i];
+        if (d != 0.0) var += std::norm(f[y * n + x] * d) * a1[x] * a1[y];
       }
     const double nn = static_cast<double>(n * n);
     var /= nn * nn;
     const double scale = var > 0 ? 1.0 / (std::sqrt(var) * nn) : 0.0;  // with the IFFT's 1/N^2
     const std::size_t stride = (n + 1) * static_cast<std::size_t>(channels_);
     texels_.assign((n + 1) * stride, 0.0f);
-    max_abs_.assign(static_cast<std::size_t>(orientations_), 0.0f);
-    max_step_.assign(static_cast<std::size_t>(orientations_), 0.0f);
+    max_abs_.assign(kk, 0.0f);
+    max_step_.assign(kk, 0.0f);
     std::vector<cd> a(n * n);
-    for (int i = 0; i < orientations_; ++i) {
-      for (std::size_t y = 0; y < n; ++y)
-        for (std::size_t x = 0; x < n; ++x) {
-          const dvec2 w{detail::bin_frequency(x, n), detail::bin_frequency(y, n)};
-          a[y * n + x] = f[y * n + x] * bank.subband(i, 0, w);
-        }
+    for (std::size_t i = 0; i < kk; ++i) {
+      for (std::size_t q = 0; q < n * n; ++q) a[q] = f[q] * filter[q * kk + i];
       detail::fft2(a.data(), n, +1);
       for (std::size_t y = 0; y <= n; ++y)
-        for (std::size_t x = 0; x <= n; ++x) {
-          const float v = static_cast<float>(a[(y % n) * n + (x % n)].real() * scale);
-          texels_[y * stride + x * static_cast<std::size_t>(channels_) +
-                  static_cast<std::size_t>(i)] = v;
-        }
+        for (std::size_t x = 0; x <= n; ++x)
+          texels_[y * stride + x * static_cast<std::size_t>(channels_) + i] =
+              static_cast<float>(a[(y % n) * n + (x % n)].real() * scale);
       float m = 0, step = 0;
       for (std::size_t y = 0; y < n; ++y)
         for (std::size_t x = 0; x < n; ++x) {
-          const float v = texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y))[i];
-          const float vx =
-              texel(static_cast<std::uint32_t>(x + 1), static_cast<std::uint32_t>(y))[i];
-          const float vy =
-              texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y + 1))[i];
+          const auto ux = static_cast<std::uint32_t>(x), uy = static_cast<std::uint32_t>(y);
+          const float v = texel(ux, uy)[i];
           m = std::max(m, std::fabs(v));
-          step = std::max({step, std::fabs(vx - v), std::fabs(vy - v)});
+          step = std::max(
+              {step, std::fabs(texel(ux + 1, uy)[i] - v), std::fabs(texel(ux, uy + 1)[i] - v)});
         }
-      max_abs_[static_cast<std::size_t>(i)] = m;
-      max_step_[static_cast<std::size_t>(i)] = step;
+      max_abs_[i] = m;
+      max_step_[i] = step;
     }
   }
 
@@ -404,14 +412,15 @@ class anisotropic : public sample_noise<anisotropic, 2> {
           lam[i + kc * s] = static_cast<T>(w[static_cast<std::size_t>(i + prm_.orientations * s)]);
       return;
     }
-    const T sxx = T(fp.covariance(0, 0)), sxy = T(fp.covariance(0, 1)),
-            syy = T(fp.covariance(1, 1));
+    // The quadratic form w^T S w in double: at grazing angles S is nearly
+    // singular with entries of 1e4 and more, and the terms cancel.
+    const double sxx = fp.covariance(0, 0), sxy = fp.covariance(0, 1), syy = fp.covariance(1, 1);
     const T cut = T(c::kAnisoWeightCutoff * c::kLog2E);
     const bool three = prm_.filtering == weight_rule::three_point;
     for (int i = 0; i < prm_.orientations; ++i) {
-      const T q = (sxx * T(dxx_[i]) + sxy * T(dxy2_[i])) + syy * T(dyy_[i]);
+      const double q = (sxx * dxx_[i] + sxy * dxy2_[i]) + syy * dyy_[i];
       for (int s = 0; s < prm_.scales; ++s) {
-        const T z = T(kappa_[s]) * q;
+        const T z = T(kappa_[s] * q);
         lam[i + kc * s] = three ? lambda3(z, cut) : lambda1(z, cut);
       }
     }
@@ -490,11 +499,13 @@ class anisotropic : public sample_noise<anisotropic, 2> {
     }
     const bool three = prm_.compensation == weight_rule::three_point;
     const T cap = T(cap_unit_);
-    const T sd = std::sqrt(std::fabs(T(m.m00) * T(m.m11) - T(m.m01) * T(m.m10)));
+    // det T and |T^T w|^2 in double (they cancel for nearly singular maps),
+    // the transcendental functions in T.
+    const double m00 = m.m00, m01 = m.m01, m10 = m.m10, m11 = m.m11;
+    const T sd = std::sqrt(T(std::fabs(m00 * m11 - m01 * m10)));
     for (int i = 0; i < prm_.orientations; ++i) {
-      const T dx = T(dir_[i].x), dy = T(dir_[i].y);
-      const T tu = T(m.m00) * dx + T(m.m10) * dy, tv = T(m.m01) * dx + T(m.m11) * dy;
-      const T half_log = T(0.5) * detail::log2_positive(tu * tu + tv * tv);
+      const double tu = m00 * dir_[i].x + m10 * dir_[i].y, tv = m01 * dir_[i].x + m11 * dir_[i].y;
+      const T half_log = T(0.5) * detail::log2_positive(T(tu * tu + tv * tv));
       for (int s = 0; s < prm_.scales; ++s) {
         T acc = T(0);
         for (int k = k0; k < k1; ++k) {

@@ -37,11 +37,15 @@
 //  - gamma_{k,i,s}: octave k's target, the isotropic band B of scale
 //    base_scale + k in surface space, moved to texture space by the sample's
 //    surface map T (core/surface_map.hpp): sqrt|det T| B(log2(|T^T w| /
-//    f_{base_scale + k})), fitted by params::compensation. Without a map (the
-//    identity) gamma_{k,i,s} = 1 for s = base_scale + k and 0 otherwise. The
-//    heuristic rules cap each gamma at the value that would give one subband
-//    all of the target's power (docs/anisotropic.md): strongly anisotropic
-//    maps otherwise blow the centre rule up.
+//    f_{base_scale + k})), fitted by params::compensation, times
+//    2^(s - base_scale - k): every scale's tiles have unit variance rather
+//    than the paper's common white spectrum, so a subband's amplitude is its
+//    filter over f_s (docs/anisotropic.md, "Distortion compensation"). Without
+//    a map (the identity) gamma_{k,i,s} = 1 for s = base_scale + k, else 0.
+//    The heuristic rules cap each gamma at sqrt(2 pi / A_K), the weight at
+//    which one subband alone carries all of the octave's variance (A_K =
+//    integral of G_i^2): strongly anisotropic maps otherwise blow the centre
+//    rule up.
 //  - f_k: fbm, f_k(t) = gain^k t (linear: the octave weights are summed
 //    first, the paper's "optimized" form, one lookup per subband); or
 //    turbulence, f_k(t) = gain^k |t| (one sum per octave, the "unoptimized" form).
@@ -1841,8 +1845,18 @@ namespace detail {
 
 inline bool is_power_of_two(std::size_t n) { return n != 0 && (n & (n - 1)) == 0; }
 
-// In-place DFT of a[0 ... n-1], n a power of two (not checked: callers validate).
-inline void fft(std::complex<double>* a, std::size_t n, int sign) {
+// Twiddles exp(sign 2 pi i k / n), k < n / 2.
+inline std::vector<std::complex<double>> fft_twiddles(std::size_t n, int sign) {
+  std::vector<std::complex<double>> w(n / 2);
+  for (std::size_t k = 0; k < n / 2; ++k) {
+    const double angle = 2.0 * constants::kPi * static_cast<double>(k) / static_cast<double>(n);
+    w[k] = {std::cos(angle), static_cast<double>(sign) * std::sin(angle)};
+  }
+  return w;
+}
+
+// In-place DFT of a[0 ... n-1] with the twiddles of (n, sign).
+inline void fft(std::complex<double>* a, std::size_t n, const std::complex<double>* w) {
   if (n < 2) return;
   // Bit-reversal permutation.
   for (std::size_t i = 1, j = 0; i < n; ++i) {
@@ -1851,30 +1865,34 @@ inline void fft(std::complex<double>* a, std::size_t n, int sign) {
     j ^= bit;
     if (i < j) std::swap(a[i], a[j]);
   }
-  // Twiddles exp(sign 2 pi i k / n) for k < n / 2, once per call.
-  std::vector<std::complex<double>> w(n / 2);
-  for (std::size_t k = 0; k < n / 2; ++k) {
-    const double angle = 2.0 * constants::kPi * static_cast<double>(k) / static_cast<double>(n);
-    w[k] = {std::cos(angle), static_cast<double>(sign) * std::sin(angle)};
-  }
   for (std::size_t len = 2; len <= n; len <<= 1) {
     const std::size_t half = len / 2, stride = n / len;
     for (std::size_t i = 0; i < n; i += len)
       for (std::size_t k = 0; k < half; ++k) {
-        const std::complex<double> t = w[k * stride] * a[i + k + half];
+        // t = w a, written out: std::complex's operator* adds C99 Annex G's
+        // NaN recovery (a libgcc call per product); the inputs here are finite.
+        const std::complex<double> wk = w[k * stride], x = a[i + k + half];
+        const std::complex<double> t(wk.real() * x.real() - wk.imag() * x.imag(),
+                                     wk.real() * x.imag() + wk.imag() * x.real());
         a[i + k + half] = a[i + k] - t;
         a[i + k] = a[i + k] + t;
       }
   }
 }
 
+// In-place DFT of a[0 ... n-1], n a power of two (not checked: callers validate).
+inline void fft(std::complex<double>* a, std::size_t n, int sign) {
+  fft(a, n, fft_twiddles(n, sign).data());
+}
+
 // In-place 2D DFT of an n x n row-major array (n a power of two).
 inline void fft2(std::complex<double>* a, std::size_t n, int sign) {
-  for (std::size_t r = 0; r < n; ++r) fft(a + r * n, n, sign);
+  const std::vector<std::complex<double>> w = fft_twiddles(n, sign);
+  for (std::size_t r = 0; r < n; ++r) fft(a + r * n, n, w.data());
   std::vector<std::complex<double>> column(n);
   for (std::size_t c = 0; c < n; ++c) {
     for (std::size_t r = 0; r < n; ++r) column[r] = a[r * n + c];
-    fft(column.data(), n, sign);
+    fft(column.data(), n, w.data());
     for (std::size_t r = 0; r < n; ++r) a[r * n + c] = column[r];
   }
 }
@@ -2649,9 +2667,9 @@ class anisotropic_tile {
     // F: Hermitian complex Gaussian white noise, F(k) = (g(k) + conj g(-k)) / sqrt 2
     // with g i.i.d. complex Gaussian of unit power: E|F(k)|^2 = 1 on every bin.
     std::vector<cd> g(n * n);
-    rng r(seed, 0x7a11e5u);  // the tiles' own stream of the seed
+    rng gen(seed, 0x7a11e5u);  // the tiles' own stream of the seed
     for (cd& v : g) {
-      const double re = r.gaussian<double>(), im = r.gaussian<double>();
+      const double re = gen.gaussian<double>(), im = gen.gaussian<double>();
       v = cd(re, im) * std::sqrt(0.5);
     }
     std::vector<cd> f(n * n);
@@ -2665,53 +2683,61 @@ class anisotropic_tile {
     bp.scales = 1;
     bp.base_frequency = detail::constants::kAnisoTileBand;
     const steerable_bank bank(bp);
-    // Normalisation: the continuous-plane variance of the bilinear interpolant
-    // of s = sum_i n_i is (1/N^4) sum_k |S(k)|^2 a(k_x) a(k_y) with
-    // a(k) = (2 + cos(2 pi k / N)) / 3 (the mean of |(1 - t) + t e^{i w}|^2 over t).
-    double var = 0;
+    // Per bin: the radial band B (shared by the orientations) and cos(theta -
+    // theta_i) for each orientation; D_i = G(cos) B, as steerable_bank::subband.
+    const std::size_t kk = static_cast<std::size_t>(orientations_);
+    std::vector<double> filter(n * n * kk, 0.0);
     for (std::size_t y = 0; y < n; ++y)
       for (std::size_t x = 0; x < n; ++x) {
         const dvec2 w{detail::bin_frequency(x, n), detail::bin_frequency(y, n)};
+        const double b = bank.scale_band(0, w);
+        if (b == 0.0) continue;
+        const double r = std::hypot(w.x, w.y);
+        for (std::size_t i = 0; i < kk; ++i) {
+          const dvec2& d = bank.direction(static_cast<int>(i));
+          filter[(y * n + x) * kk + i] =
+              steerable_bank::angular(orientations_, (w.x * d.x + w.y * d.y) / r) * b;
+        }
+      }
+    // Normalisation: the continuous-plane variance of the bilinear interpolant
+    // of s = sum_i n_i is (1/N^4) sum_k |S(k)|^2 a(k_x) a(k_y) with
+    // a(k) = (2 + cos(2 pi k / N)) / 3 (the mean of |(1 - t) + t e^{i w}|^2 over t).
+    std::vector<double> a1(n);
+    for (std::size_t x = 0; x < n; ++x)
+      a1[x] = (2.0 + std::cos(2.0 * detail::constants::kPi * detail::bin_frequency(x, n))) / 3.0;
+    double var = 0;
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x) {
         double d = 0;
-        for (int i = 0; i < orientations_; ++i) d += bank.subband(i, 0, w);
-        const double ax = (2.0 + std::cos(2.0 * detail::constants::kPi * w.x)) / 3.0;
-        const double ay = (2.0 + std::cos(2.0 * detail::constants::kPi * w.y)) / 3.0;
-        var += std::norm(f[y * n + x] * d) * ax * ay;
+        for (std::size_t i = 0; i < kk; ++i) d += filter[(y * n + x) * kk + i];
+        if (d != 0.0) var += std::norm(f[y * n + x] * d) * a1[x] * a1[y];
       }
     const double nn = static_cast<double>(n * n);
     var /= nn * nn;
     const double scale = var > 0 ? 1.0 / (std::sqrt(var) * nn) : 0.0;  // with the IFFT's 1/N^2
     const std::size_t stride = (n + 1) * static_cast<std::size_t>(channels_);
     texels_.assign((n + 1) * stride, 0.0f);
-    max_abs_.assign(static_cast<std::size_t>(orientations_), 0.0f);
-    max_step_.assign(static_cast<std::size_t>(orientations_), 0.0f);
+    max_abs_.assign(kk, 0.0f);
+    max_step_.assign(kk, 0.0f);
     std::vector<cd> a(n * n);
-    for (int i = 0; i < orientations_; ++i) {
-      for (std::size_t y = 0; y < n; ++y)
-        for (std::size_t x = 0; x < n; ++x) {
-          const dvec2 w{detail::bin_frequency(x, n), detail::bin_frequency(y, n)};
-          a[y * n + x] = f[y * n + x] * bank.subband(i, 0, w);
-        }
+    for (std::size_t i = 0; i < kk; ++i) {
+      for (std::size_t q = 0; q < n * n; ++q) a[q] = f[q] * filter[q * kk + i];
       detail::fft2(a.data(), n, +1);
       for (std::size_t y = 0; y <= n; ++y)
-        for (std::size_t x = 0; x <= n; ++x) {
-          const float v = static_cast<float>(a[(y % n) * n + (x % n)].real() * scale);
-          texels_[y * stride + x * static_cast<std::size_t>(channels_) +
-                  static_cast<std::size_t>(i)] = v;
-        }
+        for (std::size_t x = 0; x <= n; ++x)
+          texels_[y * stride + x * static_cast<std::size_t>(channels_) + i] =
+              static_cast<float>(a[(y % n) * n + (x % n)].real() * scale);
       float m = 0, step = 0;
       for (std::size_t y = 0; y < n; ++y)
         for (std::size_t x = 0; x < n; ++x) {
-          const float v = texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y))[i];
-          const float vx =
-              texel(static_cast<std::uint32_t>(x + 1), static_cast<std::uint32_t>(y))[i];
-          const float vy =
-              texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y + 1))[i];
+          const auto ux = static_cast<std::uint32_t>(x), uy = static_cast<std::uint32_t>(y);
+          const float v = texel(ux, uy)[i];
           m = std::max(m, std::fabs(v));
-          step = std::max({step, std::fabs(vx - v), std::fabs(vy - v)});
+          step = std::max(
+              {step, std::fabs(texel(ux + 1, uy)[i] - v), std::fabs(texel(ux, uy + 1)[i] - v)});
         }
-      max_abs_[static_cast<std::size_t>(i)] = m;
-      max_step_[static_cast<std::size_t>(i)] = step;
+      max_abs_[i] = m;
+      max_step_[i] = step;
     }
   }
 
@@ -2780,10 +2806,10 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       dyy_[i] = d.y * d.y;
       dxy2_[i] = 2.0 * d.x * d.y;
     }
-    // Caps of the heuristic compensation weights: a subband of scale s
-    // carrying all of octave k's target power has gamma = 2^(b + k - s)
-    // sqrt(2 pi / A_K), A_K = integral of G_i^2 over the circle
-    // = alpha_K^4 2 pi C(4K - 4, 2K - 2) / 4^(2K - 2) (docs/anisotropic.md).
+    // Cap of the heuristic compensation weights: one subband (variance
+    // A_K / 2 pi, unit-variance tiles) carrying all of an octave's unit
+    // variance has gamma = sqrt(2 pi / A_K), A_K = integral of G_i^2 over the
+    // circle = alpha_K^4 2 pi C(4K - 4, 2K - 2) / 4^(2K - 2) (docs/anisotropic.md).
     const int kk = prm_.orientations;
     double binom = 1.0;  // C(4K - 4, 2K - 2) / 4^(2K - 2), as a running product
     for (int m = 1; m <= 2 * kk - 2; ++m)
@@ -2814,8 +2840,8 @@ class anisotropic : public sample_noise<anisotropic, 2> {
   const dvec2& direction(int i) const { return dir_[i]; }
   double octave_weight(int k) const { return norm_ * octave_gain_[k]; }
   double normalization() const { return norm_; }
-  // Cap of a heuristic compensation weight of octave k at scale s.
-  double gamma_cap(int k, int s) const { return std::ldexp(cap_unit_, prm_.base_scale + k - s); }
+  // Cap of a heuristic compensation weight.
+  double gamma_cap() const { return cap_unit_; }
 
   // Variance without map and filter (fbm): 1.
   static constexpr double variance() { return 1.0; }
@@ -2827,14 +2853,15 @@ class anisotropic : public sample_noise<anisotropic, 2> {
     for (int k = 0; k < prm_.octaves; ++k) g += octave_weight(k);
     return t * g;
   }
-  // |n| <= bound_with_maps() for every surface map under the heuristic rules.
+  // |n| <= bound_with_maps() for every surface map under the heuristic rules:
+  // per octave and orientation at most 3 scales have a weight (2 for the
+  // centre rule), each at most gamma_cap().
   double bound_with_maps() const {
     double t = 0;
     for (int i = 0; i < prm_.orientations; ++i) t += tile_->max_abs(i);
     double g = 0;
-    for (int k = 0; k < prm_.octaves; ++k)
-      for (int s = 0; s < prm_.scales; ++s) g += octave_weight(k) * gamma_cap(k, s);
-    return t * g;
+    for (int k = 0; k < prm_.octaves; ++k) g += octave_weight(k);
+    return t * g * std::min(prm_.scales, 3) * cap_unit_;
   }
   // |float - double| at the same input is within float_budget() (no map,
   // heuristic rules): the float weights' relative error (2^-20: the
@@ -2903,14 +2930,15 @@ class anisotropic : public sample_noise<anisotropic, 2> {
           lam[i + kc * s] = static_cast<T>(w[static_cast<std::size_t>(i + prm_.orientations * s)]);
       return;
     }
-    const T sxx = T(fp.covariance(0, 0)), sxy = T(fp.covariance(0, 1)),
-            syy = T(fp.covariance(1, 1));
+    // The quadratic form w^T S w in double: at grazing angles S is nearly
+    // singular with entries of 1e4 and more, and the terms cancel.
+    const double sxx = fp.covariance(0, 0), sxy = fp.covariance(0, 1), syy = fp.covariance(1, 1);
     const T cut = T(c::kAnisoWeightCutoff * c::kLog2E);
     const bool three = prm_.filtering == weight_rule::three_point;
     for (int i = 0; i < prm_.orientations; ++i) {
-      const T q = (sxx * T(dxx_[i]) + sxy * T(dxy2_[i])) + syy * T(dyy_[i]);
+      const double q = (sxx * dxx_[i] + sxy * dxy2_[i]) + syy * dyy_[i];
       for (int s = 0; s < prm_.scales; ++s) {
-        const T z = T(kappa_[s]) * q;
+        const T z = T(kappa_[s] * q);
         lam[i + kc * s] = three ? lambda3(z, cut) : lambda1(z, cut);
       }
     }
@@ -2988,11 +3016,14 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       return;
     }
     const bool three = prm_.compensation == weight_rule::three_point;
-    const T sd = std::sqrt(std::fabs(T(m.m00) * T(m.m11) - T(m.m01) * T(m.m10)));
+    const T cap = T(cap_unit_);
+    // det T and |T^T w|^2 in double (they cancel for nearly singular maps),
+    // the transcendental functions in T.
+    const double m00 = m.m00, m01 = m.m01, m10 = m.m10, m11 = m.m11;
+    const T sd = std::sqrt(T(std::fabs(m00 * m11 - m01 * m10)));
     for (int i = 0; i < prm_.orientations; ++i) {
-      const T dx = T(dir_[i].x), dy = T(dir_[i].y);
-      const T tu = T(m.m00) * dx + T(m.m10) * dy, tv = T(m.m01) * dx + T(m.m11) * dy;
-      const T half_log = T(0.5) * detail::log2_positive(tu * tu + tv * tv);
+      const double tu = m00 * dir_[i].x + m10 * dir_[i].y, tv = m01 * dir_[i].x + m11 * dir_[i].y;
+      const T half_log = T(0.5) * detail::log2_positive(T(tu * tu + tv * tv));
       for (int s = 0; s < prm_.scales; ++s) {
         T acc = T(0);
         for (int k = k0; k < k1; ++k) {
@@ -3001,7 +3032,9 @@ class anisotropic : public sample_noise<anisotropic, 2> {
                                   T(c::kAnisoThreePointCentre) * detail::band_profile(x)) +
                                      T(c::kAnisoThreePointSide) * detail::band_profile(x + T(0.5))
                                : detail::band_profile(x);
-          const T gamma = prof > T(0) ? std::min(sd * prof, T(gamma_cap(k, s))) : T(0);
+          // 2^(s - b - k) sqrt|det T| prof, capped (exact power of two in T).
+          const T gamma =
+              prof > T(0) ? std::min(T(std::ldexp(1.0, s - b - k)) * (sd * prof), cap) : T(0);
           acc = acc + ow(k) * gamma;
         }
         w[i + kc * s] = acc * lam[i + kc * s];
@@ -3434,6 +3467,682 @@ struct simd_kernel {
 #endif
 #include <hwy/highway.h>
 
+// ---- begin hush/simd/anisotropic-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for anisotropic noise (hush/anisotropic.hpp): batches of
+// samples (positions with optional footprints and surface maps), points and
+// uniform grids; values only (gradients run the scalar loop, exec.hpp).
+// Compiled once per SIMD target (toggle include guard); reached through
+// hush/simd/dispatch.hpp, never included directly by users.
+//
+// A block of kBlock samples goes through two phases:
+//  1. weights and tile coordinates, lanes = samples: the filter weights
+//     lambda (pixel filter per subband: exp2 polynomial of approx_math.hpp),
+//     the compensation weights gamma (log2 and band-profile polynomials), the
+//     octave sums, and per scale the lattice split of the tile coordinate
+//     p f_s / band + offset, in double lanes (exactly lattice_split<float>,
+//     lane by lane through core/lattice.hpp beyond 2^31 texels);
+//  2. lookups, lanes = channels (orientations): per sample and scale, the
+//     four texels of the bilinear footprint are two runs of 2 * channels
+//     floats; the blend and the weighted accumulation run on 4-channel
+//     chunks, the final channel sum in anisotropic.hpp's tree order.
+// Every operation repeats anisotropic.hpp's float algorithm in the same
+// order, so under HUSH_STRICT_FP the results are bit for bit the scalar ones
+// (tests/simd/anisotropic_simd_test.cpp, every compiled target); otherwise
+// multiply-adds are fused and results stay within the noise's float budget.
+// Least-squares weight rules take the scalar weight code per sample
+// (phase 1) and the vector lookups (phase 2): the same bits as well.
+
+// Toggle guard: included once per target by foreach_target.h.
+#if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_ANISOTROPIC_INL_H_
+#undef HUSH_SIMD_ANISOTROPIC_INL_H_
+#else
+#define HUSH_SIMD_ANISOTROPIC_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace aniso_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using DD = hn::ScalableTag<double>;
+using VD = hn::Vec<DD>;
+using DFH = hn::Rebind<float, DD>;     // as many floats as DD has doubles
+using DIH = hn::Rebind<int32_t, DD>;   // ... and int32
+using DUH = hn::Rebind<uint32_t, DD>;  // ... and uint32
+using D4 = hn::CappedTag<float, 4>;    // one chunk of channels (1 lane on HWY_SCALAR)
+using V4 = hn::Vec<D4>;
+
+namespace c = detail::constants;
+
+// Samples per block: a multiple of every target's lane count (AVX-512: 16
+// floats; SVE at most 64) and small enough for the block buffers to stay in L1/L2.
+constexpr std::size_t kBlock = 64;
+constexpr int kMaxScales = c::kAnisoMaxScales;
+constexpr int kMaxChannels = anisotropic::kMaxChannels;
+
+// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
+// compiled), fused otherwise.
+template <class V>
+HWY_INLINE V mul_add(V a, V b, V cc) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), cc);
+#else
+  return hn::MulAdd(a, b, cc);
+#endif
+}
+
+// The polynomial coefficients of approx_math.hpp, rounded to float as the
+// scalar code rounds them (float(c)), at compile time.
+template <int N>
+struct float_coefficients {
+  float v[N];
+};
+template <int N>
+constexpr float_coefficients<N> to_float(const double (&d)[N]) {
+  float_coefficients<N> r{};
+  for (int i = 0; i < N; ++i) r.v[i] = static_cast<float>(d[i]);
+  return r;
+}
+constexpr auto kExp2 = to_float(c::kAnisoSeries.exp2);
+constexpr auto kLog2 = to_float(c::kAnisoSeries.log2);
+constexpr auto kSinPi = to_float(c::kAnisoSeries.sinpi);
+
+// Horner's rule p = (...(k[N-1] x + k[N-2]) x + ...) x + k[0], unrolled.
+template <int N, int M = N - 1>
+HWY_INLINE VF horner(const float_coefficients<N>& k, VF x, VF p) {
+  const DF df;
+  p = mul_add(p, x, hn::Set(df, k.v[M - 1]));
+  if constexpr (M - 1 > 0)
+    return horner<N, M - 1>(k, x, p);
+  else
+    return p;
+}
+template <int N>
+HWY_INLINE VF horner(const float_coefficients<N>& k, VF x) {
+  return horner<N>(k, x, hn::Set(DF(), k.v[N - 1]));
+}
+
+// detail::exp2_nonpositive for y in [-126, 0] (callers select the cutoff).
+HWY_INLINE VF exp2_nonpositive(VF y) {
+  const DF df;
+  const DI di;
+  const VF n = hn::Floor(hn::Add(y, hn::Set(df, 0.5f)));
+  const VF r = hn::Sub(y, n);
+  const VF p = horner(kExp2, r);
+  // 2^n from exponent bits; n < -126 (beyond the cutoff) is clamped, the
+  // caller discards those lanes.
+  const VF nc = hn::Max(n, hn::Set(df, -126.0f));
+  const auto e = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, nc), hn::Set(di, 127)));
+  return hn::Mul(p, hn::BitCast(df, e));
+}
+
+// detail::log2_positive: -inf below the smallest normal float, +inf stays.
+HWY_INLINE VF log2_positive(VF m) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const auto tiny = hn::Not(hn::Ge(m, hn::Set(df, std::numeric_limits<float>::min())));
+  const auto huge = hn::Not(hn::Lt(m, hn::Set(df, std::numeric_limits<float>::infinity())));
+  const VU b = hn::BitCast(du, m);
+  auto e = hn::Sub(hn::BitCast(di, hn::ShiftRight<23>(b)), hn::Set(di, 127));
+  VF a = hn::BitCast(df, hn::Or(hn::And(b, hn::Set(du, 0x007fffffu)), hn::Set(du, 0x3f800000u)));
+  const auto big = hn::Gt(a, hn::Set(df, float(c::kSqrt2)));
+  a = hn::IfThenElse(big, hn::Mul(a, hn::Set(df, 0.5f)), a);
+  e = hn::IfThenElse(hn::RebindMask(di, big), hn::Add(e, hn::Set(di, 1)), e);
+  const VF z = hn::Div(hn::Sub(a, hn::Set(df, 1.0f)), hn::Add(a, hn::Set(df, 1.0f)));
+  const VF p = horner(kLog2, hn::Mul(z, z));
+  VF r = mul_add(p, z, hn::ConvertTo(df, e));
+  r = hn::IfThenElse(tiny, hn::Set(df, -std::numeric_limits<float>::infinity()), r);
+  return hn::IfThenElse(huge, m, r);
+}
+
+// detail::band_profile: cos^2(pi x / 2) for |x| < 1, else 0 (x is never NaN here).
+HWY_INLINE VF band_profile(VF x) {
+  const DF df;
+  const VF ax = hn::Abs(x);
+  const VF z = hn::Sub(ax, hn::Set(df, 0.5f));
+  const VF p = horner(kSinPi, hn::Mul(z, z));
+  const VF half = hn::Set(df, 0.5f);
+  const VF v = hn::Sub(half, hn::Mul(half, hn::Mul(p, z)));
+  return hn::IfThenElseZero(hn::Lt(ax, hn::Set(df, 1.0f)), v);
+}
+
+// The noise's constants in float, once per call.
+struct config {
+  int k = 4, kc = 4, scales = 3, base = 0, octaves = 3;
+  bool fbm = true, lsq = false;
+  weight_rule filtering = weight_rule::centre, compensation = weight_rule::centre;
+  std::uint32_t n = 256;
+  std::size_t stride = 0;
+  const float* texels = nullptr;
+  double dxx[kMaxChannels] = {}, dyy[kMaxChannels] = {}, dxy2[kMaxChannels] = {};
+  double dx[kMaxChannels] = {}, dy[kMaxChannels] = {}, kappa[kMaxScales] = {};
+  float ow[kMaxScales] = {}, gain[kMaxScales] = {};
+  float norm = 1, cap = 1, cut = 0;
+  double tpu[kMaxScales] = {}, off[kMaxScales][2] = {};
+
+  explicit config(const anisotropic& a) {
+    const auto& p = a.parameters();
+    k = p.orientations;
+    kc = a.channels();
+    scales = p.scales;
+    base = p.base_scale;
+    octaves = p.octaves;
+    fbm = p.kind == fractal_kind::fbm;
+    filtering = p.filtering;
+    compensation = p.compensation;
+    lsq = filtering == weight_rule::least_squares || compensation == weight_rule::least_squares;
+    n = static_cast<std::uint32_t>(p.tile_size);
+    stride = a.tile().row_stride();
+    texels = a.tile().texels().data();
+    for (int i = 0; i < k; ++i) {
+      const dvec2 d = a.direction(i);
+      dxx[i] = d.x * d.x;
+      dyy[i] = d.y * d.y;
+      dxy2[i] = 2.0 * d.x * d.y;
+      dx[i] = d.x;
+      dy[i] = d.y;
+    }
+    for (int s = 0; s < scales; ++s) {
+      kappa[s] = a.kappa(s);
+      tpu[s] = a.texels_per_unit(s);
+      off[s][0] = a.offset(s).x;
+      off[s][1] = a.offset(s).y;
+    }
+    double g = 1.0;
+    for (int o = 0; o < octaves; ++o, g *= p.gain) {
+      ow[o] = float(a.octave_weight(o));
+      gain[o] = float(g);
+    }
+    norm = float(a.normalization());
+    cap = float(a.gamma_cap());
+    cut = float(c::kAnisoWeightCutoff * c::kLog2E);
+  }
+  // Octave passes of phase 2: 1 for fbm (octaves summed into the weights).
+  int passes() const { return fbm ? 1 : octaves; }
+};
+
+// One block's phase-1 results.
+struct block {
+  // w[((pass * scales + s) * chunks + h) * kBlock * 4 + sample * 4 + q]:
+  // channel 4h + q of the weights of scale s in octave pass `pass`.
+  std::vector<float> w;
+  // Per scale and sample: the offset of texel (x0, y0) in the tile's float
+  // array, and the fractions.
+  HWY_ALIGN std::uint32_t offset[kMaxScales][kBlock];
+  HWY_ALIGN float fx[kMaxScales][kBlock];
+  HWY_ALIGN float fy[kMaxScales][kBlock];
+  // active[s][j] != 0: some weight of scale s (any pass) is not 0 for sample j.
+  HWY_ALIGN std::uint32_t active[kMaxScales][kBlock];
+  bool bad[kBlock];
+  // The samples' coordinates in double (x, y).
+  HWY_ALIGN double x[kBlock], y[kBlock];
+  // Phase 1's double-precision parts, rounded to float: the filter exponents
+  // z[(s * kc + i) * kBlock + j], |T^T w_i|^2 in m2[i * kBlock + j], |det T| in det[j].
+  std::vector<float> z, m2;
+  HWY_ALIGN float det[kBlock];
+  explicit block(const config& cf)
+      : w(static_cast<std::size_t>(cf.passes() * cf.scales * cf.kc) * kBlock, 0.0f),
+        z(static_cast<std::size_t>(cf.scales * cf.kc) * kBlock, 0.0f),
+        m2(static_cast<std::size_t>(cf.kc) * kBlock, 0.0f) {}
+  float* weights(const config& cf, int pass, int s, int h) {
+    return w.data() + index(cf, pass, s, h);
+  }
+  const float* weights(const config& cf, int pass, int s, int h) const {
+    return w.data() + index(cf, pass, s, h);
+  }
+  static std::size_t index(const config& cf, int pass, int s, int h) {
+    return static_cast<std::size_t>((pass * cf.scales + s) * (cf.kc / 4) + h) * kBlock * 4;
+  }
+};
+
+// The scalar algorithm's lambda for z = kappa_s q: 0 beyond the cutoff.
+HWY_INLINE VF lambda1(VF z, VF cut) {
+  return hn::IfThenZeroElse(hn::Gt(z, cut), exp2_nonpositive(hn::Neg(z)));
+}
+HWY_INLINE VF lambda(VF z, VF cut, bool three) {
+  const DF df;
+  // Beyond the cutoff in every lane, also at the three-point rule's lowest
+  // radius (a far scale): 0, as lane by lane.
+  if (hn::AllTrue(df, hn::Gt(three ? hn::Mul(z, hn::Set(df, 0.5f)) : z, cut))) return hn::Zero(df);
+  if (!three) return lambda1(z, cut);
+  const VF lo = lambda1(hn::Mul(z, hn::Set(df, 0.5f)), cut);
+  const VF mid = lambda1(z, cut);
+  const VF hi = lambda1(hn::Mul(z, hn::Set(df, 2.0f)), cut);
+  const VF side = hn::Set(df, float(c::kAnisoThreePointSide));
+  return mul_add(side, hi,
+                 mul_add(side, lo, hn::Mul(hn::Set(df, float(c::kAnisoThreePointCentre)), mid)));
+}
+
+// Stores channel vectors ch[0 ... kc-1] (lanes = samples first ... first +
+// lanes - 1) into the block's interleaved weight rows of (pass, s).
+HWY_INLINE void store_weights(const config& cf, block& b, int pass, int s, std::size_t first,
+                              const VF* ch) {
+  const DF df;
+  for (int h = 0; h < cf.kc / 4; ++h)
+    hn::StoreInterleaved4(ch[4 * h], ch[4 * h + 1], ch[4 * h + 2], ch[4 * h + 3], df,
+                          b.weights(cf, pass, s, h) + first * 4);
+}
+
+// Phase 1, weights, for samples [first, first + lanes) of the block; fp and
+// map point at the block's first sample (null when not given).
+HWY_INLINE void weights_vector(const config& cf, block& b, std::size_t first, const float* fp,
+                               const float* map) {
+  const DF df;
+  const DD dd;
+  const DFH dfh;
+  const VF zero = hn::Zero(df);
+  // The quadratic forms and the determinant in double (anisotropic.hpp: they
+  // cancel at grazing angles and for nearly singular maps), rounded to float.
+  for (std::size_t h = first; h < first + hn::Lanes(df); h += hn::Lanes(dd)) {
+    if (fp) {
+      hn::Vec<DFH> a, bb, cc;
+      hn::LoadInterleaved3(dfh, fp + h * 3, a, bb, cc);
+      const VD sxx = hn::PromoteTo(dd, a), sxy = hn::PromoteTo(dd, bb), syy = hn::PromoteTo(dd, cc);
+      for (int i = 0; i < cf.k; ++i) {
+        const VD q =
+            mul_add(syy, hn::Set(dd, cf.dyy[i]),
+                    mul_add(sxy, hn::Set(dd, cf.dxy2[i]), hn::Mul(sxx, hn::Set(dd, cf.dxx[i]))));
+        for (int s = 0; s < cf.scales; ++s)
+          hn::StoreU(hn::DemoteTo(dfh, hn::Mul(hn::Set(dd, cf.kappa[s]), q)), dfh,
+                     b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock + h);
+      }
+    }
+    if (map) {
+      hn::Vec<DFH> a00, a01, a10, a11;
+      hn::LoadInterleaved4(dfh, map + h * 4, a00, a01, a10, a11);
+      VD m00 = hn::PromoteTo(dd, a00), m01 = hn::PromoteTo(dd, a01);
+      VD m10 = hn::PromoteTo(dd, a10), m11 = hn::PromoteTo(dd, a11);
+      // A map with a non-finite entry counts as the zero map.
+      const auto ok = hn::And(hn::And(hn::IsFinite(m00), hn::IsFinite(m01)),
+                              hn::And(hn::IsFinite(m10), hn::IsFinite(m11)));
+      m00 = hn::IfThenElseZero(ok, m00);
+      m01 = hn::IfThenElseZero(ok, m01);
+      m10 = hn::IfThenElseZero(ok, m10);
+      m11 = hn::IfThenElseZero(ok, m11);
+      hn::StoreU(hn::DemoteTo(dfh, hn::Abs(hn::Sub(hn::Mul(m00, m11), hn::Mul(m01, m10)))), dfh,
+                 b.det + h);
+      for (int i = 0; i < cf.k; ++i) {
+        const VD dxv = hn::Set(dd, cf.dx[i]), dyv = hn::Set(dd, cf.dy[i]);
+        const VD tu = mul_add(m10, dyv, hn::Mul(m00, dxv));
+        const VD tv = mul_add(m11, dyv, hn::Mul(m01, dxv));
+        hn::StoreU(hn::DemoteTo(dfh, mul_add(tv, tv, hn::Mul(tu, tu))), dfh,
+                   b.m2.data() + static_cast<std::size_t>(i) * kBlock + h);
+      }
+    }
+  }
+  VF half_log[kMaxChannels], sd = zero;
+  if (map) {
+    sd = hn::Sqrt(hn::LoadU(df, b.det + first));
+    for (int i = 0; i < cf.k; ++i)
+      half_log[i] = hn::Mul(
+          hn::Set(df, 0.5f),
+          log2_positive(hn::LoadU(df, b.m2.data() + static_cast<std::size_t>(i) * kBlock + first)));
+  }
+  const VF cut = hn::Set(df, cf.cut), cap = hn::Set(df, cf.cap);
+  const bool three_l = cf.filtering == weight_rule::three_point;
+  const bool three_c = cf.compensation == weight_rule::three_point;
+  const VF side = hn::Set(df, float(c::kAnisoThreePointSide));
+  const VF centre = hn::Set(df, float(c::kAnisoThreePointCentre));
+  const VF halfv = hn::Set(df, 0.5f);
+  const DU du;
+  const VU magnitude = hn::Set(du, 0x7fffffffu);
+  for (int s = 0; s < cf.scales; ++s) {
+    VU any = hn::Zero(du);
+    VF lam[kMaxChannels];
+    for (int i = 0; i < cf.k; ++i)
+      lam[i] =
+          fp ? lambda(hn::LoadU(df, b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock +
+                                        first),
+                      cut, three_l)
+             : hn::Set(df, 1.0f);
+    for (int pass = 0; pass < cf.passes(); ++pass) {
+      VF ch[kMaxChannels];
+      for (int i = 0; i < cf.kc; ++i) ch[i] = zero;
+      const int k0 = cf.fbm ? 0 : pass, k1 = cf.fbm ? cf.octaves : pass + 1;
+      for (int i = 0; i < cf.k; ++i) {
+        if (!map) {
+          const int o = s - cf.base;
+          if (o >= k0 && o < k1) ch[i] = hn::Mul(hn::Set(df, cf.fbm ? cf.ow[o] : cf.norm), lam[i]);
+          continue;
+        }
+        VF acc = zero;
+        for (int o = k0; o < k1; ++o) {
+          const VF x = hn::Add(hn::Set(df, float(s - cf.base - o)), half_log[i]);
+          const VF prof = three_c ? mul_add(side, band_profile(hn::Add(x, halfv)),
+                                            mul_add(side, band_profile(hn::Sub(x, halfv)),
+                                                    hn::Mul(centre, band_profile(x))))
+                                  : band_profile(x);
+          const VF g = hn::Min(
+              hn::Mul(hn::Set(df, float(std::ldexp(1.0, s - cf.base - o))), hn::Mul(sd, prof)),
+              cap);
+          const VF gamma = hn::IfThenElseZero(hn::Gt(prof, zero), g);
+          acc = mul_add(hn::Set(df, cf.fbm ? cf.ow[o] : cf.norm), gamma, acc);
+        }
+        ch[i] = hn::Mul(acc, lam[i]);
+      }
+      for (int i = 0; i < cf.k; ++i) any = hn::Or(any, hn::And(hn::BitCast(du, ch[i]), magnitude));
+      store_weights(cf, b, pass, s, first, ch);
+    }
+    hn::StoreU(any, du, b.active[s] + first);
+  }
+}
+
+// Phase 1, tile coordinates of scale s for the block's `count` samples (the
+// coordinates b.x, b.y, padded to whole vectors): lattice_split<float>(p tpu + off, n).
+HWY_INLINE void split_scale(const config& cf, block& b, int s, std::size_t count) {
+  const DD dd;
+  const DFH dfh;
+  const DIH dih;
+  const DUH duh;
+  const std::size_t lanes = hn::Lanes(dd);
+  const VD tpu = hn::Set(dd, cf.tpu[s]);
+  const VD limit = hn::Set(dd, 2147483648.0);
+  const auto ulp = hn::Set(dfh, detail::one_minus_ulp<float>());
+  const auto mask = hn::Set(duh, cf.n - 1u);
+  HWY_ALIGN std::uint32_t cells[2][kBlock];
+  for (int axis = 0; axis < 2; ++axis) {
+    std::uint32_t* cell = cells[axis];
+    float* frac = axis == 0 ? b.fx[s] : b.fy[s];
+    const double* coord = axis == 0 ? b.x : b.y;
+    const VD off = hn::Set(dd, cf.off[s][axis]);
+    for (std::size_t j = 0; j < count; j += lanes) {
+      VD qv = hn::Mul(hn::Load(dd, coord + j), tpu);
+      qv = hn::Add(hn::IfThenElseZero(hn::IsFinite(qv), qv), off);
+      const VD fl = hn::Floor(qv);
+      if (HWY_LIKELY(hn::AllTrue(dd, hn::Lt(hn::Abs(fl), limit)))) {
+        hn::StoreU(hn::Min(hn::DemoteTo(dfh, hn::Sub(qv, fl)), ulp), dfh, frac + j);
+        hn::StoreU(hn::And(hn::BitCast(duh, hn::DemoteTo(dih, fl)), mask), duh, cell + j);
+      } else {
+        HWY_ALIGN double qs[kBlock];
+        hn::Store(qv, dd, qs);
+        for (std::size_t l = 0; l < lanes; ++l) {
+          // NaN positions (bad samples) land here too: cell 0, never read.
+          const lattice_coord<float> lc = lattice_split<float>(qs[l], cf.n);
+          cell[j + l] = std::isfinite(qs[l]) ? lc.i0 : 0u;
+          frac[j + l] = std::isfinite(qs[l]) ? lc.f : 0.0f;
+        }
+      }
+    }
+  }
+  const DU du;
+  const VU stride = hn::Set(du, static_cast<std::uint32_t>(cf.stride));
+  const VU kc = hn::Set(du, static_cast<std::uint32_t>(cf.kc));
+  for (std::size_t j = 0; j < count; j += hn::Lanes(du))
+    hn::StoreU(hn::Add(hn::Mul(hn::LoadU(du, cells[1] + j), stride),
+                       hn::Mul(hn::LoadU(du, cells[0] + j), kc)),
+               du, b.offset[s] + j);
+}
+
+// Phase 2 for one sample: the weighted bilinear lookups of every scale
+// (general: any channel count and octave passes, 4-channel chunks).
+HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j) {
+  const D4 d4;
+  const std::size_t n4 = hn::Lanes(d4);
+  const int passes = cf.passes();
+  HWY_ALIGN float acc[kMaxScales * kMaxChannels];
+  std::fill(acc, acc + passes * cf.kc, 0.0f);
+  for (int s = 0; s < cf.scales; ++s) {
+    if (!b.active[s][j]) continue;
+    const float* t00 = cf.texels + b.offset[s][j];
+    const float* t01 = t00 + cf.stride;
+    const V4 fx = hn::Set(d4, b.fx[s][j]), fy = hn::Set(d4, b.fy[s][j]);
+    for (int cc = 0; cc < cf.kc; cc += static_cast<int>(n4)) {
+      const V4 c00 = hn::LoadU(d4, t00 + cc), c10 = hn::LoadU(d4, t00 + cf.kc + cc);
+      const V4 c01 = hn::LoadU(d4, t01 + cc), c11 = hn::LoadU(d4, t01 + cf.kc + cc);
+      const V4 r0 = mul_add(fy, hn::Sub(c01, c00), c00);
+      const V4 r1 = mul_add(fy, hn::Sub(c11, c10), c10);
+      const V4 v = mul_add(fx, hn::Sub(r1, r0), r0);
+      for (int pass = 0; pass < passes; ++pass) {
+        const float* w = b.weights(cf, pass, s, cc / 4) + j * 4 + cc % 4;
+        float* a = acc + pass * cf.kc + cc;
+        hn::Store(mul_add(hn::LoadU(d4, w), v, hn::Load(d4, a)), d4, a);
+      }
+    }
+  }
+  auto tree = [&](const float* a) {
+    const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
+    return cf.kc == 4 ? s4 : s4 + ((a[4] + a[5]) + (a[6] + a[7]));
+  };
+  if (cf.fbm) return tree(acc);
+  float r = 0.0f;
+  for (int pass = 0; pass < passes; ++pass)
+    r = r + cf.gain[pass] * std::fabs(tree(acc + pass * cf.kc));
+  return r;
+}
+
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+// Phase 2 for fbm with KC channels on targets whose vectors hold two texels
+// (2 KC floats): each row of the bilinear footprint is one load, blended in
+// y across both texels at once, then in x between the halves. Same
+// operations as lookup_sample, fewer instructions.
+template <int KC>
+HWY_INLINE void lookup_block_pairs(const config& cf, const block& b, std::size_t count,
+                                   float* out) {
+  const hn::FixedTag<float, 2 * KC> dp;
+  const hn::FixedTag<float, KC> dk;
+  using VK = hn::Vec<decltype(dk)>;
+  const int scales = cf.scales;
+  const std::size_t stride = cf.stride;
+  for (std::size_t j = 0; j < count; ++j) {
+    if (b.bad[j]) {
+      out[j] = std::numeric_limits<float>::quiet_NaN();
+      continue;
+    }
+    VK acc = hn::Zero(dk);
+    for (int s = 0; s < scales; ++s) {
+      if (!b.active[s][j]) continue;
+      const float* t00 = cf.texels + b.offset[s][j];
+      const auto row0 = hn::LoadU(dp, t00), row1 = hn::LoadU(dp, t00 + stride);
+      const auto r = mul_add(hn::Set(dp, b.fy[s][j]), hn::Sub(row1, row0), row0);
+      const VK r0 = hn::LowerHalf(dk, r), r1 = hn::UpperHalf(dk, r);
+      const VK v = mul_add(hn::Set(dk, b.fx[s][j]), hn::Sub(r1, r0), r0);
+      const float* w = b.w.data() + (static_cast<std::size_t>(s) * (KC / 4) * kBlock) * 4;
+      VK wk;
+      if constexpr (KC == 4) {
+        wk = hn::LoadU(dk, w + j * 4);
+      } else {
+        // Channels 0-3 and 4-7 sit in two interleaved rows of the block.
+        const hn::FixedTag<float, 4> d4f;
+        wk = hn::Combine(dk, hn::LoadU(d4f, w + kBlock * 4 + j * 4), hn::LoadU(d4f, w + j * 4));
+      }
+      acc = mul_add(wk, v, acc);
+    }
+    HWY_ALIGN float a[KC];
+    hn::Store(acc, dk, a);
+    const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
+    if constexpr (KC == 4)
+      out[j] = s4;
+    else
+      out[j] = s4 + ((a[4] + a[5]) + (a[6] + a[7]));
+  }
+}
+#endif
+
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+// Phase 2 for fbm with 8 channels where a vector holds one texel (AVX2):
+// four loads per scale, the blend on whole texels.
+HWY_INLINE void lookup_block_texels8(const config& cf, const block& b, std::size_t count,
+                                     float* out) {
+  const hn::FixedTag<float, 8> d8;
+  const hn::FixedTag<float, 4> d4f;
+  using V8 = hn::Vec<decltype(d8)>;
+  const std::size_t stride = cf.stride;
+  for (std::size_t j = 0; j < count; ++j) {
+    if (b.bad[j]) {
+      out[j] = std::numeric_limits<float>::quiet_NaN();
+      continue;
+    }
+    V8 acc = hn::Zero(d8);
+    for (int s = 0; s < cf.scales; ++s) {
+      if (!b.active[s][j]) continue;
+      const float* t00 = cf.texels + b.offset[s][j];
+      const float* t01 = t00 + stride;
+      const V8 fy = hn::Set(d8, b.fy[s][j]);
+      const V8 c00 = hn::LoadU(d8, t00), c10 = hn::LoadU(d8, t00 + 8);
+      const V8 r0 = mul_add(fy, hn::Sub(hn::LoadU(d8, t01), c00), c00);
+      const V8 r1 = mul_add(fy, hn::Sub(hn::LoadU(d8, t01 + 8), c10), c10);
+      const V8 v = mul_add(hn::Set(d8, b.fx[s][j]), hn::Sub(r1, r0), r0);
+      const float* w = b.w.data() + static_cast<std::size_t>(s) * 2 * kBlock * 4;
+      const V8 wk =
+          hn::Combine(d8, hn::LoadU(d4f, w + kBlock * 4 + j * 4), hn::LoadU(d4f, w + j * 4));
+      acc = mul_add(wk, v, acc);
+    }
+    HWY_ALIGN float a[8];
+    hn::Store(acc, d8, a);
+    out[j] = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+  }
+}
+#endif
+
+// Phase 2 for a block: the paired fast path where the target allows, else per sample.
+HWY_INLINE void lookup_block(const config& cf, const block& b, std::size_t count, float* out) {
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+  if (cf.fbm && cf.kc == 4) return lookup_block_pairs<4>(cf, b, count, out);
+#if HWY_MAX_BYTES >= 64
+  if (cf.fbm && cf.kc == 8) return lookup_block_pairs<8>(cf, b, count, out);
+#else
+  if (cf.fbm && cf.kc == 8) return lookup_block_texels8(cf, b, count, out);
+#endif
+#endif
+  for (std::size_t j = 0; j < count; ++j)
+    out[j] = b.bad[j] ? std::numeric_limits<float>::quiet_NaN() : lookup_sample(cf, b, j);
+}
+
+// Least-squares rules: phase-1 weights of sample j from the scalar code.
+inline void scalar_weights(const anisotropic& a, const config& cf, block& b, std::size_t j,
+                           const sample_input<2>& in) {
+  float w[kMaxScales * kMaxChannels];
+  for (int pass = 0; pass < cf.passes(); ++pass) {
+    if (cf.fbm)
+      a.weights<float>(in, w);
+    else
+      a.octave_weights<float>(in, pass, w);
+    for (int s = 0; s < cf.scales; ++s)
+      for (int h = 0; h < cf.kc / 4; ++h)
+        std::memcpy(b.weights(cf, pass, s, h) + j * 4, w + s * cf.kc + 4 * h, 4 * sizeof(float));
+  }
+}
+
+// A block of `count` <= kBlock samples whose coordinates are in b.x, b.y
+// (padded to whole vectors), with footprints fp and maps (null: not given) at
+// the block's first sample.
+inline void run_block(const anisotropic& a, const config& cf, block& b, std::size_t count,
+                      const float* fp, const float* map, float* out) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const std::size_t padded = (count + lanes - 1) / lanes * lanes;
+  // Pad the block's inputs to whole vectors (copies of the last sample).
+  HWY_ALIGN float fpb[kBlock * 3], mapb[kBlock * 4];
+  if (padded > count) {
+    if (fp) {
+      for (std::size_t j = 0; j < padded; ++j)
+        std::memcpy(fpb + 3 * j, fp + 3 * std::min(j, count - 1), 3 * sizeof(float));
+      fp = fpb;
+    }
+    if (map) {
+      for (std::size_t j = 0; j < padded; ++j)
+        std::memcpy(mapb + 4 * j, map + 4 * std::min(j, count - 1), 4 * sizeof(float));
+      map = mapb;
+    }
+  }
+  for (std::size_t j = count; j < padded; ++j) {
+    b.x[j] = b.x[count - 1];
+    b.y[j] = b.y[count - 1];
+  }
+  for (std::size_t j = 0; j < count; ++j)
+    b.bad[j] = !(std::isfinite(b.x[j]) && std::isfinite(b.y[j]));
+  if (!cf.lsq) {
+    for (std::size_t j = 0; j < padded; j += lanes) weights_vector(cf, b, j, fp, map);
+  } else {
+    for (std::size_t j = 0; j < count; ++j) {
+      sample_input<2> in;
+      in.position = {b.x[j], b.y[j]};
+      if (fp) {
+        const float u[3] = {fp[3 * j], fp[3 * j + 1], fp[3 * j + 2]};
+        in.fp = footprint<2>::from_covariance(u);
+      }
+      if (map) {
+        in.map = {map[4 * j], map[4 * j + 1], map[4 * j + 2], map[4 * j + 3]};
+        in.has_map = true;
+      }
+      scalar_weights(a, cf, b, j, in);
+      for (int s = 0; s < cf.scales; ++s) b.active[s][j] = 1;
+    }
+  }
+  for (int s = 0; s < cf.scales; ++s) split_scale(cf, b, s, padded);
+  lookup_block(cf, b, count, out);
+}
+
+}  // namespace aniso_simd
+
+// Anisotropic noise at n samples: positions xy (interleaved), footprints fp
+// (3 floats each: the stored upper triangle; null = points) and surface
+// maps (4 floats each; null = none); values into `value`.
+inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                const float* map, std::size_t n, float* value) {
+  using namespace aniso_simd;
+  const config cf(a);
+  block b(cf);
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t count = std::min(kBlock, n - first);
+    const float* p = xy + 2 * first;
+    for (std::size_t j = 0; j < count; ++j) {
+      b.x[j] = double(p[2 * j]);
+      b.y[j] = double(p[2 * j + 1]);
+    }
+    run_block(a, cf, b, count, fp ? fp + 3 * first : nullptr, map ? map + 4 * first : nullptr,
+              value + first);
+  }
+}
+
+// Anisotropic noise on a uniform 2D grid (C order, i fastest); positions
+// origin + step * (i, j) in double, as the scalar grid path forms them.
+inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
+  using namespace aniso_simd;
+  const config cf(a);
+  block b(cf);
+  const std::size_t nx = g.size[0], ny = g.size[1];
+  for (std::size_t j = 0; j < ny; ++j) {
+    const double y = g.origin[1] + g.step[1] * double(j);
+    for (std::size_t first = 0; first < nx; first += kBlock) {
+      const std::size_t count = std::min(kBlock, nx - first);
+      for (std::size_t i = 0; i < count; ++i) {
+        b.x[i] = g.origin[0] + g.step[0] * double(first + i);
+        b.y[i] = y;
+      }
+      run_block(a, cf, b, count, nullptr, nullptr, value + j * nx + first);
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_ANISOTROPIC_INL_H_ toggle
+// ---- end hush/simd/anisotropic-inl.h
 // ---- begin hush/simd/perlin-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -4231,6 +4940,13 @@ HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& 
 HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
                                    float* grad);
 
+// Anisotropic noise (hush/simd/anisotropic-inl.h): n samples at interleaved
+// positions xy, with footprints fp (3 floats each, null = points) and surface
+// maps (4 floats each, null = none); or a uniform grid. Values only.
+HUSH_SIMD_ENTRY void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                         const float* map, std::size_t n, float* value);
+HUSH_SIMD_ENTRY void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value);
+
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
 // best first, and of the one the kernels run on, on this CPU.
 HUSH_SIMD_ENTRY std::vector<std::string> compiled_targets();
@@ -4270,6 +4986,13 @@ inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float*
 inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
                           float* grad) {
   HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
+}
+inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                const float* map, std::size_t n, float* value) {
+  HWY_STATIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value);
+}
+inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
+  HWY_STATIC_DISPATCH(anisotropic_grid)(a, g, value);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -4333,6 +5056,58 @@ struct simd_kernel<fractal<perlin<D>>> {
       simd::fractal2_grid(fr, gr, out, g);
     else
       simd::fractal3_grid(fr, gr, out, g);
+  }
+};
+
+// Anisotropic noise: samples (footprints, surface maps), points and grids,
+// values in SIMD; gradients take the scalar loop (bilinear lookups' slopes).
+template <>
+struct simd_kernel<anisotropic> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void points(const anisotropic& a, const vec<float, 2>* pts, std::size_t count, float* out,
+                     vec<float, 2>* grad) {
+    if (grad) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const auto r = a.gradient(pts[i]);
+        out[i] = r.value;
+        grad[i] = r.gradient;
+      }
+      return;
+    }
+    simd::anisotropic_samples(a, reinterpret_cast<const float*>(pts), nullptr, nullptr, count, out);
+  }
+  static void grid(const anisotropic& a, const hush::grid<2>& g, float* out, vec<float, 2>* grad) {
+    if (grad) {
+      std::size_t idx = 0;
+      for (std::size_t j = 0; j < g.size[1]; ++j)
+        for (std::size_t i = 0; i < g.size[0]; ++i, ++idx) {
+          const auto r = a.value_and_gradient<float>(g.position({i, j}));
+          out[idx] = r.value;
+          grad[idx] = r.gradient;
+        }
+      return;
+    }
+    simd::anisotropic_grid(a, g, out);
+  }
+  static void samples(const anisotropic& a, const hush::samples<2>& s, float* out,
+                      vec<float, 2>* grad) {
+    static_assert(sizeof(footprint<2>) == 3 * sizeof(float), "footprint<2> is 3 packed floats");
+    static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
+    if (grad) {
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        const auto r = a.sample_value_and_gradient<float>(s.at(i));
+        out[i] = r.value;
+        grad[i] = r.gradient;
+      }
+      return;
+    }
+    simd::anisotropic_samples(
+        a, reinterpret_cast<const float*>(s.positions.data()),
+        s.has_footprints() ? reinterpret_cast<const float*>(s.footprints.data()) : nullptr,
+        s.has_surface_maps() ? reinterpret_cast<const float*>(s.surface_maps.data()) : nullptr,
+        s.size(), out);
   }
 };
 

@@ -32,8 +32,18 @@ namespace detail {
 
 inline bool is_power_of_two(std::size_t n) { return n != 0 && (n & (n - 1)) == 0; }
 
-// In-place DFT of a[0 ... n-1], n a power of two (not checked: callers validate).
-inline void fft(std::complex<double>* a, std::size_t n, int sign) {
+// Twiddles exp(sign 2 pi i k / n), k < n / 2.
+inline std::vector<std::complex<double>> fft_twiddles(std::size_t n, int sign) {
+  std::vector<std::complex<double>> w(n / 2);
+  for (std::size_t k = 0; k < n / 2; ++k) {
+    const double angle = 2.0 * constants::kPi * static_cast<double>(k) / static_cast<double>(n);
+    w[k] = {std::cos(angle), static_cast<double>(sign) * std::sin(angle)};
+  }
+  return w;
+}
+
+// In-place DFT of a[0 ... n-1] with the twiddles of (n, sign).
+inline void fft(std::complex<double>* a, std::size_t n, const std::complex<double>* w) {
   if (n < 2) return;
   // Bit-reversal permutation.
   for (std::size_t i = 1, j = 0; i < n; ++i) {
@@ -42,30 +52,34 @@ inline void fft(std::complex<double>* a, std::size_t n, int sign) {
     j ^= bit;
     if (i < j) std::swap(a[i], a[j]);
   }
-  // Twiddles exp(sign 2 pi i k / n) for k < n / 2, once per call.
-  std::vector<std::complex<double>> w(n / 2);
-  for (std::size_t k = 0; k < n / 2; ++k) {
-    const double angle = 2.0 * constants::kPi * static_cast<double>(k) / static_cast<double>(n);
-    w[k] = {std::cos(angle), static_cast<double>(sign) * std::sin(angle)};
-  }
   for (std::size_t len = 2; len <= n; len <<= 1) {
     const std::size_t half = len / 2, stride = n / len;
     for (std::size_t i = 0; i < n; i += len)
       for (std::size_t k = 0; k < half; ++k) {
-        const std::complex<double> t = w[k * stride] * a[i + k + half];
+        // t = w a, written out: std::complex's operator* adds C99 Annex G's
+        // NaN recovery (a libgcc call per product); the inputs here are finite.
+        const std::complex<double> wk = w[k * stride], x = a[i + k + half];
+        const std::complex<double> t(wk.real() * x.real() - wk.imag() * x.imag(),
+                                     wk.real() * x.imag() + wk.imag() * x.real());
         a[i + k + half] = a[i + k] - t;
         a[i + k] = a[i + k] + t;
       }
   }
 }
 
+// In-place DFT of a[0 ... n-1], n a power of two (not checked: callers validate).
+inline void fft(std::complex<double>* a, std::size_t n, int sign) {
+  fft(a, n, fft_twiddles(n, sign).data());
+}
+
 // In-place 2D DFT of an n x n row-major array (n a power of two).
 inline void fft2(std::complex<double>* a, std::size_t n, int sign) {
-  for (std::size_t r = 0; r < n; ++r) fft(a + r * n, n, sign);
+  const std::vector<std::complex<double>> w = fft_twiddles(n, sign);
+  for (std::size_t r = 0; r < n; ++r) fft(a + r * n, n, w.data());
   std::vector<std::complex<double>> column(n);
   for (std::size_t c = 0; c < n; ++c) {
     for (std::size_t r = 0; r < n; ++r) column[r] = a[r * n + c];
-    fft(column.data(), n, sign);
+    fft(column.data(), n, w.data());
     for (std::size_t r = 0; r < n; ++r) a[r * n + c] = column[r];
   }
 }

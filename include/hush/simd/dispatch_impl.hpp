@@ -18,6 +18,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "hush/simd/anisotropic-inl.h"
 #include "hush/simd/perlin-inl.h"
 
 #if HWY_ONCE
@@ -41,6 +42,8 @@ HWY_EXPORT(fractal2_points);
 HWY_EXPORT(fractal3_points);
 HWY_EXPORT(fractal2_grid);
 HWY_EXPORT(fractal3_grid);
+HWY_EXPORT(anisotropic_samples);
+HWY_EXPORT(anisotropic_grid);
 
 namespace simd {
 
@@ -74,6 +77,14 @@ void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
 }
 void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
+}
+
+void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp, const float* map,
+                         std::size_t n, float* value) {
+  HWY_DYNAMIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value);
+}
+void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
+  HWY_DYNAMIC_DISPATCH(anisotropic_grid)(a, g, value);
 }
 
 std::vector<std::string> compiled_targets() {
