@@ -307,12 +307,22 @@ class anisotropic : public sample_noise<anisotropic, 2> {
   const params& parameters() const { return prm_; }
   const steerable_bank& bank() const { return bank_; }
   const anisotropic_tile& tile() const { return *tile_; }
+  // The shared tile itself (the GLSL backend keeps its textures while it lives).
+  const std::shared_ptr<const anisotropic_tile>& tile_ptr() const { return tile_; }
   int channels() const { return channels_; }
 
   // The process-wide cache of tiles (memory: tile_cache().live_bytes()).
   static hush::tile_cache<anisotropic_tile::key, anisotropic_tile>& tile_cache() {
     static hush::tile_cache<anisotropic_tile::key, anisotropic_tile> cache;
     return cache;
+  }
+
+  // Position of sample p in scale s's tile, in texels (double): p f_s / band
+  // + offset; a product beyond double range is a multiple of the tile (cell 0).
+  double band_coordinate(int s, int axis, double p) const {
+    double q = p * texels_per_unit_[s];
+    if (std::isinf(q) && std::isfinite(p)) q = 0.0;  // NaN and Inf positions stay non-finite
+    return q + offset_[s][static_cast<std::size_t>(axis)];
   }
 
   // ---- Per-scale and per-orientation constants (the SIMD and GLSL paths read them).
@@ -522,14 +532,6 @@ class anisotropic : public sample_noise<anisotropic, 2> {
         w[i + kc * s] = acc * lam[i + kc * s];
       }
     }
-  }
-
-  // Position of sample p in scale s's tile, in texels (double): p f_s / band
-  // + offset; a product beyond double range is a multiple of the tile (cell 0).
-  double band_coordinate(int s, int axis, double p) const {
-    double q = p * texels_per_unit_[s];
-    if (!std::isfinite(q)) q = 0.0;
-    return q + offset_[s][static_cast<std::size_t>(axis)];
   }
 
   template <class T, bool WithGradient>

@@ -68,7 +68,8 @@ struct samples {
   span<const vec<float, D>> positions;
   span<const footprint<D>> footprints;
   span<const vec<float, 3>> normals;
-  span<const surface_map> surface_maps;
+  span<const surface_map> surface_maps{};  // last, defaulted: {positions, footprints, normals}
+                                           // still initialises a batch
 
   std::size_t size() const { return positions.size(); }
   bool has_footprints() const { return !footprints.empty(); }

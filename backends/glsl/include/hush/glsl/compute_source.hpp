@@ -31,7 +31,8 @@
 // (zero when absent), `bool has_nrm`, `mat2 smap` (T; the identity when
 // absent) and `bool has_smap`, besides `p`:
 // noise_program<Noise>::sample_call(bool gradient) is its expression.
-// Banded noises (noise_program<Noise>::banded, e.g. fractal sums) read, for
+// Banded noises see fp, nrm, has_nrm, smap and has_smap in every layout (at
+// their defaults for points and grids). They read, for
 // `uniform uint hush_bands` bands, band b's triples instead:
 //   points: binding 0 `uint hush_axis[]`, per point, per band, per axis the
 //     triple of the band coordinate split on the CPU in double
@@ -132,6 +133,15 @@ inline std::string read_sample_inputs(int dimension) {
   return s;
 }
 
+// GLSL: the sample inputs at their defaults (fp zero, no normal, identity
+// map), for banded programs evaluated at points or on grids.
+inline std::string default_sample_inputs(int dimension) {
+  const std::string d = std::to_string(dimension);
+  return "  mat" + d + " fp = mat" + d +
+         "(0.0);\n  bool has_nrm = false;\n  vec3 nrm = vec3(0.0);\n"
+         "  bool has_smap = false;\n  mat2 smap = mat2(1.0);\n";
+}
+
 // GLSL: i0, i1 (uvecD) and f (vecD) read from the triples at `base` + t[a].
 inline std::string read_cells(int dimension, const std::string& base, const std::string& indent) {
   const std::string d = std::to_string(dimension);
@@ -179,7 +189,7 @@ std::string banded_source(batch_layout layout, bool gradient) {
        "void main() {\n"
        "  uint n = hush_first + gl_GlobalInvocationID.x;\n"
        "  if (n >= hush_count) return;\n";
-  if (layout == batch_layout::samples) s += read_sample_inputs(D);
+  s += layout == batch_layout::samples ? read_sample_inputs(D) : default_sample_inputs(D);
   if (layout != batch_layout::grid) {
     // Triple of axis a of band b at t[a] + band_stride * b.
     s += "  uint band_stride = 3u * " + d +

@@ -13,9 +13,14 @@
 // grid) on first use and caches it, uploads the inputs to SSBOs, dispatches in
 // chunks of at most GL_MAX_COMPUTE_WORK_GROUP_COUNT groups, splits batches
 // larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE, and reads the results back
-// (synchronously). It leaves the current program and the generic
-// GL_SHADER_STORAGE_BUFFER binding as it found them; it rebinds the indexed
-// SSBO bindings 0 to 4.
+// (synchronously). It leaves the current program, the generic
+// GL_SHADER_STORAGE_BUFFER binding and the active texture unit as it found
+// them; it rebinds the indexed SSBO bindings 0 to 4 and, for noises with
+// textures (noise_program::textures), the GL_TEXTURE_2D binding of texture
+// units 0 ... n-1. Noise textures are uploaded once per owner (e.g. a shared
+// tile) and kept while it lives; their size is checked against
+// GL_MAX_TEXTURE_SIZE and their count against GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS
+// (hush::invalid_argument when they do not fit).
 //
 // Accuracy (tests/glsl/glsl_test.cpp; see also hush/glsl/library.hpp):
 //  - points: the float position as given, split exactly on the GPU; grids: each
@@ -139,6 +144,7 @@ class device {
   ~device() {
     programs_.clear();
     gl_->DeleteBuffers(kBuffers, buffers_);
+    for (const texture_entry& t : textures_) gl_->DeleteTextures(1, &t.id);
   }
 
   // GL_RENDERER and GL_VERSION of the context, e.g. "llvmpipe (LLVM 15.0.6,
@@ -146,6 +152,14 @@ class device {
   const std::string& renderer() const { return renderer_; }
   // glDispatchCompute calls made so far (tests check the chunking with it).
   std::size_t dispatches() const { return dispatches_; }
+  // Noise textures uploaded so far (tests check the caching with it), and
+  // the bytes of those held now.
+  std::size_t texture_uploads() const { return texture_uploads_; }
+  std::size_t texture_bytes() const {
+    std::size_t b = 0;
+    for (const texture_entry& t : textures_) b += t.owner.expired() ? 0 : t.bytes;
+    return b;
+  }
   // Work groups per dispatch and bytes per buffer this device uses.
   std::size_t max_groups_per_dispatch() const { return max_groups_; }
   std::size_t max_buffer_bytes() const { return max_bytes_; }
@@ -396,24 +410,103 @@ class device {
     std::memcpy(&w[2], &c.f, sizeof c.f);
   }
 
-  // Restores the caller's program and generic SSBO binding on scope exit.
+  // Restores the caller's program, generic SSBO binding and active texture unit on scope exit.
   class state_guard {
    public:
     explicit state_guard(const detail::gl_api& gl) : gl_(gl) {
       gl.GetIntegerv(detail::kGlCurrentProgram, &program_);
       gl.GetIntegerv(detail::kGlShaderStorageBufferBinding, &buffer_);
+      gl.GetIntegerv(detail::kGlActiveTexture, &unit_);
     }
     state_guard(const state_guard&) = delete;
     state_guard& operator=(const state_guard&) = delete;
     ~state_guard() {
       gl_.UseProgram(static_cast<detail::gl_uint>(program_));
       gl_.BindBuffer(detail::kGlShaderStorageBuffer, static_cast<detail::gl_uint>(buffer_));
+      gl_.ActiveTexture(static_cast<detail::gl_enum>(unit_));
     }
 
    private:
     const detail::gl_api& gl_;
-    detail::gl_int program_ = 0, buffer_ = 0;
+    detail::gl_int program_ = 0, buffer_ = 0, unit_ = detail::kGlTexture0;
   };
+
+  // A noise texture uploaded to GL, valid while its owner lives.
+  struct texture_entry {
+    std::weak_ptr<const void> owner;
+    const void* key = nullptr;
+    int index = 0;
+    detail::gl_uint id = 0;
+    std::size_t bytes = 0;
+  };
+
+  // The GL texture of t, uploaded on first use (or after its owner changed).
+  detail::gl_uint texture_of(const noise_texture& t) {
+    for (auto it = textures_.begin(); it != textures_.end();) {
+      if (it->owner.expired()) {  // its owner is gone: free it (the key may be reused)
+        gl_->DeleteTextures(1, &it->id);
+        it = textures_.erase(it);
+        continue;
+      }
+      if (it->key == t.owner.get() && it->index == t.index) return it->id;
+      ++it;
+    }
+    detail::gl_int max_size = 0, max_units = 0;
+    gl_->GetIntegerv(detail::kGlMaxTextureSize, &max_size);
+    gl_->GetIntegerv(detail::kGlMaxCombinedTextureImageUnits, &max_units);
+    if (t.width == 0 || t.height == 0 || t.width > static_cast<std::size_t>(max_size) ||
+        t.height > static_cast<std::size_t>(max_size))
+      hush::detail::throw_out_of_range(
+          "hush::glsl::device", "noise texture " + t.sampler + " width", t.width,
+          ("1 ... GL_MAX_TEXTURE_SIZE = " + std::to_string(max_size)).c_str());
+    const std::vector<float> rgba = t.rgba();
+    texture_entry e;
+    e.owner = t.owner;
+    e.key = t.owner.get();
+    e.index = t.index;
+    e.bytes = rgba.size() * sizeof(float);
+    gl_->GenTextures(1, &e.id);
+    gl_->BindTexture(detail::kGlTexture2d, e.id);
+    gl_->PixelStorei(detail::kGlUnpackAlignment, 4);
+    gl_->TexImage2D(detail::kGlTexture2d, 0, static_cast<detail::gl_int>(detail::kGlRgba32f),
+                    static_cast<detail::gl_sizei>(t.width), static_cast<detail::gl_sizei>(t.height),
+                    0, detail::kGlRgba, detail::kGlFloat, rgba.data());
+    for (const detail::gl_enum p : {detail::kGlTextureMinFilter, detail::kGlTextureMagFilter})
+      gl_->TexParameteri(detail::kGlTexture2d, p, static_cast<detail::gl_int>(detail::kGlLinear));
+    for (const detail::gl_enum p : {detail::kGlTextureWrapS, detail::kGlTextureWrapT})
+      gl_->TexParameteri(detail::kGlTexture2d, p, static_cast<detail::gl_int>(detail::kGlRepeat));
+    gl_->check("hush::glsl::device: uploading a noise texture");
+    ++texture_uploads_;
+    textures_.push_back(e);
+    return e.id;
+  }
+
+  // Binds a noise's textures to units 0 ... n-1 and points its samplers at them.
+  template <class Noise>
+  void bind_textures(const Noise& noise, detail::gl_uint prog) {
+    using np = noise_program<Noise>;
+    if constexpr (has_textures<np, Noise>::value) {
+      const std::vector<noise_texture> list = np::textures(noise);
+      detail::gl_int max_units = 0;
+      gl_->GetIntegerv(detail::kGlMaxCombinedTextureImageUnits, &max_units);
+      if (list.size() > static_cast<std::size_t>(max_units))
+        hush::detail::throw_out_of_range(
+            "hush::glsl::device", "noise textures", list.size(),
+            ("at most GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS = " + std::to_string(max_units)).c_str());
+      // Upload first (an upload binds to the active unit), then bind.
+      std::vector<detail::gl_uint> ids;
+      for (const noise_texture& t : list) ids.push_back(texture_of(t));
+      for (std::size_t u = 0; u < list.size(); ++u) {
+        gl_->ActiveTexture(detail::kGlTexture0 + static_cast<detail::gl_enum>(u));
+        gl_->BindTexture(detail::kGlTexture2d, ids[u]);
+        gl_->Uniform1i(gl_->GetUniformLocation(prog, list[u].sampler.c_str()),
+                       static_cast<detail::gl_int>(u));
+      }
+    } else {
+      (void)noise;
+      (void)prog;
+    }
+  }
 
   // The cached program of (Noise, layout, gradient), made current with the noise's uniforms set.
   template <class Noise>
@@ -430,6 +523,7 @@ class device {
     const detail::gl_uint id = it->second.id();
     gl_->UseProgram(id);
     np::set_uniforms(*gl_, id, noise);
+    bind_textures(noise, id);
     gl_->Uniform1ui(gl_->GetUniformLocation(id, "hush_first"), 0u);
     return id;
   }
@@ -498,6 +592,8 @@ class device {
   detail::gl_uint buffers_[kBuffers] = {0, 0, 0, 0, 0};
   std::map<std::string, detail::gl_program> programs_;
   std::vector<float> scratch_;
+  std::vector<texture_entry> textures_;
+  std::size_t texture_uploads_ = 0;
 };
 
 }  // namespace glsl

@@ -33,14 +33,25 @@
 //   static std::string band_result(bool grad); the result: float or vec(D+1)
 // The runner then splits every band coordinate on the CPU in double
 // (hush::lattice_split<float>) for points and grids alike (compute_source.hpp).
+// A noise with large precomputed data (anisotropic noise's subband tiles) may
+// also provide
+//   static std::vector<noise_texture> textures(const Noise&);
+// 2D RGBA32F textures, sampled with hardware bilinear filtering and repeat
+// wrapping, that the device uploads once per owner (cached while the owner
+// lives) and binds to texture units 0, 1, ... before every dispatch, setting
+// each sampler2D uniform to its unit.
 // The runner validates nothing about a noise: noise objects are valid by construction.
 #ifndef HUSH_GLSL_NOISE_PROGRAM_HPP
 #define HUSH_GLSL_NOISE_PROGRAM_HPP
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "hush/core/hash.hpp"
 #include "hush/fractal.hpp"
@@ -49,6 +60,15 @@
 
 namespace hush {
 namespace glsl {
+
+// A texture a noise program samples (see the file comment).
+struct noise_texture {
+  std::string sampler;                       // name of the sampler2D uniform
+  std::size_t width = 0, height = 0;         // in texels
+  std::shared_ptr<const void> owner;         // the data's owner: cache identity and lifetime
+  int index = 0;                             // which of the owner's textures this is
+  std::function<std::vector<float>()> rgba;  // width * height * 4 floats, row-major
+};
 
 // Primary template: not a GLSL-capable noise (no specialisation).
 template <class Noise>
@@ -185,6 +205,14 @@ template <class Program>
 struct has_sample_call<Program, std::void_t<decltype(Program::sample_call(false))>>
     : std::true_type {};
 
+// Whether a program declares textures(noise).
+template <class Program, class Noise, class = void>
+struct has_textures : std::false_type {};
+template <class Program, class Noise>
+struct has_textures<Program, Noise,
+                    std::void_t<decltype(Program::textures(std::declval<const Noise&>()))>>
+    : std::true_type {};
+
 // True when the GLSL backend has a program for Noise (noise_program is
 // specialised for it), e.g. to pick a backend at compile time.
 template <class Noise, class = void>
@@ -196,5 +224,8 @@ inline constexpr bool has_program_v = has_program<Noise>::value;
 
 }  // namespace glsl
 }  // namespace hush
+
+// Programs of noises with their own file (they include this one first).
+#include "hush/glsl/anisotropic_program.hpp"
 
 #endif  // HUSH_GLSL_NOISE_PROGRAM_HPP
