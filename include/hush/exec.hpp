@@ -169,19 +169,23 @@ struct has_simd_samples<Kernel, std::void_t<decltype(Kernel::has_samples)>>
 template <class Noise, class Exec>
 void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
                  vec<float, Noise::dimension>* grad) {
-  if constexpr (!takes_sample_inputs<Noise>::value) {
-    run_points(n, ex, s.positions, out, grad);  // validated: no extras were given
-  } else if (!s.has_extras()) {
+  // Positions only (always so for a noise that takes no extras: validated) is a points batch.
+  constexpr bool kExtras = takes_sample_inputs<Noise>::value;
+  if (!kExtras || !s.has_extras()) {
     run_points(n, ex, s.positions, out, grad);
-  } else if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
-    scalar_samples(n, s, out, grad);
-  } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
-    if constexpr (has_simd_samples<simd_kernel<Noise>>::value)
-      simd_kernel<Noise>::samples(n, s, out, grad);
-    else
+    return;
+  }
+  if constexpr (kExtras) {
+    if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
       scalar_samples(n, s, out, grad);
-  } else {
-    ex.device.evaluate_samples(n, s, out, grad);
+    } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+      if constexpr (has_simd_samples<simd_kernel<Noise>>::value)
+        simd_kernel<Noise>::samples(n, s, out, grad);
+      else
+        scalar_samples(n, s, out, grad);
+    } else {
+      ex.device.evaluate_samples(n, s, out, grad);
+    }
   }
 }
 
