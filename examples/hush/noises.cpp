@@ -4,6 +4,7 @@
 #include <climits>
 #include <utility>
 
+#include "anisotropic_noise.hpp"
 #include "glsl_device.hpp"
 
 namespace hush_cli {
@@ -176,6 +177,10 @@ const std::vector<noise_entry>& noise_table() {
          "any of these fractal options selects the octave sum",
          "norm"}},
        make_perlin_from_options},
+      {"anisotropic",
+       "anisotropic noise (Goldberg, Zwicker & Durand 2008): oriented subband tiles, filtered "
+       "per footprint, compensated per surface map",
+       anisotropic_option_specs(), make_anisotropic_from_options},
   };
   return table;
 }
