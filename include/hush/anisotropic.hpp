@@ -69,6 +69,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <tuple>
 #include <type_traits>
@@ -460,6 +461,45 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       throw hush::invalid_argument(std::string(w) + ": kind is not fbm or turbulence");
   }
 
+  // Least-squares compensation weights of octaves [k0, k1) for map m (each
+  // 2^(s - b - k) gamma_{k,i,s}, octave after octave), cached per distinct map:
+  // a batch over a mesh solves once per triangle. The cache (the last
+  // kLsqCacheSize maps) is shared by copies of the noise and locked; lookups copy.
+  std::vector<double> lsq_gamma(const surface_map& m, int k0, int k1) const {
+    lsq_cache& cache = *lsq_cache_;
+    {
+      const std::lock_guard<std::mutex> lock(cache.mutex);
+      for (const auto& e : cache.entries)
+        if (e.map == m && e.k0 == k0 && e.k1 == k1) return e.gamma;
+    }
+    const int b = prm_.base_scale;
+    const double sd = std::sqrt(std::fabs(m.determinant()));
+    std::vector<double> gamma;
+    for (int k = k0; k < k1; ++k) {
+      const double fk = bank_.centre_frequency(b + k);
+      std::vector<double> g = fit_->fit(weight_rule::least_squares, [&](const dvec2& x) {
+        const double tu = double(m.m00) * x.x + double(m.m10) * x.y;
+        const double tv = double(m.m01) * x.x + double(m.m11) * x.y;
+        const double r = std::sqrt(tu * tu + tv * tv);
+        return r > 0 ? sd * steerable_bank::radial(std::log2(r / fk)) : 0.0;
+      });
+      for (int s = 0; s < prm_.scales; ++s)
+        for (int i = 0; i < prm_.orientations; ++i) {
+          double& v = g[static_cast<std::size_t>(i + prm_.orientations * s)];
+          v = std::ldexp(v, s - b - k);
+        }
+      gamma.insert(gamma.end(), g.begin(), g.end());
+    }
+    const std::lock_guard<std::mutex> lock(cache.mutex);
+    if (cache.entries.size() < kLsqCacheSize) {
+      cache.entries.push_back({m, k0, k1, gamma});
+    } else {
+      cache.entries[cache.next] = {m, k0, k1, gamma};
+      cache.next = (cache.next + 1) % kLsqCacheSize;
+    }
+    return gamma;
+  }
+
   // exp(-x) for z = x log2(e) >= 0, 0 beyond the cutoff.
   template <class T>
   static T lambda1(T z, T cut) {
@@ -491,20 +531,14 @@ class anisotropic : public sample_noise<anisotropic, 2> {
     }
     const surface_map m = in.map.finite() ? in.map : surface_map::zero();
     if (prm_.compensation == weight_rule::least_squares) {
-      const double sd = std::sqrt(std::fabs(m.determinant()));
-      for (int k = k0; k < k1; ++k) {
-        const double fk = bank_.centre_frequency(b + k);
-        std::vector<double> g = fit_->fit(weight_rule::least_squares, [&](const dvec2& x) {
-          const double tu = double(m.m00) * x.x + double(m.m10) * x.y;
-          const double tv = double(m.m01) * x.x + double(m.m11) * x.y;
-          const double r = std::sqrt(tu * tu + tv * tv);
-          return r > 0 ? sd * steerable_bank::radial(std::log2(r / fk)) : 0.0;
-        });
+      const std::vector<double> g = lsq_gamma(m, k0, k1);
+      for (int k = k0; k < k1; ++k)
         for (int s = 0; s < prm_.scales; ++s)
           for (int i = 0; i < prm_.orientations; ++i)
-            w[i + kc * s] +=
-                ow(k) * T(g[static_cast<std::size_t>(i + prm_.orientations * s)]) * lam[i + kc * s];
-      }
+            w[i + kc * s] += ow(k) *
+                             T(g[static_cast<std::size_t>((k - k0) * bank_.subbands() + i +
+                                                          prm_.orientations * s)]) *
+                             lam[i + kc * s];
       return;
     }
     const bool three = prm_.compensation == weight_rule::three_point;
@@ -609,6 +643,19 @@ class anisotropic : public sample_noise<anisotropic, 2> {
   steerable_bank bank_;
   std::shared_ptr<const anisotropic_tile> tile_;
   std::shared_ptr<const subband_fit> fit_;  // least-squares rules only
+  static constexpr std::size_t kLsqCacheSize = 256;
+  struct lsq_cache {
+    struct entry {
+      surface_map map;
+      int k0, k1;
+      std::vector<double> gamma;
+    };
+    std::mutex mutex;
+    std::vector<entry> entries;  // at most kLsqCacheSize, then overwritten oldest first
+    std::size_t next = 0;
+    lsq_cache() { entries.reserve(kLsqCacheSize); }
+  };
+  std::shared_ptr<lsq_cache> lsq_cache_ = std::make_shared<lsq_cache>();
   int channels_ = 4;
   double norm_ = 1.0, cap_unit_ = 1.0;
   double octave_gain_[detail::constants::kAnisoMaxScales] = {};
