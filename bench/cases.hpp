@@ -23,6 +23,10 @@ struct sizes {
   std::size_t grid2 = 512;      // 2D grid: grid2 x grid2
   std::size_t grid3 = 64;       // 3D grid: grid3^3
   std::size_t points = 262144;  // random points, per dimension
+  // Anisotropic noise: a frame of a receding plane, frame_width x frame_height pixels,
+  // and the triangles whose least-squares compensation weights are timed.
+  std::size_t frame_width = 1920, frame_height = 1080;
+  std::size_t triangles = 1024;
 };
 sizes full_sizes();
 sizes quick_sizes();  // for `hush bench --quick` and the smoke test: a few seconds in all
@@ -41,6 +45,7 @@ enum class error_reference {
   hush_double,  // hush's double-precision evaluation at the same positions
   glm_double,   // glm::perlin on glm::dvec at the same (float-rounded) positions: like for like
   none,         // the library computes in double only (libnoise): no float error to report
+  weights,      // a preprocessing row (anisotropic compensation weights): no samples to compare
 };
 const char* describe(error_reference r);
 
@@ -70,6 +75,9 @@ struct bench_case {
 
 // Every case: hush's noises on each backend, then the peer libraries found at build time.
 std::vector<bench_case> all_cases(const sizes& s);
+// Anisotropic noise's rows (bench/anisotropic_cases.cpp): a receding plane per frame on
+// scalar, simd and (with OSMesa) glsl, and the least-squares preprocessing per triangle.
+void add_anisotropic_cases(std::vector<bench_case>& cases, const sizes& s);
 
 // The Google Benchmark counters each case reports: CPU seconds per sample (single thread; wall
 // seconds for wall_clock cases), and

@@ -449,6 +449,27 @@ receding_plane make_receding_plane(std::size_t width, std::size_t height, double
   return p;
 }
 
+std::vector<double> supersampled(const hush::anisotropic& noise, const receding_plane& plane,
+                                 const std::vector<std::size_t>& pixels) {
+  const int m = 9;
+  const double sigma = hush::detail::constants::kPixelFilterSigma;
+  std::vector<double> out;
+  for (std::size_t q : pixels) {
+    const double cx = double(q % plane.width) + 0.5, cy = double(q / plane.width) + 0.5;
+    double acc = 0, wsum = 0;
+    for (int a_y = 0; a_y < m; ++a_y)
+      for (int a_x = 0; a_x < m; ++a_x) {
+        const double ox = 3 * sigma * (2.0 * (a_x + 0.5) / m - 1.0);
+        const double oy = 3 * sigma * (2.0 * (a_y + 0.5) / m - 1.0);
+        const double w = std::exp(-(ox * ox + oy * oy) / (2 * sigma * sigma));
+        acc += w * noise(plane.at(cx + ox, cy + oy));
+        wsum += w;
+      }
+    out.push_back(acc / wsum);
+  }
+  return out;
+}
+
 receding_result figure9(std::size_t width, std::size_t height) {
   const receding_plane plane = make_receding_plane(width, height, 1.0);
   const std::size_t n = width * height;

@@ -100,6 +100,12 @@ struct receding_plane {
 };
 receding_plane make_receding_plane(std::size_t width, std::size_t height, double scale = 1.0);
 
+// The Gaussian (sigma 1/2 pixel) of the unfiltered noise over 9 x 9 point samples per
+// pixel through the exact perspective map, at the given pixels (indices y * width + x):
+// the reference filtered noise is compared with (double reference evaluation).
+std::vector<double> supersampled(const hush::anisotropic& noise, const receding_plane& plane,
+                                 const std::vector<std::size_t>& pixels);
+
 // Figure 9: two octaves of fbm on the receding plane with K = 4 and K = 8 (centre
 // heuristic), the same noises unfiltered, and their references: each pixel's Gaussian
 // (sigma 1/2 pixel) over 9 x 9 point samples of the unfiltered noise through the exact

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "gallery_anisotropic.hpp"
 #include "image.hpp"
 #include "noises.hpp"
 #include "spectrum.hpp"
@@ -132,6 +133,7 @@ int run_gallery(const std::vector<std::string>& args) {
     written.push_back(std::string(e.file) + " (" + std::to_string(image.width) + "x" +
                       std::to_string(image.height) + "): " + e.what);
   }
+  write_anisotropic_gallery(dir, written);  // the paper's figures, with their errors
   const fs::path absolute = fs::weakly_canonical(fs::absolute(dir));
   std::cout << "wrote " << written.size() << " images to " << absolute.string() << '\n';
   for (const std::string& w : written) std::cout << "  " << w << '\n';
