@@ -76,7 +76,7 @@ std::string quality_note(const hush::anisotropic& noise, const frame_buffers& b)
 
 template <class Exec>
 void add_frame_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
-                    std::shared_ptr<const frame_buffers> shared) {
+                    const std::shared_ptr<const frame_buffers>& shared) {
   for (int k : {4, 8}) {
     bench_case c;
     c.noise = "anisotropic K=" + std::to_string(k);

@@ -69,7 +69,8 @@ struct grid_mesh {
                     : std::array<int, 3>{at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
   }
   hush::dvec2 uv(int v) const {
-    return {static_cast<double>(v % (n + 1)) / n, static_cast<double>(v / (n + 1)) / n};
+    const int i = v % (n + 1), j = v / (n + 1);
+    return {static_cast<double>(i) / n, static_cast<double>(j) / n};
   }
   void build_maps() {
     maps.clear();
@@ -87,7 +88,8 @@ struct grid_mesh {
     const int i = std::clamp(static_cast<int>(std::floor(un)), 0, n - 1);
     const int j = std::clamp(static_cast<int>(std::floor(vn)), 0, n - 1);
     const int t = (un - i) + (vn - j) < 1.0 ? 0 : 1;
-    return maps[static_cast<std::size_t>(2 * (j * n + i) + t)];
+    const int k = 2 * (j * n + i) + t;
+    return maps[static_cast<std::size_t>(k)];
   }
 };
 
@@ -135,7 +137,8 @@ struct sphere_mesh {
     const int i = std::clamp(static_cast<int>(std::floor(un)), 0, slices - 1);
     const int j = std::clamp(static_cast<int>(std::floor(vn)), 0, stacks - 1);
     const int t = (un - i) + (vn - j) < 1.0 ? 0 : 1;
-    return maps[static_cast<std::size_t>(2 * (j * slices + i) + t)];
+    const int k = 2 * (j * slices + i) + t;
+    return maps[static_cast<std::size_t>(k)];
   }
 };
 
@@ -455,7 +458,8 @@ std::vector<double> supersampled(const hush::anisotropic& noise, const receding_
   const double sigma = hush::detail::constants::kPixelFilterSigma;
   std::vector<double> out;
   for (std::size_t q : pixels) {
-    const double cx = double(q % plane.width) + 0.5, cy = double(q / plane.width) + 0.5;
+    const std::size_t px = q % plane.width, py = q / plane.width;
+    const double cx = double(px) + 0.5, cy = double(py) + 0.5;
     double acc = 0, wsum = 0;
     for (int a_y = 0; a_y < m; ++a_y)
       for (int a_x = 0; a_x < m; ++a_x) {

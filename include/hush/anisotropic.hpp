@@ -420,7 +420,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       });
       for (int s = 0; s < prm_.scales; ++s)
         for (int i = 0; i < prm_.orientations; ++i)
-          lam[i + kc * s] = static_cast<T>(w[static_cast<std::size_t>(i + prm_.orientations * s)]);
+          lam[i + kc * s] = static_cast<T>(w[detail::index(i + prm_.orientations * s)]);
       return;
     }
     // The quadratic form w^T S w in double: at grazing angles S is nearly
@@ -485,7 +485,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       });
       for (int s = 0; s < prm_.scales; ++s)
         for (int i = 0; i < prm_.orientations; ++i) {
-          double& v = g[static_cast<std::size_t>(i + prm_.orientations * s)];
+          double& v = g[detail::index(i + prm_.orientations * s)];
           v = std::ldexp(v, s - b - k);
         }
       gamma.insert(gamma.end(), g.begin(), g.end());
@@ -535,10 +535,10 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       for (int k = k0; k < k1; ++k)
         for (int s = 0; s < prm_.scales; ++s)
           for (int i = 0; i < prm_.orientations; ++i)
-            w[i + kc * s] += ow(k) *
-                             T(g[static_cast<std::size_t>((k - k0) * bank_.subbands() + i +
-                                                          prm_.orientations * s)]) *
-                             lam[i + kc * s];
+            w[i + kc * s] +=
+                ow(k) *
+                T(g[detail::index((k - k0) * bank_.subbands() + i + prm_.orientations * s)]) *
+                lam[i + kc * s];
       return;
     }
     const bool three = prm_.compensation == weight_rule::three_point;

@@ -42,6 +42,7 @@
 
 #include "hush/core/error.hpp"
 #include "hush/core/vec.hpp"
+#include "hush/detail/approx_math.hpp"  // detail::index
 #include "hush/detail/constants.hpp"
 #include "hush/steerable.hpp"
 
@@ -80,7 +81,8 @@ class subband_fit {
     for (int j = 0; j <= s_count; ++j)
       segments.emplace_back(std::ldexp(f0, j - 1), std::ldexp(f0, j));
     if (residuals)
-      for (double a = top; a < r_max; a *= 2.0) segments.emplace_back(a, std::min(2.0 * a, r_max));
+      for (int j = 0; std::ldexp(top, j) < r_max; ++j)
+        segments.emplace_back(std::ldexp(top, j), std::min(std::ldexp(top, j + 1), r_max));
     const int nr = c::kAnisoRadialNodesPerOctave, nt = c::kAnisoAngularNodesPerOrientation * k;
     const double dt = c::kPi / nt;
     for (const auto& seg : segments) {
@@ -105,13 +107,13 @@ class subband_fit {
       }
     }
     // Gram matrix G = Q^T diag(area) Q and its Cholesky factor (lower, in place).
-    chol_.assign(static_cast<std::size_t>(n_ * n_), 0.0);
+    chol_.assign(at(n_, 0), 0.0);
     for (std::size_t q = 0; q < nodes_.size(); ++q) {
       const double* row = &basis_[q * static_cast<std::size_t>(n_)];
       for (int a = 0; a < n_; ++a) {
         if (row[a] == 0.0) continue;
         const double wa = area_[q] * row[a];
-        for (int b = 0; b <= a; ++b) chol_[static_cast<std::size_t>(a * n_ + b)] += wa * row[b];
+        for (int b = 0; b <= a; ++b) chol_[at(a, b)] += wa * row[b];
       }
     }
     for (int j = 0; j < n_; ++j) {
@@ -188,7 +190,7 @@ class subband_fit {
   }
 
  private:
-  std::size_t at(int r, int c) const { return static_cast<std::size_t>(r * n_ + c); }
+  std::size_t at(int r, int c) const { return detail::index(r * n_ + c); }
 
   template <class Target>
   void sample_rule(const Target& target, double* w, bool three) const {

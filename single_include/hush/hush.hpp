@@ -1703,6 +1703,7 @@ class tile_cache {
 #define HUSH_DETAIL_APPROX_MATH_HPP
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -1711,6 +1712,9 @@ class tile_cache {
 
 namespace hush {
 namespace detail {
+
+// A non-negative int as a container index (keeps index arithmetic in int).
+HUSH_INLINE std::size_t index(int i) { return static_cast<std::size_t>(i); }
 
 HUSH_INLINE float bits_to_float(std::uint32_t u) {
   float f;
@@ -2435,7 +2439,8 @@ class subband_fit {
     for (int j = 0; j <= s_count; ++j)
       segments.emplace_back(std::ldexp(f0, j - 1), std::ldexp(f0, j));
     if (residuals)
-      for (double a = top; a < r_max; a *= 2.0) segments.emplace_back(a, std::min(2.0 * a, r_max));
+      for (int j = 0; std::ldexp(top, j) < r_max; ++j)
+        segments.emplace_back(std::ldexp(top, j), std::min(std::ldexp(top, j + 1), r_max));
     const int nr = c::kAnisoRadialNodesPerOctave, nt = c::kAnisoAngularNodesPerOrientation * k;
     const double dt = c::kPi / nt;
     for (const auto& seg : segments) {
@@ -2460,13 +2465,13 @@ class subband_fit {
       }
     }
     // Gram matrix G = Q^T diag(area) Q and its Cholesky factor (lower, in place).
-    chol_.assign(static_cast<std::size_t>(n_ * n_), 0.0);
+    chol_.assign(at(n_, 0), 0.0);
     for (std::size_t q = 0; q < nodes_.size(); ++q) {
       const double* row = &basis_[q * static_cast<std::size_t>(n_)];
       for (int a = 0; a < n_; ++a) {
         if (row[a] == 0.0) continue;
         const double wa = area_[q] * row[a];
-        for (int b = 0; b <= a; ++b) chol_[static_cast<std::size_t>(a * n_ + b)] += wa * row[b];
+        for (int b = 0; b <= a; ++b) chol_[at(a, b)] += wa * row[b];
       }
     }
     for (int j = 0; j < n_; ++j) {
@@ -2543,7 +2548,7 @@ class subband_fit {
   }
 
  private:
-  std::size_t at(int r, int c) const { return static_cast<std::size_t>(r * n_ + c); }
+  std::size_t at(int r, int c) const { return detail::index(r * n_ + c); }
 
   template <class Target>
   void sample_rule(const Target& target, double* w, bool three) const {
@@ -2939,7 +2944,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       });
       for (int s = 0; s < prm_.scales; ++s)
         for (int i = 0; i < prm_.orientations; ++i)
-          lam[i + kc * s] = static_cast<T>(w[static_cast<std::size_t>(i + prm_.orientations * s)]);
+          lam[i + kc * s] = static_cast<T>(w[detail::index(i + prm_.orientations * s)]);
       return;
     }
     // The quadratic form w^T S w in double: at grazing angles S is nearly
@@ -3004,7 +3009,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       });
       for (int s = 0; s < prm_.scales; ++s)
         for (int i = 0; i < prm_.orientations; ++i) {
-          double& v = g[static_cast<std::size_t>(i + prm_.orientations * s)];
+          double& v = g[detail::index(i + prm_.orientations * s)];
           v = std::ldexp(v, s - b - k);
         }
       gamma.insert(gamma.end(), g.begin(), g.end());
@@ -3054,10 +3059,10 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       for (int k = k0; k < k1; ++k)
         for (int s = 0; s < prm_.scales; ++s)
           for (int i = 0; i < prm_.orientations; ++i)
-            w[i + kc * s] += ow(k) *
-                             T(g[static_cast<std::size_t>((k - k0) * bank_.subbands() + i +
-                                                          prm_.orientations * s)]) *
-                             lam[i + kc * s];
+            w[i + kc * s] +=
+                ow(k) *
+                T(g[detail::index((k - k0) * bank_.subbands() + i + prm_.orientations * s)]) *
+                lam[i + kc * s];
       return;
     }
     const bool three = prm_.compensation == weight_rule::three_point;

@@ -22,6 +22,7 @@
 #define HUSH_DETAIL_APPROX_MATH_HPP
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -32,6 +33,9 @@
 
 namespace hush {
 namespace detail {
+
+// A non-negative int as a container index (keeps index arithmetic in int).
+HUSH_INLINE std::size_t index(int i) { return static_cast<std::size_t>(i); }
 
 HUSH_INLINE float bits_to_float(std::uint32_t u) {
   float f;

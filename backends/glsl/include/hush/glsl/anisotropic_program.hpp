@@ -295,7 +295,7 @@ struct noise_program<anisotropic> {
           "least-squares fit per sample); valid on the GPU: filtering and compensation centre or "
           "three_point");
     std::vector<noise_texture> list;
-    const std::shared_ptr<const anisotropic_tile> tile = a.tile_ptr();
+    const std::shared_ptr<const anisotropic_tile>& tile = a.tile_ptr();
     for (int t = 0; t < 2; ++t) {
       noise_texture tex;
       tex.sampler = t == 0 ? "hush_tile0" : "hush_tile1";

@@ -495,6 +495,7 @@ class device {
             ("at most GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS = " + std::to_string(max_units)).c_str());
       // Upload first (an upload binds to the active unit), then bind.
       std::vector<detail::gl_uint> ids;
+      ids.reserve(list.size());
       for (const noise_texture& t : list) ids.push_back(texture_of(t));
       for (std::size_t u = 0; u < list.size(); ++u) {
         gl_->ActiveTexture(detail::kGlTexture0 + static_cast<detail::gl_enum>(u));
