@@ -51,6 +51,7 @@ constexpr std::array<double, 3> kGridOrigin = {0.3125, -2.71875, 5.0625};
 constexpr float kPointRange = 128;
 // The full and quick sizes (sizes's defaults are the full ones).
 constexpr std::size_t kQuickGrid2 = 64, kQuickGrid3 = 16, kQuickPoints = 4096;
+constexpr std::size_t kQuickFrameWidth = 192, kQuickFrameHeight = 108;
 
 template <int D>
 using fvec = hush::vec<float, D>;
@@ -335,9 +336,7 @@ void add_libnoise_rows(std::vector<bench_case>& cases, const sizes& s, int octav
 
 sizes full_sizes() { return sizes{}; }
 sizes quick_sizes() {
-  sizes s{kQuickGrid2, kQuickGrid3, kQuickPoints};
-  s.frame_width = 160;
-  s.frame_height = 90;
+  sizes s{kQuickGrid2, kQuickGrid3, kQuickPoints, kQuickFrameWidth, kQuickFrameHeight};
   s.triangles = 16;
   return s;
 }
@@ -382,7 +381,8 @@ std::string bench_case::id() const {
 void add_pinned_simd_rows(std::vector<bench_case>& cases, std::int64_t target) {
   std::vector<bench_case> pinned;
   for (const bench_case& c : cases) {
-    if (c.backend != hush::exec::simd_t::name) continue;
+    if (c.backend != hush::exec::simd_t::name && c.backend.rfind("memory-bound pass", 0) != 0)
+      continue;
     bench_case p = c;
     p.backend = std::string(c.backend) + " " + hwy::TargetName(target);
     p.prepare = [prepare = c.prepare, target] {
@@ -403,6 +403,10 @@ void add_pinned_simd_rows(std::vector<bench_case>& cases, std::int64_t target) {
 #endif
 
 #if HUSH_BENCH_HAVE_GLSL
+// Coherent noise's GLSL row (coherent_cases.cpp).
+void add_coherent_glsl_rows(std::vector<bench_case>& cases, const sizes& s,
+                            hush::glsl::device& device);
+
 // The GLSL rows run on one headless OSMesa context for the whole process (llvmpipe here).
 // (declared in bench/anisotropic_cases.cpp too)
 hush::glsl::device& bench_glsl_device() {
@@ -415,6 +419,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
   std::vector<bench_case> cases;
   add_backend_rows(cases, s, hush::exec::scalar);
   add_backend_rows(cases, s, hush::exec::simd);
+  add_coherent_rows(cases, s);  // its simd rows are pinned to AVX2 below too
   add_anisotropic_cases(cases, s);  // before the pinned rows: its simd rows get theirs
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
   // AVX2 pinned when the machine would pick something better: the targets are AVX2's.
@@ -428,6 +433,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
     add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), gpu);
     add_noise_rows(cases, s, "fbm 2D", make_fbm<2>(), gpu);
     add_noise_rows(cases, s, "fbm 3D", make_fbm<3>(), gpu);
+    add_coherent_glsl_rows(cases, s, bench_glsl_device());
   }
 #endif
 #if HUSH_BENCH_HAVE_GLM
@@ -455,6 +461,7 @@ void run_case(benchmark::State& state, const bench_case& c) {
     prepared = prepared_case{};
     prepared = c.prepare();
     current = &c;
+    *c.quality = prepared.quality;
   }
   for (auto _ : state)  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's idiom
     prepared.run();

@@ -3,6 +3,7 @@
 // Each image is one noise at a glance: the noise on the left (512 x 512 samples) and its
 // log power spectrum on the right (spectrum.hpp), so aliasing, band limits and anisotropy
 // are visible next to what they look like. Adding an image is one entry in kEntries.
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -13,6 +14,8 @@
 
 #include "commands.hpp"
 #include "gallery_anisotropic.hpp"
+#include "gallery_coherent.hpp"
+#include "gif/gif.hpp"
 #include "image.hpp"
 #include "noises.hpp"
 #include "spectrum.hpp"
@@ -132,6 +135,31 @@ int run_gallery(const std::vector<std::string>& args) {
     write_png((fs::path(dir) / e.file).string(), image);
     written.push_back(std::string(e.file) + " (" + std::to_string(image.width) + "x" +
                       std::to_string(image.height) + "): " + e.what);
+  }
+  // Scene-driven noises: stills as PNG, animations as GIF (examples/gif).
+  const std::vector<gallery_item> items = coherent_gallery_items();
+  for (std::size_t n = 0; n < items.size(); ++n) {
+    const gallery_item& e = items[n];
+    std::fprintf(stderr, "gallery: [%zu/%zu] %s\n", n + 1, items.size(), e.file);
+    const std::vector<gray_image> frames = e.render();
+    const std::string path = (fs::path(dir) / e.file).string();
+    if (frames.size() == 1) {
+      write_png(path, frames[0]);
+    } else {
+      std::vector<std::vector<std::uint8_t>> bytes;
+      bytes.reserve(frames.size());
+      for (const gray_image& f : frames) bytes.push_back(f.pixels);
+      try {
+        hush::gif::save(path, bytes, static_cast<int>(frames[0].width),
+                        static_cast<int>(frames[0].height), e.delay_cs);
+      } catch (const std::runtime_error& err) {
+        throw run_error(err.what());
+      }
+    }
+    written.push_back(std::string(e.file) + " (" + std::to_string(frames[0].width) + "x" +
+                      std::to_string(frames[0].height) +
+                      (frames.size() > 1 ? ", " + std::to_string(frames.size()) + " frames" : "") +
+                      "): " + e.what);
   }
   write_anisotropic_gallery(dir, written);  // the paper's figures, with their errors
   const fs::path absolute = fs::weakly_canonical(fs::absolute(dir));

@@ -9,9 +9,11 @@
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
 #include "hush/core/footprint.hpp"
+#include "hush/core/frame.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/lattice.hpp"
 #include "hush/core/point_noise.hpp"
+#include "hush/core/poisson_table.hpp"
 #include "hush/core/rng.hpp"
 #include "hush/core/samples.hpp"
 #include "hush/core/surface_map.hpp"
@@ -20,8 +22,13 @@
 #include "hush/core/views.hpp"
 #include "hush/exec.hpp"
 #include "hush/fractal.hpp"
+#include "hush/gabor.hpp"
+#include "hush/gabor_kernel.hpp"
 #include "hush/perlin.hpp"
 #include "hush/steerable.hpp"
 #include "hush/subband_fit.hpp"
+
+// Scene-driven noises (hush::frame: per-frame G-buffer views).
+#include "hush/coherent.hpp"
 
 #endif  // HUSH_HUSH_HPP

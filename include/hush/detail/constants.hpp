@@ -127,9 +127,133 @@ constexpr double kHalfLog2Pi = 0.91893853320467274178;
 constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
 constexpr int kLogFactorialTable = 20;
 
+// ---- Coherent noise (Kass & Pesare 2011, "Coherent Noise for Non-Photorealistic
+// Rendering"; include/hush/coherent.hpp, docs/coherent.md).
+// White noise: w = kCoherentWhiteScale * (2 (h >> kCoherentWhiteShift) + 1 - 2^24) for a
+// 32-bit hash h: the odd multiples of 2^-24 in (-1, 1), times sqrt(3); mean exactly 0,
+// variance 1 - 2^-48 (a discrete uniform over 2^24 values), never denormal.
+constexpr unsigned kCoherentWhiteShift = 8;
+constexpr double kCoherentWhiteScale = 1.7320508075688772935 * 0x1p-24;  // sqrt(3) * 2^-24
+constexpr double kCoherentWhiteCentre = 16777215.0;                      // 2^24 - 1
+// Pixel hash of a field: hash32(hash32(frame_key, y) ^ x * kCoherentPixelPrime). The odd
+// multiplier (the 32-bit xxHash prime 4) scatters the columns, so two rows' keys can never
+// line up a run of pixels (a plain xor of x would repeat shifted row segments).
+constexpr unsigned kCoherentPixelPrime = 0x27D4EB2FU;
+// Fields per channel, each with its own stream: the input w, the refill fields of the
+// stationary filter (x and y; separate ones for the backward pass of the symmetric filter),
+// and the band-pass input's lattice offsets.
+constexpr unsigned kCoherentFieldInput = 0;
+constexpr unsigned kCoherentFieldRefillX = 1;
+constexpr unsigned kCoherentFieldRefillY = 2;
+constexpr unsigned kCoherentFieldBackRefillX = 3;
+constexpr unsigned kCoherentFieldBackRefillY = 4;
+constexpr unsigned kCoherentFields = 5;
+// Parameter defaults and limits. alpha = 0.98 is the paper's (sec. 4). epsilon is relative:
+// the previous depth must lie within epsilon * e of the expected depth e (2% accepts bilinear
+// interpolation of depth across a pixel of a plane tilted up to ~60 degrees and rejects a
+// surface 2% farther; the same tolerance as the coherence metrics, docs/coherence.md).
+constexpr double kCoherentDefaultAlpha = 0.98;
+constexpr double kCoherentDefaultEpsilon = 0.02;
+constexpr double kCoherentDefaultBandpassPixels = 4.0;  // band-pass input: Perlin cell, pixels
+constexpr double kCoherentMaxBandpassPixels = 1024.0;
+constexpr double kCoherentMaxSmoothing = 2.0;     // output Gaussian sigma, pixels
+constexpr double kCoherentSmoothingRadius = 3.0;  // kernel radius in sigmas
+constexpr int kCoherentMaxChannels = 4;
+constexpr unsigned kCoherentMaxSide = 16384;  // frame side limit (keeps pixel indices in int32)
+
+// ---- Poisson counts by table (core/poisson_table.hpp): thresholds of the CDF,
+// built once per mean on the CPU, compared with one uniform word per draw.
+// The mean is capped so that a table stays small (about mean + 7 sqrt(mean)
+// + 20 thresholds: 11000 at the cap).
+constexpr double kPoissonTableMaxMean = 1e4;
+
+// ---- Float exp and sin/cos (detail/elementary.hpp): polynomials hush owns, so
+// that scalar code, every SIMD target and GLSL evaluate the same operations
+// (std::exp and Highway's Exp differ in their last bits). Coefficients are
+// Chebyshev fits (mpmath.chebyfit, 40 digits), printed to 20 digits.
+// exp(x), x <= 0: x = n ln2 + r with n = floor(x log2(e) + 1/2) and
+// |r| <= ln2 / 2 (Cody-Waite: n ln2_hi is exact for |n| < 2^15), then
+// e^r = P(r) of degree 6 (relative error 2.5e-9, below float rounding), and
+// 2^n from the exponent bits. Below kExpFloor the result is 0 (no denormals).
+constexpr double kLog2E = 1.4426950408889634074;
+constexpr double kLn2Hi = 0.693359375;              // 355/512: 9 significant bits
+constexpr double kLn2Lo = -2.12194440054690583e-4;  // ln 2 - kLn2Hi
+constexpr double kExpFloor = -87.0;                 // e^-87 = 1.6e-38, just above FLT_MIN
+constexpr int kExpDegree = 6;
+constexpr double kExpPoly[kExpDegree + 1] = {1.0,
+                                             1.0000000377162138425,
+                                             0.50000000471177576744,
+                                             0.16666415514653275427,
+                                             0.041666352896775156786,
+                                             0.008375126398153335682,
+                                             0.0013941108433972674608};
+// sin(2 pi t) and cos(2 pi t) for t in turns: t = q/4 + r with q = floor(4t + 1/2)
+// (quarter turns, exact; t - floor(t) first when |t| >= 2^22) and |r| <= 1/8,
+// then with z = r^2
+//   sin(2 pi r) = r S(z), S of degree 3 (relative error 3.4e-9),
+//   cos(2 pi r) = C(z),   C of degree 4 (absolute error 4.8e-11),
+// rotated by the quadrant q mod 4.
+constexpr int kSinDegree = 3;
+constexpr double kSinPoly[kSinDegree + 1] = {6.2831852878129467414, -41.341662570547954912,
+                                             81.592542871301543294, -75.401612702747458455};
+constexpr int kCosDegree = 4;
+constexpr double kCosPoly[kCosDegree + 1] = {0.99999999995248941669, -19.739208650130595513,
+                                             64.939316135709049629, -85.442844673081659515,
+                                             59.220168958296096218};
+// Above this |t| (2^22) sincos_turns first reduces t - floor(t): 4t + 1/2 is
+// exact below it, and a float above it has at most one fractional bit.
+constexpr double kTurnsReduceLimit = 4194304.0;
+constexpr double kTwoPi = 6.283185307179586476925;
+constexpr double kPi = 3.141592653589793238463;
+
+// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor_kernel.hpp,
+// gabor.hpp). Kernels are truncated where their envelope e^{-pi a^2 |x|^2}
+// falls to t (the `truncation` parameter): radius r = sqrt(ln(1/t) / pi) / a.
+// Instead of cutting there (a jump of t K, which the paper accepts), the
+// kernel is multiplied by a smoothstep taper over the last part of its
+// support, s = |x|^2 / r^2 in [kGaborTaperStart, 1]: C1 everywhere, equal to
+// the Gabor kernel for |x| <= r sqrt(kGaborTaperStart), within K t^0.8 of it
+// beyond.
+constexpr double kGaborTaperStart = 0.8;
+constexpr double kGaborDefaultTruncation = 0.05;  // the paper's value
+constexpr double kGaborMinTruncation = 1e-9, kGaborMaxTruncation = 0.5;
+constexpr double kGaborMinBandwidth = 1e-6, kGaborMaxBandwidth = 1e6;
+constexpr double kGaborMaxFrequency = 1e6;
+// N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
+// The cap keeps every Poisson table within kGaborMaxThresholds entries (the
+// GLSL uniform arrays).
+constexpr double kGaborMaxImpulses = 256.0;
+constexpr int kGaborMaxThresholds = 192;
+// Impulse marks from the cell stream's words, cut into fields: an 8-bit
+// field m is the value (2m + 1) 2^-9 in (0, 1), a 16-bit field (2m + 1) 2^-17;
+// both exact in float and GLSL, symmetric about 1/2. One impulse takes:
+//   2D: word 0 = [x:8 | y:8 | weight:8 | orientation:8] (high to low bits),
+//       hybrid: word 1 = [frequency:16 | unused:16];
+//   3D: word 0 = [x:8 | y:8 | z:8 | weight:8], isotropic and hybrid:
+//       word 1 = [polar cosine:16 | azimuth:16], hybrid: word 2 = [frequency:16 | -].
+// Positions on a lattice of 256 steps per cell change the process only at
+// frequencies of 256 cycles per kernel radius, where the kernel's spectrum is
+// below e^-2000; weights w = 2u - 1 have E[w] = 0 and E[w^2] = (1 - 2^-16) / 3.
+// One hash per impulse instead of four (docs/gabor.md).
+constexpr unsigned kGaborByteBits = 8;
+constexpr unsigned kGaborByteMask = 0xFFU;
+constexpr double kGaborByteScale = 1.0 / 512.0;  // 2^-9
+constexpr unsigned kGaborHalfBits = 16;
+constexpr unsigned kGaborHalfMask = 0xFFFFU;
+constexpr double kGaborHalfScale = 1.0 / 131072.0;  // 2^-17
+// Streams of the per-cell hush::rng: solid (2D and 3D) and surface noise.
+constexpr unsigned kGaborSolidStream = 0;
+constexpr unsigned kGaborSurfaceStream = 1;
+// Surface noise (paper sec. 4.3): a 3D process whose impulses within a slab of
+// half-thickness h = rho / sqrt 2 around the tangent plane contribute the 2D
+// kernel of their projection; cells of size rho sqrt(3/2) hold the whole
+// slab-and-disk cylinder (radius rho, half-height h) in the 3 x 3 x 3
+// neighbourhood. This h minimises the impulses examined per sample.
+constexpr double kGaborSurfaceSlab = 0.70710678118654752440;  // h / rho = 1 / sqrt 2
+constexpr double kGaborSurfaceCell = 1.2247448713915890491;   // cell / rho = sqrt(3/2)
+
 // ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
 // subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kLn2 = 0.69314718055994530942;
 // Orientations K of the steerable filter bank (the paper uses 4 to 8; one
 // orientation has no angular selectivity) and scales (octaves of the bank).
@@ -191,7 +315,6 @@ struct aniso_series {
 };
 constexpr aniso_series kAnisoSeries{};
 constexpr double kSqrt2 = 1.41421356237309504880;
-constexpr double kLog2E = 1.44269504088896340736;
 
 }  // namespace constants
 }  // namespace detail

@@ -1,0 +1,443 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
+//
+//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
+//
+// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
+// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
+// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
+// what NPR Gabor noise splats, so it lives here once, for both:
+//
+//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
+//   double r = k.radius();                               // support radius
+//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
+//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
+//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
+//
+// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
+// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
+// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
+// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
+// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
+// every noise built on it are C1:
+//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
+//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
+//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
+//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
+//     and F >> a (tests/gabor_kernel_test.cpp).
+//
+// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
+// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
+// frequency is Phi = F r cycles per cell. The float path is separable:
+//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
+//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
+// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
+// share each axis's factors between samples and SIMD repeats it bit for bit.
+// value<double> is the reference (C library exp, sin, cos); float values are
+// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
+// measured 3e-7 (tests/gabor_kernel_test.cpp).
+//
+// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
+// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
+// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
+// (untruncated_power_spectrum). The tapered kernel's transform is
+// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
+// envelope, computed by quadrature (envelope_transform, power_spectrum,
+// energy): exact to ~1e-13 relative, no closed form exists.
+//
+// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
+// covariance Sigma (noise units) is again a Gabor kernel,
+//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
+//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
+//   Q = (I + 2 pi a^2 Sigma)^-1,
+// derived in docs/gabor.md (complete the square in the product of the two
+// transforms). gabor_filter<D> computes Q and the constants from a footprint;
+// the taper is kept at the unfiltered support.
+#ifndef HUSH_GABOR_KERNEL_HPP
+#define HUSH_GABOR_KERNEL_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+
+#include "hush/config.hpp"
+#include "hush/core/error.hpp"
+#include "hush/core/footprint.hpp"
+#include "hush/core/vec.hpp"
+#include "hush/detail/constants.hpp"
+#include "hush/detail/elementary.hpp"
+#include "hush/detail/quadrature.hpp"
+
+namespace hush {
+namespace detail {
+
+// ---- The kernel in cell units, operation by operation as the SIMD kernels
+// (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
+
+// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), k = 1 / (1 - s0),
+// and its derivative dtau/ds = -6 k v (1 - v). Callers only pass s < 1.
+template <class T>
+struct gabor_taper_value {
+  T tau, dtau;
+};
+template <class T>
+HUSH_INLINE T gabor_taper(T s, T k) {
+  T v = (T(1) - s) * k;
+  v = v < T(1) ? v : T(1);
+  return (v * v) * (T(3) - T(2) * v);
+}
+template <class T>
+HUSH_INLINE gabor_taper_value<T> gabor_taper_derivative(T s, T k) {
+  T v = (T(1) - s) * k;
+  v = v < T(1) ? v : T(1);
+  return {(v * v) * (T(3) - T(2) * v), (T(-6) * k) * (v * (T(1) - v))};
+}
+
+// One axis of the separable kernel: offset d (cell units), d^2, the envelope
+// factor e^{-A d^2} and sin/cos(2 pi phi d).
+template <class T>
+struct gabor_axis {
+  T d, d2, e, s, c;
+};
+template <class T>
+HUSH_INLINE gabor_axis<T> gabor_axis_factors(T d, T neg_a, T phi) {
+  gabor_axis<T> f;
+  f.d = d;
+  f.d2 = d * d;
+  f.e = exp_neg(neg_a * f.d2);
+  const sin_cos<T> sc = sincos_turns(phi * d);
+  f.s = sc.sin;
+  f.c = sc.cos;
+  return f;
+}
+
+// What the kernel of one impulse is along every axis but x: its weight times
+// the envelope factors, the harmonic's cos and sin, and the squared offset.
+template <class T>
+struct gabor_row {
+  T we, c, s, d2;
+};
+template <class T>
+HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y) {
+  return {w * y.e, y.c, y.s, y.d2};
+}
+template <class T>
+HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y, const gabor_axis<T>& z) {
+  return {w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2};
+}
+
+// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1.
+template <class T>
+HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
+  const T s = x.d2 + r.d2;
+  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * gabor_taper(s, taper_k);
+}
+// The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
+template <class T>
+struct gabor_pair_gradient {
+  T value, u, v;
+};
+template <class T>
+HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
+                                                            const gabor_row<T>& r, T taper_k, T a) {
+  const T s = x.d2 + r.d2;
+  const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
+  const T p = x.e * r.we;
+  const T pc = p * (x.c * r.c - x.s * r.s);
+  const T ps = p * (x.s * r.c + x.c * r.s);
+  // d/dd_a of p cos(theta) tau: p cos (2 d_a tau' - 2 A d_a tau) - 2 pi phi_a p sin tau.
+  return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
+}
+
+// ---- Closed forms and quadratures in cell units (double).
+
+// The radially symmetric part of an integral over the unit ball: int phi(|d|) dd
+// = c_D int_0^1 phi(rho) rho^(D-1) drho, with the integrand split at the taper's
+// start (where the taper has a kink in its second derivative).
+template <int D, class F>
+double ball_integral(F phi, int panels) {
+  const double rho0 = std::sqrt(constants::kGaborTaperStart);
+  auto radial = [&](double rho) { return phi(rho) * (D == 2 ? rho : rho * rho); };
+  const double c = D == 2 ? constants::kTwoPi : 2.0 * constants::kTwoPi;
+  return c * (integrate(radial, 0.0, rho0, panels) + integrate(radial, rho0, 1.0, panels));
+}
+
+// The angular average of cos(2 pi xi rho <u, omega>) over unit u: J0 in 2D,
+// sin(z)/z in 3D, z = 2 pi xi rho.
+template <int D>
+double angular_average(double z) {
+  if constexpr (D == 2) {
+    return bessel_j0(z);
+  } else {
+    return std::fabs(z) < 1e-4 ? 1.0 - z * z / 6.0 : std::sin(z) / z;
+  }
+}
+
+// H(xi): the Fourier transform of the tapered envelope e^{-A |d|^2} tau(|d|^2)
+// at |xi| cycles per cell (radial, real).
+template <int D>
+double gabor_envelope_transform(double a, double xi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 2 * static_cast<int>(std::ceil(std::fabs(xi)));
+  return ball_integral<D>(
+      [&](double rho) {
+        const double s = rho * rho;
+        return std::exp(-a * s) * gabor_taper(s, k) *
+               angular_average<D>(constants::kTwoPi * xi * rho);
+      },
+      panels);
+}
+
+// int g^2 over the cell-unit ball for |Phi| = phi:
+// (1/2) int e^{-2A s} tau^2 (1 + cos(4 pi <Phi, d>)).
+template <int D>
+double gabor_energy(double a, double phi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
+  return 0.5 * ball_integral<D>(
+                   [&](double rho) {
+                     const double s = rho * rho, tau = gabor_taper(s, k);
+                     return std::exp(-2.0 * a * s) * tau * tau *
+                            (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
+                   },
+                   panels);
+}
+
+// int (g - g_Gabor)^2 and int g_Gabor^2 over all space (cell units), for the
+// truncation error. Outside the ball g = 0, and the Gabor kernel's energy there
+// is what the ball integral leaves of the closed form
+// int e^{-2A|d|^2} cos^2 = (pi / 2A)^(D/2) (1 + e^{-2 pi^2 phi^2 / A}) / 2.
+template <int D>
+double gabor_truncation_error(double a, double phi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
+  auto ball = [&](auto weight) {
+    return 0.5 * ball_integral<D>(
+                     [&](double rho) {
+                       const double s = rho * rho;
+                       return std::exp(-2.0 * a * s) * weight(gabor_taper(s, k)) *
+                              (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
+                     },
+                     panels);
+  };
+  const double pi2 = constants::kPi * constants::kPi;
+  const double full = std::pow(constants::kPi / (2.0 * a), 0.5 * D) * 0.5 *
+                      (1.0 + std::exp(-2.0 * pi2 * phi * phi / a));
+  const double inside_gabor = ball([](double) { return 1.0; });
+  const double inside_diff = ball([](double tau) { return (1.0 - tau) * (1.0 - tau); });
+  return std::sqrt((inside_diff + (full - inside_gabor)) / full);
+}
+
+}  // namespace detail
+
+template <int D>
+class gabor_kernel {
+  static_assert(D == 2 || D == 3, "hush::gabor_kernel is 2D or 3D");
+
+ public:
+  static constexpr int dimension = D;
+
+  // bandwidth a in [1e-6, 1e6] (1/noise units), truncation t in [1e-9, 0.5]
+  // (the envelope's value at the support radius); hush::invalid_argument
+  // naming the parameter otherwise.
+  gabor_kernel(double bandwidth, double truncation) : a_(bandwidth), t_(truncation) {
+    namespace c = detail::constants;
+    detail::require_in_range("hush::gabor_kernel", "bandwidth", bandwidth, c::kGaborMinBandwidth,
+                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
+    detail::require_in_range("hush::gabor_kernel", "truncation", truncation, c::kGaborMinTruncation,
+                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
+    exponent_ = -std::log(t_);
+    r_ = std::sqrt(exponent_ / c::kPi) / a_;
+  }
+
+  double bandwidth() const { return a_; }
+  double truncation() const { return t_; }
+  // Support radius r = sqrt(ln(1/t) / pi) / a (noise units): g = 0 beyond.
+  double radius() const { return r_; }
+  // Radius up to which g is the Gabor kernel exactly: r sqrt(s0).
+  double taper_radius() const { return r_ * std::sqrt(detail::constants::kGaborTaperStart); }
+  // A = pi a^2 r^2 = ln(1/t): the envelope is e^{-A |x / r|^2}.
+  double envelope_exponent() const { return exponent_; }
+
+  // g at offset x (noise units) for frequency vector F (cycles per noise
+  // unit), in T (float: hush's separable float path; double: the reference).
+  template <class T>
+  T value(const vec<T, D>& x, const vec<double, D>& F) const {
+    return eval<T, false>(x, F).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<T, D>& x, const vec<double, D>& F) const {
+    return eval<T, true>(x, F);
+  }
+
+  // Power spectrum |g^(f)|^2 of this kernel (noise units: f and F in cycles
+  // per unit), and of the untruncated Gabor kernel in closed form.
+  double power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
+    double lo = 0, hi = 0;
+    for (int i = 0; i < D; ++i) {
+      lo += (f[i] - F[i]) * (f[i] - F[i]);
+      hi += (f[i] + F[i]) * (f[i] + F[i]);
+    }
+    const double h = 0.5 * (envelope_transform(std::sqrt(lo)) + envelope_transform(std::sqrt(hi)));
+    return h * h;
+  }
+  double untruncated_power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
+    double lo = 0, hi = 0;
+    for (int i = 0; i < D; ++i) {
+      lo += (f[i] - F[i]) * (f[i] - F[i]);
+      hi += (f[i] + F[i]) * (f[i] + F[i]);
+    }
+    const double pi = detail::constants::kPi, a2 = a_ * a_;
+    const double h = 0.5 * std::pow(a_, -D) * (std::exp(-pi * lo / a2) + std::exp(-pi * hi / a2));
+    return h * h;
+  }
+  // The Fourier transform of the tapered envelope e^{-pi a^2 |x|^2} tau at
+  // |f| = k cycles per unit (radial, real): H in the spectra above.
+  double envelope_transform(double k) const {
+    return std::pow(r_, D) * detail::gabor_envelope_transform<D>(exponent_, k * r_);
+  }
+  // int g^2 dx for |F| = frequency (noise units): what a sparse convolution
+  // of these kernels at density lambda with weights w has as variance,
+  // lambda E[w^2] energy(F) (Campbell's theorem).
+  double energy(double frequency) const {
+    return std::pow(r_, D) * detail::gabor_energy<D>(exponent_, frequency * r_);
+  }
+  // Relative RMS difference of g and the untruncated Gabor kernel, |F| = frequency.
+  double truncation_error(double frequency) const {
+    return detail::gabor_truncation_error<D>(exponent_, frequency * r_);
+  }
+
+ private:
+  template <class T, bool WithGradient>
+  value_gradient<T, D> eval(const vec<T, D>& x, const vec<double, D>& F) const {
+    const T inv_r = T(1.0 / r_), neg_a = T(-exponent_);
+    const T k = T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
+    detail::gabor_axis<T> ax[D];
+    T phi[D];
+    T s = 0;
+    for (int i = 0; i < D; ++i) {
+      phi[i] = T(F[i] * r_);
+      ax[i] = detail::gabor_axis_factors(x[i] * inv_r, neg_a, phi[i]);
+      s += ax[i].d2;
+    }
+    value_gradient<T, D> r{T(0), {}};
+    if (s >= T(1)) return r;  // outside the support (NaN offsets give NaN below)
+    detail::gabor_row<T> row;
+    if constexpr (D == 2)
+      row = detail::gabor_row_of(T(1), ax[1]);
+    else
+      row = detail::gabor_row_of(T(1), ax[1], ax[2]);
+    if constexpr (WithGradient) {
+      const auto p = detail::gabor_pair_with_gradient(ax[0], row, k, T(exponent_));
+      r.value = p.value;
+      for (int i = 0; i < D; ++i) r.gradient[i] = (p.u * ax[i].d - p.v * phi[i]) * inv_r;
+    } else {
+      r.value = detail::gabor_pair(ax[0], row, k);
+    }
+    return r;
+  }
+
+  double a_, t_, exponent_ = 0, r_ = 0;
+};
+
+namespace detail {
+
+// Eigenvalues and eigenvectors of a symmetric D x D matrix (D = 2, 3) by
+// cyclic Jacobi rotations: unconditionally stable, and accurate for nearly
+// singular and badly scaled matrices (a rank-1 footprint times 1e12), where
+// cofactor formulas cancel catastrophically. a is overwritten (its diagonal
+// ends holding the eigenvalues); v's columns are the eigenvectors.
+template <int D>
+void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) v[i][j] = i == j ? 1.0 : 0.0;
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    double off = 0, diag = 0;
+    for (int i = 0; i < D; ++i) {
+      diag += a[i][i] * a[i][i];
+      for (int j = i + 1; j < D; ++j) off += a[i][j] * a[i][j];
+    }
+    if (!(off > 1e-34 * diag)) return;  // converged (or NaN: give up)
+    for (int p = 0; p < D; ++p)
+      for (int q = p + 1; q < D; ++q) {
+        if (a[p][q] == 0.0) continue;
+        // The rotation that zeroes a[p][q]: t = tan, the smaller root.
+        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
+        const double c = 1.0 / std::hypot(t, 1.0), sn = t * c;
+        for (int k = 0; k < D; ++k) {  // columns p and q
+          const double akp = a[k][p], akq = a[k][q];
+          a[k][p] = c * akp - sn * akq;
+          a[k][q] = sn * akp + c * akq;
+        }
+        for (int k = 0; k < D; ++k) {  // rows p and q
+          const double apk = a[p][k], aqk = a[q][k];
+          a[p][k] = c * apk - sn * aqk;
+          a[q][k] = sn * apk + c * aqk;
+        }
+        for (int k = 0; k < D; ++k) {
+          const double vkp = v[k][p], vkq = v[k][q];
+          v[k][p] = c * vkp - sn * vkq;
+          v[k][q] = sn * vkp + c * vkq;
+        }
+      }
+  }
+}
+
+}  // namespace detail
+
+// The closed-form filtered kernel (Lagae 2009 sec. 5) for one sample's
+// footprint, in the kernel's cell units (d = x / r, Phi = F r):
+//   Q = (I + 2 A sigma^2 S / r^2)^-1  (S the footprint matrix, sigma =
+//       kPixelFilterSigma pixels: the Gaussian pixel filter N(0, sigma^2 S)),
+//   amplitude = sqrt(det Q),  attenuation(Phi) = e^{-Phi^T M Phi},
+//   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
+// Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
+// l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
+// below 0): Q = V diag(1 / (1 + k l)) V^T and I - Q = V diag(k l / (1 + k l))
+// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
+// footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
+// gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
+// footprints the amplitude underflows towards 0: the filtered noise is its mean.
+template <int D>
+struct gabor_filter {
+  double q[D][D];    // Q, symmetric
+  double m[D][D];    // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
+  double amplitude;  // sqrt(det Q), in (0, 1]
+
+  // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
+  gabor_filter(const footprint<D>& fp, double a, double inv_r) {
+    namespace c = detail::constants;
+    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
+    double s[D][D], v[D][D];
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
+    detail::jacobi_eigen<D>(s, v);
+    double qd[D], md[D];
+    amplitude = 1.0;
+    const double mk = c::kPi * c::kPi / a;
+    for (int i = 0; i < D; ++i) {
+      const double kl = k * std::fmax(s[i][i], 0.0);
+      qd[i] = 1.0 / (1.0 + kl);
+      md[i] = mk * (kl / (1.0 + kl));
+      amplitude *= std::sqrt(qd[i]);
+    }
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) {
+        double qq = 0, mm = 0;
+        for (int e = 0; e < D; ++e) {
+          qq += v[i][e] * qd[e] * v[j][e];
+          mm += v[i][e] * md[e] * v[j][e];
+        }
+        q[i][j] = qq;
+        m[i][j] = mm;
+      }
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_GABOR_KERNEL_HPP

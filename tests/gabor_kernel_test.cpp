@@ -1,0 +1,320 @@
+// hush::gabor_kernel and hush::gabor_filter (gabor_kernel.hpp): the Gabor
+// kernel of Lagae et al. 2009 with its smooth truncation, its spectra, energy
+// and closed-form filtering, each checked against an independent brute-force
+// computation.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "hush/gabor_kernel.hpp"
+#include "hush/hush.hpp"
+
+namespace {
+
+constexpr double kPi = hush::detail::constants::kPi;
+constexpr double kS0 = hush::detail::constants::kGaborTaperStart;
+
+// The Gabor kernel of the paper (K = 1), untruncated, in double.
+double gabor_pure(double a, const hush::dvec2& x, const hush::dvec2& f) {
+  return std::exp(-kPi * a * a * (x.x * x.x + x.y * x.y)) *
+         std::cos(2.0 * kPi * (f.x * x.x + f.y * x.y));
+}
+
+// Midpoint-rule integral over [-r, r]^2 of fn(x) on n x n cells.
+template <class Fn>
+double square_integral(double r, int n, Fn fn) {
+  const double h = 2.0 * r / n;
+  double sum = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) sum += fn(hush::dvec2{-r + (i + 0.5) * h, -r + (j + 0.5) * h});
+  return sum * h * h;
+}
+
+}  // namespace
+
+TEST_CASE("gabor_kernel: bandwidth and truncation out of range are refused by name") {
+  auto refused = [](double a, double t, const char* name) {
+    try {
+      const hush::gabor_kernel<2> k(a, t);
+      return false;
+    } catch (const hush::invalid_argument& e) {
+      return std::string(e.what()).find(std::string("hush::gabor_kernel: ") + name) !=
+             std::string::npos;
+    }
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK(refused(0.0, 0.05, "bandwidth"));
+  CHECK(refused(-1.0, 0.05, "bandwidth"));
+  CHECK(refused(nan, 0.05, "bandwidth"));
+  CHECK(refused(2e6, 0.05, "bandwidth"));
+  CHECK(refused(1.0, 0.0, "truncation"));
+  CHECK(refused(1.0, 0.6, "truncation"));
+  CHECK(refused(1.0, nan, "truncation"));
+  CHECK_NOTHROW(hush::gabor_kernel<3>(1e-6, 1e-9));
+  CHECK_NOTHROW(hush::gabor_kernel<3>(1e6, 0.5));
+}
+
+TEST_CASE("gabor_kernel: the support radius is where the envelope falls to the truncation") {
+  for (const double a : {0.05, 0.8, 3.0})
+    for (const double t : {0.5, 0.05, 1e-3, 1e-9}) {
+      const hush::gabor_kernel<2> k(a, t);
+      CHECK(std::exp(-kPi * a * a * k.radius() * k.radius()) == doctest::Approx(t).epsilon(1e-12));
+      CHECK(k.envelope_exponent() == doctest::Approx(-std::log(t)).epsilon(1e-15));
+      // Zero on and beyond the support, in float and double.
+      const hush::dvec2 F{0.7 * a, 0.2 * a};
+      CHECK(std::fabs(k.value(hush::dvec2{k.radius(), 0.0}, F)) <
+            1e-30);  // d = r (1/r) < 1 by rounding
+      CHECK(k.value(hush::dvec2{k.radius() * (1 + 1e-12), 0.0}, F) == 0.0);
+      CHECK(k.value(hush::dvec2{0.0, -1.5 * k.radius()}, F) == 0.0);
+      CHECK(k.value(hush::vec2{0.0f, -1.5f * static_cast<float>(k.radius())}, F) == 0.0f);
+    }
+}
+
+TEST_CASE("gabor_kernel: the Gabor kernel inside the taper radius, within t^s0 of it beyond") {
+  hush::rng r(3);
+  for (const double t : {0.05, 0.01}) {
+    const double a = 0.8;
+    const hush::gabor_kernel<2> k(a, t);
+    // The largest deviation is the envelope times (1 - taper) over the shell
+    // s in [s0, 1]: at most t^s0, in fact about t (scanned here in 1e5 steps).
+    double bound = 0;
+    for (int i = 0; i <= 100000; ++i) {
+      const double s = kS0 + (1 - kS0) * i / 100000.0;
+      bound =
+          std::fmax(bound, std::pow(t, s) * (1 - hush::detail::gabor_taper(s, 1.0 / (1.0 - kS0))));
+    }
+    CHECK(bound <= std::pow(t, kS0));
+    MESSAGE("t = " << t << ": max |g - g_Gabor| = " << bound << " = " << bound / t << " t");
+    double inside = 0, outside = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const hush::dvec2 x{r.uniform<double>(-1.2, 1.2) * k.radius(),
+                          r.uniform<double>(-1.2, 1.2) * k.radius()};
+      const hush::dvec2 F{r.uniform<double>(-2, 2), r.uniform<double>(-2, 2)};
+      const double diff = std::fabs(k.value(x, F) - gabor_pure(a, x, F));
+      if (std::hypot(x.x, x.y) <= k.taper_radius() * (1 - 1e-12))
+        inside = std::fmax(inside, diff);
+      else
+        outside = std::fmax(outside, diff);
+    }
+    CHECK(inside <= 1e-14);
+    CHECK(outside <= bound + 1e-15);
+    CHECK(outside > 0.9 * bound);  // and is attained
+  }
+}
+
+TEST_CASE("gabor_kernel: C1 across the taper and the support edge, gradient is the derivative") {
+  const hush::gabor_kernel<2> k(0.8, 0.05);
+  const hush::dvec2 F{0.9, -0.4};
+  hush::rng r(5);
+  double worst = 0;
+  for (int i = 0; i < 5000; ++i) {
+    // Half the points in the taper shell, where the derivative has its extra term.
+    const double rad =
+        (i % 2 ? r.uniform<double>(0.85, 1.0) : r.uniform<double>(0.0, 1.0)) * k.radius();
+    const double ang = r.uniform<double>(0, 2 * kPi);
+    const hush::dvec2 x{rad * std::cos(ang), rad * std::sin(ang)};
+    const auto vg = k.value_and_gradient(x, F);
+    for (int ax = 0; ax < 2; ++ax) {
+      const double h = 1e-6;
+      hush::dvec2 xp = x, xm = x;
+      xp[ax] += h;
+      xm[ax] -= h;
+      const double fd = (k.value(xp, F) - k.value(xm, F)) / (2 * h);
+      worst = std::fmax(worst, std::fabs(fd - vg.gradient[ax]));
+    }
+  }
+  CHECK(worst < 1e-7);  // central differences: O(h^2 g''') plus rounding 1e-16 / h
+  // At the edge the value and the gradient both tend to 0 (C1).
+  const double e = k.radius() * (1 - 1e-9);
+  const auto edge = k.value_and_gradient(hush::dvec2{e, 0.0}, F);
+  CHECK(std::fabs(edge.value) < 1e-15);
+  CHECK(std::fabs(edge.gradient.x) < 1e-6);
+}
+
+TEST_CASE(
+    "gabor_kernel: float evaluation is within 2^-21 (1 + 2 pi |Phi|) of the double reference") {
+  // Per axis the offset d = x / r is rounded once (2^-24 |d|); exp_neg and
+  // sincos_turns stay within 2^-22 and 2^-23 (elementary_test); the phase
+  // Phi d carries the offset's rounding times 2 pi |Phi|; a dozen products and
+  // sums of values below 1 add 2^-24 each: under 2^-21 (1 + 2 pi |Phi|).
+  hush::rng r(9);
+  for (const double a : {0.8, 0.1}) {
+    const hush::gabor_kernel<3> k(a, 0.05);
+    double worst = 0, ratio = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const hush::vec3 x{r.uniform<float>(-1, 1) * float(k.radius()),
+                         r.uniform<float>(-1, 1) * float(k.radius()),
+                         r.uniform<float>(-1, 1) * float(k.radius())};
+      const hush::dvec3 F{r.uniform<double>(-3, 3) * a, r.uniform<double>(-3, 3) * a,
+                          r.uniform<double>(-3, 3) * a};
+      const double phi = std::sqrt(F.x * F.x + F.y * F.y + F.z * F.z) * k.radius();
+      const double e = std::fabs(k.value(x, F) - k.value(hush::vec_cast<double>(x), F));
+      worst = std::fmax(worst, e);
+      ratio = std::fmax(ratio, e / (std::ldexp(1.0, -21) * (1 + 2 * kPi * phi)));
+    }
+    MESSAGE("a = " << a << ": max |float - double| = " << worst << ", " << ratio
+                   << " of the bound");
+    CHECK(ratio <= 1.0);
+  }
+}
+
+TEST_CASE("gabor_kernel: envelope transform and energy equal brute-force quadrature") {
+  // Midpoint rule on 600 x 600 cells over the support: error O(h^2) on the
+  // smooth part and O(h^2) at the C1 taper, ~1e-5 relative here.
+  const double a = 0.8;
+  const hush::gabor_kernel<2> k(a, 0.05);
+  const double r = k.radius();
+  auto envelope = [&](const hush::dvec2& x) {
+    return k.value(x, hush::dvec2{0.0, 0.0});  // F = 0: the tapered envelope
+  };
+  for (const double f : {0.0, 0.3, 1.0, 2.5}) {
+    const double brute = square_integral(
+        r, 600, [&](const hush::dvec2& x) { return envelope(x) * std::cos(2 * kPi * f * x.x); });
+    CHECK(k.envelope_transform(f) ==
+          doctest::Approx(brute).epsilon(2e-5).scale(k.envelope_transform(0)));
+  }
+  for (const double F : {0.0, 0.5, 1.0}) {
+    const hush::dvec2 Fv{F * 0.6, F * 0.8};
+    const double brute = square_integral(r, 600, [&](const hush::dvec2& x) {
+      const double g = k.value(x, Fv);
+      return g * g;
+    });
+    CHECK(k.energy(F) == doctest::Approx(brute).epsilon(2e-5));
+  }
+}
+
+TEST_CASE("gabor_kernel: the power spectra are the squared transforms, and tend to each other") {
+  // Tapered: (H(f - F) + H(f + F))^2 / 4. As t -> 0 the taper sits where the
+  // envelope is e^{-A s0} ~ 0, and the spectrum becomes the untruncated
+  // closed form a^-2D (e^{-pi|f-F|^2/a^2} + e^{-pi|f+F|^2/a^2})^2 / 4.
+  const double a = 0.8;
+  const hush::dvec2 F{0.6, 0.5};
+  const hush::gabor_kernel<2> wide(a, 1e-9), k(a, 0.05);
+  for (const hush::dvec2 f :
+       {hush::dvec2{0.6, 0.5}, hush::dvec2{0.0, 0.0}, hush::dvec2{1.0, -0.3}}) {
+    const double exact = wide.untruncated_power_spectrum(f, F);
+    CHECK(wide.power_spectrum(f, F) ==
+          doctest::Approx(exact).epsilon(1e-6).scale(1.0 / (a * a * a * a)));
+    double lo = 0, hi = 0;
+    for (int i = 0; i < 2; ++i) {
+      lo += (f[i] - F[i]) * (f[i] - F[i]);
+      hi += (f[i] + F[i]) * (f[i] + F[i]);
+    }
+    const double h =
+        0.5 * (k.envelope_transform(std::sqrt(lo)) + k.envelope_transform(std::sqrt(hi)));
+    CHECK(k.power_spectrum(f, F) == doctest::Approx(h * h).epsilon(1e-15));
+  }
+  // Plancherel for the untruncated kernel: int |g^|^2 df = int g^2 dx
+  // = (1 + e^{-2 pi |F|^2 / a^2}) / (4 a^2), by the midpoint rule over +-4a
+  // around the two blobs (the rest is below e^{-32 pi}).
+  const double df = 0.01;
+  double sum = 0;
+  for (double fy = -3; fy < 3; fy += df)
+    for (double fx = -3; fx < 3; fx += df)
+      sum += wide.untruncated_power_spectrum({fx + df / 2, fy + df / 2}, F);
+  const double f2 = F.x * F.x + F.y * F.y;
+  CHECK(sum * df * df ==
+        doctest::Approx((1 + std::exp(-2 * kPi * f2 / (a * a))) / (4 * a * a)).epsilon(1e-6));
+}
+
+TEST_CASE(
+    "gabor_kernel: truncation error matches brute force (2D) and the closed forms' tail (3D)") {
+  const double a = 0.8, F = 1.0;
+  const hush::gabor_kernel<2> k(a, 0.05);
+  const hush::dvec2 Fv{F, 0.0};
+  // int (g - g_Gabor)^2 over a square 3x the support (the Gabor tail beyond is
+  // below e^{-18 A}), relative to the closed-form int g_Gabor^2.
+  const double r = k.radius();
+  const double diff = square_integral(3 * r, 1800, [&](const hush::dvec2& x) {
+    const double d = k.value(x, Fv) - gabor_pure(a, x, Fv);
+    return d * d;
+  });
+  const double full = (1 + std::exp(-2 * kPi * F * F / (a * a))) / (4 * a * a);
+  CHECK(k.truncation_error(F) == doctest::Approx(std::sqrt(diff / full)).epsilon(1e-3));
+  MESSAGE("truncation error, t = 0.05: 2D " << k.truncation_error(F) << ", 3D "
+                                            << hush::gabor_kernel<3>(a, 0.05).truncation_error(F));
+  // Smaller t, smaller error; F >> a: the error hardly depends on F.
+  CHECK(hush::gabor_kernel<2>(a, 0.01).truncation_error(F) < k.truncation_error(F));
+  CHECK(hush::gabor_kernel<3>(a, 0.01).truncation_error(F) <
+        hush::gabor_kernel<3>(a, 0.05).truncation_error(F));
+}
+
+TEST_CASE("gabor_filter: the closed form is the Gabor kernel convolved with the pixel's Gaussian") {
+  // Brute force: int g_Gabor(x - y) N(y; 0, sigma^2 S) dy by the midpoint rule
+  // on a 401 x 401 grid over +-7 standard deviations of the Gaussian along its
+  // axes (tail below 1e-11); the closed form in noise units is
+  // sqrt(det Q) e^{-pi F^T (I - Q) F / a^2} e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>).
+  const double a = 0.8, sigma = hush::detail::constants::kPixelFilterSigma;
+  const hush::gabor_kernel<2> k(a, 0.05);
+  const double A = k.envelope_exponent(), r = k.radius();
+  const hush::dvec2 F{0.9, 0.35};
+  const hush::dvec2 dpdx{0.3, 0.1}, dpdy{-0.05, 0.6};  // an anisotropic pixel
+  const auto fp = hush::footprint<2>::from_derivatives(dpdx, dpdy);
+  const hush::gabor_filter<2> flt(fp, A, 1.0 / r);
+  // The Gaussian's covariance C = sigma^2 S and its principal axes.
+  double c[2][2];
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) c[i][j] = sigma * sigma * fp.covariance(i, j);
+  const double tr = c[0][0] + c[1][1], det = c[0][0] * c[1][1] - c[0][1] * c[1][0];
+  const double l1 = 0.5 * tr + std::sqrt(0.25 * tr * tr - det), l2 = det / l1;
+  const double th = 0.5 * std::atan2(2 * c[0][1], c[0][0] - c[1][1]);
+  const double ux = std::cos(th), uy = std::sin(th);
+  for (const hush::dvec2 x :
+       {hush::dvec2{0.0, 0.0}, hush::dvec2{0.3, -0.2}, hush::dvec2{0.7, 0.5}}) {
+    const int n = 401;
+    const double s1 = std::sqrt(l1), s2 = std::sqrt(l2), h1 = 14 * s1 / n, h2 = 14 * s2 / n;
+    double brute = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double p = -7 * s1 + (i + 0.5) * h1, q = -7 * s2 + (j + 0.5) * h2;
+        const double w = std::exp(-0.5 * (p * p / l1 + q * q / l2)) / (2 * kPi * s1 * s2);
+        const hush::dvec2 y{p * ux - q * uy, p * uy + q * ux};
+        brute += w * gabor_pure(a, hush::dvec2{x.x - y.x, x.y - y.y}, F) * h1 * h2;
+      }
+    // The closed form from gabor_filter's cell-unit constants: Phi = F r, d = x / r.
+    const hush::dvec2 phi{F.x * r, F.y * r}, d{x.x / r, x.y / r};
+    double att = 0, env = 0, theta = 0;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        att += phi[i] * flt.m[i][j] * phi[j];
+        env += d[i] * flt.q[i][j] * d[j];
+        theta += flt.q[i][j] * phi[j] * d[i];
+      }
+    const double closed =
+        flt.amplitude * std::exp(-att) * std::exp(-A * env) * std::cos(2 * kPi * theta);
+    CHECK(closed == doctest::Approx(brute).epsilon(1e-9).scale(1.0));
+  }
+}
+
+TEST_CASE(
+    "gabor_filter: degenerate footprints give finite Q and an amplitude in 0 ... 1 (HARD_CASES row 12)") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const hush::footprint<3> cases[] = {
+      hush::footprint<3>{},
+      hush::footprint<3>::from_derivatives(hush::dvec3{1, 2, 3}, hush::dvec3{0, 0, 0}),  // rank 1
+      hush::footprint<3>::from_derivatives(hush::dvec3{1e-15, 0, 0}, hush::dvec3{0, 1e-15, 0}),
+      hush::footprint<3>::from_derivatives(hush::dvec3{1e15, 3e14, 0}, hush::dvec3{0, 1e15, 2e14}),
+      hush::footprint<3>::from_derivatives(hush::dvec3{nan, 0, 0}, hush::dvec3{0, 1, 0}),
+      hush::footprint<3>::isotropic(1e300)};
+  for (const auto& fp : cases)
+    for (const double a : {1e-6, 0.8, 1e6}) {
+      const hush::gabor_kernel<3> k(a, 0.05);
+      const hush::gabor_filter<3> f(fp, k.envelope_exponent(), 1.0 / k.radius());
+      CHECK(std::isfinite(f.amplitude));
+      CHECK(f.amplitude > 0.0);
+      CHECK(f.amplitude <= 1.0);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          CHECK(std::isfinite(f.q[i][j]));
+          CHECK(std::isfinite(f.m[i][j]));
+        }
+    }
+  // A point footprint leaves the kernel as it is.
+  const hush::gabor_filter<2> none(hush::footprint<2>{}, 3.0, 1.0);
+  CHECK(none.amplitude == 1.0);
+  CHECK(none.q[0][0] == 1.0);
+  CHECK(none.q[0][1] == 0.0);
+  CHECK(none.m[1][1] == 0.0);
+}
