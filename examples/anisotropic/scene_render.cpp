@@ -31,21 +31,26 @@ hush::samples<2> gbuffer_samples::samples(bool compensate) const {
   return s;
 }
 
-gbuffer_samples collect_samples(const hush::scene::gbuffer& g,
+gbuffer_samples collect_samples(const hush::frame& f,
                                 const std::vector<std::vector<hush::surface_map>>& maps) {
+  f.validate("hush_aniso::collect_samples",
+             hush::frame_view::uv | hush::frame_view::uv_jacobian | hush::frame_view::object_id |
+                 hush::frame_view::triangle_id,
+             std::size_t(1) << 16);
   gbuffer_samples b;
-  for (std::size_t q = 0; q < g.pixels(); ++q) {
-    if (!g.covered(q)) continue;
-    const std::uint32_t object = g.object_id[q], tri = g.triangle_id[q];
-    // A G-buffer from another scene (ids beyond this one's meshes): no map, the identity.
-    const bool known = object - 1 < maps.size() && tri < maps[object - 1].size();
-    b.uv.push_back({g.uv[2 * q], g.uv[2 * q + 1]});
-    const float* j = &g.uv_jacobian[4 * q];  // du/dx, du/dy, dv/dx, dv/dy
-    b.footprints.push_back(
-        hush::footprint<2>::from_derivatives(hush::dvec2{j[0], j[2]}, hush::dvec2{j[1], j[3]}));
-    b.maps.push_back(known ? maps[object - 1][tri] : hush::surface_map::identity());
-    b.pixel.push_back(q);
-  }
+  for (std::size_t y = 0; y < f.height(); ++y)
+    for (std::size_t x = 0; x < f.width(); ++x) {
+      const std::uint32_t object = f.object_id(x, y), tri = f.triangle_id(x, y);
+      if (object == 0) continue;  // background
+      // A G-buffer from another scene (ids beyond this one's meshes): no map, the identity.
+      const bool known = object - 1 < maps.size() && tri < maps[object - 1].size();
+      b.uv.push_back(f.uv(x, y));
+      const hush::vec4 j = f.uv_jacobian(x, y);  // du/dx, du/dy, dv/dx, dv/dy
+      b.footprints.push_back(
+          hush::footprint<2>::from_derivatives(hush::dvec2{j.x, j.z}, hush::dvec2{j.y, j.w}));
+      b.maps.push_back(known ? maps[object - 1][tri] : hush::surface_map::identity());
+      b.pixel.push_back(y * f.width() + x);
+    }
   return b;
 }
 

@@ -12,6 +12,7 @@
 #include "hush/coherent.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/exec.hpp"
+#include "render_anisotropic.hpp"
 
 #if HUSH_CLI_HAVE_GLSL
 #include "hush/glsl/coherent.hpp"
@@ -186,6 +187,7 @@ const std::vector<render_entry>& render_table() {
             "forward_velocity.npy, written by hush scene render)"},
        },
        make_coherent},
+      anisotropic_render_entry(),
   };
   return table;
 }
