@@ -41,6 +41,7 @@ namespace {
 // ---- The workloads. Every constant of the benchmark is here, once.
 
 constexpr std::uint32_t kNoiseSeed = 7;
+constexpr int kBenchThreads = 2;            // exec::parallel rows: this machine's cores
 constexpr std::uint32_t kPointSeed = 2024;  // of the random point sets (hush::rng)
 constexpr int kFbmOctaves = 4;              // lacunarity 2, gain 0.5: fractal's defaults
 // Grid spacing 1/37 lattice units: not a power of two, so sample positions fall at ever
@@ -332,6 +333,19 @@ void add_libnoise_rows(std::vector<bench_case>& cases, const sizes& s, int octav
 }
 #endif
 
+// Perlin on the SIMD backend over kBenchThreads threads (hush::exec::parallel): the scaling
+// on this machine's cores. Wall-clock time, since the work runs on other threads too.
+void add_parallel_rows(std::vector<bench_case>& cases, const sizes& s) {
+  const auto ex = hush::exec::parallel(hush::exec::simd, kBenchThreads);
+  const std::size_t first = cases.size();
+  add_noise_rows(cases, s, "perlin 2D", hush::perlin<2>(kNoiseSeed), ex);
+  add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), ex);
+  for (std::size_t i = first; i < cases.size(); ++i) {
+    cases[i].backend = "simd, " + std::to_string(kBenchThreads) + " threads";
+    cases[i].wall_clock = true;
+  }
+}
+
 }  // namespace
 
 sizes full_sizes() { return sizes{}; }
@@ -419,6 +433,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
   std::vector<bench_case> cases;
   add_backend_rows(cases, s, hush::exec::scalar);
   add_backend_rows(cases, s, hush::exec::simd);
+  add_parallel_rows(cases, s);
   add_coherent_rows(cases, s);  // its simd rows are pinned to AVX2 below too
   add_anisotropic_cases(cases, s);  // before the pinned rows: its simd rows get theirs
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC

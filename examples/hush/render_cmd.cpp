@@ -23,6 +23,7 @@
 #include "npy/npy.hpp"
 #include "output_file.hpp"
 #include "progress.hpp"
+#include "triangles.hpp"
 #endif
 
 namespace hush_cli {
@@ -80,6 +81,22 @@ class directory_sequence final : public gbuffer_sequence {
                         " has no forward_velocity.npy (render the scene again with this hush)");
     return hush::scene::as_frame(current_);
   }
+  hush::triangle_list triangles(std::size_t i) override {
+    if (triangles_loaded_ != static_cast<long long>(i)) {
+      const std::string dir = hush::scene::frame_directory(dir_, static_cast<int>(i));
+      if (!hush::scene::has_triangles(dir))
+        throw usage_error("--gbuffer frame_" + four(i) +
+                          " has no tri_*.npy triangle files (render the scene again with this "
+                          "hush)");
+      try {
+        triangles_ = hush::scene::load_triangles(dir);
+      } catch (const std::runtime_error& e) {
+        throw run_error(e.what());
+      }
+      triangles_loaded_ = static_cast<long long>(i);
+    }
+    return triangles_.view();
+  }
 
  private:
   static std::string four(std::size_t i) {
@@ -102,6 +119,8 @@ class directory_sequence final : public gbuffer_sequence {
   int width_ = 0, height_ = 0;
   hush::scene::gbuffer current_;
   long long loaded_ = -1;
+  hush::scene::triangle_frame triangles_;
+  long long triangles_loaded_ = -1;
 };
 
 class directory_sink final : public render_sink {

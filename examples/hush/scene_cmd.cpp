@@ -4,7 +4,8 @@
 //   hush scene list
 //   hush scene render --scene NAME [--frames N] [--size WxH] [--backend cpu|gl] --out DIR
 //
-// render writes DIR/frame_0000 ... frame_{N-1} (one .npy per channel plus PNG previews),
+// render writes DIR/frame_0000 ... frame_{N-1} (one .npy per channel plus PNG previews, and
+// the projected triangles NPR Gabor noise reads: examples/scene/triangles.hpp),
 // one progress line per frame on stderr, and a summary with the median render time per
 // frame (rasterization only, not file writing; wall clock and this thread's CPU time) on
 // stdout.
@@ -26,6 +27,7 @@
 #include "hush/core/error.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"
+#include "triangles.hpp"
 #if HUSH_SCENE_HAVE_GL
 #include "raster_gl.hpp"
 #endif
@@ -149,6 +151,7 @@ int run_render(const std::vector<std::string>& args) {
     const std::string dir = hush::scene::frame_directory(*out, f);
     try {
       hush::scene::save_gbuffer(g, dir);
+      hush::scene::save_triangles(hush::scene::project_triangles(s, f, width, height), dir);
     } catch (const std::runtime_error& e) {
       throw run_error(e.what());
     }

@@ -12,6 +12,7 @@
 #include "hush/coherent.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/exec.hpp"
+#include "hush/npr_gabor.hpp"
 #include "render_anisotropic.hpp"
 
 #if HUSH_CLI_HAVE_GLSL
@@ -115,6 +116,35 @@ class coherent_noise final : public scene_noise {
   bool symmetric_;
 };
 
+// ---- NPR Gabor noise (hush/npr_gabor.hpp): kernels splatted at points on the triangles.
+class npr_gabor_noise final : public scene_noise {
+ public:
+  explicit npr_gabor_noise(const hush::npr_gabor::params& prm) : noise_(prm) {}
+  int channels() const override { return 1; }
+  std::string unsupported_reason(backend b) const override {
+    if (b != backend::scalar)
+      return "npr-gabor runs on the scalar backend only so far (SIMD and GLSL splatting are "
+             "not implemented yet, issue 11)";
+    return "";
+  }
+  void render(gbuffer_sequence& frames, render_sink& sink, backend) override {
+    const std::size_t n = frames.size();
+    const std::size_t w = static_cast<std::size_t>(frames.width());
+    const std::size_t h = static_cast<std::size_t>(frames.height());
+    std::vector<float> plane(w * h);
+    for (std::size_t i = 0; i < n; ++i) {
+      const hush::frame f = frames.frame(i, noise_.needs());
+      const hush::triangle_list t = frames.triangles(i);
+      noise_.render(f, t, hush::image_view<float>(plane.data(), w, h));
+      sink.write(i, {hush::image_view<const float>(plane.data(), w, h)});
+      sink.progress("splatting", i + 1, n);
+    }
+  }
+
+ private:
+  hush::npr_gabor noise_;
+};
+
 double parse_range(const option_values& given, const char* name, double lo, double hi, bool hi_open,
                    const char* valid, double fallback) {
   const std::string* v = find_value(given, name);
@@ -149,6 +179,33 @@ std::unique_ptr<scene_noise> make_coherent(const render_setup& setup, const opti
   bool symmetric = false;
   for (const std::string& f : flags) symmetric = symmetric || f == "--symmetric";
   return std::make_unique<coherent_noise>(p, symmetric);
+}
+
+std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const option_values& given,
+                                            const std::vector<std::string>& flags) {
+  hush::npr_gabor::params p;
+  p.seed = setup.seed;
+  // Ranges are the library's (hush::npr_gabor checks them and make_scene_noise names the
+  // option); here only "is it a number".
+  auto number = [&](const char* name, double& field) {
+    if (const std::string* v = find_value(given, name))
+      field = parse_finite(name, *v, "a finite number");
+  };
+  number("--frequency", p.frequency);
+  number("--bandwidth", p.bandwidth);
+  number("--truncation", p.truncation);
+  number("--impulses", p.impulses);
+  number("--orientation", p.orientation);
+  number("--depth-tolerance", p.depth_tolerance);
+  for (const std::string& f : flags) {
+    if (f == "--isotropic") p.isotropic = true;
+    if (f == "--no-object-test") p.object_test = false;
+    if (f == "--triangle-test") p.triangle_test = true;
+    if (f == "--no-depth-test") p.depth_test = false;
+    if (f == "--soft-depth") p.soft_depth = true;
+    if (f == "--two-sided") p.cull_back_faces = false;
+  }
+  return std::make_unique<npr_gabor_noise>(p);
 }
 
 }  // namespace
@@ -187,6 +244,33 @@ const std::vector<render_entry>& render_table() {
             "forward_velocity.npy, written by hush scene render)"},
        },
        make_coherent},
+      {"npr-gabor",
+       "NPR Gabor noise (Benard, Lagae et al. 2010): Gabor kernels in screen space at points "
+       "attached to the triangles (2D look, follows the motion); needs depth, object ids "
+       "(triangle ids with --triangle-test) and the tri_*.npy files of hush scene render",
+       {
+           {"--frequency", "f", "F0 in cycles per pixel, 0 ... 0.5 (default 0.125)", "frequency"},
+           {"--bandwidth", "a",
+            "kernel bandwidth in 1/pixel, 0.01 ... 10 (default 0.08: radius 12 pixels)",
+            "bandwidth"},
+           {"--impulses", "n", "N', kernels overlapping a pixel on average, (0, 256] (default 16)",
+            "impulses"},
+           {"--orientation", "rad",
+            "omega0 in radians from +x towards +y (down) (default 0; ignored with --isotropic)",
+            "orientation"},
+           {"--truncation", "t", "kernel truncation, 1e-9 ... 0.5 (default 0.05)", "truncation"},
+           {"--depth-tolerance", "d",
+            "depth test tolerance, relative to depth, 0 ... 1 (default 0.02)", "depth_tolerance"},
+       },
+       {
+           {"--isotropic", "", "a random orientation per point (stippling) instead of omega0"},
+           {"--no-object-test", "", "splat across object boundaries"},
+           {"--triangle-test", "", "cut every kernel to its own triangle"},
+           {"--no-depth-test", "", "splat across depth discontinuities"},
+           {"--soft-depth", "", "fade kernels between 1 and 2 depth tolerances instead of a cut"},
+           {"--two-sided", "", "back-facing triangles emit points too"},
+       },
+       make_npr_gabor},
       anisotropic_render_entry(),
   };
   return table;

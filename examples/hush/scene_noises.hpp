@@ -3,7 +3,7 @@
 // A render_entry names a noise, lists its own options (and flags, options without a value)
 // and builds a scene_noise from them. `hush render NOISE` looks NOISE up in render_table();
 // usage text and option errors come from the entries, so adding a scene-driven noise to the
-// program (NPR Gabor noise next) is one entry plus the class that renders it.
+// program is one entry plus the class that renders it.
 //
 // A scene_noise renders a sequence of G-buffer frames (hush scene render's layout,
 // examples/scene/gbuffer_io.hpp) into noise frames. It reads frames through
@@ -21,6 +21,7 @@
 
 #include "args.hpp"
 #include "hush/core/frame.hpp"
+#include "hush/core/triangles.hpp"
 #include "hush/core/views.hpp"
 #include "noises.hpp"
 
@@ -37,6 +38,10 @@ class gbuffer_sequence {
   // cannot be read, usage_error when its size differs from frame 0's or a channel the noise
   // needs is missing (`needs`, hush::frame_view flags).
   virtual hush::frame frame(std::size_t i, hush::frame_view needs) = 0;
+  // Frame i's projected triangles (examples/scene/triangles.hpp), valid until the next
+  // call. Throws run_error when the files cannot be read, usage_error when the frame has
+  // none (G-buffers written before hush scene render wrote them).
+  virtual hush::triangle_list triangles(std::size_t i) = 0;
 };
 
 // Where results go.

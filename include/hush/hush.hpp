@@ -18,6 +18,7 @@
 #include "hush/core/samples.hpp"
 #include "hush/core/surface_map.hpp"
 #include "hush/core/tile_cache.hpp"
+#include "hush/core/triangles.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/exec.hpp"
@@ -30,5 +31,6 @@
 
 // Scene-driven noises (hush::frame: per-frame G-buffer views).
 #include "hush/coherent.hpp"
+#include "hush/npr_gabor.hpp"
 
 #endif  // HUSH_HUSH_HPP

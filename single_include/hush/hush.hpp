@@ -629,6 +629,29 @@ constexpr unsigned kGaborSurfaceStream = 1;
 constexpr double kGaborSurfaceSlab = 0.70710678118654752440;  // h / rho = 1 / sqrt 2
 constexpr double kGaborSurfaceCell = 1.2247448713915890491;   // cell / rho = sqrt(3/2)
 
+// ---- NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot
+// 2010; npr_gabor.hpp). Parameters are in screen pixels: frequency F0 in
+// cycles per pixel up to Nyquist, bandwidth a in 1/pixel (kernel radius
+// r = sqrt(ln(1/t) / pi) / a: from 0.047 px at a = 10, t = 0.5, to 257 px at
+// a = 0.01, t = 1e-9), N' up to Gabor noise's cap.
+constexpr double kNprGaborMaxFrequency = 0.5;
+constexpr double kNprGaborMinBandwidth = 0.01, kNprGaborMaxBandwidth = 10.0;
+constexpr double kNprGaborDefaultFrequency = 0.125;      // 8-pixel period
+constexpr double kNprGaborDefaultBandwidth = 0.08;       // r = 12.2 px for t = 0.05
+constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ... 128)
+constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
+constexpr double kNprGaborMaxDepthTolerance = 1.0;
+// At most this many points per triangle (2M <= 2^22): N above it is clamped,
+// so a triangle of more than 2^22 / lambda square pixels (several screens at
+// the defaults) gets a lower density. Bounds the work per triangle.
+constexpr double kNprGaborMaxPoints = 4194304.0;
+constexpr unsigned kNprGaborMaxTriangles = 1u << 28;
+constexpr unsigned kNprGaborMaxImageSide = 32768;
+// Each point takes 2 words of its triangle's stream (hush::rng, stream
+// kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
+constexpr unsigned kNprGaborWordsPerPoint = 2;
+constexpr unsigned kNprGaborStream = 2;
+
 // ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
 // subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
 constexpr double kLn2 = 0.69314718055994530942;
@@ -3394,7 +3417,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 //    dv/dx, dv/dy): the screen-to-texture Jacobian J a filtering 2D noise
 //    turns into its footprint (hush::footprint<2>::from_derivatives((du/dx,
 //    dv/dx), (du/dy, dv/dy)); anisotropic noise).
-// NPR Gabor noise will add its triangle list beside these views.
+// NPR Gabor noise reads its triangle list beside these views (core/triangles.hpp).
 #ifndef HUSH_CORE_FRAME_HPP
 #define HUSH_CORE_FRAME_HPP
 
@@ -3607,6 +3630,89 @@ class poisson_table {
 
 #endif  // HUSH_CORE_POISSON_TABLE_HPP
 // ---- end hush/core/poisson_table.hpp
+// ---- begin hush/core/triangles.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::triangle_list: the triangles a renderer drew in one frame, as views of
+// arrays the caller owns (valid for the call), beside hush::frame
+// (core/frame.hpp) for the noises that attach primitives to surfaces (NPR
+// Gabor noise, Benard et al. 2010 sec. 3.3). Nothing but this frame's data:
+//  - indices: 3 per triangle, into the vertex arrays;
+//  - screen: each vertex's screen position in pixels for this frame (the
+//    frame's conventions: x right, y down, pixel (x, y) centred at
+//    (x + 0.5, y + 0.5)), i.e. clip (X, Y) / W through the viewport;
+//  - depth: each vertex's linear view depth for this frame (clip W; the
+//    frame's depth units). A vertex with depth <= 0 or a non-finite value is
+//    not in front of the camera: noises skip its triangles (documented per
+//    noise);
+//  - triangle_id: per triangle, a stable id: the same surface triangle has
+//    the same id in every frame, and it is the id the frame's triangle_id
+//    view shows where the triangle is visible;
+//  - object_id: per triangle, the object id the frame's object_id view shows
+//    where it is visible. Optional (empty: every triangle is object 0).
+// A triangle is keyed by (object_id, triangle_id): noises seed their
+// per-triangle random streams with that pair, so a triangle's primitives are
+// the same in every frame whatever the order or number of triangles.
+//
+// Perspective: a surface point of barycentric coordinates b (object space)
+// projects to s = sum b_i z_i s_i / sum b_i z_i at depth sum b_i z_i (clip
+// coordinates are linear in object space), which is why depth comes with
+// the screen positions.
+#ifndef HUSH_CORE_TRIANGLES_HPP
+#define HUSH_CORE_TRIANGLES_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+
+namespace hush {
+
+struct triangle_list {
+  span<const std::uint32_t> indices;      // 3 per triangle
+  span<const vec2> screen;                // per vertex: pixels
+  span<const float> depth;                // per vertex: linear view depth
+  span<const std::uint32_t> triangle_id;  // per triangle: stable id
+  span<const std::uint32_t> object_id;    // per triangle, optional
+
+  std::size_t triangles() const { return indices.size() / 3; }
+  std::size_t vertices() const { return screen.size(); }
+  std::uint32_t object_of(std::size_t t) const { return object_id.empty() ? 0u : object_id[t]; }
+
+  // Throws hush::invalid_argument naming `where` and the array when the index
+  // count is not a multiple of 3, there are more than max_triangles
+  // triangles, depth and screen differ in length, triangle_id (or a non-empty
+  // object_id) does not hold one id per triangle, or an index is not below
+  // vertices(). Reads every index (O(triangles)), never a vertex value.
+  void validate(const char* where, std::size_t max_triangles) const {
+    if (indices.size() % 3 != 0)
+      detail::throw_out_of_range(where, "triangles.indices size", indices.size(),
+                                 "a multiple of 3 (3 indices per triangle)");
+    if (triangles() > max_triangles)
+      detail::throw_out_of_range(where, "triangles.indices size", indices.size(),
+                                 ("at most 3 x " + std::to_string(max_triangles)).c_str());
+    if (depth.size() != screen.size())
+      detail::throw_out_of_range(where, "triangles.depth size", depth.size(),
+                                 ("one per vertex: " + std::to_string(screen.size())).c_str());
+    if (triangle_id.size() != triangles())
+      detail::throw_out_of_range(where, "triangles.triangle_id size", triangle_id.size(),
+                                 ("one per triangle: " + std::to_string(triangles())).c_str());
+    if (!object_id.empty() && object_id.size() != triangles())
+      detail::throw_out_of_range(
+          where, "triangles.object_id size", object_id.size(),
+          ("0 (absent) or one per triangle: " + std::to_string(triangles())).c_str());
+    for (std::size_t i = 0; i < indices.size(); ++i)
+      if (indices[i] >= vertices())
+        detail::throw_out_of_range(
+            where, "triangles.indices[" + std::to_string(i) + "]", indices[i],
+            ("below the vertex count, " + std::to_string(vertices())).c_str());
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_TRIANGLES_HPP
+// ---- end hush/core/triangles.hpp
 // ---- begin hush/exec.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -9626,6 +9732,325 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 
 #endif  // HUSH_COHERENT_HPP
 // ---- end hush/coherent.hpp
+// ---- begin hush/npr_gabor.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot, "A
+// dynamic noise primitive for coherent stylization", EGSR 2010): Gabor
+// kernels (hush/gabor_kernel.hpp) defined and evaluated in 2D screen space
+// (a 2D look, like a shower door) at points attached to the surface (they move
+// with it, like a texture). A scene-driven noise: per frame it reads the
+// visibility G-buffer (hush::frame) and the triangles drawn (hush::triangle_list)
+// and splats every point's kernel into an image.
+//
+//   hush::npr_gabor::params prm;             // F0 = 1/8 cycle/px, a = 0.08 /px, N' = 16
+//   prm.orientation = 0.5;                   // radians, from +x towards +y (down)
+//   hush::npr_gabor noise{prm};
+//   noise.render(frame, triangles, out);     // out: frame-sized image_view<float>
+//
+// The noise (paper eq. 1, sec. 3.2-3.4), n(x) = scale sum_i w_i v_i g_{F_i}(x - x_i):
+//  - points (sec. 3.3): triangle t (key (object_id, triangle_id)) draws its
+//    points from its own stream, hush::rng(hash32(hash32(seed_key(seed),
+//    object), triangle), kNprGaborStream): point j takes words 2j, 2j + 1
+//    (constants.hpp), so point j is the same surface point in every frame and
+//    the points for M are a prefix of those for 2M. Barycentrics (object
+//    space, uniform on the triangle): (1 - sqrt u, sqrt u (1 - v), sqrt u v).
+//    Screen position sum b_i z_i s_i / sum b_i z_i (core/triangles.hpp).
+//  - count and LOD weights (eqs. 2, 4): N = lambda A, A the triangle's screen
+//    area, lambda = N' / (pi r^2) (r the kernel radius in pixels). For
+//    N >= 1: M = 2^floor(log2 N), 2M points, the first M weighted 1 and the
+//    second M weighted alpha(N) = sqrt(N / M - 1). For 0 < N < 1 one point
+//    weighted sqrt(N), not N as the paper writes: what the variance and the
+//    power spectrum see is the sum of the squared weights (Campbell's
+//    theorem; paper eqs. 5-8 with M replaced by the weights), which is N for
+//    N unit-weight Poisson points; M (1 + alpha^2) = N above, and sqrt(N)^2 = N
+//    below. Weighting by N gives N^2: the variance of small triangles falls
+//    by a factor N (tests/npr_gabor_test.cpp shows both). Every weight is
+//    continuous in N: alpha -> 1 as N -> 2M from below, where the next level
+//    starts with the same 2M points at weight 1; sqrt(N) -> 1 = the weight
+//    of the single point at N = 1 (alpha(1) = 0). No pops at the switches.
+//    N is clamped to kNprGaborMaxPoints (constants.hpp).
+//  - amplitudes v_i uniform in (-1, 1) (16-bit symmetric, E[v^2] =
+//    (1 - 2^-32) / 3); kernel g of gabor_kernel<2> (bandwidth a, truncation
+//    t, C1 taper) with F_i = F0 (cos theta, sin theta), theta = orientation
+//    (anisotropic) or uniform (isotropic), theta measured from +x towards +y
+//    (screen y points down: clockwise on screen).
+//  - scale = 1 / sqrt(lambda E[v^2] int g^2) (kernel energy by quadrature):
+//    where the surface covers the kernel's disc with unclipped points, the
+//    noise has mean 0 and variance 1, independent of the triangles' sizes and
+//    of zoom, with power spectrum scale^2 lambda E[v^2] |g^(f)|^2 (two blobs
+//    at +-F0 omega0; isotropic: a ring at F0): the frequency is in pixels, so
+//    it does not change with depth (the 2D aspect).
+//  - visibility (sec. 3.4, each switchable, per pixel of a kernel's disc):
+//    object test (the pixel shows the point's object), triangle test (the
+//    pixel shows the point's triangle), depth test (the pixel's depth is within
+//    a relative tolerance of the depth the triangle's plane has at that pixel:
+//    1/z is affine in screen space on a plane, so the test follows slanted
+//    surfaces and cuts kernels at depth discontinuities); soft depth test: the
+//    kernel fades out linearly between 1 and 2 tolerances instead of a cut.
+//  - skipped triangles (emit nothing): back faces when cull_back_faces
+//    (front = counter-clockwise in GL's y-up window coordinates, clockwise in
+//    these y-down ones), degenerate ones, those with a vertex not in front of
+//    the camera (depth <= 0 or non-finite: the renderer's near-plane clipping
+//    is not redone here) or a non-finite screen position, and those whose
+//    bounding box grown by r misses the image. Hidden triangles emit points
+//    whose fragments fail the tests (nothing is added).
+//  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
+//  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
+//    reference times sum |w_i v_i| scale (the kernel's float budget,
+//    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
+// Not yet here (issue 11): per-object / per-pixel parameters, SIMD and GLSL.
+#ifndef HUSH_NPR_GABOR_HPP
+#define HUSH_NPR_GABOR_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+
+namespace hush {
+
+// The LOD of one triangle (paper sec. 3.3, eqs. 2 and 4, and the N < 1 case
+// derived above): points 0 ... first - 1 weigh first_weight, points first ...
+// count - 1 weigh second_weight. sum of squared weights = N (for 0 <= N <=
+// kNprGaborMaxPoints; N clamped above, 0 points for N <= 0 or NaN).
+struct npr_gabor_lod {
+  std::uint32_t first = 0, count = 0;
+  double first_weight = 0, second_weight = 0;
+
+  static npr_gabor_lod of(double n) {
+    npr_gabor_lod l;
+    if (!(n > 0.0)) return l;  // also NaN
+    n = std::min(n, detail::constants::kNprGaborMaxPoints);
+    if (n < 1.0) {
+      l.first = l.count = 1;
+      l.first_weight = std::sqrt(n);
+      return l;
+    }
+    int e = 0;
+    (void)std::frexp(n, &e);  // n = f 2^e, f in [0.5, 1): floor(log2 n) = e - 1
+    const double m = std::ldexp(1.0, e - 1);
+    l.first = static_cast<std::uint32_t>(m);
+    l.first_weight = 1.0;
+    l.second_weight = std::sqrt(n / m - 1.0);  // alpha(N), eq. 4
+    l.count = l.second_weight > 0.0 ? 2 * l.first : l.first;
+    return l;
+  }
+  double weight(std::uint32_t j) const { return j < first ? first_weight : second_weight; }
+};
+
+class npr_gabor {
+ public:
+  struct params {
+    double frequency = detail::constants::kNprGaborDefaultFrequency;  // F0, cycles per pixel
+    double bandwidth = detail::constants::kNprGaborDefaultBandwidth;  // a, 1/pixel
+    double truncation = detail::constants::kGaborDefaultTruncation;   // t
+    double impulses = detail::constants::kNprGaborDefaultImpulses;    // N'
+    double orientation = 0.0;  // omega0, radians from +x towards +y (anisotropic)
+    bool isotropic = false;    // random orientation per point
+    std::uint32_t seed = 0;
+    bool object_test = true;
+    bool triangle_test = false;
+    bool depth_test = true;
+    bool soft_depth = false;
+    double depth_tolerance = detail::constants::kNprGaborDefaultDepthTolerance;
+    bool cull_back_faces = true;
+  };
+
+  // Throws hush::invalid_argument naming the parameter and its range:
+  // frequency in [0, 0.5], bandwidth in [0.01, 10], truncation in [1e-9, 0.5],
+  // impulses in (0, 256], finite orientation, depth_tolerance in [0, 1].
+  explicit npr_gabor(const params& p) : p_(p), kernel_(checked(p).bandwidth, p.truncation) {
+    const double r = kernel_.radius();
+    lambda_ = p_.impulses / (detail::constants::kPi * r * r);
+    scale_ = 1.0 / std::sqrt(lambda_ * weight_moment() * kernel_.energy(p_.frequency));
+  }
+
+  const params& parameters() const { return p_; }
+  const gabor_kernel<2>& kernel() const { return kernel_; }
+  // lambda = N' / (pi r^2): points per square pixel.
+  double density() const { return lambda_; }
+  // The factor making the variance 1: 1 / sqrt(lambda E[v^2] int g^2).
+  double scale() const { return scale_; }
+  // E[v^2] of the 16-bit symmetric amplitudes: (1 - 2^-32) / 3.
+  static constexpr double weight_moment() { return (1.0 - 1.0 / 4294967296.0) / 3.0; }
+  // The frame views render reads.
+  frame_view needs() const {
+    frame_view v = frame_view::depth;
+    if (p_.object_test) v = v | frame_view::object_id;
+    if (p_.triangle_test) v = v | frame_view::triangle_id;
+    return v;
+  }
+
+  // The point j of a triangle in barycentric coordinates, its amplitude v in
+  // (-1, 1) and its orientation word's angle in radians (isotropic).
+  struct point {
+    double b[3];
+    double amplitude;
+    double angle;
+  };
+  point point_of(std::uint32_t object, std::uint32_t triangle, std::uint32_t j) const {
+    rng r(triangle_key(object, triangle), detail::constants::kNprGaborStream);
+    r.skip(detail::constants::kNprGaborWordsPerPoint * j);
+    const std::uint32_t w0 = r.next_u32(), w1 = r.next_u32();
+    const double u = detail::gabor_half<double>(w0, 0), v = detail::gabor_half<double>(w0, 1);
+    const double su = std::sqrt(u);
+    point pt{{1.0 - su, su * (1.0 - v), su * v},
+             2.0 * detail::gabor_half<double>(w1, 0) - 1.0,
+             detail::constants::kTwoPi * detail::gabor_half<double>(w1, 1)};
+    return pt;
+  }
+
+  // Adds nothing, overwrites `out` (frame-sized; float, or double for the
+  // reference) with the noise of this frame. Throws hush::invalid_argument
+  // when the frame lacks a view needs() lists or is malformed (frame::validate),
+  // when the triangle list is malformed (triangle_list::validate), or when
+  // out's size differs from the frame's. Never reads outside the views.
+  template <class T>
+  void render(const frame& f, const triangle_list& tris, const image_view<T>& out) const {
+    namespace c = detail::constants;
+    const char* where = "hush::npr_gabor::render";
+    f.validate(where, needs(), c::kNprGaborMaxImageSide);
+    tris.validate(where, c::kNprGaborMaxTriangles);
+    if (out.width != f.width() || out.height != f.height() || !out.data)
+      detail::throw_out_of_range(where, "out size",
+                                 std::to_string(out.width) + "x" + std::to_string(out.height),
+                                 "the frame's size (non-null)");
+    for (std::size_t y = 0; y < out.height; ++y)
+      std::fill(out.row(y), out.row(y) + out.width, T(0));
+    std::vector<detail::gabor_axis<T>> columns;
+    for (std::size_t t = 0; t < tris.triangles(); ++t) splat_triangle(f, tris, t, out, columns);
+  }
+
+ private:
+  static const params& checked(const params& p) {
+    namespace c = detail::constants;
+    const char* w = "hush::npr_gabor";
+    detail::require_in_range(w, "frequency", p.frequency, 0.0, c::kNprGaborMaxFrequency,
+                             "0 <= frequency <= 0.5 (cycles per pixel)");
+    detail::require_in_range(w, "bandwidth", p.bandwidth, c::kNprGaborMinBandwidth,
+                             c::kNprGaborMaxBandwidth, "0.01 <= bandwidth <= 10 (1/pixel)");
+    detail::require_in_range(w, "truncation", p.truncation, c::kGaborMinTruncation,
+                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
+    if (!(p.impulses > 0.0 && p.impulses <= c::kGaborMaxImpulses))
+      detail::throw_out_of_range(w, "impulses", p.impulses, "0 < impulses <= 256");
+    if (!std::isfinite(p.orientation))
+      detail::throw_out_of_range(w, "orientation", p.orientation, "finite (radians)");
+    detail::require_in_range(w, "depth_tolerance", p.depth_tolerance, 0.0,
+                             c::kNprGaborMaxDepthTolerance, "0 <= depth_tolerance <= 1");
+    return p;
+  }
+
+  std::uint32_t triangle_key(std::uint32_t object, std::uint32_t triangle) const {
+    return hash32(hash32(seed_key(p_.seed), object), triangle);
+  }
+
+  template <class T>
+  void splat_triangle(const frame& f, const triangle_list& tris, std::size_t t,
+                      const image_view<T>& out, std::vector<detail::gabor_axis<T>>& columns) const {
+    dvec2 s[3];
+    double z[3];
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t k = tris.indices[3 * t + static_cast<std::size_t>(i)];
+      s[i] = {static_cast<double>(tris.screen[k].x), static_cast<double>(tris.screen[k].y)};
+      z[i] = static_cast<double>(tris.depth[k]);
+      if (!(z[i] > 0.0) || !std::isfinite(z[i]) || !std::isfinite(s[i].x) || !std::isfinite(s[i].y))
+        return;
+    }
+    // Twice the signed area, y down: front faces (GL's counter-clockwise) are negative.
+    const double e1x = s[1].x - s[0].x, e1y = s[1].y - s[0].y;
+    const double e2x = s[2].x - s[0].x, e2y = s[2].y - s[0].y;
+    const double cross = e1x * e2y - e1y * e2x;
+    if (p_.cull_back_faces && !(cross < 0.0)) return;
+    if (!(cross != 0.0) || !std::isfinite(cross)) return;
+    const double r = kernel_.radius();
+    const double w = static_cast<double>(out.width), h = static_cast<double>(out.height);
+    const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
+                 hi_x = std::max({s[0].x, s[1].x, s[2].x});
+    const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
+                 hi_y = std::max({s[0].y, s[1].y, s[2].y});
+    if (hi_x + r < 0.0 || lo_x - r > w || hi_y + r < 0.0 || lo_y - r > h) return;
+    const npr_gabor_lod lod = npr_gabor_lod::of(lambda_ * 0.5 * std::fabs(cross));
+    // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
+    // (screen barycentrics of (x, y) weight the 1/z_i).
+    const double inv = 1.0 / cross;
+    const double d1 = 1.0 / z[1] - 1.0 / z[0], d2 = 1.0 / z[2] - 1.0 / z[0];
+    const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
+    const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;
+    const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
+    for (std::uint32_t j = 0; j < lod.count; ++j) {
+      const point pt = point_of(object, id, j);
+      const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
+      const dvec2 at{
+          (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
+          (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
+      const double theta = p_.isotropic ? pt.angle : p_.orientation;
+      const dvec2 F{p_.frequency * std::cos(theta), p_.frequency * std::sin(theta)};
+      splat_point(f, out, at, F, lod.weight(j) * pt.amplitude * scale_, object, id, q0, qx, qy,
+                  columns);
+    }
+  }
+
+  template <class T>
+  void splat_point(const frame& f, const image_view<T>& out, const dvec2& at, const dvec2& F,
+                   double weight, std::uint32_t object, std::uint32_t id, double q0, double qx,
+                   double qy, std::vector<detail::gabor_axis<T>>& columns) const {
+    namespace c = detail::constants;
+    const double r = kernel_.radius(), inv_r = 1.0 / r;
+    // Pixel centres x + 1/2 within r of the point, clamped to the image.
+    const double wmax = static_cast<double>(out.width) - 1.0;
+    const double hmax = static_cast<double>(out.height) - 1.0;
+    const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
+    const double x1 = std::min(std::floor(at.x + r - 0.5), wmax);
+    const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
+    const double y1 = std::min(std::floor(at.y + r - 0.5), hmax);
+    if (x0 > x1 || y0 > y1) return;
+    const T neg_a = T(-kernel_.envelope_exponent()), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
+    const T phi_x = T(F.x * r), phi_y = T(F.y * r);
+    const std::size_t ix0 = static_cast<std::size_t>(x0), ix1 = static_cast<std::size_t>(x1);
+    columns.resize(ix1 - ix0 + 1);
+    for (std::size_t x = ix0; x <= ix1; ++x)
+      columns[x - ix0] = detail::gabor_axis_factors(
+          T((static_cast<double>(x) + 0.5 - at.x) * inv_r), neg_a, phi_x);
+    const double tol = p_.depth_tolerance;
+    for (std::size_t y = static_cast<std::size_t>(y0); y <= static_cast<std::size_t>(y1); ++y) {
+      const detail::gabor_axis<T> ay = detail::gabor_axis_factors(
+          T((static_cast<double>(y) + 0.5 - at.y) * inv_r), neg_a, phi_y);
+      const detail::gabor_row<T> row = detail::gabor_row_of(T(weight), ay);
+      T* o = out.row(y);
+      for (std::size_t x = ix0; x <= ix1; ++x) {
+        const detail::gabor_axis<T>& ax = columns[x - ix0];
+        if (!(ax.d2 + row.d2 < T(1))) continue;
+        T vis = T(1);
+        if (p_.object_test && f.object_id(x, y) != object) continue;
+        if (p_.triangle_test && f.triangle_id(x, y) != id) continue;
+        if (p_.depth_test) {
+          const double zp = static_cast<double>(f.depth(x, y));
+          if (!(zp > 0.0) || !std::isfinite(zp)) continue;
+          // Relative difference of the pixel's depth and the plane's there.
+          const double plane =
+              q0 + qx * (static_cast<double>(x) + 0.5) + qy * (static_cast<double>(y) + 0.5);
+          const double rel = std::fabs(zp * plane - 1.0);
+          if (!(rel <= (p_.soft_depth ? 2.0 * tol : tol))) continue;
+          if (p_.soft_depth && rel > tol) vis = T(2.0 - rel / tol);
+        }
+        o[x] += vis * detail::gabor_pair(ax, row, taper_k);
+      }
+    }
+  }
+
+  params p_;
+  gabor_kernel<2> kernel_;
+  double lambda_ = 0, scale_ = 0;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_NPR_GABOR_HPP
+// ---- end hush/npr_gabor.hpp
 
 #endif  // HUSH_HUSH_HPP
 // ---- end hush/hush.hpp

@@ -29,7 +29,7 @@
 //    dv/dx, dv/dy): the screen-to-texture Jacobian J a filtering 2D noise
 //    turns into its footprint (hush::footprint<2>::from_derivatives((du/dx,
 //    dv/dx), (du/dy, dv/dy)); anisotropic noise).
-// NPR Gabor noise will add its triangle list beside these views.
+// NPR Gabor noise reads its triangle list beside these views (core/triangles.hpp).
 #ifndef HUSH_CORE_FRAME_HPP
 #define HUSH_CORE_FRAME_HPP
 

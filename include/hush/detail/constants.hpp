@@ -252,6 +252,29 @@ constexpr unsigned kGaborSurfaceStream = 1;
 constexpr double kGaborSurfaceSlab = 0.70710678118654752440;  // h / rho = 1 / sqrt 2
 constexpr double kGaborSurfaceCell = 1.2247448713915890491;   // cell / rho = sqrt(3/2)
 
+// ---- NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot
+// 2010; npr_gabor.hpp). Parameters are in screen pixels: frequency F0 in
+// cycles per pixel up to Nyquist, bandwidth a in 1/pixel (kernel radius
+// r = sqrt(ln(1/t) / pi) / a: from 0.047 px at a = 10, t = 0.5, to 257 px at
+// a = 0.01, t = 1e-9), N' up to Gabor noise's cap.
+constexpr double kNprGaborMaxFrequency = 0.5;
+constexpr double kNprGaborMinBandwidth = 0.01, kNprGaborMaxBandwidth = 10.0;
+constexpr double kNprGaborDefaultFrequency = 0.125;      // 8-pixel period
+constexpr double kNprGaborDefaultBandwidth = 0.08;       // r = 12.2 px for t = 0.05
+constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ... 128)
+constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
+constexpr double kNprGaborMaxDepthTolerance = 1.0;
+// At most this many points per triangle (2M <= 2^22): N above it is clamped,
+// so a triangle of more than 2^22 / lambda square pixels (several screens at
+// the defaults) gets a lower density. Bounds the work per triangle.
+constexpr double kNprGaborMaxPoints = 4194304.0;
+constexpr unsigned kNprGaborMaxTriangles = 1u << 28;
+constexpr unsigned kNprGaborMaxImageSide = 32768;
+// Each point takes 2 words of its triangle's stream (hush::rng, stream
+// kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
+constexpr unsigned kNprGaborWordsPerPoint = 2;
+constexpr unsigned kNprGaborStream = 2;
+
 // ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
 // subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
 constexpr double kLn2 = 0.69314718055994530942;

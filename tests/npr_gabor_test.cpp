@@ -1,0 +1,328 @@
+// NPR Gabor noise (include/hush/npr_gabor.hpp; Benard, Lagae et al. 2010): the LOD
+// weights (eqs. 2, 4 and the N < 1 case), validation, statistics (variance and
+// autocorrelation, i.e. the spectrum, across triangle sizes and zoom), temporal
+// coherence (points follow the surface, frequency stays in pixels) and visibility.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "hush/npr_gabor.hpp"
+#include "npr_gabor_scenes.hpp"
+
+namespace {
+
+using npr_test::grid_scene;
+
+// Sample mean and variance of out over the pixels [m, w - m) x [m, h - m).
+struct moments {
+  double mean = 0, variance = 0;
+  std::size_t n = 0;
+};
+moments interior_moments(const std::vector<float>& img, std::size_t w, std::size_t h,
+                         std::size_t m) {
+  moments r;
+  double s = 0, s2 = 0;
+  for (std::size_t y = m; y < h - m; ++y)
+    for (std::size_t x = m; x < w - m; ++x) {
+      const double v = img[y * w + x];
+      s += v;
+      s2 += v * v;
+      ++r.n;
+    }
+  r.mean = s / static_cast<double>(r.n);
+  r.variance = s2 / static_cast<double>(r.n) - r.mean * r.mean;
+  return r;
+}
+
+std::vector<float> render(const hush::npr_gabor& noise, const grid_scene& sc) {
+  std::vector<float> out(sc.width * sc.height);
+  noise.render(sc.frame(), sc.triangles(),
+               hush::image_view<float>(out.data(), sc.width, sc.height));
+  return out;
+}
+
+// Standard error of a sample variance over n pixels of the unit-variance noise
+// (see npr_gabor_scenes.hpp): sqrt((2 sum_d rho(d)^2 + 9 / (5 lambda)) / n). The
+// fourth-cumulant term lambda E[v^4] scale^4 (int g^2)^2 = E[v^4] / (lambda E[v^2]^2)
+// = (1/5) / (lambda / 9) is an upper bound under the LOD weights (w^4 <= w^2).
+double variance_standard_error(const hush::npr_gabor& noise, std::size_t n) {
+  const auto& k = noise.kernel();
+  const double f = noise.parameters().frequency, th = noise.parameters().orientation;
+  const hush::dvec2 F{f * std::cos(th), f * std::sin(th)};
+  const int reach = 2 * static_cast<int>(std::ceil(k.radius()));
+  double sum = 0;
+  for (int dy = -reach; dy <= reach; ++dy)
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const double rho = npr_test::rho_at(k, F, dx, dy);
+      sum += rho * rho;
+    }
+  return std::sqrt((2.0 * sum + 9.0 / (5.0 * noise.density())) / static_cast<double>(n));
+}
+
+hush::npr_gabor::params small_kernel() {
+  hush::npr_gabor::params p;
+  p.frequency = 0.25;  // 4-pixel period
+  p.bandwidth = 0.25;  // r = 3.9 px: many independent pixels per image
+  p.orientation = 0.3;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("LOD weights: sum of squared weights is N, continuous in N, alpha(N) of eq. 4") {
+  for (double n : {0.01, 0.3, 0.999, 1.0, 1.5, 2.0, 3.0, 3.999, 4.0, 7.3, 64.0, 1000.5}) {
+    const hush::npr_gabor_lod l = hush::npr_gabor_lod::of(n);
+    double s2 = 0;
+    for (std::uint32_t j = 0; j < l.count; ++j) s2 += l.weight(j) * l.weight(j);
+    CHECK(s2 == doctest::Approx(n).epsilon(1e-12));
+    if (n >= 1) {
+      const double m = std::exp2(std::floor(std::log2(n)));
+      CHECK(l.first == static_cast<std::uint32_t>(m));
+      CHECK(l.second_weight == doctest::Approx(std::sqrt(n / m - 1.0)));
+      CHECK(l.count <= 2 * l.first);
+    }
+  }
+  // No pops: every point's weight changes by O(sqrt(eps)) across N = 1, 2, 4, ... 1024.
+  for (double m = 1; m <= 1024; m *= 2) {
+    const auto below = hush::npr_gabor_lod::of(m * (1 - 1e-9));
+    const auto above = hush::npr_gabor_lod::of(m * (1 + 1e-9));
+    const std::uint32_t count = std::max(below.count, above.count);
+    for (std::uint32_t j = 0; j < count; ++j) {
+      const double wb = j < below.count ? below.weight(j) : 0.0;
+      const double wa = j < above.count ? above.weight(j) : 0.0;
+      CHECK(std::fabs(wb - wa) < 1e-4);
+    }
+  }
+  CHECK(hush::npr_gabor_lod::of(0.0).count == 0);
+  CHECK(hush::npr_gabor_lod::of(std::numeric_limits<double>::quiet_NaN()).count == 0);
+  CHECK(hush::npr_gabor_lod::of(1e300).count <= 2 * 4194304u);
+}
+
+TEST_CASE("parameters and inputs are validated, naming the parameter and range") {
+  auto bad = [](auto edit, const char* name) {
+    hush::npr_gabor::params p;
+    edit(p);
+    try {
+      hush::npr_gabor n{p};
+      FAIL("accepted bad ", name);
+    } catch (const hush::invalid_argument& e) {
+      CHECK(std::string(e.what()).find(name) != std::string::npos);
+    }
+  };
+  bad([](auto& p) { p.frequency = 0.6; }, "frequency");
+  bad([](auto& p) { p.bandwidth = std::nan(""); }, "bandwidth");
+  bad([](auto& p) { p.truncation = 0.9; }, "truncation");
+  bad([](auto& p) { p.impulses = 0; }, "impulses");
+  bad([](auto& p) { p.orientation = INFINITY; }, "orientation");
+  bad([](auto& p) { p.depth_tolerance = -1; }, "depth_tolerance");
+
+  grid_scene sc(16, 16, 0, 0, 8, 2, 2);
+  const hush::npr_gabor noise{hush::npr_gabor::params{}};
+  std::vector<float> out(16 * 16);
+  const hush::image_view<float> view(out.data(), 16, 16);
+  auto tris = sc.triangles();
+  std::vector<std::uint32_t> idx = sc.indices;
+  idx[4] = 1000;  // out of range
+  tris.indices = idx;
+  CHECK_THROWS_WITH_AS(noise.render(sc.frame(), tris, view),
+                       doctest::Contains("triangles.indices[4]"), hush::invalid_argument);
+  tris = sc.triangles();
+  tris.triangle_id = hush::span<const std::uint32_t>(sc.tri_id.data(), 3);
+  CHECK_THROWS_WITH_AS(noise.render(sc.frame(), tris, view),
+                       doctest::Contains("triangles.triangle_id size"), hush::invalid_argument);
+  hush::frame f = sc.frame();
+  f.object_id = {};
+  CHECK_THROWS_WITH_AS(noise.render(f, sc.triangles(), view), doctest::Contains("object_id"),
+                       hush::invalid_argument);
+  CHECK_THROWS_AS(
+      noise.render(sc.frame(), sc.triangles(), hush::image_view<float>(out.data(), 8, 8)),
+      hush::invalid_argument);
+}
+
+TEST_CASE("variance 1 and the kernel's autocorrelation, for triangles from N = 0.18 to 11") {
+  // One image per triangle size, sizes 2^(k/2) apart across the M switches (N < 1
+  // included: those triangles carry one point of weight sqrt(N)). Each image's sample
+  // variance must be 1 within 4.5 standard errors (variance_standard_error), its
+  // autocorrelation at lags of a half and a whole period along omega0 the kernel's.
+  const std::size_t w = 192, h = 192;
+  const hush::npr_gabor noise{small_kernel()};
+  const std::size_t m = 8;
+  const double se = variance_standard_error(noise, (w - 2 * m) * (h - 2 * m));
+  const auto& p = noise.parameters();
+  const hush::dvec2 F{p.frequency * std::cos(p.orientation), p.frequency * std::sin(p.orientation)};
+  const double rho_half = npr_test::rho_at(noise.kernel(), F, 2, 0);
+  const double rho_full = npr_test::rho_at(noise.kernel(), F, 4, 1);
+  MESSAGE("standard error of the variance: ", se, "; rho(2,0) = ", rho_half,
+          ", rho(4,1) = ", rho_full);
+  for (int k = -3; k <= 9; k += 3) {
+    const double n_per_triangle = std::exp2(0.5 * k) * 0.5;  // 0.18 ... 11.3
+    const double cell = std::sqrt(2.0 * n_per_triangle / noise.density());
+    const grid_scene sc = npr_test::covering(w, h, cell, noise.kernel().radius() + 1);
+    const auto img = render(noise, sc);
+    const moments mo = interior_moments(img, w, h, m);
+    double c_half = 0, c_full = 0;
+    std::size_t n = 0;
+    for (std::size_t y = m; y < h - m; ++y)
+      for (std::size_t x = m; x < w - m; ++x) {
+        c_half += (img[y * w + x] - mo.mean) * (img[y * w + x + 2] - mo.mean);
+        c_full += (img[y * w + x] - mo.mean) * (img[(y + 1) * w + x + 4] - mo.mean);
+        ++n;
+      }
+    c_half /= static_cast<double>(n) * mo.variance;
+    c_full /= static_cast<double>(n) * mo.variance;
+    MESSAGE("N per triangle ", n_per_triangle, " variance ", mo.variance, " rho(2,0) ", c_half,
+            " rho(4,1) ", c_full);
+    CHECK(std::fabs(mo.variance - 1.0) < 4.5 * se);
+    // The correlation estimates' spread is below the variance's relative one.
+    CHECK(std::fabs(c_half - rho_half) < 4.5 * se);
+    CHECK(std::fabs(c_full - rho_full) < 4.5 * se);
+  }
+}
+
+TEST_CASE("weighting the N < 1 point by N (the paper's words) would lose variance") {
+  // The same field of small triangles (N = 0.25) rendered as shipped has variance 1;
+  // its variance is the sum of squared weights per area, so a weight of N instead of
+  // sqrt(N) would give 0.25: far outside the tolerance the test above uses.
+  const std::size_t w = 160, h = 160, m = 8;
+  const hush::npr_gabor noise{small_kernel()};
+  const double cell = std::sqrt(2.0 * 0.25 / noise.density());
+  const grid_scene sc = npr_test::covering(w, h, cell, noise.kernel().radius() + 1);
+  const moments mo = interior_moments(render(noise, sc), w, h, m);
+  const double se = variance_standard_error(noise, (w - 2 * m) * (h - 2 * m));
+  CHECK(std::fabs(mo.variance - 1.0) < 4.5 * se);
+  CHECK(4.5 * se < 0.75);
+}
+
+TEST_CASE("temporal coherence: a translated surface carries its noise with it") {
+  // Points are attached to the triangles (same seed, same barycentrics every frame), the
+  // kernel lives in screen space: moving the mesh by (5, -3) pixels moves the image.
+  const hush::npr_gabor noise{small_kernel()};
+  const std::size_t w = 96, h = 96;
+  const grid_scene a(w, h, 2.0, 6.0, 7.0, 12, 12);
+  const grid_scene b(w, h, 7.0, 3.0, 7.0, 12, 12);
+  const auto ia = render(noise, a), ib = render(noise, b);
+  double worst = 0, energy = 0;
+  for (std::size_t y = 10; y < 80; ++y)
+    for (std::size_t x = 10; x < 80; ++x) {
+      worst = std::max(worst, std::fabs(double(ia[y * w + x]) - ib[(y - 3) * w + x + 5]));
+      energy += double(ia[y * w + x]) * ia[y * w + x];
+    }
+  CHECK(energy > 100.0);  // not trivially zero
+  CHECK(worst < 1e-4);    // float rounding of the moved positions only
+  // A different seed is a different noise (the comparison above can fail).
+  auto p = small_kernel();
+  p.seed = 1;
+  const auto ic = render(hush::npr_gabor{p}, b);
+  double diff = 0;
+  for (std::size_t y = 10; y < 80; ++y)
+    for (std::size_t x = 10; x < 80; ++x)
+      diff = std::max(diff, std::fabs(double(ia[y * w + x]) - ic[(y - 3) * w + x + 5]));
+  CHECK(diff > 0.5);
+}
+
+TEST_CASE("points are a prefix: growing a triangle within one level only reweights") {
+  const hush::npr_gabor noise{hush::npr_gabor::params{}};
+  for (std::uint32_t j = 0; j < 8; ++j) {
+    const auto a = noise.point_of(3, 17, j), b = noise.point_of(3, 17, j);
+    CHECK(a.b[0] == b.b[0]);
+    CHECK(a.b[0] + a.b[1] + a.b[2] == doctest::Approx(1.0));
+    CHECK(a.b[0] >= 0);
+    CHECK(a.b[1] >= 0);
+    CHECK(a.b[2] >= 0);
+    CHECK(std::fabs(a.amplitude) < 1.0);
+  }
+  CHECK(noise.point_of(3, 17, 0).b[1] != noise.point_of(3, 18, 0).b[1]);
+  CHECK(noise.point_of(3, 17, 0).b[1] != noise.point_of(4, 17, 0).b[1]);
+}
+
+TEST_CASE("visibility: object, triangle and depth tests cut the kernels, back faces emit nothing") {
+  const std::size_t w = 64, h = 64;
+  grid_scene sc(w, h, 8, 8, 12, 4, 4);
+  auto p = small_kernel();
+  p.bandwidth = 0.1;  // r = 9.8 px: kernels spill well beyond the plane
+  p.depth_test = false;
+  p.object_test = false;
+  const auto all = render(hush::npr_gabor{p}, sc);
+  double outside = 0;
+  for (std::size_t x = 0; x < w; ++x) outside += std::fabs(all[2 * w + x]);  // row 2: off the plane
+  CHECK(outside > 0.1);
+  p.object_test = true;
+  auto cut = render(hush::npr_gabor{p}, sc);
+  for (std::size_t i = 0; i < w * h; ++i)
+    if (sc.object[i] == 0) CHECK(cut[i] == 0.0f);
+  // Triangle test: every pixel only sees its own triangle's points.
+  p.triangle_test = true;
+  cut = render(hush::npr_gabor{p}, sc);
+  double in = 0;
+  for (std::size_t i = 0; i < w * h; ++i) {
+    if (sc.object[i] == 0) CHECK(cut[i] == 0.0f);
+    in += std::fabs(cut[i]);
+  }
+  CHECK(in > 1.0);
+  // Depth test: a region whose depth is 10% off the plane gets nothing at tolerance 2%,
+  // a linear fade with the soft test at tolerance 6.67% (1.5 tolerances: half weight).
+  p.triangle_test = false;
+  p.depth_test = true;
+  for (std::size_t y = 20; y < 40; ++y)
+    for (std::size_t x = 20; x < 40; ++x) sc.depth[y * w + x] = 1.1f;
+  cut = render(hush::npr_gabor{p}, sc);
+  for (std::size_t y = 20; y < 40; ++y)
+    for (std::size_t x = 20; x < 40; ++x) CHECK(cut[y * w + x] == 0.0f);
+  CHECK(cut[10 * w + 10] != 0.0f);
+  p.soft_depth = true;
+  auto hard_p = p;
+  hard_p.soft_depth = false;
+  hard_p.depth_tolerance = 1.0;  // everything passes
+  const auto full = render(hush::npr_gabor{hard_p}, sc);
+  // rel = |z_pixel * (1/z_plane) - 1| = 0.1 = 1.5 tolerances: weight 2 - 1.5 = 0.5.
+  p.depth_tolerance = 0.1 / 1.5;
+  const auto soft = render(hush::npr_gabor{p}, sc);
+  for (std::size_t y = 20; y < 40; ++y)
+    for (std::size_t x = 20; x < 40; ++x)
+      CHECK(soft[y * w + x] == doctest::Approx(0.5 * full[y * w + x]).epsilon(1e-3).scale(1e-5));
+  // Back faces: the same mesh with every triangle's winding reversed renders nothing.
+  grid_scene back = sc;
+  for (std::size_t t = 0; t + 2 < back.indices.size(); t += 3)
+    std::swap(back.indices[t + 1], back.indices[t + 2]);
+  const auto none = render(hush::npr_gabor{p}, back);
+  for (float v : none) CHECK(v == 0.0f);
+  p.cull_back_faces = false;
+  const auto two_sided = render(hush::npr_gabor{p}, back);
+  CHECK(std::any_of(two_sided.begin(), two_sided.end(), [](float v) { return v != 0.0f; }));
+}
+
+TEST_CASE("hard inputs: NaN, behind-camera and huge triangles give a finite image") {
+  const std::size_t w = 32, h = 32;
+  grid_scene sc(w, h, 0, 0, 8, 4, 4);
+  sc.screen[1] = {std::nanf(""), 3.0f};
+  sc.vdepth[7] = -1.0f;
+  sc.screen[20] = {1e30f, -1e30f};
+  const auto img = render(hush::npr_gabor{small_kernel()}, sc);
+  for (float v : img) CHECK(std::isfinite(v));
+}
+
+TEST_CASE("float render is within its budget of the double reference") {
+  const std::size_t w = 80, h = 80;
+  const grid_scene sc(w, h, -10, -10, 9.5, 11, 11);
+  const hush::npr_gabor noise{small_kernel()};
+  const auto f = render(noise, sc);
+  std::vector<double> d(w * h);
+  noise.render(sc.frame(), sc.triangles(), hush::image_view<double>(d.data(), w, h));
+  double worst = 0;
+  for (std::size_t i = 0; i < w * h; ++i) worst = std::max(worst, std::fabs(f[i] - d[i]));
+  // Per kernel 2^-21 (1 + 2 pi F0 r) (gabor_kernel.hpp) times scale; about N' kernels
+  // reach a pixel, each weight |w v| <= 1: bound N' scale 2^-21 (1 + 2 pi F0 r) x 4
+  // (the neighbourhood's count exceeds N' by a few standard deviations).
+  const auto& p = noise.parameters();
+  const double bound =
+      4.0 * p.impulses * noise.scale() * std::ldexp(1.0, -21) *
+      (1.0 + hush::detail::constants::kTwoPi * p.frequency * noise.kernel().radius());
+  MESSAGE("float vs double: ", worst, " (bound ", bound, ")");
+  CHECK(worst < bound);
+  CHECK(worst > 0.0);
+}
