@@ -350,7 +350,9 @@ void add_parallel_rows(std::vector<bench_case>& cases, const sizes& s) {
 
 sizes full_sizes() { return sizes{}; }
 sizes quick_sizes() {
-  return sizes{kQuickGrid2, kQuickGrid3, kQuickPoints, kQuickFrameWidth, kQuickFrameHeight};
+  sizes s{kQuickGrid2, kQuickGrid3, kQuickPoints, kQuickFrameWidth, kQuickFrameHeight};
+  s.triangles = 16;
+  return s;
 }
 
 void error_stats::add(double measured, double reference) {
@@ -372,6 +374,8 @@ const char* describe(error_reference r) {
       return "glm double";
     case error_reference::none:
       return "n.a. (double only)";
+    case error_reference::weights:
+      return "n.a. (preprocessing)";
   }
   return "?";
 }
@@ -418,6 +422,7 @@ void add_coherent_glsl_rows(std::vector<bench_case>& cases, const sizes& s,
                             hush::glsl::device& device);
 
 // The GLSL rows run on one headless OSMesa context for the whole process (llvmpipe here).
+// (declared in bench/anisotropic_cases.cpp too)
 hush::glsl::device& bench_glsl_device() {
   static hush::glsl::headless_device h;
   return h.device;
@@ -430,6 +435,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
   add_backend_rows(cases, s, hush::exec::simd);
   add_parallel_rows(cases, s);
   add_coherent_rows(cases, s);  // its simd rows are pinned to AVX2 below too
+  add_anisotropic_cases(cases, s);  // before the pinned rows: its simd rows get theirs
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
   // AVX2 pinned when the machine would pick something better: the targets are AVX2's.
   const std::int64_t usable = hwy::SupportedTargets() & HWY_TARGETS;
@@ -479,7 +485,7 @@ void run_case(benchmark::State& state, const bench_case& c) {
   // Samples per iteration as a rate, inverted: CPU seconds per sample (printed "25.8ns").
   state.counters[kSecondsPerSample] = benchmark::Counter(
       samples, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  if (c.reference == error_reference::none) return;
+  if (c.reference == error_reference::none || c.reference == error_reference::weights) return;
   state.counters[kMaxAbs] = prepared.value_error.max_abs;
   state.counters[kRms] = prepared.value_error.rms();
   if (prepared.gradient_error.count) {

@@ -26,6 +26,9 @@ struct sizes {
   std::size_t points = 262144;  // random points, per dimension
   // Scene-driven noises: one frame of frame_width x frame_height pixels (the 1080p).
   std::size_t frame_width = 1920, frame_height = 1080;
+  // Anisotropic noise: the triangles whose least-squares compensation weights are timed
+  // (its frame rows use frame_width x frame_height, a receding plane).
+  std::size_t triangles = 1024;
 };
 sizes full_sizes();
 sizes quick_sizes();  // for `hush bench --quick` and the smoke test: a few seconds in all
@@ -44,6 +47,7 @@ enum class error_reference {
   hush_double,  // hush's double-precision evaluation at the same positions
   glm_double,   // glm::perlin on glm::dvec at the same (float-rounded) positions: like for like
   none,         // the library computes in double only (libnoise): no float error to report
+  weights,      // a preprocessing row (anisotropic compensation weights): no samples to compare
 };
 const char* describe(error_reference r);
 
@@ -79,6 +83,9 @@ struct bench_case {
 
 // Every case: hush's noises on each backend, then the peer libraries found at build time.
 std::vector<bench_case> all_cases(const sizes& s);
+// Anisotropic noise's rows (bench/anisotropic_cases.cpp): a receding plane per frame on
+// scalar, simd and (with OSMesa) glsl, and the least-squares preprocessing per triangle.
+void add_anisotropic_cases(std::vector<bench_case>& cases, const sizes& s);
 
 // Coherent noise's rows (coherent_cases.cpp): scalar and SIMD frames, and the memory-bound
 // pass they are measured against.

@@ -58,6 +58,38 @@ TEST_CASE("samples: each given input reaches the noise, per element, on scalar a
   CHECK(scalar[5] == noise.sample(b.positions[5], b.normals[5]));
 }
 
+TEST_CASE("samples: surface maps reach a 2D noise that takes them, per element") {
+  const hush_test::probe_noise<2> noise;
+  const batch<2> b(23);
+  std::vector<hush::surface_map> maps;
+  for (std::size_t i = 0; i < 23; ++i)
+    maps.push_back({float(i % 3) / 8.0f, 0.5f, -float(i % 5) / 8.0f, 1.0f});
+  hush::samples<2> s{b.positions, b.footprints, {}};
+  s.surface_maps = maps;
+  std::vector<float> scalar(23), simd(23);
+  hush::evaluate(noise, hush::exec::scalar, s, scalar);
+  hush::evaluate(noise, hush::exec::simd, s, simd);
+  for (std::size_t i = 0; i < 23; ++i) {
+    const float want = noise.sample(b.positions[i], b.footprints[i], maps[i]);
+    CHECK(scalar[i] == want);
+    CHECK(simd[i] == want);
+    CHECK(want != noise.sample(b.positions[i], b.footprints[i]));  // the map counts
+  }
+  // Maps alone, and a wrong length, named.
+  s.footprints = {};
+  hush::evaluate(noise, hush::exec::scalar, s, scalar);
+  CHECK(scalar[4] == noise.sample(b.positions[4], hush::footprint<2>{}, maps[4]));
+  s.surface_maps = hush::span<const hush::surface_map>(maps.data(), 22);
+  CHECK_THROWS_WITH_AS(hush::evaluate(noise, hush::exec::scalar, s, scalar),
+                       doctest::Contains("samples.surface_maps.size() = 22"),
+                       hush::invalid_argument);
+  // A noise that takes no map refuses them by name.
+  const hush::perlin<2> perlin{3};
+  s.surface_maps = maps;
+  CHECK_THROWS_WITH_AS(hush::evaluate(perlin, hush::exec::scalar, s, scalar),
+                       doctest::Contains("samples.surface_maps given"), hush::invalid_argument);
+}
+
 TEST_CASE("samples: positions only equal the points overload, for any noise") {
   const hush::perlin<2> perlin{7};
   const batch<2> b(50);

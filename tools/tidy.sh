@@ -9,12 +9,12 @@ build=${1:-build/tidy}
 if [ ! -f "$build/compile_commands.json" ]; then
   cmake -S . -B "$build" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DHUSH_BUILD_TESTS=OFF >/dev/null
 fi
-# The translation units to check: the examples, the program, the scene and coherence
-# libraries, and bench/ -- each where this build compiles it (bench needs Google Benchmark,
+# The translation units to check: the examples, the program, the scene, coherence and
+# anisotropic-figures libraries, and bench/ -- each where this build compiles it (bench needs Google Benchmark,
 # raster_gl.cpp needs OSMesa). Third-party implementation files are left out.
 files=()
 for f in examples/*.cpp examples/hush/*.cpp examples/coherence/*.cpp examples/scene/*.cpp \
-         examples/npy/*.cpp examples/gif/*.cpp bench/*.cpp; do
+         examples/npy/*.cpp examples/gif/*.cpp examples/anisotropic/*.cpp bench/*.cpp; do
   case "$f" in *stb_image_write_impl.cpp | *png_write.cpp) continue ;; esac
   grep -q "/$f\"" "$build/compile_commands.json" || continue
   files+=("$f")

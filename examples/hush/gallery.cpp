@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "gallery_anisotropic.hpp"
 #include "gallery_coherent.hpp"
 #include "gif/gif.hpp"
 #include "image.hpp"
@@ -160,6 +161,7 @@ int run_gallery(const std::vector<std::string>& args) {
                       (frames.size() > 1 ? ", " + std::to_string(frames.size()) + " frames" : "") +
                       "): " + e.what);
   }
+  write_anisotropic_gallery(dir, written);  // the paper's figures, with their errors
   const fs::path absolute = fs::weakly_canonical(fs::absolute(dir));
   std::cout << "wrote " << written.size() << " images to " << absolute.string() << '\n';
   for (const std::string& w : written) std::cout << "  " << w << '\n';

@@ -4,6 +4,7 @@
 #include <climits>
 #include <utility>
 
+#include "anisotropic_noise.hpp"
 #include "glsl_device.hpp"
 
 namespace hush_cli {
@@ -206,6 +207,10 @@ const std::vector<noise_entry>& noise_table() {
          "blended over K coefficients (default 0)",
          "variant_overlap"}},
        make_wavelet_from_options},
+      {"anisotropic",
+       "anisotropic noise (Goldberg, Zwicker & Durand 2008): oriented subband tiles, filtered "
+       "per footprint, compensated per surface map",
+       anisotropic_option_specs(), make_anisotropic_from_options},
   };
   return table;
 }

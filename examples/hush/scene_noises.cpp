@@ -13,6 +13,7 @@
 #include "hush/detail/constants.hpp"
 #include "hush/exec.hpp"
 #include "hush/npr_gabor.hpp"
+#include "render_anisotropic.hpp"
 
 #if HUSH_CLI_HAVE_GLSL
 #include "hush/glsl/coherent.hpp"
@@ -270,6 +271,7 @@ const std::vector<render_entry>& render_table() {
            {"--two-sided", "", "back-facing triangles emit points too"},
        },
        make_npr_gabor},
+      anisotropic_render_entry(),
   };
   return table;
 }

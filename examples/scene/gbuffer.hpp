@@ -69,7 +69,8 @@ struct gbuffer {
 };
 
 // The views of `g` a scene-driven noise reads (hush::frame, include/hush/core/frame.hpp):
-// depth, velocity, forward velocity (when present), object and triangle ids. Valid while
+// depth, velocity, forward velocity (when present), object and triangle ids, uv and its
+// screen Jacobian. Valid while
 // `g` lives and is not resized.
 inline hush::frame as_frame(const gbuffer& g) {
   const std::size_t w = static_cast<std::size_t>(g.width), h = static_cast<std::size_t>(g.height);
@@ -80,6 +81,8 @@ inline hush::frame as_frame(const gbuffer& g) {
     f.forward_velocity = {reinterpret_cast<const hush::vec3*>(g.forward_velocity.data()), w, h};
   f.object_id = {g.object_id.data(), w, h};
   f.triangle_id = {g.triangle_id.data(), w, h};
+  f.uv = {reinterpret_cast<const hush::vec2*>(g.uv.data()), w, h};
+  f.uv_jacobian = {reinterpret_cast<const hush::vec4*>(g.uv_jacobian.data()), w, h};
   return f;
 }
 

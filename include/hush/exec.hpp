@@ -27,11 +27,12 @@
 //  - glsl: within the GLSL tolerance stated by the backend
 //    (backends/glsl/include/hush/glsl/device.hpp).
 //  - samples (core/samples.hpp): positions plus optional per-sample
-//    footprints and normals. Each given span must have one element per
-//    position, and only inputs the noise takes (Noise::takes_footprint,
-//    Noise::takes_normal) may be given, else hush::invalid_argument naming
-//    the span. scalar computes noise.sample_value<float>(samples.at(i));
-//    with positions only, exactly what the points overload computes.
+//    footprints, normals and surface maps. Each given span must have one
+//    element per position, and only inputs the noise takes
+//    (Noise::takes_footprint, Noise::takes_normal, Noise::takes_surface_map)
+//    may be given, else hush::invalid_argument naming the span. scalar computes
+//    noise.sample_value<float>(samples.at(i)); with positions only, exactly what the points
+//    overload computes.
 //  - parallel(inner, threads): the batch split over std::threads, each
 //    running `inner` (scalar or simd) on a contiguous part: points and
 //    samples in chunks, grids in slabs along the slowest axis (rows in 2D,
@@ -221,7 +222,7 @@ void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* ou
   }
 }
 
-// The scalar loop over samples with extra inputs (footprints or normals).
+// The scalar loop over samples with extra inputs (footprints, normals, maps).
 template <class Noise>
 void scalar_samples(const Noise& n, const samples<Noise::dimension>& s, float* out,
                     vec<float, Noise::dimension>* grad) {
@@ -249,8 +250,8 @@ template <class Noise, class Exec>
 void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
                  vec<float, Noise::dimension>* grad) {
   // Positions only (always so for a noise that takes no extras: validated) is a points batch.
-  constexpr bool kExtras = takes_footprint<Noise>::value || takes_normal<Noise>::value;
-  if (!kExtras || (!s.has_footprints() && !s.has_normals())) {
+  constexpr bool kExtras = takes_sample_inputs<Noise>::value;
+  if (!kExtras || !s.has_extras()) {
     run_points(n, ex, s.positions, out, grad);
     return;
   }
@@ -384,8 +385,8 @@ void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> poin
   detail::run_points(noise, ex, points, out.data(), gradients.data());
 }
 
-// Values of `noise` at `s` (positions with optional footprints and normals,
-// core/samples.hpp) into `out` (one per position), on backend `ex`.
+// Values of `noise` at `s` (positions with optional footprints, normals and
+// surface maps, core/samples.hpp) into `out` (one per position), on backend `ex`.
 template <class Noise, class Exec>
 void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
               span<float> out) {

@@ -5,6 +5,7 @@
 #ifndef HUSH_HUSH_HPP
 #define HUSH_HUSH_HPP
 
+#include "hush/anisotropic.hpp"
 #include "hush/config.hpp"
 #include "hush/core/bspline.hpp"
 #include "hush/core/error.hpp"
@@ -16,17 +17,20 @@
 #include "hush/core/poisson_table.hpp"
 #include "hush/core/rng.hpp"
 #include "hush/core/samples.hpp"
+#include "hush/core/surface_map.hpp"
 #include "hush/core/tile_cache.hpp"
 #include "hush/core/triangles.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
+#include "hush/exec.hpp"
 #include "hush/fractal.hpp"
 #include "hush/gabor.hpp"
 #include "hush/gabor_kernel.hpp"
 #include "hush/perlin.hpp"
+#include "hush/steerable.hpp"
+#include "hush/subband_fit.hpp"
 #include "hush/wavelet.hpp"
 #include "hush/wavelet_tile.hpp"
-#include "hush/exec.hpp"
 
 // Scene-driven noises (hush::frame: per-frame G-buffer views).
 #include "hush/coherent.hpp"

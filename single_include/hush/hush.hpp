@@ -13,6 +13,190 @@
 #ifndef HUSH_HUSH_HPP
 #define HUSH_HUSH_HPP
 
+// ---- begin hush/anisotropic.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Anisotropic noise (Goldberg, Zwicker & Durand, "Anisotropic Noise",
+// SIGGRAPH 2008): 2D texture-space noise built from oriented subband tiles,
+// with distortion compensation (sec. 3.1) and anisotropic filtering (sec. 4),
+// evaluated per sample as
+//
+//   n(u) = sum_k f_k( sum_{i,s} gamma_{k,i,s} lambda_{i,s} n_{i,s}(u) )      (sec. 5)
+//
+//  - n_{i,s}: subband tile i (orientation theta_i = pi i / K, filter D_{i,s}
+//    of steerable.hpp) looked up bilinearly at scale s, whose centre frequency
+//    is f_s = frequency 2^(s - base_scale) cycles per texture unit. One tile
+//    per orientation serves every scale (the paper's single 256^2 RGBA
+//    texture for K = 4): scale s reads it at u f_s / kAnisoTileBand texels,
+//    offset per scale so the scales do not coincide at the origin.
+//  - lambda_{i,s}: the sample's pixel filter, H(J^T w) = exp(-2 pi^2 sigma^2
+//    w^T S w) with S = J J^T the footprint (core/footprint.hpp), sigma =
+//    kPixelFilterSigma, fitted by params::filtering (subband_fit.hpp rules:
+//    centre = the paper's heuristic, three_point = its sec. 5 variant,
+//    least_squares = its eq. 5 fit, CPU only). A point footprint gives 1.
+//  - gamma_{k,i,s}: octave k's target, the isotropic band B of scale
+//    base_scale + k in surface space, moved to texture space by the sample's
+//    surface map T (core/surface_map.hpp): sqrt|det T| B(log2(|T^T w| /
+//    f_{base_scale + k})), fitted by params::compensation, times
+//    2^(s - base_scale - k): every scale's tiles have unit variance rather
+//    than the paper's common white spectrum, so a subband's amplitude is its
+//    filter over f_s (docs/anisotropic.md, "Distortion compensation"). Without
+//    a map (the identity) gamma_{k,i,s} = 1 for s = base_scale + k, else 0.
+//    The heuristic rules cap each gamma at sqrt(2 pi / A_K), the weight at
+//    which one subband alone carries all of the octave's variance (A_K =
+//    integral of G_i^2): strongly anisotropic maps otherwise blow the centre
+//    rule up.
+//  - f_k: fbm, f_k(t) = gain^k t (linear: the octave weights are summed
+//    first, the paper's "optimized" form, one lookup per subband); or
+//    turbulence, f_k(t) = gain^k |t| (one sum per octave, the "unoptimized" form).
+// The output is divided by sqrt(sum_k gain^2k).
+//
+// Contract (float and double from one template; double is the reference):
+//  - domain: every finite texture position; NaN or +-Inf gives NaN. The noise
+//    is periodic: scale s repeats every tile_size * kAnisoTileBand / f_s units.
+//  - mean 0; without a map and filter, variance 1 (fbm): each scale's tile
+//    set is normalised so that the sum of its orientations, bilinearly
+//    interpolated, has spatial variance exactly 1 over the continuous plane,
+//    and octaves are independent up to the tiles' finite size (measured in
+//    tests/anisotropic_test.cpp). Filtering lowers it (that is the point).
+//  - range: |n| <= bound() without maps (lambda <= 1); bound_with_maps() with
+//    maps and the heuristic rules; least-squares weights have no a-priori bound.
+//  - float evaluation is within float_budget() of the double reference.
+//  - footprints: NaN, Inf or huge give lambda = 0 everywhere: the mean, 0
+//    (HARD_CASES row 12); zero, rank 1 or tiny ones filter accordingly.
+//  - surface maps: det T = 0 (zero UV area, or zero 3D area through
+//    surface_map::from_triangle) gives gamma = 0: the mean, 0; mirrored UVs
+//    (det < 0) use |det T|; a map with a non-finite entry counts as the zero map.
+//  - gradients: d n / d u of the bilinear lookups (the weights held fixed):
+//    exact inside texels, one-sided at texel edges, where the noise is C0.
+// Tiles: built once per (seed, orientations, tile_size) and shared
+// (tile_cache(), memory reported there), each orientation a real image
+// IFFT(F D_i), F a Hermitian complex Gaussian white spectrum drawn from
+// hush::rng, D_i the bank's scale at kAnisoTileBand cycles per texel.
+// Construction costs K FFTs of tile_size^2 (about 40 ms for K = 4 at 256^2 here).
+#ifndef HUSH_ANISOTROPIC_HPP
+#define HUSH_ANISOTROPIC_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+// ---- begin hush/core/error.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::invalid_argument: the one exception hush throws, for parameters outside
+// their documented domain. Messages name the parameter, the value received and
+// the valid range, e.g. "hush::perlin: period[1] = -3 is out of range; valid:
+// 0 (not periodic) or 1 ... 16777216". Evaluation itself never throws.
+#ifndef HUSH_CORE_ERROR_HPP
+#define HUSH_CORE_ERROR_HPP
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace hush {
+
+class invalid_argument : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+namespace detail {
+
+// Builds the standard message: "<where>: <name> = <value> is out of range; valid: <range>".
+template <class T>
+[[noreturn]] inline void throw_out_of_range(const char* where, const std::string& name,
+                                            const T& value, const char* valid) {
+  std::ostringstream os;
+  os.precision(17);
+  os << where << ": " << name << " = " << value << " is out of range; valid: " << valid;
+  throw hush::invalid_argument(os.str());
+}
+
+// Checks lo <= value <= hi, rejecting NaN (the comparisons are false for NaN).
+template <class T>
+inline void require_in_range(const char* where, const std::string& name, const T& value,
+                             const T& lo, const T& hi, const char* valid) {
+  if (!(value >= lo && value <= hi)) throw_out_of_range(where, name, value, valid);
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_CORE_ERROR_HPP
+// ---- end hush/core/error.hpp
+// ---- begin hush/core/footprint.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::footprint<D>: a sample's filter footprint in noise space, built from
+// what a shader has at that sample (DESIGN.md "Per-sample inputs").
+//
+// A renderer knows, per sample, how noise-space position changes from one
+// pixel to the next: the screen-to-noise Jacobian J = [dP/dx  dP/dy] (D x 2;
+// in GLSL, dFdx(P) and dFdy(P)), or at least a width w, the noise-space size
+// of one pixel. The footprint stores the one quantity every filtering noise
+// needs from that, the symmetric positive semi-definite D x D matrix
+//
+//   S = J J^T = dP/dx dP/dx^T + dP/dy dP/dy^T     (from derivatives), or
+//   S = w^2 I                                      (isotropic width w),
+//
+// in squared noise units per pixel: a screen offset d (in pixels) moves the
+// noise position by J d, and |J^T u|^2 = u^T S u is the squared pixel extent
+// along unit direction u. A Gaussian pixel filter of standard deviation sigma
+// pixels maps to the noise-space Gaussian of covariance sigma^2 S, and its
+// frequency response at noise frequency k is exp(-2 pi^2 sigma^2 k^T S k).
+// hush's noises filter with sigma = constants::kPixelFilterSigma (1/2 pixel)
+// unless they say otherwise; each states which bands or kernels it keeps.
+//
+// The default footprint is a point (S = 0): nothing is filtered.
+//
+// Robustness (HARD_CASES row 12; footprints are per-sample data, so nothing
+// here throws): every input gives a finite footprint.
+//  - NaN or +-Inf in a derivative or width: the footprint is "everything",
+//    S = W^2 I with W = constants::kFootprintMaxWidth (2^32, the lattice's
+//    period: nothing narrower survives filtering), so filtering noises return
+//    their mean (0) there, the limit of an ever larger footprint.
+//  - a footprint wider than W is scaled down (same shape) until its largest
+//    entry is W^2 (for derivatives: until no component exceeds W), so its
+//    largest width lies in [W, sqrt(D) W]: again everything is filtered.
+//  - zero, rank 1 (e.g. dP/dy = 0, an edge-on surface) and nearly singular
+//    footprints are stored as they are; consumers must accept singular S.
+//  - a negative width means its magnitude.
+// S is formed in double and rounded to float once; entries lie in
+// [-2^64, 2^64], so consumers compute determinants and inverses in double,
+// or scale first (float overflows beyond 2^128).
+#ifndef HUSH_CORE_FOOTPRINT_HPP
+#define HUSH_CORE_FOOTPRINT_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+// ---- begin hush/core/vec.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Tiny fixed-size vectors: just enough to pass points, gradients and steps.
+// hush::vec<T, N> holds N values of T (N = 2, 3, 4) with members x, y, z, w and
+// indexing; vec2/vec3/vec4 are float, dvec2/dvec3/dvec4 double. When GLM is
+// available (config.hpp) they convert implicitly from and to glm::vec<N, T, Q>,
+// so `noise(glm::vec3{...})` works and a hush vector assigns to a glm one.
+// Arithmetic is deliberately minimal: this is not a math library.
+#ifndef HUSH_CORE_VEC_HPP
+#define HUSH_CORE_VEC_HPP
+
+#include <cstddef>
+
 // ---- begin hush/config.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -85,38 +269,111 @@
 
 #endif  // HUSH_CONFIG_HPP
 // ---- end hush/config.hpp
-// ---- begin hush/core/bspline.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The kernels of wavelet noise (Cook & DeRose 2005), all uniform B-splines, and
-// their exact piecewise-polynomial forms, derived at compile time.
-//
-// Every kernel here is the density of a sum of independent centred uniform
-// variables of integer widths c_1 ... c_m, i.e. the convolution of boxes:
-//   B     = box1 * box1 * box1                 the quadratic B-spline (support 3)
-//   B2    = box2 * box2 * box2                 B stretched by 2: B2(u) = B(u / 2) / 2
-//   beta  = B * B2 (six boxes)                 the exact projection kernel, a quintic
-//                                               (Cook & DeRose eq. 36, support 9)
-//   g     = B * B, gb = B2 * B2, gbeta = beta * beta   their autocorrelations
-// Such a density is (Schoenberg's truncated-power formula)
-//   f(x) = sum over subsets e of the widths (-1)^|e| (u - sum e)_+^(m-1) / ((m-1)! prod c),
-// with u = x + (sum c) / 2. On each unit piece u in [k, k + 1] it is one polynomial
-// in t = u - k, whose coefficients are integer sums divided once by (m-1)! prod c:
-// exact to the last bit of a double. The widths are the only input
-// (constants.hpp: kBsplineUniforms, kWaveletProjectionStretch); no polynomial
-// coefficient is typed anywhere, and the tests re-derive each kernel's defining
-// property (partition of unity, refinement, convolution, integral).
-//
-// Conventions: kernels are centred (symmetric about 0) and arguments are
-// distances d = y - i from a coefficient i to the position y, in coefficient
-// units. Outside the support every kernel is 0.
-#ifndef HUSH_CORE_BSPLINE_HPP
-#define HUSH_CORE_BSPLINE_HPP
 
-#include <array>
-#include <cmath>
-#include <cstdint>
+#if HUSH_CONFIG_GLM
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#define HUSH_VEC_GLM_INTEROP(N)                                                     \
+  template <glm::qualifier Q>                                                       \
+  constexpr vec(const glm::vec<(N), T, Q>& g) { /* NOLINT: implicit by design */    \
+    for (int i = 0; i < (N); ++i) (*this)[i] = g[i];                                \
+  }                                                                                 \
+  template <glm::qualifier Q>                                                       \
+  constexpr operator glm::vec<(N), T, Q>() const { /* NOLINT: implicit by design */ \
+    glm::vec<(N), T, Q> g{};                                                        \
+    for (int i = 0; i < (N); ++i) g[i] = (*this)[i];                                \
+    return g;                                                                       \
+  }
+#else
+#define HUSH_VEC_GLM_INTEROP(N)
+#endif
 
+// Members shared by the three sizes. Indexing goes through the named members
+// (not pointer arithmetic across them) so it stays well defined.
+#define HUSH_VEC_COMMON(N)                  \
+  static constexpr int size() { return N; } \
+  HUSH_VEC_GLM_INTEROP(N)
+
+namespace hush {
+
+template <class T, int N>
+struct vec;
+
+template <class T>
+struct vec<T, 2> {
+  T x{}, y{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_) : x(x_), y(y_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : y; }
+  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : y; }
+  HUSH_VEC_COMMON(2)
+};
+
+template <class T>
+struct vec<T, 3> {
+  T x{}, y{}, z{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  HUSH_VEC_COMMON(3)
+};
+
+template <class T>
+struct vec<T, 4> {
+  T x{}, y{}, z{}, w{};
+  constexpr vec() = default;
+  constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
+  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
+  constexpr const T& operator[](std::size_t i) const {
+    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
+  }
+  HUSH_VEC_COMMON(4)
+};
+
+#undef HUSH_VEC_COMMON
+#undef HUSH_VEC_GLM_INTEROP
+
+using vec2 = vec<float, 2>;
+using vec3 = vec<float, 3>;
+using vec4 = vec<float, 4>;
+using dvec2 = vec<double, 2>;
+using dvec3 = vec<double, 3>;
+using dvec4 = vec<double, 4>;
+
+// Exact component-wise equality (NaN != NaN, -0 == +0, as for the elements).
+template <class T, int N>
+constexpr bool operator==(const vec<T, N>& a, const vec<T, N>& b) {
+  for (int i = 0; i < N; ++i)
+    if (!(a[i] == b[i])) return false;
+  return true;
+}
+template <class T, int N>
+constexpr bool operator!=(const vec<T, N>& a, const vec<T, N>& b) {
+  return !(a == b);
+}
+
+// Component-wise conversion between element types (float <-> double).
+template <class To, class From, int N>
+constexpr vec<To, N> vec_cast(const vec<From, N>& a) {
+  vec<To, N> r;
+  for (int i = 0; i < N; ++i) r[i] = static_cast<To>(a[i]);
+  return r;
+}
+
+// A noise value together with its gradient (d value / d position), returned by
+// gradient() of the differentiable noises: `auto [v, g] = noise.gradient(p);`.
+template <class T, int N>
+struct value_gradient {
+  T value;
+  vec<T, N> gradient;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_VEC_HPP
+// ---- end hush/core/vec.hpp
 // ---- begin hush/detail/constants.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -459,414 +716,76 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
 
+// ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
+// subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
+constexpr double kLn2 = 0.69314718055994530942;
+// Orientations K of the steerable filter bank (the paper uses 4 to 8; one
+// orientation has no angular selectivity) and scales (octaves of the bank).
+constexpr int kAnisoMinOrientations = 2;
+constexpr int kAnisoMaxOrientations = 8;
+constexpr int kAnisoMaxScales = 12;
+// Subband tiles: power-of-two sizes (the FFT's), at least 16 texels (so the
+// band's lowest frequency, 1/16 cycle per texel, is one DFT bin), at most
+// 2048 (8 orientations of 2048^2 floats are 128 MiB).
+constexpr int kAnisoMinTileSize = 16;
+constexpr int kAnisoMaxTileSize = 2048;
+// Centre frequency of the tiles' subband, in cycles per texel: the band spans
+// [1/16, 1/4], so at its top bilinear lookups still pass sinc^2(1/4) = 0.81 of
+// the amplitude and the first interpolation image (at 3/4) carries below 1%
+// of the power (docs/anisotropic.md, "Tiles").
+constexpr double kAnisoTileBand = 0.125;
+// The 3-radial-point rule (paper sec. 5): the target is read at log2 offsets
+// -1/2, 0, +1/2 octave from a subband's centre and averaged with the weights
+// of the subband's radial profile there, cos^2(pi/4) : 1 : cos^2(pi/4),
+// normalised to 1/4, 1/2, 1/4.
+constexpr double kAnisoThreePointOffset = 0.5;
+constexpr double kAnisoThreePointSide = 0.25;
+constexpr double kAnisoThreePointCentre = 0.5;
+// A filtering weight exp(-x) with x above this is set to exactly 0 (and its
+// subband is skipped): exp(-17) = 4.1e-8 < 2^-24, below float resolution.
+constexpr double kAnisoWeightCutoff = 17.0;
+// Least-squares quadrature (subband_fit.hpp): midpoint nodes per octave of
+// radius, and angular nodes per orientation over a half turn (filters and
+// targets are even: D(-w) = D(w)).
+constexpr int kAnisoRadialNodesPerOctave = 16;
+constexpr int kAnisoAngularNodesPerOrientation = 12;
+
+// Float approximations used by the weights (detail/approx_math.hpp), written
+// out so that scalar and SIMD code evaluate the same polynomial in the same
+// order (bit-identical under HUSH_STRICT_FP):
+//  - 2^r on [-1/2, 1/2]: Taylor series of exp(r ln 2) to degree 7
+//    (truncation 5.3e-9 relative);
+//  - log2 m on [sqrt(1/2), sqrt(2)]: (2 / ln 2) atanh(z), z = (m-1)/(m+1),
+//    |z| <= 0.1716, odd series to z^9 (truncation 3e-10);
+//  - sin(pi z) on [-1/2, 1/2]: Taylor series to degree 13 (truncation 6.6e-10).
+// The coefficients are computed here at compile time from pi and ln 2.
+struct aniso_series {
+  double exp2[8];   // (ln 2)^k / k!, k = 0 ... 7
+  double log2[5];   // (2 / ln 2) / (2k + 1), k = 0 ... 4
+  double sinpi[7];  // (-1)^k pi^(2k+1) / (2k+1)!, k = 0 ... 6
+  constexpr aniso_series() : exp2{}, log2{}, sinpi{} {
+    double t = 1.0;
+    for (int k = 0; k < 8; ++k) {
+      exp2[k] = t;
+      t = t * kLn2 / double(k + 1);
+    }
+    for (int k = 0; k < 5; ++k) log2[k] = (2.0 / kLn2) / double(2 * k + 1);
+    double s = kPi;
+    for (int k = 0; k < 7; ++k) {
+      sinpi[k] = s;
+      s = -s * kPi * kPi / double((2 * k + 2) * (2 * k + 3));
+    }
+  }
+};
+constexpr aniso_series kAnisoSeries{};
+constexpr double kSqrt2 = 1.41421356237309504880;
+
 }  // namespace constants
 }  // namespace detail
 }  // namespace hush
 
 #endif  // HUSH_DETAIL_CONSTANTS_HPP
 // ---- end hush/detail/constants.hpp
-
-namespace hush {
-namespace detail {
-
-// A kernel as Pieces unit polynomial pieces of Order coefficients (degree
-// Order - 1), ascending powers of the local variable t in [0, 1]; piece k
-// covers d in [k - Pieces / 2, k + 1 - Pieces / 2].
-template <int Pieces, int Order>
-struct piecewise_kernel {
-  static constexpr int pieces = Pieces;
-  static constexpr int order = Order;
-  std::array<std::array<double, Order>, Pieces> c{};
-  static constexpr double half_support() { return Pieces / 2.0; }
-};
-
-// n choose k, for the small n used here.
-constexpr std::int64_t binomial(int n, int k) {
-  std::int64_t r = 1;
-  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
-  return r;
-}
-constexpr std::int64_t ipow(std::int64_t b, int e) {
-  std::int64_t r = 1;
-  for (int i = 0; i < e; ++i) r *= b;
-  return r;
-}
-
-// The pieces of the density of a sum of M centred uniforms of integer widths w.
-template <int M, int S>
-constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w) {
-  piecewise_kernel<S, M> r{};
-  std::int64_t denom = 1;
-  for (int i = 1; i < M; ++i) denom *= i;  // (M - 1)!
-  for (int i = 0; i < M; ++i) denom *= w[i];
-  for (int k = 0; k < S; ++k) {
-    std::int64_t num[M] = {};
-    for (unsigned e = 0; e < (1u << M); ++e) {
-      int s = 0, sign = 1;
-      for (int i = 0; i < M; ++i)
-        if (e >> i & 1u) {
-          s += w[i];
-          sign = -sign;
-        }
-      if (s > k) continue;  // (u - s)_+ vanishes on this piece
-      // (t + k - s)^(M-1) = sum_j binom(M-1, j) t^j (k - s)^(M-1-j)
-      for (int j = 0; j < M; ++j) num[j] += sign * binomial(M - 1, j) * ipow(k - s, M - 1 - j);
-    }
-    for (int j = 0; j < M; ++j)
-      r.c[k][j] = static_cast<double>(num[j]) / static_cast<double>(denom);
-  }
-  return r;
-}
-
-// The density of that sum where u = x + S / 2 is the integer `u`, exactly:
-// f = sum_e (-1)^|e| (u - s_e)_+^(M-1) / ((M-1)! prod w). Every term is an
-// integer below 2^47 for the kernels here, so the sum is exact in int64.
-template <int M>
-constexpr double uniform_sum_density_at(const std::array<int, M>& w, int u) {
-  std::int64_t num = 0, denom = 1;
-  for (int i = 1; i < M; ++i) denom *= i;
-  for (int i = 0; i < M; ++i) denom *= w[i];
-  for (unsigned e = 0; e < (1u << M); ++e) {
-    int s = 0, sign = 1;
-    for (int i = 0; i < M; ++i)
-      if (e >> i & 1u) {
-        s += w[i];
-        sign = -sign;
-      }
-    if (u > s) num += sign * ipow(u - s, M - 1);
-  }
-  return static_cast<double>(num) / static_cast<double>(denom);
-}
-
-namespace bspline_widths {
-constexpr int kN = constants::kBsplineUniforms;
-constexpr int kStretch = static_cast<int>(constants::kWaveletProjectionStretch);
-static_assert(kStretch == constants::kWaveletProjectionStretch, "an integer stretch");
-template <int M>
-constexpr std::array<int, M> boxes(int width) {
-  std::array<int, M> r{};
-  for (int i = 0; i < M; ++i) r[i] = width;
-  return r;
-}
-template <int A, int B>
-constexpr std::array<int, A + B> concat(const std::array<int, A>& a, const std::array<int, B>& b) {
-  std::array<int, A + B> r{};
-  for (int i = 0; i < A; ++i) r[i] = a[i];
-  for (int i = 0; i < B; ++i) r[A + i] = b[i];
-  return r;
-}
-constexpr auto kB = boxes<kN>(1);                              // B
-constexpr auto kB2 = boxes<kN>(kStretch);                      // B2 = B(u / 2) / 2
-constexpr auto kBeta = concat<kN, kN>(kB, kB2);                // beta = B * B2
-constexpr auto kG = concat<kN, kN>(kB, kB);                    // B * B
-constexpr auto kGb2 = concat<kN, kN>(kB2, kB2);                // B2 * B2
-constexpr auto kGbeta = concat<2 * kN, 2 * kN>(kBeta, kBeta);  // beta * beta
-}  // namespace bspline_widths
-
-// The quadratic B-spline B (3 pieces), B2 (6 pieces) and the quintic beta (9 pieces).
-inline constexpr auto kBspline =
-    uniform_sum_kernel<bspline_widths::kN, bspline_widths::kN>(bspline_widths::kB);
-inline constexpr auto kBspline2 =
-    uniform_sum_kernel<bspline_widths::kN, bspline_widths::kN * bspline_widths::kStretch>(
-        bspline_widths::kB2);
-inline constexpr auto kBeta =
-    uniform_sum_kernel<2 * bspline_widths::kN, bspline_widths::kN*(1 + bspline_widths::kStretch)>(
-        bspline_widths::kBeta);
-
-// Autocorrelations at integer lags d (0 <= d < support): the Gram entries of the
-// basis (g), and of the two projection kernels along the normal (for variances).
-constexpr double bspline_gram(int d) {
-  return uniform_sum_density_at<2 * bspline_widths::kN>(bspline_widths::kG, d + bspline_widths::kN);
-}
-constexpr double bspline2_gram(int d) {
-  return uniform_sum_density_at<2 * bspline_widths::kN>(
-      bspline_widths::kGb2, d + bspline_widths::kN * bspline_widths::kStretch);
-}
-constexpr double beta_gram(int d) {
-  return uniform_sum_density_at<4 * bspline_widths::kN>(
-      bspline_widths::kGbeta, d + bspline_widths::kN * (1 + bspline_widths::kStretch));
-}
-// Lags where they are non-zero: |d| < reach.
-constexpr int kBsplineGramReach = bspline_widths::kN;                                // 3
-constexpr int kBspline2GramReach = bspline_widths::kN * bspline_widths::kStretch;    // 6
-constexpr int kBetaGramReach = bspline_widths::kN * (1 + bspline_widths::kStretch);  // 9
-
-// The derivative's pieces (coefficients j c_j, shifted down one power).
-template <int P, int O>
-constexpr piecewise_kernel<P, O - 1> derivative(const piecewise_kernel<P, O>& k) {
-  piecewise_kernel<P, O - 1> r{};
-  for (int p = 0; p < P; ++p)
-    for (int j = 1; j < O; ++j) r.c[p][j - 1] = k.c[p][j] * j;
-  return r;
-}
-inline constexpr auto kBsplineDerivative = derivative(kBspline);
-inline constexpr auto kBspline2Derivative = derivative(kBspline2);
-inline constexpr auto kBetaDerivative = derivative(kBeta);
-
-// Piece p of kernel k at local t, Horner form (highest power first), in T.
-template <class T, int P, int O>
-HUSH_INLINE T piece_value(const piecewise_kernel<P, O>& k, int p, T t) {
-  T r = T(k.c[p][O - 1]);
-  for (int j = O - 2; j >= 0; --j) r = r * t + T(k.c[p][j]);
-  return r;
-}
-
-// Kernel k at distance d (0 outside its support), in T.
-template <class T, int P, int O>
-HUSH_INLINE T kernel_at(const piecewise_kernel<P, O>& k, T d) {
-  const T u = d + T(P / 2.0);
-  if (!(u > T(0) && u < T(P))) return T(0);  // also 0 for NaN
-  const int p = static_cast<int>(std::floor(u));
-  return piece_value(k, p, u - T(p));
-}
-
-// A fixed kernel of support P (B2: 6, beta: 9) read at fraction f in [0, 1): tap j sits
-// at distance f + 1/2 - j, and the taps j = floor(1/2 - P/2) + 1 ... ceil(3/2 + P/2) - 1
-// (-2 ... 4 for B2, -3 ... 5 for beta) cover every f (some weights are 0).
-template <int P>
-constexpr int fixed_kernel_first_tap() {
-  return P % 2 == 0 ? 1 - P / 2 : (3 - P) / 2;
-}
-template <int P>
-constexpr int fixed_kernel_taps() {
-  return (P + 2) / 2 - fixed_kernel_first_tap<P>() + 1;
-}
-// The most taps any kernel has along one axis (beta's 9; the widened B-spline is
-// limited to it).
-constexpr int kWaveletMaxTaps = fixed_kernel_taps<kBeta.pieces>();
-
-// The number of axis permutations of a D-dimensional tile (D!: 2 or 6), for the
-// hashed tile variants of wavelet noise.
-constexpr std::uint32_t wavelet_permutations(int d) { return d == 2 ? 2u : 6u; }
-
-// The plain 3-tap weights of B at fraction f in [0, 1): the position y lies at
-// distance f + 1/2 - j from coefficient i0 + j, j = 0, 1, 2 (i0 = floor(y - 1/2),
-// f = y - 1/2 - i0), so tap j reads piece 2 - j at t = f.
-template <class T>
-HUSH_INLINE void bspline_weights(T f, T (&w)[3]) {
-  for (int j = 0; j < 3; ++j) w[j] = piece_value(kBspline, 2 - j, f);
-}
-template <class T>
-HUSH_INLINE void bspline_derivative_weights(T f, T (&w)[3]) {
-  for (int j = 0; j < 3; ++j) w[j] = piece_value(kBsplineDerivative, 2 - j, f);
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_CORE_BSPLINE_HPP
-// ---- end hush/core/bspline.hpp
-// ---- begin hush/core/error.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// hush::invalid_argument: the one exception hush throws, for parameters outside
-// their documented domain. Messages name the parameter, the value received and
-// the valid range, e.g. "hush::perlin: period[1] = -3 is out of range; valid:
-// 0 (not periodic) or 1 ... 16777216". Evaluation itself never throws.
-#ifndef HUSH_CORE_ERROR_HPP
-#define HUSH_CORE_ERROR_HPP
-
-#include <sstream>
-#include <stdexcept>
-#include <string>
-
-namespace hush {
-
-class invalid_argument : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
-
-namespace detail {
-
-// Builds the standard message: "<where>: <name> = <value> is out of range; valid: <range>".
-template <class T>
-[[noreturn]] inline void throw_out_of_range(const char* where, const std::string& name,
-                                            const T& value, const char* valid) {
-  std::ostringstream os;
-  os.precision(17);
-  os << where << ": " << name << " = " << value << " is out of range; valid: " << valid;
-  throw hush::invalid_argument(os.str());
-}
-
-// Checks lo <= value <= hi, rejecting NaN (the comparisons are false for NaN).
-template <class T>
-inline void require_in_range(const char* where, const std::string& name, const T& value,
-                             const T& lo, const T& hi, const char* valid) {
-  if (!(value >= lo && value <= hi)) throw_out_of_range(where, name, value, valid);
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_CORE_ERROR_HPP
-// ---- end hush/core/error.hpp
-// ---- begin hush/core/footprint.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// hush::footprint<D>: a sample's filter footprint in noise space, built from
-// what a shader has at that sample (DESIGN.md "Per-sample inputs").
-//
-// A renderer knows, per sample, how noise-space position changes from one
-// pixel to the next: the screen-to-noise Jacobian J = [dP/dx  dP/dy] (D x 2;
-// in GLSL, dFdx(P) and dFdy(P)), or at least a width w, the noise-space size
-// of one pixel. The footprint stores the one quantity every filtering noise
-// needs from that, the symmetric positive semi-definite D x D matrix
-//
-//   S = J J^T = dP/dx dP/dx^T + dP/dy dP/dy^T     (from derivatives), or
-//   S = w^2 I                                      (isotropic width w),
-//
-// in squared noise units per pixel: a screen offset d (in pixels) moves the
-// noise position by J d, and |J^T u|^2 = u^T S u is the squared pixel extent
-// along unit direction u. A Gaussian pixel filter of standard deviation sigma
-// pixels maps to the noise-space Gaussian of covariance sigma^2 S, and its
-// frequency response at noise frequency k is exp(-2 pi^2 sigma^2 k^T S k).
-// hush's noises filter with sigma = constants::kPixelFilterSigma (1/2 pixel)
-// unless they say otherwise; each states which bands or kernels it keeps.
-//
-// The default footprint is a point (S = 0): nothing is filtered.
-//
-// Robustness (HARD_CASES row 12; footprints are per-sample data, so nothing
-// here throws): every input gives a finite footprint.
-//  - NaN or +-Inf in a derivative or width: the footprint is "everything",
-//    S = W^2 I with W = constants::kFootprintMaxWidth (2^32, the lattice's
-//    period: nothing narrower survives filtering), so filtering noises return
-//    their mean (0) there, the limit of an ever larger footprint.
-//  - a footprint wider than W is scaled down (same shape) until its largest
-//    entry is W^2 (for derivatives: until no component exceeds W), so its
-//    largest width lies in [W, sqrt(D) W]: again everything is filtered.
-//  - zero, rank 1 (e.g. dP/dy = 0, an edge-on surface) and nearly singular
-//    footprints are stored as they are; consumers must accept singular S.
-//  - a negative width means its magnitude.
-// S is formed in double and rounded to float once; entries lie in
-// [-2^64, 2^64], so consumers compute determinants and inverses in double,
-// or scale first (float overflows beyond 2^128).
-#ifndef HUSH_CORE_FOOTPRINT_HPP
-#define HUSH_CORE_FOOTPRINT_HPP
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-
-// ---- begin hush/core/vec.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Tiny fixed-size vectors: just enough to pass points, gradients and steps.
-// hush::vec<T, N> holds N values of T (N = 2, 3, 4) with members x, y, z, w and
-// indexing; vec2/vec3/vec4 are float, dvec2/dvec3/dvec4 double. When GLM is
-// available (config.hpp) they convert implicitly from and to glm::vec<N, T, Q>,
-// so `noise(glm::vec3{...})` works and a hush vector assigns to a glm one.
-// Arithmetic is deliberately minimal: this is not a math library.
-#ifndef HUSH_CORE_VEC_HPP
-#define HUSH_CORE_VEC_HPP
-
-#include <cstddef>
-
-
-#if HUSH_CONFIG_GLM
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
-#define HUSH_VEC_GLM_INTEROP(N)                                                     \
-  template <glm::qualifier Q>                                                       \
-  constexpr vec(const glm::vec<(N), T, Q>& g) { /* NOLINT: implicit by design */    \
-    for (int i = 0; i < (N); ++i) (*this)[i] = g[i];                                \
-  }                                                                                 \
-  template <glm::qualifier Q>                                                       \
-  constexpr operator glm::vec<(N), T, Q>() const { /* NOLINT: implicit by design */ \
-    glm::vec<(N), T, Q> g{};                                                        \
-    for (int i = 0; i < (N); ++i) g[i] = (*this)[i];                                \
-    return g;                                                                       \
-  }
-#else
-#define HUSH_VEC_GLM_INTEROP(N)
-#endif
-
-// Members shared by the three sizes. Indexing goes through the named members
-// (not pointer arithmetic across them) so it stays well defined.
-#define HUSH_VEC_COMMON(N)                  \
-  static constexpr int size() { return N; } \
-  HUSH_VEC_GLM_INTEROP(N)
-
-namespace hush {
-
-template <class T, int N>
-struct vec;
-
-template <class T>
-struct vec<T, 2> {
-  T x{}, y{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_) : x(x_), y(y_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : y; }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : y; }
-  HUSH_VEC_COMMON(2)
-};
-
-template <class T>
-struct vec<T, 3> {
-  T x{}, y{}, z{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
-  HUSH_VEC_COMMON(3)
-};
-
-template <class T>
-struct vec<T, 4> {
-  T x{}, y{}, z{}, w{};
-  constexpr vec() = default;
-  constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
-  constexpr const T& operator[](std::size_t i) const {
-    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
-  }
-  HUSH_VEC_COMMON(4)
-};
-
-#undef HUSH_VEC_COMMON
-#undef HUSH_VEC_GLM_INTEROP
-
-using vec2 = vec<float, 2>;
-using vec3 = vec<float, 3>;
-using vec4 = vec<float, 4>;
-using dvec2 = vec<double, 2>;
-using dvec3 = vec<double, 3>;
-using dvec4 = vec<double, 4>;
-
-// Exact component-wise equality (NaN != NaN, -0 == +0, as for the elements).
-template <class T, int N>
-constexpr bool operator==(const vec<T, N>& a, const vec<T, N>& b) {
-  for (int i = 0; i < N; ++i)
-    if (!(a[i] == b[i])) return false;
-  return true;
-}
-template <class T, int N>
-constexpr bool operator!=(const vec<T, N>& a, const vec<T, N>& b) {
-  return !(a == b);
-}
-
-// Component-wise conversion between element types (float <-> double).
-template <class To, class From, int N>
-constexpr vec<To, N> vec_cast(const vec<From, N>& a) {
-  vec<To, N> r;
-  for (int i = 0; i < N; ++i) r[i] = static_cast<To>(a[i]);
-  return r;
-}
-
-// A noise value together with its gradient (d value / d position), returned by
-// gradient() of the differentiable noises: `auto [v, g] = noise.gradient(p);`.
-template <class T, int N>
-struct value_gradient {
-  T value;
-  vec<T, N> gradient;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_VEC_HPP
-// ---- end hush/core/vec.hpp
 
 namespace hush {
 
@@ -1029,255 +948,6 @@ class footprint {
 
 #endif  // HUSH_CORE_FOOTPRINT_HPP
 // ---- end hush/core/footprint.hpp
-// ---- begin hush/core/frame.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// hush::frame: what a renderer already has for one frame, as views of its
-// G-buffer channels, for the scene-driven noises (coherent noise, Kass &
-// Pesare 2011; NPR Gabor noise, Benard et al. 2010). No scene graph, camera or
-// file format: pointers to pixels the caller owns, valid for the call.
-//
-// Conventions (the same as examples/scene/gbuffer.hpp, which produces them):
-//  - width x height pixels, row y at data + y * stride (elements), row 0 at
-//    the TOP of the image; pixel (x, y) has its centre at (x + 0.5, y + 0.5)
-//    in screen pixels, x right, y down.
-//  - depth: linear view depth (distance from the camera plane along the view
-//    axis), > 0 where a surface is seen. +inf (background), NaN, 0 or
-//    negative values mean "no usable surface here": noises treat the pixel as
-//    disoccluded (coherent noise gives it fresh noise).
-//  - velocity (backward 3D velocity): (dx, dy) in pixels per frame and dz in
-//    depth units per frame, such that the surface point seen at pixel centre p
-//    in this frame was at p - (dx, dy) with depth depth - dz in the previous
-//    frame. NaN or +-Inf in any component: no previous position (disoccluded).
-//  - forward_velocity: the same towards the NEXT frame: the point seen at p
-//    is at p + (dx, dy) with depth depth + dz in frame i + 1 (what a backward
-//    pass over a sequence needs; examples/scene writes both).
-//  - object_id: an id per pixel (examples/scene: 0 = background); two pixels
-//    show the same object when their ids are equal.
-//  - triangle_id: the triangle index within the object (NPR Gabor noise).
-// NPR Gabor noise reads its triangle list beside these views (core/triangles.hpp).
-#ifndef HUSH_CORE_FRAME_HPP
-#define HUSH_CORE_FRAME_HPP
-
-#include <cstddef>
-#include <cstdint>
-#include <string>
-
-// ---- begin hush/core/views.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Non-owning views for batch evaluation and per-pixel data:
-//  - span<T>:        contiguous array (pointer + count); C++17 has no std::span.
-//  - grid<N>:        a uniform sample grid: origin, step per axis, count per axis.
-//                    Sample (i, j, k) sits at origin + step * (i, j, k); its index
-//                    in C order is (k * ny + j) * nx + i (i along x, fastest).
-//  - image_view<T>:  a 2D pixel array with a row stride, e.g. one G-buffer channel.
-#ifndef HUSH_CORE_VIEWS_HPP
-#define HUSH_CORE_VIEWS_HPP
-
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <string>
-#include <type_traits>
-#include <vector>
-
-
-namespace hush {
-
-template <class T>
-class span {
- public:
-  using element_type = T;
-  using value_type = std::remove_cv_t<T>;
-  constexpr span() = default;
-  constexpr span(T* data, std::size_t size) : data_(data), size_(size) {}
-  template <std::size_t N>
-  constexpr span(T (&a)[N]) : data_(a), size_(N) {}  // NOLINT: implicit like std::span
-  template <class U, std::size_t N,
-            class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
-  constexpr span(std::array<U, N>& a) : data_(a.data()), size_(N) {}  // NOLINT
-  template <class U, std::size_t N,
-            class = std::enable_if_t<std::is_convertible<const U (*)[], T (*)[]>::value>>
-  constexpr span(const std::array<U, N>& a) : data_(a.data()), size_(N) {}  // NOLINT
-  template <class U, class A,
-            class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
-  span(std::vector<U, A>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT
-  template <class U, class A,
-            class = std::enable_if_t<std::is_convertible<const U (*)[], T (*)[]>::value>>
-  span(const std::vector<U, A>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT
-  // span<U> -> span<const U>
-  template <class U, class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
-  constexpr span(const span<U>& s) : data_(s.data()), size_(s.size()) {}  // NOLINT
-
-  constexpr T* data() const { return data_; }
-  constexpr std::size_t size() const { return size_; }
-  constexpr bool empty() const { return size_ == 0; }
-  constexpr T& operator[](std::size_t i) const { return data_[i]; }
-  constexpr T* begin() const { return data_; }
-  constexpr T* end() const { return data_ + size_; }
-  constexpr span subspan(std::size_t offset, std::size_t count) const {
-    return span(data_ + offset, count);
-  }
-
- private:
-  T* data_ = nullptr;
-  std::size_t size_ = 0;
-};
-
-// A uniform grid of N-dimensional sample positions. Origin and step are double
-// so that grids far from the origin keep their spacing exact; noises split each
-// position into lattice cell and fraction in double before going to float.
-template <int N>
-struct grid {
-  vec<double, N> origin;              // position of sample (0, 0[, 0])
-  vec<double, N> step;                // spacing along each axis (may be negative, not zero)
-  std::array<std::size_t, N> size{};  // samples along each axis (nx, ny[, nz])
-
-  // Number of samples; 0 when any axis is empty.
-  std::size_t count() const {
-    std::size_t n = 1;
-    for (int a = 0; a < N; ++a) n *= size[a];
-    return n;
-  }
-  // Position of the sample with index (i, j[, k]).
-  vec<double, N> position(const std::array<std::size_t, N>& ijk) const {
-    vec<double, N> p;
-    for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
-    return p;
-  }
-  // Throws hush::invalid_argument naming the first bad field: origin and step must be
-  // finite, step non-zero, and the total count must fit in the address space.
-  void validate(const char* where) const {
-    for (int a = 0; a < N; ++a) {
-      if (!std::isfinite(origin[a]))
-        detail::throw_out_of_range(where, "grid.origin[" + std::to_string(a) + "]", origin[a],
-                                   "a finite number");
-      if (!std::isfinite(step[a]) || step[a] == 0.0)
-        detail::throw_out_of_range(where, "grid.step[" + std::to_string(a) + "]", step[a],
-                                   "a finite non-zero number");
-    }
-    std::size_t n = 1;
-    for (int a = 0; a < N; ++a) {
-      if (size[a] != 0 && n > SIZE_MAX / size[a])
-        detail::throw_out_of_range(where, "grid.size[" + std::to_string(a) + "]", size[a],
-                                   "a count whose product with the other axes fits in size_t");
-      n *= size[a];
-    }
-  }
-};
-
-// A 2D array of pixels with a row stride in elements (stride >= width).
-template <class T>
-struct image_view {
-  T* data = nullptr;
-  std::size_t width = 0;
-  std::size_t height = 0;
-  std::size_t stride = 0;  // elements between the starts of consecutive rows
-
-  image_view() = default;
-  image_view(T* d, std::size_t w, std::size_t h) : data(d), width(w), height(h), stride(w) {}
-  image_view(T* d, std::size_t w, std::size_t h, std::size_t s)
-      : data(d), width(w), height(h), stride(s) {
-    if (s < w) detail::throw_out_of_range("hush::image_view", "stride", s, "stride >= width");
-  }
-  T& operator()(std::size_t x, std::size_t y) const { return data[y * stride + x]; }
-  T* row(std::size_t y) const { return data + y * stride; }
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_VIEWS_HPP
-// ---- end hush/core/views.hpp
-
-namespace hush {
-
-// Which views of a frame a noise reads; combine with |.
-enum class frame_view : unsigned {
-  none = 0,
-  depth = 1u << 0,
-  velocity = 1u << 1,
-  forward_velocity = 1u << 2,
-  object_id = 1u << 3,
-  triangle_id = 1u << 4,
-};
-constexpr frame_view operator|(frame_view a, frame_view b) {
-  return static_cast<frame_view>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
-}
-constexpr bool has_view(frame_view set, frame_view v) {
-  return (static_cast<unsigned>(set) & static_cast<unsigned>(v)) != 0;
-}
-
-struct frame {
-  image_view<const float> depth;                // linear view depth
-  image_view<const vec3> velocity;              // (dx, dy, dz) from the previous frame
-  image_view<const vec3> forward_velocity;      // (dx, dy, dz) to the next frame
-  image_view<const std::uint32_t> object_id;    // optional: same id = same object
-  image_view<const std::uint32_t> triangle_id;  // optional
-
-  // The frame's size: the depth view's (every present view must match it).
-  std::size_t width() const { return depth.width; }
-  std::size_t height() const { return depth.height; }
-  std::size_t pixels() const { return depth.width * depth.height; }
-
-  // Which views are present (data non-null).
-  frame_view present() const {
-    frame_view p = frame_view::none;
-    if (depth.data) p = p | frame_view::depth;
-    if (velocity.data) p = p | frame_view::velocity;
-    if (forward_velocity.data) p = p | frame_view::forward_velocity;
-    if (object_id.data) p = p | frame_view::object_id;
-    if (triangle_id.data) p = p | frame_view::triangle_id;
-    return p;
-  }
-
-  // Throws hush::invalid_argument naming `where` and the view when a view in
-  // `required` is missing, when the depth view is empty (0 pixels) or larger
-  // than max_side pixels on a side, or when a present view's size differs from
-  // the depth view's or its stride is below its width. Never reads a pixel.
-  void validate(const char* where, frame_view required, std::size_t max_side) const {
-    if (!depth.data) missing(where, "depth");
-    if (depth.width == 0 || depth.height == 0 || depth.width > max_side || depth.height > max_side)
-      detail::throw_out_of_range(
-          where, "frame.depth size", size_text(depth),
-          ("1 ... " + std::to_string(max_side) + " pixels per side").c_str());
-    check(where, "depth", depth, frame_view::depth, required);
-    check(where, "velocity", velocity, frame_view::velocity, required);
-    check(where, "forward_velocity", forward_velocity, frame_view::forward_velocity, required);
-    check(where, "object_id", object_id, frame_view::object_id, required);
-    check(where, "triangle_id", triangle_id, frame_view::triangle_id, required);
-  }
-
- private:
-  template <class T>
-  static std::string size_text(const image_view<T>& v) {
-    return std::to_string(v.width) + "x" + std::to_string(v.height);
-  }
-  [[noreturn]] static void missing(const char* where, const char* name) {
-    throw hush::invalid_argument(std::string(where) + ": frame." + name +
-                                 " is required but missing (null data)");
-  }
-  template <class T>
-  void check(const char* where, const char* name, const image_view<T>& v, frame_view which,
-             frame_view required) const {
-    if (!v.data) {
-      if (has_view(required, which)) missing(where, name);
-      return;
-    }
-    if (v.width != depth.width || v.height != depth.height)
-      detail::throw_out_of_range(where, std::string("frame.") + name + " size", size_text(v),
-                                 ("the depth view's size, " + size_text(depth)).c_str());
-    if (v.stride < v.width)
-      detail::throw_out_of_range(where, std::string("frame.") + name + ".stride", v.stride,
-                                 ("at least its width, " + std::to_string(v.width)).c_str());
-  }
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_FRAME_HPP
-// ---- end hush/core/frame.hpp
 // ---- begin hush/core/hash.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -1484,87 +1154,6 @@ HUSH_INLINE lattice_coord<T> lattice_split(double x, std::uint32_t period = 0) {
 
 #endif  // HUSH_CORE_LATTICE_HPP
 // ---- end hush/core/lattice.hpp
-// ---- begin hush/core/point_noise.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The evaluation interface every point noise offers, written once.
-//
-// A noise N derives from point_noise<N, D> and defines two templates:
-//   template <class T> T value(const vec<double, D>& p) const;
-//   template <class T> value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const;
-// which split the position into lattice cell and fraction in double and then
-// compute in T. This base turns them into the public overloads:
-//   noise(vec<float, D>)  -> float    (float arithmetic)
-//   noise(vec<double, D>) -> double   (the double-precision reference)
-//   noise.gradient(...)   -> value_gradient<T, D>
-// Non-template overloads, so glm::vec arguments convert implicitly.
-#ifndef HUSH_CORE_POINT_NOISE_HPP
-#define HUSH_CORE_POINT_NOISE_HPP
-
-
-namespace hush {
-
-template <class Derived, int D>
-class point_noise {
- public:
-  static constexpr int dimension = D;
-
-  float operator()(const vec<float, D>& p) const {
-    return self().template value<float>(vec_cast<double>(p));
-  }
-  double operator()(const vec<double, D>& p) const { return self().template value<double>(p); }
-  value_gradient<float, D> gradient(const vec<float, D>& p) const {
-    return self().template value_and_gradient<float>(vec_cast<double>(p));
-  }
-  value_gradient<double, D> gradient(const vec<double, D>& p) const {
-    return self().template value_and_gradient<double>(p);
-  }
-
- private:
-  const Derived& self() const { return static_cast<const Derived&>(*this); }
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_POINT_NOISE_HPP
-// ---- end hush/core/point_noise.hpp
-// ---- begin hush/core/poisson_table.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// hush::poisson_table: Poisson-distributed counts for one fixed mean from one
-// uniform 32-bit word, by integer comparisons only.
-//
-// hush::rng::poisson computes in double (exp, log, rejection loops), which a
-// GPU cannot repeat bit for bit. When the mean is fixed (a noise's impulse
-// density per cell), the cumulative distribution can be computed once, on the
-// CPU in double, and rounded to 32-bit thresholds
-//
-//   T_k = round(2^32 P(X < k)),  k = 1 ... n,
-//
-// kept while T_k < 2^32 (n = max_count()). The count of a uniform word u is
-// then the number of thresholds at or below it, count(u) = #{k : T_k <= u}:
-// integer comparisons only, so the CPU, the SIMD kernels and GLSL shaders that
-// hold the same table draw the same count from the same word.
-//
-// Contract:
-//  - mean: 0 <= mean <= kPoissonTableMaxMean (1e4); anything else, NaN and
-//    +-Inf included, throws hush::invalid_argument naming "mean".
-//  - distribution: with u uniform over all 2^32 words, count k has probability
-//    (T_{k+1} - T_k) / 2^32 (T_0 = 0, T_{n+1} = 2^32), within 2^-32 of the
-//    Poisson pmf for every k (one rounding of a CDF accurate to ~1e-13);
-//    counts above n, whose total Poisson probability is below 2^-33, do not
-//    occur. probability(k) and exact_mean() return the table's own values.
-//  - cost: the thresholds are built once (O(n) exp, n ~ mean + 7 sqrt(mean)
-//    + 20); count() is a binary search, O(log n), and never fails.
-#ifndef HUSH_CORE_POISSON_TABLE_HPP
-#define HUSH_CORE_POISSON_TABLE_HPP
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <vector>
-
 // ---- begin hush/core/rng.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -1730,85 +1319,15 @@ class rng {
 
 #endif  // HUSH_CORE_RNG_HPP
 // ---- end hush/core/rng.hpp
-
-namespace hush {
-
-class poisson_table {
- public:
-  // An empty table: mean 0, every count 0.
-  poisson_table() = default;
-
-  // The thresholds of Poisson(mean). Throws hush::invalid_argument when mean
-  // is NaN, infinite, negative or above kPoissonTableMaxMean.
-  explicit poisson_table(double mean) : mean_(mean) {
-    namespace c = detail::constants;
-    detail::require_in_range("hush::poisson_table", "mean", mean, 0.0, c::kPoissonTableMaxMean,
-                             "0 <= mean <= 10000 (finite, not NaN)");
-    if (mean == 0.0) return;
-    constexpr double kWords = 4294967296.0;  // 2^32
-    const double log_mean = std::log(mean);
-    // The cap only guards the loop; for every valid mean the CDF reaches
-    // 1 - 2^-33 long before it (P(X > mean + 7 sqrt(mean) + 20) < 1e-12).
-    const auto cap = static_cast<std::uint32_t>(mean + 12.0 * std::sqrt(mean) + 64.0);
-    double cdf = 0.0;
-    for (std::uint32_t k = 0; k < cap; ++k) {
-      // pmf(k) in log space: exp(-mean) underflows for means above ~745.
-      cdf += std::exp(-mean + static_cast<double>(k) * log_mean - log_factorial(k));
-      const double t = std::floor(cdf * kWords + 0.5);  // T_{k+1}
-      if (!(t < kWords)) break;                         // unreachable by any word: the table ends
-      thresholds_.push_back(static_cast<std::uint32_t>(t));
-    }
-  }
-
-  // The mean asked for.
-  double mean() const { return mean_; }
-  // The largest count the table draws (its number of thresholds).
-  std::uint32_t max_count() const { return static_cast<std::uint32_t>(thresholds_.size()); }
-  // T_1 ... T_n, ascending (non-decreasing).
-  const std::vector<std::uint32_t>& thresholds() const { return thresholds_; }
-
-  // The count of word u: the number of thresholds <= u (binary search).
-  std::uint32_t count(std::uint32_t u) const {
-    return static_cast<std::uint32_t>(std::upper_bound(thresholds_.begin(), thresholds_.end(), u) -
-                                      thresholds_.begin());
-  }
-
-  // The probability the table gives count k (0 above max_count()).
-  double probability(std::uint32_t k) const {
-    constexpr double kWords = 4294967296.0;
-    const std::size_t n = thresholds_.size();
-    if (k > n) return 0.0;
-    const double lo = k == 0 ? 0.0 : static_cast<double>(thresholds_[k - 1]);
-    const double hi = k == n ? kWords : static_cast<double>(thresholds_[k]);
-    return (hi - lo) / kWords;
-  }
-
-  // The table's exact mean, sum_k P(count >= k) = sum_k (2^32 - T_k) / 2^32:
-  // within ~n 2^-32 of mean(); what statistics of processes built on the
-  // table (e.g. a sparse convolution noise's variance) should use.
-  double exact_mean() const {
-    constexpr double kWords = 4294967296.0;
-    double m = 0.0;
-    for (const std::uint32_t t : thresholds_) m += (kWords - static_cast<double>(t)) / kWords;
-    return m;
-  }
-
- private:
-  double mean_ = 0.0;
-  std::vector<std::uint32_t> thresholds_;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_POISSON_TABLE_HPP
-// ---- end hush/core/poisson_table.hpp
 // ---- begin hush/core/samples.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Per-sample inputs beyond the position (DESIGN.md "Per-sample inputs"):
 //  - hush::sample_input<D>: one sample as a noise's scalar code sees it: the
-//    position (double), the footprint (core/footprint.hpp; a point by default)
-//    and, for surface noises in 3D, the surface normal;
+//    position (double), the footprint (core/footprint.hpp; a point by default),
+//    for surface noises in 3D the surface normal, and for 2D texture-space
+//    noises on surfaces the surface map T (core/surface_map.hpp; texture <-
+//    surface, identity by default);
 //  - hush::samples<D>: a batch of them as spans beside the positions, what
 //    hush::evaluate(noise, exec, samples, out[, gradients]) takes on every
 //    backend (exec.hpp);
@@ -1817,14 +1336,18 @@ class poisson_table {
 //      n.sample(p, footprint)                 -> float / double (by p's type)
 //      n.sample(p, normal, footprint)         -> the same on a surface (3D noises
 //                                                with takes_normal)
-//      n.sample_gradient(p, footprint), n.sample_gradient(p, normal, footprint)
-//                                             -> value and d/d(position) of
+//      n.sample(p, footprint, map)            -> the same on a surface whose UV
+//                                                mapping is T = map (2D noises
+//                                                with takes_surface_map)
+//      n.sample_gradient(p, footprint), n.sample_gradient(p, normal, footprint),
+//      n.sample_gradient(p, footprint, map)   -> value and d/d(position) of
 //                                                the filtered noise, footprint fixed
 // A noise derives from sample_noise<Derived, D> (which derives from
 // point_noise<Derived, D>: n(p) and n.gradient(p) stay the unfiltered point
 // evaluation) and defines, besides point_noise's two templates,
 //   static constexpr bool takes_footprint;  // uses sample_input::fp
 //   static constexpr bool takes_normal;     // uses sample_input::normal (D == 3)
+//   static constexpr bool takes_surface_map;  // uses sample_input::map (D == 2)
 //   template <class T> T sample_value(const sample_input<D>& s) const;
 //   template <class T> value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s)
 //   const;
@@ -1836,31 +1359,319 @@ class poisson_table {
 #include <string>
 #include <type_traits>
 
+// ---- begin hush/core/point_noise.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The evaluation interface every point noise offers, written once.
+//
+// A noise N derives from point_noise<N, D> and defines two templates:
+//   template <class T> T value(const vec<double, D>& p) const;
+//   template <class T> value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const;
+// which split the position into lattice cell and fraction in double and then
+// compute in T. This base turns them into the public overloads:
+//   noise(vec<float, D>)  -> float    (float arithmetic)
+//   noise(vec<double, D>) -> double   (the double-precision reference)
+//   noise.gradient(...)   -> value_gradient<T, D>
+// Non-template overloads, so glm::vec arguments convert implicitly.
+#ifndef HUSH_CORE_POINT_NOISE_HPP
+#define HUSH_CORE_POINT_NOISE_HPP
+
 
 namespace hush {
 
-// One sample: position, footprint, and optionally the surface normal (any
-// length; a noise documents what it does with a zero or non-finite normal).
+template <class Derived, int D>
+class point_noise {
+ public:
+  static constexpr int dimension = D;
+
+  float operator()(const vec<float, D>& p) const {
+    return self().template value<float>(vec_cast<double>(p));
+  }
+  double operator()(const vec<double, D>& p) const { return self().template value<double>(p); }
+  value_gradient<float, D> gradient(const vec<float, D>& p) const {
+    return self().template value_and_gradient<float>(vec_cast<double>(p));
+  }
+  value_gradient<double, D> gradient(const vec<double, D>& p) const {
+    return self().template value_and_gradient<double>(p);
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_POINT_NOISE_HPP
+// ---- end hush/core/point_noise.hpp
+// ---- begin hush/core/surface_map.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::surface_map: a per-sample input of 2D texture-space noises on
+// surfaces (DESIGN.md "Per-sample inputs": the texture-to-surface map of a
+// triangle). It is the 2 x 2 matrix T of Goldberg, Zwicker & Durand 2008,
+// sec. 3.1, that takes local coordinates (s, t) on the surface (orthonormal,
+// in surface length units) to texture coordinates (u, v):
+//
+//   (u, v)^T = T (s, t)^T,   T = [m00 m01; m10 m11].
+//
+// A noise that takes it (anisotropic noise) shapes its texture-space spectrum
+// so that the noise looks as intended in (s, t), whatever the UV mapping does:
+// with target spectrum E in surface space, the texture-space target is
+// sqrt|det T| E(T^T w) (derived in docs/anisotropic.md: the power spectrum of
+// g(T^{-1} u) is |det T| P(T^T w)). Identity: texture space is surface space.
+//
+// It also carries user-chosen target spectra (the paper's fig. 13): a target
+// E(A^T xi) that is an isotropic E seen through a 2 x 2 matrix A (stretched by
+// A's singular values, rotated by its singular vectors) is T replaced by T A
+// (with_target(A)).
+//
+// Robustness (per-sample data: nothing here throws):
+//  - from_triangle: a triangle with zero 3D area, or non-finite input, gives
+//    the zero map; zero UV area gives a rank-1 (or zero) map; mirrored UVs a
+//    map with negative determinant. Noises document what they do with those
+//    (anisotropic noise: its mean, 0, where det T = 0; |det T| otherwise).
+//  - from_matrix with a NaN or infinite entry gives the zero map.
+// Layout: four floats, row by row (m00, m01, m10, m11), the same on every
+// backend (GLSL: SSBO binding 4, compute_source.hpp).
+#ifndef HUSH_CORE_SURFACE_MAP_HPP
+#define HUSH_CORE_SURFACE_MAP_HPP
+
+#include <cmath>
+
+
+namespace hush {
+
+struct surface_map {
+  float m00 = 1, m01 = 0, m10 = 0, m11 = 1;  // identity by default
+
+  static constexpr surface_map identity() { return {}; }
+  static constexpr surface_map zero() { return {0, 0, 0, 0}; }
+
+  // T = [a b; c d]; a non-finite entry gives zero().
+  static surface_map from_matrix(double a, double b, double c, double d) {
+    if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(d)))
+      return zero();
+    const surface_map m{static_cast<float>(a), static_cast<float>(b), static_cast<float>(c),
+                        static_cast<float>(d)};
+    return m.finite() ? m : zero();  // entries beyond float range
+  }
+
+  // The map of a triangle from its vertices' positions p0, p1, p2 (any 3D
+  // space with the surface's length unit) and texture coordinates uv0, uv1,
+  // uv2. The local frame is e1 along p1 - p0 and e2 = n x e1 in the
+  // triangle's plane (n its normal), so (s, t) is a right-handed orthonormal
+  // frame seen from the front; T solves T [a1 a2] = [uv1 - uv0, uv2 - uv0]
+  // with a1, a2 the edges in that frame. Degenerate input: see the file comment.
+  static surface_map from_triangle(const dvec3& p0, const dvec3& p1, const dvec3& p2,
+                                   const dvec2& uv0, const dvec2& uv1, const dvec2& uv2) {
+    const dvec3 e1{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z};
+    const dvec3 e2{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
+    const double l1 = std::sqrt(dot(e1, e1));
+    const dvec3 n = cross(e1, e2);
+    const double ln = std::sqrt(dot(n, n));
+    // Zero area (or NaN): nothing to map; also guards the divisions below.
+    if (!(l1 > 0.0 && ln > 0.0 && std::isfinite(l1) && std::isfinite(ln))) return zero();
+    const dvec3 x = scale(e1, 1.0 / l1);
+    const dvec3 y = scale(cross(n, e1), 1.0 / (ln * l1));
+    // Edges in the local frame: a1 = (l1, 0), a2 = (e2.x, e2.y).
+    const double a2x = dot(e2, x), a2y = dot(e2, y);  // a2y = 2 area / l1 > 0
+    const double du1 = uv1.x - uv0.x, dv1 = uv1.y - uv0.y;
+    const double du2 = uv2.x - uv0.x, dv2 = uv2.y - uv0.y;
+    // [a1 a2]^{-1} = [1/l1, -a2x / (l1 a2y); 0, 1 / a2y].
+    const double i00 = 1.0 / l1, i01 = -a2x / (l1 * a2y), i11 = 1.0 / a2y;
+    return from_matrix(du1 * i00, du1 * i01 + du2 * i11, dv1 * i00, dv1 * i01 + dv2 * i11);
+  }
+
+  // T A: the map for the target E(A^T xi) in surface space instead of E(xi)
+  // (see the file comment), A = [a00 a01; a10 a11].
+  surface_map with_target(double a00, double a01, double a10, double a11) const {
+    return from_matrix(double(m00) * a00 + double(m01) * a10, double(m00) * a01 + double(m01) * a11,
+                       double(m10) * a00 + double(m11) * a10,
+                       double(m10) * a01 + double(m11) * a11);
+  }
+
+  double determinant() const { return double(m00) * m11 - double(m01) * m10; }
+  bool finite() const {
+    return std::isfinite(m00) && std::isfinite(m01) && std::isfinite(m10) && std::isfinite(m11);
+  }
+  friend bool operator==(const surface_map& a, const surface_map& b) {
+    return a.m00 == b.m00 && a.m01 == b.m01 && a.m10 == b.m10 && a.m11 == b.m11;
+  }
+  friend bool operator!=(const surface_map& a, const surface_map& b) { return !(a == b); }
+
+ private:
+  static double dot(const dvec3& a, const dvec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+  static dvec3 cross(const dvec3& a, const dvec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+  }
+  static dvec3 scale(const dvec3& a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_SURFACE_MAP_HPP
+// ---- end hush/core/surface_map.hpp
+// ---- begin hush/core/views.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Non-owning views for batch evaluation and per-pixel data:
+//  - span<T>:        contiguous array (pointer + count); C++17 has no std::span.
+//  - grid<N>:        a uniform sample grid: origin, step per axis, count per axis.
+//                    Sample (i, j, k) sits at origin + step * (i, j, k); its index
+//                    in C order is (k * ny + j) * nx + i (i along x, fastest).
+//  - image_view<T>:  a 2D pixel array with a row stride, e.g. one G-buffer channel.
+#ifndef HUSH_CORE_VIEWS_HPP
+#define HUSH_CORE_VIEWS_HPP
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+
+namespace hush {
+
+template <class T>
+class span {
+ public:
+  using element_type = T;
+  using value_type = std::remove_cv_t<T>;
+  constexpr span() = default;
+  constexpr span(T* data, std::size_t size) : data_(data), size_(size) {}
+  template <std::size_t N>
+  constexpr span(T (&a)[N]) : data_(a), size_(N) {}  // NOLINT: implicit like std::span
+  template <class U, std::size_t N,
+            class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
+  constexpr span(std::array<U, N>& a) : data_(a.data()), size_(N) {}  // NOLINT
+  template <class U, std::size_t N,
+            class = std::enable_if_t<std::is_convertible<const U (*)[], T (*)[]>::value>>
+  constexpr span(const std::array<U, N>& a) : data_(a.data()), size_(N) {}  // NOLINT
+  template <class U, class A,
+            class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
+  span(std::vector<U, A>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT
+  template <class U, class A,
+            class = std::enable_if_t<std::is_convertible<const U (*)[], T (*)[]>::value>>
+  span(const std::vector<U, A>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT
+  // span<U> -> span<const U>
+  template <class U, class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
+  constexpr span(const span<U>& s) : data_(s.data()), size_(s.size()) {}  // NOLINT
+
+  constexpr T* data() const { return data_; }
+  constexpr std::size_t size() const { return size_; }
+  constexpr bool empty() const { return size_ == 0; }
+  constexpr T& operator[](std::size_t i) const { return data_[i]; }
+  constexpr T* begin() const { return data_; }
+  constexpr T* end() const { return data_ + size_; }
+  constexpr span subspan(std::size_t offset, std::size_t count) const {
+    return span(data_ + offset, count);
+  }
+
+ private:
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+// A uniform grid of N-dimensional sample positions. Origin and step are double
+// so that grids far from the origin keep their spacing exact; noises split each
+// position into lattice cell and fraction in double before going to float.
+template <int N>
+struct grid {
+  vec<double, N> origin;              // position of sample (0, 0[, 0])
+  vec<double, N> step;                // spacing along each axis (may be negative, not zero)
+  std::array<std::size_t, N> size{};  // samples along each axis (nx, ny[, nz])
+
+  // Number of samples; 0 when any axis is empty.
+  std::size_t count() const {
+    std::size_t n = 1;
+    for (int a = 0; a < N; ++a) n *= size[a];
+    return n;
+  }
+  // Position of the sample with index (i, j[, k]).
+  vec<double, N> position(const std::array<std::size_t, N>& ijk) const {
+    vec<double, N> p;
+    for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
+    return p;
+  }
+  // Throws hush::invalid_argument naming the first bad field: origin and step must be
+  // finite, step non-zero, and the total count must fit in the address space.
+  void validate(const char* where) const {
+    for (int a = 0; a < N; ++a) {
+      if (!std::isfinite(origin[a]))
+        detail::throw_out_of_range(where, "grid.origin[" + std::to_string(a) + "]", origin[a],
+                                   "a finite number");
+      if (!std::isfinite(step[a]) || step[a] == 0.0)
+        detail::throw_out_of_range(where, "grid.step[" + std::to_string(a) + "]", step[a],
+                                   "a finite non-zero number");
+    }
+    std::size_t n = 1;
+    for (int a = 0; a < N; ++a) {
+      if (size[a] != 0 && n > SIZE_MAX / size[a])
+        detail::throw_out_of_range(where, "grid.size[" + std::to_string(a) + "]", size[a],
+                                   "a count whose product with the other axes fits in size_t");
+      n *= size[a];
+    }
+  }
+};
+
+// A 2D array of pixels with a row stride in elements (stride >= width).
+template <class T>
+struct image_view {
+  T* data = nullptr;
+  std::size_t width = 0;
+  std::size_t height = 0;
+  std::size_t stride = 0;  // elements between the starts of consecutive rows
+
+  image_view() = default;
+  image_view(T* d, std::size_t w, std::size_t h) : data(d), width(w), height(h), stride(w) {}
+  image_view(T* d, std::size_t w, std::size_t h, std::size_t s)
+      : data(d), width(w), height(h), stride(s) {
+    if (s < w) detail::throw_out_of_range("hush::image_view", "stride", s, "stride >= width");
+  }
+  T& operator()(std::size_t x, std::size_t y) const { return data[y * stride + x]; }
+  T* row(std::size_t y) const { return data + y * stride; }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_VIEWS_HPP
+// ---- end hush/core/views.hpp
+
+namespace hush {
+
+// One sample: position, footprint, optionally the surface normal (any
+// length; a noise documents what it does with a zero or non-finite normal)
+// and the surface map (a noise documents what it does with a singular one).
 template <int D>
 struct sample_input {
   vec<double, D> position{};
   footprint<D> fp{};
   vec<double, 3> normal{};
   bool has_normal = false;
+  surface_map map{};
+  bool has_map = false;
 };
 
-// A batch of samples: positions and, optionally, one footprint and one
-// normal per position. An empty span means "not given": point samples, no
-// normal. Normals exist for 3D noises only.
+// A batch of samples: positions and, optionally, one footprint, one normal
+// and one surface map per position. An empty span means "not given": point
+// samples, no normal, the identity map. Normals are for 3D noises, surface
+// maps for 2D texture-space noises.
 template <int D>
 struct samples {
   span<const vec<float, D>> positions;
   span<const footprint<D>> footprints;
   span<const vec<float, 3>> normals;
+  span<const surface_map> surface_maps{};  // last, defaulted: {positions, footprints, normals}
+                                           // still initialises a batch
 
   std::size_t size() const { return positions.size(); }
   bool has_footprints() const { return !footprints.empty(); }
   bool has_normals() const { return !normals.empty(); }
+  bool has_surface_maps() const { return !surface_maps.empty(); }
+  // True when anything beside the positions is given.
+  bool has_extras() const { return has_footprints() || has_normals() || has_surface_maps(); }
 
   // Sample i as the scalar code sees it.
   sample_input<D> at(std::size_t i) const {
@@ -1870,6 +1681,10 @@ struct samples {
     if (has_normals()) {
       s.normal = vec_cast<double>(normals[i]);
       s.has_normal = true;
+    }
+    if (has_surface_maps()) {
+      s.map = surface_maps[i];
+      s.has_map = true;
     }
     return s;
   }
@@ -1888,10 +1703,20 @@ struct takes_normal : std::false_type {};
 template <class Noise>
 struct takes_normal<Noise, std::void_t<decltype(Noise::takes_normal)>>
     : std::integral_constant<bool, Noise::takes_normal> {};
+template <class Noise, class = void>
+struct takes_surface_map : std::false_type {};
+template <class Noise>
+struct takes_surface_map<Noise, std::void_t<decltype(Noise::takes_surface_map)>>
+    : std::integral_constant<bool, Noise::takes_surface_map> {};
+// Whether a noise takes any per-sample input beside the position.
+template <class Noise>
+struct takes_sample_inputs
+    : std::integral_constant<bool, takes_footprint<Noise>::value || takes_normal<Noise>::value ||
+                                       takes_surface_map<Noise>::value> {};
 
 // Throws hush::invalid_argument naming the first span that does not fit:
-// footprints and normals must be empty or have one element per position, and
-// only inputs the noise takes may be given.
+// footprints, normals and surface maps must be empty or have one element per
+// position, and only inputs the noise takes may be given.
 template <class Noise>
 void validate_samples(const char* where, const samples<Noise::dimension>& s) {
   const std::size_t n = s.positions.size();
@@ -1911,6 +1736,14 @@ void validate_samples(const char* where, const samples<Noise::dimension>& s) {
                                    "valid: none (an empty span)");
     if (s.normals.size() != n)
       throw_out_of_range(where, "samples.normals.size()", s.normals.size(), per.c_str());
+  }
+  if (s.has_surface_maps()) {
+    if (!takes_surface_map<Noise>::value)
+      throw hush::invalid_argument(std::string(where) +
+                                   ": samples.surface_maps given, but this noise takes no surface "
+                                   "map; valid: none (an empty span)");
+    if (s.surface_maps.size() != n)
+      throw_out_of_range(where, "samples.surface_maps.size()", s.surface_maps.size(), per.c_str());
   }
 }
 
@@ -1957,6 +1790,26 @@ class sample_noise : public point_noise<Derived, D> {
     return self().template sample_value_and_gradient<double>(input(p, fp, normal));
   }
 
+  // On a surface whose UV mapping is T = map (2D noises with takes_surface_map).
+  template <int E = D, class = std::enable_if_t<E == 2>>
+  float sample(const vec<float, 2>& p, const footprint<2>& fp, const surface_map& map) const {
+    return self().template sample_value<float>(input(vec_cast<double>(p), fp, map));
+  }
+  template <int E = D, class = std::enable_if_t<E == 2>>
+  double sample(const vec<double, 2>& p, const footprint<2>& fp, const surface_map& map) const {
+    return self().template sample_value<double>(input(p, fp, map));
+  }
+  template <int E = D, class = std::enable_if_t<E == 2>>
+  value_gradient<float, 2> sample_gradient(const vec<float, 2>& p, const footprint<2>& fp,
+                                           const surface_map& map) const {
+    return self().template sample_value_and_gradient<float>(input(vec_cast<double>(p), fp, map));
+  }
+  template <int E = D, class = std::enable_if_t<E == 2>>
+  value_gradient<double, 2> sample_gradient(const vec<double, 2>& p, const footprint<2>& fp,
+                                            const surface_map& map) const {
+    return self().template sample_value_and_gradient<double>(input(p, fp, map));
+  }
+
  private:
   const Derived& self() const { return static_cast<const Derived&>(*this); }
   static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp) {
@@ -1971,6 +1824,14 @@ class sample_noise : public point_noise<Derived, D> {
     sample_input<D> s = input(p, fp);
     s.normal = normal;
     s.has_normal = true;
+    return s;
+  }
+  static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp,
+                               const surface_map& map) {
+    static_assert(detail::takes_surface_map<Derived>::value, "this noise takes no surface map");
+    sample_input<D> s = input(p, fp);
+    s.map = map;
+    s.has_map = true;
     return s;
   }
 };
@@ -2069,89 +1930,243 @@ class tile_cache {
 
 #endif  // HUSH_CORE_TILE_CACHE_HPP
 // ---- end hush/core/tile_cache.hpp
-// ---- begin hush/core/triangles.hpp
+// ---- begin hush/detail/approx_math.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// hush::triangle_list: the triangles a renderer drew in one frame, as views of
-// arrays the caller owns (valid for the call), beside hush::frame
-// (core/frame.hpp) for the noises that attach primitives to surfaces (NPR
-// Gabor noise, Benard et al. 2010 sec. 3.3). Nothing but this frame's data:
-//  - indices: 3 per triangle, into the vertex arrays;
-//  - screen: each vertex's screen position in pixels for this frame (the
-//    frame's conventions: x right, y down, pixel (x, y) centred at
-//    (x + 0.5, y + 0.5)), i.e. clip (X, Y) / W through the viewport;
-//  - depth: each vertex's linear view depth for this frame (clip W; the
-//    frame's depth units). A vertex with depth <= 0 or a non-finite value is
-//    not in front of the camera: noises skip its triangles (documented per
-//    noise);
-//  - triangle_id: per triangle, a stable id: the same surface triangle has
-//    the same id in every frame, and it is the id the frame's triangle_id
-//    view shows where the triangle is visible;
-//  - object_id: per triangle, the object id the frame's object_id view shows
-//    where it is visible. Optional (empty: every triangle is object 0).
-// A triangle is keyed by (object_id, triangle_id): noises seed their
-// per-triangle random streams with that pair, so a triangle's primitives are
-// the same in every frame whatever the order or number of triangles.
-//
-// Perspective: a surface point of barycentric coordinates b (object space)
-// projects to s = sum b_i z_i s_i / sum b_i z_i at depth sum b_i z_i (clip
-// coordinates are linear in object space), which is why depth comes with
-// the screen positions.
-#ifndef HUSH_CORE_TRIANGLES_HPP
-#define HUSH_CORE_TRIANGLES_HPP
+// The transcendental functions the anisotropic noise's weights need, in a
+// form SIMD code can repeat operation by operation (hush/simd/anisotropic-inl.h):
+//   exp2_nonpositive(y) = 2^y for y <= 0      (filtering weights, exp(-x))
+//   log2_positive(m)     = log2(m) for m > 0   (distortion: the map's stretch)
+//   band_profile(x)      = cos^2(pi x / 2) for |x| < 1, else 0
+//                          (the steerable bank's radial profile in octaves)
+// For T = double they are std::exp2, std::log2 and std::cos: the reference.
+// For T = float they are polynomials in float with a fixed operation order
+// (coefficients in detail/constants.hpp, kAnisoSeries), so scalar and SIMD
+// code give the same bits under HUSH_STRICT_FP. Float error against the
+// double functions (tests/anisotropic_test.cpp measures them):
+//   exp2_nonpositive: within 4 ulp relative for y in [-25, 0]; 0 below -126;
+//   log2_positive:    within 2^-21 absolute plus 2 ulp of the result;
+//   band_profile:     within 2^-22 absolute.
+// Special values: exp2_nonpositive(NaN) = NaN; log2_positive(m) = -inf for
+// 0 <= m < 2^-126 (float; the double reference returns log2 m <= -126 there),
+// log2_positive(+inf) = +inf, NaN for NaN or negative m; band_profile(NaN) = NaN,
+// band_profile(+-inf) = 0.
+#ifndef HUSH_DETAIL_APPROX_MATH_HPP
+#define HUSH_DETAIL_APPROX_MATH_HPP
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <string>
+#include <cstring>
+#include <limits>
+#include <type_traits>
 
 
 namespace hush {
+namespace detail {
 
-struct triangle_list {
-  span<const std::uint32_t> indices;      // 3 per triangle
-  span<const vec2> screen;                // per vertex: pixels
-  span<const float> depth;                // per vertex: linear view depth
-  span<const std::uint32_t> triangle_id;  // per triangle: stable id
-  span<const std::uint32_t> object_id;    // per triangle, optional
+// A non-negative int as a container index (keeps index arithmetic in int).
+HUSH_INLINE std::size_t index(int i) { return static_cast<std::size_t>(i); }
 
-  std::size_t triangles() const { return indices.size() / 3; }
-  std::size_t vertices() const { return screen.size(); }
-  std::uint32_t object_of(std::size_t t) const { return object_id.empty() ? 0u : object_id[t]; }
+HUSH_INLINE float bits_to_float(std::uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+HUSH_INLINE std::uint32_t float_to_bits(float f) {
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
 
-  // Throws hush::invalid_argument naming `where` and the array when the index
-  // count is not a multiple of 3, there are more than max_triangles
-  // triangles, depth and screen differ in length, triangle_id (or a non-empty
-  // object_id) does not hold one id per triangle, or an index is not below
-  // vertices(). Reads every index (O(triangles)), never a vertex value.
-  void validate(const char* where, std::size_t max_triangles) const {
-    if (indices.size() % 3 != 0)
-      detail::throw_out_of_range(where, "triangles.indices size", indices.size(),
-                                 "a multiple of 3 (3 indices per triangle)");
-    if (triangles() > max_triangles)
-      detail::throw_out_of_range(where, "triangles.indices size", indices.size(),
-                                 ("at most 3 x " + std::to_string(max_triangles)).c_str());
-    if (depth.size() != screen.size())
-      detail::throw_out_of_range(where, "triangles.depth size", depth.size(),
-                                 ("one per vertex: " + std::to_string(screen.size())).c_str());
-    if (triangle_id.size() != triangles())
-      detail::throw_out_of_range(where, "triangles.triangle_id size", triangle_id.size(),
-                                 ("one per triangle: " + std::to_string(triangles())).c_str());
-    if (!object_id.empty() && object_id.size() != triangles())
-      detail::throw_out_of_range(
-          where, "triangles.object_id size", object_id.size(),
-          ("0 (absent) or one per triangle: " + std::to_string(triangles())).c_str());
-    for (std::size_t i = 0; i < indices.size(); ++i)
-      if (indices[i] >= vertices())
-        detail::throw_out_of_range(
-            where, "triangles.indices[" + std::to_string(i) + "]", indices[i],
-            ("below the vertex count, " + std::to_string(vertices())).c_str());
+// 2^y for y <= 0: n = round-half-up(y), r = y - n in [-1/2, 1/2], 2^r by its
+// Taylor polynomial (Horner), times 2^n built from exponent bits.
+template <class T>
+HUSH_INLINE T exp2_nonpositive(T y) {
+  if constexpr (std::is_same<T, double>::value) {
+    return std::exp2(y);
+  } else {
+    const auto& c = constants::kAnisoSeries.exp2;
+    if (!(y >= -126.0f)) return y != y ? y : 0.0f;  // NaN stays NaN; underflow to 0
+    const float n = std::floor(y + 0.5f);
+    const float r = y - n;  // exact (Sterbenz)
+    float p = float(c[7]);
+    p = p * r + float(c[6]);
+    p = p * r + float(c[5]);
+    p = p * r + float(c[4]);
+    p = p * r + float(c[3]);
+    p = p * r + float(c[2]);
+    p = p * r + float(c[1]);
+    p = p * r + float(c[0]);
+    // 2^n for n in [-126, 0]: a normal float, exponent field n + 127.
+    const auto e = static_cast<std::uint32_t>(static_cast<std::int32_t>(n) + 127) << 23;
+    return p * bits_to_float(e);
   }
-};
+}
 
+// log2(m) for m > 0: m = 2^e * a with a in [sqrt(1/2), sqrt(2)), then
+// log2 a = (2 / ln 2) atanh(z), z = (a - 1) / (a + 1), by its odd series.
+template <class T>
+HUSH_INLINE T log2_positive(T m) {
+  if constexpr (std::is_same<T, double>::value) {
+    return std::log2(m);
+  } else {
+    const auto& c = constants::kAnisoSeries.log2;
+    // Zero and values below the smallest normal float give -inf (every weight
+    // built on them is 0), +inf stays +inf, NaN and negative m give NaN.
+    if (!(m >= std::numeric_limits<float>::min()))
+      return m >= 0.0f ? -std::numeric_limits<float>::infinity()
+                       : std::numeric_limits<float>::quiet_NaN();
+    if (!(m < std::numeric_limits<float>::infinity())) return m;
+    std::uint32_t b = float_to_bits(m);
+    auto e = static_cast<std::int32_t>(b >> 23) - 127;
+    b = (b & 0x007fffffu) | 0x3f800000u;  // a in [1, 2)
+    float a = bits_to_float(b);
+    if (a > float(constants::kSqrt2)) {
+      a = a * 0.5f;  // exact
+      e += 1;
+    }
+    const float z = (a - 1.0f) / (a + 1.0f);
+    const float z2 = z * z;
+    float p = float(c[4]);
+    p = p * z2 + float(c[3]);
+    p = p * z2 + float(c[2]);
+    p = p * z2 + float(c[1]);
+    p = p * z2 + float(c[0]);
+    return static_cast<float>(e) + p * z;
+  }
+}
+
+// The bank's radial profile in octaves: cos^2(pi x / 2) = (1 - sin(pi z)) / 2
+// with z = |x| - 1/2 in [-1/2, 1/2) for |x| < 1, and 0 outside.
+template <class T>
+HUSH_INLINE T band_profile(T x) {
+  if constexpr (std::is_same<T, double>::value) {
+    if (x != x) return x;
+    if (!(std::fabs(x) < 1.0)) return 0.0;
+    const double c = std::cos(0.5 * constants::kPi * x);
+    return c * c;
+  } else {
+    const auto& c = constants::kAnisoSeries.sinpi;
+    if (x != x) return x;
+    const float ax = std::fabs(x);
+    if (!(ax < 1.0f)) return 0.0f;
+    const float z = ax - 0.5f;  // exact
+    const float z2 = z * z;
+    float p = float(c[6]);
+    p = p * z2 + float(c[5]);
+    p = p * z2 + float(c[4]);
+    p = p * z2 + float(c[3]);
+    p = p * z2 + float(c[2]);
+    p = p * z2 + float(c[1]);
+    p = p * z2 + float(c[0]);
+    return 0.5f - 0.5f * (p * z);
+  }
+}
+
+}  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_CORE_TRIANGLES_HPP
-// ---- end hush/core/triangles.hpp
+#endif  // HUSH_DETAIL_APPROX_MATH_HPP
+// ---- end hush/detail/approx_math.hpp
+// ---- begin hush/detail/fft.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// A small radix-2 FFT in double for power-of-two sizes: what the anisotropic
+// noise needs to build its subband tiles and decompose images (steerable.hpp),
+// without a dependency. hush's own rather than Eigen's FFT (unsupported/Eigen/FFT,
+// which the tests use as the reference): it keeps hush/anisotropic.hpp in the
+// umbrella and single headers (Eigen lives outside the default include path and
+// costs seconds per translation unit), and its operation order is fixed, so
+// tiles do not change with the FFT back end a user configures for Eigen.
+//
+//   fft(a, n, sign)   in-place DFT of n = 2^k complex values:
+//                     A[k] = sum_j a[j] exp(sign 2 pi i j k / n), sign = -1 (forward)
+//                     or +1 (inverse, unnormalised: divide by n yourself)
+//   fft2(a, n, sign)  the same on an n x n row-major array: rows, then columns
+// Accuracy: iterative Cooley-Tukey with twiddles from std::cos / std::sin of
+// 2 pi k / n; the result is within about 2 log2(n) ulps (relative to the
+// largest magnitude) of the exact DFT (tests/steerable_test.cpp compares it
+// with Eigen's FFT and a direct DFT).
+#ifndef HUSH_DETAIL_FFT_HPP
+#define HUSH_DETAIL_FFT_HPP
+
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+
+namespace hush {
+namespace detail {
+
+inline bool is_power_of_two(std::size_t n) { return n != 0 && (n & (n - 1)) == 0; }
+
+// Twiddles exp(sign 2 pi i k / n), k < n / 2.
+inline std::vector<std::complex<double>> fft_twiddles(std::size_t n, int sign) {
+  std::vector<std::complex<double>> w(n / 2);
+  for (std::size_t k = 0; k < n / 2; ++k) {
+    const double angle = 2.0 * constants::kPi * static_cast<double>(k) / static_cast<double>(n);
+    w[k] = {std::cos(angle), static_cast<double>(sign) * std::sin(angle)};
+  }
+  return w;
+}
+
+// In-place DFT of a[0 ... n-1] with the twiddles of (n, sign).
+inline void fft(std::complex<double>* a, std::size_t n, const std::complex<double>* w) {
+  if (n < 2) return;
+  // Bit-reversal permutation.
+  for (std::size_t i = 1, j = 0; i < n; ++i) {
+    std::size_t bit = n >> 1;
+    for (; j & bit; bit >>= 1) j ^= bit;
+    j ^= bit;
+    if (i < j) std::swap(a[i], a[j]);
+  }
+  for (std::size_t len = 2; len <= n; len <<= 1) {
+    const std::size_t half = len / 2, stride = n / len;
+    for (std::size_t i = 0; i < n; i += len)
+      for (std::size_t k = 0; k < half; ++k) {
+        // t = w a, written out: std::complex's operator* adds C99 Annex G's
+        // NaN recovery (a libgcc call per product); the inputs here are finite.
+        const std::complex<double> wk = w[k * stride], x = a[i + k + half];
+        const std::complex<double> t(wk.real() * x.real() - wk.imag() * x.imag(),
+                                     wk.real() * x.imag() + wk.imag() * x.real());
+        a[i + k + half] = a[i + k] - t;
+        a[i + k] = a[i + k] + t;
+      }
+  }
+}
+
+// In-place DFT of a[0 ... n-1], n a power of two (not checked: callers validate).
+inline void fft(std::complex<double>* a, std::size_t n, int sign) {
+  fft(a, n, fft_twiddles(n, sign).data());
+}
+
+// In-place 2D DFT of an n x n row-major array (n a power of two).
+inline void fft2(std::complex<double>* a, std::size_t n, int sign) {
+  const std::vector<std::complex<double>> w = fft_twiddles(n, sign);
+  for (std::size_t r = 0; r < n; ++r) fft(a + r * n, n, w.data());
+  std::vector<std::complex<double>> column(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    for (std::size_t r = 0; r < n; ++r) column[r] = a[r * n + c];
+    fft(column.data(), n, w.data());
+    for (std::size_t r = 0; r < n; ++r) a[r * n + c] = column[r];
+  }
+}
+
+// The signed frequency of DFT bin k of an n-point transform, in cycles per
+// sample: k / n for k <= n / 2, (k - n) / n above.
+inline double bin_frequency(std::size_t k, std::size_t n) {
+  const auto kk = static_cast<double>(k), nn = static_cast<double>(n);
+  return (2 * k <= n ? kk : kk - nn) / nn;
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_FFT_HPP
+// ---- end hush/detail/fft.hpp
 // ---- begin hush/fractal.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -2378,1555 +2393,1963 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
 
 #endif  // HUSH_FRACTAL_HPP
 // ---- end hush/fractal.hpp
-// ---- begin hush/gabor.hpp
+// ---- begin hush/steerable.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
-// sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
-// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
-// weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
-// analytic anti-aliasing.
+// hush::steerable_bank: the frequency-domain decomposition behind anisotropic
+// noise (Goldberg, Zwicker & Durand 2008, sec. 2): polar-separable filters
 //
-//   hush::gabor<2>::params prm;                  // isotropic, F0 = 1, a = 0.8, N' = 16
-//   prm.kind = hush::gabor_kind::anisotropic;
-//   prm.orientation = 0.25 * 3.14159;            // omega0, radians
-//   hush::gabor<2> noise{prm};
-//   float v = noise(hush::vec2{x, y});                              // unit variance
-//   float f = noise.sample(hush::vec2{x, y},                        // filtered over a pixel
-//                          hush::footprint<2>::from_derivatives(dpdx, dpdy));
-//   hush::gabor<3> solid{hush::gabor<3>::params{}};
-//   float s = solid.sample(p, normal, fp);       // surface noise (sec. 4.3)
+//   D_{i,s}(w) = G_i(theta) B(log2(|w| / f_s)),  i = 0 ... K-1, s = 0 ... S-1,
 //
-// The noise (paper sec. 3.2, eq. 6): n(x) = scale sum_i w_i g_{F_i}(x - x_i),
-//  - impulses x_i: a Poisson process of density lambda = N' / (V_D r^D), so
-//    that N' kernels overlap a point on average (N' = `impulses`; V_D the
-//    volume of the unit ball, r the kernel radius). Space is cut into cells of
-//    side r; cell c's impulses come from its own stream
-//    hush::rng(lattice_hash(key, c), kGaborSolidStream), key = seed_key(seed):
-//    the count from the first word through hush::poisson_table (integer
-//    comparisons, so every backend draws the same counts), then per impulse
-//    16-bit halves of the next words: position in the cell, weight, then the
-//    orientation and frequency its kind draws (gabor_marks below). Cells are
-//    32-bit (core/lattice.hpp): any seed, any cell, period 2^32 cells.
-//  - weights w_i uniform in (-1, 1) (symmetric 16-bit values, E[w^2] =
-//    (1 - 2^-32) / 3), so the noise has mean 0;
-//  - kinds (paper sec. 3.3): anisotropic (every F_i = F0 omega0), isotropic
-//    (omega_i uniform on the circle or sphere), hybrid (omega_i uniform in an
-//    orientation range around omega0 of width orientation_spread: an arc in 2D,
-//    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
-//    frequency_spread / 2).
+// plus a low-pass residual L below scale 0 and a high-pass residual R above
+// scale S-1, with f_s = base_frequency * 2^s (cycles per unit; scale 0 is the
+// lowest) and theta_i = pi i / K. They are the squares of Portilla &
+// Simoncelli's (2000) steerable-pyramid filters, i.e. analysis followed by
+// synthesis (derivation in docs/anisotropic.md, "The filter bank"):
 //
-// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
-//  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
-//    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
-//    make it independent of the count distribution beyond its mean, which is
-//    the Poisson table's exact mean), with the kernel energy integrated by
-//    quadrature (exact, not the paper's approximation K^2 / 4a^2).
-//  - power spectrum: lambda E[w^2] E[|g^_F(f)|^2] scale^2 (paper eq. 8),
-//    power_spectrum(f); isotropic noise's is a ring at |f| = F0, anisotropic
-//    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
-//  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
-//    magnitude); the observed maximum is far smaller (tests).
-//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
-//    analytic derivative.
-//  - float evaluation is within 2^-21 (1 + 2 pi Phi) sqrt(N') ... see
-//    float_budget(); measured in tests/gabor_test.cpp.
-//  - domain: every finite coordinate (positions are split into cell and
-//    fraction in double, so precision does not degrade far from the origin);
-//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
+//   B(x)   = cos^2(pi x / 2) for |x| < 1, else 0   (x in octaves; the paper's
+//            eq. 1 as extracted has the cases garbled: this is the product of
+//            Portilla & Simoncelli's squared high-pass H^2(r) and low-pass
+//            L^2(r/2)/4, which is one raised cosine in log2 r over two octaves)
+//   G_i    = alpha_K^2 cos^{2(K-1)}(theta - theta_i),
+//   alpha_K = 2^{K-1} (K-1)! / sqrt(K (2(K-1))!)   (the paper's "2^{i-1}" is an
+//            extraction error), over the whole circle: G_i(theta + pi) = G_i(theta),
+//            so every D is even and noise tiles built from it are real.
+//   L(w)   = 1 - B(x_0) below f_0 (1 under f_0 / 2), R(w) = 1 - B(x_{S-1}) above
+//            f_{S-1} (1 over 2 f_{S-1}), x_s = log2(|w| / f_s).
 //
-// Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
-// convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
-// (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
-// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
-// kept within the kernel's support. A point footprint gives exactly the
-// unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
-// HARD_CASES row 12) gives a finite result, continuous in the footprint, which
-// tends to the mean 0 as the footprint grows.
-//
-// Surface noise (3D, paper sec. 4.3): sample(p, normal[, footprint]) evaluates
-// 2D kernels in the tangent plane of the surface at p. The impulses of a
-// second 3D process (stream kGaborSurfaceStream, cells of side r sqrt(3/2))
-// that lie in the slab |<n, x - x_i>| < h = r / sqrt 2 contribute the 2D
-// kernel of their projection onto the plane, weighted by the taper of their
-// distance to it. The projection of a Poisson process in a slab is a 2D
-// Poisson process, so on a plane the surface noise has exactly the 2D noise's
-// spectrum and unit variance, with no slicing of a 3D spectrum. Isotropic and
-// hybrid impulses carry a 3D direction whose projection (normalised) is their
-// orientation in the plane (uniform on the circle for isotropic noise, for
-// every normal); anisotropic noise projects omega0 without normalising
-// (frequency F0 |P omega0|: the asked-for spectrum where omega0 lies in the
-// tangent plane, continuous everywhere). Footprints are projected onto the
-// tangent plane. A zero normal evaluates the solid noise; a non-finite normal
-// gives NaN.
-#ifndef HUSH_GABOR_HPP
-#define HUSH_GABOR_HPP
+// Properties (tests/steerable_test.cpp measures them):
+//  - invertibility: L + sum_{i,s} D_{i,s} + R = 1 at every frequency (to 1e-15):
+//    the orientations sum to one because sum_i cos^{2(K-1)}(theta - pi i / K) =
+//    K C(2K-2, K-1) / 4^{K-1} for every theta, and adjacent scales because
+//    cos^2(pi x / 2) + cos^2(pi (x - 1) / 2) = 1;
+//  - steerability: the analysis filters A_i = alpha_K cos^{K-1}(theta - theta_i)
+//    (D_i = A_i^2) steer exactly: A at any orientation phi equals
+//    sum_i b_i(phi) A_i with b_i(phi) = (1/K) sum_{m = -(K-1), step 2}^{K-1}
+//    cos(m (theta_i - phi)) (steering_weight()). The squared filters D carry
+//    angular harmonics up to 2(K-1) and need 2K-1 basis filters to steer
+//    linearly; with K the best linear blend of the D_i approximates a rotated
+//    D (docs/anisotropic.md gives the measured error).
+// Pure math, no allocation except in decompose(); thread-safe.
+#ifndef HUSH_STEERABLE_HPP
+#define HUSH_STEERABLE_HPP
 
-#include <array>
 #include <cmath>
-#include <cstdint>
-#include <limits>
-#include <memory>
+#include <complex>
+#include <cstddef>
 #include <string>
 #include <vector>
 
-// ---- begin hush/detail/elementary.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// exp and sin/cos that evaluate the same operations in scalar code, in every
-// SIMD target (hush/simd/elementary-inl.h mirrors them operation by
-// operation) and in GLSL (hush/glsl/gabor_glsl.hpp), so that noises built on
-// them can be bit-identical between scalar and SIMD evaluation (std::exp and
-// Highway's Exp differ in their last bits). In double they are the C
-// library's functions: the double instantiation of a noise is its reference.
-//
-//   exp_neg<T>(x)          e^x for x <= 0 (x > 0 is taken as 0)
-//   sincos_turns<T>(t)     {sin(2 pi t), cos(2 pi t)}, t in turns
-//
-// Float accuracy (tests/core/elementary_test.cpp measures it over the whole
-// range): exp_neg within 2^-22 relative (polynomial 2.5e-9 plus the
-// roundings of the reduction and of seven multiply-adds), and exactly 0 below
-// kExpFloor = -87; sincos_turns within 2^-23 absolute for every finite t (the
-// reduction to a quarter turn is exact). Non-finite arguments give NaN
-// (exp_neg of -Inf gives 0).
-#ifndef HUSH_DETAIL_ELEMENTARY_HPP
-#define HUSH_DETAIL_ELEMENTARY_HPP
-
-#include <cmath>
-#include <cstdint>
-#include <cstring>
-#include <type_traits>
-
 
 namespace hush {
-namespace detail {
 
-template <class T>
-struct sin_cos {
-  T sin, cos;
-};
-
-// e^x for x <= 0; x > 0 is clamped to 0 (the callers' arguments are minus a
-// non-negative quantity, which rounding can push a few ulp above 0).
-template <class T>
-HUSH_INLINE T exp_neg(T x) {
-  namespace c = constants;
-  if constexpr (std::is_same<T, double>::value) {
-    return std::exp(x > 0.0 ? 0.0 : x);  // NaN stays NaN
-  } else {
-    static_assert(std::is_same<T, float>::value, "exp_neg<T>: T is float or double");
-    if (!(x >= float(c::kExpFloor))) return x == x ? 0.0f : x;  // below the floor, or NaN
-    if (x > 0.0f) x = 0.0f;
-    const float n = std::floor(x * float(c::kLog2E) + 0.5f);  // in [-126, 0]
-    const float r = (x - n * float(c::kLn2Hi)) - n * float(c::kLn2Lo);
-    float p = float(c::kExpPoly[c::kExpDegree]);
-    for (int i = c::kExpDegree - 1; i >= 0; --i) p = p * r + float(c::kExpPoly[i]);
-    // 2^n from the exponent field: n + 127 in [1, 127], a normal float.
-    const std::uint32_t bits = static_cast<std::uint32_t>(static_cast<int>(n) + 127) << 23;
-    float scale;
-    std::memcpy(&scale, &bits, sizeof scale);
-    return p * scale;
-  }
-}
-
-// {sin(2 pi t), cos(2 pi t)}: t = q/4 + r with q = floor(4t + 1/2) quarter
-// turns and r = t - q/4 in [-1/8, 1/8], both exact for |t| < 2^22; larger t
-// (and NaN, Inf) are first replaced by t - floor(t), exact for every finite t
-// (a float that large has at most one fractional bit), so 4t never overflows.
-// The quadrant k = q mod 4 is kept in floating point, so no non-finite value
-// is ever converted to an integer, and rotates (sin 2 pi r, cos 2 pi r). The
-// reduction is exact for every finite t: the accuracy does not depend on |t|.
-template <class T>
-HUSH_INLINE sin_cos<T> sincos_turns(T t) {
-  namespace c = constants;
-  const T u = std::fabs(t) < T(c::kTurnsReduceLimit) ? t : t - std::floor(t);
-  const T q = std::floor(u * T(4) + T(0.5));
-  const T r = u - q * T(0.25);
-  T s, co;
-  if constexpr (std::is_same<T, double>::value) {
-    s = std::sin(c::kTwoPi * r);
-    co = std::cos(c::kTwoPi * r);
-  } else {
-    static_assert(std::is_same<T, float>::value, "sincos_turns<T>: T is float or double");
-    const float z = r * r;
-    float ps = float(c::kSinPoly[c::kSinDegree]);
-    for (int i = c::kSinDegree - 1; i >= 0; --i) ps = ps * z + float(c::kSinPoly[i]);
-    float pc = float(c::kCosPoly[c::kCosDegree]);
-    for (int i = c::kCosDegree - 1; i >= 0; --i) pc = pc * z + float(c::kCosPoly[i]);
-    s = r * ps;
-    co = pc;
-  }
-  const T k = q - T(4) * std::floor(q * T(0.25));  // 0, 1, 2 or 3 (NaN for NaN t)
-  const bool odd = k == T(1) || k == T(3);
-  const T sin_sign = k >= T(2) ? T(-1) : T(1);
-  const T cos_sign = (k == T(1) || k == T(2)) ? T(-1) : T(1);
-  return {(odd ? co : s) * sin_sign, (odd ? s : co) * cos_sign};
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_DETAIL_ELEMENTARY_HPP
-// ---- end hush/detail/elementary.hpp
-// ---- begin hush/detail/quadrature.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Numerical integration for the statistics hush computes at construction
-// (a noise's exact variance and power spectrum when no closed form exists),
-// in double, from the C library's cos only, so results are the same wherever
-// that is correctly rounded (glibc).
-//
-//   gauss_legendre_rule()          the 16-point Gauss-Legendre rule on [-1, 1]
-//   integrate(f, lo, hi, panels)   composite 16-point rule: exact for polynomials
-//                                  of degree 31 per panel; for smooth f the error
-//                                  falls geometrically with the panel count
-//   bessel_j0(z)                   J0 by the trapezoidal rule on its integral
-//                                  representation (periodic integrand: the error is
-//                                  below 2 |J_N(z)|, under 1e-15 with N = 2|z| + 40)
-#ifndef HUSH_DETAIL_QUADRATURE_HPP
-#define HUSH_DETAIL_QUADRATURE_HPP
-
-#include <array>
-#include <cmath>
-
-
-namespace hush {
-namespace detail {
-
-constexpr int kGaussPoints = 16;
-
-struct gauss_rule {
-  std::array<double, kGaussPoints> node, weight;
-};
-
-// Nodes (roots of P_16) by Newton's iteration from Tricomi's initial guesses,
-// weights 2 / ((1 - x^2) P_16'(x)^2). Computed once.
-inline const gauss_rule& gauss_legendre_rule() {
-  static const gauss_rule rule = [] {
-    gauss_rule g{};
-    constexpr int n = kGaussPoints;
-    for (int i = 0; i < n; ++i) {
-      double x = std::cos(constants::kPi * (i + 0.75) / (n + 0.5));
-      double dp = 1.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = x;  // P_0, P_1, then the recurrence up to P_n
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (x * p1 - p0) / (x * x - 1.0);
-        const double dx = p1 / dp;
-        x -= dx;
-        if (std::fabs(dx) < 1e-16) break;
-      }
-      g.node[static_cast<std::size_t>(i)] = x;
-      g.weight[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
-    }
-    return g;
-  }();
-  return rule;
-}
-
-// The integral of f over [lo, hi] by the 16-point rule on `panels` equal panels.
-template <class F>
-double integrate(F f, double lo, double hi, int panels) {
-  const gauss_rule& g = gauss_legendre_rule();
-  const double h = (hi - lo) / panels;
-  double sum = 0.0;
-  for (int p = 0; p < panels; ++p) {
-    const double mid = lo + (p + 0.5) * h, half = 0.5 * h;
-    double s = 0.0;
-    for (int i = 0; i < kGaussPoints; ++i)
-      s += g.weight[static_cast<std::size_t>(i)] *
-           f(mid + half * g.node[static_cast<std::size_t>(i)]);
-    sum += s * half;
-  }
-  return sum;
-}
-
-// J0(z) to ~1e-15 absolute: the power series for |z| < 8 (terms up to 113:
-// two digits of cancellation); the trapezoidal rule on
-// J0(z) = (1/2pi) int_0^2pi cos(z cos t) dt for 8 <= |z| < 25 (periodic
-// integrand: error below 2 |J_n(z)| with n = 2 ceil(|z|) + 40 points); Hankel's
-// asymptotic expansion beyond (Abramowitz and Stegun 9.2.5, summed while its
-// terms fall, the smallest below e^-2|z| < 2e-22).
-inline double bessel_j0(double z) {
-  const double x = std::fabs(z);
-  if (x < 8.0) {
-    const double q = -0.25 * x * x;
-    double term = 1.0, sum = 1.0;
-    for (int k = 1; k < 60 && std::fabs(term) > 1e-18; ++k) {
-      term *= q / (static_cast<double>(k) * k);
-      sum += term;
-    }
-    return sum;
-  }
-  if (x < 25.0) {
-    const int n = 2 * static_cast<int>(std::ceil(x)) + 40;
-    double s = 0.0;
-    for (int i = 0; i < n; ++i) s += std::cos(x * std::cos(constants::kTwoPi * i / n));
-    return s / n;
-  }
-  double p = 0.0, q = 0.0, term = 1.0, last = 2.0;
-  for (int k = 0; k < 60; ++k) {
-    if (k > 0) {
-      const double odd = 2.0 * k - 1.0;
-      term *= -odd * odd / (k * 8.0 * x);
-    }
-    if (std::fabs(term) >= last) break;  // the asymptotic series starts to diverge
-    last = std::fabs(term);
-    // Terms alternate between P (even k, signs + - + ...) and Q (odd k).
-    const double sign = (k / 2) % 2 == 0 ? 1.0 : -1.0;
-    if (k % 2 == 0)
-      p += sign * term;
-    else
-      q += sign * term;
-  }
-  const double chi = x - 0.25 * constants::kPi;
-  return std::sqrt(2.0 / (constants::kPi * x)) * (p * std::cos(chi) - q * std::sin(chi));
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_DETAIL_QUADRATURE_HPP
-// ---- end hush/detail/quadrature.hpp
-// ---- begin hush/gabor_kernel.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
-// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
-//
-//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
-//
-// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
-// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
-// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
-// what NPR Gabor noise splats, so it lives here once, for both:
-//
-//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
-//   double r = k.radius();                               // support radius
-//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
-//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
-//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
-//
-// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
-// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
-// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
-// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
-// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
-// every noise built on it are C1:
-//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
-//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
-//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
-//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
-//     and F >> a (tests/gabor_kernel_test.cpp).
-//
-// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
-// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
-// frequency is Phi = F r cycles per cell. The float path is separable:
-//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
-//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
-// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
-// share each axis's factors between samples and SIMD repeats it bit for bit.
-// value<double> is the reference (C library exp, sin, cos); float values are
-// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
-// measured 3e-7 (tests/gabor_kernel_test.cpp).
-//
-// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
-// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
-// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
-// (untruncated_power_spectrum). The tapered kernel's transform is
-// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
-// envelope, computed by quadrature (envelope_transform, power_spectrum,
-// energy): exact to ~1e-13 relative, no closed form exists.
-//
-// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
-// covariance Sigma (noise units) is again a Gabor kernel,
-//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
-//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
-//   Q = (I + 2 pi a^2 Sigma)^-1,
-// derived in docs/gabor.md (complete the square in the product of the two
-// transforms). gabor_filter<D> computes Q and the constants from a footprint;
-// the taper is kept at the unfiltered support.
-#ifndef HUSH_GABOR_KERNEL_HPP
-#define HUSH_GABOR_KERNEL_HPP
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <type_traits>
-
-
-namespace hush {
-namespace detail {
-
-// ---- The kernel in cell units, operation by operation as the SIMD kernels
-// (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
-
-// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), k = 1 / (1 - s0),
-// and its derivative dtau/ds = -6 k v (1 - v). Callers only pass s < 1.
-template <class T>
-struct gabor_taper_value {
-  T tau, dtau;
-};
-template <class T>
-HUSH_INLINE T gabor_taper(T s, T k) {
-  T v = (T(1) - s) * k;
-  v = v < T(1) ? v : T(1);
-  return (v * v) * (T(3) - T(2) * v);
-}
-template <class T>
-HUSH_INLINE gabor_taper_value<T> gabor_taper_derivative(T s, T k) {
-  T v = (T(1) - s) * k;
-  v = v < T(1) ? v : T(1);
-  return {(v * v) * (T(3) - T(2) * v), (T(-6) * k) * (v * (T(1) - v))};
-}
-
-// One axis of the separable kernel: offset d (cell units), d^2, the envelope
-// factor e^{-A d^2} and sin/cos(2 pi phi d).
-template <class T>
-struct gabor_axis {
-  T d, d2, e, s, c;
-};
-template <class T>
-HUSH_INLINE gabor_axis<T> gabor_axis_factors(T d, T neg_a, T phi) {
-  gabor_axis<T> f;
-  f.d = d;
-  f.d2 = d * d;
-  f.e = exp_neg(neg_a * f.d2);
-  const sin_cos<T> sc = sincos_turns(phi * d);
-  f.s = sc.sin;
-  f.c = sc.cos;
-  return f;
-}
-
-// What the kernel of one impulse is along every axis but x: its weight times
-// the envelope factors, the harmonic's cos and sin, and the squared offset.
-template <class T>
-struct gabor_row {
-  T we, c, s, d2;
-};
-template <class T>
-HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y) {
-  return {w * y.e, y.c, y.s, y.d2};
-}
-template <class T>
-HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y, const gabor_axis<T>& z) {
-  return {w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2};
-}
-
-// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1.
-template <class T>
-HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
-  const T s = x.d2 + r.d2;
-  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * gabor_taper(s, taper_k);
-}
-// The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
-template <class T>
-struct gabor_pair_gradient {
-  T value, u, v;
-};
-template <class T>
-HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
-                                                            const gabor_row<T>& r, T taper_k, T a) {
-  const T s = x.d2 + r.d2;
-  const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
-  const T p = x.e * r.we;
-  const T pc = p * (x.c * r.c - x.s * r.s);
-  const T ps = p * (x.s * r.c + x.c * r.s);
-  // d/dd_a of p cos(theta) tau: p cos (2 d_a tau' - 2 A d_a tau) - 2 pi phi_a p sin tau.
-  return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
-}
-
-// ---- Closed forms and quadratures in cell units (double).
-
-// The radially symmetric part of an integral over the unit ball: int phi(|d|) dd
-// = c_D int_0^1 phi(rho) rho^(D-1) drho, with the integrand split at the taper's
-// start (where the taper has a kink in its second derivative).
-template <int D, class F>
-double ball_integral(F phi, int panels) {
-  const double rho0 = std::sqrt(constants::kGaborTaperStart);
-  auto radial = [&](double rho) { return phi(rho) * (D == 2 ? rho : rho * rho); };
-  const double c = D == 2 ? constants::kTwoPi : 2.0 * constants::kTwoPi;
-  return c * (integrate(radial, 0.0, rho0, panels) + integrate(radial, rho0, 1.0, panels));
-}
-
-// The angular average of cos(2 pi xi rho <u, omega>) over unit u: J0 in 2D,
-// sin(z)/z in 3D, z = 2 pi xi rho.
-template <int D>
-double angular_average(double z) {
-  if constexpr (D == 2) {
-    return bessel_j0(z);
-  } else {
-    return std::fabs(z) < 1e-4 ? 1.0 - z * z / 6.0 : std::sin(z) / z;
-  }
-}
-
-// H(xi): the Fourier transform of the tapered envelope e^{-A |d|^2} tau(|d|^2)
-// at |xi| cycles per cell (radial, real).
-template <int D>
-double gabor_envelope_transform(double a, double xi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 2 * static_cast<int>(std::ceil(std::fabs(xi)));
-  return ball_integral<D>(
-      [&](double rho) {
-        const double s = rho * rho;
-        return std::exp(-a * s) * gabor_taper(s, k) *
-               angular_average<D>(constants::kTwoPi * xi * rho);
-      },
-      panels);
-}
-
-// int g^2 over the cell-unit ball for |Phi| = phi:
-// (1/2) int e^{-2A s} tau^2 (1 + cos(4 pi <Phi, d>)).
-template <int D>
-double gabor_energy(double a, double phi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
-  return 0.5 * ball_integral<D>(
-                   [&](double rho) {
-                     const double s = rho * rho, tau = gabor_taper(s, k);
-                     return std::exp(-2.0 * a * s) * tau * tau *
-                            (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
-                   },
-                   panels);
-}
-
-// int (g - g_Gabor)^2 and int g_Gabor^2 over all space (cell units), for the
-// truncation error. Outside the ball g = 0, and the Gabor kernel's energy there
-// is what the ball integral leaves of the closed form
-// int e^{-2A|d|^2} cos^2 = (pi / 2A)^(D/2) (1 + e^{-2 pi^2 phi^2 / A}) / 2.
-template <int D>
-double gabor_truncation_error(double a, double phi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
-  auto ball = [&](auto weight) {
-    return 0.5 * ball_integral<D>(
-                     [&](double rho) {
-                       const double s = rho * rho;
-                       return std::exp(-2.0 * a * s) * weight(gabor_taper(s, k)) *
-                              (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
-                     },
-                     panels);
-  };
-  const double pi2 = constants::kPi * constants::kPi;
-  const double full = std::pow(constants::kPi / (2.0 * a), 0.5 * D) * 0.5 *
-                      (1.0 + std::exp(-2.0 * pi2 * phi * phi / a));
-  const double inside_gabor = ball([](double) { return 1.0; });
-  const double inside_diff = ball([](double tau) { return (1.0 - tau) * (1.0 - tau); });
-  return std::sqrt((inside_diff + (full - inside_gabor)) / full);
-}
-
-}  // namespace detail
-
-template <int D>
-class gabor_kernel {
-  static_assert(D == 2 || D == 3, "hush::gabor_kernel is 2D or 3D");
-
+class steerable_bank {
  public:
-  static constexpr int dimension = D;
-
-  // bandwidth a in [1e-6, 1e6] (1/noise units), truncation t in [1e-9, 0.5]
-  // (the envelope's value at the support radius); hush::invalid_argument
-  // naming the parameter otherwise.
-  gabor_kernel(double bandwidth, double truncation) : a_(bandwidth), t_(truncation) {
-    namespace c = detail::constants;
-    detail::require_in_range("hush::gabor_kernel", "bandwidth", bandwidth, c::kGaborMinBandwidth,
-                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
-    detail::require_in_range("hush::gabor_kernel", "truncation", truncation, c::kGaborMinTruncation,
-                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
-    exponent_ = -std::log(t_);
-    r_ = std::sqrt(exponent_ / c::kPi) / a_;
-  }
-
-  double bandwidth() const { return a_; }
-  double truncation() const { return t_; }
-  // Support radius r = sqrt(ln(1/t) / pi) / a (noise units): g = 0 beyond.
-  double radius() const { return r_; }
-  // Radius up to which g is the Gabor kernel exactly: r sqrt(s0).
-  double taper_radius() const { return r_ * std::sqrt(detail::constants::kGaborTaperStart); }
-  // A = pi a^2 r^2 = ln(1/t): the envelope is e^{-A |x / r|^2}.
-  double envelope_exponent() const { return exponent_; }
-
-  // g at offset x (noise units) for frequency vector F (cycles per noise
-  // unit), in T (float: hush's separable float path; double: the reference).
-  template <class T>
-  T value(const vec<T, D>& x, const vec<double, D>& F) const {
-    return eval<T, false>(x, F).value;
-  }
-  template <class T>
-  value_gradient<T, D> value_and_gradient(const vec<T, D>& x, const vec<double, D>& F) const {
-    return eval<T, true>(x, F);
-  }
-
-  // Power spectrum |g^(f)|^2 of this kernel (noise units: f and F in cycles
-  // per unit), and of the untruncated Gabor kernel in closed form.
-  double power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
-    double lo = 0, hi = 0;
-    for (int i = 0; i < D; ++i) {
-      lo += (f[i] - F[i]) * (f[i] - F[i]);
-      hi += (f[i] + F[i]) * (f[i] + F[i]);
-    }
-    const double h = 0.5 * (envelope_transform(std::sqrt(lo)) + envelope_transform(std::sqrt(hi)));
-    return h * h;
-  }
-  double untruncated_power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
-    double lo = 0, hi = 0;
-    for (int i = 0; i < D; ++i) {
-      lo += (f[i] - F[i]) * (f[i] - F[i]);
-      hi += (f[i] + F[i]) * (f[i] + F[i]);
-    }
-    const double pi = detail::constants::kPi, a2 = a_ * a_;
-    const double h = 0.5 * std::pow(a_, -D) * (std::exp(-pi * lo / a2) + std::exp(-pi * hi / a2));
-    return h * h;
-  }
-  // The Fourier transform of the tapered envelope e^{-pi a^2 |x|^2} tau at
-  // |f| = k cycles per unit (radial, real): H in the spectra above.
-  double envelope_transform(double k) const {
-    return std::pow(r_, D) * detail::gabor_envelope_transform<D>(exponent_, k * r_);
-  }
-  // int g^2 dx for |F| = frequency (noise units): what a sparse convolution
-  // of these kernels at density lambda with weights w has as variance,
-  // lambda E[w^2] energy(F) (Campbell's theorem).
-  double energy(double frequency) const {
-    return std::pow(r_, D) * detail::gabor_energy<D>(exponent_, frequency * r_);
-  }
-  // Relative RMS difference of g and the untruncated Gabor kernel, |F| = frequency.
-  double truncation_error(double frequency) const {
-    return detail::gabor_truncation_error<D>(exponent_, frequency * r_);
-  }
-
- private:
-  template <class T, bool WithGradient>
-  value_gradient<T, D> eval(const vec<T, D>& x, const vec<double, D>& F) const {
-    const T inv_r = T(1.0 / r_), neg_a = T(-exponent_);
-    const T k = T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
-    detail::gabor_axis<T> ax[D];
-    T phi[D];
-    T s = 0;
-    for (int i = 0; i < D; ++i) {
-      phi[i] = T(F[i] * r_);
-      ax[i] = detail::gabor_axis_factors(x[i] * inv_r, neg_a, phi[i]);
-      s += ax[i].d2;
-    }
-    value_gradient<T, D> r{T(0), {}};
-    if (s >= T(1)) return r;  // outside the support (NaN offsets give NaN below)
-    detail::gabor_row<T> row;
-    if constexpr (D == 2)
-      row = detail::gabor_row_of(T(1), ax[1]);
-    else
-      row = detail::gabor_row_of(T(1), ax[1], ax[2]);
-    if constexpr (WithGradient) {
-      const auto p = detail::gabor_pair_with_gradient(ax[0], row, k, T(exponent_));
-      r.value = p.value;
-      for (int i = 0; i < D; ++i) r.gradient[i] = (p.u * ax[i].d - p.v * phi[i]) * inv_r;
-    } else {
-      r.value = detail::gabor_pair(ax[0], row, k);
-    }
-    return r;
-  }
-
-  double a_, t_, exponent_ = 0, r_ = 0;
-};
-
-namespace detail {
-
-// Eigenvalues and eigenvectors of a symmetric D x D matrix (D = 2, 3) by
-// cyclic Jacobi rotations: unconditionally stable, and accurate for nearly
-// singular and badly scaled matrices (a rank-1 footprint times 1e12), where
-// cofactor formulas cancel catastrophically. a is overwritten (its diagonal
-// ends holding the eigenvalues); v's columns are the eigenvectors.
-template <int D>
-void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
-  for (int i = 0; i < D; ++i)
-    for (int j = 0; j < D; ++j) v[i][j] = i == j ? 1.0 : 0.0;
-  for (int sweep = 0; sweep < 50; ++sweep) {
-    double off = 0, diag = 0;
-    for (int i = 0; i < D; ++i) {
-      diag += a[i][i] * a[i][i];
-      for (int j = i + 1; j < D; ++j) off += a[i][j] * a[i][j];
-    }
-    if (!(off > 1e-34 * diag)) return;  // converged (or NaN: give up)
-    for (int p = 0; p < D; ++p)
-      for (int q = p + 1; q < D; ++q) {
-        if (a[p][q] == 0.0) continue;
-        // The rotation that zeroes a[p][q]: t = tan, the smaller root.
-        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
-        const double c = 1.0 / std::hypot(t, 1.0), sn = t * c;
-        for (int k = 0; k < D; ++k) {  // columns p and q
-          const double akp = a[k][p], akq = a[k][q];
-          a[k][p] = c * akp - sn * akq;
-          a[k][q] = sn * akp + c * akq;
-        }
-        for (int k = 0; k < D; ++k) {  // rows p and q
-          const double apk = a[p][k], aqk = a[q][k];
-          a[p][k] = c * apk - sn * aqk;
-          a[q][k] = sn * apk + c * aqk;
-        }
-        for (int k = 0; k < D; ++k) {
-          const double vkp = v[k][p], vkq = v[k][q];
-          v[k][p] = c * vkp - sn * vkq;
-          v[k][q] = sn * vkp + c * vkq;
-        }
-      }
-  }
-}
-
-}  // namespace detail
-
-// The closed-form filtered kernel (Lagae 2009 sec. 5) for one sample's
-// footprint, in the kernel's cell units (d = x / r, Phi = F r):
-//   Q = (I + 2 A sigma^2 S / r^2)^-1  (S the footprint matrix, sigma =
-//       kPixelFilterSigma pixels: the Gaussian pixel filter N(0, sigma^2 S)),
-//   amplitude = sqrt(det Q),  attenuation(Phi) = e^{-Phi^T M Phi},
-//   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
-// Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
-// l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
-// below 0): Q = V diag(1 / (1 + k l)) V^T and I - Q = V diag(k l / (1 + k l))
-// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
-// footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
-// gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
-// footprints the amplitude underflows towards 0: the filtered noise is its mean.
-template <int D>
-struct gabor_filter {
-  double q[D][D];    // Q, symmetric
-  double m[D][D];    // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
-  double amplitude;  // sqrt(det Q), in (0, 1]
-
-  // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
-  gabor_filter(const footprint<D>& fp, double a, double inv_r) {
-    namespace c = detail::constants;
-    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
-    double s[D][D], v[D][D];
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
-    detail::jacobi_eigen<D>(s, v);
-    double qd[D], md[D];
-    amplitude = 1.0;
-    const double mk = c::kPi * c::kPi / a;
-    for (int i = 0; i < D; ++i) {
-      const double kl = k * std::fmax(s[i][i], 0.0);
-      qd[i] = 1.0 / (1.0 + kl);
-      md[i] = mk * (kl / (1.0 + kl));
-      amplitude *= std::sqrt(qd[i]);
-    }
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) {
-        double qq = 0, mm = 0;
-        for (int e = 0; e < D; ++e) {
-          qq += v[i][e] * qd[e] * v[j][e];
-          mm += v[i][e] * md[e] * v[j][e];
-        }
-        q[i][j] = qq;
-        m[i][j] = mm;
-      }
-  }
-};
-
-}  // namespace hush
-
-#endif  // HUSH_GABOR_KERNEL_HPP
-// ---- end hush/gabor_kernel.hpp
-
-namespace hush {
-
-enum class gabor_kind { isotropic, anisotropic, hybrid };
-
-namespace detail {
-
-// Fields of a stream word as values in (0, 1) (constants.hpp): byte i (0 =
-// highest) as (2m + 1) 2^-9, half i (0 = high) as (2m + 1) 2^-17. Exact in
-// float and in GLSL (an integer below 2^17 times a power of two).
-template <class T>
-HUSH_INLINE T gabor_byte(std::uint32_t w, unsigned i) {
-  namespace c = constants;
-  const std::uint32_t m = (w >> (c::kGaborByteBits * (3u - i))) & c::kGaborByteMask;
-  return T((m << 1) | 1u) * T(c::kGaborByteScale);
-}
-template <class T>
-HUSH_INLINE T gabor_half(std::uint32_t w, unsigned i) {
-  namespace c = constants;
-  const std::uint32_t m = (w >> (c::kGaborHalfBits * (1u - i))) & c::kGaborHalfMask;
-  return T((m << 1) | 1u) * T(c::kGaborHalfScale);
-}
-
-// An orthonormal basis (t, b) of the plane orthogonal to unit n, by Duff et
-// al., "Building an orthonormal basis, revisited" (JCGT 2017), in double.
-inline void orthonormal_basis(const vec<double, 3>& n, vec<double, 3>& t, vec<double, 3>& b) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double c = n.x * n.y * a;
-  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
-  b = {c, sign + n.y * n.y * a, -n.y};
-}
-
-}  // namespace detail
-
-// gabor_marks<D>: what an impulse of each kind carries besides its position,
-// drawn from uniform values in (0, 1): its weight and its frequency vector
-// (cycles per cell). Shared by gabor<D> and by noises that place impulses
-// their own way (NPR Gabor noise). The values are consumed in this order:
-//   [0] weight w = 2 u - 1 (exact)
-//   isotropic, hybrid, 2D: [1] orientation theta = theta0 + spread (u - 1/2) turns
-//   isotropic, hybrid, 3D: [1] cos(polar) = 1 - (1 - cos(cap)) u, [2] azimuth u turns,
-//                          in the frame whose third axis is omega0
-//   hybrid:                [next] |F| = Phi0 + dPhi (u - 1/2)
-// anisotropic impulses take only the weight. values() is how many they take;
-// gabor<D> draws them from its cells' words (constants.hpp, "Impulse marks").
-template <int D>
-class gabor_marks {
- public:
-  gabor_marks() = default;
-  // phi0, dphi: frequency and its range's width in cycles per cell (F r);
-  // orientation, elevation, spread: radians (validated by gabor<D>).
-  gabor_marks(gabor_kind kind, double phi0, double dphi, double orientation, double elevation,
-              double spread)
-      : kind_(kind), phi0_(phi0), dphi_(dphi) {
-    namespace c = detail::constants;
-    const double ca = std::cos(orientation), sa = std::sin(orientation);
-    const double ce = std::cos(elevation), se = std::sin(elevation);
-    if constexpr (D == 2) {
-      axis_ = {ca, sa};
-      theta0_ = kind == gabor_kind::isotropic ? 0.0 : orientation / c::kTwoPi;
-      spread_ = kind == gabor_kind::isotropic ? 1.0 : spread / c::kTwoPi;
-    } else {
-      axis_ = {ce * ca, ce * sa, se};
-      cos_cap_ = kind == gabor_kind::isotropic ? -1.0 : std::cos(0.5 * spread);
-      if (kind == gabor_kind::isotropic) {
-        t_ = {1, 0, 0};
-        b_ = {0, 1, 0};
-        axis_frame_ = {0, 0, 1};
-      } else {
-        detail::orthonormal_basis(axis_, t_, b_);
-        axis_frame_ = axis_;
-      }
-    }
-    for (int i = 0; i < D; ++i) fixed_[i] = phi0 * axis_[i];
-  }
-
-  gabor_kind kind() const { return kind_; }
-  // How many uniform values one impulse's marks take.
-  int values() const {
-    if (kind_ == gabor_kind::anisotropic) return 1;
-    return 1 + (D == 2 ? 1 : 2) + (kind_ == gabor_kind::hybrid ? 1 : 0);
-  }
-
-  // The weight and frequency vector (cycles per cell) from uniform values u
-  // (values() of them), with float or double arithmetic.
-  template <class T>
-  void draw(const T* u, T& weight, vec<T, D>& frequency) const {
-    namespace c = detail::constants;
-    weight = T(2) * u[0] - T(1);
-    if (kind_ == gabor_kind::anisotropic) {
-      for (int i = 0; i < D; ++i) frequency[i] = T(fixed_[i]);
-      return;
-    }
-    const T phi = kind_ == gabor_kind::hybrid ? T(phi0_) + T(dphi_) * (u[D] - T(0.5)) : T(phi0_);
-    if constexpr (D == 2) {
-      const detail::sin_cos<T> sc = detail::sincos_turns(T(theta0_) + T(spread_) * (u[1] - T(0.5)));
-      frequency = {phi * sc.cos, phi * sc.sin};
-    } else {
-      vec<T, 3> dir;
-      direction(u[1], u[2], dir);
-      for (int i = 0; i < 3; ++i) frequency[i] = phi * dir[i];
-    }
-  }
-
-  // 3D: the unit direction of values (u1, u2): uniform in the cap around
-  // omega0 (the whole sphere for isotropic noise).
-  template <class T>
-  void direction(T u1, T u2, vec<T, 3>& dir) const {
-    const T ct = T(1) - T(1.0 - cos_cap_) * u1;
-    const T st = std::sqrt((T(1) - ct) * (T(1) + ct));
-    const detail::sin_cos<T> sc = detail::sincos_turns(u2);
-    const T lx = st * sc.cos, ly = st * sc.sin;
-    for (int i = 0; i < 3; ++i) dir[i] = (T(t_[i]) * lx + T(b_[i]) * ly) + T(axis_frame_[i]) * ct;
-  }
-
-  // Orientation omega0 (unit), its frequency vector Phi0 omega0, and the
-  // constants the SIMD and GLSL code read.
-  const vec<double, D>& axis() const { return axis_; }
-  const vec<double, D>& fixed_frequency() const { return fixed_; }
-  double phi0() const { return phi0_; }
-  double dphi() const { return dphi_; }
-  double theta0() const { return theta0_; }
-  double spread_turns() const { return spread_; }
-  double cos_cap() const { return cos_cap_; }
-  const vec<double, 3>& frame_t() const { return t_; }
-  const vec<double, 3>& frame_b() const { return b_; }
-  const vec<double, 3>& frame_axis() const { return axis_frame_; }
-
- private:
-  gabor_kind kind_ = gabor_kind::isotropic;
-  double phi0_ = 0, dphi_ = 0;
-  vec<double, D> axis_{}, fixed_{};
-  double theta0_ = 0, spread_ = 1;  // 2D, turns
-  double cos_cap_ = -1;             // 3D
-  vec<double, 3> t_{}, b_{}, axis_frame_{};
-};
-
-template <int D>
-class gabor : public sample_noise<gabor<D>, D> {
-  static_assert(D == 2 || D == 3, "hush::gabor is 2D or 3D");
-
- public:
-  static constexpr bool takes_footprint = true;
-  static constexpr bool takes_normal = D == 3;
-
   struct params {
-    std::uint32_t seed = 0;
-    gabor_kind kind = gabor_kind::isotropic;
-    // F0: the principal frequency, cycles per noise unit, 0 ... 1e6.
-    double frequency = 1.0;
-    // a: the kernel's bandwidth, 1/noise units, 1e-6 ... 1e6; the radial
-    // spectral width of each blob is a / (2 sqrt(pi)) (standard deviation).
-    double bandwidth = 0.8;
-    // omega0 (anisotropic and hybrid): azimuth in the xy plane, radians.
-    double orientation = 0.0;
-    // 3D: omega0's angle above the xy plane, radians.
-    double elevation = 0.0;
-    // hybrid: width of the orientation range around omega0, radians, 0 ...
-    // 2 pi (2D: an arc; 3D: the apex angle of a spherical cap; 2 pi = all).
-    double orientation_spread = 0.0;
-    // hybrid: width of the frequency range around F0, 0 ... 2 F0.
-    double frequency_spread = 0.0;
-    // N': the mean number of kernels overlapping a point, (0, 256].
-    double impulses = 16.0;
-    // t: the kernel envelope's value at its support radius, 1e-9 ... 0.5.
-    double truncation = detail::constants::kGaborDefaultTruncation;
+    int orientations = 4;         // K, kAnisoMinOrientations ... kAnisoMaxOrientations
+    int scales = 3;               // S, 1 ... kAnisoMaxScales
+    double base_frequency = 1.0;  // f_0: centre of scale 0, cycles per unit, finite > 0
   };
 
-  gabor() : gabor(params{}) {}
-  // Throws hush::invalid_argument naming the first parameter out of range.
-  explicit gabor(const params& prm) : prm_(prm), kernel_(check(prm).bandwidth, prm.truncation) {
+  steerable_bank() : steerable_bank(params{}) {}
+  // Throws hush::invalid_argument naming the parameter and its valid range.
+  explicit steerable_bank(const params& prm) : prm_(prm) {
     namespace c = detail::constants;
-    key_ = seed_key(prm.seed);
-    const double r = kernel_.radius();
-    inv_cell_ = 1.0 / r;
-    marks_ = gabor_marks<D>(prm.kind, prm.frequency * r, prm.frequency_spread * r, prm.orientation,
-                            prm.elevation, prm.orientation_spread);
-    // N' kernels per unit ball of radius r: N' / V_D per cell of side r.
-    const double ball = D == 2 ? c::kPi : 4.0 * c::kPi / 3.0;
-    table_ = std::make_shared<const poisson_table>(prm.impulses / ball);
-    scale_ = 1.0 / std::sqrt(table_->exact_mean() * weight_moment() * mean_energy());
-    if constexpr (D == 3) {
-      // Slab of half-height h = r / sqrt 2, disk of radius r, cells of r sqrt(3/2):
-      // lambda_3 = N' / (2 h pi r^2), mu = lambda_3 cell^3.
-      const double cell = c::kGaborSurfaceCell;
-      inv_surface_cell_ = 1.0 / (r * cell);
-      surface_table_ = std::make_shared<const poisson_table>(prm.impulses * cell * cell * cell /
-                                                             (2.0 * c::kGaborSurfaceSlab * c::kPi));
-      surface_scale_ = 1.0 / std::sqrt(surface_table_->exact_mean() * weight_moment() *
-                                       mean_energy_2d() * surface_geometry());
-      for (const auto& t : {table_, surface_table_})
-        if (t->max_count() > static_cast<std::uint32_t>(c::kGaborMaxThresholds))
-          throw hush::invalid_argument("hush::gabor: internal Poisson table too long");
+    detail::require_in_range("hush::steerable_bank", "orientations", prm.orientations,
+                             c::kAnisoMinOrientations, c::kAnisoMaxOrientations, "2 ... 8");
+    detail::require_in_range("hush::steerable_bank", "scales", prm.scales, 1, c::kAnisoMaxScales,
+                             "1 ... 12");
+    if (!(prm.base_frequency > 0.0 && prm.base_frequency < 1e300))
+      detail::throw_out_of_range("hush::steerable_bank", "base_frequency", prm.base_frequency,
+                                 "a finite number > 0 (cycles per unit)");
+    for (int i = 0; i < prm.orientations; ++i) {
+      const double t = orientation_angle(i);
+      dir_[i] = {std::cos(t), std::sin(t)};
     }
   }
 
   const params& parameters() const { return prm_; }
-  const gabor_kernel<D>& kernel() const { return kernel_; }
-  const gabor_marks<D>& marks() const { return marks_; }
-  // The per-cell Poisson tables (solid; surface in 3D).
-  const poisson_table& table() const { return *table_; }
-  const poisson_table& surface_table() const {
-    static_assert(D == 3, "surface noise is 3D");
-    return *surface_table_;
+  int orientations() const { return prm_.orientations; }
+  int scales() const { return prm_.scales; }
+  // K S subbands; index i + K s (orientation fastest).
+  int subbands() const { return prm_.orientations * prm_.scales; }
+  // f_s = f_0 2^s, cycles per unit.
+  double centre_frequency(int s) const { return std::ldexp(prm_.base_frequency, s); }
+  // theta_i = pi i / K and its unit vector (cos, sin).
+  double orientation_angle(int i) const {
+    return detail::constants::kPi * static_cast<double>(i) / static_cast<double>(orientations());
   }
-  std::uint32_t key() const { return key_; }
-  // 1 / cell side (cells are r wide; surface cells r sqrt(3/2)).
-  double inverse_cell() const { return inv_cell_; }
-  double inverse_surface_cell() const { return inv_surface_cell_; }
-  // Words one impulse takes from its cell's stream (after the count's word).
-  int words_per_impulse() const { return words_for(prm_.kind); }
-  // The factor that makes the variance 1 (the raw sum times scale()).
-  double scale() const { return scale_; }
-  double surface_scale() const { return surface_scale_; }
+  const dvec2& direction(int i) const { return dir_[i]; }
 
-  // Variance 1 and mean 0 over space and seeds (see the file comment).
-  static constexpr double variance() { return 1.0; }
-  // |n| <= bound() (solid noise; surface noise's bound in 3D is surface_bound()).
-  double bound() const { return std::pow(3.0, D) * table_->max_count() * scale_; }
-  double surface_bound() const { return 27.0 * surface_table_->max_count() * surface_scale_; }
+  // ---- The filter pieces (static: functions of K and of an angle or octave offset).
 
-  // E[w^2] of the 8-bit symmetric weights: (1 - 2^-16) / 3.
-  static constexpr double weight_moment() { return (1.0 - 1.0 / 65536.0) / 3.0; }
-  // E over the kind's frequencies of the kernel energy int g^2 in cell units.
-  double mean_energy() const { return mean_energy_of<D>(); }
-
-  // The power spectrum of the unit-variance noise at frequency f (cycles per
-  // noise unit), exact: lambda E[w^2] E_F[|g^_F(f)|^2] scale^2. Quadrature of
-  // the kernel transform for each call (milliseconds); gabor_spectrum tabulates
-  // it for images.
-  double power_spectrum(const vec<double, D>& f) const {
-    const double a = kernel_.envelope_exponent();
-    return spectrum_with(f, [a](double k) { return detail::gabor_envelope_transform<D>(a, k); });
+  // alpha_K = 2^{K-1} (K-1)! / sqrt(K (2K-2)!).
+  static double alpha(int k) {
+    double fact = 1.0, fact2 = 1.0;
+    for (int m = 2; m <= k - 1; ++m) fact *= m;
+    for (int m = 2; m <= 2 * (k - 1); ++m) fact2 *= m;
+    return std::ldexp(fact, k - 1) / std::sqrt(static_cast<double>(k) * fact2);
   }
-
-  // The same with H(k), the tapered envelope's transform at k cycles per cell,
-  // supplied by the caller (gabor_spectrum passes a table of it).
-  template <class H>
-  double spectrum_with(const vec<double, D>& f, H h) const {
-    const double r = kernel_.radius();
-    vec<double, D> xi;
-    for (int i = 0; i < D; ++i) xi[i] = f[i] * r;
-    return scale_ * scale_ * table_->exact_mean() * weight_moment() * std::pow(r, D) *
-           mean_kernel_spectrum(xi, h);
+  // The analysis filter's angular part A(dtheta) = alpha_K cos^{K-1}(dtheta),
+  // from c = cos(dtheta) (odd in c for even K).
+  static double analysis_angular(int k, double cos_dtheta) {
+    return alpha(k) * power(cos_dtheta, k - 1);
+  }
+  // G(dtheta) = A^2 = alpha_K^2 cos^{2(K-1)}(dtheta), from c = cos(dtheta).
+  static double angular(int k, double cos_dtheta) {
+    const double a = analysis_angular(k, cos_dtheta);
+    return a * a;
+  }
+  // Steering weight b_i(phi): A(theta - phi) = sum_i b_i(phi) A(theta - theta_i).
+  static double steering_weight(int k, int i, double phi) {
+    const double d = detail::constants::kPi * static_cast<double>(i) / static_cast<double>(k) - phi;
+    double sum = 0;
+    for (int m = -(k - 1); m <= k - 1; m += 2) sum += std::cos(m * d);
+    return sum / static_cast<double>(k);
+  }
+  // B(x) = cos^2(pi x / 2) for |x| < 1, else 0 (x in octaves from a centre).
+  static double radial(double x) {
+    if (!(std::fabs(x) < 1.0)) return 0.0;
+    const double c = std::cos(0.5 * detail::constants::kPi * x);
+    return c * c;
   }
 
-  // p(vec) -> value, p.gradient(vec) (core/point_noise.hpp) and p.sample(...)
-  // (core/samples.hpp) come from the base classes.
-  template <class T>
-  T value(const vec<double, D>& p) const {
-    return eval<T, false>(p).value;
-  }
-  template <class T>
-  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
-    return eval<T, true>(p);
-  }
-  template <class T>
-  T sample_value(const sample_input<D>& s) const {
-    return sample_eval<T, false>(s).value;
-  }
-  template <class T>
-  value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s) const {
-    return sample_eval<T, true>(s);
-  }
+  // ---- The filters at frequency w (cycles per unit).
 
-  // ---- The pieces every backend repeats (hush/simd/gabor-inl.h, GLSL).
-
-  // The impulses of solid cell `cell` (32-bit lattice indices), in stream
-  // order: f(words), the impulse's words_per_impulse() stream words, whose
-  // fields impulse_position() and mark_values() decode (constants.hpp,
-  // "Impulse marks"): decoding only what is needed is what every backend does.
-  template <class F>
-  void for_each_impulse(const std::uint32_t (&cell)[D], F f) const {
-    rng r(cell_seed(cell), detail::constants::kGaborSolidStream);
-    const std::uint32_t n = table_->count(r.next_u32());
-    const int words = words_per_impulse();
-    for (std::uint32_t k = 0; k < n; ++k) {
-      std::uint32_t w[3] = {0, 0, 0};
-      for (int i = 0; i < words; ++i) w[i] = r.next_u32();
-      f(static_cast<const std::uint32_t*>(w));
-    }
+  // D_{i,s}(w); 0 at w = 0.
+  double subband(int i, int s, const dvec2& w) const {
+    const double r = std::hypot(w.x, w.y);
+    if (!(r > 0.0)) return 0.0;
+    const double b = radial(std::log2(r / centre_frequency(s)));
+    if (b == 0.0) return 0.0;
+    return angular(orientations(), (w.x * dir_[i].x + w.y * dir_[i].y) / r) * b;
   }
-  // The same for the surface process (3D; cells r sqrt(3/2) wide).
-  template <class F>
-  void for_each_surface_impulse(const std::uint32_t (&cell)[3], F f) const {
-    rng r(lattice_hash(key_, cell[0], cell[1], cell[2]), detail::constants::kGaborSurfaceStream);
-    const std::uint32_t n = surface_table_->count(r.next_u32());
-    const int words = words_for(prm_.kind, 3);
-    for (std::uint32_t k = 0; k < n; ++k) {
-      std::uint32_t w[3] = {0, 0, 0};
-      for (int i = 0; i < words; ++i) w[i] = r.next_u32();
-      f(static_cast<const std::uint32_t*>(w));
-    }
+  // The isotropic sum over orientations of scale s: B(log2(|w| / f_s)).
+  double scale_band(int s, const dvec2& w) const {
+    const double r = std::hypot(w.x, w.y);
+    return r > 0.0 ? radial(std::log2(r / centre_frequency(s))) : 0.0;
   }
-  // Coordinate `axis` of an impulse's position in its cell, in (0, 1).
-  template <class T>
-  static T impulse_position(const std::uint32_t* words, int axis) {
-    return detail::gabor_byte<T>(words[0], static_cast<unsigned>(axis));
+  // L(w): 1 below f_0 / 2, 1 - B above, 0 from f_0 on.
+  double low_residual(const dvec2& w) const {
+    const double r = std::hypot(w.x, w.y);
+    if (!(r > 0.5 * centre_frequency(0))) return 1.0;
+    const double x = std::log2(r / centre_frequency(0));
+    return x >= 0.0 ? 0.0 : 1.0 - radial(x);
   }
-  // The values gabor_marks::draw takes, from an impulse's words (E = 2 or 3:
-  // the process's dimension).
-  template <class T, int E = D>
-  void mark_values(const std::uint32_t* words, T* u) const {
-    u[0] = detail::gabor_byte<T>(words[0], E);  // weight
-    if (prm_.kind == gabor_kind::anisotropic) return;
-    if constexpr (E == 2) {
-      u[1] = detail::gabor_byte<T>(words[0], 3);
-      if (prm_.kind == gabor_kind::hybrid) u[2] = detail::gabor_half<T>(words[1], 0);
-    } else {
-      u[1] = detail::gabor_half<T>(words[1], 0);
-      u[2] = detail::gabor_half<T>(words[1], 1);
-      if (prm_.kind == gabor_kind::hybrid) u[3] = detail::gabor_half<T>(words[2], 0);
-    }
+  // R(w): 0 below f_{S-1}, 1 - B above, 1 from 2 f_{S-1} on.
+  double high_residual(const dvec2& w) const {
+    const double r = std::hypot(w.x, w.y);
+    const double top = centre_frequency(scales() - 1);
+    if (!(r > top)) return 0.0;
+    const double x = std::log2(r / top);
+    return x >= 1.0 ? 1.0 : 1.0 - radial(x);
   }
-
-  // Words per impulse of a kind in E dimensions (constants.hpp, "Impulse marks").
-  static int words_for(gabor_kind kind, int e = D) {
-    if (kind == gabor_kind::hybrid) return e == 2 ? 2 : 3;
-    return kind == gabor_kind::isotropic && e == 3 ? 2 : 1;
+  // L + sum D + R: 1 everywhere (invertibility); for tests.
+  double total(const dvec2& w) const {
+    double t = low_residual(w) + high_residual(w);
+    for (int s = 0; s < scales(); ++s)
+      for (int i = 0; i < orientations(); ++i) t += subband(i, s, w);
+    return t;
   }
 
  private:
-  static const params& check(const params& p) {
-    namespace c = detail::constants;
-    const char* w = "hush::gabor";
-    detail::require_in_range(w, "frequency", p.frequency, 0.0, c::kGaborMaxFrequency,
-                             "0 <= frequency <= 1e+06 (cycles per noise unit)");
-    detail::require_in_range(w, "bandwidth", p.bandwidth, c::kGaborMinBandwidth,
-                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
-    detail::require_in_range(w, "truncation", p.truncation, c::kGaborMinTruncation,
-                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
-    if (!(p.impulses > 0.0 && p.impulses <= c::kGaborMaxImpulses))
-      detail::throw_out_of_range(w, "impulses", p.impulses, "0 < impulses <= 256");
-    if (!std::isfinite(p.orientation))
-      detail::throw_out_of_range(w, "orientation", p.orientation, "a finite angle in radians");
-    if (!std::isfinite(p.elevation))
-      detail::throw_out_of_range(w, "elevation", p.elevation, "a finite angle in radians");
-    detail::require_in_range(w, "orientation_spread", p.orientation_spread, 0.0, c::kTwoPi,
-                             "0 <= orientation_spread <= 2 pi (radians)");
-    detail::require_in_range(w, "frequency_spread", p.frequency_spread, 0.0, 2.0 * p.frequency,
-                             "0 <= frequency_spread <= 2 * frequency");
-    if (p.kind != gabor_kind::isotropic && p.kind != gabor_kind::anisotropic &&
-        p.kind != gabor_kind::hybrid)
-      detail::throw_out_of_range(w, "kind", static_cast<int>(p.kind),
-                                 "isotropic, anisotropic or hybrid");
+  static double power(double c, int n) {
+    double p = 1.0;
+    for (int m = 0; m < n; ++m) p *= c;
     return p;
   }
 
-  std::uint32_t cell_seed(const std::uint32_t (&cell)[D]) const {
-    if constexpr (D == 2)
-      return lattice_hash(key_, cell[0], cell[1]);
-    else
-      return lattice_hash(key_, cell[0], cell[1], cell[2]);
-  }
-
-  // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
-  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
-  template <class H>
-  double mean_kernel_spectrum(const vec<double, D>& xi, H h) const {
-    namespace c = detail::constants;
-    auto one = [&](const vec<double, D>& phi) {
-      double lo = 0, hi = 0;
-      for (int i = 0; i < D; ++i) {
-        lo += (xi[i] - phi[i]) * (xi[i] - phi[i]);
-        hi += (xi[i] + phi[i]) * (xi[i] + phi[i]);
-      }
-      const double v = 0.5 * (h(std::sqrt(lo)) + h(std::sqrt(hi)));
-      return v * v;
-    };
-    if (prm_.kind == gabor_kind::anisotropic) return one(marks_.fixed_frequency());
-    double xi_len = 0;
-    for (int i = 0; i < D; ++i) xi_len += xi[i] * xi[i];
-    xi_len = std::sqrt(xi_len);
-    const double phi0 = marks_.phi0(), dphi = marks_.dphi();
-    const bool hybrid = prm_.kind == gabor_kind::hybrid;
-    // The blob centres +-Phi move by 2 pi |Phi| cycles per cell per turn, and H
-    // is ~0.4 cycles per cell wide: these node counts resolve it to ~1e-10.
-    const double reach = phi0 + 0.5 * dphi;
-    // Average over |Phi| (hybrid) of f(|Phi|).
-    auto over_frequency = [&](auto f) {
-      if (!hybrid || dphi == 0.0) return f(phi0);
-      const int panels = 1 + static_cast<int>(std::ceil(2.0 * dphi));
-      return detail::integrate(f, phi0 - 0.5 * dphi, phi0 + 0.5 * dphi, panels) / dphi;
-    };
-    if constexpr (D == 2) {
-      return over_frequency([&](double ph) {
-        auto at = [&](double turns) {
-          const double ang = c::kTwoPi * turns;
-          return one({ph * std::cos(ang), ph * std::sin(ang)});
-        };
-        if (!hybrid) {  // uniform on the circle: the trapezoidal rule is spectral
-          const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
-          double sum = 0;
-          for (int i = 0; i < n; ++i) sum += at(static_cast<double>(i) / n);
-          return sum / n;
-        }
-        const double spread = marks_.spread_turns(), theta0 = marks_.theta0();
-        if (spread == 0.0) return at(theta0);
-        const int panels = 1 + static_cast<int>(std::ceil(8.0 * reach * spread));
-        return detail::integrate(at, theta0 - 0.5 * spread, theta0 + 0.5 * spread, panels) / spread;
-      });
-    } else {
-      return over_frequency([&](double ph) {
-        if (!hybrid) {  // uniform on the sphere: only the angle to xi matters
-          auto at = [&](double cg) {
-            const double base = xi_len * xi_len + ph * ph, cross = 2.0 * xi_len * ph * cg;
-            const double v =
-                0.5 * (h(std::sqrt(std::fmax(base - cross, 0.0))) + h(std::sqrt(base + cross)));
-            return v * v;
-          };
-          const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
-          return 0.5 * detail::integrate(at, -1.0, 1.0, panels);
-        }
-        const double cap = marks_.cos_cap();
-        if (cap >= 1.0) {  // zero spread: omega0 only
-          vec<double, 3> phi;
-          for (int i = 0; i < 3; ++i) phi[i] = ph * marks_.axis()[i];
-          return one(phi);
-        }
-        const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
-        const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
-        auto ring = [&](double ct) {  // average over the azimuth at polar cosine ct
-          double sum = 0;
-          for (int i = 0; i < n; ++i) {
-            const double u2 = static_cast<double>(i) / n;
-            const double st = std::sqrt(std::fmax((1.0 - ct) * (1.0 + ct), 0.0));
-            const double lx = st * std::cos(c::kTwoPi * u2), ly = st * std::sin(c::kTwoPi * u2);
-            vec<double, 3> phi;
-            for (int k = 0; k < 3; ++k)
-              phi[k] = ph * ((marks_.frame_t()[k] * lx + marks_.frame_b()[k] * ly) +
-                             marks_.frame_axis()[k] * ct);
-            sum += one(phi);
-          }
-          return sum / n;
-        };
-        return detail::integrate(ring, cap, 1.0, panels) / (1.0 - cap);
-      });
-    }
-  }
-
-  template <int E>
-  double mean_energy_of() const {
-    namespace c = detail::constants;
-    const double a = kernel_.envelope_exponent(), phi = marks_.phi0(), dphi = marks_.dphi();
-    if (prm_.kind != gabor_kind::hybrid || dphi == 0.0) return detail::gabor_energy<E>(a, phi);
-    // |Phi| uniform over [phi - dphi/2, phi + dphi/2]; the energy is smooth in it.
-    return detail::integrate([&](double x) { return detail::gabor_energy<E>(a, x); },
-                             phi - 0.5 * dphi, phi + 0.5 * dphi, 2) /
-           dphi;
-  }
-  double mean_energy_2d() const { return mean_energy_of<2>(); }
-  // Surface noise's variance per (table mean * E[w^2] * 2D energy): the slab
-  // taper's mean square 2 int_0^1 tau(z^2)^2 dz times h r^2 / cell^3.
-  static double surface_geometry() {
-    namespace c = detail::constants;
-    const double k = 1.0 / (1.0 - c::kGaborTaperStart);
-    const double z0 = std::sqrt(c::kGaborTaperStart);
-    auto tau2 = [&](double z) {
-      const double t = detail::gabor_taper(z * z, k);
-      return t * t;
-    };
-    const double j = detail::integrate(tau2, 0.0, z0, 1) + detail::integrate(tau2, z0, 1.0, 2);
-    const double cell = c::kGaborSurfaceCell;
-    return 2.0 * j * c::kGaborSurfaceSlab / (cell * cell * cell);
-  }
-
-  // ---- Evaluation (the scalar reference of every backend).
-
-  // Calls pair(d, d2, s, w, phi) for every impulse of the solid process within
-  // the support of x = p / r (cell units): offsets d (cell units), their
-  // squares, s = |d|^2 < 1, weight and frequency vector. Cells go in raster
-  // order (z, y, x from -1 to 1 around x's cell) and impulses in stream order:
-  // the order the grid kernels accumulate in. False for a non-finite p.
-  template <class T, class Pair>
-  bool for_each_pair(const vec<double, D>& p, Pair pair) const {
-    lattice_coord<T> c[D];
-    for (int a = 0; a < D; ++a) {
-      c[a] = lattice_split<T>(p[a] * inv_cell_);
-      if (std::isnan(c[a].f)) return false;
-    }
-    constexpr int kCells = D == 2 ? 9 : 27;
-    for (int n = 0; n < kCells; ++n) {
-      int o[D];
-      std::uint32_t cell[D];
-      for (int ax = 0, m = n; ax < D; ++ax, m /= 3) {
-        o[ax] = m % 3 - 1;
-        cell[ax] = c[ax].i0 + static_cast<std::uint32_t>(o[ax]);
-      }
-      for_each_impulse(cell, [&](const std::uint32_t* words) {
-        T d[D], d2[D];
-        for (int ax = 0; ax < D; ++ax) {
-          d[ax] = (c[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
-          d2[ax] = d[ax] * d[ax];
-        }
-        const T s = D == 2 ? d2[0] + d2[1] : d2[0] + (d2[1] + d2[2]);
-        if (!(s < T(1))) return;
-        T u[4] = {}, w;
-        vec<T, D> phi;
-        mark_values<T>(words, u);
-        marks_.template draw<T>(u, w, phi);
-        pair(d, d2, s, w, phi);
-      });
-    }
-    return true;
-  }
-
-  // Unfiltered solid noise: the separable kernel (gabor_kernel.hpp).
-  template <class T, bool G>
-  value_gradient<T, D> eval(const vec<double, D>& p) const {
-    const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
-    const T taper_k = taper_k_<T>();
-    T sum = 0, g[D] = {};
-    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T, T w, const vec<T, D>& phi) {
-      detail::gabor_axis<T> ax[D];
-      for (int i = 0; i < D; ++i) ax[i] = detail::gabor_axis_factors(d[i], neg_a, phi[i]);
-      detail::gabor_row<T> row;
-      if constexpr (D == 2)
-        row = detail::gabor_row_of(w, ax[1]);
-      else
-        row = detail::gabor_row_of(w, ax[1], ax[2]);
-      if constexpr (G) {
-        const auto pg = detail::gabor_pair_with_gradient(ax[0], row, taper_k, a);
-        sum += pg.value;
-        for (int i = 0; i < D; ++i) g[i] += pg.u * d[i] - pg.v * phi[i];
-      } else {
-        sum += detail::gabor_pair(ax[0], row, taper_k);
-      }
-    });
-    if (!ok) return nan_result<T>();
-    return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
-  }
-
-  // One impulse of a filtered (or tangent-plane) kernel in E dimensions:
-  // w amplitude e^{-Phi^T M Phi} e^{-A d^T Q d} cos(2 pi <Q Phi, d>) tau(s),
-  // added to sum and, with G, its derivative by d to grad.
-  template <class T, int E, bool G>
-  static void filtered_pair(const T (&q)[E][E], const T (&m)[E][E], T amplitude, T neg_a, T a,
-                            T taper_k, const T* d, T s, T w, const T* phi, T& sum, T* grad) {
-    T mu[E], qd[E];
-    T att = 0, dqd = 0, theta = 0;
-    for (int i = 0; i < E; ++i) {
-      T x = 0, y = 0, z = 0;
-      for (int j = 0; j < E; ++j) {
-        x += q[i][j] * phi[j];
-        y += m[i][j] * phi[j];
-        z += q[i][j] * d[j];
-      }
-      mu[i] = x;
-      att += phi[i] * y;
-      qd[i] = z;
-      dqd += d[i] * z;
-    }
-    for (int i = 0; i < E; ++i) theta += mu[i] * d[i];
-    const T p = ((w * amplitude) * detail::exp_neg(-att)) * detail::exp_neg(neg_a * dqd);
-    const detail::sin_cos<T> sc = detail::sincos_turns(theta);
-    if constexpr (G) {
-      const detail::gabor_taper_value<T> tw = detail::gabor_taper_derivative(s, taper_k);
-      const T pc = p * sc.cos, ps = T(detail::constants::kTwoPi) * ((p * tw.tau) * sc.sin);
-      sum += pc * tw.tau;
-      for (int i = 0; i < E; ++i)
-        grad[i] += pc * ((tw.dtau + tw.dtau) * d[i] - (a + a) * (tw.tau * qd[i])) - ps * mu[i];
-    } else {
-      sum += (p * sc.cos) * detail::gabor_taper(s, taper_k);
-    }
-  }
-
-  // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
-  template <class T, bool G>
-  value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
-    const gabor_filter<D> flt(fp, kernel_.envelope_exponent(), inv_cell_);
-    T q[D][D], m[D][D];
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) {
-        q[i][j] = T(flt.q[i][j]);
-        m[i][j] = T(flt.m[i][j]);
-      }
-    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
-    const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
-    T sum = 0, g[D] = {};
-    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
-      T ph[D];
-      for (int i = 0; i < D; ++i) ph[i] = phi[i];
-      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, sum, g);
-    });
-    if (!ok) return nan_result<T>();
-    return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
-  }
-
-  // Surface noise at p with unit normal n (double), filtered over fp.
-  template <class T, bool G>
-  value_gradient<T, D> surface_eval(const vec<double, 3>& p, const vec<double, 3>& n,
-                                    const footprint<3>& fp) const {
-    namespace c = detail::constants;
-    vec<double, 3> t, b;
-    detail::orthonormal_basis(n, t, b);
-    // The footprint in the plane, in the kernel's units: [t b]^T S [t b].
-    float upper[3];
-    const vec<double, 3>* axes[2] = {&t, &b};
-    for (int i = 0, e = 0; i < 2; ++i)
-      for (int j = i; j < 2; ++j, ++e) {
-        double v = 0;
-        for (int r = 0; r < 3; ++r)
-          for (int k = 0; k < 3; ++k)
-            v += (*axes[i])[r] * static_cast<double>(fp.covariance(r, k)) * (*axes[j])[k];
-        upper[e] = static_cast<float>(v);
-      }
-    const gabor_filter<2> flt(footprint<2>::from_covariance(upper), kernel_.envelope_exponent(),
-                              inv_cell_);
-    T q[2][2], m[2][2];
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) {
-        q[i][j] = T(flt.q[i][j]);
-        m[i][j] = T(flt.m[i][j]);
-      }
-    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
-    const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
-    const T nt[3] = {T(n.x), T(n.y), T(n.z)}, tt[3] = {T(t.x), T(t.y), T(t.z)},
-            bt[3] = {T(b.x), T(b.y), T(b.z)};
-    // Kernel units per surface-cell unit, and 1 / h^2 in surface-cell units.
-    const T to_kernel = T(c::kGaborSurfaceCell);
-    const T inv_h2 = T((c::kGaborSurfaceCell / c::kGaborSurfaceSlab) *
-                       (c::kGaborSurfaceCell / c::kGaborSurfaceSlab));
-    const bool normalise = prm_.kind != gabor_kind::anisotropic;
-    lattice_coord<T> cc[3];
-    for (int ax = 0; ax < 3; ++ax) {
-      cc[ax] = lattice_split<T>(p[ax] * inv_surface_cell_);
-      if (std::isnan(cc[ax].f)) return nan_result<T>();
-    }
-    T sum = 0, g[3] = {};
-    for (int nc = 0; nc < 27; ++nc) {
-      int o[3];
-      std::uint32_t cell[3];
-      for (int ax = 0, mm = nc; ax < 3; ++ax, mm /= 3) {
-        o[ax] = mm % 3 - 1;
-        cell[ax] = cc[ax].i0 + static_cast<std::uint32_t>(o[ax]);
-      }
-      for_each_surface_impulse(cell, [&](const std::uint32_t* words) {
-        T d[3];
-        for (int ax = 0; ax < 3; ++ax)
-          d[ax] = (cc[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
-        const T zn = (nt[0] * d[0] + nt[1] * d[1]) + nt[2] * d[2];
-        const T z2 = (zn * zn) * inv_h2;
-        if (!(z2 < T(1))) return;
-        const T dk[2] = {((tt[0] * d[0] + tt[1] * d[1]) + tt[2] * d[2]) * to_kernel,
-                         ((bt[0] * d[0] + bt[1] * d[1]) + bt[2] * d[2]) * to_kernel};
-        const T s = dk[0] * dk[0] + dk[1] * dk[1];
-        if (!(s < T(1))) return;
-        // The impulse's weight and 3D direction (anisotropic: omega0) and |Phi|.
-        T u[4] = {};
-        mark_values<T, 3>(words, u);
-        const T w = T(2) * u[0] - T(1);
-        vec<T, 3> dir;
-        T phi = T(marks_.phi0());
-        if (prm_.kind == gabor_kind::anisotropic) {
-          for (int i = 0; i < 3; ++i) dir[i] = T(marks_.axis()[i]);
-        } else {
-          marks_.direction(u[1], u[2], dir);
-          if (prm_.kind == gabor_kind::hybrid)
-            phi = T(marks_.phi0()) + T(marks_.dphi()) * (u[3] - T(0.5));
-        }
-        const T vt = (tt[0] * dir[0] + tt[1] * dir[1]) + tt[2] * dir[2];
-        const T vb = (bt[0] * dir[0] + bt[1] * dir[1]) + bt[2] * dir[2];
-        T f = phi;
-        if (normalise) {
-          const T len2 = vt * vt + vb * vb;
-          f = len2 > T(0) ? phi / std::sqrt(len2) : T(0);
-        }
-        const T ph[2] = {f * vt, f * vb};
-        const detail::gabor_taper_value<T> slab = detail::gabor_taper_derivative(z2, taper_k);
-        T gs = 0, gk[2] = {0, 0};
-        filtered_pair<T, 2, G>(q, m, amplitude, neg_a, a, taper_k, dk, s, w, ph, gs, gk);
-        sum += gs * slab.tau;
-        if constexpr (G) {
-          // d/dd of (kernel * slab taper): the kernel's in-plane derivative
-          // (through dk = [t b]^T d sqrt(3/2)) and the slab's along n.
-          const T dz = gs * (slab.dtau * ((zn + zn) * inv_h2));
-          for (int ax = 0; ax < 3; ++ax)
-            g[ax] += ((gk[0] * tt[ax] + gk[1] * bt[ax]) * to_kernel) * slab.tau + dz * nt[ax];
-        }
-      });
-    }
-    return finish<T, G>(sum, g, T(surface_scale_), T(surface_scale_ * inv_surface_cell_));
-  }
-
-  template <class T, bool G>
-  value_gradient<T, D> sample_eval(const sample_input<D>& s) const {
-    if constexpr (D == 3) {
-      if (s.has_normal) {
-        const vec<double, 3>& n = s.normal;
-        if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
-          return nan_result<T>();
-        // Scaled before normalising, so that tiny and huge normals both work.
-        const double big = std::fmax(std::fabs(n.x), std::fmax(std::fabs(n.y), std::fabs(n.z)));
-        if (big > 0.0) {
-          const vec<double, 3> m{n.x / big, n.y / big, n.z / big};
-          const double len = std::sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
-          return surface_eval<T, G>(s.position, {m.x / len, m.y / len, m.z / len}, s.fp);
-        }
-        // A zero normal has no tangent plane: the solid noise.
-      }
-    }
-    return filtered_eval<T, G>(s.position, s.fp);
-  }
-
-  template <class T, bool G>
-  static value_gradient<T, D> finish(T sum, const T* g, T scale, T gradient_scale) {
-    value_gradient<T, D> r{sum * scale, {}};
-    if constexpr (G)
-      for (int i = 0; i < D; ++i) r.gradient[i] = g[i] * gradient_scale;
-    return r;
-  }
-
-  template <class T>
-  static value_gradient<T, D> nan_result() {
-    const T nan = std::numeric_limits<T>::quiet_NaN();
-    value_gradient<T, D> r{nan, {}};
-    for (int i = 0; i < D; ++i) r.gradient[i] = nan;
-    return r;
-  }
-  template <class T>
-  static T taper_k_() {
-    return T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
-  }
-
   params prm_;
-  gabor_kernel<D> kernel_;
-  std::uint32_t key_ = 0;
-  double inv_cell_ = 1, inv_surface_cell_ = 1;
-  gabor_marks<D> marks_;
-  std::shared_ptr<const poisson_table> table_, surface_table_;
-  double scale_ = 1, surface_scale_ = 1;
+  dvec2 dir_[detail::constants::kAnisoMaxOrientations] = {};
 };
 
-// gabor_spectrum<D>: the power spectrum of a gabor<D> noise at many
-// frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
-// kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
-// the largest |f r| + |Phi| needed, and interpolated with Catmull-Rom cubics
-// (within 3e-5 of the peak of the exact spectrum). Isotropic noise's spectrum
-// is radial: it is tabulated the same way against |f|. Frequencies above
-// max_frequency (cycles per noise unit, any direction) give 0.
-template <int D>
-class gabor_spectrum {
+// The decomposition of a periodic n x n image (row-major, n a power of two
+// >= 2) by the bank, with frequencies in cycles per pixel: subband images
+// n_{i,s} = IFFT(FFT(image) D_{i,s}) and the two residuals, each n x n,
+// real (the filters are even). Their sum is the image (to about 1e-12
+// relative). Throws hush::invalid_argument when n is not a power of two or
+// the bank's top band does not fit below the Nyquist frequency (2 f_{S-1} <= 1/2
+// is not required: the high residual takes what lies above).
+struct steerable_decomposition {
+  std::size_t size = 0;
+  std::vector<std::vector<double>> subbands;  // index i + K s
+  std::vector<double> low, high;              // residuals
+};
+
+inline steerable_decomposition decompose(const std::vector<double>& image, std::size_t n,
+                                         const steerable_bank& bank) {
+  if (!detail::is_power_of_two(n) || n < 2 || image.size() != n * n)
+    throw hush::invalid_argument(
+        "hush::decompose: the image must be n x n with n a power of two >= 2 (got " +
+        std::to_string(image.size()) + " pixels, n = " + std::to_string(n) + ")");
+  using cd = std::complex<double>;
+  std::vector<cd> spectrum(image.begin(), image.end());
+  detail::fft2(spectrum.data(), n, -1);
+  auto filtered = [&](auto filter) {
+    std::vector<cd> a(n * n);
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x) {
+        const dvec2 w{detail::bin_frequency(x, n), detail::bin_frequency(y, n)};
+        a[y * n + x] = spectrum[y * n + x] * filter(w);
+      }
+    detail::fft2(a.data(), n, +1);
+    std::vector<double> out(n * n);
+    const double scale = 1.0 / static_cast<double>(n * n);
+    for (std::size_t p = 0; p < n * n; ++p) out[p] = a[p].real() * scale;
+    return out;
+  };
+  steerable_decomposition d;
+  d.size = n;
+  for (int s = 0; s < bank.scales(); ++s)
+    for (int i = 0; i < bank.orientations(); ++i)
+      d.subbands.push_back(filtered([&](const dvec2& w) { return bank.subband(i, s, w); }));
+  d.low = filtered([&](const dvec2& w) { return bank.low_residual(w); });
+  d.high = filtered([&](const dvec2& w) { return bank.high_residual(w); });
+  return d;
+}
+
+}  // namespace hush
+
+#endif  // HUSH_STEERABLE_HPP
+// ---- end hush/steerable.hpp
+// ---- begin hush/subband_fit.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::subband_fit: weights w of a steerable bank's filters (steerable.hpp)
+// such that sum_j w_j D_j(w) approximates a target amplitude response t(w)
+// (Goldberg, Zwicker & Durand 2008: distortion compensation, sec. 3.1,
+// weights gamma; anisotropic filtering, sec. 4.2, weights lambda):
+//
+//   weight_rule::centre         w_j = t(c_j), c_j the subband's centre (t's
+//                               even part: (t(c) + t(-c)) / 2, as the filters are even)
+//                               f_s (cos theta_i, sin theta_i) (sec. 3.1 / 4.2
+//                               "heuristic"); exact for targets that are
+//                               isotropic within each scale (B vanishes at
+//                               the other scales' centres and the G_i sum to 1)
+//   weight_rule::three_point    sec. 5's variant: t read at the centre and at
+//                               -1/2 and +1/2 octave along the same direction,
+//                               averaged 1/4, 1/2, 1/4 (the radial profile's
+//                               weights there, constants.hpp)
+//   weight_rule::least_squares  min over w of the integral of (t - sum w D)^2
+//                               over the frequency plane (sec. 3.1), by
+//                               quadrature: midpoint nodes, 16 per octave of
+//                               radius, 12 K over a half turn (the integrand
+//                               is even), and a Cholesky solve of the normal
+//                               equations. The Gram matrix is the bank's and
+//                               is factored once, here.
+// The basis is the K S subbands (index i + K s) and, when residuals are asked
+// for (image filtering), the low- and high-pass residuals after them. The
+// quadrature domain is the annulus the subbands cover, [f_0 / 2, 2 f_{S-1}],
+// extended with residuals to [0, r_max] (r_max: e.g. the corner of an
+// image's spectrum, sqrt(2) / 2 cycles per pixel).
+// Targets are callables double(const dvec2& w), w in cycles per unit; they
+// should be finite and even. Construction allocates the node table (nodes x
+// basis doubles; 4 MB for K = 8, S = 5 with residuals); fits are const and
+// thread-safe. A least-squares fit costs one target evaluation per node plus
+// a nodes x basis product (about 1 ms for K = 4, S = 3 here: hush bench).
+#ifndef HUSH_SUBBAND_FIT_HPP
+#define HUSH_SUBBAND_FIT_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+
+namespace hush {
+
+enum class weight_rule { centre, three_point, least_squares };
+
+// "centre", "three_point", "least_squares".
+inline const char* weight_rule_name(weight_rule r) {
+  switch (r) {
+    case weight_rule::centre:
+      return "centre";
+    case weight_rule::three_point:
+      return "three_point";
+    case weight_rule::least_squares:
+      return "least_squares";
+  }
+  return "?";
+}
+
+class subband_fit {
  public:
-  gabor_spectrum(const gabor<D>& noise, double max_frequency) : noise_(noise) {
-    const double r = noise.kernel().radius();
-    max_f_ = max_frequency;
-    const double reach = max_frequency * r + noise.marks().phi0() + noise.marks().dphi();
-    const auto n = static_cast<std::size_t>(std::ceil(reach * kPerCycle)) + 4;
-    const double a = noise.kernel().envelope_exponent();
-    h_.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      h_[i] = detail::gabor_envelope_transform<D>(a, static_cast<double>(i) / kPerCycle);
-    if (noise.parameters().kind == gabor_kind::isotropic) {
-      // Radial: S(|f|) every 1/64 cycle per cell, from the tabulated H.
-      radial_.resize(static_cast<std::size_t>(std::ceil(max_frequency * r * kPerCycle)) + 4);
-      for (std::size_t i = 0; i < radial_.size(); ++i) {
-        vec<double, D> f{};
-        f[0] = static_cast<double>(i) / (kPerCycle * r);
-        radial_[i] = noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
+  // residuals: include the low- and high-pass residuals in the basis.
+  // r_max: outer radius of the quadrature domain with residuals (cycles per
+  // unit; at least 2 f_{S-1}; ignored without residuals).
+  explicit subband_fit(const steerable_bank& bank, bool residuals = false, double r_max = 0.0)
+      : bank_(bank), residuals_(residuals) {
+    namespace c = detail::constants;
+    const int k = bank.orientations(), s_count = bank.scales();
+    n_ = bank.subbands() + (residuals ? 2 : 0);
+    // Radial segments: octaves [f_0 2^{j-1}, f_0 2^j] for j = 0 ... S, plus,
+    // with residuals, [0, f_0 / 2] and octaves beyond 2 f_{S-1} up to r_max.
+    std::vector<std::pair<double, double>> segments;
+    const double f0 = bank.centre_frequency(0), top = 2.0 * bank.centre_frequency(s_count - 1);
+    if (residuals) segments.emplace_back(0.0, 0.5 * f0);
+    for (int j = 0; j <= s_count; ++j)
+      segments.emplace_back(std::ldexp(f0, j - 1), std::ldexp(f0, j));
+    if (residuals)
+      for (int j = 0; std::ldexp(top, j) < r_max; ++j)
+        segments.emplace_back(std::ldexp(top, j), std::min(std::ldexp(top, j + 1), r_max));
+    const int nr = c::kAnisoRadialNodesPerOctave, nt = c::kAnisoAngularNodesPerOrientation * k;
+    const double dt = c::kPi / nt;
+    for (const auto& seg : segments) {
+      const double dr = (seg.second - seg.first) / nr;
+      for (int a = 0; a < nr; ++a) {
+        const double r = seg.first + (a + 0.5) * dr;
+        for (int b = 0; b < nt; ++b) {
+          const double t = (b + 0.5) * dt;
+          nodes_.push_back({r * std::cos(t), r * std::sin(t)});
+          area_.push_back(2.0 * r * dr * dt);  // both half-planes
+        }
+      }
+    }
+    basis_.resize(nodes_.size() * static_cast<std::size_t>(n_));
+    for (std::size_t q = 0; q < nodes_.size(); ++q) {
+      double* row = &basis_[q * static_cast<std::size_t>(n_)];
+      for (int s = 0; s < s_count; ++s)
+        for (int i = 0; i < k; ++i) row[i + k * s] = bank.subband(i, s, nodes_[q]);
+      if (residuals) {
+        row[bank.subbands()] = bank.low_residual(nodes_[q]);
+        row[bank.subbands() + 1] = bank.high_residual(nodes_[q]);
+      }
+    }
+    // Gram matrix G = Q^T diag(area) Q and its Cholesky factor (lower, in place).
+    chol_.assign(at(n_, 0), 0.0);
+    for (std::size_t q = 0; q < nodes_.size(); ++q) {
+      const double* row = &basis_[q * static_cast<std::size_t>(n_)];
+      for (int a = 0; a < n_; ++a) {
+        if (row[a] == 0.0) continue;
+        const double wa = area_[q] * row[a];
+        for (int b = 0; b <= a; ++b) chol_[at(a, b)] += wa * row[b];
+      }
+    }
+    for (int j = 0; j < n_; ++j) {
+      double d = chol_[at(j, j)];
+      for (int m = 0; m < j; ++m) d -= chol_[at(j, m)] * chol_[at(j, m)];
+      // G is positive definite (the filters are linearly independent on the
+      // nodes); the guard only keeps a degenerate case finite.
+      d = std::sqrt(std::max(d, 1e-300));
+      chol_[at(j, j)] = d;
+      for (int i = j + 1; i < n_; ++i) {
+        double v = chol_[at(i, j)];
+        for (int m = 0; m < j; ++m) v -= chol_[at(i, m)] * chol_[at(j, m)];
+        chol_[at(i, j)] = v / d;
       }
     }
   }
 
-  double operator()(const vec<double, D>& f) const {
-    double len = 0;
-    for (int i = 0; i < D; ++i) len += f[i] * f[i];
-    len = std::sqrt(len);
-    if (!(len <= max_f_)) return 0.0;
-    if (!radial_.empty()) return cubic(radial_, len * noise_.kernel().radius());
-    return noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
+  const steerable_bank& bank() const { return bank_; }
+  bool has_residuals() const { return residuals_; }
+  // Number of weights: K S, plus 2 with residuals (low at K S, high at K S + 1).
+  int basis_size() const { return n_; }
+  // The quadrature: node q's frequency, its area weight, and the basis there.
+  std::size_t quadrature_nodes() const { return nodes_.size(); }
+  const dvec2& node(std::size_t q) const { return nodes_[q]; }
+  double node_area(std::size_t q) const { return area_[q]; }
+  const double* node_basis(std::size_t q) const {
+    return &basis_[q * static_cast<std::size_t>(n_)];
+  }
+
+  // The weights of `target` under `rule` into w[0 ... basis_size() - 1].
+  template <class Target>
+  void fit(weight_rule rule, const Target& target, double* w) const {
+    switch (rule) {
+      case weight_rule::centre:
+        return sample_rule(target, w, false);
+      case weight_rule::three_point:
+        return sample_rule(target, w, true);
+      case weight_rule::least_squares:
+        return least_squares(target, w);
+    }
+  }
+  template <class Target>
+  std::vector<double> fit(weight_rule rule, const Target& target) const {
+    std::vector<double> w(static_cast<std::size_t>(n_));
+    fit(rule, target, w.data());
+    return w;
+  }
+
+  // sum_j w_j D_j(x): the response the weights give at frequency x.
+  double response(const double* w, const dvec2& x) const {
+    double r = 0;
+    for (int s = 0; s < bank_.scales(); ++s)
+      for (int i = 0; i < bank_.orientations(); ++i)
+        r += w[i + bank_.orientations() * s] * bank_.subband(i, s, x);
+    if (residuals_)
+      r += w[bank_.subbands()] * bank_.low_residual(x) +
+           w[bank_.subbands() + 1] * bank_.high_residual(x);
+    return r;
+  }
+
+  // sqrt(integral (t - sum w D)^2 / integral t^2) over the quadrature domain.
+  template <class Target>
+  double relative_error(const Target& target, const double* w) const {
+    double num = 0, den = 0;
+    for (std::size_t q = 0; q < nodes_.size(); ++q) {
+      const double* row = &basis_[q * static_cast<std::size_t>(n_)];
+      double r = 0;
+      for (int a = 0; a < n_; ++a) r += w[a] * row[a];
+      const double t = target(nodes_[q]);
+      num += area_[q] * (t - r) * (t - r);
+      den += area_[q] * t * t;
+    }
+    return den > 0 ? std::sqrt(num / den) : std::sqrt(num);
   }
 
  private:
-  static constexpr double kPerCycle = 64.0;
-  // Catmull-Rom interpolation of an even function tabulated at k = i / 64
-  // (the evenness supplies the point left of 0).
-  static double cubic(const std::vector<double>& h, double k) {
-    const double x = k * kPerCycle;
-    const auto i = static_cast<std::size_t>(x);
-    if (i + 2 >= h.size()) return h.back();
-    const double t = x - static_cast<double>(i);
-    const double p0 = i == 0 ? h[1] : h[i - 1], p1 = h[i], p2 = h[i + 1], p3 = h[i + 2];
-    return p1 + 0.5 * t *
-                    (p2 - p0 +
-                     t * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + t * (3.0 * (p1 - p2) + p3 - p0)));
+  std::size_t at(int r, int c) const { return detail::index(r * n_ + c); }
+
+  template <class Target>
+  void sample_rule(const Target& target, double* w, bool three) const {
+    namespace c = detail::constants;
+    const int k = bank_.orientations();
+    // The even part of the target (the filters are even) at x.
+    auto even = [&](const dvec2& x) { return 0.5 * (target(x) + target(dvec2{-x.x, -x.y})); };
+    // Read at radius r along direction d (centre rule), or averaged around it (three-point).
+    auto read = [&](const dvec2& d, double r) {
+      const dvec2 x{d.x * r, d.y * r};
+      if (!three) return even(x);
+      const double lo = std::exp2(-c::kAnisoThreePointOffset),
+                   hi = std::exp2(c::kAnisoThreePointOffset);
+      return c::kAnisoThreePointSide * even(dvec2{x.x * lo, x.y * lo}) +
+             c::kAnisoThreePointCentre * even(x) +
+             c::kAnisoThreePointSide * even(dvec2{x.x * hi, x.y * hi});
+    };
+    for (int s = 0; s < bank_.scales(); ++s)
+      for (int i = 0; i < k; ++i)
+        w[i + k * s] = read(bank_.direction(i), bank_.centre_frequency(s));
+    if (residuals_) {
+      w[bank_.subbands()] = target(dvec2{0.0, 0.0});
+      // The high residual's "centre": one octave above the top scale, averaged over directions.
+      const double r = 2.0 * bank_.centre_frequency(bank_.scales() - 1);
+      double h = 0;
+      for (int i = 0; i < k; ++i) h += read(bank_.direction(i), r);
+      w[bank_.subbands() + 1] = h / k;
+    }
   }
 
-  gabor<D> noise_;
-  double max_f_ = 0;
-  std::vector<double> h_, radial_;
+  template <class Target>
+  void least_squares(const Target& target, double* w) const {
+    std::vector<double> b(static_cast<std::size_t>(n_), 0.0);
+    for (std::size_t q = 0; q < nodes_.size(); ++q) {
+      const double t = area_[q] * target(nodes_[q]);
+      if (t == 0.0) continue;
+      const double* row = &basis_[q * static_cast<std::size_t>(n_)];
+      for (int a = 0; a < n_; ++a) b[static_cast<std::size_t>(a)] += t * row[a];
+    }
+    // Solve L L^T w = b.
+    for (int i = 0; i < n_; ++i) {
+      double v = b[static_cast<std::size_t>(i)];
+      for (int m = 0; m < i; ++m) v -= chol_[at(i, m)] * w[m];
+      w[i] = v / chol_[at(i, i)];
+    }
+    for (int i = n_ - 1; i >= 0; --i) {
+      double v = w[i];
+      for (int m = i + 1; m < n_; ++m) v -= chol_[at(m, i)] * w[m];
+      w[i] = v / chol_[at(i, i)];
+    }
+  }
+
+  steerable_bank bank_;
+  bool residuals_;
+  int n_ = 0;
+  std::vector<dvec2> nodes_;
+  std::vector<double> area_;
+  std::vector<double> basis_;  // nodes x basis, row-major
+  std::vector<double> chol_;   // n x n, lower Cholesky factor of the Gram matrix
 };
 
 }  // namespace hush
 
-#endif  // HUSH_GABOR_HPP
-// ---- end hush/gabor.hpp
+#endif  // HUSH_SUBBAND_FIT_HPP
+// ---- end hush/subband_fit.hpp
+
+namespace hush {
+
+// The subband tiles of one (seed, orientations, tile_size): K real N x N
+// images, interleaved per texel into `channels` floats (4 for K <= 4, else 8,
+// unused channels 0: one or two RGBA textures on the GPU), stored with one
+// wrapped extra row and column so that a bilinear lookup reads texels (x, y)
+// and (x + 1, y) as one run of 2 * channels floats.
+class anisotropic_tile {
+ public:
+  struct key {
+    std::uint32_t seed;
+    int orientations;
+    int size;
+    friend bool operator<(const key& a, const key& b) {
+      return std::tie(a.seed, a.orientations, a.size) < std::tie(b.seed, b.orientations, b.size);
+    }
+  };
+
+  explicit anisotropic_tile(const key& k)
+      : size_(k.size), orientations_(k.orientations), channels_(k.orientations <= 4 ? 4 : 8) {
+    build(k.seed);
+  }
+
+  int size() const { return size_; }
+  int orientations() const { return orientations_; }
+  int channels() const { return channels_; }
+  // Texel (x, y), x and y in 0 ... size() (size() wraps to 0): `channels()` floats.
+  const float* texel(std::uint32_t x, std::uint32_t y) const {
+    return texels_.data() + (static_cast<std::size_t>(y) * (size_ + 1) + x) * channels_;
+  }
+  // Floats between the starts of two texel rows.
+  std::size_t row_stride() const { return static_cast<std::size_t>(size_ + 1) * channels_; }
+  const std::vector<float>& texels() const { return texels_; }
+  // Largest |value| of orientation i's tile, and largest difference between
+  // neighbouring texels (bilinear weight precision on GPUs scales with it).
+  float max_abs(int i) const { return max_abs_[static_cast<std::size_t>(i)]; }
+  float max_step(int i) const { return max_step_[static_cast<std::size_t>(i)]; }
+  // The size() x size() RGBA texture of channels 4t ... 4t + 3 (t = 0 or 1), row-major.
+  std::vector<float> rgba(int t) const {
+    std::vector<float> out(static_cast<std::size_t>(size_) * size_ * 4);
+    for (int y = 0; y < size_; ++y)
+      for (int x = 0; x < size_; ++x)
+        for (int c = 0; c < 4; ++c)
+          out[(static_cast<std::size_t>(y) * size_ + x) * 4 + c] =
+              texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y))[4 * t + c];
+    return out;
+  }
+  // Memory held, in bytes.
+  std::size_t bytes() const {
+    return texels_.size() * sizeof(float) + (max_abs_.size() + max_step_.size()) * sizeof(float);
+  }
+
+ private:
+  void build(std::uint32_t seed) {
+    using cd = std::complex<double>;
+    const auto n = static_cast<std::size_t>(size_);
+    // F: Hermitian complex Gaussian white noise, F(k) = (g(k) + conj g(-k)) / sqrt 2
+    // with g i.i.d. complex Gaussian of unit power: E|F(k)|^2 = 1 on every bin.
+    std::vector<cd> g(n * n);
+    rng gen(seed, 0x7a11e5u);  // the tiles' own stream of the seed
+    for (cd& v : g) {
+      const double re = gen.gaussian<double>(), im = gen.gaussian<double>();
+      v = cd(re, im) * std::sqrt(0.5);
+    }
+    std::vector<cd> f(n * n);
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x) {
+        const std::size_t my = (n - y) % n, mx = (n - x) % n;
+        f[y * n + x] = (g[y * n + x] + std::conj(g[my * n + mx])) * std::sqrt(0.5);
+      }
+    steerable_bank::params bp;
+    bp.orientations = orientations_;
+    bp.scales = 1;
+    bp.base_frequency = detail::constants::kAnisoTileBand;
+    const steerable_bank bank(bp);
+    // Per bin: the radial band B (shared by the orientations) and cos(theta -
+    // theta_i) for each orientation; D_i = G(cos) B, as steerable_bank::subband.
+    const std::size_t kk = static_cast<std::size_t>(orientations_);
+    std::vector<double> filter(n * n * kk, 0.0);
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x) {
+        const dvec2 w{detail::bin_frequency(x, n), detail::bin_frequency(y, n)};
+        const double b = bank.scale_band(0, w);
+        if (b == 0.0) continue;
+        const double r = std::hypot(w.x, w.y);
+        for (std::size_t i = 0; i < kk; ++i) {
+          const dvec2& d = bank.direction(static_cast<int>(i));
+          filter[(y * n + x) * kk + i] =
+              steerable_bank::angular(orientations_, (w.x * d.x + w.y * d.y) / r) * b;
+        }
+      }
+    // Normalisation: the continuous-plane variance of the bilinear interpolant
+    // of s = sum_i n_i is (1/N^4) sum_k |S(k)|^2 a(k_x) a(k_y) with
+    // a(k) = (2 + cos(2 pi k / N)) / 3 (the mean of |(1 - t) + t e^{i w}|^2 over t).
+    std::vector<double> a1(n);
+    for (std::size_t x = 0; x < n; ++x)
+      a1[x] = (2.0 + std::cos(2.0 * detail::constants::kPi * detail::bin_frequency(x, n))) / 3.0;
+    double var = 0;
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x) {
+        double d = 0;
+        for (std::size_t i = 0; i < kk; ++i) d += filter[(y * n + x) * kk + i];
+        if (d != 0.0) var += std::norm(f[y * n + x] * d) * a1[x] * a1[y];
+      }
+    const double nn = static_cast<double>(n * n);
+    var /= nn * nn;
+    const double scale = var > 0 ? 1.0 / (std::sqrt(var) * nn) : 0.0;  // with the IFFT's 1/N^2
+    const std::size_t stride = (n + 1) * static_cast<std::size_t>(channels_);
+    texels_.assign((n + 1) * stride, 0.0f);
+    max_abs_.assign(kk, 0.0f);
+    max_step_.assign(kk, 0.0f);
+    std::vector<cd> a(n * n);
+    for (std::size_t i = 0; i < kk; ++i) {
+      for (std::size_t q = 0; q < n * n; ++q) a[q] = f[q] * filter[q * kk + i];
+      detail::fft2(a.data(), n, +1);
+      for (std::size_t y = 0; y <= n; ++y)
+        for (std::size_t x = 0; x <= n; ++x)
+          texels_[y * stride + x * static_cast<std::size_t>(channels_) + i] =
+              static_cast<float>(a[(y % n) * n + (x % n)].real() * scale);
+      float m = 0, step = 0;
+      for (std::size_t y = 0; y < n; ++y)
+        for (std::size_t x = 0; x < n; ++x) {
+          const auto ux = static_cast<std::uint32_t>(x), uy = static_cast<std::uint32_t>(y);
+          const float v = texel(ux, uy)[i];
+          m = std::max(m, std::fabs(v));
+          step = std::max(
+              {step, std::fabs(texel(ux + 1, uy)[i] - v), std::fabs(texel(ux, uy + 1)[i] - v)});
+        }
+      max_abs_[i] = m;
+      max_step_[i] = step;
+    }
+  }
+
+  int size_, orientations_, channels_;
+  std::vector<float> texels_;
+  std::vector<float> max_abs_, max_step_;
+};
+
+class anisotropic : public sample_noise<anisotropic, 2> {
+ public:
+  static constexpr bool takes_footprint = true;
+  static constexpr bool takes_surface_map = true;
+  static constexpr int kMaxChannels = 8;
+
+  struct params {
+    std::uint32_t seed = 0;
+    int orientations = 4;  // K: 2 ... 8
+    int scales = 3;        // S: 1 ... 12, subband scales of the bank
+    int base_scale = 0;    // scale of octave 0: 0 ... S - 1 (scales below it
+                           // serve surface maps that stretch the texture)
+    int octaves = 3;       // 1 ... S - base_scale
+    double gain = 0.5;     // amplitude ratio between octaves: finite, > 0
+    fractal_kind kind = fractal_kind::fbm;
+    double frequency = 1.0;  // octave 0's centre frequency, cycles per unit: finite, > 0
+    int tile_size = 256;     // N: a power of two, 16 ... 2048
+    weight_rule filtering = weight_rule::centre;     // lambda from footprints
+    weight_rule compensation = weight_rule::centre;  // gamma from surface maps
+  };
+
+  anisotropic() : anisotropic(params{}) {}
+  // Throws hush::invalid_argument naming the first parameter out of range.
+  explicit anisotropic(const params& prm) : prm_(prm) {
+    validate();
+    namespace c = detail::constants;
+    steerable_bank::params bp;
+    bp.orientations = prm_.orientations;
+    bp.scales = prm_.scales;
+    bp.base_frequency = std::ldexp(prm_.frequency, -prm_.base_scale);
+    bank_ = steerable_bank(bp);
+    tile_ =
+        tile_cache().get(anisotropic_tile::key{prm_.seed, prm_.orientations, prm_.tile_size}, [&] {
+          return anisotropic_tile(
+              anisotropic_tile::key{prm_.seed, prm_.orientations, prm_.tile_size});
+        });
+    channels_ = tile_->channels();
+    double g = 1.0, sum_sq = 0.0;
+    for (int k = 0; k < prm_.octaves; ++k, g *= prm_.gain) {
+      octave_gain_[k] = g;
+      sum_sq += g * g;
+    }
+    norm_ = 1.0 / std::sqrt(sum_sq);
+    // Pixel filter exponent per scale, in powers of two: lambda = 2^-(kappa_s q),
+    // kappa_s = 2 pi^2 sigma^2 f_s^2 log2(e).
+    const double sigma = c::kPixelFilterSigma;
+    for (int s = 0; s < prm_.scales; ++s) {
+      const double f = bank_.centre_frequency(s);
+      kappa_[s] = 2.0 * c::kPi * c::kPi * sigma * sigma * f * f * c::kLog2E;
+      texels_per_unit_[s] = f / c::kAnisoTileBand;
+      rng r(prm_.seed, 0x0ff5e7u + static_cast<std::uint32_t>(s));
+      offset_[s] = {r.uniform<double>() * prm_.tile_size, r.uniform<double>() * prm_.tile_size};
+    }
+    for (int i = 0; i < prm_.orientations; ++i) {
+      const dvec2 d = bank_.direction(i);
+      dir_[i] = d;
+      dxx_[i] = d.x * d.x;
+      dyy_[i] = d.y * d.y;
+      dxy2_[i] = 2.0 * d.x * d.y;
+    }
+    // Cap of the heuristic compensation weights: one subband (variance
+    // A_K / 2 pi, unit-variance tiles) carrying all of an octave's unit
+    // variance has gamma = sqrt(2 pi / A_K), A_K = integral of G_i^2 over the
+    // circle = alpha_K^4 2 pi C(4K - 4, 2K - 2) / 4^(2K - 2) (docs/anisotropic.md).
+    const int kk = prm_.orientations;
+    double binom = 1.0;  // C(4K - 4, 2K - 2) / 4^(2K - 2), as a running product
+    for (int m = 1; m <= 2 * kk - 2; ++m)
+      binom *= static_cast<double>(2 * kk - 2 + m) / (4.0 * static_cast<double>(m));
+    const double a2 = steerable_bank::alpha(kk) * steerable_bank::alpha(kk);
+    const double area = a2 * a2 * 2.0 * c::kPi * binom;
+    cap_unit_ = std::sqrt(2.0 * c::kPi / area);
+    if (prm_.filtering == weight_rule::least_squares ||
+        prm_.compensation == weight_rule::least_squares)
+      fit_ = std::make_shared<const subband_fit>(bank_);
+  }
+
+  const params& parameters() const { return prm_; }
+  const steerable_bank& bank() const { return bank_; }
+  const anisotropic_tile& tile() const { return *tile_; }
+  // The shared tile itself (the GLSL backend keeps its textures while it lives).
+  const std::shared_ptr<const anisotropic_tile>& tile_ptr() const { return tile_; }
+  int channels() const { return channels_; }
+
+  // The process-wide cache of tiles (memory: tile_cache().live_bytes()).
+  static hush::tile_cache<anisotropic_tile::key, anisotropic_tile>& tile_cache() {
+    static hush::tile_cache<anisotropic_tile::key, anisotropic_tile> cache;
+    return cache;
+  }
+
+  // Position of sample p in scale s's tile, in texels (double): p f_s / band
+  // + offset; a product beyond double range is a multiple of the tile (cell 0).
+  double band_coordinate(int s, int axis, double p) const {
+    double q = p * texels_per_unit_[s];
+    if (std::isinf(q) && std::isfinite(p)) q = 0.0;  // NaN and Inf positions stay non-finite
+    return q + offset_[s][static_cast<std::size_t>(axis)];
+  }
+
+  // ---- Per-scale and per-orientation constants (the SIMD and GLSL paths read them).
+  double texels_per_unit(int s) const { return texels_per_unit_[s]; }
+  const dvec2& offset(int s) const { return offset_[s]; }
+  double kappa(int s) const { return kappa_[s]; }
+  const dvec2& direction(int i) const { return dir_[i]; }
+  double octave_weight(int k) const { return norm_ * octave_gain_[k]; }
+  double normalization() const { return norm_; }
+  // Cap of a heuristic compensation weight.
+  double gamma_cap() const { return cap_unit_; }
+
+  // Variance without map and filter (fbm): 1.
+  static constexpr double variance() { return 1.0; }
+  // |n| <= bound() without surface maps, for every footprint (lambda <= 1).
+  double bound() const {
+    double t = 0;
+    for (int i = 0; i < prm_.orientations; ++i) t += tile_->max_abs(i);
+    double g = 0;
+    for (int k = 0; k < prm_.octaves; ++k) g += octave_weight(k);
+    return t * g;
+  }
+  // |n| <= bound_with_maps() for every surface map under the heuristic rules:
+  // per octave and orientation at most 3 scales have a weight (2 for the
+  // centre rule), each at most gamma_cap().
+  double bound_with_maps() const {
+    double t = 0;
+    for (int i = 0; i < prm_.orientations; ++i) t += tile_->max_abs(i);
+    double g = 0;
+    for (int k = 0; k < prm_.octaves; ++k) g += octave_weight(k);
+    return t * g * std::min(prm_.scales, 3) * cap_unit_;
+  }
+  // |float - double| at the same input is within float_budget() (no map,
+  // heuristic rules): the float weights' relative error (2^-20: the
+  // approximations of approx_math.hpp plus the products forming them) on
+  // bound(), plus the lookups' rounding: 8 float operations per subband on
+  // values up to bound() (docs/anisotropic.md, "Float error").
+  double float_budget() const {
+    const int subbands = prm_.scales * channels_;
+    return bound() * (std::ldexp(1.0, -20) + (8.0 + subbands) * std::ldexp(1.0, -24));
+  }
+
+  // ---- Evaluation (core/point_noise.hpp and core/samples.hpp give the public overloads).
+  template <class T>
+  T value(const vec<double, 2>& p) const {
+    return sample_value<T>(sample_input<2>{p, {}, {}, false, {}, false});
+  }
+  template <class T>
+  value_gradient<T, 2> value_and_gradient(const vec<double, 2>& p) const {
+    return sample_value_and_gradient<T>(sample_input<2>{p, {}, {}, false, {}, false});
+  }
+  template <class T>
+  T sample_value(const sample_input<2>& in) const {
+    return eval<T, false>(in).value;
+  }
+  template <class T>
+  value_gradient<T, 2> sample_value_and_gradient(const sample_input<2>& in) const {
+    return eval<T, true>(in);
+  }
+
+  // The combined weights of a sample (fbm; turbulence: octave 0's... see
+  // octave_weights): w[i + channels() s] = sum_k gamma_{k,i,s} lambda_{i,s}
+  // times the octave weights, 0 for padding channels.
+  template <class T>
+  void weights(const sample_input<2>& in, T* w) const {
+    T lambda[detail::constants::kAnisoMaxScales * kMaxChannels];
+    filter_weights<T>(in.fp, lambda);
+    combine<T>(in, lambda, -1, w);
+  }
+  // The weights of octave k alone (turbulence), gain^k not included.
+  template <class T>
+  void octave_weights(const sample_input<2>& in, int k, T* w) const {
+    T lambda[detail::constants::kAnisoMaxScales * kMaxChannels];
+    filter_weights<T>(in.fp, lambda);
+    combine<T>(in, lambda, k, w);
+  }
+
+  // lambda_{i,s} into lam[i + channels() s].
+  template <class T>
+  void filter_weights(const footprint<2>& fp, T* lam) const {
+    namespace c = detail::constants;
+    const int kc = channels_;
+    std::fill(lam, lam + prm_.scales * kc, T(0));
+    if (fp.is_point()) {
+      for (int s = 0; s < prm_.scales; ++s)
+        for (int i = 0; i < prm_.orientations; ++i) lam[i + kc * s] = T(1);
+      return;
+    }
+    if (prm_.filtering == weight_rule::least_squares) {
+      const double sxx = fp.covariance(0, 0), sxy = fp.covariance(0, 1), syy = fp.covariance(1, 1);
+      const double k2 = 2.0 * c::kPi * c::kPi * c::kPixelFilterSigma * c::kPixelFilterSigma;
+      std::vector<double> w = fit_->fit(weight_rule::least_squares, [&](const dvec2& x) {
+        return std::exp(-k2 * (sxx * x.x * x.x + 2.0 * sxy * x.x * x.y + syy * x.y * x.y));
+      });
+      for (int s = 0; s < prm_.scales; ++s)
+        for (int i = 0; i < prm_.orientations; ++i)
+          lam[i + kc * s] = static_cast<T>(w[detail::index(i + prm_.orientations * s)]);
+      return;
+    }
+    // The quadratic form w^T S w in double: at grazing angles S is nearly
+    // singular with entries of 1e4 and more, and the terms cancel.
+    const double sxx = fp.covariance(0, 0), sxy = fp.covariance(0, 1), syy = fp.covariance(1, 1);
+    const T cut = T(c::kAnisoWeightCutoff * c::kLog2E);
+    const bool three = prm_.filtering == weight_rule::three_point;
+    for (int i = 0; i < prm_.orientations; ++i) {
+      const double q = (sxx * dxx_[i] + sxy * dxy2_[i]) + syy * dyy_[i];
+      for (int s = 0; s < prm_.scales; ++s) {
+        const T z = T(kappa_[s] * q);
+        lam[i + kc * s] = three ? lambda3(z, cut) : lambda1(z, cut);
+      }
+    }
+  }
+
+ private:
+  void validate() const {
+    namespace c = detail::constants;
+    const char* w = "hush::anisotropic";
+    detail::require_in_range(w, "orientations", prm_.orientations, c::kAnisoMinOrientations,
+                             c::kAnisoMaxOrientations, "2 ... 8");
+    detail::require_in_range(w, "scales", prm_.scales, 1, c::kAnisoMaxScales, "1 ... 12");
+    detail::require_in_range(w, "base_scale", prm_.base_scale, 0, prm_.scales - 1,
+                             ("0 ... scales - 1 = " + std::to_string(prm_.scales - 1)).c_str());
+    detail::require_in_range(
+        w, "octaves", prm_.octaves, 1, prm_.scales - prm_.base_scale,
+        ("1 ... scales - base_scale = " + std::to_string(prm_.scales - prm_.base_scale)).c_str());
+    if (!(prm_.gain > 0.0 && prm_.gain <= 1e6))
+      detail::throw_out_of_range(w, "gain", prm_.gain, "a number in (0, 1e6]");
+    if (!(prm_.frequency > 0.0 && prm_.frequency <= 1e12))
+      detail::throw_out_of_range(w, "frequency", prm_.frequency,
+                                 "a number in (0, 1e12] (cycles per unit)");
+    const int n = prm_.tile_size;
+    if (n < c::kAnisoMinTileSize || n > c::kAnisoMaxTileSize || (n & (n - 1)) != 0)
+      detail::throw_out_of_range(w, "tile_size", n, "a power of two, 16 ... 2048");
+    if (prm_.kind != fractal_kind::fbm && prm_.kind != fractal_kind::turbulence)
+      throw hush::invalid_argument(std::string(w) + ": kind is not fbm or turbulence");
+  }
+
+  // Least-squares compensation weights of octaves [k0, k1) for map m (each
+  // 2^(s - b - k) gamma_{k,i,s}, octave after octave), cached per distinct map:
+  // a batch over a mesh solves once per triangle. The cache (the last
+  // kLsqCacheSize maps) is shared by copies of the noise and locked; lookups copy.
+  std::vector<double> lsq_gamma(const surface_map& m, int k0, int k1) const {
+    lsq_cache& cache = *lsq_cache_;
+    {
+      const std::lock_guard<std::mutex> lock(cache.mutex);
+      for (const auto& e : cache.entries)
+        if (e.map == m && e.k0 == k0 && e.k1 == k1) return e.gamma;
+    }
+    const int b = prm_.base_scale;
+    const double sd = std::sqrt(std::fabs(m.determinant()));
+    std::vector<double> gamma;
+    for (int k = k0; k < k1; ++k) {
+      const double fk = bank_.centre_frequency(b + k);
+      std::vector<double> g = fit_->fit(weight_rule::least_squares, [&](const dvec2& x) {
+        const double tu = double(m.m00) * x.x + double(m.m10) * x.y;
+        const double tv = double(m.m01) * x.x + double(m.m11) * x.y;
+        const double r = std::sqrt(tu * tu + tv * tv);
+        return r > 0 ? sd * steerable_bank::radial(std::log2(r / fk)) : 0.0;
+      });
+      for (int s = 0; s < prm_.scales; ++s)
+        for (int i = 0; i < prm_.orientations; ++i) {
+          double& v = g[detail::index(i + prm_.orientations * s)];
+          v = std::ldexp(v, s - b - k);
+        }
+      gamma.insert(gamma.end(), g.begin(), g.end());
+    }
+    const std::lock_guard<std::mutex> lock(cache.mutex);
+    if (cache.entries.size() < kLsqCacheSize) {
+      cache.entries.push_back({m, k0, k1, gamma});
+    } else {
+      cache.entries[cache.next] = {m, k0, k1, gamma};
+      cache.next = (cache.next + 1) % kLsqCacheSize;
+    }
+    return gamma;
+  }
+
+  // exp(-x) for z = x log2(e) >= 0, 0 beyond the cutoff.
+  template <class T>
+  static T lambda1(T z, T cut) {
+    return z > cut ? T(0) : detail::exp2_nonpositive(-z);
+  }
+  // The 3-radial-point rule: 1/4 exp(-x/2) + 1/2 exp(-x) + 1/4 exp(-2x).
+  template <class T>
+  static T lambda3(T z, T cut) {
+    namespace c = detail::constants;
+    const T lo = lambda1(z * T(0.5), cut), mid = lambda1(z, cut), hi = lambda1(z * T(2), cut);
+    return (T(c::kAnisoThreePointSide) * lo + T(c::kAnisoThreePointCentre) * mid) +
+           T(c::kAnisoThreePointSide) * hi;
+  }
+
+  // Combines gamma (from the map) with lam into w: all octaves with their
+  // weights (octave < 0, fbm) or one octave without its gain.
+  template <class T>
+  void combine(const sample_input<2>& in, const T* lam, int octave, T* w) const {
+    namespace c = detail::constants;
+    const int kc = channels_, b = prm_.base_scale;
+    std::fill(w, w + prm_.scales * kc, T(0));
+    const int k0 = octave < 0 ? 0 : octave, k1 = octave < 0 ? prm_.octaves : octave + 1;
+    auto ow = [&](int k) { return T(octave < 0 ? octave_weight(k) : norm_); };
+    if (!in.has_map) {
+      for (int k = k0; k < k1; ++k)
+        for (int i = 0; i < prm_.orientations; ++i)
+          w[i + kc * (b + k)] = ow(k) * lam[i + kc * (b + k)];
+      return;
+    }
+    const surface_map m = in.map.finite() ? in.map : surface_map::zero();
+    if (prm_.compensation == weight_rule::least_squares) {
+      const std::vector<double> g = lsq_gamma(m, k0, k1);
+      for (int k = k0; k < k1; ++k)
+        for (int s = 0; s < prm_.scales; ++s)
+          for (int i = 0; i < prm_.orientations; ++i)
+            w[i + kc * s] +=
+                ow(k) *
+                T(g[detail::index((k - k0) * bank_.subbands() + i + prm_.orientations * s)]) *
+                lam[i + kc * s];
+      return;
+    }
+    const bool three = prm_.compensation == weight_rule::three_point;
+    const T cap = T(cap_unit_);
+    // det T and |T^T w|^2 in double (they cancel for nearly singular maps),
+    // the transcendental functions in T.
+    const double m00 = m.m00, m01 = m.m01, m10 = m.m10, m11 = m.m11;
+    const T sd = std::sqrt(T(std::fabs(m00 * m11 - m01 * m10)));
+    for (int i = 0; i < prm_.orientations; ++i) {
+      const double tu = m00 * dir_[i].x + m10 * dir_[i].y, tv = m01 * dir_[i].x + m11 * dir_[i].y;
+      const T half_log = T(0.5) * detail::log2_positive(T(tu * tu + tv * tv));
+      for (int s = 0; s < prm_.scales; ++s) {
+        T acc = T(0);
+        for (int k = k0; k < k1; ++k) {
+          const T x = T(s - b - k) + half_log;
+          const T prof = three ? (T(c::kAnisoThreePointSide) * detail::band_profile(x - T(0.5)) +
+                                  T(c::kAnisoThreePointCentre) * detail::band_profile(x)) +
+                                     T(c::kAnisoThreePointSide) * detail::band_profile(x + T(0.5))
+                               : detail::band_profile(x);
+          // 2^(s - b - k) sqrt|det T| prof, capped (exact power of two in T).
+          const T gamma =
+              prof > T(0) ? std::min(T(std::ldexp(1.0, s - b - k)) * (sd * prof), cap) : T(0);
+          acc = acc + ow(k) * gamma;
+        }
+        w[i + kc * s] = acc * lam[i + kc * s];
+      }
+    }
+  }
+
+  template <class T, bool WithGradient>
+  value_gradient<T, 2> eval(const sample_input<2>& in) const {
+    value_gradient<T, 2> r{T(0), {T(0), T(0)}};
+    if (!std::isfinite(in.position.x) || !std::isfinite(in.position.y)) {
+      const T nan = std::numeric_limits<T>::quiet_NaN();
+      return {nan, {nan, nan}};
+    }
+    const int kc = channels_;
+    T lam[detail::constants::kAnisoMaxScales * kMaxChannels];
+    T w[detail::constants::kAnisoMaxScales * kMaxChannels];
+    filter_weights<T>(in.fp, lam);
+    if (prm_.kind == fractal_kind::fbm) {
+      combine<T>(in, lam, -1, w);
+      T acc[kMaxChannels] = {}, gx[kMaxChannels] = {}, gy[kMaxChannels] = {};
+      for (int s = 0; s < prm_.scales; ++s)
+        accumulate<T, WithGradient>(in.position, s, w + kc * s, acc, gx, gy);
+      r.value = channel_sum(acc);
+      if constexpr (WithGradient) r.gradient = {channel_sum(gx), channel_sum(gy)};
+      return r;
+    }
+    for (int k = 0; k < prm_.octaves; ++k) {
+      combine<T>(in, lam, k, w);
+      T acc[kMaxChannels] = {}, gx[kMaxChannels] = {}, gy[kMaxChannels] = {};
+      for (int s = 0; s < prm_.scales; ++s)
+        accumulate<T, WithGradient>(in.position, s, w + kc * s, acc, gx, gy);
+      const T v = channel_sum(acc), g = T(octave_gain_[k]);
+      const T sign = v < T(0) ? T(-1) : T(1);
+      r.value = r.value + g * std::fabs(v);
+      if constexpr (WithGradient)
+        r.gradient = {r.gradient.x + g * sign * channel_sum(gx),
+                      r.gradient.y + g * sign * channel_sum(gy)};
+    }
+    return r;
+  }
+
+  // acc[c] += w[c] * bilinear(tile channel c at scale s); skipped when every w[c] is 0.
+  template <class T, bool WithGradient>
+  void accumulate(const vec<double, 2>& p, int s, const T* w, T* acc, T* gx, T* gy) const {
+    const int kc = channels_;
+    bool any = false;
+    for (int c = 0; c < kc; ++c) any = any || w[c] != T(0);
+    if (!any) return;
+    const auto n = static_cast<std::uint32_t>(prm_.tile_size);
+    const lattice_coord<T> cx = lattice_split<T>(band_coordinate(s, 0, p.x), n);
+    const lattice_coord<T> cy = lattice_split<T>(band_coordinate(s, 1, p.y), n);
+    const float* t00 = tile_->texel(cx.i0, cy.i0);
+    const float* t01 = t00 + tile_->row_stride();
+    const T fx = cx.f, fy = cy.f;
+    for (int c = 0; c < kc; ++c) {
+      const T c00 = T(t00[c]), c10 = T(t00[kc + c]), c01 = T(t01[c]), c11 = T(t01[kc + c]);
+      const T r0 = c00 + fy * (c01 - c00), r1 = c10 + fy * (c11 - c10);
+      const T v = r0 + fx * (r1 - r0);
+      acc[c] = acc[c] + w[c] * v;
+      if constexpr (WithGradient) {
+        const T scale = T(texels_per_unit_[s]);
+        const T dx = r1 - r0;
+        const T dy = (c01 - c00) + fx * ((c11 - c10) - (c01 - c00));
+        gx[c] = gx[c] + w[c] * (scale * dx);
+        gy[c] = gy[c] + w[c] * (scale * dy);
+      }
+    }
+  }
+
+  // Sum of the channels in a fixed tree order (the SIMD kernel's).
+  template <class T>
+  T channel_sum(const T* a) const {
+    const T s4 = (a[0] + a[1]) + (a[2] + a[3]);
+    if (channels_ == 4) return s4;
+    return s4 + ((a[4] + a[5]) + (a[6] + a[7]));
+  }
+
+  params prm_;
+  steerable_bank bank_;
+  std::shared_ptr<const anisotropic_tile> tile_;
+  std::shared_ptr<const subband_fit> fit_;  // least-squares rules only
+  static constexpr std::size_t kLsqCacheSize = 256;
+  struct lsq_cache {
+    struct entry {
+      surface_map map;
+      int k0, k1;
+      std::vector<double> gamma;
+    };
+    std::mutex mutex;
+    std::vector<entry> entries;  // at most kLsqCacheSize, then overwritten oldest first
+    std::size_t next = 0;
+    lsq_cache() { entries.reserve(kLsqCacheSize); }
+  };
+  std::shared_ptr<lsq_cache> lsq_cache_ = std::make_shared<lsq_cache>();
+  int channels_ = 4;
+  double norm_ = 1.0, cap_unit_ = 1.0;
+  double octave_gain_[detail::constants::kAnisoMaxScales] = {};
+  double kappa_[detail::constants::kAnisoMaxScales] = {};
+  double texels_per_unit_[detail::constants::kAnisoMaxScales] = {};
+  dvec2 offset_[detail::constants::kAnisoMaxScales] = {};
+  dvec2 dir_[detail::constants::kAnisoMaxOrientations] = {};
+  double dxx_[detail::constants::kAnisoMaxOrientations] = {};
+  double dyy_[detail::constants::kAnisoMaxOrientations] = {};
+  double dxy2_[detail::constants::kAnisoMaxOrientations] = {};
+};
+
+}  // namespace hush
+
+#endif  // HUSH_ANISOTROPIC_HPP
+// ---- end hush/anisotropic.hpp
+// ---- begin hush/core/bspline.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The kernels of wavelet noise (Cook & DeRose 2005), all uniform B-splines, and
+// their exact piecewise-polynomial forms, derived at compile time.
+//
+// Every kernel here is the density of a sum of independent centred uniform
+// variables of integer widths c_1 ... c_m, i.e. the convolution of boxes:
+//   B     = box1 * box1 * box1                 the quadratic B-spline (support 3)
+//   B2    = box2 * box2 * box2                 B stretched by 2: B2(u) = B(u / 2) / 2
+//   beta  = B * B2 (six boxes)                 the exact projection kernel, a quintic
+//                                               (Cook & DeRose eq. 36, support 9)
+//   g     = B * B, gb = B2 * B2, gbeta = beta * beta   their autocorrelations
+// Such a density is (Schoenberg's truncated-power formula)
+//   f(x) = sum over subsets e of the widths (-1)^|e| (u - sum e)_+^(m-1) / ((m-1)! prod c),
+// with u = x + (sum c) / 2. On each unit piece u in [k, k + 1] it is one polynomial
+// in t = u - k, whose coefficients are integer sums divided once by (m-1)! prod c:
+// exact to the last bit of a double. The widths are the only input
+// (constants.hpp: kBsplineUniforms, kWaveletProjectionStretch); no polynomial
+// coefficient is typed anywhere, and the tests re-derive each kernel's defining
+// property (partition of unity, refinement, convolution, integral).
+//
+// Conventions: kernels are centred (symmetric about 0) and arguments are
+// distances d = y - i from a coefficient i to the position y, in coefficient
+// units. Outside the support every kernel is 0.
+#ifndef HUSH_CORE_BSPLINE_HPP
+#define HUSH_CORE_BSPLINE_HPP
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+
+namespace hush {
+namespace detail {
+
+// A kernel as Pieces unit polynomial pieces of Order coefficients (degree
+// Order - 1), ascending powers of the local variable t in [0, 1]; piece k
+// covers d in [k - Pieces / 2, k + 1 - Pieces / 2].
+template <int Pieces, int Order>
+struct piecewise_kernel {
+  static constexpr int pieces = Pieces;
+  static constexpr int order = Order;
+  std::array<std::array<double, Order>, Pieces> c{};
+  static constexpr double half_support() { return Pieces / 2.0; }
+};
+
+// n choose k, for the small n used here.
+constexpr std::int64_t binomial(int n, int k) {
+  std::int64_t r = 1;
+  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+  return r;
+}
+constexpr std::int64_t ipow(std::int64_t b, int e) {
+  std::int64_t r = 1;
+  for (int i = 0; i < e; ++i) r *= b;
+  return r;
+}
+
+// The pieces of the density of a sum of M centred uniforms of integer widths w.
+template <int M, int S>
+constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w) {
+  piecewise_kernel<S, M> r{};
+  std::int64_t denom = 1;
+  for (int i = 1; i < M; ++i) denom *= i;  // (M - 1)!
+  for (int i = 0; i < M; ++i) denom *= w[i];
+  for (int k = 0; k < S; ++k) {
+    std::int64_t num[M] = {};
+    for (unsigned e = 0; e < (1u << M); ++e) {
+      int s = 0, sign = 1;
+      for (int i = 0; i < M; ++i)
+        if (e >> i & 1u) {
+          s += w[i];
+          sign = -sign;
+        }
+      if (s > k) continue;  // (u - s)_+ vanishes on this piece
+      // (t + k - s)^(M-1) = sum_j binom(M-1, j) t^j (k - s)^(M-1-j)
+      for (int j = 0; j < M; ++j) num[j] += sign * binomial(M - 1, j) * ipow(k - s, M - 1 - j);
+    }
+    for (int j = 0; j < M; ++j)
+      r.c[k][j] = static_cast<double>(num[j]) / static_cast<double>(denom);
+  }
+  return r;
+}
+
+// The density of that sum where u = x + S / 2 is the integer `u`, exactly:
+// f = sum_e (-1)^|e| (u - s_e)_+^(M-1) / ((M-1)! prod w). Every term is an
+// integer below 2^47 for the kernels here, so the sum is exact in int64.
+template <int M>
+constexpr double uniform_sum_density_at(const std::array<int, M>& w, int u) {
+  std::int64_t num = 0, denom = 1;
+  for (int i = 1; i < M; ++i) denom *= i;
+  for (int i = 0; i < M; ++i) denom *= w[i];
+  for (unsigned e = 0; e < (1u << M); ++e) {
+    int s = 0, sign = 1;
+    for (int i = 0; i < M; ++i)
+      if (e >> i & 1u) {
+        s += w[i];
+        sign = -sign;
+      }
+    if (u > s) num += sign * ipow(u - s, M - 1);
+  }
+  return static_cast<double>(num) / static_cast<double>(denom);
+}
+
+namespace bspline_widths {
+constexpr int kN = constants::kBsplineUniforms;
+constexpr int kStretch = static_cast<int>(constants::kWaveletProjectionStretch);
+static_assert(kStretch == constants::kWaveletProjectionStretch, "an integer stretch");
+template <int M>
+constexpr std::array<int, M> boxes(int width) {
+  std::array<int, M> r{};
+  for (int i = 0; i < M; ++i) r[i] = width;
+  return r;
+}
+template <int A, int B>
+constexpr std::array<int, A + B> concat(const std::array<int, A>& a, const std::array<int, B>& b) {
+  std::array<int, A + B> r{};
+  for (int i = 0; i < A; ++i) r[i] = a[i];
+  for (int i = 0; i < B; ++i) r[A + i] = b[i];
+  return r;
+}
+constexpr auto kB = boxes<kN>(1);                              // B
+constexpr auto kB2 = boxes<kN>(kStretch);                      // B2 = B(u / 2) / 2
+constexpr auto kBeta = concat<kN, kN>(kB, kB2);                // beta = B * B2
+constexpr auto kG = concat<kN, kN>(kB, kB);                    // B * B
+constexpr auto kGb2 = concat<kN, kN>(kB2, kB2);                // B2 * B2
+constexpr auto kGbeta = concat<2 * kN, 2 * kN>(kBeta, kBeta);  // beta * beta
+}  // namespace bspline_widths
+
+// The quadratic B-spline B (3 pieces), B2 (6 pieces) and the quintic beta (9 pieces).
+inline constexpr auto kBspline =
+    uniform_sum_kernel<bspline_widths::kN, bspline_widths::kN>(bspline_widths::kB);
+inline constexpr auto kBspline2 =
+    uniform_sum_kernel<bspline_widths::kN, bspline_widths::kN * bspline_widths::kStretch>(
+        bspline_widths::kB2);
+inline constexpr auto kBeta =
+    uniform_sum_kernel<2 * bspline_widths::kN, bspline_widths::kN*(1 + bspline_widths::kStretch)>(
+        bspline_widths::kBeta);
+
+// Autocorrelations at integer lags d (0 <= d < support): the Gram entries of the
+// basis (g), and of the two projection kernels along the normal (for variances).
+constexpr double bspline_gram(int d) {
+  return uniform_sum_density_at<2 * bspline_widths::kN>(bspline_widths::kG, d + bspline_widths::kN);
+}
+constexpr double bspline2_gram(int d) {
+  return uniform_sum_density_at<2 * bspline_widths::kN>(
+      bspline_widths::kGb2, d + bspline_widths::kN * bspline_widths::kStretch);
+}
+constexpr double beta_gram(int d) {
+  return uniform_sum_density_at<4 * bspline_widths::kN>(
+      bspline_widths::kGbeta, d + bspline_widths::kN * (1 + bspline_widths::kStretch));
+}
+// Lags where they are non-zero: |d| < reach.
+constexpr int kBsplineGramReach = bspline_widths::kN;                                // 3
+constexpr int kBspline2GramReach = bspline_widths::kN * bspline_widths::kStretch;    // 6
+constexpr int kBetaGramReach = bspline_widths::kN * (1 + bspline_widths::kStretch);  // 9
+
+// The derivative's pieces (coefficients j c_j, shifted down one power).
+template <int P, int O>
+constexpr piecewise_kernel<P, O - 1> derivative(const piecewise_kernel<P, O>& k) {
+  piecewise_kernel<P, O - 1> r{};
+  for (int p = 0; p < P; ++p)
+    for (int j = 1; j < O; ++j) r.c[p][j - 1] = k.c[p][j] * j;
+  return r;
+}
+inline constexpr auto kBsplineDerivative = derivative(kBspline);
+inline constexpr auto kBspline2Derivative = derivative(kBspline2);
+inline constexpr auto kBetaDerivative = derivative(kBeta);
+
+// Piece p of kernel k at local t, Horner form (highest power first), in T.
+template <class T, int P, int O>
+HUSH_INLINE T piece_value(const piecewise_kernel<P, O>& k, int p, T t) {
+  T r = T(k.c[p][O - 1]);
+  for (int j = O - 2; j >= 0; --j) r = r * t + T(k.c[p][j]);
+  return r;
+}
+
+// Kernel k at distance d (0 outside its support), in T.
+template <class T, int P, int O>
+HUSH_INLINE T kernel_at(const piecewise_kernel<P, O>& k, T d) {
+  const T u = d + T(P / 2.0);
+  if (!(u > T(0) && u < T(P))) return T(0);  // also 0 for NaN
+  const int p = static_cast<int>(std::floor(u));
+  return piece_value(k, p, u - T(p));
+}
+
+// A fixed kernel of support P (B2: 6, beta: 9) read at fraction f in [0, 1): tap j sits
+// at distance f + 1/2 - j, and the taps j = floor(1/2 - P/2) + 1 ... ceil(3/2 + P/2) - 1
+// (-2 ... 4 for B2, -3 ... 5 for beta) cover every f (some weights are 0).
+template <int P>
+constexpr int fixed_kernel_first_tap() {
+  return P % 2 == 0 ? 1 - P / 2 : (3 - P) / 2;
+}
+template <int P>
+constexpr int fixed_kernel_taps() {
+  return (P + 2) / 2 - fixed_kernel_first_tap<P>() + 1;
+}
+// The most taps any kernel has along one axis (beta's 9; the widened B-spline is
+// limited to it).
+constexpr int kWaveletMaxTaps = fixed_kernel_taps<kBeta.pieces>();
+
+// The number of axis permutations of a D-dimensional tile (D!: 2 or 6), for the
+// hashed tile variants of wavelet noise.
+constexpr std::uint32_t wavelet_permutations(int d) { return d == 2 ? 2u : 6u; }
+
+// The plain 3-tap weights of B at fraction f in [0, 1): the position y lies at
+// distance f + 1/2 - j from coefficient i0 + j, j = 0, 1, 2 (i0 = floor(y - 1/2),
+// f = y - 1/2 - i0), so tap j reads piece 2 - j at t = f.
+template <class T>
+HUSH_INLINE void bspline_weights(T f, T (&w)[3]) {
+  for (int j = 0; j < 3; ++j) w[j] = piece_value(kBspline, 2 - j, f);
+}
+template <class T>
+HUSH_INLINE void bspline_derivative_weights(T f, T (&w)[3]) {
+  for (int j = 0; j < 3; ++j) w[j] = piece_value(kBsplineDerivative, 2 - j, f);
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_CORE_BSPLINE_HPP
+// ---- end hush/core/bspline.hpp
+// ---- begin hush/core/frame.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::frame: what a renderer already has for one frame, as views of its
+// G-buffer channels, for the scene-driven noises (coherent noise, Kass &
+// Pesare 2011; NPR Gabor noise, Benard et al. 2010). No scene graph, camera or
+// file format: pointers to pixels the caller owns, valid for the call.
+//
+// Conventions (the same as examples/scene/gbuffer.hpp, which produces them):
+//  - width x height pixels, row y at data + y * stride (elements), row 0 at
+//    the TOP of the image; pixel (x, y) has its centre at (x + 0.5, y + 0.5)
+//    in screen pixels, x right, y down.
+//  - depth: linear view depth (distance from the camera plane along the view
+//    axis), > 0 where a surface is seen. +inf (background), NaN, 0 or
+//    negative values mean "no usable surface here": noises treat the pixel as
+//    disoccluded (coherent noise gives it fresh noise).
+//  - velocity (backward 3D velocity): (dx, dy) in pixels per frame and dz in
+//    depth units per frame, such that the surface point seen at pixel centre p
+//    in this frame was at p - (dx, dy) with depth depth - dz in the previous
+//    frame. NaN or +-Inf in any component: no previous position (disoccluded).
+//  - forward_velocity: the same towards the NEXT frame: the point seen at p
+//    is at p + (dx, dy) with depth depth + dz in frame i + 1 (what a backward
+//    pass over a sequence needs; examples/scene writes both).
+//  - object_id: an id per pixel (examples/scene: 0 = background); two pixels
+//    show the same object when their ids are equal.
+//  - triangle_id: the triangle index within the object (NPR Gabor noise).
+//  - uv: the surface's texture coordinates (u, v) at the pixel centre
+//    (anisotropic noise evaluates there).
+//  - uv_jacobian: d(u, v)/d(x, y) in uv units per pixel, as (du/dx, du/dy,
+//    dv/dx, dv/dy): the screen-to-texture Jacobian J a filtering 2D noise
+//    turns into its footprint (hush::footprint<2>::from_derivatives((du/dx,
+//    dv/dx), (du/dy, dv/dy)); anisotropic noise).
+// NPR Gabor noise reads its triangle list beside these views (core/triangles.hpp).
+#ifndef HUSH_CORE_FRAME_HPP
+#define HUSH_CORE_FRAME_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+
+namespace hush {
+
+// Which views of a frame a noise reads; combine with |.
+enum class frame_view : unsigned {
+  none = 0,
+  depth = 1u << 0,
+  velocity = 1u << 1,
+  forward_velocity = 1u << 2,
+  object_id = 1u << 3,
+  triangle_id = 1u << 4,
+  uv = 1u << 5,
+  uv_jacobian = 1u << 6,
+};
+constexpr frame_view operator|(frame_view a, frame_view b) {
+  return static_cast<frame_view>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
+}
+constexpr bool has_view(frame_view set, frame_view v) {
+  return (static_cast<unsigned>(set) & static_cast<unsigned>(v)) != 0;
+}
+
+struct frame {
+  image_view<const float> depth;                // linear view depth
+  image_view<const vec3> velocity;              // (dx, dy, dz) from the previous frame
+  image_view<const vec3> forward_velocity;      // (dx, dy, dz) to the next frame
+  image_view<const std::uint32_t> object_id;    // optional: same id = same object
+  image_view<const std::uint32_t> triangle_id;  // optional
+  image_view<const vec2> uv;                    // optional: texture coordinates
+  image_view<const vec4> uv_jacobian;           // optional: (du/dx, du/dy, dv/dx, dv/dy)
+
+  // The frame's size: the depth view's (every present view must match it).
+  std::size_t width() const { return depth.width; }
+  std::size_t height() const { return depth.height; }
+  std::size_t pixels() const { return depth.width * depth.height; }
+
+  // Which views are present (data non-null).
+  frame_view present() const {
+    frame_view p = frame_view::none;
+    if (depth.data) p = p | frame_view::depth;
+    if (velocity.data) p = p | frame_view::velocity;
+    if (forward_velocity.data) p = p | frame_view::forward_velocity;
+    if (object_id.data) p = p | frame_view::object_id;
+    if (triangle_id.data) p = p | frame_view::triangle_id;
+    if (uv.data) p = p | frame_view::uv;
+    if (uv_jacobian.data) p = p | frame_view::uv_jacobian;
+    return p;
+  }
+
+  // Throws hush::invalid_argument naming `where` and the view when a view in
+  // `required` is missing, when the depth view is empty (0 pixels) or larger
+  // than max_side pixels on a side, or when a present view's size differs from
+  // the depth view's or its stride is below its width. Never reads a pixel.
+  void validate(const char* where, frame_view required, std::size_t max_side) const {
+    if (!depth.data) missing(where, "depth");
+    if (depth.width == 0 || depth.height == 0 || depth.width > max_side || depth.height > max_side)
+      detail::throw_out_of_range(
+          where, "frame.depth size", size_text(depth),
+          ("1 ... " + std::to_string(max_side) + " pixels per side").c_str());
+    check(where, "depth", depth, frame_view::depth, required);
+    check(where, "velocity", velocity, frame_view::velocity, required);
+    check(where, "forward_velocity", forward_velocity, frame_view::forward_velocity, required);
+    check(where, "object_id", object_id, frame_view::object_id, required);
+    check(where, "triangle_id", triangle_id, frame_view::triangle_id, required);
+    check(where, "uv", uv, frame_view::uv, required);
+    check(where, "uv_jacobian", uv_jacobian, frame_view::uv_jacobian, required);
+  }
+
+ private:
+  template <class T>
+  static std::string size_text(const image_view<T>& v) {
+    return std::to_string(v.width) + "x" + std::to_string(v.height);
+  }
+  [[noreturn]] static void missing(const char* where, const char* name) {
+    throw hush::invalid_argument(std::string(where) + ": frame." + name +
+                                 " is required but missing (null data)");
+  }
+  template <class T>
+  void check(const char* where, const char* name, const image_view<T>& v, frame_view which,
+             frame_view required) const {
+    if (!v.data) {
+      if (has_view(required, which)) missing(where, name);
+      return;
+    }
+    if (v.width != depth.width || v.height != depth.height)
+      detail::throw_out_of_range(where, std::string("frame.") + name + " size", size_text(v),
+                                 ("the depth view's size, " + size_text(depth)).c_str());
+    if (v.stride < v.width)
+      detail::throw_out_of_range(where, std::string("frame.") + name + ".stride", v.stride,
+                                 ("at least its width, " + std::to_string(v.width)).c_str());
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_FRAME_HPP
+// ---- end hush/core/frame.hpp
+// ---- begin hush/core/poisson_table.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::poisson_table: Poisson-distributed counts for one fixed mean from one
+// uniform 32-bit word, by integer comparisons only.
+//
+// hush::rng::poisson computes in double (exp, log, rejection loops), which a
+// GPU cannot repeat bit for bit. When the mean is fixed (a noise's impulse
+// density per cell), the cumulative distribution can be computed once, on the
+// CPU in double, and rounded to 32-bit thresholds
+//
+//   T_k = round(2^32 P(X < k)),  k = 1 ... n,
+//
+// kept while T_k < 2^32 (n = max_count()). The count of a uniform word u is
+// then the number of thresholds at or below it, count(u) = #{k : T_k <= u}:
+// integer comparisons only, so the CPU, the SIMD kernels and GLSL shaders that
+// hold the same table draw the same count from the same word.
+//
+// Contract:
+//  - mean: 0 <= mean <= kPoissonTableMaxMean (1e4); anything else, NaN and
+//    +-Inf included, throws hush::invalid_argument naming "mean".
+//  - distribution: with u uniform over all 2^32 words, count k has probability
+//    (T_{k+1} - T_k) / 2^32 (T_0 = 0, T_{n+1} = 2^32), within 2^-32 of the
+//    Poisson pmf for every k (one rounding of a CDF accurate to ~1e-13);
+//    counts above n, whose total Poisson probability is below 2^-33, do not
+//    occur. probability(k) and exact_mean() return the table's own values.
+//  - cost: the thresholds are built once (O(n) exp, n ~ mean + 7 sqrt(mean)
+//    + 20); count() is a binary search, O(log n), and never fails.
+#ifndef HUSH_CORE_POISSON_TABLE_HPP
+#define HUSH_CORE_POISSON_TABLE_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+
+namespace hush {
+
+class poisson_table {
+ public:
+  // An empty table: mean 0, every count 0.
+  poisson_table() = default;
+
+  // The thresholds of Poisson(mean). Throws hush::invalid_argument when mean
+  // is NaN, infinite, negative or above kPoissonTableMaxMean.
+  explicit poisson_table(double mean) : mean_(mean) {
+    namespace c = detail::constants;
+    detail::require_in_range("hush::poisson_table", "mean", mean, 0.0, c::kPoissonTableMaxMean,
+                             "0 <= mean <= 10000 (finite, not NaN)");
+    if (mean == 0.0) return;
+    constexpr double kWords = 4294967296.0;  // 2^32
+    const double log_mean = std::log(mean);
+    // The cap only guards the loop; for every valid mean the CDF reaches
+    // 1 - 2^-33 long before it (P(X > mean + 7 sqrt(mean) + 20) < 1e-12).
+    const auto cap = static_cast<std::uint32_t>(mean + 12.0 * std::sqrt(mean) + 64.0);
+    double cdf = 0.0;
+    for (std::uint32_t k = 0; k < cap; ++k) {
+      // pmf(k) in log space: exp(-mean) underflows for means above ~745.
+      cdf += std::exp(-mean + static_cast<double>(k) * log_mean - log_factorial(k));
+      const double t = std::floor(cdf * kWords + 0.5);  // T_{k+1}
+      if (!(t < kWords)) break;                         // unreachable by any word: the table ends
+      thresholds_.push_back(static_cast<std::uint32_t>(t));
+    }
+  }
+
+  // The mean asked for.
+  double mean() const { return mean_; }
+  // The largest count the table draws (its number of thresholds).
+  std::uint32_t max_count() const { return static_cast<std::uint32_t>(thresholds_.size()); }
+  // T_1 ... T_n, ascending (non-decreasing).
+  const std::vector<std::uint32_t>& thresholds() const { return thresholds_; }
+
+  // The count of word u: the number of thresholds <= u (binary search).
+  std::uint32_t count(std::uint32_t u) const {
+    return static_cast<std::uint32_t>(std::upper_bound(thresholds_.begin(), thresholds_.end(), u) -
+                                      thresholds_.begin());
+  }
+
+  // The probability the table gives count k (0 above max_count()).
+  double probability(std::uint32_t k) const {
+    constexpr double kWords = 4294967296.0;
+    const std::size_t n = thresholds_.size();
+    if (k > n) return 0.0;
+    const double lo = k == 0 ? 0.0 : static_cast<double>(thresholds_[k - 1]);
+    const double hi = k == n ? kWords : static_cast<double>(thresholds_[k]);
+    return (hi - lo) / kWords;
+  }
+
+  // The table's exact mean, sum_k P(count >= k) = sum_k (2^32 - T_k) / 2^32:
+  // within ~n 2^-32 of mean(); what statistics of processes built on the
+  // table (e.g. a sparse convolution noise's variance) should use.
+  double exact_mean() const {
+    constexpr double kWords = 4294967296.0;
+    double m = 0.0;
+    for (const std::uint32_t t : thresholds_) m += (kWords - static_cast<double>(t)) / kWords;
+    return m;
+  }
+
+ private:
+  double mean_ = 0.0;
+  std::vector<std::uint32_t> thresholds_;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_POISSON_TABLE_HPP
+// ---- end hush/core/poisson_table.hpp
+// ---- begin hush/core/triangles.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::triangle_list: the triangles a renderer drew in one frame, as views of
+// arrays the caller owns (valid for the call), beside hush::frame
+// (core/frame.hpp) for the noises that attach primitives to surfaces (NPR
+// Gabor noise, Benard et al. 2010 sec. 3.3). Nothing but this frame's data:
+//  - indices: 3 per triangle, into the vertex arrays;
+//  - screen: each vertex's screen position in pixels for this frame (the
+//    frame's conventions: x right, y down, pixel (x, y) centred at
+//    (x + 0.5, y + 0.5)), i.e. clip (X, Y) / W through the viewport;
+//  - depth: each vertex's linear view depth for this frame (clip W; the
+//    frame's depth units). A vertex with depth <= 0 or a non-finite value is
+//    not in front of the camera: noises skip its triangles (documented per
+//    noise);
+//  - triangle_id: per triangle, a stable id: the same surface triangle has
+//    the same id in every frame, and it is the id the frame's triangle_id
+//    view shows where the triangle is visible;
+//  - object_id: per triangle, the object id the frame's object_id view shows
+//    where it is visible. Optional (empty: every triangle is object 0).
+// A triangle is keyed by (object_id, triangle_id): noises seed their
+// per-triangle random streams with that pair, so a triangle's primitives are
+// the same in every frame whatever the order or number of triangles.
+//
+// Perspective: a surface point of barycentric coordinates b (object space)
+// projects to s = sum b_i z_i s_i / sum b_i z_i at depth sum b_i z_i (clip
+// coordinates are linear in object space), which is why depth comes with
+// the screen positions.
+#ifndef HUSH_CORE_TRIANGLES_HPP
+#define HUSH_CORE_TRIANGLES_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+
+namespace hush {
+
+struct triangle_list {
+  span<const std::uint32_t> indices;      // 3 per triangle
+  span<const vec2> screen;                // per vertex: pixels
+  span<const float> depth;                // per vertex: linear view depth
+  span<const std::uint32_t> triangle_id;  // per triangle: stable id
+  span<const std::uint32_t> object_id;    // per triangle, optional
+
+  std::size_t triangles() const { return indices.size() / 3; }
+  std::size_t vertices() const { return screen.size(); }
+  std::uint32_t object_of(std::size_t t) const { return object_id.empty() ? 0u : object_id[t]; }
+
+  // Throws hush::invalid_argument naming `where` and the array when the index
+  // count is not a multiple of 3, there are more than max_triangles
+  // triangles, depth and screen differ in length, triangle_id (or a non-empty
+  // object_id) does not hold one id per triangle, or an index is not below
+  // vertices(). Reads every index (O(triangles)), never a vertex value.
+  void validate(const char* where, std::size_t max_triangles) const {
+    if (indices.size() % 3 != 0)
+      detail::throw_out_of_range(where, "triangles.indices size", indices.size(),
+                                 "a multiple of 3 (3 indices per triangle)");
+    if (triangles() > max_triangles)
+      detail::throw_out_of_range(where, "triangles.indices size", indices.size(),
+                                 ("at most 3 x " + std::to_string(max_triangles)).c_str());
+    if (depth.size() != screen.size())
+      detail::throw_out_of_range(where, "triangles.depth size", depth.size(),
+                                 ("one per vertex: " + std::to_string(screen.size())).c_str());
+    if (triangle_id.size() != triangles())
+      detail::throw_out_of_range(where, "triangles.triangle_id size", triangle_id.size(),
+                                 ("one per triangle: " + std::to_string(triangles())).c_str());
+    if (!object_id.empty() && object_id.size() != triangles())
+      detail::throw_out_of_range(
+          where, "triangles.object_id size", object_id.size(),
+          ("0 (absent) or one per triangle: " + std::to_string(triangles())).c_str());
+    for (std::size_t i = 0; i < indices.size(); ++i)
+      if (indices[i] >= vertices())
+        detail::throw_out_of_range(
+            where, "triangles.indices[" + std::to_string(i) + "]", indices[i],
+            ("below the vertex count, " + std::to_string(vertices())).c_str());
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_TRIANGLES_HPP
+// ---- end hush/core/triangles.hpp
+// ---- begin hush/exec.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Execution policies and batch evaluation: the caller picks the backend per
+// call site, the noise object stays the same.
+//
+//   hush::perlin<3> p{7};
+//   hush::evaluate(p, hush::exec::scalar, points, out);        // reference loop
+//   hush::evaluate(p, hush::exec::simd, points, out);          // Highway kernels
+//   hush::evaluate_grid(p, hush::exec::glsl{device}, g, out);  // GL compute shader
+//
+// Policies are empty tag types (Highway's sort/order.h style), except glsl,
+// which carries the device it runs on (backends/glsl, hush/glsl/device.hpp).
+//
+// Contract of every overload:
+//  - points: span of vec<float, D>; out.size() must equal points.size(), and
+//    gradients (when given) too, else hush::invalid_argument naming the span.
+//  - grids: grid<D> (origin and step in double); out has grid.count()
+//    elements in C order, i fastest (core/views.hpp). The grid is validated.
+//  - scalar: exactly noise(point) per element, in float. A noise may share
+//    work between the samples of a grid (detail::has_grid_values); its
+//    results are still point evaluation's, bit for bit unless the compiler
+//    contracts multiply-adds (HUSH_STRICT_FP forbids it).
+//  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
+//    the noise's float budget of the double reference (perlin, fractal:
+//    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
+//    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
+//  - glsl: within the GLSL tolerance stated by the backend
+//    (backends/glsl/include/hush/glsl/device.hpp).
+//  - samples (core/samples.hpp): positions plus optional per-sample
+//    footprints, normals and surface maps. Each given span must have one
+//    element per position, and only inputs the noise takes
+//    (Noise::takes_footprint, Noise::takes_normal, Noise::takes_surface_map)
+//    may be given, else hush::invalid_argument naming the span. scalar computes
+//    noise.sample_value<float>(samples.at(i)); with positions only, exactly what the points
+//    overload computes.
+//  - parallel(inner, threads): the batch split over std::threads, each
+//    running `inner` (scalar or simd) on a contiguous part: points and
+//    samples in chunks, grids in slabs along the slowest axis (rows in 2D,
+//    slices in 3D). Results are identical, bit for bit, to `inner` on the
+//    whole batch (tests/simd/parallel_test.cpp).
+//  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
+//    after validation, and no output element is left unwritten.
+#ifndef HUSH_EXEC_HPP
+#define HUSH_EXEC_HPP
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+// ---- begin hush/simd/dispatch.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The SIMD backend's target-independent face: the entry points exec::simd
+// calls, which SIMD targets were compiled and which one runs.
+//
+// Three ways to build, chosen by macro (config.hpp normalises them into
+// HUSH_CONFIG_SIMD and HUSH_CONFIG_SIMD_STATIC):
+//  - HUSH_SIMD_DYNAMIC: kernels for every target Highway compiles (SSE4,
+//    AVX2, AVX-512 on x86), the best one the CPU supports chosen at run time.
+//    Exactly one .cpp of the program includes hush/simd/dispatch_impl.hpp;
+//    the CMake target hush::simd is that file, defines the macro and links
+//    Highway. This is the route for portable binaries.
+//  - HUSH_SIMD_STATIC: kernels for the compiler's baseline target only
+//    (HWY_STATIC_TARGET; AVX2 under -march=haswell or -march=native), inlined
+//    where called; no extra translation unit. The route for -march=native
+//    builds and for the single header.
+//  - neither (or HUSH_NO_SIMD): exec::simd runs the scalar loop, and nothing
+//    needs Highway.
+#ifndef HUSH_SIMD_DISPATCH_HPP
+#define HUSH_SIMD_DISPATCH_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+// ---- begin hush/detail/coherent_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
+// data and one scalar loop: what a recursive-filter pass does for every pixel
+// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
+// program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
+// operation; include hush/coherent.hpp, not this.
+//
+// One pass step, frame i against its reference frame r (i - 1 for the causal
+// filter, i + 1 for the backward pass of the time-symmetric one), for pixel
+// p = (x, y) (Kass & Pesare 2011, sec. 3.2; the refill term is hush's):
+//   reprojection, in float (identical in every backend):
+//     u = x - s m_x, v = y - s m_y      (m = velocity, s = +1; forward velocity, s = -1)
+//     e = depth - s m_z                 (the point's expected depth in frame r)
+//     i0 = min(floor(u), W - 2), tx = u - i0 (likewise j0, ty): bilinear taps and weights
+//   visible when: the pixel has a surface (finite depth >= FLT_MIN, finite motion), (u, v)
+//     lies within the outer pixel centres of frame r, every tap with a non-zero weight shows
+//     a surface (and, when both frames carry object ids, the same id), e >= FLT_MIN, and the
+//     bilinear depth d' of frame r satisfies |d' - e| <= eps_rel e + eps_abs;
+//   value, per channel, in T (float, or double for the reference):
+//     visible, paper filter:       c = alpha h + (1 - alpha) w         (eq. 7)
+//     visible, stationary filter:  c = alpha (h + d) + (1 - alpha) w   (docs/coherent.md)
+//     otherwise (disoccluded):     c = k(alpha) w                      (eq. 6)
+//   with h the bilinear history of frame r at (u, v), w the input noise at p, and d the
+//   refill: k (sqrt(tx (1 - tx)) ((1 - ty) D_x(p) + ty D_x(p + e_y)) + sqrt(ty (1 - ty)) D_y(p)),
+//   D_x(q) = X(q) - X(q + e_x), D_y(q) = Y(q) - Y(q + e_y), X and Y two more fields drawn
+//   like the input (independent). The output is gain * c.
+#ifndef HUSH_DETAIL_COHERENT_KERNEL_HPP
+#define HUSH_DETAIL_COHERENT_KERNEL_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+
+namespace hush {
+namespace detail {
+
+// ---- The hashed white-noise fields.
+
+// Key of field `field` of channel `channel` in frame `frame`, for noise seed `seed`.
+HUSH_INLINE constexpr std::uint32_t coherent_frame_key(std::uint32_t seed, unsigned channel,
+                                                       unsigned field, std::uint32_t frame) {
+  return hash32(hash32(seed_key(seed), channel * constants::kCoherentFields + field), frame);
+}
+// Per-row key of a field: hash32(frame_key, y).
+HUSH_INLINE constexpr std::uint32_t coherent_row_key(std::uint32_t frame_key, std::uint32_t y) {
+  return hash32(frame_key, y);
+}
+// The white value of pixel x in a row: unit variance, mean 0, odd multiples of
+// sqrt(3) 2^-24 (constants.hpp). Every operation is exact but the last multiply.
+HUSH_INLINE float coherent_white(std::uint32_t row_key, std::uint32_t x) {
+  namespace c = constants;
+  const std::uint32_t h = hash32(row_key ^ (x * c::kCoherentPixelPrime));
+  const float centred = static_cast<float>(2u * (h >> c::kCoherentWhiteShift)) -
+                        static_cast<float>(c::kCoherentWhiteCentre);  // 2n + 1 - 2^24, exact
+  return centred * static_cast<float>(c::kCoherentWhiteScale);
+}
+
+// Where one field's values come from: hashed white noise of `key` (a frame key), or a
+// plane of floats (band-pass noise, or the caller's input) where value (x, y) is
+// plane[y * stride + x]. Planes of the refill fields cover (width + 1) x (height + 1)
+// values (X) and width x (height + 1) values (Y).
+struct coherent_field {
+  std::uint32_t key = 0;
+  const float* plane = nullptr;
+  std::size_t stride = 0;
+};
+
+// One pass over one frame: every pointer the loop reads or writes. Planes the
+// stream owns are packed (row stride = width); the caller's views keep their strides
+// (in elements; the motion view's in vec3 elements, i.e. 3 floats each).
+template <class T>
+struct coherent_pass_job {
+  std::uint32_t width = 0, height = 0;
+  // This frame.
+  const float* depth = nullptr;
+  std::size_t depth_stride = 0;
+  const float* motion = nullptr;  // 3 floats per pixel: velocity, or forward velocity
+  std::size_t motion_stride = 0;  // in pixels
+  float motion_sign = 1.0f;       // +1: velocity (causal); -1: forward velocity (backward pass)
+  const std::uint32_t* ids = nullptr;  // null: no id test
+  std::size_t ids_stride = 0;
+  // The reference frame (stored by the stream, packed); null depth: no reference, all fresh.
+  const float* ref_depth = nullptr;
+  const std::uint32_t* ref_ids = nullptr;
+  // Parameters.
+  float eps_rel = 0, eps_abs = 0;
+  T alpha = 0, beta = 0, k = 0, gain = 0;  // beta = 1 - alpha, k = k(alpha)
+  bool stationary = true;
+  int channels = 1;
+  coherent_field input[constants::kCoherentMaxChannels];
+  coherent_field refill_x[constants::kCoherentMaxChannels];
+  coherent_field refill_y[constants::kCoherentMaxChannels];
+  const T* ref_history[constants::kCoherentMaxChannels] = {};  // packed planes (with ref_depth)
+  T* history[constants::kCoherentMaxChannels] = {};            // packed planes, written
+  T* out[constants::kCoherentMaxChannels] = {};                // null: not written
+  std::size_t out_stride = 0;
+  std::uint8_t* fresh = nullptr;  // packed: 1 where the pixel took fresh noise, else 0
+  // Packed copies of this frame's depth and ids (the next frame's reference), or null.
+  float* depth_copy = nullptr;
+  std::uint32_t* ids_copy = nullptr;
+};
+
+// ---- The reprojection, in float: the same operations in every backend.
+
+struct coherent_taps {
+  bool visible = false;
+  std::uint32_t t00 = 0, t10 = 0, t01 = 0, t11 = 0;  // pixel indices in the reference frame
+  float w00 = 0, w10 = 0, w01 = 0, w11 = 0;          // bilinear weights
+  float tx = 0, ty = 0;                              // fractions of the bilinear cell
+};
+
+// A depth is a surface when finite and at least the smallest normal float (denormal,
+// zero, negative, NaN and infinite depths are not: no denormal arithmetic follows).
+HUSH_INLINE bool coherent_surface(float d) {
+  return d >= std::numeric_limits<float>::min() && d <= std::numeric_limits<float>::max();
+}
+HUSH_INLINE bool coherent_finite(float v) {
+  return v >= -std::numeric_limits<float>::max() && v <= std::numeric_limits<float>::max();
+}
+
+// Motion components below the smallest normal float are read as 0 (no denormal arithmetic);
+// NaN stays NaN (the pixel is then not visible).
+HUSH_INLINE float coherent_flush(float v) {
+  return std::fabs(v) < std::numeric_limits<float>::min() ? 0.0f : v;
+}
+// History values below the smallest normal T are stored as 0: with an input of zeros (the
+// caller's) the history decays as alpha^i and would otherwise go denormal.
+template <class T>
+HUSH_INLINE T coherent_flush_value(T v) {
+  return std::fabs(v) < std::numeric_limits<T>::min() ? T(0) : v;
+}
+
+template <class T>
+HUSH_INLINE coherent_taps coherent_reproject(const coherent_pass_job<T>& j, std::uint32_t x,
+                                             std::uint32_t y) {
+  coherent_taps r;
+  if (!j.ref_depth) return r;
+  const float depth = j.depth[y * j.depth_stride + x];
+  const float* m = j.motion + 3 * (y * j.motion_stride + x);
+  const float mx = coherent_flush(j.motion_sign * m[0]), my = coherent_flush(j.motion_sign * m[1]),
+              mz = coherent_flush(j.motion_sign * m[2]);
+  if (!coherent_surface(depth) || !coherent_finite(mx) || !coherent_finite(my) ||
+      !coherent_finite(mz))
+    return r;
+  const float u = static_cast<float>(x) - mx, v = static_cast<float>(y) - my;
+  const float max_u = static_cast<float>(j.width - 1), max_v = static_cast<float>(j.height - 1);
+  if (!(u >= 0.0f && u <= max_u && v >= 0.0f && v <= max_v)) return r;
+  // The cell's lower corner; on the last row/column the cell before it, with the upper
+  // taps weighted 1. A 1-pixel-wide frame has one column: both taps are it, tx = 0.
+  const float i0 = std::fmin(std::floor(u), static_cast<float>(j.width > 1 ? j.width - 2 : 0));
+  const float j0 = std::fmin(std::floor(v), static_cast<float>(j.height > 1 ? j.height - 2 : 0));
+  r.tx = u - i0;  // exact
+  r.ty = v - j0;
+  const float a = 1.0f - r.tx, b = 1.0f - r.ty;
+  r.w00 = a * b;
+  r.w10 = r.tx * b;
+  r.w01 = a * r.ty;
+  r.w11 = r.tx * r.ty;
+  const std::uint32_t step_x = j.width > 1 ? 1u : 0u, step_y = j.height > 1 ? j.width : 0u;
+  r.t00 = static_cast<std::uint32_t>(j0) * j.width + static_cast<std::uint32_t>(i0);
+  r.t10 = r.t00 + step_x;
+  r.t01 = r.t00 + step_y;
+  r.t11 = r.t01 + step_x;
+  const std::uint32_t id = j.ids ? j.ids[y * j.ids_stride + x] : 0u;
+  const bool use_ids = j.ids && j.ref_ids;
+  const std::uint32_t taps[4] = {r.t00, r.t10, r.t01, r.t11};
+  const float weights[4] = {r.w00, r.w10, r.w01, r.w11};
+  float interpolated = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] == 0.0f) continue;  // never read: a background tap must not matter
+    const float d = j.ref_depth[taps[k]];
+    if (!coherent_surface(d) || (use_ids && j.ref_ids[taps[k]] != id)) return r;
+    interpolated = interpolated + weights[k] * d;
+  }
+  const float expected = depth - mz;
+  if (!coherent_surface(expected)) return r;
+  const float tolerance = j.eps_rel * expected + j.eps_abs;
+  r.visible = std::fabs(interpolated - expected) <= tolerance;
+  return r;
+}
+
+// Value of a field at (x, y): the hash, or the plane (a non-finite plane value reads as 0,
+// so no NaN can enter the history).
+HUSH_INLINE float coherent_field_value(const coherent_field& f, std::uint32_t row_key,
+                                       std::uint32_t x, std::uint32_t y) {
+  if (!f.plane) return coherent_white(row_key, x);
+  const float v = f.plane[y * f.stride + x];
+  return coherent_finite(v) ? v : 0.0f;
+}
+
+// ---- The scalar pass: the reference every other backend is tested against.
+
+// Row keys of every field of every channel for row y (and y + 1 for the refill fields).
+struct coherent_row_keys {
+  std::uint32_t input[constants::kCoherentMaxChannels];
+  std::uint32_t x0[constants::kCoherentMaxChannels], x1[constants::kCoherentMaxChannels];
+  std::uint32_t y0[constants::kCoherentMaxChannels], y1[constants::kCoherentMaxChannels];
+};
+template <class T>
+HUSH_INLINE coherent_row_keys coherent_keys(const coherent_pass_job<T>& j, std::uint32_t y) {
+  coherent_row_keys k{};
+  for (int c = 0; c < j.channels; ++c) {
+    k.input[c] = coherent_row_key(j.input[c].key, y);
+    k.x0[c] = coherent_row_key(j.refill_x[c].key, y);
+    k.x1[c] = coherent_row_key(j.refill_x[c].key, y + 1);
+    k.y0[c] = coherent_row_key(j.refill_y[c].key, y);
+    k.y1[c] = coherent_row_key(j.refill_y[c].key, y + 1);
+  }
+  return k;
+}
+
+// Pixel (x, y) of a pass: fresh flag, history and output of every channel.
+template <class T>
+HUSH_INLINE void coherent_pixel(const coherent_pass_job<T>& j, const coherent_row_keys& keys,
+                                std::uint32_t x, std::uint32_t y) {
+  const coherent_taps g = coherent_reproject(j, x, y);
+  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
+  if (j.fresh) j.fresh[p] = g.visible ? 0u : 1u;
+  if (j.depth_copy) j.depth_copy[p] = j.depth[y * j.depth_stride + x];
+  if (j.ids_copy) j.ids_copy[p] = j.ids[y * j.ids_stride + x];
+  for (int c = 0; c < j.channels; ++c) {
+    const T w = T(coherent_field_value(j.input[c], keys.input[c], x, y));
+    T value;
+    if (!g.visible) {
+      value = j.k * w;
+    } else {
+      const T* hist = j.ref_history[c];
+      const T h = T(g.w00) * hist[g.t00] + T(g.w10) * hist[g.t10] + T(g.w01) * hist[g.t01] +
+                  T(g.w11) * hist[g.t11];
+      if (!j.stationary) {
+        value = j.alpha * h + j.beta * w;
+      } else {
+        const T tx = T(g.tx), ty = T(g.ty);
+        const T sx = std::sqrt(tx * (T(1) - tx)), sy = std::sqrt(ty * (T(1) - ty));
+        const T x00 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x, y));
+        const T x10 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x + 1, y));
+        const T x01 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x, y + 1));
+        const T x11 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x + 1, y + 1));
+        const T y00 = T(coherent_field_value(j.refill_y[c], keys.y0[c], x, y));
+        const T y01 = T(coherent_field_value(j.refill_y[c], keys.y1[c], x, y + 1));
+        const T dx = (T(1) - ty) * (x00 - x10) + ty * (x01 - x11);
+        // The refill has the history's scale: k(alpha) (the fields have unit variance).
+        const T d = j.k * (sx * dx + sy * (y00 - y01));
+        value = j.alpha * (h + d) + j.beta * w;
+      }
+    }
+    value = coherent_flush_value(value);
+    j.history[c][p] = value;
+    if (j.out[c]) j.out[c][static_cast<std::size_t>(y) * j.out_stride + x] = j.gain * value;
+  }
+}
+
+template <class T>
+void coherent_pass_scalar(const coherent_pass_job<T>& j) {
+  for (std::uint32_t y = 0; y < j.height; ++y) {
+    const coherent_row_keys keys = coherent_keys(j, y);
+    for (std::uint32_t x = 0; x < j.width; ++x) coherent_pixel(j, keys, x, y);
+  }
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
+// ---- end hush/detail/coherent_kernel.hpp
 // ---- begin hush/perlin.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -5767,356 +6190,6 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
 #endif  // HUSH_WAVELET_HPP
 // ---- end hush/wavelet.hpp
-// ---- begin hush/exec.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Execution policies and batch evaluation: the caller picks the backend per
-// call site, the noise object stays the same.
-//
-//   hush::perlin<3> p{7};
-//   hush::evaluate(p, hush::exec::scalar, points, out);        // reference loop
-//   hush::evaluate(p, hush::exec::simd, points, out);          // Highway kernels
-//   hush::evaluate_grid(p, hush::exec::glsl{device}, g, out);  // GL compute shader
-//
-// Policies are empty tag types (Highway's sort/order.h style), except glsl,
-// which carries the device it runs on (backends/glsl, hush/glsl/device.hpp).
-//
-// Contract of every overload:
-//  - points: span of vec<float, D>; out.size() must equal points.size(), and
-//    gradients (when given) too, else hush::invalid_argument naming the span.
-//  - grids: grid<D> (origin and step in double); out has grid.count()
-//    elements in C order, i fastest (core/views.hpp). The grid is validated.
-//  - scalar: exactly noise(point) per element, in float. A noise may share
-//    work between the samples of a grid (detail::has_grid_values); its
-//    results are still point evaluation's, bit for bit unless the compiler
-//    contracts multiply-adds (HUSH_STRICT_FP forbids it).
-//  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
-//    the noise's float budget of the double reference (perlin, fractal:
-//    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
-//    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
-//  - glsl: within the GLSL tolerance stated by the backend
-//    (backends/glsl/include/hush/glsl/device.hpp).
-//  - samples (core/samples.hpp): positions plus optional per-sample
-//    footprints and normals. Each given span must have one element per
-//    position, and only inputs the noise takes (Noise::takes_footprint,
-//    Noise::takes_normal) may be given, else hush::invalid_argument naming
-//    the span. scalar computes noise.sample_value<float>(samples.at(i));
-//    with positions only, exactly what the points overload computes.
-//  - parallel(inner, threads): the batch split over std::threads, each
-//    running `inner` (scalar or simd) on a contiguous part: points and
-//    samples in chunks, grids in slabs along the slowest axis (rows in 2D,
-//    slices in 3D). Results are identical, bit for bit, to `inner` on the
-//    whole batch (tests/simd/parallel_test.cpp).
-//  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
-//    after validation, and no output element is left unwritten.
-#ifndef HUSH_EXEC_HPP
-#define HUSH_EXEC_HPP
-
-#include <algorithm>
-#include <array>
-#include <cstddef>
-#include <string>
-#include <thread>
-#include <type_traits>
-#include <utility>
-#include <vector>
-
-// ---- begin hush/simd/dispatch.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The SIMD backend's target-independent face: the entry points exec::simd
-// calls, which SIMD targets were compiled and which one runs.
-//
-// Three ways to build, chosen by macro (config.hpp normalises them into
-// HUSH_CONFIG_SIMD and HUSH_CONFIG_SIMD_STATIC):
-//  - HUSH_SIMD_DYNAMIC: kernels for every target Highway compiles (SSE4,
-//    AVX2, AVX-512 on x86), the best one the CPU supports chosen at run time.
-//    Exactly one .cpp of the program includes hush/simd/dispatch_impl.hpp;
-//    the CMake target hush::simd is that file, defines the macro and links
-//    Highway. This is the route for portable binaries.
-//  - HUSH_SIMD_STATIC: kernels for the compiler's baseline target only
-//    (HWY_STATIC_TARGET; AVX2 under -march=haswell or -march=native), inlined
-//    where called; no extra translation unit. The route for -march=native
-//    builds and for the single header.
-//  - neither (or HUSH_NO_SIMD): exec::simd runs the scalar loop, and nothing
-//    needs Highway.
-#ifndef HUSH_SIMD_DISPATCH_HPP
-#define HUSH_SIMD_DISPATCH_HPP
-
-#include <cstddef>
-#include <cstdint>
-#include <string>
-#include <vector>
-
-// ---- begin hush/detail/coherent_kernel.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
-// data and one scalar loop: what a recursive-filter pass does for every pixel
-// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
-// program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
-// operation; include hush/coherent.hpp, not this.
-//
-// One pass step, frame i against its reference frame r (i - 1 for the causal
-// filter, i + 1 for the backward pass of the time-symmetric one), for pixel
-// p = (x, y) (Kass & Pesare 2011, sec. 3.2; the refill term is hush's):
-//   reprojection, in float (identical in every backend):
-//     u = x - s m_x, v = y - s m_y      (m = velocity, s = +1; forward velocity, s = -1)
-//     e = depth - s m_z                 (the point's expected depth in frame r)
-//     i0 = min(floor(u), W - 2), tx = u - i0 (likewise j0, ty): bilinear taps and weights
-//   visible when: the pixel has a surface (finite depth >= FLT_MIN, finite motion), (u, v)
-//     lies within the outer pixel centres of frame r, every tap with a non-zero weight shows
-//     a surface (and, when both frames carry object ids, the same id), e >= FLT_MIN, and the
-//     bilinear depth d' of frame r satisfies |d' - e| <= eps_rel e + eps_abs;
-//   value, per channel, in T (float, or double for the reference):
-//     visible, paper filter:       c = alpha h + (1 - alpha) w         (eq. 7)
-//     visible, stationary filter:  c = alpha (h + d) + (1 - alpha) w   (docs/coherent.md)
-//     otherwise (disoccluded):     c = k(alpha) w                      (eq. 6)
-//   with h the bilinear history of frame r at (u, v), w the input noise at p, and d the
-//   refill: k (sqrt(tx (1 - tx)) ((1 - ty) D_x(p) + ty D_x(p + e_y)) + sqrt(ty (1 - ty)) D_y(p)),
-//   D_x(q) = X(q) - X(q + e_x), D_y(q) = Y(q) - Y(q + e_y), X and Y two more fields drawn
-//   like the input (independent). The output is gain * c.
-#ifndef HUSH_DETAIL_COHERENT_KERNEL_HPP
-#define HUSH_DETAIL_COHERENT_KERNEL_HPP
-
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <limits>
-
-
-namespace hush {
-namespace detail {
-
-// ---- The hashed white-noise fields.
-
-// Key of field `field` of channel `channel` in frame `frame`, for noise seed `seed`.
-HUSH_INLINE constexpr std::uint32_t coherent_frame_key(std::uint32_t seed, unsigned channel,
-                                                       unsigned field, std::uint32_t frame) {
-  return hash32(hash32(seed_key(seed), channel * constants::kCoherentFields + field), frame);
-}
-// Per-row key of a field: hash32(frame_key, y).
-HUSH_INLINE constexpr std::uint32_t coherent_row_key(std::uint32_t frame_key, std::uint32_t y) {
-  return hash32(frame_key, y);
-}
-// The white value of pixel x in a row: unit variance, mean 0, odd multiples of
-// sqrt(3) 2^-24 (constants.hpp). Every operation is exact but the last multiply.
-HUSH_INLINE float coherent_white(std::uint32_t row_key, std::uint32_t x) {
-  namespace c = constants;
-  const std::uint32_t h = hash32(row_key ^ (x * c::kCoherentPixelPrime));
-  const float centred = static_cast<float>(2u * (h >> c::kCoherentWhiteShift)) -
-                        static_cast<float>(c::kCoherentWhiteCentre);  // 2n + 1 - 2^24, exact
-  return centred * static_cast<float>(c::kCoherentWhiteScale);
-}
-
-// Where one field's values come from: hashed white noise of `key` (a frame key), or a
-// plane of floats (band-pass noise, or the caller's input) where value (x, y) is
-// plane[y * stride + x]. Planes of the refill fields cover (width + 1) x (height + 1)
-// values (X) and width x (height + 1) values (Y).
-struct coherent_field {
-  std::uint32_t key = 0;
-  const float* plane = nullptr;
-  std::size_t stride = 0;
-};
-
-// One pass over one frame: every pointer the loop reads or writes. Planes the
-// stream owns are packed (row stride = width); the caller's views keep their strides
-// (in elements; the motion view's in vec3 elements, i.e. 3 floats each).
-template <class T>
-struct coherent_pass_job {
-  std::uint32_t width = 0, height = 0;
-  // This frame.
-  const float* depth = nullptr;
-  std::size_t depth_stride = 0;
-  const float* motion = nullptr;  // 3 floats per pixel: velocity, or forward velocity
-  std::size_t motion_stride = 0;  // in pixels
-  float motion_sign = 1.0f;       // +1: velocity (causal); -1: forward velocity (backward pass)
-  const std::uint32_t* ids = nullptr;  // null: no id test
-  std::size_t ids_stride = 0;
-  // The reference frame (stored by the stream, packed); null depth: no reference, all fresh.
-  const float* ref_depth = nullptr;
-  const std::uint32_t* ref_ids = nullptr;
-  // Parameters.
-  float eps_rel = 0, eps_abs = 0;
-  T alpha = 0, beta = 0, k = 0, gain = 0;  // beta = 1 - alpha, k = k(alpha)
-  bool stationary = true;
-  int channels = 1;
-  coherent_field input[constants::kCoherentMaxChannels];
-  coherent_field refill_x[constants::kCoherentMaxChannels];
-  coherent_field refill_y[constants::kCoherentMaxChannels];
-  const T* ref_history[constants::kCoherentMaxChannels] = {};  // packed planes (with ref_depth)
-  T* history[constants::kCoherentMaxChannels] = {};            // packed planes, written
-  T* out[constants::kCoherentMaxChannels] = {};                // null: not written
-  std::size_t out_stride = 0;
-  std::uint8_t* fresh = nullptr;  // packed: 1 where the pixel took fresh noise, else 0
-  // Packed copies of this frame's depth and ids (the next frame's reference), or null.
-  float* depth_copy = nullptr;
-  std::uint32_t* ids_copy = nullptr;
-};
-
-// ---- The reprojection, in float: the same operations in every backend.
-
-struct coherent_taps {
-  bool visible = false;
-  std::uint32_t t00 = 0, t10 = 0, t01 = 0, t11 = 0;  // pixel indices in the reference frame
-  float w00 = 0, w10 = 0, w01 = 0, w11 = 0;          // bilinear weights
-  float tx = 0, ty = 0;                              // fractions of the bilinear cell
-};
-
-// A depth is a surface when finite and at least the smallest normal float (denormal,
-// zero, negative, NaN and infinite depths are not: no denormal arithmetic follows).
-HUSH_INLINE bool coherent_surface(float d) {
-  return d >= std::numeric_limits<float>::min() && d <= std::numeric_limits<float>::max();
-}
-HUSH_INLINE bool coherent_finite(float v) {
-  return v >= -std::numeric_limits<float>::max() && v <= std::numeric_limits<float>::max();
-}
-
-// Motion components below the smallest normal float are read as 0 (no denormal arithmetic);
-// NaN stays NaN (the pixel is then not visible).
-HUSH_INLINE float coherent_flush(float v) {
-  return std::fabs(v) < std::numeric_limits<float>::min() ? 0.0f : v;
-}
-// History values below the smallest normal T are stored as 0: with an input of zeros (the
-// caller's) the history decays as alpha^i and would otherwise go denormal.
-template <class T>
-HUSH_INLINE T coherent_flush_value(T v) {
-  return std::fabs(v) < std::numeric_limits<T>::min() ? T(0) : v;
-}
-
-template <class T>
-HUSH_INLINE coherent_taps coherent_reproject(const coherent_pass_job<T>& j, std::uint32_t x,
-                                             std::uint32_t y) {
-  coherent_taps r;
-  if (!j.ref_depth) return r;
-  const float depth = j.depth[y * j.depth_stride + x];
-  const float* m = j.motion + 3 * (y * j.motion_stride + x);
-  const float mx = coherent_flush(j.motion_sign * m[0]), my = coherent_flush(j.motion_sign * m[1]),
-              mz = coherent_flush(j.motion_sign * m[2]);
-  if (!coherent_surface(depth) || !coherent_finite(mx) || !coherent_finite(my) ||
-      !coherent_finite(mz))
-    return r;
-  const float u = static_cast<float>(x) - mx, v = static_cast<float>(y) - my;
-  const float max_u = static_cast<float>(j.width - 1), max_v = static_cast<float>(j.height - 1);
-  if (!(u >= 0.0f && u <= max_u && v >= 0.0f && v <= max_v)) return r;
-  // The cell's lower corner; on the last row/column the cell before it, with the upper
-  // taps weighted 1. A 1-pixel-wide frame has one column: both taps are it, tx = 0.
-  const float i0 = std::fmin(std::floor(u), static_cast<float>(j.width > 1 ? j.width - 2 : 0));
-  const float j0 = std::fmin(std::floor(v), static_cast<float>(j.height > 1 ? j.height - 2 : 0));
-  r.tx = u - i0;  // exact
-  r.ty = v - j0;
-  const float a = 1.0f - r.tx, b = 1.0f - r.ty;
-  r.w00 = a * b;
-  r.w10 = r.tx * b;
-  r.w01 = a * r.ty;
-  r.w11 = r.tx * r.ty;
-  const std::uint32_t step_x = j.width > 1 ? 1u : 0u, step_y = j.height > 1 ? j.width : 0u;
-  r.t00 = static_cast<std::uint32_t>(j0) * j.width + static_cast<std::uint32_t>(i0);
-  r.t10 = r.t00 + step_x;
-  r.t01 = r.t00 + step_y;
-  r.t11 = r.t01 + step_x;
-  const std::uint32_t id = j.ids ? j.ids[y * j.ids_stride + x] : 0u;
-  const bool use_ids = j.ids && j.ref_ids;
-  const std::uint32_t taps[4] = {r.t00, r.t10, r.t01, r.t11};
-  const float weights[4] = {r.w00, r.w10, r.w01, r.w11};
-  float interpolated = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    if (weights[k] == 0.0f) continue;  // never read: a background tap must not matter
-    const float d = j.ref_depth[taps[k]];
-    if (!coherent_surface(d) || (use_ids && j.ref_ids[taps[k]] != id)) return r;
-    interpolated = interpolated + weights[k] * d;
-  }
-  const float expected = depth - mz;
-  if (!coherent_surface(expected)) return r;
-  const float tolerance = j.eps_rel * expected + j.eps_abs;
-  r.visible = std::fabs(interpolated - expected) <= tolerance;
-  return r;
-}
-
-// Value of a field at (x, y): the hash, or the plane (a non-finite plane value reads as 0,
-// so no NaN can enter the history).
-HUSH_INLINE float coherent_field_value(const coherent_field& f, std::uint32_t row_key,
-                                       std::uint32_t x, std::uint32_t y) {
-  if (!f.plane) return coherent_white(row_key, x);
-  const float v = f.plane[y * f.stride + x];
-  return coherent_finite(v) ? v : 0.0f;
-}
-
-// ---- The scalar pass: the reference every other backend is tested against.
-
-// Row keys of every field of every channel for row y (and y + 1 for the refill fields).
-struct coherent_row_keys {
-  std::uint32_t input[constants::kCoherentMaxChannels];
-  std::uint32_t x0[constants::kCoherentMaxChannels], x1[constants::kCoherentMaxChannels];
-  std::uint32_t y0[constants::kCoherentMaxChannels], y1[constants::kCoherentMaxChannels];
-};
-template <class T>
-HUSH_INLINE coherent_row_keys coherent_keys(const coherent_pass_job<T>& j, std::uint32_t y) {
-  coherent_row_keys k{};
-  for (int c = 0; c < j.channels; ++c) {
-    k.input[c] = coherent_row_key(j.input[c].key, y);
-    k.x0[c] = coherent_row_key(j.refill_x[c].key, y);
-    k.x1[c] = coherent_row_key(j.refill_x[c].key, y + 1);
-    k.y0[c] = coherent_row_key(j.refill_y[c].key, y);
-    k.y1[c] = coherent_row_key(j.refill_y[c].key, y + 1);
-  }
-  return k;
-}
-
-// Pixel (x, y) of a pass: fresh flag, history and output of every channel.
-template <class T>
-HUSH_INLINE void coherent_pixel(const coherent_pass_job<T>& j, const coherent_row_keys& keys,
-                                std::uint32_t x, std::uint32_t y) {
-  const coherent_taps g = coherent_reproject(j, x, y);
-  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
-  if (j.fresh) j.fresh[p] = g.visible ? 0u : 1u;
-  if (j.depth_copy) j.depth_copy[p] = j.depth[y * j.depth_stride + x];
-  if (j.ids_copy) j.ids_copy[p] = j.ids[y * j.ids_stride + x];
-  for (int c = 0; c < j.channels; ++c) {
-    const T w = T(coherent_field_value(j.input[c], keys.input[c], x, y));
-    T value;
-    if (!g.visible) {
-      value = j.k * w;
-    } else {
-      const T* hist = j.ref_history[c];
-      const T h = T(g.w00) * hist[g.t00] + T(g.w10) * hist[g.t10] + T(g.w01) * hist[g.t01] +
-                  T(g.w11) * hist[g.t11];
-      if (!j.stationary) {
-        value = j.alpha * h + j.beta * w;
-      } else {
-        const T tx = T(g.tx), ty = T(g.ty);
-        const T sx = std::sqrt(tx * (T(1) - tx)), sy = std::sqrt(ty * (T(1) - ty));
-        const T x00 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x, y));
-        const T x10 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x + 1, y));
-        const T x01 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x, y + 1));
-        const T x11 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x + 1, y + 1));
-        const T y00 = T(coherent_field_value(j.refill_y[c], keys.y0[c], x, y));
-        const T y01 = T(coherent_field_value(j.refill_y[c], keys.y1[c], x, y + 1));
-        const T dx = (T(1) - ty) * (x00 - x10) + ty * (x01 - x11);
-        // The refill has the history's scale: k(alpha) (the fields have unit variance).
-        const T d = j.k * (sx * dx + sy * (y00 - y01));
-        value = j.alpha * (h + d) + j.beta * w;
-      }
-    }
-    value = coherent_flush_value(value);
-    j.history[c][p] = value;
-    if (j.out[c]) j.out[c][static_cast<std::size_t>(y) * j.out_stride + x] = j.gain * value;
-  }
-}
-
-template <class T>
-void coherent_pass_scalar(const coherent_pass_job<T>& j) {
-  for (std::uint32_t y = 0; y < j.height; ++y) {
-    const coherent_row_keys keys = coherent_keys(j, y);
-    for (std::uint32_t x = 0; x < j.width; ++x) coherent_pixel(j, keys, x, y);
-  }
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
-// ---- end hush/detail/coherent_kernel.hpp
 
 namespace hush {
 namespace detail {
@@ -6143,6 +6216,682 @@ struct simd_kernel {
 #endif
 #include <hwy/highway.h>
 
+// ---- begin hush/simd/anisotropic-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for anisotropic noise (hush/anisotropic.hpp): batches of
+// samples (positions with optional footprints and surface maps), points and
+// uniform grids; values only (gradients run the scalar loop, exec.hpp).
+// Compiled once per SIMD target (toggle include guard); reached through
+// hush/simd/dispatch.hpp, never included directly by users.
+//
+// A block of kBlock samples goes through two phases:
+//  1. weights and tile coordinates, lanes = samples: the filter weights
+//     lambda (pixel filter per subband: exp2 polynomial of approx_math.hpp),
+//     the compensation weights gamma (log2 and band-profile polynomials), the
+//     octave sums, and per scale the lattice split of the tile coordinate
+//     p f_s / band + offset, in double lanes (exactly lattice_split<float>,
+//     lane by lane through core/lattice.hpp beyond 2^31 texels);
+//  2. lookups, lanes = channels (orientations): per sample and scale, the
+//     four texels of the bilinear footprint are two runs of 2 * channels
+//     floats; the blend and the weighted accumulation run on 4-channel
+//     chunks, the final channel sum in anisotropic.hpp's tree order.
+// Every operation repeats anisotropic.hpp's float algorithm in the same
+// order, so under HUSH_STRICT_FP the results are bit for bit the scalar ones
+// (tests/simd/anisotropic_simd_test.cpp, every compiled target); otherwise
+// multiply-adds are fused and results stay within the noise's float budget.
+// Least-squares weight rules take the scalar weight code per sample
+// (phase 1) and the vector lookups (phase 2): the same bits as well.
+
+// Toggle guard: included once per target by foreach_target.h.
+#if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_ANISOTROPIC_INL_H_
+#undef HUSH_SIMD_ANISOTROPIC_INL_H_
+#else
+#define HUSH_SIMD_ANISOTROPIC_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace aniso_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using DD = hn::ScalableTag<double>;
+using VD = hn::Vec<DD>;
+using DFH = hn::Rebind<float, DD>;     // as many floats as DD has doubles
+using DIH = hn::Rebind<int32_t, DD>;   // ... and int32
+using DUH = hn::Rebind<uint32_t, DD>;  // ... and uint32
+using D4 = hn::CappedTag<float, 4>;    // one chunk of channels (1 lane on HWY_SCALAR)
+using V4 = hn::Vec<D4>;
+
+namespace c = detail::constants;
+
+// Samples per block: a multiple of every target's lane count (AVX-512: 16
+// floats; SVE at most 64) and small enough for the block buffers to stay in L1/L2.
+constexpr std::size_t kBlock = 64;
+constexpr int kMaxScales = c::kAnisoMaxScales;
+constexpr int kMaxChannels = anisotropic::kMaxChannels;
+
+// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
+// compiled), fused otherwise.
+template <class V>
+HWY_INLINE V mul_add(V a, V b, V cc) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), cc);
+#else
+  return hn::MulAdd(a, b, cc);
+#endif
+}
+
+// The polynomial coefficients of approx_math.hpp, rounded to float as the
+// scalar code rounds them (float(c)), at compile time.
+template <int N>
+struct float_coefficients {
+  float v[N];
+};
+template <int N>
+constexpr float_coefficients<N> to_float(const double (&d)[N]) {
+  float_coefficients<N> r{};
+  for (int i = 0; i < N; ++i) r.v[i] = static_cast<float>(d[i]);
+  return r;
+}
+constexpr auto kExp2 = to_float(c::kAnisoSeries.exp2);
+constexpr auto kLog2 = to_float(c::kAnisoSeries.log2);
+constexpr auto kSinPi = to_float(c::kAnisoSeries.sinpi);
+
+// Horner's rule p = (...(k[N-1] x + k[N-2]) x + ...) x + k[0], unrolled.
+template <int N, int M = N - 1>
+HWY_INLINE VF horner(const float_coefficients<N>& k, VF x, VF p) {
+  const DF df;
+  p = mul_add(p, x, hn::Set(df, k.v[M - 1]));
+  if constexpr (M - 1 > 0)
+    return horner<N, M - 1>(k, x, p);
+  else
+    return p;
+}
+template <int N>
+HWY_INLINE VF horner(const float_coefficients<N>& k, VF x) {
+  return horner<N>(k, x, hn::Set(DF(), k.v[N - 1]));
+}
+
+// detail::exp2_nonpositive for y in [-126, 0] (callers select the cutoff).
+HWY_INLINE VF exp2_nonpositive(VF y) {
+  const DF df;
+  const DI di;
+  const VF n = hn::Floor(hn::Add(y, hn::Set(df, 0.5f)));
+  const VF r = hn::Sub(y, n);
+  const VF p = horner(kExp2, r);
+  // 2^n from exponent bits; n < -126 (beyond the cutoff) is clamped, the
+  // caller discards those lanes.
+  const VF nc = hn::Max(n, hn::Set(df, -126.0f));
+  const auto e = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, nc), hn::Set(di, 127)));
+  return hn::Mul(p, hn::BitCast(df, e));
+}
+
+// detail::log2_positive: -inf below the smallest normal float, +inf stays.
+HWY_INLINE VF log2_positive(VF m) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const auto tiny = hn::Not(hn::Ge(m, hn::Set(df, std::numeric_limits<float>::min())));
+  const auto huge = hn::Not(hn::Lt(m, hn::Set(df, std::numeric_limits<float>::infinity())));
+  const VU b = hn::BitCast(du, m);
+  auto e = hn::Sub(hn::BitCast(di, hn::ShiftRight<23>(b)), hn::Set(di, 127));
+  VF a = hn::BitCast(df, hn::Or(hn::And(b, hn::Set(du, 0x007fffffu)), hn::Set(du, 0x3f800000u)));
+  const auto big = hn::Gt(a, hn::Set(df, float(c::kSqrt2)));
+  a = hn::IfThenElse(big, hn::Mul(a, hn::Set(df, 0.5f)), a);
+  e = hn::IfThenElse(hn::RebindMask(di, big), hn::Add(e, hn::Set(di, 1)), e);
+  const VF z = hn::Div(hn::Sub(a, hn::Set(df, 1.0f)), hn::Add(a, hn::Set(df, 1.0f)));
+  const VF p = horner(kLog2, hn::Mul(z, z));
+  VF r = mul_add(p, z, hn::ConvertTo(df, e));
+  r = hn::IfThenElse(tiny, hn::Set(df, -std::numeric_limits<float>::infinity()), r);
+  return hn::IfThenElse(huge, m, r);
+}
+
+// detail::band_profile: cos^2(pi x / 2) for |x| < 1, else 0 (x is never NaN here).
+HWY_INLINE VF band_profile(VF x) {
+  const DF df;
+  const VF ax = hn::Abs(x);
+  const VF z = hn::Sub(ax, hn::Set(df, 0.5f));
+  const VF p = horner(kSinPi, hn::Mul(z, z));
+  const VF half = hn::Set(df, 0.5f);
+  const VF v = hn::Sub(half, hn::Mul(half, hn::Mul(p, z)));
+  return hn::IfThenElseZero(hn::Lt(ax, hn::Set(df, 1.0f)), v);
+}
+
+// The noise's constants in float, once per call.
+struct config {
+  int k = 4, kc = 4, scales = 3, base = 0, octaves = 3;
+  bool fbm = true, lsq = false;
+  weight_rule filtering = weight_rule::centre, compensation = weight_rule::centre;
+  std::uint32_t n = 256;
+  std::size_t stride = 0;
+  const float* texels = nullptr;
+  double dxx[kMaxChannels] = {}, dyy[kMaxChannels] = {}, dxy2[kMaxChannels] = {};
+  double dx[kMaxChannels] = {}, dy[kMaxChannels] = {}, kappa[kMaxScales] = {};
+  float ow[kMaxScales] = {}, gain[kMaxScales] = {};
+  float norm = 1, cap = 1, cut = 0;
+  double tpu[kMaxScales] = {}, off[kMaxScales][2] = {};
+
+  explicit config(const anisotropic& a) {
+    const auto& p = a.parameters();
+    k = p.orientations;
+    kc = a.channels();
+    scales = p.scales;
+    base = p.base_scale;
+    octaves = p.octaves;
+    fbm = p.kind == fractal_kind::fbm;
+    filtering = p.filtering;
+    compensation = p.compensation;
+    lsq = filtering == weight_rule::least_squares || compensation == weight_rule::least_squares;
+    n = static_cast<std::uint32_t>(p.tile_size);
+    stride = a.tile().row_stride();
+    texels = a.tile().texels().data();
+    for (int i = 0; i < k; ++i) {
+      const dvec2 d = a.direction(i);
+      dxx[i] = d.x * d.x;
+      dyy[i] = d.y * d.y;
+      dxy2[i] = 2.0 * d.x * d.y;
+      dx[i] = d.x;
+      dy[i] = d.y;
+    }
+    for (int s = 0; s < scales; ++s) {
+      kappa[s] = a.kappa(s);
+      tpu[s] = a.texels_per_unit(s);
+      off[s][0] = a.offset(s).x;
+      off[s][1] = a.offset(s).y;
+    }
+    double g = 1.0;
+    for (int o = 0; o < octaves; ++o, g *= p.gain) {
+      ow[o] = float(a.octave_weight(o));
+      gain[o] = float(g);
+    }
+    norm = float(a.normalization());
+    cap = float(a.gamma_cap());
+    cut = float(c::kAnisoWeightCutoff * c::kLog2E);
+  }
+  // Octave passes of phase 2: 1 for fbm (octaves summed into the weights).
+  int passes() const { return fbm ? 1 : octaves; }
+};
+
+// One block's phase-1 results.
+struct block {
+  // w[((pass * scales + s) * chunks + h) * kBlock * 4 + sample * 4 + q]:
+  // channel 4h + q of the weights of scale s in octave pass `pass`.
+  std::vector<float> w;
+  // Per scale and sample: the offset of texel (x0, y0) in the tile's float
+  // array, and the fractions.
+  HWY_ALIGN std::uint32_t offset[kMaxScales][kBlock];
+  HWY_ALIGN float fx[kMaxScales][kBlock];
+  HWY_ALIGN float fy[kMaxScales][kBlock];
+  // active[s][j] != 0: some weight of scale s (any pass) is not 0 for sample j.
+  HWY_ALIGN std::uint32_t active[kMaxScales][kBlock];
+  bool bad[kBlock];
+  // The samples' coordinates in double (x, y).
+  HWY_ALIGN double x[kBlock], y[kBlock];
+  // Phase 1's double-precision parts, rounded to float: the filter exponents
+  // z[(s * kc + i) * kBlock + j], |T^T w_i|^2 in m2[i * kBlock + j], |det T| in det[j].
+  std::vector<float> z, m2;
+  HWY_ALIGN float det[kBlock];
+  explicit block(const config& cf)
+      : w(static_cast<std::size_t>(cf.passes() * cf.scales * cf.kc) * kBlock, 0.0f),
+        z(static_cast<std::size_t>(cf.scales * cf.kc) * kBlock, 0.0f),
+        m2(static_cast<std::size_t>(cf.kc) * kBlock, 0.0f) {}
+  float* weights(const config& cf, int pass, int s, int h) {
+    return w.data() + index(cf, pass, s, h);
+  }
+  const float* weights(const config& cf, int pass, int s, int h) const {
+    return w.data() + index(cf, pass, s, h);
+  }
+  static std::size_t index(const config& cf, int pass, int s, int h) {
+    return static_cast<std::size_t>((pass * cf.scales + s) * (cf.kc / 4) + h) * kBlock * 4;
+  }
+};
+
+// The scalar algorithm's lambda for z = kappa_s q: 0 beyond the cutoff.
+HWY_INLINE VF lambda1(VF z, VF cut) {
+  return hn::IfThenZeroElse(hn::Gt(z, cut), exp2_nonpositive(hn::Neg(z)));
+}
+HWY_INLINE VF lambda(VF z, VF cut, bool three) {
+  const DF df;
+  // Beyond the cutoff in every lane, also at the three-point rule's lowest
+  // radius (a far scale): 0, as lane by lane.
+  if (hn::AllTrue(df, hn::Gt(three ? hn::Mul(z, hn::Set(df, 0.5f)) : z, cut))) return hn::Zero(df);
+  if (!three) return lambda1(z, cut);
+  const VF lo = lambda1(hn::Mul(z, hn::Set(df, 0.5f)), cut);
+  const VF mid = lambda1(z, cut);
+  const VF hi = lambda1(hn::Mul(z, hn::Set(df, 2.0f)), cut);
+  const VF side = hn::Set(df, float(c::kAnisoThreePointSide));
+  return mul_add(side, hi,
+                 mul_add(side, lo, hn::Mul(hn::Set(df, float(c::kAnisoThreePointCentre)), mid)));
+}
+
+// Stores channel vectors ch[0 ... kc-1] (lanes = samples first ... first +
+// lanes - 1) into the block's interleaved weight rows of (pass, s).
+HWY_INLINE void store_weights(const config& cf, block& b, int pass, int s, std::size_t first,
+                              const VF* ch) {
+  const DF df;
+  for (int h = 0; h < cf.kc / 4; ++h)
+    hn::StoreInterleaved4(ch[4 * h], ch[4 * h + 1], ch[4 * h + 2], ch[4 * h + 3], df,
+                          b.weights(cf, pass, s, h) + first * 4);
+}
+
+// Phase 1, weights, for samples [first, first + lanes) of the block; fp and
+// map point at the block's first sample (null when not given).
+HWY_INLINE void weights_vector(const config& cf, block& b, std::size_t first, const float* fp,
+                               const float* map) {
+  const DF df;
+  const DD dd;
+  const DFH dfh;
+  const VF zero = hn::Zero(df);
+  // The quadratic forms and the determinant in double (anisotropic.hpp: they
+  // cancel at grazing angles and for nearly singular maps), rounded to float.
+  for (std::size_t h = first; h < first + hn::Lanes(df); h += hn::Lanes(dd)) {
+    if (fp) {
+      hn::Vec<DFH> a, bb, cc;
+      hn::LoadInterleaved3(dfh, fp + h * 3, a, bb, cc);
+      const VD sxx = hn::PromoteTo(dd, a), sxy = hn::PromoteTo(dd, bb), syy = hn::PromoteTo(dd, cc);
+      for (int i = 0; i < cf.k; ++i) {
+        const VD q =
+            mul_add(syy, hn::Set(dd, cf.dyy[i]),
+                    mul_add(sxy, hn::Set(dd, cf.dxy2[i]), hn::Mul(sxx, hn::Set(dd, cf.dxx[i]))));
+        for (int s = 0; s < cf.scales; ++s)
+          hn::StoreU(hn::DemoteTo(dfh, hn::Mul(hn::Set(dd, cf.kappa[s]), q)), dfh,
+                     b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock + h);
+      }
+    }
+    if (map) {
+      hn::Vec<DFH> a00, a01, a10, a11;
+      hn::LoadInterleaved4(dfh, map + h * 4, a00, a01, a10, a11);
+      VD m00 = hn::PromoteTo(dd, a00), m01 = hn::PromoteTo(dd, a01);
+      VD m10 = hn::PromoteTo(dd, a10), m11 = hn::PromoteTo(dd, a11);
+      // A map with a non-finite entry counts as the zero map.
+      const auto ok = hn::And(hn::And(hn::IsFinite(m00), hn::IsFinite(m01)),
+                              hn::And(hn::IsFinite(m10), hn::IsFinite(m11)));
+      m00 = hn::IfThenElseZero(ok, m00);
+      m01 = hn::IfThenElseZero(ok, m01);
+      m10 = hn::IfThenElseZero(ok, m10);
+      m11 = hn::IfThenElseZero(ok, m11);
+      hn::StoreU(hn::DemoteTo(dfh, hn::Abs(hn::Sub(hn::Mul(m00, m11), hn::Mul(m01, m10)))), dfh,
+                 b.det + h);
+      for (int i = 0; i < cf.k; ++i) {
+        const VD dxv = hn::Set(dd, cf.dx[i]), dyv = hn::Set(dd, cf.dy[i]);
+        const VD tu = mul_add(m10, dyv, hn::Mul(m00, dxv));
+        const VD tv = mul_add(m11, dyv, hn::Mul(m01, dxv));
+        hn::StoreU(hn::DemoteTo(dfh, mul_add(tv, tv, hn::Mul(tu, tu))), dfh,
+                   b.m2.data() + static_cast<std::size_t>(i) * kBlock + h);
+      }
+    }
+  }
+  VF half_log[kMaxChannels], sd = zero;
+  if (map) {
+    sd = hn::Sqrt(hn::LoadU(df, b.det + first));
+    for (int i = 0; i < cf.k; ++i)
+      half_log[i] = hn::Mul(
+          hn::Set(df, 0.5f),
+          log2_positive(hn::LoadU(df, b.m2.data() + static_cast<std::size_t>(i) * kBlock + first)));
+  }
+  const VF cut = hn::Set(df, cf.cut), cap = hn::Set(df, cf.cap);
+  const bool three_l = cf.filtering == weight_rule::three_point;
+  const bool three_c = cf.compensation == weight_rule::three_point;
+  const VF side = hn::Set(df, float(c::kAnisoThreePointSide));
+  const VF centre = hn::Set(df, float(c::kAnisoThreePointCentre));
+  const VF halfv = hn::Set(df, 0.5f);
+  const DU du;
+  const VU magnitude = hn::Set(du, 0x7fffffffu);
+  for (int s = 0; s < cf.scales; ++s) {
+    VU any = hn::Zero(du);
+    VF lam[kMaxChannels];
+    for (int i = 0; i < cf.k; ++i)
+      lam[i] =
+          fp ? lambda(hn::LoadU(df, b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock +
+                                        first),
+                      cut, three_l)
+             : hn::Set(df, 1.0f);
+    for (int pass = 0; pass < cf.passes(); ++pass) {
+      VF ch[kMaxChannels];
+      for (int i = 0; i < cf.kc; ++i) ch[i] = zero;
+      const int k0 = cf.fbm ? 0 : pass, k1 = cf.fbm ? cf.octaves : pass + 1;
+      for (int i = 0; i < cf.k; ++i) {
+        if (!map) {
+          const int o = s - cf.base;
+          if (o >= k0 && o < k1) ch[i] = hn::Mul(hn::Set(df, cf.fbm ? cf.ow[o] : cf.norm), lam[i]);
+          continue;
+        }
+        VF acc = zero;
+        for (int o = k0; o < k1; ++o) {
+          const VF x = hn::Add(hn::Set(df, float(s - cf.base - o)), half_log[i]);
+          const VF prof = three_c ? mul_add(side, band_profile(hn::Add(x, halfv)),
+                                            mul_add(side, band_profile(hn::Sub(x, halfv)),
+                                                    hn::Mul(centre, band_profile(x))))
+                                  : band_profile(x);
+          const VF g = hn::Min(
+              hn::Mul(hn::Set(df, float(std::ldexp(1.0, s - cf.base - o))), hn::Mul(sd, prof)),
+              cap);
+          const VF gamma = hn::IfThenElseZero(hn::Gt(prof, zero), g);
+          acc = mul_add(hn::Set(df, cf.fbm ? cf.ow[o] : cf.norm), gamma, acc);
+        }
+        ch[i] = hn::Mul(acc, lam[i]);
+      }
+      for (int i = 0; i < cf.k; ++i) any = hn::Or(any, hn::And(hn::BitCast(du, ch[i]), magnitude));
+      store_weights(cf, b, pass, s, first, ch);
+    }
+    hn::StoreU(any, du, b.active[s] + first);
+  }
+}
+
+// Phase 1, tile coordinates of scale s for the block's `count` samples (the
+// coordinates b.x, b.y, padded to whole vectors): lattice_split<float>(p tpu + off, n).
+HWY_INLINE void split_scale(const config& cf, block& b, int s, std::size_t count) {
+  const DD dd;
+  const DFH dfh;
+  const DIH dih;
+  const DUH duh;
+  const std::size_t lanes = hn::Lanes(dd);
+  const VD tpu = hn::Set(dd, cf.tpu[s]);
+  const VD limit = hn::Set(dd, 2147483648.0);
+  const auto ulp = hn::Set(dfh, detail::one_minus_ulp<float>());
+  const auto mask = hn::Set(duh, cf.n - 1u);
+  HWY_ALIGN std::uint32_t cells[2][kBlock];
+  for (int axis = 0; axis < 2; ++axis) {
+    std::uint32_t* cell = cells[axis];
+    float* frac = axis == 0 ? b.fx[s] : b.fy[s];
+    const double* coord = axis == 0 ? b.x : b.y;
+    const VD off = hn::Set(dd, cf.off[s][axis]);
+    for (std::size_t j = 0; j < count; j += lanes) {
+      VD qv = hn::Mul(hn::Load(dd, coord + j), tpu);
+      qv = hn::Add(hn::IfThenElseZero(hn::IsFinite(qv), qv), off);
+      const VD fl = hn::Floor(qv);
+      if (HWY_LIKELY(hn::AllTrue(dd, hn::Lt(hn::Abs(fl), limit)))) {
+        hn::StoreU(hn::Min(hn::DemoteTo(dfh, hn::Sub(qv, fl)), ulp), dfh, frac + j);
+        hn::StoreU(hn::And(hn::BitCast(duh, hn::DemoteTo(dih, fl)), mask), duh, cell + j);
+      } else {
+        HWY_ALIGN double qs[kBlock];
+        hn::Store(qv, dd, qs);
+        for (std::size_t l = 0; l < lanes; ++l) {
+          // NaN positions (bad samples) land here too: cell 0, never read.
+          const lattice_coord<float> lc = lattice_split<float>(qs[l], cf.n);
+          cell[j + l] = std::isfinite(qs[l]) ? lc.i0 : 0u;
+          frac[j + l] = std::isfinite(qs[l]) ? lc.f : 0.0f;
+        }
+      }
+    }
+  }
+  const DU du;
+  const VU stride = hn::Set(du, static_cast<std::uint32_t>(cf.stride));
+  const VU kc = hn::Set(du, static_cast<std::uint32_t>(cf.kc));
+  for (std::size_t j = 0; j < count; j += hn::Lanes(du))
+    hn::StoreU(hn::Add(hn::Mul(hn::LoadU(du, cells[1] + j), stride),
+                       hn::Mul(hn::LoadU(du, cells[0] + j), kc)),
+               du, b.offset[s] + j);
+}
+
+// Phase 2 for one sample: the weighted bilinear lookups of every scale
+// (general: any channel count and octave passes, 4-channel chunks).
+HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j) {
+  const D4 d4;
+  const std::size_t n4 = hn::Lanes(d4);
+  const int passes = cf.passes();
+  HWY_ALIGN float acc[kMaxScales * kMaxChannels];
+  std::fill(acc, acc + passes * cf.kc, 0.0f);
+  for (int s = 0; s < cf.scales; ++s) {
+    if (!b.active[s][j]) continue;
+    const float* t00 = cf.texels + b.offset[s][j];
+    const float* t01 = t00 + cf.stride;
+    const V4 fx = hn::Set(d4, b.fx[s][j]), fy = hn::Set(d4, b.fy[s][j]);
+    for (int cc = 0; cc < cf.kc; cc += static_cast<int>(n4)) {
+      const V4 c00 = hn::LoadU(d4, t00 + cc), c10 = hn::LoadU(d4, t00 + cf.kc + cc);
+      const V4 c01 = hn::LoadU(d4, t01 + cc), c11 = hn::LoadU(d4, t01 + cf.kc + cc);
+      const V4 r0 = mul_add(fy, hn::Sub(c01, c00), c00);
+      const V4 r1 = mul_add(fy, hn::Sub(c11, c10), c10);
+      const V4 v = mul_add(fx, hn::Sub(r1, r0), r0);
+      for (int pass = 0; pass < passes; ++pass) {
+        const float* w = b.weights(cf, pass, s, cc / 4) + j * 4 + cc % 4;
+        float* a = acc + pass * cf.kc + cc;
+        hn::Store(mul_add(hn::LoadU(d4, w), v, hn::Load(d4, a)), d4, a);
+      }
+    }
+  }
+  auto tree = [&](const float* a) {
+    const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
+    return cf.kc == 4 ? s4 : s4 + ((a[4] + a[5]) + (a[6] + a[7]));
+  };
+  if (cf.fbm) return tree(acc);
+  float r = 0.0f;
+  for (int pass = 0; pass < passes; ++pass)
+    r = r + cf.gain[pass] * std::fabs(tree(acc + pass * cf.kc));
+  return r;
+}
+
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+// Phase 2 for fbm with KC channels on targets whose vectors hold two texels
+// (2 KC floats): each row of the bilinear footprint is one load, blended in
+// y across both texels at once, then in x between the halves. Same
+// operations as lookup_sample, fewer instructions.
+template <int KC>
+HWY_INLINE void lookup_block_pairs(const config& cf, const block& b, std::size_t count,
+                                   float* out) {
+  const hn::FixedTag<float, 2 * KC> dp;
+  const hn::FixedTag<float, KC> dk;
+  using VK = hn::Vec<decltype(dk)>;
+  const int scales = cf.scales;
+  const std::size_t stride = cf.stride;
+  for (std::size_t j = 0; j < count; ++j) {
+    if (b.bad[j]) {
+      out[j] = std::numeric_limits<float>::quiet_NaN();
+      continue;
+    }
+    VK acc = hn::Zero(dk);
+    for (int s = 0; s < scales; ++s) {
+      if (!b.active[s][j]) continue;
+      const float* t00 = cf.texels + b.offset[s][j];
+      const auto row0 = hn::LoadU(dp, t00), row1 = hn::LoadU(dp, t00 + stride);
+      const auto r = mul_add(hn::Set(dp, b.fy[s][j]), hn::Sub(row1, row0), row0);
+      const VK r0 = hn::LowerHalf(dk, r), r1 = hn::UpperHalf(dk, r);
+      const VK v = mul_add(hn::Set(dk, b.fx[s][j]), hn::Sub(r1, r0), r0);
+      const float* w = b.w.data() + (static_cast<std::size_t>(s) * (KC / 4) * kBlock) * 4;
+      VK wk;
+      if constexpr (KC == 4) {
+        wk = hn::LoadU(dk, w + j * 4);
+      } else {
+        // Channels 0-3 and 4-7 sit in two interleaved rows of the block.
+        const hn::FixedTag<float, 4> d4f;
+        wk = hn::Combine(dk, hn::LoadU(d4f, w + kBlock * 4 + j * 4), hn::LoadU(d4f, w + j * 4));
+      }
+      acc = mul_add(wk, v, acc);
+    }
+    HWY_ALIGN float a[KC];
+    hn::Store(acc, dk, a);
+    const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
+    if constexpr (KC == 4)
+      out[j] = s4;
+    else
+      out[j] = s4 + ((a[4] + a[5]) + (a[6] + a[7]));
+  }
+}
+#endif
+
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+// Phase 2 for fbm with 8 channels where a vector holds one texel (AVX2):
+// four loads per scale, the blend on whole texels.
+HWY_INLINE void lookup_block_texels8(const config& cf, const block& b, std::size_t count,
+                                     float* out) {
+  const hn::FixedTag<float, 8> d8;
+  const hn::FixedTag<float, 4> d4f;
+  using V8 = hn::Vec<decltype(d8)>;
+  const std::size_t stride = cf.stride;
+  for (std::size_t j = 0; j < count; ++j) {
+    if (b.bad[j]) {
+      out[j] = std::numeric_limits<float>::quiet_NaN();
+      continue;
+    }
+    V8 acc = hn::Zero(d8);
+    for (int s = 0; s < cf.scales; ++s) {
+      if (!b.active[s][j]) continue;
+      const float* t00 = cf.texels + b.offset[s][j];
+      const float* t01 = t00 + stride;
+      const V8 fy = hn::Set(d8, b.fy[s][j]);
+      const V8 c00 = hn::LoadU(d8, t00), c10 = hn::LoadU(d8, t00 + 8);
+      const V8 r0 = mul_add(fy, hn::Sub(hn::LoadU(d8, t01), c00), c00);
+      const V8 r1 = mul_add(fy, hn::Sub(hn::LoadU(d8, t01 + 8), c10), c10);
+      const V8 v = mul_add(hn::Set(d8, b.fx[s][j]), hn::Sub(r1, r0), r0);
+      const float* w = b.w.data() + static_cast<std::size_t>(s) * 2 * kBlock * 4;
+      const V8 wk =
+          hn::Combine(d8, hn::LoadU(d4f, w + kBlock * 4 + j * 4), hn::LoadU(d4f, w + j * 4));
+      acc = mul_add(wk, v, acc);
+    }
+    HWY_ALIGN float a[8];
+    hn::Store(acc, d8, a);
+    out[j] = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+  }
+}
+#endif
+
+// Phase 2 for a block: the paired fast path where the target allows, else per sample.
+HWY_INLINE void lookup_block(const config& cf, const block& b, std::size_t count, float* out) {
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+  if (cf.fbm && cf.kc == 4) return lookup_block_pairs<4>(cf, b, count, out);
+#if HWY_MAX_BYTES >= 64
+  if (cf.fbm && cf.kc == 8) return lookup_block_pairs<8>(cf, b, count, out);
+#else
+  if (cf.fbm && cf.kc == 8) return lookup_block_texels8(cf, b, count, out);
+#endif
+#endif
+  for (std::size_t j = 0; j < count; ++j)
+    out[j] = b.bad[j] ? std::numeric_limits<float>::quiet_NaN() : lookup_sample(cf, b, j);
+}
+
+// Least-squares rules: phase-1 weights of sample j from the scalar code.
+inline void scalar_weights(const anisotropic& a, const config& cf, block& b, std::size_t j,
+                           const sample_input<2>& in) {
+  float w[kMaxScales * kMaxChannels];
+  for (int pass = 0; pass < cf.passes(); ++pass) {
+    if (cf.fbm)
+      a.weights<float>(in, w);
+    else
+      a.octave_weights<float>(in, pass, w);
+    for (int s = 0; s < cf.scales; ++s)
+      for (int h = 0; h < cf.kc / 4; ++h)
+        std::memcpy(b.weights(cf, pass, s, h) + j * 4, w + s * cf.kc + 4 * h, 4 * sizeof(float));
+  }
+}
+
+// A block of `count` <= kBlock samples whose coordinates are in b.x, b.y
+// (padded to whole vectors), with footprints fp and maps (null: not given) at
+// the block's first sample.
+inline void run_block(const anisotropic& a, const config& cf, block& b, std::size_t count,
+                      const float* fp, const float* map, float* out) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const std::size_t padded = (count + lanes - 1) / lanes * lanes;
+  // Pad the block's inputs to whole vectors (copies of the last sample).
+  HWY_ALIGN float fpb[kBlock * 3], mapb[kBlock * 4];
+  if (padded > count) {
+    if (fp) {
+      for (std::size_t j = 0; j < padded; ++j)
+        std::memcpy(fpb + 3 * j, fp + 3 * std::min(j, count - 1), 3 * sizeof(float));
+      fp = fpb;
+    }
+    if (map) {
+      for (std::size_t j = 0; j < padded; ++j)
+        std::memcpy(mapb + 4 * j, map + 4 * std::min(j, count - 1), 4 * sizeof(float));
+      map = mapb;
+    }
+  }
+  for (std::size_t j = count; j < padded; ++j) {
+    b.x[j] = b.x[count - 1];
+    b.y[j] = b.y[count - 1];
+  }
+  for (std::size_t j = 0; j < count; ++j)
+    b.bad[j] = !(std::isfinite(b.x[j]) && std::isfinite(b.y[j]));
+  if (!cf.lsq) {
+    for (std::size_t j = 0; j < padded; j += lanes) weights_vector(cf, b, j, fp, map);
+  } else {
+    for (std::size_t j = 0; j < count; ++j) {
+      sample_input<2> in;
+      in.position = {b.x[j], b.y[j]};
+      if (fp) {
+        const float u[3] = {fp[3 * j], fp[3 * j + 1], fp[3 * j + 2]};
+        in.fp = footprint<2>::from_covariance(u);
+      }
+      if (map) {
+        in.map = {map[4 * j], map[4 * j + 1], map[4 * j + 2], map[4 * j + 3]};
+        in.has_map = true;
+      }
+      scalar_weights(a, cf, b, j, in);
+      for (int s = 0; s < cf.scales; ++s) b.active[s][j] = 1;
+    }
+  }
+  for (int s = 0; s < cf.scales; ++s) split_scale(cf, b, s, padded);
+  lookup_block(cf, b, count, out);
+}
+
+}  // namespace aniso_simd
+
+// Anisotropic noise at n samples: positions xy (interleaved), footprints fp
+// (3 floats each: the stored upper triangle; null = points) and surface
+// maps (4 floats each; null = none); values into `value`.
+inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                const float* map, std::size_t n, float* value) {
+  using namespace aniso_simd;
+  const config cf(a);
+  block b(cf);
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t count = std::min(kBlock, n - first);
+    const float* p = xy + 2 * first;
+    for (std::size_t j = 0; j < count; ++j) {
+      b.x[j] = double(p[2 * j]);
+      b.y[j] = double(p[2 * j + 1]);
+    }
+    run_block(a, cf, b, count, fp ? fp + 3 * first : nullptr, map ? map + 4 * first : nullptr,
+              value + first);
+  }
+}
+
+// Anisotropic noise on a uniform 2D grid (C order, i fastest); positions
+// origin + step * (i, j) in double, as the scalar grid path forms them.
+inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
+  using namespace aniso_simd;
+  const config cf(a);
+  block b(cf);
+  const std::size_t nx = g.size[0], ny = g.size[1];
+  for (std::size_t j = 0; j < ny; ++j) {
+    const double y = g.origin[1] + g.step[1] * double(j);
+    for (std::size_t first = 0; first < nx; first += kBlock) {
+      const std::size_t count = std::min(kBlock, nx - first);
+      for (std::size_t i = 0; i < count; ++i) {
+        b.x[i] = g.origin[0] + g.step[0] * double(first + i);
+        b.y[i] = y;
+      }
+      run_block(a, cf, b, count, nullptr, nullptr, value + j * nx + first);
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_ANISOTROPIC_INL_H_ toggle
+// ---- end hush/simd/anisotropic-inl.h
 // ---- begin hush/simd/coherent-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -8353,6 +9102,13 @@ HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& 
 // the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
 HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
 
+// Anisotropic noise (hush/simd/anisotropic-inl.h): n samples at interleaved
+// positions xy, with footprints fp (3 floats each, null = points) and surface
+// maps (4 floats each, null = none); or a uniform grid. Values only.
+HUSH_SIMD_ENTRY void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                         const float* map, std::size_t n, float* value);
+HUSH_SIMD_ENTRY void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value);
+
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
 // best first, and of the one the kernels run on, on this CPU.
 HUSH_SIMD_ENTRY std::vector<std::string> compiled_targets();
@@ -8415,6 +9171,13 @@ inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* va
 }
 inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
   HWY_STATIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
+}
+inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                const float* map, std::size_t n, float* value) {
+  HWY_STATIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value);
+}
+inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
+  HWY_STATIC_DISPATCH(anisotropic_grid)(a, g, value);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -8521,6 +9284,58 @@ struct simd_kernel<wavelet<D>> {
       simd::wavelet2_samples(w, s, out, g);
     else
       simd::wavelet3_samples(w, s, out, g);
+  }
+};
+
+// Anisotropic noise: samples (footprints, surface maps), points and grids,
+// values in SIMD; gradients take the scalar loop (bilinear lookups' slopes).
+template <>
+struct simd_kernel<anisotropic> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void points(const anisotropic& a, const vec<float, 2>* pts, std::size_t count, float* out,
+                     vec<float, 2>* grad) {
+    if (grad) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const auto r = a.gradient(pts[i]);
+        out[i] = r.value;
+        grad[i] = r.gradient;
+      }
+      return;
+    }
+    simd::anisotropic_samples(a, reinterpret_cast<const float*>(pts), nullptr, nullptr, count, out);
+  }
+  static void grid(const anisotropic& a, const hush::grid<2>& g, float* out, vec<float, 2>* grad) {
+    if (grad) {
+      std::size_t idx = 0;
+      for (std::size_t j = 0; j < g.size[1]; ++j)
+        for (std::size_t i = 0; i < g.size[0]; ++i, ++idx) {
+          const auto r = a.value_and_gradient<float>(g.position({i, j}));
+          out[idx] = r.value;
+          grad[idx] = r.gradient;
+        }
+      return;
+    }
+    simd::anisotropic_grid(a, g, out);
+  }
+  static void samples(const anisotropic& a, const hush::samples<2>& s, float* out,
+                      vec<float, 2>* grad) {
+    static_assert(sizeof(footprint<2>) == 3 * sizeof(float), "footprint<2> is 3 packed floats");
+    static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
+    if (grad) {
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        const auto r = a.sample_value_and_gradient<float>(s.at(i));
+        out[i] = r.value;
+        grad[i] = r.gradient;
+      }
+      return;
+    }
+    simd::anisotropic_samples(
+        a, reinterpret_cast<const float*>(s.positions.data()),
+        s.has_footprints() ? reinterpret_cast<const float*>(s.footprints.data()) : nullptr,
+        s.has_surface_maps() ? reinterpret_cast<const float*>(s.surface_maps.data()) : nullptr,
+        s.size(), out);
   }
 };
 
@@ -8695,7 +9510,7 @@ void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* ou
   }
 }
 
-// The scalar loop over samples with extra inputs (footprints or normals).
+// The scalar loop over samples with extra inputs (footprints, normals, maps).
 template <class Noise>
 void scalar_samples(const Noise& n, const samples<Noise::dimension>& s, float* out,
                     vec<float, Noise::dimension>* grad) {
@@ -8723,8 +9538,8 @@ template <class Noise, class Exec>
 void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
                  vec<float, Noise::dimension>* grad) {
   // Positions only (always so for a noise that takes no extras: validated) is a points batch.
-  constexpr bool kExtras = takes_footprint<Noise>::value || takes_normal<Noise>::value;
-  if (!kExtras || (!s.has_footprints() && !s.has_normals())) {
+  constexpr bool kExtras = takes_sample_inputs<Noise>::value;
+  if (!kExtras || !s.has_extras()) {
     run_points(n, ex, s.positions, out, grad);
     return;
   }
@@ -8858,8 +9673,8 @@ void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> poin
   detail::run_points(noise, ex, points, out.data(), gradients.data());
 }
 
-// Values of `noise` at `s` (positions with optional footprints and normals,
-// core/samples.hpp) into `out` (one per position), on backend `ex`.
+// Values of `noise` at `s` (positions with optional footprints, normals and
+// surface maps, core/samples.hpp) into `out` (one per position), on backend `ex`.
 template <class Noise, class Exec>
 void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
               span<float> out) {
@@ -8906,6 +9721,1555 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 
 #endif  // HUSH_EXEC_HPP
 // ---- end hush/exec.hpp
+// ---- begin hush/gabor.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
+// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
+// weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
+// analytic anti-aliasing.
+//
+//   hush::gabor<2>::params prm;                  // isotropic, F0 = 1, a = 0.8, N' = 16
+//   prm.kind = hush::gabor_kind::anisotropic;
+//   prm.orientation = 0.25 * 3.14159;            // omega0, radians
+//   hush::gabor<2> noise{prm};
+//   float v = noise(hush::vec2{x, y});                              // unit variance
+//   float f = noise.sample(hush::vec2{x, y},                        // filtered over a pixel
+//                          hush::footprint<2>::from_derivatives(dpdx, dpdy));
+//   hush::gabor<3> solid{hush::gabor<3>::params{}};
+//   float s = solid.sample(p, normal, fp);       // surface noise (sec. 4.3)
+//
+// The noise (paper sec. 3.2, eq. 6): n(x) = scale sum_i w_i g_{F_i}(x - x_i),
+//  - impulses x_i: a Poisson process of density lambda = N' / (V_D r^D), so
+//    that N' kernels overlap a point on average (N' = `impulses`; V_D the
+//    volume of the unit ball, r the kernel radius). Space is cut into cells of
+//    side r; cell c's impulses come from its own stream
+//    hush::rng(lattice_hash(key, c), kGaborSolidStream), key = seed_key(seed):
+//    the count from the first word through hush::poisson_table (integer
+//    comparisons, so every backend draws the same counts), then per impulse
+//    16-bit halves of the next words: position in the cell, weight, then the
+//    orientation and frequency its kind draws (gabor_marks below). Cells are
+//    32-bit (core/lattice.hpp): any seed, any cell, period 2^32 cells.
+//  - weights w_i uniform in (-1, 1) (symmetric 16-bit values, E[w^2] =
+//    (1 - 2^-32) / 3), so the noise has mean 0;
+//  - kinds (paper sec. 3.3): anisotropic (every F_i = F0 omega0), isotropic
+//    (omega_i uniform on the circle or sphere), hybrid (omega_i uniform in an
+//    orientation range around omega0 of width orientation_spread: an arc in 2D,
+//    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
+//    frequency_spread / 2).
+//
+// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
+//  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
+//    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
+//    make it independent of the count distribution beyond its mean, which is
+//    the Poisson table's exact mean), with the kernel energy integrated by
+//    quadrature (exact, not the paper's approximation K^2 / 4a^2).
+//  - power spectrum: lambda E[w^2] E[|g^_F(f)|^2] scale^2 (paper eq. 8),
+//    power_spectrum(f); isotropic noise's is a ring at |f| = F0, anisotropic
+//    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
+//  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
+//    magnitude); the observed maximum is far smaller (tests).
+//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
+//    analytic derivative.
+//  - float evaluation is within 2^-21 (1 + 2 pi Phi) sqrt(N') ... see
+//    float_budget(); measured in tests/gabor_test.cpp.
+//  - domain: every finite coordinate (positions are split into cell and
+//    fraction in double, so precision does not degrade far from the origin);
+//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
+//
+// Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
+// convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
+// (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
+// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
+// kept within the kernel's support. A point footprint gives exactly the
+// unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
+// HARD_CASES row 12) gives a finite result, continuous in the footprint, which
+// tends to the mean 0 as the footprint grows.
+//
+// Surface noise (3D, paper sec. 4.3): sample(p, normal[, footprint]) evaluates
+// 2D kernels in the tangent plane of the surface at p. The impulses of a
+// second 3D process (stream kGaborSurfaceStream, cells of side r sqrt(3/2))
+// that lie in the slab |<n, x - x_i>| < h = r / sqrt 2 contribute the 2D
+// kernel of their projection onto the plane, weighted by the taper of their
+// distance to it. The projection of a Poisson process in a slab is a 2D
+// Poisson process, so on a plane the surface noise has exactly the 2D noise's
+// spectrum and unit variance, with no slicing of a 3D spectrum. Isotropic and
+// hybrid impulses carry a 3D direction whose projection (normalised) is their
+// orientation in the plane (uniform on the circle for isotropic noise, for
+// every normal); anisotropic noise projects omega0 without normalising
+// (frequency F0 |P omega0|: the asked-for spectrum where omega0 lies in the
+// tangent plane, continuous everywhere). Footprints are projected onto the
+// tangent plane. A zero normal evaluates the solid noise; a non-finite normal
+// gives NaN.
+#ifndef HUSH_GABOR_HPP
+#define HUSH_GABOR_HPP
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+// ---- begin hush/detail/elementary.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// exp and sin/cos that evaluate the same operations in scalar code, in every
+// SIMD target (hush/simd/elementary-inl.h mirrors them operation by
+// operation) and in GLSL (hush/glsl/gabor_glsl.hpp), so that noises built on
+// them can be bit-identical between scalar and SIMD evaluation (std::exp and
+// Highway's Exp differ in their last bits). In double they are the C
+// library's functions: the double instantiation of a noise is its reference.
+//
+//   exp_neg<T>(x)          e^x for x <= 0 (x > 0 is taken as 0)
+//   sincos_turns<T>(t)     {sin(2 pi t), cos(2 pi t)}, t in turns
+//
+// Float accuracy (tests/core/elementary_test.cpp measures it over the whole
+// range): exp_neg within 2^-22 relative (polynomial 2.5e-9 plus the
+// roundings of the reduction and of seven multiply-adds), and exactly 0 below
+// kExpFloor = -87; sincos_turns within 2^-23 absolute for every finite t (the
+// reduction to a quarter turn is exact). Non-finite arguments give NaN
+// (exp_neg of -Inf gives 0).
+#ifndef HUSH_DETAIL_ELEMENTARY_HPP
+#define HUSH_DETAIL_ELEMENTARY_HPP
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+
+namespace hush {
+namespace detail {
+
+template <class T>
+struct sin_cos {
+  T sin, cos;
+};
+
+// e^x for x <= 0; x > 0 is clamped to 0 (the callers' arguments are minus a
+// non-negative quantity, which rounding can push a few ulp above 0).
+template <class T>
+HUSH_INLINE T exp_neg(T x) {
+  namespace c = constants;
+  if constexpr (std::is_same<T, double>::value) {
+    return std::exp(x > 0.0 ? 0.0 : x);  // NaN stays NaN
+  } else {
+    static_assert(std::is_same<T, float>::value, "exp_neg<T>: T is float or double");
+    if (!(x >= float(c::kExpFloor))) return x == x ? 0.0f : x;  // below the floor, or NaN
+    if (x > 0.0f) x = 0.0f;
+    const float n = std::floor(x * float(c::kLog2E) + 0.5f);  // in [-126, 0]
+    const float r = (x - n * float(c::kLn2Hi)) - n * float(c::kLn2Lo);
+    float p = float(c::kExpPoly[c::kExpDegree]);
+    for (int i = c::kExpDegree - 1; i >= 0; --i) p = p * r + float(c::kExpPoly[i]);
+    // 2^n from the exponent field: n + 127 in [1, 127], a normal float.
+    const std::uint32_t bits = static_cast<std::uint32_t>(static_cast<int>(n) + 127) << 23;
+    float scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    return p * scale;
+  }
+}
+
+// {sin(2 pi t), cos(2 pi t)}: t = q/4 + r with q = floor(4t + 1/2) quarter
+// turns and r = t - q/4 in [-1/8, 1/8], both exact for |t| < 2^22; larger t
+// (and NaN, Inf) are first replaced by t - floor(t), exact for every finite t
+// (a float that large has at most one fractional bit), so 4t never overflows.
+// The quadrant k = q mod 4 is kept in floating point, so no non-finite value
+// is ever converted to an integer, and rotates (sin 2 pi r, cos 2 pi r). The
+// reduction is exact for every finite t: the accuracy does not depend on |t|.
+template <class T>
+HUSH_INLINE sin_cos<T> sincos_turns(T t) {
+  namespace c = constants;
+  const T u = std::fabs(t) < T(c::kTurnsReduceLimit) ? t : t - std::floor(t);
+  const T q = std::floor(u * T(4) + T(0.5));
+  const T r = u - q * T(0.25);
+  T s, co;
+  if constexpr (std::is_same<T, double>::value) {
+    s = std::sin(c::kTwoPi * r);
+    co = std::cos(c::kTwoPi * r);
+  } else {
+    static_assert(std::is_same<T, float>::value, "sincos_turns<T>: T is float or double");
+    const float z = r * r;
+    float ps = float(c::kSinPoly[c::kSinDegree]);
+    for (int i = c::kSinDegree - 1; i >= 0; --i) ps = ps * z + float(c::kSinPoly[i]);
+    float pc = float(c::kCosPoly[c::kCosDegree]);
+    for (int i = c::kCosDegree - 1; i >= 0; --i) pc = pc * z + float(c::kCosPoly[i]);
+    s = r * ps;
+    co = pc;
+  }
+  const T k = q - T(4) * std::floor(q * T(0.25));  // 0, 1, 2 or 3 (NaN for NaN t)
+  const bool odd = k == T(1) || k == T(3);
+  const T sin_sign = k >= T(2) ? T(-1) : T(1);
+  const T cos_sign = (k == T(1) || k == T(2)) ? T(-1) : T(1);
+  return {(odd ? co : s) * sin_sign, (odd ? s : co) * cos_sign};
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_ELEMENTARY_HPP
+// ---- end hush/detail/elementary.hpp
+// ---- begin hush/detail/quadrature.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Numerical integration for the statistics hush computes at construction
+// (a noise's exact variance and power spectrum when no closed form exists),
+// in double, from the C library's cos only, so results are the same wherever
+// that is correctly rounded (glibc).
+//
+//   gauss_legendre_rule()          the 16-point Gauss-Legendre rule on [-1, 1]
+//   integrate(f, lo, hi, panels)   composite 16-point rule: exact for polynomials
+//                                  of degree 31 per panel; for smooth f the error
+//                                  falls geometrically with the panel count
+//   bessel_j0(z)                   J0 by the trapezoidal rule on its integral
+//                                  representation (periodic integrand: the error is
+//                                  below 2 |J_N(z)|, under 1e-15 with N = 2|z| + 40)
+#ifndef HUSH_DETAIL_QUADRATURE_HPP
+#define HUSH_DETAIL_QUADRATURE_HPP
+
+#include <array>
+#include <cmath>
+
+
+namespace hush {
+namespace detail {
+
+constexpr int kGaussPoints = 16;
+
+struct gauss_rule {
+  std::array<double, kGaussPoints> node, weight;
+};
+
+// Nodes (roots of P_16) by Newton's iteration from Tricomi's initial guesses,
+// weights 2 / ((1 - x^2) P_16'(x)^2). Computed once.
+inline const gauss_rule& gauss_legendre_rule() {
+  static const gauss_rule rule = [] {
+    gauss_rule g{};
+    constexpr int n = kGaussPoints;
+    for (int i = 0; i < n; ++i) {
+      double x = std::cos(constants::kPi * (i + 0.75) / (n + 0.5));
+      double dp = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = x;  // P_0, P_1, then the recurrence up to P_n
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = n * (x * p1 - p0) / (x * x - 1.0);
+        const double dx = p1 / dp;
+        x -= dx;
+        if (std::fabs(dx) < 1e-16) break;
+      }
+      g.node[static_cast<std::size_t>(i)] = x;
+      g.weight[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
+    }
+    return g;
+  }();
+  return rule;
+}
+
+// The integral of f over [lo, hi] by the 16-point rule on `panels` equal panels.
+template <class F>
+double integrate(F f, double lo, double hi, int panels) {
+  const gauss_rule& g = gauss_legendre_rule();
+  const double h = (hi - lo) / panels;
+  double sum = 0.0;
+  for (int p = 0; p < panels; ++p) {
+    const double mid = lo + (p + 0.5) * h, half = 0.5 * h;
+    double s = 0.0;
+    for (int i = 0; i < kGaussPoints; ++i)
+      s += g.weight[static_cast<std::size_t>(i)] *
+           f(mid + half * g.node[static_cast<std::size_t>(i)]);
+    sum += s * half;
+  }
+  return sum;
+}
+
+// J0(z) to ~1e-15 absolute: the power series for |z| < 8 (terms up to 113:
+// two digits of cancellation); the trapezoidal rule on
+// J0(z) = (1/2pi) int_0^2pi cos(z cos t) dt for 8 <= |z| < 25 (periodic
+// integrand: error below 2 |J_n(z)| with n = 2 ceil(|z|) + 40 points); Hankel's
+// asymptotic expansion beyond (Abramowitz and Stegun 9.2.5, summed while its
+// terms fall, the smallest below e^-2|z| < 2e-22).
+inline double bessel_j0(double z) {
+  const double x = std::fabs(z);
+  if (x < 8.0) {
+    const double q = -0.25 * x * x;
+    double term = 1.0, sum = 1.0;
+    for (int k = 1; k < 60 && std::fabs(term) > 1e-18; ++k) {
+      term *= q / (static_cast<double>(k) * k);
+      sum += term;
+    }
+    return sum;
+  }
+  if (x < 25.0) {
+    const int n = 2 * static_cast<int>(std::ceil(x)) + 40;
+    double s = 0.0;
+    for (int i = 0; i < n; ++i) s += std::cos(x * std::cos(constants::kTwoPi * i / n));
+    return s / n;
+  }
+  double p = 0.0, q = 0.0, term = 1.0, last = 2.0;
+  for (int k = 0; k < 60; ++k) {
+    if (k > 0) {
+      const double odd = 2.0 * k - 1.0;
+      term *= -odd * odd / (k * 8.0 * x);
+    }
+    if (std::fabs(term) >= last) break;  // the asymptotic series starts to diverge
+    last = std::fabs(term);
+    // Terms alternate between P (even k, signs + - + ...) and Q (odd k).
+    const double sign = (k / 2) % 2 == 0 ? 1.0 : -1.0;
+    if (k % 2 == 0)
+      p += sign * term;
+    else
+      q += sign * term;
+  }
+  const double chi = x - 0.25 * constants::kPi;
+  return std::sqrt(2.0 / (constants::kPi * x)) * (p * std::cos(chi) - q * std::sin(chi));
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_QUADRATURE_HPP
+// ---- end hush/detail/quadrature.hpp
+// ---- begin hush/gabor_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
+//
+//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
+//
+// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
+// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
+// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
+// what NPR Gabor noise splats, so it lives here once, for both:
+//
+//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
+//   double r = k.radius();                               // support radius
+//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
+//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
+//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
+//
+// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
+// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
+// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
+// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
+// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
+// every noise built on it are C1:
+//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
+//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
+//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
+//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
+//     and F >> a (tests/gabor_kernel_test.cpp).
+//
+// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
+// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
+// frequency is Phi = F r cycles per cell. The float path is separable:
+//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
+//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
+// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
+// share each axis's factors between samples and SIMD repeats it bit for bit.
+// value<double> is the reference (C library exp, sin, cos); float values are
+// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
+// measured 3e-7 (tests/gabor_kernel_test.cpp).
+//
+// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
+// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
+// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
+// (untruncated_power_spectrum). The tapered kernel's transform is
+// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
+// envelope, computed by quadrature (envelope_transform, power_spectrum,
+// energy): exact to ~1e-13 relative, no closed form exists.
+//
+// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
+// covariance Sigma (noise units) is again a Gabor kernel,
+//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
+//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
+//   Q = (I + 2 pi a^2 Sigma)^-1,
+// derived in docs/gabor.md (complete the square in the product of the two
+// transforms). gabor_filter<D> computes Q and the constants from a footprint;
+// the taper is kept at the unfiltered support.
+#ifndef HUSH_GABOR_KERNEL_HPP
+#define HUSH_GABOR_KERNEL_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+
+
+namespace hush {
+namespace detail {
+
+// ---- The kernel in cell units, operation by operation as the SIMD kernels
+// (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
+
+// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), k = 1 / (1 - s0),
+// and its derivative dtau/ds = -6 k v (1 - v). Callers only pass s < 1.
+template <class T>
+struct gabor_taper_value {
+  T tau, dtau;
+};
+template <class T>
+HUSH_INLINE T gabor_taper(T s, T k) {
+  T v = (T(1) - s) * k;
+  v = v < T(1) ? v : T(1);
+  return (v * v) * (T(3) - T(2) * v);
+}
+template <class T>
+HUSH_INLINE gabor_taper_value<T> gabor_taper_derivative(T s, T k) {
+  T v = (T(1) - s) * k;
+  v = v < T(1) ? v : T(1);
+  return {(v * v) * (T(3) - T(2) * v), (T(-6) * k) * (v * (T(1) - v))};
+}
+
+// One axis of the separable kernel: offset d (cell units), d^2, the envelope
+// factor e^{-A d^2} and sin/cos(2 pi phi d).
+template <class T>
+struct gabor_axis {
+  T d, d2, e, s, c;
+};
+template <class T>
+HUSH_INLINE gabor_axis<T> gabor_axis_factors(T d, T neg_a, T phi) {
+  gabor_axis<T> f;
+  f.d = d;
+  f.d2 = d * d;
+  f.e = exp_neg(neg_a * f.d2);
+  const sin_cos<T> sc = sincos_turns(phi * d);
+  f.s = sc.sin;
+  f.c = sc.cos;
+  return f;
+}
+
+// What the kernel of one impulse is along every axis but x: its weight times
+// the envelope factors, the harmonic's cos and sin, and the squared offset.
+template <class T>
+struct gabor_row {
+  T we, c, s, d2;
+};
+template <class T>
+HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y) {
+  return {w * y.e, y.c, y.s, y.d2};
+}
+template <class T>
+HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y, const gabor_axis<T>& z) {
+  return {w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2};
+}
+
+// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1.
+template <class T>
+HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
+  const T s = x.d2 + r.d2;
+  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * gabor_taper(s, taper_k);
+}
+// The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
+template <class T>
+struct gabor_pair_gradient {
+  T value, u, v;
+};
+template <class T>
+HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
+                                                            const gabor_row<T>& r, T taper_k, T a) {
+  const T s = x.d2 + r.d2;
+  const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
+  const T p = x.e * r.we;
+  const T pc = p * (x.c * r.c - x.s * r.s);
+  const T ps = p * (x.s * r.c + x.c * r.s);
+  // d/dd_a of p cos(theta) tau: p cos (2 d_a tau' - 2 A d_a tau) - 2 pi phi_a p sin tau.
+  return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
+}
+
+// ---- Closed forms and quadratures in cell units (double).
+
+// The radially symmetric part of an integral over the unit ball: int phi(|d|) dd
+// = c_D int_0^1 phi(rho) rho^(D-1) drho, with the integrand split at the taper's
+// start (where the taper has a kink in its second derivative).
+template <int D, class F>
+double ball_integral(F phi, int panels) {
+  const double rho0 = std::sqrt(constants::kGaborTaperStart);
+  auto radial = [&](double rho) { return phi(rho) * (D == 2 ? rho : rho * rho); };
+  const double c = D == 2 ? constants::kTwoPi : 2.0 * constants::kTwoPi;
+  return c * (integrate(radial, 0.0, rho0, panels) + integrate(radial, rho0, 1.0, panels));
+}
+
+// The angular average of cos(2 pi xi rho <u, omega>) over unit u: J0 in 2D,
+// sin(z)/z in 3D, z = 2 pi xi rho.
+template <int D>
+double angular_average(double z) {
+  if constexpr (D == 2) {
+    return bessel_j0(z);
+  } else {
+    return std::fabs(z) < 1e-4 ? 1.0 - z * z / 6.0 : std::sin(z) / z;
+  }
+}
+
+// H(xi): the Fourier transform of the tapered envelope e^{-A |d|^2} tau(|d|^2)
+// at |xi| cycles per cell (radial, real).
+template <int D>
+double gabor_envelope_transform(double a, double xi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 2 * static_cast<int>(std::ceil(std::fabs(xi)));
+  return ball_integral<D>(
+      [&](double rho) {
+        const double s = rho * rho;
+        return std::exp(-a * s) * gabor_taper(s, k) *
+               angular_average<D>(constants::kTwoPi * xi * rho);
+      },
+      panels);
+}
+
+// int g^2 over the cell-unit ball for |Phi| = phi:
+// (1/2) int e^{-2A s} tau^2 (1 + cos(4 pi <Phi, d>)).
+template <int D>
+double gabor_energy(double a, double phi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
+  return 0.5 * ball_integral<D>(
+                   [&](double rho) {
+                     const double s = rho * rho, tau = gabor_taper(s, k);
+                     return std::exp(-2.0 * a * s) * tau * tau *
+                            (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
+                   },
+                   panels);
+}
+
+// int (g - g_Gabor)^2 and int g_Gabor^2 over all space (cell units), for the
+// truncation error. Outside the ball g = 0, and the Gabor kernel's energy there
+// is what the ball integral leaves of the closed form
+// int e^{-2A|d|^2} cos^2 = (pi / 2A)^(D/2) (1 + e^{-2 pi^2 phi^2 / A}) / 2.
+template <int D>
+double gabor_truncation_error(double a, double phi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
+  auto ball = [&](auto weight) {
+    return 0.5 * ball_integral<D>(
+                     [&](double rho) {
+                       const double s = rho * rho;
+                       return std::exp(-2.0 * a * s) * weight(gabor_taper(s, k)) *
+                              (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
+                     },
+                     panels);
+  };
+  const double pi2 = constants::kPi * constants::kPi;
+  const double full = std::pow(constants::kPi / (2.0 * a), 0.5 * D) * 0.5 *
+                      (1.0 + std::exp(-2.0 * pi2 * phi * phi / a));
+  const double inside_gabor = ball([](double) { return 1.0; });
+  const double inside_diff = ball([](double tau) { return (1.0 - tau) * (1.0 - tau); });
+  return std::sqrt((inside_diff + (full - inside_gabor)) / full);
+}
+
+}  // namespace detail
+
+template <int D>
+class gabor_kernel {
+  static_assert(D == 2 || D == 3, "hush::gabor_kernel is 2D or 3D");
+
+ public:
+  static constexpr int dimension = D;
+
+  // bandwidth a in [1e-6, 1e6] (1/noise units), truncation t in [1e-9, 0.5]
+  // (the envelope's value at the support radius); hush::invalid_argument
+  // naming the parameter otherwise.
+  gabor_kernel(double bandwidth, double truncation) : a_(bandwidth), t_(truncation) {
+    namespace c = detail::constants;
+    detail::require_in_range("hush::gabor_kernel", "bandwidth", bandwidth, c::kGaborMinBandwidth,
+                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
+    detail::require_in_range("hush::gabor_kernel", "truncation", truncation, c::kGaborMinTruncation,
+                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
+    exponent_ = -std::log(t_);
+    r_ = std::sqrt(exponent_ / c::kPi) / a_;
+  }
+
+  double bandwidth() const { return a_; }
+  double truncation() const { return t_; }
+  // Support radius r = sqrt(ln(1/t) / pi) / a (noise units): g = 0 beyond.
+  double radius() const { return r_; }
+  // Radius up to which g is the Gabor kernel exactly: r sqrt(s0).
+  double taper_radius() const { return r_ * std::sqrt(detail::constants::kGaborTaperStart); }
+  // A = pi a^2 r^2 = ln(1/t): the envelope is e^{-A |x / r|^2}.
+  double envelope_exponent() const { return exponent_; }
+
+  // g at offset x (noise units) for frequency vector F (cycles per noise
+  // unit), in T (float: hush's separable float path; double: the reference).
+  template <class T>
+  T value(const vec<T, D>& x, const vec<double, D>& F) const {
+    return eval<T, false>(x, F).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<T, D>& x, const vec<double, D>& F) const {
+    return eval<T, true>(x, F);
+  }
+
+  // Power spectrum |g^(f)|^2 of this kernel (noise units: f and F in cycles
+  // per unit), and of the untruncated Gabor kernel in closed form.
+  double power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
+    double lo = 0, hi = 0;
+    for (int i = 0; i < D; ++i) {
+      lo += (f[i] - F[i]) * (f[i] - F[i]);
+      hi += (f[i] + F[i]) * (f[i] + F[i]);
+    }
+    const double h = 0.5 * (envelope_transform(std::sqrt(lo)) + envelope_transform(std::sqrt(hi)));
+    return h * h;
+  }
+  double untruncated_power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
+    double lo = 0, hi = 0;
+    for (int i = 0; i < D; ++i) {
+      lo += (f[i] - F[i]) * (f[i] - F[i]);
+      hi += (f[i] + F[i]) * (f[i] + F[i]);
+    }
+    const double pi = detail::constants::kPi, a2 = a_ * a_;
+    const double h = 0.5 * std::pow(a_, -D) * (std::exp(-pi * lo / a2) + std::exp(-pi * hi / a2));
+    return h * h;
+  }
+  // The Fourier transform of the tapered envelope e^{-pi a^2 |x|^2} tau at
+  // |f| = k cycles per unit (radial, real): H in the spectra above.
+  double envelope_transform(double k) const {
+    return std::pow(r_, D) * detail::gabor_envelope_transform<D>(exponent_, k * r_);
+  }
+  // int g^2 dx for |F| = frequency (noise units): what a sparse convolution
+  // of these kernels at density lambda with weights w has as variance,
+  // lambda E[w^2] energy(F) (Campbell's theorem).
+  double energy(double frequency) const {
+    return std::pow(r_, D) * detail::gabor_energy<D>(exponent_, frequency * r_);
+  }
+  // Relative RMS difference of g and the untruncated Gabor kernel, |F| = frequency.
+  double truncation_error(double frequency) const {
+    return detail::gabor_truncation_error<D>(exponent_, frequency * r_);
+  }
+
+ private:
+  template <class T, bool WithGradient>
+  value_gradient<T, D> eval(const vec<T, D>& x, const vec<double, D>& F) const {
+    const T inv_r = T(1.0 / r_), neg_a = T(-exponent_);
+    const T k = T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
+    detail::gabor_axis<T> ax[D];
+    T phi[D];
+    T s = 0;
+    for (int i = 0; i < D; ++i) {
+      phi[i] = T(F[i] * r_);
+      ax[i] = detail::gabor_axis_factors(x[i] * inv_r, neg_a, phi[i]);
+      s += ax[i].d2;
+    }
+    value_gradient<T, D> r{T(0), {}};
+    if (s >= T(1)) return r;  // outside the support (NaN offsets give NaN below)
+    detail::gabor_row<T> row;
+    if constexpr (D == 2)
+      row = detail::gabor_row_of(T(1), ax[1]);
+    else
+      row = detail::gabor_row_of(T(1), ax[1], ax[2]);
+    if constexpr (WithGradient) {
+      const auto p = detail::gabor_pair_with_gradient(ax[0], row, k, T(exponent_));
+      r.value = p.value;
+      for (int i = 0; i < D; ++i) r.gradient[i] = (p.u * ax[i].d - p.v * phi[i]) * inv_r;
+    } else {
+      r.value = detail::gabor_pair(ax[0], row, k);
+    }
+    return r;
+  }
+
+  double a_, t_, exponent_ = 0, r_ = 0;
+};
+
+namespace detail {
+
+// Eigenvalues and eigenvectors of a symmetric D x D matrix (D = 2, 3) by
+// cyclic Jacobi rotations: unconditionally stable, and accurate for nearly
+// singular and badly scaled matrices (a rank-1 footprint times 1e12), where
+// cofactor formulas cancel catastrophically. a is overwritten (its diagonal
+// ends holding the eigenvalues); v's columns are the eigenvectors.
+template <int D>
+void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) v[i][j] = i == j ? 1.0 : 0.0;
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    double off = 0, diag = 0;
+    for (int i = 0; i < D; ++i) {
+      diag += a[i][i] * a[i][i];
+      for (int j = i + 1; j < D; ++j) off += a[i][j] * a[i][j];
+    }
+    if (!(off > 1e-34 * diag)) return;  // converged (or NaN: give up)
+    for (int p = 0; p < D; ++p)
+      for (int q = p + 1; q < D; ++q) {
+        if (a[p][q] == 0.0) continue;
+        // The rotation that zeroes a[p][q]: t = tan, the smaller root.
+        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
+        const double c = 1.0 / std::hypot(t, 1.0), sn = t * c;
+        for (int k = 0; k < D; ++k) {  // columns p and q
+          const double akp = a[k][p], akq = a[k][q];
+          a[k][p] = c * akp - sn * akq;
+          a[k][q] = sn * akp + c * akq;
+        }
+        for (int k = 0; k < D; ++k) {  // rows p and q
+          const double apk = a[p][k], aqk = a[q][k];
+          a[p][k] = c * apk - sn * aqk;
+          a[q][k] = sn * apk + c * aqk;
+        }
+        for (int k = 0; k < D; ++k) {
+          const double vkp = v[k][p], vkq = v[k][q];
+          v[k][p] = c * vkp - sn * vkq;
+          v[k][q] = sn * vkp + c * vkq;
+        }
+      }
+  }
+}
+
+}  // namespace detail
+
+// The closed-form filtered kernel (Lagae 2009 sec. 5) for one sample's
+// footprint, in the kernel's cell units (d = x / r, Phi = F r):
+//   Q = (I + 2 A sigma^2 S / r^2)^-1  (S the footprint matrix, sigma =
+//       kPixelFilterSigma pixels: the Gaussian pixel filter N(0, sigma^2 S)),
+//   amplitude = sqrt(det Q),  attenuation(Phi) = e^{-Phi^T M Phi},
+//   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
+// Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
+// l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
+// below 0): Q = V diag(1 / (1 + k l)) V^T and I - Q = V diag(k l / (1 + k l))
+// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
+// footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
+// gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
+// footprints the amplitude underflows towards 0: the filtered noise is its mean.
+template <int D>
+struct gabor_filter {
+  double q[D][D];    // Q, symmetric
+  double m[D][D];    // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
+  double amplitude;  // sqrt(det Q), in (0, 1]
+
+  // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
+  gabor_filter(const footprint<D>& fp, double a, double inv_r) {
+    namespace c = detail::constants;
+    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
+    double s[D][D], v[D][D];
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
+    detail::jacobi_eigen<D>(s, v);
+    double qd[D], md[D];
+    amplitude = 1.0;
+    const double mk = c::kPi * c::kPi / a;
+    for (int i = 0; i < D; ++i) {
+      const double kl = k * std::fmax(s[i][i], 0.0);
+      qd[i] = 1.0 / (1.0 + kl);
+      md[i] = mk * (kl / (1.0 + kl));
+      amplitude *= std::sqrt(qd[i]);
+    }
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) {
+        double qq = 0, mm = 0;
+        for (int e = 0; e < D; ++e) {
+          qq += v[i][e] * qd[e] * v[j][e];
+          mm += v[i][e] * md[e] * v[j][e];
+        }
+        q[i][j] = qq;
+        m[i][j] = mm;
+      }
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_GABOR_KERNEL_HPP
+// ---- end hush/gabor_kernel.hpp
+
+namespace hush {
+
+enum class gabor_kind { isotropic, anisotropic, hybrid };
+
+namespace detail {
+
+// Fields of a stream word as values in (0, 1) (constants.hpp): byte i (0 =
+// highest) as (2m + 1) 2^-9, half i (0 = high) as (2m + 1) 2^-17. Exact in
+// float and in GLSL (an integer below 2^17 times a power of two).
+template <class T>
+HUSH_INLINE T gabor_byte(std::uint32_t w, unsigned i) {
+  namespace c = constants;
+  const std::uint32_t m = (w >> (c::kGaborByteBits * (3u - i))) & c::kGaborByteMask;
+  return T((m << 1) | 1u) * T(c::kGaborByteScale);
+}
+template <class T>
+HUSH_INLINE T gabor_half(std::uint32_t w, unsigned i) {
+  namespace c = constants;
+  const std::uint32_t m = (w >> (c::kGaborHalfBits * (1u - i))) & c::kGaborHalfMask;
+  return T((m << 1) | 1u) * T(c::kGaborHalfScale);
+}
+
+// An orthonormal basis (t, b) of the plane orthogonal to unit n, by Duff et
+// al., "Building an orthonormal basis, revisited" (JCGT 2017), in double.
+inline void orthonormal_basis(const vec<double, 3>& n, vec<double, 3>& t, vec<double, 3>& b) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double c = n.x * n.y * a;
+  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
+  b = {c, sign + n.y * n.y * a, -n.y};
+}
+
+}  // namespace detail
+
+// gabor_marks<D>: what an impulse of each kind carries besides its position,
+// drawn from uniform values in (0, 1): its weight and its frequency vector
+// (cycles per cell). Shared by gabor<D> and by noises that place impulses
+// their own way (NPR Gabor noise). The values are consumed in this order:
+//   [0] weight w = 2 u - 1 (exact)
+//   isotropic, hybrid, 2D: [1] orientation theta = theta0 + spread (u - 1/2) turns
+//   isotropic, hybrid, 3D: [1] cos(polar) = 1 - (1 - cos(cap)) u, [2] azimuth u turns,
+//                          in the frame whose third axis is omega0
+//   hybrid:                [next] |F| = Phi0 + dPhi (u - 1/2)
+// anisotropic impulses take only the weight. values() is how many they take;
+// gabor<D> draws them from its cells' words (constants.hpp, "Impulse marks").
+template <int D>
+class gabor_marks {
+ public:
+  gabor_marks() = default;
+  // phi0, dphi: frequency and its range's width in cycles per cell (F r);
+  // orientation, elevation, spread: radians (validated by gabor<D>).
+  gabor_marks(gabor_kind kind, double phi0, double dphi, double orientation, double elevation,
+              double spread)
+      : kind_(kind), phi0_(phi0), dphi_(dphi) {
+    namespace c = detail::constants;
+    const double ca = std::cos(orientation), sa = std::sin(orientation);
+    const double ce = std::cos(elevation), se = std::sin(elevation);
+    if constexpr (D == 2) {
+      axis_ = {ca, sa};
+      theta0_ = kind == gabor_kind::isotropic ? 0.0 : orientation / c::kTwoPi;
+      spread_ = kind == gabor_kind::isotropic ? 1.0 : spread / c::kTwoPi;
+    } else {
+      axis_ = {ce * ca, ce * sa, se};
+      cos_cap_ = kind == gabor_kind::isotropic ? -1.0 : std::cos(0.5 * spread);
+      if (kind == gabor_kind::isotropic) {
+        t_ = {1, 0, 0};
+        b_ = {0, 1, 0};
+        axis_frame_ = {0, 0, 1};
+      } else {
+        detail::orthonormal_basis(axis_, t_, b_);
+        axis_frame_ = axis_;
+      }
+    }
+    for (int i = 0; i < D; ++i) fixed_[i] = phi0 * axis_[i];
+  }
+
+  gabor_kind kind() const { return kind_; }
+  // How many uniform values one impulse's marks take.
+  int values() const {
+    if (kind_ == gabor_kind::anisotropic) return 1;
+    return 1 + (D == 2 ? 1 : 2) + (kind_ == gabor_kind::hybrid ? 1 : 0);
+  }
+
+  // The weight and frequency vector (cycles per cell) from uniform values u
+  // (values() of them), with float or double arithmetic.
+  template <class T>
+  void draw(const T* u, T& weight, vec<T, D>& frequency) const {
+    namespace c = detail::constants;
+    weight = T(2) * u[0] - T(1);
+    if (kind_ == gabor_kind::anisotropic) {
+      for (int i = 0; i < D; ++i) frequency[i] = T(fixed_[i]);
+      return;
+    }
+    const T phi = kind_ == gabor_kind::hybrid ? T(phi0_) + T(dphi_) * (u[D] - T(0.5)) : T(phi0_);
+    if constexpr (D == 2) {
+      const detail::sin_cos<T> sc = detail::sincos_turns(T(theta0_) + T(spread_) * (u[1] - T(0.5)));
+      frequency = {phi * sc.cos, phi * sc.sin};
+    } else {
+      vec<T, 3> dir;
+      direction(u[1], u[2], dir);
+      for (int i = 0; i < 3; ++i) frequency[i] = phi * dir[i];
+    }
+  }
+
+  // 3D: the unit direction of values (u1, u2): uniform in the cap around
+  // omega0 (the whole sphere for isotropic noise).
+  template <class T>
+  void direction(T u1, T u2, vec<T, 3>& dir) const {
+    const T ct = T(1) - T(1.0 - cos_cap_) * u1;
+    const T st = std::sqrt((T(1) - ct) * (T(1) + ct));
+    const detail::sin_cos<T> sc = detail::sincos_turns(u2);
+    const T lx = st * sc.cos, ly = st * sc.sin;
+    for (int i = 0; i < 3; ++i) dir[i] = (T(t_[i]) * lx + T(b_[i]) * ly) + T(axis_frame_[i]) * ct;
+  }
+
+  // Orientation omega0 (unit), its frequency vector Phi0 omega0, and the
+  // constants the SIMD and GLSL code read.
+  const vec<double, D>& axis() const { return axis_; }
+  const vec<double, D>& fixed_frequency() const { return fixed_; }
+  double phi0() const { return phi0_; }
+  double dphi() const { return dphi_; }
+  double theta0() const { return theta0_; }
+  double spread_turns() const { return spread_; }
+  double cos_cap() const { return cos_cap_; }
+  const vec<double, 3>& frame_t() const { return t_; }
+  const vec<double, 3>& frame_b() const { return b_; }
+  const vec<double, 3>& frame_axis() const { return axis_frame_; }
+
+ private:
+  gabor_kind kind_ = gabor_kind::isotropic;
+  double phi0_ = 0, dphi_ = 0;
+  vec<double, D> axis_{}, fixed_{};
+  double theta0_ = 0, spread_ = 1;  // 2D, turns
+  double cos_cap_ = -1;             // 3D
+  vec<double, 3> t_{}, b_{}, axis_frame_{};
+};
+
+template <int D>
+class gabor : public sample_noise<gabor<D>, D> {
+  static_assert(D == 2 || D == 3, "hush::gabor is 2D or 3D");
+
+ public:
+  static constexpr bool takes_footprint = true;
+  static constexpr bool takes_normal = D == 3;
+
+  struct params {
+    std::uint32_t seed = 0;
+    gabor_kind kind = gabor_kind::isotropic;
+    // F0: the principal frequency, cycles per noise unit, 0 ... 1e6.
+    double frequency = 1.0;
+    // a: the kernel's bandwidth, 1/noise units, 1e-6 ... 1e6; the radial
+    // spectral width of each blob is a / (2 sqrt(pi)) (standard deviation).
+    double bandwidth = 0.8;
+    // omega0 (anisotropic and hybrid): azimuth in the xy plane, radians.
+    double orientation = 0.0;
+    // 3D: omega0's angle above the xy plane, radians.
+    double elevation = 0.0;
+    // hybrid: width of the orientation range around omega0, radians, 0 ...
+    // 2 pi (2D: an arc; 3D: the apex angle of a spherical cap; 2 pi = all).
+    double orientation_spread = 0.0;
+    // hybrid: width of the frequency range around F0, 0 ... 2 F0.
+    double frequency_spread = 0.0;
+    // N': the mean number of kernels overlapping a point, (0, 256].
+    double impulses = 16.0;
+    // t: the kernel envelope's value at its support radius, 1e-9 ... 0.5.
+    double truncation = detail::constants::kGaborDefaultTruncation;
+  };
+
+  gabor() : gabor(params{}) {}
+  // Throws hush::invalid_argument naming the first parameter out of range.
+  explicit gabor(const params& prm) : prm_(prm), kernel_(check(prm).bandwidth, prm.truncation) {
+    namespace c = detail::constants;
+    key_ = seed_key(prm.seed);
+    const double r = kernel_.radius();
+    inv_cell_ = 1.0 / r;
+    marks_ = gabor_marks<D>(prm.kind, prm.frequency * r, prm.frequency_spread * r, prm.orientation,
+                            prm.elevation, prm.orientation_spread);
+    // N' kernels per unit ball of radius r: N' / V_D per cell of side r.
+    const double ball = D == 2 ? c::kPi : 4.0 * c::kPi / 3.0;
+    table_ = std::make_shared<const poisson_table>(prm.impulses / ball);
+    scale_ = 1.0 / std::sqrt(table_->exact_mean() * weight_moment() * mean_energy());
+    if constexpr (D == 3) {
+      // Slab of half-height h = r / sqrt 2, disk of radius r, cells of r sqrt(3/2):
+      // lambda_3 = N' / (2 h pi r^2), mu = lambda_3 cell^3.
+      const double cell = c::kGaborSurfaceCell;
+      inv_surface_cell_ = 1.0 / (r * cell);
+      surface_table_ = std::make_shared<const poisson_table>(prm.impulses * cell * cell * cell /
+                                                             (2.0 * c::kGaborSurfaceSlab * c::kPi));
+      surface_scale_ = 1.0 / std::sqrt(surface_table_->exact_mean() * weight_moment() *
+                                       mean_energy_2d() * surface_geometry());
+      for (const auto& t : {table_, surface_table_})
+        if (t->max_count() > static_cast<std::uint32_t>(c::kGaborMaxThresholds))
+          throw hush::invalid_argument("hush::gabor: internal Poisson table too long");
+    }
+  }
+
+  const params& parameters() const { return prm_; }
+  const gabor_kernel<D>& kernel() const { return kernel_; }
+  const gabor_marks<D>& marks() const { return marks_; }
+  // The per-cell Poisson tables (solid; surface in 3D).
+  const poisson_table& table() const { return *table_; }
+  const poisson_table& surface_table() const {
+    static_assert(D == 3, "surface noise is 3D");
+    return *surface_table_;
+  }
+  std::uint32_t key() const { return key_; }
+  // 1 / cell side (cells are r wide; surface cells r sqrt(3/2)).
+  double inverse_cell() const { return inv_cell_; }
+  double inverse_surface_cell() const { return inv_surface_cell_; }
+  // Words one impulse takes from its cell's stream (after the count's word).
+  int words_per_impulse() const { return words_for(prm_.kind); }
+  // The factor that makes the variance 1 (the raw sum times scale()).
+  double scale() const { return scale_; }
+  double surface_scale() const { return surface_scale_; }
+
+  // Variance 1 and mean 0 over space and seeds (see the file comment).
+  static constexpr double variance() { return 1.0; }
+  // |n| <= bound() (solid noise; surface noise's bound in 3D is surface_bound()).
+  double bound() const { return std::pow(3.0, D) * table_->max_count() * scale_; }
+  double surface_bound() const { return 27.0 * surface_table_->max_count() * surface_scale_; }
+
+  // E[w^2] of the 8-bit symmetric weights: (1 - 2^-16) / 3.
+  static constexpr double weight_moment() { return (1.0 - 1.0 / 65536.0) / 3.0; }
+  // E over the kind's frequencies of the kernel energy int g^2 in cell units.
+  double mean_energy() const { return mean_energy_of<D>(); }
+
+  // The power spectrum of the unit-variance noise at frequency f (cycles per
+  // noise unit), exact: lambda E[w^2] E_F[|g^_F(f)|^2] scale^2. Quadrature of
+  // the kernel transform for each call (milliseconds); gabor_spectrum tabulates
+  // it for images.
+  double power_spectrum(const vec<double, D>& f) const {
+    const double a = kernel_.envelope_exponent();
+    return spectrum_with(f, [a](double k) { return detail::gabor_envelope_transform<D>(a, k); });
+  }
+
+  // The same with H(k), the tapered envelope's transform at k cycles per cell,
+  // supplied by the caller (gabor_spectrum passes a table of it).
+  template <class H>
+  double spectrum_with(const vec<double, D>& f, H h) const {
+    const double r = kernel_.radius();
+    vec<double, D> xi;
+    for (int i = 0; i < D; ++i) xi[i] = f[i] * r;
+    return scale_ * scale_ * table_->exact_mean() * weight_moment() * std::pow(r, D) *
+           mean_kernel_spectrum(xi, h);
+  }
+
+  // p(vec) -> value, p.gradient(vec) (core/point_noise.hpp) and p.sample(...)
+  // (core/samples.hpp) come from the base classes.
+  template <class T>
+  T value(const vec<double, D>& p) const {
+    return eval<T, false>(p).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
+    return eval<T, true>(p);
+  }
+  template <class T>
+  T sample_value(const sample_input<D>& s) const {
+    return sample_eval<T, false>(s).value;
+  }
+  template <class T>
+  value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s) const {
+    return sample_eval<T, true>(s);
+  }
+
+  // ---- The pieces every backend repeats (hush/simd/gabor-inl.h, GLSL).
+
+  // The impulses of solid cell `cell` (32-bit lattice indices), in stream
+  // order: f(words), the impulse's words_per_impulse() stream words, whose
+  // fields impulse_position() and mark_values() decode (constants.hpp,
+  // "Impulse marks"): decoding only what is needed is what every backend does.
+  template <class F>
+  void for_each_impulse(const std::uint32_t (&cell)[D], F f) const {
+    rng r(cell_seed(cell), detail::constants::kGaborSolidStream);
+    const std::uint32_t n = table_->count(r.next_u32());
+    const int words = words_per_impulse();
+    for (std::uint32_t k = 0; k < n; ++k) {
+      std::uint32_t w[3] = {0, 0, 0};
+      for (int i = 0; i < words; ++i) w[i] = r.next_u32();
+      f(static_cast<const std::uint32_t*>(w));
+    }
+  }
+  // The same for the surface process (3D; cells r sqrt(3/2) wide).
+  template <class F>
+  void for_each_surface_impulse(const std::uint32_t (&cell)[3], F f) const {
+    rng r(lattice_hash(key_, cell[0], cell[1], cell[2]), detail::constants::kGaborSurfaceStream);
+    const std::uint32_t n = surface_table_->count(r.next_u32());
+    const int words = words_for(prm_.kind, 3);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      std::uint32_t w[3] = {0, 0, 0};
+      for (int i = 0; i < words; ++i) w[i] = r.next_u32();
+      f(static_cast<const std::uint32_t*>(w));
+    }
+  }
+  // Coordinate `axis` of an impulse's position in its cell, in (0, 1).
+  template <class T>
+  static T impulse_position(const std::uint32_t* words, int axis) {
+    return detail::gabor_byte<T>(words[0], static_cast<unsigned>(axis));
+  }
+  // The values gabor_marks::draw takes, from an impulse's words (E = 2 or 3:
+  // the process's dimension).
+  template <class T, int E = D>
+  void mark_values(const std::uint32_t* words, T* u) const {
+    u[0] = detail::gabor_byte<T>(words[0], E);  // weight
+    if (prm_.kind == gabor_kind::anisotropic) return;
+    if constexpr (E == 2) {
+      u[1] = detail::gabor_byte<T>(words[0], 3);
+      if (prm_.kind == gabor_kind::hybrid) u[2] = detail::gabor_half<T>(words[1], 0);
+    } else {
+      u[1] = detail::gabor_half<T>(words[1], 0);
+      u[2] = detail::gabor_half<T>(words[1], 1);
+      if (prm_.kind == gabor_kind::hybrid) u[3] = detail::gabor_half<T>(words[2], 0);
+    }
+  }
+
+  // Words per impulse of a kind in E dimensions (constants.hpp, "Impulse marks").
+  static int words_for(gabor_kind kind, int e = D) {
+    if (kind == gabor_kind::hybrid) return e == 2 ? 2 : 3;
+    return kind == gabor_kind::isotropic && e == 3 ? 2 : 1;
+  }
+
+ private:
+  static const params& check(const params& p) {
+    namespace c = detail::constants;
+    const char* w = "hush::gabor";
+    detail::require_in_range(w, "frequency", p.frequency, 0.0, c::kGaborMaxFrequency,
+                             "0 <= frequency <= 1e+06 (cycles per noise unit)");
+    detail::require_in_range(w, "bandwidth", p.bandwidth, c::kGaborMinBandwidth,
+                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
+    detail::require_in_range(w, "truncation", p.truncation, c::kGaborMinTruncation,
+                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
+    if (!(p.impulses > 0.0 && p.impulses <= c::kGaborMaxImpulses))
+      detail::throw_out_of_range(w, "impulses", p.impulses, "0 < impulses <= 256");
+    if (!std::isfinite(p.orientation))
+      detail::throw_out_of_range(w, "orientation", p.orientation, "a finite angle in radians");
+    if (!std::isfinite(p.elevation))
+      detail::throw_out_of_range(w, "elevation", p.elevation, "a finite angle in radians");
+    detail::require_in_range(w, "orientation_spread", p.orientation_spread, 0.0, c::kTwoPi,
+                             "0 <= orientation_spread <= 2 pi (radians)");
+    detail::require_in_range(w, "frequency_spread", p.frequency_spread, 0.0, 2.0 * p.frequency,
+                             "0 <= frequency_spread <= 2 * frequency");
+    if (p.kind != gabor_kind::isotropic && p.kind != gabor_kind::anisotropic &&
+        p.kind != gabor_kind::hybrid)
+      detail::throw_out_of_range(w, "kind", static_cast<int>(p.kind),
+                                 "isotropic, anisotropic or hybrid");
+    return p;
+  }
+
+  std::uint32_t cell_seed(const std::uint32_t (&cell)[D]) const {
+    if constexpr (D == 2)
+      return lattice_hash(key_, cell[0], cell[1]);
+    else
+      return lattice_hash(key_, cell[0], cell[1], cell[2]);
+  }
+
+  // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
+  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
+  template <class H>
+  double mean_kernel_spectrum(const vec<double, D>& xi, H h) const {
+    namespace c = detail::constants;
+    auto one = [&](const vec<double, D>& phi) {
+      double lo = 0, hi = 0;
+      for (int i = 0; i < D; ++i) {
+        lo += (xi[i] - phi[i]) * (xi[i] - phi[i]);
+        hi += (xi[i] + phi[i]) * (xi[i] + phi[i]);
+      }
+      const double v = 0.5 * (h(std::sqrt(lo)) + h(std::sqrt(hi)));
+      return v * v;
+    };
+    if (prm_.kind == gabor_kind::anisotropic) return one(marks_.fixed_frequency());
+    double xi_len = 0;
+    for (int i = 0; i < D; ++i) xi_len += xi[i] * xi[i];
+    xi_len = std::sqrt(xi_len);
+    const double phi0 = marks_.phi0(), dphi = marks_.dphi();
+    const bool hybrid = prm_.kind == gabor_kind::hybrid;
+    // The blob centres +-Phi move by 2 pi |Phi| cycles per cell per turn, and H
+    // is ~0.4 cycles per cell wide: these node counts resolve it to ~1e-10.
+    const double reach = phi0 + 0.5 * dphi;
+    // Average over |Phi| (hybrid) of f(|Phi|).
+    auto over_frequency = [&](auto f) {
+      if (!hybrid || dphi == 0.0) return f(phi0);
+      const int panels = 1 + static_cast<int>(std::ceil(2.0 * dphi));
+      return detail::integrate(f, phi0 - 0.5 * dphi, phi0 + 0.5 * dphi, panels) / dphi;
+    };
+    if constexpr (D == 2) {
+      return over_frequency([&](double ph) {
+        auto at = [&](double turns) {
+          const double ang = c::kTwoPi * turns;
+          return one({ph * std::cos(ang), ph * std::sin(ang)});
+        };
+        if (!hybrid) {  // uniform on the circle: the trapezoidal rule is spectral
+          const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
+          double sum = 0;
+          for (int i = 0; i < n; ++i) sum += at(static_cast<double>(i) / n);
+          return sum / n;
+        }
+        const double spread = marks_.spread_turns(), theta0 = marks_.theta0();
+        if (spread == 0.0) return at(theta0);
+        const int panels = 1 + static_cast<int>(std::ceil(8.0 * reach * spread));
+        return detail::integrate(at, theta0 - 0.5 * spread, theta0 + 0.5 * spread, panels) / spread;
+      });
+    } else {
+      return over_frequency([&](double ph) {
+        if (!hybrid) {  // uniform on the sphere: only the angle to xi matters
+          auto at = [&](double cg) {
+            const double base = xi_len * xi_len + ph * ph, cross = 2.0 * xi_len * ph * cg;
+            const double v =
+                0.5 * (h(std::sqrt(std::fmax(base - cross, 0.0))) + h(std::sqrt(base + cross)));
+            return v * v;
+          };
+          const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
+          return 0.5 * detail::integrate(at, -1.0, 1.0, panels);
+        }
+        const double cap = marks_.cos_cap();
+        if (cap >= 1.0) {  // zero spread: omega0 only
+          vec<double, 3> phi;
+          for (int i = 0; i < 3; ++i) phi[i] = ph * marks_.axis()[i];
+          return one(phi);
+        }
+        const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
+        const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
+        auto ring = [&](double ct) {  // average over the azimuth at polar cosine ct
+          double sum = 0;
+          for (int i = 0; i < n; ++i) {
+            const double u2 = static_cast<double>(i) / n;
+            const double st = std::sqrt(std::fmax((1.0 - ct) * (1.0 + ct), 0.0));
+            const double lx = st * std::cos(c::kTwoPi * u2), ly = st * std::sin(c::kTwoPi * u2);
+            vec<double, 3> phi;
+            for (int k = 0; k < 3; ++k)
+              phi[k] = ph * ((marks_.frame_t()[k] * lx + marks_.frame_b()[k] * ly) +
+                             marks_.frame_axis()[k] * ct);
+            sum += one(phi);
+          }
+          return sum / n;
+        };
+        return detail::integrate(ring, cap, 1.0, panels) / (1.0 - cap);
+      });
+    }
+  }
+
+  template <int E>
+  double mean_energy_of() const {
+    namespace c = detail::constants;
+    const double a = kernel_.envelope_exponent(), phi = marks_.phi0(), dphi = marks_.dphi();
+    if (prm_.kind != gabor_kind::hybrid || dphi == 0.0) return detail::gabor_energy<E>(a, phi);
+    // |Phi| uniform over [phi - dphi/2, phi + dphi/2]; the energy is smooth in it.
+    return detail::integrate([&](double x) { return detail::gabor_energy<E>(a, x); },
+                             phi - 0.5 * dphi, phi + 0.5 * dphi, 2) /
+           dphi;
+  }
+  double mean_energy_2d() const { return mean_energy_of<2>(); }
+  // Surface noise's variance per (table mean * E[w^2] * 2D energy): the slab
+  // taper's mean square 2 int_0^1 tau(z^2)^2 dz times h r^2 / cell^3.
+  static double surface_geometry() {
+    namespace c = detail::constants;
+    const double k = 1.0 / (1.0 - c::kGaborTaperStart);
+    const double z0 = std::sqrt(c::kGaborTaperStart);
+    auto tau2 = [&](double z) {
+      const double t = detail::gabor_taper(z * z, k);
+      return t * t;
+    };
+    const double j = detail::integrate(tau2, 0.0, z0, 1) + detail::integrate(tau2, z0, 1.0, 2);
+    const double cell = c::kGaborSurfaceCell;
+    return 2.0 * j * c::kGaborSurfaceSlab / (cell * cell * cell);
+  }
+
+  // ---- Evaluation (the scalar reference of every backend).
+
+  // Calls pair(d, d2, s, w, phi) for every impulse of the solid process within
+  // the support of x = p / r (cell units): offsets d (cell units), their
+  // squares, s = |d|^2 < 1, weight and frequency vector. Cells go in raster
+  // order (z, y, x from -1 to 1 around x's cell) and impulses in stream order:
+  // the order the grid kernels accumulate in. False for a non-finite p.
+  template <class T, class Pair>
+  bool for_each_pair(const vec<double, D>& p, Pair pair) const {
+    lattice_coord<T> c[D];
+    for (int a = 0; a < D; ++a) {
+      c[a] = lattice_split<T>(p[a] * inv_cell_);
+      if (std::isnan(c[a].f)) return false;
+    }
+    constexpr int kCells = D == 2 ? 9 : 27;
+    for (int n = 0; n < kCells; ++n) {
+      int o[D];
+      std::uint32_t cell[D];
+      for (int ax = 0, m = n; ax < D; ++ax, m /= 3) {
+        o[ax] = m % 3 - 1;
+        cell[ax] = c[ax].i0 + static_cast<std::uint32_t>(o[ax]);
+      }
+      for_each_impulse(cell, [&](const std::uint32_t* words) {
+        T d[D], d2[D];
+        for (int ax = 0; ax < D; ++ax) {
+          d[ax] = (c[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
+          d2[ax] = d[ax] * d[ax];
+        }
+        const T s = D == 2 ? d2[0] + d2[1] : d2[0] + (d2[1] + d2[2]);
+        if (!(s < T(1))) return;
+        T u[4] = {}, w;
+        vec<T, D> phi;
+        mark_values<T>(words, u);
+        marks_.template draw<T>(u, w, phi);
+        pair(d, d2, s, w, phi);
+      });
+    }
+    return true;
+  }
+
+  // Unfiltered solid noise: the separable kernel (gabor_kernel.hpp).
+  template <class T, bool G>
+  value_gradient<T, D> eval(const vec<double, D>& p) const {
+    const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
+    const T taper_k = taper_k_<T>();
+    T sum = 0, g[D] = {};
+    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T, T w, const vec<T, D>& phi) {
+      detail::gabor_axis<T> ax[D];
+      for (int i = 0; i < D; ++i) ax[i] = detail::gabor_axis_factors(d[i], neg_a, phi[i]);
+      detail::gabor_row<T> row;
+      if constexpr (D == 2)
+        row = detail::gabor_row_of(w, ax[1]);
+      else
+        row = detail::gabor_row_of(w, ax[1], ax[2]);
+      if constexpr (G) {
+        const auto pg = detail::gabor_pair_with_gradient(ax[0], row, taper_k, a);
+        sum += pg.value;
+        for (int i = 0; i < D; ++i) g[i] += pg.u * d[i] - pg.v * phi[i];
+      } else {
+        sum += detail::gabor_pair(ax[0], row, taper_k);
+      }
+    });
+    if (!ok) return nan_result<T>();
+    return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
+  }
+
+  // One impulse of a filtered (or tangent-plane) kernel in E dimensions:
+  // w amplitude e^{-Phi^T M Phi} e^{-A d^T Q d} cos(2 pi <Q Phi, d>) tau(s),
+  // added to sum and, with G, its derivative by d to grad.
+  template <class T, int E, bool G>
+  static void filtered_pair(const T (&q)[E][E], const T (&m)[E][E], T amplitude, T neg_a, T a,
+                            T taper_k, const T* d, T s, T w, const T* phi, T& sum, T* grad) {
+    T mu[E], qd[E];
+    T att = 0, dqd = 0, theta = 0;
+    for (int i = 0; i < E; ++i) {
+      T x = 0, y = 0, z = 0;
+      for (int j = 0; j < E; ++j) {
+        x += q[i][j] * phi[j];
+        y += m[i][j] * phi[j];
+        z += q[i][j] * d[j];
+      }
+      mu[i] = x;
+      att += phi[i] * y;
+      qd[i] = z;
+      dqd += d[i] * z;
+    }
+    for (int i = 0; i < E; ++i) theta += mu[i] * d[i];
+    const T p = ((w * amplitude) * detail::exp_neg(-att)) * detail::exp_neg(neg_a * dqd);
+    const detail::sin_cos<T> sc = detail::sincos_turns(theta);
+    if constexpr (G) {
+      const detail::gabor_taper_value<T> tw = detail::gabor_taper_derivative(s, taper_k);
+      const T pc = p * sc.cos, ps = T(detail::constants::kTwoPi) * ((p * tw.tau) * sc.sin);
+      sum += pc * tw.tau;
+      for (int i = 0; i < E; ++i)
+        grad[i] += pc * ((tw.dtau + tw.dtau) * d[i] - (a + a) * (tw.tau * qd[i])) - ps * mu[i];
+    } else {
+      sum += (p * sc.cos) * detail::gabor_taper(s, taper_k);
+    }
+  }
+
+  // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
+  template <class T, bool G>
+  value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
+    const gabor_filter<D> flt(fp, kernel_.envelope_exponent(), inv_cell_);
+    T q[D][D], m[D][D];
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) {
+        q[i][j] = T(flt.q[i][j]);
+        m[i][j] = T(flt.m[i][j]);
+      }
+    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
+    const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
+    T sum = 0, g[D] = {};
+    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
+      T ph[D];
+      for (int i = 0; i < D; ++i) ph[i] = phi[i];
+      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, sum, g);
+    });
+    if (!ok) return nan_result<T>();
+    return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
+  }
+
+  // Surface noise at p with unit normal n (double), filtered over fp.
+  template <class T, bool G>
+  value_gradient<T, D> surface_eval(const vec<double, 3>& p, const vec<double, 3>& n,
+                                    const footprint<3>& fp) const {
+    namespace c = detail::constants;
+    vec<double, 3> t, b;
+    detail::orthonormal_basis(n, t, b);
+    // The footprint in the plane, in the kernel's units: [t b]^T S [t b].
+    float upper[3];
+    const vec<double, 3>* axes[2] = {&t, &b};
+    for (int i = 0, e = 0; i < 2; ++i)
+      for (int j = i; j < 2; ++j, ++e) {
+        double v = 0;
+        for (int r = 0; r < 3; ++r)
+          for (int k = 0; k < 3; ++k)
+            v += (*axes[i])[r] * static_cast<double>(fp.covariance(r, k)) * (*axes[j])[k];
+        upper[e] = static_cast<float>(v);
+      }
+    const gabor_filter<2> flt(footprint<2>::from_covariance(upper), kernel_.envelope_exponent(),
+                              inv_cell_);
+    T q[2][2], m[2][2];
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        q[i][j] = T(flt.q[i][j]);
+        m[i][j] = T(flt.m[i][j]);
+      }
+    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
+    const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
+    const T nt[3] = {T(n.x), T(n.y), T(n.z)}, tt[3] = {T(t.x), T(t.y), T(t.z)},
+            bt[3] = {T(b.x), T(b.y), T(b.z)};
+    // Kernel units per surface-cell unit, and 1 / h^2 in surface-cell units.
+    const T to_kernel = T(c::kGaborSurfaceCell);
+    const T inv_h2 = T((c::kGaborSurfaceCell / c::kGaborSurfaceSlab) *
+                       (c::kGaborSurfaceCell / c::kGaborSurfaceSlab));
+    const bool normalise = prm_.kind != gabor_kind::anisotropic;
+    lattice_coord<T> cc[3];
+    for (int ax = 0; ax < 3; ++ax) {
+      cc[ax] = lattice_split<T>(p[ax] * inv_surface_cell_);
+      if (std::isnan(cc[ax].f)) return nan_result<T>();
+    }
+    T sum = 0, g[3] = {};
+    for (int nc = 0; nc < 27; ++nc) {
+      int o[3];
+      std::uint32_t cell[3];
+      for (int ax = 0, mm = nc; ax < 3; ++ax, mm /= 3) {
+        o[ax] = mm % 3 - 1;
+        cell[ax] = cc[ax].i0 + static_cast<std::uint32_t>(o[ax]);
+      }
+      for_each_surface_impulse(cell, [&](const std::uint32_t* words) {
+        T d[3];
+        for (int ax = 0; ax < 3; ++ax)
+          d[ax] = (cc[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
+        const T zn = (nt[0] * d[0] + nt[1] * d[1]) + nt[2] * d[2];
+        const T z2 = (zn * zn) * inv_h2;
+        if (!(z2 < T(1))) return;
+        const T dk[2] = {((tt[0] * d[0] + tt[1] * d[1]) + tt[2] * d[2]) * to_kernel,
+                         ((bt[0] * d[0] + bt[1] * d[1]) + bt[2] * d[2]) * to_kernel};
+        const T s = dk[0] * dk[0] + dk[1] * dk[1];
+        if (!(s < T(1))) return;
+        // The impulse's weight and 3D direction (anisotropic: omega0) and |Phi|.
+        T u[4] = {};
+        mark_values<T, 3>(words, u);
+        const T w = T(2) * u[0] - T(1);
+        vec<T, 3> dir;
+        T phi = T(marks_.phi0());
+        if (prm_.kind == gabor_kind::anisotropic) {
+          for (int i = 0; i < 3; ++i) dir[i] = T(marks_.axis()[i]);
+        } else {
+          marks_.direction(u[1], u[2], dir);
+          if (prm_.kind == gabor_kind::hybrid)
+            phi = T(marks_.phi0()) + T(marks_.dphi()) * (u[3] - T(0.5));
+        }
+        const T vt = (tt[0] * dir[0] + tt[1] * dir[1]) + tt[2] * dir[2];
+        const T vb = (bt[0] * dir[0] + bt[1] * dir[1]) + bt[2] * dir[2];
+        T f = phi;
+        if (normalise) {
+          const T len2 = vt * vt + vb * vb;
+          f = len2 > T(0) ? phi / std::sqrt(len2) : T(0);
+        }
+        const T ph[2] = {f * vt, f * vb};
+        const detail::gabor_taper_value<T> slab = detail::gabor_taper_derivative(z2, taper_k);
+        T gs = 0, gk[2] = {0, 0};
+        filtered_pair<T, 2, G>(q, m, amplitude, neg_a, a, taper_k, dk, s, w, ph, gs, gk);
+        sum += gs * slab.tau;
+        if constexpr (G) {
+          // d/dd of (kernel * slab taper): the kernel's in-plane derivative
+          // (through dk = [t b]^T d sqrt(3/2)) and the slab's along n.
+          const T dz = gs * (slab.dtau * ((zn + zn) * inv_h2));
+          for (int ax = 0; ax < 3; ++ax)
+            g[ax] += ((gk[0] * tt[ax] + gk[1] * bt[ax]) * to_kernel) * slab.tau + dz * nt[ax];
+        }
+      });
+    }
+    return finish<T, G>(sum, g, T(surface_scale_), T(surface_scale_ * inv_surface_cell_));
+  }
+
+  template <class T, bool G>
+  value_gradient<T, D> sample_eval(const sample_input<D>& s) const {
+    if constexpr (D == 3) {
+      if (s.has_normal) {
+        const vec<double, 3>& n = s.normal;
+        if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+          return nan_result<T>();
+        // Scaled before normalising, so that tiny and huge normals both work.
+        const double big = std::fmax(std::fabs(n.x), std::fmax(std::fabs(n.y), std::fabs(n.z)));
+        if (big > 0.0) {
+          const vec<double, 3> m{n.x / big, n.y / big, n.z / big};
+          const double len = std::sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
+          return surface_eval<T, G>(s.position, {m.x / len, m.y / len, m.z / len}, s.fp);
+        }
+        // A zero normal has no tangent plane: the solid noise.
+      }
+    }
+    return filtered_eval<T, G>(s.position, s.fp);
+  }
+
+  template <class T, bool G>
+  static value_gradient<T, D> finish(T sum, const T* g, T scale, T gradient_scale) {
+    value_gradient<T, D> r{sum * scale, {}};
+    if constexpr (G)
+      for (int i = 0; i < D; ++i) r.gradient[i] = g[i] * gradient_scale;
+    return r;
+  }
+
+  template <class T>
+  static value_gradient<T, D> nan_result() {
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    value_gradient<T, D> r{nan, {}};
+    for (int i = 0; i < D; ++i) r.gradient[i] = nan;
+    return r;
+  }
+  template <class T>
+  static T taper_k_() {
+    return T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
+  }
+
+  params prm_;
+  gabor_kernel<D> kernel_;
+  std::uint32_t key_ = 0;
+  double inv_cell_ = 1, inv_surface_cell_ = 1;
+  gabor_marks<D> marks_;
+  std::shared_ptr<const poisson_table> table_, surface_table_;
+  double scale_ = 1, surface_scale_ = 1;
+};
+
+// gabor_spectrum<D>: the power spectrum of a gabor<D> noise at many
+// frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
+// kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
+// the largest |f r| + |Phi| needed, and interpolated with Catmull-Rom cubics
+// (within 3e-5 of the peak of the exact spectrum). Isotropic noise's spectrum
+// is radial: it is tabulated the same way against |f|. Frequencies above
+// max_frequency (cycles per noise unit, any direction) give 0.
+template <int D>
+class gabor_spectrum {
+ public:
+  gabor_spectrum(const gabor<D>& noise, double max_frequency) : noise_(noise) {
+    const double r = noise.kernel().radius();
+    max_f_ = max_frequency;
+    const double reach = max_frequency * r + noise.marks().phi0() + noise.marks().dphi();
+    const auto n = static_cast<std::size_t>(std::ceil(reach * kPerCycle)) + 4;
+    const double a = noise.kernel().envelope_exponent();
+    h_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      h_[i] = detail::gabor_envelope_transform<D>(a, static_cast<double>(i) / kPerCycle);
+    if (noise.parameters().kind == gabor_kind::isotropic) {
+      // Radial: S(|f|) every 1/64 cycle per cell, from the tabulated H.
+      radial_.resize(static_cast<std::size_t>(std::ceil(max_frequency * r * kPerCycle)) + 4);
+      for (std::size_t i = 0; i < radial_.size(); ++i) {
+        vec<double, D> f{};
+        f[0] = static_cast<double>(i) / (kPerCycle * r);
+        radial_[i] = noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
+      }
+    }
+  }
+
+  double operator()(const vec<double, D>& f) const {
+    double len = 0;
+    for (int i = 0; i < D; ++i) len += f[i] * f[i];
+    len = std::sqrt(len);
+    if (!(len <= max_f_)) return 0.0;
+    if (!radial_.empty()) return cubic(radial_, len * noise_.kernel().radius());
+    return noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
+  }
+
+ private:
+  static constexpr double kPerCycle = 64.0;
+  // Catmull-Rom interpolation of an even function tabulated at k = i / 64
+  // (the evenness supplies the point left of 0).
+  static double cubic(const std::vector<double>& h, double k) {
+    const double x = k * kPerCycle;
+    const auto i = static_cast<std::size_t>(x);
+    if (i + 2 >= h.size()) return h.back();
+    const double t = x - static_cast<double>(i);
+    const double p0 = i == 0 ? h[1] : h[i - 1], p1 = h[i], p2 = h[i + 1], p3 = h[i + 2];
+    return p1 + 0.5 * t *
+                    (p2 - p0 +
+                     t * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + t * (3.0 * (p1 - p2) + p3 - p0)));
+  }
+
+  gabor<D> noise_;
+  double max_f_ = 0;
+  std::vector<double> h_, radial_;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_GABOR_HPP
+// ---- end hush/gabor.hpp
 
 // Scene-driven noises (hush::frame: per-frame G-buffer views).
 // ---- begin hush/coherent.hpp

@@ -820,3 +820,80 @@ TEST_CASE("sample wavelet refuses bad options with exit 2 naming the option") {
     CHECK(r.err.rfind("hush sample: ", 0) == 0);
   }
 }
+
+// ---- hush sample anisotropic.
+
+TEST_CASE("sample anisotropic: every backend agrees with scalar, with footprints and a map") {
+  const fs::path dir = scratch("anisotropic_backends");
+  const std::string common =
+      "sample anisotropic --size 40x7 --origin -3.3,7.1 --step 0.173 --seed 9 --tile-size 64 "
+      "--orientations 6 --footprint pixel --map 1.5,0.2,-0.3,0.7 ";
+  REQUIRE(run_hush(common + "--backend scalar --out '" + (dir / "scalar.npy").string() + "'", dir)
+              .exit_code == 0);
+  const npy_file ref = read_npy(dir / "scalar.npy");
+  REQUIRE(ref.values.size() == 280);
+  hush::anisotropic::params prm;
+  prm.seed = 9;
+  prm.tile_size = 64;
+  prm.orientations = 6;
+  const hush::anisotropic noise(prm);
+  // SIMD: both within one float budget (with maps) of the double reference.
+  // GLSL: 8-bit bilinear weights on some GPUs, 2^-8 of the largest texel step
+  // per subband (anisotropic_program.hpp), bounded here over every weight.
+  const double simd_budget = 2 * noise.float_budget() * noise.bound_with_maps() / noise.bound();
+  double steps = 0;
+  for (int i = 0; i < 6; ++i) steps += noise.tile().max_step(i);
+  const double glsl_budget = simd_budget + std::ldexp(steps, -8) * noise.bound_with_maps() /
+                                               (noise.bound() / noise.octave_weight(0));
+  std::vector<std::pair<std::string, double>> backends = {{"simd", simd_budget}};
+#if HUSH_CLI_TEST_GLSL
+  backends.emplace_back("glsl", glsl_budget);
+#endif
+  for (const auto& [backend, budget] : backends) {
+    CAPTURE(backend);
+    const fs::path out = dir / (backend + ".npy");
+    REQUIRE(run_hush(common + "--backend " + backend + " --out '" + out.string() + "'", dir)
+                .exit_code == 0);
+    const npy_file a = read_npy(out);
+    REQUIRE(a.values.size() == ref.values.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < a.values.size(); ++i)
+      worst = std::max(worst, std::fabs(double(a.values[i]) - ref.values[i]));
+    CHECK(worst <= budget);
+  }
+}
+
+TEST_CASE("sample anisotropic: bad options exit 2 with one line naming the option") {
+  const fs::path dir = scratch("anisotropic_bad");
+  const std::string out = " --out '" + (dir / "never.npy").string() + "'";
+  struct bad {
+    std::string args, names;
+  };
+  const bad cases[] = {
+      {"anisotropic --dim 3" + out, "--dim 3"},
+      {"anisotropic --orientations 9" + out, "--orientations '9'"},
+      {"anisotropic --scales 0" + out, "--scales '0'"},
+      {"anisotropic --base-scale 3" + out, "--base-scale '3'"},
+      {"anisotropic --scales 2 --octaves 3" + out, "--octaves '3'"},
+      {"anisotropic --tile-size 100" + out, "power of two"},
+      {"anisotropic --gain 0" + out, "--gain '0'"},
+      {"anisotropic --frequency nan" + out, "--frequency"},
+      {"anisotropic --filtering gaussian" + out, "--filtering"},
+      {"anisotropic --footprint -1" + out, "--footprint '-1'"},
+      {"anisotropic --map 1,2,3" + out, "--map"},
+  };
+  for (const bad& c : cases) {
+    CAPTURE(c.args);
+    const result r = run_hush("sample " + c.args, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(c.names) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  CHECK_FALSE(fs::exists(dir / "never.npy"));
+#if HUSH_CLI_TEST_GLSL
+  const result lsq =
+      run_hush("sample anisotropic --backend glsl --filtering least_squares" + out, dir);
+  CHECK(lsq.exit_code == 2);
+  CHECK(lsq.err.find("least-squares") != std::string::npos);
+#endif
+}

@@ -22,6 +22,7 @@ class banded_probe : public hush::sample_noise<banded_probe<D>, D> {
  public:
   static constexpr bool takes_footprint = true;
   static constexpr bool takes_normal = D == 3;
+  static constexpr bool takes_surface_map = D == 2;
   template <class T>
   T value(const hush::vec<double, D>& p) const {
     return T(5) * T(p[0]);
@@ -34,7 +35,8 @@ class banded_probe : public hush::sample_noise<banded_probe<D>, D> {
   }
   template <class T>
   T sample_value(const hush::sample_input<D>& s) const {
-    return value<T>(s.position) + T(s.fp.covariance(0, 0)) + (s.has_normal ? T(s.normal.z) : T(0));
+    return value<T>(s.position) + T(s.fp.covariance(0, 0)) + (s.has_normal ? T(s.normal.z) : T(0)) +
+           (s.has_map ? T(s.map.m01) : T(0));
   }
   template <class T>
   hush::value_gradient<T, D> sample_value_and_gradient(const hush::sample_input<D>& s) const {
@@ -70,7 +72,9 @@ struct noise_program<hush_test::probe_noise<D>> {
   static std::string sample_call(bool gradient) {
     const std::string last = std::to_string(D - 1);
     return with_gradient("(" + value_of("p") + " + (fp[0][0] + fp[1][0] / 2.0 + fp[" + last + "][" +
-                             last + "] / 4.0) + (has_nrm ? 2.0 * nrm.x + 4.0 * nrm.z : -8.0))",
+                             last + "] / 4.0) + (has_nrm ? 2.0 * nrm.x + 4.0 * nrm.z : -8.0) + " +
+                             "(has_smap ? ((smap[0][0] + smap[1][0] / 2.0) + smap[0][1] / 4.0) + "
+                             "smap[1][1] / 8.0 : 0.0))",
                          gradient);
   }
   static std::uint32_t period(const hush_test::probe_noise<D>&, int) { return 0; }
@@ -97,7 +101,8 @@ struct noise_program<hush_test::banded_probe<D>> {
     return "    acc += float(b + 1u) * (float(int(i0.x)) + f.x);\n";
   }
   static std::string band_result(bool gradient) {
-    const std::string v = "(acc + fp[0][0] + (has_nrm ? nrm.z : 0.0))";
+    const std::string v =
+        "(acc + fp[0][0] + (has_nrm ? nrm.z : 0.0) + (has_smap ? smap[1][0] : 0.0))";
     if (!gradient) return v;
     return D == 2 ? "vec3(" + v + ", 5.0, 0.0)" : "vec4(" + v + ", 5.0, 0.0, 0.0)";
   }
@@ -113,10 +118,16 @@ namespace {
 // n samples whose every input is a small multiple of 1/8 (exact in float).
 template <int D>
 hush::samples<D> make_samples(std::size_t n, std::vector<hush::vec<float, D>>& pos,
-                              std::vector<hush::footprint<D>>& fps, std::vector<hush::vec3>& nrm) {
+                              std::vector<hush::footprint<D>>& fps, std::vector<hush::vec3>& nrm,
+                              std::vector<hush::surface_map>* maps = nullptr) {
   pos.clear();
   fps.clear();
   nrm.clear();
+  if (maps) {
+    maps->clear();
+    for (std::size_t i = 0; i < n; ++i)
+      maps->push_back({float(i % 3) / 8.0f, -float(i % 5) / 8.0f, float(i % 7) / 8.0f, 0.25f});
+  }
   for (std::size_t i = 0; i < n; ++i) {
     hush::vec<float, D> p;
     for (int a = 0; a < D; ++a) p[std::size_t(a)] = float(int(i % 23) - 11 + 3 * a) / 8.0f;
@@ -128,8 +139,10 @@ hush::samples<D> make_samples(std::size_t n, std::vector<hush::vec<float, D>>& p
     fps.push_back(hush::footprint<D>::from_derivatives(dx, dy));
     nrm.push_back({float(i % 4) / 8.0f, -0.5f, float(i % 7) / 8.0f});
   }
-  return hush::samples<D>{
-      pos, fps, D == 3 ? hush::span<const hush::vec3>(nrm) : hush::span<const hush::vec3>()};
+  hush::samples<D> s{pos, fps,
+                     D == 3 ? hush::span<const hush::vec3>(nrm) : hush::span<const hush::vec3>()};
+  if (maps) s.surface_maps = *maps;
+  return s;
 }
 
 template <class Noise>
@@ -171,6 +184,20 @@ TEST_CASE_TEMPLATE("glsl samples: positions, footprints and normals reach each s
   s.normals = {};
   check_equal_to_scalar(probe, s, dev);
   check_equal_to_scalar(banded, s, dev);
+}
+
+TEST_CASE("glsl samples: surface maps reach each sample exactly (binding 4)") {
+  auto& dev = hush_glsl_test::headless().device;
+  std::vector<hush::vec2> pos;
+  std::vector<hush::footprint<2>> fps;
+  std::vector<hush::vec3> nrm;
+  std::vector<hush::surface_map> maps;
+  hush::samples<2> s = make_samples<2>(1000, pos, fps, nrm, &maps);
+  check_equal_to_scalar(hush_test::probe_noise<2>{}, s, dev);
+  check_equal_to_scalar(hush_test::banded_probe<2>{}, s, dev);
+  s.footprints = {};  // maps alone
+  check_equal_to_scalar(hush_test::probe_noise<2>{}, s, dev);
+  check_equal_to_scalar(hush_test::banded_probe<2>{}, s, dev);
 }
 
 TEST_CASE("glsl samples: batches split by the buffer limit give the same results") {

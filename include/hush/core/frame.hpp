@@ -23,6 +23,12 @@
 //  - object_id: an id per pixel (examples/scene: 0 = background); two pixels
 //    show the same object when their ids are equal.
 //  - triangle_id: the triangle index within the object (NPR Gabor noise).
+//  - uv: the surface's texture coordinates (u, v) at the pixel centre
+//    (anisotropic noise evaluates there).
+//  - uv_jacobian: d(u, v)/d(x, y) in uv units per pixel, as (du/dx, du/dy,
+//    dv/dx, dv/dy): the screen-to-texture Jacobian J a filtering 2D noise
+//    turns into its footprint (hush::footprint<2>::from_derivatives((du/dx,
+//    dv/dx), (du/dy, dv/dy)); anisotropic noise).
 // NPR Gabor noise reads its triangle list beside these views (core/triangles.hpp).
 #ifndef HUSH_CORE_FRAME_HPP
 #define HUSH_CORE_FRAME_HPP
@@ -45,6 +51,8 @@ enum class frame_view : unsigned {
   forward_velocity = 1u << 2,
   object_id = 1u << 3,
   triangle_id = 1u << 4,
+  uv = 1u << 5,
+  uv_jacobian = 1u << 6,
 };
 constexpr frame_view operator|(frame_view a, frame_view b) {
   return static_cast<frame_view>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
@@ -59,6 +67,8 @@ struct frame {
   image_view<const vec3> forward_velocity;      // (dx, dy, dz) to the next frame
   image_view<const std::uint32_t> object_id;    // optional: same id = same object
   image_view<const std::uint32_t> triangle_id;  // optional
+  image_view<const vec2> uv;                    // optional: texture coordinates
+  image_view<const vec4> uv_jacobian;           // optional: (du/dx, du/dy, dv/dx, dv/dy)
 
   // The frame's size: the depth view's (every present view must match it).
   std::size_t width() const { return depth.width; }
@@ -73,6 +83,8 @@ struct frame {
     if (forward_velocity.data) p = p | frame_view::forward_velocity;
     if (object_id.data) p = p | frame_view::object_id;
     if (triangle_id.data) p = p | frame_view::triangle_id;
+    if (uv.data) p = p | frame_view::uv;
+    if (uv_jacobian.data) p = p | frame_view::uv_jacobian;
     return p;
   }
 
@@ -91,6 +103,8 @@ struct frame {
     check(where, "forward_velocity", forward_velocity, frame_view::forward_velocity, required);
     check(where, "object_id", object_id, frame_view::object_id, required);
     check(where, "triangle_id", triangle_id, frame_view::triangle_id, required);
+    check(where, "uv", uv, frame_view::uv, required);
+    check(where, "uv_jacobian", uv_jacobian, frame_view::uv_jacobian, required);
   }
 
  private:

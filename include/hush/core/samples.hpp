@@ -2,8 +2,10 @@
 //
 // Per-sample inputs beyond the position (DESIGN.md "Per-sample inputs"):
 //  - hush::sample_input<D>: one sample as a noise's scalar code sees it: the
-//    position (double), the footprint (core/footprint.hpp; a point by default)
-//    and, for surface noises in 3D, the surface normal;
+//    position (double), the footprint (core/footprint.hpp; a point by default),
+//    for surface noises in 3D the surface normal, and for 2D texture-space
+//    noises on surfaces the surface map T (core/surface_map.hpp; texture <-
+//    surface, identity by default);
 //  - hush::samples<D>: a batch of them as spans beside the positions, what
 //    hush::evaluate(noise, exec, samples, out[, gradients]) takes on every
 //    backend (exec.hpp);
@@ -12,14 +14,18 @@
 //      n.sample(p, footprint)                 -> float / double (by p's type)
 //      n.sample(p, normal, footprint)         -> the same on a surface (3D noises
 //                                                with takes_normal)
-//      n.sample_gradient(p, footprint), n.sample_gradient(p, normal, footprint)
-//                                             -> value and d/d(position) of
+//      n.sample(p, footprint, map)            -> the same on a surface whose UV
+//                                                mapping is T = map (2D noises
+//                                                with takes_surface_map)
+//      n.sample_gradient(p, footprint), n.sample_gradient(p, normal, footprint),
+//      n.sample_gradient(p, footprint, map)   -> value and d/d(position) of
 //                                                the filtered noise, footprint fixed
 // A noise derives from sample_noise<Derived, D> (which derives from
 // point_noise<Derived, D>: n(p) and n.gradient(p) stay the unfiltered point
 // evaluation) and defines, besides point_noise's two templates,
 //   static constexpr bool takes_footprint;  // uses sample_input::fp
 //   static constexpr bool takes_normal;     // uses sample_input::normal (D == 3)
+//   static constexpr bool takes_surface_map;  // uses sample_input::map (D == 2)
 //   template <class T> T sample_value(const sample_input<D>& s) const;
 //   template <class T> value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s)
 //   const;
@@ -34,33 +40,43 @@
 #include "hush/core/error.hpp"
 #include "hush/core/footprint.hpp"
 #include "hush/core/point_noise.hpp"
+#include "hush/core/surface_map.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 
 namespace hush {
 
-// One sample: position, footprint, and optionally the surface normal (any
-// length; a noise documents what it does with a zero or non-finite normal).
+// One sample: position, footprint, optionally the surface normal (any
+// length; a noise documents what it does with a zero or non-finite normal)
+// and the surface map (a noise documents what it does with a singular one).
 template <int D>
 struct sample_input {
   vec<double, D> position{};
   footprint<D> fp{};
   vec<double, 3> normal{};
   bool has_normal = false;
+  surface_map map{};
+  bool has_map = false;
 };
 
-// A batch of samples: positions and, optionally, one footprint and one
-// normal per position. An empty span means "not given": point samples, no
-// normal. Normals exist for 3D noises only.
+// A batch of samples: positions and, optionally, one footprint, one normal
+// and one surface map per position. An empty span means "not given": point
+// samples, no normal, the identity map. Normals are for 3D noises, surface
+// maps for 2D texture-space noises.
 template <int D>
 struct samples {
   span<const vec<float, D>> positions;
   span<const footprint<D>> footprints;
   span<const vec<float, 3>> normals;
+  span<const surface_map> surface_maps{};  // last, defaulted: {positions, footprints, normals}
+                                           // still initialises a batch
 
   std::size_t size() const { return positions.size(); }
   bool has_footprints() const { return !footprints.empty(); }
   bool has_normals() const { return !normals.empty(); }
+  bool has_surface_maps() const { return !surface_maps.empty(); }
+  // True when anything beside the positions is given.
+  bool has_extras() const { return has_footprints() || has_normals() || has_surface_maps(); }
 
   // Sample i as the scalar code sees it.
   sample_input<D> at(std::size_t i) const {
@@ -70,6 +86,10 @@ struct samples {
     if (has_normals()) {
       s.normal = vec_cast<double>(normals[i]);
       s.has_normal = true;
+    }
+    if (has_surface_maps()) {
+      s.map = surface_maps[i];
+      s.has_map = true;
     }
     return s;
   }
@@ -88,10 +108,20 @@ struct takes_normal : std::false_type {};
 template <class Noise>
 struct takes_normal<Noise, std::void_t<decltype(Noise::takes_normal)>>
     : std::integral_constant<bool, Noise::takes_normal> {};
+template <class Noise, class = void>
+struct takes_surface_map : std::false_type {};
+template <class Noise>
+struct takes_surface_map<Noise, std::void_t<decltype(Noise::takes_surface_map)>>
+    : std::integral_constant<bool, Noise::takes_surface_map> {};
+// Whether a noise takes any per-sample input beside the position.
+template <class Noise>
+struct takes_sample_inputs
+    : std::integral_constant<bool, takes_footprint<Noise>::value || takes_normal<Noise>::value ||
+                                       takes_surface_map<Noise>::value> {};
 
 // Throws hush::invalid_argument naming the first span that does not fit:
-// footprints and normals must be empty or have one element per position, and
-// only inputs the noise takes may be given.
+// footprints, normals and surface maps must be empty or have one element per
+// position, and only inputs the noise takes may be given.
 template <class Noise>
 void validate_samples(const char* where, const samples<Noise::dimension>& s) {
   const std::size_t n = s.positions.size();
@@ -111,6 +141,14 @@ void validate_samples(const char* where, const samples<Noise::dimension>& s) {
                                    "valid: none (an empty span)");
     if (s.normals.size() != n)
       throw_out_of_range(where, "samples.normals.size()", s.normals.size(), per.c_str());
+  }
+  if (s.has_surface_maps()) {
+    if (!takes_surface_map<Noise>::value)
+      throw hush::invalid_argument(std::string(where) +
+                                   ": samples.surface_maps given, but this noise takes no surface "
+                                   "map; valid: none (an empty span)");
+    if (s.surface_maps.size() != n)
+      throw_out_of_range(where, "samples.surface_maps.size()", s.surface_maps.size(), per.c_str());
   }
 }
 
@@ -157,6 +195,26 @@ class sample_noise : public point_noise<Derived, D> {
     return self().template sample_value_and_gradient<double>(input(p, fp, normal));
   }
 
+  // On a surface whose UV mapping is T = map (2D noises with takes_surface_map).
+  template <int E = D, class = std::enable_if_t<E == 2>>
+  float sample(const vec<float, 2>& p, const footprint<2>& fp, const surface_map& map) const {
+    return self().template sample_value<float>(input(vec_cast<double>(p), fp, map));
+  }
+  template <int E = D, class = std::enable_if_t<E == 2>>
+  double sample(const vec<double, 2>& p, const footprint<2>& fp, const surface_map& map) const {
+    return self().template sample_value<double>(input(p, fp, map));
+  }
+  template <int E = D, class = std::enable_if_t<E == 2>>
+  value_gradient<float, 2> sample_gradient(const vec<float, 2>& p, const footprint<2>& fp,
+                                           const surface_map& map) const {
+    return self().template sample_value_and_gradient<float>(input(vec_cast<double>(p), fp, map));
+  }
+  template <int E = D, class = std::enable_if_t<E == 2>>
+  value_gradient<double, 2> sample_gradient(const vec<double, 2>& p, const footprint<2>& fp,
+                                            const surface_map& map) const {
+    return self().template sample_value_and_gradient<double>(input(p, fp, map));
+  }
+
  private:
   const Derived& self() const { return static_cast<const Derived&>(*this); }
   static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp) {
@@ -171,6 +229,14 @@ class sample_noise : public point_noise<Derived, D> {
     sample_input<D> s = input(p, fp);
     s.normal = normal;
     s.has_normal = true;
+    return s;
+  }
+  static sample_input<D> input(const vec<double, D>& p, const footprint<D>& fp,
+                               const surface_map& map) {
+    static_assert(detail::takes_surface_map<Derived>::value, "this noise takes no surface map");
+    sample_input<D> s = input(p, fp);
+    s.map = map;
+    s.has_map = true;
     return s;
   }
 };

@@ -339,6 +339,70 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
 
+// ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
+// subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
+constexpr double kLn2 = 0.69314718055994530942;
+// Orientations K of the steerable filter bank (the paper uses 4 to 8; one
+// orientation has no angular selectivity) and scales (octaves of the bank).
+constexpr int kAnisoMinOrientations = 2;
+constexpr int kAnisoMaxOrientations = 8;
+constexpr int kAnisoMaxScales = 12;
+// Subband tiles: power-of-two sizes (the FFT's), at least 16 texels (so the
+// band's lowest frequency, 1/16 cycle per texel, is one DFT bin), at most
+// 2048 (8 orientations of 2048^2 floats are 128 MiB).
+constexpr int kAnisoMinTileSize = 16;
+constexpr int kAnisoMaxTileSize = 2048;
+// Centre frequency of the tiles' subband, in cycles per texel: the band spans
+// [1/16, 1/4], so at its top bilinear lookups still pass sinc^2(1/4) = 0.81 of
+// the amplitude and the first interpolation image (at 3/4) carries below 1%
+// of the power (docs/anisotropic.md, "Tiles").
+constexpr double kAnisoTileBand = 0.125;
+// The 3-radial-point rule (paper sec. 5): the target is read at log2 offsets
+// -1/2, 0, +1/2 octave from a subband's centre and averaged with the weights
+// of the subband's radial profile there, cos^2(pi/4) : 1 : cos^2(pi/4),
+// normalised to 1/4, 1/2, 1/4.
+constexpr double kAnisoThreePointOffset = 0.5;
+constexpr double kAnisoThreePointSide = 0.25;
+constexpr double kAnisoThreePointCentre = 0.5;
+// A filtering weight exp(-x) with x above this is set to exactly 0 (and its
+// subband is skipped): exp(-17) = 4.1e-8 < 2^-24, below float resolution.
+constexpr double kAnisoWeightCutoff = 17.0;
+// Least-squares quadrature (subband_fit.hpp): midpoint nodes per octave of
+// radius, and angular nodes per orientation over a half turn (filters and
+// targets are even: D(-w) = D(w)).
+constexpr int kAnisoRadialNodesPerOctave = 16;
+constexpr int kAnisoAngularNodesPerOrientation = 12;
+
+// Float approximations used by the weights (detail/approx_math.hpp), written
+// out so that scalar and SIMD code evaluate the same polynomial in the same
+// order (bit-identical under HUSH_STRICT_FP):
+//  - 2^r on [-1/2, 1/2]: Taylor series of exp(r ln 2) to degree 7
+//    (truncation 5.3e-9 relative);
+//  - log2 m on [sqrt(1/2), sqrt(2)]: (2 / ln 2) atanh(z), z = (m-1)/(m+1),
+//    |z| <= 0.1716, odd series to z^9 (truncation 3e-10);
+//  - sin(pi z) on [-1/2, 1/2]: Taylor series to degree 13 (truncation 6.6e-10).
+// The coefficients are computed here at compile time from pi and ln 2.
+struct aniso_series {
+  double exp2[8];   // (ln 2)^k / k!, k = 0 ... 7
+  double log2[5];   // (2 / ln 2) / (2k + 1), k = 0 ... 4
+  double sinpi[7];  // (-1)^k pi^(2k+1) / (2k+1)!, k = 0 ... 6
+  constexpr aniso_series() : exp2{}, log2{}, sinpi{} {
+    double t = 1.0;
+    for (int k = 0; k < 8; ++k) {
+      exp2[k] = t;
+      t = t * kLn2 / double(k + 1);
+    }
+    for (int k = 0; k < 5; ++k) log2[k] = (2.0 / kLn2) / double(2 * k + 1);
+    double s = kPi;
+    for (int k = 0; k < 7; ++k) {
+      sinpi[k] = s;
+      s = -s * kPi * kPi / double((2 * k + 2) * (2 * k + 3));
+    }
+  }
+};
+constexpr aniso_series kAnisoSeries{};
+constexpr double kSqrt2 = 1.41421356237309504880;
+
 }  // namespace constants
 }  // namespace detail
 }  // namespace hush

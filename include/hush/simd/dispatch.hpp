@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "hush/anisotropic.hpp"
 #include "hush/config.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/vec.hpp"
@@ -58,6 +59,7 @@ struct simd_kernel {
 #endif
 #include <hwy/highway.h>
 
+#include "hush/simd/anisotropic-inl.h"
 #include "hush/simd/coherent-inl.h"
 #include "hush/simd/perlin-inl.h"
 #include "hush/simd/wavelet-inl.h"
@@ -111,6 +113,13 @@ HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& 
 // Coherent noise: one recursive-filter pass over a frame (hush/simd/coherent-inl.h;
 // the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
 HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
+
+// Anisotropic noise (hush/simd/anisotropic-inl.h): n samples at interleaved
+// positions xy, with footprints fp (3 floats each, null = points) and surface
+// maps (4 floats each, null = none); or a uniform grid. Values only.
+HUSH_SIMD_ENTRY void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                         const float* map, std::size_t n, float* value);
+HUSH_SIMD_ENTRY void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value);
 
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
 // best first, and of the one the kernels run on, on this CPU.
@@ -174,6 +183,13 @@ inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* va
 }
 inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
   HWY_STATIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
+}
+inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                const float* map, std::size_t n, float* value) {
+  HWY_STATIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value);
+}
+inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
+  HWY_STATIC_DISPATCH(anisotropic_grid)(a, g, value);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -280,6 +296,58 @@ struct simd_kernel<wavelet<D>> {
       simd::wavelet2_samples(w, s, out, g);
     else
       simd::wavelet3_samples(w, s, out, g);
+  }
+};
+
+// Anisotropic noise: samples (footprints, surface maps), points and grids,
+// values in SIMD; gradients take the scalar loop (bilinear lookups' slopes).
+template <>
+struct simd_kernel<anisotropic> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void points(const anisotropic& a, const vec<float, 2>* pts, std::size_t count, float* out,
+                     vec<float, 2>* grad) {
+    if (grad) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const auto r = a.gradient(pts[i]);
+        out[i] = r.value;
+        grad[i] = r.gradient;
+      }
+      return;
+    }
+    simd::anisotropic_samples(a, reinterpret_cast<const float*>(pts), nullptr, nullptr, count, out);
+  }
+  static void grid(const anisotropic& a, const hush::grid<2>& g, float* out, vec<float, 2>* grad) {
+    if (grad) {
+      std::size_t idx = 0;
+      for (std::size_t j = 0; j < g.size[1]; ++j)
+        for (std::size_t i = 0; i < g.size[0]; ++i, ++idx) {
+          const auto r = a.value_and_gradient<float>(g.position({i, j}));
+          out[idx] = r.value;
+          grad[idx] = r.gradient;
+        }
+      return;
+    }
+    simd::anisotropic_grid(a, g, out);
+  }
+  static void samples(const anisotropic& a, const hush::samples<2>& s, float* out,
+                      vec<float, 2>* grad) {
+    static_assert(sizeof(footprint<2>) == 3 * sizeof(float), "footprint<2> is 3 packed floats");
+    static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
+    if (grad) {
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        const auto r = a.sample_value_and_gradient<float>(s.at(i));
+        out[i] = r.value;
+        grad[i] = r.gradient;
+      }
+      return;
+    }
+    simd::anisotropic_samples(
+        a, reinterpret_cast<const float*>(s.positions.data()),
+        s.has_footprints() ? reinterpret_cast<const float*>(s.footprints.data()) : nullptr,
+        s.has_surface_maps() ? reinterpret_cast<const float*>(s.surface_maps.data()) : nullptr,
+        s.size(), out);
   }
 };
 

@@ -18,6 +18,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "hush/simd/anisotropic-inl.h"
 #include "hush/simd/coherent-inl.h"
 #include "hush/simd/perlin-inl.h"
 #include "hush/simd/wavelet-inl.h"
@@ -50,6 +51,8 @@ HWY_EXPORT(wavelet3_grid);
 HWY_EXPORT(wavelet2_samples);
 HWY_EXPORT(wavelet3_samples);
 HWY_EXPORT(coherent_pass);
+HWY_EXPORT(anisotropic_samples);
+HWY_EXPORT(anisotropic_grid);
 
 namespace simd {
 
@@ -110,6 +113,13 @@ void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value, fl
 }
 void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
+}
+void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp, const float* map,
+                         std::size_t n, float* value) {
+  HWY_DYNAMIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value);
+}
+void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
+  HWY_DYNAMIC_DISPATCH(anisotropic_grid)(a, g, value);
 }
 
 std::vector<std::string> compiled_targets() {

@@ -17,19 +17,24 @@
 //     D + 1 floats per sample (value, d/dx, d/dy[, d/dz]);
 //   plus the noise's own uniforms (noise_program<Noise>::uniforms()).
 // Samples (batch_layout::samples; hush::samples, core/samples.hpp): the
-// points input above, plus per-sample footprints and normals, each present
-// when its uniform says so (the device binds a dummy buffer otherwise):
+// points input above, plus per-sample footprints, normals and surface maps,
+// each present when its uniform says so (the device binds a dummy buffer
+// otherwise):
 //   uniform uint hush_has_footprint: 1u when binding 2 `float hush_fp[]`
 //     holds footprint<D>::kEntries floats per sample (the upper triangle of
 //     the footprint matrix S, row by row: 2D xx, xy, yy; 3D xx, xy, xz, yy, yz, zz);
 //   uniform uint hush_has_normal: 1u when binding 3 `float hush_nrm[]` holds
 //     3 floats per sample;
+//   uniform uint hush_has_map: 1u when binding 4 `float hush_map[]` holds the
+//     surface map T per sample, 4 floats row by row (m00, m01, m10, m11);
 // and the noise sees `matD fp` (S, symmetric; zero when absent), `vec3 nrm`
-// (zero when absent) and `bool has_nrm`, besides `p`:
+// (zero when absent), `bool has_nrm`, `mat2 smap` (T; the identity when
+// absent) and `bool has_smap`, besides `p`:
 // noise_program<Noise>::sample_call(bool gradient) is its expression.
 // A noise's own data (noise_program::preamble, data_buffers) sits at SSBO bindings
-// 4 and up, declared before the library.
-// Banded noises (noise_program<Noise>::banded, e.g. fractal sums) read, for
+// 5 and up (kFirstDataBinding), declared before the library.
+// Banded noises see fp, nrm, has_nrm, smap and has_smap in every layout (at
+// their defaults for points and grids). They read, for
 // `uniform uint hush_bands` bands, band b's triples instead:
 //   points: binding 0 `uint hush_axis[]`, per point, per band, per axis the
 //     triple of the band coordinate split on the CPU in double
@@ -95,16 +100,19 @@ inline const char* grid_axis_offsets() {
 }
 
 // GLSL: the declarations of the samples layout's optional inputs (bindings
-// 2 and 3, their presence uniforms).
+// 2 to 4, their presence uniforms).
 inline const char* sample_input_declarations() {
   return "uniform uint hush_has_footprint;  // 1u: hush_fp holds a footprint per sample\n"
          "uniform uint hush_has_normal;     // 1u: hush_nrm holds a normal per sample\n"
+         "uniform uint hush_has_map;        // 1u: hush_map holds a surface map per sample\n"
          "layout(std430, binding = 2) readonly buffer hush_footprints { float hush_fp[]; };\n"
-         "layout(std430, binding = 3) readonly buffer hush_normals { float hush_nrm[]; };\n";
+         "layout(std430, binding = 3) readonly buffer hush_normals { float hush_nrm[]; };\n"
+         "layout(std430, binding = 4) readonly buffer hush_maps { float hush_map[]; };\n";
 }
 
 // GLSL: fp (matD, the symmetric footprint matrix; zero when absent), nrm
-// (vec3) and has_nrm for sample n.
+// (vec3), has_nrm, smap (mat2, the surface map; identity when absent) and
+// has_smap for sample n.
 inline std::string read_sample_inputs(int dimension) {
   const std::string d = std::to_string(dimension);
   const int entries = dimension * (dimension + 1) / 2;
@@ -121,8 +129,21 @@ inline std::string read_sample_inputs(int dimension) {
     }
   s += "  }\n  bool has_nrm = hush_has_normal != 0u;\n"
        "  vec3 nrm = has_nrm ? vec3(hush_nrm[3u * n], hush_nrm[3u * n + 1u], hush_nrm[3u * n + "
-       "2u]) : vec3(0.0);\n";
+       "2u]) : vec3(0.0);\n"
+       "  bool has_smap = hush_has_map != 0u;\n"
+       "  // GLSL matrices are indexed [column][row]: smap[c][r] = T(r, c).\n"
+       "  mat2 smap = has_smap ? mat2(hush_map[4u * n], hush_map[4u * n + 2u], hush_map[4u * n + "
+       "1u], hush_map[4u * n + 3u]) : mat2(1.0);\n";
   return s;
+}
+
+// GLSL: the sample inputs at their defaults (fp zero, no normal, identity
+// map), for banded programs evaluated at points or on grids.
+inline std::string default_sample_inputs(int dimension) {
+  const std::string d = std::to_string(dimension);
+  return "  mat" + d + " fp = mat" + d +
+         "(0.0);\n  bool has_nrm = false;\n  vec3 nrm = vec3(0.0);\n"
+         "  bool has_smap = false;\n  mat2 smap = mat2(1.0);\n";
 }
 
 // GLSL: i0, i1 (uvecD) and f (vecD) read from the triples at `base` + t[a].
@@ -172,11 +193,7 @@ std::string banded_source(batch_layout layout, bool gradient) {
        "void main() {\n"
        "  uint n = hush_first + gl_GlobalInvocationID.x;\n"
        "  if (n >= hush_count) return;\n";
-  if (layout == batch_layout::samples)
-    s += read_sample_inputs(D);
-  else  // points and grids: no footprint, no normal (band programs may read them)
-    s += "  mat" + d + " fp = mat" + d +
-         "(0.0);\n  vec3 nrm = vec3(0.0);\n  bool has_nrm = false;\n";
+  s += layout == batch_layout::samples ? read_sample_inputs(D) : default_sample_inputs(D);
   if (layout != batch_layout::grid) {
     // Triple of axis a of band b at t[a] + band_stride * b.
     s += "  uint band_stride = 3u * " + d +

@@ -13,11 +13,17 @@
 // grid) on first use and caches it, uploads the inputs to SSBOs, dispatches in
 // chunks of at most GL_MAX_COMPUTE_WORK_GROUP_COUNT groups, splits batches
 // larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE, and reads the results back
-// (synchronously). It leaves the current program and the generic
-// GL_SHADER_STORAGE_BUFFER binding as it found them; it rebinds the indexed
-// SSBO bindings 0 to 3, and the bindings of the noises' own data (4 and up:
-// noise_program::data_buffers, e.g. wavelet tiles), which it keeps uploaded
-// while their owner stays the same (data_uploads() counts the uploads).
+// (synchronously). It leaves the current program, the generic
+// GL_SHADER_STORAGE_BUFFER binding and the active texture unit as it found
+// them. It rebinds the indexed SSBO bindings 0 to 4 (the runner's), the
+// bindings of the noises' own data (5 and up: noise_program::data_buffers,
+// e.g. wavelet tiles) and, for noises with textures (noise_program::textures),
+// the GL_TEXTURE_2D binding of texture units 0 ... n-1. Data buffers and
+// textures are uploaded once per owner (e.g. a shared tile) and kept while it
+// stays the same (data_uploads() counts the buffer uploads); their sizes are
+// checked against GL_MAX_SHADER_STORAGE_BLOCK_SIZE and GL_MAX_TEXTURE_SIZE, the
+// texture count against GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS
+// (hush::invalid_argument when they do not fit).
 //
 // Accuracy (tests/glsl/glsl_test.cpp; see also hush/glsl/library.hpp):
 //  - points: the float position as given, split exactly on the GPU; grids: each
@@ -49,11 +55,11 @@
 //    position is formed on the GPU). Measured on llvmpipe: default fBm values
 //    max 5.9e-6 from the double reference, 8.3e-7 from the CPU float path in
 //    2D, equal to it bit for bit in 3D.
-//  - samples (hush::samples: positions with per-sample footprints and
-//    normals, core/samples.hpp): positions as for points; footprints (their
-//    stored float upper triangle) and normals (floats) are uploaded as given,
-//    so the GPU sees the CPU's inputs bit for bit. Each noise states its own
-//    tolerance for filtered evaluation.
+//  - samples (hush::samples: positions with per-sample footprints, normals
+//    and surface maps, core/samples.hpp): positions as for points; footprints
+//    (their stored float upper triangle), normals and surface maps (floats)
+//    are uploaded as given, so the GPU sees the CPU's inputs bit for bit.
+//    Each noise states its own tolerance for filtered evaluation.
 //  - NaN or +-Inf in a point gives NaN in its value and gradient.
 //
 // Errors: the constructor throws std::runtime_error when an entry point is
@@ -143,6 +149,7 @@ class device {
     programs_.clear();
     gl_->DeleteBuffers(kBuffers, buffers_);
     for (const auto& d : data_) gl_->DeleteBuffers(1, &d.second.buffer);
+    for (const texture_entry& t : textures_) gl_->DeleteTextures(1, &t.id);
   }
 
   // GL_RENDERER and GL_VERSION of the context, e.g. "llvmpipe (LLVM 15.0.6,
@@ -150,6 +157,14 @@ class device {
   const std::string& renderer() const { return renderer_; }
   // glDispatchCompute calls made so far (tests check the chunking with it).
   std::size_t dispatches() const { return dispatches_; }
+  // Noise textures uploaded so far (tests check the caching with it), and
+  // the bytes of those held now.
+  std::size_t texture_uploads() const { return texture_uploads_; }
+  std::size_t texture_bytes() const {
+    std::size_t b = 0;
+    for (const texture_entry& t : textures_) b += t.owner.expired() ? 0 : t.bytes;
+    return b;
+  }
   // Work groups per dispatch and bytes per buffer this device uses.
   std::size_t max_groups_per_dispatch() const { return max_groups_; }
   std::size_t max_buffer_bytes() const { return max_bytes_; }
@@ -183,10 +198,10 @@ class device {
   }
 
   // Values (and gradients) of `noise` at samples s (positions with optional
-  // footprints and normals, core/samples.hpp; validated by the caller): what
-  // hush::evaluate(noise, hush::exec::glsl{dev}, samples, ...) calls. Footprints
-  // go to binding 2 as their stored upper triangle, normals to binding 3
-  // (compute_source.hpp, samples layout).
+  // footprints, normals and surface maps, core/samples.hpp; validated by the
+  // caller): what hush::evaluate(noise, hush::exec::glsl{dev}, samples, ...)
+  // calls. Footprints go to binding 2 as their stored upper triangle, normals
+  // to binding 3, surface maps to binding 4 (compute_source.hpp, samples layout).
   template <class Noise>
   void evaluate_samples(const Noise& noise, const samples<Noise::dimension>& s, float* out,
                         vec<float, Noise::dimension>* grad) {
@@ -196,19 +211,20 @@ class device {
                   "footprint<D> is its kEntries packed floats");
     const std::size_t n = s.size();
     if (n == 0) return;
-    if constexpr (!hush::detail::takes_footprint<Noise>::value &&
-                  !hush::detail::takes_normal<Noise>::value) {
+    static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
+    if constexpr (!hush::detail::takes_sample_inputs<Noise>::value) {
       evaluate_points(noise, s.positions.data(), n, out, grad);  // no extras can be given
     } else {
       using np = noise_program<Noise>;
-      const bool fps = s.has_footprints(), normals = s.has_normals();
+      const bool fps = s.has_footprints(), normals = s.has_normals(), maps = s.has_surface_maps();
       const state_guard guard(*gl_);
       const detail::gl_uint prog =
           use_program<Noise>(noise, batch_layout::samples, grad != nullptr);
       gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_has_footprint"), fps ? 1u : 0u);
       gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_has_normal"), normals ? 1u : 0u);
+      gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_has_map"), maps ? 1u : 0u);
       const std::size_t stride = grad ? D + 1 : 1;
-      std::size_t words = std::max<std::size_t>({stride, kEntries, 3});
+      std::size_t words = std::max<std::size_t>({stride, kEntries, 4});
       int bands = 0;
       if constexpr (is_banded<np>::value) {
         bands = np::band_count(noise);
@@ -235,6 +251,10 @@ class device {
           upload(3, s.normals.data() + first, m * sizeof(vec<float, 3>));
         else
           upload(3, dummy, sizeof dummy);
+        if (maps)
+          upload(4, s.surface_maps.data() + first, m * sizeof(surface_map));
+        else
+          upload(4, dummy, sizeof dummy);
         run_batch<D>(prog, m, stride, out + first, grad ? grad + first : nullptr);
       }
     }
@@ -398,24 +418,104 @@ class device {
     std::memcpy(&w[2], &c.f, sizeof c.f);
   }
 
-  // Restores the caller's program and generic SSBO binding on scope exit.
+  // Restores the caller's program, generic SSBO binding and active texture unit on scope exit.
   class state_guard {
    public:
     explicit state_guard(const detail::gl_api& gl) : gl_(gl) {
       gl.GetIntegerv(detail::kGlCurrentProgram, &program_);
       gl.GetIntegerv(detail::kGlShaderStorageBufferBinding, &buffer_);
+      gl.GetIntegerv(detail::kGlActiveTexture, &unit_);
     }
     state_guard(const state_guard&) = delete;
     state_guard& operator=(const state_guard&) = delete;
     ~state_guard() {
       gl_.UseProgram(static_cast<detail::gl_uint>(program_));
       gl_.BindBuffer(detail::kGlShaderStorageBuffer, static_cast<detail::gl_uint>(buffer_));
+      gl_.ActiveTexture(static_cast<detail::gl_enum>(unit_));
     }
 
    private:
     const detail::gl_api& gl_;
-    detail::gl_int program_ = 0, buffer_ = 0;
+    detail::gl_int program_ = 0, buffer_ = 0, unit_ = detail::kGlTexture0;
   };
+
+  // A noise texture uploaded to GL, valid while its owner lives.
+  struct texture_entry {
+    std::weak_ptr<const void> owner;
+    const void* key = nullptr;
+    int index = 0;
+    detail::gl_uint id = 0;
+    std::size_t bytes = 0;
+  };
+
+  // The GL texture of t, uploaded on first use (or after its owner changed).
+  detail::gl_uint texture_of(const noise_texture& t) {
+    for (auto it = textures_.begin(); it != textures_.end();) {
+      if (it->owner.expired()) {  // its owner is gone: free it (the key may be reused)
+        gl_->DeleteTextures(1, &it->id);
+        it = textures_.erase(it);
+        continue;
+      }
+      if (it->key == t.owner.get() && it->index == t.index) return it->id;
+      ++it;
+    }
+    detail::gl_int max_size = 0, max_units = 0;
+    gl_->GetIntegerv(detail::kGlMaxTextureSize, &max_size);
+    gl_->GetIntegerv(detail::kGlMaxCombinedTextureImageUnits, &max_units);
+    if (t.width == 0 || t.height == 0 || t.width > static_cast<std::size_t>(max_size) ||
+        t.height > static_cast<std::size_t>(max_size))
+      hush::detail::throw_out_of_range(
+          "hush::glsl::device", "noise texture " + t.sampler + " width", t.width,
+          ("1 ... GL_MAX_TEXTURE_SIZE = " + std::to_string(max_size)).c_str());
+    const std::vector<float> rgba = t.rgba();
+    texture_entry e;
+    e.owner = t.owner;
+    e.key = t.owner.get();
+    e.index = t.index;
+    e.bytes = rgba.size() * sizeof(float);
+    gl_->GenTextures(1, &e.id);
+    gl_->BindTexture(detail::kGlTexture2d, e.id);
+    gl_->PixelStorei(detail::kGlUnpackAlignment, 4);
+    gl_->TexImage2D(detail::kGlTexture2d, 0, static_cast<detail::gl_int>(detail::kGlRgba32f),
+                    static_cast<detail::gl_sizei>(t.width), static_cast<detail::gl_sizei>(t.height),
+                    0, detail::kGlRgba, detail::kGlFloat, rgba.data());
+    for (const detail::gl_enum p : {detail::kGlTextureMinFilter, detail::kGlTextureMagFilter})
+      gl_->TexParameteri(detail::kGlTexture2d, p, static_cast<detail::gl_int>(detail::kGlLinear));
+    for (const detail::gl_enum p : {detail::kGlTextureWrapS, detail::kGlTextureWrapT})
+      gl_->TexParameteri(detail::kGlTexture2d, p, static_cast<detail::gl_int>(detail::kGlRepeat));
+    gl_->check("hush::glsl::device: uploading a noise texture");
+    ++texture_uploads_;
+    textures_.push_back(e);
+    return e.id;
+  }
+
+  // Binds a noise's textures to units 0 ... n-1 and points its samplers at them.
+  template <class Noise>
+  void bind_textures(const Noise& noise, detail::gl_uint prog) {
+    using np = noise_program<Noise>;
+    if constexpr (has_textures<np, Noise>::value) {
+      const std::vector<noise_texture> list = np::textures(noise);
+      detail::gl_int max_units = 0;
+      gl_->GetIntegerv(detail::kGlMaxCombinedTextureImageUnits, &max_units);
+      if (list.size() > static_cast<std::size_t>(max_units))
+        hush::detail::throw_out_of_range(
+            "hush::glsl::device", "noise textures", list.size(),
+            ("at most GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS = " + std::to_string(max_units)).c_str());
+      // Upload first (an upload binds to the active unit), then bind.
+      std::vector<detail::gl_uint> ids;
+      ids.reserve(list.size());
+      for (const noise_texture& t : list) ids.push_back(texture_of(t));
+      for (std::size_t u = 0; u < list.size(); ++u) {
+        gl_->ActiveTexture(detail::kGlTexture0 + static_cast<detail::gl_enum>(u));
+        gl_->BindTexture(detail::kGlTexture2d, ids[u]);
+        gl_->Uniform1i(gl_->GetUniformLocation(prog, list[u].sampler.c_str()),
+                       static_cast<detail::gl_int>(u));
+      }
+    } else {
+      (void)noise;
+      (void)prog;
+    }
+  }
 
   // The cached program of (Noise, layout, gradient), made current with the noise's uniforms set.
   template <class Noise>
@@ -434,6 +534,7 @@ class device {
     np::set_uniforms(*gl_, id, noise);
     if constexpr (has_data_buffers<Noise>::value)
       for (const data_buffer& b : np::data_buffers(noise)) bind_data(b);
+    bind_textures(noise, id);
     gl_->Uniform1ui(gl_->GetUniformLocation(id, "hush_first"), 0u);
     return id;
   }
@@ -446,7 +547,8 @@ class device {
     if (b.binding < kFirstDataBinding || b.binding >= static_cast<unsigned>(max_bindings_))
       hush::detail::throw_out_of_range(
           where, "data_buffer.binding", b.binding,
-          ("4 ... GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS - 1 = " + std::to_string(max_bindings_ - 1))
+          (std::to_string(kFirstDataBinding) +
+           " ... GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS - 1 = " + std::to_string(max_bindings_ - 1))
               .c_str());
     if (b.bytes > max_bytes_)
       hush::detail::throw_out_of_range(
@@ -526,9 +628,9 @@ class device {
   std::unique_ptr<detail::gl_api> gl_;
   std::string renderer_;
   std::size_t max_groups_ = 0, max_bytes_ = 0, dispatches_ = 0;
-  // SSBO bindings 0 (input), 1 (output), 2 (footprints), 3 (normals).
-  static constexpr int kBuffers = 4;
-  detail::gl_uint buffers_[kBuffers] = {0, 0, 0, 0};
+  // SSBO bindings 0 (input), 1 (output), 2 (footprints), 3 (normals), 4 (surface maps).
+  static constexpr int kBuffers = 5;
+  detail::gl_uint buffers_[kBuffers] = {0, 0, 0, 0, 0};
   std::map<std::string, detail::gl_program> programs_;
   // Noise data buffers (bindings >= 4): the GL buffer and whose data it holds.
   struct data_slot {
@@ -540,6 +642,8 @@ class device {
   std::size_t data_uploads_ = 0;
   detail::gl_int max_bindings_ = 0;
   std::vector<float> scratch_;
+  std::vector<texture_entry> textures_;
+  std::size_t texture_uploads_ = 0;
 };
 
 }  // namespace glsl

@@ -66,7 +66,7 @@ inline std::vector<export_file> export_files() {
        "// hush_fractal_perlin* runners (fBm, turbulence) read band coordinates split on\n"
        "// the CPU (hush::fractal::band_position, hush::lattice_split<float>); so do the\n"
        "// hush_wavelet* runners (hush::wavelet::band_position), which also read the tile at\n"
-       "// SSBO binding 4 (and variants at 5, the distribution table at 6). The wavelet\n"
+       "// SSBO binding 5 (and variants at 6, the distribution table at 7). The wavelet\n"
        "// functions of this library exist where the shader defines HUSH_WAVELET_TILE(i)\n"
        "// before it (hush/glsl/wavelet_glsl.hpp).\n"
        "// Regenerate with the same hush version instead of editing by hand.\n" +

@@ -219,6 +219,23 @@ inline std::vector<glsl_constant> constant_table() {
       uint_constant("HUSH_FLOAT_SIGN_MASK", float_bits(-0.0f), "sign bit (bits of -0.0)"),
       uint_constant("HUSH_FLOAT_QNAN", float_bits(flt::quiet_NaN()),
                     "quiet NaN returned for non-finite input"),
+      float_constant("HUSH_FLOAT_MIN_NORMAL", static_cast<double>(flt::min()),
+                     "smallest normal float (approx_math.hpp log2: -inf below)"),
+      // Anisotropic noise (hush/anisotropic.hpp, hush/detail/approx_math.hpp).
+      uint_constant("HUSH_ANISO_MAX_ORIENTATIONS",
+                    static_cast<std::uint32_t>(c::kAnisoMaxOrientations),
+                    "orientations of the steerable bank, at most"),
+      uint_constant("HUSH_ANISO_MAX_SCALES", static_cast<std::uint32_t>(c::kAnisoMaxScales),
+                    "scales of the steerable bank, at most"),
+      float_table("HUSH_ANISO_EXP2", c::kAnisoSeries.exp2, "2^r on [-1/2, 1/2]: Taylor, degree 7"),
+      float_table("HUSH_ANISO_LOG2", c::kAnisoSeries.log2, "log2: (2 / ln 2) atanh series in z^2"),
+      float_table("HUSH_ANISO_SINPI", c::kAnisoSeries.sinpi, "sin(pi z) on [-1/2, 1/2], in z^2"),
+      float_constant("HUSH_ANISO_SQRT2", c::kSqrt2, "log2's reduction to [sqrt(1/2), sqrt(2))"),
+      float_constant("HUSH_ANISO_SIDE", c::kAnisoThreePointSide, "three-point rule: side weight"),
+      float_constant("HUSH_ANISO_CENTRE", c::kAnisoThreePointCentre,
+                     "three-point rule: centre weight"),
+      float_constant("HUSH_ANISO_OFFSET", c::kAnisoThreePointOffset,
+                     "three-point rule: offset in octaves"),
   };
   for (glsl_constant& k : detail::wavelet_constants()) table.push_back(std::move(k));
   return table;

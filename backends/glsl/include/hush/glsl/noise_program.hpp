@@ -40,13 +40,19 @@
 //                                              macros the library's bodies read them by)
 //   static std::vector<data_buffer> data_buffers(const Noise&);
 //                                              the SSBOs the program reads, at bindings
-//                                              >= kFirstDataBinding (0 ... 3 are the
+//                                              >= kFirstDataBinding (0 ... 4 are the
 //                                              runner's): each with its bytes and an
 //                                              owner identity (data_buffer below)
 // hush::glsl::device uploads a data buffer the first time it sees its owner at a
 // binding and keeps it there: evaluating any number of noises that share one
 // tile uploads it once per device; a different owner (another tile, or a new
 // one at a reused address after the old was freed) is uploaded again.
+// A noise may instead (or also) provide
+//   static std::vector<noise_texture> textures(const Noise&);
+// 2D RGBA32F textures, sampled with hardware bilinear filtering and repeat
+// wrapping, that the device uploads once per owner (cached while the owner
+// lives) and binds to texture units 0, 1, ... before every dispatch, setting
+// each sampler2D uniform to its unit.
 // The runner validates nothing about a noise: noise objects are valid by construction.
 #ifndef HUSH_GLSL_NOISE_PROGRAM_HPP
 #define HUSH_GLSL_NOISE_PROGRAM_HPP
@@ -55,6 +61,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -68,9 +75,9 @@
 namespace hush {
 namespace glsl {
 
-// The first SSBO binding free for a noise's data (bindings 0 ... 3 are the runner's
-// input, output, footprints and normals; compute_source.hpp).
-constexpr unsigned kFirstDataBinding = 4;
+// The first SSBO binding free for a noise's data (bindings 0 ... 4 are the runner's
+// input, output, footprints, normals and surface maps; compute_source.hpp).
+constexpr unsigned kFirstDataBinding = 5;
 
 // One SSBO a noise program reads (noise_program::data_buffers): `bytes` bytes at
 // `data`, bound at `binding`. `owner` identifies the data and keeps it alive while
@@ -88,6 +95,15 @@ inline data_buffer unused_data_buffer(unsigned binding) {
   static const auto zeros = std::make_shared<const std::array<float, 4>>();
   return {binding, zeros->data(), sizeof(*zeros), zeros};
 }
+
+// A texture a noise program samples (see the file comment).
+struct noise_texture {
+  std::string sampler;                       // name of the sampler2D uniform
+  std::size_t width = 0, height = 0;         // in texels
+  std::shared_ptr<const void> owner;         // the data's owner: cache identity and lifetime
+  int index = 0;                             // which of the owner's textures this is
+  std::function<std::vector<float>()> rgba;  // width * height * 4 floats, row-major
+};
 
 // Primary template: not a GLSL-capable noise (no specialisation).
 template <class Noise>
@@ -236,6 +252,14 @@ template <class Program>
 struct has_sample_call<Program, std::void_t<decltype(Program::sample_call(false))>>
     : std::true_type {};
 
+// Whether a program declares textures(noise).
+template <class Program, class Noise, class = void>
+struct has_textures : std::false_type {};
+template <class Program, class Noise>
+struct has_textures<Program, Noise,
+                    std::void_t<decltype(Program::textures(std::declval<const Noise&>()))>>
+    : std::true_type {};
+
 // True when the GLSL backend has a program for Noise (noise_program is
 // specialised for it), e.g. to pick a backend at compile time.
 template <class Noise, class = void>
@@ -248,7 +272,8 @@ inline constexpr bool has_program_v = has_program<Noise>::value;
 }  // namespace glsl
 }  // namespace hush
 
-// The programs of the noises that live in their own headers.
+// The programs of the noises that live in their own headers (they include this one first).
+#include "hush/glsl/anisotropic_program.hpp"
 #include "hush/glsl/wavelet_program.hpp"
 
 #endif  // HUSH_GLSL_NOISE_PROGRAM_HPP

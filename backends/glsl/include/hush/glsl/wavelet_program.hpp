@@ -13,8 +13,8 @@
 // kernel, then scale and remapping.
 //
 // Data (noise_program::data_buffers): the tile's float coefficients at SSBO
-// binding 4, the tile-variant tile (wavelet_blend_tile) at 5 and the
-// distribution table at 6, each owned by the shared object that holds it, so a
+// binding 5 (kFirstDataBinding), the tile-variant tile (wavelet_blend_tile) at 6 and the
+// distribution table at 7, each owned by the shared object that holds it, so a
 // tile is uploaded once per device however many noises use it. Unused bindings
 // get a 16-byte buffer of zeros. The largest tile (2048^2 or 128^3 floats) is
 // 16 MiB, the minimum GL_MAX_SHADER_STORAGE_BLOCK_SIZE of OpenGL 4.3.

@@ -1,0 +1,181 @@
+// hush — the `hush` program: anisotropic noise in the noise table (see anisotropic_noise.hpp).
+#include "anisotropic_noise.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "glsl_device.hpp"
+
+namespace hush_cli {
+namespace {
+
+class anisotropic_field final : public noise_field {
+ public:
+  explicit anisotropic_field(const anisotropic_options& o) : options_(o), noise_(o.params) {}
+  bool is_signed() const override { return options_.params.kind == hush::fractal_kind::fbm; }
+  std::string unsupported_reason(backend b) const override {
+    if (b == backend::glsl) {
+      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (OSMesa not found)";
+      const auto& p = options_.params;
+      if (p.filtering == hush::weight_rule::least_squares ||
+          p.compensation == hush::weight_rule::least_squares)
+        return "least-squares weights run on the CPU only (--filtering and --compensation "
+               "centre or three_point on the GPU)";
+    }
+    if (b == backend::simd && !HUSH_CONFIG_SIMD)
+      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
+    return "";
+  }
+  void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
+                   float* out, backend b) const override {
+    const bool extras = options_.pixel_footprint || options_.footprint_width || options_.map;
+    if (!extras) {
+      hush::grid<2> block;  // exact double positions, as sample_rows promises
+      const hush::dvec3 o = grid.position({0, j0, k});
+      block.origin = {o.x, o.y};
+      block.step = {grid.step[0], grid.step[1]};
+      block.size = {grid.size[0], rows};
+      run(
+          [&](const auto& ex) {
+            hush::evaluate_grid(noise_, ex, block, hush::span<float>(out, block.count()));
+          },
+          b);
+      return;
+    }
+    // Per-sample inputs go through hush::samples (float positions).
+    const std::size_t n = grid.size[0] * rows;
+    std::vector<hush::vec2> pos(n);
+    for (std::size_t j = 0; j < rows; ++j)
+      for (std::size_t i = 0; i < grid.size[0]; ++i) {
+        const hush::dvec3 p = grid.position({i, j0 + j, k});
+        pos[j * grid.size[0] + i] = {static_cast<float>(p.x), static_cast<float>(p.y)};
+      }
+    hush::samples<2> s;
+    s.positions = pos;
+    std::vector<hush::footprint<2>> fps;
+    if (options_.pixel_footprint || options_.footprint_width) {
+      const double w =
+          options_.pixel_footprint ? std::fabs(grid.step[0]) : *options_.footprint_width;
+      fps.assign(n, hush::footprint<2>::isotropic(w));
+      s.footprints = fps;
+    }
+    std::vector<hush::surface_map> maps;
+    if (options_.map) {
+      maps.assign(n, *options_.map);
+      s.surface_maps = maps;
+    }
+    run([&](const auto& ex) { hush::evaluate(noise_, ex, s, hush::span<float>(out, n)); }, b);
+  }
+
+ private:
+  template <class F>
+  void run(F f, backend b) const {
+    if (b == backend::simd) return f(hush::exec::simd);
+#if HUSH_CLI_HAVE_GLSL
+    if (b == backend::glsl) return f(hush::exec::glsl{glsl_device()});
+#endif
+    f(hush::exec::scalar);
+  }
+
+  anisotropic_options options_;
+  hush::anisotropic noise_;
+};
+
+hush::weight_rule parse_rule(const char* option, const std::string& v) {
+  return parse_choice<hush::weight_rule>(option, v,
+                                         {{"centre", hush::weight_rule::centre},
+                                          {"three_point", hush::weight_rule::three_point},
+                                          {"least_squares", hush::weight_rule::least_squares}});
+}
+
+}  // namespace
+
+std::vector<option_spec> anisotropic_option_specs() {
+  return {
+      {"--orientations", "K", "orientations of the subband tiles, 2 ... 8 (default 4)",
+       "orientations"},
+      {"--scales", "S", "subband scales, 1 ... 12 (default 3)", "scales"},
+      {"--base-scale", "b",
+       "the scale of octave 0, 0 ... S-1; scales below it compensate stretching maps (default 0)",
+       "base_scale"},
+      {"--octaves", "O", "octaves, 1 ... S - b (default S - b)", "octaves"},
+      {"--gain", "G", "amplitude ratio between octaves, in (0, 1e6] (default 0.5)", "gain"},
+      {"--frequency", "F",
+       "centre frequency of octave 0 in cycles per unit, in (0, 1e12] (default 1)", "frequency"},
+      {"--fractal", "fbm|turbulence", "sum octaves or their absolute values (default fbm)",
+       nullptr},
+      {"--tile-size", "N", "subband tile size, a power of two 16 ... 2048 (default 256)",
+       "tile_size"},
+      {"--filtering", "centre|three_point|least_squares",
+       "subband weights of the pixel filter (default centre, the paper's heuristic)", nullptr},
+      {"--compensation", "centre|three_point|least_squares",
+       "subband weights of the surface map (default centre)", nullptr},
+      {"--footprint", "none|pixel|W",
+       "every sample's footprint: none (point samples, default), pixel (the grid step) or an "
+       "isotropic width W > 0 in noise units",
+       nullptr},
+      {"--map", "a,b,c,d",
+       "one surface map T = [a b; c d] (texture <- surface) for every sample (default: none, the "
+       "identity)",
+       nullptr},
+  };
+}
+
+anisotropic_options parse_anisotropic(const noise_setup& setup, const option_values& given) {
+  if (setup.dim != 2)
+    throw usage_error("--dim " + std::to_string(setup.dim) +
+                      ": anisotropic noise is 2D texture-space noise; valid: --dim 2");
+  anisotropic_options o;
+  auto& p = o.params;
+  p.seed = setup.seed;
+  // Integers are range-checked by the library (make_noise names the option);
+  // here only their form.
+  auto integer = [&](const char* name, int& field) {
+    if (const std::string* v = find_value(given, name))
+      field = static_cast<int>(parse_integer(name, *v, -1000000, 1000000));
+  };
+  integer("--orientations", p.orientations);
+  integer("--scales", p.scales);
+  integer("--base-scale", p.base_scale);
+  p.octaves = p.scales - p.base_scale;
+  integer("--octaves", p.octaves);
+  integer("--tile-size", p.tile_size);
+  if (const std::string* v = find_value(given, "--gain")) p.gain = parse_finite("--gain", *v);
+  if (const std::string* v = find_value(given, "--frequency"))
+    p.frequency = parse_finite("--frequency", *v);
+  if (const std::string* v = find_value(given, "--fractal"))
+    p.kind = parse_choice<hush::fractal_kind>(
+        "--fractal", *v,
+        {{"fbm", hush::fractal_kind::fbm}, {"turbulence", hush::fractal_kind::turbulence}});
+  if (const std::string* v = find_value(given, "--filtering"))
+    p.filtering = parse_rule("--filtering", *v);
+  if (const std::string* v = find_value(given, "--compensation"))
+    p.compensation = parse_rule("--compensation", *v);
+  if (const std::string* v = find_value(given, "--footprint")) {
+    if (*v == "pixel") {
+      o.pixel_footprint = true;
+    } else if (*v != "none") {
+      const char* valid = "none, pixel or a finite width > 0";
+      double w = 0;
+      if (!to_finite(*v, w) || !(w > 0)) throw_bad_value("--footprint", *v, valid);
+      o.footprint_width = w;
+    }
+  }
+  if (const std::string* v = find_value(given, "--map")) {
+    const std::vector<double> m = parse_finite_list("--map", *v, 4);
+    o.map = hush::surface_map::from_matrix(m[0], m[1], m[2], m[3]);
+  }
+  return o;
+}
+
+std::unique_ptr<noise_field> make_anisotropic(const anisotropic_options& options) {
+  return std::make_unique<anisotropic_field>(options);
+}
+
+std::unique_ptr<noise_field> make_anisotropic_from_options(const noise_setup& setup,
+                                                           const option_values& given) {
+  return make_anisotropic(parse_anisotropic(setup, given));
+}
+
+}  // namespace hush_cli
