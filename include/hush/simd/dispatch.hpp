@@ -29,6 +29,7 @@
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/fractal.hpp"
+#include "hush/gabor.hpp"
 #include "hush/perlin.hpp"
 
 namespace hush {
@@ -56,6 +57,7 @@ struct simd_kernel {
 #endif
 #include <hwy/highway.h>
 
+#include "hush/simd/gabor-inl.h"
 #include "hush/simd/perlin-inl.h"
 #endif
 
@@ -88,6 +90,15 @@ HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& 
                                    float* grad);
 HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
                                    float* grad);
+// Gabor noise (hush/gabor.hpp): points (interleaved), grids, and samples with
+// footprints or (3D) normals; same conventions. hush/simd/gabor-inl.h states
+// the agreement with scalar evaluation.
+HUSH_SIMD_ENTRY void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad);
 
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
 // best first, and of the one the kernels run on, on this CPU.
@@ -128,6 +139,20 @@ inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float*
 inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
                           float* grad) {
   HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
+}
+inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
+                          float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_points)(g, xy, n, value, grad);
+}
+inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
+                          float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_points)(g, xyz, n, value, grad);
+}
+inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_grid)(g, gr, value, grad);
+}
+inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -191,6 +216,29 @@ struct simd_kernel<fractal<perlin<D>>> {
       simd::fractal2_grid(fr, gr, out, g);
     else
       simd::fractal3_grid(fr, gr, out, g);
+  }
+};
+
+// Gabor noise: points and grids.
+template <int D>
+struct simd_kernel<gabor<D>> {
+  static constexpr bool available = true;
+
+  static void points(const gabor<D>& g, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_points(g, p, count, out, gr);
+    else
+      simd::gabor3_points(g, p, count, out, gr);
+  }
+  static void grid(const gabor<D>& g, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    auto* gp = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_grid(g, gr, out, gp);
+    else
+      simd::gabor3_grid(g, gr, out, gp);
   }
 };
 

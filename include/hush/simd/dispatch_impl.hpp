@@ -18,6 +18,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "hush/simd/gabor-inl.h"
 #include "hush/simd/perlin-inl.h"
 
 #if HWY_ONCE
@@ -41,6 +42,10 @@ HWY_EXPORT(fractal2_points);
 HWY_EXPORT(fractal3_points);
 HWY_EXPORT(fractal2_grid);
 HWY_EXPORT(fractal3_grid);
+HWY_EXPORT(gabor2_points);
+HWY_EXPORT(gabor3_points);
+HWY_EXPORT(gabor2_grid);
+HWY_EXPORT(gabor3_grid);
 
 namespace simd {
 
@@ -74,6 +79,20 @@ void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
 }
 void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
+}
+
+void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor2_points)(g, xy, n, value, grad);
+}
+void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor3_points)(g, xyz, n, value, grad);
+}
+
+void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor2_grid)(g, gr, value, grad);
+}
+void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
 }
 
 std::vector<std::string> compiled_targets() {
