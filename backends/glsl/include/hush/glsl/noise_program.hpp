@@ -31,6 +31,8 @@
 //   static std::string band_step(bool grad);   statements of `b` (uint band),
 //                                              `i0`, `i1` (uvecD), `f` (vecD)
 //   static std::string band_result(bool grad); the result: float or vec(D+1)
+// (In the samples layout HUSH_SAMPLES is #defined, so band_begin can tell
+// whether fp, nrm and has_nrm exist.)
 // The runner then splits every band coordinate on the CPU in double
 // (hush::lattice_split<float>) for points and grids alike (compute_source.hpp).
 // The runner validates nothing about a noise: noise objects are valid by construction.
@@ -196,5 +198,8 @@ inline constexpr bool has_program_v = has_program<Noise>::value;
 
 }  // namespace glsl
 }  // namespace hush
+
+// Noises whose programs live in their own headers.
+#include "hush/glsl/gabor_glsl.hpp"  // IWYU pragma: export
 
 #endif  // HUSH_GLSL_NOISE_PROGRAM_HPP
