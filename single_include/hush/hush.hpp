@@ -4333,6 +4333,12 @@ struct grid_axis {
     run_start.push_back(n);
   }
   std::size_t runs() const { return run_start.size() - 1; }
+  std::size_t longest_run() const {
+    std::size_t m = 0;
+    for (std::size_t r = 0; r + 1 < run_start.size(); ++r)
+      m = std::max(m, run_start[r + 1] - run_start[r]);
+    return m;
+  }
 };
 
 // The factors of one impulse along one axis of a block: for the block's
@@ -4546,7 +4552,10 @@ void grid(const gabor<D>& g, const hush::grid<D>& gr, float* value, float* grad)
     points<D, G>(g, gr.count(), sp, split, value, grad);
     return;
   }
-  grid_kernel<D, G> kernel(g, caps[0], caps[1], D == 3 ? caps[2] : 1);
+  // Block buffers sized by the longest runs, not the caps: small grids do not pay for
+  // (and page-fault in) buffers they never fill.
+  grid_kernel<D, G> kernel(g, axes[0].longest_run(), axes[1].longest_run(),
+                           D == 3 ? axes[D - 1].longest_run() : 1);
   const std::size_t zruns = D == 3 ? axes[D - 1].runs() : 1;
   for (std::size_t zr = 0; zr < zruns; ++zr) {
     const std::size_t k0 = D == 3 ? axes[D - 1].run_start[zr] : 0;
