@@ -226,7 +226,8 @@ gray_image gabor_plane(std::string& errors) {
   const std::size_t sw = static_cast<std::size_t>(static_cast<double>(w) / pitch) + 2 * margin;
   const std::size_t sh = static_cast<std::size_t>(static_cast<double>(h) / pitch) + 2 * margin;
   std::vector<float> fine(sw * sh);
-  auto screen = [&](std::size_t k) { return (static_cast<double>(k) - margin + 0.5) * pitch; };
+  const auto margin_d = static_cast<double>(margin);
+  auto screen = [&](std::size_t k) { return (static_cast<double>(k) - margin_d + 0.5) * pitch; };
   for (std::size_t r = 0; r < sh; ++r) {
     const hush::vec<double, 2> p0 = view.at(screen(0), screen(r));
     const hush::vec<double, 2> p1 = view.at(screen(1), screen(r));
@@ -241,8 +242,8 @@ gray_image gabor_plane(std::string& errors) {
   for (std::size_t j = 0; j < h; ++j)
     for (std::size_t i = 0; i < w; ++i) {
       const double ic = static_cast<double>(i) + 0.5, jc = static_cast<double>(j) + 0.5;
-      const auto k0 = static_cast<std::size_t>((ic - kPlaneReach) / pitch + margin);
-      const auto r0 = static_cast<std::size_t>((jc - kPlaneReach) / pitch + margin);
+      const auto k0 = static_cast<std::size_t>((ic - kPlaneReach) / pitch + margin_d);
+      const auto r0 = static_cast<std::size_t>((jc - kPlaneReach) / pitch + margin_d);
       double sum = 0, wsum = 0;
       for (std::size_t r = r0; r < r0 + kPlaneSuper + 1 && r < sh; ++r)
         for (std::size_t k = k0; k < k0 + kPlaneSuper + 1 && k < sw; ++k) {

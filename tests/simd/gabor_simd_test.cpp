@@ -9,7 +9,7 @@
 // gabor.hpp. Covered: random points with every tail length up to three
 // vectors and the hard cases in every lane position, grids near and far, with
 // negative and coarse steps (the points path) and fine ones (the block path),
-// 2D and 3D, every kind, samples with footprints and with normals.
+// 2D and 3D, every kind, samples with footprints (and with normals: the scalar path).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -194,4 +194,65 @@ TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, 
   cube.size = {45, 23, 19};
   check_grid(g3, cube);
   check_grid(a3, cube);
+}
+
+namespace {
+
+// Samples with footprints of every size (and HARD_CASES row 12's degenerate ones), and,
+// in 3D, the same with normals (surface noise: the scalar path).
+template <int D>
+void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed) {
+  const std::vector<hush::vec<float, D>> pts = test_points<D>(n, seed);
+  std::vector<hush::footprint<D>> fps(n);
+  std::vector<hush::vec3> nrm(n);
+  hush::rng r(seed + 1000);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = std::pow(10.0, r.uniform<double>(-4.0, 1.0));
+    hush::vec<double, D> dx, dy;
+    for (int a = 0; a < D; ++a) {
+      dx[a] = s * r.uniform<double>(-1, 1);
+      dy[a] = s * r.uniform<double>(-1, 1);
+    }
+    if (i % 11 == 3) dy = dx;                           // rank 1
+    if (i % 13 == 5) dx = dy = hush::vec<double, D>{};  // zero: the unfiltered noise
+    if (i % 17 == 7) dx[0] = std::numeric_limits<double>::quiet_NaN();  // the widest
+    fps[i] = hush::footprint<D>::from_derivatives(dx, dy);
+    nrm[i] = {r.uniform<float>(-1, 1), r.uniform<float>(-1, 1), r.uniform<float>(-1, 1)};
+  }
+  for (const bool normals : {false, true}) {
+    if (normals && D == 2) continue;
+    const hush::samples<D> s{
+        pts, fps, normals ? hush::span<const hush::vec3>(nrm) : hush::span<const hush::vec3>()};
+    std::vector<float> a(n), b(n), c(n);
+    std::vector<hush::vec<float, D>> ga(n), gb(n);
+    hush::evaluate(g, hush::exec::scalar, s, hush::span<float>(a),
+                   hush::span<hush::vec<float, D>>(ga));
+    for_each_gabor_target([&] {
+      hush::evaluate(g, hush::exec::simd, s, hush::span<float>(b),
+                     hush::span<hush::vec<float, D>>(gb));
+      hush::evaluate(g, hush::exec::simd, s, hush::span<float>(c));
+      // The filter adds the phase and attenuation terms to the budget (as on GLSL).
+      const double phi = g.marks().phi0() + g.marks().dphi(), aa = g.kernel().envelope_exponent();
+      const double f = 1 + 2 * kPi * phi + kPi * kPi * phi * phi / aa;
+      compare(b.data(), a.data(), n, value_budget(g) * f);
+      compare(c.data(), a.data(), n, value_budget(g) * f);
+      compare(reinterpret_cast<const float*>(gb.data()), reinterpret_cast<const float*>(ga.data()),
+              n * D, gradient_budget(g) * f);
+    });
+  }
+}
+
+}  // namespace
+
+TEST_CASE("gabor simd: filtered samples agree with scalar evaluation, every kind, 2D and 3D") {
+  for (const hush::gabor_kind kind :
+       {hush::gabor_kind::isotropic, hush::gabor_kind::anisotropic, hush::gabor_kind::hybrid}) {
+    INFO("kind " << static_cast<int>(kind));
+    const hush::gabor<2> g2(gabor_params<2>(kind));
+    const hush::gabor<3> g3(gabor_params<3>(kind));
+    for (std::size_t n : {1u, 7u, 16u, 33u, 300u}) {
+      check_samples(g2, n, static_cast<std::uint32_t>(n));
+      check_samples(g3, n, static_cast<std::uint32_t>(n + 50));
+    }
+  }
 }

@@ -98,6 +98,10 @@ HUSH_SIMD_ENTRY void gabor2_points(const gabor<2>& g, const float* xy, std::size
 HUSH_SIMD_ENTRY void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
                                    float* grad);
 HUSH_SIMD_ENTRY void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                                     std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                                     std::size_t n, float* value, float* grad);
 HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad);
 
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
@@ -150,6 +154,14 @@ inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, fl
 }
 inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
   HWY_STATIC_DISPATCH(gabor2_grid)(g, gr, value, grad);
+}
+inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                            std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_filtered)(g, xy, fps, n, value, grad);
+}
+inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                            std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
 }
 inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
   HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
@@ -219,10 +231,33 @@ struct simd_kernel<fractal<perlin<D>>> {
   }
 };
 
-// Gabor noise: points and grids.
+// Gabor noise: points, grids, and samples with footprints (with normals: scalar).
 template <int D>
 struct simd_kernel<gabor<D>> {
   static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void samples(const gabor<D>& g, const hush::samples<D>& s, float* out,
+                      vec<float, D>* grad) {
+    if (s.has_normals()) {  // surface noise: the scalar path
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        if (grad) {
+          const auto r = g.template sample_value_and_gradient<float>(s.at(i));
+          out[i] = r.value;
+          grad[i] = r.gradient;
+        } else {
+          out[i] = g.template sample_value<float>(s.at(i));
+        }
+      }
+      return;
+    }
+    const auto* p = reinterpret_cast<const float*>(s.positions.data());
+    auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_filtered(g, p, s.footprints.data(), s.size(), out, gr);
+    else
+      simd::gabor3_filtered(g, p, s.footprints.data(), s.size(), out, gr);
+  }
 
   static void points(const gabor<D>& g, const vec<float, D>* pts, std::size_t count, float* out,
                      vec<float, D>* grad) {

@@ -46,6 +46,8 @@ HWY_EXPORT(gabor2_points);
 HWY_EXPORT(gabor3_points);
 HWY_EXPORT(gabor2_grid);
 HWY_EXPORT(gabor3_grid);
+HWY_EXPORT(gabor2_filtered);
+HWY_EXPORT(gabor3_filtered);
 
 namespace simd {
 
@@ -93,6 +95,14 @@ void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad
 }
 void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
+}
+void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps, std::size_t n,
+                     float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor2_filtered)(g, xy, fps, n, value, grad);
+}
+void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps, std::size_t n,
+                     float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
 }
 
 std::vector<std::string> compiled_targets() {

@@ -1,10 +1,10 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Highway kernels for Gabor noise (hush/gabor.hpp): points and uniform grids,
-// values and optionally gradients (samples with footprints or normals take
-// the scalar path of hush::evaluate: no SIMD kernel for them yet). Compiled once per SIMD target
-// (the "-inl.h" convention: toggle include guard below); reached through hush/simd/dispatch.hpp,
-// never included directly by users.
+// Highway kernels for Gabor noise (hush/gabor.hpp): points, uniform grids and
+// samples with footprints (filtered, 2D and 3D), values and optionally
+// gradients (samples with normals, i.e. surface noise, take the scalar path). Compiled once per
+// SIMD target (the "-inl.h" convention: toggle include guard below); reached through
+// hush/simd/dispatch.hpp, never included directly by users.
 //
 // They repeat gabor.hpp's float algorithm operation by operation: the same
 // lattice split (in double), per-cell hush::rng streams and Poisson table
@@ -17,10 +17,11 @@
 //  - otherwise multiply-adds may be fused, within the float budget of
 //    gabor.hpp.
 // How they are fast:
-//  - points: one lane per point; per cell and impulse the lanes
-//    draw in lockstep (the counter's hash is shared), and only impulses within
-//    a lane's support are kept, compressed into a list that the kernel then
-//    evaluates in full vectors; each point's terms are summed in stream order;
+//  - points and filtered samples: one lane per point (samples: each lane's
+//    filter computed in double, as the scalar code does, and gathered per term); per cell and
+//    impulse the lanes draw in lockstep (the counter's hash is shared), and only impulses within a
+//    lane's support are kept, compressed into a list that the kernel then evaluates in full
+//    vectors; each point's terms are summed in stream order;
 //  - grids: samples in blocks that share their cell (up to 64 per row, 64
 //    rows; 3D 32^3), each impulse of the block's 3^D cells evaluated once per
 //    block: its factors along y (and z) once per row (slice), along x once per
@@ -523,6 +524,74 @@ void eval_unfiltered(const consts<D>& c, tuples& t) {
   }
 }
 
+// Per-lane filters of a batch (gabor<D>::filtered_eval): gabor_filter<D> of each lane's
+// footprint in double, rounded to float as the scalar code rounds it. Q and M row-major.
+struct lanes_filter {
+  HWY_ALIGN float q[9][kMaxLanes];
+  HWY_ALIGN float m[9][kMaxLanes];
+  HWY_ALIGN float amp[kMaxLanes];
+};
+
+// The filtered kernel of every kept impulse (gabor<D>::filtered_pair, operation by
+// operation), each with its lane's filter (gathered by the tuple's lane).
+template <int D, bool G>
+void eval_filtered(const consts<D>& c, const lanes_filter& f, tuples& t) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const VF zero = hn::Zero(df);
+  for (std::size_t i = 0; i < t.n; i += lanes) {
+    VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
+               hn::LoadU(du, t.w2.data() + i)};
+    const VI li = hn::BitCast(di, hn::LoadU(du, t.lane.data() + i));
+    VF wt, phi[3], d[3], d2[3];
+    marks<D>(c, w, wt, phi);
+    for (int a = 0; a < D; ++a) {
+      d[a] = hn::LoadU(df, t.d[a].data() + i);
+      d2[a] = hn::Mul(d[a], d[a]);
+    }
+    const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
+    VF mu[3], qd[3];
+    VF att = zero, dqd = zero, theta = zero;
+    for (int r = 0; r < D; ++r) {
+      VF x = zero, y = zero, z = zero;
+      for (int col = 0; col < D; ++col) {
+        const VF q = hn::GatherIndex(df, f.q[r * D + col], li);
+        const VF m = hn::GatherIndex(df, f.m[r * D + col], li);
+        x = mul_add(q, phi[col], x);
+        y = mul_add(m, phi[col], y);
+        z = mul_add(q, d[col], z);
+      }
+      mu[r] = x;
+      att = mul_add(phi[r], y, att);
+      qd[r] = z;
+      dqd = mul_add(d[r], z, dqd);
+    }
+    for (int r = 0; r < D; ++r) theta = mul_add(mu[r], d[r], theta);
+    const VF amp = hn::GatherIndex(df, f.amp, li);
+    const VF p =
+        hn::Mul(hn::Mul(hn::Mul(wt, amp), exp_neg(hn::Neg(att))), exp_neg(hn::Mul(c.neg_a, dqd)));
+    VF sn, cs;
+    sincos_turns(theta, sn, cs);
+    if constexpr (G) {
+      VF tau, dtau;
+      taper_derivative(s, c.k, tau, dtau);
+      const VF pc = hn::Mul(p, cs);
+      const VF ps =
+          hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(hn::Mul(p, tau), sn));
+      hn::StoreU(hn::Mul(pc, tau), df, t.val.data() + i);
+      const VF dtau2 = hn::Add(dtau, dtau), a2 = hn::Add(c.a, c.a);
+      for (int r = 0; r < D; ++r) {
+        const VF inner = neg_mul_add(a2, hn::Mul(tau, qd[r]), hn::Mul(dtau2, d[r]));
+        hn::StoreU(neg_mul_add(ps, mu[r], hn::Mul(pc, inner)), df, t.g[r].data() + i);
+      }
+    } else {
+      hn::StoreU(hn::Mul(hn::Mul(p, cs), taper(s, c.k)), df, t.val.data() + i);
+    }
+  }
+}
+
 // Sums each lane's terms in their order and writes value = sum * scale (and
 // gradient = g * gradient scale), NaN for bad lanes. `used` lanes are written.
 template <int D, bool G>
@@ -620,9 +689,11 @@ void split_lanes(lanes_split& sp, std::size_t first, std::size_t used, double in
 
 // Unfiltered solid noise at `count` positions: split(first, used) fills `sp`
 // for the batch of lanes starting at position `first`.
-template <int D, bool G, class Split>
-void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
-            float* grad) {
+// The same with eval(consts, tuples, first) filling t.val (and t.g) for the batch of lanes
+// starting at position `first`.
+template <int D, bool G, class Split, class Eval>
+void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
+                 float* grad, Eval eval) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const consts<D> c(g);
@@ -639,11 +710,19 @@ void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, 
     const std::size_t used = std::min(lanes, count - first);
     split(first, used);
     collect<D>(g.key(), detail::constants::kGaborSolidStream, flipped, words, sp, t, keep);
-    eval_unfiltered<D, G>(c, t);
+    eval(c, t, first);
     float* gr = G ? grad + first * D : nullptr;
     finish<D, G>(t, sp, used, float(g.scale()), float(g.scale() * g.inverse_cell()), value + first,
                  gr);
   }
+}
+
+template <int D, bool G, class Split>
+void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
+            float* grad) {
+  points_with<D, G>(
+      g, count, sp, split, value, grad,
+      [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G>(c, t); });
 }
 
 // ---- Grids: blocks of samples that share their cell.
@@ -949,6 +1028,58 @@ inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, flo
 inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
                           float* grad) {
   gabor_points<3>(g, xyz, n, value, grad);
+}
+
+// Gabor noise filtered over footprints (gabor<D>::sample(p, fp), no normals) at n
+// interleaved float points; values into value[n], interleaved gradients into grad[D n]
+// unless grad is null.
+template <int D>
+void gabor_filtered(const gabor<D>& g, const float* pts, const footprint<D>* fps, std::size_t n,
+                    float* value, float* grad) {
+  namespace gs = gabor_simd;
+  const gs::DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell(), a = g.kernel().envelope_exponent();
+  gs::lanes_split sp;
+  gs::lanes_filter filt;
+  auto split = [&](std::size_t first, std::size_t used) {
+    gs::split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
+      for (int c = 0; c < D; ++c)
+        x[c] = static_cast<double>(pts[i * D + static_cast<std::size_t>(c)]);
+    });
+    for (std::size_t l = 0; l < lanes; ++l) {
+      if (l >= used) {  // unused lanes keep no impulse (bad): any finite filter
+        for (int e = 0; e < D * D; ++e) filt.q[e][l] = filt.m[e][l] = 0.0f;
+        filt.amp[l] = 0.0f;
+        continue;
+      }
+      const gabor_filter<D> fl(fps[first + l], a, inv);
+      for (int r = 0; r < D; ++r)
+        for (int c = 0; c < D; ++c) {
+          filt.q[r * D + c][l] = static_cast<float>(fl.q[r][c]);
+          filt.m[r * D + c][l] = static_cast<float>(fl.m[r][c]);
+        }
+      filt.amp[l] = static_cast<float>(fl.amplitude);
+    }
+  };
+  if (grad)
+    gs::points_with<D, true>(g, n, sp, split, value, grad,
+                             [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
+                               gs::eval_filtered<D, true>(c, filt, t);
+                             });
+  else
+    gs::points_with<D, false>(g, n, sp, split, value, nullptr,
+                              [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
+                                gs::eval_filtered<D, false>(c, filt, t);
+                              });
+}
+inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                            std::size_t n, float* value, float* grad) {
+  gabor_filtered<2>(g, xy, fps, n, value, grad);
+}
+inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                            std::size_t n, float* value, float* grad) {
+  gabor_filtered<3>(g, xyz, fps, n, value, grad);
 }
 
 // Gabor noise on a uniform grid (C order, i fastest); gradients interleaved
