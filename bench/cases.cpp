@@ -52,6 +52,7 @@ constexpr std::array<double, 3> kGridOrigin = {0.3125, -2.71875, 5.0625};
 constexpr float kPointRange = 128;
 // The full and quick sizes (sizes's defaults are the full ones).
 constexpr std::size_t kQuickGrid2 = 64, kQuickGrid3 = 16, kQuickPoints = 4096;
+constexpr std::size_t kQuickFrameWidth = 192, kQuickFrameHeight = 108;
 
 template <int D>
 using fvec = hush::vec<float, D>;
@@ -417,7 +418,9 @@ void add_libnoise_rows(std::vector<bench_case>& cases, const sizes& s, int octav
 }  // namespace
 
 sizes full_sizes() { return sizes{}; }
-sizes quick_sizes() { return sizes{kQuickGrid2, kQuickGrid3, kQuickPoints}; }
+sizes quick_sizes() {
+  return sizes{kQuickGrid2, kQuickGrid3, kQuickPoints, kQuickFrameWidth, kQuickFrameHeight};
+}
 
 void error_stats::add(double measured, double reference) {
   const double e = measured - reference;
@@ -457,7 +460,8 @@ std::string bench_case::id() const {
 void add_pinned_simd_rows(std::vector<bench_case>& cases, std::int64_t target) {
   std::vector<bench_case> pinned;
   for (const bench_case& c : cases) {
-    if (c.backend != hush::exec::simd_t::name) continue;
+    if (c.backend != hush::exec::simd_t::name && c.backend.rfind("memory-bound pass", 0) != 0)
+      continue;
     bench_case p = c;
     p.backend = std::string(c.backend) + " " + hwy::TargetName(target);
     p.prepare = [prepare = c.prepare, target] {
@@ -478,6 +482,10 @@ void add_pinned_simd_rows(std::vector<bench_case>& cases, std::int64_t target) {
 #endif
 
 #if HUSH_BENCH_HAVE_GLSL
+// Coherent noise's GLSL row (coherent_cases.cpp).
+void add_coherent_glsl_rows(std::vector<bench_case>& cases, const sizes& s,
+                            hush::glsl::device& device);
+
 // The GLSL rows run on one headless OSMesa context for the whole process (llvmpipe here).
 hush::glsl::device& bench_glsl_device() {
   static hush::glsl::headless_device h;
@@ -489,6 +497,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
   std::vector<bench_case> cases;
   add_backend_rows(cases, s, hush::exec::scalar);
   add_backend_rows(cases, s, hush::exec::simd);
+  add_coherent_rows(cases, s);  // its simd rows are pinned to AVX2 below too
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
   // AVX2 pinned when the machine would pick something better: the targets are AVX2's.
   const std::int64_t usable = hwy::SupportedTargets() & HWY_TARGETS;
@@ -502,6 +511,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
     add_noise_rows(cases, s, "fbm 2D", make_fbm<2>(), gpu);
     add_noise_rows(cases, s, "fbm 3D", make_fbm<3>(), gpu);
     add_gabor_rows(cases, s, gpu);
+    add_coherent_glsl_rows(cases, s, bench_glsl_device());
   }
 #endif
 #if HUSH_BENCH_HAVE_GLM
@@ -529,6 +539,7 @@ void run_case(benchmark::State& state, const bench_case& c) {
     prepared = prepared_case{};
     prepared = c.prepare();
     current = &c;
+    *c.quality = prepared.quality;
   }
   for (auto _ : state)  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's idiom
     prepared.run();

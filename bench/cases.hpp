@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct sizes {
   std::size_t grid2 = 512;      // 2D grid: grid2 x grid2
   std::size_t grid3 = 64;       // 3D grid: grid3^3
   std::size_t points = 262144;  // random points, per dimension
+  // Scene-driven noises: one frame of frame_width x frame_height pixels (the 1080p).
+  std::size_t frame_width = 1920, frame_height = 1080;
 };
 sizes full_sizes();
 sizes quick_sizes();  // for `hush bench --quick` and the smoke test: a few seconds in all
@@ -50,6 +53,8 @@ struct prepared_case {
   std::function<void()> run;
   error_stats value_error;
   error_stats gradient_error;  // count 0 when the case computes no gradient
+  // The noise's own quality metric, measured while preparing, as text ("" when none).
+  std::string quality;
 };
 
 struct bench_case {
@@ -63,13 +68,21 @@ struct bench_case {
   // Time by the wall clock, not this thread's CPU time: for backends whose work runs on other
   // threads (GLSL on llvmpipe's worker threads, or a GPU).
   bool wall_clock = false;
+  // Scene-driven noises: pixels per frame (the table adds ms/frame); 0 for point noises.
+  std::size_t frame_pixels = 0;
   std::function<prepared_case()> prepare;
+  // Where a run leaves prepared_case::quality for the report (shared by the case's copies).
+  std::shared_ptr<std::string> quality = std::make_shared<std::string>();
   // "perlin2D/scalar/grid/value": the Google Benchmark name, unique in the table.
   std::string id() const;
 };
 
 // Every case: hush's noises on each backend, then the peer libraries found at build time.
 std::vector<bench_case> all_cases(const sizes& s);
+
+// Coherent noise's rows (coherent_cases.cpp): scalar and SIMD frames, and the memory-bound
+// pass they are measured against.
+void add_coherent_rows(std::vector<bench_case>& cases, const sizes& s);
 
 // The Google Benchmark counters each case reports: CPU seconds per sample (single thread; wall
 // seconds for wall_clock cases), and

@@ -4,9 +4,11 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -425,4 +427,56 @@ TEST_CASE("perlin: 2D gradients are unit vectors 45 degrees apart, 3D ones cube 
   // E[g g^T] = (2/3) I: the variance derivation and isotropy rely on it.
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) CHECK(cov[a][b] == doctest::Approx(a == b ? 2.0 / 3 : 0.0));
+}
+
+TEST_CASE_TEMPLATE("perlin: exec::scalar grids equal point evaluation at every sample", N,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int D = N::value;
+  // The scalar grid path (perlin::grid_values) shares splits and corner
+  // gradients between samples; every value and gradient must still be what
+  // point evaluation gives at g.position(...). Bit for bit unless the build
+  // lets the compiler fuse multiply-adds (then it may fuse the two paths'
+  // sums differently: within the float budget).
+#if defined(__FMA__) && !HUSH_CONFIG_STRICT_FP
+  const double tolerance = kFloatBudget;
+#else
+  const double tolerance = 0;
+#endif
+  typename hush::perlin<D>::params periodic;
+  periodic.seed = 31;
+  for (int a = 0; a < D; ++a) periodic.period[a] = 2 + a;
+  const hush::perlin<D> noises[] = {hush::perlin<D>(30), hush::perlin<D>(periodic)};
+  // Near, negative steps, far from the origin, steps above one cell, cells
+  // wrapping modulo 2^32.
+  const double grids[][3] = {{0.3, 1.0 / 37, 1}, {-4.5, -0.25, 1},  {1e9 + 0.5, 1.0 / 3, 1},
+                             {-7.1, 1.7, 1},     {1e300, 1e290, 1}, {-1.0, 0.5, 1}};
+  for (const auto& noise : noises)
+    for (const auto& spec : grids) {
+      hush::grid<D> g;
+      for (int a = 0; a < D; ++a) {
+        g.origin[a] = spec[0] + 0.37 * a;
+        g.step[a] = spec[1] * (1 + 0.1 * a);
+        g.size[a] = 9 + 4 * std::size_t(a);
+      }
+      std::vector<float> out(g.count());
+      std::vector<hush::vec<float, D>> grad(g.count());
+      hush::evaluate_grid(noise, hush::exec::scalar, g, out, grad);
+      std::size_t idx = 0;
+      for (std::size_t k = 0; k < (D == 3 ? g.size[2] : 1); ++k)
+        for (std::size_t j = 0; j < g.size[1]; ++j)
+          for (std::size_t i = 0; i < g.size[0]; ++i, ++idx) {
+            std::array<std::size_t, D> ijk{};
+            ijk[0] = i;
+            ijk[1] = j;
+            if constexpr (D == 3) ijk[2] = k;
+            const auto want = noise.template value_and_gradient<float>(g.position(ijk));
+            INFO("grid origin " << spec[0] << " step " << spec[1] << ", sample " << idx);
+            if (tolerance == 0) {
+              REQUIRE(std::memcmp(&out[idx], &want.value, sizeof(float)) == 0);
+              REQUIRE(std::memcmp(&grad[idx], &want.gradient, sizeof(grad[idx])) == 0);
+            } else {
+              REQUIRE(std::fabs(out[idx] - want.value) <= tolerance);
+            }
+          }
+    }
 }

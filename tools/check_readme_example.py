@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks that README.md's usage examples are the example programs verbatim.
+"""Checks that README.md's (and docs/*.md's) usage examples are the example programs verbatim.
 
 The block under '## Use' is examples/basic_usage.cpp; any other ```cpp block
 right after a line `<!-- example: examples/NAME.cpp -->` is that file.
@@ -22,12 +22,17 @@ if match.group(1) != example:
     sys.exit("check_readme_example: README.md's usage example differs from "
              "examples/basic_usage.cpp; make them identical")
 quoted = ["examples/basic_usage.cpp"]
-for name, code in re.findall(r"<!-- example: (examples/[\w./-]+) -->\n```cpp\n(.*?)```", readme, re.S):
-    path = root / name
-    if not path.is_file():
-        sys.exit(f"check_readme_example: README.md quotes {name}, which does not exist")
-    if code != path.read_text(encoding="utf-8"):
-        sys.exit(f"check_readme_example: README.md's quote of {name} differs from the file; "
-                 "make them identical")
-    quoted.append(name)
-print("check_readme_example: README.md quotes " + ", ".join(quoted) + " verbatim")
+# The same rule for the docs pages (docs/*.md quote their compiled examples too).
+for page in [root / "README.md"] + sorted((root / "docs").glob("*.md")):
+    text = page.read_text(encoding="utf-8")
+    where = page.relative_to(root)
+    for name, code in re.findall(r"<!-- example: (examples/[\w./-]+) -->\n```cpp\n(.*?)```", text,
+                                 re.S):
+        path = root / name
+        if not path.is_file():
+            sys.exit(f"check_readme_example: {where} quotes {name}, which does not exist")
+        if code != path.read_text(encoding="utf-8"):
+            sys.exit(f"check_readme_example: {where}'s quote of {name} differs from the file; "
+                     "make them identical")
+        quoted.append(f"{name} ({where})")
+print("check_readme_example: quoted verbatim: " + ", ".join(quoted))

@@ -14,7 +14,7 @@ fi
 # raster_gl.cpp needs OSMesa). Third-party implementation files are left out.
 files=()
 for f in examples/*.cpp examples/hush/*.cpp examples/coherence/*.cpp examples/scene/*.cpp \
-         examples/npy/*.cpp bench/*.cpp; do
+         examples/npy/*.cpp examples/gif/*.cpp bench/*.cpp; do
   case "$f" in *stb_image_write_impl.cpp | *png_write.cpp) continue ;; esac
   grep -q "/$f\"" "$build/compile_commands.json" || continue
   files+=("$f")

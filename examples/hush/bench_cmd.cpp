@@ -37,8 +37,10 @@ namespace {
 // --quick (a few seconds, for the smoke test).
 constexpr int kRepetitions = 5;
 constexpr int kMaxRepetitions = 100;
+#if HUSH_CLI_HAVE_BENCH
 constexpr double kMinTime = 0.1;
 constexpr double kQuickMinTime = 0.002;
+#endif
 
 struct bench_request {
   bool quick = false;
@@ -162,7 +164,16 @@ std::string utc_now() {
 std::string error_cell(double v) { return std::isfinite(v) ? format("%.2e", v) : "n.a."; }
 
 std::string error_reference_cell(const hush_bench::bench_case& c) {
-  return std::string(hush_bench::describe(c.reference)) + (c.note.empty() ? "" : "; " + c.note);
+  return std::string(hush_bench::describe(c.reference)) + (c.note.empty() ? "" : "; " + c.note) +
+         (c.quality->empty() ? "" : "; " + *c.quality);
+}
+
+// ns/sample, and ms per frame for scene-driven rows.
+std::string time_cell(const bench_row& row) {
+  std::string t = format("%.2f", row.ns);
+  if (row.c->frame_pixels)
+    t += format(" (%.2f ms/frame)", row.ns * static_cast<double>(row.c->frame_pixels) * 1e-6);
+  return t;
 }
 
 std::string markdown(const std::vector<bench_row>& rows, const hush_bench::machine_info& m,
@@ -180,7 +191,7 @@ std::string markdown(const std::vector<bench_row>& rows, const hush_bench::machi
   for (const bench_row& row : rows) {
     const hush_bench::bench_case& c = *row.c;
     os << "| " << c.noise << " | " << c.backend << " | " << c.workload << " | "
-       << (c.gradient ? "value + gradient" : "value") << " | " << format("%.2f", row.ns) << " | "
+       << (c.gradient ? "value + gradient" : "value") << " | " << time_cell(row) << " | "
        << error_cell(row.max_abs) << " | " << error_cell(row.rms) << " | "
        << (c.gradient ? error_cell(row.grad_max_abs) : "-") << " | "
        << (c.gradient ? error_cell(row.grad_rms) : "-") << " | " << error_reference_cell(c)
@@ -242,7 +253,8 @@ std::string json(const std::vector<bench_row>& rows, const hush_bench::machine_i
        << ", \"gradient_max_abs_error\": " << json_number(row.grad_max_abs)
        << ", \"gradient_rms_error\": " << json_number(row.grad_rms)
        << ", \"error_reference\": " << json_string(hush_bench::describe(c.reference))
-       << ", \"note\": " << json_string(c.note) << "}";
+       << ", \"note\": " << json_string(c.note) << ", \"quality\": " << json_string(*c.quality)
+       << ", \"frame_pixels\": " << c.frame_pixels << "}";
   }
   os << "\n  ]\n}\n";
   return os.str();

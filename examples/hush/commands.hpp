@@ -37,6 +37,9 @@ std::string glsl_status();
 // hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]: speed vs error.
 int run_bench(const std::vector<std::string>& args);
 const std::vector<option_spec>& bench_options();
+// hush render NOISE --gbuffer DIR --out DIR [options]: scene-driven noises over G-buffers.
+int run_render_noise(const std::vector<std::string>& args);
+const std::vector<option_spec>& render_options();
 // hush scene list | hush scene render --scene NAME ... --out DIR: test-scene G-buffers.
 int run_scene(const std::vector<std::string>& args);
 const std::vector<option_spec>& scene_options();

@@ -5,6 +5,7 @@
 // are visible next to what they look like. Adding an image is one entry in kEntries.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -15,6 +16,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "gallery_coherent.hpp"
+#include "gif/gif.hpp"
 #include "image.hpp"
 #include "noises.hpp"
 #include "spectrum.hpp"
@@ -334,6 +337,31 @@ int run_gallery(const std::vector<std::string>& args) {
     written.push_back(std::string(e.file) + " (" + std::to_string(image.width) + "x" +
                       std::to_string(image.height) + "): " + e.what);
     if (e.render == gabor_filtering) written.back() += "\n    " + gabor_plane_errors();
+  }
+  // Scene-driven noises: stills as PNG, animations as GIF (examples/gif).
+  const std::vector<gallery_item> items = coherent_gallery_items();
+  for (std::size_t n = 0; n < items.size(); ++n) {
+    const gallery_item& e = items[n];
+    std::fprintf(stderr, "gallery: [%zu/%zu] %s\n", n + 1, items.size(), e.file);
+    const std::vector<gray_image> frames = e.render();
+    const std::string path = (fs::path(dir) / e.file).string();
+    if (frames.size() == 1) {
+      write_png(path, frames[0]);
+    } else {
+      std::vector<std::vector<std::uint8_t>> bytes;
+      bytes.reserve(frames.size());
+      for (const gray_image& f : frames) bytes.push_back(f.pixels);
+      try {
+        hush::gif::save(path, bytes, static_cast<int>(frames[0].width),
+                        static_cast<int>(frames[0].height), e.delay_cs);
+      } catch (const std::runtime_error& err) {
+        throw run_error(err.what());
+      }
+    }
+    written.push_back(std::string(e.file) + " (" + std::to_string(frames[0].width) + "x" +
+                      std::to_string(frames[0].height) +
+                      (frames.size() > 1 ? ", " + std::to_string(frames.size()) + " frames" : "") +
+                      "): " + e.what);
   }
   const fs::path absolute = fs::weakly_canonical(fs::absolute(dir));
   std::cout << "wrote " << written.size() << " images to " << absolute.string() << '\n';

@@ -8,6 +8,8 @@
 //   hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]
 //   hush scene list | hush scene render --scene NAME [--frames N] [--size WxH]
 //                                       [--backend cpu|gl] --out DIR
+//   hush render NOISE --gbuffer DIR --out DIR [--frames N] [--seed n]
+//                     [--backend scalar|simd|glsl] [NOISE OPTIONS]
 //
 // Exit codes: 0 success, 1 a failure doing valid work (e.g. an unwritable file), 2 a
 // usage error. Every error is one line on stderr: "hush <command>: <what is wrong>".
@@ -22,6 +24,7 @@
 #include "commands.hpp"
 #include "hush/core/error.hpp"
 #include "noises.hpp"
+#include "scene_noises.hpp"
 
 namespace hush_cli {
 namespace {
@@ -47,6 +50,8 @@ const std::vector<command>& commands() {
        "speed-vs-error table of every noise and backend", run_bench},
       {"scene", "hush scene list | render --scene NAME [options] --out DIR",
        "render test scenes to G-buffer files (.npy per channel)", run_scene},
+      {"render", "hush render NOISE --gbuffer DIR --out DIR [options]",
+       "scene-driven noises over a G-buffer sequence (coherent)", run_render_noise},
   };
   return table;
 }
@@ -110,6 +115,15 @@ void print_usage(std::ostream& os) {
         "  Writes DIR/frame_NNNN/<channel>.npy (float32 or uint32, shape (H, W) or (H, W, C),\n"
         "  row 0 at the top; examples/scene/gbuffer.hpp) and preview PNGs for frames 0 ... N-1.\n";
   print_options(os, scene_options());
+  os << "\nhush render NOISE --gbuffer DIR --out DIR [options]\n"
+        "  Writes OUT/NNNN.npy (float32 (H, W), or (H, W, C) for C channels) for the G-buffer\n"
+        "  frames DIR/frame_NNNN/ of hush scene render, reading one frame at a time.\n";
+  print_options(os, render_options());
+  for (const render_entry& n : render_table()) {
+    os << "  NOISE " << n.name << ": " << n.summary << '\n';
+    print_options(os, n.options);
+    print_options(os, n.flags);
+  }
   os << "\nEvery option takes one value: '--seed 7' or '--seed=7' (bench --quick is the one "
         "flag).\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";

@@ -32,20 +32,6 @@
 #endif
 
 namespace hush_cli {
-namespace {
-
-constexpr long long kMaxFrames = 10000;  // frame directories have 4 digits
-const char* const kDefaultSize = "640x360";
-
-// CPU time of the calling thread in ms: on a shared machine the wall clock also counts
-// time other processes held the core; the CPU rasterizer runs on this thread only.
-double thread_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
 
 const std::vector<option_spec>& scene_options() {
   static const std::vector<option_spec> options = {
@@ -61,6 +47,17 @@ const std::vector<option_spec>& scene_options() {
 
 #if HUSH_CLI_HAVE_SCENE
 namespace {
+
+constexpr long long kMaxFrames = 10000;  // frame directories have 4 digits
+const char* const kDefaultSize = "640x360";
+
+// CPU time of the calling thread in ms: on a shared machine the wall clock also counts
+// time other processes held the core; the CPU rasterizer runs on this thread only.
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
 
 int run_list() {
   for (const hush::scene::scene_info& s : hush::scene::scene_list()) {

@@ -14,11 +14,13 @@
 #endif
 
 namespace hush_cli {
+#if HUSH_CLI_HAVE_FFT
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
+#endif
 
 bool spectrum_supported() { return HUSH_CLI_HAVE_FFT != 0; }
 

@@ -21,6 +21,13 @@
 //    frame 0's transforms for i-1 (velocity 0). Background: 0. If the point
 //    was not in front of frame i-1's camera (no previous screen position),
 //    all three are NaN: treat such pixels as disoccluded.
+//  - forward_velocity (3 channels): the same motion towards frame i+1: the
+//    point seen at pixel centre p in frame i is at p + (dx, dy), with depth
+//    depth + dz, in frame i+1 (what the backward pass of time-symmetric
+//    coherent noise reprojects with). Background: 0; NaN when the point is not
+//    in front of frame i+1's camera. Scenes are functions of the frame index,
+//    so frame i+1 always exists. Optional: empty when a producer does not make
+//    it (every other channel is always sized for width * height).
 //  - triangle_id: index of the triangle in its object's mesh. Background:
 //    0xFFFFFFFF.
 //  - barycentric (3): perspective-correct weights of the triangle's vertices
@@ -38,6 +45,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "hush/core/frame.hpp"
+
 namespace hush {
 namespace scene {
 
@@ -46,6 +55,7 @@ struct gbuffer {
   int height = 0;
   std::vector<float> depth;                // 1 channel
   std::vector<float> velocity;             // 3 channels: dx, dy (pixels/frame), dz (depth/frame)
+  std::vector<float> forward_velocity;     // 3 channels: to frame i+1, same units
   std::vector<std::uint32_t> object_id;    // 1 channel, 0 = background
   std::vector<std::uint32_t> triangle_id;  // 1 channel
   std::vector<float> barycentric;          // 3 channels
@@ -57,6 +67,21 @@ struct gbuffer {
   std::size_t pixels() const { return static_cast<std::size_t>(width) * height; }
   bool covered(std::size_t pixel) const { return object_id[pixel] != 0; }
 };
+
+// The views of `g` a scene-driven noise reads (hush::frame, include/hush/core/frame.hpp):
+// depth, velocity, forward velocity (when present), object and triangle ids. Valid while
+// `g` lives and is not resized.
+inline hush::frame as_frame(const gbuffer& g) {
+  const std::size_t w = static_cast<std::size_t>(g.width), h = static_cast<std::size_t>(g.height);
+  hush::frame f;
+  f.depth = {g.depth.data(), w, h};
+  f.velocity = {reinterpret_cast<const hush::vec3*>(g.velocity.data()), w, h};
+  if (!g.forward_velocity.empty())
+    f.forward_velocity = {reinterpret_cast<const hush::vec3*>(g.forward_velocity.data()), w, h};
+  f.object_id = {g.object_id.data(), w, h};
+  f.triangle_id = {g.triangle_id.data(), w, h};
+  return f;
+}
 
 }  // namespace scene
 }  // namespace hush

@@ -36,6 +36,10 @@ const channel<float> kFloatChannels[] = {{"depth", &gbuffer::depth, 1},
                                          {"uv_jacobian", &gbuffer::uv_jacobian, 4},
                                          {"normal", &gbuffer::normal, 3},
                                          {"position", &gbuffer::position, 3}};
+// Optional: written when present (non-empty), read when its file exists (G-buffers from
+// before it existed, or made without it, have none).
+const channel<float> kOptionalFloatChannels[] = {
+    {"forward_velocity", &gbuffer::forward_velocity, 3}};
 const channel<std::uint32_t> kUintChannels[] = {{"object_id", &gbuffer::object_id, 1},
                                                 {"triangle_id", &gbuffer::triangle_id, 1}};
 
@@ -143,6 +147,10 @@ void save_gbuffer(const gbuffer& g, const std::string& frame_dir) {
     if ((g.*c.field).size() != n * c.components)
       throw hush::invalid_argument(std::string("save_gbuffer: channel ") + c.name +
                                    " has the wrong number of values for the size");
+  for (const channel<float>& c : kOptionalFloatChannels)
+    if (!(g.*c.field).empty() && (g.*c.field).size() != n * c.components)
+      throw hush::invalid_argument(std::string("save_gbuffer: channel ") + c.name +
+                                   " has the wrong number of values for the size");
   const fs::path dir(frame_dir);
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -153,6 +161,15 @@ void save_gbuffer(const gbuffer& g, const std::string& frame_dir) {
     write_npy(dir / (std::string(c.name) + ".npy"), g.*c.field, g, c.components);
   for (const channel<std::uint32_t>& c : kUintChannels)
     write_npy(dir / (std::string(c.name) + ".npy"), g.*c.field, g, c.components);
+  for (const channel<float>& c : kOptionalFloatChannels) {
+    const fs::path path = dir / (std::string(c.name) + ".npy");
+    if (!(g.*c.field).empty()) {
+      write_npy(path, g.*c.field, g, c.components);
+    } else {
+      std::error_code ignored;  // a stale file from an earlier save must not be read back
+      fs::remove(path, ignored);
+    }
+  }
   if (detail::png_available() && n > 0) write_previews(g, dir);
 }
 
@@ -174,6 +191,14 @@ gbuffer load_gbuffer(const std::string& frame_dir) {
   for (const channel<std::uint32_t>& c : kUintChannels) {
     const fs::path path = dir / (std::string(c.name) + ".npy");
     g.*c.field = read_npy<std::uint32_t>(path, shape);
+    if (shape != channel_shape(g, c.components))
+      bad_file(path, "shape " + npy::shape_text(shape) + " is not " +
+                         npy::shape_text(channel_shape(g, c.components)));
+  }
+  for (const channel<float>& c : kOptionalFloatChannels) {
+    const fs::path path = dir / (std::string(c.name) + ".npy");
+    if (!fs::exists(path)) continue;
+    g.*c.field = read_npy<float>(path, shape);
     if (shape != channel_shape(g, c.components))
       bad_file(path, "shape " + npy::shape_text(shape) + " is not " +
                          npy::shape_text(channel_shape(g, c.components)));

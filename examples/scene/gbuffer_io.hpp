@@ -2,7 +2,9 @@
 //
 // One frame is a directory holding one NumPy .npy file per channel of gbuffer.hpp,
 // named after the field: depth.npy, velocity.npy, object_id.npy, triangle_id.npy,
-// barycentric.npy, uv.npy, uv_jacobian.npy, normal.npy, position.npy. Each is NPY
+// barycentric.npy, uv.npy, uv_jacobian.npy, normal.npy, position.npy, and
+// forward_velocity.npy when the G-buffer has that channel (it is optional: written
+// when non-empty, read when the file exists, else left empty). Each is NPY
 // format 1.0, little-endian float32 ('<f4') or uint32 ('<u4', the IDs), C order,
 // shape (H, W) for one channel and (H, W, C) otherwise, row 0 at the top of the
 // image (numpy.load gives arrays indexed [y, x, c]). Beside them, PNG previews for

@@ -89,6 +89,7 @@ struct triangle_setup {
 struct object_frame {
   dmat4 clip_from_object;       // frame i
   dmat4 prev_clip_from_object;  // frame i - 1
+  dmat4 next_clip_from_object;  // frame i + 1
   dmat3 normal_to_world;        // inverse transpose of the model's linear part
 };
 
@@ -262,6 +263,7 @@ void write_background(gbuffer& g, std::size_t pixel) {
   g.triangle_id[pixel] = kNoTriangle;
   for (std::size_t c = 0; c < 3; ++c) {
     g.velocity[3 * pixel + c] = 0.0f;
+    g.forward_velocity[3 * pixel + c] = 0.0f;
     g.barycentric[3 * pixel + c] = 0.0f;
     g.normal[3 * pixel + c] = 0.0f;
     g.position[3 * pixel + c] = 0.0f;
@@ -279,6 +281,7 @@ gbuffer make_background(int width, int height) {
   const std::size_t n = g.pixels();
   g.depth.assign(n, std::numeric_limits<float>::infinity());
   g.velocity.assign(3 * n, 0.0f);
+  g.forward_velocity.assign(3 * n, 0.0f);
   g.object_id.assign(n, 0u);
   g.triangle_id.assign(n, kNoTriangle);
   g.barycentric.assign(3 * n, 0.0f);
@@ -305,16 +308,22 @@ void render_cpu(const scene& s, int frame, int width, int height, const raster_o
   check_render_arguments(frame, width, height);
   const int prev_frame = frame > 0 ? frame - 1 : frame;
   if (!s.camera) throw hush::invalid_argument("render: the scene has no camera");
-  const camera_pose pose = s.camera(frame), prev_pose = s.camera(prev_frame);
+  const camera_pose pose = s.camera(frame), prev_pose = s.camera(prev_frame),
+                    next_pose = s.camera(frame + 1);
   check_scene(s, pose);
   check_scene(s, prev_pose);
+  check_scene(s, next_pose);
   const dmat4 clip_from_world = projection_matrix(pose, width, height) * view_matrix(pose);
   const dmat4 prev_clip_from_world =
       projection_matrix(prev_pose, width, height) * view_matrix(prev_pose);
+  const dmat4 next_clip_from_world =
+      projection_matrix(next_pose, width, height) * view_matrix(next_pose);
   std::vector<object_frame> frames;
   for (const object& o : s.objects) {
-    const dmat4 model = o.model(frame), prev_model = o.model(prev_frame);
+    const dmat4 model = o.model(frame), prev_model = o.model(prev_frame),
+                next_model = o.model(frame + 1);
     frames.push_back({clip_from_world * model, prev_clip_from_world * prev_model,
+                      next_clip_from_world * next_model,
                       glm::transpose(glm::inverse(dmat3(model)))});
   }
   if (options.coverage)
@@ -334,6 +343,7 @@ void render_cpu(const scene& s, int frame, int width, int height, const raster_o
   g.height = height;
   g.depth.resize(n);
   g.velocity.resize(3 * n);
+  g.forward_velocity.resize(3 * n);
   g.object_id.resize(n);
   g.triangle_id.resize(n);
   g.barycentric.resize(3 * n);
@@ -390,11 +400,21 @@ void render_cpu(const scene& s, int frame, int width, int height, const raster_o
           velocity = dvec3(nan);
         }
       }
+      // Forward: where the point is in frame i + 1 (the same projection, next transforms).
+      dvec3 forward(nan);
+      const dvec4 next = of.next_clip_from_object * dvec4(position, 1.0);
+      if (next.w > 0.0) {
+        const double inv_w = 1.0 / next.w;
+        const double next_x = (next.x * inv_w + 1.0) * 0.5 * width;
+        const double next_y = (1.0 - next.y * inv_w) * 0.5 * height;
+        forward = dvec3(next_x - px, next_y - py, next.w - depth);
+      }
       g.depth[pixel] = static_cast<float>(depth);
       g.object_id[pixel] = t.object + 1;
       g.triangle_id[pixel] = t.triangle;
       for (int c = 0; c < 3; ++c) {
         g.velocity[3 * pixel + c] = static_cast<float>(velocity[c]);
+        g.forward_velocity[3 * pixel + c] = static_cast<float>(forward[c]);
         g.barycentric[3 * pixel + c] = static_cast<float>(bary[c]);
         g.normal[3 * pixel + c] = static_cast<float>(normal[c]);
         g.position[3 * pixel + c] = static_cast<float>(position[c]);

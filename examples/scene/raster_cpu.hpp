@@ -21,7 +21,8 @@
 //     at the pixel centre p is projected with frame i-1's object and camera
 //     transforms to p_prev, and velocity = (p - p_prev, depth - depth_prev).
 //     If that point was not in front of frame i-1's camera (depth_prev <= 0),
-//     the velocity is NaN (no previous position exists).
+//     the velocity is NaN (no previous position exists). The forward velocity
+//     is the same with frame i+1's transforms: (p_next - p, depth_next - depth).
 // Arithmetic is double precision in a fixed order on one thread, so the output is
 // the same bits on every run. Example/test infrastructure, not a core header.
 #ifndef HUSH_SCENE_RASTER_CPU_HPP

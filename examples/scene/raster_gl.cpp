@@ -26,13 +26,14 @@ namespace {
 
 // The render targets, in draw-buffer order; the shaders' `location`s are these.
 enum target : int {
-  kPositionDepth,  // xyz object-space position, w linear depth
-  kNormal,         // xyz
-  kBarycentric,    // xyz
-  kVelocity,       // xyz
-  kUv,             // xy
-  kJacobian,       // du/dx, du/dy, dv/dx, dv/dy
-  kIds,            // RG32UI: object id, triangle id
+  kPositionDepth,    // xyz object-space position, w linear depth
+  kNormal,           // xyz
+  kBarycentric,      // xyz
+  kVelocity,         // xyz
+  kForwardVelocity,  // xyz: to frame i + 1
+  kUv,               // xy
+  kJacobian,         // du/dx, du/dy, dv/dx, dv/dy
+  kIds,              // RG32UI: object id, triangle id
   kTargets
 };
 
@@ -43,12 +44,14 @@ in vec2 a_uv;
 in vec3 a_corner;  // the vertex's barycentric corner
 uniform mat4 u_clip_from_object;
 uniform mat4 u_prev_clip_from_object;
+uniform mat4 u_next_clip_from_object;
 uniform mat3 u_normal_to_world;
 out vec3 v_position;
 out vec3 v_normal;
 out vec2 v_uv;
 out vec3 v_barycentric;
 out vec4 v_prev_clip;
+out vec4 v_next_clip;
 out float v_depth;
 void main() {
   vec4 clip = u_clip_from_object * vec4(a_position, 1.0);
@@ -58,6 +61,7 @@ void main() {
   v_uv = a_uv;
   v_barycentric = a_corner;
   v_prev_clip = u_prev_clip_from_object * vec4(a_position, 1.0);
+  v_next_clip = u_next_clip_from_object * vec4(a_position, 1.0);
   v_depth = clip.w;
 }
 )";
@@ -68,6 +72,7 @@ in vec3 v_normal;
 in vec2 v_uv;
 in vec3 v_barycentric;
 in vec4 v_prev_clip;
+in vec4 v_next_clip;
 in float v_depth;
 uniform uint u_object_id;
 uniform vec2 u_size;
@@ -76,6 +81,7 @@ layout(location = TARGET_POSITION_DEPTH) out vec4 o_position_depth;
 layout(location = TARGET_NORMAL) out vec4 o_normal;
 layout(location = TARGET_BARYCENTRIC) out vec4 o_barycentric;
 layout(location = TARGET_VELOCITY) out vec4 o_velocity;
+layout(location = TARGET_FORWARD_VELOCITY) out vec4 o_forward_velocity;
 layout(location = TARGET_UV) out vec4 o_uv;
 layout(location = TARGET_JACOBIAN) out vec4 o_jacobian;
 layout(location = TARGET_IDS) out uvec2 o_ids;
@@ -96,6 +102,14 @@ void main() {
     }
   }
   o_velocity = vec4(velocity, 0.0);
+  // Forward: where the point is in frame i + 1; NaN when not in front of that camera.
+  vec3 forward = vec3(uintBitsToFloat(0x7fc00000u));
+  if (v_next_clip.w > 0.0) {
+    vec2 ndc = v_next_clip.xy / v_next_clip.w;
+    vec2 next = vec2((ndc.x + 1.0) * 0.5 * u_size.x, (1.0 - ndc.y) * 0.5 * u_size.y);
+    forward = vec3(next - p, v_next_clip.w - v_depth);
+  }
+  o_forward_velocity = vec4(forward, 0.0);
   o_uv = vec4(v_uv, 0.0, 0.0);
   // (u, v, 1) / w is affine in screen space, so its fine derivatives (differences
   // within the 2x2 quad) are exact. Built from the perspective-correct uv and depth:
@@ -112,13 +126,9 @@ void main() {
 // The fragment shader's preamble: the render-target locations, written from the enum
 // (one source of truth, as DESIGN.md asks).
 std::string fragment_source() {
-  const char* const names[kTargets] = {"TARGET_POSITION_DEPTH",
-                                       "TARGET_NORMAL",
-                                       "TARGET_BARYCENTRIC",
-                                       "TARGET_VELOCITY",
-                                       "TARGET_UV",
-                                       "TARGET_JACOBIAN",
-                                       "TARGET_IDS"};
+  const char* const names[kTargets] = {
+      "TARGET_POSITION_DEPTH",   "TARGET_NORMAL", "TARGET_BARYCENTRIC", "TARGET_VELOCITY",
+      "TARGET_FORWARD_VELOCITY", "TARGET_UV",     "TARGET_JACOBIAN",    "TARGET_IDS"};
   std::string text = "#version 450 core\n";
   for (int t = 0; t < kTargets; ++t)
     text += std::string("#define ") + names[t] + " " + std::to_string(t) + "\n";
@@ -164,7 +174,8 @@ struct gl_rasterizer::impl {
   GLuint targets[kTargets] = {};
   int width = 0, height = 0;
   std::map<const mesh*, gpu_mesh> meshes;
-  GLint u_clip = -1, u_prev_clip = -1, u_normal = -1, u_object = -1, u_size = -1, u_first = -1;
+  GLint u_clip = -1, u_prev_clip = -1, u_next_clip = -1, u_normal = -1, u_object = -1, u_size = -1,
+        u_first = -1;
 
   impl() {
     const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
@@ -185,6 +196,7 @@ struct gl_rasterizer::impl {
     }
     u_clip = glGetUniformLocation(program, "u_clip_from_object");
     u_prev_clip = glGetUniformLocation(program, "u_prev_clip_from_object");
+    u_next_clip = glGetUniformLocation(program, "u_next_clip_from_object");
     u_normal = glGetUniformLocation(program, "u_normal_to_world");
     u_object = glGetUniformLocation(program, "u_object_id");
     u_size = glGetUniformLocation(program, "u_size");
@@ -325,23 +337,30 @@ gbuffer gl_rasterizer::render(const scene& s, int frame, int width, int height) 
 
   const int prev_frame = frame > 0 ? frame - 1 : frame;
   if (!s.camera) throw hush::invalid_argument("render: the scene has no camera");
-  const camera_pose pose = s.camera(frame), prev_pose = s.camera(prev_frame);
+  const camera_pose pose = s.camera(frame), prev_pose = s.camera(prev_frame),
+                    next_pose = s.camera(frame + 1);
   check_scene(s, pose);
   check_scene(s, prev_pose);
+  check_scene(s, next_pose);
   const glm::dmat4 clip_from_world = projection_matrix(pose, width, height) * view_matrix(pose);
   const glm::dmat4 prev_clip_from_world =
       projection_matrix(prev_pose, width, height) * view_matrix(prev_pose);
+  const glm::dmat4 next_clip_from_world =
+      projection_matrix(next_pose, width, height) * view_matrix(next_pose);
   glUseProgram(d.program);
   glUniform2f(d.u_size, static_cast<float>(width), static_cast<float>(height));
   glUniform1i(d.u_first, frame == 0 ? 1 : 0);
   for (std::size_t o = 0; o < s.objects.size(); ++o) {
     const object& obj = s.objects[o];
     const gpu_mesh& g = d.upload(obj.shape);
-    const glm::dmat4 model = obj.model(frame), prev_model = obj.model(prev_frame);
-    const glm::mat4 clip(clip_from_world * model), prev_clip(prev_clip_from_world * prev_model);
+    const glm::dmat4 model = obj.model(frame), prev_model = obj.model(prev_frame),
+                     next_model = obj.model(frame + 1);
+    const glm::mat4 clip(clip_from_world * model), prev_clip(prev_clip_from_world * prev_model),
+        next_clip(next_clip_from_world * next_model);
     const glm::mat3 normal(glm::transpose(glm::inverse(glm::dmat3(model))));
     glUniformMatrix4fv(d.u_clip, 1, GL_FALSE, glm::value_ptr(clip));
     glUniformMatrix4fv(d.u_prev_clip, 1, GL_FALSE, glm::value_ptr(prev_clip));
+    glUniformMatrix4fv(d.u_next_clip, 1, GL_FALSE, glm::value_ptr(next_clip));
     glUniformMatrix3fv(d.u_normal, 1, GL_FALSE, glm::value_ptr(normal));
     glUniform1ui(d.u_object, static_cast<GLuint>(o + 1));
     if (obj.shape->closed)
@@ -385,6 +404,7 @@ gbuffer gl_rasterizer::render(const scene& s, int frame, int width, int height) 
         g.normal[3 * dst + c] = rgba[kNormal][4 * src + c];
         g.barycentric[3 * dst + c] = rgba[kBarycentric][4 * src + c];
         g.velocity[3 * dst + c] = rgba[kVelocity][4 * src + c];
+        g.forward_velocity[3 * dst + c] = rgba[kForwardVelocity][4 * src + c];
       }
       for (std::size_t c = 0; c < 2; ++c) g.uv[2 * dst + c] = rgba[kUv][4 * src + c];
       for (std::size_t c = 0; c < 4; ++c) g.uv_jacobian[4 * dst + c] = rgba[kJacobian][4 * src + c];

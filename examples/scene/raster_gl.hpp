@@ -3,14 +3,16 @@
 // (HUSH_SCENE_HAVE_GL). A second, independent producer of the same G-buffer as
 // render_cpu: tests compare the two (docs/scenes.md states the agreement).
 //
-// One draw per object into 7 render targets (RGBA32F: position + depth, normal,
-// barycentric, velocity, uv, uv Jacobian; RG32UI: object and triangle ID) with a
+// One draw per object into 8 render targets (RGBA32F: position + depth, normal,
+// barycentric, velocity, forward velocity, uv, uv Jacobian; RG32UI: object and
+// triangle ID) with a
 // 32-bit float depth buffer. Meshes are drawn unindexed (3 vertices per triangle,
 // each carrying its barycentric corner), so gl_PrimitiveID is the triangle index
 // and the interpolated corner is the perspective-correct barycentric coordinate.
 // Velocity: the vertex shader also outputs the vertex's clip position under frame
-// i-1's transforms; interpolated (perspective-correct, exact for an affine
-// function of the surface point) and projected in the fragment shader. The uv
+// i-1's transforms (and frame i+1's, for the forward velocity); interpolated
+// (perspective-correct, exact for an affine function of the surface point) and
+// projected in the fragment shader. The uv
 // Jacobian is analytic: (uv/w, 1/w) are affine in screen space, so their fine
 // screen derivatives are exact and d(uv)/dx = ((uv/w)_x (1/w) - (uv/w) (1/w)_x) w^2.
 // Back faces of closed meshes are culled, the near plane is the camera's

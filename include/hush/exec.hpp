@@ -16,7 +16,10 @@
 //    gradients (when given) too, else hush::invalid_argument naming the span.
 //  - grids: grid<D> (origin and step in double); out has grid.count()
 //    elements in C order, i fastest (core/views.hpp). The grid is validated.
-//  - scalar: exactly noise(point) per element, in float.
+//  - scalar: exactly noise(point) per element, in float. A noise may share
+//    work between the samples of a grid (detail::has_grid_values); its
+//    results are still point evaluation's, bit for bit unless the compiler
+//    contracts multiply-adds (HUSH_STRICT_FP forbids it).
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
@@ -29,15 +32,24 @@
 //    Noise::takes_normal) may be given, else hush::invalid_argument naming
 //    the span. scalar computes noise.sample_value<float>(samples.at(i));
 //    with positions only, exactly what the points overload computes.
+//  - parallel(inner, threads): the batch split over std::threads, each
+//    running `inner` (scalar or simd) on a contiguous part: points and
+//    samples in chunks, grids in slabs along the slowest axis (rows in 2D,
+//    slices in 3D). Results are identical, bit for bit, to `inner` on the
+//    whole batch (tests/simd/parallel_test.cpp).
 //  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
 //    after validation, and no output element is left unwritten.
 #ifndef HUSH_EXEC_HPP
 #define HUSH_EXEC_HPP
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <string>
+#include <thread>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
@@ -72,6 +84,34 @@ struct glsl {
 template <class Device>
 glsl(Device&) -> glsl<Device>;
 
+// Multi-threaded batches: hush::exec::parallel(hush::exec::simd, threads)
+// evaluates a batch on `threads` std::threads (0: one per hardware thread,
+// std::thread::hardware_concurrency()), each running the inner policy on a
+// contiguous part, and returns when all are done. Results are those of the
+// inner policy on the whole batch, bit for bit: points and samples are
+// evaluated independently of their neighbours, and a grid slab is the same
+// rows of the same grid (the kernels take a row range, so every sample's
+// position is formed exactly as in the whole-grid call). Batches too small to
+// give every thread kParallelGrain samples use fewer threads.
+template <class Inner>
+struct parallel_t {
+  static_assert(std::is_same<Inner, scalar_t>::value || std::is_same<Inner, simd_t>::value,
+                "hush::exec::parallel runs the scalar or simd policy");
+  static constexpr const char* name = "parallel";
+  static constexpr int kMaxThreads = 1024;
+  static constexpr std::size_t kParallelGrain = 4096;  // samples per thread, at least
+  Inner inner;
+  unsigned threads;  // >= 1, resolved at construction
+};
+// Throws hush::invalid_argument when threads is outside 0 ... 1024.
+template <class Inner>
+parallel_t<Inner> parallel(Inner inner, int threads = 0) {
+  detail::require_in_range("hush::exec::parallel", "threads", threads, 0,
+                           parallel_t<Inner>::kMaxThreads, "0 (one per hardware thread) ... 1024");
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  return {inner, threads == 0 ? hw : static_cast<unsigned>(threads)};
+}
+
 }  // namespace exec
 
 namespace detail {
@@ -88,6 +128,18 @@ inline void require_same_size(const char* where, const char* name, std::size_t g
                        ("exactly " + std::to_string(want) + " elements (one per sample)").c_str());
 }
 
+// The parallel policy's overloads (defined at the end of this namespace).
+template <class Noise, class Inner>
+void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
+                float* out, vec<float, Noise::dimension>* grad);
+template <class Noise, class Inner>
+void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
+                 const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad);
+template <class Noise, class Inner>
+void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
+              float* out, vec<float, Noise::dimension>* grad);
+
 template <class Noise>
 void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
                    vec<float, Noise::dimension>* grad) {
@@ -102,28 +154,56 @@ void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
   }
 }
 
+// Whether Noise evaluates grid slabs itself: a member
+//   void grid_values(const grid<D>& g, std::size_t first, std::size_t count,
+//                    float* out, vec<float, D>* grad) const;
+// with the values and gradients of its point evaluation at every sample (bit
+// for bit unless the compiler contracts multiply-adds), faster than the
+// sample loop below by sharing work between samples (perlin.hpp).
+template <class Noise, class = void>
+struct has_grid_values : std::false_type {};
+template <class Noise>
+struct has_grid_values<
+    Noise, std::void_t<decltype(std::declval<const Noise&>().grid_values(
+               std::declval<const grid<Noise::dimension>&>(), std::size_t{}, std::size_t{},
+               std::declval<float*>(), std::declval<vec<float, Noise::dimension>*>()))>>
+    : std::true_type {};
+
+// The grid's samples with slowest-axis index (j in 2D, k in 3D) in
+// [first, first + count) into out, which starts at sample (0, 0[, 0]) of that slab.
+template <class Noise>
+void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, std::size_t first,
+                 std::size_t count, float* out, vec<float, Noise::dimension>* grad) {
+  constexpr int D = Noise::dimension;
+  if constexpr (has_grid_values<Noise>::value) {
+    n.grid_values(g, first, count, out, grad);
+  } else {
+    const std::size_t nx = g.size[0];
+    const std::size_t j0 = D == 2 ? first : 0, ny = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, nz = D == 3 ? first + count : 1;
+    std::size_t idx = 0;
+    for (std::size_t k = k0; k < nz; ++k)
+      for (std::size_t j = j0; j < ny; ++j)
+        for (std::size_t i = 0; i < nx; ++i, ++idx) {
+          std::array<std::size_t, D> ijk{};
+          ijk[0] = i;
+          ijk[1] = j;
+          if constexpr (D == 3) ijk[D - 1] = k;
+          const vec<double, D> p = g.position(ijk);
+          if (grad) {
+            const auto r = n.template value_and_gradient<float>(p);
+            out[idx] = r.value;
+            grad[idx] = r.gradient;
+          } else {
+            out[idx] = n.template value<float>(p);
+          }
+        }
+  }
+}
 template <class Noise>
 void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, float* out,
                  vec<float, Noise::dimension>* grad) {
-  constexpr int D = Noise::dimension;
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
-  std::size_t idx = 0;
-  for (std::size_t k = 0; k < nz; ++k)
-    for (std::size_t j = 0; j < ny; ++j)
-      for (std::size_t i = 0; i < nx; ++i, ++idx) {
-        std::array<std::size_t, D> ijk{};
-        ijk[0] = i;
-        ijk[1] = j;
-        if constexpr (D == 3) ijk[D - 1] = k;
-        const vec<double, D> p = g.position(ijk);
-        if (grad) {
-          const auto r = n.template value_and_gradient<float>(p);
-          out[idx] = r.value;
-          grad[idx] = r.gradient;
-        } else {
-          out[idx] = n.template value<float>(p);
-        }
-      }
+  scalar_grid(n, g, 0, g.size[Noise::dimension - 1], out, grad);
 }
 
 template <class Noise, class Exec>
@@ -200,6 +280,86 @@ void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, f
       scalar_grid(n, g, out, grad);
   } else {
     ex.device.evaluate_grid(n, g, out, grad);
+  }
+}
+
+// ---- exec::parallel.
+
+// Runs body(begin, end) over [0, n) split into at most `threads` contiguous
+// parts of whole `unit`s (n is a multiple of unit), each at least `grain`
+// long; part 0 on the calling thread.
+template <class Body>
+void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned threads,
+                    const Body& body) {
+  const std::size_t units = n / unit, grain_units = std::max<std::size_t>(1, grain / unit);
+  const std::size_t parts =
+      std::max<std::size_t>(1, std::min<std::size_t>(threads, units / grain_units));
+  auto part = [&](std::size_t t) {
+    body(t * units / parts * unit, (t + 1) * units / parts * unit);
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(parts - 1);
+  std::size_t started = 1;
+  try {
+    for (; started < parts; ++started) pool.emplace_back(part, started);
+  } catch (...) {  // no more threads to be had: the calling thread does the rest
+  }
+  part(0);
+  for (std::size_t t = started; t < parts; ++t) part(t);
+  for (std::thread& th : pool) th.join();
+}
+
+// Whether simd_kernel<Noise> evaluates grid slabs (grid_slab(n, g, first, count, out, grad)).
+template <class Kernel, class = void>
+struct has_simd_grid_slab : std::false_type {};
+template <class Kernel>
+struct has_simd_grid_slab<Kernel, std::void_t<decltype(Kernel::has_grid_slab)>>
+    : std::integral_constant<bool, Kernel::has_grid_slab> {};
+
+template <class Noise, class Inner>
+void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
+                float* out, vec<float, Noise::dimension>* grad) {
+  parallel_parts(pts.size(), 1, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
+    run_points(n, ex.inner, pts.subspan(b, e - b), out + b, grad ? grad + b : grad);
+  });
+}
+
+template <class Noise, class Inner>
+void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
+                 const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
+    samples<Noise::dimension> part = s;
+    part.positions = s.positions.subspan(b, e - b);
+    if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
+    if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
+    run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
+  });
+}
+
+// Slabs along the slowest axis. A SIMD kernel without slab support gets the
+// whole grid on one thread: a slab re-based as a grid of its own would form
+// its positions with other roundings.
+template <class Noise, class Inner>
+void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
+              float* out, vec<float, Noise::dimension>* grad) {
+  constexpr int D = Noise::dimension;
+  constexpr bool kSlabs = std::is_same<Inner, exec::scalar_t>::value ||
+                          !simd_kernel<Noise>::available ||
+                          has_simd_grid_slab<simd_kernel<Noise>>::value;
+  if constexpr (!kSlabs) {
+    run_grid(n, ex.inner, g, out, grad);
+  } else {
+    const std::size_t slab = g.count() / g.size[D - 1];  // samples per slowest-axis index
+    parallel_parts(
+        g.count(), slab, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
+          float* o = out + b;
+          vec<float, D>* gr = grad ? grad + b : grad;
+          if constexpr (std::is_same<Inner, exec::simd_t>::value && simd_kernel<Noise>::available)
+            simd_kernel<Noise>::grid_slab(n, g, b / slab, (e - b) / slab, o, gr);
+          else
+            scalar_grid(n, g, b / slab, (e - b) / slab, o, gr);
+        });
   }
 }
 

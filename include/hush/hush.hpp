@@ -8,6 +8,7 @@
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
 #include "hush/core/footprint.hpp"
+#include "hush/core/frame.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/lattice.hpp"
 #include "hush/core/point_noise.hpp"
@@ -22,5 +23,8 @@
 #include "hush/gabor_kernel.hpp"
 #include "hush/perlin.hpp"
 #include "hush/exec.hpp"
+
+// Scene-driven noises (hush::frame: per-frame G-buffer views).
+#include "hush/coherent.hpp"
 
 #endif  // HUSH_HUSH_HPP

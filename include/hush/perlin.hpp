@@ -31,6 +31,7 @@
 #include <climits>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
@@ -38,6 +39,7 @@
 #include "hush/core/lattice.hpp"
 #include "hush/core/point_noise.hpp"
 #include "hush/core/vec.hpp"
+#include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
 
 namespace hush {
@@ -76,7 +78,10 @@ struct perlin_tables {
 };
 
 // Gradient index of a lattice hash: 2D takes the top 3 bits (uniform over 8);
-// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply.
+// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply. Both
+// read only bits 16 ... 31, so lattice_hash_high serves (core/hash.hpp).
+static_assert(constants::kPerlin2GradShift >= 16 && constants::kPerlin3IndexShift >= 16,
+              "the gradient index may read only the bits lattice_hash_high shares");
 HUSH_INLINE constexpr std::uint32_t perlin2_grad_index(std::uint32_t h) {
   return h >> constants::kPerlin2GradShift;
 }
@@ -132,98 +137,197 @@ class perlin : public point_noise<perlin<D>, D> {
     return eval<T, true>(p);
   }
 
+  // The samples of `g` with slowest-axis index (j in 2D, k in 3D) in
+  // [first, first + count), in C order, into out (and gradients into grad
+  // unless null); out starts at the slab's first sample. exec::scalar calls
+  // this for grids (exec.hpp). Each value and gradient is what
+  // value<float> / value_and_gradient<float> give at g.position(...), bit for
+  // bit (unless the compiler contracts multiply-adds, which HUSH_STRICT_FP
+  // forbids), but the x axis is split once per column, y and z once per row,
+  // and a row hashes its lattice points once per cell, not once per sample.
+  void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+                   vec<float, D>* grad) const {
+    if (grad)
+      grid_rows<true>(g, first, count, out, grad);
+    else
+      grid_rows<false>(g, first, count, out, nullptr);
+  }
+
  private:
+  static constexpr int kCorners = 1 << D;
+
+  // One axis of a lookup as the blend needs it: the fraction f, f - 1, the
+  // fade s(f) and, for gradients, its derivative.
+  template <class T>
+  struct axis {
+    T f, f1, s, ds;
+  };
+  template <class T, bool WithGradient>
+  static axis<T> make_axis(T f) {
+    return {f, f - T(1), detail::fade(f), WithGradient ? detail::fade_derivative(f) : T(0)};
+  }
+  // Per corner n = a + 2b + 4c (offset (a, b, c) from the cell's origin):
+  // the gradient g and the dot product d = g . (x - corner).
+  template <class T>
+  struct corners {
+    T d[kCorners], gx[kCorners], gy[kCorners], gz[kCorners];
+  };
+
+  // Corner n's gradient from the top half of its lattice hash, and the part
+  // of its dot product that does not depend on x:
+  //   2D: k = gy f_y;   3D: k = gy f_y + gz f_z,
+  // so that d = gx f_x + k. In 3D every product is exact (components 0 or
+  // +-1): d is the single rounding of +-f_p +- f_q however it is summed.
+  template <class T>
+  static void corner_gradient(std::uint32_t h, T fy, T fz, corners<T>& c, int n, T& k) {
+    using tab = detail::perlin_tables<T>;
+    if constexpr (D == 2) {
+      (void)fz;
+      const std::uint32_t i = detail::perlin2_grad_index(h);
+      c.gx[n] = tab::g2x[i];
+      c.gy[n] = tab::g2y[i];
+      k = c.gy[n] * fy;
+    } else {
+      const std::uint32_t i = detail::perlin3_grad_index(h);
+      c.gx[n] = tab::g3x[i];
+      c.gy[n] = tab::g3y[i];
+      c.gz[n] = tab::g3z[i];
+      k = c.gy[n] * fy + c.gz[n] * fz;
+    }
+  }
+
   template <class T, bool WithGradient>
   value_gradient<T, D> eval(const vec<double, D>& p) const {
-    lattice_coord<T> c[D];
+    lattice_coord<T> lc[D];
     for (int a = 0; a < D; ++a)
-      c[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
-    if constexpr (D == 2)
-      return eval2<T, WithGradient>(c[0], c[1]);
-    else
-      return eval3<T, WithGradient>(c[0], c[1], c[2]);
-  }
-
-  template <class T, bool WithGradient>
-  value_gradient<T, 2> eval2(const lattice_coord<T>& cx, const lattice_coord<T>& cy) const {
-    using tab = detail::perlin_tables<T>;
-    const T fx = cx.f, fy = cy.f, fx1 = fx - T(1), fy1 = fy - T(1);
-    const std::uint32_t g00 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i0));
-    const std::uint32_t g10 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i0));
-    const std::uint32_t g01 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i1));
-    const std::uint32_t g11 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i1));
-    // Corner contributions g . (x - corner).
-    const T d00 = tab::g2x[g00] * fx + tab::g2y[g00] * fy;
-    const T d10 = tab::g2x[g10] * fx1 + tab::g2y[g10] * fy;
-    const T d01 = tab::g2x[g01] * fx + tab::g2y[g01] * fy1;
-    const T d11 = tab::g2x[g11] * fx1 + tab::g2y[g11] * fy1;
-    const T u = detail::fade(fx), v = detail::fade(fy);
-    const T x0 = detail::lerp(d00, d10, u), x1 = detail::lerp(d01, d11, u);
-    constexpr T kScale = T(detail::constants::kPerlin2Scale);
-    value_gradient<T, 2> r{kScale * detail::lerp(x0, x1, v), {}};
-    if constexpr (WithGradient) {
-      // d/dx: interpolated gradients plus the fade's derivative times the
-      // difference of the contributions it blends (product rule).
-      const T du = detail::fade_derivative(fx), dv = detail::fade_derivative(fy);
-      const T gx = detail::lerp(detail::lerp(tab::g2x[g00], tab::g2x[g10], u),
-                                detail::lerp(tab::g2x[g01], tab::g2x[g11], u), v) +
-                   du * detail::lerp(d10 - d00, d11 - d01, v);
-      const T gy = detail::lerp(detail::lerp(tab::g2y[g00], tab::g2y[g10], u),
-                                detail::lerp(tab::g2y[g01], tab::g2y[g11], u), v) +
-                   dv * (x1 - x0);
-      r.gradient = {kScale * gx, kScale * gy};
-    }
-    return r;
-  }
-
-  template <class T, bool WithGradient>
-  value_gradient<T, 3> eval3(const lattice_coord<T>& cx, const lattice_coord<T>& cy,
-                             const lattice_coord<T>& cz) const {
-    using tab = detail::perlin_tables<T>;
-    const T f[2][3] = {{cx.f, cy.f, cz.f}, {cx.f - T(1), cy.f - T(1), cz.f - T(1)}};
-    const std::uint32_t ix[2] = {cx.i0, cx.i1}, iy[2] = {cy.i0, cy.i1}, iz[2] = {cz.i0, cz.i1};
-    // Corner n = a + 2b + 4c is at offset (a, b, c) from the cell's origin.
-    T d[8];
-    std::uint32_t g[8];
-    for (int n = 0; n < 8; ++n) {
+      lc[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
+    axis<T> ax[3]{};
+    for (int a = 0; a < D; ++a) ax[a] = make_axis<T, WithGradient>(lc[a].f);
+    corners<T> c;
+    for (int n = 0; n < kCorners; ++n) {
       const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
-      g[n] = detail::perlin3_grad_index(lattice_hash(key_, ix[a], iy[b], iz[cc]));
-      d[n] = tab::g3x[g[n]] * f[a][0] + tab::g3y[g[n]] * f[b][1] + tab::g3z[g[n]] * f[cc][2];
+      const std::uint32_t i = a ? lc[0].i1 : lc[0].i0, j = b ? lc[1].i1 : lc[1].i0;
+      std::uint32_t h;
+      if constexpr (D == 2)
+        h = lattice_hash_high(key_, i, j);
+      else
+        h = lattice_hash_high(key_, i, j, cc ? lc[2].i1 : lc[2].i0);
+      T k;
+      corner_gradient<T>(h, b ? ax[1].f1 : ax[1].f, cc ? ax[2].f1 : ax[2].f, c, n, k);
+      c.d[n] = c.gx[n] * (a ? ax[0].f1 : ax[0].f) + k;
     }
-    const T u = detail::fade(f[0][0]), v = detail::fade(f[0][1]), w = detail::fade(f[0][2]);
-    const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
-    const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
-    const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
-    constexpr T kScale = T(detail::constants::kPerlin3Scale);
-    value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w), {}};
-    if constexpr (WithGradient) {
-      // Trilinear blend of a per-corner quantity q[n] with the fade weights.
-      auto blend = [&](const T* q) {
-        return detail::lerp(
-            detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
-            detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
-      };
-      T gxs[8], gys[8], gzs[8], ddx[4], ddy[4];
-      for (int n = 0; n < 8; ++n) {
-        gxs[n] = tab::g3x[g[n]];
-        gys[n] = tab::g3y[g[n]];
-        gzs[n] = tab::g3z[g[n]];
+    return blend<T, WithGradient>(c, ax);
+  }
+
+  // The fade-weighted blend of the corners' dot products, and its analytic
+  // derivative (product rule on the fade weights).
+  template <class T, bool WithGradient>
+  static value_gradient<T, D> blend(const corners<T>& c, const axis<T>* ax) {
+    const T* d = c.d;
+    const T u = ax[0].s, v = ax[1].s;
+    if constexpr (D == 2) {
+      const T x0 = detail::lerp(d[0], d[1], u), x1 = detail::lerp(d[2], d[3], u);
+      constexpr T kScale = T(detail::constants::kPerlin2Scale);
+      value_gradient<T, 2> r{kScale * detail::lerp(x0, x1, v), {}};
+      if constexpr (WithGradient) {
+        // d/dx: interpolated gradients plus the fade's derivative times the
+        // difference of the contributions it blends.
+        const T gx =
+            detail::lerp(detail::lerp(c.gx[0], c.gx[1], u), detail::lerp(c.gx[2], c.gx[3], u), v) +
+            ax[0].ds * detail::lerp(d[1] - d[0], d[3] - d[2], v);
+        const T gy =
+            detail::lerp(detail::lerp(c.gy[0], c.gy[1], u), detail::lerp(c.gy[2], c.gy[3], u), v) +
+            ax[1].ds * (x1 - x0);
+        r.gradient = {kScale * gx, kScale * gy};
       }
-      for (int m = 0; m < 4; ++m) ddx[m] = d[2 * m + 1] - d[2 * m];  // along x, per (b, c)
-      const T du = detail::fade_derivative(f[0][0]);
-      const T dv = detail::fade_derivative(f[0][1]);
-      const T dw = detail::fade_derivative(f[0][2]);
-      // d/dx of lerp over x: du * (d[a=1] - d[a=0]), then blended in y and z.
-      const T ex =
-          detail::lerp(detail::lerp(ddx[0], ddx[1], v), detail::lerp(ddx[2], ddx[3], v), w);
-      ddy[0] = x10 - x00;
-      ddy[1] = x11 - x01;
-      const T ey = detail::lerp(ddy[0], ddy[1], w);
-      const T ez = y1 - y0;
-      r.gradient = {kScale * (blend(gxs) + du * ex), kScale * (blend(gys) + dv * ey),
-                    kScale * (blend(gzs) + dw * ez)};
+      return r;
+    } else {
+      const T w = ax[2].s;
+      const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
+      const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
+      const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
+      constexpr T kScale = T(detail::constants::kPerlin3Scale);
+      // "+ 0" turns a zero result into +0: kernels that form the same dot
+      // products another way (sign flips instead of products) can differ only
+      // in the sign of zeros, and this makes every backend agree bit for bit.
+      value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w) + T(0), {}};
+      if constexpr (WithGradient) {
+        // Trilinear blend of a per-corner quantity q[n] with the fade weights.
+        auto trilinear = [&](const T* q) {
+          return detail::lerp(
+              detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
+              detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
+        };
+        // d/dx of the lerp over x: ds_x * (d[a=1] - d[a=0]), blended in y and z.
+        const T ex = detail::lerp(detail::lerp(d[1] - d[0], d[3] - d[2], v),
+                                  detail::lerp(d[5] - d[4], d[7] - d[6], v), w);
+        const T ey = detail::lerp(x10 - x00, x11 - x01, w);
+        const T ez = y1 - y0;
+        r.gradient = {kScale * (trilinear(c.gx) + ax[0].ds * ex) + T(0),
+                      kScale * (trilinear(c.gy) + ax[1].ds * ey) + T(0),
+                      kScale * (trilinear(c.gz) + ax[2].ds * ez) + T(0)};
+      }
+      return r;
     }
-    return r;
+  }
+
+  // grid_values: the columns' splits are kept; a row walks them, taking new
+  // corner gradients (and their x-free parts k) where the cell changes.
+  template <bool WithGradient>
+  void grid_rows(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+                 vec<float, D>* grad) const {
+    using T = float;
+    const std::size_t nx = g.size[0];
+    std::vector<lattice_coord<T>> cells(nx);
+    std::vector<axis<T>> cols(nx);
+    for (std::size_t i = 0; i < nx; ++i) {
+      cells[i] = lattice_split<T>(g.origin[0] + g.step[0] * static_cast<double>(i),
+                                  static_cast<std::uint32_t>(prm_.period[0]));
+      cols[i] = make_axis<T, WithGradient>(cells[i].f);
+    }
+    auto split = [&](int a, std::size_t index) {
+      return lattice_split<T>(g.origin[a] + g.step[a] * static_cast<double>(index),
+                              static_cast<std::uint32_t>(prm_.period[a]));
+    };
+    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    std::size_t idx = 0;
+    axis<T> ax[3]{};
+    for (std::size_t kk = k0; kk < k1; ++kk) {
+      lattice_coord<T> cz{};
+      if constexpr (D == 3) {
+        cz = split(2, kk);
+        ax[2] = make_axis<T, WithGradient>(cz.f);
+      }
+      for (std::size_t j = j0; j < j1; ++j) {
+        const lattice_coord<T> cy = split(1, j);
+        ax[1] = make_axis<T, WithGradient>(cy.f);
+        // key ^ word_y ^ word_z per corner offset (b, c): lattice_hash_high's fold.
+        std::uint32_t kyz[4];
+        for (int m = 0; m < 4; ++m)
+          kyz[m] = key_ ^ lattice_word_y((m & 1) ? cy.i1 : cy.i0) ^
+                   (D == 3 ? lattice_word_z((m & 2) ? cz.i1 : cz.i0) : 0u);
+        corners<T> c{};
+        T k[kCorners]{};
+        for (std::size_t i = 0; i < nx; ++i, ++idx) {
+          const lattice_coord<T>& cx = cells[i];
+          if (i == 0 || cx.i0 != cells[i - 1].i0) {
+            for (int n = 0; n < kCorners; ++n) {
+              const std::uint32_t h =
+                  hash32_high(kyz[n >> 1] ^ lattice_word_x((n & 1) ? cx.i1 : cx.i0));
+              corner_gradient<T>(h, ((n >> 1) & 1) ? ax[1].f1 : ax[1].f,
+                                 (n >> 2) ? ax[2].f1 : ax[2].f, c, n, k[n]);
+            }
+          }
+          ax[0] = cols[i];
+          for (int n = 0; n < kCorners; ++n)
+            c.d[n] = c.gx[n] * ((n & 1) ? ax[0].f1 : ax[0].f) + k[n];
+          const value_gradient<T, D> r = blend<T, WithGradient>(c, ax);
+          out[idx] = r.value;
+          if constexpr (WithGradient) grad[idx] = r.gradient;
+        }
+      }
+    }
   }
 
   params prm_;

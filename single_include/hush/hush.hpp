@@ -426,6 +426,40 @@ constexpr double kHalfLog2Pi = 0.91893853320467274178;
 constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
 constexpr int kLogFactorialTable = 20;
 
+// ---- Coherent noise (Kass & Pesare 2011, "Coherent Noise for Non-Photorealistic
+// Rendering"; include/hush/coherent.hpp, docs/coherent.md).
+// White noise: w = kCoherentWhiteScale * (2 (h >> kCoherentWhiteShift) + 1 - 2^24) for a
+// 32-bit hash h: the odd multiples of 2^-24 in (-1, 1), times sqrt(3); mean exactly 0,
+// variance 1 - 2^-48 (a discrete uniform over 2^24 values), never denormal.
+constexpr unsigned kCoherentWhiteShift = 8;
+constexpr double kCoherentWhiteScale = 1.7320508075688772935 * 0x1p-24;  // sqrt(3) * 2^-24
+constexpr double kCoherentWhiteCentre = 16777215.0;                      // 2^24 - 1
+// Pixel hash of a field: hash32(hash32(frame_key, y) ^ x * kCoherentPixelPrime). The odd
+// multiplier (the 32-bit xxHash prime 4) scatters the columns, so two rows' keys can never
+// line up a run of pixels (a plain xor of x would repeat shifted row segments).
+constexpr unsigned kCoherentPixelPrime = 0x27D4EB2FU;
+// Fields per channel, each with its own stream: the input w, the refill fields of the
+// stationary filter (x and y; separate ones for the backward pass of the symmetric filter),
+// and the band-pass input's lattice offsets.
+constexpr unsigned kCoherentFieldInput = 0;
+constexpr unsigned kCoherentFieldRefillX = 1;
+constexpr unsigned kCoherentFieldRefillY = 2;
+constexpr unsigned kCoherentFieldBackRefillX = 3;
+constexpr unsigned kCoherentFieldBackRefillY = 4;
+constexpr unsigned kCoherentFields = 5;
+// Parameter defaults and limits. alpha = 0.98 is the paper's (sec. 4). epsilon is relative:
+// the previous depth must lie within epsilon * e of the expected depth e (2% accepts bilinear
+// interpolation of depth across a pixel of a plane tilted up to ~60 degrees and rejects a
+// surface 2% farther; the same tolerance as the coherence metrics, docs/coherence.md).
+constexpr double kCoherentDefaultAlpha = 0.98;
+constexpr double kCoherentDefaultEpsilon = 0.02;
+constexpr double kCoherentDefaultBandpassPixels = 4.0;  // band-pass input: Perlin cell, pixels
+constexpr double kCoherentMaxBandpassPixels = 1024.0;
+constexpr double kCoherentMaxSmoothing = 2.0;     // output Gaussian sigma, pixels
+constexpr double kCoherentSmoothingRadius = 3.0;  // kernel radius in sigmas
+constexpr int kCoherentMaxChannels = 4;
+constexpr unsigned kCoherentMaxSide = 16384;  // frame side limit (keeps pixel indices in int32)
+
 // ---- Poisson counts by table (core/poisson_table.hpp): thresholds of the CDF,
 // built once per mean on the CPU, compared with one uniform word per draw.
 // The mean is capped so that a table stays small (about mean + 7 sqrt(mean)
@@ -692,6 +726,255 @@ class footprint {
 
 #endif  // HUSH_CORE_FOOTPRINT_HPP
 // ---- end hush/core/footprint.hpp
+// ---- begin hush/core/frame.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::frame: what a renderer already has for one frame, as views of its
+// G-buffer channels, for the scene-driven noises (coherent noise, Kass &
+// Pesare 2011; NPR Gabor noise, Benard et al. 2010). No scene graph, camera or
+// file format: pointers to pixels the caller owns, valid for the call.
+//
+// Conventions (the same as examples/scene/gbuffer.hpp, which produces them):
+//  - width x height pixels, row y at data + y * stride (elements), row 0 at
+//    the TOP of the image; pixel (x, y) has its centre at (x + 0.5, y + 0.5)
+//    in screen pixels, x right, y down.
+//  - depth: linear view depth (distance from the camera plane along the view
+//    axis), > 0 where a surface is seen. +inf (background), NaN, 0 or
+//    negative values mean "no usable surface here": noises treat the pixel as
+//    disoccluded (coherent noise gives it fresh noise).
+//  - velocity (backward 3D velocity): (dx, dy) in pixels per frame and dz in
+//    depth units per frame, such that the surface point seen at pixel centre p
+//    in this frame was at p - (dx, dy) with depth depth - dz in the previous
+//    frame. NaN or +-Inf in any component: no previous position (disoccluded).
+//  - forward_velocity: the same towards the NEXT frame: the point seen at p
+//    is at p + (dx, dy) with depth depth + dz in frame i + 1 (what a backward
+//    pass over a sequence needs; examples/scene writes both).
+//  - object_id: an id per pixel (examples/scene: 0 = background); two pixels
+//    show the same object when their ids are equal.
+//  - triangle_id: the triangle index within the object (NPR Gabor noise).
+// NPR Gabor noise will add its triangle list beside these views.
+#ifndef HUSH_CORE_FRAME_HPP
+#define HUSH_CORE_FRAME_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+// ---- begin hush/core/views.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Non-owning views for batch evaluation and per-pixel data:
+//  - span<T>:        contiguous array (pointer + count); C++17 has no std::span.
+//  - grid<N>:        a uniform sample grid: origin, step per axis, count per axis.
+//                    Sample (i, j, k) sits at origin + step * (i, j, k); its index
+//                    in C order is (k * ny + j) * nx + i (i along x, fastest).
+//  - image_view<T>:  a 2D pixel array with a row stride, e.g. one G-buffer channel.
+#ifndef HUSH_CORE_VIEWS_HPP
+#define HUSH_CORE_VIEWS_HPP
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+
+namespace hush {
+
+template <class T>
+class span {
+ public:
+  using element_type = T;
+  using value_type = std::remove_cv_t<T>;
+  constexpr span() = default;
+  constexpr span(T* data, std::size_t size) : data_(data), size_(size) {}
+  template <std::size_t N>
+  constexpr span(T (&a)[N]) : data_(a), size_(N) {}  // NOLINT: implicit like std::span
+  template <class U, std::size_t N,
+            class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
+  constexpr span(std::array<U, N>& a) : data_(a.data()), size_(N) {}  // NOLINT
+  template <class U, std::size_t N,
+            class = std::enable_if_t<std::is_convertible<const U (*)[], T (*)[]>::value>>
+  constexpr span(const std::array<U, N>& a) : data_(a.data()), size_(N) {}  // NOLINT
+  template <class U, class A,
+            class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
+  span(std::vector<U, A>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT
+  template <class U, class A,
+            class = std::enable_if_t<std::is_convertible<const U (*)[], T (*)[]>::value>>
+  span(const std::vector<U, A>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT
+  // span<U> -> span<const U>
+  template <class U, class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
+  constexpr span(const span<U>& s) : data_(s.data()), size_(s.size()) {}  // NOLINT
+
+  constexpr T* data() const { return data_; }
+  constexpr std::size_t size() const { return size_; }
+  constexpr bool empty() const { return size_ == 0; }
+  constexpr T& operator[](std::size_t i) const { return data_[i]; }
+  constexpr T* begin() const { return data_; }
+  constexpr T* end() const { return data_ + size_; }
+  constexpr span subspan(std::size_t offset, std::size_t count) const {
+    return span(data_ + offset, count);
+  }
+
+ private:
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+// A uniform grid of N-dimensional sample positions. Origin and step are double
+// so that grids far from the origin keep their spacing exact; noises split each
+// position into lattice cell and fraction in double before going to float.
+template <int N>
+struct grid {
+  vec<double, N> origin;              // position of sample (0, 0[, 0])
+  vec<double, N> step;                // spacing along each axis (may be negative, not zero)
+  std::array<std::size_t, N> size{};  // samples along each axis (nx, ny[, nz])
+
+  // Number of samples; 0 when any axis is empty.
+  std::size_t count() const {
+    std::size_t n = 1;
+    for (int a = 0; a < N; ++a) n *= size[a];
+    return n;
+  }
+  // Position of the sample with index (i, j[, k]).
+  vec<double, N> position(const std::array<std::size_t, N>& ijk) const {
+    vec<double, N> p;
+    for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
+    return p;
+  }
+  // Throws hush::invalid_argument naming the first bad field: origin and step must be
+  // finite, step non-zero, and the total count must fit in the address space.
+  void validate(const char* where) const {
+    for (int a = 0; a < N; ++a) {
+      if (!std::isfinite(origin[a]))
+        detail::throw_out_of_range(where, "grid.origin[" + std::to_string(a) + "]", origin[a],
+                                   "a finite number");
+      if (!std::isfinite(step[a]) || step[a] == 0.0)
+        detail::throw_out_of_range(where, "grid.step[" + std::to_string(a) + "]", step[a],
+                                   "a finite non-zero number");
+    }
+    std::size_t n = 1;
+    for (int a = 0; a < N; ++a) {
+      if (size[a] != 0 && n > SIZE_MAX / size[a])
+        detail::throw_out_of_range(where, "grid.size[" + std::to_string(a) + "]", size[a],
+                                   "a count whose product with the other axes fits in size_t");
+      n *= size[a];
+    }
+  }
+};
+
+// A 2D array of pixels with a row stride in elements (stride >= width).
+template <class T>
+struct image_view {
+  T* data = nullptr;
+  std::size_t width = 0;
+  std::size_t height = 0;
+  std::size_t stride = 0;  // elements between the starts of consecutive rows
+
+  image_view() = default;
+  image_view(T* d, std::size_t w, std::size_t h) : data(d), width(w), height(h), stride(w) {}
+  image_view(T* d, std::size_t w, std::size_t h, std::size_t s)
+      : data(d), width(w), height(h), stride(s) {
+    if (s < w) detail::throw_out_of_range("hush::image_view", "stride", s, "stride >= width");
+  }
+  T& operator()(std::size_t x, std::size_t y) const { return data[y * stride + x]; }
+  T* row(std::size_t y) const { return data + y * stride; }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_VIEWS_HPP
+// ---- end hush/core/views.hpp
+
+namespace hush {
+
+// Which views of a frame a noise reads; combine with |.
+enum class frame_view : unsigned {
+  none = 0,
+  depth = 1u << 0,
+  velocity = 1u << 1,
+  forward_velocity = 1u << 2,
+  object_id = 1u << 3,
+  triangle_id = 1u << 4,
+};
+constexpr frame_view operator|(frame_view a, frame_view b) {
+  return static_cast<frame_view>(static_cast<unsigned>(a) | static_cast<unsigned>(b));
+}
+constexpr bool has_view(frame_view set, frame_view v) {
+  return (static_cast<unsigned>(set) & static_cast<unsigned>(v)) != 0;
+}
+
+struct frame {
+  image_view<const float> depth;                // linear view depth
+  image_view<const vec3> velocity;              // (dx, dy, dz) from the previous frame
+  image_view<const vec3> forward_velocity;      // (dx, dy, dz) to the next frame
+  image_view<const std::uint32_t> object_id;    // optional: same id = same object
+  image_view<const std::uint32_t> triangle_id;  // optional
+
+  // The frame's size: the depth view's (every present view must match it).
+  std::size_t width() const { return depth.width; }
+  std::size_t height() const { return depth.height; }
+  std::size_t pixels() const { return depth.width * depth.height; }
+
+  // Which views are present (data non-null).
+  frame_view present() const {
+    frame_view p = frame_view::none;
+    if (depth.data) p = p | frame_view::depth;
+    if (velocity.data) p = p | frame_view::velocity;
+    if (forward_velocity.data) p = p | frame_view::forward_velocity;
+    if (object_id.data) p = p | frame_view::object_id;
+    if (triangle_id.data) p = p | frame_view::triangle_id;
+    return p;
+  }
+
+  // Throws hush::invalid_argument naming `where` and the view when a view in
+  // `required` is missing, when the depth view is empty (0 pixels) or larger
+  // than max_side pixels on a side, or when a present view's size differs from
+  // the depth view's or its stride is below its width. Never reads a pixel.
+  void validate(const char* where, frame_view required, std::size_t max_side) const {
+    if (!depth.data) missing(where, "depth");
+    if (depth.width == 0 || depth.height == 0 || depth.width > max_side || depth.height > max_side)
+      detail::throw_out_of_range(
+          where, "frame.depth size", size_text(depth),
+          ("1 ... " + std::to_string(max_side) + " pixels per side").c_str());
+    check(where, "depth", depth, frame_view::depth, required);
+    check(where, "velocity", velocity, frame_view::velocity, required);
+    check(where, "forward_velocity", forward_velocity, frame_view::forward_velocity, required);
+    check(where, "object_id", object_id, frame_view::object_id, required);
+    check(where, "triangle_id", triangle_id, frame_view::triangle_id, required);
+  }
+
+ private:
+  template <class T>
+  static std::string size_text(const image_view<T>& v) {
+    return std::to_string(v.width) + "x" + std::to_string(v.height);
+  }
+  [[noreturn]] static void missing(const char* where, const char* name) {
+    throw hush::invalid_argument(std::string(where) + ": frame." + name +
+                                 " is required but missing (null data)");
+  }
+  template <class T>
+  void check(const char* where, const char* name, const image_view<T>& v, frame_view which,
+             frame_view required) const {
+    if (!v.data) {
+      if (has_view(required, which)) missing(where, name);
+      return;
+    }
+    if (v.width != depth.width || v.height != depth.height)
+      detail::throw_out_of_range(where, std::string("frame.") + name + " size", size_text(v),
+                                 ("the depth view's size, " + size_text(depth)).c_str());
+    if (v.stride < v.width)
+      detail::throw_out_of_range(where, std::string("frame.") + name + ".stride", v.stride,
+                                 ("at least its width, " + std::to_string(v.width)).c_str());
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_FRAME_HPP
+// ---- end hush/core/frame.hpp
 // ---- begin hush/core/hash.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -712,15 +995,23 @@ namespace hush {
 // bit flips each output bit with probability 1/2, to within 7e-4 at 2^24
 // samples (tests/core/hash_test.cpp asserts it at the 2^16-sample noise
 // floor). Wellons' lowbias32; constants in detail/constants.hpp.
-HUSH_INLINE constexpr std::uint32_t hash32(std::uint32_t x) {
+// hash32_high is hash32 without its last step, x ^= x >> 16, which changes
+// only bits 0 ... 15: bits 16 ... 31 of the two are equal. For code that
+// reads only the top half (Perlin's gradient index), two operations fewer.
+HUSH_INLINE constexpr std::uint32_t hash32_high(std::uint32_t x) {
   namespace c = detail::constants;
   x ^= x >> c::kHashShift1;
   x *= c::kHashMul1;
   x ^= x >> c::kHashShift2;
   x *= c::kHashMul2;
-  x ^= x >> c::kHashShift3;
   return x;
 }
+HUSH_INLINE constexpr std::uint32_t hash32(std::uint32_t x) {
+  x = hash32_high(x);
+  return x ^ (x >> detail::constants::kHashShift3);
+}
+static_assert(detail::constants::kHashShift3 >= 16,
+              "hash32_high: the last step must spare bits 16+");
 
 // hash32(a, b): hashes an ordered pair; for a fixed a it is a bijection in b
 // and vice versa. Used to derive independent seeds (seed, stream) -> key.
@@ -765,6 +1056,15 @@ HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_
 HUSH_INLINE constexpr std::uint32_t lattice_hash(std::uint32_t key, std::uint32_t i,
                                                  std::uint32_t j, std::uint32_t k) {
   return hash32(key ^ lattice_word_x(i) ^ lattice_word_y(j) ^ lattice_word_z(k));
+}
+// lattice_hash_high: lattice_hash in bits 16 ... 31 (hash32_high of the same word).
+HUSH_INLINE constexpr std::uint32_t lattice_hash_high(std::uint32_t key, std::uint32_t i,
+                                                      std::uint32_t j) {
+  return hash32_high(key ^ lattice_word_x(i) ^ lattice_word_y(j));
+}
+HUSH_INLINE constexpr std::uint32_t lattice_hash_high(std::uint32_t key, std::uint32_t i,
+                                                      std::uint32_t j, std::uint32_t k) {
+  return hash32_high(key ^ lattice_word_x(i) ^ lattice_word_y(j) ^ lattice_word_z(k));
 }
 
 }  // namespace hush
@@ -816,18 +1116,37 @@ constexpr T one_minus_ulp() {
   return T(1) - std::numeric_limits<T>::epsilon() / T(2);
 }
 
-// floor(x) of a finite double modulo m (m in 1 ... 2^32), in [0, m).
+// Integral doubles strictly inside (-2^63, 2^63) convert to int64 exactly.
+constexpr double kInt64Limit = 9223372036854775808.0;  // 2^63
+// From 2^52 on every double is an integer.
+constexpr double kDoubleIntegers = 4503599627370496.0;  // 2^52
+
+// c modulo m (m in 1 ... 2^32), in [0, m).
+HUSH_INLINE std::uint64_t floor_mod(std::int64_t c, std::uint64_t m) {
+  const std::int64_t r = c % static_cast<std::int64_t>(m);
+  return static_cast<std::uint64_t>(r < 0 ? r + static_cast<std::int64_t>(m) : r);
+}
+// floor(x) of a finite double, already integral, modulo m, in [0, m).
 // |fl| < 2^63 takes the integer path; beyond, std::fmod is exact.
 HUSH_INLINE std::uint64_t floor_mod(double fl, std::uint64_t m) {
-  constexpr double kInt64Limit = 9223372036854775808.0;  // 2^63
-  if (fl > -kInt64Limit && fl < kInt64Limit) {
-    const std::int64_t i = static_cast<std::int64_t>(fl);
-    const std::int64_t r = i % static_cast<std::int64_t>(m);
-    return static_cast<std::uint64_t>(r < 0 ? r + static_cast<std::int64_t>(m) : r);
-  }
+  if (fl > -kInt64Limit && fl < kInt64Limit) return floor_mod(static_cast<std::int64_t>(fl), m);
   double r = std::fmod(fl, static_cast<double>(m));  // exact; sign of fl
   if (r < 0) r += static_cast<double>(m);            // exact: |r| < m <= 2^32
   return static_cast<std::uint64_t>(r);
+}
+
+}  // namespace detail
+
+namespace detail {
+
+// lattice_split for what the fast path leaves: NaN, +-Inf, and |x| >= 2^52,
+// where every double is an integer (cell x, fraction 0).
+template <class T>
+lattice_coord<T> lattice_split_large(double x, std::uint32_t period) {
+  if (!std::isfinite(x)) return {0u, period == 1u ? 0u : 1u, std::numeric_limits<T>::quiet_NaN()};
+  constexpr std::uint64_t kWrap = std::uint64_t(1) << 32;
+  const auto i0 = static_cast<std::uint32_t>(floor_mod(x, period == 0 ? kWrap : period));
+  return {i0, period != 0 && i0 + 1u == period ? 0u : i0 + 1u, T(0)};
 }
 
 }  // namespace detail
@@ -837,17 +1156,24 @@ HUSH_INLINE std::uint64_t floor_mod(double fl, std::uint64_t m) {
 // period = p in 1 ... 2^32 - 1: cells modulo p, so the noise repeats every p units.
 template <class T>
 HUSH_INLINE lattice_coord<T> lattice_split(double x, std::uint32_t period = 0) {
-  if (!std::isfinite(x)) return {0u, period == 1u ? 0u : 1u, std::numeric_limits<T>::quiet_NaN()};
-  const double fl = std::floor(x);
-  const double fd = x - fl;  // exact except for tiny negative x, where it rounds to 1
+  // One compare sends NaN, Inf and huge x to the slow path.
+  if (!(std::fabs(x) < detail::kDoubleIntegers)) return detail::lattice_split_large<T>(x, period);
+  // floor(x) and the cell from one conversion: below 2^52 truncation is
+  // exact, and a non-integral negative x truncates one cell too high.
+  std::int64_t cell = static_cast<std::int64_t>(x);
+  cell -= static_cast<double>(cell) > x;
+  const double fl = static_cast<double>(cell);
+  // Exact except for tiny negative x, where it rounds to 1; "+ 0" makes the
+  // fraction of x = -0 +0, as x - std::floor(x) is.
+  const double fd = (x - fl) + 0.0;
   T f = static_cast<T>(fd);
   if (f >= T(1)) f = detail::one_minus_ulp<T>();
-  constexpr std::uint64_t kWrap = std::uint64_t(1) << 32;
   if (period == 0) {
-    const auto i0 = static_cast<std::uint32_t>(detail::floor_mod(fl, kWrap));
+    // Modulo 2^32 is the low word of the two's complement cell: no division.
+    const auto i0 = static_cast<std::uint32_t>(cell);
     return {i0, i0 + 1u, f};  // unsigned: wraps at 2^32 by definition
   }
-  const auto i0 = static_cast<std::uint32_t>(detail::floor_mod(fl, period));
+  const auto i0 = static_cast<std::uint32_t>(detail::floor_mod(cell, period));
   return {i0, i0 + 1u == period ? 0u : i0 + 1u, f};
 }
 
@@ -1207,133 +1533,6 @@ class poisson_table {
 #include <string>
 #include <type_traits>
 
-// ---- begin hush/core/views.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Non-owning views for batch evaluation and per-pixel data:
-//  - span<T>:        contiguous array (pointer + count); C++17 has no std::span.
-//  - grid<N>:        a uniform sample grid: origin, step per axis, count per axis.
-//                    Sample (i, j, k) sits at origin + step * (i, j, k); its index
-//                    in C order is (k * ny + j) * nx + i (i along x, fastest).
-//  - image_view<T>:  a 2D pixel array with a row stride, e.g. one G-buffer channel.
-#ifndef HUSH_CORE_VIEWS_HPP
-#define HUSH_CORE_VIEWS_HPP
-
-#include <array>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <string>
-#include <type_traits>
-#include <vector>
-
-
-namespace hush {
-
-template <class T>
-class span {
- public:
-  using element_type = T;
-  using value_type = std::remove_cv_t<T>;
-  constexpr span() = default;
-  constexpr span(T* data, std::size_t size) : data_(data), size_(size) {}
-  template <std::size_t N>
-  constexpr span(T (&a)[N]) : data_(a), size_(N) {}  // NOLINT: implicit like std::span
-  template <class U, std::size_t N,
-            class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
-  constexpr span(std::array<U, N>& a) : data_(a.data()), size_(N) {}  // NOLINT
-  template <class U, std::size_t N,
-            class = std::enable_if_t<std::is_convertible<const U (*)[], T (*)[]>::value>>
-  constexpr span(const std::array<U, N>& a) : data_(a.data()), size_(N) {}  // NOLINT
-  template <class U, class A,
-            class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
-  span(std::vector<U, A>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT
-  template <class U, class A,
-            class = std::enable_if_t<std::is_convertible<const U (*)[], T (*)[]>::value>>
-  span(const std::vector<U, A>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT
-  // span<U> -> span<const U>
-  template <class U, class = std::enable_if_t<std::is_convertible<U (*)[], T (*)[]>::value>>
-  constexpr span(const span<U>& s) : data_(s.data()), size_(s.size()) {}  // NOLINT
-
-  constexpr T* data() const { return data_; }
-  constexpr std::size_t size() const { return size_; }
-  constexpr bool empty() const { return size_ == 0; }
-  constexpr T& operator[](std::size_t i) const { return data_[i]; }
-  constexpr T* begin() const { return data_; }
-  constexpr T* end() const { return data_ + size_; }
-  constexpr span subspan(std::size_t offset, std::size_t count) const {
-    return span(data_ + offset, count);
-  }
-
- private:
-  T* data_ = nullptr;
-  std::size_t size_ = 0;
-};
-
-// A uniform grid of N-dimensional sample positions. Origin and step are double
-// so that grids far from the origin keep their spacing exact; noises split each
-// position into lattice cell and fraction in double before going to float.
-template <int N>
-struct grid {
-  vec<double, N> origin;              // position of sample (0, 0[, 0])
-  vec<double, N> step;                // spacing along each axis (may be negative, not zero)
-  std::array<std::size_t, N> size{};  // samples along each axis (nx, ny[, nz])
-
-  // Number of samples; 0 when any axis is empty.
-  std::size_t count() const {
-    std::size_t n = 1;
-    for (int a = 0; a < N; ++a) n *= size[a];
-    return n;
-  }
-  // Position of the sample with index (i, j[, k]).
-  vec<double, N> position(const std::array<std::size_t, N>& ijk) const {
-    vec<double, N> p;
-    for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
-    return p;
-  }
-  // Throws hush::invalid_argument naming the first bad field: origin and step must be
-  // finite, step non-zero, and the total count must fit in the address space.
-  void validate(const char* where) const {
-    for (int a = 0; a < N; ++a) {
-      if (!std::isfinite(origin[a]))
-        detail::throw_out_of_range(where, "grid.origin[" + std::to_string(a) + "]", origin[a],
-                                   "a finite number");
-      if (!std::isfinite(step[a]) || step[a] == 0.0)
-        detail::throw_out_of_range(where, "grid.step[" + std::to_string(a) + "]", step[a],
-                                   "a finite non-zero number");
-    }
-    std::size_t n = 1;
-    for (int a = 0; a < N; ++a) {
-      if (size[a] != 0 && n > SIZE_MAX / size[a])
-        detail::throw_out_of_range(where, "grid.size[" + std::to_string(a) + "]", size[a],
-                                   "a count whose product with the other axes fits in size_t");
-      n *= size[a];
-    }
-  }
-};
-
-// A 2D array of pixels with a row stride in elements (stride >= width).
-template <class T>
-struct image_view {
-  T* data = nullptr;
-  std::size_t width = 0;
-  std::size_t height = 0;
-  std::size_t stride = 0;  // elements between the starts of consecutive rows
-
-  image_view() = default;
-  image_view(T* d, std::size_t w, std::size_t h) : data(d), width(w), height(h), stride(w) {}
-  image_view(T* d, std::size_t w, std::size_t h, std::size_t s)
-      : data(d), width(w), height(h), stride(s) {
-    if (s < w) detail::throw_out_of_range("hush::image_view", "stride", s, "stride >= width");
-  }
-  T& operator()(std::size_t x, std::size_t y) const { return data[y * stride + x]; }
-  T* row(std::size_t y) const { return data + y * stride; }
-};
-
-}  // namespace hush
-
-#endif  // HUSH_CORE_VIEWS_HPP
-// ---- end hush/core/views.hpp
 
 namespace hush {
 
@@ -3376,6 +3575,7 @@ class gabor_spectrum {
 #include <climits>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 
 namespace hush {
@@ -3414,7 +3614,10 @@ struct perlin_tables {
 };
 
 // Gradient index of a lattice hash: 2D takes the top 3 bits (uniform over 8);
-// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply.
+// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply. Both
+// read only bits 16 ... 31, so lattice_hash_high serves (core/hash.hpp).
+static_assert(constants::kPerlin2GradShift >= 16 && constants::kPerlin3IndexShift >= 16,
+              "the gradient index may read only the bits lattice_hash_high shares");
 HUSH_INLINE constexpr std::uint32_t perlin2_grad_index(std::uint32_t h) {
   return h >> constants::kPerlin2GradShift;
 }
@@ -3470,98 +3673,197 @@ class perlin : public point_noise<perlin<D>, D> {
     return eval<T, true>(p);
   }
 
+  // The samples of `g` with slowest-axis index (j in 2D, k in 3D) in
+  // [first, first + count), in C order, into out (and gradients into grad
+  // unless null); out starts at the slab's first sample. exec::scalar calls
+  // this for grids (exec.hpp). Each value and gradient is what
+  // value<float> / value_and_gradient<float> give at g.position(...), bit for
+  // bit (unless the compiler contracts multiply-adds, which HUSH_STRICT_FP
+  // forbids), but the x axis is split once per column, y and z once per row,
+  // and a row hashes its lattice points once per cell, not once per sample.
+  void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+                   vec<float, D>* grad) const {
+    if (grad)
+      grid_rows<true>(g, first, count, out, grad);
+    else
+      grid_rows<false>(g, first, count, out, nullptr);
+  }
+
  private:
+  static constexpr int kCorners = 1 << D;
+
+  // One axis of a lookup as the blend needs it: the fraction f, f - 1, the
+  // fade s(f) and, for gradients, its derivative.
+  template <class T>
+  struct axis {
+    T f, f1, s, ds;
+  };
+  template <class T, bool WithGradient>
+  static axis<T> make_axis(T f) {
+    return {f, f - T(1), detail::fade(f), WithGradient ? detail::fade_derivative(f) : T(0)};
+  }
+  // Per corner n = a + 2b + 4c (offset (a, b, c) from the cell's origin):
+  // the gradient g and the dot product d = g . (x - corner).
+  template <class T>
+  struct corners {
+    T d[kCorners], gx[kCorners], gy[kCorners], gz[kCorners];
+  };
+
+  // Corner n's gradient from the top half of its lattice hash, and the part
+  // of its dot product that does not depend on x:
+  //   2D: k = gy f_y;   3D: k = gy f_y + gz f_z,
+  // so that d = gx f_x + k. In 3D every product is exact (components 0 or
+  // +-1): d is the single rounding of +-f_p +- f_q however it is summed.
+  template <class T>
+  static void corner_gradient(std::uint32_t h, T fy, T fz, corners<T>& c, int n, T& k) {
+    using tab = detail::perlin_tables<T>;
+    if constexpr (D == 2) {
+      (void)fz;
+      const std::uint32_t i = detail::perlin2_grad_index(h);
+      c.gx[n] = tab::g2x[i];
+      c.gy[n] = tab::g2y[i];
+      k = c.gy[n] * fy;
+    } else {
+      const std::uint32_t i = detail::perlin3_grad_index(h);
+      c.gx[n] = tab::g3x[i];
+      c.gy[n] = tab::g3y[i];
+      c.gz[n] = tab::g3z[i];
+      k = c.gy[n] * fy + c.gz[n] * fz;
+    }
+  }
+
   template <class T, bool WithGradient>
   value_gradient<T, D> eval(const vec<double, D>& p) const {
-    lattice_coord<T> c[D];
+    lattice_coord<T> lc[D];
     for (int a = 0; a < D; ++a)
-      c[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
-    if constexpr (D == 2)
-      return eval2<T, WithGradient>(c[0], c[1]);
-    else
-      return eval3<T, WithGradient>(c[0], c[1], c[2]);
-  }
-
-  template <class T, bool WithGradient>
-  value_gradient<T, 2> eval2(const lattice_coord<T>& cx, const lattice_coord<T>& cy) const {
-    using tab = detail::perlin_tables<T>;
-    const T fx = cx.f, fy = cy.f, fx1 = fx - T(1), fy1 = fy - T(1);
-    const std::uint32_t g00 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i0));
-    const std::uint32_t g10 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i0));
-    const std::uint32_t g01 = detail::perlin2_grad_index(lattice_hash(key_, cx.i0, cy.i1));
-    const std::uint32_t g11 = detail::perlin2_grad_index(lattice_hash(key_, cx.i1, cy.i1));
-    // Corner contributions g . (x - corner).
-    const T d00 = tab::g2x[g00] * fx + tab::g2y[g00] * fy;
-    const T d10 = tab::g2x[g10] * fx1 + tab::g2y[g10] * fy;
-    const T d01 = tab::g2x[g01] * fx + tab::g2y[g01] * fy1;
-    const T d11 = tab::g2x[g11] * fx1 + tab::g2y[g11] * fy1;
-    const T u = detail::fade(fx), v = detail::fade(fy);
-    const T x0 = detail::lerp(d00, d10, u), x1 = detail::lerp(d01, d11, u);
-    constexpr T kScale = T(detail::constants::kPerlin2Scale);
-    value_gradient<T, 2> r{kScale * detail::lerp(x0, x1, v), {}};
-    if constexpr (WithGradient) {
-      // d/dx: interpolated gradients plus the fade's derivative times the
-      // difference of the contributions it blends (product rule).
-      const T du = detail::fade_derivative(fx), dv = detail::fade_derivative(fy);
-      const T gx = detail::lerp(detail::lerp(tab::g2x[g00], tab::g2x[g10], u),
-                                detail::lerp(tab::g2x[g01], tab::g2x[g11], u), v) +
-                   du * detail::lerp(d10 - d00, d11 - d01, v);
-      const T gy = detail::lerp(detail::lerp(tab::g2y[g00], tab::g2y[g10], u),
-                                detail::lerp(tab::g2y[g01], tab::g2y[g11], u), v) +
-                   dv * (x1 - x0);
-      r.gradient = {kScale * gx, kScale * gy};
-    }
-    return r;
-  }
-
-  template <class T, bool WithGradient>
-  value_gradient<T, 3> eval3(const lattice_coord<T>& cx, const lattice_coord<T>& cy,
-                             const lattice_coord<T>& cz) const {
-    using tab = detail::perlin_tables<T>;
-    const T f[2][3] = {{cx.f, cy.f, cz.f}, {cx.f - T(1), cy.f - T(1), cz.f - T(1)}};
-    const std::uint32_t ix[2] = {cx.i0, cx.i1}, iy[2] = {cy.i0, cy.i1}, iz[2] = {cz.i0, cz.i1};
-    // Corner n = a + 2b + 4c is at offset (a, b, c) from the cell's origin.
-    T d[8];
-    std::uint32_t g[8];
-    for (int n = 0; n < 8; ++n) {
+      lc[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
+    axis<T> ax[3]{};
+    for (int a = 0; a < D; ++a) ax[a] = make_axis<T, WithGradient>(lc[a].f);
+    corners<T> c;
+    for (int n = 0; n < kCorners; ++n) {
       const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
-      g[n] = detail::perlin3_grad_index(lattice_hash(key_, ix[a], iy[b], iz[cc]));
-      d[n] = tab::g3x[g[n]] * f[a][0] + tab::g3y[g[n]] * f[b][1] + tab::g3z[g[n]] * f[cc][2];
+      const std::uint32_t i = a ? lc[0].i1 : lc[0].i0, j = b ? lc[1].i1 : lc[1].i0;
+      std::uint32_t h;
+      if constexpr (D == 2)
+        h = lattice_hash_high(key_, i, j);
+      else
+        h = lattice_hash_high(key_, i, j, cc ? lc[2].i1 : lc[2].i0);
+      T k;
+      corner_gradient<T>(h, b ? ax[1].f1 : ax[1].f, cc ? ax[2].f1 : ax[2].f, c, n, k);
+      c.d[n] = c.gx[n] * (a ? ax[0].f1 : ax[0].f) + k;
     }
-    const T u = detail::fade(f[0][0]), v = detail::fade(f[0][1]), w = detail::fade(f[0][2]);
-    const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
-    const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
-    const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
-    constexpr T kScale = T(detail::constants::kPerlin3Scale);
-    value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w), {}};
-    if constexpr (WithGradient) {
-      // Trilinear blend of a per-corner quantity q[n] with the fade weights.
-      auto blend = [&](const T* q) {
-        return detail::lerp(
-            detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
-            detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
-      };
-      T gxs[8], gys[8], gzs[8], ddx[4], ddy[4];
-      for (int n = 0; n < 8; ++n) {
-        gxs[n] = tab::g3x[g[n]];
-        gys[n] = tab::g3y[g[n]];
-        gzs[n] = tab::g3z[g[n]];
+    return blend<T, WithGradient>(c, ax);
+  }
+
+  // The fade-weighted blend of the corners' dot products, and its analytic
+  // derivative (product rule on the fade weights).
+  template <class T, bool WithGradient>
+  static value_gradient<T, D> blend(const corners<T>& c, const axis<T>* ax) {
+    const T* d = c.d;
+    const T u = ax[0].s, v = ax[1].s;
+    if constexpr (D == 2) {
+      const T x0 = detail::lerp(d[0], d[1], u), x1 = detail::lerp(d[2], d[3], u);
+      constexpr T kScale = T(detail::constants::kPerlin2Scale);
+      value_gradient<T, 2> r{kScale * detail::lerp(x0, x1, v), {}};
+      if constexpr (WithGradient) {
+        // d/dx: interpolated gradients plus the fade's derivative times the
+        // difference of the contributions it blends.
+        const T gx =
+            detail::lerp(detail::lerp(c.gx[0], c.gx[1], u), detail::lerp(c.gx[2], c.gx[3], u), v) +
+            ax[0].ds * detail::lerp(d[1] - d[0], d[3] - d[2], v);
+        const T gy =
+            detail::lerp(detail::lerp(c.gy[0], c.gy[1], u), detail::lerp(c.gy[2], c.gy[3], u), v) +
+            ax[1].ds * (x1 - x0);
+        r.gradient = {kScale * gx, kScale * gy};
       }
-      for (int m = 0; m < 4; ++m) ddx[m] = d[2 * m + 1] - d[2 * m];  // along x, per (b, c)
-      const T du = detail::fade_derivative(f[0][0]);
-      const T dv = detail::fade_derivative(f[0][1]);
-      const T dw = detail::fade_derivative(f[0][2]);
-      // d/dx of lerp over x: du * (d[a=1] - d[a=0]), then blended in y and z.
-      const T ex =
-          detail::lerp(detail::lerp(ddx[0], ddx[1], v), detail::lerp(ddx[2], ddx[3], v), w);
-      ddy[0] = x10 - x00;
-      ddy[1] = x11 - x01;
-      const T ey = detail::lerp(ddy[0], ddy[1], w);
-      const T ez = y1 - y0;
-      r.gradient = {kScale * (blend(gxs) + du * ex), kScale * (blend(gys) + dv * ey),
-                    kScale * (blend(gzs) + dw * ez)};
+      return r;
+    } else {
+      const T w = ax[2].s;
+      const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
+      const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
+      const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
+      constexpr T kScale = T(detail::constants::kPerlin3Scale);
+      // "+ 0" turns a zero result into +0: kernels that form the same dot
+      // products another way (sign flips instead of products) can differ only
+      // in the sign of zeros, and this makes every backend agree bit for bit.
+      value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w) + T(0), {}};
+      if constexpr (WithGradient) {
+        // Trilinear blend of a per-corner quantity q[n] with the fade weights.
+        auto trilinear = [&](const T* q) {
+          return detail::lerp(
+              detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
+              detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
+        };
+        // d/dx of the lerp over x: ds_x * (d[a=1] - d[a=0]), blended in y and z.
+        const T ex = detail::lerp(detail::lerp(d[1] - d[0], d[3] - d[2], v),
+                                  detail::lerp(d[5] - d[4], d[7] - d[6], v), w);
+        const T ey = detail::lerp(x10 - x00, x11 - x01, w);
+        const T ez = y1 - y0;
+        r.gradient = {kScale * (trilinear(c.gx) + ax[0].ds * ex) + T(0),
+                      kScale * (trilinear(c.gy) + ax[1].ds * ey) + T(0),
+                      kScale * (trilinear(c.gz) + ax[2].ds * ez) + T(0)};
+      }
+      return r;
     }
-    return r;
+  }
+
+  // grid_values: the columns' splits are kept; a row walks them, taking new
+  // corner gradients (and their x-free parts k) where the cell changes.
+  template <bool WithGradient>
+  void grid_rows(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+                 vec<float, D>* grad) const {
+    using T = float;
+    const std::size_t nx = g.size[0];
+    std::vector<lattice_coord<T>> cells(nx);
+    std::vector<axis<T>> cols(nx);
+    for (std::size_t i = 0; i < nx; ++i) {
+      cells[i] = lattice_split<T>(g.origin[0] + g.step[0] * static_cast<double>(i),
+                                  static_cast<std::uint32_t>(prm_.period[0]));
+      cols[i] = make_axis<T, WithGradient>(cells[i].f);
+    }
+    auto split = [&](int a, std::size_t index) {
+      return lattice_split<T>(g.origin[a] + g.step[a] * static_cast<double>(index),
+                              static_cast<std::uint32_t>(prm_.period[a]));
+    };
+    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    std::size_t idx = 0;
+    axis<T> ax[3]{};
+    for (std::size_t kk = k0; kk < k1; ++kk) {
+      lattice_coord<T> cz{};
+      if constexpr (D == 3) {
+        cz = split(2, kk);
+        ax[2] = make_axis<T, WithGradient>(cz.f);
+      }
+      for (std::size_t j = j0; j < j1; ++j) {
+        const lattice_coord<T> cy = split(1, j);
+        ax[1] = make_axis<T, WithGradient>(cy.f);
+        // key ^ word_y ^ word_z per corner offset (b, c): lattice_hash_high's fold.
+        std::uint32_t kyz[4];
+        for (int m = 0; m < 4; ++m)
+          kyz[m] = key_ ^ lattice_word_y((m & 1) ? cy.i1 : cy.i0) ^
+                   (D == 3 ? lattice_word_z((m & 2) ? cz.i1 : cz.i0) : 0u);
+        corners<T> c{};
+        T k[kCorners]{};
+        for (std::size_t i = 0; i < nx; ++i, ++idx) {
+          const lattice_coord<T>& cx = cells[i];
+          if (i == 0 || cx.i0 != cells[i - 1].i0) {
+            for (int n = 0; n < kCorners; ++n) {
+              const std::uint32_t h =
+                  hash32_high(kyz[n >> 1] ^ lattice_word_x((n & 1) ? cx.i1 : cx.i0));
+              corner_gradient<T>(h, ((n >> 1) & 1) ? ax[1].f1 : ax[1].f,
+                                 (n >> 2) ? ax[2].f1 : ax[2].f, c, n, k[n]);
+            }
+          }
+          ax[0] = cols[i];
+          for (int n = 0; n < kCorners; ++n)
+            c.d[n] = c.gx[n] * ((n & 1) ? ax[0].f1 : ax[0].f) + k[n];
+          const value_gradient<T, D> r = blend<T, WithGradient>(c, ax);
+          out[idx] = r.value;
+          if constexpr (WithGradient) grad[idx] = r.gradient;
+        }
+      }
+    }
   }
 
   params prm_;
@@ -3591,7 +3893,10 @@ class perlin : public point_noise<perlin<D>, D> {
 //    gradients (when given) too, else hush::invalid_argument naming the span.
 //  - grids: grid<D> (origin and step in double); out has grid.count()
 //    elements in C order, i fastest (core/views.hpp). The grid is validated.
-//  - scalar: exactly noise(point) per element, in float.
+//  - scalar: exactly noise(point) per element, in float. A noise may share
+//    work between the samples of a grid (detail::has_grid_values); its
+//    results are still point evaluation's, bit for bit unless the compiler
+//    contracts multiply-adds (HUSH_STRICT_FP forbids it).
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
@@ -3604,15 +3909,24 @@ class perlin : public point_noise<perlin<D>, D> {
 //    Noise::takes_normal) may be given, else hush::invalid_argument naming
 //    the span. scalar computes noise.sample_value<float>(samples.at(i));
 //    with positions only, exactly what the points overload computes.
+//  - parallel(inner, threads): the batch split over std::threads, each
+//    running `inner` (scalar or simd) on a contiguous part: points and
+//    samples in chunks, grids in slabs along the slowest axis (rows in 2D,
+//    slices in 3D). Results are identical, bit for bit, to `inner` on the
+//    whole batch (tests/simd/parallel_test.cpp).
 //  - NaN/Inf coordinates give NaN, as in point evaluation; nothing throws
 //    after validation, and no output element is left unwritten.
 #ifndef HUSH_EXEC_HPP
 #define HUSH_EXEC_HPP
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <string>
+#include <thread>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 // ---- begin hush/simd/dispatch.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
@@ -3641,6 +3955,275 @@ class perlin : public point_noise<perlin<D>, D> {
 #include <string>
 #include <vector>
 
+// ---- begin hush/detail/coherent_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
+// data and one scalar loop: what a recursive-filter pass does for every pixel
+// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
+// program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
+// operation; include hush/coherent.hpp, not this.
+//
+// One pass step, frame i against its reference frame r (i - 1 for the causal
+// filter, i + 1 for the backward pass of the time-symmetric one), for pixel
+// p = (x, y) (Kass & Pesare 2011, sec. 3.2; the refill term is hush's):
+//   reprojection, in float (identical in every backend):
+//     u = x - s m_x, v = y - s m_y      (m = velocity, s = +1; forward velocity, s = -1)
+//     e = depth - s m_z                 (the point's expected depth in frame r)
+//     i0 = min(floor(u), W - 2), tx = u - i0 (likewise j0, ty): bilinear taps and weights
+//   visible when: the pixel has a surface (finite depth >= FLT_MIN, finite motion), (u, v)
+//     lies within the outer pixel centres of frame r, every tap with a non-zero weight shows
+//     a surface (and, when both frames carry object ids, the same id), e >= FLT_MIN, and the
+//     bilinear depth d' of frame r satisfies |d' - e| <= eps_rel e + eps_abs;
+//   value, per channel, in T (float, or double for the reference):
+//     visible, paper filter:       c = alpha h + (1 - alpha) w         (eq. 7)
+//     visible, stationary filter:  c = alpha (h + d) + (1 - alpha) w   (docs/coherent.md)
+//     otherwise (disoccluded):     c = k(alpha) w                      (eq. 6)
+//   with h the bilinear history of frame r at (u, v), w the input noise at p, and d the
+//   refill: k (sqrt(tx (1 - tx)) ((1 - ty) D_x(p) + ty D_x(p + e_y)) + sqrt(ty (1 - ty)) D_y(p)),
+//   D_x(q) = X(q) - X(q + e_x), D_y(q) = Y(q) - Y(q + e_y), X and Y two more fields drawn
+//   like the input (independent). The output is gain * c.
+#ifndef HUSH_DETAIL_COHERENT_KERNEL_HPP
+#define HUSH_DETAIL_COHERENT_KERNEL_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+
+namespace hush {
+namespace detail {
+
+// ---- The hashed white-noise fields.
+
+// Key of field `field` of channel `channel` in frame `frame`, for noise seed `seed`.
+HUSH_INLINE constexpr std::uint32_t coherent_frame_key(std::uint32_t seed, unsigned channel,
+                                                       unsigned field, std::uint32_t frame) {
+  return hash32(hash32(seed_key(seed), channel * constants::kCoherentFields + field), frame);
+}
+// Per-row key of a field: hash32(frame_key, y).
+HUSH_INLINE constexpr std::uint32_t coherent_row_key(std::uint32_t frame_key, std::uint32_t y) {
+  return hash32(frame_key, y);
+}
+// The white value of pixel x in a row: unit variance, mean 0, odd multiples of
+// sqrt(3) 2^-24 (constants.hpp). Every operation is exact but the last multiply.
+HUSH_INLINE float coherent_white(std::uint32_t row_key, std::uint32_t x) {
+  namespace c = constants;
+  const std::uint32_t h = hash32(row_key ^ (x * c::kCoherentPixelPrime));
+  const float centred = static_cast<float>(2u * (h >> c::kCoherentWhiteShift)) -
+                        static_cast<float>(c::kCoherentWhiteCentre);  // 2n + 1 - 2^24, exact
+  return centred * static_cast<float>(c::kCoherentWhiteScale);
+}
+
+// Where one field's values come from: hashed white noise of `key` (a frame key), or a
+// plane of floats (band-pass noise, or the caller's input) where value (x, y) is
+// plane[y * stride + x]. Planes of the refill fields cover (width + 1) x (height + 1)
+// values (X) and width x (height + 1) values (Y).
+struct coherent_field {
+  std::uint32_t key = 0;
+  const float* plane = nullptr;
+  std::size_t stride = 0;
+};
+
+// One pass over one frame: every pointer the loop reads or writes. Planes the
+// stream owns are packed (row stride = width); the caller's views keep their strides
+// (in elements; the motion view's in vec3 elements, i.e. 3 floats each).
+template <class T>
+struct coherent_pass_job {
+  std::uint32_t width = 0, height = 0;
+  // This frame.
+  const float* depth = nullptr;
+  std::size_t depth_stride = 0;
+  const float* motion = nullptr;  // 3 floats per pixel: velocity, or forward velocity
+  std::size_t motion_stride = 0;  // in pixels
+  float motion_sign = 1.0f;       // +1: velocity (causal); -1: forward velocity (backward pass)
+  const std::uint32_t* ids = nullptr;  // null: no id test
+  std::size_t ids_stride = 0;
+  // The reference frame (stored by the stream, packed); null depth: no reference, all fresh.
+  const float* ref_depth = nullptr;
+  const std::uint32_t* ref_ids = nullptr;
+  // Parameters.
+  float eps_rel = 0, eps_abs = 0;
+  T alpha = 0, beta = 0, k = 0, gain = 0;  // beta = 1 - alpha, k = k(alpha)
+  bool stationary = true;
+  int channels = 1;
+  coherent_field input[constants::kCoherentMaxChannels];
+  coherent_field refill_x[constants::kCoherentMaxChannels];
+  coherent_field refill_y[constants::kCoherentMaxChannels];
+  const T* ref_history[constants::kCoherentMaxChannels] = {};  // packed planes (with ref_depth)
+  T* history[constants::kCoherentMaxChannels] = {};            // packed planes, written
+  T* out[constants::kCoherentMaxChannels] = {};                // null: not written
+  std::size_t out_stride = 0;
+  std::uint8_t* fresh = nullptr;  // packed: 1 where the pixel took fresh noise, else 0
+  // Packed copies of this frame's depth and ids (the next frame's reference), or null.
+  float* depth_copy = nullptr;
+  std::uint32_t* ids_copy = nullptr;
+};
+
+// ---- The reprojection, in float: the same operations in every backend.
+
+struct coherent_taps {
+  bool visible = false;
+  std::uint32_t t00 = 0, t10 = 0, t01 = 0, t11 = 0;  // pixel indices in the reference frame
+  float w00 = 0, w10 = 0, w01 = 0, w11 = 0;          // bilinear weights
+  float tx = 0, ty = 0;                              // fractions of the bilinear cell
+};
+
+// A depth is a surface when finite and at least the smallest normal float (denormal,
+// zero, negative, NaN and infinite depths are not: no denormal arithmetic follows).
+HUSH_INLINE bool coherent_surface(float d) {
+  return d >= std::numeric_limits<float>::min() && d <= std::numeric_limits<float>::max();
+}
+HUSH_INLINE bool coherent_finite(float v) {
+  return v >= -std::numeric_limits<float>::max() && v <= std::numeric_limits<float>::max();
+}
+
+// Motion components below the smallest normal float are read as 0 (no denormal arithmetic);
+// NaN stays NaN (the pixel is then not visible).
+HUSH_INLINE float coherent_flush(float v) {
+  return std::fabs(v) < std::numeric_limits<float>::min() ? 0.0f : v;
+}
+// History values below the smallest normal T are stored as 0: with an input of zeros (the
+// caller's) the history decays as alpha^i and would otherwise go denormal.
+template <class T>
+HUSH_INLINE T coherent_flush_value(T v) {
+  return std::fabs(v) < std::numeric_limits<T>::min() ? T(0) : v;
+}
+
+template <class T>
+HUSH_INLINE coherent_taps coherent_reproject(const coherent_pass_job<T>& j, std::uint32_t x,
+                                             std::uint32_t y) {
+  coherent_taps r;
+  if (!j.ref_depth) return r;
+  const float depth = j.depth[y * j.depth_stride + x];
+  const float* m = j.motion + 3 * (y * j.motion_stride + x);
+  const float mx = coherent_flush(j.motion_sign * m[0]), my = coherent_flush(j.motion_sign * m[1]),
+              mz = coherent_flush(j.motion_sign * m[2]);
+  if (!coherent_surface(depth) || !coherent_finite(mx) || !coherent_finite(my) ||
+      !coherent_finite(mz))
+    return r;
+  const float u = static_cast<float>(x) - mx, v = static_cast<float>(y) - my;
+  const float max_u = static_cast<float>(j.width - 1), max_v = static_cast<float>(j.height - 1);
+  if (!(u >= 0.0f && u <= max_u && v >= 0.0f && v <= max_v)) return r;
+  // The cell's lower corner; on the last row/column the cell before it, with the upper
+  // taps weighted 1. A 1-pixel-wide frame has one column: both taps are it, tx = 0.
+  const float i0 = std::fmin(std::floor(u), static_cast<float>(j.width > 1 ? j.width - 2 : 0));
+  const float j0 = std::fmin(std::floor(v), static_cast<float>(j.height > 1 ? j.height - 2 : 0));
+  r.tx = u - i0;  // exact
+  r.ty = v - j0;
+  const float a = 1.0f - r.tx, b = 1.0f - r.ty;
+  r.w00 = a * b;
+  r.w10 = r.tx * b;
+  r.w01 = a * r.ty;
+  r.w11 = r.tx * r.ty;
+  const std::uint32_t step_x = j.width > 1 ? 1u : 0u, step_y = j.height > 1 ? j.width : 0u;
+  r.t00 = static_cast<std::uint32_t>(j0) * j.width + static_cast<std::uint32_t>(i0);
+  r.t10 = r.t00 + step_x;
+  r.t01 = r.t00 + step_y;
+  r.t11 = r.t01 + step_x;
+  const std::uint32_t id = j.ids ? j.ids[y * j.ids_stride + x] : 0u;
+  const bool use_ids = j.ids && j.ref_ids;
+  const std::uint32_t taps[4] = {r.t00, r.t10, r.t01, r.t11};
+  const float weights[4] = {r.w00, r.w10, r.w01, r.w11};
+  float interpolated = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] == 0.0f) continue;  // never read: a background tap must not matter
+    const float d = j.ref_depth[taps[k]];
+    if (!coherent_surface(d) || (use_ids && j.ref_ids[taps[k]] != id)) return r;
+    interpolated = interpolated + weights[k] * d;
+  }
+  const float expected = depth - mz;
+  if (!coherent_surface(expected)) return r;
+  const float tolerance = j.eps_rel * expected + j.eps_abs;
+  r.visible = std::fabs(interpolated - expected) <= tolerance;
+  return r;
+}
+
+// Value of a field at (x, y): the hash, or the plane (a non-finite plane value reads as 0,
+// so no NaN can enter the history).
+HUSH_INLINE float coherent_field_value(const coherent_field& f, std::uint32_t row_key,
+                                       std::uint32_t x, std::uint32_t y) {
+  if (!f.plane) return coherent_white(row_key, x);
+  const float v = f.plane[y * f.stride + x];
+  return coherent_finite(v) ? v : 0.0f;
+}
+
+// ---- The scalar pass: the reference every other backend is tested against.
+
+// Row keys of every field of every channel for row y (and y + 1 for the refill fields).
+struct coherent_row_keys {
+  std::uint32_t input[constants::kCoherentMaxChannels];
+  std::uint32_t x0[constants::kCoherentMaxChannels], x1[constants::kCoherentMaxChannels];
+  std::uint32_t y0[constants::kCoherentMaxChannels], y1[constants::kCoherentMaxChannels];
+};
+template <class T>
+HUSH_INLINE coherent_row_keys coherent_keys(const coherent_pass_job<T>& j, std::uint32_t y) {
+  coherent_row_keys k{};
+  for (int c = 0; c < j.channels; ++c) {
+    k.input[c] = coherent_row_key(j.input[c].key, y);
+    k.x0[c] = coherent_row_key(j.refill_x[c].key, y);
+    k.x1[c] = coherent_row_key(j.refill_x[c].key, y + 1);
+    k.y0[c] = coherent_row_key(j.refill_y[c].key, y);
+    k.y1[c] = coherent_row_key(j.refill_y[c].key, y + 1);
+  }
+  return k;
+}
+
+// Pixel (x, y) of a pass: fresh flag, history and output of every channel.
+template <class T>
+HUSH_INLINE void coherent_pixel(const coherent_pass_job<T>& j, const coherent_row_keys& keys,
+                                std::uint32_t x, std::uint32_t y) {
+  const coherent_taps g = coherent_reproject(j, x, y);
+  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
+  if (j.fresh) j.fresh[p] = g.visible ? 0u : 1u;
+  if (j.depth_copy) j.depth_copy[p] = j.depth[y * j.depth_stride + x];
+  if (j.ids_copy) j.ids_copy[p] = j.ids[y * j.ids_stride + x];
+  for (int c = 0; c < j.channels; ++c) {
+    const T w = T(coherent_field_value(j.input[c], keys.input[c], x, y));
+    T value;
+    if (!g.visible) {
+      value = j.k * w;
+    } else {
+      const T* hist = j.ref_history[c];
+      const T h = T(g.w00) * hist[g.t00] + T(g.w10) * hist[g.t10] + T(g.w01) * hist[g.t01] +
+                  T(g.w11) * hist[g.t11];
+      if (!j.stationary) {
+        value = j.alpha * h + j.beta * w;
+      } else {
+        const T tx = T(g.tx), ty = T(g.ty);
+        const T sx = std::sqrt(tx * (T(1) - tx)), sy = std::sqrt(ty * (T(1) - ty));
+        const T x00 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x, y));
+        const T x10 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x + 1, y));
+        const T x01 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x, y + 1));
+        const T x11 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x + 1, y + 1));
+        const T y00 = T(coherent_field_value(j.refill_y[c], keys.y0[c], x, y));
+        const T y01 = T(coherent_field_value(j.refill_y[c], keys.y1[c], x, y + 1));
+        const T dx = (T(1) - ty) * (x00 - x10) + ty * (x01 - x11);
+        // The refill has the history's scale: k(alpha) (the fields have unit variance).
+        const T d = j.k * (sx * dx + sy * (y00 - y01));
+        value = j.alpha * (h + d) + j.beta * w;
+      }
+    }
+    value = coherent_flush_value(value);
+    j.history[c][p] = value;
+    if (j.out[c]) j.out[c][static_cast<std::size_t>(y) * j.out_stride + x] = j.gain * value;
+  }
+}
+
+template <class T>
+void coherent_pass_scalar(const coherent_pass_job<T>& j) {
+  for (std::uint32_t y = 0; y < j.height; ++y) {
+    const coherent_row_keys keys = coherent_keys(j, y);
+    for (std::uint32_t x = 0; x < j.width; ++x) coherent_pixel(j, keys, x, y);
+  }
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
+// ---- end hush/detail/coherent_kernel.hpp
 
 namespace hush {
 namespace detail {
@@ -3667,6 +4250,348 @@ struct simd_kernel {
 #endif
 #include <hwy/highway.h>
 
+// ---- begin hush/simd/coherent-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernel of coherent noise (include/hush/coherent.hpp): one pass of
+// the recursive filter over a frame, a vector of pixels of a row at a time.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include
+// guard, no normal guard); reached through hush/simd/dispatch.hpp.
+//
+// It repeats detail::coherent_pass_scalar (hush/detail/coherent_kernel.hpp)
+// operation by operation: the reprojection in float with separate multiplies
+// and adds (never fused, so the visibility decisions equal the scalar ones on
+// every target), the hashed fields in 32-bit lanes, the taps gathered, the
+// bilinear history and the blend in the scalar order. Under HUSH_STRICT_FP
+// every output, history value and fresh flag equals the scalar pass bit for
+// bit (tests/simd/coherent_simd_test.cpp, every compiled target); otherwise
+// the value blends fuse multiply-adds and differ from scalar by float
+// rounding (a few ulp of the values, the decisions unchanged). A row's last
+// (width mod lanes) pixels run the scalar code itself; lanes of pixels that
+// are not visible read the reference frame at index 0, never out of bounds.
+
+#if defined(HUSH_SIMD_COHERENT_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_COHERENT_INL_H_
+#undef HUSH_SIMD_COHERENT_INL_H_
+#else
+#define HUSH_SIMD_COHERENT_INL_H_
+#endif
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace coherent_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using VI = hn::Vec<DI>;
+using MF = hn::Mask<DF>;
+
+// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is compiled),
+// one fused rounding otherwise. Used for the value blends only.
+HWY_INLINE VF mul_add(VF a, VF b, VF c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), c);
+#else
+  return hn::MulAdd(a, b, c);
+#endif
+}
+
+// hash32 (core/hash.hpp) in 32-bit lanes.
+HWY_INLINE VU hash32(VU x) {
+  namespace c = detail::constants;
+  const DU du;
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
+  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
+}
+
+// detail::coherent_white of pixels `x` (lanes) of a row.
+HWY_INLINE VF white(std::uint32_t row_key, VU x) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  const DI di;
+  const VU h =
+      hash32(hn::Xor(hn::Set(du, row_key), hn::Mul(x, hn::Set(du, c::kCoherentPixelPrime))));
+  // 2 (h >> 8) < 2^25 is even, so exact in float, and exact as an int32.
+  const VU twice = hn::ShiftLeft<1>(hn::ShiftRight<c::kCoherentWhiteShift>(h));
+  const VF centred = hn::Sub(hn::ConvertTo(df, hn::BitCast(di, twice)),
+                             hn::Set(df, static_cast<float>(c::kCoherentWhiteCentre)));
+  return hn::Mul(centred, hn::Set(df, static_cast<float>(c::kCoherentWhiteScale)));
+}
+
+HWY_INLINE MF is_finite(VF v) {
+  const DF df;
+  const VF big = hn::Set(df, std::numeric_limits<float>::max());
+  return hn::And(hn::Ge(v, hn::Neg(big)), hn::Le(v, big));
+}
+HWY_INLINE MF is_surface(VF d) {
+  const DF df;
+  return hn::And(hn::Ge(d, hn::Set(df, std::numeric_limits<float>::min())),
+                 hn::Le(d, hn::Set(df, std::numeric_limits<float>::max())));
+}
+
+// detail::coherent_flush / coherent_flush_value: |v| below the smallest normal -> 0 (NaN
+// stays NaN).
+HWY_INLINE VF flush(VF v) {
+  const DF df;
+  return hn::IfThenZeroElse(hn::Lt(hn::Abs(v), hn::Set(df, std::numeric_limits<float>::min())), v);
+}
+
+// detail::coherent_field_value for pixels x (+ dx) of row y.
+HWY_INLINE VF field(const detail::coherent_field& f, std::uint32_t row_key, std::uint32_t x,
+                    std::uint32_t dx, std::uint32_t y) {
+  const DF df;
+  const DU du;
+  if (!f.plane) return white(row_key, hn::Iota(du, x + dx));
+  const VF v = hn::LoadU(df, f.plane + static_cast<std::size_t>(y) * f.stride + x + dx);
+  return hn::IfThenElseZero(is_finite(v), v);
+}
+
+// The refill fields' values of rows y and y + 1 when they are hashed white noise: each
+// value is used by four pixels (x, x - 1 and the rows y - 1, y), so a row is hashed once
+// into a buffer and read by both rows (null: the field is a plane, read directly).
+struct refill_rows {
+  const float* x0[detail::constants::kCoherentMaxChannels] = {};  // X, row y (width + 1)
+  const float* x1[detail::constants::kCoherentMaxChannels] = {};  // X, row y + 1
+  const float* y0[detail::constants::kCoherentMaxChannels] = {};  // Y, row y (width)
+  const float* y1[detail::constants::kCoherentMaxChannels] = {};  // Y, row y + 1
+};
+
+// Values of a white field in row y, pixels 0 ... count - 1 (count rounded up to lanes).
+HWY_INLINE void white_row(std::uint32_t row_key, std::size_t count, float* out) {
+  const DF df;
+  const DU du;
+  const std::size_t lanes = hn::Lanes(df);
+  for (std::size_t x = 0; x < count; x += lanes)
+    hn::StoreU(white(row_key, hn::Iota(du, static_cast<std::uint32_t>(x))), df, out + x);
+}
+
+// Pixels x ... x + lanes - 1 of row y (all inside the row).
+HWY_INLINE void pixels(const detail::coherent_pass_job<float>& j,
+                       const detail::coherent_row_keys& keys, const refill_rows& rows,
+                       std::uint32_t x, std::uint32_t y) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
+  // ---- Reprojection (coherent_reproject), in float, never fused.
+  const VF depth = hn::LoadU(df, j.depth + static_cast<std::size_t>(y) * j.depth_stride + x);
+  if (j.depth_copy) hn::StoreU(depth, df, j.depth_copy + p);
+  VF mx, my, mz;
+  hn::LoadInterleaved3(df, j.motion + 3 * (static_cast<std::size_t>(y) * j.motion_stride + x), mx,
+                       my, mz);
+  const VF sign = hn::Set(df, j.motion_sign);
+  mx = flush(hn::Mul(sign, mx));
+  my = flush(hn::Mul(sign, my));
+  mz = flush(hn::Mul(sign, mz));
+  const VF u = hn::Sub(hn::Iota(df, static_cast<float>(x)), mx);  // x + lane: exact
+  const VF v = hn::Sub(hn::Set(df, static_cast<float>(y)), my);
+  const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
+  MF ok = hn::And(hn::And(is_surface(depth), is_finite(mx)), hn::And(is_finite(my), is_finite(mz)));
+  ok = hn::And(ok, hn::And(hn::And(hn::Ge(u, zero), hn::Le(u, hn::Set(df, float(j.width - 1)))),
+                           hn::And(hn::Ge(v, zero), hn::Le(v, hn::Set(df, float(j.height - 1))))));
+  const VF i0 = hn::Min(hn::Floor(u), hn::Set(df, float(j.width > 1 ? j.width - 2 : 0)));
+  const VF j0 = hn::Min(hn::Floor(v), hn::Set(df, float(j.height > 1 ? j.height - 2 : 0)));
+  const VF tx = hn::Sub(u, i0), ty = hn::Sub(v, j0);
+  const VF a = hn::Sub(one, tx), b = hn::Sub(one, ty);
+  const VF w[4] = {hn::Mul(a, b), hn::Mul(tx, b), hn::Mul(a, ty), hn::Mul(tx, ty)};
+  // Tap indices (int32: frames are at most 16384^2 pixels); lanes that are not ok read 0.
+  const auto ok_i = hn::RebindMask(di, ok);
+  const VI i0i = hn::IfThenElseZero(ok_i, hn::ConvertTo(di, hn::IfThenElseZero(ok, i0)));
+  const VI j0i = hn::IfThenElseZero(ok_i, hn::ConvertTo(di, hn::IfThenElseZero(ok, j0)));
+  const VI sx = hn::IfThenElseZero(ok_i, hn::Set(di, j.width > 1 ? 1 : 0));
+  const VI sy = hn::IfThenElseZero(ok_i, hn::Set(di, j.height > 1 ? int(j.width) : 0));
+  VI t[4];
+  t[0] = hn::Add(hn::Mul(j0i, hn::Set(di, static_cast<std::int32_t>(j.width))), i0i);
+  t[1] = hn::Add(t[0], sx);
+  t[2] = hn::Add(t[0], sy);
+  t[3] = hn::Add(t[2], sx);
+  // The taps of most vectors are contiguous: every lane's cell is its neighbour's plus one
+  // column, in one row (smooth motion moves neighbouring pixels alike). Then each tap is one
+  // unaligned load instead of a gather; the values are the same.
+  const std::int32_t i_first = hn::GetLane(i0i), j_first = hn::GetLane(j0i);
+  const bool contiguous =
+      hn::AllTrue(di, ok_i) &&
+      hn::AllTrue(di, hn::Eq(hn::Sub(i0i, hn::Iota(di, 0)), hn::Set(di, i_first))) &&
+      hn::AllTrue(di, hn::Eq(j0i, hn::Set(di, j_first)));
+  const std::size_t base =
+      static_cast<std::size_t>(j_first) * j.width + static_cast<std::size_t>(i_first);
+  const std::size_t offset[4] = {0, j.width > 1 ? 1u : 0u, j.height > 1 ? j.width : 0u,
+                                 (j.height > 1 ? j.width : 0u) + (j.width > 1 ? 1u : 0u)};
+  auto tap = [&](auto d, const auto* plane, int k) {
+    return contiguous ? hn::LoadU(d, plane + base + offset[k]) : hn::GatherIndex(d, plane, t[k]);
+  };
+  const bool use_ids = j.ids && j.ref_ids;
+  VU id = hn::Zero(du);
+  if (j.ids) {
+    id = hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x);
+    if (j.ids_copy) hn::StoreU(id, du, j.ids_copy + p);
+  }
+  VF interpolated = zero;
+  for (int k = 0; k < 4; ++k) {
+    const MF used = hn::Ne(w[k], zero);
+    const VF d = tap(df, j.ref_depth, k);
+    MF tap_ok = is_surface(d);
+    if (use_ids) tap_ok = hn::And(tap_ok, hn::RebindMask(df, hn::Eq(tap(du, j.ref_ids, k), id)));
+    ok = hn::And(ok, hn::Or(hn::Not(used), tap_ok));
+    interpolated = hn::IfThenElse(used, hn::Add(interpolated, hn::Mul(w[k], d)), interpolated);
+  }
+  const VF expected = hn::Sub(depth, mz);
+  const VF tolerance = hn::Add(hn::Mul(hn::Set(df, j.eps_rel), expected), hn::Set(df, j.eps_abs));
+  const MF visible = hn::And(hn::And(ok, is_surface(expected)),
+                             hn::Le(hn::Abs(hn::Sub(interpolated, expected)), tolerance));
+  if (j.fresh) {
+    const VI flag = hn::IfThenZeroElse(hn::RebindMask(di, visible), hn::Set(di, 1));
+    hn::StoreU(hn::DemoteTo(hn::Rebind<std::uint8_t, DI>(), flag), hn::Rebind<std::uint8_t, DI>(),
+               j.fresh + p);
+  }
+  // ---- Values, per channel.
+  const VF alpha = hn::Set(df, j.alpha), beta = hn::Set(df, j.beta), kk = hn::Set(df, j.k);
+  const VF sqx = hn::Sqrt(hn::Mul(tx, a)), sqy = hn::Sqrt(hn::Mul(ty, b));
+  for (int c = 0; c < j.channels; ++c) {
+    const VF wv = field(j.input[c], keys.input[c], x, 0, y);
+    const float* hist = j.ref_history[c];
+    const VF h = mul_add(w[3], tap(df, hist, 3),
+                         mul_add(w[2], tap(df, hist, 2),
+                                 mul_add(w[1], tap(df, hist, 1), hn::Mul(w[0], tap(df, hist, 0)))));
+    VF value;
+    if (!j.stationary) {
+      value = mul_add(alpha, h, hn::Mul(beta, wv));
+    } else {
+      VF x00, x10, x01, x11, y00, y01;
+      if (rows.x0[c]) {
+        x00 = hn::LoadU(df, rows.x0[c] + x);
+        x10 = hn::LoadU(df, rows.x0[c] + x + 1);
+        x01 = hn::LoadU(df, rows.x1[c] + x);
+        x11 = hn::LoadU(df, rows.x1[c] + x + 1);
+      } else {
+        x00 = field(j.refill_x[c], keys.x0[c], x, 0, y);
+        x10 = field(j.refill_x[c], keys.x0[c], x, 1, y);
+        x01 = field(j.refill_x[c], keys.x1[c], x, 0, y + 1);
+        x11 = field(j.refill_x[c], keys.x1[c], x, 1, y + 1);
+      }
+      if (rows.y0[c]) {
+        y00 = hn::LoadU(df, rows.y0[c] + x);
+        y01 = hn::LoadU(df, rows.y1[c] + x);
+      } else {
+        y00 = field(j.refill_y[c], keys.y0[c], x, 0, y);
+        y01 = field(j.refill_y[c], keys.y1[c], x, 0, y + 1);
+      }
+      const VF dx = mul_add(ty, hn::Sub(x01, x11), hn::Mul(b, hn::Sub(x00, x10)));
+      const VF d = hn::Mul(kk, mul_add(sqy, hn::Sub(y00, y01), hn::Mul(sqx, dx)));
+      value = mul_add(alpha, hn::Add(h, d), hn::Mul(beta, wv));
+    }
+    value = flush(hn::IfThenElse(visible, value, hn::Mul(kk, wv)));
+    hn::StoreU(value, df, j.history[c] + p);
+    if (j.out[c])
+      hn::StoreU(hn::Mul(hn::Set(df, j.gain), value), df,
+                 j.out[c] + static_cast<std::size_t>(y) * j.out_stride + x);
+  }
+}
+
+// The same when there is no reference frame (the first frame): every pixel fresh.
+HWY_INLINE void fresh_pixels(const detail::coherent_pass_job<float>& j,
+                             const detail::coherent_row_keys& keys, std::uint32_t x,
+                             std::uint32_t y) {
+  const DF df;
+  const DU du;
+  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
+  if (j.fresh) {
+    const hn::Rebind<std::uint8_t, DF> d8;
+    hn::StoreU(hn::Set(d8, std::uint8_t{1}), d8, j.fresh + p);
+  }
+  if (j.depth_copy)
+    hn::StoreU(hn::LoadU(df, j.depth + static_cast<std::size_t>(y) * j.depth_stride + x), df,
+               j.depth_copy + p);
+  if (j.ids_copy)
+    hn::StoreU(hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x), du,
+               j.ids_copy + p);
+  for (int c = 0; c < j.channels; ++c) {
+    const VF value = flush(hn::Mul(hn::Set(df, j.k), field(j.input[c], keys.input[c], x, 0, y)));
+    hn::StoreU(value, df, j.history[c] + p);
+    if (j.out[c])
+      hn::StoreU(hn::Mul(hn::Set(df, j.gain), value), df,
+                 j.out[c] + static_cast<std::size_t>(y) * j.out_stride + x);
+  }
+}
+
+}  // namespace coherent_simd
+
+// One pass over a frame (detail::coherent_pass_job): full vectors of each row in
+// lanes, the rest of the row (fewer pixels than lanes) through the scalar pixel code.
+inline void coherent_pass(const detail::coherent_pass_job<float>& j) {
+  namespace cs = coherent_simd;
+  const std::size_t lanes = hn::Lanes(cs::DF());
+  const std::uint32_t full = static_cast<std::uint32_t>(j.width / lanes * lanes);
+  // Row buffers of the white refill fields (stationary filter, with a reference frame).
+  const std::size_t padded = (j.width + 1 + lanes - 1) / lanes * lanes;
+  const bool refill = j.stationary && j.ref_depth;
+  std::vector<float> buffers;
+  float* rows_of[detail::constants::kCoherentMaxChannels][4] = {};  // x0, x1, y0, y1
+  if (refill) {
+    buffers.resize(4 * padded * static_cast<std::size_t>(j.channels));
+    for (int c = 0; c < j.channels; ++c)
+      for (int k = 0; k < 4; ++k)
+        rows_of[c][k] = buffers.data() + (4 * static_cast<std::size_t>(c) + k) * padded;
+  }
+  for (std::uint32_t y = 0; y < j.height; ++y) {
+    const detail::coherent_row_keys keys = detail::coherent_keys(j, y);
+    cs::refill_rows rows;
+    for (int c = 0; refill && c < j.channels; ++c) {
+      // Row y is the previous row's y + 1 (swapped in), except on the first row.
+      if (y == 0) {
+        if (!j.refill_x[c].plane) cs::white_row(keys.x0[c], j.width + 1, rows_of[c][0]);
+        if (!j.refill_y[c].plane) cs::white_row(keys.y0[c], j.width, rows_of[c][2]);
+      } else {
+        std::swap(rows_of[c][0], rows_of[c][1]);
+        std::swap(rows_of[c][2], rows_of[c][3]);
+      }
+      if (!j.refill_x[c].plane) {
+        cs::white_row(keys.x1[c], j.width + 1, rows_of[c][1]);
+        rows.x0[c] = rows_of[c][0];
+        rows.x1[c] = rows_of[c][1];
+      }
+      if (!j.refill_y[c].plane) {
+        cs::white_row(keys.y1[c], j.width, rows_of[c][3]);
+        rows.y0[c] = rows_of[c][2];
+        rows.y1[c] = rows_of[c][3];
+      }
+    }
+    std::uint32_t x = 0;
+    for (; x < full; x += static_cast<std::uint32_t>(lanes)) {
+      if (j.ref_depth)
+        cs::pixels(j, keys, rows, x, y);
+      else
+        cs::fresh_pixels(j, keys, x, y);
+    }
+    for (; x < j.width; ++x) detail::coherent_pixel(j, keys, x, y);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_COHERENT_INL_H_ toggle
+// ---- end hush/simd/coherent-inl.h
 // ---- begin hush/simd/gabor-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -4776,17 +5701,26 @@ HWY_AFTER_NAMESPACE();
 // normal guard); reached through hush/simd/dispatch.hpp, never included
 // directly by users.
 //
-// The kernels repeat perlin.hpp's float algorithm operation by operation:
-// same lattice split (in double for grids, exact float floor for points),
-// same hash words, gradient index and table, Horner fade, lerp a + t(b - a),
-// dot products summed left to right, and the same final scale. So:
+// The kernels compute perlin.hpp's float algorithm: same lattice split (in
+// double for grids, exact float floor for points), same hash words, gradient
+// index and table, Horner fade, lerp a + t(b - a), dot products and final
+// scale. Where they take another route to the same number it is exact:
+//  - the gradient index reads the top bits of the lattice hash, which
+//    lowbias32's last step leaves alone, so it is skipped (hash32_high);
+//  - the 3D index ((h >> 16) * 12) >> 16 is one 16-bit high multiply;
+//  - 3D corner dot products g . f are one rounding of +-f_p +- f_q (gradient
+//    components are 0 or +-1); targets narrower than 16 lanes form them by
+//    selects and sign flips instead of table lookups, and grids split them
+//    into a per-row part g_y f_y + g_z f_z and the x term;
+//  - grid rows hash once per lattice point, not once per sample and corner.
+// So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
 //    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
-//    compiled target);
+//    compiled target; zeros are +0 on every path, see perlin.hpp);
 //  - otherwise multiply-adds are fused where that is faster, and results
 //    stay within perlin.hpp's float budget of the double reference (2^-16);
-//    measured differences to scalar are a few float ulps (docs/performance.md).
-// Points whose coordinates are all finite and below 2^31 in magnitude take
+//    measured differences to scalar are a few float ulps (docs/design.md).
+// Points whose coordinates are all finite and below 2^22 in magnitude take
 // the vector split; other vectors (NaN, Inf, huge, or periodic noise) split
 // lane by lane through core/lattice.hpp, so hard cases behave exactly like
 // scalar evaluation (NaN in gives NaN out).
@@ -4801,6 +5735,7 @@ HWY_AFTER_NAMESPACE();
 #endif
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -4820,6 +5755,9 @@ namespace perlin_simd {
 using DF = hn::ScalableTag<float>;
 using DU = hn::RebindToUnsigned<DF>;
 using DI = hn::RebindToSigned<DF>;
+#if HWY_TARGET != HWY_SCALAR
+using DU16 = hn::Repartition<std::uint16_t, DU>;
+#endif
 using VF = hn::Vec<DF>;
 using VU = hn::Vec<DU>;
 
@@ -4839,6 +5777,10 @@ HWY_INLINE VF mul_add(VF a, VF b, VF c) {
 }
 // lerp(a, b, t) = a + t * (b - a), as detail::lerp.
 HWY_INLINE VF lerp(VF a, VF b, VF t) { return mul_add(t, hn::Sub(b, a), a); }
+// scale * v + 0 (perlin.hpp's 3D output: zeros become +0). Adding 0 to the
+// exact product rounds nothing, so the fused form equals the two-step one
+// and may be used under strict FP too.
+HWY_INLINE VF scale_plus_zero(VF scale, VF v) { return hn::MulAdd(scale, v, hn::Zero(DF())); }
 
 // detail::fade: t^3 (t (6t - 15) + 10), Horner form in the same order.
 HWY_INLINE VF fade(VF t) {
@@ -4858,15 +5800,19 @@ HWY_INLINE VF fade_derivative(VF t) {
   return hn::Mul(hn::Mul(t, t), inner);
 }
 
-// hash32 (core/hash.hpp) in 32-bit lanes.
-HWY_INLINE VU hash32(VU x) {
+// hash32 (core/hash.hpp) in 32-bit lanes without its last step x ^= x >> 16,
+// which changes only bits 0 ... 15: bits 16 ... 31 equal hash32's, and they
+// are all Perlin's gradient index reads (2D: 29 ... 31; 3D: 16 ... 31).
+static_assert(detail::constants::kHashShift3 >= 16 && detail::constants::kPerlin2GradShift >= 16 &&
+                  detail::constants::kPerlin3IndexShift >= 16,
+              "the gradient index must read only hash bits the last xorshift leaves alone");
+HWY_INLINE VU hash32_high(VU x) {
   namespace c = detail::constants;
   const DU du;
   x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
   x = hn::Mul(x, hn::Set(du, c::kHashMul1));
   x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
-  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
+  return hn::Mul(x, hn::Set(du, c::kHashMul2));
 }
 
 // lattice_word_x/y/z (core/hash.hpp) in lanes: i * P_x, rotl(j * P_y, R_y),
@@ -4887,122 +5833,189 @@ HWY_INLINE VU word(VU i) {
   if constexpr (kAxis == 2) return word_z(i);
 }
 
-// perlin.hpp's float gradient tables, padded to kMaxLanes (zeros past the
-// real entries) so that every chunk load in lookup() stays in bounds.
-struct tables {
-  float g2x[kMaxLanes], g2y[kMaxLanes], g3x[kMaxLanes], g3y[kMaxLanes], g3z[kMaxLanes];
+// perlin.hpp's float gradient tables, padded to kMaxLanes with zeros so that
+// every chunk load in lookup() stays in bounds. Constant data at fixed
+// addresses: loops load them once.
+struct padded_table {
+  float v[kMaxLanes];
 };
-inline const tables& gradient_tables() {
-  static const tables t = [] {
-    using src = detail::perlin_tables<float>;
-    tables r{};
-    std::copy(src::g2x.begin(), src::g2x.end(), r.g2x);
-    std::copy(src::g2y.begin(), src::g2y.end(), r.g2y);
-    std::copy(src::g3x.begin(), src::g3x.end(), r.g3x);
-    std::copy(src::g3y.begin(), src::g3y.end(), r.g3y);
-    std::copy(src::g3z.begin(), src::g3z.end(), r.g3z);
-    return r;
-  }();
+template <std::size_t N>
+constexpr padded_table pad(const std::array<float, N>& src) {
+  padded_table t{};
+  for (std::size_t i = 0; i < N; ++i) t.v[i] = src[i];
   return t;
 }
+using float_tables = detail::perlin_tables<float>;
+alignas(64) constexpr padded_table kG2x = pad(float_tables::g2x);
+alignas(64) constexpr padded_table kG2y = pad(float_tables::g2y);
+alignas(64) constexpr padded_table kG3x = pad(float_tables::g3x);
+alignas(64) constexpr padded_table kG3y = pad(float_tables::g3y);
+alignas(64) constexpr padded_table kG3z = pad(float_tables::g3z);
 
 // table[idx] per lane for idx < kEntries: one in-register permute per chunk
 // of Lanes entries (one for 8 entries on AVX2, two for 12), then a select.
 template <int kEntries>
-HWY_INLINE VF lookup(const float* HWY_RESTRICT table, VU idx) {
+HWY_INLINE VF lookup(const padded_table& table, VU idx) {
   const DF df;
   const DU du;
   const DI di;
   const std::size_t n = hn::Lanes(df);
-  const VU lane_mask = hn::Set(du, static_cast<std::uint32_t>(n - 1));
-  const auto within = hn::IndicesFromVec(df, hn::BitCast(di, hn::And(idx, lane_mask)));
-  VF r = hn::TableLookupLanes(hn::LoadU(df, table), within);
+  // Within-chunk positions; an index below the lane count already is one.
+  const VU in = static_cast<std::size_t>(kEntries) <= hn::MaxLanes(df)
+                    ? idx
+                    : hn::And(idx, hn::Set(du, static_cast<std::uint32_t>(n - 1)));
+  const auto within = hn::IndicesFromVec(df, hn::BitCast(di, in));
+  VF r = hn::TableLookupLanes(hn::LoadU(df, table.v), within);
   for (std::size_t base = n; base < static_cast<std::size_t>(kEntries); base += n) {
     // Indices are small, so a signed compare (the one every target has) is exact.
     const auto in_chunk = hn::RebindMask(
         df, hn::Gt(hn::BitCast(di, idx), hn::Set(di, static_cast<std::int32_t>(base) - 1)));
-    r = hn::IfThenElse(in_chunk, hn::TableLookupLanes(hn::LoadU(df, table + base), within), r);
+    r = hn::IfThenElse(in_chunk, hn::TableLookupLanes(hn::LoadU(df, table.v + base), within), r);
   }
   return r;
 }
 
+// 2D gradient index: the top 3 hash bits.
 HWY_INLINE VU grad_index2(VU h) { return hn::ShiftRight<detail::constants::kPerlin2GradShift>(h); }
-HWY_INLINE VU grad_index3(VU h) {
+
+// 3D: ((h >> 16) * 12) >> 16 is the high half of the 16-bit product of h's
+// top half and 12, so MulHigh on 16-bit lanes leaves the index in bits
+// 16 ... 19 of each 32-bit lane (bits 0 ... 15 hold the low half's product,
+// which nothing reads).
+HWY_INLINE VU grad_index3_high(VU h) {
   namespace c = detail::constants;
-  const VU top = hn::ShiftRight<c::kPerlin3IndexShift>(h);
-  return hn::ShiftRight<c::kPerlin3IndexShift>(
-      hn::Mul(top, hn::Set(DU(), static_cast<std::uint32_t>(c::kPerlin3GradCount))));
+  static_assert(c::kPerlin3IndexShift == 16, "the 16-bit high multiply needs a shift of 16");
+#if HWY_TARGET == HWY_SCALAR
+  // One-lane vectors cannot be reinterpreted as 16-bit lanes: (h >> 16) * 12
+  // has the index in the same bits.
+  return hn::Mul(hn::ShiftRight<16>(h), hn::Set(DU(), std::uint32_t(c::kPerlin3GradCount)));
+#else
+  const DU16 d16;
+  return hn::BitCast(
+      DU(), hn::MulHigh(hn::BitCast(d16, h), hn::Set(d16, std::uint16_t(c::kPerlin3GradCount))));
+#endif
+}
+HWY_INLINE VU grad_index3(VU h) { return hn::ShiftRight<16>(grad_index3_high(h)); }
+
+// The 3D gradients are the 12 cube edges, index n -> (x, y, z):
+//   n < 4: (+-1, +-1, 0), n < 8: (+-1, 0, +-1), else (0, +-1, +-1),
+// first sign from bit 0 of n, second from bit 1 (constants.hpp's tables).
+static_assert(
+    [] {
+      for (int n = 0; n < detail::constants::kPerlin3GradCount; ++n) {
+        const double s0 = (n & 1) ? -1 : 1, s1 = (n & 2) ? -1 : 1;
+        const double want[3] = {n < 8 ? s0 : 0, n < 4 ? s1 : (n < 8 ? 0 : s0), n < 4 ? 0 : s1};
+        if (detail::constants::kPerlin3GradX[n] != want[0] ||
+            detail::constants::kPerlin3GradY[n] != want[1] ||
+            detail::constants::kPerlin3GradZ[n] != want[2])
+          return false;
+      }
+      return true;
+    }(),
+    "dot3_select assumes the cube-edge layout of the 3D gradient table");
+
+// g . (fx, fy, fz) for the 3D gradient of hash h without a table: pick the
+// two coordinates the edge uses, flip their signs and add. The sum is the
+// rounding of the same exact real as gx fx + (gy fy + gz fz); only the sign
+// of a zero result can differ, and outputs are +0-canonical (perlin.hpp).
+HWY_INLINE VF dot3_select(VU h, VF fx, VF fy, VF fz) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const VU k = grad_index3_high(h);  // index in bits 16 ... 19
+  const auto below8 = hn::RebindMask(df, hn::Lt(hn::BitCast(di, k), hn::Set(di, 8 << 16)));
+  const auto below4 = hn::RebindMask(df, hn::Lt(hn::BitCast(di, k), hn::Set(di, 4 << 16)));
+  const VF p = hn::IfThenElse(below8, fx, fy);
+  const VF q = hn::IfThenElse(below4, fy, fz);
+  const VU sign = hn::Set(du, 0x80000000u);
+  const VF sp = hn::BitCast(df, hn::And(hn::ShiftLeft<15>(k), sign));  // bit 0 of the index
+  const VF sq = hn::BitCast(df, hn::And(hn::ShiftLeft<14>(k), sign));  // bit 1
+  return hn::Add(hn::Xor(p, sp), hn::Xor(q, sq));
 }
 
+// Targets whose vector holds the whole 12-entry table look gradients up with
+// one permute per component; narrower ones select (dot3_select).
+constexpr bool kOnePermuteTable3 =
+    hn::MaxLanes(DF()) >= static_cast<std::size_t>(detail::constants::kPerlin3GradCount);
+
 // One axis of a batch of lattice lookups: hash words of the two cells, the
-// fraction, its fade and (for gradients) the fade's derivative.
+// fraction f, f - 1, the fade and (for gradients) the fade's derivative.
 struct axis {
   VU w0, w1;
-  VF f, s, ds;
+  VF f, f1, s, ds;
 };
 
-// ---- 2D core: perlin<2>::eval2 in lanes. ky0/ky1 already hold key ^ word_y.
+// Per-corner inputs of the blend: dot products d and, for gradients, the
+// gradient components. Corner n = a + 2b + 4c is at offset (a, b, c).
+struct corners {
+  VF d[8], gx[8], gy[8], gz[8];
+};
+
+// Corner dot products from hashes: kyz[b + 2c] = key ^ word_y(j_b) ^
+// word_z(k_c) (2D: kyz[0], kyz[1]).
+template <bool kGradient, int D>
+HWY_INLINE void hashed_corners(const axis& x, const VU* kyz, const axis& y, const axis& z,
+                               corners& k) {
+  constexpr int kCorners = 1 << D;
+  HWY_UNROLL(8)
+  for (int n = 0; n < kCorners; ++n) {
+    const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+    const VU h = hash32_high(hn::Xor(a ? x.w1 : x.w0, kyz[b + 2 * c]));
+    const VF fx = a ? x.f1 : x.f, fy = b ? y.f1 : y.f;
+    if constexpr (D == 2) {
+      constexpr int kN = detail::constants::kPerlin2GradCount;
+      const VU g = grad_index2(h);
+      k.gx[n] = lookup<kN>(kG2x, g);
+      k.gy[n] = lookup<kN>(kG2y, g);
+      k.d[n] = mul_add(k.gx[n], fx, hn::Mul(k.gy[n], fy));
+    } else {
+      constexpr int kN = detail::constants::kPerlin3GradCount;
+      const VF fz = c ? z.f1 : z.f;
+      if constexpr (kGradient || kOnePermuteTable3) {
+        const VU g = grad_index3(h);
+        k.gx[n] = lookup<kN>(kG3x, g);
+        k.gy[n] = lookup<kN>(kG3y, g);
+        k.gz[n] = lookup<kN>(kG3z, g);
+        // gx fx + (gy fy + gz fz), as perlin.hpp sums it.
+        k.d[n] = mul_add(k.gx[n], fx, mul_add(k.gy[n], fy, hn::Mul(k.gz[n], fz)));
+      } else {
+        k.d[n] = dot3_select(h, fx, fy, fz);
+      }
+    }
+  }
+}
+
+// ---- The blend: perlin<D>::eval2 / eval3 after the dot products, in lanes.
 template <bool kGradient>
-HWY_INLINE void core2(const axis& x, VU ky0, VU ky1, const axis& y, VF& value, VF& gx_out,
-                      VF& gy_out) {
+HWY_INLINE void finish2(const corners& k, const axis& x, const axis& y, VF& value, VF* grad) {
   const DF df;
-  const tables& tab = gradient_tables();
-  const VF one = hn::Set(df, 1.0f);
-  const VF fx = x.f, fy = y.f, fx1 = hn::Sub(fx, one), fy1 = hn::Sub(fy, one);
-  const VU g00 = grad_index2(hash32(hn::Xor(x.w0, ky0)));
-  const VU g10 = grad_index2(hash32(hn::Xor(x.w1, ky0)));
-  const VU g01 = grad_index2(hash32(hn::Xor(x.w0, ky1)));
-  const VU g11 = grad_index2(hash32(hn::Xor(x.w1, ky1)));
-  constexpr int kN = detail::constants::kPerlin2GradCount;
-  const VF ax00 = lookup<kN>(tab.g2x, g00), ay00 = lookup<kN>(tab.g2y, g00);
-  const VF ax10 = lookup<kN>(tab.g2x, g10), ay10 = lookup<kN>(tab.g2y, g10);
-  const VF ax01 = lookup<kN>(tab.g2x, g01), ay01 = lookup<kN>(tab.g2y, g01);
-  const VF ax11 = lookup<kN>(tab.g2x, g11), ay11 = lookup<kN>(tab.g2y, g11);
-  const VF d00 = mul_add(ax00, fx, hn::Mul(ay00, fy));
-  const VF d10 = mul_add(ax10, fx1, hn::Mul(ay10, fy));
-  const VF d01 = mul_add(ax01, fx, hn::Mul(ay01, fy1));
-  const VF d11 = mul_add(ax11, fx1, hn::Mul(ay11, fy1));
   const VF u = x.s, v = y.s;
-  const VF x0 = lerp(d00, d10, u), x1 = lerp(d01, d11, u);
+  const VF x0 = lerp(k.d[0], k.d[1], u), x1 = lerp(k.d[2], k.d[3], u);
   const VF scale = hn::Set(df, float(detail::constants::kPerlin2Scale));
   value = hn::Mul(scale, lerp(x0, x1, v));
   if constexpr (kGradient) {
-    const VF gx = mul_add(x.ds, lerp(hn::Sub(d10, d00), hn::Sub(d11, d01), v),
-                          lerp(lerp(ax00, ax10, u), lerp(ax01, ax11, u), v));
-    const VF gy = mul_add(y.ds, hn::Sub(x1, x0), lerp(lerp(ay00, ay10, u), lerp(ay01, ay11, u), v));
-    gx_out = hn::Mul(scale, gx);
-    gy_out = hn::Mul(scale, gy);
+    const VF gx = mul_add(x.ds, lerp(hn::Sub(k.d[1], k.d[0]), hn::Sub(k.d[3], k.d[2]), v),
+                          lerp(lerp(k.gx[0], k.gx[1], u), lerp(k.gx[2], k.gx[3], u), v));
+    const VF gy = mul_add(y.ds, hn::Sub(x1, x0),
+                          lerp(lerp(k.gy[0], k.gy[1], u), lerp(k.gy[2], k.gy[3], u), v));
+    grad[0] = hn::Mul(scale, gx);
+    grad[1] = hn::Mul(scale, gy);
   } else {
-    (void)gx_out;
-    (void)gy_out;
+    (void)grad;
   }
 }
 
-// ---- 3D core: perlin<3>::eval3 in lanes. kyz[b + 2c] = key ^ word_y(j_b) ^ word_z(k_c).
 template <bool kGradient>
-HWY_INLINE void core3(const axis& x, const VU* kyz, const axis& y, const axis& z, VF& value,
-                      VF* grad) {
+HWY_INLINE void finish3(const corners& k, const axis& x, const axis& y, const axis& z, VF& value,
+                        VF* grad) {
   const DF df;
-  const tables& tab = gradient_tables();
-  const VF one = hn::Set(df, 1.0f);
-  const VF f[2][3] = {{x.f, y.f, z.f}, {hn::Sub(x.f, one), hn::Sub(y.f, one), hn::Sub(z.f, one)}};
-  constexpr int kN = detail::constants::kPerlin3GradCount;
-  VF d[8], gxs[8], gys[8], gzs[8];
-  for (int n = 0; n < 8; ++n) {
-    const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
-    const VU g = grad_index3(hash32(hn::Xor(a ? x.w1 : x.w0, kyz[b + 2 * c])));
-    gxs[n] = lookup<kN>(tab.g3x, g);
-    gys[n] = lookup<kN>(tab.g3y, g);
-    gzs[n] = lookup<kN>(tab.g3z, g);
-    // (gx fx + gy fy) + gz fz, summed left to right as in eval3.
-    d[n] = mul_add(gzs[n], f[c][2], mul_add(gxs[n], f[a][0], hn::Mul(gys[n], f[b][1])));
-  }
+  const VF* d = k.d;
   const VF u = x.s, v = y.s, w = z.s;
   const VF x00 = lerp(d[0], d[1], u), x10 = lerp(d[2], d[3], u);
   const VF x01 = lerp(d[4], d[5], u), x11 = lerp(d[6], d[7], u);
   const VF y0 = lerp(x00, x10, v), y1 = lerp(x01, x11, v);
   const VF scale = hn::Set(df, float(detail::constants::kPerlin3Scale));
-  value = hn::Mul(scale, lerp(y0, y1, w));
+  value = scale_plus_zero(scale, lerp(y0, y1, w));
   if constexpr (kGradient) {
     auto blend = [&](const VF* q) {
       return lerp(lerp(lerp(q[0], q[1], u), lerp(q[2], q[3], u), v),
@@ -5012,26 +6025,26 @@ HWY_INLINE void core3(const axis& x, const VU* kyz, const axis& y, const axis& z
                        lerp(hn::Sub(d[5], d[4]), hn::Sub(d[7], d[6]), v), w);
     const VF ey = lerp(hn::Sub(x10, x00), hn::Sub(x11, x01), w);
     const VF ez = hn::Sub(y1, y0);
-    grad[0] = hn::Mul(scale, mul_add(x.ds, ex, blend(gxs)));
-    grad[1] = hn::Mul(scale, mul_add(y.ds, ey, blend(gys)));
-    grad[2] = hn::Mul(scale, mul_add(z.ds, ez, blend(gzs)));
+    grad[0] = scale_plus_zero(scale, mul_add(x.ds, ex, blend(k.gx)));
+    grad[1] = scale_plus_zero(scale, mul_add(y.ds, ey, blend(k.gy)));
+    grad[2] = scale_plus_zero(scale, mul_add(z.ds, ez, blend(k.gz)));
+  } else {
+    (void)grad;
   }
 }
 
-// perlin<D>'s core on one vector. kyz[b + 2c] = key ^ word_y(j_b) ^
-// word_z(k_c) (2D: kyz[0], kyz[1]; z unused).
 template <bool kGradient, int D>
-HWY_INLINE void core(const axis& x, const VU* kyz, const axis& y, const axis& z, VF& value,
-                     VF* grad) {
+HWY_INLINE void finish(const corners& k, const axis& x, const axis& y, const axis& z, VF& value,
+                       VF* grad) {
   if constexpr (D == 2) {
     (void)z;
-    core2<kGradient>(x, kyz[0], kyz[1], y, value, grad[0], grad[1]);
+    finish2<kGradient>(k, x, y, value, grad);
   } else {
-    core3<kGradient>(x, kyz, y, z, value, grad);
+    finish3<kGradient>(k, x, y, z, value, grad);
   }
 }
 
-// kyz for core() from per-lane axes (points) ...
+// kyz for hashed_corners() from per-lane axes (points) ...
 template <int D>
 HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
   kyz[0] = hn::Xor(key, y.w0);
@@ -5045,15 +6058,6 @@ HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
     (void)z;
   }
 }
-// ... and from row-constant words (grids; z words 0 in 2D).
-HWY_INLINE void key_words(std::uint32_t key, std::uint32_t y0, std::uint32_t y1, std::uint32_t z0,
-                          std::uint32_t z1, VU* kyz) {
-  const DU du;
-  kyz[0] = hn::Set(du, key ^ y0 ^ z0);
-  kyz[1] = hn::Set(du, key ^ y1 ^ z0);
-  kyz[2] = hn::Set(du, key ^ y0 ^ z1);
-  kyz[3] = hn::Set(du, key ^ y1 ^ z1);
-}
 
 // D interleaved vectors (gradients) to dst.
 template <int D>
@@ -5065,31 +6069,55 @@ HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
     hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
 }
 
-}  // namespace perlin_simd
-
-namespace perlin_simd {
-
 // ---- Points: splitting float coordinates into lattice axes.
 
-// Vector split, valid when every lane is finite with |x| < 2^31: floor and
-// x - floor(x) are exact in float, so this equals lattice_split's double
-// computation (including its clamp below 1 for tiny negative x).
-template <bool kGradient, int kAxis>
-HWY_INLINE axis split_fast(VF xv) {
-  const DF df;
-  const DI di;
-  const DU du;
-  const VF fl = hn::Floor(xv);
-  const VF f = hn::Min(hn::Sub(xv, fl), hn::Set(df, detail::one_minus_ulp<float>()));
-  const VU i0 = hn::BitCast(du, hn::ConvertTo(di, fl));
-  axis a;
-  a.w0 = word<kAxis>(i0);
-  a.w1 = word<kAxis>(hn::Add(i0, hn::Set(du, 1u)));
+// Fractions, fades and the second cell's word of an axis whose first word
+// and fraction are known.
+template <bool kGradient>
+HWY_INLINE void fill_axis(VF f, axis& a) {
   a.f = f;
+  a.f1 = hn::Sub(f, hn::Set(DF(), 1.0f));
   a.s = fade(f);
   if constexpr (kGradient) a.ds = fade_derivative(f);
+}
+
+// Vector split, valid when every lane is finite with |x| < 2^22: floor and
+// x - floor(x) are exact in float, so this equals lattice_split's double
+// computation (including its clamp below 1 for tiny negative x). The cell
+// comes from the float's bits: floor(x) + 1.5 * 2^23 is exact for
+// |floor(x)| <= 2^22 and its bit pattern is 0x4B400000 + floor(x), two's
+// complement (cheaper than a conversion with overflow handling).
+constexpr float kFastSplitLimit = 4194304.0f;  // 2^22
+constexpr float kCellMagic = 12582912.0f;      // 1.5 * 2^23
+constexpr std::uint32_t kCellMagicBits = 0x4B400000u;
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split_fast(VF xv) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  const VF fl = hn::Floor(xv);
+  const VU i0 =
+      hn::Sub(hn::BitCast(du, hn::Add(fl, hn::Set(df, kCellMagic))), hn::Set(du, kCellMagicBits));
+  // (i + 1) P = i P + P: the second cell's product is one add away.
+  constexpr std::uint32_t kPrime = kAxis == 0   ? c::kLatticePrimeX
+                                   : kAxis == 1 ? c::kLatticePrimeY
+                                                : c::kLatticePrimeZ;
+  const VU m0 = hn::Mul(i0, hn::Set(du, kPrime));
+  const VU m1 = hn::Add(m0, hn::Set(du, kPrime));
+  axis a;
+  if constexpr (kAxis == 0) {
+    a.w0 = m0;
+    a.w1 = m1;
+  } else {
+    constexpr int kRotate = kAxis == 1 ? c::kLatticeRotateY : c::kLatticeRotateZ;
+    a.w0 = hn::RotateRight<32 - kRotate>(m0);
+    a.w1 = hn::RotateRight<32 - kRotate>(m1);
+  }
+  fill_axis<kGradient>(hn::Min(hn::Sub(xv, fl), hn::Set(df, detail::one_minus_ulp<float>())), a);
   return a;
 }
+static_assert(detail::constants::kLatticeRotateY > 0 && detail::constants::kLatticeRotateZ > 0,
+              "split_fast rotates by 32 - R");
 
 // Lane-by-lane split of double coordinates q[lane] through core/lattice.hpp:
 // exactly what scalar evaluation computes.
@@ -5108,16 +6136,14 @@ HWY_INLINE axis split_doubles(const double* q, std::uint32_t period) {
   axis a;
   a.w0 = word<kAxis>(hn::Load(du, i0s));
   a.w1 = word<kAxis>(hn::Load(du, i1s));
-  a.f = hn::Load(df, fs);
-  a.s = fade(a.f);
-  if constexpr (kGradient) a.ds = fade_derivative(a.f);
+  fill_axis<kGradient>(hn::Load(df, fs), a);
   return a;
 }
 
-// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^31 and
+// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^22 and
 // periodic axes. Same result as scalar evaluation by construction.
 template <bool kGradient, int kAxis>
-HWY_INLINE axis split_lanes(VF xv, std::uint32_t period) {
+HWY_NOINLINE axis split_lanes(VF xv, std::uint32_t period) {
   const DF df;
   HWY_ALIGN float xs[kMaxLanes];
   double q[kMaxLanes];
@@ -5126,69 +6152,135 @@ HWY_INLINE axis split_lanes(VF xv, std::uint32_t period) {
   return split_doubles<kGradient, kAxis>(q, period);
 }
 
+// Lanes with |x| < 2^22 (false for NaN): where the vector split is exact.
+HWY_INLINE hn::Mask<DF> in_fast_range(VF x) {
+  const DF df;
+  return hn::Lt(hn::Abs(x), hn::Set(df, kFastSplitLimit));
+}
+
 template <bool kGradient, int kAxis>
 HWY_INLINE axis split(VF xv, std::uint32_t period) {
-  const DF df;
-  if (period == 0 && hn::AllTrue(df, hn::Lt(hn::Abs(xv), hn::Set(df, 2147483648.0f))))
-    return split_fast<kGradient, kAxis>(xv);
+  if (period == 0 && hn::AllTrue(DF(), in_fast_range(xv))) return split_fast<kGradient, kAxis>(xv);
   return split_lanes<kGradient, kAxis>(xv, period);
 }
 
-// One vector of D-dimensional points (interleaved) -> values (and interleaved gradients).
+// Split points -> values (and interleaved gradients) of one vector.
 template <bool kGradient, int D>
-HWY_INLINE void points_vector(std::uint32_t key, const std::uint32_t* period,
-                              const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
-                              float* HWY_RESTRICT grad) {
-  const DF df;
-  VF c[3];
-  if constexpr (D == 2)
-    hn::LoadInterleaved2(df, pts, c[0], c[1]);
-  else
-    hn::LoadInterleaved3(df, pts, c[0], c[1], c[2]);
-  const axis ax = split<kGradient, 0>(c[0], period[0]);
-  const axis ay = split<kGradient, 1>(c[1], period[1]);
-  axis az{};
-  if constexpr (D == 3) az = split<kGradient, 2>(c[2], period[2]);
+HWY_INLINE void points_from_axes(VU key, const axis& ax, const axis& ay, const axis& az,
+                                 float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
   VU kyz[4];
-  key_words<D>(hn::Set(DU(), key), ay, az, kyz);
+  key_words<D>(key, ay, az, kyz);
+  corners k;
+  hashed_corners<kGradient, D>(ax, kyz, ay, az, k);
   VF v, g[3];
-  core<kGradient, D>(ax, kyz, ay, az, v, g);
-  hn::StoreU(v, df, value);
+  finish<kGradient, D>(k, ax, ay, az, v, g);
+  hn::StoreU(v, DF(), value);
   if constexpr (kGradient) store_interleaved<D>(g, grad);
 }
 
-// Runs `vector_fn` over n points of D floats each; the last partial vector
-// goes through zero-padded buffers, so no lane reads or writes out of bounds.
-template <int D, class Fn>
-HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
-                                      Fn vector_fn) {
+// A vector with a lane the fast split cannot take, or periodic noise: each
+// axis splits by the vector or lane by lane, whichever is exact. Out of line,
+// so that the common path keeps its registers.
+template <bool kGradient, int D>
+HWY_NOINLINE void points_vector_lanes(VU key, const std::uint32_t* period, VF x, VF y, VF z,
+                                      float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
+  const axis ax = split<kGradient, 0>(x, period[0]);
+  const axis ay = split<kGradient, 1>(y, period[1]);
+  axis az{};
+  if constexpr (D == 3) az = split<kGradient, 2>(z, period[2]);
+  points_from_axes<kGradient, D>(key, ax, ay, az, value, grad);
+}
+
+// One vector of D-dimensional points (interleaved) -> values (and
+// interleaved gradients), if every lane can take the vector split: returns
+// false, writing nothing, if one cannot (then points_vector_lanes does it).
+template <bool kGradient, int D>
+HWY_INLINE bool points_vector_fast(VU key, const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                                   float* HWY_RESTRICT grad) {
   const DF df;
-  const std::size_t lanes = hn::Lanes(df);
+  VF x, y, z = hn::Zero(df);
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, x, y);
+  else
+    hn::LoadInterleaved3(df, pts, x, y, z);
+  auto fast = hn::And(in_fast_range(x), in_fast_range(y));
+  if constexpr (D == 3) fast = hn::And(fast, in_fast_range(z));
+  if (HWY_UNLIKELY(!hn::AllTrue(df, fast))) return false;
+  axis az{};
+  if constexpr (D == 3) az = split_fast<kGradient, 2>(z);
+  points_from_axes<kGradient, D>(key, split_fast<kGradient, 0>(x), split_fast<kGradient, 1>(y), az,
+                                 value, grad);
+  return true;
+}
+
+// Any vector of points, periodic noise included.
+template <bool kGradient, int D>
+HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
+                              const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                              float* HWY_RESTRICT grad) {
+  if (plain && points_vector_fast<kGradient, D>(key, pts, value, grad)) return;
+  const DF df;
+  VF x, y, z = hn::Zero(df);
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, x, y);
+  else
+    hn::LoadInterleaved3(df, pts, x, y, z);
+  points_vector_lanes<kGradient, D>(key, period, x, y, z, value, grad);
+}
+
+// Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
+// vector at a time; the last partial vector goes through zero-padded
+// buffers, so no lane reads or writes out of bounds. One call site, so the
+// vector function inlines into the loop.
+template <bool kGradient, int D, class Fn>
+HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
+                                      const Fn& vector_fn) {
+  const std::size_t lanes = hn::Lanes(DF());
+  HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
+  for (std::size_t i = 0; i < n; i += lanes) {
+    const std::size_t rest = std::min(lanes, n - i);
+    const bool full = rest == lanes;
+    if (!full) std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+    vector_fn(full ? pts + i * D : in, full ? value + i : out,
+              !kGradient ? nullptr
+              : full     ? grad + i * D
+                         : g);
+    if (full) continue;
+    std::memcpy(value + i, out, rest * sizeof(float));
+    if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
+  }
+}
+
+template <bool kGradient, int D>
+HWY_NOINLINE void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts,
+                                std::size_t n, float* value, float* grad) {
+  const VU vkey = hn::Set(DU(), key);
+  bool plain = true;
+  for (int a = 0; a < D; ++a) plain = plain && period[a] == 0;
+  // Whole vectors, then the rest through zero-padded buffers (no lane reads
+  // or writes out of bounds). points_vector inlines at both sites.
+  const std::size_t lanes = hn::Lanes(DF());
   std::size_t i = 0;
-  for (; i + lanes <= n; i += lanes)
-    vector_fn(pts + i * D, value + i, grad ? grad + i * D : nullptr);
+  while (i + lanes <= n) {
+    // The common case runs in a loop without calls, which keeps its constants
+    // in registers; a vector it cannot take leaves it for points_vector.
+    if (plain)
+      for (; i + lanes <= n; i += lanes)
+        if (!points_vector_fast<kGradient, D>(vkey, pts + i * D, value + i,
+                                              kGradient ? grad + i * D : nullptr))
+          break;
+    if (i + lanes > n) break;
+    points_vector<kGradient, D>(vkey, plain, period, pts + i * D, value + i,
+                                kGradient ? grad + i * D : nullptr);
+    i += lanes;
+  }
   if (i == n) return;
   const std::size_t rest = n - i;
   HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
   std::memcpy(in, pts + i * D, rest * D * sizeof(float));
-  vector_fn(in, out, g);
+  points_vector<kGradient, D>(vkey, plain, period, in, out, g);
   std::memcpy(value + i, out, rest * sizeof(float));
-  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
-}
-
-// for_each_point_vector with the gradient choice made once per batch:
-// vector_fn(std::bool_constant<kGradient>, pts, value, grad).
-template <int D, class Fn>
-HWY_INLINE void run_points(std::size_t n, const float* pts, float* value, float* grad,
-                           Fn vector_fn) {
-  if (grad)
-    for_each_point_vector<D>(n, pts, value, grad, [&](const float* p, float* v, float* g) {
-      vector_fn(std::true_type{}, p, v, g);
-    });
-  else
-    for_each_point_vector<D>(n, pts, value, nullptr, [&](const float* p, float* v, float*) {
-      vector_fn(std::false_type{}, p, v, nullptr);
-    });
+  if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
 }
 
 }  // namespace perlin_simd
@@ -5198,10 +6290,10 @@ HWY_INLINE void run_points(std::size_t n, const float* pts, float* value, float*
 template <int D>
 void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts, std::size_t n,
                    float* value, float* grad) {
-  perlin_simd::run_points<D>(
-      n, pts, value, grad, [&](auto gradient, const float* p, float* v, float* g) {
-        perlin_simd::points_vector<decltype(gradient)::value, D>(key, period, p, v, g);
-      });
+  if (grad)
+    perlin_simd::perlin_points<true, D>(key, period, pts, n, value, grad);
+  else
+    perlin_simd::perlin_points<false, D>(key, period, pts, n, value, nullptr);
 }
 inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
                            std::size_t n, float* value, float* grad) {
@@ -5214,24 +6306,42 @@ inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const
 
 namespace perlin_simd {
 
-// ---- Grids: the x axis is split once per column (in double, by
+// ---- Grids. The x axis is split once per column (in double, by
 // lattice_split, exactly as scalar evaluation does) and reused by every row;
-// y (and z) are split once per row (slice) and broadcast.
-struct column_table {
+// y (and z) are split once per row and broadcast.
+//
+// Consecutive columns share cells (the benchmark has 37 per cell), and the
+// corner gradients of a cell are the same for every sample of a row in it.
+// So each row hashes its lattice points once and keeps, per cell and corner,
+// the gradient's x component gx and the row-constant rest of the dot product
+//   K = gy f_y (2D),  K = gy f_y + gz f_z (3D),
+// and a sample needs d = gx f_x + K: exactly the scalar sums (perlin.hpp).
+// A vector of columns spans at most Lanes cells, so its cells' entries are
+// one unaligned load and a permute away. Rows whose cells are not shared
+// (steps near or above one cell) hash per sample instead.
+struct grid_columns {
+  std::size_t n = 0, padded = 0, cells = 0;
   std::vector<float> f, s, ds;
-  std::vector<std::uint32_t> w0, w1;
-  std::size_t padded = 0;
+  std::vector<std::uint32_t> w0, w1;    // per column: x words of its cell's two lattice points
+  std::vector<std::uint32_t> local;     // per column: its cell's rank minus its vector's base
+  std::vector<std::uint32_t> base;      // per vector of columns: the rank of its first cell
+  std::vector<std::uint32_t> cw0, cw1;  // per cell rank: x words, padded to whole vectors
+  bool shared = false;                  // at least two columns per cell on average
 
   // Column i's x coordinate is position(i), a double.
   template <class Position>
-  column_table(std::size_t n, std::uint32_t period, bool gradient, Position position) {
+  grid_columns(std::size_t count, std::uint32_t period, bool gradient, Position position)
+      : n(count) {
     const std::size_t lanes = hn::Lanes(DF());
     padded = (n + lanes - 1) / lanes * lanes;
     f.assign(padded, 0.0f);
     s.assign(padded, 0.0f);
     w0.assign(padded, 0u);
     w1.assign(padded, 0u);
+    local.assign(padded, 0u);
+    base.assign(padded / lanes, 0u);
     if (gradient) ds.assign(padded, 0.0f);
+    std::uint32_t rank = 0, prev_i0 = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const lattice_coord<float> c = lattice_split<float>(position(i), period);
       f[i] = c.f;
@@ -5239,25 +6349,49 @@ struct column_table {
       if (gradient) ds[i] = detail::fade_derivative(c.f);
       w0[i] = lattice_word_x(c.i0);
       w1[i] = lattice_word_x(c.i1);
+      // A new cell starts where i0 changes (i1 follows from i0 and the period).
+      if (i > 0 && c.i0 != prev_i0) ++rank;
+      if (i == 0 || c.i0 != prev_i0) {
+        cw0.push_back(w0[i]);
+        cw1.push_back(w1[i]);
+      }
+      prev_i0 = c.i0;
+      if (i % lanes == 0) base[i / lanes] = rank;
+      local[i] = rank - base[i / lanes];  // < lanes: each column adds at most one cell
     }
+    // Padding lanes repeat the last column's cell: a vector's lanes then share
+    // one cell exactly when its last lane's local rank is 0 (corners_at).
+    for (std::size_t i = n; i < padded; ++i) local[i] = local[n - 1];
+    cells = cw0.size();
+    cw0.resize((cells + lanes - 1) / lanes * lanes, 0u);
+    cw1.resize(cw0.size(), 0u);
+    shared = 2 * cells <= n;
   }
+
   template <bool kGradient>
   HWY_INLINE axis load(std::size_t i) const {
-    const DF df;
     const DU du;
     axis a;
     a.w0 = hn::LoadU(du, w0.data() + i);
     a.w1 = hn::LoadU(du, w1.data() + i);
+    fill_axis_loaded<kGradient>(i, a);
+    return a;
+  }
+  // Fractions and fades only (the table path needs no words).
+  template <bool kGradient>
+  HWY_INLINE void fill_axis_loaded(std::size_t i, axis& a) const {
+    const DF df;
     a.f = hn::LoadU(df, f.data() + i);
+    a.f1 = hn::Sub(a.f, hn::Set(df, 1.0f));
     a.s = hn::LoadU(df, s.data() + i);
     if constexpr (kGradient) a.ds = hn::LoadU(df, ds.data() + i);
-    return a;
   }
 };
 
 // A row-constant axis (y or z): scalar split broadcast to all lanes.
 struct row_axis {
-  std::uint32_t w0, w1;
+  std::uint32_t w0 = 0, w1 = 0;
+  float f = 0, f1 = 0;
   axis a;
 };
 template <bool kGradient, int kAxis>
@@ -5267,11 +6401,166 @@ HWY_INLINE row_axis broadcast_axis(double p, std::uint32_t period) {
   row_axis r;
   r.w0 = kAxis == 1 ? lattice_word_y(c.i0) : lattice_word_z(c.i0);
   r.w1 = kAxis == 1 ? lattice_word_y(c.i1) : lattice_word_z(c.i1);
-  r.a.f = hn::Set(df, c.f);
+  r.f = c.f;
+  r.f1 = c.f - 1.0f;
+  r.a.f = hn::Set(df, r.f);
+  r.a.f1 = hn::Set(df, r.f1);
   r.a.s = hn::Set(df, detail::fade(c.f));
   if constexpr (kGradient) r.a.ds = hn::Set(df, detail::fade_derivative(c.f));
   return r;
 }
+
+// The lattice words and fractions of one grid row (2D: z unused).
+struct grid_row {
+  std::uint32_t key;
+  row_axis y, z;
+  // key ^ word_y(j_b) ^ word_z(k_c) for corner offsets (b, c), index b + 2c.
+  std::uint32_t kyz(int b, int c) const { return key ^ (b ? y.w1 : y.w0) ^ (c ? z.w1 : z.w0); }
+};
+
+// Per-row, per-cell corner data for the shared-cell path: for corner n and
+// cell rank r, gx (and for gradients gy, gz) and K, at [n * stride + r].
+template <bool kGradient, int D>
+struct row_tables {
+  static constexpr int kCorners = 1 << D;
+  std::size_t stride = 0;
+  std::vector<float> gx, k, gy, gz;
+  // The y/z words the gradients were hashed for: consecutive rows in the same
+  // y (and z) cell keep them and only recompute k (the benchmark's grids have
+  // 37 rows per cell).
+  std::uint32_t hashed_kyz[4] = {};
+  bool hashed = false;
+
+  explicit row_tables(const grid_columns& cols) {
+    const std::size_t lanes = hn::Lanes(DF());
+    stride = cols.cw0.size() + lanes;  // a vector's load at its base rank stays inside
+    const std::size_t size = stride * kCorners;
+    gx.assign(size, 0.0f);
+    k.assign(size, 0.0f);
+    gy.assign(size, 0.0f);
+    if (D == 3) gz.assign(size, 0.0f);
+  }
+
+  // Hashes the row's lattice points (cells' x words against the row's y/z
+  // words) unless the previous row had the same ones, then forms k.
+  HWY_INLINE void build(const grid_columns& cols, const grid_row& row) {
+    const DF df;
+    const DU du;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::uint32_t words[4] = {row.kyz(0, 0), row.kyz(1, 0), row.kyz(0, 1), row.kyz(1, 1)};
+    const bool same = hashed && std::equal(words, words + 4, hashed_kyz);
+    std::copy(words, words + 4, hashed_kyz);
+    hashed = true;
+    for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
+      const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
+      HWY_UNROLL(8)
+      for (int n = 0; n < kCorners; ++n) {
+        const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+        const std::size_t at = static_cast<std::size_t>(n) * stride + r;
+        if (!same) {
+          const VU h = hash32_high(hn::Xor(wx[a], hn::Set(du, words[b + 2 * c])));
+          if constexpr (D == 2) {
+            constexpr int kN = detail::constants::kPerlin2GradCount;
+            const VU g = grad_index2(h);
+            hn::StoreU(lookup<kN>(kG2x, g), df, gx.data() + at);
+            hn::StoreU(lookup<kN>(kG2y, g), df, gy.data() + at);
+          } else {
+            constexpr int kN = detail::constants::kPerlin3GradCount;
+            const VU g = grad_index3(h);
+            hn::StoreU(lookup<kN>(kG3x, g), df, gx.data() + at);
+            hn::StoreU(lookup<kN>(kG3y, g), df, gy.data() + at);
+            hn::StoreU(lookup<kN>(kG3z, g), df, gz.data() + at);
+          }
+        }
+        const VF cy = hn::LoadU(df, gy.data() + at);
+        const VF fy = hn::Set(df, b ? row.y.f1 : row.y.f);
+        VF kk;
+        if constexpr (D == 2)
+          kk = hn::Mul(cy, fy);
+        else
+          kk = mul_add(cy, fy,
+                       hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
+        hn::StoreU(kk, df, k.data() + at);
+      }
+    }
+  }
+
+  // Corner data for the vector of columns starting at column i: per lane,
+  // the entries of its cell. Where all lanes share one cell (most vectors
+  // when cells hold many samples) a broadcast replaces the permute.
+  HWY_INLINE void corners_at(const grid_columns& cols, std::size_t i, const axis& x,
+                             corners& out) const {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::size_t b = cols.base[i / lanes];
+    if (cols.local[i + lanes - 1] == 0) {
+      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+        return hn::Set(df, t[at]);
+      });
+    } else {
+      const DU du;
+      const DI di;
+      const auto idx =
+          hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
+      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+        return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx);
+      });
+    }
+  }
+  // out from the entries at cell rank b, read per corner by entry(table, index).
+  template <class Entry>
+  HWY_INLINE void corners_from(std::size_t b, const axis& x, corners& out,
+                               const Entry& entry) const {
+    HWY_UNROLL(8)
+    for (int n = 0; n < kCorners; ++n) {
+      const std::size_t at = static_cast<std::size_t>(n) * stride + b;
+      const VF cx = entry(gx, at);
+      out.d[n] = mul_add(cx, (n & 1) ? x.f1 : x.f, entry(k, at));
+      if constexpr (kGradient) {
+        out.gx[n] = cx;
+        out.gy[n] = entry(gy, at);
+        if constexpr (D == 3) out.gz[n] = entry(gz, at);
+      }
+    }
+  }
+};
+
+// One grid row's evaluation, either path: vector_out(i, value, gradient)
+// receives each vector of columns [i, i + lanes).
+template <bool kGradient, int D>
+struct row_evaluator {
+  const grid_columns& cols;
+  row_tables<kGradient, D> tables;
+
+  explicit row_evaluator(const grid_columns& c) : cols(c), tables(c) {}
+
+  template <class Out>
+  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
+    const std::size_t lanes = hn::Lanes(DF());
+    corners k;
+    VF v, g[3];
+    if (cols.shared) {
+      tables.build(cols, row);
+      for (std::size_t i = 0; i < cols.n; i += lanes) {
+        axis x;
+        cols.fill_axis_loaded<kGradient>(i, x);
+        tables.corners_at(cols, i, x, k);
+        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        vector_out(i, v, g);
+      }
+    } else {
+      const DU du;
+      const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
+                         hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
+      for (std::size_t i = 0; i < cols.n; i += lanes) {
+        const axis x = cols.load<kGradient>(i);
+        hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
+        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        vector_out(i, v, g);
+      }
+    }
+  }
+};
 
 // Stores one vector of results for columns [i, i + lanes) of a row, through
 // a buffer when the row ends inside the vector.
@@ -5289,57 +6578,66 @@ HWY_INLINE void store_row(std::size_t i, std::size_t nx, VF v, const VF* g, floa
   if (row_grad) std::memcpy(row_grad + i * D, gb, (nx - i) * D * sizeof(float));
 }
 
+// The rows (j, k) of the slab [first, first + count) of the slowest axis, in
+// output order: f(j, k, r) with r the row's index inside the slab.
+template <int D, class F>
+HWY_INLINE void for_each_row(const grid<D>& g, std::size_t first, std::size_t count, const F& f) {
+  const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+  const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+  std::size_t r = 0;
+  for (std::size_t k = k0; k < k1; ++k)
+    for (std::size_t j = j0; j < j1; ++j, ++r) f(j, k, r);
+}
+
 template <bool kGradient, int D>
-void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g, float* value,
-                 float* grad) {
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
-  const std::size_t lanes = hn::Lanes(DF());
-  const column_table cols(nx, period[0], kGradient,
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
+                 std::size_t first, std::size_t count, float* value, float* grad) {
+  const std::size_t nx = g.size[0];
+  const grid_columns cols(nx, period[0], kGradient,
                           [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
-  for (std::size_t k = 0; k < nz; ++k) {
-    row_axis z{};
-    if constexpr (D == 3)
-      z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
-    for (std::size_t j = 0; j < ny; ++j) {
-      const row_axis y =
-          broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
-      VU kyz[4];
-      key_words(key, y.w0, y.w1, z.w0, z.w1, kyz);
-      const std::size_t row = k * ny + j;
-      for (std::size_t i = 0; i < nx; i += lanes) {
-        VF v, gr[3];
-        core<kGradient, D>(cols.load<kGradient>(i), kyz, y.a, z.a, v, gr);
-        store_row<D>(i, nx, v, gr, value + row * nx, kGradient ? grad + row * nx * D : nullptr);
-      }
+  row_evaluator<kGradient, D> rows(cols);
+  grid_row row{key, {}, {}};
+  std::size_t split_k = ~std::size_t(0);  // the slice row.z holds
+  for_each_row<D>(g, first, count, [&](std::size_t j, std::size_t k, std::size_t r) HWY_ATTR {
+    if constexpr (D == 3) {
+      if (k != split_k)
+        row.z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
+      split_k = k;
     }
-  }
+    row.y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
+    float* row_value = value + r * nx;
+    float* row_grad = kGradient ? grad + r * nx * D : nullptr;
+    rows.run(row, [&](std::size_t i, VF v, const VF* gr)
+                      HWY_ATTR { store_row<D>(i, nx, v, gr, row_value, row_grad); });
+  });
 }
 
 }  // namespace perlin_simd
 
 // Perlin on a uniform grid (C order, i fastest); gradients interleaved (D
-// per sample) unless grad is null.
+// per sample) unless grad is null; the slab [first, first + count) of the
+// slowest axis (hush/simd/dispatch.hpp).
 template <int D>
-void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g, float* value,
-                 float* grad) {
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
+                 std::size_t first, std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::perlin_grid<true, D>(key, period, g, value, grad);
+    perlin_simd::perlin_grid<true, D>(key, period, g, first, count, value, grad);
   else
-    perlin_simd::perlin_grid<false, D>(key, period, g, value, nullptr);
+    perlin_simd::perlin_grid<false, D>(key, period, g, first, count, value, nullptr);
 }
 inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                         float* value, float* grad) {
-  perlin_grid<2>(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  perlin_grid<2>(key, period, g, first, count, value, grad);
 }
 inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                         float* value, float* grad) {
-  perlin_grid<3>(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  perlin_grid<3>(key, period, g, first, count, value, grad);
 }
 
 namespace perlin_simd {
 
 // ---- Fractal sums of Perlin bands (fractal.hpp): each band is a Perlin
-// field evaluated by the cores above at the band position f_i x + o_i, which
+// field evaluated by the code above at the band position f_i x + o_i, which
 // fractal::band_position forms in double exactly as scalar evaluation does;
 // the weighted sum is accumulated band by band in the same order and with
 // the same operations as fractal::value / value_and_gradient.
@@ -5413,8 +6711,10 @@ HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
     if constexpr (D == 3) az = split_doubles<kGradient, 2>(q[2], c.period[2]);
     VU kyz[4];
     key_words<D>(hn::Set(DU(), c.key), ay, az, kyz);
+    corners k;
+    hashed_corners<kGradient, D>(ax, kyz, ay, az, k);
     VF v, g[3];
-    core<kGradient, D>(ax, kyz, ay, az, v, g);
+    finish<kGradient, D>(k, ax, ay, az, v, g);
     accumulate<kGradient, D>(turbulence, c, v, g, acc, gacc);
   }
   const VF scale = hn::Set(df, float(fr.scale()));
@@ -5427,67 +6727,67 @@ HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
   }
 }
 
-// A fractal on a grid: per band, a column table of the band's x positions
-// and a per-row split of its y (and z) positions.
+// A fractal on a grid: per band, the column layout of the band's x positions
+// and a per-row split of its y (and z) positions, evaluated like a Perlin
+// grid row and accumulated into the row's sums.
 template <bool kGradient, int D>
-void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, float* value, float* grad) {
+void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t first,
+                  std::size_t count, float* value, float* grad) {
   const DF df;
-  const std::size_t lanes = hn::Lanes(df);
   const std::vector<band_config<D>> bands = band_configs(fr);
   const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  const std::size_t nx = g.size[0];
+  const std::size_t lanes = hn::Lanes(df);
   auto position = [&](int b, int axis_index, double coordinate) {
     vec<double, D> p;  // axes are independent in f x + o: the other coordinates do not matter
     p[axis_index] = coordinate;
     return fr.band_position(b, p)[axis_index];
   };
-  std::vector<column_table> cols;
+  std::vector<grid_columns> cols;
   cols.reserve(bands.size());
   for (std::size_t b = 0; b < bands.size(); ++b)
     cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
       return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
     });
+  std::vector<row_evaluator<kGradient, D>> rows;
+  rows.reserve(bands.size());
+  for (const grid_columns& c : cols) rows.emplace_back(c);
   const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
   std::vector<float> acc(padded), gacc(kGradient ? padded * D : 0);
   const VF scale = hn::Set(df, float(fr.scale()));
-  for (std::size_t k = 0; k < nz; ++k)
-    for (std::size_t j = 0; j < ny; ++j) {
-      std::fill(acc.begin(), acc.end(), 0.0f);
-      std::fill(gacc.begin(), gacc.end(), 0.0f);
-      for (std::size_t b = 0; b < bands.size(); ++b) {
-        const band_config<D>& c = bands[b];
-        const int bi = static_cast<int>(b);
-        const row_axis y = broadcast_axis<kGradient, 1>(
-            position(bi, 1, g.origin[1] + g.step[1] * double(j)), c.period[1]);
-        row_axis z{};
-        if constexpr (D == 3)
-          z = broadcast_axis<kGradient, 2>(position(bi, 2, g.origin[2] + g.step[2] * double(k)),
-                                           c.period[2]);
-        VU kyz[4];
-        key_words(c.key, y.w0, y.w1, z.w0, z.w1, kyz);
-        for (std::size_t i = 0; i < nx; i += lanes) {
-          VF v, gr[3];
-          core<kGradient, D>(cols[b].load<kGradient>(i), kyz, y.a, z.a, v, gr);
-          VF a = hn::LoadU(df, acc.data() + i), ga[3];
-          if constexpr (kGradient)
-            for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
-          accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
-          hn::StoreU(a, df, acc.data() + i);
-          if constexpr (kGradient)
-            for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
+  for_each_row<D>(
+      g, first, count, [&](std::size_t j, std::size_t k, std::size_t row_index) HWY_ATTR {
+        std::fill(acc.begin(), acc.end(), 0.0f);
+        std::fill(gacc.begin(), gacc.end(), 0.0f);
+        for (std::size_t b = 0; b < bands.size(); ++b) {
+          const band_config<D>& c = bands[b];
+          const int bi = static_cast<int>(b);
+          grid_row row{c.key, {}, {}};
+          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
+                                               c.period[1]);
+          if constexpr (D == 3)
+            row.z = broadcast_axis<kGradient, 2>(
+                position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+          rows[b].run(row, [&](std::size_t i, VF v, const VF* gr) HWY_ATTR {
+            VF a = hn::LoadU(df, acc.data() + i), ga[3];
+            if constexpr (kGradient)
+              for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
+            accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
+            hn::StoreU(a, df, acc.data() + i);
+            if constexpr (kGradient)
+              for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
+          });
         }
-      }
-      const std::size_t row = k * ny + j;
-      for (std::size_t i = 0; i < nx; i += lanes) {
-        const VF a = hn::LoadU(df, acc.data() + i);
-        VF gs[3];
-        if constexpr (kGradient)
-          for (int d = 0; d < D; ++d)
-            gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
-        store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs, value + row * nx,
-                     kGradient ? grad + row * nx * D : nullptr);
-      }
-    }
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          const VF a = hn::LoadU(df, acc.data() + i);
+          VF gs[3];
+          if constexpr (kGradient)
+            for (int d = 0; d < D; ++d)
+              gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
+          store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
+                       value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
+        }
+      });
 }
 
 }  // namespace perlin_simd
@@ -5498,10 +6798,16 @@ template <int D>
 void fractal_points(const fractal<perlin<D>>& fr, const float* pts, std::size_t n, float* value,
                     float* grad) {
   const std::vector<perlin_simd::band_config<D>> bands = perlin_simd::band_configs(fr);
-  perlin_simd::run_points<D>(
-      n, pts, value, grad, [&](auto gradient, const float* p, float* v, float* g) {
-        perlin_simd::fractal_points_vector<decltype(gradient)::value, D>(fr, bands, p, v, g);
-      });
+  if (grad)
+    perlin_simd::for_each_point_vector<true, D>(
+        n, pts, value, grad, [&](const float* p, float* v, float* g) HWY_ATTR {
+          perlin_simd::fractal_points_vector<true, D>(fr, bands, p, v, g);
+        });
+  else
+    perlin_simd::for_each_point_vector<false, D>(
+        n, pts, value, nullptr, [&](const float* p, float* v, float*) HWY_ATTR {
+          perlin_simd::fractal_points_vector<false, D>(fr, bands, p, v, nullptr);
+        });
 }
 inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
                             float* value, float* grad) {
@@ -5511,19 +6817,19 @@ inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std:
                             float* value, float* grad) {
   fractal_points<3>(fr, xyz, n, value, grad);
 }
-inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
-                          float* grad) {
+inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::fractal_grid<true, 2>(fr, g, value, grad);
+    perlin_simd::fractal_grid<true, 2>(fr, g, first, count, value, grad);
   else
-    perlin_simd::fractal_grid<false, 2>(fr, g, value, nullptr);
+    perlin_simd::fractal_grid<false, 2>(fr, g, first, count, value, nullptr);
 }
-inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
-                          float* grad) {
+inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::fractal_grid<true, 3>(fr, g, value, grad);
+    perlin_simd::fractal_grid<true, 3>(fr, g, first, count, value, grad);
   else
-    perlin_simd::fractal_grid<false, 3>(fr, g, value, nullptr);
+    perlin_simd::fractal_grid<false, 3>(fr, g, first, count, value, nullptr);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -5541,7 +6847,9 @@ namespace simd {
 // gradients are written interleaved the same way unless `grad` is null.
 // `period` has one entry per axis (0 = not periodic). Results follow
 // hush::perlin's contract; see hush/simd/perlin-inl.h for the agreement with
-// scalar evaluation.
+// scalar evaluation. Grid entries evaluate the slab of slowest-axis indices
+// (j in 2D, k in 3D) [first, first + count) into value (and grad), which
+// start at that slab's first sample; (0, g.size[D - 1]) is the whole grid.
 #if HUSH_CONFIG_SIMD_STATIC
 #define HUSH_SIMD_ENTRY inline
 #else
@@ -5552,19 +6860,22 @@ HUSH_SIMD_ENTRY void perlin2_points(std::uint32_t key, const std::uint32_t* peri
 HUSH_SIMD_ENTRY void perlin3_points(std::uint32_t key, const std::uint32_t* period,
                                     const float* xyz, std::size_t n, float* value, float* grad);
 HUSH_SIMD_ENTRY void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                                  float* value, float* grad);
+                                  std::size_t first, std::size_t count, float* value, float* grad);
 HUSH_SIMD_ENTRY void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                                  float* value, float* grad);
+                                  std::size_t first, std::size_t count, float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
                                      float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
                                      float* value, float* grad);
-HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
-                                   float* grad);
-HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
-                                   float* grad);
-// Gabor noise (hush/gabor.hpp): points (interleaved), grids, and samples with
-// footprints or (3D) normals; same conventions. hush/simd/gabor-inl.h states
+HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g,
+                                   std::size_t first, std::size_t count, float* value, float* grad);
+HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g,
+                                   std::size_t first, std::size_t count, float* value, float* grad);
+// Coherent noise: one recursive-filter pass over a frame (hush/simd/coherent-inl.h;
+// the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
+HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
+// Gabor noise (hush/gabor.hpp): points (interleaved), whole grids (no slabs), and
+// points with footprints (filtered samples); same conventions. hush/simd/gabor-inl.h states
 // the agreement with scalar evaluation.
 HUSH_SIMD_ENTRY void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
                                    float* grad);
@@ -5594,12 +6905,12 @@ inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const
   HWY_STATIC_DISPATCH(perlin3_points)(key, period, xyz, n, value, grad);
 }
 inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                         float* value, float* grad) {
-  HWY_STATIC_DISPATCH(perlin2_grid)(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin2_grid)(key, period, g, first, count, value, grad);
 }
 inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                         float* value, float* grad) {
-  HWY_STATIC_DISPATCH(perlin3_grid)(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin3_grid)(key, period, g, first, count, value, grad);
 }
 inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
                             float* value, float* grad) {
@@ -5609,13 +6920,16 @@ inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std:
                             float* value, float* grad) {
   HWY_STATIC_DISPATCH(fractal3_points)(fr, xyz, n, value, grad);
 }
-inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
-                          float* grad) {
-  HWY_STATIC_DISPATCH(fractal2_grid)(fr, g, value, grad);
+inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(fractal2_grid)(fr, g, first, count, value, grad);
 }
-inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
-                          float* grad) {
-  HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
+inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, first, count, value, grad);
+}
+inline void coherent_pass(const detail::coherent_pass_job<float>& job) {
+  HWY_STATIC_DISPATCH(coherent_pass)(job);
 }
 inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
                           float* grad) {
@@ -5670,14 +6984,20 @@ struct simd_kernel<perlin<D>> {
     else
       simd::perlin3_points(key, period, p, count, out, g);
   }
-  static void grid(const perlin<D>& n, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+  // Slabs along the slowest axis (exec::parallel; exec.hpp).
+  static constexpr bool has_grid_slab = true;
+  static void grid_slab(const perlin<D>& n, const hush::grid<D>& gr, std::size_t first,
+                        std::size_t count, float* out, vec<float, D>* grad) {
     std::uint32_t key, period[3];
     config(n, key, period);
     auto* g = reinterpret_cast<float*>(grad);
     if constexpr (D == 2)
-      simd::perlin2_grid(key, period, gr, out, g);
+      simd::perlin2_grid(key, period, gr, first, count, out, g);
     else
-      simd::perlin3_grid(key, period, gr, out, g);
+      simd::perlin3_grid(key, period, gr, first, count, out, g);
+  }
+  static void grid(const perlin<D>& n, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    grid_slab(n, gr, 0, gr.size[D - 1], out, grad);
   }
 };
 
@@ -5694,13 +7014,18 @@ struct simd_kernel<fractal<perlin<D>>> {
     else
       simd::fractal3_points(fr, p, count, out, g);
   }
-  static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
-                   vec<float, D>* grad) {
+  static constexpr bool has_grid_slab = true;
+  static void grid_slab(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, std::size_t first,
+                        std::size_t count, float* out, vec<float, D>* grad) {
     auto* g = reinterpret_cast<float*>(grad);
     if constexpr (D == 2)
-      simd::fractal2_grid(fr, gr, out, g);
+      simd::fractal2_grid(fr, gr, first, count, out, g);
     else
-      simd::fractal3_grid(fr, gr, out, g);
+      simd::fractal3_grid(fr, gr, first, count, out, g);
+  }
+  static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
+                   vec<float, D>* grad) {
+    grid_slab(fr, gr, 0, gr.size[D - 1], out, grad);
   }
 };
 
@@ -5784,6 +7109,34 @@ struct glsl {
 template <class Device>
 glsl(Device&) -> glsl<Device>;
 
+// Multi-threaded batches: hush::exec::parallel(hush::exec::simd, threads)
+// evaluates a batch on `threads` std::threads (0: one per hardware thread,
+// std::thread::hardware_concurrency()), each running the inner policy on a
+// contiguous part, and returns when all are done. Results are those of the
+// inner policy on the whole batch, bit for bit: points and samples are
+// evaluated independently of their neighbours, and a grid slab is the same
+// rows of the same grid (the kernels take a row range, so every sample's
+// position is formed exactly as in the whole-grid call). Batches too small to
+// give every thread kParallelGrain samples use fewer threads.
+template <class Inner>
+struct parallel_t {
+  static_assert(std::is_same<Inner, scalar_t>::value || std::is_same<Inner, simd_t>::value,
+                "hush::exec::parallel runs the scalar or simd policy");
+  static constexpr const char* name = "parallel";
+  static constexpr int kMaxThreads = 1024;
+  static constexpr std::size_t kParallelGrain = 4096;  // samples per thread, at least
+  Inner inner;
+  unsigned threads;  // >= 1, resolved at construction
+};
+// Throws hush::invalid_argument when threads is outside 0 ... 1024.
+template <class Inner>
+parallel_t<Inner> parallel(Inner inner, int threads = 0) {
+  detail::require_in_range("hush::exec::parallel", "threads", threads, 0,
+                           parallel_t<Inner>::kMaxThreads, "0 (one per hardware thread) ... 1024");
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  return {inner, threads == 0 ? hw : static_cast<unsigned>(threads)};
+}
+
 }  // namespace exec
 
 namespace detail {
@@ -5800,6 +7153,18 @@ inline void require_same_size(const char* where, const char* name, std::size_t g
                        ("exactly " + std::to_string(want) + " elements (one per sample)").c_str());
 }
 
+// The parallel policy's overloads (defined at the end of this namespace).
+template <class Noise, class Inner>
+void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
+                float* out, vec<float, Noise::dimension>* grad);
+template <class Noise, class Inner>
+void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
+                 const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad);
+template <class Noise, class Inner>
+void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
+              float* out, vec<float, Noise::dimension>* grad);
+
 template <class Noise>
 void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
                    vec<float, Noise::dimension>* grad) {
@@ -5814,28 +7179,56 @@ void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
   }
 }
 
+// Whether Noise evaluates grid slabs itself: a member
+//   void grid_values(const grid<D>& g, std::size_t first, std::size_t count,
+//                    float* out, vec<float, D>* grad) const;
+// with the values and gradients of its point evaluation at every sample (bit
+// for bit unless the compiler contracts multiply-adds), faster than the
+// sample loop below by sharing work between samples (perlin.hpp).
+template <class Noise, class = void>
+struct has_grid_values : std::false_type {};
+template <class Noise>
+struct has_grid_values<
+    Noise, std::void_t<decltype(std::declval<const Noise&>().grid_values(
+               std::declval<const grid<Noise::dimension>&>(), std::size_t{}, std::size_t{},
+               std::declval<float*>(), std::declval<vec<float, Noise::dimension>*>()))>>
+    : std::true_type {};
+
+// The grid's samples with slowest-axis index (j in 2D, k in 3D) in
+// [first, first + count) into out, which starts at sample (0, 0[, 0]) of that slab.
+template <class Noise>
+void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, std::size_t first,
+                 std::size_t count, float* out, vec<float, Noise::dimension>* grad) {
+  constexpr int D = Noise::dimension;
+  if constexpr (has_grid_values<Noise>::value) {
+    n.grid_values(g, first, count, out, grad);
+  } else {
+    const std::size_t nx = g.size[0];
+    const std::size_t j0 = D == 2 ? first : 0, ny = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, nz = D == 3 ? first + count : 1;
+    std::size_t idx = 0;
+    for (std::size_t k = k0; k < nz; ++k)
+      for (std::size_t j = j0; j < ny; ++j)
+        for (std::size_t i = 0; i < nx; ++i, ++idx) {
+          std::array<std::size_t, D> ijk{};
+          ijk[0] = i;
+          ijk[1] = j;
+          if constexpr (D == 3) ijk[D - 1] = k;
+          const vec<double, D> p = g.position(ijk);
+          if (grad) {
+            const auto r = n.template value_and_gradient<float>(p);
+            out[idx] = r.value;
+            grad[idx] = r.gradient;
+          } else {
+            out[idx] = n.template value<float>(p);
+          }
+        }
+  }
+}
 template <class Noise>
 void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, float* out,
                  vec<float, Noise::dimension>* grad) {
-  constexpr int D = Noise::dimension;
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
-  std::size_t idx = 0;
-  for (std::size_t k = 0; k < nz; ++k)
-    for (std::size_t j = 0; j < ny; ++j)
-      for (std::size_t i = 0; i < nx; ++i, ++idx) {
-        std::array<std::size_t, D> ijk{};
-        ijk[0] = i;
-        ijk[1] = j;
-        if constexpr (D == 3) ijk[D - 1] = k;
-        const vec<double, D> p = g.position(ijk);
-        if (grad) {
-          const auto r = n.template value_and_gradient<float>(p);
-          out[idx] = r.value;
-          grad[idx] = r.gradient;
-        } else {
-          out[idx] = n.template value<float>(p);
-        }
-      }
+  scalar_grid(n, g, 0, g.size[Noise::dimension - 1], out, grad);
 }
 
 template <class Noise, class Exec>
@@ -5915,6 +7308,86 @@ void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, f
   }
 }
 
+// ---- exec::parallel.
+
+// Runs body(begin, end) over [0, n) split into at most `threads` contiguous
+// parts of whole `unit`s (n is a multiple of unit), each at least `grain`
+// long; part 0 on the calling thread.
+template <class Body>
+void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned threads,
+                    const Body& body) {
+  const std::size_t units = n / unit, grain_units = std::max<std::size_t>(1, grain / unit);
+  const std::size_t parts =
+      std::max<std::size_t>(1, std::min<std::size_t>(threads, units / grain_units));
+  auto part = [&](std::size_t t) {
+    body(t * units / parts * unit, (t + 1) * units / parts * unit);
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(parts - 1);
+  std::size_t started = 1;
+  try {
+    for (; started < parts; ++started) pool.emplace_back(part, started);
+  } catch (...) {  // no more threads to be had: the calling thread does the rest
+  }
+  part(0);
+  for (std::size_t t = started; t < parts; ++t) part(t);
+  for (std::thread& th : pool) th.join();
+}
+
+// Whether simd_kernel<Noise> evaluates grid slabs (grid_slab(n, g, first, count, out, grad)).
+template <class Kernel, class = void>
+struct has_simd_grid_slab : std::false_type {};
+template <class Kernel>
+struct has_simd_grid_slab<Kernel, std::void_t<decltype(Kernel::has_grid_slab)>>
+    : std::integral_constant<bool, Kernel::has_grid_slab> {};
+
+template <class Noise, class Inner>
+void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
+                float* out, vec<float, Noise::dimension>* grad) {
+  parallel_parts(pts.size(), 1, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
+    run_points(n, ex.inner, pts.subspan(b, e - b), out + b, grad ? grad + b : grad);
+  });
+}
+
+template <class Noise, class Inner>
+void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
+                 const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
+    samples<Noise::dimension> part = s;
+    part.positions = s.positions.subspan(b, e - b);
+    if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
+    if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
+    run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
+  });
+}
+
+// Slabs along the slowest axis. A SIMD kernel without slab support gets the
+// whole grid on one thread: a slab re-based as a grid of its own would form
+// its positions with other roundings.
+template <class Noise, class Inner>
+void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
+              float* out, vec<float, Noise::dimension>* grad) {
+  constexpr int D = Noise::dimension;
+  constexpr bool kSlabs = std::is_same<Inner, exec::scalar_t>::value ||
+                          !simd_kernel<Noise>::available ||
+                          has_simd_grid_slab<simd_kernel<Noise>>::value;
+  if constexpr (!kSlabs) {
+    run_grid(n, ex.inner, g, out, grad);
+  } else {
+    const std::size_t slab = g.count() / g.size[D - 1];  // samples per slowest-axis index
+    parallel_parts(
+        g.count(), slab, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
+          float* o = out + b;
+          vec<float, D>* gr = grad ? grad + b : grad;
+          if constexpr (std::is_same<Inner, exec::simd_t>::value && simd_kernel<Noise>::available)
+            simd_kernel<Noise>::grid_slab(n, g, b / slab, (e - b) / slab, o, gr);
+          else
+            scalar_grid(n, g, b / slab, (e - b) / slab, o, gr);
+        });
+  }
+}
+
 }  // namespace detail
 
 // Values of `noise` at `points` into `out` (same size), on backend `ex`.
@@ -5984,6 +7457,998 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 
 #endif  // HUSH_EXEC_HPP
 // ---- end hush/exec.hpp
+
+// Scene-driven noises (hush::frame: per-frame G-buffer views).
+// ---- begin hush/coherent.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Coherent noise (Michael Kass and Davide Pesare, "Coherent Noise for
+// Non-Photorealistic Rendering", SIGGRAPH 2011): screen-space noise that moves
+// with the surfaces of an animated scene. Each frame alone looks like white
+// (or band-pass) noise; from frame to frame the noise follows the motion given
+// by the renderer's depth and velocity, so it is neither flickering white
+// noise nor a "shower door" pattern fixed to the screen. A scene-driven noise
+// (hush::frame, core/frame.hpp): it reads per-pixel depth and velocity, and
+// object ids when given.
+//
+//   hush::coherent_params prm;                 // alpha 0.98, stationary filter, 1 channel
+//   hush::coherent_stream stream{prm};         // the history, owned by the caller
+//   for (each frame) {
+//     hush::frame f;                           // views of the renderer's G-buffer
+//     f.depth = {depth, w, h};  f.velocity = {velocity, w, h};  f.object_id = {ids, w, h};
+//     stream.advance(hush::exec::simd, f, hush::image_view<float>{out, w, h});
+//   }
+//   // Offline, time-symmetric (needs forward velocity too):
+//   hush::coherent_symmetric(hush::exec::simd, prm, frames, outputs);
+//
+// The filters (docs/coherent.md derives every claim below):
+//  - causal, paper: Kass & Pesare eq. 7. c_0 = k(alpha) w_0 (eq. 6); then per pixel
+//    c_i = alpha c_{i-1}(x', y') + (1 - alpha) w_i where the surface point was visible in
+//    frame i-1 at (x', y') (bilinear), else k(alpha) w_i (disocclusion, sec. 3.2).
+//    Stationary for still scenes; under sub-pixel motion the bilinear resampling of
+//    c_{i-1} averages neighbours, so moving surfaces lose variance and sharpness frame
+//    after frame (HARD_CASES row 13).
+//  - causal, stationary (the default): the same plus a refill term, fresh noise shaped
+//    like exactly what bilinear resampling removed (its spectrum 1 - |H|^2): the output
+//    keeps the variance and spectrum of the input on moving surfaces as on still ones
+//    (exactly for translation, to second order in the motion's gradient otherwise).
+//  - time-symmetric (sec. 3.3): forward and backward causal passes over the same w,
+//    summed, minus (1 - alpha) w_i: impulse response (1 - alpha) alpha^|i|. With the
+//    k(alpha) start of both passes every frame, the first and last included, has the
+//    same variance.
+// Contract:
+//  - output: per channel, variance 1 for white input (the filters' variance is divided
+//    out: gain 1 / k(alpha) causal, 1 / sqrt((1 - alpha)(1 + alpha^2) / (1 + alpha))
+//    symmetric), mean 0; stationary filter: on still and moving surfaces alike.
+//    Channels are independent fields sharing the reprojection.
+//  - input w_i: white (a hash of seed, channel, frame index and pixel: deterministic,
+//    independent per frame, uniform with variance 1), band-pass (Perlin noise in screen
+//    space, cells of bandpass_pixels pixels, per-frame seed and lattice offset, scaled to
+//    variance 1), or the caller's images (advance's `input`; NaN/Inf read as 0).
+//  - disocclusion: a pixel takes fresh noise k(alpha) w_i (the stationary variance) when
+//    its depth or motion is not finite, its depth is not positive, its reprojection leaves
+//    the reference frame's outer pixel centres, a bilinear tap shows no surface or (with
+//    object ids in both frames) another object, or the interpolated depth differs from
+//    the expected one by more than epsilon * depth + epsilon_absolute (both ways: the paper
+//    tests only "farther"; a nearer one means the footprint straddles an edge).
+//  - robust: NaN/Inf/negative depth or velocity never reach the history, which holds
+//    finite values only (tested, also after deserialisation); denormal motion reads as 0
+//    and values below the smallest normal are stored as 0, so no denormal arithmetic
+//    follows at any alpha in [0, 1) (alpha 0.999 and decaying zero input tested).
+//  - float vs the double reference (basic_coherent_stream<double>): the reprojection is
+//    the same float computation; values differ by rounding only, a recursion contracting
+//    by alpha: within (12 / (1 - alpha) + 1) 2^-24 M for outputs of magnitude <= M
+//    (tests/coherent_test.cpp; measured 2.4e-6 at alpha 0.98 against a budget of 1.4e-4).
+//  - backends: exec::scalar is the reference; exec::simd equals it bit for bit under
+//    HUSH_STRICT_FP (hush/simd/coherent-inl.h); exec::glsl{device} (include
+//    hush/glsl/coherent.hpp) keeps the history on the GPU; tolerance there.
+#ifndef HUSH_COHERENT_HPP
+#define HUSH_COHERENT_HPP
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+
+namespace hush {
+
+// The recursive filter's resampling (see the file comment).
+enum class coherent_filter {
+  paper,       // Kass & Pesare eq. 7 exactly: bilinear history, fades under motion
+  stationary,  // hush: eq. 7 plus the refill of what bilinear resampling removed
+};
+// The input noise w_i.
+enum class coherent_input {
+  white,     // hashed per pixel and frame
+  bandpass,  // Perlin in screen space, bandpass_pixels per cell, per-frame seed and offset
+};
+
+struct coherent_params {
+  std::uint32_t seed = 0;
+  // Recursive filter weight, in [0, 1): the noise renews over about 1 / (1 - alpha) frames.
+  double alpha = detail::constants::kCoherentDefaultAlpha;
+  // Disocclusion tolerance: relative to the expected depth, plus an absolute one (depth
+  // units); both >= 0 and finite. Relative alone works at every depth scale.
+  double epsilon = detail::constants::kCoherentDefaultEpsilon;
+  double epsilon_absolute = 0.0;
+  coherent_filter filter = coherent_filter::stationary;
+  coherent_input input = coherent_input::white;
+  double bandpass_pixels = detail::constants::kCoherentDefaultBandpassPixels;  // 1 ... 1024
+  // Output smoothing: Gaussian standard deviation in pixels, 0 (off) ... 2, renormalised so
+  // white noise keeps variance 1; smooths across object boundaries (paper sec. 3.4).
+  double smoothing = 0.0;
+  int channels = 1;  // 1 ... 4 independent fields from one call
+};
+
+// Throws hush::invalid_argument naming the first parameter outside its range.
+inline void validate(const coherent_params& p) {
+  namespace c = detail::constants;
+  const char* where = "hush::coherent";
+  if (!(p.alpha >= 0.0 && p.alpha < 1.0))
+    detail::throw_out_of_range(where, "alpha", p.alpha, "0 <= alpha < 1");
+  if (!(p.epsilon >= 0.0) || !std::isfinite(p.epsilon))
+    detail::throw_out_of_range(where, "epsilon", p.epsilon, "a finite number >= 0");
+  if (!(p.epsilon_absolute >= 0.0) || !std::isfinite(p.epsilon_absolute))
+    detail::throw_out_of_range(where, "epsilon_absolute", p.epsilon_absolute,
+                               "a finite number >= 0");
+  if (p.filter != coherent_filter::paper && p.filter != coherent_filter::stationary)
+    detail::throw_out_of_range(where, "filter", static_cast<int>(p.filter),
+                               "coherent_filter::paper or coherent_filter::stationary");
+  if (p.input != coherent_input::white && p.input != coherent_input::bandpass)
+    detail::throw_out_of_range(where, "input", static_cast<int>(p.input),
+                               "coherent_input::white or coherent_input::bandpass");
+  detail::require_in_range(where, "bandpass_pixels", p.bandpass_pixels, 1.0,
+                           c::kCoherentMaxBandpassPixels, "1 ... 1024");
+  detail::require_in_range(where, "smoothing", p.smoothing, 0.0, c::kCoherentMaxSmoothing,
+                           "0 (off) ... 2 pixels");
+  detail::require_in_range(where, "channels", p.channels, 1, c::kCoherentMaxChannels, "1 ... 4");
+}
+
+// k(alpha) = sqrt((1 - alpha) / (1 + alpha)), Kass & Pesare eq. 6: the standard deviation
+// of the stationary causal output for unit-variance input.
+inline double coherent_k(double alpha) { return std::sqrt((1.0 - alpha) / (1.0 + alpha)); }
+// Standard deviation of the time-symmetric sum for unit-variance input:
+// sqrt((1 - alpha)(1 + alpha^2) / (1 + alpha)) (docs/coherent.md).
+inline double coherent_symmetric_sd(double alpha) {
+  return std::sqrt((1.0 - alpha) * (1.0 + alpha * alpha) / (1.0 + alpha));
+}
+
+// The white input noise w_i at pixel (x, y) of frame `frame`, channel `channel`: what the
+// filters read for coherent_input::white (unit variance, mean 0). For tests and tools.
+inline float coherent_white_noise(std::uint32_t seed, int channel, std::uint32_t frame,
+                                  std::uint32_t x, std::uint32_t y) {
+  const std::uint32_t key = detail::coherent_frame_key(
+      seed, static_cast<unsigned>(channel), detail::constants::kCoherentFieldInput, frame);
+  return detail::coherent_white(detail::coherent_row_key(key, y), x);
+}
+
+namespace detail {
+
+// The part of a stream's state a GPU backend keeps between frames (hush/glsl/coherent.hpp).
+// The stream calls download() before any CPU access when the device holds newer data.
+class coherent_device_state {
+ public:
+  virtual ~coherent_device_state() = default;
+  virtual const void* device() const = 0;  // which device holds it
+  // Writes the device's history, reference depth/ids and fresh flags into the host state.
+  virtual void download(void* host_state) = 0;
+};
+
+// Everything a pass carries from frame to frame: the history c_{i-1} and the reference
+// frame's depth and ids (copied, since the caller's views need not outlive a call).
+template <class T>
+struct coherent_state {
+  std::uint32_t width = 0, height = 0;
+  std::uint32_t next_frame = 0;  // frame index of the next advance (seeds the input)
+  bool has_reference = false;    // false: the next frame starts afresh (c = k w)
+  bool reference_has_ids = false;
+  std::vector<float> ref_depth;
+  std::vector<std::uint32_t> ref_ids;
+  std::vector<float> next_depth;  // scratch: this frame's depth, the next reference
+  std::vector<std::uint32_t> next_ids;
+  std::vector<T> history;           // channels planes, packed
+  std::vector<T> next;              // scratch: the history being written
+  std::vector<std::uint8_t> fresh;  // last frame: 1 where fresh noise was taken
+  // GPU residency: when `device` is set and host_current is false, the device holds the
+  // newer state.
+  std::shared_ptr<coherent_device_state> device;
+  bool host_current = true;
+
+  void sync_host() {
+    if (device && !host_current) {
+      device->download(this);
+      host_current = true;
+    }
+  }
+  std::size_t pixels() const { return std::size_t(width) * height; }
+};
+
+// What one pass step reads besides the state: the frame, the direction, the fields.
+template <class T>
+struct coherent_step {
+  const coherent_params* prm = nullptr;
+  const frame* f = nullptr;
+  bool backward = false;  // reads forward_velocity, refill fields of the backward pass
+  const image_view<const float>* input = nullptr;  // per channel, or null: prm->input
+  const image_view<T>* out = nullptr;              // per channel, or null: not written
+  std::size_t out_count = 0;                       // views in out (the channel count)
+  T gain = 0;
+};
+
+// alpha as the filter uses it in T: rounded to T, and kept below 1 (an alpha that rounds to
+// 1 would never forget); k(alpha) and 1 - alpha are then formed from this value, so the
+// stationarity condition holds for the recursion actually computed.
+template <class T>
+double coherent_alpha(double alpha) {
+  const T a = static_cast<T>(alpha);
+  return static_cast<double>(a < T(1) ? a : std::nextafter(T(1), T(0)));
+}
+// A tolerance as a float, below the smallest normal float read as 0 (no denormal operand).
+inline float coherent_float_parameter(double v) {
+  const float f = static_cast<float>(v);
+  return f >= std::numeric_limits<float>::min() ? f : 0.0f;
+}
+
+// Band-pass input: Perlin noise with the frame key as seed, its lattice shifted by an offset
+// in [0, 1)^2 cells taken from the key (so the variance, zero at lattice points, is
+// stationary in expectation), scaled to unit variance. Sample (x, y) of the plane is at
+// pixel centre (x + 0.5, y + 0.5).
+inline float coherent_bandpass_scale() {
+  return static_cast<float>(1.0 / std::sqrt(perlin<2>::variance()));
+}
+struct coherent_bandpass {
+  perlin<2> noise;
+  grid<2> g;
+  float scale;
+  coherent_bandpass(std::uint32_t key, double pixels, std::size_t nx, std::size_t ny)
+      : noise(key), scale(coherent_bandpass_scale()) {
+    const double ox = static_cast<double>(hash32(key, 1u) >> 8) * 0x1p-24;
+    const double oy = static_cast<double>(hash32(key, 2u) >> 8) * 0x1p-24;
+    g.origin = {0.5 / pixels + ox, 0.5 / pixels + oy};
+    g.step = {1.0 / pixels, 1.0 / pixels};
+    g.size = {nx, ny};
+  }
+};
+
+template <class Exec>
+void coherent_fill_bandpass(const Exec& ex, const coherent_bandpass& b, std::vector<float>& plane) {
+  plane.resize(b.g.count());
+  if constexpr (std::is_same<Exec, exec::scalar_t>::value ||
+                std::is_same<Exec, exec::simd_t>::value)
+    evaluate_grid(b.noise, ex, b.g, span<float>(plane));
+  else
+    evaluate_grid(b.noise, exec::scalar, b.g, span<float>(plane));
+  for (float& v : plane) v *= b.scale;
+}
+
+template <class T, class Exec>
+void coherent_run_pass(const Exec& ex, const coherent_pass_job<T>& job) {
+  if constexpr (std::is_same<Exec, exec::simd_t>::value && std::is_same<T, float>::value) {
+#if HUSH_CONFIG_SIMD
+    simd::coherent_pass(job);
+#else
+    coherent_pass_scalar(job);
+#endif
+  } else {
+    (void)ex;
+    coherent_pass_scalar(job);
+  }
+}
+
+// The frame's depth and ids become the next step's reference: the pass wrote their copies
+// into next_depth / next_ids (the caller's views need not outlive the call).
+template <class T>
+void coherent_keep_reference(coherent_state<T>& st, bool has_ids) {
+  std::swap(st.ref_depth, st.next_depth);
+  st.reference_has_ids = has_ids;
+  if (has_ids)
+    std::swap(st.ref_ids, st.next_ids);
+  else
+    st.ref_ids.clear();
+  st.has_reference = true;
+}
+
+// Gaussian smoothing of one output plane in place (separable, clamp-to-edge), weights
+// normalised to unit sum of squares per axis so that white noise keeps its variance.
+template <class T>
+void coherent_smooth(const image_view<T>& img, double sigma) {
+  if (!(sigma > 0.0)) return;
+  const int radius =
+      static_cast<int>(std::ceil(detail::constants::kCoherentSmoothingRadius * sigma));
+  std::vector<T> weight(static_cast<std::size_t>(2 * radius + 1));
+  double sum_sq = 0.0;
+  std::vector<double> wd(weight.size());
+  for (std::size_t i = 0; i < wd.size(); ++i) {
+    const double k = static_cast<double>(i) - radius;
+    wd[i] = std::exp(-0.5 * k * k / (sigma * sigma));
+    sum_sq += wd[i] * wd[i];
+  }
+  for (std::size_t i = 0; i < wd.size(); ++i) weight[i] = T(wd[i] / std::sqrt(sum_sq));
+  const std::size_t w = img.width, h = img.height;
+  std::vector<T> line(std::max(w, h)), tmp(std::max(w, h));
+  auto clamp_index = [](long i, std::size_t n) {
+    return static_cast<std::size_t>(std::min<long>(std::max<long>(i, 0), long(n) - 1));
+  };
+  for (std::size_t y = 0; y < h; ++y) {  // rows
+    T* row = img.row(y);
+    std::copy(row, row + w, line.begin());
+    for (std::size_t x = 0; x < w; ++x) {
+      T s = T(0);
+      for (std::size_t i = 0; i < weight.size(); ++i)
+        s += weight[i] * line[clamp_index(long(x) + long(i) - radius, w)];
+      row[x] = s;
+    }
+  }
+  for (std::size_t x = 0; x < w; ++x) {  // columns
+    for (std::size_t y = 0; y < h; ++y) line[y] = img(x, y);
+    for (std::size_t y = 0; y < h; ++y) {
+      T s = T(0);
+      for (std::size_t i = 0; i < weight.size(); ++i)
+        s += weight[i] * line[clamp_index(long(y) + long(i) - radius, h)];
+      tmp[y] = s;
+    }
+    for (std::size_t y = 0; y < h; ++y) img(x, y) = tmp[y];
+  }
+}
+
+// Checks the per-channel views of a call: `count` views, each frame-sized with data.
+template <class V>
+void coherent_check_views(const char* where, const char* name, const V* views, std::size_t given,
+                          std::size_t want, std::size_t width, std::size_t height) {
+  if (given != want)
+    throw_out_of_range(where, std::string(name) + ".size()", given,
+                       ("exactly " + std::to_string(want) + " (one view per channel)").c_str());
+  for (std::size_t c = 0; c < given; ++c) {
+    const V& v = views[c];
+    const std::string n = std::string(name) + "[" + std::to_string(c) + "]";
+    if (!v.data) throw hush::invalid_argument(std::string(where) + ": " + n + " has null data");
+    if (v.width != width || v.height != height)
+      throw_out_of_range(
+          where, n + " size", std::to_string(v.width) + "x" + std::to_string(v.height),
+          ("the frame's size, " + std::to_string(width) + "x" + std::to_string(height)).c_str());
+    if (v.stride < v.width)
+      throw_out_of_range(where, n + ".stride", v.stride, "at least its width");
+  }
+}
+
+// One step of a pass on a CPU backend: builds the job (fields, planes) and runs it.
+template <class T, class Exec>
+void coherent_cpu_step(const Exec& ex, coherent_state<T>& st, const coherent_step<T>& s) {
+  namespace c = constants;
+  const coherent_params& prm = *s.prm;
+  const frame& f = *s.f;
+  st.sync_host();
+  const std::size_t w = st.width, h = st.height, n = w * h;
+  const int nc = prm.channels;
+  st.history.resize(n * static_cast<std::size_t>(nc));
+  st.next.resize(n * static_cast<std::size_t>(nc));
+  st.fresh.resize(n);
+  st.next_depth.resize(n);
+  st.next_ids.resize(f.object_id.data ? n : 0);
+  coherent_pass_job<T> job;
+  job.width = st.width;
+  job.height = st.height;
+  job.depth = f.depth.data;
+  job.depth_stride = f.depth.stride;
+  const image_view<const vec3>& motion = s.backward ? f.forward_velocity : f.velocity;
+  job.motion = reinterpret_cast<const float*>(motion.data);
+  job.motion_stride = motion.stride;
+  job.motion_sign = s.backward ? -1.0f : 1.0f;
+  job.ids = f.object_id.data;
+  job.ids_stride = f.object_id.stride;
+  if (st.has_reference) {
+    job.ref_depth = st.ref_depth.data();
+    job.ref_ids = st.reference_has_ids ? st.ref_ids.data() : nullptr;
+  }
+  job.eps_rel = coherent_float_parameter(prm.epsilon);
+  job.eps_abs = coherent_float_parameter(prm.epsilon_absolute);
+  const double alpha = coherent_alpha<T>(prm.alpha);
+  job.alpha = T(alpha);
+  job.beta = T(1.0 - alpha);  // exact: alpha is a T
+  job.k = T(coherent_k(alpha));
+  job.gain = s.gain;
+  job.stationary = prm.filter == coherent_filter::stationary;
+  job.channels = nc;
+  job.fresh = st.fresh.data();
+  job.depth_copy = st.next_depth.data();
+  job.ids_copy = f.object_id.data ? st.next_ids.data() : nullptr;
+  // Band-pass planes live for the step.
+  std::vector<float> planes[c::kCoherentMaxChannels][3];
+  const unsigned fx = s.backward ? c::kCoherentFieldBackRefillX : c::kCoherentFieldRefillX;
+  const unsigned fy = s.backward ? c::kCoherentFieldBackRefillY : c::kCoherentFieldRefillY;
+  for (int ch = 0; ch < nc; ++ch) {
+    const unsigned uc = static_cast<unsigned>(ch);
+    const std::uint32_t ki =
+        coherent_frame_key(prm.seed, uc, c::kCoherentFieldInput, st.next_frame);
+    const std::uint32_t kx = coherent_frame_key(prm.seed, uc, fx, st.next_frame);
+    const std::uint32_t ky = coherent_frame_key(prm.seed, uc, fy, st.next_frame);
+    job.input[ch].key = ki;
+    job.refill_x[ch].key = kx;
+    job.refill_y[ch].key = ky;
+    if (s.input) {  // the caller's input; the refill stays white (the caller's spectrum is unknown)
+      job.input[ch].plane = s.input[ch].data;
+      job.input[ch].stride = s.input[ch].stride;
+    } else if (prm.input == coherent_input::bandpass) {
+      auto& p = planes[ch];
+      coherent_fill_bandpass(ex, coherent_bandpass(ki, prm.bandpass_pixels, w, h), p[0]);
+      job.input[ch] = {ki, p[0].data(), w};
+      if (job.stationary) {
+        coherent_fill_bandpass(ex, coherent_bandpass(kx, prm.bandpass_pixels, w + 1, h + 1), p[1]);
+        coherent_fill_bandpass(ex, coherent_bandpass(ky, prm.bandpass_pixels, w, h + 1), p[2]);
+        job.refill_x[ch] = {kx, p[1].data(), w + 1};
+        job.refill_y[ch] = {ky, p[2].data(), w};
+      }
+    }
+    job.ref_history[ch] = st.history.data() + n * uc;
+    job.history[ch] = st.next.data() + n * uc;
+    job.out[ch] = uc < s.out_count ? s.out[ch].data : nullptr;
+  }
+  // Output views share one stride in the job; give each its own when they differ.
+  job.out_stride = s.out_count ? s.out[0].stride : 0;
+  bool same_stride = true;
+  for (std::size_t ch = 1; ch < s.out_count; ++ch)
+    same_stride = same_stride && s.out[ch].stride == job.out_stride;
+  if (!same_stride)
+    for (int ch = 0; ch < nc; ++ch) job.out[ch] = nullptr;
+  coherent_run_pass(ex, job);
+  std::swap(st.history, st.next);
+  if (s.out_count && !same_stride)
+    for (std::size_t ch = 0; ch < s.out_count; ++ch)
+      for (std::size_t y = 0; y < h; ++y)
+        for (std::size_t x = 0; x < w; ++x)
+          s.out[ch](x, y) = s.gain * st.history[n * static_cast<std::size_t>(ch) + y * w + x];
+  coherent_keep_reference(st, f.object_id.data != nullptr);
+  ++st.next_frame;
+}
+
+}  // namespace detail
+
+// A coherent-noise stream (causal filter): the state the caller owns and advances frame by
+// frame. A regular value type: copy it to branch, reset() it at a cut, serialise it to save
+// a game. T = float, or double for the reference.
+template <class T>
+class basic_coherent_stream {
+  static_assert(std::is_same<T, float>::value || std::is_same<T, double>::value,
+                "hush::basic_coherent_stream<T>: T is float or double");
+
+ public:
+  using params = coherent_params;
+
+  // Throws hush::invalid_argument for parameters outside their ranges (validate()).
+  explicit basic_coherent_stream(const params& prm = params{}) : prm_(prm) { validate(prm_); }
+  basic_coherent_stream(const basic_coherent_stream& o) : prm_(o.prm_), st_(o.host_state()) {
+    st_.device.reset();
+    st_.host_current = true;
+  }
+  basic_coherent_stream& operator=(const basic_coherent_stream& o) {
+    if (this != &o) {
+      prm_ = o.prm_;
+      st_ = o.host_state();
+      st_.device.reset();
+      st_.host_current = true;
+    }
+    return *this;
+  }
+  basic_coherent_stream(basic_coherent_stream&&) noexcept = default;
+  basic_coherent_stream& operator=(basic_coherent_stream&&) noexcept = default;
+  ~basic_coherent_stream() = default;
+
+  const params& parameters() const { return prm_; }
+  // The frame index the next advance() uses (it seeds the input noise), and the size of the
+  // history (0 x 0 before the first frame and after reset()).
+  std::uint32_t frame_index() const { return st_.next_frame; }
+  std::size_t width() const { return st_.has_reference ? st_.width : 0; }
+  std::size_t height() const { return st_.has_reference ? st_.height : 0; }
+  // Output gain: the output is gain() * c, c in the paper's units (variance k(alpha)^2 for
+  // unit-variance input), so the output has variance 1.
+  double gain() const { return 1.0 / coherent_k(detail::coherent_alpha<T>(prm_.alpha)); }
+
+  // Forgets the history: the next frame starts afresh (c = k(alpha) w, Kass & Pesare
+  // eq. 6) at any size, with frame index `next_frame`.
+  void reset(std::uint32_t next_frame = 0) {
+    std::shared_ptr<detail::coherent_device_state> device = std::move(st_.device);
+    st_ = detail::coherent_state<T>{};
+    st_.next_frame = next_frame;
+    st_.device = std::move(device);  // a GPU backend's buffers and program are kept
+  }
+
+  // Filters the next frame: `out` holds one view per channel (parameters().channels), each
+  // the frame's size. `f` needs depth and velocity; object_id is used when present (in
+  // this frame and the previous one). `input`, when given (one view per channel), replaces
+  // the input noise w_i (unit variance expected; NaN/Inf read as 0). Throws
+  // hush::invalid_argument (before anything changes) for missing or mismatched views, or
+  // a frame whose size differs from the history's: call reset() at a change of resolution.
+  // Evaluation itself never throws.
+  template <class Exec>
+  void advance(const Exec& ex, const frame& f, span<const image_view<T>> out,
+               span<const image_view<const float>> input = {}) {
+    check(f, out, input);
+    begin_frame(f);
+    detail::coherent_step<T> s;
+    s.prm = &prm_;
+    s.f = &f;
+    s.input = input.empty() ? nullptr : input.data();
+    s.out = out.data();
+    s.out_count = out.size();
+    s.gain = T(gain());
+    step(ex, s);
+    for (std::size_t c = 0; c < out.size(); ++c) detail::coherent_smooth(out[c], prm_.smoothing);
+  }
+  // One channel.
+  template <class Exec>
+  void advance(const Exec& ex, const frame& f, const image_view<T>& out) {
+    advance(ex, f, span<const image_view<T>>(&out, 1));
+  }
+
+  // Pixels of the last frame that took fresh noise (disocclusions, the first frame): 1,
+  // else 0; width() x height(), row-major. Empty before the first frame.
+  const std::vector<std::uint8_t>& fresh() const { return host_state().fresh; }
+  // The history c_i of channel c (paper units), width() x height(), row-major.
+  span<const T> history(int channel) const {
+    const auto& st = host_state();
+    const std::size_t n = st.pixels();
+    if (!st.has_reference || channel < 0 || channel >= prm_.channels) return {};
+    return span<const T>(st.history.data() + n * static_cast<std::size_t>(channel), n);
+  }
+
+  // The whole state as bytes (little-endian; parameters, frame index, history, reference
+  // depth and ids), and back. deserialize() throws hush::invalid_argument for data that
+  // is not such a state (wrong magic, version, float type, truncated, parameters out of
+  // range, or a non-finite history value: a stream never holds NaN).
+  std::vector<std::uint8_t> serialize() const;
+  static basic_coherent_stream deserialize(span<const std::uint8_t> bytes);
+
+  // For backends (hush/glsl/coherent.hpp): the state.
+  detail::coherent_state<T>& state() { return st_; }
+
+ private:
+  static constexpr const char* kWhere = "hush::coherent_stream::advance";
+
+  const detail::coherent_state<T>& host_state() const {
+    const_cast<detail::coherent_state<T>&>(st_).sync_host();
+    return st_;
+  }
+
+  void check(const frame& f, span<const image_view<T>> out,
+             span<const image_view<const float>> input) const {
+    f.validate(kWhere, frame_view::depth | frame_view::velocity,
+               detail::constants::kCoherentMaxSide);
+    const std::size_t nc = static_cast<std::size_t>(prm_.channels);
+    detail::coherent_check_views(kWhere, "out", out.data(), out.size(), nc, f.width(), f.height());
+    if (!input.empty())
+      detail::coherent_check_views(kWhere, "input", input.data(), input.size(), nc, f.width(),
+                                   f.height());
+    if (st_.has_reference && (f.width() != st_.width || f.height() != st_.height))
+      detail::throw_out_of_range(
+          kWhere, "frame size", std::to_string(f.width()) + "x" + std::to_string(f.height()),
+          ("the history's size, " + std::to_string(st_.width) + "x" + std::to_string(st_.height) +
+           " (call reset() at a change of resolution)")
+              .c_str());
+  }
+
+  void begin_frame(const frame& f) {
+    st_.width = static_cast<std::uint32_t>(f.width());
+    st_.height = static_cast<std::uint32_t>(f.height());
+  }
+
+  template <class Exec>
+  void step(const Exec& ex, const detail::coherent_step<T>& s) {
+    if constexpr (std::is_same<Exec, exec::scalar_t>::value ||
+                  std::is_same<Exec, exec::simd_t>::value) {
+      detail::coherent_cpu_step(ex, st_, s);
+    } else {
+      // exec::glsl{device}: hush/glsl/coherent.hpp (found by argument-dependent lookup).
+      coherent_glsl_step(ex.device, st_, s);
+    }
+  }
+
+  params prm_;
+  detail::coherent_state<T> st_;
+};
+
+using coherent_stream = basic_coherent_stream<float>;
+
+// ---- Serialisation.
+namespace detail {
+
+constexpr char kCoherentMagic[8] = {'H', 'U', 'S', 'H', 'C', 'O', 'H', '1'};
+
+class byte_writer {
+ public:
+  void raw(const void* p, std::size_t n) {
+    const auto* b = static_cast<const std::uint8_t*>(p);
+    bytes.insert(bytes.end(), b, b + n);
+  }
+  void u32(std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  void u64(std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) bytes.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  }
+  void f64(double v) {
+    std::uint64_t u = 0;
+    std::memcpy(&u, &v, sizeof u);
+    u64(u);
+  }
+  template <class V>
+  void values(const std::vector<V>& v) {
+    for (const V& x : v) {
+      if constexpr (sizeof(V) == 1) {
+        bytes.push_back(static_cast<std::uint8_t>(x));
+      } else if constexpr (sizeof(V) == 4) {
+        std::uint32_t u = 0;
+        std::memcpy(&u, &x, 4);
+        u32(u);
+      } else {
+        std::uint64_t u = 0;
+        std::memcpy(&u, &x, 8);
+        u64(u);
+      }
+    }
+  }
+  std::vector<std::uint8_t> bytes;
+};
+
+class byte_reader {
+ public:
+  explicit byte_reader(span<const std::uint8_t> b) : b_(b) {}
+  void need(std::size_t n) const {
+    if (b_.size() - pos_ < n)
+      throw hush::invalid_argument(
+          "hush::coherent_stream::deserialize: the data is truncated (a state of " +
+          std::to_string(b_.size()) + " bytes ends early)");
+  }
+  std::uint32_t u32() {
+    need(4);
+    std::uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v |= std::uint32_t(b_[pos_++]) << (8 * i);
+    return v;
+  }
+  std::uint64_t u64() {
+    need(8);
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i) v |= std::uint64_t(b_[pos_++]) << (8 * i);
+    return v;
+  }
+  double f64() {
+    const std::uint64_t u = u64();
+    double v = 0;
+    std::memcpy(&v, &u, sizeof v);
+    return v;
+  }
+  template <class V>
+  void values(std::vector<V>& v, std::size_t n) {
+    need(n * sizeof(V));
+    v.resize(n);
+    for (V& x : v) {
+      if constexpr (sizeof(V) == 1) {
+        x = static_cast<V>(b_[pos_++]);
+      } else if constexpr (sizeof(V) == 4) {
+        const std::uint32_t u = u32();
+        std::memcpy(&x, &u, 4);
+      } else {
+        const std::uint64_t u = u64();
+        std::memcpy(&x, &u, 8);
+      }
+    }
+  }
+  bool done() const { return pos_ == b_.size(); }
+  std::size_t position() const { return pos_; }
+
+ private:
+  span<const std::uint8_t> b_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace detail
+
+template <class T>
+std::vector<std::uint8_t> basic_coherent_stream<T>::serialize() const {
+  const detail::coherent_state<T>& st = host_state();
+  detail::byte_writer w;
+  w.raw(detail::kCoherentMagic, sizeof detail::kCoherentMagic);
+  w.u32(static_cast<std::uint32_t>(sizeof(T)));
+  w.u32(prm_.seed);
+  w.f64(prm_.alpha);
+  w.f64(prm_.epsilon);
+  w.f64(prm_.epsilon_absolute);
+  w.u32(static_cast<std::uint32_t>(prm_.filter));
+  w.u32(static_cast<std::uint32_t>(prm_.input));
+  w.f64(prm_.bandpass_pixels);
+  w.f64(prm_.smoothing);
+  w.u32(static_cast<std::uint32_t>(prm_.channels));
+  w.u32(st.next_frame);
+  w.u32(st.has_reference ? 1u : 0u);
+  if (st.has_reference) {
+    w.u32(st.width);
+    w.u32(st.height);
+    w.u32(st.reference_has_ids ? 1u : 0u);
+    w.values(st.ref_depth);
+    if (st.reference_has_ids) w.values(st.ref_ids);
+    w.values(st.fresh);
+    w.values(st.history);
+  }
+  return std::move(w.bytes);
+}
+
+template <class T>
+basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::uint8_t> bytes) {
+  const char* where = "hush::coherent_stream::deserialize";
+  detail::byte_reader r(bytes);
+  r.need(sizeof detail::kCoherentMagic);
+  if (std::memcmp(bytes.data(), detail::kCoherentMagic, sizeof detail::kCoherentMagic) != 0)
+    throw hush::invalid_argument(std::string(where) +
+                                 ": not a coherent-noise state (no HUSHCOH1 header)");
+  std::vector<std::uint8_t> skip;
+  r.values(skip, sizeof detail::kCoherentMagic);
+  const std::uint32_t size = r.u32();
+  if (size != sizeof(T))
+    throw hush::invalid_argument(std::string(where) + ": the state holds " +
+                                 std::to_string(8 * size) + "-bit values; this stream holds " +
+                                 std::to_string(8 * sizeof(T)) + "-bit values");
+  params p;
+  p.seed = r.u32();
+  p.alpha = r.f64();
+  p.epsilon = r.f64();
+  p.epsilon_absolute = r.f64();
+  p.filter = static_cast<coherent_filter>(r.u32());
+  p.input = static_cast<coherent_input>(r.u32());
+  p.bandpass_pixels = r.f64();
+  p.smoothing = r.f64();
+  p.channels = static_cast<int>(r.u32());
+  basic_coherent_stream s(p);  // validates the parameters
+  detail::coherent_state<T>& st = s.st_;
+  st.next_frame = r.u32();
+  const std::uint32_t has = r.u32();
+  if (has > 1u) throw hush::invalid_argument(std::string(where) + ": corrupt history flag");
+  if (has) {
+    st.width = r.u32();
+    st.height = r.u32();
+    if (st.width == 0 || st.height == 0 || st.width > detail::constants::kCoherentMaxSide ||
+        st.height > detail::constants::kCoherentMaxSide)
+      detail::throw_out_of_range(where, "size",
+                                 std::to_string(st.width) + "x" + std::to_string(st.height),
+                                 "1 ... 16384 pixels per side");
+    const std::uint32_t ids = r.u32();
+    if (ids > 1u) throw hush::invalid_argument(std::string(where) + ": corrupt id flag");
+    const std::size_t n = st.pixels();
+    r.values(st.ref_depth, n);
+    st.reference_has_ids = ids != 0;
+    if (st.reference_has_ids) r.values(st.ref_ids, n);
+    r.values(st.fresh, n);
+    r.values(st.history, n * static_cast<std::size_t>(p.channels));
+    for (const T& v : st.history)
+      if (!std::isfinite(v))
+        throw hush::invalid_argument(std::string(where) + ": the history holds a non-finite value");
+    st.has_reference = true;
+  }
+  if (!r.done())
+    throw hush::invalid_argument(std::string(where) + ": " +
+                                 std::to_string(bytes.size() - r.position()) +
+                                 " bytes follow the state");
+  return s;
+}
+
+// ---- The time-symmetric filter (Kass & Pesare sec. 3.3), over a whole sequence.
+
+// How coherent_symmetric reads a sequence and hands back its result, one frame at a time,
+// so that no more than two frames' worth of data need be in memory:
+//  - frame_at(i) gives frame i's views (depth, velocity, forward_velocity; object_id when
+//    available), valid until the next call. It is called for i = 0 ... n-1 (forward pass),
+//    then for i = n-1 ... 0 (backward pass).
+//  - input_at(i), when set, gives the input noise of frame i, one view per channel (see
+//    basic_coherent_stream::advance), valid until the next call; the same images both times.
+//  - write(i, out) receives the result of frame i, one view per channel (in the backward
+//    pass, i = n-1 ... 0).
+//  - keep(i, bytes) / recall(i, bytes): where the forward pass's result of frame i (record_bytes
+//    bytes each) waits for the backward pass; when unset, in memory (n records).
+template <class T>
+struct coherent_sequence {
+  std::size_t frames = 0;
+  std::uint32_t first_frame = 0;  // frame index of frame 0 (seeds the input noise)
+  std::function<frame(std::size_t)> frame_at;
+  std::function<std::vector<image_view<const float>>(std::size_t)> input_at;
+  std::function<void(std::size_t, span<const image_view<T>>)> write;
+  std::function<void(std::size_t, span<const std::uint8_t>)> keep;
+  std::function<void(std::size_t, span<std::uint8_t>)> recall;
+};
+
+// Bytes of one kept forward record for frames of w x h pixels: the channels' forward
+// history (T) and one byte of fresh flags per pixel.
+template <class T>
+std::size_t coherent_record_bytes(const coherent_params& p, std::size_t w, std::size_t h) {
+  return w * h * (static_cast<std::size_t>(p.channels) * sizeof(T) + 1);
+}
+
+namespace detail {
+
+// Combines frame i: C = c_fwd + c_bwd - (1 - alpha) w (eq. 11), or, where both passes took
+// fresh noise (a pixel seen in this frame only), C = s w with s the symmetric standard
+// deviation; the output is gain * C.
+template <class T, class Exec>
+void coherent_combine(const Exec& ex, const coherent_params& prm, std::uint32_t frame_index,
+                      std::size_t w, std::size_t h, const T* fwd, const std::uint8_t* fwd_fresh,
+                      const T* bwd, const std::uint8_t* bwd_fresh,
+                      const image_view<const float>* input, const image_view<T>* out) {
+  namespace c = constants;
+  const std::size_t n = w * h;
+  const double alpha = coherent_alpha<T>(prm.alpha);
+  const T beta = T(1.0 - alpha), gain = T(1.0 / coherent_symmetric_sd(alpha));
+  const T both = T(coherent_symmetric_sd(alpha));
+  for (int ch = 0; ch < prm.channels; ++ch) {
+    const std::size_t off = n * static_cast<std::size_t>(ch);
+    const std::uint32_t key = coherent_frame_key(prm.seed, static_cast<unsigned>(ch),
+                                                 c::kCoherentFieldInput, frame_index);
+    std::vector<float> plane;
+    const float* pl = nullptr;
+    std::size_t stride = w;
+    if (input) {
+      pl = input[ch].data;
+      stride = input[ch].stride;
+    } else if (prm.input == coherent_input::bandpass) {
+      coherent_fill_bandpass(ex, coherent_bandpass(key, prm.bandpass_pixels, w, h), plane);
+      pl = plane.data();
+    }
+    const coherent_field field{key, pl, stride};
+    std::vector<float> row_values(w);
+    for (std::size_t y = 0; y < h; ++y) {
+      const std::uint32_t row = coherent_row_key(key, static_cast<std::uint32_t>(y));
+      for (std::size_t x = 0; x < w; ++x)
+        row_values[x] = coherent_field_value(field, row, static_cast<std::uint32_t>(x),
+                                             static_cast<std::uint32_t>(y));
+      T* dst = out[ch].row(y);
+      const std::size_t p0 = y * w;
+      for (std::size_t x = 0; x < w; ++x) {
+        const std::size_t p = p0 + x;
+        const T wv = T(row_values[x]);
+        const T sum =
+            (fwd_fresh[p] && bwd_fresh[p]) ? both * wv : fwd[off + p] + bwd[off + p] - beta * wv;
+        dst[x] = gain * sum;
+      }
+    }
+  }
+}
+
+}  // namespace detail
+
+// The time-symmetric coherent noise of a whole sequence (frames first_frame ... + n - 1),
+// streamed through `io` (see coherent_sequence). The result has unit variance per channel
+// for unit-variance input, at every frame including the first and the last; it equals the
+// sum of a forward causal pass and a backward one (over forward_velocity) minus
+// (1 - alpha) w_i (Kass & Pesare eq. 11), times 1 / coherent_symmetric_sd(alpha).
+// Throws hush::invalid_argument for invalid parameters, n = 0, missing callbacks, or a frame
+// whose views are missing, mismatched or of another size than frame 0's.
+template <class T, class Exec>
+void coherent_symmetric(const Exec& ex, const coherent_params& prm,
+                        const coherent_sequence<T>& io) {
+  const char* where = "hush::coherent_symmetric";
+  validate(prm);
+  if (io.frames == 0) detail::throw_out_of_range(where, "frames", 0, "at least 1");
+  if (!io.frame_at || !io.write)
+    throw hush::invalid_argument(std::string(where) + ": frame_at and write are required");
+  if (static_cast<bool>(io.keep) != static_cast<bool>(io.recall))
+    throw hush::invalid_argument(std::string(where) + ": set both keep and recall, or neither");
+  const frame_view needs = frame_view::depth | frame_view::velocity | frame_view::forward_velocity;
+  const std::size_t nc = static_cast<std::size_t>(prm.channels);
+  std::size_t w = 0, h = 0;
+  basic_coherent_stream<T> pass(prm);
+  std::vector<std::uint8_t> record;
+  std::vector<image_view<const float>> input;
+  auto load = [&](std::size_t i) {
+    const frame f = io.frame_at(i);
+    f.validate(where, needs, detail::constants::kCoherentMaxSide);
+    if (w == 0) {
+      w = f.width();
+      h = f.height();
+    } else if (f.width() != w || f.height() != h) {
+      detail::throw_out_of_range(
+          where, "frame " + std::to_string(i) + " size",
+          std::to_string(f.width()) + "x" + std::to_string(f.height()),
+          ("frame 0's size, " + std::to_string(w) + "x" + std::to_string(h)).c_str());
+    }
+    if (io.input_at) {
+      input = io.input_at(i);
+      detail::coherent_check_views(where, "input", input.data(), input.size(), nc, w, h);
+    }
+    return f;
+  };
+  auto step = [&](const frame& f, bool backward, std::uint32_t index) {
+    auto& st = pass.state();
+    st.next_frame = index;
+    st.width = static_cast<std::uint32_t>(f.width());
+    st.height = static_cast<std::uint32_t>(f.height());
+    detail::coherent_step<T> s;
+    s.prm = &prm;
+    s.f = &f;
+    s.backward = backward;
+    s.input = io.input_at ? input.data() : nullptr;
+    s.out = nullptr;
+    s.gain = T(1);
+    if constexpr (std::is_same<Exec, exec::scalar_t>::value ||
+                  std::is_same<Exec, exec::simd_t>::value)
+      detail::coherent_cpu_step(ex, st, s);
+    else
+      coherent_glsl_step(ex.device, st, s);
+    st.sync_host();
+  };
+  // Forward pass: keep each frame's history and fresh flags (in memory, or through keep()).
+  std::vector<std::vector<T>> kept_values(io.keep ? 0 : io.frames);
+  std::vector<std::vector<std::uint8_t>> kept_fresh(io.keep ? 0 : io.frames);
+  for (std::size_t i = 0; i < io.frames; ++i) {
+    const frame f = load(i);
+    step(f, false, io.first_frame + static_cast<std::uint32_t>(i));
+    const auto& st = pass.state();
+    const std::size_t n = w * h;
+    if (io.keep) {
+      record.resize(coherent_record_bytes<T>(prm, w, h));
+      std::memcpy(record.data(), st.history.data(), n * nc * sizeof(T));
+      std::memcpy(record.data() + n * nc * sizeof(T), st.fresh.data(), n);
+      io.keep(i, span<const std::uint8_t>(record.data(), record.size()));
+    } else {
+      kept_values[i].assign(st.history.begin(), st.history.end());
+      kept_fresh[i].assign(st.fresh.begin(), st.fresh.end());
+    }
+  }
+  // Backward pass, combined frame by frame with the kept forward result.
+  pass.reset();
+  std::vector<T> out_planes(w * h * nc), fwd;
+  std::vector<std::uint8_t> fwd_fresh;
+  std::vector<image_view<T>> out(nc);
+  for (std::size_t c = 0; c < nc; ++c) out[c] = image_view<T>(out_planes.data() + w * h * c, w, h);
+  for (std::size_t r = io.frames; r-- > 0;) {
+    const frame f = load(r);
+    const std::uint32_t index = io.first_frame + static_cast<std::uint32_t>(r);
+    step(f, true, index);
+    const std::size_t n = w * h;
+    const T* forward = nullptr;
+    const std::uint8_t* forward_fresh = nullptr;
+    if (io.recall) {
+      record.resize(coherent_record_bytes<T>(prm, w, h));
+      io.recall(r, span<std::uint8_t>(record.data(), record.size()));
+      fwd.resize(n * nc);
+      fwd_fresh.resize(n);
+      std::memcpy(fwd.data(), record.data(), n * nc * sizeof(T));
+      std::memcpy(fwd_fresh.data(), record.data() + n * nc * sizeof(T), n);
+      forward = fwd.data();
+      forward_fresh = fwd_fresh.data();
+    } else {
+      forward = kept_values[r].data();
+      forward_fresh = kept_fresh[r].data();
+    }
+    const auto& st = pass.state();
+    detail::coherent_combine(ex, prm, index, w, h, forward, forward_fresh, st.history.data(),
+                             st.fresh.data(), io.input_at ? input.data() : nullptr, out.data());
+    if (!io.recall) {  // frame r's record has served: free it
+      std::vector<T>().swap(kept_values[r]);
+      std::vector<std::uint8_t>().swap(kept_fresh[r]);
+    }
+    for (std::size_t c = 0; c < nc; ++c) detail::coherent_smooth(out[c], prm.smoothing);
+    io.write(r, span<const image_view<T>>(out.data(), out.size()));
+  }
+}
+
+// The same over frames and outputs in memory: out holds frames.size() * channels views,
+// frame-major (out[i * channels + c] is channel c of frame i).
+template <class T, class Exec>
+void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const frame> frames,
+                        span<const image_view<T>> out) {
+  const char* where = "hush::coherent_symmetric";
+  validate(prm);
+  const std::size_t nc = static_cast<std::size_t>(prm.channels);
+  if (out.size() != frames.size() * nc)
+    detail::throw_out_of_range(
+        where, "out.size()", out.size(),
+        ("frames.size() * channels = " + std::to_string(frames.size() * nc)).c_str());
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    detail::coherent_check_views(where, "out", out.data() + i * nc, nc, nc, frames[i].width(),
+                                 frames[i].height());
+  coherent_sequence<T> io;
+  io.frames = frames.size();
+  io.frame_at = [&](std::size_t i) { return frames[i]; };
+  io.write = [&](std::size_t i, span<const image_view<T>> result) {
+    for (std::size_t c = 0; c < nc; ++c) {
+      const image_view<T>& dst = out[i * nc + c];
+      for (std::size_t y = 0; y < dst.height; ++y)
+        std::copy(result[c].row(y), result[c].row(y) + dst.width, dst.row(y));
+    }
+  };
+  coherent_symmetric(ex, prm, io);
+}
+
+}  // namespace hush
+
+#endif  // HUSH_COHERENT_HPP
+// ---- end hush/coherent.hpp
 
 #endif  // HUSH_HUSH_HPP
 // ---- end hush/hush.hpp

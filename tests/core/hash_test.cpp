@@ -357,3 +357,22 @@ TEST_CASE("hash32 and lattice_hash: match the 64-bit reference on random inputs"
   }
   CHECK(mismatches == 0);
 }
+
+TEST_CASE("hash32_high and lattice_hash_high: the top 16 bits of hash32 and lattice_hash") {
+  // What Perlin's gradient index reads (bits 16 ... 31) must not change when
+  // the last step is skipped; the low half does change (else the step would
+  // be useless and the test could not fail).
+  splitmix64 g{6};
+  int top_mismatches = 0, low_differs = 0;
+  for (int n = 0; n < 100000; ++n) {
+    const std::uint32_t key = g.next_u32(), i = g.next_u32(), j = g.next_u32(), k = g.next_u32();
+    if ((hush::hash32_high(key) >> 16) != (hush::hash32(key) >> 16)) ++top_mismatches;
+    if ((hush::lattice_hash_high(key, i, j) >> 16) != (hush::lattice_hash(key, i, j) >> 16))
+      ++top_mismatches;
+    if ((hush::lattice_hash_high(key, i, j, k) >> 16) != (hush::lattice_hash(key, i, j, k) >> 16))
+      ++top_mismatches;
+    if (hush::hash32_high(key) != hush::hash32(key)) ++low_differs;
+  }
+  CHECK(top_mismatches == 0);
+  CHECK(low_differs > 99000);
+}

@@ -778,7 +778,8 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
                                    "out vec4 c;\nvoid main() { c = "
                                    "hush_perlin3_gradient(gl_FragCoord.xyz, 1u, uvec3(0u)); }\n"}});
   const auto files = hush::glsl::export_files();
-  CHECK(files.size() == 17);  // the library, 4 runners each of perlin2, perlin3 and their fractals
+  // The library, 4 runners each of perlin2, perlin3 and their fractals, the coherent pass.
+  CHECK(files.size() == 18);
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);

@@ -59,6 +59,8 @@ TEST_CASE("channel files are NPY 1.0 with the documented dtype and shape, data 6
   } expected[] = {
       {"depth.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (5, 7), }", 35},
       {"velocity.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (5, 7, 3), }", 105},
+      {"forward_velocity.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (5, 7, 3), }",
+       105},
       {"object_id.npy", "{'descr': '<u4', 'fortran_order': False, 'shape': (5, 7), }", 35},
       {"triangle_id.npy", "{'descr': '<u4', 'fortran_order': False, 'shape': (5, 7), }", 35},
       {"barycentric.npy", "{'descr': '<f4', 'fortran_order': False, 'shape': (5, 7, 3), }", 105},
@@ -106,6 +108,22 @@ TEST_CASE("missing, truncated or mistyped channel files fail with an error namin
   fs::copy_file(dir / "depth.npy", dir / "position.npy", fs::copy_options::overwrite_existing);
   CHECK(error_of(dir.string()).find("position.npy") != std::string::npos);
   CHECK(error_of((dir / "nothing_here").string()).find("depth.npy") != std::string::npos);
+}
+
+TEST_CASE("forward velocity is optional: absent on save, absent on load, a stale file removed") {
+  hs::gbuffer g = hs::render_cpu(hs::make_scene("rotate"), 2, 9, 7);
+  const fs::path dir = scratch("io_forward");
+  hs::save_gbuffer(g, dir.string());
+  CHECK(fs::exists(dir / "forward_velocity.npy"));
+  CHECK(hush_scene_test::same_bits(hs::load_gbuffer(dir.string()), g));
+  g.forward_velocity.clear();  // a producer without it
+  hs::save_gbuffer(g, dir.string());
+  CHECK_FALSE(fs::exists(dir / "forward_velocity.npy"));
+  const hs::gbuffer back = hs::load_gbuffer(dir.string());
+  CHECK(back.forward_velocity.empty());
+  CHECK(hush_scene_test::same_bits(back, g));
+  g.forward_velocity.assign(5, 0.0f);  // present but the wrong size
+  CHECK_THROWS_AS(hs::save_gbuffer(g, dir.string()), hush::invalid_argument);
 }
 
 TEST_CASE("a G-buffer whose channels do not match its size is refused") {

@@ -2,7 +2,8 @@
 // double coverage, no cracks, also across the near plane), exactness of depth, uv,
 // position and the uv Jacobian against analytic ray casts, back-face culling that
 // changes nothing on closed meshes, exact velocity (reprojection of frame i onto
-// frame i-1 for every motion scene, and the analytic velocity of a translation),
+// frame i-1 for every motion scene, and the analytic velocity of a translation; the
+// forward velocity likewise onto frame i+1),
 // and bit-for-bit determinism.
 #include <doctest/doctest.h>
 
@@ -406,6 +407,34 @@ TEST_CASE("velocity reprojection: frame i seen through its velocity matches fram
                                 << ", max error / tolerance " << r.max_ratio
                                 << "; against frame i-1's exact surface: max position error "
                                 << r.max_exact_error << ", max error / tolerance "
+                                << r.max_exact_ratio);
+      CHECK(r.checked > r.covered / 2);
+      CHECK(r.max_ratio <= 1.0);
+      CHECK(r.max_exact_ratio <= 1.0);
+    }
+  }
+}
+
+TEST_CASE(
+    "forward velocity reprojection: frame i seen through its forward velocity matches "
+    "frame i+1") {
+  // The same check as the backward one, run forwards: frame i with velocity -forward is a
+  // frame whose "previous" frame is i+1 (reproject() reads the pose and transforms of
+  // frame f - 1, so it is given f = i + 2).
+  const int w = 320, h = 240;
+  for (const char* name : {"translate", "rotate", "zoom", "walkthrough"}) {
+    const hs::scene s = hs::make_scene(name);
+    for (int f : {0, 24}) {
+      hs::gbuffer cur = hs::render_cpu(s, f, w, h);
+      REQUIRE(cur.forward_velocity.size() == cur.velocity.size());
+      for (std::size_t k = 0; k < cur.velocity.size(); ++k)
+        cur.velocity[k] = -cur.forward_velocity[k];
+      const reprojection_result r = reproject(s, f + 2, cur, hs::render_cpu(s, f + 1, w, h));
+      MESSAGE(std::string(name) << " frame " << f << " -> " << f + 1 << ": checked " << r.checked
+                                << " of " << r.covered << " covered pixels; max position error "
+                                << r.max_position_error << ", max depth error " << r.max_depth_error
+                                << ", max error / tolerance " << r.max_ratio
+                                << "; against frame i+1's exact surface: max error / tolerance "
                                 << r.max_exact_ratio);
       CHECK(r.checked > r.covered / 2);
       CHECK(r.max_ratio <= 1.0);

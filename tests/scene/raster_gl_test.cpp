@@ -48,7 +48,8 @@ hs::gl_rasterizer& gl() {
 struct agreement {
   std::size_t pixels = 0, id_differ = 0, edge = 0, interior = 0, interior_id_differ = 0;
   // Largest |cpu - gl| on interior pixels, and largest ratio to the tolerance.
-  double depth = 0, uv = 0, normal = 0, velocity = 0, position = 0, barycentric = 0, jacobian = 0;
+  double depth = 0, uv = 0, normal = 0, velocity = 0, forward_velocity = 0, position = 0,
+         barycentric = 0, jacobian = 0;
   double worst_ratio = 0;
   std::string worst;
 };
@@ -124,6 +125,8 @@ agreement compare(const hs::scene& s, int frame, int w, int h) {
       check("uv", c.uv, g.uv, 2, max_uv, r.uv);
       check("normal", c.normal, g.normal, 3, 1.0, r.normal);
       check("velocity", c.velocity, g.velocity, 3, w + h, r.velocity);
+      check("forward_velocity", c.forward_velocity, g.forward_velocity, 3, w + h,
+            r.forward_velocity);
       check("position", c.position, g.position, 3, max_pos, r.position);
       check("barycentric", c.barycentric, g.barycentric, 3, 1.0, r.barycentric);
       check("uv_jacobian", c.uv_jacobian, g.uv_jacobian, 4, 6.0 * max_uv, r.jacobian);
@@ -139,14 +142,15 @@ TEST_CASE(
     const hs::scene s = hs::make_scene(name);
     for (int frame : {0, 5}) {
       const agreement r = compare(s, frame, w, h);
-      MESSAGE(
-          std::string(name)
-          << " frame " << frame << ": IDs differ on " << r.id_differ << " of " << r.pixels
-          << " pixels (" << 100.0 * static_cast<double>(r.id_differ) / static_cast<double>(r.pixels)
-          << "%), " << r.interior << " interior pixels, max |cpu - gl| there: depth " << r.depth
-          << ", uv " << r.uv << ", normal " << r.normal << ", velocity " << r.velocity
-          << " px, position " << r.position << ", barycentric " << r.barycentric << ", uv Jacobian "
-          << r.jacobian << "; worst error / tolerance " << r.worst_ratio << " (" << r.worst << ")");
+      MESSAGE(std::string(name)
+              << " frame " << frame << ": IDs differ on " << r.id_differ << " of " << r.pixels
+              << " pixels ("
+              << 100.0 * static_cast<double>(r.id_differ) / static_cast<double>(r.pixels) << "%), "
+              << r.interior << " interior pixels, max |cpu - gl| there: depth " << r.depth
+              << ", uv " << r.uv << ", normal " << r.normal << ", velocity " << r.velocity
+              << " px, forward velocity " << r.forward_velocity << " px, position " << r.position
+              << ", barycentric " << r.barycentric << ", uv Jacobian " << r.jacobian
+              << "; worst error / tolerance " << r.worst_ratio << " (" << r.worst << ")");
       CHECK(r.interior > r.pixels / 4);
       CHECK(r.interior_id_differ == 0u);
       // Only pixel centres within the snapping distance of an edge can change hands:

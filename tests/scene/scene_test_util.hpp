@@ -33,10 +33,11 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 // Every channel bit for bit (NaN payloads included).
 inline bool same_bits(const hush::scene::gbuffer& a, const hush::scene::gbuffer& b) {
   return a.width == b.width && a.height == b.height && same_bits(a.depth, b.depth) &&
-         same_bits(a.velocity, b.velocity) && same_bits(a.object_id, b.object_id) &&
-         same_bits(a.triangle_id, b.triangle_id) && same_bits(a.barycentric, b.barycentric) &&
-         same_bits(a.uv, b.uv) && same_bits(a.uv_jacobian, b.uv_jacobian) &&
-         same_bits(a.normal, b.normal) && same_bits(a.position, b.position);
+         same_bits(a.velocity, b.velocity) && same_bits(a.forward_velocity, b.forward_velocity) &&
+         same_bits(a.object_id, b.object_id) && same_bits(a.triangle_id, b.triangle_id) &&
+         same_bits(a.barycentric, b.barycentric) && same_bits(a.uv, b.uv) &&
+         same_bits(a.uv_jacobian, b.uv_jacobian) && same_bits(a.normal, b.normal) &&
+         same_bits(a.position, b.position);
 }
 
 }  // namespace hush_scene_test

@@ -127,6 +127,40 @@ constexpr double kHalfLog2Pi = 0.91893853320467274178;
 constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
 constexpr int kLogFactorialTable = 20;
 
+// ---- Coherent noise (Kass & Pesare 2011, "Coherent Noise for Non-Photorealistic
+// Rendering"; include/hush/coherent.hpp, docs/coherent.md).
+// White noise: w = kCoherentWhiteScale * (2 (h >> kCoherentWhiteShift) + 1 - 2^24) for a
+// 32-bit hash h: the odd multiples of 2^-24 in (-1, 1), times sqrt(3); mean exactly 0,
+// variance 1 - 2^-48 (a discrete uniform over 2^24 values), never denormal.
+constexpr unsigned kCoherentWhiteShift = 8;
+constexpr double kCoherentWhiteScale = 1.7320508075688772935 * 0x1p-24;  // sqrt(3) * 2^-24
+constexpr double kCoherentWhiteCentre = 16777215.0;                      // 2^24 - 1
+// Pixel hash of a field: hash32(hash32(frame_key, y) ^ x * kCoherentPixelPrime). The odd
+// multiplier (the 32-bit xxHash prime 4) scatters the columns, so two rows' keys can never
+// line up a run of pixels (a plain xor of x would repeat shifted row segments).
+constexpr unsigned kCoherentPixelPrime = 0x27D4EB2FU;
+// Fields per channel, each with its own stream: the input w, the refill fields of the
+// stationary filter (x and y; separate ones for the backward pass of the symmetric filter),
+// and the band-pass input's lattice offsets.
+constexpr unsigned kCoherentFieldInput = 0;
+constexpr unsigned kCoherentFieldRefillX = 1;
+constexpr unsigned kCoherentFieldRefillY = 2;
+constexpr unsigned kCoherentFieldBackRefillX = 3;
+constexpr unsigned kCoherentFieldBackRefillY = 4;
+constexpr unsigned kCoherentFields = 5;
+// Parameter defaults and limits. alpha = 0.98 is the paper's (sec. 4). epsilon is relative:
+// the previous depth must lie within epsilon * e of the expected depth e (2% accepts bilinear
+// interpolation of depth across a pixel of a plane tilted up to ~60 degrees and rejects a
+// surface 2% farther; the same tolerance as the coherence metrics, docs/coherence.md).
+constexpr double kCoherentDefaultAlpha = 0.98;
+constexpr double kCoherentDefaultEpsilon = 0.02;
+constexpr double kCoherentDefaultBandpassPixels = 4.0;  // band-pass input: Perlin cell, pixels
+constexpr double kCoherentMaxBandpassPixels = 1024.0;
+constexpr double kCoherentMaxSmoothing = 2.0;     // output Gaussian sigma, pixels
+constexpr double kCoherentSmoothingRadius = 3.0;  // kernel radius in sigmas
+constexpr int kCoherentMaxChannels = 4;
+constexpr unsigned kCoherentMaxSide = 16384;  // frame side limit (keeps pixel indices in int32)
+
 // ---- Poisson counts by table (core/poisson_table.hpp): thresholds of the CDF,
 // built once per mean on the CPU, compared with one uniform word per draw.
 // The mean is capped so that a table stays small (about mean + 7 sqrt(mean)

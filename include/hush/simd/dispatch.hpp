@@ -28,6 +28,7 @@
 #include "hush/core/hash.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
+#include "hush/detail/coherent_kernel.hpp"
 #include "hush/fractal.hpp"
 #include "hush/gabor.hpp"
 #include "hush/perlin.hpp"
@@ -57,6 +58,7 @@ struct simd_kernel {
 #endif
 #include <hwy/highway.h>
 
+#include "hush/simd/coherent-inl.h"
 #include "hush/simd/gabor-inl.h"
 #include "hush/simd/perlin-inl.h"
 #endif
@@ -68,7 +70,9 @@ namespace simd {
 // gradients are written interleaved the same way unless `grad` is null.
 // `period` has one entry per axis (0 = not periodic). Results follow
 // hush::perlin's contract; see hush/simd/perlin-inl.h for the agreement with
-// scalar evaluation.
+// scalar evaluation. Grid entries evaluate the slab of slowest-axis indices
+// (j in 2D, k in 3D) [first, first + count) into value (and grad), which
+// start at that slab's first sample; (0, g.size[D - 1]) is the whole grid.
 #if HUSH_CONFIG_SIMD_STATIC
 #define HUSH_SIMD_ENTRY inline
 #else
@@ -79,19 +83,22 @@ HUSH_SIMD_ENTRY void perlin2_points(std::uint32_t key, const std::uint32_t* peri
 HUSH_SIMD_ENTRY void perlin3_points(std::uint32_t key, const std::uint32_t* period,
                                     const float* xyz, std::size_t n, float* value, float* grad);
 HUSH_SIMD_ENTRY void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                                  float* value, float* grad);
+                                  std::size_t first, std::size_t count, float* value, float* grad);
 HUSH_SIMD_ENTRY void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                                  float* value, float* grad);
+                                  std::size_t first, std::size_t count, float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
                                      float* value, float* grad);
 HUSH_SIMD_ENTRY void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
                                      float* value, float* grad);
-HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
-                                   float* grad);
-HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
-                                   float* grad);
-// Gabor noise (hush/gabor.hpp): points (interleaved), grids, and samples with
-// footprints or (3D) normals; same conventions. hush/simd/gabor-inl.h states
+HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g,
+                                   std::size_t first, std::size_t count, float* value, float* grad);
+HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g,
+                                   std::size_t first, std::size_t count, float* value, float* grad);
+// Coherent noise: one recursive-filter pass over a frame (hush/simd/coherent-inl.h;
+// the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
+HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
+// Gabor noise (hush/gabor.hpp): points (interleaved), whole grids (no slabs), and
+// points with footprints (filtered samples); same conventions. hush/simd/gabor-inl.h states
 // the agreement with scalar evaluation.
 HUSH_SIMD_ENTRY void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
                                    float* grad);
@@ -121,12 +128,12 @@ inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const
   HWY_STATIC_DISPATCH(perlin3_points)(key, period, xyz, n, value, grad);
 }
 inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                         float* value, float* grad) {
-  HWY_STATIC_DISPATCH(perlin2_grid)(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin2_grid)(key, period, g, first, count, value, grad);
 }
 inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                         float* value, float* grad) {
-  HWY_STATIC_DISPATCH(perlin3_grid)(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(perlin3_grid)(key, period, g, first, count, value, grad);
 }
 inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
                             float* value, float* grad) {
@@ -136,13 +143,16 @@ inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std:
                             float* value, float* grad) {
   HWY_STATIC_DISPATCH(fractal3_points)(fr, xyz, n, value, grad);
 }
-inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
-                          float* grad) {
-  HWY_STATIC_DISPATCH(fractal2_grid)(fr, g, value, grad);
+inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(fractal2_grid)(fr, g, first, count, value, grad);
 }
-inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
-                          float* grad) {
-  HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
+inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, first, count, value, grad);
+}
+inline void coherent_pass(const detail::coherent_pass_job<float>& job) {
+  HWY_STATIC_DISPATCH(coherent_pass)(job);
 }
 inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
                           float* grad) {
@@ -197,14 +207,20 @@ struct simd_kernel<perlin<D>> {
     else
       simd::perlin3_points(key, period, p, count, out, g);
   }
-  static void grid(const perlin<D>& n, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+  // Slabs along the slowest axis (exec::parallel; exec.hpp).
+  static constexpr bool has_grid_slab = true;
+  static void grid_slab(const perlin<D>& n, const hush::grid<D>& gr, std::size_t first,
+                        std::size_t count, float* out, vec<float, D>* grad) {
     std::uint32_t key, period[3];
     config(n, key, period);
     auto* g = reinterpret_cast<float*>(grad);
     if constexpr (D == 2)
-      simd::perlin2_grid(key, period, gr, out, g);
+      simd::perlin2_grid(key, period, gr, first, count, out, g);
     else
-      simd::perlin3_grid(key, period, gr, out, g);
+      simd::perlin3_grid(key, period, gr, first, count, out, g);
+  }
+  static void grid(const perlin<D>& n, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    grid_slab(n, gr, 0, gr.size[D - 1], out, grad);
   }
 };
 
@@ -221,13 +237,18 @@ struct simd_kernel<fractal<perlin<D>>> {
     else
       simd::fractal3_points(fr, p, count, out, g);
   }
-  static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
-                   vec<float, D>* grad) {
+  static constexpr bool has_grid_slab = true;
+  static void grid_slab(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, std::size_t first,
+                        std::size_t count, float* out, vec<float, D>* grad) {
     auto* g = reinterpret_cast<float*>(grad);
     if constexpr (D == 2)
-      simd::fractal2_grid(fr, gr, out, g);
+      simd::fractal2_grid(fr, gr, first, count, out, g);
     else
-      simd::fractal3_grid(fr, gr, out, g);
+      simd::fractal3_grid(fr, gr, first, count, out, g);
+  }
+  static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
+                   vec<float, D>* grad) {
+    grid_slab(fr, gr, 0, gr.size[D - 1], out, grad);
   }
 };
 

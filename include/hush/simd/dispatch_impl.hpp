@@ -18,6 +18,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "hush/simd/coherent-inl.h"
 #include "hush/simd/gabor-inl.h"
 #include "hush/simd/perlin-inl.h"
 
@@ -42,6 +43,7 @@ HWY_EXPORT(fractal2_points);
 HWY_EXPORT(fractal3_points);
 HWY_EXPORT(fractal2_grid);
 HWY_EXPORT(fractal3_grid);
+HWY_EXPORT(coherent_pass);
 HWY_EXPORT(gabor2_points);
 HWY_EXPORT(gabor3_points);
 HWY_EXPORT(gabor2_grid);
@@ -59,13 +61,13 @@ void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float*
                     float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(perlin3_points)(key, period, xyz, n, value, grad);
 }
-void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g, float* value,
-                  float* grad) {
-  HWY_DYNAMIC_DISPATCH(perlin2_grid)(key, period, g, value, grad);
+void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
+                  std::size_t first, std::size_t count, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(perlin2_grid)(key, period, g, first, count, value, grad);
 }
-void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g, float* value,
-                  float* grad) {
-  HWY_DYNAMIC_DISPATCH(perlin3_grid)(key, period, g, value, grad);
+void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
+                  std::size_t first, std::size_t count, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(perlin3_grid)(key, period, g, first, count, value, grad);
 }
 
 void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n, float* value,
@@ -76,11 +78,17 @@ void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t
                      float* grad) {
   HWY_DYNAMIC_DISPATCH(fractal3_points)(fr, xyz, n, value, grad);
 }
-void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value, float* grad) {
-  HWY_DYNAMIC_DISPATCH(fractal2_grid)(fr, g, value, grad);
+void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
+                   std::size_t count, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(fractal2_grid)(fr, g, first, count, value, grad);
 }
-void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value, float* grad) {
-  HWY_DYNAMIC_DISPATCH(fractal3_grid)(fr, g, value, grad);
+void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
+                   std::size_t count, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(fractal3_grid)(fr, g, first, count, value, grad);
+}
+
+void coherent_pass(const detail::coherent_pass_job<float>& job) {
+  HWY_DYNAMIC_DISPATCH(coherent_pass)(job);
 }
 
 void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value, float* grad) {

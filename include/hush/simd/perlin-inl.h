@@ -6,17 +6,26 @@
 // normal guard); reached through hush/simd/dispatch.hpp, never included
 // directly by users.
 //
-// The kernels repeat perlin.hpp's float algorithm operation by operation:
-// same lattice split (in double for grids, exact float floor for points),
-// same hash words, gradient index and table, Horner fade, lerp a + t(b - a),
-// dot products summed left to right, and the same final scale. So:
+// The kernels compute perlin.hpp's float algorithm: same lattice split (in
+// double for grids, exact float floor for points), same hash words, gradient
+// index and table, Horner fade, lerp a + t(b - a), dot products and final
+// scale. Where they take another route to the same number it is exact:
+//  - the gradient index reads the top bits of the lattice hash, which
+//    lowbias32's last step leaves alone, so it is skipped (hash32_high);
+//  - the 3D index ((h >> 16) * 12) >> 16 is one 16-bit high multiply;
+//  - 3D corner dot products g . f are one rounding of +-f_p +- f_q (gradient
+//    components are 0 or +-1); targets narrower than 16 lanes form them by
+//    selects and sign flips instead of table lookups, and grids split them
+//    into a per-row part g_y f_y + g_z f_z and the x term;
+//  - grid rows hash once per lattice point, not once per sample and corner.
+// So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
 //    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
-//    compiled target);
+//    compiled target; zeros are +0 on every path, see perlin.hpp);
 //  - otherwise multiply-adds are fused where that is faster, and results
 //    stay within perlin.hpp's float budget of the double reference (2^-16);
-//    measured differences to scalar are a few float ulps (docs/performance.md).
-// Points whose coordinates are all finite and below 2^31 in magnitude take
+//    measured differences to scalar are a few float ulps (docs/design.md).
+// Points whose coordinates are all finite and below 2^22 in magnitude take
 // the vector split; other vectors (NaN, Inf, huge, or periodic noise) split
 // lane by lane through core/lattice.hpp, so hard cases behave exactly like
 // scalar evaluation (NaN in gives NaN out).
@@ -31,6 +40,7 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -57,6 +67,9 @@ namespace perlin_simd {
 using DF = hn::ScalableTag<float>;
 using DU = hn::RebindToUnsigned<DF>;
 using DI = hn::RebindToSigned<DF>;
+#if HWY_TARGET != HWY_SCALAR
+using DU16 = hn::Repartition<std::uint16_t, DU>;
+#endif
 using VF = hn::Vec<DF>;
 using VU = hn::Vec<DU>;
 
@@ -76,6 +89,10 @@ HWY_INLINE VF mul_add(VF a, VF b, VF c) {
 }
 // lerp(a, b, t) = a + t * (b - a), as detail::lerp.
 HWY_INLINE VF lerp(VF a, VF b, VF t) { return mul_add(t, hn::Sub(b, a), a); }
+// scale * v + 0 (perlin.hpp's 3D output: zeros become +0). Adding 0 to the
+// exact product rounds nothing, so the fused form equals the two-step one
+// and may be used under strict FP too.
+HWY_INLINE VF scale_plus_zero(VF scale, VF v) { return hn::MulAdd(scale, v, hn::Zero(DF())); }
 
 // detail::fade: t^3 (t (6t - 15) + 10), Horner form in the same order.
 HWY_INLINE VF fade(VF t) {
@@ -95,15 +112,19 @@ HWY_INLINE VF fade_derivative(VF t) {
   return hn::Mul(hn::Mul(t, t), inner);
 }
 
-// hash32 (core/hash.hpp) in 32-bit lanes.
-HWY_INLINE VU hash32(VU x) {
+// hash32 (core/hash.hpp) in 32-bit lanes without its last step x ^= x >> 16,
+// which changes only bits 0 ... 15: bits 16 ... 31 equal hash32's, and they
+// are all Perlin's gradient index reads (2D: 29 ... 31; 3D: 16 ... 31).
+static_assert(detail::constants::kHashShift3 >= 16 && detail::constants::kPerlin2GradShift >= 16 &&
+                  detail::constants::kPerlin3IndexShift >= 16,
+              "the gradient index must read only hash bits the last xorshift leaves alone");
+HWY_INLINE VU hash32_high(VU x) {
   namespace c = detail::constants;
   const DU du;
   x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
   x = hn::Mul(x, hn::Set(du, c::kHashMul1));
   x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
-  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
+  return hn::Mul(x, hn::Set(du, c::kHashMul2));
 }
 
 // lattice_word_x/y/z (core/hash.hpp) in lanes: i * P_x, rotl(j * P_y, R_y),
@@ -124,122 +145,189 @@ HWY_INLINE VU word(VU i) {
   if constexpr (kAxis == 2) return word_z(i);
 }
 
-// perlin.hpp's float gradient tables, padded to kMaxLanes (zeros past the
-// real entries) so that every chunk load in lookup() stays in bounds.
-struct tables {
-  float g2x[kMaxLanes], g2y[kMaxLanes], g3x[kMaxLanes], g3y[kMaxLanes], g3z[kMaxLanes];
+// perlin.hpp's float gradient tables, padded to kMaxLanes with zeros so that
+// every chunk load in lookup() stays in bounds. Constant data at fixed
+// addresses: loops load them once.
+struct padded_table {
+  float v[kMaxLanes];
 };
-inline const tables& gradient_tables() {
-  static const tables t = [] {
-    using src = detail::perlin_tables<float>;
-    tables r{};
-    std::copy(src::g2x.begin(), src::g2x.end(), r.g2x);
-    std::copy(src::g2y.begin(), src::g2y.end(), r.g2y);
-    std::copy(src::g3x.begin(), src::g3x.end(), r.g3x);
-    std::copy(src::g3y.begin(), src::g3y.end(), r.g3y);
-    std::copy(src::g3z.begin(), src::g3z.end(), r.g3z);
-    return r;
-  }();
+template <std::size_t N>
+constexpr padded_table pad(const std::array<float, N>& src) {
+  padded_table t{};
+  for (std::size_t i = 0; i < N; ++i) t.v[i] = src[i];
   return t;
 }
+using float_tables = detail::perlin_tables<float>;
+alignas(64) constexpr padded_table kG2x = pad(float_tables::g2x);
+alignas(64) constexpr padded_table kG2y = pad(float_tables::g2y);
+alignas(64) constexpr padded_table kG3x = pad(float_tables::g3x);
+alignas(64) constexpr padded_table kG3y = pad(float_tables::g3y);
+alignas(64) constexpr padded_table kG3z = pad(float_tables::g3z);
 
 // table[idx] per lane for idx < kEntries: one in-register permute per chunk
 // of Lanes entries (one for 8 entries on AVX2, two for 12), then a select.
 template <int kEntries>
-HWY_INLINE VF lookup(const float* HWY_RESTRICT table, VU idx) {
+HWY_INLINE VF lookup(const padded_table& table, VU idx) {
   const DF df;
   const DU du;
   const DI di;
   const std::size_t n = hn::Lanes(df);
-  const VU lane_mask = hn::Set(du, static_cast<std::uint32_t>(n - 1));
-  const auto within = hn::IndicesFromVec(df, hn::BitCast(di, hn::And(idx, lane_mask)));
-  VF r = hn::TableLookupLanes(hn::LoadU(df, table), within);
+  // Within-chunk positions; an index below the lane count already is one.
+  const VU in = static_cast<std::size_t>(kEntries) <= hn::MaxLanes(df)
+                    ? idx
+                    : hn::And(idx, hn::Set(du, static_cast<std::uint32_t>(n - 1)));
+  const auto within = hn::IndicesFromVec(df, hn::BitCast(di, in));
+  VF r = hn::TableLookupLanes(hn::LoadU(df, table.v), within);
   for (std::size_t base = n; base < static_cast<std::size_t>(kEntries); base += n) {
     // Indices are small, so a signed compare (the one every target has) is exact.
     const auto in_chunk = hn::RebindMask(
         df, hn::Gt(hn::BitCast(di, idx), hn::Set(di, static_cast<std::int32_t>(base) - 1)));
-    r = hn::IfThenElse(in_chunk, hn::TableLookupLanes(hn::LoadU(df, table + base), within), r);
+    r = hn::IfThenElse(in_chunk, hn::TableLookupLanes(hn::LoadU(df, table.v + base), within), r);
   }
   return r;
 }
 
+// 2D gradient index: the top 3 hash bits.
 HWY_INLINE VU grad_index2(VU h) { return hn::ShiftRight<detail::constants::kPerlin2GradShift>(h); }
-HWY_INLINE VU grad_index3(VU h) {
+
+// 3D: ((h >> 16) * 12) >> 16 is the high half of the 16-bit product of h's
+// top half and 12, so MulHigh on 16-bit lanes leaves the index in bits
+// 16 ... 19 of each 32-bit lane (bits 0 ... 15 hold the low half's product,
+// which nothing reads).
+HWY_INLINE VU grad_index3_high(VU h) {
   namespace c = detail::constants;
-  const VU top = hn::ShiftRight<c::kPerlin3IndexShift>(h);
-  return hn::ShiftRight<c::kPerlin3IndexShift>(
-      hn::Mul(top, hn::Set(DU(), static_cast<std::uint32_t>(c::kPerlin3GradCount))));
+  static_assert(c::kPerlin3IndexShift == 16, "the 16-bit high multiply needs a shift of 16");
+#if HWY_TARGET == HWY_SCALAR
+  // One-lane vectors cannot be reinterpreted as 16-bit lanes: (h >> 16) * 12
+  // has the index in the same bits.
+  return hn::Mul(hn::ShiftRight<16>(h), hn::Set(DU(), std::uint32_t(c::kPerlin3GradCount)));
+#else
+  const DU16 d16;
+  return hn::BitCast(
+      DU(), hn::MulHigh(hn::BitCast(d16, h), hn::Set(d16, std::uint16_t(c::kPerlin3GradCount))));
+#endif
+}
+HWY_INLINE VU grad_index3(VU h) { return hn::ShiftRight<16>(grad_index3_high(h)); }
+
+// The 3D gradients are the 12 cube edges, index n -> (x, y, z):
+//   n < 4: (+-1, +-1, 0), n < 8: (+-1, 0, +-1), else (0, +-1, +-1),
+// first sign from bit 0 of n, second from bit 1 (constants.hpp's tables).
+static_assert(
+    [] {
+      for (int n = 0; n < detail::constants::kPerlin3GradCount; ++n) {
+        const double s0 = (n & 1) ? -1 : 1, s1 = (n & 2) ? -1 : 1;
+        const double want[3] = {n < 8 ? s0 : 0, n < 4 ? s1 : (n < 8 ? 0 : s0), n < 4 ? 0 : s1};
+        if (detail::constants::kPerlin3GradX[n] != want[0] ||
+            detail::constants::kPerlin3GradY[n] != want[1] ||
+            detail::constants::kPerlin3GradZ[n] != want[2])
+          return false;
+      }
+      return true;
+    }(),
+    "dot3_select assumes the cube-edge layout of the 3D gradient table");
+
+// g . (fx, fy, fz) for the 3D gradient of hash h without a table: pick the
+// two coordinates the edge uses, flip their signs and add. The sum is the
+// rounding of the same exact real as gx fx + (gy fy + gz fz); only the sign
+// of a zero result can differ, and outputs are +0-canonical (perlin.hpp).
+HWY_INLINE VF dot3_select(VU h, VF fx, VF fy, VF fz) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const VU k = grad_index3_high(h);  // index in bits 16 ... 19
+  const auto below8 = hn::RebindMask(df, hn::Lt(hn::BitCast(di, k), hn::Set(di, 8 << 16)));
+  const auto below4 = hn::RebindMask(df, hn::Lt(hn::BitCast(di, k), hn::Set(di, 4 << 16)));
+  const VF p = hn::IfThenElse(below8, fx, fy);
+  const VF q = hn::IfThenElse(below4, fy, fz);
+  const VU sign = hn::Set(du, 0x80000000u);
+  const VF sp = hn::BitCast(df, hn::And(hn::ShiftLeft<15>(k), sign));  // bit 0 of the index
+  const VF sq = hn::BitCast(df, hn::And(hn::ShiftLeft<14>(k), sign));  // bit 1
+  return hn::Add(hn::Xor(p, sp), hn::Xor(q, sq));
 }
 
+// Targets whose vector holds the whole 12-entry table look gradients up with
+// one permute per component; narrower ones select (dot3_select).
+constexpr bool kOnePermuteTable3 =
+    hn::MaxLanes(DF()) >= static_cast<std::size_t>(detail::constants::kPerlin3GradCount);
+
 // One axis of a batch of lattice lookups: hash words of the two cells, the
-// fraction, its fade and (for gradients) the fade's derivative.
+// fraction f, f - 1, the fade and (for gradients) the fade's derivative.
 struct axis {
   VU w0, w1;
-  VF f, s, ds;
+  VF f, f1, s, ds;
 };
 
-// ---- 2D core: perlin<2>::eval2 in lanes. ky0/ky1 already hold key ^ word_y.
+// Per-corner inputs of the blend: dot products d and, for gradients, the
+// gradient components. Corner n = a + 2b + 4c is at offset (a, b, c).
+struct corners {
+  VF d[8], gx[8], gy[8], gz[8];
+};
+
+// Corner dot products from hashes: kyz[b + 2c] = key ^ word_y(j_b) ^
+// word_z(k_c) (2D: kyz[0], kyz[1]).
+template <bool kGradient, int D>
+HWY_INLINE void hashed_corners(const axis& x, const VU* kyz, const axis& y, const axis& z,
+                               corners& k) {
+  constexpr int kCorners = 1 << D;
+  HWY_UNROLL(8)
+  for (int n = 0; n < kCorners; ++n) {
+    const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+    const VU h = hash32_high(hn::Xor(a ? x.w1 : x.w0, kyz[b + 2 * c]));
+    const VF fx = a ? x.f1 : x.f, fy = b ? y.f1 : y.f;
+    if constexpr (D == 2) {
+      constexpr int kN = detail::constants::kPerlin2GradCount;
+      const VU g = grad_index2(h);
+      k.gx[n] = lookup<kN>(kG2x, g);
+      k.gy[n] = lookup<kN>(kG2y, g);
+      k.d[n] = mul_add(k.gx[n], fx, hn::Mul(k.gy[n], fy));
+    } else {
+      constexpr int kN = detail::constants::kPerlin3GradCount;
+      const VF fz = c ? z.f1 : z.f;
+      if constexpr (kGradient || kOnePermuteTable3) {
+        const VU g = grad_index3(h);
+        k.gx[n] = lookup<kN>(kG3x, g);
+        k.gy[n] = lookup<kN>(kG3y, g);
+        k.gz[n] = lookup<kN>(kG3z, g);
+        // gx fx + (gy fy + gz fz), as perlin.hpp sums it.
+        k.d[n] = mul_add(k.gx[n], fx, mul_add(k.gy[n], fy, hn::Mul(k.gz[n], fz)));
+      } else {
+        k.d[n] = dot3_select(h, fx, fy, fz);
+      }
+    }
+  }
+}
+
+// ---- The blend: perlin<D>::eval2 / eval3 after the dot products, in lanes.
 template <bool kGradient>
-HWY_INLINE void core2(const axis& x, VU ky0, VU ky1, const axis& y, VF& value, VF& gx_out,
-                      VF& gy_out) {
+HWY_INLINE void finish2(const corners& k, const axis& x, const axis& y, VF& value, VF* grad) {
   const DF df;
-  const tables& tab = gradient_tables();
-  const VF one = hn::Set(df, 1.0f);
-  const VF fx = x.f, fy = y.f, fx1 = hn::Sub(fx, one), fy1 = hn::Sub(fy, one);
-  const VU g00 = grad_index2(hash32(hn::Xor(x.w0, ky0)));
-  const VU g10 = grad_index2(hash32(hn::Xor(x.w1, ky0)));
-  const VU g01 = grad_index2(hash32(hn::Xor(x.w0, ky1)));
-  const VU g11 = grad_index2(hash32(hn::Xor(x.w1, ky1)));
-  constexpr int kN = detail::constants::kPerlin2GradCount;
-  const VF ax00 = lookup<kN>(tab.g2x, g00), ay00 = lookup<kN>(tab.g2y, g00);
-  const VF ax10 = lookup<kN>(tab.g2x, g10), ay10 = lookup<kN>(tab.g2y, g10);
-  const VF ax01 = lookup<kN>(tab.g2x, g01), ay01 = lookup<kN>(tab.g2y, g01);
-  const VF ax11 = lookup<kN>(tab.g2x, g11), ay11 = lookup<kN>(tab.g2y, g11);
-  const VF d00 = mul_add(ax00, fx, hn::Mul(ay00, fy));
-  const VF d10 = mul_add(ax10, fx1, hn::Mul(ay10, fy));
-  const VF d01 = mul_add(ax01, fx, hn::Mul(ay01, fy1));
-  const VF d11 = mul_add(ax11, fx1, hn::Mul(ay11, fy1));
   const VF u = x.s, v = y.s;
-  const VF x0 = lerp(d00, d10, u), x1 = lerp(d01, d11, u);
+  const VF x0 = lerp(k.d[0], k.d[1], u), x1 = lerp(k.d[2], k.d[3], u);
   const VF scale = hn::Set(df, float(detail::constants::kPerlin2Scale));
   value = hn::Mul(scale, lerp(x0, x1, v));
   if constexpr (kGradient) {
-    const VF gx = mul_add(x.ds, lerp(hn::Sub(d10, d00), hn::Sub(d11, d01), v),
-                          lerp(lerp(ax00, ax10, u), lerp(ax01, ax11, u), v));
-    const VF gy = mul_add(y.ds, hn::Sub(x1, x0), lerp(lerp(ay00, ay10, u), lerp(ay01, ay11, u), v));
-    gx_out = hn::Mul(scale, gx);
-    gy_out = hn::Mul(scale, gy);
+    const VF gx = mul_add(x.ds, lerp(hn::Sub(k.d[1], k.d[0]), hn::Sub(k.d[3], k.d[2]), v),
+                          lerp(lerp(k.gx[0], k.gx[1], u), lerp(k.gx[2], k.gx[3], u), v));
+    const VF gy = mul_add(y.ds, hn::Sub(x1, x0),
+                          lerp(lerp(k.gy[0], k.gy[1], u), lerp(k.gy[2], k.gy[3], u), v));
+    grad[0] = hn::Mul(scale, gx);
+    grad[1] = hn::Mul(scale, gy);
   } else {
-    (void)gx_out;
-    (void)gy_out;
+    (void)grad;
   }
 }
 
-// ---- 3D core: perlin<3>::eval3 in lanes. kyz[b + 2c] = key ^ word_y(j_b) ^ word_z(k_c).
 template <bool kGradient>
-HWY_INLINE void core3(const axis& x, const VU* kyz, const axis& y, const axis& z, VF& value,
-                      VF* grad) {
+HWY_INLINE void finish3(const corners& k, const axis& x, const axis& y, const axis& z, VF& value,
+                        VF* grad) {
   const DF df;
-  const tables& tab = gradient_tables();
-  const VF one = hn::Set(df, 1.0f);
-  const VF f[2][3] = {{x.f, y.f, z.f}, {hn::Sub(x.f, one), hn::Sub(y.f, one), hn::Sub(z.f, one)}};
-  constexpr int kN = detail::constants::kPerlin3GradCount;
-  VF d[8], gxs[8], gys[8], gzs[8];
-  for (int n = 0; n < 8; ++n) {
-    const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
-    const VU g = grad_index3(hash32(hn::Xor(a ? x.w1 : x.w0, kyz[b + 2 * c])));
-    gxs[n] = lookup<kN>(tab.g3x, g);
-    gys[n] = lookup<kN>(tab.g3y, g);
-    gzs[n] = lookup<kN>(tab.g3z, g);
-    // (gx fx + gy fy) + gz fz, summed left to right as in eval3.
-    d[n] = mul_add(gzs[n], f[c][2], mul_add(gxs[n], f[a][0], hn::Mul(gys[n], f[b][1])));
-  }
+  const VF* d = k.d;
   const VF u = x.s, v = y.s, w = z.s;
   const VF x00 = lerp(d[0], d[1], u), x10 = lerp(d[2], d[3], u);
   const VF x01 = lerp(d[4], d[5], u), x11 = lerp(d[6], d[7], u);
   const VF y0 = lerp(x00, x10, v), y1 = lerp(x01, x11, v);
   const VF scale = hn::Set(df, float(detail::constants::kPerlin3Scale));
-  value = hn::Mul(scale, lerp(y0, y1, w));
+  value = scale_plus_zero(scale, lerp(y0, y1, w));
   if constexpr (kGradient) {
     auto blend = [&](const VF* q) {
       return lerp(lerp(lerp(q[0], q[1], u), lerp(q[2], q[3], u), v),
@@ -249,26 +337,26 @@ HWY_INLINE void core3(const axis& x, const VU* kyz, const axis& y, const axis& z
                        lerp(hn::Sub(d[5], d[4]), hn::Sub(d[7], d[6]), v), w);
     const VF ey = lerp(hn::Sub(x10, x00), hn::Sub(x11, x01), w);
     const VF ez = hn::Sub(y1, y0);
-    grad[0] = hn::Mul(scale, mul_add(x.ds, ex, blend(gxs)));
-    grad[1] = hn::Mul(scale, mul_add(y.ds, ey, blend(gys)));
-    grad[2] = hn::Mul(scale, mul_add(z.ds, ez, blend(gzs)));
+    grad[0] = scale_plus_zero(scale, mul_add(x.ds, ex, blend(k.gx)));
+    grad[1] = scale_plus_zero(scale, mul_add(y.ds, ey, blend(k.gy)));
+    grad[2] = scale_plus_zero(scale, mul_add(z.ds, ez, blend(k.gz)));
+  } else {
+    (void)grad;
   }
 }
 
-// perlin<D>'s core on one vector. kyz[b + 2c] = key ^ word_y(j_b) ^
-// word_z(k_c) (2D: kyz[0], kyz[1]; z unused).
 template <bool kGradient, int D>
-HWY_INLINE void core(const axis& x, const VU* kyz, const axis& y, const axis& z, VF& value,
-                     VF* grad) {
+HWY_INLINE void finish(const corners& k, const axis& x, const axis& y, const axis& z, VF& value,
+                       VF* grad) {
   if constexpr (D == 2) {
     (void)z;
-    core2<kGradient>(x, kyz[0], kyz[1], y, value, grad[0], grad[1]);
+    finish2<kGradient>(k, x, y, value, grad);
   } else {
-    core3<kGradient>(x, kyz, y, z, value, grad);
+    finish3<kGradient>(k, x, y, z, value, grad);
   }
 }
 
-// kyz for core() from per-lane axes (points) ...
+// kyz for hashed_corners() from per-lane axes (points) ...
 template <int D>
 HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
   kyz[0] = hn::Xor(key, y.w0);
@@ -282,15 +370,6 @@ HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
     (void)z;
   }
 }
-// ... and from row-constant words (grids; z words 0 in 2D).
-HWY_INLINE void key_words(std::uint32_t key, std::uint32_t y0, std::uint32_t y1, std::uint32_t z0,
-                          std::uint32_t z1, VU* kyz) {
-  const DU du;
-  kyz[0] = hn::Set(du, key ^ y0 ^ z0);
-  kyz[1] = hn::Set(du, key ^ y1 ^ z0);
-  kyz[2] = hn::Set(du, key ^ y0 ^ z1);
-  kyz[3] = hn::Set(du, key ^ y1 ^ z1);
-}
 
 // D interleaved vectors (gradients) to dst.
 template <int D>
@@ -302,31 +381,55 @@ HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
     hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
 }
 
-}  // namespace perlin_simd
-
-namespace perlin_simd {
-
 // ---- Points: splitting float coordinates into lattice axes.
 
-// Vector split, valid when every lane is finite with |x| < 2^31: floor and
-// x - floor(x) are exact in float, so this equals lattice_split's double
-// computation (including its clamp below 1 for tiny negative x).
-template <bool kGradient, int kAxis>
-HWY_INLINE axis split_fast(VF xv) {
-  const DF df;
-  const DI di;
-  const DU du;
-  const VF fl = hn::Floor(xv);
-  const VF f = hn::Min(hn::Sub(xv, fl), hn::Set(df, detail::one_minus_ulp<float>()));
-  const VU i0 = hn::BitCast(du, hn::ConvertTo(di, fl));
-  axis a;
-  a.w0 = word<kAxis>(i0);
-  a.w1 = word<kAxis>(hn::Add(i0, hn::Set(du, 1u)));
+// Fractions, fades and the second cell's word of an axis whose first word
+// and fraction are known.
+template <bool kGradient>
+HWY_INLINE void fill_axis(VF f, axis& a) {
   a.f = f;
+  a.f1 = hn::Sub(f, hn::Set(DF(), 1.0f));
   a.s = fade(f);
   if constexpr (kGradient) a.ds = fade_derivative(f);
+}
+
+// Vector split, valid when every lane is finite with |x| < 2^22: floor and
+// x - floor(x) are exact in float, so this equals lattice_split's double
+// computation (including its clamp below 1 for tiny negative x). The cell
+// comes from the float's bits: floor(x) + 1.5 * 2^23 is exact for
+// |floor(x)| <= 2^22 and its bit pattern is 0x4B400000 + floor(x), two's
+// complement (cheaper than a conversion with overflow handling).
+constexpr float kFastSplitLimit = 4194304.0f;  // 2^22
+constexpr float kCellMagic = 12582912.0f;      // 1.5 * 2^23
+constexpr std::uint32_t kCellMagicBits = 0x4B400000u;
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split_fast(VF xv) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  const VF fl = hn::Floor(xv);
+  const VU i0 =
+      hn::Sub(hn::BitCast(du, hn::Add(fl, hn::Set(df, kCellMagic))), hn::Set(du, kCellMagicBits));
+  // (i + 1) P = i P + P: the second cell's product is one add away.
+  constexpr std::uint32_t kPrime = kAxis == 0   ? c::kLatticePrimeX
+                                   : kAxis == 1 ? c::kLatticePrimeY
+                                                : c::kLatticePrimeZ;
+  const VU m0 = hn::Mul(i0, hn::Set(du, kPrime));
+  const VU m1 = hn::Add(m0, hn::Set(du, kPrime));
+  axis a;
+  if constexpr (kAxis == 0) {
+    a.w0 = m0;
+    a.w1 = m1;
+  } else {
+    constexpr int kRotate = kAxis == 1 ? c::kLatticeRotateY : c::kLatticeRotateZ;
+    a.w0 = hn::RotateRight<32 - kRotate>(m0);
+    a.w1 = hn::RotateRight<32 - kRotate>(m1);
+  }
+  fill_axis<kGradient>(hn::Min(hn::Sub(xv, fl), hn::Set(df, detail::one_minus_ulp<float>())), a);
   return a;
 }
+static_assert(detail::constants::kLatticeRotateY > 0 && detail::constants::kLatticeRotateZ > 0,
+              "split_fast rotates by 32 - R");
 
 // Lane-by-lane split of double coordinates q[lane] through core/lattice.hpp:
 // exactly what scalar evaluation computes.
@@ -345,16 +448,14 @@ HWY_INLINE axis split_doubles(const double* q, std::uint32_t period) {
   axis a;
   a.w0 = word<kAxis>(hn::Load(du, i0s));
   a.w1 = word<kAxis>(hn::Load(du, i1s));
-  a.f = hn::Load(df, fs);
-  a.s = fade(a.f);
-  if constexpr (kGradient) a.ds = fade_derivative(a.f);
+  fill_axis<kGradient>(hn::Load(df, fs), a);
   return a;
 }
 
-// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^31 and
+// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^22 and
 // periodic axes. Same result as scalar evaluation by construction.
 template <bool kGradient, int kAxis>
-HWY_INLINE axis split_lanes(VF xv, std::uint32_t period) {
+HWY_NOINLINE axis split_lanes(VF xv, std::uint32_t period) {
   const DF df;
   HWY_ALIGN float xs[kMaxLanes];
   double q[kMaxLanes];
@@ -363,69 +464,135 @@ HWY_INLINE axis split_lanes(VF xv, std::uint32_t period) {
   return split_doubles<kGradient, kAxis>(q, period);
 }
 
+// Lanes with |x| < 2^22 (false for NaN): where the vector split is exact.
+HWY_INLINE hn::Mask<DF> in_fast_range(VF x) {
+  const DF df;
+  return hn::Lt(hn::Abs(x), hn::Set(df, kFastSplitLimit));
+}
+
 template <bool kGradient, int kAxis>
 HWY_INLINE axis split(VF xv, std::uint32_t period) {
-  const DF df;
-  if (period == 0 && hn::AllTrue(df, hn::Lt(hn::Abs(xv), hn::Set(df, 2147483648.0f))))
-    return split_fast<kGradient, kAxis>(xv);
+  if (period == 0 && hn::AllTrue(DF(), in_fast_range(xv))) return split_fast<kGradient, kAxis>(xv);
   return split_lanes<kGradient, kAxis>(xv, period);
 }
 
-// One vector of D-dimensional points (interleaved) -> values (and interleaved gradients).
+// Split points -> values (and interleaved gradients) of one vector.
 template <bool kGradient, int D>
-HWY_INLINE void points_vector(std::uint32_t key, const std::uint32_t* period,
-                              const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
-                              float* HWY_RESTRICT grad) {
-  const DF df;
-  VF c[3];
-  if constexpr (D == 2)
-    hn::LoadInterleaved2(df, pts, c[0], c[1]);
-  else
-    hn::LoadInterleaved3(df, pts, c[0], c[1], c[2]);
-  const axis ax = split<kGradient, 0>(c[0], period[0]);
-  const axis ay = split<kGradient, 1>(c[1], period[1]);
-  axis az{};
-  if constexpr (D == 3) az = split<kGradient, 2>(c[2], period[2]);
+HWY_INLINE void points_from_axes(VU key, const axis& ax, const axis& ay, const axis& az,
+                                 float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
   VU kyz[4];
-  key_words<D>(hn::Set(DU(), key), ay, az, kyz);
+  key_words<D>(key, ay, az, kyz);
+  corners k;
+  hashed_corners<kGradient, D>(ax, kyz, ay, az, k);
   VF v, g[3];
-  core<kGradient, D>(ax, kyz, ay, az, v, g);
-  hn::StoreU(v, df, value);
+  finish<kGradient, D>(k, ax, ay, az, v, g);
+  hn::StoreU(v, DF(), value);
   if constexpr (kGradient) store_interleaved<D>(g, grad);
 }
 
-// Runs `vector_fn` over n points of D floats each; the last partial vector
-// goes through zero-padded buffers, so no lane reads or writes out of bounds.
-template <int D, class Fn>
-HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
-                                      Fn vector_fn) {
+// A vector with a lane the fast split cannot take, or periodic noise: each
+// axis splits by the vector or lane by lane, whichever is exact. Out of line,
+// so that the common path keeps its registers.
+template <bool kGradient, int D>
+HWY_NOINLINE void points_vector_lanes(VU key, const std::uint32_t* period, VF x, VF y, VF z,
+                                      float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
+  const axis ax = split<kGradient, 0>(x, period[0]);
+  const axis ay = split<kGradient, 1>(y, period[1]);
+  axis az{};
+  if constexpr (D == 3) az = split<kGradient, 2>(z, period[2]);
+  points_from_axes<kGradient, D>(key, ax, ay, az, value, grad);
+}
+
+// One vector of D-dimensional points (interleaved) -> values (and
+// interleaved gradients), if every lane can take the vector split: returns
+// false, writing nothing, if one cannot (then points_vector_lanes does it).
+template <bool kGradient, int D>
+HWY_INLINE bool points_vector_fast(VU key, const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                                   float* HWY_RESTRICT grad) {
   const DF df;
-  const std::size_t lanes = hn::Lanes(df);
+  VF x, y, z = hn::Zero(df);
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, x, y);
+  else
+    hn::LoadInterleaved3(df, pts, x, y, z);
+  auto fast = hn::And(in_fast_range(x), in_fast_range(y));
+  if constexpr (D == 3) fast = hn::And(fast, in_fast_range(z));
+  if (HWY_UNLIKELY(!hn::AllTrue(df, fast))) return false;
+  axis az{};
+  if constexpr (D == 3) az = split_fast<kGradient, 2>(z);
+  points_from_axes<kGradient, D>(key, split_fast<kGradient, 0>(x), split_fast<kGradient, 1>(y), az,
+                                 value, grad);
+  return true;
+}
+
+// Any vector of points, periodic noise included.
+template <bool kGradient, int D>
+HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
+                              const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                              float* HWY_RESTRICT grad) {
+  if (plain && points_vector_fast<kGradient, D>(key, pts, value, grad)) return;
+  const DF df;
+  VF x, y, z = hn::Zero(df);
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, x, y);
+  else
+    hn::LoadInterleaved3(df, pts, x, y, z);
+  points_vector_lanes<kGradient, D>(key, period, x, y, z, value, grad);
+}
+
+// Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
+// vector at a time; the last partial vector goes through zero-padded
+// buffers, so no lane reads or writes out of bounds. One call site, so the
+// vector function inlines into the loop.
+template <bool kGradient, int D, class Fn>
+HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
+                                      const Fn& vector_fn) {
+  const std::size_t lanes = hn::Lanes(DF());
+  HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
+  for (std::size_t i = 0; i < n; i += lanes) {
+    const std::size_t rest = std::min(lanes, n - i);
+    const bool full = rest == lanes;
+    if (!full) std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+    vector_fn(full ? pts + i * D : in, full ? value + i : out,
+              !kGradient ? nullptr
+              : full     ? grad + i * D
+                         : g);
+    if (full) continue;
+    std::memcpy(value + i, out, rest * sizeof(float));
+    if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
+  }
+}
+
+template <bool kGradient, int D>
+HWY_NOINLINE void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts,
+                                std::size_t n, float* value, float* grad) {
+  const VU vkey = hn::Set(DU(), key);
+  bool plain = true;
+  for (int a = 0; a < D; ++a) plain = plain && period[a] == 0;
+  // Whole vectors, then the rest through zero-padded buffers (no lane reads
+  // or writes out of bounds). points_vector inlines at both sites.
+  const std::size_t lanes = hn::Lanes(DF());
   std::size_t i = 0;
-  for (; i + lanes <= n; i += lanes)
-    vector_fn(pts + i * D, value + i, grad ? grad + i * D : nullptr);
+  while (i + lanes <= n) {
+    // The common case runs in a loop without calls, which keeps its constants
+    // in registers; a vector it cannot take leaves it for points_vector.
+    if (plain)
+      for (; i + lanes <= n; i += lanes)
+        if (!points_vector_fast<kGradient, D>(vkey, pts + i * D, value + i,
+                                              kGradient ? grad + i * D : nullptr))
+          break;
+    if (i + lanes > n) break;
+    points_vector<kGradient, D>(vkey, plain, period, pts + i * D, value + i,
+                                kGradient ? grad + i * D : nullptr);
+    i += lanes;
+  }
   if (i == n) return;
   const std::size_t rest = n - i;
   HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
   std::memcpy(in, pts + i * D, rest * D * sizeof(float));
-  vector_fn(in, out, g);
+  points_vector<kGradient, D>(vkey, plain, period, in, out, g);
   std::memcpy(value + i, out, rest * sizeof(float));
-  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
-}
-
-// for_each_point_vector with the gradient choice made once per batch:
-// vector_fn(std::bool_constant<kGradient>, pts, value, grad).
-template <int D, class Fn>
-HWY_INLINE void run_points(std::size_t n, const float* pts, float* value, float* grad,
-                           Fn vector_fn) {
-  if (grad)
-    for_each_point_vector<D>(n, pts, value, grad, [&](const float* p, float* v, float* g) {
-      vector_fn(std::true_type{}, p, v, g);
-    });
-  else
-    for_each_point_vector<D>(n, pts, value, nullptr, [&](const float* p, float* v, float*) {
-      vector_fn(std::false_type{}, p, v, nullptr);
-    });
+  if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
 }
 
 }  // namespace perlin_simd
@@ -435,10 +602,10 @@ HWY_INLINE void run_points(std::size_t n, const float* pts, float* value, float*
 template <int D>
 void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts, std::size_t n,
                    float* value, float* grad) {
-  perlin_simd::run_points<D>(
-      n, pts, value, grad, [&](auto gradient, const float* p, float* v, float* g) {
-        perlin_simd::points_vector<decltype(gradient)::value, D>(key, period, p, v, g);
-      });
+  if (grad)
+    perlin_simd::perlin_points<true, D>(key, period, pts, n, value, grad);
+  else
+    perlin_simd::perlin_points<false, D>(key, period, pts, n, value, nullptr);
 }
 inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
                            std::size_t n, float* value, float* grad) {
@@ -451,24 +618,42 @@ inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const
 
 namespace perlin_simd {
 
-// ---- Grids: the x axis is split once per column (in double, by
+// ---- Grids. The x axis is split once per column (in double, by
 // lattice_split, exactly as scalar evaluation does) and reused by every row;
-// y (and z) are split once per row (slice) and broadcast.
-struct column_table {
+// y (and z) are split once per row and broadcast.
+//
+// Consecutive columns share cells (the benchmark has 37 per cell), and the
+// corner gradients of a cell are the same for every sample of a row in it.
+// So each row hashes its lattice points once and keeps, per cell and corner,
+// the gradient's x component gx and the row-constant rest of the dot product
+//   K = gy f_y (2D),  K = gy f_y + gz f_z (3D),
+// and a sample needs d = gx f_x + K: exactly the scalar sums (perlin.hpp).
+// A vector of columns spans at most Lanes cells, so its cells' entries are
+// one unaligned load and a permute away. Rows whose cells are not shared
+// (steps near or above one cell) hash per sample instead.
+struct grid_columns {
+  std::size_t n = 0, padded = 0, cells = 0;
   std::vector<float> f, s, ds;
-  std::vector<std::uint32_t> w0, w1;
-  std::size_t padded = 0;
+  std::vector<std::uint32_t> w0, w1;    // per column: x words of its cell's two lattice points
+  std::vector<std::uint32_t> local;     // per column: its cell's rank minus its vector's base
+  std::vector<std::uint32_t> base;      // per vector of columns: the rank of its first cell
+  std::vector<std::uint32_t> cw0, cw1;  // per cell rank: x words, padded to whole vectors
+  bool shared = false;                  // at least two columns per cell on average
 
   // Column i's x coordinate is position(i), a double.
   template <class Position>
-  column_table(std::size_t n, std::uint32_t period, bool gradient, Position position) {
+  grid_columns(std::size_t count, std::uint32_t period, bool gradient, Position position)
+      : n(count) {
     const std::size_t lanes = hn::Lanes(DF());
     padded = (n + lanes - 1) / lanes * lanes;
     f.assign(padded, 0.0f);
     s.assign(padded, 0.0f);
     w0.assign(padded, 0u);
     w1.assign(padded, 0u);
+    local.assign(padded, 0u);
+    base.assign(padded / lanes, 0u);
     if (gradient) ds.assign(padded, 0.0f);
+    std::uint32_t rank = 0, prev_i0 = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const lattice_coord<float> c = lattice_split<float>(position(i), period);
       f[i] = c.f;
@@ -476,25 +661,49 @@ struct column_table {
       if (gradient) ds[i] = detail::fade_derivative(c.f);
       w0[i] = lattice_word_x(c.i0);
       w1[i] = lattice_word_x(c.i1);
+      // A new cell starts where i0 changes (i1 follows from i0 and the period).
+      if (i > 0 && c.i0 != prev_i0) ++rank;
+      if (i == 0 || c.i0 != prev_i0) {
+        cw0.push_back(w0[i]);
+        cw1.push_back(w1[i]);
+      }
+      prev_i0 = c.i0;
+      if (i % lanes == 0) base[i / lanes] = rank;
+      local[i] = rank - base[i / lanes];  // < lanes: each column adds at most one cell
     }
+    // Padding lanes repeat the last column's cell: a vector's lanes then share
+    // one cell exactly when its last lane's local rank is 0 (corners_at).
+    for (std::size_t i = n; i < padded; ++i) local[i] = local[n - 1];
+    cells = cw0.size();
+    cw0.resize((cells + lanes - 1) / lanes * lanes, 0u);
+    cw1.resize(cw0.size(), 0u);
+    shared = 2 * cells <= n;
   }
+
   template <bool kGradient>
   HWY_INLINE axis load(std::size_t i) const {
-    const DF df;
     const DU du;
     axis a;
     a.w0 = hn::LoadU(du, w0.data() + i);
     a.w1 = hn::LoadU(du, w1.data() + i);
+    fill_axis_loaded<kGradient>(i, a);
+    return a;
+  }
+  // Fractions and fades only (the table path needs no words).
+  template <bool kGradient>
+  HWY_INLINE void fill_axis_loaded(std::size_t i, axis& a) const {
+    const DF df;
     a.f = hn::LoadU(df, f.data() + i);
+    a.f1 = hn::Sub(a.f, hn::Set(df, 1.0f));
     a.s = hn::LoadU(df, s.data() + i);
     if constexpr (kGradient) a.ds = hn::LoadU(df, ds.data() + i);
-    return a;
   }
 };
 
 // A row-constant axis (y or z): scalar split broadcast to all lanes.
 struct row_axis {
-  std::uint32_t w0, w1;
+  std::uint32_t w0 = 0, w1 = 0;
+  float f = 0, f1 = 0;
   axis a;
 };
 template <bool kGradient, int kAxis>
@@ -504,11 +713,166 @@ HWY_INLINE row_axis broadcast_axis(double p, std::uint32_t period) {
   row_axis r;
   r.w0 = kAxis == 1 ? lattice_word_y(c.i0) : lattice_word_z(c.i0);
   r.w1 = kAxis == 1 ? lattice_word_y(c.i1) : lattice_word_z(c.i1);
-  r.a.f = hn::Set(df, c.f);
+  r.f = c.f;
+  r.f1 = c.f - 1.0f;
+  r.a.f = hn::Set(df, r.f);
+  r.a.f1 = hn::Set(df, r.f1);
   r.a.s = hn::Set(df, detail::fade(c.f));
   if constexpr (kGradient) r.a.ds = hn::Set(df, detail::fade_derivative(c.f));
   return r;
 }
+
+// The lattice words and fractions of one grid row (2D: z unused).
+struct grid_row {
+  std::uint32_t key;
+  row_axis y, z;
+  // key ^ word_y(j_b) ^ word_z(k_c) for corner offsets (b, c), index b + 2c.
+  std::uint32_t kyz(int b, int c) const { return key ^ (b ? y.w1 : y.w0) ^ (c ? z.w1 : z.w0); }
+};
+
+// Per-row, per-cell corner data for the shared-cell path: for corner n and
+// cell rank r, gx (and for gradients gy, gz) and K, at [n * stride + r].
+template <bool kGradient, int D>
+struct row_tables {
+  static constexpr int kCorners = 1 << D;
+  std::size_t stride = 0;
+  std::vector<float> gx, k, gy, gz;
+  // The y/z words the gradients were hashed for: consecutive rows in the same
+  // y (and z) cell keep them and only recompute k (the benchmark's grids have
+  // 37 rows per cell).
+  std::uint32_t hashed_kyz[4] = {};
+  bool hashed = false;
+
+  explicit row_tables(const grid_columns& cols) {
+    const std::size_t lanes = hn::Lanes(DF());
+    stride = cols.cw0.size() + lanes;  // a vector's load at its base rank stays inside
+    const std::size_t size = stride * kCorners;
+    gx.assign(size, 0.0f);
+    k.assign(size, 0.0f);
+    gy.assign(size, 0.0f);
+    if (D == 3) gz.assign(size, 0.0f);
+  }
+
+  // Hashes the row's lattice points (cells' x words against the row's y/z
+  // words) unless the previous row had the same ones, then forms k.
+  HWY_INLINE void build(const grid_columns& cols, const grid_row& row) {
+    const DF df;
+    const DU du;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::uint32_t words[4] = {row.kyz(0, 0), row.kyz(1, 0), row.kyz(0, 1), row.kyz(1, 1)};
+    const bool same = hashed && std::equal(words, words + 4, hashed_kyz);
+    std::copy(words, words + 4, hashed_kyz);
+    hashed = true;
+    for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
+      const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
+      HWY_UNROLL(8)
+      for (int n = 0; n < kCorners; ++n) {
+        const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+        const std::size_t at = static_cast<std::size_t>(n) * stride + r;
+        if (!same) {
+          const VU h = hash32_high(hn::Xor(wx[a], hn::Set(du, words[b + 2 * c])));
+          if constexpr (D == 2) {
+            constexpr int kN = detail::constants::kPerlin2GradCount;
+            const VU g = grad_index2(h);
+            hn::StoreU(lookup<kN>(kG2x, g), df, gx.data() + at);
+            hn::StoreU(lookup<kN>(kG2y, g), df, gy.data() + at);
+          } else {
+            constexpr int kN = detail::constants::kPerlin3GradCount;
+            const VU g = grad_index3(h);
+            hn::StoreU(lookup<kN>(kG3x, g), df, gx.data() + at);
+            hn::StoreU(lookup<kN>(kG3y, g), df, gy.data() + at);
+            hn::StoreU(lookup<kN>(kG3z, g), df, gz.data() + at);
+          }
+        }
+        const VF cy = hn::LoadU(df, gy.data() + at);
+        const VF fy = hn::Set(df, b ? row.y.f1 : row.y.f);
+        VF kk;
+        if constexpr (D == 2)
+          kk = hn::Mul(cy, fy);
+        else
+          kk = mul_add(cy, fy,
+                       hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
+        hn::StoreU(kk, df, k.data() + at);
+      }
+    }
+  }
+
+  // Corner data for the vector of columns starting at column i: per lane,
+  // the entries of its cell. Where all lanes share one cell (most vectors
+  // when cells hold many samples) a broadcast replaces the permute.
+  HWY_INLINE void corners_at(const grid_columns& cols, std::size_t i, const axis& x,
+                             corners& out) const {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::size_t b = cols.base[i / lanes];
+    if (cols.local[i + lanes - 1] == 0) {
+      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+        return hn::Set(df, t[at]);
+      });
+    } else {
+      const DU du;
+      const DI di;
+      const auto idx =
+          hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
+      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+        return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx);
+      });
+    }
+  }
+  // out from the entries at cell rank b, read per corner by entry(table, index).
+  template <class Entry>
+  HWY_INLINE void corners_from(std::size_t b, const axis& x, corners& out,
+                               const Entry& entry) const {
+    HWY_UNROLL(8)
+    for (int n = 0; n < kCorners; ++n) {
+      const std::size_t at = static_cast<std::size_t>(n) * stride + b;
+      const VF cx = entry(gx, at);
+      out.d[n] = mul_add(cx, (n & 1) ? x.f1 : x.f, entry(k, at));
+      if constexpr (kGradient) {
+        out.gx[n] = cx;
+        out.gy[n] = entry(gy, at);
+        if constexpr (D == 3) out.gz[n] = entry(gz, at);
+      }
+    }
+  }
+};
+
+// One grid row's evaluation, either path: vector_out(i, value, gradient)
+// receives each vector of columns [i, i + lanes).
+template <bool kGradient, int D>
+struct row_evaluator {
+  const grid_columns& cols;
+  row_tables<kGradient, D> tables;
+
+  explicit row_evaluator(const grid_columns& c) : cols(c), tables(c) {}
+
+  template <class Out>
+  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
+    const std::size_t lanes = hn::Lanes(DF());
+    corners k;
+    VF v, g[3];
+    if (cols.shared) {
+      tables.build(cols, row);
+      for (std::size_t i = 0; i < cols.n; i += lanes) {
+        axis x;
+        cols.fill_axis_loaded<kGradient>(i, x);
+        tables.corners_at(cols, i, x, k);
+        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        vector_out(i, v, g);
+      }
+    } else {
+      const DU du;
+      const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
+                         hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
+      for (std::size_t i = 0; i < cols.n; i += lanes) {
+        const axis x = cols.load<kGradient>(i);
+        hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
+        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        vector_out(i, v, g);
+      }
+    }
+  }
+};
 
 // Stores one vector of results for columns [i, i + lanes) of a row, through
 // a buffer when the row ends inside the vector.
@@ -526,57 +890,66 @@ HWY_INLINE void store_row(std::size_t i, std::size_t nx, VF v, const VF* g, floa
   if (row_grad) std::memcpy(row_grad + i * D, gb, (nx - i) * D * sizeof(float));
 }
 
+// The rows (j, k) of the slab [first, first + count) of the slowest axis, in
+// output order: f(j, k, r) with r the row's index inside the slab.
+template <int D, class F>
+HWY_INLINE void for_each_row(const grid<D>& g, std::size_t first, std::size_t count, const F& f) {
+  const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+  const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+  std::size_t r = 0;
+  for (std::size_t k = k0; k < k1; ++k)
+    for (std::size_t j = j0; j < j1; ++j, ++r) f(j, k, r);
+}
+
 template <bool kGradient, int D>
-void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g, float* value,
-                 float* grad) {
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
-  const std::size_t lanes = hn::Lanes(DF());
-  const column_table cols(nx, period[0], kGradient,
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
+                 std::size_t first, std::size_t count, float* value, float* grad) {
+  const std::size_t nx = g.size[0];
+  const grid_columns cols(nx, period[0], kGradient,
                           [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
-  for (std::size_t k = 0; k < nz; ++k) {
-    row_axis z{};
-    if constexpr (D == 3)
-      z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
-    for (std::size_t j = 0; j < ny; ++j) {
-      const row_axis y =
-          broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
-      VU kyz[4];
-      key_words(key, y.w0, y.w1, z.w0, z.w1, kyz);
-      const std::size_t row = k * ny + j;
-      for (std::size_t i = 0; i < nx; i += lanes) {
-        VF v, gr[3];
-        core<kGradient, D>(cols.load<kGradient>(i), kyz, y.a, z.a, v, gr);
-        store_row<D>(i, nx, v, gr, value + row * nx, kGradient ? grad + row * nx * D : nullptr);
-      }
+  row_evaluator<kGradient, D> rows(cols);
+  grid_row row{key, {}, {}};
+  std::size_t split_k = ~std::size_t(0);  // the slice row.z holds
+  for_each_row<D>(g, first, count, [&](std::size_t j, std::size_t k, std::size_t r) HWY_ATTR {
+    if constexpr (D == 3) {
+      if (k != split_k)
+        row.z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
+      split_k = k;
     }
-  }
+    row.y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
+    float* row_value = value + r * nx;
+    float* row_grad = kGradient ? grad + r * nx * D : nullptr;
+    rows.run(row, [&](std::size_t i, VF v, const VF* gr)
+                      HWY_ATTR { store_row<D>(i, nx, v, gr, row_value, row_grad); });
+  });
 }
 
 }  // namespace perlin_simd
 
 // Perlin on a uniform grid (C order, i fastest); gradients interleaved (D
-// per sample) unless grad is null.
+// per sample) unless grad is null; the slab [first, first + count) of the
+// slowest axis (hush/simd/dispatch.hpp).
 template <int D>
-void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g, float* value,
-                 float* grad) {
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
+                 std::size_t first, std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::perlin_grid<true, D>(key, period, g, value, grad);
+    perlin_simd::perlin_grid<true, D>(key, period, g, first, count, value, grad);
   else
-    perlin_simd::perlin_grid<false, D>(key, period, g, value, nullptr);
+    perlin_simd::perlin_grid<false, D>(key, period, g, first, count, value, nullptr);
 }
 inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                         float* value, float* grad) {
-  perlin_grid<2>(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  perlin_grid<2>(key, period, g, first, count, value, grad);
 }
 inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                         float* value, float* grad) {
-  perlin_grid<3>(key, period, g, value, grad);
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  perlin_grid<3>(key, period, g, first, count, value, grad);
 }
 
 namespace perlin_simd {
 
 // ---- Fractal sums of Perlin bands (fractal.hpp): each band is a Perlin
-// field evaluated by the cores above at the band position f_i x + o_i, which
+// field evaluated by the code above at the band position f_i x + o_i, which
 // fractal::band_position forms in double exactly as scalar evaluation does;
 // the weighted sum is accumulated band by band in the same order and with
 // the same operations as fractal::value / value_and_gradient.
@@ -650,8 +1023,10 @@ HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
     if constexpr (D == 3) az = split_doubles<kGradient, 2>(q[2], c.period[2]);
     VU kyz[4];
     key_words<D>(hn::Set(DU(), c.key), ay, az, kyz);
+    corners k;
+    hashed_corners<kGradient, D>(ax, kyz, ay, az, k);
     VF v, g[3];
-    core<kGradient, D>(ax, kyz, ay, az, v, g);
+    finish<kGradient, D>(k, ax, ay, az, v, g);
     accumulate<kGradient, D>(turbulence, c, v, g, acc, gacc);
   }
   const VF scale = hn::Set(df, float(fr.scale()));
@@ -664,67 +1039,67 @@ HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
   }
 }
 
-// A fractal on a grid: per band, a column table of the band's x positions
-// and a per-row split of its y (and z) positions.
+// A fractal on a grid: per band, the column layout of the band's x positions
+// and a per-row split of its y (and z) positions, evaluated like a Perlin
+// grid row and accumulated into the row's sums.
 template <bool kGradient, int D>
-void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, float* value, float* grad) {
+void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t first,
+                  std::size_t count, float* value, float* grad) {
   const DF df;
-  const std::size_t lanes = hn::Lanes(df);
   const std::vector<band_config<D>> bands = band_configs(fr);
   const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  const std::size_t nx = g.size[0];
+  const std::size_t lanes = hn::Lanes(df);
   auto position = [&](int b, int axis_index, double coordinate) {
     vec<double, D> p;  // axes are independent in f x + o: the other coordinates do not matter
     p[axis_index] = coordinate;
     return fr.band_position(b, p)[axis_index];
   };
-  std::vector<column_table> cols;
+  std::vector<grid_columns> cols;
   cols.reserve(bands.size());
   for (std::size_t b = 0; b < bands.size(); ++b)
     cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
       return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
     });
+  std::vector<row_evaluator<kGradient, D>> rows;
+  rows.reserve(bands.size());
+  for (const grid_columns& c : cols) rows.emplace_back(c);
   const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
   std::vector<float> acc(padded), gacc(kGradient ? padded * D : 0);
   const VF scale = hn::Set(df, float(fr.scale()));
-  for (std::size_t k = 0; k < nz; ++k)
-    for (std::size_t j = 0; j < ny; ++j) {
-      std::fill(acc.begin(), acc.end(), 0.0f);
-      std::fill(gacc.begin(), gacc.end(), 0.0f);
-      for (std::size_t b = 0; b < bands.size(); ++b) {
-        const band_config<D>& c = bands[b];
-        const int bi = static_cast<int>(b);
-        const row_axis y = broadcast_axis<kGradient, 1>(
-            position(bi, 1, g.origin[1] + g.step[1] * double(j)), c.period[1]);
-        row_axis z{};
-        if constexpr (D == 3)
-          z = broadcast_axis<kGradient, 2>(position(bi, 2, g.origin[2] + g.step[2] * double(k)),
-                                           c.period[2]);
-        VU kyz[4];
-        key_words(c.key, y.w0, y.w1, z.w0, z.w1, kyz);
-        for (std::size_t i = 0; i < nx; i += lanes) {
-          VF v, gr[3];
-          core<kGradient, D>(cols[b].load<kGradient>(i), kyz, y.a, z.a, v, gr);
-          VF a = hn::LoadU(df, acc.data() + i), ga[3];
-          if constexpr (kGradient)
-            for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
-          accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
-          hn::StoreU(a, df, acc.data() + i);
-          if constexpr (kGradient)
-            for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
+  for_each_row<D>(
+      g, first, count, [&](std::size_t j, std::size_t k, std::size_t row_index) HWY_ATTR {
+        std::fill(acc.begin(), acc.end(), 0.0f);
+        std::fill(gacc.begin(), gacc.end(), 0.0f);
+        for (std::size_t b = 0; b < bands.size(); ++b) {
+          const band_config<D>& c = bands[b];
+          const int bi = static_cast<int>(b);
+          grid_row row{c.key, {}, {}};
+          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
+                                               c.period[1]);
+          if constexpr (D == 3)
+            row.z = broadcast_axis<kGradient, 2>(
+                position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+          rows[b].run(row, [&](std::size_t i, VF v, const VF* gr) HWY_ATTR {
+            VF a = hn::LoadU(df, acc.data() + i), ga[3];
+            if constexpr (kGradient)
+              for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
+            accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
+            hn::StoreU(a, df, acc.data() + i);
+            if constexpr (kGradient)
+              for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
+          });
         }
-      }
-      const std::size_t row = k * ny + j;
-      for (std::size_t i = 0; i < nx; i += lanes) {
-        const VF a = hn::LoadU(df, acc.data() + i);
-        VF gs[3];
-        if constexpr (kGradient)
-          for (int d = 0; d < D; ++d)
-            gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
-        store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs, value + row * nx,
-                     kGradient ? grad + row * nx * D : nullptr);
-      }
-    }
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          const VF a = hn::LoadU(df, acc.data() + i);
+          VF gs[3];
+          if constexpr (kGradient)
+            for (int d = 0; d < D; ++d)
+              gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
+          store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
+                       value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
+        }
+      });
 }
 
 }  // namespace perlin_simd
@@ -735,10 +1110,16 @@ template <int D>
 void fractal_points(const fractal<perlin<D>>& fr, const float* pts, std::size_t n, float* value,
                     float* grad) {
   const std::vector<perlin_simd::band_config<D>> bands = perlin_simd::band_configs(fr);
-  perlin_simd::run_points<D>(
-      n, pts, value, grad, [&](auto gradient, const float* p, float* v, float* g) {
-        perlin_simd::fractal_points_vector<decltype(gradient)::value, D>(fr, bands, p, v, g);
-      });
+  if (grad)
+    perlin_simd::for_each_point_vector<true, D>(
+        n, pts, value, grad, [&](const float* p, float* v, float* g) HWY_ATTR {
+          perlin_simd::fractal_points_vector<true, D>(fr, bands, p, v, g);
+        });
+  else
+    perlin_simd::for_each_point_vector<false, D>(
+        n, pts, value, nullptr, [&](const float* p, float* v, float*) HWY_ATTR {
+          perlin_simd::fractal_points_vector<false, D>(fr, bands, p, v, nullptr);
+        });
 }
 inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
                             float* value, float* grad) {
@@ -748,19 +1129,19 @@ inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std:
                             float* value, float* grad) {
   fractal_points<3>(fr, xyz, n, value, grad);
 }
-inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, float* value,
-                          float* grad) {
+inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::fractal_grid<true, 2>(fr, g, value, grad);
+    perlin_simd::fractal_grid<true, 2>(fr, g, first, count, value, grad);
   else
-    perlin_simd::fractal_grid<false, 2>(fr, g, value, nullptr);
+    perlin_simd::fractal_grid<false, 2>(fr, g, first, count, value, nullptr);
 }
-inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, float* value,
-                          float* grad) {
+inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
   if (grad)
-    perlin_simd::fractal_grid<true, 3>(fr, g, value, grad);
+    perlin_simd::fractal_grid<true, 3>(fr, g, first, count, value, grad);
   else
-    perlin_simd::fractal_grid<false, 3>(fr, g, value, nullptr);
+    perlin_simd::fractal_grid<false, 3>(fr, g, first, count, value, nullptr);
 }
 
 }  // namespace HWY_NAMESPACE

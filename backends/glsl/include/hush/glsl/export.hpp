@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hush/fractal.hpp"
+#include "hush/glsl/coherent.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/perlin.hpp"
@@ -40,7 +41,8 @@ void add_runners(std::vector<export_file>& files) {
 }  // namespace detail
 
 // hush_noise.glsl, then hush_<noise>_<points|grid>[_gradient].comp for every
-// noise with a GLSL program (perlin2, perlin3, fractal_perlin2, fractal_perlin3).
+// noise with a GLSL program (perlin2, perlin3, fractal_perlin2, fractal_perlin3), and
+// hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent.hpp).
 inline std::vector<export_file> export_files() {
   std::vector<export_file> files;
   files.push_back(
@@ -67,6 +69,7 @@ inline std::vector<export_file> export_files() {
   detail::add_runners<perlin<3>>(files);
   detail::add_runners<fractal<perlin<2>>>(files);
   detail::add_runners<fractal<perlin<3>>>(files);
+  files.push_back({"hush_coherent_pass.comp", coherent_source()});
   return files;
 }
 

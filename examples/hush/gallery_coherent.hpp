@@ -1,0 +1,31 @@
+// hush — the `hush` program: the gallery's coherent-noise entries (docs/coherent.md): the
+// animations (independent per-frame noise, constant "shower door" noise, causal and
+// time-symmetric coherent noise on the rotate and walkthrough scenes) and Kass & Pesare's
+// figures reproduced (Fig. 2: two frames and their difference; Fig. 6: a scanline through
+// time; Fig. 3: a flat-shaded render stylised with dilate/erode and an image-plane warp, and
+// object-ID boundary lines wiggled by the noise). Needs the scene library; without it the
+// list is empty.
+#ifndef HUSH_CLI_GALLERY_COHERENT_HPP
+#define HUSH_CLI_GALLERY_COHERENT_HPP
+
+#include <functional>
+#include <vector>
+
+#include "image.hpp"
+
+namespace hush_cli {
+
+// One gallery entry: one frame is written as a PNG, more as an animated GIF
+// (examples/gif) showing each frame delay_cs hundredths of a second.
+struct gallery_item {
+  const char* file;
+  const char* what;
+  std::function<std::vector<gray_image>()> render;
+  int delay_cs = 0;
+};
+
+std::vector<gallery_item> coherent_gallery_items();
+
+}  // namespace hush_cli
+
+#endif  // HUSH_CLI_GALLERY_COHERENT_HPP

@@ -1,0 +1,193 @@
+// Tests of `hush render` (examples/hush/render_cmd.cpp, scene_noises.cpp): the program's
+// frames equal the library's coherent noise on the same G-buffers bit for bit (causal and
+// time-symmetric, one and several channels), progress goes to stderr, and every bad option
+// fails with exit code 2 and one line naming it.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli/run_hush.hpp"
+#include "gbuffer_io.hpp"
+#include "hush/coherent.hpp"
+#include "npy/npy.hpp"
+#include "raster_cpu.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace hs = hush::scene;
+
+using hush_cli_test::result;
+using hush_cli_test::run_hush;
+using hush_cli_test::scratch;
+
+constexpr int kW = 40, kH = 30, kFrames = 5;
+
+// G-buffers of the rotate scene written by the program, and the same frames in memory.
+std::vector<hs::gbuffer> scene_frames(const fs::path& dir) {
+  const result r = run_hush("scene render --scene rotate --frames " + std::to_string(kFrames) +
+                                " --size " + std::to_string(kW) + "x" + std::to_string(kH) +
+                                " --out '" + (dir / "g").string() + "'",
+                            dir);
+  REQUIRE(r.exit_code == 0);
+  std::vector<hs::gbuffer> g;
+  for (int i = 0; i < kFrames; ++i)
+    g.push_back(hs::load_gbuffer(hs::frame_directory((dir / "g").string(), i)));
+  return g;
+}
+
+std::vector<float> frame_file(const fs::path& dir, int i, std::size_t expect_channels) {
+  char name[16];
+  std::snprintf(name, sizeof name, "%04d.npy", i);
+  const hush::npy::array<float> a = hush::npy::load<float>((dir / name).string());
+  std::vector<std::size_t> shape = {std::size_t(kH), std::size_t(kW)};
+  if (expect_channels > 1) shape.push_back(expect_channels);
+  REQUIRE(a.shape == shape);
+  return a.values;
+}
+
+bool same(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("render coherent writes the library's causal frames bit for bit, with progress") {
+  const fs::path dir = scratch("render_causal");
+  const std::vector<hs::gbuffer> g = scene_frames(dir);
+  const result r = run_hush("render coherent --gbuffer '" + (dir / "g").string() + "' --out '" +
+                                (dir / "n").string() + "' --alpha 0.9 --seed 4 --input bandpass",
+                            dir);
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("wrote 5 coherent frames (40x30, 1 channel, scalar)") != std::string::npos);
+  hush::coherent_params prm;
+  prm.alpha = 0.9;
+  prm.seed = 4;
+  prm.input = hush::coherent_input::bandpass;
+  hush::coherent_stream st(prm);
+  std::vector<float> out(kW * kH);
+  for (int i = 0; i < kFrames; ++i) {
+    st.advance(hush::exec::scalar, hs::as_frame(g[std::size_t(i)]),
+               hush::image_view<float>(out.data(), kW, kH));
+    CHECK(same(frame_file(dir / "n", i, 1), out));
+  }
+  CHECK_FALSE(fs::exists(dir / "n" / "0005.npy"));
+}
+
+TEST_CASE("render coherent --symmetric with channels writes (H, W, C) frames and no scratch") {
+  const fs::path dir = scratch("render_symmetric");
+  const std::vector<hs::gbuffer> g = scene_frames(dir);
+  const result r =
+      run_hush("render coherent --symmetric --channels 2 --filter paper --gbuffer '" +
+                   (dir / "g").string() + "' --out '" + (dir / "n").string() + "' --frames 4",
+               dir);
+  CHECK(r.exit_code == 0);
+  hush::coherent_params prm;
+  prm.channels = 2;
+  prm.filter = hush::coherent_filter::paper;
+  std::vector<hush::frame> frames;
+  for (int i = 0; i < 4; ++i) frames.push_back(hs::as_frame(g[std::size_t(i)]));
+  std::vector<float> planes(std::size_t(kW) * kH * 2 * 4);
+  std::vector<hush::image_view<float>> out;
+  for (int k = 0; k < 8; ++k) out.emplace_back(planes.data() + std::size_t(kW) * kH * k, kW, kH);
+  hush::coherent_symmetric(hush::exec::scalar, prm, hush::span<const hush::frame>(frames),
+                           hush::span<const hush::image_view<float>>(out));
+  for (int i = 0; i < 4; ++i) {
+    std::vector<float> interleaved(std::size_t(kW) * kH * 2);
+    for (std::size_t p = 0; p < std::size_t(kW) * kH; ++p)
+      for (std::size_t c = 0; c < 2; ++c)
+        interleaved[2 * p + c] = out[std::size_t(2 * i) + c].data[p];
+    CHECK(same(frame_file(dir / "n", i, 2), interleaved));
+  }
+  for (const auto& e : fs::directory_iterator(dir / "n"))
+    CHECK(e.path().extension() == ".npy");  // the forward pass's scratch files are gone
+}
+
+TEST_CASE("render: bad options exit 2 with one line naming the option") {
+  const fs::path dir = scratch("render_errors");
+  scene_frames(dir);
+  const std::string g =
+      " --gbuffer '" + (dir / "g").string() + "' --out '" + (dir / "n").string() + "'";
+  const std::pair<std::string, std::string> cases[] = {
+      {"render", "NOISE"},
+      {"render perlin" + g, "NOISE 'perlin'"},
+      {"render coherent --out x", "--gbuffer"},
+      {"render coherent" + g + " --alpha 1", "--alpha"},
+      {"render coherent" + g + " --alpha nan", "--alpha"},
+      {"render coherent" + g + " --epsilon -1", "--epsilon"},
+      {"render coherent" + g + " --channels 5", "--channels"},
+      {"render coherent" + g + " --input blue", "--input"},
+      {"render coherent" + g + " --filter x", "--filter"},
+      {"render coherent" + g + " --smoothing 3", "--smoothing"},
+      {"render coherent" + g + " --symmetric --symmetric", "--symmetric"},
+      {"render coherent" + g + " --symmetric=yes", "--symmetric"},
+      {"render coherent" + g + " --frames 9", "--frames"},
+      {"render coherent" + g + " --backend cuda", "--backend"},
+      {"render coherent --gbuffer '" + (dir / "nothing").string() + "' --out x", "--gbuffer"},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.first);
+    const result r = run_hush(c.first, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(c.second) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+}
+
+TEST_CASE("render --symmetric refuses G-buffers without forward velocity") {
+  const fs::path dir = scratch("render_no_forward");
+  std::vector<hs::gbuffer> g = scene_frames(dir);
+  for (int i = 0; i < 2; ++i) {
+    g[std::size_t(i)].forward_velocity.clear();
+    hs::save_gbuffer(g[std::size_t(i)], hs::frame_directory((dir / "old").string(), i));
+  }
+  const result r = run_hush("render coherent --symmetric --gbuffer '" + (dir / "old").string() +
+                                "' --out '" + (dir / "n").string() + "'",
+                            dir);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("forward_velocity") != std::string::npos);
+  // The causal filter does not need it.
+  CHECK(run_hush("render coherent --gbuffer '" + (dir / "old").string() + "' --out '" +
+                     (dir / "n").string() + "'",
+                 dir)
+            .exit_code == 0);
+}
+
+TEST_CASE("gallery writes coherent noise's animations (GIF) and Kass & Pesare's figures") {
+  const fs::path dir = scratch("gallery_coherent");
+  const result r = run_hush("gallery --out '" + (dir / "g").string() + "'", dir);
+  if (r.exit_code == 2) {  // a build without PNG output or Eigen has no gallery at all
+    MESSAGE("gallery unavailable in this build: " << r.err);
+    return;
+  }
+  REQUIRE(r.exit_code == 0);
+  struct expected {
+    const char* file;
+    unsigned width, height;
+  };
+  for (const expected& e :
+       {expected{"coherent_rotate.gif", 256, 192}, expected{"coherent_walkthrough.gif", 256, 192},
+        expected{"coherent_fig3a.gif", 128, 96}, expected{"coherent_fig3b.gif", 128, 96}}) {
+    CAPTURE(e.file);
+    const std::string bytes = hush_cli_test::slurp(dir / "g" / e.file);
+    REQUIRE(bytes.size() > 13);
+    CHECK(bytes.compare(0, 6, "GIF89a") == 0);
+    const auto u16 = [&](std::size_t at) {
+      return unsigned(static_cast<unsigned char>(bytes[at])) |
+             unsigned(static_cast<unsigned char>(bytes[at + 1])) << 8;
+    };
+    CHECK(u16(6) == e.width);
+    CHECK(u16(8) == e.height);
+    CHECK(bytes.back() == ';');  // the trailer: a complete file
+    CHECK(r.out.find(std::string(e.file) + " (" + std::to_string(e.width) + "x" +
+                     std::to_string(e.height) + ", 32 frames)") != std::string::npos);
+  }
+  for (const char* still : {"coherent_fig2.png", "coherent_fig6.png"}) {
+    CAPTURE(still);
+    CHECK(hush_cli_test::slurp(dir / "g" / still).compare(1, 3, "PNG") == 0);
+  }
+}

@@ -1,0 +1,161 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::exec::parallel (exec.hpp): a batch split over threads gives exactly
+// the inner policy's results on the whole batch, bit for bit, for points,
+// per-sample batches and grids (slabs along the slowest axis), values and
+// gradients, on the scalar and SIMD policies; bad thread counts are rejected
+// with a message naming the parameter. Built with hush::simd (dynamic
+// dispatch, contraction allowed: identical results do not need strict FP).
+#include <doctest/doctest.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "hush/hush.hpp"
+#include "probe_noise.hpp"
+
+namespace {
+
+// The thread counts tried: one, two, an odd count, more threads than parts
+// of the batch (limited by exec::parallel_t::kParallelGrain), and 0 (one per
+// hardware thread).
+const int kThreads[] = {1, 2, 3, 7, 0};
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+template <int D>
+bool same_bits(const std::vector<hush::vec<float, D>>& a,
+               const std::vector<hush::vec<float, D>>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+}
+
+template <int D>
+std::vector<hush::vec<float, D>> random_points(std::size_t n, std::uint32_t seed) {
+  hush::rng r(seed, D);
+  std::vector<hush::vec<float, D>> pts(n);
+  for (auto& q : pts)
+    for (int a = 0; a < D; ++a) q[a] = r.uniform(-300.0f, 300.0f);
+  return pts;
+}
+
+// Every thread count against the inner policy alone, values and gradients.
+template <class Noise, class Inner, class Run>
+void check_parallel(const Noise& noise, Inner inner, std::size_t n, const Run& run) {
+  constexpr int D = Noise::dimension;
+  std::vector<float> want(n), got(n);
+  std::vector<hush::vec<float, D>> want_g(n), got_g(n);
+  run(noise, inner, want, want_g);
+  for (int t : kThreads) {
+    INFO("threads " << t << ", policy " << Inner::name);
+    std::fill(got.begin(), got.end(), -7.0f);
+    run(noise, hush::exec::parallel(inner, t), got, got_g);
+    CHECK(same_bits(got, want));
+    CHECK(same_bits<D>(got_g, want_g));
+  }
+}
+
+template <class Noise>
+void check_all(const Noise& noise, const hush::grid<Noise::dimension>& g) {
+  constexpr int D = Noise::dimension;
+  const auto pts = random_points<D>(20000 + 13, 5);  // several parts and a ragged tail
+  auto points = [&](const Noise& n, auto policy, std::vector<float>& out, auto& grad) {
+    hush::evaluate(n, policy, pts, out, grad);
+  };
+  auto grids = [&](const Noise& n, auto policy, std::vector<float>& out, auto& grad) {
+    hush::evaluate_grid(n, policy, g, out, grad);
+  };
+  auto values_only = [&](const Noise& n, auto policy, std::vector<float>& out, auto&) {
+    hush::evaluate_grid(n, policy, g, out);
+  };
+  for (auto run_inner : {0, 1}) {
+    if (run_inner == 0) {
+      check_parallel(noise, hush::exec::simd, pts.size(), points);
+      check_parallel(noise, hush::exec::simd, g.count(), grids);
+      check_parallel(noise, hush::exec::simd, g.count(), values_only);
+    } else {
+      check_parallel(noise, hush::exec::scalar, pts.size(), points);
+      check_parallel(noise, hush::exec::scalar, g.count(), grids);
+    }
+  }
+}
+
+template <int D>
+hush::grid<D> test_grid(std::size_t nx, std::size_t slow) {
+  hush::grid<D> g;
+  for (int a = 0; a < D; ++a) {
+    g.origin[a] = -3.3 + 1.7 * a;
+    g.step[a] = 1.0 / (29 + 2 * a);  // positions with rounding in every row
+    g.size[a] = nx;
+  }
+  g.size[D - 1] = slow;
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("exec::parallel: perlin batches equal the single-thread call bit for bit") {
+  check_all(hush::perlin<2>{21}, test_grid<2>(300, 61));
+  check_all(hush::perlin<3>{22}, test_grid<3>(40, 23));
+  hush::perlin<3>::params prm;
+  prm.seed = 23;
+  prm.period = {5, 0, 3};
+  check_all(hush::perlin<3>{prm}, test_grid<3>(33, 17));
+}
+
+TEST_CASE("exec::parallel: fractal batches equal the single-thread call bit for bit") {
+  hush::fractal<hush::perlin<2>>::params p2;
+  p2.seed = 24;
+  p2.octaves = 3;
+  check_all(hush::fractal<hush::perlin<2>>{p2}, test_grid<2>(200, 45));
+  hush::fractal<hush::perlin<3>>::params p3;
+  p3.seed = 25;
+  p3.octaves = 3;
+  p3.kind = hush::fractal_kind::turbulence;
+  p3.norm = hush::normalization::unit_range;
+  check_all(hush::fractal<hush::perlin<3>>{p3}, test_grid<3>(24, 19));
+}
+
+TEST_CASE("exec::parallel: a noise without SIMD kernels, and per-sample batches") {
+  const hush_test::probe_noise<3> noise;
+  const std::size_t n = 9000;
+  std::vector<hush::vec3> pos(n), normals(n);
+  std::vector<hush::footprint<3>> fps(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    pos[i] = {float(i % 11) / 8, float(i % 7) / 8, float(i % 5) / 8};
+    normals[i] = {float(i % 3) / 8, 0.5f, 0.25f};
+    fps[i] = hush::footprint<3>::isotropic(float(i % 4) / 8);
+  }
+  const hush::samples<3> s{pos, fps, normals};
+  std::vector<float> want(n), got(n);
+  hush::evaluate(noise, hush::exec::scalar, s, want);
+  for (int t : kThreads) {
+    INFO("threads " << t);
+    hush::evaluate(noise, hush::exec::parallel(hush::exec::simd, t), s, got);
+    CHECK(same_bits(got, want));
+  }
+  check_parallel(noise, hush::exec::simd, 4096 * 3,
+                 [&](const auto& nz, auto policy, auto& out, auto& grad) {
+                   hush::evaluate_grid(nz, policy, test_grid<3>(32, 12), out, grad);
+                 });
+}
+
+TEST_CASE("exec::parallel: thread counts outside 0 ... 1024 are rejected, naming the parameter") {
+  for (int t : {-1, 1025, -1000000}) {
+    INFO("threads " << t);
+    try {
+      (void)hush::exec::parallel(hush::exec::simd, t);
+      FAIL("no exception");
+    } catch (const hush::invalid_argument& e) {
+      const std::string msg = e.what();
+      CHECK(msg.find("hush::exec::parallel") != std::string::npos);
+      CHECK(msg.find("threads") != std::string::npos);
+      CHECK(msg.find("1024") != std::string::npos);
+    }
+  }
+  CHECK(hush::exec::parallel(hush::exec::scalar, 0).threads >= 1);
+  CHECK(hush::exec::parallel(hush::exec::scalar, 5).threads == 5);
+}
