@@ -200,7 +200,7 @@ TEST_CASE("gabor: a point footprint evaluates the unfiltered noise, filtering is
 }
 
 TEST_CASE(
-    "gabor: NaN and infinite positions give NaN; huge ones stay finite (HARD_CASES 1, 3, 5)") {
+    "gabor: NaN and infinite positions give NaN, huge ones stay finite (HARD_CASES 1, 3, 5)") {
   const float nan = std::numeric_limits<float>::quiet_NaN(),
               inf = std::numeric_limits<float>::infinity();
   const hush::gabor<2> g2(make_params<2>(gabor_kind::isotropic));

@@ -155,7 +155,7 @@ TEST_CASE("gabor glsl: grids (CPU-split cells) equal the CPU, near and far") {
   check_grid(hush::gabor<3>(params_of<3>(hush::gabor_kind::isotropic)), g3);
 }
 
-TEST_CASE("gabor glsl: filtered samples equal the CPU; degenerate footprints stay finite") {
+TEST_CASE("gabor glsl: filtered samples equal the CPU, degenerate footprints stay finite") {
   const hush::gabor<2> noise(params_of<2>(hush::gabor_kind::anisotropic));
   const std::size_t n = 1200;
   std::vector<hush::vec2> pos(n);
@@ -198,7 +198,7 @@ TEST_CASE("gabor glsl: filtered samples equal the CPU; degenerate footprints sta
   CHECK(d.grad <= gt);
 }
 
-TEST_CASE("gabor glsl: 3D filtered samples; surface noise (a normal) is NaN on GLSL") {
+TEST_CASE("gabor glsl: 3D filtered samples, and surface noise (a normal) is NaN on GLSL") {
   const hush::gabor<3> noise(params_of<3>(hush::gabor_kind::hybrid));
   const std::size_t n = 400;
   std::vector<hush::vec3> pos(n), nrm(n);
