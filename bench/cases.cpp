@@ -16,6 +16,7 @@
 #include "hush/core/rng.hpp"
 #include "hush/exec.hpp"
 #include "hush/fractal.hpp"
+#include "hush/gabor.hpp"
 #include "hush/perlin.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
@@ -207,6 +208,87 @@ hush::fractal<hush::perlin<D>> make_fbm() {
   return hush::fractal<hush::perlin<D>>(prm);
 }
 
+// ---- Gabor noise (hush/gabor.hpp, issue 10): isotropic, F0 = 1, a = 0.8 (the
+// defaults; kernel radius 1.22 units, so the grid's 1/37 step puts ~45 samples
+// across a cell), unit variance, N' kernels per point.
+constexpr double kGaborImpulses[] = {16, 32, 64};  // N': the first on every backend
+// The filtered rows' footprints: a receding-plane-like range of pixel sizes,
+// isotropic widths 10^u noise units, u uniform in [kGaborFootprintLog10Lo, Hi].
+constexpr double kGaborFootprintLog10Lo = -3, kGaborFootprintLog10Hi = 0;
+
+template <int D>
+hush::gabor<D> make_gabor(double impulses) {
+  typename hush::gabor<D>::params prm;
+  prm.seed = kNoiseSeed;
+  prm.impulses = impulses;
+  return hush::gabor<D>(prm);
+}
+
+// Filtered evaluation (samples with footprints) against the double reference.
+template <int D, class Exec>
+prepared_case prepare_gabor_samples(const hush::gabor<D>& noise, const Exec& ex, std::size_t n) {
+  struct sample_buffers {
+    std::vector<fvec<D>> points;
+    std::vector<hush::footprint<D>> fps;
+    std::vector<float> out;
+  };
+  auto b = std::make_shared<sample_buffers>();
+  b->points = make_points<D>(n);
+  hush::rng r(kPointSeed + 1);
+  for (std::size_t i = 0; i < n; ++i)
+    b->fps.push_back(hush::footprint<D>::isotropic(
+        std::pow(10.0, r.uniform<double>(kGaborFootprintLog10Lo, kGaborFootprintLog10Hi))));
+  b->out.resize(n);
+  prepared_case p;
+  p.samples = n;
+  p.run = [noise, ex, b] {
+    const hush::samples<D> s{b->points, b->fps, {}};
+    hush::evaluate(noise, ex, s, hush::span<float>(b->out));
+    keep(b->out);
+  };
+  p.run();
+  for (std::size_t i = 0; i < n; ++i) {
+    hush::sample_input<D> in;
+    in.position = hush::vec_cast<double>(b->points[i]);
+    in.fp = b->fps[i];
+    p.value_error.add(b->out[i], noise.template sample_value<double>(in));
+  }
+  return p;
+}
+
+// Gabor rows on `ex`: N' = 16 grid and points (value, value + gradient); N' = 32,
+// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16.
+template <class Exec>
+void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex) {
+  add_noise_rows(cases, s, "gabor 2D", make_gabor<2>(kGaborImpulses[0]), ex);
+  add_noise_rows(cases, s, "gabor 3D", make_gabor<3>(kGaborImpulses[0]), ex);
+  const hush::grid<2> g = make_grid<2>(s);
+  for (std::size_t k = 1; k < std::size(kGaborImpulses); ++k) {
+    const hush::gabor<2> noise = make_gabor<2>(kGaborImpulses[k]);
+    bench_case c;
+    c.noise = "gabor 2D n" + std::to_string(static_cast<int>(kGaborImpulses[k]));
+    c.backend = Exec::name;
+    c.wall_clock = std::string(Exec::name) == "glsl";
+    c.workload = grid_name(g);
+    c.prepare = [noise, ex, g] { return prepare_hush_grid(noise, ex, g, false); };
+    cases.push_back(c);
+    const std::size_t n = s.points;
+    c.workload = "points " + std::to_string(n);
+    c.prepare = [noise, ex, n] { return prepare_hush_points(noise, ex, n, false); };
+    cases.push_back(c);
+  }
+  bench_case c;
+  c.noise = "gabor 2D filtered";
+  c.backend = Exec::name;
+  c.wall_clock = std::string(Exec::name) == "glsl";
+  c.workload = "samples " + std::to_string(s.points);
+  c.note = "footprints: isotropic, 0.001 ... 1 units";
+  c.prepare = [ex, n = s.points] {
+    return prepare_gabor_samples(make_gabor<2>(kGaborImpulses[0]), ex, n);
+  };
+  cases.push_back(c);
+}
+
 // A backend is a row generator: every noise x workload x output on `ex`.
 template <class Exec>
 void add_backend_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex) {
@@ -214,6 +296,7 @@ void add_backend_rows(std::vector<bench_case>& cases, const sizes& s, const Exec
   add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), ex);
   add_noise_rows(cases, s, "fbm 2D", make_fbm<2>(), ex);
   add_noise_rows(cases, s, "fbm 3D", make_fbm<3>(), ex);
+  add_gabor_rows(cases, s, ex);
 }
 
 // ---- Peer rows: the same positions through another library, value only (neither offers
@@ -448,6 +531,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
     add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), gpu);
     add_noise_rows(cases, s, "fbm 2D", make_fbm<2>(), gpu);
     add_noise_rows(cases, s, "fbm 3D", make_fbm<3>(), gpu);
+    add_gabor_rows(cases, s, gpu);
     add_coherent_glsl_rows(cases, s, bench_glsl_device());
   }
 #endif

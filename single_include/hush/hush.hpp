@@ -692,6 +692,12 @@ constexpr unsigned kGaborSurfaceStream = 1;
 // neighbourhood. This h minimises the impulses examined per sample.
 constexpr double kGaborSurfaceSlab = 0.70710678118654752440;  // h / rho = 1 / sqrt 2
 constexpr double kGaborSurfaceCell = 1.2247448713915890491;   // cell / rho = sqrt(3/2)
+// GLSL filtering (hush/glsl/gabor_glsl.hpp): the footprint's eigenvectors by
+// cyclic Jacobi in float, at most this many sweeps (a 3 x 3 symmetric matrix
+// converges to float precision in 4 or 5), stopping once the off-diagonal
+// energy is below kGaborGlslJacobiTolerance times the diagonal's.
+constexpr unsigned kGaborGlslJacobiSweeps = 6;
+constexpr double kGaborGlslJacobiTolerance = 1e-12;
 
 // ---- NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot
 // 2010; npr_gabor.hpp). Parameters are in screen pixels: frequency F0 in
@@ -4350,6 +4356,1555 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 
 #endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
 // ---- end hush/detail/coherent_kernel.hpp
+// ---- begin hush/gabor.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
+// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
+// weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
+// analytic anti-aliasing.
+//
+//   hush::gabor<2>::params prm;                  // isotropic, F0 = 1, a = 0.8, N' = 16
+//   prm.kind = hush::gabor_kind::anisotropic;
+//   prm.orientation = 0.25 * 3.14159;            // omega0, radians
+//   hush::gabor<2> noise{prm};
+//   float v = noise(hush::vec2{x, y});                              // unit variance
+//   float f = noise.sample(hush::vec2{x, y},                        // filtered over a pixel
+//                          hush::footprint<2>::from_derivatives(dpdx, dpdy));
+//   hush::gabor<3> solid{hush::gabor<3>::params{}};
+//   float s = solid.sample(p, normal, fp);       // surface noise (sec. 4.3)
+//
+// The noise (paper sec. 3.2, eq. 6): n(x) = scale sum_i w_i g_{F_i}(x - x_i),
+//  - impulses x_i: a Poisson process of density lambda = N' / (V_D r^D), so
+//    that N' kernels overlap a point on average (N' = `impulses`; V_D the
+//    volume of the unit ball, r the kernel radius). Space is cut into cells of
+//    side r; cell c's impulses come from its own stream
+//    hush::rng(lattice_hash(key, c), kGaborSolidStream), key = seed_key(seed):
+//    the count from the first word through hush::poisson_table (integer
+//    comparisons, so every backend draws the same counts), then per impulse
+//    16-bit halves of the next words: position in the cell, weight, then the
+//    orientation and frequency its kind draws (gabor_marks below). Cells are
+//    32-bit (core/lattice.hpp): any seed, any cell, period 2^32 cells.
+//  - weights w_i uniform in (-1, 1) (symmetric 16-bit values, E[w^2] =
+//    (1 - 2^-32) / 3), so the noise has mean 0;
+//  - kinds (paper sec. 3.3): anisotropic (every F_i = F0 omega0), isotropic
+//    (omega_i uniform on the circle or sphere), hybrid (omega_i uniform in an
+//    orientation range around omega0 of width orientation_spread: an arc in 2D,
+//    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
+//    frequency_spread / 2).
+//
+// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
+//  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
+//    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
+//    make it independent of the count distribution beyond its mean, which is
+//    the Poisson table's exact mean), with the kernel energy integrated by
+//    quadrature (exact, not the paper's approximation K^2 / 4a^2).
+//  - power spectrum: lambda E[w^2] E[|g^_F(f)|^2] scale^2 (paper eq. 8),
+//    power_spectrum(f); isotropic noise's is a ring at |f| = F0, anisotropic
+//    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
+//  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
+//    magnitude); the observed maximum is far smaller (tests).
+//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
+//    analytic derivative.
+//  - float evaluation is within 2^-21 (1 + 2 pi Phi) sqrt(N') ... see
+//    float_budget(); measured in tests/gabor_test.cpp.
+//  - domain: every finite coordinate (positions are split into cell and
+//    fraction in double, so precision does not degrade far from the origin);
+//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
+//
+// Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
+// convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
+// (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
+// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
+// kept within the kernel's support. A point footprint gives exactly the
+// unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
+// HARD_CASES row 12) gives a finite result, continuous in the footprint, which
+// tends to the mean 0 as the footprint grows.
+//
+// Surface noise (3D, paper sec. 4.3): sample(p, normal[, footprint]) evaluates
+// 2D kernels in the tangent plane of the surface at p. The impulses of a
+// second 3D process (stream kGaborSurfaceStream, cells of side r sqrt(3/2))
+// that lie in the slab |<n, x - x_i>| < h = r / sqrt 2 contribute the 2D
+// kernel of their projection onto the plane, weighted by the taper of their
+// distance to it. The projection of a Poisson process in a slab is a 2D
+// Poisson process, so on a plane the surface noise has exactly the 2D noise's
+// spectrum and unit variance, with no slicing of a 3D spectrum. Isotropic and
+// hybrid impulses carry a 3D direction whose projection (normalised) is their
+// orientation in the plane (uniform on the circle for isotropic noise, for
+// every normal); anisotropic noise projects omega0 without normalising
+// (frequency F0 |P omega0|: the asked-for spectrum where omega0 lies in the
+// tangent plane, continuous everywhere). Footprints are projected onto the
+// tangent plane. A zero normal evaluates the solid noise; a non-finite normal
+// gives NaN.
+#ifndef HUSH_GABOR_HPP
+#define HUSH_GABOR_HPP
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+// ---- begin hush/detail/elementary.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// exp and sin/cos that evaluate the same operations in scalar code, in every
+// SIMD target (hush/simd/elementary-inl.h mirrors them operation by
+// operation) and in GLSL (hush/glsl/gabor_glsl.hpp), so that noises built on
+// them can be bit-identical between scalar and SIMD evaluation (std::exp and
+// Highway's Exp differ in their last bits). In double they are the C
+// library's functions: the double instantiation of a noise is its reference.
+//
+//   exp_neg<T>(x)          e^x for x <= 0 (x > 0 is taken as 0)
+//   sincos_turns<T>(t)     {sin(2 pi t), cos(2 pi t)}, t in turns
+//
+// Float accuracy (tests/core/elementary_test.cpp measures it over the whole
+// range): exp_neg within 2^-22 relative (polynomial 2.5e-9 plus the
+// roundings of the reduction and of seven multiply-adds), and exactly 0 below
+// kExpFloor = -87; sincos_turns within 2^-23 absolute for every finite t (the
+// reduction to a quarter turn is exact). Non-finite arguments give NaN
+// (exp_neg of -Inf gives 0).
+#ifndef HUSH_DETAIL_ELEMENTARY_HPP
+#define HUSH_DETAIL_ELEMENTARY_HPP
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+
+namespace hush {
+namespace detail {
+
+template <class T>
+struct sin_cos {
+  T sin, cos;
+};
+
+// e^x for x <= 0; x > 0 is clamped to 0 (the callers' arguments are minus a
+// non-negative quantity, which rounding can push a few ulp above 0).
+template <class T>
+HUSH_INLINE T exp_neg(T x) {
+  namespace c = constants;
+  if constexpr (std::is_same<T, double>::value) {
+    return std::exp(x > 0.0 ? 0.0 : x);  // NaN stays NaN
+  } else {
+    static_assert(std::is_same<T, float>::value, "exp_neg<T>: T is float or double");
+    if (!(x >= float(c::kExpFloor))) return x == x ? 0.0f : x;  // below the floor, or NaN
+    if (x > 0.0f) x = 0.0f;
+    const float n = std::floor(x * float(c::kLog2E) + 0.5f);  // in [-126, 0]
+    const float r = (x - n * float(c::kLn2Hi)) - n * float(c::kLn2Lo);
+    float p = float(c::kExpPoly[c::kExpDegree]);
+    for (int i = c::kExpDegree - 1; i >= 0; --i) p = p * r + float(c::kExpPoly[i]);
+    // 2^n from the exponent field: n + 127 in [1, 127], a normal float.
+    const std::uint32_t bits = static_cast<std::uint32_t>(static_cast<int>(n) + 127) << 23;
+    float scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    return p * scale;
+  }
+}
+
+// {sin(2 pi t), cos(2 pi t)}: t = q/4 + r with q = floor(4t + 1/2) quarter
+// turns and r = t - q/4 in [-1/8, 1/8], both exact for |t| < 2^22; larger t
+// (and NaN, Inf) are first replaced by t - floor(t), exact for every finite t
+// (a float that large has at most one fractional bit), so 4t never overflows.
+// The quadrant k = q mod 4 is kept in floating point, so no non-finite value
+// is ever converted to an integer, and rotates (sin 2 pi r, cos 2 pi r). The
+// reduction is exact for every finite t: the accuracy does not depend on |t|.
+template <class T>
+HUSH_INLINE sin_cos<T> sincos_turns(T t) {
+  namespace c = constants;
+  const T u = std::fabs(t) < T(c::kTurnsReduceLimit) ? t : t - std::floor(t);
+  const T q = std::floor(u * T(4) + T(0.5));
+  const T r = u - q * T(0.25);
+  T s, co;
+  if constexpr (std::is_same<T, double>::value) {
+    s = std::sin(c::kTwoPi * r);
+    co = std::cos(c::kTwoPi * r);
+  } else {
+    static_assert(std::is_same<T, float>::value, "sincos_turns<T>: T is float or double");
+    const float z = r * r;
+    float ps = float(c::kSinPoly[c::kSinDegree]);
+    for (int i = c::kSinDegree - 1; i >= 0; --i) ps = ps * z + float(c::kSinPoly[i]);
+    float pc = float(c::kCosPoly[c::kCosDegree]);
+    for (int i = c::kCosDegree - 1; i >= 0; --i) pc = pc * z + float(c::kCosPoly[i]);
+    s = r * ps;
+    co = pc;
+  }
+  const T k = q - T(4) * std::floor(q * T(0.25));  // 0, 1, 2 or 3 (NaN for NaN t)
+  const bool odd = k == T(1) || k == T(3);
+  const T sin_sign = k >= T(2) ? T(-1) : T(1);
+  const T cos_sign = (k == T(1) || k == T(2)) ? T(-1) : T(1);
+  return {(odd ? co : s) * sin_sign, (odd ? s : co) * cos_sign};
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_ELEMENTARY_HPP
+// ---- end hush/detail/elementary.hpp
+// ---- begin hush/detail/quadrature.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Numerical integration for the statistics hush computes at construction
+// (a noise's exact variance and power spectrum when no closed form exists),
+// in double, from the C library's cos only, so results are the same wherever
+// that is correctly rounded (glibc).
+//
+//   gauss_legendre_rule()          the 16-point Gauss-Legendre rule on [-1, 1]
+//   integrate(f, lo, hi, panels)   composite 16-point rule: exact for polynomials
+//                                  of degree 31 per panel; for smooth f the error
+//                                  falls geometrically with the panel count
+//   bessel_j0(z)                   J0 by the trapezoidal rule on its integral
+//                                  representation (periodic integrand: the error is
+//                                  below 2 |J_N(z)|, under 1e-15 with N = 2|z| + 40)
+#ifndef HUSH_DETAIL_QUADRATURE_HPP
+#define HUSH_DETAIL_QUADRATURE_HPP
+
+#include <array>
+#include <cmath>
+
+
+namespace hush {
+namespace detail {
+
+constexpr int kGaussPoints = 16;
+
+struct gauss_rule {
+  std::array<double, kGaussPoints> node, weight;
+};
+
+// Nodes (roots of P_16) by Newton's iteration from Tricomi's initial guesses,
+// weights 2 / ((1 - x^2) P_16'(x)^2). Computed once.
+inline const gauss_rule& gauss_legendre_rule() {
+  static const gauss_rule rule = [] {
+    gauss_rule g{};
+    constexpr int n = kGaussPoints;
+    for (int i = 0; i < n; ++i) {
+      double x = std::cos(constants::kPi * (i + 0.75) / (n + 0.5));
+      double dp = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = x;  // P_0, P_1, then the recurrence up to P_n
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = n * (x * p1 - p0) / (x * x - 1.0);
+        const double dx = p1 / dp;
+        x -= dx;
+        if (std::fabs(dx) < 1e-16) break;
+      }
+      g.node[static_cast<std::size_t>(i)] = x;
+      g.weight[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
+    }
+    return g;
+  }();
+  return rule;
+}
+
+// The integral of f over [lo, hi] by the 16-point rule on `panels` equal panels.
+template <class F>
+double integrate(F f, double lo, double hi, int panels) {
+  const gauss_rule& g = gauss_legendre_rule();
+  const double h = (hi - lo) / panels;
+  double sum = 0.0;
+  for (int p = 0; p < panels; ++p) {
+    const double mid = lo + (p + 0.5) * h, half = 0.5 * h;
+    double s = 0.0;
+    for (int i = 0; i < kGaussPoints; ++i)
+      s += g.weight[static_cast<std::size_t>(i)] *
+           f(mid + half * g.node[static_cast<std::size_t>(i)]);
+    sum += s * half;
+  }
+  return sum;
+}
+
+// J0(z) to ~1e-15 absolute: the power series for |z| < 8 (terms up to 113:
+// two digits of cancellation); the trapezoidal rule on
+// J0(z) = (1/2pi) int_0^2pi cos(z cos t) dt for 8 <= |z| < 25 (periodic
+// integrand: error below 2 |J_n(z)| with n = 2 ceil(|z|) + 40 points); Hankel's
+// asymptotic expansion beyond (Abramowitz and Stegun 9.2.5, summed while its
+// terms fall, the smallest below e^-2|z| < 2e-22).
+inline double bessel_j0(double z) {
+  const double x = std::fabs(z);
+  if (x < 8.0) {
+    const double q = -0.25 * x * x;
+    double term = 1.0, sum = 1.0;
+    for (int k = 1; k < 60 && std::fabs(term) > 1e-18; ++k) {
+      term *= q / (static_cast<double>(k) * k);
+      sum += term;
+    }
+    return sum;
+  }
+  if (x < 25.0) {
+    const int n = 2 * static_cast<int>(std::ceil(x)) + 40;
+    double s = 0.0;
+    for (int i = 0; i < n; ++i) s += std::cos(x * std::cos(constants::kTwoPi * i / n));
+    return s / n;
+  }
+  double p = 0.0, q = 0.0, term = 1.0, last = 2.0;
+  for (int k = 0; k < 60; ++k) {
+    if (k > 0) {
+      const double odd = 2.0 * k - 1.0;
+      term *= -odd * odd / (k * 8.0 * x);
+    }
+    if (std::fabs(term) >= last) break;  // the asymptotic series starts to diverge
+    last = std::fabs(term);
+    // Terms alternate between P (even k, signs + - + ...) and Q (odd k).
+    const double sign = (k / 2) % 2 == 0 ? 1.0 : -1.0;
+    if (k % 2 == 0)
+      p += sign * term;
+    else
+      q += sign * term;
+  }
+  const double chi = x - 0.25 * constants::kPi;
+  return std::sqrt(2.0 / (constants::kPi * x)) * (p * std::cos(chi) - q * std::sin(chi));
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_QUADRATURE_HPP
+// ---- end hush/detail/quadrature.hpp
+// ---- begin hush/gabor_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
+//
+//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
+//
+// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
+// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
+// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
+// what NPR Gabor noise splats, so it lives here once, for both:
+//
+//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
+//   double r = k.radius();                               // support radius
+//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
+//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
+//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
+//
+// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
+// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
+// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
+// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
+// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
+// every noise built on it are C1:
+//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
+//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
+//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
+//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
+//     and F >> a (tests/gabor_kernel_test.cpp).
+//
+// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
+// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
+// frequency is Phi = F r cycles per cell. The float path is separable:
+//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
+//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
+// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
+// share each axis's factors between samples and SIMD repeats it bit for bit.
+// value<double> is the reference (C library exp, sin, cos); float values are
+// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
+// measured 3e-7 (tests/gabor_kernel_test.cpp).
+//
+// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
+// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
+// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
+// (untruncated_power_spectrum). The tapered kernel's transform is
+// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
+// envelope, computed by quadrature (envelope_transform, power_spectrum,
+// energy): exact to ~1e-13 relative, no closed form exists.
+//
+// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
+// covariance Sigma (noise units) is again a Gabor kernel,
+//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
+//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
+//   Q = (I + 2 pi a^2 Sigma)^-1,
+// derived in docs/gabor.md (complete the square in the product of the two
+// transforms). gabor_filter<D> computes Q and the constants from a footprint;
+// the taper is kept at the unfiltered support.
+#ifndef HUSH_GABOR_KERNEL_HPP
+#define HUSH_GABOR_KERNEL_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+
+
+namespace hush {
+namespace detail {
+
+// ---- The kernel in cell units, operation by operation as the SIMD kernels
+// (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
+
+// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), k = 1 / (1 - s0),
+// and its derivative dtau/ds = -6 k v (1 - v). Callers only pass s < 1.
+template <class T>
+struct gabor_taper_value {
+  T tau, dtau;
+};
+template <class T>
+HUSH_INLINE T gabor_taper(T s, T k) {
+  T v = (T(1) - s) * k;
+  v = v < T(1) ? v : T(1);
+  return (v * v) * (T(3) - T(2) * v);
+}
+template <class T>
+HUSH_INLINE gabor_taper_value<T> gabor_taper_derivative(T s, T k) {
+  T v = (T(1) - s) * k;
+  v = v < T(1) ? v : T(1);
+  return {(v * v) * (T(3) - T(2) * v), (T(-6) * k) * (v * (T(1) - v))};
+}
+
+// One axis of the separable kernel: offset d (cell units), d^2, the envelope
+// factor e^{-A d^2} and sin/cos(2 pi phi d).
+template <class T>
+struct gabor_axis {
+  T d, d2, e, s, c;
+};
+template <class T>
+HUSH_INLINE gabor_axis<T> gabor_axis_factors(T d, T neg_a, T phi) {
+  gabor_axis<T> f;
+  f.d = d;
+  f.d2 = d * d;
+  f.e = exp_neg(neg_a * f.d2);
+  const sin_cos<T> sc = sincos_turns(phi * d);
+  f.s = sc.sin;
+  f.c = sc.cos;
+  return f;
+}
+
+// What the kernel of one impulse is along every axis but x: its weight times
+// the envelope factors, the harmonic's cos and sin, and the squared offset.
+template <class T>
+struct gabor_row {
+  T we, c, s, d2;
+};
+template <class T>
+HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y) {
+  return {w * y.e, y.c, y.s, y.d2};
+}
+template <class T>
+HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y, const gabor_axis<T>& z) {
+  return {w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2};
+}
+
+// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1.
+template <class T>
+HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
+  const T s = x.d2 + r.d2;
+  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * gabor_taper(s, taper_k);
+}
+// The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
+template <class T>
+struct gabor_pair_gradient {
+  T value, u, v;
+};
+template <class T>
+HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
+                                                            const gabor_row<T>& r, T taper_k, T a) {
+  const T s = x.d2 + r.d2;
+  const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
+  const T p = x.e * r.we;
+  const T pc = p * (x.c * r.c - x.s * r.s);
+  const T ps = p * (x.s * r.c + x.c * r.s);
+  // d/dd_a of p cos(theta) tau: p cos (2 d_a tau' - 2 A d_a tau) - 2 pi phi_a p sin tau.
+  return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
+}
+
+// ---- Closed forms and quadratures in cell units (double).
+
+// The radially symmetric part of an integral over the unit ball: int phi(|d|) dd
+// = c_D int_0^1 phi(rho) rho^(D-1) drho, with the integrand split at the taper's
+// start (where the taper has a kink in its second derivative).
+template <int D, class F>
+double ball_integral(F phi, int panels) {
+  const double rho0 = std::sqrt(constants::kGaborTaperStart);
+  auto radial = [&](double rho) { return phi(rho) * (D == 2 ? rho : rho * rho); };
+  const double c = D == 2 ? constants::kTwoPi : 2.0 * constants::kTwoPi;
+  return c * (integrate(radial, 0.0, rho0, panels) + integrate(radial, rho0, 1.0, panels));
+}
+
+// The angular average of cos(2 pi xi rho <u, omega>) over unit u: J0 in 2D,
+// sin(z)/z in 3D, z = 2 pi xi rho.
+template <int D>
+double angular_average(double z) {
+  if constexpr (D == 2) {
+    return bessel_j0(z);
+  } else {
+    return std::fabs(z) < 1e-4 ? 1.0 - z * z / 6.0 : std::sin(z) / z;
+  }
+}
+
+// H(xi): the Fourier transform of the tapered envelope e^{-A |d|^2} tau(|d|^2)
+// at |xi| cycles per cell (radial, real).
+template <int D>
+double gabor_envelope_transform(double a, double xi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 2 * static_cast<int>(std::ceil(std::fabs(xi)));
+  return ball_integral<D>(
+      [&](double rho) {
+        const double s = rho * rho;
+        return std::exp(-a * s) * gabor_taper(s, k) *
+               angular_average<D>(constants::kTwoPi * xi * rho);
+      },
+      panels);
+}
+
+// int g^2 over the cell-unit ball for |Phi| = phi:
+// (1/2) int e^{-2A s} tau^2 (1 + cos(4 pi <Phi, d>)).
+template <int D>
+double gabor_energy(double a, double phi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
+  return 0.5 * ball_integral<D>(
+                   [&](double rho) {
+                     const double s = rho * rho, tau = gabor_taper(s, k);
+                     return std::exp(-2.0 * a * s) * tau * tau *
+                            (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
+                   },
+                   panels);
+}
+
+// int (g - g_Gabor)^2 and int g_Gabor^2 over all space (cell units), for the
+// truncation error. Outside the ball g = 0, and the Gabor kernel's energy there
+// is what the ball integral leaves of the closed form
+// int e^{-2A|d|^2} cos^2 = (pi / 2A)^(D/2) (1 + e^{-2 pi^2 phi^2 / A}) / 2.
+template <int D>
+double gabor_truncation_error(double a, double phi) {
+  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
+  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
+  auto ball = [&](auto weight) {
+    return 0.5 * ball_integral<D>(
+                     [&](double rho) {
+                       const double s = rho * rho;
+                       return std::exp(-2.0 * a * s) * weight(gabor_taper(s, k)) *
+                              (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
+                     },
+                     panels);
+  };
+  const double pi2 = constants::kPi * constants::kPi;
+  const double full = std::pow(constants::kPi / (2.0 * a), 0.5 * D) * 0.5 *
+                      (1.0 + std::exp(-2.0 * pi2 * phi * phi / a));
+  const double inside_gabor = ball([](double) { return 1.0; });
+  const double inside_diff = ball([](double tau) { return (1.0 - tau) * (1.0 - tau); });
+  return std::sqrt((inside_diff + (full - inside_gabor)) / full);
+}
+
+}  // namespace detail
+
+template <int D>
+class gabor_kernel {
+  static_assert(D == 2 || D == 3, "hush::gabor_kernel is 2D or 3D");
+
+ public:
+  static constexpr int dimension = D;
+
+  // bandwidth a in [1e-6, 1e6] (1/noise units), truncation t in [1e-9, 0.5]
+  // (the envelope's value at the support radius); hush::invalid_argument
+  // naming the parameter otherwise.
+  gabor_kernel(double bandwidth, double truncation) : a_(bandwidth), t_(truncation) {
+    namespace c = detail::constants;
+    detail::require_in_range("hush::gabor_kernel", "bandwidth", bandwidth, c::kGaborMinBandwidth,
+                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
+    detail::require_in_range("hush::gabor_kernel", "truncation", truncation, c::kGaborMinTruncation,
+                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
+    exponent_ = -std::log(t_);
+    r_ = std::sqrt(exponent_ / c::kPi) / a_;
+  }
+
+  double bandwidth() const { return a_; }
+  double truncation() const { return t_; }
+  // Support radius r = sqrt(ln(1/t) / pi) / a (noise units): g = 0 beyond.
+  double radius() const { return r_; }
+  // Radius up to which g is the Gabor kernel exactly: r sqrt(s0).
+  double taper_radius() const { return r_ * std::sqrt(detail::constants::kGaborTaperStart); }
+  // A = pi a^2 r^2 = ln(1/t): the envelope is e^{-A |x / r|^2}.
+  double envelope_exponent() const { return exponent_; }
+
+  // g at offset x (noise units) for frequency vector F (cycles per noise
+  // unit), in T (float: hush's separable float path; double: the reference).
+  template <class T>
+  T value(const vec<T, D>& x, const vec<double, D>& F) const {
+    return eval<T, false>(x, F).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<T, D>& x, const vec<double, D>& F) const {
+    return eval<T, true>(x, F);
+  }
+
+  // Power spectrum |g^(f)|^2 of this kernel (noise units: f and F in cycles
+  // per unit), and of the untruncated Gabor kernel in closed form.
+  double power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
+    double lo = 0, hi = 0;
+    for (int i = 0; i < D; ++i) {
+      lo += (f[i] - F[i]) * (f[i] - F[i]);
+      hi += (f[i] + F[i]) * (f[i] + F[i]);
+    }
+    const double h = 0.5 * (envelope_transform(std::sqrt(lo)) + envelope_transform(std::sqrt(hi)));
+    return h * h;
+  }
+  double untruncated_power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
+    double lo = 0, hi = 0;
+    for (int i = 0; i < D; ++i) {
+      lo += (f[i] - F[i]) * (f[i] - F[i]);
+      hi += (f[i] + F[i]) * (f[i] + F[i]);
+    }
+    const double pi = detail::constants::kPi, a2 = a_ * a_;
+    const double h = 0.5 * std::pow(a_, -D) * (std::exp(-pi * lo / a2) + std::exp(-pi * hi / a2));
+    return h * h;
+  }
+  // The Fourier transform of the tapered envelope e^{-pi a^2 |x|^2} tau at
+  // |f| = k cycles per unit (radial, real): H in the spectra above.
+  double envelope_transform(double k) const {
+    return std::pow(r_, D) * detail::gabor_envelope_transform<D>(exponent_, k * r_);
+  }
+  // int g^2 dx for |F| = frequency (noise units): what a sparse convolution
+  // of these kernels at density lambda with weights w has as variance,
+  // lambda E[w^2] energy(F) (Campbell's theorem).
+  double energy(double frequency) const {
+    return std::pow(r_, D) * detail::gabor_energy<D>(exponent_, frequency * r_);
+  }
+  // Relative RMS difference of g and the untruncated Gabor kernel, |F| = frequency.
+  double truncation_error(double frequency) const {
+    return detail::gabor_truncation_error<D>(exponent_, frequency * r_);
+  }
+
+ private:
+  template <class T, bool WithGradient>
+  value_gradient<T, D> eval(const vec<T, D>& x, const vec<double, D>& F) const {
+    const T inv_r = T(1.0 / r_), neg_a = T(-exponent_);
+    const T k = T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
+    detail::gabor_axis<T> ax[D];
+    T phi[D];
+    T s = 0;
+    for (int i = 0; i < D; ++i) {
+      phi[i] = T(F[i] * r_);
+      ax[i] = detail::gabor_axis_factors(x[i] * inv_r, neg_a, phi[i]);
+      s += ax[i].d2;
+    }
+    value_gradient<T, D> r{T(0), {}};
+    if (s >= T(1)) return r;  // outside the support (NaN offsets give NaN below)
+    detail::gabor_row<T> row;
+    if constexpr (D == 2)
+      row = detail::gabor_row_of(T(1), ax[1]);
+    else
+      row = detail::gabor_row_of(T(1), ax[1], ax[2]);
+    if constexpr (WithGradient) {
+      const auto p = detail::gabor_pair_with_gradient(ax[0], row, k, T(exponent_));
+      r.value = p.value;
+      for (int i = 0; i < D; ++i) r.gradient[i] = (p.u * ax[i].d - p.v * phi[i]) * inv_r;
+    } else {
+      r.value = detail::gabor_pair(ax[0], row, k);
+    }
+    return r;
+  }
+
+  double a_, t_, exponent_ = 0, r_ = 0;
+};
+
+namespace detail {
+
+// Eigenvalues and eigenvectors of a symmetric D x D matrix (D = 2, 3) by
+// cyclic Jacobi rotations: unconditionally stable, and accurate for nearly
+// singular and badly scaled matrices (a rank-1 footprint times 1e12), where
+// cofactor formulas cancel catastrophically. a is overwritten (its diagonal
+// ends holding the eigenvalues); v's columns are the eigenvectors.
+template <int D>
+void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) v[i][j] = i == j ? 1.0 : 0.0;
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    double off = 0, diag = 0;
+    for (int i = 0; i < D; ++i) {
+      diag += a[i][i] * a[i][i];
+      for (int j = i + 1; j < D; ++j) off += a[i][j] * a[i][j];
+    }
+    if (!(off > 1e-34 * diag)) return;  // converged (or NaN: give up)
+    for (int p = 0; p < D; ++p)
+      for (int q = p + 1; q < D; ++q) {
+        if (a[p][q] == 0.0) continue;
+        // The rotation that zeroes a[p][q]: t = tan, the smaller root.
+        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
+        const double c = 1.0 / std::hypot(t, 1.0), sn = t * c;
+        for (int k = 0; k < D; ++k) {  // columns p and q
+          const double akp = a[k][p], akq = a[k][q];
+          a[k][p] = c * akp - sn * akq;
+          a[k][q] = sn * akp + c * akq;
+        }
+        for (int k = 0; k < D; ++k) {  // rows p and q
+          const double apk = a[p][k], aqk = a[q][k];
+          a[p][k] = c * apk - sn * aqk;
+          a[q][k] = sn * apk + c * aqk;
+        }
+        for (int k = 0; k < D; ++k) {
+          const double vkp = v[k][p], vkq = v[k][q];
+          v[k][p] = c * vkp - sn * vkq;
+          v[k][q] = sn * vkp + c * vkq;
+        }
+      }
+  }
+}
+
+}  // namespace detail
+
+// The closed-form filtered kernel (Lagae 2009 sec. 5) for one sample's
+// footprint, in the kernel's cell units (d = x / r, Phi = F r):
+//   Q = (I + 2 A sigma^2 S / r^2)^-1  (S the footprint matrix, sigma =
+//       kPixelFilterSigma pixels: the Gaussian pixel filter N(0, sigma^2 S)),
+//   amplitude = sqrt(det Q),  attenuation(Phi) = e^{-Phi^T M Phi},
+//   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
+// Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
+// l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
+// below 0): Q = V diag(1 / (1 + k l)) V^T and I - Q = V diag(k l / (1 + k l))
+// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
+// footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
+// gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
+// footprints the amplitude underflows towards 0: the filtered noise is its mean.
+template <int D>
+struct gabor_filter {
+  double q[D][D];    // Q, symmetric
+  double m[D][D];    // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
+  double amplitude;  // sqrt(det Q), in (0, 1]
+
+  // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
+  gabor_filter(const footprint<D>& fp, double a, double inv_r) {
+    namespace c = detail::constants;
+    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
+    double s[D][D], v[D][D];
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
+    detail::jacobi_eigen<D>(s, v);
+    double qd[D], md[D];
+    amplitude = 1.0;
+    const double mk = c::kPi * c::kPi / a;
+    for (int i = 0; i < D; ++i) {
+      const double kl = k * std::fmax(s[i][i], 0.0);
+      qd[i] = 1.0 / (1.0 + kl);
+      md[i] = mk * (kl / (1.0 + kl));
+      amplitude *= std::sqrt(qd[i]);
+    }
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) {
+        double qq = 0, mm = 0;
+        for (int e = 0; e < D; ++e) {
+          qq += v[i][e] * qd[e] * v[j][e];
+          mm += v[i][e] * md[e] * v[j][e];
+        }
+        q[i][j] = qq;
+        m[i][j] = mm;
+      }
+  }
+};
+
+}  // namespace hush
+
+#endif  // HUSH_GABOR_KERNEL_HPP
+// ---- end hush/gabor_kernel.hpp
+
+namespace hush {
+
+enum class gabor_kind { isotropic, anisotropic, hybrid };
+
+namespace detail {
+
+// Fields of a stream word as values in (0, 1) (constants.hpp): byte i (0 =
+// highest) as (2m + 1) 2^-9, half i (0 = high) as (2m + 1) 2^-17. Exact in
+// float and in GLSL (an integer below 2^17 times a power of two).
+template <class T>
+HUSH_INLINE T gabor_byte(std::uint32_t w, unsigned i) {
+  namespace c = constants;
+  const std::uint32_t m = (w >> (c::kGaborByteBits * (3u - i))) & c::kGaborByteMask;
+  return T((m << 1) | 1u) * T(c::kGaborByteScale);
+}
+template <class T>
+HUSH_INLINE T gabor_half(std::uint32_t w, unsigned i) {
+  namespace c = constants;
+  const std::uint32_t m = (w >> (c::kGaborHalfBits * (1u - i))) & c::kGaborHalfMask;
+  return T((m << 1) | 1u) * T(c::kGaborHalfScale);
+}
+
+// An orthonormal basis (t, b) of the plane orthogonal to unit n, by Duff et
+// al., "Building an orthonormal basis, revisited" (JCGT 2017), in double.
+inline void orthonormal_basis(const vec<double, 3>& n, vec<double, 3>& t, vec<double, 3>& b) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double c = n.x * n.y * a;
+  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
+  b = {c, sign + n.y * n.y * a, -n.y};
+}
+
+}  // namespace detail
+
+// gabor_marks<D>: what an impulse of each kind carries besides its position,
+// drawn from uniform values in (0, 1): its weight and its frequency vector
+// (cycles per cell). Shared by gabor<D> and by noises that place impulses
+// their own way (NPR Gabor noise). The values are consumed in this order:
+//   [0] weight w = 2 u - 1 (exact)
+//   isotropic, hybrid, 2D: [1] orientation theta = theta0 + spread (u - 1/2) turns
+//   isotropic, hybrid, 3D: [1] cos(polar) = 1 - (1 - cos(cap)) u, [2] azimuth u turns,
+//                          in the frame whose third axis is omega0
+//   hybrid:                [next] |F| = Phi0 + dPhi (u - 1/2)
+// anisotropic impulses take only the weight. values() is how many they take;
+// gabor<D> draws them from its cells' words (constants.hpp, "Impulse marks").
+template <int D>
+class gabor_marks {
+ public:
+  gabor_marks() = default;
+  // phi0, dphi: frequency and its range's width in cycles per cell (F r);
+  // orientation, elevation, spread: radians (validated by gabor<D>).
+  gabor_marks(gabor_kind kind, double phi0, double dphi, double orientation, double elevation,
+              double spread)
+      : kind_(kind), phi0_(phi0), dphi_(dphi) {
+    namespace c = detail::constants;
+    const double ca = std::cos(orientation), sa = std::sin(orientation);
+    const double ce = std::cos(elevation), se = std::sin(elevation);
+    if constexpr (D == 2) {
+      axis_ = {ca, sa};
+      theta0_ = kind == gabor_kind::isotropic ? 0.0 : orientation / c::kTwoPi;
+      spread_ = kind == gabor_kind::isotropic ? 1.0 : spread / c::kTwoPi;
+    } else {
+      axis_ = {ce * ca, ce * sa, se};
+      cos_cap_ = kind == gabor_kind::isotropic ? -1.0 : std::cos(0.5 * spread);
+      if (kind == gabor_kind::isotropic) {
+        t_ = {1, 0, 0};
+        b_ = {0, 1, 0};
+        axis_frame_ = {0, 0, 1};
+      } else {
+        detail::orthonormal_basis(axis_, t_, b_);
+        axis_frame_ = axis_;
+      }
+    }
+    for (int i = 0; i < D; ++i) fixed_[i] = phi0 * axis_[i];
+  }
+
+  gabor_kind kind() const { return kind_; }
+  // How many uniform values one impulse's marks take.
+  int values() const {
+    if (kind_ == gabor_kind::anisotropic) return 1;
+    return 1 + (D == 2 ? 1 : 2) + (kind_ == gabor_kind::hybrid ? 1 : 0);
+  }
+
+  // The weight and frequency vector (cycles per cell) from uniform values u
+  // (values() of them), with float or double arithmetic.
+  template <class T>
+  void draw(const T* u, T& weight, vec<T, D>& frequency) const {
+    namespace c = detail::constants;
+    weight = T(2) * u[0] - T(1);
+    if (kind_ == gabor_kind::anisotropic) {
+      for (int i = 0; i < D; ++i) frequency[i] = T(fixed_[i]);
+      return;
+    }
+    const T phi = kind_ == gabor_kind::hybrid ? T(phi0_) + T(dphi_) * (u[D] - T(0.5)) : T(phi0_);
+    if constexpr (D == 2) {
+      const detail::sin_cos<T> sc = detail::sincos_turns(T(theta0_) + T(spread_) * (u[1] - T(0.5)));
+      frequency = {phi * sc.cos, phi * sc.sin};
+    } else {
+      vec<T, 3> dir;
+      direction(u[1], u[2], dir);
+      for (int i = 0; i < 3; ++i) frequency[i] = phi * dir[i];
+    }
+  }
+
+  // 3D: the unit direction of values (u1, u2): uniform in the cap around
+  // omega0 (the whole sphere for isotropic noise).
+  template <class T>
+  void direction(T u1, T u2, vec<T, 3>& dir) const {
+    const T ct = T(1) - T(1.0 - cos_cap_) * u1;
+    const T st = std::sqrt((T(1) - ct) * (T(1) + ct));
+    const detail::sin_cos<T> sc = detail::sincos_turns(u2);
+    const T lx = st * sc.cos, ly = st * sc.sin;
+    for (int i = 0; i < 3; ++i) dir[i] = (T(t_[i]) * lx + T(b_[i]) * ly) + T(axis_frame_[i]) * ct;
+  }
+
+  // Orientation omega0 (unit), its frequency vector Phi0 omega0, and the
+  // constants the SIMD and GLSL code read.
+  const vec<double, D>& axis() const { return axis_; }
+  const vec<double, D>& fixed_frequency() const { return fixed_; }
+  double phi0() const { return phi0_; }
+  double dphi() const { return dphi_; }
+  double theta0() const { return theta0_; }
+  double spread_turns() const { return spread_; }
+  double cos_cap() const { return cos_cap_; }
+  const vec<double, 3>& frame_t() const { return t_; }
+  const vec<double, 3>& frame_b() const { return b_; }
+  const vec<double, 3>& frame_axis() const { return axis_frame_; }
+
+ private:
+  gabor_kind kind_ = gabor_kind::isotropic;
+  double phi0_ = 0, dphi_ = 0;
+  vec<double, D> axis_{}, fixed_{};
+  double theta0_ = 0, spread_ = 1;  // 2D, turns
+  double cos_cap_ = -1;             // 3D
+  vec<double, 3> t_{}, b_{}, axis_frame_{};
+};
+
+template <int D>
+class gabor : public sample_noise<gabor<D>, D> {
+  static_assert(D == 2 || D == 3, "hush::gabor is 2D or 3D");
+
+ public:
+  static constexpr bool takes_footprint = true;
+  static constexpr bool takes_normal = D == 3;
+
+  struct params {
+    std::uint32_t seed = 0;
+    gabor_kind kind = gabor_kind::isotropic;
+    // F0: the principal frequency, cycles per noise unit, 0 ... 1e6.
+    double frequency = 1.0;
+    // a: the kernel's bandwidth, 1/noise units, 1e-6 ... 1e6; the radial
+    // spectral width of each blob is a / (2 sqrt(pi)) (standard deviation).
+    double bandwidth = 0.8;
+    // omega0 (anisotropic and hybrid): azimuth in the xy plane, radians.
+    double orientation = 0.0;
+    // 3D: omega0's angle above the xy plane, radians.
+    double elevation = 0.0;
+    // hybrid: width of the orientation range around omega0, radians, 0 ...
+    // 2 pi (2D: an arc; 3D: the apex angle of a spherical cap; 2 pi = all).
+    double orientation_spread = 0.0;
+    // hybrid: width of the frequency range around F0, 0 ... 2 F0.
+    double frequency_spread = 0.0;
+    // N': the mean number of kernels overlapping a point, (0, 256].
+    double impulses = 16.0;
+    // t: the kernel envelope's value at its support radius, 1e-9 ... 0.5.
+    double truncation = detail::constants::kGaborDefaultTruncation;
+  };
+
+  gabor() : gabor(params{}) {}
+  // Throws hush::invalid_argument naming the first parameter out of range.
+  explicit gabor(const params& prm) : prm_(prm), kernel_(check(prm).bandwidth, prm.truncation) {
+    namespace c = detail::constants;
+    key_ = seed_key(prm.seed);
+    const double r = kernel_.radius();
+    inv_cell_ = 1.0 / r;
+    marks_ = gabor_marks<D>(prm.kind, prm.frequency * r, prm.frequency_spread * r, prm.orientation,
+                            prm.elevation, prm.orientation_spread);
+    // N' kernels per unit ball of radius r: N' / V_D per cell of side r.
+    const double ball = D == 2 ? c::kPi : 4.0 * c::kPi / 3.0;
+    table_ = std::make_shared<const poisson_table>(prm.impulses / ball);
+    scale_ = 1.0 / std::sqrt(table_->exact_mean() * weight_moment() * mean_energy());
+    if constexpr (D == 3) {
+      // Slab of half-height h = r / sqrt 2, disk of radius r, cells of r sqrt(3/2):
+      // lambda_3 = N' / (2 h pi r^2), mu = lambda_3 cell^3.
+      const double cell = c::kGaborSurfaceCell;
+      inv_surface_cell_ = 1.0 / (r * cell);
+      surface_table_ = std::make_shared<const poisson_table>(prm.impulses * cell * cell * cell /
+                                                             (2.0 * c::kGaborSurfaceSlab * c::kPi));
+      surface_scale_ = 1.0 / std::sqrt(surface_table_->exact_mean() * weight_moment() *
+                                       mean_energy_2d() * surface_geometry());
+      for (const auto& t : {table_, surface_table_})
+        if (t->max_count() > static_cast<std::uint32_t>(c::kGaborMaxThresholds))
+          throw hush::invalid_argument("hush::gabor: internal Poisson table too long");
+    }
+  }
+
+  const params& parameters() const { return prm_; }
+  const gabor_kernel<D>& kernel() const { return kernel_; }
+  const gabor_marks<D>& marks() const { return marks_; }
+  // The per-cell Poisson tables (solid; surface in 3D).
+  const poisson_table& table() const { return *table_; }
+  const poisson_table& surface_table() const {
+    static_assert(D == 3, "surface noise is 3D");
+    return *surface_table_;
+  }
+  std::uint32_t key() const { return key_; }
+  // 1 / cell side (cells are r wide; surface cells r sqrt(3/2)).
+  double inverse_cell() const { return inv_cell_; }
+  double inverse_surface_cell() const { return inv_surface_cell_; }
+  // Words one impulse takes from its cell's stream (after the count's word).
+  int words_per_impulse() const { return words_for(prm_.kind); }
+  // The factor that makes the variance 1 (the raw sum times scale()).
+  double scale() const { return scale_; }
+  double surface_scale() const { return surface_scale_; }
+
+  // Variance 1 and mean 0 over space and seeds (see the file comment).
+  static constexpr double variance() { return 1.0; }
+  // |n| <= bound() (solid noise; surface noise's bound in 3D is surface_bound()).
+  double bound() const { return std::pow(3.0, D) * table_->max_count() * scale_; }
+  double surface_bound() const { return 27.0 * surface_table_->max_count() * surface_scale_; }
+
+  // E[w^2] of the 8-bit symmetric weights: (1 - 2^-16) / 3.
+  static constexpr double weight_moment() { return (1.0 - 1.0 / 65536.0) / 3.0; }
+  // E over the kind's frequencies of the kernel energy int g^2 in cell units.
+  double mean_energy() const { return mean_energy_of<D>(); }
+
+  // The power spectrum of the unit-variance noise at frequency f (cycles per
+  // noise unit), exact: lambda E[w^2] E_F[|g^_F(f)|^2] scale^2. Quadrature of
+  // the kernel transform for each call (milliseconds); gabor_spectrum tabulates
+  // it for images.
+  double power_spectrum(const vec<double, D>& f) const {
+    const double a = kernel_.envelope_exponent();
+    return spectrum_with(f, [a](double k) { return detail::gabor_envelope_transform<D>(a, k); });
+  }
+
+  // The same with H(k), the tapered envelope's transform at k cycles per cell,
+  // supplied by the caller (gabor_spectrum passes a table of it).
+  template <class H>
+  double spectrum_with(const vec<double, D>& f, H h) const {
+    const double r = kernel_.radius();
+    vec<double, D> xi;
+    for (int i = 0; i < D; ++i) xi[i] = f[i] * r;
+    return scale_ * scale_ * table_->exact_mean() * weight_moment() * std::pow(r, D) *
+           mean_kernel_spectrum(xi, h);
+  }
+
+  // p(vec) -> value, p.gradient(vec) (core/point_noise.hpp) and p.sample(...)
+  // (core/samples.hpp) come from the base classes.
+  template <class T>
+  T value(const vec<double, D>& p) const {
+    return eval<T, false>(p).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
+    return eval<T, true>(p);
+  }
+  template <class T>
+  T sample_value(const sample_input<D>& s) const {
+    return sample_eval<T, false>(s).value;
+  }
+  template <class T>
+  value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s) const {
+    return sample_eval<T, true>(s);
+  }
+
+  // ---- The pieces every backend repeats (hush/simd/gabor-inl.h, GLSL).
+
+  // The impulses of solid cell `cell` (32-bit lattice indices), in stream
+  // order: f(words), the impulse's words_per_impulse() stream words, whose
+  // fields impulse_position() and mark_values() decode (constants.hpp,
+  // "Impulse marks"): decoding only what is needed is what every backend does.
+  template <class F>
+  void for_each_impulse(const std::uint32_t (&cell)[D], F f) const {
+    rng r(cell_seed(cell), detail::constants::kGaborSolidStream);
+    const std::uint32_t n = table_->count(r.next_u32());
+    const int words = words_per_impulse();
+    for (std::uint32_t k = 0; k < n; ++k) {
+      std::uint32_t w[3] = {0, 0, 0};
+      for (int i = 0; i < words; ++i) w[i] = r.next_u32();
+      f(static_cast<const std::uint32_t*>(w));
+    }
+  }
+  // The same for the surface process (3D; cells r sqrt(3/2) wide).
+  template <class F>
+  void for_each_surface_impulse(const std::uint32_t (&cell)[3], F f) const {
+    rng r(lattice_hash(key_, cell[0], cell[1], cell[2]), detail::constants::kGaborSurfaceStream);
+    const std::uint32_t n = surface_table_->count(r.next_u32());
+    const int words = words_for(prm_.kind, 3);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      std::uint32_t w[3] = {0, 0, 0};
+      for (int i = 0; i < words; ++i) w[i] = r.next_u32();
+      f(static_cast<const std::uint32_t*>(w));
+    }
+  }
+  // Coordinate `axis` of an impulse's position in its cell, in (0, 1).
+  template <class T>
+  static T impulse_position(const std::uint32_t* words, int axis) {
+    return detail::gabor_byte<T>(words[0], static_cast<unsigned>(axis));
+  }
+  // The values gabor_marks::draw takes, from an impulse's words (E = 2 or 3:
+  // the process's dimension).
+  template <class T, int E = D>
+  void mark_values(const std::uint32_t* words, T* u) const {
+    u[0] = detail::gabor_byte<T>(words[0], E);  // weight
+    if (prm_.kind == gabor_kind::anisotropic) return;
+    if constexpr (E == 2) {
+      u[1] = detail::gabor_byte<T>(words[0], 3);
+      if (prm_.kind == gabor_kind::hybrid) u[2] = detail::gabor_half<T>(words[1], 0);
+    } else {
+      u[1] = detail::gabor_half<T>(words[1], 0);
+      u[2] = detail::gabor_half<T>(words[1], 1);
+      if (prm_.kind == gabor_kind::hybrid) u[3] = detail::gabor_half<T>(words[2], 0);
+    }
+  }
+
+  // Words per impulse of a kind in E dimensions (constants.hpp, "Impulse marks").
+  static int words_for(gabor_kind kind, int e = D) {
+    if (kind == gabor_kind::hybrid) return e == 2 ? 2 : 3;
+    return kind == gabor_kind::isotropic && e == 3 ? 2 : 1;
+  }
+
+ private:
+  static const params& check(const params& p) {
+    namespace c = detail::constants;
+    const char* w = "hush::gabor";
+    detail::require_in_range(w, "frequency", p.frequency, 0.0, c::kGaborMaxFrequency,
+                             "0 <= frequency <= 1e+06 (cycles per noise unit)");
+    detail::require_in_range(w, "bandwidth", p.bandwidth, c::kGaborMinBandwidth,
+                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
+    detail::require_in_range(w, "truncation", p.truncation, c::kGaborMinTruncation,
+                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
+    if (!(p.impulses > 0.0 && p.impulses <= c::kGaborMaxImpulses))
+      detail::throw_out_of_range(w, "impulses", p.impulses, "0 < impulses <= 256");
+    if (!std::isfinite(p.orientation))
+      detail::throw_out_of_range(w, "orientation", p.orientation, "a finite angle in radians");
+    if (!std::isfinite(p.elevation))
+      detail::throw_out_of_range(w, "elevation", p.elevation, "a finite angle in radians");
+    detail::require_in_range(w, "orientation_spread", p.orientation_spread, 0.0, c::kTwoPi,
+                             "0 <= orientation_spread <= 2 pi (radians)");
+    detail::require_in_range(w, "frequency_spread", p.frequency_spread, 0.0, 2.0 * p.frequency,
+                             "0 <= frequency_spread <= 2 * frequency");
+    if (p.kind != gabor_kind::isotropic && p.kind != gabor_kind::anisotropic &&
+        p.kind != gabor_kind::hybrid)
+      detail::throw_out_of_range(w, "kind", static_cast<int>(p.kind),
+                                 "isotropic, anisotropic or hybrid");
+    return p;
+  }
+
+  std::uint32_t cell_seed(const std::uint32_t (&cell)[D]) const {
+    if constexpr (D == 2)
+      return lattice_hash(key_, cell[0], cell[1]);
+    else
+      return lattice_hash(key_, cell[0], cell[1], cell[2]);
+  }
+
+  // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
+  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
+  template <class H>
+  double mean_kernel_spectrum(const vec<double, D>& xi, H h) const {
+    namespace c = detail::constants;
+    auto one = [&](const vec<double, D>& phi) {
+      double lo = 0, hi = 0;
+      for (int i = 0; i < D; ++i) {
+        lo += (xi[i] - phi[i]) * (xi[i] - phi[i]);
+        hi += (xi[i] + phi[i]) * (xi[i] + phi[i]);
+      }
+      const double v = 0.5 * (h(std::sqrt(lo)) + h(std::sqrt(hi)));
+      return v * v;
+    };
+    if (prm_.kind == gabor_kind::anisotropic) return one(marks_.fixed_frequency());
+    double xi_len = 0;
+    for (int i = 0; i < D; ++i) xi_len += xi[i] * xi[i];
+    xi_len = std::sqrt(xi_len);
+    const double phi0 = marks_.phi0(), dphi = marks_.dphi();
+    const bool hybrid = prm_.kind == gabor_kind::hybrid;
+    // The blob centres +-Phi move by 2 pi |Phi| cycles per cell per turn, and H
+    // is ~0.4 cycles per cell wide: these node counts resolve it to ~1e-10.
+    const double reach = phi0 + 0.5 * dphi;
+    // Average over |Phi| (hybrid) of f(|Phi|).
+    auto over_frequency = [&](auto f) {
+      if (!hybrid || dphi == 0.0) return f(phi0);
+      const int panels = 1 + static_cast<int>(std::ceil(2.0 * dphi));
+      return detail::integrate(f, phi0 - 0.5 * dphi, phi0 + 0.5 * dphi, panels) / dphi;
+    };
+    if constexpr (D == 2) {
+      return over_frequency([&](double ph) {
+        auto at = [&](double turns) {
+          const double ang = c::kTwoPi * turns;
+          return one({ph * std::cos(ang), ph * std::sin(ang)});
+        };
+        if (!hybrid) {  // uniform on the circle: the trapezoidal rule is spectral
+          const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
+          double sum = 0;
+          for (int i = 0; i < n; ++i) sum += at(static_cast<double>(i) / n);
+          return sum / n;
+        }
+        const double spread = marks_.spread_turns(), theta0 = marks_.theta0();
+        if (spread == 0.0) return at(theta0);
+        const int panels = 1 + static_cast<int>(std::ceil(8.0 * reach * spread));
+        return detail::integrate(at, theta0 - 0.5 * spread, theta0 + 0.5 * spread, panels) / spread;
+      });
+    } else {
+      return over_frequency([&](double ph) {
+        if (!hybrid) {  // uniform on the sphere: only the angle to xi matters
+          auto at = [&](double cg) {
+            const double base = xi_len * xi_len + ph * ph, cross = 2.0 * xi_len * ph * cg;
+            const double v =
+                0.5 * (h(std::sqrt(std::fmax(base - cross, 0.0))) + h(std::sqrt(base + cross)));
+            return v * v;
+          };
+          const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
+          return 0.5 * detail::integrate(at, -1.0, 1.0, panels);
+        }
+        const double cap = marks_.cos_cap();
+        if (cap >= 1.0) {  // zero spread: omega0 only
+          vec<double, 3> phi;
+          for (int i = 0; i < 3; ++i) phi[i] = ph * marks_.axis()[i];
+          return one(phi);
+        }
+        const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
+        const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
+        auto ring = [&](double ct) {  // average over the azimuth at polar cosine ct
+          double sum = 0;
+          for (int i = 0; i < n; ++i) {
+            const double u2 = static_cast<double>(i) / n;
+            const double st = std::sqrt(std::fmax((1.0 - ct) * (1.0 + ct), 0.0));
+            const double lx = st * std::cos(c::kTwoPi * u2), ly = st * std::sin(c::kTwoPi * u2);
+            vec<double, 3> phi;
+            for (int k = 0; k < 3; ++k)
+              phi[k] = ph * ((marks_.frame_t()[k] * lx + marks_.frame_b()[k] * ly) +
+                             marks_.frame_axis()[k] * ct);
+            sum += one(phi);
+          }
+          return sum / n;
+        };
+        return detail::integrate(ring, cap, 1.0, panels) / (1.0 - cap);
+      });
+    }
+  }
+
+  template <int E>
+  double mean_energy_of() const {
+    namespace c = detail::constants;
+    const double a = kernel_.envelope_exponent(), phi = marks_.phi0(), dphi = marks_.dphi();
+    if (prm_.kind != gabor_kind::hybrid || dphi == 0.0) return detail::gabor_energy<E>(a, phi);
+    // |Phi| uniform over [phi - dphi/2, phi + dphi/2]; the energy is smooth in it.
+    return detail::integrate([&](double x) { return detail::gabor_energy<E>(a, x); },
+                             phi - 0.5 * dphi, phi + 0.5 * dphi, 2) /
+           dphi;
+  }
+  double mean_energy_2d() const { return mean_energy_of<2>(); }
+  // Surface noise's variance per (table mean * E[w^2] * 2D energy): the slab
+  // taper's mean square 2 int_0^1 tau(z^2)^2 dz times h r^2 / cell^3.
+  static double surface_geometry() {
+    namespace c = detail::constants;
+    const double k = 1.0 / (1.0 - c::kGaborTaperStart);
+    const double z0 = std::sqrt(c::kGaborTaperStart);
+    auto tau2 = [&](double z) {
+      const double t = detail::gabor_taper(z * z, k);
+      return t * t;
+    };
+    const double j = detail::integrate(tau2, 0.0, z0, 1) + detail::integrate(tau2, z0, 1.0, 2);
+    const double cell = c::kGaborSurfaceCell;
+    return 2.0 * j * c::kGaborSurfaceSlab / (cell * cell * cell);
+  }
+
+  // ---- Evaluation (the scalar reference of every backend).
+
+  // Calls pair(d, d2, s, w, phi) for every impulse of the solid process within
+  // the support of x = p / r (cell units): offsets d (cell units), their
+  // squares, s = |d|^2 < 1, weight and frequency vector. Cells go in raster
+  // order (z, y, x from -1 to 1 around x's cell) and impulses in stream order:
+  // the order the grid kernels accumulate in. False for a non-finite p.
+  template <class T, class Pair>
+  bool for_each_pair(const vec<double, D>& p, Pair pair) const {
+    lattice_coord<T> c[D];
+    for (int a = 0; a < D; ++a) {
+      c[a] = lattice_split<T>(p[a] * inv_cell_);
+      if (std::isnan(c[a].f)) return false;
+    }
+    constexpr int kCells = D == 2 ? 9 : 27;
+    for (int n = 0; n < kCells; ++n) {
+      int o[D];
+      std::uint32_t cell[D];
+      for (int ax = 0, m = n; ax < D; ++ax, m /= 3) {
+        o[ax] = m % 3 - 1;
+        cell[ax] = c[ax].i0 + static_cast<std::uint32_t>(o[ax]);
+      }
+      for_each_impulse(cell, [&](const std::uint32_t* words) {
+        T d[D], d2[D];
+        for (int ax = 0; ax < D; ++ax) {
+          d[ax] = (c[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
+          d2[ax] = d[ax] * d[ax];
+        }
+        const T s = D == 2 ? d2[0] + d2[1] : d2[0] + (d2[1] + d2[2]);
+        if (!(s < T(1))) return;
+        T u[4] = {}, w;
+        vec<T, D> phi;
+        mark_values<T>(words, u);
+        marks_.template draw<T>(u, w, phi);
+        pair(d, d2, s, w, phi);
+      });
+    }
+    return true;
+  }
+
+  // Unfiltered solid noise: the separable kernel (gabor_kernel.hpp).
+  template <class T, bool G>
+  value_gradient<T, D> eval(const vec<double, D>& p) const {
+    const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
+    const T taper_k = taper_k_<T>();
+    T sum = 0, g[D] = {};
+    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T, T w, const vec<T, D>& phi) {
+      detail::gabor_axis<T> ax[D];
+      for (int i = 0; i < D; ++i) ax[i] = detail::gabor_axis_factors(d[i], neg_a, phi[i]);
+      detail::gabor_row<T> row;
+      if constexpr (D == 2)
+        row = detail::gabor_row_of(w, ax[1]);
+      else
+        row = detail::gabor_row_of(w, ax[1], ax[2]);
+      if constexpr (G) {
+        const auto pg = detail::gabor_pair_with_gradient(ax[0], row, taper_k, a);
+        sum += pg.value;
+        for (int i = 0; i < D; ++i) g[i] += pg.u * d[i] - pg.v * phi[i];
+      } else {
+        sum += detail::gabor_pair(ax[0], row, taper_k);
+      }
+    });
+    if (!ok) return nan_result<T>();
+    return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
+  }
+
+  // One impulse of a filtered (or tangent-plane) kernel in E dimensions:
+  // w amplitude e^{-Phi^T M Phi} e^{-A d^T Q d} cos(2 pi <Q Phi, d>) tau(s),
+  // added to sum and, with G, its derivative by d to grad.
+  template <class T, int E, bool G>
+  static void filtered_pair(const T (&q)[E][E], const T (&m)[E][E], T amplitude, T neg_a, T a,
+                            T taper_k, const T* d, T s, T w, const T* phi, T& sum, T* grad) {
+    T mu[E], qd[E];
+    T att = 0, dqd = 0, theta = 0;
+    for (int i = 0; i < E; ++i) {
+      T x = 0, y = 0, z = 0;
+      for (int j = 0; j < E; ++j) {
+        x += q[i][j] * phi[j];
+        y += m[i][j] * phi[j];
+        z += q[i][j] * d[j];
+      }
+      mu[i] = x;
+      att += phi[i] * y;
+      qd[i] = z;
+      dqd += d[i] * z;
+    }
+    for (int i = 0; i < E; ++i) theta += mu[i] * d[i];
+    const T p = ((w * amplitude) * detail::exp_neg(-att)) * detail::exp_neg(neg_a * dqd);
+    const detail::sin_cos<T> sc = detail::sincos_turns(theta);
+    if constexpr (G) {
+      const detail::gabor_taper_value<T> tw = detail::gabor_taper_derivative(s, taper_k);
+      const T pc = p * sc.cos, ps = T(detail::constants::kTwoPi) * ((p * tw.tau) * sc.sin);
+      sum += pc * tw.tau;
+      for (int i = 0; i < E; ++i)
+        grad[i] += pc * ((tw.dtau + tw.dtau) * d[i] - (a + a) * (tw.tau * qd[i])) - ps * mu[i];
+    } else {
+      sum += (p * sc.cos) * detail::gabor_taper(s, taper_k);
+    }
+  }
+
+  // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
+  template <class T, bool G>
+  value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
+    const gabor_filter<D> flt(fp, kernel_.envelope_exponent(), inv_cell_);
+    T q[D][D], m[D][D];
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) {
+        q[i][j] = T(flt.q[i][j]);
+        m[i][j] = T(flt.m[i][j]);
+      }
+    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
+    const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
+    T sum = 0, g[D] = {};
+    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
+      T ph[D];
+      for (int i = 0; i < D; ++i) ph[i] = phi[i];
+      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, sum, g);
+    });
+    if (!ok) return nan_result<T>();
+    return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
+  }
+
+  // Surface noise at p with unit normal n (double), filtered over fp.
+  template <class T, bool G>
+  value_gradient<T, D> surface_eval(const vec<double, 3>& p, const vec<double, 3>& n,
+                                    const footprint<3>& fp) const {
+    namespace c = detail::constants;
+    vec<double, 3> t, b;
+    detail::orthonormal_basis(n, t, b);
+    // The footprint in the plane, in the kernel's units: [t b]^T S [t b].
+    float upper[3];
+    const vec<double, 3>* axes[2] = {&t, &b};
+    for (int i = 0, e = 0; i < 2; ++i)
+      for (int j = i; j < 2; ++j, ++e) {
+        double v = 0;
+        for (int r = 0; r < 3; ++r)
+          for (int k = 0; k < 3; ++k)
+            v += (*axes[i])[r] * static_cast<double>(fp.covariance(r, k)) * (*axes[j])[k];
+        upper[e] = static_cast<float>(v);
+      }
+    const gabor_filter<2> flt(footprint<2>::from_covariance(upper), kernel_.envelope_exponent(),
+                              inv_cell_);
+    T q[2][2], m[2][2];
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        q[i][j] = T(flt.q[i][j]);
+        m[i][j] = T(flt.m[i][j]);
+      }
+    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
+    const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
+    const T nt[3] = {T(n.x), T(n.y), T(n.z)}, tt[3] = {T(t.x), T(t.y), T(t.z)},
+            bt[3] = {T(b.x), T(b.y), T(b.z)};
+    // Kernel units per surface-cell unit, and 1 / h^2 in surface-cell units.
+    const T to_kernel = T(c::kGaborSurfaceCell);
+    const T inv_h2 = T((c::kGaborSurfaceCell / c::kGaborSurfaceSlab) *
+                       (c::kGaborSurfaceCell / c::kGaborSurfaceSlab));
+    const bool normalise = prm_.kind != gabor_kind::anisotropic;
+    lattice_coord<T> cc[3];
+    for (int ax = 0; ax < 3; ++ax) {
+      cc[ax] = lattice_split<T>(p[ax] * inv_surface_cell_);
+      if (std::isnan(cc[ax].f)) return nan_result<T>();
+    }
+    T sum = 0, g[3] = {};
+    for (int nc = 0; nc < 27; ++nc) {
+      int o[3];
+      std::uint32_t cell[3];
+      for (int ax = 0, mm = nc; ax < 3; ++ax, mm /= 3) {
+        o[ax] = mm % 3 - 1;
+        cell[ax] = cc[ax].i0 + static_cast<std::uint32_t>(o[ax]);
+      }
+      for_each_surface_impulse(cell, [&](const std::uint32_t* words) {
+        T d[3];
+        for (int ax = 0; ax < 3; ++ax)
+          d[ax] = (cc[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
+        const T zn = (nt[0] * d[0] + nt[1] * d[1]) + nt[2] * d[2];
+        const T z2 = (zn * zn) * inv_h2;
+        if (!(z2 < T(1))) return;
+        const T dk[2] = {((tt[0] * d[0] + tt[1] * d[1]) + tt[2] * d[2]) * to_kernel,
+                         ((bt[0] * d[0] + bt[1] * d[1]) + bt[2] * d[2]) * to_kernel};
+        const T s = dk[0] * dk[0] + dk[1] * dk[1];
+        if (!(s < T(1))) return;
+        // The impulse's weight and 3D direction (anisotropic: omega0) and |Phi|.
+        T u[4] = {};
+        mark_values<T, 3>(words, u);
+        const T w = T(2) * u[0] - T(1);
+        vec<T, 3> dir;
+        T phi = T(marks_.phi0());
+        if (prm_.kind == gabor_kind::anisotropic) {
+          for (int i = 0; i < 3; ++i) dir[i] = T(marks_.axis()[i]);
+        } else {
+          marks_.direction(u[1], u[2], dir);
+          if (prm_.kind == gabor_kind::hybrid)
+            phi = T(marks_.phi0()) + T(marks_.dphi()) * (u[3] - T(0.5));
+        }
+        const T vt = (tt[0] * dir[0] + tt[1] * dir[1]) + tt[2] * dir[2];
+        const T vb = (bt[0] * dir[0] + bt[1] * dir[1]) + bt[2] * dir[2];
+        T f = phi;
+        if (normalise) {
+          const T len2 = vt * vt + vb * vb;
+          f = len2 > T(0) ? phi / std::sqrt(len2) : T(0);
+        }
+        const T ph[2] = {f * vt, f * vb};
+        const detail::gabor_taper_value<T> slab = detail::gabor_taper_derivative(z2, taper_k);
+        T gs = 0, gk[2] = {0, 0};
+        filtered_pair<T, 2, G>(q, m, amplitude, neg_a, a, taper_k, dk, s, w, ph, gs, gk);
+        sum += gs * slab.tau;
+        if constexpr (G) {
+          // d/dd of (kernel * slab taper): the kernel's in-plane derivative
+          // (through dk = [t b]^T d sqrt(3/2)) and the slab's along n.
+          const T dz = gs * (slab.dtau * ((zn + zn) * inv_h2));
+          for (int ax = 0; ax < 3; ++ax)
+            g[ax] += ((gk[0] * tt[ax] + gk[1] * bt[ax]) * to_kernel) * slab.tau + dz * nt[ax];
+        }
+      });
+    }
+    return finish<T, G>(sum, g, T(surface_scale_), T(surface_scale_ * inv_surface_cell_));
+  }
+
+  template <class T, bool G>
+  value_gradient<T, D> sample_eval(const sample_input<D>& s) const {
+    if constexpr (D == 3) {
+      if (s.has_normal) {
+        const vec<double, 3>& n = s.normal;
+        if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+          return nan_result<T>();
+        // Scaled before normalising, so that tiny and huge normals both work.
+        const double big = std::fmax(std::fabs(n.x), std::fmax(std::fabs(n.y), std::fabs(n.z)));
+        if (big > 0.0) {
+          const vec<double, 3> m{n.x / big, n.y / big, n.z / big};
+          const double len = std::sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
+          return surface_eval<T, G>(s.position, {m.x / len, m.y / len, m.z / len}, s.fp);
+        }
+        // A zero normal has no tangent plane: the solid noise.
+      }
+    }
+    return filtered_eval<T, G>(s.position, s.fp);
+  }
+
+  template <class T, bool G>
+  static value_gradient<T, D> finish(T sum, const T* g, T scale, T gradient_scale) {
+    value_gradient<T, D> r{sum * scale, {}};
+    if constexpr (G)
+      for (int i = 0; i < D; ++i) r.gradient[i] = g[i] * gradient_scale;
+    return r;
+  }
+
+  template <class T>
+  static value_gradient<T, D> nan_result() {
+    const T nan = std::numeric_limits<T>::quiet_NaN();
+    value_gradient<T, D> r{nan, {}};
+    for (int i = 0; i < D; ++i) r.gradient[i] = nan;
+    return r;
+  }
+  template <class T>
+  static T taper_k_() {
+    return T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
+  }
+
+  params prm_;
+  gabor_kernel<D> kernel_;
+  std::uint32_t key_ = 0;
+  double inv_cell_ = 1, inv_surface_cell_ = 1;
+  gabor_marks<D> marks_;
+  std::shared_ptr<const poisson_table> table_, surface_table_;
+  double scale_ = 1, surface_scale_ = 1;
+};
+
+// gabor_spectrum<D>: the power spectrum of a gabor<D> noise at many
+// frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
+// kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
+// the largest |f r| + |Phi| needed, and interpolated with Catmull-Rom cubics
+// (within 3e-5 of the peak of the exact spectrum). Isotropic noise's spectrum
+// is radial: it is tabulated the same way against |f|. Frequencies above
+// max_frequency (cycles per noise unit, any direction) give 0.
+template <int D>
+class gabor_spectrum {
+ public:
+  gabor_spectrum(const gabor<D>& noise, double max_frequency) : noise_(noise) {
+    const double r = noise.kernel().radius();
+    max_f_ = max_frequency;
+    const double reach = max_frequency * r + noise.marks().phi0() + noise.marks().dphi();
+    const auto n = static_cast<std::size_t>(std::ceil(reach * kPerCycle)) + 4;
+    const double a = noise.kernel().envelope_exponent();
+    h_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      h_[i] = detail::gabor_envelope_transform<D>(a, static_cast<double>(i) / kPerCycle);
+    if (noise.parameters().kind == gabor_kind::isotropic) {
+      // Radial: S(|f|) every 1/64 cycle per cell, from the tabulated H.
+      radial_.resize(static_cast<std::size_t>(std::ceil(max_frequency * r * kPerCycle)) + 4);
+      for (std::size_t i = 0; i < radial_.size(); ++i) {
+        vec<double, D> f{};
+        f[0] = static_cast<double>(i) / (kPerCycle * r);
+        radial_[i] = noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
+      }
+    }
+  }
+
+  double operator()(const vec<double, D>& f) const {
+    double len = 0;
+    for (int i = 0; i < D; ++i) len += f[i] * f[i];
+    len = std::sqrt(len);
+    if (!(len <= max_f_)) return 0.0;
+    if (!radial_.empty()) return cubic(radial_, len * noise_.kernel().radius());
+    return noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
+  }
+
+ private:
+  static constexpr double kPerCycle = 64.0;
+  // Catmull-Rom interpolation of an even function tabulated at k = i / 64
+  // (the evenness supplies the point left of 0).
+  static double cubic(const std::vector<double>& h, double k) {
+    const double x = k * kPerCycle;
+    const auto i = static_cast<std::size_t>(x);
+    if (i + 2 >= h.size()) return h.back();
+    const double t = x - static_cast<double>(i);
+    const double p0 = i == 0 ? h[1] : h[i - 1], p1 = h[i], p2 = h[i + 1], p3 = h[i + 2];
+    return p1 + 0.5 * t *
+                    (p2 - p0 +
+                     t * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + t * (3.0 * (p1 - p2) + p3 - p0)));
+  }
+
+  gabor<D> noise_;
+  double max_f_ = 0;
+  std::vector<double> h_, radial_;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_GABOR_HPP
+// ---- end hush/gabor.hpp
 // ---- begin hush/perlin.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -7234,6 +8789,1106 @@ HWY_AFTER_NAMESPACE();
 
 #endif  // HUSH_SIMD_COHERENT_INL_H_ toggle
 // ---- end hush/simd/coherent-inl.h
+// ---- begin hush/simd/gabor-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for Gabor noise (hush/gabor.hpp): points, uniform grids and
+// samples with footprints (filtered, 2D and 3D), values and optionally
+// gradients (samples with normals, i.e. surface noise, take the scalar path). Compiled once per
+// SIMD target (the "-inl.h" convention: toggle include guard below); reached through
+// hush/simd/dispatch.hpp, never included directly by users.
+//
+// They repeat gabor.hpp's float algorithm operation by operation: the same
+// lattice split (in double), per-cell hush::rng streams and Poisson table
+// counts (integer comparisons), the same word fields and marks, hush's own exp
+// and sin/cos (elementary functions below, mirroring detail/elementary.hpp),
+// the same separable kernel products and taper, and, per sample, the same
+// order of accumulation (cells in raster order, impulses in stream order):
+//  - under HUSH_STRICT_FP every value and gradient is bit for bit the scalar
+//    result (tests/simd/gabor_simd_test.cpp, every compiled target);
+//  - otherwise multiply-adds may be fused, within the float budget of
+//    gabor.hpp.
+// How they are fast:
+//  - points and filtered samples: one lane per point (samples: each lane's
+//    filter computed in double, as the scalar code does, and gathered per term); per cell and
+//    impulse the lanes draw in lockstep (the counter's hash is shared), and only impulses within a
+//    lane's support are kept, compressed into a list that the kernel then evaluates in full
+//    vectors; each point's terms are summed in stream order;
+//  - grids: samples in blocks that share their cell (up to 64 per row, 64
+//    rows; 3D 32^3), each impulse of the block's 3^D cells evaluated once per
+//    block: its factors along y (and z) once per row (slice), along x once per
+//    column, and per sample only their products (gabor_kernel.hpp's separable
+//    form). Grids with fewer than kMinRun samples per cell along x go through
+//    the points path instead.
+
+#if defined(HUSH_SIMD_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_GABOR_INL_H_
+#undef HUSH_SIMD_GABOR_INL_H_
+#else
+#define HUSH_SIMD_GABOR_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using VI = hn::Vec<DI>;
+using MF = hn::Mask<DF>;
+
+// Largest lane count of any target (SVE may have 64 float lanes).
+constexpr std::size_t kMaxLanes = 64;
+// Grids with fewer samples per cell along x than this take the points path.
+constexpr double kMinRun = 8.0;
+
+// ---- Arithmetic as the scalar code is compiled: a * b + c in two roundings
+// under HUSH_STRICT_FP, fused otherwise.
+HWY_INLINE VF mul_add(VF a, VF b, VF c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), c);
+#else
+  return hn::MulAdd(a, b, c);
+#endif
+}
+// c - a * b.
+HWY_INLINE VF neg_mul_add(VF a, VF b, VF c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Sub(c, hn::Mul(a, b));
+#else
+  return hn::NegMulAdd(a, b, c);
+#endif
+}
+
+// ---- detail/elementary.hpp in lanes.
+HWY_INLINE VF exp_neg(VF x) {
+  namespace c = detail::constants;
+  const DF df;
+  const DI di;
+  const VF zero = hn::Zero(df), lo = hn::Set(df, float(c::kExpFloor));
+  const VF xc = hn::Max(hn::IfThenElse(hn::Gt(x, zero), zero, x), lo);
+  const VF n = hn::Floor(mul_add(xc, hn::Set(df, float(c::kLog2E)), hn::Set(df, 0.5f)));
+  const VF r = neg_mul_add(n, hn::Set(df, float(c::kLn2Lo)),
+                           neg_mul_add(n, hn::Set(df, float(c::kLn2Hi)), xc));
+  VF p = hn::Set(df, float(c::kExpPoly[c::kExpDegree]));
+  for (int i = c::kExpDegree - 1; i >= 0; --i)
+    p = mul_add(p, r, hn::Set(df, float(c::kExpPoly[i])));
+  const VI bits = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, n), hn::Set(di, 127)));
+  const VF v = hn::Mul(p, hn::BitCast(df, bits));
+  // Below the floor: 0; NaN: the NaN itself (as the scalar code returns x).
+  return hn::IfThenElse(hn::IsNaN(x), x, hn::IfThenElseZero(hn::Ge(x, lo), v));
+}
+
+HWY_INLINE void sincos_turns(VF t, VF& sin_out, VF& cos_out) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF u = hn::IfThenElse(hn::Lt(hn::Abs(t), hn::Set(df, float(c::kTurnsReduceLimit))), t,
+                              hn::Sub(t, hn::Floor(t)));
+  const VF q = hn::Floor(mul_add(u, hn::Set(df, 4.0f), hn::Set(df, 0.5f)));
+  const VF r = neg_mul_add(q, hn::Set(df, 0.25f), u);
+  const VF z = hn::Mul(r, r);
+  VF ps = hn::Set(df, float(c::kSinPoly[c::kSinDegree]));
+  for (int i = c::kSinDegree - 1; i >= 0; --i)
+    ps = mul_add(ps, z, hn::Set(df, float(c::kSinPoly[i])));
+  VF pc = hn::Set(df, float(c::kCosPoly[c::kCosDegree]));
+  for (int i = c::kCosDegree - 1; i >= 0; --i)
+    pc = mul_add(pc, z, hn::Set(df, float(c::kCosPoly[i])));
+  const VF s = hn::Mul(r, ps);
+  const VF k = neg_mul_add(hn::Set(df, 4.0f), hn::Floor(hn::Mul(q, hn::Set(df, 0.25f))), q);
+  const VF one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f), three = hn::Set(df, 3.0f);
+  const MF k1 = hn::Eq(k, one), k2 = hn::Eq(k, two), k3 = hn::Eq(k, three);
+  const MF odd = hn::Or(k1, k3);
+  const VF sin_sign = hn::IfThenElse(hn::Ge(k, two), hn::Set(df, -1.0f), one);
+  const VF cos_sign = hn::IfThenElse(hn::Or(k1, k2), hn::Set(df, -1.0f), one);
+  sin_out = hn::Mul(hn::IfThenElse(odd, pc, s), sin_sign);
+  cos_out = hn::Mul(hn::IfThenElse(odd, s, pc), cos_sign);
+}
+
+// ---- core/hash.hpp in lanes.
+HWY_INLINE VU hash32(VU x) {
+  namespace c = detail::constants;
+  const DU du;
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
+  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
+}
+HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
+HWY_INLINE VU word_y(VU j) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
+}
+HWY_INLINE VU word_z(VU k) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
+}
+// hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
+HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
+  const DU du;
+  return hash32(hn::Xor(hash32(hn::Add(seed, hn::Set(du, detail::constants::kGoldenGamma))),
+                        hn::Set(du, stream)));
+}
+// Draw `counter` of the streams with keys `key`: hash32(key ^ hash32(counter)).
+HWY_INLINE VU draw(VU key, std::uint32_t counter) {
+  return hash32(hn::Xor(key, hn::Set(DU(), hush::hash32(counter))));
+}
+
+// Poisson counts of words u (poisson_table::count): the number of thresholds
+// <= u. Short tables (the common case: 25 thresholds for N' = 16 in 2D) are
+// scanned in order, stopping once no lane's word reaches the next threshold
+// (about the largest count in the vector); long ones are binary-searched with
+// gathers. `flipped` holds the thresholds with the sign bit flipped (unsigned
+// order as signed).
+constexpr std::uint32_t kLinearTable = 64;
+HWY_INLINE VU table_count(const std::int32_t* flipped, std::uint32_t n, VU u) {
+  const DU du;
+  const DI di;
+  const VI us = hn::Xor(hn::BitCast(di, u), hn::Set(di, static_cast<std::int32_t>(0x80000000U)));
+  if (n <= kLinearTable) {
+    VI count = hn::Zero(di);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const auto below = hn::Not(hn::Gt(hn::Set(di, flipped[k]), us));  // T_k <= u
+      if (hn::AllFalse(di, below)) break;  // sorted: no later threshold is reached either
+      count = hn::Sub(count, hn::VecFromMask(di, below));
+    }
+    return hn::BitCast(du, count);
+  }
+  VU lo = hn::Zero(du);
+  std::uint32_t step = 1;
+  while (step * 2 <= n) step *= 2;
+  for (; step > 0; step /= 2) {
+    const VU cand = hn::Add(lo, hn::Set(du, step));  // try count >= cand
+    const auto ok_index =
+        hn::Not(hn::Gt(hn::BitCast(di, cand), hn::Set(di, static_cast<std::int32_t>(n))));
+    const VI index = hn::IfThenElseZero(ok_index, hn::Sub(hn::BitCast(di, cand), hn::Set(di, 1)));
+    const VI t = hn::GatherIndex(di, flipped, index);
+    const auto take = hn::And(ok_index, hn::Not(hn::Gt(t, us)));  // T[cand - 1] <= u
+    lo = hn::IfThenElse(hn::RebindMask(du, take), cand, lo);
+  }
+  return lo;
+}
+// The thresholds of `table` with the sign bit flipped, for table_count.
+inline std::vector<std::int32_t> flipped_thresholds(const poisson_table& table) {
+  std::vector<std::int32_t> f(table.thresholds().size() + 1, 0);
+  for (std::size_t i = 0; i < table.thresholds().size(); ++i)
+    f[i] = static_cast<std::int32_t>(table.thresholds()[i] ^ 0x80000000U);
+  return f;
+}
+
+// Fields of words (gabor.hpp detail::gabor_byte, gabor_half) as floats:
+// (2m + 1) 2^-9 = m 2^-8 + 2^-9, exact whichever way it is computed.
+HWY_INLINE VF byte_value(VU w, unsigned i) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  VU m = hn::ShiftRightSame(w, static_cast<int>(c::kGaborByteBits * (3u - i)));
+  if (i != 0) m = hn::And(m, hn::Set(du, c::kGaborByteMask));
+  return mul_add(hn::ConvertTo(df, hn::BitCast(DI(), m)),
+                 hn::Set(df, float(2 * c::kGaborByteScale)),
+                 hn::Set(df, float(c::kGaborByteScale)));
+}
+HWY_INLINE VF half_value(VU w, unsigned i) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  VU m = hn::ShiftRightSame(w, static_cast<int>(c::kGaborHalfBits * (1u - i)));
+  if (i != 0) m = hn::And(m, hn::Set(du, c::kGaborHalfMask));
+  return mul_add(hn::ConvertTo(df, hn::BitCast(DI(), m)),
+                 hn::Set(df, float(2 * c::kGaborHalfScale)),
+                 hn::Set(df, float(c::kGaborHalfScale)));
+}
+
+// ---- The kernel (gabor_kernel.hpp) in lanes.
+struct axis {
+  VF d, d2, e, s, c;
+};
+HWY_INLINE axis axis_factors(VF d, VF neg_a, VF phi) {
+  axis f;
+  f.d = d;
+  f.d2 = hn::Mul(d, d);
+  f.e = exp_neg(hn::Mul(neg_a, f.d2));
+  sincos_turns(hn::Mul(phi, d), f.s, f.c);
+  return f;
+}
+struct row {
+  VF we, c, s, d2;
+};
+HWY_INLINE row row_of(VF w, const axis& y) { return {hn::Mul(w, y.e), y.c, y.s, y.d2}; }
+HWY_INLINE row row_of(VF w, const axis& y, const axis& z) {
+  return {hn::Mul(w, hn::Mul(y.e, z.e)), hn::Sub(hn::Mul(y.c, z.c), hn::Mul(y.s, z.s)),
+          hn::Add(hn::Mul(y.s, z.c), hn::Mul(y.c, z.s)), hn::Add(y.d2, z.d2)};
+}
+HWY_INLINE VF taper(VF s, VF k) {
+  const DF df;
+  const VF one = hn::Set(df, 1.0f);
+  const VF v = hn::Min(hn::Mul(hn::Sub(one, s), k), one);
+  return hn::Mul(hn::Mul(v, v), neg_mul_add(hn::Set(df, 2.0f), v, hn::Set(df, 3.0f)));
+}
+HWY_INLINE void taper_derivative(VF s, VF k, VF& tau, VF& dtau) {
+  const DF df;
+  const VF one = hn::Set(df, 1.0f);
+  const VF v = hn::Min(hn::Mul(hn::Sub(one, s), k), one);
+  tau = hn::Mul(hn::Mul(v, v), neg_mul_add(hn::Set(df, 2.0f), v, hn::Set(df, 3.0f)));
+  dtau = hn::Mul(hn::Mul(hn::Set(df, -6.0f), k), hn::Mul(v, hn::Sub(one, v)));
+}
+// gabor_pair: ((x.e r.we) (x.c r.c - x.s r.s)) tau(x.d2 + r.d2).
+HWY_INLINE VF pair(const axis& x, const row& r, VF k) {
+  const VF s = hn::Add(x.d2, r.d2);
+  return hn::Mul(hn::Mul(hn::Mul(x.e, r.we), hn::Sub(hn::Mul(x.c, r.c), hn::Mul(x.s, r.s))),
+                 taper(s, k));
+}
+// gabor_pair_with_gradient: value, u, v with dg/dd_a = u d_a - v phi_a.
+HWY_INLINE void pair_gradient(const axis& x, const row& r, VF k, VF a, VF& value, VF& u, VF& v) {
+  const DF df;
+  const VF s = hn::Add(x.d2, r.d2);
+  VF tau, dtau;
+  taper_derivative(s, k, tau, dtau);
+  const VF p = hn::Mul(x.e, r.we);
+  const VF pc = hn::Mul(p, hn::Sub(hn::Mul(x.c, r.c), hn::Mul(x.s, r.s)));
+  const VF ps = hn::Mul(p, hn::Add(hn::Mul(x.s, r.c), hn::Mul(x.c, r.s)));
+  value = hn::Mul(pc, tau);
+  u = hn::Mul(hn::Add(pc, pc), neg_mul_add(a, tau, dtau));
+  v = hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(ps, tau));
+}
+
+// ---- The noise's constants as lanes.
+template <int D>
+struct consts {
+  VF neg_a, a, k, scale, grad_scale;
+  // Marks (gabor_marks): 2D theta0 and spread (turns), phi0, dphi, the fixed
+  // frequency (anisotropic); 3D frame and cap.
+  VF theta0, spread, phi0, dphi, half, fixed[3], frame_t[3], frame_b[3], frame_axis[3],
+      one_minus_cap;
+  gabor_kind kind;
+  explicit consts(const gabor<D>& g) {
+    const DF df;
+    neg_a = hn::Set(df, float(-g.kernel().envelope_exponent()));
+    a = hn::Set(df, float(g.kernel().envelope_exponent()));
+    k = hn::Set(df, float(1.0 / (1.0 - detail::constants::kGaborTaperStart)));
+    scale = hn::Set(df, float(g.scale()));
+    grad_scale = hn::Set(df, float(g.scale() * g.inverse_cell()));
+    const gabor_marks<D>& m = g.marks();
+    kind = m.kind();
+    theta0 = hn::Set(df, float(m.theta0()));
+    spread = hn::Set(df, float(m.spread_turns()));
+    phi0 = hn::Set(df, float(m.phi0()));
+    dphi = hn::Set(df, float(m.dphi()));
+    half = hn::Set(df, 0.5f);
+    one_minus_cap = hn::Set(df, float(1.0 - m.cos_cap()));
+    for (int i = 0; i < 3; ++i) {
+      fixed[i] = hn::Set(df, i < D ? float(m.fixed_frequency()[i]) : 0.0f);
+      frame_t[i] = hn::Set(df, float(m.frame_t()[i]));
+      frame_b[i] = hn::Set(df, float(m.frame_b()[i]));
+      frame_axis[i] = hn::Set(df, float(m.frame_axis()[i]));
+    }
+  }
+};
+
+// gabor_marks<3>::direction in lanes.
+template <int D>
+HWY_INLINE void direction(const consts<D>& c, VF u1, VF u2, VF* dir) {
+  const DF df;
+  const VF one = hn::Set(df, 1.0f);
+  const VF ct = neg_mul_add(c.one_minus_cap, u1, one);
+  const VF st = hn::Sqrt(hn::Mul(hn::Sub(one, ct), hn::Add(one, ct)));
+  VF s, co;
+  sincos_turns(u2, s, co);
+  const VF lx = hn::Mul(st, co), ly = hn::Mul(st, s);
+  for (int i = 0; i < 3; ++i)
+    dir[i] = mul_add(c.frame_axis[i], ct, mul_add(c.frame_t[i], lx, hn::Mul(c.frame_b[i], ly)));
+}
+
+// gabor<D>::mark_values + gabor_marks::draw from an impulse's words: the
+// weight and frequency vector (cycles per cell).
+template <int D>
+HWY_INLINE void marks(const consts<D>& c, const VU* words, VF& w, VF* phi) {
+  const DF df;
+  w = hn::Sub(hn::Mul(hn::Set(df, 2.0f), byte_value(words[0], D)), hn::Set(df, 1.0f));
+  if (c.kind == gabor_kind::anisotropic) {
+    for (int i = 0; i < D; ++i) phi[i] = c.fixed[i];
+    return;
+  }
+  const bool hybrid = c.kind == gabor_kind::hybrid;
+  if constexpr (D == 2) {
+    const VF f =
+        hybrid ? mul_add(c.dphi, hn::Sub(half_value(words[1], 0), c.half), c.phi0) : c.phi0;
+    VF s, co;
+    sincos_turns(mul_add(c.spread, hn::Sub(byte_value(words[0], 3), c.half), c.theta0), s, co);
+    phi[0] = hn::Mul(f, co);
+    phi[1] = hn::Mul(f, s);
+  } else {
+    const VF f =
+        hybrid ? mul_add(c.dphi, hn::Sub(half_value(words[2], 0), c.half), c.phi0) : c.phi0;
+    VF dir[3];
+    direction(c, half_value(words[1], 0), half_value(words[1], 1), dir);
+    for (int i = 0; i < 3; ++i) phi[i] = hn::Mul(f, dir[i]);
+  }
+}
+
+// D interleaved gradients to dst.
+template <int D>
+HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
+  const DF df;
+  if constexpr (D == 2)
+    hn::StoreInterleaved2(g[0], g[1], df, dst);
+  else
+    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
+}
+
+// ---- Compression of selected lanes to the front of a vector. AVX-512 has it
+// in one instruction (Highway's Compress); Highway 1.0.3's 4- and 8-lane
+// versions copy a 1 KiB table onto the stack on every call, so for up to 8
+// lanes the lane indices come from a table of our own, built at compile time.
+template <int N>
+struct compress_indices {
+  std::int32_t idx[1 << N][N];
+};
+template <int N>
+constexpr compress_indices<N> make_compress_indices() {
+  compress_indices<N> t{};
+  for (int bits = 0; bits < (1 << N); ++bits) {
+    int k = 0;
+    for (int l = 0; l < N; ++l)
+      if (bits & (1 << l)) t.idx[bits][k++] = l;
+    for (int l = 0; l < N; ++l)
+      if (!(bits & (1 << l))) t.idx[bits][k++] = l;
+  }
+  return t;
+}
+alignas(64) inline constexpr compress_indices<8> kCompress8 = make_compress_indices<8>();
+alignas(64) inline constexpr compress_indices<4> kCompress4 = make_compress_indices<4>();
+
+// The selected lanes of each vector of `v` (count `n`) moved to the front, by
+// the same mask.
+template <class V, class M>
+HWY_INLINE V compress(V v, M m) {
+  using D = hn::DFromV<V>;
+  const D d;
+  const std::size_t lanes = hn::Lanes(d);
+  if (lanes == 8 || lanes == 4) {
+    std::uint8_t bits[8] = {};
+    hn::StoreMaskBits(d, m, bits);
+    const std::int32_t* idx = lanes == 8 ? kCompress8.idx[bits[0]] : kCompress4.idx[bits[0] & 15];
+    return hn::TableLookupLanes(v, hn::SetTableIndices(d, idx));
+  }
+  return hn::Compress(v, m);
+}
+
+// ---- One lane per point: candidates, then the kernel over the kept ones.
+
+// The impulses kept for a batch of lanes, in the order each lane sums them.
+struct tuples {
+  std::vector<std::uint32_t> lane, w0, w1, w2;
+  std::vector<float> d[3];
+  std::vector<float> val, g[3];
+  std::size_t n = 0;
+  void reserve(std::size_t cap) {
+    const std::size_t c = cap + kMaxLanes;
+    for (auto* v : {&lane, &w0, &w1, &w2}) v->resize(c);
+    for (auto* v : {&d[0], &d[1], &d[2], &val, &g[0], &g[1], &g[2]}) v->resize(c);
+  }
+};
+
+// A lane batch's split positions: per axis the cell and the fraction (cell
+// units), as lattice_split<float> of position * inverse cell in double.
+struct lanes_split {
+  HWY_ALIGN std::uint32_t cell[3][kMaxLanes];
+  HWY_ALIGN float frac[3][kMaxLanes];
+  bool bad[kMaxLanes];  // a non-finite coordinate: the result is NaN
+};
+
+// Appends to `t` every impulse of the process (solid: `table`, `stream`, the
+// 3^E cells around each lane's cell) within a lane's support, in raster order
+// of the cells and stream order of the impulses. `keep(d, d2, s)` is the
+// support test per lane (a mask over the lanes); E is the process's dimension.
+template <int E, class Keep>
+void collect(std::uint32_t key, std::uint32_t stream, const std::vector<std::int32_t>& flipped,
+             int words, const lanes_split& sp, tuples& t, Keep keep) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const VU lane_ids = hn::Iota(du, 0);
+  VU base[3];
+  VF frac[3];
+  for (int a = 0; a < E; ++a) {
+    base[a] = hn::Load(du, sp.cell[a]);
+    frac[a] = hn::Load(df, sp.frac[a]);
+  }
+  const std::int32_t* thr = flipped.data();
+  const auto nthr = static_cast<std::uint32_t>(flipped.size() - 1);
+  constexpr int kCells = E == 2 ? 9 : 27;
+  t.n = 0;
+  for (int n = 0; n < kCells; ++n) {
+    int o[3] = {0, 0, 0};
+    for (int a = 0, m = n; a < E; ++a, m /= 3) o[a] = m % 3 - 1;
+    VU h = hn::Xor(hn::Set(du, key),
+                   word_x(hn::Add(base[0], hn::Set(du, static_cast<std::uint32_t>(o[0])))));
+    h = hn::Xor(h, word_y(hn::Add(base[1], hn::Set(du, static_cast<std::uint32_t>(o[1])))));
+    if constexpr (E == 3)
+      h = hn::Xor(h, word_z(hn::Add(base[2], hn::Set(du, static_cast<std::uint32_t>(o[2])))));
+    const VU skey = stream_key(hash32(h), stream);
+    const VU count = nthr == 0 ? hn::Zero(du) : table_count(thr, nthr, draw(skey, 0));
+    const std::uint32_t kmax = hn::GetLane(hn::MaxOfLanes(du, count));
+    VF off[3];
+    for (int a = 0; a < E; ++a) off[a] = hn::Sub(frac[a], hn::Set(df, float(o[a])));
+    for (std::uint32_t k = 0; k < kmax; ++k) {
+      const std::uint32_t counter = 1 + k * static_cast<std::uint32_t>(words);
+      VU w[3];
+      w[0] = draw(skey, counter);
+      VF d[3], d2[3];
+      for (int a = 0; a < E; ++a) {
+        d[a] = hn::Sub(off[a], byte_value(w[0], static_cast<unsigned>(a)));
+        d2[a] = hn::Mul(d[a], d[a]);
+      }
+      const auto active =
+          hn::RebindMask(df, hn::Lt(hn::BitCast(di, hn::Set(du, k)), hn::BitCast(di, count)));
+      const MF in = hn::And(active, keep(d, d2));
+      if (hn::AllFalse(df, in)) continue;
+      for (int j = 1; j < words; ++j) w[j] = draw(skey, counter + static_cast<std::uint32_t>(j));
+      // Compress in registers, then store whole vectors (the buffers have a
+      // vector of slack): the memory form of compress is microcoded and slow
+      // on some CPUs (AMD Zen 4).
+      const auto inu = hn::RebindMask(du, in);
+      const std::size_t at = t.n;
+      hn::StoreU(compress(lane_ids, inu), du, t.lane.data() + at);
+      for (int a = 0; a < E; ++a) hn::StoreU(compress(d[a], in), df, t.d[a].data() + at);
+      std::uint32_t* wd[3] = {t.w0.data(), t.w1.data(), t.w2.data()};
+      for (int j = 0; j < words; ++j) hn::StoreU(compress(w[j], inu), du, wd[j] + at);
+      t.n = at + hn::CountTrue(df, in);
+    }
+  }
+}
+
+// The unfiltered kernel of every kept impulse (gabor<D>::eval's pair), into
+// t.val (and with G, the gradient terms u d_a - v phi_a into t.g).
+template <int D, bool G>
+void eval_unfiltered(const consts<D>& c, tuples& t) {
+  const DF df;
+  const DU du;
+  const std::size_t lanes = hn::Lanes(df);
+  for (std::size_t i = 0; i < t.n; i += lanes) {
+    VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
+               hn::LoadU(du, t.w2.data() + i)};
+    VF wt, phi[3];
+    marks<D>(c, w, wt, phi);
+    axis ax[3];
+    for (int a = 0; a < D; ++a)
+      ax[a] = axis_factors(hn::LoadU(df, t.d[a].data() + i), c.neg_a, phi[a]);
+    row r;
+    if constexpr (D == 2)
+      r = row_of(wt, ax[1]);
+    else
+      r = row_of(wt, ax[1], ax[2]);
+    if constexpr (G) {
+      VF v, u, vv;
+      pair_gradient(ax[0], r, c.k, c.a, v, u, vv);
+      hn::StoreU(v, df, t.val.data() + i);
+      for (int a = 0; a < D; ++a)
+        hn::StoreU(hn::Sub(hn::Mul(u, ax[a].d), hn::Mul(vv, phi[a])), df, t.g[a].data() + i);
+    } else {
+      hn::StoreU(pair(ax[0], r, c.k), df, t.val.data() + i);
+    }
+  }
+}
+
+// Per-lane filters of a batch (gabor<D>::filtered_eval): gabor_filter<D> of each lane's
+// footprint in double, rounded to float as the scalar code rounds it. Q and M row-major.
+struct lanes_filter {
+  HWY_ALIGN float q[9][kMaxLanes];
+  HWY_ALIGN float m[9][kMaxLanes];
+  HWY_ALIGN float amp[kMaxLanes];
+};
+
+// The filtered kernel of every kept impulse (gabor<D>::filtered_pair, operation by
+// operation), each with its lane's filter (gathered by the tuple's lane).
+template <int D, bool G>
+void eval_filtered(const consts<D>& c, const lanes_filter& f, tuples& t) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const VF zero = hn::Zero(df);
+  for (std::size_t i = 0; i < t.n; i += lanes) {
+    VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
+               hn::LoadU(du, t.w2.data() + i)};
+    const VI li = hn::BitCast(di, hn::LoadU(du, t.lane.data() + i));
+    VF wt, phi[3], d[3], d2[3];
+    marks<D>(c, w, wt, phi);
+    for (int a = 0; a < D; ++a) {
+      d[a] = hn::LoadU(df, t.d[a].data() + i);
+      d2[a] = hn::Mul(d[a], d[a]);
+    }
+    const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
+    VF mu[3], qd[3];
+    VF att = zero, dqd = zero, theta = zero;
+    for (int r = 0; r < D; ++r) {
+      VF x = zero, y = zero, z = zero;
+      for (int col = 0; col < D; ++col) {
+        const VF q = hn::GatherIndex(df, f.q[r * D + col], li);
+        const VF m = hn::GatherIndex(df, f.m[r * D + col], li);
+        x = mul_add(q, phi[col], x);
+        y = mul_add(m, phi[col], y);
+        z = mul_add(q, d[col], z);
+      }
+      mu[r] = x;
+      att = mul_add(phi[r], y, att);
+      qd[r] = z;
+      dqd = mul_add(d[r], z, dqd);
+    }
+    for (int r = 0; r < D; ++r) theta = mul_add(mu[r], d[r], theta);
+    const VF amp = hn::GatherIndex(df, f.amp, li);
+    const VF p =
+        hn::Mul(hn::Mul(hn::Mul(wt, amp), exp_neg(hn::Neg(att))), exp_neg(hn::Mul(c.neg_a, dqd)));
+    VF sn, cs;
+    sincos_turns(theta, sn, cs);
+    if constexpr (G) {
+      VF tau, dtau;
+      taper_derivative(s, c.k, tau, dtau);
+      const VF pc = hn::Mul(p, cs);
+      const VF ps =
+          hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(hn::Mul(p, tau), sn));
+      hn::StoreU(hn::Mul(pc, tau), df, t.val.data() + i);
+      const VF dtau2 = hn::Add(dtau, dtau), a2 = hn::Add(c.a, c.a);
+      for (int r = 0; r < D; ++r) {
+        const VF inner = neg_mul_add(a2, hn::Mul(tau, qd[r]), hn::Mul(dtau2, d[r]));
+        hn::StoreU(neg_mul_add(ps, mu[r], hn::Mul(pc, inner)), df, t.g[r].data() + i);
+      }
+    } else {
+      hn::StoreU(hn::Mul(hn::Mul(p, cs), taper(s, c.k)), df, t.val.data() + i);
+    }
+  }
+}
+
+// Sums each lane's terms in their order and writes value = sum * scale (and
+// gradient = g * gradient scale), NaN for bad lanes. `used` lanes are written.
+template <int D, bool G>
+void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scale, float grad_scale,
+            float* value, float* grad) {
+  float sum[kMaxLanes], g[3][kMaxLanes];
+  const std::size_t lanes = hn::Lanes(DF());
+  std::fill(sum, sum + lanes, 0.0f);
+  if constexpr (G)
+    for (int a = 0; a < D; ++a) std::fill(g[a], g[a] + lanes, 0.0f);
+  for (std::size_t i = 0; i < t.n; ++i) {
+    const std::uint32_t l = t.lane[i];
+    sum[l] += t.val[i];
+    if constexpr (G)
+      for (int a = 0; a < D; ++a) g[a][l] += t.g[a][i];
+  }
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t l = 0; l < used; ++l) {
+    value[l] = sp.bad[l] ? nan : sum[l] * scale;
+    if constexpr (G)
+      for (int a = 0; a < D; ++a) grad[l * D + a] = sp.bad[l] ? nan : g[a][l] * grad_scale;
+  }
+}
+
+// Splits lane l's coordinates x (double) into cell and fraction with the
+// inverse cell side `inv` (gabor<D>::eval's split).
+template <int D>
+HWY_INLINE void split_lane(lanes_split& sp, std::size_t l, const double* x, double inv) {
+  bool bad = false;
+  for (int a = 0; a < D; ++a) {
+    const lattice_coord<float> c = lattice_split<float>(x[a] * inv);
+    sp.cell[a][l] = c.i0;
+    sp.frac[a][l] = c.f;
+    bad = bad || std::isnan(c.f);
+  }
+  sp.bad[l] = bad;
+}
+template <int D>
+HWY_INLINE void clear_lane(lanes_split& sp, std::size_t l) {
+  for (int a = 0; a < 3; ++a) {
+    sp.cell[a][l] = 0;
+    sp.frac[a][l] = 0.5f;
+  }
+  sp.bad[l] = true;
+}
+
+// The vector split of one axis (lattice_split<float>(x * inv) of every lane,
+// bit for bit), valid when every lane's x * inv is finite with |x inv| < 2^31;
+// false (nothing written) otherwise: the caller splits lane by lane.
+HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
+#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
+  const DF df;
+  const hn::Half<DF> dh;
+  const hn::Repartition<double, DF> dd;
+  const hn::Rebind<float, decltype(dd)> df_of_d;
+  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
+  const auto vinv = hn::Set(dd, inv);
+  const auto limit = hn::Set(dd, 2147483648.0);
+  const auto lo = hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), vinv);
+  const auto hi = hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), vinv);
+  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
+    return false;
+  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
+  const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
+                           hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
+  hn::Store(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
+  const DI di;
+  const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
+  hn::Store(hn::BitCast(DU(), c), DU(), cell);
+  return true;
+#else
+  (void)x;
+  (void)inv;
+  (void)cell;
+  (void)frac;
+  return false;
+#endif
+}
+
+// Splits lanes [0, used) of a batch with split_lane (positions pos(i, x), x:
+// D doubles) and marks the rest unused.
+template <int D, class Position>
+void split_lanes(lanes_split& sp, std::size_t first, std::size_t used, double inv, Position pos) {
+  const std::size_t lanes = hn::Lanes(DF());
+  for (std::size_t l = 0; l < lanes; ++l) {
+    if (l < used) {
+      double x[3];
+      pos(first + l, x);
+      split_lane<D>(sp, l, x, inv);
+    } else {
+      clear_lane<D>(sp, l);
+    }
+  }
+}
+
+// Unfiltered solid noise at `count` positions: split(first, used) fills `sp`
+// for the batch of lanes starting at position `first`.
+// The same with eval(consts, tuples, first) filling t.val (and t.g) for the batch of lanes
+// starting at position `first`.
+template <int D, bool G, class Split, class Eval>
+void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
+                 float* grad, Eval eval) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const consts<D> c(g);
+  tuples t;
+  t.reserve(static_cast<std::size_t>(D == 2 ? 9 : 27) * g.table().max_count() * lanes);
+  const int words = g.words_per_impulse();
+  const std::vector<std::int32_t> flipped = flipped_thresholds(g.table());
+  auto keep = [&](const VF* d, const VF* d2) {
+    (void)d;
+    const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
+    return hn::Lt(s, hn::Set(df, 1.0f));
+  };
+  for (std::size_t first = 0; first < count; first += lanes) {
+    const std::size_t used = std::min(lanes, count - first);
+    split(first, used);
+    collect<D>(g.key(), detail::constants::kGaborSolidStream, flipped, words, sp, t, keep);
+    eval(c, t, first);
+    float* gr = G ? grad + first * D : nullptr;
+    finish<D, G>(t, sp, used, float(g.scale()), float(g.scale() * g.inverse_cell()), value + first,
+                 gr);
+  }
+}
+
+template <int D, bool G, class Split>
+void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
+            float* grad) {
+  points_with<D, G>(
+      g, count, sp, split, value, grad,
+      [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G>(c, t); });
+}
+
+// ---- Grids: blocks of samples that share their cell.
+
+// One axis of a grid, split as scalar evaluation splits grid.position(): the
+// cell and fraction of (origin + step i) * inverse cell, and runs of equal
+// cells (at most `cap` long).
+struct grid_axis {
+  std::vector<std::uint32_t> cell;
+  std::vector<float> frac;
+  std::vector<char> bad;
+  std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
+  grid_axis(double origin, double step, std::size_t n, double inv, std::size_t cap)
+      : cell(n), frac(n), bad(n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const lattice_coord<float> c =
+          lattice_split<float>((origin + step * static_cast<double>(i)) * inv);
+      cell[i] = c.i0;
+      frac[i] = c.f;
+      bad[i] = std::isnan(c.f) ? 1 : 0;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (i == 0 || cell[i] != cell[i - 1] || i - run_start.back() == cap) run_start.push_back(i);
+    run_start.push_back(n);
+  }
+  std::size_t runs() const { return run_start.size() - 1; }
+  std::size_t longest_run() const {
+    std::size_t m = 0;
+    for (std::size_t r = 0; r + 1 < run_start.size(); ++r)
+      m = std::max(m, run_start[r + 1] - run_start[r]);
+    return m;
+  }
+};
+
+// The factors of one impulse along one axis of a block: for the block's
+// samples [0, n) (padded to whole vectors with fractions far outside), offset
+// d = (frac - o) - u, d^2 and the axis factors; `lo`, `hi`: the range of
+// samples with d^2 < 1 (contiguous: frac is monotonic within a cell).
+struct block_factors {
+  std::vector<float> d, d2, e, s, c;
+  std::size_t lo = 0, hi = 0;
+  explicit block_factors(std::size_t cap) : d(cap), d2(cap), e(cap), s(cap), c(cap) {}
+  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const VF ou = hn::Set(df, o), uu = hn::Set(df, u);
+    lo = n_pad;
+    hi = 0;
+    for (std::size_t i = 0; i < n_pad; i += lanes) {
+      const VF dv = hn::Sub(hn::Sub(hn::LoadU(df, frac + i), ou), uu);
+      const VF d2v = hn::Mul(dv, dv);
+      hn::StoreU(dv, df, d.data() + i);
+      hn::StoreU(d2v, df, d2.data() + i);
+      if (hn::AllFalse(df, hn::Lt(d2v, hn::Set(df, 1.0f)))) continue;
+      lo = std::min(lo, i);
+      hi = i + lanes;
+      const axis f = axis_factors(dv, neg_a, phi);
+      hn::StoreU(f.e, df, e.data() + i);
+      hn::StoreU(f.s, df, s.data() + i);
+      hn::StoreU(f.c, df, c.data() + i);
+    }
+  }
+};
+
+template <int D, bool G>
+struct grid_kernel {
+  const gabor<D>& g;
+  const consts<D> c;
+  std::size_t cap[3];
+  std::vector<float> acc, gacc[3];
+  std::size_t stride = 0;  // floats per block row
+  // The block's fractions per axis, padded (x to whole vectors).
+  std::vector<float> frac[3];
+  block_factors fx, fy, fz;
+
+  explicit grid_kernel(const gabor<D>& noise, std::size_t cx, std::size_t cy, std::size_t cz)
+      : g(noise),
+        c(noise),
+        cap{cx, cy, cz},
+        fx(cx + kMaxLanes),
+        fy(cy + kMaxLanes),
+        fz(cz + kMaxLanes) {
+    stride = cx + kMaxLanes;
+    const std::size_t cells = stride * cy * cz;
+    acc.resize(cells);
+    if (G)
+      for (int a = 0; a < D; ++a) gacc[a].resize(cells);
+    for (int a = 0; a < 3; ++a) frac[a].resize(cap[a] + kMaxLanes);
+  }
+
+  // One block: samples [i0, i0 + nx) x [j0, j0 + ny) x [k0, k0 + nz) of the
+  // axes, all in the cell (ax.cell[i0], ay.cell[j0], az.cell[k0]).
+  void block(const grid_axis* axes, std::size_t i0, std::size_t nx, std::size_t j0, std::size_t ny,
+             std::size_t k0, std::size_t nz, const hush::grid<D>& gr, float* value, float* grad) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::size_t nx_pad = (nx + lanes - 1) / lanes * lanes;
+    const std::size_t n[3] = {nx, ny, nz}, first[3] = {i0, j0, k0};
+    for (int a = 0; a < D; ++a) {
+      std::copy(axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a]),
+                axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a] + n[a]),
+                frac[a].begin());
+      std::fill(frac[a].begin() + static_cast<std::ptrdiff_t>(n[a]), frac[a].end(),
+                4.0f);  // d^2 > 1
+    }
+    const std::size_t rows = ny * nz;
+    std::fill(acc.begin(), acc.begin() + static_cast<std::ptrdiff_t>(rows * stride), 0.0f);
+    if constexpr (G)
+      for (int a = 0; a < D; ++a)
+        std::fill(gacc[a].begin(), gacc[a].begin() + static_cast<std::ptrdiff_t>(rows * stride),
+                  0.0f);
+    const std::uint32_t base[3] = {axes[0].cell[i0], axes[1].cell[j0],
+                                   D == 3 ? axes[D - 1].cell[k0] : 0u};
+    const VF one = hn::Set(df, 1.0f);
+    constexpr int kCells = D == 2 ? 9 : 27;
+    for (int cn_i = 0; cn_i < kCells; ++cn_i) {
+      int o[3] = {0, 0, 0};
+      std::uint32_t cell[D];
+      for (int a = 0, m = cn_i; a < D; ++a, m /= 3) {
+        o[a] = m % 3 - 1;
+        cell[a] = base[a] + static_cast<std::uint32_t>(o[a]);
+      }
+      g.for_each_impulse(cell, [&](const std::uint32_t* w) {
+        float u[3];
+        for (int a = 0; a < D; ++a) u[a] = gabor<D>::template impulse_position<float>(w, a);
+        float mv[4] = {}, wt;
+        vec<float, D> phi;
+        g.template mark_values<float>(w, mv);
+        g.marks().template draw<float>(mv, wt, phi);
+        fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(o[1]), u[1], c.neg_a,
+                   hn::Set(df, phi[1]));
+        if (fy.lo >= fy.hi) return;
+        if constexpr (D == 3) {
+          fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(o[2]), u[2], c.neg_a,
+                     hn::Set(df, phi[2]));
+          if (fz.lo >= fz.hi) return;
+        }
+        fx.compute(frac[0].data(), nx_pad, float(o[0]), u[0], c.neg_a, hn::Set(df, phi[0]));
+        if (fx.lo >= fx.hi) return;
+        const VF phx = hn::Set(df, phi[0]);
+        for (std::size_t kk = 0; kk < nz; ++kk) {
+          if constexpr (D == 3)
+            if (!(fz.d2[kk] < 1.0f)) continue;
+          for (std::size_t jj = std::min(fy.lo, ny); jj < std::min(fy.hi, ny); ++jj) {
+            if (!(fy.d2[jj] < 1.0f)) continue;
+            detail::gabor_row<float> r;
+            if constexpr (D == 2) {
+              r = detail::gabor_row_of(
+                  wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]});
+            } else {
+              r = detail::gabor_row_of(
+                  wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]},
+                  detail::gabor_axis<float>{fz.d[kk], fz.d2[kk], fz.e[kk], fz.s[kk], fz.c[kk]});
+            }
+            const row rv{hn::Set(df, r.we), hn::Set(df, r.c), hn::Set(df, r.s), hn::Set(df, r.d2)};
+            float* arow = acc.data() + (kk * ny + jj) * stride;
+            for (std::size_t ii = fx.lo; ii < fx.hi; ii += lanes) {
+              axis xa;
+              xa.d = hn::LoadU(df, fx.d.data() + ii);
+              xa.d2 = hn::LoadU(df, fx.d2.data() + ii);
+              xa.e = hn::LoadU(df, fx.e.data() + ii);
+              xa.s = hn::LoadU(df, fx.s.data() + ii);
+              xa.c = hn::LoadU(df, fx.c.data() + ii);
+              const MF in = hn::Lt(hn::Add(xa.d2, rv.d2), one);
+              if constexpr (G) {
+                VF v, uu, vv;
+                pair_gradient(xa, rv, c.k, c.a, v, uu, vv);
+                hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), hn::IfThenElseZero(in, v)), df,
+                           arow + ii);
+                const VF dd[3] = {xa.d, hn::Set(df, fy.d[jj]),
+                                  hn::Set(df, D == 3 ? fz.d[kk] : 0.0f)};
+                const VF ph[3] = {phx, hn::Set(df, phi[1]),
+                                  hn::Set(df, D == 3 ? phi[D - 1] : 0.0f)};
+                for (int a = 0; a < D; ++a) {
+                  float* grow = gacc[a].data() + (kk * ny + jj) * stride;
+                  const VF term = hn::Sub(hn::Mul(uu, dd[a]), hn::Mul(vv, ph[a]));
+                  hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), hn::IfThenElseZero(in, term)), df,
+                             grow + ii);
+                }
+              } else {
+                hn::StoreU(
+                    hn::Add(hn::LoadU(df, arow + ii), hn::IfThenElseZero(in, pair(xa, rv, c.k))),
+                    df, arow + ii);
+              }
+            }
+          }
+        }
+      });
+    }
+    // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
+    // coordinate of the sample is not finite.
+    const float scale = float(g.scale()), gscale = float(g.scale() * g.inverse_cell());
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::size_t gx = gr.size[0], gy = gr.size[1];
+    for (std::size_t kk = 0; kk < nz; ++kk)
+      for (std::size_t jj = 0; jj < ny; ++jj) {
+        const bool row_bad = axes[1].bad[j0 + jj] || (D == 3 && axes[D - 1].bad[k0 + kk]);
+        const std::size_t out_row = ((k0 + kk) * gy + (j0 + jj)) * gx + i0;
+        const float* arow = acc.data() + (kk * ny + jj) * stride;
+        for (std::size_t ii = 0; ii < nx; ++ii) {
+          const bool bad = row_bad || axes[0].bad[i0 + ii];
+          value[out_row + ii] = bad ? nan : arow[ii] * scale;
+          if constexpr (G)
+            for (int a = 0; a < D; ++a)
+              grad[(out_row + ii) * D + static_cast<std::size_t>(a)] =
+                  bad ? nan : gacc[a][(kk * ny + jj) * stride + ii] * gscale;
+        }
+      }
+  }
+};
+
+// A grid: blocks of shared cells when there are enough samples per cell along
+// x, else the points path on the grid's positions.
+template <int D, bool G>
+void grid(const gabor<D>& g, const hush::grid<D>& gr, float* value, float* grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell();
+  const std::size_t caps[3] = {64, D == 2 ? 64u : 32u, 16};
+  std::vector<grid_axis> axes;
+  for (int a = 0; a < D; ++a) axes.emplace_back(gr.origin[a], gr.step[a], gr.size[a], inv, caps[a]);
+  const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
+  const std::size_t nx = gr.size[0], ny = gr.size[1];
+  if (per_cell < kMinRun) {
+    lanes_split sp;
+    auto split = [&](std::size_t first, std::size_t used) {
+      for (std::size_t l = 0; l < lanes; ++l) {
+        if (l >= used) {
+          clear_lane<D>(sp, l);
+          continue;
+        }
+        const std::size_t idx = first + l, i = idx % nx, j = (idx / nx) % ny, k = idx / (nx * ny);
+        const std::size_t ijk[3] = {i, j, k};
+        bool bad = false;
+        for (int a = 0; a < D; ++a) {
+          sp.cell[a][l] = axes[a].cell[ijk[a]];
+          sp.frac[a][l] = axes[a].frac[ijk[a]];
+          bad = bad || axes[a].bad[ijk[a]];
+        }
+        sp.bad[l] = bad;
+      }
+    };
+    points<D, G>(g, gr.count(), sp, split, value, grad);
+    return;
+  }
+  // Block buffers sized by the longest runs, not the caps: small grids do not pay for
+  // (and page-fault in) buffers they never fill.
+  grid_kernel<D, G> kernel(g, axes[0].longest_run(), axes[1].longest_run(),
+                           D == 3 ? axes[D - 1].longest_run() : 1);
+  const std::size_t zruns = D == 3 ? axes[D - 1].runs() : 1;
+  for (std::size_t zr = 0; zr < zruns; ++zr) {
+    const std::size_t k0 = D == 3 ? axes[D - 1].run_start[zr] : 0;
+    const std::size_t k1 = D == 3 ? axes[D - 1].run_start[zr + 1] : 1;
+    for (std::size_t yr = 0; yr < axes[1].runs(); ++yr) {
+      const std::size_t j0 = axes[1].run_start[yr], j1 = axes[1].run_start[yr + 1];
+      for (std::size_t xr = 0; xr < axes[0].runs(); ++xr) {
+        const std::size_t i0 = axes[0].run_start[xr], i1 = axes[0].run_start[xr + 1];
+        kernel.block(axes.data(), i0, i1 - i0, j0, j1 - j0, k0, k1 - k0, gr, value, grad);
+      }
+    }
+  }
+}
+
+}  // namespace gabor_simd
+
+// Gabor noise at n interleaved float points; values into value[n],
+// interleaved gradients into grad[D n] unless grad is null.
+template <int D>
+void gabor_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad) {
+  namespace gs = gabor_simd;
+  const gs::DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell();
+  gs::lanes_split sp;
+  auto split = [&](std::size_t first, std::size_t used) {
+    if (used == lanes) {  // whole vectors: split in lanes when every lane is ordinary
+      gs::VF c[3];
+      if constexpr (D == 2)
+        hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
+      else
+        hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
+      bool ok = true;
+      for (int a = 0; a < D && ok; ++a) ok = gs::split_axis(c[a], inv, sp.cell[a], sp.frac[a]);
+      if (ok) {
+        std::fill(sp.bad, sp.bad + lanes, false);
+        return;
+      }
+    }
+    gs::split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
+      for (int a = 0; a < D; ++a)
+        x[a] = static_cast<double>(pts[i * D + static_cast<std::size_t>(a)]);
+    });
+  };
+  if (grad)
+    gs::points<D, true>(g, n, sp, split, value, grad);
+  else
+    gs::points<D, false>(g, n, sp, split, value, nullptr);
+}
+inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
+                          float* grad) {
+  gabor_points<2>(g, xy, n, value, grad);
+}
+inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
+                          float* grad) {
+  gabor_points<3>(g, xyz, n, value, grad);
+}
+
+// Gabor noise filtered over footprints (gabor<D>::sample(p, fp), no normals) at n
+// interleaved float points; values into value[n], interleaved gradients into grad[D n]
+// unless grad is null.
+template <int D>
+void gabor_filtered(const gabor<D>& g, const float* pts, const footprint<D>* fps, std::size_t n,
+                    float* value, float* grad) {
+  namespace gs = gabor_simd;
+  const gs::DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell(), a = g.kernel().envelope_exponent();
+  gs::lanes_split sp;
+  gs::lanes_filter filt;
+  auto split = [&](std::size_t first, std::size_t used) {
+    gs::split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
+      for (int c = 0; c < D; ++c)
+        x[c] = static_cast<double>(pts[i * D + static_cast<std::size_t>(c)]);
+    });
+    for (std::size_t l = 0; l < lanes; ++l) {
+      if (l >= used) {  // unused lanes keep no impulse (bad): any finite filter
+        for (int e = 0; e < D * D; ++e) filt.q[e][l] = filt.m[e][l] = 0.0f;
+        filt.amp[l] = 0.0f;
+        continue;
+      }
+      const gabor_filter<D> fl(fps[first + l], a, inv);
+      for (int r = 0; r < D; ++r)
+        for (int c = 0; c < D; ++c) {
+          filt.q[r * D + c][l] = static_cast<float>(fl.q[r][c]);
+          filt.m[r * D + c][l] = static_cast<float>(fl.m[r][c]);
+        }
+      filt.amp[l] = static_cast<float>(fl.amplitude);
+    }
+  };
+  if (grad)
+    gs::points_with<D, true>(g, n, sp, split, value, grad,
+                             [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
+                               gs::eval_filtered<D, true>(c, filt, t);
+                             });
+  else
+    gs::points_with<D, false>(g, n, sp, split, value, nullptr,
+                              [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
+                                gs::eval_filtered<D, false>(c, filt, t);
+                              });
+}
+inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                            std::size_t n, float* value, float* grad) {
+  gabor_filtered<2>(g, xy, fps, n, value, grad);
+}
+inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                            std::size_t n, float* value, float* grad) {
+  gabor_filtered<3>(g, xyz, fps, n, value, grad);
+}
+
+// Gabor noise on a uniform grid (C order, i fastest); gradients interleaved
+// (D per sample) unless grad is null.
+template <int D>
+void gabor_grid(const gabor<D>& g, const grid<D>& gr, float* value, float* grad) {
+  if (grad)
+    gabor_simd::grid<D, true>(g, gr, value, grad);
+  else
+    gabor_simd::grid<D, false>(g, gr, value, nullptr);
+}
+inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
+  gabor_grid<2>(g, gr, value, grad);
+}
+inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
+  gabor_grid<3>(g, gr, value, grad);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_GABOR_INL_H_ toggle
+// ---- end hush/simd/gabor-inl.h
 // ---- begin hush/simd/perlin-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -9101,6 +11756,19 @@ HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& 
 // Coherent noise: one recursive-filter pass over a frame (hush/simd/coherent-inl.h;
 // the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
 HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
+// Gabor noise (hush/gabor.hpp): points (interleaved), whole grids (no slabs), and
+// points with footprints (filtered samples); same conventions. hush/simd/gabor-inl.h states
+// the agreement with scalar evaluation.
+HUSH_SIMD_ENTRY void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                                     std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                                     std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad);
 
 // Anisotropic noise (hush/simd/anisotropic-inl.h): n samples at interleaved
 // positions xy, with footprints fp (3 floats each, null = points) and surface
@@ -9178,6 +11846,28 @@ inline void anisotropic_samples(const anisotropic& a, const float* xy, const flo
 }
 inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
   HWY_STATIC_DISPATCH(anisotropic_grid)(a, g, value);
+}
+inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
+                          float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_points)(g, xy, n, value, grad);
+}
+inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
+                          float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_points)(g, xyz, n, value, grad);
+}
+inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_grid)(g, gr, value, grad);
+}
+inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                            std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_filtered)(g, xy, fps, n, value, grad);
+}
+inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                            std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
+}
+inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -9336,6 +12026,52 @@ struct simd_kernel<anisotropic> {
         s.has_footprints() ? reinterpret_cast<const float*>(s.footprints.data()) : nullptr,
         s.has_surface_maps() ? reinterpret_cast<const float*>(s.surface_maps.data()) : nullptr,
         s.size(), out);
+  }
+};
+
+// Gabor noise: points, grids, and samples with footprints (with normals: scalar).
+template <int D>
+struct simd_kernel<gabor<D>> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void samples(const gabor<D>& g, const hush::samples<D>& s, float* out,
+                      vec<float, D>* grad) {
+    if (s.has_normals()) {  // surface noise: the scalar path
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        if (grad) {
+          const auto r = g.template sample_value_and_gradient<float>(s.at(i));
+          out[i] = r.value;
+          grad[i] = r.gradient;
+        } else {
+          out[i] = g.template sample_value<float>(s.at(i));
+        }
+      }
+      return;
+    }
+    const auto* p = reinterpret_cast<const float*>(s.positions.data());
+    auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_filtered(g, p, s.footprints.data(), s.size(), out, gr);
+    else
+      simd::gabor3_filtered(g, p, s.footprints.data(), s.size(), out, gr);
+  }
+
+  static void points(const gabor<D>& g, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_points(g, p, count, out, gr);
+    else
+      simd::gabor3_points(g, p, count, out, gr);
+  }
+  static void grid(const gabor<D>& g, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    auto* gp = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_grid(g, gr, out, gp);
+    else
+      simd::gabor3_grid(g, gr, out, gp);
   }
 };
 
@@ -9721,1555 +12457,6 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 
 #endif  // HUSH_EXEC_HPP
 // ---- end hush/exec.hpp
-// ---- begin hush/gabor.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
-// sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
-// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
-// weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
-// analytic anti-aliasing.
-//
-//   hush::gabor<2>::params prm;                  // isotropic, F0 = 1, a = 0.8, N' = 16
-//   prm.kind = hush::gabor_kind::anisotropic;
-//   prm.orientation = 0.25 * 3.14159;            // omega0, radians
-//   hush::gabor<2> noise{prm};
-//   float v = noise(hush::vec2{x, y});                              // unit variance
-//   float f = noise.sample(hush::vec2{x, y},                        // filtered over a pixel
-//                          hush::footprint<2>::from_derivatives(dpdx, dpdy));
-//   hush::gabor<3> solid{hush::gabor<3>::params{}};
-//   float s = solid.sample(p, normal, fp);       // surface noise (sec. 4.3)
-//
-// The noise (paper sec. 3.2, eq. 6): n(x) = scale sum_i w_i g_{F_i}(x - x_i),
-//  - impulses x_i: a Poisson process of density lambda = N' / (V_D r^D), so
-//    that N' kernels overlap a point on average (N' = `impulses`; V_D the
-//    volume of the unit ball, r the kernel radius). Space is cut into cells of
-//    side r; cell c's impulses come from its own stream
-//    hush::rng(lattice_hash(key, c), kGaborSolidStream), key = seed_key(seed):
-//    the count from the first word through hush::poisson_table (integer
-//    comparisons, so every backend draws the same counts), then per impulse
-//    16-bit halves of the next words: position in the cell, weight, then the
-//    orientation and frequency its kind draws (gabor_marks below). Cells are
-//    32-bit (core/lattice.hpp): any seed, any cell, period 2^32 cells.
-//  - weights w_i uniform in (-1, 1) (symmetric 16-bit values, E[w^2] =
-//    (1 - 2^-32) / 3), so the noise has mean 0;
-//  - kinds (paper sec. 3.3): anisotropic (every F_i = F0 omega0), isotropic
-//    (omega_i uniform on the circle or sphere), hybrid (omega_i uniform in an
-//    orientation range around omega0 of width orientation_spread: an arc in 2D,
-//    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
-//    frequency_spread / 2).
-//
-// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
-//  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
-//    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
-//    make it independent of the count distribution beyond its mean, which is
-//    the Poisson table's exact mean), with the kernel energy integrated by
-//    quadrature (exact, not the paper's approximation K^2 / 4a^2).
-//  - power spectrum: lambda E[w^2] E[|g^_F(f)|^2] scale^2 (paper eq. 8),
-//    power_spectrum(f); isotropic noise's is a ring at |f| = F0, anisotropic
-//    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
-//  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
-//    magnitude); the observed maximum is far smaller (tests).
-//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
-//    analytic derivative.
-//  - float evaluation is within 2^-21 (1 + 2 pi Phi) sqrt(N') ... see
-//    float_budget(); measured in tests/gabor_test.cpp.
-//  - domain: every finite coordinate (positions are split into cell and
-//    fraction in double, so precision does not degrade far from the origin);
-//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
-//
-// Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
-// convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
-// (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
-// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
-// kept within the kernel's support. A point footprint gives exactly the
-// unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
-// HARD_CASES row 12) gives a finite result, continuous in the footprint, which
-// tends to the mean 0 as the footprint grows.
-//
-// Surface noise (3D, paper sec. 4.3): sample(p, normal[, footprint]) evaluates
-// 2D kernels in the tangent plane of the surface at p. The impulses of a
-// second 3D process (stream kGaborSurfaceStream, cells of side r sqrt(3/2))
-// that lie in the slab |<n, x - x_i>| < h = r / sqrt 2 contribute the 2D
-// kernel of their projection onto the plane, weighted by the taper of their
-// distance to it. The projection of a Poisson process in a slab is a 2D
-// Poisson process, so on a plane the surface noise has exactly the 2D noise's
-// spectrum and unit variance, with no slicing of a 3D spectrum. Isotropic and
-// hybrid impulses carry a 3D direction whose projection (normalised) is their
-// orientation in the plane (uniform on the circle for isotropic noise, for
-// every normal); anisotropic noise projects omega0 without normalising
-// (frequency F0 |P omega0|: the asked-for spectrum where omega0 lies in the
-// tangent plane, continuous everywhere). Footprints are projected onto the
-// tangent plane. A zero normal evaluates the solid noise; a non-finite normal
-// gives NaN.
-#ifndef HUSH_GABOR_HPP
-#define HUSH_GABOR_HPP
-
-#include <array>
-#include <cmath>
-#include <cstdint>
-#include <limits>
-#include <memory>
-#include <string>
-#include <vector>
-
-// ---- begin hush/detail/elementary.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// exp and sin/cos that evaluate the same operations in scalar code, in every
-// SIMD target (hush/simd/elementary-inl.h mirrors them operation by
-// operation) and in GLSL (hush/glsl/gabor_glsl.hpp), so that noises built on
-// them can be bit-identical between scalar and SIMD evaluation (std::exp and
-// Highway's Exp differ in their last bits). In double they are the C
-// library's functions: the double instantiation of a noise is its reference.
-//
-//   exp_neg<T>(x)          e^x for x <= 0 (x > 0 is taken as 0)
-//   sincos_turns<T>(t)     {sin(2 pi t), cos(2 pi t)}, t in turns
-//
-// Float accuracy (tests/core/elementary_test.cpp measures it over the whole
-// range): exp_neg within 2^-22 relative (polynomial 2.5e-9 plus the
-// roundings of the reduction and of seven multiply-adds), and exactly 0 below
-// kExpFloor = -87; sincos_turns within 2^-23 absolute for every finite t (the
-// reduction to a quarter turn is exact). Non-finite arguments give NaN
-// (exp_neg of -Inf gives 0).
-#ifndef HUSH_DETAIL_ELEMENTARY_HPP
-#define HUSH_DETAIL_ELEMENTARY_HPP
-
-#include <cmath>
-#include <cstdint>
-#include <cstring>
-#include <type_traits>
-
-
-namespace hush {
-namespace detail {
-
-template <class T>
-struct sin_cos {
-  T sin, cos;
-};
-
-// e^x for x <= 0; x > 0 is clamped to 0 (the callers' arguments are minus a
-// non-negative quantity, which rounding can push a few ulp above 0).
-template <class T>
-HUSH_INLINE T exp_neg(T x) {
-  namespace c = constants;
-  if constexpr (std::is_same<T, double>::value) {
-    return std::exp(x > 0.0 ? 0.0 : x);  // NaN stays NaN
-  } else {
-    static_assert(std::is_same<T, float>::value, "exp_neg<T>: T is float or double");
-    if (!(x >= float(c::kExpFloor))) return x == x ? 0.0f : x;  // below the floor, or NaN
-    if (x > 0.0f) x = 0.0f;
-    const float n = std::floor(x * float(c::kLog2E) + 0.5f);  // in [-126, 0]
-    const float r = (x - n * float(c::kLn2Hi)) - n * float(c::kLn2Lo);
-    float p = float(c::kExpPoly[c::kExpDegree]);
-    for (int i = c::kExpDegree - 1; i >= 0; --i) p = p * r + float(c::kExpPoly[i]);
-    // 2^n from the exponent field: n + 127 in [1, 127], a normal float.
-    const std::uint32_t bits = static_cast<std::uint32_t>(static_cast<int>(n) + 127) << 23;
-    float scale;
-    std::memcpy(&scale, &bits, sizeof scale);
-    return p * scale;
-  }
-}
-
-// {sin(2 pi t), cos(2 pi t)}: t = q/4 + r with q = floor(4t + 1/2) quarter
-// turns and r = t - q/4 in [-1/8, 1/8], both exact for |t| < 2^22; larger t
-// (and NaN, Inf) are first replaced by t - floor(t), exact for every finite t
-// (a float that large has at most one fractional bit), so 4t never overflows.
-// The quadrant k = q mod 4 is kept in floating point, so no non-finite value
-// is ever converted to an integer, and rotates (sin 2 pi r, cos 2 pi r). The
-// reduction is exact for every finite t: the accuracy does not depend on |t|.
-template <class T>
-HUSH_INLINE sin_cos<T> sincos_turns(T t) {
-  namespace c = constants;
-  const T u = std::fabs(t) < T(c::kTurnsReduceLimit) ? t : t - std::floor(t);
-  const T q = std::floor(u * T(4) + T(0.5));
-  const T r = u - q * T(0.25);
-  T s, co;
-  if constexpr (std::is_same<T, double>::value) {
-    s = std::sin(c::kTwoPi * r);
-    co = std::cos(c::kTwoPi * r);
-  } else {
-    static_assert(std::is_same<T, float>::value, "sincos_turns<T>: T is float or double");
-    const float z = r * r;
-    float ps = float(c::kSinPoly[c::kSinDegree]);
-    for (int i = c::kSinDegree - 1; i >= 0; --i) ps = ps * z + float(c::kSinPoly[i]);
-    float pc = float(c::kCosPoly[c::kCosDegree]);
-    for (int i = c::kCosDegree - 1; i >= 0; --i) pc = pc * z + float(c::kCosPoly[i]);
-    s = r * ps;
-    co = pc;
-  }
-  const T k = q - T(4) * std::floor(q * T(0.25));  // 0, 1, 2 or 3 (NaN for NaN t)
-  const bool odd = k == T(1) || k == T(3);
-  const T sin_sign = k >= T(2) ? T(-1) : T(1);
-  const T cos_sign = (k == T(1) || k == T(2)) ? T(-1) : T(1);
-  return {(odd ? co : s) * sin_sign, (odd ? s : co) * cos_sign};
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_DETAIL_ELEMENTARY_HPP
-// ---- end hush/detail/elementary.hpp
-// ---- begin hush/detail/quadrature.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Numerical integration for the statistics hush computes at construction
-// (a noise's exact variance and power spectrum when no closed form exists),
-// in double, from the C library's cos only, so results are the same wherever
-// that is correctly rounded (glibc).
-//
-//   gauss_legendre_rule()          the 16-point Gauss-Legendre rule on [-1, 1]
-//   integrate(f, lo, hi, panels)   composite 16-point rule: exact for polynomials
-//                                  of degree 31 per panel; for smooth f the error
-//                                  falls geometrically with the panel count
-//   bessel_j0(z)                   J0 by the trapezoidal rule on its integral
-//                                  representation (periodic integrand: the error is
-//                                  below 2 |J_N(z)|, under 1e-15 with N = 2|z| + 40)
-#ifndef HUSH_DETAIL_QUADRATURE_HPP
-#define HUSH_DETAIL_QUADRATURE_HPP
-
-#include <array>
-#include <cmath>
-
-
-namespace hush {
-namespace detail {
-
-constexpr int kGaussPoints = 16;
-
-struct gauss_rule {
-  std::array<double, kGaussPoints> node, weight;
-};
-
-// Nodes (roots of P_16) by Newton's iteration from Tricomi's initial guesses,
-// weights 2 / ((1 - x^2) P_16'(x)^2). Computed once.
-inline const gauss_rule& gauss_legendre_rule() {
-  static const gauss_rule rule = [] {
-    gauss_rule g{};
-    constexpr int n = kGaussPoints;
-    for (int i = 0; i < n; ++i) {
-      double x = std::cos(constants::kPi * (i + 0.75) / (n + 0.5));
-      double dp = 1.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = x;  // P_0, P_1, then the recurrence up to P_n
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (x * p1 - p0) / (x * x - 1.0);
-        const double dx = p1 / dp;
-        x -= dx;
-        if (std::fabs(dx) < 1e-16) break;
-      }
-      g.node[static_cast<std::size_t>(i)] = x;
-      g.weight[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
-    }
-    return g;
-  }();
-  return rule;
-}
-
-// The integral of f over [lo, hi] by the 16-point rule on `panels` equal panels.
-template <class F>
-double integrate(F f, double lo, double hi, int panels) {
-  const gauss_rule& g = gauss_legendre_rule();
-  const double h = (hi - lo) / panels;
-  double sum = 0.0;
-  for (int p = 0; p < panels; ++p) {
-    const double mid = lo + (p + 0.5) * h, half = 0.5 * h;
-    double s = 0.0;
-    for (int i = 0; i < kGaussPoints; ++i)
-      s += g.weight[static_cast<std::size_t>(i)] *
-           f(mid + half * g.node[static_cast<std::size_t>(i)]);
-    sum += s * half;
-  }
-  return sum;
-}
-
-// J0(z) to ~1e-15 absolute: the power series for |z| < 8 (terms up to 113:
-// two digits of cancellation); the trapezoidal rule on
-// J0(z) = (1/2pi) int_0^2pi cos(z cos t) dt for 8 <= |z| < 25 (periodic
-// integrand: error below 2 |J_n(z)| with n = 2 ceil(|z|) + 40 points); Hankel's
-// asymptotic expansion beyond (Abramowitz and Stegun 9.2.5, summed while its
-// terms fall, the smallest below e^-2|z| < 2e-22).
-inline double bessel_j0(double z) {
-  const double x = std::fabs(z);
-  if (x < 8.0) {
-    const double q = -0.25 * x * x;
-    double term = 1.0, sum = 1.0;
-    for (int k = 1; k < 60 && std::fabs(term) > 1e-18; ++k) {
-      term *= q / (static_cast<double>(k) * k);
-      sum += term;
-    }
-    return sum;
-  }
-  if (x < 25.0) {
-    const int n = 2 * static_cast<int>(std::ceil(x)) + 40;
-    double s = 0.0;
-    for (int i = 0; i < n; ++i) s += std::cos(x * std::cos(constants::kTwoPi * i / n));
-    return s / n;
-  }
-  double p = 0.0, q = 0.0, term = 1.0, last = 2.0;
-  for (int k = 0; k < 60; ++k) {
-    if (k > 0) {
-      const double odd = 2.0 * k - 1.0;
-      term *= -odd * odd / (k * 8.0 * x);
-    }
-    if (std::fabs(term) >= last) break;  // the asymptotic series starts to diverge
-    last = std::fabs(term);
-    // Terms alternate between P (even k, signs + - + ...) and Q (odd k).
-    const double sign = (k / 2) % 2 == 0 ? 1.0 : -1.0;
-    if (k % 2 == 0)
-      p += sign * term;
-    else
-      q += sign * term;
-  }
-  const double chi = x - 0.25 * constants::kPi;
-  return std::sqrt(2.0 / (constants::kPi * x)) * (p * std::cos(chi) - q * std::sin(chi));
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_DETAIL_QUADRATURE_HPP
-// ---- end hush/detail/quadrature.hpp
-// ---- begin hush/gabor_kernel.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
-// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
-//
-//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
-//
-// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
-// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
-// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
-// what NPR Gabor noise splats, so it lives here once, for both:
-//
-//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
-//   double r = k.radius();                               // support radius
-//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
-//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
-//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
-//
-// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
-// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
-// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
-// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
-// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
-// every noise built on it are C1:
-//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
-//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
-//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
-//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
-//     and F >> a (tests/gabor_kernel_test.cpp).
-//
-// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
-// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
-// frequency is Phi = F r cycles per cell. The float path is separable:
-//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
-//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
-// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
-// share each axis's factors between samples and SIMD repeats it bit for bit.
-// value<double> is the reference (C library exp, sin, cos); float values are
-// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
-// measured 3e-7 (tests/gabor_kernel_test.cpp).
-//
-// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
-// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
-// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
-// (untruncated_power_spectrum). The tapered kernel's transform is
-// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
-// envelope, computed by quadrature (envelope_transform, power_spectrum,
-// energy): exact to ~1e-13 relative, no closed form exists.
-//
-// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
-// covariance Sigma (noise units) is again a Gabor kernel,
-//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
-//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
-//   Q = (I + 2 pi a^2 Sigma)^-1,
-// derived in docs/gabor.md (complete the square in the product of the two
-// transforms). gabor_filter<D> computes Q and the constants from a footprint;
-// the taper is kept at the unfiltered support.
-#ifndef HUSH_GABOR_KERNEL_HPP
-#define HUSH_GABOR_KERNEL_HPP
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <type_traits>
-
-
-namespace hush {
-namespace detail {
-
-// ---- The kernel in cell units, operation by operation as the SIMD kernels
-// (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
-
-// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), k = 1 / (1 - s0),
-// and its derivative dtau/ds = -6 k v (1 - v). Callers only pass s < 1.
-template <class T>
-struct gabor_taper_value {
-  T tau, dtau;
-};
-template <class T>
-HUSH_INLINE T gabor_taper(T s, T k) {
-  T v = (T(1) - s) * k;
-  v = v < T(1) ? v : T(1);
-  return (v * v) * (T(3) - T(2) * v);
-}
-template <class T>
-HUSH_INLINE gabor_taper_value<T> gabor_taper_derivative(T s, T k) {
-  T v = (T(1) - s) * k;
-  v = v < T(1) ? v : T(1);
-  return {(v * v) * (T(3) - T(2) * v), (T(-6) * k) * (v * (T(1) - v))};
-}
-
-// One axis of the separable kernel: offset d (cell units), d^2, the envelope
-// factor e^{-A d^2} and sin/cos(2 pi phi d).
-template <class T>
-struct gabor_axis {
-  T d, d2, e, s, c;
-};
-template <class T>
-HUSH_INLINE gabor_axis<T> gabor_axis_factors(T d, T neg_a, T phi) {
-  gabor_axis<T> f;
-  f.d = d;
-  f.d2 = d * d;
-  f.e = exp_neg(neg_a * f.d2);
-  const sin_cos<T> sc = sincos_turns(phi * d);
-  f.s = sc.sin;
-  f.c = sc.cos;
-  return f;
-}
-
-// What the kernel of one impulse is along every axis but x: its weight times
-// the envelope factors, the harmonic's cos and sin, and the squared offset.
-template <class T>
-struct gabor_row {
-  T we, c, s, d2;
-};
-template <class T>
-HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y) {
-  return {w * y.e, y.c, y.s, y.d2};
-}
-template <class T>
-HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y, const gabor_axis<T>& z) {
-  return {w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2};
-}
-
-// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1.
-template <class T>
-HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
-  const T s = x.d2 + r.d2;
-  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * gabor_taper(s, taper_k);
-}
-// The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
-template <class T>
-struct gabor_pair_gradient {
-  T value, u, v;
-};
-template <class T>
-HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
-                                                            const gabor_row<T>& r, T taper_k, T a) {
-  const T s = x.d2 + r.d2;
-  const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
-  const T p = x.e * r.we;
-  const T pc = p * (x.c * r.c - x.s * r.s);
-  const T ps = p * (x.s * r.c + x.c * r.s);
-  // d/dd_a of p cos(theta) tau: p cos (2 d_a tau' - 2 A d_a tau) - 2 pi phi_a p sin tau.
-  return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
-}
-
-// ---- Closed forms and quadratures in cell units (double).
-
-// The radially symmetric part of an integral over the unit ball: int phi(|d|) dd
-// = c_D int_0^1 phi(rho) rho^(D-1) drho, with the integrand split at the taper's
-// start (where the taper has a kink in its second derivative).
-template <int D, class F>
-double ball_integral(F phi, int panels) {
-  const double rho0 = std::sqrt(constants::kGaborTaperStart);
-  auto radial = [&](double rho) { return phi(rho) * (D == 2 ? rho : rho * rho); };
-  const double c = D == 2 ? constants::kTwoPi : 2.0 * constants::kTwoPi;
-  return c * (integrate(radial, 0.0, rho0, panels) + integrate(radial, rho0, 1.0, panels));
-}
-
-// The angular average of cos(2 pi xi rho <u, omega>) over unit u: J0 in 2D,
-// sin(z)/z in 3D, z = 2 pi xi rho.
-template <int D>
-double angular_average(double z) {
-  if constexpr (D == 2) {
-    return bessel_j0(z);
-  } else {
-    return std::fabs(z) < 1e-4 ? 1.0 - z * z / 6.0 : std::sin(z) / z;
-  }
-}
-
-// H(xi): the Fourier transform of the tapered envelope e^{-A |d|^2} tau(|d|^2)
-// at |xi| cycles per cell (radial, real).
-template <int D>
-double gabor_envelope_transform(double a, double xi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 2 * static_cast<int>(std::ceil(std::fabs(xi)));
-  return ball_integral<D>(
-      [&](double rho) {
-        const double s = rho * rho;
-        return std::exp(-a * s) * gabor_taper(s, k) *
-               angular_average<D>(constants::kTwoPi * xi * rho);
-      },
-      panels);
-}
-
-// int g^2 over the cell-unit ball for |Phi| = phi:
-// (1/2) int e^{-2A s} tau^2 (1 + cos(4 pi <Phi, d>)).
-template <int D>
-double gabor_energy(double a, double phi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
-  return 0.5 * ball_integral<D>(
-                   [&](double rho) {
-                     const double s = rho * rho, tau = gabor_taper(s, k);
-                     return std::exp(-2.0 * a * s) * tau * tau *
-                            (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
-                   },
-                   panels);
-}
-
-// int (g - g_Gabor)^2 and int g_Gabor^2 over all space (cell units), for the
-// truncation error. Outside the ball g = 0, and the Gabor kernel's energy there
-// is what the ball integral leaves of the closed form
-// int e^{-2A|d|^2} cos^2 = (pi / 2A)^(D/2) (1 + e^{-2 pi^2 phi^2 / A}) / 2.
-template <int D>
-double gabor_truncation_error(double a, double phi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
-  auto ball = [&](auto weight) {
-    return 0.5 * ball_integral<D>(
-                     [&](double rho) {
-                       const double s = rho * rho;
-                       return std::exp(-2.0 * a * s) * weight(gabor_taper(s, k)) *
-                              (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
-                     },
-                     panels);
-  };
-  const double pi2 = constants::kPi * constants::kPi;
-  const double full = std::pow(constants::kPi / (2.0 * a), 0.5 * D) * 0.5 *
-                      (1.0 + std::exp(-2.0 * pi2 * phi * phi / a));
-  const double inside_gabor = ball([](double) { return 1.0; });
-  const double inside_diff = ball([](double tau) { return (1.0 - tau) * (1.0 - tau); });
-  return std::sqrt((inside_diff + (full - inside_gabor)) / full);
-}
-
-}  // namespace detail
-
-template <int D>
-class gabor_kernel {
-  static_assert(D == 2 || D == 3, "hush::gabor_kernel is 2D or 3D");
-
- public:
-  static constexpr int dimension = D;
-
-  // bandwidth a in [1e-6, 1e6] (1/noise units), truncation t in [1e-9, 0.5]
-  // (the envelope's value at the support radius); hush::invalid_argument
-  // naming the parameter otherwise.
-  gabor_kernel(double bandwidth, double truncation) : a_(bandwidth), t_(truncation) {
-    namespace c = detail::constants;
-    detail::require_in_range("hush::gabor_kernel", "bandwidth", bandwidth, c::kGaborMinBandwidth,
-                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
-    detail::require_in_range("hush::gabor_kernel", "truncation", truncation, c::kGaborMinTruncation,
-                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
-    exponent_ = -std::log(t_);
-    r_ = std::sqrt(exponent_ / c::kPi) / a_;
-  }
-
-  double bandwidth() const { return a_; }
-  double truncation() const { return t_; }
-  // Support radius r = sqrt(ln(1/t) / pi) / a (noise units): g = 0 beyond.
-  double radius() const { return r_; }
-  // Radius up to which g is the Gabor kernel exactly: r sqrt(s0).
-  double taper_radius() const { return r_ * std::sqrt(detail::constants::kGaborTaperStart); }
-  // A = pi a^2 r^2 = ln(1/t): the envelope is e^{-A |x / r|^2}.
-  double envelope_exponent() const { return exponent_; }
-
-  // g at offset x (noise units) for frequency vector F (cycles per noise
-  // unit), in T (float: hush's separable float path; double: the reference).
-  template <class T>
-  T value(const vec<T, D>& x, const vec<double, D>& F) const {
-    return eval<T, false>(x, F).value;
-  }
-  template <class T>
-  value_gradient<T, D> value_and_gradient(const vec<T, D>& x, const vec<double, D>& F) const {
-    return eval<T, true>(x, F);
-  }
-
-  // Power spectrum |g^(f)|^2 of this kernel (noise units: f and F in cycles
-  // per unit), and of the untruncated Gabor kernel in closed form.
-  double power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
-    double lo = 0, hi = 0;
-    for (int i = 0; i < D; ++i) {
-      lo += (f[i] - F[i]) * (f[i] - F[i]);
-      hi += (f[i] + F[i]) * (f[i] + F[i]);
-    }
-    const double h = 0.5 * (envelope_transform(std::sqrt(lo)) + envelope_transform(std::sqrt(hi)));
-    return h * h;
-  }
-  double untruncated_power_spectrum(const vec<double, D>& f, const vec<double, D>& F) const {
-    double lo = 0, hi = 0;
-    for (int i = 0; i < D; ++i) {
-      lo += (f[i] - F[i]) * (f[i] - F[i]);
-      hi += (f[i] + F[i]) * (f[i] + F[i]);
-    }
-    const double pi = detail::constants::kPi, a2 = a_ * a_;
-    const double h = 0.5 * std::pow(a_, -D) * (std::exp(-pi * lo / a2) + std::exp(-pi * hi / a2));
-    return h * h;
-  }
-  // The Fourier transform of the tapered envelope e^{-pi a^2 |x|^2} tau at
-  // |f| = k cycles per unit (radial, real): H in the spectra above.
-  double envelope_transform(double k) const {
-    return std::pow(r_, D) * detail::gabor_envelope_transform<D>(exponent_, k * r_);
-  }
-  // int g^2 dx for |F| = frequency (noise units): what a sparse convolution
-  // of these kernels at density lambda with weights w has as variance,
-  // lambda E[w^2] energy(F) (Campbell's theorem).
-  double energy(double frequency) const {
-    return std::pow(r_, D) * detail::gabor_energy<D>(exponent_, frequency * r_);
-  }
-  // Relative RMS difference of g and the untruncated Gabor kernel, |F| = frequency.
-  double truncation_error(double frequency) const {
-    return detail::gabor_truncation_error<D>(exponent_, frequency * r_);
-  }
-
- private:
-  template <class T, bool WithGradient>
-  value_gradient<T, D> eval(const vec<T, D>& x, const vec<double, D>& F) const {
-    const T inv_r = T(1.0 / r_), neg_a = T(-exponent_);
-    const T k = T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
-    detail::gabor_axis<T> ax[D];
-    T phi[D];
-    T s = 0;
-    for (int i = 0; i < D; ++i) {
-      phi[i] = T(F[i] * r_);
-      ax[i] = detail::gabor_axis_factors(x[i] * inv_r, neg_a, phi[i]);
-      s += ax[i].d2;
-    }
-    value_gradient<T, D> r{T(0), {}};
-    if (s >= T(1)) return r;  // outside the support (NaN offsets give NaN below)
-    detail::gabor_row<T> row;
-    if constexpr (D == 2)
-      row = detail::gabor_row_of(T(1), ax[1]);
-    else
-      row = detail::gabor_row_of(T(1), ax[1], ax[2]);
-    if constexpr (WithGradient) {
-      const auto p = detail::gabor_pair_with_gradient(ax[0], row, k, T(exponent_));
-      r.value = p.value;
-      for (int i = 0; i < D; ++i) r.gradient[i] = (p.u * ax[i].d - p.v * phi[i]) * inv_r;
-    } else {
-      r.value = detail::gabor_pair(ax[0], row, k);
-    }
-    return r;
-  }
-
-  double a_, t_, exponent_ = 0, r_ = 0;
-};
-
-namespace detail {
-
-// Eigenvalues and eigenvectors of a symmetric D x D matrix (D = 2, 3) by
-// cyclic Jacobi rotations: unconditionally stable, and accurate for nearly
-// singular and badly scaled matrices (a rank-1 footprint times 1e12), where
-// cofactor formulas cancel catastrophically. a is overwritten (its diagonal
-// ends holding the eigenvalues); v's columns are the eigenvectors.
-template <int D>
-void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
-  for (int i = 0; i < D; ++i)
-    for (int j = 0; j < D; ++j) v[i][j] = i == j ? 1.0 : 0.0;
-  for (int sweep = 0; sweep < 50; ++sweep) {
-    double off = 0, diag = 0;
-    for (int i = 0; i < D; ++i) {
-      diag += a[i][i] * a[i][i];
-      for (int j = i + 1; j < D; ++j) off += a[i][j] * a[i][j];
-    }
-    if (!(off > 1e-34 * diag)) return;  // converged (or NaN: give up)
-    for (int p = 0; p < D; ++p)
-      for (int q = p + 1; q < D; ++q) {
-        if (a[p][q] == 0.0) continue;
-        // The rotation that zeroes a[p][q]: t = tan, the smaller root.
-        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
-        const double c = 1.0 / std::hypot(t, 1.0), sn = t * c;
-        for (int k = 0; k < D; ++k) {  // columns p and q
-          const double akp = a[k][p], akq = a[k][q];
-          a[k][p] = c * akp - sn * akq;
-          a[k][q] = sn * akp + c * akq;
-        }
-        for (int k = 0; k < D; ++k) {  // rows p and q
-          const double apk = a[p][k], aqk = a[q][k];
-          a[p][k] = c * apk - sn * aqk;
-          a[q][k] = sn * apk + c * aqk;
-        }
-        for (int k = 0; k < D; ++k) {
-          const double vkp = v[k][p], vkq = v[k][q];
-          v[k][p] = c * vkp - sn * vkq;
-          v[k][q] = sn * vkp + c * vkq;
-        }
-      }
-  }
-}
-
-}  // namespace detail
-
-// The closed-form filtered kernel (Lagae 2009 sec. 5) for one sample's
-// footprint, in the kernel's cell units (d = x / r, Phi = F r):
-//   Q = (I + 2 A sigma^2 S / r^2)^-1  (S the footprint matrix, sigma =
-//       kPixelFilterSigma pixels: the Gaussian pixel filter N(0, sigma^2 S)),
-//   amplitude = sqrt(det Q),  attenuation(Phi) = e^{-Phi^T M Phi},
-//   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
-// Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
-// l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
-// below 0): Q = V diag(1 / (1 + k l)) V^T and I - Q = V diag(k l / (1 + k l))
-// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
-// footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
-// gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
-// footprints the amplitude underflows towards 0: the filtered noise is its mean.
-template <int D>
-struct gabor_filter {
-  double q[D][D];    // Q, symmetric
-  double m[D][D];    // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
-  double amplitude;  // sqrt(det Q), in (0, 1]
-
-  // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
-  gabor_filter(const footprint<D>& fp, double a, double inv_r) {
-    namespace c = detail::constants;
-    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
-    double s[D][D], v[D][D];
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
-    detail::jacobi_eigen<D>(s, v);
-    double qd[D], md[D];
-    amplitude = 1.0;
-    const double mk = c::kPi * c::kPi / a;
-    for (int i = 0; i < D; ++i) {
-      const double kl = k * std::fmax(s[i][i], 0.0);
-      qd[i] = 1.0 / (1.0 + kl);
-      md[i] = mk * (kl / (1.0 + kl));
-      amplitude *= std::sqrt(qd[i]);
-    }
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) {
-        double qq = 0, mm = 0;
-        for (int e = 0; e < D; ++e) {
-          qq += v[i][e] * qd[e] * v[j][e];
-          mm += v[i][e] * md[e] * v[j][e];
-        }
-        q[i][j] = qq;
-        m[i][j] = mm;
-      }
-  }
-};
-
-}  // namespace hush
-
-#endif  // HUSH_GABOR_KERNEL_HPP
-// ---- end hush/gabor_kernel.hpp
-
-namespace hush {
-
-enum class gabor_kind { isotropic, anisotropic, hybrid };
-
-namespace detail {
-
-// Fields of a stream word as values in (0, 1) (constants.hpp): byte i (0 =
-// highest) as (2m + 1) 2^-9, half i (0 = high) as (2m + 1) 2^-17. Exact in
-// float and in GLSL (an integer below 2^17 times a power of two).
-template <class T>
-HUSH_INLINE T gabor_byte(std::uint32_t w, unsigned i) {
-  namespace c = constants;
-  const std::uint32_t m = (w >> (c::kGaborByteBits * (3u - i))) & c::kGaborByteMask;
-  return T((m << 1) | 1u) * T(c::kGaborByteScale);
-}
-template <class T>
-HUSH_INLINE T gabor_half(std::uint32_t w, unsigned i) {
-  namespace c = constants;
-  const std::uint32_t m = (w >> (c::kGaborHalfBits * (1u - i))) & c::kGaborHalfMask;
-  return T((m << 1) | 1u) * T(c::kGaborHalfScale);
-}
-
-// An orthonormal basis (t, b) of the plane orthogonal to unit n, by Duff et
-// al., "Building an orthonormal basis, revisited" (JCGT 2017), in double.
-inline void orthonormal_basis(const vec<double, 3>& n, vec<double, 3>& t, vec<double, 3>& b) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double c = n.x * n.y * a;
-  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
-  b = {c, sign + n.y * n.y * a, -n.y};
-}
-
-}  // namespace detail
-
-// gabor_marks<D>: what an impulse of each kind carries besides its position,
-// drawn from uniform values in (0, 1): its weight and its frequency vector
-// (cycles per cell). Shared by gabor<D> and by noises that place impulses
-// their own way (NPR Gabor noise). The values are consumed in this order:
-//   [0] weight w = 2 u - 1 (exact)
-//   isotropic, hybrid, 2D: [1] orientation theta = theta0 + spread (u - 1/2) turns
-//   isotropic, hybrid, 3D: [1] cos(polar) = 1 - (1 - cos(cap)) u, [2] azimuth u turns,
-//                          in the frame whose third axis is omega0
-//   hybrid:                [next] |F| = Phi0 + dPhi (u - 1/2)
-// anisotropic impulses take only the weight. values() is how many they take;
-// gabor<D> draws them from its cells' words (constants.hpp, "Impulse marks").
-template <int D>
-class gabor_marks {
- public:
-  gabor_marks() = default;
-  // phi0, dphi: frequency and its range's width in cycles per cell (F r);
-  // orientation, elevation, spread: radians (validated by gabor<D>).
-  gabor_marks(gabor_kind kind, double phi0, double dphi, double orientation, double elevation,
-              double spread)
-      : kind_(kind), phi0_(phi0), dphi_(dphi) {
-    namespace c = detail::constants;
-    const double ca = std::cos(orientation), sa = std::sin(orientation);
-    const double ce = std::cos(elevation), se = std::sin(elevation);
-    if constexpr (D == 2) {
-      axis_ = {ca, sa};
-      theta0_ = kind == gabor_kind::isotropic ? 0.0 : orientation / c::kTwoPi;
-      spread_ = kind == gabor_kind::isotropic ? 1.0 : spread / c::kTwoPi;
-    } else {
-      axis_ = {ce * ca, ce * sa, se};
-      cos_cap_ = kind == gabor_kind::isotropic ? -1.0 : std::cos(0.5 * spread);
-      if (kind == gabor_kind::isotropic) {
-        t_ = {1, 0, 0};
-        b_ = {0, 1, 0};
-        axis_frame_ = {0, 0, 1};
-      } else {
-        detail::orthonormal_basis(axis_, t_, b_);
-        axis_frame_ = axis_;
-      }
-    }
-    for (int i = 0; i < D; ++i) fixed_[i] = phi0 * axis_[i];
-  }
-
-  gabor_kind kind() const { return kind_; }
-  // How many uniform values one impulse's marks take.
-  int values() const {
-    if (kind_ == gabor_kind::anisotropic) return 1;
-    return 1 + (D == 2 ? 1 : 2) + (kind_ == gabor_kind::hybrid ? 1 : 0);
-  }
-
-  // The weight and frequency vector (cycles per cell) from uniform values u
-  // (values() of them), with float or double arithmetic.
-  template <class T>
-  void draw(const T* u, T& weight, vec<T, D>& frequency) const {
-    namespace c = detail::constants;
-    weight = T(2) * u[0] - T(1);
-    if (kind_ == gabor_kind::anisotropic) {
-      for (int i = 0; i < D; ++i) frequency[i] = T(fixed_[i]);
-      return;
-    }
-    const T phi = kind_ == gabor_kind::hybrid ? T(phi0_) + T(dphi_) * (u[D] - T(0.5)) : T(phi0_);
-    if constexpr (D == 2) {
-      const detail::sin_cos<T> sc = detail::sincos_turns(T(theta0_) + T(spread_) * (u[1] - T(0.5)));
-      frequency = {phi * sc.cos, phi * sc.sin};
-    } else {
-      vec<T, 3> dir;
-      direction(u[1], u[2], dir);
-      for (int i = 0; i < 3; ++i) frequency[i] = phi * dir[i];
-    }
-  }
-
-  // 3D: the unit direction of values (u1, u2): uniform in the cap around
-  // omega0 (the whole sphere for isotropic noise).
-  template <class T>
-  void direction(T u1, T u2, vec<T, 3>& dir) const {
-    const T ct = T(1) - T(1.0 - cos_cap_) * u1;
-    const T st = std::sqrt((T(1) - ct) * (T(1) + ct));
-    const detail::sin_cos<T> sc = detail::sincos_turns(u2);
-    const T lx = st * sc.cos, ly = st * sc.sin;
-    for (int i = 0; i < 3; ++i) dir[i] = (T(t_[i]) * lx + T(b_[i]) * ly) + T(axis_frame_[i]) * ct;
-  }
-
-  // Orientation omega0 (unit), its frequency vector Phi0 omega0, and the
-  // constants the SIMD and GLSL code read.
-  const vec<double, D>& axis() const { return axis_; }
-  const vec<double, D>& fixed_frequency() const { return fixed_; }
-  double phi0() const { return phi0_; }
-  double dphi() const { return dphi_; }
-  double theta0() const { return theta0_; }
-  double spread_turns() const { return spread_; }
-  double cos_cap() const { return cos_cap_; }
-  const vec<double, 3>& frame_t() const { return t_; }
-  const vec<double, 3>& frame_b() const { return b_; }
-  const vec<double, 3>& frame_axis() const { return axis_frame_; }
-
- private:
-  gabor_kind kind_ = gabor_kind::isotropic;
-  double phi0_ = 0, dphi_ = 0;
-  vec<double, D> axis_{}, fixed_{};
-  double theta0_ = 0, spread_ = 1;  // 2D, turns
-  double cos_cap_ = -1;             // 3D
-  vec<double, 3> t_{}, b_{}, axis_frame_{};
-};
-
-template <int D>
-class gabor : public sample_noise<gabor<D>, D> {
-  static_assert(D == 2 || D == 3, "hush::gabor is 2D or 3D");
-
- public:
-  static constexpr bool takes_footprint = true;
-  static constexpr bool takes_normal = D == 3;
-
-  struct params {
-    std::uint32_t seed = 0;
-    gabor_kind kind = gabor_kind::isotropic;
-    // F0: the principal frequency, cycles per noise unit, 0 ... 1e6.
-    double frequency = 1.0;
-    // a: the kernel's bandwidth, 1/noise units, 1e-6 ... 1e6; the radial
-    // spectral width of each blob is a / (2 sqrt(pi)) (standard deviation).
-    double bandwidth = 0.8;
-    // omega0 (anisotropic and hybrid): azimuth in the xy plane, radians.
-    double orientation = 0.0;
-    // 3D: omega0's angle above the xy plane, radians.
-    double elevation = 0.0;
-    // hybrid: width of the orientation range around omega0, radians, 0 ...
-    // 2 pi (2D: an arc; 3D: the apex angle of a spherical cap; 2 pi = all).
-    double orientation_spread = 0.0;
-    // hybrid: width of the frequency range around F0, 0 ... 2 F0.
-    double frequency_spread = 0.0;
-    // N': the mean number of kernels overlapping a point, (0, 256].
-    double impulses = 16.0;
-    // t: the kernel envelope's value at its support radius, 1e-9 ... 0.5.
-    double truncation = detail::constants::kGaborDefaultTruncation;
-  };
-
-  gabor() : gabor(params{}) {}
-  // Throws hush::invalid_argument naming the first parameter out of range.
-  explicit gabor(const params& prm) : prm_(prm), kernel_(check(prm).bandwidth, prm.truncation) {
-    namespace c = detail::constants;
-    key_ = seed_key(prm.seed);
-    const double r = kernel_.radius();
-    inv_cell_ = 1.0 / r;
-    marks_ = gabor_marks<D>(prm.kind, prm.frequency * r, prm.frequency_spread * r, prm.orientation,
-                            prm.elevation, prm.orientation_spread);
-    // N' kernels per unit ball of radius r: N' / V_D per cell of side r.
-    const double ball = D == 2 ? c::kPi : 4.0 * c::kPi / 3.0;
-    table_ = std::make_shared<const poisson_table>(prm.impulses / ball);
-    scale_ = 1.0 / std::sqrt(table_->exact_mean() * weight_moment() * mean_energy());
-    if constexpr (D == 3) {
-      // Slab of half-height h = r / sqrt 2, disk of radius r, cells of r sqrt(3/2):
-      // lambda_3 = N' / (2 h pi r^2), mu = lambda_3 cell^3.
-      const double cell = c::kGaborSurfaceCell;
-      inv_surface_cell_ = 1.0 / (r * cell);
-      surface_table_ = std::make_shared<const poisson_table>(prm.impulses * cell * cell * cell /
-                                                             (2.0 * c::kGaborSurfaceSlab * c::kPi));
-      surface_scale_ = 1.0 / std::sqrt(surface_table_->exact_mean() * weight_moment() *
-                                       mean_energy_2d() * surface_geometry());
-      for (const auto& t : {table_, surface_table_})
-        if (t->max_count() > static_cast<std::uint32_t>(c::kGaborMaxThresholds))
-          throw hush::invalid_argument("hush::gabor: internal Poisson table too long");
-    }
-  }
-
-  const params& parameters() const { return prm_; }
-  const gabor_kernel<D>& kernel() const { return kernel_; }
-  const gabor_marks<D>& marks() const { return marks_; }
-  // The per-cell Poisson tables (solid; surface in 3D).
-  const poisson_table& table() const { return *table_; }
-  const poisson_table& surface_table() const {
-    static_assert(D == 3, "surface noise is 3D");
-    return *surface_table_;
-  }
-  std::uint32_t key() const { return key_; }
-  // 1 / cell side (cells are r wide; surface cells r sqrt(3/2)).
-  double inverse_cell() const { return inv_cell_; }
-  double inverse_surface_cell() const { return inv_surface_cell_; }
-  // Words one impulse takes from its cell's stream (after the count's word).
-  int words_per_impulse() const { return words_for(prm_.kind); }
-  // The factor that makes the variance 1 (the raw sum times scale()).
-  double scale() const { return scale_; }
-  double surface_scale() const { return surface_scale_; }
-
-  // Variance 1 and mean 0 over space and seeds (see the file comment).
-  static constexpr double variance() { return 1.0; }
-  // |n| <= bound() (solid noise; surface noise's bound in 3D is surface_bound()).
-  double bound() const { return std::pow(3.0, D) * table_->max_count() * scale_; }
-  double surface_bound() const { return 27.0 * surface_table_->max_count() * surface_scale_; }
-
-  // E[w^2] of the 8-bit symmetric weights: (1 - 2^-16) / 3.
-  static constexpr double weight_moment() { return (1.0 - 1.0 / 65536.0) / 3.0; }
-  // E over the kind's frequencies of the kernel energy int g^2 in cell units.
-  double mean_energy() const { return mean_energy_of<D>(); }
-
-  // The power spectrum of the unit-variance noise at frequency f (cycles per
-  // noise unit), exact: lambda E[w^2] E_F[|g^_F(f)|^2] scale^2. Quadrature of
-  // the kernel transform for each call (milliseconds); gabor_spectrum tabulates
-  // it for images.
-  double power_spectrum(const vec<double, D>& f) const {
-    const double a = kernel_.envelope_exponent();
-    return spectrum_with(f, [a](double k) { return detail::gabor_envelope_transform<D>(a, k); });
-  }
-
-  // The same with H(k), the tapered envelope's transform at k cycles per cell,
-  // supplied by the caller (gabor_spectrum passes a table of it).
-  template <class H>
-  double spectrum_with(const vec<double, D>& f, H h) const {
-    const double r = kernel_.radius();
-    vec<double, D> xi;
-    for (int i = 0; i < D; ++i) xi[i] = f[i] * r;
-    return scale_ * scale_ * table_->exact_mean() * weight_moment() * std::pow(r, D) *
-           mean_kernel_spectrum(xi, h);
-  }
-
-  // p(vec) -> value, p.gradient(vec) (core/point_noise.hpp) and p.sample(...)
-  // (core/samples.hpp) come from the base classes.
-  template <class T>
-  T value(const vec<double, D>& p) const {
-    return eval<T, false>(p).value;
-  }
-  template <class T>
-  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
-    return eval<T, true>(p);
-  }
-  template <class T>
-  T sample_value(const sample_input<D>& s) const {
-    return sample_eval<T, false>(s).value;
-  }
-  template <class T>
-  value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s) const {
-    return sample_eval<T, true>(s);
-  }
-
-  // ---- The pieces every backend repeats (hush/simd/gabor-inl.h, GLSL).
-
-  // The impulses of solid cell `cell` (32-bit lattice indices), in stream
-  // order: f(words), the impulse's words_per_impulse() stream words, whose
-  // fields impulse_position() and mark_values() decode (constants.hpp,
-  // "Impulse marks"): decoding only what is needed is what every backend does.
-  template <class F>
-  void for_each_impulse(const std::uint32_t (&cell)[D], F f) const {
-    rng r(cell_seed(cell), detail::constants::kGaborSolidStream);
-    const std::uint32_t n = table_->count(r.next_u32());
-    const int words = words_per_impulse();
-    for (std::uint32_t k = 0; k < n; ++k) {
-      std::uint32_t w[3] = {0, 0, 0};
-      for (int i = 0; i < words; ++i) w[i] = r.next_u32();
-      f(static_cast<const std::uint32_t*>(w));
-    }
-  }
-  // The same for the surface process (3D; cells r sqrt(3/2) wide).
-  template <class F>
-  void for_each_surface_impulse(const std::uint32_t (&cell)[3], F f) const {
-    rng r(lattice_hash(key_, cell[0], cell[1], cell[2]), detail::constants::kGaborSurfaceStream);
-    const std::uint32_t n = surface_table_->count(r.next_u32());
-    const int words = words_for(prm_.kind, 3);
-    for (std::uint32_t k = 0; k < n; ++k) {
-      std::uint32_t w[3] = {0, 0, 0};
-      for (int i = 0; i < words; ++i) w[i] = r.next_u32();
-      f(static_cast<const std::uint32_t*>(w));
-    }
-  }
-  // Coordinate `axis` of an impulse's position in its cell, in (0, 1).
-  template <class T>
-  static T impulse_position(const std::uint32_t* words, int axis) {
-    return detail::gabor_byte<T>(words[0], static_cast<unsigned>(axis));
-  }
-  // The values gabor_marks::draw takes, from an impulse's words (E = 2 or 3:
-  // the process's dimension).
-  template <class T, int E = D>
-  void mark_values(const std::uint32_t* words, T* u) const {
-    u[0] = detail::gabor_byte<T>(words[0], E);  // weight
-    if (prm_.kind == gabor_kind::anisotropic) return;
-    if constexpr (E == 2) {
-      u[1] = detail::gabor_byte<T>(words[0], 3);
-      if (prm_.kind == gabor_kind::hybrid) u[2] = detail::gabor_half<T>(words[1], 0);
-    } else {
-      u[1] = detail::gabor_half<T>(words[1], 0);
-      u[2] = detail::gabor_half<T>(words[1], 1);
-      if (prm_.kind == gabor_kind::hybrid) u[3] = detail::gabor_half<T>(words[2], 0);
-    }
-  }
-
-  // Words per impulse of a kind in E dimensions (constants.hpp, "Impulse marks").
-  static int words_for(gabor_kind kind, int e = D) {
-    if (kind == gabor_kind::hybrid) return e == 2 ? 2 : 3;
-    return kind == gabor_kind::isotropic && e == 3 ? 2 : 1;
-  }
-
- private:
-  static const params& check(const params& p) {
-    namespace c = detail::constants;
-    const char* w = "hush::gabor";
-    detail::require_in_range(w, "frequency", p.frequency, 0.0, c::kGaborMaxFrequency,
-                             "0 <= frequency <= 1e+06 (cycles per noise unit)");
-    detail::require_in_range(w, "bandwidth", p.bandwidth, c::kGaborMinBandwidth,
-                             c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
-    detail::require_in_range(w, "truncation", p.truncation, c::kGaborMinTruncation,
-                             c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
-    if (!(p.impulses > 0.0 && p.impulses <= c::kGaborMaxImpulses))
-      detail::throw_out_of_range(w, "impulses", p.impulses, "0 < impulses <= 256");
-    if (!std::isfinite(p.orientation))
-      detail::throw_out_of_range(w, "orientation", p.orientation, "a finite angle in radians");
-    if (!std::isfinite(p.elevation))
-      detail::throw_out_of_range(w, "elevation", p.elevation, "a finite angle in radians");
-    detail::require_in_range(w, "orientation_spread", p.orientation_spread, 0.0, c::kTwoPi,
-                             "0 <= orientation_spread <= 2 pi (radians)");
-    detail::require_in_range(w, "frequency_spread", p.frequency_spread, 0.0, 2.0 * p.frequency,
-                             "0 <= frequency_spread <= 2 * frequency");
-    if (p.kind != gabor_kind::isotropic && p.kind != gabor_kind::anisotropic &&
-        p.kind != gabor_kind::hybrid)
-      detail::throw_out_of_range(w, "kind", static_cast<int>(p.kind),
-                                 "isotropic, anisotropic or hybrid");
-    return p;
-  }
-
-  std::uint32_t cell_seed(const std::uint32_t (&cell)[D]) const {
-    if constexpr (D == 2)
-      return lattice_hash(key_, cell[0], cell[1]);
-    else
-      return lattice_hash(key_, cell[0], cell[1], cell[2]);
-  }
-
-  // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
-  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
-  template <class H>
-  double mean_kernel_spectrum(const vec<double, D>& xi, H h) const {
-    namespace c = detail::constants;
-    auto one = [&](const vec<double, D>& phi) {
-      double lo = 0, hi = 0;
-      for (int i = 0; i < D; ++i) {
-        lo += (xi[i] - phi[i]) * (xi[i] - phi[i]);
-        hi += (xi[i] + phi[i]) * (xi[i] + phi[i]);
-      }
-      const double v = 0.5 * (h(std::sqrt(lo)) + h(std::sqrt(hi)));
-      return v * v;
-    };
-    if (prm_.kind == gabor_kind::anisotropic) return one(marks_.fixed_frequency());
-    double xi_len = 0;
-    for (int i = 0; i < D; ++i) xi_len += xi[i] * xi[i];
-    xi_len = std::sqrt(xi_len);
-    const double phi0 = marks_.phi0(), dphi = marks_.dphi();
-    const bool hybrid = prm_.kind == gabor_kind::hybrid;
-    // The blob centres +-Phi move by 2 pi |Phi| cycles per cell per turn, and H
-    // is ~0.4 cycles per cell wide: these node counts resolve it to ~1e-10.
-    const double reach = phi0 + 0.5 * dphi;
-    // Average over |Phi| (hybrid) of f(|Phi|).
-    auto over_frequency = [&](auto f) {
-      if (!hybrid || dphi == 0.0) return f(phi0);
-      const int panels = 1 + static_cast<int>(std::ceil(2.0 * dphi));
-      return detail::integrate(f, phi0 - 0.5 * dphi, phi0 + 0.5 * dphi, panels) / dphi;
-    };
-    if constexpr (D == 2) {
-      return over_frequency([&](double ph) {
-        auto at = [&](double turns) {
-          const double ang = c::kTwoPi * turns;
-          return one({ph * std::cos(ang), ph * std::sin(ang)});
-        };
-        if (!hybrid) {  // uniform on the circle: the trapezoidal rule is spectral
-          const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
-          double sum = 0;
-          for (int i = 0; i < n; ++i) sum += at(static_cast<double>(i) / n);
-          return sum / n;
-        }
-        const double spread = marks_.spread_turns(), theta0 = marks_.theta0();
-        if (spread == 0.0) return at(theta0);
-        const int panels = 1 + static_cast<int>(std::ceil(8.0 * reach * spread));
-        return detail::integrate(at, theta0 - 0.5 * spread, theta0 + 0.5 * spread, panels) / spread;
-      });
-    } else {
-      return over_frequency([&](double ph) {
-        if (!hybrid) {  // uniform on the sphere: only the angle to xi matters
-          auto at = [&](double cg) {
-            const double base = xi_len * xi_len + ph * ph, cross = 2.0 * xi_len * ph * cg;
-            const double v =
-                0.5 * (h(std::sqrt(std::fmax(base - cross, 0.0))) + h(std::sqrt(base + cross)));
-            return v * v;
-          };
-          const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
-          return 0.5 * detail::integrate(at, -1.0, 1.0, panels);
-        }
-        const double cap = marks_.cos_cap();
-        if (cap >= 1.0) {  // zero spread: omega0 only
-          vec<double, 3> phi;
-          for (int i = 0; i < 3; ++i) phi[i] = ph * marks_.axis()[i];
-          return one(phi);
-        }
-        const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
-        const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
-        auto ring = [&](double ct) {  // average over the azimuth at polar cosine ct
-          double sum = 0;
-          for (int i = 0; i < n; ++i) {
-            const double u2 = static_cast<double>(i) / n;
-            const double st = std::sqrt(std::fmax((1.0 - ct) * (1.0 + ct), 0.0));
-            const double lx = st * std::cos(c::kTwoPi * u2), ly = st * std::sin(c::kTwoPi * u2);
-            vec<double, 3> phi;
-            for (int k = 0; k < 3; ++k)
-              phi[k] = ph * ((marks_.frame_t()[k] * lx + marks_.frame_b()[k] * ly) +
-                             marks_.frame_axis()[k] * ct);
-            sum += one(phi);
-          }
-          return sum / n;
-        };
-        return detail::integrate(ring, cap, 1.0, panels) / (1.0 - cap);
-      });
-    }
-  }
-
-  template <int E>
-  double mean_energy_of() const {
-    namespace c = detail::constants;
-    const double a = kernel_.envelope_exponent(), phi = marks_.phi0(), dphi = marks_.dphi();
-    if (prm_.kind != gabor_kind::hybrid || dphi == 0.0) return detail::gabor_energy<E>(a, phi);
-    // |Phi| uniform over [phi - dphi/2, phi + dphi/2]; the energy is smooth in it.
-    return detail::integrate([&](double x) { return detail::gabor_energy<E>(a, x); },
-                             phi - 0.5 * dphi, phi + 0.5 * dphi, 2) /
-           dphi;
-  }
-  double mean_energy_2d() const { return mean_energy_of<2>(); }
-  // Surface noise's variance per (table mean * E[w^2] * 2D energy): the slab
-  // taper's mean square 2 int_0^1 tau(z^2)^2 dz times h r^2 / cell^3.
-  static double surface_geometry() {
-    namespace c = detail::constants;
-    const double k = 1.0 / (1.0 - c::kGaborTaperStart);
-    const double z0 = std::sqrt(c::kGaborTaperStart);
-    auto tau2 = [&](double z) {
-      const double t = detail::gabor_taper(z * z, k);
-      return t * t;
-    };
-    const double j = detail::integrate(tau2, 0.0, z0, 1) + detail::integrate(tau2, z0, 1.0, 2);
-    const double cell = c::kGaborSurfaceCell;
-    return 2.0 * j * c::kGaborSurfaceSlab / (cell * cell * cell);
-  }
-
-  // ---- Evaluation (the scalar reference of every backend).
-
-  // Calls pair(d, d2, s, w, phi) for every impulse of the solid process within
-  // the support of x = p / r (cell units): offsets d (cell units), their
-  // squares, s = |d|^2 < 1, weight and frequency vector. Cells go in raster
-  // order (z, y, x from -1 to 1 around x's cell) and impulses in stream order:
-  // the order the grid kernels accumulate in. False for a non-finite p.
-  template <class T, class Pair>
-  bool for_each_pair(const vec<double, D>& p, Pair pair) const {
-    lattice_coord<T> c[D];
-    for (int a = 0; a < D; ++a) {
-      c[a] = lattice_split<T>(p[a] * inv_cell_);
-      if (std::isnan(c[a].f)) return false;
-    }
-    constexpr int kCells = D == 2 ? 9 : 27;
-    for (int n = 0; n < kCells; ++n) {
-      int o[D];
-      std::uint32_t cell[D];
-      for (int ax = 0, m = n; ax < D; ++ax, m /= 3) {
-        o[ax] = m % 3 - 1;
-        cell[ax] = c[ax].i0 + static_cast<std::uint32_t>(o[ax]);
-      }
-      for_each_impulse(cell, [&](const std::uint32_t* words) {
-        T d[D], d2[D];
-        for (int ax = 0; ax < D; ++ax) {
-          d[ax] = (c[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
-          d2[ax] = d[ax] * d[ax];
-        }
-        const T s = D == 2 ? d2[0] + d2[1] : d2[0] + (d2[1] + d2[2]);
-        if (!(s < T(1))) return;
-        T u[4] = {}, w;
-        vec<T, D> phi;
-        mark_values<T>(words, u);
-        marks_.template draw<T>(u, w, phi);
-        pair(d, d2, s, w, phi);
-      });
-    }
-    return true;
-  }
-
-  // Unfiltered solid noise: the separable kernel (gabor_kernel.hpp).
-  template <class T, bool G>
-  value_gradient<T, D> eval(const vec<double, D>& p) const {
-    const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
-    const T taper_k = taper_k_<T>();
-    T sum = 0, g[D] = {};
-    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T, T w, const vec<T, D>& phi) {
-      detail::gabor_axis<T> ax[D];
-      for (int i = 0; i < D; ++i) ax[i] = detail::gabor_axis_factors(d[i], neg_a, phi[i]);
-      detail::gabor_row<T> row;
-      if constexpr (D == 2)
-        row = detail::gabor_row_of(w, ax[1]);
-      else
-        row = detail::gabor_row_of(w, ax[1], ax[2]);
-      if constexpr (G) {
-        const auto pg = detail::gabor_pair_with_gradient(ax[0], row, taper_k, a);
-        sum += pg.value;
-        for (int i = 0; i < D; ++i) g[i] += pg.u * d[i] - pg.v * phi[i];
-      } else {
-        sum += detail::gabor_pair(ax[0], row, taper_k);
-      }
-    });
-    if (!ok) return nan_result<T>();
-    return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
-  }
-
-  // One impulse of a filtered (or tangent-plane) kernel in E dimensions:
-  // w amplitude e^{-Phi^T M Phi} e^{-A d^T Q d} cos(2 pi <Q Phi, d>) tau(s),
-  // added to sum and, with G, its derivative by d to grad.
-  template <class T, int E, bool G>
-  static void filtered_pair(const T (&q)[E][E], const T (&m)[E][E], T amplitude, T neg_a, T a,
-                            T taper_k, const T* d, T s, T w, const T* phi, T& sum, T* grad) {
-    T mu[E], qd[E];
-    T att = 0, dqd = 0, theta = 0;
-    for (int i = 0; i < E; ++i) {
-      T x = 0, y = 0, z = 0;
-      for (int j = 0; j < E; ++j) {
-        x += q[i][j] * phi[j];
-        y += m[i][j] * phi[j];
-        z += q[i][j] * d[j];
-      }
-      mu[i] = x;
-      att += phi[i] * y;
-      qd[i] = z;
-      dqd += d[i] * z;
-    }
-    for (int i = 0; i < E; ++i) theta += mu[i] * d[i];
-    const T p = ((w * amplitude) * detail::exp_neg(-att)) * detail::exp_neg(neg_a * dqd);
-    const detail::sin_cos<T> sc = detail::sincos_turns(theta);
-    if constexpr (G) {
-      const detail::gabor_taper_value<T> tw = detail::gabor_taper_derivative(s, taper_k);
-      const T pc = p * sc.cos, ps = T(detail::constants::kTwoPi) * ((p * tw.tau) * sc.sin);
-      sum += pc * tw.tau;
-      for (int i = 0; i < E; ++i)
-        grad[i] += pc * ((tw.dtau + tw.dtau) * d[i] - (a + a) * (tw.tau * qd[i])) - ps * mu[i];
-    } else {
-      sum += (p * sc.cos) * detail::gabor_taper(s, taper_k);
-    }
-  }
-
-  // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
-  template <class T, bool G>
-  value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
-    const gabor_filter<D> flt(fp, kernel_.envelope_exponent(), inv_cell_);
-    T q[D][D], m[D][D];
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) {
-        q[i][j] = T(flt.q[i][j]);
-        m[i][j] = T(flt.m[i][j]);
-      }
-    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
-    const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
-    T sum = 0, g[D] = {};
-    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
-      T ph[D];
-      for (int i = 0; i < D; ++i) ph[i] = phi[i];
-      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, sum, g);
-    });
-    if (!ok) return nan_result<T>();
-    return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
-  }
-
-  // Surface noise at p with unit normal n (double), filtered over fp.
-  template <class T, bool G>
-  value_gradient<T, D> surface_eval(const vec<double, 3>& p, const vec<double, 3>& n,
-                                    const footprint<3>& fp) const {
-    namespace c = detail::constants;
-    vec<double, 3> t, b;
-    detail::orthonormal_basis(n, t, b);
-    // The footprint in the plane, in the kernel's units: [t b]^T S [t b].
-    float upper[3];
-    const vec<double, 3>* axes[2] = {&t, &b};
-    for (int i = 0, e = 0; i < 2; ++i)
-      for (int j = i; j < 2; ++j, ++e) {
-        double v = 0;
-        for (int r = 0; r < 3; ++r)
-          for (int k = 0; k < 3; ++k)
-            v += (*axes[i])[r] * static_cast<double>(fp.covariance(r, k)) * (*axes[j])[k];
-        upper[e] = static_cast<float>(v);
-      }
-    const gabor_filter<2> flt(footprint<2>::from_covariance(upper), kernel_.envelope_exponent(),
-                              inv_cell_);
-    T q[2][2], m[2][2];
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) {
-        q[i][j] = T(flt.q[i][j]);
-        m[i][j] = T(flt.m[i][j]);
-      }
-    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
-    const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
-    const T nt[3] = {T(n.x), T(n.y), T(n.z)}, tt[3] = {T(t.x), T(t.y), T(t.z)},
-            bt[3] = {T(b.x), T(b.y), T(b.z)};
-    // Kernel units per surface-cell unit, and 1 / h^2 in surface-cell units.
-    const T to_kernel = T(c::kGaborSurfaceCell);
-    const T inv_h2 = T((c::kGaborSurfaceCell / c::kGaborSurfaceSlab) *
-                       (c::kGaborSurfaceCell / c::kGaborSurfaceSlab));
-    const bool normalise = prm_.kind != gabor_kind::anisotropic;
-    lattice_coord<T> cc[3];
-    for (int ax = 0; ax < 3; ++ax) {
-      cc[ax] = lattice_split<T>(p[ax] * inv_surface_cell_);
-      if (std::isnan(cc[ax].f)) return nan_result<T>();
-    }
-    T sum = 0, g[3] = {};
-    for (int nc = 0; nc < 27; ++nc) {
-      int o[3];
-      std::uint32_t cell[3];
-      for (int ax = 0, mm = nc; ax < 3; ++ax, mm /= 3) {
-        o[ax] = mm % 3 - 1;
-        cell[ax] = cc[ax].i0 + static_cast<std::uint32_t>(o[ax]);
-      }
-      for_each_surface_impulse(cell, [&](const std::uint32_t* words) {
-        T d[3];
-        for (int ax = 0; ax < 3; ++ax)
-          d[ax] = (cc[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
-        const T zn = (nt[0] * d[0] + nt[1] * d[1]) + nt[2] * d[2];
-        const T z2 = (zn * zn) * inv_h2;
-        if (!(z2 < T(1))) return;
-        const T dk[2] = {((tt[0] * d[0] + tt[1] * d[1]) + tt[2] * d[2]) * to_kernel,
-                         ((bt[0] * d[0] + bt[1] * d[1]) + bt[2] * d[2]) * to_kernel};
-        const T s = dk[0] * dk[0] + dk[1] * dk[1];
-        if (!(s < T(1))) return;
-        // The impulse's weight and 3D direction (anisotropic: omega0) and |Phi|.
-        T u[4] = {};
-        mark_values<T, 3>(words, u);
-        const T w = T(2) * u[0] - T(1);
-        vec<T, 3> dir;
-        T phi = T(marks_.phi0());
-        if (prm_.kind == gabor_kind::anisotropic) {
-          for (int i = 0; i < 3; ++i) dir[i] = T(marks_.axis()[i]);
-        } else {
-          marks_.direction(u[1], u[2], dir);
-          if (prm_.kind == gabor_kind::hybrid)
-            phi = T(marks_.phi0()) + T(marks_.dphi()) * (u[3] - T(0.5));
-        }
-        const T vt = (tt[0] * dir[0] + tt[1] * dir[1]) + tt[2] * dir[2];
-        const T vb = (bt[0] * dir[0] + bt[1] * dir[1]) + bt[2] * dir[2];
-        T f = phi;
-        if (normalise) {
-          const T len2 = vt * vt + vb * vb;
-          f = len2 > T(0) ? phi / std::sqrt(len2) : T(0);
-        }
-        const T ph[2] = {f * vt, f * vb};
-        const detail::gabor_taper_value<T> slab = detail::gabor_taper_derivative(z2, taper_k);
-        T gs = 0, gk[2] = {0, 0};
-        filtered_pair<T, 2, G>(q, m, amplitude, neg_a, a, taper_k, dk, s, w, ph, gs, gk);
-        sum += gs * slab.tau;
-        if constexpr (G) {
-          // d/dd of (kernel * slab taper): the kernel's in-plane derivative
-          // (through dk = [t b]^T d sqrt(3/2)) and the slab's along n.
-          const T dz = gs * (slab.dtau * ((zn + zn) * inv_h2));
-          for (int ax = 0; ax < 3; ++ax)
-            g[ax] += ((gk[0] * tt[ax] + gk[1] * bt[ax]) * to_kernel) * slab.tau + dz * nt[ax];
-        }
-      });
-    }
-    return finish<T, G>(sum, g, T(surface_scale_), T(surface_scale_ * inv_surface_cell_));
-  }
-
-  template <class T, bool G>
-  value_gradient<T, D> sample_eval(const sample_input<D>& s) const {
-    if constexpr (D == 3) {
-      if (s.has_normal) {
-        const vec<double, 3>& n = s.normal;
-        if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
-          return nan_result<T>();
-        // Scaled before normalising, so that tiny and huge normals both work.
-        const double big = std::fmax(std::fabs(n.x), std::fmax(std::fabs(n.y), std::fabs(n.z)));
-        if (big > 0.0) {
-          const vec<double, 3> m{n.x / big, n.y / big, n.z / big};
-          const double len = std::sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
-          return surface_eval<T, G>(s.position, {m.x / len, m.y / len, m.z / len}, s.fp);
-        }
-        // A zero normal has no tangent plane: the solid noise.
-      }
-    }
-    return filtered_eval<T, G>(s.position, s.fp);
-  }
-
-  template <class T, bool G>
-  static value_gradient<T, D> finish(T sum, const T* g, T scale, T gradient_scale) {
-    value_gradient<T, D> r{sum * scale, {}};
-    if constexpr (G)
-      for (int i = 0; i < D; ++i) r.gradient[i] = g[i] * gradient_scale;
-    return r;
-  }
-
-  template <class T>
-  static value_gradient<T, D> nan_result() {
-    const T nan = std::numeric_limits<T>::quiet_NaN();
-    value_gradient<T, D> r{nan, {}};
-    for (int i = 0; i < D; ++i) r.gradient[i] = nan;
-    return r;
-  }
-  template <class T>
-  static T taper_k_() {
-    return T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
-  }
-
-  params prm_;
-  gabor_kernel<D> kernel_;
-  std::uint32_t key_ = 0;
-  double inv_cell_ = 1, inv_surface_cell_ = 1;
-  gabor_marks<D> marks_;
-  std::shared_ptr<const poisson_table> table_, surface_table_;
-  double scale_ = 1, surface_scale_ = 1;
-};
-
-// gabor_spectrum<D>: the power spectrum of a gabor<D> noise at many
-// frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
-// kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
-// the largest |f r| + |Phi| needed, and interpolated with Catmull-Rom cubics
-// (within 3e-5 of the peak of the exact spectrum). Isotropic noise's spectrum
-// is radial: it is tabulated the same way against |f|. Frequencies above
-// max_frequency (cycles per noise unit, any direction) give 0.
-template <int D>
-class gabor_spectrum {
- public:
-  gabor_spectrum(const gabor<D>& noise, double max_frequency) : noise_(noise) {
-    const double r = noise.kernel().radius();
-    max_f_ = max_frequency;
-    const double reach = max_frequency * r + noise.marks().phi0() + noise.marks().dphi();
-    const auto n = static_cast<std::size_t>(std::ceil(reach * kPerCycle)) + 4;
-    const double a = noise.kernel().envelope_exponent();
-    h_.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      h_[i] = detail::gabor_envelope_transform<D>(a, static_cast<double>(i) / kPerCycle);
-    if (noise.parameters().kind == gabor_kind::isotropic) {
-      // Radial: S(|f|) every 1/64 cycle per cell, from the tabulated H.
-      radial_.resize(static_cast<std::size_t>(std::ceil(max_frequency * r * kPerCycle)) + 4);
-      for (std::size_t i = 0; i < radial_.size(); ++i) {
-        vec<double, D> f{};
-        f[0] = static_cast<double>(i) / (kPerCycle * r);
-        radial_[i] = noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
-      }
-    }
-  }
-
-  double operator()(const vec<double, D>& f) const {
-    double len = 0;
-    for (int i = 0; i < D; ++i) len += f[i] * f[i];
-    len = std::sqrt(len);
-    if (!(len <= max_f_)) return 0.0;
-    if (!radial_.empty()) return cubic(radial_, len * noise_.kernel().radius());
-    return noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
-  }
-
- private:
-  static constexpr double kPerCycle = 64.0;
-  // Catmull-Rom interpolation of an even function tabulated at k = i / 64
-  // (the evenness supplies the point left of 0).
-  static double cubic(const std::vector<double>& h, double k) {
-    const double x = k * kPerCycle;
-    const auto i = static_cast<std::size_t>(x);
-    if (i + 2 >= h.size()) return h.back();
-    const double t = x - static_cast<double>(i);
-    const double p0 = i == 0 ? h[1] : h[i - 1], p1 = h[i], p2 = h[i + 1], p3 = h[i + 2];
-    return p1 + 0.5 * t *
-                    (p2 - p0 +
-                     t * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + t * (3.0 * (p1 - p2) + p3 - p0)));
-  }
-
-  gabor<D> noise_;
-  double max_f_ = 0;
-  std::vector<double> h_, radial_;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_GABOR_HPP
-// ---- end hush/gabor.hpp
 
 // Scene-driven noises (hush::frame: per-frame G-buffer views).
 // ---- begin hush/coherent.hpp

@@ -430,6 +430,76 @@ TEST_CASE("sample to .png in a build without stb_image_write fails, saying what 
 
 // ---- (d) Bad input: one line on stderr naming the option, non-zero exit, no output file.
 
+TEST_CASE("sample gabor equals hush::gabor<D> with the options' parameters, bit for bit") {
+  const fs::path dir = scratch("npy_gabor");
+  const fs::path out = dir / "g.npy";
+  SUBCASE("2D hybrid, every option given (angles in degrees)") {
+    REQUIRE(run_hush(std::string("sample gabor ") + kSampleArgs2d +
+                         " --kind hybrid --frequency 1.5 --bandwidth 0.9 --orientation 30 "
+                         "--orientation-spread 90 --frequency-spread 0.5 --impulses 24 "
+                         "--truncation 0.02 --out '" +
+                         out.string() + "'",
+                     dir)
+                .exit_code == 0);
+    hush::gabor<2>::params prm;
+    prm.seed = 7;
+    prm.kind = hush::gabor_kind::hybrid;
+    prm.frequency = 1.5;
+    prm.bandwidth = 0.9;
+    prm.orientation = 30 * hush::detail::constants::kPi / 180;
+    prm.orientation_spread = 90 * hush::detail::constants::kPi / 180;
+    prm.frequency_spread = 0.5;
+    prm.impulses = 24;
+    prm.truncation = 0.02;
+    const hush::gabor<2> g{prm};
+    CHECK(count_mismatches(read_npy(out), [&](double i, double j, double) {
+            return g.value<float>(hush::dvec2{1.5 + 0.25 * i, -2.0 + 0.25 * j});
+          }) == 0);
+  }
+  SUBCASE("3D anisotropic with an elevation") {
+    REQUIRE(run_hush("sample gabor --dim 3 --size 6x5x4 --origin 3,-1,2 --step 0.21 --seed 9 "
+                     "--kind anisotropic --orientation -45 --elevation 20 --out '" +
+                         out.string() + "'",
+                     dir)
+                .exit_code == 0);
+    hush::gabor<3>::params prm;
+    prm.seed = 9;
+    prm.kind = hush::gabor_kind::anisotropic;
+    prm.orientation = -45 * hush::detail::constants::kPi / 180;
+    prm.elevation = 20 * hush::detail::constants::kPi / 180;
+    const hush::gabor<3> g{prm};
+    CHECK(count_mismatches(read_npy(out), [&](double i, double j, double k) {
+            return g.value<float>(hush::dvec3{3 + 0.21 * i, -1 + 0.21 * j, 2 + 0.21 * k});
+          }) == 0);
+  }
+}
+
+TEST_CASE("sample gabor rejects each bad option with exit code 2, naming it") {
+  const fs::path dir = scratch("bad_gabor");
+  const std::string out = " --out '" + (dir / "never.npy").string() + "'";
+  struct bad {
+    const char* args;
+    const char* names;
+  };
+  const bad cases[] = {{"--kind radial", "--kind"},
+                       {"--frequency -1", "--frequency"},
+                       {"--bandwidth 0", "--bandwidth"},
+                       {"--impulses 300", "--impulses"},
+                       {"--truncation 0.9", "--truncation"},
+                       {"--orientation 400", "--orientation"},
+                       {"--elevation 91", "--elevation"},
+                       {"--orientation-spread -1", "--orientation-spread"},
+                       {"--frequency-spread 3", "--frequency-spread"}};
+  for (const bad& c : cases) {
+    CAPTURE(c.args);
+    const result r = run_hush(std::string("sample gabor ") + c.args + out, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(c.names) != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  CHECK_FALSE(fs::exists(dir / "never.npy"));
+}
+
 TEST_CASE("sample rejects each bad input with exit code 2 and one line naming the option") {
   const fs::path dir = scratch("bad_input");
   const std::string out = " --out '" + (dir / "never.npy").string() + "'";
@@ -619,7 +689,7 @@ TEST_CASE("info exits 0 and prints the version, the standard and the backends") 
 // ---- (f) hush gallery.
 
 #if HUSH_CLI_TEST_GALLERY
-TEST_CASE("gallery writes its 5 PNGs with the expected sizes and lists them") {
+TEST_CASE("gallery writes its 7 PNGs with the expected sizes and lists them") {
   const fs::path dir = scratch("gallery");
   const fs::path out = dir / "images" / "nested";  // created, parents included
   const result r = run_hush("gallery --out '" + out.string() + "'", dir);
@@ -632,7 +702,9 @@ TEST_CASE("gallery writes its 5 PNGs with the expected sizes and lists them") {
                              {"perlin3d_slice.png", 1024, 512},
                              {"fbm.png", 1024, 512},
                              {"turbulence.png", 1024, 512},
-                             {"perlin_periodic_tiled.png", 256, 256}};
+                             {"perlin_periodic_tiled.png", 256, 256},
+                             {"gabor_kinds.png", 768, 768},
+                             {"gabor_filtering.png", 1152, 256}};
   for (const expected& e : images) {
     CAPTURE(e.file);
     const png_header h = read_png_header(out / e.file);
@@ -643,7 +715,9 @@ TEST_CASE("gallery writes its 5 PNGs with the expected sizes and lists them") {
     CHECK(r.out.find(e.file) != std::string::npos);
   }
   CHECK(r.out.find(fs::canonical(out).string()) != std::string::npos);  // the absolute directory
-  CHECK(r.err.find("gallery: [2/5] perlin3d_slice.png") != std::string::npos);
+  CHECK(r.err.find("gallery: [2/7] perlin3d_slice.png") != std::string::npos);
+  // The receding plane's errors against its supersampled reference, printed under it.
+  CHECK(r.out.find("RMS error vs reference: unfiltered") != std::string::npos);
 
 #if HUSH_CLI_TEST_DECODE
   SUBCASE("the spectrum half is brightest around zero frequency, at its centre") {

@@ -315,6 +315,12 @@ constexpr unsigned kGaborSurfaceStream = 1;
 // neighbourhood. This h minimises the impulses examined per sample.
 constexpr double kGaborSurfaceSlab = 0.70710678118654752440;  // h / rho = 1 / sqrt 2
 constexpr double kGaborSurfaceCell = 1.2247448713915890491;   // cell / rho = sqrt(3/2)
+// GLSL filtering (hush/glsl/gabor_glsl.hpp): the footprint's eigenvectors by
+// cyclic Jacobi in float, at most this many sweeps (a 3 x 3 symmetric matrix
+// converges to float precision in 4 or 5), stopping once the off-diagonal
+// energy is below kGaborGlslJacobiTolerance times the diagonal's.
+constexpr unsigned kGaborGlslJacobiSweeps = 6;
+constexpr double kGaborGlslJacobiTolerance = 1e-12;
 
 // ---- NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot
 // 2010; npr_gabor.hpp). Parameters are in screen pixels: frequency F0 in

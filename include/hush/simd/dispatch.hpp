@@ -31,6 +31,7 @@
 #include "hush/core/views.hpp"
 #include "hush/detail/coherent_kernel.hpp"
 #include "hush/fractal.hpp"
+#include "hush/gabor.hpp"
 #include "hush/perlin.hpp"
 #include "hush/wavelet.hpp"
 
@@ -61,6 +62,7 @@ struct simd_kernel {
 
 #include "hush/simd/anisotropic-inl.h"
 #include "hush/simd/coherent-inl.h"
+#include "hush/simd/gabor-inl.h"
 #include "hush/simd/perlin-inl.h"
 #include "hush/simd/wavelet-inl.h"
 #endif
@@ -113,6 +115,19 @@ HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& 
 // Coherent noise: one recursive-filter pass over a frame (hush/simd/coherent-inl.h;
 // the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
 HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
+// Gabor noise (hush/gabor.hpp): points (interleaved), whole grids (no slabs), and
+// points with footprints (filtered samples); same conventions. hush/simd/gabor-inl.h states
+// the agreement with scalar evaluation.
+HUSH_SIMD_ENTRY void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
+                                   float* grad);
+HUSH_SIMD_ENTRY void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                                     std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                                     std::size_t n, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad);
 
 // Anisotropic noise (hush/simd/anisotropic-inl.h): n samples at interleaved
 // positions xy, with footprints fp (3 floats each, null = points) and surface
@@ -190,6 +205,28 @@ inline void anisotropic_samples(const anisotropic& a, const float* xy, const flo
 }
 inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
   HWY_STATIC_DISPATCH(anisotropic_grid)(a, g, value);
+}
+inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
+                          float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_points)(g, xy, n, value, grad);
+}
+inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
+                          float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_points)(g, xyz, n, value, grad);
+}
+inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_grid)(g, gr, value, grad);
+}
+inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                            std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_filtered)(g, xy, fps, n, value, grad);
+}
+inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                            std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
+}
+inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -348,6 +385,52 @@ struct simd_kernel<anisotropic> {
         s.has_footprints() ? reinterpret_cast<const float*>(s.footprints.data()) : nullptr,
         s.has_surface_maps() ? reinterpret_cast<const float*>(s.surface_maps.data()) : nullptr,
         s.size(), out);
+  }
+};
+
+// Gabor noise: points, grids, and samples with footprints (with normals: scalar).
+template <int D>
+struct simd_kernel<gabor<D>> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void samples(const gabor<D>& g, const hush::samples<D>& s, float* out,
+                      vec<float, D>* grad) {
+    if (s.has_normals()) {  // surface noise: the scalar path
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        if (grad) {
+          const auto r = g.template sample_value_and_gradient<float>(s.at(i));
+          out[i] = r.value;
+          grad[i] = r.gradient;
+        } else {
+          out[i] = g.template sample_value<float>(s.at(i));
+        }
+      }
+      return;
+    }
+    const auto* p = reinterpret_cast<const float*>(s.positions.data());
+    auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_filtered(g, p, s.footprints.data(), s.size(), out, gr);
+    else
+      simd::gabor3_filtered(g, p, s.footprints.data(), s.size(), out, gr);
+  }
+
+  static void points(const gabor<D>& g, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_points(g, p, count, out, gr);
+    else
+      simd::gabor3_points(g, p, count, out, gr);
+  }
+  static void grid(const gabor<D>& g, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    auto* gp = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_grid(g, gr, out, gp);
+    else
+      simd::gabor3_grid(g, gr, out, gp);
   }
 };
 

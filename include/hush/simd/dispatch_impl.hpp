@@ -20,6 +20,7 @@
 
 #include "hush/simd/anisotropic-inl.h"
 #include "hush/simd/coherent-inl.h"
+#include "hush/simd/gabor-inl.h"
 #include "hush/simd/perlin-inl.h"
 #include "hush/simd/wavelet-inl.h"
 
@@ -53,6 +54,12 @@ HWY_EXPORT(wavelet3_samples);
 HWY_EXPORT(coherent_pass);
 HWY_EXPORT(anisotropic_samples);
 HWY_EXPORT(anisotropic_grid);
+HWY_EXPORT(gabor2_points);
+HWY_EXPORT(gabor3_points);
+HWY_EXPORT(gabor2_grid);
+HWY_EXPORT(gabor3_grid);
+HWY_EXPORT(gabor2_filtered);
+HWY_EXPORT(gabor3_filtered);
 
 namespace simd {
 
@@ -120,6 +127,27 @@ void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
 }
 void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
   HWY_DYNAMIC_DISPATCH(anisotropic_grid)(a, g, value);
+}
+void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor2_points)(g, xy, n, value, grad);
+}
+void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor3_points)(g, xyz, n, value, grad);
+}
+
+void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor2_grid)(g, gr, value, grad);
+}
+void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
+}
+void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps, std::size_t n,
+                     float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor2_filtered)(g, xy, fps, n, value, grad);
+}
+void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps, std::size_t n,
+                     float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
 }
 
 std::vector<std::string> compiled_targets() {

@@ -102,7 +102,8 @@ inline const char* grid_axis_offsets() {
 // GLSL: the declarations of the samples layout's optional inputs (bindings
 // 2 to 4, their presence uniforms).
 inline const char* sample_input_declarations() {
-  return "uniform uint hush_has_footprint;  // 1u: hush_fp holds a footprint per sample\n"
+  return "#define HUSH_SAMPLES 1  // this runner reads samples (fp, nrm, has_nrm exist)\n"
+         "uniform uint hush_has_footprint;  // 1u: hush_fp holds a footprint per sample\n"
          "uniform uint hush_has_normal;     // 1u: hush_nrm holds a normal per sample\n"
          "uniform uint hush_has_map;        // 1u: hush_map holds a surface map per sample\n"
          "layout(std430, binding = 2) readonly buffer hush_footprints { float hush_fp[]; };\n"

@@ -26,6 +26,8 @@
 //   one band's term of a fractal sum (include/hush/fractal.hpp), the CPU's operations.
 //   hush_wavelet_*: wavelet noise (include/hush/wavelet.hpp), present only where the
 //   including shader defines HUSH_WAVELET_TILE(i) (hush/glsl/wavelet_glsl.hpp).
+//   hush_exp_neg, hush_sincos_turns, hush_stream_key/word, hush_gabor_*: Gabor
+//   noise's pieces (hush/glsl/gabor_glsl.hpp states them and their contract).
 //
 // Contract: the bodies mirror the CPU float algorithm (include/hush/perlin.hpp,
 // core/hash.hpp, core/lattice.hpp) operation by operation: the same gradient
@@ -54,6 +56,7 @@
 
 #include <string>
 
+#include "hush/glsl/detail/gabor_body.hpp"
 #include "hush/glsl/generator.hpp"
 #include "hush/glsl/wavelet_glsl.hpp"
 
@@ -276,7 +279,7 @@ vec4 hush_fractal_add_gradient(vec4 acc, vec4 ng, float weight, float chain, boo
 // besides the 2^D-cell structure integers (0, 1, 2, 4, 8).
 inline std::string library_bodies() {
   return std::string(detail::kHashBody) + detail::kLatticeBody + detail::kPerlinBody +
-         detail::kFractalBody + detail::wavelet_body();
+         detail::kFractalBody + detail::wavelet_body() + detail::kGaborBody;
 }
 
 // The whole function library: a header comment naming the hush version, the

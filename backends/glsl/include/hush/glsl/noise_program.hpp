@@ -31,6 +31,8 @@
 //   static std::string band_step(bool grad);   statements of `b` (uint band),
 //                                              `i0`, `i1` (uvecD), `f` (vecD)
 //   static std::string band_result(bool grad); the result: float or vec(D+1)
+// (In the samples layout HUSH_SAMPLES is #defined, so band_begin can tell
+// whether fp, nrm and has_nrm exist.)
 // The runner then splits every band coordinate on the CPU in double
 // (hush::lattice_split<float>) for points and grids alike (compute_source.hpp).
 // A noise whose evaluation reads large precomputed data (wavelet tiles,
@@ -274,6 +276,7 @@ inline constexpr bool has_program_v = has_program<Noise>::value;
 
 // The programs of the noises that live in their own headers (they include this one first).
 #include "hush/glsl/anisotropic_program.hpp"
+#include "hush/glsl/gabor_glsl.hpp"  // IWYU pragma: export
 #include "hush/glsl/wavelet_program.hpp"
 
 #endif  // HUSH_GLSL_NOISE_PROGRAM_HPP

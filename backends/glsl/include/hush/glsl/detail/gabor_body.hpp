@@ -1,0 +1,187 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The GLSL library bodies of Gabor-type noises (hush/glsl/gabor_glsl.hpp lists
+// them and states their contract): detail/elementary.hpp's exp and sin/cos,
+// hush::rng streams, gabor.hpp's word fields and gabor_kernel.hpp's taper and
+// separable kernel, operation by operation. Part of library(); references
+// only generated constants (generator.hpp) and hashing/lattice functions.
+#ifndef HUSH_GLSL_DETAIL_GABOR_BODY_HPP
+#define HUSH_GLSL_DETAIL_GABOR_BODY_HPP
+
+namespace hush {
+namespace glsl {
+namespace detail {
+
+// detail/elementary.hpp and gabor_kernel.hpp, operation by operation.
+constexpr const char* kGaborBody = R"glsl(
+// ---- Elementary functions (detail/elementary.hpp): the CPU float algorithm.
+float hush_exp_neg(float x) {
+  // Below the floor (or -Inf): 0; NaN stays NaN (tested on the bits).
+  if (!(x >= HUSH_EXP_FLOOR))
+    return (floatBitsToUint(x) & ~HUSH_FLOAT_SIGN_MASK) > HUSH_FLOAT_EXP_MASK ? x : 0.0;
+  x = x > 0.0 ? 0.0 : x;
+  float n = floor(x * HUSH_LOG2E + 1.0 / float(2));
+  float r = (x - n * HUSH_LN2_HI) - n * HUSH_LN2_LO;
+  float p = HUSH_EXP_POLY[HUSH_EXP_DEGREE];
+  for (uint i = HUSH_EXP_DEGREE; i > 0u; --i) p = p * r + HUSH_EXP_POLY[i - 1u];
+  return p * uintBitsToFloat(uint(int(n) + int(HUSH_FLOAT_EXP_BIAS)) << HUSH_FLOAT_MANTISSA_BITS);
+}
+// (sin, cos)(2 pi t), t in turns.
+vec2 hush_sincos_turns(float t) {
+  float u = abs(t) < HUSH_TURNS_REDUCE_LIMIT ? t : t - floor(t);
+  float q = floor(u * float(4) + 1.0 / float(2));
+  float r = u - q * (1.0 / float(4));
+  float z = r * r;
+  float ps = HUSH_SIN_POLY[HUSH_SIN_DEGREE];
+  for (uint i = HUSH_SIN_DEGREE; i > 0u; --i) ps = ps * z + HUSH_SIN_POLY[i - 1u];
+  float pc = HUSH_COS_POLY[HUSH_COS_DEGREE];
+  for (uint i = HUSH_COS_DEGREE; i > 0u; --i) pc = pc * z + HUSH_COS_POLY[i - 1u];
+  float s = r * ps;
+  float k = q - float(4) * floor(q * (1.0 / float(4)));
+  bool odd = k == 1.0 || k == float(3);
+  float sin_sign = k >= float(2) ? -1.0 : 1.0;
+  float cos_sign = (k == 1.0 || k == float(2)) ? -1.0 : 1.0;
+  return vec2((odd ? pc : s) * sin_sign, (odd ? s : pc) * cos_sign);
+}
+
+// ---- Gabor noise pieces (gabor.hpp, gabor_kernel.hpp).
+// hush::rng(seed, stream): key hash32(seed, stream); word c = hash32(key ^ hash32(c)).
+uint hush_stream_key(uint seed, uint stream) { return hush_hash32(seed, stream); }
+uint hush_stream_word(uint key, uint counter) { return hush_hash32(key ^ hush_hash32(counter)); }
+// Word fields as values in (0, 1), exact: byte i (0 = high), half i (0 = high).
+float hush_gabor_byte(uint w, uint i) {
+  uint m = (w >> (HUSH_GABOR_BYTE_BITS * (uint(3) - i))) & HUSH_GABOR_BYTE_MASK;
+  return float((m << 1u) | 1u) * HUSH_GABOR_BYTE_SCALE;
+}
+float hush_gabor_half(uint w, uint i) {
+  uint m = (w >> (HUSH_GABOR_HALF_BITS * (1u - i))) & HUSH_GABOR_HALF_MASK;
+  return float((m << 1u) | 1u) * HUSH_GABOR_HALF_SCALE;
+}
+// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), and (tau, dtau/ds).
+float hush_gabor_taper(float s, float k) {
+  float v = (1.0 - s) * k;
+  v = v < 1.0 ? v : 1.0;
+  return (v * v) * (float(3) - float(2) * v);
+}
+vec2 hush_gabor_taper_derivative(float s, float k) {
+  float v = (1.0 - s) * k;
+  v = v < 1.0 ? v : 1.0;
+  return vec2((v * v) * (float(3) - float(2) * v), (-float(6) * k) * (v * (1.0 - v)));
+}
+// One axis of the separable kernel: offset d, d^2, e^{-A d^2}, sin and cos(2 pi phi d).
+struct hush_gabor_axis {
+  float d, d2, e, s, c;
+};
+hush_gabor_axis hush_gabor_axis_factors(float d, float neg_a, float phi) {
+  hush_gabor_axis f;
+  f.d = d;
+  f.d2 = d * d;
+  f.e = hush_exp_neg(neg_a * f.d2);
+  vec2 sc = hush_sincos_turns(phi * d);
+  f.s = sc.x;
+  f.c = sc.y;
+  return f;
+}
+// The kernel along every axis but x: weight times envelope, cos, sin, d^2.
+struct hush_gabor_row {
+  float we, c, s, d2;
+};
+hush_gabor_row hush_gabor_row_of(float w, hush_gabor_axis y) {
+  return hush_gabor_row(w * y.e, y.c, y.s, y.d2);
+}
+hush_gabor_row hush_gabor_row_of(float w, hush_gabor_axis y, hush_gabor_axis z) {
+  return hush_gabor_row(w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2);
+}
+float hush_gabor_pair(hush_gabor_axis x, hush_gabor_row r, float k) {
+  float s = x.d2 + r.d2;
+  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * hush_gabor_taper(s, k);
+}
+// (value, u, v): d/dd_a = u d_a - v phi_a.
+vec3 hush_gabor_pair_gradient(hush_gabor_axis x, hush_gabor_row r, float k, float a) {
+  float s = x.d2 + r.d2;
+  vec2 tw = hush_gabor_taper_derivative(s, k);
+  float p = x.e * r.we;
+  float pc = p * (x.c * r.c - x.s * r.s);
+  float ps = p * (x.s * r.c + x.c * r.s);
+  return vec3(pc * tw.x, (pc + pc) * (tw.y - a * tw.x), HUSH_TWO_PI * (ps * tw.x));
+}
+// The key of cell `cell`'s solid stream: hush::rng(lattice_hash(key, cell), solid stream)
+// (gabor<D>::for_each_impulse); dim = 2 ignores cell.z.
+uint hush_gabor_cell_stream(uint key, uvec3 cell, uint dim) {
+  uint seed = dim == uint(2) ? hush_lattice_hash(key, cell.x, cell.y)
+                        : hush_lattice_hash(key, cell.x, cell.y, cell.z);
+  return hush_stream_key(seed, HUSH_GABOR_SOLID_STREAM);
+}
+// gabor_filter (gabor_kernel.hpp) in float for a dim-D footprint fp (S, noise units; the
+// upper-left dim x dim block is read), k = 2 A sigma^2 / r^2, mk = pi^2 / A:
+// Q = V diag(1 / (1 + k l)) V^T, M = V diag(mk k l / (1 + k l)) V^T
+// and amplitude = prod sqrt(q_i), with (V, l) the footprint's eigensystem by cyclic Jacobi.
+// Returns the amplitude; q, m with element (i, j) at [j][i] (symmetric; in 2D the third
+// row and column are 0).
+float hush_gabor_filter(mat3 fp, uint dim, float k, float mk, out mat3 q, out mat3 m) {
+  mat3 a, v;
+  for (uint i = 0u; i < uint(3); ++i)
+    for (uint j = 0u; j < uint(3); ++j) {
+      a[j][i] = (i < dim && j < dim) ? fp[j][i] : 0.0;
+      v[j][i] = i == j ? 1.0 : 0.0;
+    }
+  for (uint sweep = 0u; sweep < HUSH_GABOR_JACOBI_SWEEPS; ++sweep) {
+    float off = 0.0, diag = 0.0;
+    for (uint i = 0u; i < uint(3); ++i) {
+      diag += a[i][i] * a[i][i];
+      for (uint j = i + 1u; j < uint(3); ++j) off += a[j][i] * a[j][i];
+    }
+    if (!(off > HUSH_GABOR_JACOBI_TOLERANCE * diag)) break;
+    for (uint p = 0u; p < uint(3); ++p)
+      for (uint r = p + 1u; r < uint(3); ++r) {
+        float apq = a[r][p];
+        if (apq == 0.0) continue;
+        float theta = (a[r][r] - a[p][p]) / (float(2) * apq);
+        float t = (theta >= 0.0 ? 1.0 : -1.0) / (abs(theta) + sqrt(theta * theta + 1.0));
+        if (hush_is_nonfinite(theta)) t = 0.0;
+        float c = 1.0 / sqrt(t * t + 1.0), sn = t * c;
+        for (uint x = 0u; x < uint(3); ++x) {  // columns p and r
+          float axp = a[p][x], axq = a[r][x];
+          a[p][x] = c * axp - sn * axq;
+          a[r][x] = sn * axp + c * axq;
+        }
+        for (uint x = 0u; x < uint(3); ++x) {  // rows p and r
+          float apx = a[x][p], aqx = a[x][r];
+          a[x][p] = c * apx - sn * aqx;
+          a[x][r] = sn * apx + c * aqx;
+        }
+        for (uint x = 0u; x < uint(3); ++x) {
+          float vxp = v[p][x], vxq = v[r][x];
+          v[p][x] = c * vxp - sn * vxq;
+          v[r][x] = sn * vxp + c * vxq;
+        }
+      }
+  }
+  float qd[3], md[3], amp = 1.0;
+  for (uint i = 0u; i < uint(3); ++i) {
+    float kl = k * max(a[i][i], 0.0);
+    if (!(kl == kl)) kl = 0.0;
+    qd[i] = 1.0 / (1.0 + kl);
+    md[i] = mk * (hush_is_nonfinite(kl) ? 1.0 : kl / (1.0 + kl));
+    if (i < dim) amp *= sqrt(qd[i]);
+  }
+  for (uint i = 0u; i < uint(3); ++i)
+    for (uint j = 0u; j < uint(3); ++j) {
+      float qq = 0.0, mm = 0.0;
+      for (uint e = 0u; e < dim; ++e) {
+        qq += v[e][i] * qd[e] * v[e][j];
+        mm += v[e][i] * md[e] * v[e][j];
+      }
+      q[j][i] = qq;
+      m[j][i] = mm;
+    }
+  return amp;
+}
+)glsl";
+
+}  // namespace detail
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_DETAIL_GABOR_BODY_HPP

@@ -1,0 +1,1105 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for Gabor noise (hush/gabor.hpp): points, uniform grids and
+// samples with footprints (filtered, 2D and 3D), values and optionally
+// gradients (samples with normals, i.e. surface noise, take the scalar path). Compiled once per
+// SIMD target (the "-inl.h" convention: toggle include guard below); reached through
+// hush/simd/dispatch.hpp, never included directly by users.
+//
+// They repeat gabor.hpp's float algorithm operation by operation: the same
+// lattice split (in double), per-cell hush::rng streams and Poisson table
+// counts (integer comparisons), the same word fields and marks, hush's own exp
+// and sin/cos (elementary functions below, mirroring detail/elementary.hpp),
+// the same separable kernel products and taper, and, per sample, the same
+// order of accumulation (cells in raster order, impulses in stream order):
+//  - under HUSH_STRICT_FP every value and gradient is bit for bit the scalar
+//    result (tests/simd/gabor_simd_test.cpp, every compiled target);
+//  - otherwise multiply-adds may be fused, within the float budget of
+//    gabor.hpp.
+// How they are fast:
+//  - points and filtered samples: one lane per point (samples: each lane's
+//    filter computed in double, as the scalar code does, and gathered per term); per cell and
+//    impulse the lanes draw in lockstep (the counter's hash is shared), and only impulses within a
+//    lane's support are kept, compressed into a list that the kernel then evaluates in full
+//    vectors; each point's terms are summed in stream order;
+//  - grids: samples in blocks that share their cell (up to 64 per row, 64
+//    rows; 3D 32^3), each impulse of the block's 3^D cells evaluated once per
+//    block: its factors along y (and z) once per row (slice), along x once per
+//    column, and per sample only their products (gabor_kernel.hpp's separable
+//    form). Grids with fewer than kMinRun samples per cell along x go through
+//    the points path instead.
+
+#if defined(HUSH_SIMD_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_GABOR_INL_H_
+#undef HUSH_SIMD_GABOR_INL_H_
+#else
+#define HUSH_SIMD_GABOR_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+#include "hush/config.hpp"
+#include "hush/core/hash.hpp"
+#include "hush/core/lattice.hpp"
+#include "hush/core/samples.hpp"
+#include "hush/core/views.hpp"
+#include "hush/detail/constants.hpp"
+#include "hush/gabor.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using VI = hn::Vec<DI>;
+using MF = hn::Mask<DF>;
+
+// Largest lane count of any target (SVE may have 64 float lanes).
+constexpr std::size_t kMaxLanes = 64;
+// Grids with fewer samples per cell along x than this take the points path.
+constexpr double kMinRun = 8.0;
+
+// ---- Arithmetic as the scalar code is compiled: a * b + c in two roundings
+// under HUSH_STRICT_FP, fused otherwise.
+HWY_INLINE VF mul_add(VF a, VF b, VF c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), c);
+#else
+  return hn::MulAdd(a, b, c);
+#endif
+}
+// c - a * b.
+HWY_INLINE VF neg_mul_add(VF a, VF b, VF c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Sub(c, hn::Mul(a, b));
+#else
+  return hn::NegMulAdd(a, b, c);
+#endif
+}
+
+// ---- detail/elementary.hpp in lanes.
+HWY_INLINE VF exp_neg(VF x) {
+  namespace c = detail::constants;
+  const DF df;
+  const DI di;
+  const VF zero = hn::Zero(df), lo = hn::Set(df, float(c::kExpFloor));
+  const VF xc = hn::Max(hn::IfThenElse(hn::Gt(x, zero), zero, x), lo);
+  const VF n = hn::Floor(mul_add(xc, hn::Set(df, float(c::kLog2E)), hn::Set(df, 0.5f)));
+  const VF r = neg_mul_add(n, hn::Set(df, float(c::kLn2Lo)),
+                           neg_mul_add(n, hn::Set(df, float(c::kLn2Hi)), xc));
+  VF p = hn::Set(df, float(c::kExpPoly[c::kExpDegree]));
+  for (int i = c::kExpDegree - 1; i >= 0; --i)
+    p = mul_add(p, r, hn::Set(df, float(c::kExpPoly[i])));
+  const VI bits = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, n), hn::Set(di, 127)));
+  const VF v = hn::Mul(p, hn::BitCast(df, bits));
+  // Below the floor: 0; NaN: the NaN itself (as the scalar code returns x).
+  return hn::IfThenElse(hn::IsNaN(x), x, hn::IfThenElseZero(hn::Ge(x, lo), v));
+}
+
+HWY_INLINE void sincos_turns(VF t, VF& sin_out, VF& cos_out) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF u = hn::IfThenElse(hn::Lt(hn::Abs(t), hn::Set(df, float(c::kTurnsReduceLimit))), t,
+                              hn::Sub(t, hn::Floor(t)));
+  const VF q = hn::Floor(mul_add(u, hn::Set(df, 4.0f), hn::Set(df, 0.5f)));
+  const VF r = neg_mul_add(q, hn::Set(df, 0.25f), u);
+  const VF z = hn::Mul(r, r);
+  VF ps = hn::Set(df, float(c::kSinPoly[c::kSinDegree]));
+  for (int i = c::kSinDegree - 1; i >= 0; --i)
+    ps = mul_add(ps, z, hn::Set(df, float(c::kSinPoly[i])));
+  VF pc = hn::Set(df, float(c::kCosPoly[c::kCosDegree]));
+  for (int i = c::kCosDegree - 1; i >= 0; --i)
+    pc = mul_add(pc, z, hn::Set(df, float(c::kCosPoly[i])));
+  const VF s = hn::Mul(r, ps);
+  const VF k = neg_mul_add(hn::Set(df, 4.0f), hn::Floor(hn::Mul(q, hn::Set(df, 0.25f))), q);
+  const VF one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f), three = hn::Set(df, 3.0f);
+  const MF k1 = hn::Eq(k, one), k2 = hn::Eq(k, two), k3 = hn::Eq(k, three);
+  const MF odd = hn::Or(k1, k3);
+  const VF sin_sign = hn::IfThenElse(hn::Ge(k, two), hn::Set(df, -1.0f), one);
+  const VF cos_sign = hn::IfThenElse(hn::Or(k1, k2), hn::Set(df, -1.0f), one);
+  sin_out = hn::Mul(hn::IfThenElse(odd, pc, s), sin_sign);
+  cos_out = hn::Mul(hn::IfThenElse(odd, s, pc), cos_sign);
+}
+
+// ---- core/hash.hpp in lanes.
+HWY_INLINE VU hash32(VU x) {
+  namespace c = detail::constants;
+  const DU du;
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
+  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
+}
+HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
+HWY_INLINE VU word_y(VU j) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
+}
+HWY_INLINE VU word_z(VU k) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
+}
+// hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
+HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
+  const DU du;
+  return hash32(hn::Xor(hash32(hn::Add(seed, hn::Set(du, detail::constants::kGoldenGamma))),
+                        hn::Set(du, stream)));
+}
+// Draw `counter` of the streams with keys `key`: hash32(key ^ hash32(counter)).
+HWY_INLINE VU draw(VU key, std::uint32_t counter) {
+  return hash32(hn::Xor(key, hn::Set(DU(), hush::hash32(counter))));
+}
+
+// Poisson counts of words u (poisson_table::count): the number of thresholds
+// <= u. Short tables (the common case: 25 thresholds for N' = 16 in 2D) are
+// scanned in order, stopping once no lane's word reaches the next threshold
+// (about the largest count in the vector); long ones are binary-searched with
+// gathers. `flipped` holds the thresholds with the sign bit flipped (unsigned
+// order as signed).
+constexpr std::uint32_t kLinearTable = 64;
+HWY_INLINE VU table_count(const std::int32_t* flipped, std::uint32_t n, VU u) {
+  const DU du;
+  const DI di;
+  const VI us = hn::Xor(hn::BitCast(di, u), hn::Set(di, static_cast<std::int32_t>(0x80000000U)));
+  if (n <= kLinearTable) {
+    VI count = hn::Zero(di);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const auto below = hn::Not(hn::Gt(hn::Set(di, flipped[k]), us));  // T_k <= u
+      if (hn::AllFalse(di, below)) break;  // sorted: no later threshold is reached either
+      count = hn::Sub(count, hn::VecFromMask(di, below));
+    }
+    return hn::BitCast(du, count);
+  }
+  VU lo = hn::Zero(du);
+  std::uint32_t step = 1;
+  while (step * 2 <= n) step *= 2;
+  for (; step > 0; step /= 2) {
+    const VU cand = hn::Add(lo, hn::Set(du, step));  // try count >= cand
+    const auto ok_index =
+        hn::Not(hn::Gt(hn::BitCast(di, cand), hn::Set(di, static_cast<std::int32_t>(n))));
+    const VI index = hn::IfThenElseZero(ok_index, hn::Sub(hn::BitCast(di, cand), hn::Set(di, 1)));
+    const VI t = hn::GatherIndex(di, flipped, index);
+    const auto take = hn::And(ok_index, hn::Not(hn::Gt(t, us)));  // T[cand - 1] <= u
+    lo = hn::IfThenElse(hn::RebindMask(du, take), cand, lo);
+  }
+  return lo;
+}
+// The thresholds of `table` with the sign bit flipped, for table_count.
+inline std::vector<std::int32_t> flipped_thresholds(const poisson_table& table) {
+  std::vector<std::int32_t> f(table.thresholds().size() + 1, 0);
+  for (std::size_t i = 0; i < table.thresholds().size(); ++i)
+    f[i] = static_cast<std::int32_t>(table.thresholds()[i] ^ 0x80000000U);
+  return f;
+}
+
+// Fields of words (gabor.hpp detail::gabor_byte, gabor_half) as floats:
+// (2m + 1) 2^-9 = m 2^-8 + 2^-9, exact whichever way it is computed.
+HWY_INLINE VF byte_value(VU w, unsigned i) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  VU m = hn::ShiftRightSame(w, static_cast<int>(c::kGaborByteBits * (3u - i)));
+  if (i != 0) m = hn::And(m, hn::Set(du, c::kGaborByteMask));
+  return mul_add(hn::ConvertTo(df, hn::BitCast(DI(), m)),
+                 hn::Set(df, float(2 * c::kGaborByteScale)),
+                 hn::Set(df, float(c::kGaborByteScale)));
+}
+HWY_INLINE VF half_value(VU w, unsigned i) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  VU m = hn::ShiftRightSame(w, static_cast<int>(c::kGaborHalfBits * (1u - i)));
+  if (i != 0) m = hn::And(m, hn::Set(du, c::kGaborHalfMask));
+  return mul_add(hn::ConvertTo(df, hn::BitCast(DI(), m)),
+                 hn::Set(df, float(2 * c::kGaborHalfScale)),
+                 hn::Set(df, float(c::kGaborHalfScale)));
+}
+
+// ---- The kernel (gabor_kernel.hpp) in lanes.
+struct axis {
+  VF d, d2, e, s, c;
+};
+HWY_INLINE axis axis_factors(VF d, VF neg_a, VF phi) {
+  axis f;
+  f.d = d;
+  f.d2 = hn::Mul(d, d);
+  f.e = exp_neg(hn::Mul(neg_a, f.d2));
+  sincos_turns(hn::Mul(phi, d), f.s, f.c);
+  return f;
+}
+struct row {
+  VF we, c, s, d2;
+};
+HWY_INLINE row row_of(VF w, const axis& y) { return {hn::Mul(w, y.e), y.c, y.s, y.d2}; }
+HWY_INLINE row row_of(VF w, const axis& y, const axis& z) {
+  return {hn::Mul(w, hn::Mul(y.e, z.e)), hn::Sub(hn::Mul(y.c, z.c), hn::Mul(y.s, z.s)),
+          hn::Add(hn::Mul(y.s, z.c), hn::Mul(y.c, z.s)), hn::Add(y.d2, z.d2)};
+}
+HWY_INLINE VF taper(VF s, VF k) {
+  const DF df;
+  const VF one = hn::Set(df, 1.0f);
+  const VF v = hn::Min(hn::Mul(hn::Sub(one, s), k), one);
+  return hn::Mul(hn::Mul(v, v), neg_mul_add(hn::Set(df, 2.0f), v, hn::Set(df, 3.0f)));
+}
+HWY_INLINE void taper_derivative(VF s, VF k, VF& tau, VF& dtau) {
+  const DF df;
+  const VF one = hn::Set(df, 1.0f);
+  const VF v = hn::Min(hn::Mul(hn::Sub(one, s), k), one);
+  tau = hn::Mul(hn::Mul(v, v), neg_mul_add(hn::Set(df, 2.0f), v, hn::Set(df, 3.0f)));
+  dtau = hn::Mul(hn::Mul(hn::Set(df, -6.0f), k), hn::Mul(v, hn::Sub(one, v)));
+}
+// gabor_pair: ((x.e r.we) (x.c r.c - x.s r.s)) tau(x.d2 + r.d2).
+HWY_INLINE VF pair(const axis& x, const row& r, VF k) {
+  const VF s = hn::Add(x.d2, r.d2);
+  return hn::Mul(hn::Mul(hn::Mul(x.e, r.we), hn::Sub(hn::Mul(x.c, r.c), hn::Mul(x.s, r.s))),
+                 taper(s, k));
+}
+// gabor_pair_with_gradient: value, u, v with dg/dd_a = u d_a - v phi_a.
+HWY_INLINE void pair_gradient(const axis& x, const row& r, VF k, VF a, VF& value, VF& u, VF& v) {
+  const DF df;
+  const VF s = hn::Add(x.d2, r.d2);
+  VF tau, dtau;
+  taper_derivative(s, k, tau, dtau);
+  const VF p = hn::Mul(x.e, r.we);
+  const VF pc = hn::Mul(p, hn::Sub(hn::Mul(x.c, r.c), hn::Mul(x.s, r.s)));
+  const VF ps = hn::Mul(p, hn::Add(hn::Mul(x.s, r.c), hn::Mul(x.c, r.s)));
+  value = hn::Mul(pc, tau);
+  u = hn::Mul(hn::Add(pc, pc), neg_mul_add(a, tau, dtau));
+  v = hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(ps, tau));
+}
+
+// ---- The noise's constants as lanes.
+template <int D>
+struct consts {
+  VF neg_a, a, k, scale, grad_scale;
+  // Marks (gabor_marks): 2D theta0 and spread (turns), phi0, dphi, the fixed
+  // frequency (anisotropic); 3D frame and cap.
+  VF theta0, spread, phi0, dphi, half, fixed[3], frame_t[3], frame_b[3], frame_axis[3],
+      one_minus_cap;
+  gabor_kind kind;
+  explicit consts(const gabor<D>& g) {
+    const DF df;
+    neg_a = hn::Set(df, float(-g.kernel().envelope_exponent()));
+    a = hn::Set(df, float(g.kernel().envelope_exponent()));
+    k = hn::Set(df, float(1.0 / (1.0 - detail::constants::kGaborTaperStart)));
+    scale = hn::Set(df, float(g.scale()));
+    grad_scale = hn::Set(df, float(g.scale() * g.inverse_cell()));
+    const gabor_marks<D>& m = g.marks();
+    kind = m.kind();
+    theta0 = hn::Set(df, float(m.theta0()));
+    spread = hn::Set(df, float(m.spread_turns()));
+    phi0 = hn::Set(df, float(m.phi0()));
+    dphi = hn::Set(df, float(m.dphi()));
+    half = hn::Set(df, 0.5f);
+    one_minus_cap = hn::Set(df, float(1.0 - m.cos_cap()));
+    for (int i = 0; i < 3; ++i) {
+      fixed[i] = hn::Set(df, i < D ? float(m.fixed_frequency()[i]) : 0.0f);
+      frame_t[i] = hn::Set(df, float(m.frame_t()[i]));
+      frame_b[i] = hn::Set(df, float(m.frame_b()[i]));
+      frame_axis[i] = hn::Set(df, float(m.frame_axis()[i]));
+    }
+  }
+};
+
+// gabor_marks<3>::direction in lanes.
+template <int D>
+HWY_INLINE void direction(const consts<D>& c, VF u1, VF u2, VF* dir) {
+  const DF df;
+  const VF one = hn::Set(df, 1.0f);
+  const VF ct = neg_mul_add(c.one_minus_cap, u1, one);
+  const VF st = hn::Sqrt(hn::Mul(hn::Sub(one, ct), hn::Add(one, ct)));
+  VF s, co;
+  sincos_turns(u2, s, co);
+  const VF lx = hn::Mul(st, co), ly = hn::Mul(st, s);
+  for (int i = 0; i < 3; ++i)
+    dir[i] = mul_add(c.frame_axis[i], ct, mul_add(c.frame_t[i], lx, hn::Mul(c.frame_b[i], ly)));
+}
+
+// gabor<D>::mark_values + gabor_marks::draw from an impulse's words: the
+// weight and frequency vector (cycles per cell).
+template <int D>
+HWY_INLINE void marks(const consts<D>& c, const VU* words, VF& w, VF* phi) {
+  const DF df;
+  w = hn::Sub(hn::Mul(hn::Set(df, 2.0f), byte_value(words[0], D)), hn::Set(df, 1.0f));
+  if (c.kind == gabor_kind::anisotropic) {
+    for (int i = 0; i < D; ++i) phi[i] = c.fixed[i];
+    return;
+  }
+  const bool hybrid = c.kind == gabor_kind::hybrid;
+  if constexpr (D == 2) {
+    const VF f =
+        hybrid ? mul_add(c.dphi, hn::Sub(half_value(words[1], 0), c.half), c.phi0) : c.phi0;
+    VF s, co;
+    sincos_turns(mul_add(c.spread, hn::Sub(byte_value(words[0], 3), c.half), c.theta0), s, co);
+    phi[0] = hn::Mul(f, co);
+    phi[1] = hn::Mul(f, s);
+  } else {
+    const VF f =
+        hybrid ? mul_add(c.dphi, hn::Sub(half_value(words[2], 0), c.half), c.phi0) : c.phi0;
+    VF dir[3];
+    direction(c, half_value(words[1], 0), half_value(words[1], 1), dir);
+    for (int i = 0; i < 3; ++i) phi[i] = hn::Mul(f, dir[i]);
+  }
+}
+
+// D interleaved gradients to dst.
+template <int D>
+HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
+  const DF df;
+  if constexpr (D == 2)
+    hn::StoreInterleaved2(g[0], g[1], df, dst);
+  else
+    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
+}
+
+// ---- Compression of selected lanes to the front of a vector. AVX-512 has it
+// in one instruction (Highway's Compress); Highway 1.0.3's 4- and 8-lane
+// versions copy a 1 KiB table onto the stack on every call, so for up to 8
+// lanes the lane indices come from a table of our own, built at compile time.
+template <int N>
+struct compress_indices {
+  std::int32_t idx[1 << N][N];
+};
+template <int N>
+constexpr compress_indices<N> make_compress_indices() {
+  compress_indices<N> t{};
+  for (int bits = 0; bits < (1 << N); ++bits) {
+    int k = 0;
+    for (int l = 0; l < N; ++l)
+      if (bits & (1 << l)) t.idx[bits][k++] = l;
+    for (int l = 0; l < N; ++l)
+      if (!(bits & (1 << l))) t.idx[bits][k++] = l;
+  }
+  return t;
+}
+alignas(64) inline constexpr compress_indices<8> kCompress8 = make_compress_indices<8>();
+alignas(64) inline constexpr compress_indices<4> kCompress4 = make_compress_indices<4>();
+
+// The selected lanes of each vector of `v` (count `n`) moved to the front, by
+// the same mask.
+template <class V, class M>
+HWY_INLINE V compress(V v, M m) {
+  using D = hn::DFromV<V>;
+  const D d;
+  const std::size_t lanes = hn::Lanes(d);
+  if (lanes == 8 || lanes == 4) {
+    std::uint8_t bits[8] = {};
+    hn::StoreMaskBits(d, m, bits);
+    const std::int32_t* idx = lanes == 8 ? kCompress8.idx[bits[0]] : kCompress4.idx[bits[0] & 15];
+    return hn::TableLookupLanes(v, hn::SetTableIndices(d, idx));
+  }
+  return hn::Compress(v, m);
+}
+
+// ---- One lane per point: candidates, then the kernel over the kept ones.
+
+// The impulses kept for a batch of lanes, in the order each lane sums them.
+struct tuples {
+  std::vector<std::uint32_t> lane, w0, w1, w2;
+  std::vector<float> d[3];
+  std::vector<float> val, g[3];
+  std::size_t n = 0;
+  void reserve(std::size_t cap) {
+    const std::size_t c = cap + kMaxLanes;
+    for (auto* v : {&lane, &w0, &w1, &w2}) v->resize(c);
+    for (auto* v : {&d[0], &d[1], &d[2], &val, &g[0], &g[1], &g[2]}) v->resize(c);
+  }
+};
+
+// A lane batch's split positions: per axis the cell and the fraction (cell
+// units), as lattice_split<float> of position * inverse cell in double.
+struct lanes_split {
+  HWY_ALIGN std::uint32_t cell[3][kMaxLanes];
+  HWY_ALIGN float frac[3][kMaxLanes];
+  bool bad[kMaxLanes];  // a non-finite coordinate: the result is NaN
+};
+
+// Appends to `t` every impulse of the process (solid: `table`, `stream`, the
+// 3^E cells around each lane's cell) within a lane's support, in raster order
+// of the cells and stream order of the impulses. `keep(d, d2, s)` is the
+// support test per lane (a mask over the lanes); E is the process's dimension.
+template <int E, class Keep>
+void collect(std::uint32_t key, std::uint32_t stream, const std::vector<std::int32_t>& flipped,
+             int words, const lanes_split& sp, tuples& t, Keep keep) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const VU lane_ids = hn::Iota(du, 0);
+  VU base[3];
+  VF frac[3];
+  for (int a = 0; a < E; ++a) {
+    base[a] = hn::Load(du, sp.cell[a]);
+    frac[a] = hn::Load(df, sp.frac[a]);
+  }
+  const std::int32_t* thr = flipped.data();
+  const auto nthr = static_cast<std::uint32_t>(flipped.size() - 1);
+  constexpr int kCells = E == 2 ? 9 : 27;
+  t.n = 0;
+  for (int n = 0; n < kCells; ++n) {
+    int o[3] = {0, 0, 0};
+    for (int a = 0, m = n; a < E; ++a, m /= 3) o[a] = m % 3 - 1;
+    VU h = hn::Xor(hn::Set(du, key),
+                   word_x(hn::Add(base[0], hn::Set(du, static_cast<std::uint32_t>(o[0])))));
+    h = hn::Xor(h, word_y(hn::Add(base[1], hn::Set(du, static_cast<std::uint32_t>(o[1])))));
+    if constexpr (E == 3)
+      h = hn::Xor(h, word_z(hn::Add(base[2], hn::Set(du, static_cast<std::uint32_t>(o[2])))));
+    const VU skey = stream_key(hash32(h), stream);
+    const VU count = nthr == 0 ? hn::Zero(du) : table_count(thr, nthr, draw(skey, 0));
+    const std::uint32_t kmax = hn::GetLane(hn::MaxOfLanes(du, count));
+    VF off[3];
+    for (int a = 0; a < E; ++a) off[a] = hn::Sub(frac[a], hn::Set(df, float(o[a])));
+    for (std::uint32_t k = 0; k < kmax; ++k) {
+      const std::uint32_t counter = 1 + k * static_cast<std::uint32_t>(words);
+      VU w[3];
+      w[0] = draw(skey, counter);
+      VF d[3], d2[3];
+      for (int a = 0; a < E; ++a) {
+        d[a] = hn::Sub(off[a], byte_value(w[0], static_cast<unsigned>(a)));
+        d2[a] = hn::Mul(d[a], d[a]);
+      }
+      const auto active =
+          hn::RebindMask(df, hn::Lt(hn::BitCast(di, hn::Set(du, k)), hn::BitCast(di, count)));
+      const MF in = hn::And(active, keep(d, d2));
+      if (hn::AllFalse(df, in)) continue;
+      for (int j = 1; j < words; ++j) w[j] = draw(skey, counter + static_cast<std::uint32_t>(j));
+      // Compress in registers, then store whole vectors (the buffers have a
+      // vector of slack): the memory form of compress is microcoded and slow
+      // on some CPUs (AMD Zen 4).
+      const auto inu = hn::RebindMask(du, in);
+      const std::size_t at = t.n;
+      hn::StoreU(compress(lane_ids, inu), du, t.lane.data() + at);
+      for (int a = 0; a < E; ++a) hn::StoreU(compress(d[a], in), df, t.d[a].data() + at);
+      std::uint32_t* wd[3] = {t.w0.data(), t.w1.data(), t.w2.data()};
+      for (int j = 0; j < words; ++j) hn::StoreU(compress(w[j], inu), du, wd[j] + at);
+      t.n = at + hn::CountTrue(df, in);
+    }
+  }
+}
+
+// The unfiltered kernel of every kept impulse (gabor<D>::eval's pair), into
+// t.val (and with G, the gradient terms u d_a - v phi_a into t.g).
+template <int D, bool G>
+void eval_unfiltered(const consts<D>& c, tuples& t) {
+  const DF df;
+  const DU du;
+  const std::size_t lanes = hn::Lanes(df);
+  for (std::size_t i = 0; i < t.n; i += lanes) {
+    VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
+               hn::LoadU(du, t.w2.data() + i)};
+    VF wt, phi[3];
+    marks<D>(c, w, wt, phi);
+    axis ax[3];
+    for (int a = 0; a < D; ++a)
+      ax[a] = axis_factors(hn::LoadU(df, t.d[a].data() + i), c.neg_a, phi[a]);
+    row r;
+    if constexpr (D == 2)
+      r = row_of(wt, ax[1]);
+    else
+      r = row_of(wt, ax[1], ax[2]);
+    if constexpr (G) {
+      VF v, u, vv;
+      pair_gradient(ax[0], r, c.k, c.a, v, u, vv);
+      hn::StoreU(v, df, t.val.data() + i);
+      for (int a = 0; a < D; ++a)
+        hn::StoreU(hn::Sub(hn::Mul(u, ax[a].d), hn::Mul(vv, phi[a])), df, t.g[a].data() + i);
+    } else {
+      hn::StoreU(pair(ax[0], r, c.k), df, t.val.data() + i);
+    }
+  }
+}
+
+// Per-lane filters of a batch (gabor<D>::filtered_eval): gabor_filter<D> of each lane's
+// footprint in double, rounded to float as the scalar code rounds it. Q and M row-major.
+struct lanes_filter {
+  HWY_ALIGN float q[9][kMaxLanes];
+  HWY_ALIGN float m[9][kMaxLanes];
+  HWY_ALIGN float amp[kMaxLanes];
+};
+
+// The filtered kernel of every kept impulse (gabor<D>::filtered_pair, operation by
+// operation), each with its lane's filter (gathered by the tuple's lane).
+template <int D, bool G>
+void eval_filtered(const consts<D>& c, const lanes_filter& f, tuples& t) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const VF zero = hn::Zero(df);
+  for (std::size_t i = 0; i < t.n; i += lanes) {
+    VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
+               hn::LoadU(du, t.w2.data() + i)};
+    const VI li = hn::BitCast(di, hn::LoadU(du, t.lane.data() + i));
+    VF wt, phi[3], d[3], d2[3];
+    marks<D>(c, w, wt, phi);
+    for (int a = 0; a < D; ++a) {
+      d[a] = hn::LoadU(df, t.d[a].data() + i);
+      d2[a] = hn::Mul(d[a], d[a]);
+    }
+    const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
+    VF mu[3], qd[3];
+    VF att = zero, dqd = zero, theta = zero;
+    for (int r = 0; r < D; ++r) {
+      VF x = zero, y = zero, z = zero;
+      for (int col = 0; col < D; ++col) {
+        const VF q = hn::GatherIndex(df, f.q[r * D + col], li);
+        const VF m = hn::GatherIndex(df, f.m[r * D + col], li);
+        x = mul_add(q, phi[col], x);
+        y = mul_add(m, phi[col], y);
+        z = mul_add(q, d[col], z);
+      }
+      mu[r] = x;
+      att = mul_add(phi[r], y, att);
+      qd[r] = z;
+      dqd = mul_add(d[r], z, dqd);
+    }
+    for (int r = 0; r < D; ++r) theta = mul_add(mu[r], d[r], theta);
+    const VF amp = hn::GatherIndex(df, f.amp, li);
+    const VF p =
+        hn::Mul(hn::Mul(hn::Mul(wt, amp), exp_neg(hn::Neg(att))), exp_neg(hn::Mul(c.neg_a, dqd)));
+    VF sn, cs;
+    sincos_turns(theta, sn, cs);
+    if constexpr (G) {
+      VF tau, dtau;
+      taper_derivative(s, c.k, tau, dtau);
+      const VF pc = hn::Mul(p, cs);
+      const VF ps =
+          hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(hn::Mul(p, tau), sn));
+      hn::StoreU(hn::Mul(pc, tau), df, t.val.data() + i);
+      const VF dtau2 = hn::Add(dtau, dtau), a2 = hn::Add(c.a, c.a);
+      for (int r = 0; r < D; ++r) {
+        const VF inner = neg_mul_add(a2, hn::Mul(tau, qd[r]), hn::Mul(dtau2, d[r]));
+        hn::StoreU(neg_mul_add(ps, mu[r], hn::Mul(pc, inner)), df, t.g[r].data() + i);
+      }
+    } else {
+      hn::StoreU(hn::Mul(hn::Mul(p, cs), taper(s, c.k)), df, t.val.data() + i);
+    }
+  }
+}
+
+// Sums each lane's terms in their order and writes value = sum * scale (and
+// gradient = g * gradient scale), NaN for bad lanes. `used` lanes are written.
+template <int D, bool G>
+void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scale, float grad_scale,
+            float* value, float* grad) {
+  float sum[kMaxLanes], g[3][kMaxLanes];
+  const std::size_t lanes = hn::Lanes(DF());
+  std::fill(sum, sum + lanes, 0.0f);
+  if constexpr (G)
+    for (int a = 0; a < D; ++a) std::fill(g[a], g[a] + lanes, 0.0f);
+  for (std::size_t i = 0; i < t.n; ++i) {
+    const std::uint32_t l = t.lane[i];
+    sum[l] += t.val[i];
+    if constexpr (G)
+      for (int a = 0; a < D; ++a) g[a][l] += t.g[a][i];
+  }
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t l = 0; l < used; ++l) {
+    value[l] = sp.bad[l] ? nan : sum[l] * scale;
+    if constexpr (G)
+      for (int a = 0; a < D; ++a) grad[l * D + a] = sp.bad[l] ? nan : g[a][l] * grad_scale;
+  }
+}
+
+// Splits lane l's coordinates x (double) into cell and fraction with the
+// inverse cell side `inv` (gabor<D>::eval's split).
+template <int D>
+HWY_INLINE void split_lane(lanes_split& sp, std::size_t l, const double* x, double inv) {
+  bool bad = false;
+  for (int a = 0; a < D; ++a) {
+    const lattice_coord<float> c = lattice_split<float>(x[a] * inv);
+    sp.cell[a][l] = c.i0;
+    sp.frac[a][l] = c.f;
+    bad = bad || std::isnan(c.f);
+  }
+  sp.bad[l] = bad;
+}
+template <int D>
+HWY_INLINE void clear_lane(lanes_split& sp, std::size_t l) {
+  for (int a = 0; a < 3; ++a) {
+    sp.cell[a][l] = 0;
+    sp.frac[a][l] = 0.5f;
+  }
+  sp.bad[l] = true;
+}
+
+// The vector split of one axis (lattice_split<float>(x * inv) of every lane,
+// bit for bit), valid when every lane's x * inv is finite with |x inv| < 2^31;
+// false (nothing written) otherwise: the caller splits lane by lane.
+HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
+#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
+  const DF df;
+  const hn::Half<DF> dh;
+  const hn::Repartition<double, DF> dd;
+  const hn::Rebind<float, decltype(dd)> df_of_d;
+  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
+  const auto vinv = hn::Set(dd, inv);
+  const auto limit = hn::Set(dd, 2147483648.0);
+  const auto lo = hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), vinv);
+  const auto hi = hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), vinv);
+  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
+    return false;
+  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
+  const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
+                           hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
+  hn::Store(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
+  const DI di;
+  const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
+  hn::Store(hn::BitCast(DU(), c), DU(), cell);
+  return true;
+#else
+  (void)x;
+  (void)inv;
+  (void)cell;
+  (void)frac;
+  return false;
+#endif
+}
+
+// Splits lanes [0, used) of a batch with split_lane (positions pos(i, x), x:
+// D doubles) and marks the rest unused.
+template <int D, class Position>
+void split_lanes(lanes_split& sp, std::size_t first, std::size_t used, double inv, Position pos) {
+  const std::size_t lanes = hn::Lanes(DF());
+  for (std::size_t l = 0; l < lanes; ++l) {
+    if (l < used) {
+      double x[3];
+      pos(first + l, x);
+      split_lane<D>(sp, l, x, inv);
+    } else {
+      clear_lane<D>(sp, l);
+    }
+  }
+}
+
+// Unfiltered solid noise at `count` positions: split(first, used) fills `sp`
+// for the batch of lanes starting at position `first`.
+// The same with eval(consts, tuples, first) filling t.val (and t.g) for the batch of lanes
+// starting at position `first`.
+template <int D, bool G, class Split, class Eval>
+void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
+                 float* grad, Eval eval) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const consts<D> c(g);
+  tuples t;
+  t.reserve(static_cast<std::size_t>(D == 2 ? 9 : 27) * g.table().max_count() * lanes);
+  const int words = g.words_per_impulse();
+  const std::vector<std::int32_t> flipped = flipped_thresholds(g.table());
+  auto keep = [&](const VF* d, const VF* d2) {
+    (void)d;
+    const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
+    return hn::Lt(s, hn::Set(df, 1.0f));
+  };
+  for (std::size_t first = 0; first < count; first += lanes) {
+    const std::size_t used = std::min(lanes, count - first);
+    split(first, used);
+    collect<D>(g.key(), detail::constants::kGaborSolidStream, flipped, words, sp, t, keep);
+    eval(c, t, first);
+    float* gr = G ? grad + first * D : nullptr;
+    finish<D, G>(t, sp, used, float(g.scale()), float(g.scale() * g.inverse_cell()), value + first,
+                 gr);
+  }
+}
+
+template <int D, bool G, class Split>
+void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
+            float* grad) {
+  points_with<D, G>(
+      g, count, sp, split, value, grad,
+      [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G>(c, t); });
+}
+
+// ---- Grids: blocks of samples that share their cell.
+
+// One axis of a grid, split as scalar evaluation splits grid.position(): the
+// cell and fraction of (origin + step i) * inverse cell, and runs of equal
+// cells (at most `cap` long).
+struct grid_axis {
+  std::vector<std::uint32_t> cell;
+  std::vector<float> frac;
+  std::vector<char> bad;
+  std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
+  grid_axis(double origin, double step, std::size_t n, double inv, std::size_t cap)
+      : cell(n), frac(n), bad(n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const lattice_coord<float> c =
+          lattice_split<float>((origin + step * static_cast<double>(i)) * inv);
+      cell[i] = c.i0;
+      frac[i] = c.f;
+      bad[i] = std::isnan(c.f) ? 1 : 0;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (i == 0 || cell[i] != cell[i - 1] || i - run_start.back() == cap) run_start.push_back(i);
+    run_start.push_back(n);
+  }
+  std::size_t runs() const { return run_start.size() - 1; }
+  std::size_t longest_run() const {
+    std::size_t m = 0;
+    for (std::size_t r = 0; r + 1 < run_start.size(); ++r)
+      m = std::max(m, run_start[r + 1] - run_start[r]);
+    return m;
+  }
+};
+
+// The factors of one impulse along one axis of a block: for the block's
+// samples [0, n) (padded to whole vectors with fractions far outside), offset
+// d = (frac - o) - u, d^2 and the axis factors; `lo`, `hi`: the range of
+// samples with d^2 < 1 (contiguous: frac is monotonic within a cell).
+struct block_factors {
+  std::vector<float> d, d2, e, s, c;
+  std::size_t lo = 0, hi = 0;
+  explicit block_factors(std::size_t cap) : d(cap), d2(cap), e(cap), s(cap), c(cap) {}
+  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const VF ou = hn::Set(df, o), uu = hn::Set(df, u);
+    lo = n_pad;
+    hi = 0;
+    for (std::size_t i = 0; i < n_pad; i += lanes) {
+      const VF dv = hn::Sub(hn::Sub(hn::LoadU(df, frac + i), ou), uu);
+      const VF d2v = hn::Mul(dv, dv);
+      hn::StoreU(dv, df, d.data() + i);
+      hn::StoreU(d2v, df, d2.data() + i);
+      if (hn::AllFalse(df, hn::Lt(d2v, hn::Set(df, 1.0f)))) continue;
+      lo = std::min(lo, i);
+      hi = i + lanes;
+      const axis f = axis_factors(dv, neg_a, phi);
+      hn::StoreU(f.e, df, e.data() + i);
+      hn::StoreU(f.s, df, s.data() + i);
+      hn::StoreU(f.c, df, c.data() + i);
+    }
+  }
+};
+
+template <int D, bool G>
+struct grid_kernel {
+  const gabor<D>& g;
+  const consts<D> c;
+  std::size_t cap[3];
+  std::vector<float> acc, gacc[3];
+  std::size_t stride = 0;  // floats per block row
+  // The block's fractions per axis, padded (x to whole vectors).
+  std::vector<float> frac[3];
+  block_factors fx, fy, fz;
+
+  explicit grid_kernel(const gabor<D>& noise, std::size_t cx, std::size_t cy, std::size_t cz)
+      : g(noise),
+        c(noise),
+        cap{cx, cy, cz},
+        fx(cx + kMaxLanes),
+        fy(cy + kMaxLanes),
+        fz(cz + kMaxLanes) {
+    stride = cx + kMaxLanes;
+    const std::size_t cells = stride * cy * cz;
+    acc.resize(cells);
+    if (G)
+      for (int a = 0; a < D; ++a) gacc[a].resize(cells);
+    for (int a = 0; a < 3; ++a) frac[a].resize(cap[a] + kMaxLanes);
+  }
+
+  // One block: samples [i0, i0 + nx) x [j0, j0 + ny) x [k0, k0 + nz) of the
+  // axes, all in the cell (ax.cell[i0], ay.cell[j0], az.cell[k0]).
+  void block(const grid_axis* axes, std::size_t i0, std::size_t nx, std::size_t j0, std::size_t ny,
+             std::size_t k0, std::size_t nz, const hush::grid<D>& gr, float* value, float* grad) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::size_t nx_pad = (nx + lanes - 1) / lanes * lanes;
+    const std::size_t n[3] = {nx, ny, nz}, first[3] = {i0, j0, k0};
+    for (int a = 0; a < D; ++a) {
+      std::copy(axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a]),
+                axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a] + n[a]),
+                frac[a].begin());
+      std::fill(frac[a].begin() + static_cast<std::ptrdiff_t>(n[a]), frac[a].end(),
+                4.0f);  // d^2 > 1
+    }
+    const std::size_t rows = ny * nz;
+    std::fill(acc.begin(), acc.begin() + static_cast<std::ptrdiff_t>(rows * stride), 0.0f);
+    if constexpr (G)
+      for (int a = 0; a < D; ++a)
+        std::fill(gacc[a].begin(), gacc[a].begin() + static_cast<std::ptrdiff_t>(rows * stride),
+                  0.0f);
+    const std::uint32_t base[3] = {axes[0].cell[i0], axes[1].cell[j0],
+                                   D == 3 ? axes[D - 1].cell[k0] : 0u};
+    const VF one = hn::Set(df, 1.0f);
+    constexpr int kCells = D == 2 ? 9 : 27;
+    for (int cn_i = 0; cn_i < kCells; ++cn_i) {
+      int o[3] = {0, 0, 0};
+      std::uint32_t cell[D];
+      for (int a = 0, m = cn_i; a < D; ++a, m /= 3) {
+        o[a] = m % 3 - 1;
+        cell[a] = base[a] + static_cast<std::uint32_t>(o[a]);
+      }
+      g.for_each_impulse(cell, [&](const std::uint32_t* w) {
+        float u[3];
+        for (int a = 0; a < D; ++a) u[a] = gabor<D>::template impulse_position<float>(w, a);
+        float mv[4] = {}, wt;
+        vec<float, D> phi;
+        g.template mark_values<float>(w, mv);
+        g.marks().template draw<float>(mv, wt, phi);
+        fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(o[1]), u[1], c.neg_a,
+                   hn::Set(df, phi[1]));
+        if (fy.lo >= fy.hi) return;
+        if constexpr (D == 3) {
+          fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(o[2]), u[2], c.neg_a,
+                     hn::Set(df, phi[2]));
+          if (fz.lo >= fz.hi) return;
+        }
+        fx.compute(frac[0].data(), nx_pad, float(o[0]), u[0], c.neg_a, hn::Set(df, phi[0]));
+        if (fx.lo >= fx.hi) return;
+        const VF phx = hn::Set(df, phi[0]);
+        for (std::size_t kk = 0; kk < nz; ++kk) {
+          if constexpr (D == 3)
+            if (!(fz.d2[kk] < 1.0f)) continue;
+          for (std::size_t jj = std::min(fy.lo, ny); jj < std::min(fy.hi, ny); ++jj) {
+            if (!(fy.d2[jj] < 1.0f)) continue;
+            detail::gabor_row<float> r;
+            if constexpr (D == 2) {
+              r = detail::gabor_row_of(
+                  wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]});
+            } else {
+              r = detail::gabor_row_of(
+                  wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]},
+                  detail::gabor_axis<float>{fz.d[kk], fz.d2[kk], fz.e[kk], fz.s[kk], fz.c[kk]});
+            }
+            const row rv{hn::Set(df, r.we), hn::Set(df, r.c), hn::Set(df, r.s), hn::Set(df, r.d2)};
+            float* arow = acc.data() + (kk * ny + jj) * stride;
+            for (std::size_t ii = fx.lo; ii < fx.hi; ii += lanes) {
+              axis xa;
+              xa.d = hn::LoadU(df, fx.d.data() + ii);
+              xa.d2 = hn::LoadU(df, fx.d2.data() + ii);
+              xa.e = hn::LoadU(df, fx.e.data() + ii);
+              xa.s = hn::LoadU(df, fx.s.data() + ii);
+              xa.c = hn::LoadU(df, fx.c.data() + ii);
+              const MF in = hn::Lt(hn::Add(xa.d2, rv.d2), one);
+              if constexpr (G) {
+                VF v, uu, vv;
+                pair_gradient(xa, rv, c.k, c.a, v, uu, vv);
+                hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), hn::IfThenElseZero(in, v)), df,
+                           arow + ii);
+                const VF dd[3] = {xa.d, hn::Set(df, fy.d[jj]),
+                                  hn::Set(df, D == 3 ? fz.d[kk] : 0.0f)};
+                const VF ph[3] = {phx, hn::Set(df, phi[1]),
+                                  hn::Set(df, D == 3 ? phi[D - 1] : 0.0f)};
+                for (int a = 0; a < D; ++a) {
+                  float* grow = gacc[a].data() + (kk * ny + jj) * stride;
+                  const VF term = hn::Sub(hn::Mul(uu, dd[a]), hn::Mul(vv, ph[a]));
+                  hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), hn::IfThenElseZero(in, term)), df,
+                             grow + ii);
+                }
+              } else {
+                hn::StoreU(
+                    hn::Add(hn::LoadU(df, arow + ii), hn::IfThenElseZero(in, pair(xa, rv, c.k))),
+                    df, arow + ii);
+              }
+            }
+          }
+        }
+      });
+    }
+    // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
+    // coordinate of the sample is not finite.
+    const float scale = float(g.scale()), gscale = float(g.scale() * g.inverse_cell());
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::size_t gx = gr.size[0], gy = gr.size[1];
+    for (std::size_t kk = 0; kk < nz; ++kk)
+      for (std::size_t jj = 0; jj < ny; ++jj) {
+        const bool row_bad = axes[1].bad[j0 + jj] || (D == 3 && axes[D - 1].bad[k0 + kk]);
+        const std::size_t out_row = ((k0 + kk) * gy + (j0 + jj)) * gx + i0;
+        const float* arow = acc.data() + (kk * ny + jj) * stride;
+        for (std::size_t ii = 0; ii < nx; ++ii) {
+          const bool bad = row_bad || axes[0].bad[i0 + ii];
+          value[out_row + ii] = bad ? nan : arow[ii] * scale;
+          if constexpr (G)
+            for (int a = 0; a < D; ++a)
+              grad[(out_row + ii) * D + static_cast<std::size_t>(a)] =
+                  bad ? nan : gacc[a][(kk * ny + jj) * stride + ii] * gscale;
+        }
+      }
+  }
+};
+
+// A grid: blocks of shared cells when there are enough samples per cell along
+// x, else the points path on the grid's positions.
+template <int D, bool G>
+void grid(const gabor<D>& g, const hush::grid<D>& gr, float* value, float* grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell();
+  const std::size_t caps[3] = {64, D == 2 ? 64u : 32u, 16};
+  std::vector<grid_axis> axes;
+  for (int a = 0; a < D; ++a) axes.emplace_back(gr.origin[a], gr.step[a], gr.size[a], inv, caps[a]);
+  const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
+  const std::size_t nx = gr.size[0], ny = gr.size[1];
+  if (per_cell < kMinRun) {
+    lanes_split sp;
+    auto split = [&](std::size_t first, std::size_t used) {
+      for (std::size_t l = 0; l < lanes; ++l) {
+        if (l >= used) {
+          clear_lane<D>(sp, l);
+          continue;
+        }
+        const std::size_t idx = first + l, i = idx % nx, j = (idx / nx) % ny, k = idx / (nx * ny);
+        const std::size_t ijk[3] = {i, j, k};
+        bool bad = false;
+        for (int a = 0; a < D; ++a) {
+          sp.cell[a][l] = axes[a].cell[ijk[a]];
+          sp.frac[a][l] = axes[a].frac[ijk[a]];
+          bad = bad || axes[a].bad[ijk[a]];
+        }
+        sp.bad[l] = bad;
+      }
+    };
+    points<D, G>(g, gr.count(), sp, split, value, grad);
+    return;
+  }
+  // Block buffers sized by the longest runs, not the caps: small grids do not pay for
+  // (and page-fault in) buffers they never fill.
+  grid_kernel<D, G> kernel(g, axes[0].longest_run(), axes[1].longest_run(),
+                           D == 3 ? axes[D - 1].longest_run() : 1);
+  const std::size_t zruns = D == 3 ? axes[D - 1].runs() : 1;
+  for (std::size_t zr = 0; zr < zruns; ++zr) {
+    const std::size_t k0 = D == 3 ? axes[D - 1].run_start[zr] : 0;
+    const std::size_t k1 = D == 3 ? axes[D - 1].run_start[zr + 1] : 1;
+    for (std::size_t yr = 0; yr < axes[1].runs(); ++yr) {
+      const std::size_t j0 = axes[1].run_start[yr], j1 = axes[1].run_start[yr + 1];
+      for (std::size_t xr = 0; xr < axes[0].runs(); ++xr) {
+        const std::size_t i0 = axes[0].run_start[xr], i1 = axes[0].run_start[xr + 1];
+        kernel.block(axes.data(), i0, i1 - i0, j0, j1 - j0, k0, k1 - k0, gr, value, grad);
+      }
+    }
+  }
+}
+
+}  // namespace gabor_simd
+
+// Gabor noise at n interleaved float points; values into value[n],
+// interleaved gradients into grad[D n] unless grad is null.
+template <int D>
+void gabor_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad) {
+  namespace gs = gabor_simd;
+  const gs::DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell();
+  gs::lanes_split sp;
+  auto split = [&](std::size_t first, std::size_t used) {
+    if (used == lanes) {  // whole vectors: split in lanes when every lane is ordinary
+      gs::VF c[3];
+      if constexpr (D == 2)
+        hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
+      else
+        hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
+      bool ok = true;
+      for (int a = 0; a < D && ok; ++a) ok = gs::split_axis(c[a], inv, sp.cell[a], sp.frac[a]);
+      if (ok) {
+        std::fill(sp.bad, sp.bad + lanes, false);
+        return;
+      }
+    }
+    gs::split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
+      for (int a = 0; a < D; ++a)
+        x[a] = static_cast<double>(pts[i * D + static_cast<std::size_t>(a)]);
+    });
+  };
+  if (grad)
+    gs::points<D, true>(g, n, sp, split, value, grad);
+  else
+    gs::points<D, false>(g, n, sp, split, value, nullptr);
+}
+inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
+                          float* grad) {
+  gabor_points<2>(g, xy, n, value, grad);
+}
+inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
+                          float* grad) {
+  gabor_points<3>(g, xyz, n, value, grad);
+}
+
+// Gabor noise filtered over footprints (gabor<D>::sample(p, fp), no normals) at n
+// interleaved float points; values into value[n], interleaved gradients into grad[D n]
+// unless grad is null.
+template <int D>
+void gabor_filtered(const gabor<D>& g, const float* pts, const footprint<D>* fps, std::size_t n,
+                    float* value, float* grad) {
+  namespace gs = gabor_simd;
+  const gs::DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell(), a = g.kernel().envelope_exponent();
+  gs::lanes_split sp;
+  gs::lanes_filter filt;
+  auto split = [&](std::size_t first, std::size_t used) {
+    gs::split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
+      for (int c = 0; c < D; ++c)
+        x[c] = static_cast<double>(pts[i * D + static_cast<std::size_t>(c)]);
+    });
+    for (std::size_t l = 0; l < lanes; ++l) {
+      if (l >= used) {  // unused lanes keep no impulse (bad): any finite filter
+        for (int e = 0; e < D * D; ++e) filt.q[e][l] = filt.m[e][l] = 0.0f;
+        filt.amp[l] = 0.0f;
+        continue;
+      }
+      const gabor_filter<D> fl(fps[first + l], a, inv);
+      for (int r = 0; r < D; ++r)
+        for (int c = 0; c < D; ++c) {
+          filt.q[r * D + c][l] = static_cast<float>(fl.q[r][c]);
+          filt.m[r * D + c][l] = static_cast<float>(fl.m[r][c]);
+        }
+      filt.amp[l] = static_cast<float>(fl.amplitude);
+    }
+  };
+  if (grad)
+    gs::points_with<D, true>(g, n, sp, split, value, grad,
+                             [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
+                               gs::eval_filtered<D, true>(c, filt, t);
+                             });
+  else
+    gs::points_with<D, false>(g, n, sp, split, value, nullptr,
+                              [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
+                                gs::eval_filtered<D, false>(c, filt, t);
+                              });
+}
+inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
+                            std::size_t n, float* value, float* grad) {
+  gabor_filtered<2>(g, xy, fps, n, value, grad);
+}
+inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
+                            std::size_t n, float* value, float* grad) {
+  gabor_filtered<3>(g, xyz, fps, n, value, grad);
+}
+
+// Gabor noise on a uniform grid (C order, i fastest); gradients interleaved
+// (D per sample) unless grad is null.
+template <int D>
+void gabor_grid(const gabor<D>& g, const grid<D>& gr, float* value, float* grad) {
+  if (grad)
+    gabor_simd::grid<D, true>(g, gr, value, grad);
+  else
+    gabor_simd::grid<D, false>(g, gr, value, nullptr);
+}
+inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
+  gabor_grid<2>(g, gr, value, grad);
+}
+inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
+  gabor_grid<3>(g, gr, value, grad);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_GABOR_INL_H_ toggle

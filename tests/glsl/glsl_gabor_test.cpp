@@ -1,0 +1,245 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise on the GLSL backend (hush/glsl/gabor_glsl.hpp) against the
+// CPU, through hush::evaluate: points, grids and samples with footprints, 2D
+// and 3D, every kind, values and gradients, hard cases.
+//
+// Tolerances (hush/glsl/gabor_glsl.hpp): the CPU float result and the GLSL
+// result are each within gabor.hpp's float budget of the double reference,
+// budget = scale 2^-21 (1 + 2 pi Phi) (N' + 1) (each op's rounding bounded
+// by 2^-24 relative, which a fused op also meets), so they differ by at most
+// twice it; gradients by that times (1 + the kernel's slope bound per cell,
+// (2A + 2 pi Phi + 3 / (1 - s0)) / r). Filtered samples add the float filter
+// (Jacobi in float instead of double): Q and M within ~2^-21 relative, which
+// moves each kernel's phase by 2 pi Phi 2^-21 and its attenuation exponent
+// Phi^2 pi^2 / A 2^-21: the budget times (1 + 2 pi Phi + pi^2 Phi^2 / A).
+// Any differing Poisson count or impulse mark would move a value by up to a
+// whole kernel (~scale), far beyond these tolerances.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "glsl_test_util.hpp"
+
+namespace {
+
+using hush_glsl_test::headless;
+
+constexpr double kPi = hush::detail::constants::kPi;
+
+template <int D>
+typename hush::gabor<D>::params params_of(hush::gabor_kind kind) {
+  typename hush::gabor<D>::params p;
+  p.seed = 21;
+  p.kind = kind;
+  p.frequency = 1.3;
+  p.orientation = 0.6;
+  p.elevation = 0.3;
+  if (kind == hush::gabor_kind::hybrid) {
+    p.orientation_spread = 1.5;
+    p.frequency_spread = 0.8;
+  }
+  return p;
+}
+
+template <int D>
+double phi_max(const hush::gabor<D>& g) {
+  return g.marks().phi0() + g.marks().dphi();
+}
+template <int D>
+double value_tolerance(const hush::gabor<D>& g) {
+  return 2 * g.scale() * std::ldexp(1.0, -21) * (1 + 2 * kPi * phi_max(g)) *
+         (g.parameters().impulses + 1);
+}
+template <int D>
+double gradient_tolerance(const hush::gabor<D>& g) {
+  const double a = g.kernel().envelope_exponent();
+  const double slope =
+      (2 * a + 2 * kPi * phi_max(g) + 3 / (1 - hush::detail::constants::kGaborTaperStart)) *
+      g.inverse_cell();
+  return value_tolerance(g) * (1 + slope);
+}
+template <int D>
+double filter_factor(const hush::gabor<D>& g) {
+  const double phi = phi_max(g), a = g.kernel().envelope_exponent();
+  return 1 + 2 * kPi * phi + kPi * kPi * phi * phi / a;
+}
+
+struct diff {
+  double value = 0, grad = 0;
+  std::size_t nan_mismatch = 0;
+};
+
+template <int D>
+diff compare(const std::vector<float>& v, const std::vector<hush::vec<float, D>>& g,
+             const std::vector<float>& w, const std::vector<hush::vec<float, D>>& h) {
+  diff r;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (std::isnan(v[i]) || std::isnan(w[i])) {
+      r.nan_mismatch += std::isnan(v[i]) != std::isnan(w[i]);
+      continue;
+    }
+    r.value = std::max(r.value, std::fabs(double(v[i]) - w[i]));
+    for (int a = 0; a < D; ++a) r.grad = std::max(r.grad, std::fabs(double(g[i][a]) - h[i][a]));
+  }
+  return r;
+}
+
+template <int D>
+void check_points(const hush::gabor<D>& noise) {
+  auto pts = hush_glsl_test::random_points<D>(3000, 5);
+  pts[7][0] = std::numeric_limits<float>::quiet_NaN();
+  pts[11][D - 1] = std::numeric_limits<float>::infinity();
+  const std::size_t n = pts.size();
+  std::vector<float> cv(n), gv(n), gv_only(n);
+  std::vector<hush::vec<float, D>> cg(n), gg(n);
+  hush::evaluate(noise, hush::exec::scalar, hush::span<const hush::vec<float, D>>(pts),
+                 hush::span<float>(cv), hush::span<hush::vec<float, D>>(cg));
+  hush::evaluate(noise, hush::exec::glsl{headless().device},
+                 hush::span<const hush::vec<float, D>>(pts), hush::span<float>(gv),
+                 hush::span<hush::vec<float, D>>(gg));
+  hush::evaluate(noise, hush::exec::glsl{headless().device},
+                 hush::span<const hush::vec<float, D>>(pts), hush::span<float>(gv_only));
+  const diff d = compare<D>(cv, cg, gv, gg);
+  const diff d_only = compare<D>(cv, cg, gv_only, gg);
+  MESSAGE("points " << D << "D kind " << int(noise.parameters().kind) << ": max |value diff| "
+                    << d.value << " (tolerance " << value_tolerance(noise) << "), gradient "
+                    << d.grad << " (" << gradient_tolerance(noise) << ")");
+  CHECK(std::isnan(gv[7]));
+  CHECK(std::isnan(gv[11]));
+  CHECK(d.nan_mismatch == 0);
+  CHECK(d.value <= value_tolerance(noise));
+  CHECK(d.grad <= gradient_tolerance(noise));
+  CHECK(d_only.value <= value_tolerance(noise));
+}
+
+template <int D>
+void check_grid(const hush::gabor<D>& noise, const hush::grid<D>& gr) {
+  const std::size_t n = gr.count();
+  std::vector<float> cv(n), gv(n);
+  std::vector<hush::vec<float, D>> cg(n), gg(n);
+  hush::evaluate_grid(noise, hush::exec::scalar, gr, hush::span<float>(cv),
+                      hush::span<hush::vec<float, D>>(cg));
+  hush::evaluate_grid(noise, hush::exec::glsl{headless().device}, gr, hush::span<float>(gv),
+                      hush::span<hush::vec<float, D>>(gg));
+  const diff d = compare<D>(cv, cg, gv, gg);
+  MESSAGE("grid " << D << "D: max |value diff| " << d.value << ", gradient " << d.grad);
+  CHECK(d.nan_mismatch == 0);
+  CHECK(d.value <= value_tolerance(noise));
+  CHECK(d.grad <= gradient_tolerance(noise));
+}
+
+}  // namespace
+
+TEST_CASE("gabor glsl: points equal the CPU within the float tolerance, every kind, 2D and 3D") {
+  for (const auto kind :
+       {hush::gabor_kind::isotropic, hush::gabor_kind::anisotropic, hush::gabor_kind::hybrid}) {
+    check_points(hush::gabor<2>(params_of<2>(kind)));
+    check_points(hush::gabor<3>(params_of<3>(kind)));
+  }
+}
+
+TEST_CASE("gabor glsl: grids (CPU-split cells) equal the CPU, near and far") {
+  hush::grid<2> g2;
+  g2.origin = {-3.25, 1e5};
+  g2.step = {0.043, -0.051};
+  g2.size = {97, 61};
+  check_grid(hush::gabor<2>(params_of<2>(hush::gabor_kind::hybrid)), g2);
+  hush::grid<3> g3;
+  g3.origin = {0.5, -2e6, 7.0};
+  g3.step = {0.11, 0.07, -0.13};
+  g3.size = {23, 17, 11};
+  check_grid(hush::gabor<3>(params_of<3>(hush::gabor_kind::isotropic)), g3);
+}
+
+TEST_CASE("gabor glsl: filtered samples equal the CPU, degenerate footprints stay finite") {
+  const hush::gabor<2> noise(params_of<2>(hush::gabor_kind::anisotropic));
+  const std::size_t n = 1200;
+  std::vector<hush::vec2> pos(n);
+  std::vector<hush::footprint<2>> fps(n);
+  hush::rng r(77);
+  for (std::size_t i = 0; i < n; ++i) {
+    pos[i] = {r.uniform<float>(-30.0f, 30.0f), r.uniform<float>(-30.0f, 30.0f)};
+    const double s = std::pow(10.0, r.uniform<double>(-3.0, 1.0));  // 0.001 ... 10 noise units
+    const hush::vec<double, 2> dx{s * r.uniform<double>(-1, 1), s * r.uniform<double>(-1, 1)};
+    const hush::vec<double, 2> dy{s * r.uniform<double>(-1, 1), s * r.uniform<double>(-1, 1)};
+    fps[i] = hush::footprint<2>::from_derivatives(dx, dy);
+  }
+  // HARD_CASES row 12 at the front: zero, rank 1, det 1e-30 and 1e30 (scaled), NaN.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  fps[0] = hush::footprint<2>::from_derivatives(hush::vec<double, 2>{0, 0}, {0, 0});
+  fps[1] = hush::footprint<2>::from_derivatives(hush::vec<double, 2>{0.3, 0.2}, {0.6, 0.4});
+  fps[2] = hush::footprint<2>::from_derivatives(hush::vec<double, 2>{1e-15, 0}, {0, 1e-15});
+  fps[3] = hush::footprint<2>::from_derivatives(hush::vec<double, 2>{1e15, 0}, {0, 1e15});
+  fps[4] = hush::footprint<2>::from_derivatives(hush::vec<double, 2>{nan, 0}, {0, 1});
+  fps[5] = hush::footprint<2>::from_derivatives(hush::vec<double, 2>{1e6, 1e6}, {1e6, 1e6});
+  const hush::samples<2> s{pos, fps, {}};
+  std::vector<float> cv(n), gv(n);
+  std::vector<hush::vec2> cg(n), gg(n);
+  hush::evaluate(noise, hush::exec::scalar, s, hush::span<float>(cv), hush::span<hush::vec2>(cg));
+  hush::evaluate(noise, hush::exec::glsl{headless().device}, s, hush::span<float>(gv),
+                 hush::span<hush::vec2>(gg));
+  for (std::size_t i = 0; i < 6; ++i) {
+    INFO("hard footprint " << i);
+    CHECK(std::isfinite(gv[i]));
+    CHECK(std::isfinite(gg[i][0]));
+    CHECK(std::isfinite(gg[i][1]));
+  }
+  const diff d = compare<2>(cv, cg, gv, gg);
+  const double vt = value_tolerance(noise) * filter_factor(noise);
+  const double gt = gradient_tolerance(noise) * filter_factor(noise);
+  MESSAGE("filtered samples: max |value diff| " << d.value << " (tolerance " << vt << "), gradient "
+                                                << d.grad << " (" << gt << ")");
+  CHECK(d.nan_mismatch == 0);
+  CHECK(d.value <= vt);
+  CHECK(d.grad <= gt);
+}
+
+TEST_CASE("gabor glsl: 3D filtered samples, and surface noise (a normal) is NaN on GLSL") {
+  const hush::gabor<3> noise(params_of<3>(hush::gabor_kind::hybrid));
+  const std::size_t n = 400;
+  std::vector<hush::vec3> pos(n), nrm(n);
+  std::vector<hush::footprint<3>> fps(n);
+  hush::rng r(78);
+  for (std::size_t i = 0; i < n; ++i) {
+    pos[i] = {r.uniform<float>(-9.0f, 9.0f), r.uniform<float>(-9.0f, 9.0f),
+              r.uniform<float>(-9.0f, 9.0f)};
+    const double s = std::pow(10.0, r.uniform<double>(-3.0, 0.5));
+    hush::vec<double, 3> dx, dy;
+    for (int a = 0; a < 3; ++a) {
+      dx[a] = s * r.uniform<double>(-1, 1);
+      dy[a] = s * r.uniform<double>(-1, 1);
+    }
+    fps[i] = hush::footprint<3>::from_derivatives(dx, dy);
+    nrm[i] = i % 2 ? hush::vec3{0, 0, 0} : hush::vec3{0.0f, 0.6f, 0.8f};
+  }
+  std::vector<float> cv(n), gv(n);
+  std::vector<hush::vec3> cg(n), gg(n);
+  hush::evaluate(noise, hush::exec::scalar, hush::samples<3>{pos, fps, {}}, hush::span<float>(cv),
+                 hush::span<hush::vec3>(cg));
+  hush::evaluate(noise, hush::exec::glsl{headless().device}, hush::samples<3>{pos, fps, {}},
+                 hush::span<float>(gv), hush::span<hush::vec3>(gg));
+  const diff d = compare<3>(cv, cg, gv, gg);
+  MESSAGE("3D filtered samples: max |value diff| " << d.value << ", gradient " << d.grad);
+  CHECK(d.nan_mismatch == 0);
+  CHECK(d.value <= value_tolerance(noise) * filter_factor(noise));
+  CHECK(d.grad <= gradient_tolerance(noise) * filter_factor(noise));
+  // With normals: zero normals are the solid noise (as on the CPU), others NaN.
+  std::vector<float> cn(n), gn(n);
+  hush::evaluate(noise, hush::exec::scalar, hush::samples<3>{pos, fps, nrm}, hush::span<float>(cn));
+  hush::evaluate(noise, hush::exec::glsl{headless().device}, hush::samples<3>{pos, fps, nrm},
+                 hush::span<float>(gn));
+  double zero_normal = 0;
+  std::size_t nan_for_normal = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i % 2)
+      zero_normal = std::max(zero_normal, std::fabs(double(cn[i]) - gn[i]));
+    else
+      nan_for_normal += std::isnan(gn[i]);
+  }
+  CHECK(zero_normal <= value_tolerance(noise) * filter_factor(noise));
+  CHECK(nan_for_normal == n / 2);
+}

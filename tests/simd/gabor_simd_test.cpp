@@ -1,0 +1,258 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise's SIMD kernels (hush/simd/gabor-inl.h) against scalar
+// evaluation, on every SIMD target compiled into this test and supported by
+// this CPU. Built into the same suites as perlin_simd_test.cpp
+// (tests/simd/CMakeLists.txt): under HUSH_STRICT_FP (simd_strict_test,
+// simd_static_test, simd_single_header_test) bit-identical to scalar, values
+// and gradients; otherwise (simd_test) within twice the float budget of
+// gabor.hpp. Covered: random points with every tail length up to three
+// vectors and the hard cases in every lane position, grids near and far, with
+// negative and coarse steps (the points path) and fine ones (the block path),
+// 2D and 3D, every kind, samples with footprints (and with normals: the scalar path).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "hush/hush.hpp"
+
+#if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
+#include <hwy/targets.h>
+#endif
+
+namespace {
+
+constexpr double kPi = hush::detail::constants::kPi;
+
+template <class Check>
+void for_each_gabor_target(Check check) {
+#if HUSH_CONFIG_SIMD_STATIC
+  INFO("static target " << hush::simd::chosen_target());
+  check();
+#else
+  for (std::int64_t t : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(t);
+    INFO("target " << hwy::TargetName(t));
+    check();
+  }
+  hwy::SetSupportedTargetsForTest(0);
+#endif
+}
+
+template <int D>
+typename hush::gabor<D>::params gabor_params(hush::gabor_kind kind) {
+  typename hush::gabor<D>::params p;
+  p.seed = 9;
+  p.kind = kind;
+  p.orientation = 0.7;
+  p.elevation = -0.4;
+  if (kind == hush::gabor_kind::hybrid) {
+    p.orientation_spread = 2.0;
+    p.frequency_spread = 0.5;
+  }
+  return p;
+}
+
+// gabor.hpp's float budget (tests/gabor_test.cpp): scale 2^-21 (1 + 2 pi Phi)
+// (N' + 1); SIMD and scalar are each within it of the double reference. The
+// gradient's: the same times (1 + the per-kernel slope bound in noise units,
+// (2A + 2 pi Phi + 3 / (1 - s0)) / r).
+template <int D>
+double value_budget(const hush::gabor<D>& g) {
+  const double phi = g.marks().phi0() + g.marks().dphi();
+  return 2 * g.scale() * std::ldexp(1.0, -21) * (1 + 2 * kPi * phi) * (g.parameters().impulses + 1);
+}
+template <int D>
+double gradient_budget(const hush::gabor<D>& g) {
+  const double phi = g.marks().phi0() + g.marks().dphi(), a = g.kernel().envelope_exponent();
+  const double slope =
+      (2 * a + 2 * kPi * phi + 3 / (1 - hush::detail::constants::kGaborTaperStart)) *
+      g.inverse_cell();
+  return value_budget(g) * (1 + slope);
+}
+
+void compare(const float* simd, const float* scalar, std::size_t n, double budget) {
+  for (std::size_t i = 0; i < n; ++i) {
+    INFO("element " << i << ": simd " << simd[i] << ", scalar " << scalar[i]);
+    if (std::isnan(simd[i]) || std::isnan(scalar[i])) {
+      REQUIRE((std::isnan(simd[i]) && std::isnan(scalar[i])));
+      continue;
+    }
+#if HUSH_CONFIG_STRICT_FP
+    (void)budget;
+    REQUIRE(std::memcmp(&simd[i], &scalar[i], sizeof(float)) == 0);
+#else
+    REQUIRE(std::fabs(double(simd[i]) - scalar[i]) <= budget);
+#endif
+  }
+}
+
+template <int D>
+void check_points(const hush::gabor<D>& g, const std::vector<hush::vec<float, D>>& pts) {
+  const std::size_t n = pts.size();
+  const hush::span<const hush::vec<float, D>> in(pts.data(), n);
+  std::vector<float> a(n), b(n), c(n);
+  std::vector<hush::vec<float, D>> ga(n), gb(n);
+  hush::evaluate(g, hush::exec::scalar, in, hush::span<float>(a),
+                 hush::span<hush::vec<float, D>>(ga));
+  for_each_gabor_target([&] {
+    hush::evaluate(g, hush::exec::simd, in, hush::span<float>(b),
+                   hush::span<hush::vec<float, D>>(gb));
+    hush::evaluate(g, hush::exec::simd, in, hush::span<float>(c));
+    compare(b.data(), a.data(), n, value_budget(g));
+    compare(c.data(), a.data(), n, value_budget(g));
+    compare(reinterpret_cast<const float*>(gb.data()), reinterpret_cast<const float*>(ga.data()),
+            n * D, gradient_budget(g));
+  });
+}
+
+template <int D>
+void check_grid(const hush::gabor<D>& g, const hush::grid<D>& grid) {
+  const std::size_t n = grid.count();
+  std::vector<float> a(n), b(n), c(n);
+  std::vector<hush::vec<float, D>> ga(n), gb(n);
+  hush::evaluate_grid(g, hush::exec::scalar, grid, hush::span<float>(a),
+                      hush::span<hush::vec<float, D>>(ga));
+  for_each_gabor_target([&] {
+    hush::evaluate_grid(g, hush::exec::simd, grid, hush::span<float>(b),
+                        hush::span<hush::vec<float, D>>(gb));
+    hush::evaluate_grid(g, hush::exec::simd, grid, hush::span<float>(c));
+    compare(b.data(), a.data(), n, value_budget(g));
+    compare(c.data(), a.data(), n, value_budget(g));
+    compare(reinterpret_cast<const float*>(gb.data()), reinterpret_cast<const float*>(ga.data()),
+            n * D, gradient_budget(g));
+  });
+}
+
+// Random points with the hard cases spread over lane positions.
+template <int D>
+std::vector<hush::vec<float, D>> test_points(std::size_t n, std::uint32_t seed) {
+  hush::rng r(seed);
+  std::vector<hush::vec<float, D>> pts(n);
+  for (auto& p : pts)
+    for (int a = 0; a < D; ++a) p[a] = r.uniform<float>(-40.0f, 40.0f);
+  const float specials[] = {std::numeric_limits<float>::quiet_NaN(),
+                            std::numeric_limits<float>::infinity(),
+                            -1.0f,
+                            -0.0f,
+                            std::nextafter(-1.0f, 0.0f),
+                            4294967296.0f,
+                            -3e9f,
+                            1e-40f,
+                            std::numeric_limits<float>::max()};
+  std::size_t at = 0;
+  for (const float s : specials) {
+    at = (at * 7 + 5) % n;
+    pts[at][at % D] = s;
+  }
+  return pts;
+}
+
+}  // namespace
+
+TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail length") {
+  for (const hush::gabor_kind kind :
+       {hush::gabor_kind::isotropic, hush::gabor_kind::anisotropic, hush::gabor_kind::hybrid}) {
+    INFO("kind " << static_cast<int>(kind));
+    const hush::gabor<2> g2(gabor_params<2>(kind));
+    const hush::gabor<3> g3(gabor_params<3>(kind));
+    for (std::size_t n = 1; n <= 49; n += 3) {
+      check_points(g2, test_points<2>(n, static_cast<std::uint32_t>(n)));
+      check_points(g3, test_points<3>(n, static_cast<std::uint32_t>(n + 100)));
+    }
+    check_points(g2, test_points<2>(1000, 1));
+    check_points(g3, test_points<3>(500, 2));
+  }
+}
+
+TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, far, negative)") {
+  const hush::gabor<2> g2(gabor_params<2>(hush::gabor_kind::isotropic));
+  const hush::gabor<2> h2(gabor_params<2>(hush::gabor_kind::hybrid));
+  hush::grid<2> fine;  // ~45 samples per cell: the block path
+  fine.origin = {0.3125, -2.71875};
+  fine.step = {1.0 / 37, 1.0 / 37};
+  fine.size = {131, 77};
+  check_grid(g2, fine);
+  check_grid(h2, fine);
+  hush::grid<2> far = fine;  // far from the origin, negative steps
+  far.origin = {-1e9, 3.5e7};
+  far.step = {-1.0 / 50, 1.0 / 64};
+  check_grid(g2, far);
+  hush::grid<2> coarse = fine;  // about one sample per cell: the points path
+  coarse.step = {0.9, -1.3};
+  coarse.size = {40, 33};
+  check_grid(h2, coarse);
+  const hush::gabor<3> g3(gabor_params<3>(hush::gabor_kind::isotropic));
+  const hush::gabor<3> a3(gabor_params<3>(hush::gabor_kind::anisotropic));
+  hush::grid<3> cube;
+  cube.origin = {0.3125, -2.71875, 5.0625};
+  cube.step = {1.0 / 37, 1.0 / 29, -1.0 / 31};
+  cube.size = {45, 23, 19};
+  check_grid(g3, cube);
+  check_grid(a3, cube);
+}
+
+namespace {
+
+// Samples with footprints of every size (and HARD_CASES row 12's degenerate ones), and,
+// in 3D, the same with normals (surface noise: the scalar path).
+template <int D>
+void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed) {
+  const std::vector<hush::vec<float, D>> pts = test_points<D>(n, seed);
+  std::vector<hush::footprint<D>> fps(n);
+  std::vector<hush::vec3> nrm(n);
+  hush::rng r(seed + 1000);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = std::pow(10.0, r.uniform<double>(-4.0, 1.0));
+    hush::vec<double, D> dx, dy;
+    for (int a = 0; a < D; ++a) {
+      dx[a] = s * r.uniform<double>(-1, 1);
+      dy[a] = s * r.uniform<double>(-1, 1);
+    }
+    if (i % 11 == 3) dy = dx;                           // rank 1
+    if (i % 13 == 5) dx = dy = hush::vec<double, D>{};  // zero: the unfiltered noise
+    if (i % 17 == 7) dx[0] = std::numeric_limits<double>::quiet_NaN();  // the widest
+    fps[i] = hush::footprint<D>::from_derivatives(dx, dy);
+    nrm[i] = {r.uniform<float>(-1, 1), r.uniform<float>(-1, 1), r.uniform<float>(-1, 1)};
+  }
+  for (const bool normals : {false, true}) {
+    if (normals && D == 2) continue;
+    const hush::samples<D> s{
+        pts, fps, normals ? hush::span<const hush::vec3>(nrm) : hush::span<const hush::vec3>()};
+    std::vector<float> a(n), b(n), c(n);
+    std::vector<hush::vec<float, D>> ga(n), gb(n);
+    hush::evaluate(g, hush::exec::scalar, s, hush::span<float>(a),
+                   hush::span<hush::vec<float, D>>(ga));
+    for_each_gabor_target([&] {
+      hush::evaluate(g, hush::exec::simd, s, hush::span<float>(b),
+                     hush::span<hush::vec<float, D>>(gb));
+      hush::evaluate(g, hush::exec::simd, s, hush::span<float>(c));
+      // The filter adds the phase and attenuation terms to the budget (as on GLSL).
+      const double phi = g.marks().phi0() + g.marks().dphi(), aa = g.kernel().envelope_exponent();
+      const double f = 1 + 2 * kPi * phi + kPi * kPi * phi * phi / aa;
+      compare(b.data(), a.data(), n, value_budget(g) * f);
+      compare(c.data(), a.data(), n, value_budget(g) * f);
+      compare(reinterpret_cast<const float*>(gb.data()), reinterpret_cast<const float*>(ga.data()),
+              n * D, gradient_budget(g) * f);
+    });
+  }
+}
+
+}  // namespace
+
+TEST_CASE("gabor simd: filtered samples agree with scalar evaluation, every kind, 2D and 3D") {
+  for (const hush::gabor_kind kind :
+       {hush::gabor_kind::isotropic, hush::gabor_kind::anisotropic, hush::gabor_kind::hybrid}) {
+    INFO("kind " << static_cast<int>(kind));
+    const hush::gabor<2> g2(gabor_params<2>(kind));
+    const hush::gabor<3> g3(gabor_params<3>(kind));
+    for (std::size_t n : {1u, 7u, 16u, 33u, 300u}) {
+      check_samples(g2, n, static_cast<std::uint32_t>(n));
+      check_samples(g3, n, static_cast<std::uint32_t>(n + 50));
+    }
+  }
+}
