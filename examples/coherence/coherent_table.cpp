@@ -7,64 +7,24 @@
 //   hush_coherent_table [WIDTH HEIGHT FIRST FRAMES [SCENE...]]
 //   (default: 320 240 90 10 translate rotate zoom walkthrough)
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "coherence/baselines.hpp"
 #include "coherence/report.hpp"
+#include "coherence/table_cli.hpp"
 #include "hush/coherent.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"
 
-namespace {
-
-namespace hc = hush::coherence;
-
-int number(const char* text, const char* what) {
-  char* end = nullptr;
-  const long v = std::strtol(text, &end, 10);
-  if (*end != '\0' || v < 0 || v > 1 << 20) {
-    std::fprintf(stderr, "hush_coherent_table: %s '%s' is invalid; valid: 0 ... 1048576\n", what,
-                 text);
-    std::exit(2);
-  }
-  return static_cast<int>(v);
-}
-
-void row(const std::string& scene, const std::string& noise,
-         const std::vector<hc::noise_frame>& frames, const std::vector<hush::scene::gbuffer>& g) {
-  const hc::report r = hc::measure(frames, g);
-  const auto& t = r.temporal;
-  const auto& f = r.flatness;
-  std::printf("| %s | %s | %.4f | %.3f | %.3f | %.3f | %.4f | %.3f | %.3f | %.3f | %.3f |\n",
-              scene.c_str(), noise.c_str(), t.coherence_mean, t.following_mean, t.change_mean,
-              t.change_p99, t.popping, f.frequency_cv, f.frequency_ratio, f.variance_cv,
-              f.pooled_frequency_cv);
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
-  int width = 320, height = 240, first = 90, count = 10;
-  std::vector<std::string> scenes = {"translate", "rotate", "zoom", "walkthrough"};
-  if (argc > 1) {
-    if (argc < 5) {
-      std::fprintf(stderr, "usage: hush_coherent_table [WIDTH HEIGHT FIRST FRAMES [SCENE...]]\n");
-      return 2;
-    }
-    width = number(argv[1], "WIDTH");
-    height = number(argv[2], "HEIGHT");
-    first = number(argv[3], "FIRST");
-    count = number(argv[4], "FRAMES");
-    if (argc > 5) scenes.assign(argv + 5, argv + argc);
-  }
+  namespace hc = hush::coherence;
+  const hc::table_args args = hc::parse_table_args(argc, argv, "hush_coherent_table");
+  const int width = args.width, height = args.height, first = args.first, count = args.count;
+  const std::vector<std::string>& scenes = args.scenes;
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   try {
-    std::printf(
-        "| scene | noise | coherence | following | mean abs change | p99 | popping | freq CV | "
-        "freq max/min | var CV | pooled freq CV |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|\n");
+    hc::print_metrics_header();
     for (const std::string& name : scenes) {
       const hush::scene::scene s = hush::scene::make_scene(name);
       std::vector<hush::scene::gbuffer> all;
@@ -76,7 +36,7 @@ int main(int argc, char** argv) {
       const std::vector<hush::scene::gbuffer> g(all.begin() + first, all.end());
       for (auto kind :
            {hc::baseline_kind::white, hc::baseline_kind::shower_door, hc::baseline_kind::texture})
-        row(name, hc::baseline_name(kind), hc::make_baseline(kind, g), g);
+        hc::print_metrics_row(name, hc::baseline_name(kind), hc::make_baseline(kind, g), g);
       for (const bool bandpass : {true, false})
         for (auto filter : {hush::coherent_filter::stationary, hush::coherent_filter::paper}) {
           hush::coherent_params prm;
@@ -94,7 +54,7 @@ int main(int argc, char** argv) {
                                                static_cast<std::size_t>(height)));
             if (i >= first) causal.push_back(out);
           }
-          row(name, "coherent causal, " + label, causal, g);
+          hc::print_metrics_row(name, "coherent causal, " + label, causal, g);
           hush::coherent_sequence<float> io;
           io.frames = all.size();
           io.frame_at = [&](std::size_t i) { return hush::scene::as_frame(all[i]); };
@@ -104,7 +64,7 @@ int main(int argc, char** argv) {
               symmetric[i - static_cast<std::size_t>(first)].assign(r[0].data, r[0].data + pixels);
           };
           hush::coherent_symmetric(hush::exec::simd, prm, io);
-          row(name, "coherent symmetric, " + label, symmetric, g);
+          hc::print_metrics_row(name, "coherent symmetric, " + label, symmetric, g);
         }
     }
   } catch (const std::exception& e) {

@@ -6,45 +6,20 @@
 //   (default: 320 240 90 10 translate rotate zoom walkthrough)
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "coherence/baselines.hpp"
 #include "coherence/report.hpp"
+#include "coherence/table_cli.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"
 
-namespace {
-
-int positive(const char* text, const char* what) {
-  char* end = nullptr;
-  const long v = std::strtol(text, &end, 10);
-  if (*end != '\0' || v < 0 || v > 1 << 20) {
-    std::fprintf(stderr, "hush_coherence_table: %s '%s' is invalid; valid: 0 ... 1048576\n", what,
-                 text);
-    std::exit(2);
-  }
-  return static_cast<int>(v);
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   namespace hc = hush::coherence;
-  int width = 320, height = 240, first = 90, count = 10;
-  std::vector<std::string> scenes = {"translate", "rotate", "zoom", "walkthrough"};
-  if (argc > 1) {
-    if (argc < 5) {
-      std::fprintf(stderr, "usage: hush_coherence_table [WIDTH HEIGHT FIRST FRAMES [SCENE...]]\n");
-      return 2;
-    }
-    width = positive(argv[1], "WIDTH");
-    height = positive(argv[2], "HEIGHT");
-    first = positive(argv[3], "FIRST");
-    count = positive(argv[4], "FRAMES");
-    if (argc > 5) scenes.assign(argv + 5, argv + argc);
-  }
+  const hc::table_args args = hc::parse_table_args(argc, argv, "hush_coherence_table");
+  const int width = args.width, height = args.height, first = args.first, count = args.count;
+  const std::vector<std::string>& scenes = args.scenes;
   try {
     std::printf(
         "| scene | baseline | coherence mean | min | following | mean abs change | p99 | "
