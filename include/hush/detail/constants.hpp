@@ -345,6 +345,13 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
 
+// ---- Styles (style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
+// in noise standard deviations (8 sigma: every pixel in the soft band), the
+// graphite style's fine-layer weight and the watercolour overlay's gain.
+constexpr double kStyleMaxWidth = 8.0;
+constexpr double kStyleMaxGrain = 8.0;
+constexpr double kStyleMaxGain = 4.0;
+
 // ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
 // subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
 constexpr double kLn2 = 0.69314718055994530942;
