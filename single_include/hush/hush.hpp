@@ -721,6 +721,11 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 // kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
+// Step in F r (cycles per kernel radius) between the exact kernel energies a
+// non-constant frequency's normalisation interpolates (npr_gabor.hpp): the
+// energy depends on F only through F r for a given truncation; 1/64 keeps the
+// linear interpolation within 1e-3 relative for t in [1e-9, 0.5].
+constexpr double kNprGaborEnergyStep = 1.0 / 64.0;
 
 // ---- Styles (style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
 // in noise standard deviations (8 sigma: every pixel in the soft band), the
@@ -13520,10 +13525,32 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    bounding box grown by r misses the image. Hidden triangles emit points
 //    whose fragments fail the tests (nothing is added).
 //  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
+//  - parameter sources (sec. 4; render's `sources`, hush/core/param_source.hpp):
+//    F0 and omega0 each a constant (params), a per-object table (indexed by
+//    the G-buffer's object id) or a per-pixel field (e.g. an orientation field
+//    along the projected normal, a frequency driven by shading). Each point
+//    reads them once, at the pixel under its own screen position in this
+//    frame, not per fragment: a splat is one Gabor kernel, and a point keeps
+//    its parameters while it moves exactly as far as the field is attached to
+//    the surface (a field computed from the surface, like the projected normal,
+//    changes only as the surface's view changes); reading per fragment would
+//    make the kernel change shape as it slides over the pixels. Non-finite
+//    field pixels, positions outside the image and objects past a table's end
+//    take the params' constant; finite field frequencies are clamped to
+//    [0, 0.5]. A hidden point reads the pixel of what hides it (its fragments
+//    then mostly fail the visibility tests). With `isotropic` the orientation
+//    source is ignored (each point has its random angle). Each point is
+//    weighted by 1 / sqrt(lambda E[v^2] int g_F^2) for its own F
+//    (interpolated_energy: linear between exact energies at steps of 1/64 in
+//    F r, computed on demand, relative error below 1e-3), so the noise has
+//    variance 1 wherever the parameters are locally constant. Bandwidth and N' stay constant: they
+//    set the kernel radius and the density lambda = N' / (pi r^2) that a
+//    triangle's point count uses, and a radius that changes per point would
+//    need a variable-radius splat (future work, issue 11).
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-// Not yet here (issue 11): per-object / per-pixel parameters, SIMD and GLSL.
+// Not yet here (issue 11): per-object bandwidth and N', SIMD and GLSL.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -13531,9 +13558,119 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
+// ---- begin hush/core/param_source.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::param_source: where a scene-driven noise takes one of its parameters
+// (Benard, Lagae et al. 2010 sec. 4: "the noise parameters ... can be defined
+// per object or per pixel", e.g. an orientation field along the principal
+// curvature or the projected normal, a frequency driven by shading). Three
+// kinds:
+//  - constant (the default-constructed source): the noise's own params value;
+//  - per object: table[object_id], the G-buffer's object ids (ids past the
+//    table's end take the constant);
+//  - per pixel: field(x, y) at a pixel, a view of a caller-owned image of the
+//    frame's size (e.g. a G-buffer channel), valid for the call that reads it.
+// No copy of the data is made. The noise decides where it reads (NPR Gabor
+// noise: each point at its own pixel, see npr_gabor.hpp).
+//
+//   std::vector<double> freq = {0.125, 0.25};           // objects 0 and 1
+//   hush::param_source f = hush::param_source::per_object(freq);
+//   hush::param_source o = hush::param_source::per_pixel({angles, w, h});
+//
+// Bad values: validate() throws hush::invalid_argument for a table entry
+// outside the parameter's range or a field whose size is not the frame's;
+// field pixels are never read there (per-pixel data may be anything): value()
+// gives the fallback for a non-finite pixel and the caller clamps finite ones.
+#ifndef HUSH_CORE_PARAM_SOURCE_HPP
+#define HUSH_CORE_PARAM_SOURCE_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+
+namespace hush {
+
+class param_source {
+ public:
+  enum class kind { constant, per_object, per_pixel };
+
+  param_source() = default;  // constant
+  static param_source per_object(span<const double> table) {
+    param_source s;
+    s.kind_ = kind::per_object;
+    s.table_ = table;
+    return s;
+  }
+  static param_source per_pixel(image_view<const float> field) {
+    param_source s;
+    s.kind_ = kind::per_pixel;
+    s.field_ = field;
+    return s;
+  }
+
+  kind which() const { return kind_; }
+  bool is_constant() const { return kind_ == kind::constant; }
+
+  // The value for object `object` at pixel (x, y) (screen pixels, y down;
+  // the pixel whose square holds the position): the table entry or the
+  // field's pixel. `fallback` (the constant) when the source is constant, the
+  // object is past the table's end, the position is outside the field or not
+  // finite, or the pixel is not finite (NaN: "no value here"). Never throws.
+  double value(std::uint32_t object, double x, double y, double fallback) const {
+    switch (kind_) {
+      case kind::constant:
+        return fallback;
+      case kind::per_object:
+        return object < table_.size() ? table_[object] : fallback;
+      case kind::per_pixel: {
+        if (!(x >= 0.0 && y >= 0.0 && x < static_cast<double>(field_.width) &&
+              y < static_cast<double>(field_.height)))
+          return fallback;  // also NaN positions
+        const double v = static_cast<double>(
+            field_(static_cast<std::size_t>(x), static_cast<std::size_t>(y)));
+        return std::isfinite(v) ? v : fallback;
+      }
+    }
+    return fallback;
+  }
+
+  // Throws hush::invalid_argument naming `where` and `name`: a per-object
+  // entry outside [lo, hi] (named "name[i]", with `valid` the range's text),
+  // a per-pixel field with null data, or a size other than width x height.
+  void validate(const char* where, const char* name, double lo, double hi, const char* valid,
+                std::size_t width, std::size_t height) const {
+    if (kind_ == kind::per_object) {
+      for (std::size_t i = 0; i < table_.size(); ++i)
+        detail::require_in_range(where, std::string(name) + "[" + std::to_string(i) + "]",
+                                 table_[i], lo, hi, valid);
+    } else if (kind_ == kind::per_pixel) {
+      if (!field_.data || field_.width != width || field_.height != height)
+        detail::throw_out_of_range(
+            where, std::string(name) + " field size",
+            std::to_string(field_.width) + "x" + std::to_string(field_.height),
+            ("the frame's size " + std::to_string(width) + "x" + std::to_string(height) +
+             " (non-null)")
+                .c_str());
+    }
+  }
+
+ private:
+  kind kind_ = kind::constant;
+  span<const double> table_;
+  image_view<const float> field_;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_PARAM_SOURCE_HPP
+// ---- end hush/core/param_source.hpp
 
 namespace hush {
 
@@ -13628,17 +13765,33 @@ class npr_gabor {
     return pt;
   }
 
+  // Where F0 and omega0 come from in one frame (see the header comment): a
+  // default-constructed source is the params' constant. Views, valid for the
+  // render call. Per-object frequencies in [0, 0.5], orientations finite.
+  struct sources {
+    param_source frequency;    // cycles per pixel
+    param_source orientation;  // radians from +x towards +y
+  };
+
   // Adds nothing, overwrites `out` (frame-sized; float, or double for the
   // reference) with the noise of this frame. Throws hush::invalid_argument
   // when the frame lacks a view needs() lists or is malformed (frame::validate),
-  // when the triangle list is malformed (triangle_list::validate), or when
-  // out's size differs from the frame's. Never reads outside the views.
+  // when the triangle list is malformed (triangle_list::validate), when out's
+  // size differs from the frame's, or when a source is malformed
+  // (param_source::validate: "frequency[i]", "orientation[i]", a field's
+  // size). Never reads outside the views.
   template <class T>
-  void render(const frame& f, const triangle_list& tris, const image_view<T>& out) const {
+  void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
+              const sources& src = {}) const {
     namespace c = detail::constants;
     const char* where = "hush::npr_gabor::render";
     f.validate(where, needs(), c::kNprGaborMaxImageSide);
     tris.validate(where, c::kNprGaborMaxTriangles);
+    src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
+                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
+    src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::max(), "finite (radians)", f.width(),
+                             f.height());
     if (out.width != f.width() || out.height != f.height() || !out.data)
       detail::throw_out_of_range(where, "out size",
                                  std::to_string(out.width) + "x" + std::to_string(out.height),
@@ -13646,7 +13799,26 @@ class npr_gabor {
     for (std::size_t y = 0; y < out.height; ++y)
       std::fill(out.row(y), out.row(y) + out.width, T(0));
     std::vector<detail::gabor_axis<T>> columns;
-    for (std::size_t t = 0; t < tris.triangles(); ++t) splat_triangle(f, tris, t, out, columns);
+    const point_parameters pp(*this, src);
+    for (std::size_t t = 0; t < tris.triangles(); ++t)
+      splat_triangle(f, tris, t, out, pp, columns);
+  }
+
+  // int g_F^2 for |F| = frequency, as render normalises a point of a
+  // non-constant frequency: linear interpolation of kernel().energy between
+  // the nodes F = k h, h = kNprGaborEnergyStep / radius (a step in F r, the
+  // variable the energy depends on for a given truncation). Exact at the
+  // nodes; relative error below 1e-3 (tests/npr_gabor_test.cpp measures it).
+  // `cache`: node energies (NaN = not computed yet), filled on demand.
+  double interpolated_energy(double frequency, std::vector<double>& cache) const {
+    const double h = detail::constants::kNprGaborEnergyStep / kernel_.radius();
+    const double u = std::max(frequency, 0.0) / h;
+    const std::size_t i = static_cast<std::size_t>(u);
+    const double t = u - static_cast<double>(i);
+    if (cache.size() < i + 2) cache.resize(i + 2, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t k = i; k <= i + 1; ++k)
+      if (std::isnan(cache[k])) cache[k] = kernel_.energy(static_cast<double>(k) * h);
+    return cache[i] * (1.0 - t) + cache[i + 1] * t;
   }
 
  private:
@@ -13668,13 +13840,44 @@ class npr_gabor {
     return p;
   }
 
+  // One point's kernel frequency vector and weight factor, from the sources
+  // (the params' constants when both are constant: the scale of the
+  // constructor, bit for bit the renderer without sources). One per render
+  // call (it caches node energies).
+  class point_parameters {
+   public:
+    point_parameters(const npr_gabor& n, const sources& src) : n_(n), src_(src) {}
+    struct kernel {
+      dvec2 F;
+      double scale;
+    };
+    kernel at(std::uint32_t object, const dvec2& pos, double random_angle) const {
+      const params& p = n_.p_;
+      double f = p.frequency, scale = n_.scale_;
+      if (!src_.frequency.is_constant()) {
+        f = std::clamp(src_.frequency.value(object, pos.x, pos.y, p.frequency), 0.0,
+                       detail::constants::kNprGaborMaxFrequency);
+        scale = 1.0 / std::sqrt(n_.lambda_ * weight_moment() * n_.interpolated_energy(f, energy_));
+      }
+      const double theta =
+          p.isotropic ? random_angle : src_.orientation.value(object, pos.x, pos.y, p.orientation);
+      return {{f * std::cos(theta), f * std::sin(theta)}, scale};
+    }
+
+   private:
+    const npr_gabor& n_;
+    const sources& src_;
+    mutable std::vector<double> energy_;
+  };
+
   std::uint32_t triangle_key(std::uint32_t object, std::uint32_t triangle) const {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
 
   template <class T>
   void splat_triangle(const frame& f, const triangle_list& tris, std::size_t t,
-                      const image_view<T>& out, std::vector<detail::gabor_axis<T>>& columns) const {
+                      const image_view<T>& out, const point_parameters& pp,
+                      std::vector<detail::gabor_axis<T>>& columns) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -13711,10 +13914,9 @@ class npr_gabor {
       const dvec2 at{
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
-      const double theta = p_.isotropic ? pt.angle : p_.orientation;
-      const dvec2 F{p_.frequency * std::cos(theta), p_.frequency * std::sin(theta)};
-      splat_point(f, out, at, F, lod.weight(j) * pt.amplitude * scale_, object, id, q0, qx, qy,
-                  columns);
+      const point_parameters::kernel k = pp.at(object, at, pt.angle);
+      splat_point(f, out, at, k.F, lod.weight(j) * pt.amplitude * k.scale, object, id, q0, qx,
+                  qy, columns);
     }
   }
 
