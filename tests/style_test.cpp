@@ -131,7 +131,7 @@ TEST_CASE("binary: tone 1, tone 0, NaN tone and NaN noise have their documented 
   CHECK(b.paper(-std::numeric_limits<double>::infinity(), 0.8) == 0.0);
 }
 
-TEST_CASE("crosshatch: the product of two layers at sqrt(tone); mean paper = tone") {
+TEST_CASE("crosshatch: the product of two layers at sqrt(tone), mean paper = tone") {
   const std::vector<double> n1 = gaussians(200000, 13), n2 = gaussians(200000, 14);
   const double tol = 4.5 * std::sqrt(0.25 / static_cast<double>(n1.size()));
   const st::crosshatch c(0.0);
@@ -149,7 +149,7 @@ TEST_CASE("crosshatch: the product of two layers at sqrt(tone); mean paper = ton
   }
 }
 
-TEST_CASE("graphite: the mix of independent unit-variance noises has variance 1; tone holds") {
+TEST_CASE("graphite: the mix of independent unit-variance noises has variance 1, tone holds") {
   const std::vector<double> n = gaussians(200000, 15), f = gaussians(200000, 16);
   const double count = static_cast<double>(n.size());
   for (double grain : {0.0, 0.6, 3.0}) {
@@ -192,7 +192,7 @@ TEST_CASE("watercolor: overlay keeps the colour at n = 0 and on average, stays i
   CHECK(col.z == doctest::Approx(1 - 2 * 0.1 * 0.15));
 }
 
-TEST_CASE("shading_tone: ambient + (1 - ambient) max(0, N.L); background is white") {
+TEST_CASE("shading_tone: ambient + (1 - ambient) max(0, N.L), background is white") {
   const hush::dvec3 l{0, 0, 2};
   CHECK(st::shading_tone({0, 0, 1}, l, 0.1) == doctest::Approx(1.0));
   CHECK(st::shading_tone({0, 0, -1}, l, 0.1) == doctest::Approx(0.1));
