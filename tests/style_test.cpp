@@ -255,3 +255,47 @@ TEST_CASE("hatching on NPR Gabor noise: ink coverage follows the tone") {
     CHECK(std::fabs(paper / count - tone) <= tol);
   }
 }
+
+TEST_CASE("projected_normal_field: the direction of grad(1/z), exact on planes, NaN face-on") {
+  // Object 1 (x < 30, y >= 1): a slanted plane, 1/z = 0.5 + 0.002 x + 0.001 y at pixel
+  // centres; object 2 (x >= 30): face-on (constant depth); row 0 background; pixel
+  // (10, 15) an isolated object 3 (no neighbour of its own: NaN).
+  const std::size_t w = 40, h = 30;
+  std::vector<float> depth(w * h, std::numeric_limits<float>::infinity());
+  std::vector<std::uint32_t> object(w * h, 0);
+  for (std::size_t y = 1; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const double inv = 0.5 + 0.002 * (static_cast<double>(x) + 0.5) +
+                         0.001 * (static_cast<double>(y) + 0.5);
+      depth[y * w + x] = x < 30 ? static_cast<float>(1.0 / inv) : 2.0f;
+      object[y * w + x] = x < 30 ? 1 : 2;
+    }
+  object[15 * w + 10] = 3;
+  hush::frame f;
+  f.depth = {depth.data(), w, h};
+  f.object_id = {object.data(), w, h};
+  std::vector<float> field(w * h);
+  st::projected_normal_field(f, hush::image_view<float>(field.data(), w, h), 1e-4);
+  const double expected = std::atan2(0.001, 0.002);
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const float a = field[y * w + x];
+      CAPTURE(x);
+      CAPTURE(y);
+      if (y == 0 || x >= 30 || (x == 10 && y == 15)) {
+        CHECK(std::isnan(a));
+      } else {
+        // Depths are float: each 1/z (< 0.6) is off by up to 0.6 * 2^-24 = 3.6e-8, so a
+        // difference of two by 7.2e-8 against gradient components >= 0.001: the angle is
+        // within 7.2e-8 / 0.001 = 7.2e-5 (plus float rounding of the result).
+        CHECK(std::fabs(a - expected) <= 1e-4);
+      }
+    }
+  CHECK_THROWS_WITH_AS(
+      st::projected_normal_field(f, hush::image_view<float>(field.data(), 20, 20), 1e-4),
+      doctest::Contains("out size"), hush::invalid_argument);
+  f.object_id = {};
+  CHECK_THROWS_WITH_AS(
+      st::projected_normal_field(f, hush::image_view<float>(field.data(), w, h), 1e-4),
+      doctest::Contains("object_id"), hush::invalid_argument);
+}

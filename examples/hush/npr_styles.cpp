@@ -29,36 +29,6 @@ std::uint8_t byte_of(double v) {
 
 }  // namespace
 
-void projected_normal_field(const hush::frame& f, std::vector<float>& field) {
-  const std::size_t w = f.width(), h = f.height();
-  field.assign(w * h, std::numeric_limits<float>::quiet_NaN());
-  // 1/z of pixel (x, y) if it shows object `o` with a usable depth, else NaN.
-  auto inv = [&](std::size_t x, std::size_t y, std::uint32_t o) {
-    const double z = static_cast<double>(f.depth(x, y));
-    if (f.object_id(x, y) != o || !(z > 0.0) || !std::isfinite(z))
-      return std::numeric_limits<double>::quiet_NaN();
-    return 1.0 / z;
-  };
-  // d(1/z) along one axis: central where both neighbours show o, one-sided otherwise.
-  auto diff = [](double lo, double mid, double hi) {
-    if (!std::isnan(lo) && !std::isnan(hi)) return 0.5 * (hi - lo);
-    if (!std::isnan(hi)) return hi - mid;
-    if (!std::isnan(lo)) return mid - lo;
-    return std::numeric_limits<double>::quiet_NaN();
-  };
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (std::size_t y = 0; y < h; ++y)
-    for (std::size_t x = 0; x < w; ++x) {
-      const std::uint32_t o = f.object_id(x, y);
-      const double mid = inv(x, y, o);
-      if (o == 0 || std::isnan(mid)) continue;
-      const double gx = diff(x > 0 ? inv(x - 1, y, o) : nan, mid, x + 1 < w ? inv(x + 1, y, o) : nan);
-      const double gy = diff(y > 0 ? inv(x, y - 1, o) : nan, mid, y + 1 < h ? inv(x, y + 1, o) : nan);
-      if (!(std::hypot(gx, gy) / mid >= kFaceOn)) continue;  // also NaN
-      field[y * w + x] = static_cast<float>(std::atan2(gy, gx));
-    }
-}
-
 npr_stylizer::npr_stylizer(const hush::npr_gabor::params& base, const npr_style_options& o)
     : o_(o) {
   // Validate the style's values once (the constructors throw naming them).
@@ -109,7 +79,8 @@ void npr_stylizer::draw(const hush::frame& f, const hush::triangle_list& tris,
                         hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb) {
   const std::size_t w = f.width(), h = f.height();
   if (o_.normal_field) {
-    projected_normal_field(f, field_);
+    field_.resize(w * h);
+    hush::style::projected_normal_field(f, hush::image_view<float>(field_.data(), w, h), kFaceOn);
     field_turned_.resize(field_.size());
     for (std::size_t i = 0; i < field_.size(); ++i)
       field_turned_[i] = field_[i] + static_cast<float>(kHalfPi);  // NaN stays NaN

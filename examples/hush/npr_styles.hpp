@@ -4,11 +4,9 @@
 //
 // Per frame: the tone comes from shading (N.L of the G-buffer's world-space normals and a
 // world-space light direction, plus ambient); the orientation field is the screen direction
-// of the projected normal, the gradient of 1/depth (for a plane n.X = d seen through a
-// pinhole, 1/z = (n_x x / f + n_y y / f + n_z) / d, so grad(1/z) is parallel to (n_x, n_y)),
-// by central differences of the depth within one object (one-sided at its edges); where
-// the surface faces the camera (|grad(1/z)| z below kFaceOn per pixel) the field is NaN
-// and the noise takes the constant --orientation. Layers, each an hush::npr_gabor:
+// of the projected normal (hush::style::projected_normal_field: grad(1/depth)); where the
+// surface faces the camera (relative slope below kFaceOn per pixel) it is NaN and the noise
+// takes the constant --orientation. Layers, each an hush::npr_gabor:
 //  - hatching: one anisotropic layer along the field; binary threshold of the tone.
 //  - stippling: one isotropic layer; the same threshold.
 //  - crosshatch: two anisotropic layers (field and field + pi/2, seeds s and s + 1);
@@ -41,10 +39,6 @@ struct npr_style_options {
   hush::dvec3 light{0.4, 0.7, 0.6};  // towards the light, world space
   bool normal_field = true;         // orientation along the projected normal
 };
-
-// Screen angle (radians from +x towards +y, down) of grad(1/depth) per pixel, NaN on the
-// background and where the surface faces the camera. `field` is resized to the frame.
-void projected_normal_field(const hush::frame& f, std::vector<float>& field);
 
 class npr_stylizer {
  public:

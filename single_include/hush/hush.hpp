@@ -13994,6 +13994,7 @@ class npr_gabor {
 //   hush::style::crosshatch{0.5}.paper(n1, n2, tone);  // two orientations
 //   hush::style::graphite{0.8, 0.6}.paper(n, n_fine, tone);
 //   hush::style::watercolor{0.35}.colour(c, noise);    // overlay on scene colour
+//   hush::style::projected_normal_field(frame, field, 1e-4);  // hatching direction
 //
 // The thresholding (sec. 4, "binary styles"): the paper is white where the
 // noise is above a threshold theta, with a smooth step of width w (in noise
@@ -14014,7 +14015,10 @@ class npr_gabor {
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <string>
 
 
 namespace hush {
@@ -14162,6 +14166,54 @@ inline double shading_tone(const dvec3& normal, const dvec3& light, double ambie
   if (!(nn > 0.0) || !std::isfinite(nn) || !(ll > 0.0) || !std::isfinite(ll)) return 1.0;
   const double k = std::clamp(ambient, 0.0, 1.0);
   return k + (1.0 - k) * std::max(0.0, dot(normal, light) / (nn * ll));
+}
+
+// Orientation from the G-buffer: the screen direction of the projected normal
+// at every pixel, in radians from +x towards +y (down), written to `out`
+// (frame-sized). It is the direction of grad(1/z): for a plane n.X = d seen
+// through a pinhole, 1/z = (n_x x / f + n_y y / f + n_z) / d, so grad(1/z) is
+// parallel to (n_x, n_y). By differences of the frame's depth within one
+// object (central where both neighbours show the object, one-sided at its
+// edges; exact on a plane). NaN on the background (object 0 or unusable
+// depth), at isolated pixels, and where the surface faces the camera:
+// |grad(1/z)| z < min_slope (relative depth change per pixel), where the
+// direction is noise; NPR Gabor noise then takes its constant orientation
+// (param_source: NaN pixels). Throws hush::invalid_argument when the frame
+// lacks depth or object ids, or out's size differs from the frame's.
+inline void projected_normal_field(const frame& f, const image_view<float>& out,
+                                   double min_slope) {
+  const char* where = "hush::style::projected_normal_field";
+  f.validate(where, frame_view::depth | frame_view::object_id,
+             detail::constants::kNprGaborMaxImageSide);
+  const std::size_t w = f.width(), h = f.height();
+  if (out.width != w || out.height != h || !out.data)
+    detail::throw_out_of_range(where, "out size",
+                               std::to_string(out.width) + "x" + std::to_string(out.height),
+                               "the frame's size (non-null)");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // 1/z of pixel (x, y) if it shows object o with a usable depth, else NaN.
+  auto inv = [&](std::size_t x, std::size_t y, std::uint32_t o) {
+    const double z = static_cast<double>(f.depth(x, y));
+    if (f.object_id(x, y) != o || !(z > 0.0) || !std::isfinite(z)) return nan;
+    return 1.0 / z;
+  };
+  auto diff = [](double lo, double mid, double hi) {
+    if (!std::isnan(lo) && !std::isnan(hi)) return 0.5 * (hi - lo);
+    if (!std::isnan(hi)) return hi - mid;
+    if (!std::isnan(lo)) return mid - lo;
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      out(x, y) = std::numeric_limits<float>::quiet_NaN();
+      const std::uint32_t o = f.object_id(x, y);
+      const double mid = inv(x, y, o);
+      if (o == 0 || std::isnan(mid)) continue;
+      const double gx = diff(x > 0 ? inv(x - 1, y, o) : nan, mid, x + 1 < w ? inv(x + 1, y, o) : nan);
+      const double gy = diff(y > 0 ? inv(x, y - 1, o) : nan, mid, y + 1 < h ? inv(x, y + 1, o) : nan);
+      if (!(std::hypot(gx, gy) / mid >= min_slope)) continue;  // also NaN
+      out(x, y) = static_cast<float>(std::atan2(gy, gx));
+    }
 }
 
 }  // namespace style
