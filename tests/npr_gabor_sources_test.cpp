@@ -13,8 +13,10 @@
 // 4 rho^2 after Cauchy-Schwarz); tolerances are 4.5 of those.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <string>
 #include <vector>
@@ -67,6 +69,33 @@ double pixels(const region& r) { return static_cast<double>((r.x1 - r.x0) * (r.y
 
 double sum_rho2(const hush::gabor_kernel<2>& k, const hush::dvec2& F) {
   return npr_test::sum_rho_power(k, F, 2);
+}
+
+// Bartlett's formula for the standard error of a sample autocorrelation at lag d over n
+// pixels, Var = (1/n) sum_k [rho(k+d)^2 + rho(k-d) rho(k+d) + 2 rho(d)^2 rho(k)^2
+// - 4 rho(d) rho(k) rho(k+d)], summed over the lags k within two radii (rho = 0 beyond):
+// much tighter than the bound above where rho(d) is near 1.
+double bartlett_se(const hush::gabor_kernel<2>& k, const hush::dvec2& F, int dx, int dy,
+                   double n) {
+  const int reach = 2 * static_cast<int>(std::ceil(k.radius()));
+  const int big = reach + std::max(std::abs(dx), std::abs(dy));
+  const int side = 2 * big + 1;
+  std::vector<double> rho(static_cast<std::size_t>(side) * static_cast<std::size_t>(side), 0.0);
+  auto at = [&](int x, int y) -> double& {
+    return rho[static_cast<std::size_t>(y + big) * static_cast<std::size_t>(side) +
+               static_cast<std::size_t>(x + big)];
+  };
+  for (int y = -big; y <= big; ++y)
+    for (int x = -big; x <= big; ++x)
+      if (std::abs(x) <= reach && std::abs(y) <= reach) at(x, y) = npr_test::rho_at(k, F, x, y);
+  const double rd = at(dx, dy);
+  double v = 0;
+  for (int y = -reach; y <= reach; ++y)
+    for (int x = -reach; x <= reach; ++x) {
+      const double p = at(x + dx, y + dy), m = at(x - dx, y - dy), r0 = at(x, y);
+      v += p * p + m * p + 2 * rd * rd * r0 * r0 - 4 * rd * r0 * p;
+    }
+  return std::sqrt(std::max(v, 0.0) / n);
 }
 
 hush::dvec2 freq(double f, double theta) { return {f * std::cos(theta), f * std::sin(theta)}; }
@@ -262,4 +291,76 @@ TEST_CASE("bad per-object tables and per-pixel fields are refused by name and ra
   src.orientation = hush::param_source::per_pixel({wild.data(), 16, 16});
   noise.render(sc.frame(), sc.triangles(), view, src);
   for (float v : out) CHECK(std::isfinite(v));
+}
+
+TEST_CASE("per-object bandwidth shows in each object's autocorrelation, variance 1 in each") {
+  const std::size_t w = 256, h = 192;
+  npr_test::grid_scene sc = npr_test::covering(w, h, 8.0, 20.0);
+  split_objects(sc);
+  const hush::npr_gabor noise(small_kernel());  // F0 = 1/4 along x
+  const std::vector<double> a = {0.25, 0.15, 0.4};  // objects 0 (unused), 1, 2
+  const std::vector<double> n_prime = {16, 8, 32};
+  hush::npr_gabor::sources src;
+  src.bandwidth = hush::param_source::per_object(a);
+  src.impulses = hush::param_source::per_object(n_prime);
+  const std::vector<float> img = render(noise, sc, src);
+  const std::size_t m = 20;  // > 2 radii of the wider kernel (r = 6.5 px at a = 0.15)
+  const region left{m, w / 2 - m, m, h - m}, right{w / 2 + m, w - 1 - m, m, h - 1 - m};
+  const hush::dvec2 F = freq(0.25, 0.0);
+  for (int obj = 1; obj <= 2; ++obj) {
+    const region& r = obj == 1 ? left : right;
+    hush::npr_gabor::params p = small_kernel();
+    p.bandwidth = a[std::size_t(obj)];
+    p.impulses = n_prime[std::size_t(obj)];
+    const hush::npr_gabor own(p);
+    p.bandwidth = a[std::size_t(3 - obj)];
+    const hush::npr_gabor other(p);
+    CAPTURE(obj);
+    for (const auto& d : {std::pair<int, int>{0, 1}, {0, 2}, {0, 3}, {1, 1}}) {
+      // 4.5 standard errors (Bartlett) plus the kernel's truncation at the object seam
+      // excluded by the margin.
+      const double tol = 4.5 * bartlett_se(own.kernel(), F, d.first, d.second, pixels(r));
+      const double measured = sample_rho(img, w, r, d.first, d.second);
+      const double expected = npr_test::rho_at(own.kernel(), F, d.first, d.second);
+      CAPTURE(d.second);
+      CAPTURE(tol);
+      CHECK(std::fabs(measured - expected) <= tol);
+      // Along y (across the stripes) the envelope alone: the other object's bandwidth
+      // would be far outside the tolerance.
+      if (d.first == 0 && d.second >= 2)
+        CHECK(std::fabs(expected - npr_test::rho_at(other.kernel(), F, d.first, d.second)) >
+              4 * tol);
+    }
+    const double var_tol = 4.5 * std::sqrt((2.0 * sum_rho2(own.kernel(), F) +
+                                            9.0 / (5.0 * own.density())) / pixels(r));
+    CHECK(std::fabs(sample_variance(img, w, r) - 1.0) <= var_tol);
+  }
+  // A table holding the constants everywhere renders the constant image bit for bit: the
+  // per-object noises draw the same points.
+  const std::vector<double> same_a = {0.25, 0.25, 0.25}, same_n = {16, 16, 16};
+  hush::npr_gabor::sources same;
+  same.bandwidth = hush::param_source::per_object(same_a);
+  same.impulses = hush::param_source::per_object(same_n);
+  CHECK(render(noise, sc, same) == render(noise, sc, {}));
+}
+
+TEST_CASE("per-object bandwidth and impulses: bad tables and per-pixel sources are refused") {
+  npr_test::grid_scene sc(16, 16, 0, 0, 8, 2, 2);
+  const hush::npr_gabor noise{hush::npr_gabor::params{}};
+  std::vector<float> out(std::size_t{16} * 16);
+  const hush::image_view<float> view(out.data(), 16, 16);
+  const std::vector<double> bad_a = {0.1, 20.0}, bad_n = {16, 0};
+  hush::npr_gabor::sources src;
+  src.bandwidth = hush::param_source::per_object(bad_a);
+  CHECK_THROWS_WITH_AS(noise.render(sc.frame(), sc.triangles(), view, src),
+                       doctest::Contains("bandwidth[1] = 20"), hush::invalid_argument);
+  src = {};
+  src.impulses = hush::param_source::per_object(bad_n);
+  CHECK_THROWS_WITH_AS(noise.render(sc.frame(), sc.triangles(), view, src),
+                       doctest::Contains("0 < impulses <= 256"), hush::invalid_argument);
+  std::vector<float> field(std::size_t{16} * 16, 0.1f);
+  src = {};
+  src.bandwidth = hush::param_source::per_pixel({field.data(), 16, 16});
+  CHECK_THROWS_WITH_AS(noise.render(sc.frame(), sc.triangles(), view, src),
+                       doctest::Contains("bandwidth source = per pixel"), hush::invalid_argument);
 }

@@ -13543,14 +13543,17 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    weighted by 1 / sqrt(lambda E[v^2] int g_F^2) for its own F
 //    (interpolated_energy: linear between exact energies at steps of 1/64 in
 //    F r, computed on demand, relative error below 1e-3), so the noise has
-//    variance 1 wherever the parameters are locally constant. Bandwidth and N' stay constant: they
-//    set the kernel radius and the density lambda = N' / (pi r^2) that a
-//    triangle's point count uses, and a radius that changes per point would
-//    need a variable-radius splat (future work, issue 11).
+//    variance 1 wherever the parameters are locally constant. Bandwidth and
+//    N' are not per pixel: they set the kernel radius and the density
+//    lambda = N' / (pi r^2) that a triangle's point count uses, and a radius
+//    that changes per point would need a variable-radius splat. Per object they
+//    can vary (`sources` bandwidth and impulses: tables only): each object's
+//    triangles are splatted by a noise with that object's a and N' (kernel,
+//    density lambda and scale), the same seed and so the same points.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-// Not yet here (issue 11): per-object bandwidth and N', SIMD and GLSL.
+// Not yet here (issue 11): SIMD and GLSL.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -13560,6 +13563,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 // ---- begin hush/core/param_source.hpp
@@ -13617,6 +13621,8 @@ class param_source {
 
   kind which() const { return kind_; }
   bool is_constant() const { return kind_ == kind::constant; }
+  // Entries of a per-object table (0 for the other kinds).
+  std::size_t table_size() const { return kind_ == kind::per_object ? table_.size() : 0; }
 
   // The value for object `object` at pixel (x, y) (screen pixels, y down;
   // the pixel whose square holds the position): the table entry or the
@@ -13765,12 +13771,16 @@ class npr_gabor {
     return pt;
   }
 
-  // Where F0 and omega0 come from in one frame (see the header comment): a
-  // default-constructed source is the params' constant. Views, valid for the
-  // render call. Per-object frequencies in [0, 0.5], orientations finite.
+  // Where F0, omega0, a and N' come from in one frame (see the header
+  // comment): a default-constructed source is the params' constant. Views,
+  // valid for the render call. Per-object frequencies in [0, 0.5],
+  // orientations finite, bandwidths in [0.01, 10], impulses in (0, 256];
+  // bandwidth and impulses are constant or per object only.
   struct sources {
     param_source frequency;    // cycles per pixel
     param_source orientation;  // radians from +x towards +y
+    param_source bandwidth;    // 1/pixel; not per pixel
+    param_source impulses;     // N'; not per pixel
   };
 
   // Adds nothing, overwrites `out` (frame-sized; float, or double for the
@@ -13778,8 +13788,9 @@ class npr_gabor {
   // when the frame lacks a view needs() lists or is malformed (frame::validate),
   // when the triangle list is malformed (triangle_list::validate), when out's
   // size differs from the frame's, or when a source is malformed
-  // (param_source::validate: "frequency[i]", "orientation[i]", a field's
-  // size). Never reads outside the views.
+  // (param_source::validate: "frequency[i]", "orientation[i]", "bandwidth[i]",
+  // "impulses[i]", a field's size; a per-pixel bandwidth or impulses source).
+  // Never reads outside the views.
   template <class T>
   void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
               const sources& src = {}) const {
@@ -13792,6 +13803,16 @@ class npr_gabor {
     src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
                              std::numeric_limits<double>::max(), "finite (radians)", f.width(),
                              f.height());
+    src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
+                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
+    src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
+                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
+    for (const auto& [name, s] : {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
+                                  {"impulses", &src.impulses}})
+      if (s->which() == param_source::kind::per_pixel)
+        detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
+                                   "constant or per object (it sets the kernel radius or the "
+                                   "density a triangle's point count is made from)");
     if (out.width != f.width() || out.height != f.height() || !out.data)
       detail::throw_out_of_range(where, "out size",
                                  std::to_string(out.width) + "x" + std::to_string(out.height),
@@ -13800,8 +13821,27 @@ class npr_gabor {
       std::fill(out.row(y), out.row(y) + out.width, T(0));
     std::vector<detail::gabor_axis<T>> columns;
     const point_parameters pp(*this, src);
-    for (std::size_t t = 0; t < tris.triangles(); ++t)
-      splat_triangle(f, tris, t, out, pp, columns);
+    // Per-object a or N': one noise per table entry with that object's kernel,
+    // density and scale (same seed and constants: the same points).
+    std::vector<npr_gabor> per_object;
+    std::vector<point_parameters> per_object_pp;
+    const std::size_t objects = std::max(src.bandwidth.table_size(), src.impulses.table_size());
+    per_object.reserve(objects);
+    per_object_pp.reserve(objects);
+    for (std::size_t o = 0; o < objects; ++o) {
+      params q = p_;
+      q.bandwidth = src.bandwidth.value(static_cast<std::uint32_t>(o), 0, 0, p_.bandwidth);
+      q.impulses = src.impulses.value(static_cast<std::uint32_t>(o), 0, 0, p_.impulses);
+      per_object.emplace_back(q);
+    }
+    for (const npr_gabor& n : per_object) per_object_pp.emplace_back(n, src);
+    for (std::size_t t = 0; t < tris.triangles(); ++t) {
+      const std::uint32_t o = tris.object_of(t);
+      if (o < objects)
+        per_object[o].splat_triangle(f, tris, t, out, per_object_pp[o], columns);
+      else
+        splat_triangle(f, tris, t, out, pp, columns);
+    }
   }
 
   // int g_F^2 for |F| = frequency, as render normalises a point of a

@@ -54,6 +54,8 @@ class param_source {
 
   kind which() const { return kind_; }
   bool is_constant() const { return kind_ == kind::constant; }
+  // Entries of a per-object table (0 for the other kinds).
+  std::size_t table_size() const { return kind_ == kind::per_object ? table_.size() : 0; }
 
   // The value for object `object` at pixel (x, y) (screen pixels, y down;
   // the pixel whose square holds the position): the table entry or the
