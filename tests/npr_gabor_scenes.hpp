@@ -114,6 +114,20 @@ double rho_at(const Kernel& k, const hush::dvec2& F, int dx, int dy) {
   return num / den;
 }
 
+// sum_d |rho(d)|^power over the lags within two kernel radii (beyond, the
+// kernels do not overlap and rho = 0): power 2 for the standard error of sample
+// variances and autocorrelations, power 1 for that of sample means of functions
+// of the noise (tests/style_test.cpp).
+template <class Kernel>
+double sum_rho_power(const Kernel& k, const hush::dvec2& F, int power) {
+  const int reach = 2 * static_cast<int>(std::ceil(k.radius()));
+  double sum = 0;
+  for (int dy = -reach; dy <= reach; ++dy)
+    for (int dx = -reach; dx <= reach; ++dx)
+      sum += std::pow(std::fabs(rho_at(k, F, dx, dy)), power);
+  return sum;
+}
+
 }  // namespace npr_test
 
 #endif  // HUSH_TESTS_NPR_GABOR_SCENES_HPP

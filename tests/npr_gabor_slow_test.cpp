@@ -25,13 +25,7 @@ TEST_CASE("variance within +-2% across triangle areas N = 0.25 ... 45 (no pops a
   const hush::npr_gabor probe{p};
   const auto& k = probe.kernel();
   const hush::dvec2 F{p.frequency * std::cos(p.orientation), p.frequency * std::sin(p.orientation)};
-  const int reach = 2 * static_cast<int>(std::ceil(k.radius()));
-  double sum = 0;
-  for (int dy = -reach; dy <= reach; ++dy)
-    for (int dx = -reach; dx <= reach; ++dx) {
-      const double rho = npr_test::rho_at(k, F, dx, dy);
-      sum += rho * rho;
-    }
+  const double sum = npr_test::sum_rho_power(k, F, 2);
   const double n = static_cast<double>((w - 2 * m) * (h - 2 * m)) * seeds;
   const double se = std::sqrt((2.0 * sum + 9.0 / (5.0 * probe.density())) / n);
   MESSAGE("standard error ", se, ", tolerance ", 4.5 * se);

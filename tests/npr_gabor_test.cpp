@@ -54,13 +54,7 @@ double variance_standard_error(const hush::npr_gabor& noise, std::size_t n) {
   const auto& k = noise.kernel();
   const double f = noise.parameters().frequency, th = noise.parameters().orientation;
   const hush::dvec2 F{f * std::cos(th), f * std::sin(th)};
-  const int reach = 2 * static_cast<int>(std::ceil(k.radius()));
-  double sum = 0;
-  for (int dy = -reach; dy <= reach; ++dy)
-    for (int dx = -reach; dx <= reach; ++dx) {
-      const double rho = npr_test::rho_at(k, F, dx, dy);
-      sum += rho * rho;
-    }
+  const double sum = npr_test::sum_rho_power(k, F, 2);
   return std::sqrt((2.0 * sum + 9.0 / (5.0 * noise.density())) / static_cast<double>(n));
 }
 

@@ -79,12 +79,8 @@ std::vector<std::vector<float>> symmetric(const std::vector<hs::gbuffer>& g,
   return out;
 }
 
-// Noise on the surfaces, background black.
 gray_image shown(const std::vector<float>& v, const hs::gbuffer& g) {
-  gray_image img(kW, kH);
-  for (std::size_t p = 0; p < kW * kH; ++p)
-    img.pixels[p] = g.covered(p) ? to_gray(v[p], -kShown, kShown) : 0;
-  return img;
+  return noise_on_surfaces(v, g, kShown);
 }
 
 // Quantized Lambert shading of the G-buffer's normals (white sky).
@@ -256,6 +252,14 @@ std::vector<gray_image> figure3b() {
 }
 
 }  // namespace
+
+gray_image noise_on_surfaces(const std::vector<float>& v, const hs::gbuffer& g, double range) {
+  const std::size_t w = static_cast<std::size_t>(g.width), h = static_cast<std::size_t>(g.height);
+  gray_image img(w, h);
+  for (std::size_t p = 0; p < w * h; ++p)
+    img.pixels[p] = g.covered(p) ? to_gray(v[p], -range, range) : 0;
+  return img;
+}
 
 std::vector<gallery_item> coherent_gallery_items() {
   return {

@@ -13,6 +13,10 @@
 
 #include "image.hpp"
 
+#if HUSH_CLI_HAVE_SCENE
+#include "gbuffer.hpp"
+#endif
+
 namespace hush_cli {
 
 // One gallery entry: one frame is written as a PNG, more as an animated GIF
@@ -25,6 +29,13 @@ struct gallery_item {
 };
 
 std::vector<gallery_item> coherent_gallery_items();
+
+#if HUSH_CLI_HAVE_SCENE
+// Noise values `v` (one per pixel of g) on g's surfaces, shown over [-range, range];
+// background black. Shared by the scene-driven noises' gallery entries.
+gray_image noise_on_surfaces(const std::vector<float>& v, const hush::scene::gbuffer& g,
+                             double range);
+#endif
 
 }  // namespace hush_cli
 

@@ -22,6 +22,7 @@
 #include "gbuffer_io.hpp"
 #include "npy/npy.hpp"
 #include "output_file.hpp"
+#include "png_write.hpp"
 #include "progress.hpp"
 #include "triangles.hpp"
 #endif
@@ -97,6 +98,11 @@ class directory_sequence final : public gbuffer_sequence {
     }
     return triangles_.view();
   }
+  hush::image_view<const hush::vec3> normals(std::size_t i) override {
+    load(i);
+    return {reinterpret_cast<const hush::vec3*>(current_.normal.data()),
+            static_cast<std::size_t>(current_.width), static_cast<std::size_t>(current_.height)};
+  }
 
  private:
   static std::string four(std::size_t i) {
@@ -148,6 +154,18 @@ class directory_sink final : public render_sink {
       }
       out.close();
     });
+    ++written_;
+  }
+  void write_png(std::size_t i, const std::vector<std::uint8_t>& rgb, std::size_t width,
+                 std::size_t height) override {
+    char name[32];
+    std::snprintf(name, sizeof name, "%04zu.png", i);
+    const std::string path = (fs::path(dir_) / name).string();
+    if (!hush::scene::detail::png_available())
+      throw run_error("cannot write '" + path + "': this build has no PNG output (libstb-dev)");
+    if (!hush::scene::detail::write_png(path, static_cast<int>(width), static_cast<int>(height), 3,
+                                        rgb))
+      throw run_error("cannot write '" + path + "'");
     ++written_;
   }
   std::string scratch(std::size_t i) const override {

@@ -13,6 +13,7 @@
 #include "hush/detail/constants.hpp"
 #include "hush/exec.hpp"
 #include "hush/npr_gabor.hpp"
+#include "npr_styles.hpp"
 #include "render_anisotropic.hpp"
 
 #if HUSH_CLI_HAVE_GLSL
@@ -117,10 +118,12 @@ class coherent_noise final : public scene_noise {
 };
 
 // ---- NPR Gabor noise (hush/npr_gabor.hpp): kernels splatted at points on the triangles.
+// With --style, each frame is drawn (npr_styles.hpp) and written as OUT/NNNN.png.
 class npr_gabor_noise final : public scene_noise {
  public:
-  explicit npr_gabor_noise(const hush::npr_gabor::params& prm) : noise_(prm) {}
-  int channels() const override { return 1; }
+  npr_gabor_noise(const hush::npr_gabor::params& prm, const npr_style_options& style)
+      : noise_(prm), style_(style), stylizer_(prm, style) {}
+  int channels() const override { return style_.style == npr_style::none ? 1 : 3; }
   std::string unsupported_reason(backend b) const override {
     if (b != backend::scalar)
       return "npr-gabor runs on the scalar backend only so far (SIMD and GLSL splatting are "
@@ -131,6 +134,17 @@ class npr_gabor_noise final : public scene_noise {
     const std::size_t n = frames.size();
     const std::size_t w = static_cast<std::size_t>(frames.width());
     const std::size_t h = static_cast<std::size_t>(frames.height());
+    if (style_.style != npr_style::none) {
+      std::vector<std::uint8_t> rgb;
+      for (std::size_t i = 0; i < n; ++i) {
+        const hush::frame f = frames.frame(i, stylizer_.needs());
+        const hush::triangle_list t = frames.triangles(i);
+        stylizer_.draw(f, t, frames.normals(i), rgb);
+        sink.write_png(i, rgb, w, h);
+        sink.progress("drawing", i + 1, n);
+      }
+      return;
+    }
     std::vector<float> plane(w * h);
     for (std::size_t i = 0; i < n; ++i) {
       const hush::frame f = frames.frame(i, noise_.needs());
@@ -143,6 +157,8 @@ class npr_gabor_noise final : public scene_noise {
 
  private:
   hush::npr_gabor noise_;
+  npr_style_options style_;
+  npr_stylizer stylizer_;
 };
 
 double parse_range(const option_values& given, const char* name, double lo, double hi, bool hi_open,
@@ -205,7 +221,32 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
     if (f == "--soft-depth") p.soft_depth = true;
     if (f == "--two-sided") p.cull_back_faces = false;
   }
-  return std::make_unique<npr_gabor_noise>(p);
+  npr_style_options s;
+  if (const std::string* v = find_value(given, "--style"))
+    s.style = parse_choice<npr_style>("--style", *v,
+                                      {{"hatching", npr_style::hatching},
+                                       {"stippling", npr_style::stippling},
+                                       {"crosshatch", npr_style::crosshatch},
+                                       {"graphite", npr_style::graphite},
+                                       {"watercolor", npr_style::watercolor}});
+  const bool styled = s.style != npr_style::none;
+  for (const char* o : {"--softness", "--grain", "--gain", "--ambient", "--light",
+                        "--orientation-field"})
+    if (!styled && find_value(given, o))
+      throw usage_error(std::string(o) + " needs --style");
+  number("--softness", s.softness);
+  number("--grain", s.grain);
+  number("--gain", s.gain);
+  s.ambient = parse_range(given, "--ambient", 0, 1, false, "a number in 0 ... 1", s.ambient);
+  if (const std::string* v = find_value(given, "--light")) {
+    const std::vector<double> l = parse_finite_list("--light", *v, 3);
+    if (l[0] == 0 && l[1] == 0 && l[2] == 0) throw_bad_value("--light", *v, "a non-zero x,y,z");
+    s.light = {l[0], l[1], l[2]};
+  }
+  if (const std::string* v = find_value(given, "--orientation-field"))
+    s.normal_field = parse_choice<bool>("--orientation-field", *v,
+                                        {{"normal", true}, {"constant", false}});
+  return std::make_unique<npr_gabor_noise>(p, s);
 }
 
 }  // namespace
@@ -261,6 +302,16 @@ const std::vector<render_entry>& render_table() {
            {"--truncation", "t", "kernel truncation, 1e-9 ... 0.5 (default 0.05)", "truncation"},
            {"--depth-tolerance", "d",
             "depth test tolerance, relative to depth, 0 ... 1 (default 0.02)", "depth_tolerance"},
+           {"--style", "hatching|stippling|crosshatch|graphite|watercolor",
+            "draw the frames in a style (hush/style.hpp) and write OUT/NNNN.png instead of .npy"},
+           {"--softness", "w",
+            "style: smooth-step width in noise sigmas, 0 (hard) ... 8 (default 0.6)", "width"},
+           {"--grain", "g", "graphite: weight of the fine layer, 0 ... 8 (default 0.7)", "grain"},
+           {"--gain", "g", "watercolor: overlay gain of the noise, 0 ... 4 (default 0.35)", "gain"},
+           {"--ambient", "k", "style: tone where N.L <= 0, 0 ... 1 (default 0.15)"},
+           {"--light", "x,y,z", "style: direction towards the light, world space (default 0.4,0.7,0.6)"},
+           {"--orientation-field", "normal|constant",
+            "style: orientation along the projected normal (default) or --orientation"},
        },
        {
            {"--isotropic", "", "a random orientation per point (stippling) instead of omega0"},

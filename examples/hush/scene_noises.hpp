@@ -42,6 +42,9 @@ class gbuffer_sequence {
   // call. Throws run_error when the files cannot be read, usage_error when the frame has
   // none (G-buffers written before hush scene render wrote them).
   virtual hush::triangle_list triangles(std::size_t i) = 0;
+  // Frame i's unit world-space shading normals (0 on the background; what the styles'
+  // tone from shading reads), valid until the next call.
+  virtual hush::image_view<const hush::vec3> normals(std::size_t i) = 0;
 };
 
 // Where results go.
@@ -51,6 +54,10 @@ class render_sink {
   // Writes frame i's channels (one view per channel) as DIR/NNNN.npy: float32 (H, W) for one
   // channel, (H, W, C) for more. Throws run_error when the file cannot be written.
   virtual void write(std::size_t i, const std::vector<hush::image_view<const float>>& channels) = 0;
+  // Writes frame i as DIR/NNNN.png, 8-bit RGB (`rgb`: width * height * 3 bytes, rows top to
+  // bottom). Throws run_error when it cannot be written or this build has no PNG output.
+  virtual void write_png(std::size_t i, const std::vector<std::uint8_t>& rgb, std::size_t width,
+                         std::size_t height) = 0;
   // A scratch file path for pass data of frame i (removed by the caller when done).
   virtual std::string scratch(std::size_t i) const = 0;
   // Reports progress of a pass ("forward pass", ...) on stderr.

@@ -35,5 +35,6 @@
 // Scene-driven noises (hush::frame: per-frame G-buffer views).
 #include "hush/coherent.hpp"
 #include "hush/npr_gabor.hpp"
+#include "hush/style.hpp"
 
 #endif  // HUSH_HUSH_HPP

@@ -61,10 +61,35 @@
 //    bounding box grown by r misses the image. Hidden triangles emit points
 //    whose fragments fail the tests (nothing is added).
 //  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
+//  - parameter sources (sec. 4; render's `sources`, hush/core/param_source.hpp):
+//    F0 and omega0 each a constant (params), a per-object table (indexed by
+//    the G-buffer's object id) or a per-pixel field (e.g. an orientation field
+//    along the projected normal, a frequency driven by shading). Each point
+//    reads them once, at the pixel under its own screen position in this
+//    frame, not per fragment: a splat is one Gabor kernel, and a point keeps
+//    its parameters while it moves exactly as far as the field is attached to
+//    the surface (a field computed from the surface, like the projected normal,
+//    changes only as the surface's view changes); reading per fragment would
+//    make the kernel change shape as it slides over the pixels. Non-finite
+//    field pixels, positions outside the image and objects past a table's end
+//    take the params' constant; finite field frequencies are clamped to
+//    [0, 0.5]. A hidden point reads the pixel of what hides it (its fragments
+//    then mostly fail the visibility tests). With `isotropic` the orientation
+//    source is ignored (each point has its random angle). Each point is
+//    weighted by 1 / sqrt(lambda E[v^2] int g_F^2) for its own F
+//    (interpolated_energy: linear between exact energies at steps of 1/64 in
+//    F r, computed on demand, relative error below 1e-3), so the noise has
+//    variance 1 wherever the parameters are locally constant. Bandwidth and
+//    N' are not per pixel: they set the kernel radius and the density
+//    lambda = N' / (pi r^2) that a triangle's point count uses, and a radius
+//    that changes per point would need a variable-radius splat. Per object they
+//    can vary (`sources` bandwidth and impulses: tables only): each object's
+//    triangles are splatted by a noise with that object's a and N' (kernel,
+//    density lambda and scale), the same seed and so the same points.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-// Not yet here (issue 11): per-object / per-pixel parameters, SIMD and GLSL.
+// Not yet here (issue 11): SIMD and GLSL.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -72,13 +97,16 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
 #include "hush/core/frame.hpp"
 #include "hush/core/hash.hpp"
+#include "hush/core/param_source.hpp"
 #include "hush/core/rng.hpp"
 #include "hush/core/triangles.hpp"
 #include "hush/core/vec.hpp"
@@ -180,17 +208,48 @@ class npr_gabor {
     return pt;
   }
 
+  // Where F0, omega0, a and N' come from in one frame (see the header
+  // comment): a default-constructed source is the params' constant. Views,
+  // valid for the render call. Per-object frequencies in [0, 0.5],
+  // orientations finite, bandwidths in [0.01, 10], impulses in (0, 256];
+  // bandwidth and impulses are constant or per object only.
+  struct sources {
+    param_source frequency;    // cycles per pixel
+    param_source orientation;  // radians from +x towards +y
+    param_source bandwidth;    // 1/pixel; not per pixel
+    param_source impulses;     // N'; not per pixel
+  };
+
   // Adds nothing, overwrites `out` (frame-sized; float, or double for the
   // reference) with the noise of this frame. Throws hush::invalid_argument
   // when the frame lacks a view needs() lists or is malformed (frame::validate),
-  // when the triangle list is malformed (triangle_list::validate), or when
-  // out's size differs from the frame's. Never reads outside the views.
+  // when the triangle list is malformed (triangle_list::validate), when out's
+  // size differs from the frame's, or when a source is malformed
+  // (param_source::validate: "frequency[i]", "orientation[i]", "bandwidth[i]",
+  // "impulses[i]", a field's size; a per-pixel bandwidth or impulses source).
+  // Never reads outside the views.
   template <class T>
-  void render(const frame& f, const triangle_list& tris, const image_view<T>& out) const {
+  void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
+              const sources& src = {}) const {
     namespace c = detail::constants;
     const char* where = "hush::npr_gabor::render";
     f.validate(where, needs(), c::kNprGaborMaxImageSide);
     tris.validate(where, c::kNprGaborMaxTriangles);
+    src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
+                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
+    src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::max(), "finite (radians)", f.width(),
+                             f.height());
+    src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
+                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
+    src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
+                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
+    for (const auto& [name, s] : {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
+                                  {"impulses", &src.impulses}})
+      if (s->which() == param_source::kind::per_pixel)
+        detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
+                                   "constant or per object (it sets the kernel radius or the "
+                                   "density a triangle's point count is made from)");
     if (out.width != f.width() || out.height != f.height() || !out.data)
       detail::throw_out_of_range(where, "out size",
                                  std::to_string(out.width) + "x" + std::to_string(out.height),
@@ -198,7 +257,45 @@ class npr_gabor {
     for (std::size_t y = 0; y < out.height; ++y)
       std::fill(out.row(y), out.row(y) + out.width, T(0));
     std::vector<detail::gabor_axis<T>> columns;
-    for (std::size_t t = 0; t < tris.triangles(); ++t) splat_triangle(f, tris, t, out, columns);
+    const point_parameters pp(*this, src);
+    // Per-object a or N': one noise per table entry with that object's kernel,
+    // density and scale (same seed and constants: the same points).
+    std::vector<npr_gabor> per_object;
+    std::vector<point_parameters> per_object_pp;
+    const std::size_t objects = std::max(src.bandwidth.table_size(), src.impulses.table_size());
+    per_object.reserve(objects);
+    per_object_pp.reserve(objects);
+    for (std::size_t o = 0; o < objects; ++o) {
+      params q = p_;
+      q.bandwidth = src.bandwidth.value(static_cast<std::uint32_t>(o), 0, 0, p_.bandwidth);
+      q.impulses = src.impulses.value(static_cast<std::uint32_t>(o), 0, 0, p_.impulses);
+      per_object.emplace_back(q);
+    }
+    for (const npr_gabor& n : per_object) per_object_pp.emplace_back(n, src);
+    for (std::size_t t = 0; t < tris.triangles(); ++t) {
+      const std::uint32_t o = tris.object_of(t);
+      if (o < objects)
+        per_object[o].splat_triangle(f, tris, t, out, per_object_pp[o], columns);
+      else
+        splat_triangle(f, tris, t, out, pp, columns);
+    }
+  }
+
+  // int g_F^2 for |F| = frequency, as render normalises a point of a
+  // non-constant frequency: linear interpolation of kernel().energy between
+  // the nodes F = k h, h = kNprGaborEnergyStep / radius (a step in F r, the
+  // variable the energy depends on for a given truncation). Exact at the
+  // nodes; relative error below 1e-3 (tests/npr_gabor_test.cpp measures it).
+  // `cache`: node energies (NaN = not computed yet), filled on demand.
+  double interpolated_energy(double frequency, std::vector<double>& cache) const {
+    const double h = detail::constants::kNprGaborEnergyStep / kernel_.radius();
+    const double u = std::max(frequency, 0.0) / h;
+    const std::size_t i = static_cast<std::size_t>(u);
+    const double t = u - static_cast<double>(i);
+    if (cache.size() < i + 2) cache.resize(i + 2, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t k = i; k <= i + 1; ++k)
+      if (std::isnan(cache[k])) cache[k] = kernel_.energy(static_cast<double>(k) * h);
+    return cache[i] * (1.0 - t) + cache[i + 1] * t;
   }
 
  private:
@@ -220,13 +317,44 @@ class npr_gabor {
     return p;
   }
 
+  // One point's kernel frequency vector and weight factor, from the sources
+  // (the params' constants when both are constant: the scale of the
+  // constructor, bit for bit the renderer without sources). One per render
+  // call (it caches node energies).
+  class point_parameters {
+   public:
+    point_parameters(const npr_gabor& n, const sources& src) : n_(n), src_(src) {}
+    struct kernel {
+      dvec2 F;
+      double scale;
+    };
+    kernel at(std::uint32_t object, const dvec2& pos, double random_angle) const {
+      const params& p = n_.p_;
+      double f = p.frequency, scale = n_.scale_;
+      if (!src_.frequency.is_constant()) {
+        f = std::clamp(src_.frequency.value(object, pos.x, pos.y, p.frequency), 0.0,
+                       detail::constants::kNprGaborMaxFrequency);
+        scale = 1.0 / std::sqrt(n_.lambda_ * weight_moment() * n_.interpolated_energy(f, energy_));
+      }
+      const double theta =
+          p.isotropic ? random_angle : src_.orientation.value(object, pos.x, pos.y, p.orientation);
+      return {{f * std::cos(theta), f * std::sin(theta)}, scale};
+    }
+
+   private:
+    const npr_gabor& n_;
+    const sources& src_;
+    mutable std::vector<double> energy_;
+  };
+
   std::uint32_t triangle_key(std::uint32_t object, std::uint32_t triangle) const {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
 
   template <class T>
   void splat_triangle(const frame& f, const triangle_list& tris, std::size_t t,
-                      const image_view<T>& out, std::vector<detail::gabor_axis<T>>& columns) const {
+                      const image_view<T>& out, const point_parameters& pp,
+                      std::vector<detail::gabor_axis<T>>& columns) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -263,10 +391,9 @@ class npr_gabor {
       const dvec2 at{
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
-      const double theta = p_.isotropic ? pt.angle : p_.orientation;
-      const dvec2 F{p_.frequency * std::cos(theta), p_.frequency * std::sin(theta)};
-      splat_point(f, out, at, F, lod.weight(j) * pt.amplitude * scale_, object, id, q0, qx, qy,
-                  columns);
+      const point_parameters::kernel k = pp.at(object, at, pt.angle);
+      splat_point(f, out, at, k.F, lod.weight(j) * pt.amplitude * k.scale, object, id, q0, qx,
+                  qy, columns);
     }
   }
 

@@ -721,6 +721,18 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 // kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
+// Step in F r (cycles per kernel radius) between the exact kernel energies a
+// non-constant frequency's normalisation interpolates (npr_gabor.hpp): the
+// energy depends on F only through F r for a given truncation; 1/64 keeps the
+// linear interpolation within 1e-3 relative for t in [1e-9, 0.5].
+constexpr double kNprGaborEnergyStep = 1.0 / 64.0;
+
+// ---- Styles (style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
+// in noise standard deviations (8 sigma: every pixel in the soft band), the
+// graphite style's fine-layer weight and the watercolour overlay's gain.
+constexpr double kStyleMaxWidth = 8.0;
+constexpr double kStyleMaxGrain = 8.0;
+constexpr double kStyleMaxGain = 4.0;
 
 // ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
 // subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
@@ -13586,10 +13598,35 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    bounding box grown by r misses the image. Hidden triangles emit points
 //    whose fragments fail the tests (nothing is added).
 //  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
+//  - parameter sources (sec. 4; render's `sources`, hush/core/param_source.hpp):
+//    F0 and omega0 each a constant (params), a per-object table (indexed by
+//    the G-buffer's object id) or a per-pixel field (e.g. an orientation field
+//    along the projected normal, a frequency driven by shading). Each point
+//    reads them once, at the pixel under its own screen position in this
+//    frame, not per fragment: a splat is one Gabor kernel, and a point keeps
+//    its parameters while it moves exactly as far as the field is attached to
+//    the surface (a field computed from the surface, like the projected normal,
+//    changes only as the surface's view changes); reading per fragment would
+//    make the kernel change shape as it slides over the pixels. Non-finite
+//    field pixels, positions outside the image and objects past a table's end
+//    take the params' constant; finite field frequencies are clamped to
+//    [0, 0.5]. A hidden point reads the pixel of what hides it (its fragments
+//    then mostly fail the visibility tests). With `isotropic` the orientation
+//    source is ignored (each point has its random angle). Each point is
+//    weighted by 1 / sqrt(lambda E[v^2] int g_F^2) for its own F
+//    (interpolated_energy: linear between exact energies at steps of 1/64 in
+//    F r, computed on demand, relative error below 1e-3), so the noise has
+//    variance 1 wherever the parameters are locally constant. Bandwidth and
+//    N' are not per pixel: they set the kernel radius and the density
+//    lambda = N' / (pi r^2) that a triangle's point count uses, and a radius
+//    that changes per point would need a variable-radius splat. Per object they
+//    can vary (`sources` bandwidth and impulses: tables only): each object's
+//    triangles are splatted by a noise with that object's a and N' (kernel,
+//    density lambda and scale), the same seed and so the same points.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-// Not yet here (issue 11): per-object / per-pixel parameters, SIMD and GLSL.
+// Not yet here (issue 11): SIMD and GLSL.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -13597,9 +13634,122 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
+// ---- begin hush/core/param_source.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::param_source: where a scene-driven noise takes one of its parameters
+// (Benard, Lagae et al. 2010 sec. 4: "the noise parameters ... can be defined
+// per object or per pixel", e.g. an orientation field along the principal
+// curvature or the projected normal, a frequency driven by shading). Three
+// kinds:
+//  - constant (the default-constructed source): the noise's own params value;
+//  - per object: table[object_id], the G-buffer's object ids (ids past the
+//    table's end take the constant);
+//  - per pixel: field(x, y) at a pixel, a view of a caller-owned image of the
+//    frame's size (e.g. a G-buffer channel), valid for the call that reads it.
+// No copy of the data is made. The noise decides where it reads (NPR Gabor
+// noise: each point at its own pixel, see npr_gabor.hpp).
+//
+//   std::vector<double> freq = {0.125, 0.25};           // objects 0 and 1
+//   hush::param_source f = hush::param_source::per_object(freq);
+//   hush::param_source o = hush::param_source::per_pixel({angles, w, h});
+//
+// Bad values: validate() throws hush::invalid_argument for a table entry
+// outside the parameter's range or a field whose size is not the frame's;
+// field pixels are never read there (per-pixel data may be anything): value()
+// gives the fallback for a non-finite pixel and the caller clamps finite ones.
+#ifndef HUSH_CORE_PARAM_SOURCE_HPP
+#define HUSH_CORE_PARAM_SOURCE_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+
+namespace hush {
+
+class param_source {
+ public:
+  enum class kind { constant, per_object, per_pixel };
+
+  param_source() = default;  // constant
+  static param_source per_object(span<const double> table) {
+    param_source s;
+    s.kind_ = kind::per_object;
+    s.table_ = table;
+    return s;
+  }
+  static param_source per_pixel(image_view<const float> field) {
+    param_source s;
+    s.kind_ = kind::per_pixel;
+    s.field_ = field;
+    return s;
+  }
+
+  kind which() const { return kind_; }
+  bool is_constant() const { return kind_ == kind::constant; }
+  // Entries of a per-object table (0 for the other kinds).
+  std::size_t table_size() const { return kind_ == kind::per_object ? table_.size() : 0; }
+
+  // The value for object `object` at pixel (x, y) (screen pixels, y down;
+  // the pixel whose square holds the position): the table entry or the
+  // field's pixel. `fallback` (the constant) when the source is constant, the
+  // object is past the table's end, the position is outside the field or not
+  // finite, or the pixel is not finite (NaN: "no value here"). Never throws.
+  double value(std::uint32_t object, double x, double y, double fallback) const {
+    switch (kind_) {
+      case kind::constant:
+        return fallback;
+      case kind::per_object:
+        return object < table_.size() ? table_[object] : fallback;
+      case kind::per_pixel: {
+        if (!(x >= 0.0 && y >= 0.0 && x < static_cast<double>(field_.width) &&
+              y < static_cast<double>(field_.height)))
+          return fallback;  // also NaN positions
+        const double v = static_cast<double>(
+            field_(static_cast<std::size_t>(x), static_cast<std::size_t>(y)));
+        return std::isfinite(v) ? v : fallback;
+      }
+    }
+    return fallback;
+  }
+
+  // Throws hush::invalid_argument naming `where` and `name`: a per-object
+  // entry outside [lo, hi] (named "name[i]", with `valid` the range's text),
+  // a per-pixel field with null data, or a size other than width x height.
+  void validate(const char* where, const char* name, double lo, double hi, const char* valid,
+                std::size_t width, std::size_t height) const {
+    if (kind_ == kind::per_object) {
+      for (std::size_t i = 0; i < table_.size(); ++i)
+        detail::require_in_range(where, std::string(name) + "[" + std::to_string(i) + "]",
+                                 table_[i], lo, hi, valid);
+    } else if (kind_ == kind::per_pixel) {
+      if (!field_.data || field_.width != width || field_.height != height)
+        detail::throw_out_of_range(
+            where, std::string(name) + " field size",
+            std::to_string(field_.width) + "x" + std::to_string(field_.height),
+            ("the frame's size " + std::to_string(width) + "x" + std::to_string(height) +
+             " (non-null)")
+                .c_str());
+    }
+  }
+
+ private:
+  kind kind_ = kind::constant;
+  span<const double> table_;
+  image_view<const float> field_;
+};
+
+}  // namespace hush
+
+#endif  // HUSH_CORE_PARAM_SOURCE_HPP
+// ---- end hush/core/param_source.hpp
 
 namespace hush {
 
@@ -13694,17 +13844,48 @@ class npr_gabor {
     return pt;
   }
 
+  // Where F0, omega0, a and N' come from in one frame (see the header
+  // comment): a default-constructed source is the params' constant. Views,
+  // valid for the render call. Per-object frequencies in [0, 0.5],
+  // orientations finite, bandwidths in [0.01, 10], impulses in (0, 256];
+  // bandwidth and impulses are constant or per object only.
+  struct sources {
+    param_source frequency;    // cycles per pixel
+    param_source orientation;  // radians from +x towards +y
+    param_source bandwidth;    // 1/pixel; not per pixel
+    param_source impulses;     // N'; not per pixel
+  };
+
   // Adds nothing, overwrites `out` (frame-sized; float, or double for the
   // reference) with the noise of this frame. Throws hush::invalid_argument
   // when the frame lacks a view needs() lists or is malformed (frame::validate),
-  // when the triangle list is malformed (triangle_list::validate), or when
-  // out's size differs from the frame's. Never reads outside the views.
+  // when the triangle list is malformed (triangle_list::validate), when out's
+  // size differs from the frame's, or when a source is malformed
+  // (param_source::validate: "frequency[i]", "orientation[i]", "bandwidth[i]",
+  // "impulses[i]", a field's size; a per-pixel bandwidth or impulses source).
+  // Never reads outside the views.
   template <class T>
-  void render(const frame& f, const triangle_list& tris, const image_view<T>& out) const {
+  void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
+              const sources& src = {}) const {
     namespace c = detail::constants;
     const char* where = "hush::npr_gabor::render";
     f.validate(where, needs(), c::kNprGaborMaxImageSide);
     tris.validate(where, c::kNprGaborMaxTriangles);
+    src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
+                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
+    src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::max(), "finite (radians)", f.width(),
+                             f.height());
+    src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
+                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
+    src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
+                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
+    for (const auto& [name, s] : {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
+                                  {"impulses", &src.impulses}})
+      if (s->which() == param_source::kind::per_pixel)
+        detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
+                                   "constant or per object (it sets the kernel radius or the "
+                                   "density a triangle's point count is made from)");
     if (out.width != f.width() || out.height != f.height() || !out.data)
       detail::throw_out_of_range(where, "out size",
                                  std::to_string(out.width) + "x" + std::to_string(out.height),
@@ -13712,7 +13893,45 @@ class npr_gabor {
     for (std::size_t y = 0; y < out.height; ++y)
       std::fill(out.row(y), out.row(y) + out.width, T(0));
     std::vector<detail::gabor_axis<T>> columns;
-    for (std::size_t t = 0; t < tris.triangles(); ++t) splat_triangle(f, tris, t, out, columns);
+    const point_parameters pp(*this, src);
+    // Per-object a or N': one noise per table entry with that object's kernel,
+    // density and scale (same seed and constants: the same points).
+    std::vector<npr_gabor> per_object;
+    std::vector<point_parameters> per_object_pp;
+    const std::size_t objects = std::max(src.bandwidth.table_size(), src.impulses.table_size());
+    per_object.reserve(objects);
+    per_object_pp.reserve(objects);
+    for (std::size_t o = 0; o < objects; ++o) {
+      params q = p_;
+      q.bandwidth = src.bandwidth.value(static_cast<std::uint32_t>(o), 0, 0, p_.bandwidth);
+      q.impulses = src.impulses.value(static_cast<std::uint32_t>(o), 0, 0, p_.impulses);
+      per_object.emplace_back(q);
+    }
+    for (const npr_gabor& n : per_object) per_object_pp.emplace_back(n, src);
+    for (std::size_t t = 0; t < tris.triangles(); ++t) {
+      const std::uint32_t o = tris.object_of(t);
+      if (o < objects)
+        per_object[o].splat_triangle(f, tris, t, out, per_object_pp[o], columns);
+      else
+        splat_triangle(f, tris, t, out, pp, columns);
+    }
+  }
+
+  // int g_F^2 for |F| = frequency, as render normalises a point of a
+  // non-constant frequency: linear interpolation of kernel().energy between
+  // the nodes F = k h, h = kNprGaborEnergyStep / radius (a step in F r, the
+  // variable the energy depends on for a given truncation). Exact at the
+  // nodes; relative error below 1e-3 (tests/npr_gabor_test.cpp measures it).
+  // `cache`: node energies (NaN = not computed yet), filled on demand.
+  double interpolated_energy(double frequency, std::vector<double>& cache) const {
+    const double h = detail::constants::kNprGaborEnergyStep / kernel_.radius();
+    const double u = std::max(frequency, 0.0) / h;
+    const std::size_t i = static_cast<std::size_t>(u);
+    const double t = u - static_cast<double>(i);
+    if (cache.size() < i + 2) cache.resize(i + 2, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t k = i; k <= i + 1; ++k)
+      if (std::isnan(cache[k])) cache[k] = kernel_.energy(static_cast<double>(k) * h);
+    return cache[i] * (1.0 - t) + cache[i + 1] * t;
   }
 
  private:
@@ -13734,13 +13953,44 @@ class npr_gabor {
     return p;
   }
 
+  // One point's kernel frequency vector and weight factor, from the sources
+  // (the params' constants when both are constant: the scale of the
+  // constructor, bit for bit the renderer without sources). One per render
+  // call (it caches node energies).
+  class point_parameters {
+   public:
+    point_parameters(const npr_gabor& n, const sources& src) : n_(n), src_(src) {}
+    struct kernel {
+      dvec2 F;
+      double scale;
+    };
+    kernel at(std::uint32_t object, const dvec2& pos, double random_angle) const {
+      const params& p = n_.p_;
+      double f = p.frequency, scale = n_.scale_;
+      if (!src_.frequency.is_constant()) {
+        f = std::clamp(src_.frequency.value(object, pos.x, pos.y, p.frequency), 0.0,
+                       detail::constants::kNprGaborMaxFrequency);
+        scale = 1.0 / std::sqrt(n_.lambda_ * weight_moment() * n_.interpolated_energy(f, energy_));
+      }
+      const double theta =
+          p.isotropic ? random_angle : src_.orientation.value(object, pos.x, pos.y, p.orientation);
+      return {{f * std::cos(theta), f * std::sin(theta)}, scale};
+    }
+
+   private:
+    const npr_gabor& n_;
+    const sources& src_;
+    mutable std::vector<double> energy_;
+  };
+
   std::uint32_t triangle_key(std::uint32_t object, std::uint32_t triangle) const {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
 
   template <class T>
   void splat_triangle(const frame& f, const triangle_list& tris, std::size_t t,
-                      const image_view<T>& out, std::vector<detail::gabor_axis<T>>& columns) const {
+                      const image_view<T>& out, const point_parameters& pp,
+                      std::vector<detail::gabor_axis<T>>& columns) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -13777,10 +14027,9 @@ class npr_gabor {
       const dvec2 at{
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
-      const double theta = p_.isotropic ? pt.angle : p_.orientation;
-      const dvec2 F{p_.frequency * std::cos(theta), p_.frequency * std::sin(theta)};
-      splat_point(f, out, at, F, lod.weight(j) * pt.amplitude * scale_, object, id, q0, qx, qy,
-                  columns);
+      const point_parameters::kernel k = pp.at(object, at, pt.angle);
+      splat_point(f, out, at, k.F, lod.weight(j) * pt.amplitude * k.scale, object, id, q0, qx,
+                  qy, columns);
     }
   }
 
@@ -13841,6 +14090,250 @@ class npr_gabor {
 
 #endif  // HUSH_NPR_GABOR_HPP
 // ---- end hush/npr_gabor.hpp
+// ---- begin hush/style.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Styles: turning unit-variance noise images into drawings (Benard, Lagae et
+// al., "A dynamic noise primitive for coherent stylization", EGSR 2010,
+// sec. 4, Figs. 2-3). Per-pixel functions of noise values (NPR Gabor noise,
+// hush/npr_gabor.hpp, or any noise with mean 0 and variance 1) and of what a
+// G-buffer gives (a tone from shading, a scene colour). Values are "paper":
+// 1 = white paper, 0 = full ink.
+//
+//   hush::style::binary ink{0.5};                 // smooth-step width 0.5 sigma
+//   double tone = hush::style::shading_tone(n, light, 0.1);  // N.L -> [0.1, 1]
+//   double p = ink.paper(noise, tone);            // hatching (anisotropic noise)
+//                                                 // or stippling (isotropic noise)
+//   hush::style::crosshatch{0.5}.paper(n1, n2, tone);  // two orientations
+//   hush::style::graphite{0.8, 0.6}.paper(n, n_fine, tone);
+//   hush::style::watercolor{0.35}.colour(c, noise);    // overlay on scene colour
+//   hush::style::projected_normal_field(frame, field, 1e-4);  // hatching direction
+//
+// The thresholding (sec. 4, "binary styles"): the paper is white where the
+// noise is above a threshold theta, with a smooth step of width w (in noise
+// standard deviations) instead of a hard cut: paper = S((n - theta) / w + 1/2),
+// S(s) = 3 s^2 - 2 s^3 on [0, 1] (0 below, 1 above). The position sets the
+// tone: for a unit-variance Gaussian noise, theta = Phi^-1(1 - tone) makes the
+// mean paper value tone (Phi the normal CDF), up to the smooth step's
+// curvature term E[paper] = tone + theta phi(theta) w^2 / 40 + O(w^4)
+// (integrating by parts, E[paper] = 1 - E[Phi(theta + u)] with u of density
+// S'/w on [-w/2, w/2], variance w^2 / 20; |theta phi(theta)| <= phi(1) =
+// 0.242, so the bias is below 0.0061 w^2). The width sets the edge softness:
+// the fraction of pixels between ink and paper is
+// Phi(theta + w/2) - Phi(theta - w/2). Gabor noise with many kernels per pixel
+// (N' >= 16) is close to Gaussian (central limit), which is what makes the
+// tone map hold for it (tests/style_test.cpp measures both).
+#ifndef HUSH_STYLE_HPP
+#define HUSH_STYLE_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+
+namespace hush {
+namespace style {
+
+// Phi(x), the standard normal CDF. Phi(-inf) = 0, Phi(+inf) = 1, NaN -> NaN.
+inline double normal_cdf(double x) {
+  return 0.5 * std::erfc(-x * detail::constants::kInvSqrt2);
+}
+
+// Phi^-1(p): p <= 0 -> -inf, p >= 1 -> +inf, NaN -> NaN. Newton's method from
+// 0: Phi is convex below 0 and concave above, so every step stays between 0
+// and the root (no overshoot) and converges monotonically; stops when a step
+// is below 1e-13 (to about 1e-13 absolute for p in [1e-300, 1 - 1e-16]).
+inline double normal_quantile(double p) {
+  if (std::isnan(p)) return p;
+  if (p <= 0.0) return -std::numeric_limits<double>::infinity();
+  if (p >= 1.0) return std::numeric_limits<double>::infinity();
+  double x = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    const double step =
+        (p - normal_cdf(x)) / (detail::constants::kInvSqrt2Pi * std::exp(-0.5 * x * x));
+    if (!std::isfinite(step)) break;  // density underflow: x is as far as doubles go
+    x += step;
+    if (std::fabs(step) < 1e-13) break;
+  }
+  return x;
+}
+
+// The smooth step's position for a tone: theta = Phi^-1(1 - tone) (tone
+// clamped to [0, 1]; tone 1 -> -inf: all paper; tone 0 -> +inf: all ink;
+// NaN -> all paper).
+inline double threshold_of_tone(double tone) {
+  if (std::isnan(tone)) return -std::numeric_limits<double>::infinity();
+  return normal_quantile(1.0 - std::clamp(tone, 0.0, 1.0));
+}
+
+// Binary style: hatching with anisotropic noise, stippling with isotropic
+// noise (the same thresholding, sec. 4).
+class binary {
+ public:
+  // width: the smooth step's width in noise standard deviations, [0, 8]
+  // (0: a hard step). Throws hush::invalid_argument naming "width".
+  explicit binary(double width) : w_(width) {
+    detail::require_in_range("hush::style::binary", "width", width, 0.0,
+                             detail::constants::kStyleMaxWidth, "0 <= width <= 8 (noise sigmas)");
+  }
+  double width() const { return w_; }
+
+  // Paper value in [0, 1] of noise n at tone in [0, 1] (1 = white): S((n -
+  // theta(tone)) / w + 1/2). NaN noise -> paper (1): where there is no noise
+  // (the background) nothing is drawn. Never throws.
+  double paper(double n, double tone) const { return paper_at(n, threshold_of_tone(tone)); }
+
+  // The same with theta given (theta_of_tone once per tone when many pixels
+  // share it).
+  double paper_at(double n, double theta) const {
+    if (std::isnan(n) || std::isnan(theta)) return 1.0;
+    if (w_ == 0.0) return n > theta ? 1.0 : 0.0;
+    const double s = std::clamp((n - theta) / w_ + 0.5, 0.0, 1.0);
+    return s * s * (3.0 - 2.0 * s);
+  }
+
+ private:
+  double w_;
+};
+
+// Cross-hatching: the product of two binary layers (two noises, e.g. at
+// orientations theta and theta + pi/2). Each layer is drawn at tone
+// sqrt(tone), so for independent layers the mean paper is the product of the
+// means, tone (up to the smooth step's bias of each layer, above).
+class crosshatch {
+ public:
+  explicit crosshatch(double width) : layer_(width) {}
+  double paper(double n1, double n2, double tone) const {
+    const double t = std::isnan(tone) ? 1.0 : std::sqrt(std::clamp(tone, 0.0, 1.0));
+    const double theta = threshold_of_tone(t);
+    return layer_.paper_at(n1, theta) * layer_.paper_at(n2, theta);
+  }
+
+ private:
+  binary layer_;
+};
+
+// Graphite: hatching whose strokes are broken by a high-frequency layer. The
+// binary style thresholds the mix (n + grain n_fine) / sqrt(1 + grain^2):
+// for independent unit-variance noises it has variance 1 again, so the tone
+// map above still holds; grain sets how much of the fine layer shows (0:
+// plain hatching). A wide smooth step gives the soft graphite edges.
+class graphite {
+ public:
+  // width as binary's; grain in [0, 8]. Throws hush::invalid_argument naming
+  // "width" or "grain".
+  graphite(double width, double grain)
+      : layer_(width), grain_(grain), norm_(1.0 / std::sqrt(1.0 + grain * grain)) {
+    detail::require_in_range("hush::style::graphite", "grain", grain, 0.0,
+                             detail::constants::kStyleMaxGrain, "0 <= grain <= 8");
+  }
+  // The mixed noise the layer thresholds (unit variance for independent inputs).
+  double mix(double n, double n_fine) const { return (n + grain_ * n_fine) * norm_; }
+  double paper(double n, double n_fine, double tone) const {
+    return layer_.paper(mix(n, n_fine), tone);
+  }
+
+ private:
+  binary layer_;
+  double grain_, norm_;
+};
+
+// Watercolour-like colour style: the scene colour c (each channel in [0, 1])
+// overlay-blended with a noise texture b = clamp(1/2 + gain n, 0, 1):
+// overlay(c, b) = 2 c b for c < 1/2, 1 - 2 (1 - c)(1 - b) otherwise. n = 0
+// leaves c unchanged; the result stays in [0, 1] and increases with n; for a
+// noise symmetric about 0, E[b] = 1/2 (the clamp is symmetric) and overlay is
+// affine in b, so the mean colour is c exactly: the texture modulates the
+// pigment density without shifting the hue on average.
+class watercolor {
+ public:
+  // gain in [0, 4]. Throws hush::invalid_argument naming "gain".
+  explicit watercolor(double gain) : gain_(gain) {
+    detail::require_in_range("hush::style::watercolor", "gain", gain, 0.0,
+                             detail::constants::kStyleMaxGain, "0 <= gain <= 4");
+  }
+  // One channel. NaN noise -> c (no texture); c clamped to [0, 1].
+  double channel(double c, double n) const {
+    c = std::clamp(c, 0.0, 1.0);
+    if (std::isnan(n)) return c;
+    const double b = std::clamp(0.5 + gain_ * n, 0.0, 1.0);
+    return c < 0.5 ? 2.0 * c * b : 1.0 - 2.0 * (1.0 - c) * (1.0 - b);
+  }
+  dvec3 colour(const dvec3& c, double n) const {
+    return {channel(c.x, n), channel(c.y, n), channel(c.z, n)};
+  }
+
+ private:
+  double gain_;
+};
+
+// Tone from shading: ambient + (1 - ambient) max(0, N.L) with N and L
+// normalised (Lambert; any space, the same for both). A zero or non-finite
+// normal (the background) gives 1 (white paper). ambient is clamped to [0, 1].
+inline double shading_tone(const dvec3& normal, const dvec3& light, double ambient) {
+  auto dot = [](const dvec3& a, const dvec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+  const double nn = std::sqrt(dot(normal, normal)), ll = std::sqrt(dot(light, light));
+  if (!(nn > 0.0) || !std::isfinite(nn) || !(ll > 0.0) || !std::isfinite(ll)) return 1.0;
+  const double k = std::clamp(ambient, 0.0, 1.0);
+  return k + (1.0 - k) * std::max(0.0, dot(normal, light) / (nn * ll));
+}
+
+// Orientation from the G-buffer: the screen direction of the projected normal
+// at every pixel, in radians from +x towards +y (down), written to `out`
+// (frame-sized). It is the direction of grad(1/z): for a plane n.X = d seen
+// through a pinhole, 1/z = (n_x x / f + n_y y / f + n_z) / d, so grad(1/z) is
+// parallel to (n_x, n_y). By differences of the frame's depth within one
+// object (central where both neighbours show the object, one-sided at its
+// edges; exact on a plane). NaN on the background (object 0 or unusable
+// depth), at isolated pixels, and where the surface faces the camera:
+// |grad(1/z)| z < min_slope (relative depth change per pixel), where the
+// direction is noise; NPR Gabor noise then takes its constant orientation
+// (param_source: NaN pixels). Throws hush::invalid_argument when the frame
+// lacks depth or object ids, or out's size differs from the frame's.
+inline void projected_normal_field(const frame& f, const image_view<float>& out,
+                                   double min_slope) {
+  const char* where = "hush::style::projected_normal_field";
+  f.validate(where, frame_view::depth | frame_view::object_id,
+             detail::constants::kNprGaborMaxImageSide);
+  const std::size_t w = f.width(), h = f.height();
+  if (out.width != w || out.height != h || !out.data)
+    detail::throw_out_of_range(where, "out size",
+                               std::to_string(out.width) + "x" + std::to_string(out.height),
+                               "the frame's size (non-null)");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // 1/z of pixel (x, y) if it shows object o with a usable depth, else NaN.
+  auto inv = [&](std::size_t x, std::size_t y, std::uint32_t o) {
+    const double z = static_cast<double>(f.depth(x, y));
+    if (f.object_id(x, y) != o || !(z > 0.0) || !std::isfinite(z)) return nan;
+    return 1.0 / z;
+  };
+  auto diff = [](double lo, double mid, double hi) {
+    if (!std::isnan(lo) && !std::isnan(hi)) return 0.5 * (hi - lo);
+    if (!std::isnan(hi)) return hi - mid;
+    if (!std::isnan(lo)) return mid - lo;
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      out(x, y) = std::numeric_limits<float>::quiet_NaN();
+      const std::uint32_t o = f.object_id(x, y);
+      const double mid = inv(x, y, o);
+      if (o == 0 || std::isnan(mid)) continue;
+      const double gx = diff(x > 0 ? inv(x - 1, y, o) : nan, mid, x + 1 < w ? inv(x + 1, y, o) : nan);
+      const double gy = diff(y > 0 ? inv(x, y - 1, o) : nan, mid, y + 1 < h ? inv(x, y + 1, o) : nan);
+      if (!(std::hypot(gx, gy) / mid >= min_slope)) continue;  // also NaN
+      out(x, y) = static_cast<float>(std::atan2(gy, gx));
+    }
+}
+
+}  // namespace style
+}  // namespace hush
+
+#endif  // HUSH_STYLE_HPP
+// ---- end hush/style.hpp
 
 #endif  // HUSH_HUSH_HPP
 // ---- end hush/hush.hpp

@@ -18,6 +18,12 @@
 #include "raster_cpu.hpp"
 #include "triangles.hpp"
 
+#if HUSH_TEST_HAVE_STB_IMAGE
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb_image.h>
+#endif
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -134,6 +140,15 @@ TEST_CASE("render: bad options exit 2 with one line naming the option") {
       {"render npr-gabor" + g + " --bandwidth x", "--bandwidth"},
       {"render npr-gabor" + g + " --impulses 0", "--impulses"},
       {"render npr-gabor" + g + " --depth-tolerance 2", "--depth-tolerance"},
+      {"render npr-gabor" + g + " --style pencil", "--style"},
+      {"render npr-gabor" + g + " --softness 0.5", "--softness"},  // needs --style
+      {"render npr-gabor" + g + " --style hatching --softness 9", "--softness"},
+      {"render npr-gabor" + g + " --style graphite --grain -1", "--grain"},
+      {"render npr-gabor" + g + " --style watercolor --gain 5", "--gain"},
+      {"render npr-gabor" + g + " --style hatching --ambient 2", "--ambient"},
+      {"render npr-gabor" + g + " --style hatching --light 0,0,0", "--light"},
+      {"render npr-gabor" + g + " --style hatching --light 1,2", "--light"},
+      {"render npr-gabor" + g + " --style hatching --orientation-field x", "--orientation-field"},
   };
   for (const auto& c : cases) {
     CAPTURE(c.first);
@@ -187,6 +202,54 @@ TEST_CASE("render npr-gabor writes the library's frames bit for bit from the tri
             .exit_code != 0);
 }
 
+TEST_CASE("render npr-gabor --style writes one PNG per frame for every style") {
+  const fs::path dir = scratch("render_npr_styles");
+  const std::vector<hs::gbuffer> g = scene_frames(dir);
+  for (const char* style : {"hatching", "stippling", "crosshatch", "graphite", "watercolor"}) {
+    CAPTURE(style);
+    const fs::path out = dir / style;
+    const result r = run_hush("render npr-gabor --gbuffer '" + (dir / "g").string() + "' --out '" +
+                                  out.string() + "' --frequency 0.25 --bandwidth 0.3 --style " +
+                                  style + (std::string(style) == "hatching" ? " --softness 0" : ""),
+                              dir);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("wrote 5 npr-gabor frames (40x30, 3 channels, scalar)") != std::string::npos);
+    for (int i = 0; i < kFrames; ++i) {
+      char name[16];
+      std::snprintf(name, sizeof name, "%04d.png", i);
+      const std::string bytes = hush_cli_test::slurp(out / name);
+      REQUIRE(bytes.size() > 24);
+      CHECK(bytes.compare(1, 3, "PNG") == 0);
+#if HUSH_TEST_HAVE_STB_IMAGE
+      int w = 0, h = 0, c = 0;
+      unsigned char* px = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                static_cast<int>(bytes.size()), &w, &h, &c, 3);
+      REQUIRE(px != nullptr);
+      CHECK(w == kW);
+      CHECK(h == kH);
+      std::size_t ink = 0, colour = 0;
+      const hs::gbuffer& gb = g[std::size_t(i)];
+      for (std::size_t p = 0; p < std::size_t(kW) * kH; ++p) {
+        const unsigned char* q = px + 3 * p;
+        if (!gb.covered(p)) CHECK(q[0] + q[1] + q[2] == 3 * 255);  // background: paper
+        if (q[0] == 0) ++ink;
+        if (q[0] != q[1] || q[1] != q[2]) ++colour;
+        // Hard step: every pixel is paper or ink.
+        if (std::string(style) == "hatching") CHECK((q[0] == 0 || q[0] == 255));
+      }
+      CHECK(ink + colour > 0);  // something is drawn
+      CHECK((colour > 0) == (std::string(style) == "watercolor"));
+      stbi_image_free(px);
+#endif
+    }
+  }
+  // The styles run on the scalar backend only, like the noise.
+  CHECK(run_hush("render npr-gabor --backend simd --style hatching --gbuffer '" +
+                     (dir / "g").string() + "' --out '" + (dir / "m").string() + "'",
+                 dir)
+            .exit_code != 0);
+}
+
 TEST_CASE("render --symmetric refuses G-buffers without forward velocity") {
   const fs::path dir = scratch("render_no_forward");
   std::vector<hs::gbuffer> g = scene_frames(dir);
@@ -206,7 +269,7 @@ TEST_CASE("render --symmetric refuses G-buffers without forward velocity") {
             .exit_code == 0);
 }
 
-TEST_CASE("gallery writes coherent noise's animations (GIF) and Kass & Pesare's figures") {
+TEST_CASE("gallery writes the scene-driven noises' animations (GIF) and their papers' figures") {
   const fs::path dir = scratch("gallery_coherent");
   const result r = run_hush("gallery --out '" + (dir / "g").string() + "'", dir);
   if (r.exit_code == 2) {  // a build without PNG output or Eigen has no gallery at all
@@ -216,11 +279,15 @@ TEST_CASE("gallery writes coherent noise's animations (GIF) and Kass & Pesare's 
   REQUIRE(r.exit_code == 0);
   struct expected {
     const char* file;
-    unsigned width, height;
+    unsigned width, height, frames;
   };
-  for (const expected& e :
-       {expected{"coherent_rotate.gif", 256, 192}, expected{"coherent_walkthrough.gif", 256, 192},
-        expected{"coherent_fig3a.gif", 128, 96}, expected{"coherent_fig3b.gif", 128, 96}}) {
+  for (const expected& e : {expected{"coherent_rotate.gif", 256, 192, 32},
+                            expected{"coherent_walkthrough.gif", 256, 192, 32},
+                            expected{"coherent_fig3a.gif", 128, 96, 32},
+                            expected{"coherent_fig3b.gif", 128, 96, 32},
+                            expected{"npr_fig1_rotate.gif", 384, 96, 24},
+                            expected{"npr_fig1_walkthrough.gif", 384, 96, 24},
+                            expected{"npr_styles_rotate.gif", 256, 192, 24}}) {
     CAPTURE(e.file);
     const std::string bytes = hush_cli_test::slurp(dir / "g" / e.file);
     REQUIRE(bytes.size() > 13);
@@ -233,7 +300,8 @@ TEST_CASE("gallery writes coherent noise's animations (GIF) and Kass & Pesare's 
     CHECK(u16(8) == e.height);
     CHECK(bytes.back() == ';');  // the trailer: a complete file
     CHECK(r.out.find(std::string(e.file) + " (" + std::to_string(e.width) + "x" +
-                     std::to_string(e.height) + ", 32 frames)") != std::string::npos);
+                     std::to_string(e.height) + ", " + std::to_string(e.frames) + " frames)") !=
+          std::string::npos);
   }
   for (const char* still : {"coherent_fig2.png", "coherent_fig6.png"}) {
     CAPTURE(still);

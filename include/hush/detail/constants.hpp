@@ -344,6 +344,18 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 // kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
+// Step in F r (cycles per kernel radius) between the exact kernel energies a
+// non-constant frequency's normalisation interpolates (npr_gabor.hpp): the
+// energy depends on F only through F r for a given truncation; 1/64 keeps the
+// linear interpolation within 1e-3 relative for t in [1e-9, 0.5].
+constexpr double kNprGaborEnergyStep = 1.0 / 64.0;
+
+// ---- Styles (style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
+// in noise standard deviations (8 sigma: every pixel in the soft band), the
+// graphite style's fine-layer weight and the watercolour overlay's gain.
+constexpr double kStyleMaxWidth = 8.0;
+constexpr double kStyleMaxGrain = 8.0;
+constexpr double kStyleMaxGain = 4.0;
 
 // ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
 // subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
