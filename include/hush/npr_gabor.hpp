@@ -73,6 +73,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "hush/config.hpp"
@@ -84,6 +85,8 @@
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
+#include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/exec.hpp"
 #include "hush/gabor.hpp"
 #include "hush/gabor_kernel.hpp"
 
@@ -180,25 +183,66 @@ class npr_gabor {
     return pt;
   }
 
-  // Adds nothing, overwrites `out` (frame-sized; float, or double for the
-  // reference) with the noise of this frame. Throws hush::invalid_argument
-  // when the frame lacks a view needs() lists or is malformed (frame::validate),
-  // when the triangle list is malformed (triangle_list::validate), or when
-  // out's size differs from the frame's. Never reads outside the views.
+  // Overwrites `out` (frame-sized; float, or double for the reference) with
+  // the noise of this frame: stage 1 (make_splats) then stage 2 (the kernels
+  // added per pixel in record order). `ex` picks stage 2's backend:
+  // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
+  // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
+  // the scalar loop where the build has no SIMD). Throws
+  // hush::invalid_argument when the frame lacks a view needs() lists or is
+  // malformed (frame::validate), when the triangle list is malformed
+  // (triangle_list::validate), or when out's size differs from the frame's.
+  // Never reads outside the views.
+  template <class Exec, class T>
+  void render(const Exec& ex, const frame& f, const triangle_list& tris,
+              const image_view<T>& out) const {
+    validate(f, tris);
+    check_out(f, out);
+    std::vector<npr_gabor_splat> splats;
+    for (std::size_t t = 0; t < tris.triangles(); ++t) triangle_splats(f, tris, t, splats);
+    splat(ex, f, splats.data(), splats.size(), out);
+  }
   template <class T>
   void render(const frame& f, const triangle_list& tris, const image_view<T>& out) const {
-    namespace c = detail::constants;
-    const char* where = "hush::npr_gabor::render";
-    f.validate(where, needs(), c::kNprGaborMaxImageSide);
-    tris.validate(where, c::kNprGaborMaxTriangles);
-    if (out.width != f.width() || out.height != f.height() || !out.data)
-      detail::throw_out_of_range(where, "out size",
-                                 std::to_string(out.width) + "x" + std::to_string(out.height),
-                                 "the frame's size (non-null)");
+    render(exec::scalar, f, tris, out);
+  }
+
+  // Stage 1: replaces `splats` with this frame's records (npr_gabor_splat),
+  // triangle by triangle in list order, each triangle's points in stream
+  // order; points whose pixel range misses the image are left out. Throws as
+  // render does for the frame and the triangles.
+  void make_splats(const frame& f, const triangle_list& tris,
+                   std::vector<npr_gabor_splat>& splats) const {
+    validate(f, tris);
+    splats.clear();
+    for (std::size_t t = 0; t < tris.triangles(); ++t) triangle_splats(f, tris, t, splats);
+  }
+
+  // Stage 2: overwrites `out` (frame-sized) with the sum of the `count`
+  // records' kernels at `splats`, each fragment passing this noise's
+  // visibility tests against frame f (validated by make_splats; records with
+  // a pixel range outside the frame are the caller's error). Backends as
+  // for render.
+  template <class Exec, class T>
+  void splat(const Exec&, const frame& f, const npr_gabor_splat* splats, std::size_t count,
+             const image_view<T>& out) const {
+    check_out(f, out);
     for (std::size_t y = 0; y < out.height; ++y)
       std::fill(out.row(y), out.row(y) + out.width, T(0));
+    detail::npr_gabor_splat_job job;
+    job.splats = splats;
+    job.count = count;
+    job.depth = f.depth;
+    job.object_id = f.object_id;
+    job.triangle_id = f.triangle_id;
+    job.object_test = p_.object_test;
+    job.triangle_test = p_.triangle_test;
+    job.depth_test = p_.depth_test;
+    job.soft_depth = p_.soft_depth;
+    job.depth_tolerance = p_.depth_tolerance;
+    job.envelope_exponent = kernel_.envelope_exponent();
     std::vector<detail::gabor_axis<T>> columns;
-    for (std::size_t t = 0; t < tris.triangles(); ++t) splat_triangle(f, tris, t, out, columns);
+    detail::npr_gabor_splat_scalar(job, out, columns);
   }
 
  private:
@@ -224,9 +268,23 @@ class npr_gabor {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
 
-  template <class T>
-  void splat_triangle(const frame& f, const triangle_list& tris, std::size_t t,
-                      const image_view<T>& out, std::vector<detail::gabor_axis<T>>& columns) const {
+  void validate(const frame& f, const triangle_list& tris) const {
+    namespace c = detail::constants;
+    const char* where = "hush::npr_gabor::render";
+    f.validate(where, needs(), c::kNprGaborMaxImageSide);
+    tris.validate(where, c::kNprGaborMaxTriangles);
+  }
+  template <class Out>
+  static void check_out(const frame& f, const Out& out) {
+    if (out.width != f.width() || out.height != f.height() || !out.data)
+      detail::throw_out_of_range("hush::npr_gabor::render", "out size",
+                                 std::to_string(out.width) + "x" + std::to_string(out.height),
+                                 "the frame's size (non-null)");
+  }
+
+  // Stage 1 for triangle t: appends its points' records.
+  void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
+                       std::vector<npr_gabor_splat>& splats) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -243,7 +301,7 @@ class npr_gabor {
     if (p_.cull_back_faces && !(cross < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
     const double r = kernel_.radius();
-    const double w = static_cast<double>(out.width), h = static_cast<double>(out.height);
+    const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
     const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
                  hi_x = std::max({s[0].x, s[1].x, s[2].x});
     const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
@@ -265,56 +323,30 @@ class npr_gabor {
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
       const double theta = p_.isotropic ? pt.angle : p_.orientation;
       const dvec2 F{p_.frequency * std::cos(theta), p_.frequency * std::sin(theta)};
-      splat_point(f, out, at, F, lod.weight(j) * pt.amplitude * scale_, object, id, q0, qx, qy,
-                  columns);
-    }
-  }
-
-  template <class T>
-  void splat_point(const frame& f, const image_view<T>& out, const dvec2& at, const dvec2& F,
-                   double weight, std::uint32_t object, std::uint32_t id, double q0, double qx,
-                   double qy, std::vector<detail::gabor_axis<T>>& columns) const {
-    namespace c = detail::constants;
-    const double r = kernel_.radius(), inv_r = 1.0 / r;
-    // Pixel centres x + 1/2 within r of the point, clamped to the image.
-    const double wmax = static_cast<double>(out.width) - 1.0;
-    const double hmax = static_cast<double>(out.height) - 1.0;
-    const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
-    const double x1 = std::min(std::floor(at.x + r - 0.5), wmax);
-    const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
-    const double y1 = std::min(std::floor(at.y + r - 0.5), hmax);
-    if (x0 > x1 || y0 > y1) return;
-    const T neg_a = T(-kernel_.envelope_exponent()), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
-    const T phi_x = T(F.x * r), phi_y = T(F.y * r);
-    const std::size_t ix0 = static_cast<std::size_t>(x0), ix1 = static_cast<std::size_t>(x1);
-    columns.resize(ix1 - ix0 + 1);
-    for (std::size_t x = ix0; x <= ix1; ++x)
-      columns[x - ix0] = detail::gabor_axis_factors(
-          T((static_cast<double>(x) + 0.5 - at.x) * inv_r), neg_a, phi_x);
-    const double tol = p_.depth_tolerance;
-    for (std::size_t y = static_cast<std::size_t>(y0); y <= static_cast<std::size_t>(y1); ++y) {
-      const detail::gabor_axis<T> ay = detail::gabor_axis_factors(
-          T((static_cast<double>(y) + 0.5 - at.y) * inv_r), neg_a, phi_y);
-      const detail::gabor_row<T> row = detail::gabor_row_of(T(weight), ay);
-      T* o = out.row(y);
-      for (std::size_t x = ix0; x <= ix1; ++x) {
-        const detail::gabor_axis<T>& ax = columns[x - ix0];
-        if (!(ax.d2 + row.d2 < T(1))) continue;
-        T vis = T(1);
-        if (p_.object_test && f.object_id(x, y) != object) continue;
-        if (p_.triangle_test && f.triangle_id(x, y) != id) continue;
-        if (p_.depth_test) {
-          const double zp = static_cast<double>(f.depth(x, y));
-          if (!(zp > 0.0) || !std::isfinite(zp)) continue;
-          // Relative difference of the pixel's depth and the plane's there.
-          const double plane =
-              q0 + qx * (static_cast<double>(x) + 0.5) + qy * (static_cast<double>(y) + 0.5);
-          const double rel = std::fabs(zp * plane - 1.0);
-          if (!(rel <= (p_.soft_depth ? 2.0 * tol : tol))) continue;
-          if (p_.soft_depth && rel > tol) vis = T(2.0 - rel / tol);
-        }
-        o[x] += vis * detail::gabor_pair(ax, row, taper_k);
-      }
+      // Pixel centres x + 1/2 within r of the point, clamped to the image.
+      const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
+      const double x1 = std::min(std::floor(at.x + r - 0.5), w - 1.0);
+      const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
+      const double y1 = std::min(std::floor(at.y + r - 0.5), h - 1.0);
+      if (x0 > x1 || y0 > y1) continue;
+      npr_gabor_splat rec;
+      rec.x = at.x;
+      rec.y = at.y;
+      rec.fx = F.x;
+      rec.fy = F.y;
+      rec.bandwidth = p_.bandwidth;
+      rec.radius = r;
+      rec.weight = lod.weight(j) * pt.amplitude * scale_;
+      rec.q0 = q0;
+      rec.qx = qx;
+      rec.qy = qy;
+      rec.object = object;
+      rec.triangle = id;
+      rec.x0 = static_cast<std::int32_t>(x0);
+      rec.x1 = static_cast<std::int32_t>(x1);
+      rec.y0 = static_cast<std::int32_t>(y0);
+      rec.y1 = static_cast<std::int32_t>(y1);
+      splats.push_back(rec);
     }
   }
 

@@ -13525,8 +13525,123 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+// ---- begin hush/detail/npr_gabor_splat.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The splat list of NPR Gabor noise (hush/npr_gabor.hpp) and its second
+// stage, the splatting. npr_gabor::render runs in two stages:
+//  1. npr_gabor::make_splats: per triangle, its points (paper sec. 3.3) become
+//     records, one per point, in triangle order then point order, each with
+//     everything the kernel and the visibility tests need (its own frequency
+//     vector and radius, so parameters may differ per splat);
+//  2. splatting: every record's kernel is added at the pixel centres of its
+//     range that pass the tests (sec. 3.4), per pixel in record order.
+// Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
+// or double) and once in lanes (hush/simd/npr_gabor-inl.h, float), which
+// repeats it operation by operation.
+#ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+#define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+
+namespace hush {
+
+// One point's kernel, ready to splat (stage 1's output). The kernel is
+// weight g_F(p - (x, y)) with g gabor_kernel<2>'s tapered kernel of radius
+// `radius` (from the bandwidth a: r = sqrt(ln(1/t) / pi) / a) and frequency
+// vector F = (fx, fy) = F0 (cos omega, sin omega); it covers the pixels
+// x0 ... x1, y0 ... y1 (inclusive, clamped to the image, never empty): the
+// centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
+// qy y in screen pixels, gives the depth test its reference depth at every
+// pixel (the point's own depth is 1 / (q0 + qx x + qy y)).
+struct npr_gabor_splat {
+  double x = 0, y = 0;            // position, pixels (x right, y down)
+  double fx = 0, fy = 0;          // F, cycles per pixel
+  double bandwidth = 0;           // a, 1/pixel
+  double radius = 0;              // r, pixels
+  double weight = 0;              // w_i v_i scale (paper eq. 1, LOD weight eq. 4)
+  double q0 = 0, qx = 0, qy = 0;  // the triangle's plane of 1/z
+  std::uint32_t object = 0, triangle = 0;
+  std::int32_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // pixel range, inclusive
+};
+
+namespace detail {
+
+// Everything stage 2 reads: the records, the frame's views the enabled tests
+// need (the others may be empty), the tests, and the output.
+struct npr_gabor_splat_job {
+  const npr_gabor_splat* splats = nullptr;
+  std::size_t count = 0;
+  image_view<const float> depth;
+  image_view<const std::uint32_t> object_id, triangle_id;
+  bool object_test = true, triangle_test = false, depth_test = true, soft_depth = false;
+  double depth_tolerance = 0;
+  double envelope_exponent = 0;  // A = ln(1/t): the envelope is e^{-A d^2}, d in radii
+};
+
+// The visibility factor of a fragment at pixel (x, y) of splat s (sec. 3.4):
+// 0 where a test fails, 1 where all pass, 2 - rel / tol in the soft band.
+template <class T>
+HUSH_INLINE T npr_gabor_visibility(const npr_gabor_splat_job& j, const npr_gabor_splat& s,
+                                   std::size_t x, std::size_t y) {
+  if (j.object_test && j.object_id(x, y) != s.object) return T(0);
+  if (j.triangle_test && j.triangle_id(x, y) != s.triangle) return T(0);
+  if (!j.depth_test) return T(1);
+  const double zp = static_cast<double>(j.depth(x, y));
+  if (!(zp > 0.0) || !std::isfinite(zp)) return T(0);
+  // Relative difference of the pixel's depth and the plane's there.
+  const double plane =
+      s.q0 + s.qx * (static_cast<double>(x) + 0.5) + s.qy * (static_cast<double>(y) + 0.5);
+  const double rel = std::fabs(zp * plane - 1.0);
+  const double tol = j.depth_tolerance;
+  if (!(rel <= (j.soft_depth ? 2.0 * tol : tol))) return T(0);
+  return j.soft_depth && rel > tol ? T(2.0 - rel / tol) : T(1);
+}
+
+// Stage 2, scalar: adds every record's kernel to `out` (frame-sized), per
+// pixel in record order. `columns` is scratch.
+template <class T>
+void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& out,
+                            std::vector<gabor_axis<T>>& columns) {
+  namespace c = constants;
+  const T neg_a = T(-j.envelope_exponent), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
+  for (std::size_t i = 0; i < j.count; ++i) {
+    const npr_gabor_splat& s = j.splats[i];
+    const double inv_r = 1.0 / s.radius;
+    const T phi_x = T(s.fx * s.radius), phi_y = T(s.fy * s.radius);
+    const std::size_t ix0 = static_cast<std::size_t>(s.x0), ix1 = static_cast<std::size_t>(s.x1);
+    columns.resize(ix1 - ix0 + 1);
+    for (std::size_t x = ix0; x <= ix1; ++x)
+      columns[x - ix0] =
+          gabor_axis_factors(T((static_cast<double>(x) + 0.5 - s.x) * inv_r), neg_a, phi_x);
+    for (std::size_t y = static_cast<std::size_t>(s.y0); y <= static_cast<std::size_t>(s.y1); ++y) {
+      const gabor_axis<T> ay =
+          gabor_axis_factors(T((static_cast<double>(y) + 0.5 - s.y) * inv_r), neg_a, phi_y);
+      const gabor_row<T> row = gabor_row_of(T(s.weight), ay);
+      T* o = out.row(y);
+      for (std::size_t x = ix0; x <= ix1; ++x) {
+        const gabor_axis<T>& ax = columns[x - ix0];
+        if (!(ax.d2 + row.d2 < T(1))) continue;
+        const T vis = npr_gabor_visibility<T>(j, s, x, y);
+        if (vis == T(0)) continue;  // adding vis * g = +-0 would change nothing
+        o[x] += vis * gabor_pair(ax, row, taper_k);
+      }
+    }
+  }
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+// ---- end hush/detail/npr_gabor_splat.hpp
 
 namespace hush {
 
@@ -13621,25 +13736,66 @@ class npr_gabor {
     return pt;
   }
 
-  // Adds nothing, overwrites `out` (frame-sized; float, or double for the
-  // reference) with the noise of this frame. Throws hush::invalid_argument
-  // when the frame lacks a view needs() lists or is malformed (frame::validate),
-  // when the triangle list is malformed (triangle_list::validate), or when
-  // out's size differs from the frame's. Never reads outside the views.
+  // Overwrites `out` (frame-sized; float, or double for the reference) with
+  // the noise of this frame: stage 1 (make_splats) then stage 2 (the kernels
+  // added per pixel in record order). `ex` picks stage 2's backend:
+  // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
+  // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
+  // the scalar loop where the build has no SIMD). Throws
+  // hush::invalid_argument when the frame lacks a view needs() lists or is
+  // malformed (frame::validate), when the triangle list is malformed
+  // (triangle_list::validate), or when out's size differs from the frame's.
+  // Never reads outside the views.
+  template <class Exec, class T>
+  void render(const Exec& ex, const frame& f, const triangle_list& tris,
+              const image_view<T>& out) const {
+    validate(f, tris);
+    check_out(f, out);
+    std::vector<npr_gabor_splat> splats;
+    for (std::size_t t = 0; t < tris.triangles(); ++t) triangle_splats(f, tris, t, splats);
+    splat(ex, f, splats.data(), splats.size(), out);
+  }
   template <class T>
   void render(const frame& f, const triangle_list& tris, const image_view<T>& out) const {
-    namespace c = detail::constants;
-    const char* where = "hush::npr_gabor::render";
-    f.validate(where, needs(), c::kNprGaborMaxImageSide);
-    tris.validate(where, c::kNprGaborMaxTriangles);
-    if (out.width != f.width() || out.height != f.height() || !out.data)
-      detail::throw_out_of_range(where, "out size",
-                                 std::to_string(out.width) + "x" + std::to_string(out.height),
-                                 "the frame's size (non-null)");
+    render(exec::scalar, f, tris, out);
+  }
+
+  // Stage 1: replaces `splats` with this frame's records (npr_gabor_splat),
+  // triangle by triangle in list order, each triangle's points in stream
+  // order; points whose pixel range misses the image are left out. Throws as
+  // render does for the frame and the triangles.
+  void make_splats(const frame& f, const triangle_list& tris,
+                   std::vector<npr_gabor_splat>& splats) const {
+    validate(f, tris);
+    splats.clear();
+    for (std::size_t t = 0; t < tris.triangles(); ++t) triangle_splats(f, tris, t, splats);
+  }
+
+  // Stage 2: overwrites `out` (frame-sized) with the sum of the `count`
+  // records' kernels at `splats`, each fragment passing this noise's
+  // visibility tests against frame f (validated by make_splats; records with
+  // a pixel range outside the frame are the caller's error). Backends as
+  // for render.
+  template <class Exec, class T>
+  void splat(const Exec&, const frame& f, const npr_gabor_splat* splats, std::size_t count,
+             const image_view<T>& out) const {
+    check_out(f, out);
     for (std::size_t y = 0; y < out.height; ++y)
       std::fill(out.row(y), out.row(y) + out.width, T(0));
+    detail::npr_gabor_splat_job job;
+    job.splats = splats;
+    job.count = count;
+    job.depth = f.depth;
+    job.object_id = f.object_id;
+    job.triangle_id = f.triangle_id;
+    job.object_test = p_.object_test;
+    job.triangle_test = p_.triangle_test;
+    job.depth_test = p_.depth_test;
+    job.soft_depth = p_.soft_depth;
+    job.depth_tolerance = p_.depth_tolerance;
+    job.envelope_exponent = kernel_.envelope_exponent();
     std::vector<detail::gabor_axis<T>> columns;
-    for (std::size_t t = 0; t < tris.triangles(); ++t) splat_triangle(f, tris, t, out, columns);
+    detail::npr_gabor_splat_scalar(job, out, columns);
   }
 
  private:
@@ -13665,9 +13821,23 @@ class npr_gabor {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
 
-  template <class T>
-  void splat_triangle(const frame& f, const triangle_list& tris, std::size_t t,
-                      const image_view<T>& out, std::vector<detail::gabor_axis<T>>& columns) const {
+  void validate(const frame& f, const triangle_list& tris) const {
+    namespace c = detail::constants;
+    const char* where = "hush::npr_gabor::render";
+    f.validate(where, needs(), c::kNprGaborMaxImageSide);
+    tris.validate(where, c::kNprGaborMaxTriangles);
+  }
+  template <class Out>
+  static void check_out(const frame& f, const Out& out) {
+    if (out.width != f.width() || out.height != f.height() || !out.data)
+      detail::throw_out_of_range("hush::npr_gabor::render", "out size",
+                                 std::to_string(out.width) + "x" + std::to_string(out.height),
+                                 "the frame's size (non-null)");
+  }
+
+  // Stage 1 for triangle t: appends its points' records.
+  void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
+                       std::vector<npr_gabor_splat>& splats) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -13684,7 +13854,7 @@ class npr_gabor {
     if (p_.cull_back_faces && !(cross < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
     const double r = kernel_.radius();
-    const double w = static_cast<double>(out.width), h = static_cast<double>(out.height);
+    const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
     const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
                  hi_x = std::max({s[0].x, s[1].x, s[2].x});
     const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
@@ -13706,56 +13876,30 @@ class npr_gabor {
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
       const double theta = p_.isotropic ? pt.angle : p_.orientation;
       const dvec2 F{p_.frequency * std::cos(theta), p_.frequency * std::sin(theta)};
-      splat_point(f, out, at, F, lod.weight(j) * pt.amplitude * scale_, object, id, q0, qx, qy,
-                  columns);
-    }
-  }
-
-  template <class T>
-  void splat_point(const frame& f, const image_view<T>& out, const dvec2& at, const dvec2& F,
-                   double weight, std::uint32_t object, std::uint32_t id, double q0, double qx,
-                   double qy, std::vector<detail::gabor_axis<T>>& columns) const {
-    namespace c = detail::constants;
-    const double r = kernel_.radius(), inv_r = 1.0 / r;
-    // Pixel centres x + 1/2 within r of the point, clamped to the image.
-    const double wmax = static_cast<double>(out.width) - 1.0;
-    const double hmax = static_cast<double>(out.height) - 1.0;
-    const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
-    const double x1 = std::min(std::floor(at.x + r - 0.5), wmax);
-    const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
-    const double y1 = std::min(std::floor(at.y + r - 0.5), hmax);
-    if (x0 > x1 || y0 > y1) return;
-    const T neg_a = T(-kernel_.envelope_exponent()), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
-    const T phi_x = T(F.x * r), phi_y = T(F.y * r);
-    const std::size_t ix0 = static_cast<std::size_t>(x0), ix1 = static_cast<std::size_t>(x1);
-    columns.resize(ix1 - ix0 + 1);
-    for (std::size_t x = ix0; x <= ix1; ++x)
-      columns[x - ix0] = detail::gabor_axis_factors(
-          T((static_cast<double>(x) + 0.5 - at.x) * inv_r), neg_a, phi_x);
-    const double tol = p_.depth_tolerance;
-    for (std::size_t y = static_cast<std::size_t>(y0); y <= static_cast<std::size_t>(y1); ++y) {
-      const detail::gabor_axis<T> ay = detail::gabor_axis_factors(
-          T((static_cast<double>(y) + 0.5 - at.y) * inv_r), neg_a, phi_y);
-      const detail::gabor_row<T> row = detail::gabor_row_of(T(weight), ay);
-      T* o = out.row(y);
-      for (std::size_t x = ix0; x <= ix1; ++x) {
-        const detail::gabor_axis<T>& ax = columns[x - ix0];
-        if (!(ax.d2 + row.d2 < T(1))) continue;
-        T vis = T(1);
-        if (p_.object_test && f.object_id(x, y) != object) continue;
-        if (p_.triangle_test && f.triangle_id(x, y) != id) continue;
-        if (p_.depth_test) {
-          const double zp = static_cast<double>(f.depth(x, y));
-          if (!(zp > 0.0) || !std::isfinite(zp)) continue;
-          // Relative difference of the pixel's depth and the plane's there.
-          const double plane =
-              q0 + qx * (static_cast<double>(x) + 0.5) + qy * (static_cast<double>(y) + 0.5);
-          const double rel = std::fabs(zp * plane - 1.0);
-          if (!(rel <= (p_.soft_depth ? 2.0 * tol : tol))) continue;
-          if (p_.soft_depth && rel > tol) vis = T(2.0 - rel / tol);
-        }
-        o[x] += vis * detail::gabor_pair(ax, row, taper_k);
-      }
+      // Pixel centres x + 1/2 within r of the point, clamped to the image.
+      const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
+      const double x1 = std::min(std::floor(at.x + r - 0.5), w - 1.0);
+      const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
+      const double y1 = std::min(std::floor(at.y + r - 0.5), h - 1.0);
+      if (x0 > x1 || y0 > y1) continue;
+      npr_gabor_splat rec;
+      rec.x = at.x;
+      rec.y = at.y;
+      rec.fx = F.x;
+      rec.fy = F.y;
+      rec.bandwidth = p_.bandwidth;
+      rec.radius = r;
+      rec.weight = lod.weight(j) * pt.amplitude * scale_;
+      rec.q0 = q0;
+      rec.qx = qx;
+      rec.qy = qy;
+      rec.object = object;
+      rec.triangle = id;
+      rec.x0 = static_cast<std::int32_t>(x0);
+      rec.x1 = static_cast<std::int32_t>(x1);
+      rec.y0 = static_cast<std::int32_t>(y0);
+      rec.y1 = static_cast<std::int32_t>(y1);
+      splats.push_back(rec);
     }
   }
 
