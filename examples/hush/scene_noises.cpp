@@ -122,12 +122,23 @@ class npr_gabor_noise final : public scene_noise {
   explicit npr_gabor_noise(const hush::npr_gabor::params& prm) : noise_(prm) {}
   int channels() const override { return 1; }
   std::string unsupported_reason(backend b) const override {
-    if (b != backend::scalar)
-      return "npr-gabor runs on the scalar backend only so far (SIMD and GLSL splatting are "
-             "not implemented yet, issue 11)";
+    if (b == backend::simd && !HUSH_CONFIG_SIMD)
+      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
+    if (b == backend::glsl)
+      return "npr-gabor runs on the scalar and SIMD backends only so far (GLSL splatting is not "
+             "implemented yet, issue 11)";
     return "";
   }
-  void render(gbuffer_sequence& frames, render_sink& sink, backend) override {
+  void render(gbuffer_sequence& frames, render_sink& sink, backend b) override {
+    if (b == backend::simd)
+      run(hush::exec::simd, frames, sink);
+    else
+      run(hush::exec::scalar, frames, sink);
+  }
+
+ private:
+  template <class Exec>
+  void run(const Exec& ex, gbuffer_sequence& frames, render_sink& sink) {
     const std::size_t n = frames.size();
     const std::size_t w = static_cast<std::size_t>(frames.width());
     const std::size_t h = static_cast<std::size_t>(frames.height());
@@ -135,13 +146,12 @@ class npr_gabor_noise final : public scene_noise {
     for (std::size_t i = 0; i < n; ++i) {
       const hush::frame f = frames.frame(i, noise_.needs());
       const hush::triangle_list t = frames.triangles(i);
-      noise_.render(f, t, hush::image_view<float>(plane.data(), w, h));
+      noise_.render(ex, f, t, hush::image_view<float>(plane.data(), w, h));
       sink.write(i, {hush::image_view<const float>(plane.data(), w, h)});
       sink.progress("splatting", i + 1, n);
     }
   }
 
- private:
   hush::npr_gabor noise_;
 };
 
@@ -204,6 +214,7 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
     if (f == "--no-depth-test") p.depth_test = false;
     if (f == "--soft-depth") p.soft_depth = true;
     if (f == "--two-sided") p.cull_back_faces = false;
+    if (f == "--thin") p.thinning = true;
   }
   return std::make_unique<npr_gabor_noise>(p);
 }
@@ -269,6 +280,9 @@ const std::vector<render_entry>& render_table() {
            {"--no-depth-test", "", "splat across depth discontinuities"},
            {"--soft-depth", "", "fade kernels between 1 and 2 depth tolerances instead of a cut"},
            {"--two-sided", "", "back-facing triangles emit points too"},
+           {"--thin", "",
+            "thin the points of triangles with N < 1 (same variance and spectrum, fewer "
+            "points: faster on dense meshes)"},
        },
        make_npr_gabor},
       anisotropic_render_entry(),

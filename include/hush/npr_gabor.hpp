@@ -119,6 +119,25 @@ struct npr_gabor_lod {
     return l;
   }
   double weight(std::uint32_t j) const { return j < first ? first_weight : second_weight; }
+
+  // Thinning of the N < 1 point (npr_gabor::params::thinning): its squared
+  // weight g(N, u) for the triangle's own uniform u in [0, 1):
+  //   g = max(0, 1 - u / (2N))   for 0 < N <= 1/2 (a point for u < 2N only),
+  //   g = 1 - 2 (1 - N) u        for 1/2 <= N <= 1 (always a point),
+  // 0 for N <= 0 or NaN, 1 for N >= 1. E_u[g] = N on both pieces (the area
+  // under a ramp from 1 to 0 over [0, 2N] is N; 1 - (1 - N) = N), which is
+  // all the variance and the spectrum see (Campbell's theorem: the density of
+  // sum w^2 per area, amplitudes independent of u), as the unthinned weight
+  // sqrt(N) has it. For fixed u, g is continuous in N (both pieces are 1 - u
+  // at N = 1/2, and 1 at N = 1, the weight the single point keeps above), so
+  // a point fades in as its triangle grows: no pops. Expected points per
+  // triangle min(1, 2N) instead of 1.
+  static double thinned_square(double n, double u) {
+    if (!(n > 0.0)) return 0.0;
+    if (n >= 1.0) return 1.0;
+    if (n <= 0.5) return std::max(0.0, 1.0 - u / (2.0 * n));
+    return 1.0 - 2.0 * (1.0 - n) * u;
+  }
 };
 
 class npr_gabor {
@@ -137,6 +156,10 @@ class npr_gabor {
     bool soft_depth = false;
     double depth_tolerance = detail::constants::kNprGaborDefaultDepthTolerance;
     bool cull_back_faces = true;
+    // Thin the points of triangles with N < 1 (npr_gabor_lod::thinned_square):
+    // same variance and spectrum, min(1, 2N) points per triangle instead of 1,
+    // so that the cost follows N' and the covered pixels, not the triangle count.
+    bool thinning = false;
   };
 
   // Throws hush::invalid_argument naming the parameter and its range:
@@ -241,6 +264,12 @@ class npr_gabor {
     job.soft_depth = p_.soft_depth;
     job.depth_tolerance = p_.depth_tolerance;
     job.envelope_exponent = kernel_.envelope_exponent();
+#if HUSH_CONFIG_SIMD
+    if constexpr (std::is_same<Exec, exec::simd_t>::value && std::is_same<T, float>::value) {
+      simd::npr_gabor_splat(job, out);
+      return;
+    }
+#endif
     std::vector<detail::gabor_axis<T>> columns;
     detail::npr_gabor_splat_scalar(job, out, columns);
   }
@@ -266,6 +295,15 @@ class npr_gabor {
 
   std::uint32_t triangle_key(std::uint32_t object, std::uint32_t triangle) const {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
+  }
+
+  // The triangle's thinning uniform in [0, 1): the last two words of its point stream
+  // (2^32 - 2 and 2^32 - 1), which no point reads (points take words 0 ... 2
+  // kNprGaborMaxPoints - 1), so it is independent of every point's position and amplitude.
+  double thinning_uniform(std::uint32_t object, std::uint32_t triangle) const {
+    rng r(triangle_key(object, triangle), detail::constants::kNprGaborStream);
+    r.skip(0xFFFFFFFEu);
+    return r.uniform<double>();
   }
 
   void validate(const frame& f, const triangle_list& tris) const {
@@ -307,7 +345,7 @@ class npr_gabor {
     const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
                  hi_y = std::max({s[0].y, s[1].y, s[2].y});
     if (hi_x + r < 0.0 || lo_x - r > w || hi_y + r < 0.0 || lo_y - r > h) return;
-    const npr_gabor_lod lod = npr_gabor_lod::of(lambda_ * 0.5 * std::fabs(cross));
+    const double n = lambda_ * 0.5 * std::fabs(cross);
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
     const double inv = 1.0 / cross;
@@ -315,6 +353,11 @@ class npr_gabor {
     const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
     const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;
     const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
+    npr_gabor_lod lod = npr_gabor_lod::of(n);
+    if (p_.thinning && n < 1.0 && lod.count == 1) {
+      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
+      if (!(lod.first_weight > 0.0)) return;
+    }
     for (std::uint32_t j = 0; j < lod.count; ++j) {
       const point pt = point_of(object, id, j);
       const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
