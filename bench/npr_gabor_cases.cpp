@@ -4,7 +4,8 @@
 // and a torus over a plane) with about 5k, 50k and 200k triangles, rasterized by the CPU
 // rasterizer at npr_width x npr_height (1280 x 720), N' = 16 and 32, the default kernel
 // (F0 = 1/8 cycle/pixel, a = 0.08/pixel, radius 12.2 pixels), anisotropic, object and depth
-// tests. A row times npr_gabor::render (both stages: points and splatting) on one thread;
+// tests; "thin" rows thin the points of triangles with N < 1 (params::thinning). A row
+// times npr_gabor::render (both stages: points and splatting) on one thread;
 // ms/frame is its time per frame. Error columns: the float render against render<double> on
 // exec::scalar (the reference) over every pixel. The note gives the splat count (points
 // emitted) and the triangle count.
@@ -44,11 +45,12 @@ struct dense_frame {
 
 template <class Exec>
 void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
-              const std::vector<std::shared_ptr<dense_frame>>& frames) {
+              const std::vector<std::shared_ptr<dense_frame>>& frames, bool thinning) {
   for (const std::shared_ptr<dense_frame>& fr : frames)
     for (double impulses : {16.0, 32.0}) {
       bench_case c;
-      c.noise = "npr-gabor N'=" + std::to_string(static_cast<int>(impulses));
+      c.noise = "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) +
+                (thinning ? " thin" : "");
       c.backend = Exec::name;
       c.workload = "dense:" + std::to_string(fr->triangles) + " " + std::to_string(s.npr_width) +
                    "x" + std::to_string(s.npr_height);
@@ -56,6 +58,7 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
       hush::npr_gabor::params prm;
       prm.impulses = impulses;
       prm.orientation = 0.5;
+      prm.thinning = thinning;
       const hush::npr_gabor noise{prm};
       c.prepare = [noise, ex, fr] {
         fr->make();
@@ -98,8 +101,9 @@ void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s) {
     f->height = static_cast<int>(s.npr_height);
     frames.push_back(f);
   }
-  add_rows(cases, s, hush::exec::scalar, frames);
-  add_rows(cases, s, hush::exec::simd, frames);
+  add_rows(cases, s, hush::exec::scalar, frames, false);
+  add_rows(cases, s, hush::exec::simd, frames, false);
+  add_rows(cases, s, hush::exec::simd, frames, true);
 }
 
 }  // namespace hush_bench

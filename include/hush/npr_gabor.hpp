@@ -34,7 +34,15 @@
 //    continuous in N: alpha -> 1 as N -> 2M from below, where the next level
 //    starts with the same 2M points at weight 1; sqrt(N) -> 1 = the weight
 //    of the single point at N = 1 (alpha(1) = 0). No pops at the switches.
-//    N is clamped to kNprGaborMaxPoints (constants.hpp).
+//    N is clamped to kNprGaborMaxPoints (constants.hpp). With params::thinning
+//    the N < 1 point is kept only for the triangle's own uniform u < 2N (N <=
+//    1/2), with a weight fading in continuously (npr_gabor_lod::thinned_square:
+//    E[w^2] = N as above, so the same variance and spectrum, without pops), so
+//    dense meshes cost min(1, 2N) points per triangle instead of 1.
+//  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
+//    record per point (position, F, radius, weight, plane, ids, pixel range);
+//    splat adds the records' kernels, on exec::scalar or exec::simd (screen
+//    tiles, hush/simd/npr_gabor-inl.h, bit for bit scalar under HUSH_STRICT_FP).
 //  - amplitudes v_i uniform in (-1, 1) (16-bit symmetric, E[v^2] =
 //    (1 - 2^-32) / 3); kernel g of gabor_kernel<2> (bandwidth a, truncation
 //    t, C1 taper) with F_i = F0 (cos theta, sin theta), theta = orientation
@@ -64,7 +72,7 @@
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-// Not yet here (issue 11): per-object / per-pixel parameters, SIMD and GLSL.
+// Not yet here (issue 11): per-object / per-pixel parameters and GLSL.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
