@@ -435,6 +435,9 @@ sizes full_sizes() { return sizes{}; }
 sizes quick_sizes() {
   sizes s{kQuickGrid2, kQuickGrid3, kQuickPoints, kQuickFrameWidth, kQuickFrameHeight};
   s.triangles = 16;
+  s.npr_width = kQuickFrameWidth;
+  s.npr_height = kQuickFrameHeight;
+  s.npr_triangles = {5000};
   return s;
 }
 
@@ -519,6 +522,9 @@ std::vector<bench_case> all_cases(const sizes& s) {
   add_parallel_rows(cases, s);
   add_coherent_rows(cases, s);  // its simd rows are pinned to AVX2 below too
   add_anisotropic_cases(cases, s);  // before the pinned rows: its simd rows get theirs
+#if HUSH_BENCH_HAVE_SCENE
+  add_npr_gabor_cases(cases, s);  // likewise
+#endif
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
   // AVX2 pinned when the machine would pick something better: the targets are AVX2's.
   const std::int64_t usable = hwy::SupportedTargets() & HWY_TARGETS;

@@ -29,6 +29,10 @@ struct sizes {
   // Anisotropic noise: the triangles whose least-squares compensation weights are timed
   // (its frame rows use frame_width x frame_height, a receding plane).
   std::size_t triangles = 1024;
+  // NPR Gabor noise: frames of the `dense` scene with about these many triangles, at
+  // npr_width x npr_height (the 1280x720 and 5k / 50k / 200k triangles).
+  std::size_t npr_width = 1280, npr_height = 720;
+  std::vector<long> npr_triangles = {5000, 50000, 200000};
 };
 sizes full_sizes();
 sizes quick_sizes();  // for `hush bench --quick` and the smoke test: a few seconds in all
@@ -86,6 +90,10 @@ std::vector<bench_case> all_cases(const sizes& s);
 // Anisotropic noise's rows (bench/anisotropic_cases.cpp): a receding plane per frame on
 // scalar, simd and (with OSMesa) glsl, and the least-squares preprocessing per triangle.
 void add_anisotropic_cases(std::vector<bench_case>& cases, const sizes& s);
+
+// NPR Gabor noise's rows (npr_gabor_cases.cpp): frames of the dense scene, scalar and simd
+// (only where the build has the scene library, HUSH_BENCH_HAVE_SCENE).
+void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s);
 
 // Coherent noise's rows (coherent_cases.cpp): scalar and SIMD frames, and the memory-bound
 // pass they are measured against.

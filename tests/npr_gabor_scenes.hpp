@@ -15,9 +15,7 @@
 #include <limits>
 #include <vector>
 
-#include "hush/core/frame.hpp"
-#include "hush/core/triangles.hpp"
-#include "hush/core/vec.hpp"
+#include "hush/hush.hpp"  // the umbrella: tests/simd builds against the single header too
 
 namespace npr_test {
 

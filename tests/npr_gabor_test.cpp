@@ -192,6 +192,70 @@ TEST_CASE("weighting the N < 1 point by N (the paper's words) would lose varianc
   CHECK(4.5 * se < 0.75);
 }
 
+TEST_CASE("thinning: E[g] = N, continuous in N, a point only for u < 2N below N = 1/2") {
+  using lod = hush::npr_gabor_lod;
+  // E_u[g(N, u)] = N by the midpoint rule over u (g is piecewise linear in u: the rule's
+  // error is below 1 / (2 K^2 N) from the ramp's end only).
+  const int k = 200000;
+  for (double n : {0.001, 0.01, 0.1, 0.25, 0.4999, 0.5, 0.5001, 0.7, 0.99, 1.0}) {
+    double sum = 0;
+    for (int i = 0; i < k; ++i) sum += lod::thinned_square(n, (i + 0.5) / k);
+    CHECK(sum / k == doctest::Approx(n).epsilon(1e-6));
+  }
+  // Continuous in N for every u: at N = 1/2 (the pieces meet), N = 1 (weight 1 above) and
+  // N = 0; zero for u >= 2N.
+  for (double u : {0.0, 0.1, 0.37, 0.5, 0.9, 0.999}) {
+    CHECK(std::fabs(lod::thinned_square(0.5 - 1e-12, u) - lod::thinned_square(0.5 + 1e-12, u)) <
+          1e-9);
+    CHECK(std::fabs(lod::thinned_square(1.0 - 1e-12, u) - 1.0) < 1e-9);
+    CHECK(lod::thinned_square(1e-12, u) <= (u == 0.0 ? 1.0 : 0.0));
+    CHECK(lod::thinned_square(0.2, u) == (u >= 0.4 ? 0.0 : doctest::Approx(1.0 - u / 0.4)));
+  }
+  CHECK(lod::thinned_square(std::numeric_limits<double>::quiet_NaN(), 0.5) == 0.0);
+  CHECK(lod::thinned_square(-1.0, 0.0) == 0.0);
+}
+
+TEST_CASE("thinning keeps variance 1 and the spectrum with min(1, 2N) points per triangle") {
+  // As the unthinned test above: variance within 4.5 standard errors (the fourth-cumulant
+  // bound w^4 <= w^2 holds for thinned weights too), autocorrelation at two lags the
+  // kernel's. The points kept are the unthinned ones less those with u >= 2N: given the
+  // unthinned count T, the thinned count is Binomial(T, min(1, 2N)) (u is independent of
+  // the point): within 5 standard deviations.
+  const std::size_t w = 192, h = 192, m = 8;
+  hush::npr_gabor::params p = small_kernel();
+  const hush::npr_gabor plain{p};
+  p.thinning = true;
+  const hush::npr_gabor noise{p};
+  const double se = variance_standard_error(noise, (w - 2 * m) * (h - 2 * m));
+  const hush::dvec2 F{p.frequency * std::cos(p.orientation), p.frequency * std::sin(p.orientation)};
+  const double rho_half = npr_test::rho_at(noise.kernel(), F, 2, 0);
+  const double rho_full = npr_test::rho_at(noise.kernel(), F, 4, 1);
+  for (double n_per_triangle : {0.06, 0.15, 0.35, 0.7}) {
+    const double cell = std::sqrt(2.0 * n_per_triangle / noise.density());
+    const grid_scene sc = npr_test::covering(w, h, cell, noise.kernel().radius() + 1);
+    std::vector<hush::npr_gabor_splat> all, kept;
+    plain.make_splats(sc.frame(), sc.triangles(), all);
+    noise.make_splats(sc.frame(), sc.triangles(), kept);
+    const double t = static_cast<double>(all.size()), q = std::min(1.0, 2.0 * n_per_triangle);
+    MESSAGE("N ", n_per_triangle, ": ", kept.size(), " of ", all.size(), " points kept");
+    CHECK(std::fabs(static_cast<double>(kept.size()) - q * t) <= 5.0 * std::sqrt(t * q * (1 - q)) + 1);
+    const auto img = render(noise, sc);
+    const moments mo = interior_moments(img, w, h, m);
+    double c_half = 0, c_full = 0;
+    for (std::size_t y = m; y < h - m; ++y)
+      for (std::size_t x = m; x < w - m; ++x) {
+        c_half += (img[y * w + x] - mo.mean) * (img[y * w + x + 2] - mo.mean);
+        c_full += (img[y * w + x] - mo.mean) * (img[(y + 1) * w + x + 4] - mo.mean);
+      }
+    c_half /= static_cast<double>(mo.n) * mo.variance;
+    c_full /= static_cast<double>(mo.n) * mo.variance;
+    MESSAGE("variance ", mo.variance, " rho(2,0) ", c_half, " rho(4,1) ", c_full);
+    CHECK(std::fabs(mo.variance - 1.0) < 4.5 * se);
+    CHECK(std::fabs(c_half - rho_half) < 4.5 * se);
+    CHECK(std::fabs(c_full - rho_full) < 4.5 * se);
+  }
+}
+
 TEST_CASE("temporal coherence: a translated surface carries its noise with it") {
   // Points are attached to the triangles (same seed, same barycentrics every frame), the
   // kernel lives in screen space: moving the mesh by (5, -3) pixels moves the image.

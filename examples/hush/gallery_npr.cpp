@@ -25,9 +25,9 @@ namespace hs = hush::scene;
 constexpr std::size_t kW = 128, kH = 96;  // one panel
 constexpr int kFrames = 24;               // 24 frames, 8 cs each (12.5 fps)
 constexpr int kDelay = 8;
-constexpr double kShown = 2.5;            // unit-variance noise shown over +-2.5
-constexpr double kFrequency = 0.125;      // cycles per pixel (NPR Gabor's default)
-constexpr double kBandwidth = 0.08;       // 1/pixel
+constexpr double kShown = 2.5;             // unit-variance noise shown over +-2.5
+constexpr double kFrequency = 0.125;       // cycles per pixel (NPR Gabor's default)
+constexpr double kBandwidth = 0.08;        // 1/pixel
 constexpr std::uint8_t kLevelMask = 0xf8;  // 32 grey levels: smaller GIFs, same look
 
 struct scene_frames {
@@ -96,10 +96,11 @@ std::vector<gray_image> figure1(const std::string& name) {
       for (std::size_t x = 0; x < kW; ++x) {
         const std::size_t px = y * kW + x;
         a[px] = door.value<float>({double(x) + 0.5, double(y) + 0.5});
-        b[px] = texture.value<float>({g.position[3 * px], g.position[3 * px + 1],
-                                      g.position[3 * px + 2]});
+        b[px] = texture.value<float>(
+            {g.position[3 * px], g.position[3 * px + 1], g.position[3 * px + 2]});
       }
-    npr.render(hs::as_frame(g), f.t[std::size_t(i)].view(), hush::image_view<float>(c.data(), kW, kH));
+    npr.render(hush::exec::simd, hs::as_frame(g), f.t[std::size_t(i)].view(),
+               hush::image_view<float>(c.data(), kW, kH));
     gray_image img = side_by_side(side_by_side(shown(a, g), shown(b, g)), shown(c, g));
     for (std::uint8_t& v : img.pixels) v &= kLevelMask;
     frames.push_back(std::move(img));
@@ -116,6 +117,7 @@ gray_image red_channel(const std::vector<std::uint8_t>& rgb) {
 // The four grey styles in a 2 x 2 grid: hatching | stippling; crosshatch | graphite. On the
 // rotate scene only: the walkthrough's ground triangles are huge on screen and carry up to
 // kNprGaborMaxPoints points each, which made this entry take 15 s (two-core machine, load 10).
+// The layers are splatted by exec::simd (within the float budget of the scalar image).
 std::vector<gray_image> styles(const std::string& name) {
   const scene_frames f = render_frames(name);
   hush::npr_gabor::params p;
@@ -123,8 +125,8 @@ std::vector<gray_image> styles(const std::string& name) {
   p.frequency = 0.2;
   p.bandwidth = 0.12;
   std::vector<npr_stylizer> st;
-  for (npr_style s : {npr_style::hatching, npr_style::stippling, npr_style::crosshatch,
-                      npr_style::graphite}) {
+  for (npr_style s :
+       {npr_style::hatching, npr_style::stippling, npr_style::crosshatch, npr_style::graphite}) {
     npr_style_options o;
     o.style = s;
     st.emplace_back(p, o);
@@ -137,7 +139,7 @@ std::vector<gray_image> styles(const std::string& name) {
         reinterpret_cast<const hush::vec3*>(g.normal.data()), kW, kH);
     std::vector<gray_image> panel;
     for (npr_stylizer& s : st) {
-      s.draw(hs::as_frame(g), f.t[std::size_t(i)].view(), normals, rgb);
+      s.draw(true, hs::as_frame(g), f.t[std::size_t(i)].view(), normals, rgb);
       panel.push_back(red_channel(rgb));
     }
     const gray_image top = side_by_side(panel[0], panel[1]);

@@ -75,8 +75,9 @@ hush::frame_view npr_stylizer::needs() const {
   return v;
 }
 
-void npr_stylizer::draw(const hush::frame& f, const hush::triangle_list& tris,
-                        hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb) {
+void npr_stylizer::draw(bool simd, const hush::frame& f, const hush::triangle_list& tris,
+                        hush::image_view<const hush::vec3> normals,
+                        std::vector<std::uint8_t>& rgb) {
   const std::size_t w = f.width(), h = f.height();
   if (o_.normal_field) {
     field_.resize(w * h);
@@ -89,18 +90,21 @@ void npr_stylizer::draw(const hush::frame& f, const hush::triangle_list& tris,
     images_[k].resize(w * h);
     hush::npr_gabor::sources src;
     if (o_.normal_field && !layers_[k].parameters().isotropic)
-      src.orientation = hush::param_source::per_pixel(
-          {(k == 0 ? field_ : field_turned_).data(), w, h});
-    layers_[k].render(f, tris, hush::image_view<float>(images_[k].data(), w, h), src);
+      src.orientation =
+          hush::param_source::per_pixel({(k == 0 ? field_ : field_turned_).data(), w, h});
+    const hush::image_view<float> image(images_[k].data(), w, h);
+    if (simd)
+      layers_[k].render(hush::exec::simd, f, tris, image, src);
+    else
+      layers_[k].render(hush::exec::scalar, f, tris, image, src);
   }
   tone_.resize(w * h);
   for (std::size_t y = 0; y < h; ++y)
     for (std::size_t x = 0; x < w; ++x) {
       const hush::vec3 n = normals(x, y);
-      tone_[y * w + x] = f.object_id(x, y) == 0
-                             ? 1.0f
-                             : static_cast<float>(hush::style::shading_tone(
-                                   {n.x, n.y, n.z}, o_.light, o_.ambient));
+      tone_[y * w + x] = f.object_id(x, y) == 0 ? 1.0f
+                                                : static_cast<float>(hush::style::shading_tone(
+                                                      {n.x, n.y, n.z}, o_.light, o_.ambient));
     }
   rgb.assign(w * h * 3, 255);
   const hush::style::binary binary(o_.softness);

@@ -32,12 +32,12 @@ enum class npr_style { none, hatching, stippling, crosshatch, graphite, watercol
 
 struct npr_style_options {
   npr_style style = npr_style::none;
-  double softness = 0.6;            // smooth-step width, noise sigmas (hush::style::binary)
-  double grain = 0.7;               // graphite's fine layer
-  double gain = 0.35;               // watercolour overlay gain
-  double ambient = 0.15;            // tone where N.L <= 0
+  double softness = 0.6;             // smooth-step width, noise sigmas (hush::style::binary)
+  double grain = 0.7;                // graphite's fine layer
+  double gain = 0.35;                // watercolour overlay gain
+  double ambient = 0.15;             // tone where N.L <= 0
   hush::dvec3 light{0.4, 0.7, 0.6};  // towards the light, world space
-  bool normal_field = true;         // orientation along the projected normal
+  bool normal_field = true;          // orientation along the projected normal
 };
 
 class npr_stylizer {
@@ -47,8 +47,9 @@ class npr_stylizer {
   npr_stylizer(const hush::npr_gabor::params& base, const npr_style_options& o);
   // Frame views the layers read (the G-buffer's normals come separately).
   hush::frame_view needs() const;
-  // Draws one frame as 8-bit RGB (rows top to bottom) into `rgb` (resized).
-  void draw(const hush::frame& f, const hush::triangle_list& tris,
+  // Draws one frame as 8-bit RGB (rows top to bottom) into `rgb` (resized); `simd`: the
+  // layers are splatted by exec::simd (npr_gabor::render), else by exec::scalar.
+  void draw(bool simd, const hush::frame& f, const hush::triangle_list& tris,
             hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb);
 
  private:

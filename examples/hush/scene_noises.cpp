@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -125,12 +126,23 @@ class npr_gabor_noise final : public scene_noise {
       : noise_(prm), style_(style), stylizer_(prm, style) {}
   int channels() const override { return style_.style == npr_style::none ? 1 : 3; }
   std::string unsupported_reason(backend b) const override {
-    if (b != backend::scalar)
-      return "npr-gabor runs on the scalar backend only so far (SIMD and GLSL splatting are "
-             "not implemented yet, issue 11)";
+    if (b == backend::simd && !HUSH_CONFIG_SIMD)
+      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
+    if (b == backend::glsl)
+      return "npr-gabor runs on the scalar and SIMD backends only so far (GLSL splatting is not "
+             "implemented yet, issue 11)";
     return "";
   }
-  void render(gbuffer_sequence& frames, render_sink& sink, backend) override {
+  void render(gbuffer_sequence& frames, render_sink& sink, backend b) override {
+    if (b == backend::simd)
+      run(hush::exec::simd, frames, sink);
+    else
+      run(hush::exec::scalar, frames, sink);
+  }
+
+ private:
+  template <class Exec>
+  void run(const Exec& ex, gbuffer_sequence& frames, render_sink& sink) {
     const std::size_t n = frames.size();
     const std::size_t w = static_cast<std::size_t>(frames.width());
     const std::size_t h = static_cast<std::size_t>(frames.height());
@@ -139,7 +151,7 @@ class npr_gabor_noise final : public scene_noise {
       for (std::size_t i = 0; i < n; ++i) {
         const hush::frame f = frames.frame(i, stylizer_.needs());
         const hush::triangle_list t = frames.triangles(i);
-        stylizer_.draw(f, t, frames.normals(i), rgb);
+        stylizer_.draw(std::is_same<Exec, hush::exec::simd_t>::value, f, t, frames.normals(i), rgb);
         sink.write_png(i, rgb, w, h);
         sink.progress("drawing", i + 1, n);
       }
@@ -149,13 +161,12 @@ class npr_gabor_noise final : public scene_noise {
     for (std::size_t i = 0; i < n; ++i) {
       const hush::frame f = frames.frame(i, noise_.needs());
       const hush::triangle_list t = frames.triangles(i);
-      noise_.render(f, t, hush::image_view<float>(plane.data(), w, h));
+      noise_.render(ex, f, t, hush::image_view<float>(plane.data(), w, h));
       sink.write(i, {hush::image_view<const float>(plane.data(), w, h)});
       sink.progress("splatting", i + 1, n);
     }
   }
 
- private:
   hush::npr_gabor noise_;
   npr_style_options style_;
   npr_stylizer stylizer_;
@@ -220,6 +231,7 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
     if (f == "--no-depth-test") p.depth_test = false;
     if (f == "--soft-depth") p.soft_depth = true;
     if (f == "--two-sided") p.cull_back_faces = false;
+    if (f == "--thin") p.thinning = true;
   }
   npr_style_options s;
   if (const std::string* v = find_value(given, "--style"))
@@ -230,10 +242,9 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
                                        {"graphite", npr_style::graphite},
                                        {"watercolor", npr_style::watercolor}});
   const bool styled = s.style != npr_style::none;
-  for (const char* o : {"--softness", "--grain", "--gain", "--ambient", "--light",
-                        "--orientation-field"})
-    if (!styled && find_value(given, o))
-      throw usage_error(std::string(o) + " needs --style");
+  for (const char* o :
+       {"--softness", "--grain", "--gain", "--ambient", "--light", "--orientation-field"})
+    if (!styled && find_value(given, o)) throw usage_error(std::string(o) + " needs --style");
   number("--softness", s.softness);
   number("--grain", s.grain);
   number("--gain", s.gain);
@@ -244,8 +255,8 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
     s.light = {l[0], l[1], l[2]};
   }
   if (const std::string* v = find_value(given, "--orientation-field"))
-    s.normal_field = parse_choice<bool>("--orientation-field", *v,
-                                        {{"normal", true}, {"constant", false}});
+    s.normal_field =
+        parse_choice<bool>("--orientation-field", *v, {{"normal", true}, {"constant", false}});
   return std::make_unique<npr_gabor_noise>(p, s);
 }
 
@@ -309,7 +320,8 @@ const std::vector<render_entry>& render_table() {
            {"--grain", "g", "graphite: weight of the fine layer, 0 ... 8 (default 0.7)", "grain"},
            {"--gain", "g", "watercolor: overlay gain of the noise, 0 ... 4 (default 0.35)", "gain"},
            {"--ambient", "k", "style: tone where N.L <= 0, 0 ... 1 (default 0.15)"},
-           {"--light", "x,y,z", "style: direction towards the light, world space (default 0.4,0.7,0.6)"},
+           {"--light", "x,y,z",
+            "style: direction towards the light, world space (default 0.4,0.7,0.6)"},
            {"--orientation-field", "normal|constant",
             "style: orientation along the projected normal (default) or --orientation"},
        },
@@ -320,6 +332,9 @@ const std::vector<render_entry>& render_table() {
            {"--no-depth-test", "", "splat across depth discontinuities"},
            {"--soft-depth", "", "fade kernels between 1 and 2 depth tolerances instead of a cut"},
            {"--two-sided", "", "back-facing triangles emit points too"},
+           {"--thin", "",
+            "thin the points of triangles with N < 1 (same variance and spectrum, fewer "
+            "points: faster on dense meshes)"},
        },
        make_npr_gabor},
       anisotropic_render_entry(),

@@ -34,7 +34,15 @@
 //    continuous in N: alpha -> 1 as N -> 2M from below, where the next level
 //    starts with the same 2M points at weight 1; sqrt(N) -> 1 = the weight
 //    of the single point at N = 1 (alpha(1) = 0). No pops at the switches.
-//    N is clamped to kNprGaborMaxPoints (constants.hpp).
+//    N is clamped to kNprGaborMaxPoints (constants.hpp). With params::thinning
+//    the N < 1 point is kept only for the triangle's own uniform u < 2N (N <=
+//    1/2), with a weight fading in continuously (npr_gabor_lod::thinned_square:
+//    E[w^2] = N as above, so the same variance and spectrum, without pops), so
+//    dense meshes cost min(1, 2N) points per triangle instead of 1.
+//  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
+//    record per point (position, F, radius, weight, plane, ids, pixel range);
+//    splat adds the records' kernels, on exec::scalar or exec::simd (screen
+//    tiles, hush/simd/npr_gabor-inl.h, bit for bit scalar under HUSH_STRICT_FP).
 //  - amplitudes v_i uniform in (-1, 1) (16-bit symmetric, E[v^2] =
 //    (1 - 2^-32) / 3); kernel g of gabor_kernel<2> (bandwidth a, truncation
 //    t, C1 taper) with F_i = F0 (cos theta, sin theta), theta = orientation
@@ -89,7 +97,7 @@
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-// Not yet here (issue 11): SIMD and GLSL.
+// Not yet here (issue 11): GLSL.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -99,6 +107,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -112,6 +121,8 @@
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
+#include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/exec.hpp"
 #include "hush/gabor.hpp"
 #include "hush/gabor_kernel.hpp"
 
@@ -144,6 +155,25 @@ struct npr_gabor_lod {
     return l;
   }
   double weight(std::uint32_t j) const { return j < first ? first_weight : second_weight; }
+
+  // Thinning of the N < 1 point (npr_gabor::params::thinning): its squared
+  // weight g(N, u) for the triangle's own uniform u in [0, 1):
+  //   g = max(0, 1 - u / (2N))   for 0 < N <= 1/2 (a point for u < 2N only),
+  //   g = 1 - 2 (1 - N) u        for 1/2 <= N <= 1 (always a point),
+  // 0 for N <= 0 or NaN, 1 for N >= 1. E_u[g] = N on both pieces (the area
+  // under a ramp from 1 to 0 over [0, 2N] is N; 1 - (1 - N) = N), which is
+  // all the variance and the spectrum see (Campbell's theorem: the density of
+  // sum w^2 per area, amplitudes independent of u), as the unthinned weight
+  // sqrt(N) has it. For fixed u, g is continuous in N (both pieces are 1 - u
+  // at N = 1/2, and 1 at N = 1, the weight the single point keeps above), so
+  // a point fades in as its triangle grows: no pops. Expected points per
+  // triangle min(1, 2N) instead of 1.
+  static double thinned_square(double n, double u) {
+    if (!(n > 0.0)) return 0.0;
+    if (n >= 1.0) return 1.0;
+    if (n <= 0.5) return std::max(0.0, 1.0 - u / (2.0 * n));
+    return 1.0 - 2.0 * (1.0 - n) * u;
+  }
 };
 
 class npr_gabor {
@@ -162,6 +192,10 @@ class npr_gabor {
     bool soft_depth = false;
     double depth_tolerance = detail::constants::kNprGaborDefaultDepthTolerance;
     bool cull_back_faces = true;
+    // Thin the points of triangles with N < 1 (npr_gabor_lod::thinned_square):
+    // same variance and spectrum, min(1, 2N) points per triangle instead of 1,
+    // so that the cost follows N' and the covered pixels, not the triangle count.
+    bool thinning = false;
   };
 
   // Throws hush::invalid_argument naming the parameter and its range:
@@ -220,43 +254,42 @@ class npr_gabor {
     param_source impulses;     // N'; not per pixel
   };
 
-  // Adds nothing, overwrites `out` (frame-sized; float, or double for the
-  // reference) with the noise of this frame. Throws hush::invalid_argument
-  // when the frame lacks a view needs() lists or is malformed (frame::validate),
-  // when the triangle list is malformed (triangle_list::validate), when out's
-  // size differs from the frame's, or when a source is malformed
-  // (param_source::validate: "frequency[i]", "orientation[i]", "bandwidth[i]",
-  // "impulses[i]", a field's size; a per-pixel bandwidth or impulses source).
-  // Never reads outside the views.
+  // Overwrites `out` (frame-sized; float, or double for the reference) with
+  // the noise of this frame: stage 1 (make_splats) then stage 2 (the kernels
+  // added per pixel in record order). `ex` picks stage 2's backend:
+  // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
+  // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
+  // the scalar loop where the build has no SIMD). Throws
+  // hush::invalid_argument when the frame lacks a view needs() lists or is
+  // malformed (frame::validate), when the triangle list is malformed
+  // (triangle_list::validate), when out's size differs from the frame's, or
+  // when a source is malformed (param_source::validate: "frequency[i]",
+  // "orientation[i]", "bandwidth[i]", "impulses[i]", a field's size; a
+  // per-pixel bandwidth or impulses source). Never reads outside the views.
+  template <class Exec, class T>
+  void render(const Exec& ex, const frame& f, const triangle_list& tris, const image_view<T>& out,
+              const sources& src = {}) const {
+    validate(f, tris, src);
+    check_out(f, out);
+    std::vector<npr_gabor_splat> splats;
+    make_splats(f, tris, splats, src);
+    splat(ex, f, splats.data(), splats.size(), out);
+  }
   template <class T>
   void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
               const sources& src = {}) const {
-    namespace c = detail::constants;
-    const char* where = "hush::npr_gabor::render";
-    f.validate(where, needs(), c::kNprGaborMaxImageSide);
-    tris.validate(where, c::kNprGaborMaxTriangles);
-    src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
-                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
-    src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
-                             std::numeric_limits<double>::max(), "finite (radians)", f.width(),
-                             f.height());
-    src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
-                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
-    src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
-                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
-    for (const auto& [name, s] : {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
-                                  {"impulses", &src.impulses}})
-      if (s->which() == param_source::kind::per_pixel)
-        detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
-                                   "constant or per object (it sets the kernel radius or the "
-                                   "density a triangle's point count is made from)");
-    if (out.width != f.width() || out.height != f.height() || !out.data)
-      detail::throw_out_of_range(where, "out size",
-                                 std::to_string(out.width) + "x" + std::to_string(out.height),
-                                 "the frame's size (non-null)");
-    for (std::size_t y = 0; y < out.height; ++y)
-      std::fill(out.row(y), out.row(y) + out.width, T(0));
-    std::vector<detail::gabor_axis<T>> columns;
+    render(exec::scalar, f, tris, out, src);
+  }
+
+  // Stage 1: replaces `splats` with this frame's records (npr_gabor_splat),
+  // triangle by triangle in list order, each triangle's points in stream
+  // order, each point with its own kernel parameters from `src`; points whose
+  // pixel range misses the image are left out. Throws as render does for the
+  // frame, the triangles and the sources.
+  void make_splats(const frame& f, const triangle_list& tris, std::vector<npr_gabor_splat>& splats,
+                   const sources& src = {}) const {
+    validate(f, tris, src);
+    splats.clear();
     const point_parameters pp(*this, src);
     // Per-object a or N': one noise per table entry with that object's kernel,
     // density and scale (same seed and constants: the same points).
@@ -275,10 +308,43 @@ class npr_gabor {
     for (std::size_t t = 0; t < tris.triangles(); ++t) {
       const std::uint32_t o = tris.object_of(t);
       if (o < objects)
-        per_object[o].splat_triangle(f, tris, t, out, per_object_pp[o], columns);
+        per_object[o].triangle_splats(f, tris, t, splats, per_object_pp[o]);
       else
-        splat_triangle(f, tris, t, out, pp, columns);
+        triangle_splats(f, tris, t, splats, pp);
     }
+  }
+
+  // Stage 2: overwrites `out` (frame-sized) with the sum of the `count`
+  // records' kernels at `splats`, each fragment passing this noise's
+  // visibility tests against frame f (validated by make_splats; records with
+  // a pixel range outside the frame are the caller's error). Backends as
+  // for render.
+  template <class Exec, class T>
+  void splat(const Exec&, const frame& f, const npr_gabor_splat* splats, std::size_t count,
+             const image_view<T>& out) const {
+    check_out(f, out);
+    for (std::size_t y = 0; y < out.height; ++y)
+      std::fill(out.row(y), out.row(y) + out.width, T(0));
+    detail::npr_gabor_splat_job job;
+    job.splats = splats;
+    job.count = count;
+    job.depth = f.depth;
+    job.object_id = f.object_id;
+    job.triangle_id = f.triangle_id;
+    job.object_test = p_.object_test;
+    job.triangle_test = p_.triangle_test;
+    job.depth_test = p_.depth_test;
+    job.soft_depth = p_.soft_depth;
+    job.depth_tolerance = p_.depth_tolerance;
+    job.envelope_exponent = kernel_.envelope_exponent();
+#if HUSH_CONFIG_SIMD
+    if constexpr (std::is_same<Exec, exec::simd_t>::value && std::is_same<T, float>::value) {
+      simd::npr_gabor_splat(job, out);
+      return;
+    }
+#endif
+    std::vector<detail::gabor_axis<T>> columns;
+    detail::npr_gabor_splat_scalar(job, out, columns);
   }
 
   // int g_F^2 for |F| = frequency, as render normalises a point of a
@@ -351,10 +417,47 @@ class npr_gabor {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
 
-  template <class T>
-  void splat_triangle(const frame& f, const triangle_list& tris, std::size_t t,
-                      const image_view<T>& out, const point_parameters& pp,
-                      std::vector<detail::gabor_axis<T>>& columns) const {
+  // The triangle's thinning uniform in [0, 1): the last two words of its point stream
+  // (2^32 - 2 and 2^32 - 1), which no point reads (points take words 0 ... 2
+  // kNprGaborMaxPoints - 1), so it is independent of every point's position and amplitude.
+  double thinning_uniform(std::uint32_t object, std::uint32_t triangle) const {
+    rng r(triangle_key(object, triangle), detail::constants::kNprGaborStream);
+    r.skip(0xFFFFFFFEu);
+    return r.uniform<double>();
+  }
+
+  void validate(const frame& f, const triangle_list& tris, const sources& src) const {
+    namespace c = detail::constants;
+    const char* where = "hush::npr_gabor::render";
+    f.validate(where, needs(), c::kNprGaborMaxImageSide);
+    tris.validate(where, c::kNprGaborMaxTriangles);
+    src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
+                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
+    src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::max(), "finite (radians)", f.width(),
+                             f.height());
+    src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
+                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
+    src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
+                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
+    for (const auto& [name, s] : {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
+                                  {"impulses", &src.impulses}})
+      if (s->which() == param_source::kind::per_pixel)
+        detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
+                                   "constant or per object (it sets the kernel radius or the "
+                                   "density a triangle's point count is made from)");
+  }
+  template <class Out>
+  static void check_out(const frame& f, const Out& out) {
+    if (out.width != f.width() || out.height != f.height() || !out.data)
+      detail::throw_out_of_range("hush::npr_gabor::render", "out size",
+                                 std::to_string(out.width) + "x" + std::to_string(out.height),
+                                 "the frame's size (non-null)");
+  }
+
+  // Stage 1 for triangle t: appends its points' records.
+  void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
+                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -371,13 +474,13 @@ class npr_gabor {
     if (p_.cull_back_faces && !(cross < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
     const double r = kernel_.radius();
-    const double w = static_cast<double>(out.width), h = static_cast<double>(out.height);
+    const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
     const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
                  hi_x = std::max({s[0].x, s[1].x, s[2].x});
     const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
                  hi_y = std::max({s[0].y, s[1].y, s[2].y});
     if (hi_x + r < 0.0 || lo_x - r > w || hi_y + r < 0.0 || lo_y - r > h) return;
-    const npr_gabor_lod lod = npr_gabor_lod::of(lambda_ * 0.5 * std::fabs(cross));
+    const double n = lambda_ * 0.5 * std::fabs(cross);
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
     const double inv = 1.0 / cross;
@@ -385,6 +488,11 @@ class npr_gabor {
     const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
     const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;
     const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
+    npr_gabor_lod lod = npr_gabor_lod::of(n);
+    if (p_.thinning && n < 1.0 && lod.count == 1) {
+      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
+      if (!(lod.first_weight > 0.0)) return;
+    }
     for (std::uint32_t j = 0; j < lod.count; ++j) {
       const point pt = point_of(object, id, j);
       const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
@@ -392,56 +500,30 @@ class npr_gabor {
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
       const point_parameters::kernel k = pp.at(object, at, pt.angle);
-      splat_point(f, out, at, k.F, lod.weight(j) * pt.amplitude * k.scale, object, id, q0, qx,
-                  qy, columns);
-    }
-  }
-
-  template <class T>
-  void splat_point(const frame& f, const image_view<T>& out, const dvec2& at, const dvec2& F,
-                   double weight, std::uint32_t object, std::uint32_t id, double q0, double qx,
-                   double qy, std::vector<detail::gabor_axis<T>>& columns) const {
-    namespace c = detail::constants;
-    const double r = kernel_.radius(), inv_r = 1.0 / r;
-    // Pixel centres x + 1/2 within r of the point, clamped to the image.
-    const double wmax = static_cast<double>(out.width) - 1.0;
-    const double hmax = static_cast<double>(out.height) - 1.0;
-    const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
-    const double x1 = std::min(std::floor(at.x + r - 0.5), wmax);
-    const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
-    const double y1 = std::min(std::floor(at.y + r - 0.5), hmax);
-    if (x0 > x1 || y0 > y1) return;
-    const T neg_a = T(-kernel_.envelope_exponent()), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
-    const T phi_x = T(F.x * r), phi_y = T(F.y * r);
-    const std::size_t ix0 = static_cast<std::size_t>(x0), ix1 = static_cast<std::size_t>(x1);
-    columns.resize(ix1 - ix0 + 1);
-    for (std::size_t x = ix0; x <= ix1; ++x)
-      columns[x - ix0] = detail::gabor_axis_factors(
-          T((static_cast<double>(x) + 0.5 - at.x) * inv_r), neg_a, phi_x);
-    const double tol = p_.depth_tolerance;
-    for (std::size_t y = static_cast<std::size_t>(y0); y <= static_cast<std::size_t>(y1); ++y) {
-      const detail::gabor_axis<T> ay = detail::gabor_axis_factors(
-          T((static_cast<double>(y) + 0.5 - at.y) * inv_r), neg_a, phi_y);
-      const detail::gabor_row<T> row = detail::gabor_row_of(T(weight), ay);
-      T* o = out.row(y);
-      for (std::size_t x = ix0; x <= ix1; ++x) {
-        const detail::gabor_axis<T>& ax = columns[x - ix0];
-        if (!(ax.d2 + row.d2 < T(1))) continue;
-        T vis = T(1);
-        if (p_.object_test && f.object_id(x, y) != object) continue;
-        if (p_.triangle_test && f.triangle_id(x, y) != id) continue;
-        if (p_.depth_test) {
-          const double zp = static_cast<double>(f.depth(x, y));
-          if (!(zp > 0.0) || !std::isfinite(zp)) continue;
-          // Relative difference of the pixel's depth and the plane's there.
-          const double plane =
-              q0 + qx * (static_cast<double>(x) + 0.5) + qy * (static_cast<double>(y) + 0.5);
-          const double rel = std::fabs(zp * plane - 1.0);
-          if (!(rel <= (p_.soft_depth ? 2.0 * tol : tol))) continue;
-          if (p_.soft_depth && rel > tol) vis = T(2.0 - rel / tol);
-        }
-        o[x] += vis * detail::gabor_pair(ax, row, taper_k);
-      }
+      // Pixel centres x + 1/2 within r of the point, clamped to the image.
+      const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
+      const double x1 = std::min(std::floor(at.x + r - 0.5), w - 1.0);
+      const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
+      const double y1 = std::min(std::floor(at.y + r - 0.5), h - 1.0);
+      if (x0 > x1 || y0 > y1) continue;
+      npr_gabor_splat rec;
+      rec.x = at.x;
+      rec.y = at.y;
+      rec.fx = k.F.x;
+      rec.fy = k.F.y;
+      rec.bandwidth = p_.bandwidth;
+      rec.radius = r;
+      rec.weight = lod.weight(j) * pt.amplitude * k.scale;
+      rec.q0 = q0;
+      rec.qx = qx;
+      rec.qy = qy;
+      rec.object = object;
+      rec.triangle = id;
+      rec.x0 = static_cast<std::int32_t>(x0);
+      rec.x1 = static_cast<std::int32_t>(x1);
+      rec.y0 = static_cast<std::int32_t>(y0);
+      rec.y1 = static_cast<std::int32_t>(y1);
+      splats.push_back(rec);
     }
   }
 

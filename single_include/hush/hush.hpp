@@ -4368,97 +4368,93 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 
 #endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
 // ---- end hush/detail/coherent_kernel.hpp
-// ---- begin hush/gabor.hpp
+// ---- begin hush/detail/npr_gabor_splat.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
-// sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
-// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
-// weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
-// analytic anti-aliasing.
-//
-//   hush::gabor<2>::params prm;                  // isotropic, F0 = 1, a = 0.8, N' = 16
-//   prm.kind = hush::gabor_kind::anisotropic;
-//   prm.orientation = 0.25 * 3.14159;            // omega0, radians
-//   hush::gabor<2> noise{prm};
-//   float v = noise(hush::vec2{x, y});                              // unit variance
-//   float f = noise.sample(hush::vec2{x, y},                        // filtered over a pixel
-//                          hush::footprint<2>::from_derivatives(dpdx, dpdy));
-//   hush::gabor<3> solid{hush::gabor<3>::params{}};
-//   float s = solid.sample(p, normal, fp);       // surface noise (sec. 4.3)
-//
-// The noise (paper sec. 3.2, eq. 6): n(x) = scale sum_i w_i g_{F_i}(x - x_i),
-//  - impulses x_i: a Poisson process of density lambda = N' / (V_D r^D), so
-//    that N' kernels overlap a point on average (N' = `impulses`; V_D the
-//    volume of the unit ball, r the kernel radius). Space is cut into cells of
-//    side r; cell c's impulses come from its own stream
-//    hush::rng(lattice_hash(key, c), kGaborSolidStream), key = seed_key(seed):
-//    the count from the first word through hush::poisson_table (integer
-//    comparisons, so every backend draws the same counts), then per impulse
-//    16-bit halves of the next words: position in the cell, weight, then the
-//    orientation and frequency its kind draws (gabor_marks below). Cells are
-//    32-bit (core/lattice.hpp): any seed, any cell, period 2^32 cells.
-//  - weights w_i uniform in (-1, 1) (symmetric 16-bit values, E[w^2] =
-//    (1 - 2^-32) / 3), so the noise has mean 0;
-//  - kinds (paper sec. 3.3): anisotropic (every F_i = F0 omega0), isotropic
-//    (omega_i uniform on the circle or sphere), hybrid (omega_i uniform in an
-//    orientation range around omega0 of width orientation_spread: an arc in 2D,
-//    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
-//    frequency_spread / 2).
-//
-// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
-//  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
-//    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
-//    make it independent of the count distribution beyond its mean, which is
-//    the Poisson table's exact mean), with the kernel energy integrated by
-//    quadrature (exact, not the paper's approximation K^2 / 4a^2).
-//  - power spectrum: lambda E[w^2] E[|g^_F(f)|^2] scale^2 (paper eq. 8),
-//    power_spectrum(f); isotropic noise's is a ring at |f| = F0, anisotropic
-//    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
-//  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
-//    magnitude); the observed maximum is far smaller (tests).
-//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
-//    analytic derivative.
-//  - float evaluation is within 2^-21 (1 + 2 pi Phi) sqrt(N') ... see
-//    float_budget(); measured in tests/gabor_test.cpp.
-//  - domain: every finite coordinate (positions are split into cell and
-//    fraction in double, so precision does not degrade far from the origin);
-//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
-//
-// Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
-// convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
-// (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
-// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
-// kept within the kernel's support. A point footprint gives exactly the
-// unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
-// HARD_CASES row 12) gives a finite result, continuous in the footprint, which
-// tends to the mean 0 as the footprint grows.
-//
-// Surface noise (3D, paper sec. 4.3): sample(p, normal[, footprint]) evaluates
-// 2D kernels in the tangent plane of the surface at p. The impulses of a
-// second 3D process (stream kGaborSurfaceStream, cells of side r sqrt(3/2))
-// that lie in the slab |<n, x - x_i>| < h = r / sqrt 2 contribute the 2D
-// kernel of their projection onto the plane, weighted by the taper of their
-// distance to it. The projection of a Poisson process in a slab is a 2D
-// Poisson process, so on a plane the surface noise has exactly the 2D noise's
-// spectrum and unit variance, with no slicing of a 3D spectrum. Isotropic and
-// hybrid impulses carry a 3D direction whose projection (normalised) is their
-// orientation in the plane (uniform on the circle for isotropic noise, for
-// every normal); anisotropic noise projects omega0 without normalising
-// (frequency F0 |P omega0|: the asked-for spectrum where omega0 lies in the
-// tangent plane, continuous everywhere). Footprints are projected onto the
-// tangent plane. A zero normal evaluates the solid noise; a non-finite normal
-// gives NaN.
-#ifndef HUSH_GABOR_HPP
-#define HUSH_GABOR_HPP
+// The splat list of NPR Gabor noise (hush/npr_gabor.hpp) and its second
+// stage, the splatting. npr_gabor::render runs in two stages:
+//  1. npr_gabor::make_splats: per triangle, its points (paper sec. 3.3) become
+//     records, one per point, in triangle order then point order, each with
+//     everything the kernel and the visibility tests need (its own frequency
+//     vector and radius, so parameters may differ per splat);
+//  2. splatting: every record's kernel is added at the pixel centres of its
+//     range that pass the tests (sec. 3.4), per pixel in record order.
+// Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
+// or double) and once in lanes (hush/simd/npr_gabor-inl.h, float), which
+// repeats it operation by operation.
+#ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+#define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
 
-#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+// ---- begin hush/gabor_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
+//
+//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
+//
+// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
+// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
+// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
+// what NPR Gabor noise splats, so it lives here once, for both:
+//
+//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
+//   double r = k.radius();                               // support radius
+//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
+//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
+//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
+//
+// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
+// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
+// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
+// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
+// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
+// every noise built on it are C1:
+//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
+//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
+//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
+//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
+//     and F >> a (tests/gabor_kernel_test.cpp).
+//
+// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
+// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
+// frequency is Phi = F r cycles per cell. The float path is separable:
+//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
+//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
+// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
+// share each axis's factors between samples and SIMD repeats it bit for bit.
+// value<double> is the reference (C library exp, sin, cos); float values are
+// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
+// measured 3e-7 (tests/gabor_kernel_test.cpp).
+//
+// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
+// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
+// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
+// (untruncated_power_spectrum). The tapered kernel's transform is
+// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
+// envelope, computed by quadrature (envelope_transform, power_spectrum,
+// energy): exact to ~1e-13 relative, no closed form exists.
+//
+// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
+// covariance Sigma (noise units) is again a Gabor kernel,
+//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
+//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
+//   Q = (I + 2 pi a^2 Sigma)^-1,
+// derived in docs/gabor.md (complete the square in the product of the two
+// transforms). gabor_filter<D> computes Q and the constants from a footprint;
+// the taper is kept at the unfiltered support.
+#ifndef HUSH_GABOR_KERNEL_HPP
+#define HUSH_GABOR_KERNEL_HPP
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
-#include <memory>
-#include <string>
-#include <vector>
+#include <type_traits>
 
 // ---- begin hush/detail/elementary.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
@@ -4682,72 +4678,6 @@ inline double bessel_j0(double z) {
 
 #endif  // HUSH_DETAIL_QUADRATURE_HPP
 // ---- end hush/detail/quadrature.hpp
-// ---- begin hush/gabor_kernel.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
-// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
-//
-//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
-//
-// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
-// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
-// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
-// what NPR Gabor noise splats, so it lives here once, for both:
-//
-//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
-//   double r = k.radius();                               // support radius
-//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
-//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
-//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
-//
-// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
-// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
-// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
-// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
-// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
-// every noise built on it are C1:
-//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
-//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
-//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
-//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
-//     and F >> a (tests/gabor_kernel_test.cpp).
-//
-// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
-// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
-// frequency is Phi = F r cycles per cell. The float path is separable:
-//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
-//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
-// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
-// share each axis's factors between samples and SIMD repeats it bit for bit.
-// value<double> is the reference (C library exp, sin, cos); float values are
-// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
-// measured 3e-7 (tests/gabor_kernel_test.cpp).
-//
-// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
-// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
-// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
-// (untruncated_power_spectrum). The tapered kernel's transform is
-// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
-// envelope, computed by quadrature (envelope_transform, power_spectrum,
-// energy): exact to ~1e-13 relative, no closed form exists.
-//
-// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
-// covariance Sigma (noise units) is again a Gabor kernel,
-//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
-//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
-//   Q = (I + 2 pi a^2 Sigma)^-1,
-// derived in docs/gabor.md (complete the square in the product of the two
-// transforms). gabor_filter<D> computes Q and the constants from a footprint;
-// the taper is kept at the unfiltered support.
-#ifndef HUSH_GABOR_KERNEL_HPP
-#define HUSH_GABOR_KERNEL_HPP
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <type_traits>
-
 
 namespace hush {
 namespace detail {
@@ -5120,6 +5050,190 @@ struct gabor_filter {
 
 #endif  // HUSH_GABOR_KERNEL_HPP
 // ---- end hush/gabor_kernel.hpp
+
+namespace hush {
+
+// One point's kernel, ready to splat (stage 1's output). The kernel is
+// weight g_F(p - (x, y)) with g gabor_kernel<2>'s tapered kernel of radius
+// `radius` (from the bandwidth a: r = sqrt(ln(1/t) / pi) / a) and frequency
+// vector F = (fx, fy) = F0 (cos omega, sin omega); it covers the pixels
+// x0 ... x1, y0 ... y1 (inclusive, clamped to the image, never empty): the
+// centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
+// qy y in screen pixels, gives the depth test its reference depth at every
+// pixel (the point's own depth is 1 / (q0 + qx x + qy y)).
+struct npr_gabor_splat {
+  double x = 0, y = 0;            // position, pixels (x right, y down)
+  double fx = 0, fy = 0;          // F, cycles per pixel
+  double bandwidth = 0;           // a, 1/pixel
+  double radius = 0;              // r, pixels
+  double weight = 0;              // w_i v_i scale (paper eq. 1, LOD weight eq. 4)
+  double q0 = 0, qx = 0, qy = 0;  // the triangle's plane of 1/z
+  std::uint32_t object = 0, triangle = 0;
+  std::int32_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // pixel range, inclusive
+};
+
+namespace detail {
+
+// Everything stage 2 reads: the records, the frame's views the enabled tests
+// need (the others may be empty), the tests, and the output.
+struct npr_gabor_splat_job {
+  const npr_gabor_splat* splats = nullptr;
+  std::size_t count = 0;
+  image_view<const float> depth;
+  image_view<const std::uint32_t> object_id, triangle_id;
+  bool object_test = true, triangle_test = false, depth_test = true, soft_depth = false;
+  double depth_tolerance = 0;
+  double envelope_exponent = 0;  // A = ln(1/t): the envelope is e^{-A d^2}, d in radii
+};
+
+// The visibility factor of a fragment at pixel (x, y) of splat s (sec. 3.4):
+// 0 where a test fails, 1 where all pass, 2 - rel / tol in the soft band.
+template <class T>
+HUSH_INLINE T npr_gabor_visibility(const npr_gabor_splat_job& j, const npr_gabor_splat& s,
+                                   std::size_t x, std::size_t y) {
+  if (j.object_test && j.object_id(x, y) != s.object) return T(0);
+  if (j.triangle_test && j.triangle_id(x, y) != s.triangle) return T(0);
+  if (!j.depth_test) return T(1);
+  const double zp = static_cast<double>(j.depth(x, y));
+  if (!(zp > 0.0) || !std::isfinite(zp)) return T(0);
+  // Relative difference of the pixel's depth and the plane's there.
+  const double plane =
+      s.q0 + s.qx * (static_cast<double>(x) + 0.5) + s.qy * (static_cast<double>(y) + 0.5);
+  const double rel = std::fabs(zp * plane - 1.0);
+  const double tol = j.depth_tolerance;
+  if (!(rel <= (j.soft_depth ? 2.0 * tol : tol))) return T(0);
+  return j.soft_depth && rel > tol ? T(2.0 - rel / tol) : T(1);
+}
+
+// Stage 2, scalar: adds every record's kernel to `out` (frame-sized), per
+// pixel in record order. `columns` is scratch.
+template <class T>
+void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& out,
+                            std::vector<gabor_axis<T>>& columns) {
+  namespace c = constants;
+  const T neg_a = T(-j.envelope_exponent), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
+  for (std::size_t i = 0; i < j.count; ++i) {
+    const npr_gabor_splat& s = j.splats[i];
+    const double inv_r = 1.0 / s.radius;
+    const T phi_x = T(s.fx * s.radius), phi_y = T(s.fy * s.radius);
+    const std::size_t ix0 = static_cast<std::size_t>(s.x0), ix1 = static_cast<std::size_t>(s.x1);
+    columns.resize(ix1 - ix0 + 1);
+    for (std::size_t x = ix0; x <= ix1; ++x)
+      columns[x - ix0] =
+          gabor_axis_factors(T((static_cast<double>(x) + 0.5 - s.x) * inv_r), neg_a, phi_x);
+    for (std::size_t y = static_cast<std::size_t>(s.y0); y <= static_cast<std::size_t>(s.y1); ++y) {
+      const gabor_axis<T> ay =
+          gabor_axis_factors(T((static_cast<double>(y) + 0.5 - s.y) * inv_r), neg_a, phi_y);
+      const gabor_row<T> row = gabor_row_of(T(s.weight), ay);
+      T* o = out.row(y);
+      for (std::size_t x = ix0; x <= ix1; ++x) {
+        const gabor_axis<T>& ax = columns[x - ix0];
+        if (!(ax.d2 + row.d2 < T(1))) continue;
+        const T vis = npr_gabor_visibility<T>(j, s, x, y);
+        if (vis == T(0)) continue;  // adding vis * g = +-0 would change nothing
+        o[x] += vis * gabor_pair(ax, row, taper_k);
+      }
+    }
+  }
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+// ---- end hush/detail/npr_gabor_splat.hpp
+// ---- begin hush/gabor.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
+// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
+// weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
+// analytic anti-aliasing.
+//
+//   hush::gabor<2>::params prm;                  // isotropic, F0 = 1, a = 0.8, N' = 16
+//   prm.kind = hush::gabor_kind::anisotropic;
+//   prm.orientation = 0.25 * 3.14159;            // omega0, radians
+//   hush::gabor<2> noise{prm};
+//   float v = noise(hush::vec2{x, y});                              // unit variance
+//   float f = noise.sample(hush::vec2{x, y},                        // filtered over a pixel
+//                          hush::footprint<2>::from_derivatives(dpdx, dpdy));
+//   hush::gabor<3> solid{hush::gabor<3>::params{}};
+//   float s = solid.sample(p, normal, fp);       // surface noise (sec. 4.3)
+//
+// The noise (paper sec. 3.2, eq. 6): n(x) = scale sum_i w_i g_{F_i}(x - x_i),
+//  - impulses x_i: a Poisson process of density lambda = N' / (V_D r^D), so
+//    that N' kernels overlap a point on average (N' = `impulses`; V_D the
+//    volume of the unit ball, r the kernel radius). Space is cut into cells of
+//    side r; cell c's impulses come from its own stream
+//    hush::rng(lattice_hash(key, c), kGaborSolidStream), key = seed_key(seed):
+//    the count from the first word through hush::poisson_table (integer
+//    comparisons, so every backend draws the same counts), then per impulse
+//    16-bit halves of the next words: position in the cell, weight, then the
+//    orientation and frequency its kind draws (gabor_marks below). Cells are
+//    32-bit (core/lattice.hpp): any seed, any cell, period 2^32 cells.
+//  - weights w_i uniform in (-1, 1) (symmetric 16-bit values, E[w^2] =
+//    (1 - 2^-32) / 3), so the noise has mean 0;
+//  - kinds (paper sec. 3.3): anisotropic (every F_i = F0 omega0), isotropic
+//    (omega_i uniform on the circle or sphere), hybrid (omega_i uniform in an
+//    orientation range around omega0 of width orientation_spread: an arc in 2D,
+//    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
+//    frequency_spread / 2).
+//
+// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
+//  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
+//    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
+//    make it independent of the count distribution beyond its mean, which is
+//    the Poisson table's exact mean), with the kernel energy integrated by
+//    quadrature (exact, not the paper's approximation K^2 / 4a^2).
+//  - power spectrum: lambda E[w^2] E[|g^_F(f)|^2] scale^2 (paper eq. 8),
+//    power_spectrum(f); isotropic noise's is a ring at |f| = F0, anisotropic
+//    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
+//  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
+//    magnitude); the observed maximum is far smaller (tests).
+//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
+//    analytic derivative.
+//  - float evaluation is within 2^-21 (1 + 2 pi Phi) sqrt(N') ... see
+//    float_budget(); measured in tests/gabor_test.cpp.
+//  - domain: every finite coordinate (positions are split into cell and
+//    fraction in double, so precision does not degrade far from the origin);
+//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
+//
+// Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
+// convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
+// (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
+// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
+// kept within the kernel's support. A point footprint gives exactly the
+// unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
+// HARD_CASES row 12) gives a finite result, continuous in the footprint, which
+// tends to the mean 0 as the footprint grows.
+//
+// Surface noise (3D, paper sec. 4.3): sample(p, normal[, footprint]) evaluates
+// 2D kernels in the tangent plane of the surface at p. The impulses of a
+// second 3D process (stream kGaborSurfaceStream, cells of side r sqrt(3/2))
+// that lie in the slab |<n, x - x_i>| < h = r / sqrt 2 contribute the 2D
+// kernel of their projection onto the plane, weighted by the taper of their
+// distance to it. The projection of a Poisson process in a slab is a 2D
+// Poisson process, so on a plane the surface noise has exactly the 2D noise's
+// spectrum and unit variance, with no slicing of a 3D spectrum. Isotropic and
+// hybrid impulses carry a 3D direction whose projection (normalised) is their
+// orientation in the plane (uniform on the circle for isotropic noise, for
+// every normal); anisotropic noise projects omega0 without normalising
+// (frequency F0 |P omega0|: the asked-for spectrum where omega0 lies in the
+// tangent plane, continuous everywhere). Footprints are projected onto the
+// tangent plane. A zero normal evaluates the solid noise; a non-finite normal
+// gives NaN.
+#ifndef HUSH_GABOR_HPP
+#define HUSH_GABOR_HPP
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
 
 namespace hush {
 
@@ -9901,6 +10015,332 @@ HWY_AFTER_NAMESPACE();
 
 #endif  // HUSH_SIMD_GABOR_INL_H_ toggle
 // ---- end hush/simd/gabor-inl.h
+// ---- begin hush/simd/npr_gabor-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernel of NPR Gabor noise's stage 2 (hush/npr_gabor.hpp,
+// hush/detail/npr_gabor_splat.hpp): the splat records added into a float
+// image. Compiled once per SIMD target (the "-inl.h" convention: toggle include
+// guard below); reached through hush/simd/dispatch.hpp.
+//
+// How: the image is cut into tiles of 32 x 32 pixels; every record is
+// binned (counting sort, so each tile keeps its records in record order) to
+// every tile its pixel range touches. Per tile, its G-buffer views are copied
+// into padded tile buffers and its sums kept in a tile accumulator; per
+// (record, tile) the kernel's x factors (gabor_kernel.hpp's separable form) are
+// computed once per tile column in lanes, its y factors once per tile row, and
+// per pixel only their product, the taper and the tests, lanes along x: the
+// object and triangle tests in 32-bit lanes, the depth test in double lanes as
+// the scalar code computes it (pixel depth times the plane's 1/z, relative
+// tolerance, soft band). A record touches tiles whose own ids and depths show
+// it cannot pass a test anywhere in them (tile_summary): those pairs are
+// skipped, which changes nothing (every fragment there fails).
+//
+// Agreement with detail::npr_gabor_splat_scalar: the same offsets (in double,
+// rounded to float), hush's own exp and sin/cos in lanes (gabor-inl.h), the
+// same products and taper, and per pixel the same records in the same order;
+// a fragment that fails a test adds +0 (or vis 0 times the kernel, +-0), which
+// leaves the sum as it is (it starts at +0 and a round-to-nearest sum is -0
+// only when both terms are). Under HUSH_STRICT_FP every pixel equals the
+// scalar result bit for bit (tests/simd/npr_gabor_simd_test.cpp, every
+// compiled target); otherwise products may fuse with sums on either side,
+// within the kernel's float budget, and a depth decision may flip where the
+// relative difference is within an ulp of the tolerance.
+
+#if defined(HUSH_SIMD_NPR_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_NPR_GABOR_INL_H_
+#undef HUSH_SIMD_NPR_GABOR_INL_H_
+#else
+#define HUSH_SIMD_NPR_GABOR_INL_H_
+#endif
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace npr_gabor_simd {
+
+using gabor_simd::DF;
+using gabor_simd::DI;
+using gabor_simd::DU;
+using gabor_simd::MF;
+using gabor_simd::VF;
+using gabor_simd::VI;
+using gabor_simd::VU;
+using DD = hn::ScalableTag<double>;
+using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
+using VD = hn::Vec<DD>;
+
+// Tile height; the width is max(32, lanes), a whole number of vectors (32 x 32 measured
+// fastest of 16 x 16, 32 x 16, 64 x 16 and 32 x 32 on the dense scene, AVX3).
+constexpr std::size_t kTileH = 32;
+constexpr std::size_t kMaxTileW = gabor_simd::kMaxLanes;
+constexpr std::size_t kMaxTile = kMaxTileW * kTileH;
+
+// A tile's copy of the G-buffer (padded with zeros past the image) and its sums.
+struct tile {
+  std::size_t x0 = 0, y0 = 0, w = 0, h = 0;  // pixels covered (w, h < tile size at the edges)
+  alignas(64) double depth[kMaxTile];  // NaN where the depth test fails whatever the plane
+  alignas(64) std::uint32_t object[kMaxTile];
+  alignas(64) std::uint32_t triangle[kMaxTile];
+  alignas(64) float acc[kMaxTile];
+  // Per record: the x factors of the tile's columns, the plane's column part, visibility.
+  alignas(64) float dx[kMaxTileW], cd2[kMaxTileW], ce[kMaxTileW], cs[kMaxTileW], cc[kMaxTileW];
+  alignas(64) float dy[kTileH > kMaxTileW ? kTileH : kMaxTileW];
+  alignas(64) float rd2[kMaxTileW], re[kMaxTileW], rs[kMaxTileW], rc[kMaxTileW];
+  alignas(64) double pc[kMaxTileW];
+  // What can pass: the ids present (one bit per id mod 64) and the depth range.
+  std::uint64_t objects = 0, triangles = 0;
+  double zmin = 0, zmax = 0;
+  bool any_depth = false;
+};
+
+// The job's constants as the scalar code rounds them: T(-A), T(1 / (1 - s0)), and the
+// depth test's limit (tol, or 2 tol with the soft band).
+struct consts {
+  float neg_a = 0, taper_k = 0;
+  double limit = 0;
+};
+inline consts consts_of(const detail::npr_gabor_splat_job& j) {
+  consts c;
+  c.neg_a = static_cast<float>(-j.envelope_exponent);
+  c.taper_k = static_cast<float>(1.0 / (1.0 - detail::constants::kGaborTaperStart));
+  c.limit = j.soft_depth ? 2.0 * j.depth_tolerance : j.depth_tolerance;
+  return c;
+}
+
+inline std::uint64_t id_bit(std::uint32_t id) { return std::uint64_t{1} << (id & 63u); }
+
+inline void load_tile(const detail::npr_gabor_splat_job& j, std::size_t tw, tile& t) {
+  std::fill(t.depth, t.depth + tw * kTileH, std::numeric_limits<double>::quiet_NaN());
+  std::fill(t.object, t.object + tw * kTileH, 0u);
+  std::fill(t.triangle, t.triangle + tw * kTileH, 0u);
+  std::fill(t.acc, t.acc + tw * kTileH, 0.0f);
+  t.objects = t.triangles = 0;
+  t.zmin = std::numeric_limits<double>::infinity();
+  t.zmax = 0;
+  t.any_depth = false;
+  for (std::size_t r = 0; r < t.h; ++r) {
+    const std::size_t y = t.y0 + r;
+    for (std::size_t i = 0; i < t.w; ++i) {
+      const std::size_t x = t.x0 + i;
+      if (j.depth_test) {
+        const float z = j.depth(x, y);
+        // Pixels that can pass: depth > 0 and finite (else NaN: every comparison fails).
+        if (z > 0.0f && z <= std::numeric_limits<float>::max()) {
+          t.depth[r * tw + i] = static_cast<double>(z);
+          t.zmin = std::min(t.zmin, static_cast<double>(z));
+          t.zmax = std::max(t.zmax, static_cast<double>(z));
+          t.any_depth = true;
+        }
+      }
+      if (j.object_test) {
+        t.object[r * tw + i] = j.object_id(x, y);
+        t.objects |= id_bit(t.object[r * tw + i]);
+      }
+      if (j.triangle_test) {
+        t.triangle[r * tw + i] = j.triangle_id(x, y);
+        t.triangles |= id_bit(t.triangle[r * tw + i]);
+      }
+    }
+  }
+}
+
+// False when no fragment of record s in tile t can pass the tests: its ids are
+// absent, or every pixel's relative depth difference to the plane exceeds the
+// limit with a margin far above the rounding of the per-pixel test (1e-6).
+inline bool may_pass(const detail::npr_gabor_splat_job& j, const consts& info,
+              const hush::npr_gabor_splat& s, const tile& t) {
+  if (j.object_test && !(t.objects & id_bit(s.object))) return false;
+  if (j.triangle_test && !(t.triangles & id_bit(s.triangle))) return false;
+  if (!j.depth_test) return true;
+  if (!t.any_depth) return false;
+  // The plane's 1/z over the tile's pixel centres: affine, extremes at the corners.
+  const double xa = static_cast<double>(t.x0) + 0.5, xb = xa + static_cast<double>(t.w - 1);
+  const double ya = static_cast<double>(t.y0) + 0.5, yb = ya + static_cast<double>(t.h - 1);
+  const double p00 = s.q0 + s.qx * xa + s.qy * ya, p10 = s.q0 + s.qx * xb + s.qy * ya;
+  const double p01 = s.q0 + s.qx * xa + s.qy * yb, p11 = s.q0 + s.qx * xb + s.qy * yb;
+  const double pmin = std::min(std::min(p00, p10), std::min(p01, p11));
+  const double pmax = std::max(std::max(p00, p10), std::max(p01, p11));
+  if (!(pmin > 0.0) || !(pmax < std::numeric_limits<double>::infinity())) return true;
+  // zp plane ranges over [zmin pmin, zmax pmax] (all positive).
+  const double lo = t.zmin * pmin, hi = t.zmax * pmax, lim = info.limit + 1e-6;
+  return !(lo - 1.0 > lim || 1.0 - hi > lim);
+}
+
+// npr_gabor_visibility of one vector of pixels (depth: the tile's doubles, NaN where no
+// plane can pass; pc: the plane's column part q0 + qx x; qy: its row part), in double
+// lanes as the scalar code computes it, rounded to float once.
+HWY_INLINE VD visibility_d(const detail::npr_gabor_splat_job& j, const consts& info,
+                           const double* depth, const double* pc, VD qy) {
+  const DD dd;
+  const VD one = hn::Set(dd, 1.0);
+  const VD rel = hn::Abs(hn::Sub(hn::Mul(hn::LoadU(dd, depth), hn::Add(hn::LoadU(dd, pc), qy)), one));
+  VD v = one;
+  if (j.soft_depth) {
+    const VD tol = hn::Set(dd, j.depth_tolerance);
+    v = hn::IfThenElse(hn::Gt(rel, tol), hn::Sub(hn::Set(dd, 2.0), hn::Div(rel, tol)), one);
+  }
+  return hn::IfThenElseZero(hn::Le(rel, hn::Set(dd, info.limit)), v);
+}
+HWY_INLINE VF visibility(const detail::npr_gabor_splat_job& j, const consts& info,
+                         const double* depth, const double* pc, VD qy) {
+  const DF df;
+#if HWY_TARGET == HWY_SCALAR
+  return hn::Set(df, static_cast<float>(hn::GetLane(visibility_d(j, info, depth, pc, qy))));
+#else
+  // Two double vectors per float vector: demoted halves, combined in registers.
+  const hn::Half<DF> dh;
+  const std::size_t nd = hn::Lanes(DD());
+  const auto lo = hn::DemoteTo(dh, visibility_d(j, info, depth, pc, qy));
+  const auto hi = hn::DemoteTo(dh, visibility_d(j, info, depth + nd, pc + nd, qy));
+  return hn::Combine(df, hi, lo);
+#endif
+}
+
+// Record s over the part of tile t it covers.
+inline void splat_tile(const detail::npr_gabor_splat_job& j, const consts& info,
+                const hush::npr_gabor_splat& s, std::size_t tw, tile& t) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const DD dd;
+  const DFD dfd;
+  const std::size_t n = hn::Lanes(df), nd = hn::Lanes(dd);
+  const std::size_t x0 = t.x0, y0 = t.y0;
+  // Covered columns ia ... ib and rows ra ... rb, tile-relative.
+  const std::size_t ia = static_cast<std::size_t>(s.x0) > x0 ? static_cast<std::size_t>(s.x0) - x0 : 0;
+  const std::size_t ib = std::min(static_cast<std::size_t>(s.x1) - x0, t.w - 1);
+  const std::size_t ra = static_cast<std::size_t>(s.y0) > y0 ? static_cast<std::size_t>(s.y0) - y0 : 0;
+  const std::size_t rb = std::min(static_cast<std::size_t>(s.y1) - y0, t.h - 1);
+  const std::size_t va = ia / n * n, vb = ib / n * n + n;  // vectors covering ia ... ib
+  const std::size_t wa = ra / n * n, wb = rb / n * n + n;  // the same for the rows
+  // The offsets of the columns and rows in radii, in double and rounded to float as the
+  // scalar code does: ((x + 1/2) - s.x) / r.
+  const VD inv_r = hn::Set(dd, 1.0 / s.radius), sx = hn::Set(dd, s.x), sy = hn::Set(dd, s.y);
+  for (std::size_t i = va; i < vb; i += nd) {
+    const VD xc = hn::Iota(dd, static_cast<double>(x0 + i) + 0.5);
+    hn::StoreU(hn::DemoteTo(dfd, hn::Mul(hn::Sub(xc, sx), inv_r)), dfd, t.dx + i);
+    if (j.depth_test) hn::StoreU(hn::Add(hn::Set(dd, s.q0), hn::Mul(hn::Set(dd, s.qx), xc)), dd, t.pc + i);
+  }
+  for (std::size_t r = wa; r < wb; r += nd) {
+    const VD yc = hn::Iota(dd, static_cast<double>(y0 + r) + 0.5);
+    hn::StoreU(hn::DemoteTo(dfd, hn::Mul(hn::Sub(yc, sy), inv_r)), dfd, t.dy + r);
+  }
+  const VF neg_a = hn::Set(df, info.neg_a), taper_k = hn::Set(df, info.taper_k);
+  const VF phi_x = hn::Set(df, static_cast<float>(s.fx * s.radius));
+  const VF phi_y = hn::Set(df, static_cast<float>(s.fy * s.radius));
+  // Columns outside ia ... ib get d^2 = 2: s = dx^2 + dy^2 >= 1 fails there as it does
+  // outside the disc, so the kernel's own test masks them.
+  const VI lane = hn::Iota(di, 0);
+  const VI before_first = hn::Set(di, static_cast<std::int32_t>(ia) - 1);
+  const VI after_last = hn::Set(di, static_cast<std::int32_t>(ib) + 1);
+  for (std::size_t i = va; i < vb; i += n) {
+    const gabor_simd::axis a = gabor_simd::axis_factors(hn::LoadU(df, t.dx + i), neg_a, phi_x);
+    const VI col = hn::Add(lane, hn::Set(di, static_cast<std::int32_t>(i)));
+    const MF in = hn::RebindMask(df, hn::And(hn::Gt(col, before_first), hn::Lt(col, after_last)));
+    hn::StoreU(hn::IfThenElse(in, a.d2, hn::Set(df, 2.0f)), df, t.cd2 + i);
+    hn::StoreU(a.e, df, t.ce + i);
+    hn::StoreU(a.s, df, t.cs + i);
+    hn::StoreU(a.c, df, t.cc + i);
+  }
+  for (std::size_t r = wa; r < wb; r += n) {
+    const gabor_simd::axis a = gabor_simd::axis_factors(hn::LoadU(df, t.dy + r), neg_a, phi_y);
+    hn::StoreU(a.d2, df, t.rd2 + r);
+    hn::StoreU(a.e, df, t.re + r);
+    hn::StoreU(a.s, df, t.rs + r);
+    hn::StoreU(a.c, df, t.rc + r);
+  }
+  const float weight = static_cast<float>(s.weight);
+  const VF one = hn::Set(df, 1.0f);
+  const VU object = hn::Set(du, s.object), triangle = hn::Set(du, s.triangle);
+  for (std::size_t r = ra; r <= rb; ++r) {
+    const gabor_simd::row row{hn::Set(df, weight * t.re[r]), hn::Set(df, t.rc[r]),
+                              hn::Set(df, t.rs[r]), hn::Set(df, t.rd2[r])};
+    const std::size_t base = r * tw;
+    const VD qy = hn::Set(dd, s.qy * (static_cast<double>(y0 + r) + 0.5));
+    for (std::size_t i = va; i < vb; i += n) {
+      const gabor_simd::axis ax{hn::Zero(df), hn::LoadU(df, t.cd2 + i), hn::LoadU(df, t.ce + i),
+                                hn::LoadU(df, t.cs + i), hn::LoadU(df, t.cc + i)};
+      MF m = hn::Lt(hn::Add(ax.d2, row.d2), one);
+      if (j.object_test)
+        m = hn::And(m, hn::RebindMask(df, hn::Eq(hn::LoadU(du, t.object + base + i), object)));
+      if (j.triangle_test)
+        m = hn::And(m, hn::RebindMask(df, hn::Eq(hn::LoadU(du, t.triangle + base + i), triangle)));
+      VF g = gabor_simd::pair(ax, row, taper_k);
+      if (j.depth_test) g = hn::Mul(visibility(j, info, t.depth + base + i, t.pc + i, qy), g);
+      float* acc = t.acc + base + i;
+      hn::StoreU(hn::Add(hn::LoadU(df, acc), hn::IfThenElseZero(m, g)), df, acc);
+    }
+  }
+}
+
+inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_view<float>& out) {
+  const DF df;
+  const std::size_t tw = std::max<std::size_t>(32, hn::Lanes(df));
+  const std::size_t width = out.width, height = out.height;
+  if (width == 0 || height == 0 || j.count == 0) return;
+  const std::size_t ntx = (width + tw - 1) / tw, nty = (height + kTileH - 1) / kTileH;
+  // Bin the records: counting sort by tile, record order kept within a tile.
+  std::vector<std::uint32_t> start(ntx * nty + 1, 0);
+  auto tiles_of = [&](const hush::npr_gabor_splat& s, auto&& f) {
+    for (std::size_t ty = static_cast<std::size_t>(s.y0) / kTileH;
+         ty <= static_cast<std::size_t>(s.y1) / kTileH; ++ty)
+      for (std::size_t tx = static_cast<std::size_t>(s.x0) / tw;
+           tx <= static_cast<std::size_t>(s.x1) / tw; ++tx)
+        f(ty * ntx + tx);
+  };
+  for (std::size_t k = 0; k < j.count; ++k) tiles_of(j.splats[k], [&](std::size_t t) { ++start[t + 1]; });
+  for (std::size_t t = 0; t < ntx * nty; ++t) start[t + 1] += start[t];
+  std::vector<std::uint32_t> list(start.back());
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < j.count; ++k)
+      tiles_of(j.splats[k], [&](std::size_t t) { list[next[t]++] = static_cast<std::uint32_t>(k); });
+  }
+  consts info = consts_of(j);
+  std::vector<tile> storage(1);  // ~40 KB: on the heap
+  tile& t = storage[0];
+  for (std::size_t ty = 0; ty < nty; ++ty)
+    for (std::size_t tx = 0; tx < ntx; ++tx) {
+      const std::size_t id = ty * ntx + tx;
+      if (start[id] == start[id + 1]) continue;  // out is already 0 there
+      t.x0 = tx * tw;
+      t.y0 = ty * kTileH;
+      t.w = std::min(tw, width - t.x0);
+      t.h = std::min(kTileH, height - t.y0);
+      load_tile(j, tw, t);
+      for (std::uint32_t k = start[id]; k < start[id + 1]; ++k) {
+        const hush::npr_gabor_splat& s = j.splats[list[k]];
+        if (may_pass(j, info, s, t)) splat_tile(j, info, s, tw, t);
+      }
+      for (std::size_t r = 0; r < t.h; ++r)
+        std::copy(t.acc + r * tw, t.acc + r * tw + t.w, out.row(t.y0 + r) + t.x0);
+    }
+}
+
+}  // namespace npr_gabor_simd
+
+inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_view<float>& out) {
+  npr_gabor_simd::npr_gabor_splat(j, out);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_NPR_GABOR_INL_H_
+// ---- end hush/simd/npr_gabor-inl.h
 // ---- begin hush/simd/perlin-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -11862,6 +12302,12 @@ HUSH_SIMD_ENTRY void anisotropic_samples(const anisotropic& a, const float* xy, 
                                          const float* map, std::size_t n, float* value);
 HUSH_SIMD_ENTRY void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value);
 
+// NPR Gabor noise's stage 2 (hush/simd/npr_gabor-inl.h): the job's records added into
+// out (frame-sized, zeroed by the caller), per pixel in record order; bit for bit
+// detail::npr_gabor_splat_scalar<float> under HUSH_STRICT_FP.
+HUSH_SIMD_ENTRY void npr_gabor_splat(const detail::npr_gabor_splat_job& job,
+                                     const image_view<float>& out);
+
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
 // best first, and of the one the kernels run on, on this CPU.
 HUSH_SIMD_ENTRY std::vector<std::string> compiled_targets();
@@ -11953,6 +12399,9 @@ inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint
 }
 inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
   HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
+}
+inline void npr_gabor_splat(const detail::npr_gabor_splat_job& job, const image_view<float>& out) {
+  HWY_STATIC_DISPATCH(npr_gabor_splat)(job, out);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -13571,7 +14020,15 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    continuous in N: alpha -> 1 as N -> 2M from below, where the next level
 //    starts with the same 2M points at weight 1; sqrt(N) -> 1 = the weight
 //    of the single point at N = 1 (alpha(1) = 0). No pops at the switches.
-//    N is clamped to kNprGaborMaxPoints (constants.hpp).
+//    N is clamped to kNprGaborMaxPoints (constants.hpp). With params::thinning
+//    the N < 1 point is kept only for the triangle's own uniform u < 2N (N <=
+//    1/2), with a weight fading in continuously (npr_gabor_lod::thinned_square:
+//    E[w^2] = N as above, so the same variance and spectrum, without pops), so
+//    dense meshes cost min(1, 2N) points per triangle instead of 1.
+//  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
+//    record per point (position, F, radius, weight, plane, ids, pixel range);
+//    splat adds the records' kernels, on exec::scalar or exec::simd (screen
+//    tiles, hush/simd/npr_gabor-inl.h, bit for bit scalar under HUSH_STRICT_FP).
 //  - amplitudes v_i uniform in (-1, 1) (16-bit symmetric, E[v^2] =
 //    (1 - 2^-32) / 3); kernel g of gabor_kernel<2> (bandwidth a, truncation
 //    t, C1 taper) with F_i = F0 (cos theta, sin theta), theta = orientation
@@ -13626,7 +14083,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-// Not yet here (issue 11): SIMD and GLSL.
+// Not yet here (issue 11): GLSL.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -13636,6 +14093,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -13780,6 +14238,25 @@ struct npr_gabor_lod {
     return l;
   }
   double weight(std::uint32_t j) const { return j < first ? first_weight : second_weight; }
+
+  // Thinning of the N < 1 point (npr_gabor::params::thinning): its squared
+  // weight g(N, u) for the triangle's own uniform u in [0, 1):
+  //   g = max(0, 1 - u / (2N))   for 0 < N <= 1/2 (a point for u < 2N only),
+  //   g = 1 - 2 (1 - N) u        for 1/2 <= N <= 1 (always a point),
+  // 0 for N <= 0 or NaN, 1 for N >= 1. E_u[g] = N on both pieces (the area
+  // under a ramp from 1 to 0 over [0, 2N] is N; 1 - (1 - N) = N), which is
+  // all the variance and the spectrum see (Campbell's theorem: the density of
+  // sum w^2 per area, amplitudes independent of u), as the unthinned weight
+  // sqrt(N) has it. For fixed u, g is continuous in N (both pieces are 1 - u
+  // at N = 1/2, and 1 at N = 1, the weight the single point keeps above), so
+  // a point fades in as its triangle grows: no pops. Expected points per
+  // triangle min(1, 2N) instead of 1.
+  static double thinned_square(double n, double u) {
+    if (!(n > 0.0)) return 0.0;
+    if (n >= 1.0) return 1.0;
+    if (n <= 0.5) return std::max(0.0, 1.0 - u / (2.0 * n));
+    return 1.0 - 2.0 * (1.0 - n) * u;
+  }
 };
 
 class npr_gabor {
@@ -13798,6 +14275,10 @@ class npr_gabor {
     bool soft_depth = false;
     double depth_tolerance = detail::constants::kNprGaborDefaultDepthTolerance;
     bool cull_back_faces = true;
+    // Thin the points of triangles with N < 1 (npr_gabor_lod::thinned_square):
+    // same variance and spectrum, min(1, 2N) points per triangle instead of 1,
+    // so that the cost follows N' and the covered pixels, not the triangle count.
+    bool thinning = false;
   };
 
   // Throws hush::invalid_argument naming the parameter and its range:
@@ -13856,43 +14337,42 @@ class npr_gabor {
     param_source impulses;     // N'; not per pixel
   };
 
-  // Adds nothing, overwrites `out` (frame-sized; float, or double for the
-  // reference) with the noise of this frame. Throws hush::invalid_argument
-  // when the frame lacks a view needs() lists or is malformed (frame::validate),
-  // when the triangle list is malformed (triangle_list::validate), when out's
-  // size differs from the frame's, or when a source is malformed
-  // (param_source::validate: "frequency[i]", "orientation[i]", "bandwidth[i]",
-  // "impulses[i]", a field's size; a per-pixel bandwidth or impulses source).
-  // Never reads outside the views.
+  // Overwrites `out` (frame-sized; float, or double for the reference) with
+  // the noise of this frame: stage 1 (make_splats) then stage 2 (the kernels
+  // added per pixel in record order). `ex` picks stage 2's backend:
+  // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
+  // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
+  // the scalar loop where the build has no SIMD). Throws
+  // hush::invalid_argument when the frame lacks a view needs() lists or is
+  // malformed (frame::validate), when the triangle list is malformed
+  // (triangle_list::validate), when out's size differs from the frame's, or
+  // when a source is malformed (param_source::validate: "frequency[i]",
+  // "orientation[i]", "bandwidth[i]", "impulses[i]", a field's size; a
+  // per-pixel bandwidth or impulses source). Never reads outside the views.
+  template <class Exec, class T>
+  void render(const Exec& ex, const frame& f, const triangle_list& tris, const image_view<T>& out,
+              const sources& src = {}) const {
+    validate(f, tris, src);
+    check_out(f, out);
+    std::vector<npr_gabor_splat> splats;
+    make_splats(f, tris, splats, src);
+    splat(ex, f, splats.data(), splats.size(), out);
+  }
   template <class T>
   void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
               const sources& src = {}) const {
-    namespace c = detail::constants;
-    const char* where = "hush::npr_gabor::render";
-    f.validate(where, needs(), c::kNprGaborMaxImageSide);
-    tris.validate(where, c::kNprGaborMaxTriangles);
-    src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
-                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
-    src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
-                             std::numeric_limits<double>::max(), "finite (radians)", f.width(),
-                             f.height());
-    src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
-                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
-    src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
-                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
-    for (const auto& [name, s] : {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
-                                  {"impulses", &src.impulses}})
-      if (s->which() == param_source::kind::per_pixel)
-        detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
-                                   "constant or per object (it sets the kernel radius or the "
-                                   "density a triangle's point count is made from)");
-    if (out.width != f.width() || out.height != f.height() || !out.data)
-      detail::throw_out_of_range(where, "out size",
-                                 std::to_string(out.width) + "x" + std::to_string(out.height),
-                                 "the frame's size (non-null)");
-    for (std::size_t y = 0; y < out.height; ++y)
-      std::fill(out.row(y), out.row(y) + out.width, T(0));
-    std::vector<detail::gabor_axis<T>> columns;
+    render(exec::scalar, f, tris, out, src);
+  }
+
+  // Stage 1: replaces `splats` with this frame's records (npr_gabor_splat),
+  // triangle by triangle in list order, each triangle's points in stream
+  // order, each point with its own kernel parameters from `src`; points whose
+  // pixel range misses the image are left out. Throws as render does for the
+  // frame, the triangles and the sources.
+  void make_splats(const frame& f, const triangle_list& tris, std::vector<npr_gabor_splat>& splats,
+                   const sources& src = {}) const {
+    validate(f, tris, src);
+    splats.clear();
     const point_parameters pp(*this, src);
     // Per-object a or N': one noise per table entry with that object's kernel,
     // density and scale (same seed and constants: the same points).
@@ -13911,10 +14391,43 @@ class npr_gabor {
     for (std::size_t t = 0; t < tris.triangles(); ++t) {
       const std::uint32_t o = tris.object_of(t);
       if (o < objects)
-        per_object[o].splat_triangle(f, tris, t, out, per_object_pp[o], columns);
+        per_object[o].triangle_splats(f, tris, t, splats, per_object_pp[o]);
       else
-        splat_triangle(f, tris, t, out, pp, columns);
+        triangle_splats(f, tris, t, splats, pp);
     }
+  }
+
+  // Stage 2: overwrites `out` (frame-sized) with the sum of the `count`
+  // records' kernels at `splats`, each fragment passing this noise's
+  // visibility tests against frame f (validated by make_splats; records with
+  // a pixel range outside the frame are the caller's error). Backends as
+  // for render.
+  template <class Exec, class T>
+  void splat(const Exec&, const frame& f, const npr_gabor_splat* splats, std::size_t count,
+             const image_view<T>& out) const {
+    check_out(f, out);
+    for (std::size_t y = 0; y < out.height; ++y)
+      std::fill(out.row(y), out.row(y) + out.width, T(0));
+    detail::npr_gabor_splat_job job;
+    job.splats = splats;
+    job.count = count;
+    job.depth = f.depth;
+    job.object_id = f.object_id;
+    job.triangle_id = f.triangle_id;
+    job.object_test = p_.object_test;
+    job.triangle_test = p_.triangle_test;
+    job.depth_test = p_.depth_test;
+    job.soft_depth = p_.soft_depth;
+    job.depth_tolerance = p_.depth_tolerance;
+    job.envelope_exponent = kernel_.envelope_exponent();
+#if HUSH_CONFIG_SIMD
+    if constexpr (std::is_same<Exec, exec::simd_t>::value && std::is_same<T, float>::value) {
+      simd::npr_gabor_splat(job, out);
+      return;
+    }
+#endif
+    std::vector<detail::gabor_axis<T>> columns;
+    detail::npr_gabor_splat_scalar(job, out, columns);
   }
 
   // int g_F^2 for |F| = frequency, as render normalises a point of a
@@ -13987,10 +14500,47 @@ class npr_gabor {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
 
-  template <class T>
-  void splat_triangle(const frame& f, const triangle_list& tris, std::size_t t,
-                      const image_view<T>& out, const point_parameters& pp,
-                      std::vector<detail::gabor_axis<T>>& columns) const {
+  // The triangle's thinning uniform in [0, 1): the last two words of its point stream
+  // (2^32 - 2 and 2^32 - 1), which no point reads (points take words 0 ... 2
+  // kNprGaborMaxPoints - 1), so it is independent of every point's position and amplitude.
+  double thinning_uniform(std::uint32_t object, std::uint32_t triangle) const {
+    rng r(triangle_key(object, triangle), detail::constants::kNprGaborStream);
+    r.skip(0xFFFFFFFEu);
+    return r.uniform<double>();
+  }
+
+  void validate(const frame& f, const triangle_list& tris, const sources& src) const {
+    namespace c = detail::constants;
+    const char* where = "hush::npr_gabor::render";
+    f.validate(where, needs(), c::kNprGaborMaxImageSide);
+    tris.validate(where, c::kNprGaborMaxTriangles);
+    src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
+                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
+    src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::max(), "finite (radians)", f.width(),
+                             f.height());
+    src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
+                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
+    src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
+                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
+    for (const auto& [name, s] : {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
+                                  {"impulses", &src.impulses}})
+      if (s->which() == param_source::kind::per_pixel)
+        detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
+                                   "constant or per object (it sets the kernel radius or the "
+                                   "density a triangle's point count is made from)");
+  }
+  template <class Out>
+  static void check_out(const frame& f, const Out& out) {
+    if (out.width != f.width() || out.height != f.height() || !out.data)
+      detail::throw_out_of_range("hush::npr_gabor::render", "out size",
+                                 std::to_string(out.width) + "x" + std::to_string(out.height),
+                                 "the frame's size (non-null)");
+  }
+
+  // Stage 1 for triangle t: appends its points' records.
+  void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
+                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -14007,13 +14557,13 @@ class npr_gabor {
     if (p_.cull_back_faces && !(cross < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
     const double r = kernel_.radius();
-    const double w = static_cast<double>(out.width), h = static_cast<double>(out.height);
+    const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
     const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
                  hi_x = std::max({s[0].x, s[1].x, s[2].x});
     const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
                  hi_y = std::max({s[0].y, s[1].y, s[2].y});
     if (hi_x + r < 0.0 || lo_x - r > w || hi_y + r < 0.0 || lo_y - r > h) return;
-    const npr_gabor_lod lod = npr_gabor_lod::of(lambda_ * 0.5 * std::fabs(cross));
+    const double n = lambda_ * 0.5 * std::fabs(cross);
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
     const double inv = 1.0 / cross;
@@ -14021,6 +14571,11 @@ class npr_gabor {
     const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
     const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;
     const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
+    npr_gabor_lod lod = npr_gabor_lod::of(n);
+    if (p_.thinning && n < 1.0 && lod.count == 1) {
+      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
+      if (!(lod.first_weight > 0.0)) return;
+    }
     for (std::uint32_t j = 0; j < lod.count; ++j) {
       const point pt = point_of(object, id, j);
       const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
@@ -14028,56 +14583,30 @@ class npr_gabor {
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
       const point_parameters::kernel k = pp.at(object, at, pt.angle);
-      splat_point(f, out, at, k.F, lod.weight(j) * pt.amplitude * k.scale, object, id, q0, qx,
-                  qy, columns);
-    }
-  }
-
-  template <class T>
-  void splat_point(const frame& f, const image_view<T>& out, const dvec2& at, const dvec2& F,
-                   double weight, std::uint32_t object, std::uint32_t id, double q0, double qx,
-                   double qy, std::vector<detail::gabor_axis<T>>& columns) const {
-    namespace c = detail::constants;
-    const double r = kernel_.radius(), inv_r = 1.0 / r;
-    // Pixel centres x + 1/2 within r of the point, clamped to the image.
-    const double wmax = static_cast<double>(out.width) - 1.0;
-    const double hmax = static_cast<double>(out.height) - 1.0;
-    const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
-    const double x1 = std::min(std::floor(at.x + r - 0.5), wmax);
-    const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
-    const double y1 = std::min(std::floor(at.y + r - 0.5), hmax);
-    if (x0 > x1 || y0 > y1) return;
-    const T neg_a = T(-kernel_.envelope_exponent()), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
-    const T phi_x = T(F.x * r), phi_y = T(F.y * r);
-    const std::size_t ix0 = static_cast<std::size_t>(x0), ix1 = static_cast<std::size_t>(x1);
-    columns.resize(ix1 - ix0 + 1);
-    for (std::size_t x = ix0; x <= ix1; ++x)
-      columns[x - ix0] = detail::gabor_axis_factors(
-          T((static_cast<double>(x) + 0.5 - at.x) * inv_r), neg_a, phi_x);
-    const double tol = p_.depth_tolerance;
-    for (std::size_t y = static_cast<std::size_t>(y0); y <= static_cast<std::size_t>(y1); ++y) {
-      const detail::gabor_axis<T> ay = detail::gabor_axis_factors(
-          T((static_cast<double>(y) + 0.5 - at.y) * inv_r), neg_a, phi_y);
-      const detail::gabor_row<T> row = detail::gabor_row_of(T(weight), ay);
-      T* o = out.row(y);
-      for (std::size_t x = ix0; x <= ix1; ++x) {
-        const detail::gabor_axis<T>& ax = columns[x - ix0];
-        if (!(ax.d2 + row.d2 < T(1))) continue;
-        T vis = T(1);
-        if (p_.object_test && f.object_id(x, y) != object) continue;
-        if (p_.triangle_test && f.triangle_id(x, y) != id) continue;
-        if (p_.depth_test) {
-          const double zp = static_cast<double>(f.depth(x, y));
-          if (!(zp > 0.0) || !std::isfinite(zp)) continue;
-          // Relative difference of the pixel's depth and the plane's there.
-          const double plane =
-              q0 + qx * (static_cast<double>(x) + 0.5) + qy * (static_cast<double>(y) + 0.5);
-          const double rel = std::fabs(zp * plane - 1.0);
-          if (!(rel <= (p_.soft_depth ? 2.0 * tol : tol))) continue;
-          if (p_.soft_depth && rel > tol) vis = T(2.0 - rel / tol);
-        }
-        o[x] += vis * detail::gabor_pair(ax, row, taper_k);
-      }
+      // Pixel centres x + 1/2 within r of the point, clamped to the image.
+      const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
+      const double x1 = std::min(std::floor(at.x + r - 0.5), w - 1.0);
+      const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
+      const double y1 = std::min(std::floor(at.y + r - 0.5), h - 1.0);
+      if (x0 > x1 || y0 > y1) continue;
+      npr_gabor_splat rec;
+      rec.x = at.x;
+      rec.y = at.y;
+      rec.fx = k.F.x;
+      rec.fy = k.F.y;
+      rec.bandwidth = p_.bandwidth;
+      rec.radius = r;
+      rec.weight = lod.weight(j) * pt.amplitude * k.scale;
+      rec.q0 = q0;
+      rec.qx = qx;
+      rec.qy = qy;
+      rec.object = object;
+      rec.triangle = id;
+      rec.x0 = static_cast<std::int32_t>(x0);
+      rec.x1 = static_cast<std::int32_t>(x1);
+      rec.y0 = static_cast<std::int32_t>(y0);
+      rec.y1 = static_cast<std::int32_t>(y1);
+      splats.push_back(rec);
     }
   }
 

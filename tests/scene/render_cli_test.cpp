@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -195,8 +196,29 @@ TEST_CASE("render npr-gabor writes the library's frames bit for bit from the tri
                               dir);
   CHECK(old.exit_code == 2);
   CHECK(old.err.find("tri_") != std::string::npos);
-  // Only the scalar backend exists so far; the others are refused, not faked.
-  CHECK(run_hush("render npr-gabor --backend simd --gbuffer '" + (dir / "g").string() +
+  // --backend simd: the tiled SIMD splatting, the same image up to float rounding (the
+  // program may fuse multiply-adds: differences of a few ulp of the kernels' sums, far below
+  // 1e-4 for unit-variance noise); GLSL is refused, not faked.
+  hs::save_triangles(hs::project_triangles(s, 0, kW, kH), hs::frame_directory((dir / "g").string(), 0));
+  const result simd = run_hush("render npr-gabor --backend simd --gbuffer '" +
+                                   (dir / "g").string() + "' --out '" + (dir / "s").string() +
+                                   "' --frequency 0.2 --bandwidth 0.3 --orientation 1 --seed 3 "
+                                   "--triangle-test --soft-depth",
+                               dir);
+  CHECK(simd.exit_code == 0);
+  CHECK(simd.out.find("wrote 5 npr-gabor frames (40x30, 1 channel, simd)") != std::string::npos);
+  for (int i = 0; i < kFrames; ++i) {
+    const hs::triangle_frame t = hs::project_triangles(s, i, kW, kH);
+    noise.render(hs::as_frame(g[std::size_t(i)]), t.view(),
+                 hush::image_view<float>(out.data(), kW, kH));
+    const std::vector<float> got = frame_file(dir / "s", i, 1);
+    REQUIRE(got.size() == out.size());
+    double worst = 0;
+    for (std::size_t k = 0; k < out.size(); ++k)
+      worst = std::max(worst, std::fabs(double(got[k]) - double(out[k])));
+    CHECK(worst < 1e-4);
+  }
+  CHECK(run_hush("render npr-gabor --backend glsl --gbuffer '" + (dir / "g").string() +
                      "' --out '" + (dir / "m").string() + "'",
                  dir)
             .exit_code != 0);
@@ -243,11 +265,38 @@ TEST_CASE("render npr-gabor --style writes one PNG per frame for every style") {
 #endif
     }
   }
-  // The styles run on the scalar backend only, like the noise.
-  CHECK(run_hush("render npr-gabor --backend simd --style hatching --gbuffer '" +
-                     (dir / "g").string() + "' --out '" + (dir / "m").string() + "'",
-                 dir)
-            .exit_code != 0);
+  // On the SIMD backend the layers are splatted by exec::simd: the same drawing, except where a
+  // noise value within its float budget of the scalar one sits at the hard step's threshold.
+  const fs::path simd_out = dir / "hatching_simd";
+  const result r = run_hush("render npr-gabor --backend simd --gbuffer '" + (dir / "g").string() +
+                                "' --out '" + simd_out.string() +
+                                "' --frequency 0.25 --bandwidth 0.3 --style hatching --softness 0",
+                            dir);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("3 channels, simd)") != std::string::npos);
+  for (int i = 0; i < kFrames; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%04d.png", i);
+    const std::string a = hush_cli_test::slurp(dir / "hatching" / name);
+    const std::string b = hush_cli_test::slurp(simd_out / name);
+    REQUIRE(b.size() > 24);
+#if HUSH_TEST_HAVE_STB_IMAGE
+    int w = 0, h = 0, c = 0;
+    unsigned char* pa = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(a.data()),
+                                              static_cast<int>(a.size()), &w, &h, &c, 3);
+    unsigned char* pb = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(b.data()),
+                                              static_cast<int>(b.size()), &w, &h, &c, 3);
+    REQUIRE(pa != nullptr);
+    REQUIRE(pb != nullptr);
+    std::size_t differ = 0;
+    for (std::size_t p = 0; p < std::size_t(kW) * kH * 3; ++p) differ += pa[p] != pb[p];
+    // A flip needs |noise - threshold| below ~1e-6 (the float budget): over 3600 values, the
+    // chance of even one is ~1e-2; allow 3 channels of one pixel.
+    CHECK(differ <= 3);
+    stbi_image_free(pa);
+    stbi_image_free(pb);
+#endif
+  }
 }
 
 TEST_CASE("render --symmetric refuses G-buffers without forward velocity") {

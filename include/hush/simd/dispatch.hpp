@@ -30,6 +30,7 @@
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/coherent_kernel.hpp"
+#include "hush/detail/npr_gabor_splat.hpp"
 #include "hush/fractal.hpp"
 #include "hush/gabor.hpp"
 #include "hush/perlin.hpp"
@@ -63,6 +64,7 @@ struct simd_kernel {
 #include "hush/simd/anisotropic-inl.h"
 #include "hush/simd/coherent-inl.h"
 #include "hush/simd/gabor-inl.h"
+#include "hush/simd/npr_gabor-inl.h"
 #include "hush/simd/perlin-inl.h"
 #include "hush/simd/wavelet-inl.h"
 #endif
@@ -135,6 +137,12 @@ HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* va
 HUSH_SIMD_ENTRY void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
                                          const float* map, std::size_t n, float* value);
 HUSH_SIMD_ENTRY void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value);
+
+// NPR Gabor noise's stage 2 (hush/simd/npr_gabor-inl.h): the job's records added into
+// out (frame-sized, zeroed by the caller), per pixel in record order; bit for bit
+// detail::npr_gabor_splat_scalar<float> under HUSH_STRICT_FP.
+HUSH_SIMD_ENTRY void npr_gabor_splat(const detail::npr_gabor_splat_job& job,
+                                     const image_view<float>& out);
 
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
 // best first, and of the one the kernels run on, on this CPU.
@@ -227,6 +235,9 @@ inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint
 }
 inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
   HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
+}
+inline void npr_gabor_splat(const detail::npr_gabor_splat_job& job, const image_view<float>& out) {
+  HWY_STATIC_DISPATCH(npr_gabor_splat)(job, out);
 }
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }

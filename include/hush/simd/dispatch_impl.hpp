@@ -21,6 +21,7 @@
 #include "hush/simd/anisotropic-inl.h"
 #include "hush/simd/coherent-inl.h"
 #include "hush/simd/gabor-inl.h"
+#include "hush/simd/npr_gabor-inl.h"
 #include "hush/simd/perlin-inl.h"
 #include "hush/simd/wavelet-inl.h"
 
@@ -60,6 +61,7 @@ HWY_EXPORT(gabor2_grid);
 HWY_EXPORT(gabor3_grid);
 HWY_EXPORT(gabor2_filtered);
 HWY_EXPORT(gabor3_filtered);
+HWY_EXPORT(npr_gabor_splat);
 
 namespace simd {
 
@@ -148,6 +150,10 @@ void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps
 void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps, std::size_t n,
                      float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
+}
+
+void npr_gabor_splat(const detail::npr_gabor_splat_job& job, const image_view<float>& out) {
+  HWY_DYNAMIC_DISPATCH(npr_gabor_splat)(job, out);
 }
 
 std::vector<std::string> compiled_targets() {

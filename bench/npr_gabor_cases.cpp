@@ -1,0 +1,109 @@
+// hush — the speed-vs-error benchmark: NPR Gabor noise's rows (see cases.hpp).
+//
+// The workload: one frame (frame 0) of the `dense` scene (examples/scene: a sphere
+// and a torus over a plane) with about 5k, 50k and 200k triangles, rasterized by the CPU
+// rasterizer at npr_width x npr_height (1280 x 720), N' = 16 and 32, the default kernel
+// (F0 = 1/8 cycle/pixel, a = 0.08/pixel, radius 12.2 pixels), anisotropic, object and depth
+// tests; "thin" rows thin the points of triangles with N < 1 (params::thinning). A row
+// times npr_gabor::render (both stages: points and splatting) on one thread;
+// ms/frame is its time per frame. Error columns: the float render against render<double> on
+// exec::scalar (the reference) over every pixel. The note gives the splat count (points
+// emitted) and the triangle count.
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "cases.hpp"
+#include "gbuffer.hpp"
+#include "hush/exec.hpp"
+#include "hush/npr_gabor.hpp"
+#include "raster_cpu.hpp"
+#include "scene.hpp"
+#include "triangles.hpp"
+
+namespace hush_bench {
+namespace {
+
+// One rasterized frame of a dense scene, made on first use (rows share it).
+struct dense_frame {
+  long triangles = 0;
+  int width = 0, height = 0;
+  hush::scene::gbuffer g;
+  hush::scene::triangle_frame t;
+  bool ready = false;
+  void make() {
+    if (ready) return;
+    const hush::scene::scene s = hush::scene::make_scene("dense:" + std::to_string(triangles));
+    g = hush::scene::render_cpu(s, 0, width, height);
+    t = hush::scene::project_triangles(s, 0, width, height);
+    ready = true;
+  }
+};
+
+template <class Exec>
+void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
+              const std::vector<std::shared_ptr<dense_frame>>& frames, bool thinning) {
+  for (const std::shared_ptr<dense_frame>& fr : frames)
+    for (double impulses : {16.0, 32.0}) {
+      bench_case c;
+      c.noise = "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) +
+                (thinning ? " thin" : "");
+      c.backend = Exec::name;
+      c.workload = "dense:" + std::to_string(fr->triangles) + " " + std::to_string(s.npr_width) +
+                   "x" + std::to_string(s.npr_height);
+      c.frame_pixels = s.npr_width * s.npr_height;
+      hush::npr_gabor::params prm;
+      prm.impulses = impulses;
+      prm.orientation = 0.5;
+      prm.thinning = thinning;
+      const hush::npr_gabor noise{prm};
+      c.prepare = [noise, ex, fr] {
+        fr->make();
+        const std::size_t w = static_cast<std::size_t>(fr->width);
+        const std::size_t h = static_cast<std::size_t>(fr->height);
+        auto out = std::make_shared<std::vector<float>>(w * h);
+        prepared_case p;
+        p.samples = w * h;
+        p.run = [noise, ex, fr, out, w, h] {
+          noise.render(ex, hush::scene::as_frame(fr->g), fr->t.view(),
+                       hush::image_view<float>(out->data(), w, h));
+          benchmark::DoNotOptimize(out->data());
+          benchmark::ClobberMemory();
+        };
+        p.run();
+        std::vector<double> ref(w * h);
+        noise.render(hush::exec::scalar, hush::scene::as_frame(fr->g), fr->t.view(),
+                     hush::image_view<double>(ref.data(), w, h));
+        for (std::size_t q = 0; q < ref.size(); ++q) p.value_error.add((*out)[q], ref[q]);
+        std::vector<hush::npr_gabor_splat> splats;
+        noise.make_splats(hush::scene::as_frame(fr->g), fr->t.view(), splats);
+        char text[160];
+        std::snprintf(text, sizeof text, "%zu triangles, %zu splats; object and depth tests",
+                      fr->t.triangle_id.size(), splats.size());
+        p.quality = text;
+        return p;
+      };
+      cases.push_back(c);
+    }
+}
+
+}  // namespace
+
+void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s) {
+  std::vector<std::shared_ptr<dense_frame>> frames;
+  for (long n : s.npr_triangles) {
+    auto f = std::make_shared<dense_frame>();
+    f->triangles = n;
+    f->width = static_cast<int>(s.npr_width);
+    f->height = static_cast<int>(s.npr_height);
+    frames.push_back(f);
+  }
+  add_rows(cases, s, hush::exec::scalar, frames, false);
+  add_rows(cases, s, hush::exec::simd, frames, false);
+  add_rows(cases, s, hush::exec::simd, frames, true);
+}
+
+}  // namespace hush_bench
