@@ -362,10 +362,11 @@ void add_leakage_quality(std::vector<bench_case>& cases, std::size_t first, int 
   }
 }
 
-// Projected samples: random points with random unit normals, no footprint.
+// Projected samples: random points with random unit normals (or all along z: the
+// separable case), no footprint.
 template <class Exec>
 prepared_case prepare_wavelet_projected(const hush::wavelet<3>& noise, const Exec& ex,
-                                        std::size_t n) {
+                                        std::size_t n, bool along_z) {
   struct sample_buffers {
     std::vector<fvec<3>> points, normals;
     std::vector<float> out;
@@ -380,7 +381,7 @@ prepared_case prepare_wavelet_projected(const hush::wavelet<3>& noise, const Exe
       for (int a = 0; a < 3; ++a) u[a] = r.uniform(-1.0f, 1.0f);
       len = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
     } while (len > 1 || len < 1e-4f);
-    b->normals.push_back(u);
+    b->normals.push_back(along_z ? fvec<3>{0, 0, 1} : u);
   }
   b->out.resize(n);
   prepared_case p;
@@ -441,7 +442,14 @@ void add_wavelet_rows(std::vector<bench_case>& cases, const sizes& s, const Exec
     c.note = exact ? "random unit normals, exact projection"
                    : "random unit normals, the paper's approximation";
     c.workload = "samples " + std::to_string(s.points);
-    c.prepare = [noise, ex, n = s.points] { return prepare_wavelet_projected(noise, ex, n); };
+    c.prepare = [noise, ex, n = s.points] {
+      return prepare_wavelet_projected(noise, ex, n, false);
+    };
+    cases.push_back(c);
+    if (!exact) continue;
+    c.noise = "wavelet 3D projected z";
+    c.note = "normals (0, 0, 1): the separable exact projection (beta along z)";
+    c.prepare = [noise, ex, n = s.points] { return prepare_wavelet_projected(noise, ex, n, true); };
     cases.push_back(c);
   }
   add_leakage_quality(cases, first, 2);

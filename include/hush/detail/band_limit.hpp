@@ -22,9 +22,12 @@
 //  - fraction = sum of P over the bins with 0 < |k| < r* / 2, divided by the
 //    sum of P over all bins with |k| > 0.
 // Range [0, 1]; statistical: each bin is ~exponential about the spectral
-// density, so the fraction's relative standard deviation is about
-// 1 / sqrt(bins below r*/2) (~5 % for r* = 22, 380 bins), twice that with the
-// Hann window's correlation of neighbouring bins. Non-finite values give NaN.
+// density, so where the low power is spread over the bins below r*/2 the
+// fraction's relative standard deviation is about 1 / sqrt(their number)
+// (~5 % for r* = 22, 380 bins; twice that with the Hann window's correlation
+// of neighbouring bins). Where a few bins dominate it varies far more: improved
+// Perlin 2D measures 0.038 on [0, 64)^2 and 0.010 on the window of `hush
+// bench` (seed 7). Non-finite values give NaN.
 #ifndef HUSH_DETAIL_BAND_LIMIT_HPP
 #define HUSH_DETAIL_BAND_LIMIT_HPP
 
