@@ -88,7 +88,7 @@ std::vector<gray_image> receding_plane() {
   fp.seed = 11;
   fp.octaves = kBands;
   const hush::fractal<hush::perlin<2>> fbm(fp);
-  const std::size_t n = kPlaneW * kPlaneH;
+  constexpr std::size_t n = kPlaneW * kPlaneH;
   std::vector<float> one_w(n), ref_w(n), one_f(n), ref_f(n);
   for (std::size_t j = 0; j < kPlaneH; ++j)
     for (std::size_t i = 0; i < kPlaneW; ++i) {
@@ -113,7 +113,7 @@ std::vector<gray_image> receding_plane() {
       ref_w[j * kPlaneW + i] = static_cast<float>(sw / (kSuper * kSuper));
       ref_f[j * kPlaneW + i] = static_cast<float>(sf / (kSuper * kSuper));
     }
-  const auto rms = [n](const std::vector<float>& a, const std::vector<float>& b) {
+  const auto rms = [](const std::vector<float>& a, const std::vector<float>& b) {
     double e = 0;
     for (std::size_t k = 0; k < n; ++k) e += (double(a[k]) - b[k]) * (double(a[k]) - b[k]);
     return std::sqrt(e / static_cast<double>(n));
