@@ -1,5 +1,5 @@
 // HARD_CASES.md rows 1, 3, 5 and 14, checked on every noise hush offers (Perlin
-// 2D/3D, fBm, turbulence) in float and double. Rows 2, 6 and 7 live in
+// 2D/3D, fBm, turbulence, wavelet 2D/3D) in float and double. Rows 2, 6 and 7 live in
 // perlin_test.cpp, row 10 in golden_test.cpp, row 11 in core/rng_test.cpp,
 // row 1 for the lattice split itself in core/lattice_test.cpp. Row 4 (no
 // signed overflow) is this whole suite run under UBSan in CI.
@@ -60,6 +60,19 @@ hush::fractal<hush::perlin<D>> make_fractal(hush::fractal_kind kind) {
   return hush::fractal<hush::perlin<D>>(prm);
 }
 
+// Wavelet noise (hush/wavelet.hpp), 3 bands: its bound() is analytic; per axis a band's
+// derivative weights sum to at most 2 in magnitude, so |gradient| <= 2 sqrt(D) bound()
+// times the top band's frequency (4).
+template <int D>
+subject wavelet_subject() {
+  typename hush::wavelet<D>::params prm;
+  prm.seed = 9;
+  prm.weights = {1, 0.5, 0.25};
+  const hush::wavelet<D> w(prm);
+  return make_subject(D == 2 ? "wavelet<2>" : "wavelet<3>", w, w.bound(),
+                      2 * std::sqrt(double(D)) * w.bound() * 4);
+}
+
 std::vector<subject> subjects() {
   // Lipschitz bounds: Perlin's analytic ones (perlin_test.cpp) times, for the
   // fractals, sum_i |w_i| f_i / K = sum 0.5^i 2^i / sum 0.5^i = 5 / 1.9375.
@@ -69,7 +82,8 @@ std::vector<subject> subjects() {
           make_subject("fbm<2>", make_fractal<2>(hush::fractal_kind::fbm), 1.0, l2 * frac),
           make_subject("fbm<3>", make_fractal<3>(hush::fractal_kind::fbm), 1.0, l3 * frac),
           make_subject("turbulence<3>", make_fractal<3>(hush::fractal_kind::turbulence), 1.0,
-                       l3 * frac)};
+                       l3 * frac),
+          wavelet_subject<2>(), wavelet_subject<3>()};
 }
 
 const double kFloatSlack = std::ldexp(1.0, -15);
@@ -174,5 +188,57 @@ TEST_CASE("hard cases row 14: tiny, odd and huge periods tile exactly") {
       CHECK(n3(hush::dvec3{x, y, z}) == n3(hush::dvec3{x - p, y + p, z + p}));
       CHECK(std::fabs(n(hush::dvec2{x, y})) <= 1.0);
     }
+  }
+}
+
+TEST_CASE("hard cases row 14: wavelet tiles: odd, tiny and huge sizes are refused naming the "
+          "rule; far coordinates wrap on the tile exactly") {
+  for (int n : {-2, 0, 2, 14, 15, 17, 129, 4096}) {
+    hush::wavelet<2>::params prm;
+    prm.tile_size = n;
+    INFO("tile_size " << n);
+    CHECK_THROWS_WITH_AS(hush::wavelet<2>{prm}, doctest::Contains("tile_size"),
+                         hush::invalid_argument);
+  }
+  hush::wavelet<3>::params prm3;
+  prm3.tile_size = 130;  // even, above the 3D maximum
+  CHECK_THROWS_AS(hush::wavelet<3>{prm3}, hush::invalid_argument);
+  // Period tile_size (band 0): x + k n is exact in double for these dyadic x up to 2^28.
+  hush::wavelet<2>::params p2;
+  p2.tile_size = 16;
+  p2.seed = 3;
+  const hush::wavelet<2> w2(p2);
+  hush::wavelet<3>::params p3;
+  p3.tile_size = 16;
+  p3.seed = 3;
+  const hush::wavelet<3> w3(p3);
+  for (double k : {1.0, 1024.0, 1048576.0, 16777215.0}) {
+    for (int i = -8; i < 8; ++i) {
+      const double x = i * 0.40625, y = -i * 0.15625, z = i * 0.0625, p = 16 * k;
+      INFO("k " << k << " at " << x);
+      CHECK(w2(hush::dvec2{x, y}) == w2(hush::dvec2{x + p, y - p}));
+      CHECK(w3(hush::dvec3{x, y, z}) == w3(hush::dvec3{x - p, y + p, z + p}));
+    }
+  }
+}
+
+TEST_CASE("hard cases row 5: wavelet normals: zero, NaN and Inf give the unprojected noise, "
+          "any length is normalised") {
+  const hush::wavelet<3> w(4);
+  const hush::footprint<3> point{};
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (int i = 0; i < 16; ++i) {
+    const hush::dvec3 p{0.37 * i - 2, 1.1 - 0.23 * i, 0.61 * i};
+    const double plain = w(p);
+    INFO("at " << p[0]);
+    for (const hush::dvec3 bad : {hush::dvec3{0, 0, 0}, hush::dvec3{nan, 0, 1},
+                                  hush::dvec3{inf, 1, 0}, hush::dvec3{0, -inf, 0}})
+      CHECK(w.sample(p, bad, point) == plain);
+    const double unit = w.sample(p, hush::dvec3{0.6, 0, 0.8}, point);
+    CHECK(std::isfinite(unit));
+    for (double len : {1e-30, 1e-3, 7.0, 1e30})
+      CHECK(w.sample(p, hush::dvec3{0.6 * len, 0, 0.8 * len}, point) ==
+            doctest::Approx(unit).epsilon(1e-12));
   }
 }

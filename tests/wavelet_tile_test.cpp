@@ -385,3 +385,60 @@ TEST_CASE("wavelet tile: even and odd cells have equal variance within 2 % after
     }
   }
 }
+
+TEST_CASE("wavelet tile: the paper's projected sigma^2 (0.296) is 4x hush's approximate one: "
+          "its WProjectedNoise weights sum to 2 along the normal") {
+  // Cook & DeRose's Appendix 2 code, literally (coefficient c centred at c, B on [0, 3]
+  // after the shift by p - 1.5, the basis evaluated at c moved halfway to p along the
+  // normal, no normalisation), along z on hush's tile. Along the normal its weights are
+  // B((c - p) / 2) at unit spacing, which sum to 2: twice hush's B2 = B(t/2)/2 (unit
+  // integral, wavelet.hpp), so its variance is 4 times hush's approximate one.
+  const int n = 16;
+  const auto tile = hush::wavelet_tile<3>::get({n, 1, true});
+  const float* c = tile->coefficients();
+  const auto paper = [&](const double (&p)[3]) {
+    const double normal[3] = {0, 0, 1};
+    int lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {
+      const double support =
+          3 * std::fabs(normal[i]) + 3 * std::sqrt((1 - normal[i] * normal[i]) / 2);
+      lo[i] = static_cast<int>(std::ceil(p[i] - support));
+      hi[i] = static_cast<int>(std::floor(p[i] + support));
+    }
+    double result = 0;
+    int k[3];
+    for (k[2] = lo[2]; k[2] <= hi[2]; ++k[2])
+      for (k[1] = lo[1]; k[1] <= hi[1]; ++k[1])
+        for (k[0] = lo[0]; k[0] <= hi[0]; ++k[0]) {
+          double dot = 0, weight = 1;
+          for (int i = 0; i < 3; ++i) dot += normal[i] * (p[i] - k[i]);
+          for (int i = 0; i < 3; ++i) {
+            const double t = (k[i] + normal[i] * dot / 2) - (p[i] - 1.5);
+            const double t1 = t - 1, t2 = 2 - t, t3 = 3 - t;
+            weight *= (t <= 0 || t >= 3) ? 0
+                      : (t < 1)          ? t * t / 2
+                      : (t < 2)          ? 1 - (t1 * t1 + t2 * t2) / 2
+                                         : t3 * t3 / 2;
+          }
+          const auto wrap = [n](int v) { return ((v % n) + n) % n; };
+          result += weight * c[wrap(k[0]) + n * (wrap(k[1]) + n * wrap(k[2]))];
+        }
+    return result;
+  };
+  // Mean of the square over one period, 4 samples per unit per axis: exact for the
+  // band's frequencies (N^2 has next to no power at 4 cycles per unit and above).
+  const int s = 4;
+  double sum = 0;
+  for (int z = 0; z < n * s; ++z)
+    for (int y = 0; y < n * s; ++y)
+      for (int x = 0; x < n * s; ++x) {
+        const double p[3] = {(x + 0.5) / s, (y + 0.5) / s, (z + 0.5) / s};
+        const double v = paper(p);
+        sum += v * v;
+      }
+  const double paper_variance = sum / std::pow(n * s, 3);
+  const double hush_approx = tile->projected_variance(2, false);
+  MESSAGE("paper's projected sigma^2 on hush's tile " << paper_variance << ", 4 x hush's "
+                                                      << 4 * hush_approx);
+  CHECK(paper_variance == doctest::Approx(4 * hush_approx).epsilon(1e-3));
+}

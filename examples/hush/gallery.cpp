@@ -13,12 +13,14 @@
 #include <limits>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
 #include "gallery_anisotropic.hpp"
 #include "gallery_coherent.hpp"
 #include "gallery_npr.hpp"
+#include "gallery_wavelet.hpp"
 #include "gif/gif.hpp"
 #include "image.hpp"
 #include "noises.hpp"
@@ -343,6 +345,7 @@ int run_gallery(const std::vector<std::string>& args) {
   // Scene-driven noises: stills as PNG, animations as GIF (examples/gif).
   std::vector<gallery_item> items = coherent_gallery_items();
   for (gallery_item& e : npr_gallery_items()) items.push_back(std::move(e));
+  for (gallery_item& e : wavelet_gallery_items()) items.push_back(std::move(e));
   for (std::size_t n = 0; n < items.size(); ++n) {
     const gallery_item& e = items[n];
     std::fprintf(stderr, "gallery: [%zu/%zu] %s\n", n + 1, items.size(), e.file);

@@ -14,6 +14,7 @@ Usage: check_bench.py HUSH_EXE SCRATCH_DIR   (exit 0: all checks pass)
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -33,9 +34,19 @@ PERLIN_VALUE, PERLIN_GRADIENT, FBM_SCALE = 2.0 ** -16, 8 * 2.0 ** -16, 4 * 3.4
 # the loose budgets, like the others, sit well above and far below an O(1) miss.
 # NPR Gabor noise (npr_gabor.hpp: 2^-21 (1 + 2 pi F0 r) per kernel times the sum of |w v|
 # scale over the kernels at a pixel) measured 8.3e-7 in its tests; the loose budget is 1e-4.
+# Wavelet noise (wavelet.hpp float_budget: (21 D + bands + 2) 2^-24 bound(), 512 in place of
+# 21 D for the projection's kernels; bound() ~ 10 at unit variance) measures 1.6e-6 / 1.4e-6
+# (values / gradients, every backend) in `hush bench --quick`; loose budgets like Gabor's.
 VALUE_BUDGET = {"perlin": PERLIN_VALUE, "fbm": FBM_SCALE * PERLIN_VALUE, "coherent": 1e-3,
-                "gabor": 1e-4, "anisotropic": 1e-3, "npr-gabor": 1e-4}
-GRADIENT_BUDGET = {"perlin": PERLIN_GRADIENT, "fbm": FBM_SCALE * PERLIN_GRADIENT, "gabor": 1e-3}
+                "gabor": 1e-4, "anisotropic": 1e-3, "npr-gabor": 1e-4, "wavelet": 1e-4}
+GRADIENT_BUDGET = {"perlin": PERLIN_GRADIENT, "fbm": FBM_SCALE * PERLIN_GRADIENT, "gabor": 1e-3,
+                   "wavelet": 1e-3}
+# Wavelet rows carry the band leakage (hush/detail/band_limit.hpp) of band 0 beside Perlin's
+# as their quality note; the figures are ~0.0002 and ~0.02: wavelet 2D must leak at
+# most a tenth of Perlin's (measured 0.0003 vs 0.010), and the 3D noise projected onto the
+# slice plane at most a quarter of what the slice leaks (measured 0.0068 vs 0.079), as in
+# tests/wavelet_spectrum_test.cpp.
+WAVELET_LEAK_RATIO, PROJECTED_LEAK_RATIO = 0.1, 0.25
 
 failures = []
 
@@ -94,7 +105,29 @@ def main():
     want = {(n, b, w, o) for n in ("perlin 2D", "perlin 3D", "fbm 2D", "fbm 3D")
             for b in ("scalar", "simd") for w in ("grid", "points")
             for o in ("value", "value+gradient")}
+    want |= {(n, b, w, o) for n in ("wavelet 2D", "wavelet 3D")
+             for b in ("scalar", "simd") for w in ("grid", "points")
+             for o in ("value", "value+gradient")}
+    want |= {("wavelet %s b%d" % (d, k), b, w, "value") for d in ("2D", "3D") for k in (2, 4)
+             for b in ("scalar", "simd") for w in ("grid", "points")}
+    want |= {(n, b, "samples", "value") for b in ("scalar", "simd")
+             for n in ("wavelet 3D projected", "wavelet 3D projected approx")}
     check(want <= hush_keys, "missing hush rows: %s" % sorted(want - hush_keys))
+    leak = {}
+    for r in rows:
+        if r["peer"] or r["noise"] not in ("wavelet 2D", "wavelet 3D", "wavelet 3D projected"):
+            continue
+        m = re.match(r"band leakage ([0-9.e+-]+) \(perlin 2D ([0-9.e+-]+)\)", r.get("quality", ""))
+        check(m is not None, r["id"] + ": quality %r" % r.get("quality"))
+        if m:
+            leak[r["noise"]] = float(m.group(1))
+            leak["perlin"] = float(m.group(2))
+    if len(leak) == 4:
+        check(leak["wavelet 2D"] <= WAVELET_LEAK_RATIO * leak["perlin"],
+              "wavelet 2D band leakage %g vs perlin %g" % (leak["wavelet 2D"], leak["perlin"]))
+        check(leak["wavelet 3D projected"] <= PROJECTED_LEAK_RATIO * leak["wavelet 3D"],
+              "projected band leakage %g vs 3D slice %g"
+              % (leak["wavelet 3D projected"], leak["wavelet 3D"]))
     peers = {r["backend"] for r in rows if r["peer"]}
     check({"glm::perlin", "libnoise"} <= peers or doc["machine"]["peers"].startswith("none"),
           "peer rows: %s" % sorted(peers))

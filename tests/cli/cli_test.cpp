@@ -704,7 +704,9 @@ TEST_CASE("gallery writes its 7 PNGs with the expected sizes and lists them") {
                              {"turbulence.png", 1024, 512},
                              {"perlin_periodic_tiled.png", 256, 256},
                              {"gabor_kinds.png", 768, 768},
-                             {"gabor_filtering.png", 1152, 256}};
+                             {"gabor_filtering.png", 1152, 256},
+                             {"wavelet_fig8.png", 512, 1024},
+                             {"wavelet_plane.png", 768, 384}};
   for (const expected& e : images) {
     CAPTURE(e.file);
     const png_header h = read_png_header(out / e.file);
@@ -718,6 +720,8 @@ TEST_CASE("gallery writes its 7 PNGs with the expected sizes and lists them") {
   CHECK(r.err.find("gallery: [2/7] perlin3d_slice.png") != std::string::npos);
   // The receding plane's errors against its supersampled reference, printed under it.
   CHECK(r.out.find("RMS error vs reference: unfiltered") != std::string::npos);
+  CHECK(r.err.find("wavelet_plane.png: RMS error vs 16x16 reference: wavelet + footprint") !=
+        std::string::npos);
 
 #if HUSH_CLI_TEST_DECODE
   SUBCASE("the spectrum half is brightest around zero frequency, at its centre") {
@@ -730,6 +734,20 @@ TEST_CASE("gallery writes its 7 PNGs with the expected sizes and lists them") {
     };
     CHECK(mean(512 + 256 - 8, 256 - 8, 16) > 150);  // the centre of the right half
     CHECK(mean(512, 0, 64) < 20);                   // its highest frequencies (a corner)
+  }
+  SUBCASE("wavelet Fig. 8: band 0's spectrum is dark at its centre, the 3D slice's is not") {
+    // Rows of 256 pixels: Perlin, wavelet 2D, 3D slice, projected; spectra on the right,
+    // zero frequency at (384, 128 + 256 row). The 8x8 centre without the zero bin itself.
+    const gray_pixels g = decode_png(out / "wavelet_fig8.png");
+    auto centre = [&](int row) {
+      double sum = 0;
+      for (int y = -4; y < 4; ++y)
+        for (int x = -4; x < 4; ++x)
+          if (x != 0 || y != 0) sum += g.at(384 + x, 128 + 256 * row + y);
+      return sum / 63;
+    };
+    CHECK(centre(1) < centre(2));  // wavelet 2D below the slice of 3D
+    CHECK(centre(3) < centre(2));  // projection empties the centre again
   }
   SUBCASE("the periodic tiles meet without a seam") {
     const gray_pixels g = decode_png(out / "perlin_periodic_tiled.png");

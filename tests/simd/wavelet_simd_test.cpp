@@ -166,6 +166,14 @@ void grid_case() {
       g.size[a] = D == 2 ? 37 : 11;
     }
     grids.push_back(g);
+    // Columns running backwards, several per coefficient (the grid kernel's lane lookups
+    // with a vector's base at its last column), then columns spanning more than a tile
+    // (its gathers from the wrapped row table).
+    g.origin[0] = -5.3;
+    g.step[0] = -0.2;
+    grids.push_back(g);
+    g.step[0] = 7.3;
+    grids.push_back(g);
     for (int a = 0; a < D; ++a) {
       g.origin[a] = a == 0 ? 1e9 : -3e15;  // far from the origin
       g.step[a] = a == 1 ? -0.75 : 2.5;    // negative and coarser than a coefficient
