@@ -353,7 +353,6 @@ std::string wavelet_leakage_note(int kind) {  // 0: 2D, 1: 3D slice, 2: 3D proje
 // Adds the leakage note to cases[first ...]: measured while preparing (not at start-up).
 void add_leakage_quality(std::vector<bench_case>& cases, std::size_t first, int kind) {
   for (std::size_t i = first; i < cases.size(); ++i) {
-    cases[i].quality = std::make_shared<std::string>();  // its own, not its siblings'
     cases[i].prepare = [prepare = cases[i].prepare, kind] {
       prepared_case p = prepare();
       p.quality = wavelet_leakage_note(kind);
@@ -422,11 +421,9 @@ void add_wavelet_rows(std::vector<bench_case>& cases, const sizes& s, const Exec
       c.workload = grid_name(g);
       c.prepare = [noise, ex, g] { return prepare_hush_grid(noise, ex, g, false); };
       cases.push_back(c);
-      c.quality = std::make_shared<std::string>();
       c.workload = "points " + std::to_string(s.points);
       c.prepare = [noise, ex, n = s.points] { return prepare_hush_points(noise, ex, n, false); };
       cases.push_back(c);
-      c.quality = std::make_shared<std::string>();
     };
     add(make_wavelet<2>(bands), "2D");
     add(make_wavelet<3>(bands), "3D");
@@ -719,6 +716,9 @@ std::vector<bench_case> all_cases(const sizes& s) {
     add_libnoise_rows<3>(cases, s, octaves);
   }
 #endif
+  // Rows made by copying a case (the backend and pinned-target variants) copied its quality
+  // pointer too: give every row its own, so that no row reports a sibling's note.
+  for (bench_case& c : cases) c.quality = std::make_shared<std::string>();
   return cases;
 }
 
