@@ -47,7 +47,10 @@ void each_target(Check check) {
 
 [[maybe_unused]] bool same_bits(float a, float b) {
   if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
-  return std::memcmp(&a, &b, sizeof a) == 0;
+  std::uint32_t ua = 0, ub = 0;
+  std::memcpy(&ua, &a, sizeof a);
+  std::memcpy(&ub, &b, sizeof b);
+  return ua == ub;
 }
 
 // SIMD against scalar: bit for bit under strict FP, else within 2 budgets.

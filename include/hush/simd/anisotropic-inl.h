@@ -41,7 +41,6 @@
 #include <cstring>
 #include <limits>
 #include <vector>
-#include <x86intrin.h>
 
 #include <hwy/highway.h>
 
@@ -59,8 +58,6 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 namespace aniso_simd {
-inline unsigned long long g_t[4];
-
 
 using DF = hn::ScalableTag<float>;
 using DU = hn::RebindToUnsigned<DF>;
@@ -411,7 +408,8 @@ HWY_INLINE void weights_filter(const config& cf, block& b, std::size_t first, co
   const VD sxx1 = hn::PromoteTo(dd, a1), sxy1 = hn::PromoteTo(dd, b1), syy1 = hn::PromoteTo(dd, c1);
   VD q0[kMaxChannels], q1[kMaxChannels];
   for (int i = 0; i < cf.k; ++i) {
-    const VD dxx = hn::Set(dd, cf.dxx[i]), dxy2 = hn::Set(dd, cf.dxy2[i]), dyy = hn::Set(dd, cf.dyy[i]);
+    const VD dxx = hn::Set(dd, cf.dxx[i]), dxy2 = hn::Set(dd, cf.dxy2[i]),
+             dyy = hn::Set(dd, cf.dyy[i]);
     q0[i] = mul_add(syy0, dyy, mul_add(sxy0, dxy2, hn::Mul(sxx0, dxx)));
     q1[i] = mul_add(syy1, dyy, mul_add(sxy1, dxy2, hn::Mul(sxx1, dxx)));
   }
@@ -494,13 +492,17 @@ HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j, 
   const D4 d4;
   const std::size_t n4 = hn::Lanes(d4);
   const int passes = cf.passes();
+  // Accumulators of octave pass p start at row(p) (size_t: no int products as offsets).
+  const auto row = [&](int p) {
+    return static_cast<std::size_t>(p) * static_cast<std::size_t>(cf.kc);
+  };
   HWY_ALIGN float acc[kMaxScales * kMaxChannels];
   HWY_ALIGN float gx[Gradient ? kMaxScales * kMaxChannels : 1];
   HWY_ALIGN float gy[Gradient ? kMaxScales * kMaxChannels : 1];
-  std::fill(acc, acc + passes * cf.kc, 0.0f);
+  std::fill(acc, acc + row(passes), 0.0f);
   if constexpr (Gradient) {
-    std::fill(gx, gx + passes * cf.kc, 0.0f);
-    std::fill(gy, gy + passes * cf.kc, 0.0f);
+    std::fill(gx, gx + row(passes), 0.0f);
+    std::fill(gy, gy + row(passes), 0.0f);
   }
   for (int s = 0; s < cf.scales; ++s) {
     if (!b.active[s][j]) continue;
@@ -522,7 +524,7 @@ HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j, 
       }
       for (int pass = 0; pass < passes; ++pass) {
         const V4 w = hn::LoadU(d4, b.weights(cf, pass, s, cc / 4) + j * 4 + cc % 4);
-        const std::size_t at = static_cast<std::size_t>(pass * cf.kc + cc);
+        const std::size_t at = row(pass) + static_cast<std::size_t>(cc);
         hn::Store(mul_add(w, v, hn::Load(d4, acc + at)), d4, acc + at);
         if constexpr (Gradient) {
           hn::Store(mul_add(w, sx, hn::Load(d4, gx + at)), d4, gx + at);
@@ -544,12 +546,12 @@ HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j, 
   }
   float r = 0.0f, rx = 0.0f, ry = 0.0f;
   for (int pass = 0; pass < passes; ++pass) {
-    const float v = tree(acc + pass * cf.kc);
+    const float v = tree(acc + row(pass));
     r = r + cf.gain[pass] * std::fabs(v);
     if constexpr (Gradient) {
       const float gs = cf.gain[pass] * (v < 0.0f ? -1.0f : 1.0f);
-      rx = rx + gs * tree(gx + pass * cf.kc);
-      ry = ry + gs * tree(gy + pass * cf.kc);
+      rx = rx + gs * tree(gx + row(pass));
+      ry = ry + gs * tree(gy + row(pass));
     }
   }
   if constexpr (Gradient) {
@@ -714,14 +716,13 @@ inline void run_block(const anisotropic& a, const config& cf, block& b, std::siz
   }
   for (std::size_t j = 0; j < count; ++j)
     b.bad[j] = !(std::isfinite(b.x[j]) && std::isfinite(b.y[j]));
-  unsigned long long T0 = __rdtsc();
   if (!cf.lsq) {
 #if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR
     if (cf.fbm && fp && !map && cf.filtering == weight_rule::centre) {
       for (std::size_t j = 0; j < padded; j += lanes) weights_filter(cf, b, j, fp);
     } else
 #endif
-    for (std::size_t j = 0; j < padded; j += lanes) weights_vector(cf, b, j, fp, map);
+      for (std::size_t j = 0; j < padded; j += lanes) weights_vector(cf, b, j, fp, map);
   } else {
     for (std::size_t j = 0; j < count; ++j) {
       sample_input<2> in;
@@ -738,16 +739,12 @@ inline void run_block(const anisotropic& a, const config& cf, block& b, std::siz
       for (int s = 0; s < cf.scales; ++s) b.active[s][j] = 1;
     }
   }
-  unsigned long long T1 = __rdtsc();
   // Tile coordinates only for scales some sample reads (far from the
   // camera, the pixel filter zeroes the fine scales of whole blocks).
   for (int s = 0; s < cf.scales; ++s)
     if (std::any_of(b.active[s], b.active[s] + count, [](std::uint32_t v) { return v != 0; }))
       split_scale(cf, b, s, padded);
-  unsigned long long T2 = __rdtsc();
   lookup_block(cf, b, count, out, grad);
-  unsigned long long T3 = __rdtsc();
-  g_t[0]+=T1-T0; g_t[1]+=T2-T1; g_t[2]+=T3-T2;
 }
 
 }  // namespace aniso_simd
