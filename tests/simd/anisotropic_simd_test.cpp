@@ -11,9 +11,10 @@
 // singular, huge, NaN), points, grids near and far, every tail length up to
 // three vectors and across the kernel's 64-sample blocks, 2 to 8
 // orientations, fbm and turbulence, every weight rule (least squares takes
-// the scalar weights), and NaN / Inf / huge positions.
+// the scalar weights), and NaN / Inf / huge positions; values and gradients.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -44,9 +45,12 @@ void each_target(Check check) {
 #endif
 }
 
-bool same_bits(float a, float b) {
+[[maybe_unused]] bool same_bits(float a, float b) {
   if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
-  return std::memcmp(&a, &b, sizeof a) == 0;
+  std::uint32_t ua = 0, ub = 0;
+  std::memcpy(&ua, &a, sizeof a);
+  std::memcpy(&ub, &b, sizeof b);
+  return ua == ub;
 }
 
 // SIMD against scalar: bit for bit under strict FP, else within 2 budgets.
@@ -62,6 +66,32 @@ void compare(const std::vector<float>& simd, const std::vector<float>& scalar, d
     if (!std::isnan(simd[i])) REQUIRE(std::fabs(double(simd[i]) - scalar[i]) <= 2 * budget);
 #endif
   }
+}
+
+// Gradients, SIMD against scalar: bit for bit under strict FP; otherwise
+// fused multiply-adds change each of the 5 float operations per channel and
+// subband by at most 1 ulp of terms bounded by the scale's texels per unit
+// times the weighted texel range, and the gradient's own scale is
+// max_s texels_per_unit(s) * bound() (times `stretch` with surface maps): a
+// tolerance of 2^-16 of that leaves 2^8 ulp for the sums of up to 4 x 8 terms.
+void compare_gradients(const hush::anisotropic& a, const std::vector<hush::vec2>& simd,
+                       const std::vector<hush::vec2>& scalar, double stretch = 1.0) {
+  REQUIRE(simd.size() == scalar.size());
+  double tpu = 0;
+  for (int s = 0; s < a.parameters().scales; ++s) tpu = std::max(tpu, a.texels_per_unit(s));
+  const double tol = std::ldexp(1.0, -16) * tpu * a.bound() * stretch;
+  for (std::size_t i = 0; i < simd.size(); ++i)
+    for (int axis = 0; axis < 2; ++axis) {
+      const float u = axis ? simd[i].y : simd[i].x, v = axis ? scalar[i].y : scalar[i].x;
+      INFO("gradient " << i << " axis " << axis << ": simd " << u << ", scalar " << v);
+#if HUSH_CONFIG_STRICT_FP
+      (void)tol;
+      REQUIRE(same_bits(u, v));
+#else
+      REQUIRE(std::isnan(u) == std::isnan(v));
+      if (!std::isnan(u)) REQUIRE(std::fabs(double(u) - v) <= tol);
+#endif
+    }
 }
 
 hush::anisotropic make(int k, hush::fractal_kind kind, hush::weight_rule filtering,
@@ -120,22 +150,39 @@ batch make_batch(std::size_t n, std::uint32_t seed) {
   return b;
 }
 
-// The noise on the batch through hush::evaluate with the given inputs.
+// The noise on the batch through hush::evaluate with the given inputs; with
+// grad, the gradients too (resized to n).
 template <class Exec>
 std::vector<float> run(const hush::anisotropic& a, const Exec& ex, const batch& b, std::size_t n,
-                       bool fps, bool maps) {
+                       bool fps, bool maps, std::vector<hush::vec2>* grad = nullptr) {
   hush::samples<2> s;
   s.positions = {b.pos.data(), n};
   if (fps) s.footprints = {b.fp.data(), n};
   if (maps) s.surface_maps = {b.maps.data(), n};
   std::vector<float> out(n);
-  hush::evaluate(a, ex, s, hush::span<float>(out));
+  if (grad) {
+    grad->resize(n);
+    hush::evaluate(a, ex, s, hush::span<float>(out), hush::span<hush::vec2>(*grad));
+  } else {
+    hush::evaluate(a, ex, s, hush::span<float>(out));
+  }
   return out;
+}
+
+// Values and gradients of the batch, SIMD against scalar (budget: the values').
+void compare_with_gradients(const hush::anisotropic& a, const batch& b, std::size_t n, bool fps,
+                            bool maps, double budget) {
+  std::vector<hush::vec2> ref_grad, grad;
+  const std::vector<float> ref = run(a, hush::exec::scalar, b, n, fps, maps, &ref_grad);
+  compare(run(a, hush::exec::simd, b, n, fps, maps, &grad), ref, budget);
+  compare_gradients(a, grad, ref_grad, maps ? a.bound_with_maps() / a.bound() : 1.0);
 }
 
 }  // namespace
 
-TEST_CASE("anisotropic simd: samples equal scalar evaluation (bit for bit under strict FP)") {
+TEST_CASE(
+    "anisotropic simd: samples and their gradients equal scalar evaluation (bit for bit under "
+    "strict FP)") {
   const batch b = make_batch(300, 17);
   using hush::fractal_kind;
   using hush::weight_rule;
@@ -149,9 +196,12 @@ TEST_CASE("anisotropic simd: samples equal scalar evaluation (bit for bit under 
           const bool fps = inputs & 1, maps = inputs & 2;
           INFO("footprints " << fps << ", maps " << maps);
           const std::vector<float> ref = run(a, hush::exec::scalar, b, b.pos.size(), fps, maps);
+          const double budget =
+              maps ? a.float_budget() * a.bound_with_maps() / a.bound() : a.float_budget();
           each_target([&] {
-            compare(run(a, hush::exec::simd, b, b.pos.size(), fps, maps), ref,
-                    maps ? a.float_budget() * a.bound_with_maps() / a.bound() : a.float_budget());
+            compare(run(a, hush::exec::simd, b, b.pos.size(), fps, maps), ref, budget);
+            // With gradients: the same values, and the scalar code's gradients.
+            compare_with_gradients(a, b, b.pos.size(), fps, maps, budget);
           });
         }
       }
@@ -164,6 +214,7 @@ TEST_CASE("anisotropic simd: least-squares weights take the scalar weight code")
   const std::vector<float> ref = run(a, hush::exec::scalar, b, b.pos.size(), true, true);
   each_target([&] {
     compare(run(a, hush::exec::simd, b, b.pos.size(), true, true), ref, a.float_budget() * 8);
+    compare_with_gradients(a, b, b.pos.size(), true, true, a.float_budget() * 8);
   });
 }
 
@@ -182,6 +233,14 @@ TEST_CASE("anisotropic simd: every tail length, points and samples") {
       hush::evaluate(a, hush::exec::scalar, hush::span<const hush::vec2>(b.pos.data(), n),
                      hush::span<float>(scalar));
       compare(simd, scalar, a.float_budget());
+      // Points with gradients.
+      std::vector<hush::vec2> simd_grad(n), scalar_grad(n);
+      hush::evaluate(a, hush::exec::simd, hush::span<const hush::vec2>(b.pos.data(), n),
+                     hush::span<float>(simd), hush::span<hush::vec2>(simd_grad));
+      hush::evaluate(a, hush::exec::scalar, hush::span<const hush::vec2>(b.pos.data(), n),
+                     hush::span<float>(scalar), hush::span<hush::vec2>(scalar_grad));
+      compare(simd, scalar, a.float_budget());
+      compare_gradients(a, simd_grad, scalar_grad);
     }
   });
 }
@@ -201,12 +260,15 @@ TEST_CASE("anisotropic simd: grids near and far, and gradients") {
       std::vector<float> out(g.count());
       hush::evaluate_grid(a, hush::exec::simd, g, hush::span<float>(out));
       compare(out, ref, a.float_budget());
-      // Gradients run the scalar code: identical.
-      std::vector<hush::vec2> grad(g.count());
+      // With gradients: the same values, and the gradients of the scalar code.
+      std::vector<hush::vec2> grad(g.count()), ref_grad(g.count());
+      std::vector<float> ref_value(g.count());
       hush::evaluate_grid(a, hush::exec::simd, g, hush::span<float>(out),
                           hush::span<hush::vec2>(grad));
-      const auto r = a.value_and_gradient<float>(g.position({5, 3}));
-      CHECK(same_bits(grad[3 * 77 + 5].x, r.gradient.x));
+      hush::evaluate_grid(a, hush::exec::scalar, g, hush::span<float>(ref_value),
+                          hush::span<hush::vec2>(ref_grad));
+      compare(out, ref_value, a.float_budget());
+      compare_gradients(a, grad, ref_grad);
     });
   }
 }

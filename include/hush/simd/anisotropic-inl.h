@@ -2,7 +2,7 @@
 //
 // Highway kernels for anisotropic noise (hush/anisotropic.hpp): batches of
 // samples (positions with optional footprints and surface maps), points and
-// uniform grids; values only (gradients run the scalar loop, exec.hpp).
+// uniform grids; values, and gradients on request (weights held fixed).
 // Compiled once per SIMD target (toggle include guard); reached through
 // hush/simd/dispatch.hpp, never included directly by users.
 //
@@ -23,6 +23,8 @@
 // multiply-adds are fused and results stay within the noise's float budget.
 // Least-squares weight rules take the scalar weight code per sample
 // (phase 1) and the vector lookups (phase 2): the same bits as well.
+// Gradients go through the general per-sample lookup, which also forms the
+// slopes of each bilinear lookup (anisotropic.hpp's accumulate).
 
 // Toggle guard: included once per target by foreach_target.h.
 #if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -386,6 +388,54 @@ HWY_INLINE void weights_vector(const config& cf, block& b, std::size_t first, co
   }
 }
 
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR
+// Phase 1, weights, in the most frequent case (fbm, footprints, no surface
+// maps, centre filtering: the bench frame, hush render without --scene): the
+// operations of weights_vector in the same order, without its map and
+// octave-pass machinery. Lanes = samples; the double quadratic forms of the
+// two halves are demoted and joined in registers rather than through b.z.
+HWY_INLINE void weights_filter(const config& cf, block& b, std::size_t first, const float* fp) {
+  const DF df;
+  const DD dd;
+  const DFH dfh;
+  const DU du;
+  const std::size_t half = hn::Lanes(dd);
+  static_assert(hn::MaxLanes(DF()) == 2 * hn::MaxLanes(DD()), "two double halves per float vector");
+  hn::Vec<DFH> a0, b0, c0, a1, b1, c1;
+  hn::LoadInterleaved3(dfh, fp + first * 3, a0, b0, c0);
+  hn::LoadInterleaved3(dfh, fp + (first + half) * 3, a1, b1, c1);
+  const VD sxx0 = hn::PromoteTo(dd, a0), sxy0 = hn::PromoteTo(dd, b0), syy0 = hn::PromoteTo(dd, c0);
+  const VD sxx1 = hn::PromoteTo(dd, a1), sxy1 = hn::PromoteTo(dd, b1), syy1 = hn::PromoteTo(dd, c1);
+  VD q0[kMaxChannels], q1[kMaxChannels];
+  for (int i = 0; i < cf.k; ++i) {
+    const VD dxx = hn::Set(dd, cf.dxx[i]), dxy2 = hn::Set(dd, cf.dxy2[i]),
+             dyy = hn::Set(dd, cf.dyy[i]);
+    q0[i] = mul_add(syy0, dyy, mul_add(sxy0, dxy2, hn::Mul(sxx0, dxx)));
+    q1[i] = mul_add(syy1, dyy, mul_add(sxy1, dxy2, hn::Mul(sxx1, dxx)));
+  }
+  const VF cut = hn::Set(df, cf.cut);
+  const VU magnitude = hn::Set(du, 0x7fffffffu);
+  for (int s = 0; s < cf.scales; ++s) {
+    VF ch[kMaxChannels];
+    for (int i = 0; i < cf.kc; ++i) ch[i] = hn::Zero(df);
+    VU any = hn::Zero(du);
+    const int o = s - cf.base;
+    if (o >= 0 && o < cf.octaves) {
+      const VD kappa = hn::Set(dd, cf.kappa[s]);
+      const VF ow = hn::Set(df, cf.ow[o]);
+      for (int i = 0; i < cf.k; ++i) {
+        const VF z = hn::Combine(df, hn::DemoteTo(dfh, hn::Mul(kappa, q1[i])),
+                                 hn::DemoteTo(dfh, hn::Mul(kappa, q0[i])));
+        ch[i] = hn::Mul(ow, lambda(z, cut, false));
+        any = hn::Or(any, hn::And(hn::BitCast(du, ch[i]), magnitude));
+      }
+    }
+    store_weights(cf, b, 0, s, first, ch);
+    hn::StoreU(any, du, b.active[s] + first);
+  }
+}
+#endif
+
 // Phase 1, tile coordinates of scale s for the block's `count` samples (the
 // coordinates b.x, b.y, padded to whole vectors): lattice_split<float>(p tpu + off, n).
 HWY_INLINE void split_scale(const config& cf, block& b, int s, std::size_t count) {
@@ -433,28 +483,53 @@ HWY_INLINE void split_scale(const config& cf, block& b, int s, std::size_t count
 }
 
 // Phase 2 for one sample: the weighted bilinear lookups of every scale
-// (general: any channel count and octave passes, 4-channel chunks).
-HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j) {
+// (general: any channel count and octave passes, 4-channel chunks). With
+// Gradient, also the gradient into g[0], g[1]: the bilinear lookups' slopes
+// times the scale's texels per unit, weights held fixed (anisotropic.hpp's
+// accumulate, the same operations in the same order).
+template <bool Gradient>
+HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j, float* g) {
   const D4 d4;
   const std::size_t n4 = hn::Lanes(d4);
   const int passes = cf.passes();
+  // Accumulators of octave pass p start at row(p) (size_t: no int products as offsets).
+  const auto row = [&](int p) {
+    return static_cast<std::size_t>(p) * static_cast<std::size_t>(cf.kc);
+  };
   HWY_ALIGN float acc[kMaxScales * kMaxChannels];
-  std::fill(acc, acc + passes * cf.kc, 0.0f);
+  HWY_ALIGN float gx[Gradient ? kMaxScales * kMaxChannels : 1];
+  HWY_ALIGN float gy[Gradient ? kMaxScales * kMaxChannels : 1];
+  std::fill(acc, acc + row(passes), 0.0f);
+  if constexpr (Gradient) {
+    std::fill(gx, gx + row(passes), 0.0f);
+    std::fill(gy, gy + row(passes), 0.0f);
+  }
   for (int s = 0; s < cf.scales; ++s) {
     if (!b.active[s][j]) continue;
     const float* t00 = cf.texels + b.offset[s][j];
     const float* t01 = t00 + cf.stride;
     const V4 fx = hn::Set(d4, b.fx[s][j]), fy = hn::Set(d4, b.fy[s][j]);
+    const V4 scale = hn::Set(d4, float(cf.tpu[s]));
     for (int cc = 0; cc < cf.kc; cc += static_cast<int>(n4)) {
       const V4 c00 = hn::LoadU(d4, t00 + cc), c10 = hn::LoadU(d4, t00 + cf.kc + cc);
       const V4 c01 = hn::LoadU(d4, t01 + cc), c11 = hn::LoadU(d4, t01 + cf.kc + cc);
-      const V4 r0 = mul_add(fy, hn::Sub(c01, c00), c00);
-      const V4 r1 = mul_add(fy, hn::Sub(c11, c10), c10);
+      const V4 d0 = hn::Sub(c01, c00), d1 = hn::Sub(c11, c10);
+      const V4 r0 = mul_add(fy, d0, c00);
+      const V4 r1 = mul_add(fy, d1, c10);
       const V4 v = mul_add(fx, hn::Sub(r1, r0), r0);
+      V4 sx, sy;
+      if constexpr (Gradient) {
+        sx = hn::Mul(scale, hn::Sub(r1, r0));
+        sy = hn::Mul(scale, mul_add(fx, hn::Sub(d1, d0), d0));
+      }
       for (int pass = 0; pass < passes; ++pass) {
-        const float* w = b.weights(cf, pass, s, cc / 4) + j * 4 + cc % 4;
-        float* a = acc + pass * cf.kc + cc;
-        hn::Store(mul_add(hn::LoadU(d4, w), v, hn::Load(d4, a)), d4, a);
+        const V4 w = hn::LoadU(d4, b.weights(cf, pass, s, cc / 4) + j * 4 + cc % 4);
+        const std::size_t at = row(pass) + static_cast<std::size_t>(cc);
+        hn::Store(mul_add(w, v, hn::Load(d4, acc + at)), d4, acc + at);
+        if constexpr (Gradient) {
+          hn::Store(mul_add(w, sx, hn::Load(d4, gx + at)), d4, gx + at);
+          hn::Store(mul_add(w, sy, hn::Load(d4, gy + at)), d4, gy + at);
+        }
       }
     }
   }
@@ -462,10 +537,27 @@ HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j) 
     const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
     return cf.kc == 4 ? s4 : s4 + ((a[4] + a[5]) + (a[6] + a[7]));
   };
-  if (cf.fbm) return tree(acc);
-  float r = 0.0f;
-  for (int pass = 0; pass < passes; ++pass)
-    r = r + cf.gain[pass] * std::fabs(tree(acc + pass * cf.kc));
+  if (cf.fbm) {
+    if constexpr (Gradient) {
+      g[0] = tree(gx);
+      g[1] = tree(gy);
+    }
+    return tree(acc);
+  }
+  float r = 0.0f, rx = 0.0f, ry = 0.0f;
+  for (int pass = 0; pass < passes; ++pass) {
+    const float v = tree(acc + row(pass));
+    r = r + cf.gain[pass] * std::fabs(v);
+    if constexpr (Gradient) {
+      const float gs = cf.gain[pass] * (v < 0.0f ? -1.0f : 1.0f);
+      rx = rx + gs * tree(gx + row(pass));
+      ry = ry + gs * tree(gy + row(pass));
+    }
+  }
+  if constexpr (Gradient) {
+    g[0] = rx;
+    g[1] = ry;
+  }
   return r;
 }
 
@@ -553,8 +645,21 @@ HWY_INLINE void lookup_block_texels8(const config& cf, const block& b, std::size
 }
 #endif
 
-// Phase 2 for a block: the paired fast path where the target allows, else per sample.
-HWY_INLINE void lookup_block(const config& cf, const block& b, std::size_t count, float* out) {
+// Phase 2 for a block: with gradients (grad: interleaved x, y) per sample;
+// values only through the paired fast path where the target allows, else per sample.
+HWY_INLINE void lookup_block(const config& cf, const block& b, std::size_t count, float* out,
+                             float* grad) {
+  if (grad) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (std::size_t j = 0; j < count; ++j) {
+      if (b.bad[j]) {
+        out[j] = grad[2 * j] = grad[2 * j + 1] = nan;
+        continue;
+      }
+      out[j] = lookup_sample<true>(cf, b, j, grad + 2 * j);
+    }
+    return;
+  }
 #if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
   if (cf.fbm && cf.kc == 4) return lookup_block_pairs<4>(cf, b, count, out);
 #if HWY_MAX_BYTES >= 64
@@ -564,7 +669,8 @@ HWY_INLINE void lookup_block(const config& cf, const block& b, std::size_t count
 #endif
 #endif
   for (std::size_t j = 0; j < count; ++j)
-    out[j] = b.bad[j] ? std::numeric_limits<float>::quiet_NaN() : lookup_sample(cf, b, j);
+    out[j] = b.bad[j] ? std::numeric_limits<float>::quiet_NaN()
+                      : lookup_sample<false>(cf, b, j, nullptr);
 }
 
 // Least-squares rules: phase-1 weights of sample j from the scalar code.
@@ -584,9 +690,9 @@ inline void scalar_weights(const anisotropic& a, const config& cf, block& b, std
 
 // A block of `count` <= kBlock samples whose coordinates are in b.x, b.y
 // (padded to whole vectors), with footprints fp and maps (null: not given) at
-// the block's first sample.
+// the block's first sample; gradients into grad (interleaved x, y) unless null.
 inline void run_block(const anisotropic& a, const config& cf, block& b, std::size_t count,
-                      const float* fp, const float* map, float* out) {
+                      const float* fp, const float* map, float* out, float* grad) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const std::size_t padded = (count + lanes - 1) / lanes * lanes;
@@ -611,7 +717,12 @@ inline void run_block(const anisotropic& a, const config& cf, block& b, std::siz
   for (std::size_t j = 0; j < count; ++j)
     b.bad[j] = !(std::isfinite(b.x[j]) && std::isfinite(b.y[j]));
   if (!cf.lsq) {
-    for (std::size_t j = 0; j < padded; j += lanes) weights_vector(cf, b, j, fp, map);
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR
+    if (cf.fbm && fp && !map && cf.filtering == weight_rule::centre) {
+      for (std::size_t j = 0; j < padded; j += lanes) weights_filter(cf, b, j, fp);
+    } else
+#endif
+      for (std::size_t j = 0; j < padded; j += lanes) weights_vector(cf, b, j, fp, map);
   } else {
     for (std::size_t j = 0; j < count; ++j) {
       sample_input<2> in;
@@ -628,17 +739,23 @@ inline void run_block(const anisotropic& a, const config& cf, block& b, std::siz
       for (int s = 0; s < cf.scales; ++s) b.active[s][j] = 1;
     }
   }
-  for (int s = 0; s < cf.scales; ++s) split_scale(cf, b, s, padded);
-  lookup_block(cf, b, count, out);
+  // Tile coordinates only for scales some sample reads (far from the
+  // camera, the pixel filter zeroes the fine scales of whole blocks).
+  for (int s = 0; s < cf.scales; ++s)
+    if (std::any_of(b.active[s], b.active[s] + count, [](std::uint32_t v) { return v != 0; }))
+      split_scale(cf, b, s, padded);
+  lookup_block(cf, b, count, out, grad);
 }
 
 }  // namespace aniso_simd
 
 // Anisotropic noise at n samples: positions xy (interleaved), footprints fp
 // (3 floats each: the stored upper triangle; null = points) and surface
-// maps (4 floats each; null = none); values into `value`.
+// maps (4 floats each; null = none); values into `value`, gradients
+// (interleaved x, y, weights held fixed as in anisotropic.hpp) into grad
+// unless null.
 inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
-                                const float* map, std::size_t n, float* value) {
+                                const float* map, std::size_t n, float* value, float* grad) {
   using namespace aniso_simd;
   const config cf(a);
   block b(cf);
@@ -650,13 +767,14 @@ inline void anisotropic_samples(const anisotropic& a, const float* xy, const flo
       b.y[j] = double(p[2 * j + 1]);
     }
     run_block(a, cf, b, count, fp ? fp + 3 * first : nullptr, map ? map + 4 * first : nullptr,
-              value + first);
+              value + first, grad ? grad + 2 * first : nullptr);
   }
 }
 
 // Anisotropic noise on a uniform 2D grid (C order, i fastest); positions
-// origin + step * (i, j) in double, as the scalar grid path forms them.
-inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
+// origin + step * (i, j) in double, as the scalar grid path forms them;
+// gradients (interleaved x, y) into grad unless null.
+inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
   using namespace aniso_simd;
   const config cf(a);
   block b(cf);
@@ -669,7 +787,8 @@ inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* valu
         b.x[i] = g.origin[0] + g.step[0] * double(first + i);
         b.y[i] = y;
       }
-      run_block(a, cf, b, count, nullptr, nullptr, value + j * nx + first);
+      run_block(a, cf, b, count, nullptr, nullptr, value + j * nx + first,
+                grad ? grad + 2 * (j * nx + first) : nullptr);
     }
   }
 }

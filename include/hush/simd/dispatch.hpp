@@ -133,10 +133,13 @@ HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* va
 
 // Anisotropic noise (hush/simd/anisotropic-inl.h): n samples at interleaved
 // positions xy, with footprints fp (3 floats each, null = points) and surface
-// maps (4 floats each, null = none); or a uniform grid. Values only.
+// maps (4 floats each, null = none); or a uniform grid. Gradients
+// (interleaved x, y) into grad unless null.
 HUSH_SIMD_ENTRY void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
-                                         const float* map, std::size_t n, float* value);
-HUSH_SIMD_ENTRY void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value);
+                                         const float* map, std::size_t n, float* value,
+                                         float* grad);
+HUSH_SIMD_ENTRY void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value,
+                                      float* grad);
 
 // NPR Gabor noise's stage 2 (hush/simd/npr_gabor-inl.h): the job's records added into
 // out (frame-sized, zeroed by the caller), per pixel in record order; bit for bit
@@ -208,11 +211,11 @@ inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* va
   HWY_STATIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
 }
 inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
-                                const float* map, std::size_t n, float* value) {
-  HWY_STATIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value);
+                                const float* map, std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value, grad);
 }
-inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
-  HWY_STATIC_DISPATCH(anisotropic_grid)(a, g, value);
+inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(anisotropic_grid)(a, g, value, grad);
 }
 inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
                           float* grad) {
@@ -348,7 +351,7 @@ struct simd_kernel<wavelet<D>> {
 };
 
 // Anisotropic noise: samples (footprints, surface maps), points and grids,
-// values in SIMD; gradients take the scalar loop (bilinear lookups' slopes).
+// values and gradients in SIMD (gradients: the bilinear lookups' slopes).
 template <>
 struct simd_kernel<anisotropic> {
   static constexpr bool available = true;
@@ -356,46 +359,22 @@ struct simd_kernel<anisotropic> {
 
   static void points(const anisotropic& a, const vec<float, 2>* pts, std::size_t count, float* out,
                      vec<float, 2>* grad) {
-    if (grad) {
-      for (std::size_t i = 0; i < count; ++i) {
-        const auto r = a.gradient(pts[i]);
-        out[i] = r.value;
-        grad[i] = r.gradient;
-      }
-      return;
-    }
-    simd::anisotropic_samples(a, reinterpret_cast<const float*>(pts), nullptr, nullptr, count, out);
+    simd::anisotropic_samples(a, reinterpret_cast<const float*>(pts), nullptr, nullptr, count, out,
+                              reinterpret_cast<float*>(grad));
   }
   static void grid(const anisotropic& a, const hush::grid<2>& g, float* out, vec<float, 2>* grad) {
-    if (grad) {
-      std::size_t idx = 0;
-      for (std::size_t j = 0; j < g.size[1]; ++j)
-        for (std::size_t i = 0; i < g.size[0]; ++i, ++idx) {
-          const auto r = a.value_and_gradient<float>(g.position({i, j}));
-          out[idx] = r.value;
-          grad[idx] = r.gradient;
-        }
-      return;
-    }
-    simd::anisotropic_grid(a, g, out);
+    simd::anisotropic_grid(a, g, out, reinterpret_cast<float*>(grad));
   }
   static void samples(const anisotropic& a, const hush::samples<2>& s, float* out,
                       vec<float, 2>* grad) {
     static_assert(sizeof(footprint<2>) == 3 * sizeof(float), "footprint<2> is 3 packed floats");
     static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
-    if (grad) {
-      for (std::size_t i = 0; i < s.size(); ++i) {
-        const auto r = a.sample_value_and_gradient<float>(s.at(i));
-        out[i] = r.value;
-        grad[i] = r.gradient;
-      }
-      return;
-    }
+    static_assert(sizeof(vec<float, 2>) == 2 * sizeof(float), "vec<float, 2> is 2 packed floats");
     simd::anisotropic_samples(
         a, reinterpret_cast<const float*>(s.positions.data()),
         s.has_footprints() ? reinterpret_cast<const float*>(s.footprints.data()) : nullptr,
         s.has_surface_maps() ? reinterpret_cast<const float*>(s.surface_maps.data()) : nullptr,
-        s.size(), out);
+        s.size(), out, reinterpret_cast<float*>(grad));
   }
 };
 

@@ -124,11 +124,11 @@ void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, fl
   HWY_DYNAMIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
 }
 void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp, const float* map,
-                         std::size_t n, float* value) {
-  HWY_DYNAMIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value);
+                         std::size_t n, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value, grad);
 }
-void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value) {
-  HWY_DYNAMIC_DISPATCH(anisotropic_grid)(a, g, value);
+void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(anisotropic_grid)(a, g, value, grad);
 }
 void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(gabor2_points)(g, xy, n, value, grad);
