@@ -439,13 +439,17 @@ void add_libnoise_rows(std::vector<bench_case>& cases, const sizes& s, int octav
 }
 #endif
 
-// Perlin on the SIMD backend over kBenchThreads threads (hush::exec::parallel): the scaling
-// on this machine's cores. Wall-clock time, since the work runs on other threads too.
+// Perlin and 2D Gabor noise on the SIMD backend over kBenchThreads threads
+// (hush::exec::parallel): the scaling on this machine's cores. Wall-clock time, since the
+// work runs on other threads too.
 void add_parallel_rows(std::vector<bench_case>& cases, const sizes& s) {
   const auto ex = hush::exec::parallel(hush::exec::simd, kBenchThreads);
   const std::size_t first = cases.size();
   add_noise_rows(cases, s, "perlin 2D", hush::perlin<2>(kNoiseSeed), ex);
   add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), ex);
+  const std::size_t gabor_first = cases.size();
+  add_noise_rows(cases, s, "gabor 2D", make_gabor<2>(kGaborImpulses[0]), ex);
+  add_spectrum_note(cases, gabor_first, make_gabor<2>(kGaborImpulses[0]), ex);
   for (std::size_t i = first; i < cases.size(); ++i) {
     cases[i].backend = "simd, " + std::to_string(kBenchThreads) + " threads";
     cases[i].wall_clock = true;

@@ -104,7 +104,7 @@ def main():
             check(gmx is None and grms is None, name + ": gradient error without gradient")
         hush_keys.add((r["noise"], r["backend"], r["workload"].split()[0], r["output"]))
         if r["noise"].startswith("gabor 2D") and "filtered" not in r["noise"]:
-            check_spectrum_note(name, r["error_reference"])
+            check_spectrum_note(name, r.get("quality", ""))
     want = {(n, b, w, o) for n in ("perlin 2D", "perlin 3D", "fbm 2D", "fbm 3D")
             for b in ("scalar", "simd") for w in ("grid", "points")
             for o in ("value", "value+gradient")}
