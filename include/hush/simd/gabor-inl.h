@@ -17,8 +17,9 @@
 //  - otherwise multiply-adds may be fused, within the float budget of
 //    gabor.hpp.
 // How they are fast:
-//  - points and filtered samples: one lane per point (samples: each lane's
-//    filter computed in double, as the scalar code does, and gathered per term); per cell and
+//  - points, filtered samples and samples with normals: one lane per point (samples: each
+//    lane's filter, and for surface noise its tangent frame, computed in double as the scalar
+//    code does, and gathered per term); per cell and
 //    impulse the lanes draw in lockstep (the counter's hash is shared), and only impulses within a
 //    lane's support are kept, compressed into a list that the kernel then evaluates in full
 //    vectors; each point's terms are summed in stream order;
