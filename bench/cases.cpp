@@ -1,6 +1,8 @@
 // hush — the speed-vs-error benchmark's cases (see cases.hpp).
 #include "cases.hpp"
 
+#include "gabor_quality.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -259,15 +261,35 @@ prepared_case prepare_gabor_samples(const hush::gabor<D>& noise, const Exec& ex,
   return p;
 }
 
+// The spectrum error (gabor_quality.hpp) as the quality note of cases [from, end) of
+// 2D Gabor noise `noise` on `ex`: measured once, when the first of them is prepared.
+template <class Exec>
+void add_spectrum_note(std::vector<bench_case>& cases, std::size_t from,
+                       const hush::gabor<2>& noise, const Exec& ex) {
+  auto note = std::make_shared<std::string>();
+  for (std::size_t i = from; i < cases.size(); ++i) {
+    cases[i].prepare = [inner = cases[i].prepare, note, noise, ex] {
+      prepared_case p = inner();
+      if (note->empty()) *note = gabor_spectrum_note(noise, ex);
+      p.quality = *note;
+      return p;
+    };
+  }
+}
+
 // Gabor rows on `ex`: N' = 16 grid and points (value, value + gradient); N' = 32,
-// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16.
+// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16. The 2D
+// unfiltered rows carry the spectrum error.
 template <class Exec>
 void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex) {
+  const std::size_t first_2d = cases.size();
   add_noise_rows(cases, s, "gabor 2D", make_gabor<2>(kGaborImpulses[0]), ex);
+  add_spectrum_note(cases, first_2d, make_gabor<2>(kGaborImpulses[0]), ex);
   add_noise_rows(cases, s, "gabor 3D", make_gabor<3>(kGaborImpulses[0]), ex);
   const hush::grid<2> g = make_grid<2>(s);
   for (std::size_t k = 1; k < std::size(kGaborImpulses); ++k) {
     const hush::gabor<2> noise = make_gabor<2>(kGaborImpulses[k]);
+    const std::size_t first = cases.size();
     bench_case c;
     c.noise = "gabor 2D n" + std::to_string(static_cast<int>(kGaborImpulses[k]));
     c.backend = Exec::name;
@@ -279,6 +301,7 @@ void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& 
     c.workload = "points " + std::to_string(n);
     c.prepare = [noise, ex, n] { return prepare_hush_points(noise, ex, n, false); };
     cases.push_back(c);
+    add_spectrum_note(cases, first, noise, ex);
   }
   bench_case c;
   c.noise = "gabor 2D filtered";
@@ -580,13 +603,17 @@ void add_libnoise_rows(std::vector<bench_case>& cases, const sizes& s, int octav
 }
 #endif
 
-// Perlin on the SIMD backend over kBenchThreads threads (hush::exec::parallel): the scaling
-// on this machine's cores. Wall-clock time, since the work runs on other threads too.
+// Perlin and 2D Gabor noise on the SIMD backend over kBenchThreads threads
+// (hush::exec::parallel): the scaling on this machine's cores. Wall-clock time, since the
+// work runs on other threads too.
 void add_parallel_rows(std::vector<bench_case>& cases, const sizes& s) {
   const auto ex = hush::exec::parallel(hush::exec::simd, kBenchThreads);
   const std::size_t first = cases.size();
   add_noise_rows(cases, s, "perlin 2D", hush::perlin<2>(kNoiseSeed), ex);
   add_noise_rows(cases, s, "perlin 3D", hush::perlin<3>(kNoiseSeed), ex);
+  const std::size_t gabor_first = cases.size();
+  add_noise_rows(cases, s, "gabor 2D", make_gabor<2>(kGaborImpulses[0]), ex);
+  add_spectrum_note(cases, gabor_first, make_gabor<2>(kGaborImpulses[0]), ex);
   for (std::size_t i = first; i < cases.size(); ++i) {
     cases[i].backend = "simd, " + std::to_string(kBenchThreads) + " threads";
     cases[i].wall_clock = true;

@@ -318,6 +318,37 @@ class gabor : public sample_noise<gabor<D>, D> {
   double scale() const { return scale_; }
   double surface_scale() const { return surface_scale_; }
 
+  // Surface noise's set-up per sample (sample_eval, surface_eval; the SIMD
+  // kernel repeats it per lane). unit_normal: the unit normal of n (scaled
+  // before normalising, so that tiny and huge normals both work); false for a
+  // zero normal (no tangent plane: the solid noise). n must be finite.
+  static bool unit_normal(const vec<double, 3>& n, vec<double, 3>& unit) {
+    const double big = std::fmax(std::fabs(n.x), std::fmax(std::fabs(n.y), std::fabs(n.z)));
+    if (!(big > 0.0)) return false;
+    const vec<double, 3> m{n.x / big, n.y / big, n.z / big};
+    const double len = std::sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
+    unit = {m.x / len, m.y / len, m.z / len};
+    return true;
+  }
+  // surface_frame: the tangent frame (t, b) of unit normal n and the filter of
+  // footprint fp projected onto the plane ([t b]^T S [t b], in the kernel's units).
+  gabor_filter<2> surface_frame(const vec<double, 3>& n, const footprint<3>& fp,
+                                vec<double, 3>& t, vec<double, 3>& b) const {
+    detail::orthonormal_basis(n, t, b);
+    float upper[3];
+    const vec<double, 3>* axes[2] = {&t, &b};
+    for (int i = 0, e = 0; i < 2; ++i)
+      for (int j = i; j < 2; ++j, ++e) {
+        double v = 0;
+        for (int r = 0; r < 3; ++r)
+          for (int k = 0; k < 3; ++k)
+            v += (*axes[i])[r] * static_cast<double>(fp.covariance(r, k)) * (*axes[j])[k];
+        upper[e] = static_cast<float>(v);
+      }
+    return gabor_filter<2>(footprint<2>::from_covariance(upper), kernel_.envelope_exponent(),
+                           inv_cell_);
+  }
+
   // Variance 1 and mean 0 over space and seeds (see the file comment).
   static constexpr double variance() { return 1.0; }
   // |n| <= bound() (solid noise; surface noise's bound in 3D is surface_bound()).
@@ -697,20 +728,7 @@ class gabor : public sample_noise<gabor<D>, D> {
                                     const footprint<3>& fp) const {
     namespace c = detail::constants;
     vec<double, 3> t, b;
-    detail::orthonormal_basis(n, t, b);
-    // The footprint in the plane, in the kernel's units: [t b]^T S [t b].
-    float upper[3];
-    const vec<double, 3>* axes[2] = {&t, &b};
-    for (int i = 0, e = 0; i < 2; ++i)
-      for (int j = i; j < 2; ++j, ++e) {
-        double v = 0;
-        for (int r = 0; r < 3; ++r)
-          for (int k = 0; k < 3; ++k)
-            v += (*axes[i])[r] * static_cast<double>(fp.covariance(r, k)) * (*axes[j])[k];
-        upper[e] = static_cast<float>(v);
-      }
-    const gabor_filter<2> flt(footprint<2>::from_covariance(upper), kernel_.envelope_exponent(),
-                              inv_cell_);
+    const gabor_filter<2> flt = surface_frame(n, fp, t, b);
     T q[2][2], m[2][2];
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j) {
@@ -794,13 +812,8 @@ class gabor : public sample_noise<gabor<D>, D> {
         const vec<double, 3>& n = s.normal;
         if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
           return nan_result<T>();
-        // Scaled before normalising, so that tiny and huge normals both work.
-        const double big = std::fmax(std::fabs(n.x), std::fmax(std::fabs(n.y), std::fabs(n.z)));
-        if (big > 0.0) {
-          const vec<double, 3> m{n.x / big, n.y / big, n.z / big};
-          const double len = std::sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
-          return surface_eval<T, G>(s.position, {m.x / len, m.y / len, m.z / len}, s.fp);
-        }
+        vec<double, 3> unit;
+        if (unit_normal(n, unit)) return surface_eval<T, G>(s.position, unit, s.fp);
         // A zero normal has no tangent plane: the solid noise.
       }
     }

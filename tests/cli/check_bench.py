@@ -56,6 +56,19 @@ def check(cond, what):
         failures.append(what)
 
 
+# Gabor 2D rows carry "spectrum error E (sampling alone: S)" (bench/gabor_quality.hpp): E is
+# a relative RMS whose expectation for a correct noise is about S (each ring's mean has
+# relative sampling error ~S) plus the window's ~1% bias; 2 S + 0.05 leaves room for a
+# high draw, while a wrong spectrum (frequency or bandwidth off) gives E of order 1.
+def check_spectrum_note(name, note):
+    m = re.search(r"spectrum error ([0-9.]+) \(sampling alone: ([0-9.]+)\)", note)
+    check(m is not None, name + ": no spectrum error in %r" % note)
+    if m:
+        err, alone = float(m.group(1)), float(m.group(2))
+        check(0 < alone < 0.2 and err <= 2 * alone + 0.05,
+              name + ": spectrum error %g (sampling alone %g)" % (err, alone))
+
+
 def main():
     exe, scratch = sys.argv[1], sys.argv[2]
     shutil.rmtree(scratch, ignore_errors=True)
@@ -102,6 +115,8 @@ def main():
         else:
             check(gmx is None and grms is None, name + ": gradient error without gradient")
         hush_keys.add((r["noise"], r["backend"], r["workload"].split()[0], r["output"]))
+        if r["noise"].startswith("gabor 2D") and "filtered" not in r["noise"]:
+            check_spectrum_note(name, r.get("quality", ""))
     want = {(n, b, w, o) for n in ("perlin 2D", "perlin 3D", "fbm 2D", "fbm 3D")
             for b in ("scalar", "simd") for w in ("grid", "points")
             for o in ("value", "value+gradient")}

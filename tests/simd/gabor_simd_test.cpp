@@ -9,7 +9,8 @@
 // gabor.hpp. Covered: random points with every tail length up to three
 // vectors and the hard cases in every lane position, grids near and far, with
 // negative and coarse steps (the points path) and fine ones (the block path),
-// 2D and 3D, every kind, samples with footprints (and with normals: the scalar path).
+// 2D and 3D, every kind, samples with footprints and with normals (surface noise:
+// unit, tiny, zero and non-finite normals, with and without footprints).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -199,7 +200,8 @@ TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, 
 namespace {
 
 // Samples with footprints of every size (and HARD_CASES row 12's degenerate ones), and,
-// in 3D, the same with normals (surface noise: the scalar path).
+// in 3D, the same with normals (surface noise; zero normals: the solid noise, non-finite
+// ones: NaN, tiny ones: their direction) and with normals but no footprints.
 template <int D>
 void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed) {
   const std::vector<hush::vec<float, D>> pts = test_points<D>(n, seed);
@@ -218,11 +220,18 @@ void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed) {
     if (i % 17 == 7) dx[0] = std::numeric_limits<double>::quiet_NaN();  // the widest
     fps[i] = hush::footprint<D>::from_derivatives(dx, dy);
     nrm[i] = {r.uniform<float>(-1, 1), r.uniform<float>(-1, 1), r.uniform<float>(-1, 1)};
+    if (i % 19 == 2) nrm[i] = {};                                               // the solid noise
+    if (i % 23 == 4) nrm[i].y = std::numeric_limits<float>::infinity();        // NaN
+    if (i % 7 == 1) nrm[i] = {nrm[i].x * 1e-30f, nrm[i].y * 1e-30f, 1e-38f};  // tiny
   }
-  for (const bool normals : {false, true}) {
-    if (normals && D == 2) continue;
-    const hush::samples<D> s{
-        pts, fps, normals ? hush::span<const hush::vec3>(nrm) : hush::span<const hush::vec3>()};
+  // 0: footprints, 1: footprints and normals, 2: normals only.
+  for (const int variant : {0, 1, 2}) {
+    if (variant != 0 && D == 2) continue;
+    INFO("variant " << variant);
+    using fp_span = hush::span<const hush::footprint<D>>;
+    using normal_span = hush::span<const hush::vec3>;
+    const hush::samples<D> s{pts, variant == 2 ? fp_span() : fp_span(fps),
+                             variant == 0 ? normal_span() : normal_span(nrm)};
     std::vector<float> a(n), b(n), c(n);
     std::vector<hush::vec<float, D>> ga(n), gb(n);
     hush::evaluate(g, hush::exec::scalar, s, hush::span<float>(a),
@@ -233,7 +242,10 @@ void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed) {
       hush::evaluate(g, hush::exec::simd, s, hush::span<float>(c));
       // The filter adds the phase and attenuation terms to the budget (as on GLSL).
       const double phi = g.marks().phi0() + g.marks().dphi(), aa = g.kernel().envelope_exponent();
-      const double f = 1 + 2 * kPi * phi + kPi * kPi * phi * phi / aa;
+      double f = 1 + 2 * kPi * phi + kPi * kPi * phi * phi / aa;
+      // Surface noise sums its terms with surface_scale() instead of scale().
+      if constexpr (D == 3)
+        if (variant != 0) f *= std::fmax(1.0, g.surface_scale() / g.scale());
       compare(b.data(), a.data(), n, value_budget(g) * f);
       compare(c.data(), a.data(), n, value_budget(g) * f);
       compare(reinterpret_cast<const float*>(gb.data()), reinterpret_cast<const float*>(ga.data()),

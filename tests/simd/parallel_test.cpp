@@ -3,7 +3,8 @@
 // hush::exec::parallel (exec.hpp): a batch split over threads gives exactly
 // the inner policy's results on the whole batch, bit for bit, for points,
 // per-sample batches and grids (slabs along the slowest axis), values and
-// gradients, on the scalar and SIMD policies; bad thread counts are rejected
+// gradients, on the scalar and SIMD policies (Perlin, fractal and Gabor noise,
+// whose SIMD grid kernels take slabs); bad thread counts are rejected
 // with a message naming the parameter. Built with hush::simd (dynamic
 // dispatch, contraction allowed: identical results do not need strict FP).
 #include <doctest/doctest.h>
@@ -158,4 +159,20 @@ TEST_CASE("exec::parallel: thread counts outside 0 ... 1024 are rejected, naming
   }
   CHECK(hush::exec::parallel(hush::exec::scalar, 0).threads >= 1);
   CHECK(hush::exec::parallel(hush::exec::scalar, 5).threads == 5);
+}
+
+TEST_CASE("exec::parallel: gabor batches and grid slabs equal the single-thread call bit for bit") {
+  // Fine grids take the SIMD block path, the coarse one its points path, in every slab.
+  hush::gabor<2>::params p2;
+  p2.seed = 26;
+  check_all(hush::gabor<2>{p2}, test_grid<2>(300, 61));
+  hush::grid<2> coarse = test_grid<2>(200, 90);
+  coarse.step = {0.61, -0.43};
+  check_all(hush::gabor<2>{p2}, coarse);
+  hush::gabor<3>::params p3;
+  p3.seed = 27;
+  p3.kind = hush::gabor_kind::hybrid;
+  p3.orientation_spread = 1.0;
+  p3.frequency_spread = 0.5;
+  check_all(hush::gabor<3>{p3}, test_grid<3>(24, 19));
 }

@@ -117,19 +117,25 @@ HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& 
 // Coherent noise: one recursive-filter pass over a frame (hush/simd/coherent-inl.h;
 // the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
 HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
-// Gabor noise (hush/gabor.hpp): points (interleaved), whole grids (no slabs), and
+// Gabor noise (hush/gabor.hpp): points (interleaved), grid slabs (as Perlin's), and
 // points with footprints (filtered samples); same conventions. hush/simd/gabor-inl.h states
 // the agreement with scalar evaluation.
 HUSH_SIMD_ENTRY void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
                                    float* grad);
 HUSH_SIMD_ENTRY void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
                                    float* grad);
-HUSH_SIMD_ENTRY void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor2_grid(const gabor<2>& g, const grid<2>& gr, std::size_t first,
+                                 std::size_t count, float* value, float* grad);
 HUSH_SIMD_ENTRY void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
                                      std::size_t n, float* value, float* grad);
 HUSH_SIMD_ENTRY void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
                                      std::size_t n, float* value, float* grad);
-HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad);
+HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
+                                 std::size_t count, float* value, float* grad);
+// Samples with normals (surface noise), interleaved normals; fps null: point footprints.
+HUSH_SIMD_ENTRY void gabor3_surface(const gabor<3>& g, const float* xyz, const float* normals,
+                                    const footprint<3>* fps, std::size_t n, float* value,
+                                    float* grad);
 
 // Anisotropic noise (hush/simd/anisotropic-inl.h): n samples at interleaved
 // positions xy, with footprints fp (3 floats each, null = points) and surface
@@ -225,8 +231,9 @@ inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, fl
                           float* grad) {
   HWY_STATIC_DISPATCH(gabor3_points)(g, xyz, n, value, grad);
 }
-inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(gabor2_grid)(g, gr, value, grad);
+inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, std::size_t first,
+                        std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor2_grid)(g, gr, first, count, value, grad);
 }
 inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
                             std::size_t n, float* value, float* grad) {
@@ -236,8 +243,13 @@ inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint
                             std::size_t n, float* value, float* grad) {
   HWY_STATIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
 }
-inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
+inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
+                        std::size_t count, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, first, count, value, grad);
+}
+inline void gabor3_surface(const gabor<3>& g, const float* xyz, const float* normals,
+                           const footprint<3>* fps, std::size_t n, float* value, float* grad) {
+  HWY_STATIC_DISPATCH(gabor3_surface)(g, xyz, normals, fps, n, value, grad);
 }
 inline void npr_gabor_splat(const detail::npr_gabor_splat_job& job, const image_view<float>& out) {
   HWY_STATIC_DISPATCH(npr_gabor_splat)(job, out);
@@ -378,7 +390,7 @@ struct simd_kernel<anisotropic> {
   }
 };
 
-// Gabor noise: points, grids, and samples with footprints (with normals: scalar).
+// Gabor noise: points, grids, and samples with footprints and (3D) normals.
 template <int D>
 struct simd_kernel<gabor<D>> {
   static constexpr bool available = true;
@@ -386,20 +398,15 @@ struct simd_kernel<gabor<D>> {
 
   static void samples(const gabor<D>& g, const hush::samples<D>& s, float* out,
                       vec<float, D>* grad) {
-    if (s.has_normals()) {  // surface noise: the scalar path
-      for (std::size_t i = 0; i < s.size(); ++i) {
-        if (grad) {
-          const auto r = g.template sample_value_and_gradient<float>(s.at(i));
-          out[i] = r.value;
-          grad[i] = r.gradient;
-        } else {
-          out[i] = g.template sample_value<float>(s.at(i));
-        }
-      }
-      return;
-    }
     const auto* p = reinterpret_cast<const float*>(s.positions.data());
     auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 3) {
+      if (s.has_normals()) {  // surface noise
+        simd::gabor3_surface(g, p, reinterpret_cast<const float*>(s.normals.data()),
+                             s.has_footprints() ? s.footprints.data() : nullptr, s.size(), out, gr);
+        return;
+      }
+    }
     if constexpr (D == 2)
       simd::gabor2_filtered(g, p, s.footprints.data(), s.size(), out, gr);
     else
@@ -415,12 +422,18 @@ struct simd_kernel<gabor<D>> {
     else
       simd::gabor3_points(g, p, count, out, gr);
   }
-  static void grid(const gabor<D>& g, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+  // Slabs along the slowest axis (exec::parallel; exec.hpp).
+  static constexpr bool has_grid_slab = true;
+  static void grid_slab(const gabor<D>& g, const hush::grid<D>& gr, std::size_t first,
+                        std::size_t count, float* out, vec<float, D>* grad) {
     auto* gp = reinterpret_cast<float*>(grad);
     if constexpr (D == 2)
-      simd::gabor2_grid(g, gr, out, gp);
+      simd::gabor2_grid(g, gr, first, count, out, gp);
     else
-      simd::gabor3_grid(g, gr, out, gp);
+      simd::gabor3_grid(g, gr, first, count, out, gp);
+  }
+  static void grid(const gabor<D>& g, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    grid_slab(g, gr, 0, gr.size[D - 1], out, grad);
   }
 };
 

@@ -62,6 +62,7 @@ HWY_EXPORT(gabor3_grid);
 HWY_EXPORT(gabor2_filtered);
 HWY_EXPORT(gabor3_filtered);
 HWY_EXPORT(npr_gabor_splat);
+HWY_EXPORT(gabor3_surface);
 
 namespace simd {
 
@@ -137,11 +138,13 @@ void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* va
   HWY_DYNAMIC_DISPATCH(gabor3_points)(g, xyz, n, value, grad);
 }
 
-void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
-  HWY_DYNAMIC_DISPATCH(gabor2_grid)(g, gr, value, grad);
+void gabor2_grid(const gabor<2>& g, const grid<2>& gr, std::size_t first, std::size_t count,
+                 float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor2_grid)(g, gr, first, count, value, grad);
 }
-void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
-  HWY_DYNAMIC_DISPATCH(gabor3_grid)(g, gr, value, grad);
+void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first, std::size_t count,
+                 float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor3_grid)(g, gr, first, count, value, grad);
 }
 void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps, std::size_t n,
                      float* value, float* grad) {
@@ -150,6 +153,10 @@ void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps
 void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps, std::size_t n,
                      float* value, float* grad) {
   HWY_DYNAMIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
+}
+void gabor3_surface(const gabor<3>& g, const float* xyz, const float* normals,
+                    const footprint<3>* fps, std::size_t n, float* value, float* grad) {
+  HWY_DYNAMIC_DISPATCH(gabor3_surface)(g, xyz, normals, fps, n, value, grad);
 }
 
 void npr_gabor_splat(const detail::npr_gabor_splat_job& job, const image_view<float>& out) {

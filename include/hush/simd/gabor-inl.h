@@ -2,7 +2,7 @@
 //
 // Highway kernels for Gabor noise (hush/gabor.hpp): points, uniform grids and
 // samples with footprints (filtered, 2D and 3D), values and optionally
-// gradients (samples with normals, i.e. surface noise, take the scalar path). Compiled once per
+// gradients, and samples with normals (surface noise). Compiled once per
 // SIMD target (the "-inl.h" convention: toggle include guard below); reached through
 // hush/simd/dispatch.hpp, never included directly by users.
 //
@@ -17,8 +17,9 @@
 //  - otherwise multiply-adds may be fused, within the float budget of
 //    gabor.hpp.
 // How they are fast:
-//  - points and filtered samples: one lane per point (samples: each lane's
-//    filter computed in double, as the scalar code does, and gathered per term); per cell and
+//  - points, filtered samples and samples with normals: one lane per point (samples: each
+//    lane's filter, and for surface noise its tangent frame, computed in double as the scalar
+//    code does, and gathered per term); per cell and
 //    impulse the lanes draw in lockstep (the counter's hash is shared), and only impulses within a
 //    lane's support are kept, compressed into a list that the kernel then evaluates in full
 //    vectors; each point's terms are summed in stream order;
@@ -290,7 +291,7 @@ struct consts {
   VF neg_a, a, k, scale, grad_scale;
   // Marks (gabor_marks): 2D theta0 and spread (turns), phi0, dphi, the fixed
   // frequency (anisotropic); 3D frame and cap.
-  VF theta0, spread, phi0, dphi, half, fixed[3], frame_t[3], frame_b[3], frame_axis[3],
+  VF theta0, spread, phi0, dphi, half, fixed[3], axis[3], frame_t[3], frame_b[3], frame_axis[3],
       one_minus_cap;
   gabor_kind kind;
   explicit consts(const gabor<D>& g) {
@@ -310,6 +311,7 @@ struct consts {
     one_minus_cap = hn::Set(df, float(1.0 - m.cos_cap()));
     for (int i = 0; i < 3; ++i) {
       fixed[i] = hn::Set(df, i < D ? float(m.fixed_frequency()[i]) : 0.0f);
+      axis[i] = hn::Set(df, i < D ? float(m.axis()[i]) : 0.0f);
       frame_t[i] = hn::Set(df, float(m.frame_t()[i]));
       frame_b[i] = hn::Set(df, float(m.frame_b()[i]));
       frame_axis[i] = hn::Set(df, float(m.frame_axis()[i]));
@@ -532,62 +534,175 @@ struct lanes_filter {
   HWY_ALIGN float amp[kMaxLanes];
 };
 
-// The filtered kernel of every kept impulse (gabor<D>::filtered_pair, operation by
-// operation), each with its lane's filter (gathered by the tuple's lane).
+// gabor<D>::filtered_pair in lanes, operation by operation, in E dimensions:
+// filter q, m (row-major E x E) and amplitude per lane, offsets d, s = |d|^2,
+// weight w, frequency phi; the term into value and, with G, its derivative by
+// d into grad.
+template <int D, int E, bool G>
+HWY_INLINE void filtered_pair(const consts<D>& c, const VF* q, const VF* m, VF amplitude,
+                              const VF* d, VF s, VF w, const VF* phi, VF& value, VF* grad) {
+  const DF df;
+  const VF zero = hn::Zero(df);
+  VF mu[E], qd[E];
+  VF att = zero, dqd = zero, theta = zero;
+  for (int r = 0; r < E; ++r) {
+    VF x = zero, y = zero, z = zero;
+    for (int col = 0; col < E; ++col) {
+      x = mul_add(q[r * E + col], phi[col], x);
+      y = mul_add(m[r * E + col], phi[col], y);
+      z = mul_add(q[r * E + col], d[col], z);
+    }
+    mu[r] = x;
+    att = mul_add(phi[r], y, att);
+    qd[r] = z;
+    dqd = mul_add(d[r], z, dqd);
+  }
+  for (int r = 0; r < E; ++r) theta = mul_add(mu[r], d[r], theta);
+  const VF p =
+      hn::Mul(hn::Mul(hn::Mul(w, amplitude), exp_neg(hn::Neg(att))), exp_neg(hn::Mul(c.neg_a, dqd)));
+  VF sn, cs;
+  sincos_turns(theta, sn, cs);
+  if constexpr (G) {
+    VF tau, dtau;
+    taper_derivative(s, c.k, tau, dtau);
+    const VF pc = hn::Mul(p, cs);
+    const VF ps =
+        hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(hn::Mul(p, tau), sn));
+    value = hn::Mul(pc, tau);
+    const VF dtau2 = hn::Add(dtau, dtau), a2 = hn::Add(c.a, c.a);
+    for (int r = 0; r < E; ++r) {
+      const VF inner = neg_mul_add(a2, hn::Mul(tau, qd[r]), hn::Mul(dtau2, d[r]));
+      grad[r] = neg_mul_add(ps, mu[r], hn::Mul(pc, inner));
+    }
+  } else {
+    value = hn::Mul(hn::Mul(p, cs), taper(s, c.k));
+  }
+}
+
+// The filtered kernel of every kept impulse (gabor<D>::filtered_eval), each with its
+// lane's filter (gathered by the tuple's lane).
 template <int D, bool G>
 void eval_filtered(const consts<D>& c, const lanes_filter& f, tuples& t) {
   const DF df;
   const DU du;
   const DI di;
   const std::size_t lanes = hn::Lanes(df);
-  const VF zero = hn::Zero(df);
   for (std::size_t i = 0; i < t.n; i += lanes) {
     VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
                hn::LoadU(du, t.w2.data() + i)};
     const VI li = hn::BitCast(di, hn::LoadU(du, t.lane.data() + i));
-    VF wt, phi[3], d[3], d2[3];
+    VF wt, phi[3], d[3], d2[3], q[D * D], m[D * D];
     marks<D>(c, w, wt, phi);
     for (int a = 0; a < D; ++a) {
       d[a] = hn::LoadU(df, t.d[a].data() + i);
       d2[a] = hn::Mul(d[a], d[a]);
     }
     const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
-    VF mu[3], qd[3];
-    VF att = zero, dqd = zero, theta = zero;
-    for (int r = 0; r < D; ++r) {
-      VF x = zero, y = zero, z = zero;
-      for (int col = 0; col < D; ++col) {
-        const VF q = hn::GatherIndex(df, f.q[r * D + col], li);
-        const VF m = hn::GatherIndex(df, f.m[r * D + col], li);
-        x = mul_add(q, phi[col], x);
-        y = mul_add(m, phi[col], y);
-        z = mul_add(q, d[col], z);
-      }
-      mu[r] = x;
-      att = mul_add(phi[r], y, att);
-      qd[r] = z;
-      dqd = mul_add(d[r], z, dqd);
+    for (int e = 0; e < D * D; ++e) {
+      q[e] = hn::GatherIndex(df, f.q[e], li);
+      m[e] = hn::GatherIndex(df, f.m[e], li);
     }
-    for (int r = 0; r < D; ++r) theta = mul_add(mu[r], d[r], theta);
-    const VF amp = hn::GatherIndex(df, f.amp, li);
-    const VF p =
-        hn::Mul(hn::Mul(hn::Mul(wt, amp), exp_neg(hn::Neg(att))), exp_neg(hn::Mul(c.neg_a, dqd)));
-    VF sn, cs;
-    sincos_turns(theta, sn, cs);
-    if constexpr (G) {
-      VF tau, dtau;
-      taper_derivative(s, c.k, tau, dtau);
-      const VF pc = hn::Mul(p, cs);
-      const VF ps =
-          hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(hn::Mul(p, tau), sn));
-      hn::StoreU(hn::Mul(pc, tau), df, t.val.data() + i);
-      const VF dtau2 = hn::Add(dtau, dtau), a2 = hn::Add(c.a, c.a);
-      for (int r = 0; r < D; ++r) {
-        const VF inner = neg_mul_add(a2, hn::Mul(tau, qd[r]), hn::Mul(dtau2, d[r]));
-        hn::StoreU(neg_mul_add(ps, mu[r], hn::Mul(pc, inner)), df, t.g[r].data() + i);
-      }
+    VF value, g[3];
+    filtered_pair<D, D, G>(c, q, m, hn::GatherIndex(df, f.amp, li), d, s, wt, phi, value, g);
+    hn::StoreU(value, df, t.val.data() + i);
+    if constexpr (G)
+      for (int a = 0; a < D; ++a) hn::StoreU(g[a], df, t.g[a].data() + i);
+  }
+}
+
+// Per-lane tangent frames of a batch of surface samples (gabor<3>::surface_eval):
+// unit normal n and tangents t, b, rounded to float as the scalar code rounds them.
+struct lanes_frame {
+  HWY_ALIGN float n[3][kMaxLanes];
+  HWY_ALIGN float t[3][kMaxLanes];
+  HWY_ALIGN float b[3][kMaxLanes];
+};
+
+// (a0 d0 + a1 d1) + a2 d2, as the scalar code writes it.
+HWY_INLINE VF dot3(const VF* a, const VF* d) {
+  return mul_add(a[2], d[2], mul_add(a[1], d[1], hn::Mul(a[0], d[0])));
+}
+
+// Surface noise's distances of offsets d (surface-cell units) to the lane's
+// plane: zn along the normal, z2 = zn^2 / h^2, and dk, s = |dk|^2 in the plane
+// (kernel cell units).
+struct plane_offsets {
+  VF zn, z2, dk[2], s;
+};
+HWY_INLINE plane_offsets plane_of(const VF* d, const VF* nt, const VF* tt, const VF* bt) {
+  namespace k = detail::constants;
+  const DF df;
+  const VF to_kernel = hn::Set(df, float(k::kGaborSurfaceCell));
+  const VF inv_h2 = hn::Set(df, float((k::kGaborSurfaceCell / k::kGaborSurfaceSlab) *
+                                      (k::kGaborSurfaceCell / k::kGaborSurfaceSlab)));
+  plane_offsets o;
+  o.zn = dot3(nt, d);
+  o.z2 = hn::Mul(hn::Mul(o.zn, o.zn), inv_h2);
+  o.dk[0] = hn::Mul(dot3(tt, d), to_kernel);
+  o.dk[1] = hn::Mul(dot3(bt, d), to_kernel);
+  o.s = mul_add(o.dk[1], o.dk[1], hn::Mul(o.dk[0], o.dk[0]));
+  return o;
+}
+
+// The surface kernel of every kept impulse (gabor<3>::surface_eval's loop body,
+// operation by operation), each with its lane's frame and plane filter.
+template <bool G>
+void eval_surface(const consts<3>& c, const lanes_filter& f, const lanes_frame& fr, tuples& t) {
+  namespace k = detail::constants;
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f);
+  const VF to_kernel = hn::Set(df, float(k::kGaborSurfaceCell));
+  const VF inv_h2 = hn::Set(df, float((k::kGaborSurfaceCell / k::kGaborSurfaceSlab) *
+                                      (k::kGaborSurfaceCell / k::kGaborSurfaceSlab)));
+  for (std::size_t i = 0; i < t.n; i += lanes) {
+    const VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
+                     hn::LoadU(du, t.w2.data() + i)};
+    const VI li = hn::BitCast(di, hn::LoadU(du, t.lane.data() + i));
+    VF d[3], nt[3], tt[3], bt[3];
+    for (int a = 0; a < 3; ++a) {
+      d[a] = hn::LoadU(df, t.d[a].data() + i);
+      nt[a] = hn::GatherIndex(df, fr.n[a], li);
+      tt[a] = hn::GatherIndex(df, fr.t[a], li);
+      bt[a] = hn::GatherIndex(df, fr.b[a], li);
+    }
+    const plane_offsets o = plane_of(d, nt, tt, bt);
+    // The impulse's weight, 3D direction (anisotropic: omega0) and |Phi|.
+    const VF wt = hn::Sub(hn::Mul(two, byte_value(w[0], 3)), one);
+    VF dir[3], phi = c.phi0;
+    if (c.kind == gabor_kind::anisotropic) {
+      for (int a = 0; a < 3; ++a) dir[a] = c.axis[a];
     } else {
-      hn::StoreU(hn::Mul(hn::Mul(p, cs), taper(s, c.k)), df, t.val.data() + i);
+      direction(c, half_value(w[1], 0), half_value(w[1], 1), dir);
+      if (c.kind == gabor_kind::hybrid)
+        phi = mul_add(c.dphi, hn::Sub(half_value(w[2], 0), c.half), c.phi0);
+    }
+    const VF vt = dot3(tt, dir), vb = dot3(bt, dir);
+    VF fq = phi;
+    if (c.kind != gabor_kind::anisotropic) {
+      const VF len2 = mul_add(vb, vb, hn::Mul(vt, vt));
+      fq = hn::IfThenElseZero(hn::Gt(len2, zero), hn::Div(phi, hn::Sqrt(len2)));
+    }
+    const VF ph[2] = {hn::Mul(fq, vt), hn::Mul(fq, vb)};
+    VF q[4], m[4];
+    for (int e = 0; e < 4; ++e) {
+      q[e] = hn::GatherIndex(df, f.q[e], li);
+      m[e] = hn::GatherIndex(df, f.m[e], li);
+    }
+    VF slab_tau, slab_dtau;
+    taper_derivative(o.z2, c.k, slab_tau, slab_dtau);
+    VF gs, gk[2];
+    filtered_pair<3, 2, G>(c, q, m, hn::GatherIndex(df, f.amp, li), o.dk, o.s, wt, ph, gs, gk);
+    hn::StoreU(hn::Mul(gs, slab_tau), df, t.val.data() + i);
+    if constexpr (G) {
+      // d/dd of (kernel * slab taper): in the plane through dk, along n through z2.
+      const VF dz = hn::Mul(gs, hn::Mul(slab_dtau, hn::Mul(hn::Add(o.zn, o.zn), inv_h2)));
+      for (int a = 0; a < 3; ++a) {
+        const VF in_plane = hn::Mul(mul_add(gk[1], bt[a], hn::Mul(gk[0], tt[a])), to_kernel);
+        hn::StoreU(mul_add(dz, nt[a], hn::Mul(in_plane, slab_tau)), df, t.g[a].data() + i);
+      }
     }
   }
 }
@@ -691,30 +806,51 @@ void split_lanes(lanes_split& sp, std::size_t first, std::size_t used, double in
 // for the batch of lanes starting at position `first`.
 // The same with eval(consts, tuples, first) filling t.val (and t.g) for the batch of lanes
 // starting at position `first`.
-template <int D, bool G, class Split, class Eval>
-void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
-                 float* grad, Eval eval) {
+// The process a batch draws from: solid noise (cells r wide, 3^D of them) or
+// surface noise (3D cells r sqrt(3/2) wide, 27 of them).
+struct process {
+  std::uint32_t stream;
+  const poisson_table* table;
+  int words;
+  float scale, grad_scale;
+};
+template <int D>
+process solid_process(const gabor<D>& g) {
+  return {detail::constants::kGaborSolidStream, &g.table(), g.words_per_impulse(),
+          float(g.scale()), float(g.scale() * g.inverse_cell())};
+}
+
+// Noise of process `pr` at `count` positions: split(first, used) fills `sp`
+// for the batch of lanes starting at position `first`, keep(d, d2) is the
+// support test, and eval(consts, tuples, first) fills t.val (and t.g).
+template <int D, int E, bool G, class Split, class Keep, class Eval>
+void process_points(const gabor<D>& g, const process& pr, std::size_t count, lanes_split& sp,
+                    Split split, Keep keep, float* value, float* grad, Eval eval) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const consts<D> c(g);
   tuples t;
-  t.reserve(static_cast<std::size_t>(D == 2 ? 9 : 27) * g.table().max_count() * lanes);
-  const int words = g.words_per_impulse();
-  const std::vector<std::int32_t> flipped = flipped_thresholds(g.table());
-  auto keep = [&](const VF* d, const VF* d2) {
-    (void)d;
-    const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
-    return hn::Lt(s, hn::Set(df, 1.0f));
-  };
+  t.reserve(static_cast<std::size_t>(E == 2 ? 9 : 27) * pr.table->max_count() * lanes);
+  const std::vector<std::int32_t> flipped = flipped_thresholds(*pr.table);
   for (std::size_t first = 0; first < count; first += lanes) {
     const std::size_t used = std::min(lanes, count - first);
     split(first, used);
-    collect<D>(g.key(), detail::constants::kGaborSolidStream, flipped, words, sp, t, keep);
+    collect<E>(g.key(), pr.stream, flipped, pr.words, sp, t, keep);
     eval(c, t, first);
-    float* gr = G ? grad + first * D : nullptr;
-    finish<D, G>(t, sp, used, float(g.scale()), float(g.scale() * g.inverse_cell()), value + first,
-                 gr);
+    float* gr = G ? grad + first * E : nullptr;
+    finish<E, G>(t, sp, used, pr.scale, pr.grad_scale, value + first, gr);
   }
+}
+
+// Unfiltered (or, with eval, filtered) solid noise at `count` positions.
+template <int D, bool G, class Split, class Eval>
+void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
+                 float* grad, Eval eval) {
+  auto keep = [](const VF*, const VF* d2) {
+    const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
+    return hn::Lt(s, hn::Set(DF(), 1.0f));
+  };
+  process_points<D, D, G>(g, solid_process(g), count, sp, split, keep, value, grad, eval);
 }
 
 template <int D, bool G, class Split>
@@ -728,18 +864,19 @@ void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, 
 // ---- Grids: blocks of samples that share their cell.
 
 // One axis of a grid, split as scalar evaluation splits grid.position(): the
-// cell and fraction of (origin + step i) * inverse cell, and runs of equal
-// cells (at most `cap` long).
+// cell and fraction of (origin + step (first + i)) * inverse cell for i in [0, n),
+// and runs of equal cells (at most `cap` long).
 struct grid_axis {
   std::vector<std::uint32_t> cell;
   std::vector<float> frac;
   std::vector<char> bad;
   std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
-  grid_axis(double origin, double step, std::size_t n, double inv, std::size_t cap)
+  grid_axis(double origin, double step, std::size_t first, std::size_t n, double inv,
+            std::size_t cap)
       : cell(n), frac(n), bad(n) {
     for (std::size_t i = 0; i < n; ++i) {
       const lattice_coord<float> c =
-          lattice_split<float>((origin + step * static_cast<double>(i)) * inv);
+          lattice_split<float>((origin + step * static_cast<double>(first + i)) * inv);
       cell[i] = c.i0;
       frac[i] = c.f;
       bad[i] = std::isnan(c.f) ? 1 : 0;
@@ -934,16 +1071,22 @@ struct grid_kernel {
   }
 };
 
-// A grid: blocks of shared cells when there are enough samples per cell along
-// x, else the points path on the grid's positions.
+// The slab [first, first + count) of a grid's slowest axis (value and grad
+// start at its first sample): blocks of shared cells when there are enough
+// samples per cell along x, else the points path on the grid's positions.
 template <int D, bool G>
-void grid(const gabor<D>& g, const hush::grid<D>& gr, float* value, float* grad) {
+void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std::size_t count,
+          float* value, float* grad) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const double inv = g.inverse_cell();
   const std::size_t caps[3] = {64, D == 2 ? 64u : 32u, 16};
+  hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
+  gr.size[D - 1] = count;
   std::vector<grid_axis> axes;
-  for (int a = 0; a < D; ++a) axes.emplace_back(gr.origin[a], gr.step[a], gr.size[a], inv, caps[a]);
+  for (int a = 0; a < D; ++a)
+    axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
+                      caps[a]);
   const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
   const std::size_t nx = gr.size[0], ny = gr.size[1];
   if (per_cell < kMinRun) {
@@ -1082,20 +1225,135 @@ inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint
   gabor_filtered<3>(g, xyz, fps, n, value, grad);
 }
 
-// Gabor noise on a uniform grid (C order, i fastest); gradients interleaved
-// (D per sample) unless grad is null.
-template <int D>
-void gabor_grid(const gabor<D>& g, const grid<D>& gr, float* value, float* grad) {
+// Surface noise (gabor<3>::sample(p, normal, fp)) at n interleaved float
+// points with interleaved float normals and footprints (null: point
+// footprints); values into value[n], interleaved gradients into grad[3 n]
+// unless grad is null. As the scalar code: a non-finite normal gives NaN, a
+// zero normal the solid noise filtered over fp.
+inline void gabor3_surface(const gabor<3>& g, const float* xyz, const float* normals,
+                           const footprint<3>* fps, std::size_t n, float* value, float* grad) {
+  namespace gs = gabor_simd;
+  const gs::DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  // Sort the samples into surface (unit normal), solid (zero normal) and NaN.
+  std::vector<std::size_t> surface, solid;
+  std::vector<vec<double, 3>> unit;
+  for (std::size_t i = 0; i < n; ++i) {
+    const vec<double, 3> nv{normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
+    vec<double, 3> u;
+    if (!std::isfinite(nv.x) || !std::isfinite(nv.y) || !std::isfinite(nv.z)) {
+      value[i] = nan;
+      if (grad) grad[3 * i] = grad[3 * i + 1] = grad[3 * i + 2] = nan;
+    } else if (gabor<3>::unit_normal(nv, u)) {
+      surface.push_back(i);
+      unit.push_back(u);
+    } else {
+      solid.push_back(i);
+    }
+  }
+  const footprint<3> point_fp{};
+  auto fp_of = [&](std::size_t i) -> const footprint<3>& { return fps ? fps[i] : point_fp; };
+  if (!solid.empty()) {  // the solid path on the gathered samples, scattered back
+    std::vector<float> p(3 * solid.size()), v(solid.size()), gv(grad ? 3 * solid.size() : 0);
+    std::vector<footprint<3>> f(solid.size());
+    for (std::size_t j = 0; j < solid.size(); ++j) {
+      for (int a = 0; a < 3; ++a) p[3 * j + a] = xyz[3 * solid[j] + a];
+      f[j] = fp_of(solid[j]);
+    }
+    gabor_filtered<3>(g, p.data(), f.data(), solid.size(), v.data(), grad ? gv.data() : nullptr);
+    for (std::size_t j = 0; j < solid.size(); ++j) {
+      value[solid[j]] = v[j];
+      if (grad)
+        for (int a = 0; a < 3; ++a) grad[3 * solid[j] + a] = gv[3 * j + a];
+    }
+  }
+  if (surface.empty()) return;
+  const std::size_t m = surface.size();
+  std::vector<float> v(m), gv(grad ? 3 * m : 0);
+  gs::lanes_split sp;
+  gs::lanes_filter filt;
+  gs::lanes_frame frame;
+  auto split = [&](std::size_t first, std::size_t used) {
+    gs::split_lanes<3>(sp, first, used, g.inverse_surface_cell(), [&](std::size_t j, double* x) {
+      for (int a = 0; a < 3; ++a) x[a] = static_cast<double>(xyz[3 * surface[j] + a]);
+    });
+    for (std::size_t l = 0; l < lanes; ++l) {
+      if (l >= used) {  // unused lanes: any finite frame and filter (their sums are dropped)
+        for (int a = 0; a < 3; ++a) frame.n[a][l] = frame.t[a][l] = frame.b[a][l] = 0.0f;
+        for (int e = 0; e < 4; ++e) filt.q[e][l] = filt.m[e][l] = 0.0f;
+        filt.amp[l] = 0.0f;
+        continue;
+      }
+      vec<double, 3> t, b;
+      const std::size_t j = first + l;
+      const gabor_filter<2> fl = g.surface_frame(unit[j], fp_of(surface[j]), t, b);
+      for (int a = 0; a < 3; ++a) {
+        frame.n[a][l] = static_cast<float>(unit[j][a]);
+        frame.t[a][l] = static_cast<float>(t[a]);
+        frame.b[a][l] = static_cast<float>(b[a]);
+      }
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) {
+          filt.q[r * 2 + c][l] = static_cast<float>(fl.q[r][c]);
+          filt.m[r * 2 + c][l] = static_cast<float>(fl.m[r][c]);
+        }
+      filt.amp[l] = static_cast<float>(fl.amplitude);
+    }
+  };
+  // The slab and disk tests of surface_eval, per lane of the batch.
+  auto keep = [&](const gs::VF* d, const gs::VF*) {
+    gs::VF nt[3], tt[3], bt[3];
+    for (int a = 0; a < 3; ++a) {
+      nt[a] = hn::Load(df, frame.n[a]);
+      tt[a] = hn::Load(df, frame.t[a]);
+      bt[a] = hn::Load(df, frame.b[a]);
+    }
+    const gs::plane_offsets o = gs::plane_of(d, nt, tt, bt);
+    const gs::VF one = hn::Set(df, 1.0f);
+    return hn::And(hn::Lt(o.z2, one), hn::Lt(o.s, one));
+  };
+  const gs::process pr{detail::constants::kGaborSurfaceStream, &g.surface_table(),
+                       gabor<3>::words_for(g.parameters().kind, 3), float(g.surface_scale()),
+                       float(g.surface_scale() * g.inverse_surface_cell())};
   if (grad)
-    gabor_simd::grid<D, true>(g, gr, value, grad);
+    gs::process_points<3, 3, true>(g, pr, m, sp, split, keep, v.data(), gv.data(),
+                                   [&](const gs::consts<3>& c, gs::tuples& t, std::size_t) {
+                                     gs::eval_surface<true>(c, filt, frame, t);
+                                   });
   else
-    gabor_simd::grid<D, false>(g, gr, value, nullptr);
+    gs::process_points<3, 3, false>(g, pr, m, sp, split, keep, v.data(), nullptr,
+                                    [&](const gs::consts<3>& c, gs::tuples& t, std::size_t) {
+                                      gs::eval_surface<false>(c, filt, frame, t);
+                                    });
+  for (std::size_t j = 0; j < m; ++j) {
+    value[surface[j]] = v[j];
+    if (grad)
+      for (int a = 0; a < 3; ++a) grad[3 * surface[j] + a] = gv[3 * j + a];
+  }
 }
-inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, float* value, float* grad) {
-  gabor_grid<2>(g, gr, value, grad);
+
+// Gabor noise on the slab [first, first + count) of a uniform grid's slowest
+// axis (C order, i fastest; value and grad start at the slab's first sample);
+// gradients interleaved (D per sample) unless grad is null. Each sample's
+// value does not depend on the slab (exec::parallel's slabs give the whole
+// grid's result).
+template <int D>
+void gabor_grid(const gabor<D>& g, const grid<D>& gr, std::size_t first, std::size_t count,
+                float* value, float* grad) {
+  if (count == 0) return;
+  if (grad)
+    gabor_simd::grid<D, true>(g, gr, first, count, value, grad);
+  else
+    gabor_simd::grid<D, false>(g, gr, first, count, value, nullptr);
 }
-inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, float* value, float* grad) {
-  gabor_grid<3>(g, gr, value, grad);
+inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, std::size_t first,
+                        std::size_t count, float* value, float* grad) {
+  gabor_grid<2>(g, gr, first, count, value, grad);
+}
+inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
+                        std::size_t count, float* value, float* grad) {
+  gabor_grid<3>(g, gr, first, count, value, grad);
 }
 
 }  // namespace HWY_NAMESPACE
