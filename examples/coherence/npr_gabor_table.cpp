@@ -4,7 +4,8 @@
 // shower door, texture mapping), coherent noise (causal, stationary filter, band-pass 4 px,
 // run from frame 0; docs/coherent.md) and NPR Gabor noise (include/hush/npr_gabor.hpp) with
 // its defaults (F0 = 1/8 cycle per pixel, a = 0.08 per pixel, N' = 16, object and depth
-// tests) in anisotropic and isotropic form.
+// tests) in anisotropic and isotropic form, and the anisotropic form with the soft depth test
+// (params::soft_depth, paper sec. 6.1) beside the binary one.
 //
 //   hush_npr_gabor_table [WIDTH HEIGHT FIRST FRAMES [SCENE...]]
 //   (default: 320 240 90 10 translate rotate zoom walkthrough)
@@ -51,9 +52,16 @@ int main(int argc, char** argv) {
            {hc::baseline_kind::white, hc::baseline_kind::shower_door, hc::baseline_kind::texture})
         hc::print_metrics_row(name, hc::baseline_name(kind), hc::make_baseline(kind, g), g);
       hc::print_metrics_row(name, "coherent causal, stationary, band-pass 4 px", coh, g);
-      for (const bool isotropic : {false, true}) {
+      struct variant {
+        bool isotropic, soft_depth;
+        const char* label;
+      };
+      for (const variant v : {variant{false, false, "NPR Gabor, anisotropic"},
+                              variant{true, false, "NPR Gabor, isotropic"},
+                              variant{false, true, "NPR Gabor, anisotropic, soft depth test"}}) {
         hush::npr_gabor::params p;
-        p.isotropic = isotropic;
+        p.isotropic = v.isotropic;
+        p.soft_depth = v.soft_depth;
         const hush::npr_gabor noise{p};
         std::vector<hc::noise_frame> npr;
         for (int i = first; i < first + count; ++i) {
@@ -62,8 +70,7 @@ int main(int argc, char** argv) {
                        hush::image_view<float>(out.data(), w, h));
           npr.push_back(out);
         }
-        hc::print_metrics_row(name, isotropic ? "NPR Gabor, isotropic" : "NPR Gabor, anisotropic",
-                              npr, g);
+        hc::print_metrics_row(name, v.label, npr, g);
       }
     }
   } catch (const std::exception& e) {
