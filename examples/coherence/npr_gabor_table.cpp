@@ -22,6 +22,7 @@
 #include "coherence/silhouette_band.hpp"
 #include "coherence/table_cli.hpp"
 #include "hush/coherent.hpp"
+#include "hush/gabor_kernel.hpp"
 #include "hush/npr_gabor.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"
@@ -79,13 +80,12 @@ int main(int argc, char** argv) {
         hc::print_metrics_row(name, v.label, npr, g);
         if (!v.isotropic) band_frames.push_back(npr);
       }
-      // Band radius: the kernel radius r = sqrt(-ln t / pi) / a (npr_gabor.hpp), the reach of
-      // a kernel cut by the depth test.
+      // Band radius: the kernel's support radius, the reach of a kernel the depth test cuts.
       const hush::npr_gabor::params defaults;
-      const int radius = static_cast<int>(std::ceil(
-          std::sqrt(-std::log(defaults.truncation) / hush::detail::constants::kPi) /
-          defaults.bandwidth));
+      const int radius = static_cast<int>(
+          std::ceil(hush::gabor_kernel<2>{defaults.bandwidth, defaults.truncation}.radius()));
       std::vector<hush::scene::gbuffer> band;
+      band.reserve(g.size());
       for (const hush::scene::gbuffer& f : g)
         band.push_back(hc::silhouette_band(f, radius, defaults.depth_tolerance));
       const std::string suffix = ", silhouette band " + std::to_string(radius) + " px";

@@ -22,6 +22,7 @@
 
 #include "coherence/silhouette_band.hpp"
 #include "coherence/temporal.hpp"
+#include "hush/gabor_kernel.hpp"
 #include "hush/npr_gabor.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"
@@ -44,8 +45,9 @@ sequences render(const std::string& name) {
   const hush::npr_gabor binary{p};
   p.soft_depth = true;
   const hush::npr_gabor soft{p};
-  const int radius = static_cast<int>(
-      std::ceil(std::sqrt(-std::log(p.truncation) / hush::detail::constants::kPi) / p.bandwidth));
+  // Band radius: the kernel's support radius, the reach of a kernel the depth test cuts.
+  const int radius =
+      static_cast<int>(std::ceil(hush::gabor_kernel<2>{p.bandwidth, p.truncation}.radius()));
   sequences q;
   std::vector<float> out(std::size_t(kWidth) * kHeight);
   for (int i = kFirst; i < kFirst + kFrames; ++i) {
