@@ -4,18 +4,25 @@
 // shower door, texture mapping), coherent noise (causal, stationary filter, band-pass 4 px,
 // run from frame 0; docs/coherent.md) and NPR Gabor noise (include/hush/npr_gabor.hpp) with
 // its defaults (F0 = 1/8 cycle per pixel, a = 0.08 per pixel, N' = 16, object and depth
-// tests) in anisotropic and isotropic form.
+// tests) in anisotropic and isotropic form, and the anisotropic form with the soft depth test
+// (params::soft_depth, paper sec. 6.1) beside the binary one. The last two rows per scene
+// measure the binary and soft depth tests only in the silhouette band (silhouette_band.hpp:
+// covered pixels within one kernel radius of a depth discontinuity), where occlusion changes;
+// their flatness columns describe the band, not the whole image.
 //
 //   hush_npr_gabor_table [WIDTH HEIGHT FIRST FRAMES [SCENE...]]
 //   (default: 320 240 90 10 translate rotate zoom walkthrough)
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "coherence/baselines.hpp"
 #include "coherence/report.hpp"
+#include "coherence/silhouette_band.hpp"
 #include "coherence/table_cli.hpp"
 #include "hush/coherent.hpp"
+#include "hush/gabor_kernel.hpp"
 #include "hush/npr_gabor.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"
@@ -51,9 +58,17 @@ int main(int argc, char** argv) {
            {hc::baseline_kind::white, hc::baseline_kind::shower_door, hc::baseline_kind::texture})
         hc::print_metrics_row(name, hc::baseline_name(kind), hc::make_baseline(kind, g), g);
       hc::print_metrics_row(name, "coherent causal, stationary, band-pass 4 px", coh, g);
-      for (const bool isotropic : {false, true}) {
+      std::vector<std::vector<hc::noise_frame>> band_frames;  // binary, soft
+      struct variant {
+        bool isotropic, soft_depth;
+        const char* label;
+      };
+      for (const variant v : {variant{false, false, "NPR Gabor, anisotropic"},
+                              variant{true, false, "NPR Gabor, isotropic"},
+                              variant{false, true, "NPR Gabor, anisotropic, soft depth test"}}) {
         hush::npr_gabor::params p;
-        p.isotropic = isotropic;
+        p.isotropic = v.isotropic;
+        p.soft_depth = v.soft_depth;
         const hush::npr_gabor noise{p};
         std::vector<hc::noise_frame> npr;
         for (int i = first; i < first + count; ++i) {
@@ -62,9 +77,21 @@ int main(int argc, char** argv) {
                        hush::image_view<float>(out.data(), w, h));
           npr.push_back(out);
         }
-        hc::print_metrics_row(name, isotropic ? "NPR Gabor, isotropic" : "NPR Gabor, anisotropic",
-                              npr, g);
+        hc::print_metrics_row(name, v.label, npr, g);
+        if (!v.isotropic) band_frames.push_back(npr);
       }
+      // Band radius: the kernel's support radius, the reach of a kernel the depth test cuts.
+      const hush::npr_gabor::params defaults;
+      const int radius = static_cast<int>(
+          std::ceil(hush::gabor_kernel<2>{defaults.bandwidth, defaults.truncation}.radius()));
+      std::vector<hush::scene::gbuffer> band;
+      band.reserve(g.size());
+      for (const hush::scene::gbuffer& f : g)
+        band.push_back(hc::silhouette_band(f, radius, defaults.depth_tolerance));
+      const std::string suffix = ", silhouette band " + std::to_string(radius) + " px";
+      hc::print_metrics_row(name, "NPR Gabor, anisotropic" + suffix, band_frames[0], band);
+      hc::print_metrics_row(name, "NPR Gabor, anisotropic, soft depth test" + suffix,
+                            band_frames[1], band);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hush_npr_gabor_table: %s\n", e.what());
