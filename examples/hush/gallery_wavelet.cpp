@@ -37,8 +37,8 @@ gray_image noise_and_spectrum(Eval eval) {
   std::vector<float> v(kFigSize * kFigSize);
   for (std::size_t j = 0; j < kFigSize; ++j)
     for (std::size_t i = 0; i < kFigSize; ++i)
-      v[j * kFigSize + i] = static_cast<float>(eval(static_cast<double>(i) * kFigStep,
-                                                    static_cast<double>(j) * kFigStep));
+      v[j * kFigSize + i] = static_cast<float>(
+          eval(static_cast<double>(i) * kFigStep, static_cast<double>(j) * kFigStep));
   return side_by_side(to_gray_image(v, kFigSize, kFigSize, -kShownRange, kShownRange),
                       log_power_spectrum(v, kFigSize, kFigSize));
 }
@@ -51,10 +51,15 @@ std::vector<gray_image> fig8() {
   const hush::wavelet<3> w3(7);
   const hush::footprint<3> point{};
   // Perlin noise has variance ~0.1 (hush/perlin.hpp): scaled by 3 to share the grey scale.
-  return {stack({noise_and_spectrum([&](double x, double y) { return 3 * perlin(hush::dvec2{x, y}); }),
-                 noise_and_spectrum([&](double x, double y) { return w2(hush::dvec2{x, y}); }),
-                 noise_and_spectrum(
-                     [&](double x, double y) { return w3(hush::dvec3{x, y, kFigSliceZ}); }),
+  return {stack({noise_and_spectrum([&](double x, double y) {
+                   return 3 * perlin(hush::dvec2{x, y});
+                 }),
+                 noise_and_spectrum([&](double x, double y) {
+                   return w2(hush::dvec2{x, y});
+                 }),
+                 noise_and_spectrum([&](double x, double y) {
+                   return w3(hush::dvec3{x, y, kFigSliceZ});
+                 }),
                  noise_and_spectrum([&](double x, double y) {
                    return w3.sample(hush::dvec3{x, y, kFigSliceZ}, hush::dvec3{0, 0, 1}, point);
                  })})};
@@ -167,8 +172,8 @@ rgb_image band_spectra(Band band, double& overlap) {
     std::vector<float> v(kFigSize * kFigSize);
     for (std::size_t j = 0; j < kFigSize; ++j)
       for (std::size_t i = 0; i < kFigSize; ++i)
-        v[j * kFigSize + i] = static_cast<float>(
-            eval(hush::dvec2{static_cast<double>(i) * kFig9Step, static_cast<double>(j) * kFig9Step}));
+        v[j * kFigSize + i] = static_cast<float>(eval(
+            hush::dvec2{static_cast<double>(i) * kFig9Step, static_cast<double>(j) * kFig9Step}));
     shown.push_back(log_power_spectrum(v, kFigSize, kFigSize, kFig9Decades));
     power.push_back(power_spectrum(v, kFigSize, kFigSize));
   }
@@ -213,10 +218,11 @@ void write_wavelet_fig9(const std::string& dir, std::vector<std::string>& writte
                 "%.3f",
                 perlin_overlap, wavelet_overlap);
   std::fprintf(stderr, "gallery: %s: %s\n", file, buf);
-  written.push_back(std::string(file) + " (" + std::to_string(image.width) + "x" +
-                    std::to_string(image.height) +
-                    "): Cook & DeRose Fig. 9, log power spectra (top 3 decades) of bands 0, 1, 2 as red, green, "
-                    "blue: Perlin | wavelet\n    " + buf);
+  written.push_back(
+      std::string(file) + " (" + std::to_string(image.width) + "x" + std::to_string(image.height) +
+      "): Cook & DeRose Fig. 9, log power spectra (top 3 decades) of bands 0, 1, 2 as red, green, "
+      "blue: Perlin | wavelet\n    " +
+      buf);
 }
 
 std::vector<gallery_item> wavelet_gallery_items() {

@@ -67,8 +67,8 @@ const char* png_unavailable_reason() {
 namespace {
 
 // The one PNG writer: `channels` interleaved 8-bit samples per pixel (1 gray, 3 RGB).
-void write_png_pixels(const std::string& path, std::size_t width, std::size_t height,
-                      int channels, const std::uint8_t* pixels) {
+void write_png_pixels(const std::string& path, std::size_t width, std::size_t height, int channels,
+                      const std::uint8_t* pixels) {
   if (width * height > kMaxPngPixels)
     throw usage_error("a PNG holds at most " + std::to_string(kMaxPngPixels) +
                       " pixels; write .npy");
@@ -105,7 +105,9 @@ void write_png(const std::string& path, const rgb_image& image) {
 void write_png(const std::string&, const gray_image&) {
   throw usage_error(png_unavailable_reason());
 }
-void write_png(const std::string&, const rgb_image&) { throw usage_error(png_unavailable_reason()); }
+void write_png(const std::string&, const rgb_image&) {
+  throw usage_error(png_unavailable_reason());
+}
 #endif
 
 }  // namespace hush_cli
