@@ -369,6 +369,7 @@ int run_gallery(const std::vector<std::string>& args) {
                       (frames.size() > 1 ? ", " + std::to_string(frames.size()) + " frames" : "") +
                       "): " + e.what);
   }
+  write_wavelet_fig9(dir, written);         // RGB: three bands' spectra in three colours
   write_anisotropic_gallery(dir, written);  // the paper's figures, with their errors
   const fs::path absolute = fs::weakly_canonical(fs::absolute(dir));
   std::cout << "wrote " << written.size() << " images to " << absolute.string() << '\n';

@@ -1,9 +1,11 @@
 // hush — the `hush` program: wavelet noise's gallery images (gallery_wavelet.hpp).
 #include "gallery_wavelet.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -35,8 +37,8 @@ gray_image noise_and_spectrum(Eval eval) {
   std::vector<float> v(kFigSize * kFigSize);
   for (std::size_t j = 0; j < kFigSize; ++j)
     for (std::size_t i = 0; i < kFigSize; ++i)
-      v[j * kFigSize + i] = static_cast<float>(eval(static_cast<double>(i) * kFigStep,
-                                                    static_cast<double>(j) * kFigStep));
+      v[j * kFigSize + i] = static_cast<float>(
+          eval(static_cast<double>(i) * kFigStep, static_cast<double>(j) * kFigStep));
   return side_by_side(to_gray_image(v, kFigSize, kFigSize, -kShownRange, kShownRange),
                       log_power_spectrum(v, kFigSize, kFigSize));
 }
@@ -49,10 +51,15 @@ std::vector<gray_image> fig8() {
   const hush::wavelet<3> w3(7);
   const hush::footprint<3> point{};
   // Perlin noise has variance ~0.1 (hush/perlin.hpp): scaled by 3 to share the grey scale.
-  return {stack({noise_and_spectrum([&](double x, double y) { return 3 * perlin(hush::dvec2{x, y}); }),
-                 noise_and_spectrum([&](double x, double y) { return w2(hush::dvec2{x, y}); }),
-                 noise_and_spectrum(
-                     [&](double x, double y) { return w3(hush::dvec3{x, y, kFigSliceZ}); }),
+  return {stack({noise_and_spectrum([&](double x, double y) {
+                   return 3 * perlin(hush::dvec2{x, y});
+                 }),
+                 noise_and_spectrum([&](double x, double y) {
+                   return w2(hush::dvec2{x, y});
+                 }),
+                 noise_and_spectrum([&](double x, double y) {
+                   return w3(hush::dvec3{x, y, kFigSliceZ});
+                 }),
                  noise_and_spectrum([&](double x, double y) {
                    return w3.sample(hush::dvec3{x, y, kFigSliceZ}, hush::dvec3{0, 0, 1}, point);
                  })})};
@@ -130,7 +137,93 @@ std::vector<gray_image> receding_plane() {
   return {stack({side_by_side(show(one_w), show(ref_w)), side_by_side(show(one_f), show(ref_f))})};
 }
 
+// Fig. 9: bands b = 0, 1, 2 (frequencies 1, 2, 4) sampled kFigSize^2 at kFig9Step, so the
+// finest band has 4 samples per unit (wavelet band 2 lies below the sampling Nyquist
+// frequency; Perlin's octave 2 reaches it, as Perlin's spectrum has no upper edge).
+constexpr double kFig9Step = 1.0 / 16;
+constexpr int kFig9Bands = 3;
+constexpr double kFig9Decades = 3;  // each band's top 3 decades: its main lobe, not its tails
+
+// How much adjacent bands overlap in frequency: each band's power normalised to sum 1,
+// the overlap of bands b and b + 1 is sum over bins of min(p_b, p_b+1) (0 for disjoint
+// spectra, 1 for equal ones), averaged over the pairs (0, 1) and (1, 2).
+double band_overlap(const std::vector<std::vector<double>>& power) {
+  double overlap = 0;
+  for (std::size_t b = 0; b + 1 < power.size(); ++b) {
+    double lo = 0, hi = 0, shared = 0;
+    for (std::size_t n = 0; n < power[b].size(); ++n) {
+      lo += power[b][n];
+      hi += power[b + 1][n];
+    }
+    for (std::size_t n = 0; n < power[b].size(); ++n)
+      shared += std::min(power[b][n] / lo, power[b + 1][n] / hi);
+    overlap += shared;
+  }
+  return overlap / static_cast<double>(power.size() - 1);
+}
+
+// The three bands' log power spectra as red, green, blue; their band_overlap in `overlap`.
+template <class Band>
+rgb_image band_spectra(Band band, double& overlap) {
+  std::vector<gray_image> shown;
+  std::vector<std::vector<double>> power;
+  for (int b = 0; b < kFig9Bands; ++b) {
+    const auto eval = band(b);
+    std::vector<float> v(kFigSize * kFigSize);
+    for (std::size_t j = 0; j < kFigSize; ++j)
+      for (std::size_t i = 0; i < kFigSize; ++i)
+        v[j * kFigSize + i] = static_cast<float>(eval(
+            hush::dvec2{static_cast<double>(i) * kFig9Step, static_cast<double>(j) * kFig9Step}));
+    shown.push_back(log_power_spectrum(v, kFigSize, kFigSize, kFig9Decades));
+    power.push_back(power_spectrum(v, kFigSize, kFigSize));
+  }
+  overlap = band_overlap(power);
+  return compose_rgb(shown[0], shown[1], shown[2]);
+}
+
 }  // namespace
+
+void write_wavelet_fig9(const std::string& dir, std::vector<std::string>& written) {
+  const char* file = "wavelet_fig9.png";
+  std::fprintf(stderr, "gallery: %s\n", file);
+  const hush::perlin<2> perlin(7);
+  double perlin_overlap = 0, wavelet_overlap = 0;
+  const rgb_image left = band_spectra(
+      [&](int b) {
+        const double f = std::ldexp(1.0, b);  // Perlin's octave b: the noise at frequency 2^b
+        return [&perlin, f](hush::dvec2 p) { return perlin(hush::dvec2{f * p[0], f * p[1]}); };
+      },
+      perlin_overlap);
+  const rgb_image right = band_spectra(
+      [](int b) {
+        hush::wavelet<2>::params prm;  // one band, b
+        prm.seed = 7;
+        prm.first_band = b;
+        return hush::wavelet<2>(prm);
+      },
+      wavelet_overlap);
+  rgb_image image(left.width + right.width, left.height);
+  for (std::size_t y = 0; y < image.height; ++y) {
+    const auto row = [&](const rgb_image& from) {
+      return from.pixels.begin() + static_cast<std::ptrdiff_t>(3 * y * from.width);
+    };
+    std::copy(row(left), row(left) + static_cast<std::ptrdiff_t>(3 * left.width), image.at(0, y));
+    std::copy(row(right), row(right) + static_cast<std::ptrdiff_t>(3 * right.width),
+              image.at(left.width, y));
+  }
+  write_png((std::filesystem::path(dir) / file).string(), image);
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "adjacent bands' spectral overlap (0 disjoint, 1 equal): Perlin %.3f, wavelet "
+                "%.3f",
+                perlin_overlap, wavelet_overlap);
+  std::fprintf(stderr, "gallery: %s: %s\n", file, buf);
+  written.push_back(
+      std::string(file) + " (" + std::to_string(image.width) + "x" + std::to_string(image.height) +
+      "): Cook & DeRose Fig. 9, log power spectra (top 3 decades) of bands 0, 1, 2 as red, green, "
+      "blue: Perlin | wavelet\n    " +
+      buf);
+}
 
 std::vector<gallery_item> wavelet_gallery_items() {
   return {{"wavelet_fig8.png",

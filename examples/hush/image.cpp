@@ -1,4 +1,4 @@
-// hush — the `hush` program: 8-bit grayscale images and PNG output (see image.hpp).
+// hush — the `hush` program: 8-bit grayscale and RGB images and PNG output (see image.hpp).
 #include "image.hpp"
 
 #include <cmath>
@@ -46,6 +46,16 @@ gray_image repeat(const gray_image& tile, std::size_t nx, std::size_t ny) {
   return image;
 }
 
+rgb_image compose_rgb(const gray_image& red, const gray_image& green, const gray_image& blue) {
+  rgb_image image(red.width, red.height);
+  for (std::size_t n = 0; n < red.pixels.size(); ++n) {
+    image.pixels[3 * n] = red.pixels[n];
+    image.pixels[3 * n + 1] = green.pixels[n];
+    image.pixels[3 * n + 2] = blue.pixels[n];
+  }
+  return image;
+}
+
 bool png_supported() { return HUSH_CLI_HAVE_PNG != 0; }
 
 const char* png_unavailable_reason() {
@@ -54,8 +64,12 @@ const char* png_unavailable_reason() {
 }
 
 #if HUSH_CLI_HAVE_PNG
-void write_png(const std::string& path, const gray_image& image) {
-  if (image.pixels.size() > kMaxPngPixels)
+namespace {
+
+// The one PNG writer: `channels` interleaved 8-bit samples per pixel (1 gray, 3 RGB).
+void write_png_pixels(const std::string& path, std::size_t width, std::size_t height, int channels,
+                      const std::uint8_t* pixels) {
+  if (width * height > kMaxPngPixels)
     throw usage_error("a PNG holds at most " + std::to_string(kMaxPngPixels) +
                       " pixels; write .npy");
   // stb hands the encoded bytes to a C callback. An exception must not unwind through
@@ -73,14 +87,25 @@ void write_png(const std::string& path, const gray_image& image) {
       s.error = std::current_exception();
     }
   };
-  const int w = static_cast<int>(image.width), h = static_cast<int>(image.height);
-  const int ok = stbi_write_png_to_func(sink, &state, w, h, 1, image.pixels.data(), w);
+  const int w = static_cast<int>(width), h = static_cast<int>(height);
+  const int ok = stbi_write_png_to_func(sink, &state, w, h, channels, pixels, w * channels);
   if (state.error) std::rethrow_exception(state.error);
   if (!ok) throw run_error("cannot encode '" + path + "' as PNG (out of memory?)");
   state.file.close();
 }
+}  // namespace
+
+void write_png(const std::string& path, const gray_image& image) {
+  write_png_pixels(path, image.width, image.height, 1, image.pixels.data());
+}
+void write_png(const std::string& path, const rgb_image& image) {
+  write_png_pixels(path, image.width, image.height, 3, image.pixels.data());
+}
 #else
 void write_png(const std::string&, const gray_image&) {
+  throw usage_error(png_unavailable_reason());
+}
+void write_png(const std::string&, const rgb_image&) {
   throw usage_error(png_unavailable_reason());
 }
 #endif

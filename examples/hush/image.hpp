@@ -1,4 +1,4 @@
-// hush — the `hush` program: 8-bit grayscale images and PNG output.
+// hush — the `hush` program: 8-bit grayscale and RGB images and PNG output.
 //
 // Images hold rows top to bottom: pixel (x, y) is pixels[y * width + x] and row 0 is the
 // top of the PNG. Noise samples (i, j) become pixels (x, y) = (i, j), so j = 0 is at the top.
@@ -22,6 +22,20 @@ struct gray_image {
   std::uint8_t& at(std::size_t x, std::size_t y) { return pixels[y * width + x]; }
   std::uint8_t at(std::size_t x, std::size_t y) const { return pixels[y * width + x]; }
 };
+
+// Three 8-bit channels per pixel (red, green, blue), the same layout as gray_image.
+struct rgb_image {
+  std::size_t width = 0;
+  std::size_t height = 0;
+  std::vector<std::uint8_t> pixels;  // 3 * width * height, row-major, row 0 at the top
+
+  rgb_image() = default;
+  rgb_image(std::size_t w, std::size_t h) : width(w), height(h), pixels(3 * w * h) {}
+  std::uint8_t* at(std::size_t x, std::size_t y) { return &pixels[3 * (y * width + x)]; }
+};
+
+// Gray images of equal size as the red, green and blue channels of one image.
+rgb_image compose_rgb(const gray_image& red, const gray_image& green, const gray_image& blue);
 
 // The gray level of v shown over [lo, hi]: round(255 (v - lo) / (hi - lo)), clamped to
 // 0 ... 255; NaN gives 0. Signed noise is shown over [-1, 1], i.e. 255 (v + 1) / 2.
@@ -48,6 +62,8 @@ constexpr std::size_t kMaxPngPixels = std::size_t(1) << 28;
 // Writes `image` as an 8-bit grayscale PNG. Throws run_error when the file cannot be
 // written, or usage_error when this build has no PNG support or the image is too large.
 void write_png(const std::string& path, const gray_image& image);
+// The same for an 8-bit RGB PNG.
+void write_png(const std::string& path, const rgb_image& image);
 
 }  // namespace hush_cli
 

@@ -38,8 +38,8 @@ const char* spectrum_unavailable_reason() {
 }
 
 #if HUSH_CLI_HAVE_FFT
-gray_image log_power_spectrum(const std::vector<float>& values, std::size_t width,
-                              std::size_t height) {
+std::vector<double> power_spectrum(const std::vector<float>& values, std::size_t width,
+                                   std::size_t height) {
   using complex = std::complex<double>;
   double mean = 0;
   for (float v : values) mean += v;
@@ -70,25 +70,36 @@ gray_image log_power_spectrum(const std::vector<float>& values, std::size_t widt
     for (std::size_t y = 0; y < height; ++y) a[y * width + x] = out[y];
   }
 
-  std::vector<double> log_power(a.size());
-  double top = -std::numeric_limits<double>::infinity();
-  for (std::size_t n = 0; n < a.size(); ++n) {
-    log_power[n] = std::log10(std::norm(a[n]));  // -inf for an exactly zero bin: shown black
-    top = std::max(top, log_power[n]);
-  }
-  gray_image image(width, height);
+  std::vector<double> power(a.size());
   // fftshift (numpy's, also for odd sizes): frequency 0 moves to pixel (width/2, height/2).
   for (std::size_t y = 0; y < height; ++y) {
     const std::size_t fy = (y + height - height / 2) % height;
     for (std::size_t x = 0; x < width; ++x) {
       const std::size_t fx = (x + width - width / 2) % width;
-      image.at(x, y) = to_gray(log_power[fy * width + fx], top - kSpectrumDecades, top);
+      power[y * width + x] = std::norm(a[fy * width + fx]);
     }
   }
+  return power;
+}
+
+gray_image log_power_spectrum(const std::vector<float>& values, std::size_t width,
+                              std::size_t height, double decades) {
+  std::vector<double> log_power = power_spectrum(values, width, height);
+  double top = -std::numeric_limits<double>::infinity();
+  for (double& p : log_power) {
+    p = std::log10(p);  // -inf for an exactly zero bin: shown black
+    top = std::max(top, p);
+  }
+  gray_image image(width, height);
+  for (std::size_t n = 0; n < log_power.size(); ++n)
+    image.pixels[n] = to_gray(log_power[n], top - decades, top);
   return image;
 }
 #else
-gray_image log_power_spectrum(const std::vector<float>&, std::size_t, std::size_t) {
+std::vector<double> power_spectrum(const std::vector<float>&, std::size_t, std::size_t) {
+  throw usage_error(spectrum_unavailable_reason());
+}
+gray_image log_power_spectrum(const std::vector<float>&, std::size_t, std::size_t, double) {
   throw usage_error(spectrum_unavailable_reason());
 }
 #endif

@@ -20,18 +20,22 @@ const char* spectrum_library();
 // Why spectra are unavailable, as a hint for error messages.
 const char* spectrum_unavailable_reason();
 
+// The power spectrum P of `values` (width * height, row-major), fftshifted, as described
+// for log_power_spectrum below (window, mean removed), one value per pixel of its image.
+// Throws usage_error when the build has no FFT.
+std::vector<double> power_spectrum(const std::vector<float>& values, std::size_t width,
+                                   std::size_t height);
+
 // The log power spectrum of `values` (width * height, row-major) as an image of the same
 // size: P = |FFT2(w * (values - mean))|^2, with w a separable Hann window (without it the
 // jumps between opposite edges of the image, which the FFT sees as a tiling, draw a bright
 // cross through zero frequency). P is fftshifted so that zero frequency sits at pixel
 // (width / 2, height / 2), and shown as log10 P over the top kSpectrumDecades decades,
-// white = the strongest frequency. The 2D FFT is Eigen's, rows then columns.
-// Throws usage_error when the build has no FFT.
+// white = the strongest frequency (`decades` > 0 of them instead where given). The 2D FFT is
+// Eigen's, rows then columns. Throws usage_error when the build has no FFT.
+constexpr double kSpectrumDecades = 8;  // dynamic range of the spectrum images, in decades
 gray_image log_power_spectrum(const std::vector<float>& values, std::size_t width,
-                              std::size_t height);
-
-// Dynamic range of the spectrum images, in decades of power.
-constexpr double kSpectrumDecades = 8;
+                              std::size_t height, double decades = kSpectrumDecades);
 
 }  // namespace hush_cli
 
