@@ -85,10 +85,6 @@ uniform float hush_aniso_gain[HUSH_ANISO_MAX_SCALES];         // gain^k (turbule
 uniform float hush_aniso_norm;            // 1 / sqrt(sum gain^2k)
 uniform float hush_aniso_cap;             // heuristic gamma cap
 uniform float hush_aniso_cut;             // lambda cutoff (powers of two)
-// Per-sample data (samples layout only; noise_program::sample_data).
-layout(std430, binding = HUSH_ANISO_SAMPLE_BINDING) readonly buffer hush_aniso_samples {
-  float hush_aniso_sample[];
-};
 
 // 2^y for y in [-126, 0] (approx_math.hpp exp2_nonpositive).
 float hush_aniso_exp2(float y) {
@@ -193,9 +189,11 @@ struct noise_program<anisotropic> {
   static constexpr bool banded = true;
 
   static constexpr unsigned sample_data_binding = kFirstDataBinding;
+  // The body, then the per-sample data's SSBO (read in the samples layout only).
   static std::string uniforms() {
-    return "#define HUSH_ANISO_SAMPLE_BINDING " + std::to_string(sample_data_binding) + "\n" +
-           detail::kAnisotropicBody;
+    return std::string(detail::kAnisotropicBody) +
+           "layout(std430, binding = " + std::to_string(sample_data_binding) +
+           ") readonly buffer hush_aniso_samples { float hush_aniso_sample[]; };\n";
   }
   static bool given_weights(const anisotropic& a) {
     const auto& p = a.parameters();
