@@ -4,12 +4,15 @@
 // textures) and gradients (texelFetch), fbm and turbulence, 2 to 8
 // orientations, both heuristic rules; within the tolerance the program
 // states per sample. Also: tiles uploaded once per shared tile, least-squares
-// rules refused, NaN positions.
+// rules (the CPU's weights uploaded per sample), per-sample data split by the
+// buffer limit, NaN positions.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "glsl_test_util.hpp"
@@ -82,6 +85,35 @@ double tolerance(const hush::anisotropic& a, const batch& b, std::size_t i, bool
     }
   }
   return hush::glsl::noise_program<hush::anisotropic>::tolerance(a, w, hardware);
+}
+
+// The batch's positions, with its footprints and surface maps when asked.
+hush::samples<2> inputs(const batch& b, bool fps, bool maps) {
+  hush::samples<2> s;
+  s.positions = {b.pos.data(), b.pos.size()};
+  if (fps) s.footprints = {b.fp.data(), b.fp.size()};
+  if (maps) s.surface_maps = {b.maps.data(), b.maps.size()};
+  return s;
+}
+
+// GPU values (hardware bilinear) against the CPU float path, sample by sample,
+// within the stated tolerance; NaN exactly where the CPU has NaN. Returns the
+// largest error / tolerance.
+double check_against_cpu(const hush::anisotropic& a, const batch& b, bool fps, bool maps) {
+  double worst = 0;
+  const hush::samples<2> s = inputs(b, fps, maps);
+  std::vector<float> cpu(b.pos.size()), gpu(b.pos.size());
+  hush::evaluate(a, hush::exec::scalar, s, hush::span<float>(cpu));
+  hush::evaluate(a, hush::exec::glsl{headless().device}, s, hush::span<float>(gpu));
+  for (std::size_t i = 0; i < cpu.size(); ++i) {
+    INFO("sample " << i << ": cpu " << cpu[i] << " gpu " << gpu[i]);
+    REQUIRE(std::isnan(cpu[i]) == std::isnan(gpu[i]));
+    if (std::isnan(cpu[i])) continue;
+    const double e = std::fabs(double(gpu[i]) - cpu[i]), tol = tolerance(a, b, i, fps, maps, true);
+    CHECK(e <= tol);
+    worst = std::max(worst, e / tol);
+  }
+  return worst;
 }
 
 }  // namespace
@@ -176,15 +208,103 @@ TEST_CASE("glsl anisotropic: points and grids, tiles uploaded once per shared ti
                  hush::span<float>(out));
   // K = 4: one RGBA texture (bound to both samplers), shared by both noises.
   CHECK(dev.texture_uploads() == uploads + 1);
-  CHECK(dev.texture_bytes() >= 64 * 64 * 4 * sizeof(float));
+  CHECK(dev.texture_bytes() >= std::size_t{64} * 64 * 4 * sizeof(float));
 }
 
-TEST_CASE("glsl anisotropic: least-squares rules are refused on the GPU, naming the rule") {
-  auto& dev = headless().device;
-  const hush::anisotropic a = make(4, hush::fractal_kind::fbm, hush::weight_rule::least_squares);
-  const std::vector<hush::vec2> pts = {{0.5f, 0.25f}};
-  std::vector<float> out(1);
-  CHECK_THROWS_WITH_AS(hush::evaluate(a, hush::exec::glsl{dev}, hush::span<const hush::vec2>(pts),
-                                      hush::span<float>(out)),
-                       doctest::Contains("least-squares"), hush::invalid_argument);
+// Grazing footprints: S = L^2 e e^T + (small) with L in [2^8, 2^12] and e
+// within angles delta of perpendicular to an orientation d_i (K = 5, i = 1 ... 4:
+// the axis-aligned i = 0 and 45 degrees, whose float products happen to be
+// exact, would not show it), so q_i = d_i^T S d_i
+// ~ L^2 delta^2 is small (weights well above 0) while S's entries are ~L^2:
+// q_i formed in float from S would be off by ~2^-24 L^2 kappa_s, i.e. by
+// whole units of the exponent. The per-sample q_i from the CPU's double keeps
+// the GPU within the stated tolerance; the test also checks that such
+// cancelling samples with large weights occur (else it would test nothing).
+TEST_CASE(
+    "glsl anisotropic: grazing footprints (cancelling quadratic forms) stay within tolerance") {
+  const hush::anisotropic a = make(5, hush::fractal_kind::fbm, hush::weight_rule::centre, 31);
+  batch b;
+  hush::rng r(17);
+  int cancelling = 0;
+  for (int j = 0; j < 400; ++j) {
+    const int i = 1 + j % 4;
+    const double len = std::exp2(r.uniform<double>(8, 12));
+    const hush::dvec2 d = a.direction(i);
+    // e: perpendicular to d, turned by delta with kappa_0 L^2 delta^2 in about [2^-6, 2^4].
+    const double delta = std::exp2(r.uniform<double>(-3, 2)) / (len * std::sqrt(a.kappa(0)));
+    const double c = std::cos(delta), sn = std::sin(delta);
+    const hush::dvec2 e{-d.y * c + d.x * sn, d.x * c + d.y * sn};
+    const double thin = len * std::exp2(-20);
+    b.pos.push_back({r.uniform(-40.0f, 40.0f), r.uniform(-40.0f, 40.0f)});
+    b.fp.push_back(hush::footprint<2>::from_derivatives(hush::dvec2{len * e.x, len * e.y},
+                                                        hush::dvec2{-thin * e.y, thin * e.x}));
+    b.maps.push_back(hush::surface_map::identity());
+    hush::sample_input<2> in;
+    in.fp = b.fp.back();
+    float w[12 * 8];
+    a.weights<float>(in, w);
+    const double entry =
+        std::max(std::fabs(in.fp.covariance(0, 0)), std::fabs(in.fp.covariance(1, 1)));
+    if (w[i + a.channels() * a.parameters().base_scale] > 0.1f && entry > 1e4) ++cancelling;
+  }
+  CHECK(cancelling > 40);
+  MESSAGE("llvmpipe, grazing footprints: max error / tolerance = " << check_against_cpu(a, b, true,
+                                                                                        false));
+}
+
+// Least squares on the GPU: the runner uploads the CPU's own weights per
+// sample (per-map fits cached on the CPU), so the GPU differs from the CPU
+// float path only by the lookups: the same stated tolerance holds (its weight
+// term is then an over-estimate). Maps drawn from 6 distinct ones, as on a
+// mesh of few triangles; 150 samples keep the per-sample filter fits fast.
+TEST_CASE("glsl anisotropic: least-squares weights agree with the CPU within the tolerance") {
+  batch b = make_batch(150, 21);
+  for (std::size_t i = 0; i < b.maps.size(); ++i) b.maps[i] = b.maps[i % 6];
+  using hush::weight_rule;
+  const std::pair<weight_rule, weight_rule> rules[] = {
+      {weight_rule::least_squares, weight_rule::least_squares},
+      {weight_rule::centre, weight_rule::least_squares},
+      {weight_rule::least_squares, weight_rule::three_point}};
+  double worst = 0;
+  for (const auto& rule : rules)
+    for (hush::fractal_kind kind : {hush::fractal_kind::fbm, hush::fractal_kind::turbulence})
+      for (int k : {3, 6}) {
+        hush::anisotropic::params p = make(k, kind, weight_rule::centre).parameters();
+        p.filtering = rule.first;
+        p.compensation = rule.second;
+        const hush::anisotropic a(p);
+        INFO("K " << k << " kind " << int(kind) << " rules " << int(rule.first) << "/"
+                  << int(rule.second));
+        worst = std::max(worst, check_against_cpu(a, b, true, true));
+      }
+  MESSAGE("llvmpipe, least squares: max error / tolerance = " << worst);
+}
+
+TEST_CASE("glsl anisotropic: per-sample data split by the buffer limit gives the same results") {
+  // 2 KiB buffers: K = 8 least-squares turbulence has 2 octaves x 4 scales x 8
+  // channels = 64 floats (256 bytes) of weights per sample: 8 samples per batch,
+  // one dispatch each.
+  (void)headless();  // the context current on this thread
+  hush::glsl::device::options opt;
+  opt.max_buffer_bytes = 2048;
+  hush::glsl::device small(hush::glsl::osmesa_context::loader(), opt);
+  const batch b = make_batch(60, 8);
+  for (hush::weight_rule rule : {hush::weight_rule::centre, hush::weight_rule::least_squares}) {
+    const hush::anisotropic a = make(8, hush::fractal_kind::turbulence, rule);
+    const hush::samples<2> s = inputs(b, true, true);
+    std::vector<float> whole(b.pos.size()), split(b.pos.size());
+    const std::size_t before = small.dispatches();
+    hush::evaluate(a, hush::exec::glsl{headless().device}, s, hush::span<float>(whole));
+    hush::evaluate(a, hush::exec::glsl{small}, s, hush::span<float>(split));
+    // Per batch: the larger of the band triples (3 words x 2 axes x 4 scales)
+    // and the per-sample data (centre: 2K + 1 = 17 floats; least squares: 64).
+    const std::size_t words = std::max<std::size_t>(
+        24, hush::glsl::noise_program<hush::anisotropic>::sample_data_floats(a));
+    const std::size_t per_batch = opt.max_buffer_bytes / (4 * words);
+    CHECK(small.dispatches() - before == (b.pos.size() + per_batch - 1) / per_batch);
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      REQUIRE(std::isnan(whole[i]) == std::isnan(split[i]));
+      if (!std::isnan(whole[i])) CHECK(whole[i] == split[i]);
+    }
+  }
 }

@@ -336,7 +336,8 @@ TEST_CASE("the constant table holds the C++ constants, each rounded to float onc
 
 TEST_CASE("the bodies hold no number outside the generated block and use every constant") {
   // The library's bodies and the hand-written GLSL of the noise programs that
-  // carry their own (anisotropic noise: fp64, so in its runner, not the library).
+  // carry their own (anisotropic noise: it reads the runner's per-sample data, so in
+  // its runner, not the library).
   using aniso = hush::glsl::noise_program<hush::anisotropic>;
   std::string bodies = hush::glsl::library_bodies() + hush::glsl::detail::kAnisotropicBody;
   for (bool g : {false, true})
@@ -356,9 +357,10 @@ TEST_CASE("the bodies hold no number outside the generated block and use every c
   std::vector<std::string> names;
   for (const auto& k : hush::glsl::constant_table()) names.push_back(k.name);
   std::vector<std::string> used = referenced_names(bodies);
-  // The macros by which an including shader hands wavelet noise its tile (wavelet_glsl.hpp).
+  // The macros by which an including shader hands wavelet noise its tile (wavelet_glsl.hpp),
+  // and the runner's mark of the samples layout (compute_source.hpp).
   const std::vector<std::string> hooks = {"HUSH_WAVELET_TILE", "HUSH_WAVELET_BLEND",
-                                          "HUSH_WAVELET_TABLE"};
+                                          "HUSH_WAVELET_TABLE", "HUSH_SAMPLES"};
   used.erase(std::remove_if(used.begin(), used.end(),
                             [&](const std::string& u) {
                               return std::find(hooks.begin(), hooks.end(), u) != hooks.end();

@@ -5,9 +5,14 @@
 // scale the runner reads the tile coordinate p f_s / band + offset split on
 // the CPU in double (cell and fraction, exactly as the CPU splits it), and
 // the shader
-//  - computes the weights from the footprint fp and the surface map smap as
-//    anisotropic.hpp does (the same polynomials, generated constants; the
-//    quadratic forms and det T in double, GLSL 4.00's fp64),
+//  - computes the weights from per-sample data the runner forms on the CPU in
+//    double and rounds to float once (sample_data: q_i = d_i^T S d_i, the
+//    footprint's quadratic form per orientation, |T^T d_i|^2 and |det T|;
+//    they cancel in float for grazing footprints and nearly singular maps),
+//    then as anisotropic.hpp does, in float only (the same polynomials,
+//    generated constants): no fp64, so GLES / WebGL-class GPUs and GPUs with
+//    1/32-rate doubles run it; least-squares rules read the CPU's own weights
+//    per sample instead (its fits cached per map there),
 //  - looks the scale's tiles up: value programs with texture() on the
 //    RGBA32F tiles (hardware bilinear filtering, repeat wrapping; two
 //    textures for K > 4), gradient programs with texelFetch and the CPU's
@@ -15,22 +20,31 @@
 //  - sums as the CPU does (per channel, scale by scale; the channels in the
 //    CPU's tree order; turbulence per octave).
 // The tiles are uploaded once per shared tile (device.hpp, noise textures).
-// Least-squares weight rules are CPU-only: the program refuses them
-// (hush::invalid_argument from textures(), before anything runs).
+// Per-sample data travels in an SSBO at kFirstDataBinding (2K + 1 floats per
+// sample; least squares: channels x scales x passes), batches split to the
+// GL's SSBO size limit by the device.
 //
 // Tolerance (tests/glsl/glsl_anisotropic_test.cpp): against the CPU float
-// path, |gpu - cpu| <= sum over subbands of |w| (2^-8 t_i + 2^-20 m_i) +
+// path, |gpu - cpu| <= sum over subbands of |w| (2^-8 t_i + e_w m_i) +
 // 2 float_budget(), with w the sample's weights, t_i the largest texel step
 // and m_i the largest |texel| of orientation i (anisotropic_tile::max_step,
 // max_abs): many GPUs quantise bilinear weights to 8 fractional bits (2^-9
-// per axis; two axes), 2^-20 covers GLSL's 2.5 ulp division in log2 and the
-// freedom to fuse multiply-adds, and the float budget the rest. Gradient
-// programs (texelFetch, no filtering hardware) drop the 2^-8 term.
+// per axis; two axes); e_w = 2^-20 + 17 * 2^-22 bounds a weight's relative
+// error: 2^-20 covers GLSL's 2.5 ulp division in log2 and the freedom to fuse
+// multiply-adds, and 17 * 2^-22 the exponent: the CPU rounds z = kappa_s q_i
+// once (from double), the GPU forms float(kappa_s) * float(q_i) (three
+// roundings), so the two z differ by at most 4 u z (u = 2^-24), and
+// lambda = 2^-z by at most ln2 * 4 u z = x 2^-22 relative, x = z ln2 <=
+// kAnisoWeightCutoff = 17 below the cutoff (a z that straddles it gives 0
+// against e^-17 times at most the cap: inside the float budget). The map's
+// terms are the CPU's float inputs bit for bit, and least-squares weights are
+// the CPU's own. The float budget covers the rest. Gradient programs
+// (texelFetch, no filtering hardware) drop the 2^-8 term.
 // Measured on llvmpipe: tests/glsl/glsl_anisotropic_test.cpp prints it.
 //
-// The functions need GLSL 4.00 (double), so they live in the runner, not in
-// the #version 330 library (library.hpp); hush glsl-export writes them with
-// the runners.
+// The functions read the runner's per-sample SSBO, so they live in the
+// runner, not in the #version 330 library (library.hpp); hush glsl-export
+// writes them with the runners.
 #ifndef HUSH_GLSL_ANISOTROPIC_PROGRAM_HPP
 #define HUSH_GLSL_ANISOTROPIC_PROGRAM_HPP
 
@@ -49,7 +63,7 @@ namespace hush {
 namespace glsl {
 namespace detail {
 
-// The anisotropic noise's GLSL functions and uniforms (runner only: fp64).
+// The anisotropic noise's GLSL functions, uniforms and per-sample SSBO (runner only).
 constexpr const char* kAnisotropicBody = R"glsl(
 // ---- Anisotropic noise (include/hush/anisotropic.hpp, hush/glsl/anisotropic_program.hpp).
 uniform sampler2D hush_tile0;             // channels 0-3 of the subband tiles
@@ -62,12 +76,9 @@ uniform uint hush_aniso_turbulence;       // 1u: sum gain^k |n_k|, 0u: fbm
 uniform uint hush_aniso_three_filter;     // 1u: three-point lambda, 0u: centre
 uniform uint hush_aniso_three_map;        // 1u: three-point gamma, 0u: centre
 uniform float hush_aniso_tile_size;       // N
-uniform double hush_aniso_dxx[HUSH_ANISO_MAX_ORIENTATIONS];   // cos^2 theta_i
-uniform double hush_aniso_dyy[HUSH_ANISO_MAX_ORIENTATIONS];   // sin^2 theta_i
-uniform double hush_aniso_dxy2[HUSH_ANISO_MAX_ORIENTATIONS];  // 2 cos sin
-uniform double hush_aniso_dx[HUSH_ANISO_MAX_ORIENTATIONS];    // cos theta_i
-uniform double hush_aniso_dy[HUSH_ANISO_MAX_ORIENTATIONS];    // sin theta_i
-uniform double hush_aniso_kappa[HUSH_ANISO_MAX_SCALES];       // 2 pi^2 sigma^2 f_s^2 log2 e
+uniform uint hush_aniso_given;            // 1u: per-sample weights given (least squares)
+uniform uint hush_aniso_stride;           // floats of per-sample data per sample
+uniform float hush_aniso_kappa[HUSH_ANISO_MAX_SCALES];        // 2 pi^2 sigma^2 f_s^2 log2 e
 uniform float hush_aniso_tpu[HUSH_ANISO_MAX_SCALES];          // texels per unit, float
 uniform float hush_aniso_ow[HUSH_ANISO_MAX_SCALES];           // octave weights (fbm)
 uniform float hush_aniso_gain[HUSH_ANISO_MAX_SCALES];         // gain^k (turbulence)
@@ -126,10 +137,10 @@ float hush_aniso_band(float x) {
 }
 // The weight of channel i at scale s for octaves [k0, k1): anisotropic.hpp's
 // combine (gamma from the map, or the identity) times lambda.
-float hush_aniso_weight(uint i, uint s, int k0, int k1, double q, bool has_map, float half_log,
+float hush_aniso_weight(uint i, uint s, int k0, int k1, float q, bool has_map, float half_log,
                         float sd) {
   if (i >= hush_aniso_k) return 0.0;
-  float lam = hush_aniso_lambda(float(hush_aniso_kappa[s] * q));
+  float lam = hush_aniso_lambda(hush_aniso_kappa[s] * q);
   bool fbm = hush_aniso_turbulence == 0u;
   int rel = int(s) - int(hush_aniso_base);
   if (!has_map) {
@@ -177,7 +188,60 @@ struct noise_program<anisotropic> {
   static constexpr const char* name = "anisotropic";
   static constexpr bool banded = true;
 
-  static std::string uniforms() { return detail::kAnisotropicBody; }
+  static constexpr unsigned sample_data_binding = kFirstDataBinding;
+  // The body, then the per-sample data's SSBO (read in the samples layout only).
+  static std::string uniforms() {
+    return std::string(detail::kAnisotropicBody) +
+           "layout(std430, binding = " + std::to_string(sample_data_binding) +
+           ") readonly buffer hush_aniso_samples { float hush_aniso_sample[]; };\n";
+  }
+  static bool given_weights(const anisotropic& a) {
+    const auto& p = a.parameters();
+    return p.filtering == weight_rule::least_squares ||
+           p.compensation == weight_rule::least_squares;
+  }
+  // Floats per sample: the heuristic rules' inputs q_i, |T^T d_i|^2 (K each)
+  // and |det T|; least squares: the CPU's weights, channels() per scale per pass.
+  static std::size_t sample_data_floats(const anisotropic& a) {
+    const auto& p = a.parameters();
+    if (!given_weights(a)) return 2 * static_cast<std::size_t>(p.orientations) + 1;
+    const std::size_t passes =
+        p.kind == fractal_kind::turbulence ? hush::detail::index(p.octaves) : 1;
+    return passes * hush::detail::index(p.scales) * hush::detail::index(a.channels());
+  }
+  // Sample in's data, formed in double as anisotropic.hpp forms it and rounded
+  // to float once: q_i = d_i^T S d_i (filter_weights) and |T^T d_i|^2, |det T|
+  // (combine; a map with a non-finite entry is the zero map), so the shader's
+  // weights are float-only and no quadratic form cancels in float. Least
+  // squares: the CPU's own weights (anisotropic::weights, octave_weights), its
+  // per-map fits cached there.
+  static void sample_data(const anisotropic& a, const sample_input<2>& in, float* out) {
+    const auto& p = a.parameters();
+    const int k = p.orientations;
+    if (given_weights(a)) {
+      const std::size_t per_pass =
+          hush::detail::index(p.scales) * hush::detail::index(a.channels());
+      if (p.kind == fractal_kind::fbm) {
+        a.weights<float>(in, out);
+      } else {
+        for (int o = 0; o < p.octaves; ++o)
+          a.octave_weights<float>(in, o, out + per_pass * hush::detail::index(o));
+      }
+      return;
+    }
+    const double sxx = in.fp.covariance(0, 0), sxy = in.fp.covariance(0, 1),
+                 syy = in.fp.covariance(1, 1);
+    const surface_map m = in.map.finite() ? in.map : surface_map::zero();
+    const double m00 = m.m00, m01 = m.m01, m10 = m.m10, m11 = m.m11;
+    for (int i = 0; i < k; ++i) {
+      const dvec2 d = a.direction(i);
+      const double q = (sxx * (d.x * d.x) + sxy * (2.0 * d.x * d.y)) + syy * (d.y * d.y);
+      const double tu = m00 * d.x + m10 * d.y, tv = m01 * d.x + m11 * d.y;
+      out[hush::detail::index(i)] = static_cast<float>(q);
+      out[hush::detail::index(k + i)] = static_cast<float>(tu * tu + tv * tv);
+    }
+    out[hush::detail::index(2 * k)] = static_cast<float>(std::fabs(m00 * m11 - m01 * m10));
+  }
   static int band_count(const anisotropic& a) { return a.parameters().scales; }
   static std::uint32_t band_period(const anisotropic& a, int, int) {
     return static_cast<std::uint32_t>(a.parameters().tile_size);
@@ -193,24 +257,28 @@ struct noise_program<anisotropic> {
   static std::string band_begin(bool gradient) {
     std::string s =
         "  bool bad = false;\n"
-        "  double q[HUSH_ANISO_MAX_ORIENTATIONS];\n"
+        "  float q[HUSH_ANISO_MAX_ORIENTATIONS];\n"
         "  float half_log[HUSH_ANISO_MAX_ORIENTATIONS];\n"
         "  float sd = 0.0;\n"
-        "  // A map with a non-finite entry counts as the zero map.\n"
-        "  mat2 tm = smap;\n"
-        "  if (has_smap && (hush_is_nonfinite(tm[0][0]) || hush_is_nonfinite(tm[0][1]) ||\n"
-        "                   hush_is_nonfinite(tm[1][0]) || hush_is_nonfinite(tm[1][1])))\n"
-        "    tm = mat2(0.0);\n"
-        "  double m00 = double(tm[0][0]), m01 = double(tm[1][0]);\n"
-        "  double m10 = double(tm[0][1]), m11 = double(tm[1][1]);\n"
-        "  if (has_smap) sd = sqrt(float(abs(m00 * m11 - m01 * m10)));\n"
+        "#ifdef HUSH_SAMPLES\n"
+        "  // Per-sample data formed on the CPU in double (sample_data): q_i, then\n"
+        "  // |T^T d_i|^2, then |det T|.\n"
+        "  // (Least squares: the weights themselves, read in band_step; nothing here.)\n"
+        "  uint sbase = hush_aniso_stride * n;\n"
+        "  bool own = hush_aniso_given == 0u;\n"
+        "  if (own && has_smap) sd = sqrt(hush_aniso_sample[sbase + 2u * hush_aniso_k]);\n"
         "  for (uint i = 0u; i < hush_aniso_k; ++i) {\n"
-        "    q[i] = (double(fp[0][0]) * hush_aniso_dxx[i] + double(fp[1][0]) * "
-        "hush_aniso_dxy2[i]) + double(fp[1][1]) * hush_aniso_dyy[i];\n"
-        "    double tu = m00 * hush_aniso_dx[i] + m10 * hush_aniso_dy[i];\n"
-        "    double tv = m01 * hush_aniso_dx[i] + m11 * hush_aniso_dy[i];\n"
-        "    half_log[i] = has_smap ? hush_aniso_log2(float(tu * tu + tv * tv)) / 2.0 : 0.0;\n"
+        "    q[i] = own ? hush_aniso_sample[sbase + i] : 0.0;\n"
+        "    float r = own && has_smap ? hush_aniso_sample[sbase + hush_aniso_k + i] : 1.0;\n"
+        "    half_log[i] = own && has_smap ? hush_aniso_log2(r) / 2.0 : 0.0;\n"
         "  }\n"
+        "#else\n"
+        "  // Points and grids: a point footprint and no map.\n"
+        "  for (uint i = 0u; i < hush_aniso_k; ++i) {\n"
+        "    q[i] = 0.0;\n"
+        "    half_log[i] = 0.0;\n"
+        "  }\n"
+        "#endif\n"
         "  uint passes = hush_aniso_turbulence != 0u ? hush_aniso_octaves : 1u;\n"
         "  vec4 acc[2u * HUSH_ANISO_MAX_SCALES];\n"
         "  for (uint a = 0u; a < 2u * passes; ++a) acc[a] = vec4(0.0);\n";
@@ -230,9 +298,19 @@ struct noise_program<anisotropic> {
         "      int k0 = hush_aniso_turbulence != 0u ? int(pass) : 0;\n"
         "      int k1 = hush_aniso_turbulence != 0u ? int(pass) + 1 : int(hush_aniso_octaves);\n"
         "      float w[HUSH_ANISO_MAX_ORIENTATIONS];\n"
-        "      for (uint i = 0u; i < HUSH_ANISO_MAX_ORIENTATIONS; ++i)\n"
-        "        w[i] = hush_aniso_weight(i, b, k0, k1, q[i < hush_aniso_k ? i : 0u], has_smap,\n"
-        "                                 half_log[i < hush_aniso_k ? i : 0u], sd);\n"
+        "#ifdef HUSH_SAMPLES\n"
+        "      if (hush_aniso_given != 0u) {\n"
+        "        // Least squares: the CPU's weights of this pass and scale, as given.\n"
+        "        for (uint i = 0u; i < HUSH_ANISO_MAX_ORIENTATIONS; ++i)\n"
+        "          w[i] = i < hush_aniso_kc\n"
+        "                     ? hush_aniso_sample[sbase + hush_aniso_kc * (hush_bands * pass + b) "
+        "+ i]\n"
+        "                     : 0.0;\n"
+        "      } else\n"
+        "#endif\n"
+        "        for (uint i = 0u; i < HUSH_ANISO_MAX_ORIENTATIONS; ++i)\n"
+        "          w[i] = hush_aniso_weight(i, b, k0, k1, q[i < hush_aniso_k ? i : 0u], has_smap,\n"
+        "                                   half_log[i < hush_aniso_k ? i : 0u], sd);\n"
         "      w0[pass] = vec4(w[0], w[1], w[2], w[3]);\n"
         "      w1[pass] = vec4(w[4], w[5], w[6], w[7]);\n"
         "      used = used || any(notEqual(w0[pass], vec4(0.0))) || any(notEqual(w1[pass], "
@@ -289,11 +367,6 @@ struct noise_program<anisotropic> {
 
   static std::vector<noise_texture> textures(const anisotropic& a) {
     const auto& p = a.parameters();
-    if (p.filtering == weight_rule::least_squares || p.compensation == weight_rule::least_squares)
-      throw hush::invalid_argument(
-          "hush::glsl: anisotropic noise with least-squares weights runs on the CPU only (a "
-          "least-squares fit per sample); valid on the GPU: filtering and compensation centre or "
-          "three_point");
     std::vector<noise_texture> list;
     const std::shared_ptr<const anisotropic_tile>& tile = a.tile_ptr();
     for (int t = 0; t < 2; ++t) {
@@ -323,33 +396,20 @@ struct noise_program<anisotropic> {
     gl.Uniform1ui(loc("hush_aniso_three_map"),
                   p.compensation == weight_rule::three_point ? 1u : 0u);
     gl.Uniform1f(loc("hush_aniso_tile_size"), static_cast<float>(p.tile_size));
-    constexpr int kO = hush::detail::constants::kAnisoMaxOrientations;
     constexpr int kS = hush::detail::constants::kAnisoMaxScales;
-    double dxx[kO] = {}, dyy[kO] = {}, dxy2[kO] = {}, dx[kO] = {}, dy[kO] = {}, kappa[kS] = {};
-    float tpu[kS] = {}, ow[kS] = {}, gain[kS] = {};
-    for (int i = 0; i < p.orientations; ++i) {
-      const dvec2 d = a.direction(i);
-      dxx[i] = d.x * d.x;
-      dyy[i] = d.y * d.y;
-      dxy2[i] = 2.0 * d.x * d.y;
-      dx[i] = d.x;
-      dy[i] = d.y;
-    }
+    float kappa[kS] = {}, tpu[kS] = {}, ow[kS] = {}, gain[kS] = {};
     double g = 1.0;
     for (int s = 0; s < p.scales; ++s) {
-      kappa[s] = a.kappa(s);
+      kappa[s] = static_cast<float>(a.kappa(s));
       tpu[s] = static_cast<float>(a.texels_per_unit(s));
     }
     for (int k = 0; k < p.octaves; ++k, g *= p.gain) {
       ow[k] = static_cast<float>(a.octave_weight(k));
       gain[k] = static_cast<float>(g);
     }
-    gl.Uniform1dv(loc("hush_aniso_dxx"), kO, dxx);
-    gl.Uniform1dv(loc("hush_aniso_dyy"), kO, dyy);
-    gl.Uniform1dv(loc("hush_aniso_dxy2"), kO, dxy2);
-    gl.Uniform1dv(loc("hush_aniso_dx"), kO, dx);
-    gl.Uniform1dv(loc("hush_aniso_dy"), kO, dy);
-    gl.Uniform1dv(loc("hush_aniso_kappa"), kS, kappa);
+    gl.Uniform1ui(loc("hush_aniso_given"), given_weights(a) ? 1u : 0u);
+    gl.Uniform1ui(loc("hush_aniso_stride"), static_cast<detail::gl_uint>(sample_data_floats(a)));
+    gl.Uniform1fv(loc("hush_aniso_kappa"), kS, kappa);
     gl.Uniform1fv(loc("hush_aniso_tpu"), kS, tpu);
     gl.Uniform1fv(loc("hush_aniso_ow"), kS, ow);
     gl.Uniform1fv(loc("hush_aniso_gain"), kS, gain);
@@ -364,6 +424,11 @@ struct noise_program<anisotropic> {
   // weights are w[i + channels() s] (anisotropic::weights; turbulence: the
   // sum of the octaves' weights times their gains), values from texture()
   // (hardware bilinear) or texelFetch (gradient programs): see the file comment.
+  // Relative error of a GPU weight against the CPU's (file comment):
+  // 2^-20 (log2's division, fused multiply-adds) plus x 2^-22 for
+  // lambda = e^-x, x <= kAnisoWeightCutoff (z = kappa_s q_i in float).
+  static constexpr double kWeightError =
+      1.0 / (1 << 20) + hush::detail::constants::kAnisoWeightCutoff / (1 << 22);
   static double tolerance(const anisotropic& a, const float* w, bool hardware_filter) {
     double t = 0;
     const int kc = a.channels();
@@ -371,7 +436,7 @@ struct noise_program<anisotropic> {
       for (int i = 0; i < a.parameters().orientations; ++i) {
         const double wi = std::fabs(static_cast<double>(w[i + kc * s]));
         t += wi * ((hardware_filter ? std::ldexp(a.tile().max_step(i), -8) : 0.0) +
-                   std::ldexp(a.tile().max_abs(i), -20));
+                   kWeightError * a.tile().max_abs(i));
       }
     return t + 2 * a.float_budget();
   }

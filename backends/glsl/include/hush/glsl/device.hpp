@@ -17,7 +17,8 @@
 // GL_SHADER_STORAGE_BUFFER binding and the active texture unit as it found
 // them. It rebinds the indexed SSBO bindings 0 to 4 (the runner's), the
 // bindings of the noises' own data (5 and up: noise_program::data_buffers,
-// e.g. wavelet tiles) and, for noises with textures (noise_program::textures),
+// e.g. wavelet tiles, and noise_program::sample_data, e.g. the anisotropic
+// weights' per-sample inputs) and, for noises with textures (noise_program::textures),
 // the GL_TEXTURE_2D binding of texture units 0 ... n-1. Data buffers and
 // textures are uploaded once per owner (e.g. a shared tile) and kept while it
 // stays the same (data_uploads() counts the buffer uploads); their sizes are
@@ -232,6 +233,11 @@ class device {
         gl_->Uniform1ui(gl_->GetUniformLocation(prog, "hush_bands"),
                         static_cast<detail::gl_uint>(bands));
       }
+      std::size_t data_floats = 0;
+      if constexpr (has_sample_data<Noise>::value) {
+        data_floats = np::sample_data_floats(noise);
+        words = std::max(words, data_floats);
+      }
       const std::size_t batch = batch_samples(words);
       std::vector<std::uint32_t> triples;
       const float dummy[4] = {0, 0, 0, 0};
@@ -255,6 +261,8 @@ class device {
           upload(4, s.surface_maps.data() + first, m * sizeof(surface_map));
         else
           upload(4, dummy, sizeof dummy);
+        if constexpr (has_sample_data<Noise>::value)
+          upload_sample_data(noise, s, first, m, data_floats);
         run_batch<D>(prog, m, stride, out + first, grad ? grad + first : nullptr);
       }
     }
@@ -569,6 +577,28 @@ class device {
     gl_->BindBufferBase(detail::kGlShaderStorageBuffer, b.binding, slot.buffer);
   }
 
+  // The noise's per-sample data of samples [first, first + m) of s
+  // (noise_program::sample_data), formed on the CPU and bound at the program's
+  // sample_data_binding, a binding no data buffer then holds.
+  template <class Noise>
+  void upload_sample_data(const Noise& noise, const samples<Noise::dimension>& s, std::size_t first,
+                          std::size_t m, std::size_t floats) {
+    using np = noise_program<Noise>;
+    static_assert(np::sample_data_binding >= kFirstDataBinding,
+                  "sample_data_binding is one of the noises' bindings");
+    scratch_.resize(m * floats);
+    for (std::size_t j = 0; j < m; ++j)
+      np::sample_data(noise, s.at(first + j), scratch_.data() + j * floats);
+    data_slot& slot = data_[np::sample_data_binding];
+    if (slot.buffer == 0) gl_->GenBuffers(1, &slot.buffer);
+    slot.owner.reset();  // per-batch data: a data buffer bound here later uploads again
+    gl_->BindBuffer(detail::kGlShaderStorageBuffer, slot.buffer);
+    gl_->BufferData(detail::kGlShaderStorageBuffer,
+                    static_cast<detail::gl_sizeiptr>(scratch_.size() * sizeof(float)),
+                    scratch_.data(), detail::kGlStreamDraw);
+    gl_->BindBufferBase(detail::kGlShaderStorageBuffer, np::sample_data_binding, slot.buffer);
+  }
+
   // Samples per batch: each buffer holds at most max_bytes_, and the
   // shader's sample indices are 32-bit.
   // Throws hush::invalid_argument when not even one sample fits a buffer
@@ -632,7 +662,8 @@ class device {
   static constexpr int kBuffers = 5;
   detail::gl_uint buffers_[kBuffers] = {0, 0, 0, 0, 0};
   std::map<std::string, detail::gl_program> programs_;
-  // Noise data buffers (bindings >= 4): the GL buffer and whose data it holds.
+  // Noise data buffers (bindings >= 5): the GL buffer and whose data it holds (none
+  // for per-sample data).
   struct data_slot {
     detail::gl_uint buffer = 0;
     std::weak_ptr<const void> owner;

@@ -49,6 +49,17 @@
 // binding and keeps it there: evaluating any number of noises that share one
 // tile uploads it once per device; a different owner (another tile, or a new
 // one at a reused address after the old was freed) is uploaded again.
+// A noise whose per-sample state is best formed on the CPU in double (e.g.
+// quadratic forms that cancel in float) may provide, for the samples layout,
+//   static constexpr unsigned sample_data_binding;  its SSBO binding: >= kFirstDataBinding
+//                                              and none of its data_buffers' bindings
+//   static std::size_t sample_data_floats(const Noise&);  floats per sample (> 0)
+//   static void sample_data(const Noise&, const sample_input<D>& in, float* out);
+//                                              sample `in`'s floats into out
+// The device fills them per batch and uploads them to that binding, sample n's
+// at [n * sample_data_floats, (n + 1) * sample_data_floats) (batches split so
+// that the buffer fits GL_MAX_SHADER_STORAGE_BLOCK_SIZE); the points and grid
+// layouts have none (HUSH_SAMPLES is not defined there).
 // A noise may instead (or also) provide
 //   static std::vector<noise_texture> textures(const Noise&);
 // 2D RGBA32F textures, sampled with hardware bilinear filtering and repeat
@@ -246,6 +257,13 @@ template <class Noise>
 struct has_data_buffers<
     Noise, std::void_t<decltype(noise_program<Noise>::data_buffers(std::declval<const Noise&>()))>>
     : std::true_type {};
+
+// Whether a program declares per-sample data (sample_data_floats, sample_data).
+template <class Noise, class = void>
+struct has_sample_data : std::false_type {};
+template <class Noise>
+struct has_sample_data<Noise, std::void_t<decltype(noise_program<Noise>::sample_data_floats(
+                                  std::declval<const Noise&>()))>> : std::true_type {};
 
 // Whether a program declares sample_call (per-sample footprints and normals).
 template <class Program, class = void>
