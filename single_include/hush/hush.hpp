@@ -10134,13 +10134,13 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   const std::size_t nx = gr.size[0], ny = gr.size[1];
   if (per_cell < kMinRun) {
     lanes_split sp;
-    auto split = [&](std::size_t first, std::size_t used) {
+    auto split = [&](std::size_t batch, std::size_t used) {
       for (std::size_t l = 0; l < lanes; ++l) {
         if (l >= used) {
           clear_lane<D>(sp, l);
           continue;
         }
-        const std::size_t idx = first + l, i = idx % nx, j = (idx / nx) % ny, k = idx / (nx * ny);
+        const std::size_t idx = batch + l, i = idx % nx, j = (idx / nx) % ny, k = idx / (nx * ny);
         const std::size_t ijk[3] = {i, j, k};
         bool bad = false;
         for (int a = 0; a < D; ++a) {

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "each_target.hpp"
 #include "hush/hush.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
@@ -29,21 +30,6 @@
 #endif
 
 namespace {
-
-template <class Check>
-void each_target(Check check) {
-#if HUSH_CONFIG_SIMD_STATIC
-  INFO("static target " << hush::simd::chosen_target());
-  check();
-#else
-  for (std::int64_t t : hwy::SupportedAndGeneratedTargets()) {
-    hwy::SetSupportedTargetsForTest(t);
-    INFO("target " << std::string(hwy::TargetName(t)));
-    check();
-  }
-  hwy::SetSupportedTargetsForTest(0);
-#endif
-}
 
 [[maybe_unused]] bool same_bits(float a, float b) {
   if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
@@ -198,7 +184,7 @@ TEST_CASE(
           const std::vector<float> ref = run(a, hush::exec::scalar, b, b.pos.size(), fps, maps);
           const double budget =
               maps ? a.float_budget() * a.bound_with_maps() / a.bound() : a.float_budget();
-          each_target([&] {
+          for_each_target([&] {
             compare(run(a, hush::exec::simd, b, b.pos.size(), fps, maps), ref, budget);
             // With gradients: the same values, and the scalar code's gradients.
             compare_with_gradients(a, b, b.pos.size(), fps, maps, budget);
@@ -212,7 +198,7 @@ TEST_CASE("anisotropic simd: least-squares weights take the scalar weight code")
   const hush::anisotropic a = make(4, hush::fractal_kind::fbm, hush::weight_rule::least_squares,
                                    hush::weight_rule::least_squares);
   const std::vector<float> ref = run(a, hush::exec::scalar, b, b.pos.size(), true, true);
-  each_target([&] {
+  for_each_target([&] {
     compare(run(a, hush::exec::simd, b, b.pos.size(), true, true), ref, a.float_budget() * 8);
     compare_with_gradients(a, b, b.pos.size(), true, true, a.float_budget() * 8);
   });
@@ -222,7 +208,7 @@ TEST_CASE("anisotropic simd: every tail length, points and samples") {
   const batch b = make_batch(3 * 64 + 1, 23);
   const hush::anisotropic a =
       make(4, hush::fractal_kind::fbm, hush::weight_rule::centre, hush::weight_rule::centre);
-  each_target([&] {
+  for_each_target([&] {
     for (std::size_t n = 1; n <= b.pos.size(); n += (n < 50 ? 1 : 13)) {
       INFO("n = " << n);
       compare(run(a, hush::exec::simd, b, n, true, true),
@@ -256,7 +242,7 @@ TEST_CASE("anisotropic simd: grids near and far, and gradients") {
     g.size = {77, 9};
     std::vector<float> ref(g.count());
     hush::evaluate_grid(a, hush::exec::scalar, g, hush::span<float>(ref));
-    each_target([&] {
+    for_each_target([&] {
       std::vector<float> out(g.count());
       hush::evaluate_grid(a, hush::exec::simd, g, hush::span<float>(out));
       compare(out, ref, a.float_budget());

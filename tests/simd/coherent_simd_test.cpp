@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "coherent_scenes.hpp"
+#include "each_target.hpp"
 #include "hush/hush.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
@@ -30,24 +31,6 @@ namespace {
 
 using hush_test::make_synthetic;
 using hush_test::synthetic_frame;
-
-template <class Check>
-void for_each_coherent_target(Check check) {
-#if HUSH_CONFIG_SIMD_STATIC
-  INFO("static target " << hush::simd::chosen_target());
-  check();
-#else
-  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  REQUIRE(!targets.empty());
-  for (std::int64_t t : targets) {
-    hwy::SetSupportedTargetsForTest(t);
-    const std::string name = hwy::TargetName(t);
-    INFO("target " << name);
-    check();
-  }
-  hwy::SetSupportedTargetsForTest(0);
-#endif
-}
 
 // Bit for bit under strict FP, else within `budget`; returns the largest difference. One
 // assertion per array (the first differing element is reported).
@@ -104,7 +87,7 @@ TEST_CASE("coherent SIMD pass equals the scalar pass: values, history and fresh 
       {hush::coherent_filter::stationary, hush::coherent_input::white, true, 2, false},
   };
   const int widths[] = {1, 5, 16, 17, 31, 33, 49, 71};
-  for_each_coherent_target([&] {
+  for_each_target([&] {
     double worst = 0;
     for (const setup& su : setups)
       for (int w : widths) {
@@ -156,7 +139,7 @@ TEST_CASE("coherent SIMD pass equals the scalar pass: values, history and fresh 
 }
 
 TEST_CASE("coherent SIMD time-symmetric filter (backward pass) equals the scalar one") {
-  for_each_coherent_target([&] {
+  for_each_target([&] {
     for (int w : {9, 40}) {
       const int h = 13, frames = 6;
       hush::coherent_params prm;

@@ -19,6 +19,7 @@
 #include <limits>
 #include <vector>
 
+#include "each_target.hpp"
 #include "hush/hush.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
@@ -28,21 +29,6 @@
 namespace {
 
 constexpr double kPi = hush::detail::constants::kPi;
-
-template <class Check>
-void for_each_gabor_target(Check check) {
-#if HUSH_CONFIG_SIMD_STATIC
-  INFO("static target " << hush::simd::chosen_target());
-  check();
-#else
-  for (std::int64_t t : hwy::SupportedAndGeneratedTargets()) {
-    hwy::SetSupportedTargetsForTest(t);
-    INFO("target " << hwy::TargetName(t));
-    check();
-  }
-  hwy::SetSupportedTargetsForTest(0);
-#endif
-}
 
 template <int D>
 typename hush::gabor<D>::params gabor_params(hush::gabor_kind kind) {
@@ -100,7 +86,7 @@ void check_points(const hush::gabor<D>& g, const std::vector<hush::vec<float, D>
   std::vector<hush::vec<float, D>> ga(n), gb(n);
   hush::evaluate(g, hush::exec::scalar, in, hush::span<float>(a),
                  hush::span<hush::vec<float, D>>(ga));
-  for_each_gabor_target([&] {
+  for_each_target([&] {
     hush::evaluate(g, hush::exec::simd, in, hush::span<float>(b),
                    hush::span<hush::vec<float, D>>(gb));
     hush::evaluate(g, hush::exec::simd, in, hush::span<float>(c));
@@ -118,7 +104,7 @@ void check_grid(const hush::gabor<D>& g, const hush::grid<D>& grid) {
   std::vector<hush::vec<float, D>> ga(n), gb(n);
   hush::evaluate_grid(g, hush::exec::scalar, grid, hush::span<float>(a),
                       hush::span<hush::vec<float, D>>(ga));
-  for_each_gabor_target([&] {
+  for_each_target([&] {
     hush::evaluate_grid(g, hush::exec::simd, grid, hush::span<float>(b),
                         hush::span<hush::vec<float, D>>(gb));
     hush::evaluate_grid(g, hush::exec::simd, grid, hush::span<float>(c));
@@ -220,8 +206,8 @@ void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed) {
     if (i % 17 == 7) dx[0] = std::numeric_limits<double>::quiet_NaN();  // the widest
     fps[i] = hush::footprint<D>::from_derivatives(dx, dy);
     nrm[i] = {r.uniform<float>(-1, 1), r.uniform<float>(-1, 1), r.uniform<float>(-1, 1)};
-    if (i % 19 == 2) nrm[i] = {};                                               // the solid noise
-    if (i % 23 == 4) nrm[i].y = std::numeric_limits<float>::infinity();        // NaN
+    if (i % 19 == 2) nrm[i] = {};                                             // the solid noise
+    if (i % 23 == 4) nrm[i].y = std::numeric_limits<float>::infinity();       // NaN
     if (i % 7 == 1) nrm[i] = {nrm[i].x * 1e-30f, nrm[i].y * 1e-30f, 1e-38f};  // tiny
   }
   // 0: footprints, 1: footprints and normals, 2: normals only.
@@ -236,7 +222,7 @@ void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed) {
     std::vector<hush::vec<float, D>> ga(n), gb(n);
     hush::evaluate(g, hush::exec::scalar, s, hush::span<float>(a),
                    hush::span<hush::vec<float, D>>(ga));
-    for_each_gabor_target([&] {
+    for_each_target([&] {
       hush::evaluate(g, hush::exec::simd, s, hush::span<float>(b),
                      hush::span<hush::vec<float, D>>(gb));
       hush::evaluate(g, hush::exec::simd, s, hush::span<float>(c));

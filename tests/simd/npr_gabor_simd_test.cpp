@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "each_target.hpp"
 #include "hush/hush.hpp"
 #include "npr_gabor_scenes.hpp"
 
@@ -28,25 +29,6 @@
 #endif
 
 namespace {
-
-template <class Check>
-void for_each_npr_target(Check check) {
-#if HUSH_CONFIG_SIMD_STATIC
-  INFO("static target " << hush::simd::chosen_target());
-  check();
-#elif HUSH_CONFIG_SIMD
-  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  REQUIRE(!targets.empty());
-  for (std::int64_t t : targets) {
-    hwy::SetSupportedTargetsForTest(t);
-    INFO("target " << hwy::TargetName(t));
-    check();
-  }
-  hwy::SetSupportedTargetsForTest(0);
-#else
-  check();
-#endif
-}
 
 // A grid scene (tests/npr_gabor_scenes.hpp) made harder: 1/z affine but slanted, the
 // G-buffer depth off the plane by up to +-6% (the default tolerance is 2%: pass, soft band
@@ -112,7 +94,8 @@ void compare(const std::vector<float>& simd, const std::vector<float>& scalar,
     if (!(std::fabs(double(simd[i]) - double(scalar[i])) <= budget[i])) bad = i;
 #endif
   }
-  if (bad < simd.size()) INFO("pixel " << bad << ": simd " << simd[bad] << ", scalar " << scalar[bad]);
+  if (bad < simd.size())
+    INFO("pixel " << bad << ": simd " << simd[bad] << ", scalar " << scalar[bad]);
   REQUIRE(bad == simd.size());
 }
 
@@ -133,7 +116,7 @@ void check_backends(const hard_scene& hs, const hush::npr_gabor::params& prm, Ed
   for (float v : scalar) nonzero += v != 0.0f;
   // Every scene leaves pixels with noise (the comparison is not of zeros).
   if (!splats.empty() && w * h > 64) CHECK(nonzero > w * h / 4);
-  for_each_npr_target([&] {
+  for_each_target([&] {
     std::fill(simd.begin(), simd.end(), -7.0f);
     noise.splat(hush::exec::simd, hs.f, splats.data(), splats.size(),
                 hush::image_view<float>{simd.data(), w, h});

@@ -18,6 +18,7 @@
 #include <limits>
 #include <vector>
 
+#include "each_target.hpp"
 #include "hush/hush.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
@@ -27,23 +28,6 @@
 namespace {
 
 static_assert(HUSH_CONFIG_SIMD, "the SIMD suites need HUSH_SIMD_DYNAMIC or HUSH_SIMD_STATIC");
-
-template <class Check>
-void for_each_target(Check check) {
-#if HUSH_CONFIG_SIMD_STATIC
-  INFO("static target " << hush::simd::chosen_target());
-  check();
-#else
-  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  REQUIRE(!targets.empty());
-  for (std::int64_t t : targets) {
-    hwy::SetSupportedTargetsForTest(t);
-    INFO("target " << hwy::TargetName(t));
-    check();
-  }
-  hwy::SetSupportedTargetsForTest(0);
-#endif
-}
 
 [[maybe_unused]] bool same_bits(float a, float b) {
   if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
