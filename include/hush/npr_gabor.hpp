@@ -272,7 +272,7 @@ class npr_gabor {
     validate(f, tris, src);
     check_out(f, out);
     std::vector<npr_gabor_splat> splats;
-    make_splats(f, tris, splats, src);
+    splats_of(f, tris, splats, src);  // validated above
     splat(ex, f, splats.data(), splats.size(), out);
   }
   template <class T>
@@ -289,29 +289,7 @@ class npr_gabor {
   void make_splats(const frame& f, const triangle_list& tris, std::vector<npr_gabor_splat>& splats,
                    const sources& src = {}) const {
     validate(f, tris, src);
-    splats.clear();
-    const point_parameters pp(*this, src);
-    // Per-object a or N': one noise per table entry with that object's kernel,
-    // density and scale (same seed and constants: the same points).
-    std::vector<npr_gabor> per_object;
-    std::vector<point_parameters> per_object_pp;
-    const std::size_t objects = std::max(src.bandwidth.table_size(), src.impulses.table_size());
-    per_object.reserve(objects);
-    per_object_pp.reserve(objects);
-    for (std::size_t o = 0; o < objects; ++o) {
-      params q = p_;
-      q.bandwidth = src.bandwidth.value(static_cast<std::uint32_t>(o), 0, 0, p_.bandwidth);
-      q.impulses = src.impulses.value(static_cast<std::uint32_t>(o), 0, 0, p_.impulses);
-      per_object.emplace_back(q);
-    }
-    for (const npr_gabor& n : per_object) per_object_pp.emplace_back(n, src);
-    for (std::size_t t = 0; t < tris.triangles(); ++t) {
-      const std::uint32_t o = tris.object_of(t);
-      if (o < objects)
-        per_object[o].triangle_splats(f, tris, t, splats, per_object_pp[o]);
-      else
-        triangle_splats(f, tris, t, splats, pp);
-    }
+    splats_of(f, tris, splats, src);
   }
 
   // Stage 2: overwrites `out` (frame-sized) with the sum of the `count`
@@ -365,6 +343,34 @@ class npr_gabor {
   }
 
  private:
+  // make_splats without the validation (render validates once, before it).
+  void splats_of(const frame& f, const triangle_list& tris, std::vector<npr_gabor_splat>& splats,
+                 const sources& src) const {
+    splats.clear();
+    const point_parameters pp(*this, src);
+    // Per-object a or N': one noise per table entry with that object's kernel,
+    // density and scale (same seed and constants: the same points).
+    std::vector<npr_gabor> per_object;
+    std::vector<point_parameters> per_object_pp;
+    const std::size_t objects = std::max(src.bandwidth.table_size(), src.impulses.table_size());
+    per_object.reserve(objects);
+    per_object_pp.reserve(objects);
+    for (std::size_t o = 0; o < objects; ++o) {
+      params q = p_;
+      q.bandwidth = src.bandwidth.value(static_cast<std::uint32_t>(o), 0, 0, p_.bandwidth);
+      q.impulses = src.impulses.value(static_cast<std::uint32_t>(o), 0, 0, p_.impulses);
+      per_object.emplace_back(q);
+    }
+    for (const npr_gabor& n : per_object) per_object_pp.emplace_back(n, src);
+    for (std::size_t t = 0; t < tris.triangles(); ++t) {
+      const std::uint32_t o = tris.object_of(t);
+      if (o < objects)
+        per_object[o].triangle_splats(f, tris, t, splats, per_object_pp[o]);
+      else
+        triangle_splats(f, tris, t, splats, pp);
+    }
+  }
+
   static const params& checked(const params& p) {
     namespace c = detail::constants;
     const char* w = "hush::npr_gabor";
@@ -440,8 +446,9 @@ class npr_gabor {
                            "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
     src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
                           c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
-    for (const auto& [name, s] : {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
-                                  {"impulses", &src.impulses}})
+    for (const auto& [name, s] :
+         {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
+          {"impulses", &src.impulses}})
       if (s->which() == param_source::kind::per_pixel)
         detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
                                    "constant or per object (it sets the kernel radius or the "
