@@ -417,6 +417,64 @@ TEST_CASE("per-pixel bandwidth and impulses: NaN and constant fields give the co
   CHECK(std::all_of(empty.begin(), empty.end(), [](float v) { return v == 0.0f; }));
 }
 
+TEST_CASE("per-vertex bandwidth and impulses in two halves: each half's envelope, variance 1") {
+  // Vertices left of x = w/2 hold a = 0.15, N' = 8, the others a = 0.4, N' = 32: triangles
+  // of the column left of the seam interpolate between them (within 8 px of it), the regions
+  // checked start 20 px from it (kernel discs reaching them lie beyond the transition).
+  const std::size_t w = 256, h = 192;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 8.0, 20.0);
+  const hush::npr_gabor noise(small_kernel());
+  const std::vector<double> a = {0.25, 0.15, 0.4}, n_prime = {16, 8, 32};
+  std::vector<float> a_vertex, n_vertex;
+  for (const hush::vec2& v : sc.screen) {
+    const std::size_t half = v.x < static_cast<float>(w / 2) ? 1 : 2;
+    a_vertex.push_back(static_cast<float>(a[half]));
+    n_vertex.push_back(static_cast<float>(n_prime[half]));
+  }
+  hush::npr_gabor::sources src;
+  src.bandwidth = hush::param_source::per_vertex(a_vertex);
+  src.impulses = hush::param_source::per_vertex(n_vertex);
+  std::vector<double> a_float(a.size());  // the values, rounded to float
+  for (std::size_t i = 0; i < a.size(); ++i) a_float[i] = static_cast<float>(a[i]);
+  check_bandwidth_halves(render(noise, sc, src), w, h, a_float, n_prime, 20);
+}
+
+TEST_CASE("per-vertex sources: NaN and constant values give the constant image, sizes refused") {
+  const std::size_t w = 96, h = 80;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 7.0, 20.0);
+  hush::npr_gabor::params p = small_kernel();
+  p.orientation = 0.5;  // a float: the orientation values below hold it exactly
+  const hush::npr_gabor noise(p);
+  const std::size_t n = sc.screen.size();
+  std::vector<float> nan_v(n, std::numeric_limits<float>::quiet_NaN());
+  std::vector<float> same_a(n, 0.25f), same_n(n, 16.0f), same_o(n, 0.5f);
+  const std::vector<float> plain = render(noise, sc, {});
+  hush::npr_gabor::sources nan_src;
+  nan_src.bandwidth = hush::param_source::per_vertex(nan_v);
+  nan_src.impulses = hush::param_source::per_vertex(nan_v);
+  nan_src.orientation = hush::param_source::per_vertex(nan_v);
+  CHECK(render(noise, sc, nan_src) == plain);
+  // Constant vertex values: sum b_i v = v (the barycentrics sum to 1 up to rounding), so a
+  // and N' may differ from the constants by an ulp; the image is then within float noise.
+  hush::npr_gabor::sources same;
+  same.bandwidth = hush::param_source::per_vertex(same_a);
+  same.impulses = hush::param_source::per_vertex(same_n);
+  same.orientation = hush::param_source::per_vertex(same_o);
+  const std::vector<float> img = render(noise, sc, same);
+  double worst = 0;
+  for (std::size_t i = 0; i < img.size(); ++i)
+    worst = std::max(worst, std::fabs(static_cast<double>(img[i]) - plain[i]));
+  CHECK(worst <= 1e-4);  // the interpolated energy (1e-3 relative) where an ulp moved a
+  std::vector<float> short_v(n - 1, 0.2f);
+  hush::npr_gabor::sources bad;
+  bad.bandwidth = hush::param_source::per_vertex(short_v);
+  std::vector<float> out(w * h);
+  CHECK_THROWS_WITH_AS(
+      noise.render(sc.frame(), sc.triangles(), hush::image_view<float>(out.data(), w, h), bad),
+      doctest::Contains(("bandwidth vertex values = " + std::to_string(n - 1)).c_str()),
+      hush::invalid_argument);
+}
+
 TEST_CASE("bandwidth and impulses: bad tables and mis-sized fields are refused, wild pixels not") {
   npr_test::grid_scene sc(16, 16, 0, 0, 8, 2, 2);
   const hush::npr_gabor noise{hush::npr_gabor::params{}};

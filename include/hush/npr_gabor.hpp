@@ -70,31 +70,33 @@
 //    whose fragments fail the tests (nothing is added).
 //  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
 //  - parameter sources (sec. 4; render's `sources`, hush/core/param_source.hpp):
-//    F0, omega0, a and N' each a constant (params), a per-object table
-//    (indexed by the G-buffer's object id) or a per-pixel field (e.g. an
-//    orientation field along the projected normal, a frequency driven by
-//    shading). Each point reads F0, omega0 and a once, at the pixel under its
-//    own screen position in this frame, not per fragment: a splat is one Gabor
-//    kernel (its own frequency and radius), and a point keeps its parameters
-//    while it moves exactly as far as the field is attached to the surface
-//    (a field computed from the surface, like the projected normal, changes
-//    only as the surface's view changes); reading per fragment would make the
-//    kernel change shape as it slides over the pixels. The point count N =
-//    lambda A needs one density per triangle: lambda_T = N'_T / (pi r(a_T)^2)
-//    with a_T and N'_T read at the pixel of the triangle's object-space
-//    centroid, clamped into the image. Non-finite field pixels, point
-//    positions outside the image and objects past a table's end take the
-//    params' constant; finite field values are clamped to their ranges
-//    (F0 [0, 0.5], a [0.01, 10], N' [0, 256]; N'_T = 0: no points). A hidden
-//    point reads the pixel of what hides it (its fragments then mostly fail
-//    the visibility tests). With `isotropic` the orientation source is
-//    ignored (each point has its random angle). Each point is weighted by
-//    1 / sqrt(lambda_T E[v^2] int g_{F,a}^2) for its own F and a and its
-//    triangle's lambda_T (interpolated_energy: linear between exact energies
-//    at steps of 1/64 in F r, computed on demand, relative error below 1e-3),
-//    so the noise has variance 1 wherever F and a are constant over a kernel's
-//    disc, whatever N' does; where F or a vary linearly the first-order
-//    change cancels (the kernel is even), see docs/npr-gabor.md.
+//    F0, omega0, a and N' each a constant (params), a per-object table (indexed
+//    by the G-buffer's object id), a per-pixel field (e.g. an orientation field
+//    along the projected normal, a frequency driven by shading) or per-vertex
+//    values (interpolated with the point's own barycentric coordinates). Each
+//    point reads F0, omega0 and a once, at the pixel under its own screen
+//    position in this frame (or its barycentric position), not per fragment: a
+//    splat is one Gabor kernel (its own frequency and radius), and a point
+//    keeps its parameters while it moves exactly as far as the field is
+//    attached to the surface (a field computed from the surface, like the
+//    projected normal, changes only as the surface's view changes); reading per
+//    fragment would make the kernel change shape as it slides over the pixels.
+//    The point count N = lambda A needs one density per triangle: lambda_T =
+//    N'_T / (pi r(a_T)^2) with a_T and N'_T read at the triangle's object-space
+//    centroid (per pixel: its pixel, clamped into the image; per vertex: the
+//    mean). Non-finite field pixels and vertex values, point positions outside
+//    the image and objects past a table's end take the params' constant; finite
+//    field values are clamped to their ranges (F0 [0, 0.5], a [0.01, 10], N'
+//    [0, 256]; N'_T = 0: no points). A hidden point reads the pixel of what
+//    hides it (its fragments then mostly fail the visibility tests). With
+//    `isotropic` the orientation source is ignored (each point has its random
+//    angle). Each point is weighted by 1 / sqrt(lambda_T E[v^2] int g_{F,a}^2)
+//    for its own F and a and its triangle's lambda_T (interpolated_energy:
+//    linear between exact energies at steps of 1/64 in F r, computed on demand,
+//    relative error below 1e-3), so the noise has variance 1 wherever F and a
+//    are constant over a kernel's disc, whatever N' does; where F or a vary
+//    linearly the first-order change cancels (the kernel is even), see
+//    docs/npr-gabor.md.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
@@ -403,45 +405,56 @@ class npr_gabor {
       dvec2 F;
       double bandwidth, radius, scale;
     };
-    // a at (x, y): finite field values clamped to [0.01, 10].
-    double bandwidth(std::uint32_t object, double x, double y) const {
-      return std::clamp(src_.bandwidth.value(object, x, y, n_.p_.bandwidth),
-                        detail::constants::kNprGaborMinBandwidth,
+    static double clamp_bandwidth(double a) {
+      return std::clamp(a, detail::constants::kNprGaborMinBandwidth,
                         detail::constants::kNprGaborMaxBandwidth);
     }
-    // The radius of every point of a triangle of `object` off the image (per
-    // pixel: the constant; per object: the table's): culls triangles whose
-    // bounding box grown by it misses the image (their points are all off it).
-    double off_image_radius(std::uint32_t object) const {
-      if (src_.bandwidth.is_constant()) return n_.kernel_.radius();
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      return n_.radius_of(bandwidth(object, nan, nan));
+    // a at a site: finite values clamped to [0.01, 10].
+    double bandwidth(const param_source::site& at) const {
+      return clamp_bandwidth(src_.bandwidth.value(at, n_.p_.bandwidth));
     }
-    // lambda_T for a triangle of `object` whose centroid projects to `centre`
-    // in a w x h image; N'_T clamped to [0, 256] (0: no points).
-    double density(std::uint32_t object, const dvec2& centre, double w, double h) const {
+    // The largest radius of a point of a triangle of `object` with vertices
+    // `v` that lies off the image (per pixel: the constant's; per object: the
+    // table's; per vertex: that of the smallest a of its vertices, which
+    // bounds their convex combinations): culls triangles whose bounding box
+    // grown by it misses the image (their points are all off it).
+    double off_image_radius(std::uint32_t object, const std::uint32_t* v) const {
+      const param_source& s = src_.bandwidth;
+      if (s.is_constant()) return n_.kernel_.radius();
+      const double nan = std::numeric_limits<double>::quiet_NaN(), c = n_.p_.bandwidth;
+      if (s.which() != param_source::kind::per_vertex)
+        return n_.radius_of(bandwidth({object, nan, nan, nullptr, {0, 0, 0}}));
+      return n_.radius_of(clamp_bandwidth(
+          std::min({s.vertex_value(v[0], c), s.vertex_value(v[1], c), s.vertex_value(v[2], c)})));
+    }
+    // lambda_T for the triangle whose object-space centroid is `centre` (its
+    // pixel clamped here into the w x h image); N'_T clamped to [0, 256]
+    // (0: no points).
+    double density(param_source::site centre, double w, double h) const {
       const params& p = n_.p_;
       if (src_.bandwidth.is_constant() && src_.impulses.is_constant()) return n_.lambda_;
-      const double x = std::clamp(centre.x, 0.5, w - 0.5), y = std::clamp(centre.y, 0.5, h - 0.5);
-      const double a = bandwidth(object, x, y);
-      const double np = std::clamp(src_.impulses.value(object, x, y, p.impulses), 0.0,
+      centre.x = std::clamp(centre.x, 0.5, w - 0.5);
+      centre.y = std::clamp(centre.y, 0.5, h - 0.5);
+      const double a = bandwidth(centre);
+      const double np = std::clamp(src_.impulses.value(centre, p.impulses), 0.0,
                                    detail::constants::kGaborMaxImpulses);
       if (a == p.bandwidth && np == p.impulses) return n_.lambda_;
       const double r = n_.radius_of(a);
       return np / (detail::constants::kPi * r * r);
     }
-    kernel at(std::uint32_t object, const dvec2& pos, double random_angle, double lambda) const {
+    // The kernel of the point at `at` (its pixel and barycentric coordinates)
+    // of a triangle of density `lambda`.
+    kernel at(const param_source::site& at, double random_angle, double lambda) const {
       const params& p = n_.p_;
       double f = p.frequency, scale = n_.scale_;
-      const double a = src_.bandwidth.is_constant() ? p.bandwidth : bandwidth(object, pos.x, pos.y);
+      const double a = src_.bandwidth.is_constant() ? p.bandwidth : bandwidth(at);
       const double r = n_.radius_of(a);
       if (!src_.frequency.is_constant())
-        f = std::clamp(src_.frequency.value(object, pos.x, pos.y, p.frequency), 0.0,
+        f = std::clamp(src_.frequency.value(at, p.frequency), 0.0,
                        detail::constants::kNprGaborMaxFrequency);
       if (!src_.frequency.is_constant() || a != p.bandwidth || lambda != n_.lambda_)
         scale = 1.0 / std::sqrt(lambda * weight_moment() * n_.interpolated_energy(f, r, energy_));
-      const double theta =
-          p.isotropic ? random_angle : src_.orientation.value(object, pos.x, pos.y, p.orientation);
+      const double theta = p.isotropic ? random_angle : src_.orientation.value(at, p.orientation);
       return {{f * std::cos(theta), f * std::sin(theta)}, a, r, scale};
     }
 
@@ -470,14 +483,17 @@ class npr_gabor {
     f.validate(where, needs(), c::kNprGaborMaxImageSide);
     tris.validate(where, c::kNprGaborMaxTriangles);
     src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
-                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
+                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height(),
+                           tris.vertices());
     src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
                              std::numeric_limits<double>::max(), "finite (radians)", f.width(),
-                             f.height());
+                             f.height(), tris.vertices());
     src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
-                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
+                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height(),
+                           tris.vertices());
     src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
-                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
+                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height(),
+                          tris.vertices());
   }
   template <class Out>
   static void check_out(const frame& f, const Out& out) {
@@ -506,18 +522,22 @@ class npr_gabor {
     if (p_.cull_back_faces && !(cross < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
     const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
-    const double cull = pp.off_image_radius(object);
+    const std::uint32_t* vertices = &tris.indices[3 * t];
+    const double cull = pp.off_image_radius(object, vertices);
     const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
     const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
                  hi_x = std::max({s[0].x, s[1].x, s[2].x});
     const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
                  hi_y = std::max({s[0].y, s[1].y, s[2].y});
     if (hi_x + cull < 0.0 || lo_x - cull > w || hi_y + cull < 0.0 || lo_y - cull > h) return;
-    // The object-space centroid's pixel (b = 1/3 each: sum z_i s_i / sum z_i).
-    const double zs = z[0] + z[1] + z[2];
-    const dvec2 centre{(z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs,
-                       (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs};
-    const double lambda = pp.density(object, centre, w, h);
+    // The object-space centroid (b = 1/3 each) and its pixel, sum z_i s_i / sum z_i.
+    const double zs = z[0] + z[1] + z[2], third = 1.0 / 3.0;
+    const double lambda = pp.density({object,
+                                      (z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs,
+                                      (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs,
+                                      vertices,
+                                      {third, third, third}},
+                                     w, h);
     const double n = lambda * 0.5 * std::fabs(cross);
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
@@ -536,7 +556,8 @@ class npr_gabor {
       const dvec2 at{
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
-      const point_parameters::kernel k = pp.at(object, at, pt.angle, lambda);
+      const point_parameters::kernel k =
+          pp.at({object, at.x, at.y, vertices, {pt.b[0], pt.b[1], pt.b[2]}}, pt.angle, lambda);
       const double r = k.radius;
       // Pixel centres x + 1/2 within r of the point, clamped to the image.
       const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);

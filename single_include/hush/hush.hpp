@@ -14532,31 +14532,33 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    whose fragments fail the tests (nothing is added).
 //  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
 //  - parameter sources (sec. 4; render's `sources`, hush/core/param_source.hpp):
-//    F0, omega0, a and N' each a constant (params), a per-object table
-//    (indexed by the G-buffer's object id) or a per-pixel field (e.g. an
-//    orientation field along the projected normal, a frequency driven by
-//    shading). Each point reads F0, omega0 and a once, at the pixel under its
-//    own screen position in this frame, not per fragment: a splat is one Gabor
-//    kernel (its own frequency and radius), and a point keeps its parameters
-//    while it moves exactly as far as the field is attached to the surface
-//    (a field computed from the surface, like the projected normal, changes
-//    only as the surface's view changes); reading per fragment would make the
-//    kernel change shape as it slides over the pixels. The point count N =
-//    lambda A needs one density per triangle: lambda_T = N'_T / (pi r(a_T)^2)
-//    with a_T and N'_T read at the pixel of the triangle's object-space
-//    centroid, clamped into the image. Non-finite field pixels, point
-//    positions outside the image and objects past a table's end take the
-//    params' constant; finite field values are clamped to their ranges
-//    (F0 [0, 0.5], a [0.01, 10], N' [0, 256]; N'_T = 0: no points). A hidden
-//    point reads the pixel of what hides it (its fragments then mostly fail
-//    the visibility tests). With `isotropic` the orientation source is
-//    ignored (each point has its random angle). Each point is weighted by
-//    1 / sqrt(lambda_T E[v^2] int g_{F,a}^2) for its own F and a and its
-//    triangle's lambda_T (interpolated_energy: linear between exact energies
-//    at steps of 1/64 in F r, computed on demand, relative error below 1e-3),
-//    so the noise has variance 1 wherever F and a are constant over a kernel's
-//    disc, whatever N' does; where F or a vary linearly the first-order
-//    change cancels (the kernel is even), see docs/npr-gabor.md.
+//    F0, omega0, a and N' each a constant (params), a per-object table (indexed
+//    by the G-buffer's object id), a per-pixel field (e.g. an orientation field
+//    along the projected normal, a frequency driven by shading) or per-vertex
+//    values (interpolated with the point's own barycentric coordinates). Each
+//    point reads F0, omega0 and a once, at the pixel under its own screen
+//    position in this frame (or its barycentric position), not per fragment: a
+//    splat is one Gabor kernel (its own frequency and radius), and a point
+//    keeps its parameters while it moves exactly as far as the field is
+//    attached to the surface (a field computed from the surface, like the
+//    projected normal, changes only as the surface's view changes); reading per
+//    fragment would make the kernel change shape as it slides over the pixels.
+//    The point count N = lambda A needs one density per triangle: lambda_T =
+//    N'_T / (pi r(a_T)^2) with a_T and N'_T read at the triangle's object-space
+//    centroid (per pixel: its pixel, clamped into the image; per vertex: the
+//    mean). Non-finite field pixels and vertex values, point positions outside
+//    the image and objects past a table's end take the params' constant; finite
+//    field values are clamped to their ranges (F0 [0, 0.5], a [0.01, 10], N'
+//    [0, 256]; N'_T = 0: no points). A hidden point reads the pixel of what
+//    hides it (its fragments then mostly fail the visibility tests). With
+//    `isotropic` the orientation source is ignored (each point has its random
+//    angle). Each point is weighted by 1 / sqrt(lambda_T E[v^2] int g_{F,a}^2)
+//    for its own F and a and its triangle's lambda_T (interpolated_energy:
+//    linear between exact energies at steps of 1/64 in F r, computed on demand,
+//    relative error below 1e-3), so the noise has variance 1 wherever F and a
+//    are constant over a kernel's disc, whatever N' does; where F or a vary
+//    linearly the first-order change cancels (the kernel is even), see
+//    docs/npr-gabor.md.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
@@ -14580,24 +14582,32 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 // hush::param_source: where a scene-driven noise takes one of its parameters
 // (Benard, Lagae et al. 2010 sec. 4: "the noise parameters ... can be defined
 // per object or per pixel", e.g. an orientation field along the principal
-// curvature or the projected normal, a frequency driven by shading). Three
+// curvature or the projected normal, a frequency driven by shading). Four
 // kinds:
 //  - constant (the default-constructed source): the noise's own params value;
 //  - per object: table[object_id], the G-buffer's object ids (ids past the
 //    table's end take the constant);
 //  - per pixel: field(x, y) at a pixel, a view of a caller-owned image of the
-//    frame's size (e.g. a G-buffer channel), valid for the call that reads it.
+//    frame's size (e.g. a G-buffer channel), valid for the call that reads it;
+//  - per vertex: values[v] for vertex v of the frame's triangle list (the
+//    indexing of triangle_list::screen), interpolated over a triangle with the
+//    barycentric coordinates of the point read (attached to the surface: a
+//    point keeps its value in every frame).
 // No copy of the data is made. The noise decides where it reads (NPR Gabor
-// noise: each point at its own pixel, see npr_gabor.hpp).
+// noise: each point at its own pixel or barycentric position, see
+// npr_gabor.hpp).
 //
 //   std::vector<double> freq = {0.125, 0.25};           // objects 0 and 1
 //   hush::param_source f = hush::param_source::per_object(freq);
 //   hush::param_source o = hush::param_source::per_pixel({angles, w, h});
+//   hush::param_source a = hush::param_source::per_vertex(bandwidths);  // one per vertex
 //
 // Bad values: validate() throws hush::invalid_argument for a table entry
-// outside the parameter's range or a field whose size is not the frame's;
-// field pixels are never read there (per-pixel data may be anything): value()
-// gives the fallback for a non-finite pixel and the caller clamps finite ones.
+// outside the parameter's range, a field whose size is not the frame's or a
+// vertex array whose size is not the triangle list's vertex count; field
+// pixels and vertex values are never read there (they may be anything):
+// value() gives the fallback for a non-finite one and the caller clamps finite
+// ones.
 #ifndef HUSH_CORE_PARAM_SOURCE_HPP
 #define HUSH_CORE_PARAM_SOURCE_HPP
 
@@ -14611,7 +14621,7 @@ namespace hush {
 
 class param_source {
  public:
-  enum class kind { constant, per_object, per_pixel };
+  enum class kind { constant, per_object, per_pixel, per_vertex };
 
   param_source() = default;  // constant
   static param_source per_object(span<const double> table) {
@@ -14627,6 +14637,23 @@ class param_source {
     return s;
   }
 
+  static param_source per_vertex(span<const float> values) {
+    param_source s;
+    s.kind_ = kind::per_vertex;
+    s.vertex_ = values;
+    return s;
+  }
+
+  // Where a noise reads a value: the object, the position in screen pixels
+  // (y down) and, for per-vertex sources, the triangle's three vertex indices
+  // with the barycentric coordinates of the point (null vertices: none known).
+  struct site {
+    std::uint32_t object = 0;
+    double x = 0, y = 0;
+    const std::uint32_t* vertices = nullptr;
+    double b[3] = {0, 0, 0};
+  };
+
   kind which() const { return kind_; }
   bool is_constant() const { return kind_ == kind::constant; }
   // Entries of a per-object table (0 for the other kinds).
@@ -14637,29 +14664,56 @@ class param_source {
   // field's pixel. `fallback` (the constant) when the source is constant, the
   // object is past the table's end, the position is outside the field or not
   // finite, or the pixel is not finite (NaN: "no value here"). Never throws.
-  double value(std::uint32_t object, double x, double y, double fallback) const {
+  // Per vertex: sum_i b_i values[vertices[i]]; `fallback` without vertices, for
+  // an index past the array or a non-finite result.
+  double value(const site& at, double fallback) const {
     switch (kind_) {
       case kind::constant:
         return fallback;
       case kind::per_object:
-        return object < table_.size() ? table_[object] : fallback;
+        return at.object < table_.size() ? table_[at.object] : fallback;
       case kind::per_pixel: {
-        if (!(x >= 0.0 && y >= 0.0 && x < static_cast<double>(field_.width) &&
-              y < static_cast<double>(field_.height)))
+        if (!(at.x >= 0.0 && at.y >= 0.0 && at.x < static_cast<double>(field_.width) &&
+              at.y < static_cast<double>(field_.height)))
           return fallback;  // also NaN positions
         const double v = static_cast<double>(
-            field_(static_cast<std::size_t>(x), static_cast<std::size_t>(y)));
+            field_(static_cast<std::size_t>(at.x), static_cast<std::size_t>(at.y)));
+        return std::isfinite(v) ? v : fallback;
+      }
+      case kind::per_vertex: {
+        if (!at.vertices) return fallback;
+        double v = 0;
+        for (int i = 0; i < 3; ++i) {
+          if (at.vertices[i] >= vertex_.size()) return fallback;
+          v += at.b[i] * static_cast<double>(vertex_[at.vertices[i]]);
+        }
         return std::isfinite(v) ? v : fallback;
       }
     }
     return fallback;
   }
+  double value(std::uint32_t object, double x, double y, double fallback) const {
+    return value(site{object, x, y, nullptr, {0, 0, 0}}, fallback);
+  }
+  // The value a per-vertex source holds at one vertex (for bounds over a
+  // triangle): `fallback` where it is not finite or past the array, and for
+  // every other kind.
+  double vertex_value(std::uint32_t vertex, double fallback) const {
+    if (kind_ != kind::per_vertex || vertex >= vertex_.size()) return fallback;
+    const double v = static_cast<double>(vertex_[vertex]);
+    return std::isfinite(v) ? v : fallback;
+  }
 
   // Throws hush::invalid_argument naming `where` and `name`: a per-object
   // entry outside [lo, hi] (named "name[i]", with `valid` the range's text),
-  // a per-pixel field with null data, or a size other than width x height.
+  // a per-pixel field with null data, or a size other than width x height, a
+  // per-vertex array whose size is not `vertices` ("name vertex values").
   void validate(const char* where, const char* name, double lo, double hi, const char* valid,
-                std::size_t width, std::size_t height) const {
+                std::size_t width, std::size_t height, std::size_t vertices) const {
+    if (kind_ == kind::per_vertex && vertex_.size() != vertices)
+      detail::throw_out_of_range(
+          where, std::string(name) + " vertex values", vertex_.size(),
+          ("one per vertex of the triangle list (" + std::to_string(vertices) + ")").c_str());
     if (kind_ == kind::per_object) {
       for (std::size_t i = 0; i < table_.size(); ++i)
         detail::require_in_range(where, std::string(name) + "[" + std::to_string(i) + "]",
@@ -14679,6 +14733,7 @@ class param_source {
   kind kind_ = kind::constant;
   span<const double> table_;
   image_view<const float> field_;
+  span<const float> vertex_;
 };
 
 }  // namespace hush
@@ -14962,45 +15017,56 @@ class npr_gabor {
       dvec2 F;
       double bandwidth, radius, scale;
     };
-    // a at (x, y): finite field values clamped to [0.01, 10].
-    double bandwidth(std::uint32_t object, double x, double y) const {
-      return std::clamp(src_.bandwidth.value(object, x, y, n_.p_.bandwidth),
-                        detail::constants::kNprGaborMinBandwidth,
+    static double clamp_bandwidth(double a) {
+      return std::clamp(a, detail::constants::kNprGaborMinBandwidth,
                         detail::constants::kNprGaborMaxBandwidth);
     }
-    // The radius of every point of a triangle of `object` off the image (per
-    // pixel: the constant; per object: the table's): culls triangles whose
-    // bounding box grown by it misses the image (their points are all off it).
-    double off_image_radius(std::uint32_t object) const {
-      if (src_.bandwidth.is_constant()) return n_.kernel_.radius();
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      return n_.radius_of(bandwidth(object, nan, nan));
+    // a at a site: finite values clamped to [0.01, 10].
+    double bandwidth(const param_source::site& at) const {
+      return clamp_bandwidth(src_.bandwidth.value(at, n_.p_.bandwidth));
     }
-    // lambda_T for a triangle of `object` whose centroid projects to `centre`
-    // in a w x h image; N'_T clamped to [0, 256] (0: no points).
-    double density(std::uint32_t object, const dvec2& centre, double w, double h) const {
+    // The largest radius of a point of a triangle of `object` with vertices
+    // `v` that lies off the image (per pixel: the constant's; per object: the
+    // table's; per vertex: that of the smallest a of its vertices, which
+    // bounds their convex combinations): culls triangles whose bounding box
+    // grown by it misses the image (their points are all off it).
+    double off_image_radius(std::uint32_t object, const std::uint32_t* v) const {
+      const param_source& s = src_.bandwidth;
+      if (s.is_constant()) return n_.kernel_.radius();
+      const double nan = std::numeric_limits<double>::quiet_NaN(), c = n_.p_.bandwidth;
+      if (s.which() != param_source::kind::per_vertex)
+        return n_.radius_of(bandwidth({object, nan, nan, nullptr, {0, 0, 0}}));
+      return n_.radius_of(clamp_bandwidth(
+          std::min({s.vertex_value(v[0], c), s.vertex_value(v[1], c), s.vertex_value(v[2], c)})));
+    }
+    // lambda_T for the triangle whose object-space centroid is `centre` (its
+    // pixel clamped here into the w x h image); N'_T clamped to [0, 256]
+    // (0: no points).
+    double density(param_source::site centre, double w, double h) const {
       const params& p = n_.p_;
       if (src_.bandwidth.is_constant() && src_.impulses.is_constant()) return n_.lambda_;
-      const double x = std::clamp(centre.x, 0.5, w - 0.5), y = std::clamp(centre.y, 0.5, h - 0.5);
-      const double a = bandwidth(object, x, y);
-      const double np = std::clamp(src_.impulses.value(object, x, y, p.impulses), 0.0,
+      centre.x = std::clamp(centre.x, 0.5, w - 0.5);
+      centre.y = std::clamp(centre.y, 0.5, h - 0.5);
+      const double a = bandwidth(centre);
+      const double np = std::clamp(src_.impulses.value(centre, p.impulses), 0.0,
                                    detail::constants::kGaborMaxImpulses);
       if (a == p.bandwidth && np == p.impulses) return n_.lambda_;
       const double r = n_.radius_of(a);
       return np / (detail::constants::kPi * r * r);
     }
-    kernel at(std::uint32_t object, const dvec2& pos, double random_angle, double lambda) const {
+    // The kernel of the point at `at` (its pixel and barycentric coordinates)
+    // of a triangle of density `lambda`.
+    kernel at(const param_source::site& at, double random_angle, double lambda) const {
       const params& p = n_.p_;
       double f = p.frequency, scale = n_.scale_;
-      const double a = src_.bandwidth.is_constant() ? p.bandwidth : bandwidth(object, pos.x, pos.y);
+      const double a = src_.bandwidth.is_constant() ? p.bandwidth : bandwidth(at);
       const double r = n_.radius_of(a);
       if (!src_.frequency.is_constant())
-        f = std::clamp(src_.frequency.value(object, pos.x, pos.y, p.frequency), 0.0,
+        f = std::clamp(src_.frequency.value(at, p.frequency), 0.0,
                        detail::constants::kNprGaborMaxFrequency);
       if (!src_.frequency.is_constant() || a != p.bandwidth || lambda != n_.lambda_)
         scale = 1.0 / std::sqrt(lambda * weight_moment() * n_.interpolated_energy(f, r, energy_));
-      const double theta =
-          p.isotropic ? random_angle : src_.orientation.value(object, pos.x, pos.y, p.orientation);
+      const double theta = p.isotropic ? random_angle : src_.orientation.value(at, p.orientation);
       return {{f * std::cos(theta), f * std::sin(theta)}, a, r, scale};
     }
 
@@ -15029,14 +15095,17 @@ class npr_gabor {
     f.validate(where, needs(), c::kNprGaborMaxImageSide);
     tris.validate(where, c::kNprGaborMaxTriangles);
     src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
-                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
+                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height(),
+                           tris.vertices());
     src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
                              std::numeric_limits<double>::max(), "finite (radians)", f.width(),
-                             f.height());
+                             f.height(), tris.vertices());
     src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
-                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
+                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height(),
+                           tris.vertices());
     src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
-                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
+                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height(),
+                          tris.vertices());
   }
   template <class Out>
   static void check_out(const frame& f, const Out& out) {
@@ -15065,18 +15134,22 @@ class npr_gabor {
     if (p_.cull_back_faces && !(cross < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
     const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
-    const double cull = pp.off_image_radius(object);
+    const std::uint32_t* vertices = &tris.indices[3 * t];
+    const double cull = pp.off_image_radius(object, vertices);
     const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
     const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
                  hi_x = std::max({s[0].x, s[1].x, s[2].x});
     const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
                  hi_y = std::max({s[0].y, s[1].y, s[2].y});
     if (hi_x + cull < 0.0 || lo_x - cull > w || hi_y + cull < 0.0 || lo_y - cull > h) return;
-    // The object-space centroid's pixel (b = 1/3 each: sum z_i s_i / sum z_i).
-    const double zs = z[0] + z[1] + z[2];
-    const dvec2 centre{(z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs,
-                       (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs};
-    const double lambda = pp.density(object, centre, w, h);
+    // The object-space centroid (b = 1/3 each) and its pixel, sum z_i s_i / sum z_i.
+    const double zs = z[0] + z[1] + z[2], third = 1.0 / 3.0;
+    const double lambda = pp.density({object,
+                                      (z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs,
+                                      (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs,
+                                      vertices,
+                                      {third, third, third}},
+                                     w, h);
     const double n = lambda * 0.5 * std::fabs(cross);
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
@@ -15095,7 +15168,8 @@ class npr_gabor {
       const dvec2 at{
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
-      const point_parameters::kernel k = pp.at(object, at, pt.angle, lambda);
+      const point_parameters::kernel k =
+          pp.at({object, at.x, at.y, vertices, {pt.b[0], pt.b[1], pt.b[2]}}, pt.angle, lambda);
       const double r = k.radius;
       // Pixel centres x + 1/2 within r of the point, clamped to the image.
       const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
