@@ -15001,11 +15001,12 @@ class npr_gabor {
   // source is constant: bit for bit the renderer without sources). One per
   // render call (it caches node energies).
   //  - Per triangle, its density lambda_T = N'_T / (pi r(a_T)^2) (eq. 2), a_T
-  //    and N'_T read where the triangle is: at its object-space centroid's
-  //    pixel, clamped into the image (a triangle whose centroid leaves the
-  //    image keeps the border pixel's value, continuously: no pop).
-  //  - Per point, its own F, omega and a read at its own pixel (as render's
-  //    contract says), and the weight factor 1 / sqrt(lambda_T E[v^2]
+  //    and N'_T read where the triangle is: at its object-space centroid
+  //    (per pixel: its pixel, clamped into the image, so that a triangle whose
+  //    centroid leaves the image keeps the border pixel's value, continuously:
+  //    no pop; per vertex: the mean of the three values).
+  //  - Per point, its own F, omega and a read at its own pixel or barycentric
+  //    position (as render's contract says), and the weight factor 1 / sqrt(lambda_T E[v^2]
   //    int g_{F,a}^2) with its triangle's lambda_T, the density its points
   //    actually have (Campbell: the variance at x is then the integral over
   //    the surface of g_y(x - y)^2 / int g_y^2, 1 where F and a are constant
