@@ -1,6 +1,6 @@
 // NPR Gabor noise's parameter sources (include/hush/npr_gabor.hpp `sources`,
-// include/hush/core/param_source.hpp; Benard, Lagae et al. 2010 sec. 4): F0 and
-// omega0 per object and per pixel. A per-object frequency shows in each object's
+// include/hush/core/param_source.hpp; Benard, Lagae et al. 2010 sec. 4): F0,
+// omega0, a and N' per object and per pixel. A per-object frequency shows in each object's
 // measured spectrum, a per-pixel orientation field steers the measured orientation,
 // the normalisation keeps the variance 1 for each object's frequency, NaN pixels
 // take the constant, and bad tables and fields are refused by name.
@@ -148,6 +148,21 @@ TEST_CASE("interpolated kernel energy is within 1e-3 of the quadrature, exact at
     const double node = 3.0 / 64.0 / noise.kernel().radius();
     CHECK(noise.interpolated_energy(node, cache) ==
           doctest::Approx(noise.kernel().energy(node)).epsilon(1e-12));
+    // Another radius (a per-point bandwidth): r^2 E(F r) from the same nodes.
+    for (double a : {0.03, 0.5, 4.0}) {
+      hush::npr_gabor::params q = p;
+      q.bandwidth = a;
+      const hush::npr_gabor other(q);
+      const hush::gabor_kernel<2>& k = other.kernel();
+      double worst_r = 0;
+      for (int i = 0; i < 40; ++i) {
+        const double f = 0.5 * (i + 0.37) / 40.0;
+        worst_r = std::max(worst_r, std::fabs(noise.interpolated_energy(f, k.radius(), cache) /
+                                                  k.energy(f) - 1.0));
+      }
+      CAPTURE(a);
+      CHECK(worst_r <= 1e-3);
+    }
   }
 }
 
@@ -293,18 +308,16 @@ TEST_CASE("bad per-object tables and per-pixel fields are refused by name and ra
   for (float v : out) CHECK(std::isfinite(v));
 }
 
-TEST_CASE("per-object bandwidth shows in each object's autocorrelation, variance 1 in each") {
-  const std::size_t w = 256, h = 192;
-  npr_test::grid_scene sc = npr_test::covering(w, h, 8.0, 20.0);
-  split_objects(sc);
-  const hush::npr_gabor noise(small_kernel());  // F0 = 1/4 along x
-  const std::vector<double> a = {0.25, 0.15, 0.4};  // objects 0 (unused), 1, 2
-  const std::vector<double> n_prime = {16, 8, 32};
-  hush::npr_gabor::sources src;
-  src.bandwidth = hush::param_source::per_object(a);
-  src.impulses = hush::param_source::per_object(n_prime);
-  const std::vector<float> img = render(noise, sc, src);
-  const std::size_t m = 20;  // > 2 radii of the wider kernel (r = 6.5 px at a = 0.15)
+namespace {
+
+// The left (x < w/2) and right halves of img have bandwidths a[1], a[2] and densities
+// n_prime[1], n_prime[2] (F0 = 1/4 along x): each half's autocorrelation across the stripes
+// shows its own envelope and its variance is 1. Regions stay m pixels from the image border
+// and the seam (more than a kernel diameter of the wider kernel: parameters constant over
+// every kernel reaching them).
+void check_bandwidth_halves(const std::vector<float>& img, std::size_t w, std::size_t h,
+                            const std::vector<double>& a, const std::vector<double>& n_prime,
+                            std::size_t m) {
   const region left{m, w / 2 - m, m, h - m}, right{w / 2 + m, w - 1 - m, m, h - 1 - m};
   const hush::dvec2 F = freq(0.25, 0.0);
   for (int obj = 1; obj <= 2; ++obj) {
@@ -317,15 +330,14 @@ TEST_CASE("per-object bandwidth shows in each object's autocorrelation, variance
     const hush::npr_gabor other(p);
     CAPTURE(obj);
     for (const auto& d : {std::pair<int, int>{0, 1}, {0, 2}, {0, 3}, {1, 1}}) {
-      // 4.5 standard errors (Bartlett) plus the kernel's truncation at the object seam
-      // excluded by the margin.
+      // 4.5 standard errors (Bartlett).
       const double tol = 4.5 * bartlett_se(own.kernel(), F, d.first, d.second, pixels(r));
       const double measured = sample_rho(img, w, r, d.first, d.second);
       const double expected = npr_test::rho_at(own.kernel(), F, d.first, d.second);
       CAPTURE(d.second);
       CAPTURE(tol);
       CHECK(std::fabs(measured - expected) <= tol);
-      // Along y (across the stripes) the envelope alone: the other object's bandwidth
+      // Along y (across the stripes) the envelope alone: the other half's bandwidth
       // would be far outside the tolerance.
       if (d.first == 0 && d.second >= 2)
         CHECK(std::fabs(expected - npr_test::rho_at(other.kernel(), F, d.first, d.second)) >
@@ -335,8 +347,22 @@ TEST_CASE("per-object bandwidth shows in each object's autocorrelation, variance
                                             9.0 / (5.0 * own.density())) / pixels(r));
     CHECK(std::fabs(sample_variance(img, w, r) - 1.0) <= var_tol);
   }
-  // A table holding the constants everywhere renders the constant image bit for bit: the
-  // per-object noises draw the same points.
+}
+
+}  // namespace
+
+TEST_CASE("per-object bandwidth shows in each object's autocorrelation, variance 1 in each") {
+  const std::size_t w = 256, h = 192;
+  npr_test::grid_scene sc = npr_test::covering(w, h, 8.0, 20.0);
+  split_objects(sc);
+  const hush::npr_gabor noise(small_kernel());  // F0 = 1/4 along x
+  const std::vector<double> a = {0.25, 0.15, 0.4};  // objects 0 (unused), 1, 2
+  const std::vector<double> n_prime = {16, 8, 32};
+  hush::npr_gabor::sources src;
+  src.bandwidth = hush::param_source::per_object(a);
+  src.impulses = hush::param_source::per_object(n_prime);
+  check_bandwidth_halves(render(noise, sc, src), w, h, a, n_prime, 20);
+  // A table holding the constants everywhere renders the constant image bit for bit.
   const std::vector<double> same_a = {0.25, 0.25, 0.25}, same_n = {16, 16, 16};
   hush::npr_gabor::sources same;
   same.bandwidth = hush::param_source::per_object(same_a);
@@ -344,7 +370,112 @@ TEST_CASE("per-object bandwidth shows in each object's autocorrelation, variance
   CHECK(render(noise, sc, same) == render(noise, sc, {}));
 }
 
-TEST_CASE("per-object bandwidth and impulses: bad tables and per-pixel sources are refused") {
+TEST_CASE("per-pixel bandwidth and impulses in two bands: each band's envelope, variance 1") {
+  // One object; the fields change at x = w/2, which is a grid column boundary: triangles
+  // (their density from the centroid's pixel) and points (their radius from their own
+  // pixel) on either side read their band's a and N'.
+  const std::size_t w = 256, h = 192;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 8.0, 20.0);
+  const hush::npr_gabor noise(small_kernel());
+  const std::vector<double> a = {0.25, 0.15, 0.4}, n_prime = {16, 8, 32};
+  std::vector<float> a_field(w * h), n_field(w * h);
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      a_field[y * w + x] = static_cast<float>(x < w / 2 ? a[1] : a[2]);
+      n_field[y * w + x] = static_cast<float>(x < w / 2 ? n_prime[1] : n_prime[2]);
+    }
+  hush::npr_gabor::sources src;
+  src.bandwidth = hush::param_source::per_pixel({a_field.data(), w, h});
+  src.impulses = hush::param_source::per_pixel({n_field.data(), w, h});
+  std::vector<double> a_float(a.size());  // the field's values, rounded to float
+  for (std::size_t i = 0; i < a.size(); ++i) a_float[i] = static_cast<float>(a[i]);
+  check_bandwidth_halves(render(noise, sc, src), w, h, a_float, n_prime, 20);
+}
+
+TEST_CASE("per-pixel bandwidth and impulses: NaN and constant fields give the constant image") {
+  // Fields of NaN, and fields holding the constants, render the constant image bit for
+  // bit (0.25 and 16 are floats).
+  const std::size_t w = 96, h = 80;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 7.0, 20.0);
+  const hush::npr_gabor noise(small_kernel());
+  std::vector<float> nan_field(w * h, std::numeric_limits<float>::quiet_NaN());
+  std::vector<float> same_a(w * h, 0.25f), same_n(w * h, 16.0f);
+  const std::vector<float> plain = render(noise, sc, {});
+  hush::npr_gabor::sources nan_src;
+  nan_src.bandwidth = hush::param_source::per_pixel({nan_field.data(), w, h});
+  nan_src.impulses = hush::param_source::per_pixel({nan_field.data(), w, h});
+  CHECK(render(noise, sc, nan_src) == plain);
+  hush::npr_gabor::sources same;
+  same.bandwidth = hush::param_source::per_pixel({same_a.data(), w, h});
+  same.impulses = hush::param_source::per_pixel({same_n.data(), w, h});
+  CHECK(render(noise, sc, same) == plain);
+  // N' = 0 everywhere: no triangle has points, the image is 0.
+  std::vector<float> zero(w * h, 0.0f);
+  hush::npr_gabor::sources none;
+  none.impulses = hush::param_source::per_pixel({zero.data(), w, h});
+  const std::vector<float> empty = render(noise, sc, none);
+  CHECK(std::all_of(empty.begin(), empty.end(), [](float v) { return v == 0.0f; }));
+}
+
+TEST_CASE("per-vertex bandwidth and impulses in two halves: each half's envelope, variance 1") {
+  // Vertices left of x = w/2 hold a = 0.15, N' = 8, the others a = 0.4, N' = 32: triangles
+  // of the column left of the seam interpolate between them (within 8 px of it), the regions
+  // checked start 20 px from it (kernel discs reaching them lie beyond the transition).
+  const std::size_t w = 256, h = 192;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 8.0, 20.0);
+  const hush::npr_gabor noise(small_kernel());
+  const std::vector<double> a = {0.25, 0.15, 0.4}, n_prime = {16, 8, 32};
+  std::vector<float> a_vertex, n_vertex;
+  for (const hush::vec2& v : sc.screen) {
+    const std::size_t half = v.x < static_cast<float>(w / 2) ? 1 : 2;
+    a_vertex.push_back(static_cast<float>(a[half]));
+    n_vertex.push_back(static_cast<float>(n_prime[half]));
+  }
+  hush::npr_gabor::sources src;
+  src.bandwidth = hush::param_source::per_vertex(a_vertex);
+  src.impulses = hush::param_source::per_vertex(n_vertex);
+  std::vector<double> a_float(a.size());  // the values, rounded to float
+  for (std::size_t i = 0; i < a.size(); ++i) a_float[i] = static_cast<float>(a[i]);
+  check_bandwidth_halves(render(noise, sc, src), w, h, a_float, n_prime, 20);
+}
+
+TEST_CASE("per-vertex sources: NaN and constant values give the constant image, sizes refused") {
+  const std::size_t w = 96, h = 80;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 7.0, 20.0);
+  hush::npr_gabor::params p = small_kernel();
+  p.orientation = 0.5;  // a float: the orientation values below hold it exactly
+  const hush::npr_gabor noise(p);
+  const std::size_t n = sc.screen.size();
+  std::vector<float> nan_v(n, std::numeric_limits<float>::quiet_NaN());
+  std::vector<float> same_a(n, 0.25f), same_n(n, 16.0f), same_o(n, 0.5f);
+  const std::vector<float> plain = render(noise, sc, {});
+  hush::npr_gabor::sources nan_src;
+  nan_src.bandwidth = hush::param_source::per_vertex(nan_v);
+  nan_src.impulses = hush::param_source::per_vertex(nan_v);
+  nan_src.orientation = hush::param_source::per_vertex(nan_v);
+  CHECK(render(noise, sc, nan_src) == plain);
+  // Constant vertex values: sum b_i v = v (the barycentrics sum to 1 up to rounding), so a
+  // and N' may differ from the constants by an ulp; the image is then within float noise.
+  hush::npr_gabor::sources same;
+  same.bandwidth = hush::param_source::per_vertex(same_a);
+  same.impulses = hush::param_source::per_vertex(same_n);
+  same.orientation = hush::param_source::per_vertex(same_o);
+  const std::vector<float> img = render(noise, sc, same);
+  double worst = 0;
+  for (std::size_t i = 0; i < img.size(); ++i)
+    worst = std::max(worst, std::fabs(static_cast<double>(img[i]) - plain[i]));
+  CHECK(worst <= 1e-4);  // the interpolated energy (1e-3 relative) where an ulp moved a
+  std::vector<float> short_v(n - 1, 0.2f);
+  hush::npr_gabor::sources bad;
+  bad.bandwidth = hush::param_source::per_vertex(short_v);
+  std::vector<float> out(w * h);
+  CHECK_THROWS_WITH_AS(
+      noise.render(sc.frame(), sc.triangles(), hush::image_view<float>(out.data(), w, h), bad),
+      doctest::Contains(("bandwidth vertex values = " + std::to_string(n - 1)).c_str()),
+      hush::invalid_argument);
+}
+
+TEST_CASE("bandwidth and impulses: bad tables and mis-sized fields are refused, wild pixels not") {
   npr_test::grid_scene sc(16, 16, 0, 0, 8, 2, 2);
   const hush::npr_gabor noise{hush::npr_gabor::params{}};
   std::vector<float> out(std::size_t{16} * 16);
@@ -358,9 +489,28 @@ TEST_CASE("per-object bandwidth and impulses: bad tables and per-pixel sources a
   src.impulses = hush::param_source::per_object(bad_n);
   CHECK_THROWS_WITH_AS(noise.render(sc.frame(), sc.triangles(), view, src),
                        doctest::Contains("0 < impulses <= 256"), hush::invalid_argument);
-  std::vector<float> field(std::size_t{16} * 16, 0.1f);
+  std::vector<float> field(std::size_t{8} * 8, 0.1f);
   src = {};
-  src.bandwidth = hush::param_source::per_pixel({field.data(), 16, 16});
+  src.bandwidth = hush::param_source::per_pixel({field.data(), 8, 8});
   CHECK_THROWS_WITH_AS(noise.render(sc.frame(), sc.triangles(), view, src),
-                       doctest::Contains("bandwidth source = per pixel"), hush::invalid_argument);
+                       doctest::Contains("bandwidth field size = 8x8"), hush::invalid_argument);
+  src = {};
+  src.impulses = hush::param_source::per_pixel({field.data(), 8, 8});
+  CHECK_THROWS_WITH_AS(noise.render(sc.frame(), sc.triangles(), view, src),
+                       doctest::Contains("impulses field size = 8x8"), hush::invalid_argument);
+  // Wild per-pixel a and N' (infinite, huge, negative, NaN) never throw: non-finite ->
+  // the constant, finite values clamped to [0.01, 10] and [0, 256]; the image stays finite.
+  std::vector<float> wild(std::size_t{16} * 16);
+  for (std::size_t i = 0; i < wild.size(); ++i)
+    wild[i] = i % 4 == 0 ? std::numeric_limits<float>::infinity()
+                         : (i % 4 == 1 ? 1e30f : (i % 4 == 2 ? -3.0f : std::nanf("")));
+  // N' is -3 (-> 0, no points) where a is 1e30 (-> 10): a density of 8600 points per
+  // square pixel there would only make the test slow.
+  std::vector<float> wild_n(wild.size());
+  for (std::size_t i = 0; i < wild.size(); ++i) wild_n[i] = wild[(i + 1) % wild.size()];
+  src = {};
+  src.bandwidth = hush::param_source::per_pixel({wild.data(), 16, 16});
+  src.impulses = hush::param_source::per_pixel({wild_n.data(), 16, 16});
+  noise.render(sc.frame(), sc.triangles(), view, src);
+  for (float v : out) CHECK(std::isfinite(v));
 }

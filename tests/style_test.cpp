@@ -299,3 +299,89 @@ TEST_CASE("projected_normal_field: the direction of grad(1/z), exact on planes, 
       st::projected_normal_field(f, hush::image_view<float>(field.data(), w, h), 1e-4),
       doctest::Contains("object_id"), hush::invalid_argument);
 }
+
+TEST_CASE("curvature_field: across a cylinder's axis, falls back on planes and sphere centres") {
+  // Object 1 (x < 48): a cylinder of radius R = 20 px whose axis runs through (32, 32) at
+  // alpha = 0.6 rad on screen; u = -sin(alpha) (x - 32) + cos(alpha) (y - 32) is the
+  // cross-axis coordinate, its normal (sin(phi) e_u, -cos(phi)) with sin(phi) = u / R, then
+  // turned by a fixed 3D rotation (normals in "world space": the estimate must not care).
+  // Object 2: a sphere of radius 20 px at (72, 32) (umbilic: no principal direction, and
+  // only the foreshortening makes one near its rim). Object 3: the rest of x >= 48, a
+  // slanted plane (flat). Expected on the cylinder: alpha + pi/2 (mod pi).
+  const std::size_t w = 96, h = 64;
+  const double kR = 20, alpha = 0.6, pi = 3.14159265358979323846;
+  std::vector<float> depth(w * h, 0.0f);
+  std::vector<std::uint32_t> object(w * h, 0);
+  std::vector<hush::vec3> normal(w * h, hush::vec3{0, 0, 0});
+  // A rotation about (1, 2, 2) / 3 by 1 rad (Rodrigues), applied to every normal.
+  const double kx = 1.0 / 3, ky = 2.0 / 3, kz = 2.0 / 3, ca = std::cos(1.0), sa = std::sin(1.0);
+  auto turn = [&](double x, double y, double z) {
+    const double d = kx * x + ky * y + kz * z;
+    const double cx = ky * z - kz * y, cy = kz * x - kx * z, cz = kx * y - ky * x;
+    return hush::vec3{static_cast<float>(x * ca + cx * sa + kx * d * (1 - ca)),
+                      static_cast<float>(y * ca + cy * sa + ky * d * (1 - ca)),
+                      static_cast<float>(z * ca + cz * sa + kz * d * (1 - ca))};
+  };
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const double px = static_cast<double>(x) + 0.5, py = static_cast<double>(y) + 0.5;
+      const std::size_t i = y * w + x;
+      if (x < 48) {
+        const double u = -std::sin(alpha) * (px - 32) + std::cos(alpha) * (py - 32);
+        if (std::fabs(u) >= kR) continue;
+        const double s = u / kR, c = std::sqrt(1 - s * s);
+        object[i] = 1;
+        depth[i] = static_cast<float>(5 - c);
+        normal[i] = turn(-std::sin(alpha) * s, std::cos(alpha) * s, -c);
+      } else {
+        const double dx = (px - 72) / kR, dy = (py - 32) / kR, r2 = dx * dx + dy * dy;
+        if (r2 < 0.95 * 0.95) {
+          object[i] = 2;
+          depth[i] = static_cast<float>(5 - std::sqrt(1 - r2));
+          normal[i] = turn(dx, dy, -std::sqrt(1 - r2));
+        } else {
+          object[i] = 3;
+          depth[i] = static_cast<float>(1 / (0.2 + 0.002 * px + 0.001 * py));
+          normal[i] = turn(0.3, 0.2, -0.93);
+        }
+      }
+    }
+  hush::frame f;
+  f.depth = {depth.data(), w, h};
+  f.object_id = {object.data(), w, h};
+  const hush::image_view<const hush::vec3> normals(normal.data(), w, h);
+  std::vector<float> field(w * h), fallback(w * h);
+  st::curvature_field(f, normals, hush::image_view<float>(field.data(), w, h), 1e-3, 0.2, 1e-4);
+  st::projected_normal_field(f, hush::image_view<float>(fallback.data(), w, h), 1e-4);
+  auto same = [](float a, float b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  double worst = 0;
+  std::size_t checked = 0;
+  for (std::size_t y = 1; y + 1 < h; ++y)
+    for (std::size_t x = 1; x + 1 < w; ++x) {
+      const std::size_t i = y * w + x;
+      const double px = static_cast<double>(x) + 0.5, py = static_cast<double>(y) + 0.5;
+      CAPTURE(x);
+      CAPTURE(y);
+      if (object[i] == 1 && x + 2 < 48) {
+        const double u = -std::sin(alpha) * (px - 32) + std::cos(alpha) * (py - 32);
+        if (std::fabs(u) > 0.8 * kR) continue;
+        // Central differences of n(u) (cos(phi) >= 0.6 here): the x and y differences are
+        // n' times the steps -sin(alpha), cos(alpha) plus third-order terms |n'''| / 6 with
+        // |n'''| / |n'| <= 1 / (R cos^2 phi)^2 = 0.0069: the direction is within 0.01 rad.
+        double e = std::fmod(std::fabs(field[i] - (alpha + pi / 2)), pi);
+        e = std::min(e, pi - e);
+        worst = std::max(worst, e);
+        ++checked;
+        CHECK(e <= 0.01);
+      } else if (object[i] == 3 || (object[i] == 2 && std::hypot(px - 72, py - 32) < 0.5 * kR)) {
+        CHECK(same(field[i], fallback[i]));  // flat, or anisotropy below 0.2: the fallback
+      }
+    }
+  MESSAGE("cylinder: " << checked << " pixels, worst angle error " << worst << " rad");
+  CHECK(checked > 500);
+  std::vector<hush::vec3> small(10);
+  CHECK_THROWS_WITH_AS(st::curvature_field(f, hush::image_view<const hush::vec3>(small.data(), 2, 5),
+                                           hush::image_view<float>(field.data(), w, h), 1e-3,
+                                           0.2, 1e-4),
+                       doctest::Contains("normals size"), hush::invalid_argument);
+}

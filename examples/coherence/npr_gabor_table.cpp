@@ -5,7 +5,8 @@
 // run from frame 0; docs/coherent.md) and NPR Gabor noise (include/hush/npr_gabor.hpp) with
 // its defaults (F0 = 1/8 cycle per pixel, a = 0.08 per pixel, N' = 16, object and depth
 // tests) in anisotropic and isotropic form, and the anisotropic form with the soft depth test
-// (params::soft_depth, paper sec. 6.1) beside the binary one. The last two rows per scene
+// (params::soft_depth, paper sec. 6.1) beside the binary one, and the anisotropic form with
+// thinning of the N < 1 points (params::thinning). The last two rows per scene
 // measure the binary and soft depth tests only in the silhouette band (silhouette_band.hpp:
 // covered pixels within one kernel radius of a depth discontinuity), where occlusion changes;
 // their flatness columns describe the band, not the whole image.
@@ -60,15 +61,18 @@ int main(int argc, char** argv) {
       hc::print_metrics_row(name, "coherent causal, stationary, band-pass 4 px", coh, g);
       std::vector<std::vector<hc::noise_frame>> band_frames;  // binary, soft
       struct variant {
-        bool isotropic, soft_depth;
+        bool isotropic, soft_depth, thinning;
         const char* label;
       };
-      for (const variant v : {variant{false, false, "NPR Gabor, anisotropic"},
-                              variant{true, false, "NPR Gabor, isotropic"},
-                              variant{false, true, "NPR Gabor, anisotropic, soft depth test"}}) {
+      for (const variant v :
+           {variant{false, false, false, "NPR Gabor, anisotropic"},
+            variant{true, false, false, "NPR Gabor, isotropic"},
+            variant{false, true, false, "NPR Gabor, anisotropic, soft depth test"},
+            variant{false, false, true, "NPR Gabor, anisotropic, thinning"}}) {
         hush::npr_gabor::params p;
         p.isotropic = v.isotropic;
         p.soft_depth = v.soft_depth;
+        p.thinning = v.thinning;
         const hush::npr_gabor noise{p};
         std::vector<hc::noise_frame> npr;
         for (int i = first; i < first + count; ++i) {
@@ -78,7 +82,7 @@ int main(int argc, char** argv) {
           npr.push_back(out);
         }
         hc::print_metrics_row(name, v.label, npr, g);
-        if (!v.isotropic) band_frames.push_back(npr);
+        if (!v.isotropic && !v.thinning) band_frames.push_back(npr);
       }
       // Band radius: the kernel's support radius, the reach of a kernel the depth test cuts.
       const hush::npr_gabor::params defaults;

@@ -1,11 +1,13 @@
 // hush — animated GIF files (see gif.hpp). GIF89a: header, logical screen with a 256-entry
-// global colour table, the NETSCAPE2.0 looping extension, then per frame a graphic control
+// global colour table (gray ramp, or the fixed RGB palette with ordered dithering), the NETSCAPE2.0 looping extension, then per frame a graphic control
 // extension (delay), an image descriptor and the LZW-coded pixels (minimum code size 8, codes
 // of 9 ... 12 bits, a clear code whenever the 4096-entry table is full), in 255-byte
 // sub-blocks; the trailer ends the file.
 #include "gif/gif.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <unordered_map>
 
@@ -99,29 +101,35 @@ void lzw(const std::vector<std::uint8_t>& pixels, std::vector<std::uint8_t>& out
   bits.finish();
 }
 
-}  // namespace
+constexpr int kRedLevels = 6, kGreenLevels = 7, kBlueLevels = 6;
 
-std::vector<std::uint8_t> encode(const std::vector<std::vector<std::uint8_t>>& frames, int width,
-                                 int height, int delay_cs) {
-  const char* where = "hush::gif::encode";
+// Checks the arguments; `bytes_per_pixel` 1 (gray) or 3 (RGB).
+void check(const char* where, const std::vector<std::vector<std::uint8_t>>& frames, int width,
+           int height, int delay_cs, std::size_t bytes_per_pixel) {
   if (frames.empty()) throw hush::invalid_argument(std::string(where) + ": no frames");
   hush::detail::require_in_range(where, "width", width, 1, kMaxSide, "1 ... 65535");
   hush::detail::require_in_range(where, "height", height, 1, kMaxSide, "1 ... 65535");
   hush::detail::require_in_range(where, "delay_cs", delay_cs, 0, kMaxSide, "0 ... 65535");
-  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const std::size_t n =
+      bytes_per_pixel * static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   for (std::size_t f = 0; f < frames.size(); ++f)
     if (frames[f].size() != n)
-      hush::detail::throw_out_of_range(where, "frames[" + std::to_string(f) + "].size()",
-                                       frames[f].size(), "width * height bytes");
+      hush::detail::throw_out_of_range(
+          where, "frames[" + std::to_string(f) + "].size()", frames[f].size(),
+          bytes_per_pixel == 1 ? "width * height bytes" : "3 * width * height bytes");
+}
+
+// The file for frames of palette indices (checked) and a 256-entry colour table.
+std::vector<std::uint8_t> encode_indexed(const std::vector<std::vector<std::uint8_t>>& frames,
+                                         int width, int height, int delay_cs,
+                                         const std::vector<std::uint8_t>& table) {
   std::vector<std::uint8_t> out = {'G', 'I', 'F', '8', '9', 'a'};
   put16(out, static_cast<unsigned>(width));
   put16(out, static_cast<unsigned>(height));
   out.push_back(0xf7);  // global colour table, 8 bits of colour resolution, 2^(7+1) entries
   out.push_back(0);     // background colour index
   out.push_back(0);     // square pixels
-  for (unsigned g = 0; g < 256; ++g)
-    out.insert(out.end(), {static_cast<std::uint8_t>(g), static_cast<std::uint8_t>(g),
-                           static_cast<std::uint8_t>(g)});
+  out.insert(out.end(), table.begin(), table.end());
   const std::string netscape = "NETSCAPE2.0";
   out.insert(out.end(), {0x21, 0xff, 11});
   out.insert(out.end(), netscape.begin(), netscape.end());
@@ -142,12 +150,84 @@ std::vector<std::uint8_t> encode(const std::vector<std::vector<std::uint8_t>>& f
   return out;
 }
 
-void save(const std::string& path, const std::vector<std::vector<std::uint8_t>>& frames, int width,
-          int height, int delay_cs) {
-  const std::vector<std::uint8_t> bytes = encode(frames, width, height, delay_cs);
+// One channel's level: min(L - 1, floor(c (L - 1) / 255 + t)). *Mean over a 4 x 4 block* (the
+// 16 thresholds t_k = (k + 1/2) / 16, each once): with v = c (L - 1) / 255 = m + f, the level
+// is m + 1 for the t_k >= 1 - f, i.e. for 16 - ceil(16 (1 - f) - 1/2) of them, which is 16 f
+// within 1/2: the block's mean level is v within 1/32 (the top level, v = L - 1, is exact).
+// The palette's values are rounded to bytes, 1/2 more.
+int level(std::uint8_t c, int levels, double t) {
+  const double v = static_cast<double>(c) * (levels - 1) / 255.0 + t;
+  return std::min(levels - 1, static_cast<int>(v));
+}
+
+void write(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   hush::npy::output_file f(path);
   f.write(bytes.data(), bytes.size());
   f.close();
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode(const std::vector<std::vector<std::uint8_t>>& frames, int width,
+                                 int height, int delay_cs) {
+  check("hush::gif::encode", frames, width, height, delay_cs, 1);
+  std::vector<std::uint8_t> gray;
+  for (unsigned g = 0; g < 256; ++g)
+    gray.insert(gray.end(), {static_cast<std::uint8_t>(g), static_cast<std::uint8_t>(g),
+                             static_cast<std::uint8_t>(g)});
+  return encode_indexed(frames, width, height, delay_cs, gray);
+}
+
+const std::vector<std::uint8_t>& palette() {
+  static const std::vector<std::uint8_t> table = [] {
+    std::vector<std::uint8_t> t(std::size_t{3} * 256, 0);
+    auto value = [](int l, int levels) {
+      return static_cast<std::uint8_t>(std::lround(255.0 * l / (levels - 1)));
+    };
+    for (int r = 0; r < kRedLevels; ++r)
+      for (int g = 0; g < kGreenLevels; ++g)
+        for (int b = 0; b < kBlueLevels; ++b) {
+          const int index = (r * kGreenLevels + g) * kBlueLevels + b;
+          const std::size_t i = static_cast<std::size_t>(index);
+          t[3 * i] = value(r, kRedLevels);
+          t[3 * i + 1] = value(g, kGreenLevels);
+          t[3 * i + 2] = value(b, kBlueLevels);
+        }
+    return t;
+  }();
+  return table;
+}
+
+std::uint8_t dither(std::uint8_t r, std::uint8_t g, std::uint8_t b, std::size_t x, std::size_t y) {
+  static constexpr int kBayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+  const double t = (kBayer[y % 4][x % 4] + 0.5) / 16.0;
+  return static_cast<std::uint8_t>(
+      (level(r, kRedLevels, t) * kGreenLevels + level(g, kGreenLevels, t)) * kBlueLevels +
+      level(b, kBlueLevels, t));
+}
+
+std::vector<std::uint8_t> encode_rgb(const std::vector<std::vector<std::uint8_t>>& frames,
+                                     int width, int height, int delay_cs) {
+  check("hush::gif::encode_rgb", frames, width, height, delay_cs, 3);
+  const std::size_t w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height);
+  std::vector<std::vector<std::uint8_t>> indices(frames.size(), std::vector<std::uint8_t>(w * h));
+  for (std::size_t f = 0; f < frames.size(); ++f)
+    for (std::size_t y = 0; y < h; ++y)
+      for (std::size_t x = 0; x < w; ++x) {
+        const std::uint8_t* c = &frames[f][3 * (y * w + x)];
+        indices[f][y * w + x] = dither(c[0], c[1], c[2], x, y);
+      }
+  return encode_indexed(indices, width, height, delay_cs, palette());
+}
+
+void save(const std::string& path, const std::vector<std::vector<std::uint8_t>>& frames, int width,
+          int height, int delay_cs) {
+  write(path, encode(frames, width, height, delay_cs));
+}
+
+void save_rgb(const std::string& path, const std::vector<std::vector<std::uint8_t>>& frames,
+              int width, int height, int delay_cs) {
+  write(path, encode_rgb(frames, width, height, delay_cs));
 }
 
 }  // namespace gif

@@ -349,24 +349,38 @@ int run_gallery(const std::vector<std::string>& args) {
   for (std::size_t n = 0; n < items.size(); ++n) {
     const gallery_item& e = items[n];
     std::fprintf(stderr, "gallery: [%zu/%zu] %s\n", n + 1, items.size(), e.file);
-    const std::vector<gray_image> frames = e.render();
-    const std::string path = (fs::path(dir) / e.file).string();
-    if (frames.size() == 1) {
-      write_png(path, frames[0]);
+    // Gray frames, or colour ones (3 bytes per pixel) for a render_rgb entry.
+    std::vector<std::vector<std::uint8_t>> bytes;
+    std::size_t width = 0, height = 0;
+    if (e.render_rgb) {
+      for (rgb_image& f : e.render_rgb()) {
+        width = f.width;
+        height = f.height;
+        bytes.push_back(std::move(f.pixels));
+      }
     } else {
-      std::vector<std::vector<std::uint8_t>> bytes;
-      bytes.reserve(frames.size());
-      for (const gray_image& f : frames) bytes.push_back(f.pixels);
+      for (gray_image& f : e.render()) {
+        width = f.width;
+        height = f.height;
+        bytes.push_back(std::move(f.pixels));
+      }
+    }
+    const std::string path = (fs::path(dir) / e.file).string();
+    if (bytes.size() == 1 && !e.render_rgb) {
+      gray_image still(width, height);
+      still.pixels = std::move(bytes[0]);
+      write_png(path, still);
+    } else {
       try {
-        hush::gif::save(path, bytes, static_cast<int>(frames[0].width),
-                        static_cast<int>(frames[0].height), e.delay_cs);
+        (e.render_rgb ? hush::gif::save_rgb : hush::gif::save)(
+            path, bytes, static_cast<int>(width), static_cast<int>(height), e.delay_cs);
       } catch (const std::runtime_error& err) {
         throw run_error(err.what());
       }
     }
-    written.push_back(std::string(e.file) + " (" + std::to_string(frames[0].width) + "x" +
-                      std::to_string(frames[0].height) +
-                      (frames.size() > 1 ? ", " + std::to_string(frames.size()) + " frames" : "") +
+    written.push_back(std::string(e.file) + " (" + std::to_string(width) + "x" +
+                      std::to_string(height) +
+                      (bytes.size() > 1 ? ", " + std::to_string(bytes.size()) + " frames" : "") +
                       "): " + e.what);
   }
   write_wavelet_fig9(dir, written);         // RGB: three bands' spectra in three colours

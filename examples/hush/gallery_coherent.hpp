@@ -20,12 +20,14 @@
 namespace hush_cli {
 
 // One gallery entry: one frame is written as a PNG, more as an animated GIF
-// (examples/gif) showing each frame delay_cs hundredths of a second.
+// (examples/gif) showing each frame delay_cs hundredths of a second. A colour entry sets
+// render_rgb instead of render (its GIF uses gif::encode_rgb's dithered palette).
 struct gallery_item {
   const char* file;
   const char* what;
   std::function<std::vector<gray_image>()> render;
   int delay_cs = 0;
+  std::function<std::vector<rgb_image>()> render_rgb = nullptr;
 };
 
 std::vector<gallery_item> coherent_gallery_items();

@@ -18,6 +18,10 @@ namespace {
 // 0.1 rad at a focal length of 1000 pixels).
 constexpr double kFaceOn = 1e-4;
 constexpr double kHalfPi = 1.57079632679489661923;
+// curvature_field's thresholds: a normal turning by less than 1e-3 rad per pixel is flat (a
+// radius of curvature above 1000 pixels), and below an anisotropy of 0.2 (principal
+// curvatures within a factor 1.22 of each other) the principal direction is not trusted.
+constexpr double kFlat = 1e-3, kUmbilic = 0.2;
 
 // Watercolour base colours per object id (pastel pigments; id 0 = background, paper).
 constexpr double kPigments[][3] = {{0.95, 0.55, 0.35}, {0.35, 0.6, 0.9},  {0.5, 0.8, 0.45},
@@ -79,9 +83,14 @@ void npr_stylizer::draw(bool simd, const hush::frame& f, const hush::triangle_li
                         hush::image_view<const hush::vec3> normals,
                         std::vector<std::uint8_t>& rgb) {
   const std::size_t w = f.width(), h = f.height();
-  if (o_.normal_field) {
+  const bool field = o_.field != npr_field::constant;
+  if (field) {
     field_.resize(w * h);
-    hush::style::projected_normal_field(f, hush::image_view<float>(field_.data(), w, h), kFaceOn);
+    const hush::image_view<float> out(field_.data(), w, h);
+    if (o_.field == npr_field::curvature)
+      hush::style::curvature_field(f, normals, out, kFlat, kUmbilic, kFaceOn);
+    else
+      hush::style::projected_normal_field(f, out, kFaceOn);
     field_turned_.resize(field_.size());
     for (std::size_t i = 0; i < field_.size(); ++i)
       field_turned_[i] = field_[i] + static_cast<float>(kHalfPi);  // NaN stays NaN
@@ -89,7 +98,7 @@ void npr_stylizer::draw(bool simd, const hush::frame& f, const hush::triangle_li
   for (std::size_t k = 0; k < layers_.size(); ++k) {
     images_[k].resize(w * h);
     hush::npr_gabor::sources src;
-    if (o_.normal_field && !layers_[k].parameters().isotropic)
+    if (field && !layers_[k].parameters().isotropic)
       src.orientation =
           hush::param_source::per_pixel({(k == 0 ? field_ : field_turned_).data(), w, h});
     const hush::image_view<float> image(images_[k].data(), w, h);

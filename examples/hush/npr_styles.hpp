@@ -6,7 +6,10 @@
 // world-space light direction, plus ambient); the orientation field is the screen direction
 // of the projected normal (hush::style::projected_normal_field: grad(1/depth)); where the
 // surface faces the camera (relative slope below kFaceOn per pixel) it is NaN and the noise
-// takes the constant --orientation. Layers, each an hush::npr_gabor:
+// takes the constant --orientation. With npr_field::curvature the orientation is the principal
+// direction of largest curvature (hush::style::curvature_field from the G-buffer's normals:
+// across a cylinder's axis), the projected normal where the surface is flat (the normal turns
+// by less than kFlat radians per pixel) or umbilic (anisotropy below kUmbilic). Layers, each an hush::npr_gabor:
 //  - hatching: one anisotropic layer along the field; binary threshold of the tone.
 //  - stippling: one isotropic layer; the same threshold.
 //  - crosshatch: two anisotropic layers (field and field + pi/2, seeds s and s + 1);
@@ -29,6 +32,9 @@
 namespace hush_cli {
 
 enum class npr_style { none, hatching, stippling, crosshatch, graphite, watercolor };
+// The orientation field: --orientation everywhere, the projected normal, or the principal
+// curvature (hush::style::curvature_field, the projected normal where flat or umbilic).
+enum class npr_field { constant, normal, curvature };
 
 struct npr_style_options {
   npr_style style = npr_style::none;
@@ -37,7 +43,7 @@ struct npr_style_options {
   double gain = 0.35;                // watercolour overlay gain
   double ambient = 0.15;             // tone where N.L <= 0
   hush::dvec3 light{0.4, 0.7, 0.6};  // towards the light, world space
-  bool normal_field = true;          // orientation along the projected normal
+  npr_field field = npr_field::normal;  // where the anisotropic layers' orientation comes from
 };
 
 class npr_stylizer {

@@ -255,8 +255,10 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
     s.light = {l[0], l[1], l[2]};
   }
   if (const std::string* v = find_value(given, "--orientation-field"))
-    s.normal_field =
-        parse_choice<bool>("--orientation-field", *v, {{"normal", true}, {"constant", false}});
+    s.field = parse_choice<npr_field>(
+        "--orientation-field", *v,
+        {{"normal", npr_field::normal}, {"curvature", npr_field::curvature},
+         {"constant", npr_field::constant}});
   return std::make_unique<npr_gabor_noise>(p, s);
 }
 
@@ -322,8 +324,9 @@ const std::vector<render_entry>& render_table() {
            {"--ambient", "k", "style: tone where N.L <= 0, 0 ... 1 (default 0.15)"},
            {"--light", "x,y,z",
             "style: direction towards the light, world space (default 0.4,0.7,0.6)"},
-           {"--orientation-field", "normal|constant",
-            "style: orientation along the projected normal (default) or --orientation"},
+           {"--orientation-field", "normal|curvature|constant",
+            "style: orientation along the projected normal (default), the principal curvature "
+            "(the normal where flat) or --orientation"},
        },
        {
            {"--isotropic", "", "a random orientation per point (stippling) instead of omega0"},

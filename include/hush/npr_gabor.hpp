@@ -70,30 +70,33 @@
 //    whose fragments fail the tests (nothing is added).
 //  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
 //  - parameter sources (sec. 4; render's `sources`, hush/core/param_source.hpp):
-//    F0 and omega0 each a constant (params), a per-object table (indexed by
-//    the G-buffer's object id) or a per-pixel field (e.g. an orientation field
-//    along the projected normal, a frequency driven by shading). Each point
-//    reads them once, at the pixel under its own screen position in this
-//    frame, not per fragment: a splat is one Gabor kernel, and a point keeps
-//    its parameters while it moves exactly as far as the field is attached to
-//    the surface (a field computed from the surface, like the projected normal,
-//    changes only as the surface's view changes); reading per fragment would
-//    make the kernel change shape as it slides over the pixels. Non-finite
-//    field pixels, positions outside the image and objects past a table's end
-//    take the params' constant; finite field frequencies are clamped to
-//    [0, 0.5]. A hidden point reads the pixel of what hides it (its fragments
-//    then mostly fail the visibility tests). With `isotropic` the orientation
-//    source is ignored (each point has its random angle). Each point is
-//    weighted by 1 / sqrt(lambda E[v^2] int g_F^2) for its own F
-//    (interpolated_energy: linear between exact energies at steps of 1/64 in
-//    F r, computed on demand, relative error below 1e-3), so the noise has
-//    variance 1 wherever the parameters are locally constant. Bandwidth and
-//    N' are not per pixel: they set the kernel radius and the density
-//    lambda = N' / (pi r^2) that a triangle's point count uses, and a radius
-//    that changes per point would need a variable-radius splat. Per object they
-//    can vary (`sources` bandwidth and impulses: tables only): each object's
-//    triangles are splatted by a noise with that object's a and N' (kernel,
-//    density lambda and scale), the same seed and so the same points.
+//    F0, omega0, a and N' each a constant (params), a per-object table (indexed
+//    by the G-buffer's object id), a per-pixel field (e.g. an orientation field
+//    along the projected normal, a frequency driven by shading) or per-vertex
+//    values (interpolated with the point's own barycentric coordinates). Each
+//    point reads F0, omega0 and a once, at the pixel under its own screen
+//    position in this frame (or its barycentric position), not per fragment: a
+//    splat is one Gabor kernel (its own frequency and radius), and a point
+//    keeps its parameters while it moves exactly as far as the field is
+//    attached to the surface (a field computed from the surface, like the
+//    projected normal, changes only as the surface's view changes); reading per
+//    fragment would make the kernel change shape as it slides over the pixels.
+//    The point count N = lambda A needs one density per triangle: lambda_T =
+//    N'_T / (pi r(a_T)^2) with a_T and N'_T read at the triangle's object-space
+//    centroid (per pixel: its pixel, clamped into the image; per vertex: the
+//    mean). Non-finite field pixels and vertex values, point positions outside
+//    the image and objects past a table's end take the params' constant; finite
+//    field values are clamped to their ranges (F0 [0, 0.5], a [0.01, 10], N'
+//    [0, 256]; N'_T = 0: no points). A hidden point reads the pixel of what
+//    hides it (its fragments then mostly fail the visibility tests). With
+//    `isotropic` the orientation source is ignored (each point has its random
+//    angle). Each point is weighted by 1 / sqrt(lambda_T E[v^2] int g_{F,a}^2)
+//    for its own F and a and its triangle's lambda_T (interpolated_energy:
+//    linear between exact energies at steps of 1/64 in F r, computed on demand,
+//    relative error below 1e-3), so the noise has variance 1 wherever F and a
+//    are constant over a kernel's disc, whatever N' does; where F or a vary
+//    linearly the first-order change cancels (the kernel is even), see
+//    docs/npr-gabor.md.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
@@ -245,13 +248,12 @@ class npr_gabor {
   // Where F0, omega0, a and N' come from in one frame (see the header
   // comment): a default-constructed source is the params' constant. Views,
   // valid for the render call. Per-object frequencies in [0, 0.5],
-  // orientations finite, bandwidths in [0.01, 10], impulses in (0, 256];
-  // bandwidth and impulses are constant or per object only.
+  // orientations finite, bandwidths in [0.01, 10], impulses in (0, 256].
   struct sources {
     param_source frequency;    // cycles per pixel
     param_source orientation;  // radians from +x towards +y
-    param_source bandwidth;    // 1/pixel; not per pixel
-    param_source impulses;     // N'; not per pixel
+    param_source bandwidth;    // 1/pixel: per point, and per triangle for its density
+    param_source impulses;     // N': per triangle (its density)
   };
 
   // Overwrites `out` (frame-sized; float, or double for the reference) with
@@ -264,8 +266,8 @@ class npr_gabor {
   // malformed (frame::validate), when the triangle list is malformed
   // (triangle_list::validate), when out's size differs from the frame's, or
   // when a source is malformed (param_source::validate: "frequency[i]",
-  // "orientation[i]", "bandwidth[i]", "impulses[i]", a field's size; a
-  // per-pixel bandwidth or impulses source). Never reads outside the views.
+  // "orientation[i]", "bandwidth[i]", "impulses[i]", a field's size).
+  // Never reads outside the views.
   template <class Exec, class T>
   void render(const Exec& ex, const frame& f, const triangle_list& tris, const image_view<T>& out,
               const sources& src = {}) const {
@@ -325,21 +327,29 @@ class npr_gabor {
     detail::npr_gabor_splat_scalar(job, out, columns);
   }
 
-  // int g_F^2 for |F| = frequency, as render normalises a point of a
-  // non-constant frequency: linear interpolation of kernel().energy between
-  // the nodes F = k h, h = kNprGaborEnergyStep / radius (a step in F r, the
-  // variable the energy depends on for a given truncation). Exact at the
-  // nodes; relative error below 1e-3 (tests/npr_gabor_test.cpp measures it).
-  // `cache`: node energies (NaN = not computed yet), filled on demand.
+  // int g_F^2 for |F| = frequency and a kernel of radius `radius` (default:
+  // this noise's), as render normalises a point whose F or a is not the
+  // constant: the energy is r^2 E(F r) (substitute x = r u; E for a unit
+  // radius and this truncation), E interpolated linearly between the nodes
+  // F r = k kNprGaborEnergyStep, computed as kernel().energy at the nodes.
+  // Exact at the nodes; relative error below 1e-3 (tests/npr_gabor_sources_test.cpp
+  // measures it). `cache`: node energies (NaN = not computed yet), filled on
+  // demand (one quadrature, ~0.5 ms, per node used).
   double interpolated_energy(double frequency, std::vector<double>& cache) const {
-    const double h = detail::constants::kNprGaborEnergyStep / kernel_.radius();
+    return interpolated_energy(frequency, kernel_.radius(), cache);
+  }
+  double interpolated_energy(double frequency, double radius, std::vector<double>& cache) const {
+    const double r0 = kernel_.radius();
+    const double h = detail::constants::kNprGaborEnergyStep / radius;
     const double u = std::max(frequency, 0.0) / h;
     const std::size_t i = static_cast<std::size_t>(u);
     const double t = u - static_cast<double>(i);
     if (cache.size() < i + 2) cache.resize(i + 2, std::numeric_limits<double>::quiet_NaN());
+    const double h0 = detail::constants::kNprGaborEnergyStep / r0;
     for (std::size_t k = i; k <= i + 1; ++k)
-      if (std::isnan(cache[k])) cache[k] = kernel_.energy(static_cast<double>(k) * h);
-    return cache[i] * (1.0 - t) + cache[i + 1] * t;
+      if (std::isnan(cache[k])) cache[k] = kernel_.energy(static_cast<double>(k) * h0);
+    const double ratio = radius / r0;  // exactly 1 for this noise's radius
+    return (cache[i] * (1.0 - t) + cache[i + 1] * t) * (ratio * ratio);
   }
 
  private:
@@ -348,27 +358,7 @@ class npr_gabor {
                  const sources& src) const {
     splats.clear();
     const point_parameters pp(*this, src);
-    // Per-object a or N': one noise per table entry with that object's kernel,
-    // density and scale (same seed and constants: the same points).
-    std::vector<npr_gabor> per_object;
-    std::vector<point_parameters> per_object_pp;
-    const std::size_t objects = std::max(src.bandwidth.table_size(), src.impulses.table_size());
-    per_object.reserve(objects);
-    per_object_pp.reserve(objects);
-    for (std::size_t o = 0; o < objects; ++o) {
-      params q = p_;
-      q.bandwidth = src.bandwidth.value(static_cast<std::uint32_t>(o), 0, 0, p_.bandwidth);
-      q.impulses = src.impulses.value(static_cast<std::uint32_t>(o), 0, 0, p_.impulses);
-      per_object.emplace_back(q);
-    }
-    for (const npr_gabor& n : per_object) per_object_pp.emplace_back(n, src);
-    for (std::size_t t = 0; t < tris.triangles(); ++t) {
-      const std::uint32_t o = tris.object_of(t);
-      if (o < objects)
-        per_object[o].triangle_splats(f, tris, t, splats, per_object_pp[o]);
-      else
-        triangle_splats(f, tris, t, splats, pp);
-    }
+    for (std::size_t t = 0; t < tris.triangles(); ++t) triangle_splats(f, tris, t, splats, pp);
   }
 
   static const params& checked(const params& p) {
@@ -389,28 +379,84 @@ class npr_gabor {
     return p;
   }
 
-  // One point's kernel frequency vector and weight factor, from the sources
-  // (the params' constants when both are constant: the scale of the
-  // constructor, bit for bit the renderer without sources). One per render
-  // call (it caches node energies).
+  // The kernel radius for bandwidth a: gabor_kernel's r = sqrt(ln(1/t) / pi) / a.
+  double radius_of(double a) const {
+    return a == p_.bandwidth ? kernel_.radius()
+                             : std::sqrt(kernel_.envelope_exponent() / detail::constants::kPi) / a;
+  }
+
+  // The kernel parameters from the sources (the params' constants where a
+  // source is constant: bit for bit the renderer without sources). One per
+  // render call (it caches node energies).
+  //  - Per triangle, its density lambda_T = N'_T / (pi r(a_T)^2) (eq. 2), a_T
+  //    and N'_T read where the triangle is: at its object-space centroid
+  //    (per pixel: its pixel, clamped into the image, so that a triangle whose
+  //    centroid leaves the image keeps the border pixel's value, continuously:
+  //    no pop; per vertex: the mean of the three values).
+  //  - Per point, its own F, omega and a read at its own pixel or barycentric
+  //    position (as render's contract says), and the weight factor 1 / sqrt(lambda_T E[v^2]
+  //    int g_{F,a}^2) with its triangle's lambda_T, the density its points
+  //    actually have (Campbell: the variance at x is then the integral over
+  //    the surface of g_y(x - y)^2 / int g_y^2, 1 where F and a are constant
+  //    over the kernel's disc, whatever N' does; see docs/npr-gabor.md).
   class point_parameters {
    public:
     point_parameters(const npr_gabor& n, const sources& src) : n_(n), src_(src) {}
     struct kernel {
       dvec2 F;
-      double scale;
+      double bandwidth, radius, scale;
     };
-    kernel at(std::uint32_t object, const dvec2& pos, double random_angle) const {
+    static double clamp_bandwidth(double a) {
+      return std::clamp(a, detail::constants::kNprGaborMinBandwidth,
+                        detail::constants::kNprGaborMaxBandwidth);
+    }
+    // a at a site: finite values clamped to [0.01, 10].
+    double bandwidth(const param_source::site& at) const {
+      return clamp_bandwidth(src_.bandwidth.value(at, n_.p_.bandwidth));
+    }
+    // The largest radius of a point of a triangle of `object` with vertices
+    // `v` that lies off the image (per pixel: the constant's; per object: the
+    // table's; per vertex: that of the smallest a of its vertices, which
+    // bounds their convex combinations): culls triangles whose bounding box
+    // grown by it misses the image (their points are all off it).
+    double off_image_radius(std::uint32_t object, const std::uint32_t* v) const {
+      const param_source& s = src_.bandwidth;
+      if (s.is_constant()) return n_.kernel_.radius();
+      const double nan = std::numeric_limits<double>::quiet_NaN(), c = n_.p_.bandwidth;
+      if (s.which() != param_source::kind::per_vertex)
+        return n_.radius_of(bandwidth({object, nan, nan, nullptr, {0, 0, 0}}));
+      return n_.radius_of(clamp_bandwidth(
+          std::min({s.vertex_value(v[0], c), s.vertex_value(v[1], c), s.vertex_value(v[2], c)})));
+    }
+    // lambda_T for the triangle whose object-space centroid is `centre` (its
+    // pixel clamped here into the w x h image); N'_T clamped to [0, 256]
+    // (0: no points).
+    double density(param_source::site centre, double w, double h) const {
+      const params& p = n_.p_;
+      if (src_.bandwidth.is_constant() && src_.impulses.is_constant()) return n_.lambda_;
+      centre.x = std::clamp(centre.x, 0.5, w - 0.5);
+      centre.y = std::clamp(centre.y, 0.5, h - 0.5);
+      const double a = bandwidth(centre);
+      const double np = std::clamp(src_.impulses.value(centre, p.impulses), 0.0,
+                                   detail::constants::kGaborMaxImpulses);
+      if (a == p.bandwidth && np == p.impulses) return n_.lambda_;
+      const double r = n_.radius_of(a);
+      return np / (detail::constants::kPi * r * r);
+    }
+    // The kernel of the point at `at` (its pixel and barycentric coordinates)
+    // of a triangle of density `lambda`.
+    kernel at(const param_source::site& at, double random_angle, double lambda) const {
       const params& p = n_.p_;
       double f = p.frequency, scale = n_.scale_;
-      if (!src_.frequency.is_constant()) {
-        f = std::clamp(src_.frequency.value(object, pos.x, pos.y, p.frequency), 0.0,
+      const double a = src_.bandwidth.is_constant() ? p.bandwidth : bandwidth(at);
+      const double r = n_.radius_of(a);
+      if (!src_.frequency.is_constant())
+        f = std::clamp(src_.frequency.value(at, p.frequency), 0.0,
                        detail::constants::kNprGaborMaxFrequency);
-        scale = 1.0 / std::sqrt(n_.lambda_ * weight_moment() * n_.interpolated_energy(f, energy_));
-      }
-      const double theta =
-          p.isotropic ? random_angle : src_.orientation.value(object, pos.x, pos.y, p.orientation);
-      return {{f * std::cos(theta), f * std::sin(theta)}, scale};
+      if (!src_.frequency.is_constant() || a != p.bandwidth || lambda != n_.lambda_)
+        scale = 1.0 / std::sqrt(lambda * weight_moment() * n_.interpolated_energy(f, r, energy_));
+      const double theta = p.isotropic ? random_angle : src_.orientation.value(at, p.orientation);
+      return {{f * std::cos(theta), f * std::sin(theta)}, a, r, scale};
     }
 
    private:
@@ -438,21 +484,17 @@ class npr_gabor {
     f.validate(where, needs(), c::kNprGaborMaxImageSide);
     tris.validate(where, c::kNprGaborMaxTriangles);
     src.frequency.validate(where, "frequency", 0.0, c::kNprGaborMaxFrequency,
-                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height());
+                           "0 <= frequency <= 0.5 (cycles per pixel)", f.width(), f.height(),
+                           tris.vertices());
     src.orientation.validate(where, "orientation", -std::numeric_limits<double>::max(),
                              std::numeric_limits<double>::max(), "finite (radians)", f.width(),
-                             f.height());
+                             f.height(), tris.vertices());
     src.bandwidth.validate(where, "bandwidth", c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
-                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height());
+                           "0.01 <= bandwidth <= 10 (1/pixel)", f.width(), f.height(),
+                           tris.vertices());
     src.impulses.validate(where, "impulses", std::numeric_limits<double>::min(),
-                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height());
-    for (const auto& [name, s] :
-         {std::pair<const char*, const param_source*>{"bandwidth", &src.bandwidth},
-          {"impulses", &src.impulses}})
-      if (s->which() == param_source::kind::per_pixel)
-        detail::throw_out_of_range(where, std::string(name) + " source", "per pixel",
-                                   "constant or per object (it sets the kernel radius or the "
-                                   "density a triangle's point count is made from)");
+                          c::kGaborMaxImpulses, "0 < impulses <= 256", f.width(), f.height(),
+                          tris.vertices());
   }
   template <class Out>
   static void check_out(const frame& f, const Out& out) {
@@ -480,21 +522,30 @@ class npr_gabor {
     const double cross = e1x * e2y - e1y * e2x;
     if (p_.cull_back_faces && !(cross < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
-    const double r = kernel_.radius();
+    const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
+    const std::uint32_t* vertices = &tris.indices[3 * t];
+    const double cull = pp.off_image_radius(object, vertices);
     const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
     const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
                  hi_x = std::max({s[0].x, s[1].x, s[2].x});
     const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
                  hi_y = std::max({s[0].y, s[1].y, s[2].y});
-    if (hi_x + r < 0.0 || lo_x - r > w || hi_y + r < 0.0 || lo_y - r > h) return;
-    const double n = lambda_ * 0.5 * std::fabs(cross);
+    if (hi_x + cull < 0.0 || lo_x - cull > w || hi_y + cull < 0.0 || lo_y - cull > h) return;
+    // The object-space centroid (b = 1/3 each) and its pixel, sum z_i s_i / sum z_i.
+    const double zs = z[0] + z[1] + z[2], third = 1.0 / 3.0;
+    const double lambda = pp.density({object,
+                                      (z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs,
+                                      (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs,
+                                      vertices,
+                                      {third, third, third}},
+                                     w, h);
+    const double n = lambda * 0.5 * std::fabs(cross);
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
     const double inv = 1.0 / cross;
     const double d1 = 1.0 / z[1] - 1.0 / z[0], d2 = 1.0 / z[2] - 1.0 / z[0];
     const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
     const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;
-    const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
     npr_gabor_lod lod = npr_gabor_lod::of(n);
     if (p_.thinning && n < 1.0 && lod.count == 1) {
       lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
@@ -506,7 +557,9 @@ class npr_gabor {
       const dvec2 at{
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
           (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
-      const point_parameters::kernel k = pp.at(object, at, pt.angle);
+      const point_parameters::kernel k =
+          pp.at({object, at.x, at.y, vertices, {pt.b[0], pt.b[1], pt.b[2]}}, pt.angle, lambda);
+      const double r = k.radius;
       // Pixel centres x + 1/2 within r of the point, clamped to the image.
       const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
       const double x1 = std::min(std::floor(at.x + r - 0.5), w - 1.0);
@@ -518,7 +571,7 @@ class npr_gabor {
       rec.y = at.y;
       rec.fx = k.F.x;
       rec.fy = k.F.y;
-      rec.bandwidth = p_.bandwidth;
+      rec.bandwidth = k.bandwidth;
       rec.radius = r;
       rec.weight = lod.weight(j) * pt.amplitude * k.scale;
       rec.q0 = q0;

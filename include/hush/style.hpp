@@ -15,6 +15,7 @@
 //   hush::style::graphite{0.8, 0.6}.paper(n, n_fine, tone);
 //   hush::style::watercolor{0.35}.colour(c, noise);    // overlay on scene colour
 //   hush::style::projected_normal_field(frame, field, 1e-4);  // hatching direction
+//   hush::style::curvature_field(frame, normals, field, 1e-3, 0.2, 1e-4);  // along curvature
 //
 // The thresholding (sec. 4, "binary styles"): the paper is white where the
 // noise is above a threshold theta, with a smooth step of width w (in noise
@@ -47,6 +48,19 @@
 #include "hush/detail/constants.hpp"
 
 namespace hush {
+
+namespace detail {
+// The derivative of a field at a pixel from its neighbours' values (NaN where
+// the neighbour is missing: another object, the border, no value): central
+// where both exist, one-sided where one does, NaN where none does.
+inline double field_difference(double lo, double mid, double hi) {
+  if (!std::isnan(lo) && !std::isnan(hi)) return 0.5 * (hi - lo);
+  if (!std::isnan(hi)) return hi - mid;
+  if (!std::isnan(lo)) return mid - lo;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+}  // namespace detail
+
 namespace style {
 
 // Phi(x), the standard normal CDF. Phi(-inf) = 0, Phi(+inf) = 1, NaN -> NaN.
@@ -222,12 +236,7 @@ inline void projected_normal_field(const frame& f, const image_view<float>& out,
     if (f.object_id(x, y) != o || !(z > 0.0) || !std::isfinite(z)) return nan;
     return 1.0 / z;
   };
-  auto diff = [](double lo, double mid, double hi) {
-    if (!std::isnan(lo) && !std::isnan(hi)) return 0.5 * (hi - lo);
-    if (!std::isnan(hi)) return hi - mid;
-    if (!std::isnan(lo)) return mid - lo;
-    return std::numeric_limits<double>::quiet_NaN();
-  };
+  const auto diff = detail::field_difference;
   for (std::size_t y = 0; y < h; ++y)
     for (std::size_t x = 0; x < w; ++x) {
       out(x, y) = std::numeric_limits<float>::quiet_NaN();
@@ -238,6 +247,71 @@ inline void projected_normal_field(const frame& f, const image_view<float>& out,
       const double gy = diff(y > 0 ? inv(x, y - 1, o) : nan, mid, y + 1 < h ? inv(x, y + 1, o) : nan);
       if (!(std::hypot(gx, gy) / mid >= min_slope)) continue;  // also NaN
       out(x, y) = static_cast<float>(std::atan2(gy, gx));
+    }
+}
+
+// Orientation along the principal curvature (paper sec. 4: "an orientation
+// field along the principal curvature"), an image-space estimate from the
+// G-buffer's normals: at every pixel the screen direction in which the unit
+// normal turns fastest, in radians from +x towards +y (down), written to `out`
+// (frame-sized); elsewhere projected_normal_field's value (the fallback).
+// `normals`: per pixel, any space (world or view: the estimate is invariant
+// under rotations), any length. *Derivation:* with J = [dN/dx dN/dy] the
+// screen Jacobian of the unit normal (3 x 2, by differences within one object
+// as projected_normal_field) and P = [dX/dx dX/dy] that of the surface point,
+// J = S P (S the shape operator, symmetric), so G = J^T J = P^T S^2 P. Where
+// the screen map is a similarity (P^T P = s^2 I: the surface seen face-on), the
+// eigenvectors of G are the principal directions (S^2 has S's eigenvectors and
+// eigenvalues kappa^2), the larger eigenvalue belonging to the larger
+// |curvature|; under foreshortening G is the image-space version (a direction
+// the screen compresses weighs more). The eigenvector of the larger eigenvalue
+// of G = [[a, b], [b, c]] is at angle atan2(2b, a - c) / 2 (mod pi: a Gabor
+// kernel's F and -F are the same kernel). Fallback where the estimate is
+// unusable: the normal turns by less than min_turn radians per pixel (sqrt of
+// the larger eigenvalue: flat), the anisotropy (l1 - l2) / (l1 + l2) is below
+// min_anisotropy (umbilic, e.g. a sphere: no principal direction), a normal is
+// zero or not finite, or no neighbour shows the object along x or y. Throws
+// as projected_normal_field, and names "normals size" when normals is not the
+// frame's size. min_turn, min_anisotropy and min_slope are thresholds (NaN:
+// always fall back).
+inline void curvature_field(const frame& f, const image_view<const vec3>& normals,
+                            const image_view<float>& out, double min_turn, double min_anisotropy,
+                            double min_slope) {
+  projected_normal_field(f, out, min_slope);
+  const std::size_t w = f.width(), h = f.height();
+  if (normals.width != w || normals.height != h || !normals.data)
+    detail::throw_out_of_range("hush::style::curvature_field", "normals size",
+                               std::to_string(normals.width) + "x" + std::to_string(normals.height),
+                               "the frame's size (non-null)");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Component c of the unit normal at (x, y) if it shows object o, else NaN.
+  auto unit = [&](std::size_t x, std::size_t y, std::uint32_t o, int c) {
+    const vec3 n = normals(x, y);
+    const double nx = n.x, ny = n.y, nz = n.z;
+    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+    if (f.object_id(x, y) != o || !(len > 0.0) || !std::isfinite(len)) return nan;
+    return (c == 0 ? nx : (c == 1 ? ny : nz)) / len;
+  };
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const std::uint32_t o = f.object_id(x, y);
+      if (o == 0) continue;
+      double a = 0, b = 0, c = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double mid = unit(x, y, o, k);
+        const double dx = detail::field_difference(x > 0 ? unit(x - 1, y, o, k) : nan, mid,
+                                                   x + 1 < w ? unit(x + 1, y, o, k) : nan);
+        const double dy = detail::field_difference(y > 0 ? unit(x, y - 1, o, k) : nan, mid,
+                                                   y + 1 < h ? unit(x, y + 1, o, k) : nan);
+        a += dx * dx;
+        b += dx * dy;
+        c += dy * dy;
+      }
+      const double half_gap = std::hypot(0.5 * (a - c), b);
+      const double larger = 0.5 * (a + c) + half_gap;
+      if (!(std::sqrt(larger) >= min_turn) || !(2.0 * half_gap >= min_anisotropy * (a + c)))
+        continue;  // also NaN: keep the fallback
+      out(x, y) = static_cast<float>(0.5 * std::atan2(2.0 * b, a - c));
     }
 }
 

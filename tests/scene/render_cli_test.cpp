@@ -49,6 +49,22 @@ std::vector<hs::gbuffer> scene_frames(const fs::path& dir) {
   return g;
 }
 
+#if HUSH_TEST_HAVE_STB_IMAGE
+// The PNG at `path` as kW x kH RGB bytes.
+std::vector<unsigned char> png_rgb(const fs::path& path) {
+  const std::string bytes = hush_cli_test::slurp(path);
+  int w = 0, h = 0, c = 0;
+  unsigned char* px = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                                            static_cast<int>(bytes.size()), &w, &h, &c, 3);
+  REQUIRE(px != nullptr);
+  REQUIRE(w == kW);
+  REQUIRE(h == kH);
+  std::vector<unsigned char> rgb(px, px + std::size_t(kW) * kH * 3);
+  stbi_image_free(px);
+  return rgb;
+}
+#endif
+
 std::vector<float> frame_file(const fs::path& dir, int i, std::size_t expect_channels) {
   char name[16];
   std::snprintf(name, sizeof name, "%04d.npy", i);
@@ -277,26 +293,41 @@ TEST_CASE("render npr-gabor --style writes one PNG per frame for every style") {
   for (int i = 0; i < kFrames; ++i) {
     char name[16];
     std::snprintf(name, sizeof name, "%04d.png", i);
-    const std::string a = hush_cli_test::slurp(dir / "hatching" / name);
-    const std::string b = hush_cli_test::slurp(simd_out / name);
-    REQUIRE(b.size() > 24);
+    REQUIRE(hush_cli_test::slurp(simd_out / name).size() > 24);
 #if HUSH_TEST_HAVE_STB_IMAGE
-    int w = 0, h = 0, c = 0;
-    unsigned char* pa = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(a.data()),
-                                              static_cast<int>(a.size()), &w, &h, &c, 3);
-    unsigned char* pb = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(b.data()),
-                                              static_cast<int>(b.size()), &w, &h, &c, 3);
-    REQUIRE(pa != nullptr);
-    REQUIRE(pb != nullptr);
+    const std::vector<unsigned char> pa = png_rgb(dir / "hatching" / name);
+    const std::vector<unsigned char> pb = png_rgb(simd_out / name);
     std::size_t differ = 0;
-    for (std::size_t p = 0; p < std::size_t(kW) * kH * 3; ++p) differ += pa[p] != pb[p];
+    for (std::size_t p = 0; p < pa.size(); ++p) differ += pa[p] != pb[p];
     // A flip needs |noise - threshold| below ~1e-6 (the float budget): over 3600 values, the
     // chance of even one is ~1e-2; allow 3 channels of one pixel.
     CHECK(differ <= 3);
-    stbi_image_free(pa);
-    stbi_image_free(pb);
 #endif
   }
+  // --orientation-field curvature: hatching along the torus's principal curvature, which
+  // differs from the projected normal (NaN where the tube faces the camera, where the
+  // curvature still has a direction): a hard-step drawing, not the same as the default's.
+  const fs::path curv_out = dir / "hatching_curvature";
+  const result rc = run_hush("render npr-gabor --gbuffer '" + (dir / "g").string() + "' --out '" +
+                                 curv_out.string() +
+                                 "' --frequency 0.25 --bandwidth 0.3 --style hatching --softness 0"
+                                 " --orientation-field curvature",
+                             dir);
+  REQUIRE(rc.exit_code == 0);
+#if HUSH_TEST_HAVE_STB_IMAGE
+  std::size_t differ = 0;
+  for (int i = 0; i < kFrames; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%04d.png", i);
+    const std::vector<unsigned char> pa = png_rgb(dir / "hatching" / name);
+    const std::vector<unsigned char> pb = png_rgb(curv_out / name);
+    for (std::size_t p = 0; p < pa.size(); ++p) {
+      CHECK((pb[p] == 0 || pb[p] == 255));
+      differ += pa[p] != pb[p];
+    }
+  }
+  CHECK(differ > 0);
+#endif
 }
 
 TEST_CASE("render --symmetric refuses G-buffers without forward velocity") {
@@ -336,7 +367,8 @@ TEST_CASE("gallery writes the scene-driven noises' animations (GIF) and their pa
                             expected{"coherent_fig3b.gif", 128, 96, 32},
                             expected{"npr_fig1_rotate.gif", 384, 96, 24},
                             expected{"npr_fig1_walkthrough.gif", 384, 96, 24},
-                            expected{"npr_styles_rotate.gif", 256, 192, 24}}) {
+                            expected{"npr_styles_rotate.gif", 256, 192, 24},
+                            expected{"npr_watercolor_rotate.gif", 128, 96, 24}}) {
     CAPTURE(e.file);
     const std::string bytes = hush_cli_test::slurp(dir / "g" / e.file);
     REQUIRE(bytes.size() > 13);
