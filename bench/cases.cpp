@@ -229,12 +229,15 @@ hush::gabor<D> make_gabor(double impulses) {
   return hush::gabor<D>(prm);
 }
 
-// Filtered evaluation (samples with footprints) against the double reference.
+// Filtered evaluation (samples with footprints) against the double reference; with
+// `normals` (3D), surface noise: each sample also has a random unit normal.
 template <int D, class Exec>
-prepared_case prepare_gabor_samples(const hush::gabor<D>& noise, const Exec& ex, std::size_t n) {
+prepared_case prepare_gabor_samples(const hush::gabor<D>& noise, const Exec& ex, std::size_t n,
+                                    bool normals = false) {
   struct sample_buffers {
     std::vector<fvec<D>> points;
     std::vector<hush::footprint<D>> fps;
+    std::vector<fvec<3>> normals;
     std::vector<float> out;
   };
   auto b = std::make_shared<sample_buffers>();
@@ -243,11 +246,17 @@ prepared_case prepare_gabor_samples(const hush::gabor<D>& noise, const Exec& ex,
   for (std::size_t i = 0; i < n; ++i)
     b->fps.push_back(hush::footprint<D>::isotropic(
         std::pow(10.0, r.uniform<double>(kGaborFootprintLog10Lo, kGaborFootprintLog10Hi))));
+  // Uniform on the sphere: z uniform in [-1, 1], azimuth uniform.
+  for (std::size_t i = 0; normals && i < n; ++i) {
+    const double z = r.uniform<double>(-1, 1), phi = r.uniform<double>(0, hush::detail::constants::kTwoPi);
+    const double rho = std::sqrt(1 - z * z);
+    b->normals.push_back({float(rho * std::cos(phi)), float(rho * std::sin(phi)), float(z)});
+  }
   b->out.resize(n);
   prepared_case p;
   p.samples = n;
   p.run = [noise, ex, b] {
-    const hush::samples<D> s{b->points, b->fps, {}};
+    const hush::samples<D> s{b->points, b->fps, b->normals};
     hush::evaluate(noise, ex, s, hush::span<float>(b->out));
     keep(b->out);
   };
@@ -256,16 +265,20 @@ prepared_case prepare_gabor_samples(const hush::gabor<D>& noise, const Exec& ex,
     hush::sample_input<D> in;
     in.position = hush::vec_cast<double>(b->points[i]);
     in.fp = b->fps[i];
+    if (normals) {
+      in.normal = hush::vec_cast<double>(b->normals[i]);
+      in.has_normal = true;
+    }
     p.value_error.add(b->out[i], noise.template sample_value<double>(in));
   }
   return p;
 }
 
 // The spectrum error (gabor_quality.hpp) as the quality note of cases [from, end) of
-// 2D Gabor noise `noise` on `ex`: measured once, when the first of them is prepared.
-template <class Exec>
+// Gabor noise `noise` on `ex`: measured once, when the first of them is prepared.
+template <int D, class Exec>
 void add_spectrum_note(std::vector<bench_case>& cases, std::size_t from,
-                       const hush::gabor<2>& noise, const Exec& ex) {
+                       const hush::gabor<D>& noise, const Exec& ex) {
   auto note = std::make_shared<std::string>();
   for (std::size_t i = from; i < cases.size(); ++i) {
     cases[i].prepare = [inner = cases[i].prepare, note, noise, ex] {
@@ -278,14 +291,17 @@ void add_spectrum_note(std::vector<bench_case>& cases, std::size_t from,
 }
 
 // Gabor rows on `ex`: N' = 16 grid and points (value, value + gradient); N' = 32,
-// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16. The 2D
-// unfiltered rows carry the spectrum error.
+// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16; 3D
+// surface noise (samples with normals and the filtered rows' footprints). The
+// unfiltered rows, 2D and 3D, carry the spectrum error.
 template <class Exec>
 void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex) {
   const std::size_t first_2d = cases.size();
   add_noise_rows(cases, s, "gabor 2D", make_gabor<2>(kGaborImpulses[0]), ex);
   add_spectrum_note(cases, first_2d, make_gabor<2>(kGaborImpulses[0]), ex);
+  const std::size_t first_3d = cases.size();
   add_noise_rows(cases, s, "gabor 3D", make_gabor<3>(kGaborImpulses[0]), ex);
+  add_spectrum_note(cases, first_3d, make_gabor<3>(kGaborImpulses[0]), ex);
   const hush::grid<2> g = make_grid<2>(s);
   for (std::size_t k = 1; k < std::size(kGaborImpulses); ++k) {
     const hush::gabor<2> noise = make_gabor<2>(kGaborImpulses[k]);
@@ -311,6 +327,12 @@ void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& 
   c.note = "footprints: isotropic, 0.001 ... 1 units";
   c.prepare = [ex, n = s.points] {
     return prepare_gabor_samples(make_gabor<2>(kGaborImpulses[0]), ex, n);
+  };
+  cases.push_back(c);
+  c.noise = "gabor 3D surface";
+  c.note = "random unit normals; footprints: isotropic, 0.001 ... 1 units";
+  c.prepare = [ex, n = s.points] {
+    return prepare_gabor_samples(make_gabor<3>(kGaborImpulses[0]), ex, n, true);
   };
   cases.push_back(c);
 }

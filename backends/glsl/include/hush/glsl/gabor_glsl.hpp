@@ -18,10 +18,15 @@
 //   hush_gabor_row  hush_gabor_row_of(float w, y[, z])
 //   float hush_gabor_pair(x, row, k), vec3 hush_gabor_pair_gradient(x, row, k, a)
 //                                            gabor_kernel.hpp's separable kernel
+//   bool hush_gabor_unit_normal(n, out u), void hush_gabor_basis(n, out t, out b)
+//                                            gabor<3>::unit_normal, detail::orthonormal_basis
+//   uint hush_gabor_surface_stream(key, cell), vec4 hush_gabor_plane_offsets(d, n, t, b)
+//                                            the surface process's stream and slab offsets
 //
-// The runner (noise_program<gabor<D>> below) is a one-band banded program
+// The runner (noise_program<gabor<D>> below) is a banded program (one band in 2D, two in 3D)
 // (noise_program.hpp): the CPU splits p / r into cell and fraction in double
-// (as gabor<D>::eval does), the shader walks the 3^D cells around it. Its
+// (as gabor<D>::eval does), the shader walks the 3^D cells around it (3D
+// samples with a normal: the 27 surface cells of band 1). Its
 // contract:
 //  - the same integer path as the CPU: lattice_hash of the noise's key, the
 //    cell's hush::rng stream, the Poisson count from the first word by the
@@ -37,13 +42,24 @@
 //    (gabor_kernel.hpp) computed per sample in float (cyclic Jacobi on the
 //    footprint matrix instead of the CPU's double Jacobi): within a stated
 //    tolerance of the CPU (the test); degenerate footprints stay finite;
-//  - 3D samples with a non-zero normal (surface noise, gabor.hpp sec. 4.3)
-//    are not evaluated on GLSL: the result is NaN (documented limitation;
-//    docs/gabor.md). A zero normal is the solid noise, as on the CPU;
+//  - 3D samples with a normal (surface noise, gabor.hpp sec. 4.3): in 3D the
+//    program has a second band, p / (r sqrt(3/2)) split on the CPU in double
+//    (gabor<3>::surface_eval's split), and the surface Poisson table follows
+//    the solid one in hush_table. The shader forms the unit normal, the
+//    tangent frame (Duff et al.) and the filter of the footprint projected
+//    onto the plane in float (the CPU: double, rounded to float), then sums
+//    the slab's impulses with the CPU's integer path and operation order
+//    (simd/gabor-inl.h eval_surface); within the float budget plus the float
+//    frame's error of the double reference (the test). A zero normal is the
+//    solid noise, a NaN or +-Inf component gives NaN, as on the CPU. No fp64
+//    anywhere in the shader; exp and sin/cos are hush's polynomials (not the
+//    GPU's builtins), so they carry the CPU's error bounds on any GPU that
+//    rounds +, -, * correctly;
 //  - NaN or +-Inf in a coordinate gives NaN.
 #ifndef HUSH_GLSL_GABOR_GLSL_HPP
 #define HUSH_GLSL_GABOR_GLSL_HPP
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -55,17 +71,22 @@
 
 namespace hush {
 namespace glsl {
-// Gabor noise, 2D and 3D, as a one-band banded program: band 0's position is
-// p / r (cell units), split on the CPU in double. Uniforms: hush_key
-// (seed_key(seed)), hush_kind (0 isotropic, 1 anisotropic, 2 hybrid),
-// hush_words (words per impulse), hush_table_size and hush_table[] (the
-// Poisson thresholds), hush_par[] (float bits of the float constants the CPU
-// uses, indices below).
+// Gabor noise, 2D and 3D, as a banded program: band 0's position is p / r
+// (cell units), band 1's (3D: surface noise) p / (r sqrt(3/2)), split on the
+// CPU in double. Uniforms: hush_key (seed_key(seed)), hush_kind (0 isotropic,
+// 1 anisotropic, 2 hybrid), hush_words (words per impulse), hush_table_size
+// and hush_table[] (the Poisson thresholds; 3D: hush_surface_table_size and
+// the surface table at kGaborMaxThresholds), hush_par[] (float bits of the
+// float constants the CPU uses, indices below). In 3D that is about 430 uniform
+// components with the runner's, within the 512 that GL 4.3 guarantees a
+// compute shader (GL_MAX_COMPUTE_UNIFORM_COMPONENTS).
 template <int D>
 struct noise_program<gabor<D>> {
   static constexpr int dimension = D;
   static constexpr const char* name = D == 2 ? "gabor2" : "gabor3";
   static constexpr bool banded = true;
+  // hush_table's entries: the solid table, and in 3D the surface table after it.
+  static constexpr int kTableEntries = hush::detail::constants::kGaborMaxThresholds * (D == 3 ? 2 : 1);
 
   // hush_par indices.
   enum par : int {
@@ -85,6 +106,8 @@ struct noise_program<gabor<D>> {
     kFrameAxis = kFrameB + 3,  // 3
     kFilterK = kFrameAxis + 3,
     kFilterM,
+    kSurfaceScale,      // 3D: surface_scale()
+    kSurfaceGradScale,  // 3D: surface_scale() / surface cell
     kCount
   };
 
@@ -95,13 +118,19 @@ struct noise_program<gabor<D>> {
         "uniform uint hush_key;         // seed_key(seed)\n"
         "uniform uint hush_kind;        // 0 isotropic, 1 anisotropic, 2 hybrid\n"
         "uniform uint hush_words;       // stream words per impulse\n"
-        "uniform uint hush_table_size;  // Poisson thresholds used\n"
-        "uniform uint hush_table[" +
-        std::to_string(c::kGaborMaxThresholds) +
-        "];  // poisson_table::thresholds()\n"
+        "uniform uint hush_table_size;  // Poisson thresholds used (solid)\n" +
+        std::string(D == 3 ? "uniform uint hush_surface_table_size;  // (surface process)\n"
+                           : "") +
+        "uniform uint hush_table[" + std::to_string(kTableEntries) +
+        "];  // poisson_table::thresholds(): solid" +
+        (D == 3 ? ", then the surface table's at " + std::to_string(c::kGaborMaxThresholds)
+                : std::string()) +
+        "\n"
         "uniform uint hush_par[" +
         std::to_string(kCount) + "];  // float bits of the CPU's float constants\n";
     s += "const uint hush_gabor_dim = " + d + "u;\n";
+    if (D == 3)
+      s += "const uint hush_surface_table = " + std::to_string(c::kGaborMaxThresholds) + "u;\n";
     for (const auto& [n, i] : {std::pair<const char*, int>{"NEG_A", kNegA},
                                {"A", kA},
                                {"TAPER_K", kTaperK},
@@ -117,17 +146,33 @@ struct noise_program<gabor<D>> {
                                {"FRAME_B", kFrameB},
                                {"FRAME_AXIS", kFrameAxis},
                                {"FILTER_K", kFilterK},
-                               {"FILTER_M", kFilterM}})
+                               {"FILTER_M", kFilterM},
+                               {"SURFACE_SCALE", kSurfaceScale},
+                               {"SURFACE_GRAD_SCALE", kSurfaceGradScale}})
       s += std::string("const uint hush_gp_") + n + " = " + std::to_string(i) + "u;\n";
     s += R"glsl(float hush_gp(uint i) { return uintBitsToFloat(hush_par[i]); }
-// poisson_table::count: the number of thresholds <= u (sorted: stop at the first above).
-uint hush_gabor_count(uint u) {
+// poisson_table::count: the number of thresholds <= u (sorted: stop at the first above),
+// of the table at hush_table[base], `size` entries.
+uint hush_gabor_count(uint u, uint base, uint size) {
   uint n = 0u;
-  for (uint k = 0u; k < hush_table_size; ++k) {
-    if (hush_table[k] > u) break;
+  for (uint k = 0u; k < size; ++k) {
+    if (hush_table[base + k] > u) break;
     ++n;
   }
   return n;
+}
+// gabor_marks::direction: the unit 3D direction of an impulse's second word (isotropic,
+// hybrid), uniform in the cap around omega0.
+vec3 hush_gabor_direction(uint w1) {
+  float ct = 1.0 - hush_gp(hush_gp_ONE_MINUS_CAP) * hush_gabor_half(w1, 0u);
+  float st = sqrt((1.0 - ct) * (1.0 + ct));
+  vec2 sc = hush_sincos_turns(hush_gabor_half(w1, 1u));
+  float lx = st * sc.y, ly = st * sc.x;
+  vec3 dir;
+  for (uint i = 0u; i < 3u; ++i)
+    dir[i] = (hush_gp(hush_gp_FRAME_T + i) * lx + hush_gp(hush_gp_FRAME_B + i) * ly) +
+             hush_gp(hush_gp_FRAME_AXIS + i) * ct;
+  return dir;
 }
 // gabor_marks::draw: weight and frequency vector (cycles per cell) of an impulse's words.
 float hush_gabor_marks(uint w0, uint w1, uint w2, out vec3 phi) {
@@ -147,15 +192,43 @@ float hush_gabor_marks(uint w0, uint w1, uint w2, out vec3 phi) {
   } else {
     float f = hybrid ? hush_gp(hush_gp_PHI0) + hush_gp(hush_gp_DPHI) * (hush_gabor_half(w2, 0u) - half_)
                      : hush_gp(hush_gp_PHI0);
-    float ct = 1.0 - hush_gp(hush_gp_ONE_MINUS_CAP) * hush_gabor_half(w1, 0u);
-    float st = sqrt((1.0 - ct) * (1.0 + ct));
-    vec2 sc = hush_sincos_turns(hush_gabor_half(w1, 1u));
-    float lx = st * sc.y, ly = st * sc.x;
-    for (uint i = 0u; i < 3u; ++i)
-      phi[i] = f * ((hush_gp(hush_gp_FRAME_T + i) * lx + hush_gp(hush_gp_FRAME_B + i) * ly) +
-                    hush_gp(hush_gp_FRAME_AXIS + i) * ct);
+    phi = f * hush_gabor_direction(w1);
   }
   return w;
+}
+// gabor<D>::filtered_pair in `dim` dimensions: the term (value, d/dd) of one impulse,
+// w amp e^{-Phi^T M Phi} e^{-A d^T Q d} cos(2 pi <Q Phi, d>) tau(s).
+vec4 hush_gabor_filtered_pair(mat3 q, mat3 m, float amp, vec3 d, float s, float w, vec3 phi,
+                              uint dim, bool grad) {
+  float neg_a = hush_gp(hush_gp_NEG_A), a = hush_gp(hush_gp_A), tk = hush_gp(hush_gp_TAPER_K);
+  float mu[3], qd[3];
+  float att = 0.0, dqd = 0.0, theta = 0.0;
+  for (uint i = 0u; i < dim; ++i) {
+    float x = 0.0, y = 0.0, z = 0.0;
+    for (uint j = 0u; j < dim; ++j) {
+      x += q[j][i] * phi[j];
+      y += m[j][i] * phi[j];
+      z += q[j][i] * d[j];
+    }
+    mu[i] = x;
+    att += phi[i] * y;
+    qd[i] = z;
+    dqd += d[i] * z;
+  }
+  for (uint i = 0u; i < dim; ++i) theta += mu[i] * d[i];
+  float p = ((w * amp) * hush_exp_neg(-att)) * hush_exp_neg(neg_a * dqd);
+  vec2 sc = hush_sincos_turns(theta);
+  vec4 r = vec4(0.0);
+  if (grad) {
+    vec2 tw = hush_gabor_taper_derivative(s, tk);
+    float pc = p * sc.y, ps = HUSH_TWO_PI * ((p * tw.x) * sc.x);
+    r.x = pc * tw.x;
+    for (uint i = 0u; i < dim; ++i)
+      r[1u + i] = pc * ((tw.y + tw.y) * d[i] - (a + a) * (tw.x * qd[i])) - ps * mu[i];
+  } else {
+    r.x = (p * sc.y) * hush_gabor_taper(s, tk);
+  }
+  return r;
 }
 // The solid noise's unscaled sum and gradient sum at cell i0 + fraction f
 // (gabor<D>::eval, or filtered_eval with filter q, m, amp when `filtered`).
@@ -173,7 +246,7 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool filtered, mat3 q, mat3 m, float amp, 
       cell[ax] = i0[ax] + uint(o[ax]);
     }
     uint key = hush_gabor_cell_stream(hush_key, uvec3(cell[0], cell[1], cell[2]), hush_gabor_dim);
-    uint count = hush_gabor_count(hush_stream_word(key, 0u));
+    uint count = hush_gabor_count(hush_stream_word(key, 0u), 0u, hush_table_size);
     for (uint k = 0u; k < count; ++k) {
       uint counter = 1u + k * hush_words;
       uint w0 = hush_stream_word(key, counter);
@@ -206,33 +279,11 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool filtered, mat3 q, mat3 m, float amp, 
         }
         continue;
       }
-      // filtered_pair: w amp e^{-Phi^T M Phi} e^{-A d^T Q d} cos(2 pi <Q Phi, d>) tau(s).
-      float mu[3], qd[3];
-      float att = 0.0, dqd = 0.0, theta = 0.0;
-      for (uint i = 0u; i < hush_gabor_dim; ++i) {
-        float x = 0.0, y = 0.0, z = 0.0;
-        for (uint j = 0u; j < hush_gabor_dim; ++j) {
-          x += q[j][i] * phi[j];
-          y += m[j][i] * phi[j];
-          z += q[j][i] * d[j];
-        }
-        mu[i] = x;
-        att += phi[i] * y;
-        qd[i] = z;
-        dqd += d[i] * z;
-      }
-      for (uint i = 0u; i < hush_gabor_dim; ++i) theta += mu[i] * d[i];
-      float p = ((w * amp) * hush_exp_neg(-att)) * hush_exp_neg(neg_a * dqd);
-      vec2 sc = hush_sincos_turns(theta);
-      if (grad) {
-        vec2 tw = hush_gabor_taper_derivative(s, tk);
-        float pc = p * sc.y, ps = HUSH_TWO_PI * ((p * tw.x) * sc.x);
-        sum += pc * tw.x;
-        for (uint i = 0u; i < hush_gabor_dim; ++i)
-          g[i] += pc * ((tw.y + tw.y) * d[i] - (a + a) * (tw.x * qd[i])) - ps * mu[i];
-      } else {
-        sum += (p * sc.y) * hush_gabor_taper(s, tk);
-      }
+      vec4 t = hush_gabor_filtered_pair(q, m, amp, vec3(d[0], d[1], d[2]), s, w, phi,
+                                        hush_gabor_dim, grad);
+      sum += t.x;
+      if (grad)
+        for (uint i = 0u; i < hush_gabor_dim; ++i) g[i] += t[1u + i];
     }
   }
   return vec4(sum, g);
@@ -248,33 +299,139 @@ vec4 hush_gabor_eval(uvec3 i0, vec3 f, bool filtered, mat3 fp, bool grad) {
   return vec4(r.x * hush_gp(hush_gp_SCALE), r.yzw * hush_gp(hush_gp_GRAD_SCALE));
 }
 )glsl";
+    if (D == 3) s += R"glsl(// ---- Surface noise (3D; gabor<3>::sample_eval with a normal, surface_eval).
+// The surface process's unscaled sum and gradient sum at surface cell i0 + fraction f
+// for unit normal n, tangents t, b and the plane's filter q, m, amp (gabor<3>::surface_eval,
+// operation by operation).
+vec4 hush_gabor_surface_sum(uvec3 i0, vec3 f, vec3 n, vec3 t, vec3 b, mat3 q, mat3 m, float amp,
+                            bool grad) {
+  float tk = hush_gp(hush_gp_TAPER_K);
+  bool normalise = hush_kind != 1u;
+  bool hybrid = hush_kind == 2u;
+  float half_ = 1.0 / float(2);
+  float sum = 0.0;
+  vec3 g = vec3(0.0);
+  for (uint nc = 0u; nc < 27u; ++nc) {
+    int o[3];
+    uint cell[3], rest = nc;
+    for (uint ax = 0u; ax < 3u; ++ax) {
+      o[ax] = int(rest % 3u) - 1;
+      rest /= 3u;
+      cell[ax] = i0[ax] + uint(o[ax]);
+    }
+    uint key = hush_gabor_surface_stream(hush_key, uvec3(cell[0], cell[1], cell[2]));
+    uint count =
+        hush_gabor_count(hush_stream_word(key, 0u), hush_surface_table, hush_surface_table_size);
+    for (uint k = 0u; k < count; ++k) {
+      uint counter = 1u + k * hush_words;
+      uint w0 = hush_stream_word(key, counter);
+      vec3 d;
+      for (uint ax = 0u; ax < 3u; ++ax) d[ax] = (f[ax] - float(o[ax])) - hush_gabor_byte(w0, ax);
+      vec4 o4 = hush_gabor_plane_offsets(d, n, t, b);  // zn, z2, dk
+      float zn = o4.x, z2 = o4.y;
+      if (!(z2 < 1.0)) continue;
+      vec3 dk = vec3(o4.zw, 0.0);
+      float s = dk.x * dk.x + dk.y * dk.y;
+      if (!(s < 1.0)) continue;
+      // The impulse's weight and 3D direction (anisotropic: omega0) and |Phi|.
+      float w = float(2) * hush_gabor_byte(w0, 3u) - 1.0;
+      vec3 dir;
+      float phi = hush_gp(hush_gp_PHI0);
+      if (hush_kind == 1u) {
+        dir = vec3(hush_gp(hush_gp_FRAME_AXIS), hush_gp(hush_gp_FRAME_AXIS + 1u),
+                   hush_gp(hush_gp_FRAME_AXIS + 2u));
+      } else {
+        dir = hush_gabor_direction(hush_stream_word(key, counter + 1u));
+        if (hybrid)
+          phi = hush_gp(hush_gp_PHI0) +
+                hush_gp(hush_gp_DPHI) * (hush_gabor_half(hush_stream_word(key, counter + 2u), 0u) - half_);
+      }
+      float vt = (t.x * dir.x + t.y * dir.y) + t.z * dir.z;
+      float vb = (b.x * dir.x + b.y * dir.y) + b.z * dir.z;
+      float fq = phi;
+      if (normalise) {
+        float len2 = vt * vt + vb * vb;
+        fq = len2 > 0.0 ? phi / sqrt(len2) : 0.0;
+      }
+      vec2 slab = hush_gabor_taper_derivative(z2, tk);
+      vec4 r = hush_gabor_filtered_pair(q, m, amp, dk, s, w, vec3(fq * vt, fq * vb, 0.0), 2u, grad);
+      sum += r.x * slab.x;
+      if (grad) {
+        // d/dd of (kernel * slab taper): in the plane through dk, along n through z2.
+        float dz = r.x * (slab.y * ((zn + zn) * HUSH_GABOR_SURFACE_INV_H2));
+        for (uint ax = 0u; ax < 3u; ++ax)
+          g[ax] += ((r.y * t[ax] + r.z * b[ax]) * HUSH_GABOR_SURFACE_CELL) * slab.x + dz * n[ax];
+      }
+    }
+  }
+  return vec4(sum, g);
+}
+// Surface noise (value, gradient) at surface cell i0 + fraction f with unit normal n,
+// filtered over footprint fp (S, 3D) projected onto the tangent plane (surface_frame).
+vec4 hush_gabor_surface_eval(uvec3 i0, vec3 f, vec3 n, mat3 fp, bool grad) {
+  vec3 t, b;
+  hush_gabor_basis(n, t, b);
+  vec3 axes[2] = vec3[2](t, b);
+  mat3 plane = mat3(0.0);
+  for (uint i = 0u; i < 2u; ++i)
+    for (uint j = i; j < 2u; ++j) {
+      float v = 0.0;
+      for (uint r = 0u; r < 3u; ++r)
+        for (uint k = 0u; k < 3u; ++k) v += axes[i][r] * fp[k][r] * axes[j][k];
+      plane[j][i] = v;
+      plane[i][j] = v;
+    }
+  mat3 q, m;
+  float amp =
+      hush_gabor_filter(plane, 2u, hush_gp(hush_gp_FILTER_K), hush_gp(hush_gp_FILTER_M), q, m);
+  vec4 r = hush_gabor_surface_sum(i0, f, n, t, b, q, m, amp, grad);
+  return vec4(r.x * hush_gp(hush_gp_SURFACE_SCALE), r.yzw * hush_gp(hush_gp_SURFACE_GRAD_SCALE));
+}
+)glsl";
     return s;
   }
 
-  static int band_count(const gabor<D>&) { return 1; }
+  // Band 0: the solid process's cells; band 1 (3D): the surface process's.
+  static int band_count(const gabor<D>&) { return D == 3 ? 2 : 1; }
   static std::uint32_t band_period(const gabor<D>&, int, int) { return 0; }
-  // p / r in double: gabor<D>::for_each_pair's split.
-  static vec<double, D> band_position(const gabor<D>& g, int, const vec<double, D>& p) {
+  // p / r (band 0) or p / (r sqrt(3/2)) (band 1) in double: gabor<D>::for_each_pair's
+  // and surface_eval's splits.
+  static vec<double, D> band_position(const gabor<D>& g, int band, const vec<double, D>& p) {
+    double inv = g.inverse_cell();
+    if constexpr (D == 3)
+      if (band == 1) inv = g.inverse_surface_cell();
     vec<double, D> q;
-    for (int a = 0; a < D; ++a) q[a] = p[a] * g.inverse_cell();
+    for (int a = 0; a < D; ++a) q[a] = p[a] * inv;
     return q;
   }
-  // Samples (compute_source.hpp defines HUSH_SAMPLES) filter over fp and
-  // refuse surface noise (NaN); points and grids evaluate the plain noise.
+  // Samples (compute_source.hpp defines HUSH_SAMPLES) filter over fp; in 3D
+  // a non-zero finite normal selects surface noise (band 1), a zero normal the
+  // solid noise (band 0) and a non-finite one NaN, as gabor<3>::sample_eval.
+  // Points and grids evaluate the plain solid noise.
   static std::string band_begin(bool) {
-    return "  vec4 acc = vec4(0.0);\n  bool bad = false;\n"
+    const std::string surface =
+        D == 3 ? "  vec3 unit_n = vec3(0.0);\n  bool surface = false;\n" : "";
+    return "  vec4 acc = vec4(0.0);\n  bool bad = false;\n" + surface +
            "#ifdef HUSH_SAMPLES\n"
            "  mat3 fp3 = mat3(fp);\n  bool filtered = true;\n" +
-           std::string(D == 3 ? "  bad = has_nrm && nrm != vec3(0.0);\n" : "") +
+           std::string(D == 3 ? "  if (has_nrm) {\n    bad = hush_any_nonfinite(nrm);\n"
+                                "    surface = !bad && hush_gabor_unit_normal(nrm, unit_n);\n  }\n"
+                              : "") +
            "#else\n"
            "  mat3 fp3 = mat3(0.0);\n  bool filtered = false;\n"
            "#endif\n";
   }
   static std::string band_step(bool gradient) {
-    const std::string widen_i = D == 2 ? "uvec3(i0, 0u)" : "i0";
-    const std::string widen_f = D == 2 ? "vec3(f, 0.0)" : "f";
-    return "    bad = bad || hush_any_nonfinite(f);\n    if (!bad) acc = hush_gabor_eval(" +
-           widen_i + ", " + widen_f + ", filtered, fp3, " + (gradient ? "true" : "false") + ");\n";
+    const std::string g = gradient ? "true" : "false";
+    if constexpr (D == 2)
+      return "    bad = bad || hush_any_nonfinite(f);\n    if (!bad) acc = "
+             "hush_gabor_eval(uvec3(i0, 0u), vec3(f, 0.0), filtered, fp3, " +
+             g + ");\n";
+    return "    bad = bad || hush_any_nonfinite(f);\n"
+           "    if (!bad && (b == 1u) == surface)\n"
+           "      acc = b == 0u ? hush_gabor_eval(i0, f, filtered, fp3, " +
+           g + ")\n                    : hush_gabor_surface_eval(i0, f, unit_n, fp3, " + g +
+           ");\n";
   }
   static std::string band_result(bool gradient) {
     if (!gradient) return "bad ? hush_nan() : acc.x";
@@ -291,9 +448,15 @@ vec4 hush_gabor_eval(uvec3 i0, vec3 f, bool filtered, mat3 fp, bool grad) {
     gl.Uniform1ui(loc("hush_words"), static_cast<std::uint32_t>(g.words_per_impulse()));
     const auto& t = g.table().thresholds();
     gl.Uniform1ui(loc("hush_table_size"), static_cast<std::uint32_t>(t.size()));
-    if (!t.empty())
-      gl.Uniform1uiv(loc("hush_table"), static_cast<hush::glsl::detail::gl_sizei>(t.size()),
-                     t.data());
+    // Both tables in one array (the surface table at kGaborMaxThresholds).
+    std::uint32_t table[kTableEntries] = {};
+    std::copy(t.begin(), t.end(), table);
+    if constexpr (D == 3) {
+      const auto& st = g.surface_table().thresholds();
+      gl.Uniform1ui(loc("hush_surface_table_size"), static_cast<std::uint32_t>(st.size()));
+      std::copy(st.begin(), st.end(), table + c::kGaborMaxThresholds);
+    }
+    gl.Uniform1uiv(loc("hush_table"), kTableEntries, table);
     std::uint32_t par[kCount] = {};
     const gabor_marks<D>& m = g.marks();
     // The float constants exactly as the CPU's float path rounds them.
@@ -320,6 +483,10 @@ vec4 hush_gabor_eval(uvec3 i0, vec3 f, bool filtered, mat3 fp, bool grad) {
     par[kFilterK] = bits(float(2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma *
                                g.inverse_cell() * g.inverse_cell()));
     par[kFilterM] = bits(float(c::kPi * c::kPi / a));
+    if constexpr (D == 3) {
+      par[kSurfaceScale] = bits(float(g.surface_scale()));
+      par[kSurfaceGradScale] = bits(float(g.surface_scale() * g.inverse_surface_cell()));
+    }
     gl.Uniform1uiv(loc("hush_par"), kCount, par);
   }
 

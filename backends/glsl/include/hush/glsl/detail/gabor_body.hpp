@@ -112,6 +112,41 @@ uint hush_gabor_cell_stream(uint key, uvec3 cell, uint dim) {
                         : hush_lattice_hash(key, cell.x, cell.y, cell.z);
   return hush_stream_key(seed, HUSH_GABOR_SOLID_STREAM);
 }
+// gabor<3>::unit_normal in float: n scaled by its largest magnitude, then normalised;
+// false for a zero normal (the solid noise). n must be finite. GLSL allows x / y within
+// 2.5 ulp and sqrt within ~3 ulp (GLSL 4.30 sec. 4.7.1), so this and the basis below are
+// within ~2^-21 relative of the CPU's double frame rounded to float (the tolerance of
+// tests/glsl/glsl_gabor_test.cpp accounts for it).
+bool hush_gabor_unit_normal(vec3 n, out vec3 u) {
+  float big = max(abs(n.x), max(abs(n.y), abs(n.z)));
+  u = vec3(0.0);
+  if (!(big > 0.0)) return false;
+  vec3 m = vec3(n.x / big, n.y / big, n.z / big);
+  float len = sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
+  u = vec3(m.x / len, m.y / len, m.z / len);
+  return true;
+}
+// detail::orthonormal_basis (Duff et al., JCGT 2017) of unit n, in float; the sign of
+// n.z taken from its sign bit (copysign: -0 counts as negative).
+void hush_gabor_basis(vec3 n, out vec3 t, out vec3 b) {
+  float sgn = (floatBitsToUint(n.z) & HUSH_FLOAT_SIGN_MASK) != 0u ? -1.0 : 1.0;
+  float a = -1.0 / (sgn + n.z);
+  float c = n.x * n.y * a;
+  t = vec3(1.0 + sgn * n.x * n.x * a, sgn * c, -sgn * n.x);
+  b = vec3(c, sgn + n.y * n.y * a, -n.y);
+}
+// The key of surface cell `cell`'s stream (gabor<3>::for_each_surface_impulse).
+uint hush_gabor_surface_stream(uint key, uvec3 cell) {
+  return hush_stream_key(hush_lattice_hash(key, cell.x, cell.y, cell.z), HUSH_GABOR_SURFACE_STREAM);
+}
+// Surface noise's offsets of d (surface cells) from the plane of unit normal n and
+// tangents t, b: (zn along n, z2 = zn^2 / h^2, dk in the plane in kernel cells).
+vec4 hush_gabor_plane_offsets(vec3 d, vec3 n, vec3 t, vec3 b) {
+  float zn = (n.x * d.x + n.y * d.y) + n.z * d.z;
+  return vec4(zn, (zn * zn) * HUSH_GABOR_SURFACE_INV_H2,
+              ((t.x * d.x + t.y * d.y) + t.z * d.z) * HUSH_GABOR_SURFACE_CELL,
+              ((b.x * d.x + b.y * d.y) + b.z * d.z) * HUSH_GABOR_SURFACE_CELL);
+}
 // gabor_filter (gabor_kernel.hpp) in float for a dim-D footprint fp (S, noise units; the
 // upper-left dim x dim block is read), k = 2 A sigma^2 / r^2, mk = pi^2 / A:
 // Q = V diag(1 / (1 + k l)) V^T, M = V diag(mk k l / (1 + k l)) V^T
