@@ -47,7 +47,9 @@
 //    maps and the heuristic rules; least-squares weights have no a-priori bound.
 //  - float evaluation is within float_budget() of the double reference.
 //  - footprints: NaN, Inf or huge give lambda = 0 everywhere: the mean, 0
-//    (HARD_CASES row 12); zero, rank 1 or tiny ones filter accordingly.
+//    (HARD_CASES row 12); zero, rank 1 or tiny ones filter accordingly; an
+//    indefinite one (a near-singular S rounded to float) as its singular limit
+//    (filter_form clamps d^T S d at 0).
 //  - surface maps: det T = 0 (zero UV area, or zero 3D area through
 //    surface_map::from_triangle) gives gamma = 0: the mean, 0; mirrored UVs
 //    (det < 0) use |det T|; a map with a non-finite entry counts as the zero map.
