@@ -1,5 +1,7 @@
 // HARD_CASES.md rows 1, 3, 5 and 14, checked on every noise hush offers (Perlin
-// 2D/3D, fBm, turbulence, wavelet 2D/3D) in float and double. Rows 2, 6 and 7 live in
+// 2D/3D, fBm, turbulence, wavelet 2D/3D) in float and double; row 12's
+// indefinite footprint for anisotropic noise (its other row-12 cases live in
+// anisotropic_test.cpp). Rows 2, 6 and 7 live in
 // perlin_test.cpp, row 10 in golden_test.cpp, row 11 in core/rng_test.cpp,
 // row 1 for the lattice split itself in core/lattice_test.cpp. Row 4 (no
 // signed overflow) is this whole suite run under UBSan in CI.
@@ -240,5 +242,46 @@ TEST_CASE("hard cases row 5: wavelet normals: zero, NaN and Inf give the unproje
     for (double len : {1e-30, 1e-3, 7.0, 1e30})
       CHECK(w.sample(p, hush::dvec3{0.6 * len, 0, 0.8 * len}, point) ==
             doctest::Approx(unit).epsilon(1e-12));
+  }
+}
+
+// A nearly singular Jacobian (rank 1, at a grazing angle) gives S = J J^T whose float
+// rounding may be indefinite: d^T S d < 0 by an ulp of S's entries along the null
+// direction, and the filter weight 2^-(kappa d^T S d) would be 2^+900 (float: exponent
+// bits overflow into garbage). The quadratic form is clamped at 0 (the singular limit).
+TEST_CASE("hard cases row 12: anisotropic noise with an indefinite footprint stays finite and "
+          "equals its singular limit") {
+  hush::anisotropic::params prm;
+  prm.seed = 5;
+  for (const hush::weight_rule rule :
+       {hush::weight_rule::centre, hush::weight_rule::three_point,
+        hush::weight_rule::least_squares}) {
+    prm.filtering = rule;
+    const hush::anisotropic n(prm);
+    // S = a [[1, b/a], [b/a, 1]]: singular at b = a (null direction (1, -1) / sqrt 2, K = 4's
+    // orientation 3); one ulp (2^7 at a = 2^30) above, d^T S d = -128 there.
+    const float a = std::ldexp(1.0f, 30);
+    const float sing[3] = {a, a, a};
+    const auto singular = hush::footprint<2>::from_covariance(sing);
+    for (int ulps = -3; ulps <= 3; ++ulps) {
+      float b = a;
+      for (int u = 0; u < std::abs(ulps); ++u) b = std::nextafter(b, ulps < 0 ? 0.0f : INFINITY);
+      const float up[3] = {a, b, a};
+      const auto fp = hush::footprint<2>::from_covariance(up);
+      for (int i = 0; i < 16; ++i) {
+        const hush::dvec2 p{0.37 * i - 2, 1.1 - 0.23 * i};
+        INFO("rule " << int(rule) << ", " << ulps << " ulps, at " << p.x);
+        const double d = n.sample(p, fp);
+        const float f = n.sample(hush::vec2{float(p.x), float(p.y)}, fp);
+        REQUIRE(std::isfinite(d));
+        REQUIRE(std::isfinite(f));
+        CHECK(std::fabs(d) <= n.bound());
+        CHECK(std::fabs(f) <= n.bound() + n.float_budget());
+        // The indefinite side equals the singular limit: its q is clamped to 0, the
+        // singular S's own q is a rounding residue of the directions (2^30 * O(2^-52)),
+        // so its weight is 1 - O(1e-5); least squares fits the clamped Gaussian.
+        if (ulps > 0) CHECK(std::fabs(d - n.sample(p, singular)) <= 1e-4 * n.bound());
+      }
+    }
   }
 }

@@ -29,32 +29,17 @@ class anisotropic_scene_noise final : public scene_noise {
       : noise_(p), maps_(std::move(maps)), compensate_(compensate) {}
   int channels() const override { return 1; }
   std::string unsupported_reason(backend b) const override {
-    if (b == backend::glsl) {
-      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (OSMesa not found)";
+    if (b == backend::glsl && HUSH_CLI_HAVE_GLSL) {
       const auto& p = noise_.parameters();
       if (p.filtering == hush::weight_rule::least_squares ||
           (compensate_ && p.compensation == hush::weight_rule::least_squares))
         return "least-squares weights run on the CPU only (--filtering and --compensation "
                "centre or three_point on the GPU)";
     }
-    if (b == backend::simd && !HUSH_CONFIG_SIMD)
-      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
-    return "";
+    return backend_missing(b);
   }
   void render(gbuffer_sequence& frames, render_sink& sink, backend b) override {
-    switch (b) {
-      case backend::scalar:
-        run(hush::exec::scalar, frames, sink);
-        break;
-      case backend::simd:
-        run(hush::exec::simd, frames, sink);
-        break;
-      case backend::glsl:
-#if HUSH_CLI_HAVE_GLSL
-        run(hush::exec::glsl<hush::glsl::device>{glsl_device()}, frames, sink);
-#endif
-        break;
-    }
+    with_exec(b, [&](const auto& ex) { run(ex, frames, sink); });
   }
 
  private:

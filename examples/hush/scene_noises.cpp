@@ -32,27 +32,9 @@ class coherent_noise final : public scene_noise {
     hush::validate(prm_);
   }
   int channels() const override { return prm_.channels; }
-  std::string unsupported_reason(backend b) const override {
-    if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
-      return "the GLSL backend is not in this build (OSMesa not found)";
-    if (b == backend::simd && !HUSH_CONFIG_SIMD)
-      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
-    return "";
-  }
+  std::string unsupported_reason(backend b) const override { return backend_missing(b); }
   void render(gbuffer_sequence& frames, render_sink& sink, backend b) override {
-    switch (b) {
-      case backend::scalar:
-        run(hush::exec::scalar, frames, sink);
-        break;
-      case backend::simd:
-        run(hush::exec::simd, frames, sink);
-        break;
-      case backend::glsl:
-#if HUSH_CLI_HAVE_GLSL
-        run(hush::exec::glsl<hush::glsl::device>{glsl_device()}, frames, sink);
-#endif
-        break;
-    }
+    with_exec(b, [&](const auto& ex) { run(ex, frames, sink); });
   }
 
  private:
@@ -263,6 +245,14 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
 }
 
 }  // namespace
+
+std::string backend_missing(backend b) {
+  if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
+    return "the GLSL backend is not in this build (OSMesa not found)";
+  if (b == backend::simd && !HUSH_CONFIG_SIMD)
+    return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
+  return "";
+}
 
 const std::vector<render_entry>& render_table() {
   static const std::vector<render_entry> table = {

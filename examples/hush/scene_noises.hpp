@@ -20,6 +20,8 @@
 #include <vector>
 
 #include "args.hpp"
+#include "glsl_device.hpp"
+#include "hush/exec.hpp"
 #include "hush/core/frame.hpp"
 #include "hush/core/triangles.hpp"
 #include "hush/core/views.hpp"
@@ -73,6 +75,28 @@ class scene_noise {
   // Renders every frame of `frames` into `sink` on backend `b`.
   virtual void render(gbuffer_sequence& frames, render_sink& sink, backend b) = 0;
 };
+
+// Why backend b is not in this build ("" when it is): the reason scene noises share.
+std::string backend_missing(backend b);
+
+// Calls run(exec) with the hush::exec policy of backend b (glsl: the process's device;
+// nothing where this build has no GLSL: unsupported_reason has refused it before).
+template <class Run>
+void with_exec(backend b, Run&& run) {
+  switch (b) {
+    case backend::scalar:
+      run(hush::exec::scalar);
+      break;
+    case backend::simd:
+      run(hush::exec::simd);
+      break;
+    case backend::glsl:
+#if HUSH_CLI_HAVE_GLSL
+      run(hush::exec::glsl<hush::glsl::device>{glsl_device()});
+#endif
+      break;
+  }
+}
 
 struct render_setup {
   std::uint32_t seed = 0;

@@ -47,7 +47,9 @@
 //    maps and the heuristic rules; least-squares weights have no a-priori bound.
 //  - float evaluation is within float_budget() of the double reference.
 //  - footprints: NaN, Inf or huge give lambda = 0 everywhere: the mean, 0
-//    (HARD_CASES row 12); zero, rank 1 or tiny ones filter accordingly.
+//    (HARD_CASES row 12); zero, rank 1 or tiny ones filter accordingly; an
+//    indefinite one (a near-singular S rounded to float) as its singular limit
+//    (filter_form clamps d^T S d at 0).
 //  - surface maps: det T = 0 (zero UV area, or zero 3D area through
 //    surface_map::from_triangle) gives gamma = 0: the mean, 0; mirrored UVs
 //    (det < 0) use |det T|; a map with a non-finite entry counts as the zero map.
@@ -331,6 +333,15 @@ class anisotropic : public sample_noise<anisotropic, 2> {
   const dvec2& offset(int s) const { return offset_[s]; }
   double kappa(int s) const { return kappa_[s]; }
   const dvec2& direction(int i) const { return dir_[i]; }
+  // q_i = d_i^T S d_i of footprint fp, orientation i in 0 ... K-1, in double:
+  // at grazing angles S is nearly singular with entries of 1e4 and more, and
+  // the terms cancel. Range [0, 2 W^2] (W = the footprint's width cap): S rounded
+  // to float may be slightly indefinite (q < 0 by ulps of its entries, and
+  // 2^-(kappa q) would overflow), so q is clamped at 0, S's singular limit.
+  double filter_form(const footprint<2>& fp, int i) const {
+    const double sxx = fp.covariance(0, 0), sxy = fp.covariance(0, 1), syy = fp.covariance(1, 1);
+    return std::max((sxx * dxx_[i] + sxy * dxy2_[i]) + syy * dyy_[i], 0.0);
+  }
   double octave_weight(int k) const { return norm_ * octave_gain_[k]; }
   double normalization() const { return norm_; }
   // Cap of a heuristic compensation weight.
@@ -416,20 +427,19 @@ class anisotropic : public sample_noise<anisotropic, 2> {
       const double sxx = fp.covariance(0, 0), sxy = fp.covariance(0, 1), syy = fp.covariance(1, 1);
       const double k2 = 2.0 * c::kPi * c::kPi * c::kPixelFilterSigma * c::kPixelFilterSigma;
       std::vector<double> w = fit_->fit(weight_rule::least_squares, [&](const dvec2& x) {
-        return std::exp(-k2 * (sxx * x.x * x.x + 2.0 * sxy * x.x * x.y + syy * x.y * x.y));
+        // Clamped like the centre rule's q: an indefinite S would give exp(+huge).
+        return std::exp(
+            -k2 * std::max(sxx * x.x * x.x + 2.0 * sxy * x.x * x.y + syy * x.y * x.y, 0.0));
       });
       for (int s = 0; s < prm_.scales; ++s)
         for (int i = 0; i < prm_.orientations; ++i)
           lam[i + kc * s] = static_cast<T>(w[detail::index(i + prm_.orientations * s)]);
       return;
     }
-    // The quadratic form w^T S w in double: at grazing angles S is nearly
-    // singular with entries of 1e4 and more, and the terms cancel.
-    const double sxx = fp.covariance(0, 0), sxy = fp.covariance(0, 1), syy = fp.covariance(1, 1);
     const T cut = T(c::kAnisoWeightCutoff * c::kLog2E);
     const bool three = prm_.filtering == weight_rule::three_point;
     for (int i = 0; i < prm_.orientations; ++i) {
-      const double q = (sxx * dxx_[i] + sxy * dxy2_[i]) + syy * dyy_[i];
+      const double q = filter_form(fp, i);
       for (int s = 0; s < prm_.scales; ++s) {
         const T z = T(kappa_[s] * q);
         lam[i + kc * s] = three ? lambda3(z, cut) : lambda1(z, cut);

@@ -5,17 +5,20 @@
 // orientations, both heuristic rules; within the tolerance the program
 // states per sample. Also: tiles uploaded once per shared tile, least-squares
 // rules (the CPU's weights uploaded per sample), per-sample data split by the
-// buffer limit, NaN positions.
+// buffer limit, NaN positions; the uploaded least-squares weights against the
+// double fits; the samples runner reading no footprint or map buffer.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "glsl_test_util.hpp"
+#include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/device.hpp"
 
 namespace {
@@ -306,5 +309,64 @@ TEST_CASE("glsl anisotropic: per-sample data split by the buffer limit gives the
       REQUIRE(std::isnan(whole[i]) == std::isnan(split[i]));
       if (!std::isnan(whole[i])) CHECK(whole[i] == split[i]);
     }
+  }
+}
+
+// The least-squares weights the GPU receives (sample_data: uploaded per sample, no GL
+// here) against the double fits: the float path fits in double and rounds, then forms
+// gamma * lambda * octave weight in float, a few roundings of 2^-24 each of the largest
+// weight's size; 2^-20 of it leaves margin and still fails for a weight off by one
+// float ulp of 16 (a wrong channel, scale or octave shows as O(1)).
+TEST_CASE("glsl anisotropic: uploaded least-squares weights equal the double fits") {
+  using np = hush::glsl::noise_program<hush::anisotropic>;
+  const batch b = make_batch(24, 5);
+  for (hush::fractal_kind kind : {hush::fractal_kind::fbm, hush::fractal_kind::turbulence})
+    for (int k : {3, 8}) {
+      const hush::anisotropic a = make(k, kind, hush::weight_rule::least_squares);
+      const std::size_t per_pass = std::size_t(a.parameters().scales) * a.channels();
+      const int passes = kind == hush::fractal_kind::fbm ? 1 : a.parameters().octaves;
+      REQUIRE(np::sample_data_floats(a) == per_pass * std::size_t(passes));
+      std::vector<float> got(np::sample_data_floats(a));
+      std::vector<double> want(per_pass);
+      for (std::size_t i = 0; i < b.pos.size(); ++i) {
+        hush::sample_input<2> in;
+        in.position = hush::vec_cast<double>(b.pos[i]);
+        in.fp = b.fp[i];
+        in.map = b.maps[i];
+        in.has_map = true;
+        np::sample_data(a, in, got.data());
+        for (int pass = 0; pass < passes; ++pass) {
+          if (kind == hush::fractal_kind::fbm)
+            a.weights<double>(in, want.data());
+          else
+            a.octave_weights<double>(in, pass, want.data());
+          double largest = 0;
+          for (double w : want) largest = std::max(largest, std::fabs(w));
+          for (std::size_t j = 0; j < per_pass; ++j) {
+            INFO("K " << k << " kind " << int(kind) << " sample " << i << " pass " << pass
+                      << " weight " << j);
+            CHECK(std::fabs(got[std::size_t(pass) * per_pass + j] - want[j]) <=
+                  std::ldexp(largest, -20));
+          }
+        }
+      }
+    }
+}
+
+// Footprints and maps reach the anisotropic program only through its per-sample data
+// (q_i, |T^T d_i|^2, |det T|, or the weights): the samples runner neither reads them
+// (its source indexes neither buffer) nor, so, needs them uploaded (device.hpp skips
+// them: reads_sample_inputs); a noise without sample data (gabor) still reads its own.
+TEST_CASE("glsl anisotropic: the samples runner reads no footprint or map buffer") {
+  for (bool gradient : {false, true}) {
+    const std::string s =
+        hush::glsl::compute_source<hush::anisotropic>(hush::glsl::batch_layout::samples, gradient);
+    // Declared (bindings 2 and 4 stay bound), never indexed by a sample.
+    CHECK(s.find("hush_fp[e") == std::string::npos);
+    CHECK(s.find("hush_map[4u") == std::string::npos);
+    CHECK(s.find("bool has_smap = hush_has_map != 0u;") != std::string::npos);
+    const std::string g = hush::glsl::compute_source<hush::gabor<2>>(
+        hush::glsl::batch_layout::samples, gradient);
+    CHECK(g.find("hush_fp[e") != std::string::npos);
   }
 }

@@ -120,6 +120,15 @@ batch make_batch(std::size_t n, std::uint32_t seed) {
       b.fp.push_back(hush::footprint<2>::from_derivatives(hush::dvec2{w, 0}, hush::dvec2{0, 0}));
     else if (i % 5 == 0)
       b.fp.push_back(hush::footprint<2>{});
+    else if (i % 53 == 13)
+      // S ~ 1e-40: float(kappa_s q) is subnormal (the SIMD kernel's 4^s z_0 shortcut).
+      b.fp.push_back(hush::footprint<2>::from_derivatives(hush::dvec2{1e-20, 3e-21},
+                                                          hush::dvec2{-2e-21, 1e-20}));
+    else if (i % 11 == 1) {
+      // Indefinite by an ulp (a nearly singular S rounded to float): q clamped at 0.
+      const float a = float(w * w * 1e6), up[3] = {a, std::nextafter(a, INFINITY), a};
+      b.fp.push_back(hush::footprint<2>::from_covariance(up));
+    }
     else
       b.fp.push_back(hush::footprint<2>::from_derivatives(
           hush::dvec2{w * r.uniform<double>(-1, 1), w * r.uniform<double>(-1, 1)},

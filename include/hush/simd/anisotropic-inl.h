@@ -179,6 +179,13 @@ struct config {
   double dx[kMaxChannels] = {}, dy[kMaxChannels] = {}, kappa[kMaxScales] = {};
   float ow[kMaxScales] = {}, gain[kMaxScales] = {};
   float norm = 1, cap = 1, cut = 0;
+  // pow4: kappa_s = 4^s kappa_0 exactly (the scales' frequencies are f_0 2^s), so
+  // float(kappa_s q) = 4^s float(kappa_0 q): scaling by a power of two commutes with
+  // rounding, overflow included; below float's normal range (z < 2^-126) the two may
+  // differ, but exp2's polynomial then returns its constant term for both: the same
+  // lambda. Checked here rather than assumed.
+  bool pow4 = true;
+  float four_s[kMaxScales] = {};
   double tpu[kMaxScales] = {}, off[kMaxScales][2] = {};
 
   explicit config(const anisotropic& a) {
@@ -208,6 +215,10 @@ struct config {
       tpu[s] = a.texels_per_unit(s);
       off[s][0] = a.offset(s).x;
       off[s][1] = a.offset(s).y;
+    }
+    for (int s = 0; s < scales; ++s) {
+      four_s[s] = std::ldexp(1.0f, 2 * s);
+      pow4 = pow4 && kappa[s] == std::ldexp(kappa[0], 2 * s);
     }
     double g = 1.0;
     for (int o = 0; o < octaves; ++o, g *= p.gain) {
@@ -279,9 +290,10 @@ HWY_INLINE VF lambda(VF z, VF cut, bool three) {
 HWY_INLINE void store_weights(const config& cf, block& b, int pass, int s, std::size_t first,
                               const VF* ch) {
   const DF df;
-  for (int h = 0; h < cf.kc / 4; ++h)
-    hn::StoreInterleaved4(ch[4 * h], ch[4 * h + 1], ch[4 * h + 2], ch[4 * h + 3], df,
-                          b.weights(cf, pass, s, h) + first * 4);
+  for (int h = 0; h < cf.kc / 4; ++h) {
+    const VF* c4 = ch + static_cast<std::size_t>(4 * h);
+    hn::StoreInterleaved4(c4[0], c4[1], c4[2], c4[3], df, b.weights(cf, pass, s, h) + first * 4);
+  }
 }
 
 // Phase 1, weights, for samples [first, first + lanes) of the block; fp and
@@ -300,9 +312,11 @@ HWY_INLINE void weights_vector(const config& cf, block& b, std::size_t first, co
       hn::LoadInterleaved3(dfh, fp + h * 3, a, bb, cc);
       const VD sxx = hn::PromoteTo(dd, a), sxy = hn::PromoteTo(dd, bb), syy = hn::PromoteTo(dd, cc);
       for (int i = 0; i < cf.k; ++i) {
-        const VD q =
+        // anisotropic::filter_form: clamped at 0 (S rounded to float may be indefinite).
+        const VD q = hn::Max(
             mul_add(syy, hn::Set(dd, cf.dyy[i]),
-                    mul_add(sxy, hn::Set(dd, cf.dxy2[i]), hn::Mul(sxx, hn::Set(dd, cf.dxx[i]))));
+                    mul_add(sxy, hn::Set(dd, cf.dxy2[i]), hn::Mul(sxx, hn::Set(dd, cf.dxx[i])))),
+            hn::Zero(dd));
         for (int s = 0; s < cf.scales; ++s)
           hn::StoreU(hn::DemoteTo(dfh, hn::Mul(hn::Set(dd, cf.kappa[s]), q)), dfh,
                      b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock + h);
@@ -410,8 +424,16 @@ HWY_INLINE void weights_filter(const config& cf, block& b, std::size_t first, co
   for (int i = 0; i < cf.k; ++i) {
     const VD dxx = hn::Set(dd, cf.dxx[i]), dxy2 = hn::Set(dd, cf.dxy2[i]),
              dyy = hn::Set(dd, cf.dyy[i]);
-    q0[i] = mul_add(syy0, dyy, mul_add(sxy0, dxy2, hn::Mul(sxx0, dxx)));
-    q1[i] = mul_add(syy1, dyy, mul_add(sxy1, dxy2, hn::Mul(sxx1, dxx)));
+    q0[i] = hn::Max(mul_add(syy0, dyy, mul_add(sxy0, dxy2, hn::Mul(sxx0, dxx))), hn::Zero(dd));
+    q1[i] = hn::Max(mul_add(syy1, dyy, mul_add(sxy1, dxy2, hn::Mul(sxx1, dxx))), hn::Zero(dd));
+  }
+  // The filter exponents of scale 0; the others are 4^s times them (config::pow4).
+  VF z0[kMaxChannels];
+  if (cf.pow4) {
+    const VD kappa = hn::Set(dd, cf.kappa[0]);
+    for (int i = 0; i < cf.k; ++i)
+      z0[i] = hn::Combine(df, hn::DemoteTo(dfh, hn::Mul(kappa, q1[i])),
+                          hn::DemoteTo(dfh, hn::Mul(kappa, q0[i])));
   }
   const VF cut = hn::Set(df, cf.cut);
   const VU magnitude = hn::Set(du, 0x7fffffffu);
@@ -422,10 +444,12 @@ HWY_INLINE void weights_filter(const config& cf, block& b, std::size_t first, co
     const int o = s - cf.base;
     if (o >= 0 && o < cf.octaves) {
       const VD kappa = hn::Set(dd, cf.kappa[s]);
+      const VF four_s = hn::Set(df, cf.four_s[s]);
       const VF ow = hn::Set(df, cf.ow[o]);
       for (int i = 0; i < cf.k; ++i) {
-        const VF z = hn::Combine(df, hn::DemoteTo(dfh, hn::Mul(kappa, q1[i])),
-                                 hn::DemoteTo(dfh, hn::Mul(kappa, q0[i])));
+        const VF z = cf.pow4 ? hn::Mul(z0[i], four_s)
+                             : hn::Combine(df, hn::DemoteTo(dfh, hn::Mul(kappa, q1[i])),
+                                           hn::DemoteTo(dfh, hn::Mul(kappa, q0[i])));
         ch[i] = hn::Mul(ow, lambda(z, cut, false));
         any = hn::Or(any, hn::And(hn::BitCast(du, ch[i]), magnitude));
       }
@@ -684,7 +708,8 @@ inline void scalar_weights(const anisotropic& a, const config& cf, block& b, std
       a.octave_weights<float>(in, pass, w);
     for (int s = 0; s < cf.scales; ++s)
       for (int h = 0; h < cf.kc / 4; ++h)
-        std::memcpy(b.weights(cf, pass, s, h) + j * 4, w + s * cf.kc + 4 * h, 4 * sizeof(float));
+        std::memcpy(b.weights(cf, pass, s, h) + j * 4,
+                    w + static_cast<std::size_t>(s * cf.kc + 4 * h), 4 * sizeof(float));
   }
 }
 

@@ -209,6 +209,9 @@ struct noise_program<anisotropic> {
         p.kind == fractal_kind::turbulence ? hush::detail::index(p.octaves) : 1;
     return passes * hush::detail::index(p.scales) * hush::detail::index(a.channels());
   }
+  // The sample data carries all the program reads of footprints and maps: the device
+  // uploads neither (has_smap still says whether maps were given).
+  static constexpr bool reads_sample_inputs = false;
   // Sample in's data, formed in double as anisotropic.hpp forms it and rounded
   // to float once: q_i = d_i^T S d_i (filter_weights) and |T^T d_i|^2, |det T|
   // (combine; a map with a non-finite entry is the zero map), so the shader's
@@ -229,13 +232,11 @@ struct noise_program<anisotropic> {
       }
       return;
     }
-    const double sxx = in.fp.covariance(0, 0), sxy = in.fp.covariance(0, 1),
-                 syy = in.fp.covariance(1, 1);
     const surface_map m = in.map.finite() ? in.map : surface_map::zero();
     const double m00 = m.m00, m01 = m.m01, m10 = m.m10, m11 = m.m11;
     for (int i = 0; i < k; ++i) {
       const dvec2 d = a.direction(i);
-      const double q = (sxx * (d.x * d.x) + sxy * (2.0 * d.x * d.y)) + syy * (d.y * d.y);
+      const double q = a.filter_form(in.fp, i);
       const double tu = m00 * d.x + m10 * d.y, tv = m01 * d.x + m11 * d.y;
       out[hush::detail::index(i)] = static_cast<float>(q);
       out[hush::detail::index(k + i)] = static_cast<float>(tu * tu + tv * tv);

@@ -139,12 +139,22 @@ inline std::string read_sample_inputs(int dimension) {
 }
 
 // GLSL: the sample inputs at their defaults (fp zero, no normal, identity
-// map), for banded programs evaluated at points or on grids.
-inline std::string default_sample_inputs(int dimension) {
+// map), for banded programs evaluated at points or on grids; with `flags`
+// (the samples layout of a program that does not read them: noise_program's
+// reads_sample_inputs), has_nrm and has_smap from their presence uniforms.
+inline std::string default_sample_inputs(int dimension, bool flags = false) {
   const std::string d = std::to_string(dimension);
-  return "  mat" + d + " fp = mat" + d +
-         "(0.0);\n  bool has_nrm = false;\n  vec3 nrm = vec3(0.0);\n"
-         "  bool has_smap = false;\n  mat2 smap = mat2(1.0);\n";
+  return "  mat" + d + " fp = mat" + d + "(0.0);\n  bool has_nrm = " +
+         (flags ? "hush_has_normal != 0u" : "false") + ";\n  vec3 nrm = vec3(0.0);\n" +
+         "  bool has_smap = " + (flags ? "hush_has_map != 0u" : "false") +
+         ";\n  mat2 smap = mat2(1.0);\n";
+}
+
+// GLSL: the samples layout's inputs of sample n as Noise's program reads them.
+template <class Noise>
+std::string sample_inputs(int dimension) {
+  return reads_sample_inputs<Noise>::value ? read_sample_inputs(dimension)
+                                           : default_sample_inputs(dimension, true);
 }
 
 // GLSL: i0, i1 (uvecD) and f (vecD) read from the triples at `base` + t[a].
@@ -194,7 +204,7 @@ std::string banded_source(batch_layout layout, bool gradient) {
        "void main() {\n"
        "  uint n = hush_first + gl_GlobalInvocationID.x;\n"
        "  if (n >= hush_count) return;\n";
-  s += layout == batch_layout::samples ? read_sample_inputs(D) : default_sample_inputs(D);
+  s += layout == batch_layout::samples ? sample_inputs<Noise>(D) : default_sample_inputs(D);
   if (layout != batch_layout::grid) {
     // Triple of axis a of band b at t[a] + band_stride * b.
     s += "  uint band_stride = 3u * " + d +
@@ -242,11 +252,11 @@ std::string plain_source(batch_layout layout, bool gradient) {
     return s + store_result(D, gradient, np::point_call(gradient));
   if (layout == batch_layout::grid) return s + store_result(D, gradient, np::cells_call(gradient));
   if constexpr (has_sample_call<np>::value) {
-    return s + read_sample_inputs(D) + store_result(D, gradient, np::sample_call(gradient));
+    return s + sample_inputs<Noise>(D) + store_result(D, gradient, np::sample_call(gradient));
   } else {
     // A noise that takes no footprint or normal: the extras are never given
     // (exec.hpp validates), so the point evaluation is its sample evaluation.
-    return s + read_sample_inputs(D) + store_result(D, gradient, np::point_call(gradient));
+    return s + sample_inputs<Noise>(D) + store_result(D, gradient, np::point_call(gradient));
   }
 }
 

@@ -249,15 +249,18 @@ class device {
         } else {
           upload(0, s.positions.data() + first, m * sizeof(vec<float, D>));
         }
-        if (fps)
+        // Bound, never read where not given (the presence uniform is 0) or where the
+        // program reads them through its sample data (reads_sample_inputs).
+        constexpr bool reads = reads_sample_inputs<Noise>::value;
+        if (reads && fps)
           upload(2, s.footprints.data() + first, m * sizeof(footprint<D>));
         else
-          upload(2, dummy, sizeof dummy);  // bound, never read: hush_has_footprint is 0
-        if (normals)
+          upload(2, dummy, sizeof dummy);
+        if (reads && normals)
           upload(3, s.normals.data() + first, m * sizeof(vec<float, 3>));
         else
           upload(3, dummy, sizeof dummy);
-        if (maps)
+        if (reads && maps)
           upload(4, s.surface_maps.data() + first, m * sizeof(surface_map));
         else
           upload(4, dummy, sizeof dummy);

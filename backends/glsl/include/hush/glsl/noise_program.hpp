@@ -59,7 +59,12 @@
 // The device fills them per batch and uploads them to that binding, sample n's
 // at [n * sample_data_floats, (n + 1) * sample_data_floats) (batches split so
 // that the buffer fits GL_MAX_SHADER_STORAGE_BLOCK_SIZE); the points and grid
-// layouts have none (HUSH_SAMPLES is not defined there).
+// layouts have none (HUSH_SAMPLES is not defined there). When that data carries
+// all the program needs of the footprints, normals and maps, it declares
+//   static constexpr bool reads_sample_inputs = false;
+// and the device uploads none of them (bindings 2 to 4 hold a dummy), the runner
+// reads none (fp, nrm and smap keep their defaults); has_nrm and has_smap still
+// say whether they were given.
 // A noise may instead (or also) provide
 //   static std::vector<noise_texture> textures(const Noise&);
 // 2D RGBA32F textures, sampled with hardware bilinear filtering and repeat
@@ -264,6 +269,14 @@ struct has_sample_data : std::false_type {};
 template <class Noise>
 struct has_sample_data<Noise, std::void_t<decltype(noise_program<Noise>::sample_data_floats(
                                   std::declval<const Noise&>()))>> : std::true_type {};
+
+// Whether the runner uploads and reads the samples layout's footprints, normals and
+// maps for Noise: unless its program declares reads_sample_inputs = false.
+template <class Noise, class = void>
+struct reads_sample_inputs : std::true_type {};
+template <class Noise>
+struct reads_sample_inputs<Noise, std::void_t<decltype(noise_program<Noise>::reads_sample_inputs)>>
+    : std::bool_constant<noise_program<Noise>::reads_sample_inputs> {};
 
 // Whether a program declares sample_call (per-sample footprints and normals).
 template <class Program, class = void>
