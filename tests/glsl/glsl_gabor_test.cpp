@@ -15,14 +15,23 @@
 // Phi^2 pi^2 / A 2^-21: the budget times (1 + 2 pi Phi + pi^2 Phi^2 / A).
 // Any differing Poisson count or impulse mark would move a value by up to a
 // whole kernel (~scale), far beyond these tolerances.
+//
+// NPR Gabor noise's splatting on GLSL (hush/glsl/npr_gabor.hpp; the cases named "npr"):
+// point sprites against the double and float CPU renders of the npr test scenes, with the
+// tolerance derived at npr_bound below.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "glsl_test_util.hpp"
+#include "hush/glsl/npr_gabor.hpp"
+#include "npr_gabor_scenes.hpp"
 
 namespace {
 
@@ -242,4 +251,237 @@ TEST_CASE("gabor glsl: 3D filtered samples, and surface noise (a normal) is NaN 
   }
   CHECK(zero_normal <= value_tolerance(noise) * filter_factor(noise));
   CHECK(nan_for_normal == n / 2);
+}
+
+// ---- NPR Gabor noise: GLSL splatting (hush/glsl/npr_gabor.hpp).
+namespace {
+
+// Two objects: a slanted plane (object 1; 1/z = 0.5 + 0.002 x + 0.001 y, affine in screen
+// space as on any plane) covering the frame, and in front of it a flat patch (object 2, depth
+// 0.8) of 5 x 4 cells: depth discontinuities, object boundaries and triangle edges.
+struct npr_two_objects {
+  npr_test::grid_scene back, front;
+  std::vector<hush::vec2> screen;
+  std::vector<float> vdepth, depth;
+  std::vector<std::uint32_t> indices, tri_id, obj_id, object, triangle;
+  std::size_t w, h;
+
+  static double inv_z(double x, double y) { return 0.5 + 0.002 * x + 0.001 * y; }
+
+  npr_two_objects(std::size_t w_, std::size_t h_)
+      : back(npr_test::covering(w_, h_, 14.0, 20.0)),
+        front(w_, h_, 31.0, 42.0, 11.0, 5, 4, 0.8f),
+        w(w_),
+        h(h_) {
+    for (std::size_t v = 0; v < back.screen.size(); ++v)
+      back.vdepth[v] = static_cast<float>(1.0 / inv_z(back.screen[v].x, back.screen[v].y));
+    screen = back.screen;
+    screen.insert(screen.end(), front.screen.begin(), front.screen.end());
+    vdepth = back.vdepth;
+    vdepth.insert(vdepth.end(), front.vdepth.begin(), front.vdepth.end());
+    indices = back.indices;
+    const auto base = static_cast<std::uint32_t>(back.screen.size());
+    for (std::uint32_t i : front.indices) indices.push_back(i + base);
+    tri_id = back.tri_id;
+    obj_id = back.obj_id;
+    for (std::uint32_t t : front.tri_id) tri_id.push_back(t + 100000u);
+    for (std::size_t t = 0; t < front.tri_id.size(); ++t) obj_id.push_back(2u);
+    depth.resize(w * h);
+    object = back.object;
+    triangle = back.triangle;
+    for (std::size_t y = 0; y < h; ++y)
+      for (std::size_t x = 0; x < w; ++x) {
+        const std::size_t p = y * w + x;
+        depth[p] = static_cast<float>(1.0 / inv_z(double(x) + 0.5, double(y) + 0.5));
+        if (front.object[p] != 0u) {
+          depth[p] = front.depth[p];
+          object[p] = 2u;
+          triangle[p] = front.triangle[p] + 100000u;
+        }
+      }
+  }
+  hush::frame frame() const {
+    hush::frame f;
+    f.depth = {depth.data(), w, h};
+    f.object_id = {object.data(), w, h};
+    f.triangle_id = {triangle.data(), w, h};
+    return f;
+  }
+  hush::triangle_list triangles() const {
+    hush::triangle_list t;
+    t.indices = indices;
+    t.screen = screen;
+    t.depth = vdepth;
+    t.triangle_id = tri_id;
+    t.object_id = obj_id;
+    return t;
+  }
+};
+
+// The GLSL tolerance of hush/glsl/npr_gabor.hpp against the double reference, per pixel p:
+// S(p) (2 K + 2^-24 n(p)) with S(p) the sum of |weight| and n(p) the count of the kernels
+// whose disc holds p's centre. K per unit weight: the kernel's float budget 2^-21 (1 + 2 pi
+// F0 r) (gabor_kernel.hpp), plus the offsets: d = (c + k) / r is formed from a float c
+// (|c| <= r + 1), so |delta d| <= 3 2^-24 (r + 1) / r + 2^-24 (the CPU's own rounding of d)
+// <= 2^-21 on each axis, times the kernel's slope in d, 2 A + 2 pi F0 r + 2 taper_k (envelope,
+// harmonic, taper), for both axes; soft depth adds the fade's rounding: rel is formed in float
+// (a few 2^-24 relative), divided by the tolerance: 4 2^-24 / tol. 2 K: GPUs whose float ops
+// err by 2 ulp. The visibility decisions must be the CPU's except at ties: a fragment whose
+// double relative depth difference is within 2^-18 of the tolerance (or twice it, soft) may
+// flip; those pixels are counted and left out.
+struct npr_compare {
+  double max_abs = 0, rms = 0, max_vs_float = 0, worst_ratio = 0;
+  std::size_t ties = 0, reached = 0;
+};
+
+npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
+                            const hush::triangle_list& t) {
+  namespace c = hush::detail::constants;
+  const std::size_t w = f.width(), h = f.height();
+  std::vector<float> gpu(w * h, -7.0f), cpu(w * h);
+  std::vector<double> ref(w * h);
+  noise.render(hush::exec::glsl{headless().device}, f, t, hush::image_view<float>(gpu.data(), w, h));
+  noise.render(hush::exec::scalar, f, t, hush::image_view<float>(cpu.data(), w, h));
+  noise.render(hush::exec::scalar, f, t, hush::image_view<double>(ref.data(), w, h));
+  std::vector<hush::npr_gabor_splat> splats;
+  noise.make_splats(f, t, splats);
+  const auto& p = noise.parameters();
+  const double a = noise.kernel().envelope_exponent(), taper_k = 1.0 / (1.0 - c::kGaborTaperStart);
+  std::vector<double> sum_w(w * h, 0.0), count(w * h, 0.0);
+  std::vector<char> tie(w * h, 0);
+  double k_max = 0;
+  for (const hush::npr_gabor_splat& s : splats) {
+    const double fr = std::hypot(s.fx, s.fy) * s.radius;
+    double k = std::ldexp(1.0, -21) * (1 + c::kTwoPi * fr) +
+               2 * std::ldexp(1.0, -21) * (2 * a + c::kTwoPi * fr + 2 * taper_k);
+    if (p.soft_depth) k += 4 * std::ldexp(1.0, -24) / p.depth_tolerance;
+    k_max = std::max(k_max, k);
+    for (std::int32_t y = s.y0; y <= s.y1; ++y)
+      for (std::int32_t x = s.x0; x <= s.x1; ++x) {
+        const double dx = x + 0.5 - s.x, dy = y + 0.5 - s.y;
+        if (dx * dx + dy * dy >= s.radius * s.radius * 1.0000001) continue;
+        const std::size_t q = std::size_t(y) * w + std::size_t(x);
+        sum_w[q] += std::fabs(s.weight);
+        count[q] += 1;
+        if (!p.depth_test) continue;
+        const double rel =
+            std::fabs(double(f.depth(std::size_t(x), std::size_t(y))) *
+                          (s.q0 + s.qx * (x + 0.5) + s.qy * (y + 0.5)) - 1.0);
+        const double eps = std::ldexp(1.0, -18);
+        if (std::fabs(rel - p.depth_tolerance) <= eps ||
+            (p.soft_depth && std::fabs(rel - 2 * p.depth_tolerance) <= eps))
+          tie[q] = 1;
+      }
+  }
+  npr_compare r;
+  double sq = 0;
+  for (std::size_t q = 0; q < w * h; ++q) {
+    if (tie[q]) {
+      ++r.ties;
+      continue;
+    }
+    r.reached += count[q] > 0;
+    const double e = std::fabs(double(gpu[q]) - ref[q]);
+    const double bound = sum_w[q] * (2 * k_max + std::ldexp(1.0, -24) * count[q]);
+    r.max_abs = std::max(r.max_abs, e);
+    sq += e * e;
+    r.max_vs_float = std::max(r.max_vs_float, std::fabs(double(gpu[q]) - cpu[q]));
+    // Unreached pixels must be exactly 0 (bound 0).
+    r.worst_ratio = std::max(r.worst_ratio, bound > 0 ? e / bound : (e > 0 ? 1e30 : 0.0));
+  }
+  r.rms = std::sqrt(sq / double(w * h));
+  return r;
+}
+
+hush::npr_gabor::params npr_params() {
+  hush::npr_gabor::params p;
+  p.orientation = 0.5;
+  p.seed = 11;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("npr: GLSL point sprites equal the CPU render within the derived tolerance") {
+  const std::size_t w = 128, h = 128;
+  const npr_two_objects sc(w, h);
+  const hush::frame f = sc.frame();
+  const hush::triangle_list t = sc.triangles();
+  struct config {
+    const char* name;
+    hush::npr_gabor::params p;
+  };
+  std::vector<config> configs;
+  configs.push_back({"defaults (object + depth tests)", npr_params()});
+  hush::npr_gabor::params q = npr_params();
+  q.object_test = false;  // the depth test alone cuts the kernels at the patch's edges
+  configs.push_back({"depth test only", q});
+  q.soft_depth = true;
+  q.depth_tolerance = 0.1;  // the fade band reaches across the slanted plane's kernels
+  configs.push_back({"soft depth test", q});
+  q = npr_params();
+  q.triangle_test = true;
+  q.isotropic = true;
+  configs.push_back({"triangle test, isotropic", q});
+  q = npr_params();
+  q.bandwidth = 0.02;  // r = 49 px: quads larger than a third of the frame, still one each
+  q.impulses = 4;
+  q.depth_test = false;
+  configs.push_back({"large kernels, object test only", q});
+  for (const config& cf : configs) {
+    const std::string name = cf.name;
+    CAPTURE(name);
+    const npr_compare r = npr_against_cpu(hush::npr_gabor{cf.p}, f, t);
+    MESSAGE(cf.name << ": GLSL vs double max " << r.max_abs << " RMS " << r.rms
+                    << ", vs CPU float max " << r.max_vs_float << ", worst error / bound "
+                    << r.worst_ratio << ", tie pixels " << r.ties << ", reached " << r.reached);
+    CHECK(r.worst_ratio <= 1.0);
+    CHECK(r.reached > w * h / 2);  // the comparison covers the frame
+    CHECK(r.ties < w * h / 100);
+  }
+}
+
+TEST_CASE("npr: one quad per record never reaches the GL geometry-output limits") {
+  const hush::glsl::npr_gabor_limits l = hush::glsl::npr_gabor_gl_limits(headless().device.gl());
+  MESSAGE("GL_MAX_GEOMETRY_OUTPUT_VERTICES " << l.max_geometry_output_vertices
+                                             << ", GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS "
+                                             << l.max_geometry_output_components);
+  // GL 3.2's minimums are 256 and 1024; one quad needs 4 and 4 x 5.
+  CHECK(l.max_geometry_output_vertices >= 256);
+  CHECK(l.max_geometry_output_components >= 1024);
+  CHECK(l.sprites_fit());
+  // The geometry stage declares exactly one quad, whatever the kernel's size.
+  const std::string gs = hush::glsl::npr_gabor_geometry_source();
+  CHECK(gs.find("max_vertices = HUSH_NPR_SPRITE_VERTICES") != std::string::npos);
+  CHECK(gs.find("#define HUSH_NPR_SPRITE_VERTICES 4\n") != std::string::npos);
+  CHECK(hush::glsl::npr_gabor_state(headless().device).limits().sprites_fit());
+}
+
+TEST_CASE("npr: records beyond one storage block are drawn in order, state is restored") {
+  // A device whose storage blocks hold 64 records: the records go in several draws and the
+  // image is the one-draw image bit for bit (blending in record order either way).
+  const std::size_t w = 32, h = 32;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 9.0, 16.0);
+  const hush::npr_gabor noise{npr_params()};
+  hush::glsl::device::options o;
+  o.max_buffer_bytes = 64 * hush::glsl::kNprGaborRecordBytes;
+  hush::glsl::device small(hush::glsl::osmesa_context::loader(), o);
+  std::vector<hush::npr_gabor_splat> splats;
+  noise.make_splats(sc.frame(), sc.triangles(), splats);
+  REQUIRE(splats.size() > 128);
+  const hush::glsl::detail::gl_api& gl = headless().device.gl();
+  hush::glsl::detail::gl_int program_before = -1, program_after = -2;
+  gl.GetIntegerv(hush::glsl::detail::kGlCurrentProgram, &program_before);
+  std::vector<float> one(w * h), many(w * h);
+  noise.render(hush::exec::glsl{headless().device}, sc.frame(), sc.triangles(),
+               hush::image_view<float>(one.data(), w, h));
+  noise.render(hush::exec::glsl{small}, sc.frame(), sc.triangles(),
+               hush::image_view<float>(many.data(), w, h));
+  gl.GetIntegerv(hush::glsl::detail::kGlCurrentProgram, &program_after);
+  CHECK(program_after == program_before);
+  CHECK(hush::glsl::npr_gabor_state(small).draws() >= (splats.size() + 63) / 64);
+  CHECK(one == many);
+  double energy = 0;
+  for (float v : one) energy += double(v) * v;
+  CHECK(energy > 0.1 * double(w * h));  // unit variance where covered: not an empty image
 }
