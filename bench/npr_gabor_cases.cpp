@@ -63,8 +63,8 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
     for (double impulses : impulse_counts) {
       bench_case c;
       c.wall_clock = std::string(Exec::name) == "glsl";
-      c.noise = "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) +
-                (thinning ? " thin" : "");
+      c.noise =
+          "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) + (thinning ? " thin" : "");
       c.backend = Exec::name;
       c.workload = "dense:" + std::to_string(fr->triangles) + " " + std::to_string(s.npr_width) +
                    "x" + std::to_string(s.npr_height);

@@ -53,9 +53,9 @@ class npr_stylizer {
   void draw(bool simd, const hush::frame& f, const hush::triangle_list& tris,
             hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb);
   // The same with each layer rendered by `render` (e.g. on exec::glsl).
-  using layer_render = std::function<void(const hush::npr_gabor&, const hush::frame&,
-                                          const hush::triangle_list&, const hush::image_view<float>&,
-                                          const hush::npr_gabor::sources&)>;
+  using layer_render =
+      std::function<void(const hush::npr_gabor&, const hush::frame&, const hush::triangle_list&,
+                         const hush::image_view<float>&, const hush::npr_gabor::sources&)>;
   void draw(const layer_render& render, const hush::frame& f, const hush::triangle_list& tris,
             hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb);
 

@@ -158,10 +158,9 @@ class npr_gabor_noise final : public scene_noise {
         const hush::frame f = frames.frame(i, stylizer_.needs());
         const hush::triangle_list t = frames.triangles(i);
         stylizer_.draw(
-            [&ex](const hush::npr_gabor& layer, const hush::frame& fr, const hush::triangle_list& tl,
-                  const hush::image_view<float>& image, const hush::npr_gabor::sources& src) {
-              layer.render(ex, fr, tl, image, src);
-            },
+            [&ex](const hush::npr_gabor& layer, const hush::frame& fr,
+                  const hush::triangle_list& tl, const hush::image_view<float>& image,
+                  const hush::npr_gabor::sources& src) { layer.render(ex, fr, tl, image, src); },
             f, t, frames.normals(i), rgb);
         sink.write_png(i, rgb, w, h);
         sink.progress("drawing", i + 1, n);

@@ -258,65 +258,34 @@ namespace {
 
 // Two objects: a slanted plane (object 1; 1/z = 0.5 + 0.002 x + 0.001 y, affine in screen
 // space as on any plane) covering the frame, and in front of it a flat patch (object 2, depth
-// 0.8) of 5 x 4 cells: depth discontinuities, object boundaries and triangle edges.
-struct npr_two_objects {
-  npr_test::grid_scene back, front;
-  std::vector<hush::vec2> screen;
-  std::vector<float> vdepth, depth;
-  std::vector<std::uint32_t> indices, tri_id, obj_id, object, triangle;
-  std::size_t w, h;
-
-  static double inv_z(double x, double y) { return 0.5 + 0.002 * x + 0.001 * y; }
-
-  npr_two_objects(std::size_t w_, std::size_t h_)
-      : back(npr_test::covering(w_, h_, 14.0, 20.0)),
-        front(w_, h_, 31.0, 42.0, 11.0, 5, 4, 0.8f),
-        w(w_),
-        h(h_) {
-    for (std::size_t v = 0; v < back.screen.size(); ++v)
-      back.vdepth[v] = static_cast<float>(1.0 / inv_z(back.screen[v].x, back.screen[v].y));
-    screen = back.screen;
-    screen.insert(screen.end(), front.screen.begin(), front.screen.end());
-    vdepth = back.vdepth;
-    vdepth.insert(vdepth.end(), front.vdepth.begin(), front.vdepth.end());
-    indices = back.indices;
-    const auto base = static_cast<std::uint32_t>(back.screen.size());
-    for (std::uint32_t i : front.indices) indices.push_back(i + base);
-    tri_id = back.tri_id;
-    obj_id = back.obj_id;
-    for (std::uint32_t t : front.tri_id) tri_id.push_back(t + 100000u);
-    for (std::size_t t = 0; t < front.tri_id.size(); ++t) obj_id.push_back(2u);
-    depth.resize(w * h);
-    object = back.object;
-    triangle = back.triangle;
-    for (std::size_t y = 0; y < h; ++y)
-      for (std::size_t x = 0; x < w; ++x) {
-        const std::size_t p = y * w + x;
-        depth[p] = static_cast<float>(1.0 / inv_z(double(x) + 0.5, double(y) + 0.5));
-        if (front.object[p] != 0u) {
-          depth[p] = front.depth[p];
-          object[p] = 2u;
-          triangle[p] = front.triangle[p] + 100000u;
-        }
+// 0.8, triangle ids from 100000) of 5 x 4 cells: depth discontinuities, object boundaries and
+// triangle edges. Built from two npr_test::grid_scenes, merged into the first.
+npr_test::grid_scene npr_two_objects(std::size_t w, std::size_t h) {
+  auto inv_z = [](double x, double y) { return 0.5 + 0.002 * x + 0.001 * y; };
+  npr_test::grid_scene sc = npr_test::covering(w, h, 14.0, 20.0);
+  const npr_test::grid_scene front(w, h, 31.0, 42.0, 11.0, 5, 4, 0.8f);
+  for (std::size_t v = 0; v < sc.screen.size(); ++v)
+    sc.vdepth[v] = static_cast<float>(1.0 / inv_z(sc.screen[v].x, sc.screen[v].y));
+  const auto base = static_cast<std::uint32_t>(sc.screen.size());
+  sc.screen.insert(sc.screen.end(), front.screen.begin(), front.screen.end());
+  sc.vdepth.insert(sc.vdepth.end(), front.vdepth.begin(), front.vdepth.end());
+  for (std::uint32_t i : front.indices) sc.indices.push_back(i + base);
+  for (std::uint32_t t : front.tri_id) {
+    sc.tri_id.push_back(t + 100000u);
+    sc.obj_id.push_back(2u);
+  }
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const std::size_t p = y * w + x;
+      sc.depth[p] = static_cast<float>(1.0 / inv_z(double(x) + 0.5, double(y) + 0.5));
+      if (front.object[p] != 0u) {
+        sc.depth[p] = front.depth[p];
+        sc.object[p] = 2u;
+        sc.triangle[p] = front.triangle[p] + 100000u;
       }
-  }
-  hush::frame frame() const {
-    hush::frame f;
-    f.depth = {depth.data(), w, h};
-    f.object_id = {object.data(), w, h};
-    f.triangle_id = {triangle.data(), w, h};
-    return f;
-  }
-  hush::triangle_list triangles() const {
-    hush::triangle_list t;
-    t.indices = indices;
-    t.screen = screen;
-    t.depth = vdepth;
-    t.triangle_id = tri_id;
-    t.object_id = obj_id;
-    return t;
-  }
-};
+    }
+  return sc;
+}
 
 // The GLSL tolerance of hush/glsl/npr_gabor.hpp against the double reference, per pixel p:
 // S(p) (2 K + 2^-24 n(p)) with S(p) the sum of |weight| and n(p) the count of the kernels
@@ -340,7 +309,8 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
   const std::size_t w = f.width(), h = f.height();
   std::vector<float> gpu(w * h, -7.0f), cpu(w * h);
   std::vector<double> ref(w * h);
-  noise.render(hush::exec::glsl{headless().device}, f, t, hush::image_view<float>(gpu.data(), w, h));
+  noise.render(hush::exec::glsl{headless().device}, f, t,
+               hush::image_view<float>(gpu.data(), w, h));
   noise.render(hush::exec::scalar, f, t, hush::image_view<float>(cpu.data(), w, h));
   noise.render(hush::exec::scalar, f, t, hush::image_view<double>(ref.data(), w, h));
   std::vector<hush::npr_gabor_splat> splats;
@@ -364,9 +334,9 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
         sum_w[q] += std::fabs(s.weight);
         count[q] += 1;
         if (!p.depth_test) continue;
-        const double rel =
-            std::fabs(double(f.depth(std::size_t(x), std::size_t(y))) *
-                          (s.q0 + s.qx * (x + 0.5) + s.qy * (y + 0.5)) - 1.0);
+        const double rel = std::fabs(double(f.depth(std::size_t(x), std::size_t(y))) *
+                                         (s.q0 + s.qx * (x + 0.5) + s.qy * (y + 0.5)) -
+                                     1.0);
         const double eps = std::ldexp(1.0, -18);
         if (std::fabs(rel - p.depth_tolerance) <= eps ||
             (p.soft_depth && std::fabs(rel - 2 * p.depth_tolerance) <= eps))
@@ -404,7 +374,7 @@ hush::npr_gabor::params npr_params() {
 
 TEST_CASE("npr: GLSL point sprites equal the CPU render within the derived tolerance") {
   const std::size_t w = 128, h = 128;
-  const npr_two_objects sc(w, h);
+  const npr_test::grid_scene sc = npr_two_objects(w, h);
   const hush::frame f = sc.frame();
   const hush::triangle_list t = sc.triangles();
   struct config {

@@ -34,7 +34,8 @@
 // first pixel (in double on the CPU, then rounded: no large coordinate reaches the GPU, which
 // has no fp64), and GLSL may fuse multiply-adds. Per pixel p reached by kernels i with weights
 // w_i, the image is within
-//   S(p) (2 K + 2^-24 n(p)),   S(p) = sum |w_i|, K = 2^-21 (1 + 2 pi F0 r) + 2^-22 (1 + A + pi F0 r)
+//   S(p) (2 K + 2^-24 n(p)),   S(p) = sum |w_i|, K = 2^-21 (1 + 2 pi F0 r) + 2^-22 (1 + A + pi F0
+//   r)
 // of the double reference (K: the kernel's float budget of gabor_kernel.hpp plus the offset's
 // rounding times the kernel's slope; 2 K for GPUs whose float ops err by 2 ulp; n(p) 2^-24
 // S(p) the sums' rounding). The visibility decisions are the CPU's except at ties: the depth
@@ -79,11 +80,12 @@ constexpr std::size_t kNprGaborRecordBytes = 64;
 
 // The GL limits the renderer depends on, as the context reports them.
 struct npr_gabor_limits {
-  int max_geometry_output_vertices = 0;      // GL_MAX_GEOMETRY_OUTPUT_VERTICES
-  int max_geometry_output_components = 0;    // GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS
-  int max_geometry_storage_blocks = 0;       // GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS
-  int max_fragment_storage_blocks = 0;       // GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS
-  int max_frame_side = 0;  // min(GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS, GL_MAX_RENDERBUFFER_SIZE)
+  int max_geometry_output_vertices = 0;    // GL_MAX_GEOMETRY_OUTPUT_VERTICES
+  int max_geometry_output_components = 0;  // GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS
+  int max_geometry_storage_blocks = 0;     // GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS
+  int max_fragment_storage_blocks = 0;     // GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS
+  int max_frame_side =
+      0;  // min(GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS, GL_MAX_RENDERBUFFER_SIZE)
   // Whether one quad per input point fits the geometry-output limits.
   bool sprites_fit() const {
     return kNprGaborSpriteVertices <= max_geometry_output_vertices &&
@@ -375,7 +377,8 @@ class npr_gabor_gpu {
       for (gl_uint b = 1; b <= 3; ++b) gl_.BindBufferBase(kGlShaderStorageBuffer, b, buffers_[0]);
     }
     // Records in batches of one storage block, drawn in order.
-    const std::size_t batch = std::max<std::size_t>(1, dev_.max_buffer_bytes() / kNprGaborRecordBytes);
+    const std::size_t batch =
+        std::max<std::size_t>(1, dev_.max_buffer_bytes() / kNprGaborRecordBytes);
     for (std::size_t b0 = 0; b0 < j.count; b0 += batch) {
       const std::size_t m = std::min(batch, j.count - b0);
       pack(j.splats + b0, m);
@@ -406,8 +409,7 @@ class npr_gabor_gpu {
       gl.GetIntegerv(kGlShaderStorageBufferBinding, &buffer_);
       gl.GetIntegerv(kGlTextureBinding2d, &texture_);
       gl.GetIntegerv(kGlPackAlignment, &pack_);
-      for (int i = 0; i < 4; ++i)
-        gl.GetIntegerv(kBlendQueries[i], &blend_[i]);
+      for (int i = 0; i < 4; ++i) gl.GetIntegerv(kBlendQueries[i], &blend_[i]);
       gl.GetIntegerv(kGlBlendEquationRgb, &equation_[0]);
       gl.GetIntegerv(kGlBlendEquationAlpha, &equation_[1]);
       for (int i = 0; i < 5; ++i) enabled_[i] = gr.IsEnabled(kCaps[i]) != 0;
