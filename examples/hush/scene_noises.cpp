@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
