@@ -425,6 +425,24 @@ TEST_CASE("npr: one quad per record never reaches the GL geometry-output limits"
   CHECK(gs.find("max_vertices = HUSH_NPR_SPRITE_VERTICES") != std::string::npos);
   CHECK(gs.find("#define HUSH_NPR_SPRITE_VERTICES 4\n") != std::string::npos);
   CHECK(hush::glsl::npr_gabor_state(headless().device).limits().sprites_fit());
+  // A frame wider than the GL's largest target is refused, naming the frame size.
+  const std::size_t wide = static_cast<std::size_t>(l.max_frame_side) + 1;
+  if (wide <= hush::detail::constants::kNprGaborMaxImageSide) {
+    const std::vector<float> depth(wide, 1.0f);
+    const std::vector<std::uint32_t> ids(wide, 1u);
+    hush::frame f;
+    f.depth = {depth.data(), wide, 1};
+    f.object_id = {ids.data(), wide, 1};
+    std::vector<float> out(wide);
+    try {
+      hush::npr_gabor{npr_params()}.render(hush::exec::glsl{headless().device}, f,
+                                           hush::triangle_list{},
+                                           hush::image_view<float>(out.data(), wide, 1));
+      FAIL("no exception");
+    } catch (const hush::invalid_argument& e) {
+      CHECK(std::string(e.what()).find("frame size") != std::string::npos);
+    }
+  }
 }
 
 TEST_CASE("npr: records beyond one storage block are drawn in order, state is restored") {

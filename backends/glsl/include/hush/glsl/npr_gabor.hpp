@@ -33,20 +33,25 @@
 // what differs is each kernel's float value: the offsets are formed relative to the record's
 // first pixel (in double on the CPU, then rounded: no large coordinate reaches the GPU, which
 // has no fp64), and GLSL may fuse multiply-adds. Per pixel p reached by kernels i with weights
-// w_i, the image is within
-//   S(p) (2 K + 2^-24 n(p)),   S(p) = sum |w_i|, K = 2^-21 (1 + 2 pi F0 r) + 2^-22 (1 + A + pi F0
-//   r)
-// of the double reference (K: the kernel's float budget of gabor_kernel.hpp plus the offset's
-// rounding times the kernel's slope; 2 K for GPUs whose float ops err by 2 ulp; n(p) 2^-24
-// S(p) the sums' rounding). The visibility decisions are the CPU's except at ties: the depth
-// test's relative difference is formed in float (the plane relative to the first pixel), so a
-// fragment whose relative depth difference is within 2^-18 of the tolerance (or of twice it,
-// soft) may be decided the other way; object and triangle tests compare integers (exact).
+// w_i, the image is within S(p) (2 K + 2^-24 n(p)) of the double reference, S(p) = sum |w_i|,
+//   K = 2^-21 (1 + 2 pi F0 r) + 2 2^-21 (2 A + 2 pi F0 r + 2 / (1 - s0)) [+ 4 2^-24 / tolerance]
+// (A = ln(1/t), s0 the taper start): the kernel's float budget of gabor_kernel.hpp; the
+// offsets' rounding (<= 2^-21 in units of r per axis) times the kernel's slope (envelope,
+// harmonic, taper) on both axes; with the soft test, the fade's rounding. 2 K for GPUs whose
+// float ops err by 2 ulp; n(p) 2^-24 S(p) the sums' rounding. The visibility decisions are the
+// CPU's except at ties: the depth test's relative difference is formed in float (the plane relative
+// to the first pixel), so a fragment whose relative depth difference is within 2^-18 of the
+// tolerance (or of twice it, soft) may be decided the other way; object and triangle tests compare
+// integers (exact).
+//
+// Depths: a pixel's depth must be positive and finite, as on the CPU; a denormal depth reads as
+// 0 (fails) on GPUs that flush denormals, where the CPU passes it to the plane comparison.
 //
 // Throws std::runtime_error for GL errors (and when the context lacks storage blocks in the
 // geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
 // driver has them). Leaves the current program, vertex array, framebuffers, viewport, blend and
-// the enables it touches (blend, depth, stencil, scissor, cull face) as it found them.
+// the enables it touches (blend, depth, stencil, scissor, cull face) as it found them; rebinds
+// the indexed storage-buffer bindings 0 to 4 (as hush::glsl::device does).
 #ifndef HUSH_GLSL_NPR_GABOR_HPP
 #define HUSH_GLSL_NPR_GABOR_HPP
 
