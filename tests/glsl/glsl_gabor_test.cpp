@@ -451,13 +451,13 @@ TEST_CASE("npr: records beyond one storage block are drawn in order, state is re
   const std::size_t w = 32, h = 32;
   const npr_test::grid_scene sc = npr_test::covering(w, h, 9.0, 16.0);
   const hush::npr_gabor noise{npr_params()};
+  const hush::glsl::detail::gl_api& gl = headless().device.gl();  // the context, current
   hush::glsl::device::options o;
   o.max_buffer_bytes = 64 * hush::glsl::kNprGaborRecordBytes;
   hush::glsl::device small(hush::glsl::osmesa_context::loader(), o);
   std::vector<hush::npr_gabor_splat> splats;
   noise.make_splats(sc.frame(), sc.triangles(), splats);
   REQUIRE(splats.size() > 128);
-  const hush::glsl::detail::gl_api& gl = headless().device.gl();
   hush::glsl::detail::gl_int program_before = -1, program_after = -2;
   gl.GetIntegerv(hush::glsl::detail::kGlCurrentProgram, &program_before);
   std::vector<float> one(w * h), many(w * h);
