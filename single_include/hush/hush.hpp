@@ -14689,6 +14689,14 @@ class param_source {
 
 namespace hush {
 
+namespace detail {
+// Whether Exec is exec::glsl{device} (splat hands stage 2 to hush/glsl/npr_gabor.hpp).
+template <class Exec>
+struct is_glsl_exec : std::false_type {};
+template <class Device>
+struct is_glsl_exec<exec::glsl<Device>> : std::true_type {};
+}  // namespace detail
+
 // The LOD of one triangle (paper sec. 3.3, eqs. 2 and 4, and the N < 1 case
 // derived above): points 0 ... first - 1 weigh first_weight, points first ...
 // count - 1 weigh second_weight. sum of squared weights = N (for 0 <= N <=
@@ -14878,8 +14886,7 @@ class npr_gabor {
     job.soft_depth = p_.soft_depth;
     job.depth_tolerance = p_.depth_tolerance;
     job.envelope_exponent = kernel_.envelope_exponent();
-    if constexpr (!std::is_same<Exec, exec::scalar_t>::value &&
-                  !std::is_same<Exec, exec::simd_t>::value) {
+    if constexpr (detail::is_glsl_exec<Exec>::value) {
       static_assert(std::is_same<T, float>::value, "exec::glsl splats into float images");
       // exec::glsl{device}: hush/glsl/npr_gabor.hpp (found by argument-dependent lookup).
       npr_gabor_glsl_splat(ex.device, job, out);
