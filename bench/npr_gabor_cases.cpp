@@ -8,8 +8,11 @@
 // times npr_gabor::render (both stages: points and splatting) on one thread;
 // ms/frame is its time per frame. Error columns: the float render against render<double> on
 // exec::scalar (the reference) over every pixel. The note gives the splat count (points
-// emitted) and the triangle count.
+// emitted) and the triangle count. GLSL rows (with OSMesa; N' = 16): stage 1 on the CPU, the
+// splatting as point sprites (hush/glsl/npr_gabor.hpp), in wall time like the other GLSL rows
+// (llvmpipe's own threads do the work), read-back included.
 #include <cstdio>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,7 +27,16 @@
 #include "scene.hpp"
 #include "triangles.hpp"
 
+#if HUSH_BENCH_HAVE_GLSL
+#include "hush/glsl/npr_gabor.hpp"
+#endif
+
 namespace hush_bench {
+
+#if HUSH_BENCH_HAVE_GLSL
+hush::glsl::device& bench_glsl_device();  // cases.cpp
+#endif
+
 namespace {
 
 // One rasterized frame of a dense scene, made on first use (rows share it).
@@ -45,12 +57,14 @@ struct dense_frame {
 
 template <class Exec>
 void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
-              const std::vector<std::shared_ptr<dense_frame>>& frames, bool thinning) {
+              const std::vector<std::shared_ptr<dense_frame>>& frames, bool thinning,
+              std::initializer_list<double> impulse_counts = {16.0, 32.0}) {
   for (const std::shared_ptr<dense_frame>& fr : frames)
-    for (double impulses : {16.0, 32.0}) {
+    for (double impulses : impulse_counts) {
       bench_case c;
-      c.noise = "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) +
-                (thinning ? " thin" : "");
+      c.wall_clock = std::string(Exec::name) == "glsl";
+      c.noise =
+          "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) + (thinning ? " thin" : "");
       c.backend = Exec::name;
       c.workload = "dense:" + std::to_string(fr->triangles) + " " + std::to_string(s.npr_width) +
                    "x" + std::to_string(s.npr_height);
@@ -104,6 +118,10 @@ void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s) {
   add_rows(cases, s, hush::exec::scalar, frames, false);
   add_rows(cases, s, hush::exec::simd, frames, false);
   add_rows(cases, s, hush::exec::simd, frames, true);
+#if HUSH_BENCH_HAVE_GLSL
+  add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames, false,
+           {16.0});
+#endif
 }
 
 }  // namespace hush_bench

@@ -82,6 +82,20 @@ hush::frame_view npr_stylizer::needs() const {
 void npr_stylizer::draw(bool simd, const hush::frame& f, const hush::triangle_list& tris,
                         hush::image_view<const hush::vec3> normals,
                         std::vector<std::uint8_t>& rgb) {
+  draw(
+      [simd](const hush::npr_gabor& layer, const hush::frame& fr, const hush::triangle_list& t,
+             const hush::image_view<float>& image, const hush::npr_gabor::sources& src) {
+        if (simd)
+          layer.render(hush::exec::simd, fr, t, image, src);
+        else
+          layer.render(hush::exec::scalar, fr, t, image, src);
+      },
+      f, tris, normals, rgb);
+}
+
+void npr_stylizer::draw(const layer_render& render, const hush::frame& f,
+                        const hush::triangle_list& tris, hush::image_view<const hush::vec3> normals,
+                        std::vector<std::uint8_t>& rgb) {
   const std::size_t w = f.width(), h = f.height();
   const bool field = o_.field != npr_field::constant;
   if (field) {
@@ -102,10 +116,7 @@ void npr_stylizer::draw(bool simd, const hush::frame& f, const hush::triangle_li
       src.orientation =
           hush::param_source::per_pixel({(k == 0 ? field_ : field_turned_).data(), w, h});
     const hush::image_view<float> image(images_[k].data(), w, h);
-    if (simd)
-      layers_[k].render(hush::exec::simd, f, tris, image, src);
-    else
-      layers_[k].render(hush::exec::scalar, f, tris, image, src);
+    render(layers_[k], f, tris, image, src);
   }
   tone_.resize(w * h);
   for (std::size_t y = 0; y < h; ++y)

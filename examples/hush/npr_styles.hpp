@@ -21,6 +21,7 @@
 #define HUSH_CLI_NPR_STYLES_HPP
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "hush/core/frame.hpp"
@@ -56,6 +57,12 @@ class npr_stylizer {
   // Draws one frame as 8-bit RGB (rows top to bottom) into `rgb` (resized); `simd`: the
   // layers are splatted by exec::simd (npr_gabor::render), else by exec::scalar.
   void draw(bool simd, const hush::frame& f, const hush::triangle_list& tris,
+            hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb);
+  // The same with each layer rendered by `render` (e.g. on exec::glsl).
+  using layer_render =
+      std::function<void(const hush::npr_gabor&, const hush::frame&, const hush::triangle_list&,
+                         const hush::image_view<float>&, const hush::npr_gabor::sources&)>;
+  void draw(const layer_render& render, const hush::frame& f, const hush::triangle_list& tris,
             hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb);
 
  private:

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -19,6 +18,7 @@
 
 #if HUSH_CLI_HAVE_GLSL
 #include "hush/glsl/coherent.hpp"
+#include "hush/glsl/npr_gabor.hpp"
 #endif
 
 namespace hush_cli {
@@ -110,16 +110,21 @@ class npr_gabor_noise final : public scene_noise {
   std::string unsupported_reason(backend b) const override {
     if (b == backend::simd && !HUSH_CONFIG_SIMD)
       return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
-    if (b == backend::glsl)
-      return "npr-gabor runs on the scalar and SIMD backends only so far (GLSL splatting is not "
-             "implemented yet, issue 11)";
+    if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
+      return "the GLSL backend is not in this build (OSMesa not found)";
     return "";
   }
   void render(gbuffer_sequence& frames, render_sink& sink, backend b) override {
-    if (b == backend::simd)
+    if (b == backend::simd) {
       run(hush::exec::simd, frames, sink);
-    else
+    } else if (b == backend::glsl) {
+#if HUSH_CLI_HAVE_GLSL
+      // Stage 1 on the CPU, the splatting as point sprites (hush/glsl/npr_gabor.hpp).
+      run(hush::exec::glsl<hush::glsl::device>{glsl_device()}, frames, sink);
+#endif
+    } else {
       run(hush::exec::scalar, frames, sink);
+    }
   }
 
  private:
@@ -133,7 +138,11 @@ class npr_gabor_noise final : public scene_noise {
       for (std::size_t i = 0; i < n; ++i) {
         const hush::frame f = frames.frame(i, stylizer_.needs());
         const hush::triangle_list t = frames.triangles(i);
-        stylizer_.draw(std::is_same<Exec, hush::exec::simd_t>::value, f, t, frames.normals(i), rgb);
+        stylizer_.draw(
+            [&ex](const hush::npr_gabor& layer, const hush::frame& fr,
+                  const hush::triangle_list& tl, const hush::image_view<float>& image,
+                  const hush::npr_gabor::sources& src) { layer.render(ex, fr, tl, image, src); },
+            f, t, frames.normals(i), rgb);
         sink.write_png(i, rgb, w, h);
         sink.progress("drawing", i + 1, n);
       }

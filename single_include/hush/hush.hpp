@@ -14597,7 +14597,9 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-// Not yet here (issue 11): GLSL.
+//  - GLSL: stage 2 on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): the
+//    records drawn as point sprites (geometry shader), the kernel and the tests per
+//    fragment, additive blending into a float target; stage 1 stays on the CPU.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -14778,6 +14780,14 @@ class param_source {
 
 namespace hush {
 
+namespace detail {
+// Whether Exec is exec::glsl{device} (splat hands stage 2 to hush/glsl/npr_gabor.hpp).
+template <class Exec>
+struct is_glsl_exec : std::false_type {};
+template <class Device>
+struct is_glsl_exec<exec::glsl<Device>> : std::true_type {};
+}  // namespace detail
+
 // The LOD of one triangle (paper sec. 3.3, eqs. 2 and 4, and the N < 1 case
 // derived above): points 0 ... first - 1 weigh first_weight, points first ...
 // count - 1 weigh second_weight. sum of squared weights = N (for 0 <= N <=
@@ -14908,7 +14918,9 @@ class npr_gabor {
   // added per pixel in record order). `ex` picks stage 2's backend:
   // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
   // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
-  // the scalar loop where the build has no SIMD). Throws
+  // the scalar loop where the build has no SIMD), or exec::glsl{device}
+  // (float only; include hush/glsl/npr_gabor.hpp: point sprites, within the
+  // tolerance stated there). Throws
   // hush::invalid_argument when the frame lacks a view needs() lists or is
   // malformed (frame::validate), when the triangle list is malformed
   // (triangle_list::validate), when out's size differs from the frame's, or
@@ -14947,7 +14959,7 @@ class npr_gabor {
   // a pixel range outside the frame are the caller's error). Backends as
   // for render.
   template <class Exec, class T>
-  void splat(const Exec&, const frame& f, const npr_gabor_splat* splats, std::size_t count,
+  void splat(const Exec& ex, const frame& f, const npr_gabor_splat* splats, std::size_t count,
              const image_view<T>& out) const {
     check_out(f, out);
     for (std::size_t y = 0; y < out.height; ++y)
@@ -14964,14 +14976,21 @@ class npr_gabor {
     job.soft_depth = p_.soft_depth;
     job.depth_tolerance = p_.depth_tolerance;
     job.envelope_exponent = kernel_.envelope_exponent();
+    if constexpr (detail::is_glsl_exec<Exec>::value) {
+      static_assert(std::is_same<T, float>::value, "exec::glsl splats into float images");
+      // exec::glsl{device}: hush/glsl/npr_gabor.hpp (found by argument-dependent lookup).
+      npr_gabor_glsl_splat(ex.device, job, out);
+    } else {
 #if HUSH_CONFIG_SIMD
-    if constexpr (std::is_same<Exec, exec::simd_t>::value && std::is_same<T, float>::value) {
-      simd::npr_gabor_splat(job, out);
-      return;
-    }
+      if constexpr (std::is_same<Exec, exec::simd_t>::value && std::is_same<T, float>::value) {
+        simd::npr_gabor_splat(job, out);
+        return;
+      }
 #endif
-    std::vector<detail::gabor_axis<T>> columns;
-    detail::npr_gabor_splat_scalar(job, out, columns);
+      (void)ex;
+      std::vector<detail::gabor_axis<T>> columns;
+      detail::npr_gabor_splat_scalar(job, out, columns);
+    }
   }
 
   // int g_F^2 for |F| = frequency and a kernel of radius `radius` (default:

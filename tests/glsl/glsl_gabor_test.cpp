@@ -15,16 +15,24 @@
 // Phi^2 pi^2 / A 2^-21: the budget times (1 + 2 pi Phi + pi^2 Phi^2 / A).
 // Any differing Poisson count or impulse mark would move a value by up to a
 // whole kernel (~scale), far beyond these tolerances.
+//
+// NPR Gabor noise's splatting on GLSL (hush/glsl/npr_gabor.hpp; the cases named "npr"):
+// point sprites against the double and float CPU renders of the npr test scenes, with the
+// tolerance derived at npr_bound below.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <iterator>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "glsl_test_util.hpp"
+#include "hush/glsl/npr_gabor.hpp"
+#include "npr_gabor_scenes.hpp"
 
 namespace {
 
@@ -344,4 +352,244 @@ TEST_CASE("gabor glsl: surface noise (normals) equals the double reference, ever
   for (const auto kind :
        {hush::gabor_kind::isotropic, hush::gabor_kind::anisotropic, hush::gabor_kind::hybrid})
     check_surface(hush::gabor<3>(params_of<3>(kind)));
+}
+
+// ---- NPR Gabor noise: GLSL splatting (hush/glsl/npr_gabor.hpp).
+namespace {
+
+// Two objects: a slanted plane (object 1; 1/z = 0.5 + 0.002 x + 0.001 y, affine in screen
+// space as on any plane) covering the frame, and in front of it a flat patch (object 2, depth
+// 0.8, triangle ids from 100000) of 5 x 4 cells: depth discontinuities, object boundaries and
+// triangle edges. Built from two npr_test::grid_scenes, merged into the first.
+npr_test::grid_scene npr_two_objects(std::size_t w, std::size_t h) {
+  auto inv_z = [](double x, double y) { return 0.5 + 0.002 * x + 0.001 * y; };
+  npr_test::grid_scene sc = npr_test::covering(w, h, 14.0, 20.0);
+  const npr_test::grid_scene front(w, h, 31.0, 42.0, 11.0, 5, 4, 0.8f);
+  for (std::size_t v = 0; v < sc.screen.size(); ++v)
+    sc.vdepth[v] = static_cast<float>(1.0 / inv_z(sc.screen[v].x, sc.screen[v].y));
+  const auto base = static_cast<std::uint32_t>(sc.screen.size());
+  sc.screen.insert(sc.screen.end(), front.screen.begin(), front.screen.end());
+  sc.vdepth.insert(sc.vdepth.end(), front.vdepth.begin(), front.vdepth.end());
+  for (std::uint32_t i : front.indices) sc.indices.push_back(i + base);
+  for (std::uint32_t t : front.tri_id) {
+    sc.tri_id.push_back(t + 100000u);
+    sc.obj_id.push_back(2u);
+  }
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const std::size_t p = y * w + x;
+      sc.depth[p] = static_cast<float>(1.0 / inv_z(double(x) + 0.5, double(y) + 0.5));
+      if (front.object[p] != 0u) {
+        sc.depth[p] = front.depth[p];
+        sc.object[p] = 2u;
+        sc.triangle[p] = front.triangle[p] + 100000u;
+      }
+    }
+  return sc;
+}
+
+// The GLSL tolerance of hush/glsl/npr_gabor.hpp against the double reference, per pixel p:
+// S(p) (2 K + 2^-24 n(p)) with S(p) the sum of |weight| and n(p) the count of the kernels
+// whose disc holds p's centre. K per unit weight: the kernel's float budget 2^-21 (1 + 2 pi
+// F0 r) (gabor_kernel.hpp), plus the offsets: d = (c + k) / r is formed from a float c
+// (|c| <= r + 1), so |delta d| <= 3 2^-24 (r + 1) / r + 2^-24 (the CPU's own rounding of d)
+// <= 2^-21 on each axis, times the kernel's slope in d, 2 A + 2 pi F0 r + 2 taper_k (envelope,
+// harmonic, taper), for both axes; soft depth adds the fade's rounding: rel is formed in float
+// (a few 2^-24 relative), divided by the tolerance: 4 2^-24 / tol. 2 K: GPUs whose float ops
+// err by 2 ulp. The visibility decisions must be the CPU's except at ties: a fragment whose
+// double relative depth difference is within 2^-18 of the tolerance (or twice it, soft) may
+// flip; those pixels are counted and left out.
+struct npr_compare {
+  double max_abs = 0, rms = 0, max_vs_float = 0, worst_ratio = 0;
+  std::size_t ties = 0, reached = 0;
+  // Object-passing fragments the depth test cuts (binary or beyond 2 tolerances) and those in
+  // the soft test's fade band: the decisions the comparison exercises.
+  std::size_t cut = 0, faded = 0;
+};
+
+npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
+                            const hush::triangle_list& t) {
+  namespace c = hush::detail::constants;
+  const std::size_t w = f.width(), h = f.height();
+  std::vector<float> gpu(w * h, -7.0f), cpu(w * h);
+  std::vector<double> ref(w * h);
+  noise.render(hush::exec::glsl{headless().device}, f, t,
+               hush::image_view<float>(gpu.data(), w, h));
+  noise.render(hush::exec::scalar, f, t, hush::image_view<float>(cpu.data(), w, h));
+  noise.render(hush::exec::scalar, f, t, hush::image_view<double>(ref.data(), w, h));
+  std::vector<hush::npr_gabor_splat> splats;
+  noise.make_splats(f, t, splats);
+  const auto& p = noise.parameters();
+  const double a = noise.kernel().envelope_exponent(), taper_k = 1.0 / (1.0 - c::kGaborTaperStart);
+  std::vector<double> sum_w(w * h, 0.0), count(w * h, 0.0);
+  std::vector<char> tie(w * h, 0);
+  double k_max = 0;
+  std::size_t cut = 0, faded = 0;
+  for (const hush::npr_gabor_splat& s : splats) {
+    const double fr = std::hypot(s.fx, s.fy) * s.radius;
+    double k = std::ldexp(1.0, -21) * (1 + c::kTwoPi * fr) +
+               2 * std::ldexp(1.0, -21) * (2 * a + c::kTwoPi * fr + 2 * taper_k);
+    if (p.soft_depth) k += 4 * std::ldexp(1.0, -24) / p.depth_tolerance;
+    k_max = std::max(k_max, k);
+    for (std::int32_t y = s.y0; y <= s.y1; ++y)
+      for (std::int32_t x = s.x0; x <= s.x1; ++x) {
+        const double dx = x + 0.5 - s.x, dy = y + 0.5 - s.y;
+        if (dx * dx + dy * dy >= s.radius * s.radius * 1.0000001) continue;
+        const std::size_t q = std::size_t(y) * w + std::size_t(x);
+        sum_w[q] += std::fabs(s.weight);
+        count[q] += 1;
+        if (!p.depth_test) continue;
+        const double rel = std::fabs(double(f.depth(std::size_t(x), std::size_t(y))) *
+                                         (s.q0 + s.qx * (x + 0.5) + s.qy * (y + 0.5)) -
+                                     1.0);
+        const bool same_object =
+            !p.object_test || f.object_id(std::size_t(x), std::size_t(y)) == s.object;
+        const double limit = p.soft_depth ? 2 * p.depth_tolerance : p.depth_tolerance;
+        cut += same_object && rel > limit;
+        faded += same_object && p.soft_depth && rel > p.depth_tolerance && rel <= limit;
+        const double eps = std::ldexp(1.0, -18);
+        if (std::fabs(rel - p.depth_tolerance) <= eps ||
+            (p.soft_depth && std::fabs(rel - 2 * p.depth_tolerance) <= eps))
+          tie[q] = 1;
+      }
+  }
+  npr_compare r;
+  r.cut = cut;
+  r.faded = faded;
+  double sq = 0;
+  for (std::size_t q = 0; q < w * h; ++q) {
+    if (tie[q]) {
+      ++r.ties;
+      continue;
+    }
+    r.reached += count[q] > 0;
+    const double e = std::fabs(double(gpu[q]) - ref[q]);
+    const double bound = sum_w[q] * (2 * k_max + std::ldexp(1.0, -24) * count[q]);
+    r.max_abs = std::max(r.max_abs, e);
+    sq += e * e;
+    r.max_vs_float = std::max(r.max_vs_float, std::fabs(double(gpu[q]) - cpu[q]));
+    // Unreached pixels must be exactly 0 (bound 0).
+    r.worst_ratio = std::max(r.worst_ratio, bound > 0 ? e / bound : (e > 0 ? 1e30 : 0.0));
+  }
+  r.rms = std::sqrt(sq / double(w * h));
+  return r;
+}
+
+hush::npr_gabor::params npr_params() {
+  hush::npr_gabor::params p;
+  p.orientation = 0.5;
+  p.seed = 11;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("npr: GLSL point sprites equal the CPU render within the derived tolerance") {
+  const std::size_t w = 128, h = 128;
+  const npr_test::grid_scene sc = npr_two_objects(w, h);
+  const hush::frame f = sc.frame();
+  const hush::triangle_list t = sc.triangles();
+  struct config {
+    const char* name;
+    hush::npr_gabor::params p;
+  };
+  std::vector<config> configs;
+  configs.push_back({"defaults (object + depth tests)", npr_params()});
+  hush::npr_gabor::params q = npr_params();
+  q.object_test = false;  // the depth test alone cuts the kernels at the patch's edges
+  configs.push_back({"depth test only", q});
+  // Kernels of the plane reaching the patch see relative depth differences of 0.39 - 0.52
+  // (1 - 0.8 / z_plane), the patch's on the plane 0.66 - 1.08: a tolerance of 0.45 cuts some
+  // of the first and not others; a soft test with tolerance 0.25 fades them (band 0.25 - 0.5).
+  q.depth_tolerance = 0.45;
+  configs.push_back({"depth test only, tolerance 0.45", q});
+  q.soft_depth = true;
+  q.depth_tolerance = 0.25;
+  configs.push_back({"soft depth test, tolerance 0.25", q});
+  q = npr_params();
+  q.triangle_test = true;
+  q.isotropic = true;
+  configs.push_back({"triangle test, isotropic", q});
+  q = npr_params();
+  q.bandwidth = 0.02;  // r = 49 px: quads larger than a third of the frame, still one each
+  q.impulses = 4;
+  q.depth_test = false;
+  configs.push_back({"large kernels, object test only", q});
+  for (const config& cf : configs) {
+    const std::string name = cf.name;
+    CAPTURE(name);
+    const npr_compare r = npr_against_cpu(hush::npr_gabor{cf.p}, f, t);
+    MESSAGE(name << ": GLSL vs double max " << r.max_abs << " RMS " << r.rms
+                 << ", vs CPU float max " << r.max_vs_float << ", worst error / bound "
+                 << r.worst_ratio << ", tie pixels " << r.ties << ", reached " << r.reached
+                 << ", fragments cut by depth " << r.cut << ", faded " << r.faded);
+    CHECK(r.worst_ratio <= 1.0);
+    CHECK(r.reached > w * h / 2);  // the comparison covers the frame
+    CHECK(r.ties < w * h / 100);
+    if (cf.p.depth_test && !cf.p.object_test) CHECK(r.cut > 0);  // with it, the ids decide here
+    if (cf.p.soft_depth) CHECK(r.faded > 0);
+  }
+}
+
+TEST_CASE("npr: one quad per record never reaches the GL geometry-output limits") {
+  const hush::glsl::npr_gabor_limits l = hush::glsl::npr_gabor_gl_limits(headless().device.gl());
+  MESSAGE("GL_MAX_GEOMETRY_OUTPUT_VERTICES " << l.max_geometry_output_vertices
+                                             << ", GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS "
+                                             << l.max_geometry_output_components);
+  // GL 3.2's minimums are 256 and 1024; one quad needs 4 and 4 x 5.
+  CHECK(l.max_geometry_output_vertices >= 256);
+  CHECK(l.max_geometry_output_components >= 1024);
+  CHECK(l.sprites_fit());
+  // The geometry stage declares exactly one quad, whatever the kernel's size.
+  const std::string gs = hush::glsl::npr_gabor_geometry_source();
+  CHECK(gs.find("max_vertices = HUSH_NPR_SPRITE_VERTICES") != std::string::npos);
+  CHECK(gs.find("#define HUSH_NPR_SPRITE_VERTICES 4\n") != std::string::npos);
+  CHECK(hush::glsl::npr_gabor_state(headless().device).limits().sprites_fit());
+  // A frame wider than the GL's largest target is refused, naming the frame size.
+  const std::size_t wide = static_cast<std::size_t>(l.max_frame_side) + 1;
+  if (wide <= hush::detail::constants::kNprGaborMaxImageSide) {
+    const std::vector<float> depth(wide, 1.0f);
+    const std::vector<std::uint32_t> ids(wide, 1u);
+    hush::frame f;
+    f.depth = {depth.data(), wide, 1};
+    f.object_id = {ids.data(), wide, 1};
+    std::vector<float> out(wide);
+    try {
+      hush::npr_gabor{npr_params()}.render(hush::exec::glsl{headless().device}, f,
+                                           hush::triangle_list{},
+                                           hush::image_view<float>(out.data(), wide, 1));
+      FAIL("no exception");
+    } catch (const hush::invalid_argument& e) {
+      CHECK(std::string(e.what()).find("frame size") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("npr: records beyond one storage block are drawn in order, state is restored") {
+  // A device whose storage blocks hold 64 records: the records go in several draws and the
+  // image is the one-draw image bit for bit (blending in record order either way).
+  const std::size_t w = 32, h = 32;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 9.0, 16.0);
+  const hush::npr_gabor noise{npr_params()};
+  const hush::glsl::detail::gl_api& gl = headless().device.gl();  // the context, current
+  hush::glsl::device::options o;
+  o.max_buffer_bytes = 64 * hush::glsl::kNprGaborRecordBytes;
+  hush::glsl::device small(hush::glsl::osmesa_context::loader(), o);
+  std::vector<hush::npr_gabor_splat> splats;
+  noise.make_splats(sc.frame(), sc.triangles(), splats);
+  REQUIRE(splats.size() > 128);
+  hush::glsl::detail::gl_int program_before = -1, program_after = -2;
+  gl.GetIntegerv(hush::glsl::detail::kGlCurrentProgram, &program_before);
+  std::vector<float> one(w * h), many(w * h);
+  noise.render(hush::exec::glsl{headless().device}, sc.frame(), sc.triangles(),
+               hush::image_view<float>(one.data(), w, h));
+  noise.render(hush::exec::glsl{small}, sc.frame(), sc.triangles(),
+               hush::image_view<float>(many.data(), w, h));
+  gl.GetIntegerv(hush::glsl::detail::kGlCurrentProgram, &program_after);
+  CHECK(program_after == program_before);
+  CHECK(hush::glsl::npr_gabor_state(small).draws() >= (splats.size() + 63) / 64);
+  CHECK(one == many);
+  double energy = 0;
+  for (float v : one) energy += double(v) * v;
+  CHECK(energy > 0.1 * double(w * h));  // unit variance where covered: not an empty image
 }

@@ -796,14 +796,17 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
                                    "hush_perlin3_gradient(gl_FragCoord.xyz, 1u, uvec3(0u)); }\n"}});
   const auto files = hush::glsl::export_files();
   // The library, 4 runners each of perlin2, perlin3, their fractals, wavelet2 and wavelet3,
-  // the coherent pass.
-  CHECK(files.size() == 26);
+  // the coherent pass, NPR Gabor noise's three stages.
+  CHECK(files.size() == 29);
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);
     if (f.name.size() > 5 && f.name.substr(f.name.size() - 5) == ".comp")
       gd::link_program(gl, {{gd::kGlComputeShader, slurp(dir / f.name)}});
   }
+  gd::link_program(gl, {{gd::kGlVertexShader, slurp(dir / "hush_npr_gabor_splat.vert")},
+                        {gd::kGlGeometryShader, slurp(dir / "hush_npr_gabor_splat.geom")},
+                        {gd::kGlFragmentShader, slurp(dir / "hush_npr_gabor_splat.frag")}});
 }
 
 TEST_CASE("hush glsl-export exits 2 with one line for a missing or unusable DIR") {

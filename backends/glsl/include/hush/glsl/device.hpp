@@ -147,6 +147,7 @@ class device {
   device(const device&) = delete;
   device& operator=(const device&) = delete;
   ~device() {
+    extensions_.clear();  // their GL objects go while the functions are loaded
     programs_.clear();
     gl_->DeleteBuffers(kBuffers, buffers_);
     for (const auto& d : data_) gl_->DeleteBuffers(1, &d.second.buffer);
@@ -174,6 +175,16 @@ class device {
   std::size_t data_uploads() const { return data_uploads_; }
   // The loaded GL functions (for code that adds its own shaders to the context).
   const detail::gl_api& gl() const { return *gl_; }
+  // State another GLSL program keeps on this device between calls (its compiled
+  // programs, framebuffer, buffers; e.g. hush/glsl/npr_gabor.hpp): made by make(),
+  // a std::shared_ptr<T>, on the first call with `key`, and destroyed with the device
+  // (before its GL functions are unloaded). Every call with one key must name one T.
+  template <class T, class Make>
+  T& extension(const std::string& key, Make make) {
+    std::shared_ptr<void>& p = extensions_[key];
+    if (!p) p = make();
+    return *static_cast<T*>(p.get());
+  }
 
   // Values (and, when grad is not null, gradients) of `noise` at n float
   // points: what hush::evaluate(noise, hush::exec::glsl{dev}, ...) calls.
@@ -678,6 +689,7 @@ class device {
   std::vector<float> scratch_;
   std::vector<texture_entry> textures_;
   std::size_t texture_uploads_ = 0;
+  std::map<std::string, std::shared_ptr<void>> extensions_;
 };
 
 }  // namespace glsl

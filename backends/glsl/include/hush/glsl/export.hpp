@@ -15,6 +15,7 @@
 #include "hush/glsl/coherent.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
+#include "hush/glsl/npr_gabor.hpp"
 #include "hush/perlin.hpp"
 #include "hush/wavelet.hpp"
 
@@ -44,7 +45,9 @@ void add_runners(std::vector<export_file>& files) {
 // hush_noise.glsl, then hush_<noise>_<points|grid>[_gradient].comp for every
 // noise with a GLSL program (perlin2, perlin3, fractal_perlin2, fractal_perlin3,
 // wavelet2, wavelet3), and
-// hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent.hpp).
+// hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent.hpp), and
+// hush_npr_gabor_splat.vert, .geom, .frag (NPR Gabor noise's point sprites, one program,
+// hush/glsl/npr_gabor.hpp).
 inline std::vector<export_file> export_files() {
   std::vector<export_file> files;
   files.push_back(
@@ -78,6 +81,9 @@ inline std::vector<export_file> export_files() {
   detail::add_runners<wavelet<2>>(files);
   detail::add_runners<wavelet<3>>(files);
   files.push_back({"hush_coherent_pass.comp", coherent_source()});
+  files.push_back({"hush_npr_gabor_splat.vert", npr_gabor_vertex_source()});
+  files.push_back({"hush_npr_gabor_splat.geom", npr_gabor_geometry_source()});
+  files.push_back({"hush_npr_gabor_splat.frag", npr_gabor_fragment_source()});
   return files;
 }
 

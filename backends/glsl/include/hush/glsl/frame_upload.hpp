@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // hush::glsl::frame_upload: the G-buffer views of a hush::frame (core/frame.hpp) in shader
-// storage buffers, for the scene-driven GLSL programs (coherent noise; NPR Gabor noise next).
+// storage buffers, for the scene-driven GLSL programs (coherent noise, NPR Gabor noise).
 // Each present view is packed row by row (a view's stride may exceed its width) into one
 // std430 SSBO of 32-bit words:
 //   depth             float[W H]          (pixel (x, y) at y W + x)

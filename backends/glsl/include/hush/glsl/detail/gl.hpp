@@ -43,6 +43,7 @@ constexpr gl_enum kGlMinorVersion = 0x821C;
 constexpr gl_enum kGlComputeShader = 0x91B9;
 constexpr gl_enum kGlVertexShader = 0x8B31;
 constexpr gl_enum kGlFragmentShader = 0x8B30;
+constexpr gl_enum kGlGeometryShader = 0x8DD9;
 constexpr gl_enum kGlCompileStatus = 0x8B81;
 constexpr gl_enum kGlLinkStatus = 0x8B82;
 constexpr gl_enum kGlInfoLogLength = 0x8B84;
@@ -123,10 +124,13 @@ struct gl_api {
   void(HUSH_GLAPI* DispatchCompute)(gl_uint, gl_uint, gl_uint) = nullptr;
   void(HUSH_GLAPI* MemoryBarrier)(gl_bitfield) = nullptr;
   void(HUSH_GLAPI* Finish)() = nullptr;
+  // The loader these came from: programs that draw (hush/glsl/npr_gabor.hpp) load
+  // their own entry points from it.
+  loader_fn loader = nullptr;
 
   // Loads every entry point; throws std::runtime_error naming the first the
   // loader does not know (the context is missing or older than GL 4.3).
-  explicit gl_api(loader_fn loader) {
+  explicit gl_api(loader_fn loader_) : loader(loader_) {
     if (!loader) throw std::runtime_error("hush::glsl: the GL loader is null");
     load(loader, GetString, "glGetString");
     load(loader, GetIntegerv, "glGetIntegerv");
@@ -189,7 +193,7 @@ struct gl_api {
     return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("(null)");
   }
 
- private:
+  // Sets f to the entry point `name` from `loader`; throws std::runtime_error when absent.
   template <class F>
   static void load(loader_fn loader, F& f, const char* name) {
     void* p = loader(name);
@@ -233,6 +237,8 @@ inline const char* stage_name(gl_enum stage) {
       return "vertex";
     case kGlFragmentShader:
       return "fragment";
+    case kGlGeometryShader:
+      return "geometry";
     default:
       return "shader";
   }
