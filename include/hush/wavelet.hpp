@@ -463,20 +463,14 @@ value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], co
   return r;
 }
 
-// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
-// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
-// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
-// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
-// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
-// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
-// not exact: widening itself approximates the pixel filter); the widened knot
-// families would cost up to 7^3 taps at each of ~250 nodes.
-template <class T, bool G, class Access>
-value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
-                                           const Access& acc) {
+// The knots of the exact projection's line integral (below), sorted, into
+// knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
+// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
+template <class T>
+int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                        T (&knots)[constants::kWaveletMaxKnots]) {
   constexpr int kMaxKnots = constants::kWaveletMaxKnots;
   const T reach = T(kBspline2.half_support());
-  T knots[kMaxKnots];
   int nk = 0;
   for (int j = 0; j <= kBspline2.pieces;
        j += static_cast<int>(constants::kWaveletProjectionStretch))
@@ -509,6 +503,23 @@ value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], con
     }
   }
   std::sort(knots, knots + nk);
+  return nk;
+}
+
+// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
+// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
+// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
+// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
+// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
+// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
+// not exact: widening itself approximates the pixel filter); the widened knot
+// families would cost up to 7^3 taps at each of ~250 nodes.
+template <class T, bool G, class Access>
+value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                                           const Access& acc) {
+  T knots[constants::kWaveletMaxKnots];
+  const int nk = wavelet_exact_knots<T>(y, u, s, knots);
+  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
   value_gradient<T, 3> r{T(0), {}};
   for (int i = 0; i + 1 < nk; ++i) {
     const T t0 = knots[i], t1 = knots[i + 1];
