@@ -24,11 +24,16 @@
 // ~1 sample per coefficient) one load and three lane lookups, else gathers.
 // The scalar code sums in exactly this order, so the shortcut changes no bit.
 // Samples with footprints take the points path with per-lane band weights and
-// scales (wavelet::make_plan, computed in double per lane as scalar code does);
-// lanes that project onto a surface, widen the basis, or see a footprint that
-// filters everything are evaluated lane by lane by the scalar code, and so is
-// any batch of a noise with tile variants (variant_overlap > 0): those paths
-// are correct everywhere but not vectorised.
+// scales (wavelet::make_plan, computed in double per lane as scalar code does).
+// Samples projected onto a surface run vector kernels too, one pass per kind of
+// lane in a vector (lane_kind): a normal along a tile axis gathers beta's (or
+// B2's) taps along it; any other normal runs the exact projection (each lane's
+// knots from detail::wavelet_exact_knots, 5 Gauss-Legendre nodes per piece,
+// masked past its own pieces) or the paper's approximation (the lanes' column
+// and slab ranges united, each lane adding only the taps its scalar loop adds).
+// Lanes that widen the basis or see a footprint that filters everything are
+// evaluated lane by lane by the scalar code, and so is any batch of a noise with
+// tile variants (variant_overlap > 0): correct everywhere but not vectorised.
 #if defined(HUSH_SIMD_WAVELET_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef HUSH_SIMD_WAVELET_INL_H_
 #undef HUSH_SIMD_WAVELET_INL_H_
@@ -49,6 +54,7 @@
 #include "hush/core/lattice.hpp"
 #include "hush/core/samples.hpp"
 #include "hush/core/views.hpp"
+#include "hush/simd/batch-inl.h"  // simd_batch::for_each_vector
 #include "hush/simd/perlin-inl.h"  // perlin_simd::mul_add, kMaxLanes, store_interleaved
 #include "hush/wavelet.hpp"
 
@@ -567,7 +573,8 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
 
 // The sum over bands, scale and remapping of wavelet::eval for one vector of points
 // with per-lane band weights, chains and scales (plans), into value and interleaved
-// gradients. Lanes flagged in `skip` are left for the caller.
+// gradients, every lane with the kernel `kind` (lane_kind; normal: the lanes' unit
+// normals for kGeneral). Lanes of weight 0 come out 0 for the caller to overwrite.
 template <bool kGradient, int D>
 HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts,
                               const double (*weight)[kMaxLanes], const double* scale,
@@ -632,21 +639,6 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
   }
 }
 
-// Runs fn(pts, value, grad) over n points in vectors; the tail through padded buffers.
-template <int D, class Fn>
-HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad, Fn fn) {
-  const std::size_t lanes = hn::Lanes(DF());
-  std::size_t i = 0;
-  for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);
-  if (i == n) return;
-  const std::size_t rest = n - i;
-  HWY_ALIGN float in[kMaxLanes * 3] = {}, out[kMaxLanes] = {}, g[kMaxLanes * 3] = {};
-  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
-  fn(i, in, out, grad ? g : nullptr);
-  std::memcpy(value + i, out, rest * sizeof(float));
-  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
-}
-
 // The scalar evaluation of one sample (the lane-by-lane path).
 template <int D>
 HWY_INLINE void scalar_sample(const wavelet<D>& w, const sample_input<D>& s, float* value,
@@ -695,7 +687,7 @@ void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float*
   for (int b = 0; b < w.band_count(); ++b)
     for (std::size_t l = 0; l < lanes; ++l) weight[b][l] = pl.weight[b];
   for (std::size_t l = 0; l < lanes; ++l) scale[l] = pl.scale;
-  ws::for_each_vector<D>(n, pts, value, grad,
+  simd_batch::for_each_vector<D>(n, pts, value, grad,
                          [&](std::size_t first, const float* p, float* v, float* g) {
                            // Non-finite lanes: the scalar code (its NaN, exactly).
                            bool finite = true;
@@ -736,7 +728,18 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
   double kind_scale[perlin_simd::kMaxLanes];
   int kind[perlin_simd::kMaxLanes];
   HWY_ALIGN float normal[3][perlin_simd::kMaxLanes];
-  ws::for_each_vector<D>(
+  // Without footprints the bands' part of the plan is every sample's: made once; per
+  // sample only its surface part (wavelet::plan_normal, plan_variance, plan_scale,
+  // the scalar code's own steps), redone only when the normal changes.
+  const bool shared = !s.has_footprints() && !s.has_surface_maps();
+  typename wavelet<D>::plan base;
+  if (shared) base = w.make_plan(sample_input<D>{});
+  vec<float, 3> last_normal{};
+  bool have_last = false;
+  int last_kind = ws::kPlain;
+  double last_scale = 0;
+  float last_u[3] = {0, 0, 1};
+  simd_batch::for_each_vector<D>(
       n, pts, value, grad, [&](std::size_t first, const float* p, float* v, float* g) {
         unsigned present = 0;  // bit k: some lane has kind k
         for (std::size_t l = 0; l < lanes; ++l) {
@@ -746,14 +749,32 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
           const sample_input<D> in = s.at(first + l);
           bool finite = true;
           for (int a = 0; a < D; ++a) finite = finite && std::isfinite(in.position[a]);
-          const typename wavelet<D>::plan pl = w.make_plan(in);
-          kind[l] = ws::lane_kind_of<D>(w, pl, finite);
+          if (shared) {
+            const bool same =
+                have_last && (!s.has_normals() || std::memcmp(&s.normals[first + l], &last_normal,
+                                                              sizeof last_normal) == 0);
+            if (!same) {
+              w.plan_normal(in, base);
+              last_scale = w.plan_scale(base, w.plan_variance(base));
+              last_kind = ws::lane_kind_of<D>(w, base, true);
+              for (int a = 0; a < 3; ++a) last_u[a] = static_cast<float>(base.normal[a]);
+              if (s.has_normals()) last_normal = s.normals[first + l];
+              have_last = true;
+            }
+            kind[l] = finite ? last_kind : ws::kScalarLane;
+          } else {
+            const typename wavelet<D>::plan pl = w.make_plan(in);
+            kind[l] = ws::lane_kind_of<D>(w, pl, finite);
+            last_scale = pl.scale;
+            for (int b = 0; b < nb; ++b) base.weight[b] = pl.weight[b];
+            for (int a = 0; a < 3; ++a) last_u[a] = static_cast<float>(pl.normal[a]);
+          }
           const bool vectorised = kind[l] != ws::kScalarLane;
           if (vectorised) present |= 1u << kind[l];
-          for (int b = 0; b < nb; ++b) weight[b][l] = vectorised ? pl.weight[b] : 0.0;
-          scale[l] = vectorised ? pl.scale : 0.0;
+          for (int b = 0; b < nb; ++b) weight[b][l] = vectorised ? base.weight[b] : 0.0;
+          scale[l] = vectorised ? last_scale : 0.0;
           if (kind[l] == ws::kGeneral)
-            for (int a = 0; a < 3; ++a) normal[a][l] = static_cast<float>(pl.normal[a]);
+            for (int a = 0; a < 3; ++a) normal[a][l] = last_u[a];
         }
         // One pass per kind present (usually one); with several, each pass writes the
         // lanes of its kind only.
