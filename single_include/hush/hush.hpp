@@ -12131,8 +12131,16 @@ HWY_INLINE void tap_indices(VI cell, VI first, int n, int stride, VI (&idx)[N]) 
     c = hn::IfThenElse(hn::Lt(c, nv), c, hn::Sub(c, nv));
   }
 }
+// The same with first = 0 (cell + j: one wrap per step, as for plain points).
 HWY_INLINE void tap_indices(VI cell, int n, int stride, VI (&idx)[3]) {
-  tap_indices<3>(cell, hn::Zero(DI()), n, stride, idx);
+  const DI di;
+  const VI nv = hn::Set(di, n), sv = hn::Set(di, stride);
+  VI c = cell;
+  for (int j = 0; j < 3; ++j) {
+    idx[j] = hn::Mul(c, sv);
+    c = hn::Add(c, hn::Set(di, 1));
+    c = hn::IfThenElse(hn::Lt(c, nv), c, hn::Sub(c, nv));
+  }
 }
 
 // detail::kernel_at(k, d) in lanes, for distances whose piece floor(d + P/2) is in
