@@ -12678,6 +12678,17 @@ HWY_INLINE void scalar_sample(const wavelet<D>& w, const sample_input<D>& s, flo
   }
 }
 
+// Whether two normals are the same bits (NaN and signed zeros included).
+HWY_INLINE bool same_bits(const vec<float, 3>& a, const vec<float, 3>& b) {
+  for (int i = 0; i < 3; ++i) {
+    std::uint32_t x = 0, y = 0;
+    std::memcpy(&x, &a[i], sizeof x);
+    std::memcpy(&y, &b[i], sizeof y);
+    if (x != y) return false;
+  }
+  return true;
+}
+
 // The kernel a sample's plan asks for (lane_kind): finite position, not "everything",
 // no widening: vectorised; else the scalar code.
 template <int D>
@@ -12777,8 +12788,7 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
           for (int a = 0; a < D; ++a) finite = finite && std::isfinite(in.position[a]);
           if (shared) {
             const bool same =
-                have_last && (!s.has_normals() || std::memcmp(&s.normals[first + l], &last_normal,
-                                                              sizeof last_normal) == 0);
+                have_last && (!s.has_normals() || ws::same_bits(s.normals[first + l], last_normal));
             if (!same) {
               w.plan_normal(in, base);
               last_scale = w.plan_scale(base, w.plan_variance(base));
@@ -12962,6 +12972,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
     if (pl.weight[b] != 0.0) bands.push_back(b);
   const vec<double, D> zero{};
   std::vector<column_table> cols;
+  cols.reserve(bands.size());
   for (int b : bands)
     cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
                                            w.band_position(b, zero)[0], g.origin[0], g.step[0]));
