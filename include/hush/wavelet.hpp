@@ -463,20 +463,14 @@ value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], co
   return r;
 }
 
-// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
-// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
-// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
-// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
-// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
-// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
-// not exact: widening itself approximates the pixel filter); the widened knot
-// families would cost up to 7^3 taps at each of ~250 nodes.
-template <class T, bool G, class Access>
-value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
-                                           const Access& acc) {
+// The knots of the exact projection's line integral (below), sorted, into
+// knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
+// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
+template <class T>
+int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                        T (&knots)[constants::kWaveletMaxKnots]) {
   constexpr int kMaxKnots = constants::kWaveletMaxKnots;
   const T reach = T(kBspline2.half_support());
-  T knots[kMaxKnots];
   int nk = 0;
   for (int j = 0; j <= kBspline2.pieces;
        j += static_cast<int>(constants::kWaveletProjectionStretch))
@@ -509,6 +503,23 @@ value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], con
     }
   }
   std::sort(knots, knots + nk);
+  return nk;
+}
+
+// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
+// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
+// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
+// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
+// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
+// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
+// not exact: widening itself approximates the pixel filter); the widened knot
+// families would cost up to 7^3 taps at each of ~250 nodes.
+template <class T, bool G, class Access>
+value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                                           const Access& acc) {
+  T knots[constants::kWaveletMaxKnots];
+  const int nk = wavelet_exact_knots<T>(y, u, s, knots);
+  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
   value_gradient<T, 3> r{T(0), {}};
   for (int i = 0; i + 1 < nk; ++i) {
     const T t0 = knots[i], t1 = knots[i + 1];
@@ -754,6 +765,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
   struct plan {
     double weight[kMaxBands] = {};
     double scale = 0;
+    double sum_sq = 0;  // sum of weight^2
     bool everything = false;
     bool project = false;
     int normal_axis = -1;
@@ -771,47 +783,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       return pl;
     }
     if (wmax > 0) log2w = std::log2(wmax);
-    if constexpr (D == 3) {
-      if (s.has_normal) {
-        double m = 0;
-        bool finite = true;
-        for (int a = 0; a < 3; ++a) {
-          finite = finite && std::isfinite(s.normal[a]);
-          m = std::max(m, std::fabs(s.normal[a]));
-        }
-        if (finite && m > 0) {
-          double len = 0;
-          for (int a = 0; a < 3; ++a) {
-            pl.normal[a] = s.normal[a] / m;
-            len += pl.normal[a] * pl.normal[a];
-          }
-          len = std::sqrt(len);
-          int zeros = 0, axis = 0;
-          for (int a = 0; a < 3; ++a) {
-            pl.normal[a] /= len;
-            if (pl.normal[a] == 0.0)
-              ++zeros;
-            else
-              axis = a;
-          }
-          pl.project = true;
-          if (zeros == 2) {
-            pl.normal_axis = axis;
-            pl.normal = {};
-            pl.normal[axis] = 1.0;
-          }
-        }
-      }
-    }
-    double variance = tile_->variance();
-    if constexpr (D == 3) {
-      if (pl.project) {
-        const bool exact = prm_.projection == wavelet_projection::exact;
-        variance = 0;
-        for (int a = 0; a < 3; ++a)
-          variance += pl.normal[a] * pl.normal[a] * tile_->projected_variance(a, exact);
-      }
-    }
+    plan_normal(s, pl);
+    const double variance = plan_variance(pl);
     // Tangent-plane extents per tile axis, for widening: (P S P)_aa, P = I - u u^T.
     double extent2[3] = {0, 0, 0};
     if (prm_.widen) {
@@ -851,11 +824,70 @@ class wavelet : public sample_noise<wavelet<D>, D> {
         }
       }
     }
-    if (prm_.relative_weights)
-      pl.scale = sum_sq > 0 ? 1.0 / std::sqrt(variance * sum_sq) : 0.0;
-    else
-      pl.scale = scale_ * std::sqrt(tile_->variance() / variance);
+    pl.sum_sq = sum_sq;
+    pl.scale = plan_scale(pl, variance);
     return pl;
+  }
+  // The plan's surface part (3D): project, the unit normal (normalised in double)
+  // and its axis when axis-aligned, from the sample's normal (a zero, NaN or
+  // infinite normal: no projection). make_plan's; a backend whose samples have no
+  // footprint reuses the bands' part and redoes only this, plan_variance and
+  // plan_scale per sample.
+  void plan_normal(const sample_input<D>& s, plan& pl) const {
+    pl.project = false;
+    pl.normal_axis = -1;
+    pl.normal = {};
+    if constexpr (D == 3) {
+      if (s.has_normal) {
+        double m = 0;
+        bool finite = true;
+        for (int a = 0; a < 3; ++a) {
+          finite = finite && std::isfinite(s.normal[a]);
+          m = std::max(m, std::fabs(s.normal[a]));
+        }
+        if (finite && m > 0) {
+          double len = 0;
+          for (int a = 0; a < 3; ++a) {
+            pl.normal[a] = s.normal[a] / m;
+            len += pl.normal[a] * pl.normal[a];
+          }
+          len = std::sqrt(len);
+          int zeros = 0, axis = 0;
+          for (int a = 0; a < 3; ++a) {
+            pl.normal[a] /= len;
+            if (pl.normal[a] == 0.0)
+              ++zeros;
+            else
+              axis = a;
+          }
+          pl.project = true;
+          if (zeros == 2) {
+            pl.normal_axis = axis;
+            pl.normal = {};
+            pl.normal[axis] = 1.0;
+          }
+        }
+      }
+    }
+  }
+  // The variance of one unit-weight band of the plan's kernel (projected or not).
+  double plan_variance(const plan& pl) const {
+    double variance = tile_->variance();
+    if constexpr (D == 3) {
+      if (pl.project) {
+        const bool exact = prm_.projection == wavelet_projection::exact;
+        variance = 0;
+        for (int a = 0; a < 3; ++a)
+          variance += pl.normal[a] * pl.normal[a] * tile_->projected_variance(a, exact);
+      }
+    }
+    return variance;
+  }
+  // The normalisation after the band sum (pl.sum_sq set).
+  double plan_scale(const plan& pl, double variance) const {
+    if (prm_.relative_weights)
+      return pl.sum_sq > 0 ? 1.0 / std::sqrt(variance * pl.sum_sq) : 0.0;
+    return scale_ * std::sqrt(tile_->variance() / variance);
   }
 
   // The distribution remapping of a unit-variance value v (and d/dv), in T.

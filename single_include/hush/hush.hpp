@@ -7245,20 +7245,14 @@ value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], co
   return r;
 }
 
-// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
-// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
-// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
-// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
-// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
-// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
-// not exact: widening itself approximates the pixel filter); the widened knot
-// families would cost up to 7^3 taps at each of ~250 nodes.
-template <class T, bool G, class Access>
-value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
-                                           const Access& acc) {
+// The knots of the exact projection's line integral (below), sorted, into
+// knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
+// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
+template <class T>
+int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                        T (&knots)[constants::kWaveletMaxKnots]) {
   constexpr int kMaxKnots = constants::kWaveletMaxKnots;
   const T reach = T(kBspline2.half_support());
-  T knots[kMaxKnots];
   int nk = 0;
   for (int j = 0; j <= kBspline2.pieces;
        j += static_cast<int>(constants::kWaveletProjectionStretch))
@@ -7291,6 +7285,23 @@ value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], con
     }
   }
   std::sort(knots, knots + nk);
+  return nk;
+}
+
+// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
+// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
+// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
+// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
+// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
+// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
+// not exact: widening itself approximates the pixel filter); the widened knot
+// families would cost up to 7^3 taps at each of ~250 nodes.
+template <class T, bool G, class Access>
+value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                                           const Access& acc) {
+  T knots[constants::kWaveletMaxKnots];
+  const int nk = wavelet_exact_knots<T>(y, u, s, knots);
+  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
   value_gradient<T, 3> r{T(0), {}};
   for (int i = 0; i + 1 < nk; ++i) {
     const T t0 = knots[i], t1 = knots[i + 1];
@@ -7536,6 +7547,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
   struct plan {
     double weight[kMaxBands] = {};
     double scale = 0;
+    double sum_sq = 0;  // sum of weight^2
     bool everything = false;
     bool project = false;
     int normal_axis = -1;
@@ -7553,47 +7565,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       return pl;
     }
     if (wmax > 0) log2w = std::log2(wmax);
-    if constexpr (D == 3) {
-      if (s.has_normal) {
-        double m = 0;
-        bool finite = true;
-        for (int a = 0; a < 3; ++a) {
-          finite = finite && std::isfinite(s.normal[a]);
-          m = std::max(m, std::fabs(s.normal[a]));
-        }
-        if (finite && m > 0) {
-          double len = 0;
-          for (int a = 0; a < 3; ++a) {
-            pl.normal[a] = s.normal[a] / m;
-            len += pl.normal[a] * pl.normal[a];
-          }
-          len = std::sqrt(len);
-          int zeros = 0, axis = 0;
-          for (int a = 0; a < 3; ++a) {
-            pl.normal[a] /= len;
-            if (pl.normal[a] == 0.0)
-              ++zeros;
-            else
-              axis = a;
-          }
-          pl.project = true;
-          if (zeros == 2) {
-            pl.normal_axis = axis;
-            pl.normal = {};
-            pl.normal[axis] = 1.0;
-          }
-        }
-      }
-    }
-    double variance = tile_->variance();
-    if constexpr (D == 3) {
-      if (pl.project) {
-        const bool exact = prm_.projection == wavelet_projection::exact;
-        variance = 0;
-        for (int a = 0; a < 3; ++a)
-          variance += pl.normal[a] * pl.normal[a] * tile_->projected_variance(a, exact);
-      }
-    }
+    plan_normal(s, pl);
+    const double variance = plan_variance(pl);
     // Tangent-plane extents per tile axis, for widening: (P S P)_aa, P = I - u u^T.
     double extent2[3] = {0, 0, 0};
     if (prm_.widen) {
@@ -7633,11 +7606,70 @@ class wavelet : public sample_noise<wavelet<D>, D> {
         }
       }
     }
-    if (prm_.relative_weights)
-      pl.scale = sum_sq > 0 ? 1.0 / std::sqrt(variance * sum_sq) : 0.0;
-    else
-      pl.scale = scale_ * std::sqrt(tile_->variance() / variance);
+    pl.sum_sq = sum_sq;
+    pl.scale = plan_scale(pl, variance);
     return pl;
+  }
+  // The plan's surface part (3D): project, the unit normal (normalised in double)
+  // and its axis when axis-aligned, from the sample's normal (a zero, NaN or
+  // infinite normal: no projection). make_plan's; a backend whose samples have no
+  // footprint reuses the bands' part and redoes only this, plan_variance and
+  // plan_scale per sample.
+  void plan_normal(const sample_input<D>& s, plan& pl) const {
+    pl.project = false;
+    pl.normal_axis = -1;
+    pl.normal = {};
+    if constexpr (D == 3) {
+      if (s.has_normal) {
+        double m = 0;
+        bool finite = true;
+        for (int a = 0; a < 3; ++a) {
+          finite = finite && std::isfinite(s.normal[a]);
+          m = std::max(m, std::fabs(s.normal[a]));
+        }
+        if (finite && m > 0) {
+          double len = 0;
+          for (int a = 0; a < 3; ++a) {
+            pl.normal[a] = s.normal[a] / m;
+            len += pl.normal[a] * pl.normal[a];
+          }
+          len = std::sqrt(len);
+          int zeros = 0, axis = 0;
+          for (int a = 0; a < 3; ++a) {
+            pl.normal[a] /= len;
+            if (pl.normal[a] == 0.0)
+              ++zeros;
+            else
+              axis = a;
+          }
+          pl.project = true;
+          if (zeros == 2) {
+            pl.normal_axis = axis;
+            pl.normal = {};
+            pl.normal[axis] = 1.0;
+          }
+        }
+      }
+    }
+  }
+  // The variance of one unit-weight band of the plan's kernel (projected or not).
+  double plan_variance(const plan& pl) const {
+    double variance = tile_->variance();
+    if constexpr (D == 3) {
+      if (pl.project) {
+        const bool exact = prm_.projection == wavelet_projection::exact;
+        variance = 0;
+        for (int a = 0; a < 3; ++a)
+          variance += pl.normal[a] * pl.normal[a] * tile_->projected_variance(a, exact);
+      }
+    }
+    return variance;
+  }
+  // The normalisation after the band sum (pl.sum_sq set).
+  double plan_scale(const plan& pl, double variance) const {
+    if (prm_.relative_weights)
+      return pl.sum_sq > 0 ? 1.0 / std::sqrt(variance * pl.sum_sq) : 0.0;
+    return scale_ * std::sqrt(tile_->variance() / variance);
   }
 
   // The distribution remapping of a unit-variance value v (and d/dv), in T.
@@ -10818,6 +10850,57 @@ HWY_AFTER_NAMESPACE();
 
 #include <hwy/highway.h>
 
+// ---- begin hush/simd/batch-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The batch driver the SIMD point kernels share (simd/perlin-inl.h,
+// simd/wavelet-inl.h): fn(first, pts, value, grad) over n points of D floats, one
+// vector of lanes at a time from point `first`; the last partial vector goes
+// through zero-padded buffers, so no lane reads or writes out of bounds (its
+// lanes past n read zeros, their results are dropped). grad may be null (values
+// only; fn then gets null). Compiled once per SIMD target (the "-inl.h"
+// convention: toggle guard below); reached through hush/simd/dispatch.hpp.
+#if defined(HUSH_SIMD_BATCH_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_BATCH_INL_H_
+#undef HUSH_SIMD_BATCH_INL_H_
+#else
+#define HUSH_SIMD_BATCH_INL_H_
+#endif
+
+#include <cstddef>
+#include <cstring>
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace simd_batch {
+namespace hn = hwy::HWY_NAMESPACE;
+
+template <int D, class Fn>
+HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad,
+                                const Fn& fn) {
+  constexpr std::size_t kMax = HWY_MAX_BYTES / sizeof(float);  // lanes of the widest target
+  const std::size_t lanes = hn::Lanes(hn::ScalableTag<float>());
+  std::size_t i = 0;
+  for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);
+  if (i == n) return;
+  const std::size_t rest = n - i;
+  HWY_ALIGN float in[kMax * D] = {}, out[kMax] = {}, g[kMax * D] = {};
+  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+  fn(i, in, out, grad ? g : nullptr);
+  std::memcpy(value + i, out, rest * sizeof(float));
+  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
+}
+
+}  // namespace simd_batch
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_BATCH_INL_H_ toggle
+// ---- end hush/simd/batch-inl.h
 
 HWY_BEFORE_NAMESPACE();
 namespace hush {
@@ -11303,26 +11386,14 @@ HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
 }
 
 // Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
-// vector at a time; the last partial vector goes through zero-padded
-// buffers, so no lane reads or writes out of bounds. One call site, so the
-// vector function inlines into the loop.
+// vector at a time (simd/batch-inl.h: the tail through zero-padded buffers).
+// One call site, so the vector function inlines into the loop.
 template <bool kGradient, int D, class Fn>
 HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
                                       const Fn& vector_fn) {
-  const std::size_t lanes = hn::Lanes(DF());
-  HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
-  for (std::size_t i = 0; i < n; i += lanes) {
-    const std::size_t rest = std::min(lanes, n - i);
-    const bool full = rest == lanes;
-    if (!full) std::memcpy(in, pts + i * D, rest * D * sizeof(float));
-    vector_fn(full ? pts + i * D : in, full ? value + i : out,
-              !kGradient ? nullptr
-              : full     ? grad + i * D
-                         : g);
-    if (full) continue;
-    std::memcpy(value + i, out, rest * sizeof(float));
-    if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
-  }
+  simd_batch::for_each_vector<D>(
+      n, pts, value, kGradient ? grad : nullptr,
+      [&](std::size_t, const float* p, float* v, float* g) HWY_ATTR { vector_fn(p, v, g); });
 }
 
 template <bool kGradient, int D>
@@ -12012,11 +12083,16 @@ HWY_AFTER_NAMESPACE();
 // ~1 sample per coefficient) one load and three lane lookups, else gathers.
 // The scalar code sums in exactly this order, so the shortcut changes no bit.
 // Samples with footprints take the points path with per-lane band weights and
-// scales (wavelet::make_plan, computed in double per lane as scalar code does);
-// lanes that project onto a surface, widen the basis, or see a footprint that
-// filters everything are evaluated lane by lane by the scalar code, and so is
-// any batch of a noise with tile variants (variant_overlap > 0): those paths
-// are correct everywhere but not vectorised.
+// scales (wavelet::make_plan, computed in double per lane as scalar code does).
+// Samples projected onto a surface run vector kernels too, one pass per kind of
+// lane in a vector (lane_kind): a normal along a tile axis gathers beta's (or
+// B2's) taps along it; any other normal runs the exact projection (each lane's
+// knots from detail::wavelet_exact_knots, 5 Gauss-Legendre nodes per piece,
+// masked past its own pieces) or the paper's approximation (the lanes' column
+// and slab ranges united, each lane adding only the taps its scalar loop adds).
+// Lanes that widen the basis or see a footprint that filters everything are
+// evaluated lane by lane by the scalar code, and so is any batch of a noise with
+// tile variants (variant_overlap > 0): correct everywhere but not vectorised.
 #if defined(HUSH_SIMD_WAVELET_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef HUSH_SIMD_WAVELET_INL_H_
 #undef HUSH_SIMD_WAVELET_INL_H_
@@ -12058,14 +12134,39 @@ HWY_INLINE VF piece(const detail::piecewise_kernel<P, O>& k, int p, VF t) {
   return r;
 }
 
-// One axis of a band in lanes: the stride-scaled, wrapped index of each of the
-// three taps, their weights and (for gradients) the weights' derivatives.
-struct axis {
-  VI idx[3];
-  VF w[3], dw[3];
+// One axis of a band in lanes: the stride-scaled, wrapped index of each of its N
+// taps (3: the B-spline; beta or B2 along a projection's normal: more), their
+// weights and (for gradients) the weights' derivatives.
+template <int N>
+struct axis_n {
+  static constexpr int kTaps = N;
+  VI idx[N];
+  VF w[N], dw[N];
 };
+using axis = axis_n<3>;
 
-// cell -> the three tap indices (cell + j modulo n) times the axis stride.
+// cell + k modulo n for cell in [0, n) and |k| < n.
+HWY_INLINE VI wrap_add(VI cell, VI k, int n) {
+  const DI di;
+  const VI nv = hn::Set(di, n);
+  VI c = hn::Add(cell, k);
+  c = hn::IfThenElse(hn::Lt(c, hn::Zero(di)), hn::Add(c, nv), c);
+  return hn::IfThenElse(hn::Lt(c, nv), c, hn::Sub(c, nv));
+}
+
+// cell -> the N tap indices (cell + first + j modulo n) times the axis stride.
+template <int N>
+HWY_INLINE void tap_indices(VI cell, VI first, int n, int stride, VI (&idx)[N]) {
+  const DI di;
+  const VI nv = hn::Set(di, n), sv = hn::Set(di, stride);
+  VI c = wrap_add(cell, first, n);
+  for (int j = 0; j < N; ++j) {
+    idx[j] = hn::Mul(c, sv);
+    c = hn::Add(c, hn::Set(di, 1));
+    c = hn::IfThenElse(hn::Lt(c, nv), c, hn::Sub(c, nv));
+  }
+}
+// The same with first = 0 (cell + j: one wrap per step, as for plain points).
 HWY_INLINE void tap_indices(VI cell, int n, int stride, VI (&idx)[3]) {
   const DI di;
   const VI nv = hn::Set(di, n), sv = hn::Set(di, stride);
@@ -12074,6 +12175,40 @@ HWY_INLINE void tap_indices(VI cell, int n, int stride, VI (&idx)[3]) {
     idx[j] = hn::Mul(c, sv);
     c = hn::Add(c, hn::Set(di, 1));
     c = hn::IfThenElse(hn::Lt(c, nv), c, hn::Sub(c, nv));
+  }
+}
+
+// detail::kernel_at(k, d) in lanes, for distances whose piece floor(d + P/2) is in
+// [lo, hi] (or outside the support, where the kernel is 0): the same operations.
+template <int P, int O>
+HWY_INLINE VF kernel_lanes(const detail::piecewise_kernel<P, O>& k, VF d, int lo, int hi) {
+  const DF df;
+  const VF u = hn::Add(d, hn::Set(df, static_cast<float>(P / 2.0)));
+  const VF p = hn::Floor(u);
+  const VF t = hn::Sub(u, p);
+  VF r = hn::Zero(df);
+  for (int q = std::max(lo, 0); q <= std::min(hi, P - 1); ++q)
+    r = hn::IfThenElse(hn::Eq(p, hn::Set(df, static_cast<float>(q))), piece(k, q, t), r);
+  const auto inside =
+      hn::And(hn::Gt(u, hn::Zero(df)), hn::Lt(u, hn::Set(df, static_cast<float>(P))));
+  return hn::IfThenElseZero(inside, r);
+}
+
+// detail::wavelet_axis_fixed's weights (beta or B2 along a normal) at fraction f:
+// tap j at distance d = (f + 1/2) - (first + j), whose u = d + P/2 lies in
+// [lo, lo + 1], lo = floor(1/2 - first - j + P/2) (rounding reaches lo + 1 at most).
+template <bool kGradient, int P, int O>
+HWY_INLINE void fixed_weights(VF f, const detail::piecewise_kernel<P, O>& k,
+                              const detail::piecewise_kernel<P, O - 1>& dk,
+                              axis_n<detail::fixed_kernel_taps<P>()>& a) {
+  constexpr int kFirst = detail::fixed_kernel_first_tap<P>();
+  const DF df;
+  const VF fh = hn::Add(f, hn::Set(df, static_cast<float>(detail::constants::kWaveletCellOffset)));
+  for (int j = 0; j < detail::fixed_kernel_taps<P>(); ++j) {
+    const VF d = hn::Sub(fh, hn::Set(df, static_cast<float>(kFirst + j)));
+    const int lo = (1 - 2 * (kFirst + j) + P) / 2;
+    a.w[j] = kernel_lanes(k, d, lo, lo + 1);
+    if constexpr (kGradient) a.dw[j] = kernel_lanes(dk, d, lo, lo + 1);
   }
 }
 
@@ -12125,35 +12260,74 @@ HWY_INLINE bool split_vector(VF x, double freq, double off, int n, VI& cell, VF&
 #endif
 }
 
-// The band's D axes for one vector of points (coordinates xs[a], the lanes' double
-// positions p for the lane-by-lane fallback).
-template <bool kGradient, int D>
-HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, const vec<double, D>* p,
-                          axis* ax) {
+// Axis a of the band for one vector of points (coordinates x, the lanes' double
+// positions p for the lane-by-lane fallback): cell and fraction as lattice_split.
+template <int D>
+HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, const vec<double, D>* p,
+                           VI& cell, VF& f) {
   const DF df;
   const DI di;
   const int n = w.parameters().tile_size;
-  const std::size_t lanes = hn::Lanes(df);
+  const vec<double, D> zero{};
+  const double off = w.band_position(band, zero)[a];
+  if (split_vector(x, w.band_frequency(band), off, n, cell, f)) return;
+  HWY_ALIGN float fs[kMaxLanes];
+  HWY_ALIGN std::int32_t cs[kMaxLanes];
+  for (std::size_t l = 0; l < hn::Lanes(df); ++l) {
+    const lattice_coord<float> c =
+        lattice_split<float>(w.band_position(band, p[l])[a], w.split_period());
+    fs[l] = c.f;
+    cs[l] = static_cast<std::int32_t>(c.i0);
+  }
+  f = hn::Load(df, fs);
+  cell = hn::Load(di, cs);
+}
+
+// The band's D axes with the plain B-spline.
+template <bool kGradient, int D>
+HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, const vec<double, D>* p,
+                          axis* ax) {
+  const int n = w.parameters().tile_size;
   int stride = 1;
   for (int a = 0; a < D; ++a, stride *= n) {
     VI cell;
     VF f;
-    const vec<double, D> zero{};
-    const double off = w.band_position(band, zero)[a];
-    if (!split_vector(xs[a], w.band_frequency(band), off, n, cell, f)) {
-      HWY_ALIGN float fs[kMaxLanes];
-      HWY_ALIGN std::int32_t cs[kMaxLanes];
-      for (std::size_t l = 0; l < lanes; ++l) {
-        const lattice_coord<float> c =
-            lattice_split<float>(w.band_position(band, p[l])[a], w.split_period());
-        fs[l] = c.f;
-        cs[l] = static_cast<std::int32_t>(c.i0);
-      }
-      f = hn::Load(df, fs);
-      cell = hn::Load(di, cs);
-    }
+    band_split<D>(w, band, a, xs[a], p, cell, f);
     tap_indices(cell, n, stride, ax[a].idx);
     weights<kGradient>(f, ax[a]);
+  }
+}
+
+// wavelet_separable in 3D over gathered coefficients, any tap counts per axis (x
+// outermost, z innermost): value and gradient (coefficient units).
+template <bool kGradient, class AX, class AY, class AZ>
+HWY_INLINE void separable3(const float* tile, const AX& ax, const AY& ay, const AZ& az, VF& v,
+                           VF* g) {
+  const DF df;
+  v = hn::Zero(df);
+  for (int a = 0; a < 3; ++a) g[a] = hn::Zero(df);
+  for (int a = 0; a < AX::kTaps; ++a) {
+    VF t = hn::Zero(df), ty = hn::Zero(df), tz = hn::Zero(df);
+    for (int b = 0; b < AY::kTaps; ++b) {
+      const VI xy = hn::Add(ax.idx[a], ay.idx[b]);
+      VF s = hn::Zero(df), sz = hn::Zero(df);
+      for (int c = 0; c < AZ::kTaps; ++c) {
+        const VF cf = hn::GatherIndex(df, tile, hn::Add(xy, az.idx[c]));
+        s = mul_add(az.w[c], cf, s);
+        if constexpr (kGradient) sz = mul_add(az.dw[c], cf, sz);
+      }
+      t = mul_add(ay.w[b], s, t);
+      if constexpr (kGradient) {
+        ty = mul_add(ay.dw[b], s, ty);
+        tz = mul_add(ay.w[b], sz, tz);
+      }
+    }
+    v = mul_add(ax.w[a], t, v);
+    if constexpr (kGradient) {
+      g[0] = mul_add(ax.dw[a], t, g[0]);
+      g[1] = mul_add(ax.w[a], ty, g[1]);
+      g[2] = mul_add(ax.w[a], tz, g[2]);
+    }
   }
 }
 
@@ -12178,39 +12352,295 @@ HWY_INLINE void separable(const float* tile, const axis* ax, VF& v, VF* g) {
       }
     }
   } else {
-    for (int a = 0; a < 3; ++a) {
-      VF t = hn::Zero(df), ty = hn::Zero(df), tz = hn::Zero(df);
-      for (int b = 0; b < 3; ++b) {
-        const VI xy = hn::Add(ax[0].idx[a], ax[1].idx[b]);
-        VF s = hn::Zero(df), sz = hn::Zero(df);
-        for (int c = 0; c < 3; ++c) {
-          const VF cf = hn::GatherIndex(df, tile, hn::Add(xy, ax[2].idx[c]));
-          s = mul_add(ax[2].w[c], cf, s);
-          if constexpr (kGradient) sz = mul_add(ax[2].dw[c], cf, sz);
+    separable3<kGradient>(tile, ax[0], ax[1], ax[2], v, g);
+  }
+}
+
+// ---- Projection onto a surface (wavelet.hpp band_kernel, unwidened): the kinds
+// of lanes a vector may hold, each with its kernel.
+enum lane_kind : int {
+  kAlongX = 0,    // normal along tile axis 0, 1, 2: beta (exact) or B2 along it
+  kGeneral = 3,   // any other normal: detail::wavelet_general_exact / _approx
+  kPlain = 4,     // no projection: the B-spline on every axis
+  kScalarLane = 5 // widened, "everything", not finite: the scalar code
+};
+constexpr int kLaneKinds = kPlain + 1;  // the kinds the vector kernels take
+
+// One axis for the projection along tile axis A: the fixed kernel k along A (N taps,
+// wavelet_axis_fixed), the B-spline elsewhere (3 taps).
+template <bool kGradient, int N, int P, int O>
+HWY_INLINE void axis_taps(VI cell, VF f, int n, int stride, const detail::piecewise_kernel<P, O>& k,
+                          const detail::piecewise_kernel<P, O - 1>& dk, axis_n<N>& ax) {
+  if constexpr (N == 3) {
+    tap_indices(cell, n, stride, ax.idx);
+    weights<kGradient>(f, ax);
+  } else {
+    tap_indices<N>(cell, hn::Set(DI(), detail::fixed_kernel_first_tap<P>()), n, stride, ax.idx);
+    fixed_weights<kGradient>(f, k, dk, ax);
+  }
+}
+template <bool kGradient, int A, int P, int O>
+HWY_INLINE void projected_axis(const float* tile, int n, const VI* cell, const VF* f,
+                               const detail::piecewise_kernel<P, O>& k,
+                               const detail::piecewise_kernel<P, O - 1>& dk, VF& v, VF* g) {
+  constexpr int N = detail::fixed_kernel_taps<P>();
+  axis_n<A == 0 ? N : 3> ax;
+  axis_n<A == 1 ? N : 3> ay;
+  axis_n<A == 2 ? N : 3> az;
+  axis_taps<kGradient>(cell[0], f[0], n, 1, k, dk, ax);
+  axis_taps<kGradient>(cell[1], f[1], n, n, k, dk, ay);
+  axis_taps<kGradient>(cell[2], f[2], n, n * n, k, dk, az);
+  separable3<kGradient>(tile, ax, ay, az, v, g);
+}
+
+// The one lane of m0, m1, m2 (exactly one set per lane) picks v0, v1 or v2.
+template <class M, class V>
+HWY_INLINE V pick(const M (&m)[3], const V (&v)[3]) {
+  return hn::IfThenElse(m[0], v[0], hn::IfThenElse(m[1], v[1], v[2]));
+}
+
+HWY_INLINE int max_lane(VI v) {
+  const DI di;
+  return hn::GetLane(hn::MaxOfLanes(di, v));
+}
+
+// detail::wavelet_general_approx (s = 1) in lanes. Each lane visits its own
+// coefficients in its own order (columns along the axis other than its dominant
+// one w, then along w over the slab where the three B-spline factors are non-zero);
+// the vector loops run over the union of the lanes' ranges, and a lane adds a tap
+// only where its scalar loop would (masked sums: the same operations, bit for bit).
+// y: positions relative to the cells, u: the unit normals.
+template <bool kGradient>
+HWY_INLINE void general_approx(const float* tile, int n, const VI* cell, const VF* y, const VF* u,
+                               VF& v, VF* g) {
+  const DF df;
+  const DI di;
+  using MF = hn::Mask<DF>;
+  const VF half = hn::Set(df, static_cast<float>(detail::kBspline.half_support()));
+  const VF stretch = hn::Set(df, static_cast<float>(1.0 / detail::constants::kWaveletProjectionStretch));
+  const VF one = hn::Set(df, 1.0f);
+  const VF au[3] = {hn::Abs(u[0]), hn::Abs(u[1]), hn::Abs(u[2])};
+  // w: the first axis of largest |u|; U < V the others (the scalar ax_u, ax_v).
+  const MF w1 = hn::Gt(au[1], au[0]);
+  const MF w2 = hn::Gt(au[2], hn::IfThenElse(w1, au[1], au[0]));
+  const MF none = hn::Lt(one, hn::Zero(df));  // all false
+  const MF is_w[3] = {hn::Not(hn::Or(w1, w2)), hn::AndNot(w2, w1), w2};
+  const MF is_u[3] = {hn::Not(is_w[0]), is_w[0], none};
+  const MF is_v[3] = {none, is_w[2], hn::Not(is_w[2])};
+  const int strides[3] = {1, n, n * n};
+  const VI sv[3] = {hn::Set(di, strides[0]), hn::Set(di, strides[1]), hn::Set(di, strides[2])};
+  const auto frame = [&](const MF (&m)[3], const VF (&x)[3]) { return pick(m, x); };
+  const VF yv[3] = {y[0], y[1], y[2]}, uv[3] = {u[0], u[1], u[2]};
+  const VF y_u = frame(is_u, yv), y_v = frame(is_v, yv), y_w = frame(is_w, yv);
+  const VF u_u = frame(is_u, uv), u_v = frame(is_v, uv), u_w = frame(is_w, uv);
+  const hn::Mask<DI> iu[3] = {hn::RebindMask(di, is_u[0]), hn::RebindMask(di, is_u[1]),
+                              hn::RebindMask(di, is_u[2])};
+  const hn::Mask<DI> iv[3] = {hn::RebindMask(di, is_v[0]), hn::RebindMask(di, is_v[1]),
+                              hn::RebindMask(di, is_v[2])};
+  const hn::Mask<DI> iw[3] = {hn::RebindMask(di, is_w[0]), hn::RebindMask(di, is_w[1]),
+                              hn::RebindMask(di, is_w[2])};
+  const VI cv[3] = {cell[0], cell[1], cell[2]};
+  const VI c_u = pick(iu, cv), c_v = pick(iv, cv), c_w = pick(iw, cv);
+  const VI s_u = pick(iu, sv), s_v = pick(iv, sv), s_w = pick(iw, sv);
+  // reach_a = half (s_a + |u_a| l1), l1 = sum |u_a| s_a (s = 1).
+  const VF l1 = hn::Add(hn::Add(au[0], au[1]), au[2]);
+  VF reach[3];
+  for (int a = 0; a < 3; ++a) reach[a] = hn::Mul(half, mul_add(au[a], l1, one));
+  const VF r_u = frame(is_u, reach), r_v = frame(is_v, reach);
+  const VI u_lo = hn::ConvertTo(di, hn::Ceil(hn::Sub(y_u, r_u)));
+  const VI u_n = hn::Sub(hn::ConvertTo(di, hn::Floor(hn::Add(y_u, r_u))), u_lo);
+  const VI v_lo = hn::ConvertTo(di, hn::Ceil(hn::Sub(y_v, r_v)));
+  const VI v_n = hn::Sub(hn::ConvertTo(di, hn::Floor(hn::Add(y_v, r_v))), v_lo);
+  const int nu = max_lane(u_n), nv = max_lane(v_n);
+  VF sw = hn::Zero(df), sval = hn::Zero(df), sdw[3], sg[3];
+  for (int a = 0; a < 3; ++a) sdw[a] = sg[a] = hn::Zero(df);
+  const VF inf = hn::Set(df, std::numeric_limits<float>::infinity());
+  for (int i = 0; i <= nu; ++i) {
+    const VI ku = hn::Add(u_lo, hn::Set(di, i));
+    const auto in_u = hn::Lt(hn::Set(di, i - 1), u_n);
+    const VF d_u = hn::Sub(y_u, hn::ConvertTo(df, ku));
+    const VI row_u = hn::Mul(wrap_add(c_u, hn::IfThenElseZero(in_u, ku), n), s_u);
+    for (int j = 0; j <= nv; ++j) {
+      const VI kv = hn::Add(v_lo, hn::Set(di, j));
+      const auto in_uv = hn::And(in_u, hn::Lt(hn::Set(di, j - 1), v_n));
+      if (hn::AllFalse(di, in_uv)) continue;
+      const VF d_v = hn::Sub(y_v, hn::ConvertTo(df, kv));
+      const VI row = hn::Add(row_u, hn::Mul(wrap_add(c_v, hn::IfThenElseZero(in_uv, kv), n), s_v));
+      // e_a = A_a + C_a d_w: the slab of d_w where every |e_a| < half.
+      const VF pp = hn::Add(hn::Mul(u_u, d_u), hn::Mul(u_v, d_v));
+      const VF dz = hn::Zero(df);
+      const VF dn[3] = {hn::IfThenElse(is_u[0], d_u, hn::IfThenElse(is_v[0], d_v, dz)),
+                        hn::IfThenElse(is_u[1], d_u, hn::IfThenElse(is_v[1], d_v, dz)),
+                        hn::IfThenElse(is_u[2], d_u, hn::IfThenElse(is_v[2], d_v, dz))};
+      VF lo = hn::Neg(inf), hi = inf;
+      MF empty = none;
+      for (int a = 0; a < 3; ++a) {
+        const VF A = hn::Sub(hn::IfThenElseZero(hn::Not(is_w[a]), dn[a]),
+                             hn::Mul(hn::Mul(u[a], pp), stretch));
+        const VF C = hn::Sub(hn::IfThenElseZero(is_w[a], one), hn::Mul(hn::Mul(u[a], u_w), stretch));
+        const MF flat = hn::Eq(C, hn::Zero(df));
+        empty = hn::Or(empty, hn::AndNot(hn::Lt(hn::Abs(A), half), flat));
+        const VF e0 = hn::Div(hn::Sub(hn::Neg(half), A), C), e1 = hn::Div(hn::Sub(half, A), C);
+        lo = hn::IfThenElse(flat, lo, hn::Max(lo, hn::Min(e0, e1)));
+        hi = hn::IfThenElse(flat, hi, hn::Min(hi, hn::Max(e0, e1)));
+      }
+      const MF ok = hn::AndNot(empty, hn::And(hn::RebindMask(df, in_uv), hn::Lt(lo, hi)));
+      if (hn::AllFalse(df, ok)) continue;
+      const auto oki = hn::RebindMask(di, ok);
+      const VI w_lo = hn::IfThenElseZero(oki, hn::ConvertTo(di, hn::Floor(hn::Sub(y_w, hi))));
+      const VI w_n = hn::IfThenElse(
+          oki, hn::Sub(hn::ConvertTo(di, hn::Ceil(hn::Sub(y_w, lo))), w_lo), hn::Set(di, -1));
+      const int nw = max_lane(w_n);
+      for (int m = 0; m <= nw; ++m) {
+        const auto in_w = hn::Lt(hn::Set(di, m - 1), w_n);
+        const VI kw = hn::IfThenElseZero(in_w, hn::Add(w_lo, hn::Set(di, m)));
+        const VF d_w = hn::Sub(y_w, hn::ConvertTo(df, kw));
+        VF d[3];
+        for (int a = 0; a < 3; ++a) d[a] = hn::IfThenElse(is_w[a], d_w, dn[a]);
+        const VF ud = hn::Add(hn::Add(hn::Mul(u[0], d[0]), hn::Mul(u[1], d[1])), hn::Mul(u[2], d[2]));
+        VF e[3], b[3];
+        for (int a = 0; a < 3; ++a) {
+          e[a] = hn::Sub(d[a], hn::Mul(hn::Mul(u[a], ud), stretch));
+          b[a] = kernel_lanes(detail::kBspline, e[a], 0, 2);
         }
-        t = mul_add(ax[1].w[b], s, t);
+        const VF weight = hn::Mul(hn::Mul(b[0], b[1]), b[2]);
+        const MF take = hn::And(hn::RebindMask(df, in_w), hn::Ne(weight, hn::Zero(df)));
+        if (hn::AllFalse(df, take)) continue;
+        const VI idx = hn::Add(row, hn::Mul(wrap_add(c_w, kw, n), s_w));
+        const VF c = hn::GatherIndex(df, tile, idx);
+        sw = hn::IfThenElse(take, hn::Add(sw, weight), sw);
+        sval = hn::IfThenElse(take, mul_add(weight, c, sval), sval);
         if constexpr (kGradient) {
-          ty = mul_add(ax[1].dw[b], s, ty);
-          tz = mul_add(ax[1].w[b], sz, tz);
+          VF q[3];
+          for (int a = 0; a < 3; ++a)
+            q[a] = hn::Mul(hn::Mul(kernel_lanes(detail::kBsplineDerivative, e[a], 0, 2),
+                                   b[(a + 1) % 3]),
+                           b[(a + 2) % 3]);
+          const VF uq = hn::Add(hn::Add(hn::Mul(u[0], q[0]), hn::Mul(u[1], q[1])), hn::Mul(u[2], q[2]));
+          for (int a = 0; a < 3; ++a) {
+            const VF gw = hn::Sub(q[a], hn::Mul(hn::Mul(u[a], uq), stretch));
+            sdw[a] = hn::IfThenElse(take, hn::Add(sdw[a], gw), sdw[a]);
+            sg[a] = hn::IfThenElse(take, mul_add(gw, c, sg[a]), sg[a]);
+          }
         }
       }
-      v = mul_add(ax[0].w[a], t, v);
-      if constexpr (kGradient) {
-        g[0] = mul_add(ax[0].dw[a], t, g[0]);
-        g[1] = mul_add(ax[0].w[a], ty, g[1]);
-        g[2] = mul_add(ax[0].w[a], tz, g[2]);
+    }
+  }
+  const MF some = hn::Gt(sw, hn::Zero(df));
+  const VF inv = hn::Div(one, sw);
+  v = hn::IfThenElseZero(some, hn::Mul(sval, inv));
+  if constexpr (kGradient)
+    for (int a = 0; a < 3; ++a)
+      g[a] = hn::IfThenElseZero(some, hn::Mul(hn::Sub(sg[a], hn::Mul(v, sdw[a])), inv));
+}
+
+// detail::wavelet_general_exact (s = 1) in lanes: each lane's knots (the scalar
+// detail::wavelet_exact_knots), padded with its last knot so that the pieces past
+// its own count are empty; per piece the 5 Gauss-Legendre nodes, each a full
+// 27-tap B-spline evaluation at y + t u (wavelet_axis_at), summed in the scalar order.
+template <bool kGradient>
+HWY_INLINE void general_exact(const float* tile, int n, const VI* cell, const VF* y, const VF* u,
+                              VF& v, VF* g) {
+  namespace c = detail::constants;
+  const DF df;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  HWY_ALIGN float ys[3][kMaxLanes], us[3][kMaxLanes];
+  for (int a = 0; a < 3; ++a) {
+    hn::Store(y[a], df, ys[a]);
+    hn::Store(u[a], df, us[a]);
+  }
+  HWY_ALIGN float knots[c::kWaveletMaxKnots][kMaxLanes];
+  int count[kMaxLanes], most = 0;
+  for (std::size_t l = 0; l < lanes; ++l) {
+    const float yl[3] = {ys[0][l], ys[1][l], ys[2][l]}, ul[3] = {us[0][l], us[1][l], us[2][l]};
+    const float sl[3] = {1.0f, 1.0f, 1.0f};
+    float k[c::kWaveletMaxKnots];
+    count[l] = detail::wavelet_exact_knots<float>(yl, ul, sl, k);
+    for (int i = 0; i < count[l]; ++i) knots[i][l] = k[i];
+    most = std::max(most, count[l]);
+  }
+  for (std::size_t l = 0; l < lanes; ++l)
+    for (int i = count[l]; i < most; ++i) knots[i][l] = knots[count[l] - 1][l];
+  v = hn::Zero(df);
+  for (int a = 0; a < 3; ++a) g[a] = hn::Zero(df);
+  const VF two = hn::Set(df, 2.0f), cell_offset = hn::Set(df, float(c::kWaveletCellOffset));
+  const int strides[3] = {1, n, n * n};
+  for (int i = 0; i + 1 < most; ++i) {
+    const VF t0 = hn::Load(df, knots[i]), t1 = hn::Load(df, knots[i + 1]);
+    const auto piece_ok = hn::Gt(t1, t0);
+    if (hn::AllFalse(df, piece_ok)) continue;
+    const VF mid = hn::Div(hn::Add(t0, t1), two), h = hn::Div(hn::Sub(t1, t0), two);
+    for (int q = 0; q < c::kGaussLegendreOrder; ++q) {
+      const VF t = mul_add(h, hn::Set(df, float(c::kGaussLegendreNode[q])), mid);
+      const VF wq = hn::Mul(hn::Mul(h, hn::Set(df, float(c::kGaussLegendreWeight[q]))),
+                            kernel_lanes(detail::kBspline2, t, 0, detail::kBspline2.pieces - 1));
+      axis ax[3];
+      for (int a = 0; a < 3; ++a) {
+        const VF ya = hn::Sub(mul_add(t, u[a], y[a]), cell_offset);
+        const VF fl = hn::Floor(ya);
+        tap_indices<3>(cell[a], hn::ConvertTo(di, fl), n, strides[a], ax[a].idx);
+        weights<kGradient>(hn::Sub(ya, fl), ax[a]);
       }
+      VF nv, ng[3];
+      separable3<kGradient>(tile, ax[0], ax[1], ax[2], nv, ng);
+      v = hn::IfThenElse(piece_ok, mul_add(wq, nv, v), v);
+      if constexpr (kGradient)
+        for (int a = 0; a < 3; ++a) g[a] = hn::IfThenElse(piece_ok, mul_add(wq, ng[a], g[a]), g[a]);
     }
   }
 }
 
+// One band of one vector of points with the lanes' kernel `kind` (lane_kind; u: the
+// lanes' unit normals for kGeneral): value and gradient in coefficient units.
+template <bool kGradient, int D>
+HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs,
+                           const vec<double, D>* p, const VF* u, VF& v, VF* g) {
+  const float* tile = w.tile().coefficients();
+  if constexpr (D == 3) {
+    if (kind != kPlain) {
+      const int n = w.parameters().tile_size;
+      VI cell[3];
+      VF f[3];
+      for (int a = 0; a < 3; ++a) band_split<3>(w, band, a, xs[a], p, cell[a], f[a]);
+      const bool exact = w.parameters().projection == wavelet_projection::exact;
+      if (kind == kGeneral) {
+        const VF half = hn::Set(DF(), float(detail::constants::kWaveletCellOffset));
+        const VF y[3] = {hn::Add(f[0], half), hn::Add(f[1], half), hn::Add(f[2], half)};
+        if (exact)
+          general_exact<kGradient>(tile, n, cell, y, u, v, g);
+        else
+          general_approx<kGradient>(tile, n, cell, y, u, v, g);
+        return;
+      }
+      const auto along = [&](const auto& k, const auto& dk) {
+        if (kind == 0) projected_axis<kGradient, 0>(tile, n, cell, f, k, dk, v, g);
+        if (kind == 1) projected_axis<kGradient, 1>(tile, n, cell, f, k, dk, v, g);
+        if (kind == 2) projected_axis<kGradient, 2>(tile, n, cell, f, k, dk, v, g);
+      };
+      if (exact)
+        along(detail::kBeta, detail::kBetaDerivative);
+      else
+        along(detail::kBspline2, detail::kBspline2Derivative);
+      return;
+    }
+  }
+  (void)kind;
+  (void)u;
+  axis ax[D];
+  band_axes<kGradient, D>(w, band, xs, p, ax);
+  separable<kGradient, D>(tile, ax, v, g);
+}
+
 // The sum over bands, scale and remapping of wavelet::eval for one vector of points
 // with per-lane band weights, chains and scales (plans), into value and interleaved
-// gradients. Lanes flagged in `skip` are left for the caller.
+// gradients, every lane with the kernel `kind` (lane_kind; normal: the lanes' unit
+// normals for kGeneral). Lanes of weight 0 come out 0 for the caller to overwrite.
 template <bool kGradient, int D>
 HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts,
                               const double (*weight)[kMaxLanes], const double* scale,
-                              float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
+                              float* HWY_RESTRICT value, float* HWY_RESTRICT grad,
+                              int kind = kPlain, const float (*normal)[kMaxLanes] = nullptr) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   VF xs[3];
@@ -12222,7 +12652,9 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
   for (std::size_t l = 0; l < lanes; ++l)
     for (int a = 0; a < D; ++a) p[l][a] = static_cast<double>(pts[l * D + a]);
   VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
-  const float* tile = w.tile().coefficients();
+  VF u[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+  if (normal)
+    for (int a = 0; a < 3; ++a) u[a] = hn::Load(df, normal[a]);
   for (int b = 0; b < w.band_count(); ++b) {
     HWY_ALIGN float wl[kMaxLanes], cl[kMaxLanes];
     bool any = false;
@@ -12233,10 +12665,8 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
       cl[l] = static_cast<float>(wb * w.band_frequency(b));
     }
     if (!any) continue;
-    axis ax[3];
-    band_axes<kGradient, D>(w, b, xs, p, ax);
     VF v, g[3];
-    separable<kGradient, D>(tile, ax, v, g);
+    band_value<kGradient, D>(w, b, kind, xs, p, u, v, g);
     acc = mul_add(hn::Load(df, wl), v, acc);
     if constexpr (kGradient) {
       const VF chain = hn::Load(df, cl);
@@ -12270,21 +12700,6 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
   }
 }
 
-// Runs fn(pts, value, grad) over n points in vectors; the tail through padded buffers.
-template <int D, class Fn>
-HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad, Fn fn) {
-  const std::size_t lanes = hn::Lanes(DF());
-  std::size_t i = 0;
-  for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);
-  if (i == n) return;
-  const std::size_t rest = n - i;
-  HWY_ALIGN float in[kMaxLanes * 3] = {}, out[kMaxLanes] = {}, g[kMaxLanes * 3] = {};
-  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
-  fn(i, in, out, grad ? g : nullptr);
-  std::memcpy(value + i, out, rest * sizeof(float));
-  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
-}
-
 // The scalar evaluation of one sample (the lane-by-lane path).
 template <int D>
 HWY_INLINE void scalar_sample(const wavelet<D>& w, const sample_input<D>& s, float* value,
@@ -12298,15 +12713,28 @@ HWY_INLINE void scalar_sample(const wavelet<D>& w, const sample_input<D>& s, flo
   }
 }
 
-// Whether a sample's plan is the vectorised kind: finite position, no projection, no
-// widening, not "everything".
+// Whether two normals are the same bits (NaN and signed zeros included).
+HWY_INLINE bool same_bits(const vec<float, 3>& a, const vec<float, 3>& b) {
+  for (int i = 0; i < 3; ++i) {
+    std::uint32_t x = 0, y = 0;
+    std::memcpy(&x, &a[i], sizeof x);
+    std::memcpy(&y, &b[i], sizeof y);
+    if (x != y) return false;
+  }
+  return true;
+}
+
+// The kernel a sample's plan asks for (lane_kind): finite position, not "everything",
+// no widening: vectorised; else the scalar code.
 template <int D>
-HWY_INLINE bool plain_plan(const wavelet<D>& w, const typename wavelet<D>::plan& pl) {
-  if (pl.everything || pl.project) return false;
+HWY_INLINE int lane_kind_of(const wavelet<D>& w, const typename wavelet<D>::plan& pl,
+                            bool finite) {
+  if (!finite || pl.everything) return kScalarLane;
   for (int b = 0; b < w.band_count(); ++b)
     for (int a = 0; a < 3; ++a)
-      if (pl.widen[b][a] != 1.0) return false;
-  return true;
+      if (pl.widen[b][a] != 1.0) return kScalarLane;
+  if (!pl.project) return kPlain;
+  return pl.normal_axis >= 0 ? kAlongX + pl.normal_axis : kGeneral;
 }
 
 }  // namespace wavelet_simd
@@ -12331,7 +12759,7 @@ void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float*
   for (int b = 0; b < w.band_count(); ++b)
     for (std::size_t l = 0; l < lanes; ++l) weight[b][l] = pl.weight[b];
   for (std::size_t l = 0; l < lanes; ++l) scale[l] = pl.scale;
-  ws::for_each_vector<D>(n, pts, value, grad,
+  simd_batch::for_each_vector<D>(n, pts, value, grad,
                          [&](std::size_t first, const float* p, float* v, float* g) {
                            // Non-finite lanes: the scalar code (its NaN, exactly).
                            bool finite = true;
@@ -12366,35 +12794,90 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
     return;
   }
   const float* pts = reinterpret_cast<const float*>(s.positions.data());
+  const int nb = w.band_count();
   double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
-  bool special[perlin_simd::kMaxLanes];
-  ws::for_each_vector<D>(
+  double kind_weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes];
+  double kind_scale[perlin_simd::kMaxLanes];
+  int kind[perlin_simd::kMaxLanes];
+  HWY_ALIGN float normal[3][perlin_simd::kMaxLanes];
+  // Without footprints the bands' part of the plan is every sample's: made once; per
+  // sample only its surface part (wavelet::plan_normal, plan_variance, plan_scale,
+  // the scalar code's own steps), redone only when the normal changes.
+  const bool shared = !s.has_footprints() && !s.has_surface_maps();
+  typename wavelet<D>::plan base;
+  if (shared) base = w.make_plan(sample_input<D>{});
+  vec<float, 3> last_normal{};
+  bool have_last = false;
+  int last_kind = ws::kPlain;
+  double last_scale = 0;
+  float last_u[3] = {0, 0, 1};
+  simd_batch::for_each_vector<D>(
       n, pts, value, grad, [&](std::size_t first, const float* p, float* v, float* g) {
-        bool any_plain = false;
-        HWY_ALIGN float pv[perlin_simd::kMaxLanes * 3] = {};
+        unsigned present = 0;  // bit k: some lane has kind k
         for (std::size_t l = 0; l < lanes; ++l) {
-          special[l] = true;
+          kind[l] = ws::kScalarLane;
+          for (int a = 0; a < 3; ++a) normal[a][l] = a == 2 ? 1.0f : 0.0f;
           if (first + l >= n) continue;
           const sample_input<D> in = s.at(first + l);
           bool finite = true;
           for (int a = 0; a < D; ++a) finite = finite && std::isfinite(in.position[a]);
-          const typename wavelet<D>::plan pl = w.make_plan(in);
-          special[l] = !finite || !ws::plain_plan<D>(w, pl);
-          for (int b = 0; b < w.band_count(); ++b) weight[b][l] = special[l] ? 0.0 : pl.weight[b];
-          scale[l] = special[l] ? 0.0 : pl.scale;
-          if (!special[l]) {
-            any_plain = true;
-            for (int a = 0; a < D; ++a) pv[l * D + a] = p[l * D + a];
+          if (shared) {
+            const bool same =
+                have_last && (!s.has_normals() || ws::same_bits(s.normals[first + l], last_normal));
+            if (!same) {
+              w.plan_normal(in, base);
+              last_scale = w.plan_scale(base, w.plan_variance(base));
+              last_kind = ws::lane_kind_of<D>(w, base, true);
+              for (int a = 0; a < 3; ++a) last_u[a] = static_cast<float>(base.normal[a]);
+              if (s.has_normals()) last_normal = s.normals[first + l];
+              have_last = true;
+            }
+            kind[l] = finite ? last_kind : ws::kScalarLane;
+          } else {
+            const typename wavelet<D>::plan pl = w.make_plan(in);
+            kind[l] = ws::lane_kind_of<D>(w, pl, finite);
+            last_scale = pl.scale;
+            for (int b = 0; b < nb; ++b) base.weight[b] = pl.weight[b];
+            for (int a = 0; a < 3; ++a) last_u[a] = static_cast<float>(pl.normal[a]);
+          }
+          const bool vectorised = kind[l] != ws::kScalarLane;
+          if (vectorised) present |= 1u << kind[l];
+          for (int b = 0; b < nb; ++b) weight[b][l] = vectorised ? base.weight[b] : 0.0;
+          scale[l] = vectorised ? last_scale : 0.0;
+          if (kind[l] == ws::kGeneral)
+            for (int a = 0; a < 3; ++a) normal[a][l] = last_u[a];
+        }
+        // One pass per kind present (usually one); with several, each pass writes the
+        // lanes of its kind only.
+        for (int k = 0; k < ws::kLaneKinds; ++k) {
+          if (((present >> k) & 1u) == 0) continue;
+          const bool alone = present == (1u << k);
+          HWY_ALIGN float pv[perlin_simd::kMaxLanes * 3] = {};
+          for (std::size_t l = 0; l < lanes; ++l) {
+            const bool mine = kind[l] == k;
+            for (int b = 0; b < nb; ++b) kind_weight[b][l] = mine ? weight[b][l] : 0.0;
+            kind_scale[l] = mine ? scale[l] : 0.0;
+            if (mine)
+              for (int a = 0; a < D; ++a) pv[l * D + a] = p[l * D + a];
+          }
+          HWY_ALIGN float vt[perlin_simd::kMaxLanes], gt[perlin_simd::kMaxLanes * 3];
+          float* vo = alone ? v : vt;
+          float* go = g == nullptr ? nullptr : (alone ? g : gt);
+          if (g)
+            ws::points_vector<true, D>(w, pv, kind_weight, kind_scale, vo, go, k, normal);
+          else
+            ws::points_vector<false, D>(w, pv, kind_weight, kind_scale, vo, nullptr, k, normal);
+          if (alone) continue;
+          for (std::size_t l = 0; l < lanes; ++l) {
+            if (kind[l] != k) continue;
+            v[l] = vt[l];
+            if (g)
+              for (int a = 0; a < D; ++a) g[l * D + a] = gt[l * D + a];
           }
         }
-        if (any_plain) {
-          if (g)
-            ws::points_vector<true, D>(w, pv, weight, scale, v, g);
-          else
-            ws::points_vector<false, D>(w, pv, weight, scale, v, nullptr);
-        }
         for (std::size_t l = 0; l < lanes && first + l < n; ++l)
-          if (special[l]) ws::scalar_sample<D>(w, s.at(first + l), v + l, g ? g + l * D : nullptr);
+          if (kind[l] == ws::kScalarLane)
+            ws::scalar_sample<D>(w, s.at(first + l), v + l, g ? g + l * D : nullptr);
       });
 }
 
@@ -12524,6 +13007,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
     if (pl.weight[b] != 0.0) bands.push_back(b);
   const vec<double, D> zero{};
   std::vector<column_table> cols;
+  cols.reserve(bands.size());
   for (int b : bands)
     cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
                                            w.band_position(b, zero)[0], g.origin[0], g.step[0]));

@@ -5,9 +5,11 @@
 // perlin_simd_test.cpp (tests/simd/CMakeLists.txt): bit-identical to scalar under
 // HUSH_STRICT_FP (simd_strict_test, simd_static_test, simd_single_header_test), within
 // twice wavelet::float_budget() / float_gradient_budget() otherwise (simd_test).
-// Covered: points, grids and samples (footprints, normals, widening), 2D and 3D, one
-// band and several, values and gradients, every tail length up to three vectors, every
-// distribution, tile variants, and the hard cases (NaN, Inf, |x| >= 2^31, far grids).
+// Covered: points, grids and samples (with and without footprints; normals along each
+// axis and general, exact and approximate projection, alone and mixed in a vector;
+// widening), 2D and 3D, one band and several, values and gradients, every tail length
+// up to three vectors, every distribution, tile variants, and the hard cases (NaN, Inf,
+// |x| >= 2^31, far grids).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -182,10 +184,13 @@ void grid_case() {
 }
 
 template <int D>
-void samples_case(bool widen, bool normals) {
+void samples_case(bool widen, bool normals,
+                  hush::wavelet_projection projection = hush::wavelet_projection::exact,
+                  bool footprints = true) {
   for (auto w : noises<D>()) {
     auto prm = w.parameters();
     prm.widen = widen;
+    prm.projection = projection;
     const hush::wavelet<D> noise{prm};
     const std::size_t n = 150;
     std::vector<hush::vec<float, D>> pts = random_points<D>(n, 50, 2);
@@ -199,14 +204,20 @@ void samples_case(bool widen, bool normals) {
           i % 9 == 0 ? 0.0 : std::ldexp(r.uniform<double>(0.5, 1.0), int(i % 8) - 6);
       fps[i] = hush::footprint<D>::isotropic(width);
       if (i % 11 == 3) fps[i] = hush::footprint<D>::isotropic(NAN);
-      const int kind = int(i % 4);  // axis-aligned, general, zero normal, none
+      // The SIMD kernel per normal: along z, x, y (beta or B2 along it), general, none
+      // (a zero normal). Whole vectors of one kind first (blocks of 16 samples), then
+      // every kind mixed within vectors.
+      const int kind = i < 80 ? int(i / 16) : int(i % 5);
+      const hush::vec3 general{r.uniform(-1.f, 1.f), r.uniform(-1.f, 1.f), r.uniform(-1.f, 1.f)};
       nrm[i] = kind == 0   ? hush::vec3{0, 0, 2}
-               : kind == 1 ? hush::vec3{r.uniform(-1.f, 1.f), r.uniform(-1.f, 1.f), 0.5f}
+               : kind == 1 ? hush::vec3{-3, 0, 0}
+               : kind == 2 ? hush::vec3{0, 0.5, 0}
+               : kind == 3 ? general
                            : hush::vec3{0, 0, 0};
     }
     hush::samples<D> s;
     s.positions = pts;
-    s.footprints = fps;
+    if (footprints) s.footprints = fps;  // without: the kernels reuse the bands' plan
     if (D == 3 && normals) s.normals = nrm;
     for_each_target([&] {
       check_backend<D>(
@@ -239,6 +250,16 @@ TEST_CASE("wavelet simd: samples with footprints, normals and widening agree wit
   samples_case<2>(false, false);
   samples_case<2>(true, false);
   samples_case<3>(false, false);
-  samples_case<3>(false, true);
   samples_case<3>(true, true);
+}
+
+// Projected lanes run vector kernels (along an axis: beta or B2 taps; any other normal:
+// the exact projection's knots per lane, or the paper's approximation over the union of
+// the lanes' slabs); every kind, alone in a vector and mixed.
+TEST_CASE("wavelet simd: projected samples (axis and general normals, exact and approximate)") {
+  for (const bool footprints : {true, false}) {
+    samples_case<3>(false, true, hush::wavelet_projection::exact, footprints);
+    samples_case<3>(false, true, hush::wavelet_projection::approximate, footprints);
+  }
+  samples_case<2>(false, false, hush::wavelet_projection::exact, false);
 }

@@ -56,6 +56,7 @@
 #include "hush/detail/constants.hpp"
 #include "hush/fractal.hpp"
 #include "hush/perlin.hpp"
+#include "hush/simd/batch-inl.h"  // simd_batch::for_each_vector
 
 HWY_BEFORE_NAMESPACE();
 namespace hush {
@@ -541,26 +542,14 @@ HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
 }
 
 // Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
-// vector at a time; the last partial vector goes through zero-padded
-// buffers, so no lane reads or writes out of bounds. One call site, so the
-// vector function inlines into the loop.
+// vector at a time (simd/batch-inl.h: the tail through zero-padded buffers).
+// One call site, so the vector function inlines into the loop.
 template <bool kGradient, int D, class Fn>
 HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
                                       const Fn& vector_fn) {
-  const std::size_t lanes = hn::Lanes(DF());
-  HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
-  for (std::size_t i = 0; i < n; i += lanes) {
-    const std::size_t rest = std::min(lanes, n - i);
-    const bool full = rest == lanes;
-    if (!full) std::memcpy(in, pts + i * D, rest * D * sizeof(float));
-    vector_fn(full ? pts + i * D : in, full ? value + i : out,
-              !kGradient ? nullptr
-              : full     ? grad + i * D
-                         : g);
-    if (full) continue;
-    std::memcpy(value + i, out, rest * sizeof(float));
-    if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
-  }
+  simd_batch::for_each_vector<D>(
+      n, pts, value, kGradient ? grad : nullptr,
+      [&](std::size_t, const float* p, float* v, float* g) HWY_ATTR { vector_fn(p, v, g); });
 }
 
 template <bool kGradient, int D>
