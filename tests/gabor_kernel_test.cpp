@@ -8,8 +8,7 @@
 #include <limits>
 #include <string>
 
-#include "hush/gabor_kernel.hpp"
-#include "hush/hush.hpp"
+#include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "hush/npr_gabor.hpp"
+#include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
 #include "npr_gabor_scenes.hpp"
 
 namespace {

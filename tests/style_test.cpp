@@ -16,10 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "hush/core/error.hpp"
-#include "hush/core/rng.hpp"
-#include "hush/npr_gabor.hpp"
-#include "hush/style.hpp"
+#include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
 #include "npr_gabor_scenes.hpp"
 
 namespace {
