@@ -7,7 +7,8 @@
 // simd_static_test, simd_single_header_test) bit-identical to scalar, values
 // and gradients; otherwise (simd_test) within twice the float budget of
 // gabor.hpp. Covered: random points with every tail length up to three
-// vectors and the hard cases in every lane position, grids near and far, with
+// vectors and the hard cases in every lane position, points crowded in a few
+// cells (the shared-cell path) beside far and NaN ones, grids near and far, with
 // negative and coarse steps (the points path) and fine ones (the block path),
 // 2D and 3D, every kind, samples with footprints and with normals (surface noise:
 // unit, tiny, zero and non-finite normals, with and without footprints).
@@ -139,6 +140,21 @@ std::vector<hush::vec<float, D>> test_points(std::size_t n, std::uint32_t seed) 
   return pts;
 }
 
+// Many points per cell (the shared-cell path: each cell's impulses drawn once
+// and summed by every point that sees it; the pair list flushed mid-call),
+// with a far point and a NaN (outside the box: the lockstep path and NaN) in
+// the same call.
+template <int D>
+std::vector<hush::vec<float, D>> dense_points(std::size_t n, std::uint32_t seed) {
+  hush::rng r(seed);
+  std::vector<hush::vec<float, D>> pts(n);
+  for (auto& p : pts)
+    for (int a = 0; a < D; ++a) p[a] = r.uniform<float>(-3.0f, 3.0f);
+  pts[n / 3][0] = 1e7f;
+  pts[n / 2][D - 1] = std::numeric_limits<float>::quiet_NaN();
+  return pts;
+}
+
 }  // namespace
 
 TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail length") {
@@ -153,6 +169,8 @@ TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail 
     }
     check_points(g2, test_points<2>(1000, 1));
     check_points(g3, test_points<3>(500, 2));
+    check_points(g2, dense_points<2>(1500, 3));  // ~60 points per cell
+    check_points(g3, dense_points<3>(400, 4));   // ~2 points per cell
   }
 }
 

@@ -945,8 +945,11 @@ struct point_cells {
   std::int64_t rel(int a, std::size_t i) const {
     return static_cast<std::int64_t>(static_cast<std::int32_t>(cell[a][i] - ref[a]));
   }
-  point_cells(const float* pts, std::size_t n, double inv) {
+  std::vector<std::int64_t> v;  // median scratch
+
+  void build(const float* pts, std::size_t n, double inv) {
     const std::size_t lanes = hn::Lanes(DF());
+    box = 0;
     for (int a = 0; a < D; ++a) {
       cell[a].resize(n);
       frac[a].resize(n);
@@ -984,8 +987,6 @@ struct point_cells {
     if (cells > budget) {  // clip around the median cell: sides of budget^(1/D) with margins
       const auto half =
           static_cast<std::int64_t>(std::floor((std::pow(budget, 1.0 / D) - 3.0) / 2.0));
-      std::vector<std::int64_t> v;
-      v.reserve(n);
       for (int a = 0; a < D; ++a) {
         v.clear();
         for (std::size_t i = 0; i < n; ++i)
@@ -1025,6 +1026,9 @@ struct point_cells {
 struct box_impulses {
   std::vector<std::uint32_t> start;
   std::vector<float> pos[3], bx, w, phi[3];
+  // draw_box's scratch: the needed cells, their lattice coordinates, stream
+  // keys and counts; per impulse its stream key and counter.
+  std::vector<std::uint32_t> cells, coord[3], key, count, ikey, ictr;
 };
 
 template <int D>
@@ -1033,12 +1037,15 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
   const DF df;
   const DU du;
   const std::size_t lanes = hn::Lanes(df);
-  std::vector<std::uint32_t> cells;  // box indices of the needed cells, increasing
+  std::vector<std::uint32_t>& cells = out.cells;  // box indices of the needed cells, increasing
+  cells.clear();
   for (std::size_t idx = 0; idx < pc.box; ++idx)
     if (need[idx]) cells.push_back(static_cast<std::uint32_t>(idx));
   const std::size_t nc = cells.size();
   // Counts and stream keys, lanes across cells (collect's hash, operation by operation).
-  std::vector<std::uint32_t> coord[D], key(nc + lanes), count(nc + lanes);
+  std::vector<std::uint32_t>*coord = out.coord, &key = out.key, &count = out.count;
+  key.resize(nc + lanes);
+  count.resize(nc + lanes);
   for (int a = 0; a < D; ++a) coord[a].assign(nc + lanes, 0);
   for (std::size_t j = 0; j < nc; ++j) {
     std::int64_t rest = cells[j];
@@ -1066,7 +1073,9 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
     if (j < nc && cells[j] == idx) total += count[j++];
   }
   out.start[pc.box] = static_cast<std::uint32_t>(total);
-  std::vector<std::uint32_t> ikey(total + lanes, 0), ictr(total + lanes, 0);
+  std::vector<std::uint32_t>&ikey = out.ikey, &ictr = out.ictr;
+  ikey.assign(total + lanes, 0);
+  ictr.assign(total + lanes, 0);
   out.bx.assign(total + lanes, 0.0f);
   const auto words = static_cast<std::uint32_t>(g.words_per_impulse());
   for (std::size_t j = 0, o = 0; j < nc; ++j)
@@ -1094,6 +1103,20 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
   }
 }
 
+// Everything shared_points allocates, kept per thread between calls: a
+// fresh allocation per call cost a fifth of the time in page faults (262144
+// points, ~50 bytes each; the memory stays with the thread).
+template <int D>
+struct shared_workspace {
+  point_cells<D> pc;
+  box_impulses im;
+  shared_pairs t;
+  std::vector<std::uint32_t> at, order, sorted_at, first, fill, pend;
+  std::vector<float> sorted_frac[D];
+  std::vector<std::uint8_t> need;
+  std::vector<std::size_t> rest, pend_end;
+};
+
 // Unfiltered solid noise at the n points pts (D interleaved floats), values
 // into value, interleaved gradients into grad with G; lockstep(pts, m, value,
 // grad) evaluates the finite points outside the box.
@@ -1103,11 +1126,18 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  const point_cells<D> pc(pts, n, g.inverse_cell());
+  static thread_local shared_workspace<D> ws;
+  ws.pc.build(pts, n, g.inverse_cell());
+  const point_cells<D>& pc = ws.pc;
   // Counting sort of the box's points by cell; the rest: NaN, or the lockstep path.
-  std::vector<std::uint32_t> at(n), order;
-  std::vector<std::uint32_t> first(pc.box + 1, 0);
-  std::vector<std::size_t> rest;
+  std::vector<std::uint32_t>&at = ws.at, &order = ws.order, &sorted_at = ws.sorted_at,
+                           &first = ws.first;
+  std::vector<float>* sorted_frac = ws.sorted_frac;
+  std::vector<std::size_t>& rest = ws.rest;
+  at.resize(n);
+  order.clear();
+  first.assign(pc.box + 1, 0);
+  rest.clear();
   std::size_t inside = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::int64_t idx = pc.ok[i] ? pc.index(i) : -1;
@@ -1128,13 +1158,20 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   }
   if (inside > 0) {
     for (std::size_t b = 0; b < pc.box; ++b) first[b + 1] += first[b];
-    order.resize(first[pc.box]);
-    {
-      std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-      for (std::size_t i = 0; i < n; ++i)
-        if (at[i] != std::numeric_limits<std::uint32_t>::max())
-          order[fill[at[i]]++] = static_cast<std::uint32_t>(i);
-    }
+    // In sorted order: the point, its cell and fractions (read in order below:
+    // gathering them per point would miss the cache on every point).
+    order.resize(inside);
+    sorted_at.resize(inside);
+    for (int a = 0; a < D; ++a) sorted_frac[a].resize(inside);
+    std::vector<std::uint32_t>& fill = ws.fill;
+    fill.assign(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      if (at[i] != std::numeric_limits<std::uint32_t>::max()) {
+        const std::uint32_t to = fill[at[i]]++;
+        order[to] = static_cast<std::uint32_t>(i);
+        sorted_at[to] = at[i];
+        for (int a = 0; a < D; ++a) sorted_frac[a][to] = pc.frac[a][i];
+      }
   }
   if (!order.empty()) {
     // The cells each occupied cell's points see, in raster order (x fastest).
@@ -1144,20 +1181,24 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
       offset[m] = 0;
       for (int a = 0, r = m; a < D; ++a, r /= 3) offset[m] += (r % 3 - 1) * pc.stride[a];
     }
-    std::vector<std::uint8_t> need(pc.box, 0);
+    std::vector<std::uint8_t>& need = ws.need;
+    need.assign(pc.box, 0);
     for (std::size_t s = 0; s < order.size(); ++s) {
-      const std::uint32_t idx = at[order[s]];
-      if (s > 0 && at[order[s - 1]] == idx) continue;
+      const std::uint32_t idx = sorted_at[s];
+      if (s > 0 && sorted_at[s - 1] == idx) continue;
       for (int m = 0; m < kCells; ++m) need[static_cast<std::size_t>(idx + offset[m])] = 1;
     }
     const consts<D> c(g);
-    box_impulses im;
+    box_impulses& im = ws.im;
     draw_box<D>(g, c, pc, need, im);
 
-    shared_pairs t;
+    shared_pairs& t = ws.t;
+    t.n = 0;
     t.reserve(kSharePairs + static_cast<std::size_t>(kCells) * g.table().max_count() + lanes);
-    std::vector<std::uint32_t> pend;       // points whose pairs are in t
-    std::vector<std::size_t> pend_end;     // the end of each one's pairs
+    std::vector<std::uint32_t>& pend = ws.pend;  // points whose pairs are in t
+    std::vector<std::size_t>& pend_end = ws.pend_end;  // the end of each one's pairs
+    pend.clear();
+    pend_end.clear();
     const float scale = float(g.scale()), grad_scale = float(g.scale() * g.inverse_cell());
     auto flush = [&] {
       for (std::size_t i = 0; i < t.n; i += lanes) {
@@ -1185,10 +1226,10 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
       pend_end.clear();
     };
     const VF one = hn::Set(df, 1.0f);
-    for (const std::uint32_t i : order) {
-      const std::int64_t idx = at[i];
+    for (std::size_t sp = 0; sp < order.size(); ++sp) {
+      const std::int64_t idx = sorted_at[sp];
       VF f[3];
-      for (int a = 0; a < D; ++a) f[a] = hn::Set(df, pc.frac[a][i]);
+      for (int a = 0; a < D; ++a) f[a] = hn::Set(df, sorted_frac[a][sp]);
       const VF bxp = hn::Set(df, static_cast<float>(idx % pc.side[0]));
       for (int r = 0; r < kRows; ++r) {
         // Row r: cells x - 1 ... x + 1 at offsets o (y, z) of the point's cell.
@@ -1218,7 +1259,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
           t.n = to + hn::CountTrue(df, in);
         }
       }
-      pend.push_back(i);
+      pend.push_back(order[sp]);
       pend_end.push_back(t.n);
       if (t.n >= kSharePairs) flush();
     }
