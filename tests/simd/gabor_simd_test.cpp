@@ -149,7 +149,7 @@ std::vector<hush::vec<float, D>> dense_points(std::size_t n, std::uint32_t seed)
   hush::rng r(seed);
   std::vector<hush::vec<float, D>> pts(n);
   for (auto& p : pts)
-    for (int a = 0; a < D; ++a) p[a] = r.uniform<float>(-3.0f, 3.0f);
+    for (int a = 0; a < D; ++a) p[a] = r.uniform<float>(-2.0f, 2.0f);
   pts[n / 3][0] = 1e7f;
   pts[n / 2][D - 1] = std::numeric_limits<float>::quiet_NaN();
   return pts;
@@ -169,8 +169,8 @@ TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail 
     }
     check_points(g2, test_points<2>(1000, 1));
     check_points(g3, test_points<3>(500, 2));
-    check_points(g2, dense_points<2>(1500, 3));  // ~60 points per cell
-    check_points(g3, dense_points<3>(400, 4));   // ~2 points per cell
+    check_points(g2, dense_points<2>(1500, 3));  // ~90 points per cell
+    check_points(g3, dense_points<3>(400, 4));   // ~6 points per cell
   }
 }
 
