@@ -1000,6 +1000,29 @@ struct point_cells {
         lo[a] = std::max(lo[a], *mid - half);
         hi[a] = std::min(hi[a], *mid + half);
       }
+      // Then shrunk to the cells of the points inside (a far point must not
+      // make the box look sparse).
+      std::int64_t in_lo[D], in_hi[D];
+      for (int a = 0; a < D; ++a) {
+        in_lo[a] = hi[a];
+        in_hi[a] = lo[a];
+      }
+      bool any = false;
+      for (std::size_t i = 0; i < n; ++i) {
+        bool in = ok[i] != 0;
+        for (int a = 0; a < D && in; ++a) in = rel(a, i) >= lo[a] && rel(a, i) <= hi[a];
+        if (!in) continue;
+        any = true;
+        for (int a = 0; a < D; ++a) {
+          in_lo[a] = std::min(in_lo[a], rel(a, i));
+          in_hi[a] = std::max(in_hi[a], rel(a, i));
+        }
+      }
+      if (any)  // else the window stays (no point inside: the lockstep path)
+        for (int a = 0; a < D; ++a) {
+          lo[a] = in_lo[a];
+          hi[a] = in_hi[a];
+        }
     }
     box = 1;
     for (int a = 0; a < D; ++a) {
