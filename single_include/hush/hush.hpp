@@ -9067,7 +9067,10 @@ HWY_AFTER_NAMESPACE();
 //  - otherwise multiply-adds may be fused, within the float budget of
 //    gabor.hpp.
 // How they are fast:
-//  - points, filtered samples and samples with normals: one lane per point (samples: each
+//  - points where the call crowds them (at least kShareMinPointsPerCell per cell of their
+//    range): sorted by cell, each cell's impulses drawn once for all the points that see it,
+//    lanes across impulses (shared_points below);
+//  - other points, filtered samples and samples with normals: one lane per point (samples: each
 //    lane's filter, and for surface noise its tangent frame, computed in double as the scalar
 //    code does, and gathered per term); per cell and
 //    impulse the lanes draw in lockstep (the counter's hash is shared), and only impulses within a
