@@ -900,6 +900,10 @@ constexpr double kShareMinPointsPerCell[2] = {2.0, 0.5};
 constexpr double kShareBoxMin = 1024.0;
 // Kept pairs evaluated at once (the pair list is flushed beyond this).
 constexpr std::size_t kSharePairs = 4096;
+// Points per shared_points call (larger calls are cut): keeps box indices and
+// impulse offsets within 32 bits for every N' (a point's value does not
+// depend on the cut).
+constexpr std::size_t kShareMaxPoints = std::size_t(1) << 20;
 
 // Pairs (point, impulse) within the support, each point's in its order.
 struct shared_pairs {
@@ -1625,10 +1629,14 @@ void gabor_points(const gabor<D>& g, const float* pts, std::size_t n, float* val
   auto lockstep = [&g](const float* p, std::size_t m, float* v, float* gr) {
     gabor_points_lockstep<D>(g, p, m, v, gr);
   };
-  if (grad)
-    gabor_simd::shared_points<D, true>(g, pts, n, value, grad, lockstep);
-  else
-    gabor_simd::shared_points<D, false>(g, pts, n, value, nullptr, lockstep);
+  for (std::size_t first = 0; first < n; first += gabor_simd::kShareMaxPoints) {
+    const std::size_t m = std::min(gabor_simd::kShareMaxPoints, n - first);
+    const float* p = pts + first * D;
+    if (grad)
+      gabor_simd::shared_points<D, true>(g, p, m, value + first, grad + first * D, lockstep);
+    else
+      gabor_simd::shared_points<D, false>(g, p, m, value + first, nullptr, lockstep);
+  }
 }
 inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
                           float* grad) {
