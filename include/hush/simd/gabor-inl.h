@@ -1141,6 +1141,59 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
   }
 }
 
+// Whether a call's points are clearly too sparse to share their cells, judged
+// from at most ~1024 of them at a fixed stride (their cells in double, the
+// window of kShareBoxPerPoint n + kShareBoxMin cells around their median,
+// shrunk to the sampled points inside): an estimated density below half of
+// kShareMinPointsPerCell. Only picks the path; both give the same values.
+template <int D>
+bool clearly_sparse(const float* pts, std::size_t n, double inv) {
+  const std::size_t every = std::max<std::size_t>(1, n / 1024);
+  std::vector<double> c[D];
+  for (std::size_t i = 0; i < n; i += every) {
+    double x[D];
+    bool finite = true;
+    for (int a = 0; a < D; ++a) {
+      x[a] = std::floor(double(pts[i * D + static_cast<std::size_t>(a)]) * inv);
+      finite = finite && std::isfinite(x[a]);
+    }
+    if (finite)
+      for (int a = 0; a < D; ++a) c[a].push_back(x[a]);
+  }
+  const std::size_t m = c[0].size();
+  if (m == 0) return true;
+  const double half =
+      std::floor((std::pow(kShareBoxPerPoint * double(n) + kShareBoxMin, 1.0 / D) - 3.0) / 2.0);
+  double med[D];
+  for (int a = 0; a < D; ++a) {
+    std::vector<double> v = c[a];
+    auto mid = v.begin() + static_cast<std::ptrdiff_t>(m / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    med[a] = *mid;
+  }
+  double lo[D], hi[D];
+  for (int a = 0; a < D; ++a) {
+    lo[a] = med[a] + half;
+    hi[a] = med[a] - half;
+  }
+  std::size_t inside = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    bool in = true;
+    for (int a = 0; a < D && in; ++a) in = std::fabs(c[a][j] - med[a]) <= half;
+    if (!in) continue;
+    ++inside;
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::min(lo[a], c[a][j]);
+      hi[a] = std::max(hi[a], c[a][j]);
+    }
+  }
+  if (inside == 0) return true;
+  double cells = 1.0;
+  for (int a = 0; a < D; ++a) cells *= hi[a] - lo[a] + 1.0;
+  const double estimate = double(inside) * double(n) / double(m);
+  return estimate < 0.5 * kShareMinPointsPerCell[D - 2] * cells;
+}
+
 // Everything shared_points allocates, kept per thread between calls: a
 // fresh allocation per call cost a fifth of the time in page faults (262144
 // points, ~50 bytes each; the memory stays with the thread).
@@ -1164,6 +1217,10 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const float nan = std::numeric_limits<float>::quiet_NaN();
+  if (clearly_sparse<D>(pts, n, g.inverse_cell())) {
+    lockstep(pts, n, value, grad);
+    return;
+  }
   static thread_local shared_workspace<D> ws;
   ws.pc.build(pts, n, g.inverse_cell());
   const point_cells<D>& pc = ws.pc;
