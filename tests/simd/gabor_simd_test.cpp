@@ -7,7 +7,8 @@
 // simd_static_test, simd_single_header_test) bit-identical to scalar, values
 // and gradients; otherwise (simd_test) within twice the float budget of
 // gabor.hpp. Covered: random points with every tail length up to three
-// vectors and the hard cases in every lane position, grids near and far, with
+// vectors and the hard cases in every lane position, points crowded in a few
+// cells (the shared-cell path) beside far and NaN ones, grids near and far, with
 // negative and coarse steps (the points path) and fine ones (the block path),
 // 2D and 3D, every kind, samples with footprints and with normals (surface noise:
 // unit, tiny, zero and non-finite normals, with and without footprints).
@@ -115,13 +116,17 @@ void check_grid(const hush::gabor<D>& g, const hush::grid<D>& grid) {
   });
 }
 
-// Random points with the hard cases spread over lane positions.
+// Random points in [-half, half]^D with the hard cases spread over lane
+// positions. A small half crowds many points into each cell: the shared-cell
+// path (each cell's impulses drawn once and summed by every point that sees
+// it), with the far and non-finite points beside them in the same call.
 template <int D>
-std::vector<hush::vec<float, D>> test_points(std::size_t n, std::uint32_t seed) {
+std::vector<hush::vec<float, D>> test_points(std::size_t n, std::uint32_t seed,
+                                             float half = 40.0f) {
   hush::rng r(seed);
   std::vector<hush::vec<float, D>> pts(n);
   for (auto& p : pts)
-    for (int a = 0; a < D; ++a) p[a] = r.uniform<float>(-40.0f, 40.0f);
+    for (int a = 0; a < D; ++a) p[a] = r.uniform<float>(-half, half);
   const float specials[] = {std::numeric_limits<float>::quiet_NaN(),
                             std::numeric_limits<float>::infinity(),
                             -1.0f,
@@ -153,6 +158,8 @@ TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail 
     }
     check_points(g2, test_points<2>(1000, 1));
     check_points(g3, test_points<3>(500, 2));
+    check_points(g2, test_points<2>(1500, 3, 2.0f));  // ~90 points per cell
+    check_points(g3, test_points<3>(400, 4, 2.0f));   // ~6 points per cell
   }
 }
 

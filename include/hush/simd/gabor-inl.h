@@ -17,7 +17,10 @@
 //  - otherwise multiply-adds may be fused, within the float budget of
 //    gabor.hpp.
 // How they are fast:
-//  - points, filtered samples and samples with normals: one lane per point (samples: each
+//  - points where the call crowds them (at least kShareMinPointsPerCell per cell of their
+//    range): sorted by cell, each cell's impulses drawn once for all the points that see it,
+//    lanes across impulses (shared_points below);
+//  - other points, filtered samples and samples with normals: one lane per point (samples: each
 //    lane's filter, and for surface noise its tangent frame, computed in double as the scalar
 //    code does, and gathered per term); per cell and
 //    impulse the lanes draw in lockstep (the counter's hash is shared), and only impulses within a
@@ -494,6 +497,30 @@ void collect(std::uint32_t key, std::uint32_t stream, const std::vector<std::int
   }
 }
 
+// The unfiltered kernel (gabor<D>::eval's pair) of one vector of impulses with
+// weight wt, frequency phi and offsets d: the value into val, and with G the
+// gradient terms u d_a - v phi_a into g[a].
+template <int D, bool G>
+HWY_INLINE void unfiltered_terms(const consts<D>& c, VF wt, const VF* phi, const VF* d,
+                                 float* HWY_RESTRICT val, float* const* g) {
+  const DF df;
+  axis ax[3];
+  for (int a = 0; a < D; ++a) ax[a] = axis_factors(d[a], c.neg_a, phi[a]);
+  row r;
+  if constexpr (D == 2)
+    r = row_of(wt, ax[1]);
+  else
+    r = row_of(wt, ax[1], ax[2]);
+  if constexpr (G) {
+    VF v, u, vv;
+    pair_gradient(ax[0], r, c.k, c.a, v, u, vv);
+    hn::StoreU(v, df, val);
+    for (int a = 0; a < D; ++a) hn::StoreU(hn::Sub(hn::Mul(u, ax[a].d), hn::Mul(vv, phi[a])), df, g[a]);
+  } else {
+    hn::StoreU(pair(ax[0], r, c.k), df, val);
+  }
+}
+
 // The unfiltered kernel of every kept impulse (gabor<D>::eval's pair), into
 // t.val (and with G, the gradient terms u d_a - v phi_a into t.g).
 template <int D, bool G>
@@ -504,25 +531,11 @@ void eval_unfiltered(const consts<D>& c, tuples& t) {
   for (std::size_t i = 0; i < t.n; i += lanes) {
     VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
                hn::LoadU(du, t.w2.data() + i)};
-    VF wt, phi[3];
+    VF wt, phi[3], d[3];
     marks<D>(c, w, wt, phi);
-    axis ax[3];
-    for (int a = 0; a < D; ++a)
-      ax[a] = axis_factors(hn::LoadU(df, t.d[a].data() + i), c.neg_a, phi[a]);
-    row r;
-    if constexpr (D == 2)
-      r = row_of(wt, ax[1]);
-    else
-      r = row_of(wt, ax[1], ax[2]);
-    if constexpr (G) {
-      VF v, u, vv;
-      pair_gradient(ax[0], r, c.k, c.a, v, u, vv);
-      hn::StoreU(v, df, t.val.data() + i);
-      for (int a = 0; a < D; ++a)
-        hn::StoreU(hn::Sub(hn::Mul(u, ax[a].d), hn::Mul(vv, phi[a])), df, t.g[a].data() + i);
-    } else {
-      hn::StoreU(pair(ax[0], r, c.k), df, t.val.data() + i);
-    }
+    for (int a = 0; a < D; ++a) d[a] = hn::LoadU(df, t.d[a].data() + i);
+    float* const g[3] = {t.g[0].data() + i, t.g[1].data() + i, t.g[2].data() + i};
+    unfiltered_terms<D, G>(c, wt, phi, d, t.val.data() + i, g);
   }
 }
 
@@ -861,6 +874,522 @@ void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, 
       [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G>(c, t); });
 }
 
+// ---- Points that share cells (gabor_points): each cell's impulses drawn once per call.
+//
+// The lockstep path above draws a cell once per lane batch, at the pace of the
+// batch's largest count (54% of the slots used for N' = 16 on 16 lanes), and
+// every point's 3^D cells again for each batch. Here a call's points are
+// counting-sorted by cell within a box of cells (the call's cell range with a
+// margin of one cell, clipped around the median cell to kShareBoxPerPoint n +
+// kShareBoxMin cells); every cell next to an occupied one has its impulses
+// drawn once (lanes across cells for the counts, across impulses for the words
+// and marks, so the orientation's sin/cos is computed once per impulse), stored
+// in the box's raster order: a point's 3^(D-1) rows of 3 cells are 3^(D-1)
+// contiguous ranges. Per point each range is tested in full vectors (lanes
+// across impulses) and the impulses within the support are compressed into a
+// list, in the scalar order (cells in raster order, impulses in stream order);
+// the kernel then runs over the list in full vectors and each point sums its
+// own terms in order, so the result is the lockstep path's (and the scalar
+// one's under HUSH_STRICT_FP) bit for bit. Finite points outside the box take
+// the lockstep path; non-finite ones give NaN directly.
+constexpr double kShareBoxPerPoint = 16.0;
+// Fewer points per cell of the box than this (2D, 3D): the lockstep path is
+// faster (each point draws its 3^D cells nearly alone; measured crossovers
+// about 1.5 points per cell in 2D and below 0.9 in 3D, AVX2 and AVX3).
+constexpr double kShareMinPointsPerCell[2] = {2.0, 0.5};
+constexpr double kShareBoxMin = 1024.0;
+// Kept pairs evaluated at once (the pair list is flushed beyond this).
+constexpr std::size_t kSharePairs = 4096;
+// Points per shared_points call (larger calls are cut): keeps box indices and
+// impulse offsets within 32 bits for every N' (a point's value does not
+// depend on the cut).
+constexpr std::size_t kShareMaxPoints = std::size_t(1) << 20;
+
+// Pairs (point, impulse) within the support, each point's in its order.
+struct shared_pairs {
+  std::vector<float> d[3], w, phi[3], val, g[3];
+  std::size_t n = 0;
+  void reserve(std::size_t cap) {
+    for (auto* v : {&d[0], &d[1], &d[2], &w, &phi[0], &phi[1], &phi[2], &val, &g[0], &g[1], &g[2]})
+      v->resize(cap + kMaxLanes);
+  }
+};
+
+// Splits lanes [0, used) of the batch of points pts[first...] (D interleaved
+// floats) into sp: in lanes when the batch is whole and every lane ordinary,
+// else lane by lane (lattice_split in double, as gabor<D>::eval).
+template <int D>
+void split_batch(lanes_split& sp, const float* pts, std::size_t first, std::size_t used,
+                 double inv) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  if (used == lanes) {
+    VF c[3];
+    if constexpr (D == 2)
+      hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
+    else
+      hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
+    bool ok = true;
+    for (int a = 0; a < D && ok; ++a) ok = split_axis(c[a], inv, sp.cell[a], sp.frac[a]);
+    if (ok) {
+      std::fill(sp.bad, sp.bad + lanes, false);
+      return;
+    }
+  }
+  split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
+    for (int a = 0; a < D; ++a) x[a] = static_cast<double>(pts[i * D + static_cast<std::size_t>(a)]);
+  });
+}
+
+// The cells of a call's points (split_batch), and the box of cells that the
+// shared path covers: per axis [lo, hi] relative to cell `ref` (wrapping
+// 32-bit differences), plus a margin of one cell each side.
+template <int D>
+struct point_cells {
+  std::vector<std::uint32_t> cell[D];
+  std::vector<float> frac[D];
+  std::vector<std::uint8_t> ok;  // every coordinate finite
+  std::uint32_t ref[D] = {};
+  std::int64_t lo[D] = {}, hi[D] = {}, side[D] = {}, stride[D] = {};
+  std::size_t box = 0;  // cells in the box with its margins; 0: no finite point
+
+  std::int64_t rel(int a, std::size_t i) const {
+    return static_cast<std::int64_t>(static_cast<std::int32_t>(cell[a][i] - ref[a]));
+  }
+  std::vector<std::int64_t> v;  // median scratch
+
+  void build(const float* pts, std::size_t n, double inv) {
+    const std::size_t lanes = hn::Lanes(DF());
+    box = 0;
+    for (int a = 0; a < D; ++a) {
+      cell[a].resize(n);
+      frac[a].resize(n);
+    }
+    ok.resize(n);
+    lanes_split sp;
+    for (std::size_t first = 0; first < n; first += lanes) {
+      const std::size_t used = std::min(lanes, n - first);
+      split_batch<D>(sp, pts, first, used, inv);
+      for (std::size_t l = 0; l < used; ++l) {
+        for (int a = 0; a < D; ++a) {
+          cell[a][first + l] = sp.cell[a][l];
+          frac[a][first + l] = sp.frac[a][l];
+        }
+        ok[first + l] = !sp.bad[l];
+      }
+    }
+    std::size_t r = 0;
+    while (r < n && !ok[r]) ++r;
+    if (r == n) return;
+    for (int a = 0; a < D; ++a) {
+      ref[a] = cell[a][r];
+      lo[a] = std::numeric_limits<std::int64_t>::max();
+      hi[a] = std::numeric_limits<std::int64_t>::min();
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (ok[i])
+        for (int a = 0; a < D; ++a) {
+          lo[a] = std::min(lo[a], rel(a, i));
+          hi[a] = std::max(hi[a], rel(a, i));
+        }
+    const double budget = kShareBoxPerPoint * double(n) + kShareBoxMin;
+    double cells = 1.0;
+    for (int a = 0; a < D; ++a) cells *= double(hi[a] - lo[a] + 3);
+    if (cells > budget) {  // clip around the median cell: sides of budget^(1/D) with margins
+      const auto half =
+          static_cast<std::int64_t>(std::floor((std::pow(budget, 1.0 / D) - 3.0) / 2.0));
+      // The median of at most ~4096 points taken at a fixed stride: a centre
+      // for the window, not more (nth_element over every point cost ~30 ns per point).
+      const std::size_t every = std::max<std::size_t>(1, n / 4096);
+      for (int a = 0; a < D; ++a) {
+        v.clear();
+        for (std::size_t i = 0; i < n; i += every)
+          if (ok[i]) v.push_back(rel(a, i));
+        if (v.empty()) v.push_back(rel(a, r));
+        auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+        std::nth_element(v.begin(), mid, v.end());
+        lo[a] = std::max(lo[a], *mid - half);
+        hi[a] = std::min(hi[a], *mid + half);
+      }
+      // Then shrunk to the cells of the points inside (a far point must not
+      // make the box look sparse).
+      std::int64_t in_lo[D], in_hi[D];
+      for (int a = 0; a < D; ++a) {
+        in_lo[a] = hi[a];
+        in_hi[a] = lo[a];
+      }
+      bool any = false;
+      for (std::size_t i = 0; i < n; ++i) {
+        bool in = ok[i] != 0;
+        for (int a = 0; a < D && in; ++a) in = rel(a, i) >= lo[a] && rel(a, i) <= hi[a];
+        if (!in) continue;
+        any = true;
+        for (int a = 0; a < D; ++a) {
+          in_lo[a] = std::min(in_lo[a], rel(a, i));
+          in_hi[a] = std::max(in_hi[a], rel(a, i));
+        }
+      }
+      if (any)  // else the window stays (no point inside: the lockstep path)
+        for (int a = 0; a < D; ++a) {
+          lo[a] = in_lo[a];
+          hi[a] = in_hi[a];
+        }
+    }
+    box = 1;
+    for (int a = 0; a < D; ++a) {
+      side[a] = hi[a] - lo[a] + 3;
+      stride[a] = static_cast<std::int64_t>(box);
+      box *= static_cast<std::size_t>(side[a]);
+    }
+  }
+  // Point i's cell's index in the box, or -1 outside it.
+  std::int64_t index(std::size_t i) const {
+    std::int64_t idx = 0;
+    for (int a = 0; a < D; ++a) {
+      const std::int64_t x = rel(a, i);
+      if (x < lo[a] || x > hi[a]) return -1;
+      idx += (x - lo[a] + 1) * stride[a];
+    }
+    return idx;
+  }
+  // The lattice cell along axis a of box coordinate x.
+  std::uint32_t lattice(int a, std::int64_t x) const {
+    return ref[a] + static_cast<std::uint32_t>(lo[a] - 1 + x);
+  }
+};
+
+// The impulses of the cells of a box next to an occupied one, in box order:
+// start[idx] ... start[idx + 1] are cell idx's; per impulse its position in
+// the cell, its cell's box x coordinate, weight and frequency (marks).
+struct box_impulses {
+  std::vector<std::uint32_t> start;
+  std::vector<float> pos[3], bx, w, phi[3];
+  // draw_box's scratch: the needed cells, their lattice coordinates, stream
+  // keys and counts; per impulse its stream key and counter.
+  std::vector<std::uint32_t> cells, coord[3], key, count, ikey, ictr;
+};
+
+template <int D>
+void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
+              const std::vector<std::uint8_t>& need, box_impulses& out) {
+  const DF df;
+  const DU du;
+  const std::size_t lanes = hn::Lanes(df);
+  std::vector<std::uint32_t>& cells = out.cells;  // box indices of the needed cells, increasing
+  cells.clear();
+  for (std::size_t idx = 0; idx < pc.box; ++idx)
+    if (need[idx]) cells.push_back(static_cast<std::uint32_t>(idx));
+  const std::size_t nc = cells.size();
+  // Counts and stream keys, lanes across cells (collect's hash, operation by operation).
+  std::vector<std::uint32_t>*coord = out.coord, &key = out.key, &count = out.count;
+  key.resize(nc + lanes);
+  count.resize(nc + lanes);
+  for (int a = 0; a < D; ++a) coord[a].assign(nc + lanes, 0);
+  for (std::size_t j = 0; j < nc; ++j) {
+    std::int64_t rest = cells[j];
+    for (int a = 0; a < D; ++a) {
+      coord[a][j] = pc.lattice(a, rest % pc.side[a]);
+      rest /= pc.side[a];
+    }
+  }
+  const std::vector<std::int32_t> flipped = flipped_thresholds(g.table());
+  const auto nthr = static_cast<std::uint32_t>(flipped.size() - 1);
+  for (std::size_t j = 0; j < nc; j += lanes) {
+    VU h = hn::Xor(hn::Set(du, g.key()), word_x(hn::LoadU(du, coord[0].data() + j)));
+    h = hn::Xor(h, word_y(hn::LoadU(du, coord[1].data() + j)));
+    if constexpr (D == 3) h = hn::Xor(h, word_z(hn::LoadU(du, coord[2].data() + j)));
+    const VU skey = stream_key(hash32(h), detail::constants::kGaborSolidStream);
+    hn::StoreU(skey, du, key.data() + j);
+    hn::StoreU(nthr == 0 ? hn::Zero(du) : table_count(flipped.data(), nthr, draw(skey, 0)), du,
+               count.data() + j);
+  }
+  // Offsets per box cell, and per impulse its stream key, counter and box x.
+  out.start.assign(pc.box + 1, 0);
+  std::size_t total = 0;
+  for (std::size_t j = 0, idx = 0; idx < pc.box; ++idx) {
+    out.start[idx] = static_cast<std::uint32_t>(total);
+    if (j < nc && cells[j] == idx) total += count[j++];
+  }
+  out.start[pc.box] = static_cast<std::uint32_t>(total);
+  std::vector<std::uint32_t>&ikey = out.ikey, &ictr = out.ictr;
+  ikey.assign(total + lanes, 0);
+  ictr.assign(total + lanes, 0);
+  out.bx.assign(total + lanes, 0.0f);
+  const auto words = static_cast<std::uint32_t>(g.words_per_impulse());
+  for (std::size_t j = 0, o = 0; j < nc; ++j)
+    for (std::uint32_t k = 0; k < count[j]; ++k, ++o) {
+      ikey[o] = key[j];
+      ictr[o] = 1 + k * words;
+      out.bx[o] = static_cast<float>(cells[j] % static_cast<std::uint32_t>(pc.side[0]));
+    }
+  for (int a = 0; a < D; ++a) out.pos[a].assign(total + lanes, 0.0f);
+  out.w.assign(total + lanes, 0.0f);
+  for (int a = 0; a < D; ++a) out.phi[a].assign(total + lanes, 0.0f);
+  // Words, positions and marks, lanes across impulses.
+  for (std::size_t i = 0; i < total; i += lanes) {
+    const VU k = hn::LoadU(du, ikey.data() + i), ctr = hn::LoadU(du, ictr.data() + i);
+    VU wd[3] = {hn::Zero(du), hn::Zero(du), hn::Zero(du)};
+    for (std::uint32_t j = 0; j < words; ++j)
+      wd[j] = hash32(hn::Xor(k, hash32(hn::Add(ctr, hn::Set(du, j)))));
+    VF wt, phi[3];
+    marks<D>(c, wd, wt, phi);
+    for (int a = 0; a < D; ++a) {
+      hn::StoreU(byte_value(wd[0], static_cast<unsigned>(a)), df, out.pos[a].data() + i);
+      hn::StoreU(phi[a], df, out.phi[a].data() + i);
+    }
+    hn::StoreU(wt, df, out.w.data() + i);
+  }
+}
+
+// Whether a call's points are clearly too sparse to share their cells, judged
+// from at most ~1024 of them at a fixed stride (their cells in double, the
+// window of kShareBoxPerPoint n + kShareBoxMin cells around their median,
+// shrunk to the sampled points inside): an estimated density below half of
+// kShareMinPointsPerCell. Only picks the path; both give the same values.
+template <int D>
+bool clearly_sparse(const float* pts, std::size_t n, double inv) {
+  const std::size_t every = std::max<std::size_t>(1, n / 1024);
+  std::vector<double> c[D];
+  for (std::size_t i = 0; i < n; i += every) {
+    double x[D];
+    bool finite = true;
+    for (int a = 0; a < D; ++a) {
+      x[a] = std::floor(double(pts[i * D + static_cast<std::size_t>(a)]) * inv);
+      finite = finite && std::isfinite(x[a]);
+    }
+    if (finite)
+      for (int a = 0; a < D; ++a) c[a].push_back(x[a]);
+  }
+  const std::size_t m = c[0].size();
+  if (m == 0) return true;
+  const double half =
+      std::floor((std::pow(kShareBoxPerPoint * double(n) + kShareBoxMin, 1.0 / D) - 3.0) / 2.0);
+  double med[D];
+  for (int a = 0; a < D; ++a) {
+    std::vector<double> v = c[a];
+    auto mid = v.begin() + static_cast<std::ptrdiff_t>(m / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    med[a] = *mid;
+  }
+  double lo[D], hi[D];
+  for (int a = 0; a < D; ++a) {
+    lo[a] = med[a] + half;
+    hi[a] = med[a] - half;
+  }
+  std::size_t inside = 0;
+  for (std::size_t j = 0; j < m; ++j) {
+    bool in = true;
+    for (int a = 0; a < D && in; ++a) in = std::fabs(c[a][j] - med[a]) <= half;
+    if (!in) continue;
+    ++inside;
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::min(lo[a], c[a][j]);
+      hi[a] = std::max(hi[a], c[a][j]);
+    }
+  }
+  if (inside == 0) return true;
+  double cells = 1.0;
+  for (int a = 0; a < D; ++a) cells *= hi[a] - lo[a] + 1.0;
+  const double estimate = double(inside) * double(n) / double(m);
+  return estimate < 0.5 * kShareMinPointsPerCell[D - 2] * cells;
+}
+
+// Everything shared_points allocates, kept per thread between calls: a
+// fresh allocation per call cost a fifth of the time in page faults (262144
+// points, ~50 bytes each; the memory stays with the thread).
+template <int D>
+struct shared_workspace {
+  point_cells<D> pc;
+  box_impulses im;
+  shared_pairs t;
+  std::vector<std::uint32_t> at, order, sorted_at, first, fill, pend;
+  std::vector<float> sorted_frac[D];
+  std::vector<std::uint8_t> need;
+  std::vector<std::size_t> rest, pend_end;
+};
+
+// Unfiltered solid noise at the n points pts (D interleaved floats), values
+// into value, interleaved gradients into grad with G; lockstep(pts, m, value,
+// grad) evaluates the finite points outside the box.
+template <int D, bool G, class Lockstep>
+void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad,
+                   Lockstep lockstep) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  if (clearly_sparse<D>(pts, n, g.inverse_cell())) {
+    lockstep(pts, n, value, grad);
+    return;
+  }
+  static thread_local shared_workspace<D> ws;
+  ws.pc.build(pts, n, g.inverse_cell());
+  const point_cells<D>& pc = ws.pc;
+  // Counting sort of the box's points by cell; the rest: NaN, or the lockstep path.
+  std::vector<std::uint32_t>&at = ws.at, &order = ws.order, &sorted_at = ws.sorted_at,
+                           &first = ws.first;
+  std::vector<float>* sorted_frac = ws.sorted_frac;
+  std::vector<std::size_t>& rest = ws.rest;
+  at.resize(n);
+  order.clear();
+  rest.clear();
+  constexpr auto kOut = std::numeric_limits<std::uint32_t>::max();
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int64_t idx = pc.ok[i] ? pc.index(i) : -1;
+    at[i] = idx < 0 ? kOut : static_cast<std::uint32_t>(idx);
+    inside += idx < 0 ? 0 : 1;
+  }
+  // Too few points per cell to share the draws: the lockstep path for all.
+  double interior = 1.0;
+  for (int a = 0; a < D; ++a) interior *= double(pc.hi[a] - pc.lo[a] + 1);
+  if (pc.box == 0 || double(inside) < kShareMinPointsPerCell[D - 2] * interior) {
+    lockstep(pts, n, value, grad);
+    return;
+  }
+  first.assign(pc.box + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (at[i] != kOut) {
+      ++first[at[i] + 1];
+    } else if (pc.ok[i]) {
+      rest.push_back(i);
+    } else {
+      value[i] = nan;
+      if (G)
+        for (int a = 0; a < D; ++a) grad[i * D + a] = nan;
+    }
+  }
+  {
+    for (std::size_t b = 0; b < pc.box; ++b) first[b + 1] += first[b];
+    // In sorted order: the point, its cell and fractions (read in order below:
+    // gathering them per point would miss the cache on every point).
+    order.resize(inside);
+    sorted_at.resize(inside);
+    for (int a = 0; a < D; ++a) sorted_frac[a].resize(inside);
+    std::vector<std::uint32_t>& fill = ws.fill;
+    fill.assign(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      if (at[i] != kOut) {
+        const std::uint32_t to = fill[at[i]]++;
+        order[to] = static_cast<std::uint32_t>(i);
+        sorted_at[to] = at[i];
+        for (int a = 0; a < D; ++a) sorted_frac[a][to] = pc.frac[a][i];
+      }
+  }
+  if (!order.empty()) {
+    // The cells each occupied cell's points see, in raster order (x fastest).
+    constexpr int kCells = D == 2 ? 9 : 27, kRows = kCells / 3;
+    std::int64_t offset[kCells];
+    for (int m = 0; m < kCells; ++m) {
+      offset[m] = 0;
+      for (int a = 0, r = m; a < D; ++a, r /= 3) offset[m] += (r % 3 - 1) * pc.stride[a];
+    }
+    std::vector<std::uint8_t>& need = ws.need;
+    need.assign(pc.box, 0);
+    for (std::size_t s = 0; s < order.size(); ++s) {
+      const std::uint32_t idx = sorted_at[s];
+      if (s > 0 && sorted_at[s - 1] == idx) continue;
+      for (int m = 0; m < kCells; ++m) need[static_cast<std::size_t>(idx + offset[m])] = 1;
+    }
+    const consts<D> c(g);
+    box_impulses& im = ws.im;
+    draw_box<D>(g, c, pc, need, im);
+
+    shared_pairs& t = ws.t;
+    t.n = 0;
+    t.reserve(kSharePairs + static_cast<std::size_t>(kCells) * g.table().max_count() + lanes);
+    std::vector<std::uint32_t>& pend = ws.pend;  // points whose pairs are in t
+    std::vector<std::size_t>& pend_end = ws.pend_end;  // the end of each one's pairs
+    pend.clear();
+    pend_end.clear();
+    const float scale = float(g.scale()), grad_scale = float(g.scale() * g.inverse_cell());
+    auto flush = [&] {
+      for (std::size_t i = 0; i < t.n; i += lanes) {
+        VF d[3], phi[3];
+        for (int a = 0; a < D; ++a) {
+          d[a] = hn::LoadU(df, t.d[a].data() + i);
+          phi[a] = hn::LoadU(df, t.phi[a].data() + i);
+        }
+        float* const gp[3] = {t.g[0].data() + i, t.g[1].data() + i, t.g[2].data() + i};
+        unfiltered_terms<D, G>(c, hn::LoadU(df, t.w.data() + i), phi, d, t.val.data() + i, gp);
+      }
+      for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
+        float sum = 0.0f, gs[3] = {0.0f, 0.0f, 0.0f};
+        for (std::size_t q = b; q < pend_end[p]; ++q) {
+          sum += t.val[q];
+          if constexpr (G)
+            for (int a = 0; a < D; ++a) gs[a] += t.g[a][q];
+        }
+        value[pend[p]] = sum * scale;
+        if constexpr (G)
+          for (int a = 0; a < D; ++a) grad[pend[p] * D + a] = gs[a] * grad_scale;
+      }
+      t.n = 0;
+      pend.clear();
+      pend_end.clear();
+    };
+    const VF one = hn::Set(df, 1.0f);
+    // Raw pointers and a local pair count: the compiler would reload the
+    // vectors' pointers (thread-local) after every store otherwise.
+    const std::uint32_t* const start = im.start.data();
+    const float* const bx = im.bx.data();
+    const float* const pos[3] = {im.pos[0].data(), im.pos[1].data(), im.pos[D - 1].data()};
+    const float* const iw = im.w.data();
+    const float* const iphi[3] = {im.phi[0].data(), im.phi[1].data(), im.phi[D - 1].data()};
+    float* const td[3] = {t.d[0].data(), t.d[1].data(), t.d[2].data()};
+    float* const tw = t.w.data();
+    float* const tphi[3] = {t.phi[0].data(), t.phi[1].data(), t.phi[2].data()};
+    for (std::size_t sp = 0; sp < order.size(); ++sp) {
+      const std::int64_t idx = sorted_at[sp];
+      VF f[3];
+      for (int a = 0; a < D; ++a) f[a] = hn::Set(df, sorted_frac[a][sp]);
+      const VF bxp = hn::Set(df, static_cast<float>(idx % pc.side[0]));
+      for (int r = 0; r < kRows; ++r) {
+        // Row r: cells x - 1 ... x + 1 at offsets o (y, z) of the point's cell.
+        const std::int64_t mid = idx + offset[3 * r + 1];
+        const std::size_t b = start[static_cast<std::size_t>(mid - 1)];
+        const std::size_t e = start[static_cast<std::size_t>(mid + 2)];
+        std::size_t to = t.n;
+        VF off[3];
+        for (int a = 1, m = r; a < D; ++a, m /= 3)
+          off[a] = hn::Sub(f[a], hn::Set(df, static_cast<float>(m % 3 - 1)));
+        for (std::size_t k = b; k < e; k += lanes) {
+          // (frac - o) - position, as the scalar code; o along x from the cells' box x.
+          VF d[3], d2[3];
+          d[0] = hn::Sub(hn::Sub(f[0], hn::Sub(hn::LoadU(df, bx + k), bxp)),
+                         hn::LoadU(df, pos[0] + k));
+          for (int a = 1; a < D; ++a) d[a] = hn::Sub(off[a], hn::LoadU(df, pos[a] + k));
+          for (int a = 0; a < D; ++a) d2[a] = hn::Mul(d[a], d[a]);
+          const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
+          const MF in = hn::And(hn::Lt(s, one), hn::FirstN(df, e - k));
+          if (hn::AllFalse(df, in)) continue;
+          for (int a = 0; a < D; ++a) {
+            hn::StoreU(compress(d[a], in), df, td[a] + to);
+            hn::StoreU(compress(hn::LoadU(df, iphi[a] + k), in), df, tphi[a] + to);
+          }
+          hn::StoreU(compress(hn::LoadU(df, iw + k), in), df, tw + to);
+          to += hn::CountTrue(df, in);
+        }
+        t.n = to;
+      }
+      pend.push_back(order[sp]);
+      pend_end.push_back(t.n);
+      if (t.n >= kSharePairs) flush();
+    }
+    flush();
+  }
+  if (rest.empty()) return;
+  const std::size_t m = rest.size();
+  std::vector<float> rp(m * D), v(m), gv(G ? m * D : 0);
+  for (std::size_t j = 0; j < m; ++j)
+    for (int a = 0; a < D; ++a) rp[j * D + a] = pts[rest[j] * D + a];
+  lockstep(rp.data(), m, v.data(), G ? gv.data() : nullptr);
+  for (std::size_t j = 0; j < m; ++j) {
+    value[rest[j]] = v[j];
+    if (G)
+      for (int a = 0; a < D; ++a) grad[rest[j] * D + a] = gv[j * D + a];
+  }
+}
+
 // ---- Grids: blocks of samples that share their cell.
 
 // One axis of a grid, split as scalar evaluation splits grid.position(): the
@@ -1131,38 +1660,40 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
 
 }  // namespace gabor_simd
 
-// Gabor noise at n interleaved float points; values into value[n],
-// interleaved gradients into grad[D n] unless grad is null.
+// Gabor noise at n interleaved float points on the lockstep path (one lane per
+// point); values into value[n], interleaved gradients into grad[D n] unless
+// grad is null.
 template <int D>
-void gabor_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad) {
+void gabor_points_lockstep(const gabor<D>& g, const float* pts, std::size_t n, float* value,
+                           float* grad) {
   namespace gs = gabor_simd;
-  const gs::DF df;
-  const std::size_t lanes = hn::Lanes(df);
   const double inv = g.inverse_cell();
   gs::lanes_split sp;
   auto split = [&](std::size_t first, std::size_t used) {
-    if (used == lanes) {  // whole vectors: split in lanes when every lane is ordinary
-      gs::VF c[3];
-      if constexpr (D == 2)
-        hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
-      else
-        hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
-      bool ok = true;
-      for (int a = 0; a < D && ok; ++a) ok = gs::split_axis(c[a], inv, sp.cell[a], sp.frac[a]);
-      if (ok) {
-        std::fill(sp.bad, sp.bad + lanes, false);
-        return;
-      }
-    }
-    gs::split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
-      for (int a = 0; a < D; ++a)
-        x[a] = static_cast<double>(pts[i * D + static_cast<std::size_t>(a)]);
-    });
+    gs::split_batch<D>(sp, pts, first, used, inv);
   };
   if (grad)
     gs::points<D, true>(g, n, sp, split, value, grad);
   else
     gs::points<D, false>(g, n, sp, split, value, nullptr);
+}
+
+// Gabor noise at n interleaved float points (the shared-cell path, its box's
+// outliers on the lockstep path); values into value[n], interleaved gradients
+// into grad[D n] unless grad is null.
+template <int D>
+void gabor_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad) {
+  auto lockstep = [&g](const float* p, std::size_t m, float* v, float* gr) {
+    gabor_points_lockstep<D>(g, p, m, v, gr);
+  };
+  for (std::size_t first = 0; first < n; first += gabor_simd::kShareMaxPoints) {
+    const std::size_t m = std::min(gabor_simd::kShareMaxPoints, n - first);
+    const float* p = pts + first * D;
+    if (grad)
+      gabor_simd::shared_points<D, true>(g, p, m, value + first, grad + first * D, lockstep);
+    else
+      gabor_simd::shared_points<D, false>(g, p, m, value + first, nullptr, lockstep);
+  }
 }
 inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
                           float* grad) {
