@@ -48,8 +48,10 @@
 //    magnitude); the observed maximum is far smaller (tests).
 //  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
 //    analytic derivative.
-//  - float evaluation is within 2^-21 (1 + 2 pi Phi) sqrt(N') ... see
-//    float_budget(); measured in tests/gabor_test.cpp.
+//  - float evaluation is within scale 2^-21 (1 + 2 pi Phi) (N' + 1) of the
+//    double reference (each kernel within 2^-21 (1 + 2 pi Phi) of its double
+//    value, gabor_kernel.hpp, and ~N' kernels reach a point); measured in
+//    tests/gabor_test.cpp ("float evaluation stays within the stated budget").
 //  - domain: every finite coordinate (positions are split into cell and
 //    fraction in double, so precision does not degrade far from the origin);
 //    NaN or +-Inf in a coordinate gives NaN (value and gradient).
