@@ -33,7 +33,8 @@
 //    may be given, else hush::invalid_argument naming the span. scalar computes
 //    noise.sample_value<float>(samples.at(i)); with positions only, exactly what the points
 //    overload computes.
-//  - parallel(inner, threads): the batch split over std::threads, each
+//  - parallel(inner, threads) / parallel(inner, pool): the batch split over
+//    threads (started per call, or a hush::thread_pool's), each
 //    running `inner` (scalar or simd) on a contiguous part: points and
 //    samples in chunks, grids in slabs along the slowest axis (rows in 2D,
 //    slices in 3D). Results are identical, bit for bit, to `inner` on the
@@ -58,6 +59,7 @@
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/simd/dispatch.hpp"  // detail::simd_kernel and its specialisations
+#include "hush/thread_pool.hpp"
 
 namespace hush {
 namespace exec {
@@ -94,6 +96,9 @@ glsl(Device&) -> glsl<Device>;
 // rows of the same grid (the kernels take a row range, so every sample's
 // position is formed exactly as in the whole-grid call). Batches too small to
 // give every thread kParallelGrain samples use fewer threads.
+// With a hush::thread_pool instead of a count, the pool's threads run the
+// parts (no thread start per call: worth it for batches under ~1 ms; the pool
+// must outlive the call, and batches on one pool run one at a time).
 template <class Inner>
 struct parallel_t {
   static_assert(std::is_same<Inner, scalar_t>::value || std::is_same<Inner, simd_t>::value,
@@ -102,7 +107,8 @@ struct parallel_t {
   static constexpr int kMaxThreads = 1024;
   static constexpr std::size_t kParallelGrain = 4096;  // samples per thread, at least
   Inner inner;
-  unsigned threads;  // >= 1, resolved at construction
+  unsigned threads;             // >= 1, resolved at construction
+  thread_pool* pool = nullptr;  // null: threads started per call
 };
 // Throws hush::invalid_argument when threads is outside 0 ... 1024.
 template <class Inner>
@@ -110,7 +116,12 @@ parallel_t<Inner> parallel(Inner inner, int threads = 0) {
   detail::require_in_range("hush::exec::parallel", "threads", threads, 0,
                            parallel_t<Inner>::kMaxThreads, "0 (one per hardware thread) ... 1024");
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  return {inner, threads == 0 ? hw : static_cast<unsigned>(threads)};
+  return {inner, threads == 0 ? hw : static_cast<unsigned>(threads), nullptr};
+}
+// The pool's threads (pool.size(), the calling thread included) run the parts.
+template <class Inner>
+parallel_t<Inner> parallel(Inner inner, thread_pool& pool) {
+  return {inner, pool.size(), &pool};
 }
 
 }  // namespace exec
@@ -288,16 +299,21 @@ void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, f
 
 // Runs body(begin, end) over [0, n) split into at most `threads` contiguous
 // parts of whole `unit`s (n is a multiple of unit), each at least `grain`
-// long; part 0 on the calling thread.
+// long; part 0 on the calling thread; the other parts on `pool`'s workers, or
+// on threads started here when pool is null.
 template <class Body>
 void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned threads,
-                    const Body& body) {
+                    thread_pool* workers, const Body& body) {
   const std::size_t units = n / unit, grain_units = std::max<std::size_t>(1, grain / unit);
   const std::size_t parts =
       std::max<std::size_t>(1, std::min<std::size_t>(threads, units / grain_units));
   auto part = [&](std::size_t t) {
     body(t * units / parts * unit, (t + 1) * units / parts * unit);
   };
+  if (workers) {
+    workers->run(parts, part);
+    return;
+  }
   std::vector<std::thread> pool;
   pool.reserve(parts - 1);
   std::size_t started = 1;
@@ -320,22 +336,24 @@ struct has_simd_grid_slab<Kernel, std::void_t<decltype(Kernel::has_grid_slab)>>
 template <class Noise, class Inner>
 void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
                 float* out, vec<float, Noise::dimension>* grad) {
-  parallel_parts(pts.size(), 1, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
-    run_points(n, ex.inner, pts.subspan(b, e - b), out + b, grad ? grad + b : grad);
-  });
+  parallel_parts(pts.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
+                 [&](std::size_t b, std::size_t e) {
+                   run_points(n, ex.inner, pts.subspan(b, e - b), out + b, grad ? grad + b : grad);
+                 });
 }
 
 template <class Noise, class Inner>
 void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
                  const samples<Noise::dimension>& s, float* out,
                  vec<float, Noise::dimension>* grad) {
-  parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
-    samples<Noise::dimension> part = s;
-    part.positions = s.positions.subspan(b, e - b);
-    if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
-    if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
-    run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
-  });
+  parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
+                 [&](std::size_t b, std::size_t e) {
+                   samples<Noise::dimension> part = s;
+                   part.positions = s.positions.subspan(b, e - b);
+                   if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
+                   if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
+                   run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
+                 });
 }
 
 // Slabs along the slowest axis. A SIMD kernel without slab support gets the
@@ -353,7 +371,7 @@ void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Nois
   } else {
     const std::size_t slab = g.count() / g.size[D - 1];  // samples per slowest-axis index
     parallel_parts(
-        g.count(), slab, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
+        g.count(), slab, ex.kParallelGrain, ex.threads, ex.pool, [&](std::size_t b, std::size_t e) {
           float* o = out + b;
           vec<float, D>* gr = grad ? grad + b : grad;
           if constexpr (std::is_same<Inner, exec::simd_t>::value && simd_kernel<Noise>::available)

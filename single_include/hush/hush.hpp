@@ -4063,7 +4063,8 @@ struct triangle_list {
 //    may be given, else hush::invalid_argument naming the span. scalar computes
 //    noise.sample_value<float>(samples.at(i)); with positions only, exactly what the points
 //    overload computes.
-//  - parallel(inner, threads): the batch split over std::threads, each
+//  - parallel(inner, threads) / parallel(inner, pool): the batch split over
+//    threads (started per call, or a hush::thread_pool's), each
 //    running `inner` (scalar or simd) on a contiguous part: points and
 //    samples in chunks, grids in slabs along the slowest axis (rows in 2D,
 //    slices in 3D). Results are identical, bit for bit, to `inner` on the
@@ -14144,6 +14145,139 @@ struct simd_kernel<gabor<D>> {
 
 #endif  // HUSH_SIMD_DISPATCH_HPP
 // ---- end hush/simd/dispatch.hpp
+// ---- begin hush/thread_pool.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::thread_pool: worker threads that live as long as the pool, for
+// hush::exec::parallel(inner, pool). Starting a std::thread costs tens of
+// microseconds, as long as a whole small batch (a 512 x 512 Perlin grid takes
+// ~90 us on one core), so exec::parallel(inner, threads), which starts its
+// threads per call, only pays for large batches; a pool wakes sleeping
+// workers instead (docs/performance.md "Threads" has both measured).
+//
+//   hush::thread_pool pool(4);  // the calling thread plus 3 workers
+//   hush::evaluate_grid(noise, hush::exec::parallel(hush::exec::simd, pool), g, out);
+//
+// Contract:
+//  - thread_pool(threads): threads in 0 ... 1024, 0 meaning one per hardware
+//    thread (std::thread::hardware_concurrency(), at least 1); else
+//    hush::invalid_argument naming `threads`. It starts threads - 1 workers:
+//    the thread that calls run() is the first. If the system refuses a
+//    thread, the pool keeps the workers it got (size() says how many run).
+//  - run(parts, body): calls body(0) ... body(parts - 1), each exactly once,
+//    body(0) and any parts beyond size() - 1 workers on the calling thread, and
+//    returns when all have returned. body must not throw (hush's batch
+//    bodies do not: they run after validation). Calls from several threads
+//    are serialised (one batch at a time); a call from inside a body of the
+//    same pool runs all its parts on the calling thread instead of waiting
+//    for itself.
+//  - The destructor wakes and joins the workers; a pool must not be destroyed
+//    while a run() is in progress.
+//  - The pool is not copyable or movable (workers hold its address).
+#ifndef HUSH_THREAD_POOL_HPP
+#define HUSH_THREAD_POOL_HPP
+
+#include <algorithm>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+
+namespace hush {
+
+class thread_pool {
+ public:
+  static constexpr int kMaxThreads = 1024;
+
+  explicit thread_pool(int threads = 0) {
+    detail::require_in_range("hush::thread_pool", "threads", threads, 0, kMaxThreads,
+                             "0 (one per hardware thread) ... 1024");
+    const unsigned n =
+        threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : unsigned(threads);
+    workers_.reserve(n - 1);
+    try {
+      for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this, w] { work(w); });
+    } catch (...) {  // no more threads to be had: the pool runs with those it has
+    }
+  }
+  thread_pool(const thread_pool&) = delete;
+  thread_pool& operator=(const thread_pool&) = delete;
+  ~thread_pool() {
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& t : workers_) t.join();
+  }
+
+  // Threads that run parts: the workers plus the calling thread.
+  unsigned size() const { return unsigned(workers_.size()) + 1; }
+
+  template <class Body>
+  void run(std::size_t parts, const Body& body) {
+    if (parts == 0) return;
+    if (parts == 1 || workers_.empty() || inside_ == this) {
+      for (std::size_t p = 0; p < parts; ++p) body(p);
+      return;
+    }
+    const std::lock_guard<std::mutex> batch(run_m_);  // one batch at a time
+    const std::size_t on_workers = std::min<std::size_t>(parts - 1, workers_.size());
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      body_ = [&body](std::size_t p) { body(p); };
+      active_ = on_workers;
+      pending_ = on_workers;
+      ++generation_;
+    }
+    wake_.notify_all();
+    const thread_pool* outer = inside_;
+    inside_ = this;
+    body(0);
+    for (std::size_t p = on_workers + 1; p < parts; ++p) body(p);  // more parts than workers
+    inside_ = outer;
+    std::unique_lock<std::mutex> lock(m_);
+    done_.wait(lock, [this] { return pending_ == 0; });
+    body_ = nullptr;
+  }
+
+ private:
+  // Worker w runs part w of every batch that has at least w + 1 parts.
+  void work(unsigned w) {
+    inside_ = this;
+    std::uint64_t seen = 0;
+    std::unique_lock<std::mutex> lock(m_);
+    for (;;) {
+      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+      if (w > active_) continue;  // this batch has fewer parts
+      lock.unlock();
+      body_(w);
+      lock.lock();
+      if (--pending_ == 0) done_.notify_one();
+    }
+  }
+
+  std::vector<std::thread> workers_;
+  std::mutex run_m_;  // serialises run()
+  std::mutex m_;      // guards the fields below
+  std::condition_variable wake_, done_;
+  std::function<void(std::size_t)> body_;
+  std::size_t active_ = 0, pending_ = 0;
+  std::uint64_t generation_ = 0;
+  bool stop_ = false;
+  static inline thread_local const thread_pool* inside_ = nullptr;  // the pool this thread serves
+};
+
+}  // namespace hush
+
+#endif  // HUSH_THREAD_POOL_HPP
+// ---- end hush/thread_pool.hpp
 
 namespace hush {
 namespace exec {
@@ -14180,6 +14314,9 @@ glsl(Device&) -> glsl<Device>;
 // rows of the same grid (the kernels take a row range, so every sample's
 // position is formed exactly as in the whole-grid call). Batches too small to
 // give every thread kParallelGrain samples use fewer threads.
+// With a hush::thread_pool instead of a count, the pool's threads run the
+// parts (no thread start per call: worth it for batches under ~1 ms; the pool
+// must outlive the call, and batches on one pool run one at a time).
 template <class Inner>
 struct parallel_t {
   static_assert(std::is_same<Inner, scalar_t>::value || std::is_same<Inner, simd_t>::value,
@@ -14188,7 +14325,8 @@ struct parallel_t {
   static constexpr int kMaxThreads = 1024;
   static constexpr std::size_t kParallelGrain = 4096;  // samples per thread, at least
   Inner inner;
-  unsigned threads;  // >= 1, resolved at construction
+  unsigned threads;             // >= 1, resolved at construction
+  thread_pool* pool = nullptr;  // null: threads started per call
 };
 // Throws hush::invalid_argument when threads is outside 0 ... 1024.
 template <class Inner>
@@ -14196,7 +14334,12 @@ parallel_t<Inner> parallel(Inner inner, int threads = 0) {
   detail::require_in_range("hush::exec::parallel", "threads", threads, 0,
                            parallel_t<Inner>::kMaxThreads, "0 (one per hardware thread) ... 1024");
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  return {inner, threads == 0 ? hw : static_cast<unsigned>(threads)};
+  return {inner, threads == 0 ? hw : static_cast<unsigned>(threads), nullptr};
+}
+// The pool's threads (pool.size(), the calling thread included) run the parts.
+template <class Inner>
+parallel_t<Inner> parallel(Inner inner, thread_pool& pool) {
+  return {inner, pool.size(), &pool};
 }
 
 }  // namespace exec
@@ -14374,16 +14517,21 @@ void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, f
 
 // Runs body(begin, end) over [0, n) split into at most `threads` contiguous
 // parts of whole `unit`s (n is a multiple of unit), each at least `grain`
-// long; part 0 on the calling thread.
+// long; part 0 on the calling thread; the other parts on `pool`'s workers, or
+// on threads started here when pool is null.
 template <class Body>
 void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned threads,
-                    const Body& body) {
+                    thread_pool* workers, const Body& body) {
   const std::size_t units = n / unit, grain_units = std::max<std::size_t>(1, grain / unit);
   const std::size_t parts =
       std::max<std::size_t>(1, std::min<std::size_t>(threads, units / grain_units));
   auto part = [&](std::size_t t) {
     body(t * units / parts * unit, (t + 1) * units / parts * unit);
   };
+  if (workers) {
+    workers->run(parts, part);
+    return;
+  }
   std::vector<std::thread> pool;
   pool.reserve(parts - 1);
   std::size_t started = 1;
@@ -14406,22 +14554,24 @@ struct has_simd_grid_slab<Kernel, std::void_t<decltype(Kernel::has_grid_slab)>>
 template <class Noise, class Inner>
 void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
                 float* out, vec<float, Noise::dimension>* grad) {
-  parallel_parts(pts.size(), 1, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
-    run_points(n, ex.inner, pts.subspan(b, e - b), out + b, grad ? grad + b : grad);
-  });
+  parallel_parts(pts.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
+                 [&](std::size_t b, std::size_t e) {
+                   run_points(n, ex.inner, pts.subspan(b, e - b), out + b, grad ? grad + b : grad);
+                 });
 }
 
 template <class Noise, class Inner>
 void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
                  const samples<Noise::dimension>& s, float* out,
                  vec<float, Noise::dimension>* grad) {
-  parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
-    samples<Noise::dimension> part = s;
-    part.positions = s.positions.subspan(b, e - b);
-    if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
-    if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
-    run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
-  });
+  parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
+                 [&](std::size_t b, std::size_t e) {
+                   samples<Noise::dimension> part = s;
+                   part.positions = s.positions.subspan(b, e - b);
+                   if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
+                   if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
+                   run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
+                 });
 }
 
 // Slabs along the slowest axis. A SIMD kernel without slab support gets the
@@ -14439,7 +14589,7 @@ void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Nois
   } else {
     const std::size_t slab = g.count() / g.size[D - 1];  // samples per slowest-axis index
     parallel_parts(
-        g.count(), slab, ex.kParallelGrain, ex.threads, [&](std::size_t b, std::size_t e) {
+        g.count(), slab, ex.kParallelGrain, ex.threads, ex.pool, [&](std::size_t b, std::size_t e) {
           float* o = out + b;
           vec<float, D>* gr = grad ? grad + b : grad;
           if constexpr (std::is_same<Inner, exec::simd_t>::value && simd_kernel<Noise>::available)

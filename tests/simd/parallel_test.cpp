@@ -5,14 +5,18 @@
 // per-sample batches and grids (slabs along the slowest axis), values and
 // gradients, on the scalar and SIMD policies (Perlin, fractal and Gabor noise,
 // whose SIMD grid kernels take slabs); bad thread counts are rejected
-// with a message naming the parameter. Built with hush::simd (dynamic
+// with a message naming the parameter; the same through hush::thread_pool,
+// whose run() calls every part exactly once, serialises concurrent callers
+// and runs nested calls inline. Built with hush::simd (dynamic
 // dispatch, contraction allowed: identical results do not need strict FP).
 #include <doctest/doctest.h>
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "hush/hush.hpp"
@@ -24,6 +28,14 @@ namespace {
 // of the batch (limited by exec::parallel_t::kParallelGrain), and 0 (one per
 // hardware thread).
 const int kThreads[] = {1, 2, 3, 7, 0};
+
+// Pools of the same sizes (0 aside), kept for the whole test program: the
+// batches run on the same workers over and over, as a caller's would.
+hush::thread_pool& test_pool(int i) {
+  static hush::thread_pool pools[] = {hush::thread_pool(1), hush::thread_pool(2),
+                                      hush::thread_pool(3), hush::thread_pool(7)};
+  return pools[i];
+}
 
 bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
@@ -54,6 +66,13 @@ void check_parallel(const Noise& noise, Inner inner, std::size_t n, const Run& r
     INFO("threads " << t << ", policy " << Inner::name);
     std::fill(got.begin(), got.end(), -7.0f);
     run(noise, hush::exec::parallel(inner, t), got, got_g);
+    CHECK(same_bits(got, want));
+    CHECK(same_bits<D>(got_g, want_g));
+  }
+  for (int i = 0; i < 4; ++i) {
+    INFO("pool of " << test_pool(i).size() << ", policy " << Inner::name);
+    std::fill(got.begin(), got.end(), -7.0f);
+    run(noise, hush::exec::parallel(inner, test_pool(i)), got, got_g);
     CHECK(same_bits(got, want));
     CHECK(same_bits<D>(got_g, want_g));
   }
@@ -175,4 +194,57 @@ TEST_CASE("exec::parallel: gabor batches and grid slabs equal the single-thread 
   p3.orientation_spread = 1.0;
   p3.frequency_spread = 0.5;
   check_all(hush::gabor<3>{p3}, test_grid<3>(24, 19));
+}
+
+TEST_CASE("thread_pool: run() calls every part exactly once, batch after batch") {
+  for (int i = 0; i < 4; ++i) {
+    hush::thread_pool& pool = test_pool(i);
+    INFO("pool of " << pool.size());
+    CHECK(pool.size() == unsigned(i == 0 ? 1 : i == 1 ? 2 : i == 2 ? 3 : 7));
+    // Part counts below, at and above the pool's size, 500 batches each: a
+    // worker that missed a batch or ran a part twice changes a count.
+    for (std::size_t parts : {std::size_t(1), std::size_t(2), std::size_t(pool.size()),
+                              std::size_t(pool.size() + 5)}) {
+      std::vector<std::atomic<int>> calls(parts);
+      for (int batch = 0; batch < 500; ++batch)
+        pool.run(parts, [&](std::size_t p) { calls[p].fetch_add(1); });
+      for (std::size_t p = 0; p < parts; ++p) CHECK(calls[p].load() == 500);
+    }
+  }
+}
+
+TEST_CASE("thread_pool: concurrent callers are serialised and nested calls run inline") {
+  hush::thread_pool& pool = test_pool(3);
+  std::atomic<int> in_batch{0}, overlap{0}, total{0};
+  auto caller = [&] {
+    for (int batch = 0; batch < 200; ++batch)
+      pool.run(4, [&](std::size_t p) {
+        if (p == 0 && in_batch.fetch_add(1) != 0) overlap.fetch_add(1);
+        // A nested call from inside a part: must not wait for the pool it runs on.
+        pool.run(3, [&](std::size_t) { total.fetch_add(1); });
+        if (p == 0) in_batch.fetch_sub(1);
+      });
+  };
+  std::thread a(caller), b(caller);
+  a.join();
+  b.join();
+  CHECK(overlap.load() == 0);
+  CHECK(total.load() == 2 * 200 * 4 * 3);
+}
+
+TEST_CASE("thread_pool: thread counts outside 0 ... 1024 are rejected, naming the parameter") {
+  for (int t : {-1, 1025}) {
+    INFO("threads " << t);
+    try {
+      hush::thread_pool pool(t);
+      FAIL("no exception");
+    } catch (const hush::invalid_argument& e) {
+      const std::string msg = e.what();
+      CHECK(msg.find("hush::thread_pool") != std::string::npos);
+      CHECK(msg.find("threads") != std::string::npos);
+      CHECK(msg.find("1024") != std::string::npos);
+    }
+  }
+  CHECK(hush::thread_pool(0).size() >= 1);
+  CHECK(hush::exec::parallel(hush::exec::simd, test_pool(2)).threads == 3);
 }
