@@ -8,7 +8,7 @@
 // hush::HWY_NAMESPACE::anisotropic_samples; prints the median and minimum thread CPU time
 // of `reps` frames, max and RMS |float - double| and the count of values that differ from
 // the scalar float path in their bits (every 37th pixel), and a checksum.
-// Usage: driver K REPS.
+// Usage: driver K REPS [SCALES] (default 3; octaves = min(3, SCALES)).
 #include <hwy/highway.h>
 #include <algorithm>
 #include <cmath>
@@ -29,6 +29,7 @@ static double cpu_s() {
 int main(int argc, char** argv) {
   const int k = argc > 1 ? std::atoi(argv[1]) : 4;
   const int reps = argc > 2 ? std::atoi(argv[2]) : 7;
+  const int scales = argc > 3 ? std::atoi(argv[3]) : 3;
   // The bench's frame (bench/anisotropic_cases.cpp).
   const hush_aniso::receding_plane plane = hush_aniso::make_receding_plane(1920, 1080);
   const std::size_t n = plane.positions.size();
@@ -38,8 +39,8 @@ int main(int argc, char** argv) {
   hush::anisotropic::params p;
   p.seed = 7;
   p.orientations = k;
-  p.scales = 3;
-  p.octaves = 3;
+  p.scales = scales;
+  p.octaves = std::min(3, scales);
   p.frequency = 2.0;
   const hush::anisotropic a(p);
   std::vector<float> out(n);
@@ -71,8 +72,9 @@ int main(int argc, char** argv) {
   double cs = 0;
   for (float v : out) cs += v;
   std::printf(
-      "%s K=%d median %.2f ms (min %.2f) max|e| %.3g rms %.3g scalar-mismatch %zu/%zu checksum "
+      "%s K=%d S=%d median %.2f ms (min %.2f) max|e| %.3g rms %.3g scalar-mismatch %zu/%zu "
+      "checksum "
       "%.9g\n",
-      hwy::TargetName(HWY_TARGET), k, 1e3 * t[t.size() / 2], 1e3 * t[0], emax,
+      hwy::TargetName(HWY_TARGET), k, scales, 1e3 * t[t.size() / 2], 1e3 * t[0], emax,
       std::sqrt(e2 / static_cast<double>(m)), mism, m, cs);
 }
