@@ -328,6 +328,29 @@ TEST_CASE("render npr-gabor --frequency-field and friends are the library's per-
     }
     CHECK(differ == std::size_t(kFrames));
   }
+  {  // depth:LO,HI over a given --field-depth-range (depths outside it clamp to LO or HI)
+    char range[80];
+    std::snprintf(range, sizeof range, "%.17g,%.17g", z0 + 0.3 * (z1 - z0), z1 - 0.2 * (z1 - z0));
+    const double za = z0 + 0.3 * (z1 - z0), zb = z1 - 0.2 * (z1 - z0);
+    const result r = run_hush("render npr-gabor --gbuffer '" + gdir + "' --out '" +
+                                  (dir / "nd").string() +
+                                  "' --bandwidth-field depth:0.3,0.1 --field-depth-range " + range,
+                              dir);
+    REQUIRE(r.exit_code == 0);
+    std::vector<float> band(n);
+    for (int i = 0; i < kFrames; ++i) {
+      const hs::gbuffer& b = g[std::size_t(i)];
+      for (std::size_t p = 0; p < n; ++p) {
+        const double zs = std::clamp((double(b.depth[p]) - za) / (zb - za), 0.0, 1.0);
+        band[p] = covered(b, p) ? static_cast<float>(0.3 + (0.1 - 0.3) * zs) : std::nanf("");
+      }
+      hush::npr_gabor::sources src;
+      src.bandwidth = hush::param_source::per_pixel({band.data(), std::size_t(kW), std::size_t(kH)});
+      const hs::triangle_frame t = hs::project_triangles(s, i, kW, kH);
+      noise.render(hs::as_frame(b), t.view(), hush::image_view<float>(out.data(), kW, kH), src);
+      CHECK(same(frame_file(dir / "nd", i, 1), out));
+    }
+  }
   {  // file:NAME per pixel (H, W) and per vertex (V,), and with a style
     std::vector<std::vector<float>> band(kFrames), freq(kFrames);
     for (int i = 0; i < kFrames; ++i) {
