@@ -12,7 +12,8 @@
 //                   linear depth and clamped to [LO, HI] outside; [z0, z1] is
 //                   --field-depth-range, by default the covered depth range of frame 0, fixed
 //                   for the whole sequence (a range measured per frame would rescale the
-//                   field whenever the visible depths change);
+//                   field whenever the visible depths change); an empty range (frame 0 shows
+//                   no surface, or one depth) gives LO everywhere;
 //  - file:NAME      DIR/frame_NNNN/NAME.npy of every frame: float32, shape (H, W) per pixel or
 //                   (V,) one value per vertex of that frame's tri_screen.npy (per vertex: the
 //                   value moves with the surface). Values are not checked: the library takes
