@@ -130,7 +130,12 @@ gray_image red_channel(const std::vector<std::uint8_t>& rgb) {
 // The four grey styles in a 2 x 2 grid: hatching | stippling; crosshatch | graphite. On the
 // rotate scene only: the walkthrough's ground triangles are huge on screen and carry up to
 // kNprGaborMaxPoints points each, which made this entry take 15 s (two-core machine, load 10).
-// The layers are splatted by exec::simd (within the float budget of the scalar image).
+// The layers are splatted by exec::simd (within the float budget of the scalar image). The
+// anisotropic layers follow the principal curvature (npr_field::curvature): on the torus the
+// strokes run along the tube everywhere, where the projected normal is undefined on the
+// tube's camera-facing crest and there falls back to the constant orientation (horizontal
+// strokes cutting across the tube); flat parts (the backdrop) fall back to the projected
+// normal either way.
 std::vector<gray_image> styles(const std::string& name) {
   const scene_frames f = render_frames(name);
   const hush::npr_gabor::params p = style_params();
@@ -139,6 +144,7 @@ std::vector<gray_image> styles(const std::string& name) {
        {npr_style::hatching, npr_style::stippling, npr_style::crosshatch, npr_style::graphite}) {
     npr_style_options o;
     o.style = s;
+    o.field = npr_field::curvature;
     st.emplace_back(p, o);
   }
   std::vector<gray_image> frames;
@@ -192,7 +198,7 @@ std::vector<gallery_item> npr_gallery_items() {
        [] { return figure1("walkthrough"); }, kDelay},
       {"npr_styles_rotate.gif",
        "NPR Gabor styles, rotate scene: hatching | stippling; cross-hatching | graphite (tone "
-       "from N.L, strokes along the projected normal)",
+       "from N.L, strokes along the principal curvature)",
        [] { return styles("rotate"); }, kDelay},
       {"npr_watercolor_rotate.gif",
        "NPR Gabor watercolour style, rotate scene (isotropic layer overlaid on each object's "

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,8 +19,7 @@ namespace {
 
 struct wavelet_sample_options {
   double footprint = -1;  // < 0: none given
-  bool has_normal = false;
-  hush::vec3 normal{};
+  std::optional<hush::vec3> normal;
 };
 
 template <int D>
@@ -28,17 +28,11 @@ class wavelet_field final : public noise_field {
   wavelet_field(hush::wavelet<D> noise, wavelet_sample_options o)
       : noise_(std::move(noise)), o_(o) {}
   bool is_signed() const override { return true; }
-  std::string unsupported_reason(backend b) const override {
-    if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
-      return "the GLSL backend is not in this build (OSMesa not found)";
-    if (b == backend::simd && !HUSH_CONFIG_SIMD)
-      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
-    return "";
-  }
+  std::string unsupported_reason(backend b) const override { return backend_missing(b); }
   void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
                    float* out, backend b) const override {
     const hush::span<float> dst(out, grid.size[0] * rows);
-    if (o_.footprint < 0 && !o_.has_normal) {
+    if (o_.footprint < 0 && !o_.normal) {
       hush::grid<D> block;  // origin: the exact double position of sample (0, j0, k)
       const hush::dvec3 org = grid.position({0, j0, k});
       for (int a = 0; a < D; ++a) {
@@ -48,41 +42,15 @@ class wavelet_field final : public noise_field {
       block.size[0] = grid.size[0];
       block.size[1] = rows;
       if constexpr (D == 3) block.size[2] = 1;
-      run(b, [&](auto policy) { hush::evaluate_grid(noise_, policy, block, dst); });
+      with_exec(b, [&](const auto& ex) { hush::evaluate_grid(noise_, ex, block, dst); });
       return;
     }
-    std::vector<hush::vec<float, D>> pos(dst.size());
-    for (std::size_t j = 0; j < rows; ++j)
-      for (std::size_t i = 0; i < grid.size[0]; ++i) {
-        const hush::dvec3 p = grid.position({i, j0 + j, k});
-        for (int a = 0; a < D; ++a) pos[j * grid.size[0] + i][a] = static_cast<float>(p[a]);
-      }
-    std::vector<hush::footprint<D>> fps;
-    if (o_.footprint >= 0) fps.assign(pos.size(), hush::footprint<D>::isotropic(o_.footprint));
-    std::vector<hush::vec3> nrm;
-    if (o_.has_normal) nrm.assign(pos.size(), o_.normal);
-    hush::samples<D> s;
-    s.positions = pos;
-    s.footprints = fps;
-    s.normals = nrm;
-    run(b, [&](auto policy) { hush::evaluate(noise_, policy, s, dst); });
+    std::optional<hush::footprint<D>> fp;
+    if (o_.footprint >= 0) fp = hush::footprint<D>::isotropic(o_.footprint);
+    sample_rows_as_samples(noise_, grid, j0, rows, k, out, b, fp, o_.normal);
   }
 
  private:
-  template <class F>
-  static void run(backend b, F&& f) {
-    if (b == backend::simd) {
-      f(hush::exec::simd);
-      return;
-    }
-#if HUSH_CLI_HAVE_GLSL
-    if (b == backend::glsl) {
-      f(hush::exec::glsl{glsl_device()});
-      return;
-    }
-#endif
-    f(hush::exec::scalar);
-  }
   hush::wavelet<D> noise_;
   wavelet_sample_options o_;
 };
@@ -139,15 +107,7 @@ std::unique_ptr<noise_field> make_wavelet_from_options(const noise_setup& setup,
     so.footprint = parse_finite("--footprint", *v, "a finite width >= 0 in noise units");
     if (so.footprint < 0) throw_bad_value("--footprint", *v, "a finite width >= 0 in noise units");
   }
-  if (const std::string* v = find_value(given, "--normal")) {
-    if (setup.dim != 3)
-      throw usage_error("--normal needs --dim 3 (noise projected onto a surface)");
-    const std::vector<double> n = parse_finite_list("--normal", *v, 3);
-    if (n[0] == 0 && n[1] == 0 && n[2] == 0)
-      throw_bad_value("--normal", *v, "three finite numbers, not all zero");
-    so.has_normal = true;
-    for (int a = 0; a < 3; ++a) so.normal[a] = static_cast<float>(n[static_cast<std::size_t>(a)]);
-  }
+  so.normal = parse_normal(setup, given);
   if (setup.dim == 2) return make_wavelet_d<2>(setup, given, so);
   return make_wavelet_d<3>(setup, given, so);
 }

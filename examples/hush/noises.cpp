@@ -129,6 +129,26 @@ std::unique_ptr<noise_field> make_perlin_from_options(const noise_setup& setup,
 }
 
 // ---- `hush sample gabor` (hush::gabor<D>, Lagae et al. 2009).
+
+// Surface noise (Lagae 2009 sec. 4.3, `hush sample gabor --dim 3 --normal x,y,z`): every grid
+// sample is evaluated with the same normal, i.e. on the plane through it with that normal
+// (kernels in the tangent plane: the 2D spectrum on the plane, no slicing).
+class gabor_surface_field final : public noise_field {
+ public:
+  gabor_surface_field(const hush::gabor<3>& noise, const hush::vec3& normal)
+      : noise_(noise), normal_(normal) {}
+  bool is_signed() const override { return true; }
+  std::string unsupported_reason(backend b) const override { return backend_missing(b); }
+  void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
+                   float* out, backend b) const override {
+    sample_rows_as_samples(noise_, grid, j0, rows, k, out, b, std::nullopt, normal_);
+  }
+
+ private:
+  hush::gabor<3> noise_;
+  hush::vec3 normal_;
+};
+
 template <int D>
 std::unique_ptr<noise_field> make_gabor_d(const typename hush::gabor<D>::params& prm) {
   return std::make_unique<field<hush::gabor<D>, D>>(hush::gabor<D>(prm), true);
@@ -170,6 +190,7 @@ std::unique_ptr<noise_field> make_gabor_from_options(const noise_setup& setup,
     prm.impulses = parse_finite("--impulses", *v);
   if (const std::string* v = find_value(given, "--truncation"))
     prm.truncation = parse_finite("--truncation", *v);
+  const std::optional<hush::vec3> normal = parse_normal(setup, given);
   if (setup.dim == 2) return make_gabor_d<2>(prm);
   hush::gabor<3>::params p3;
   p3.seed = prm.seed;
@@ -182,6 +203,7 @@ std::unique_ptr<noise_field> make_gabor_from_options(const noise_setup& setup,
   p3.frequency_spread = prm.frequency_spread;
   p3.impulses = prm.impulses;
   p3.truncation = prm.truncation;
+  if (normal) return std::make_unique<gabor_surface_field>(hush::gabor<3>(p3), *normal);
   return make_gabor_d<3>(p3);
 }
 
@@ -291,7 +313,11 @@ const std::vector<noise_entry>& noise_table() {
         {"--impulses", "N",
          "mean number of kernels overlapping a point N', 0 < N <= 256 (default 16)", "impulses"},
         {"--truncation", "t",
-         "kernel envelope at its truncation radius, 1e-9 ... 0.5 (default 0.05)", "truncation"}},
+         "kernel envelope at its truncation radius, 1e-9 ... 0.5 (default 0.05)", "truncation"},
+        {"--normal", "x,y,z",
+         "3D: surface noise, every sample on the plane through it with this normal (finite, "
+         "any non-zero length) (default: solid noise)",
+         nullptr}},
        make_gabor_from_options},
   };
   return table;
@@ -330,6 +356,24 @@ std::unique_ptr<noise_field> make_noise(const noise_entry& entry, const noise_se
     }
     throw usage_error(message);
   }
+}
+
+std::optional<hush::vec3> parse_normal(const noise_setup& setup, const option_values& given) {
+  const std::string* v = find_value(given, "--normal");
+  if (!v) return std::nullopt;
+  if (setup.dim != 3) throw usage_error("--normal needs --dim 3 (samples on a surface in 3D)");
+  const std::vector<double> n = parse_finite_list("--normal", *v, 3);
+  if (n[0] == 0 && n[1] == 0 && n[2] == 0)
+    throw_bad_value("--normal", *v, "three finite numbers, not all zero");
+  return hush::vec3{static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
+}
+
+std::string backend_missing(backend b) {
+  if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
+    return "the GLSL backend is not in this build (OSMesa not found)";
+  if (b == backend::simd && !HUSH_CONFIG_SIMD)
+    return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
+  return "";
 }
 
 }  // namespace hush_cli

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "args.hpp"
+#include "glsl_device.hpp"
 #include "hush/hush.hpp"
 
 namespace hush_cli {
@@ -27,6 +28,27 @@ using sample_grid = hush::grid<3>;
 // Where a noise is evaluated: hush::exec::scalar, hush::exec::simd or hush::exec::glsl.
 enum class backend { scalar, simd, glsl };
 const char* backend_name(backend b);
+// Why backend b is not in this build ("" when it is): the reason every noise shares.
+std::string backend_missing(backend b);
+
+// Calls run(exec) with the hush::exec policy of backend b (glsl: the process's device;
+// nothing where this build has no GLSL: unsupported_reason has refused it before).
+template <class Run>
+void with_exec(backend b, Run&& run) {
+  switch (b) {
+    case backend::scalar:
+      run(hush::exec::scalar);
+      break;
+    case backend::simd:
+      run(hush::exec::simd);
+      break;
+    case backend::glsl:
+#if HUSH_CLI_HAVE_GLSL
+      run(hush::exec::glsl<hush::glsl::device>{glsl_device()});
+#endif
+      break;
+  }
+}
 
 // A configured noise, sampled a block of grid rows at a time.
 class noise_field {
@@ -68,6 +90,38 @@ const std::vector<noise_entry>& noise_table();
 std::string noise_names();
 // The entry called `name`; throws usage_error listing the valid names.
 const noise_entry& find_noise(const std::string& name);
+
+// `--normal x,y,z` (3D surface noise: every sample evaluated with this normal, i.e. on the
+// plane through it): nullopt when not given. Throws usage_error when it is given without
+// --dim 3, is not three finite numbers, or is all zero.
+std::optional<hush::vec3> parse_normal(const noise_setup& setup, const option_values& given);
+
+// Rows j0 ... j0 + rows - 1 of z-plane k of `grid` into `out` through hush::evaluate over
+// hush::samples: positions rounded to float (the grid path keeps double origins), with the same
+// footprint (when given) and normal (when given, 3D) for every sample, on backend b.
+template <class Noise>
+void sample_rows_as_samples(const Noise& noise, const sample_grid& grid, std::size_t j0,
+                            std::size_t rows, std::size_t k, float* out, backend b,
+                            const std::optional<hush::footprint<Noise::dimension>>& footprint,
+                            const std::optional<hush::vec3>& normal) {
+  constexpr int D = Noise::dimension;
+  const std::size_t nx = grid.size[0], n = nx * rows;
+  std::vector<hush::vec<float, D>> pos(n);
+  for (std::size_t j = 0; j < rows; ++j)
+    for (std::size_t i = 0; i < nx; ++i) {
+      const hush::dvec3 p = grid.position({i, j0 + j, k});
+      for (int a = 0; a < D; ++a) pos[j * nx + i][a] = static_cast<float>(p[a]);
+    }
+  std::vector<hush::footprint<D>> fps;
+  if (footprint) fps.assign(n, *footprint);
+  std::vector<hush::vec3> nrm;
+  if (normal) nrm.assign(n, *normal);
+  hush::samples<D> s;
+  s.positions = pos;
+  s.footprints = fps;
+  s.normals = nrm;
+  with_exec(b, [&](const auto& ex) { hush::evaluate(noise, ex, s, hush::span<float>(out, n)); });
+}
 
 // entry.make(setup, given), with a hush::invalid_argument turned into a usage_error naming
 // the option that carries the refused library parameter.

@@ -22,6 +22,8 @@ constexpr double kHalfPi = 1.57079632679489661923;
 // radius of curvature above 1000 pixels), and below an anisotropy of 0.2 (principal
 // curvatures within a factor 1.22 of each other) the principal direction is not trusted.
 constexpr double kFlat = 1e-3, kUmbilic = 0.2;
+// Graphite's fine layer: this multiple of F0 and a (capped at their maxima).
+constexpr double kFineScale = 3.0;
 
 // Watercolour base colours per object id (pastel pigments; id 0 = background, paper).
 constexpr double kPigments[][3] = {{0.95, 0.55, 0.35}, {0.35, 0.6, 0.9},  {0.5, 0.8, 0.45},
@@ -63,8 +65,8 @@ npr_stylizer::npr_stylizer(const hush::npr_gabor::params& base, const npr_style_
       layers_.emplace_back(p);
       hush::npr_gabor::params q = p;
       q.isotropic = true;
-      q.frequency = std::min(3.0 * p.frequency, hush::detail::constants::kNprGaborMaxFrequency);
-      q.bandwidth = std::min(3.0 * p.bandwidth, hush::detail::constants::kNprGaborMaxBandwidth);
+      q.frequency = std::min(kFineScale * p.frequency, hush::detail::constants::kNprGaborMaxFrequency);
+      q.bandwidth = std::min(kFineScale * p.bandwidth, hush::detail::constants::kNprGaborMaxBandwidth);
       q.seed += 2;
       layers_.emplace_back(q);
       break;
@@ -95,7 +97,7 @@ void npr_stylizer::draw(bool simd, const hush::frame& f, const hush::triangle_li
 
 void npr_stylizer::draw(const layer_render& render, const hush::frame& f,
                         const hush::triangle_list& tris, hush::image_view<const hush::vec3> normals,
-                        std::vector<std::uint8_t>& rgb) {
+                        std::vector<std::uint8_t>& rgb, npr_fields* fields) {
   const std::size_t w = f.width(), h = f.height();
   const bool field = o_.field != npr_field::constant;
   if (field) {
@@ -111,7 +113,9 @@ void npr_stylizer::draw(const layer_render& render, const hush::frame& f,
   }
   for (std::size_t k = 0; k < layers_.size(); ++k) {
     images_[k].resize(w * h);
-    hush::npr_gabor::sources src;
+    // Graphite's second layer is the fine one (3 F0, 3 a: see the constructor).
+    const double scale = o_.style == npr_style::graphite && k == 1 ? kFineScale : 1.0;
+    hush::npr_gabor::sources src = fields ? fields->sources(scale, scale) : hush::npr_gabor::sources{};
     if (field && !layers_[k].parameters().isotropic)
       src.orientation =
           hush::param_source::per_pixel({(k == 0 ? field_ : field_turned_).data(), w, h});

@@ -29,6 +29,7 @@
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/npr_gabor.hpp"
+#include "npr_fields.hpp"
 
 namespace hush_cli {
 
@@ -58,12 +59,15 @@ class npr_stylizer {
   // layers are splatted by exec::simd (npr_gabor::render), else by exec::scalar.
   void draw(bool simd, const hush::frame& f, const hush::triangle_list& tris,
             hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb);
-  // The same with each layer rendered by `render` (e.g. on exec::glsl).
+  // The same with each layer rendered by `render` (e.g. on exec::glsl). `fields` (updated
+  // for this frame by the caller; none when null) drive F0, a and N' of every layer; graphite's
+  // fine layer takes 3 F0 and 3 a of them, capped like its constants.
   using layer_render =
       std::function<void(const hush::npr_gabor&, const hush::frame&, const hush::triangle_list&,
                          const hush::image_view<float>&, const hush::npr_gabor::sources&)>;
   void draw(const layer_render& render, const hush::frame& f, const hush::triangle_list& tris,
-            hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb);
+            hush::image_view<const hush::vec3> normals, std::vector<std::uint8_t>& rgb,
+            npr_fields* fields = nullptr);
 
  private:
   npr_style_options o_;

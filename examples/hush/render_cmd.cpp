@@ -103,6 +103,19 @@ class directory_sequence final : public gbuffer_sequence {
     return {reinterpret_cast<const hush::vec3*>(current_.normal.data()),
             static_cast<std::size_t>(current_.width), static_cast<std::size_t>(current_.height)};
   }
+  field_file field(std::size_t i, const std::string& name) override {
+    const fs::path path = fs::path(hush::scene::frame_directory(dir_, static_cast<int>(i))) /
+                          (name + ".npy");
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+      throw usage_error("--gbuffer frame_" + four(i) + " has no " + name + ".npy");
+    try {
+      hush::npy::array<float> a = hush::npy::load<float>(path.string());
+      return {std::move(a.shape), std::move(a.values)};
+    } catch (const std::runtime_error& e) {
+      throw run_error(e.what());
+    }
+  }
 
  private:
   static std::string four(std::size_t i) {

@@ -104,16 +104,11 @@ class coherent_noise final : public scene_noise {
 // With --style, each frame is drawn (npr_styles.hpp) and written as OUT/NNNN.png.
 class npr_gabor_noise final : public scene_noise {
  public:
-  npr_gabor_noise(const hush::npr_gabor::params& prm, const npr_style_options& style)
-      : noise_(prm), style_(style), stylizer_(prm, style) {}
+  npr_gabor_noise(const hush::npr_gabor::params& prm, const npr_style_options& style,
+                  const npr_field_options& fields)
+      : noise_(prm), style_(style), stylizer_(prm, style), fields_(fields) {}
   int channels() const override { return style_.style == npr_style::none ? 1 : 3; }
-  std::string unsupported_reason(backend b) const override {
-    if (b == backend::simd && !HUSH_CONFIG_SIMD)
-      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
-    if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
-      return "the GLSL backend is not in this build (OSMesa not found)";
-    return "";
-  }
+  std::string unsupported_reason(backend b) const override { return backend_missing(b); }
   void render(gbuffer_sequence& frames, render_sink& sink, backend b) override {
     if (b == backend::simd) {
       run(hush::exec::simd, frames, sink);
@@ -138,11 +133,12 @@ class npr_gabor_noise final : public scene_noise {
       for (std::size_t i = 0; i < n; ++i) {
         const hush::frame f = frames.frame(i, stylizer_.needs());
         const hush::triangle_list t = frames.triangles(i);
+        update_fields(frames, i, f, t);
         stylizer_.draw(
             [&ex](const hush::npr_gabor& layer, const hush::frame& fr,
                   const hush::triangle_list& tl, const hush::image_view<float>& image,
                   const hush::npr_gabor::sources& src) { layer.render(ex, fr, tl, image, src); },
-            f, t, frames.normals(i), rgb);
+            f, t, frames.normals(i), rgb, fields_.any() ? &fields_ : nullptr);
         sink.write_png(i, rgb, w, h);
         sink.progress("drawing", i + 1, n);
       }
@@ -152,15 +148,27 @@ class npr_gabor_noise final : public scene_noise {
     for (std::size_t i = 0; i < n; ++i) {
       const hush::frame f = frames.frame(i, noise_.needs());
       const hush::triangle_list t = frames.triangles(i);
-      noise_.render(ex, f, t, hush::image_view<float>(plane.data(), w, h));
+      update_fields(frames, i, f, t);
+      noise_.render(ex, f, t, hush::image_view<float>(plane.data(), w, h),
+                    fields_.any() ? fields_.sources() : hush::npr_gabor::sources{});
       sink.write(i, {hush::image_view<const float>(plane.data(), w, h)});
       sink.progress("splatting", i + 1, n);
     }
   }
 
+  // Frame i's --frequency-field ... fields (npr_fields.hpp), when any is given.
+  void update_fields(gbuffer_sequence& frames, std::size_t i, const hush::frame& f,
+                     const hush::triangle_list& t) {
+    if (!fields_.any()) return;
+    // The frame's views stay valid: normals() and field() reload nothing for frame i.
+    fields_.update(f, t, frames.normals(i),
+                   [&frames, i](const std::string& name) { return frames.field(i, name); });
+  }
+
   hush::npr_gabor noise_;
   npr_style_options style_;
   npr_stylizer stylizer_;
+  npr_fields fields_;
 };
 
 double parse_range(const option_values& given, const char* name, double lo, double hi, bool hi_open,
@@ -233,9 +241,32 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
                                        {"graphite", npr_style::graphite},
                                        {"watercolor", npr_style::watercolor}});
   const bool styled = s.style != npr_style::none;
-  for (const char* o :
-       {"--softness", "--grain", "--gain", "--ambient", "--light", "--orientation-field"})
+  namespace c = hush::detail::constants;
+  npr_field_options fo;
+  auto field = [&](const char* name, npr_param_field& out, double lo, double hi,
+                   const char* valid) {
+    if (const std::string* v = find_value(given, name)) out = parse_npr_field(name, *v, lo, hi, valid);
+  };
+  field("--frequency-field", fo.frequency, 0, c::kNprGaborMaxFrequency, "0 ... 0.5");
+  field("--bandwidth-field", fo.bandwidth, c::kNprGaborMinBandwidth, c::kNprGaborMaxBandwidth,
+        "0.01 ... 10");
+  field("--impulses-field", fo.impulses, 0, c::kGaborMaxImpulses, "0 ... 256");
+  const bool shaded = styled || fo.uses(npr_param_field::kind::shading);
+  for (const char* o : {"--softness", "--grain", "--gain", "--orientation-field"})
     if (!styled && find_value(given, o)) throw usage_error(std::string(o) + " needs --style");
+  for (const char* o : {"--ambient", "--light"})
+    if (!shaded && find_value(given, o))
+      throw usage_error(std::string(o) + " needs --style or a shading:LO,HI field");
+  if (const std::string* v = find_value(given, "--field-depth-range")) {
+    if (!fo.uses(npr_param_field::kind::depth))
+      throw usage_error("--field-depth-range needs a depth:LO,HI field");
+    const std::vector<double> z = parse_finite_list("--field-depth-range", *v, 2);
+    if (!(z[0] >= 0 && z[1] > z[0]))
+      throw_bad_value("--field-depth-range", *v, "z0,z1 with 0 <= z0 < z1");
+    fo.depth_range_given = true;
+    fo.z0 = z[0];
+    fo.z1 = z[1];
+  }
   number("--softness", s.softness);
   number("--grain", s.grain);
   number("--gain", s.gain);
@@ -250,18 +281,12 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
         "--orientation-field", *v,
         {{"normal", npr_field::normal}, {"curvature", npr_field::curvature},
          {"constant", npr_field::constant}});
-  return std::make_unique<npr_gabor_noise>(p, s);
+  fo.ambient = s.ambient;
+  fo.light = s.light;
+  return std::make_unique<npr_gabor_noise>(p, s, fo);
 }
 
 }  // namespace
-
-std::string backend_missing(backend b) {
-  if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
-    return "the GLSL backend is not in this build (OSMesa not found)";
-  if (b == backend::simd && !HUSH_CONFIG_SIMD)
-    return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
-  return "";
-}
 
 const std::vector<render_entry>& render_table() {
   static const std::vector<render_entry> table = {
@@ -320,12 +345,25 @@ const std::vector<render_entry>& render_table() {
             "style: smooth-step width in noise sigmas, 0 (hard) ... 8 (default 0.6)", "width"},
            {"--grain", "g", "graphite: weight of the fine layer, 0 ... 8 (default 0.7)", "grain"},
            {"--gain", "g", "watercolor: overlay gain of the noise, 0 ... 4 (default 0.35)", "gain"},
-           {"--ambient", "k", "style: tone where N.L <= 0, 0 ... 1 (default 0.15)"},
+           {"--ambient", "k",
+            "style or shading field: tone where N.L <= 0, 0 ... 1 (default 0.15)"},
            {"--light", "x,y,z",
-            "style: direction towards the light, world space (default 0.4,0.7,0.6)"},
+            "style or shading field: direction towards the light, world space (default "
+            "0.4,0.7,0.6)"},
            {"--orientation-field", "normal|curvature|constant",
             "style: orientation along the projected normal (default), the principal curvature "
             "(the normal where flat) or --orientation"},
+           {"--frequency-field", "shading:LO,HI|depth:LO,HI|file:NAME",
+            "F0 per pixel: LO (tone 0, or depth z0) ... HI (tone 1, or depth z1), in 0 ... 0.5; "
+            "or DIR/frame_NNNN/NAME.npy, float32 (H, W) per pixel or (V,) per vertex"},
+           {"--bandwidth-field", "shading:LO,HI|depth:LO,HI|file:NAME",
+            "a per pixel or per vertex, like --frequency-field; LO, HI in 0.01 ... 10"},
+           {"--impulses-field", "shading:LO,HI|depth:LO,HI|file:NAME",
+            "N' per pixel or per vertex (one density per triangle, read at its centroid), like "
+            "--frequency-field; LO, HI in 0 ... 256"},
+           {"--field-depth-range", "z0,z1",
+            "depth:LO,HI fields: the depths of LO and HI, 0 <= z0 < z1 (default: the covered "
+            "depth range of frame 0, fixed for the sequence)"},
        },
        {
            {"--isotropic", "", "a random orientation per point (stippling) instead of omega0"},

@@ -26,6 +26,7 @@
 #include "hush/core/triangles.hpp"
 #include "hush/core/views.hpp"
 #include "noises.hpp"
+#include "npr_fields.hpp"
 
 namespace hush_cli {
 
@@ -47,6 +48,10 @@ class gbuffer_sequence {
   // Frame i's unit world-space shading normals (0 on the background; what the styles'
   // tone from shading reads), valid until the next call.
   virtual hush::image_view<const hush::vec3> normals(std::size_t i) = 0;
+  // DIR/frame_NNNN/NAME.npy of frame i, float32 of any shape (user fields beside the
+  // G-buffer's channels). Throws usage_error when it is missing, run_error when it cannot be
+  // read or is not a float32 NPY file.
+  virtual field_file field(std::size_t i, const std::string& name) = 0;
 };
 
 // Where results go.
@@ -76,27 +81,6 @@ class scene_noise {
   virtual void render(gbuffer_sequence& frames, render_sink& sink, backend b) = 0;
 };
 
-// Why backend b is not in this build ("" when it is): the reason scene noises share.
-std::string backend_missing(backend b);
-
-// Calls run(exec) with the hush::exec policy of backend b (glsl: the process's device;
-// nothing where this build has no GLSL: unsupported_reason has refused it before).
-template <class Run>
-void with_exec(backend b, Run&& run) {
-  switch (b) {
-    case backend::scalar:
-      run(hush::exec::scalar);
-      break;
-    case backend::simd:
-      run(hush::exec::simd);
-      break;
-    case backend::glsl:
-#if HUSH_CLI_HAVE_GLSL
-      run(hush::exec::glsl<hush::glsl::device>{glsl_device()});
-#endif
-      break;
-  }
-}
 
 struct render_setup {
   std::uint32_t seed = 0;

@@ -14,7 +14,9 @@
 #include "cli/run_hush.hpp"
 #include "gbuffer_io.hpp"
 #include "hush/coherent.hpp"
+#include "hush/core/param_source.hpp"
 #include "hush/npr_gabor.hpp"
+#include "hush/style.hpp"
 #include "npy/npy.hpp"
 #include "raster_cpu.hpp"
 #include "triangles.hpp"
@@ -166,6 +168,18 @@ TEST_CASE("render: bad options exit 2 with one line naming the option") {
       {"render npr-gabor" + g + " --style hatching --light 0,0,0", "--light"},
       {"render npr-gabor" + g + " --style hatching --light 1,2", "--light"},
       {"render npr-gabor" + g + " --style hatching --orientation-field x", "--orientation-field"},
+      {"render npr-gabor" + g + " --frequency-field shading:0.1,0.7", "--frequency-field"},
+      {"render npr-gabor" + g + " --frequency-field shading:0.1", "--frequency-field"},
+      {"render npr-gabor" + g + " --bandwidth-field depth:0,1", "--bandwidth-field"},
+      {"render npr-gabor" + g + " --impulses-field depth:8,300", "--impulses-field"},
+      {"render npr-gabor" + g + " --impulses-field curvature:1,2", "--impulses-field"},
+      {"render npr-gabor" + g + " --impulses-field file:", "--impulses-field"},
+      {"render npr-gabor" + g + " --impulses-field file:../x", "--impulses-field"},
+      {"render npr-gabor" + g + " --impulses-field file:absent", "absent.npy"},
+      {"render npr-gabor" + g + " --field-depth-range 1,2", "--field-depth-range"},
+      {"render npr-gabor" + g + " --impulses-field depth:8,9 --field-depth-range 2,1",
+       "--field-depth-range"},
+      {"render npr-gabor" + g + " --light 1,0,0", "--light"},  // needs a style or shading
   };
   for (const auto& c : cases) {
     CAPTURE(c.first);
@@ -255,6 +269,134 @@ TEST_CASE("render npr-gabor writes the library's frames bit for bit from the tri
   CHECK(styled.exit_code == 0);
   CHECK(styled.out.find("3 channels, glsl") != std::string::npos);
 #endif
+}
+
+// --frequency-field / --bandwidth-field / --impulses-field (examples/hush/npr_fields.hpp): the
+// program's frames equal the library's render with the per-pixel and per-vertex sources the
+// fields define, computed here from the G-buffers (a wrong direction of LO ... HI, a depth
+// range that moves with the frame, a transposed or mis-assigned file would change the
+// frames), and the fields change the image.
+TEST_CASE("render npr-gabor --frequency-field and friends are the library's per-pixel and "
+          "per-vertex sources") {
+  const fs::path dir = scratch("render_npr_fields");
+  const std::vector<hs::gbuffer> g = scene_frames(dir);
+  const hs::scene s = hs::make_scene("rotate");
+  const std::string gdir = (dir / "g").string();
+  const std::size_t n = std::size_t(kW) * kH;
+  const hush::npr_gabor noise{hush::npr_gabor::params{}};
+  std::vector<float> out(n), plain(n);
+  auto covered = [&](const hs::gbuffer& b, std::size_t p) {
+    return b.covered(p) && b.depth[p] > 0 && std::isfinite(b.depth[p]);
+  };
+  // The depth range of frame 0, fixed for the sequence.
+  double z0 = 1e300, z1 = 0;
+  for (std::size_t p = 0; p < n; ++p)
+    if (covered(g[0], p)) {
+      z0 = std::min(z0, double(g[0].depth[p]));
+      z1 = std::max(z1, double(g[0].depth[p]));
+    }
+  REQUIRE(z1 > z0);
+  {  // shading:LO,HI and depth:LO,HI
+    const result r = run_hush("render npr-gabor --gbuffer '" + gdir + "' --out '" +
+                                  (dir / "n").string() +
+                                  "' --frequency-field shading:0.3,0.1 --impulses-field depth:24,8",
+                              dir);
+    REQUIRE(r.exit_code == 0);
+    std::vector<float> freq(n), imp(n);
+    std::size_t differ = 0;
+    for (int i = 0; i < kFrames; ++i) {
+      const hs::gbuffer& b = g[std::size_t(i)];
+      for (std::size_t p = 0; p < n; ++p) {
+        freq[p] = imp[p] = std::nanf("");
+        if (!covered(b, p)) continue;
+        const hush::dvec3 nn{b.normal[3 * p], b.normal[3 * p + 1], b.normal[3 * p + 2]};
+        // The tone as the styles take it (defaults --light 0.4,0.7,0.6, --ambient 0.15), in float.
+        const double tone = static_cast<float>(
+            hush::style::shading_tone(nn, hush::dvec3{0.4, 0.7, 0.6}, 0.15));
+        freq[p] = static_cast<float>(0.3 + (0.1 - 0.3) * std::clamp(tone, 0.0, 1.0));
+        const double zs = std::clamp((double(b.depth[p]) - z0) / (z1 - z0), 0.0, 1.0);
+        imp[p] = static_cast<float>(24 + (8.0 - 24) * zs);
+      }
+      hush::npr_gabor::sources src;
+      src.frequency = hush::param_source::per_pixel({freq.data(), std::size_t(kW), std::size_t(kH)});
+      src.impulses = hush::param_source::per_pixel({imp.data(), std::size_t(kW), std::size_t(kH)});
+      const hs::triangle_frame t = hs::project_triangles(s, i, kW, kH);
+      noise.render(hs::as_frame(b), t.view(), hush::image_view<float>(out.data(), kW, kH), src);
+      CHECK(same(frame_file(dir / "n", i, 1), out));
+      noise.render(hs::as_frame(b), t.view(), hush::image_view<float>(plain.data(), kW, kH));
+      differ += !same(out, plain);
+    }
+    CHECK(differ == std::size_t(kFrames));
+  }
+  {  // depth:LO,HI over a given --field-depth-range (depths outside it clamp to LO or HI)
+    char range[80];
+    std::snprintf(range, sizeof range, "%.17g,%.17g", z0 + 0.3 * (z1 - z0), z1 - 0.2 * (z1 - z0));
+    const double za = z0 + 0.3 * (z1 - z0), zb = z1 - 0.2 * (z1 - z0);
+    const result r = run_hush("render npr-gabor --gbuffer '" + gdir + "' --out '" +
+                                  (dir / "nd").string() +
+                                  "' --bandwidth-field depth:0.3,0.1 --field-depth-range " + range,
+                              dir);
+    REQUIRE(r.exit_code == 0);
+    std::vector<float> band(n);
+    for (int i = 0; i < kFrames; ++i) {
+      const hs::gbuffer& b = g[std::size_t(i)];
+      for (std::size_t p = 0; p < n; ++p) {
+        const double zs = std::clamp((double(b.depth[p]) - za) / (zb - za), 0.0, 1.0);
+        band[p] = covered(b, p) ? static_cast<float>(0.3 + (0.1 - 0.3) * zs) : std::nanf("");
+      }
+      hush::npr_gabor::sources src;
+      src.bandwidth = hush::param_source::per_pixel({band.data(), std::size_t(kW), std::size_t(kH)});
+      const hs::triangle_frame t = hs::project_triangles(s, i, kW, kH);
+      noise.render(hs::as_frame(b), t.view(), hush::image_view<float>(out.data(), kW, kH), src);
+      CHECK(same(frame_file(dir / "nd", i, 1), out));
+    }
+  }
+  {  // file:NAME per pixel (H, W) and per vertex (V,), and with a style
+    std::vector<std::vector<float>> band(kFrames), freq(kFrames);
+    for (int i = 0; i < kFrames; ++i) {
+      const hs::triangle_frame t = hs::project_triangles(s, i, kW, kH);
+      for (std::size_t p = 0; p < n; ++p)  // a left | right step in a, NaN in one corner
+        band[std::size_t(i)].push_back(p % kW < kW / 2 ? 0.15f : 0.4f);
+      band[std::size_t(i)][0] = std::nanf("");
+      for (std::size_t v = 0; v < t.screen.size(); ++v)  // F0 by vertex, moves with the surface
+        freq[std::size_t(i)].push_back(0.1f + 0.2f * float(v % 7) / 6);
+      const std::string fdir = hs::frame_directory(gdir, i);
+      hush::npy::save(fdir + "/my_a.npy", {std::size_t(kH), std::size_t(kW)}, band[std::size_t(i)]);
+      hush::npy::save(fdir + "/my_f.npy", {t.screen.size()}, freq[std::size_t(i)]);
+    }
+    const result r = run_hush("render npr-gabor --gbuffer '" + gdir + "' --out '" +
+                                  (dir / "nf").string() +
+                                  "' --bandwidth-field file:my_a --frequency-field file:my_f",
+                              dir);
+    REQUIRE(r.exit_code == 0);
+    for (int i = 0; i < kFrames; ++i) {
+      const hs::triangle_frame t = hs::project_triangles(s, i, kW, kH);
+      hush::npr_gabor::sources src;
+      src.bandwidth = hush::param_source::per_pixel(
+          {band[std::size_t(i)].data(), std::size_t(kW), std::size_t(kH)});
+      src.frequency = hush::param_source::per_vertex(freq[std::size_t(i)]);
+      noise.render(hs::as_frame(g[std::size_t(i)]), t.view(),
+                   hush::image_view<float>(out.data(), kW, kH), src);
+      CHECK(same(frame_file(dir / "nf", i, 1), out));
+    }
+    const result st = run_hush("render npr-gabor --gbuffer '" + gdir + "' --out '" +
+                                   (dir / "st").string() +
+                                   "' --style graphite --frequency-field file:my_f "
+                                   "--bandwidth-field shading:0.1,0.3 --light 1,0,0 --ambient 0.3",
+                               dir);
+    CHECK(st.exit_code == 0);
+    CHECK(st.out.find("wrote 5 npr-gabor frames (40x30, 3 channels, scalar)") != std::string::npos);
+    // A file of another shape is refused naming the option and the valid shapes.
+    hush::npy::save(hs::frame_directory(gdir, 2) + "/my_a.npy", {std::size_t(kW), std::size_t(kH)},
+                    band[0]);
+    const result bad = run_hush("render npr-gabor --gbuffer '" + gdir + "' --out '" +
+                                    (dir / "bad").string() + "' --bandwidth-field file:my_a",
+                                dir);
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--bandwidth-field") != std::string::npos);
+    CHECK(bad.err.find("(30, 40) per pixel") != std::string::npos);
+    CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+  }
 }
 
 TEST_CASE("render npr-gabor --style writes one PNG per frame for every style") {
