@@ -100,9 +100,11 @@
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-//  - GLSL: stage 2 on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): the
-//    records drawn as point sprites (geometry shader), the kernel and the tests per
-//    fragment, additive blending into a float target; stage 1 stays on the CPU.
+//  - GLSL: render on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): stage 1 in
+//    compute passes (counts, prefix sum, one invocation per point, the CPU's record order)
+//    where every source is constant or per object, else on the CPU; the records drawn as
+//    point sprites (geometry shader), the kernel and the tests per fragment, additive
+//    blending into a float target.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -272,7 +274,8 @@ class npr_gabor {
   // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
   // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
   // the scalar loop where the build has no SIMD), or exec::glsl{device}
-  // (float only; include hush/glsl/npr_gabor.hpp: point sprites, within the
+  // (float only; include hush/glsl/npr_gabor.hpp: both stages on the GPU where
+  // every source is constant or per object, stage 1 here otherwise; within the
   // tolerance stated there). Throws
   // hush::invalid_argument when the frame lacks a view needs() lists or is
   // malformed (frame::validate), when the triangle list is malformed

@@ -434,7 +434,8 @@ struct npr_record_tolerance {
   double offset = 0, weight = 0, frequency = 0, plane0 = 0, slope = 0;
 };
 npr_record_tolerance npr_tolerance_of(const hush::npr_gabor& noise, const hush::triangle_list& t,
-                                      std::size_t tri, const hush::npr_gabor_splat& s) {
+                                      std::size_t tri, const hush::npr_gabor_splat& s,
+                                      const hush::npr_gabor::sources& src) {
   const double u = std::ldexp(1.0, -24);
   double sx[3], sy[3], z[3];
   for (std::size_t i = 0; i < 3; ++i) {
@@ -450,10 +451,30 @@ npr_record_tolerance npr_tolerance_of(const hush::npr_gabor& noise, const hush::
   const double zmin = std::min({z[0], z[1], z[2]}), rho = std::max({z[0], z[1], z[2]}) / zmin;
   const double nu = 2 * u * (3 * kappa + 4), r = s.radius;
   npr_record_tolerance o;
-  // |w| = lod weight |v| scale <= the weight factor; bound the LOD part by its worst case.
-  const double factor = noise.parameters().thinning ? 1.0 : 0.0;
-  const double lod = std::max({std::sqrt(2 * nu), nu / 2, factor * std::sqrt(2 * u * (3 * kappa + 8))});
-  o.weight = std::fabs(s.weight) * 6 * u + std::fabs(noise.scale()) * lod;
+  // w = lod weight v scale: the LOD weight's error for this record's point j (found by its
+  // position: the CPU's records of a triangle are its points in order, those off the frame left
+  // out), times |v scale| = |w| / lod weight. |alpha_f - alpha_d| = |de| / (alpha_f + alpha_d)
+  // <= min(sqrt |de|, |de| / alpha_d), the same for sqrt(g) when thinned.
+  const hush::npr_gabor::object_kernel ok = noise.kernel_of_object(t.object_of(tri), src);
+  const double n = ok.density * 0.5 * std::fabs(cross);
+  hush::npr_gabor_lod lod = hush::npr_gabor_lod::of(n);
+  std::uint32_t j = 0;
+  for (; j < lod.count; ++j) {
+    const hush::npr_gabor::point pt = noise.point_of(t.object_of(tri), t.triangle_id[tri], j);
+    const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
+    if ((pt.b[0] * z[0] * sx[0] + pt.b[1] * z[1] * sx[1] + pt.b[2] * z[2] * sx[2]) / hw == s.x) break;
+  }
+  REQUIRE(j < lod.count);
+  const double dg = 2 * u * (3 * kappa + 8);
+  double dlod = 0;  // |v| < 1
+  if (n < 1 && noise.parameters().thinning) {
+    dlod = std::sqrt(dg);
+  } else if (n < 1) {
+    dlod = lod.first_weight * nu / 2;
+  } else if (j >= lod.first) {
+    dlod = std::min(std::sqrt(2 * nu), 2 * nu / std::max(lod.second_weight, 1e-300));
+  }
+  o.weight = std::fabs(s.weight) * 6 * u + std::fabs(ok.scale) * dlod;
   o.offset = 2 * u * (l * (24 + 7 * rho) + l + r + 1) + 2 * u * (r + 1);
   o.frequency = noise.parameters().isotropic ? std::ldexp(1.0, -20) * std::hypot(s.fx, s.fy) * r : 0;
   o.slope = 2 * u * (12 * l / (zmin * std::fabs(cross)) +
@@ -476,14 +497,15 @@ std::vector<std::size_t> npr_triangle_of(const hush::triangle_list& t,
   return out;
 }
 std::vector<npr_slack> npr_slacks(const hush::npr_gabor& noise, const hush::triangle_list& t,
-                                  const std::vector<hush::npr_gabor_splat>& splats) {
+                                  const std::vector<hush::npr_gabor_splat>& splats,
+                                  const hush::npr_gabor::sources& src) {
   namespace c = hush::detail::constants;
   const double a = noise.kernel().envelope_exponent(), taper_k = 1.0 / (1.0 - c::kGaborTaperStart);
   const std::vector<std::size_t> tri = npr_triangle_of(t, splats);
   std::vector<npr_slack> out;
   for (std::size_t i = 0; i < splats.size(); ++i) {
     const hush::npr_gabor_splat& s = splats[i];
-    const npr_record_tolerance tol = npr_tolerance_of(noise, t, tri[i], s);
+    const npr_record_tolerance tol = npr_tolerance_of(noise, t, tri[i], s, src);
     const double fr = std::hypot(s.fx, s.fy) * s.radius;
     const double slope = 2 * a + c::kTwoPi * fr + 2 * taper_k;
     const double plane = tol.plane0 + tol.slope * (2 * s.radius + 1);
@@ -538,7 +560,7 @@ npr_records_compare npr_records_against_cpu(const hush::npr_gabor& noise, const 
       for (std::size_t k = 0; k < kept.size(); ++k) {
         hush::glsl::npr_gabor_gpu_record q, e = hush::glsl::npr_gabor_gpu_record::of(splats[i + k]);
         std::memcpy(&q, &words[16 * kept[k]], sizeof q);
-        const npr_record_tolerance tol = npr_tolerance_of(noise, t, tri[i + k], splats[i + k]);
+        const npr_record_tolerance tol = npr_tolerance_of(noise, t, tri[i + k], splats[i + k], src);
         if (!std::equal(q.box, q.box + 4, e.box) || q.kern[2] != e.kern[2]) r.same_order = false;
         const double d[6] = {std::fabs(double(q.kern[0]) - e.kern[0]) / tol.offset,
                              std::fabs(double(q.kern[1]) - e.kern[1]) / tol.offset,
@@ -606,7 +628,7 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
   noise.render(hush::exec::scalar, f, t, hush::image_view<float>(cpu.data(), w, h), src);
   noise.render(hush::exec::scalar, f, t, hush::image_view<double>(ref.data(), w, h), src);
   std::vector<npr_slack> slack(splats.size());
-  if (gpu_stage1) slack = npr_slacks(noise, t, splats);
+  if (gpu_stage1) slack = npr_slacks(noise, t, splats, src);
   const auto& p = noise.parameters();
   const double a = noise.kernel().envelope_exponent(), taper_k = 1.0 / (1.0 - c::kGaborTaperStart);
   std::vector<double> sum_w(w * h, 0.0), count(w * h, 0.0);
@@ -736,37 +758,19 @@ void check_records(const std::string& name, const hush::npr_gabor& noise, const 
   CHECK(r.switched <= r.near_switch);
 }
 
-// A w x h frame of object 1 at depth 1 with `tris` (screen xy, one triangle per 3 vertices,
-// ids 0, 1, ...): for hard cases whose G-buffer does not matter for the records.
-struct npr_loose {
-  std::vector<hush::vec2> screen;
-  std::vector<float> vdepth, depth;
-  std::vector<std::uint32_t> indices, ids, objects, object;
-  std::size_t w, h;
-  npr_loose(std::size_t w_, std::size_t h_) : depth(w_ * h_, 1.0f), object(w_ * h_, 1u), w(w_), h(h_) {}
+// A w x h frame of object 1 at depth 1 (one grid cell covering it, whose two triangles come
+// first, ids 0 and 1) and loose triangles added after it (ids 2, 3, ...): hard cases.
+struct npr_loose : npr_test::grid_scene {
+  npr_loose(std::size_t w, std::size_t h)
+      : grid_scene(w, h, -1.0, -1.0, double(std::max(w, h)) + 2.0, 1, 1) {}
   void add(hush::vec2 a, hush::vec2 b, hush::vec2 c) {
     for (const hush::vec2& v : {a, b, c}) {
       indices.push_back(static_cast<std::uint32_t>(screen.size()));
       screen.push_back(v);
       vdepth.push_back(1.0f);
     }
-    ids.push_back(static_cast<std::uint32_t>(ids.size()));
-    objects.push_back(1u);
-  }
-  hush::frame frame() const {
-    hush::frame f;
-    f.depth = {depth.data(), w, h};
-    f.object_id = {object.data(), w, h};
-    return f;
-  }
-  hush::triangle_list triangles() const {
-    hush::triangle_list t;
-    t.indices = indices;
-    t.screen = screen;
-    t.depth = vdepth;
-    t.triangle_id = ids;
-    t.object_id = objects;
-    return t;
+    tri_id.push_back(static_cast<std::uint32_t>(tri_id.size()));
+    obj_id.push_back(1u);
   }
 };
 }  // namespace
@@ -817,8 +821,11 @@ TEST_CASE("npr: GPU stage 1 hard cases: empty list, zero area, back faces, N < 1
   check_records("hard cases", noise, f, sc.triangles());
   std::vector<std::uint32_t> words, ids;
   REQUIRE(hush::glsl::npr_gabor_state(headless().device).records(noise, f, sc.triangles(), {}, words, ids));
-  for (std::size_t k = 0; k < ids.size(); k += 2) CHECK(ids[k + 1] >= 2u);  // no zero-area, no back face
-  CHECK(ids[1] == 2u);  // the N < 1 triangle's one point comes first
+  // The covering cell (ids 0, 1), then no zero-area (2) or back-facing (3) triangle's records.
+  std::size_t after_cell = 0;
+  while (after_cell < ids.size() && ids[after_cell + 1] < 2u) after_cell += 2;
+  REQUIRE(after_cell < ids.size());
+  CHECK(ids[after_cell + 1] == 4u);  // the N < 1 triangle's one point comes next
   const npr_compare img = npr_against_cpu(noise, f, sc.triangles());
   MESSAGE("hard cases, image: max " << img.max_abs << ", worst error / bound " << img.worst_ratio);
   CHECK(img.worst_ratio <= 1.0);
@@ -829,7 +836,7 @@ TEST_CASE("npr: GPU stage 1 hard cases: empty list, zero area, back faces, N < 1
   const hush::npr_gabor::params hp = npr_params();
   check_records("clamped N", hush::npr_gabor{hp}, huge.frame(), huge.triangles());
   // The empty list: an all-zero image, stage 1 still on the GPU.
-  npr_loose none(16, 16);
+  npr_test::grid_scene none(16, 16, 0.0, 0.0, 1.0, 0, 0);
   auto& state = hush::glsl::npr_gabor_state(headless().device);
   const std::size_t before = state.gpu_stage1_frames();
   std::vector<float> out(16 * 16, -1.0f);

@@ -1,16 +1,31 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // NPR Gabor noise (include/hush/npr_gabor.hpp) on the GPU, the paper's way (Benard et al.
-// 2010, sec. 3.4 and 5): stage 2, the splatting, as point sprites. Include this header to use
-// hush::exec::glsl{device} with hush::npr_gabor::render and ::splat:
+// 2010, sec. 3.4 and 5): stage 1 (the points) in compute passes, stage 2 (the splatting) as
+// point sprites. Include this header to use hush::exec::glsl{device} with
+// hush::npr_gabor::render and ::splat:
 //
 //   hush::glsl::headless_device gpu;                // or a device on the application's context
 //   noise.render(hush::exec::glsl{gpu.device}, frame, triangles, out);
 //
-// What runs where: stage 1 (make_splats: the points of every triangle, their LOD weights,
-// parameters and planes) stays on the CPU, in double, exactly as for exec::scalar; the records
-// go to shader storage buffers (64 + 8 bytes each) and are drawn as GL_POINTS, one vertex per
-// record, in record order. A geometry shader turns each into one screen-aligned quad covering
+// Stage 1 (render): where every parameter source is constant or per object, the triangle list
+// (vertices: screen x, y, depth; triangles: indices, id, object) and a per-object kernel table
+// (npr_gabor::kernel_of_object, double, rounded once) go to storage buffers and three compute
+// passes write the records: per triangle its count and LOD weights in float (npr_gabor_lod, the
+// thinning, the plane of 1/z), an exclusive prefix sum of the counts in one work group, then
+// one invocation per record finding its triangle by binary search in the offsets and writing
+// point j of the triangle's hush::rng stream (the GLSL library's hush_stream_key / _word: the
+// CPU's integers) at its own index: the CPU's record order, no atomics. Points whose kernel
+// misses the frame get an empty pixel range (drawn as nothing). Only the total (and an overflow
+// flag) is read back, to size the batches. Per-pixel or per-vertex sources, buffers beyond one
+// storage block, or more than 2^32 - 1 points: stage 1 on the CPU (make_splats), automatically.
+// Float instead of double changes positions, weights and planes within the tolerance derived
+// in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and double N straddle a
+// power of two the second M points (weight <= sqrt(2 nu), nu N's relative float error) exist on
+// one side only.
+//
+// Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
+// buffers, 64 + 8 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A geometry shader turns each into one screen-aligned quad covering
 // the record's pixel range x0 ... x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the
 // image), a fragment shader runs the visibility tests against the G-buffer (object id,
 // triangle id, depth with its tolerance, soft depth; SSBOs uploaded by frame_upload.hpp) and
@@ -51,7 +66,7 @@
 // geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
 // driver has them). Leaves the current program, vertex array, framebuffers, viewport, blend and
 // the enables it touches (blend, depth, stencil, scissor, cull face) as it found them; rebinds
-// the indexed storage-buffer bindings 0 to 4 (as hush::glsl::device does).
+// the indexed storage-buffer bindings 0 to 6 (as hush::glsl::device does).
 #ifndef HUSH_GLSL_NPR_GABOR_HPP
 #define HUSH_GLSL_NPR_GABOR_HPP
 
