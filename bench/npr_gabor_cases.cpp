@@ -60,14 +60,14 @@ struct dense_frame {
 template <class Exec>
 void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
               const std::vector<std::shared_ptr<dense_frame>>& frames, bool thinning,
-              std::initializer_list<double> impulse_counts = {16.0, 32.0}, bool cpu_points = false) {
+              std::initializer_list<double> impulse_counts = {16.0, 32.0},
+              bool cpu_points = false) {
   for (const std::shared_ptr<dense_frame>& fr : frames)
     for (double impulses : impulse_counts) {
       bench_case c;
       c.wall_clock = std::string(Exec::name) == "glsl";
-      c.noise =
-          "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) + (thinning ? " thin" : "") +
-          (cpu_points ? " cpu-points" : "");
+      c.noise = "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) +
+                (thinning ? " thin" : "") + (cpu_points ? " cpu-points" : "");
       c.backend = Exec::name;
       c.workload = "dense:" + std::to_string(fr->triangles) + " " + std::to_string(s.npr_width) +
                    "x" + std::to_string(s.npr_height);

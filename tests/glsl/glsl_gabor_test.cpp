@@ -462,7 +462,8 @@ npr_record_tolerance npr_tolerance_of(const hush::npr_gabor& noise, const hush::
   for (; j < lod.count; ++j) {
     const hush::npr_gabor::point pt = noise.point_of(t.object_of(tri), t.triangle_id[tri], j);
     const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
-    if ((pt.b[0] * z[0] * sx[0] + pt.b[1] * z[1] * sx[1] + pt.b[2] * z[2] * sx[2]) / hw == s.x) break;
+    if ((pt.b[0] * z[0] * sx[0] + pt.b[1] * z[1] * sx[1] + pt.b[2] * z[2] * sx[2]) / hw == s.x)
+      break;
   }
   REQUIRE(j < lod.count);
   const double dg = 2 * u * (3 * kappa + 8);
@@ -476,9 +477,11 @@ npr_record_tolerance npr_tolerance_of(const hush::npr_gabor& noise, const hush::
   }
   o.weight = std::fabs(s.weight) * 6 * u + std::fabs(ok.scale) * dlod;
   o.offset = 2 * u * (l * (24 + 7 * rho) + l + r + 1) + 2 * u * (r + 1);
-  o.frequency = noise.parameters().isotropic ? std::ldexp(1.0, -20) * std::hypot(s.fx, s.fy) * r : 0;
-  o.slope = 2 * u * (12 * l / (zmin * std::fabs(cross)) +
-                     (std::fabs(s.qx) + std::fabs(s.qy)) * (3 * kappa + 6));
+  o.frequency =
+      noise.parameters().isotropic ? std::ldexp(1.0, -20) * std::hypot(s.fx, s.fy) * r : 0;
+  o.slope =
+      2 * u *
+      (12 * l / (zmin * std::fabs(cross)) + (std::fabs(s.qx) + std::fabs(s.qy)) * (3 * kappa + 6));
   o.plane0 = 2 * u * 8 / zmin + o.slope * (l + r + 1);
   return o;
 }
@@ -492,7 +495,8 @@ std::vector<std::size_t> npr_triangle_of(const hush::triangle_list& t,
   std::vector<std::size_t> out;
   for (const hush::npr_gabor_splat& s : splats) {
     const std::uint64_t k = (std::uint64_t(s.object) << 32) | s.triangle;
-    out.push_back(std::lower_bound(keys.begin(), keys.end(), std::make_pair(k, std::size_t(0)))->second);
+    out.push_back(
+        std::lower_bound(keys.begin(), keys.end(), std::make_pair(k, std::size_t(0)))->second);
   }
   return out;
 }
@@ -511,10 +515,11 @@ std::vector<npr_slack> npr_slacks(const hush::npr_gabor& noise, const hush::tria
     const double plane = tol.plane0 + tol.slope * (2 * s.radius + 1);
     // The pixel depth is at most 1 / (the plane's smallest 1/z on the box) (1 + tolerance).
     const double pz = 2.0 / std::max(1e-30, std::fabs(s.q0 + s.qx * s.x + s.qy * s.y) -
-                                                 (std::fabs(s.qx) + std::fabs(s.qy)) * s.radius);
-    out.push_back({std::fabs(s.weight) * (slope * 2 * tol.offset / s.radius +
-                                          c::kTwoPi * tol.frequency) + tol.weight,
-                   pz * plane});
+                                                (std::fabs(s.qx) + std::fabs(s.qy)) * s.radius);
+    out.push_back(
+        {std::fabs(s.weight) * (slope * 2 * tol.offset / s.radius + c::kTwoPi * tol.frequency) +
+             tol.weight,
+         pz * plane});
   }
   return out;
 }
@@ -552,7 +557,10 @@ npr_records_compare npr_records_against_cpu(const hush::npr_gabor& noise, const 
     for (std::size_t k = g; k < g1; ++k) {
       hush::glsl::npr_gabor_gpu_record q;
       std::memcpy(&q, &words[16 * k], sizeof q);
-      if (q.box[0] > q.box[2] || q.box[1] > q.box[3]) ++r.empty; else kept.push_back(k);
+      if (q.box[0] > q.box[2] || q.box[1] > q.box[3])
+        ++r.empty;
+      else
+        kept.push_back(k);
     }
     if (kept.size() != i1 - i) {
       ++r.switched;
@@ -562,14 +570,15 @@ npr_records_compare npr_records_against_cpu(const hush::npr_gabor& noise, const 
         std::memcpy(&q, &words[16 * kept[k]], sizeof q);
         const npr_record_tolerance tol = npr_tolerance_of(noise, t, tri[i + k], splats[i + k], src);
         if (!std::equal(q.box, q.box + 4, e.box) || q.kern[2] != e.kern[2]) r.same_order = false;
-        const double d[6] = {std::fabs(double(q.kern[0]) - e.kern[0]) / tol.offset,
-                             std::fabs(double(q.kern[1]) - e.kern[1]) / tol.offset,
-                             std::fabs(double(q.kern[3]) - e.kern[3]) / tol.weight,
-                             std::hypot(double(q.freq[0]) - e.freq[0], double(q.freq[1]) - e.freq[1]) /
-                                 std::max(tol.frequency, 1e-300),
-                             std::fabs(double(q.plane[0]) - e.plane[0]) / tol.plane0,
-                             std::hypot(double(q.plane[1]) - e.plane[1], double(q.plane[2]) - e.plane[2]) /
-                                 tol.slope};
+        const double d[6] = {
+            std::fabs(double(q.kern[0]) - e.kern[0]) / tol.offset,
+            std::fabs(double(q.kern[1]) - e.kern[1]) / tol.offset,
+            std::fabs(double(q.kern[3]) - e.kern[3]) / tol.weight,
+            std::hypot(double(q.freq[0]) - e.freq[0], double(q.freq[1]) - e.freq[1]) /
+                std::max(tol.frequency, 1e-300),
+            std::fabs(double(q.plane[0]) - e.plane[0]) / tol.plane0,
+            std::hypot(double(q.plane[1]) - e.plane[1], double(q.plane[2]) - e.plane[2]) /
+                tol.slope};
         for (double x : d) r.worst = std::max(r.worst, x);
       }
     }
@@ -730,19 +739,20 @@ TEST_CASE("npr: GLSL point sprites equal the CPU render within the derived toler
   configs.push_back({"large kernels, object test only", q});
   for (const config& cf : configs)
     for (const bool gpu_stage1 : {false, true}) {
-    const std::string name = std::string(cf.name) + (gpu_stage1 ? ", GPU stage 1" : ", CPU stage 1");
-    CAPTURE(name);
-    const npr_compare r = npr_against_cpu(hush::npr_gabor{cf.p}, f, t, gpu_stage1);
-    MESSAGE(name << ": GLSL vs double max " << r.max_abs << " RMS " << r.rms
-                 << ", vs CPU float max " << r.max_vs_float << ", worst error / bound "
-                 << r.worst_ratio << ", tie pixels " << r.ties << ", reached " << r.reached
-                 << ", fragments cut by depth " << r.cut << ", faded " << r.faded);
-    CHECK(r.worst_ratio <= 1.0);
-    CHECK(r.reached > w * h / 2);  // the comparison covers the frame
-    CHECK(r.ties < w * h / 100);
-    if (cf.p.depth_test && !cf.p.object_test) CHECK(r.cut > 0);  // with it, the ids decide here
-    if (cf.p.soft_depth) CHECK(r.faded > 0);
-  }
+      const std::string name =
+          std::string(cf.name) + (gpu_stage1 ? ", GPU stage 1" : ", CPU stage 1");
+      CAPTURE(name);
+      const npr_compare r = npr_against_cpu(hush::npr_gabor{cf.p}, f, t, gpu_stage1);
+      MESSAGE(name << ": GLSL vs double max " << r.max_abs << " RMS " << r.rms
+                   << ", vs CPU float max " << r.max_vs_float << ", worst error / bound "
+                   << r.worst_ratio << ", tie pixels " << r.ties << ", reached " << r.reached
+                   << ", fragments cut by depth " << r.cut << ", faded " << r.faded);
+      CHECK(r.worst_ratio <= 1.0);
+      CHECK(r.reached > w * h / 2);  // the comparison covers the frame
+      CHECK(r.ties < w * h / 100);
+      if (cf.p.depth_test && !cf.p.object_test) CHECK(r.cut > 0);  // with it, the ids decide here
+      if (cf.p.soft_depth) CHECK(r.faded > 0);
+    }
 }
 
 namespace {
@@ -775,7 +785,9 @@ struct npr_loose : npr_test::grid_scene {
 };
 }  // namespace
 
-TEST_CASE("npr: GPU stage 1 records equal the CPU's: order and ids exact, values within the derived tolerance") {
+TEST_CASE(
+    "npr: GPU stage 1 records equal the CPU's: order and ids exact, values within the derived "
+    "tolerance") {
   const npr_test::grid_scene sc = npr_two_objects(128, 128);
   check_records("defaults", hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles());
   hush::npr_gabor::params q = npr_params();
@@ -797,19 +809,24 @@ TEST_CASE("npr: GPU stage 1 records equal the CPU's: order and ids exact, values
   src.orientation = hush::param_source::per_object(angle);
   src.bandwidth = hush::param_source::per_object(band);
   src.impulses = hush::param_source::per_object(imp);
-  check_records("per-object sources", hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles(), src);
-  const npr_compare r = npr_against_cpu(hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles(), true, src);
-  MESSAGE("per-object sources, image: max " << r.max_abs << ", worst error / bound " << r.worst_ratio);
+  check_records("per-object sources", hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles(),
+                src);
+  const npr_compare r =
+      npr_against_cpu(hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles(), true, src);
+  MESSAGE("per-object sources, image: max " << r.max_abs << ", worst error / bound "
+                                            << r.worst_ratio);
   CHECK(r.worst_ratio <= 1.0);
 }
 
-TEST_CASE("npr: GPU stage 1 hard cases: empty list, zero area, back faces, N < 1, clamped N, the M switch") {
+TEST_CASE(
+    "npr: GPU stage 1 hard cases: empty list, zero area, back faces, N < 1, clamped N, the M "
+    "switch") {
   const hush::npr_gabor noise{npr_params()};
   const double lambda = noise.density();
   npr_loose sc(64, 64);
-  sc.add({10, 10}, {20, 20}, {30, 30});              // zero area
-  sc.add({10, 10}, {40, 10}, {10, 40});              // back-facing (counter-clockwise, y up)
-  sc.add({30, 30}, {30, 31}, {31, 30});              // N = lambda / 2 < 1
+  sc.add({10, 10}, {20, 20}, {30, 30});  // zero area
+  sc.add({10, 10}, {40, 10}, {10, 40});  // back-facing (counter-clockwise, y up)
+  sc.add({30, 30}, {30, 31}, {31, 30});  // N = lambda / 2 < 1
   // N sweeping across 8 and 64 in steps of ~2^-23 relative: float and double N straddle the
   // power of two for some; each must be one the tolerance allows (the M switch).
   for (const double target : {8.0, 64.0})
@@ -820,7 +837,8 @@ TEST_CASE("npr: GPU stage 1 hard cases: empty list, zero area, back faces, N < 1
   const hush::frame f = sc.frame();
   check_records("hard cases", noise, f, sc.triangles());
   std::vector<std::uint32_t> words, ids;
-  REQUIRE(hush::glsl::npr_gabor_state(headless().device).records(noise, f, sc.triangles(), {}, words, ids));
+  REQUIRE(hush::glsl::npr_gabor_state(headless().device)
+              .records(noise, f, sc.triangles(), {}, words, ids));
   // The covering cell (ids 0, 1), then no zero-area (2) or back-facing (3) triangle's records.
   std::size_t after_cell = 0;
   while (after_cell < ids.size() && ids[after_cell + 1] < 2u) after_cell += 2;
@@ -839,7 +857,7 @@ TEST_CASE("npr: GPU stage 1 hard cases: empty list, zero area, back faces, N < 1
   npr_test::grid_scene none(16, 16, 0.0, 0.0, 1.0, 0, 0);
   auto& state = hush::glsl::npr_gabor_state(headless().device);
   const std::size_t before = state.gpu_stage1_frames();
-  std::vector<float> out(16 * 16, -1.0f);
+  std::vector<float> out(std::size_t{16} * 16, -1.0f);
   noise.render(hush::exec::glsl{headless().device}, none.frame(), none.triangles(),
                hush::image_view<float>(out.data(), 16, 16));
   CHECK(state.gpu_stage1_frames() == before + 1);
@@ -858,7 +876,8 @@ TEST_CASE("npr: per-pixel and per-vertex sources run stage 1 on the CPU, automat
   vert.frequency = hush::param_source::per_vertex(vertex);
   auto& state = hush::glsl::npr_gabor_state(headless().device);
   for (const hush::npr_gabor::sources* src : {&pixel, &vert}) {
-    const std::size_t cpu_before = state.cpu_stage1_frames(), gpu_before = state.gpu_stage1_frames();
+    const std::size_t cpu_before = state.cpu_stage1_frames(),
+                      gpu_before = state.gpu_stage1_frames();
     std::vector<float> a(w * h), b(w * h);
     noise.render(hush::exec::glsl{headless().device}, sc.frame(), sc.triangles(),
                  hush::image_view<float>(a.data(), w, h), *src);

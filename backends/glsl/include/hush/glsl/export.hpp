@@ -87,7 +87,8 @@ inline std::vector<export_file> export_files() {
   files.push_back({"hush_npr_gabor_splat.frag", npr_gabor_fragment_source()});
   const char* const stage1[kNprGaborStage1Passes] = {"counts", "scan", "points"};
   for (int i = 0; i < kNprGaborStage1Passes; ++i)
-    files.push_back({std::string("hush_npr_gabor_") + stage1[i] + ".comp", npr_gabor_stage1_source(i)});
+    files.push_back(
+        {std::string("hush_npr_gabor_") + stage1[i] + ".comp", npr_gabor_stage1_source(i)});
   return files;
 }
 

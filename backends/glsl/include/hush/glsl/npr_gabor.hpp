@@ -25,14 +25,14 @@
 // one side only.
 //
 // Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
-// buffers, 64 + 8 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A geometry shader turns each into one screen-aligned quad covering
-// the record's pixel range x0 ... x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the
-// image), a fragment shader runs the visibility tests against the G-buffer (object id,
-// triangle id, depth with its tolerance, soft depth; SSBOs uploaded by frame_upload.hpp) and
-// evaluates the tapered Gabor kernel with the library's float functions (the CPU's float
-// operations, hush/glsl/gabor_glsl.hpp), and additive blending (GL_ONE, GL_ONE) sums the
-// fragments into a GL_R32F framebuffer texture, read back into `out`. The normalisation is the
-// CPU's: the weights in the records.
+// buffers, 64 + 8 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
+// geometry shader turns each into one screen-aligned quad covering the record's pixel range x0 ...
+// x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the image), a fragment shader runs the
+// visibility tests against the G-buffer (object id, triangle id, depth with its tolerance, soft
+// depth; SSBOs uploaded by frame_upload.hpp) and evaluates the tapered Gabor kernel with the
+// library's float functions (the CPU's float operations, hush/glsl/gabor_glsl.hpp), and additive
+// blending (GL_ONE, GL_ONE) sums the fragments into a GL_R32F framebuffer texture, read back into
+// `out`. The normalisation is the CPU's: the weights in the records.
 //
 // The GL geometry-output limit: one input point emits one quad, 4 vertices of 5 components
 // (gl_Position and the record index), a fixed max_vertices = 4 that no GL can refuse
@@ -60,7 +60,9 @@
 // integers (exact).
 //
 // Depths: a pixel's depth must be positive and finite, as on the CPU; a denormal depth reads as
-// 0 (fails) on GPUs that flush denormals, where the CPU passes it to the plane comparison.
+// 0 (fails) on GPUs that flush denormals, where the CPU passes it to the plane comparison. The
+// same holds for vertex depths in GPU stage 1: a triangle with a denormal vertex depth emits
+// nothing there.
 //
 // Throws std::runtime_error for GL errors (and when the context lacks storage blocks in the
 // geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
@@ -497,17 +499,15 @@ constexpr int kNprGaborGroupSize = 64;
 constexpr int kNprGaborScanSize = 256;
 inline std::string npr_gabor_stage1_source(int pass) {
   namespace c = hush::detail::constants;
-  static const char* const names[kNprGaborStage1Passes] = {"counts and LOD weights per triangle",
-                                                           "prefix sum of the counts",
-                                                           "one record per point"};
+  static const char* const names[kNprGaborStage1Passes] = {
+      "counts and LOD weights per triangle", "prefix sum of the counts", "one record per point"};
   static const char* const bodies[kNprGaborStage1Passes] = {
       detail::kNprGaborCount, detail::kNprGaborScan, detail::kNprGaborPoints};
   const int p = std::min(std::max(pass, 0), kNprGaborStage1Passes - 1);
   auto f32 = [](double v) {
     return glsl_literal(glsl_constant::type::f32, detail::float_bits(static_cast<float>(v)));
   };
-  return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
-                     " NPR Gabor stage 1: ") +
+  return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING " NPR Gabor stage 1: ") +
          names[p] + " (hush/glsl/npr_gabor.hpp).\n#define HUSH_NPR_GROUP " +
          std::to_string(kNprGaborGroupSize) + "\n#define HUSH_NPR_SCAN " +
          std::to_string(kNprGaborScanSize) + "\n#define HUSH_NPR_STREAM " +
@@ -529,14 +529,12 @@ inline std::string npr_gabor_geometry_source() {
                      " NPR Gabor splats: geometry stage, one quad per record.\n#define "
                      "HUSH_NPR_SPRITE_VERTICES ") +
          std::to_string(kNprGaborSpriteVertices) + "\n" + detail::kNprGaborRecord +
-         detail::kNprGaborRecords +
-         detail::kNprGaborGeometry;
+         detail::kNprGaborRecords + detail::kNprGaborGeometry;
 }
 inline std::string npr_gabor_fragment_source() {
   return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
                      " NPR Gabor splats: fragment stage, tests and kernel.\n") +
-         library() + detail::kNprGaborRecord + detail::kNprGaborRecords +
-         detail::kNprGaborFragment;
+         library() + detail::kNprGaborRecord + detail::kNprGaborRecords + detail::kNprGaborFragment;
 }
 
 // The limits of the context current on this thread (see npr_gabor_limits).
@@ -726,8 +724,7 @@ class npr_gabor_gpu {
       gl_.BindBufferBase(kGlShaderStorageBuffer, 0, buffers_[0]);
       gl_.BindBufferBase(kGlShaderStorageBuffer, 4, buffers_[1]);
       if (which == frame_view::none) {  // no test: bind the records' buffer (never read)
-        for (gl_uint b = 1; b <= 3; ++b)
-          gl_.BindBufferBase(kGlShaderStorageBuffer, b, buffers_[0]);
+        for (gl_uint b = 1; b <= 3; ++b) gl_.BindBufferBase(kGlShaderStorageBuffer, b, buffers_[0]);
       } else {
         frame_.bind(j.depth_test ? frame_view::depth : any, 1);
         frame_.bind(j.object_test ? frame_view::object_id : any, 2);
@@ -859,8 +856,8 @@ class npr_gabor_gpu {
   }
   void upload(int which, const void* data, std::size_t bytes, gl_uint binding) const {
     gl_.BindBuffer(kGlShaderStorageBuffer, stage1_buffers_[which]);
-    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(std::max<std::size_t>(bytes, 4)),
-                   data, kGlStreamDraw);
+    gl_.BufferData(kGlShaderStorageBuffer,
+                   static_cast<gl_sizeiptr>(std::max<std::size_t>(bytes, 4)), data, kGlStreamDraw);
     gl_.BindBufferBase(kGlShaderStorageBuffer, binding, stage1_buffers_[which]);
   }
   void bind_stage1() const {
@@ -901,10 +898,16 @@ class npr_gabor_gpu {
     floats_.assign((objects + 1) * 8, 0.0f);
     for (std::size_t o = 0; o <= objects; ++o) {
       const npr_gabor::object_kernel k = noise.kernel_of_object(static_cast<std::uint32_t>(o), src);
-      const double e[8] = {k.F.x * k.radius, k.F.y * k.radius, std::hypot(k.F.x, k.F.y) * k.radius,
-                           1.0 / k.radius,   k.radius,         k.density,
-                           k.scale,          0.0};
-      for (int i = 0; i < 8; ++i) floats_[8 * o + static_cast<std::size_t>(i)] = static_cast<float>(e[i]);
+      const double e[8] = {k.F.x * k.radius,
+                           k.F.y * k.radius,
+                           std::hypot(k.F.x, k.F.y) * k.radius,
+                           1.0 / k.radius,
+                           k.radius,
+                           k.density,
+                           k.scale,
+                           0.0};
+      for (int i = 0; i < 8; ++i)
+        floats_[8 * o + static_cast<std::size_t>(i)] = static_cast<float>(e[i]);
     }
     upload(2, floats_.data(), floats_.size() * 4, 2);
     upload(3, nullptr, nt * 32, 3);
@@ -948,7 +951,8 @@ class npr_gabor_gpu {
     gl_.UseProgram(prog);
     bind_stage1();
     gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
-    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 64), nullptr, kGlStreamDraw);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 64), nullptr,
+                   kGlStreamDraw);
     gl_.BindBufferBase(kGlShaderStorageBuffer, 5, buffers_[0]);
     gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
     gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 8), nullptr, kGlStreamDraw);
