@@ -639,28 +639,42 @@ class npr_gabor_gpu {
          [&](std::size_t b0, std::size_t m) { generate(b0, m); });
   }
 
-  // Stage 1 on the GPU alone, its records read back: for each record in order the 16 words of
-  // npr_gabor_gpu_record (box, kern, freq, plane) and 2 ids. False (nothing written) where
-  // render would run stage 1 on the CPU. For tests and debugging.
+  // Stage 1 on the GPU alone, its records read back: for each record in order whose pixel
+  // range is not empty, the 16 words of npr_gabor_gpu_record (box, kern, freq, plane) and 2 ids;
+  // `empty` counts the others (points whose kernel misses the frame). False (nothing written)
+  // where render would run stage 1 on the CPU. For tests and debugging.
   bool records(const npr_gabor& noise, const frame& f, const triangle_list& tris,
                const npr_gabor::sources& src, std::vector<std::uint32_t>& words,
-               std::vector<std::uint32_t>& ids) {
+               std::vector<std::uint32_t>& ids, std::size_t& empty) {
     std::size_t total = 0;
     if (!stage1(noise, f, tris, src, total)) return false;
     const state_guard guard(gl_, gr_);
-    words.assign(total * 16, 0u);
-    ids.assign(total * 2, 0u);
+    words.clear();
+    ids.clear();
+    empty = 0;
     const std::size_t batch = batch_records();
+    std::vector<std::uint32_t> w, d;
     for (std::size_t b0 = 0; b0 < total; b0 += batch) {
       const std::size_t m = std::min(batch, total - b0);
       generate(b0, m);
       gl_.MemoryBarrier(kGlBufferUpdateBarrierBit);
+      w.resize(m * 16);
+      d.resize(m * 2);
       gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
-      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 64),
-                           words.data() + 16 * b0);
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 64), w.data());
       gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
-      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 8),
-                           ids.data() + 2 * b0);
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 8), d.data());
+      for (std::size_t k = 0; k < m; ++k) {
+        npr_gabor_gpu_record r;
+        std::memcpy(&r, &w[16 * k], sizeof r);
+        if (r.box[0] > r.box[2] || r.box[1] > r.box[3]) {
+          ++empty;
+          continue;
+        }
+        words.insert(words.end(), w.begin() + static_cast<std::ptrdiff_t>(16 * k),
+                     w.begin() + static_cast<std::ptrdiff_t>(16 * k + 16));
+        ids.insert(ids.end(), {d[2 * k], d[2 * k + 1]});
+      }
     }
     gl_.check("hush::glsl::npr_gabor: reading stage 1's records");
     return true;
