@@ -8,9 +8,11 @@
 // times npr_gabor::render (both stages: points and splatting) on one thread;
 // ms/frame is its time per frame. Error columns: the float render against render<double> on
 // exec::scalar (the reference) over every pixel. The note gives the splat count (points
-// emitted) and the triangle count. GLSL rows (with OSMesa; N' = 16): stage 1 on the CPU, the
-// splatting as point sprites (hush/glsl/npr_gabor.hpp), in wall time like the other GLSL rows
-// (llvmpipe's own threads do the work), read-back included.
+// emitted) and the triangle count. GLSL rows (with OSMesa; N' = 16; hush/glsl/npr_gabor.hpp):
+// render on exec::glsl, both stages on the GPU (the compute passes of stage 1 upload the
+// triangles once and write the records, the point sprites splat them), and "cpu-points" rows:
+// stage 1 on the CPU (make_splats, double), the records uploaded and splatted; in wall time
+// like the other GLSL rows (llvmpipe's own threads do the work), read-back included.
 #include <cstdio>
 #include <initializer_list>
 #include <memory>
@@ -58,13 +60,14 @@ struct dense_frame {
 template <class Exec>
 void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
               const std::vector<std::shared_ptr<dense_frame>>& frames, bool thinning,
-              std::initializer_list<double> impulse_counts = {16.0, 32.0}) {
+              std::initializer_list<double> impulse_counts = {16.0, 32.0},
+              bool cpu_points = false) {
   for (const std::shared_ptr<dense_frame>& fr : frames)
     for (double impulses : impulse_counts) {
       bench_case c;
       c.wall_clock = std::string(Exec::name) == "glsl";
-      c.noise =
-          "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) + (thinning ? " thin" : "");
+      c.noise = "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) +
+                (thinning ? " thin" : "") + (cpu_points ? " cpu-points" : "");
       c.backend = Exec::name;
       c.workload = "dense:" + std::to_string(fr->triangles) + " " + std::to_string(s.npr_width) +
                    "x" + std::to_string(s.npr_height);
@@ -74,16 +77,23 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
       prm.orientation = 0.5;
       prm.thinning = thinning;
       const hush::npr_gabor noise{prm};
-      c.prepare = [noise, ex, fr] {
+      c.prepare = [noise, ex, fr, cpu_points] {
         fr->make();
         const std::size_t w = static_cast<std::size_t>(fr->width);
         const std::size_t h = static_cast<std::size_t>(fr->height);
         auto out = std::make_shared<std::vector<float>>(w * h);
         prepared_case p;
         p.samples = w * h;
-        p.run = [noise, ex, fr, out, w, h] {
-          noise.render(ex, hush::scene::as_frame(fr->g), fr->t.view(),
-                       hush::image_view<float>(out->data(), w, h));
+        p.run = [noise, ex, fr, out, w, h, cpu_points] {
+          const hush::frame f = hush::scene::as_frame(fr->g);
+          if (cpu_points) {  // stage 1 here, stage 2 on ex
+            std::vector<hush::npr_gabor_splat> splats;
+            noise.make_splats(f, fr->t.view(), splats);
+            noise.splat(ex, f, splats.data(), splats.size(),
+                        hush::image_view<float>(out->data(), w, h));
+          } else {
+            noise.render(ex, f, fr->t.view(), hush::image_view<float>(out->data(), w, h));
+          }
           benchmark::DoNotOptimize(out->data());
           benchmark::ClobberMemory();
         };
@@ -119,8 +129,9 @@ void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s) {
   add_rows(cases, s, hush::exec::simd, frames, false);
   add_rows(cases, s, hush::exec::simd, frames, true);
 #if HUSH_BENCH_HAVE_GLSL
-  add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames, false,
-           {16.0});
+  for (const bool cpu_points : {false, true})
+    add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames, false,
+             {16.0}, cpu_points);
 #endif
 }
 

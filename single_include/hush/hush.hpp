@@ -15764,9 +15764,11 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
 //    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
-//  - GLSL: stage 2 on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): the
-//    records drawn as point sprites (geometry shader), the kernel and the tests per
-//    fragment, additive blending into a float target; stage 1 stays on the CPU.
+//  - GLSL: render on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): stage 1 in
+//    compute passes (counts, prefix sum, one invocation per point, the CPU's record order)
+//    where every source is constant or per object, else on the CPU; the records drawn as
+//    point sprites (geometry shader), the kernel and the tests per fragment, additive
+//    blending into a float target.
 #ifndef HUSH_NPR_GABOR_HPP
 #define HUSH_NPR_GABOR_HPP
 
@@ -16086,7 +16088,8 @@ class npr_gabor {
   // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
   // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
   // the scalar loop where the build has no SIMD), or exec::glsl{device}
-  // (float only; include hush/glsl/npr_gabor.hpp: point sprites, within the
+  // (float only; include hush/glsl/npr_gabor.hpp: both stages on the GPU where
+  // every source is constant or per object, stage 1 here otherwise; within the
   // tolerance stated there). Throws
   // hush::invalid_argument when the frame lacks a view needs() lists or is
   // malformed (frame::validate), when the triangle list is malformed
@@ -16099,9 +16102,16 @@ class npr_gabor {
               const sources& src = {}) const {
     validate(f, tris, src);
     check_out(f, out);
-    std::vector<npr_gabor_splat> splats;
-    splats_of(f, tris, splats, src);  // validated above
-    splat(ex, f, splats.data(), splats.size(), out);
+    if constexpr (detail::is_glsl_exec<Exec>::value) {
+      static_assert(std::is_same<T, float>::value, "exec::glsl renders into float images");
+      // exec::glsl{device}: both stages on the GPU where the sources allow, else stage 1 here
+      // (hush/glsl/npr_gabor.hpp, found by argument-dependent lookup).
+      npr_gabor_glsl_render(ex.device, *this, f, tris, src, out);
+    } else {
+      std::vector<npr_gabor_splat> splats;
+      splats_of(f, tris, splats, src);  // validated above
+      splat(ex, f, splats.data(), splats.size(), out);
+    }
   }
   template <class T>
   void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
@@ -16131,18 +16141,7 @@ class npr_gabor {
     check_out(f, out);
     for (std::size_t y = 0; y < out.height; ++y)
       std::fill(out.row(y), out.row(y) + out.width, T(0));
-    detail::npr_gabor_splat_job job;
-    job.splats = splats;
-    job.count = count;
-    job.depth = f.depth;
-    job.object_id = f.object_id;
-    job.triangle_id = f.triangle_id;
-    job.object_test = p_.object_test;
-    job.triangle_test = p_.triangle_test;
-    job.depth_test = p_.depth_test;
-    job.soft_depth = p_.soft_depth;
-    job.depth_tolerance = p_.depth_tolerance;
-    job.envelope_exponent = kernel_.envelope_exponent();
+    const detail::npr_gabor_splat_job job = splat_job(f, splats, count);
     if constexpr (detail::is_glsl_exec<Exec>::value) {
       static_assert(std::is_same<T, float>::value, "exec::glsl splats into float images");
       // exec::glsl{device}: hush/glsl/npr_gabor.hpp (found by argument-dependent lookup).
@@ -16158,6 +16157,48 @@ class npr_gabor {
       std::vector<detail::gabor_axis<T>> columns;
       detail::npr_gabor_splat_scalar(job, out, columns);
     }
+  }
+
+  // What stage 2 reads for `count` records at `splats` in frame f: the views and this
+  // noise's visibility tests (for the backends; splat builds it).
+  detail::npr_gabor_splat_job splat_job(const frame& f, const npr_gabor_splat* splats,
+                                        std::size_t count) const {
+    detail::npr_gabor_splat_job job;
+    job.splats = splats;
+    job.count = count;
+    job.depth = f.depth;
+    job.object_id = f.object_id;
+    job.triangle_id = f.triangle_id;
+    job.object_test = p_.object_test;
+    job.triangle_test = p_.triangle_test;
+    job.depth_test = p_.depth_test;
+    job.soft_depth = p_.soft_depth;
+    job.depth_tolerance = p_.depth_tolerance;
+    job.envelope_exponent = kernel_.envelope_exponent();
+    return job;
+  }
+
+  // The kernel every point of an object's triangles has when no source is per pixel or per
+  // vertex (each constant or per object): F (for isotropic the angle 0, i.e. (F0, 0)), a, r,
+  // the triangles' density lambda_T and the weight factor, computed as stage 1 computes them
+  // (for GPU backends that generate the points themselves). Other sources: not meaningful.
+  struct object_kernel {
+    dvec2 F;
+    double bandwidth, radius, density, scale;
+  };
+  object_kernel kernel_of_object(std::uint32_t object, const sources& src) const {
+    const point_parameters pp(*this, src);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const param_source::site at{object, nan, nan, nullptr, {nan, nan, nan}};
+    const double lambda = pp.density(at, 1.0, 1.0);
+    const point_parameters::kernel k = pp.at(at, 0.0, lambda);
+    return {k.F, k.bandwidth, k.radius, lambda, k.scale};
+  }
+  // Whether every source is constant or per object (kernel_of_object applies).
+  static bool per_object_at_most(const sources& src) {
+    for (const param_source* s : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
+      if (!s->is_constant() && s->which() != param_source::kind::per_object) return false;
+    return true;
   }
 
   // int g_F^2 for |F| = frequency and a kernel of radius `radius` (default:

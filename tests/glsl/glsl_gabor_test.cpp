@@ -25,9 +25,11 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "glsl_test_util.hpp"
@@ -399,6 +401,203 @@ npr_test::grid_scene npr_two_objects(std::size_t w, std::size_t h) {
 // err by 2 ulp. The visibility decisions must be the CPU's except at ties: a fragment whose
 // double relative depth difference is within 2^-18 of the tolerance (or twice it, soft) may
 // flip; those pixels are counted and left out.
+// GPU stage 1 (hush/glsl/npr_gabor.hpp) computes in float what CPU stage 1 computes in double
+// from the same float inputs. Per record of triangle (s_i, z_i) with edges e1, e2 from vertex
+// 0, L = max |e|, rho = z_max / z_min, kappa = (|e1x e2y| + |e1y e2x|) / |cross| >= 1 (the
+// cross product's cancellation), each op's error at most 2 ulp (GLSL asks 2.5 for division,
+// inversesqrt-based sqrt ~ 5: counted below), u = 2^-24:
+//  - N: the edges, the cross product and lambda N: |dN| / N <= 2 u (3 kappa + 4) =: nu.
+//  - weights: 1 (exact); sqrt(N) (N < 1): relative nu / 2; alpha = sqrt(N / M - 1): N / M - 1 is
+//    exact from N, so |d alpha| <= sqrt(|d(N / M)|) <= sqrt(2 nu) (sqrt is 1/2-Hoelder), which
+//    also bounds a second half that float drops or keeps (N within nu of a power of two); the
+//    thinned weight sqrt(g): |dg| <= 2 u (3 kappa + 8), |d sqrt g| <= sqrt(|dg|). Then the
+//    products with the amplitude (exact) and the weight factor: 6 u relative.
+//  - position: b from sqrt(u) (6 u), the sums and the division s = sum b z s / sum b z relative
+//    to vertex 0: |d d| <= 2 u L (24 + 7 rho); the first pixel's offset (x0 + 1/2 - s0) - d:
+//    2 u (L + r + 1) more, and both sides round c: 2 u (r + 1). Boxes equal unless the position
+//    is that close to a pixel-centre decision.
+//  - plane: 1/z_i (5 u each), slopes q = (d1 e2 - d2 e1) / cross: |dq| <= 2 u (12 L /
+//    (z_min |cross|) + |q| (3 kappa + 6)); its value at the first pixel centre 1/z0 + q . (p0 -
+//    s0): 2 u 8 / z_min + |dq| (L + r + 1); at any pixel of the box |dq| (2 r + 1) more.
+//  - frequency: exact (the table's doubles, rounded once) except isotropic, where (F r)
+//    (cos, sin) come from the library's float sincos: 2^-20 F r.
+// A record's kernel at a pixel then moves by at most |w| (slope (dc / r) 2 + 2 pi d(F r)) + dw
+// (slope = 2 A + 2 pi F r + 2 taper_k per unit of d, both axes), and the depth test may decide
+// differently within z_pixel |d plane| of its threshold.
+// What GPU stage 1 may change in one CPU record (npr_record_tolerance): extra absolute
+// error of its kernel at any pixel, and the half-width of the depth test's tie window.
+struct npr_slack {
+  double error = 0, tie = 0;
+};
+
+struct npr_record_tolerance {
+  double offset = 0, weight = 0, frequency = 0, plane0 = 0, slope = 0;
+};
+npr_record_tolerance npr_tolerance_of(const hush::npr_gabor& noise, const hush::triangle_list& t,
+                                      std::size_t tri, const hush::npr_gabor_splat& s,
+                                      const hush::npr_gabor::sources& src) {
+  const double u = std::ldexp(1.0, -24);
+  double sx[3], sy[3], z[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::uint32_t v = t.indices[3 * tri + i];
+    sx[i] = t.screen[v].x;
+    sy[i] = t.screen[v].y;
+    z[i] = t.depth[v];
+  }
+  const double e1x = sx[1] - sx[0], e1y = sy[1] - sy[0], e2x = sx[2] - sx[0], e2y = sy[2] - sy[0];
+  const double cross = e1x * e2y - e1y * e2x;
+  const double kappa = (std::fabs(e1x * e2y) + std::fabs(e1y * e2x)) / std::fabs(cross);
+  const double l = std::max({std::hypot(e1x, e1y), std::hypot(e2x, e2y)});
+  const double zmin = std::min({z[0], z[1], z[2]}), rho = std::max({z[0], z[1], z[2]}) / zmin;
+  const double nu = 2 * u * (3 * kappa + 4), r = s.radius;
+  npr_record_tolerance o;
+  // w = lod weight v scale: the LOD weight's error for this record's point j (found by its
+  // position: the CPU's records of a triangle are its points in order, those off the frame left
+  // out), times |v scale| = |w| / lod weight. |alpha_f - alpha_d| = |de| / (alpha_f + alpha_d)
+  // <= min(sqrt |de|, |de| / alpha_d), the same for sqrt(g) when thinned.
+  const hush::npr_gabor::object_kernel ok = noise.kernel_of_object(t.object_of(tri), src);
+  const double n = ok.density * 0.5 * std::fabs(cross);
+  hush::npr_gabor_lod lod = hush::npr_gabor_lod::of(n);
+  std::uint32_t j = 0;
+  for (; j < lod.count; ++j) {
+    const hush::npr_gabor::point pt = noise.point_of(t.object_of(tri), t.triangle_id[tri], j);
+    const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
+    if ((pt.b[0] * z[0] * sx[0] + pt.b[1] * z[1] * sx[1] + pt.b[2] * z[2] * sx[2]) / hw == s.x)
+      break;
+  }
+  REQUIRE(j < lod.count);
+  const double dg = 2 * u * (3 * kappa + 8);
+  double dlod = 0;  // |v| < 1
+  if (n < 1 && noise.parameters().thinning) {
+    dlod = std::sqrt(dg);
+  } else if (n < 1) {
+    dlod = lod.first_weight * nu / 2;
+  } else if (j >= lod.first) {
+    dlod = std::min(std::sqrt(2 * nu), 2 * nu / std::max(lod.second_weight, 1e-300));
+  }
+  o.weight = std::fabs(s.weight) * 6 * u + std::fabs(ok.scale) * dlod;
+  o.offset = 2 * u * (l * (24 + 7 * rho) + l + r + 1) + 2 * u * (r + 1);
+  o.frequency =
+      noise.parameters().isotropic ? std::ldexp(1.0, -20) * std::hypot(s.fx, s.fy) * r : 0;
+  o.slope =
+      2 * u *
+      (12 * l / (zmin * std::fabs(cross)) + (std::fabs(s.qx) + std::fabs(s.qy)) * (3 * kappa + 6));
+  o.plane0 = 2 * u * 8 / zmin + o.slope * (l + r + 1);
+  return o;
+}
+// The triangle index of each (object, triangle id) of the list (unique in the test scenes).
+std::vector<std::size_t> npr_triangle_of(const hush::triangle_list& t,
+                                         const std::vector<hush::npr_gabor_splat>& splats) {
+  std::vector<std::pair<std::uint64_t, std::size_t>> keys;
+  for (std::size_t i = 0; i < t.triangles(); ++i)
+    keys.push_back({(std::uint64_t(t.object_of(i)) << 32) | t.triangle_id[i], i});
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::size_t> out;
+  for (const hush::npr_gabor_splat& s : splats) {
+    const std::uint64_t k = (std::uint64_t(s.object) << 32) | s.triangle;
+    out.push_back(
+        std::lower_bound(keys.begin(), keys.end(), std::make_pair(k, std::size_t(0)))->second);
+  }
+  return out;
+}
+std::vector<npr_slack> npr_slacks(const hush::npr_gabor& noise, const hush::triangle_list& t,
+                                  const std::vector<hush::npr_gabor_splat>& splats,
+                                  const hush::npr_gabor::sources& src) {
+  namespace c = hush::detail::constants;
+  const double a = noise.kernel().envelope_exponent(), taper_k = 1.0 / (1.0 - c::kGaborTaperStart);
+  const std::vector<std::size_t> tri = npr_triangle_of(t, splats);
+  std::vector<npr_slack> out;
+  for (std::size_t i = 0; i < splats.size(); ++i) {
+    const hush::npr_gabor_splat& s = splats[i];
+    const npr_record_tolerance tol = npr_tolerance_of(noise, t, tri[i], s, src);
+    const double fr = std::hypot(s.fx, s.fy) * s.radius;
+    const double slope = 2 * a + c::kTwoPi * fr + 2 * taper_k;
+    const double plane = tol.plane0 + tol.slope * (2 * s.radius + 1);
+    // The pixel depth is at most 1 / (the plane's smallest 1/z on the box) (1 + tolerance).
+    const double pz = 2.0 / std::max(1e-30, std::fabs(s.q0 + s.qx * s.x + s.qy * s.y) -
+                                                (std::fabs(s.qx) + std::fabs(s.qy)) * s.radius);
+    out.push_back(
+        {std::fabs(s.weight) * (slope * 2 * tol.offset / s.radius + c::kTwoPi * tol.frequency) +
+             tol.weight,
+         pz * plane});
+  }
+  return out;
+}
+
+// GPU stage 1's records (read back) against CPU stage 1's, triangle by triangle in list order:
+// the same triangles, the same point count per triangle except where float N and double N
+// straddle a power of two (or 1, or a thinning threshold: `switched`, each checked to be that
+// close), the same records in the same order (ids exact, boxes exact, 1/r exact), and offsets,
+// weights, frequencies and planes within npr_tolerance_of.
+struct npr_records_compare {
+  std::size_t cpu = 0, gpu = 0, empty = 0, switched = 0, near_switch = 0;
+  double worst = 0;  // largest |GPU - CPU| / tolerance over the compared fields
+  bool same_order = true;
+};
+npr_records_compare npr_records_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
+                                            const hush::triangle_list& t,
+                                            const hush::npr_gabor::sources& src = {}) {
+  std::vector<hush::npr_gabor_splat> splats;
+  noise.make_splats(f, t, splats, src);
+  std::vector<std::uint32_t> words, ids;
+  npr_records_compare r;
+  REQUIRE(hush::glsl::npr_gabor_state(headless().device)
+              .records(noise, f, t, src, words, ids, r.empty));
+  r.cpu = splats.size();
+  r.gpu = ids.size() / 2;
+  const std::vector<std::size_t> tri = npr_triangle_of(t, splats);
+  std::size_t i = 0, g = 0;  // CPU record, GPU record
+  while (g < r.gpu) {
+    // The next triangle in the GPU's list and its records (those reaching the frame, as the
+    // CPU lists them).
+    const std::uint32_t go = ids[2 * g], gt = ids[2 * g + 1];
+    std::size_t g1 = g, i1 = i;
+    while (g1 < r.gpu && ids[2 * g1] == go && ids[2 * g1 + 1] == gt) ++g1;
+    while (i1 < splats.size() && splats[i1].object == go && splats[i1].triangle == gt) ++i1;
+    std::vector<std::size_t> kept;
+    for (std::size_t k = g; k < g1; ++k) kept.push_back(k);
+    if (kept.size() != i1 - i) {
+      ++r.switched;
+    } else {
+      for (std::size_t k = 0; k < kept.size(); ++k) {
+        hush::glsl::npr_gabor_gpu_record q, e = hush::glsl::npr_gabor_gpu_record::of(splats[i + k]);
+        std::memcpy(&q, &words[16 * kept[k]], sizeof q);
+        const npr_record_tolerance tol = npr_tolerance_of(noise, t, tri[i + k], splats[i + k], src);
+        if (!std::equal(q.box, q.box + 4, e.box) || q.kern[2] != e.kern[2]) r.same_order = false;
+        const double d[6] = {
+            std::fabs(double(q.kern[0]) - e.kern[0]) / tol.offset,
+            std::fabs(double(q.kern[1]) - e.kern[1]) / tol.offset,
+            std::fabs(double(q.kern[3]) - e.kern[3]) / tol.weight,
+            std::hypot(double(q.freq[0]) - e.freq[0], double(q.freq[1]) - e.freq[1]) /
+                std::max(tol.frequency, 1e-300),
+            std::fabs(double(q.plane[0]) - e.plane[0]) / tol.plane0,
+            std::hypot(double(q.plane[1]) - e.plane[1], double(q.plane[2]) - e.plane[2]) /
+                tol.slope};
+        for (double x : d) r.worst = std::max(r.worst, x);
+      }
+    }
+    i = i1;
+    g = g1;
+  }
+  if (i != splats.size()) r.same_order = false;  // a CPU triangle the GPU lacks, or out of order
+  // Triangles near a switch: |N / 2^k - 1| <= nu for some k, or N near 1 (double N here).
+  for (std::size_t k = 0; k < t.triangles(); ++k) {
+    double sx[3], sy[3];
+    for (std::size_t v = 0; v < 3; ++v) {
+      sx[v] = t.screen[t.indices[3 * k + v]].x;
+      sy[v] = t.screen[t.indices[3 * k + v]].y;
+    }
+    const double e1x = sx[1] - sx[0], e1y = sy[1] - sy[0], e2x = sx[2] - sx[0], e2y = sy[2] - sy[0];
+    const double cross = e1x * e2y - e1y * e2x;
+    if (cross == 0) continue;
+    const double kappa = (std::fabs(e1x * e2y) + std::fabs(e1y * e2x)) / std::fabs(cross);
+    const double n = noise.kernel_of_object(t.object_of(k), src).density * 0.5 * std::fabs(cross);
+    const double m = std::exp2(std::round(std::log2(n)));
+    r.near_switch += std::fabs(n / m - 1) <= 2 * std::ldexp(1.0, -24) * (3 * kappa + 4);
+  }
+  return r;
+}
+
 struct npr_compare {
   double max_abs = 0, rms = 0, max_vs_float = 0, worst_ratio = 0;
   std::size_t ties = 0, reached = 0;
@@ -407,25 +606,41 @@ struct npr_compare {
   std::size_t cut = 0, faded = 0;
 };
 
+// The image of `gpu_stage1` (exec::glsl render: both stages on the GPU) or of CPU stage 1's
+// records splatted on the GPU, against the double reference, within the bound above plus each
+// record's slack (GPU stage 1).
 npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
-                            const hush::triangle_list& t) {
+                            const hush::triangle_list& t, bool gpu_stage1 = true,
+                            const hush::npr_gabor::sources& src = {}) {
   namespace c = hush::detail::constants;
   const std::size_t w = f.width(), h = f.height();
   std::vector<float> gpu(w * h, -7.0f), cpu(w * h);
   std::vector<double> ref(w * h);
-  noise.render(hush::exec::glsl{headless().device}, f, t,
-               hush::image_view<float>(gpu.data(), w, h));
-  noise.render(hush::exec::scalar, f, t, hush::image_view<float>(cpu.data(), w, h));
-  noise.render(hush::exec::scalar, f, t, hush::image_view<double>(ref.data(), w, h));
   std::vector<hush::npr_gabor_splat> splats;
-  noise.make_splats(f, t, splats);
+  noise.make_splats(f, t, splats, src);
+  auto& state = hush::glsl::npr_gabor_state(headless().device);
+  const std::size_t gpu_frames = state.gpu_stage1_frames();
+  if (gpu_stage1) {
+    noise.render(hush::exec::glsl{headless().device}, f, t,
+                 hush::image_view<float>(gpu.data(), w, h), src);
+    CHECK(state.gpu_stage1_frames() == gpu_frames + 1);  // not the CPU fallback
+  } else {
+    noise.splat(hush::exec::glsl{headless().device}, f, splats.data(), splats.size(),
+                hush::image_view<float>(gpu.data(), w, h));
+  }
+  noise.render(hush::exec::scalar, f, t, hush::image_view<float>(cpu.data(), w, h), src);
+  noise.render(hush::exec::scalar, f, t, hush::image_view<double>(ref.data(), w, h), src);
+  std::vector<npr_slack> slack(splats.size());
+  if (gpu_stage1) slack = npr_slacks(noise, t, splats, src);
   const auto& p = noise.parameters();
   const double a = noise.kernel().envelope_exponent(), taper_k = 1.0 / (1.0 - c::kGaborTaperStart);
   std::vector<double> sum_w(w * h, 0.0), count(w * h, 0.0);
   std::vector<char> tie(w * h, 0);
   double k_max = 0;
   std::size_t cut = 0, faded = 0;
-  for (const hush::npr_gabor_splat& s : splats) {
+  std::vector<double> extra(w * h, 0.0);
+  for (std::size_t i = 0; i < splats.size(); ++i) {
+    const hush::npr_gabor_splat& s = splats[i];
     const double fr = std::hypot(s.fx, s.fy) * s.radius;
     double k = std::ldexp(1.0, -21) * (1 + c::kTwoPi * fr) +
                2 * std::ldexp(1.0, -21) * (2 * a + c::kTwoPi * fr + 2 * taper_k);
@@ -438,6 +653,7 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
         const std::size_t q = std::size_t(y) * w + std::size_t(x);
         sum_w[q] += std::fabs(s.weight);
         count[q] += 1;
+        extra[q] += slack[i].error;
         if (!p.depth_test) continue;
         const double rel = std::fabs(double(f.depth(std::size_t(x), std::size_t(y))) *
                                          (s.q0 + s.qx * (x + 0.5) + s.qy * (y + 0.5)) -
@@ -447,7 +663,7 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
         const double limit = p.soft_depth ? 2 * p.depth_tolerance : p.depth_tolerance;
         cut += same_object && rel > limit;
         faded += same_object && p.soft_depth && rel > p.depth_tolerance && rel <= limit;
-        const double eps = std::ldexp(1.0, -18);
+        const double eps = std::max(std::ldexp(1.0, -18), slack[i].tie);
         if (std::fabs(rel - p.depth_tolerance) <= eps ||
             (p.soft_depth && std::fabs(rel - 2 * p.depth_tolerance) <= eps))
           tie[q] = 1;
@@ -464,7 +680,7 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
     }
     r.reached += count[q] > 0;
     const double e = std::fabs(double(gpu[q]) - ref[q]);
-    const double bound = sum_w[q] * (2 * k_max + std::ldexp(1.0, -24) * count[q]);
+    const double bound = sum_w[q] * (2 * k_max + std::ldexp(1.0, -24) * count[q]) + extra[q];
     r.max_abs = std::max(r.max_abs, e);
     sq += e * e;
     r.max_vs_float = std::max(r.max_vs_float, std::fabs(double(gpu[q]) - cpu[q]));
@@ -515,19 +731,161 @@ TEST_CASE("npr: GLSL point sprites equal the CPU render within the derived toler
   q.impulses = 4;
   q.depth_test = false;
   configs.push_back({"large kernels, object test only", q});
-  for (const config& cf : configs) {
-    const std::string name = cf.name;
-    CAPTURE(name);
-    const npr_compare r = npr_against_cpu(hush::npr_gabor{cf.p}, f, t);
-    MESSAGE(name << ": GLSL vs double max " << r.max_abs << " RMS " << r.rms
-                 << ", vs CPU float max " << r.max_vs_float << ", worst error / bound "
-                 << r.worst_ratio << ", tie pixels " << r.ties << ", reached " << r.reached
-                 << ", fragments cut by depth " << r.cut << ", faded " << r.faded);
-    CHECK(r.worst_ratio <= 1.0);
-    CHECK(r.reached > w * h / 2);  // the comparison covers the frame
-    CHECK(r.ties < w * h / 100);
-    if (cf.p.depth_test && !cf.p.object_test) CHECK(r.cut > 0);  // with it, the ids decide here
-    if (cf.p.soft_depth) CHECK(r.faded > 0);
+  for (const config& cf : configs)
+    for (const bool gpu_stage1 : {false, true}) {
+      const std::string name =
+          std::string(cf.name) + (gpu_stage1 ? ", GPU stage 1" : ", CPU stage 1");
+      CAPTURE(name);
+      const npr_compare r = npr_against_cpu(hush::npr_gabor{cf.p}, f, t, gpu_stage1);
+      MESSAGE(name << ": GLSL vs double max " << r.max_abs << " RMS " << r.rms
+                   << ", vs CPU float max " << r.max_vs_float << ", worst error / bound "
+                   << r.worst_ratio << ", tie pixels " << r.ties << ", reached " << r.reached
+                   << ", fragments cut by depth " << r.cut << ", faded " << r.faded);
+      CHECK(r.worst_ratio <= 1.0);
+      CHECK(r.reached > w * h / 2);  // the comparison covers the frame
+      CHECK(r.ties < w * h / 100);
+      if (cf.p.depth_test && !cf.p.object_test) CHECK(r.cut > 0);  // with it, the ids decide here
+      if (cf.p.soft_depth) CHECK(r.faded > 0);
+    }
+}
+
+namespace {
+void check_records(const std::string& name, const hush::npr_gabor& noise, const hush::frame& f,
+                   const hush::triangle_list& t, const hush::npr_gabor::sources& src = {}) {
+  CAPTURE(name);
+  const npr_records_compare r = npr_records_against_cpu(noise, f, t, src);
+  MESSAGE(name << ": records CPU " << r.cpu << ", GPU " << r.gpu << " (and " << r.empty
+               << " off the frame), worst difference / tolerance " << r.worst
+               << ", triangles switched " << r.switched << " (near a switch " << r.near_switch
+               << ")");
+  CHECK(r.same_order);
+  CHECK(r.worst <= 1.0);
+  CHECK(r.switched <= r.near_switch);
+}
+
+// A w x h frame of object 1 at depth 1 (one grid cell covering it, whose two triangles come
+// first, ids 0 and 1) and loose triangles added after it (ids 2, 3, ...): hard cases.
+struct npr_loose : npr_test::grid_scene {
+  npr_loose(std::size_t w, std::size_t h)
+      : grid_scene(w, h, -1.0, -1.0, double(std::max(w, h)) + 2.0, 1, 1) {}
+  void add(hush::vec2 a, hush::vec2 b, hush::vec2 c) {
+    for (const hush::vec2& v : {a, b, c}) {
+      indices.push_back(static_cast<std::uint32_t>(screen.size()));
+      screen.push_back(v);
+      vdepth.push_back(1.0f);
+    }
+    tri_id.push_back(static_cast<std::uint32_t>(tri_id.size()));
+    obj_id.push_back(1u);
+  }
+};
+}  // namespace
+
+TEST_CASE(
+    "npr: GPU stage 1 records equal the CPU's: order and ids exact, values within the derived "
+    "tolerance") {
+  const npr_test::grid_scene sc = npr_two_objects(128, 128);
+  check_records("defaults", hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles());
+  hush::npr_gabor::params q = npr_params();
+  q.isotropic = true;
+  q.cull_back_faces = false;
+  check_records("isotropic, two-sided", hush::npr_gabor{q}, sc.frame(), sc.triangles());
+  // Cells of 3 px: N = 0.15 per triangle (N < 1), thinned.
+  const npr_test::grid_scene fine = npr_test::covering(64, 64, 3.0, 16.0);
+  q = npr_params();
+  q.thinning = true;
+  check_records("N < 1, thinning", hush::npr_gabor{q}, fine.frame(), fine.triangles());
+  q.thinning = false;
+  check_records("N < 1", hush::npr_gabor{q}, fine.frame(), fine.triangles());
+  // Per-object F0, omega0, a and N' (object 2 past the bandwidth table: the constant).
+  const std::vector<double> freq = {0.1, 0.2, 0.3}, angle = {0.0, 1.0, -0.5}, band = {0.1, 0.05},
+                            imp = {4.0, 8.0, 24.0};
+  hush::npr_gabor::sources src;
+  src.frequency = hush::param_source::per_object(freq);
+  src.orientation = hush::param_source::per_object(angle);
+  src.bandwidth = hush::param_source::per_object(band);
+  src.impulses = hush::param_source::per_object(imp);
+  check_records("per-object sources", hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles(),
+                src);
+  const npr_compare r =
+      npr_against_cpu(hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles(), true, src);
+  MESSAGE("per-object sources, image: max " << r.max_abs << ", worst error / bound "
+                                            << r.worst_ratio);
+  CHECK(r.worst_ratio <= 1.0);
+}
+
+TEST_CASE(
+    "npr: GPU stage 1 hard cases: empty list, zero area, back faces, N < 1, clamped N, the M "
+    "switch") {
+  const hush::npr_gabor noise{npr_params()};
+  const double lambda = noise.density();
+  npr_loose sc(64, 64);
+  sc.add({10, 10}, {20, 20}, {30, 30});  // zero area
+  sc.add({10, 10}, {40, 10}, {10, 40});  // back-facing (counter-clockwise, y up)
+  sc.add({30, 30}, {30, 31}, {31, 30});  // N = lambda / 2 < 1
+  // N sweeping across 8 and 64 in steps of ~2^-23 relative: float and double N straddle the
+  // power of two for some; each must be one the tolerance allows (the M switch).
+  for (const double target : {8.0, 64.0})
+    for (int i = -40; i < 40; ++i) {
+      const double side = std::sqrt(2 * target * (1 + i * std::ldexp(1.0, -23)) / lambda);
+      sc.add({20, 20}, {20, float(20 + side)}, {float(20 + side), 20});
+    }
+  const hush::frame f = sc.frame();
+  check_records("hard cases", noise, f, sc.triangles());
+  std::vector<std::uint32_t> words, ids;
+  std::size_t empty = 0;
+  REQUIRE(hush::glsl::npr_gabor_state(headless().device)
+              .records(noise, f, sc.triangles(), {}, words, ids, empty));
+  // The covering cell (ids 0, 1), then no zero-area (2) or back-facing (3) triangle's records.
+  std::size_t after_cell = 0;
+  while (after_cell < ids.size() && ids[after_cell + 1] < 2u) after_cell += 2;
+  REQUIRE(after_cell < ids.size());
+  CHECK(ids[after_cell + 1] == 4u);  // the N < 1 triangle's one point comes next
+  const npr_compare img = npr_against_cpu(noise, f, sc.triangles());
+  MESSAGE("hard cases, image: max " << img.max_abs << ", worst error / bound " << img.worst_ratio);
+  CHECK(img.worst_ratio <= 1.0);
+  // Clamped N: a triangle of 2 10^8 px^2 (N = 6.8 10^6 > 2^22) mostly off the frame: 2^22
+  // points (alpha = 0 at the clamp), all generated on the GPU (65537 work groups of 64 with the
+  // covering cell's: two dispatches, GL's minimum being 65535 groups), those reaching the frame
+  // equal to the CPU's.
+  npr_loose huge(32, 32);
+  huge.add({-10000, -10000}, {-10000, 10000}, {10000, -10000});
+  const hush::npr_gabor::params hp = npr_params();
+  check_records("clamped N", hush::npr_gabor{hp}, huge.frame(), huge.triangles());
+  // The empty list: an all-zero image, stage 1 still on the GPU.
+  npr_test::grid_scene none(16, 16, 0.0, 0.0, 1.0, 0, 0);
+  auto& state = hush::glsl::npr_gabor_state(headless().device);
+  const std::size_t before = state.gpu_stage1_frames();
+  std::vector<float> out(std::size_t{16} * 16, -1.0f);
+  noise.render(hush::exec::glsl{headless().device}, none.frame(), none.triangles(),
+               hush::image_view<float>(out.data(), 16, 16));
+  CHECK(state.gpu_stage1_frames() == before + 1);
+  CHECK(std::all_of(out.begin(), out.end(), [](float v) { return v == 0.0f; }));
+}
+
+TEST_CASE("npr: per-pixel and per-vertex sources run stage 1 on the CPU, automatically") {
+  const std::size_t w = 64, h = 64;
+  const npr_test::grid_scene sc = npr_test::covering(w, h, 9.0, 16.0);
+  const hush::npr_gabor noise{npr_params()};
+  std::vector<float> field(w * h);
+  for (std::size_t i = 0; i < field.size(); ++i) field[i] = 0.01f * float(i % w);
+  std::vector<float> vertex(sc.screen.size(), 0.12f);
+  hush::npr_gabor::sources pixel, vert;
+  pixel.orientation = hush::param_source::per_pixel({field.data(), w, h});
+  vert.frequency = hush::param_source::per_vertex(vertex);
+  auto& state = hush::glsl::npr_gabor_state(headless().device);
+  for (const hush::npr_gabor::sources* src : {&pixel, &vert}) {
+    const std::size_t cpu_before = state.cpu_stage1_frames(),
+                      gpu_before = state.gpu_stage1_frames();
+    std::vector<float> a(w * h), b(w * h);
+    noise.render(hush::exec::glsl{headless().device}, sc.frame(), sc.triangles(),
+                 hush::image_view<float>(a.data(), w, h), *src);
+    CHECK(state.cpu_stage1_frames() == cpu_before + 1);
+    CHECK(state.gpu_stage1_frames() == gpu_before);
+    std::vector<hush::npr_gabor_splat> splats;
+    noise.make_splats(sc.frame(), sc.triangles(), splats, *src);
+    noise.splat(hush::exec::glsl{headless().device}, sc.frame(), splats.data(), splats.size(),
+                hush::image_view<float>(b.data(), w, h));
+    CHECK(a == b);  // the same records, the same draws
   }
 }
 
@@ -588,6 +946,7 @@ TEST_CASE("npr: records beyond one storage block are drawn in order, state is re
   gl.GetIntegerv(hush::glsl::detail::kGlCurrentProgram, &program_after);
   CHECK(program_after == program_before);
   CHECK(hush::glsl::npr_gabor_state(small).draws() >= (splats.size() + 63) / 64);
+  CHECK(hush::glsl::npr_gabor_state(small).gpu_stage1_frames() == 1);  // generated in batches too
   CHECK(one == many);
   double energy = 0;
   for (float v : one) energy += double(v) * v;

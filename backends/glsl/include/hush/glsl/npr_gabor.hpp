@@ -1,23 +1,38 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // NPR Gabor noise (include/hush/npr_gabor.hpp) on the GPU, the paper's way (Benard et al.
-// 2010, sec. 3.4 and 5): stage 2, the splatting, as point sprites. Include this header to use
-// hush::exec::glsl{device} with hush::npr_gabor::render and ::splat:
+// 2010, sec. 3.4 and 5): stage 1 (the points) in compute passes, stage 2 (the splatting) as
+// point sprites. Include this header to use hush::exec::glsl{device} with
+// hush::npr_gabor::render and ::splat:
 //
 //   hush::glsl::headless_device gpu;                // or a device on the application's context
 //   noise.render(hush::exec::glsl{gpu.device}, frame, triangles, out);
 //
-// What runs where: stage 1 (make_splats: the points of every triangle, their LOD weights,
-// parameters and planes) stays on the CPU, in double, exactly as for exec::scalar; the records
-// go to shader storage buffers (64 + 8 bytes each) and are drawn as GL_POINTS, one vertex per
-// record, in record order. A geometry shader turns each into one screen-aligned quad covering
-// the record's pixel range x0 ... x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the
-// image), a fragment shader runs the visibility tests against the G-buffer (object id,
-// triangle id, depth with its tolerance, soft depth; SSBOs uploaded by frame_upload.hpp) and
-// evaluates the tapered Gabor kernel with the library's float functions (the CPU's float
-// operations, hush/glsl/gabor_glsl.hpp), and additive blending (GL_ONE, GL_ONE) sums the
-// fragments into a GL_R32F framebuffer texture, read back into `out`. The normalisation is the
-// CPU's: the weights in the records.
+// Stage 1 (render): where every parameter source is constant or per object, the triangle list
+// (vertices: screen x, y, depth; triangles: indices, id, object) and a per-object kernel table
+// (npr_gabor::kernel_of_object, double, rounded once) go to storage buffers and three compute
+// passes write the records: per triangle its count and LOD weights in float (npr_gabor_lod, the
+// thinning, the plane of 1/z), an exclusive prefix sum of the counts in one work group, then
+// one invocation per record finding its triangle by binary search in the offsets and writing
+// point j of the triangle's hush::rng stream (the GLSL library's hush_stream_key / _word: the
+// CPU's integers) at its own index: the CPU's record order, no atomics. Points whose kernel
+// misses the frame get an empty pixel range (drawn as nothing). Only the total (and an overflow
+// flag) is read back, to size the batches. Per-pixel or per-vertex sources, buffers beyond one
+// storage block, or more than 2^32 - 1 points: stage 1 on the CPU (make_splats), automatically.
+// Float instead of double changes positions, weights and planes within the tolerance derived
+// in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and double N straddle a
+// power of two the second M points (weight <= sqrt(2 nu), nu N's relative float error) exist on
+// one side only.
+//
+// Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
+// buffers, 64 + 8 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
+// geometry shader turns each into one screen-aligned quad covering the record's pixel range x0 ...
+// x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the image), a fragment shader runs the
+// visibility tests against the G-buffer (object id, triangle id, depth with its tolerance, soft
+// depth; SSBOs uploaded by frame_upload.hpp) and evaluates the tapered Gabor kernel with the
+// library's float functions (the CPU's float operations, hush/glsl/gabor_glsl.hpp), and additive
+// blending (GL_ONE, GL_ONE) sums the fragments into a GL_R32F framebuffer texture, read back into
+// `out`. The normalisation is the CPU's: the weights in the records.
 //
 // The GL geometry-output limit: one input point emits one quad, 4 vertices of 5 components
 // (gl_Position and the record index), a fixed max_vertices = 4 that no GL can refuse
@@ -45,13 +60,15 @@
 // integers (exact).
 //
 // Depths: a pixel's depth must be positive and finite, as on the CPU; a denormal depth reads as
-// 0 (fails) on GPUs that flush denormals, where the CPU passes it to the plane comparison.
+// 0 (fails) on GPUs that flush denormals, where the CPU passes it to the plane comparison. The
+// same holds for vertex depths in GPU stage 1: a triangle with a denormal vertex depth emits
+// nothing there.
 //
 // Throws std::runtime_error for GL errors (and when the context lacks storage blocks in the
 // geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
 // driver has them). Leaves the current program, vertex array, framebuffers, viewport, blend and
 // the enables it touches (blend, depth, stencil, scissor, cull face) as it found them; rebinds
-// the indexed storage-buffer bindings 0 to 4 (as hush::glsl::device does).
+// the indexed storage-buffer bindings 0 to 6 (as hush::glsl::device does).
 #ifndef HUSH_GLSL_NPR_GABOR_HPP
 #define HUSH_GLSL_NPR_GABOR_HPP
 
@@ -184,13 +201,15 @@ struct gl_raster_api {
 // with (cx, cy) = (x0 + 1/2, y0 + 1/2) - position (the first pixel centre's offset, pixels);
 // freq = (F_x r, F_y r, -, -) (the kernel's phase per radius, the CPU's float phi); plane =
 // (1/z at the first pixel centre, d(1/z)/dx, d(1/z)/dy, -); ids = (object, triangle, -, -).
-constexpr const char* kNprGaborRecords = R"glsl(
+constexpr const char* kNprGaborRecord = R"glsl(
 struct hush_npr_splat {
   ivec4 box;
   vec4 kern;
   vec4 freq;
   vec4 plane;
 };
+)glsl";
+constexpr const char* kNprGaborRecords = R"glsl(
 layout(std430, binding = 0) readonly buffer hush_npr_splats_b { hush_npr_splat hush_npr_splats[]; };
 uniform uvec2 hush_size;  // frame width, height
 )glsl";
@@ -213,6 +232,7 @@ flat out uint hush_g_splat;
 void main() {
   uint i = hush_v_splat[0];
   ivec4 b = hush_npr_splats[i].box;
+  if (b.x > b.z || b.y > b.w) return;  // a GPU-made record whose kernel misses the image
   vec2 lo = vec2(b.xy) / vec2(hush_size) * 2.0 - 1.0;
   vec2 hi = vec2(b.zw + 1) / vec2(hush_size) * 2.0 - 1.0;
   hush_g_splat = i; gl_Position = vec4(lo.x, lo.y, 0.0, 1.0); EmitVertex();
@@ -264,7 +284,239 @@ void main() {
 }
 )glsl";
 
+// ---- Stage 1 on the GPU: three compute passes (hush_npr_stage1_source(pass)).
+// Inputs, uploaded once per frame: vertices (screen x, y, depth, -) and triangles (5 words:
+// three vertex indices, triangle id, object id); the per-object kernel table (entry
+// min(object, hush_table_last); the last entry is the params' constants). Every value read
+// from the table was computed on the CPU in double by npr_gabor::kernel_of_object.
+constexpr const char* kNprGaborStage1Common = R"glsl(
+struct hush_npr_kernel {
+  vec4 freq;  // (F_x r, F_y r, |F| r, 1/r)  (isotropic: F = (F0, 0))
+  vec4 size;  // (r, lambda_T, weight factor, -)
+};
+struct hush_npr_lod {
+  uvec4 lod;    // (points, first M, bits of the first M's weight, bits of the others')
+  vec4 plane;   // (1/z at vertex 0, d(1/z)/dx, d(1/z)/dy, -)
+};
+layout(std430, binding = 0) readonly buffer hush_npr_vertices_b { vec4 hush_npr_vertices[]; };
+layout(std430, binding = 1) readonly buffer hush_npr_triangles_b { uint hush_npr_triangles[]; };
+layout(std430, binding = 2) readonly buffer hush_npr_table_b { hush_npr_kernel hush_npr_table[]; };
+uniform uint hush_tris;        // triangles
+uniform uint hush_table_last;  // the constants' entry
+uniform uint hush_group_base;  // first work group of this dispatch
+uniform uvec2 hush_size;       // frame width, height
+// Triangle t's vertex 0, its edges to vertices 1 and 2, the depths; false where the CPU's
+// stage 1 skips it before the area (a depth not in front or not finite, a non-finite
+// position): the exponent and sign bits decide, which no NaN-folding compiler can change.
+bool hush_npr_bad(float z) {
+  uint b = floatBitsToUint(z);
+  return z == 0.0 || (b & HUSH_FLOAT_SIGN_MASK) != 0u || hush_is_nonfinite(z);
+}
+bool hush_npr_triangle(uint t, out vec2 s0, out vec2 e1, out vec2 e2, out vec3 z) {
+  vec4 v0 = hush_npr_vertices[hush_npr_triangles[5u * t]];
+  vec4 v1 = hush_npr_vertices[hush_npr_triangles[5u * t + 1u]];
+  vec4 v2 = hush_npr_vertices[hush_npr_triangles[5u * t + 2u]];
+  s0 = v0.xy;
+  e1 = v1.xy - v0.xy;
+  e2 = v2.xy - v0.xy;
+  z = vec3(v0.z, v1.z, v2.z);
+  return !(hush_npr_bad(v0.z) || hush_npr_bad(v1.z) || hush_npr_bad(v2.z) ||
+           hush_is_nonfinite(v0.x) || hush_is_nonfinite(v0.y) || hush_is_nonfinite(v1.x) ||
+           hush_is_nonfinite(v1.y) || hush_is_nonfinite(v2.x) || hush_is_nonfinite(v2.y));
+}
+hush_npr_kernel hush_npr_kernel_of(uint object) {
+  return hush_npr_table[min(object, hush_table_last)];
+}
+// npr_gabor's triangle_key: hash32(hash32(seed_key(seed), object), triangle), its stream.
+uint hush_npr_stream(uint key, uint t) {
+  return hush_stream_key(hush_hash32(hush_hash32(key, hush_npr_triangles[5u * t + 4u]),
+                                     hush_npr_triangles[5u * t + 3u]), HUSH_NPR_STREAM);
+}
+)glsl";
+
+// Pass 1, one invocation per triangle: its point count and LOD weights (npr_gabor_lod::of,
+// thinning), in float, and its plane of 1/z; count 0 for every triangle stage 1 skips.
+constexpr const char* kNprGaborCount = R"glsl(
+layout(local_size_x = HUSH_NPR_GROUP) in;
+layout(std430, binding = 3) writeonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
+uniform uint hush_key;   // seed_key(seed)
+uniform uint hush_opts;  // 1 cull back faces, 2 thinning
+void main() {
+  uint t = (hush_group_base + gl_WorkGroupID.x) * uint(HUSH_NPR_GROUP) + gl_LocalInvocationID.x;
+  if (t >= hush_tris) return;
+  hush_npr_lod o;
+  o.lod = uvec4(0u);
+  o.plane = vec4(0.0);
+  vec2 s0, e1, e2;
+  vec3 z;
+  if (!hush_npr_triangle(t, s0, e1, e2, z)) { hush_npr_lods[t] = o; return; }
+  // Twice the signed area, y down: front faces are negative.
+  float cross = e1.x * e2.y - e1.y * e2.x;
+  if ((hush_opts & 1u) != 0u && !(cross < 0.0)) { hush_npr_lods[t] = o; return; }
+  if (cross == 0.0 || hush_is_nonfinite(cross)) { hush_npr_lods[t] = o; return; }
+  hush_npr_kernel k = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]);
+  float r = k.size.x;
+  vec2 lo = s0 + min(min(e1, e2), vec2(0.0)), hi = s0 + max(max(e1, e2), vec2(0.0));
+  if (hi.x + r < 0.0 || lo.x - r > float(hush_size.x) || hi.y + r < 0.0 ||
+      lo.y - r > float(hush_size.y)) { hush_npr_lods[t] = o; return; }
+  float n = k.size.y * 0.5 * abs(cross);
+  if (!(n > 0.0)) { hush_npr_lods[t] = o; return; }
+  n = min(n, HUSH_NPR_MAX_POINTS);
+  float w1 = 1.0, w2 = 0.0;
+  uint first, count;
+  if (n < 1.0) {
+    first = count = 1u;
+    w1 = sqrt(n);
+    if ((hush_opts & 2u) != 0u) {
+      // npr_gabor::thinning_uniform: the stream's last two words, 27 + 26 bits.
+      uint key = hush_npr_stream(hush_key, t);
+      float u = float(hush_stream_word(key, ~1u) >> 5u) * HUSH_NPR_2M27 +
+                float(hush_stream_word(key, ~0u) >> 6u) * HUSH_NPR_2M53;
+      float g = n <= 0.5 ? max(0.0, 1.0 - u / (2.0 * n)) : 1.0 - 2.0 * (1.0 - n) * u;
+      w1 = sqrt(g);
+      if (!(w1 > 0.0)) { hush_npr_lods[t] = o; return; }
+    }
+  } else {
+    // M = 2^floor(log2 N) from the exponent bits (N >= 1 is normal): exact, as frexp.
+    first = 1u << ((floatBitsToUint(n) >> 23u) - 127u);
+    w2 = sqrt(n / float(first) - 1.0);  // alpha(N), eq. 4; n / M - 1 exact
+    count = w2 > 0.0 ? 2u * first : first;
+  }
+  // The plane: 1/z = 1/z0 + qx (x - s0.x) + qy (y - s0.y).
+  float d1 = 1.0 / z.y - 1.0 / z.x, d2 = 1.0 / z.z - 1.0 / z.x, inv = 1.0 / cross;
+  o.lod = uvec4(count, first, floatBitsToUint(w1), floatBitsToUint(w2));
+  o.plane = vec4(1.0 / z.x, (d1 * e2.y - d2 * e1.y) * inv, (d2 * e1.x - d1 * e2.x) * inv, 0.0);
+  hush_npr_lods[t] = o;
+}
+)glsl";
+
+// Pass 2, one work group: the exclusive prefix sum of the counts (offsets[t], offsets[T] = the
+// total, offsets[T + 1] = 1 where it overflowed 32 bits). Each invocation sums a run of
+// consecutive triangles, a Hillis-Steele scan adds the runs, each writes its run's offsets.
+constexpr const char* kNprGaborScan = R"glsl(
+layout(local_size_x = HUSH_NPR_SCAN) in;
+layout(std430, binding = 3) readonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
+layout(std430, binding = 4) writeonly buffer hush_npr_offsets_b { uint hush_npr_offsets[]; };
+shared uint hush_run[HUSH_NPR_SCAN];
+shared uint hush_over[HUSH_NPR_SCAN];
+void main() {
+  uint i = gl_LocalInvocationID.x;
+  uint chunk = (hush_tris + uint(HUSH_NPR_SCAN) - 1u) / uint(HUSH_NPR_SCAN);
+  uint lo = min(i * chunk, hush_tris), hi = min(lo + chunk, hush_tris);
+  uint sum = 0u, over = 0u, carry;
+  for (uint t = lo; t < hi; ++t) {
+    sum = uaddCarry(sum, hush_npr_lods[t].lod.x, carry);
+    over |= carry;
+  }
+  hush_run[i] = sum;
+  hush_over[i] = over;
+  barrier();
+  for (uint d = 1u; d < uint(HUSH_NPR_SCAN); d <<= 1u) {
+    uint v = i >= d ? hush_run[i - d] : 0u, f = i >= d ? hush_over[i - d] : 0u;
+    barrier();
+    hush_run[i] = uaddCarry(hush_run[i], v, carry);
+    hush_over[i] |= f | carry;
+    barrier();
+  }
+  uint at = i == 0u ? 0u : hush_run[i - 1u];
+  for (uint t = lo; t < hi; ++t) {
+    hush_npr_offsets[t] = at;
+    at += hush_npr_lods[t].lod.x;
+  }
+  if (i == uint(HUSH_NPR_SCAN) - 1u) {
+    hush_npr_offsets[hush_tris] = hush_run[i];
+    hush_npr_offsets[hush_tris + 1u] = hush_over[i];
+  }
+}
+)glsl";
+
+// Pass 3, one invocation per record of the batch [hush_base, hush_base + hush_batch): its
+// triangle by binary search in the offsets, its point j = record - offset, written at its own
+// index (the CPU's order: triangle by triangle, points in stream order). A point whose kernel
+// misses the image gets an empty box (the geometry stage skips it) where the CPU leaves it out.
+constexpr const char* kNprGaborPoints = R"glsl(
+layout(local_size_x = HUSH_NPR_GROUP) in;
+layout(std430, binding = 3) readonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
+layout(std430, binding = 4) readonly buffer hush_npr_offsets_b { uint hush_npr_offsets[]; };
+layout(std430, binding = 5) writeonly buffer hush_npr_out_b { hush_npr_splat hush_npr_out[]; };
+layout(std430, binding = 6) writeonly buffer hush_npr_ids_b { uvec2 hush_npr_out_ids[]; };
+uniform uint hush_key;        // seed_key(seed)
+uniform uint hush_isotropic;  // 1: each point's own angle
+uniform uint hush_base, hush_batch;
+void main() {
+  uint k = (hush_group_base + gl_WorkGroupID.x) * uint(HUSH_NPR_GROUP) + gl_LocalInvocationID.x;
+  if (k >= hush_batch) return;
+  uint i = hush_base + k;
+  uint lo = 0u, hi = hush_tris;  // offsets[lo] <= i < offsets[hi]
+  while (hi - lo > 1u) {
+    uint mid = lo + (hi - lo) / 2u;
+    if (hush_npr_offsets[mid] <= i) lo = mid; else hi = mid;
+  }
+  uint t = lo, j = i - hush_npr_offsets[t];
+  hush_npr_lod l = hush_npr_lods[t];
+  vec2 s0, e1, e2;
+  vec3 z;
+  hush_npr_triangle(t, s0, e1, e2, z);
+  hush_npr_kernel kn = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]);
+  // npr_gabor::point_of: words W j and W j + 1 of the triangle's stream.
+  uint key = hush_npr_stream(hush_key, t);
+  uint w0 = hush_stream_word(key, HUSH_NPR_WORDS * j), w1 = hush_stream_word(key, HUSH_NPR_WORDS * j + 1u);
+  float su = sqrt(hush_gabor_half(w0, 0u)), v = hush_gabor_half(w0, 1u);
+  vec3 b = vec3(1.0 - su, su * (1.0 - v), su * v);
+  // s = sum b_i z_i s_i / sum b_i z_i, relative to vertex 0.
+  vec2 d = (b.y * z.y * e1 + b.z * z.z * e2) / (b.x * z.x + b.y * z.y + b.z * z.z);
+  vec2 at = s0 + d;
+  float r = kn.size.x;
+  vec2 wh = vec2(hush_size) - 1.0;
+  vec2 p0 = max(ceil(at - r - 0.5), vec2(0.0)), p1 = min(floor(at + r - 0.5), wh);
+  hush_npr_splat o;
+  o.box = ivec4(p0, p1);
+  if (any(greaterThan(p0, p1))) o.box = ivec4(1, 1, 0, 0);
+  vec2 c = (p0 + 0.5 - s0) - d;  // the first pixel centre's offset, relative to vertex 0
+  float amplitude = 2.0 * hush_gabor_half(w1, 0u) - 1.0;
+  float lw = uintBitsToFloat(j < l.lod.y ? l.lod.z : l.lod.w);
+  vec2 f = kn.freq.xy;
+  if (hush_isotropic != 0u) {
+    vec2 sc = hush_sincos_turns(hush_gabor_half(w1, 1u));
+    f = kn.freq.z * vec2(sc.y, sc.x);
+  }
+  o.kern = vec4(c, kn.freq.w, lw * amplitude * kn.size.z);
+  o.freq = vec4(f, 0.0, 0.0);
+  vec2 q = p0 + 0.5 - s0;
+  o.plane = vec4(l.plane.x + l.plane.y * q.x + l.plane.z * q.y, l.plane.y, l.plane.z, 0.0);
+  hush_npr_out[k] = o;
+  hush_npr_out_ids[k] = uvec2(hush_npr_triangles[5u * t + 4u], hush_npr_triangles[5u * t + 3u]);
+}
+)glsl";
+
 }  // namespace detail
+
+// The compute passes of stage 1 on the GPU (#version 430 core), pass 0 counts, 1 scans, 2
+// writes the records; for hush glsl-export and tests.
+constexpr int kNprGaborStage1Passes = 3;
+// Work-group sizes (within GL 4.3's minimum of 1024 invocations per group).
+constexpr int kNprGaborGroupSize = 64;
+constexpr int kNprGaborScanSize = 256;
+inline std::string npr_gabor_stage1_source(int pass) {
+  namespace c = hush::detail::constants;
+  static const char* const names[kNprGaborStage1Passes] = {
+      "counts and LOD weights per triangle", "prefix sum of the counts", "one record per point"};
+  static const char* const bodies[kNprGaborStage1Passes] = {
+      detail::kNprGaborCount, detail::kNprGaborScan, detail::kNprGaborPoints};
+  const int p = std::min(std::max(pass, 0), kNprGaborStage1Passes - 1);
+  auto f32 = [](double v) {
+    return glsl_literal(glsl_constant::type::f32, detail::float_bits(static_cast<float>(v)));
+  };
+  return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING " NPR Gabor stage 1: ") +
+         names[p] + " (hush/glsl/npr_gabor.hpp).\n#define HUSH_NPR_GROUP " +
+         std::to_string(kNprGaborGroupSize) + "\n#define HUSH_NPR_SCAN " +
+         std::to_string(kNprGaborScanSize) + "\n#define HUSH_NPR_STREAM " +
+         std::to_string(c::kNprGaborStream) + "u\n#define HUSH_NPR_WORDS " +
+         std::to_string(c::kNprGaborWordsPerPoint) + "u\n#define HUSH_NPR_MAX_POINTS " +
+         f32(c::kNprGaborMaxPoints) + "\n#define HUSH_NPR_2M27 " + f32(0x1p-27) +
+         "\n#define HUSH_NPR_2M53 " + f32(0x1p-53) + "\n" + library() + detail::kNprGaborRecord +
+         detail::kNprGaborStage1Common + bodies[p];
+}
 
 // The sources of the three stages (#version 430 core), for hush glsl-export and tests.
 inline std::string npr_gabor_vertex_source() {
@@ -276,13 +528,13 @@ inline std::string npr_gabor_geometry_source() {
   return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
                      " NPR Gabor splats: geometry stage, one quad per record.\n#define "
                      "HUSH_NPR_SPRITE_VERTICES ") +
-         std::to_string(kNprGaborSpriteVertices) + "\n" + detail::kNprGaborRecords +
-         detail::kNprGaborGeometry;
+         std::to_string(kNprGaborSpriteVertices) + "\n" + detail::kNprGaborRecord +
+         detail::kNprGaborRecords + detail::kNprGaborGeometry;
 }
 inline std::string npr_gabor_fragment_source() {
   return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
                      " NPR Gabor splats: fragment stage, tests and kernel.\n") +
-         library() + detail::kNprGaborRecords + detail::kNprGaborFragment;
+         library() + detail::kNprGaborRecord + detail::kNprGaborRecords + detail::kNprGaborFragment;
 }
 
 // The limits of the context current on this thread (see npr_gabor_limits).
@@ -301,6 +553,27 @@ inline npr_gabor_limits npr_gabor_gl_limits(const detail::gl_api& gl) {
   return l;
 }
 
+// One record as the shaders read it (std430, 64 bytes): the pixel range; the first pixel
+// centre's offset from the point (cx, cy) = (x0 + 1/2, y0 + 1/2) - position, 1/r and the
+// weight; (F_x r, F_y r); the plane of 1/z at the first pixel centre and its slopes.
+struct npr_gabor_gpu_record {
+  std::int32_t box[4];  // x0, y0, x1, y1 (x0 > x1: empty, drawn as nothing)
+  float kern[4];        // cx, cy, 1/r, weight
+  float freq[4];        // F_x r, F_y r, -, -
+  float plane[4];       // 1/z at (x0 + 1/2, y0 + 1/2), d(1/z)/dx, d(1/z)/dy, -
+  // The CPU record's form: offsets and the plane formed in double and rounded once.
+  static npr_gabor_gpu_record of(const npr_gabor_splat& r) {
+    const double fx0 = static_cast<double>(r.x0) + 0.5, fy0 = static_cast<double>(r.y0) + 0.5;
+    return {{r.x0, r.y0, r.x1, r.y1},
+            {static_cast<float>(fx0 - r.x), static_cast<float>(fy0 - r.y),
+             static_cast<float>(1.0 / r.radius), static_cast<float>(r.weight)},
+            {static_cast<float>(r.fx * r.radius), static_cast<float>(r.fy * r.radius), 0.0f, 0.0f},
+            {static_cast<float>(r.q0 + r.qx * fx0 + r.qy * fy0), static_cast<float>(r.qx),
+             static_cast<float>(r.qy), 0.0f}};
+  }
+};
+static_assert(sizeof(npr_gabor_gpu_record) == kNprGaborRecordBytes, "std430 record layout");
+
 namespace detail {
 
 // The GPU side of NPR Gabor splatting on one device: program, framebuffer, buffers.
@@ -317,7 +590,10 @@ class npr_gabor_gpu {
     program_ = link_program(gl_, {{kGlVertexShader, npr_gabor_vertex_source()},
                                   {kGlGeometryShader, npr_gabor_geometry_source()},
                                   {kGlFragmentShader, npr_gabor_fragment_source()}});
+    for (int i = 0; i < kNprGaborStage1Passes; ++i)
+      stage1_[i] = link_program(gl_, {{kGlComputeShader, npr_gabor_stage1_source(i)}});
     gl_.GenBuffers(2, buffers_);
+    gl_.GenBuffers(kStage1Buffers, stage1_buffers_);
     gl_.GenTextures(1, &texture_);
     gr_.GenFramebuffers(1, &fbo_);
     gr_.GenVertexArrays(1, &vao_);
@@ -329,14 +605,92 @@ class npr_gabor_gpu {
     gr_.DeleteVertexArrays(1, &vao_);
     gr_.DeleteFramebuffers(1, &fbo_);
     gl_.DeleteTextures(1, &texture_);
+    gl_.DeleteBuffers(kStage1Buffers, stage1_buffers_);
     gl_.DeleteBuffers(2, buffers_);
   }
 
   const npr_gabor_limits& limits() const { return limits_; }
   std::size_t draws() const { return draws_; }
+  // Frames whose stage 1 ran on the GPU (render), and those it handed back to the CPU.
+  std::size_t gpu_stage1_frames() const { return gpu_frames_; }
+  std::size_t cpu_stage1_frames() const { return cpu_frames_; }
 
   // Stage 2 of `j` into out (frame-sized, validated by npr_gabor::splat).
   void splat(const hush::detail::npr_gabor_splat_job& j, const image_view<float>& out) {
+    draw(j, out, j.count, [&](std::size_t b0, std::size_t m) { pack(j.splats + b0, m); });
+  }
+
+  // Both stages of noise.render on the GPU (arguments validated by render); stage 1 on the
+  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, buffers beyond one
+  // storage block, more than 2^32 - 1 points).
+  void render(const npr_gabor& noise, const frame& f, const triangle_list& tris,
+              const npr_gabor::sources& src, const image_view<float>& out) {
+    std::size_t total = 0;
+    if (!stage1(noise, f, tris, src, total)) {
+      ++cpu_frames_;
+      std::vector<npr_gabor_splat> splats;
+      noise.make_splats(f, tris, splats, src);
+      splat(noise.splat_job(f, splats.data(), splats.size()), out);
+      return;
+    }
+    ++gpu_frames_;
+    const state_guard guard(gl_, gr_);  // generate() switches programs between the draws
+    draw(noise.splat_job(f, nullptr, 0), out, total,
+         [&](std::size_t b0, std::size_t m) { generate(b0, m); });
+  }
+
+  // Stage 1 on the GPU alone, its records read back: for each record in order whose pixel
+  // range is not empty, the 16 words of npr_gabor_gpu_record (box, kern, freq, plane) and 2 ids;
+  // `empty` counts the others (points whose kernel misses the frame). False (nothing written)
+  // where render would run stage 1 on the CPU. For tests and debugging.
+  bool records(const npr_gabor& noise, const frame& f, const triangle_list& tris,
+               const npr_gabor::sources& src, std::vector<std::uint32_t>& words,
+               std::vector<std::uint32_t>& ids, std::size_t& empty) {
+    std::size_t total = 0;
+    if (!stage1(noise, f, tris, src, total)) return false;
+    const state_guard guard(gl_, gr_);
+    words.clear();
+    ids.clear();
+    empty = 0;
+    const std::size_t batch = batch_records();
+    std::vector<std::uint32_t> w, d;
+    for (std::size_t b0 = 0; b0 < total; b0 += batch) {
+      const std::size_t m = std::min(batch, total - b0);
+      generate(b0, m);
+      gl_.MemoryBarrier(kGlBufferUpdateBarrierBit);
+      w.resize(m * 16);
+      d.resize(m * 2);
+      gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 64), w.data());
+      gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 8), d.data());
+      for (std::size_t k = 0; k < m; ++k) {
+        npr_gabor_gpu_record r;
+        std::memcpy(&r, &w[16 * k], sizeof r);
+        if (r.box[0] > r.box[2] || r.box[1] > r.box[3]) {
+          ++empty;
+          continue;
+        }
+        words.insert(words.end(), w.begin() + static_cast<std::ptrdiff_t>(16 * k),
+                     w.begin() + static_cast<std::ptrdiff_t>(16 * k + 16));
+        ids.insert(ids.end(), {d[2 * k], d[2 * k + 1]});
+      }
+    }
+    gl_.check("hush::glsl::npr_gabor: reading stage 1's records");
+    return true;
+  }
+
+ private:
+  // Records per batch: one storage block.
+  std::size_t batch_records() const {
+    return std::max<std::size_t>(1, dev_.max_buffer_bytes() / kNprGaborRecordBytes);
+  }
+
+  // Stage 2: the records [0, total) of the frame in batches; fill(b0, m) puts records
+  // b0 ... b0 + m - 1 into buffers_[0] (and their ids into buffers_[1]).
+  template <class Fill>
+  void draw(const hush::detail::npr_gabor_splat_job& j, const image_view<float>& out,
+            std::size_t total, Fill fill) {
     namespace c = hush::detail::constants;
     const std::size_t w = out.width, h = out.height;
     if (w > static_cast<std::size_t>(limits_.max_frame_side) ||
@@ -375,18 +729,21 @@ class npr_gabor_gpu {
     const frame_view any = j.depth_test    ? frame_view::depth
                            : j.object_test ? frame_view::object_id
                                            : frame_view::triangle_id;
-    frame_.bind(j.depth_test ? frame_view::depth : any, 1);
-    frame_.bind(j.object_test ? frame_view::object_id : any, 2);
-    frame_.bind(j.triangle_test ? frame_view::triangle_id : any, 3);
-    if (which == frame_view::none) {  // no test: bind the records' buffer (never read)
-      for (gl_uint b = 1; b <= 3; ++b) gl_.BindBufferBase(kGlShaderStorageBuffer, b, buffers_[0]);
-    }
     // Records in batches of one storage block, drawn in order.
-    const std::size_t batch =
-        std::max<std::size_t>(1, dev_.max_buffer_bytes() / kNprGaborRecordBytes);
-    for (std::size_t b0 = 0; b0 < j.count; b0 += batch) {
-      const std::size_t m = std::min(batch, j.count - b0);
-      pack(j.splats + b0, m);
+    const std::size_t batch = batch_records();
+    for (std::size_t b0 = 0; b0 < total; b0 += batch) {
+      const std::size_t m = std::min(batch, total - b0);
+      fill(b0, m);
+      gl_.UseProgram(program_.id());
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 0, buffers_[0]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, buffers_[1]);
+      if (which == frame_view::none) {  // no test: bind the records' buffer (never read)
+        for (gl_uint b = 1; b <= 3; ++b) gl_.BindBufferBase(kGlShaderStorageBuffer, b, buffers_[0]);
+      } else {
+        frame_.bind(j.depth_test ? frame_view::depth : any, 1);
+        frame_.bind(j.object_test ? frame_view::object_id : any, 2);
+        frame_.bind(j.triangle_test ? frame_view::triangle_id : any, 3);
+      }
       gr_.DrawArrays(kGlPoints, 0, static_cast<gl_sizei>(m));
       ++draws_;
     }
@@ -482,26 +839,10 @@ class npr_gabor_gpu {
     words_.resize(m * 16);
     ids_.resize(m * 2);
     for (std::size_t i = 0; i < m; ++i) {
-      const npr_gabor_splat& r = s[i];
-      std::uint32_t* o = words_.data() + 16 * i;
-      const std::int32_t box[4] = {r.x0, r.y0, r.x1, r.y1};
-      std::memcpy(o, box, sizeof box);
-      const double fx0 = static_cast<double>(r.x0) + 0.5, fy0 = static_cast<double>(r.y0) + 0.5;
-      const float f[12] = {static_cast<float>(fx0 - r.x),
-                           static_cast<float>(fy0 - r.y),
-                           static_cast<float>(1.0 / r.radius),
-                           static_cast<float>(r.weight),
-                           static_cast<float>(r.fx * r.radius),
-                           static_cast<float>(r.fy * r.radius),
-                           0.0f,
-                           0.0f,
-                           static_cast<float>(r.q0 + r.qx * fx0 + r.qy * fy0),
-                           static_cast<float>(r.qx),
-                           static_cast<float>(r.qy),
-                           0.0f};
-      std::memcpy(o + 4, f, sizeof f);
-      ids_[2 * i] = r.object;
-      ids_[2 * i + 1] = r.triangle;
+      const npr_gabor_gpu_record g = npr_gabor_gpu_record::of(s[i]);
+      std::memcpy(words_.data() + 16 * i, &g, sizeof g);
+      ids_[2 * i] = s[i].object;
+      ids_[2 * i + 1] = s[i].triangle;
     }
     gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
     gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(words_.size() * 4),
@@ -513,13 +854,144 @@ class npr_gabor_gpu {
     gl_.BindBufferBase(kGlShaderStorageBuffer, 4, buffers_[1]);
   }
 
+  void set(gl_uint prog, const char* name, gl_uint v) const {
+    gl_.Uniform1ui(gl_.GetUniformLocation(prog, name), v);
+  }
+  // Runs `prog` over `items` invocations in groups of `group`, at most 65535 groups (GL 4.3's
+  // minimum GL_MAX_COMPUTE_WORK_GROUP_COUNT) per dispatch; hush_group_base says where a
+  // dispatch starts.
+  void dispatch(gl_uint prog, std::size_t items, std::size_t group) const {
+    constexpr std::size_t kMaxGroups = 65535;
+    const std::size_t groups = (items + group - 1) / group;
+    for (std::size_t g0 = 0; g0 < groups; g0 += kMaxGroups) {
+      set(prog, "hush_group_base", static_cast<gl_uint>(g0));
+      gl_.DispatchCompute(static_cast<gl_uint>(std::min(kMaxGroups, groups - g0)), 1, 1);
+    }
+  }
+  void upload(int which, const void* data, std::size_t bytes, gl_uint binding) const {
+    gl_.BindBuffer(kGlShaderStorageBuffer, stage1_buffers_[which]);
+    gl_.BufferData(kGlShaderStorageBuffer,
+                   static_cast<gl_sizeiptr>(std::max<std::size_t>(bytes, 4)), data, kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, binding, stage1_buffers_[which]);
+  }
+  void bind_stage1() const {
+    for (int b = 0; b < kStage1Buffers; ++b)
+      gl_.BindBufferBase(kGlShaderStorageBuffer, static_cast<gl_uint>(b), stage1_buffers_[b]);
+  }
+
+  // Stage 1's first two passes: uploads the triangles and the per-object kernels, counts each
+  // triangle's points and their offsets; `total` the number of records. False where the GPU
+  // cannot run stage 1 (see render).
+  bool stage1(const npr_gabor& noise, const frame& f, const triangle_list& tris,
+              const npr_gabor::sources& src, std::size_t& total) {
+    if (!npr_gabor::per_object_at_most(src)) return false;
+    const std::size_t nt = tris.triangles(), nv = tris.vertices();
+    std::size_t objects = 0;  // table entries before the constants' one
+    for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
+      objects = std::max(objects, p->table_size());
+    const std::size_t most = dev_.max_buffer_bytes();
+    if (nt * 32 > most || (nt + 2) * 4 > most || nv * 16 > most || nt * 20 > most ||
+        (objects + 1) * 32 > most || nt + 2 > 0xFFFFFFFFu)
+      return false;
+    const state_guard guard(gl_, gr_);
+    // Vertices (x, y, depth, -), triangles (3 indices, id, object), the kernel table.
+    floats_.assign(std::max<std::size_t>(nv, 1) * 4, 0.0f);
+    for (std::size_t v = 0; v < nv; ++v) {
+      floats_[4 * v] = tris.screen[v].x;
+      floats_[4 * v + 1] = tris.screen[v].y;
+      floats_[4 * v + 2] = tris.depth[v];
+    }
+    upload(0, floats_.data(), nv * 16, 0);
+    words_.assign(std::max<std::size_t>(nt, 1) * 5, 0u);
+    for (std::size_t t = 0; t < nt; ++t) {
+      for (std::size_t i = 0; i < 3; ++i) words_[5 * t + i] = tris.indices[3 * t + i];
+      words_[5 * t + 3] = tris.triangle_id[t];
+      words_[5 * t + 4] = tris.object_of(t);
+    }
+    upload(1, words_.data(), nt * 20, 1);
+    floats_.assign((objects + 1) * 8, 0.0f);
+    for (std::size_t o = 0; o <= objects; ++o) {
+      const npr_gabor::object_kernel k = noise.kernel_of_object(static_cast<std::uint32_t>(o), src);
+      const double e[8] = {k.F.x * k.radius,
+                           k.F.y * k.radius,
+                           std::hypot(k.F.x, k.F.y) * k.radius,
+                           1.0 / k.radius,
+                           k.radius,
+                           k.density,
+                           k.scale,
+                           0.0};
+      for (int i = 0; i < 8; ++i)
+        floats_[8 * o + static_cast<std::size_t>(i)] = static_cast<float>(e[i]);
+    }
+    upload(2, floats_.data(), floats_.size() * 4, 2);
+    upload(3, nullptr, nt * 32, 3);
+    upload(4, nullptr, (nt + 2) * 4, 4);
+    const npr_gabor::params& p = noise.parameters();
+    const gl_uint key = seed_key(p.seed);
+    for (int pass = 0; pass < kNprGaborStage1Passes; ++pass) {
+      const gl_uint prog = stage1_[pass].id();
+      gl_.UseProgram(prog);
+      set(prog, "hush_tris", static_cast<gl_uint>(nt));
+      set(prog, "hush_table_last", static_cast<gl_uint>(objects));
+      gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), static_cast<gl_uint>(f.width()),
+                     static_cast<gl_uint>(f.height()));
+      set(prog, "hush_key", key);
+      set(prog, "hush_opts", (p.cull_back_faces ? 1u : 0u) | (p.thinning ? 2u : 0u));
+      set(prog, "hush_isotropic", p.isotropic ? 1u : 0u);
+    }
+    if (nt == 0) {
+      total = 0;
+      return true;
+    }
+    gl_.UseProgram(stage1_[0].id());
+    dispatch(stage1_[0].id(), nt, kNprGaborGroupSize);
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit);
+    gl_.UseProgram(stage1_[1].id());
+    gl_.DispatchCompute(1, 1, 1);
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit | kGlBufferUpdateBarrierBit);
+    std::uint32_t end[2] = {0, 0};  // the total and the overflow flag: 8 bytes back
+    gl_.BindBuffer(kGlShaderStorageBuffer, stage1_buffers_[4]);
+    gl_.GetBufferSubData(kGlShaderStorageBuffer, static_cast<gl_intptr>(nt * 4), 8, end);
+    gl_.check("hush::glsl::npr_gabor: stage 1 (counts)");
+    if (end[1] != 0u) return false;
+    total = end[0];
+    return true;
+  }
+
+  // Stage 1's last pass for records b0 ... b0 + m - 1: into buffers_[0] and buffers_[1].
+  void generate(std::size_t b0, std::size_t m) {
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit);  // the last draw's reads come first
+    const gl_uint prog = stage1_[2].id();
+    gl_.UseProgram(prog);
+    bind_stage1();
+    gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 64), nullptr,
+                   kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 5, buffers_[0]);
+    gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 8), nullptr, kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 6, buffers_[1]);
+    set(prog, "hush_base", static_cast<gl_uint>(b0));
+    set(prog, "hush_batch", static_cast<gl_uint>(m));
+    dispatch(prog, m, kNprGaborGroupSize);
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit);
+    gl_.check("hush::glsl::npr_gabor: stage 1 (points)");
+  }
+
+  // Stage 1's buffers: vertices, triangles, kernel table, LOD per triangle, offsets.
+  static constexpr int kStage1Buffers = 5;
+
   glsl::device& dev_;
   const gl_api& gl_;
   gl_raster_api gr_;
   frame_upload frame_;
   npr_gabor_limits limits_;
   gl_program program_;
+  gl_program stage1_[kNprGaborStage1Passes];
   gl_uint buffers_[2] = {0, 0};  // records, ids
+  gl_uint stage1_buffers_[kStage1Buffers] = {0, 0, 0, 0, 0};
+  std::size_t gpu_frames_ = 0, cpu_frames_ = 0;
+  std::vector<float> floats_;
   gl_uint texture_ = 0, fbo_ = 0, vao_ = 0;
   std::size_t width_ = 0, height_ = 0, draws_ = 0;
   std::vector<std::uint32_t> words_, ids_;
@@ -540,6 +1012,15 @@ inline detail::npr_gabor_gpu& npr_gabor_state(device& dev) {
 inline void npr_gabor_glsl_splat(device& dev, const hush::detail::npr_gabor_splat_job& j,
                                  const image_view<float>& out) {
   npr_gabor_state(dev).splat(j, out);
+}
+
+// Both stages of NPR Gabor noise on `dev` (what hush::npr_gabor::render calls for exec::glsl;
+// arguments validated by render): stage 1 by the compute passes above where every source is
+// constant or per object, else on the CPU (make_splats), then stage 2.
+inline void npr_gabor_glsl_render(device& dev, const npr_gabor& noise, const frame& f,
+                                  const triangle_list& tris, const npr_gabor::sources& src,
+                                  const image_view<float>& out) {
+  npr_gabor_state(dev).render(noise, f, tris, src, out);
 }
 
 }  // namespace glsl
