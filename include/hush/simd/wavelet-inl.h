@@ -278,6 +278,98 @@ HWY_INLINE void separable3(const float* tile, const AX& ax, const AY& ay, const 
   }
 }
 
+#undef HUSH_WAVELET_ROW_LOADS  // per target (this file is included once per target)
+#if HWY_TARGET != HWY_SCALAR && !HWY_HAVE_SCALABLE
+#define HUSH_WAVELET_ROW_LOADS 1
+// A vector of 4-float rows of the padded tile (wavelet_tile::padded_rows): its
+// 128-bit block j holds rows[o[4 j]], ..., rows[o[4 j] + 3].
+template <class D>
+HWY_INLINE hn::Vec<D> row_blocks(D d, const float* rows, const std::int32_t* o) {
+  if constexpr (hn::MaxLanes(D()) <= 4) {
+    return hn::LoadU(d, rows + o[0]);
+  } else {
+    const hn::Half<D> dh;
+    return hn::Combine(d, row_blocks(dh, rows, o + hn::MaxLanes(dh)), row_blocks(dh, rows, o));
+  }
+}
+
+// The x taps of each lane's row (lane l's row starts at rows + o[l]): t[j] holds
+// rows[o[l] + j] in lane l. One unaligned load per lane and a 4x4 transpose per
+// block in place of three gathers.
+HWY_INLINE void row_taps(const float* rows, const std::int32_t* o, VF (&t)[3]) {
+  const DF df;
+  const hn::Repartition<std::uint64_t, DF> d64;
+  const VF a = row_blocks(df, rows, o), b = row_blocks(df, rows, o + 1);
+  const VF c = row_blocks(df, rows, o + 2), d = row_blocks(df, rows, o + 3);
+  const auto ab_lo = hn::BitCast(d64, hn::InterleaveLower(df, a, b));  // a0 b0 a1 b1
+  const auto cd_lo = hn::BitCast(d64, hn::InterleaveLower(df, c, d));  // c0 d0 c1 d1
+  const auto ab_hi = hn::BitCast(d64, hn::InterleaveUpper(df, a, b));  // a2 b2 a3 b3
+  const auto cd_hi = hn::BitCast(d64, hn::InterleaveUpper(df, c, d));  // c2 d2 c3 d3
+  t[0] = hn::BitCast(df, hn::InterleaveLower(d64, ab_lo, cd_lo));
+  t[1] = hn::BitCast(df, hn::InterleaveUpper(d64, ab_lo, cd_lo));
+  t[2] = hn::BitCast(df, hn::InterleaveLower(d64, ab_hi, cd_hi));
+}
+
+// One plain band of a vector of 3D points, separable3's sums in separable3's
+// order (per lane and element the same operations, so the same bits) over rows:
+// the 9 (y, z) rows' x taps come from row_taps, z innermost, then y, then x.
+template <bool kGradient>
+HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, const vec<double, 3>* p,
+                            VF& v, VF* g) {
+  const DF df;
+  const DI di;
+  const int n = w.parameters().tile_size;
+  const int m = n + detail::constants::kWaveletRowPad;
+  axis ax[3];
+  VI x0;
+  for (int a = 0; a < 3; ++a) {
+    VI cell;
+    VF f;
+    band_split<3>(w, band, a, xs[a], p, cell, f);
+    weights<kGradient>(f, ax[a]);
+    if (a == 0)
+      x0 = cell;
+    else
+      tap_indices(cell, n, a == 1 ? m : m * n, ax[a].idx);
+  }
+  HWY_ALIGN std::int32_t o[9][kMaxLanes];
+  for (int b = 0; b < 3; ++b)
+    for (int c = 0; c < 3; ++c) hn::Store(hn::Add(x0, hn::Add(ax[1].idx[b], ax[2].idx[c])), di, o[b * 3 + c]);
+  const float* rows = w.tile().padded_rows();
+  VF t[3], ty[3], tz[3];
+  for (int a = 0; a < 3; ++a) t[a] = ty[a] = tz[a] = hn::Zero(df);
+  for (int b = 0; b < 3; ++b) {
+    VF s[3], sz[3];
+    for (int a = 0; a < 3; ++a) s[a] = sz[a] = hn::Zero(df);
+    for (int c = 0; c < 3; ++c) {
+      VF r[3];
+      row_taps(rows, o[b * 3 + c], r);
+      for (int a = 0; a < 3; ++a) {
+        s[a] = mul_add(ax[2].w[c], r[a], s[a]);
+        if constexpr (kGradient) sz[a] = mul_add(ax[2].dw[c], r[a], sz[a]);
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      t[a] = mul_add(ax[1].w[b], s[a], t[a]);
+      if constexpr (kGradient) {
+        ty[a] = mul_add(ax[1].dw[b], s[a], ty[a]);
+        tz[a] = mul_add(ax[1].w[b], sz[a], tz[a]);
+      }
+    }
+  }
+  v = hn::Zero(df);
+  for (int a = 0; a < 3; ++a) g[a] = hn::Zero(df);
+  for (int a = 0; a < 3; ++a) {
+    v = mul_add(ax[0].w[a], t[a], v);
+    if constexpr (kGradient) {
+      g[0] = mul_add(ax[0].dw[a], t[a], g[0]);
+      g[1] = mul_add(ax[0].w[a], ty[a], g[1]);
+      g[2] = mul_add(ax[0].w[a], tz[a], g[2]);
+    }
+  }
+}
+#endif
+
 // wavelet_separable over gathered coefficients: value and gradient (coefficient units).
 template <bool kGradient, int D>
 HWY_INLINE void separable(const float* tile, const axis* ax, VF& v, VF* g) {
@@ -574,6 +666,12 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
   }
   (void)kind;
   (void)u;
+#ifdef HUSH_WAVELET_ROW_LOADS
+  if constexpr (D == 3) {
+    plain3_rows<kGradient>(w, band, xs, p, v, g);
+    return;
+  }
+#endif
   axis ax[D];
   band_axes<kGradient, D>(w, band, xs, p, ax);
   separable<kGradient, D>(tile, ax, v, g);
