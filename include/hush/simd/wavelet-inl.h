@@ -210,19 +210,21 @@ HWY_INLINE bool split_vector(VF x, double freq, double off, int n, VI& cell, VF&
 // Axis a of the band for one vector of points (coordinates x, the lanes' double
 // positions p for the lane-by-lane fallback): cell and fraction as lattice_split.
 template <int D>
-HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, const vec<double, D>* p,
-                           VI& cell, VF& f) {
+HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, VI& cell, VF& f) {
   const DF df;
   const DI di;
   const int n = w.parameters().tile_size;
   const vec<double, D> zero{};
   const double off = w.band_position(band, zero)[a];
   if (split_vector(x, w.band_frequency(band), off, n, cell, f)) return;
-  HWY_ALIGN float fs[kMaxLanes];
+  HWY_ALIGN float fs[kMaxLanes], xl[kMaxLanes];
   HWY_ALIGN std::int32_t cs[kMaxLanes];
+  hn::Store(x, df, xl);
   for (std::size_t l = 0; l < hn::Lanes(df); ++l) {
+    vec<double, D> q{};  // band_position's axis a depends on coordinate a only
+    q[a] = static_cast<double>(xl[l]);
     const lattice_coord<float> c =
-        lattice_split<float>(w.band_position(band, p[l])[a], w.split_period());
+        lattice_split<float>(w.band_position(band, q)[a], w.split_period());
     fs[l] = c.f;
     cs[l] = static_cast<std::int32_t>(c.i0);
   }
@@ -232,14 +234,13 @@ HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, const vec
 
 // The band's D axes with the plain B-spline.
 template <bool kGradient, int D>
-HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, const vec<double, D>* p,
-                          axis* ax) {
+HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, axis* ax) {
   const int n = w.parameters().tile_size;
   int stride = 1;
   for (int a = 0; a < D; ++a, stride *= n) {
     VI cell;
     VF f;
-    band_split<D>(w, band, a, xs[a], p, cell, f);
+    band_split<D>(w, band, a, xs[a], cell, f);
     tap_indices(cell, n, stride, ax[a].idx);
     weights<kGradient>(f, ax[a]);
   }
@@ -314,8 +315,7 @@ HWY_INLINE void row_taps(const float* rows, const std::int32_t* o, VF (&t)[3]) {
 // order (per lane and element the same operations, so the same bits) over rows:
 // the 9 (y, z) rows' x taps come from row_taps, z innermost, then y, then x.
 template <bool kGradient>
-HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, const vec<double, 3>* p,
-                            VF& v, VF* g) {
+HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, VF* g) {
   const DF df;
   const DI di;
   const int n = w.parameters().tile_size;
@@ -325,7 +325,7 @@ HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, const v
   for (int a = 0; a < 3; ++a) {
     VI cell;
     VF f;
-    band_split<3>(w, band, a, xs[a], p, cell, f);
+    band_split<3>(w, band, a, xs[a], cell, f);
     weights<kGradient>(f, ax[a]);
     if (a == 0)
       x0 = cell;
@@ -634,14 +634,14 @@ HWY_INLINE void general_exact(const float* tile, int n, const VI* cell, const VF
 // lanes' unit normals for kGeneral): value and gradient in coefficient units.
 template <bool kGradient, int D>
 HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs,
-                           const vec<double, D>* p, const VF* u, VF& v, VF* g) {
+                           const VF* u, VF& v, VF* g) {
   const float* tile = w.tile().coefficients();
   if constexpr (D == 3) {
     if (kind != kPlain) {
       const int n = w.parameters().tile_size;
       VI cell[3];
       VF f[3];
-      for (int a = 0; a < 3; ++a) band_split<3>(w, band, a, xs[a], p, cell[a], f[a]);
+      for (int a = 0; a < 3; ++a) band_split<3>(w, band, a, xs[a], cell[a], f[a]);
       const bool exact = w.parameters().projection == wavelet_projection::exact;
       if (kind == kGeneral) {
         const VF half = hn::Set(DF(), float(detail::constants::kWaveletCellOffset));
@@ -668,12 +668,12 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
   (void)u;
 #ifdef HUSH_WAVELET_ROW_LOADS
   if constexpr (D == 3) {
-    plain3_rows<kGradient>(w, band, xs, p, v, g);
+    plain3_rows<kGradient>(w, band, xs, v, g);
     return;
   }
 #endif
   axis ax[D];
-  band_axes<kGradient, D>(w, band, xs, p, ax);
+  band_axes<kGradient, D>(w, band, xs, ax);
   separable<kGradient, D>(tile, ax, v, g);
 }
 
@@ -693,9 +693,6 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
     hn::LoadInterleaved2(df, pts, xs[0], xs[1]);
   else
     hn::LoadInterleaved3(df, pts, xs[0], xs[1], xs[2]);
-  vec<double, D> p[kMaxLanes];
-  for (std::size_t l = 0; l < lanes; ++l)
-    for (int a = 0; a < D; ++a) p[l][a] = static_cast<double>(pts[l * D + a]);
   VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
   VF u[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
   if (normal)
@@ -711,7 +708,7 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
     }
     if (!any) continue;
     VF v, g[3];
-    band_value<kGradient, D>(w, b, kind, xs, p, u, v, g);
+    band_value<kGradient, D>(w, b, kind, xs, u, v, g);
     acc = mul_add(hn::Load(df, wl), v, acc);
     if constexpr (kGradient) {
       const VF chain = hn::Load(df, cl);
@@ -743,6 +740,16 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
     if constexpr (kGradient)
       for (int a = 0; a < D; ++a) grad[l * D + a] *= dv;
   }
+}
+
+// Whether the D vectors of floats at p are all finite.
+template <int D>
+HWY_INLINE bool all_finite(const float* HWY_RESTRICT p) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  auto ok = hn::IsFinite(hn::LoadU(df, p));
+  for (int a = 1; a < D; ++a) ok = hn::And(ok, hn::IsFinite(hn::LoadU(df, p + a * lanes)));
+  return hn::AllTrue(df, ok);
 }
 
 // The scalar evaluation of one sample (the lane-by-lane path).
@@ -807,9 +814,7 @@ void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float*
   simd_batch::for_each_vector<D>(n, pts, value, grad,
                          [&](std::size_t first, const float* p, float* v, float* g) {
                            // Non-finite lanes: the scalar code (its NaN, exactly).
-                           bool finite = true;
-                           for (std::size_t l = 0; l < lanes * D; ++l)
-                             finite = finite && std::isfinite(p[l]);
+                           const bool finite = ws::all_finite<D>(p);
                            if (g)
                              ws::points_vector<true, D>(w, p, weight, scale, v, g);
                            else
