@@ -311,13 +311,56 @@ HWY_INLINE void row_taps(const float* rows, const std::int32_t* o, VF (&t)[3]) {
   t[2] = hn::BitCast(df, hn::InterleaveLower(d64, ab_hi, cd_hi));
 }
 
-// One plain band of a vector of 3D points, separable3's sums in separable3's
-// order (per lane and element the same operations, so the same bits) over rows:
-// the 9 (y, z) rows' x taps come from row_taps, z innermost, then y, then x.
-template <bool kGradient>
-HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, VF* g) {
+// separable3 with 3 x taps over the padded rows (wavelet_tile::padded_rows; ay's and
+// az's indices scaled by the row stride m = n + kWaveletRowPad and by m n): the
+// same sums in the same order (per lane and element the same operations, so the
+// same bits), each (y, z) row's x taps from row_taps, z innermost, then y, then x.
+template <bool kGradient, class AY, class AZ>
+HWY_INLINE void rows3(const float* rows, VI x0, const axis& ax, const AY& ay, const AZ& az, VF& v,
+                      VF* g) {
   const DF df;
   const DI di;
+  constexpr int kY = AY::kTaps, kZ = AZ::kTaps;
+  HWY_ALIGN std::int32_t o[kY * kZ][kMaxLanes];
+  for (int b = 0; b < kY; ++b)
+    for (int c = 0; c < kZ; ++c)
+      hn::Store(hn::Add(x0, hn::Add(ay.idx[b], az.idx[c])), di, o[b * kZ + c]);
+  VF t[3], ty[3], tz[3];
+  for (int a = 0; a < 3; ++a) t[a] = ty[a] = tz[a] = hn::Zero(df);
+  for (int b = 0; b < kY; ++b) {
+    VF s[3], sz[3];
+    for (int a = 0; a < 3; ++a) s[a] = sz[a] = hn::Zero(df);
+    for (int c = 0; c < kZ; ++c) {
+      VF r[3];
+      row_taps(rows, o[b * kZ + c], r);
+      for (int a = 0; a < 3; ++a) {
+        s[a] = mul_add(az.w[c], r[a], s[a]);
+        if constexpr (kGradient) sz[a] = mul_add(az.dw[c], r[a], sz[a]);
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      t[a] = mul_add(ay.w[b], s[a], t[a]);
+      if constexpr (kGradient) {
+        ty[a] = mul_add(ay.dw[b], s[a], ty[a]);
+        tz[a] = mul_add(ay.w[b], sz[a], tz[a]);
+      }
+    }
+  }
+  v = hn::Zero(df);
+  for (int a = 0; a < 3; ++a) g[a] = hn::Zero(df);
+  for (int a = 0; a < 3; ++a) {
+    v = mul_add(ax.w[a], t[a], v);
+    if constexpr (kGradient) {
+      g[0] = mul_add(ax.dw[a], t[a], g[0]);
+      g[1] = mul_add(ax.w[a], ty[a], g[1]);
+      g[2] = mul_add(ax.w[a], tz[a], g[2]);
+    }
+  }
+}
+
+// One plain band of a vector of 3D points over the padded rows (rows3).
+template <bool kGradient>
+HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, VF* g) {
   const int n = w.parameters().tile_size;
   const int m = n + detail::constants::kWaveletRowPad;
   axis ax[3];
@@ -332,41 +375,7 @@ HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, 
     else
       tap_indices(cell, n, a == 1 ? m : m * n, ax[a].idx);
   }
-  HWY_ALIGN std::int32_t o[9][kMaxLanes];
-  for (int b = 0; b < 3; ++b)
-    for (int c = 0; c < 3; ++c) hn::Store(hn::Add(x0, hn::Add(ax[1].idx[b], ax[2].idx[c])), di, o[b * 3 + c]);
-  const float* rows = w.tile().padded_rows();
-  VF t[3], ty[3], tz[3];
-  for (int a = 0; a < 3; ++a) t[a] = ty[a] = tz[a] = hn::Zero(df);
-  for (int b = 0; b < 3; ++b) {
-    VF s[3], sz[3];
-    for (int a = 0; a < 3; ++a) s[a] = sz[a] = hn::Zero(df);
-    for (int c = 0; c < 3; ++c) {
-      VF r[3];
-      row_taps(rows, o[b * 3 + c], r);
-      for (int a = 0; a < 3; ++a) {
-        s[a] = mul_add(ax[2].w[c], r[a], s[a]);
-        if constexpr (kGradient) sz[a] = mul_add(ax[2].dw[c], r[a], sz[a]);
-      }
-    }
-    for (int a = 0; a < 3; ++a) {
-      t[a] = mul_add(ax[1].w[b], s[a], t[a]);
-      if constexpr (kGradient) {
-        ty[a] = mul_add(ax[1].dw[b], s[a], ty[a]);
-        tz[a] = mul_add(ax[1].w[b], sz[a], tz[a]);
-      }
-    }
-  }
-  v = hn::Zero(df);
-  for (int a = 0; a < 3; ++a) g[a] = hn::Zero(df);
-  for (int a = 0; a < 3; ++a) {
-    v = mul_add(ax[0].w[a], t[a], v);
-    if constexpr (kGradient) {
-      g[0] = mul_add(ax[0].dw[a], t[a], g[0]);
-      g[1] = mul_add(ax[0].w[a], ty[a], g[1]);
-      g[2] = mul_add(ax[0].w[a], tz[a], g[2]);
-    }
-  }
+  rows3<kGradient>(w.tile().padded_rows(), x0, ax[0], ax[1], ax[2], v, g);
 }
 #endif
 
@@ -419,17 +428,30 @@ HWY_INLINE void axis_taps(VI cell, VF f, int n, int stride, const detail::piecew
   }
 }
 template <bool kGradient, int A, int P, int O>
-HWY_INLINE void projected_axis(const float* tile, int n, const VI* cell, const VF* f,
+HWY_INLINE void projected_axis(const wavelet_tile<3>& tile, int n, const VI* cell, const VF* f,
                                const detail::piecewise_kernel<P, O>& k,
                                const detail::piecewise_kernel<P, O - 1>& dk, VF& v, VF* g) {
   constexpr int N = detail::fixed_kernel_taps<P>();
+#ifdef HUSH_WAVELET_ROW_LOADS
+  if constexpr (A != 0) {  // 3 x taps: rows (along x, N x taps: gathers)
+    const int m = n + detail::constants::kWaveletRowPad;
+    axis ax;
+    weights<kGradient>(f[0], ax);
+    axis_n<A == 1 ? N : 3> ay;
+    axis_n<A == 2 ? N : 3> az;
+    axis_taps<kGradient>(cell[1], f[1], n, m, k, dk, ay);
+    axis_taps<kGradient>(cell[2], f[2], n, m * n, k, dk, az);
+    rows3<kGradient>(tile.padded_rows(), cell[0], ax, ay, az, v, g);
+    return;
+  }
+#endif
   axis_n<A == 0 ? N : 3> ax;
   axis_n<A == 1 ? N : 3> ay;
   axis_n<A == 2 ? N : 3> az;
   axis_taps<kGradient>(cell[0], f[0], n, 1, k, dk, ax);
   axis_taps<kGradient>(cell[1], f[1], n, n, k, dk, ay);
   axis_taps<kGradient>(cell[2], f[2], n, n * n, k, dk, az);
-  separable3<kGradient>(tile, ax, ay, az, v, g);
+  separable3<kGradient>(tile.coefficients(), ax, ay, az, v, g);
 }
 
 // The one lane of m0, m1, m2 (exactly one set per lane) picks v0, v1 or v2.
@@ -653,9 +675,9 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
         return;
       }
       const auto along = [&](const auto& k, const auto& dk) {
-        if (kind == 0) projected_axis<kGradient, 0>(tile, n, cell, f, k, dk, v, g);
-        if (kind == 1) projected_axis<kGradient, 1>(tile, n, cell, f, k, dk, v, g);
-        if (kind == 2) projected_axis<kGradient, 2>(tile, n, cell, f, k, dk, v, g);
+        if (kind == 0) projected_axis<kGradient, 0>(w.tile(), n, cell, f, k, dk, v, g);
+        if (kind == 1) projected_axis<kGradient, 1>(w.tile(), n, cell, f, k, dk, v, g);
+        if (kind == 2) projected_axis<kGradient, 2>(w.tile(), n, cell, f, k, dk, v, g);
       };
       if (exact)
         along(detail::kBeta, detail::kBetaDerivative);
