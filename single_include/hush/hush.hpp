@@ -12642,7 +12642,7 @@ HWY_AFTER_NAMESPACE();
 //    (z innermost), the same band accumulation, scale and gradient chain;
 //  - the distribution remapping (erf, the table) runs lane by lane through
 //    wavelet::remap, the scalar code itself.
-// Points gather the 3^D coefficients of each band. Grids use the separability
+// 3D points: a 4-float row load per lane and (y, z) row (rows3). Grids use the separability
 // of the basis (the "3D single band" fast path of the issue): per slice the
 // z contraction S(x, y) = sum_c wz_c n(x, y, z_c) for the coefficients the grid
 // touches, per row T(x) = sum_b wy_b S(x, y_b), per sample sum_a wx_a T(x_a):
@@ -12653,8 +12653,8 @@ HWY_AFTER_NAMESPACE();
 // Samples with footprints take the points path with per-lane band weights and
 // scales (wavelet::make_plan, computed in double per lane as scalar code does).
 // Samples projected onto a surface run vector kernels too, one pass per kind of
-// lane in a vector (lane_kind): a normal along a tile axis gathers beta's (or
-// B2's) taps along it; any other normal runs the exact projection (each lane's
+// lane in a vector (lane_kind): a normal along a tile axis reads beta's (or
+// B2's) taps along it (rows3 along y, z); any other normal runs the exact projection (each lane's
 // knots from detail::wavelet_exact_knots, 5 Gauss-Legendre nodes per piece,
 // masked past its own pieces) or the paper's approximation (the lanes' column
 // and slab ranges united, each lane adding only the taps its scalar loop adds).
