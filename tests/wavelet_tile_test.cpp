@@ -281,6 +281,23 @@ TEST_CASE("wavelet tile: odd, tiny and huge sizes are refused naming the rule (H
                        hush::invalid_argument);
 }
 
+TEST_CASE("wavelet tile: padded rows repeat every x row's first coefficients, memory reported") {
+  // The SIMD points kernel loads 4 adjacent floats at any x cell of a padded row:
+  // row r, column x of the padded rows must be coefficient (x mod n) of row r.
+  const hush::wavelet_tile<3> t({16, 3, true});
+  const auto n = static_cast<std::size_t>(t.size());
+  const std::size_t m = n + hush::detail::constants::kWaveletRowPad;
+  const std::size_t before = t.bytes();
+  const float* rows = t.padded_rows();
+  CHECK(rows == t.padded_rows());  // built once
+  CHECK(t.bytes() == before + n * n * m * sizeof(float));
+  bool same = true;
+  for (std::size_t r = 0; r < n * n; ++r)
+    for (std::size_t x = 0; x < m; ++x)
+      same = same && rows[r * m + x] == t.coefficient(r * n + x % n);
+  CHECK(same);
+}
+
 TEST_CASE("wavelet tile: built once per key, shared between noises, memory reported") {
   auto& cache = hush::wavelet_tile<2>::cache();
   hush::wavelet<2>::params prm;

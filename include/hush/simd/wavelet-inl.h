@@ -15,7 +15,7 @@
 //    (z innermost), the same band accumulation, scale and gradient chain;
 //  - the distribution remapping (erf, the table) runs lane by lane through
 //    wavelet::remap, the scalar code itself.
-// Points gather the 3^D coefficients of each band. Grids use the separability
+// 3D points: a 4-float row load per lane and (y, z) row (rows3). Grids use the separability
 // of the basis (the "3D single band" fast path of the issue): per slice the
 // z contraction S(x, y) = sum_c wz_c n(x, y, z_c) for the coefficients the grid
 // touches, per row T(x) = sum_b wy_b S(x, y_b), per sample sum_a wx_a T(x_a):
@@ -26,8 +26,8 @@
 // Samples with footprints take the points path with per-lane band weights and
 // scales (wavelet::make_plan, computed in double per lane as scalar code does).
 // Samples projected onto a surface run vector kernels too, one pass per kind of
-// lane in a vector (lane_kind): a normal along a tile axis gathers beta's (or
-// B2's) taps along it; any other normal runs the exact projection (each lane's
+// lane in a vector (lane_kind): a normal along a tile axis reads beta's (or
+// B2's) taps along it (rows3 along y, z); any other normal runs the exact projection (each lane's
 // knots from detail::wavelet_exact_knots, 5 Gauss-Legendre nodes per piece,
 // masked past its own pieces) or the paper's approximation (the lanes' column
 // and slab ranges united, each lane adding only the taps its scalar loop adds).
@@ -210,19 +210,21 @@ HWY_INLINE bool split_vector(VF x, double freq, double off, int n, VI& cell, VF&
 // Axis a of the band for one vector of points (coordinates x, the lanes' double
 // positions p for the lane-by-lane fallback): cell and fraction as lattice_split.
 template <int D>
-HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, const vec<double, D>* p,
-                           VI& cell, VF& f) {
+HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, VI& cell, VF& f) {
   const DF df;
   const DI di;
   const int n = w.parameters().tile_size;
   const vec<double, D> zero{};
   const double off = w.band_position(band, zero)[a];
   if (split_vector(x, w.band_frequency(band), off, n, cell, f)) return;
-  HWY_ALIGN float fs[kMaxLanes];
+  HWY_ALIGN float fs[kMaxLanes], xl[kMaxLanes];
   HWY_ALIGN std::int32_t cs[kMaxLanes];
+  hn::Store(x, df, xl);
   for (std::size_t l = 0; l < hn::Lanes(df); ++l) {
+    vec<double, D> q{};  // band_position's axis a depends on coordinate a only
+    q[a] = static_cast<double>(xl[l]);
     const lattice_coord<float> c =
-        lattice_split<float>(w.band_position(band, p[l])[a], w.split_period());
+        lattice_split<float>(w.band_position(band, q)[a], w.split_period());
     fs[l] = c.f;
     cs[l] = static_cast<std::int32_t>(c.i0);
   }
@@ -232,14 +234,13 @@ HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, const vec
 
 // The band's D axes with the plain B-spline.
 template <bool kGradient, int D>
-HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, const vec<double, D>* p,
-                          axis* ax) {
+HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, axis* ax) {
   const int n = w.parameters().tile_size;
   int stride = 1;
   for (int a = 0; a < D; ++a, stride *= n) {
     VI cell;
     VF f;
-    band_split<D>(w, band, a, xs[a], p, cell, f);
+    band_split<D>(w, band, a, xs[a], cell, f);
     tap_indices(cell, n, stride, ax[a].idx);
     weights<kGradient>(f, ax[a]);
   }
@@ -277,6 +278,106 @@ HWY_INLINE void separable3(const float* tile, const AX& ax, const AY& ay, const 
     }
   }
 }
+
+#undef HUSH_WAVELET_ROW_LOADS  // per target (this file is included once per target)
+#if HWY_TARGET != HWY_SCALAR && !HWY_HAVE_SCALABLE
+#define HUSH_WAVELET_ROW_LOADS 1
+// A vector of 4-float rows of the padded tile (wavelet_tile::padded_rows): its
+// 128-bit block j holds rows[o[4 j]], ..., rows[o[4 j] + 3].
+template <class D>
+HWY_INLINE hn::Vec<D> row_blocks(D d, const float* rows, const std::int32_t* o) {
+  if constexpr (hn::MaxLanes(D()) <= 4) {
+    return hn::LoadU(d, rows + o[0]);
+  } else {
+    const hn::Half<D> dh;
+    return hn::Combine(d, row_blocks(dh, rows, o + hn::MaxLanes(dh)), row_blocks(dh, rows, o));
+  }
+}
+
+// The x taps of each lane's row (lane l's row starts at rows + o[l]): t[j] holds
+// rows[o[l] + j] in lane l. One unaligned load per lane and a 4x4 transpose per
+// block in place of three gathers.
+HWY_INLINE void row_taps(const float* rows, const std::int32_t* o, VF (&t)[3]) {
+  const DF df;
+  const hn::Repartition<std::uint64_t, DF> d64;
+  const VF a = row_blocks(df, rows, o), b = row_blocks(df, rows, o + 1);
+  const VF c = row_blocks(df, rows, o + 2), d = row_blocks(df, rows, o + 3);
+  const auto ab_lo = hn::BitCast(d64, hn::InterleaveLower(df, a, b));  // a0 b0 a1 b1
+  const auto cd_lo = hn::BitCast(d64, hn::InterleaveLower(df, c, d));  // c0 d0 c1 d1
+  const auto ab_hi = hn::BitCast(d64, hn::InterleaveUpper(df, a, b));  // a2 b2 a3 b3
+  const auto cd_hi = hn::BitCast(d64, hn::InterleaveUpper(df, c, d));  // c2 d2 c3 d3
+  t[0] = hn::BitCast(df, hn::InterleaveLower(d64, ab_lo, cd_lo));
+  t[1] = hn::BitCast(df, hn::InterleaveUpper(d64, ab_lo, cd_lo));
+  t[2] = hn::BitCast(df, hn::InterleaveLower(d64, ab_hi, cd_hi));
+}
+
+// separable3 with 3 x taps over the padded rows (wavelet_tile::padded_rows; ay's and
+// az's indices scaled by the row stride m = n + kWaveletRowPad and by m n): the
+// same sums in the same order (per lane and element the same operations, so the
+// same bits), each (y, z) row's x taps from row_taps, z innermost, then y, then x.
+template <bool kGradient, class AY, class AZ>
+HWY_INLINE void rows3(const float* rows, VI x0, const axis& ax, const AY& ay, const AZ& az, VF& v,
+                      VF* g) {
+  const DF df;
+  const DI di;
+  constexpr int kY = AY::kTaps, kZ = AZ::kTaps;
+  HWY_ALIGN std::int32_t o[kY * kZ][kMaxLanes];
+  for (int b = 0; b < kY; ++b)
+    for (int c = 0; c < kZ; ++c)
+      hn::Store(hn::Add(x0, hn::Add(ay.idx[b], az.idx[c])), di, o[b * kZ + c]);
+  VF t[3], ty[3], tz[3];
+  for (int a = 0; a < 3; ++a) t[a] = ty[a] = tz[a] = hn::Zero(df);
+  for (int b = 0; b < kY; ++b) {
+    VF s[3], sz[3];
+    for (int a = 0; a < 3; ++a) s[a] = sz[a] = hn::Zero(df);
+    for (int c = 0; c < kZ; ++c) {
+      VF r[3];
+      row_taps(rows, o[b * kZ + c], r);
+      for (int a = 0; a < 3; ++a) {
+        s[a] = mul_add(az.w[c], r[a], s[a]);
+        if constexpr (kGradient) sz[a] = mul_add(az.dw[c], r[a], sz[a]);
+      }
+    }
+    for (int a = 0; a < 3; ++a) {
+      t[a] = mul_add(ay.w[b], s[a], t[a]);
+      if constexpr (kGradient) {
+        ty[a] = mul_add(ay.dw[b], s[a], ty[a]);
+        tz[a] = mul_add(ay.w[b], sz[a], tz[a]);
+      }
+    }
+  }
+  v = hn::Zero(df);
+  for (int a = 0; a < 3; ++a) g[a] = hn::Zero(df);
+  for (int a = 0; a < 3; ++a) {
+    v = mul_add(ax.w[a], t[a], v);
+    if constexpr (kGradient) {
+      g[0] = mul_add(ax.dw[a], t[a], g[0]);
+      g[1] = mul_add(ax.w[a], ty[a], g[1]);
+      g[2] = mul_add(ax.w[a], tz[a], g[2]);
+    }
+  }
+}
+
+// One plain band of a vector of 3D points over the padded rows (rows3).
+template <bool kGradient>
+HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, VF* g) {
+  const int n = w.parameters().tile_size;
+  const int m = n + detail::constants::kWaveletRowPad;
+  axis ax[3];
+  VI x0;
+  for (int a = 0; a < 3; ++a) {
+    VI cell;
+    VF f;
+    band_split<3>(w, band, a, xs[a], cell, f);
+    weights<kGradient>(f, ax[a]);
+    if (a == 0)
+      x0 = cell;
+    else
+      tap_indices(cell, n, a == 1 ? m : m * n, ax[a].idx);
+  }
+  rows3<kGradient>(w.tile().padded_rows(), x0, ax[0], ax[1], ax[2], v, g);
+}
+#endif
 
 // wavelet_separable over gathered coefficients: value and gradient (coefficient units).
 template <bool kGradient, int D>
@@ -327,17 +428,30 @@ HWY_INLINE void axis_taps(VI cell, VF f, int n, int stride, const detail::piecew
   }
 }
 template <bool kGradient, int A, int P, int O>
-HWY_INLINE void projected_axis(const float* tile, int n, const VI* cell, const VF* f,
+HWY_INLINE void projected_axis(const wavelet_tile<3>& tile, int n, const VI* cell, const VF* f,
                                const detail::piecewise_kernel<P, O>& k,
                                const detail::piecewise_kernel<P, O - 1>& dk, VF& v, VF* g) {
   constexpr int N = detail::fixed_kernel_taps<P>();
+#ifdef HUSH_WAVELET_ROW_LOADS
+  if constexpr (A != 0) {  // 3 x taps: rows (along x, N x taps: gathers)
+    const int m = n + detail::constants::kWaveletRowPad;
+    axis ax;
+    weights<kGradient>(f[0], ax);
+    axis_n<A == 1 ? N : 3> ay;
+    axis_n<A == 2 ? N : 3> az;
+    axis_taps<kGradient>(cell[1], f[1], n, m, k, dk, ay);
+    axis_taps<kGradient>(cell[2], f[2], n, m * n, k, dk, az);
+    rows3<kGradient>(tile.padded_rows(), cell[0], ax, ay, az, v, g);
+    return;
+  }
+#endif
   axis_n<A == 0 ? N : 3> ax;
   axis_n<A == 1 ? N : 3> ay;
   axis_n<A == 2 ? N : 3> az;
   axis_taps<kGradient>(cell[0], f[0], n, 1, k, dk, ax);
   axis_taps<kGradient>(cell[1], f[1], n, n, k, dk, ay);
   axis_taps<kGradient>(cell[2], f[2], n, n * n, k, dk, az);
-  separable3<kGradient>(tile, ax, ay, az, v, g);
+  separable3<kGradient>(tile.coefficients(), ax, ay, az, v, g);
 }
 
 // The one lane of m0, m1, m2 (exactly one set per lane) picks v0, v1 or v2.
@@ -542,14 +656,14 @@ HWY_INLINE void general_exact(const float* tile, int n, const VI* cell, const VF
 // lanes' unit normals for kGeneral): value and gradient in coefficient units.
 template <bool kGradient, int D>
 HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs,
-                           const vec<double, D>* p, const VF* u, VF& v, VF* g) {
+                           const VF* u, VF& v, VF* g) {
   const float* tile = w.tile().coefficients();
   if constexpr (D == 3) {
     if (kind != kPlain) {
       const int n = w.parameters().tile_size;
       VI cell[3];
       VF f[3];
-      for (int a = 0; a < 3; ++a) band_split<3>(w, band, a, xs[a], p, cell[a], f[a]);
+      for (int a = 0; a < 3; ++a) band_split<3>(w, band, a, xs[a], cell[a], f[a]);
       const bool exact = w.parameters().projection == wavelet_projection::exact;
       if (kind == kGeneral) {
         const VF half = hn::Set(DF(), float(detail::constants::kWaveletCellOffset));
@@ -561,9 +675,9 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
         return;
       }
       const auto along = [&](const auto& k, const auto& dk) {
-        if (kind == 0) projected_axis<kGradient, 0>(tile, n, cell, f, k, dk, v, g);
-        if (kind == 1) projected_axis<kGradient, 1>(tile, n, cell, f, k, dk, v, g);
-        if (kind == 2) projected_axis<kGradient, 2>(tile, n, cell, f, k, dk, v, g);
+        if (kind == 0) projected_axis<kGradient, 0>(w.tile(), n, cell, f, k, dk, v, g);
+        if (kind == 1) projected_axis<kGradient, 1>(w.tile(), n, cell, f, k, dk, v, g);
+        if (kind == 2) projected_axis<kGradient, 2>(w.tile(), n, cell, f, k, dk, v, g);
       };
       if (exact)
         along(detail::kBeta, detail::kBetaDerivative);
@@ -574,8 +688,14 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
   }
   (void)kind;
   (void)u;
+#ifdef HUSH_WAVELET_ROW_LOADS
+  if constexpr (D == 3) {
+    plain3_rows<kGradient>(w, band, xs, v, g);
+    return;
+  }
+#endif
   axis ax[D];
-  band_axes<kGradient, D>(w, band, xs, p, ax);
+  band_axes<kGradient, D>(w, band, xs, ax);
   separable<kGradient, D>(tile, ax, v, g);
 }
 
@@ -595,9 +715,6 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
     hn::LoadInterleaved2(df, pts, xs[0], xs[1]);
   else
     hn::LoadInterleaved3(df, pts, xs[0], xs[1], xs[2]);
-  vec<double, D> p[kMaxLanes];
-  for (std::size_t l = 0; l < lanes; ++l)
-    for (int a = 0; a < D; ++a) p[l][a] = static_cast<double>(pts[l * D + a]);
   VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
   VF u[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
   if (normal)
@@ -613,7 +730,7 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
     }
     if (!any) continue;
     VF v, g[3];
-    band_value<kGradient, D>(w, b, kind, xs, p, u, v, g);
+    band_value<kGradient, D>(w, b, kind, xs, u, v, g);
     acc = mul_add(hn::Load(df, wl), v, acc);
     if constexpr (kGradient) {
       const VF chain = hn::Load(df, cl);
@@ -645,6 +762,16 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
     if constexpr (kGradient)
       for (int a = 0; a < D; ++a) grad[l * D + a] *= dv;
   }
+}
+
+// Whether the D vectors of floats at p are all finite.
+template <int D>
+HWY_INLINE bool all_finite(const float* HWY_RESTRICT p) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  auto ok = hn::IsFinite(hn::LoadU(df, p));
+  for (int a = 1; a < D; ++a) ok = hn::And(ok, hn::IsFinite(hn::LoadU(df, p + a * lanes)));
+  return hn::AllTrue(df, ok);
 }
 
 // The scalar evaluation of one sample (the lane-by-lane path).
@@ -709,9 +836,7 @@ void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float*
   simd_batch::for_each_vector<D>(n, pts, value, grad,
                          [&](std::size_t first, const float* p, float* v, float* g) {
                            // Non-finite lanes: the scalar code (its NaN, exactly).
-                           bool finite = true;
-                           for (std::size_t l = 0; l < lanes * D; ++l)
-                             finite = finite && std::isfinite(p[l]);
+                           const bool finite = ws::all_finite<D>(p);
                            if (g)
                              ws::points_vector<true, D>(w, p, weight, scale, v, g);
                            else
