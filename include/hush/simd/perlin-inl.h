@@ -262,6 +262,7 @@ struct axis {
 // gradient components. Corner n = a + 2b + 4c is at offset (a, b, c).
 struct corners {
   VF d[8], gx[8], gy[8], gz[8];
+  VF row[detail::kRowGradientCoefs];  // 3D grid rows with gradients: the cell's coefficients
 };
 
 // Corner dot products from hashes: kyz[b + 2c] = key ^ word_y(j_b) ^
@@ -355,6 +356,62 @@ HWY_INLINE void finish(const corners& k, const axis& x, const axis& y, const axi
   } else {
     finish3<kGradient>(k, x, y, z, value, grad);
   }
+}
+
+// ---- 3D grid rows with gradients: perlin.hpp's row_gradient_coefs and
+// row_gradient (the affine-in-x form, docs/design.md), op for op, in lanes
+// over cells (coefficients) and over columns (samples).
+struct side_blend {
+  VF l, my, mz;
+};
+HWY_INLINE side_blend blend_side(VF q00, VF q10, VF q01, VF q11, VF v, VF w) {
+  const VF i0 = lerp(q00, q10, v), i1 = lerp(q01, q11, v);
+  return {lerp(i0, i1, w), lerp(hn::Sub(q10, q00), hn::Sub(q11, q01), w), hn::Sub(i1, i0)};
+}
+// gx, gy, gz, k: per corner n, one vector of cells; ax: the row's y, z axes.
+HWY_INLINE void row_gradient_coefs(const VF* gx, const VF* gy, const VF* gz, const VF* k,
+                                   const axis& y, const axis& z, VF* out) {
+  namespace d = detail;
+  side_blend bx[2], bc[2], by[2], bz[2];
+  HWY_UNROLL(2)
+  for (int a = 0; a < 2; ++a) {
+    VF cn[4];
+    for (int m = 0; m < 4; ++m) cn[m] = a ? hn::Sub(k[a + 2 * m], gx[a + 2 * m]) : k[a + 2 * m];
+    bx[a] = blend_side(gx[a], gx[a + 2], gx[a + 4], gx[a + 6], y.s, z.s);
+    bc[a] = blend_side(cn[0], cn[1], cn[2], cn[3], y.s, z.s);
+    by[a] = blend_side(gy[a], gy[a + 2], gy[a + 4], gy[a + 6], y.s, z.s);
+    bz[a] = blend_side(gz[a], gz[a + 2], gz[a + 4], gz[a + 6], y.s, z.s);
+  }
+  VF ya[2], yb[2], za[2], zb[2];
+  for (int a = 0; a < 2; ++a) {
+    ya[a] = hn::Mul(y.ds, bx[a].my);
+    yb[a] = mul_add(y.ds, bc[a].my, by[a].l);
+    za[a] = hn::Mul(z.ds, bx[a].mz);
+    zb[a] = mul_add(z.ds, bc[a].mz, bz[a].l);
+  }
+  out[d::kEA] = hn::Sub(bx[1].l, bx[0].l);
+  out[d::kEB] = hn::Sub(bc[1].l, bc[0].l);
+  out[d::kX0] = bx[0].l;
+  out[d::kY0A] = ya[0];
+  out[d::kY0B] = yb[0];
+  out[d::kDYA] = hn::Sub(ya[1], ya[0]);
+  out[d::kDYB] = hn::Sub(yb[1], yb[0]);
+  out[d::kZ0A] = za[0];
+  out[d::kZ0B] = zb[0];
+  out[d::kDZA] = hn::Sub(za[1], za[0]);
+  out[d::kDZB] = hn::Sub(zb[1], zb[0]);
+}
+HWY_INLINE void row_gradient(const VF* co, const axis& x, VF* grad) {
+  namespace d = detail;
+  const VF f = x.f, u = x.s;
+  const VF delta = mul_add(co[d::kEA], f, co[d::kEB]);
+  const VF gx = mul_add(x.ds, delta, mul_add(u, co[d::kEA], co[d::kX0]));
+  const VF gy = mul_add(u, mul_add(co[d::kDYA], f, co[d::kDYB]), mul_add(co[d::kY0A], f, co[d::kY0B]));
+  const VF gz = mul_add(u, mul_add(co[d::kDZA], f, co[d::kDZB]), mul_add(co[d::kZ0A], f, co[d::kZ0B]));
+  const VF scale = hn::Set(DF(), float(d::constants::kPerlin3Scale));
+  grad[0] = scale_plus_zero(scale, gx);
+  grad[1] = scale_plus_zero(scale, gy);
+  grad[2] = scale_plus_zero(scale, gz);
 }
 
 // kyz for hashed_corners() from per-lane axes (points) ...
@@ -666,7 +723,7 @@ struct grid_columns {
     cells = cw0.size();
     cw0.resize((cells + lanes - 1) / lanes * lanes, 0u);
     cw1.resize(cw0.size(), 0u);
-    shared = 2 * cells <= n;
+    shared = detail::grid_cells_shared(cells, n);
   }
 
   template <bool kGradient>
@@ -721,11 +778,15 @@ struct grid_row {
 
 // Per-row, per-cell corner data for the shared-cell path: for corner n and
 // cell rank r, gx (and for gradients gy, gz) and K, at [n * stride + r].
-template <bool kGradient, int D>
+// kAffine (3D with gradients): also the cell's gradient coefficients
+// (detail::row_gradient_coef) at [m * stride + r]; samples then read gx and
+// K for the value and those for the gradient.
+template <bool kGradient, int D, bool kAffine = kGradient && D == 3>
 struct row_tables {
+  static_assert(!kAffine || (kGradient && D == 3), "the affine row gradient is 3D");
   static constexpr int kCorners = 1 << D;
   std::size_t stride = 0;
-  std::vector<float> gx, k, gy, gz;
+  std::vector<float> gx, k, gy, gz, coef;
   // The y/z words the gradients were hashed for: consecutive rows in the same
   // y (and z) cell keep them and only recompute k (the benchmark's grids have
   // 37 rows per cell).
@@ -740,6 +801,7 @@ struct row_tables {
     k.assign(size, 0.0f);
     gy.assign(size, 0.0f);
     if (D == 3) gz.assign(size, 0.0f);
+    if (kAffine) coef.assign(stride * detail::kRowGradientCoefs, 0.0f);
   }
 
   // Hashes the row's lattice points (cells' x words against the row's y/z
@@ -783,6 +845,19 @@ struct row_tables {
                        hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
         hn::StoreU(kk, df, k.data() + at);
       }
+      if constexpr (kAffine) {
+        VF cgx[8], cgy[8], cgz[8], ck[8], co[detail::kRowGradientCoefs];
+        for (int n = 0; n < kCorners; ++n) {
+          const std::size_t at = static_cast<std::size_t>(n) * stride + r;
+          cgx[n] = hn::LoadU(df, gx.data() + at);
+          cgy[n] = hn::LoadU(df, gy.data() + at);
+          cgz[n] = hn::LoadU(df, gz.data() + at);
+          ck[n] = hn::LoadU(df, k.data() + at);
+        }
+        row_gradient_coefs(cgx, cgy, cgz, ck, row.y.a, row.z.a, co);
+        for (int m = 0; m < detail::kRowGradientCoefs; ++m)
+          hn::StoreU(co[m], df, coef.data() + static_cast<std::size_t>(m) * stride + r);
+      }
     }
   }
 
@@ -817,21 +892,26 @@ struct row_tables {
       const std::size_t at = static_cast<std::size_t>(n) * stride + b;
       const VF cx = entry(gx, at);
       out.d[n] = mul_add(cx, (n & 1) ? x.f1 : x.f, entry(k, at));
-      if constexpr (kGradient) {
+      if constexpr (kGradient && !kAffine) {
         out.gx[n] = cx;
         out.gy[n] = entry(gy, at);
         if constexpr (D == 3) out.gz[n] = entry(gz, at);
       }
+    }
+    if constexpr (kAffine) {
+      HWY_UNROLL(11)
+      for (int m = 0; m < detail::kRowGradientCoefs; ++m)
+        out.row[m] = entry(coef, static_cast<std::size_t>(m) * stride + b);
     }
   }
 };
 
 // One grid row's evaluation, either path: vector_out(i, value, gradient)
 // receives each vector of columns [i, i + lanes).
-template <bool kGradient, int D>
+template <bool kGradient, int D, bool kAffine = kGradient && D == 3>
 struct row_evaluator {
   const grid_columns& cols;
-  row_tables<kGradient, D> tables;
+  row_tables<kGradient, D, kAffine> tables;
 
   explicit row_evaluator(const grid_columns& c) : cols(c), tables(c) {}
 
@@ -846,7 +926,12 @@ struct row_evaluator {
         axis x;
         cols.fill_axis_loaded<kGradient>(i, x);
         tables.corners_at(cols, i, x, k);
-        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        if constexpr (kAffine) {
+          finish3<false>(k, x, row.y.a, row.z.a, v, nullptr);
+          row_gradient(k.row, x, g);
+        } else {
+          finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        }
         vector_out(i, v, g);
       }
     } else {
@@ -1123,7 +1208,7 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
     cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
       return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
     });
-  std::vector<row_evaluator<kGradient, D>> rows;
+  std::vector<row_evaluator<kGradient, D, false>> rows;
   rows.reserve(bands.size());
   for (const grid_columns& c : cols) rows.emplace_back(c);
   const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
