@@ -95,11 +95,12 @@ HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
 // lerp(P(f_x), Q(f_x), u) (plus u' (Q_v - P_v) for d/dx) with P, Q affine in
 // the x fraction f_x. The coefficients, per (row, cell), by index:
 //   kEA, kEB      slope and intercept of V1 - V0 (the value's x-lerp ends)
-//   kX0           d/dx's interpolated gradient at a = 0 (its a = 1 - a = 0 is kEA)
+//   kX0           d/dx's interpolated gradient at a = 0 (its a = 1 - a = 0 is kEA),
+//                 which is also the slope of V0; kV0B: V0's intercept
 //   kY0A, kY0B    d/dy at a = 0, slope and intercept; kDYA, kDYB: a = 1 minus a = 0
 //   kZ0A ... kDZB the same for d/dz.
 enum row_gradient_coef : int {
-  kEA, kEB, kX0, kY0A, kY0B, kDYA, kDYB, kZ0A, kZ0B, kDZA, kDZB, kRowGradientCoefs
+  kEA, kEB, kX0, kV0B, kY0A, kY0B, kDYA, kDYB, kZ0A, kZ0B, kDZA, kDZB, kRowGradientCoefs
 };
 // Rows take the per-cell path (shared corner data) when cells hold at least
 // two columns on average; scalar and SIMD grids decide alike, so both use the
@@ -328,6 +329,7 @@ class perlin : public point_noise<perlin<D>, D> {
     out[d::kEA] = gx[1].l - gx[0].l;
     out[d::kEB] = cc[1].l - cc[0].l;
     out[d::kX0] = gx[0].l;
+    out[d::kV0B] = cc[0].l;
     out[d::kY0A] = ya[0];
     out[d::kY0B] = yb[0];
     out[d::kDYA] = ya[1] - ya[0];
@@ -337,17 +339,19 @@ class perlin : public point_noise<perlin<D>, D> {
     out[d::kDZA] = za[1] - za[0];
     out[d::kDZB] = zb[1] - zb[0];
   }
-  // A sample's gradient from its cell's coefficients: u = s(f_x), u' = s'(f_x).
+  // A sample's value and gradient from its cell's coefficients: u = s(f_x),
+  // u' = s'(f_x).
   template <class T>
-  static vec<T, 3> row_gradient(const T* co, const axis<T>& x) {
+  static value_gradient<T, 3> row_gradient(const T* co, const axis<T>& x) {
     namespace d = detail;
     const T f = x.f, u = x.s, du = x.ds;
     const T delta = co[d::kEA] * f + co[d::kEB];
     const T gx = du * delta + (u * co[d::kEA] + co[d::kX0]);
     const T gy = u * (co[d::kDYA] * f + co[d::kDYB]) + (co[d::kY0A] * f + co[d::kY0B]);
     const T gz = u * (co[d::kDZA] * f + co[d::kDZB]) + (co[d::kZ0A] * f + co[d::kZ0B]);
+    const T value = u * delta + (co[d::kX0] * f + co[d::kV0B]);
     constexpr T kScale = T(detail::constants::kPerlin3Scale);
-    return {kScale * gx + T(0), kScale * gy + T(0), kScale * gz + T(0)};
+    return {kScale * value + T(0), {kScale * gx + T(0), kScale * gy + T(0), kScale * gz + T(0)}};
   }
 
   // grid_values: the columns' splits are kept; a row walks them, taking new
@@ -406,15 +410,16 @@ class perlin : public point_noise<perlin<D>, D> {
               if (affine) row_gradient_coefs<T>(c, k, ax, coef);
           }
           ax[0] = cols[i];
-          for (int n = 0; n < kCorners; ++n)
-            c.d[n] = c.gx[n] * ((n & 1) ? ax[0].f1 : ax[0].f) + k[n];
           if constexpr (D == 3 && WithGradient) {
             if (affine) {
-              out[idx] = blend<T, false>(c, ax).value;
-              grad[idx] = row_gradient<T>(coef, ax[0]);
+              const value_gradient<T, 3> r = row_gradient<T>(coef, ax[0]);
+              out[idx] = r.value;
+              grad[idx] = r.gradient;
               continue;
             }
           }
+          for (int n = 0; n < kCorners; ++n)
+            c.d[n] = c.gx[n] * ((n & 1) ? ax[0].f1 : ax[0].f) + k[n];
           const value_gradient<T, D> r = blend<T, WithGradient>(c, ax);
           out[idx] = r.value;
           if constexpr (WithGradient) grad[idx] = r.gradient;

@@ -262,7 +262,6 @@ struct axis {
 // gradient components. Corner n = a + 2b + 4c is at offset (a, b, c).
 struct corners {
   VF d[8], gx[8], gy[8], gz[8];
-  VF row[detail::kRowGradientCoefs];  // 3D grid rows with gradients: the cell's coefficients
 };
 
 // Corner dot products from hashes: kyz[b + 2c] = key ^ word_y(j_b) ^
@@ -392,6 +391,7 @@ HWY_INLINE void row_gradient_coefs(const VF* gx, const VF* gy, const VF* gz, con
   out[d::kEA] = hn::Sub(bx[1].l, bx[0].l);
   out[d::kEB] = hn::Sub(bc[1].l, bc[0].l);
   out[d::kX0] = bx[0].l;
+  out[d::kV0B] = bc[0].l;
   out[d::kY0A] = ya[0];
   out[d::kY0B] = yb[0];
   out[d::kDYA] = hn::Sub(ya[1], ya[0]);
@@ -401,7 +401,7 @@ HWY_INLINE void row_gradient_coefs(const VF* gx, const VF* gy, const VF* gz, con
   out[d::kDZA] = hn::Sub(za[1], za[0]);
   out[d::kDZB] = hn::Sub(zb[1], zb[0]);
 }
-HWY_INLINE void row_gradient(const VF* co, const axis& x, VF* grad) {
+HWY_INLINE void row_gradient(const VF* co, const axis& x, VF& value, VF* grad) {
   namespace d = detail;
   const VF f = x.f, u = x.s;
   const VF delta = mul_add(co[d::kEA], f, co[d::kEB]);
@@ -409,6 +409,7 @@ HWY_INLINE void row_gradient(const VF* co, const axis& x, VF* grad) {
   const VF gy = mul_add(u, mul_add(co[d::kDYA], f, co[d::kDYB]), mul_add(co[d::kY0A], f, co[d::kY0B]));
   const VF gz = mul_add(u, mul_add(co[d::kDZA], f, co[d::kDZB]), mul_add(co[d::kZ0A], f, co[d::kZ0B]));
   const VF scale = hn::Set(DF(), float(d::constants::kPerlin3Scale));
+  value = scale_plus_zero(scale, mul_add(u, delta, mul_add(co[d::kX0], f, co[d::kV0B])));
   grad[0] = scale_plus_zero(scale, gx);
   grad[1] = scale_plus_zero(scale, gy);
   grad[2] = scale_plus_zero(scale, gz);
@@ -861,24 +862,24 @@ struct row_tables {
     }
   }
 
-  // Corner data for the vector of columns starting at column i: per lane,
-  // the entries of its cell. Where all lanes share one cell (most vectors
-  // when cells hold many samples) a broadcast replaces the permute.
-  HWY_INLINE void corners_at(const grid_columns& cols, std::size_t i, const axis& x,
-                             corners& out) const {
+  // Calls fn(b, entry) for the vector of columns starting at column i, with
+  // b its first cell's rank and entry(table, at) giving each lane the entry
+  // of its cell. Where all lanes share one cell (most vectors when cells hold
+  // many samples) a broadcast replaces the permute. fn inlines into each
+  // branch on its own, so the entries stay in registers.
+  template <class Fn>
+  HWY_INLINE void with_entries(const grid_columns& cols, std::size_t i, const Fn& fn) const {
     const DF df;
     const std::size_t lanes = hn::Lanes(df);
     const std::size_t b = cols.base[i / lanes];
     if (cols.local[i + lanes - 1] == 0) {
-      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
-        return hn::Set(df, t[at]);
-      });
+      fn(b, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR { return hn::Set(df, t[at]); });
     } else {
       const DU du;
       const DI di;
       const auto idx =
           hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
-      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+      fn(b, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
         return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx);
       });
     }
@@ -892,17 +893,22 @@ struct row_tables {
       const std::size_t at = static_cast<std::size_t>(n) * stride + b;
       const VF cx = entry(gx, at);
       out.d[n] = mul_add(cx, (n & 1) ? x.f1 : x.f, entry(k, at));
-      if constexpr (kGradient && !kAffine) {
+      if constexpr (kGradient) {
         out.gx[n] = cx;
         out.gy[n] = entry(gy, at);
         if constexpr (D == 3) out.gz[n] = entry(gz, at);
       }
     }
-    if constexpr (kAffine) {
-      HWY_UNROLL(11)
-      for (int m = 0; m < detail::kRowGradientCoefs; ++m)
-        out.row[m] = entry(coef, static_cast<std::size_t>(m) * stride + b);
-    }
+  }
+  // kAffine: the value and gradient from the cell coefficients at rank b.
+  template <class Entry>
+  HWY_INLINE void affine_from(std::size_t b, const axis& x, const Entry& entry, VF& value,
+                              VF* grad) const {
+    VF co[detail::kRowGradientCoefs];
+    HWY_UNROLL(12)
+    for (int m = 0; m < detail::kRowGradientCoefs; ++m)
+      co[m] = entry(coef, static_cast<std::size_t>(m) * stride + b);
+    row_gradient(co, x, value, grad);
   }
 };
 
@@ -925,14 +931,15 @@ struct row_evaluator {
       for (std::size_t i = 0; i < cols.n; i += lanes) {
         axis x;
         cols.fill_axis_loaded<kGradient>(i, x);
-        tables.corners_at(cols, i, x, k);
-        if constexpr (kAffine) {
-          finish3<false>(k, x, row.y.a, row.z.a, v, nullptr);
-          row_gradient(k.row, x, g);
-        } else {
-          finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-        }
-        vector_out(i, v, g);
+        tables.with_entries(cols, i, [&](std::size_t b, const auto& entry) HWY_ATTR {
+          if constexpr (kAffine) {
+            tables.affine_from(b, x, entry, v, g);
+          } else {
+            tables.corners_from(b, x, k, entry);
+            finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+          }
+          vector_out(i, v, g);
+        });
       }
     } else {
       const DU du;
