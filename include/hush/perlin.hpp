@@ -166,10 +166,29 @@ class perlin : public point_noise<perlin<D>, D> {
   // and a row hashes its lattice points once per cell, not once per sample.
   void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                    vec<float, D>* grad) const {
+    auto at = [&g](int a) {
+      return [&g, a](std::size_t index) { return g.origin[a] + g.step[a] * double(index); };
+    };
+    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    grid_rows_at(g.size[0], at(0), j0, j1, at(1), k0, k1, at(D - 1), out, grad);
+  }
+
+  // grid_values over positions given per axis: column i at x_at(i), row j at
+  // y_at(j), slice k at z_at(k) (doubles; 2D: z_at unused, k in [0, 1)), for
+  // rows j in [j0, j1) and slices k in [k0, k1), in C order into out (and
+  // grad unless null). fractal.hpp runs its bands' grids (positions f x + o)
+  // through it. 3D gradients of rows whose cells hold two or more columns on
+  // average take the affine-in-x form (docs/design.md); everything else is
+  // point evaluation's result, as grid_values states.
+  template <class X, class Y, class Z>
+  void grid_rows_at(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
+                    std::size_t k0, std::size_t k1, const Z& z_at, float* out,
+                    vec<float, D>* grad) const {
     if (grad)
-      grid_rows<true>(g, first, count, out, grad);
+      grid_rows<true>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, grad);
     else
-      grid_rows<false>(g, first, count, out, nullptr);
+      grid_rows<false>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, nullptr);
   }
 
  private:
@@ -356,39 +375,33 @@ class perlin : public point_noise<perlin<D>, D> {
 
   // grid_values: the columns' splits are kept; a row walks them, taking new
   // corner gradients (and their x-free parts k) where the cell changes.
-  template <bool WithGradient>
-  void grid_rows(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+  template <bool WithGradient, class X, class Y, class Z>
+  void grid_rows(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
+                 std::size_t k0, std::size_t k1, const Z& z_at, float* out,
                  vec<float, D>* grad) const {
     using T = float;
-    const std::size_t nx = g.size[0];
     std::vector<lattice_coord<T>> cells(nx);
     std::vector<axis<T>> cols(nx);
     std::size_t cell_count = 0;
     for (std::size_t i = 0; i < nx; ++i) {
-      cells[i] = lattice_split<T>(g.origin[0] + g.step[0] * static_cast<double>(i),
-                                  static_cast<std::uint32_t>(prm_.period[0]));
+      cells[i] = lattice_split<T>(x_at(i), static_cast<std::uint32_t>(prm_.period[0]));
       cols[i] = make_axis<T, WithGradient>(cells[i].f);
       if (i == 0 || cells[i].i0 != cells[i - 1].i0) ++cell_count;
     }
     // 3D gradients of rows with shared cells: the affine-in-x form.
     const bool affine = D == 3 && WithGradient && detail::grid_cells_shared(cell_count, nx);
     T coef[detail::kRowGradientCoefs]{};
-    auto split = [&](int a, std::size_t index) {
-      return lattice_split<T>(g.origin[a] + g.step[a] * static_cast<double>(index),
-                              static_cast<std::uint32_t>(prm_.period[a]));
-    };
-    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
-    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
     std::size_t idx = 0;
     axis<T> ax[3]{};
     for (std::size_t kk = k0; kk < k1; ++kk) {
       lattice_coord<T> cz{};
       if constexpr (D == 3) {
-        cz = split(2, kk);
+        cz = lattice_split<T>(z_at(kk), static_cast<std::uint32_t>(prm_.period[D - 1]));
         ax[2] = make_axis<T, WithGradient>(cz.f);
       }
       for (std::size_t j = j0; j < j1; ++j) {
-        const lattice_coord<T> cy = split(1, j);
+        const lattice_coord<T> cy =
+            lattice_split<T>(y_at(j), static_cast<std::uint32_t>(prm_.period[1]));
         ax[1] = make_axis<T, WithGradient>(cy.f);
         // key ^ word_y ^ word_z per corner offset (b, c): lattice_hash_high's fold.
         std::uint32_t kyz[4];

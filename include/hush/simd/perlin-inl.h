@@ -1215,7 +1215,7 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
     cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
       return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
     });
-  std::vector<row_evaluator<kGradient, D, false>> rows;
+  std::vector<row_evaluator<kGradient, D>> rows;
   rows.reserve(bands.size());
   for (const grid_columns& c : cols) rows.emplace_back(c);
   const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
