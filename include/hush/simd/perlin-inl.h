@@ -921,37 +921,44 @@ struct row_evaluator {
 
   explicit row_evaluator(const grid_columns& c) : cols(c), tables(c) {}
 
+  // Makes `row` current (the shared path builds its cell tables).
+  HWY_INLINE void prepare(const grid_row& row) {
+    if (cols.shared) tables.build(cols, row);
+  }
+  // out(value, gradient) for the vector of columns [i, i + lanes) of the
+  // prepared row; out inlines into each branch, keeping its inputs in registers.
   template <class Out>
-  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
-    const std::size_t lanes = hn::Lanes(DF());
-    corners k;
+  HWY_INLINE void vector(const grid_row& row, std::size_t i, const Out& out) const {
     VF v, g[3];
+    corners k;
     if (cols.shared) {
-      tables.build(cols, row);
-      for (std::size_t i = 0; i < cols.n; i += lanes) {
-        axis x;
-        cols.fill_axis_loaded<kGradient>(i, x);
-        tables.with_entries(cols, i, [&](std::size_t b, const auto& entry) HWY_ATTR {
-          if constexpr (kAffine) {
-            tables.affine_from(b, x, entry, v, g);
-          } else {
-            tables.corners_from(b, x, k, entry);
-            finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-          }
-          vector_out(i, v, g);
-        });
-      }
+      axis x;
+      cols.fill_axis_loaded<kGradient>(i, x);
+      tables.with_entries(cols, i, [&](std::size_t b, const auto& entry) HWY_ATTR {
+        if constexpr (kAffine) {
+          tables.affine_from(b, x, entry, v, g);
+        } else {
+          tables.corners_from(b, x, k, entry);
+          finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        }
+        out(v, g);
+      });
     } else {
       const DU du;
       const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
                          hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
-      for (std::size_t i = 0; i < cols.n; i += lanes) {
-        const axis x = cols.load<kGradient>(i);
-        hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
-        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-        vector_out(i, v, g);
-      }
+      const axis x = cols.load<kGradient>(i);
+      hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
+      finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+      out(v, g);
     }
+  }
+  // vector_out(i, value, gradient) for every vector of columns of `row`.
+  template <class Out>
+  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
+    prepare(row);
+    for (std::size_t i = 0; i < cols.n; i += hn::Lanes(DF()))
+      vector(row, i, [&](VF v, const VF* g) HWY_ATTR { vector_out(i, v, g); });
   }
 };
 
@@ -1218,38 +1225,36 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
   std::vector<row_evaluator<kGradient, D>> rows;
   rows.reserve(bands.size());
   for (const grid_columns& c : cols) rows.emplace_back(c);
-  const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
-  std::vector<float> acc(padded), gacc(kGradient ? padded * D : 0);
+  // Per band, the current row's words and fractions (z kept while the slice is).
+  std::vector<grid_row> band_rows(bands.size());
+  std::size_t split_k = ~std::size_t(0);
   const VF scale = hn::Set(df, float(fr.scale()));
   for_each_row<D>(
       g, first, count, [&](std::size_t j, std::size_t k, std::size_t row_index) HWY_ATTR {
-        std::fill(acc.begin(), acc.end(), 0.0f);
-        std::fill(gacc.begin(), gacc.end(), 0.0f);
         for (std::size_t b = 0; b < bands.size(); ++b) {
           const band_config<D>& c = bands[b];
           const int bi = static_cast<int>(b);
-          grid_row row{c.key, {}, {}};
+          grid_row& row = band_rows[b];
+          row.key = c.key;
           row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
                                                c.period[1]);
           if constexpr (D == 3)
-            row.z = broadcast_axis<kGradient, 2>(
-                position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
-          rows[b].run(row, [&](std::size_t i, VF v, const VF* gr) HWY_ATTR {
-            VF a = hn::LoadU(df, acc.data() + i), ga[3];
-            if constexpr (kGradient)
-              for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
-            accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
-            hn::StoreU(a, df, acc.data() + i);
-            if constexpr (kGradient)
-              for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
-          });
+            if (k != split_k)
+              row.z = broadcast_axis<kGradient, 2>(
+                  position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+          rows[b].prepare(row);
         }
+        split_k = k;
+        // Per vector of columns, the bands in order, summed in registers.
         for (std::size_t i = 0; i < nx; i += lanes) {
-          const VF a = hn::LoadU(df, acc.data() + i);
+          VF a = hn::Zero(df), ga[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+          for (std::size_t b = 0; b < bands.size(); ++b)
+            rows[b].vector(band_rows[b], i, [&](VF v, const VF* gr) HWY_ATTR {
+              accumulate<kGradient, D>(turbulence, bands[b], v, gr, a, ga);
+            });
           VF gs[3];
           if constexpr (kGradient)
-            for (int d = 0; d < D; ++d)
-              gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
+            for (int d = 0; d < D; ++d) gs[d] = hn::Mul(ga[d], scale);
           store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
                        value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
         }
