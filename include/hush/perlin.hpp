@@ -159,11 +159,17 @@ class perlin : public point_noise<perlin<D>, D> {
   // The samples of `g` with slowest-axis index (j in 2D, k in 3D) in
   // [first, first + count), in C order, into out (and gradients into grad
   // unless null); out starts at the slab's first sample. exec::scalar calls
-  // this for grids (exec.hpp). Each value and gradient is what
+  // this for grids (exec.hpp). The x axis is split once per column, y and z
+  // once per row, and a row hashes its lattice points once per cell, not
+  // once per sample. Values alone, and 2D values with gradients, are what
   // value<float> / value_and_gradient<float> give at g.position(...), bit for
   // bit (unless the compiler contracts multiply-adds, which HUSH_STRICT_FP
-  // forbids), but the x axis is split once per column, y and z once per row,
-  // and a row hashes its lattice points once per cell, not once per sample.
+  // forbids). 3D values with gradients on rows whose cells hold two or more
+  // columns on average take the affine-in-x form (docs/design.md, "Grid
+  // gradients, affine in x"): within 2^-17 (values) and 2^-15 (gradients) of
+  // point evaluation, and within the float budget of the double reference
+  // (tests/perlin_test.cpp); hush/simd computes the same, bit for bit under
+  // HUSH_STRICT_FP.
   void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                    vec<float, D>* grad) const {
     auto at = [&g](int a) {

@@ -17,7 +17,10 @@
 //    components are 0 or +-1); targets narrower than 16 lanes form them by
 //    selects and sign flips instead of table lookups, and grids split them
 //    into a per-row part g_y f_y + g_z f_z and the x term;
-//  - grid rows hash once per lattice point, not once per sample and corner.
+//  - grid rows hash once per lattice point, not once per sample and corner;
+//  - 3D grid rows with gradients (and fractal grids' bands) use the
+//    affine-in-x form per (row, cell) that perlin.hpp's grid_values uses
+//    too (row_gradient_coefs / row_gradient, op for op).
 // So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
 //    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
