@@ -1228,8 +1228,10 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
   std::vector<row_evaluator<kGradient, D>> rows;
   rows.reserve(bands.size());
   for (const grid_columns& c : cols) rows.emplace_back(c);
-  // Per band, the current row's words and fractions (z kept while the slice is).
-  std::vector<grid_row> band_rows(bands.size());
+  // Per band, the current row's words and fractions (z kept while the slice
+  // is). On the stack: grid_row holds vectors, whose alignment a
+  // std::vector's storage need not have.
+  grid_row band_rows[fractal<perlin<D>>::kMaxOctaves];
   std::size_t split_k = ~std::size_t(0);
   const VF scale = hn::Set(df, float(fr.scale()));
   for_each_row<D>(
