@@ -433,15 +433,28 @@ TEST_CASE_TEMPLATE("perlin: exec::scalar grids equal point evaluation at every s
                    std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
   constexpr int D = N::value;
   // The scalar grid path (perlin::grid_values) shares splits and corner
-  // gradients between samples; every value and gradient must still be what
-  // point evaluation gives at g.position(...). Bit for bit unless the build
-  // lets the compiler fuse multiply-adds (then it may fuse the two paths'
-  // sums differently: within the float budget).
+  // gradients between samples. Values alone, and 2D values with gradients,
+  // must still be what point evaluation gives at g.position(...), bit for bit
+  // unless the build lets the compiler fuse multiply-adds (then it may fuse
+  // the two paths' sums differently: within the float budget).
+  //
+  // 3D with gradients, rows whose cells hold two or more columns take the
+  // affine-in-x form (docs/design.md): the same exact polynomial of the same
+  // float fractions, rounded along another path. Forward bound per path:
+  // at most n = 16 roundings in a chain, so gamma_n <= 16 * 2^-24 = 2^-20,
+  // times the sum of the magnitudes of the terms combined: S <= 4 for the
+  // value (corner dot products split as gx f + c, |gx f| <= 1, |c| <= 3,
+  // blended with convex weights) and S <= 16 for a gradient component (a
+  // blended gradient <= 1 plus the fade's slope <= 15/8 times a difference
+  // of blended dot products <= 8). Two paths, scale < 1: values within
+  // 2^-17, gradients within 2^-15. A wrong coefficient is off by O(0.1).
 #if defined(__FMA__) && !HUSH_CONFIG_STRICT_FP
   const double tolerance = kFloatBudget;
 #else
   const double tolerance = 0;
 #endif
+  const double affine_value = D == 3 ? std::ldexp(1.0, -17) : tolerance;
+  const double affine_gradient = D == 3 ? std::ldexp(1.0, -15) : tolerance;
   typename hush::perlin<D>::params periodic;
   periodic.seed = 31;
   for (int a = 0; a < D; ++a) periodic.period[a] = 2 + a;
@@ -450,6 +463,7 @@ TEST_CASE_TEMPLATE("perlin: exec::scalar grids equal point evaluation at every s
   // wrapping modulo 2^32.
   const double grids[][3] = {{0.3, 1.0 / 37, 1}, {-4.5, -0.25, 1},  {1e9 + 0.5, 1.0 / 3, 1},
                              {-7.1, 1.7, 1},     {1e300, 1e290, 1}, {-1.0, 0.5, 1}};
+  double worst_value = 0, worst_gradient = 0;
   for (const auto& noise : noises)
     for (const auto& spec : grids) {
       hush::grid<D> g;
@@ -458,9 +472,10 @@ TEST_CASE_TEMPLATE("perlin: exec::scalar grids equal point evaluation at every s
         g.step[a] = spec[1] * (1 + 0.1 * a);
         g.size[a] = 9 + 4 * std::size_t(a);
       }
-      std::vector<float> out(g.count());
+      std::vector<float> out(g.count()), alone(g.count());
       std::vector<hush::vec<float, D>> grad(g.count());
       hush::evaluate_grid(noise, hush::exec::scalar, g, out, grad);
+      hush::evaluate_grid(noise, hush::exec::scalar, g, alone);
       std::size_t idx = 0;
       for (std::size_t k = 0; k < (D == 3 ? g.size[2] : 1); ++k)
         for (std::size_t j = 0; j < g.size[1]; ++j)
@@ -472,11 +487,55 @@ TEST_CASE_TEMPLATE("perlin: exec::scalar grids equal point evaluation at every s
             const auto want = noise.template value_and_gradient<float>(g.position(ijk));
             INFO("grid origin " << spec[0] << " step " << spec[1] << ", sample " << idx);
             if (tolerance == 0) {
+              REQUIRE(std::memcmp(&alone[idx], &want.value, sizeof(float)) == 0);
+            } else {
+              REQUIRE(std::fabs(alone[idx] - want.value) <= tolerance);
+            }
+            if (D == 2 && tolerance == 0) {
               REQUIRE(std::memcmp(&out[idx], &want.value, sizeof(float)) == 0);
               REQUIRE(std::memcmp(&grad[idx], &want.gradient, sizeof(grad[idx])) == 0);
-            } else {
-              REQUIRE(std::fabs(out[idx] - want.value) <= tolerance);
+              continue;
+            }
+            worst_value = std::max(worst_value, double(std::fabs(out[idx] - want.value)));
+            REQUIRE(std::fabs(out[idx] - want.value) <= affine_value);
+            for (int a = 0; a < D; ++a) {
+              const double e = std::fabs(grad[idx][a] - want.gradient[a]);
+              worst_gradient = std::max(worst_gradient, e);
+              REQUIRE(e <= affine_gradient);
             }
           }
     }
+  MESSAGE("perlin " << D << "D scalar grid with gradients against point evaluation: max |value| "
+                    << worst_value << ", max |gradient| " << worst_gradient);
+}
+
+TEST_CASE("perlin: 3D grid gradients (affine in x) are within the float budget of the double "
+          "reference") {
+  // The affine-in-x path is a float algorithm like point evaluation and must
+  // keep its budget: values within 2^-16, gradients within 2^-16 (1 + L)
+  // (the budgets of the point tests above). A dense grid: ~37 columns per
+  // cell, so every row takes the affine path.
+  const hush::perlin<3> noise(33);
+  hush::grid<3> g;
+  g.origin = {-3.1, 0.4, 2.2};
+  g.step = {1.0 / 37, 1.0 / 29, 1.0 / 31};
+  g.size = {75, 31, 17};
+  std::vector<float> out(g.count());
+  std::vector<hush::vec3> grad(g.count());
+  hush::evaluate_grid(noise, hush::exec::scalar, g, out, grad);
+  const double grad_budget = kFloatBudget * (1 + lipschitz_bound<3>());
+  double worst_value = 0, worst_gradient = 0;
+  std::size_t idx = 0;
+  for (std::size_t k = 0; k < g.size[2]; ++k)
+    for (std::size_t j = 0; j < g.size[1]; ++j)
+      for (std::size_t i = 0; i < g.size[0]; ++i, ++idx) {
+        const auto ref = noise.value_and_gradient<double>(g.position({i, j, k}));
+        worst_value = std::max(worst_value, std::fabs(out[idx] - ref.value));
+        for (int a = 0; a < 3; ++a)
+          worst_gradient = std::max(worst_gradient, std::fabs(grad[idx][a] - ref.gradient[a]));
+      }
+  MESSAGE("3D grid against double: max |value| " << worst_value << ", max |gradient| "
+                                                 << worst_gradient);
+  CHECK(worst_value <= kFloatBudget);
+  CHECK(worst_gradient <= grad_budget);
 }

@@ -26,8 +26,10 @@
 #ifndef HUSH_FRACTAL_HPP
 #define HUSH_FRACTAL_HPP
 
+#include <algorithm>
 #include <array>
 #include <climits>
+#include <cstddef>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -36,6 +38,7 @@
 #include "hush/core/error.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/point_noise.hpp"
+#include "hush/core/views.hpp"
 #include "hush/core/vec.hpp"
 
 namespace hush {
@@ -125,10 +128,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   template <class T>
   T value(const vec<double, D>& p) const {
     T sum = 0;
-    for (const band& b : bands_) {
-      const T n = b.noise.template value<T>(b.position(p));
-      sum += T(b.weight) * (prm_.kind == fractal_kind::fbm ? n : std::fabs(n));
-    }
+    for (const band& b : bands_) add_value(b, b.noise.template value<T>(b.position(p)), sum);
     return T(scale_) * sum;
   }
   // Gradient of the sum. For turbulence, |n| is not differentiable where n = 0;
@@ -136,17 +136,61 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   template <class T>
   value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
     value_gradient<T, D> r{T(0), {}};
-    for (const band& b : bands_) {
-      auto ng = b.noise.template value_and_gradient<T>(b.position(p));
-      T sign = T(1);
-      if (prm_.kind == fractal_kind::turbulence && ng.value < T(0)) sign = T(-1);
-      r.value += T(b.weight) * sign * ng.value;
-      const T chain = T(b.weight * b.frequency) * sign;  // d(f x + o)/dx = f
-      for (int a = 0; a < D; ++a) r.gradient[a] += chain * ng.gradient[a];
-    }
-    r.value *= T(scale_);
-    for (int a = 0; a < D; ++a) r.gradient[a] *= T(scale_);
+    for (const band& b : bands_)
+      add_value_gradient(b, b.noise.template value_and_gradient<T>(b.position(p)), r);
+    scale_value_gradient(r);
     return r;
+  }
+
+  // The samples of `g` with slowest-axis index in [first, first + count), as
+  // exec::scalar asks for them (exec.hpp), when the bands evaluate grids of
+  // positions themselves (perlin's grid_rows_at): each band runs its grid
+  // path over the band positions f_i x + o_i (formed per axis as value()
+  // forms them) and the bands are summed in order with value() /
+  // value_and_gradient()'s operations. So values and gradients are point
+  // evaluation's except where the band's grid path says otherwise (Perlin
+  // 3D gradients on rows with shared cells: the affine-in-x form,
+  // docs/design.md); hush/simd's fractal grids compute the same.
+  template <class N = Noise, class = decltype(&N::template grid_rows_at<double (*)(std::size_t),
+                                                                        double (*)(std::size_t),
+                                                                        double (*)(std::size_t)>)>
+  void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+                   vec<float, D>* grad) const {
+    const std::size_t nx = g.size[0];
+    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    const std::size_t n = nx * (j1 - j0) * (k1 - k0);
+    std::vector<float> bv(n);
+    std::vector<vec<float, D>> bg(grad ? n : 0);
+    std::vector<value_gradient<float, D>> sum(grad ? n : 0, value_gradient<float, D>{0.0f, {}});
+    std::fill(out, out + n, 0.0f);
+    for (const band& b : bands_) {
+      // Band position along axis a of grid index `index`: f_i x + o_i.
+      auto at = [&](int a) {
+        return [&, a](std::size_t index) {
+          vec<double, D> p{};
+          p[a] = g.origin[a] + g.step[a] * double(index);
+          return b.position(p)[a];
+        };
+      };
+      b.noise.grid_rows_at(nx, at(0), j0, j1, at(1), k0, k1, at(D - 1), bv.data(),
+                           grad ? bg.data() : nullptr);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (grad)
+          add_value_gradient(b, value_gradient<float, D>{bv[i], bg[i]}, sum[i]);
+        else
+          add_value(b, bv[i], out[i]);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (grad) {
+        scale_value_gradient(sum[i]);
+        out[i] = sum[i].value;
+        grad[i] = sum[i].gradient;
+      } else {
+        out[i] *= float(scale_);
+      }
+    }
   }
 
  private:
@@ -168,6 +212,26 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
       return q;
     }
   };
+
+  // One band's term of the sums in value() and value_and_gradient().
+  template <class T>
+  void add_value(const band& b, T n, T& sum) const {
+    sum += T(b.weight) * (prm_.kind == fractal_kind::fbm ? n : std::fabs(n));
+  }
+  template <class T>
+  void add_value_gradient(const band& b, const value_gradient<T, D>& ng,
+                          value_gradient<T, D>& r) const {
+    T sign = T(1);
+    if (prm_.kind == fractal_kind::turbulence && ng.value < T(0)) sign = T(-1);
+    r.value += T(b.weight) * sign * ng.value;
+    const T chain = T(b.weight * b.frequency) * sign;  // d(f x + o)/dx = f
+    for (int a = 0; a < D; ++a) r.gradient[a] += chain * ng.gradient[a];
+  }
+  template <class T>
+  void scale_value_gradient(value_gradient<T, D>& r) const {
+    r.value *= T(scale_);
+    for (int a = 0; a < D; ++a) r.gradient[a] *= T(scale_);
+  }
 
   void validate() const {
     const char* where = "hush::fractal";

@@ -90,6 +90,25 @@ HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
          constants::kPerlin3IndexShift;
 }
 
+// 3D grid rows with gradients (docs/design.md, "Grid gradients, affine in x"):
+// within one row (fixed y, z) and one x cell, each gradient component is
+// lerp(P(f_x), Q(f_x), u) (plus u' (Q_v - P_v) for d/dx) with P, Q affine in
+// the x fraction f_x. The coefficients, per (row, cell), by index:
+//   kEA, kEB      slope and intercept of V1 - V0 (the value's x-lerp ends)
+//   kX0           d/dx's interpolated gradient at a = 0 (its a = 1 - a = 0 is kEA),
+//                 which is also the slope of V0; kV0B: V0's intercept
+//   kY0A, kY0B    d/dy at a = 0, slope and intercept; kDYA, kDYB: a = 1 minus a = 0
+//   kZ0A ... kDZB the same for d/dz.
+enum row_gradient_coef : int {
+  kEA, kEB, kX0, kV0B, kY0A, kY0B, kDYA, kDYB, kZ0A, kZ0B, kDZA, kDZB, kRowGradientCoefs
+};
+// Rows take the per-cell path (shared corner data) when cells hold at least
+// two columns on average; scalar and SIMD grids decide alike, so both use the
+// same gradient algorithm on every grid.
+HUSH_INLINE constexpr bool grid_cells_shared(std::size_t cells, std::size_t columns) {
+  return 2 * cells <= columns;
+}
+
 }  // namespace detail
 
 template <int D>
@@ -140,17 +159,42 @@ class perlin : public point_noise<perlin<D>, D> {
   // The samples of `g` with slowest-axis index (j in 2D, k in 3D) in
   // [first, first + count), in C order, into out (and gradients into grad
   // unless null); out starts at the slab's first sample. exec::scalar calls
-  // this for grids (exec.hpp). Each value and gradient is what
+  // this for grids (exec.hpp). The x axis is split once per column, y and z
+  // once per row, and a row hashes its lattice points once per cell, not
+  // once per sample. Values alone, and 2D values with gradients, are what
   // value<float> / value_and_gradient<float> give at g.position(...), bit for
   // bit (unless the compiler contracts multiply-adds, which HUSH_STRICT_FP
-  // forbids), but the x axis is split once per column, y and z once per row,
-  // and a row hashes its lattice points once per cell, not once per sample.
+  // forbids). 3D values with gradients on rows whose cells hold two or more
+  // columns on average take the affine-in-x form (docs/design.md, "Grid
+  // gradients, affine in x"): within 2^-17 (values) and 2^-15 (gradients) of
+  // point evaluation, and within the float budget of the double reference
+  // (tests/perlin_test.cpp); hush/simd computes the same, bit for bit under
+  // HUSH_STRICT_FP.
   void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                    vec<float, D>* grad) const {
+    auto at = [&g](int a) {
+      return [&g, a](std::size_t index) { return g.origin[a] + g.step[a] * double(index); };
+    };
+    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    grid_rows_at(g.size[0], at(0), j0, j1, at(1), k0, k1, at(D - 1), out, grad);
+  }
+
+  // grid_values over positions given per axis: column i at x_at(i), row j at
+  // y_at(j), slice k at z_at(k) (doubles; 2D: z_at unused, k in [0, 1)), for
+  // rows j in [j0, j1) and slices k in [k0, k1), in C order into out (and
+  // grad unless null). fractal.hpp runs its bands' grids (positions f x + o)
+  // through it. 3D gradients of rows whose cells hold two or more columns on
+  // average take the affine-in-x form (docs/design.md); everything else is
+  // point evaluation's result, as grid_values states.
+  template <class X, class Y, class Z>
+  void grid_rows_at(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
+                    std::size_t k0, std::size_t k1, const Z& z_at, float* out,
+                    vec<float, D>* grad) const {
     if (grad)
-      grid_rows<true>(g, first, count, out, grad);
+      grid_rows<true>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, grad);
     else
-      grid_rows<false>(g, first, count, out, nullptr);
+      grid_rows<false>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, nullptr);
   }
 
  private:
@@ -271,36 +315,99 @@ class perlin : public point_noise<perlin<D>, D> {
     }
   }
 
+  // One side (x offset a) of a 3D cell in a row: per-corner q at offsets
+  // (b, c) = 00, 10, 01, 11, blended with the row's fade weights v, w:
+  //   l  = the bilinear blend,  my = d l / dv (slope in v, blended in w),
+  //   mz = d l / dw.
+  template <class T>
+  struct side_blend {
+    T l, my, mz;
+  };
+  template <class T>
+  static side_blend<T> blend_side(T q00, T q10, T q01, T q11, T v, T w) {
+    const T i0 = detail::lerp(q00, q10, v), i1 = detail::lerp(q01, q11, v);
+    return {detail::lerp(i0, i1, w), detail::lerp(q10 - q00, q11 - q01, w), i1 - i0};
+  }
+  // The row_gradient_coef coefficients of one cell from its corners' gradients
+  // and x-free dot-product parts k (d_n = gx_n (f_x - a) + k_n = gx_n f_x + c_n,
+  // c_n = k_n - a gx_n). Mirrored op for op by simd/perlin-inl.h.
+  template <class T>
+  static void row_gradient_coefs(const corners<T>& c, const T* k, const axis<T>* ax, T* out) {
+    namespace d = detail;
+    const T v = ax[1].s, w = ax[2].s, dv = ax[1].ds, dw = ax[2].ds;
+    side_blend<T> gx[2], cc[2], gy[2], gz[2];
+    for (int a = 0; a < 2; ++a) {
+      T cn[4];
+      for (int m = 0; m < 4; ++m) cn[m] = a ? k[a + 2 * m] - c.gx[a + 2 * m] : k[a + 2 * m];
+      gx[a] = blend_side(c.gx[a], c.gx[a + 2], c.gx[a + 4], c.gx[a + 6], v, w);
+      cc[a] = blend_side(cn[0], cn[1], cn[2], cn[3], v, w);
+      gy[a] = blend_side(c.gy[a], c.gy[a + 2], c.gy[a + 4], c.gy[a + 6], v, w);
+      gz[a] = blend_side(c.gz[a], c.gz[a + 2], c.gz[a + 4], c.gz[a + 6], v, w);
+    }
+    T ya[2], yb[2], za[2], zb[2];
+    for (int a = 0; a < 2; ++a) {
+      ya[a] = dv * gx[a].my;
+      yb[a] = dv * cc[a].my + gy[a].l;
+      za[a] = dw * gx[a].mz;
+      zb[a] = dw * cc[a].mz + gz[a].l;
+    }
+    out[d::kEA] = gx[1].l - gx[0].l;
+    out[d::kEB] = cc[1].l - cc[0].l;
+    out[d::kX0] = gx[0].l;
+    out[d::kV0B] = cc[0].l;
+    out[d::kY0A] = ya[0];
+    out[d::kY0B] = yb[0];
+    out[d::kDYA] = ya[1] - ya[0];
+    out[d::kDYB] = yb[1] - yb[0];
+    out[d::kZ0A] = za[0];
+    out[d::kZ0B] = zb[0];
+    out[d::kDZA] = za[1] - za[0];
+    out[d::kDZB] = zb[1] - zb[0];
+  }
+  // A sample's value and gradient from its cell's coefficients: u = s(f_x),
+  // u' = s'(f_x).
+  template <class T>
+  static value_gradient<T, 3> row_gradient(const T* co, const axis<T>& x) {
+    namespace d = detail;
+    const T f = x.f, u = x.s, du = x.ds;
+    const T delta = co[d::kEA] * f + co[d::kEB];
+    const T gx = du * delta + (u * co[d::kEA] + co[d::kX0]);
+    const T gy = u * (co[d::kDYA] * f + co[d::kDYB]) + (co[d::kY0A] * f + co[d::kY0B]);
+    const T gz = u * (co[d::kDZA] * f + co[d::kDZB]) + (co[d::kZ0A] * f + co[d::kZ0B]);
+    const T value = u * delta + (co[d::kX0] * f + co[d::kV0B]);
+    constexpr T kScale = T(detail::constants::kPerlin3Scale);
+    return {kScale * value + T(0), {kScale * gx + T(0), kScale * gy + T(0), kScale * gz + T(0)}};
+  }
+
   // grid_values: the columns' splits are kept; a row walks them, taking new
   // corner gradients (and their x-free parts k) where the cell changes.
-  template <bool WithGradient>
-  void grid_rows(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+  template <bool WithGradient, class X, class Y, class Z>
+  void grid_rows(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
+                 std::size_t k0, std::size_t k1, const Z& z_at, float* out,
                  vec<float, D>* grad) const {
     using T = float;
-    const std::size_t nx = g.size[0];
     std::vector<lattice_coord<T>> cells(nx);
     std::vector<axis<T>> cols(nx);
+    std::size_t cell_count = 0;
     for (std::size_t i = 0; i < nx; ++i) {
-      cells[i] = lattice_split<T>(g.origin[0] + g.step[0] * static_cast<double>(i),
-                                  static_cast<std::uint32_t>(prm_.period[0]));
+      cells[i] = lattice_split<T>(x_at(i), static_cast<std::uint32_t>(prm_.period[0]));
       cols[i] = make_axis<T, WithGradient>(cells[i].f);
+      if (i == 0 || cells[i].i0 != cells[i - 1].i0) ++cell_count;
     }
-    auto split = [&](int a, std::size_t index) {
-      return lattice_split<T>(g.origin[a] + g.step[a] * static_cast<double>(index),
-                              static_cast<std::uint32_t>(prm_.period[a]));
-    };
-    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
-    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    // 3D gradients of rows with shared cells: the affine-in-x form.
+    const bool affine = D == 3 && WithGradient && detail::grid_cells_shared(cell_count, nx);
+    T coef[detail::kRowGradientCoefs]{};
     std::size_t idx = 0;
     axis<T> ax[3]{};
     for (std::size_t kk = k0; kk < k1; ++kk) {
       lattice_coord<T> cz{};
       if constexpr (D == 3) {
-        cz = split(2, kk);
+        cz = lattice_split<T>(z_at(kk), static_cast<std::uint32_t>(prm_.period[D - 1]));
         ax[2] = make_axis<T, WithGradient>(cz.f);
       }
       for (std::size_t j = j0; j < j1; ++j) {
-        const lattice_coord<T> cy = split(1, j);
+        const lattice_coord<T> cy =
+            lattice_split<T>(y_at(j), static_cast<std::uint32_t>(prm_.period[1]));
         ax[1] = make_axis<T, WithGradient>(cy.f);
         // key ^ word_y ^ word_z per corner offset (b, c): lattice_hash_high's fold.
         std::uint32_t kyz[4];
@@ -318,8 +425,18 @@ class perlin : public point_noise<perlin<D>, D> {
               corner_gradient<T>(h, ((n >> 1) & 1) ? ax[1].f1 : ax[1].f,
                                  (n >> 2) ? ax[2].f1 : ax[2].f, c, n, k[n]);
             }
+            if constexpr (D == 3)
+              if (affine) row_gradient_coefs<T>(c, k, ax, coef);
           }
           ax[0] = cols[i];
+          if constexpr (D == 3 && WithGradient) {
+            if (affine) {
+              const value_gradient<T, 3> r = row_gradient<T>(coef, ax[0]);
+              out[idx] = r.value;
+              grad[idx] = r.gradient;
+              continue;
+            }
+          }
           for (int n = 0; n < kCorners; ++n)
             c.d[n] = c.gx[n] * ((n & 1) ? ax[0].f1 : ax[0].f) + k[n];
           const value_gradient<T, D> r = blend<T, WithGradient>(c, ax);

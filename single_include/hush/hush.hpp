@@ -2220,8 +2220,10 @@ inline double bin_frequency(std::size_t k, std::size_t n) {
 #ifndef HUSH_FRACTAL_HPP
 #define HUSH_FRACTAL_HPP
 
+#include <algorithm>
 #include <array>
 #include <climits>
+#include <cstddef>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -2315,10 +2317,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   template <class T>
   T value(const vec<double, D>& p) const {
     T sum = 0;
-    for (const band& b : bands_) {
-      const T n = b.noise.template value<T>(b.position(p));
-      sum += T(b.weight) * (prm_.kind == fractal_kind::fbm ? n : std::fabs(n));
-    }
+    for (const band& b : bands_) add_value(b, b.noise.template value<T>(b.position(p)), sum);
     return T(scale_) * sum;
   }
   // Gradient of the sum. For turbulence, |n| is not differentiable where n = 0;
@@ -2326,17 +2325,61 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   template <class T>
   value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
     value_gradient<T, D> r{T(0), {}};
-    for (const band& b : bands_) {
-      auto ng = b.noise.template value_and_gradient<T>(b.position(p));
-      T sign = T(1);
-      if (prm_.kind == fractal_kind::turbulence && ng.value < T(0)) sign = T(-1);
-      r.value += T(b.weight) * sign * ng.value;
-      const T chain = T(b.weight * b.frequency) * sign;  // d(f x + o)/dx = f
-      for (int a = 0; a < D; ++a) r.gradient[a] += chain * ng.gradient[a];
-    }
-    r.value *= T(scale_);
-    for (int a = 0; a < D; ++a) r.gradient[a] *= T(scale_);
+    for (const band& b : bands_)
+      add_value_gradient(b, b.noise.template value_and_gradient<T>(b.position(p)), r);
+    scale_value_gradient(r);
     return r;
+  }
+
+  // The samples of `g` with slowest-axis index in [first, first + count), as
+  // exec::scalar asks for them (exec.hpp), when the bands evaluate grids of
+  // positions themselves (perlin's grid_rows_at): each band runs its grid
+  // path over the band positions f_i x + o_i (formed per axis as value()
+  // forms them) and the bands are summed in order with value() /
+  // value_and_gradient()'s operations. So values and gradients are point
+  // evaluation's except where the band's grid path says otherwise (Perlin
+  // 3D gradients on rows with shared cells: the affine-in-x form,
+  // docs/design.md); hush/simd's fractal grids compute the same.
+  template <class N = Noise, class = decltype(&N::template grid_rows_at<double (*)(std::size_t),
+                                                                        double (*)(std::size_t),
+                                                                        double (*)(std::size_t)>)>
+  void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+                   vec<float, D>* grad) const {
+    const std::size_t nx = g.size[0];
+    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    const std::size_t n = nx * (j1 - j0) * (k1 - k0);
+    std::vector<float> bv(n);
+    std::vector<vec<float, D>> bg(grad ? n : 0);
+    std::vector<value_gradient<float, D>> sum(grad ? n : 0, value_gradient<float, D>{0.0f, {}});
+    std::fill(out, out + n, 0.0f);
+    for (const band& b : bands_) {
+      // Band position along axis a of grid index `index`: f_i x + o_i.
+      auto at = [&](int a) {
+        return [&, a](std::size_t index) {
+          vec<double, D> p{};
+          p[a] = g.origin[a] + g.step[a] * double(index);
+          return b.position(p)[a];
+        };
+      };
+      b.noise.grid_rows_at(nx, at(0), j0, j1, at(1), k0, k1, at(D - 1), bv.data(),
+                           grad ? bg.data() : nullptr);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (grad)
+          add_value_gradient(b, value_gradient<float, D>{bv[i], bg[i]}, sum[i]);
+        else
+          add_value(b, bv[i], out[i]);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (grad) {
+        scale_value_gradient(sum[i]);
+        out[i] = sum[i].value;
+        grad[i] = sum[i].gradient;
+      } else {
+        out[i] *= float(scale_);
+      }
+    }
   }
 
  private:
@@ -2358,6 +2401,26 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
       return q;
     }
   };
+
+  // One band's term of the sums in value() and value_and_gradient().
+  template <class T>
+  void add_value(const band& b, T n, T& sum) const {
+    sum += T(b.weight) * (prm_.kind == fractal_kind::fbm ? n : std::fabs(n));
+  }
+  template <class T>
+  void add_value_gradient(const band& b, const value_gradient<T, D>& ng,
+                          value_gradient<T, D>& r) const {
+    T sign = T(1);
+    if (prm_.kind == fractal_kind::turbulence && ng.value < T(0)) sign = T(-1);
+    r.value += T(b.weight) * sign * ng.value;
+    const T chain = T(b.weight * b.frequency) * sign;  // d(f x + o)/dx = f
+    for (int a = 0; a < D; ++a) r.gradient[a] += chain * ng.gradient[a];
+  }
+  template <class T>
+  void scale_value_gradient(value_gradient<T, D>& r) const {
+    r.value *= T(scale_);
+    for (int a = 0; a < D; ++a) r.gradient[a] *= T(scale_);
+  }
 
   void validate() const {
     const char* where = "hush::fractal";
@@ -4052,8 +4115,10 @@ struct triangle_list {
 //    elements in C order, i fastest (core/views.hpp). The grid is validated.
 //  - scalar: exactly noise(point) per element, in float. A noise may share
 //    work between the samples of a grid (detail::has_grid_values); its
-//    results are still point evaluation's, bit for bit unless the compiler
-//    contracts multiply-adds (HUSH_STRICT_FP forbids it).
+//    results are point evaluation's, bit for bit unless the compiler
+//    contracts multiply-adds (HUSH_STRICT_FP forbids it), or within a stated
+//    bound of them where it says so (Perlin and fBm 3D values with
+//    gradients: perlin.hpp grid_values).
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
@@ -6146,6 +6211,25 @@ HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
          constants::kPerlin3IndexShift;
 }
 
+// 3D grid rows with gradients (docs/design.md, "Grid gradients, affine in x"):
+// within one row (fixed y, z) and one x cell, each gradient component is
+// lerp(P(f_x), Q(f_x), u) (plus u' (Q_v - P_v) for d/dx) with P, Q affine in
+// the x fraction f_x. The coefficients, per (row, cell), by index:
+//   kEA, kEB      slope and intercept of V1 - V0 (the value's x-lerp ends)
+//   kX0           d/dx's interpolated gradient at a = 0 (its a = 1 - a = 0 is kEA),
+//                 which is also the slope of V0; kV0B: V0's intercept
+//   kY0A, kY0B    d/dy at a = 0, slope and intercept; kDYA, kDYB: a = 1 minus a = 0
+//   kZ0A ... kDZB the same for d/dz.
+enum row_gradient_coef : int {
+  kEA, kEB, kX0, kV0B, kY0A, kY0B, kDYA, kDYB, kZ0A, kZ0B, kDZA, kDZB, kRowGradientCoefs
+};
+// Rows take the per-cell path (shared corner data) when cells hold at least
+// two columns on average; scalar and SIMD grids decide alike, so both use the
+// same gradient algorithm on every grid.
+HUSH_INLINE constexpr bool grid_cells_shared(std::size_t cells, std::size_t columns) {
+  return 2 * cells <= columns;
+}
+
 }  // namespace detail
 
 template <int D>
@@ -6196,17 +6280,42 @@ class perlin : public point_noise<perlin<D>, D> {
   // The samples of `g` with slowest-axis index (j in 2D, k in 3D) in
   // [first, first + count), in C order, into out (and gradients into grad
   // unless null); out starts at the slab's first sample. exec::scalar calls
-  // this for grids (exec.hpp). Each value and gradient is what
+  // this for grids (exec.hpp). The x axis is split once per column, y and z
+  // once per row, and a row hashes its lattice points once per cell, not
+  // once per sample. Values alone, and 2D values with gradients, are what
   // value<float> / value_and_gradient<float> give at g.position(...), bit for
   // bit (unless the compiler contracts multiply-adds, which HUSH_STRICT_FP
-  // forbids), but the x axis is split once per column, y and z once per row,
-  // and a row hashes its lattice points once per cell, not once per sample.
+  // forbids). 3D values with gradients on rows whose cells hold two or more
+  // columns on average take the affine-in-x form (docs/design.md, "Grid
+  // gradients, affine in x"): within 2^-17 (values) and 2^-15 (gradients) of
+  // point evaluation, and within the float budget of the double reference
+  // (tests/perlin_test.cpp); hush/simd computes the same, bit for bit under
+  // HUSH_STRICT_FP.
   void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                    vec<float, D>* grad) const {
+    auto at = [&g](int a) {
+      return [&g, a](std::size_t index) { return g.origin[a] + g.step[a] * double(index); };
+    };
+    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    grid_rows_at(g.size[0], at(0), j0, j1, at(1), k0, k1, at(D - 1), out, grad);
+  }
+
+  // grid_values over positions given per axis: column i at x_at(i), row j at
+  // y_at(j), slice k at z_at(k) (doubles; 2D: z_at unused, k in [0, 1)), for
+  // rows j in [j0, j1) and slices k in [k0, k1), in C order into out (and
+  // grad unless null). fractal.hpp runs its bands' grids (positions f x + o)
+  // through it. 3D gradients of rows whose cells hold two or more columns on
+  // average take the affine-in-x form (docs/design.md); everything else is
+  // point evaluation's result, as grid_values states.
+  template <class X, class Y, class Z>
+  void grid_rows_at(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
+                    std::size_t k0, std::size_t k1, const Z& z_at, float* out,
+                    vec<float, D>* grad) const {
     if (grad)
-      grid_rows<true>(g, first, count, out, grad);
+      grid_rows<true>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, grad);
     else
-      grid_rows<false>(g, first, count, out, nullptr);
+      grid_rows<false>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, nullptr);
   }
 
  private:
@@ -6327,36 +6436,99 @@ class perlin : public point_noise<perlin<D>, D> {
     }
   }
 
+  // One side (x offset a) of a 3D cell in a row: per-corner q at offsets
+  // (b, c) = 00, 10, 01, 11, blended with the row's fade weights v, w:
+  //   l  = the bilinear blend,  my = d l / dv (slope in v, blended in w),
+  //   mz = d l / dw.
+  template <class T>
+  struct side_blend {
+    T l, my, mz;
+  };
+  template <class T>
+  static side_blend<T> blend_side(T q00, T q10, T q01, T q11, T v, T w) {
+    const T i0 = detail::lerp(q00, q10, v), i1 = detail::lerp(q01, q11, v);
+    return {detail::lerp(i0, i1, w), detail::lerp(q10 - q00, q11 - q01, w), i1 - i0};
+  }
+  // The row_gradient_coef coefficients of one cell from its corners' gradients
+  // and x-free dot-product parts k (d_n = gx_n (f_x - a) + k_n = gx_n f_x + c_n,
+  // c_n = k_n - a gx_n). Mirrored op for op by simd/perlin-inl.h.
+  template <class T>
+  static void row_gradient_coefs(const corners<T>& c, const T* k, const axis<T>* ax, T* out) {
+    namespace d = detail;
+    const T v = ax[1].s, w = ax[2].s, dv = ax[1].ds, dw = ax[2].ds;
+    side_blend<T> gx[2], cc[2], gy[2], gz[2];
+    for (int a = 0; a < 2; ++a) {
+      T cn[4];
+      for (int m = 0; m < 4; ++m) cn[m] = a ? k[a + 2 * m] - c.gx[a + 2 * m] : k[a + 2 * m];
+      gx[a] = blend_side(c.gx[a], c.gx[a + 2], c.gx[a + 4], c.gx[a + 6], v, w);
+      cc[a] = blend_side(cn[0], cn[1], cn[2], cn[3], v, w);
+      gy[a] = blend_side(c.gy[a], c.gy[a + 2], c.gy[a + 4], c.gy[a + 6], v, w);
+      gz[a] = blend_side(c.gz[a], c.gz[a + 2], c.gz[a + 4], c.gz[a + 6], v, w);
+    }
+    T ya[2], yb[2], za[2], zb[2];
+    for (int a = 0; a < 2; ++a) {
+      ya[a] = dv * gx[a].my;
+      yb[a] = dv * cc[a].my + gy[a].l;
+      za[a] = dw * gx[a].mz;
+      zb[a] = dw * cc[a].mz + gz[a].l;
+    }
+    out[d::kEA] = gx[1].l - gx[0].l;
+    out[d::kEB] = cc[1].l - cc[0].l;
+    out[d::kX0] = gx[0].l;
+    out[d::kV0B] = cc[0].l;
+    out[d::kY0A] = ya[0];
+    out[d::kY0B] = yb[0];
+    out[d::kDYA] = ya[1] - ya[0];
+    out[d::kDYB] = yb[1] - yb[0];
+    out[d::kZ0A] = za[0];
+    out[d::kZ0B] = zb[0];
+    out[d::kDZA] = za[1] - za[0];
+    out[d::kDZB] = zb[1] - zb[0];
+  }
+  // A sample's value and gradient from its cell's coefficients: u = s(f_x),
+  // u' = s'(f_x).
+  template <class T>
+  static value_gradient<T, 3> row_gradient(const T* co, const axis<T>& x) {
+    namespace d = detail;
+    const T f = x.f, u = x.s, du = x.ds;
+    const T delta = co[d::kEA] * f + co[d::kEB];
+    const T gx = du * delta + (u * co[d::kEA] + co[d::kX0]);
+    const T gy = u * (co[d::kDYA] * f + co[d::kDYB]) + (co[d::kY0A] * f + co[d::kY0B]);
+    const T gz = u * (co[d::kDZA] * f + co[d::kDZB]) + (co[d::kZ0A] * f + co[d::kZ0B]);
+    const T value = u * delta + (co[d::kX0] * f + co[d::kV0B]);
+    constexpr T kScale = T(detail::constants::kPerlin3Scale);
+    return {kScale * value + T(0), {kScale * gx + T(0), kScale * gy + T(0), kScale * gz + T(0)}};
+  }
+
   // grid_values: the columns' splits are kept; a row walks them, taking new
   // corner gradients (and their x-free parts k) where the cell changes.
-  template <bool WithGradient>
-  void grid_rows(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+  template <bool WithGradient, class X, class Y, class Z>
+  void grid_rows(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
+                 std::size_t k0, std::size_t k1, const Z& z_at, float* out,
                  vec<float, D>* grad) const {
     using T = float;
-    const std::size_t nx = g.size[0];
     std::vector<lattice_coord<T>> cells(nx);
     std::vector<axis<T>> cols(nx);
+    std::size_t cell_count = 0;
     for (std::size_t i = 0; i < nx; ++i) {
-      cells[i] = lattice_split<T>(g.origin[0] + g.step[0] * static_cast<double>(i),
-                                  static_cast<std::uint32_t>(prm_.period[0]));
+      cells[i] = lattice_split<T>(x_at(i), static_cast<std::uint32_t>(prm_.period[0]));
       cols[i] = make_axis<T, WithGradient>(cells[i].f);
+      if (i == 0 || cells[i].i0 != cells[i - 1].i0) ++cell_count;
     }
-    auto split = [&](int a, std::size_t index) {
-      return lattice_split<T>(g.origin[a] + g.step[a] * static_cast<double>(index),
-                              static_cast<std::uint32_t>(prm_.period[a]));
-    };
-    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
-    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    // 3D gradients of rows with shared cells: the affine-in-x form.
+    const bool affine = D == 3 && WithGradient && detail::grid_cells_shared(cell_count, nx);
+    T coef[detail::kRowGradientCoefs]{};
     std::size_t idx = 0;
     axis<T> ax[3]{};
     for (std::size_t kk = k0; kk < k1; ++kk) {
       lattice_coord<T> cz{};
       if constexpr (D == 3) {
-        cz = split(2, kk);
+        cz = lattice_split<T>(z_at(kk), static_cast<std::uint32_t>(prm_.period[D - 1]));
         ax[2] = make_axis<T, WithGradient>(cz.f);
       }
       for (std::size_t j = j0; j < j1; ++j) {
-        const lattice_coord<T> cy = split(1, j);
+        const lattice_coord<T> cy =
+            lattice_split<T>(y_at(j), static_cast<std::uint32_t>(prm_.period[1]));
         ax[1] = make_axis<T, WithGradient>(cy.f);
         // key ^ word_y ^ word_z per corner offset (b, c): lattice_hash_high's fold.
         std::uint32_t kyz[4];
@@ -6374,8 +6546,18 @@ class perlin : public point_noise<perlin<D>, D> {
               corner_gradient<T>(h, ((n >> 1) & 1) ? ax[1].f1 : ax[1].f,
                                  (n >> 2) ? ax[2].f1 : ax[2].f, c, n, k[n]);
             }
+            if constexpr (D == 3)
+              if (affine) row_gradient_coefs<T>(c, k, ax, coef);
           }
           ax[0] = cols[i];
+          if constexpr (D == 3 && WithGradient) {
+            if (affine) {
+              const value_gradient<T, 3> r = row_gradient<T>(coef, ax[0]);
+              out[idx] = r.value;
+              grad[idx] = r.gradient;
+              continue;
+            }
+          }
           for (int n = 0; n < kCorners; ++n)
             c.d[n] = c.gx[n] * ((n & 1) ? ax[0].f1 : ax[0].f) + k[n];
           const value_gradient<T, D> r = blend<T, WithGradient>(c, ax);
@@ -11387,7 +11569,10 @@ HWY_AFTER_NAMESPACE();
 //    components are 0 or +-1); targets narrower than 16 lanes form them by
 //    selects and sign flips instead of table lookups, and grids split them
 //    into a per-row part g_y f_y + g_z f_z and the x term;
-//  - grid rows hash once per lattice point, not once per sample and corner.
+//  - grid rows hash once per lattice point, not once per sample and corner;
+//  - 3D grid rows with gradients (and fractal grids' bands) use the
+//    affine-in-x form per (row, cell) that perlin.hpp's grid_values uses
+//    too (row_gradient_coefs / row_gradient, op for op).
 // So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
 //    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
@@ -11770,6 +11955,64 @@ HWY_INLINE void finish(const corners& k, const axis& x, const axis& y, const axi
   }
 }
 
+// ---- 3D grid rows with gradients: perlin.hpp's row_gradient_coefs and
+// row_gradient (the affine-in-x form, docs/design.md), op for op, in lanes
+// over cells (coefficients) and over columns (samples).
+struct side_blend {
+  VF l, my, mz;
+};
+HWY_INLINE side_blend blend_side(VF q00, VF q10, VF q01, VF q11, VF v, VF w) {
+  const VF i0 = lerp(q00, q10, v), i1 = lerp(q01, q11, v);
+  return {lerp(i0, i1, w), lerp(hn::Sub(q10, q00), hn::Sub(q11, q01), w), hn::Sub(i1, i0)};
+}
+// gx, gy, gz, k: per corner n, one vector of cells; ax: the row's y, z axes.
+HWY_INLINE void row_gradient_coefs(const VF* gx, const VF* gy, const VF* gz, const VF* k,
+                                   const axis& y, const axis& z, VF* out) {
+  namespace d = detail;
+  side_blend bx[2], bc[2], by[2], bz[2];
+  HWY_UNROLL(2)
+  for (int a = 0; a < 2; ++a) {
+    VF cn[4];
+    for (int m = 0; m < 4; ++m) cn[m] = a ? hn::Sub(k[a + 2 * m], gx[a + 2 * m]) : k[a + 2 * m];
+    bx[a] = blend_side(gx[a], gx[a + 2], gx[a + 4], gx[a + 6], y.s, z.s);
+    bc[a] = blend_side(cn[0], cn[1], cn[2], cn[3], y.s, z.s);
+    by[a] = blend_side(gy[a], gy[a + 2], gy[a + 4], gy[a + 6], y.s, z.s);
+    bz[a] = blend_side(gz[a], gz[a + 2], gz[a + 4], gz[a + 6], y.s, z.s);
+  }
+  VF ya[2], yb[2], za[2], zb[2];
+  for (int a = 0; a < 2; ++a) {
+    ya[a] = hn::Mul(y.ds, bx[a].my);
+    yb[a] = mul_add(y.ds, bc[a].my, by[a].l);
+    za[a] = hn::Mul(z.ds, bx[a].mz);
+    zb[a] = mul_add(z.ds, bc[a].mz, bz[a].l);
+  }
+  out[d::kEA] = hn::Sub(bx[1].l, bx[0].l);
+  out[d::kEB] = hn::Sub(bc[1].l, bc[0].l);
+  out[d::kX0] = bx[0].l;
+  out[d::kV0B] = bc[0].l;
+  out[d::kY0A] = ya[0];
+  out[d::kY0B] = yb[0];
+  out[d::kDYA] = hn::Sub(ya[1], ya[0]);
+  out[d::kDYB] = hn::Sub(yb[1], yb[0]);
+  out[d::kZ0A] = za[0];
+  out[d::kZ0B] = zb[0];
+  out[d::kDZA] = hn::Sub(za[1], za[0]);
+  out[d::kDZB] = hn::Sub(zb[1], zb[0]);
+}
+HWY_INLINE void row_gradient(const VF* co, const axis& x, VF& value, VF* grad) {
+  namespace d = detail;
+  const VF f = x.f, u = x.s;
+  const VF delta = mul_add(co[d::kEA], f, co[d::kEB]);
+  const VF gx = mul_add(x.ds, delta, mul_add(u, co[d::kEA], co[d::kX0]));
+  const VF gy = mul_add(u, mul_add(co[d::kDYA], f, co[d::kDYB]), mul_add(co[d::kY0A], f, co[d::kY0B]));
+  const VF gz = mul_add(u, mul_add(co[d::kDZA], f, co[d::kDZB]), mul_add(co[d::kZ0A], f, co[d::kZ0B]));
+  const VF scale = hn::Set(DF(), float(d::constants::kPerlin3Scale));
+  value = scale_plus_zero(scale, mul_add(u, delta, mul_add(co[d::kX0], f, co[d::kV0B])));
+  grad[0] = scale_plus_zero(scale, gx);
+  grad[1] = scale_plus_zero(scale, gy);
+  grad[2] = scale_plus_zero(scale, gz);
+}
+
 // kyz for hashed_corners() from per-lane axes (points) ...
 template <int D>
 HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
@@ -12079,7 +12322,7 @@ struct grid_columns {
     cells = cw0.size();
     cw0.resize((cells + lanes - 1) / lanes * lanes, 0u);
     cw1.resize(cw0.size(), 0u);
-    shared = 2 * cells <= n;
+    shared = detail::grid_cells_shared(cells, n);
   }
 
   template <bool kGradient>
@@ -12134,11 +12377,15 @@ struct grid_row {
 
 // Per-row, per-cell corner data for the shared-cell path: for corner n and
 // cell rank r, gx (and for gradients gy, gz) and K, at [n * stride + r].
-template <bool kGradient, int D>
+// kAffine (3D with gradients): also the cell's gradient coefficients
+// (detail::row_gradient_coef) at [m * stride + r]; samples then read gx and
+// K for the value and those for the gradient.
+template <bool kGradient, int D, bool kAffine = kGradient && D == 3>
 struct row_tables {
+  static_assert(!kAffine || (kGradient && D == 3), "the affine row gradient is 3D");
   static constexpr int kCorners = 1 << D;
   std::size_t stride = 0;
-  std::vector<float> gx, k, gy, gz;
+  std::vector<float> gx, k, gy, gz, coef;
   // The y/z words the gradients were hashed for: consecutive rows in the same
   // y (and z) cell keep them and only recompute k (the benchmark's grids have
   // 37 rows per cell).
@@ -12153,6 +12400,7 @@ struct row_tables {
     k.assign(size, 0.0f);
     gy.assign(size, 0.0f);
     if (D == 3) gz.assign(size, 0.0f);
+    if (kAffine) coef.assign(stride * detail::kRowGradientCoefs, 0.0f);
   }
 
   // Hashes the row's lattice points (cells' x words against the row's y/z
@@ -12196,27 +12444,40 @@ struct row_tables {
                        hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
         hn::StoreU(kk, df, k.data() + at);
       }
+      if constexpr (kAffine) {
+        VF cgx[8], cgy[8], cgz[8], ck[8], co[detail::kRowGradientCoefs];
+        for (int n = 0; n < kCorners; ++n) {
+          const std::size_t at = static_cast<std::size_t>(n) * stride + r;
+          cgx[n] = hn::LoadU(df, gx.data() + at);
+          cgy[n] = hn::LoadU(df, gy.data() + at);
+          cgz[n] = hn::LoadU(df, gz.data() + at);
+          ck[n] = hn::LoadU(df, k.data() + at);
+        }
+        row_gradient_coefs(cgx, cgy, cgz, ck, row.y.a, row.z.a, co);
+        for (int m = 0; m < detail::kRowGradientCoefs; ++m)
+          hn::StoreU(co[m], df, coef.data() + static_cast<std::size_t>(m) * stride + r);
+      }
     }
   }
 
-  // Corner data for the vector of columns starting at column i: per lane,
-  // the entries of its cell. Where all lanes share one cell (most vectors
-  // when cells hold many samples) a broadcast replaces the permute.
-  HWY_INLINE void corners_at(const grid_columns& cols, std::size_t i, const axis& x,
-                             corners& out) const {
+  // Calls fn(b, entry) for the vector of columns starting at column i, with
+  // b its first cell's rank and entry(table, at) giving each lane the entry
+  // of its cell. Where all lanes share one cell (most vectors when cells hold
+  // many samples) a broadcast replaces the permute. fn inlines into each
+  // branch on its own, so the entries stay in registers.
+  template <class Fn>
+  HWY_INLINE void with_entries(const grid_columns& cols, std::size_t i, const Fn& fn) const {
     const DF df;
     const std::size_t lanes = hn::Lanes(df);
     const std::size_t b = cols.base[i / lanes];
     if (cols.local[i + lanes - 1] == 0) {
-      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
-        return hn::Set(df, t[at]);
-      });
+      fn(b, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR { return hn::Set(df, t[at]); });
     } else {
       const DU du;
       const DI di;
       const auto idx =
           hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
-      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+      fn(b, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
         return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx);
       });
     }
@@ -12237,42 +12498,65 @@ struct row_tables {
       }
     }
   }
+  // kAffine: the value and gradient from the cell coefficients at rank b.
+  template <class Entry>
+  HWY_INLINE void affine_from(std::size_t b, const axis& x, const Entry& entry, VF& value,
+                              VF* grad) const {
+    VF co[detail::kRowGradientCoefs];
+    HWY_UNROLL(12)
+    for (int m = 0; m < detail::kRowGradientCoefs; ++m)
+      co[m] = entry(coef, static_cast<std::size_t>(m) * stride + b);
+    row_gradient(co, x, value, grad);
+  }
 };
 
 // One grid row's evaluation, either path: vector_out(i, value, gradient)
 // receives each vector of columns [i, i + lanes).
-template <bool kGradient, int D>
+template <bool kGradient, int D, bool kAffine = kGradient && D == 3>
 struct row_evaluator {
   const grid_columns& cols;
-  row_tables<kGradient, D> tables;
+  row_tables<kGradient, D, kAffine> tables;
 
   explicit row_evaluator(const grid_columns& c) : cols(c), tables(c) {}
 
+  // Makes `row` current (the shared path builds its cell tables).
+  HWY_INLINE void prepare(const grid_row& row) {
+    if (cols.shared) tables.build(cols, row);
+  }
+  // out(value, gradient) for the vector of columns [i, i + lanes) of the
+  // prepared row; out inlines into each branch, keeping its inputs in registers.
   template <class Out>
-  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
-    const std::size_t lanes = hn::Lanes(DF());
-    corners k;
+  HWY_INLINE void vector(const grid_row& row, std::size_t i, const Out& out) const {
     VF v, g[3];
+    corners k;
     if (cols.shared) {
-      tables.build(cols, row);
-      for (std::size_t i = 0; i < cols.n; i += lanes) {
-        axis x;
-        cols.fill_axis_loaded<kGradient>(i, x);
-        tables.corners_at(cols, i, x, k);
-        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-        vector_out(i, v, g);
-      }
+      axis x;
+      cols.fill_axis_loaded<kGradient>(i, x);
+      tables.with_entries(cols, i, [&](std::size_t b, const auto& entry) HWY_ATTR {
+        if constexpr (kAffine) {
+          tables.affine_from(b, x, entry, v, g);
+        } else {
+          tables.corners_from(b, x, k, entry);
+          finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        }
+        out(v, g);
+      });
     } else {
       const DU du;
       const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
                          hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
-      for (std::size_t i = 0; i < cols.n; i += lanes) {
-        const axis x = cols.load<kGradient>(i);
-        hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
-        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-        vector_out(i, v, g);
-      }
+      const axis x = cols.load<kGradient>(i);
+      hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
+      finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+      out(v, g);
     }
+  }
+  // vector_out(i, value, gradient) for every vector of columns of `row`.
+  template <class Out>
+  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
+    prepare(row);
+    for (std::size_t i = 0; i < cols.n; i += hn::Lanes(DF()))
+      vector(row, i, [&](VF v, const VF* g) HWY_ATTR { vector_out(i, v, g); });
   }
 };
 
@@ -12539,38 +12823,38 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
   std::vector<row_evaluator<kGradient, D>> rows;
   rows.reserve(bands.size());
   for (const grid_columns& c : cols) rows.emplace_back(c);
-  const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
-  std::vector<float> acc(padded), gacc(kGradient ? padded * D : 0);
+  // Per band, the current row's words and fractions (z kept while the slice
+  // is). On the stack: grid_row holds vectors, whose alignment a
+  // std::vector's storage need not have.
+  grid_row band_rows[fractal<perlin<D>>::kMaxOctaves];
+  std::size_t split_k = ~std::size_t(0);
   const VF scale = hn::Set(df, float(fr.scale()));
   for_each_row<D>(
       g, first, count, [&](std::size_t j, std::size_t k, std::size_t row_index) HWY_ATTR {
-        std::fill(acc.begin(), acc.end(), 0.0f);
-        std::fill(gacc.begin(), gacc.end(), 0.0f);
         for (std::size_t b = 0; b < bands.size(); ++b) {
           const band_config<D>& c = bands[b];
           const int bi = static_cast<int>(b);
-          grid_row row{c.key, {}, {}};
+          grid_row& row = band_rows[b];
+          row.key = c.key;
           row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
                                                c.period[1]);
           if constexpr (D == 3)
-            row.z = broadcast_axis<kGradient, 2>(
-                position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
-          rows[b].run(row, [&](std::size_t i, VF v, const VF* gr) HWY_ATTR {
-            VF a = hn::LoadU(df, acc.data() + i), ga[3];
-            if constexpr (kGradient)
-              for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
-            accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
-            hn::StoreU(a, df, acc.data() + i);
-            if constexpr (kGradient)
-              for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
-          });
+            if (k != split_k)
+              row.z = broadcast_axis<kGradient, 2>(
+                  position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+          rows[b].prepare(row);
         }
+        split_k = k;
+        // Per vector of columns, the bands in order, summed in registers.
         for (std::size_t i = 0; i < nx; i += lanes) {
-          const VF a = hn::LoadU(df, acc.data() + i);
+          VF a = hn::Zero(df), ga[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+          for (std::size_t b = 0; b < bands.size(); ++b)
+            rows[b].vector(band_rows[b], i, [&](VF v, const VF* gr) HWY_ATTR {
+              accumulate<kGradient, D>(turbulence, bands[b], v, gr, a, ga);
+            });
           VF gs[3];
           if constexpr (kGradient)
-            for (int d = 0; d < D; ++d)
-              gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
+            for (int d = 0; d < D; ++d) gs[d] = hn::Mul(ga[d], scale);
           store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
                        value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
         }

@@ -17,7 +17,10 @@
 //    components are 0 or +-1); targets narrower than 16 lanes form them by
 //    selects and sign flips instead of table lookups, and grids split them
 //    into a per-row part g_y f_y + g_z f_z and the x term;
-//  - grid rows hash once per lattice point, not once per sample and corner.
+//  - grid rows hash once per lattice point, not once per sample and corner;
+//  - 3D grid rows with gradients (and fractal grids' bands) use the
+//    affine-in-x form per (row, cell) that perlin.hpp's grid_values uses
+//    too (row_gradient_coefs / row_gradient, op for op).
 // So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
 //    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
@@ -357,6 +360,64 @@ HWY_INLINE void finish(const corners& k, const axis& x, const axis& y, const axi
   }
 }
 
+// ---- 3D grid rows with gradients: perlin.hpp's row_gradient_coefs and
+// row_gradient (the affine-in-x form, docs/design.md), op for op, in lanes
+// over cells (coefficients) and over columns (samples).
+struct side_blend {
+  VF l, my, mz;
+};
+HWY_INLINE side_blend blend_side(VF q00, VF q10, VF q01, VF q11, VF v, VF w) {
+  const VF i0 = lerp(q00, q10, v), i1 = lerp(q01, q11, v);
+  return {lerp(i0, i1, w), lerp(hn::Sub(q10, q00), hn::Sub(q11, q01), w), hn::Sub(i1, i0)};
+}
+// gx, gy, gz, k: per corner n, one vector of cells; ax: the row's y, z axes.
+HWY_INLINE void row_gradient_coefs(const VF* gx, const VF* gy, const VF* gz, const VF* k,
+                                   const axis& y, const axis& z, VF* out) {
+  namespace d = detail;
+  side_blend bx[2], bc[2], by[2], bz[2];
+  HWY_UNROLL(2)
+  for (int a = 0; a < 2; ++a) {
+    VF cn[4];
+    for (int m = 0; m < 4; ++m) cn[m] = a ? hn::Sub(k[a + 2 * m], gx[a + 2 * m]) : k[a + 2 * m];
+    bx[a] = blend_side(gx[a], gx[a + 2], gx[a + 4], gx[a + 6], y.s, z.s);
+    bc[a] = blend_side(cn[0], cn[1], cn[2], cn[3], y.s, z.s);
+    by[a] = blend_side(gy[a], gy[a + 2], gy[a + 4], gy[a + 6], y.s, z.s);
+    bz[a] = blend_side(gz[a], gz[a + 2], gz[a + 4], gz[a + 6], y.s, z.s);
+  }
+  VF ya[2], yb[2], za[2], zb[2];
+  for (int a = 0; a < 2; ++a) {
+    ya[a] = hn::Mul(y.ds, bx[a].my);
+    yb[a] = mul_add(y.ds, bc[a].my, by[a].l);
+    za[a] = hn::Mul(z.ds, bx[a].mz);
+    zb[a] = mul_add(z.ds, bc[a].mz, bz[a].l);
+  }
+  out[d::kEA] = hn::Sub(bx[1].l, bx[0].l);
+  out[d::kEB] = hn::Sub(bc[1].l, bc[0].l);
+  out[d::kX0] = bx[0].l;
+  out[d::kV0B] = bc[0].l;
+  out[d::kY0A] = ya[0];
+  out[d::kY0B] = yb[0];
+  out[d::kDYA] = hn::Sub(ya[1], ya[0]);
+  out[d::kDYB] = hn::Sub(yb[1], yb[0]);
+  out[d::kZ0A] = za[0];
+  out[d::kZ0B] = zb[0];
+  out[d::kDZA] = hn::Sub(za[1], za[0]);
+  out[d::kDZB] = hn::Sub(zb[1], zb[0]);
+}
+HWY_INLINE void row_gradient(const VF* co, const axis& x, VF& value, VF* grad) {
+  namespace d = detail;
+  const VF f = x.f, u = x.s;
+  const VF delta = mul_add(co[d::kEA], f, co[d::kEB]);
+  const VF gx = mul_add(x.ds, delta, mul_add(u, co[d::kEA], co[d::kX0]));
+  const VF gy = mul_add(u, mul_add(co[d::kDYA], f, co[d::kDYB]), mul_add(co[d::kY0A], f, co[d::kY0B]));
+  const VF gz = mul_add(u, mul_add(co[d::kDZA], f, co[d::kDZB]), mul_add(co[d::kZ0A], f, co[d::kZ0B]));
+  const VF scale = hn::Set(DF(), float(d::constants::kPerlin3Scale));
+  value = scale_plus_zero(scale, mul_add(u, delta, mul_add(co[d::kX0], f, co[d::kV0B])));
+  grad[0] = scale_plus_zero(scale, gx);
+  grad[1] = scale_plus_zero(scale, gy);
+  grad[2] = scale_plus_zero(scale, gz);
+}
+
 // kyz for hashed_corners() from per-lane axes (points) ...
 template <int D>
 HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
@@ -666,7 +727,7 @@ struct grid_columns {
     cells = cw0.size();
     cw0.resize((cells + lanes - 1) / lanes * lanes, 0u);
     cw1.resize(cw0.size(), 0u);
-    shared = 2 * cells <= n;
+    shared = detail::grid_cells_shared(cells, n);
   }
 
   template <bool kGradient>
@@ -721,11 +782,15 @@ struct grid_row {
 
 // Per-row, per-cell corner data for the shared-cell path: for corner n and
 // cell rank r, gx (and for gradients gy, gz) and K, at [n * stride + r].
-template <bool kGradient, int D>
+// kAffine (3D with gradients): also the cell's gradient coefficients
+// (detail::row_gradient_coef) at [m * stride + r]; samples then read gx and
+// K for the value and those for the gradient.
+template <bool kGradient, int D, bool kAffine = kGradient && D == 3>
 struct row_tables {
+  static_assert(!kAffine || (kGradient && D == 3), "the affine row gradient is 3D");
   static constexpr int kCorners = 1 << D;
   std::size_t stride = 0;
-  std::vector<float> gx, k, gy, gz;
+  std::vector<float> gx, k, gy, gz, coef;
   // The y/z words the gradients were hashed for: consecutive rows in the same
   // y (and z) cell keep them and only recompute k (the benchmark's grids have
   // 37 rows per cell).
@@ -740,6 +805,7 @@ struct row_tables {
     k.assign(size, 0.0f);
     gy.assign(size, 0.0f);
     if (D == 3) gz.assign(size, 0.0f);
+    if (kAffine) coef.assign(stride * detail::kRowGradientCoefs, 0.0f);
   }
 
   // Hashes the row's lattice points (cells' x words against the row's y/z
@@ -783,27 +849,40 @@ struct row_tables {
                        hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
         hn::StoreU(kk, df, k.data() + at);
       }
+      if constexpr (kAffine) {
+        VF cgx[8], cgy[8], cgz[8], ck[8], co[detail::kRowGradientCoefs];
+        for (int n = 0; n < kCorners; ++n) {
+          const std::size_t at = static_cast<std::size_t>(n) * stride + r;
+          cgx[n] = hn::LoadU(df, gx.data() + at);
+          cgy[n] = hn::LoadU(df, gy.data() + at);
+          cgz[n] = hn::LoadU(df, gz.data() + at);
+          ck[n] = hn::LoadU(df, k.data() + at);
+        }
+        row_gradient_coefs(cgx, cgy, cgz, ck, row.y.a, row.z.a, co);
+        for (int m = 0; m < detail::kRowGradientCoefs; ++m)
+          hn::StoreU(co[m], df, coef.data() + static_cast<std::size_t>(m) * stride + r);
+      }
     }
   }
 
-  // Corner data for the vector of columns starting at column i: per lane,
-  // the entries of its cell. Where all lanes share one cell (most vectors
-  // when cells hold many samples) a broadcast replaces the permute.
-  HWY_INLINE void corners_at(const grid_columns& cols, std::size_t i, const axis& x,
-                             corners& out) const {
+  // Calls fn(b, entry) for the vector of columns starting at column i, with
+  // b its first cell's rank and entry(table, at) giving each lane the entry
+  // of its cell. Where all lanes share one cell (most vectors when cells hold
+  // many samples) a broadcast replaces the permute. fn inlines into each
+  // branch on its own, so the entries stay in registers.
+  template <class Fn>
+  HWY_INLINE void with_entries(const grid_columns& cols, std::size_t i, const Fn& fn) const {
     const DF df;
     const std::size_t lanes = hn::Lanes(df);
     const std::size_t b = cols.base[i / lanes];
     if (cols.local[i + lanes - 1] == 0) {
-      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
-        return hn::Set(df, t[at]);
-      });
+      fn(b, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR { return hn::Set(df, t[at]); });
     } else {
       const DU du;
       const DI di;
       const auto idx =
           hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
-      corners_from(b, x, out, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
+      fn(b, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
         return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx);
       });
     }
@@ -824,42 +903,65 @@ struct row_tables {
       }
     }
   }
+  // kAffine: the value and gradient from the cell coefficients at rank b.
+  template <class Entry>
+  HWY_INLINE void affine_from(std::size_t b, const axis& x, const Entry& entry, VF& value,
+                              VF* grad) const {
+    VF co[detail::kRowGradientCoefs];
+    HWY_UNROLL(12)
+    for (int m = 0; m < detail::kRowGradientCoefs; ++m)
+      co[m] = entry(coef, static_cast<std::size_t>(m) * stride + b);
+    row_gradient(co, x, value, grad);
+  }
 };
 
 // One grid row's evaluation, either path: vector_out(i, value, gradient)
 // receives each vector of columns [i, i + lanes).
-template <bool kGradient, int D>
+template <bool kGradient, int D, bool kAffine = kGradient && D == 3>
 struct row_evaluator {
   const grid_columns& cols;
-  row_tables<kGradient, D> tables;
+  row_tables<kGradient, D, kAffine> tables;
 
   explicit row_evaluator(const grid_columns& c) : cols(c), tables(c) {}
 
+  // Makes `row` current (the shared path builds its cell tables).
+  HWY_INLINE void prepare(const grid_row& row) {
+    if (cols.shared) tables.build(cols, row);
+  }
+  // out(value, gradient) for the vector of columns [i, i + lanes) of the
+  // prepared row; out inlines into each branch, keeping its inputs in registers.
   template <class Out>
-  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
-    const std::size_t lanes = hn::Lanes(DF());
-    corners k;
+  HWY_INLINE void vector(const grid_row& row, std::size_t i, const Out& out) const {
     VF v, g[3];
+    corners k;
     if (cols.shared) {
-      tables.build(cols, row);
-      for (std::size_t i = 0; i < cols.n; i += lanes) {
-        axis x;
-        cols.fill_axis_loaded<kGradient>(i, x);
-        tables.corners_at(cols, i, x, k);
-        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-        vector_out(i, v, g);
-      }
+      axis x;
+      cols.fill_axis_loaded<kGradient>(i, x);
+      tables.with_entries(cols, i, [&](std::size_t b, const auto& entry) HWY_ATTR {
+        if constexpr (kAffine) {
+          tables.affine_from(b, x, entry, v, g);
+        } else {
+          tables.corners_from(b, x, k, entry);
+          finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        }
+        out(v, g);
+      });
     } else {
       const DU du;
       const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
                          hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
-      for (std::size_t i = 0; i < cols.n; i += lanes) {
-        const axis x = cols.load<kGradient>(i);
-        hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
-        finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-        vector_out(i, v, g);
-      }
+      const axis x = cols.load<kGradient>(i);
+      hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
+      finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+      out(v, g);
     }
+  }
+  // vector_out(i, value, gradient) for every vector of columns of `row`.
+  template <class Out>
+  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
+    prepare(row);
+    for (std::size_t i = 0; i < cols.n; i += hn::Lanes(DF()))
+      vector(row, i, [&](VF v, const VF* g) HWY_ATTR { vector_out(i, v, g); });
   }
 };
 
@@ -1126,38 +1228,38 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
   std::vector<row_evaluator<kGradient, D>> rows;
   rows.reserve(bands.size());
   for (const grid_columns& c : cols) rows.emplace_back(c);
-  const std::size_t padded = cols.empty() ? 0 : cols[0].padded;
-  std::vector<float> acc(padded), gacc(kGradient ? padded * D : 0);
+  // Per band, the current row's words and fractions (z kept while the slice
+  // is). On the stack: grid_row holds vectors, whose alignment a
+  // std::vector's storage need not have.
+  grid_row band_rows[fractal<perlin<D>>::kMaxOctaves];
+  std::size_t split_k = ~std::size_t(0);
   const VF scale = hn::Set(df, float(fr.scale()));
   for_each_row<D>(
       g, first, count, [&](std::size_t j, std::size_t k, std::size_t row_index) HWY_ATTR {
-        std::fill(acc.begin(), acc.end(), 0.0f);
-        std::fill(gacc.begin(), gacc.end(), 0.0f);
         for (std::size_t b = 0; b < bands.size(); ++b) {
           const band_config<D>& c = bands[b];
           const int bi = static_cast<int>(b);
-          grid_row row{c.key, {}, {}};
+          grid_row& row = band_rows[b];
+          row.key = c.key;
           row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
                                                c.period[1]);
           if constexpr (D == 3)
-            row.z = broadcast_axis<kGradient, 2>(
-                position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
-          rows[b].run(row, [&](std::size_t i, VF v, const VF* gr) HWY_ATTR {
-            VF a = hn::LoadU(df, acc.data() + i), ga[3];
-            if constexpr (kGradient)
-              for (int d = 0; d < D; ++d) ga[d] = hn::LoadU(df, gacc.data() + d * padded + i);
-            accumulate<kGradient, D>(turbulence, c, v, gr, a, ga);
-            hn::StoreU(a, df, acc.data() + i);
-            if constexpr (kGradient)
-              for (int d = 0; d < D; ++d) hn::StoreU(ga[d], df, gacc.data() + d * padded + i);
-          });
+            if (k != split_k)
+              row.z = broadcast_axis<kGradient, 2>(
+                  position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+          rows[b].prepare(row);
         }
+        split_k = k;
+        // Per vector of columns, the bands in order, summed in registers.
         for (std::size_t i = 0; i < nx; i += lanes) {
-          const VF a = hn::LoadU(df, acc.data() + i);
+          VF a = hn::Zero(df), ga[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+          for (std::size_t b = 0; b < bands.size(); ++b)
+            rows[b].vector(band_rows[b], i, [&](VF v, const VF* gr) HWY_ATTR {
+              accumulate<kGradient, D>(turbulence, bands[b], v, gr, a, ga);
+            });
           VF gs[3];
           if constexpr (kGradient)
-            for (int d = 0; d < D; ++d)
-              gs[d] = hn::Mul(hn::LoadU(df, gacc.data() + d * padded + i), scale);
+            for (int d = 0; d < D; ++d) gs[d] = hn::Mul(ga[d], scale);
           store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
                        value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
         }
