@@ -64,6 +64,11 @@ HWY_EXPORT(gabor3_filtered);
 HWY_EXPORT(npr_gabor_splat);
 HWY_EXPORT(gabor3_surface);
 
+// The dispatch functions declared in dispatch.hpp, defined here exactly once:
+// this header is the body of one translation unit (src/simd_dispatch.cpp or
+// the user's one .cpp), so they are deliberately not inline (inline would
+// leave them undefined for every other translation unit that calls them).
+// NOLINTBEGIN(misc-definitions-in-headers)
 namespace simd {
 
 void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy, std::size_t n,
@@ -176,6 +181,7 @@ std::string chosen_target() {
 }
 
 }  // namespace simd
+// NOLINTEND(misc-definitions-in-headers)
 }  // namespace hush
 
 #endif  // HUSH_SIMD_DISPATCH_IMPL_ONCE
