@@ -301,7 +301,7 @@ void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, f
 
 // Runs body(begin, end) over [0, n) split into at most `threads` contiguous
 // parts of whole `unit`s (n is a multiple of unit), each at least `grain`
-// long; part 0 on the calling thread; the other parts on `pool`'s workers, or
+// long: on `pool`'s threads and the calling thread, whichever takes a part, or
 // on threads started here when pool is null.
 template <class Body>
 void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned threads,
