@@ -103,6 +103,30 @@ TEST_CASE("gabor_kernel: the Gabor kernel inside the taper radius, within t^s0 o
   }
 }
 
+TEST_CASE("gabor_kernel: the float taper is exactly 0 from s = 1 on, exactly 1 where v >= 1") {
+  // The SIMD grid kernel adds the terms of samples outside the support unmasked and skips
+  // the taper where v = (1 - s) k >= 1: both rely on these exact values of the shared
+  // taper (hush/gabor_kernel.hpp), every float s near the two ends and beyond.
+  const float k = static_cast<float>(1.0 / (1.0 - kS0));
+  int wrong = 0;
+  // Every float in [0.999, 1.001], then sparser up to 3.
+  for (float s = 0.999f; s <= 3.0f; s = std::nextafter(s > 1.001f ? s + 1e-3f : s, 4.0f)) {
+    const auto tw = hush::detail::gabor_taper_derivative(s, k);
+    const bool out = !(s < 1.0f);
+    if (out != (hush::detail::gabor_taper(s, k) == 0.0f) || out != (tw.tau == 0.0f) ||
+        (out && tw.dtau != 0.0f))
+      ++wrong;
+  }
+  // Every float in [0.799, 0.801] (s0 = 0.8), sparser from 0.
+  for (float s = 0.0f; s <= 0.801f; s = std::nextafter(s < 0.799f ? s + 1e-4f : s, 1.0f)) {
+    const bool flat = (1.0f - s) * k >= 1.0f;
+    if (flat && hush::detail::gabor_taper(s, k) != 1.0f) ++wrong;
+    if (s > 0.8001f && hush::detail::gabor_taper(s, k) == 1.0f) ++wrong;  // and tapers after s0
+  }
+  CHECK(wrong == 0);
+  CHECK(hush::detail::gabor_taper(std::numeric_limits<float>::infinity(), k) == 0.0f);
+}
+
 TEST_CASE("gabor_kernel: C1 across the taper and the support edge, gradient is the derivative") {
   const hush::gabor_kernel<2> k(0.8, 0.05);
   const hush::dvec2 F{0.9, -0.4};
