@@ -146,8 +146,7 @@ HUSH_INLINE T gabor_pair_of_products(T ec, T es, T b, T q, T s, T taper_k) {
 }
 template <class T>
 HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
-  return gabor_pair_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2,
-                                taper_k);
+  return gabor_pair_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2, taper_k);
 }
 // The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
 template <class T>
@@ -166,8 +165,8 @@ HUSH_INLINE gabor_pair_gradient<T> gabor_pair_gradient_of_products(T ec, T es, T
 template <class T>
 HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
                                                             const gabor_row<T>& r, T taper_k, T a) {
-  return gabor_pair_gradient_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s,
-                                         x.d2 + r.d2, taper_k, a);
+  return gabor_pair_gradient_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2,
+                                         taper_k, a);
 }
 
 // ---- Closed forms and quadratures in cell units (double).

@@ -4764,8 +4764,7 @@ HUSH_INLINE T gabor_pair_of_products(T ec, T es, T b, T q, T s, T taper_k) {
 }
 template <class T>
 HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
-  return gabor_pair_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2,
-                                taper_k);
+  return gabor_pair_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2, taper_k);
 }
 // The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
 template <class T>
@@ -4784,8 +4783,8 @@ HUSH_INLINE gabor_pair_gradient<T> gabor_pair_gradient_of_products(T ec, T es, T
 template <class T>
 HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
                                                             const gabor_row<T>& r, T taper_k, T a) {
-  return gabor_pair_gradient_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s,
-                                         x.d2 + r.d2, taper_k, a);
+  return gabor_pair_gradient_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2,
+                                         taper_k, a);
 }
 
 // ---- Closed forms and quadratures in cell units (double).
@@ -10699,20 +10698,20 @@ struct grid_kernel {
         o[a] = m % 3 - 1;
         cell[a] = base[a] + static_cast<std::uint32_t>(o[a]);
       }
-      for (const drawn& im : impulses(cell)) [&] {
+      for (const drawn& im : impulses(cell)) {
         const float* u = im.u;
         const float* phi = im.phi;
         const float wt = im.wt;
         fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(o[1]), u[1], c.neg_a,
                    hn::Set(df, phi[1]));
-        if (fy.lo >= fy.hi) return;
+        if (fy.lo >= fy.hi) continue;
         if constexpr (D == 3) {
           fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(o[2]), u[2], c.neg_a,
                      hn::Set(df, phi[2]));
-          if (fz.lo >= fz.hi) return;
+          if (fz.lo >= fz.hi) continue;
         }
         fx.compute(frac[0].data(), nx_pad, float(o[0]), u[0], c.neg_a, hn::Set(df, phi[0]), true);
-        if (fx.lo >= fx.hi) return;
+        if (fx.lo >= fx.hi) continue;
         const VF phx = hn::Set(df, phi[0]);
         for (std::size_t kk = 0; kk < nz; ++kk) {
           if constexpr (D == 3)
@@ -10757,13 +10756,14 @@ struct grid_kernel {
                   hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), term), df, grow + ii);
                 }
               } else {
-                hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)),
-                           df, arow + ii);
+                hn::StoreU(
+                    hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)), df,
+                    arow + ii);
               }
             }
           }
         }
-      }();
+      }
     }
     // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
     // coordinate of the sample is not finite.
@@ -10800,6 +10800,7 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
   gr.size[D - 1] = count;
   std::vector<grid_axis> axes;
+  axes.reserve(D);
   for (int a = 0; a < D; ++a)
     axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
                       caps[a]);

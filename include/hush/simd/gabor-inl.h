@@ -1569,20 +1569,20 @@ struct grid_kernel {
         o[a] = m % 3 - 1;
         cell[a] = base[a] + static_cast<std::uint32_t>(o[a]);
       }
-      for (const drawn& im : impulses(cell)) [&] {
+      for (const drawn& im : impulses(cell)) {
         const float* u = im.u;
         const float* phi = im.phi;
         const float wt = im.wt;
         fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(o[1]), u[1], c.neg_a,
                    hn::Set(df, phi[1]));
-        if (fy.lo >= fy.hi) return;
+        if (fy.lo >= fy.hi) continue;
         if constexpr (D == 3) {
           fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(o[2]), u[2], c.neg_a,
                      hn::Set(df, phi[2]));
-          if (fz.lo >= fz.hi) return;
+          if (fz.lo >= fz.hi) continue;
         }
         fx.compute(frac[0].data(), nx_pad, float(o[0]), u[0], c.neg_a, hn::Set(df, phi[0]), true);
-        if (fx.lo >= fx.hi) return;
+        if (fx.lo >= fx.hi) continue;
         const VF phx = hn::Set(df, phi[0]);
         for (std::size_t kk = 0; kk < nz; ++kk) {
           if constexpr (D == 3)
@@ -1627,13 +1627,14 @@ struct grid_kernel {
                   hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), term), df, grow + ii);
                 }
               } else {
-                hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)),
-                           df, arow + ii);
+                hn::StoreU(
+                    hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)), df,
+                    arow + ii);
               }
             }
           }
         }
-      }();
+      }
     }
     // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
     // coordinate of the sample is not finite.
@@ -1670,6 +1671,7 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
   gr.size[D - 1] = count;
   std::vector<grid_axis> axes;
+  axes.reserve(D);
   for (int a = 0; a < D; ++a)
     axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
                       caps[a]);
