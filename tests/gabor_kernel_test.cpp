@@ -5,6 +5,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -101,6 +103,48 @@ TEST_CASE("gabor_kernel: the Gabor kernel inside the taper radius, within t^s0 o
     CHECK(outside <= bound + 1e-15);
     CHECK(outside > 0.9 * bound);  // and is attained
   }
+}
+
+TEST_CASE("gabor_kernel: the float taper is exactly 0 from s = 1 on, exactly 1 where v >= 1") {
+  // The SIMD grid kernel adds the terms of samples outside the support unmasked and skips
+  // the taper where v = (1 - s) k >= 1: both rely on these exact values of the shared
+  // taper (hush/gabor_kernel.hpp), every float s near the two ends and beyond.
+  const float k = static_cast<float>(1.0 / (1.0 - kS0));
+  int wrong = 0;
+  auto outside = [&](float s) {
+    const auto tw = hush::detail::gabor_taper_derivative(s, k);
+    const bool out = !(s < 1.0f);
+    if (out != (hush::detail::gabor_taper(s, k) == 0.0f) || out != (tw.tau == 0.0f) ||
+        (out && tw.dtau != 0.0f))
+      ++wrong;
+  };
+  auto flat = [&](float s) {
+    if ((1.0f - s) * k >= 1.0f && hush::detail::gabor_taper(s, k) != 1.0f) ++wrong;
+    if (s > 0.8001f && hush::detail::gabor_taper(s, k) == 1.0f) ++wrong;  // and tapers after s0
+  };
+  // Every float in [0.999, 1.001] and in [0.799, 0.801] (s0 = 0.8), and some beyond (positive
+  // floats are ordered as their bit patterns).
+  auto bits = [](float f) {
+    std::uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return b;
+  };
+  for (std::uint32_t b = bits(0.999f); b <= bits(1.001f); ++b) {
+    float s;
+    std::memcpy(&s, &b, sizeof s);
+    outside(s);
+  }
+  for (std::uint32_t b = bits(0.799f); b <= bits(0.801f); ++b) {
+    float s;
+    std::memcpy(&s, &b, sizeof s);
+    flat(s);
+  }
+  for (int i = 0; i <= 100; ++i) {
+    outside(1.0f + 0.02f * static_cast<float>(i));
+    flat(0.008f * static_cast<float>(i));
+  }
+  CHECK(wrong == 0);
+  CHECK(hush::detail::gabor_taper(std::numeric_limits<float>::infinity(), k) == 0.0f);
 }
 
 TEST_CASE("gabor_kernel: C1 across the taper and the support edge, gradient is the derivative") {

@@ -31,7 +31,8 @@
 // Evaluation happens in cell units d = x / r (the noise's cells are r wide),
 // where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
 // frequency is Phi = F r cycles per cell. The float path is separable:
-//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
+//   g = Re[(e_x c_x + i e_x s_x)(w e_yz c_yz + i w e_yz s_yz)] * tau, with
+//   e_yz c_yz + i e_yz s_yz = (e_y e_z)(c_y + i s_y)(c_z + i s_z),
 //   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
 // with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
 // share each axis's factors between samples and SIMD repeats it bit for bit.
@@ -77,22 +78,28 @@ namespace detail {
 // ---- The kernel in cell units, operation by operation as the SIMD kernels
 // (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
 
-// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), k = 1 / (1 - s0),
-// and its derivative dtau/ds = -6 k v (1 - v). Callers only pass s < 1.
+// The taper tau(s) = v^2 (3 - 2v), v = clamp((1 - s) k, 0, 1), k = 1 / (1 - s0),
+// and its derivative dtau/ds = -6 k v (1 - v). tau and dtau are exactly 0 for
+// s >= 1 ((1 - s) k > 0 exactly when s < 1), so vector code may add the
+// terms of samples outside the support (+-0) instead of masking them.
 template <class T>
 struct gabor_taper_value {
   T tau, dtau;
 };
 template <class T>
-HUSH_INLINE T gabor_taper(T s, T k) {
+HUSH_INLINE T gabor_taper_v(T s, T k) {
   T v = (T(1) - s) * k;
-  v = v < T(1) ? v : T(1);
+  v = v < T(1) ? v : T(1);  // NaN s gives 1, as the SIMD Min(v, 1) does
+  return v > T(0) ? v : T(0);
+}
+template <class T>
+HUSH_INLINE T gabor_taper(T s, T k) {
+  const T v = gabor_taper_v(s, k);
   return (v * v) * (T(3) - T(2) * v);
 }
 template <class T>
 HUSH_INLINE gabor_taper_value<T> gabor_taper_derivative(T s, T k) {
-  T v = (T(1) - s) * k;
-  v = v < T(1) ? v : T(1);
+  const T v = gabor_taper_v(s, k);
   return {(v * v) * (T(3) - T(2) * v), (T(-6) * k) * (v * (T(1) - v))};
 }
 
@@ -129,11 +136,17 @@ HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y, const gabor_a
   return {w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2};
 }
 
-// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1.
+// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1
+// (0 for s >= 1), from the products of each side: the x side's e c and e s
+// and the row's we c and we s, so that a grid forms them once per column and
+// once per row and per sample only (ec b - es q) tau(s).
+template <class T>
+HUSH_INLINE T gabor_pair_of_products(T ec, T es, T b, T q, T s, T taper_k) {
+  return (ec * b - es * q) * gabor_taper(s, taper_k);
+}
 template <class T>
 HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
-  const T s = x.d2 + r.d2;
-  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * gabor_taper(s, taper_k);
+  return gabor_pair_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2, taper_k);
 }
 // The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
 template <class T>
@@ -141,15 +154,19 @@ struct gabor_pair_gradient {
   T value, u, v;
 };
 template <class T>
-HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
-                                                            const gabor_row<T>& r, T taper_k, T a) {
-  const T s = x.d2 + r.d2;
+HUSH_INLINE gabor_pair_gradient<T> gabor_pair_gradient_of_products(T ec, T es, T b, T q, T s,
+                                                                   T taper_k, T a) {
   const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
-  const T p = x.e * r.we;
-  const T pc = p * (x.c * r.c - x.s * r.s);
-  const T ps = p * (x.s * r.c + x.c * r.s);
+  const T pc = ec * b - es * q;  // p cos(theta), p = e_x we
+  const T ps = es * b + ec * q;  // p sin(theta)
   // d/dd_a of p cos(theta) tau: p cos (2 d_a tau' - 2 A d_a tau) - 2 pi phi_a p sin tau.
   return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
+}
+template <class T>
+HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
+                                                            const gabor_row<T>& r, T taper_k, T a) {
+  return gabor_pair_gradient_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2,
+                                         taper_k, a);
 }
 
 // ---- Closed forms and quadratures in cell units (double).

@@ -4504,7 +4504,8 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 // Evaluation happens in cell units d = x / r (the noise's cells are r wide),
 // where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
 // frequency is Phi = F r cycles per cell. The float path is separable:
-//   g = (e_x (e_y e_z)) * Re[(c_x + i s_x)(c_y + i s_y)(c_z + i s_z)] * tau,
+//   g = Re[(e_x c_x + i e_x s_x)(w e_yz c_yz + i w e_yz s_yz)] * tau, with
+//   e_yz c_yz + i e_yz s_yz = (e_y e_z)(c_y + i s_y)(c_z + i s_z),
 //   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
 // with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
 // share each axis's factors between samples and SIMD repeats it bit for bit.
@@ -4765,22 +4766,28 @@ namespace detail {
 // ---- The kernel in cell units, operation by operation as the SIMD kernels
 // (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
 
-// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), k = 1 / (1 - s0),
-// and its derivative dtau/ds = -6 k v (1 - v). Callers only pass s < 1.
+// The taper tau(s) = v^2 (3 - 2v), v = clamp((1 - s) k, 0, 1), k = 1 / (1 - s0),
+// and its derivative dtau/ds = -6 k v (1 - v). tau and dtau are exactly 0 for
+// s >= 1 ((1 - s) k > 0 exactly when s < 1), so vector code may add the
+// terms of samples outside the support (+-0) instead of masking them.
 template <class T>
 struct gabor_taper_value {
   T tau, dtau;
 };
 template <class T>
-HUSH_INLINE T gabor_taper(T s, T k) {
+HUSH_INLINE T gabor_taper_v(T s, T k) {
   T v = (T(1) - s) * k;
-  v = v < T(1) ? v : T(1);
+  v = v < T(1) ? v : T(1);  // NaN s gives 1, as the SIMD Min(v, 1) does
+  return v > T(0) ? v : T(0);
+}
+template <class T>
+HUSH_INLINE T gabor_taper(T s, T k) {
+  const T v = gabor_taper_v(s, k);
   return (v * v) * (T(3) - T(2) * v);
 }
 template <class T>
 HUSH_INLINE gabor_taper_value<T> gabor_taper_derivative(T s, T k) {
-  T v = (T(1) - s) * k;
-  v = v < T(1) ? v : T(1);
+  const T v = gabor_taper_v(s, k);
   return {(v * v) * (T(3) - T(2) * v), (T(-6) * k) * (v * (T(1) - v))};
 }
 
@@ -4817,11 +4824,17 @@ HUSH_INLINE gabor_row<T> gabor_row_of(T w, const gabor_axis<T>& y, const gabor_a
   return {w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2};
 }
 
-// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1.
+// The weighted kernel of one (x factors, row) pair, for s = x.d2 + row.d2 < 1
+// (0 for s >= 1), from the products of each side: the x side's e c and e s
+// and the row's we c and we s, so that a grid forms them once per column and
+// once per row and per sample only (ec b - es q) tau(s).
+template <class T>
+HUSH_INLINE T gabor_pair_of_products(T ec, T es, T b, T q, T s, T taper_k) {
+  return (ec * b - es * q) * gabor_taper(s, taper_k);
+}
 template <class T>
 HUSH_INLINE T gabor_pair(const gabor_axis<T>& x, const gabor_row<T>& r, T taper_k) {
-  const T s = x.d2 + r.d2;
-  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * gabor_taper(s, taper_k);
+  return gabor_pair_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2, taper_k);
 }
 // The same with the gradient's coefficients: dg/dd_a = u d_a - v phi_a.
 template <class T>
@@ -4829,15 +4842,19 @@ struct gabor_pair_gradient {
   T value, u, v;
 };
 template <class T>
-HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
-                                                            const gabor_row<T>& r, T taper_k, T a) {
-  const T s = x.d2 + r.d2;
+HUSH_INLINE gabor_pair_gradient<T> gabor_pair_gradient_of_products(T ec, T es, T b, T q, T s,
+                                                                   T taper_k, T a) {
   const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
-  const T p = x.e * r.we;
-  const T pc = p * (x.c * r.c - x.s * r.s);
-  const T ps = p * (x.s * r.c + x.c * r.s);
+  const T pc = ec * b - es * q;  // p cos(theta), p = e_x we
+  const T ps = es * b + ec * q;  // p sin(theta)
   // d/dd_a of p cos(theta) tau: p cos (2 d_a tau' - 2 A d_a tau) - 2 pi phi_a p sin tau.
   return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
+}
+template <class T>
+HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
+                                                            const gabor_row<T>& r, T taper_k, T a) {
+  return gabor_pair_gradient_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2,
+                                         taper_k, a);
 }
 
 // ---- Closed forms and quadratures in cell units (double).
@@ -9585,37 +9602,48 @@ HWY_INLINE row row_of(VF w, const axis& y, const axis& z) {
   return {hn::Mul(w, hn::Mul(y.e, z.e)), hn::Sub(hn::Mul(y.c, z.c), hn::Mul(y.s, z.s)),
           hn::Add(hn::Mul(y.s, z.c), hn::Mul(y.c, z.s)), hn::Add(y.d2, z.d2)};
 }
-HWY_INLINE VF taper(VF s, VF k) {
+// gabor_taper_v: clamp((1 - s) k, 0, 1); 0 exactly when s >= 1.
+HWY_INLINE VF taper_v(VF s, VF k) {
   const DF df;
   const VF one = hn::Set(df, 1.0f);
-  const VF v = hn::Min(hn::Mul(hn::Sub(one, s), k), one);
+  return hn::Max(hn::Min(hn::Mul(hn::Sub(one, s), k), one), hn::Zero(df));
+}
+HWY_INLINE VF taper(VF s, VF k) {
+  const DF df;
+  const VF v = taper_v(s, k);
   return hn::Mul(hn::Mul(v, v), neg_mul_add(hn::Set(df, 2.0f), v, hn::Set(df, 3.0f)));
 }
 HWY_INLINE void taper_derivative(VF s, VF k, VF& tau, VF& dtau) {
   const DF df;
-  const VF one = hn::Set(df, 1.0f);
-  const VF v = hn::Min(hn::Mul(hn::Sub(one, s), k), one);
+  const VF v = taper_v(s, k);
   tau = hn::Mul(hn::Mul(v, v), neg_mul_add(hn::Set(df, 2.0f), v, hn::Set(df, 3.0f)));
-  dtau = hn::Mul(hn::Mul(hn::Set(df, -6.0f), k), hn::Mul(v, hn::Sub(one, v)));
+  dtau = hn::Mul(hn::Mul(hn::Set(df, -6.0f), k), hn::Mul(v, hn::Sub(hn::Set(df, 1.0f), v)));
 }
-// gabor_pair: ((x.e r.we) (x.c r.c - x.s r.s)) tau(x.d2 + r.d2).
+// gabor_pair_of_products: (ec b - es q) tau(s), 0 for s >= 1.
+HWY_INLINE VF pair_of_products(VF ec, VF es, VF b, VF q, VF s, VF k) {
+  return hn::Mul(neg_mul_add(es, q, hn::Mul(ec, b)), taper(s, k));
+}
+// gabor_pair: the products of x's and the row's factors, then the above.
 HWY_INLINE VF pair(const axis& x, const row& r, VF k) {
-  const VF s = hn::Add(x.d2, r.d2);
-  return hn::Mul(hn::Mul(hn::Mul(x.e, r.we), hn::Sub(hn::Mul(x.c, r.c), hn::Mul(x.s, r.s))),
-                 taper(s, k));
+  return pair_of_products(hn::Mul(x.e, x.c), hn::Mul(x.e, x.s), hn::Mul(r.we, r.c),
+                          hn::Mul(r.we, r.s), hn::Add(x.d2, r.d2), k);
 }
-// gabor_pair_with_gradient: value, u, v with dg/dd_a = u d_a - v phi_a.
-HWY_INLINE void pair_gradient(const axis& x, const row& r, VF k, VF a, VF& value, VF& u, VF& v) {
+// gabor_pair_gradient_of_products: value, u, v with dg/dd_a = u d_a - v phi_a.
+HWY_INLINE void pair_gradient_of_products(VF ec, VF es, VF b, VF q, VF s, VF k, VF a, VF& value,
+                                          VF& u, VF& v) {
   const DF df;
-  const VF s = hn::Add(x.d2, r.d2);
   VF tau, dtau;
   taper_derivative(s, k, tau, dtau);
-  const VF p = hn::Mul(x.e, r.we);
-  const VF pc = hn::Mul(p, hn::Sub(hn::Mul(x.c, r.c), hn::Mul(x.s, r.s)));
-  const VF ps = hn::Mul(p, hn::Add(hn::Mul(x.s, r.c), hn::Mul(x.c, r.s)));
+  const VF pc = neg_mul_add(es, q, hn::Mul(ec, b));
+  const VF ps = mul_add(es, b, hn::Mul(ec, q));
   value = hn::Mul(pc, tau);
   u = hn::Mul(hn::Add(pc, pc), neg_mul_add(a, tau, dtau));
   v = hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(ps, tau));
+}
+// gabor_pair_with_gradient.
+HWY_INLINE void pair_gradient(const axis& x, const row& r, VF k, VF a, VF& value, VF& u, VF& v) {
+  pair_gradient_of_products(hn::Mul(x.e, x.c), hn::Mul(x.e, x.s), hn::Mul(r.we, r.c),
+                            hn::Mul(r.we, r.s), hn::Add(x.d2, r.d2), k, a, value, u, v);
 }
 
 // ---- The noise's constants as lanes.
@@ -10756,12 +10784,18 @@ struct grid_axis {
 // The factors of one impulse along one axis of a block: for the block's
 // samples [0, n) (padded to whole vectors with fractions far outside), offset
 // d = (frac - o) - u, d^2 and the axis factors; `lo`, `hi`: the range of
-// samples with d^2 < 1 (contiguous: frac is monotonic within a cell).
+// samples with d^2 < 1 (contiguous: frac is monotonic within a cell); along
+// x also the products e c and e s (gabor_pair_of_products' x side).
 struct block_factors {
-  std::vector<float> d, d2, e, s, c;
+  std::vector<float> d, d2, e, s, c, ec, es;
+  // Along x, per vector: the least d^2 of its lanes (a NaN lane counts as 0:
+  // such a vector is never skipped).
+  std::vector<float> vmin;
   std::size_t lo = 0, hi = 0;
-  explicit block_factors(std::size_t cap) : d(cap), d2(cap), e(cap), s(cap), c(cap) {}
-  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi) {
+  explicit block_factors(std::size_t cap)
+      : d(cap), d2(cap), e(cap), s(cap), c(cap), ec(cap), es(cap), vmin(cap) {}
+  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi,
+               bool x_axis = false) {
     const DF df;
     const std::size_t lanes = hn::Lanes(df);
     const VF ou = hn::Set(df, o), uu = hn::Set(df, u);
@@ -10772,6 +10806,8 @@ struct block_factors {
       const VF d2v = hn::Mul(dv, dv);
       hn::StoreU(dv, df, d.data() + i);
       hn::StoreU(d2v, df, d2.data() + i);
+      if (x_axis)
+        vmin[i / lanes] = hn::GetLane(hn::MinOfLanes(df, hn::IfThenZeroElse(hn::IsNaN(d2v), d2v)));
       if (hn::AllFalse(df, hn::Lt(d2v, hn::Set(df, 1.0f)))) continue;
       lo = std::min(lo, i);
       hi = i + lanes;
@@ -10779,6 +10815,8 @@ struct block_factors {
       hn::StoreU(f.e, df, e.data() + i);
       hn::StoreU(f.s, df, s.data() + i);
       hn::StoreU(f.c, df, c.data() + i);
+      hn::StoreU(hn::Mul(f.e, f.c), df, ec.data() + i);
+      hn::StoreU(hn::Mul(f.e, f.s), df, es.data() + i);
     }
   }
 };
@@ -10793,6 +10831,44 @@ struct grid_kernel {
   // The block's fractions per axis, padded (x to whole vectors).
   std::vector<float> frac[3];
   block_factors fx, fy, fz;
+
+  // Each cell's impulses (positions, weight, frequency: stream order) drawn
+  // once for the 3^D blocks that see it, in a direct-mapped cache keyed by the
+  // cell (the low bits of its indices pick the slot: blocks go along x, so the
+  // cells in use stay apart); a slot shared by two cells in use only repeats
+  // a draw.
+  struct drawn {
+    float u[3], wt, phi[3];
+  };
+  struct slot {
+    bool used = false;
+    std::uint32_t key[3] = {};
+    std::vector<drawn> imp;
+  };
+  static constexpr std::uint32_t kSlotsX = 64, kSlotsYZ = 4;
+  std::vector<slot> cache{kSlotsX * kSlotsYZ * (D == 3 ? kSlotsYZ : 1)};
+  const std::vector<drawn>& impulses(const std::uint32_t (&cell)[D]) {
+    std::size_t i = cell[0] % kSlotsX + kSlotsX * (cell[1] % kSlotsYZ);
+    if (D == 3) i += kSlotsX * kSlotsYZ * (cell[D - 1] % kSlotsYZ);
+    slot& sl = cache[i];
+    bool hit = sl.used;
+    for (int a = 0; a < D; ++a) hit = hit && sl.key[a] == cell[a];
+    if (hit) return sl.imp;
+    sl.used = true;
+    for (int a = 0; a < D; ++a) sl.key[a] = cell[a];
+    sl.imp.clear();
+    g.for_each_impulse(cell, [&](const std::uint32_t* w) {
+      drawn d{};
+      for (int a = 0; a < D; ++a) d.u[a] = gabor<D>::template impulse_position<float>(w, a);
+      float mv[4] = {};
+      vec<float, D> phi;
+      g.template mark_values<float>(w, mv);
+      g.marks().template draw<float>(mv, d.wt, phi);
+      for (int a = 0; a < D; ++a) d.phi[a] = phi[a];
+      sl.imp.push_back(d);
+    });
+    return sl.imp;
+  }
 
   explicit grid_kernel(const gabor<D>& noise, std::size_t cx, std::size_t cy, std::size_t cz)
       : g(noise),
@@ -10832,7 +10908,6 @@ struct grid_kernel {
                   0.0f);
     const std::uint32_t base[3] = {axes[0].cell[i0], axes[1].cell[j0],
                                    D == 3 ? axes[D - 1].cell[k0] : 0u};
-    const VF one = hn::Set(df, 1.0f);
     constexpr int kCells = D == 2 ? 9 : 27;
     for (int cn_i = 0; cn_i < kCells; ++cn_i) {
       int o[3] = {0, 0, 0};
@@ -10841,23 +10916,20 @@ struct grid_kernel {
         o[a] = m % 3 - 1;
         cell[a] = base[a] + static_cast<std::uint32_t>(o[a]);
       }
-      g.for_each_impulse(cell, [&](const std::uint32_t* w) {
-        float u[3];
-        for (int a = 0; a < D; ++a) u[a] = gabor<D>::template impulse_position<float>(w, a);
-        float mv[4] = {}, wt;
-        vec<float, D> phi;
-        g.template mark_values<float>(w, mv);
-        g.marks().template draw<float>(mv, wt, phi);
+      for (const drawn& im : impulses(cell)) {
+        const float* u = im.u;
+        const float* phi = im.phi;
+        const float wt = im.wt;
         fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(o[1]), u[1], c.neg_a,
                    hn::Set(df, phi[1]));
-        if (fy.lo >= fy.hi) return;
+        if (fy.lo >= fy.hi) continue;
         if constexpr (D == 3) {
           fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(o[2]), u[2], c.neg_a,
                      hn::Set(df, phi[2]));
-          if (fz.lo >= fz.hi) return;
+          if (fz.lo >= fz.hi) continue;
         }
-        fx.compute(frac[0].data(), nx_pad, float(o[0]), u[0], c.neg_a, hn::Set(df, phi[0]));
-        if (fx.lo >= fx.hi) return;
+        fx.compute(frac[0].data(), nx_pad, float(o[0]), u[0], c.neg_a, hn::Set(df, phi[0]), true);
+        if (fx.lo >= fx.hi) continue;
         const VF phx = hn::Set(df, phi[0]);
         for (std::size_t kk = 0; kk < nz; ++kk) {
           if constexpr (D == 3)
@@ -10873,40 +10945,43 @@ struct grid_kernel {
                   wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]},
                   detail::gabor_axis<float>{fz.d[kk], fz.d2[kk], fz.e[kk], fz.s[kk], fz.c[kk]});
             }
-            const row rv{hn::Set(df, r.we), hn::Set(df, r.c), hn::Set(df, r.s), hn::Set(df, r.d2)};
+            // The row's side of gabor_pair_of_products; per sample only the
+            // products and the taper, which is 0 outside the support (no mask:
+            // adding +-0 leaves every sum as the scalar path's).
+            const VF b = hn::Set(df, r.we * r.c), q = hn::Set(df, r.we * r.s);
+            const VF rd2 = hn::Set(df, r.d2);
             float* arow = acc.data() + (kk * ny + jj) * stride;
-            for (std::size_t ii = fx.lo; ii < fx.hi; ii += lanes) {
-              axis xa;
-              xa.d = hn::LoadU(df, fx.d.data() + ii);
-              xa.d2 = hn::LoadU(df, fx.d2.data() + ii);
-              xa.e = hn::LoadU(df, fx.e.data() + ii);
-              xa.s = hn::LoadU(df, fx.s.data() + ii);
-              xa.c = hn::LoadU(df, fx.c.data() + ii);
-              const MF in = hn::Lt(hn::Add(xa.d2, rv.d2), one);
+            // The row's chord of the support, by whole vectors: a vector whose
+            // least d^2 plus the row's is >= 1 only adds +-0 (float addition and
+            // the taper's steps are monotonic), so skipping it changes nothing.
+            std::size_t ib = fx.lo, ie = fx.hi;
+            while (ib < ie && !(fx.vmin[ib / lanes] + r.d2 < 1.0f)) ib += lanes;
+            while (ie > ib && !(fx.vmin[ie / lanes - 1] + r.d2 < 1.0f)) ie -= lanes;
+            for (std::size_t ii = ib; ii < ie; ii += lanes) {
+              const VF ec = hn::LoadU(df, fx.ec.data() + ii), es = hn::LoadU(df, fx.es.data() + ii);
+              const VF s2 = hn::Add(hn::LoadU(df, fx.d2.data() + ii), rd2);
               if constexpr (G) {
                 VF v, uu, vv;
-                pair_gradient(xa, rv, c.k, c.a, v, uu, vv);
-                hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), hn::IfThenElseZero(in, v)), df,
-                           arow + ii);
-                const VF dd[3] = {xa.d, hn::Set(df, fy.d[jj]),
+                pair_gradient_of_products(ec, es, b, q, s2, c.k, c.a, v, uu, vv);
+                hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), v), df, arow + ii);
+                const VF dd[3] = {hn::LoadU(df, fx.d.data() + ii), hn::Set(df, fy.d[jj]),
                                   hn::Set(df, D == 3 ? fz.d[kk] : 0.0f)};
                 const VF ph[3] = {phx, hn::Set(df, phi[1]),
                                   hn::Set(df, D == 3 ? phi[D - 1] : 0.0f)};
                 for (int a = 0; a < D; ++a) {
                   float* grow = gacc[a].data() + (kk * ny + jj) * stride;
                   const VF term = hn::Sub(hn::Mul(uu, dd[a]), hn::Mul(vv, ph[a]));
-                  hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), hn::IfThenElseZero(in, term)), df,
-                             grow + ii);
+                  hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), term), df, grow + ii);
                 }
               } else {
                 hn::StoreU(
-                    hn::Add(hn::LoadU(df, arow + ii), hn::IfThenElseZero(in, pair(xa, rv, c.k))),
-                    df, arow + ii);
+                    hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)), df,
+                    arow + ii);
               }
             }
           }
         }
-      });
+      }
     }
     // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
     // coordinate of the sample is not finite.
@@ -10943,6 +11018,7 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
   gr.size[D - 1] = count;
   std::vector<grid_axis> axes;
+  axes.reserve(D);
   for (int a = 0; a < D; ++a)
     axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
                       caps[a]);

@@ -255,37 +255,48 @@ HWY_INLINE row row_of(VF w, const axis& y, const axis& z) {
   return {hn::Mul(w, hn::Mul(y.e, z.e)), hn::Sub(hn::Mul(y.c, z.c), hn::Mul(y.s, z.s)),
           hn::Add(hn::Mul(y.s, z.c), hn::Mul(y.c, z.s)), hn::Add(y.d2, z.d2)};
 }
-HWY_INLINE VF taper(VF s, VF k) {
+// gabor_taper_v: clamp((1 - s) k, 0, 1); 0 exactly when s >= 1.
+HWY_INLINE VF taper_v(VF s, VF k) {
   const DF df;
   const VF one = hn::Set(df, 1.0f);
-  const VF v = hn::Min(hn::Mul(hn::Sub(one, s), k), one);
+  return hn::Max(hn::Min(hn::Mul(hn::Sub(one, s), k), one), hn::Zero(df));
+}
+HWY_INLINE VF taper(VF s, VF k) {
+  const DF df;
+  const VF v = taper_v(s, k);
   return hn::Mul(hn::Mul(v, v), neg_mul_add(hn::Set(df, 2.0f), v, hn::Set(df, 3.0f)));
 }
 HWY_INLINE void taper_derivative(VF s, VF k, VF& tau, VF& dtau) {
   const DF df;
-  const VF one = hn::Set(df, 1.0f);
-  const VF v = hn::Min(hn::Mul(hn::Sub(one, s), k), one);
+  const VF v = taper_v(s, k);
   tau = hn::Mul(hn::Mul(v, v), neg_mul_add(hn::Set(df, 2.0f), v, hn::Set(df, 3.0f)));
-  dtau = hn::Mul(hn::Mul(hn::Set(df, -6.0f), k), hn::Mul(v, hn::Sub(one, v)));
+  dtau = hn::Mul(hn::Mul(hn::Set(df, -6.0f), k), hn::Mul(v, hn::Sub(hn::Set(df, 1.0f), v)));
 }
-// gabor_pair: ((x.e r.we) (x.c r.c - x.s r.s)) tau(x.d2 + r.d2).
+// gabor_pair_of_products: (ec b - es q) tau(s), 0 for s >= 1.
+HWY_INLINE VF pair_of_products(VF ec, VF es, VF b, VF q, VF s, VF k) {
+  return hn::Mul(neg_mul_add(es, q, hn::Mul(ec, b)), taper(s, k));
+}
+// gabor_pair: the products of x's and the row's factors, then the above.
 HWY_INLINE VF pair(const axis& x, const row& r, VF k) {
-  const VF s = hn::Add(x.d2, r.d2);
-  return hn::Mul(hn::Mul(hn::Mul(x.e, r.we), hn::Sub(hn::Mul(x.c, r.c), hn::Mul(x.s, r.s))),
-                 taper(s, k));
+  return pair_of_products(hn::Mul(x.e, x.c), hn::Mul(x.e, x.s), hn::Mul(r.we, r.c),
+                          hn::Mul(r.we, r.s), hn::Add(x.d2, r.d2), k);
 }
-// gabor_pair_with_gradient: value, u, v with dg/dd_a = u d_a - v phi_a.
-HWY_INLINE void pair_gradient(const axis& x, const row& r, VF k, VF a, VF& value, VF& u, VF& v) {
+// gabor_pair_gradient_of_products: value, u, v with dg/dd_a = u d_a - v phi_a.
+HWY_INLINE void pair_gradient_of_products(VF ec, VF es, VF b, VF q, VF s, VF k, VF a, VF& value,
+                                          VF& u, VF& v) {
   const DF df;
-  const VF s = hn::Add(x.d2, r.d2);
   VF tau, dtau;
   taper_derivative(s, k, tau, dtau);
-  const VF p = hn::Mul(x.e, r.we);
-  const VF pc = hn::Mul(p, hn::Sub(hn::Mul(x.c, r.c), hn::Mul(x.s, r.s)));
-  const VF ps = hn::Mul(p, hn::Add(hn::Mul(x.s, r.c), hn::Mul(x.c, r.s)));
+  const VF pc = neg_mul_add(es, q, hn::Mul(ec, b));
+  const VF ps = mul_add(es, b, hn::Mul(ec, q));
   value = hn::Mul(pc, tau);
   u = hn::Mul(hn::Add(pc, pc), neg_mul_add(a, tau, dtau));
   v = hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(ps, tau));
+}
+// gabor_pair_with_gradient.
+HWY_INLINE void pair_gradient(const axis& x, const row& r, VF k, VF a, VF& value, VF& u, VF& v) {
+  pair_gradient_of_products(hn::Mul(x.e, x.c), hn::Mul(x.e, x.s), hn::Mul(r.we, r.c),
+                            hn::Mul(r.we, r.s), hn::Add(x.d2, r.d2), k, a, value, u, v);
 }
 
 // ---- The noise's constants as lanes.
@@ -1426,12 +1437,18 @@ struct grid_axis {
 // The factors of one impulse along one axis of a block: for the block's
 // samples [0, n) (padded to whole vectors with fractions far outside), offset
 // d = (frac - o) - u, d^2 and the axis factors; `lo`, `hi`: the range of
-// samples with d^2 < 1 (contiguous: frac is monotonic within a cell).
+// samples with d^2 < 1 (contiguous: frac is monotonic within a cell); along
+// x also the products e c and e s (gabor_pair_of_products' x side).
 struct block_factors {
-  std::vector<float> d, d2, e, s, c;
+  std::vector<float> d, d2, e, s, c, ec, es;
+  // Along x, per vector: the least d^2 of its lanes (a NaN lane counts as 0:
+  // such a vector is never skipped).
+  std::vector<float> vmin;
   std::size_t lo = 0, hi = 0;
-  explicit block_factors(std::size_t cap) : d(cap), d2(cap), e(cap), s(cap), c(cap) {}
-  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi) {
+  explicit block_factors(std::size_t cap)
+      : d(cap), d2(cap), e(cap), s(cap), c(cap), ec(cap), es(cap), vmin(cap) {}
+  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi,
+               bool x_axis = false) {
     const DF df;
     const std::size_t lanes = hn::Lanes(df);
     const VF ou = hn::Set(df, o), uu = hn::Set(df, u);
@@ -1442,6 +1459,8 @@ struct block_factors {
       const VF d2v = hn::Mul(dv, dv);
       hn::StoreU(dv, df, d.data() + i);
       hn::StoreU(d2v, df, d2.data() + i);
+      if (x_axis)
+        vmin[i / lanes] = hn::GetLane(hn::MinOfLanes(df, hn::IfThenZeroElse(hn::IsNaN(d2v), d2v)));
       if (hn::AllFalse(df, hn::Lt(d2v, hn::Set(df, 1.0f)))) continue;
       lo = std::min(lo, i);
       hi = i + lanes;
@@ -1449,6 +1468,8 @@ struct block_factors {
       hn::StoreU(f.e, df, e.data() + i);
       hn::StoreU(f.s, df, s.data() + i);
       hn::StoreU(f.c, df, c.data() + i);
+      hn::StoreU(hn::Mul(f.e, f.c), df, ec.data() + i);
+      hn::StoreU(hn::Mul(f.e, f.s), df, es.data() + i);
     }
   }
 };
@@ -1463,6 +1484,44 @@ struct grid_kernel {
   // The block's fractions per axis, padded (x to whole vectors).
   std::vector<float> frac[3];
   block_factors fx, fy, fz;
+
+  // Each cell's impulses (positions, weight, frequency: stream order) drawn
+  // once for the 3^D blocks that see it, in a direct-mapped cache keyed by the
+  // cell (the low bits of its indices pick the slot: blocks go along x, so the
+  // cells in use stay apart); a slot shared by two cells in use only repeats
+  // a draw.
+  struct drawn {
+    float u[3], wt, phi[3];
+  };
+  struct slot {
+    bool used = false;
+    std::uint32_t key[3] = {};
+    std::vector<drawn> imp;
+  };
+  static constexpr std::uint32_t kSlotsX = 64, kSlotsYZ = 4;
+  std::vector<slot> cache{kSlotsX * kSlotsYZ * (D == 3 ? kSlotsYZ : 1)};
+  const std::vector<drawn>& impulses(const std::uint32_t (&cell)[D]) {
+    std::size_t i = cell[0] % kSlotsX + kSlotsX * (cell[1] % kSlotsYZ);
+    if (D == 3) i += kSlotsX * kSlotsYZ * (cell[D - 1] % kSlotsYZ);
+    slot& sl = cache[i];
+    bool hit = sl.used;
+    for (int a = 0; a < D; ++a) hit = hit && sl.key[a] == cell[a];
+    if (hit) return sl.imp;
+    sl.used = true;
+    for (int a = 0; a < D; ++a) sl.key[a] = cell[a];
+    sl.imp.clear();
+    g.for_each_impulse(cell, [&](const std::uint32_t* w) {
+      drawn d{};
+      for (int a = 0; a < D; ++a) d.u[a] = gabor<D>::template impulse_position<float>(w, a);
+      float mv[4] = {};
+      vec<float, D> phi;
+      g.template mark_values<float>(w, mv);
+      g.marks().template draw<float>(mv, d.wt, phi);
+      for (int a = 0; a < D; ++a) d.phi[a] = phi[a];
+      sl.imp.push_back(d);
+    });
+    return sl.imp;
+  }
 
   explicit grid_kernel(const gabor<D>& noise, std::size_t cx, std::size_t cy, std::size_t cz)
       : g(noise),
@@ -1502,7 +1561,6 @@ struct grid_kernel {
                   0.0f);
     const std::uint32_t base[3] = {axes[0].cell[i0], axes[1].cell[j0],
                                    D == 3 ? axes[D - 1].cell[k0] : 0u};
-    const VF one = hn::Set(df, 1.0f);
     constexpr int kCells = D == 2 ? 9 : 27;
     for (int cn_i = 0; cn_i < kCells; ++cn_i) {
       int o[3] = {0, 0, 0};
@@ -1511,23 +1569,20 @@ struct grid_kernel {
         o[a] = m % 3 - 1;
         cell[a] = base[a] + static_cast<std::uint32_t>(o[a]);
       }
-      g.for_each_impulse(cell, [&](const std::uint32_t* w) {
-        float u[3];
-        for (int a = 0; a < D; ++a) u[a] = gabor<D>::template impulse_position<float>(w, a);
-        float mv[4] = {}, wt;
-        vec<float, D> phi;
-        g.template mark_values<float>(w, mv);
-        g.marks().template draw<float>(mv, wt, phi);
+      for (const drawn& im : impulses(cell)) {
+        const float* u = im.u;
+        const float* phi = im.phi;
+        const float wt = im.wt;
         fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(o[1]), u[1], c.neg_a,
                    hn::Set(df, phi[1]));
-        if (fy.lo >= fy.hi) return;
+        if (fy.lo >= fy.hi) continue;
         if constexpr (D == 3) {
           fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(o[2]), u[2], c.neg_a,
                      hn::Set(df, phi[2]));
-          if (fz.lo >= fz.hi) return;
+          if (fz.lo >= fz.hi) continue;
         }
-        fx.compute(frac[0].data(), nx_pad, float(o[0]), u[0], c.neg_a, hn::Set(df, phi[0]));
-        if (fx.lo >= fx.hi) return;
+        fx.compute(frac[0].data(), nx_pad, float(o[0]), u[0], c.neg_a, hn::Set(df, phi[0]), true);
+        if (fx.lo >= fx.hi) continue;
         const VF phx = hn::Set(df, phi[0]);
         for (std::size_t kk = 0; kk < nz; ++kk) {
           if constexpr (D == 3)
@@ -1543,40 +1598,43 @@ struct grid_kernel {
                   wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]},
                   detail::gabor_axis<float>{fz.d[kk], fz.d2[kk], fz.e[kk], fz.s[kk], fz.c[kk]});
             }
-            const row rv{hn::Set(df, r.we), hn::Set(df, r.c), hn::Set(df, r.s), hn::Set(df, r.d2)};
+            // The row's side of gabor_pair_of_products; per sample only the
+            // products and the taper, which is 0 outside the support (no mask:
+            // adding +-0 leaves every sum as the scalar path's).
+            const VF b = hn::Set(df, r.we * r.c), q = hn::Set(df, r.we * r.s);
+            const VF rd2 = hn::Set(df, r.d2);
             float* arow = acc.data() + (kk * ny + jj) * stride;
-            for (std::size_t ii = fx.lo; ii < fx.hi; ii += lanes) {
-              axis xa;
-              xa.d = hn::LoadU(df, fx.d.data() + ii);
-              xa.d2 = hn::LoadU(df, fx.d2.data() + ii);
-              xa.e = hn::LoadU(df, fx.e.data() + ii);
-              xa.s = hn::LoadU(df, fx.s.data() + ii);
-              xa.c = hn::LoadU(df, fx.c.data() + ii);
-              const MF in = hn::Lt(hn::Add(xa.d2, rv.d2), one);
+            // The row's chord of the support, by whole vectors: a vector whose
+            // least d^2 plus the row's is >= 1 only adds +-0 (float addition and
+            // the taper's steps are monotonic), so skipping it changes nothing.
+            std::size_t ib = fx.lo, ie = fx.hi;
+            while (ib < ie && !(fx.vmin[ib / lanes] + r.d2 < 1.0f)) ib += lanes;
+            while (ie > ib && !(fx.vmin[ie / lanes - 1] + r.d2 < 1.0f)) ie -= lanes;
+            for (std::size_t ii = ib; ii < ie; ii += lanes) {
+              const VF ec = hn::LoadU(df, fx.ec.data() + ii), es = hn::LoadU(df, fx.es.data() + ii);
+              const VF s2 = hn::Add(hn::LoadU(df, fx.d2.data() + ii), rd2);
               if constexpr (G) {
                 VF v, uu, vv;
-                pair_gradient(xa, rv, c.k, c.a, v, uu, vv);
-                hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), hn::IfThenElseZero(in, v)), df,
-                           arow + ii);
-                const VF dd[3] = {xa.d, hn::Set(df, fy.d[jj]),
+                pair_gradient_of_products(ec, es, b, q, s2, c.k, c.a, v, uu, vv);
+                hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), v), df, arow + ii);
+                const VF dd[3] = {hn::LoadU(df, fx.d.data() + ii), hn::Set(df, fy.d[jj]),
                                   hn::Set(df, D == 3 ? fz.d[kk] : 0.0f)};
                 const VF ph[3] = {phx, hn::Set(df, phi[1]),
                                   hn::Set(df, D == 3 ? phi[D - 1] : 0.0f)};
                 for (int a = 0; a < D; ++a) {
                   float* grow = gacc[a].data() + (kk * ny + jj) * stride;
                   const VF term = hn::Sub(hn::Mul(uu, dd[a]), hn::Mul(vv, ph[a]));
-                  hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), hn::IfThenElseZero(in, term)), df,
-                             grow + ii);
+                  hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), term), df, grow + ii);
                 }
               } else {
                 hn::StoreU(
-                    hn::Add(hn::LoadU(df, arow + ii), hn::IfThenElseZero(in, pair(xa, rv, c.k))),
-                    df, arow + ii);
+                    hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)), df,
+                    arow + ii);
               }
             }
           }
         }
-      });
+      }
     }
     // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
     // coordinate of the sample is not finite.
@@ -1613,6 +1671,7 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
   gr.size[D - 1] = count;
   std::vector<grid_axis> axes;
+  axes.reserve(D);
   for (int a = 0; a < D; ++a)
     axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
                       caps[a]);

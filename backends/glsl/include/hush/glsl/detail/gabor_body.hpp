@@ -57,15 +57,18 @@ float hush_gabor_half(uint w, uint i) {
   uint m = (w >> (HUSH_GABOR_HALF_BITS * (1u - i))) & HUSH_GABOR_HALF_MASK;
   return float((m << 1u) | 1u) * HUSH_GABOR_HALF_SCALE;
 }
-// The taper tau(s) = v^2 (3 - 2v), v = min((1 - s) k, 1), and (tau, dtau/ds).
-float hush_gabor_taper(float s, float k) {
+// The taper tau(s) = v^2 (3 - 2v), v = clamp((1 - s) k, 0, 1), and (tau, dtau/ds).
+float hush_gabor_taper_v(float s, float k) {
   float v = (1.0 - s) * k;
   v = v < 1.0 ? v : 1.0;
+  return v > 0.0 ? v : 0.0;
+}
+float hush_gabor_taper(float s, float k) {
+  float v = hush_gabor_taper_v(s, k);
   return (v * v) * (float(3) - float(2) * v);
 }
 vec2 hush_gabor_taper_derivative(float s, float k) {
-  float v = (1.0 - s) * k;
-  v = v < 1.0 ? v : 1.0;
+  float v = hush_gabor_taper_v(s, k);
   return vec2((v * v) * (float(3) - float(2) * v), (-float(6) * k) * (v * (1.0 - v)));
 }
 // One axis of the separable kernel: offset d, d^2, e^{-A d^2}, sin and cos(2 pi phi d).
@@ -92,17 +95,17 @@ hush_gabor_row hush_gabor_row_of(float w, hush_gabor_axis y) {
 hush_gabor_row hush_gabor_row_of(float w, hush_gabor_axis y, hush_gabor_axis z) {
   return hush_gabor_row(w * (y.e * z.e), y.c * z.c - y.s * z.s, y.s * z.c + y.c * z.s, y.d2 + z.d2);
 }
+// gabor_pair: (e_x c_x (we c) - e_x s_x (we s)) tau(s), the CPU's products.
 float hush_gabor_pair(hush_gabor_axis x, hush_gabor_row r, float k) {
-  float s = x.d2 + r.d2;
-  return ((x.e * r.we) * (x.c * r.c - x.s * r.s)) * hush_gabor_taper(s, k);
+  float ec = x.e * x.c, es = x.e * x.s, b = r.we * r.c, q = r.we * r.s;
+  return (ec * b - es * q) * hush_gabor_taper(x.d2 + r.d2, k);
 }
 // (value, u, v): d/dd_a = u d_a - v phi_a.
 vec3 hush_gabor_pair_gradient(hush_gabor_axis x, hush_gabor_row r, float k, float a) {
-  float s = x.d2 + r.d2;
-  vec2 tw = hush_gabor_taper_derivative(s, k);
-  float p = x.e * r.we;
-  float pc = p * (x.c * r.c - x.s * r.s);
-  float ps = p * (x.s * r.c + x.c * r.s);
+  float ec = x.e * x.c, es = x.e * x.s, b = r.we * r.c, q = r.we * r.s;
+  vec2 tw = hush_gabor_taper_derivative(x.d2 + r.d2, k);
+  float pc = ec * b - es * q;
+  float ps = es * b + ec * q;
   return vec3(pc * tw.x, (pc + pc) * (tw.y - a * tw.x), HUSH_TWO_PI * (ps * tw.x));
 }
 // The key of cell `cell`'s solid stream: hush::rng(lattice_hash(key, cell), solid stream)
