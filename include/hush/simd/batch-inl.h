@@ -25,10 +25,14 @@ namespace HWY_NAMESPACE {
 namespace simd_batch {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// Largest float lane count of any target (SVE's 2048 bits), for buffers and
+// table padding sized once for every target; every kernel uses this one.
+constexpr std::size_t kMaxLanes = 64;
+
 template <int D, class Fn>
 HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad,
                                 const Fn& fn) {
-  constexpr std::size_t kMax = HWY_MAX_BYTES / sizeof(float);  // lanes of the widest target
+  constexpr std::size_t kMax = kMaxLanes;
   const std::size_t lanes = hn::Lanes(hn::ScalableTag<float>());
   std::size_t i = 0;
   for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);

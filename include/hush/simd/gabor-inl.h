@@ -57,6 +57,7 @@
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/gabor.hpp"
+#include "hush/simd/batch-inl.h"  // simd_batch::kMaxLanes
 
 HWY_BEFORE_NAMESPACE();
 namespace hush {
@@ -73,8 +74,7 @@ using VU = hn::Vec<DU>;
 using VI = hn::Vec<DI>;
 using MF = hn::Mask<DF>;
 
-// Largest lane count of any target (SVE may have 64 float lanes).
-constexpr std::size_t kMaxLanes = 64;
+using simd_batch::kMaxLanes;
 // Grids with fewer samples per cell along x than this take the points path.
 constexpr double kMinRun = 8.0;
 

@@ -77,10 +77,8 @@ using DU16 = hn::Repartition<std::uint16_t, DU>;
 using VF = hn::Vec<DF>;
 using VU = hn::Vec<DU>;
 
-// Largest lane count any target has (AVX-512: 16 floats; SVE may have more,
-// up to 2048 bits). Lookup tables are padded to it so every chunk load is in
-// bounds.
-constexpr std::size_t kMaxLanes = 64;
+// Lookup tables are padded to kMaxLanes so every chunk load is in bounds.
+using simd_batch::kMaxLanes;
 
 // a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
 // compiled), one fused rounding otherwise.
