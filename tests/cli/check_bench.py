@@ -37,6 +37,15 @@ PERLIN_VALUE, PERLIN_GRADIENT, FBM_SCALE = 2.0 ** -16, 8 * 2.0 ** -16, 4 * 3.4
 # Wavelet noise (wavelet.hpp float_budget: (21 D + bands + 2) 2^-24 bound(), 512 in place of
 # 21 D for the projection's kernels; bound() ~ 10 at unit variance) measures 1.6e-6 / 1.4e-6
 # (values / gradients, every backend) in `hush bench --quick`; loose budgets like Gabor's.
+# NPR Gabor on GLSL computes stage 1 (positions, pixel boxes, depth planes) in float on the GPU,
+# so a pixel where the double reference sits on a decision boundary (the depth test's tolerance,
+# or a kernel's pixel box at its truncation radius, where the kernel is e^-pi of its peak) can
+# take the other side: that pixel misses or gains one kernel's term, up to one kernel's amplitude
+# (the tests count such pixels: tests/glsl/glsl_gabor_test.cpp "npr"; measured 7.3e-3 at one
+# pixel of `hush bench --quick`'s 192 x 108 frame). These rows are held to the budget in RMS,
+# which a few such pixels barely move and a wrong record or kernel exceeds at once, and their
+# max to one kernel's amplitude at unit variance.
+NPR_GLSL_MAX = 0.25
 VALUE_BUDGET = {"perlin": PERLIN_VALUE, "fbm": FBM_SCALE * PERLIN_VALUE, "coherent": 1e-3,
                 "gabor": 1e-4, "anisotropic": 1e-3, "npr-gabor": 1e-4, "wavelet": 1e-4}
 GRADIENT_BUDGET = {"perlin": PERLIN_GRADIENT, "fbm": FBM_SCALE * PERLIN_GRADIENT, "gabor": 1e-3,
@@ -108,7 +117,11 @@ def main():
         if r["peer"]:
             continue
         family = r["noise"].split()[0]
-        check(mx <= VALUE_BUDGET[family], name + ": max abs %g over budget" % mx)
+        if family == "npr-gabor" and r["backend"].startswith("glsl"):
+            check(rms <= VALUE_BUDGET[family] and mx <= NPR_GLSL_MAX,
+                  name + ": RMS %g or max abs %g over budget" % (rms, mx))
+        else:
+            check(mx <= VALUE_BUDGET[family], name + ": max abs %g over budget" % mx)
         gmx, grms = r["gradient_max_abs_error"], r["gradient_rms_error"]
         if r["output"] == "value+gradient":
             check(gmx is not None and 0 <= grms <= gmx <= GRADIENT_BUDGET[family],
