@@ -348,6 +348,16 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 // kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
+// The hierarchical point sequence (detail/npr_gabor_tree.hpp): a node takes 3
+// words of its own stream (point, value, child order); its children's order is
+// one of the 24 permutations of {0, 1, 2, 3}, entry p holding in bits 2d, 2d + 1
+// the geometric child (0, 1, 2: the corner triangle at corner 0, 1, 2; 3: the
+// middle one) at slot d (lexicographic order of the permutations).
+constexpr unsigned kNprGaborWordsPerNode = 3;
+constexpr unsigned kNprGaborChildOrders = 24;
+constexpr unsigned kNprGaborChildOrder[kNprGaborChildOrders] = {
+    0xE4, 0xB4, 0xD8, 0x78, 0x9C, 0x6C, 0xE1, 0xB1, 0xC9, 0x39, 0x8D, 0x2D,
+    0xD2, 0x72, 0xC6, 0x36, 0x4E, 0x1E, 0x93, 0x63, 0x87, 0x27, 0x4B, 0x1B};
 // Step in F r (cycles per kernel radius) between the exact kernel energies a
 // non-constant frequency's normalisation interpolates (npr_gabor.hpp): the
 // energy depends on F only through F r for a given truncation; 1/64 keeps the
