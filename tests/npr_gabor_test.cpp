@@ -72,11 +72,11 @@ TEST_CASE("LOD weights: sum of squared weights is N, continuous in N, alpha(N) o
   for (double n : {0.01, 0.3, 0.999, 1.0, 1.5, 2.0, 3.0, 3.999, 4.0, 7.3, 64.0, 1000.5}) {
     const hush::npr_gabor_lod l = hush::npr_gabor_lod::of(n);
     double s2 = 0;
-    for (std::uint32_t j = 0; j < l.count; ++j) s2 += l.weight(j) * l.weight(j);
+    for (std::uint64_t j = 0; j < l.count; ++j) s2 += l.weight(j) * l.weight(j);
     CHECK(s2 == doctest::Approx(n).epsilon(1e-12));
     if (n >= 1) {
       const double m = std::exp2(std::floor(std::log2(n)));
-      CHECK(l.first == static_cast<std::uint32_t>(m));
+      CHECK(l.first == static_cast<std::uint64_t>(m));
       CHECK(l.second_weight == doctest::Approx(std::sqrt(n / m - 1.0)));
       CHECK(l.count <= 2 * l.first);
     }
@@ -85,8 +85,8 @@ TEST_CASE("LOD weights: sum of squared weights is N, continuous in N, alpha(N) o
   for (double m = 1; m <= 1024; m *= 2) {
     const auto below = hush::npr_gabor_lod::of(m * (1 - 1e-9));
     const auto above = hush::npr_gabor_lod::of(m * (1 + 1e-9));
-    const std::uint32_t count = std::max(below.count, above.count);
-    for (std::uint32_t j = 0; j < count; ++j) {
+    const std::uint64_t count = std::max(below.count, above.count);
+    for (std::uint64_t j = 0; j < count; ++j) {
       const double wb = j < below.count ? below.weight(j) : 0.0;
       const double wa = j < above.count ? above.weight(j) : 0.0;
       CHECK(std::fabs(wb - wa) < 1e-4);
@@ -94,7 +94,9 @@ TEST_CASE("LOD weights: sum of squared weights is N, continuous in N, alpha(N) o
   }
   CHECK(hush::npr_gabor_lod::of(0.0).count == 0);
   CHECK(hush::npr_gabor_lod::of(std::numeric_limits<double>::quiet_NaN()).count == 0);
-  CHECK(hush::npr_gabor_lod::of(1e300).count <= 2 * 4194304u);
+  // N is clamped at kNprGaborMaxPoints = 2^40: 2^40 points of weight 1.
+  CHECK(hush::npr_gabor_lod::of(1e300).count == std::uint64_t(1) << 40);
+  CHECK(hush::npr_gabor_lod::of(1e300).first_weight == 1.0);
 }
 
 TEST_CASE("parameters and inputs are validated, naming the parameter and range") {

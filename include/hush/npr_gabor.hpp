@@ -129,6 +129,7 @@
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/detail/npr_gabor_tree.hpp"
 #include "hush/exec.hpp"
 #include "hush/gabor.hpp"
 #include "hush/gabor_kernel.hpp"
@@ -148,7 +149,7 @@ struct is_glsl_exec<exec::glsl<Device>> : std::true_type {};
 // count - 1 weigh second_weight. sum of squared weights = N (for 0 <= N <=
 // kNprGaborMaxPoints; N clamped above, 0 points for N <= 0 or NaN).
 struct npr_gabor_lod {
-  std::uint32_t first = 0, count = 0;
+  std::uint64_t first = 0, count = 0;
   double first_weight = 0, second_weight = 0;
 
   static npr_gabor_lod of(double n) {
@@ -163,13 +164,13 @@ struct npr_gabor_lod {
     int e = 0;
     (void)std::frexp(n, &e);  // n = f 2^e, f in [0.5, 1): floor(log2 n) = e - 1
     const double m = std::ldexp(1.0, e - 1);
-    l.first = static_cast<std::uint32_t>(m);
+    l.first = static_cast<std::uint64_t>(m);
     l.first_weight = 1.0;
     l.second_weight = std::sqrt(n / m - 1.0);  // alpha(N), eq. 4
     l.count = l.second_weight > 0.0 ? 2 * l.first : l.first;
     return l;
   }
-  double weight(std::uint32_t j) const { return j < first ? first_weight : second_weight; }
+  double weight(std::uint64_t j) const { return j < first ? first_weight : second_weight; }
 
   // Thinning of the N < 1 point (npr_gabor::params::thinning): its squared
   // weight g(N, u) for the triangle's own uniform u in [0, 1):
@@ -238,23 +239,27 @@ class npr_gabor {
     return v;
   }
 
-  // The point j of a triangle in barycentric coordinates, its amplitude v in
+  // A point of a triangle in barycentric coordinates, its amplitude v in
   // (-1, 1) and its orientation word's angle in radians (isotropic).
   struct point {
     double b[3];
     double amplitude;
     double angle;
   };
-  point point_of(std::uint32_t object, std::uint32_t triangle, std::uint32_t j) const {
-    rng r(triangle_key(object, triangle), detail::constants::kNprGaborStream);
-    r.skip(detail::constants::kNprGaborWordsPerPoint * j);
-    const std::uint32_t w0 = r.next_u32(), w1 = r.next_u32();
-    const double u = detail::gabor_half<double>(w0, 0), v = detail::gabor_half<double>(w0, 1);
-    const double su = std::sqrt(u);
-    point pt{{1.0 - su, su * (1.0 - v), su * v},
-             2.0 * detail::gabor_half<double>(w1, 0) - 1.0,
-             detail::constants::kTwoPi * detail::gabor_half<double>(w1, 1)};
-    return pt;
+  // The point J of a triangle (the hierarchical sequence of
+  // detail/npr_gabor_tree.hpp, J < 2^64) in the triangle's (object-space)
+  // barycentric coordinates: the own point of the node reached from
+  // the root by slots d = (J - 1) mod 4 with local index q = (J - 1) / 4, until
+  // q = 0 (J = 0: the root's own point, words 0 and 1 of the triangle's stream).
+  point point_of(std::uint32_t object, std::uint32_t triangle, std::uint64_t j) const {
+    detail::npr_tree_node nd;
+    nd.seed = triangle_key(object, triangle);
+    detail::npr_tree_words w = detail::npr_tree_words_of(nd.seed);
+    for (; j > 0; j = (j - 1) / 4) {
+      nd = detail::npr_tree_child(nd, w, static_cast<unsigned>((j - 1) % 4));
+      w = detail::npr_tree_words_of(nd.seed);
+    }
+    return node_point(nd, w);
   }
 
   // Where F0, omega0, a and N' come from in one frame (see the header
@@ -306,14 +311,19 @@ class npr_gabor {
   }
 
   // Stage 1: replaces `splats` with this frame's records (npr_gabor_splat),
-  // triangle by triangle in list order, each triangle's points in stream
-  // order, each point with its own kernel parameters from `src`; points whose
-  // pixel range misses the image are left out. Throws as render does for the
-  // frame, the triangles and the sources.
+  // triangle by triangle in list order, each triangle's points in J order
+  // (npr_gabor_splat::index), each point with its own kernel parameters from
+  // `src`; points whose pixel range misses the image are left out, and so are
+  // the subtrees of the point sequence whose screen triangle (grown by the
+  // largest radius an off-image point can have) misses it: exactly the records
+  // of generating every point and leaving out each one that misses, with work
+  // bounded by the image, not by the triangles' areas. `nodes`, if given, gets
+  // the number of sequence nodes examined added. Throws as render does for
+  // the frame, the triangles and the sources.
   void make_splats(const frame& f, const triangle_list& tris, std::vector<npr_gabor_splat>& splats,
-                   const sources& src = {}) const {
+                   const sources& src = {}, std::uint64_t* nodes = nullptr) const {
     validate(f, tris, src);
-    splats_of(f, tris, splats, src);
+    splats_of(f, tris, splats, src, nodes);
   }
 
   // Stage 2: overwrites `out` (frame-sized) with the sum of the `count`
@@ -415,10 +425,11 @@ class npr_gabor {
  private:
   // make_splats without the validation (render validates once, before it).
   void splats_of(const frame& f, const triangle_list& tris, std::vector<npr_gabor_splat>& splats,
-                 const sources& src) const {
+                 const sources& src, std::uint64_t* nodes = nullptr) const {
     splats.clear();
     const point_parameters pp(*this, src);
-    for (std::size_t t = 0; t < tris.triangles(); ++t) triangle_splats(f, tris, t, splats, pp);
+    for (std::size_t t = 0; t < tris.triangles(); ++t)
+      triangle_splats(f, tris, t, splats, pp, nodes);
   }
 
   static const params& checked(const params& p) {
@@ -525,6 +536,23 @@ class npr_gabor {
     mutable std::vector<double> energy_;
   };
 
+  // A node's own point: local barycentrics (1 - sqrt u, sqrt u (1 - v), sqrt u v)
+  // of its corners from its point word (uniform in the node), mapped to the
+  // root's barycentrics; amplitude and angle from its value word. The root's
+  // corners are the identity, so its point is b = l exactly.
+  static point node_point(const detail::npr_tree_node& nd, const detail::npr_tree_words& w) {
+    const double u = detail::gabor_half<double>(w.point, 0),
+                 v = detail::gabor_half<double>(w.point, 1);
+    const double su = std::sqrt(u);
+    const double l[3] = {1.0 - su, su * (1.0 - v), su * v};
+    point pt{{0.0, 0.0, 0.0},
+             2.0 * detail::gabor_half<double>(w.value, 0) - 1.0,
+             detail::constants::kTwoPi * detail::gabor_half<double>(w.value, 1)};
+    for (unsigned k = 0; k < 3; ++k)
+      pt.b[k] = l[0] * nd.corner[0][k] + l[1] * nd.corner[1][k] + l[2] * nd.corner[2][k];
+    return pt;
+  }
+
   std::uint32_t triangle_key(std::uint32_t object, std::uint32_t triangle) const {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
@@ -564,9 +592,12 @@ class npr_gabor {
                                  "the frame's size (non-null)");
   }
 
-  // Stage 1 for triangle t: appends its points' records.
+  // Stage 1 for triangle t: appends its points' records (npr_gabor_tree.hpp's
+  // sequence, walked depth first, culled per subtree, then sorted by J);
+  // counts the nodes examined in *nodes if given.
   void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
-                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp) const {
+                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp,
+                       std::uint64_t* nodes) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -611,8 +642,8 @@ class npr_gabor {
       lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
       if (!(lod.first_weight > 0.0)) return;
     }
-    for (std::uint32_t j = 0; j < lod.count; ++j) {
-      const point pt = point_of(object, id, j);
+    // Emits the point J at pt if its pixel range is not empty.
+    const auto emit = [&](const point& pt, std::uint64_t j) {
       const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
       const dvec2 at{
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
@@ -625,7 +656,7 @@ class npr_gabor {
       const double x1 = std::min(std::floor(at.x + r - 0.5), w - 1.0);
       const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
       const double y1 = std::min(std::floor(at.y + r - 0.5), h - 1.0);
-      if (x0 > x1 || y0 > y1) continue;
+      if (x0 > x1 || y0 > y1) return;
       npr_gabor_splat rec;
       rec.x = at.x;
       rec.y = at.y;
@@ -643,8 +674,58 @@ class npr_gabor {
       rec.x1 = static_cast<std::int32_t>(x1);
       rec.y0 = static_cast<std::int32_t>(y0);
       rec.y1 = static_cast<std::int32_t>(y1);
+      rec.index = j;
       splats.push_back(rec);
+    };
+    if (lod.count == 0) return;
+    detail::npr_tree_node root;
+    root.seed = triangle_key(object, id);
+    if (nodes) ++*nodes;
+    if (lod.count == 1) {  // the common small triangle: its root alone, no walk
+      emit(node_point(root, detail::npr_tree_words_of(root.seed)), 0);
+      return;
     }
+    // Whether a node's screen triangle (its corners projected: exact under
+    // perspective, every point of its subtree lies in it) grown by `cull` meets
+    // the image (bounding box: conservative; the points' own pixel-range test
+    // decides, with half a pixel to spare for the rounding of a position).
+    const auto meets_image = [&](const detail::npr_tree_node& nd) {
+      double bx0 = std::numeric_limits<double>::infinity(), by0 = bx0, bx1 = -bx0, by1 = -bx0;
+      for (const auto& c : nd.corner) {
+        const double cw = c[0] * z[0] + c[1] * z[1] + c[2] * z[2];
+        const double cx = (c[0] * z[0] * s[0].x + c[1] * z[1] * s[1].x + c[2] * z[2] * s[2].x) / cw;
+        const double cy = (c[0] * z[0] * s[0].y + c[1] * z[1] * s[1].y + c[2] * z[2] * s[2].y) / cw;
+        bx0 = std::min(bx0, cx);
+        bx1 = std::max(bx1, cx);
+        by0 = std::min(by0, cy);
+        by1 = std::max(by1, cy);
+      }
+      return !(bx1 + cull < 0.0 || bx0 - cull > w || by1 + cull < 0.0 || by0 - cull > h);
+    };
+    // Depth first with an explicit stack: a node is visited only if its index
+    // is below the count (then its own point is emitted), a child pushed only
+    // if it meets the image. Indices below 2^41 (kNprGaborMaxPoints) mean depth
+    // <= 21 ((4^k - 1) / 3 <= J), and the stack holds at most 3 siblings per
+    // level above the node popped plus its 4 children: 3 * 21 + 4 < 72.
+    const std::size_t first_record = splats.size();
+    detail::npr_tree_node stack[72];
+    std::size_t top = 0;
+    stack[top++] = root;
+    while (top > 0) {
+      const detail::npr_tree_node nd = stack[--top];
+      const detail::npr_tree_words words = detail::npr_tree_words_of(nd.seed);
+      emit(node_point(nd, words), nd.index);
+      for (unsigned slot = 0; slot < 4; ++slot) {
+        // index + stride (1 + slot) grows with slot: the first one past the count ends.
+        if (nd.index + nd.stride * (1u + slot) >= lod.count) break;
+        const detail::npr_tree_node child = detail::npr_tree_child(nd, words, slot);
+        if (nodes) ++*nodes;
+        if (meets_image(child)) stack[top++] = child;
+      }
+    }
+    // J order, whatever the traversal (CPU and GPU stage 1 agree on it).
+    std::sort(splats.begin() + static_cast<std::ptrdiff_t>(first_record), splats.end(),
+              [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
   }
 
   params p_;

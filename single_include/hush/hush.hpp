@@ -717,10 +717,14 @@ constexpr double kNprGaborDefaultBandwidth = 0.08;       // r = 12.2 px for t = 
 constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ... 128)
 constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
 constexpr double kNprGaborMaxDepthTolerance = 1.0;
-// At most this many points per triangle (2M <= 2^22): N above it is clamped,
-// so a triangle of more than 2^22 / lambda square pixels (several screens at
-// the defaults) gets a lower density. Bounds the work per triangle.
-constexpr double kNprGaborMaxPoints = 4194304.0;
+// N is clamped here (2M <= 2^41 points per triangle). Not a work bound (stage 1
+// walks only the subtrees near the image, detail/npr_gabor_tree.hpp) but the
+// input's: float screen positions have a 1-pixel ulp at 2^24 = 1.7e7 px, and a
+// triangle of 2^40 points at the default density (0.034 / px^2) already has
+// legs of 8e6 px, where the vertices are placed to half a pixel: beyond, the
+// input cannot place the points it asks for. Indices J < 2^41 keep
+// npr_tree_child's index + 4 stride below 2^46, far from overflowing 64 bits.
+constexpr double kNprGaborMaxPoints = 1099511627776.0;  // 2^40
 constexpr unsigned kNprGaborMaxTriangles = 1u << 28;
 constexpr unsigned kNprGaborMaxImageSide = 32768;
 // Each point takes 2 words of its triangle's stream (hush::rng, stream
@@ -5167,7 +5171,9 @@ namespace hush {
 // x0 ... x1, y0 ... y1 (inclusive, clamped to the image, never empty): the
 // centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
 // qy y in screen pixels, gives the depth test its reference depth at every
-// pixel (the point's own depth is 1 / (q0 + qx x + qy y)).
+// pixel (the point's own depth is 1 / (q0 + qx x + qy y)). `index` is the
+// point's J in its triangle's sequence (detail/npr_gabor_tree.hpp): stage 2
+// does not read it; it names the point (tests, GPU stage 1 comparisons).
 struct npr_gabor_splat {
   double x = 0, y = 0;            // position, pixels (x right, y down)
   double fx = 0, fy = 0;          // F, cycles per pixel
@@ -5177,6 +5183,7 @@ struct npr_gabor_splat {
   double q0 = 0, qx = 0, qy = 0;  // the triangle's plane of 1/z
   std::uint32_t object = 0, triangle = 0;
   std::int32_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // pixel range, inclusive
+  std::uint64_t index = 0;  // J: the point's index in its triangle's sequence
 };
 
 namespace detail {
@@ -16545,6 +16552,106 @@ class param_source {
 
 #endif  // HUSH_CORE_PARAM_SOURCE_HPP
 // ---- end hush/core/param_source.hpp
+// ---- begin hush/detail/npr_gabor_tree.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The hierarchical point sequence of one NPR Gabor triangle (docs/npr-gabor.md,
+// "Huge triangles"): the triangle is subdivided at its edge midpoints (object-
+// space barycentrics) into four children, recursively; every node P holds one
+// point of the sequence (its own point, uniform in P) and a uniformly random
+// order of its four children. The sequence of P is
+//   s_P(0) = P's own point,  s_P(i) = s_{child at slot d}(q),
+//   d = (i - 1) mod 4, q = floor((i - 1) / 4)   for i >= 1,
+// so the node reached from the root through slots d_1 ... d_k holds the root's
+// indices J = index + stride i with index = sum_m 4^(m-1) (1 + d_m) (its own
+// point) and stride = 4^k. Every point lies in its node, so a subtree whose
+// screen triangle misses the image can be skipped without changing any other
+// point, its index or its weight: the culled walk emits exactly the points that
+// generating all of them and culling each would keep. The marginal of every
+// point is uniform on the triangle (uniform child at every level, uniform own
+// point), so the noise's autocovariance and spectrum are those of independent
+// points (only the diagonal of the double sum survives: zero-mean amplitudes).
+//
+// This header is the definition both stage-1 backends implement: the CPU walk
+// (npr_gabor.hpp) and the GPU passes (backends/glsl) produce the same nodes.
+//   - the root is the triangle: seed = its key, index 0, stride 1, corners the
+//     identity (so its own point is the point 0 of the flat sequence);
+//   - a node takes kNprGaborWordsPerNode words of hush::rng(seed,
+//     kNprGaborStream): word 0 [u:16 | v:16] its own point, local barycentrics
+//     (1 - sqrt u, sqrt u (1 - v), sqrt u v) of its corners; word 1
+//     [amplitude:16 | angle:16] (2 half - 1, 2 pi half); word 2 the child order,
+//     entry (word * 24) >> 32 of kNprGaborChildOrder;
+//   - geometric child c < 3 keeps corner c and takes the midpoints of the
+//     edges from corner c to the other two, in corner order; child 3 (the
+//     middle) has as corner i the midpoint of the edge opposite corner i;
+//   - child c's seed is hash32(seed, c).
+// Midpoints of dyadic barycentrics are exact in floating point to depth 52
+// (double) and 23 (float), far beyond any index below kNprGaborMaxPoints.
+
+#ifndef HUSH_DETAIL_NPR_GABOR_TREE_HPP
+#define HUSH_DETAIL_NPR_GABOR_TREE_HPP
+
+#include <cstdint>
+
+
+namespace hush {
+namespace detail {
+
+struct npr_tree_node {
+  std::uint32_t seed = 0;    // the node's seed (the root's: the triangle's key)
+  std::uint64_t index = 0;   // J of the node's own point
+  std::uint64_t stride = 1;  // 4^depth: the subtree holds J = index + stride i
+  // corner[i][k]: barycentric coordinate k (of the root triangle) of corner i.
+  double corner[3][3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+};
+
+// The node's words: its own point's position, its value, its children's order.
+struct npr_tree_words {
+  std::uint32_t point = 0, value = 0, order = 0;
+};
+
+HUSH_INLINE npr_tree_words npr_tree_words_of(std::uint32_t seed) {
+  rng r(seed, constants::kNprGaborStream);
+  npr_tree_words w;
+  w.point = r.next_u32();
+  w.value = r.next_u32();
+  w.order = r.next_u32();
+  return w;
+}
+
+// The geometric child (0 ... 3) at slot (0 ... 3) of a node with order word w.
+HUSH_INLINE unsigned npr_tree_child_at(std::uint32_t order_word, unsigned slot) {
+  const auto p = static_cast<unsigned>(
+      (static_cast<std::uint64_t>(order_word) * constants::kNprGaborChildOrders) >> 32);
+  return (constants::kNprGaborChildOrder[p] >> (2 * slot)) & 3u;
+}
+
+// The node at `slot` of p (words: p's words). No overflow check: callers only
+// descend while index + stride * (1 + slot) is below the point count, which
+// kNprGaborMaxPoints keeps far below 2^64.
+HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_words& w,
+                                         unsigned slot) {
+  const unsigned c = npr_tree_child_at(w.order, slot);
+  npr_tree_node n;
+  n.seed = hash32(p.seed, c);
+  n.index = p.index + p.stride * (1u + slot);
+  n.stride = p.stride * 4u;
+  for (unsigned i = 0; i < 3; ++i) {
+    // Corner i of child c < 3: corner c itself (i == c) or the midpoint of
+    // corners c and i; of the middle child: the midpoint opposite corner i.
+    const unsigned a = c < 3 ? c : (i + 1) % 3;
+    const unsigned b = c < 3 ? i : (i + 2) % 3;
+    for (unsigned k = 0; k < 3; ++k)
+      n.corner[i][k] = 0.5 * (p.corner[a][k] + p.corner[b][k]);
+  }
+  return n;
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_NPR_GABOR_TREE_HPP
+// ---- end hush/detail/npr_gabor_tree.hpp
 
 namespace hush {
 
@@ -16561,7 +16668,7 @@ struct is_glsl_exec<exec::glsl<Device>> : std::true_type {};
 // count - 1 weigh second_weight. sum of squared weights = N (for 0 <= N <=
 // kNprGaborMaxPoints; N clamped above, 0 points for N <= 0 or NaN).
 struct npr_gabor_lod {
-  std::uint32_t first = 0, count = 0;
+  std::uint64_t first = 0, count = 0;
   double first_weight = 0, second_weight = 0;
 
   static npr_gabor_lod of(double n) {
@@ -16576,13 +16683,13 @@ struct npr_gabor_lod {
     int e = 0;
     (void)std::frexp(n, &e);  // n = f 2^e, f in [0.5, 1): floor(log2 n) = e - 1
     const double m = std::ldexp(1.0, e - 1);
-    l.first = static_cast<std::uint32_t>(m);
+    l.first = static_cast<std::uint64_t>(m);
     l.first_weight = 1.0;
     l.second_weight = std::sqrt(n / m - 1.0);  // alpha(N), eq. 4
     l.count = l.second_weight > 0.0 ? 2 * l.first : l.first;
     return l;
   }
-  double weight(std::uint32_t j) const { return j < first ? first_weight : second_weight; }
+  double weight(std::uint64_t j) const { return j < first ? first_weight : second_weight; }
 
   // Thinning of the N < 1 point (npr_gabor::params::thinning): its squared
   // weight g(N, u) for the triangle's own uniform u in [0, 1):
@@ -16651,23 +16758,27 @@ class npr_gabor {
     return v;
   }
 
-  // The point j of a triangle in barycentric coordinates, its amplitude v in
+  // A point of a triangle in barycentric coordinates, its amplitude v in
   // (-1, 1) and its orientation word's angle in radians (isotropic).
   struct point {
     double b[3];
     double amplitude;
     double angle;
   };
-  point point_of(std::uint32_t object, std::uint32_t triangle, std::uint32_t j) const {
-    rng r(triangle_key(object, triangle), detail::constants::kNprGaborStream);
-    r.skip(detail::constants::kNprGaborWordsPerPoint * j);
-    const std::uint32_t w0 = r.next_u32(), w1 = r.next_u32();
-    const double u = detail::gabor_half<double>(w0, 0), v = detail::gabor_half<double>(w0, 1);
-    const double su = std::sqrt(u);
-    point pt{{1.0 - su, su * (1.0 - v), su * v},
-             2.0 * detail::gabor_half<double>(w1, 0) - 1.0,
-             detail::constants::kTwoPi * detail::gabor_half<double>(w1, 1)};
-    return pt;
+  // The point J of a triangle (the hierarchical sequence of
+  // detail/npr_gabor_tree.hpp, J < 2^64) in the triangle's (object-space)
+  // barycentric coordinates: the own point of the node reached from
+  // the root by slots d = (J - 1) mod 4 with local index q = (J - 1) / 4, until
+  // q = 0 (J = 0: the root's own point, words 0 and 1 of the triangle's stream).
+  point point_of(std::uint32_t object, std::uint32_t triangle, std::uint64_t j) const {
+    detail::npr_tree_node nd;
+    nd.seed = triangle_key(object, triangle);
+    detail::npr_tree_words w = detail::npr_tree_words_of(nd.seed);
+    for (; j > 0; j = (j - 1) / 4) {
+      nd = detail::npr_tree_child(nd, w, static_cast<unsigned>((j - 1) % 4));
+      w = detail::npr_tree_words_of(nd.seed);
+    }
+    return node_point(nd, w);
   }
 
   // Where F0, omega0, a and N' come from in one frame (see the header
@@ -16719,14 +16830,19 @@ class npr_gabor {
   }
 
   // Stage 1: replaces `splats` with this frame's records (npr_gabor_splat),
-  // triangle by triangle in list order, each triangle's points in stream
-  // order, each point with its own kernel parameters from `src`; points whose
-  // pixel range misses the image are left out. Throws as render does for the
-  // frame, the triangles and the sources.
+  // triangle by triangle in list order, each triangle's points in J order
+  // (npr_gabor_splat::index), each point with its own kernel parameters from
+  // `src`; points whose pixel range misses the image are left out, and so are
+  // the subtrees of the point sequence whose screen triangle (grown by the
+  // largest radius an off-image point can have) misses it: exactly the records
+  // of generating every point and leaving out each one that misses, with work
+  // bounded by the image, not by the triangles' areas. `nodes`, if given, gets
+  // the number of sequence nodes examined added. Throws as render does for
+  // the frame, the triangles and the sources.
   void make_splats(const frame& f, const triangle_list& tris, std::vector<npr_gabor_splat>& splats,
-                   const sources& src = {}) const {
+                   const sources& src = {}, std::uint64_t* nodes = nullptr) const {
     validate(f, tris, src);
-    splats_of(f, tris, splats, src);
+    splats_of(f, tris, splats, src, nodes);
   }
 
   // Stage 2: overwrites `out` (frame-sized) with the sum of the `count`
@@ -16828,10 +16944,11 @@ class npr_gabor {
  private:
   // make_splats without the validation (render validates once, before it).
   void splats_of(const frame& f, const triangle_list& tris, std::vector<npr_gabor_splat>& splats,
-                 const sources& src) const {
+                 const sources& src, std::uint64_t* nodes = nullptr) const {
     splats.clear();
     const point_parameters pp(*this, src);
-    for (std::size_t t = 0; t < tris.triangles(); ++t) triangle_splats(f, tris, t, splats, pp);
+    for (std::size_t t = 0; t < tris.triangles(); ++t)
+      triangle_splats(f, tris, t, splats, pp, nodes);
   }
 
   static const params& checked(const params& p) {
@@ -16938,6 +17055,23 @@ class npr_gabor {
     mutable std::vector<double> energy_;
   };
 
+  // A node's own point: local barycentrics (1 - sqrt u, sqrt u (1 - v), sqrt u v)
+  // of its corners from its point word (uniform in the node), mapped to the
+  // root's barycentrics; amplitude and angle from its value word. The root's
+  // corners are the identity, so its point is b = l exactly.
+  static point node_point(const detail::npr_tree_node& nd, const detail::npr_tree_words& w) {
+    const double u = detail::gabor_half<double>(w.point, 0),
+                 v = detail::gabor_half<double>(w.point, 1);
+    const double su = std::sqrt(u);
+    const double l[3] = {1.0 - su, su * (1.0 - v), su * v};
+    point pt{{0.0, 0.0, 0.0},
+             2.0 * detail::gabor_half<double>(w.value, 0) - 1.0,
+             detail::constants::kTwoPi * detail::gabor_half<double>(w.value, 1)};
+    for (unsigned k = 0; k < 3; ++k)
+      pt.b[k] = l[0] * nd.corner[0][k] + l[1] * nd.corner[1][k] + l[2] * nd.corner[2][k];
+    return pt;
+  }
+
   std::uint32_t triangle_key(std::uint32_t object, std::uint32_t triangle) const {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
@@ -16977,9 +17111,12 @@ class npr_gabor {
                                  "the frame's size (non-null)");
   }
 
-  // Stage 1 for triangle t: appends its points' records.
+  // Stage 1 for triangle t: appends its points' records (npr_gabor_tree.hpp's
+  // sequence, walked depth first, culled per subtree, then sorted by J);
+  // counts the nodes examined in *nodes if given.
   void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
-                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp) const {
+                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp,
+                       std::uint64_t* nodes) const {
     dvec2 s[3];
     double z[3];
     for (int i = 0; i < 3; ++i) {
@@ -17024,8 +17161,8 @@ class npr_gabor {
       lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
       if (!(lod.first_weight > 0.0)) return;
     }
-    for (std::uint32_t j = 0; j < lod.count; ++j) {
-      const point pt = point_of(object, id, j);
+    // Emits the point J at pt if its pixel range is not empty.
+    const auto emit = [&](const point& pt, std::uint64_t j) {
       const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
       const dvec2 at{
           (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
@@ -17038,7 +17175,7 @@ class npr_gabor {
       const double x1 = std::min(std::floor(at.x + r - 0.5), w - 1.0);
       const double y0 = std::max(std::ceil(at.y - r - 0.5), 0.0);
       const double y1 = std::min(std::floor(at.y + r - 0.5), h - 1.0);
-      if (x0 > x1 || y0 > y1) continue;
+      if (x0 > x1 || y0 > y1) return;
       npr_gabor_splat rec;
       rec.x = at.x;
       rec.y = at.y;
@@ -17056,8 +17193,58 @@ class npr_gabor {
       rec.x1 = static_cast<std::int32_t>(x1);
       rec.y0 = static_cast<std::int32_t>(y0);
       rec.y1 = static_cast<std::int32_t>(y1);
+      rec.index = j;
       splats.push_back(rec);
+    };
+    if (lod.count == 0) return;
+    detail::npr_tree_node root;
+    root.seed = triangle_key(object, id);
+    if (nodes) ++*nodes;
+    if (lod.count == 1) {  // the common small triangle: its root alone, no walk
+      emit(node_point(root, detail::npr_tree_words_of(root.seed)), 0);
+      return;
     }
+    // Whether a node's screen triangle (its corners projected: exact under
+    // perspective, every point of its subtree lies in it) grown by `cull` meets
+    // the image (bounding box: conservative; the points' own pixel-range test
+    // decides, with half a pixel to spare for the rounding of a position).
+    const auto meets_image = [&](const detail::npr_tree_node& nd) {
+      double bx0 = std::numeric_limits<double>::infinity(), by0 = bx0, bx1 = -bx0, by1 = -bx0;
+      for (const auto& c : nd.corner) {
+        const double cw = c[0] * z[0] + c[1] * z[1] + c[2] * z[2];
+        const double cx = (c[0] * z[0] * s[0].x + c[1] * z[1] * s[1].x + c[2] * z[2] * s[2].x) / cw;
+        const double cy = (c[0] * z[0] * s[0].y + c[1] * z[1] * s[1].y + c[2] * z[2] * s[2].y) / cw;
+        bx0 = std::min(bx0, cx);
+        bx1 = std::max(bx1, cx);
+        by0 = std::min(by0, cy);
+        by1 = std::max(by1, cy);
+      }
+      return !(bx1 + cull < 0.0 || bx0 - cull > w || by1 + cull < 0.0 || by0 - cull > h);
+    };
+    // Depth first with an explicit stack: a node is visited only if its index
+    // is below the count (then its own point is emitted), a child pushed only
+    // if it meets the image. Indices below 2^41 (kNprGaborMaxPoints) mean depth
+    // <= 21 ((4^k - 1) / 3 <= J), and the stack holds at most 3 siblings per
+    // level above the node popped plus its 4 children: 3 * 21 + 4 < 72.
+    const std::size_t first_record = splats.size();
+    detail::npr_tree_node stack[72];
+    std::size_t top = 0;
+    stack[top++] = root;
+    while (top > 0) {
+      const detail::npr_tree_node nd = stack[--top];
+      const detail::npr_tree_words words = detail::npr_tree_words_of(nd.seed);
+      emit(node_point(nd, words), nd.index);
+      for (unsigned slot = 0; slot < 4; ++slot) {
+        // index + stride (1 + slot) grows with slot: the first one past the count ends.
+        if (nd.index + nd.stride * (1u + slot) >= lod.count) break;
+        const detail::npr_tree_node child = detail::npr_tree_child(nd, words, slot);
+        if (nodes) ++*nodes;
+        if (meets_image(child)) stack[top++] = child;
+      }
+    }
+    // J order, whatever the traversal (CPU and GPU stage 1 agree on it).
+    std::sort(splats.begin() + static_cast<std::ptrdiff_t>(first_record), splats.end(),
+              [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
   }
 
   params p_;

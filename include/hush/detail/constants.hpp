@@ -338,10 +338,14 @@ constexpr double kNprGaborDefaultBandwidth = 0.08;       // r = 12.2 px for t = 
 constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ... 128)
 constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
 constexpr double kNprGaborMaxDepthTolerance = 1.0;
-// At most this many points per triangle (2M <= 2^22): N above it is clamped,
-// so a triangle of more than 2^22 / lambda square pixels (several screens at
-// the defaults) gets a lower density. Bounds the work per triangle.
-constexpr double kNprGaborMaxPoints = 4194304.0;
+// N is clamped here (2M <= 2^41 points per triangle). Not a work bound (stage 1
+// walks only the subtrees near the image, detail/npr_gabor_tree.hpp) but the
+// input's: float screen positions have a 1-pixel ulp at 2^24 = 1.7e7 px, and a
+// triangle of 2^40 points at the default density (0.034 / px^2) already has
+// legs of 8e6 px, where the vertices are placed to half a pixel: beyond, the
+// input cannot place the points it asks for. Indices J < 2^41 keep
+// npr_tree_child's index + 4 stride below 2^46, far from overflowing 64 bits.
+constexpr double kNprGaborMaxPoints = 1099511627776.0;  // 2^40
 constexpr unsigned kNprGaborMaxTriangles = 1u << 28;
 constexpr unsigned kNprGaborMaxImageSide = 32768;
 // Each point takes 2 words of its triangle's stream (hush::rng, stream

@@ -32,7 +32,9 @@ namespace hush {
 // x0 ... x1, y0 ... y1 (inclusive, clamped to the image, never empty): the
 // centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
 // qy y in screen pixels, gives the depth test its reference depth at every
-// pixel (the point's own depth is 1 / (q0 + qx x + qy y)).
+// pixel (the point's own depth is 1 / (q0 + qx x + qy y)). `index` is the
+// point's J in its triangle's sequence (detail/npr_gabor_tree.hpp): stage 2
+// does not read it; it names the point (tests, GPU stage 1 comparisons).
 struct npr_gabor_splat {
   double x = 0, y = 0;            // position, pixels (x right, y down)
   double fx = 0, fy = 0;          // F, cycles per pixel
@@ -42,6 +44,7 @@ struct npr_gabor_splat {
   double q0 = 0, qx = 0, qy = 0;  // the triangle's plane of 1/z
   std::uint32_t object = 0, triangle = 0;
   std::int32_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // pixel range, inclusive
+  std::uint64_t index = 0;  // J: the point's index in its triangle's sequence
 };
 
 namespace detail {
