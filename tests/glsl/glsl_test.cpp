@@ -796,8 +796,8 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
                                    "hush_perlin3_gradient(gl_FragCoord.xyz, 1u, uvec3(0u)); }\n"}});
   const auto files = hush::glsl::export_files();
   // The library, 4 runners each of perlin2, perlin3, their fractals, wavelet2 and wavelet3,
-  // the coherent pass, NPR Gabor noise's three stages and the three passes of its stage 1.
-  CHECK(files.size() == 32);
+  // the coherent pass, NPR Gabor noise's three stages and the six passes of its stage 1.
+  CHECK(files.size() == 35);
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);

@@ -47,8 +47,9 @@ void add_runners(std::vector<export_file>& files) {
 // wavelet2, wavelet3), and
 // hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent.hpp), and
 // hush_npr_gabor_splat.vert, .geom, .frag (NPR Gabor noise's point sprites, one program,
-// hush/glsl/npr_gabor.hpp) and hush_npr_gabor_counts.comp, _scan.comp, _points.comp (its
-// stage 1: the three compute passes that write the records the sprites draw).
+// hush/glsl/npr_gabor.hpp) and hush_npr_gabor_lods.comp, _scan.comp, _roots.comp,
+// _expand.comp, _children.comp, _records.comp (its stage 1: the compute passes that walk
+// each triangle's point sequence level by level and write the records the sprites draw).
 inline std::vector<export_file> export_files() {
   std::vector<export_file> files;
   files.push_back(
@@ -85,7 +86,8 @@ inline std::vector<export_file> export_files() {
   files.push_back({"hush_npr_gabor_splat.vert", npr_gabor_vertex_source()});
   files.push_back({"hush_npr_gabor_splat.geom", npr_gabor_geometry_source()});
   files.push_back({"hush_npr_gabor_splat.frag", npr_gabor_fragment_source()});
-  const char* const stage1[kNprGaborStage1Passes] = {"counts", "scan", "points"};
+  const char* const stage1[kNprGaborStage1Passes] = {"lods",   "scan",     "roots",
+                                                     "expand", "children", "records"};
   for (int i = 0; i < kNprGaborStage1Passes; ++i)
     files.push_back(
         {std::string("hush_npr_gabor_") + stage1[i] + ".comp", npr_gabor_stage1_source(i)});

@@ -10,19 +10,24 @@
 //
 // Stage 1 (render): where every parameter source is constant or per object, the triangle list
 // (vertices: screen x, y, depth; triangles: indices, id, object) and a per-object kernel table
-// (npr_gabor::kernel_of_object, double, rounded once) go to storage buffers and three compute
-// passes write the records: per triangle its count and LOD weights in float (npr_gabor_lod, the
-// thinning, the plane of 1/z), an exclusive prefix sum of the counts in one work group, then
-// one invocation per record finding its triangle by binary search in the offsets and writing
-// point j of the triangle's hush::rng stream (the GLSL library's hush_stream_key / _word: the
-// CPU's integers) at its own index: the CPU's record order, no atomics. Points whose kernel
-// misses the frame get an empty pixel range (drawn as nothing). Only the total (and an overflow
-// flag) is read back, to size the batches. Per-pixel or per-vertex sources, buffers beyond one
-// storage block, or more than 2^32 - 1 points: stage 1 on the CPU (make_splats), automatically.
-// Float instead of double changes positions, weights and planes within the tolerance derived
-// in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and double N straddle a
-// power of two the second M points (weight <= sqrt(2 nu), nu N's relative float error) exist on
-// one side only.
+// (npr_gabor::kernel_of_object, double, rounded once) go to storage buffers and compute passes
+// walk each triangle's hierarchical point sequence (hush/detail/npr_gabor_tree.hpp) level by
+// level, as the CPU walks it depth first: per triangle its count and LOD weights in float
+// (npr_gabor_lod, the thinning, the plane of 1/z) and its root node (level 0, at a scanned
+// offset); per level one pass decides for each node whether its own point reaches the frame
+// and which children to keep (index below the count, screen triangle grown by r meeting the
+// frame), a multi-level prefix sum gives every record and child its offset, a second pass
+// writes the children as the next level's list. The host reads back each level's two totals
+// (8 bytes) to size the next level; nothing is dropped (a level beyond one storage block runs
+// stage 1 on the CPU instead). Then one pass per level writes the records at their scanned
+// offsets, batch by batch: level by level, each in its list's order, the same order every run
+// (no atomics), hence the same image. J (up to 2^41) is a uvec2; node corners are carried down
+// as perspective-correct midpoints in float. Per-pixel or per-vertex sources, buffers beyond
+// one storage block, or more than 2^32 - 1 records: stage 1 on the CPU (make_splats),
+// automatically. Float instead of double changes positions, weights and planes within the
+// tolerance derived in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and
+// double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
+// float error) exist on one side only.
 //
 // Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
 // buffers, 64 + 8 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
@@ -68,7 +73,7 @@
 // geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
 // driver has them). Leaves the current program, vertex array, framebuffers, viewport, blend and
 // the enables it touches (blend, depth, stencil, scissor, cull face) as it found them; rebinds
-// the indexed storage-buffer bindings 0 to 6 (as hush::glsl::device does).
+// the indexed storage-buffer bindings 0 to 7 (as hush::glsl::device does).
 #ifndef HUSH_GLSL_NPR_GABOR_HPP
 #define HUSH_GLSL_NPR_GABOR_HPP
 
@@ -251,7 +256,7 @@ uniform uint hush_flags;      // 1 object test, 2 triangle test, 4 depth test, 8
 uniform float hush_tolerance;
 uniform float hush_neg_a;     // -ln(1/t)
 uniform float hush_taper_k;   // 1 / (1 - taper start)
-layout(std430, binding = 4) readonly buffer hush_npr_ids_b { uvec2 hush_npr_ids[]; };
+layout(std430, binding = 4) readonly buffer hush_npr_ids_b { uvec4 hush_npr_ids[]; };
 layout(std430, binding = 1) readonly buffer hush_npr_depth_b { float hush_npr_depth[]; };
 layout(std430, binding = 2) readonly buffer hush_npr_object_b { uint hush_npr_object[]; };
 layout(std430, binding = 3) readonly buffer hush_npr_triangle_b { uint hush_npr_triangle[]; };
@@ -264,7 +269,7 @@ void main() {
   hush_gabor_axis ay = hush_gabor_axis_factors((s.kern.y + k.y) * s.kern.z, hush_neg_a, s.freq.y);
   if (!(ax.d2 + ay.d2 < 1.0)) discard;
   uint n = uint(p.y) * hush_size.x + uint(p.x);
-  uvec2 ids = hush_npr_ids[hush_g_splat];
+  uvec2 ids = hush_npr_ids[hush_g_splat].xy;  // (object, triangle id, J low, J high)
   if ((hush_flags & 1u) != 0u && hush_npr_object[n] != ids.x) discard;
   if ((hush_flags & 2u) != 0u && hush_npr_triangle[n] != ids.y) discard;
   float vis = 1.0;
@@ -284,19 +289,38 @@ void main() {
 }
 )glsl";
 
-// ---- Stage 1 on the GPU: three compute passes (hush_npr_stage1_source(pass)).
+// ---- Stage 1 on the GPU: the hierarchical point sequence (hush/detail/npr_gabor_tree.hpp)
+// walked level by level in compute passes (npr_gabor_stage1_source(pass)).
 // Inputs, uploaded once per frame: vertices (screen x, y, depth, -) and triangles (5 words:
 // three vertex indices, triangle id, object id); the per-object kernel table (entry
 // min(object, hush_table_last); the last entry is the params' constants). Every value read
 // from the table was computed on the CPU in double by npr_gabor::kernel_of_object.
+// A node (64 bytes): its seed, triangle, J (64 bits), its three screen corners and depths
+// (perspective-correct midpoints of its parent's: npr_gabor_tree.hpp's corners projected;
+// corners relative to the triangle's origin, hush_npr_origin), and
+// `info`, written by the expand pass: bit 0 its own point reaches the frame, bit 1 + d its
+// child at slot d is a node of the next level.
+// J as uvec2 (low, high word): counts reach 2^41 (kNprGaborMaxPoints 2^40, 2M points), past
+// float's 2^24; two 32-bit words add and compare exactly with uaddCarry and shifts, where
+// doubles would need fp64, slow (1/32 - 1/64 rate) or missing on many GPUs.
 constexpr const char* kNprGaborStage1Common = R"glsl(
 struct hush_npr_kernel {
   vec4 freq;  // (F_x r, F_y r, |F| r, 1/r)  (isotropic: F = (F0, 0))
   vec4 size;  // (r, lambda_T, weight factor, -)
 };
 struct hush_npr_lod {
-  uvec4 lod;    // (points, first M, bits of the first M's weight, bits of the others')
+  // (log2 count + 1, 0 where the triangle has no points; log2 M, the first M points' weight
+  // (bits); the others' weight (bits)): counts and M are powers of two (npr_gabor_lod).
+  uvec4 lod;
   vec4 plane;   // (1/z at vertex 0, d(1/z)/dx, d(1/z)/dy, -)
+};
+struct hush_npr_node {
+  uvec4 key;  // (seed, triangle, J low, J high)
+  vec4 s01;   // corners 0 and 1 (screen, relative to hush_npr_origin)
+  vec4 s2z;   // corner 2, depths of corners 0 and 1
+  float z2;   // depth of corner 2
+  uint info;  // bit 0: its own point has a record; bit 1 + d: its child at slot d is kept
+  uint pad0, pad1;
 };
 layout(std430, binding = 0) readonly buffer hush_npr_vertices_b { vec4 hush_npr_vertices[]; };
 layout(std430, binding = 1) readonly buffer hush_npr_triangles_b { uint hush_npr_triangles[]; };
@@ -305,6 +329,25 @@ uniform uint hush_tris;        // triangles
 uniform uint hush_table_last;  // the constants' entry
 uniform uint hush_group_base;  // first work group of this dispatch
 uniform uvec2 hush_size;       // frame width, height
+uniform uint hush_key;         // seed_key(seed)
+uniform uint hush_nodes;       // nodes of this level
+uniform uint hush_level;       // the level: its nodes' stride is 4^level
+const uint hush_npr_child_order[HUSH_NPR_ORDERS] = uint[HUSH_NPR_ORDERS](HUSH_NPR_ORDER_TABLE);
+uint hush_npr_item() {
+  return (hush_group_base + gl_WorkGroupID.x) * uint(HUSH_NPR_GROUP) + gl_LocalInvocationID.x;
+}
+// 64-bit helpers: a + b; v << s (s < 64); a < 2^e (e < 64).
+uvec2 hush_u64_add(uvec2 a, uvec2 b) {
+  uint c;
+  uint lo = uaddCarry(a.x, b.x, c);
+  return uvec2(lo, a.y + b.y + c);
+}
+uvec2 hush_u64_shl(uint v, uint s) {
+  return s == 0u ? uvec2(v, 0u) : s < 32u ? uvec2(v << s, v >> (32u - s)) : uvec2(0u, v << (s - 32u));
+}
+bool hush_u64_below_pow2(uvec2 a, uint e) {
+  return e < 32u ? a.y == 0u && (a.x >> e) == 0u : (a.y >> (e - 32u)) == 0u;
+}
 // Triangle t's vertex 0, its edges to vertices 1 and 2, the depths; false where the CPU's
 // stage 1 skips it before the area (a depth not in front or not finite, a non-finite
 // position): the exponent and sign bits decide, which no NaN-folding compiler can change.
@@ -327,26 +370,90 @@ bool hush_npr_triangle(uint t, out vec2 s0, out vec2 e1, out vec2 e2, out vec3 z
 hush_npr_kernel hush_npr_kernel_of(uint object) {
   return hush_npr_table[min(object, hush_table_last)];
 }
-// npr_gabor's triangle_key: hash32(hash32(seed_key(seed), object), triangle), its stream.
-uint hush_npr_stream(uint key, uint t) {
-  return hush_stream_key(hush_hash32(hush_hash32(key, hush_npr_triangles[5u * t + 4u]),
-                                     hush_npr_triangles[5u * t + 3u]), HUSH_NPR_STREAM);
+// The origin of triangle t's node corners: its vertex 0 clamped into the frame. Each level
+// rounds its corners at their size relative to it: at most the triangle's extent, and near the
+// frame, where a huge triangle's points are kept, about the ancestor's extent (absolute screen
+// coordinates would round at the frame's size for small triangles, coordinates relative to
+// vertex 0 at the whole triangle's for huge ones).
+vec2 hush_npr_origin(uint t) {
+  return clamp(hush_npr_vertices[hush_npr_triangles[5u * t]].xy, vec2(0.0), vec2(hush_size));
+}
+// npr_gabor's triangle_key: hash32(hash32(seed_key(seed), object), triangle), the root's seed.
+uint hush_npr_triangle_key(uint t) {
+  return hush_hash32(hush_hash32(hush_key, hush_npr_triangles[5u * t + 4u]),
+                     hush_npr_triangles[5u * t + 3u]);
+}
+// The node's own point (npr_gabor_tree.hpp: word 0 of its stream, local barycentrics
+// (1 - sqrt u, sqrt u (1 - v), sqrt u v) of its corners) on the screen: origin + corner 0 + d
+// with d = sum l_i z_i (s_i - s_0) / sum l_i z_i (the projection of the object-space point,
+// rounded at the node's size); its pixel range p0 ... p1.
+void hush_npr_own_point(hush_npr_node nd, vec2 origin, uint stream, float r, out vec2 d,
+                        out vec2 p0, out vec2 p1) {
+  uint w0 = hush_stream_word(stream, 0u);
+  float su = sqrt(hush_gabor_half(w0, 0u)), v = hush_gabor_half(w0, 1u);
+  vec3 l = vec3(1.0 - su, su * (1.0 - v), su * v) * vec3(nd.s2z.zw, nd.z2);
+  d = (l.y * (nd.s01.zw - nd.s01.xy) + l.z * (nd.s2z.xy - nd.s01.xy)) / (l.x + l.y + l.z);
+  vec2 at = origin + (nd.s01.xy + d);
+  p0 = max(ceil(at - r - 0.5), vec2(0.0));
+  p1 = min(floor(at + r - 0.5), vec2(hush_size) - 1.0);
+}
+// The child at `slot` (npr_gabor_tree.hpp's npr_tree_child): geometric child c from the order
+// word's permutation, seed hash32(seed, c), index j; corner i of child c < 3 is corner c
+// (i == c) or the midpoint of corners c and i, of the middle child the midpoint opposite
+// corner i; perspective-correct: screen (z_a s_a + z_b s_b) / (z_a + z_b), depth (z_a + z_b) / 2.
+hush_npr_node hush_npr_child(hush_npr_node p, uint order, uint slot, uvec2 j) {
+  uint hi, lo;
+  umulExtended(order, uint(HUSH_NPR_ORDERS), hi, lo);
+  uint c = (hush_npr_child_order[hi] >> (2u * slot)) & 3u;
+  vec2 s[3] = vec2[3](p.s01.xy, p.s01.zw, p.s2z.xy);
+  float z[3] = float[3](p.s2z.z, p.s2z.w, p.z2);
+  vec2 cs[3];
+  float cz[3];
+  for (uint i = 0u; i < 3u; ++i) {
+    uint a = c < 3u ? c : (i + 1u) % 3u, b = c < 3u ? i : (i + 2u) % 3u;
+    if (a == b) {
+      cs[i] = s[a];
+      cz[i] = z[a];
+    } else {
+      cs[i] = (z[a] * s[a] + z[b] * s[b]) / (z[a] + z[b]);
+      cz[i] = 0.5 * (z[a] + z[b]);
+    }
+  }
+  hush_npr_node n;
+  n.key = uvec4(hush_hash32(p.key.x, c), p.key.y, j);
+  n.s01 = vec4(cs[0], cs[1]);
+  n.s2z = vec4(cs[2], cz[0], cz[1]);
+  n.z2 = cz[2];
+  n.info = 0u;
+  n.pad0 = n.pad1 = 0u;
+  return n;
+}
+// Whether the node's screen triangle (bounding box) grown by r meets the frame. Conservative
+// by HUSH_NPR_CULL_MARGIN pixels more: a node kept in excess only costs its visit (its points
+// have empty pixel ranges), while one dropped that the CPU keeps would lose points; the margin
+// exceeds the corners' float error (a few 2^-24 of the sum of the ancestors' extents).
+bool hush_npr_meets_image(hush_npr_node n, vec2 origin, float r) {
+  vec2 lo = min(min(n.s01.xy, n.s01.zw), n.s2z.xy), hi = max(max(n.s01.xy, n.s01.zw), n.s2z.xy);
+  vec2 g = vec2(r) + HUSH_NPR_CULL_MARGIN + HUSH_NPR_CULL_RELATIVE * max(abs(lo), abs(hi));
+  return !(any(lessThan(hi + g, -origin)) || any(greaterThan(lo - g, vec2(hush_size) - origin)));
 }
 )glsl";
 
-// Pass 1, one invocation per triangle: its point count and LOD weights (npr_gabor_lod::of,
-// thinning), in float, and its plane of 1/z; count 0 for every triangle stage 1 skips.
-constexpr const char* kNprGaborCount = R"glsl(
+// Pass 0, one invocation per triangle: its point count and LOD weights (npr_gabor_lod::of,
+// thinning), in float, and its plane of 1/z; count 0 for every triangle stage 1 skips; the
+// scan input (0 records, 1 root node where it has points).
+constexpr const char* kNprGaborLods = R"glsl(
 layout(local_size_x = HUSH_NPR_GROUP) in;
 layout(std430, binding = 3) writeonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
-uniform uint hush_key;   // seed_key(seed)
+layout(std430, binding = 4) writeonly buffer hush_npr_flags_b { uvec2 hush_npr_flags[]; };
 uniform uint hush_opts;  // 1 cull back faces, 2 thinning
 void main() {
-  uint t = (hush_group_base + gl_WorkGroupID.x) * uint(HUSH_NPR_GROUP) + gl_LocalInvocationID.x;
+  uint t = hush_npr_item();
   if (t >= hush_tris) return;
   hush_npr_lod o;
   o.lod = uvec4(0u);
   o.plane = vec4(0.0);
+  hush_npr_flags[t] = uvec2(0u);
   vec2 s0, e1, e2;
   vec3 z;
   if (!hush_npr_triangle(t, s0, e1, e2, z)) { hush_npr_lods[t] = o; return; }
@@ -363,13 +470,12 @@ void main() {
   if (!(n > 0.0)) { hush_npr_lods[t] = o; return; }
   n = min(n, HUSH_NPR_MAX_POINTS);
   float w1 = 1.0, w2 = 0.0;
-  uint first, count;
+  uint first = 0u, count = 0u;  // log2 M, log2 of the count
   if (n < 1.0) {
-    first = count = 1u;
     w1 = sqrt(n);
     if ((hush_opts & 2u) != 0u) {
       // npr_gabor::thinning_uniform: the stream's last two words, 27 + 26 bits.
-      uint key = hush_npr_stream(hush_key, t);
+      uint key = hush_stream_key(hush_npr_triangle_key(t), HUSH_NPR_STREAM);
       float u = float(hush_stream_word(key, ~1u) >> 5u) * HUSH_NPR_2M27 +
                 float(hush_stream_word(key, ~0u) >> 6u) * HUSH_NPR_2M53;
       float g = n <= 0.5 ? max(0.0, 1.0 - u / (2.0 * n)) : 1.0 - 2.0 * (1.0 - n) * u;
@@ -378,146 +484,238 @@ void main() {
     }
   } else {
     // M = 2^floor(log2 N) from the exponent bits (N >= 1 is normal): exact, as frexp.
-    first = 1u << ((floatBitsToUint(n) >> 23u) - 127u);
-    w2 = sqrt(n / float(first) - 1.0);  // alpha(N), eq. 4; n / M - 1 exact
-    count = w2 > 0.0 ? 2u * first : first;
+    first = (floatBitsToUint(n) >> 23u) - 127u;
+    w2 = sqrt(n / uintBitsToFloat((first + 127u) << 23u) - 1.0);  // alpha(N), eq. 4; exact N / M
+    count = w2 > 0.0 ? first + 1u : first;
   }
   // The plane: 1/z = 1/z0 + qx (x - s0.x) + qy (y - s0.y).
   float d1 = 1.0 / z.y - 1.0 / z.x, d2 = 1.0 / z.z - 1.0 / z.x, inv = 1.0 / cross;
-  o.lod = uvec4(count, first, floatBitsToUint(w1), floatBitsToUint(w2));
+  o.lod = uvec4(count + 1u, first, floatBitsToUint(w1), floatBitsToUint(w2));
   o.plane = vec4(1.0 / z.x, (d1 * e2.y - d2 * e1.y) * inv, (d2 * e1.x - d1 * e2.x) * inv, 0.0);
   hush_npr_lods[t] = o;
+  hush_npr_flags[t] = uvec2(0u, 1u);
 }
 )glsl";
 
-// Pass 2, one work group: the exclusive prefix sum of the counts (offsets[t], offsets[T] = the
-// total, offsets[T + 1] = 1 where it overflowed 32 bits). Each invocation sums a run of
-// consecutive triangles, a Hillis-Steele scan adds the runs, each writes its run's offsets.
+// Pass 1, the exclusive prefix sum of uvec2 items (hush_items of them) in place, in blocks of
+// 4 HUSH_NPR_SCAN items per work group: hush_add 0 scans each block (each invocation sums 4
+// items, a Hillis-Steele scan in shared memory adds the 256 sums) and writes the block's total
+// to hush_scan_sums[block]; hush_add 1 adds the scanned totals back. The host recurses on the
+// totals (1024 ^ depth items), so any count scans in a few dispatches, deterministically.
 constexpr const char* kNprGaborScan = R"glsl(
 layout(local_size_x = HUSH_NPR_SCAN) in;
-layout(std430, binding = 3) readonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
-layout(std430, binding = 4) writeonly buffer hush_npr_offsets_b { uint hush_npr_offsets[]; };
-shared uint hush_run[HUSH_NPR_SCAN];
-shared uint hush_over[HUSH_NPR_SCAN];
+layout(std430, binding = 0) buffer hush_scan_data_b { uvec2 hush_scan_data[]; };
+layout(std430, binding = 1) buffer hush_scan_sums_b { uvec2 hush_scan_sums[]; };
+uniform uint hush_items, hush_add;
+shared uvec2 hush_part[HUSH_NPR_SCAN];
 void main() {
-  uint i = gl_LocalInvocationID.x;
-  uint chunk = (hush_tris + uint(HUSH_NPR_SCAN) - 1u) / uint(HUSH_NPR_SCAN);
-  uint lo = min(i * chunk, hush_tris), hi = min(lo + chunk, hush_tris);
-  uint sum = 0u, over = 0u, carry;
-  for (uint t = lo; t < hi; ++t) {
-    sum = uaddCarry(sum, hush_npr_lods[t].lod.x, carry);
-    over |= carry;
+  uint g = hush_group_base + gl_WorkGroupID.x, i = gl_LocalInvocationID.x;
+  uint base = (g * uint(HUSH_NPR_SCAN) + i) * 4u;
+  if (hush_add != 0u) {
+    uvec2 s = hush_scan_sums[g];
+    for (uint k = 0u; k < 4u; ++k)
+      if (base + k < hush_items) hush_scan_data[base + k] += s;
+    return;
   }
-  hush_run[i] = sum;
-  hush_over[i] = over;
+  uvec2 v[4];
+  uvec2 sum = uvec2(0u);
+  for (uint k = 0u; k < 4u; ++k) {
+    v[k] = base + k < hush_items ? hush_scan_data[base + k] : uvec2(0u);
+    sum += v[k];
+  }
+  hush_part[i] = sum;
   barrier();
   for (uint d = 1u; d < uint(HUSH_NPR_SCAN); d <<= 1u) {
-    uint v = i >= d ? hush_run[i - d] : 0u, f = i >= d ? hush_over[i - d] : 0u;
+    uvec2 add = i >= d ? hush_part[i - d] : uvec2(0u);
     barrier();
-    hush_run[i] = uaddCarry(hush_run[i], v, carry);
-    hush_over[i] |= f | carry;
+    hush_part[i] += add;
     barrier();
   }
-  uint at = i == 0u ? 0u : hush_run[i - 1u];
-  for (uint t = lo; t < hi; ++t) {
-    hush_npr_offsets[t] = at;
-    at += hush_npr_lods[t].lod.x;
+  uvec2 at = i == 0u ? uvec2(0u) : hush_part[i - 1u];
+  for (uint k = 0u; k < 4u; ++k) {
+    if (base + k < hush_items) hush_scan_data[base + k] = at;
+    at += v[k];
   }
-  if (i == uint(HUSH_NPR_SCAN) - 1u) {
-    hush_npr_offsets[hush_tris] = hush_run[i];
-    hush_npr_offsets[hush_tris + 1u] = hush_over[i];
+  if (i == uint(HUSH_NPR_SCAN) - 1u) hush_scan_sums[g] = hush_part[i];
+}
+)glsl";
+
+// Pass 2, one invocation per triangle: the root node of each triangle with points, at its
+// scanned offset (level 0 in triangle order).
+constexpr const char* kNprGaborRoots = R"glsl(
+layout(local_size_x = HUSH_NPR_GROUP) in;
+layout(std430, binding = 3) readonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
+layout(std430, binding = 4) readonly buffer hush_npr_flags_b { uvec2 hush_npr_offsets[]; };
+layout(std430, binding = 6) writeonly buffer hush_npr_next_b { hush_npr_node hush_npr_next[]; };
+void main() {
+  uint t = hush_npr_item();
+  if (t >= hush_tris || hush_npr_lods[t].lod.x == 0u) return;
+  vec4 v0 = hush_npr_vertices[hush_npr_triangles[5u * t]];
+  vec4 v1 = hush_npr_vertices[hush_npr_triangles[5u * t + 1u]];
+  vec4 v2 = hush_npr_vertices[hush_npr_triangles[5u * t + 2u]];
+  vec2 o = hush_npr_origin(t);
+  hush_npr_node n;
+  n.key = uvec4(hush_npr_triangle_key(t), t, 0u, 0u);
+  n.s01 = vec4(v0.xy - o, v1.xy - o);
+  n.s2z = vec4(v2.xy - o, v0.z, v1.z);
+  n.z2 = v2.z;
+  n.info = 0u;
+  n.pad0 = n.pad1 = 0u;
+  hush_npr_next[hush_npr_offsets[t].y] = n;
+}
+)glsl";
+
+// Pass 3, one invocation per node of the level: whether its own point has a record (its pixel
+// range is not empty) and which children are kept (index below the count, screen triangle
+// grown by r meeting the frame); the scan input (records, children).
+constexpr const char* kNprGaborExpand = R"glsl(
+layout(local_size_x = HUSH_NPR_GROUP) in;
+layout(std430, binding = 3) readonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
+layout(std430, binding = 4) writeonly buffer hush_npr_flags_b { uvec2 hush_npr_flags[]; };
+layout(std430, binding = 5) buffer hush_npr_level_b { hush_npr_node hush_npr_level[]; };
+void main() {
+  uint i = hush_npr_item();
+  if (i >= hush_nodes) return;
+  hush_npr_node nd = hush_npr_level[i];
+  uint t = nd.key.y;
+  uint count = hush_npr_lods[t].lod.x - 1u;  // log2 of the triangle's count
+  float r = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]).size.x;
+  vec2 origin = hush_npr_origin(t);
+  uint stream = hush_stream_key(nd.key.x, HUSH_NPR_STREAM);
+  vec2 d, p0, p1;
+  hush_npr_own_point(nd, origin, stream, r, d, p0, p1);
+  uint info = any(greaterThan(p0, p1)) ? 0u : 1u, kids = 0u;
+  uint order = hush_stream_word(stream, 2u);
+  for (uint slot = 0u; slot < 4u; ++slot) {
+    // index + stride (1 + slot) grows with slot: the first one past the count ends.
+    uvec2 j = hush_u64_add(nd.key.zw, hush_u64_shl(1u + slot, 2u * hush_level));
+    if (!hush_u64_below_pow2(j, count)) break;
+    if (hush_npr_meets_image(hush_npr_child(nd, order, slot, j), origin, r)) {
+      info |= 2u << slot;
+      ++kids;
+    }
+  }
+  hush_npr_level[i].info = info;
+  hush_npr_flags[i] = uvec2(info & 1u, kids);
+}
+)glsl";
+
+// Pass 4, one invocation per node of the level: its kept children at their scanned offsets in
+// the next level's list (parent order, then slot order).
+constexpr const char* kNprGaborChildren = R"glsl(
+layout(local_size_x = HUSH_NPR_GROUP) in;
+layout(std430, binding = 4) readonly buffer hush_npr_flags_b { uvec2 hush_npr_offsets[]; };
+layout(std430, binding = 5) readonly buffer hush_npr_level_b { hush_npr_node hush_npr_level[]; };
+layout(std430, binding = 6) writeonly buffer hush_npr_next_b { hush_npr_node hush_npr_next[]; };
+void main() {
+  uint i = hush_npr_item();
+  if (i >= hush_nodes) return;
+  hush_npr_node nd = hush_npr_level[i];
+  if ((nd.info >> 1u) == 0u) return;
+  uint at = hush_npr_offsets[i].y;
+  uint order = hush_stream_word(hush_stream_key(nd.key.x, HUSH_NPR_STREAM), 2u);
+  for (uint slot = 0u; slot < 4u; ++slot) {
+    if ((nd.info & (2u << slot)) == 0u) continue;
+    uvec2 j = hush_u64_add(nd.key.zw, hush_u64_shl(1u + slot, 2u * hush_level));
+    hush_npr_next[at++] = hush_npr_child(nd, order, slot, j);
   }
 }
 )glsl";
 
-// Pass 3, one invocation per record of the batch [hush_base, hush_base + hush_batch): its
-// triangle by binary search in the offsets, its point j = record - offset, written at its own
-// index (the CPU's order: triangle by triangle, points in stream order). A point whose kernel
-// misses the image gets an empty box (the geometry stage skips it) where the CPU leaves it out.
-constexpr const char* kNprGaborPoints = R"glsl(
+// Pass 5, one invocation per node of a level: its own point's record, if it has one and its
+// frame-wide index (the level's first record + its scanned offset) falls in the batch
+// [hush_base, hush_base + hush_batch): written at index - hush_base, with the ids (object,
+// triangle id, J low, J high).
+constexpr const char* kNprGaborRecordsPass = R"glsl(
 layout(local_size_x = HUSH_NPR_GROUP) in;
 layout(std430, binding = 3) readonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
-layout(std430, binding = 4) readonly buffer hush_npr_offsets_b { uint hush_npr_offsets[]; };
-layout(std430, binding = 5) writeonly buffer hush_npr_out_b { hush_npr_splat hush_npr_out[]; };
-layout(std430, binding = 6) writeonly buffer hush_npr_ids_b { uvec2 hush_npr_out_ids[]; };
-uniform uint hush_key;        // seed_key(seed)
+layout(std430, binding = 4) readonly buffer hush_npr_flags_b { uvec2 hush_npr_offsets[]; };
+layout(std430, binding = 5) readonly buffer hush_npr_level_b { hush_npr_node hush_npr_level[]; };
+layout(std430, binding = 6) writeonly buffer hush_npr_out_b { hush_npr_splat hush_npr_out[]; };
+layout(std430, binding = 7) writeonly buffer hush_npr_ids_b { uvec4 hush_npr_out_ids[]; };
 uniform uint hush_isotropic;  // 1: each point's own angle
+uniform uint hush_first;      // the level's first record in the frame
 uniform uint hush_base, hush_batch;
 void main() {
-  uint k = (hush_group_base + gl_WorkGroupID.x) * uint(HUSH_NPR_GROUP) + gl_LocalInvocationID.x;
+  uint i = hush_npr_item();
+  if (i >= hush_nodes) return;
+  hush_npr_node nd = hush_npr_level[i];
+  if ((nd.info & 1u) == 0u) return;
+  uint k = hush_first + hush_npr_offsets[i].x - hush_base;  // wraps above 2^31 when before
   if (k >= hush_batch) return;
-  uint i = hush_base + k;
-  uint lo = 0u, hi = hush_tris;  // offsets[lo] <= i < offsets[hi]
-  while (hi - lo > 1u) {
-    uint mid = lo + (hi - lo) / 2u;
-    if (hush_npr_offsets[mid] <= i) lo = mid; else hi = mid;
-  }
-  uint t = lo, j = i - hush_npr_offsets[t];
+  uint t = nd.key.y;
   hush_npr_lod l = hush_npr_lods[t];
-  vec2 s0, e1, e2;
-  vec3 z;
-  hush_npr_triangle(t, s0, e1, e2, z);
-  hush_npr_kernel kn = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]);
-  // npr_gabor::point_of: words W j and W j + 1 of the triangle's stream.
-  uint key = hush_npr_stream(hush_key, t);
-  uint w0 = hush_stream_word(key, HUSH_NPR_WORDS * j), w1 = hush_stream_word(key, HUSH_NPR_WORDS * j + 1u);
-  float su = sqrt(hush_gabor_half(w0, 0u)), v = hush_gabor_half(w0, 1u);
-  vec3 b = vec3(1.0 - su, su * (1.0 - v), su * v);
-  // s = sum b_i z_i s_i / sum b_i z_i, relative to vertex 0.
-  vec2 d = (b.y * z.y * e1 + b.z * z.z * e2) / (b.x * z.x + b.y * z.y + b.z * z.z);
-  vec2 at = s0 + d;
-  float r = kn.size.x;
-  vec2 wh = vec2(hush_size) - 1.0;
-  vec2 p0 = max(ceil(at - r - 0.5), vec2(0.0)), p1 = min(floor(at + r - 0.5), wh);
+  uint object = hush_npr_triangles[5u * t + 4u];
+  hush_npr_kernel kn = hush_npr_kernel_of(object);
+  uint stream = hush_stream_key(nd.key.x, HUSH_NPR_STREAM);
+  vec2 origin = hush_npr_origin(t), d, p0, p1;
+  hush_npr_own_point(nd, origin, stream, kn.size.x, d, p0, p1);
   hush_npr_splat o;
   o.box = ivec4(p0, p1);
   if (any(greaterThan(p0, p1))) o.box = ivec4(1, 1, 0, 0);
-  vec2 c = (p0 + 0.5 - s0) - d;  // the first pixel centre's offset, relative to vertex 0
+  // The first pixel centre's offset from the point, rounded at |p0 - origin| (within r + 1 of
+  // the node) and at the node's size.
+  o.kern.xy = ((p0 + 0.5 - origin) - nd.s01.xy) - d;
+  uint w1 = hush_stream_word(stream, 1u);
   float amplitude = 2.0 * hush_gabor_half(w1, 0u) - 1.0;
-  float lw = uintBitsToFloat(j < l.lod.y ? l.lod.z : l.lod.w);
+  float lw = uintBitsToFloat(hush_u64_below_pow2(nd.key.zw, l.lod.y) ? l.lod.z : l.lod.w);
   vec2 f = kn.freq.xy;
   if (hush_isotropic != 0u) {
     vec2 sc = hush_sincos_turns(hush_gabor_half(w1, 1u));
     f = kn.freq.z * vec2(sc.y, sc.x);
   }
-  o.kern = vec4(c, kn.freq.w, lw * amplitude * kn.size.z);
+  o.kern.zw = vec2(kn.freq.w, lw * amplitude * kn.size.z);
   o.freq = vec4(f, 0.0, 0.0);
-  vec2 q = p0 + 0.5 - s0;
+  vec2 q = p0 + 0.5 - hush_npr_vertices[hush_npr_triangles[5u * t]].xy;
   o.plane = vec4(l.plane.x + l.plane.y * q.x + l.plane.z * q.y, l.plane.y, l.plane.z, 0.0);
   hush_npr_out[k] = o;
-  hush_npr_out_ids[k] = uvec2(hush_npr_triangles[5u * t + 4u], hush_npr_triangles[5u * t + 3u]);
+  hush_npr_out_ids[k] = uvec4(object, hush_npr_triangles[5u * t + 3u], nd.key.zw);
 }
 )glsl";
 
 }  // namespace detail
 
-// The compute passes of stage 1 on the GPU (#version 430 core), pass 0 counts, 1 scans, 2
-// writes the records; for hush glsl-export and tests.
-constexpr int kNprGaborStage1Passes = 3;
-// Work-group sizes (within GL 4.3's minimum of 1024 invocations per group).
+// The compute passes of stage 1 on the GPU (#version 430 core): 0 LOD per triangle, 1 the
+// prefix sum, 2 the roots, 3 expand a level, 4 its children, 5 its records; for hush
+// glsl-export and tests.
+constexpr int kNprGaborStage1Passes = 6;
+// Work-group sizes (within GL 4.3's minimum of 1024 invocations per group); the scan's block
+// is 4 items per invocation.
 constexpr int kNprGaborGroupSize = 64;
 constexpr int kNprGaborScanSize = 256;
+constexpr std::size_t kNprGaborScanBlock = std::size_t{4} * kNprGaborScanSize;
+// Bytes of one node of the walk (std430).
+constexpr std::size_t kNprGaborNodeBytes = 64;
+// The walk's cull margin in pixels (absolute, and relative to the corners' coordinates):
+// above the corners' float error, see hush_npr_meets_image.
+constexpr double kNprGaborCullMargin = 1.0, kNprGaborCullRelative = 0x1p-16;
 inline std::string npr_gabor_stage1_source(int pass) {
   namespace c = hush::detail::constants;
   static const char* const names[kNprGaborStage1Passes] = {
-      "counts and LOD weights per triangle", "prefix sum of the counts", "one record per point"};
+      "counts and LOD weights per triangle", "prefix sum", "root nodes", "expand a level",
+      "the next level's nodes", "one record per point"};
   static const char* const bodies[kNprGaborStage1Passes] = {
-      detail::kNprGaborCount, detail::kNprGaborScan, detail::kNprGaborPoints};
+      detail::kNprGaborLods,   detail::kNprGaborScan,     detail::kNprGaborRoots,
+      detail::kNprGaborExpand, detail::kNprGaborChildren, detail::kNprGaborRecordsPass};
   const int p = std::min(std::max(pass, 0), kNprGaborStage1Passes - 1);
   auto f32 = [](double v) {
     return glsl_literal(glsl_constant::type::f32, detail::float_bits(static_cast<float>(v)));
   };
+  std::string table;
+  for (unsigned i = 0; i < c::kNprGaborChildOrders; ++i)
+    table += (i ? ", " : "") + std::to_string(c::kNprGaborChildOrder[i]) + "u";
   return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING " NPR Gabor stage 1: ") +
          names[p] + " (hush/glsl/npr_gabor.hpp).\n#define HUSH_NPR_GROUP " +
          std::to_string(kNprGaborGroupSize) + "\n#define HUSH_NPR_SCAN " +
          std::to_string(kNprGaborScanSize) + "\n#define HUSH_NPR_STREAM " +
-         std::to_string(c::kNprGaborStream) + "u\n#define HUSH_NPR_WORDS " +
-         std::to_string(c::kNprGaborWordsPerPoint) + "u\n#define HUSH_NPR_MAX_POINTS " +
+         std::to_string(c::kNprGaborStream) + "u\n#define HUSH_NPR_MAX_POINTS " +
          f32(c::kNprGaborMaxPoints) + "\n#define HUSH_NPR_2M27 " + f32(0x1p-27) +
-         "\n#define HUSH_NPR_2M53 " + f32(0x1p-53) + "\n" + library() + detail::kNprGaborRecord +
-         detail::kNprGaborStage1Common + bodies[p];
+         "\n#define HUSH_NPR_2M53 " + f32(0x1p-53) + "\n#define HUSH_NPR_ORDERS " +
+         std::to_string(c::kNprGaborChildOrders) + "\n#define HUSH_NPR_ORDER_TABLE " + table +
+         "\n#define HUSH_NPR_CULL_MARGIN " + f32(kNprGaborCullMargin) +
+         "\n#define HUSH_NPR_CULL_RELATIVE " + f32(kNprGaborCullRelative) + "\n" + library() +
+         detail::kNprGaborRecord + detail::kNprGaborStage1Common + bodies[p];
 }
-
 // The sources of the three stages (#version 430 core), for hush glsl-export and tests.
 inline std::string npr_gabor_vertex_source() {
   return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
@@ -606,6 +804,8 @@ class npr_gabor_gpu {
     gr_.DeleteFramebuffers(1, &fbo_);
     gl_.DeleteTextures(1, &texture_);
     gl_.DeleteBuffers(kStage1Buffers, stage1_buffers_);
+    for (const std::vector<gl_uint>* v : {&level_nodes_, &level_flags_, &scan_sums_})
+      if (!v->empty()) gl_.DeleteBuffers(static_cast<gl_sizei>(v->size()), v->data());
     gl_.DeleteBuffers(2, buffers_);
   }
 
@@ -614,6 +814,9 @@ class npr_gabor_gpu {
   // Frames whose stage 1 ran on the GPU (render), and those it handed back to the CPU.
   std::size_t gpu_stage1_frames() const { return gpu_frames_; }
   std::size_t cpu_stage1_frames() const { return cpu_frames_; }
+  // The last GPU stage 1's walk: nodes visited (every level's list) and levels.
+  std::uint64_t stage1_nodes() const { return nodes_; }
+  std::size_t stage1_levels() const { return levels_; }
 
   // Stage 2 of `j` into out (frame-sized, validated by npr_gabor::splat).
   void splat(const hush::detail::npr_gabor_splat_job& j, const image_view<float>& out) {
@@ -622,7 +825,7 @@ class npr_gabor_gpu {
 
   // Both stages of noise.render on the GPU (arguments validated by render); stage 1 on the
   // CPU where the GPU cannot run it (a per-pixel or per-vertex source, buffers beyond one
-  // storage block, more than 2^32 - 1 points).
+  // storage block: a level's nodes included; more than 2^32 - 1 records or nodes).
   void render(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, const image_view<float>& out) {
     std::size_t total = 0;
@@ -640,9 +843,11 @@ class npr_gabor_gpu {
   }
 
   // Stage 1 on the GPU alone, its records read back: for each record in order whose pixel
-  // range is not empty, the 16 words of npr_gabor_gpu_record (box, kern, freq, plane) and 2 ids;
-  // `empty` counts the others (points whose kernel misses the frame). False (nothing written)
-  // where render would run stage 1 on the CPU. For tests and debugging.
+  // range is not empty, the 16 words of npr_gabor_gpu_record (box, kern, freq, plane) and 4
+  // ids (object, triangle id, J low, J high); `empty` counts the others (a record whose box,
+  // recomputed by the records pass, came out empty: none expected). Records come level by
+  // level, each level in its list's order. False (nothing written) where render would run
+  // stage 1 on the CPU. For tests and debugging.
   bool records(const npr_gabor& noise, const frame& f, const triangle_list& tris,
                const npr_gabor::sources& src, std::vector<std::uint32_t>& words,
                std::vector<std::uint32_t>& ids, std::size_t& empty) {
@@ -659,11 +864,11 @@ class npr_gabor_gpu {
       generate(b0, m);
       gl_.MemoryBarrier(kGlBufferUpdateBarrierBit);
       w.resize(m * 16);
-      d.resize(m * 2);
+      d.resize(m * 4);
       gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
       gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 64), w.data());
       gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
-      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 8), d.data());
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 16), d.data());
       for (std::size_t k = 0; k < m; ++k) {
         npr_gabor_gpu_record r;
         std::memcpy(&r, &w[16 * k], sizeof r);
@@ -673,7 +878,8 @@ class npr_gabor_gpu {
         }
         words.insert(words.end(), w.begin() + static_cast<std::ptrdiff_t>(16 * k),
                      w.begin() + static_cast<std::ptrdiff_t>(16 * k + 16));
-        ids.insert(ids.end(), {d[2 * k], d[2 * k + 1]});
+        ids.insert(ids.end(), d.begin() + static_cast<std::ptrdiff_t>(4 * k),
+                   d.begin() + static_cast<std::ptrdiff_t>(4 * k + 4));
       }
     }
     gl_.check("hush::glsl::npr_gabor: reading stage 1's records");
@@ -837,12 +1043,14 @@ class npr_gabor_gpu {
   // the first pixel, formed in double and rounded once.
   void pack(const npr_gabor_splat* s, std::size_t m) {
     words_.resize(m * 16);
-    ids_.resize(m * 2);
+    ids_.resize(m * 4);
     for (std::size_t i = 0; i < m; ++i) {
       const npr_gabor_gpu_record g = npr_gabor_gpu_record::of(s[i]);
       std::memcpy(words_.data() + 16 * i, &g, sizeof g);
-      ids_[2 * i] = s[i].object;
-      ids_[2 * i + 1] = s[i].triangle;
+      ids_[4 * i] = s[i].object;
+      ids_[4 * i + 1] = s[i].triangle;
+      ids_[4 * i + 2] = static_cast<std::uint32_t>(s[i].index);
+      ids_[4 * i + 3] = static_cast<std::uint32_t>(s[i].index >> 32);
     }
     gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
     gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(words_.size() * 4),
@@ -878,10 +1086,58 @@ class npr_gabor_gpu {
     for (int b = 0; b < kStage1Buffers; ++b)
       gl_.BindBufferBase(kGlShaderStorageBuffer, static_cast<gl_uint>(b), stage1_buffers_[b]);
   }
+  // Buffer i of `v`, made on first use.
+  gl_uint buffer_at(std::vector<gl_uint>& v, std::size_t i) const {
+    while (v.size() <= i) {
+      gl_uint b = 0;
+      gl_.GenBuffers(1, &b);
+      v.push_back(b);
+    }
+    return v[i];
+  }
+  void allocate(gl_uint buffer, std::size_t bytes) const {
+    gl_.BindBuffer(kGlShaderStorageBuffer, buffer);
+    gl_.BufferData(kGlShaderStorageBuffer,
+                   static_cast<gl_sizeiptr>(std::max<std::size_t>(bytes, 16)), nullptr,
+                   kGlStreamDraw);
+  }
+  void run(int pass, std::size_t items, std::size_t group) const {
+    dispatch(stage1_[pass].id(), items, group);
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit | kGlBufferUpdateBarrierBit);
+  }
 
-  // Stage 1's first two passes: uploads the triangles and the per-object kernels, counts each
-  // triangle's points and their offsets; `total` the number of records. False where the GPU
-  // cannot run stage 1 (see render).
+  // The exclusive prefix sum of the n uvec2 items of `data`, in place; `total` gets their sum
+  // (8 bytes read back). Blocks of kNprGaborScanBlock items per work group, then the blocks'
+  // totals scanned the same way (recursively: depth d holds n / 1024^d totals) and added back.
+  void scan(gl_uint data, std::size_t n, std::size_t depth, std::uint32_t total[2]) {
+    total[0] = total[1] = 0;
+    if (n == 0) return;
+    const gl_uint prog = stage1_[kScanPass].id();
+    const std::size_t groups = (n + kNprGaborScanBlock - 1) / kNprGaborScanBlock;
+    const gl_uint sums = buffer_at(scan_sums_, depth);
+    allocate(sums, groups * 8);
+    const auto pass = [&](gl_uint add) {
+      gl_.UseProgram(prog);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 0, data);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 1, sums);
+      set(prog, "hush_items", static_cast<gl_uint>(n));
+      set(prog, "hush_add", add);
+      run(kScanPass, groups * kNprGaborScanSize, kNprGaborScanSize);
+    };
+    pass(0);
+    if (groups > 1) {
+      scan(sums, groups, depth + 1, total);
+      pass(1);
+    } else {
+      gl_.BindBuffer(kGlShaderStorageBuffer, sums);
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, 8, total);
+    }
+  }
+
+  // Stage 1 up to the records: uploads the triangles and the per-object kernels, computes each
+  // triangle's LOD, its root node, then walks the point sequence level by level (expand, scan,
+  // children) keeping every level's nodes and scanned offsets for generate(); `total` the
+  // number of records. False where the GPU cannot run stage 1 (see render).
   bool stage1(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, std::size_t& total) {
     if (!npr_gabor::per_object_at_most(src)) return false;
@@ -890,8 +1146,8 @@ class npr_gabor_gpu {
     for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
       objects = std::max(objects, p->table_size());
     const std::size_t most = dev_.max_buffer_bytes();
-    if (nt * 32 > most || (nt + 2) * 4 > most || nv * 16 > most || nt * 20 > most ||
-        (objects + 1) * 32 > most || nt + 2 > 0xFFFFFFFFu)
+    if (nt * 32 > most || nv * 16 > most || nt * 20 > most || (objects + 1) * 32 > most ||
+        nt * kNprGaborNodeBytes > most || nt > 0xFFFFFFFFu)
       return false;
     const state_guard guard(gl_, gr_);
     // Vertices (x, y, depth, -), triangles (3 indices, id, object), the kernel table.
@@ -925,9 +1181,8 @@ class npr_gabor_gpu {
     }
     upload(2, floats_.data(), floats_.size() * 4, 2);
     upload(3, nullptr, nt * 32, 3);
-    upload(4, nullptr, (nt + 2) * 4, 4);
+    upload(4, nullptr, nt * 8, 4);
     const npr_gabor::params& p = noise.parameters();
-    const gl_uint key = seed_key(p.seed);
     for (int pass = 0; pass < kNprGaborStage1Passes; ++pass) {
       const gl_uint prog = stage1_[pass].id();
       gl_.UseProgram(prog);
@@ -935,51 +1190,105 @@ class npr_gabor_gpu {
       set(prog, "hush_table_last", static_cast<gl_uint>(objects));
       gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), static_cast<gl_uint>(f.width()),
                      static_cast<gl_uint>(f.height()));
-      set(prog, "hush_key", key);
+      set(prog, "hush_key", seed_key(p.seed));
       set(prog, "hush_opts", (p.cull_back_faces ? 1u : 0u) | (p.thinning ? 2u : 0u));
       set(prog, "hush_isotropic", p.isotropic ? 1u : 0u);
     }
-    if (nt == 0) {
-      total = 0;
-      return true;
+    level_nodes_count_.clear();
+    level_first_.clear();
+    level_records_.clear();
+    nodes_ = 0;
+    levels_ = 0;
+    total = 0;
+    if (nt == 0) return true;
+    // Level 0: the LOD of every triangle, the roots at their scanned offsets.
+    gl_.UseProgram(stage1_[kLodsPass].id());
+    run(kLodsPass, nt, kNprGaborGroupSize);
+    std::uint32_t sum[2];
+    scan(stage1_buffers_[4], nt, 0, sum);
+    std::size_t n = sum[1];
+    gl_.UseProgram(stage1_[kRootsPass].id());
+    bind_stage1();
+    allocate(buffer_at(level_nodes_, 0), n * kNprGaborNodeBytes);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 6, level_nodes_[0]);
+    run(kRootsPass, nt, kNprGaborGroupSize);
+    // Level k -> k + 1: each node's record flag and kept children, scanned; the children at
+    // their offsets. The count below 2^41 bounds the depth: (4^k - 1) / 3 <= J < 2^41, k <= 21.
+    std::size_t records = 0;
+    for (std::size_t k = 0; n > 0; ++k) {
+      if (k > kMaxLevels || n * 8 > most) return false;
+      const gl_uint nodes = level_nodes_[k], flags = buffer_at(level_flags_, k);
+      allocate(flags, n * 8);
+      for (const int pass : {kExpandPass, kChildrenPass, kRecordsPass}) {
+        gl_.UseProgram(stage1_[pass].id());
+        set(stage1_[pass].id(), "hush_nodes", static_cast<gl_uint>(n));
+        set(stage1_[pass].id(), "hush_level", static_cast<gl_uint>(k));
+      }
+      gl_.UseProgram(stage1_[kExpandPass].id());
+      bind_stage1();
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, flags);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, nodes);
+      run(kExpandPass, n, kNprGaborGroupSize);
+      scan(flags, n, 0, sum);
+      level_nodes_count_.push_back(n);
+      level_first_.push_back(records);
+      level_records_.push_back(sum[0]);
+      records += sum[0];
+      nodes_ += n;
+      n = sum[1];
+      if (n == 0) break;
+      if (n * kNprGaborNodeBytes > most || n > 0xFFFFFFFFu) return false;
+      allocate(buffer_at(level_nodes_, k + 1), n * kNprGaborNodeBytes);
+      gl_.UseProgram(stage1_[kChildrenPass].id());
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, flags);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, nodes);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 6, level_nodes_[k + 1]);
+      run(kChildrenPass, level_nodes_count_.back(), kNprGaborGroupSize);
     }
-    gl_.UseProgram(stage1_[0].id());
-    dispatch(stage1_[0].id(), nt, kNprGaborGroupSize);
-    gl_.MemoryBarrier(kGlShaderStorageBarrierBit);
-    gl_.UseProgram(stage1_[1].id());
-    gl_.DispatchCompute(1, 1, 1);
-    gl_.MemoryBarrier(kGlShaderStorageBarrierBit | kGlBufferUpdateBarrierBit);
-    std::uint32_t end[2] = {0, 0};  // the total and the overflow flag: 8 bytes back
-    gl_.BindBuffer(kGlShaderStorageBuffer, stage1_buffers_[4]);
-    gl_.GetBufferSubData(kGlShaderStorageBuffer, static_cast<gl_intptr>(nt * 4), 8, end);
-    gl_.check("hush::glsl::npr_gabor: stage 1 (counts)");
-    if (end[1] != 0u) return false;
-    total = end[0];
+    gl_.check("hush::glsl::npr_gabor: stage 1 (the walk)");
+    levels_ = level_nodes_count_.size();
+    if (records > 0xFFFFFFFFu) return false;
+    total = records;
     return true;
   }
 
-  // Stage 1's last pass for records b0 ... b0 + m - 1: into buffers_[0] and buffers_[1].
+  // Stage 1's last pass for records b0 ... b0 + m - 1 (the frame's records level by level):
+  // into buffers_[0] and buffers_[1], from every level whose records meet the batch.
   void generate(std::size_t b0, std::size_t m) {
     gl_.MemoryBarrier(kGlShaderStorageBarrierBit);  // the last draw's reads come first
-    const gl_uint prog = stage1_[2].id();
+    const gl_uint prog = stage1_[kRecordsPass].id();
     gl_.UseProgram(prog);
     bind_stage1();
     gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
     gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 64), nullptr,
                    kGlStreamDraw);
-    gl_.BindBufferBase(kGlShaderStorageBuffer, 5, buffers_[0]);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 6, buffers_[0]);
     gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
-    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 8), nullptr, kGlStreamDraw);
-    gl_.BindBufferBase(kGlShaderStorageBuffer, 6, buffers_[1]);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 16), nullptr,
+                   kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 7, buffers_[1]);
     set(prog, "hush_base", static_cast<gl_uint>(b0));
     set(prog, "hush_batch", static_cast<gl_uint>(m));
-    dispatch(prog, m, kNprGaborGroupSize);
+    for (std::size_t k = 0; k < level_nodes_count_.size(); ++k) {
+      if (level_first_[k] + level_records_[k] <= b0 || level_first_[k] >= b0 + m) continue;
+      set(prog, "hush_nodes", static_cast<gl_uint>(level_nodes_count_[k]));
+      set(prog, "hush_first", static_cast<gl_uint>(level_first_[k]));
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, level_flags_[k]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, level_nodes_[k]);
+      dispatch(prog, level_nodes_count_[k], kNprGaborGroupSize);
+    }
     gl_.MemoryBarrier(kGlShaderStorageBarrierBit);
-    gl_.check("hush::glsl::npr_gabor: stage 1 (points)");
+    gl_.check("hush::glsl::npr_gabor: stage 1 (records)");
   }
 
-  // Stage 1's buffers: vertices, triangles, kernel table, LOD per triangle, offsets.
+  // Stage 1's buffers: vertices, triangles, kernel table, LOD per triangle, the triangles'
+  // scan (roots).
   static constexpr int kStage1Buffers = 5;
+  // The passes (npr_gabor_stage1_source).
+  static constexpr int kLodsPass = 0, kScanPass = 1, kRootsPass = 2, kExpandPass = 3,
+                       kChildrenPass = 4, kRecordsPass = 5;
+  // Deeper than any J below 2^41 reaches (21): a guard, never taken.
+  static constexpr std::size_t kMaxLevels = 24;
 
   glsl::device& dev_;
   const gl_api& gl_;
@@ -990,6 +1299,13 @@ class npr_gabor_gpu {
   gl_program stage1_[kNprGaborStage1Passes];
   gl_uint buffers_[2] = {0, 0};  // records, ids
   gl_uint stage1_buffers_[kStage1Buffers] = {0, 0, 0, 0, 0};
+  // Per level of the walk: its nodes, its scanned (records, children) offsets; per depth of
+  // the scan's recursion: the blocks' totals.
+  std::vector<gl_uint> level_nodes_, level_flags_;
+  mutable std::vector<gl_uint> scan_sums_;
+  std::vector<std::size_t> level_nodes_count_, level_first_, level_records_;
+  std::uint64_t nodes_ = 0;
+  std::size_t levels_ = 0;
   std::size_t gpu_frames_ = 0, cpu_frames_ = 0;
   std::vector<float> floats_;
   gl_uint texture_ = 0, fbo_ = 0, vao_ = 0;
