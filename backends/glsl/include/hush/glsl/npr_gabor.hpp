@@ -884,7 +884,7 @@ class npr_gabor_gpu {
   // cannot run stage 1 (see render).
   bool stage1(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, std::size_t& total) {
-    if (!npr_gabor::per_object_at_most(src)) return false;
+    return false;  // CPU stage 1 for every source until GPU stage 1 walks npr_gabor_tree.hpp
     const std::size_t nt = tris.triangles(), nv = tris.vertices();
     std::size_t objects = 0;  // table entries before the constants' one
     for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
