@@ -14,6 +14,10 @@
 #include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
 #include "npr_gabor_scenes.hpp"
 
+#ifndef HUSH_NPR_HUGE_SEEDS
+#define HUSH_NPR_HUGE_SEEDS 32  // seeds of the huge-triangle test (64 to measure)
+#endif
+
 namespace {
 
 using npr_test::grid_scene;
@@ -385,4 +389,210 @@ TEST_CASE("float render is within its budget of the double reference") {
   MESSAGE("float vs double: ", worst, " (bound ", bound, ")");
   CHECK(worst < bound);
   CHECK(worst > 0.0);
+}
+
+namespace {
+
+// Stage 1's screen position of a point of root barycentrics b in triangle (s, z), as
+// triangle_splats computes it (sum b_i z_i s_i / sum b_i z_i, double, the same order).
+hush::dvec2 project(const hush::npr_gabor::point& pt, const hush::triangle_list& t,
+                    std::size_t tri) {
+  double sx[3], sy[3], z[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::uint32_t v = t.indices[3 * tri + i];
+    sx[i] = static_cast<double>(t.screen[v].x);
+    sy[i] = static_cast<double>(t.screen[v].y);
+    z[i] = static_cast<double>(t.depth[v]);
+  }
+  const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
+  return {(pt.b[0] * z[0] * sx[0] + pt.b[1] * z[1] * sx[1] + pt.b[2] * z[2] * sx[2]) / hw,
+          (pt.b[0] * z[0] * sy[0] + pt.b[1] * z[1] * sy[1] + pt.b[2] * z[2] * sy[2]) / hw};
+}
+
+// The LOD of grid_scene triangle `tri` (constant sources): N = lambda |cross| / 2.
+hush::npr_gabor_lod lod_of(const hush::npr_gabor& noise, const hush::triangle_list& t,
+                           std::size_t tri) {
+  const hush::vec2 a = t.screen[t.indices[3 * tri]], b = t.screen[t.indices[3 * tri + 1]],
+                   c = t.screen[t.indices[3 * tri + 2]];
+  const double e1x = double(b.x) - a.x, e1y = double(b.y) - a.y;
+  const double e2x = double(c.x) - a.x, e2y = double(c.y) - a.y;
+  return hush::npr_gabor_lod::of(noise.density() * 0.5 * std::fabs(e1x * e2y - e1y * e2x));
+}
+
+}  // namespace
+
+TEST_CASE("sequence: every J below the count once, in J order; M's points a prefix of 2M's") {
+  // Two triangles well inside a 256^2 image (nothing culled): each triangle's records are
+  // J = 0 ... count - 1 in order, at point_of(J)'s position. Doubling N' doubles N (the
+  // same screen triangles), so M doubles: the records of the smaller N are the first ones
+  // of the larger, the same points bit for bit (position; the weights change with the LOD).
+  const std::size_t w = 256, h = 256;
+  const grid_scene sc(w, h, 40, 40, 176, 1, 1);
+  const auto tris = sc.triangles();
+  hush::npr_gabor::params p = small_kernel();
+  p.impulses = 8;
+  const hush::npr_gabor small{p};
+  p.impulses = 16;
+  const hush::npr_gabor large{p};
+  std::vector<hush::npr_gabor_splat> a, b;
+  small.make_splats(sc.frame(), tris, a);
+  large.make_splats(sc.frame(), tris, b);
+  std::size_t at_a = 0, at_b = 0;
+  for (std::size_t t = 0; t < 2; ++t) {
+    const hush::npr_gabor_lod la = lod_of(small, tris, t), lb = lod_of(large, tris, t);
+    REQUIRE(lb.first == 2 * la.first);  // M doubles
+    REQUIRE(la.count > 1000);
+    for (std::uint64_t j = 0; j < lb.count; ++j) {
+      REQUIRE(at_b < b.size());
+      const hush::npr_gabor_splat& rb = b[at_b++];
+      CHECK(rb.index == j);
+      CHECK(rb.triangle == tris.triangle_id[t]);
+      const hush::dvec2 s = project(large.point_of(1, tris.triangle_id[t], j), tris, t);
+      CHECK((rb.x == s.x && rb.y == s.y));
+      if (j < la.count) {
+        REQUIRE(at_a < a.size());
+        const hush::npr_gabor_splat& ra = a[at_a++];
+        CHECK(ra.index == j);
+        CHECK((ra.x == rb.x && ra.y == rb.y));
+      }
+    }
+  }
+  CHECK(at_a == a.size());
+  CHECK(at_b == b.size());
+  // J = 0 is the flat sequence's point 0: words 0 and 1 of the triangle's stream.
+  const auto p0 = large.point_of(1, 5, 0);
+  hush::rng r(hush::hash32(hush::hash32(hush::seed_key(p.seed), 1), 5),
+              hush::detail::constants::kNprGaborStream);
+  const std::uint32_t w0 = r.next_u32(), w1 = r.next_u32();
+  const double su = std::sqrt(hush::detail::gabor_half<double>(w0, 0));
+  CHECK(p0.b[0] == 1.0 - su);
+  CHECK(p0.amplitude == 2.0 * hush::detail::gabor_half<double>(w1, 0) - 1.0);
+}
+
+TEST_CASE("culling is exact: the walk's records are every point's, each culled alone") {
+  // A triangle of 600-pixel legs (N = 6.0e4, 2^16 points) around a 64^2 image: the walk
+  // skips the subtrees whose screen triangle misses the image grown by r. The reference
+  // generates all 2^16 points by point_of(J) and keeps those whose pixel range meets the
+  // image: the same J, positions and weights bit for bit, from far fewer nodes.
+  const std::size_t w = 64, h = 64;
+  const grid_scene sc(w, h, -300, -200, 600, 1, 1);
+  const auto tris = sc.triangles();
+  const hush::npr_gabor noise{small_kernel()};
+  std::vector<hush::npr_gabor_splat> got;
+  std::uint64_t nodes = 0;
+  noise.make_splats(sc.frame(), tris, got, {}, &nodes);
+  const double r = noise.kernel().radius();
+  std::size_t at = 0;
+  std::uint64_t total = 0;
+  for (std::size_t t = 0; t < 2; ++t) {
+    const hush::npr_gabor_lod lod = lod_of(noise, tris, t);
+    total += lod.count;
+    for (std::uint64_t j = 0; j < lod.count; ++j) {
+      const auto pt = noise.point_of(1, tris.triangle_id[t], j);
+      const hush::dvec2 s = project(pt, tris, t);
+      // The pixel centres within r, clamped to the image: none, the point is culled.
+      if (std::max(std::ceil(s.x - r - 0.5), 0.0) > std::min(std::floor(s.x + r - 0.5), w - 1.0) ||
+          std::max(std::ceil(s.y - r - 0.5), 0.0) > std::min(std::floor(s.y + r - 0.5), h - 1.0))
+        continue;
+      REQUIRE(at < got.size());
+      const hush::npr_gabor_splat& g = got[at++];
+      CHECK(g.index == j);
+      CHECK(g.triangle == tris.triangle_id[t]);
+      CHECK((g.x == s.x && g.y == s.y));
+      CHECK(g.weight == lod.weight(j) * pt.amplitude * noise.scale());
+    }
+  }
+  CHECK(at == got.size());
+  MESSAGE("records ", got.size(), " of ", total, " points; nodes examined ", nodes);
+  CHECK(got.size() > 100);
+  CHECK(nodes < total / 16);
+}
+
+TEST_CASE("marginal uniformity: point J falls uniformly into the 16 depth-2 sub-triangles") {
+  // Over triangle ids (a fixed seed), point J's root barycentrics must be uniform on the
+  // triangle: the random child order is what makes them so (a fixed order would put J = 5,
+  // the own point of a depth-2 node, always into the same depth-2 sub-triangle: chi^2 = 15 n).
+  // Cell (i, j, k) = floor(4 b) (clamped to 3): i + j + k = 3 for the 10 upright cells,
+  // 2 for the 6 inverted ones. Pearson's chi^2 over the 16 cells with n = 3200 (200
+  // expected per cell, far above the 5 the chi^2 approximation needs) against its 1e-4
+  // upper quantile for 15 degrees of freedom (Wilson-Hilferty: k (1 - 2/(9k) + z sqrt(2/(9k)))^3,
+  // z = 3.719): a false failure once in 10^4 seeds per J.
+  const hush::npr_gabor noise{hush::npr_gabor::params{}};
+  const int n = 3200, dof = 15;
+  const double z = 3.719, c = 2.0 / (9.0 * dof);
+  const double limit = dof * std::pow(1.0 - c + z * std::sqrt(c), 3.0);
+  // J = 5, 22, 100: depth-2, 3 and 4 nodes on different paths (21 would lie in 5's node).
+  for (std::uint64_t jj : {0, 5, 22, 100}) {
+    int cells[4][4][2] = {};
+    int odd = 0;
+    for (int id = 0; id < n; ++id) {
+      const auto pt = noise.point_of(7, static_cast<std::uint32_t>(id), jj);
+      int q[3];
+      for (int k = 0; k < 3; ++k) q[k] = std::min(3, static_cast<int>(std::floor(4.0 * pt.b[k])));
+      const int s = q[0] + q[1] + q[2];
+      if (s == 3 || s == 2)
+        ++cells[q[0]][q[1]][s - 2];
+      else
+        ++odd;
+    }
+    double chi2 = 0;
+    int used = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        for (int s = 0; s < 2; ++s) {
+          const int k = s + 2 - i - j;  // upright (s = 1: i + j + k = 3) or inverted (s = 0)
+          if (k < 0 || k > 3) continue;
+          ++used;
+          const double e = n / 16.0;
+          chi2 += (cells[i][j][s] - e) * (cells[i][j][s] - e) / e;
+        }
+    MESSAGE("J = ", jj, ": chi^2 = ", chi2, " (limit ", limit, ")");
+    CHECK(used == 16);
+    CHECK(odd == 0);
+    CHECK(chi2 < limit);
+  }
+}
+
+TEST_CASE("huge triangles: legs 1e5 and 1e6 px keep variance 1 with bounded work") {
+  // One triangle of legs L around a 64^2 frame (N = lambda L^2 / 2 = 1.7e9 and 1.7e11 with
+  // the small kernel, 1.7e8 and 1.7e10 at the defaults: far above the old clamp of 2^22, which
+  // gave variance 2^22 / N). The walk examines only the subtrees near the frame: a few
+  // thousand nodes, not the 2^22 points the clamp used to generate. The mean of the frames'
+  // variances over `seeds` seeds must be 1 within 4.5 standard errors,
+  // variance_standard_error / sqrt(seeds): its Poisson fourth-cumulant term is not below the
+  // measured spread of the hierarchical (stratified) points: the frames' variances have sd
+  // 0.065 over 64 seeds (0.068 - 0.069 over the 32 here) against 0.0695 from the formula and
+  // 0.059 without its fourth-cumulant term (docs/npr-gabor.md, "Huge triangles").
+  const std::size_t w = 64, h = 64;
+  const int seeds = HUSH_NPR_HUGE_SEEDS;
+  hush::npr_gabor::params p = small_kernel();
+  const double se = variance_standard_error(hush::npr_gabor{p}, w * h);
+  for (double legs : {1e5, 1e6}) {
+    const grid_scene sc(w, h, -legs / 3, -legs / 3, legs, 1, 1);
+    double sum = 0, sum2 = 0;
+    std::uint64_t most_nodes = 0;
+    for (int k = 0; k < seeds; ++k) {
+      p.seed = static_cast<std::uint32_t>(100 + k);
+      const hush::npr_gabor noise{p};
+      std::vector<hush::npr_gabor_splat> splats;
+      std::uint64_t nodes = 0;
+      noise.make_splats(sc.frame(), sc.triangles(), splats, {}, &nodes);
+      most_nodes = std::max(most_nodes, nodes);
+      std::vector<float> out(w * h);
+      noise.splat(hush::exec::scalar, sc.frame(), splats.data(), splats.size(),
+                  hush::image_view<float>(out.data(), w, h));
+      const double v = interior_moments(out, w, h, 0).variance;
+      sum += v;
+      sum2 += v * v;
+      if (k == 0)
+        MESSAGE("legs ", legs, ": N = ", noise.density() * legs * legs / 2, ", records ",
+                splats.size(), ", nodes examined ", nodes);
+    }
+    const double mean = sum / seeds;
+    const double sd = std::sqrt(std::max(0.0, sum2 / seeds - mean * mean) * seeds / (seeds - 1));
+    MESSAGE("legs ", legs, ": mean variance ", mean, " over ", seeds, " seeds, sd ", sd,
+            " (Poisson bound ", se, "); most nodes ", most_nodes);
+    CHECK(std::fabs(mean - 1.0) < 4.5 * se / std::sqrt(double(seeds)));
+    CHECK(most_nodes < 8000);
+  }
 }

@@ -16284,13 +16284,21 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //   noise.render(frame, triangles, out);     // out: frame-sized image_view<float>
 //
 // The noise (paper eq. 1, sec. 3.2-3.4), n(x) = scale sum_i w_i v_i g_{F_i}(x - x_i):
-//  - points (sec. 3.3): triangle t (key (object_id, triangle_id)) draws its
-//    points from its own stream, hush::rng(hash32(hash32(seed_key(seed),
-//    object), triangle), kNprGaborStream): point j takes words 2j, 2j + 1
-//    (constants.hpp), so point j is the same surface point in every frame and
-//    the points for M are a prefix of those for 2M. Barycentrics (object
-//    space, uniform on the triangle): (1 - sqrt u, sqrt u (1 - v), sqrt u v).
-//    Screen position sum b_i z_i s_i / sum b_i z_i (core/triangles.hpp).
+//  - points (sec. 3.3): triangle t (key hash32(hash32(seed_key(seed),
+//    object), triangle)) has a hierarchical point sequence
+//    (detail/npr_gabor_tree.hpp): subdivided at its edge midpoints (object
+//    space) into four children, recursively, each node holding its own point
+//    (uniform in the node: local barycentrics (1 - sqrt u, sqrt u (1 - v),
+//    sqrt u v)) and a random order of its children; point J is the root's own
+//    point for J = 0, else point (J - 1) / 4 of the child at slot (J - 1) mod 4
+//    (point_of). So point J is the same surface point in every frame, the
+//    points for M are a prefix of those for 2M, every point is uniform on the
+//    triangle (all the variance and spectrum see: only the diagonal of the
+//    double sum survives, the amplitudes being independent and zero-mean),
+//    and a subtree whose screen triangle misses the image holds no point near
+//    it: stage 1 walks the tree depth first, skipping those, so its work is
+//    bounded by the image, not by the triangle's area. Screen position
+//    sum b_i z_i s_i / sum b_i z_i (core/triangles.hpp).
 //  - count and LOD weights (eqs. 2, 4): N = lambda A, A the triangle's screen
 //    area, lambda = N' / (pi r^2) (r the kernel radius in pixels). For
 //    N >= 1: M = 2^floor(log2 N), 2M points, the first M weighted 1 and the
@@ -16304,7 +16312,8 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    continuous in N: alpha -> 1 as N -> 2M from below, where the next level
 //    starts with the same 2M points at weight 1; sqrt(N) -> 1 = the weight
 //    of the single point at N = 1 (alpha(1) = 0). No pops at the switches.
-//    N is clamped to kNprGaborMaxPoints (constants.hpp). With params::thinning
+//    N is clamped to kNprGaborMaxPoints = 2^40 (constants.hpp: the float input's
+//    limit, not a work bound). With params::thinning
 //    the N < 1 point is kept only for the triangle's own uniform u < 2N (N <=
 //    1/2), with a weight fading in continuously (npr_gabor_lod::thinned_square:
 //    E[w^2] = N as above, so the same variance and spectrum, without pops), so
@@ -17076,9 +17085,9 @@ class npr_gabor {
     return hash32(hash32(seed_key(p_.seed), object), triangle);
   }
 
-  // The triangle's thinning uniform in [0, 1): the last two words of its point stream
-  // (2^32 - 2 and 2^32 - 1), which no point reads (points take words 0 ... 2
-  // kNprGaborMaxPoints - 1), so it is independent of every point's position and amplitude.
+  // The triangle's thinning uniform in [0, 1): the last two words of its root's stream
+  // (2^32 - 2 and 2^32 - 1), which no node reads (a node takes words 0 ... 2 of its own
+  // stream), so it is independent of every point's position and amplitude.
   double thinning_uniform(std::uint32_t object, std::uint32_t triangle) const {
     rng r(triangle_key(object, triangle), detail::constants::kNprGaborStream);
     r.skip(0xFFFFFFFEu);
