@@ -30,7 +30,7 @@
 // float error) exist on one side only.
 //
 // Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
-// buffers, 64 + 8 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
+// buffers, 64 + 16 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
 // geometry shader turns each into one screen-aligned quad covering the record's pixel range x0 ...
 // x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the image), a fragment shader runs the
 // visibility tests against the G-buffer (object id, triangle id, depth with its tolerance, soft
