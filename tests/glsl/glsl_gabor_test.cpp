@@ -865,8 +865,8 @@ struct npr_loose : npr_test::grid_scene {
 }  // namespace
 
 TEST_CASE(
-    "npr: GPU stage 1 records equal the CPU's: order and ids exact, values within the derived "
-    "tolerance") {
+    "npr: GPU stage 1 records equal the CPU's, sorted by (triangle, J): ids, J and boxes exact, "
+    "values within the derived tolerance") {
   const npr_test::grid_scene sc = npr_two_objects(128, 128);
   check_records("defaults", hush::npr_gabor{npr_params()}, sc.frame(), sc.triangles());
   hush::npr_gabor::params q = npr_params();
