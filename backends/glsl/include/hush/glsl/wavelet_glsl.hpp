@@ -240,7 +240,7 @@ int hush_wavelet_variant_index(uint h, ivec3 l) {
 // Coefficient at tap offsets k from the band's tap-0 cells of the periodic tile.
 // Rows of m = n (2D) or n + HUSH_WAVELET_ROW_PAD (3D) floats (wavelet_tile::coefficients).
 float hush_wavelet_tile_coef(ivec3 k) {
-  int n = int(hush_wv_n), m = n + (hush_wv_dim == 3u ? int(HUSH_WAVELET_ROW_PAD) : 0);
+  int n = int(hush_wv_n), m = n + (hush_wv_dim == 2u ? 0 : int(HUSH_WAVELET_ROW_PAD));
   return HUSH_WAVELET_TILE(hush_wavelet_wrap(hush_wv_i0.x, k.x) +
                            m * (hush_wavelet_wrap(hush_wv_i0.y, k.y) +
                                 n * hush_wavelet_wrap(hush_wv_i0.z, k.z)));
