@@ -4,7 +4,7 @@
 // (issue 8's missed speed targets; the figures in docs/wavelet.md "Performance"):
 //  1. 3D points on the SIMD backend, thread CPU time (best of 7) per sample, 2^18 points:
 //     the bench's spread points, the same binned by (z, y) cell (with the binning and
-//     scatter-back costs), a 16^3 (16 KiB) tile, and points confined to [0, 4]^3
+//     scatter-back costs), 32^3 and 16^3 tiles, and points confined to [0, 4]^3
 //     (the tile's accesses L1-resident), beside Perlin 3D;
 //  2. the paper's approximate projection (random unit normals): the coefficients its
 //     slab visits per sample, with non-zero weight, and the steps of the SIMD kernel's
@@ -55,6 +55,8 @@ void points_locality() {
   hush::wavelet<3>::params prm;
   prm.seed = 7;
   const hush::wavelet<3> w64(prm);
+  prm.tile_size = 32;
+  const hush::wavelet<3> w32(prm);
   prm.tile_size = 16;
   const hush::wavelet<3> w16(prm);
   const hush::perlin<3> per(7);
@@ -92,10 +94,14 @@ void points_locality() {
   std::printf("1. 3D points, SIMD (%s), ns/sample (thread CPU time, best of 7), 2^18 points\n",
               hush::simd::chosen_target().c_str());
   std::printf("   perlin 3D, uniform in [-128, 128]^3       %6.2f\n", run(per, pts));
-  std::printf("   wavelet 64^3 tile, the same points        %6.2f\n", run(w64, pts));
+  std::printf("   wavelet 64^3 tile (%4zu KiB), same points %6.2f\n", w64.tile().bytes() >> 10,
+              run(w64, pts));
   std::printf("   wavelet 64^3 tile, binned by (z, y) cell  %6.2f  + binning %.2f + scatter %.2f\n",
               run(w64, sorted), t_bin, t_back);
-  std::printf("   wavelet 16^3 tile (16 KiB), spread        %6.2f\n", run(w16, pts));
+  std::printf("   wavelet 32^3 tile (%3zu KiB), spread       %6.2f\n", w32.tile().bytes() >> 10,
+              run(w32, pts));
+  std::printf("   wavelet 16^3 tile (%3zu KiB), spread       %6.2f\n", w16.tile().bytes() >> 10,
+              run(w16, pts));
   std::printf("   wavelet 64^3 tile, points in [0, 4]^3     %6.2f\n", run(w64, box));
 }
 

@@ -281,21 +281,31 @@ TEST_CASE("wavelet tile: odd, tiny and huge sizes are refused naming the rule (H
                        hush::invalid_argument);
 }
 
-TEST_CASE("wavelet tile: padded rows repeat every x row's first coefficients, memory reported") {
-  // The SIMD points kernel loads 4 adjacent floats at any x cell of a padded row:
-  // row r, column x of the padded rows must be coefficient (x mod n) of row r.
+TEST_CASE("wavelet tile: 3D rows repeat their first coefficients, one copy, memory reported") {
+  // The SIMD kernels load 4 adjacent floats at any x cell of a 3D row: column x of
+  // stored row r must be coefficient (x mod n) of row r; 2D rows are not padded. The
+  // tile holds this one copy (its memory: n^(D-1) rows of row_length() floats).
   const hush::wavelet_tile<3> t({16, 3, true});
   const auto n = static_cast<std::size_t>(t.size());
-  const std::size_t m = n + hush::detail::constants::kWaveletRowPad;
-  const std::size_t before = t.bytes();
-  const float* rows = t.padded_rows();
-  CHECK(rows == t.padded_rows());  // built once
-  CHECK(t.bytes() == before + n * n * m * sizeof(float));
+  const auto m = static_cast<std::size_t>(t.row_length());
+  CHECK(m == n + hush::detail::constants::kWaveletRowPad);
+  CHECK(t.count() == n * n * n);
+  CHECK(t.storage_size() == n * n * m);
+  CHECK(t.stride(0) == 1);
+  CHECK(t.stride(1) == static_cast<int>(m));
+  CHECK(t.stride(2) == static_cast<int>(m * n));
+  CHECK(t.bytes() >= t.storage_size() * sizeof(float));
+  CHECK(t.bytes() < t.storage_size() * sizeof(float) + 1024);
+  const float* rows = t.coefficients();
   bool same = true;
   for (std::size_t r = 0; r < n * n; ++r)
     for (std::size_t x = 0; x < m; ++x)
       same = same && rows[r * m + x] == t.coefficient(r * n + x % n);
   CHECK(same);
+  const hush::wavelet_tile<2> t2({16, 3, true});
+  CHECK(t2.row_length() == 16);
+  CHECK(t2.storage_size() == t2.count());
+  CHECK(t2.coefficients()[17] == t2.coefficient(17));
 }
 
 TEST_CASE("wavelet tile: built once per key, shared between noises, memory reported") {
@@ -412,7 +422,6 @@ TEST_CASE("wavelet tile: the paper's projected sigma^2 (0.296) is 4x hush's appr
   // integral, wavelet.hpp), so its variance is 4 times hush's approximate one.
   const int n = 16;
   const auto tile = hush::wavelet_tile<3>::get({n, 1, true});
-  const float* c = tile->coefficients();
   const auto paper = [&](const double (&p)[3]) {
     const double normal[3] = {0, 0, 1};
     int lo[3], hi[3];
@@ -437,8 +446,9 @@ TEST_CASE("wavelet tile: the paper's projected sigma^2 (0.296) is 4x hush's appr
                       : (t < 2)          ? 1 - (t1 * t1 + t2 * t2) / 2
                                          : t3 * t3 / 2;
           }
-          const auto wrap = [n](int v) { return ((v % n) + n) % n; };
-          result += weight * c[wrap(k[0]) + n * (wrap(k[1]) + n * wrap(k[2]))];
+          const auto wrap = [](int v) { return static_cast<std::size_t>(((v % n) + n) % n); };
+          const auto un = static_cast<std::size_t>(n);
+          result += weight * tile->coefficient(wrap(k[0]) + un * (wrap(k[1]) + un * wrap(k[2])));
         }
     return result;
   };

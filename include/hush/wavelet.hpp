@@ -210,16 +210,16 @@ HUSH_INLINE void wavelet_axis_at(T y, wavelet_axis<T>& ax) {
 // Coefficients of the periodic tile around cell i0 (relative offsets k).
 template <int D>
 struct wavelet_periodic_access {
-  const float* c;
-  int n;
+  const float* c;  // wavelet_tile::coefficients()
+  int n, m;        // tile size and row length (wavelet_tile::row_length())
   std::uint32_t i0[3];
   HUSH_INLINE int wrap(long long x) const {
     long long r = x % n;
     return static_cast<int>(r < 0 ? r + n : r);
   }
   HUSH_INLINE std::size_t index(int a, int k) const {
-    std::size_t stride = 1;
-    for (int b = 0; b < a; ++b) stride *= static_cast<std::size_t>(n);
+    const std::size_t stride =
+        a == 0 ? 1 : static_cast<std::size_t>(m) * (a == 2 ? static_cast<std::size_t>(n) : 1);
     return static_cast<std::size_t>(wrap(static_cast<long long>(i0[a]) + k)) * stride;
   }
   HUSH_INLINE float at(const int (&k)[D]) const {
@@ -1026,7 +1026,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     const std::uint32_t period = split_period();
     for (int a = 0; a < D; ++a) c[a] = lattice_split<T>(q[a], period);
     if (prm_.variant_overlap == 0) {
-      detail::wavelet_periodic_access<D> acc{tile_->coefficients(), prm_.tile_size, {0, 0, 0}};
+      detail::wavelet_periodic_access<D> acc{tile_->coefficients(), prm_.tile_size,
+                                             tile_->row_length(), {0, 0, 0}};
       for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
       return band_kernel<T, G>(c, pl, i, acc);
     }

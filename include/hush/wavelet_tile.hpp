@@ -68,12 +68,10 @@
 #define HUSH_WAVELET_TILE_HPP
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -247,7 +245,8 @@ class wavelet_tile {
     for (std::size_t i = 0; i < count; ++i) q[i] = r[i] - q[i];  // N = R - Q R
     r.clear();
     r.shrink_to_fit();
-    coef_.resize(count);
+    const auto un = static_cast<std::size_t>(n), m = static_cast<std::size_t>(row_length());
+    coef_.resize(count / un * m);
     int offset = n / 2;
     if (offset % 2 == 0) ++offset;
     for (std::size_t i = 0; i < count; ++i) {
@@ -261,8 +260,10 @@ class wavelet_tile {
         }
         v += q[j];
       }
-      coef_[i] = static_cast<float>(v);
-      max_abs_ = std::max(max_abs_, std::fabs(static_cast<double>(coef_[i])));
+      // Row i / n, column i % n; a padded row repeats its first columns after n.
+      const auto f = static_cast<float>(v);
+      for (std::size_t x = i % un; x < m; x += un) coef_[i / un * m + x] = f;
+      max_abs_ = std::max(max_abs_, std::fabs(static_cast<double>(f)));
     }
     variance_ = quadratic_form(-1, false);
     if constexpr (D == 3)
@@ -283,10 +284,28 @@ class wavelet_tile {
 
   const key& id() const { return key_; }
   int size() const { return key_.size; }
-  // n^D coefficients, index i_x + n (i_y + n i_z).
+  // Coefficients per stored x row: n, plus kWaveletRowPad in 3D (see coefficients()).
+  int row_length() const { return key_.size + kRowPad; }
+  // The index step of tile axis `axis` in coefficients(): 1, row_length(),
+  // row_length() n.
+  int stride(int axis) const { return axis == 0 ? 1 : row_length() * (axis == 2 ? size() : 1); }
+  // The coefficients, the only copy: n^(D-1) x rows of row_length() floats,
+  // coefficient (i_x, i_y[, i_z]) at i_x + row_length() (i_y + n i_z), i_x < n. In 3D
+  // every row is followed by a repeat of its first kWaveletRowPad coefficients, so
+  // that the three x taps of any cell i_x < n and one float more are four adjacent
+  // floats: one unaligned 128-bit load in the SIMD kernels instead of three gathers
+  // (2D tiles are not padded: the largest, 2048^2, fills the 16 MiB a GPU buffer is
+  // guaranteed to hold). storage_size() floats.
   const float* coefficients() const { return coef_.data(); }
-  std::size_t count() const { return coef_.size(); }
-  float coefficient(std::size_t i) const { return coef_[i]; }
+  std::size_t storage_size() const { return coef_.size(); }
+  // n^D: the number of distinct coefficients.
+  std::size_t count() const { return coef_.size() / static_cast<std::size_t>(row_length()) *
+                                     static_cast<std::size_t>(size()); }
+  // Coefficient i in the unpadded order, i = i_x + n (i_y + n i_z), i < count().
+  float coefficient(std::size_t i) const {
+    const auto n = static_cast<std::size_t>(size());
+    return coef_[i / n * static_cast<std::size_t>(row_length()) + i % n];
+  }
   // max |n_i|: |N(y)| never exceeds it (every kernel is an average of coefficients).
   double max_abs() const { return max_abs_; }
   // sigma_N^2: the mean of N(y)^2 over the tile (file comment).
@@ -294,37 +313,16 @@ class wavelet_tile {
   // The same for the noise projected along tile axis `axis` (3D): with the exact
   // kernel beta (exact = true) or the double-width B-spline.
   double projected_variance(int axis, bool exact) const { return projected_[axis][exact ? 0 : 1]; }
-  // The coefficients with every x row extended by its first kWaveletRowPad
-  // (row stride n + kWaveletRowPad; index i_x + (n + pad) (i_y + n i_z)), so that
-  // the three x taps of any cell i_x < n and one float more are four adjacent
-  // floats: one unaligned 128-bit load in the SIMD points kernel instead of three
-  // gathers. Built on first call (thread-safe), then immutable; counted by bytes().
-  const float* padded_rows() const {
-    std::call_once(padded_->once, [this] {
-      const auto n = static_cast<std::size_t>(key_.size);
-      const std::size_t m = n + detail::constants::kWaveletRowPad;
-      std::vector<float> rows(coef_.size() / n * m);
-      for (std::size_t r = 0; r < coef_.size() / n; ++r)
-        for (std::size_t x = 0; x < m; ++x) rows[r * m + x] = coef_[r * n + x % n];
-      padded_->rows = std::move(rows);
-      padded_->built.store(true, std::memory_order_release);
-    });
-    return padded_->rows.data();
-  }
-  // Memory held, in bytes (the padded rows once built).
-  std::size_t bytes() const {
-    std::size_t b = sizeof(*this) + sizeof(padded) + coef_.capacity() * sizeof(float);
-    if (padded_->built.load(std::memory_order_acquire))
-      b += padded_->rows.capacity() * sizeof(float);
-    return b;
-  }
+  // Memory held, in bytes.
+  std::size_t bytes() const { return sizeof(*this) + coef_.capacity() * sizeof(float); }
 
  private:
   // (1/n^D) sum_i n_i (K n)_i with K the tensor product of the Gram kernel along
   // every axis except `along`, where it is beta's (exact) or B2's autocorrelation.
   double quadratic_form(int along, bool exact) const {
     const int n = key_.size;
-    std::vector<double> x(coef_.begin(), coef_.end());
+    std::vector<double> x(count());
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = coefficient(i);
     std::size_t stride = 1;
     for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
       if (a != along)
@@ -337,19 +335,14 @@ class wavelet_tile {
                                       detail::bspline2_gram);
     }
     double s = 0;
-    for (std::size_t i = 0; i < coef_.size(); ++i) s += static_cast<double>(coef_[i]) * x[i];
-    return s / static_cast<double>(coef_.size());
+    for (std::size_t i = 0; i < x.size(); ++i) s += static_cast<double>(coefficient(i)) * x[i];
+    return s / static_cast<double>(x.size());
   }
 
-  struct padded {
-    std::once_flag once;
-    std::atomic<bool> built{false};
-    std::vector<float> rows;
-  };
+  static constexpr int kRowPad = D == 3 ? detail::constants::kWaveletRowPad : 0;
 
   key key_;
   std::vector<float> coef_;
-  std::unique_ptr<padded> padded_ = std::make_unique<padded>();
   double max_abs_ = 0;
   double variance_ = 0;
   double projected_[3][2] = {};

@@ -534,7 +534,7 @@ constexpr int kWaveletAnalysisRadius = 100;
 constexpr int kWaveletMinTile = 16;
 constexpr int kWaveletMaxTile2 = 2048;
 constexpr int kWaveletMaxTile3 = 128;
-// The SIMD points kernel's padded rows (wavelet_tile::padded_rows): every x row
+// The 3D tile's padded rows (wavelet_tile::coefficients, its only layout): every x row
 // extended by its first 3 coefficients, so that the taps x0, x0 + 1, x0 + 2 of any
 // cell x0 < n and one float more are one unaligned 4-float load, without a wrap.
 constexpr int kWaveletRowPad = 3;
@@ -6801,12 +6801,10 @@ class perlin : public point_noise<perlin<D>, D> {
 #define HUSH_WAVELET_TILE_HPP
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -6975,7 +6973,8 @@ class wavelet_tile {
     for (std::size_t i = 0; i < count; ++i) q[i] = r[i] - q[i];  // N = R - Q R
     r.clear();
     r.shrink_to_fit();
-    coef_.resize(count);
+    const auto un = static_cast<std::size_t>(n), m = static_cast<std::size_t>(row_length());
+    coef_.resize(count / un * m);
     int offset = n / 2;
     if (offset % 2 == 0) ++offset;
     for (std::size_t i = 0; i < count; ++i) {
@@ -6989,8 +6988,10 @@ class wavelet_tile {
         }
         v += q[j];
       }
-      coef_[i] = static_cast<float>(v);
-      max_abs_ = std::max(max_abs_, std::fabs(static_cast<double>(coef_[i])));
+      // Row i / n, column i % n; a padded row repeats its first columns after n.
+      const auto f = static_cast<float>(v);
+      for (std::size_t x = i % un; x < m; x += un) coef_[i / un * m + x] = f;
+      max_abs_ = std::max(max_abs_, std::fabs(static_cast<double>(f)));
     }
     variance_ = quadratic_form(-1, false);
     if constexpr (D == 3)
@@ -7011,10 +7012,28 @@ class wavelet_tile {
 
   const key& id() const { return key_; }
   int size() const { return key_.size; }
-  // n^D coefficients, index i_x + n (i_y + n i_z).
+  // Coefficients per stored x row: n, plus kWaveletRowPad in 3D (see coefficients()).
+  int row_length() const { return key_.size + kRowPad; }
+  // The index step of tile axis `axis` in coefficients(): 1, row_length(),
+  // row_length() n.
+  int stride(int axis) const { return axis == 0 ? 1 : row_length() * (axis == 2 ? size() : 1); }
+  // The coefficients, the only copy: n^(D-1) x rows of row_length() floats,
+  // coefficient (i_x, i_y[, i_z]) at i_x + row_length() (i_y + n i_z), i_x < n. In 3D
+  // every row is followed by a repeat of its first kWaveletRowPad coefficients, so
+  // that the three x taps of any cell i_x < n and one float more are four adjacent
+  // floats: one unaligned 128-bit load in the SIMD kernels instead of three gathers
+  // (2D tiles are not padded: the largest, 2048^2, fills the 16 MiB a GPU buffer is
+  // guaranteed to hold). storage_size() floats.
   const float* coefficients() const { return coef_.data(); }
-  std::size_t count() const { return coef_.size(); }
-  float coefficient(std::size_t i) const { return coef_[i]; }
+  std::size_t storage_size() const { return coef_.size(); }
+  // n^D: the number of distinct coefficients.
+  std::size_t count() const { return coef_.size() / static_cast<std::size_t>(row_length()) *
+                                     static_cast<std::size_t>(size()); }
+  // Coefficient i in the unpadded order, i = i_x + n (i_y + n i_z), i < count().
+  float coefficient(std::size_t i) const {
+    const auto n = static_cast<std::size_t>(size());
+    return coef_[i / n * static_cast<std::size_t>(row_length()) + i % n];
+  }
   // max |n_i|: |N(y)| never exceeds it (every kernel is an average of coefficients).
   double max_abs() const { return max_abs_; }
   // sigma_N^2: the mean of N(y)^2 over the tile (file comment).
@@ -7022,37 +7041,16 @@ class wavelet_tile {
   // The same for the noise projected along tile axis `axis` (3D): with the exact
   // kernel beta (exact = true) or the double-width B-spline.
   double projected_variance(int axis, bool exact) const { return projected_[axis][exact ? 0 : 1]; }
-  // The coefficients with every x row extended by its first kWaveletRowPad
-  // (row stride n + kWaveletRowPad; index i_x + (n + pad) (i_y + n i_z)), so that
-  // the three x taps of any cell i_x < n and one float more are four adjacent
-  // floats: one unaligned 128-bit load in the SIMD points kernel instead of three
-  // gathers. Built on first call (thread-safe), then immutable; counted by bytes().
-  const float* padded_rows() const {
-    std::call_once(padded_->once, [this] {
-      const auto n = static_cast<std::size_t>(key_.size);
-      const std::size_t m = n + detail::constants::kWaveletRowPad;
-      std::vector<float> rows(coef_.size() / n * m);
-      for (std::size_t r = 0; r < coef_.size() / n; ++r)
-        for (std::size_t x = 0; x < m; ++x) rows[r * m + x] = coef_[r * n + x % n];
-      padded_->rows = std::move(rows);
-      padded_->built.store(true, std::memory_order_release);
-    });
-    return padded_->rows.data();
-  }
-  // Memory held, in bytes (the padded rows once built).
-  std::size_t bytes() const {
-    std::size_t b = sizeof(*this) + sizeof(padded) + coef_.capacity() * sizeof(float);
-    if (padded_->built.load(std::memory_order_acquire))
-      b += padded_->rows.capacity() * sizeof(float);
-    return b;
-  }
+  // Memory held, in bytes.
+  std::size_t bytes() const { return sizeof(*this) + coef_.capacity() * sizeof(float); }
 
  private:
   // (1/n^D) sum_i n_i (K n)_i with K the tensor product of the Gram kernel along
   // every axis except `along`, where it is beta's (exact) or B2's autocorrelation.
   double quadratic_form(int along, bool exact) const {
     const int n = key_.size;
-    std::vector<double> x(coef_.begin(), coef_.end());
+    std::vector<double> x(count());
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = coefficient(i);
     std::size_t stride = 1;
     for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
       if (a != along)
@@ -7065,19 +7063,14 @@ class wavelet_tile {
                                       detail::bspline2_gram);
     }
     double s = 0;
-    for (std::size_t i = 0; i < coef_.size(); ++i) s += static_cast<double>(coef_[i]) * x[i];
-    return s / static_cast<double>(coef_.size());
+    for (std::size_t i = 0; i < x.size(); ++i) s += static_cast<double>(coefficient(i)) * x[i];
+    return s / static_cast<double>(x.size());
   }
 
-  struct padded {
-    std::once_flag once;
-    std::atomic<bool> built{false};
-    std::vector<float> rows;
-  };
+  static constexpr int kRowPad = D == 3 ? detail::constants::kWaveletRowPad : 0;
 
   key key_;
   std::vector<float> coef_;
-  std::unique_ptr<padded> padded_ = std::make_unique<padded>();
   double max_abs_ = 0;
   double variance_ = 0;
   double projected_[3][2] = {};
@@ -7246,16 +7239,16 @@ HUSH_INLINE void wavelet_axis_at(T y, wavelet_axis<T>& ax) {
 // Coefficients of the periodic tile around cell i0 (relative offsets k).
 template <int D>
 struct wavelet_periodic_access {
-  const float* c;
-  int n;
+  const float* c;  // wavelet_tile::coefficients()
+  int n, m;        // tile size and row length (wavelet_tile::row_length())
   std::uint32_t i0[3];
   HUSH_INLINE int wrap(long long x) const {
     long long r = x % n;
     return static_cast<int>(r < 0 ? r + n : r);
   }
   HUSH_INLINE std::size_t index(int a, int k) const {
-    std::size_t stride = 1;
-    for (int b = 0; b < a; ++b) stride *= static_cast<std::size_t>(n);
+    const std::size_t stride =
+        a == 0 ? 1 : static_cast<std::size_t>(m) * (a == 2 ? static_cast<std::size_t>(n) : 1);
     return static_cast<std::size_t>(wrap(static_cast<long long>(i0[a]) + k)) * stride;
   }
   HUSH_INLINE float at(const int (&k)[D]) const {
@@ -8062,7 +8055,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     const std::uint32_t period = split_period();
     for (int a = 0; a < D; ++a) c[a] = lattice_split<T>(q[a], period);
     if (prm_.variant_overlap == 0) {
-      detail::wavelet_periodic_access<D> acc{tile_->coefficients(), prm_.tile_size, {0, 0, 0}};
+      detail::wavelet_periodic_access<D> acc{tile_->coefficients(), prm_.tile_size,
+                                             tile_->row_length(), {0, 0, 0}};
       for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
       return band_kernel<T, G>(c, pl, i, acc);
     }
@@ -13236,12 +13230,11 @@ HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, VI& cell,
 template <bool kGradient, int D>
 HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, axis* ax) {
   const int n = w.parameters().tile_size;
-  int stride = 1;
-  for (int a = 0; a < D; ++a, stride *= n) {
+  for (int a = 0; a < D; ++a) {
     VI cell;
     VF f;
     band_split<D>(w, band, a, xs[a], cell, f);
-    tap_indices(cell, n, stride, ax[a].idx);
+    tap_indices(cell, n, w.tile().stride(a), ax[a].idx);
     weights<kGradient>(f, ax[a]);
   }
 }
@@ -13282,10 +13275,21 @@ HWY_INLINE void separable3(const float* tile, const AX& ax, const AY& ay, const 
 #undef HUSH_WAVELET_ROW_LOADS  // per target (this file is included once per target)
 #if HWY_TARGET != HWY_SCALAR && !HWY_HAVE_SCALABLE
 #define HUSH_WAVELET_ROW_LOADS 1
-// A vector of 4-float rows of the padded tile (wavelet_tile::padded_rows): its
+// A vector of 4-float rows of the 3D tile (padded rows, wavelet_tile::coefficients): its
 // 128-bit block j holds rows[o[4 j]], ..., rows[o[4 j] + 3].
 template <class D>
 HWY_INLINE hn::Vec<D> row_blocks(D d, const float* rows, const std::int32_t* o) {
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+  if constexpr (hn::MaxLanes(D()) == 16) {
+    // One load and three inserts from memory (Highway 1.0's Combine of halves also
+    // moves the halves between registers: 7 instructions per vector of rows, not 4).
+    __m512 v = _mm512_castps128_ps512(_mm_loadu_ps(rows + o[0]));
+    v = _mm512_insertf32x4(v, _mm_loadu_ps(rows + o[4]), 1);
+    v = _mm512_insertf32x4(v, _mm_loadu_ps(rows + o[8]), 2);
+    v = _mm512_insertf32x4(v, _mm_loadu_ps(rows + o[12]), 3);
+    return hn::Vec<D>{v};
+  }
+#endif
   if constexpr (hn::MaxLanes(D()) <= 4) {
     return hn::LoadU(d, rows + o[0]);
   } else {
@@ -13311,8 +13315,8 @@ HWY_INLINE void row_taps(const float* rows, const std::int32_t* o, VF (&t)[3]) {
   t[2] = hn::BitCast(df, hn::InterleaveLower(d64, ab_hi, cd_hi));
 }
 
-// separable3 with 3 x taps over the padded rows (wavelet_tile::padded_rows; ay's and
-// az's indices scaled by the row stride m = n + kWaveletRowPad and by m n): the
+// separable3 with 3 x taps over the padded rows (wavelet_tile::coefficients; ay's and
+// az's indices scaled by the strides m = row_length() and m n): the
 // same sums in the same order (per lane and element the same operations, so the
 // same bits), each (y, z) row's x taps from row_taps, z innermost, then y, then x.
 template <bool kGradient, class AY, class AZ>
@@ -13362,7 +13366,6 @@ HWY_INLINE void rows3(const float* rows, VI x0, const axis& ax, const AY& ay, co
 template <bool kGradient>
 HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, VF* g) {
   const int n = w.parameters().tile_size;
-  const int m = n + detail::constants::kWaveletRowPad;
   axis ax[3];
   VI x0;
   for (int a = 0; a < 3; ++a) {
@@ -13373,9 +13376,9 @@ HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, 
     if (a == 0)
       x0 = cell;
     else
-      tap_indices(cell, n, a == 1 ? m : m * n, ax[a].idx);
+      tap_indices(cell, n, w.tile().stride(a), ax[a].idx);
   }
-  rows3<kGradient>(w.tile().padded_rows(), x0, ax[0], ax[1], ax[2], v, g);
+  rows3<kGradient>(w.tile().coefficients(), x0, ax[0], ax[1], ax[2], v, g);
 }
 #endif
 
@@ -13434,14 +13437,13 @@ HWY_INLINE void projected_axis(const wavelet_tile<3>& tile, int n, const VI* cel
   constexpr int N = detail::fixed_kernel_taps<P>();
 #ifdef HUSH_WAVELET_ROW_LOADS
   if constexpr (A != 0) {  // 3 x taps: rows (along x, N x taps: gathers)
-    const int m = n + detail::constants::kWaveletRowPad;
     axis ax;
     weights<kGradient>(f[0], ax);
     axis_n<A == 1 ? N : 3> ay;
     axis_n<A == 2 ? N : 3> az;
-    axis_taps<kGradient>(cell[1], f[1], n, m, k, dk, ay);
-    axis_taps<kGradient>(cell[2], f[2], n, m * n, k, dk, az);
-    rows3<kGradient>(tile.padded_rows(), cell[0], ax, ay, az, v, g);
+    axis_taps<kGradient>(cell[1], f[1], n, tile.stride(1), k, dk, ay);
+    axis_taps<kGradient>(cell[2], f[2], n, tile.stride(2), k, dk, az);
+    rows3<kGradient>(tile.coefficients(), cell[0], ax, ay, az, v, g);
     return;
   }
 #endif
@@ -13449,8 +13451,8 @@ HWY_INLINE void projected_axis(const wavelet_tile<3>& tile, int n, const VI* cel
   axis_n<A == 1 ? N : 3> ay;
   axis_n<A == 2 ? N : 3> az;
   axis_taps<kGradient>(cell[0], f[0], n, 1, k, dk, ax);
-  axis_taps<kGradient>(cell[1], f[1], n, n, k, dk, ay);
-  axis_taps<kGradient>(cell[2], f[2], n, n * n, k, dk, az);
+  axis_taps<kGradient>(cell[1], f[1], n, tile.stride(1), k, dk, ay);
+  axis_taps<kGradient>(cell[2], f[2], n, tile.stride(2), k, dk, az);
   separable3<kGradient>(tile.coefficients(), ax, ay, az, v, g);
 }
 
@@ -13472,11 +13474,13 @@ HWY_INLINE int max_lane(VI v) {
 // only where its scalar loop would (masked sums: the same operations, bit for bit).
 // y: positions relative to the cells, u: the unit normals.
 template <bool kGradient>
-HWY_INLINE void general_approx(const float* tile, int n, const VI* cell, const VF* y, const VF* u,
+HWY_INLINE void general_approx(const wavelet_tile<3>& tl, const VI* cell, const VF* y, const VF* u,
                                VF& v, VF* g) {
   const DF df;
   const DI di;
   using MF = hn::Mask<DF>;
+  const float* tile = tl.coefficients();
+  const int n = tl.size();
   const VF half = hn::Set(df, static_cast<float>(detail::kBspline.half_support()));
   const VF stretch = hn::Set(df, static_cast<float>(1.0 / detail::constants::kWaveletProjectionStretch));
   const VF one = hn::Set(df, 1.0f);
@@ -13488,7 +13492,7 @@ HWY_INLINE void general_approx(const float* tile, int n, const VI* cell, const V
   const MF is_w[3] = {hn::Not(hn::Or(w1, w2)), hn::AndNot(w2, w1), w2};
   const MF is_u[3] = {hn::Not(is_w[0]), is_w[0], none};
   const MF is_v[3] = {none, is_w[2], hn::Not(is_w[2])};
-  const int strides[3] = {1, n, n * n};
+  const int strides[3] = {tl.stride(0), tl.stride(1), tl.stride(2)};
   const VI sv[3] = {hn::Set(di, strides[0]), hn::Set(di, strides[1]), hn::Set(di, strides[2])};
   const auto frame = [&](const MF (&m)[3], const VF (&x)[3]) { return pick(m, x); };
   const VF yv[3] = {y[0], y[1], y[2]}, uv[3] = {u[0], u[1], u[2]};
@@ -13600,11 +13604,13 @@ HWY_INLINE void general_approx(const float* tile, int n, const VI* cell, const V
 // its own count are empty; per piece the 5 Gauss-Legendre nodes, each a full
 // 27-tap B-spline evaluation at y + t u (wavelet_axis_at), summed in the scalar order.
 template <bool kGradient>
-HWY_INLINE void general_exact(const float* tile, int n, const VI* cell, const VF* y, const VF* u,
+HWY_INLINE void general_exact(const wavelet_tile<3>& tl, const VI* cell, const VF* y, const VF* u,
                               VF& v, VF* g) {
   namespace c = detail::constants;
   const DF df;
   const DI di;
+  const float* tile = tl.coefficients();
+  const int n = tl.size();
   const std::size_t lanes = hn::Lanes(df);
   HWY_ALIGN float ys[3][kMaxLanes], us[3][kMaxLanes];
   for (int a = 0; a < 3; ++a) {
@@ -13626,7 +13632,7 @@ HWY_INLINE void general_exact(const float* tile, int n, const VI* cell, const VF
   v = hn::Zero(df);
   for (int a = 0; a < 3; ++a) g[a] = hn::Zero(df);
   const VF two = hn::Set(df, 2.0f), cell_offset = hn::Set(df, float(c::kWaveletCellOffset));
-  const int strides[3] = {1, n, n * n};
+  const int strides[3] = {tl.stride(0), tl.stride(1), tl.stride(2)};
   for (int i = 0; i + 1 < most; ++i) {
     const VF t0 = hn::Load(df, knots[i]), t1 = hn::Load(df, knots[i + 1]);
     const auto piece_ok = hn::Gt(t1, t0);
@@ -13669,9 +13675,9 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
         const VF half = hn::Set(DF(), float(detail::constants::kWaveletCellOffset));
         const VF y[3] = {hn::Add(f[0], half), hn::Add(f[1], half), hn::Add(f[2], half)};
         if (exact)
-          general_exact<kGradient>(tile, n, cell, y, u, v, g);
+          general_exact<kGradient>(w.tile(), cell, y, u, v, g);
         else
-          general_approx<kGradient>(tile, n, cell, y, u, v, g);
+          general_approx<kGradient>(w.tile(), cell, y, u, v, g);
         return;
       }
       const auto along = [&](const auto& k, const auto& dk) {
@@ -13699,15 +13705,40 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
   separable<kGradient, D>(tile, ax, v, g);
 }
 
+// The lanes' band weights, chains (weight x band frequency) and scales (their plans,
+// in double) as the floats points_vector multiplies by; made once per batch where
+// every lane has the same plan, not per vector.
+struct lane_weights {
+  HWY_ALIGN float weight[detail::constants::kWaveletMaxBands][kMaxLanes];
+  HWY_ALIGN float chain[detail::constants::kWaveletMaxBands][kMaxLanes];
+  HWY_ALIGN float scale[kMaxLanes];
+  bool any[detail::constants::kWaveletMaxBands];  // some lane's weight is not 0
+  template <int D>
+  void set(const wavelet<D>& w, const double (*wd)[kMaxLanes], const double* sd) {
+    const std::size_t lanes = hn::Lanes(DF());
+    for (int b = 0; b < w.band_count(); ++b) {
+      any[b] = false;
+      for (std::size_t l = 0; l < lanes; ++l) {
+        const double wb = wd[b][l];
+        any[b] = any[b] || wb != 0.0;
+        weight[b][l] = static_cast<float>(wb);
+        chain[b][l] = static_cast<float>(wb * w.band_frequency(b));
+      }
+    }
+    for (std::size_t l = 0; l < lanes; ++l) scale[l] = static_cast<float>(sd[l]);
+  }
+};
+
 // The sum over bands, scale and remapping of wavelet::eval for one vector of points
-// with per-lane band weights, chains and scales (plans), into value and interleaved
-// gradients, every lane with the kernel `kind` (lane_kind; normal: the lanes' unit
-// normals for kGeneral). Lanes of weight 0 come out 0 for the caller to overwrite.
+// with per-lane band weights, chains and scales (plans, lane_weights), into value
+// and interleaved gradients, every lane with the kernel `kind` (lane_kind; normal:
+// the lanes' unit normals for kGeneral). Lanes of weight 0 come out 0 for the
+// caller to overwrite.
 template <bool kGradient, int D>
 HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts,
-                              const double (*weight)[kMaxLanes], const double* scale,
-                              float* HWY_RESTRICT value, float* HWY_RESTRICT grad,
-                              int kind = kPlain, const float (*normal)[kMaxLanes] = nullptr) {
+                              const lane_weights& lw, float* HWY_RESTRICT value,
+                              float* HWY_RESTRICT grad, int kind = kPlain,
+                              const float (*normal)[kMaxLanes] = nullptr) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   VF xs[3];
@@ -13720,26 +13751,16 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
   if (normal)
     for (int a = 0; a < 3; ++a) u[a] = hn::Load(df, normal[a]);
   for (int b = 0; b < w.band_count(); ++b) {
-    HWY_ALIGN float wl[kMaxLanes], cl[kMaxLanes];
-    bool any = false;
-    for (std::size_t l = 0; l < lanes; ++l) {
-      const double wb = weight[b][l];
-      any = any || wb != 0.0;
-      wl[l] = static_cast<float>(wb);
-      cl[l] = static_cast<float>(wb * w.band_frequency(b));
-    }
-    if (!any) continue;
+    if (!lw.any[b]) continue;
     VF v, g[3];
     band_value<kGradient, D>(w, b, kind, xs, u, v, g);
-    acc = mul_add(hn::Load(df, wl), v, acc);
+    acc = mul_add(hn::Load(df, lw.weight[b]), v, acc);
     if constexpr (kGradient) {
-      const VF chain = hn::Load(df, cl);
+      const VF chain = hn::Load(df, lw.chain[b]);
       for (int a = 0; a < D; ++a) gacc[a] = mul_add(chain, g[a], gacc[a]);
     }
   }
-  HWY_ALIGN float sl[kMaxLanes];
-  for (std::size_t l = 0; l < lanes; ++l) sl[l] = static_cast<float>(scale[l]);
-  const VF sv = hn::Load(df, sl);
+  const VF sv = hn::Load(df, lw.scale);
   acc = hn::Mul(acc, sv);
   if constexpr (kGradient)
     for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], sv);
@@ -13833,14 +13854,16 @@ void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float*
   for (int b = 0; b < w.band_count(); ++b)
     for (std::size_t l = 0; l < lanes; ++l) weight[b][l] = pl.weight[b];
   for (std::size_t l = 0; l < lanes; ++l) scale[l] = pl.scale;
+  ws::lane_weights lw;
+  lw.set(w, weight, scale);
   simd_batch::for_each_vector<D>(n, pts, value, grad,
                          [&](std::size_t first, const float* p, float* v, float* g) {
                            // Non-finite lanes: the scalar code (its NaN, exactly).
                            const bool finite = ws::all_finite<D>(p);
                            if (g)
-                             ws::points_vector<true, D>(w, p, weight, scale, v, g);
+                             ws::points_vector<true, D>(w, p, lw, v, g);
                            else
-                             ws::points_vector<false, D>(w, p, weight, scale, v, nullptr);
+                             ws::points_vector<false, D>(w, p, lw, v, nullptr);
                            if (finite) return;
                            for (std::size_t l = 0; l < lanes && first + l < n; ++l) {
                              sample_input<D> s;
@@ -13872,6 +13895,7 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
   double kind_scale[perlin_simd::kMaxLanes];
   int kind[perlin_simd::kMaxLanes];
   HWY_ALIGN float normal[3][perlin_simd::kMaxLanes];
+  ws::lane_weights lw;
   // Without footprints the bands' part of the plan is every sample's: made once; per
   // sample only its surface part (wavelet::plan_normal, plan_variance, plan_scale,
   // the scalar code's own steps), redone only when the normal changes.
@@ -13935,10 +13959,11 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
           HWY_ALIGN float vt[perlin_simd::kMaxLanes], gt[perlin_simd::kMaxLanes * 3];
           float* vo = alone ? v : vt;
           float* go = g == nullptr ? nullptr : (alone ? g : gt);
+          lw.set(w, kind_weight, kind_scale);
           if (g)
-            ws::points_vector<true, D>(w, pv, kind_weight, kind_scale, vo, go, k, normal);
+            ws::points_vector<true, D>(w, pv, lw, vo, go, k, normal);
           else
-            ws::points_vector<false, D>(w, pv, kind_weight, kind_scale, vo, nullptr, k, normal);
+            ws::points_vector<false, D>(w, pv, lw, vo, nullptr, k, normal);
           if (alone) continue;
           for (std::size_t l = 0; l < lanes; ++l) {
             if (kind[l] != k) continue;
@@ -14070,6 +14095,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
   const std::size_t lanes = hn::Lanes(df);
   const int n = w.parameters().tile_size;
   const std::size_t un = static_cast<std::size_t>(n);
+  const auto um = static_cast<std::size_t>(w.tile().row_length());  // row stride of the tile
   const std::uint32_t period = w.split_period();
   const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
   const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
@@ -14125,7 +14151,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
           for (const std::size_t xc : xcells[q]) {
             float s = 0, sz = 0;
             for (int c = 0; c < 3; ++c) {
-              const float v = tile[xc + un * (yc + un * static_cast<std::size_t>(z.cell[c]))];
+              const float v = tile[xc + um * (yc + un * static_cast<std::size_t>(z.cell[c]))];
               s += z.ax.w[c] * v;
               if (kGradient) sz += z.ax.dw[c] * v;
             }
@@ -14151,7 +14177,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
           float t = 0, ty = 0, tz = 0;
           for (int bb = 0; bb < 3; ++bb) {
             const std::size_t yc = static_cast<std::size_t>(y.cell[bb]);
-            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + un * yc];
+            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + um * yc];
             t += y.ax.w[bb] * s;
             if (kGradient) {
               ty += y.ax.dw[bb] * s;

@@ -155,7 +155,7 @@ constexpr int kWaveletAnalysisRadius = 100;
 constexpr int kWaveletMinTile = 16;
 constexpr int kWaveletMaxTile2 = 2048;
 constexpr int kWaveletMaxTile3 = 128;
-// The SIMD points kernel's padded rows (wavelet_tile::padded_rows): every x row
+// The 3D tile's padded rows (wavelet_tile::coefficients, its only layout): every x row
 // extended by its first 3 coefficients, so that the taps x0, x0 + 1, x0 + 2 of any
 // cell x0 < n and one float more are one unaligned 4-float load, without a wrap.
 constexpr int kWaveletRowPad = 3;

@@ -236,12 +236,11 @@ HWY_INLINE void band_split(const wavelet<D>& w, int band, int a, VF x, VI& cell,
 template <bool kGradient, int D>
 HWY_INLINE void band_axes(const wavelet<D>& w, int band, const VF* xs, axis* ax) {
   const int n = w.parameters().tile_size;
-  int stride = 1;
-  for (int a = 0; a < D; ++a, stride *= n) {
+  for (int a = 0; a < D; ++a) {
     VI cell;
     VF f;
     band_split<D>(w, band, a, xs[a], cell, f);
-    tap_indices(cell, n, stride, ax[a].idx);
+    tap_indices(cell, n, w.tile().stride(a), ax[a].idx);
     weights<kGradient>(f, ax[a]);
   }
 }
@@ -282,10 +281,21 @@ HWY_INLINE void separable3(const float* tile, const AX& ax, const AY& ay, const 
 #undef HUSH_WAVELET_ROW_LOADS  // per target (this file is included once per target)
 #if HWY_TARGET != HWY_SCALAR && !HWY_HAVE_SCALABLE
 #define HUSH_WAVELET_ROW_LOADS 1
-// A vector of 4-float rows of the padded tile (wavelet_tile::padded_rows): its
+// A vector of 4-float rows of the 3D tile (padded rows, wavelet_tile::coefficients): its
 // 128-bit block j holds rows[o[4 j]], ..., rows[o[4 j] + 3].
 template <class D>
 HWY_INLINE hn::Vec<D> row_blocks(D d, const float* rows, const std::int32_t* o) {
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+  if constexpr (hn::MaxLanes(D()) == 16) {
+    // One load and three inserts from memory (Highway 1.0's Combine of halves also
+    // moves the halves between registers: 7 instructions per vector of rows, not 4).
+    __m512 v = _mm512_castps128_ps512(_mm_loadu_ps(rows + o[0]));
+    v = _mm512_insertf32x4(v, _mm_loadu_ps(rows + o[4]), 1);
+    v = _mm512_insertf32x4(v, _mm_loadu_ps(rows + o[8]), 2);
+    v = _mm512_insertf32x4(v, _mm_loadu_ps(rows + o[12]), 3);
+    return hn::Vec<D>{v};
+  }
+#endif
   if constexpr (hn::MaxLanes(D()) <= 4) {
     return hn::LoadU(d, rows + o[0]);
   } else {
@@ -311,8 +321,8 @@ HWY_INLINE void row_taps(const float* rows, const std::int32_t* o, VF (&t)[3]) {
   t[2] = hn::BitCast(df, hn::InterleaveLower(d64, ab_hi, cd_hi));
 }
 
-// separable3 with 3 x taps over the padded rows (wavelet_tile::padded_rows; ay's and
-// az's indices scaled by the row stride m = n + kWaveletRowPad and by m n): the
+// separable3 with 3 x taps over the padded rows (wavelet_tile::coefficients; ay's and
+// az's indices scaled by the strides m = row_length() and m n): the
 // same sums in the same order (per lane and element the same operations, so the
 // same bits), each (y, z) row's x taps from row_taps, z innermost, then y, then x.
 template <bool kGradient, class AY, class AZ>
@@ -362,7 +372,6 @@ HWY_INLINE void rows3(const float* rows, VI x0, const axis& ax, const AY& ay, co
 template <bool kGradient>
 HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, VF* g) {
   const int n = w.parameters().tile_size;
-  const int m = n + detail::constants::kWaveletRowPad;
   axis ax[3];
   VI x0;
   for (int a = 0; a < 3; ++a) {
@@ -373,9 +382,9 @@ HWY_INLINE void plain3_rows(const wavelet<3>& w, int band, const VF* xs, VF& v, 
     if (a == 0)
       x0 = cell;
     else
-      tap_indices(cell, n, a == 1 ? m : m * n, ax[a].idx);
+      tap_indices(cell, n, w.tile().stride(a), ax[a].idx);
   }
-  rows3<kGradient>(w.tile().padded_rows(), x0, ax[0], ax[1], ax[2], v, g);
+  rows3<kGradient>(w.tile().coefficients(), x0, ax[0], ax[1], ax[2], v, g);
 }
 #endif
 
@@ -434,14 +443,13 @@ HWY_INLINE void projected_axis(const wavelet_tile<3>& tile, int n, const VI* cel
   constexpr int N = detail::fixed_kernel_taps<P>();
 #ifdef HUSH_WAVELET_ROW_LOADS
   if constexpr (A != 0) {  // 3 x taps: rows (along x, N x taps: gathers)
-    const int m = n + detail::constants::kWaveletRowPad;
     axis ax;
     weights<kGradient>(f[0], ax);
     axis_n<A == 1 ? N : 3> ay;
     axis_n<A == 2 ? N : 3> az;
-    axis_taps<kGradient>(cell[1], f[1], n, m, k, dk, ay);
-    axis_taps<kGradient>(cell[2], f[2], n, m * n, k, dk, az);
-    rows3<kGradient>(tile.padded_rows(), cell[0], ax, ay, az, v, g);
+    axis_taps<kGradient>(cell[1], f[1], n, tile.stride(1), k, dk, ay);
+    axis_taps<kGradient>(cell[2], f[2], n, tile.stride(2), k, dk, az);
+    rows3<kGradient>(tile.coefficients(), cell[0], ax, ay, az, v, g);
     return;
   }
 #endif
@@ -449,8 +457,8 @@ HWY_INLINE void projected_axis(const wavelet_tile<3>& tile, int n, const VI* cel
   axis_n<A == 1 ? N : 3> ay;
   axis_n<A == 2 ? N : 3> az;
   axis_taps<kGradient>(cell[0], f[0], n, 1, k, dk, ax);
-  axis_taps<kGradient>(cell[1], f[1], n, n, k, dk, ay);
-  axis_taps<kGradient>(cell[2], f[2], n, n * n, k, dk, az);
+  axis_taps<kGradient>(cell[1], f[1], n, tile.stride(1), k, dk, ay);
+  axis_taps<kGradient>(cell[2], f[2], n, tile.stride(2), k, dk, az);
   separable3<kGradient>(tile.coefficients(), ax, ay, az, v, g);
 }
 
@@ -472,11 +480,13 @@ HWY_INLINE int max_lane(VI v) {
 // only where its scalar loop would (masked sums: the same operations, bit for bit).
 // y: positions relative to the cells, u: the unit normals.
 template <bool kGradient>
-HWY_INLINE void general_approx(const float* tile, int n, const VI* cell, const VF* y, const VF* u,
+HWY_INLINE void general_approx(const wavelet_tile<3>& tl, const VI* cell, const VF* y, const VF* u,
                                VF& v, VF* g) {
   const DF df;
   const DI di;
   using MF = hn::Mask<DF>;
+  const float* tile = tl.coefficients();
+  const int n = tl.size();
   const VF half = hn::Set(df, static_cast<float>(detail::kBspline.half_support()));
   const VF stretch = hn::Set(df, static_cast<float>(1.0 / detail::constants::kWaveletProjectionStretch));
   const VF one = hn::Set(df, 1.0f);
@@ -488,7 +498,7 @@ HWY_INLINE void general_approx(const float* tile, int n, const VI* cell, const V
   const MF is_w[3] = {hn::Not(hn::Or(w1, w2)), hn::AndNot(w2, w1), w2};
   const MF is_u[3] = {hn::Not(is_w[0]), is_w[0], none};
   const MF is_v[3] = {none, is_w[2], hn::Not(is_w[2])};
-  const int strides[3] = {1, n, n * n};
+  const int strides[3] = {tl.stride(0), tl.stride(1), tl.stride(2)};
   const VI sv[3] = {hn::Set(di, strides[0]), hn::Set(di, strides[1]), hn::Set(di, strides[2])};
   const auto frame = [&](const MF (&m)[3], const VF (&x)[3]) { return pick(m, x); };
   const VF yv[3] = {y[0], y[1], y[2]}, uv[3] = {u[0], u[1], u[2]};
@@ -600,11 +610,13 @@ HWY_INLINE void general_approx(const float* tile, int n, const VI* cell, const V
 // its own count are empty; per piece the 5 Gauss-Legendre nodes, each a full
 // 27-tap B-spline evaluation at y + t u (wavelet_axis_at), summed in the scalar order.
 template <bool kGradient>
-HWY_INLINE void general_exact(const float* tile, int n, const VI* cell, const VF* y, const VF* u,
+HWY_INLINE void general_exact(const wavelet_tile<3>& tl, const VI* cell, const VF* y, const VF* u,
                               VF& v, VF* g) {
   namespace c = detail::constants;
   const DF df;
   const DI di;
+  const float* tile = tl.coefficients();
+  const int n = tl.size();
   const std::size_t lanes = hn::Lanes(df);
   HWY_ALIGN float ys[3][kMaxLanes], us[3][kMaxLanes];
   for (int a = 0; a < 3; ++a) {
@@ -626,7 +638,7 @@ HWY_INLINE void general_exact(const float* tile, int n, const VI* cell, const VF
   v = hn::Zero(df);
   for (int a = 0; a < 3; ++a) g[a] = hn::Zero(df);
   const VF two = hn::Set(df, 2.0f), cell_offset = hn::Set(df, float(c::kWaveletCellOffset));
-  const int strides[3] = {1, n, n * n};
+  const int strides[3] = {tl.stride(0), tl.stride(1), tl.stride(2)};
   for (int i = 0; i + 1 < most; ++i) {
     const VF t0 = hn::Load(df, knots[i]), t1 = hn::Load(df, knots[i + 1]);
     const auto piece_ok = hn::Gt(t1, t0);
@@ -669,9 +681,9 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
         const VF half = hn::Set(DF(), float(detail::constants::kWaveletCellOffset));
         const VF y[3] = {hn::Add(f[0], half), hn::Add(f[1], half), hn::Add(f[2], half)};
         if (exact)
-          general_exact<kGradient>(tile, n, cell, y, u, v, g);
+          general_exact<kGradient>(w.tile(), cell, y, u, v, g);
         else
-          general_approx<kGradient>(tile, n, cell, y, u, v, g);
+          general_approx<kGradient>(w.tile(), cell, y, u, v, g);
         return;
       }
       const auto along = [&](const auto& k, const auto& dk) {
@@ -699,15 +711,40 @@ HWY_INLINE void band_value(const wavelet<D>& w, int band, int kind, const VF* xs
   separable<kGradient, D>(tile, ax, v, g);
 }
 
+// The lanes' band weights, chains (weight x band frequency) and scales (their plans,
+// in double) as the floats points_vector multiplies by; made once per batch where
+// every lane has the same plan, not per vector.
+struct lane_weights {
+  HWY_ALIGN float weight[detail::constants::kWaveletMaxBands][kMaxLanes];
+  HWY_ALIGN float chain[detail::constants::kWaveletMaxBands][kMaxLanes];
+  HWY_ALIGN float scale[kMaxLanes];
+  bool any[detail::constants::kWaveletMaxBands];  // some lane's weight is not 0
+  template <int D>
+  void set(const wavelet<D>& w, const double (*wd)[kMaxLanes], const double* sd) {
+    const std::size_t lanes = hn::Lanes(DF());
+    for (int b = 0; b < w.band_count(); ++b) {
+      any[b] = false;
+      for (std::size_t l = 0; l < lanes; ++l) {
+        const double wb = wd[b][l];
+        any[b] = any[b] || wb != 0.0;
+        weight[b][l] = static_cast<float>(wb);
+        chain[b][l] = static_cast<float>(wb * w.band_frequency(b));
+      }
+    }
+    for (std::size_t l = 0; l < lanes; ++l) scale[l] = static_cast<float>(sd[l]);
+  }
+};
+
 // The sum over bands, scale and remapping of wavelet::eval for one vector of points
-// with per-lane band weights, chains and scales (plans), into value and interleaved
-// gradients, every lane with the kernel `kind` (lane_kind; normal: the lanes' unit
-// normals for kGeneral). Lanes of weight 0 come out 0 for the caller to overwrite.
+// with per-lane band weights, chains and scales (plans, lane_weights), into value
+// and interleaved gradients, every lane with the kernel `kind` (lane_kind; normal:
+// the lanes' unit normals for kGeneral). Lanes of weight 0 come out 0 for the
+// caller to overwrite.
 template <bool kGradient, int D>
 HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts,
-                              const double (*weight)[kMaxLanes], const double* scale,
-                              float* HWY_RESTRICT value, float* HWY_RESTRICT grad,
-                              int kind = kPlain, const float (*normal)[kMaxLanes] = nullptr) {
+                              const lane_weights& lw, float* HWY_RESTRICT value,
+                              float* HWY_RESTRICT grad, int kind = kPlain,
+                              const float (*normal)[kMaxLanes] = nullptr) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   VF xs[3];
@@ -720,26 +757,16 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
   if (normal)
     for (int a = 0; a < 3; ++a) u[a] = hn::Load(df, normal[a]);
   for (int b = 0; b < w.band_count(); ++b) {
-    HWY_ALIGN float wl[kMaxLanes], cl[kMaxLanes];
-    bool any = false;
-    for (std::size_t l = 0; l < lanes; ++l) {
-      const double wb = weight[b][l];
-      any = any || wb != 0.0;
-      wl[l] = static_cast<float>(wb);
-      cl[l] = static_cast<float>(wb * w.band_frequency(b));
-    }
-    if (!any) continue;
+    if (!lw.any[b]) continue;
     VF v, g[3];
     band_value<kGradient, D>(w, b, kind, xs, u, v, g);
-    acc = mul_add(hn::Load(df, wl), v, acc);
+    acc = mul_add(hn::Load(df, lw.weight[b]), v, acc);
     if constexpr (kGradient) {
-      const VF chain = hn::Load(df, cl);
+      const VF chain = hn::Load(df, lw.chain[b]);
       for (int a = 0; a < D; ++a) gacc[a] = mul_add(chain, g[a], gacc[a]);
     }
   }
-  HWY_ALIGN float sl[kMaxLanes];
-  for (std::size_t l = 0; l < lanes; ++l) sl[l] = static_cast<float>(scale[l]);
-  const VF sv = hn::Load(df, sl);
+  const VF sv = hn::Load(df, lw.scale);
   acc = hn::Mul(acc, sv);
   if constexpr (kGradient)
     for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], sv);
@@ -833,14 +860,16 @@ void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float*
   for (int b = 0; b < w.band_count(); ++b)
     for (std::size_t l = 0; l < lanes; ++l) weight[b][l] = pl.weight[b];
   for (std::size_t l = 0; l < lanes; ++l) scale[l] = pl.scale;
+  ws::lane_weights lw;
+  lw.set(w, weight, scale);
   simd_batch::for_each_vector<D>(n, pts, value, grad,
                          [&](std::size_t first, const float* p, float* v, float* g) {
                            // Non-finite lanes: the scalar code (its NaN, exactly).
                            const bool finite = ws::all_finite<D>(p);
                            if (g)
-                             ws::points_vector<true, D>(w, p, weight, scale, v, g);
+                             ws::points_vector<true, D>(w, p, lw, v, g);
                            else
-                             ws::points_vector<false, D>(w, p, weight, scale, v, nullptr);
+                             ws::points_vector<false, D>(w, p, lw, v, nullptr);
                            if (finite) return;
                            for (std::size_t l = 0; l < lanes && first + l < n; ++l) {
                              sample_input<D> s;
@@ -872,6 +901,7 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
   double kind_scale[perlin_simd::kMaxLanes];
   int kind[perlin_simd::kMaxLanes];
   HWY_ALIGN float normal[3][perlin_simd::kMaxLanes];
+  ws::lane_weights lw;
   // Without footprints the bands' part of the plan is every sample's: made once; per
   // sample only its surface part (wavelet::plan_normal, plan_variance, plan_scale,
   // the scalar code's own steps), redone only when the normal changes.
@@ -935,10 +965,11 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
           HWY_ALIGN float vt[perlin_simd::kMaxLanes], gt[perlin_simd::kMaxLanes * 3];
           float* vo = alone ? v : vt;
           float* go = g == nullptr ? nullptr : (alone ? g : gt);
+          lw.set(w, kind_weight, kind_scale);
           if (g)
-            ws::points_vector<true, D>(w, pv, kind_weight, kind_scale, vo, go, k, normal);
+            ws::points_vector<true, D>(w, pv, lw, vo, go, k, normal);
           else
-            ws::points_vector<false, D>(w, pv, kind_weight, kind_scale, vo, nullptr, k, normal);
+            ws::points_vector<false, D>(w, pv, lw, vo, nullptr, k, normal);
           if (alone) continue;
           for (std::size_t l = 0; l < lanes; ++l) {
             if (kind[l] != k) continue;
@@ -1070,6 +1101,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
   const std::size_t lanes = hn::Lanes(df);
   const int n = w.parameters().tile_size;
   const std::size_t un = static_cast<std::size_t>(n);
+  const auto um = static_cast<std::size_t>(w.tile().row_length());  // row stride of the tile
   const std::uint32_t period = w.split_period();
   const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
   const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
@@ -1125,7 +1157,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
           for (const std::size_t xc : xcells[q]) {
             float s = 0, sz = 0;
             for (int c = 0; c < 3; ++c) {
-              const float v = tile[xc + un * (yc + un * static_cast<std::size_t>(z.cell[c]))];
+              const float v = tile[xc + um * (yc + un * static_cast<std::size_t>(z.cell[c]))];
               s += z.ax.w[c] * v;
               if (kGradient) sz += z.ax.dw[c] * v;
             }
@@ -1151,7 +1183,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
           float t = 0, ty = 0, tz = 0;
           for (int bb = 0; bb < 3; ++bb) {
             const std::size_t yc = static_cast<std::size_t>(y.cell[bb]);
-            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + un * yc];
+            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + um * yc];
             t += y.ax.w[bb] * s;
             if (kGradient) {
               ty += y.ax.dw[bb] * s;

@@ -122,6 +122,8 @@ inline std::vector<glsl_constant> wavelet_constants() {
                     "tile variants: permutation = ((h >> s) * D!) >> s"),
       uint_constant("HUSH_WAVELET_PERMUTATIONS2", h::wavelet_permutations(2), "2!"),
       uint_constant("HUSH_WAVELET_PERMUTATIONS3", h::wavelet_permutations(3), "3!"),
+      u("HUSH_WAVELET_ROW_PAD", c::kWaveletRowPad,
+        "3D tile rows repeat their first coefficients (wavelet_tile::coefficients)"),
       float_constant("HUSH_WAVELET_CELL_OFFSET", c::kWaveletCellOffset,
                      "coefficient i sits at y = i; taps start at floor(y - offset)"),
       float_constant("HUSH_WAVELET_STRETCH", c::kWaveletProjectionStretch,

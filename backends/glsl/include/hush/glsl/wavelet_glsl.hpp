@@ -9,7 +9,8 @@
 //
 // The tile is data, so these functions exist only where the including shader
 // says how to read it, by defining before the library:
-//   HUSH_WAVELET_TILE(i)    float, coefficient i of the tile (x fastest), e.g.
+//   HUSH_WAVELET_TILE(i)    float, element i of wavelet_tile::coefficients() (rows of
+//                           x, 3D rows padded: hush_wavelet_tile_coef), e.g.
 //                           an SSBO element or texelFetch(samplerBuffer, int(i)).x;
 //   HUSH_WAVELET_BLEND(i)   (optional) coefficient i of the tile-variant tile
 //                           (wavelet_blend_tile); without it variants read 0;
@@ -237,10 +238,11 @@ int hush_wavelet_variant_index(uint h, ivec3 l) {
   return idx;
 }
 // Coefficient at tap offsets k from the band's tap-0 cells of the periodic tile.
+// Rows of m = n (2D) or n + HUSH_WAVELET_ROW_PAD (3D) floats (wavelet_tile::coefficients).
 float hush_wavelet_tile_coef(ivec3 k) {
-  int n = int(hush_wv_n);
+  int n = int(hush_wv_n), m = n + (hush_wv_dim == 2u ? 0 : int(HUSH_WAVELET_ROW_PAD));
   return HUSH_WAVELET_TILE(hush_wavelet_wrap(hush_wv_i0.x, k.x) +
-                           n * (hush_wavelet_wrap(hush_wv_i0.y, k.y) +
+                           m * (hush_wavelet_wrap(hush_wv_i0.y, k.y) +
                                 n * hush_wavelet_wrap(hush_wv_i0.z, k.z)));
 }
 // Coefficient at tap offsets k from the band's tap-0 cells (periodic tile or variants).

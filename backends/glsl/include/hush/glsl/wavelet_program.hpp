@@ -68,7 +68,7 @@ struct noise_program<wavelet<D>> {
   static std::vector<data_buffer> data_buffers(const noise_type& w) {
     std::vector<data_buffer> r;
     const auto tile = w.tile_ptr();
-    r.push_back({kTileBinding, tile->coefficients(), tile->count() * sizeof(float), tile});
+    r.push_back({kTileBinding, tile->coefficients(), tile->storage_size() * sizeof(float), tile});
     if (const auto blend = w.blend_tile_ptr())
       r.push_back({kBlendBinding, blend->coefficients(), blend->count() * sizeof(float), blend});
     else
