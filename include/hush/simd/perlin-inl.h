@@ -20,7 +20,8 @@
 //  - grid rows hash once per lattice point, not once per sample and corner;
 //  - 3D grid rows with gradients (and fractal grids' bands) use the
 //    affine-in-x form per (row, cell) that perlin.hpp's grid_values uses
-//    too (row_gradient_coefs / row_gradient, op for op).
+//    too, its corner data blended in z once per (slice, y cell)
+//    (slice_gradient_coefs / row_gradient_coefs / row_gradient, op for op).
 // So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
 //    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
