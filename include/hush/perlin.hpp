@@ -100,8 +100,34 @@ HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
 //   kY0A, kY0B    d/dy at a = 0, slope and intercept; kDYA, kDYB: a = 1 minus a = 0
 //   kZ0A ... kDZB the same for d/dz.
 enum row_gradient_coef : int {
-  kEA, kEB, kX0, kV0B, kY0A, kY0B, kDYA, kDYB, kZ0A, kZ0B, kDZA, kDZB, kRowGradientCoefs
+  kEA,
+  kEB,
+  kX0,
+  kV0B,
+  kY0A,
+  kY0B,
+  kDYA,
+  kDYB,
+  kZ0A,
+  kZ0B,
+  kDZA,
+  kDZB,
+  kRowGradientCoefs
 };
+// They are formed from per-(slice, cell) data, blended in z once for all the
+// rows of a z slice and y cell (the corner gradients and the slice's z
+// fraction are fixed there), then in y per row. For corner (a, b, c), split
+// its dot product's x-free part as gy (f_y - b) + e with e = gz (f_z - c) -
+// a gx; per side a and y offset b, blended in z with the slice's fade w and
+// slope w':
+//   kZgx, kZgy, kZgz, kZe   lerp(q_ab0, q_ab1, w) of q = gx, gy, gz, e
+//   kWgx, kWgy, kWe         w' (q_ab1 - q_ab0) of q = gx, gy, e
+// at index slice_gradient_coef_index(q, a, b).
+enum slice_gradient_coef : int { kZgx, kZgy, kZgz, kZe, kWgx, kWgy, kWe, kSliceGradientKinds };
+constexpr int kSliceGradientCoefs = 4 * kSliceGradientKinds;
+HUSH_INLINE constexpr int slice_gradient_coef_index(int q, int a, int b) {
+  return 4 * q + 2 * a + b;
+}
 // Rows take the per-cell path (shared corner data) when cells hold at least
 // two columns on average; scalar and SIMD grids decide alike, so both use the
 // same gradient algorithm on every grid.
@@ -315,46 +341,57 @@ class perlin : public point_noise<perlin<D>, D> {
     }
   }
 
-  // One side (x offset a) of a 3D cell in a row: per-corner q at offsets
-  // (b, c) = 00, 10, 01, 11, blended with the row's fade weights v, w:
-  //   l  = the bilinear blend,  my = d l / dv (slope in v, blended in w),
-  //   mz = d l / dw.
+  // The slice_gradient_coef data of one cell (corner gradients c) in the
+  // slice of z axis az. Mirrored op for op by simd/perlin-inl.h.
   template <class T>
-  struct side_blend {
-    T l, my, mz;
-  };
-  template <class T>
-  static side_blend<T> blend_side(T q00, T q10, T q01, T q11, T v, T w) {
-    const T i0 = detail::lerp(q00, q10, v), i1 = detail::lerp(q01, q11, v);
-    return {detail::lerp(i0, i1, w), detail::lerp(q10 - q00, q11 - q01, w), i1 - i0};
-  }
-  // The row_gradient_coef coefficients of one cell from its corners' gradients
-  // and x-free dot-product parts k (d_n = gx_n (f_x - a) + k_n = gx_n f_x + c_n,
-  // c_n = k_n - a gx_n). Mirrored op for op by simd/perlin-inl.h.
-  template <class T>
-  static void row_gradient_coefs(const corners<T>& c, const T* k, const axis<T>* ax, T* out) {
+  static void slice_gradient_coefs(const corners<T>& c, const axis<T>& az, T* out) {
     namespace d = detail;
-    const T v = ax[1].s, w = ax[2].s, dv = ax[1].ds, dw = ax[2].ds;
-    side_blend<T> gx[2], cc[2], gy[2], gz[2];
+    const T w = az.s, dw = az.ds;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const int n0 = a + 2 * b, n1 = n0 + 4;
+        // gz (f_z - c) is exact (components are 0 or +-1): one rounding.
+        auto e = [&](int n, T fz) { return c.gz[n] * fz - (a ? c.gx[n] : T(0)); };
+        const T e0 = e(n0, az.f), e1 = e(n1, az.f1);
+        auto at = [&](int q) -> T& { return out[d::slice_gradient_coef_index(q, a, b)]; };
+        at(d::kZgx) = detail::lerp(c.gx[n0], c.gx[n1], w);
+        at(d::kZgy) = detail::lerp(c.gy[n0], c.gy[n1], w);
+        at(d::kZgz) = detail::lerp(c.gz[n0], c.gz[n1], w);
+        at(d::kZe) = detail::lerp(e0, e1, w);
+        at(d::kWgx) = dw * (c.gx[n1] - c.gx[n0]);
+        at(d::kWgy) = dw * (c.gy[n1] - c.gy[n0]);
+        at(d::kWe) = dw * (e1 - e0);
+      }
+  }
+  // The row_gradient_coef coefficients of one cell from its slice data sc and
+  // the row's y axis ay (fade v, slope v'). Per side a, with Z_b(q) the slice
+  // data: L(q) = lerp(Z_0, Z_1, v) is q's bilinear blend, Z_1 - Z_0 its v
+  // slope, and the dot products' x-free parts c_b = Z_b(gy) (f_y - b) + Z_b(e).
+  // Mirrored op for op by simd/perlin-inl.h.
+  template <class T>
+  static void row_gradient_coefs(const T* sc, const axis<T>& ay, T* out) {
+    namespace d = detail;
+    const T v = ay.s, dv = ay.ds, fy0 = ay.f, fy1 = ay.f1;
+    T lgx[2], lc[2], ya[2], yb[2], za[2], zb[2];
     for (int a = 0; a < 2; ++a) {
-      T cn[4];
-      for (int m = 0; m < 4; ++m) cn[m] = a ? k[a + 2 * m] - c.gx[a + 2 * m] : k[a + 2 * m];
-      gx[a] = blend_side(c.gx[a], c.gx[a + 2], c.gx[a + 4], c.gx[a + 6], v, w);
-      cc[a] = blend_side(cn[0], cn[1], cn[2], cn[3], v, w);
-      gy[a] = blend_side(c.gy[a], c.gy[a + 2], c.gy[a + 4], c.gy[a + 6], v, w);
-      gz[a] = blend_side(c.gz[a], c.gz[a + 2], c.gz[a + 4], c.gz[a + 6], v, w);
+      auto q = [&](int kind, int b) { return sc[d::slice_gradient_coef_index(kind, a, b)]; };
+      lgx[a] = detail::lerp(q(d::kZgx, 0), q(d::kZgx, 1), v);
+      const T mygx = q(d::kZgx, 1) - q(d::kZgx, 0);
+      const T zc0 = q(d::kZgy, 0) * fy0 + q(d::kZe, 0), zc1 = q(d::kZgy, 1) * fy1 + q(d::kZe, 1);
+      lc[a] = detail::lerp(zc0, zc1, v);
+      const T myc = zc1 - zc0;
+      const T lgy = detail::lerp(q(d::kZgy, 0), q(d::kZgy, 1), v);
+      const T lgz = detail::lerp(q(d::kZgz, 0), q(d::kZgz, 1), v);
+      za[a] = detail::lerp(q(d::kWgx, 0), q(d::kWgx, 1), v);
+      const T wc0 = q(d::kWgy, 0) * fy0 + q(d::kWe, 0), wc1 = q(d::kWgy, 1) * fy1 + q(d::kWe, 1);
+      zb[a] = detail::lerp(wc0, wc1, v) + lgz;
+      ya[a] = dv * mygx;
+      yb[a] = dv * myc + lgy;
     }
-    T ya[2], yb[2], za[2], zb[2];
-    for (int a = 0; a < 2; ++a) {
-      ya[a] = dv * gx[a].my;
-      yb[a] = dv * cc[a].my + gy[a].l;
-      za[a] = dw * gx[a].mz;
-      zb[a] = dw * cc[a].mz + gz[a].l;
-    }
-    out[d::kEA] = gx[1].l - gx[0].l;
-    out[d::kEB] = cc[1].l - cc[0].l;
-    out[d::kX0] = gx[0].l;
-    out[d::kV0B] = cc[0].l;
+    out[d::kEA] = lgx[1] - lgx[0];
+    out[d::kEB] = lc[1] - lc[0];
+    out[d::kX0] = lgx[0];
+    out[d::kV0B] = lc[0];
     out[d::kY0A] = ya[0];
     out[d::kY0B] = yb[0];
     out[d::kDYA] = ya[1] - ya[0];
@@ -426,7 +463,11 @@ class perlin : public point_noise<perlin<D>, D> {
                                  (n >> 2) ? ax[2].f1 : ax[2].f, c, n, k[n]);
             }
             if constexpr (D == 3)
-              if (affine) row_gradient_coefs<T>(c, k, ax, coef);
+              if (affine) {
+                T slice[detail::kSliceGradientCoefs];
+                slice_gradient_coefs<T>(c, ax[2], slice);
+                row_gradient_coefs<T>(slice, ax[1], coef);
+              }
           }
           ax[0] = cols[i];
           if constexpr (D == 3 && WithGradient) {

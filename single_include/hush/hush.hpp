@@ -6255,8 +6255,34 @@ HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
 //   kY0A, kY0B    d/dy at a = 0, slope and intercept; kDYA, kDYB: a = 1 minus a = 0
 //   kZ0A ... kDZB the same for d/dz.
 enum row_gradient_coef : int {
-  kEA, kEB, kX0, kV0B, kY0A, kY0B, kDYA, kDYB, kZ0A, kZ0B, kDZA, kDZB, kRowGradientCoefs
+  kEA,
+  kEB,
+  kX0,
+  kV0B,
+  kY0A,
+  kY0B,
+  kDYA,
+  kDYB,
+  kZ0A,
+  kZ0B,
+  kDZA,
+  kDZB,
+  kRowGradientCoefs
 };
+// They are formed from per-(slice, cell) data, blended in z once for all the
+// rows of a z slice and y cell (the corner gradients and the slice's z
+// fraction are fixed there), then in y per row. For corner (a, b, c), split
+// its dot product's x-free part as gy (f_y - b) + e with e = gz (f_z - c) -
+// a gx; per side a and y offset b, blended in z with the slice's fade w and
+// slope w':
+//   kZgx, kZgy, kZgz, kZe   lerp(q_ab0, q_ab1, w) of q = gx, gy, gz, e
+//   kWgx, kWgy, kWe         w' (q_ab1 - q_ab0) of q = gx, gy, e
+// at index slice_gradient_coef_index(q, a, b).
+enum slice_gradient_coef : int { kZgx, kZgy, kZgz, kZe, kWgx, kWgy, kWe, kSliceGradientKinds };
+constexpr int kSliceGradientCoefs = 4 * kSliceGradientKinds;
+HUSH_INLINE constexpr int slice_gradient_coef_index(int q, int a, int b) {
+  return 4 * q + 2 * a + b;
+}
 // Rows take the per-cell path (shared corner data) when cells hold at least
 // two columns on average; scalar and SIMD grids decide alike, so both use the
 // same gradient algorithm on every grid.
@@ -6470,46 +6496,57 @@ class perlin : public point_noise<perlin<D>, D> {
     }
   }
 
-  // One side (x offset a) of a 3D cell in a row: per-corner q at offsets
-  // (b, c) = 00, 10, 01, 11, blended with the row's fade weights v, w:
-  //   l  = the bilinear blend,  my = d l / dv (slope in v, blended in w),
-  //   mz = d l / dw.
+  // The slice_gradient_coef data of one cell (corner gradients c) in the
+  // slice of z axis az. Mirrored op for op by simd/perlin-inl.h.
   template <class T>
-  struct side_blend {
-    T l, my, mz;
-  };
-  template <class T>
-  static side_blend<T> blend_side(T q00, T q10, T q01, T q11, T v, T w) {
-    const T i0 = detail::lerp(q00, q10, v), i1 = detail::lerp(q01, q11, v);
-    return {detail::lerp(i0, i1, w), detail::lerp(q10 - q00, q11 - q01, w), i1 - i0};
-  }
-  // The row_gradient_coef coefficients of one cell from its corners' gradients
-  // and x-free dot-product parts k (d_n = gx_n (f_x - a) + k_n = gx_n f_x + c_n,
-  // c_n = k_n - a gx_n). Mirrored op for op by simd/perlin-inl.h.
-  template <class T>
-  static void row_gradient_coefs(const corners<T>& c, const T* k, const axis<T>* ax, T* out) {
+  static void slice_gradient_coefs(const corners<T>& c, const axis<T>& az, T* out) {
     namespace d = detail;
-    const T v = ax[1].s, w = ax[2].s, dv = ax[1].ds, dw = ax[2].ds;
-    side_blend<T> gx[2], cc[2], gy[2], gz[2];
+    const T w = az.s, dw = az.ds;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const int n0 = a + 2 * b, n1 = n0 + 4;
+        // gz (f_z - c) is exact (components are 0 or +-1): one rounding.
+        auto e = [&](int n, T fz) { return c.gz[n] * fz - (a ? c.gx[n] : T(0)); };
+        const T e0 = e(n0, az.f), e1 = e(n1, az.f1);
+        auto at = [&](int q) -> T& { return out[d::slice_gradient_coef_index(q, a, b)]; };
+        at(d::kZgx) = detail::lerp(c.gx[n0], c.gx[n1], w);
+        at(d::kZgy) = detail::lerp(c.gy[n0], c.gy[n1], w);
+        at(d::kZgz) = detail::lerp(c.gz[n0], c.gz[n1], w);
+        at(d::kZe) = detail::lerp(e0, e1, w);
+        at(d::kWgx) = dw * (c.gx[n1] - c.gx[n0]);
+        at(d::kWgy) = dw * (c.gy[n1] - c.gy[n0]);
+        at(d::kWe) = dw * (e1 - e0);
+      }
+  }
+  // The row_gradient_coef coefficients of one cell from its slice data sc and
+  // the row's y axis ay (fade v, slope v'). Per side a, with Z_b(q) the slice
+  // data: L(q) = lerp(Z_0, Z_1, v) is q's bilinear blend, Z_1 - Z_0 its v
+  // slope, and the dot products' x-free parts c_b = Z_b(gy) (f_y - b) + Z_b(e).
+  // Mirrored op for op by simd/perlin-inl.h.
+  template <class T>
+  static void row_gradient_coefs(const T* sc, const axis<T>& ay, T* out) {
+    namespace d = detail;
+    const T v = ay.s, dv = ay.ds, fy0 = ay.f, fy1 = ay.f1;
+    T lgx[2], lc[2], ya[2], yb[2], za[2], zb[2];
     for (int a = 0; a < 2; ++a) {
-      T cn[4];
-      for (int m = 0; m < 4; ++m) cn[m] = a ? k[a + 2 * m] - c.gx[a + 2 * m] : k[a + 2 * m];
-      gx[a] = blend_side(c.gx[a], c.gx[a + 2], c.gx[a + 4], c.gx[a + 6], v, w);
-      cc[a] = blend_side(cn[0], cn[1], cn[2], cn[3], v, w);
-      gy[a] = blend_side(c.gy[a], c.gy[a + 2], c.gy[a + 4], c.gy[a + 6], v, w);
-      gz[a] = blend_side(c.gz[a], c.gz[a + 2], c.gz[a + 4], c.gz[a + 6], v, w);
+      auto q = [&](int kind, int b) { return sc[d::slice_gradient_coef_index(kind, a, b)]; };
+      lgx[a] = detail::lerp(q(d::kZgx, 0), q(d::kZgx, 1), v);
+      const T mygx = q(d::kZgx, 1) - q(d::kZgx, 0);
+      const T zc0 = q(d::kZgy, 0) * fy0 + q(d::kZe, 0), zc1 = q(d::kZgy, 1) * fy1 + q(d::kZe, 1);
+      lc[a] = detail::lerp(zc0, zc1, v);
+      const T myc = zc1 - zc0;
+      const T lgy = detail::lerp(q(d::kZgy, 0), q(d::kZgy, 1), v);
+      const T lgz = detail::lerp(q(d::kZgz, 0), q(d::kZgz, 1), v);
+      za[a] = detail::lerp(q(d::kWgx, 0), q(d::kWgx, 1), v);
+      const T wc0 = q(d::kWgy, 0) * fy0 + q(d::kWe, 0), wc1 = q(d::kWgy, 1) * fy1 + q(d::kWe, 1);
+      zb[a] = detail::lerp(wc0, wc1, v) + lgz;
+      ya[a] = dv * mygx;
+      yb[a] = dv * myc + lgy;
     }
-    T ya[2], yb[2], za[2], zb[2];
-    for (int a = 0; a < 2; ++a) {
-      ya[a] = dv * gx[a].my;
-      yb[a] = dv * cc[a].my + gy[a].l;
-      za[a] = dw * gx[a].mz;
-      zb[a] = dw * cc[a].mz + gz[a].l;
-    }
-    out[d::kEA] = gx[1].l - gx[0].l;
-    out[d::kEB] = cc[1].l - cc[0].l;
-    out[d::kX0] = gx[0].l;
-    out[d::kV0B] = cc[0].l;
+    out[d::kEA] = lgx[1] - lgx[0];
+    out[d::kEB] = lc[1] - lc[0];
+    out[d::kX0] = lgx[0];
+    out[d::kV0B] = lc[0];
     out[d::kY0A] = ya[0];
     out[d::kY0B] = yb[0];
     out[d::kDYA] = ya[1] - ya[0];
@@ -6581,7 +6618,11 @@ class perlin : public point_noise<perlin<D>, D> {
                                  (n >> 2) ? ax[2].f1 : ax[2].f, c, n, k[n]);
             }
             if constexpr (D == 3)
-              if (affine) row_gradient_coefs<T>(c, k, ax, coef);
+              if (affine) {
+                T slice[detail::kSliceGradientCoefs];
+                slice_gradient_coefs<T>(c, ax[2], slice);
+                row_gradient_coefs<T>(slice, ax[1], coef);
+              }
           }
           ax[0] = cols[i];
           if constexpr (D == 3 && WithGradient) {
@@ -11713,7 +11754,8 @@ HWY_AFTER_NAMESPACE();
 //  - grid rows hash once per lattice point, not once per sample and corner;
 //  - 3D grid rows with gradients (and fractal grids' bands) use the
 //    affine-in-x form per (row, cell) that perlin.hpp's grid_values uses
-//    too (row_gradient_coefs / row_gradient, op for op).
+//    too, its corner data blended in z once per (slice, y cell)
+//    (slice_gradient_coefs / row_gradient_coefs / row_gradient, op for op).
 // So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
 //    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
@@ -11767,7 +11809,10 @@ using simd_batch::kMaxLanes;
 
 // a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
 // compiled), one fused rounding otherwise.
-HWY_INLINE VF mul_add(VF a, VF b, VF c) {
+// Any float vector width (3D grid rows form their cells' coefficients in
+// vectors narrower than VF where a row has few cells).
+template <class V>
+HWY_INLINE V mul_add(V a, V b, V c) {
 #if HUSH_CONFIG_STRICT_FP
   return hn::Add(hn::Mul(a, b), c);
 #else
@@ -11775,7 +11820,10 @@ HWY_INLINE VF mul_add(VF a, VF b, VF c) {
 #endif
 }
 // lerp(a, b, t) = a + t * (b - a), as detail::lerp.
-HWY_INLINE VF lerp(VF a, VF b, VF t) { return mul_add(t, hn::Sub(b, a), a); }
+template <class V>
+HWY_INLINE V lerp(V a, V b, V t) {
+  return mul_add(t, hn::Sub(b, a), a);
+}
 // scale * v + 0 (perlin.hpp's 3D output: zeros become +0). Adding 0 to the
 // exact product rounds nothing, so the fused form equals the two-step one
 // and may be used under strict FP too.
@@ -12043,57 +12091,110 @@ HWY_INLINE void finish(const corners& k, const axis& x, const axis& y, const axi
   }
 }
 
-// ---- 3D grid rows with gradients: perlin.hpp's row_gradient_coefs and
-// row_gradient (the affine-in-x form, docs/design.md), op for op, in lanes
-// over cells (coefficients) and over columns (samples).
-struct side_blend {
-  VF l, my, mz;
-};
-HWY_INLINE side_blend blend_side(VF q00, VF q10, VF q01, VF q11, VF v, VF w) {
-  const VF i0 = lerp(q00, q10, v), i1 = lerp(q01, q11, v);
-  return {lerp(i0, i1, w), lerp(hn::Sub(q10, q00), hn::Sub(q11, q01), w), hn::Sub(i1, i0)};
-}
-// gx, gy, gz, k: per corner n, one vector of cells; ax: the row's y, z axes.
-HWY_INLINE void row_gradient_coefs(const VF* gx, const VF* gy, const VF* gz, const VF* k,
-                                   const axis& y, const axis& z, VF* out) {
+// ---- 3D grid rows with gradients: perlin.hpp's slice_gradient_coefs,
+// row_gradient_coefs and row_gradient (the affine-in-x form, docs/design.md),
+// op for op, in lanes over cells (coefficients, in vectors of descriptor DC)
+// and over columns (samples). Tables hold entry m of cell rank r at
+// [m * stride + r].
+
+// The slice data (detail::slice_gradient_coef) of cells [r, r + Lanes(dc))
+// from their corner gradients (gx, gy, gz per corner n at [n * stride + r])
+// and the slice's z axis (fraction f, f - 1, fade w and slope w').
+template <class DC>
+HWY_INLINE void slice_coefs(DC dc, std::size_t stride, std::size_t r, const float* gx,
+                            const float* gy, const float* gz, float fz, float fz1, float w_s,
+                            float w_ds, float* out) {
   namespace d = detail;
-  side_blend bx[2], bc[2], by[2], bz[2];
+  using V = hn::Vec<DC>;
+  const V w = hn::Set(dc, w_s), dw = hn::Set(dc, w_ds);
+  const V fzc[2] = {hn::Set(dc, fz), hn::Set(dc, fz1)};
+  auto load = [&](const float* t, int n)
+                  HWY_ATTR { return hn::LoadU(dc, t + static_cast<std::size_t>(n) * stride + r); };
   HWY_UNROLL(2)
   for (int a = 0; a < 2; ++a) {
-    VF cn[4];
-    for (int m = 0; m < 4; ++m) cn[m] = a ? hn::Sub(k[a + 2 * m], gx[a + 2 * m]) : k[a + 2 * m];
-    bx[a] = blend_side(gx[a], gx[a + 2], gx[a + 4], gx[a + 6], y.s, z.s);
-    bc[a] = blend_side(cn[0], cn[1], cn[2], cn[3], y.s, z.s);
-    by[a] = blend_side(gy[a], gy[a + 2], gy[a + 4], gy[a + 6], y.s, z.s);
-    bz[a] = blend_side(gz[a], gz[a + 2], gz[a + 4], gz[a + 6], y.s, z.s);
+    HWY_UNROLL(2)
+    for (int b = 0; b < 2; ++b) {
+      const int n[2] = {a + 2 * b, a + 2 * b + 4};
+      V qx[2], qy[2], qz[2], e[2];
+      for (int c = 0; c < 2; ++c) {
+        qx[c] = load(gx, n[c]);
+        qy[c] = load(gy, n[c]);
+        qz[c] = load(gz, n[c]);
+        // gz (f_z - c) is exact (components are 0 or +-1): one rounding.
+        e[c] = hn::Sub(hn::Mul(qz[c], fzc[c]), a ? qx[c] : hn::Zero(dc));
+      }
+      auto store = [&](int q, V x) HWY_ATTR {
+        hn::StoreU(
+            x, dc,
+            out + static_cast<std::size_t>(d::slice_gradient_coef_index(q, a, b)) * stride + r);
+      };
+      store(d::kZgx, lerp(qx[0], qx[1], w));
+      store(d::kZgy, lerp(qy[0], qy[1], w));
+      store(d::kZgz, lerp(qz[0], qz[1], w));
+      store(d::kZe, lerp(e[0], e[1], w));
+      store(d::kWgx, hn::Mul(dw, hn::Sub(qx[1], qx[0])));
+      store(d::kWgy, hn::Mul(dw, hn::Sub(qy[1], qy[0])));
+      store(d::kWe, hn::Mul(dw, hn::Sub(e[1], e[0])));
+    }
   }
-  VF ya[2], yb[2], za[2], zb[2];
+}
+
+// The row_gradient_coef coefficients of cells [r, r + Lanes(dc)) from their
+// slice data sc and the row's y axis (fraction f, f - 1, fade v, slope v').
+template <class DC>
+HWY_INLINE void row_coefs(DC dc, std::size_t stride, std::size_t r, const float* sc, float fy_f,
+                          float fy_f1, float v_s, float v_ds, float* out) {
+  namespace d = detail;
+  using V = hn::Vec<DC>;
+  const V v = hn::Set(dc, v_s), dv = hn::Set(dc, v_ds);
+  const V fy0 = hn::Set(dc, fy_f), fy1 = hn::Set(dc, fy_f1);
+  V lgx[2], lc[2], ya[2], yb[2], za[2], zb[2];
+  HWY_UNROLL(2)
   for (int a = 0; a < 2; ++a) {
-    ya[a] = hn::Mul(y.ds, bx[a].my);
-    yb[a] = mul_add(y.ds, bc[a].my, by[a].l);
-    za[a] = hn::Mul(z.ds, bx[a].mz);
-    zb[a] = mul_add(z.ds, bc[a].mz, bz[a].l);
+    auto q = [&](int kind, int b) HWY_ATTR {
+      return hn::LoadU(
+          dc, sc + static_cast<std::size_t>(d::slice_gradient_coef_index(kind, a, b)) * stride + r);
+    };
+    const V zgx0 = q(d::kZgx, 0), zgx1 = q(d::kZgx, 1);
+    const V zgy0 = q(d::kZgy, 0), zgy1 = q(d::kZgy, 1);
+    lgx[a] = lerp(zgx0, zgx1, v);
+    const V mygx = hn::Sub(zgx1, zgx0);
+    const V zc0 = mul_add(zgy0, fy0, q(d::kZe, 0)), zc1 = mul_add(zgy1, fy1, q(d::kZe, 1));
+    lc[a] = lerp(zc0, zc1, v);
+    const V myc = hn::Sub(zc1, zc0);
+    const V lgy = lerp(zgy0, zgy1, v);
+    const V lgz = lerp(q(d::kZgz, 0), q(d::kZgz, 1), v);
+    za[a] = lerp(q(d::kWgx, 0), q(d::kWgx, 1), v);
+    const V wc0 = mul_add(q(d::kWgy, 0), fy0, q(d::kWe, 0));
+    const V wc1 = mul_add(q(d::kWgy, 1), fy1, q(d::kWe, 1));
+    zb[a] = hn::Add(lerp(wc0, wc1, v), lgz);
+    ya[a] = hn::Mul(dv, mygx);
+    yb[a] = mul_add(dv, myc, lgy);
   }
-  out[d::kEA] = hn::Sub(bx[1].l, bx[0].l);
-  out[d::kEB] = hn::Sub(bc[1].l, bc[0].l);
-  out[d::kX0] = bx[0].l;
-  out[d::kV0B] = bc[0].l;
-  out[d::kY0A] = ya[0];
-  out[d::kY0B] = yb[0];
-  out[d::kDYA] = hn::Sub(ya[1], ya[0]);
-  out[d::kDYB] = hn::Sub(yb[1], yb[0]);
-  out[d::kZ0A] = za[0];
-  out[d::kZ0B] = zb[0];
-  out[d::kDZA] = hn::Sub(za[1], za[0]);
-  out[d::kDZB] = hn::Sub(zb[1], zb[0]);
+  auto store = [&](int m, V x)
+                   HWY_ATTR { hn::StoreU(x, dc, out + static_cast<std::size_t>(m) * stride + r); };
+  store(d::kEA, hn::Sub(lgx[1], lgx[0]));
+  store(d::kEB, hn::Sub(lc[1], lc[0]));
+  store(d::kX0, lgx[0]);
+  store(d::kV0B, lc[0]);
+  store(d::kY0A, ya[0]);
+  store(d::kY0B, yb[0]);
+  store(d::kDYA, hn::Sub(ya[1], ya[0]));
+  store(d::kDYB, hn::Sub(yb[1], yb[0]));
+  store(d::kZ0A, za[0]);
+  store(d::kZ0B, zb[0]);
+  store(d::kDZA, hn::Sub(za[1], za[0]));
+  store(d::kDZB, hn::Sub(zb[1], zb[0]));
 }
 HWY_INLINE void row_gradient(const VF* co, const axis& x, VF& value, VF* grad) {
   namespace d = detail;
   const VF f = x.f, u = x.s;
   const VF delta = mul_add(co[d::kEA], f, co[d::kEB]);
   const VF gx = mul_add(x.ds, delta, mul_add(u, co[d::kEA], co[d::kX0]));
-  const VF gy = mul_add(u, mul_add(co[d::kDYA], f, co[d::kDYB]), mul_add(co[d::kY0A], f, co[d::kY0B]));
-  const VF gz = mul_add(u, mul_add(co[d::kDZA], f, co[d::kDZB]), mul_add(co[d::kZ0A], f, co[d::kZ0B]));
+  const VF gy =
+      mul_add(u, mul_add(co[d::kDYA], f, co[d::kDYB]), mul_add(co[d::kY0A], f, co[d::kY0B]));
+  const VF gz =
+      mul_add(u, mul_add(co[d::kDZA], f, co[d::kDZB]), mul_add(co[d::kZ0A], f, co[d::kZ0B]));
   const VF scale = hn::Set(DF(), float(d::constants::kPerlin3Scale));
   value = scale_plus_zero(scale, mul_add(u, delta, mul_add(co[d::kX0], f, co[d::kV0B])));
   grad[0] = scale_plus_zero(scale, gx);
@@ -12291,9 +12392,9 @@ HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
 template <bool kGradient, int D, class Fn>
 HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
                                       const Fn& vector_fn) {
-  simd_batch::for_each_vector<D>(
-      n, pts, value, kGradient ? grad : nullptr,
-      [&](std::size_t, const float* p, float* v, float* g) HWY_ATTR { vector_fn(p, v, g); });
+  simd_batch::for_each_vector<D>(n, pts, value, kGradient ? grad : nullptr,
+                                 [&](std::size_t, const float* p, float* v, float* g)
+                                     HWY_ATTR { vector_fn(p, v, g); });
 }
 
 template <bool kGradient, int D>
@@ -12436,7 +12537,7 @@ struct grid_columns {
 // A row-constant axis (y or z): scalar split broadcast to all lanes.
 struct row_axis {
   std::uint32_t w0 = 0, w1 = 0;
-  float f = 0, f1 = 0;
+  float f = 0, f1 = 0, s = 0, ds = 0;
   axis a;
 };
 template <bool kGradient, int kAxis>
@@ -12448,10 +12549,12 @@ HWY_INLINE row_axis broadcast_axis(double p, std::uint32_t period) {
   r.w1 = kAxis == 1 ? lattice_word_y(c.i1) : lattice_word_z(c.i1);
   r.f = c.f;
   r.f1 = c.f - 1.0f;
+  r.s = detail::fade(c.f);
+  if constexpr (kGradient) r.ds = detail::fade_derivative(c.f);
   r.a.f = hn::Set(df, r.f);
   r.a.f1 = hn::Set(df, r.f1);
-  r.a.s = hn::Set(df, detail::fade(c.f));
-  if constexpr (kGradient) r.a.ds = hn::Set(df, detail::fade_derivative(c.f));
+  r.a.s = hn::Set(df, r.s);
+  if constexpr (kGradient) r.a.ds = hn::Set(df, r.ds);
   return r;
 }
 
@@ -12465,34 +12568,80 @@ struct grid_row {
 
 // Per-row, per-cell corner data for the shared-cell path: for corner n and
 // cell rank r, gx (and for gradients gy, gz) and K, at [n * stride + r].
-// kAffine (3D with gradients): also the cell's gradient coefficients
-// (detail::row_gradient_coef) at [m * stride + r]; samples then read gx and
-// K for the value and those for the gradient.
-template <bool kGradient, int D, bool kAffine = kGradient && D == 3>
+// kAffine (3D with gradients): instead of K, the cells' slice data
+// (detail::slice_gradient_coef, rebuilt when the slice or the y cell
+// changes) and the row's gradient coefficients (detail::row_gradient_coef)
+// at [m * stride + r]; samples then read only those.
+template <bool kGradient, int D, bool kAffine = kGradient&& D == 3>
 struct row_tables {
   static_assert(!kAffine || (kGradient && D == 3), "the affine row gradient is 3D");
   static constexpr int kCorners = 1 << D;
   std::size_t stride = 0;
-  std::vector<float> gx, k, gy, gz, coef;
+  std::vector<float> gx, k, gy, gz, slice, coef;
   // The y/z words the gradients were hashed for: consecutive rows in the same
   // y (and z) cell keep them and only recompute k (the benchmark's grids have
-  // 37 rows per cell).
+  // 37 rows per cell); kAffine: the z fraction the slice data is for.
   std::uint32_t hashed_kyz[4] = {};
   bool hashed = false;
+  float slice_fz = 0;
 
   explicit row_tables(const grid_columns& cols) {
     const std::size_t lanes = hn::Lanes(DF());
     stride = cols.cw0.size() + lanes;  // a vector's load at its base rank stays inside
     const std::size_t size = stride * kCorners;
     gx.assign(size, 0.0f);
-    k.assign(size, 0.0f);
+    if (!kAffine) k.assign(size, 0.0f);
     gy.assign(size, 0.0f);
     if (D == 3) gz.assign(size, 0.0f);
-    if (kAffine) coef.assign(stride * detail::kRowGradientCoefs, 0.0f);
+    if (kAffine) {
+      slice.assign(stride * detail::kSliceGradientCoefs, 0.0f);
+      coef.assign(stride * detail::kRowGradientCoefs, 0.0f);
+    }
+  }
+
+  // The corner gradients of cells [r, r + lanes) (x words wx) against the
+  // row's y/z words.
+  HWY_INLINE void hash_cells(const VU* wx, const std::uint32_t* words, std::size_t r) {
+    const DF df;
+    const DU du;
+    HWY_UNROLL(8)
+    for (int n = 0; n < kCorners; ++n) {
+      const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+      const std::size_t at = static_cast<std::size_t>(n) * stride + r;
+      const VU h = hash32_high(hn::Xor(wx[a], hn::Set(du, words[b + 2 * c])));
+      if constexpr (D == 2) {
+        constexpr int kN = detail::constants::kPerlin2GradCount;
+        const VU g = grad_index2(h);
+        hn::StoreU(lookup<kN>(kG2x, g), df, gx.data() + at);
+        hn::StoreU(lookup<kN>(kG2y, g), df, gy.data() + at);
+      } else {
+        constexpr int kN = detail::constants::kPerlin3GradCount;
+        const VU g = grad_index3(h);
+        hn::StoreU(lookup<kN>(kG3x, g), df, gx.data() + at);
+        hn::StoreU(lookup<kN>(kG3y, g), df, gy.data() + at);
+        hn::StoreU(lookup<kN>(kG3z, g), df, gz.data() + at);
+      }
+    }
+  }
+
+  // fn(dc, r) for every chunk of cells [r, r + Lanes(dc)): chunks of at most
+  // 8 lanes where the row's cells fit in one (a 64-sample row of the
+  // benchmark has 2 or 3 cells, and this machine's 512-bit operations cost
+  // two 256-bit ones), whole vectors otherwise.
+  template <class Fn>
+  static HWY_INLINE void for_each_cell_chunk(std::size_t cells, const Fn& fn) {
+    using DC = hn::CappedTag<float, 8>;
+    if (hn::MaxLanes(DC()) < hn::MaxLanes(DF()) && cells <= hn::Lanes(DC())) {
+      fn(DC(), std::size_t(0));
+      return;
+    }
+    for (std::size_t r = 0; r < cells; r += hn::Lanes(DF())) fn(DF(), r);
   }
 
   // Hashes the row's lattice points (cells' x words against the row's y/z
-  // words) unless the previous row had the same ones, then forms k.
+  // words) unless the previous row had the same ones, then forms k (or, for
+  // kAffine, the slice data where the slice changed and the row's
+  // coefficients).
   HWY_INLINE void build(const grid_columns& cols, const grid_row& row) {
     const DF df;
     const DU du;
@@ -12501,27 +12650,32 @@ struct row_tables {
     const bool same = hashed && std::equal(words, words + 4, hashed_kyz);
     std::copy(words, words + 4, hashed_kyz);
     hashed = true;
+    if constexpr (kAffine) {
+      if (!same)
+        for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
+          const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
+          hash_cells(wx, words, r);
+        }
+      // NaN fractions never compare equal: such slices are rebuilt every row.
+      const bool new_slice = !same || !(row.z.f == slice_fz);
+      slice_fz = row.z.f;
+      for_each_cell_chunk(cols.cells, [&](auto dc, std::size_t r) HWY_ATTR {
+        if (new_slice)
+          slice_coefs(dc, stride, r, gx.data(), gy.data(), gz.data(), row.z.f, row.z.f1, row.z.s,
+                      row.z.ds, slice.data());
+        row_coefs(dc, stride, r, slice.data(), row.y.f, row.y.f1, row.y.s, row.y.ds, coef.data());
+      });
+      return;
+    }
     for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
-      const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
+      if (!same) {
+        const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
+        hash_cells(wx, words, r);
+      }
       HWY_UNROLL(8)
       for (int n = 0; n < kCorners; ++n) {
-        const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+        const int b = (n >> 1) & 1, c = n >> 2;
         const std::size_t at = static_cast<std::size_t>(n) * stride + r;
-        if (!same) {
-          const VU h = hash32_high(hn::Xor(wx[a], hn::Set(du, words[b + 2 * c])));
-          if constexpr (D == 2) {
-            constexpr int kN = detail::constants::kPerlin2GradCount;
-            const VU g = grad_index2(h);
-            hn::StoreU(lookup<kN>(kG2x, g), df, gx.data() + at);
-            hn::StoreU(lookup<kN>(kG2y, g), df, gy.data() + at);
-          } else {
-            constexpr int kN = detail::constants::kPerlin3GradCount;
-            const VU g = grad_index3(h);
-            hn::StoreU(lookup<kN>(kG3x, g), df, gx.data() + at);
-            hn::StoreU(lookup<kN>(kG3y, g), df, gy.data() + at);
-            hn::StoreU(lookup<kN>(kG3z, g), df, gz.data() + at);
-          }
-        }
         const VF cy = hn::LoadU(df, gy.data() + at);
         const VF fy = hn::Set(df, b ? row.y.f1 : row.y.f);
         VF kk;
@@ -12531,19 +12685,6 @@ struct row_tables {
           kk = mul_add(cy, fy,
                        hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
         hn::StoreU(kk, df, k.data() + at);
-      }
-      if constexpr (kAffine) {
-        VF cgx[8], cgy[8], cgz[8], ck[8], co[detail::kRowGradientCoefs];
-        for (int n = 0; n < kCorners; ++n) {
-          const std::size_t at = static_cast<std::size_t>(n) * stride + r;
-          cgx[n] = hn::LoadU(df, gx.data() + at);
-          cgy[n] = hn::LoadU(df, gy.data() + at);
-          cgz[n] = hn::LoadU(df, gz.data() + at);
-          ck[n] = hn::LoadU(df, k.data() + at);
-        }
-        row_gradient_coefs(cgx, cgy, cgz, ck, row.y.a, row.z.a, co);
-        for (int m = 0; m < detail::kRowGradientCoefs; ++m)
-          hn::StoreU(co[m], df, coef.data() + static_cast<std::size_t>(m) * stride + r);
       }
     }
   }
@@ -12559,15 +12700,15 @@ struct row_tables {
     const std::size_t lanes = hn::Lanes(df);
     const std::size_t b = cols.base[i / lanes];
     if (cols.local[i + lanes - 1] == 0) {
-      fn(b, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR { return hn::Set(df, t[at]); });
+      fn(b,
+         [&](const std::vector<float>& t, std::size_t at) HWY_ATTR { return hn::Set(df, t[at]); });
     } else {
       const DU du;
       const DI di;
       const auto idx =
           hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
-      fn(b, [&](const std::vector<float>& t, std::size_t at) HWY_ATTR {
-        return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx);
-      });
+      fn(b, [&](const std::vector<float>& t, std::size_t at)
+                HWY_ATTR { return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx); });
     }
   }
   // out from the entries at cell rank b, read per corner by entry(table, index).
@@ -12600,7 +12741,7 @@ struct row_tables {
 
 // One grid row's evaluation, either path: vector_out(i, value, gradient)
 // receives each vector of columns [i, i + lanes).
-template <bool kGradient, int D, bool kAffine = kGradient && D == 3>
+template <bool kGradient, int D, bool kAffine = kGradient&& D == 3>
 struct row_evaluator {
   const grid_columns& cols;
   row_tables<kGradient, D, kAffine> tables;
@@ -12731,8 +12872,8 @@ template <int D>
 struct band_config {
   std::uint32_t key;
   std::uint32_t period[3];
-  float weight;  // T(w_i)
-  float chain;   // T(w_i f_i): the band gradient's factor
+  float weight;      // T(w_i)
+  float chain;       // T(w_i f_i): the band gradient's factor
   double frequency;  // f_i and o_i of the band position f_i x + o_i
   double offset[3];
   bool plain;  // no axis periodic: the vector split may take the band

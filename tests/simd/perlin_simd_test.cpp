@@ -218,6 +218,10 @@ TEST_CASE_TEMPLATE("simd perlin: grids agree with scalar evaluation, near and fa
   worst_difference w;
   for_each_target([&] {
     w.merge(check_grid(p, make_grid<D>(0.0, 1.0 / 37, 67, 33, 5)));
+    // Every row of every slice in one y and z cell: 3D gradient rows keep the
+    // corner gradients from slice to slice, and their z-blended slice data
+    // must still follow the slice's z fraction.
+    w.merge(check_grid(p, make_grid<D>(0.0, 1.0 / 37, 67, 3, 5)));
     w.merge(check_grid(p, make_grid<D>(-4.5, -0.25, 40, 9, 4)));         // negative steps
     w.merge(check_grid(p, make_grid<D>(1e9 + 0.5, 1.0 / 3, 35, 7, 3)));  // far from the origin
     w.merge(check_grid(p, make_grid<D>(-3e15, 0.125, 21, 5, 3)));        // beyond float's integers
