@@ -9424,20 +9424,25 @@ HWY_AFTER_NAMESPACE();
 //    gabor.hpp.
 // How they are fast:
 //  - points where the call crowds them (at least kShareMinPointsPerCell per cell of their
-//    range): sorted by cell, each cell's impulses drawn once for all the points that see it,
-//    lanes across impulses (shared_points below);
+//    range): sorted by cell, each cell's impulses drawn once for all the points that see it;
+//    per cell its 3^D cells' impulses copied once into one candidate list in the summation
+//    order, which each of its points tests in full vectors (lanes across impulses, no branch)
+//    and compresses the kept ones into a pair list (shared_points below);
 //  - other points, filtered samples and samples with normals: one lane per point (samples: each
 //    lane's filter, and for surface noise its tangent frame, computed in double as the scalar
-//    code does, and gathered per term); per cell and
-//    impulse the lanes draw in lockstep (the counter's hash is shared), and only impulses within a
-//    lane's support are kept, compressed into a list that the kernel then evaluates in full
-//    vectors; each point's terms are summed in stream order;
-//  - grids: samples in blocks that share their cell (up to 64 per row, 64
-//    rows; 3D 32^3), each impulse of the block's 3^D cells evaluated once per
-//    block: its factors along y (and z) once per row (slice), along x once per
-//    column, and per sample only their products (gabor_kernel.hpp's separable
-//    form). Grids with fewer than kMinRun samples per cell along x go through
-//    the points path instead.
+//    code does, and gathered per term); per cell and impulse the lanes draw in lockstep (the
+//    counter's hash is shared), and only impulses within a lane's support are kept, compressed
+//    into a list that the kernel then evaluates in full vectors; each point's terms are summed
+//    in stream order. The unfiltered kernel of kept impulses skips exp's and sin/cos's range
+//    handling (identities within the support: exp_neg_in_range, sincos_turns_in_range);
+//  - grids: samples in blocks that share their cell (up to 64 per row, 64 rows; 3D 64 x 32 x
+//    16), each impulse of the block's 3^D cells evaluated once per block: its factors along y
+//    (and z) once per row (slice), along x once per column, and per sample only their products
+//    (gabor_kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
+//    support) over the x-vectors that reach the impulse's disk in that row (the row skip);
+//    each cell's impulses drawn once into a small cache for the 3^D blocks that see it (the
+//    draw cache). Grids with fewer than kMinRun samples per cell along x go through the points
+//    path instead.
 
 #if defined(HUSH_SIMD_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef HUSH_SIMD_GABOR_INL_H_
@@ -9550,39 +9555,55 @@ HWY_INLINE VF neg_mul_add(VF a, VF b, VF c) {
 }
 
 // ---- detail/elementary.hpp in lanes.
-HWY_INLINE VF exp_neg(VF x) {
+
+// e^x for x in [kExpFloor, 0] (no NaN): exp_neg without its clamps, which are
+// identities there (the kernel of an impulse within the support: x = -A d^2,
+// d^2 < 1, A = ln(1/t) <= 21).
+HWY_INLINE VF exp_neg_in_range(VF x) {
   namespace c = detail::constants;
   const DF df;
   const DI di;
-  const VF zero = hn::Zero(df), lo = hn::Set(df, float(c::kExpFloor));
-  const VF xc = hn::Max(hn::IfThenElse(hn::Gt(x, zero), zero, x), lo);
-  const VF n = hn::Floor(mul_add(xc, hn::Set(df, float(c::kLog2E)), hn::Set(df, 0.5f)));
+  const VF n = hn::Floor(mul_add(x, hn::Set(df, float(c::kLog2E)), hn::Set(df, 0.5f)));
   const VF r = neg_mul_add(n, hn::Set(df, float(c::kLn2Lo)),
-                           neg_mul_add(n, hn::Set(df, float(c::kLn2Hi)), xc));
+                           neg_mul_add(n, hn::Set(df, float(c::kLn2Hi)), x));
   VF p = hn::Set(df, float(c::kExpPoly[c::kExpDegree]));
   for (int i = c::kExpDegree - 1; i >= 0; --i)
     p = mul_add(p, r, hn::Set(df, float(c::kExpPoly[i])));
   const VI bits = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, n), hn::Set(di, 127)));
-  const VF v = hn::Mul(p, hn::BitCast(df, bits));
+  return hn::Mul(p, hn::BitCast(df, bits));
+}
+HWY_INLINE VF exp_neg(VF x) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF zero = hn::Zero(df), lo = hn::Set(df, float(c::kExpFloor));
+  const VF v = exp_neg_in_range(hn::Max(hn::IfThenElse(hn::Gt(x, zero), zero, x), lo));
   // Below the floor: 0; NaN: the NaN itself (as the scalar code returns x).
   return hn::IfThenElse(hn::IsNaN(x), x, hn::IfThenElseZero(hn::Ge(x, lo), v));
 }
 
-HWY_INLINE void sincos_turns(VF t, VF& sin_out, VF& cos_out) {
+// sin/cos of 2 pi u for |u| < 1/2 + kTurnsReduceLimit: the quadrant q (an
+// integer), r = u - q / 4, and the polynomials s ~ sin(2 pi r), pc ~ cos(2 pi r).
+HWY_INLINE void sincos_quadrant(VF u, VF& q, VF& s, VF& pc) {
   namespace c = detail::constants;
   const DF df;
-  const VF u = hn::IfThenElse(hn::Lt(hn::Abs(t), hn::Set(df, float(c::kTurnsReduceLimit))), t,
-                              hn::Sub(t, hn::Floor(t)));
-  const VF q = hn::Floor(mul_add(u, hn::Set(df, 4.0f), hn::Set(df, 0.5f)));
+  q = hn::Floor(mul_add(u, hn::Set(df, 4.0f), hn::Set(df, 0.5f)));
   const VF r = neg_mul_add(q, hn::Set(df, 0.25f), u);
   const VF z = hn::Mul(r, r);
   VF ps = hn::Set(df, float(c::kSinPoly[c::kSinDegree]));
   for (int i = c::kSinDegree - 1; i >= 0; --i)
     ps = mul_add(ps, z, hn::Set(df, float(c::kSinPoly[i])));
-  VF pc = hn::Set(df, float(c::kCosPoly[c::kCosDegree]));
+  pc = hn::Set(df, float(c::kCosPoly[c::kCosDegree]));
   for (int i = c::kCosDegree - 1; i >= 0; --i)
     pc = mul_add(pc, z, hn::Set(df, float(c::kCosPoly[i])));
-  const VF s = hn::Mul(r, ps);
+  s = hn::Mul(r, ps);
+}
+HWY_INLINE void sincos_turns(VF t, VF& sin_out, VF& cos_out) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF u = hn::IfThenElse(hn::Lt(hn::Abs(t), hn::Set(df, float(c::kTurnsReduceLimit))), t,
+                              hn::Sub(t, hn::Floor(t)));
+  VF q, s, pc;
+  sincos_quadrant(u, q, s, pc);
   const VF k = neg_mul_add(hn::Set(df, 4.0f), hn::Floor(hn::Mul(q, hn::Set(df, 0.25f))), q);
   const VF one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f), three = hn::Set(df, 3.0f);
   const MF k1 = hn::Eq(k, one), k2 = hn::Eq(k, two), k3 = hn::Eq(k, three);
@@ -9591,6 +9612,24 @@ HWY_INLINE void sincos_turns(VF t, VF& sin_out, VF& cos_out) {
   const VF cos_sign = hn::IfThenElse(hn::Or(k1, k2), hn::Set(df, -1.0f), one);
   sin_out = hn::Mul(hn::IfThenElse(odd, pc, s), sin_sign);
   cos_out = hn::Mul(hn::IfThenElse(odd, s, pc), cos_sign);
+}
+// sincos_turns for finite |t| < kTurnsReduceLimit: no reduction (the identity
+// there), and the quadrant's signs as sign bits from its integer (multiplying
+// by +-1 and flipping the sign bit agree on every non-NaN value).
+HWY_INLINE void sincos_turns_in_range(VF t, VF& sin_out, VF& cos_out) {
+  const DF df;
+  const DI di;
+  VF q, s, pc;
+  sincos_quadrant(t, q, s, pc);
+  // k = q mod 4 (|q| < 2^24: exact as an integer): sin < 0 for k = 2, 3; cos
+  // < 0 for k = 1, 2; the two swap for odd k.
+  const VI k = hn::ConvertTo(di, q);
+  const VI two = hn::Set(di, 2);
+  const VF sin_sign = hn::BitCast(df, hn::ShiftLeft<30>(hn::And(k, two)));
+  const VF cos_sign = hn::BitCast(df, hn::ShiftLeft<30>(hn::And(hn::Add(k, hn::Set(di, 1)), two)));
+  const MF odd = hn::RebindMask(df, hn::TestBit(k, hn::Set(di, 1)));
+  sin_out = hn::Xor(hn::IfThenElse(odd, pc, s), sin_sign);
+  cos_out = hn::Xor(hn::IfThenElse(odd, s, pc), cos_sign);
 }
 
 // ---- core/hash.hpp in lanes.
@@ -9700,6 +9739,19 @@ HWY_INLINE axis axis_factors(VF d, VF neg_a, VF phi) {
   sincos_turns(hn::Mul(phi, d), f.s, f.c);
   return f;
 }
+// axis_factors of an impulse within the support (|d| < 1), whose |phi d| is
+// below kTurnsReduceLimit when `small_turns`: the same values.
+HWY_INLINE axis axis_factors_in_support(VF d, VF neg_a, VF phi, bool small_turns) {
+  axis f;
+  f.d = d;
+  f.d2 = hn::Mul(d, d);
+  f.e = exp_neg_in_range(hn::Mul(neg_a, f.d2));
+  if (small_turns)
+    sincos_turns_in_range(hn::Mul(phi, d), f.s, f.c);
+  else
+    sincos_turns(hn::Mul(phi, d), f.s, f.c);
+  return f;
+}
 struct row {
   VF we, c, s, d2;
 };
@@ -9761,6 +9813,8 @@ struct consts {
   VF theta0, spread, phi0, dphi, half, fixed[3], axis[3], frame_t[3], frame_b[3], frame_axis[3],
       one_minus_cap;
   gabor_kind kind;
+  // Every impulse's |phi_a d_a| (|d_a| < 1) is below kTurnsReduceLimit.
+  bool small_turns;
   explicit consts(const gabor<D>& g) {
     const DF df;
     neg_a = hn::Set(df, float(-g.kernel().envelope_exponent()));
@@ -9776,6 +9830,8 @@ struct consts {
     dphi = hn::Set(df, float(m.dphi()));
     half = hn::Set(df, 0.5f);
     one_minus_cap = hn::Set(df, float(1.0 - m.cos_cap()));
+    // |phi| <= phi0 + dphi / 2 (hybrid; phi0 otherwise), with room for rounding.
+    small_turns = m.phi0() + m.dphi() < 0.5 * detail::constants::kTurnsReduceLimit;
     for (int i = 0; i < 3; ++i) {
       fixed[i] = hn::Set(df, i < D ? float(m.fixed_frequency()[i]) : 0.0f);
       axis[i] = hn::Set(df, i < D ? float(m.axis()[i]) : 0.0f);
@@ -9963,13 +10019,14 @@ void collect(std::uint32_t key, std::uint32_t stream, const std::vector<std::int
 
 // The unfiltered kernel (gabor<D>::eval's pair) of one vector of impulses with
 // weight wt, frequency phi and offsets d: the value into val, and with G the
-// gradient terms u d_a - v phi_a into g[a].
+// gradient terms u d_a - v phi_a into g[a]. Lanes outside the support (s >= 1:
+// the padding of a pair list) give values that nobody reads.
 template <int D, bool G>
 HWY_INLINE void unfiltered_terms(const consts<D>& c, VF wt, const VF* phi, const VF* d,
                                  float* HWY_RESTRICT val, float* const* g) {
   const DF df;
   axis ax[3];
-  for (int a = 0; a < D; ++a) ax[a] = axis_factors(d[a], c.neg_a, phi[a]);
+  for (int a = 0; a < D; ++a) ax[a] = axis_factors_in_support(d[a], c.neg_a, phi[a], c.small_turns);
   row r;
   if constexpr (D == 2)
     r = row_of(wt, ax[1]);
@@ -9979,7 +10036,8 @@ HWY_INLINE void unfiltered_terms(const consts<D>& c, VF wt, const VF* phi, const
     VF v, u, vv;
     pair_gradient(ax[0], r, c.k, c.a, v, u, vv);
     hn::StoreU(v, df, val);
-    for (int a = 0; a < D; ++a) hn::StoreU(hn::Sub(hn::Mul(u, ax[a].d), hn::Mul(vv, phi[a])), df, g[a]);
+    for (int a = 0; a < D; ++a)
+      hn::StoreU(hn::Sub(hn::Mul(u, ax[a].d), hn::Mul(vv, phi[a])), df, g[a]);
   } else {
     hn::StoreU(pair(ax[0], r, c.k), df, val);
   }
@@ -10035,8 +10093,8 @@ HWY_INLINE void filtered_pair(const consts<D>& c, const VF* q, const VF* m, VF a
     dqd = mul_add(d[r], z, dqd);
   }
   for (int r = 0; r < E; ++r) theta = mul_add(mu[r], d[r], theta);
-  const VF p =
-      hn::Mul(hn::Mul(hn::Mul(w, amplitude), exp_neg(hn::Neg(att))), exp_neg(hn::Mul(c.neg_a, dqd)));
+  const VF p = hn::Mul(hn::Mul(hn::Mul(w, amplitude), exp_neg(hn::Neg(att))),
+                       exp_neg(hn::Mul(c.neg_a, dqd)));
   VF sn, cs;
   sincos_turns(theta, sn, cs);
   if constexpr (G) {
@@ -10293,8 +10351,8 @@ struct process {
 };
 template <int D>
 process solid_process(const gabor<D>& g) {
-  return {detail::constants::kGaborSolidStream, &g.table(), g.words_per_impulse(),
-          float(g.scale()), float(g.scale() * g.inverse_cell())};
+  return {detail::constants::kGaborSolidStream, &g.table(), g.words_per_impulse(), float(g.scale()),
+          float(g.scale() * g.inverse_cell())};
 }
 
 // Noise of process `pr` at `count` positions: split(first, used) fills `sp`
@@ -10401,7 +10459,8 @@ void split_batch(lanes_split& sp, const float* pts, std::size_t first, std::size
     }
   }
   split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
-    for (int a = 0; a < D; ++a) x[a] = static_cast<double>(pts[i * D + static_cast<std::size_t>(a)]);
+    for (int a = 0; a < D; ++a)
+      x[a] = static_cast<double>(pts[i * D + static_cast<std::size_t>(a)]);
   });
 }
 
@@ -10661,13 +10720,34 @@ bool clearly_sparse(const float* pts, std::size_t n, double inv) {
 // Everything shared_points allocates, kept per thread between calls: a
 // fresh allocation per call cost a fifth of the time in page faults (262144
 // points, ~50 bytes each; the memory stays with the thread).
+// The candidate impulses of one cell's points (shared_points): per impulse
+// its cell's offset o along each axis, position in the cell, frequency and
+// weight, in the points' summation order.
+struct cell_candidates {
+  std::vector<float> o[3], pos[3], phi[3], w;
+  void reserve(std::size_t cap) {
+    for (auto* v : {&o[0], &o[1], &o[2], &pos[0], &pos[1], &pos[2], &phi[0], &phi[1], &phi[2], &w})
+      if (v->size() < cap) v->resize(cap);
+  }
+};
+
+// A point of the box in cell order: its index in the call, its cell's box
+// index and its fractions (one record: the counting sort writes each point
+// once, to a random place).
+template <int D>
+struct sorted_point {
+  std::uint32_t point, at;
+  float frac[D];
+};
+
 template <int D>
 struct shared_workspace {
   point_cells<D> pc;
   box_impulses im;
   shared_pairs t;
-  std::vector<std::uint32_t> at, order, sorted_at, first, fill, pend;
-  std::vector<float> sorted_frac[D];
+  cell_candidates cc;
+  std::vector<std::uint32_t> at, first, fill, pend;
+  std::vector<sorted_point<D>> sorted;
   std::vector<std::uint8_t> need;
   std::vector<std::size_t> rest, pend_end;
 };
@@ -10689,12 +10769,12 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   ws.pc.build(pts, n, g.inverse_cell());
   const point_cells<D>& pc = ws.pc;
   // Counting sort of the box's points by cell; the rest: NaN, or the lockstep path.
-  std::vector<std::uint32_t>&at = ws.at, &order = ws.order, &sorted_at = ws.sorted_at,
-                           &first = ws.first;
-  std::vector<float>* sorted_frac = ws.sorted_frac;
+  std::vector<std::uint32_t>& at = ws.at;
+  std::vector<std::uint32_t>& first = ws.first;
+  std::vector<sorted_point<D>>& sorted = ws.sorted;
   std::vector<std::size_t>& rest = ws.rest;
   at.resize(n);
-  order.clear();
+  sorted.clear();
   rest.clear();
   constexpr auto kOut = std::numeric_limits<std::uint32_t>::max();
   std::size_t inside = 0;
@@ -10726,20 +10806,18 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     for (std::size_t b = 0; b < pc.box; ++b) first[b + 1] += first[b];
     // In sorted order: the point, its cell and fractions (read in order below:
     // gathering them per point would miss the cache on every point).
-    order.resize(inside);
-    sorted_at.resize(inside);
-    for (int a = 0; a < D; ++a) sorted_frac[a].resize(inside);
+    sorted.resize(inside);
     std::vector<std::uint32_t>& fill = ws.fill;
     fill.assign(first.begin(), first.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
       if (at[i] != kOut) {
-        const std::uint32_t to = fill[at[i]]++;
-        order[to] = static_cast<std::uint32_t>(i);
-        sorted_at[to] = at[i];
-        for (int a = 0; a < D; ++a) sorted_frac[a][to] = pc.frac[a][i];
+        sorted_point<D>& sp = sorted[fill[at[i]]++];
+        sp.point = static_cast<std::uint32_t>(i);
+        sp.at = at[i];
+        for (int a = 0; a < D; ++a) sp.frac[a] = pc.frac[a][i];
       }
   }
-  if (!order.empty()) {
+  if (!sorted.empty()) {
     // The cells each occupied cell's points see, in raster order (x fastest).
     constexpr int kCells = D == 2 ? 9 : 27, kRows = kCells / 3;
     std::int64_t offset[kCells];
@@ -10749,9 +10827,9 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     }
     std::vector<std::uint8_t>& need = ws.need;
     need.assign(pc.box, 0);
-    for (std::size_t s = 0; s < order.size(); ++s) {
-      const std::uint32_t idx = sorted_at[s];
-      if (s > 0 && sorted_at[s - 1] == idx) continue;
+    for (std::size_t s = 0; s < sorted.size(); ++s) {
+      const std::uint32_t idx = sorted[s].at;
+      if (s > 0 && sorted[s - 1].at == idx) continue;
       for (int m = 0; m < kCells; ++m) need[static_cast<std::size_t>(idx + offset[m])] = 1;
     }
     const consts<D> c(g);
@@ -10761,7 +10839,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     shared_pairs& t = ws.t;
     t.n = 0;
     t.reserve(kSharePairs + static_cast<std::size_t>(kCells) * g.table().max_count() + lanes);
-    std::vector<std::uint32_t>& pend = ws.pend;  // points whose pairs are in t
+    std::vector<std::uint32_t>& pend = ws.pend;        // points whose pairs are in t
     std::vector<std::size_t>& pend_end = ws.pend_end;  // the end of each one's pairs
     pend.clear();
     pend_end.clear();
@@ -10802,42 +10880,72 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     float* const td[3] = {t.d[0].data(), t.d[1].data(), t.d[2].data()};
     float* const tw = t.w.data();
     float* const tphi[3] = {t.phi[0].data(), t.phi[1].data(), t.phi[2].data()};
-    for (std::size_t sp = 0; sp < order.size(); ++sp) {
-      const std::int64_t idx = sorted_at[sp];
-      VF f[3];
-      for (int a = 0; a < D; ++a) f[a] = hn::Set(df, sorted_frac[a][sp]);
+    // The candidates of the points of one cell, in their order (rows of 3
+    // cells in raster order, impulses in stream order), copied once per cell
+    // into one list: per impulse its cell offsets o (float) and its marks.
+    cell_candidates& cc = ws.cc;
+    cc.reserve(static_cast<std::size_t>(kCells) * g.table().max_count() + 2 * lanes);
+    float* const co[3] = {cc.o[0].data(), cc.o[1].data(), cc.o[2].data()};
+    float* const cpos[3] = {cc.pos[0].data(), cc.pos[1].data(), cc.pos[2].data()};
+    float* const cphi[3] = {cc.phi[0].data(), cc.phi[1].data(), cc.phi[2].data()};
+    float* const cw = cc.w.data();
+    for (std::size_t run = 0; run < sorted.size();) {
+      const std::int64_t idx = sorted[run].at;
+      std::size_t run_end = run + 1;
+      while (run_end < sorted.size() && sorted[run_end].at == sorted[run].at) ++run_end;
       const VF bxp = hn::Set(df, static_cast<float>(idx % pc.side[0]));
+      std::size_t nc = 0;
       for (int r = 0; r < kRows; ++r) {
-        // Row r: cells x - 1 ... x + 1 at offsets o (y, z) of the point's cell.
+        // Row r: cells x - 1 ... x + 1 at offsets o (y, z) of the points' cell.
         const std::int64_t mid = idx + offset[3 * r + 1];
         const std::size_t b = start[static_cast<std::size_t>(mid - 1)];
         const std::size_t e = start[static_cast<std::size_t>(mid + 2)];
-        std::size_t to = t.n;
-        VF off[3];
+        VF orow[3];
         for (int a = 1, m = r; a < D; ++a, m /= 3)
-          off[a] = hn::Sub(f[a], hn::Set(df, static_cast<float>(m % 3 - 1)));
+          orow[a] = hn::Set(df, static_cast<float>(m % 3 - 1));
+        // Whole vectors (the buffers have a vector of slack): the next row's
+        // copy overwrites what this one writes beyond its end.
         for (std::size_t k = b; k < e; k += lanes) {
-          // (frac - o) - position, as the scalar code; o along x from the cells' box x.
+          const std::size_t at = nc + (k - b);
+          hn::StoreU(hn::Sub(hn::LoadU(df, bx + k), bxp), df, co[0] + at);
+          for (int a = 1; a < D; ++a) hn::StoreU(orow[a], df, co[a] + at);
+          for (int a = 0; a < D; ++a) {
+            hn::StoreU(hn::LoadU(df, pos[a] + k), df, cpos[a] + at);
+            hn::StoreU(hn::LoadU(df, iphi[a] + k), df, cphi[a] + at);
+          }
+          hn::StoreU(hn::LoadU(df, iw + k), df, cw + at);
+        }
+        nc += e - b;
+      }
+      // Pad to whole vectors with candidates far outside every support.
+      hn::StoreU(hn::Set(df, 8.0f), df, cpos[0] + nc);
+      for (std::size_t sp = run; sp < run_end; ++sp) {
+        VF f[3];
+        for (int a = 0; a < D; ++a) f[a] = hn::Set(df, sorted[sp].frac[a]);
+        std::size_t to = t.n;
+        for (std::size_t k = 0; k < nc; k += lanes) {
+          // (frac - o) - position, as the scalar code. No branch on an empty
+          // mask (storing nothing is cheaper than a mispredicted branch).
           VF d[3], d2[3];
-          d[0] = hn::Sub(hn::Sub(f[0], hn::Sub(hn::LoadU(df, bx + k), bxp)),
-                         hn::LoadU(df, pos[0] + k));
-          for (int a = 1; a < D; ++a) d[a] = hn::Sub(off[a], hn::LoadU(df, pos[a] + k));
-          for (int a = 0; a < D; ++a) d2[a] = hn::Mul(d[a], d[a]);
+          for (int a = 0; a < D; ++a) {
+            d[a] = hn::Sub(hn::Sub(f[a], hn::LoadU(df, co[a] + k)), hn::LoadU(df, cpos[a] + k));
+            d2[a] = hn::Mul(d[a], d[a]);
+          }
           const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
-          const MF in = hn::And(hn::Lt(s, one), hn::FirstN(df, e - k));
-          if (hn::AllFalse(df, in)) continue;
+          const MF in = hn::Lt(s, one);
           for (int a = 0; a < D; ++a) {
             hn::StoreU(compress(d[a], in), df, td[a] + to);
-            hn::StoreU(compress(hn::LoadU(df, iphi[a] + k), in), df, tphi[a] + to);
+            hn::StoreU(compress(hn::LoadU(df, cphi[a] + k), in), df, tphi[a] + to);
           }
-          hn::StoreU(compress(hn::LoadU(df, iw + k), in), df, tw + to);
+          hn::StoreU(compress(hn::LoadU(df, cw + k), in), df, tw + to);
           to += hn::CountTrue(df, in);
         }
         t.n = to;
+        pend.push_back(sorted[sp].point);
+        pend_end.push_back(t.n);
+        if (t.n >= kSharePairs) flush();
       }
-      pend.push_back(order[sp]);
-      pend_end.push_back(t.n);
-      if (t.n >= kSharePairs) flush();
+      run = run_end;
     }
     flush();
   }
@@ -11390,12 +11498,12 @@ void gabor_grid(const gabor<D>& g, const grid<D>& gr, std::size_t first, std::si
   else
     gabor_simd::grid<D, false>(g, gr, first, count, value, nullptr);
 }
-inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, std::size_t first,
-                        std::size_t count, float* value, float* grad) {
+inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, std::size_t first, std::size_t count,
+                        float* value, float* grad) {
   gabor_grid<2>(g, gr, first, count, value, grad);
 }
-inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
-                        std::size_t count, float* value, float* grad) {
+inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first, std::size_t count,
+                        float* value, float* grad) {
   gabor_grid<3>(g, gr, first, count, value, grad);
 }
 

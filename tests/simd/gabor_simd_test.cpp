@@ -163,6 +163,21 @@ TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail 
   }
 }
 
+TEST_CASE("gabor simd: crowded points with many cycles and impulses per cell agree with scalar") {
+  // The kernel of kept impulses takes sin/cos without range reduction below
+  // kTurnsReduceLimit / 2 cycles per cell (consts::small_turns; beyond, the
+  // general sincos_turns, whose noises take ~1.6 ms per 3 cycles per cell to
+  // construct: too slow here): F0 = 10, a = 0.3 put ~33 cycles in a cell, so
+  // every quadrant and sign of the reduction-free form is reached; N' = 128
+  // and ~24 points per cell: candidate lists of ~370 impulses per cell.
+  hush::gabor<2>::params p = gabor_params<2>(hush::gabor_kind::hybrid);
+  p.frequency = 10;
+  p.bandwidth = 0.3;
+  p.impulses = 128;
+  const hush::gabor<2> g(p);
+  check_points(g, test_points<2>(600, 5, 8.0f));
+}
+
 TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, far, negative)") {
   const hush::gabor<2> g2(gabor_params<2>(hush::gabor_kind::isotropic));
   const hush::gabor<2> h2(gabor_params<2>(hush::gabor_kind::hybrid));
