@@ -128,8 +128,8 @@ gray_image red_channel(const std::vector<std::uint8_t>& rgb) {
 }
 
 // The four grey styles in a 2 x 2 grid: hatching | stippling; crosshatch | graphite. On the
-// rotate scene only: the walkthrough's ground triangles are huge on screen and carry up to
-// kNprGaborMaxPoints points each, which made this entry take 15 s (two-core machine, load 10).
+// rotate scene only, to keep the gallery short (the walkthrough's huge ground triangles no
+// longer cost points off screen: stage 1 culls their point trees).
 // The layers are splatted by exec::simd (within the float budget of the scalar image). The
 // anisotropic layers follow the principal curvature (npr_field::curvature): on the torus the
 // strokes run along the tube everywhere, where the projected normal is undefined on the
