@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
 
@@ -225,6 +226,141 @@ TEST_CASE("gabor_kernel: envelope transform and energy equal brute-force quadrat
       return g * g;
     });
     CHECK(k.energy(F) == doctest::Approx(brute).epsilon(2e-5));
+  }
+}
+
+namespace {
+
+// The quadratures gabor_energy and gabor_truncation_error used before their
+// cost was bounded (panels 2 + 4 ceil(phi), the constant and oscillatory parts
+// together): the reference the bounded versions are checked against.
+template <int D>
+double old_ball(double a, double phi, double (*weight)(double)) {
+  const double k = 1.0 / (1.0 - kS0);
+  const int panels = 2 + 4 * static_cast<int>(std::ceil(phi));
+  return 0.5 * hush::detail::ball_integral<D>(
+                   [&](double rho) {
+                     const double s = rho * rho;
+                     return std::exp(-2.0 * a * s) * weight(hush::detail::gabor_taper(s, k)) *
+                            (1.0 + hush::detail::angular_average<D>(4.0 * kPi * phi * rho));
+                   },
+                   panels);
+}
+template <int D>
+double old_energy(double a, double phi) {
+  return old_ball<D>(a, phi, [](double tau) { return tau * tau; });
+}
+template <int D>
+double old_truncation_error(double a, double phi) {
+  const double full =
+      std::pow(kPi / (2.0 * a), 0.5 * D) * 0.5 * (1.0 + std::exp(-2.0 * kPi * kPi * phi * phi / a));
+  const double inside_gabor = old_ball<D>(a, phi, [](double) { return 1.0; });
+  const double inside_diff = old_ball<D>(a, phi, [](double tau) { return (1 - tau) * (1 - tau); });
+  return std::sqrt((inside_diff + (full - inside_gabor)) / full);
+}
+
+template <int D>
+void check_against_old_quadrature(double a, double phi, double energy_tolerance,
+                                  double truncation_tolerance) {
+  CAPTURE(D);
+  CAPTURE(a);
+  CAPTURE(phi);
+  CHECK(hush::detail::gabor_energy<D>(a, phi) ==
+        doctest::Approx(old_energy<D>(a, phi)).epsilon(energy_tolerance).scale(0));
+  // The truncation error is sqrt of a difference of O(1) integrals: about
+  // 1e-16 / err^2 relative, times the old sum's growth with its panels (up to
+  // 5e-13 measured at t = 0.05, err = 0.06, phi = 500). Compared for t >= 0.05;
+  // at t = 1e-9 (err ~ 1e-8) both are rounding noise (docs/gabor.md).
+  if (a < 4.0) {
+    CHECK(hush::detail::gabor_truncation_error<D>(a, phi) ==
+          doctest::Approx(old_truncation_error<D>(a, phi)).epsilon(truncation_tolerance).scale(0));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("gabor_kernel: energy and truncation error equal the old quadrature, at bounded cost") {
+  // Below kGaborAsymptoticCycles (q = 2 phi cycles per cell) the new code
+  // integrates the constant part with fixed panels and the oscillatory part
+  // with 2 + 4 ceil(phi): both ~1e-13 relative, so they agree to 1e-12.
+  for (const double t : {0.5, 0.05, 1e-9})
+    for (const double phi : {0.5, 3.0, 30.0, 300.0}) {
+      check_against_old_quadrature<2>(-std::log(t), phi, 1e-12, 1e-12);
+      check_against_old_quadrature<3>(-std::log(t), phi, 1e-12, 1e-12);
+    }
+  // Just above it (phi = 513, the leading asymptotic term's worst place: its
+  // remainder falls as q^-4.5 in 2D, q^-5 in 3D) and further up, the
+  // asymptotic term replaces the quadrature within the 2e-13 that
+  // constants.hpp states (measured 1.3e-13 at t = 0.5, phi = 513, 2D); t = 0.5
+  // has the largest taper jump, e^{-2A s0} = t^1.6.
+  for (const double t : {0.5, 0.05})
+    for (const double phi : {513.0, 700.0}) {
+      check_against_old_quadrature<2>(-std::log(t), phi, 2e-13, 1e-12);
+      check_against_old_quadrature<3>(-std::log(t), phi, 2e-13, 1e-12);
+    }
+}
+
+TEST_CASE("gabor_kernel: the envelope transform's asymptotic term continues its quadrature") {
+  // H(xi) by the quadrature (kept below kGaborAsymptoticCycles) against the
+  // leading term above it, relative to H(0) as the spectra use it.
+  for (const double t : {0.5, 0.05}) {
+    const double a = -std::log(t);
+    const double k = 1.0 / (1.0 - kS0);
+    const double dw2[2] = {-6.0 * k * k, -6.0 * k * k};
+    auto taper = [k](double s) { return hush::detail::gabor_taper(s, k); };
+    auto quadrature = [&](auto dim, double xi) {
+      constexpr int D = decltype(dim)::value;
+      const int panels = 2 + 2 * static_cast<int>(std::ceil(xi));
+      return hush::detail::ball_integral<D>(
+          [&](double rho) {
+            return std::exp(-a * rho * rho) * taper(rho * rho) *
+                   hush::detail::angular_average<D>(2.0 * kPi * xi * rho);
+          },
+          panels);
+    };
+    for (const double xi : {1025.0, 1400.0}) {
+      const double h2 = hush::detail::gabor_envelope_transform<2>(a, 0.0);
+      const double h3 = hush::detail::gabor_envelope_transform<3>(a, 0.0);
+      CHECK(hush::detail::radial_transform_tail<2>(a, xi, dw2) ==
+            doctest::Approx(quadrature(std::integral_constant<int, 2>{}, xi)).scale(h2).epsilon(2e-13));
+      CHECK(hush::detail::radial_transform_tail<3>(a, xi, dw2) ==
+            doctest::Approx(quadrature(std::integral_constant<int, 3>{}, xi)).scale(h3).epsilon(2e-13));
+    }
+  }
+}
+
+TEST_CASE("gabor: construction at the highest frequency finishes (bounded kernel statistics)") {
+  // F0 = 1e6, a = 0.3 is ~3e6 cycles per cell: the quadratures took ~30 min
+  // here before the asymptotic term; now a handful of exp and cos. Every kind.
+  for (const auto kind : {hush::gabor_kind::isotropic, hush::gabor_kind::anisotropic,
+                          hush::gabor_kind::hybrid}) {
+    hush::gabor<2>::params p2;
+    p2.kind = kind;
+    p2.frequency = 1e6;
+    p2.bandwidth = 0.3;
+    p2.frequency_spread = kind == hush::gabor_kind::hybrid ? 1e6 : 0.0;
+    p2.orientation_spread = kind == hush::gabor_kind::hybrid ? 1.0 : 0.0;
+    const hush::gabor<2> g2(p2);
+    hush::gabor<3>::params p3;
+    p3.kind = kind;
+    p3.frequency = 1e6;
+    p3.bandwidth = 0.3;
+    p3.frequency_spread = p2.frequency_spread;
+    p3.orientation_spread = p2.orientation_spread;
+    const hush::gabor<3> g3(p3);
+    // At ~6e6 cycles per cell the oscillatory part is < 1e-25 of the energy:
+    // the mean energy is the constant part, half the F = 0 energy's.
+    const double a = g2.kernel().envelope_exponent();
+    const double k = 1.0 / (1.0 - kS0);
+    auto w = [k](double s) {
+      const double tau = hush::detail::gabor_taper(s, k);
+      return tau * tau;
+    };
+    CHECK(g2.mean_energy() == doctest::Approx(0.5 * hush::detail::radial_mean<2>(2 * a, w)).epsilon(1e-12).scale(0));
+    CHECK(std::isfinite(g2.bound()));
+    CHECK(std::isfinite(g3.bound()));
+    CHECK(std::isfinite(g2.kernel().truncation_error(1e6)));
+    CHECK(std::isfinite(g3.kernel().envelope_transform(1e6)));
   }
 }
 

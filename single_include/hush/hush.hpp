@@ -666,6 +666,12 @@ constexpr double kGaborDefaultTruncation = 0.05;  // the paper's value
 constexpr double kGaborMinTruncation = 1e-9, kGaborMaxTruncation = 0.5;
 constexpr double kGaborMinBandwidth = 1e-6, kGaborMaxBandwidth = 1e6;
 constexpr double kGaborMaxFrequency = 1e6;
+// Above this many cycles per cell the oscillatory part of the kernel's radial
+// transforms (energy, truncation error, envelope transform) is its leading
+// asymptotic term instead of a quadrature whose panels grow with the
+// frequency: the term left out is below 2e-13 of the result there
+// (gabor_kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
+constexpr double kGaborAsymptoticCycles = 1024.0;
 // N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
@@ -4895,59 +4901,116 @@ double angular_average(double z) {
   }
 }
 
-// H(xi): the Fourier transform of the tapered envelope e^{-A |d|^2} tau(|d|^2)
-// at |xi| cycles per cell (radial, real).
+// The leading term, as q -> inf, of the radial transform below for f(rho) =
+// e^{-c rho^2} w(rho^2) with w, w' continuous and jumps dw2[j] in w'' (in s =
+// rho^2) at s = s0 (the taper's start) and s = 1 (the support's edge), f = 0
+// beyond. (rho f)'' jumps by J_j = rho_j e^{-c s_j} 4 s_j dw2[j] at rho_j =
+// sqrt(s_j); integrating by parts three times (3D, where the transform is
+// (2/q) int_0^1 rho f sin(omega rho)) or with J0's Hankel asymptotics (2D),
+// omega = 2 pi q (docs/gabor.md "Cost of the kernel's statistics"):
+//   3D: (2/q) sum_j -J_j cos(omega rho_j) / omega^3            = O(q^-4),
+//   2D: 2 pi sum_j J_j sqrt(2 / (pi omega rho_j)) sin(omega rho_j - pi/4) / omega^3
+//                                                               = O(q^-3.5).
+// The rest is O(1/q) smaller: below 2e-13 of the energy, truncation error and
+// H(0) from q = kGaborAsymptoticCycles on (tests/gabor_kernel_test.cpp).
 template <int D>
-double gabor_envelope_transform(double a, double xi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 2 * static_cast<int>(std::ceil(std::fabs(xi)));
+double radial_transform_tail(double c, double q, const double (&dw2)[2]) {
+  const double s_j[2] = {constants::kGaborTaperStart, 1.0};
+  const double omega = constants::kTwoPi * q, omega3 = omega * omega * omega;
+  double sum = 0;
+  for (int j = 0; j < 2; ++j) {
+    if (dw2[j] == 0.0) continue;
+    const double rho = std::sqrt(s_j[j]);
+    const double jump = rho * std::exp(-c * s_j[j]) * 4.0 * s_j[j] * dw2[j];
+    if constexpr (D == 3) {
+      sum -= (2.0 / q) * jump * std::cos(omega * rho) / omega3;
+    } else {
+      sum += constants::kTwoPi * jump * std::sqrt(2.0 / (constants::kPi * omega * rho)) *
+             std::sin(omega * rho - 0.25 * constants::kPi) / omega3;
+    }
+  }
+  return sum;
+}
+
+// int over the unit ball of e^{-c |d|^2} w(|d|^2) cos(2 pi q <u, d>) dd, u a
+// unit vector, w as above with the jumps dw2. Quadrature (exact to ~1e-13
+// relative, panels 2 + 2 ceil(q)) up to q = kGaborAsymptoticCycles, the
+// leading asymptotic term beyond: the cost is bounded (at most ~2000 panels)
+// for every q. NaN q gives NaN.
+template <int D, class W>
+double radial_transform(double c, W w, double q, const double (&dw2)[2]) {
+  q = std::fabs(q);
+  if (!(q <= constants::kGaborAsymptoticCycles)) return radial_transform_tail<D>(c, q, dw2);
+  const int panels = 2 + 2 * static_cast<int>(std::ceil(q));
   return ball_integral<D>(
       [&](double rho) {
         const double s = rho * rho;
-        return std::exp(-a * s) * gabor_taper(s, k) *
-               angular_average<D>(constants::kTwoPi * xi * rho);
+        return std::exp(-c * s) * w(s) * angular_average<D>(constants::kTwoPi * q * rho);
       },
       panels);
 }
 
+// k = 1 / (1 - s0) of the taper; its second derivative in s is k^2 (6 - 12 v):
+// -6 k^2 where it starts (v = 1), 6 k^2 at the support's edge (v = 0).
+inline double gabor_taper_k() { return 1.0 / (1.0 - constants::kGaborTaperStart); }
+
+// int over the unit ball of e^{-c |d|^2} w(|d|^2) dd (no oscillation: fixed panels).
+template <int D, class W>
+double radial_mean(double c, W w) {
+  return ball_integral<D>(
+      [&](double rho) {
+        const double s = rho * rho;
+        return std::exp(-c * s) * w(s);
+      },
+      8);
+}
+
+// H(xi): the Fourier transform of the tapered envelope e^{-A |d|^2} tau(|d|^2)
+// at |xi| cycles per cell (radial, real). w = tau: w'' jumps by -6 k^2 at s0
+// (from 0) and by -6 k^2 at 1 (from 6 k^2 to 0).
+template <int D>
+double gabor_envelope_transform(double a, double xi) {
+  const double k = gabor_taper_k();
+  const double dw2[2] = {-6.0 * k * k, -6.0 * k * k};
+  return radial_transform<D>(a, [k](double s) { return gabor_taper(s, k); }, xi, dw2);
+}
+
 // int g^2 over the cell-unit ball for |Phi| = phi:
-// (1/2) int e^{-2A s} tau^2 (1 + cos(4 pi <Phi, d>)).
+// (1/2) int e^{-2A s} tau^2 (1 + cos(4 pi <Phi, d>)), the cosine's part a
+// transform at q = 2 phi. w = tau^2: w'' = 2 tau'^2 + 2 tau tau'' jumps by
+// -12 k^2 at s0 and is continuous (0) at 1.
 template <int D>
 double gabor_energy(double a, double phi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
-  return 0.5 * ball_integral<D>(
-                   [&](double rho) {
-                     const double s = rho * rho, tau = gabor_taper(s, k);
-                     return std::exp(-2.0 * a * s) * tau * tau *
-                            (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
-                   },
-                   panels);
+  const double k = gabor_taper_k();
+  const double dw2[2] = {-12.0 * k * k, 0.0};
+  auto w = [k](double s) {
+    const double tau = gabor_taper(s, k);
+    return tau * tau;
+  };
+  return 0.5 * (radial_mean<D>(2.0 * a, w) + radial_transform<D>(2.0 * a, w, 2.0 * phi, dw2));
 }
 
 // int (g - g_Gabor)^2 and int g_Gabor^2 over all space (cell units), for the
 // truncation error. Outside the ball g = 0, and the Gabor kernel's energy there
 // is what the ball integral leaves of the closed form
-// int e^{-2A|d|^2} cos^2 = (pi / 2A)^(D/2) (1 + e^{-2 pi^2 phi^2 / A}) / 2.
+// int e^{-2A|d|^2} cos^2 = (pi / 2A)^(D/2) (1 + e^{-2 pi^2 phi^2 / A}) / 2 =: full.
+// Inside, (1 - tau)^2 - 1 = tau^2 - 2 tau =: w, so int (g - g_Gabor)^2 =
+// full + (1/2) int_ball e^{-2A s} w (1 + cos(4 pi <Phi, d>)). w'' = 2 tau'' (tau - 1)
+// + 2 tau'^2 is continuous (0) at s0 and jumps by 12 k^2 at 1 (from -12 k^2).
 template <int D>
 double gabor_truncation_error(double a, double phi) {
-  const double k = 1.0 / (1.0 - constants::kGaborTaperStart);
-  const int panels = 2 + 4 * static_cast<int>(std::ceil(std::fabs(phi)));
-  auto ball = [&](auto weight) {
-    return 0.5 * ball_integral<D>(
-                     [&](double rho) {
-                       const double s = rho * rho;
-                       return std::exp(-2.0 * a * s) * weight(gabor_taper(s, k)) *
-                              (1.0 + angular_average<D>(2.0 * constants::kTwoPi * phi * rho));
-                     },
-                     panels);
+  const double k = gabor_taper_k();
+  const double dw2[2] = {0.0, 12.0 * k * k};
+  auto w = [k](double s) {
+    const double tau = gabor_taper(s, k);
+    return tau * tau - 2.0 * tau;
   };
   const double pi2 = constants::kPi * constants::kPi;
   const double full = std::pow(constants::kPi / (2.0 * a), 0.5 * D) * 0.5 *
                       (1.0 + std::exp(-2.0 * pi2 * phi * phi / a));
-  const double inside_gabor = ball([](double) { return 1.0; });
-  const double inside_diff = ball([](double tau) { return (1.0 - tau) * (1.0 - tau); });
-  return std::sqrt((inside_diff + (full - inside_gabor)) / full);
+  const double inside =
+      0.5 * (radial_mean<D>(2.0 * a, w) + radial_transform<D>(2.0 * a, w, 2.0 * phi, dw2));
+  return std::sqrt((full + inside) / full);
 }
 
 }  // namespace detail

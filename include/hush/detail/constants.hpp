@@ -287,6 +287,12 @@ constexpr double kGaborDefaultTruncation = 0.05;  // the paper's value
 constexpr double kGaborMinTruncation = 1e-9, kGaborMaxTruncation = 0.5;
 constexpr double kGaborMinBandwidth = 1e-6, kGaborMaxBandwidth = 1e6;
 constexpr double kGaborMaxFrequency = 1e6;
+// Above this many cycles per cell the oscillatory part of the kernel's radial
+// transforms (energy, truncation error, envelope transform) is its leading
+// asymptotic term instead of a quadrature whose panels grow with the
+// frequency: the term left out is below 2e-13 of the result there
+// (gabor_kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
+constexpr double kGaborAsymptoticCycles = 1024.0;
 // N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
