@@ -17,6 +17,9 @@
 #ifndef HUSH_NPR_HUGE_SEEDS
 #define HUSH_NPR_HUGE_SEEDS 32  // seeds of the huge-triangle test (64 to measure)
 #endif
+#ifndef HUSH_NPR_PLANE_SEEDS
+#define HUSH_NPR_PLANE_SEEDS 4  // seeds of the foreshortened-plane test (64 to measure)
+#endif
 
 namespace {
 
@@ -658,7 +661,7 @@ TEST_CASE("local density: variance 1 near and far on a foreshortened plane; per 
   // (n h(n) at log4 n = 1 - 1 / ln 4), i.e. se times sqrt(1.0615) at most. The depth
   // test is off (the grid scene's depth buffer is flat); the object test stays on.
   const std::size_t w = 160, h = 160, m = 8, band = 40;
-  const int seeds = 4;
+  const int seeds = HUSH_NPR_PLANE_SEEDS;
   hush::npr_gabor::params p = small_kernel();
   p.depth_test = false;
   const grid_scene sc = ground_plane(w, h, 16.0, 4.0f);

@@ -17333,9 +17333,13 @@ class npr_gabor {
     // lambda_T for the triangle whose object-space centroid is `centre` (its
     // pixel clamped here into the w x h image); N'_T clamped to [0, 256]
     // (0: no points).
+    // Whether density() is the params' lambda everywhere (a and N' constant).
+    bool constant_density() const {
+      return src_.bandwidth.is_constant() && src_.impulses.is_constant();
+    }
     double density(param_source::site centre, double w, double h) const {
       const params& p = n_.p_;
-      if (src_.bandwidth.is_constant() && src_.impulses.is_constant()) return n_.lambda_;
+      if (constant_density()) return n_.lambda_;
       centre.x = std::clamp(centre.x, 0.5, w - 0.5);
       centre.y = std::clamp(centre.y, 0.5, h - 0.5);
       const double a = bandwidth(centre);
@@ -17531,7 +17535,7 @@ class npr_gabor {
                 [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
     };
     if (p_.local_density) {
-      local_walk(root, n, lambda, pp, object, id, vertices, w, h, project, meets_image, emit, nodes);
+      local_walk(root, n, lambda, pp, object, id, vertices, w, h, cull, project, emit, nodes);
       sort_records();
       return;
     }
@@ -17592,44 +17596,54 @@ class npr_gabor {
   // exact; with per-pixel or per-vertex densities, a child whose density exceeds its
   // parent's by 4x could be missed) and it meets the image. The root's n and density are
   // the triangle's (n, lambda).
-  template <class Project, class Meets, class Emit>
+  template <class Project, class Emit>
   void local_walk(const detail::npr_tree_node& root, double n_root, double lambda_root,
-                  const point_parameters& pp, std::uint32_t object, std::uint32_t id, const std::uint32_t* vertices, double w,
-                  double h, const Project& project, const Meets& meets_image, const Emit& emit,
-                  std::uint64_t* nodes) const {
+                  const point_parameters& pp, std::uint32_t object, std::uint32_t id,
+                  const std::uint32_t* vertices, double w, double h, double cull,
+                  const Project& project, const Emit& emit, std::uint64_t* nodes) const {
     constexpr std::uint64_t finest_stride = std::uint64_t{1} << (2 * kMaxDepth);
-    detail::npr_tree_node stack[kStackNodes];
+    struct entry {
+      detail::npr_tree_node node;
+      double n, lambda;
+    };
+    entry stack[kStackNodes];
     std::size_t top = 0;
-    stack[top++] = root;
+    stack[top++] = {root, n_root, lambda_root};
     if (nodes) ++*nodes;
     while (top > 0) {
-      const detail::npr_tree_node nd = stack[--top];
+      const entry e = stack[--top];
+      const detail::npr_tree_node& nd = e.node;
       const bool coarsest = nd.stride == 1, finest = nd.stride == finest_stride;
-      double n = n_root, lam = lambda_root;
-      if (!coarsest) {
-        const dvec2 c0 = project(nd.corner[0]), c1 = project(nd.corner[1]),
-                    c2 = project(nd.corner[2]);
-        const double area =
-            0.5 * std::fabs((c1.x - c0.x) * (c2.y - c0.y) - (c1.y - c0.y) * (c2.x - c0.x));
-        double b[3];
-        for (unsigned k = 0; k < 3; ++k)
-          b[k] = (nd.corner[0][k] + nd.corner[1][k] + nd.corner[2][k]) / 3.0;
-        const dvec2 at = project(b);
-        lam = pp.density({object, at.x, at.y, vertices, {b[0], b[1], b[2]}}, w, h);
-        n = lam * area;
-      }
-      double f = npr_gabor_lod::local_square(n, coarsest, finest);
-      if (coarsest && p_.thinning && n < 1.0)
-        f = npr_gabor_lod::thinned_square(n, thinning_uniform(object, id));
-      const bool descend = n > 0.25 && !finest;
-      if (!(f > 0.0) && !descend) continue;  // most nodes popped: no words needed
+      double f = npr_gabor_lod::local_square(e.n, coarsest, finest);
+      if (coarsest && p_.thinning && e.n < 1.0)
+        f = npr_gabor_lod::thinned_square(e.n, thinning_uniform(object, id));
+      const bool descend = e.n > 0.25 && !finest;
+      if (!(f > 0.0) && !descend) continue;  // the root of n <= 0 only
       const detail::npr_tree_words words = detail::npr_tree_words_of(nd.seed);
-      if (f > 0.0) emit(node_point(nd, words), nd.index, std::sqrt(f), lam);
+      if (f > 0.0) emit(node_point(nd, words), nd.index, std::sqrt(f), e.lambda);
       if (!descend) continue;
       for (unsigned slot = 0; slot < 4; ++slot) {
         const detail::npr_tree_node child = detail::npr_tree_child(nd, words, slot);
         if (nodes) ++*nodes;
-        if (meets_image(child)) stack[top++] = child;
+        // Its corners projected once: its area, and its bounding box grown by `cull` against
+        // the image (as the paper's walk's meets_image).
+        const dvec2 c0 = project(child.corner[0]), c1 = project(child.corner[1]),
+                    c2 = project(child.corner[2]);
+        double lam = lambda_root;
+        if (!pp.constant_density()) {
+          double b[3];
+          for (unsigned k = 0; k < 3; ++k)
+            b[k] = (child.corner[0][k] + child.corner[1][k] + child.corner[2][k]) / 3.0;
+          const dvec2 at = project(b);
+          lam = pp.density({object, at.x, at.y, vertices, {b[0], b[1], b[2]}}, w, h);
+        }
+        const double n =
+            lam * 0.5 * std::fabs((c1.x - c0.x) * (c2.y - c0.y) - (c1.y - c0.y) * (c2.x - c0.x));
+        if (!(n > 0.25)) continue;  // h = 0 here and below (one density): nothing to emit
+        if (std::max({c0.x, c1.x, c2.x}) + cull < 0.0 || std::min({c0.x, c1.x, c2.x}) - cull > w ||
+            std::max({c0.y, c1.y, c2.y}) + cull < 0.0 || std::min({c0.y, c1.y, c2.y}) - cull > h)
+          continue;
+        stack[top++] = {child, n, lam};
       }
     }
   }
