@@ -16593,6 +16593,12 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    1/2), with a weight fading in continuously (npr_gabor_lod::thinned_square:
 //    E[w^2] = N as above, so the same variance and spectrum, without pops), so
 //    dense meshes cost min(1, 2N) points per triangle instead of 1.
+//  - with params::local_density, a count per tree node instead (local_walk,
+//    npr_gabor_lod::local_square): node P's own point has squared weight
+//    n_P h(n_P), n_P = lambda_P A_P (its projected sub-triangle's area), h a hat
+//    in log4 summing to 1 over the levels, so the screen density of squared
+//    weights is lambda across foreshortened triangles too (docs/npr-gabor.md
+//    "Local density"); continuous in n_P, so no pops.
 //  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
 //    record per point (position, F, radius, weight, plane, ids, pixel range);
 //    splat adds the records' kernels, on exec::scalar or exec::simd (screen
