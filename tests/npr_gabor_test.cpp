@@ -686,6 +686,32 @@ TEST_CASE("local density: variance 1 near and far on a foreshortened plane; per 
   CHECK(far_paper - near_paper > 20 * se);  // what the option fixes
 }
 
+TEST_CASE("local density: triangles with N <= 1/4 keep the per-triangle records, thinned too") {
+  // Below n = 1/4 the root is the only node with a weight (f_root = n = sqrt(N)^2) and
+  // nothing is walked, so the option changes no record; with thinning the root's squared
+  // weight is the per-triangle thinned one (E_u[g] = n) in both.
+  hush::npr_gabor::params p = small_kernel();
+  for (bool thin : {false, true}) {
+    p.thinning = thin;
+    p.local_density = false;
+    const hush::npr_gabor paper{p};
+    p.local_density = true;
+    const hush::npr_gabor local{p};
+    const double cell = std::sqrt(2.0 * 0.2 / paper.density());  // N = 0.2 per triangle
+    const grid_scene sc = npr_test::covering(64, 64, cell, paper.kernel().radius() + 1);
+    std::vector<hush::npr_gabor_splat> a, b;
+    paper.make_splats(sc.frame(), sc.triangles(), a);
+    local.make_splats(sc.frame(), sc.triangles(), b);
+    REQUIRE(a.size() == b.size());
+    REQUIRE(!a.empty());
+    bool same = true;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      same = same && a[i].x == b[i].x && a[i].y == b[i].y && a[i].weight == b[i].weight &&
+             a[i].index == b[i].index && a[i].triangle == b[i].triangle;
+    CHECK(same);
+  }
+}
+
 TEST_CASE("local density: huge triangles keep bounded work, nodes near the image only") {
   // As "huge triangles" above (legs 1e5 and 1e6 px around a 64^2 frame, n_root 1.7e9 and
   // 1.7e11): the local walk visits the nodes that meet the image (grown by r) with
