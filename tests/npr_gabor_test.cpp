@@ -677,6 +677,20 @@ TEST_CASE("local density: variance 1 near and far on a foreshortened plane; per 
     far_local += window_variance(local, w, m, m, m + band) / seeds;
     near_local += window_variance(local, w, m, h - m - band, h - m) / seeds;
   }
+  // A per-pixel N' field equal to the constant everywhere reads each node's density at its
+  // centroid's pixel (the path of varying densities) and must give the same records.
+  std::vector<float> field(w * h, static_cast<float>(p.impulses));
+  hush::npr_gabor::sources src;
+  src.impulses = hush::param_source::per_pixel({field.data(), w, h});
+  std::vector<hush::npr_gabor_splat> constant, per_pixel;
+  hush::npr_gabor{p}.make_splats(sc.frame(), sc.triangles(), constant);
+  hush::npr_gabor{p}.make_splats(sc.frame(), sc.triangles(), per_pixel, src);
+  REQUIRE(constant.size() == per_pixel.size());
+  bool same = true;
+  for (std::size_t i = 0; i < constant.size(); ++i)
+    same = same && constant[i].weight == per_pixel[i].weight &&
+           constant[i].index == per_pixel[i].index;
+  CHECK(same);
   const double se = variance_standard_error(hush::npr_gabor{p}, band * (w - 2 * m)) *
                     std::sqrt(1.0615 / seeds);
   MESSAGE("per triangle: far ", far_paper, " near ", near_paper, "; local density: far ",
