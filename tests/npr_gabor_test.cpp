@@ -17,6 +17,9 @@
 #ifndef HUSH_NPR_HUGE_SEEDS
 #define HUSH_NPR_HUGE_SEEDS 32  // seeds of the huge-triangle test (64 to measure)
 #endif
+#ifndef HUSH_NPR_PLANE_SEEDS
+#define HUSH_NPR_PLANE_SEEDS 4  // seeds of the foreshortened-plane test (64 to measure)
+#endif
 
 namespace {
 
@@ -594,5 +597,157 @@ TEST_CASE("huge triangles: legs 1e5 and 1e6 px keep variance 1 with bounded work
             " (Poisson bound ", se, "); most nodes ", most_nodes);
     CHECK(std::fabs(mean - 1.0) < 4.5 * se / std::sqrt(double(seeds)));
     CHECK(most_nodes < 8000);
+  }
+}
+
+TEST_CASE("local density: the hats sum to 1 over the levels, continuous at 1/4, 1 and 4") {
+  // Root (coarsest) to finest level K, counts n 4^-k (an affine node's children each have a
+  // quarter of its area): sum_k local_square(n 4^-k) / (n 4^-k) = 1 for every n > 0, the
+  // partition of unity of the hat in log4 (docs/npr-gabor.md "Local density").
+  using lod = hush::npr_gabor_lod;
+  for (int K : {0, 1, 2, 5, 21})
+    for (double n = 1e-3; n < 1e7; n *= 1.0137) {
+      double sum = 0, nk = n;
+      for (int k = 0; k <= K; ++k, nk *= 0.25) sum += lod::local_square(nk, k == 0, k == K) / nk;
+      CHECK(std::fabs(sum - 1.0) < 1e-12);
+    }
+  // No pops: every level's squared weight moves by < 1e-4 for a relative change of n of 1e-9
+  // at the hat's corners (n = 1/4, 1, 4) and at the root's and finest level's joins.
+  for (double n : {0.25, 1.0, 4.0})
+    for (bool coarsest : {false, true})
+      for (bool finest : {false, true}) {
+        const double lo = lod::local_square(n * (1 - 1e-9), coarsest, finest);
+        const double hi = lod::local_square(n * (1 + 1e-9), coarsest, finest);
+        CHECK(std::fabs(hi - lo) < 1e-4);
+      }
+  CHECK(lod::local_square(0.0, true, false) == 0.0);
+  CHECK(lod::local_square(std::numeric_limits<double>::quiet_NaN(), true, true) == 0.0);
+  CHECK(lod::local_square(0.5, true, false) == 0.5);  // the paper's N < 1 point: sqrt(N)^2
+  CHECK(lod::local_square(0.25, false, false) == 0.0);
+  CHECK(lod::local_square(4.0, false, false) == 0.0);
+  CHECK(lod::local_square(1e30, false, true) == hush::detail::constants::kNprGaborMaxPoints);
+  // Validation is unchanged by the option.
+  hush::npr_gabor::params p = small_kernel();
+  p.local_density = true;
+  p.impulses = 0;
+  CHECK_THROWS_WITH_AS(hush::npr_gabor{p}, doctest::Contains("impulses"), hush::invalid_argument);
+}
+
+namespace {
+// A ground plane under perspective: one quad (two triangles) covering a w x h image and
+// `margin` pixels beyond, its top edge at depth `far`, its bottom edge at depth 1 (clip W):
+// object-uniform points are (far)^3 times denser on screen near the top than near the bottom.
+grid_scene ground_plane(std::size_t w, std::size_t h, double margin, float far) {
+  grid_scene sc(w, h, -margin, -margin, static_cast<double>(w) + 2 * margin, 1, 1);
+  sc.vdepth = {far, far, 1.0f, 1.0f};  // vertices (0,0), (1,0) top; (0,1), (1,1) bottom
+  return sc;
+}
+// The variance of the pixels of rows [y0, y1), columns [m, w - m) about 0 (the noise's mean).
+double window_variance(const std::vector<float>& img, std::size_t w, std::size_t m, std::size_t y0,
+                       std::size_t y1) {
+  double s2 = 0;
+  for (std::size_t y = y0; y < y1; ++y)
+    for (std::size_t x = m; x < w - m; ++x) s2 += double(img[y * w + x]) * img[y * w + x];
+  return s2 / static_cast<double>((y1 - y0) * (w - 2 * m));
+}
+}  // namespace
+
+TEST_CASE("local density: variance 1 near and far on a foreshortened plane; per triangle not") {
+  // The plane's top is 4x as deep as its bottom. With one N = lambda A per triangle (the
+  // paper) the screen density follows the perspective: the far window's variance is far
+  // above the near one's. With local_density each window's variance (mean over `seeds`
+  // seeds) must be 1 within 4.5 standard errors: variance_standard_error / sqrt(seeds), its
+  // fourth-cumulant bound w^4 <= w^2 scaled by the largest squared weight, max f = 1.0615
+  // (n h(n) at log4 n = 1 - 1 / ln 4), i.e. se times sqrt(1.0615) at most. The depth
+  // test is off (the grid scene's depth buffer is flat); the object test stays on.
+  const std::size_t w = 160, h = 160, m = 8, band = 40;
+  const int seeds = HUSH_NPR_PLANE_SEEDS;
+  hush::npr_gabor::params p = small_kernel();
+  p.depth_test = false;
+  const grid_scene sc = ground_plane(w, h, 16.0, 4.0f);
+  double near_paper = 0, far_paper = 0, near_local = 0, far_local = 0;
+  for (int k = 0; k < seeds; ++k) {
+    p.seed = static_cast<std::uint32_t>(40 + k);
+    p.local_density = false;
+    const auto paper = render(hush::npr_gabor{p}, sc);
+    p.local_density = true;
+    const auto local = render(hush::npr_gabor{p}, sc);
+    far_paper += window_variance(paper, w, m, m, m + band) / seeds;
+    near_paper += window_variance(paper, w, m, h - m - band, h - m) / seeds;
+    far_local += window_variance(local, w, m, m, m + band) / seeds;
+    near_local += window_variance(local, w, m, h - m - band, h - m) / seeds;
+  }
+  // A per-pixel N' field equal to the constant everywhere reads each node's density at its
+  // centroid's pixel (the path of varying densities) and must give the same records.
+  std::vector<float> field(w * h, static_cast<float>(p.impulses));
+  hush::npr_gabor::sources src;
+  src.impulses = hush::param_source::per_pixel({field.data(), w, h});
+  std::vector<hush::npr_gabor_splat> constant, per_pixel;
+  hush::npr_gabor{p}.make_splats(sc.frame(), sc.triangles(), constant);
+  hush::npr_gabor{p}.make_splats(sc.frame(), sc.triangles(), per_pixel, src);
+  REQUIRE(constant.size() == per_pixel.size());
+  bool same = true;
+  for (std::size_t i = 0; i < constant.size(); ++i)
+    same = same && constant[i].weight == per_pixel[i].weight &&
+           constant[i].index == per_pixel[i].index;
+  CHECK(same);
+  const double se = variance_standard_error(hush::npr_gabor{p}, band * (w - 2 * m)) *
+                    std::sqrt(1.0615 / seeds);
+  MESSAGE("per triangle: far ", far_paper, " near ", near_paper, "; local density: far ",
+          far_local, " near ", near_local, "; standard error ", se);
+  CHECK(std::fabs(far_local - 1.0) < 4.5 * se);
+  CHECK(std::fabs(near_local - 1.0) < 4.5 * se);
+  CHECK(far_paper - near_paper > 20 * se);  // what the option fixes
+}
+
+TEST_CASE("local density: triangles with N <= 1/4 keep the per-triangle records, thinned too") {
+  // Below n = 1/4 the root is the only node with a weight (f_root = n = sqrt(N)^2) and
+  // nothing is walked, so the option changes no record; with thinning the root's squared
+  // weight is the per-triangle thinned one (E_u[g] = n) in both.
+  hush::npr_gabor::params p = small_kernel();
+  for (bool thin : {false, true}) {
+    p.thinning = thin;
+    p.local_density = false;
+    const hush::npr_gabor paper{p};
+    p.local_density = true;
+    const hush::npr_gabor local{p};
+    const double cell = std::sqrt(2.0 * 0.2 / paper.density());  // N = 0.2 per triangle
+    const grid_scene sc = npr_test::covering(64, 64, cell, paper.kernel().radius() + 1);
+    std::vector<hush::npr_gabor_splat> a, b;
+    paper.make_splats(sc.frame(), sc.triangles(), a);
+    local.make_splats(sc.frame(), sc.triangles(), b);
+    REQUIRE(a.size() == b.size());
+    REQUIRE(!a.empty());
+    bool same = true;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      same = same && a[i].x == b[i].x && a[i].y == b[i].y && a[i].weight == b[i].weight &&
+             a[i].index == b[i].index && a[i].triangle == b[i].triangle;
+    CHECK(same);
+  }
+}
+
+TEST_CASE("local density: huge triangles keep bounded work, nodes near the image only") {
+  // As "huge triangles" above (legs 1e5 and 1e6 px around a 64^2 frame, n_root 1.7e9 and
+  // 1.7e11): the local walk visits the nodes that meet the image (grown by r) with
+  // n > 1/4, and examines their 4 children each. Level k's nodes of count n_k meeting the
+  // frame grown by r number about lambda B / n_k (B = (w + 2r)^2), and the levels with
+  // n_k > 1/4 sum to at most lambda B 4 (1 + 1/4 + ...) = (16/3) lambda B: the bound is 4x
+  // that (children examined), the nodes straddling the box's border being the slack.
+  const std::size_t w = 64, h = 64;
+  hush::npr_gabor::params p = small_kernel();
+  const hush::npr_gabor paper{p};
+  p.local_density = true;
+  const hush::npr_gabor noise{p};
+  for (double legs : {1e5, 1e6}) {
+    const grid_scene sc(w, h, -legs / 3, -legs / 3, legs, 1, 1);
+    std::vector<hush::npr_gabor_splat> splats, paper_splats;
+    std::uint64_t nodes = 0, paper_nodes = 0;
+    noise.make_splats(sc.frame(), sc.triangles(), splats, {}, &nodes);
+    paper.make_splats(sc.frame(), sc.triangles(), paper_splats, {}, &paper_nodes);
+    MESSAGE("legs ", legs, ": records ", splats.size(), " (per triangle ", paper_splats.size(),
+            "), nodes examined ", nodes, " (per triangle ", paper_nodes, ")");
+    const double grown = static_cast<double>(w) + 2 * noise.kernel().radius();
+    CHECK(static_cast<double>(nodes) < 4 * (16.0 / 3.0) * noise.density() * grown * grown);
+    CHECK(!splats.empty());
   }
 }

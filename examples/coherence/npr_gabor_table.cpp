@@ -6,7 +6,9 @@
 // its defaults (F0 = 1/8 cycle per pixel, a = 0.08 per pixel, N' = 16, object and depth
 // tests) in anisotropic and isotropic form, and the anisotropic form with the soft depth test
 // (params::soft_depth, paper sec. 6.1) beside the binary one, and the anisotropic form with
-// thinning of the N < 1 points (params::thinning). The last two rows per scene
+// thinning of the N < 1 points (params::thinning), and the anisotropic form with a count per
+// tree node (params::local_density: constant variance across foreshortened triangles). The
+// last two rows per scene
 // measure the binary and soft depth tests only in the silhouette band (silhouette_band.hpp:
 // covered pixels within one kernel radius of a depth discontinuity), where occlusion changes;
 // their flatness columns describe the band, not the whole image.
@@ -61,18 +63,20 @@ int main(int argc, char** argv) {
       hc::print_metrics_row(name, "coherent causal, stationary, band-pass 4 px", coh, g);
       std::vector<std::vector<hc::noise_frame>> band_frames;  // binary, soft
       struct variant {
-        bool isotropic, soft_depth, thinning;
+        bool isotropic, soft_depth, thinning, local_density;
         const char* label;
       };
       for (const variant v :
-           {variant{false, false, false, "NPR Gabor, anisotropic"},
-            variant{true, false, false, "NPR Gabor, isotropic"},
-            variant{false, true, false, "NPR Gabor, anisotropic, soft depth test"},
-            variant{false, false, true, "NPR Gabor, anisotropic, thinning"}}) {
+           {variant{false, false, false, false, "NPR Gabor, anisotropic"},
+            variant{true, false, false, false, "NPR Gabor, isotropic"},
+            variant{false, true, false, false, "NPR Gabor, anisotropic, soft depth test"},
+            variant{false, false, true, false, "NPR Gabor, anisotropic, thinning"},
+            variant{false, false, false, true, "NPR Gabor, anisotropic, local density"}}) {
         hush::npr_gabor::params p;
         p.isotropic = v.isotropic;
         p.soft_depth = v.soft_depth;
         p.thinning = v.thinning;
+        p.local_density = v.local_density;
         const hush::npr_gabor noise{p};
         std::vector<hc::noise_frame> npr;
         for (int i = first; i < first + count; ++i) {
@@ -82,7 +86,7 @@ int main(int argc, char** argv) {
           npr.push_back(out);
         }
         hc::print_metrics_row(name, v.label, npr, g);
-        if (!v.isotropic && !v.thinning) band_frames.push_back(npr);
+        if (!v.isotropic && !v.thinning && !v.local_density) band_frames.push_back(npr);
       }
       // Band radius: the kernel's support radius, the reach of a kernel the depth test cuts.
       const hush::npr_gabor::params defaults;

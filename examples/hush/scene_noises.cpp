@@ -231,6 +231,7 @@ std::unique_ptr<scene_noise> make_npr_gabor(const render_setup& setup, const opt
     if (f == "--soft-depth") p.soft_depth = true;
     if (f == "--two-sided") p.cull_back_faces = false;
     if (f == "--thin") p.thinning = true;
+    if (f == "--local-density") p.local_density = true;
   }
   npr_style_options s;
   if (const std::string* v = find_value(given, "--style"))
@@ -375,6 +376,9 @@ const std::vector<render_entry>& render_table() {
            {"--thin", "",
             "thin the points of triangles with N < 1 (same variance and spectrum, fewer "
             "points: faster on dense meshes)"},
+           {"--local-density", "",
+            "a point count per node of each triangle's point tree (variance constant across "
+            "foreshortened triangles; stage 1 on the CPU for --backend glsl)"},
        },
        make_npr_gabor},
       anisotropic_render_entry(),

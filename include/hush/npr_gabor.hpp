@@ -48,6 +48,12 @@
 //    1/2), with a weight fading in continuously (npr_gabor_lod::thinned_square:
 //    E[w^2] = N as above, so the same variance and spectrum, without pops), so
 //    dense meshes cost min(1, 2N) points per triangle instead of 1.
+//  - with params::local_density, a count per tree node instead (local_walk,
+//    npr_gabor_lod::local_square): node P's own point has squared weight
+//    n_P h(n_P), n_P = lambda_P A_P (its projected sub-triangle's area), h a hat
+//    in log4 summing to 1 over the levels, so the screen density of squared
+//    weights is lambda across foreshortened triangles too (docs/npr-gabor.md
+//    "Local density"); continuous in n_P, so no pops.
 //  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
 //    record per point (position, F, radius, weight, plane, ids, pixel range);
 //    splat adds the records' kernels, on exec::scalar or exec::simd (screen
@@ -199,6 +205,25 @@ struct npr_gabor_lod {
     if (n <= 0.5) return std::max(0.0, 1.0 - u / (2.0 * n));
     return 1.0 - 2.0 * (1.0 - n) * u;
   }
+
+  // Local density (npr_gabor::params::local_density, docs/npr-gabor.md "Local density"):
+  // the squared weight f(n) = n h(n) of a tree node's own point, n = lambda_P A_P the
+  // node's expected count, h the hat in log base 4, h(n) = max(0, 1 - |log4 n|). The hat
+  // is a partition of unity in log4 (sum over integer k of h(n 4^-k) = 1), and the tree
+  // has no levels above the root and none below the deepest one walked: `coarsest` adds
+  // the missing coarser levels' hats (h = 1 for n <= 1: f = n, the squared weight
+  // sqrt(N)^2 of the paper's N < 1 point), `finest` the missing finer ones (h = 1 for
+  // n >= 1). So the root-to-finest sum of h(n 4^-k) is 1 for every n > 0 (exact to
+  // rounding where the levels' counts are n 4^-k). 0 for n <= 0 or NaN; n clamped to
+  // kNprGaborMaxPoints. Continuous in n (h is 0 at n = 1/4 and 4, 1 at n = 1).
+  static double local_square(double n, bool coarsest, bool finest) {
+    if (!(n > 0.0)) return 0.0;
+    n = std::min(n, detail::constants::kNprGaborMaxPoints);
+    const double l = std::log(n) / std::log(4.0);
+    double h = 1.0 - std::fabs(l);
+    if ((coarsest && l <= 0.0) || (finest && l >= 0.0)) h = 1.0;
+    return h > 0.0 ? n * h : 0.0;
+  }
 };
 
 class npr_gabor {
@@ -221,6 +246,15 @@ class npr_gabor {
     // same variance and spectrum, min(1, 2N) points per triangle instead of 1,
     // so that the cost follows N' and the covered pixels, not the triangle count.
     bool thinning = false;
+    // Local density (docs/npr-gabor.md "Local density"): every node P of a triangle's point
+    // tree gets its own count n_P = lambda_P A_P (A_P the screen area of its projected
+    // sub-triangle, lambda_P the density at its centroid) and its own point the squared
+    // weight npr_gabor_lod::local_square(n_P): the screen density of squared weights is then
+    // lambda wherever the perspective within a node is small, so the variance stays 1 across
+    // strongly foreshortened triangles, where the paper's one N = lambda A per triangle makes
+    // the near part too sparse and the far part too dense. false: the paper's per-triangle
+    // LOD (eqs. 2, 4). thinning applies to the root's point when n_root < 1.
+    bool local_density = false;
   };
 
   // Throws hush::invalid_argument naming the parameter and its range:
@@ -511,9 +545,13 @@ class npr_gabor {
     // lambda_T for the triangle whose object-space centroid is `centre` (its
     // pixel clamped here into the w x h image); N'_T clamped to [0, 256]
     // (0: no points).
+    // Whether density() is the params' lambda everywhere (a and N' constant).
+    bool constant_density() const {
+      return src_.bandwidth.is_constant() && src_.impulses.is_constant();
+    }
     double density(param_source::site centre, double w, double h) const {
       const params& p = n_.p_;
-      if (src_.bandwidth.is_constant() && src_.impulses.is_constant()) return n_.lambda_;
+      if (constant_density()) return n_.lambda_;
       centre.x = std::clamp(centre.x, 0.5, w - 0.5);
       centre.y = std::clamp(centre.y, 0.5, h - 0.5);
       const double a = bandwidth(centre);
@@ -646,19 +684,18 @@ class npr_gabor {
     const double d1 = 1.0 / z[1] - 1.0 / z[0], d2 = 1.0 / z[2] - 1.0 / z[0];
     const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
     const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;
-    npr_gabor_lod lod = npr_gabor_lod::of(n);
-    if (p_.thinning && n < 1.0 && lod.count == 1) {
-      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
-      if (!(lod.first_weight > 0.0)) return;
-    }
-    // Emits the point J at pt if its pixel range is not empty.
-    const auto emit = [&](const point& pt, std::uint64_t j) {
-      const double hw = pt.b[0] * z[0] + pt.b[1] * z[1] + pt.b[2] * z[2];
-      const dvec2 at{
-          (pt.b[0] * z[0] * s[0].x + pt.b[1] * z[1] * s[1].x + pt.b[2] * z[2] * s[2].x) / hw,
-          (pt.b[0] * z[0] * s[0].y + pt.b[1] * z[1] * s[1].y + pt.b[2] * z[2] * s[2].y) / hw};
+    // The screen position of barycentrics b (of the root triangle): perspective-correct.
+    const auto project = [&](const double* b) {
+      const double hw = b[0] * z[0] + b[1] * z[1] + b[2] * z[2];
+      return dvec2{(b[0] * z[0] * s[0].x + b[1] * z[1] * s[1].x + b[2] * z[2] * s[2].x) / hw,
+                   (b[0] * z[0] * s[0].y + b[1] * z[1] * s[1].y + b[2] * z[2] * s[2].y) / hw};
+    };
+    // Emits the point J at pt, of squared-weight factor `weight` and density `lam`, if its
+    // pixel range is not empty.
+    const auto emit = [&](const point& pt, std::uint64_t j, double weight, double lam) {
+      const dvec2 at = project(pt.b);
       const point_parameters::kernel k =
-          pp.at({object, at.x, at.y, vertices, {pt.b[0], pt.b[1], pt.b[2]}}, pt.angle, lambda);
+          pp.at({object, at.x, at.y, vertices, {pt.b[0], pt.b[1], pt.b[2]}}, pt.angle, lam);
       const double r = k.radius;
       // Pixel centres x + 1/2 within r of the point, clamped to the image.
       const double x0 = std::max(std::ceil(at.x - r - 0.5), 0.0);
@@ -673,7 +710,7 @@ class npr_gabor {
       rec.fy = k.F.y;
       rec.bandwidth = k.bandwidth;
       rec.radius = r;
-      rec.weight = lod.weight(j) * pt.amplitude * k.scale;
+      rec.weight = weight * pt.amplitude * k.scale;
       rec.q0 = q0;
       rec.qx = qx;
       rec.qy = qy;
@@ -686,14 +723,6 @@ class npr_gabor {
       rec.index = j;
       splats.push_back(rec);
     };
-    if (lod.count == 0) return;
-    detail::npr_tree_node root;
-    root.seed = triangle_key(object, id);
-    if (nodes) ++*nodes;
-    if (lod.count == 1) {  // the common small triangle: its root alone, no walk
-      emit(node_point(root, detail::npr_tree_words_of(root.seed)), 0);
-      return;
-    }
     // Whether a node's screen triangle (its corners projected: exact under
     // perspective, every point of its subtree lies in it) grown by `cull` meets
     // the image (bounding box: conservative; the points' own pixel-range test
@@ -701,29 +730,50 @@ class npr_gabor {
     const auto meets_image = [&](const detail::npr_tree_node& nd) {
       double bx0 = std::numeric_limits<double>::infinity(), by0 = bx0, bx1 = -bx0, by1 = -bx0;
       for (const auto& c : nd.corner) {
-        const double cw = c[0] * z[0] + c[1] * z[1] + c[2] * z[2];
-        const double cx = (c[0] * z[0] * s[0].x + c[1] * z[1] * s[1].x + c[2] * z[2] * s[2].x) / cw;
-        const double cy = (c[0] * z[0] * s[0].y + c[1] * z[1] * s[1].y + c[2] * z[2] * s[2].y) / cw;
-        bx0 = std::min(bx0, cx);
-        bx1 = std::max(bx1, cx);
-        by0 = std::min(by0, cy);
-        by1 = std::max(by1, cy);
+        const dvec2 q = project(c);
+        bx0 = std::min(bx0, q.x);
+        bx1 = std::max(bx1, q.x);
+        by0 = std::min(by0, q.y);
+        by1 = std::max(by1, q.y);
       }
       return !(bx1 + cull < 0.0 || bx0 - cull > w || by1 + cull < 0.0 || by0 - cull > h);
     };
+    detail::npr_tree_node root;
+    root.seed = triangle_key(object, id);
+    const std::size_t first_record = splats.size();
+    // J order, whatever the traversal (CPU and GPU stage 1 agree on it).
+    const auto sort_records = [&] {
+      std::sort(splats.begin() + static_cast<std::ptrdiff_t>(first_record), splats.end(),
+                [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
+    };
+    if (p_.local_density) {
+      local_walk(root, n, lambda, pp, object, id, vertices, w, h, cull, project, emit, nodes);
+      sort_records();
+      return;
+    }
+    npr_gabor_lod lod = npr_gabor_lod::of(n);
+    if (p_.thinning && n < 1.0 && lod.count == 1) {
+      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
+      if (!(lod.first_weight > 0.0)) return;
+    }
+    if (lod.count == 0) return;
+    if (nodes) ++*nodes;
+    if (lod.count == 1) {  // the common small triangle: its root alone, no walk
+      emit(node_point(root, detail::npr_tree_words_of(root.seed)), 0, lod.first_weight, lambda);
+      return;
+    }
     // Depth first with an explicit stack: a node is visited only if its index
     // is below the count (then its own point is emitted), a child pushed only
     // if it meets the image. Indices below 2^41 (kNprGaborMaxPoints) mean depth
     // <= 21 ((4^k - 1) / 3 <= J), and the stack holds at most 3 siblings per
     // level above the node popped plus its 4 children: 3 * 21 + 4 < 72.
-    const std::size_t first_record = splats.size();
-    detail::npr_tree_node stack[72];
+    detail::npr_tree_node stack[kStackNodes];
     std::size_t top = 0;
     stack[top++] = root;
     while (top > 0) {
       const detail::npr_tree_node nd = stack[--top];
       const detail::npr_tree_words words = detail::npr_tree_words_of(nd.seed);
-      emit(node_point(nd, words), nd.index);
+      emit(node_point(nd, words), nd.index, lod.weight(nd.index), lambda);
       for (unsigned slot = 0; slot < 4; ++slot) {
         // index + stride (1 + slot) grows with slot: the first one past the count ends.
         if (nd.index + nd.stride * (1u + slot) >= lod.count) break;
@@ -732,9 +782,82 @@ class npr_gabor {
         if (meets_image(child)) stack[top++] = child;
       }
     }
-    // J order, whatever the traversal (CPU and GPU stage 1 agree on it).
-    std::sort(splats.begin() + static_cast<std::ptrdiff_t>(first_record), splats.end(),
-              [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
+    sort_records();
+  }
+
+  // The paper's walk reaches depth 21 at most (its indices are below 2 kNprGaborMaxPoints =
+  // 2^41 and depth k starts at J = (4^k - 1) / 3); the local-density walk stops there too,
+  // and its stack then holds at most 3 siblings per level above the node popped plus its 4
+  // children: 3 * 21 + 4 < kStackNodes.
+  static constexpr int kMaxDepth = 21;
+  static constexpr std::size_t kStackNodes = 72;
+  static_assert(3 * kMaxDepth + 4 < static_cast<int>(kStackNodes), "walk stack too small");
+  static_assert((std::uint64_t{1} << (2 * kMaxDepth)) / 3 <
+                    static_cast<std::uint64_t>(2.0 * detail::constants::kNprGaborMaxPoints),
+                "kMaxDepth is the paper walk's deepest level");
+
+  // Stage 1 of one triangle under params::local_density (docs/npr-gabor.md "Local
+  // density"): depth first from the root, each node P with n_P = lambda_P A_P (A_P the
+  // area of its projected corners: the projective image of a triangle is the triangle of
+  // its projected corners; lambda_P the density at its object-space centroid) emits its own
+  // point with weight sqrt(local_square(n_P)) where that is > 0 (n_P in (1/4, 4); the root:
+  // n < 4, thinned as the paper's N < 1 point when params::thinning; the deepest level,
+  // kMaxDepth: n > 1/4, carrying the levels below it, reached only for n_root above ~4^21).
+  // A child is visited only if its parent's n_P > 1/4 (a child's projected area is at most
+  // its parent's, so with one density every descendant then has n <= 1/4, h = 0: the cut is
+  // exact; with per-pixel or per-vertex densities, a child whose density exceeds its
+  // parent's by 4x could be missed) and it meets the image. The root's n and density are
+  // the triangle's (n, lambda).
+  template <class Project, class Emit>
+  void local_walk(const detail::npr_tree_node& root, double n_root, double lambda_root,
+                  const point_parameters& pp, std::uint32_t object, std::uint32_t id,
+                  const std::uint32_t* vertices, double w, double h, double cull,
+                  const Project& project, const Emit& emit, std::uint64_t* nodes) const {
+    constexpr std::uint64_t finest_stride = std::uint64_t{1} << (2 * kMaxDepth);
+    struct entry {
+      detail::npr_tree_node node;
+      double n, lambda;
+    };
+    entry stack[kStackNodes];
+    std::size_t top = 0;
+    stack[top++] = {root, n_root, lambda_root};
+    if (nodes) ++*nodes;
+    while (top > 0) {
+      const entry e = stack[--top];
+      const detail::npr_tree_node& nd = e.node;
+      const bool coarsest = nd.stride == 1, finest = nd.stride == finest_stride;
+      double f = npr_gabor_lod::local_square(e.n, coarsest, finest);
+      if (coarsest && p_.thinning && e.n < 1.0)
+        f = npr_gabor_lod::thinned_square(e.n, thinning_uniform(object, id));
+      const bool descend = e.n > 0.25 && !finest;
+      if (!(f > 0.0) && !descend) continue;  // the root of n <= 0 only
+      const detail::npr_tree_words words = detail::npr_tree_words_of(nd.seed);
+      if (f > 0.0) emit(node_point(nd, words), nd.index, std::sqrt(f), e.lambda);
+      if (!descend) continue;
+      for (unsigned slot = 0; slot < 4; ++slot) {
+        const detail::npr_tree_node child = detail::npr_tree_child(nd, words, slot);
+        if (nodes) ++*nodes;
+        // Its corners projected once: its area, and its bounding box grown by `cull` against
+        // the image (as the paper's walk's meets_image).
+        const dvec2 c0 = project(child.corner[0]), c1 = project(child.corner[1]),
+                    c2 = project(child.corner[2]);
+        double lam = lambda_root;
+        if (!pp.constant_density()) {
+          double b[3];
+          for (unsigned k = 0; k < 3; ++k)
+            b[k] = (child.corner[0][k] + child.corner[1][k] + child.corner[2][k]) / 3.0;
+          const dvec2 at = project(b);
+          lam = pp.density({object, at.x, at.y, vertices, {b[0], b[1], b[2]}}, w, h);
+        }
+        const double n =
+            lam * 0.5 * std::fabs((c1.x - c0.x) * (c2.y - c0.y) - (c1.y - c0.y) * (c2.x - c0.x));
+        if (!(n > 0.25)) continue;  // h = 0 here and below (one density): nothing to emit
+        if (std::max({c0.x, c1.x, c2.x}) + cull < 0.0 || std::min({c0.x, c1.x, c2.x}) - cull > w ||
+            std::max({c0.y, c1.y, c2.y}) + cull < 0.0 || std::min({c0.y, c1.y, c2.y}) - cull > h)
+          continue;
+        stack[top++] = {child, n, lam};
+      }
+    }
   }
 
   params p_;

@@ -953,18 +953,22 @@ TEST_CASE(
   CHECK(std::all_of(out.begin(), out.end(), [](float v) { return v == 0.0f; }));
 }
 
-TEST_CASE("npr: per-pixel and per-vertex sources run stage 1 on the CPU, automatically") {
+TEST_CASE("npr: per-pixel and per-vertex sources and local density run stage 1 on the CPU") {
   const std::size_t w = 64, h = 64;
   const npr_test::grid_scene sc = npr_test::covering(w, h, 9.0, 16.0);
-  const hush::npr_gabor noise{npr_params()};
+  hush::npr_gabor::params p = npr_params();
+  const hush::npr_gabor plain{p};
+  p.local_density = true;  // a count per tree node: the GPU walk has one per triangle
+  const hush::npr_gabor local{p};
   std::vector<float> field(w * h);
   for (std::size_t i = 0; i < field.size(); ++i) field[i] = 0.01f * float(i % w);
   std::vector<float> vertex(sc.screen.size(), 0.12f);
-  hush::npr_gabor::sources pixel, vert;
+  hush::npr_gabor::sources pixel, vert, constant;
   pixel.orientation = hush::param_source::per_pixel({field.data(), w, h});
   vert.frequency = hush::param_source::per_vertex(vertex);
   auto& state = hush::glsl::npr_gabor_state(headless().device);
-  for (const hush::npr_gabor::sources* src : {&pixel, &vert}) {
+  for (const hush::npr_gabor::sources* src : {&pixel, &vert, &constant}) {
+    const hush::npr_gabor& noise = src == &constant ? local : plain;
     const std::size_t cpu_before = state.cpu_stage1_frames(),
                       gpu_before = state.gpu_stage1_frames();
     std::vector<float> a(w * h), b(w * h);

@@ -217,6 +217,28 @@ TEST_CASE("render npr-gabor writes the library's frames bit for bit from the tri
     CHECK(same(frame_file(dir / "n", i, 1), out));
     CHECK(std::any_of(out.begin(), out.end(), [](float v) { return v != 0.0f; }));
   }
+  {  // --local-density: params::local_density, bit for bit (frame 0); a dense small kernel, so
+     // that the 40x30 frame's triangles have n > 1/4 and the option changes the image.
+    const result l = run_hush("render npr-gabor --gbuffer '" + (dir / "g").string() + "' --out '" +
+                                  (dir / "l").string() +
+                                  "' --seed 3 --bandwidth 0.3 --impulses 64 --local-density",
+                              dir);
+    CHECK(l.exit_code == 0);
+    hush::npr_gabor::params lp;
+    lp.seed = 3;
+    lp.bandwidth = 0.3;
+    lp.impulses = 64;
+    lp.local_density = true;
+    const hs::triangle_frame t = hs::project_triangles(s, 0, kW, kH);
+    hush::npr_gabor{lp}.render(hs::as_frame(g[0]), t.view(),
+                               hush::image_view<float>(out.data(), kW, kH));
+    CHECK(same(frame_file(dir / "l", 0, 1), out));
+    lp.local_density = false;
+    std::vector<float> plain(kW * kH);
+    hush::npr_gabor{lp}.render(hs::as_frame(g[0]), t.view(),
+                               hush::image_view<float>(plain.data(), kW, kH));
+    CHECK(plain != out);  // the option reached the noise
+  }
   // Without the triangle files (G-buffers from before them) it says what is missing.
   for (const char* f :
        {"tri_screen.npy", "tri_depth.npy", "tri_indices.npy", "tri_id.npy", "tri_object.npy"})

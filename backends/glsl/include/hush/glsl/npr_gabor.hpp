@@ -824,8 +824,9 @@ class npr_gabor_gpu {
   }
 
   // Both stages of noise.render on the GPU (arguments validated by render); stage 1 on the
-  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, buffers beyond one
-  // storage block: a level's nodes included; more than 2^32 - 1 records or nodes).
+  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, params::local_density,
+  // buffers beyond one storage block: a level's nodes included; more than 2^32 - 1 records or
+  // nodes).
   void render(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, const image_view<float>& out) {
     std::size_t total = 0;
@@ -1140,7 +1141,8 @@ class npr_gabor_gpu {
   // number of records. False where the GPU cannot run stage 1 (see render).
   bool stage1(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, std::size_t& total) {
-    if (!npr_gabor::per_object_at_most(src)) return false;
+    // Per-pixel or per-vertex sources, and local density (a count per node), run on the CPU.
+    if (!npr_gabor::per_object_at_most(src) || noise.parameters().local_density) return false;
     const std::size_t nt = tris.triangles(), nv = tris.vertices();
     std::size_t objects = 0;  // table entries before the constants' one
     for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
