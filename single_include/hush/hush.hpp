@@ -10972,14 +10972,14 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
         // Whole vectors (the buffers have a vector of slack): the next row's
         // copy overwrites what this one writes beyond its end.
         for (std::size_t k = b; k < e; k += lanes) {
-          const std::size_t at = nc + (k - b);
-          hn::StoreU(hn::Sub(hn::LoadU(df, bx + k), bxp), df, co[0] + at);
-          for (int a = 1; a < D; ++a) hn::StoreU(orow[a], df, co[a] + at);
+          const std::size_t dst = nc + (k - b);
+          hn::StoreU(hn::Sub(hn::LoadU(df, bx + k), bxp), df, co[0] + dst);
+          for (int a = 1; a < D; ++a) hn::StoreU(orow[a], df, co[a] + dst);
           for (int a = 0; a < D; ++a) {
-            hn::StoreU(hn::LoadU(df, pos[a] + k), df, cpos[a] + at);
-            hn::StoreU(hn::LoadU(df, iphi[a] + k), df, cphi[a] + at);
+            hn::StoreU(hn::LoadU(df, pos[a] + k), df, cpos[a] + dst);
+            hn::StoreU(hn::LoadU(df, iphi[a] + k), df, cphi[a] + dst);
           }
-          hn::StoreU(hn::LoadU(df, iw + k), df, cw + at);
+          hn::StoreU(hn::LoadU(df, iw + k), df, cw + dst);
         }
         nc += e - b;
       }
