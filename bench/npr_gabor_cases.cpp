@@ -4,7 +4,8 @@
 // and a torus over a plane) with about 5k, 50k and 200k triangles, rasterized by the CPU
 // rasterizer at npr_width x npr_height (1280 x 720), N' = 16 and 32, the default kernel
 // (F0 = 1/8 cycle/pixel, a = 0.08/pixel, radius 12.2 pixels), anisotropic, object and depth
-// tests; "thin" rows thin the points of triangles with N < 1 (params::thinning). A row
+// tests; "thin" rows thin the points of triangles with N < 1 (params::thinning), "local"
+// rows give every node of the point tree its own count (params::local_density). A row
 // times npr_gabor::render (both stages: points and splatting) on one thread;
 // ms/frame is its time per frame. Error columns: the float render against render<double> on
 // exec::scalar (the reference) over every pixel. The note gives the splat count (points
@@ -57,9 +58,12 @@ struct dense_frame {
   }
 };
 
+// Which LOD a row uses: the paper's per triangle, with thinning, or per node (local density).
+enum class lod { paper, thinning, local_density };
+
 template <class Exec>
 void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
-              const std::vector<std::shared_ptr<dense_frame>>& frames, bool thinning,
+              const std::vector<std::shared_ptr<dense_frame>>& frames, lod variant,
               std::initializer_list<double> impulse_counts = {16.0, 32.0},
               bool cpu_points = false) {
   for (const std::shared_ptr<dense_frame>& fr : frames)
@@ -67,7 +71,10 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
       bench_case c;
       c.wall_clock = std::string(Exec::name) == "glsl";
       c.noise = "npr-gabor N'=" + std::to_string(static_cast<int>(impulses)) +
-                (thinning ? " thin" : "") + (cpu_points ? " cpu-points" : "");
+                (variant == lod::thinning        ? " thin"
+                 : variant == lod::local_density ? " local"
+                                                 : "") +
+                (cpu_points ? " cpu-points" : "");
       c.backend = Exec::name;
       c.workload = "dense:" + std::to_string(fr->triangles) + " " + std::to_string(s.npr_width) +
                    "x" + std::to_string(s.npr_height);
@@ -75,7 +82,8 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
       hush::npr_gabor::params prm;
       prm.impulses = impulses;
       prm.orientation = 0.5;
-      prm.thinning = thinning;
+      prm.thinning = variant == lod::thinning;
+      prm.local_density = variant == lod::local_density;
       const hush::npr_gabor noise{prm};
       c.prepare = [noise, ex, fr, cpu_points] {
         fr->make();
@@ -125,13 +133,14 @@ void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s) {
     f->height = static_cast<int>(s.npr_height);
     frames.push_back(f);
   }
-  add_rows(cases, s, hush::exec::scalar, frames, false);
-  add_rows(cases, s, hush::exec::simd, frames, false);
-  add_rows(cases, s, hush::exec::simd, frames, true);
+  add_rows(cases, s, hush::exec::scalar, frames, lod::paper);
+  add_rows(cases, s, hush::exec::simd, frames, lod::paper);
+  add_rows(cases, s, hush::exec::simd, frames, lod::thinning);
+  add_rows(cases, s, hush::exec::simd, frames, lod::local_density, {16.0});
 #if HUSH_BENCH_HAVE_GLSL
   for (const bool cpu_points : {false, true})
-    add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames, false,
-             {16.0}, cpu_points);
+    add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames,
+             lod::paper, {16.0}, cpu_points);
 #endif
 }
 
