@@ -664,11 +664,7 @@ class npr_gabor {
     const std::uint32_t* vertices = &tris.indices[3 * t];
     const double cull = pp.off_image_radius(object, vertices);
     const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
-    const double lo_x = std::min({s[0].x, s[1].x, s[2].x}),
-                 hi_x = std::max({s[0].x, s[1].x, s[2].x});
-    const double lo_y = std::min({s[0].y, s[1].y, s[2].y}),
-                 hi_y = std::max({s[0].y, s[1].y, s[2].y});
-    if (hi_x + cull < 0.0 || lo_x - cull > w || hi_y + cull < 0.0 || lo_y - cull > h) return;
+    if (!box_meets_image(s, cull, w, h)) return;
     // The object-space centroid (b = 1/3 each) and its pixel, sum z_i s_i / sum z_i.
     const double zs = z[0] + z[1] + z[2], third = 1.0 / 3.0;
     const double lambda = pp.density({object,
@@ -728,23 +724,17 @@ class npr_gabor {
     // the image (bounding box: conservative; the points' own pixel-range test
     // decides, with half a pixel to spare for the rounding of a position).
     const auto meets_image = [&](const detail::npr_tree_node& nd) {
-      double bx0 = std::numeric_limits<double>::infinity(), by0 = bx0, bx1 = -bx0, by1 = -bx0;
-      for (const auto& c : nd.corner) {
-        const dvec2 q = project(c);
-        bx0 = std::min(bx0, q.x);
-        bx1 = std::max(bx1, q.x);
-        by0 = std::min(by0, q.y);
-        by1 = std::max(by1, q.y);
-      }
-      return !(bx1 + cull < 0.0 || bx0 - cull > w || by1 + cull < 0.0 || by0 - cull > h);
+      const dvec2 c[3] = {project(nd.corner[0]), project(nd.corner[1]), project(nd.corner[2])};
+      return box_meets_image(c, cull, w, h);
     };
     detail::npr_tree_node root;
     root.seed = triangle_key(object, id);
     const std::size_t first_record = splats.size();
     // J order, whatever the traversal (CPU and GPU stage 1 agree on it).
     const auto sort_records = [&] {
-      std::sort(splats.begin() + static_cast<std::ptrdiff_t>(first_record), splats.end(),
-                [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
+      std::sort(
+          splats.begin() + static_cast<std::ptrdiff_t>(first_record), splats.end(),
+          [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
     };
     if (p_.local_density) {
       local_walk(root, n, lambda, pp, object, id, vertices, w, h, cull, project, emit, nodes);
@@ -783,6 +773,17 @@ class npr_gabor {
       }
     }
     sort_records();
+  }
+
+  // Whether the bounding box of screen triangle c grown by `cull` meets the w x h image: the
+  // triangle test, and the subtree test of both walks (a node's projected corners: exact under
+  // perspective, every point of its subtree lies in their triangle; a box is conservative, and
+  // the points' own pixel-range test decides).
+  static bool box_meets_image(const dvec2 (&c)[3], double cull, double w, double h) {
+    return !(std::max({c[0].x, c[1].x, c[2].x}) + cull < 0.0 ||
+             std::min({c[0].x, c[1].x, c[2].x}) - cull > w ||
+             std::max({c[0].y, c[1].y, c[2].y}) + cull < 0.0 ||
+             std::min({c[0].y, c[1].y, c[2].y}) - cull > h);
   }
 
   // The paper's walk reaches depth 21 at most (its indices are below 2 kNprGaborMaxPoints =
@@ -839,8 +840,8 @@ class npr_gabor {
         if (nodes) ++*nodes;
         // Its corners projected once: its area, and its bounding box grown by `cull` against
         // the image (as the paper's walk's meets_image).
-        const dvec2 c0 = project(child.corner[0]), c1 = project(child.corner[1]),
-                    c2 = project(child.corner[2]);
+        const dvec2 c[3] = {project(child.corner[0]), project(child.corner[1]),
+                            project(child.corner[2])};
         double lam = lambda_root;
         if (!pp.constant_density()) {
           double b[3];
@@ -849,12 +850,11 @@ class npr_gabor {
           const dvec2 at = project(b);
           lam = pp.density({object, at.x, at.y, vertices, {b[0], b[1], b[2]}}, w, h);
         }
-        const double n =
-            lam * 0.5 * std::fabs((c1.x - c0.x) * (c2.y - c0.y) - (c1.y - c0.y) * (c2.x - c0.x));
+        const double n = lam * 0.5 *
+                         std::fabs((c[1].x - c[0].x) * (c[2].y - c[0].y) -
+                                   (c[1].y - c[0].y) * (c[2].x - c[0].x));
         if (!(n > 0.25)) continue;  // h = 0 here and below (one density): nothing to emit
-        if (std::max({c0.x, c1.x, c2.x}) + cull < 0.0 || std::min({c0.x, c1.x, c2.x}) - cull > w ||
-            std::max({c0.y, c1.y, c2.y}) + cull < 0.0 || std::min({c0.y, c1.y, c2.y}) - cull > h)
-          continue;
+        if (!box_meets_image(c, cull, w, h)) continue;
         stack[top++] = {child, n, lam};
       }
     }
