@@ -29,7 +29,7 @@
 #endif
 #if HUSH_BENCH_HAVE_GLSL
 #include "hush/glsl/device.hpp"
-#include "hush/glsl/osmesa_context.hpp"
+#include "hush/glsl/headless.hpp"
 #endif
 
 #if HUSH_BENCH_HAVE_GLM
@@ -722,7 +722,8 @@ void add_pinned_simd_rows(std::vector<bench_case>& cases, std::int64_t target) {
 void add_coherent_glsl_rows(std::vector<bench_case>& cases, const sizes& s,
                             hush::glsl::device& device);
 
-// The GLSL rows run on one headless OSMesa context for the whole process (llvmpipe here).
+// The GLSL rows run on one headless context for the whole process (OSMesa's llvmpipe here;
+// HUSH_GL_CONTEXT=egl: the machine's GPU).
 // (declared in bench/anisotropic_cases.cpp too)
 hush::glsl::device& bench_glsl_device() {
   static hush::glsl::headless_device h;

@@ -12,6 +12,7 @@ packages=(
   clang-tidy               # the lint test (.clang-tidy)
   libhwy-dev               # Highway: the SIMD backend (exec::simd)
   libosmesa6-dev           # headless GL 4.5 (llvmpipe) for the GLSL backend and GL G-buffers
+  libegl-dev libegl-mesa0  # headless GL through EGL (a GPU's driver; Mesa's llvmpipe in CI)
   libbenchmark-dev         # Google Benchmark: bench/
   libnoise-dev             # peer row in the benchmark (libnoise Perlin)
   libtinyobjloader-dev     # Wavefront OBJ scenes (examples/scene)

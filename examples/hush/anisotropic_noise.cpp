@@ -16,7 +16,7 @@ class anisotropic_field final : public noise_field {
   bool is_signed() const override { return options_.params.kind == hush::fractal_kind::fbm; }
   std::string unsupported_reason(backend b) const override {
     if (b == backend::glsl) {
-      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (OSMesa not found)";
+      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (neither OSMesa nor EGL found)";
       const auto& p = options_.params;
       if (p.filtering == hush::weight_rule::least_squares ||
           p.compensation == hush::weight_rule::least_squares)

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "args.hpp"
-#include "hush/glsl/osmesa_context.hpp"
+#include "hush/glsl/headless.hpp"
 
 namespace hush_cli {
 

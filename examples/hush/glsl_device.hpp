@@ -3,7 +3,7 @@
 #define HUSH_CLI_GLSL_DEVICE_HPP
 
 #ifndef HUSH_CLI_HAVE_GLSL
-#define HUSH_CLI_HAVE_GLSL 0  // set to 1 by examples/CMakeLists.txt when OSMesa is found
+#define HUSH_CLI_HAVE_GLSL 0  // 1 when OSMesa or EGL is found (examples/CMakeLists.txt)
 #endif
 
 #if HUSH_CLI_HAVE_GLSL
@@ -11,8 +11,9 @@
 
 namespace hush_cli {
 
-// One headless OSMesa GL 4.5 context and its hush::glsl::device for the whole process,
-// created on first use. Throws run_error when no GL context can be created.
+// One headless GL 4.5 context (OSMesa or EGL: HUSH_GL_CONTEXT, hush/glsl/headless.hpp) and its
+// hush::glsl::device for the whole process, created on first use. Throws run_error when no GL
+// context can be created.
 hush::glsl::device& glsl_device();
 
 }  // namespace hush_cli

@@ -13,7 +13,7 @@
 #include <exception>
 
 #include "hush/glsl/device.hpp"
-#include "hush/glsl/osmesa_context.hpp"
+#include "hush/glsl/headless.hpp"
 
 // Mesa's OSMesa keeps a few hundred bytes of per-process state after its
 // context is destroyed; `hush info` under LeakSanitizer would fail on it.
@@ -64,14 +64,14 @@ int run_glsl_export(const std::vector<std::string>& args) {
 std::string glsl_status() {
 #if HUSH_CLI_HAVE_GLSL
   try {
-    hush::glsl::osmesa_context context;
+    hush::glsl::headless_context context;
     const hush::glsl::device dev{context.loader()};
-    return "yes (" + dev.renderer() + ")";
+    return "yes (" + context.kind() + ": " + dev.renderer() + ")";
   } catch (const std::exception& e) {
     return std::string("unavailable: ") + e.what();
   }
 #else
-  return "unavailable: built without OSMesa (apt-get install libosmesa6-dev); "
+  return "unavailable: built without OSMesa or EGL (apt-get install libosmesa6-dev); "
          "hush glsl-export still works";
 #endif
 }

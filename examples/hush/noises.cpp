@@ -28,7 +28,7 @@ class field final : public noise_field {
   bool is_signed() const override { return signed_; }
   std::string unsupported_reason(backend b) const override {
     if (b == backend::glsl) {
-      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (OSMesa not found)";
+      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (neither OSMesa nor EGL found)";
       if (!has_glsl_program<Noise>())
         return "the GLSL backend has no program for this noise (hush::glsl::has_program_v)";
     }
@@ -370,7 +370,7 @@ std::optional<hush::vec3> parse_normal(const noise_setup& setup, const option_va
 
 std::string backend_missing(backend b) {
   if (b == backend::glsl && !HUSH_CLI_HAVE_GLSL)
-    return "the GLSL backend is not in this build (OSMesa not found)";
+    return "the GLSL backend is not in this build (neither OSMesa nor EGL found)";
   if (b == backend::simd && !HUSH_CONFIG_SIMD)
     return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
   return "";

@@ -153,8 +153,8 @@ TEST_CASE("glsl anisotropic: samples agree with the CPU within the stated tolera
           }
         }
       }
-  MESSAGE("llvmpipe, hardware bilinear: max |gpu - cpu| = " << worst << ", max error / tolerance = "
-                                                            << worst_ratio);
+  MESSAGE(headless().device.renderer() << ", hardware bilinear: max |gpu - cpu| = " << worst
+                                       << ", max error / tolerance = " << worst_ratio);
 }
 
 TEST_CASE("glsl anisotropic: gradients (texelFetch) agree with the CPU") {
@@ -251,8 +251,9 @@ TEST_CASE(
     if (w[i + a.channels() * a.parameters().base_scale] > 0.1f && entry > 1e4) ++cancelling;
   }
   CHECK(cancelling > 40);
-  MESSAGE("llvmpipe, grazing footprints: max error / tolerance = " << check_against_cpu(a, b, true,
-                                                                                        false));
+  const double grazing = check_against_cpu(a, b, true, false);
+  MESSAGE(headless().device.renderer() << ", grazing footprints: max error / tolerance = "
+                                       << grazing);
 }
 
 // Least squares on the GPU: the runner uploads the CPU's own weights per
@@ -280,7 +281,7 @@ TEST_CASE("glsl anisotropic: least-squares weights agree with the CPU within the
                   << int(rule.second));
         worst = std::max(worst, check_against_cpu(a, b, true, true));
       }
-  MESSAGE("llvmpipe, least squares: max error / tolerance = " << worst);
+  MESSAGE(headless().device.renderer() << ", least squares: max error / tolerance = " << worst);
 }
 
 TEST_CASE("glsl anisotropic: per-sample data split by the buffer limit gives the same results") {
@@ -290,7 +291,7 @@ TEST_CASE("glsl anisotropic: per-sample data split by the buffer limit gives the
   (void)headless();  // the context current on this thread
   hush::glsl::device::options opt;
   opt.max_buffer_bytes = 2048;
-  hush::glsl::device small(hush::glsl::osmesa_context::loader(), opt);
+  hush::glsl::device small(hush_glsl_test::headless().context.loader(), opt);
   const batch b = make_batch(60, 8);
   for (hush::weight_rule rule : {hush::weight_rule::centre, hush::weight_rule::least_squares}) {
     const hush::anisotropic a = make(8, hush::fractal_kind::turbulence, rule);

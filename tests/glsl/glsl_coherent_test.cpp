@@ -193,7 +193,7 @@ TEST_CASE("GLSL coherent time-symmetric filter agrees with the CPU") {
 
 TEST_CASE("GLSL coherent: a frame larger than one storage block is refused by name") {
   headless();  // the context the small device runs on
-  hush::glsl::device small(hush::glsl::osmesa_context::loader(), {0, 4096});
+  hush::glsl::device small(hush_glsl_test::headless().context.loader(), {0, 4096});
   const synthetic_frame s = make_synthetic("still", 0, 40, 30);  // velocity: 14400 bytes
   hush::coherent_stream st;
   std::vector<float> out(40 * 30);

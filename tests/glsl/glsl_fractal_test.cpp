@@ -44,7 +44,6 @@
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/device.hpp"
 #include "hush/glsl/noise_program.hpp"
-#include "hush/glsl/osmesa_context.hpp"
 #include "hush/hush.hpp"
 #include "test_util.hpp"
 

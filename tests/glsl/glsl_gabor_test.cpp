@@ -1029,7 +1029,7 @@ TEST_CASE("npr: records beyond one storage block are drawn in order, state is re
   const hush::glsl::detail::gl_api& gl = headless().device.gl();  // the context, current
   hush::glsl::device::options o;
   o.max_buffer_bytes = 128 * hush::glsl::kNprGaborRecordBytes;
-  hush::glsl::device small(hush::glsl::osmesa_context::loader(), o);
+  hush::glsl::device small(hush_glsl_test::headless().context.loader(), o);
   std::vector<hush::npr_gabor_splat> splats;
   noise.make_splats(sc.frame(), sc.triangles(), splats);
   REQUIRE(splats.size() > 128);

@@ -206,7 +206,7 @@ TEST_CASE("glsl samples: batches split by the buffer limit give the same results
   (void)hush_glsl_test::headless();  // the context current on this thread
   hush::glsl::device::options opt;
   opt.max_buffer_bytes = 96;
-  hush::glsl::device small(hush::glsl::osmesa_context::loader(), opt);
+  hush::glsl::device small(hush_glsl_test::headless().context.loader(), opt);
   std::vector<hush::vec3> pos, nrm;
   std::vector<hush::footprint<3>> fps;
   const hush::samples<3> s = make_samples<3>(101, pos, fps, nrm);
@@ -215,7 +215,7 @@ TEST_CASE("glsl samples: batches split by the buffer limit give the same results
   CHECK(small.dispatches() > 100);
   // A buffer too small for one sample's input is refused, not looped over forever.
   opt.max_buffer_bytes = 64;
-  hush::glsl::device tiny(hush::glsl::osmesa_context::loader(), opt);
+  hush::glsl::device tiny(hush_glsl_test::headless().context.loader(), opt);
   std::vector<float> out(s.size());
   CHECK_THROWS_WITH_AS(hush::evaluate(hush_test::banded_probe<3>{}, hush::exec::glsl{tiny}, s, out),
                        doctest::Contains("max_buffer_bytes() = 64"), hush::invalid_argument);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "hush/glsl/device.hpp"
-#include "hush/glsl/osmesa_context.hpp"
+#include "hush/glsl/headless.hpp"
 #include "hush/hush.hpp"
 
 // Mesa's OSMesa keeps a few hundred bytes of per-process state (allocated in
@@ -26,7 +26,8 @@ extern "C" const char* __lsan_default_suppressions() {  // NOLINT: the sanitizer
 
 namespace hush_glsl_test {
 
-// One OSMesa context and device per test process (CTest runs each case alone).
+// One headless context (HUSH_GL_CONTEXT) and device per test process (CTest runs each case
+// alone).
 inline hush::glsl::headless_device& headless() {
   static hush::glsl::headless_device h;
   return h;

@@ -12,7 +12,7 @@
 
 #include "hush/exec.hpp"
 #include "hush/glsl/device.hpp"
-#include "hush/glsl/osmesa_context.hpp"
+#include "hush/glsl/headless.hpp"
 #include "hush/hush.hpp"
 
 namespace {
@@ -52,7 +52,7 @@ void grid_row(hush::glsl::device& dev, const hush::grid<D>& g, int repeats, cons
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
-  hush::glsl::osmesa_context context;
+  hush::glsl::headless_context context;  // HUSH_GL_CONTEXT=egl: the machine's GPU
   hush::glsl::device dev{context.loader()};
   std::printf("renderer: %s\n", dev.renderer().c_str());
   grid_row(dev, hush::grid<2>{{0.5, 0.5}, {1.0 / 64, 1.0 / 64}, {1024, 1024}}, repeats,

@@ -12,8 +12,8 @@
 // is destroyed with the object. Throws std::runtime_error when OSMesa cannot
 // create a GL >= 4.3 core context (compute shaders need 4.3).
 //
-// headless_device bundles a context with a hush::glsl::device on it, for
-// programs that own no GL context of their own (tools, tests, benchmarks).
+// hush/glsl/headless.hpp bundles a context of this kind or EGL's with a
+// hush::glsl::device on it, for programs that own no GL context of their own.
 #ifndef HUSH_GLSL_OSMESA_CONTEXT_HPP
 #define HUSH_GLSL_OSMESA_CONTEXT_HPP
 
@@ -86,13 +86,6 @@ class osmesa_context {
   int width_, height_;
   std::vector<unsigned char> pixels_;
   OSMesaContext ctx_ = nullptr;
-};
-
-// An OSMesa context and a device on it, destroyed in the right order (device
-// first). Not copyable; create once per thread that evaluates.
-struct headless_device {
-  osmesa_context context;
-  hush::glsl::device device{osmesa_context::loader()};
 };
 
 }  // namespace glsl
