@@ -665,7 +665,8 @@ npr_records_compare npr_records_against_cpu(const hush::npr_gabor& noise, const 
   noise.make_splats(f, t, splats, src, &r.cpu_nodes);
   std::vector<std::uint32_t> words, ids;
   auto& state = hush::glsl::npr_gabor_state(headless().device);
-  REQUIRE(state.records(noise, f, t, src, words, ids, r.empty));
+  const bool on_gpu = state.records(noise, f, t, src, words, ids, r.empty);  // not in REQUIRE:
+  REQUIRE(on_gpu);  // bench/experiments/npr_gabor_gpu_error.cpp compiles it away
   r.gpu_nodes = state.stage1_nodes();
   r.levels = state.stage1_levels();
   r.cpu = splats.size();
@@ -780,6 +781,12 @@ struct npr_compare {
   // Object-passing fragments the depth test cuts (binary or beyond 2 tolerances) and those in
   // the soft test's fade band: the decisions the comparison exercises.
   std::size_t cut = 0, faded = 0;
+  // Per pixel: the GLSL image, the double reference, the bound's two parts (the splatting's
+  // float evaluation S (2 K + 2^-24 n); GPU stage 1's records' slack) and the tie pixels left
+  // out (bench/experiments/npr_gabor_gpu_error.cpp traces where an error comes from).
+  std::vector<float> gpu;
+  std::vector<double> ref, splat_bound, stage1_bound;
+  std::vector<char> tie;
 };
 
 // The image of `gpu_stage1` (exec::glsl render: both stages on the GPU) or of CPU stage 1's
@@ -815,7 +822,8 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
     // checks that every one-sided record is a boundary node.
     std::vector<std::uint32_t> words, ids;
     std::size_t empty = 0;
-    REQUIRE(state.records(noise, f, t, src, words, ids, empty));
+    const bool on_gpu = state.records(noise, f, t, src, words, ids, empty);
+    REQUIRE(on_gpu);
     const auto key = [](std::uint32_t object, std::uint32_t id, std::uint64_t j) {
       return std::make_pair((std::uint64_t(object) << 32) | id, j);
     };
@@ -879,6 +887,7 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
   npr_compare r;
   r.cut = cut;
   r.faded = faded;
+  r.splat_bound.assign(w * h, 0.0);
   double sq = 0;
   for (std::size_t q = 0; q < w * h; ++q) {
     if (tie[q]) {
@@ -887,7 +896,8 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
     }
     r.reached += count[q] > 0;
     const double e = std::fabs(double(gpu[q]) - ref[q]);
-    const double bound = sum_w[q] * (2 * k_max + std::ldexp(1.0, -24) * count[q]) + extra[q];
+    r.splat_bound[q] = sum_w[q] * (2 * k_max + std::ldexp(1.0, -24) * count[q]);
+    const double bound = r.splat_bound[q] + extra[q];
     r.max_abs = std::max(r.max_abs, e);
     sq += e * e;
     r.max_vs_float = std::max(r.max_vs_float, std::fabs(double(gpu[q]) - cpu[q]));
@@ -895,6 +905,10 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
     r.worst_ratio = std::max(r.worst_ratio, bound > 0 ? e / bound : (e > 0 ? 1e30 : 0.0));
   }
   r.rms = std::sqrt(sq / double(w * h));
+  r.gpu = std::move(gpu);
+  r.ref = std::move(ref);
+  r.stage1_bound = std::move(extra);
+  r.tie = std::move(tie);
   return r;
 }
 

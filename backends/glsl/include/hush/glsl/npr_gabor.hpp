@@ -28,7 +28,9 @@
 // automatically. Float instead of double changes positions, weights and planes within the
 // tolerance derived in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and
 // double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
-// float error) exist on one side only.
+// float error) exist on one side only; with params::local_density, likewise a node whose float
+// and double counts straddle a cut of the hat (1/4, 4): its record (weight <= sqrt((1 +
+// 1/ln 4) nu_P n + n 2^-21), nu_P its count's relative error) exists on one side only.
 //
 // Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
 // buffers, 64 + 16 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
