@@ -1266,7 +1266,8 @@ class npr_gabor_gpu {
     gl_.BindBufferBase(kGlShaderStorageBuffer, 6, level_nodes_[0]);
     run(kRootsPass, nt, kNprGaborGroupSize);
     // Level k -> k + 1: each node's record flag and kept children, scanned; the children at
-    // their offsets. The count below 2^41 bounds the depth: (4^k - 1) / 3 <= J < 2^41, k <= 21.
+    // their offsets. The count below 2^41 bounds the depth: (4^k - 1) / 3 <= J < 2^41, k <= 21
+    // (local density: level 21, npr_gabor::max_depth(), keeps no children).
     std::size_t records = 0;
     for (std::size_t k = 0; n > 0; ++k) {
       if (k > kMaxLevels || n * 8 > most) return false;
