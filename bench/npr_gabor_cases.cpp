@@ -11,7 +11,8 @@
 // exec::scalar (the reference) over every pixel. The note gives the splat count (points
 // emitted) and the triangle count. GLSL rows (with OSMesa; N' = 16; hush/glsl/npr_gabor.hpp):
 // render on exec::glsl, both stages on the GPU (the compute passes of stage 1 upload the
-// triangles once and write the records, the point sprites splat them), and "cpu-points" rows:
+// triangles once and write the records, the point sprites splat them; "local" rows: the same
+// with params::local_density, a count per node of the walk), and "cpu-points" rows:
 // stage 1 on the CPU (make_splats, double), the records uploaded and splatted; in wall time
 // like the other GLSL rows (llvmpipe's own threads do the work), read-back included.
 #include <cstdio>
@@ -141,6 +142,8 @@ void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s) {
   for (const bool cpu_points : {false, true})
     add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames,
              lod::paper, {16.0}, cpu_points);
+  add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames,
+           lod::local_density, {16.0});
 #endif
 }
 

@@ -378,7 +378,7 @@ const std::vector<render_entry>& render_table() {
             "points: faster on dense meshes)"},
            {"--local-density", "",
             "a point count per node of each triangle's point tree (variance constant across "
-            "foreshortened triangles; stage 1 on the CPU for --backend glsl)"},
+            "foreshortened triangles)"},
        },
        make_npr_gabor},
       anisotropic_render_entry(),

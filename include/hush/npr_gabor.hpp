@@ -274,6 +274,10 @@ class npr_gabor {
   double scale() const { return scale_; }
   // E[v^2] of the 16-bit symmetric amplitudes: (1 - 2^-32) / 3.
   static constexpr double weight_moment() { return (1.0 - 1.0 / 4294967296.0) / 3.0; }
+  // The deepest level of a triangle's point tree that stage 1 walks (21: J < 2^41 for the
+  // paper's LOD; params::local_density's finest level, whose hat carries the levels below).
+  // GPU stage 1 (hush/glsl/npr_gabor.hpp) walks the same levels.
+  static constexpr int max_depth() { return kMaxDepth; }
   // The frame views render reads.
   frame_view needs() const {
     frame_view v = frame_view::depth;

@@ -217,27 +217,30 @@ TEST_CASE("render npr-gabor writes the library's frames bit for bit from the tri
     CHECK(same(frame_file(dir / "n", i, 1), out));
     CHECK(std::any_of(out.begin(), out.end(), [](float v) { return v != 0.0f; }));
   }
-  {  // --local-density: params::local_density, bit for bit (frame 0); a dense small kernel, so
-     // that the 40x30 frame's triangles have n > 1/4 and the option changes the image.
-    const result l = run_hush("render npr-gabor --gbuffer '" + (dir / "g").string() + "' --out '" +
-                                  (dir / "l").string() +
-                                  "' --seed 3 --bandwidth 0.3 --impulses 64 --local-density",
-                              dir);
-    CHECK(l.exit_code == 0);
+  // Frame 0 of the library's scalar render with a dense small kernel (the --local-density
+  // runs' options), with or without params::local_density.
+  const auto dense_frame0 = [&](bool local) {
     hush::npr_gabor::params lp;
     lp.seed = 3;
     lp.bandwidth = 0.3;
     lp.impulses = 64;
-    lp.local_density = true;
+    lp.local_density = local;
     const hs::triangle_frame t = hs::project_triangles(s, 0, kW, kH);
+    std::vector<float> img(static_cast<std::size_t>(kW) * kH);
     hush::npr_gabor{lp}.render(hs::as_frame(g[0]), t.view(),
-                               hush::image_view<float>(out.data(), kW, kH));
-    CHECK(same(frame_file(dir / "l", 0, 1), out));
-    lp.local_density = false;
-    std::vector<float> plain(kW * kH);
-    hush::npr_gabor{lp}.render(hs::as_frame(g[0]), t.view(),
-                               hush::image_view<float>(plain.data(), kW, kH));
-    CHECK(plain != out);  // the option reached the noise
+                               hush::image_view<float>(img.data(), kW, kH));
+    return img;
+  };
+  const std::string dense_options = " --seed 3 --bandwidth 0.3 --impulses 64 --local-density";
+  {  // --local-density: params::local_density, bit for bit (frame 0); a dense small kernel, so
+     // that the 40x30 frame's triangles have n > 1/4 and the option changes the image.
+    const result l = run_hush("render npr-gabor --gbuffer '" + (dir / "g").string() + "' --out '" +
+                                  (dir / "l").string() + "'" + dense_options,
+                              dir);
+    CHECK(l.exit_code == 0);
+    const std::vector<float> local = dense_frame0(true);
+    CHECK(same(frame_file(dir / "l", 0, 1), local));
+    CHECK(dense_frame0(false) != local);  // the option reached the noise
   }
   // Without the triangle files (G-buffers from before them) it says what is missing.
   for (const char* f :
@@ -291,6 +294,22 @@ TEST_CASE("render npr-gabor writes the library's frames bit for bit from the tri
                dir);
   CHECK(styled.exit_code == 0);
   CHECK(styled.out.find("3 channels, glsl") != std::string::npos);
+  {  // --backend glsl --local-density: GPU stage 1 with a count per node (frame 0) against
+     // the library's scalar frame; the same 1e-3 separates float differences from a wrong
+     // record (a boundary node, present on one backend only, weighs at most ~1e-3 of a
+     // kernel: tests/glsl/glsl_gabor_test.cpp).
+    const result l = run_hush("render npr-gabor --backend glsl --gbuffer '" +
+                                  (dir / "g").string() + "' --out '" + (dir / "gl").string() +
+                                  "'" + dense_options,
+                              dir);
+    CHECK(l.exit_code == 0);
+    const std::vector<float> local = dense_frame0(true), got = frame_file(dir / "gl", 0, 1);
+    REQUIRE(got.size() == local.size());
+    double worst = 0;
+    for (std::size_t k = 0; k < local.size(); ++k)
+      worst = std::max(worst, std::fabs(double(got[k]) - double(local[k])));
+    CHECK(worst < 1e-3);
+  }
 #endif
 }
 

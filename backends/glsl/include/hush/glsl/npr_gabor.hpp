@@ -15,8 +15,9 @@
 // level, as the CPU walks it depth first: per triangle its count and LOD weights in float
 // (npr_gabor_lod, the thinning, the plane of 1/z) and its root node (level 0, at a scanned
 // offset); per level one pass decides for each node whether its own point reaches the frame
-// and which children to keep (index below the count, screen triangle grown by r meeting the
-// frame), a multi-level prefix sum gives every record and child its offset, a second pass
+// and which children to keep (index below the count, or with params::local_density the node's
+// own count n = lambda A above 1/4, its weight sqrt(n h(n)) per node as on the CPU; screen
+// triangle grown by r meeting the frame), a multi-level prefix sum gives every record and child its offset, a second pass
 // writes the children as the next level's list. The host reads back each level's two totals
 // (8 bytes) to size the next level; nothing is dropped (a level beyond one storage block runs
 // stage 1 on the CPU instead). Then one pass per level writes the records at their scanned
@@ -27,7 +28,9 @@
 // automatically. Float instead of double changes positions, weights and planes within the
 // tolerance derived in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and
 // double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
-// float error) exist on one side only.
+// float error) exist on one side only; with params::local_density, likewise a node whose float
+// and double counts straddle a cut of the hat (1/4, 4): its record (weight <= sqrt((1 +
+// 1/ln 4) nu_P n + n 2^-21), nu_P its count's relative error) exists on one side only.
 //
 // Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
 // buffers, 64 + 16 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
@@ -320,7 +323,8 @@ struct hush_npr_node {
   vec4 s2z;   // corner 2, depths of corners 0 and 1
   float z2;   // depth of corner 2
   uint info;  // bit 0: its own point has a record; bit 1 + d: its child at slot d is kept
-  uint pad0, pad1;
+  uint pad0;  // local density: its own point's LOD weight sqrt(f) (bits), set by the expand pass
+  uint pad1;
 };
 layout(std430, binding = 0) readonly buffer hush_npr_vertices_b { vec4 hush_npr_vertices[]; };
 layout(std430, binding = 1) readonly buffer hush_npr_triangles_b { uint hush_npr_triangles[]; };
@@ -332,6 +336,7 @@ uniform uvec2 hush_size;       // frame width, height
 uniform uint hush_key;         // seed_key(seed)
 uniform uint hush_nodes;       // nodes of this level
 uniform uint hush_level;       // the level: its nodes' stride is 4^level
+uniform uint hush_local;       // 1: params::local_density (a count per node)
 const uint hush_npr_child_order[HUSH_NPR_ORDERS] = uint[HUSH_NPR_ORDERS](HUSH_NPR_ORDER_TABLE);
 uint hush_npr_item() {
   return (hush_group_base + gl_WorkGroupID.x) * uint(HUSH_NPR_GROUP) + gl_LocalInvocationID.x;
@@ -437,6 +442,26 @@ bool hush_npr_meets_image(hush_npr_node n, vec2 origin, float r) {
   vec2 g = vec2(r) + HUSH_NPR_CULL_MARGIN + HUSH_NPR_CULL_RELATIVE * max(abs(lo), abs(hi));
   return !(any(lessThan(hi + g, -origin)) || any(greaterThan(lo - g, vec2(hush_size) - origin)));
 }
+// params::local_density (docs/npr-gabor.md "Local density"): a node's expected count
+// n = lambda A, A the area of its screen corners (float, relative to the origin: the CPU's
+// projected corners in double), and its own point's squared weight f = n h(n),
+// npr_gabor_lod::local_square: the hat h = max(0, 1 - |log4 n|), 1 below n = 1 at the root
+// (coarsest) and above it at the finest level. precise: the expand pass computes a child's
+// count when it decides to keep it and again when it visits it, and both must be one value.
+float hush_npr_node_count(hush_npr_node nd, float lambda) {
+  precise vec2 e1 = nd.s01.zw - nd.s01.xy, e2 = nd.s2z.xy - nd.s01.xy;
+  precise float c = e1.x * e2.y - e1.y * e2.x;
+  precise float n = lambda * 0.5 * abs(c);
+  return n;
+}
+float hush_npr_local_square(float n, bool coarsest, bool finest) {
+  if (!(n > 0.0)) return 0.0;
+  n = min(n, HUSH_NPR_MAX_POINTS);
+  float l = 0.5 * log2(n);
+  float h = 1.0 - abs(l);
+  if ((coarsest && l <= 0.0) || (finest && l >= 0.0)) h = 1.0;
+  return h > 0.0 ? n * h : 0.0;
+}
 )glsl";
 
 // Pass 0, one invocation per triangle: its point count and LOD weights (npr_gabor_lod::of,
@@ -480,13 +505,22 @@ void main() {
                 float(hush_stream_word(key, ~0u) >> 6u) * HUSH_NPR_2M53;
       float g = n <= 0.5 ? max(0.0, 1.0 - u / (2.0 * n)) : 1.0 - 2.0 * (1.0 - n) * u;
       w1 = sqrt(g);
-      if (!(w1 > 0.0)) { hush_npr_lods[t] = o; return; }
+      // No point; local density still walks the children of n > 1/4.
+      if (!(w1 > 0.0) && !(hush_local != 0u && n > 0.25)) { hush_npr_lods[t] = o; return; }
     }
   } else {
     // M = 2^floor(log2 N) from the exponent bits (N >= 1 is normal): exact, as frexp.
     first = (floatBitsToUint(n) >> 23u) - 127u;
     w2 = sqrt(n / uintBitsToFloat((first + 127u) << 23u) - 1.0);  // alpha(N), eq. 4; exact N / M
     count = w2 > 0.0 ? first + 1u : first;
+  }
+  if (hush_local != 0u) {
+    // Local density: no count (the walk stops at n <= 1/4); the root's weight sqrt(f), f =
+    // local_square(n, coarsest) (n < 1: n or thinned, w1 above), and n itself for the expand
+    // pass (the root's count is the triangle's, as on the CPU).
+    if (n >= 1.0) w1 = sqrt(hush_npr_local_square(n, true, false));
+    first = count = 0u;
+    w2 = n;
   }
   // The plane: 1/z = 1/z0 + qx (x - s0.x) + qy (y - s0.y).
   float d1 = 1.0 / z.y - 1.0 / z.x, d2 = 1.0 / z.z - 1.0 / z.x, inv = 1.0 / cross;
@@ -584,18 +618,31 @@ void main() {
   uint stream = hush_stream_key(nd.key.x, HUSH_NPR_STREAM);
   vec2 d, p0, p1;
   hush_npr_own_point(nd, origin, stream, r, d, p0, p1);
-  uint info = any(greaterThan(p0, p1)) ? 0u : 1u, kids = 0u;
+  // Local density (npr_gabor::local_walk): the node's count n (the root's from the LOD pass)
+  // and its weight sqrt(f), kept in pad0 for the records pass; a record where f > 0; children
+  // only below a node of n > 1/4, above the finest level, each kept if its own n > 1/4.
+  bool local = hush_local != 0u, finest = hush_level == uint(HUSH_NPR_FINEST);
+  float lambda = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]).size.y, n = 0.0, lw = 0.0;
+  if (local) {
+    hush_npr_lod l = hush_npr_lods[t];
+    n = hush_level == 0u ? uintBitsToFloat(l.lod.w) : hush_npr_node_count(nd, lambda);
+    lw = hush_level == 0u ? uintBitsToFloat(l.lod.z)
+                          : sqrt(hush_npr_local_square(n, false, finest));
+  }
+  uint info = any(greaterThan(p0, p1)) || (local && !(lw > 0.0)) ? 0u : 1u, kids = 0u;
   uint order = hush_stream_word(stream, 2u);
   for (uint slot = 0u; slot < 4u; ++slot) {
     // index + stride (1 + slot) grows with slot: the first one past the count ends.
     uvec2 j = hush_u64_add(nd.key.zw, hush_u64_shl(1u + slot, 2u * hush_level));
-    if (!hush_u64_below_pow2(j, count)) break;
-    if (hush_npr_meets_image(hush_npr_child(nd, order, slot, j), origin, r)) {
+    if (local ? !(n > 0.25) || finest : !hush_u64_below_pow2(j, count)) break;
+    hush_npr_node c = hush_npr_child(nd, order, slot, j);
+    if ((!local || hush_npr_node_count(c, lambda) > 0.25) && hush_npr_meets_image(c, origin, r)) {
       info |= 2u << slot;
       ++kids;
     }
   }
   hush_npr_level[i].info = info;
+  hush_npr_level[i].pad0 = floatBitsToUint(lw);
   hush_npr_flags[i] = uvec2(info & 1u, kids);
 }
 )glsl";
@@ -658,7 +705,9 @@ void main() {
   o.kern.xy = ((p0 + 0.5 - origin) - nd.s01.xy) - d;
   uint w1 = hush_stream_word(stream, 1u);
   float amplitude = 2.0 * hush_gabor_half(w1, 0u) - 1.0;
-  float lw = uintBitsToFloat(hush_u64_below_pow2(nd.key.zw, l.lod.y) ? l.lod.z : l.lod.w);
+  float lw = hush_local != 0u ? uintBitsToFloat(nd.pad0)
+                              : uintBitsToFloat(hush_u64_below_pow2(nd.key.zw, l.lod.y) ? l.lod.z
+                                                                                      : l.lod.w);
   vec2 f = kn.freq.xy;
   if (hush_isotropic != 0u) {
     vec2 sc = hush_sincos_turns(hush_gabor_half(w1, 1u));
@@ -713,7 +762,8 @@ inline std::string npr_gabor_stage1_source(int pass) {
          "\n#define HUSH_NPR_2M53 " + f32(0x1p-53) + "\n#define HUSH_NPR_ORDERS " +
          std::to_string(c::kNprGaborChildOrders) + "\n#define HUSH_NPR_ORDER_TABLE " + table +
          "\n#define HUSH_NPR_CULL_MARGIN " + f32(kNprGaborCullMargin) +
-         "\n#define HUSH_NPR_CULL_RELATIVE " + f32(kNprGaborCullRelative) + "\n" + library() +
+         "\n#define HUSH_NPR_CULL_RELATIVE " + f32(kNprGaborCullRelative) +
+         "\n#define HUSH_NPR_FINEST " + std::to_string(npr_gabor::max_depth()) + "u\n" + library() +
          detail::kNprGaborRecord + detail::kNprGaborStage1Common + bodies[p];
 }
 // The sources of the three stages (#version 430 core), for hush glsl-export and tests.
@@ -824,7 +874,7 @@ class npr_gabor_gpu {
   }
 
   // Both stages of noise.render on the GPU (arguments validated by render); stage 1 on the
-  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, params::local_density,
+  // CPU where the GPU cannot run it (a per-pixel or per-vertex source,
   // buffers beyond one storage block: a level's nodes included; more than 2^32 - 1 records or
   // nodes).
   void render(const npr_gabor& noise, const frame& f, const triangle_list& tris,
@@ -1141,8 +1191,8 @@ class npr_gabor_gpu {
   // number of records. False where the GPU cannot run stage 1 (see render).
   bool stage1(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, std::size_t& total) {
-    // Per-pixel or per-vertex sources, and local density (a count per node), run on the CPU.
-    if (!npr_gabor::per_object_at_most(src) || noise.parameters().local_density) return false;
+    // Per-pixel or per-vertex sources run on the CPU.
+    if (!npr_gabor::per_object_at_most(src)) return false;
     const std::size_t nt = tris.triangles(), nv = tris.vertices();
     std::size_t objects = 0;  // table entries before the constants' one
     for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
@@ -1195,6 +1245,7 @@ class npr_gabor_gpu {
       set(prog, "hush_key", seed_key(p.seed));
       set(prog, "hush_opts", (p.cull_back_faces ? 1u : 0u) | (p.thinning ? 2u : 0u));
       set(prog, "hush_isotropic", p.isotropic ? 1u : 0u);
+      set(prog, "hush_local", p.local_density ? 1u : 0u);
     }
     level_nodes_count_.clear();
     level_first_.clear();
@@ -1215,7 +1266,8 @@ class npr_gabor_gpu {
     gl_.BindBufferBase(kGlShaderStorageBuffer, 6, level_nodes_[0]);
     run(kRootsPass, nt, kNprGaborGroupSize);
     // Level k -> k + 1: each node's record flag and kept children, scanned; the children at
-    // their offsets. The count below 2^41 bounds the depth: (4^k - 1) / 3 <= J < 2^41, k <= 21.
+    // their offsets. The count below 2^41 bounds the depth: (4^k - 1) / 3 <= J < 2^41, k <= 21
+    // (local density: level 21, npr_gabor::max_depth(), keeps no children).
     std::size_t records = 0;
     for (std::size_t k = 0; n > 0; ++k) {
       if (k > kMaxLevels || n * 8 > most) return false;
