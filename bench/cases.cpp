@@ -84,11 +84,11 @@ std::string grid_name(const hush::grid<D>& g) {
 }
 
 template <int D>
-std::vector<fvec<D>> make_points(std::size_t n) {
+std::vector<fvec<D>> make_points(std::size_t n, float lo = -kPointRange, float hi = kPointRange) {
   hush::rng r(kPointSeed, static_cast<std::uint32_t>(D));
   std::vector<fvec<D>> pts(n);
   for (fvec<D>& p : pts)
-    for (int a = 0; a < D; ++a) p[a] = r.uniform(-kPointRange, kPointRange);
+    for (int a = 0; a < D; ++a) p[a] = r.uniform(lo, hi);
   return pts;
 }
 
@@ -161,10 +161,10 @@ prepared_case prepare_hush_grid(const Noise& noise, const Exec& ex,
 
 template <class Noise, class Exec>
 prepared_case prepare_hush_points(const Noise& noise, const Exec& ex, std::size_t n,
-                                  bool gradient) {
+                                  bool gradient, float lo = -kPointRange, float hi = kPointRange) {
   constexpr int D = Noise::dimension;
   auto b = std::make_shared<buffers<D>>();
-  b->points = make_points<D>(n);
+  b->points = make_points<D>(n, lo, hi);
   b->out.resize(n);
   if (gradient) b->grad.resize(n);
   prepared_case p;
@@ -348,6 +348,8 @@ constexpr int kWaveletBands[] = {2, 4};
 constexpr std::size_t kLeakSize = 256;
 constexpr double kLeakStep = 0.25;
 constexpr double kLeakSliceZ = 0.375;  // the 3D slice plane z = this (off the lattice)
+constexpr float kWaveletL1Box = 4;     // the L1-bound row's points: [0, 4)^3
+constexpr int kWaveletL2Tile = 32;     // the L2-bound row's tile: 32^3 (140 KiB)
 
 template <int D>
 hush::wavelet<D> make_wavelet(int bands) {
@@ -472,6 +474,29 @@ void add_wavelet_rows(std::vector<bench_case>& cases, const sizes& s, const Exec
     };
     add(make_wavelet<2>(bands), "2D");
     add(make_wavelet<3>(bands), "3D");
+  }
+  if constexpr (std::is_same_v<Exec, hush::exec::simd_t>) {
+    // The memory bounds of "wavelet 3D" points (SIMD only; its AVX2 copy comes with the
+    // pinned rows): the same kernel with every tile read L1-resident (points confined to
+    // [0, kWaveletL1Box)^3: 6^3 coefficients) and L2-resident (the same spread points on a
+    // 32^3 tile, 140 KiB); the spread row's time above these is cache misses on the 64^3
+    // tile (1.05 MiB, more than this machine's L2 once the points stream through it).
+    c.noise = "wavelet 3D";
+    c.note = "memory bound: tile reads L1-resident (points in [0, 4)^3)";
+    c.workload = "points-L1 " + std::to_string(s.points);
+    c.prepare = [noise = make_wavelet<3>(1), ex, n = s.points] {
+      return prepare_hush_points(noise, ex, n, false, 0.0f, kWaveletL1Box);
+    };
+    cases.push_back(c);
+    typename hush::wavelet<3>::params prm;
+    prm.seed = kNoiseSeed;
+    prm.tile_size = kWaveletL2Tile;
+    c.note = "memory bound: 32^3 tile, L2-resident (the spread points)";
+    c.workload = "points-L2 " + std::to_string(s.points);
+    c.prepare = [noise = hush::wavelet<3>(prm), ex, n = s.points] {
+      return prepare_hush_points(noise, ex, n, false);
+    };
+    cases.push_back(c);
   }
   first = cases.size();
   for (const auto proj : {hush::wavelet_projection::exact, hush::wavelet_projection::approximate}) {

@@ -913,21 +913,30 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
   int last_kind = ws::kPlain;
   double last_scale = 0;
   float last_u[3] = {0, 0, 1};
+  // The weights and scales lw was last set from (lw.set converts them per lane and band:
+  // skipped while a run of vectors repeats them, the usual case without footprints).
+  double set_weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], set_scale[perlin_simd::kMaxLanes];
+  bool lw_set = false;
+  const std::size_t row_bytes = lanes * sizeof(double);
   simd_batch::for_each_vector<D>(
       n, pts, value, grad, [&](std::size_t first, const float* p, float* v, float* g) {
         unsigned present = 0;  // bit k: some lane has kind k
+        unsigned seen = 0;     // the same, scalar lanes and lanes past n included
         for (std::size_t l = 0; l < lanes; ++l) {
           kind[l] = ws::kScalarLane;
           for (int a = 0; a < 3; ++a) normal[a][l] = a == 2 ? 1.0f : 0.0f;
-          if (first + l >= n) continue;
-          const sample_input<D> in = s.at(first + l);
+          if (first + l >= n) {
+            seen |= 1u << ws::kScalarLane;
+            continue;
+          }
+          // p holds the lane's position (for_each_vector): finite as s.at's doubles are.
           bool finite = true;
-          for (int a = 0; a < D; ++a) finite = finite && std::isfinite(in.position[a]);
+          for (int a = 0; a < D; ++a) finite = finite && std::isfinite(p[l * D + a]);
           if (shared) {
             const bool same =
                 have_last && (!s.has_normals() || ws::same_bits(s.normals[first + l], last_normal));
-            if (!same) {
-              w.plan_normal(in, base);
+            if (!same) {  // only here the sample itself is needed
+              w.plan_normal(s.at(first + l), base);
               last_scale = w.plan_scale(base, w.plan_variance(base));
               last_kind = ws::lane_kind_of<D>(w, base, true);
               for (int a = 0; a < 3; ++a) last_u[a] = static_cast<float>(base.normal[a]);
@@ -936,12 +945,13 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
             }
             kind[l] = finite ? last_kind : ws::kScalarLane;
           } else {
-            const typename wavelet<D>::plan pl = w.make_plan(in);
+            const typename wavelet<D>::plan pl = w.make_plan(s.at(first + l));
             kind[l] = ws::lane_kind_of<D>(w, pl, finite);
             last_scale = pl.scale;
             for (int b = 0; b < nb; ++b) base.weight[b] = pl.weight[b];
             for (int a = 0; a < 3; ++a) last_u[a] = static_cast<float>(pl.normal[a]);
           }
+          seen |= 1u << kind[l];
           const bool vectorised = kind[l] != ws::kScalarLane;
           if (vectorised) present |= 1u << kind[l];
           for (int b = 0; b < nb; ++b) weight[b][l] = vectorised ? base.weight[b] : 0.0;
@@ -954,22 +964,42 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
         for (int k = 0; k < ws::kLaneKinds; ++k) {
           if (((present >> k) & 1u) == 0) continue;
           const bool alone = present == (1u << k);
-          HWY_ALIGN float pv[perlin_simd::kMaxLanes * 3] = {};
-          for (std::size_t l = 0; l < lanes; ++l) {
-            const bool mine = kind[l] == k;
-            for (int b = 0; b < nb; ++b) kind_weight[b][l] = mine ? weight[b][l] : 0.0;
-            kind_scale[l] = mine ? scale[l] : 0.0;
-            if (mine)
-              for (int a = 0; a < D; ++a) pv[l * D + a] = p[l * D + a];
+          // Every lane of kind k (the usual case): the lanes' own points, weights and
+          // scales; else copies with the other lanes' zeroed.
+          const bool all = seen == (1u << k);
+          const double(*kw)[perlin_simd::kMaxLanes] = weight;
+          const double* ks = scale;
+          const float* pk = p;
+          HWY_ALIGN float pv[perlin_simd::kMaxLanes * 3];
+          if (!all) {
+            std::fill(pv, pv + lanes * D, 0.0f);
+            for (std::size_t l = 0; l < lanes; ++l) {
+              const bool mine = kind[l] == k;
+              for (int b = 0; b < nb; ++b) kind_weight[b][l] = mine ? weight[b][l] : 0.0;
+              kind_scale[l] = mine ? scale[l] : 0.0;
+              if (mine)
+                for (int a = 0; a < D; ++a) pv[l * D + a] = p[l * D + a];
+            }
+            kw = kind_weight;
+            ks = kind_scale;
+            pk = pv;
+          }
+          bool repeat = lw_set && std::memcmp(ks, set_scale, row_bytes) == 0;
+          for (int b = 0; b < nb && repeat; ++b)
+            repeat = std::memcmp(kw[b], set_weight[b], row_bytes) == 0;
+          if (!repeat) {
+            lw.set(w, kw, ks);
+            for (int b = 0; b < nb; ++b) std::memcpy(set_weight[b], kw[b], row_bytes);
+            std::memcpy(set_scale, ks, row_bytes);
+            lw_set = true;
           }
           HWY_ALIGN float vt[perlin_simd::kMaxLanes], gt[perlin_simd::kMaxLanes * 3];
           float* vo = alone ? v : vt;
           float* go = g == nullptr ? nullptr : (alone ? g : gt);
-          lw.set(w, kind_weight, kind_scale);
           if (g)
-            ws::points_vector<true, D>(w, pv, lw, vo, go, k, normal);
+            ws::points_vector<true, D>(w, pk, lw, vo, go, k, normal);
           else
-            ws::points_vector<false, D>(w, pv, lw, vo, nullptr, k, normal);
+            ws::points_vector<false, D>(w, pk, lw, vo, nullptr, k, normal);
           if (alone) continue;
           for (std::size_t l = 0; l < lanes; ++l) {
             if (kind[l] != k) continue;
