@@ -9,7 +9,8 @@
 // helpers by compiling the test file with doctest disabled. Build and run (after building
 // glsl_gabor_test and hush_scene in build/release; a minute or two at 1280 x 720):
 //
-//   g++ -O2 -std=c++17 -DDOCTEST_CONFIG_DISABLE -Itests/glsl -Itests -Iinclude \
+//   g++ -O2 -std=c++17 -DDOCTEST_CONFIG_DISABLE -DHUSH_GLSL_HAVE_OSMESA=1 \
+//     -Itests/glsl -Itests -Iinclude \
 //     -Ibackends/glsl/include -Iexamples/scene bench/experiments/npr_gabor_gpu_error.cpp \
 //     build/release/examples/scene/libhush_scene.a -lOSMesa -o /tmp/npr_gpu_error
 //   /tmp/npr_gpu_error 5000 [--local]
