@@ -751,3 +751,105 @@ TEST_CASE("local density: huge triangles keep bounded work, nodes near the image
     CHECK(!splats.empty());
   }
 }
+
+namespace {
+// A ground plane y = -1 (view space) under a camera at the origin looking along +Z, focal
+// f = 80 px, the horizon at screen row -40 (above the 160 x 160 image, whose rows show depths
+// 2 (top) to 0.4 (bottom)): the quad X in [-4, 4], Z in [back, 3]. A surface point (X, Z)
+// is at screen (80 + 80 X / Z, -40 + 80 / Z), the scene's clip xy / w for any w != 0, so a
+// vertex behind the camera (back < 0) has its (z s, z) = clip (x, w) through the viewport.
+// The G-buffer is exact: depth 80 / (y + 40) at pixel row y (1/z affine in screen), object
+// 1 everywhere (the plane covers the image for back < 0.4).
+grid_scene ground_under_camera(float back) {
+  const std::size_t w = 160, h = 160;
+  grid_scene sc(w, h, 0.0, 0.0, 1.0, 1, 1);
+  const auto at = [](double x, double z) {
+    return hush::vec2{static_cast<float>(80.0 + 80.0 * x / z),
+                      static_cast<float>(-40.0 + 80.0 / z)};
+  };
+  // Vertices (0,0), (1,0) far; (0,1), (1,1) near (behind the camera for back < 0).
+  sc.screen = {at(-4, 3), at(4, 3), at(-4, back), at(4, back)};
+  sc.vdepth = {3.0f, 3.0f, back, back};
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      sc.depth[y * w + x] = static_cast<float>(80.0 / (static_cast<double>(y) + 0.5 + 40.0));
+      sc.object[y * w + x] = 1u;
+    }
+  return sc;
+}
+}  // namespace
+
+TEST_CASE("near plane: a ground plane under the camera has variance 1 up to the image bottom") {
+  // Both triangles have a vertex behind the camera (depth -1). Stage 1 walks them with the
+  // local density's count per node, whatever params::local_density says, clipping the nodes
+  // at w_near = far / 1024: the band of the image's bottom 40 rows (depths 0.4 - 0.5) must
+  // have variance 1 within 4.5 standard errors (as "local density: variance 1 near and far",
+  // whose standard error this is: se / sqrt(seeds), scaled by sqrt(max f) = sqrt(1.0615)),
+  // where such triangles used to emit nothing (variance 0); so must a band at the top.
+  const std::size_t w = 160, h = 160, m = 8, band = 40;
+  const int seeds = 4;
+  hush::npr_gabor::params p = small_kernel();
+  const grid_scene sc = ground_under_camera(-1.0f);
+  double near_v = 0, far_v = 0;
+  for (int k = 0; k < seeds; ++k) {
+    p.seed = static_cast<std::uint32_t>(70 + k);
+    for (bool local : {false, true}) {
+      p.local_density = local;
+      const auto img = render(hush::npr_gabor{p}, sc);
+      if (local) continue;  // the same records (checked below): crossing triangles ignore it
+      near_v += window_variance(img, w, m, h - m - band, h - m) / seeds;
+      far_v += window_variance(img, w, m, m, m + band) / seeds;
+    }
+  }
+  const double se = variance_standard_error(hush::npr_gabor{p}, band * (w - 2 * m)) *
+                    std::sqrt(1.0615 / seeds);
+  MESSAGE("ground under the camera: bottom band ", near_v, ", top band ", far_v,
+          "; standard error ", se);
+  CHECK(std::fabs(near_v - 1.0) < 4.5 * se);
+  CHECK(std::fabs(far_v - 1.0) < 4.5 * se);
+}
+
+TEST_CASE("near plane: no point behind it, deterministic, option-independent, bounded nodes") {
+  // Every record's point (point_of: its root barycentrics) is in front of w_near = 3 / 1024;
+  // two calls give the same records bit for bit, and so does params::local_density (the
+  // crossing triangles use it anyway). Nodes: the walk examines 4 children of each node
+  // visited, and visits the nodes with a count above 1/4 whose part in front of w_near meets
+  // the image grown by r: in front, level by level, about lambda B / n_k of them (B the
+  // grown image's area: (16/3) lambda B over the levels, as "local density: huge
+  // triangles"); crossing w_near, the nodes along the line w = w_near, whose part in front
+  // meets the image only while they reach depth 0.4 (the image's bottom) from w_near: a few
+  // levels, 2^k nodes each. The bound is 4 (16/3) lambda B per triangle.
+  const std::size_t w = 160, h = 160;
+  hush::npr_gabor::params p = small_kernel();
+  const grid_scene sc = ground_under_camera(-1.0f);
+  const hush::npr_gabor noise{p};
+  std::vector<hush::npr_gabor_splat> a, b, c;
+  std::uint64_t nodes = 0;
+  noise.make_splats(sc.frame(), sc.triangles(), a, {}, &nodes);
+  noise.make_splats(sc.frame(), sc.triangles(), b);
+  p.local_density = true;
+  hush::npr_gabor{p}.make_splats(sc.frame(), sc.triangles(), c);
+  REQUIRE(!a.empty());
+  REQUIRE(a.size() == b.size());
+  REQUIRE(a.size() == c.size());
+  bool same = true, in_front = true;
+  double nearest = 1e300;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    same = same && a[i].x == b[i].x && a[i].y == b[i].y && a[i].weight == b[i].weight &&
+           a[i].index == b[i].index && a[i].x == c[i].x && a[i].weight == c[i].weight;
+    const auto pt = noise.point_of(a[i].object, a[i].triangle, a[i].index);
+    const std::uint32_t* v = &sc.indices[3 * (a[i].triangle)];
+    double z = 0;
+    for (int k = 0; k < 3; ++k) z += pt.b[k] * sc.vdepth[v[k]];
+    nearest = std::min(nearest, z);
+    in_front = in_front && z >= 3.0 / 1024.0;
+  }
+  CHECK(same);
+  CHECK(in_front);
+  const double grown_w = static_cast<double>(w) + 2 * noise.kernel().radius();
+  const double grown_h = static_cast<double>(h) + 2 * noise.kernel().radius();
+  const double bound = 2 * 4 * (16.0 / 3.0) * noise.density() * grown_w * grown_h;
+  MESSAGE("records ", a.size(), ", nearest point's depth ", nearest, ", nodes ", nodes,
+          " (bound ", bound, ")");
+  CHECK(static_cast<double>(nodes) < bound);
+}

@@ -352,6 +352,13 @@ constexpr double kNprGaborMaxDepthTolerance = 1.0;
 // input cannot place the points it asks for. Indices J < 2^41 keep
 // npr_tree_child's index + 4 stride below 2^46, far from overflowing 64 bits.
 constexpr double kNprGaborMaxPoints = 1099511627776.0;  // 2^40
+// Triangles crossing the near plane (a vertex at depth <= 0; docs/npr-gabor.md "Skipped
+// triangles"): stage 1 clips the point tree's nodes at the depth w_near = this fraction of
+// the triangle's largest vertex depth (the input has no near plane; a renderer's is far
+// larger, e.g. 0.05 with a scene 10-100 deep). Nodes entirely behind it are dropped, nodes
+// crossing it are culled by their clipped part's projection (bounded: every depth there is
+// >= w_near > 0).
+constexpr double kNprGaborNearFraction = 1.0 / 1024.0;
 constexpr unsigned kNprGaborMaxTriangles = 1u << 28;
 constexpr unsigned kNprGaborMaxImageSide = 32768;
 // Each point takes 2 words of its triangle's stream (hush::rng, stream
