@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
@@ -752,33 +754,6 @@ TEST_CASE("local density: huge triangles keep bounded work, nodes near the image
   }
 }
 
-namespace {
-// A ground plane y = -1 (view space) under a camera at the origin looking along +Z, focal
-// f = 80 px, the horizon at screen row -40 (above the 160 x 160 image, whose rows show depths
-// 2 (top) to 0.4 (bottom)): the quad X in [-4, 4], Z in [back, 3]. A surface point (X, Z)
-// is at screen (80 + 80 X / Z, -40 + 80 / Z), the scene's clip xy / w for any w != 0, so a
-// vertex behind the camera (back < 0) has its (z s, z) = clip (x, w) through the viewport.
-// The G-buffer is exact: depth 80 / (y + 40) at pixel row y (1/z affine in screen), object
-// 1 everywhere (the plane covers the image for back < 0.4).
-grid_scene ground_under_camera(float back) {
-  const std::size_t w = 160, h = 160;
-  grid_scene sc(w, h, 0.0, 0.0, 1.0, 1, 1);
-  const auto at = [](double x, double z) {
-    return hush::vec2{static_cast<float>(80.0 + 80.0 * x / z),
-                      static_cast<float>(-40.0 + 80.0 / z)};
-  };
-  // Vertices (0,0), (1,0) far; (0,1), (1,1) near (behind the camera for back < 0).
-  sc.screen = {at(-4, 3), at(4, 3), at(-4, back), at(4, back)};
-  sc.vdepth = {3.0f, 3.0f, back, back};
-  for (std::size_t y = 0; y < h; ++y)
-    for (std::size_t x = 0; x < w; ++x) {
-      sc.depth[y * w + x] = static_cast<float>(80.0 / (static_cast<double>(y) + 0.5 + 40.0));
-      sc.object[y * w + x] = 1u;
-    }
-  return sc;
-}
-}  // namespace
-
 TEST_CASE("near plane: a ground plane under the camera has variance 1 up to the image bottom") {
   // Both triangles have a vertex behind the camera (depth -1). Stage 1 walks them with the
   // local density's count per node, whatever params::local_density says, clipping the nodes
@@ -789,7 +764,7 @@ TEST_CASE("near plane: a ground plane under the camera has variance 1 up to the 
   const std::size_t w = 160, h = 160, m = 8, band = 40;
   const int seeds = 4;
   hush::npr_gabor::params p = small_kernel();
-  const grid_scene sc = ground_under_camera(-1.0f);
+  const grid_scene sc = npr_test::ground_under_camera(-1.0f);
   double near_v = 0, far_v = 0;
   for (int k = 0; k < seeds; ++k) {
     p.seed = static_cast<std::uint32_t>(70 + k);
@@ -801,8 +776,8 @@ TEST_CASE("near plane: a ground plane under the camera has variance 1 up to the 
       far_v += window_variance(img, w, m, m, m + band) / seeds;
     }
   }
-  const double se = variance_standard_error(hush::npr_gabor{p}, band * (w - 2 * m)) *
-                    std::sqrt(1.0615 / seeds);
+  const double se =
+      variance_standard_error(hush::npr_gabor{p}, band * (w - 2 * m)) * std::sqrt(1.0615 / seeds);
   MESSAGE("ground under the camera: bottom band ", near_v, ", top band ", far_v,
           "; standard error ", se);
   CHECK(std::fabs(near_v - 1.0) < 4.5 * se);
@@ -821,7 +796,7 @@ TEST_CASE("near plane: no point behind it, deterministic, option-independent, bo
   // levels, 2^k nodes each. The bound is 4 (16/3) lambda B per triangle.
   const std::size_t w = 160, h = 160;
   hush::npr_gabor::params p = small_kernel();
-  const grid_scene sc = ground_under_camera(-1.0f);
+  const grid_scene sc = npr_test::ground_under_camera(-1.0f);
   const hush::npr_gabor noise{p};
   std::vector<hush::npr_gabor_splat> a, b, c;
   std::uint64_t nodes = 0;
@@ -849,7 +824,65 @@ TEST_CASE("near plane: no point behind it, deterministic, option-independent, bo
   const double grown_w = static_cast<double>(w) + 2 * noise.kernel().radius();
   const double grown_h = static_cast<double>(h) + 2 * noise.kernel().radius();
   const double bound = 2 * 4 * (16.0 / 3.0) * noise.density() * grown_w * grown_h;
-  MESSAGE("records ", a.size(), ", nearest point's depth ", nearest, ", nodes ", nodes,
-          " (bound ", bound, ")");
+  MESSAGE("records ", a.size(), ", nearest point's depth ", nearest, ", nodes ", nodes, " (bound ",
+          bound, ")");
   CHECK(static_cast<double>(nodes) < bound);
+}
+
+namespace {
+// The relative change of the records' squared weights between two frames, matched by
+// (triangle, J): sum |w_a^2 - w_b^2| / sum w_a^2 (a record in one frame only counts with its
+// whole w^2). What the variance sees (Campbell's theorem: the density of sum w^2).
+double weight_change(const std::vector<hush::npr_gabor_splat>& a,
+                     const std::vector<hush::npr_gabor_splat>& b) {
+  std::map<std::pair<std::uint32_t, std::uint64_t>, double> wb;
+  for (const auto& r : b) wb[{r.triangle, r.index}] = double(r.weight) * r.weight;
+  double d = 0, total = 0;
+  for (const auto& r : a) {
+    const double wa = double(r.weight) * r.weight;
+    total += wa;
+    const auto it = wb.find({r.triangle, r.index});
+    d += std::fabs(wa - (it == wb.end() ? 0.0 : it->second));
+    if (it != wb.end()) wb.erase(it);
+  }
+  for (const auto& kv : wb) d += kv.second;
+  return d / total;
+}
+}  // namespace
+
+TEST_CASE("near plane: no pop as a triangle's depth ratio passes 4 or a vertex passes depth 0") {
+  // Every squared weight is continuous in the vertex depths: the share of the count per node
+  // ramps with log(far / near) from 4 to 8 (constants.hpp), a node's count n_P and the
+  // per-triangle N move with the vertices, and at depth w_near the nodes that switch to
+  // "crossing" (weight 0) already had n_P far above 4 (weight 0). So the records' squared
+  // weights change by O(eps) for a relative move eps of the vertices: a tenth of the move, a
+  // tenth of the change (checked: at most a fifth), where a switch (a pop) would change them by
+  // the same O(1) however small the move (a hard switch at ratio 4: 1.25 for both moves,
+  // tried). Three places: the depth ratio passing 4 (the
+  // per-triangle LOD against a sliver of the count per node), the ground's near edge passing
+  // w_near = 3 / 1024 (clipping starts) and passing depth 0 (a vertex behind the camera).
+  hush::npr_gabor::params p = small_kernel();
+  const hush::npr_gabor noise{p};
+  const auto records = [&](const grid_scene& sc) {
+    std::vector<hush::npr_gabor_splat> r;
+    noise.make_splats(sc.frame(), sc.triangles(), r);
+    REQUIRE(!r.empty());
+    return r;
+  };
+  const auto ratio = [&](double eps) {
+    return weight_change(records(ground_plane(160, 160, 16.0, float(4.0 * (1 - eps)))),
+                         records(ground_plane(160, 160, 16.0, float(4.0 * (1 + eps)))));
+  };
+  const auto edge = [&](double at, double eps) {
+    return weight_change(records(npr_test::ground_under_camera(float(at - eps))),
+                         records(npr_test::ground_under_camera(float(at + eps))));
+  };
+  const double w_near = 3.0 / 1024;
+  const double r1 = ratio(1e-3), r2 = ratio(1e-4), n1 = edge(w_near, 1e-4),
+               n2 = edge(w_near, 1e-5), z1 = edge(0.0, 1e-4), z2 = edge(0.0, 1e-5);
+  MESSAGE("squared-weight change for a move of eps, 10 eps: depth ratio 4: ", r2, ", ", r1,
+          "; near edge at w_near: ", n2, ", ", n1, "; at depth 0: ", z2, ", ", z1);
+  CHECK(r2 < r1 / 5);
+  CHECK(n2 < n1 / 5);
+  CHECK(z2 < z1 / 5);
 }

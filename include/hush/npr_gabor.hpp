@@ -433,6 +433,24 @@ class npr_gabor {
     const point_parameters::kernel k = pp.at(at, 0.0, lambda);
     return {k.F, k.bandwidth, k.radius, lambda, k.scale};
   }
+  // Whether stage 1 walks a triangle of `tris` (validated) with a count per node even
+  // without params::local_density: a vertex in front of the camera and one behind it, or a
+  // depth ratio far / near above kNprGaborPerNodeRatioLow (docs/npr-gabor.md "Skipped
+  // triangles"; conservative: back faces and triangles off the image count too). GPU
+  // backends whose stage 1 has one count per triangle run such frames' stage 1 on the CPU.
+  // O(triangles).
+  static bool walks_per_node(const triangle_list& tris) {
+    for (std::size_t t = 0; t < tris.triangles(); ++t) {
+      double near = std::numeric_limits<double>::infinity(), far = -near;
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double z = tris.depth[tris.indices[3 * t + i]];
+        near = std::min(near, z);
+        far = std::max(far, z);
+      }
+      if (far > 0.0 && far > detail::constants::kNprGaborPerNodeRatioLow * near) return true;
+    }
+    return false;
+  }
   // Whether every source is constant or per object (kernel_of_object applies).
   static bool per_object_at_most(const sources& src) {
     for (const param_source* s : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
@@ -647,10 +665,8 @@ class npr_gabor {
                        std::uint64_t* nodes) const {
     dvec2 s[3];
     double z[3];
-    // A vertex behind the camera (depth < 0; its screen position clip xy / w with w < 0, so
-    // (z s, z) is its clip (xy, w) through the viewport, affine in object space): the
-    // triangle crosses the near plane, and its nodes are clipped at w_near below.
-    bool crossing = false;
+    // A vertex behind the camera (depth < 0) has its screen position clip xy / w with w < 0,
+    // so (z s, z) is its clip (xy, w) through the viewport, affine in object space.
     for (int i = 0; i < 3; ++i) {
       const std::uint32_t k = tris.indices[3 * t + static_cast<std::size_t>(i)];
       s[i] = {static_cast<double>(tris.screen[k].x), static_cast<double>(tris.screen[k].y)};
@@ -659,7 +675,6 @@ class npr_gabor {
       if (!(z[i] != 0.0) || !std::isfinite(z[i]) || !std::isfinite(s[i].x) ||
           !std::isfinite(s[i].y))
         return;
-      if (z[i] < 0.0) crossing = true;
     }
     // Twice the signed area, y down: front faces (GL's counter-clockwise) are negative. In
     // homogeneous coordinates the orientation is det(z_i (s_i, 1)) = z0 z1 z2 cross: with a
@@ -670,9 +685,20 @@ class npr_gabor {
     const double facing = z[0] * z[1] * z[2] < 0.0 ? -cross : cross;
     if (p_.cull_back_faces && !(facing < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
-    const double far = std::max({z[0], z[1], z[2]});
+    const double far = std::max({z[0], z[1], z[2]}), near = std::min({z[0], z[1], z[2]});
     if (!(far > 0.0)) return;  // entirely behind the camera
+    // Crossing (or nearly touching) the near plane: the nodes are clipped at w_near.
+    const bool crossing = near < detail::constants::kNprGaborNearFraction * far;
     const double w_near = crossing ? detail::constants::kNprGaborNearFraction * far : 0.0;
+    // The share t of the count per node in the squared weights (constants.hpp): 1 with
+    // params::local_density or crossing, else ramping up with the depth ratio far / near.
+    double blend = 1.0;
+    if (!p_.local_density && !crossing) {
+      namespace c = detail::constants;
+      blend = std::clamp(std::log(far / (near * c::kNprGaborPerNodeRatioLow)) /
+                             std::log(c::kNprGaborPerNodeRatioHigh / c::kNprGaborPerNodeRatioLow),
+                         0.0, 1.0);
+    }
     const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
     const std::uint32_t* vertices = &tris.indices[3 * t];
     const double cull = pp.off_image_radius(object, vertices);
@@ -690,7 +716,7 @@ class npr_gabor {
     // of the corners in front and the edges' crossings of w_near, and (all its depths >=
     // w_near > 0) it projects onto the polygon of their projections. `whole`: every corner
     // is in front (the node is not crossing).
-    const auto clip_near = [&](const double (&corner)[3][3], dvec2(&out)[4], bool& whole) {
+    const auto clip_near = [&](const double(&corner)[3][3], dvec2(&out)[4], bool& whole) {
       double d[3];
       for (unsigned i = 0; i < 3; ++i)
         d[i] = corner[i][0] * z[0] + corner[i][1] * z[1] + corner[i][2] * z[2] - w_near;
@@ -722,15 +748,17 @@ class npr_gabor {
     // where it is not in front of the camera: the source's constant).
     const double zs = z[0] + z[1] + z[2], third = 1.0 / 3.0;
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const double lambda = pp.density(
-        {object, zs > 0.0 ? (z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs : nan,
-         zs > 0.0 ? (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs : nan, vertices,
-         {third, third, third}},
-        w, h);
+    const double lambda =
+        pp.density({object,
+                    zs > 0.0 ? (z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs : nan,
+                    zs > 0.0 ? (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs : nan,
+                    vertices,
+                    {third, third, third}},
+                   w, h);
     // N = lambda A; crossing the near plane, A is unbounded: n is the clipped part's count
     // (the local walk's bound on every descendant's count).
-    const double n = lambda * (crossing ? polygon_area(clipped, clipped_corners)
-                                        : 0.5 * std::fabs(cross));
+    const double n =
+        lambda * (crossing ? polygon_area(clipped, clipped_corners) : 0.5 * std::fabs(cross));
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
     const double inv = 1.0 / cross;
@@ -786,19 +814,18 @@ class npr_gabor {
           splats.begin() + static_cast<std::ptrdiff_t>(first_record), splats.end(),
           [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
     };
-    // Crossing the near plane, N = lambda A is infinite: the local density's count per node,
-    // whatever params::local_density says (docs/npr-gabor.md "Skipped triangles").
-    if (p_.local_density || crossing) {
+    npr_gabor_lod lod = npr_gabor_lod::of(crossing ? 0.0 : n);
+    if (p_.thinning && n < 1.0 && lod.count == 1)
+      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
+    // Strong perspective, or crossing the near plane (N = lambda A unbounded): the count per
+    // node, whatever params::local_density says (docs/npr-gabor.md "Skipped triangles").
+    if (blend > 0.0) {
       local_walk(root, n, lambda, pp, object, id, vertices, w, h, cull, project, emit, nodes,
-                 crossing ? &clip_near : nullptr);
+                 crossing ? &clip_near : nullptr, blend, lod);
       sort_records();
       return;
     }
-    npr_gabor_lod lod = npr_gabor_lod::of(n);
-    if (p_.thinning && n < 1.0 && lod.count == 1) {
-      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
-      if (!(lod.first_weight > 0.0)) return;
-    }
+    if (!(lod.first_weight > 0.0)) return;  // thinned away
     if (lod.count == 0) return;
     if (nodes) ++*nodes;
     if (lod.count == 1) {  // the common small triangle: its root alone, no walk
@@ -896,7 +923,7 @@ class npr_gabor {
                   const point_parameters& pp, std::uint32_t object, std::uint32_t id,
                   const std::uint32_t* vertices, double w, double h, double cull,
                   const Project& project, const Emit& emit, std::uint64_t* nodes,
-                  const ClipNear* clip_near) const {
+                  const ClipNear* clip_near, double blend, const npr_gabor_lod& lod) const {
     constexpr std::uint64_t finest_stride = std::uint64_t{1} << (2 * kMaxDepth);
     struct entry {
       detail::npr_tree_node node;
@@ -914,7 +941,14 @@ class npr_gabor {
       double f = e.crossing ? 0.0 : npr_gabor_lod::local_square(e.n, coarsest, finest);
       if (coarsest && p_.thinning && e.n < 1.0 && !e.crossing)
         f = npr_gabor_lod::thinned_square(e.n, thinning_uniform(object, id));
-      const bool descend = e.n > 0.25 && !finest;
+      // Blended with the per-triangle LOD's squared weight (its nodes: index below its count).
+      const bool paper = blend < 1.0;
+      if (paper) {
+        const double wp = nd.index < lod.count ? lod.weight(nd.index) : 0.0;
+        f = blend * f + (1.0 - blend) * wp * wp;
+      }
+      const bool descend =
+          !finest && ((e.n > 0.25) || (paper && nd.index + nd.stride < lod.count));
       if (!(f > 0.0) && !descend) continue;  // the root of n <= 0 only
       const detail::npr_tree_words words = detail::npr_tree_words_of(nd.seed);
       if (f > 0.0) emit(node_point(nd, words), nd.index, std::sqrt(f), e.lambda);
@@ -942,11 +976,11 @@ class npr_gabor {
           dvec2 at = crossing ? c[0] : project(b);  // a crossing node's centroid may be behind
           lam = pp.density({object, at.x, at.y, vertices, {b[0], b[1], b[2]}}, w, h);
         }
-        const double n =
-            lam * (m == 3 ? 0.5 * std::fabs((c[1].x - c[0].x) * (c[2].y - c[0].y) -
-                                            (c[1].y - c[0].y) * (c[2].x - c[0].x))
-                          : polygon_area(c, m));
-        if (!(n > 0.25)) continue;  // h = 0 here and below (one density): nothing to emit
+        const double n = lam * (m == 3 ? 0.5 * std::fabs((c[1].x - c[0].x) * (c[2].y - c[0].y) -
+                                                         (c[1].y - c[0].y) * (c[2].x - c[0].x))
+                                       : polygon_area(c, m));
+        // h = 0 here and below (one density): nothing to emit, unless the LOD's index is.
+        if (!(n > 0.25) && !(paper && child.index < lod.count)) continue;
         if (!box_meets_image(c, m, cull, w, h)) continue;
         stack[top++] = {child, n, lam, crossing};
       }
