@@ -4058,9 +4058,11 @@ class poisson_table {
 //    frame's conventions: x right, y down, pixel (x, y) centred at
 //    (x + 0.5, y + 0.5)), i.e. clip (X, Y) / W through the viewport;
 //  - depth: each vertex's linear view depth for this frame (clip W; the
-//    frame's depth units). A vertex with depth <= 0 or a non-finite value is
-//    not in front of the camera: noises skip its triangles (documented per
-//    noise);
+//    frame's depth units). A vertex behind the camera has depth < 0 and as
+//    screen position clip (X, Y) / W with that negative W, so that (depth *
+//    screen, depth) is its clip (X, Y, W) through the viewport; noises clip or
+//    skip such triangles, and those with a vertex at depth 0 or a non-finite
+//    value (documented per noise);
 //  - triangle_id: per triangle, a stable id: the same surface triangle has
 //    the same id in every frame, and it is the id the frame's triangle_id
 //    view shows where the triangle is visible;
@@ -16704,11 +16706,20 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    kernel fades out linearly between 1 and 2 tolerances instead of a cut.
 //  - skipped triangles (emit nothing): back faces when cull_back_faces
 //    (front = counter-clockwise in GL's y-up window coordinates, clockwise in
-//    these y-down ones), degenerate ones, those with a vertex not in front of
-//    the camera (depth <= 0 or non-finite: the renderer's near-plane clipping
-//    is not redone here) or a non-finite screen position, and those whose
-//    bounding box grown by r misses the image. Hidden triangles emit points
-//    whose fragments fail the tests (nothing is added).
+//    these y-down ones; with a vertex behind the camera, by the homogeneous
+//    orientation z0 z1 z2 cross), degenerate ones, those with a vertex at depth
+//    exactly 0 or a non-finite value, those entirely behind the camera, and
+//    those whose bounding box grown by r misses the image. Hidden triangles
+//    emit points whose fragments fail the tests (nothing is added).
+//  - the near plane and strong perspective (docs/npr-gabor.md "Triangles crossing
+//    the near plane"): a vertex behind the camera (depth < 0) gives its screen
+//    position as clip xy / w with w < 0, so (z s, z) is its clip (x, y, w): a
+//    triangle whose nearest vertex is below w_near = far / 1024 is clipped per
+//    tree node (nodes behind w_near dropped, nodes crossing it weight 0 and culled
+//    by their part in front) and uses the count per node; one of depth ratio
+//    far / near above 4 blends the count per node in by squared weight (all of
+//    it from ratio 8), whatever params::local_density: the per-triangle N is
+//    unbounded as a vertex nears depth 0, and every weight stays continuous.
 //  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
 //  - parameter sources (sec. 4; render's `sources`, hush/core/param_source.hpp):
 //    F0, omega0, a and N' each a constant (params), a per-object table (indexed
@@ -17128,7 +17139,9 @@ class npr_gabor {
     // lambda wherever the perspective within a node is small, so the variance stays 1 across
     // strongly foreshortened triangles, where the paper's one N = lambda A per triangle makes
     // the near part too sparse and the far part too dense. false: the paper's per-triangle
-    // LOD (eqs. 2, 4). thinning applies to the root's point when n_root < 1.
+    // LOD (eqs. 2, 4), except for triangles crossing the near plane (always a count per node)
+    // and of depth ratio above 4 (blended in; see the header comment). thinning applies to the
+    // root's point when n_root < 1.
     bool local_density = false;
   };
 
@@ -17822,8 +17835,7 @@ class npr_gabor {
         const double wp = nd.index < lod.count ? lod.weight(nd.index) : 0.0;
         f = blend * f + (1.0 - blend) * wp * wp;
       }
-      const bool descend =
-          !finest && ((e.n > 0.25) || (paper && nd.index + nd.stride < lod.count));
+      const bool descend = !finest && ((e.n > 0.25) || (paper && nd.index + nd.stride < lod.count));
       if (!(f > 0.0) && !descend) continue;  // the root of n <= 0 only
       const detail::npr_tree_words words = detail::npr_tree_words_of(nd.seed);
       if (f > 0.0) emit(node_point(nd, words), nd.index, std::sqrt(f), e.lambda);
