@@ -446,8 +446,8 @@ class npr_gabor {
   }
   // Whether stage 1 walks a triangle of `tris` (validated) with a count per node even
   // without params::local_density: a vertex in front of the camera and one behind it, or a
-  // depth ratio far / near above kNprGaborPerNodeRatioLow (docs/npr-gabor.md "Skipped
-  // triangles"; conservative: back faces and triangles off the image count too). GPU
+  // depth ratio far / near above kNprGaborPerNodeRatioLow (docs/npr-gabor.md "Triangles
+  // crossing the near plane"; conservative: back faces and triangles off the image count too). GPU
   // backends whose stage 1 has one count per triangle run such frames' stage 1 on the CPU.
   // O(triangles).
   static bool walks_per_node(const triangle_list& tris) {
@@ -829,7 +829,8 @@ class npr_gabor {
     if (p_.thinning && n < 1.0 && lod.count == 1)
       lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
     // Strong perspective, or crossing the near plane (N = lambda A unbounded): the count per
-    // node, whatever params::local_density says (docs/npr-gabor.md "Skipped triangles").
+    // node, whatever params::local_density says (docs/npr-gabor.md "Triangles crossing the near
+    // plane").
     if (blend > 0.0) {
       local_walk(root, n, lambda, pp, object, id, vertices, w, h, cull, project, emit, nodes,
                  crossing ? &clip_near : nullptr, blend, lod);
@@ -983,7 +984,8 @@ class npr_gabor {
           double b[3];
           for (unsigned k = 0; k < 3; ++k)
             b[k] = (child.corner[0][k] + child.corner[1][k] + child.corner[2][k]) / 3.0;
-          dvec2 at = crossing ? c[0] : project(b);  // a crossing node's centroid may be behind
+          const dvec2 at =
+              crossing ? c[0] : project(b);  // a crossing node's centroid may be behind
           lam = pp.density({object, at.x, at.y, vertices, {b[0], b[1], b[2]}}, w, h);
         }
         const double n = lam * (m == 3 ? 0.5 * std::fabs((c[1].x - c[0].x) * (c[2].y - c[0].y) -
