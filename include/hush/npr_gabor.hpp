@@ -703,13 +703,15 @@ class npr_gabor {
     const double w_near = crossing ? detail::constants::kNprGaborNearFraction * far : 0.0;
     // The share t of the count per node in the squared weights (constants.hpp): 1 with
     // params::local_density or crossing, else ramping up with the depth ratio far / near.
+    namespace c = detail::constants;
     double blend = 1.0;
-    if (!p_.local_density && !crossing) {
-      namespace c = detail::constants;
-      blend = std::clamp(std::log(far / (near * c::kNprGaborPerNodeRatioLow)) /
-                             std::log(c::kNprGaborPerNodeRatioHigh / c::kNprGaborPerNodeRatioLow),
-                         0.0, 1.0);
-    }
+    if (!p_.local_density && !crossing)  // most triangles: ratio <= 4, no logarithm
+      blend =
+          far > c::kNprGaborPerNodeRatioLow * near
+              ? std::clamp(std::log(far / (near * c::kNprGaborPerNodeRatioLow)) /
+                               std::log(c::kNprGaborPerNodeRatioHigh / c::kNprGaborPerNodeRatioLow),
+                           0.0, 1.0)
+              : 0.0;
     const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
     const std::uint32_t* vertices = &tris.indices[3 * t];
     const double cull = pp.off_image_radius(object, vertices);
