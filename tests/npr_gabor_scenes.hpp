@@ -126,6 +126,31 @@ double sum_rho_power(const Kernel& k, const hush::dvec2& F, int power) {
   return sum;
 }
 
+// A ground plane y = -1 (view space) under a camera at the origin looking along +Z, focal
+// f = 80 px, the horizon at screen row -40 (above the 160 x 160 image, whose rows show depths
+// 2 (top) to 0.4 (bottom)): the quad X in [-4, 4], Z in [back, 3]. A surface point (X, Z)
+// is at screen (80 + 80 X / Z, -40 + 80 / Z), the scene's clip xy / w for any w != 0, so a
+// vertex behind the camera (back < 0) has its (z s, z) = clip (x, w) through the viewport.
+// The G-buffer is exact: depth 80 / (y + 40) at pixel row y (1/z affine in screen), object
+// 1 everywhere (the plane covers the image for back < 0.4).
+inline grid_scene ground_under_camera(float back) {
+  const std::size_t w = 160, h = 160;
+  grid_scene sc(w, h, 0.0, 0.0, 1.0, 1, 1);
+  const auto at = [](double x, double z) {
+    return hush::vec2{static_cast<float>(80.0 + 80.0 * x / z),
+                      static_cast<float>(-40.0 + 80.0 / z)};
+  };
+  // Vertices (0,0), (1,0) far; (0,1), (1,1) near (behind the camera for back < 0).
+  sc.screen = {at(-4, 3), at(4, 3), at(-4, back), at(4, back)};
+  sc.vdepth = {3.0f, 3.0f, back, back};
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      sc.depth[y * w + x] = static_cast<float>(80.0 / (static_cast<double>(y) + 0.5 + 40.0));
+      sc.object[y * w + x] = 1u;
+    }
+  return sc;
+}
+
 }  // namespace npr_test
 
 #endif  // HUSH_TESTS_NPR_GABOR_SCENES_HPP

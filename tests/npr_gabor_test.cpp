@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
@@ -750,4 +752,135 @@ TEST_CASE("local density: huge triangles keep bounded work, nodes near the image
     CHECK(static_cast<double>(nodes) < 4 * (16.0 / 3.0) * noise.density() * grown * grown);
     CHECK(!splats.empty());
   }
+}
+
+TEST_CASE("near plane: a ground plane under the camera has variance 1 up to the image bottom") {
+  // Both triangles have a vertex behind the camera (depth -1). Stage 1 walks them with the
+  // local density's count per node, whatever params::local_density says, clipping the nodes
+  // at w_near = far / 1024: the band of the image's bottom 40 rows (depths 0.4 - 0.5) must
+  // have variance 1 within 4.5 standard errors (as "local density: variance 1 near and far",
+  // whose standard error this is: se / sqrt(seeds), scaled by sqrt(max f) = sqrt(1.0615)),
+  // where such triangles used to emit nothing (variance 0); so must a band at the top.
+  const std::size_t w = 160, h = 160, m = 8, band = 40;
+  const int seeds = 4;
+  hush::npr_gabor::params p = small_kernel();
+  const grid_scene sc = npr_test::ground_under_camera(-1.0f);
+  double near_v = 0, far_v = 0;
+  for (int k = 0; k < seeds; ++k) {
+    p.seed = static_cast<std::uint32_t>(70 + k);
+    // params::local_density off: crossing triangles use the count per node anyway (the same
+    // records with it on: "near plane: no point behind it ..." below).
+    const auto img = render(hush::npr_gabor{p}, sc);
+    near_v += window_variance(img, w, m, h - m - band, h - m) / seeds;
+    far_v += window_variance(img, w, m, m, m + band) / seeds;
+  }
+  const double se =
+      variance_standard_error(hush::npr_gabor{p}, band * (w - 2 * m)) * std::sqrt(1.0615 / seeds);
+  MESSAGE("ground under the camera: bottom band ", near_v, ", top band ", far_v,
+          "; standard error ", se);
+  CHECK(std::fabs(near_v - 1.0) < 4.5 * se);
+  CHECK(std::fabs(far_v - 1.0) < 4.5 * se);
+}
+
+TEST_CASE("near plane: no point behind it, deterministic, option-independent, bounded nodes") {
+  // Every record's point (point_of: its root barycentrics) is in front of w_near = 3 / 1024;
+  // two calls give the same records bit for bit, and so does params::local_density (the
+  // crossing triangles use it anyway). Nodes: the walk examines 4 children of each node
+  // visited, and visits the nodes with a count above 1/4 whose part in front of w_near meets
+  // the image grown by r: in front, level by level, about lambda B / n_k of them (B the
+  // grown image's area: (16/3) lambda B over the levels, as "local density: huge
+  // triangles"); crossing w_near, the nodes along the line w = w_near, whose part in front
+  // meets the image only while they reach depth 0.4 (the image's bottom) from w_near: a few
+  // levels, 2^k nodes each. The bound is 4 (16/3) lambda B per triangle.
+  const std::size_t w = 160, h = 160;
+  hush::npr_gabor::params p = small_kernel();
+  const grid_scene sc = npr_test::ground_under_camera(-1.0f);
+  const hush::npr_gabor noise{p};
+  std::vector<hush::npr_gabor_splat> a, b, c;
+  std::uint64_t nodes = 0;
+  noise.make_splats(sc.frame(), sc.triangles(), a, {}, &nodes);
+  noise.make_splats(sc.frame(), sc.triangles(), b);
+  p.local_density = true;
+  hush::npr_gabor{p}.make_splats(sc.frame(), sc.triangles(), c);
+  REQUIRE(!a.empty());
+  REQUIRE(a.size() == b.size());
+  REQUIRE(a.size() == c.size());
+  bool same = true, in_front = true;
+  double nearest = 1e300;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    same = same && a[i].x == b[i].x && a[i].y == b[i].y && a[i].weight == b[i].weight &&
+           a[i].index == b[i].index && a[i].x == c[i].x && a[i].weight == c[i].weight;
+    const auto pt = noise.point_of(a[i].object, a[i].triangle, a[i].index);
+    const std::uint32_t* v = &sc.indices[3 * (a[i].triangle)];
+    double z = 0;
+    for (int k = 0; k < 3; ++k) z += pt.b[k] * sc.vdepth[v[k]];
+    nearest = std::min(nearest, z);
+    in_front = in_front && z >= 3.0 / 1024.0;
+  }
+  CHECK(same);
+  CHECK(in_front);
+  const double grown_w = static_cast<double>(w) + 2 * noise.kernel().radius();
+  const double grown_h = static_cast<double>(h) + 2 * noise.kernel().radius();
+  const double bound = 2 * 4 * (16.0 / 3.0) * noise.density() * grown_w * grown_h;
+  MESSAGE("records ", a.size(), ", nearest point's depth ", nearest, ", nodes ", nodes, " (bound ",
+          bound, ")");
+  CHECK(static_cast<double>(nodes) < bound);
+}
+
+namespace {
+// The relative change of the records' squared weights between two frames, matched by
+// (triangle, J): sum |w_a^2 - w_b^2| / sum w_a^2 (a record in one frame only counts with its
+// whole w^2). What the variance sees (Campbell's theorem: the density of sum w^2).
+double weight_change(const std::vector<hush::npr_gabor_splat>& a,
+                     const std::vector<hush::npr_gabor_splat>& b) {
+  std::map<std::pair<std::uint32_t, std::uint64_t>, double> wb;
+  for (const auto& r : b) wb[{r.triangle, r.index}] = double(r.weight) * r.weight;
+  double d = 0, total = 0;
+  for (const auto& r : a) {
+    const double wa = double(r.weight) * r.weight;
+    total += wa;
+    const auto it = wb.find({r.triangle, r.index});
+    d += std::fabs(wa - (it == wb.end() ? 0.0 : it->second));
+    if (it != wb.end()) wb.erase(it);
+  }
+  for (const auto& kv : wb) d += kv.second;
+  return d / total;
+}
+}  // namespace
+
+TEST_CASE("near plane: no pop as a triangle's depth ratio passes 4 or a vertex passes depth 0") {
+  // Every squared weight is continuous in the vertex depths: the share of the count per node
+  // ramps with log(far / near) from 4 to 8 (constants.hpp), a node's count n_P and the
+  // per-triangle N move with the vertices, and at depth w_near the nodes that switch to
+  // "crossing" (weight 0) already had n_P far above 4 (weight 0). So the records' squared
+  // weights change by O(eps) for a relative move eps of the vertices: a tenth of the move, a
+  // tenth of the change (checked: at most a fifth), where a switch (a pop) would change them by
+  // the same O(1) however small the move (a hard switch at ratio 4: 1.25 for both moves,
+  // tried). Three places: the depth ratio passing 4 (the
+  // per-triangle LOD against a sliver of the count per node), the ground's near edge passing
+  // w_near = 3 / 1024 (clipping starts) and passing depth 0 (a vertex behind the camera).
+  hush::npr_gabor::params p = small_kernel();
+  const hush::npr_gabor noise{p};
+  const auto records = [&](const grid_scene& sc) {
+    std::vector<hush::npr_gabor_splat> r;
+    noise.make_splats(sc.frame(), sc.triangles(), r);
+    REQUIRE(!r.empty());
+    return r;
+  };
+  const auto ratio = [&](double eps) {
+    return weight_change(records(ground_plane(160, 160, 16.0, float(4.0 * (1 - eps)))),
+                         records(ground_plane(160, 160, 16.0, float(4.0 * (1 + eps)))));
+  };
+  const auto edge = [&](double at, double eps) {
+    return weight_change(records(npr_test::ground_under_camera(float(at - eps))),
+                         records(npr_test::ground_under_camera(float(at + eps))));
+  };
+  const double w_near = 3.0 / 1024;
+  const double r1 = ratio(1e-3), r2 = ratio(1e-4), n1 = edge(w_near, 1e-4), n2 = edge(w_near, 1e-5),
+               z1 = edge(0.0, 1e-4), z2 = edge(0.0, 1e-5);
+  MESSAGE("squared-weight change for a move of eps, 10 eps: depth ratio 4: ", r2, ", ", r1,
+          "; near edge at w_near: ", n2, ", ", n1, "; at depth 0: ", z2, ", ", z1);
+  CHECK(r2 < r1 / 5);
+  CHECK(n2 < n1 / 5);
+  CHECK(z2 < z1 / 5);
 }

@@ -62,7 +62,9 @@ triangle_frame project_triangles(const scene& s, int frame, int width, int heigh
     const auto base = static_cast<std::uint32_t>(t.screen.size());
     for (const glm::vec3& p : o.shape->positions) {
       const glm::dvec4 c = m * glm::dvec4(p.x, p.y, p.z, 1.0);
-      if (c.w > 0.0) {
+      // Behind the camera too (W < 0): (W screen, W) is then clip (X, Y, W) through the
+      // viewport, affine in object space, what NPR Gabor noise's near-plane clipping reads.
+      if (c.w != 0.0) {
         t.screen.push_back({static_cast<float>((c.x / c.w + 1.0) * w * 0.5),
                             static_cast<float>((1.0 - c.y / c.w) * h * 0.5)});
       } else {

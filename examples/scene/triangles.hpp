@@ -7,7 +7,9 @@
 // in pixels (y down), depth = W (linear view depth). Objects are concatenated in scene
 // order; triangle t of object k has triangle_id t (its index in the object's mesh, what
 // the G-buffer's triangle_id shows) and object_id k + 1 (the G-buffer's object_id).
-// Vertices not in front of the camera (W <= 0) get NaN screen positions and their W.
+// Vertices behind the camera (W < 0) get the same formula (X / W with W < 0: W times the
+// screen position, with W, is their clip (X, Y, W) through the viewport, so a triangle
+// crossing the near plane can be clipped by its reader); W = 0 gets a NaN screen position.
 // Back faces are listed too (noises cull by winding: front faces are clockwise on the
 // y-down screen, counter-clockwise in GL's window coordinates).
 //

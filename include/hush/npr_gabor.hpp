@@ -78,11 +78,20 @@
 //    kernel fades out linearly between 1 and 2 tolerances instead of a cut.
 //  - skipped triangles (emit nothing): back faces when cull_back_faces
 //    (front = counter-clockwise in GL's y-up window coordinates, clockwise in
-//    these y-down ones), degenerate ones, those with a vertex not in front of
-//    the camera (depth <= 0 or non-finite: the renderer's near-plane clipping
-//    is not redone here) or a non-finite screen position, and those whose
-//    bounding box grown by r misses the image. Hidden triangles emit points
-//    whose fragments fail the tests (nothing is added).
+//    these y-down ones; with a vertex behind the camera, by the homogeneous
+//    orientation z0 z1 z2 cross), degenerate ones, those with a vertex at depth
+//    exactly 0 or a non-finite value, those entirely behind the camera, and
+//    those whose bounding box grown by r misses the image. Hidden triangles
+//    emit points whose fragments fail the tests (nothing is added).
+//  - the near plane and strong perspective (docs/npr-gabor.md "Triangles crossing
+//    the near plane"): a vertex behind the camera (depth < 0) gives its screen
+//    position as clip xy / w with w < 0, so (z s, z) is its clip (x, y, w): a
+//    triangle whose nearest vertex is below w_near = far / 1024 is clipped per
+//    tree node (nodes behind w_near dropped, nodes crossing it weight 0 and culled
+//    by their part in front) and uses the count per node; one of depth ratio
+//    far / near above 4 blends the count per node in by squared weight (all of
+//    it from ratio 8), whatever params::local_density: the per-triangle N is
+//    unbounded as a vertex nears depth 0, and every weight stays continuous.
 //  - pixels no kernel reaches, or where every fragment fails, are 0 (the mean).
 //  - parameter sources (sec. 4; render's `sources`, hush/core/param_source.hpp):
 //    F0, omega0, a and N' each a constant (params), a per-object table (indexed
@@ -253,7 +262,9 @@ class npr_gabor {
     // lambda wherever the perspective within a node is small, so the variance stays 1 across
     // strongly foreshortened triangles, where the paper's one N = lambda A per triangle makes
     // the near part too sparse and the far part too dense. false: the paper's per-triangle
-    // LOD (eqs. 2, 4). thinning applies to the root's point when n_root < 1.
+    // LOD (eqs. 2, 4), except for triangles crossing the near plane (always a count per node)
+    // and of depth ratio above 4 (blended in; see the header comment). thinning applies to the
+    // root's point when n_root < 1.
     bool local_density = false;
   };
 
@@ -436,6 +447,24 @@ class npr_gabor {
     const double lambda = pp.density(at, 1.0, 1.0);
     const point_parameters::kernel k = pp.at(at, 0.0, lambda);
     return {k.F, k.bandwidth, k.radius, lambda, k.scale};
+  }
+  // Whether stage 1 walks a triangle of `tris` (validated) with a count per node even
+  // without params::local_density: a vertex in front of the camera and one behind it, or a
+  // depth ratio far / near above kNprGaborPerNodeRatioLow (docs/npr-gabor.md "Triangles
+  // crossing the near plane"; conservative: back faces and triangles off the image count too). GPU
+  // backends whose stage 1 has one count per triangle run such frames' stage 1 on the CPU.
+  // O(triangles).
+  static bool walks_per_node(const triangle_list& tris) {
+    for (std::size_t t = 0; t < tris.triangles(); ++t) {
+      double near = std::numeric_limits<double>::infinity(), far = -near;
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double z = tris.depth[tris.indices[3 * t + i]];
+        near = std::min(near, z);
+        far = std::max(far, z);
+      }
+      if (far > 0.0 && far > detail::constants::kNprGaborPerNodeRatioLow * near) return true;
+    }
+    return false;
   }
   // Whether every source is constant or per object (kernel_of_object applies).
   static bool per_object_at_most(const sources& src) {
@@ -651,45 +680,108 @@ class npr_gabor {
                        std::uint64_t* nodes) const {
     dvec2 s[3];
     double z[3];
+    // A vertex behind the camera (depth < 0) has its screen position clip xy / w with w < 0,
+    // so (z s, z) is its clip (xy, w) through the viewport, affine in object space.
     for (int i = 0; i < 3; ++i) {
       const std::uint32_t k = tris.indices[3 * t + static_cast<std::size_t>(i)];
       s[i] = {static_cast<double>(tris.screen[k].x), static_cast<double>(tris.screen[k].y)};
       z[i] = static_cast<double>(tris.depth[k]);
-      if (!(z[i] > 0.0) || !std::isfinite(z[i]) || !std::isfinite(s[i].x) || !std::isfinite(s[i].y))
+      // Depth 0 has no screen position ((z s, z) = 0 loses clip xy): emits nothing.
+      if (!(z[i] != 0.0) || !std::isfinite(z[i]) || !std::isfinite(s[i].x) ||
+          !std::isfinite(s[i].y))
         return;
     }
-    // Twice the signed area, y down: front faces (GL's counter-clockwise) are negative.
+    // Twice the signed area, y down: front faces (GL's counter-clockwise) are negative. In
+    // homogeneous coordinates the orientation is det(z_i (s_i, 1)) = z0 z1 z2 cross: with a
+    // vertex behind the camera (negative z) the projected triangle is turned over.
     const double e1x = s[1].x - s[0].x, e1y = s[1].y - s[0].y;
     const double e2x = s[2].x - s[0].x, e2y = s[2].y - s[0].y;
     const double cross = e1x * e2y - e1y * e2x;
-    if (p_.cull_back_faces && !(cross < 0.0)) return;
+    const double facing = z[0] * z[1] * z[2] < 0.0 ? -cross : cross;
+    if (p_.cull_back_faces && !(facing < 0.0)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
+    const double far = std::max({z[0], z[1], z[2]}), near = std::min({z[0], z[1], z[2]});
+    if (!(far > 0.0)) return;  // entirely behind the camera
+    // Crossing (or nearly touching) the near plane: the nodes are clipped at w_near.
+    const bool crossing = near < detail::constants::kNprGaborNearFraction * far;
+    const double w_near = crossing ? detail::constants::kNprGaborNearFraction * far : 0.0;
+    // The share t of the count per node in the squared weights (constants.hpp): 1 with
+    // params::local_density or crossing, else ramping up with the depth ratio far / near.
+    namespace c = detail::constants;
+    double blend = 1.0;
+    if (!p_.local_density && !crossing)  // most triangles: ratio <= 4, no logarithm
+      blend =
+          far > c::kNprGaborPerNodeRatioLow * near
+              ? std::clamp(std::log(far / (near * c::kNprGaborPerNodeRatioLow)) /
+                               std::log(c::kNprGaborPerNodeRatioHigh / c::kNprGaborPerNodeRatioLow),
+                           0.0, 1.0)
+              : 0.0;
     const std::uint32_t object = tris.object_of(t), id = tris.triangle_id[t];
     const std::uint32_t* vertices = &tris.indices[3 * t];
     const double cull = pp.off_image_radius(object, vertices);
     const double w = static_cast<double>(f.width()), h = static_cast<double>(f.height());
-    if (!box_meets_image(s, cull, w, h)) return;
-    // The object-space centroid (b = 1/3 each) and its pixel, sum z_i s_i / sum z_i.
+    // The screen position of barycentrics b (of the root triangle): perspective-correct
+    // (for b in front of the camera).
+    const auto project = [&](const double* b) {
+      const double hw = b[0] * z[0] + b[1] * z[1] + b[2] * z[2];
+      return dvec2{(b[0] * z[0] * s[0].x + b[1] * z[1] * s[1].x + b[2] * z[2] * s[2].x) / hw,
+                   (b[0] * z[0] * s[0].y + b[1] * z[1] * s[1].y + b[2] * z[2] * s[2].y) / hw};
+    };
+    // The part of a node (corners in root barycentrics) at depth >= w_near, projected into
+    // `out`: 0 corners (behind), 3 (the node in front, or one corner in front) or 4. Exact:
+    // depth and clip xy are affine in the barycentrics, so that part is the convex polygon
+    // of the corners in front and the edges' crossings of w_near, and (all its depths >=
+    // w_near > 0) it projects onto the polygon of their projections. `whole`: every corner
+    // is in front (the node is not crossing).
+    const auto clip_near = [&](const double(&corner)[3][3], dvec2(&out)[4], bool& whole) {
+      double d[3];
+      for (unsigned i = 0; i < 3; ++i)
+        d[i] = corner[i][0] * z[0] + corner[i][1] * z[1] + corner[i][2] * z[2] - w_near;
+      int m = 0;
+      whole = d[0] >= 0.0 && d[1] >= 0.0 && d[2] >= 0.0;
+      for (unsigned i = 0; i < 3; ++i) {
+        const unsigned j = (i + 1) % 3;
+        if (d[i] >= 0.0) out[m++] = project(corner[i]);
+        if ((d[i] < 0.0) != (d[j] < 0.0)) {
+          const double u = d[i] / (d[i] - d[j]);
+          double b[3];
+          for (unsigned k = 0; k < 3; ++k) b[k] = corner[i][k] + u * (corner[j][k] - corner[i][k]);
+          out[m++] = project(b);
+        }
+      }
+      return m;
+    };
+    detail::npr_tree_node root;
+    dvec2 clipped[4];
+    int clipped_corners = 3;
+    if (crossing) {
+      bool whole = false;
+      clipped_corners = clip_near(root.corner, clipped, whole);
+      if (clipped_corners == 0 || !box_meets_image(clipped, clipped_corners, cull, w, h)) return;
+    } else if (!box_meets_image(s, cull, w, h)) {
+      return;
+    }
+    // The object-space centroid (b = 1/3 each) and its pixel, sum z_i s_i / sum z_i (none
+    // where it is not in front of the camera: the source's constant).
     const double zs = z[0] + z[1] + z[2], third = 1.0 / 3.0;
-    const double lambda = pp.density({object,
-                                      (z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs,
-                                      (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs,
-                                      vertices,
-                                      {third, third, third}},
-                                     w, h);
-    const double n = lambda * 0.5 * std::fabs(cross);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double lambda =
+        pp.density({object,
+                    zs > 0.0 ? (z[0] * s[0].x + z[1] * s[1].x + z[2] * s[2].x) / zs : nan,
+                    zs > 0.0 ? (z[0] * s[0].y + z[1] * s[1].y + z[2] * s[2].y) / zs : nan,
+                    vertices,
+                    {third, third, third}},
+                   w, h);
+    // N = lambda A; crossing the near plane, A is unbounded: n is the clipped part's count
+    // (the local walk's bound on every descendant's count).
+    const double n =
+        lambda * (crossing ? polygon_area(clipped, clipped_corners) : 0.5 * std::fabs(cross));
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
     const double inv = 1.0 / cross;
     const double d1 = 1.0 / z[1] - 1.0 / z[0], d2 = 1.0 / z[2] - 1.0 / z[0];
     const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
     const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;
-    // The screen position of barycentrics b (of the root triangle): perspective-correct.
-    const auto project = [&](const double* b) {
-      const double hw = b[0] * z[0] + b[1] * z[1] + b[2] * z[2];
-      return dvec2{(b[0] * z[0] * s[0].x + b[1] * z[1] * s[1].x + b[2] * z[2] * s[2].x) / hw,
-                   (b[0] * z[0] * s[0].y + b[1] * z[1] * s[1].y + b[2] * z[2] * s[2].y) / hw};
-    };
     // Emits the point J at pt, of squared-weight factor `weight` and density `lam`, if its
     // pixel range is not empty.
     const auto emit = [&](const point& pt, std::uint64_t j, double weight, double lam) {
@@ -731,7 +823,6 @@ class npr_gabor {
       const dvec2 c[3] = {project(nd.corner[0]), project(nd.corner[1]), project(nd.corner[2])};
       return box_meets_image(c, cull, w, h);
     };
-    detail::npr_tree_node root;
     root.seed = triangle_key(object, id);
     const std::size_t first_record = splats.size();
     // J order, whatever the traversal (CPU and GPU stage 1 agree on it).
@@ -740,16 +831,19 @@ class npr_gabor {
           splats.begin() + static_cast<std::ptrdiff_t>(first_record), splats.end(),
           [](const npr_gabor_splat& x, const npr_gabor_splat& y) { return x.index < y.index; });
     };
-    if (p_.local_density) {
-      local_walk(root, n, lambda, pp, object, id, vertices, w, h, cull, project, emit, nodes);
+    npr_gabor_lod lod = npr_gabor_lod::of(crossing ? 0.0 : n);
+    if (p_.thinning && n < 1.0 && lod.count == 1)
+      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
+    // Strong perspective, or crossing the near plane (N = lambda A unbounded): the count per
+    // node, whatever params::local_density says (docs/npr-gabor.md "Triangles crossing the near
+    // plane").
+    if (blend > 0.0) {
+      local_walk(root, n, lambda, pp, object, id, vertices, w, h, cull, project, emit, nodes,
+                 crossing ? &clip_near : nullptr, blend, lod);
       sort_records();
       return;
     }
-    npr_gabor_lod lod = npr_gabor_lod::of(n);
-    if (p_.thinning && n < 1.0 && lod.count == 1) {
-      lod.first_weight = std::sqrt(npr_gabor_lod::thinned_square(n, thinning_uniform(object, id)));
-      if (!(lod.first_weight > 0.0)) return;
-    }
+    if (!(lod.first_weight > 0.0)) return;  // thinned away
     if (lod.count == 0) return;
     if (nodes) ++*nodes;
     if (lod.count == 1) {  // the common small triangle: its root alone, no walk
@@ -789,6 +883,27 @@ class npr_gabor {
              std::max({c[0].y, c[1].y, c[2].y}) + cull < 0.0 ||
              std::min({c[0].y, c[1].y, c[2].y}) - cull > h);
   }
+  // The same for a convex polygon of m (1 ... 4) corners (a node clipped at the near plane).
+  static bool box_meets_image(const dvec2 (&c)[4], int m, double cull, double w, double h) {
+    double x0 = c[0].x, x1 = c[0].x, y0 = c[0].y, y1 = c[0].y;
+    for (int i = 1; i < m; ++i) {
+      x0 = std::min(x0, c[i].x);
+      x1 = std::max(x1, c[i].x);
+      y0 = std::min(y0, c[i].y);
+      y1 = std::max(y1, c[i].y);
+    }
+    return !(x1 + cull < 0.0 || x0 - cull > w || y1 + cull < 0.0 || y0 - cull > h);
+  }
+  // The area of a convex polygon of m corners (shoelace).
+  static double polygon_area(const dvec2 (&c)[4], int m) {
+    double a = 0.0;
+    for (int i = 0; i < m; ++i) {
+      const dvec2& p = c[i];
+      const dvec2& q = c[(i + 1) % m];
+      a += p.x * q.y - q.x * p.y;
+    }
+    return 0.5 * std::fabs(a);
+  }
 
   // The paper's walk reaches depth 21 at most (its indices are below 2 kNprGaborMaxPoints =
   // 2^41 and depth k starts at J = (4^k - 1) / 3); the local-density walk stops there too,
@@ -813,28 +928,44 @@ class npr_gabor {
   // exact; with per-pixel or per-vertex densities, a child whose density exceeds its
   // parent's by 4x could be missed) and it meets the image. The root's n and density are
   // the triangle's (n, lambda).
-  template <class Project, class Emit>
+  // A triangle crossing the near plane (clip_near given: a node's part at depth >= w_near,
+  // projected, see triangle_splats) has three kinds of nodes: in front (every corner at
+  // w >= w_near: as above, its projected triangle exact), behind (every corner at w <=
+  // w_near and one below: dropped with its subtree) and crossing (corners on both sides: its
+  // projection is unbounded, so its count n is infinite and its own point has weight 0, the
+  // hat's value there; its n above is its clipped part's, which bounds every descendant's
+  // count, since their parts in front lie in it, so the cut at n <= 1/4 stays exact, and it
+  // is culled by that part's projection). The root's n is then its clipped part's too.
+  template <class Project, class Emit, class ClipNear>
   void local_walk(const detail::npr_tree_node& root, double n_root, double lambda_root,
                   const point_parameters& pp, std::uint32_t object, std::uint32_t id,
                   const std::uint32_t* vertices, double w, double h, double cull,
-                  const Project& project, const Emit& emit, std::uint64_t* nodes) const {
+                  const Project& project, const Emit& emit, std::uint64_t* nodes,
+                  const ClipNear* clip_near, double blend, const npr_gabor_lod& lod) const {
     constexpr std::uint64_t finest_stride = std::uint64_t{1} << (2 * kMaxDepth);
     struct entry {
       detail::npr_tree_node node;
       double n, lambda;
+      bool crossing;
     };
     entry stack[kStackNodes];
     std::size_t top = 0;
-    stack[top++] = {root, n_root, lambda_root};
+    stack[top++] = {root, n_root, lambda_root, clip_near != nullptr};
     if (nodes) ++*nodes;
     while (top > 0) {
       const entry e = stack[--top];
       const detail::npr_tree_node& nd = e.node;
       const bool coarsest = nd.stride == 1, finest = nd.stride == finest_stride;
-      double f = npr_gabor_lod::local_square(e.n, coarsest, finest);
-      if (coarsest && p_.thinning && e.n < 1.0)
+      double f = e.crossing ? 0.0 : npr_gabor_lod::local_square(e.n, coarsest, finest);
+      if (coarsest && p_.thinning && e.n < 1.0 && !e.crossing)
         f = npr_gabor_lod::thinned_square(e.n, thinning_uniform(object, id));
-      const bool descend = e.n > 0.25 && !finest;
+      // Blended with the per-triangle LOD's squared weight (its nodes: index below its count).
+      const bool paper = blend < 1.0;
+      if (paper) {
+        const double wp = nd.index < lod.count ? lod.weight(nd.index) : 0.0;
+        f = blend * f + (1.0 - blend) * wp * wp;
+      }
+      const bool descend = !finest && ((e.n > 0.25) || (paper && nd.index + nd.stride < lod.count));
       if (!(f > 0.0) && !descend) continue;  // the root of n <= 0 only
       const detail::npr_tree_words words = detail::npr_tree_words_of(nd.seed);
       if (f > 0.0) emit(node_point(nd, words), nd.index, std::sqrt(f), e.lambda);
@@ -843,23 +974,33 @@ class npr_gabor {
         const detail::npr_tree_node child = detail::npr_tree_child(nd, words, slot);
         if (nodes) ++*nodes;
         // Its corners projected once: its area, and its bounding box grown by `cull` against
-        // the image (as the paper's walk's meets_image).
-        const dvec2 c[3] = {project(child.corner[0]), project(child.corner[1]),
-                            project(child.corner[2])};
+        // the image (as the paper's walk's meets_image). Near the near plane: its part in front.
+        dvec2 c[4];
+        int m = 3;
+        bool whole = true;
+        if (e.crossing) {
+          m = (*clip_near)(child.corner, c, whole);
+          if (m == 0) continue;  // behind: nothing of its subtree is in front
+        } else {
+          for (unsigned i = 0; i < 3; ++i) c[i] = project(child.corner[i]);
+        }
+        const bool crossing = !whole;
         double lam = lambda_root;
         if (!pp.constant_density()) {
           double b[3];
           for (unsigned k = 0; k < 3; ++k)
             b[k] = (child.corner[0][k] + child.corner[1][k] + child.corner[2][k]) / 3.0;
-          const dvec2 at = project(b);
+          const dvec2 at =
+              crossing ? c[0] : project(b);  // a crossing node's centroid may be behind
           lam = pp.density({object, at.x, at.y, vertices, {b[0], b[1], b[2]}}, w, h);
         }
-        const double n = lam * 0.5 *
-                         std::fabs((c[1].x - c[0].x) * (c[2].y - c[0].y) -
-                                   (c[1].y - c[0].y) * (c[2].x - c[0].x));
-        if (!(n > 0.25)) continue;  // h = 0 here and below (one density): nothing to emit
-        if (!box_meets_image(c, cull, w, h)) continue;
-        stack[top++] = {child, n, lam};
+        const double n = lam * (m == 3 ? 0.5 * std::fabs((c[1].x - c[0].x) * (c[2].y - c[0].y) -
+                                                         (c[1].y - c[0].y) * (c[2].x - c[0].x))
+                                       : polygon_area(c, m));
+        // h = 0 here and below (one density): nothing to emit, unless the LOD's index is.
+        if (!(n > 0.25) && !(paper && child.index < lod.count)) continue;
+        if (!box_meets_image(c, m, cull, w, h)) continue;
+        stack[top++] = {child, n, lam, crossing};
       }
     }
   }

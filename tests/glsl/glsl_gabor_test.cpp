@@ -1178,7 +1178,7 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("npr: per-pixel and per-vertex sources run stage 1 on the CPU") {
+TEST_CASE("npr: per-pixel and per-vertex sources, near plane: stage 1 on the CPU") {
   const std::size_t w = 64, h = 64;
   const npr_test::grid_scene sc = npr_test::covering(w, h, 9.0, 16.0);
   hush::npr_gabor::params p = npr_params();
@@ -1209,6 +1209,23 @@ TEST_CASE("npr: per-pixel and per-vertex sources run stage 1 on the CPU") {
                 hush::image_view<float>(b.data(), w, h));
     CHECK(a == b);  // the same records, the same draws
   }
+  // Triangles crossing the near plane (a vertex behind the camera): clipped per node on the CPU.
+  // (The flat grid has one depth: per triangle.)
+  const npr_test::grid_scene ground = npr_test::ground_under_camera(-1.0f);
+  REQUIRE(hush::npr_gabor::walks_per_node(ground.triangles()));
+  REQUIRE(!hush::npr_gabor::walks_per_node(sc.triangles()));
+  const std::size_t cpu_before = state.cpu_stage1_frames(), gpu_before = state.gpu_stage1_frames();
+  std::vector<float> a(ground.width * ground.height), b(a.size());
+  plain.render(hush::exec::glsl{headless().device}, ground.frame(), ground.triangles(),
+               hush::image_view<float>(a.data(), ground.width, ground.height));
+  CHECK(state.cpu_stage1_frames() == cpu_before + 1);
+  CHECK(state.gpu_stage1_frames() == gpu_before);
+  std::vector<hush::npr_gabor_splat> splats;
+  plain.make_splats(ground.frame(), ground.triangles(), splats);
+  REQUIRE(!splats.empty());
+  plain.splat(hush::exec::glsl{headless().device}, ground.frame(), splats.data(), splats.size(),
+              hush::image_view<float>(b.data(), ground.width, ground.height));
+  CHECK(a == b);
 }
 
 TEST_CASE("npr: one quad per record never reaches the GL geometry-output limits") {

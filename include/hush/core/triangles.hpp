@@ -9,9 +9,11 @@
 //    frame's conventions: x right, y down, pixel (x, y) centred at
 //    (x + 0.5, y + 0.5)), i.e. clip (X, Y) / W through the viewport;
 //  - depth: each vertex's linear view depth for this frame (clip W; the
-//    frame's depth units). A vertex with depth <= 0 or a non-finite value is
-//    not in front of the camera: noises skip its triangles (documented per
-//    noise);
+//    frame's depth units). A vertex behind the camera has depth < 0 and as
+//    screen position clip (X, Y) / W with that negative W, so that (depth *
+//    screen, depth) is its clip (X, Y, W) through the viewport; noises clip or
+//    skip such triangles, and those with a vertex at depth 0 or a non-finite
+//    value (documented per noise);
 //  - triangle_id: per triangle, a stable id: the same surface triangle has
 //    the same id in every frame, and it is the id the frame's triangle_id
 //    view shows where the triangle is visible;

@@ -352,6 +352,21 @@ constexpr double kNprGaborMaxDepthTolerance = 1.0;
 // input cannot place the points it asks for. Indices J < 2^41 keep
 // npr_tree_child's index + 4 stride below 2^46, far from overflowing 64 bits.
 constexpr double kNprGaborMaxPoints = 1099511627776.0;  // 2^40
+// Triangles crossing the near plane (a vertex at depth <= 0; docs/npr-gabor.md "Skipped
+// triangles"): stage 1 clips the point tree's nodes at the depth w_near = this fraction of
+// the triangle's largest vertex depth (the input has no near plane; a renderer's is far
+// larger, e.g. 0.05 with a scene 10-100 deep). Nodes entirely behind it are dropped, nodes
+// crossing it are culled by their clipped part's projection (bounded: every depth there is
+// >= w_near > 0).
+constexpr double kNprGaborNearFraction = 1.0 / 1024.0;
+// The per-triangle count N = lambda A assumes little perspective within a triangle: its points'
+// screen density varies as the cube of the depth ratio r = far / near of its vertices. Above
+// r = 4 the count per node (params::local_density's) takes over, blended in squared weight
+// with t = log(r / 4) / log(8 / 4) clamped to [0, 1], so no triangle switches at once (no
+// pop), and the per-triangle part's records near the image stay within 2 lambda 8^3 per
+// pixel (the per-triangle count grows without bound as a vertex nears depth 0).
+constexpr double kNprGaborPerNodeRatioLow = 4.0;
+constexpr double kNprGaborPerNodeRatioHigh = 8.0;
 constexpr unsigned kNprGaborMaxTriangles = 1u << 28;
 constexpr unsigned kNprGaborMaxImageSide = 32768;
 // Each point takes 2 words of its triangle's stream (hush::rng, stream

@@ -23,9 +23,10 @@
 // stage 1 on the CPU instead). Then one pass per level writes the records at their scanned
 // offsets, batch by batch: level by level, each in its list's order, the same order every run
 // (no atomics), hence the same image. J (up to 2^41) is a uvec2; node corners are carried down
-// as perspective-correct midpoints in float. Per-pixel or per-vertex sources, buffers beyond
-// one storage block, or more than 2^32 - 1 records: stage 1 on the CPU (make_splats),
-// automatically. Float instead of double changes positions, weights and planes within the
+// as perspective-correct midpoints in float. Per-pixel or per-vertex sources, local density,
+// a triangle crossing the near plane or of depth ratio above 4 (npr_gabor::walks_per_node: a
+// count per node, its nodes clipped at the near plane), buffers beyond one storage block, or more than 2^32 - 1 records: stage 1 on the
+// CPU (make_splats), automatically. Float instead of double changes positions, weights and planes within the
 // tolerance derived in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and
 // double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
 // float error) exist on one side only; with params::local_density, likewise a node whose float
@@ -874,8 +875,9 @@ class npr_gabor_gpu {
   }
 
   // Both stages of noise.render on the GPU (arguments validated by render); stage 1 on the
-  // CPU where the GPU cannot run it (a per-pixel or per-vertex source,
-  // buffers beyond one storage block: a level's nodes included; more than 2^32 - 1 records or
+  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, a triangle crossing the
+  // near plane or of depth ratio above 4, buffers beyond one storage block: a level's nodes
+  // included; more than 2^32 - 1 records or
   // nodes).
   void render(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, const image_view<float>& out) {
@@ -1193,6 +1195,8 @@ class npr_gabor_gpu {
               const npr_gabor::sources& src, std::size_t& total) {
     // Per-pixel or per-vertex sources run on the CPU.
     if (!npr_gabor::per_object_at_most(src)) return false;
+    // Strong perspective or the near plane crossed (a count per node, clipped): on the CPU.
+    if (npr_gabor::walks_per_node(tris)) return false;
     const std::size_t nt = tris.triangles(), nv = tris.vertices();
     std::size_t objects = 0;  // table entries before the constants' one
     for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
