@@ -192,26 +192,15 @@ void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, std::size_t fi
   if constexpr (has_grid_values<Noise>::value) {
     n.grid_values(g, first, count, out, grad);
   } else {
-    const std::size_t nx = g.size[0];
-    const std::size_t j0 = D == 2 ? first : 0, ny = D == 2 ? first + count : g.size[1];
-    const std::size_t k0 = D == 3 ? first : 0, nz = D == 3 ? first + count : 1;
-    std::size_t idx = 0;
-    for (std::size_t k = k0; k < nz; ++k)
-      for (std::size_t j = j0; j < ny; ++j)
-        for (std::size_t i = 0; i < nx; ++i, ++idx) {
-          std::array<std::size_t, D> ijk{};
-          ijk[0] = i;
-          ijk[1] = j;
-          if constexpr (D == 3) ijk[D - 1] = k;
-          const vec<double, D> p = g.position(ijk);
-          if (grad) {
-            const auto r = n.template value_and_gradient<float>(p);
-            out[idx] = r.value;
-            grad[idx] = r.gradient;
-          } else {
-            out[idx] = n.template value<float>(p);
-          }
-        }
+    g.for_each_in_slab(first, count, [&](std::size_t idx, const vec<double, D>& p) {
+      if (grad) {
+        const auto r = n.template value_and_gradient<float>(p);
+        out[idx] = r.value;
+        grad[idx] = r.gradient;
+      } else {
+        out[idx] = n.template value<float>(p);
+      }
+    });
   }
 }
 template <class Noise>
