@@ -4156,7 +4156,8 @@ struct triangle_list {
 //    results are point evaluation's, bit for bit unless the compiler
 //    contracts multiply-adds (HUSH_STRICT_FP forbids it), or within a stated
 //    bound of them where it says so (Perlin and fBm 3D values with
-//    gradients: perlin.hpp grid_values).
+//    gradients: perlin.hpp grid_values; Gabor grids' separable form:
+//    gabor.hpp grid_values, docs/gabor.md "Float accuracy").
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
@@ -15493,8 +15494,9 @@ void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
 //   void grid_values(const grid<D>& g, std::size_t first, std::size_t count,
 //                    float* out, vec<float, D>* grad) const;
 // with the values and gradients of its point evaluation at every sample (bit
-// for bit unless the compiler contracts multiply-adds), faster than the
-// sample loop below by sharing work between samples (perlin.hpp).
+// for bit unless the compiler contracts multiply-adds, or within the bound the
+// noise states: gabor.hpp), faster than the sample loop below by sharing work
+// between samples (perlin.hpp).
 template <class Noise, class = void>
 struct has_grid_values : std::false_type {};
 template <class Noise>
