@@ -185,6 +185,64 @@ TEST_CASE("gabor: float evaluation stays within the stated budget of the double 
   }
 }
 
+namespace {
+// Each form's error per kernel, relative to its weight (|w| < 1), against the
+// exact kernel at the same float offsets d (u = 2^-24; gabor_kernel.hpp; the
+// offsets' own rounding is in the budget above, the same for both forms):
+// point form w e^{-A s} cos(2 pi theta) tau: s = |d|^2 in D roundings and -A s
+// in one move exp's argument by <= (D + 1) A u (a relative error of e), exp
+// 2^-22, theta = <phi, d> in 2D - 1 roundings moves the cos by <= 2 pi D |Phi| u,
+// cos 2^-23, the taper and the three products <= 6 u. Grid form: D exps (2^-22
+// each, arguments moved by <= 2 A u together) and D sin/cos (2^-23 each, phases
+// by <= 2 pi D |Phi| u), the products of the factors <= 4 D u.
+double point_form_error(int dim, double a, double phi) {
+  const double u = std::ldexp(1.0, -24);
+  return std::ldexp(1.0, -22) + std::ldexp(1.0, -23) + u * ((dim + 1) * a + 2 * kPi * dim * phi + 6);
+}
+double grid_form_error(int dim, double a, double phi) {
+  const double u = std::ldexp(1.0, -24);
+  return dim * (std::ldexp(1.0, -22) + std::ldexp(1.0, -23)) +
+         u * (2 * a + 2 * kPi * dim * phi + 4 * dim);
+}
+
+template <int D>
+void check_forms(const hush::gabor<D>& g, std::uint32_t seed) {
+  const double phi = g.marks().phi0() + g.marks().dphi(), a = g.kernel().envelope_exponent();
+  const double kernels = g.parameters().impulses + 1;  // as the budget above counts them
+  const double budget = g.scale() * std::ldexp(1.0, -21) * (1 + 2 * kPi * phi) * kernels;
+  const double apart =
+      g.scale() * (point_form_error(D, a, phi) + grid_form_error(D, a, phi)) * kernels;
+  hush::rng r(seed);
+  double worst_point = 0, worst_grid = 0, worst_apart = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const double extent = i % 2 ? 50.0 : 1e5;
+    hush::vec<float, D> pf;
+    for (int k = 0; k < D; ++k) pf[k] = r.uniform<float>(-1, 1) * float(extent);
+    const hush::vec<double, D> pd = hush::vec_cast<double>(pf);
+    const double ref = g.template value<double>(pd);
+    const double point = g.template value<float>(pd);
+    const double grid = g.template grid_sample<float>(pd).value;
+    worst_point = std::fmax(worst_point, std::fabs(point - ref));
+    worst_grid = std::fmax(worst_grid, std::fabs(grid - ref));
+    worst_apart = std::fmax(worst_apart, std::fabs(grid - point));
+  }
+  MESSAGE(D << "D kind " << static_cast<int>(g.marks().kind()) << ": max |point - double| "
+            << worst_point << ", |grid - double| " << worst_grid << " (budget " << budget
+            << "), |grid - point| " << worst_apart << " (bound " << apart << ")");
+  CHECK(worst_point <= budget);
+  CHECK(worst_grid <= budget);
+  CHECK(worst_apart <= apart);
+  CHECK(worst_apart > 0.0);  // two forms indeed: the bound is not vacuous
+}
+}  // namespace
+
+TEST_CASE("gabor: points (point form) and grid samples (separable form) stay within their bounds") {
+  for (const gabor_kind kind : {gabor_kind::isotropic, gabor_kind::hybrid}) {
+    check_forms(hush::gabor<2>(make_params<2>(kind)), 31);
+    check_forms(hush::gabor<3>(make_params<3>(kind)), 32);
+  }
+}
+
 TEST_CASE("gabor: a point footprint evaluates the unfiltered noise, filtering is continuous") {
   const hush::gabor<2> g(make_params<2>(gabor_kind::isotropic));
   hush::rng r(13);

@@ -21,7 +21,8 @@
 //    results are point evaluation's, bit for bit unless the compiler
 //    contracts multiply-adds (HUSH_STRICT_FP forbids it), or within a stated
 //    bound of them where it says so (Perlin and fBm 3D values with
-//    gradients: perlin.hpp grid_values).
+//    gradients: perlin.hpp grid_values; Gabor grids' separable form:
+//    gabor.hpp grid_values, docs/gabor.md "Float accuracy").
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
@@ -172,8 +173,9 @@ void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
 //   void grid_values(const grid<D>& g, std::size_t first, std::size_t count,
 //                    float* out, vec<float, D>* grad) const;
 // with the values and gradients of its point evaluation at every sample (bit
-// for bit unless the compiler contracts multiply-adds), faster than the
-// sample loop below by sharing work between samples (perlin.hpp).
+// for bit unless the compiler contracts multiply-adds, or within the bound the
+// noise states: gabor.hpp), faster than the sample loop below by sharing work
+// between samples (perlin.hpp).
 template <class Noise, class = void>
 struct has_grid_values : std::false_type {};
 template <class Noise>
@@ -192,26 +194,15 @@ void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, std::size_t fi
   if constexpr (has_grid_values<Noise>::value) {
     n.grid_values(g, first, count, out, grad);
   } else {
-    const std::size_t nx = g.size[0];
-    const std::size_t j0 = D == 2 ? first : 0, ny = D == 2 ? first + count : g.size[1];
-    const std::size_t k0 = D == 3 ? first : 0, nz = D == 3 ? first + count : 1;
-    std::size_t idx = 0;
-    for (std::size_t k = k0; k < nz; ++k)
-      for (std::size_t j = j0; j < ny; ++j)
-        for (std::size_t i = 0; i < nx; ++i, ++idx) {
-          std::array<std::size_t, D> ijk{};
-          ijk[0] = i;
-          ijk[1] = j;
-          if constexpr (D == 3) ijk[D - 1] = k;
-          const vec<double, D> p = g.position(ijk);
-          if (grad) {
-            const auto r = n.template value_and_gradient<float>(p);
-            out[idx] = r.value;
-            grad[idx] = r.gradient;
-          } else {
-            out[idx] = n.template value<float>(p);
-          }
-        }
+    g.for_each_in_slab(first, count, [&](std::size_t idx, const vec<double, D>& p) {
+      if (grad) {
+        const auto r = n.template value_and_gradient<float>(p);
+        out[idx] = r.value;
+        grad[idx] = r.gradient;
+      } else {
+        out[idx] = n.template value<float>(p);
+      }
+    });
   }
 }
 template <class Noise>

@@ -100,6 +100,7 @@
 #include "hush/core/rng.hpp"
 #include "hush/core/samples.hpp"
 #include "hush/core/vec.hpp"
+#include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/detail/elementary.hpp"
 #include "hush/detail/quadrature.hpp"
@@ -392,6 +393,27 @@ class gabor : public sample_noise<gabor<D>, D> {
   value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
     return eval<T, true>(p);
   }
+  // A grid's sample at p: the separable form that every backend's grids use
+  // (eval below); within the bound of docs/gabor.md "Float accuracy" of
+  // value(p). Float or double.
+  template <class T>
+  value_gradient<T, D> grid_sample(const vec<double, D>& p) const {
+    return eval<T, true, true>(p);
+  }
+  // exec.hpp's grid_values (the scalar grid): every sample in the grid form,
+  // at the positions scalar_grid's sample loop takes (grid::position).
+  void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+                   vec<float, D>* grad) const {
+    g.for_each_in_slab(first, count, [&](std::size_t idx, const vec<double, D>& p) {
+      if (grad) {
+        const auto r = eval<float, true, true>(p);
+        out[idx] = r.value;
+        grad[idx] = r.gradient;
+      } else {
+        out[idx] = eval<float, false, true>(p).value;
+      }
+    });
+  }
   template <class T>
   T sample_value(const sample_input<D>& s) const {
     return sample_eval<T, false>(s).value;
@@ -642,13 +664,29 @@ class gabor : public sample_noise<gabor<D>, D> {
     return true;
   }
 
-  // Unfiltered solid noise: the separable kernel (gabor_kernel.hpp).
-  template <class T, bool G>
+  // Unfiltered solid noise: at a point the point form (gabor_kernel.hpp,
+  // gabor_point_term), on a grid's sample (Grid) the separable pair, which the
+  // grid kernels share between rows and columns. Every backend chooses the
+  // same way: grids always the separable form, points the point form.
+  template <class T, bool G, bool Grid = false>
   value_gradient<T, D> eval(const vec<double, D>& p) const {
     const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
     const T taper_k = taper_k_<T>();
     T sum = 0, g[D] = {};
-    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T, T w, const vec<T, D>& phi) {
+    const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
+      if constexpr (!Grid) {
+        T ph[D];
+        for (int i = 0; i < D; ++i) ph[i] = phi[i];
+        const T theta = detail::gabor_point_phase<T, D>(ph, d);
+        if constexpr (G) {
+          const auto pg = detail::gabor_point_term_with_gradient(w, s, theta, neg_a, taper_k, a);
+          sum += pg.value;
+          for (int i = 0; i < D; ++i) g[i] += pg.u * d[i] - pg.v * phi[i];
+        } else {
+          sum += detail::gabor_point_term(w, s, theta, neg_a, taper_k);
+        }
+        return;
+      }
       detail::gabor_axis<T> ax[D];
       for (int i = 0; i < D; ++i) ax[i] = detail::gabor_axis_factors(d[i], neg_a, phi[i]);
       detail::gabor_row<T> row;

@@ -155,20 +155,53 @@ template <class T>
 struct gabor_pair_gradient {
   T value, u, v;
 };
+// The value and gradient coefficients of p cos(2 pi theta) tau(s) (p = w e^{-A s},
+// theta = <phi, d>) from pc = p cos and ps = p sin: d/dd_a = p cos (2 d_a tau' -
+// 2 A d_a tau) - 2 pi phi_a p sin tau. Both forms (pair, point term) end here.
+template <class T>
+HUSH_INLINE gabor_pair_gradient<T> gabor_gradient_of_harmonics(T pc, T ps, T s, T taper_k, T a) {
+  const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
+  return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
+}
 template <class T>
 HUSH_INLINE gabor_pair_gradient<T> gabor_pair_gradient_of_products(T ec, T es, T b, T q, T s,
                                                                    T taper_k, T a) {
-  const gabor_taper_value<T> tw = gabor_taper_derivative(s, taper_k);
   const T pc = ec * b - es * q;  // p cos(theta), p = e_x we
   const T ps = es * b + ec * q;  // p sin(theta)
-  // d/dd_a of p cos(theta) tau: p cos (2 d_a tau' - 2 A d_a tau) - 2 pi phi_a p sin tau.
-  return {pc * tw.tau, (pc + pc) * (tw.dtau - a * tw.tau), T(constants::kTwoPi) * (ps * tw.tau)};
+  return gabor_gradient_of_harmonics(pc, ps, s, taper_k, a);
 }
 template <class T>
 HUSH_INLINE gabor_pair_gradient<T> gabor_pair_with_gradient(const gabor_axis<T>& x,
                                                             const gabor_row<T>& r, T taper_k, T a) {
   return gabor_pair_gradient_of_products(x.e * x.c, x.e * x.s, r.we * r.c, r.we * r.s, x.d2 + r.d2,
                                          taper_k, a);
+}
+
+// The point form (random points; grids keep the separable pair above, so that
+// a grid forms its factors once per row and column): one impulse's weighted
+// kernel w e^{-A s} cos(2 pi theta) tau(s) from s = |d|^2 < 1 (0 for s >= 1)
+// and theta = <phi, d>, i.e. one exp and one cos instead of D of each. The
+// two forms are the same function; in float they differ by rounding only
+// (docs/gabor.md, "Float accuracy": bounded there and tested in gabor_test).
+// theta is summed as phi_x d_x + phi_y d_y (3D: phi_x d_x + (phi_y d_y +
+// phi_z d_z)), as s is.
+template <class T, int D>
+HUSH_INLINE T gabor_point_phase(const T* phi, const T* d) {
+  if constexpr (D == 2)
+    return phi[0] * d[0] + phi[1] * d[1];
+  else
+    return phi[0] * d[0] + (phi[1] * d[1] + phi[2] * d[2]);
+}
+template <class T>
+HUSH_INLINE T gabor_point_term(T w, T s, T theta, T neg_a, T taper_k) {
+  return ((w * exp_neg(neg_a * s)) * sincos_turns(theta).cos) * gabor_taper(s, taper_k);
+}
+template <class T>
+HUSH_INLINE gabor_pair_gradient<T> gabor_point_term_with_gradient(T w, T s, T theta, T neg_a,
+                                                                  T taper_k, T a) {
+  const T p = w * exp_neg(neg_a * s);
+  const sin_cos<T> sc = sincos_turns(theta);
+  return gabor_gradient_of_harmonics(p * sc.cos, p * sc.sin, s, taper_k, a);
 }
 
 // ---- Closed forms and quadratures in cell units (double).

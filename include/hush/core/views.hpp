@@ -83,6 +83,24 @@ struct grid {
     for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
     return p;
   }
+  // f(idx, position) for the samples of the slab whose slowest-axis index (j in
+  // 2D, k in 3D) is in [first, first + count), idx counting from 0 in C order.
+  template <class F>
+  void for_each_in_slab(std::size_t first, std::size_t count, F f) const {
+    static_assert(N == 2 || N == 3, "grid slabs are 2D or 3D");
+    const std::size_t j0 = N == 2 ? first : 0, ny = N == 2 ? first + count : size[1];
+    const std::size_t k0 = N == 3 ? first : 0, nz = N == 3 ? first + count : 1;
+    std::size_t idx = 0;
+    for (std::size_t k = k0; k < nz; ++k)
+      for (std::size_t j = j0; j < ny; ++j)
+        for (std::size_t i = 0; i < size[0]; ++i, ++idx) {
+          std::array<std::size_t, N> ijk{};
+          ijk[0] = i;
+          ijk[1] = j;
+          if constexpr (N == 3) ijk[N - 1] = k;
+          f(idx, position(ijk));
+        }
+  }
   // Throws hush::invalid_argument naming the first bad field: origin and step must be
   // finite, step non-zero, and the total count must fit in the address space.
   void validate(const char* where) const {

@@ -333,17 +333,21 @@ HWY_INLINE VF pair(const axis& x, const row& r, VF k) {
   return pair_of_products(hn::Mul(x.e, x.c), hn::Mul(x.e, x.s), hn::Mul(r.we, r.c),
                           hn::Mul(r.we, r.s), hn::Add(x.d2, r.d2), k);
 }
-// gabor_pair_gradient_of_products: value, u, v with dg/dd_a = u d_a - v phi_a.
-HWY_INLINE void pair_gradient_of_products(VF ec, VF es, VF b, VF q, VF s, VF k, VF a, VF& value,
-                                          VF& u, VF& v) {
+// gabor_gradient_of_harmonics: value, u, v with dg/dd_a = u d_a - v phi_a
+// from pc = p cos, ps = p sin.
+HWY_INLINE void gradient_of_harmonics(VF pc, VF ps, VF s, VF k, VF a, VF& value, VF& u, VF& v) {
   const DF df;
   VF tau, dtau;
   taper_derivative(s, k, tau, dtau);
-  const VF pc = neg_mul_add(es, q, hn::Mul(ec, b));
-  const VF ps = mul_add(es, b, hn::Mul(ec, q));
   value = hn::Mul(pc, tau);
   u = hn::Mul(hn::Add(pc, pc), neg_mul_add(a, tau, dtau));
   v = hn::Mul(hn::Set(df, float(detail::constants::kTwoPi)), hn::Mul(ps, tau));
+}
+// gabor_pair_gradient_of_products.
+HWY_INLINE void pair_gradient_of_products(VF ec, VF es, VF b, VF q, VF s, VF k, VF a, VF& value,
+                                          VF& u, VF& v) {
+  gradient_of_harmonics(neg_mul_add(es, q, hn::Mul(ec, b)), mul_add(es, b, hn::Mul(ec, q)), s, k,
+                        a, value, u, v);
 }
 // gabor_pair_with_gradient.
 HWY_INLINE void pair_gradient(const axis& x, const row& r, VF k, VF a, VF& value, VF& u, VF& v) {
@@ -564,35 +568,82 @@ void collect(std::uint32_t key, std::uint32_t stream, const std::vector<std::int
   }
 }
 
-// The unfiltered kernel (gabor<D>::eval's pair) of one vector of impulses with
-// weight wt, frequency phi and offsets d: the value into val, and with G the
-// gradient terms u d_a - v phi_a into g[a]. Lanes outside the support (s >= 1:
-// the padding of a pair list) give values that nobody reads.
-template <int D, bool G>
+// s = |d|^2 and theta = <phi, d> (gabor_point_phase) in the scalar order.
+template <int D>
+HWY_INLINE VF point_s(const VF* d) {
+  if constexpr (D == 2)
+    return hn::Add(hn::Mul(d[0], d[0]), hn::Mul(d[1], d[1]));
+  else
+    return hn::Add(hn::Mul(d[0], d[0]), hn::Add(hn::Mul(d[1], d[1]), hn::Mul(d[2], d[2])));
+}
+template <int D>
+HWY_INLINE VF point_phase(const VF* phi, const VF* d) {
+  if constexpr (D == 2)
+    return mul_add(phi[1], d[1], hn::Mul(phi[0], d[0]));
+  else
+    return mul_add(phi[0], d[0], mul_add(phi[2], d[2], hn::Mul(phi[1], d[1])));
+}
+// sin/cos(2 pi theta) of kept impulses: |theta| <= |phi| |d| < |phi|, so
+// c.small_turns holds for theta as for each axis' phase.
+template <int D>
+HWY_INLINE void sincos_kept(const consts<D>& c, VF theta, VF& sn, VF& cs) {
+  if (c.small_turns)
+    sincos_turns_in_range(theta, sn, cs);
+  else
+    sincos_turns(theta, sn, cs);
+}
+// gabor_point_term of kept impulses (s < 1): w e^{-A s} cos(2 pi theta) tau(s).
+template <int D>
+HWY_INLINE VF point_value(const consts<D>& c, VF w, VF s, VF theta) {
+  VF sn, cs;
+  sincos_kept(c, theta, sn, cs);
+  return hn::Mul(hn::Mul(hn::Mul(w, exp_neg_in_range(hn::Mul(c.neg_a, s))), cs), taper(s, c.k));
+}
+
+// The unfiltered kernel (gabor<D>::eval) of one vector of impulses with
+// weight wt, frequency phi and offsets d, in the point form (gabor_point_term)
+// or with Grid the separable pair (gabor_pair; grids on the points path): the
+// value into val, and with G the gradient terms u d_a - v phi_a into g[a].
+// Lanes outside the support (s >= 1: the padding of a pair list) give values
+// that nobody reads.
+template <int D, bool G, bool Grid>
 HWY_INLINE void unfiltered_terms(const consts<D>& c, VF wt, const VF* phi, const VF* d,
                                  float* HWY_RESTRICT val, float* const* g) {
   const DF df;
-  axis ax[3];
-  for (int a = 0; a < D; ++a) ax[a] = axis_factors_in_support(d[a], c.neg_a, phi[a], c.small_turns);
-  row r;
-  if constexpr (D == 2)
-    r = row_of(wt, ax[1]);
-  else
-    r = row_of(wt, ax[1], ax[2]);
-  if constexpr (G) {
-    VF v, u, vv;
-    pair_gradient(ax[0], r, c.k, c.a, v, u, vv);
-    hn::StoreU(v, df, val);
+  VF value, u, v;
+  if constexpr (Grid) {
+    axis ax[3];
     for (int a = 0; a < D; ++a)
-      hn::StoreU(hn::Sub(hn::Mul(u, ax[a].d), hn::Mul(vv, phi[a])), df, g[a]);
+      ax[a] = axis_factors_in_support(d[a], c.neg_a, phi[a], c.small_turns);
+    row r;
+    if constexpr (D == 2)
+      r = row_of(wt, ax[1]);
+    else
+      r = row_of(wt, ax[1], ax[2]);
+    if constexpr (G)
+      pair_gradient(ax[0], r, c.k, c.a, value, u, v);
+    else
+      value = pair(ax[0], r, c.k);
   } else {
-    hn::StoreU(pair(ax[0], r, c.k), df, val);
+    const VF s = point_s<D>(d), theta = point_phase<D>(phi, d);
+    if constexpr (G) {
+      VF sn, cs;
+      sincos_kept(c, theta, sn, cs);
+      const VF p = hn::Mul(wt, exp_neg_in_range(hn::Mul(c.neg_a, s)));
+      gradient_of_harmonics(hn::Mul(p, cs), hn::Mul(p, sn), s, c.k, c.a, value, u, v);
+    } else {
+      value = point_value(c, wt, s, theta);
+    }
   }
+  hn::StoreU(value, df, val);
+  if constexpr (G)
+    for (int a = 0; a < D; ++a) hn::StoreU(hn::Sub(hn::Mul(u, d[a]), hn::Mul(v, phi[a])), df, g[a]);
 }
 
-// The unfiltered kernel of every kept impulse (gabor<D>::eval's pair), into
-// t.val (and with G, the gradient terms u d_a - v phi_a into t.g).
-template <int D, bool G>
+// The unfiltered kernel of every kept impulse (gabor<D>::eval; Grid: the
+// separable pair), into t.val (and with G, the gradient terms u d_a - v phi_a
+// into t.g).
+template <int D, bool G, bool Grid>
 void eval_unfiltered(const consts<D>& c, tuples& t) {
   const DF df;
   const DU du;
@@ -604,7 +655,7 @@ void eval_unfiltered(const consts<D>& c, tuples& t) {
     marks<D>(c, w, wt, phi);
     for (int a = 0; a < D; ++a) d[a] = hn::LoadU(df, t.d[a].data() + i);
     float* const g[3] = {t.g[0].data() + i, t.g[1].data() + i, t.g[2].data() + i};
-    unfiltered_terms<D, G>(c, wt, phi, d, t.val.data() + i, g);
+    unfiltered_terms<D, G, Grid>(c, wt, phi, d, t.val.data() + i, g);
   }
 }
 
@@ -935,12 +986,14 @@ void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split sp
   process_points<D, D, G>(g, solid_process(g), count, sp, split, keep, value, grad, eval);
 }
 
-template <int D, bool G, class Split>
+// Unfiltered solid noise at `count` positions: random points, or with Grid a
+// grid's samples (the separable form, as every grid).
+template <int D, bool G, bool Grid, class Split>
 void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
             float* grad) {
   points_with<D, G>(
       g, count, sp, split, value, grad,
-      [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G>(c, t); });
+      [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G, Grid>(c, t); });
 }
 
 // ---- Points that share cells (gabor_points): each cell's impulses drawn once per call.
@@ -976,10 +1029,12 @@ constexpr std::size_t kShareMaxPoints = std::size_t(1) << 20;
 
 // Pairs (point, impulse) within the support, each point's in its order.
 struct shared_pairs {
-  std::vector<float> d[3], w, phi[3], val, g[3];
+  // Values only: s, theta and w of each kept impulse; with gradients: d, phi and w.
+  std::vector<float> d[3], w, phi[3], val, g[3], s, theta;
   std::size_t n = 0;
   void reserve(std::size_t cap) {
-    for (auto* v : {&d[0], &d[1], &d[2], &w, &phi[0], &phi[1], &phi[2], &val, &g[0], &g[1], &g[2]})
+    for (auto* v : {&d[0], &d[1], &d[2], &w, &phi[0], &phi[1], &phi[2], &val, &g[0], &g[1], &g[2],
+                    &s, &theta})
       v->resize(cap + kMaxLanes);
   }
 };
@@ -1393,13 +1448,20 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     const float scale = float(g.scale()), grad_scale = float(g.scale() * g.inverse_cell());
     auto flush = [&] {
       for (std::size_t i = 0; i < t.n; i += lanes) {
+        const VF wt = hn::LoadU(df, t.w.data() + i);
+        if constexpr (!G) {
+          hn::StoreU(point_value(c, wt, hn::LoadU(df, t.s.data() + i),
+                                 hn::LoadU(df, t.theta.data() + i)),
+                     df, t.val.data() + i);
+          continue;
+        }
         VF d[3], phi[3];
         for (int a = 0; a < D; ++a) {
           d[a] = hn::LoadU(df, t.d[a].data() + i);
           phi[a] = hn::LoadU(df, t.phi[a].data() + i);
         }
         float* const gp[3] = {t.g[0].data() + i, t.g[1].data() + i, t.g[2].data() + i};
-        unfiltered_terms<D, G>(c, hn::LoadU(df, t.w.data() + i), phi, d, t.val.data() + i, gp);
+        unfiltered_terms<D, G, false>(c, wt, phi, d, t.val.data() + i, gp);
       }
       for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
         float sum = 0.0f, gs[3] = {0.0f, 0.0f, 0.0f};
@@ -1426,6 +1488,8 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     const float* const iphi[3] = {im.phi[0].data(), im.phi[1].data(), im.phi[D - 1].data()};
     float* const td[3] = {t.d[0].data(), t.d[1].data(), t.d[2].data()};
     float* const tw = t.w.data();
+    float* const ts = t.s.data();
+    float* const ttheta = t.theta.data();
     float* const tphi[3] = {t.phi[0].data(), t.phi[1].data(), t.phi[2].data()};
     // The candidates of the points of one cell, in their order (rows of 3
     // cells in raster order, impulses in stream order), copied once per cell
@@ -1473,16 +1537,22 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
         for (std::size_t k = 0; k < nc; k += lanes) {
           // (frac - o) - position, as the scalar code. No branch on an empty
           // mask (storing nothing is cheaper than a mispredicted branch).
-          VF d[3], d2[3];
+          VF d[3], ph[3];
           for (int a = 0; a < D; ++a) {
             d[a] = hn::Sub(hn::Sub(f[a], hn::LoadU(df, co[a] + k)), hn::LoadU(df, cpos[a] + k));
-            d2[a] = hn::Mul(d[a], d[a]);
+            ph[a] = hn::LoadU(df, cphi[a] + k);
           }
-          const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
+          const VF s = point_s<D>(d);
           const MF in = hn::Lt(s, one);
-          for (int a = 0; a < D; ++a) {
-            hn::StoreU(compress(d[a], in), df, td[a] + to);
-            hn::StoreU(compress(hn::LoadU(df, cphi[a] + k), in), df, tphi[a] + to);
+          if constexpr (G) {
+            for (int a = 0; a < D; ++a) {
+              hn::StoreU(compress(d[a], in), df, td[a] + to);
+              hn::StoreU(compress(ph[a], in), df, tphi[a] + to);
+            }
+          } else {
+            // Values need only s and theta: two lists instead of 2 D.
+            hn::StoreU(compress(s, in), df, ts + to);
+            hn::StoreU(compress(point_phase<D>(ph, d), in), df, ttheta + to);
           }
           hn::StoreU(compress(hn::LoadU(df, cw + k), in), df, tw + to);
           to += hn::CountTrue(df, in);
@@ -1804,7 +1874,7 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
         sp.bad[l] = bad;
       }
     };
-    points<D, G>(g, gr.count(), sp, split, value, grad);
+    points<D, G, true>(g, gr.count(), sp, split, value, grad);
     return;
   }
   // Block buffers sized by the longest runs, not the caps: small grids do not pay for
@@ -1840,9 +1910,9 @@ void gabor_points_lockstep(const gabor<D>& g, const float* pts, std::size_t n, f
     gs::split_batch<D>(sp, pts, first, used, inv);
   };
   if (grad)
-    gs::points<D, true>(g, n, sp, split, value, grad);
+    gs::points<D, true, false>(g, n, sp, split, value, grad);
   else
-    gs::points<D, false>(g, n, sp, split, value, nullptr);
+    gs::points<D, false, false>(g, n, sp, split, value, nullptr);
 }
 
 // Gabor noise at n interleaved float points (the shared-cell path, its box's
