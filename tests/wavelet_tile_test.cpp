@@ -399,8 +399,9 @@ TEST_CASE("wavelet tile: even and odd cells have equal variance within 2 % after
       for (int i = 0; i < 128; ++i)
         for (int g = 0; g < 36; ++g) {  // 2 halves x 3 nodes, per axis
           const int gx = g % 6, gy = g / 6;
-          const double y[3] = {i + 0.25 + (gx / 3) * 0.5 + kGaussX[gx % 3] * 0.5,
-                               j + 0.25 + (gy / 3) * 0.5 + kGaussX[gy % 3] * 0.5, 0};
+          const int hx = gx / 3, hy = gy / 3;  // the half, 0 or 1 (integer division meant)
+          const double y[3] = {i + 0.25 + hx * 0.5 + kGaussX[gx % 3] * 0.5,
+                               j + 0.25 + hy * 0.5 + kGaussX[gy % 3] * 0.5, 0};
           const double n = band_at(t, y);
           const double w = kGaussW[gx % 3] * kGaussW[gy % 3] * n * n;
           v[0][i & 1] += w;
