@@ -66,8 +66,8 @@ const double kPaperTaps[32] = {
     0.019120,  0.002172,  -0.008233, -0.000938, 0.003546,  0.000410,  -0.001528, 0.000334};
 
 double analysis_tap(int d) {  // hush's a_d, d in [1 - R, R]
-  return hush::detail::wavelet_analysis_filter()[static_cast<std::size_t>(
-      d - 1 + c::kWaveletAnalysisRadius)];
+  const int index = d - 1 + c::kWaveletAnalysisRadius;  // in [0, 2R)
+  return hush::detail::wavelet_analysis_filter()[static_cast<std::size_t>(index)];
 }
 double refine(int k) {
   const int i = k - c::kWaveletRefineFirst;
@@ -96,7 +96,12 @@ std::pair<double, double> coarse_projection(const hush::wavelet_tile<2>& t) {
   double h[12];
   for (int d = -4; d < 8; ++d) h[d + 4] = cross_gram(d);      // <B(y - i), phi_0>, i = d
   const double phi_norm = 2 * hush::detail::bspline_gram(0);  // ||phi_m|| = (2 g0)^(2/2)
-  std::vector<double> b(static_cast<std::size_t>(half * half));
+  const auto hs = static_cast<std::size_t>(half);
+  // b_m's slot: row-major, in std::size_t (bugprone-misplaced-widening-cast).
+  const auto slot = [hs](int x, int y) {
+    return static_cast<std::size_t>(y) * hs + static_cast<std::size_t>(x);
+  };
+  std::vector<double> b(hs * hs);
   double worst = 0;
   for (int my = 0; my < half; ++my)
     for (int mx = 0; mx < half; ++mx) {
@@ -108,7 +113,7 @@ std::pair<double, double> coarse_projection(const hush::wavelet_tile<2>& t) {
               static_cast<std::size_t>(n) * static_cast<std::size_t>(wrap(2 * my + dy, n));
           ip += h[dx + 4] * h[dy + 4] * t.coefficient(idx);
         }
-      b[static_cast<std::size_t>(my * half + mx)] = ip;
+      b[slot(mx, my)] = ip;
       worst = std::max(worst, std::fabs(ip) / (std::sqrt(t.variance()) * phi_norm));
     }
   // The periodic inverse Gram along one coarse axis (the infinite one folded; it decays
@@ -121,8 +126,8 @@ std::pair<double, double> coarse_projection(const hush::wavelet_tile<2>& t) {
     for (int mx = 0; mx < half; ++mx)
       for (int ny = 0; ny < half; ++ny)
         for (int nx = 0; nx < half; ++nx)
-          energy += b[static_cast<std::size_t>(my * half + mx)] *
-                    b[static_cast<std::size_t>(ny * half + nx)] *
+          energy += b[slot(mx, my)] *
+                    b[slot(nx, ny)] *
                     ginv[static_cast<std::size_t>(wrap(mx - nx, half))] *
                     ginv[static_cast<std::size_t>(wrap(my - ny, half))];
   energy /= 4;
@@ -318,7 +323,7 @@ TEST_CASE("wavelet tile: built once per key, shared between noises, memory repor
     const hush::wavelet<2> a{prm}, b{prm};
     CHECK(cache.builds() == builds + 1);
     CHECK(a.tile_ptr() == b.tile_ptr());
-    CHECK(cache.live_bytes() >= 32u * 32u * sizeof(float));
+    CHECK(cache.live_bytes() >= std::size_t{32} * 32 * sizeof(float));
     CHECK(a.memory_bytes() >= a.tile().bytes());
     prm.seed = 12346;
     const hush::wavelet<2> other{prm};
@@ -394,8 +399,9 @@ TEST_CASE("wavelet tile: even and odd cells have equal variance within 2 % after
       for (int i = 0; i < 128; ++i)
         for (int g = 0; g < 36; ++g) {  // 2 halves x 3 nodes, per axis
           const int gx = g % 6, gy = g / 6;
-          const double y[3] = {i + 0.25 + (gx / 3) * 0.5 + kGaussX[gx % 3] * 0.5,
-                               j + 0.25 + (gy / 3) * 0.5 + kGaussX[gy % 3] * 0.5, 0};
+          const int hx = gx / 3, hy = gy / 3;  // the half, 0 or 1 (integer division meant)
+          const double y[3] = {i + 0.25 + hx * 0.5 + kGaussX[gx % 3] * 0.5,
+                               j + 0.25 + hy * 0.5 + kGaussX[gy % 3] * 0.5, 0};
           const double n = band_at(t, y);
           const double w = kGaussW[gx % 3] * kGaussW[gy % 3] * n * n;
           v[0][i & 1] += w;

@@ -28,11 +28,9 @@ for f in examples/hush/*.cpp; do
   case "$f" in *stb_image_write_impl.cpp) continue ;; esac
   grep -q "HUSH_CLI_HAVE_" "$f" && grep -q "/$f\"" "$build/compile_commands.json" && files+=("$f")
 done
+# tools/tidy.sh's two passes (per file: analyzer and compiler warnings; unity units: the rest).
 status=0
-printf '%s\n' "${files[@]}" |
-  xargs -P "$(nproc 2>/dev/null || echo 2)" -n 1 clang-tidy -p "$build" --quiet \
-    --extra-arg=-std=c++17 \
-    --header-filter='.*/(include/hush|examples|backends/glsl)/.*' || status=1
+HUSH_TIDY_FILES="${files[*]}" bash tools/tidy.sh "$build" || status=1
 echo "check_minimal: ${#files[@]} files checked without the optional packages"
 [ "$status" -eq 0 ] && echo "check_minimal: clean"
 exit "$status"
