@@ -638,6 +638,62 @@ TEST_CASE("gabor: spectra at F0 = 1e6 are bounded and integrate to the variance"
   CHECK(exact == doctest::Approx(g2.power_spectrum(hush::dvec2{1e6, 0.0})).epsilon(1e-12));
   CHECK(exact == doctest::Approx(s2(hush::dvec2{1e6, 0.0})).epsilon(3e-5));
   CHECK(std::isfinite(g3.power_spectrum(hush::dvec3{0.0, 0.0, 1e6})));
+  // Hybrid 2D (|Phi| 3e6 +- 1.5e6 cycles per cell, a 1 rad arc around 0):
+  // bounded windows; positive on the arc, 0 far from it (both blobs further
+  // than the window from f).
+  hush::gabor<2>::params ph = p2;
+  ph.kind = hush::gabor_kind::hybrid;
+  ph.frequency_spread = 1e6;
+  ph.orientation_spread = 1.0;
+  const hush::gabor<2> gh(ph);
+  const hush::gabor_spectrum<2> sh(gh, 2e6);
+  CHECK(sh(hush::dvec2{1e6, 0.0}) > 0.0);
+  CHECK(std::isfinite(sh(hush::dvec2{1e6, 0.0})));
+  CHECK(sh(hush::dvec2{0.0, 1e6}) == 0.0);
   CHECK(g3.power_spectrum(hush::dvec3{0.0, 0.0, 1e6}) ==
         doctest::Approx(s3(hush::dvec3{0.0, 0.0, 1e6})).epsilon(3e-5));
+}
+
+TEST_CASE("gabor: hybrid 2D spectra over the frequency and orientation windows equal the full average") {
+  // |Phi| = 66 +- 10 cycles per cell, orientation spread 1 rad (and 0) around
+  // 30 degrees: the full average (the old node counts, ~|Phi|^2) is still
+  // affordable with the stand-in H. f on the arc's middle, near its end,
+  // opposite (the -Phi blob), at |Phi|'s ends and at 0. What the windows leave
+  // out is pointwise below the tail's square at the window, (1.7 W^-3.5)^2 =
+  // 6.6e-13 of H(0)^2; the hybrid peak is spread over the frequency range and
+  // the arc, so relative to it that is ~3e-10 here (f = 0: H(|Phi|)^2 for the
+  // |Phi| beyond W): a 1e-9 tolerance.
+  for (const double spread : {1.0, 0.0}) {
+    hush::gabor<2>::params p;
+    p.kind = hush::gabor_kind::hybrid;
+    const double r = hush::gabor_kernel<2>(0.8, 0.05).radius();
+    p.frequency = 66.0 / r;
+    p.frequency_spread = 20.0 / r;
+    p.orientation = 0.5236;
+    p.orientation_spread = spread;
+    const hush::gabor<2> g(p);
+    const double A = g.kernel().envelope_exponent();
+    long calls = 0;
+    auto h = [A, &calls](double k) {
+      ++calls;
+      return stand_in_h<2>(A, k);
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    auto at = [&](double cycles, double angle) {
+      return hush::dvec2{cycles / r * std::cos(angle), cycles / r * std::sin(angle)};
+    };
+    const double peak = g.spectrum_with(at(66.0, 0.5236), h, inf);
+    for (const double cycles : {0.0, 66.3, 90.0}) {
+      for (const double angle : {0.5236, 0.5236 + 0.49, 0.5236 + 3.1416}) {
+        CAPTURE(spread);
+        CAPTURE(cycles);
+        CAPTURE(angle);
+        const hush::dvec2 f = at(cycles, angle);
+        calls = 0;
+        const double windowed = g.spectrum_with(f, h);
+        CHECK(calls <= 6000000);
+        CHECK(std::fabs(windowed - g.spectrum_with(f, h, inf)) <= 1e-9 * peak);
+      }
+    }
+  }
 }

@@ -528,6 +528,8 @@ class gabor : public sample_noise<gabor<D>, D> {
       return detail::integrate(f, phi0 - 0.5 * dphi, phi0 + 0.5 * dphi, panels) / dphi;
     };
     if constexpr (D == 2) {
+      if (reach > window)
+        return hybrid_window_2d(xi, h, window);
       return over_frequency([&](double ph) {
         auto at = [&](double turns) {
           const double ang = c::kTwoPi * turns;
@@ -581,6 +583,85 @@ class gabor : public sample_noise<gabor<D>, D> {
   // 0.26 at t = 0.5) lies within 4 of k = 0: panels 0.5 wide there, 2 wide
   // beyond (H oscillates at <= 1 cycle per unit k): at most 8 + 2 + window / 2
   // panels of 16 nodes, two calls of h each.
+  // The composite 16-point rule on [lo, hi] with panels 0.5 wide within 4 of
+  // `core` (where H's core, <= 1.5 cycles wide, lies), 2 wide elsewhere (H
+  // oscillates at <= 1 cycle per unit there).
+  template <class G>
+  static double core_rule(G g, double lo, double hi, double core) {
+    double sum = 0;
+    const double cut[4] = {lo, std::fmin(hi, std::fmax(lo, core - 4.0)),
+                           std::fmin(hi, std::fmax(lo, core + 4.0)), hi};
+    for (int i = 0; i < 3; ++i) {
+      if (!(cut[i + 1] > cut[i])) continue;
+      const double per = i == 1 ? 2.0 : 0.5;  // panels per unit
+      sum += detail::integrate(g, cut[i], cut[i + 1],
+                               1 + static_cast<int>(std::ceil(per * (cut[i + 1] - cut[i]))));
+    }
+    return sum;
+  }
+
+  // Hybrid 2D noise's mean over |Phi| uniform in [phi0 -+ dphi / 2] and the
+  // orientation uniform on the arc, for |Phi| > window somewhere: |Phi| only
+  // within `window` of |xi| (k_-, k_+ >= ||xi| - |Phi||), and for each |Phi|
+  // with |xi|^2 + |Phi|^2 > window^2 the orientations within the windows
+  // around xi's direction (k_- < window) and the opposite one (k_+ <
+  // window), clipped to the arc, in isotropic_mean's variable u on each side;
+  // below, the whole arc (zero spread: omega0 alone). Outer nodes <= 16 (10 + window), inner per window
+  // and side <= 16 (10 + window / 2): bounded, ~6e6 calls of h at most.
+  template <class H>
+  double hybrid_window_2d(const vec<double, 2>& xi, H h, double window) const {
+    namespace c = detail::constants;
+    const double x = std::sqrt(xi[0] * xi[0] + xi[1] * xi[1]);
+    const double dphi = marks_.dphi(), phi0 = marks_.phi0();
+    const double arc = c::kTwoPi * marks_.spread_turns(), centre = c::kTwoPi * marks_.theta0();
+    const double dir = std::atan2(xi[1], xi[0]);
+    auto inner = [&](double ph) {  // mean over the arc at |Phi| = ph
+      const double xp = x * ph, base = x * x + ph * ph, kmin = std::fabs(x - ph);
+      auto pair = [&](double km2, double kp2) {
+        const double v =
+            0.5 * (h(std::sqrt(std::fmax(km2, 0.0))) + h(std::sqrt(std::fmax(kp2, 0.0))));
+        return v * v;
+      };
+      auto at = [&](double ang) {
+        const double cross = 2.0 * xp * std::cos(ang - dir);
+        return pair(base - cross, base + cross);
+      };
+      if (arc == 0.0) return at(centre);  // omega0 only
+      if (!(base > window * window)) {  // small: the whole arc, as for |Phi| <= window
+        const int panels = 1 + static_cast<int>(std::ceil(8.0 * ph * marks_.spread_turns()));
+        return detail::integrate(at, centre - 0.5 * arc, centre + 0.5 * arc, panels) / arc;
+      }
+      if (!(kmin < window)) return 0.0;
+      const double root = 2.0 * std::sqrt(xp);
+      const double u_max = std::sqrt(std::fmin((window - kmin) * (window + kmin), 2.0 * xp));
+      const double g_max = 2.0 * std::asin(u_max / root);  // the window's half-width in angle
+      const double sum2 = (x + ph) * (x + ph);
+      double sum = 0;
+      for (int far = 0; far < 2; ++far) {  // around xi's direction (k_-), then opposite (k_+)
+        auto g = [&](double u) {
+          const double u2 = u * u, near2 = kmin * kmin + u2, other2 = sum2 - u2;
+          return (far ? pair(other2, near2) : pair(near2, other2)) * 2.0 / std::sqrt(root * root - u2);
+        };
+        // The arc relative to the window's centre, in (-pi, pi] + 2 pi m.
+        const double off = std::remainder(centre - dir - (far ? c::kPi : 0.0), c::kTwoPi);
+        for (int m = -1; m <= 1; ++m) {
+          const double lo = std::fmax(off - 0.5 * arc + c::kTwoPi * m, -g_max);
+          const double hi = std::fmin(off + 0.5 * arc + c::kTwoPi * m, g_max);
+          if (!(hi > lo)) continue;
+          auto to_u = [&](double gam) { return root * std::sin(0.5 * std::fabs(gam)); };
+          if (hi > 0.0) sum += core_rule(g, to_u(std::fmax(lo, 0.0)), to_u(hi), 0.0);
+          if (lo < 0.0) sum += core_rule(g, to_u(std::fmin(hi, 0.0)), to_u(lo), 0.0);
+        }
+      }
+      return sum / arc;
+    };
+    if (dphi == 0.0) return inner(phi0);
+    const double lo = std::fmax(phi0 - 0.5 * dphi, x - window);
+    const double hi = std::fmin(phi0 + 0.5 * dphi, x + window);
+    if (!(hi > lo)) return 0.0;
+    return core_rule(inner, lo, hi, x) / dphi;
+  }
+
   template <class H>
   static double isotropic_mean(double x, double ph, H h, double window) {
     const double kmin = std::fabs(x - ph);
@@ -591,13 +672,7 @@ class gabor : public sample_noise<gabor<D>, D> {
       return v * v;
     };
     if (!(xp > 1e-150)) return pair(base, base);  // Phi = 0 or xi = 0: one orientation is all
-    // Composite rule on [lo, hi], panels 0.5 wide up to lo + 4 (the core), 2 beyond.
-    auto rule = [](auto g, double lo, double hi) {
-      const double mid = std::fmin(hi, lo + 4.0);
-      return detail::integrate(g, lo, mid, 1 + static_cast<int>(std::ceil(2.0 * (mid - lo)))) +
-             (hi > mid ? detail::integrate(g, mid, hi, 1 + static_cast<int>(std::ceil(0.5 * (hi - mid))))
-                       : 0.0);
-    };
+    auto rule = [](auto g, double lo, double hi) { return core_rule(g, lo, hi, lo); };
     if constexpr (D == 2) {
       // fmin: the window may cover every gamma in [0, pi / 2].
       const double u_max = std::sqrt(std::fmin((window - kmin) * (window + kmin), 2.0 * xp));
