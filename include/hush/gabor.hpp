@@ -372,12 +372,13 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
 
   // The same with H(k), the tapered envelope's transform at k cycles per cell,
-  // supplied by the caller (gabor_spectrum passes a table of it). window:
-  // isotropic noise integrates its orientations only where a blob is within
-  // `window` cycles per cell of f r once |f r|^2 + |Phi|^2 > window^2 (the
-  // default bounds every call: at most 16 (2 + window / 2) nodes, each two
-  // calls of h; see mean_kernel_spectrum); infinity resolves every
-  // orientation (cost ~ |Phi|, the reference the tests compare against).
+  // supplied by the caller (gabor_spectrum passes a table of it). window
+  // (cycles per cell): isotropic and hybrid 2D noise integrate only the Phi
+  // that bring a blob within `window` of f r; the default bounds every call
+  // whatever F0 and a (isotropic: <= 1344 calls of h; hybrid 2D: ~6e6;
+  // isotropic_mean, hybrid_window_2d); infinity takes every Phi (isotropic:
+  // same cost; hybrid 2D: the full average, cost ~ |Phi|^2). Hybrid 3D
+  // noise still costs ~ |Phi|^2 |f r| (docs/gabor.md, Not done).
   template <class H>
   double spectrum_with(const vec<double, D>& f, H h,
                        double window = detail::constants::kGaborSpectrumWindowCycles) const {
@@ -519,7 +520,9 @@ class gabor : public sample_noise<gabor<D>, D> {
     const bool hybrid = prm_.kind == gabor_kind::hybrid;
     if (!hybrid) return isotropic_mean(xi_len, phi0, h, window);
     // The blob centres +-Phi move by 2 pi |Phi| cycles per cell per turn, and H
-    // is ~0.4 cycles per cell wide: these node counts resolve it to ~1e-10.
+    // is ~0.4 cycles per cell wide (t = 0.05): these node counts resolve it to
+    // ~1e-10, less for narrower cores (the isotropic trapezoid rule with these
+    // counts was at 4e-5 of the peak for t = 0.5; tests/gabor_kernel_test.cpp).
     const double reach = phi0 + 0.5 * dphi;
     // Average over |Phi| (hybrid) of f(|Phi|).
     auto over_frequency = [&](auto f) {
