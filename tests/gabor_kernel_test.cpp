@@ -498,3 +498,203 @@ TEST_CASE(
   CHECK(none.q[0][1] == 0.0);
   CHECK(none.m[1][1] == 0.0);
 }
+
+namespace {
+
+// A stand-in for H (cell units) with its structure and the worst tail the
+// asymptotics allow (docs/gabor.md: |H(k) - core| <= 1.7 H(0) k^-3.5 in 2D,
+// 1.2 k^-4 in 3D, t = 0.5): the Gaussian core plus two cosines at the taper's
+// radii (<= 1 cycle per unit k), even and smooth in k like H, at 1 / 40 of
+// the real quadrature's cost, so the full orientation average stays cheap.
+template <int D>
+double stand_in_h(double A, double k) {
+  const double core = std::pow(kPi / A, 0.5 * D), k2 = k * k;
+  const double tail = (D == 2 ? 1.7 : 1.2) * core * std::pow(1.0 + k2, D == 2 ? -1.75 : -2.0);
+  return core * std::exp(-kPi * kPi * k2 / A) +
+         0.5 * tail * (std::cos(2 * kPi * std::sqrt(kS0) * k) + std::cos(2 * kPi * k));
+}
+
+// The orientation average of ((h(|xi - Phi|) + h(|xi + Phi|)) / 2)^2 by brute
+// force, the way hush computed it before the window (cost ~ |Phi| in 2D,
+// |Phi| |xi| in 3D), with 16 times the nodes in 2D (the trapezoidal rule
+// there was at 3e-7 of the peak for t = 0.05, 4e-5 for t = 0.5).
+template <int D, class H>
+double brute_mean(double x, double ph, H h) {
+  auto pair = [&](double cg) {
+    const double base = x * x + ph * ph, cross = 2.0 * x * ph * cg;
+    const double v = 0.5 * (h(std::sqrt(std::fmax(base - cross, 0.0))) + h(std::sqrt(base + cross)));
+    return v * v;
+  };
+  if constexpr (D == 2) {
+    const int n = 16 * (32 + static_cast<int>(std::ceil(32.0 * ph)));
+    double sum = 0;
+    for (int i = 0; i < n; ++i) sum += pair(std::cos(2.0 * kPi * i / n));
+    return sum / n;
+  } else {
+    const int panels = 2 + static_cast<int>(std::ceil(4.0 * ph * (x + 1.0)));
+    return 0.5 * hush::detail::integrate(pair, -1.0, 1.0, panels);
+  }
+}
+
+template <int D>
+void check_window_equals_full(double cycles_per_cell, double truncation) {
+  typename hush::gabor<D>::params p;
+  const double frequency = cycles_per_cell / hush::gabor_kernel<D>(0.8, truncation).radius();
+  p.frequency = frequency;
+  p.bandwidth = 0.8;
+  p.truncation = truncation;
+  const hush::gabor<D> g(p);
+  const double r = g.kernel().radius(), A = g.kernel().envelope_exponent(), phi = frequency * r;
+  long calls = 0;
+  auto h = [A, &calls](double k) {
+    ++calls;
+    return stand_in_h<D>(A, k);
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  // spectrum_with = factor * mean; with h = 1 and no window the mean is 1.
+  auto factor = [&](const hush::vec<double, D>& f) {
+    return g.spectrum_with(f, [](double) { return 1.0; }, inf);
+  };
+  hush::vec<double, D> ring{};
+  ring[0] = frequency;
+  const double peak = factor(ring) * brute_mean<D>(phi, phi, h);
+  // Near the ring, on it, inside and outside, and at the centre (f = 0).
+  for (const double dx : {0.0, 0.3, -0.7, 3.0, 12.0, -40.0, -phi}) {
+    CAPTURE(D);
+    CAPTURE(phi);
+    CAPTURE(truncation);
+    CAPTURE(dx);
+    hush::vec<double, D> f{};
+    f[0] = 0.6 * (phi + dx) / r;  // off the axes: the mean is rotation invariant
+    f[1] = 0.8 * (phi + dx) / r;
+    const double brute = factor(f) * brute_mean<D>(phi + dx, phi, h);
+    calls = 0;
+    const double windowed = g.spectrum_with(f, h);
+    // 16 nodes per panel, at most 10 + window / 2 panels, two calls of h each.
+    CHECK(calls <= 2 * 16 * (10 + 32));
+    // What the window leaves out (derivation in docs/gabor.md "Cost of the
+    // spectra"): ~1.7 window^-6 = 2.5e-11 of the peak in 2D, less in 3D.
+    CHECK(std::fabs(windowed - brute) <= 1e-10 * peak);
+    // Without the window (every orientation): the quadratures alone (the
+    // brute force's own error, ~1e-11 of the peak on the ring in 3D, where its
+    // uniform panels in cos gamma cross H's core in a 4 / |Phi|^2 sliver).
+    CHECK(std::fabs(g.spectrum_with(f, h, inf) - brute) <= 3e-11 * peak);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("gabor: isotropic spectra over the orientation window equal the full average (bounded nodes)") {
+  // |Phi| = 70, 100 cycles per cell: the full average is still affordable, and
+  // |Phi| > window puts every f below on the windowed path.
+  for (const double t : {0.05, 0.5}) {
+    check_window_equals_full<2>(70.0, t);
+    check_window_equals_full<2>(100.0, t);
+    check_window_equals_full<3>(70.0, t);
+  }
+}
+
+TEST_CASE("gabor: spectra at F0 = 1e6 are bounded and integrate to the variance") {
+  // F0 = 1e6, a = 0.3: |Phi| ~ 3e6 cycles per cell. Before the window a call
+  // took ~1e8 nodes and gabor_spectrum 1.6 GB. Parseval: the spectrum of the
+  // unit-variance noise integrates to 1 over all f; isotropic noise's is a
+  // ring, so int 2 pi f S(f) df (2D) and int 4 pi f^2 S(f) df (3D) across the
+  // ring (what the window keeps) are 1 within gabor_spectrum's interpolation
+  // (3e-5 of the peak at each f, the ring's profile summed at its own nodes:
+  // a 1e-4 tolerance) plus what the window leaves out (< 1e-10).
+  auto ring_integral = [](const auto& g, auto spectrum, int dim) {
+    const double r = g.kernel().radius(), f0 = g.parameters().frequency;
+    const double step = 1.0 / (64.0 * r), half = 70.0 / r;
+    double sum = 0;
+    const int n = static_cast<int>(std::ceil(2.0 * half / step));
+    for (int i = 0; i <= n; ++i) {
+      const double f = f0 - half + i * step;
+      sum += (dim == 2 ? 2 * kPi * f : 4 * kPi * f * f) * spectrum(f) * step;
+    }
+    return sum;
+  };
+  hush::gabor<2>::params p2;
+  p2.frequency = 1e6;
+  p2.bandwidth = 0.3;
+  const hush::gabor<2> g2(p2);
+  const hush::gabor_spectrum<2> s2(g2, 1e6 + 100.0 / g2.kernel().radius());
+  CHECK(ring_integral(g2, [&](double f) { return s2(hush::dvec2{f, 0.0}); }, 2) ==
+        doctest::Approx(1.0).epsilon(1e-4));
+  hush::gabor<3>::params p3;
+  p3.frequency = 1e6;
+  p3.bandwidth = 0.3;
+  const hush::gabor<3> g3(p3);
+  const hush::gabor_spectrum<3> s3(g3, 1e6 + 100.0 / g3.kernel().radius());
+  CHECK(ring_integral(g3, [&](double f) { return s3(hush::dvec3{0.0, f, 0.0}); }, 3) ==
+        doctest::Approx(1.0).epsilon(1e-4));
+  // The exact power_spectrum: bounded node counts, and on the ring it equals
+  // the tabulated one (within the table's 3e-5 of the peak).
+  long calls = 0;
+  const double a2 = g2.kernel().envelope_exponent();
+  const double exact = g2.spectrum_with(hush::dvec2{0.0, 1e6}, [&](double k) {
+    ++calls;
+    return hush::detail::gabor_envelope_transform<2>(a2, k);
+  });
+  CHECK(calls <= 2 * 16 * (10 + 32));
+  CHECK(exact == doctest::Approx(g2.power_spectrum(hush::dvec2{1e6, 0.0})).epsilon(1e-12));
+  CHECK(exact == doctest::Approx(s2(hush::dvec2{1e6, 0.0})).epsilon(3e-5));
+  CHECK(std::isfinite(g3.power_spectrum(hush::dvec3{0.0, 0.0, 1e6})));
+  // Hybrid 2D (|Phi| 3e6 +- 1.5e6 cycles per cell, a 1 rad arc around 0):
+  // bounded windows; positive on the arc, 0 far from it (both blobs further
+  // than the window from f).
+  hush::gabor<2>::params ph = p2;
+  ph.kind = hush::gabor_kind::hybrid;
+  ph.frequency_spread = 1e6;
+  ph.orientation_spread = 1.0;
+  const hush::gabor<2> gh(ph);
+  const hush::gabor_spectrum<2> sh(gh, 2e6);
+  CHECK(sh(hush::dvec2{1e6, 0.0}) > 0.0);
+  CHECK(std::isfinite(sh(hush::dvec2{1e6, 0.0})));
+  CHECK(sh(hush::dvec2{0.0, 1e6}) == 0.0);
+  CHECK(g3.power_spectrum(hush::dvec3{0.0, 0.0, 1e6}) ==
+        doctest::Approx(s3(hush::dvec3{0.0, 0.0, 1e6})).epsilon(3e-5));
+}
+
+TEST_CASE("gabor: hybrid 2D spectra over the frequency and orientation windows equal the full average") {
+  // |Phi| = 66 +- 10 cycles per cell, orientation spread 1 rad (and 0) around
+  // 30 degrees: the full average (the old node counts, ~|Phi|^2) is still
+  // affordable with the stand-in H. f on the arc's middle, near its end,
+  // opposite (the -Phi blob), at |Phi|'s ends and at 0. What the windows leave
+  // out is pointwise below the tail's square at the window, (1.7 W^-3.5)^2 =
+  // 6.6e-13 of H(0)^2; the hybrid peak is spread over the frequency range and
+  // the arc, so relative to it that is ~3e-10 here (f = 0: H(|Phi|)^2 for the
+  // |Phi| beyond W): a 1e-9 tolerance.
+  for (const double spread : {1.0, 0.0}) {
+    hush::gabor<2>::params p;
+    p.kind = hush::gabor_kind::hybrid;
+    const double r = hush::gabor_kernel<2>(0.8, 0.05).radius();
+    p.frequency = 66.0 / r;
+    p.frequency_spread = 20.0 / r;
+    p.orientation = 0.5236;
+    p.orientation_spread = spread;
+    const hush::gabor<2> g(p);
+    const double A = g.kernel().envelope_exponent();
+    long calls = 0;
+    auto h = [A, &calls](double k) {
+      ++calls;
+      return stand_in_h<2>(A, k);
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    auto at = [&](double cycles, double angle) {
+      return hush::dvec2{cycles / r * std::cos(angle), cycles / r * std::sin(angle)};
+    };
+    const double peak = g.spectrum_with(at(66.0, 0.5236), h, inf);
+    for (const double cycles : {0.0, 66.3, 90.0}) {
+      for (const double angle : {0.5236, 0.5236 + 0.49, 0.5236 + 3.1416}) {
+        CAPTURE(spread);
+        CAPTURE(cycles);
+        CAPTURE(angle);
+        const hush::dvec2 f = at(cycles, angle);
+        calls = 0;
+        const double windowed = g.spectrum_with(f, h);
+        CHECK(calls <= 6000000);
+        CHECK(std::fabs(windowed - g.spectrum_with(f, h, inf)) <= 1e-9 * peak);
+      }
+    }
+  }
+}

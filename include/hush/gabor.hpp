@@ -373,14 +373,21 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
 
   // The same with H(k), the tapered envelope's transform at k cycles per cell,
-  // supplied by the caller (gabor_spectrum passes a table of it).
+  // supplied by the caller (gabor_spectrum passes a table of it). window
+  // (cycles per cell): isotropic and hybrid 2D noise integrate only the Phi
+  // that bring a blob within `window` of f r; the default bounds every call
+  // whatever F0 and a (isotropic: <= 1344 calls of h; hybrid 2D: ~6e6;
+  // isotropic_mean, hybrid_window_2d); infinity takes every Phi (isotropic:
+  // same cost; hybrid 2D: the full average, cost ~ |Phi|^2). Hybrid 3D
+  // noise still costs ~ |Phi|^2 |f r| (docs/gabor.md, Not done).
   template <class H>
-  double spectrum_with(const vec<double, D>& f, H h) const {
+  double spectrum_with(const vec<double, D>& f, H h,
+                       double window = detail::constants::kGaborSpectrumWindowCycles) const {
     const double r = kernel_.radius();
     vec<double, D> xi;
     for (int i = 0; i < D; ++i) xi[i] = f[i] * r;
     return scale_ * scale_ * table_->exact_mean() * weight_moment() * std::pow(r, D) *
-           mean_kernel_spectrum(xi, h);
+           mean_kernel_spectrum(xi, h, window);
   }
 
   // p(vec) -> value, p.gradient(vec) (core/point_noise.hpp) and p.sample(...)
@@ -516,7 +523,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
   // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
   template <class H>
-  double mean_kernel_spectrum(const vec<double, D>& xi, H h) const {
+  double mean_kernel_spectrum(const vec<double, D>& xi, H h, double window) const {
     namespace c = detail::constants;
     auto one = [&](const vec<double, D>& phi) {
       double lo = 0, hi = 0;
@@ -533,8 +540,11 @@ class gabor : public sample_noise<gabor<D>, D> {
     xi_len = std::sqrt(xi_len);
     const double phi0 = marks_.phi0(), dphi = marks_.dphi();
     const bool hybrid = prm_.kind == gabor_kind::hybrid;
+    if (!hybrid) return isotropic_mean(xi_len, phi0, h, window);
     // The blob centres +-Phi move by 2 pi |Phi| cycles per cell per turn, and H
-    // is ~0.4 cycles per cell wide: these node counts resolve it to ~1e-10.
+    // is ~0.4 cycles per cell wide (t = 0.05): these node counts resolve it to
+    // ~1e-10, less for narrower cores (the isotropic trapezoid rule with these
+    // counts was at 4e-5 of the peak for t = 0.5; tests/gabor_kernel_test.cpp).
     const double reach = phi0 + 0.5 * dphi;
     // Average over |Phi| (hybrid) of f(|Phi|).
     auto over_frequency = [&](auto f) {
@@ -543,17 +553,13 @@ class gabor : public sample_noise<gabor<D>, D> {
       return detail::integrate(f, phi0 - 0.5 * dphi, phi0 + 0.5 * dphi, panels) / dphi;
     };
     if constexpr (D == 2) {
+      if (reach > window)
+        return hybrid_window_2d(xi, h, window);
       return over_frequency([&](double ph) {
         auto at = [&](double turns) {
           const double ang = c::kTwoPi * turns;
           return one({ph * std::cos(ang), ph * std::sin(ang)});
         };
-        if (!hybrid) {  // uniform on the circle: the trapezoidal rule is spectral
-          const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
-          double sum = 0;
-          for (int i = 0; i < n; ++i) sum += at(static_cast<double>(i) / n);
-          return sum / n;
-        }
         const double spread = marks_.spread_turns(), theta0 = marks_.theta0();
         if (spread == 0.0) return at(theta0);
         const int panels = 1 + static_cast<int>(std::ceil(8.0 * reach * spread));
@@ -561,16 +567,6 @@ class gabor : public sample_noise<gabor<D>, D> {
       });
     } else {
       return over_frequency([&](double ph) {
-        if (!hybrid) {  // uniform on the sphere: only the angle to xi matters
-          auto at = [&](double cg) {
-            const double base = xi_len * xi_len + ph * ph, cross = 2.0 * xi_len * ph * cg;
-            const double v =
-                0.5 * (h(std::sqrt(std::fmax(base - cross, 0.0))) + h(std::sqrt(base + cross)));
-            return v * v;
-          };
-          const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
-          return 0.5 * detail::integrate(at, -1.0, 1.0, panels);
-        }
         const double cap = marks_.cos_cap();
         if (cap >= 1.0) {  // zero spread: omega0 only
           vec<double, 3> phi;
@@ -595,6 +591,130 @@ class gabor : public sample_noise<gabor<D>, D> {
         };
         return detail::integrate(ring, cap, 1.0, panels) / (1.0 - cap);
       });
+    }
+  }
+
+  // Isotropic noise's E_Phi[((H(|xi - Phi|) + H(|xi + Phi|)) / 2)^2] for |xi| = x,
+  // |Phi| = ph, over the orientations where the near blob is within `window`
+  // of xi (all of them when window >= sqrt(x^2 + ph^2); docs/gabor.md "Cost of
+  // the spectra"). With gamma the angle between xi and Phi, k_-^2 = x^2 + ph^2
+  // - 2 x ph cos gamma and k_+ (cos gamma -> -cos gamma) swap under gamma ->
+  // pi - gamma, so the mean is over cos gamma >= 0, where k_+ >= k_-; left out
+  // is where k_- > window, both blobs in H's tail. 2D: gamma uniform,
+  // u = 2 sqrt(x ph) sin(gamma / 2) gives k_-^2 = (x - ph)^2 + u^2 (smooth in u,
+  // |dk/du| <= 1), d gamma = 2 du / sqrt(4 x ph - u^2), gamma = pi / 2 at
+  // u^2 = 2 x ph, mean (2 / pi) int. 3D: cos gamma uniform, d cos gamma =
+  // -k dk / (x ph), mean (1 / (x ph)) int k G dk. H's core (<= 1.5 cycles wide,
+  // 0.26 at t = 0.5) lies within 4 of k = 0: panels 0.5 wide there, 2 wide
+  // beyond (H oscillates at <= 1 cycle per unit k): at most 8 + 2 + window / 2
+  // panels of 16 nodes, two calls of h each.
+  // The composite 16-point rule on [lo, hi] with panels 0.5 wide within 4 of
+  // `core` (where H's core, <= 1.5 cycles wide, lies), 2 wide elsewhere (H
+  // oscillates at <= 1 cycle per unit there).
+  template <class G>
+  static double core_rule(G g, double lo, double hi, double core) {
+    double sum = 0;
+    const double cut[4] = {lo, std::fmin(hi, std::fmax(lo, core - 4.0)),
+                           std::fmin(hi, std::fmax(lo, core + 4.0)), hi};
+    for (int i = 0; i < 3; ++i) {
+      if (!(cut[i + 1] > cut[i])) continue;
+      const double per = i == 1 ? 2.0 : 0.5;  // panels per unit
+      sum += detail::integrate(g, cut[i], cut[i + 1],
+                               1 + static_cast<int>(std::ceil(per * (cut[i + 1] - cut[i]))));
+    }
+    return sum;
+  }
+
+  // Hybrid 2D noise's mean over |Phi| uniform in [phi0 -+ dphi / 2] and the
+  // orientation uniform on the arc, for |Phi| > window somewhere: |Phi| only
+  // within `window` of |xi| (k_-, k_+ >= ||xi| - |Phi||), and for each |Phi|
+  // with |xi|^2 + |Phi|^2 > window^2 the orientations within the windows
+  // around xi's direction (k_- < window) and the opposite one (k_+ <
+  // window), clipped to the arc, in isotropic_mean's variable u on each side;
+  // below, the whole arc (zero spread: omega0 alone). Outer nodes <= 16 (10 + window), inner per window
+  // and side <= 16 (10 + window / 2): bounded, ~6e6 calls of h at most.
+  template <class H>
+  double hybrid_window_2d(const vec<double, 2>& xi, H h, double window) const {
+    namespace c = detail::constants;
+    const double x = std::sqrt(xi[0] * xi[0] + xi[1] * xi[1]);
+    const double dphi = marks_.dphi(), phi0 = marks_.phi0();
+    const double arc = c::kTwoPi * marks_.spread_turns(), centre = c::kTwoPi * marks_.theta0();
+    const double dir = std::atan2(xi[1], xi[0]);
+    auto inner = [&](double ph) {  // mean over the arc at |Phi| = ph
+      const double xp = x * ph, base = x * x + ph * ph, kmin = std::fabs(x - ph);
+      auto pair = [&](double km2, double kp2) {
+        const double v =
+            0.5 * (h(std::sqrt(std::fmax(km2, 0.0))) + h(std::sqrt(std::fmax(kp2, 0.0))));
+        return v * v;
+      };
+      auto at = [&](double ang) {
+        const double cross = 2.0 * xp * std::cos(ang - dir);
+        return pair(base - cross, base + cross);
+      };
+      if (arc == 0.0) return at(centre);  // omega0 only
+      if (!(base > window * window)) {  // small: the whole arc, as for |Phi| <= window
+        const int panels = 1 + static_cast<int>(std::ceil(8.0 * ph * marks_.spread_turns()));
+        return detail::integrate(at, centre - 0.5 * arc, centre + 0.5 * arc, panels) / arc;
+      }
+      if (!(kmin < window)) return 0.0;
+      const double root = 2.0 * std::sqrt(xp);
+      const double u_max = std::sqrt(std::fmin((window - kmin) * (window + kmin), 2.0 * xp));
+      const double g_max = 2.0 * std::asin(u_max / root);  // the window's half-width in angle
+      const double sum2 = (x + ph) * (x + ph);
+      double sum = 0;
+      for (int far = 0; far < 2; ++far) {  // around xi's direction (k_-), then opposite (k_+)
+        auto g = [&](double u) {
+          const double u2 = u * u, near2 = kmin * kmin + u2, other2 = sum2 - u2;
+          return (far ? pair(other2, near2) : pair(near2, other2)) * 2.0 / std::sqrt(root * root - u2);
+        };
+        // The arc relative to the window's centre, in (-pi, pi] + 2 pi m.
+        const double off = std::remainder(centre - dir - (far ? c::kPi : 0.0), c::kTwoPi);
+        for (int m = -1; m <= 1; ++m) {
+          const double lo = std::fmax(off - 0.5 * arc + c::kTwoPi * m, -g_max);
+          const double hi = std::fmin(off + 0.5 * arc + c::kTwoPi * m, g_max);
+          if (!(hi > lo)) continue;
+          auto to_u = [&](double gam) { return root * std::sin(0.5 * std::fabs(gam)); };
+          if (hi > 0.0) sum += core_rule(g, to_u(std::fmax(lo, 0.0)), to_u(hi), 0.0);
+          if (lo < 0.0) sum += core_rule(g, to_u(std::fmin(hi, 0.0)), to_u(lo), 0.0);
+        }
+      }
+      return sum / arc;
+    };
+    if (dphi == 0.0) return inner(phi0);
+    const double lo = std::fmax(phi0 - 0.5 * dphi, x - window);
+    const double hi = std::fmin(phi0 + 0.5 * dphi, x + window);
+    if (!(hi > lo)) return 0.0;
+    return core_rule(inner, lo, hi, x) / dphi;
+  }
+
+  template <class H>
+  static double isotropic_mean(double x, double ph, H h, double window) {
+    const double kmin = std::fabs(x - ph);
+    if (!(kmin < window)) return 0.0;  // no orientation brings a blob near xi (or xi = inf)
+    const double xp = x * ph, base = x * x + ph * ph;
+    auto pair = [&](double km2, double kp2) {
+      const double v = 0.5 * (h(std::sqrt(std::fmax(km2, 0.0))) + h(std::sqrt(std::fmax(kp2, 0.0))));
+      return v * v;
+    };
+    if (!(xp > 1e-150)) return pair(base, base);  // Phi = 0 or xi = 0: one orientation is all
+    auto rule = [](auto g, double lo, double hi) { return core_rule(g, lo, hi, lo); };
+    if constexpr (D == 2) {
+      // fmin: the window may cover every gamma in [0, pi / 2].
+      const double u_max = std::sqrt(std::fmin((window - kmin) * (window + kmin), 2.0 * xp));
+      const double sum2 = (x + ph) * (x + ph);
+      auto g = [&](double u) {
+        const double u2 = u * u;
+        return pair(kmin * kmin + u2, sum2 - u2) * 2.0 / std::sqrt(4.0 * xp - u2);
+      };
+      return rule(g, 0.0, u_max) * (2.0 / detail::constants::kPi);
+    } else {
+      const double c_lo = std::fmax(0.0, (base - window * window) / (2.0 * xp));
+      if (xp < 1.0) {  // k moves by < 1 over cos gamma in [0, 1]: integrate in cos gamma
+        auto g = [&](double cg) { return pair(base - 2.0 * xp * cg, base + 2.0 * xp * cg); };
+        return detail::integrate(g, c_lo, 1.0, 2);
+      }
+      auto g = [&](double k) { return k * pair(k * k, 2.0 * base - k * k); };
+      return rule(g, kmin, std::fmin(window, std::sqrt(base))) / xp;
     }
   }
 
@@ -892,29 +1012,46 @@ class gabor : public sample_noise<gabor<D>, D> {
 // gabor_spectrum<D>: the power spectrum of a gabor<D> noise at many
 // frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
 // kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
-// the largest |f r| + |Phi| needed, and interpolated with Catmull-Rom cubics
-// (within 3e-5 of the peak of the exact spectrum). Isotropic noise's spectrum
-// is radial: it is tabulated the same way against |f|. Frequencies above
-// max_frequency (cycles per noise unit, any direction) give 0.
+// the largest |f r| + |Phi| needed but at most kGaborSpectrumWindowCycles
+// (4100 values, whatever F0 and a), and interpolated with Catmull-Rom cubics
+// (within 3e-5 of the peak of the exact spectrum); beyond the table H is its
+// leading asymptotic term (its error there, 1.1e-13 (1024 / k)^4.5 of H(0) in
+// 2D, < 3e-8 at k = 64, multiplies a tail below 1.7 k^-3.5 H(0) < 1e-6 H(0):
+// < 3e-14 of H(0)^2, the squared peak). Isotropic noise's spectrum is radial: it
+// is tabulated the same way against |f| (64 max_frequency r + 4 values: the
+// caller's range). Frequencies above max_frequency (cycles per noise unit, any
+// direction) give 0.
 template <int D>
 class gabor_spectrum {
  public:
   gabor_spectrum(const gabor<D>& noise, double max_frequency) : noise_(noise) {
     const double r = noise.kernel().radius();
     max_f_ = max_frequency;
-    const double reach = max_frequency * r + noise.marks().phi0() + noise.marks().dphi();
+    const double reach =
+        std::fmin(max_frequency * r + noise.marks().phi0() + noise.marks().dphi(),
+                  detail::constants::kGaborSpectrumWindowCycles);
     const auto n = static_cast<std::size_t>(std::ceil(reach * kPerCycle)) + 4;
     const double a = noise.kernel().envelope_exponent();
+    a_ = a;
     h_.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       h_[i] = detail::gabor_envelope_transform<D>(a, static_cast<double>(i) / kPerCycle);
     if (noise.parameters().kind == gabor_kind::isotropic) {
-      // Radial: S(|f|) every 1/64 cycle per cell, from the tabulated H.
-      radial_.resize(static_cast<std::size_t>(std::ceil(max_frequency * r * kPerCycle)) + 4);
+      // Radial: S(|f|) every 1/64 cycle per cell, from the tabulated H, where
+      // it is not 0: from |Phi| - window on (spectrum_with leaves out |f r|
+      // further than the window from the ring once |Phi| > window) to
+      // max_frequency or |Phi| + window, at most 64 * 2 window + 4 values.
+      // Starting above 0, the first value's left neighbour is taken as its
+      // right one (evenness at 0): at the window's edge the values are ~1e-12
+      // of the peak, and so is that error.
+      const double window = detail::constants::kGaborSpectrumWindowCycles, phi = noise.marks().phi0();
+      radial_lo_ = std::floor(std::fmax(0.0, phi - window) * kPerCycle) / kPerCycle;
+      const double hi = std::fmin(max_frequency * r, phi + window);
+      radial_.resize(static_cast<std::size_t>(std::ceil(std::fmax(hi - radial_lo_, 0.0) * kPerCycle)) + 4);
       for (std::size_t i = 0; i < radial_.size(); ++i) {
         vec<double, D> f{};
-        f[0] = static_cast<double>(i) / (kPerCycle * r);
-        radial_[i] = noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
+        f[0] = (radial_lo_ + static_cast<double>(i) / kPerCycle) / r;
+        radial_[i] = noise_.spectrum_with(f, [this](double k) { return h(k); });
       }
     }
   }
@@ -924,12 +1061,20 @@ class gabor_spectrum {
     for (int i = 0; i < D; ++i) len += f[i] * f[i];
     len = std::sqrt(len);
     if (!(len <= max_f_)) return 0.0;
-    if (!radial_.empty()) return cubic(radial_, len * noise_.kernel().radius());
-    return noise_.spectrum_with(f, [this](double k) { return cubic(h_, k); });
+    if (!radial_.empty()) {
+      const double x = len * noise_.kernel().radius() - radial_lo_;
+      return x < 0.0 ? 0.0 : cubic(radial_, x);
+    }
+    return noise_.spectrum_with(f, [this](double k) { return h(k); });
   }
 
  private:
   static constexpr double kPerCycle = 64.0;
+  // H from the table, its asymptotic term beyond it.
+  double h(double k) const {
+    if (k * kPerCycle + 2.0 < static_cast<double>(h_.size())) return cubic(h_, k);
+    return detail::gabor_envelope_transform_tail<D>(a_, k);
+  }
   // Catmull-Rom interpolation of an even function tabulated at k = i / 64
   // (the evenness supplies the point left of 0).
   static double cubic(const std::vector<double>& h, double k) {
@@ -944,7 +1089,7 @@ class gabor_spectrum {
   }
 
   gabor<D> noise_;
-  double max_f_ = 0;
+  double max_f_ = 0, a_ = 0, radial_lo_ = 0;
   std::vector<double> h_, radial_;
 };
 
