@@ -22,6 +22,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -1292,4 +1293,37 @@ TEST_CASE("npr: records beyond one storage block are drawn in order, state is re
   double energy = 0;
   for (float v : one) energy += double(v) * v;
   CHECK(energy > 0.1 * double(w * h));  // unit variance where covered: not an empty image
+}
+
+TEST_CASE("npr: EXPLORE per node") {
+  const hush::npr_gabor noise{npr_params()};
+  for (const float back : {-1.0f, 0.5f, 0.2f}) {
+    const npr_test::grid_scene sc = npr_test::ground_under_camera(back);
+    const hush::frame f = sc.frame();
+    const hush::triangle_list t = sc.triangles();
+    std::vector<hush::npr_gabor_splat> splats;
+    noise.make_splats(f, t, splats);
+    std::vector<std::uint32_t> words, ids;
+    std::size_t empty = 0;
+    REQUIRE(hush::glsl::npr_gabor_state(headless().device).records(noise, f, t, {}, words, ids, empty));
+    std::map<std::pair<std::uint32_t, std::uint64_t>, std::size_t> g;
+    for (std::size_t k = 0; k < ids.size() / 4; ++k)
+      g[{ids[4 * k + 1], ids[4 * k + 2] | (std::uint64_t(ids[4 * k + 3]) << 32)}] = k;
+    double doff = 0, dw = 0, dpl = 0;
+    std::size_t cpu_only = 0, matched = 0;
+    for (const auto& sp : splats) {
+      auto it = g.find({sp.triangle, sp.index});
+      if (it == g.end()) { ++cpu_only; continue; }
+      ++matched;
+      hush::glsl::npr_gabor_gpu_record q, e = hush::glsl::npr_gabor_gpu_record::of(sp);
+      std::memcpy(&q, &words[16 * it->second], sizeof q);
+      if (q.box[0] == e.box[0] && q.box[1] == e.box[1]) {
+        doff = std::max({doff, std::fabs(double(q.kern[0]) - e.kern[0]), std::fabs(double(q.kern[1]) - e.kern[1])});
+        dpl = std::max(dpl, std::fabs(double(q.plane[0]) - e.plane[0]) / std::fabs(e.plane[0]));
+      }
+      dw = std::max(dw, std::fabs(double(q.kern[3]) - e.kern[3]));
+    }
+    MESSAGE("back " << back << ": CPU " << splats.size() << " GPU " << ids.size() / 4 << " empty " << empty
+            << " matched " << matched << " cpu_only " << cpu_only << " doff " << doff << " dw " << dw << " dplane rel " << dpl);
+  }
 }
