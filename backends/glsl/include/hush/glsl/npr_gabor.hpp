@@ -15,23 +15,28 @@
 // level, as the CPU walks it depth first: per triangle its count and LOD weights in float
 // (npr_gabor_lod, the thinning, the plane of 1/z) and its root node (level 0, at a scanned
 // offset); per level one pass decides for each node whether its own point reaches the frame
-// and which children to keep (index below the count, or with params::local_density the node's
-// own count n = lambda A above 1/4, its weight sqrt(n h(n)) per node as on the CPU; screen
-// triangle grown by r meeting the frame), a multi-level prefix sum gives every record and child its offset, a second pass
+// and which children to keep (index below the count, or with a count per node -- params::
+// local_density, a triangle crossing the near plane or of depth ratio above 4 -- the node's
+// own count n = lambda A above 1/4, its weight sqrt(n h(n)) per node as on the CPU, blended
+// with the per-triangle LOD's for ratios 4 - 8; a crossing triangle's nodes carry homogeneous
+// corners (z (s - o), z), clipped at w_near = far / 1024; screen triangle grown by r, or the
+// clipped part's projection, meeting the frame), a multi-level prefix sum gives every record and child its offset, a second pass
 // writes the children as the next level's list. The host reads back each level's two totals
 // (8 bytes) to size the next level; nothing is dropped (a level beyond one storage block runs
 // stage 1 on the CPU instead). Then one pass per level writes the records at their scanned
 // offsets, batch by batch: level by level, each in its list's order, the same order every run
 // (no atomics), hence the same image. J (up to 2^41) is a uvec2; node corners are carried down
-// as perspective-correct midpoints in float. Per-pixel or per-vertex sources, local density,
-// a triangle crossing the near plane or of depth ratio above 4 (npr_gabor::walks_per_node: a
-// count per node, its nodes clipped at the near plane), buffers beyond one storage block, or more than 2^32 - 1 records: stage 1 on the
-// CPU (make_splats), automatically. Float instead of double changes positions, weights and planes within the
+// as perspective-correct midpoints in float (homogeneous: plain midpoints). Per-pixel or
+// per-vertex sources, buffers beyond one storage block, or more than 2^32 - 1 records: stage 1
+// on the CPU (make_splats), automatically. Float instead of double changes positions, weights and planes within the
 // tolerance derived in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and
 // double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
 // float error) exist on one side only; with params::local_density, likewise a node whose float
 // and double counts straddle a cut of the hat (1/4, 4): its record (weight <= sqrt((1 +
-// 1/ln 4) nu_P n + n 2^-21), nu_P its count's relative error) exists on one side only.
+// 1/ln 4) nu_P n + n 2^-21), nu_P its count's relative error) exists on one side only; near the
+// near plane also a node with a corner within its float depth error of w_near (crossing, weight
+// 0, on one side). The homogeneous corners' float error: docs/npr-gabor.md "Triangles crossing
+// the near plane", GPU.
 //
 // Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
 // buffers, 64 + 16 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
@@ -1040,10 +1045,8 @@ class npr_gabor_gpu {
   }
 
   // Both stages of noise.render on the GPU (arguments validated by render); stage 1 on the
-  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, a triangle crossing the
-  // near plane or of depth ratio above 4, buffers beyond one storage block: a level's nodes
-  // included; more than 2^32 - 1 records or
-  // nodes).
+  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, buffers beyond one
+  // storage block: a level's nodes included; more than 2^32 - 1 records or nodes).
   void render(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, const image_view<float>& out) {
     std::size_t total = 0;
