@@ -1438,4 +1438,19 @@ TEST_CASE(
       CHECK(r.ties < f.width() * f.height() / 100);
     }
   }
+  // More of each kind, records and images with the paper's LOD: a vertex far behind (-3) and
+  // just behind (-0.05), both near vertices in front but below w_near (0.002: crossing with no
+  // vertex behind the camera), ratios just above 4 (0.7: t = 0.10) and just below 8 (0.4: t =
+  // 0.91).
+  const hush::npr_gabor noise{p};
+  for (const float back : {-3.0f, -0.05f, 0.002f, 0.7f, 0.4f}) {
+    const npr_test::grid_scene sc = npr_test::ground_under_camera(back);
+    const std::string name = "paper LOD, back " + std::to_string(back);
+    CAPTURE(name);
+    REQUIRE(hush::npr_gabor::walks_per_node(sc.triangles()));
+    check_records(name, noise, sc.frame(), sc.triangles());
+    const npr_compare r = npr_against_cpu(noise, sc.frame(), sc.triangles());
+    MESSAGE(name << ", image: max " << r.max_abs << ", worst error / bound " << r.worst_ratio);
+    CHECK(r.worst_ratio <= 1.0);
+  }
 }

@@ -558,9 +558,11 @@ void main() {
   vec3 z;
   if (!hush_npr_triangle(t, s0, e1, e2, z)) { hush_npr_lods[t] = o; return; }
   // Twice the signed area, y down: front faces are negative; with a vertex behind the camera
-  // the projected triangle is turned over (the homogeneous orientation z0 z1 z2 cross).
+  // the projected triangle is turned over (the homogeneous orientation z0 z1 z2 cross; its
+  // sign from the depths' signs, exact where the float product could underflow).
   float cross = e1.x * e2.y - e1.y * e2.x;
-  float facing = z.x * z.y * z.z < 0.0 ? -cross : cross;
+  bool turned = ((z.x < 0.0) != (z.y < 0.0)) != (z.z < 0.0);
+  float facing = turned ? -cross : cross;
   if ((hush_opts & 1u) != 0u && !(facing < 0.0)) { hush_npr_lods[t] = o; return; }
   if (cross == 0.0 || hush_is_nonfinite(cross)) { hush_npr_lods[t] = o; return; }
   float zfar = max(max(z.x, z.y), z.z), nearest = min(min(z.x, z.y), z.z);
