@@ -22,7 +22,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <map>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

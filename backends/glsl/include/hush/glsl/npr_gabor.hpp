@@ -749,13 +749,12 @@ void main() {
   bool local = blend > 0.0, paper = blend < 1.0, homog = w_near > 0.0;
   bool finest = hush_level == uint(HUSH_NPR_FINEST);
   float lambda = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]).size.y, n = 0.0, lw = 0.0;
-  bool crossing = false;
   if (local) {
     if (hush_level == 0u) {
       n = l.walk.y;
       lw = l.walk.w;
-      crossing = homog;  // only decides the descent below, as n does
     } else {
+      bool crossing = false;
       if (homog) {
         bool whole, meets;
         hush_npr_clip(nd, w_near, lambda, origin, r, whole, n, meets);
@@ -767,10 +766,8 @@ void main() {
       if (paper) {
         float wp = hush_npr_lod_weight(l, nd.key.zw);
         f = blend * f + (1.0 - blend) * (wp * wp);
-        lw = sqrt(f);
-      } else {
-        lw = sqrt(f);
       }
+      lw = sqrt(f);
     }
   }
   uint info = 0u, kids = 0u;
