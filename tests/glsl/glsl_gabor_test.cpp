@@ -461,7 +461,23 @@ struct npr_node_path {
   std::size_t depth = 0;
   double corners = 0, a_k = 0, e_k = 0;
   double cx[3] = {}, cy[3] = {};
+  // Crossing the near plane (homogeneous corners h = (z (s - o), z), midpoints (h_a + h_b) / 2):
+  // sum_x = 2 X_0 + sum over m = 1 ... K of X_m (X_m = max |h.xy| of the level-m ancestor's
+  // corners: the root's z (s - o) rounds twice, each midpoint once), sum_w = sum of W_m (max
+  // h.w), x_k, w_k the node's own, w_min its smallest depth.
+  bool homog = false;
+  double sum_x = 0, sum_w = 0, x_k = 0, w_k = 0, w_min = 0;
 };
+// Whether stage 1 walks triangle tri per node without local density (npr_gabor::walks_per_node
+// for one triangle: far > 4 near), and whether it crosses the near plane (near < far / 1024).
+bool npr_per_node(const hush::triangle_list& t, std::size_t tri, bool* crossing = nullptr) {
+  double sx[3], sy[3], z[3];
+  npr_vertices_of(t, tri, sx, sy, z);
+  const double far = std::max({z[0], z[1], z[2]}), near = std::min({z[0], z[1], z[2]});
+  namespace c = hush::detail::constants;
+  if (crossing) *crossing = far > 0 && near < c::kNprGaborNearFraction * far;
+  return far > 0 && far > c::kNprGaborPerNodeRatioLow * near;
+}
 npr_node_path npr_path_of(const hush::npr_gabor& noise, const hush::frame& f,
                           const hush::triangle_list& t, std::size_t tri, std::uint64_t index) {
   double sx[3], sy[3], z[3];
@@ -473,6 +489,7 @@ npr_node_path npr_path_of(const hush::npr_gabor& noise, const hush::frame& f,
   for (std::uint64_t j = index; j > 0; j = (j - 1) / 4) path.push_back((j - 1) % 4);
   npr_node_path o;
   o.depth = path.size();
+  npr_per_node(t, tri, &o.homog);
   // The corners' origin: vertex 0 clamped into the frame (hush_npr_origin).
   const double ox = std::clamp(sx[0], 0.0, double(f.width())),
                oy = std::clamp(sy[0], 0.0, double(f.height()));
@@ -492,11 +509,31 @@ npr_node_path npr_path_of(const hush::npr_gabor& noise, const hush::frame& f,
     }
     o.a_k = std::max({std::fabs(lo[0] - ox), std::fabs(lo[1] - oy), std::fabs(hi[0] - ox),
                       std::fabs(hi[1] - oy)});
+    if (o.homog) {
+      double xm = 0, wm = 0, wl = 1e300;
+      for (int i = 0; i < 3; ++i) {
+        const double* c = nd.corner[i];
+        double hx = 0, hy = 0, hw = 0;
+        for (int k = 0; k < 3; ++k) {
+          hx += c[k] * z[k] * (sx[k] - ox);
+          hy += c[k] * z[k] * (sy[k] - oy);
+          hw += c[k] * z[k];
+        }
+        xm = std::max({xm, std::fabs(hx), std::fabs(hy)});
+        wm = std::max(wm, std::fabs(hw));
+        wl = std::min(wl, hw);
+      }
+      o.sum_x += m == 0 ? 2 * xm : xm;
+      o.sum_w += wm;
+      o.x_k = xm;
+      o.w_k = wm;
+      o.w_min = wl;
+    }
     o.e_k = std::max(hi[0] - lo[0], hi[1] - lo[1]);
     if (m > 0) o.corners += 4 * o.a_k + double(m) * o.e_k;
     if (m == path.size()) break;
     nd = hush::detail::npr_tree_child(nd, hush::detail::npr_tree_words_of(nd.seed),
-                                      unsigned(path[path.size() - 1 - m]));
+                                      unsigned(path[m]));  // the root's slot is (J - 1) mod 4
   }
   return o;
 }
@@ -522,7 +559,10 @@ npr_local_node npr_local_node_of(const hush::npr_gabor& noise, const hush::frame
   const double lambda = noise.kernel_of_object(t.object_of(tri), src).density;
   npr_local_node o;
   o.n = lambda * 0.5 * cross;
-  const double delta = 2 * u * p.corners;
+  // Homogeneous corners: a projected corner c = h.xy / h.w is off by (dX + |c| dW) / W + u |c|,
+  // dX = u sum_x, dW = u sum_w (2 ulp per op: twice that).
+  const double delta = p.homog ? 2 * u * ((p.sum_x + p.a_k * p.sum_w) / p.w_min + p.a_k)
+                               : 2 * u * p.corners;
   o.nu = 2 * u * (3 * kappa + 4) +
          (delta * (std::hypot(e1x, e1y) + std::hypot(e2x, e2y)) + 2 * delta * delta) /
              std::max(0.5 * cross, 1e-300);
@@ -552,11 +592,39 @@ npr_record_tolerance npr_tolerance_of(const hush::npr_gabor& noise, const hush::
   const double n = ok.density * 0.5 * std::fabs(cross);
   hush::npr_gabor_lod lod = hush::npr_gabor_lod::of(n);
   const std::uint64_t j = s.index;
+  bool crossing = false;
+  const bool per_node = npr_per_node(t, tri, &crossing);
   const bool local = noise.parameters().local_density;
-  REQUIRE((local || j < lod.count));
+  REQUIRE((local || per_node || j < lod.count));
   const double dg = 2 * u * (3 * kappa + 8);
   double dlod = 0;  // |v| < 1
-  if (local && (j > 0 || n >= 1)) {
+  namespace c = hush::detail::constants;
+  const double zmax = std::max({z[0], z[1], z[2]});
+  if (!local && per_node && !crossing) {
+    // Blended (depth ratio 4 - 8, or 1 from 8 on): f = b f_local + (1 - b) w_p^2, b =
+    // log2(far / (4 near)): the division (2.5 ulp) through log2's slope <= 1 / ln 2 on (1, 2) and
+    // log2's 2^-21 absolute: |db| <= 2^-20. f_local's error as under local density (the root's
+    // n its triangle's N, nu), w_p^2's: 1 exact, alpha^2 = N / M - 1 within 2 nu N / M <= 4 nu,
+    // sqrt(N)^2 = N within nu N, thinned g within dg; the blend's own ops 4 u f.
+    const double ratio = zmax / std::min({z[0], z[1], z[2]});
+    const double b = std::clamp(std::log2(ratio / c::kNprGaborPerNodeRatioLow) /
+                                    std::log2(c::kNprGaborPerNodeRatioHigh /
+                                              c::kNprGaborPerNodeRatioLow),
+                                0.0, 1.0);
+    const npr_local_node nd = j == 0 ? npr_local_node{n, nu} : npr_local_node_of(noise, f, t, tri, j, src);
+    const bool finest = path.depth == std::size_t(hush::npr_gabor::max_depth());
+    const double fl = hush::npr_gabor_lod::local_square(nd.n, j == 0, finest);
+    const double dfl = (1 + 1 / std::log(4.0)) * nd.nu * nd.n + nd.n * std::ldexp(1.0, -21);
+    const double wp = j < lod.count ? lod.weight(j) : 0.0;
+    const double dwp = j >= lod.count ? 0.0
+                       : n < 1        ? (noise.parameters().thinning ? dg : nu * n)
+                       : j < lod.first ? 0.0
+                                       : 4 * nu;
+    const double fd = b < 1 ? b * fl + (1 - b) * wp * wp : fl;
+    const double df = (b < 1 ? b * dfl + (1 - b) * dwp + std::ldexp(1.0, -20) * std::fabs(fl - wp * wp)
+                             : dfl) + 4 * u * fd + (j == 0 && n < 1 && noise.parameters().thinning ? dg : 0.0);
+    dlod = std::min(std::sqrt(df), df / std::max(std::sqrt(fd), 1e-300));
+  } else if ((local || crossing) && (j > 0 || n >= 1 || crossing)) {
     // sqrt(f), f = n h(n): |df/dn| = |h -+ 1 / ln 4| <= 1 + 1 / ln 4 on (1/4, 4), times the
     // count's error nu n; the hat's float log2 (absolute error < 2^-21 on [1/2, 2], 3 ulp
     // beyond: < 2^-21 over (1/4, 4) for half of it) adds n 2^-21; then as alpha above.
@@ -574,12 +642,32 @@ npr_record_tolerance npr_tolerance_of(const hush::npr_gabor& noise, const hush::
   }
   o.weight = std::fabs(s.weight) * 6 * u + std::fabs(ok.scale) * dlod;
   o.offset = 2 * u * (corners + 6 * a_k + (k_depth + 4) * e_k + e_k + r + 1) + 2 * u * (r + 1);
+  if (path.homog) {
+    // The point P = sum b_i h_i.xy / sum b_i h_i.w (b from sqrt: 6 u; the sums 5 u of their
+    // magnitudes): (dX + |P| dW) / W_min + u |P| with dX = u (sum_x + 11 X_K), dW = u (sum_w +
+    // 11 W_K); then the first pixel's offset (x0 + 1/2 - o) - P: u (|P| + r + 1), 2 ulp per op.
+    const double ox = std::clamp(sx[0], 0.0, double(f.width())),
+                 oy = std::clamp(sy[0], 0.0, double(f.height()));
+    const double pm = std::max(std::fabs(s.x - ox), std::fabs(s.y - oy));
+    o.offset = 2 * u *
+                   ((path.sum_x + 11 * path.x_k + pm * (path.sum_w + 11 * path.w_k)) / path.w_min +
+                    2 * pm + r + 1) +
+               2 * u * (r + 1);
+  }
   o.frequency =
       noise.parameters().isotropic ? std::ldexp(1.0, -20) * std::hypot(s.fx, s.fy) * r : 0;
+  // A vertex behind the camera: 1/z_i's absolute error u / |z_i|, so |z| min; the plane anchored
+  // at the deepest vertex k (hush_npr_lod's plane.w), the first pixel within |x - s_k| + r + 1.
+  const double zabs = std::min({std::fabs(z[0]), std::fabs(z[1]), std::fabs(z[2])});
   o.slope =
       2 * u *
-      (12 * l / (zmin * std::fabs(cross)) + (std::fabs(s.qx) + std::fabs(s.qy)) * (3 * kappa + 6));
+      (12 * l / (zabs * std::fabs(cross)) + (std::fabs(s.qx) + std::fabs(s.qy)) * (3 * kappa + 6));
   o.plane0 = 2 * u * 8 / zmin + o.slope * (l + r + 1);
+  if (crossing) {
+    const int k = zmax == z[0] ? 0 : zmax == z[1] ? 1 : 2;
+    o.plane0 = 2 * u * 8 / zmax +
+               o.slope * (std::max(std::fabs(s.x - sx[k]), std::fabs(s.y - sy[k])) + r + 1);
+  }
   return o;
 }
 // The triangle index of each (object, triangle id) of the list (unique in the test scenes).
@@ -648,7 +736,30 @@ bool npr_local_boundary(const hush::npr_gabor& noise, const hush::frame& f,
                         const hush::triangle_list& t, std::size_t tri, std::uint64_t j,
                         const hush::npr_gabor::sources& src, std::string& list, bool cpu_side) {
   const npr_local_node nd = npr_local_node_of(noise, f, t, tri, j, src);
-  const bool near = std::fabs(nd.n - 0.25) <= nd.nu * nd.n || std::fabs(nd.n - 4.0) <= nd.nu * nd.n;
+  bool near = std::fabs(nd.n - 0.25) <= nd.nu * nd.n || std::fabs(nd.n - 4.0) <= nd.nu * nd.n;
+  bool crossing = false;
+  if (!noise.parameters().local_density && npr_per_node(t, tri, &crossing)) {
+    // Blended with the paper's LOD: also a point whose index J is at the count's float switch
+    // (N within nu of a power of two, the triangle's M or 2M); crossing the near plane: a node
+    // with a corner within its depth's float error u sum_w (2 ulp per op) of w_near (whole on
+    // one side, crossing, weight 0, on the other).
+    double sx[3], sy[3], z[3];
+    npr_vertices_of(t, tri, sx, sy, z);
+    const double e1x = sx[1] - sx[0], e1y = sy[1] - sy[0], e2x = sx[2] - sx[0],
+                 e2y = sy[2] - sy[0];
+    const double cross = std::fabs(e1x * e2y - e1y * e2x);
+    const double kappa = (std::fabs(e1x * e2y) + std::fabs(e1y * e2x)) / cross;
+    const double n = noise.kernel_of_object(t.object_of(tri), src).density * 0.5 * cross;
+    const double nu = 2 * std::ldexp(1.0, -24) * (3 * kappa + 4);
+    const double mm = std::exp2(std::round(std::log2(n)));
+    near = near || std::fabs(n / mm - 1) <= nu;
+    if (crossing) {
+      const npr_node_path p = npr_path_of(noise, f, t, tri, j);
+      const double w_near =
+          hush::detail::constants::kNprGaborNearFraction * std::max({z[0], z[1], z[2]});
+      near = near || std::fabs(p.w_min - w_near) <= 2 * std::ldexp(1.0, -24) * (p.sum_w + w_near);
+    }
+  }
   char text[160];
   std::snprintf(text, sizeof text, " (triangle %zu, J %llu, n - cut %.3g, nu n %.3g, %s only)",
                 tri, static_cast<unsigned long long>(j),
@@ -733,7 +844,7 @@ npr_records_compare npr_records_against_cpu(const hush::npr_gabor& noise, const 
         for (double x : d) r.worst = std::max(r.worst, x);
         r.worst_offset = std::max({r.worst_offset, d[0], d[1]});
     };
-    if (noise.parameters().local_density) {
+    if (noise.parameters().local_density || npr_per_node(t, tr)) {
       // Merge by J: equal records compared, a one-sided one must be a boundary node.
       for (std::size_t a = i, b = k; a < i1 || b < k1;) {
         const std::uint64_t ja = a < i1 ? c[a].first.second : UINT64_MAX,
@@ -816,7 +927,9 @@ npr_compare npr_against_cpu(const hush::npr_gabor& noise, const hush::frame& f,
   std::vector<npr_slack> slack(splats.size());
   if (gpu_stage1) slack = npr_slacks(noise, f, t, splats, src);
   std::vector<double> extra(w * h, 0.0);
-  if (gpu_stage1 && noise.parameters().local_density) {
+  bool any_per_node = false;
+  for (std::size_t m = 0; m < t.triangles(); ++m) any_per_node = any_per_node || npr_per_node(t, m);
+  if (gpu_stage1 && (noise.parameters().local_density || any_per_node)) {
     // Boundary nodes (npr_local_boundary): a record on one side only adds at most its |weight|
     // at each pixel of its box to the difference (|kernel| <= |weight|). The records test
     // checks that every one-sided record is a boundary node.
@@ -1178,7 +1291,7 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("npr: per-pixel and per-vertex sources, near plane: stage 1 on the CPU") {
+TEST_CASE("npr: per-pixel and per-vertex sources: stage 1 on the CPU; the near plane on the GPU") {
   const std::size_t w = 64, h = 64;
   const npr_test::grid_scene sc = npr_test::covering(w, h, 9.0, 16.0);
   hush::npr_gabor::params p = npr_params();
@@ -1209,23 +1322,16 @@ TEST_CASE("npr: per-pixel and per-vertex sources, near plane: stage 1 on the CPU
                 hush::image_view<float>(b.data(), w, h));
     CHECK(a == b);  // the same records, the same draws
   }
-  // Triangles crossing the near plane (a vertex behind the camera): clipped per node on the CPU.
-  // (The flat grid has one depth: per triangle.)
+  // Triangles crossing the near plane (a vertex behind the camera): stage 1 on the GPU too
+  // (clipped per node; compared in "npr: GPU stage 1 walks near-plane ...").
   const npr_test::grid_scene ground = npr_test::ground_under_camera(-1.0f);
   REQUIRE(hush::npr_gabor::walks_per_node(ground.triangles()));
-  REQUIRE(!hush::npr_gabor::walks_per_node(sc.triangles()));
   const std::size_t cpu_before = state.cpu_stage1_frames(), gpu_before = state.gpu_stage1_frames();
-  std::vector<float> a(ground.width * ground.height), b(a.size());
+  std::vector<float> a(ground.width * ground.height);
   plain.render(hush::exec::glsl{headless().device}, ground.frame(), ground.triangles(),
                hush::image_view<float>(a.data(), ground.width, ground.height));
-  CHECK(state.cpu_stage1_frames() == cpu_before + 1);
-  CHECK(state.gpu_stage1_frames() == gpu_before);
-  std::vector<hush::npr_gabor_splat> splats;
-  plain.make_splats(ground.frame(), ground.triangles(), splats);
-  REQUIRE(!splats.empty());
-  plain.splat(hush::exec::glsl{headless().device}, ground.frame(), splats.data(), splats.size(),
-              hush::image_view<float>(b.data(), ground.width, ground.height));
-  CHECK(a == b);
+  CHECK(state.cpu_stage1_frames() == cpu_before);
+  CHECK(state.gpu_stage1_frames() == gpu_before + 1);
 }
 
 TEST_CASE("npr: one quad per record never reaches the GL geometry-output limits") {
@@ -1292,4 +1398,58 @@ TEST_CASE("npr: records beyond one storage block are drawn in order, state is re
   double energy = 0;
   for (float v : one) energy += double(v) * v;
   CHECK(energy > 0.1 * double(w * h));  // unit variance where covered: not an empty image
+}
+
+TEST_CASE(
+    "npr: GPU stage 1 walks near-plane and foreshortened triangles per node: records equal the "
+    "CPU's except at boundary nodes (listed), images within the derived tolerance") {
+  // ground_under_camera: a ground quad from depth 3 to `back` (npr_gabor_scenes.hpp): -1 crosses
+  // the near plane (homogeneous corners, clipped at w_near = 3 / 1024), 0.5 a depth ratio of 6
+  // (the count per node blended with the paper's LOD at b = log2(6 / 4)), 0.2 one of 15 (the
+  // count per node alone). Records: per (triangle, J) as under local density (a one-sided record
+  // must be a boundary node: its count at a cut of the hat, N at a power of two, or a corner
+  // at w_near, each within its float error); the images against the double reference within
+  // npr_against_cpu's bound plus each record's slack (npr_tolerance_of, homogeneous terms).
+  hush::npr_gabor::params p = npr_params();
+  hush::npr_gabor::params local = p;
+  local.local_density = true;
+  auto& state = hush::glsl::npr_gabor_state(headless().device);
+  for (const float back : {-1.0f, 0.5f, 0.2f}) {
+    const npr_test::grid_scene sc = npr_test::ground_under_camera(back);
+    const hush::frame f = sc.frame();
+    const hush::triangle_list t = sc.triangles();
+    REQUIRE(hush::npr_gabor::walks_per_node(t));
+    // Without local density (the per-triangle LOD blended in for the ratio of 6) and with it.
+    for (const auto& [label, prm] :
+         {std::make_pair("paper LOD", p), std::make_pair("local density", local)}) {
+      const std::string name = std::string(label) + ", back " + std::to_string(back);
+      CAPTURE(name);
+      const hush::npr_gabor noise{prm};
+      check_records(name, noise, f, t);
+      const std::size_t gpu_before = state.gpu_stage1_frames();
+      const npr_compare r = npr_against_cpu(noise, f, t);
+      CHECK(state.gpu_stage1_frames() == gpu_before + 1);
+      MESSAGE(name << ", image: GLSL vs double max " << r.max_abs << " RMS " << r.rms
+                   << ", worst error / bound " << r.worst_ratio << ", tie pixels " << r.ties
+                   << ", reached " << r.reached);
+      CHECK(r.worst_ratio <= 1.0);
+      CHECK(r.reached > f.width() * f.height() / 4);
+      CHECK(r.ties < f.width() * f.height() / 100);
+    }
+  }
+  // More of each kind, records and images with the paper's LOD: a vertex far behind (-3) and
+  // just behind (-0.05), both near vertices in front but below w_near (0.002: crossing with no
+  // vertex behind the camera), ratios just above 4 (0.7: t = 0.10) and just below 8 (0.4: t =
+  // 0.91).
+  const hush::npr_gabor noise{p};
+  for (const float back : {-3.0f, -0.05f, 0.002f, 0.7f, 0.4f}) {
+    const npr_test::grid_scene sc = npr_test::ground_under_camera(back);
+    const std::string name = "paper LOD, back " + std::to_string(back);
+    CAPTURE(name);
+    REQUIRE(hush::npr_gabor::walks_per_node(sc.triangles()));
+    check_records(name, noise, sc.frame(), sc.triangles());
+    const npr_compare r = npr_against_cpu(noise, sc.frame(), sc.triangles());
+    MESSAGE(name << ", image: max " << r.max_abs << ", worst error / bound " << r.worst_ratio);
+    CHECK(r.worst_ratio <= 1.0);
+  }
 }

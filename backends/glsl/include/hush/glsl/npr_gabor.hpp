@@ -15,23 +15,28 @@
 // level, as the CPU walks it depth first: per triangle its count and LOD weights in float
 // (npr_gabor_lod, the thinning, the plane of 1/z) and its root node (level 0, at a scanned
 // offset); per level one pass decides for each node whether its own point reaches the frame
-// and which children to keep (index below the count, or with params::local_density the node's
-// own count n = lambda A above 1/4, its weight sqrt(n h(n)) per node as on the CPU; screen
-// triangle grown by r meeting the frame), a multi-level prefix sum gives every record and child its offset, a second pass
+// and which children to keep (index below the count, or with a count per node -- params::
+// local_density, a triangle crossing the near plane or of depth ratio above 4 -- the node's
+// own count n = lambda A above 1/4, its weight sqrt(n h(n)) per node as on the CPU, blended
+// with the per-triangle LOD's for ratios 4 - 8; a crossing triangle's nodes carry homogeneous
+// corners (z (s - o), z), clipped at w_near = far / 1024; screen triangle grown by r, or the
+// clipped part's projection, meeting the frame), a multi-level prefix sum gives every record and child its offset, a second pass
 // writes the children as the next level's list. The host reads back each level's two totals
 // (8 bytes) to size the next level; nothing is dropped (a level beyond one storage block runs
 // stage 1 on the CPU instead). Then one pass per level writes the records at their scanned
 // offsets, batch by batch: level by level, each in its list's order, the same order every run
 // (no atomics), hence the same image. J (up to 2^41) is a uvec2; node corners are carried down
-// as perspective-correct midpoints in float. Per-pixel or per-vertex sources, local density,
-// a triangle crossing the near plane or of depth ratio above 4 (npr_gabor::walks_per_node: a
-// count per node, its nodes clipped at the near plane), buffers beyond one storage block, or more than 2^32 - 1 records: stage 1 on the
-// CPU (make_splats), automatically. Float instead of double changes positions, weights and planes within the
+// as perspective-correct midpoints in float (homogeneous: plain midpoints). Per-pixel or
+// per-vertex sources, buffers beyond one storage block, or more than 2^32 - 1 records: stage 1
+// on the CPU (make_splats), automatically. Float instead of double changes positions, weights and planes within the
 // tolerance derived in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and
 // double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
 // float error) exist on one side only; with params::local_density, likewise a node whose float
 // and double counts straddle a cut of the hat (1/4, 4): its record (weight <= sqrt((1 +
-// 1/ln 4) nu_P n + n 2^-21), nu_P its count's relative error) exists on one side only.
+// 1/ln 4) nu_P n + n 2^-21), nu_P its count's relative error) exists on one side only; near the
+// near plane also a node with a corner within its float depth error of w_near (crossing, weight
+// 0, on one side). The homogeneous corners' float error: docs/npr-gabor.md "Triangles crossing
+// the near plane", GPU.
 //
 // Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
 // buffers, 64 + 16 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
@@ -316,7 +321,10 @@ struct hush_npr_lod {
   // (log2 count + 1, 0 where the triangle has no points; log2 M, the first M points' weight
   // (bits); the others' weight (bits)): counts and M are powers of two (npr_gabor_lod).
   uvec4 lod;
-  vec4 plane;   // (1/z at vertex 0, d(1/z)/dx, d(1/z)/dy, -)
+  vec4 plane;   // (1/z at vertex k, d(1/z)/dx, d(1/z)/dy, k): k 0, or the deepest vertex near w_near
+  // A count per node (npr_gabor's blend > 0: local density, depth ratio above 4, crossing the
+  // near plane): (blend, the root's count n, w_near (0: not crossing), the root's weight sqrt(f)).
+  vec4 walk;
 };
 struct hush_npr_node {
   uvec4 key;  // (seed, triangle, J low, J high)
@@ -338,6 +346,8 @@ uniform uint hush_key;         // seed_key(seed)
 uniform uint hush_nodes;       // nodes of this level
 uniform uint hush_level;       // the level: its nodes' stride is 4^level
 uniform uint hush_local;       // 1: params::local_density (a count per node)
+// Homogeneous node corners (triangles crossing the near plane): (z (s - origin), z) per corner in
+// s01.xy, s01.zw, s2z.xy and the depths, as the screen corners' layout.
 const uint hush_npr_child_order[HUSH_NPR_ORDERS] = uint[HUSH_NPR_ORDERS](HUSH_NPR_ORDER_TABLE);
 uint hush_npr_item() {
   return (hush_group_base + gl_WorkGroupID.x) * uint(HUSH_NPR_GROUP) + gl_LocalInvocationID.x;
@@ -355,11 +365,11 @@ bool hush_u64_below_pow2(uvec2 a, uint e) {
   return e < 32u ? a.y == 0u && (a.x >> e) == 0u : (a.y >> (e - 32u)) == 0u;
 }
 // Triangle t's vertex 0, its edges to vertices 1 and 2, the depths; false where the CPU's
-// stage 1 skips it before the area (a depth not in front or not finite, a non-finite
-// position): the exponent and sign bits decide, which no NaN-folding compiler can change.
+// stage 1 skips it before the area (a depth 0 or not finite, a non-finite position): the
+// exponent bits decide, which no NaN-folding compiler can change. A negative depth (a vertex
+// behind the camera) passes: the LOD pass skips triangles entirely behind and clips the others.
 bool hush_npr_bad(float z) {
-  uint b = floatBitsToUint(z);
-  return z == 0.0 || (b & HUSH_FLOAT_SIGN_MASK) != 0u || hush_is_nonfinite(z);
+  return z == 0.0 || hush_is_nonfinite(z);
 }
 bool hush_npr_triangle(uint t, out vec2 s0, out vec2 e1, out vec2 e2, out vec3 z) {
   vec4 v0 = hush_npr_vertices[hush_npr_triangles[5u * t]];
@@ -392,22 +402,32 @@ uint hush_npr_triangle_key(uint t) {
 // The node's own point (npr_gabor_tree.hpp: word 0 of its stream, local barycentrics
 // (1 - sqrt u, sqrt u (1 - v), sqrt u v) of its corners) on the screen: origin + corner 0 + d
 // with d = sum l_i z_i (s_i - s_0) / sum l_i z_i (the projection of the object-space point,
-// rounded at the node's size); its pixel range p0 ... p1.
-void hush_npr_own_point(hush_npr_node nd, vec2 origin, uint stream, float r, out vec2 d,
-                        out vec2 p0, out vec2 p1) {
+// rounded at the node's size); its pixel range p0 ... p1. The point relative to the origin is
+// base + d: base corner 0, or with homogeneous corners (homog) base = sum l_i h_i.xy / sum l_i
+// h_i.w (its projection) and d = 0.
+void hush_npr_own_point(hush_npr_node nd, bool homog, vec2 origin, uint stream, float r,
+                        out vec2 base, out vec2 d, out vec2 p0, out vec2 p1) {
   uint w0 = hush_stream_word(stream, 0u);
   float su = sqrt(hush_gabor_half(w0, 0u)), v = hush_gabor_half(w0, 1u);
-  vec3 l = vec3(1.0 - su, su * (1.0 - v), su * v) * vec3(nd.s2z.zw, nd.z2);
-  d = (l.y * (nd.s01.zw - nd.s01.xy) + l.z * (nd.s2z.xy - nd.s01.xy)) / (l.x + l.y + l.z);
-  vec2 at = origin + (nd.s01.xy + d);
+  if (homog) {
+    vec3 b = vec3(1.0 - su, su * (1.0 - v), su * v);
+    base = (b.x * nd.s01.xy + b.y * nd.s01.zw + b.z * nd.s2z.xy) / dot(b, vec3(nd.s2z.zw, nd.z2));
+    d = vec2(0.0);
+  } else {
+    vec3 l = vec3(1.0 - su, su * (1.0 - v), su * v) * vec3(nd.s2z.zw, nd.z2);
+    base = nd.s01.xy;
+    d = (l.y * (nd.s01.zw - nd.s01.xy) + l.z * (nd.s2z.xy - nd.s01.xy)) / (l.x + l.y + l.z);
+  }
+  vec2 at = origin + (base + d);
   p0 = max(ceil(at - r - 0.5), vec2(0.0));
   p1 = min(floor(at + r - 0.5), vec2(hush_size) - 1.0);
 }
 // The child at `slot` (npr_gabor_tree.hpp's npr_tree_child): geometric child c from the order
 // word's permutation, seed hash32(seed, c), index j; corner i of child c < 3 is corner c
 // (i == c) or the midpoint of corners c and i, of the middle child the midpoint opposite
-// corner i; perspective-correct: screen (z_a s_a + z_b s_b) / (z_a + z_b), depth (z_a + z_b) / 2.
-hush_npr_node hush_npr_child(hush_npr_node p, uint order, uint slot, uvec2 j) {
+// corner i; perspective-correct: screen (z_a s_a + z_b s_b) / (z_a + z_b), depth (z_a + z_b) / 2;
+// homogeneous corners (homog): (h_a + h_b) / 2.
+hush_npr_node hush_npr_child(hush_npr_node p, bool homog, uint order, uint slot, uvec2 j) {
   uint hi, lo;
   umulExtended(order, uint(HUSH_NPR_ORDERS), hi, lo);
   uint c = (hush_npr_child_order[hi] >> (2u * slot)) & 3u;
@@ -420,6 +440,9 @@ hush_npr_node hush_npr_child(hush_npr_node p, uint order, uint slot, uvec2 j) {
     if (a == b) {
       cs[i] = s[a];
       cz[i] = z[a];
+    } else if (homog) {
+      cs[i] = 0.5 * (s[a] + s[b]);
+      cz[i] = 0.5 * (z[a] + z[b]);
     } else {
       cs[i] = (z[a] * s[a] + z[b] * s[b]) / (z[a] + z[b]);
       cz[i] = 0.5 * (z[a] + z[b]);
@@ -438,10 +461,60 @@ hush_npr_node hush_npr_child(hush_npr_node p, uint order, uint slot, uvec2 j) {
 // by HUSH_NPR_CULL_MARGIN pixels more: a node kept in excess only costs its visit (its points
 // have empty pixel ranges), while one dropped that the CPU keeps would lose points; the margin
 // exceeds the corners' float error (a few 2^-24 of the sum of the ancestors' extents).
-bool hush_npr_meets_image(hush_npr_node n, vec2 origin, float r) {
-  vec2 lo = min(min(n.s01.xy, n.s01.zw), n.s2z.xy), hi = max(max(n.s01.xy, n.s01.zw), n.s2z.xy);
+bool hush_npr_box_meets_image(vec2 lo, vec2 hi, vec2 origin, float r) {
   vec2 g = vec2(r) + HUSH_NPR_CULL_MARGIN + HUSH_NPR_CULL_RELATIVE * max(abs(lo), abs(hi));
   return !(any(lessThan(hi + g, -origin)) || any(greaterThan(lo - g, vec2(hush_size) - origin)));
+}
+bool hush_npr_meets_image(hush_npr_node n, vec2 origin, float r) {
+  vec2 lo = min(min(n.s01.xy, n.s01.zw), n.s2z.xy), hi = max(max(n.s01.xy, n.s01.zw), n.s2z.xy);
+  return hush_npr_box_meets_image(lo, hi, origin, r);
+}
+// A node of homogeneous corners h_i (relative to the origin) against the near plane
+// (npr_gabor's clip_near): its part at depth >= w_near projected, c[0 ... m - 1] (m = 0:
+// behind, 3 or 4), the convex polygon of the corners in front and the edges' crossings of
+// w_near (depth and clip xy are affine along an edge); whole: every corner in front. Its
+// count n = lambda A (A: the edges' cross product for 3 corners, else the shoelace, as the CPU)
+// and whether its bounding box grown by r (hush_npr_box_meets_image's margins) meets the frame.
+// precise: a child's count is computed when it is kept and again when it is visited.
+int hush_npr_clip(hush_npr_node nd, float w_near, float lambda, vec2 origin, float r,
+                  out bool whole, out float n, out bool meets) {
+  vec3 h[3] = vec3[3](vec3(nd.s01.xy, nd.s2z.z), vec3(nd.s01.zw, nd.s2z.w), vec3(nd.s2z.xy, nd.z2));
+  precise float d[3];
+  for (uint i = 0u; i < 3u; ++i) d[i] = h[i].z - w_near;
+  whole = d[0] >= 0.0 && d[1] >= 0.0 && d[2] >= 0.0;
+  precise vec2 c[4];
+  int m = 0;
+  for (uint i = 0u; i < 3u; ++i) {
+    uint j = (i + 1u) % 3u;
+    if (d[i] >= 0.0) c[m++] = h[i].xy / h[i].z;
+    if ((d[i] < 0.0) != (d[j] < 0.0)) {
+      precise float u = d[i] / (d[i] - d[j]);
+      precise vec3 b = h[i] + u * (h[j] - h[i]);
+      c[m++] = b.xy / b.z;
+    }
+  }
+  n = 0.0;
+  meets = false;
+  if (m == 0) return 0;
+  precise float a = 0.0;
+  if (m == 3) {
+    a = (c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[1].y - c[0].y) * (c[2].x - c[0].x);
+  } else {
+    for (int i = 0; i < m; ++i) a += c[i].x * c[(i + 1) % m].y - c[(i + 1) % m].x * c[i].y;
+  }
+  n = lambda * 0.5 * abs(a);
+  vec2 lo = c[0], hi = c[0];
+  for (int i = 1; i < m; ++i) {
+    lo = min(lo, c[i]);
+    hi = max(hi, c[i]);
+  }
+  meets = hush_npr_box_meets_image(lo, hi, origin, r);
+  return m;
+}
+// The paper's LOD weight of point J (npr_gabor_lod::weight; 0 at and past the count).
+float hush_npr_lod_weight(hush_npr_lod l, uvec2 j) {
+  if (l.lod.x == 0u || !hush_u64_below_pow2(j, l.lod.x - 1u)) return 0.0;
+  return uintBitsToFloat(hush_u64_below_pow2(j, l.lod.y) ? l.lod.z : l.lod.w);
 }
 // params::local_density (docs/npr-gabor.md "Local density"): a node's expected count
 // n = lambda A, A the area of its screen corners (float, relative to the origin: the CPU's
@@ -479,25 +552,58 @@ void main() {
   hush_npr_lod o;
   o.lod = uvec4(0u);
   o.plane = vec4(0.0);
+  o.walk = vec4(0.0);
   hush_npr_flags[t] = uvec2(0u);
   vec2 s0, e1, e2;
   vec3 z;
   if (!hush_npr_triangle(t, s0, e1, e2, z)) { hush_npr_lods[t] = o; return; }
-  // Twice the signed area, y down: front faces are negative.
+  // Twice the signed area, y down: front faces are negative; with a vertex behind the camera
+  // the projected triangle is turned over (the homogeneous orientation z0 z1 z2 cross; its
+  // sign from the depths' signs, exact where the float product could underflow).
   float cross = e1.x * e2.y - e1.y * e2.x;
-  if ((hush_opts & 1u) != 0u && !(cross < 0.0)) { hush_npr_lods[t] = o; return; }
+  bool turned = ((z.x < 0.0) != (z.y < 0.0)) != (z.z < 0.0);
+  float facing = turned ? -cross : cross;
+  if ((hush_opts & 1u) != 0u && !(facing < 0.0)) { hush_npr_lods[t] = o; return; }
   if (cross == 0.0 || hush_is_nonfinite(cross)) { hush_npr_lods[t] = o; return; }
+  float zfar = max(max(z.x, z.y), z.z), nearest = min(min(z.x, z.y), z.z);
+  if (!(zfar > 0.0)) { hush_npr_lods[t] = o; return; }  // entirely behind the camera
+  // npr_gabor's blend, the share of the count per node (exact decisions: the factors are powers
+  // of two): 1 with local density or crossing the near plane (w_near = zfar / 1024), else
+  // log(zfar / (4 near)) / log(8 / 4) clamped to [0, 1] for zfar > 4 near, 0 below.
+  bool crossing = nearest < HUSH_NPR_NEAR_FRACTION * zfar;
+  float w_near = crossing ? HUSH_NPR_NEAR_FRACTION * zfar : 0.0, blend = 1.0;
+  if (hush_local == 0u && !crossing)
+    blend = zfar > HUSH_NPR_RATIO_LOW * nearest
+                ? clamp(log2(zfar / (nearest * HUSH_NPR_RATIO_LOW)) * HUSH_NPR_RATIO_SCALE, 0.0, 1.0)
+                : 0.0;
   hush_npr_kernel k = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]);
   float r = k.size.x;
-  vec2 lo = s0 + min(min(e1, e2), vec2(0.0)), hi = s0 + max(max(e1, e2), vec2(0.0));
-  if (hi.x + r < 0.0 || lo.x - r > float(hush_size.x) || hi.y + r < 0.0 ||
-      lo.y - r > float(hush_size.y)) { hush_npr_lods[t] = o; return; }
-  float n = k.size.y * 0.5 * abs(cross);
+  float n;
+  if (crossing) {
+    // The root clipped: its part in front culls it, its count is the triangle's n (the bound
+    // on every node's), as on the CPU.
+    vec2 o2 = hush_npr_origin(t);
+    hush_npr_node root;
+    root.s01 = vec4(z.x * (s0 - o2), z.y * (s0 + e1 - o2));
+    root.s2z = vec4(z.z * (s0 + e2 - o2), z.x, z.y);
+    root.z2 = z.z;
+    bool whole, meets;
+    if (hush_npr_clip(root, w_near, k.size.y, o2, r, whole, n, meets) == 0 || !meets) {
+      hush_npr_lods[t] = o;
+      return;
+    }
+  } else {
+    vec2 lo = s0 + min(min(e1, e2), vec2(0.0)), hi = s0 + max(max(e1, e2), vec2(0.0));
+    if (hi.x + r < 0.0 || lo.x - r > float(hush_size.x) || hi.y + r < 0.0 ||
+        lo.y - r > float(hush_size.y)) { hush_npr_lods[t] = o; return; }
+    n = k.size.y * 0.5 * abs(cross);
+  }
   if (!(n > 0.0)) { hush_npr_lods[t] = o; return; }
   n = min(n, HUSH_NPR_MAX_POINTS);
-  float w1 = 1.0, w2 = 0.0;
+  float w1 = 1.0, w2 = 0.0, sq = 1.0;  // sq: the first M points' squared weight
   uint first = 0u, count = 0u;  // log2 M, log2 of the count
   if (n < 1.0) {
+    sq = n;
     w1 = sqrt(n);
     if ((hush_opts & 2u) != 0u) {
       // npr_gabor::thinning_uniform: the stream's last two words, 27 + 26 bits.
@@ -505,9 +611,10 @@ void main() {
       float u = float(hush_stream_word(key, ~1u) >> 5u) * HUSH_NPR_2M27 +
                 float(hush_stream_word(key, ~0u) >> 6u) * HUSH_NPR_2M53;
       float g = n <= 0.5 ? max(0.0, 1.0 - u / (2.0 * n)) : 1.0 - 2.0 * (1.0 - n) * u;
+      sq = g;
       w1 = sqrt(g);
-      // No point; local density still walks the children of n > 1/4.
-      if (!(w1 > 0.0) && !(hush_local != 0u && n > 0.25)) { hush_npr_lods[t] = o; return; }
+      // No point; a count per node still walks the children of n > 1/4.
+      if (!(w1 > 0.0) && !(blend > 0.0 && n > 0.25)) { hush_npr_lods[t] = o; return; }
     }
   } else {
     // M = 2^floor(log2 N) from the exponent bits (N >= 1 is normal): exact, as frexp.
@@ -515,18 +622,28 @@ void main() {
     w2 = sqrt(n / uintBitsToFloat((first + 127u) << 23u) - 1.0);  // alpha(N), eq. 4; exact N / M
     count = w2 > 0.0 ? first + 1u : first;
   }
-  if (hush_local != 0u) {
-    // Local density: no count (the walk stops at n <= 1/4); the root's weight sqrt(f), f =
-    // local_square(n, coarsest) (n < 1: n or thinned, w1 above), and n itself for the expand
-    // pass (the root's count is the triangle's, as on the CPU).
-    if (n >= 1.0) w1 = sqrt(hush_npr_local_square(n, true, false));
-    first = count = 0u;
-    w2 = n;
+  if (blend > 0.0) {
+    // A count per node (npr_gabor::local_walk): the root's squared weight f = local_square(n,
+    // coarsest) (n < 1: n or thinned, w1 above; crossing: 0), blended for blend < 1 with the
+    // paper's (w1^2, the root being point 0 of the per-triangle LOD); the root's n for the
+    // expand pass. Crossing, the per-triangle LOD has no points (the CPU's of(0)); with local
+    // density it is not used (blend 1).
+    // Unblended the weight is sqrt(local_square) or w1 itself (n < 1: sqrt(n) or thinned).
+    float lw = crossing ? 0.0 : n >= 1.0 ? sqrt(hush_npr_local_square(n, true, false)) : w1;
+    if (blend < 1.0) {
+      float f = n >= 1.0 ? hush_npr_local_square(n, true, false) : sq;
+      lw = sqrt(blend * f + (1.0 - blend) * sq);
+    }
+    o.walk = vec4(blend, n, w_near, lw);
+    if (crossing) first = count = 0u;
   }
-  // The plane: 1/z = 1/z0 + qx (x - s0.x) + qy (y - s0.y).
+  // The plane: 1/z = 1/z_k + qx (x - s_k.x) + qy (y - s_k.y), k vertex 0, or crossing the near
+  // plane the deepest vertex (a vertex behind the camera may project far off the frame).
   float d1 = 1.0 / z.y - 1.0 / z.x, d2 = 1.0 / z.z - 1.0 / z.x, inv = 1.0 / cross;
-  o.lod = uvec4(count + 1u, first, floatBitsToUint(w1), floatBitsToUint(w2));
-  o.plane = vec4(1.0 / z.x, (d1 * e2.y - d2 * e1.y) * inv, (d2 * e1.x - d1 * e2.x) * inv, 0.0);
+  uint kv = !crossing ? 0u : zfar == z.x ? 0u : zfar == z.y ? 1u : 2u;
+  o.lod = uvec4(crossing ? 1u : count + 1u, first, floatBitsToUint(w1), floatBitsToUint(w2));
+  o.plane = vec4(1.0 / z[kv], (d1 * e2.y - d2 * e1.y) * inv, (d2 * e1.x - d1 * e2.x) * inv,
+                 float(kv));
   hush_npr_lods[t] = o;
   hush_npr_flags[t] = uvec2(0u, 1u);
 }
@@ -594,6 +711,10 @@ void main() {
   n.s01 = vec4(v0.xy - o, v1.xy - o);
   n.s2z = vec4(v2.xy - o, v0.z, v1.z);
   n.z2 = v2.z;
+  if (hush_npr_lods[t].walk.z > 0.0) {  // crossing the near plane: homogeneous corners
+    n.s01 *= vec4(v0.zz, v1.zz);
+    n.s2z.xy *= v2.z;
+  }
   n.info = 0u;
   n.pad0 = n.pad1 = 0u;
   hush_npr_next[hush_npr_offsets[t].y] = n;
@@ -613,31 +734,73 @@ void main() {
   if (i >= hush_nodes) return;
   hush_npr_node nd = hush_npr_level[i];
   uint t = nd.key.y;
-  uint count = hush_npr_lods[t].lod.x - 1u;  // log2 of the triangle's count
+  hush_npr_lod l = hush_npr_lods[t];
+  uint count = l.lod.x - 1u;  // log2 of the triangle's count
   float r = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]).size.x;
   vec2 origin = hush_npr_origin(t);
   uint stream = hush_stream_key(nd.key.x, HUSH_NPR_STREAM);
-  vec2 d, p0, p1;
-  hush_npr_own_point(nd, origin, stream, r, d, p0, p1);
-  // Local density (npr_gabor::local_walk): the node's count n (the root's from the LOD pass)
-  // and its weight sqrt(f), kept in pad0 for the records pass; a record where f > 0; children
-  // only below a node of n > 1/4, above the finest level, each kept if its own n > 1/4.
-  bool local = hush_local != 0u, finest = hush_level == uint(HUSH_NPR_FINEST);
+  // A count per node (npr_gabor::local_walk; blend > 0): the node's count n (the root's from
+  // the LOD pass) and its weight sqrt(f), kept in pad0 for the records pass; a record where
+  // f > 0; children only below a node of n > 1/4 (or, blended with the paper's LOD, of a
+  // child index below its count), above the finest level, each kept if its own n > 1/4 (or its
+  // index is below the count). Crossing the near plane (homogeneous corners): a node's n is its
+  // clipped part's, a crossing node has f = 0, a child behind w_near is dropped.
+  float blend = l.walk.x, w_near = l.walk.z;
+  bool local = blend > 0.0, paper = blend < 1.0, homog = w_near > 0.0;
+  bool finest = hush_level == uint(HUSH_NPR_FINEST);
   float lambda = hush_npr_kernel_of(hush_npr_triangles[5u * t + 4u]).size.y, n = 0.0, lw = 0.0;
   if (local) {
-    hush_npr_lod l = hush_npr_lods[t];
-    n = hush_level == 0u ? uintBitsToFloat(l.lod.w) : hush_npr_node_count(nd, lambda);
-    lw = hush_level == 0u ? uintBitsToFloat(l.lod.z)
-                          : sqrt(hush_npr_local_square(n, false, finest));
+    if (hush_level == 0u) {
+      n = l.walk.y;
+      lw = l.walk.w;
+    } else {
+      bool crossing = false;
+      if (homog) {
+        bool whole, meets;
+        hush_npr_clip(nd, w_near, lambda, origin, r, whole, n, meets);
+        crossing = !whole;
+      } else {
+        n = hush_npr_node_count(nd, lambda);
+      }
+      float f = crossing ? 0.0 : hush_npr_local_square(n, false, finest);
+      if (paper) {
+        float wp = hush_npr_lod_weight(l, nd.key.zw);
+        f = blend * f + (1.0 - blend) * (wp * wp);
+      }
+      lw = sqrt(f);
+    }
   }
-  uint info = any(greaterThan(p0, p1)) || (local && !(lw > 0.0)) ? 0u : 1u, kids = 0u;
+  uint info = 0u, kids = 0u;
+  if (!local || lw > 0.0) {
+    vec2 base, d, p0, p1;
+    hush_npr_own_point(nd, homog, origin, stream, r, base, d, p0, p1);
+    info = any(greaterThan(p0, p1)) ? 0u : 1u;
+  }
   uint order = hush_stream_word(stream, 2u);
+  // The first child's index below the count (the paper's part of a blended walk).
+  uvec2 j0 = hush_u64_add(nd.key.zw, hush_u64_shl(1u, 2u * hush_level));
+  bool descend = !finest && (n > 0.25 || (paper && hush_u64_below_pow2(j0, count)));
   for (uint slot = 0u; slot < 4u; ++slot) {
     // index + stride (1 + slot) grows with slot: the first one past the count ends.
     uvec2 j = hush_u64_add(nd.key.zw, hush_u64_shl(1u + slot, 2u * hush_level));
-    if (local ? !(n > 0.25) || finest : !hush_u64_below_pow2(j, count)) break;
-    hush_npr_node c = hush_npr_child(nd, order, slot, j);
-    if ((!local || hush_npr_node_count(c, lambda) > 0.25) && hush_npr_meets_image(c, origin, r)) {
+    if (local ? !descend : !hush_u64_below_pow2(j, count)) break;
+    hush_npr_node c = hush_npr_child(nd, homog, order, slot, j);
+    bool keep;
+    if (!local) {
+      keep = hush_npr_meets_image(c, origin, r);
+    } else {
+      bool by_index = paper && hush_u64_below_pow2(j, count);
+      if (homog) {
+        bool whole, meets;
+        float nc;
+        keep = hush_npr_clip(c, w_near, lambda, origin, r, whole, nc, meets) > 0 &&
+               (nc > 0.25 || by_index) && meets;
+      } else {
+        keep = (hush_npr_node_count(c, lambda) > 0.25 || by_index) &&
+               hush_npr_meets_image(c, origin, r);
+      }
+    }
+    if (keep) {
       info |= 2u << slot;
       ++kids;
     }
@@ -652,6 +815,7 @@ void main() {
 // the next level's list (parent order, then slot order).
 constexpr const char* kNprGaborChildren = R"glsl(
 layout(local_size_x = HUSH_NPR_GROUP) in;
+layout(std430, binding = 3) readonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
 layout(std430, binding = 4) readonly buffer hush_npr_flags_b { uvec2 hush_npr_offsets[]; };
 layout(std430, binding = 5) readonly buffer hush_npr_level_b { hush_npr_node hush_npr_level[]; };
 layout(std430, binding = 6) writeonly buffer hush_npr_next_b { hush_npr_node hush_npr_next[]; };
@@ -665,7 +829,7 @@ void main() {
   for (uint slot = 0u; slot < 4u; ++slot) {
     if ((nd.info & (2u << slot)) == 0u) continue;
     uvec2 j = hush_u64_add(nd.key.zw, hush_u64_shl(1u + slot, 2u * hush_level));
-    hush_npr_next[at++] = hush_npr_child(nd, order, slot, j);
+    hush_npr_next[at++] = hush_npr_child(nd, hush_npr_lods[nd.key.y].walk.z > 0.0, order, slot, j);
   }
 }
 )glsl";
@@ -696,17 +860,17 @@ void main() {
   uint object = hush_npr_triangles[5u * t + 4u];
   hush_npr_kernel kn = hush_npr_kernel_of(object);
   uint stream = hush_stream_key(nd.key.x, HUSH_NPR_STREAM);
-  vec2 origin = hush_npr_origin(t), d, p0, p1;
-  hush_npr_own_point(nd, origin, stream, kn.size.x, d, p0, p1);
+  vec2 origin = hush_npr_origin(t), base, d, p0, p1;
+  hush_npr_own_point(nd, l.walk.z > 0.0, origin, stream, kn.size.x, base, d, p0, p1);
   hush_npr_splat o;
   o.box = ivec4(p0, p1);
   if (any(greaterThan(p0, p1))) o.box = ivec4(1, 1, 0, 0);
   // The first pixel centre's offset from the point, rounded at |p0 - origin| (within r + 1 of
   // the node) and at the node's size.
-  o.kern.xy = ((p0 + 0.5 - origin) - nd.s01.xy) - d;
+  o.kern.xy = ((p0 + 0.5 - origin) - base) - d;
   uint w1 = hush_stream_word(stream, 1u);
   float amplitude = 2.0 * hush_gabor_half(w1, 0u) - 1.0;
-  float lw = hush_local != 0u ? uintBitsToFloat(nd.pad0)
+  float lw = l.walk.x > 0.0 ? uintBitsToFloat(nd.pad0)
                               : uintBitsToFloat(hush_u64_below_pow2(nd.key.zw, l.lod.y) ? l.lod.z
                                                                                       : l.lod.w);
   vec2 f = kn.freq.xy;
@@ -716,7 +880,7 @@ void main() {
   }
   o.kern.zw = vec2(kn.freq.w, lw * amplitude * kn.size.z);
   o.freq = vec4(f, 0.0, 0.0);
-  vec2 q = p0 + 0.5 - hush_npr_vertices[hush_npr_triangles[5u * t]].xy;
+  vec2 q = p0 + 0.5 - hush_npr_vertices[hush_npr_triangles[5u * t + uint(l.plane.w)]].xy;
   o.plane = vec4(l.plane.x + l.plane.y * q.x + l.plane.z * q.y, l.plane.y, l.plane.z, 0.0);
   hush_npr_out[k] = o;
   hush_npr_out_ids[k] = uvec4(object, hush_npr_triangles[5u * t + 3u], nd.key.zw);
@@ -734,8 +898,8 @@ constexpr int kNprGaborStage1Passes = 6;
 constexpr int kNprGaborGroupSize = 64;
 constexpr int kNprGaborScanSize = 256;
 constexpr std::size_t kNprGaborScanBlock = std::size_t{4} * kNprGaborScanSize;
-// Bytes of one node of the walk (std430).
-constexpr std::size_t kNprGaborNodeBytes = 64;
+// Bytes of one node of the walk and of one triangle's LOD (std430).
+constexpr std::size_t kNprGaborNodeBytes = 64, kNprGaborLodBytes = 48;
 // The walk's cull margin in pixels (absolute, and relative to the corners' coordinates):
 // above the corners' float error, see hush_npr_meets_image.
 constexpr double kNprGaborCullMargin = 1.0, kNprGaborCullRelative = 0x1p-16;
@@ -764,7 +928,12 @@ inline std::string npr_gabor_stage1_source(int pass) {
          std::to_string(c::kNprGaborChildOrders) + "\n#define HUSH_NPR_ORDER_TABLE " + table +
          "\n#define HUSH_NPR_CULL_MARGIN " + f32(kNprGaborCullMargin) +
          "\n#define HUSH_NPR_CULL_RELATIVE " + f32(kNprGaborCullRelative) +
-         "\n#define HUSH_NPR_FINEST " + std::to_string(npr_gabor::max_depth()) + "u\n" + library() +
+         "\n#define HUSH_NPR_FINEST " + std::to_string(npr_gabor::max_depth()) + "u" +
+         "\n#define HUSH_NPR_NEAR_FRACTION " + f32(c::kNprGaborNearFraction) +
+         "\n#define HUSH_NPR_RATIO_LOW " + f32(c::kNprGaborPerNodeRatioLow) +
+         "\n#define HUSH_NPR_RATIO_SCALE " +
+         f32(1.0 / std::log2(c::kNprGaborPerNodeRatioHigh / c::kNprGaborPerNodeRatioLow)) + "\n" +
+         library() +
          detail::kNprGaborRecord + detail::kNprGaborStage1Common + bodies[p];
 }
 // The sources of the three stages (#version 430 core), for hush glsl-export and tests.
@@ -875,10 +1044,8 @@ class npr_gabor_gpu {
   }
 
   // Both stages of noise.render on the GPU (arguments validated by render); stage 1 on the
-  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, a triangle crossing the
-  // near plane or of depth ratio above 4, buffers beyond one storage block: a level's nodes
-  // included; more than 2^32 - 1 records or
-  // nodes).
+  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, buffers beyond one
+  // storage block: a level's nodes included; more than 2^32 - 1 records or nodes).
   void render(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, const image_view<float>& out) {
     std::size_t total = 0;
@@ -1195,14 +1362,12 @@ class npr_gabor_gpu {
               const npr_gabor::sources& src, std::size_t& total) {
     // Per-pixel or per-vertex sources run on the CPU.
     if (!npr_gabor::per_object_at_most(src)) return false;
-    // Strong perspective or the near plane crossed (a count per node, clipped): on the CPU.
-    if (npr_gabor::walks_per_node(tris)) return false;
     const std::size_t nt = tris.triangles(), nv = tris.vertices();
     std::size_t objects = 0;  // table entries before the constants' one
     for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
       objects = std::max(objects, p->table_size());
     const std::size_t most = dev_.max_buffer_bytes();
-    if (nt * 32 > most || nv * 16 > most || nt * 20 > most || (objects + 1) * 32 > most ||
+    if (nt * kNprGaborLodBytes > most || nv * 16 > most || nt * 20 > most || (objects + 1) * 32 > most ||
         nt * kNprGaborNodeBytes > most || nt > 0xFFFFFFFFu)
       return false;
     const state_guard guard(gl_, gr_);
@@ -1236,7 +1401,7 @@ class npr_gabor_gpu {
         floats_[8 * o + static_cast<std::size_t>(i)] = static_cast<float>(e[i]);
     }
     upload(2, floats_.data(), floats_.size() * 4, 2);
-    upload(3, nullptr, nt * 32, 3);
+    upload(3, nullptr, nt * kNprGaborLodBytes, 3);
     upload(4, nullptr, nt * 8, 4);
     const npr_gabor::params& p = noise.parameters();
     for (int pass = 0; pass < kNprGaborStage1Passes; ++pass) {
