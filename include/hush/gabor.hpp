@@ -594,6 +594,15 @@ class gabor : public sample_noise<gabor<D>, D> {
     }
   }
 
+  // ((H(k_-) + H(k_+)) / 2)^2 from the squared distances k_-^2, k_+^2 to the two blobs
+  // (clamped at 0 against rounding): the integrand of isotropic_mean and hybrid_window_2d.
+  template <class H>
+  static double blob_pair(H& h, double km2, double kp2) {
+    const double v =
+        0.5 * (h(std::sqrt(std::fmax(km2, 0.0))) + h(std::sqrt(std::fmax(kp2, 0.0))));
+    return v * v;
+  }
+
   // Isotropic noise's E_Phi[((H(|xi - Phi|) + H(|xi + Phi|)) / 2)^2] for |xi| = x,
   // |Phi| = ph, over the orientations where the near blob is within `window`
   // of xi (all of them when window >= sqrt(x^2 + ph^2); docs/gabor.md "Cost of
@@ -642,11 +651,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     const double dir = std::atan2(xi[1], xi[0]);
     auto inner = [&](double ph) {  // mean over the arc at |Phi| = ph
       const double xp = x * ph, base = x * x + ph * ph, kmin = std::fabs(x - ph);
-      auto pair = [&](double km2, double kp2) {
-        const double v =
-            0.5 * (h(std::sqrt(std::fmax(km2, 0.0))) + h(std::sqrt(std::fmax(kp2, 0.0))));
-        return v * v;
-      };
+      auto pair = [&](double km2, double kp2) { return blob_pair(h, km2, kp2); };
       auto at = [&](double ang) {
         const double cross = 2.0 * xp * std::cos(ang - dir);
         return pair(base - cross, base + cross);
@@ -692,10 +697,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     const double kmin = std::fabs(x - ph);
     if (!(kmin < window)) return 0.0;  // no orientation brings a blob near xi (or xi = inf)
     const double xp = x * ph, base = x * x + ph * ph;
-    auto pair = [&](double km2, double kp2) {
-      const double v = 0.5 * (h(std::sqrt(std::fmax(km2, 0.0))) + h(std::sqrt(std::fmax(kp2, 0.0))));
-      return v * v;
-    };
+    auto pair = [&](double km2, double kp2) { return blob_pair(h, km2, kp2); };
     if (!(xp > 1e-150)) return pair(base, base);  // Phi = 0 or xi = 0: one orientation is all
     auto rule = [](auto g, double lo, double hi) { return core_rule(g, lo, hi, lo); };
     if constexpr (D == 2) {
