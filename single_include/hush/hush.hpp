@@ -5045,23 +5045,30 @@ double radial_mean(double c, W w) {
       8);
 }
 
+// The jumps of the taper's second derivative in s: w = tau: w'' jumps by -6 k^2 at
+// s0 (from 0) and by -6 k^2 at 1 (from 6 k^2 to 0).
+struct gabor_envelope_jumps {
+  double dw2[2];
+  gabor_envelope_jumps() {
+    const double k = gabor_taper_k();
+    dw2[0] = dw2[1] = -6.0 * k * k;
+  }
+};
+
 // H(xi): the Fourier transform of the tapered envelope e^{-A |d|^2} tau(|d|^2)
-// at |xi| cycles per cell (radial, real). w = tau: w'' jumps by -6 k^2 at s0
-// (from 0) and by -6 k^2 at 1 (from 6 k^2 to 0).
+// at |xi| cycles per cell (radial, real).
 template <int D>
 double gabor_envelope_transform(double a, double xi) {
   const double k = gabor_taper_k();
-  const double dw2[2] = {-6.0 * k * k, -6.0 * k * k};
-  return radial_transform<D>(a, [k](double s) { return gabor_taper(s, k); }, xi, dw2);
+  return radial_transform<D>(a, [k](double s) { return gabor_taper(s, k); }, xi,
+                             gabor_envelope_jumps().dw2);
 }
 // Its leading asymptotic term alone (O(1) cost at any xi): within 1.1e-13 of
 // H(0) from kGaborAsymptoticCycles on, the left-out term falling as xi^-4.5
 // (2D) / xi^-5 (3D) below (docs/gabor.md "Cost of the kernel's statistics").
 template <int D>
 double gabor_envelope_transform_tail(double a, double xi) {
-  const double k = gabor_taper_k();
-  const double dw2[2] = {-6.0 * k * k, -6.0 * k * k};
-  return radial_transform_tail<D>(a, std::fabs(xi), dw2);
+  return radial_transform_tail<D>(a, std::fabs(xi), gabor_envelope_jumps().dw2);
 }
 
 // int g^2 over the cell-unit ball for |Phi| = phi:
