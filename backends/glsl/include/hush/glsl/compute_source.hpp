@@ -15,6 +15,9 @@
 //     the batch) and uvec3 hush_size (nx, ny, nz; nz = 1 in 2D);
 //   binding 1 `float hush_out[]`: the value per sample, or with gradients
 //     D + 1 floats per sample (value, d/dx, d/dy[, d/dz]);
+//   the grid layout `#define`s HUSH_GRID (before the library), so a noise whose
+//     float form differs between grids and points (Gabor noise: the separable
+//     form on grids, the point form at points, as on the CPU) can tell them apart;
 //   plus the noise's own uniforms (noise_program<Noise>::uniforms()).
 // Samples (batch_layout::samples; hush::samples, core/samples.hpp): the
 // points input above, plus per-sample footprints, normals and surface maps,
@@ -86,7 +89,10 @@ std::string runner_preamble(batch_layout layout, bool gradient) {
          std::string(np::name) + (gradient ? ", values and gradients" : ", values") + ", " +
          layout_name(layout) +
          " (hush/glsl/compute_source.hpp).\nlayout(local_size_x = " + std::to_string(kLocalSize) +
-         ") in;\n" + data + library() + "\n// ---- Runner.\n" + np::uniforms();
+         ") in;\n" +
+         (layout == batch_layout::grid ? "#define HUSH_GRID 1  // this runner evaluates a grid\n"
+                                       : "") +
+         data + library() + "\n// ---- Runner.\n" + np::uniforms();
 }
 
 // GLSL: t[a] = offset of axis a's (i0, i1, fraction bits) triple in the axis

@@ -17,7 +17,11 @@
 //   hush_gabor_axis hush_gabor_axis_factors(float d, float neg_a, float phi)
 //   hush_gabor_row  hush_gabor_row_of(float w, y[, z])
 //   float hush_gabor_pair(x, row, k), vec3 hush_gabor_pair_gradient(x, row, k, a)
-//                                            gabor_kernel.hpp's separable kernel
+//                                            gabor_kernel.hpp's separable kernel (grids)
+//   float hush_gabor_point_phase(phi, d, dim), hush_gabor_point_term(w, s, theta, neg_a, k),
+//   vec3 hush_gabor_point_term_gradient(w, s, theta, neg_a, k, a)
+//                                            its point form (points)
+//   vec3 hush_gabor_gradient_of_harmonics(pc, ps, s, k, a)   both forms' gradient
 //   bool hush_gabor_unit_normal(n, out u), void hush_gabor_basis(n, out t, out b)
 //                                            gabor<3>::unit_normal, detail::orthonormal_basis
 //   uint hush_gabor_surface_stream(key, cell), vec4 hush_gabor_plane_offsets(d, n, t, b)
@@ -33,7 +37,10 @@
 //    same thresholds (a uniform array), the impulses' words and fields; the
 //    fields become floats exactly ((2m + 1) 2^-9 or 2^-17), so every count,
 //    position, weight and frequency mark equals the CPU's;
-//  - the float arithmetic follows the CPU's order; GLSL may fuse a * b + c
+//  - the float arithmetic follows the CPU's order and form (gabor<D>::eval):
+//    a grid's samples the separable form (gabor<D>::grid_sample), points the
+//    point form (gabor_point_term), told apart by the runner's HUSH_GRID
+//    (compute_source.hpp); GLSL may fuse a * b + c
 //    and asks only for correctly rounded +, -, * (library.hpp), so values
 //    differ from the CPU float result within twice gabor.hpp's float budget
 //    (each op's error is bounded the same way), measured in
@@ -231,8 +238,10 @@ vec4 hush_gabor_filtered_pair(mat3 q, mat3 m, float amp, vec3 d, float s, float 
   return r;
 }
 // The solid noise's unscaled sum and gradient sum at cell i0 + fraction f
-// (gabor<D>::eval, or filtered_eval with filter q, m, amp when `filtered`).
-vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool filtered, mat3 q, mat3 m, float amp, bool grad) {
+// (gabor<D>::eval: the separable form on a grid's samples (`separable`), the point form
+// at points; or filtered_eval with filter q, m, amp when `filtered`).
+vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat3 m, float amp,
+                    bool grad) {
   float neg_a = hush_gp(hush_gp_NEG_A), a = hush_gp(hush_gp_A), tk = hush_gp(hush_gp_TAPER_K);
   float sum = 0.0;
   vec3 g = vec3(0.0);
@@ -262,21 +271,26 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool filtered, mat3 q, mat3 m, float amp, 
       vec3 phi;
       float w = hush_gabor_marks(w0, w1, w2, phi);
       if (!filtered) {
-        hush_gabor_axis ax0 = hush_gabor_axis_factors(d[0], neg_a, phi[0]);
-        hush_gabor_axis ax1 = hush_gabor_axis_factors(d[1], neg_a, phi[1]);
-        hush_gabor_row row;
-        if (hush_gabor_dim == 2u) {
-          row = hush_gabor_row_of(w, ax1);
+        vec3 pg;  // (value, u, v): d/dd_i = u d_i - v phi_i
+        if (separable) {
+          hush_gabor_axis ax0 = hush_gabor_axis_factors(d[0], neg_a, phi[0]);
+          hush_gabor_axis ax1 = hush_gabor_axis_factors(d[1], neg_a, phi[1]);
+          hush_gabor_row row;
+          if (hush_gabor_dim == 2u) {
+            row = hush_gabor_row_of(w, ax1);
+          } else {
+            row = hush_gabor_row_of(w, ax1, hush_gabor_axis_factors(d[2], neg_a, phi[2]));
+          }
+          pg = grad ? hush_gabor_pair_gradient(ax0, row, tk, a)
+                    : vec3(hush_gabor_pair(ax0, row, tk), 0.0, 0.0);
         } else {
-          row = hush_gabor_row_of(w, ax1, hush_gabor_axis_factors(d[2], neg_a, phi[2]));
+          float theta = hush_gabor_point_phase(phi, vec3(d[0], d[1], d[2]), hush_gabor_dim);
+          pg = grad ? hush_gabor_point_term_gradient(w, s, theta, neg_a, tk, a)
+                    : vec3(hush_gabor_point_term(w, s, theta, neg_a, tk), 0.0, 0.0);
         }
-        if (grad) {
-          vec3 pg = hush_gabor_pair_gradient(ax0, row, tk, a);
-          sum += pg.x;
+        sum += pg.x;
+        if (grad)
           for (uint i = 0u; i < hush_gabor_dim; ++i) g[i] += pg.y * d[i] - pg.z * phi[i];
-        } else {
-          sum += hush_gabor_pair(ax0, row, tk);
-        }
         continue;
       }
       vec4 t = hush_gabor_filtered_pair(q, m, amp, vec3(d[0], d[1], d[2]), s, w, phi,
@@ -288,14 +302,15 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool filtered, mat3 q, mat3 m, float amp, 
   }
   return vec4(sum, g);
 }
-// The noise (value, gradient) at cell i0 + fraction f, filtered over footprint fp.
-vec4 hush_gabor_eval(uvec3 i0, vec3 f, bool filtered, mat3 fp, bool grad) {
+// The noise (value, gradient) at cell i0 + fraction f, filtered over footprint fp;
+// unfiltered in the separable form on a grid's samples (`separable`), else the point form.
+vec4 hush_gabor_eval(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 fp, bool grad) {
   mat3 q = mat3(1.0), m = mat3(0.0);
   float amp = 1.0;
   if (filtered)
     amp = hush_gabor_filter(fp, hush_gabor_dim, hush_gp(hush_gp_FILTER_K), hush_gp(hush_gp_FILTER_M),
                             q, m);
-  vec4 r = hush_gabor_sum(i0, f, filtered, q, m, amp, grad);
+  vec4 r = hush_gabor_sum(i0, f, separable, filtered, q, m, amp, grad);
   return vec4(r.x * hush_gp(hush_gp_SCALE), r.yzw * hush_gp(hush_gp_GRAD_SCALE));
 }
 )glsl";
@@ -407,7 +422,8 @@ vec4 hush_gabor_surface_eval(uvec3 i0, vec3 f, vec3 n, mat3 fp, bool grad) {
   // Samples (compute_source.hpp defines HUSH_SAMPLES) filter over fp; in 3D
   // a non-zero finite normal selects surface noise (band 1), a zero normal the
   // solid noise (band 0) and a non-finite one NaN, as gabor<3>::sample_eval.
-  // Points and grids evaluate the plain solid noise.
+  // Points and grids evaluate the plain solid noise: grids (HUSH_GRID) in the
+  // separable form, points in the point form, as gabor<D>::eval chooses.
   static std::string band_begin(bool) {
     const std::string surface =
         D == 3 ? "  vec3 unit_n = vec3(0.0);\n  bool surface = false;\n" : "";
@@ -419,17 +435,22 @@ vec4 hush_gabor_surface_eval(uvec3 i0, vec3 f, vec3 n, mat3 fp, bool grad) {
                               : "") +
            "#else\n"
            "  mat3 fp3 = mat3(0.0);\n  bool filtered = false;\n"
+           "#endif\n"
+           "#ifdef HUSH_GRID\n"
+           "  bool separable = true;  // a grid's samples: the separable form\n"
+           "#else\n"
+           "  bool separable = false;  // points: the point form\n"
            "#endif\n";
   }
   static std::string band_step(bool gradient) {
     const std::string g = gradient ? "true" : "false";
     if constexpr (D == 2)
       return "    bad = bad || hush_any_nonfinite(f);\n    if (!bad) acc = "
-             "hush_gabor_eval(uvec3(i0, 0u), vec3(f, 0.0), filtered, fp3, " +
+             "hush_gabor_eval(uvec3(i0, 0u), vec3(f, 0.0), separable, filtered, fp3, " +
              g + ");\n";
     return "    bad = bad || hush_any_nonfinite(f);\n"
            "    if (!bad && (b == 1u) == surface)\n"
-           "      acc = b == 0u ? hush_gabor_eval(i0, f, filtered, fp3, " +
+           "      acc = b == 0u ? hush_gabor_eval(i0, f, separable, filtered, fp3, " +
            g + ")\n                    : hush_gabor_surface_eval(i0, f, unit_n, fp3, " + g +
            ");\n";
   }

@@ -32,7 +32,8 @@
 //                                              `i0`, `i1` (uvecD), `f` (vecD)
 //   static std::string band_result(bool grad); the result: float or vec(D+1)
 // (In the samples layout HUSH_SAMPLES is #defined, so band_begin can tell
-// whether fp, nrm and has_nrm exist.)
+// whether fp, nrm and has_nrm exist; in the grid layout HUSH_GRID, so it can
+// tell a grid's samples from points.)
 // The runner then splits every band coordinate on the CPU in double
 // (hush::lattice_split<float>) for points and grids alike (compute_source.hpp).
 // A noise whose evaluation reads large precomputed data (wavelet tiles,

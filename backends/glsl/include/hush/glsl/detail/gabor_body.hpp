@@ -2,9 +2,10 @@
 //
 // The GLSL library bodies of Gabor-type noises (hush/glsl/gabor_glsl.hpp lists
 // them and states their contract): detail/elementary.hpp's exp and sin/cos,
-// hush::rng streams, gabor.hpp's word fields and gabor_kernel.hpp's taper and
-// separable kernel, operation by operation. Part of library(); references
-// only generated constants (generator.hpp) and hashing/lattice functions.
+// hush::rng streams, gabor.hpp's word fields and gabor_kernel.hpp's taper,
+// separable kernel (grids) and point form (points), operation by operation.
+// Part of library(); references only generated constants (generator.hpp) and
+// hashing/lattice functions.
 #ifndef HUSH_GLSL_DETAIL_GABOR_BODY_HPP
 #define HUSH_GLSL_DETAIL_GABOR_BODY_HPP
 
@@ -100,13 +101,31 @@ float hush_gabor_pair(hush_gabor_axis x, hush_gabor_row r, float k) {
   float ec = x.e * x.c, es = x.e * x.s, b = r.we * r.c, q = r.we * r.s;
   return (ec * b - es * q) * hush_gabor_taper(x.d2 + r.d2, k);
 }
-// (value, u, v): d/dd_a = u d_a - v phi_a.
+// gabor_gradient_of_harmonics: (value, u, v) of p cos(2 pi theta) tau(s) from pc = p cos
+// and ps = p sin, d/dd_a = u d_a - v phi_a; both forms (pair, point term) end here.
+vec3 hush_gabor_gradient_of_harmonics(float pc, float ps, float s, float k, float a) {
+  vec2 tw = hush_gabor_taper_derivative(s, k);
+  return vec3(pc * tw.x, (pc + pc) * (tw.y - a * tw.x), HUSH_TWO_PI * (ps * tw.x));
+}
+// (value, u, v) of the separable pair.
 vec3 hush_gabor_pair_gradient(hush_gabor_axis x, hush_gabor_row r, float k, float a) {
   float ec = x.e * x.c, es = x.e * x.s, b = r.we * r.c, q = r.we * r.s;
-  vec2 tw = hush_gabor_taper_derivative(x.d2 + r.d2, k);
-  float pc = ec * b - es * q;
-  float ps = es * b + ec * q;
-  return vec3(pc * tw.x, (pc + pc) * (tw.y - a * tw.x), HUSH_TWO_PI * (ps * tw.x));
+  return hush_gabor_gradient_of_harmonics(ec * b - es * q, es * b + ec * q, x.d2 + r.d2, k, a);
+}
+// The point form (gabor_point_phase, gabor_point_term): theta = <phi, d> summed as
+// phi_x d_x + phi_y d_y (3D: phi_x d_x + (phi_y d_y + phi_z d_z)), and one impulse's
+// w e^{-A s} cos(2 pi theta) tau(s): one exp and one sin/cos instead of dim of each.
+float hush_gabor_point_phase(vec3 phi, vec3 d, uint dim) {
+  return dim == uint(2) ? phi.x * d.x + phi.y * d.y : phi.x * d.x + (phi.y * d.y + phi.z * d.z);
+}
+float hush_gabor_point_term(float w, float s, float theta, float neg_a, float k) {
+  return ((w * hush_exp_neg(neg_a * s)) * hush_sincos_turns(theta).y) * hush_gabor_taper(s, k);
+}
+// (value, u, v) of the point term.
+vec3 hush_gabor_point_term_gradient(float w, float s, float theta, float neg_a, float k, float a) {
+  float p = w * hush_exp_neg(neg_a * s);
+  vec2 sc = hush_sincos_turns(theta);
+  return hush_gabor_gradient_of_harmonics(p * sc.y, p * sc.x, s, k, a);
 }
 // The key of cell `cell`'s solid stream: hush::rng(lattice_hash(key, cell), solid stream)
 // (gabor<D>::for_each_impulse); dim = 2 ignores cell.z.
