@@ -177,10 +177,9 @@ void check_points(const hush::gabor<D>& noise) {
   MESSAGE("points " << D << "D kind " << int(noise.parameters().kind) << ": max |value diff| "
                     << d.value << " (tolerance " << value_tolerance(noise) << "), gradient "
                     << d.grad << " (" << gradient_tolerance(noise) << "); against the double "
-                    << ref_value << " (" << value_tolerance(noise) / 2 << "), gradient "
-                    << ref_grad << " (" << gradient_tolerance(noise) / 2
-                    << "); sum |GLSL - CPU point form| " << to_point << ", separable form "
-                    << to_separable);
+                    << ref_value << " (" << value_tolerance(noise) / 2 << "), gradient " << ref_grad
+                    << " (" << gradient_tolerance(noise) / 2 << "); sum |GLSL - CPU point form| "
+                    << to_point << ", separable form " << to_separable);
   CHECK(std::isnan(gv[7]));
   CHECK(std::isnan(gv[11]));
   CHECK(d.nan_mismatch == 0);
