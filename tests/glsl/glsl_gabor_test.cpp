@@ -244,6 +244,21 @@ TEST_CASE("gabor glsl: grids (CPU-split cells) equal the CPU, near and far") {
   check_grid(hush::gabor<3>(params_of<3>(hush::gabor_kind::anisotropic)), g3);
 }
 
+// The mark a program reads to tell a grid from points (compute_source.hpp): every
+// grid runner, plain (Perlin) or banded (Gabor), defines HUSH_GRID; no other runner does.
+TEST_CASE("gabor glsl: only grid runners #define HUSH_GRID, plain and banded programs alike") {
+  using hush::glsl::batch_layout;
+  const std::string mark = "#define HUSH_GRID";
+  for (const auto layout : {batch_layout::points, batch_layout::grid, batch_layout::samples})
+    for (const bool gradient : {false, true}) {
+      const bool grid = layout == batch_layout::grid;
+      CHECK((hush::glsl::compute_source<hush::perlin<2>>(layout, gradient).find(mark) !=
+             std::string::npos) == grid);
+      CHECK((hush::glsl::compute_source<hush::gabor<3>>(layout, gradient).find(mark) !=
+             std::string::npos) == grid);
+    }
+}
+
 TEST_CASE("gabor glsl: filtered samples equal the CPU, degenerate footprints stay finite") {
   const hush::gabor<2> noise(params_of<2>(hush::gabor_kind::anisotropic));
   const std::size_t n = 1200;
