@@ -301,6 +301,16 @@ constexpr double kGaborAsymptoticCycles = 1024.0;
 // isotropic_mean, hybrid_window_2d; docs/gabor.md "Cost of the spectra");
 // gabor_spectrum tabulates H up to this.
 constexpr double kGaborSpectrumWindowCycles = 64.0;
+// Hybrid noise's power_spectrum takes up to ~5e6 values of H per call, each
+// a quadrature of up to ~1000 nodes: it tabulates H once per call instead
+// (detail::chebyshev_table): panels this wide (cycles per cell, H oscillates at
+// <= 1 cycle per unit), this many Chebyshev points each (error measured below
+// 1e-13 of H(0): tests/gabor_kernel_test.cpp), up to the largest k needed but at
+// most kGaborTransformTableCycles; beyond, H's asymptotic term (within 1.1e-13
+// (1024 / k)^4.5 of H(0): 1.3e-9 at 128 cycles, in the far blob's tail only).
+constexpr double kGaborTransformTablePanel = 0.25;
+constexpr int kGaborTransformTableNodes = 12;
+constexpr double kGaborTransformTableCycles = 128.0;
 // N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
