@@ -370,17 +370,17 @@ class gabor : public sample_noise<gabor<D>, D> {
   // anisotropic: 2). Hybrid noise averages over up to ~5e6 values of H (2D:
   // ~3e6 in the frequency and orientation windows, ~3e7 below them; 3D: <= 1184
   // spheres of <= 2144 nodes, two values each), so it tabulates H once per call
-  // (<= 512 * 11 + 1 = 5633 quadratures, up to kGaborTransformTableCycles; beyond,
-  // H's asymptotic term): error within ~1e-13 of H(0) up to 128 cycles per
-  // cell, 1.3e-9 of H(0) in the far tail beyond (docs/gabor.md "Cost of the
-  // spectra"). gabor_spectrum tabulates the spectrum for images.
+  // (<= 1217 quadratures, up to kGaborSpectrumWindowCycles; beyond, H's
+  // asymptotic term, as gabor_spectrum): within 1e-15 of H(0) up to 64 cycles
+  // per cell, < 3e-8 of H(0) beyond (docs/gabor.md "Cost of the spectra").
+  // gabor_spectrum tabulates the spectrum itself for images.
   double power_spectrum(const vec<double, D>& f) const {
     namespace c = detail::constants;
     const double a = kernel_.envelope_exponent();
     auto exact = [a](double k) { return detail::gabor_envelope_transform<D>(a, k); };
     if (prm_.kind != gabor_kind::hybrid) return spectrum_with(f, exact);
     const detail::chebyshev_table table = transform_table(f);
-    const double top = std::fmin(transform_table_reach(f), c::kGaborTransformTableCycles);
+    const double top = std::fmin(transform_table_reach(f), c::kGaborSpectrumWindowCycles);
     return spectrum_with(f, [&](double k) {
       return k <= top ? table(k) : detail::gabor_envelope_transform_tail<D>(a, k);
     });
@@ -388,13 +388,13 @@ class gabor : public sample_noise<gabor<D>, D> {
 
   // The table power_spectrum(f) takes H from for hybrid noise (exposed for
   // its tests: calls() counts the quadratures), over [0, min(|f r| + |Phi|max,
-  // kGaborTransformTableCycles)] (no blob is further from f r).
+  // kGaborSpectrumWindowCycles)] (no blob is further from f r).
   detail::chebyshev_table transform_table(const vec<double, D>& f) const {
     namespace c = detail::constants;
     const double a = kernel_.envelope_exponent();
     return detail::chebyshev_table(
         [a](double k) { return detail::gabor_envelope_transform<D>(a, k); }, 0.0,
-        std::fmin(transform_table_reach(f), c::kGaborTransformTableCycles),
+        std::fmin(transform_table_reach(f), c::kGaborSpectrumWindowCycles),
         c::kGaborTransformTablePanel, c::kGaborTransformTableNodes);
   }
 

@@ -681,15 +681,15 @@ constexpr double kGaborAsymptoticCycles = 1024.0;
 // gabor_spectrum tabulates H up to this.
 constexpr double kGaborSpectrumWindowCycles = 64.0;
 // Hybrid noise's power_spectrum takes up to ~5e6 values of H per call, each
-// a quadrature of up to ~1000 nodes: it tabulates H once per call instead
-// (detail::chebyshev_table): panels this wide (cycles per cell, H oscillates at
-// <= 1 cycle per unit), this many Chebyshev points each (error measured below
-// 1e-13 of H(0): tests/gabor_kernel_test.cpp), up to the largest k needed but at
-// most kGaborTransformTableCycles; beyond, H's asymptotic term (within 1.1e-13
-// (1024 / k)^4.5 of H(0): 1.3e-9 at 128 cycles, in the far blob's tail only).
-constexpr double kGaborTransformTablePanel = 0.25;
-constexpr int kGaborTransformTableNodes = 12;
-constexpr double kGaborTransformTableCycles = 128.0;
+// a quadrature of up to ~500 nodes: it tabulates H once per call instead
+// (detail::chebyshev_table) up to the largest k needed but at most
+// kGaborSpectrumWindowCycles (<= 64 * 19 + 1 = 1217 quadratures), on panels
+// this wide (cycles per cell; H oscillates at <= 1 cycle per unit k) with this
+// many Chebyshev points each: measured within 1e-15 of H(0) (t = 1e-9 ... 0.5,
+// 2D and 3D: tests/gabor_kernel_test.cpp); beyond, H's asymptotic term, as
+// gabor_spectrum.
+constexpr double kGaborTransformTablePanel = 1.0;
+constexpr int kGaborTransformTableNodes = 20;
 // N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
@@ -5855,17 +5855,17 @@ class gabor : public sample_noise<gabor<D>, D> {
   // anisotropic: 2). Hybrid noise averages over up to ~5e6 values of H (2D:
   // ~3e6 in the frequency and orientation windows, ~3e7 below them; 3D: <= 1184
   // spheres of <= 2144 nodes, two values each), so it tabulates H once per call
-  // (<= 512 * 11 + 1 = 5633 quadratures, up to kGaborTransformTableCycles; beyond,
-  // H's asymptotic term): error within ~1e-13 of H(0) up to 128 cycles per
-  // cell, 1.3e-9 of H(0) in the far tail beyond (docs/gabor.md "Cost of the
-  // spectra"). gabor_spectrum tabulates the spectrum for images.
+  // (<= 1217 quadratures, up to kGaborSpectrumWindowCycles; beyond, H's
+  // asymptotic term, as gabor_spectrum): within 1e-15 of H(0) up to 64 cycles
+  // per cell, < 3e-8 of H(0) beyond (docs/gabor.md "Cost of the spectra").
+  // gabor_spectrum tabulates the spectrum itself for images.
   double power_spectrum(const vec<double, D>& f) const {
     namespace c = detail::constants;
     const double a = kernel_.envelope_exponent();
     auto exact = [a](double k) { return detail::gabor_envelope_transform<D>(a, k); };
     if (prm_.kind != gabor_kind::hybrid) return spectrum_with(f, exact);
     const detail::chebyshev_table table = transform_table(f);
-    const double top = std::fmin(transform_table_reach(f), c::kGaborTransformTableCycles);
+    const double top = std::fmin(transform_table_reach(f), c::kGaborSpectrumWindowCycles);
     return spectrum_with(f, [&](double k) {
       return k <= top ? table(k) : detail::gabor_envelope_transform_tail<D>(a, k);
     });
@@ -5873,13 +5873,13 @@ class gabor : public sample_noise<gabor<D>, D> {
 
   // The table power_spectrum(f) takes H from for hybrid noise (exposed for
   // its tests: calls() counts the quadratures), over [0, min(|f r| + |Phi|max,
-  // kGaborTransformTableCycles)] (no blob is further from f r).
+  // kGaborSpectrumWindowCycles)] (no blob is further from f r).
   detail::chebyshev_table transform_table(const vec<double, D>& f) const {
     namespace c = detail::constants;
     const double a = kernel_.envelope_exponent();
     return detail::chebyshev_table(
         [a](double k) { return detail::gabor_envelope_transform<D>(a, k); }, 0.0,
-        std::fmin(transform_table_reach(f), c::kGaborTransformTableCycles),
+        std::fmin(transform_table_reach(f), c::kGaborSpectrumWindowCycles),
         c::kGaborTransformTablePanel, c::kGaborTransformTableNodes);
   }
 

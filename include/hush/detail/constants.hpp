@@ -302,15 +302,15 @@ constexpr double kGaborAsymptoticCycles = 1024.0;
 // gabor_spectrum tabulates H up to this.
 constexpr double kGaborSpectrumWindowCycles = 64.0;
 // Hybrid noise's power_spectrum takes up to ~5e6 values of H per call, each
-// a quadrature of up to ~1000 nodes: it tabulates H once per call instead
-// (detail::chebyshev_table): panels this wide (cycles per cell, H oscillates at
-// <= 1 cycle per unit), this many Chebyshev points each (error measured below
-// 1e-13 of H(0): tests/gabor_kernel_test.cpp), up to the largest k needed but at
-// most kGaborTransformTableCycles; beyond, H's asymptotic term (within 1.1e-13
-// (1024 / k)^4.5 of H(0): 1.3e-9 at 128 cycles, in the far blob's tail only).
-constexpr double kGaborTransformTablePanel = 0.25;
-constexpr int kGaborTransformTableNodes = 12;
-constexpr double kGaborTransformTableCycles = 128.0;
+// a quadrature of up to ~500 nodes: it tabulates H once per call instead
+// (detail::chebyshev_table) up to the largest k needed but at most
+// kGaborSpectrumWindowCycles (<= 64 * 19 + 1 = 1217 quadratures), on panels
+// this wide (cycles per cell; H oscillates at <= 1 cycle per unit k) with this
+// many Chebyshev points each: measured within 1e-15 of H(0) (t = 1e-9 ... 0.5,
+// 2D and 3D: tests/gabor_kernel_test.cpp); beyond, H's asymptotic term, as
+// gabor_spectrum.
+constexpr double kGaborTransformTablePanel = 1.0;
+constexpr int kGaborTransformTableNodes = 20;
 // N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
