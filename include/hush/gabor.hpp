@@ -367,9 +367,10 @@ class gabor : public sample_noise<gabor<D>, D> {
   // The power spectrum of the unit-variance noise at frequency f (cycles per
   // noise unit), exact: lambda E[w^2] E_F[|g^_F(f)|^2] scale^2. Quadrature of
   // the kernel transform for each call (isotropic: <= 1344 of them;
-  // anisotropic: 2). Hybrid noise averages over up to ~5e6 values of H (2D:
-  // ~3e6 in the frequency and orientation windows, ~3e7 below them; 3D: <= 1184
-  // spheres of <= 2144 nodes, two values each), so it tabulates H once per call
+  // anisotropic: 2). Hybrid noise averages over millions of values of H (2D:
+  // <= 6.6e6 in the frequency and orientation windows, <= 6.7e7 below them,
+  // |Phi| <= 64; 3D: <= 1296 spheres of <= 2144 nodes, two values each: 5.6e6),
+  // so it tabulates H once per call
   // (<= 1217 quadratures, up to kGaborSpectrumWindowCycles; beyond, H's
   // asymptotic term, as gabor_spectrum): within 1e-15 of H(0) up to 64 cycles
   // per cell, < 3e-8 of H(0) beyond (docs/gabor.md "Cost of the spectra").
@@ -400,12 +401,12 @@ class gabor : public sample_noise<gabor<D>, D> {
 
   // The same with H(k), the tapered envelope's transform at k cycles per cell,
   // supplied by the caller (gabor_spectrum passes a table of it). window
-  // (cycles per cell): isotropic and hybrid 2D noise integrate only the Phi
+  // (cycles per cell): isotropic and hybrid noise integrate only the Phi
   // that bring a blob within `window` of f r; the default bounds every call
-  // whatever F0 and a (isotropic: <= 1344 calls of h; hybrid 2D: ~6e6;
-  // isotropic_mean, hybrid_window_2d); infinity takes every Phi (isotropic:
-  // same cost; hybrid 2D: the full average, cost ~ |Phi|^2). Hybrid 3D
-  // noise still costs ~ |Phi|^2 |f r| (docs/gabor.md, Not done).
+  // whatever F0, a and the spreads (calls of h: isotropic <= 1344; hybrid 2D
+  // <= 6.6e6, 3D <= 5.6e6; isotropic_mean, hybrid_window_2d, frequency_window,
+  // cap_mean); infinity takes every Phi (isotropic: same cost; hybrid: the full
+  // average, cost ~ |Phi|^2 in 2D, ~ |Phi| |f r| in 3D).
   template <class H>
   double spectrum_with(const vec<double, D>& f, H h,
                        double window = detail::constants::kGaborSpectrumWindowCycles) const {
@@ -712,7 +713,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   // the mean over the orientations at |Phi|: only |Phi| within `window` of
   // |xi| = x (both blobs are at least ||xi| - |Phi|| from xi; further, inner
   // leaves them out), panels 0.5 wide within 4 of x, 2 wide beyond: at most
-  // 16 (10 + window) = 1184 nodes (the whole range when window = infinity).
+  // 81 panels of 16 nodes, 1296 (the whole range when window = infinity).
   template <class F>
   double frequency_window(F inner, double x, double window) const {
     const double dphi = marks_.dphi(), phi0 = marks_.phi0();

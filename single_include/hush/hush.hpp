@@ -672,12 +672,13 @@ constexpr double kGaborMaxFrequency = 1e6;
 // frequency: the term left out is below 2e-13 of the result there
 // (gabor_kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
 constexpr double kGaborAsymptoticCycles = 1024.0;
-// Isotropic and hybrid 2D noise's power spectrum at xi integrates the
+// Isotropic and hybrid noise's power spectrum at xi integrates the
 // frequency vectors Phi only where a blob (+-Phi) is within this many cycles
 // per cell of xi (H's Gaussian core is <= 1.5 wide): what is left out, both
 // blobs in H's k^-3.5 tail, is ~1.7 W^-6 = 2.5e-11 of the isotropic ring's
 // peak and pointwise below (1.7 W^-3.5)^2 = 6.6e-13 of H(0)^2 (gabor.hpp
-// isotropic_mean, hybrid_window_2d; docs/gabor.md "Cost of the spectra");
+// isotropic_mean, hybrid_window_2d, cap_mean; docs/gabor.md "Cost of the
+// spectra");
 // gabor_spectrum tabulates H up to this.
 constexpr double kGaborSpectrumWindowCycles = 64.0;
 // Hybrid noise's power_spectrum takes up to ~5e6 values of H per call, each
@@ -4820,31 +4821,30 @@ class chebyshev_table {
  public:
   template <class F>
   chebyshev_table(F f, double lo, double hi, double width, int n)
-      : lo_(lo), n_(std::max(n, 2)) {
-    panels_ = std::max(1, static_cast<int>(std::ceil((hi - lo) / width)));
-    width_ = (hi - lo) / panels_;
-    values_.resize(static_cast<std::size_t>(panels_ * (n_ - 1) + 1));
-    node_.resize(static_cast<std::size_t>(n_));
-    for (int j = 0; j < n_; ++j)  // ascending on [0, 1]
-      node_[static_cast<std::size_t>(j)] = 0.5 - 0.5 * std::cos(constants::kPi * j / (n_ - 1));
-    for (int p = 0; p < panels_; ++p)
-      for (int j = p == 0 ? 0 : 1; j < n_; ++j)
-        values_[static_cast<std::size_t>(p * (n_ - 1) + j)] =
-            f(lo_ + width_ * (p + node_[static_cast<std::size_t>(j)]));
+      : lo_(lo), n_(static_cast<std::size_t>(std::max(n, 2))) {
+    const int panels = std::max(1, static_cast<int>(std::ceil((hi - lo) / width)));
+    panels_ = static_cast<std::size_t>(panels);
+    width_ = (hi - lo) / panels;
+    values_.resize(panels_ * (n_ - 1) + 1);
+    node_.resize(n_);
+    for (std::size_t j = 0; j < n_; ++j)  // ascending on [0, 1]
+      node_[j] = 0.5 - 0.5 * std::cos(constants::kPi * static_cast<double>(j) / static_cast<double>(n_ - 1));
+    for (std::size_t p = 0; p < panels_; ++p)
+      for (std::size_t j = p == 0 ? 0 : 1; j < n_; ++j)
+        values_[p * (n_ - 1) + j] = f(lo_ + width_ * (static_cast<double>(p) + node_[j]));
   }
 
   double operator()(double x) const {
     const double t = std::clamp((x - lo_) / width_, 0.0, static_cast<double>(panels_));
-    const int p = std::min(static_cast<int>(t), panels_ - 1);
-    const double s = t - p;
-    const double* v = &values_[static_cast<std::size_t>(p * (n_ - 1))];
+    const std::size_t p = std::min(static_cast<std::size_t>(t), panels_ - 1);
+    const double s = t - static_cast<double>(p);
     double num = 0, den = 0;
-    for (int j = 0; j < n_; ++j) {
-      const double d = s - node_[static_cast<std::size_t>(j)];
-      if (d == 0.0) return v[j];
+    for (std::size_t j = 0; j < n_; ++j) {
+      const double v = values_[p * (n_ - 1) + j], d = s - node_[j];
+      if (d == 0.0) return v;
       // Lobatto weights (-1)^j, halved at the ends.
-      const double w = ((j % 2 == 0) ? 1.0 : -1.0) * ((j == 0 || j == n_ - 1) ? 0.5 : 1.0) / d;
-      num += w * v[j];
+      const double w = ((j % 2 == 0) ? 1.0 : -1.0) * ((j == 0 || j + 1 == n_) ? 0.5 : 1.0) / d;
+      num += w * v;
       den += w;
     }
     return num / den;
@@ -4855,7 +4855,7 @@ class chebyshev_table {
 
  private:
   double lo_ = 0, width_ = 1;
-  int n_ = 2, panels_ = 1;
+  std::size_t n_ = 2, panels_ = 1;
   std::vector<double> node_, values_;
 };
 
@@ -5852,9 +5852,10 @@ class gabor : public sample_noise<gabor<D>, D> {
   // The power spectrum of the unit-variance noise at frequency f (cycles per
   // noise unit), exact: lambda E[w^2] E_F[|g^_F(f)|^2] scale^2. Quadrature of
   // the kernel transform for each call (isotropic: <= 1344 of them;
-  // anisotropic: 2). Hybrid noise averages over up to ~5e6 values of H (2D:
-  // ~3e6 in the frequency and orientation windows, ~3e7 below them; 3D: <= 1184
-  // spheres of <= 2144 nodes, two values each), so it tabulates H once per call
+  // anisotropic: 2). Hybrid noise averages over millions of values of H (2D:
+  // <= 6.6e6 in the frequency and orientation windows, <= 6.7e7 below them,
+  // |Phi| <= 64; 3D: <= 1296 spheres of <= 2144 nodes, two values each: 5.6e6),
+  // so it tabulates H once per call
   // (<= 1217 quadratures, up to kGaborSpectrumWindowCycles; beyond, H's
   // asymptotic term, as gabor_spectrum): within 1e-15 of H(0) up to 64 cycles
   // per cell, < 3e-8 of H(0) beyond (docs/gabor.md "Cost of the spectra").
@@ -5885,12 +5886,12 @@ class gabor : public sample_noise<gabor<D>, D> {
 
   // The same with H(k), the tapered envelope's transform at k cycles per cell,
   // supplied by the caller (gabor_spectrum passes a table of it). window
-  // (cycles per cell): isotropic and hybrid 2D noise integrate only the Phi
+  // (cycles per cell): isotropic and hybrid noise integrate only the Phi
   // that bring a blob within `window` of f r; the default bounds every call
-  // whatever F0 and a (isotropic: <= 1344 calls of h; hybrid 2D: ~6e6;
-  // isotropic_mean, hybrid_window_2d); infinity takes every Phi (isotropic:
-  // same cost; hybrid 2D: the full average, cost ~ |Phi|^2). Hybrid 3D
-  // noise still costs ~ |Phi|^2 |f r| (docs/gabor.md, Not done).
+  // whatever F0, a and the spreads (calls of h: isotropic <= 1344; hybrid 2D
+  // <= 6.6e6, 3D <= 5.6e6; isotropic_mean, hybrid_window_2d, frequency_window,
+  // cap_mean); infinity takes every Phi (isotropic: same cost; hybrid: the full
+  // average, cost ~ |Phi|^2 in 2D, ~ |Phi| |f r| in 3D).
   template <class H>
   double spectrum_with(const vec<double, D>& f, H h,
                        double window = detail::constants::kGaborSpectrumWindowCycles) const {
@@ -6197,7 +6198,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   // the mean over the orientations at |Phi|: only |Phi| within `window` of
   // |xi| = x (both blobs are at least ||xi| - |Phi|| from xi; further, inner
   // leaves them out), panels 0.5 wide within 4 of x, 2 wide beyond: at most
-  // 16 (10 + window) = 1184 nodes (the whole range when window = infinity).
+  // 81 panels of 16 nodes, 1296 (the whole range when window = infinity).
   template <class F>
   double frequency_window(F inner, double x, double window) const {
     const double dphi = marks_.dphi(), phi0 = marks_.phi0();

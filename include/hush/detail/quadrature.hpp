@@ -107,31 +107,30 @@ class chebyshev_table {
  public:
   template <class F>
   chebyshev_table(F f, double lo, double hi, double width, int n)
-      : lo_(lo), n_(std::max(n, 2)) {
-    panels_ = std::max(1, static_cast<int>(std::ceil((hi - lo) / width)));
-    width_ = (hi - lo) / panels_;
-    values_.resize(static_cast<std::size_t>(panels_ * (n_ - 1) + 1));
-    node_.resize(static_cast<std::size_t>(n_));
-    for (int j = 0; j < n_; ++j)  // ascending on [0, 1]
-      node_[static_cast<std::size_t>(j)] = 0.5 - 0.5 * std::cos(constants::kPi * j / (n_ - 1));
-    for (int p = 0; p < panels_; ++p)
-      for (int j = p == 0 ? 0 : 1; j < n_; ++j)
-        values_[static_cast<std::size_t>(p * (n_ - 1) + j)] =
-            f(lo_ + width_ * (p + node_[static_cast<std::size_t>(j)]));
+      : lo_(lo), n_(static_cast<std::size_t>(std::max(n, 2))) {
+    const int panels = std::max(1, static_cast<int>(std::ceil((hi - lo) / width)));
+    panels_ = static_cast<std::size_t>(panels);
+    width_ = (hi - lo) / panels;
+    values_.resize(panels_ * (n_ - 1) + 1);
+    node_.resize(n_);
+    for (std::size_t j = 0; j < n_; ++j)  // ascending on [0, 1]
+      node_[j] = 0.5 - 0.5 * std::cos(constants::kPi * static_cast<double>(j) / static_cast<double>(n_ - 1));
+    for (std::size_t p = 0; p < panels_; ++p)
+      for (std::size_t j = p == 0 ? 0 : 1; j < n_; ++j)
+        values_[p * (n_ - 1) + j] = f(lo_ + width_ * (static_cast<double>(p) + node_[j]));
   }
 
   double operator()(double x) const {
     const double t = std::clamp((x - lo_) / width_, 0.0, static_cast<double>(panels_));
-    const int p = std::min(static_cast<int>(t), panels_ - 1);
-    const double s = t - p;
-    const double* v = &values_[static_cast<std::size_t>(p * (n_ - 1))];
+    const std::size_t p = std::min(static_cast<std::size_t>(t), panels_ - 1);
+    const double s = t - static_cast<double>(p);
     double num = 0, den = 0;
-    for (int j = 0; j < n_; ++j) {
-      const double d = s - node_[static_cast<std::size_t>(j)];
-      if (d == 0.0) return v[j];
+    for (std::size_t j = 0; j < n_; ++j) {
+      const double v = values_[p * (n_ - 1) + j], d = s - node_[j];
+      if (d == 0.0) return v;
       // Lobatto weights (-1)^j, halved at the ends.
-      const double w = ((j % 2 == 0) ? 1.0 : -1.0) * ((j == 0 || j == n_ - 1) ? 0.5 : 1.0) / d;
-      num += w * v[j];
+      const double w = ((j % 2 == 0) ? 1.0 : -1.0) * ((j == 0 || j + 1 == n_) ? 0.5 : 1.0) / d;
+      num += w * v;
       den += w;
     }
     return num / den;
@@ -142,7 +141,7 @@ class chebyshev_table {
 
  private:
   double lo_ = 0, width_ = 1;
-  int n_ = 2, panels_ = 1;
+  std::size_t n_ = 2, panels_ = 1;
   std::vector<double> node_, values_;
 };
 
