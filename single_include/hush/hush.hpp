@@ -6147,8 +6147,9 @@ class gabor : public sample_noise<gabor<D>, D> {
   // with |xi|^2 + |Phi|^2 > window^2 the orientations within the windows
   // around xi's direction (k_- < window) and the opposite one (k_+ <
   // window), clipped to the arc, in isotropic_mean's variable u on each side;
-  // below, the whole arc (zero spread: omega0 alone). Outer nodes <= 16 (10 + window), inner per window
-  // and side <= 16 (10 + window / 2): bounded, ~6e6 calls of h at most.
+  // below, the whole arc (zero spread: omega0 alone). Outer nodes <= 1296
+  // (frequency_window), inner per window <= 2 x 640: bounded, ~6.6e6 calls of h
+  // at most.
   template <class H>
   double hybrid_window_2d(const vec<double, 2>& xi, H h, double window) const {
     namespace c = detail::constants;
