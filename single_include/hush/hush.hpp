@@ -6032,14 +6032,13 @@ class gabor : public sample_noise<gabor<D>, D> {
       return lattice_hash(key_, cell[0], cell[1], cell[2]);
   }
 
-  // The largest distance |f r| + |Phi| of a blob from f r (cycles per cell; NaN
-  // and infinity give infinity).
+  // The largest distance |f r| + |Phi| of a blob from f r plus 1 (cycles per
+  // cell); f infinite or NaN: 1 (spectrum_with gives 0 there without H).
   double transform_table_reach(const vec<double, D>& f) const {
     double len = 0;
     for (int i = 0; i < D; ++i) len += f[i] * f[i];
     const double reach = std::sqrt(len) * kernel_.radius() + marks_.phi0() + 0.5 * marks_.dphi();
-    return reach < std::numeric_limits<double>::infinity() ? reach + 1.0
-                                                           : std::numeric_limits<double>::infinity();
+    return (reach < std::numeric_limits<double>::infinity() ? reach : 0.0) + 1.0;
   }
 
   // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
@@ -6068,6 +6067,9 @@ class gabor : public sample_noise<gabor<D>, D> {
     // ~1e-10, less for narrower cores (the isotropic trapezoid rule with these
     // counts was at 4e-5 of the peak for t = 0.5; tests/gabor_kernel_test.cpp).
     const double reach = phi0 + 0.5 * dphi;
+    // No blob within the window of xi (|xi| beyond the band by W or more,
+    // infinite or NaN): 0, what the windows leave out everywhere.
+    if (!(xi_len - reach < window)) return 0.0;
     // Average over |Phi| (hybrid) of f(|Phi|).
     auto over_frequency = [&](auto f) {
       if (!hybrid || dphi == 0.0) return f(phi0);
