@@ -20,7 +20,6 @@ constexpr double kPi = hush::detail::constants::kPi;
 constexpr double kS0 = hush::detail::constants::kGaborTaperStart;
 using gabor_test_util::counted_stand_in;
 using gabor_test_util::off_axis;
-using gabor_test_util::stand_in_h;
 
 // The Gabor kernel of the paper (K = 1), untruncated, in double.
 double gabor_pure(double a, const hush::dvec2& x, const hush::dvec2& f) {
