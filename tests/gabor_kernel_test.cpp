@@ -11,12 +11,15 @@
 #include <string>
 #include <type_traits>
 
+#include "gabor_test_util.hpp"
 #include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
 
 namespace {
 
 constexpr double kPi = hush::detail::constants::kPi;
 constexpr double kS0 = hush::detail::constants::kGaborTaperStart;
+using gabor_test_util::counted_stand_in;
+using gabor_test_util::off_axis;
 
 // The Gabor kernel of the paper (K = 1), untruncated, in double.
 double gabor_pure(double a, const hush::dvec2& x, const hush::dvec2& f) {
@@ -501,19 +504,6 @@ TEST_CASE(
 
 namespace {
 
-// A stand-in for H (cell units) with its structure and the worst tail the
-// asymptotics allow (docs/gabor.md: |H(k) - core| <= 1.7 H(0) k^-3.5 in 2D,
-// 1.2 k^-4 in 3D, t = 0.5): the Gaussian core plus two cosines at the taper's
-// radii (<= 1 cycle per unit k), even and smooth in k like H, at 1 / 40 of
-// the real quadrature's cost, so the full orientation average stays cheap.
-template <int D>
-double stand_in_h(double A, double k) {
-  const double core = std::pow(kPi / A, 0.5 * D), k2 = k * k;
-  const double tail = (D == 2 ? 1.7 : 1.2) * core * std::pow(1.0 + k2, D == 2 ? -1.75 : -2.0);
-  return core * std::exp(-kPi * kPi * k2 / A) +
-         0.5 * tail * (std::cos(2 * kPi * std::sqrt(kS0) * k) + std::cos(2 * kPi * k));
-}
-
 // The orientation average of ((h(|xi - Phi|) + h(|xi + Phi|)) / 2)^2 by brute
 // force, the way hush computed it before the window (cost ~ |Phi| in 2D,
 // |Phi| |xi| in 3D), with 16 times the nodes in 2D (the trapezoidal rule
@@ -546,10 +536,7 @@ void check_window_equals_full(double cycles_per_cell, double truncation) {
   const hush::gabor<D> g(p);
   const double r = g.kernel().radius(), A = g.kernel().envelope_exponent(), phi = frequency * r;
   long calls = 0;
-  auto h = [A, &calls](double k) {
-    ++calls;
-    return stand_in_h<D>(A, k);
-  };
+  auto h = counted_stand_in<D>(A, calls);
   const double inf = std::numeric_limits<double>::infinity();
   // spectrum_with = factor * mean; with h = 1 and no window the mean is 1.
   auto factor = [&](const hush::vec<double, D>& f) {
@@ -675,10 +662,7 @@ TEST_CASE("gabor: hybrid 2D spectra over the frequency and orientation windows e
     const hush::gabor<2> g(p);
     const double A = g.kernel().envelope_exponent();
     long calls = 0;
-    auto h = [A, &calls](double k) {
-      ++calls;
-      return stand_in_h<2>(A, k);
-    };
+    auto h = counted_stand_in<2>(A, calls);
     const double inf = std::numeric_limits<double>::infinity();
     auto at = [&](double cycles, double angle) {
       return hush::dvec2{cycles / r * std::cos(angle), cycles / r * std::sin(angle)};
@@ -697,4 +681,66 @@ TEST_CASE("gabor: hybrid 2D spectra over the frequency and orientation windows e
       }
     }
   }
+}
+
+
+TEST_CASE("gabor: hybrid power_spectrum at F0 = 1e6 is bounded and equals the frequency density") {
+  // F0 = 1e6, a = 0.3 (|Phi| ~ 3e6 cycles per cell), frequency spread 1e6,
+  // orientation spread 1 rad: before, hybrid 3D took hours per value and 2D
+  // minutes. Independent value: where H's blob (~1 cycle per cell wide) is
+  // tiny against the range, the mean over Phi of ((H(k-) + H(k+)) / 2)^2 is
+  // p(xi) int H^2 / 4 (p: the density of Phi in cell frequencies, locally
+  // constant; int H^2 = the envelope's energy, Parseval) and the energy of
+  // each kernel is half the envelope's (cos^2), so S(f) = r^D p(xi) / 2 with
+  // p = 1 / (dphi arc |xi|) (2D) and 1 / (dphi 2 pi (1 - cos cap) |xi|^2)
+  // (3D). What that leaves out: the windows' tails (~W^-5 relative), p's
+  // change across the blob (~|Phi|^-2) and the table's asymptotic term
+  // beyond W in the far blob (< 3e-8 H(0)): a 1e-8 tolerance (measured 2e-11
+  // in 2D, -3.1e-10 in 3D).
+  auto check = [](const auto& g, const auto& f, double density, long bound) {
+    using V = std::decay_t<decltype(f)>;
+    const double a = g.kernel().envelope_exponent(), r = g.kernel().radius();
+    constexpr int D = sizeof(V) / sizeof(double);
+    const auto table = g.transform_table(f);
+    CHECK(table.calls() <= 64 * 19 + 1);
+    long calls = 0;
+    const double s = g.spectrum_with(f, [&](double k) {
+      ++calls;
+      return k <= 64.0 ? table(k) : hush::detail::gabor_envelope_transform_tail<D>(a, k);
+    });
+    CHECK(calls <= bound);
+    CHECK(std::isfinite(s));
+    CHECK(s == g.power_spectrum(f));
+    const double limit = std::pow(r, D) * density / 2;
+    MESSAGE(D << "D: S / (r^D p / 2) - 1 = " << s / limit - 1.0 << ", calls of H " << calls);
+    CHECK(s == doctest::Approx(limit).epsilon(1e-8));
+  };
+  auto at_1e6 = [](auto p) {
+    p.kind = hush::gabor_kind::hybrid;
+    p.frequency = 1e6;
+    p.bandwidth = 0.3;
+    p.frequency_spread = 1e6;
+    p.orientation = 0.5236;
+    p.elevation = 0.3;  // 3D only
+    p.orientation_spread = 1.0;
+    return p;
+  };
+  const hush::gabor<2> g2(at_1e6(hush::gabor<2>::params{}));
+  const double r2 = g2.kernel().radius(), f0 = 1.2e6;  // inside the band, off its centre
+  const hush::dvec2 f2{f0 * std::cos(0.7), f0 * std::sin(0.7)};
+  check(g2, f2, 1.0 / (g2.marks().dphi() * 1.0 * f0 * r2), 6600000L);
+  const hush::gabor<3> g3(at_1e6(hush::gabor<3>::params{}));
+  // f further than the window beyond the band, infinite or NaN: 0 (what the
+  // windows leave out), every kind of hybrid noise; before, 2D gave NaN.
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const double bad : {nan, inf, -inf, 1e300}) {
+    CHECK(g2.power_spectrum(hush::dvec2{bad, 0.0}) == 0.0);
+    CHECK(g3.power_spectrum(hush::dvec3{0.0, bad, 0.0}) == 0.0);
+  }
+  const double r3 = g3.kernel().radius();
+  const hush::dvec3 xi3 = off_axis(g3, f0 * r3, 0.3);
+  const double cap = g3.marks().cos_cap();
+  check(g3, hush::dvec3{xi3.x / r3, xi3.y / r3, xi3.z / r3},
+        1.0 / (g3.marks().dphi() * 2.0 * kPi * (1.0 - cap) * (f0 * r3) * (f0 * r3)),
+        1296L * 2 * 1072 * 2);
 }

@@ -1,4 +1,5 @@
-// Helpers of hush::gabor's suites (gabor_test.cpp, gabor_slow_test.cpp):
+// Helpers of hush::gabor's suites (gabor_test.cpp, gabor_slow_test.cpp,
+// gabor_kernel_test.cpp):
 // parameters, sample moments, independent points, periodograms and their
 // comparison with the exact spectrum, bin by bin set.
 #ifndef HUSH_TESTS_GABOR_TEST_UTIL_HPP
@@ -179,6 +180,94 @@ std::vector<bin_set_check> compare_bins(const std::vector<std::vector<double>>& 
   }
   return out;
 }
+
+// ---- The spectra's quadratures (gabor_kernel_test.cpp, gabor_slow_test.cpp).
+
+// A stand-in for H (cell units) with its structure and the worst tail the
+// asymptotics allow (docs/gabor.md: |H(k) - core| <= 1.7 H(0) k^-3.5 in 2D,
+// 1.2 k^-4 in 3D, t = 0.5): the Gaussian core plus two cosines at the taper's
+// radii (<= 1 cycle per unit k), even and smooth in k like H, at 1 / 40 of
+// the real quadrature's cost, so the full orientation average stays cheap.
+template <int D>
+double stand_in_h(double A, double k) {
+  const double core = std::pow(kPi / A, 0.5 * D), k2 = k * k;
+  const double tail = (D == 2 ? 1.7 : 1.2) * core * std::pow(1.0 + k2, D == 2 ? -1.75 : -2.0);
+  return core * std::exp(-kPi * kPi * k2 / A) +
+         0.5 * tail * (std::cos(2 * kPi * std::sqrt(hush::detail::constants::kGaborTaperStart) * k) + std::cos(2 * kPi * k));
+}
+
+// stand_in_h<D>(A, .) counting its calls in `calls`.
+template <int D>
+auto counted_stand_in(double A, long& calls) {
+  return [A, &calls](double k) {
+    ++calls;
+    return stand_in_h<D>(A, k);
+  };
+}
+
+// Hybrid 3D noise's spectrum the way hush computed it before the caps
+// (power_spectrum's cost ~ |Phi|^2 |xi| per value): |Phi| by panels 1 / 2
+// wide, on each sphere the cap in its own polar cosine (panels ~ |Phi| |xi|)
+// and azimuth (trapezoidal, nodes ~ |Phi|). Smooth, periodic in the azimuth:
+// accurate where it is affordable.
+template <class H>
+double old_hybrid_3d_mean(const hush::gabor<3>& g, const hush::dvec3& xi, H h) {
+  const auto& m = g.marks();
+  const double reach = m.phi0() + 0.5 * m.dphi(), cap = m.cos_cap();
+  const double xi_len = std::sqrt(xi.x * xi.x + xi.y * xi.y + xi.z * xi.z);
+  auto one = [&](const hush::dvec3& phi) {
+    const hush::dvec3 lo{xi.x - phi.x, xi.y - phi.y, xi.z - phi.z};
+    const hush::dvec3 hi{xi.x + phi.x, xi.y + phi.y, xi.z + phi.z};
+    const double v = 0.5 * (h(std::sqrt(lo.x * lo.x + lo.y * lo.y + lo.z * lo.z)) +
+                            h(std::sqrt(hi.x * hi.x + hi.y * hi.y + hi.z * hi.z)));
+    return v * v;
+  };
+  auto sphere = [&](double ph) {
+    const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
+    const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
+    auto ring = [&](double ct) {
+      double sum = 0;
+      const double st = std::sqrt(std::fmax((1.0 - ct) * (1.0 + ct), 0.0));
+      for (int i = 0; i < n; ++i) {
+        const double lx = st * std::cos(2.0 * kPi * i / n), ly = st * std::sin(2.0 * kPi * i / n);
+        hush::dvec3 phi;
+        for (int k = 0; k < 3; ++k)
+          phi[k] = ph * ((m.frame_t()[k] * lx + m.frame_b()[k] * ly) + m.frame_axis()[k] * ct);
+        sum += one(phi);
+      }
+      return sum / n;
+    };
+    return hush::detail::integrate(ring, cap, 1.0, panels) / (1.0 - cap);
+  };
+  const int panels = 1 + static_cast<int>(std::ceil(2.0 * m.dphi()));
+  return hush::detail::integrate(sphere, m.phi0() - 0.5 * m.dphi(), m.phi0() + 0.5 * m.dphi(),
+                                 panels) /
+         m.dphi();
+}
+
+inline hush::gabor<3> hybrid_3d(double cycles, double spread_cycles, double cap_angle, double truncation) {
+  hush::gabor<3>::params p;
+  p.kind = hush::gabor_kind::hybrid;
+  const double r = hush::gabor_kernel<3>(0.8, truncation).radius();
+  p.frequency = cycles / r;
+  p.frequency_spread = spread_cycles / r;
+  p.truncation = truncation;
+  p.orientation = 0.5236;
+  p.elevation = 0.3;
+  p.orientation_spread = cap_angle;
+  return hush::gabor<3>(p);
+}
+
+// xi (cycles per cell) at `cycles` from 0, `angle` radians from the cap's
+// axis, in the plane of the axis and frame_t.
+inline hush::dvec3 off_axis(const hush::gabor<3>& g, double cycles, double angle) {
+  const auto& m = g.marks();
+  hush::dvec3 xi;
+  for (int k = 0; k < 3; ++k)
+    xi[k] = cycles * (std::cos(angle) * m.frame_axis()[k] + std::sin(angle) * m.frame_t()[k]);
+  return xi;
+}
+
 
 }  // namespace gabor_test_util
 

@@ -83,6 +83,7 @@
 #ifndef HUSH_GABOR_HPP
 #define HUSH_GABOR_HPP
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -365,21 +366,47 @@ class gabor : public sample_noise<gabor<D>, D> {
 
   // The power spectrum of the unit-variance noise at frequency f (cycles per
   // noise unit), exact: lambda E[w^2] E_F[|g^_F(f)|^2] scale^2. Quadrature of
-  // the kernel transform for each call (milliseconds); gabor_spectrum tabulates
-  // it for images.
+  // the kernel transform for each call (isotropic: <= 1344 of them;
+  // anisotropic: 2). Hybrid noise averages over millions of values of H (2D:
+  // <= 6.6e6 in the frequency and orientation windows, <= 6.7e7 below them,
+  // |Phi| <= 64; 3D: <= 1296 spheres of <= 2144 nodes, two values each: 5.6e6),
+  // so it tabulates H once per call
+  // (<= 1217 quadratures, up to kGaborSpectrumWindowCycles; beyond, H's
+  // asymptotic term, as gabor_spectrum): within 1e-15 of H(0) up to 64 cycles
+  // per cell, < 3e-8 of H(0) beyond (docs/gabor.md "Cost of the spectra").
+  // gabor_spectrum tabulates the spectrum itself for images.
   double power_spectrum(const vec<double, D>& f) const {
+    namespace c = detail::constants;
     const double a = kernel_.envelope_exponent();
-    return spectrum_with(f, [a](double k) { return detail::gabor_envelope_transform<D>(a, k); });
+    auto exact = [a](double k) { return detail::gabor_envelope_transform<D>(a, k); };
+    if (prm_.kind != gabor_kind::hybrid) return spectrum_with(f, exact);
+    const detail::chebyshev_table table = transform_table(f);
+    const double top = std::fmin(transform_table_reach(f), c::kGaborSpectrumWindowCycles);
+    return spectrum_with(f, [&](double k) {
+      return k <= top ? table(k) : detail::gabor_envelope_transform_tail<D>(a, k);
+    });
+  }
+
+  // The table power_spectrum(f) takes H from for hybrid noise (exposed for
+  // its tests: calls() counts the quadratures), over [0, min(|f r| + |Phi|max,
+  // kGaborSpectrumWindowCycles)] (no blob is further from f r).
+  detail::chebyshev_table transform_table(const vec<double, D>& f) const {
+    namespace c = detail::constants;
+    const double a = kernel_.envelope_exponent();
+    return detail::chebyshev_table(
+        [a](double k) { return detail::gabor_envelope_transform<D>(a, k); }, 0.0,
+        std::fmin(transform_table_reach(f), c::kGaborSpectrumWindowCycles),
+        c::kGaborTransformTablePanel, c::kGaborTransformTableNodes);
   }
 
   // The same with H(k), the tapered envelope's transform at k cycles per cell,
   // supplied by the caller (gabor_spectrum passes a table of it). window
-  // (cycles per cell): isotropic and hybrid 2D noise integrate only the Phi
+  // (cycles per cell): isotropic and hybrid noise integrate only the Phi
   // that bring a blob within `window` of f r; the default bounds every call
-  // whatever F0 and a (isotropic: <= 1344 calls of h; hybrid 2D: ~6e6;
-  // isotropic_mean, hybrid_window_2d); infinity takes every Phi (isotropic:
-  // same cost; hybrid 2D: the full average, cost ~ |Phi|^2). Hybrid 3D
-  // noise still costs ~ |Phi|^2 |f r| (docs/gabor.md, Not done).
+  // whatever F0, a and the spreads (calls of h: isotropic <= 1344; hybrid 2D
+  // <= 6.6e6, 3D <= 5.6e6; isotropic_mean, hybrid_window_2d, frequency_window,
+  // cap_mean); infinity takes every Phi (isotropic: same cost; hybrid: the full
+  // average, cost ~ |Phi|^2 in 2D, ~ |Phi| |f r| in 3D).
   template <class H>
   double spectrum_with(const vec<double, D>& f, H h,
                        double window = detail::constants::kGaborSpectrumWindowCycles) const {
@@ -520,6 +547,15 @@ class gabor : public sample_noise<gabor<D>, D> {
       return lattice_hash(key_, cell[0], cell[1], cell[2]);
   }
 
+  // The largest distance |f r| + |Phi| of a blob from f r plus 1 (cycles per
+  // cell); f infinite or NaN: 1 (spectrum_with gives 0 there without H).
+  double transform_table_reach(const vec<double, D>& f) const {
+    double len = 0;
+    for (int i = 0; i < D; ++i) len += f[i] * f[i];
+    const double reach = std::sqrt(len) * kernel_.radius() + marks_.phi0() + 0.5 * marks_.dphi();
+    return (reach < std::numeric_limits<double>::infinity() ? reach : 0.0) + 1.0;
+  }
+
   // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
   // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
   template <class H>
@@ -546,6 +582,9 @@ class gabor : public sample_noise<gabor<D>, D> {
     // ~1e-10, less for narrower cores (the isotropic trapezoid rule with these
     // counts was at 4e-5 of the peak for t = 0.5; tests/gabor_kernel_test.cpp).
     const double reach = phi0 + 0.5 * dphi;
+    // No blob within the window of xi (|xi| beyond the band by W or more,
+    // infinite or NaN): 0, what the windows leave out everywhere.
+    if (!(xi_len - reach < window)) return 0.0;
     // Average over |Phi| (hybrid) of f(|Phi|).
     auto over_frequency = [&](auto f) {
       if (!hybrid || dphi == 0.0) return f(phi0);
@@ -566,31 +605,16 @@ class gabor : public sample_noise<gabor<D>, D> {
         return detail::integrate(at, theta0 - 0.5 * spread, theta0 + 0.5 * spread, panels) / spread;
       });
     } else {
-      return over_frequency([&](double ph) {
-        const double cap = marks_.cos_cap();
-        if (cap >= 1.0) {  // zero spread: omega0 only
-          vec<double, 3> phi;
-          for (int i = 0; i < 3; ++i) phi[i] = ph * marks_.axis()[i];
-          return one(phi);
-        }
-        const int n = 32 + static_cast<int>(std::ceil(32.0 * reach));
-        const int panels = 2 + static_cast<int>(std::ceil(4.0 * reach * (xi_len + 1.0)));
-        auto ring = [&](double ct) {  // average over the azimuth at polar cosine ct
-          double sum = 0;
-          for (int i = 0; i < n; ++i) {
-            const double u2 = static_cast<double>(i) / n;
-            const double st = std::sqrt(std::fmax((1.0 - ct) * (1.0 + ct), 0.0));
-            const double lx = st * std::cos(c::kTwoPi * u2), ly = st * std::sin(c::kTwoPi * u2);
-            vec<double, 3> phi;
-            for (int k = 0; k < 3; ++k)
-              phi[k] = ph * ((marks_.frame_t()[k] * lx + marks_.frame_b()[k] * ly) +
-                             marks_.frame_axis()[k] * ct);
-            sum += one(phi);
-          }
-          return sum / n;
-        };
-        return detail::integrate(ring, cap, 1.0, panels) / (1.0 - cap);
-      });
+      // Over |Phi| as hybrid 2D noise (frequency_window), on each sphere over
+      // the cap (cap_mean): bounded whatever the window, F0 and the spreads.
+      double cb = 1.0;  // cos of the angle between xi and the cap's axis
+      if (xi_len > 0.0) {
+        cb = 0.0;
+        for (int i = 0; i < 3; ++i) cb += xi[i] * marks_.frame_axis()[i];
+        cb = std::fmax(-1.0, std::fmin(1.0, cb / xi_len));
+      }
+      return frequency_window(
+          [&](double ph) { return cap_mean(xi_len, ph, cb, h, window); }, xi_len, window);
     }
   }
 
@@ -640,13 +664,13 @@ class gabor : public sample_noise<gabor<D>, D> {
   // with |xi|^2 + |Phi|^2 > window^2 the orientations within the windows
   // around xi's direction (k_- < window) and the opposite one (k_+ <
   // window), clipped to the arc, in isotropic_mean's variable u on each side;
-  // below, the whole arc (zero spread: omega0 alone). Outer nodes <= 16 (10 + window), inner per window
-  // and side <= 16 (10 + window / 2): bounded, ~6e6 calls of h at most.
+  // below, the whole arc (zero spread: omega0 alone). Outer nodes <= 1296
+  // (frequency_window), inner per window <= 2 x 640: bounded, ~6.6e6 calls of h
+  // at most.
   template <class H>
   double hybrid_window_2d(const vec<double, 2>& xi, H h, double window) const {
     namespace c = detail::constants;
     const double x = std::sqrt(xi[0] * xi[0] + xi[1] * xi[1]);
-    const double dphi = marks_.dphi(), phi0 = marks_.phi0();
     const double arc = c::kTwoPi * marks_.spread_turns(), centre = c::kTwoPi * marks_.theta0();
     const double dir = std::atan2(xi[1], xi[0]);
     auto inner = [&](double ph) {  // mean over the arc at |Phi| = ph
@@ -685,11 +709,103 @@ class gabor : public sample_noise<gabor<D>, D> {
       }
       return sum / arc;
     };
+    return frequency_window(inner, x, window);
+  }
+
+  // Hybrid noise's mean over |Phi| uniform in [phi0 -+ dphi / 2] of inner(|Phi|),
+  // the mean over the orientations at |Phi|: only |Phi| within `window` of
+  // |xi| = x (both blobs are at least ||xi| - |Phi|| from xi; further, inner
+  // leaves them out), panels 0.5 wide within 4 of x, 2 wide beyond: at most
+  // 81 panels of 16 nodes, 1296 (the whole range when window = infinity).
+  template <class F>
+  double frequency_window(F inner, double x, double window) const {
+    const double dphi = marks_.dphi(), phi0 = marks_.phi0();
     if (dphi == 0.0) return inner(phi0);
     const double lo = std::fmax(phi0 - 0.5 * dphi, x - window);
     const double hi = std::fmin(phi0 + 0.5 * dphi, x + window);
     if (!(hi > lo)) return 0.0;
     return core_rule(inner, lo, hi, x) / dphi;
+  }
+
+  // Hybrid 3D noise's mean of ((H(k_-) + H(k_+)) / 2)^2 over Phi uniform on the
+  // cap {omega . axis >= cap} of the sphere |Phi| = ph, |xi| = x, cb = cos beta
+  // (beta: xi's angle to the axis). With gamma Phi's angle to xi, k_-^2 =
+  // x^2 + ph^2 - 2 x ph cos gamma, k_+ the same with -cos gamma; on the circle
+  // of directions at gamma (azimuth psi around xi) omega . axis = cos gamma cb
+  // + sin gamma sin beta cos psi, so the cap holds the fraction w(gamma) =
+  // acos(clamp((cap - cos gamma cb) / (sin gamma sin beta))) / pi of it, and
+  // the mean is int G w d cos gamma / (1 - cap) (int w d cos gamma = 1 - cap).
+  // As in isotropic_mean, cos gamma >= 0 in k = k_- and cos gamma <= 0 in
+  // k = k_+ (d cos gamma = -+ k dk / (x ph)), each only while k < window
+  // (what is left out: both blobs in H's tail, as there). w has square-root
+  // ends where the circle touches the cap's rim, gamma = beta -+ theta
+  // (cos theta = cap): the rule is cut there and each piece integrated by
+  // integrate_ends. Nodes per half <= 16 (1 + 2 + ceil(4 pi) + ceil(window pi
+  // / 4)) = 1072 with the window (two calls of h each).
+  template <class H>
+  double cap_mean(double x, double ph, double cb, H& h, double window) const {
+    const double cap = marks_.cos_cap();
+    const double kmin = std::fabs(x - ph);
+    if (!(kmin < window)) return 0.0;  // both blobs beyond the window (or xi = inf)
+    const double xp = x * ph, base = x * x + ph * ph;
+    if (!(xp > 1e-150)) return blob_pair(h, base, base);  // Phi = 0 or xi = 0: one value
+    if (cap >= 1.0) return blob_pair(h, base - 2.0 * xp * cb, base + 2.0 * xp * cb);  // omega0
+    const double sb = std::sqrt(std::fmax((1.0 - cb) * (1.0 + cb), 0.0));
+    const double st = std::sqrt(std::fmax((1.0 - cap) * (1.0 + cap), 0.0));
+    auto weight = [&](double cg) {
+      const double num = cap - cg * cb, den = std::sqrt(std::fmax((1.0 - cg) * (1.0 + cg), 0.0)) * sb;
+      if (!(num < den)) return 0.0;   // the whole circle outside the cap
+      if (!(num > -den)) return 1.0;  // inside
+      return std::acos(num / den) / detail::constants::kPi;
+    };
+    const double rim[2] = {cb * cap - sb * st, cb * cap + sb * st};  // cos(beta +- theta)
+    double sum = 0;
+    if (xp < 1.0) {  // k moves by < 1 over cos gamma in [-1, 1]: integrate in cos gamma
+      const double c_lo = std::fmax(0.0, (base - window * window) / (2.0 * xp));
+      for (const double side : {1.0, -1.0}) {
+        if (!(c_lo < 1.0)) break;
+        auto g = [&](double c) {
+          const double cg = side * c;
+          return blob_pair(h, base - 2.0 * xp * cg, base + 2.0 * xp * cg) * weight(cg);
+        };
+        sum += cut_rule(g, c_lo, 1.0, 1.0, {side * rim[0], side * rim[1]}, 1.0);
+      }
+      return sum / (1.0 - cap);
+    }
+    const double k_hi = std::fmin(window, std::sqrt(base));
+    for (const double side : {1.0, -1.0}) {
+      auto g = [&](double k) {
+        const double k2 = k * k, far2 = 2.0 * base - k2;
+        const double cg = side * (base - k2) / (2.0 * xp);
+        return k * (side > 0 ? blob_pair(h, k2, far2) : blob_pair(h, far2, k2)) * weight(cg);
+      };
+      auto at_rim = [&](double c) {  // k where cos gamma = c on this side
+        return std::sqrt(std::fmax(base - 2.0 * xp * side * c, 0.0));
+      };
+      sum += cut_rule(g, kmin, k_hi, kmin + 4.0, {at_rim(rim[0]), at_rim(rim[1])}, 0.5);
+    }
+    return sum / ((1.0 - cap) * xp);
+  }
+
+  // integrate_ends over [lo, hi] cut at `cuts` (those inside) and at `core`:
+  // panels per unit 2 below core, `per` beyond (H oscillates at <= 1 cycle per
+  // unit k, its core is within 4 of k = 0), pi / 2 times that for the map.
+  template <class G>
+  static double cut_rule(G& g, double lo, double hi, double core, std::array<double, 2> cuts,
+                         double per) {
+    std::array<double, 5> at = {lo, hi, std::fmin(std::fmax(core, lo), hi),
+                                std::fmin(std::fmax(cuts[0], lo), hi),
+                                std::fmin(std::fmax(cuts[1], lo), hi)};
+    std::sort(at.begin(), at.end());
+    double sum = 0;
+    for (std::size_t i = 0; i + 1 < at.size(); ++i) {
+      const double a = at[i], b = at[i + 1];
+      if (!(b > a)) continue;
+      const double density = b <= core ? 2.0 : per;
+      sum += detail::integrate_ends(
+          g, a, b, 1 + static_cast<int>(std::ceil(density * (b - a) * 0.5 * detail::constants::kPi)));
+    }
+    return sum;
   }
 
   template <class H>

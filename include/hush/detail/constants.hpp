@@ -293,14 +293,25 @@ constexpr double kGaborMaxFrequency = 1e6;
 // frequency: the term left out is below 2e-13 of the result there
 // (gabor_kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
 constexpr double kGaborAsymptoticCycles = 1024.0;
-// Isotropic and hybrid 2D noise's power spectrum at xi integrates the
+// Isotropic and hybrid noise's power spectrum at xi integrates the
 // frequency vectors Phi only where a blob (+-Phi) is within this many cycles
 // per cell of xi (H's Gaussian core is <= 1.5 wide): what is left out, both
 // blobs in H's k^-3.5 tail, is ~1.7 W^-6 = 2.5e-11 of the isotropic ring's
 // peak and pointwise below (1.7 W^-3.5)^2 = 6.6e-13 of H(0)^2 (gabor.hpp
-// isotropic_mean, hybrid_window_2d; docs/gabor.md "Cost of the spectra");
+// isotropic_mean, hybrid_window_2d, cap_mean; docs/gabor.md "Cost of the
+// spectra");
 // gabor_spectrum tabulates H up to this.
 constexpr double kGaborSpectrumWindowCycles = 64.0;
+// Hybrid noise's power_spectrum takes up to ~5e6 values of H per call, each
+// a quadrature of up to ~500 nodes: it tabulates H once per call instead
+// (detail::chebyshev_table) up to the largest k needed but at most
+// kGaborSpectrumWindowCycles (<= 64 * 19 + 1 = 1217 quadratures), on panels
+// this wide (cycles per cell; H oscillates at <= 1 cycle per unit k) with this
+// many Chebyshev points each: measured within 1e-15 of H(0) (t = 1e-9 ... 0.5,
+// 2D and 3D: tests/gabor_kernel_test.cpp); beyond, H's asymptotic term, as
+// gabor_spectrum.
+constexpr double kGaborTransformTablePanel = 1.0;
+constexpr int kGaborTransformTableNodes = 20;
 // N' (mean number of kernels overlapping a point): the papers use 16 ... 128.
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
