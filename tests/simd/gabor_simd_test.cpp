@@ -193,9 +193,10 @@ TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, 
   finer.step = {1.0 / 300, 1.0 / 29};
   finer.size = {700, 9};
   check_grid(g2, finer);
-  hush::grid<2> far = fine;  // far from the origin, negative steps
+  hush::grid<2> far = fine;  // far from the origin, negative steps; rows of 2 blocks along x
   far.origin = {-1e9, 3.5e7};
   far.step = {-1.0 / 50, 1.0 / 64};
+  far.size = {300, 40};
   check_grid(g2, far);
   hush::grid<2> coarse = fine;  // about one sample per cell: the points path
   coarse.step = {0.9, -1.3};
@@ -209,6 +210,9 @@ TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, 
   cube.size = {45, 23, 19};
   check_grid(g3, cube);
   check_grid(a3, cube);
+  hush::grid<3> wide = cube;  // 3 blocks along x, cut within cells
+  wide.size = {150, 7, 5};
+  check_grid(g3, wide);
 }
 
 namespace {
