@@ -29,13 +29,14 @@
 //    into a list that the kernel then evaluates in full vectors; each point's terms are summed
 //    in stream order. The unfiltered kernel of kept impulses skips exp's and sin/cos's range
 //    handling (identities within the support: exp_neg_in_range, sincos_turns_in_range);
-//  - grids: samples in blocks that share their cell (up to 64 per row, 64 rows; 3D 64 x 32 x
-//    16), each impulse of the block's 3^D cells evaluated once per block: its factors along y
+//  - grids: samples in blocks that share their cell along y (and z) and span several cells
+//    along x (kBlockX: 256 samples per row, up to 64 rows; 3D 64 x 32 x 16), each impulse of
+//    the cells that the block's samples see evaluated once per block: its factors along y
 //    (and z) once per row (slice), along x once per column, and per sample only their products
 //    (gabor_kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
 //    support) over the x-vectors that reach the impulse's disk in that row (the row skip);
-//    each cell's impulses drawn once into a small cache for the 3^D blocks that see it (the
-//    draw cache). Grids with fewer than kMinRun samples per cell along x go through the points
+//    each cell's impulses drawn once into a small cache for the blocks that see it (the draw
+//    cache). Grids with fewer than kMinRun samples per cell along x go through the points
 //    path instead.
 
 #if defined(HUSH_SIMD_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -1674,12 +1675,13 @@ struct grid_kernel {
     std::size_t begin, end;
   };
   std::vector<std::int32_t> rel;
+  static constexpr std::int32_t kFar = 1 << 20;  // rel of non-finite samples and padding
   std::vector<float> ox;
   std::vector<xrun> xruns;
   std::vector<std::int32_t> visits;
 
   // Each cell's impulses (positions, weight, frequency: stream order) drawn
-  // once for the 3^D blocks that see it, in a direct-mapped cache keyed by the
+  // once for the blocks that see it, in a direct-mapped cache keyed by the
   // cell (the low bits of its indices pick the slot: blocks go along x, so the
   // cells in use stay apart); a slot shared by two cells in use only repeats
   // a draw.
@@ -1757,7 +1759,12 @@ struct grid_kernel {
         }
         const VF b = hn::Set(df, r.we * r.c), q = hn::Set(df, r.we * r.s);
         const VF rd2 = hn::Set(df, r.d2);
-        float* arow = acc.data() + (kk * ny + jj) * stride;
+        // Local restrict pointers: the sums' stores alias no factor, so the
+        // loop keeps them in registers.
+        float* HWY_RESTRICT arow = acc.data() + (kk * ny + jj) * stride;
+        const float* HWY_RESTRICT xec = fx.ec.data();
+        const float* HWY_RESTRICT xes = fx.es.data();
+        const float* HWY_RESTRICT xd2 = fx.d2.data();
         // The row's chord of the support, by whole vectors: a vector whose
         // least d^2 plus the row's is >= 1 only adds +-0 (float addition and
         // the taper's steps are monotonic), so skipping it changes nothing.
@@ -1765,8 +1772,8 @@ struct grid_kernel {
         while (ib < ie && !(fx.vmin[ib / lanes] + r.d2 < 1.0f)) ib += lanes;
         while (ie > ib && !(fx.vmin[ie / lanes - 1] + r.d2 < 1.0f)) ie -= lanes;
         for (std::size_t ii = ib; ii < ie; ii += lanes) {
-          const VF ec = hn::LoadU(df, fx.ec.data() + ii), es = hn::LoadU(df, fx.es.data() + ii);
-          const VF s2 = hn::Add(hn::LoadU(df, fx.d2.data() + ii), rd2);
+          const VF ec = hn::LoadU(df, xec + ii), es = hn::LoadU(df, xes + ii);
+          const VF s2 = hn::Add(hn::LoadU(df, xd2 + ii), rd2);
           if constexpr (G) {
             VF v, uu, vv;
             pair_gradient_of_products(ec, es, b, q, s2, c.k, c.a, v, uu, vv);
@@ -1820,7 +1827,6 @@ struct grid_kernel {
     std::size_t f0 = 0;
     while (f0 < nx && axes[0].bad[i0 + f0]) ++f0;
     const std::uint32_t ref = f0 < nx ? axes[0].cell[i0 + f0] : 0u;
-    constexpr std::int32_t kFar = 1 << 20;
     xruns.clear();
     visits.clear();
     for (std::size_t i = 0; i < nx_pad; ++i) {
@@ -1887,19 +1893,29 @@ struct grid_kernel {
     const float scale = float(g.scale()), gscale = float(g.scale() * g.inverse_cell());
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const std::size_t gx = gr.size[0], gy = gr.size[1];
+    const VF vscale = hn::Set(df, scale), vnan = hn::Set(df, nan);
+    const VI far = hn::Set(di, kFar);
     for (std::size_t kk = 0; kk < nz; ++kk)
       for (std::size_t jj = 0; jj < ny; ++jj) {
         const bool row_bad = axes[1].bad[j0 + jj] || (D == 3 && axes[D - 1].bad[k0 + kk]);
         const std::size_t out_row = ((k0 + kk) * gy + (j0 + jj)) * gx + i0;
         const float* arow = acc.data() + (kk * ny + jj) * stride;
-        for (std::size_t ii = 0; ii < nx; ++ii) {
-          const bool bad = row_bad || axes[0].bad[i0 + ii];
-          value[out_row + ii] = bad ? nan : arow[ii] * scale;
-          if constexpr (G)
+        std::size_t ii = 0;
+        if (!row_bad)  // whole vectors; rel marks the non-finite samples
+          for (; ii + lanes <= nx; ii += lanes) {
+            const MF bad = hn::RebindMask(df, hn::Eq(hn::LoadU(di, rel.data() + ii), far));
+            hn::StoreU(hn::IfThenElse(bad, vnan, hn::Mul(hn::LoadU(df, arow + ii), vscale)), df,
+                       value + out_row + ii);
+          }
+        for (; ii < nx; ++ii)
+          value[out_row + ii] = row_bad || axes[0].bad[i0 + ii] ? nan : arow[ii] * scale;
+        if constexpr (G)
+          for (ii = 0; ii < nx; ++ii) {
+            const bool bad = row_bad || axes[0].bad[i0 + ii];
             for (int a = 0; a < D; ++a)
               grad[(out_row + ii) * D + static_cast<std::size_t>(a)] =
                   bad ? nan : gacc[a][(kk * ny + jj) * stride + ii] * gscale;
-        }
+          }
       }
   }
 };
