@@ -11674,12 +11674,11 @@ struct grid_kernel {
                        hn::Set(df, phi[1]));
             if (fy.lo >= fy.hi) continue;
             if constexpr (D == 3) {
-              fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(oz), u[2],
-                         c.neg_a, hn::Set(df, phi[2]));
+              fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(oz), u[2], c.neg_a,
+                         hn::Set(df, phi[2]));
               if (fz.lo >= fz.hi) continue;
             }
-            fx.compute(frac[0].data(), hi, 0.0f, u[0], c.neg_a, hn::Set(df, phi[0]), ox.data(),
-                       lo);
+            fx.compute(frac[0].data(), hi, 0.0f, u[0], c.neg_a, hn::Set(df, phi[0]), ox.data(), lo);
             if (fx.lo >= fx.hi) continue;
             add_impulse(phi, wt, ny, nz);
           }

@@ -9,11 +9,13 @@
 // gabor.hpp. Covered: random points with every tail length up to three
 // vectors and the hard cases in every lane position, points crowded in a few
 // cells (the shared-cell path) beside far and NaN ones, grids near and far, with
-// negative and coarse steps (the points path) and fine ones (the block path),
+// negative and coarse steps (the points path) and fine ones (the block path:
+// blocks across cells, several blocks per row, rows overflowing to Inf halfway),
 // 2D and 3D, every kind, samples with footprints and with normals (surface noise:
 // unit, tiny, zero and non-finite normals, with and without footprints).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -198,6 +200,20 @@ TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, 
   far.step = {-1.0 / 50, 1.0 / 64};
   far.size = {300, 40};
   check_grid(g2, far);
+  // Rows that overflow to +Inf halfway (non-finite samples beside finite ones in one block:
+  // every finite x here is a multiple of 2^32, cell 0 with fraction 0, so the block path).
+  hush::grid<2> overflow = fine;
+  overflow.origin = {1.79e308, 0.5};
+  overflow.step = {1e305, 1.0 / 37};
+  overflow.size = {150, 5};
+  {
+    std::vector<float> v(overflow.count());
+    hush::evaluate_grid(g2, hush::exec::scalar, overflow, hush::span<float>(v));
+    const auto nans = std::count_if(v.begin(), v.end(), [](float x) { return std::isnan(x); });
+    REQUIRE(nans > 0);  // the premise: both kinds of sample in each row
+    REQUIRE(nans < static_cast<std::ptrdiff_t>(v.size()));
+  }
+  check_grid(g2, overflow);
   hush::grid<2> coarse = fine;  // about one sample per cell: the points path
   coarse.step = {0.9, -1.3};
   coarse.size = {40, 33};
