@@ -214,6 +214,13 @@ TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, 
     REQUIRE(nans < static_cast<std::ptrdiff_t>(v.size()));
   }
   check_grid(g2, overflow);
+  // So far out that a double's spacing is 2^30 cells or more: ~21 samples per distinct
+  // position, neighbouring ones' cells 2^30 or more apart (mod 2^32): blocks of one cell's run.
+  hush::grid<2> huge = fine;
+  huge.origin = {1e25, 0.25};
+  huge.size = {200, 3};
+  huge.step = {1e8, 1.0 / 37};
+  check_grid(g2, huge);
   hush::grid<2> coarse = fine;  // about one sample per cell: the points path
   coarse.step = {0.9, -1.3};
   coarse.size = {40, 33};

@@ -1962,18 +1962,37 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   }
   // Block buffers sized by the longest runs, not the caps: small grids do not pay for
   // (and page-fault in) buffers they never fill.
-  // Along x, blocks of kBlockX samples whatever their cells (see block()).
+  // Along x, blocks of kBlockX samples whatever their cells (see block()) where
+  // the finite samples' cells step by at most one (so a block's cells relative to
+  // its first are small and ascend or descend); else (only where coordinates are
+  // so large that a double's spacing exceeds a cell) blocks of one cell's run.
+  bool steps_of_one = true;
+  for (std::size_t i = 0, last = nx; i < nx && steps_of_one; ++i) {
+    if (axes[0].bad[i]) continue;
+    if (last < nx) {
+      const auto step = static_cast<std::int32_t>(axes[0].cell[i] - axes[0].cell[last]);
+      steps_of_one = step >= -1 && step <= 1;
+    }
+    last = i;
+  }
   const std::size_t bx = std::min(nx, kBlockX[D - 2]);
   grid_kernel<D, G> kernel(g, bx, axes[1].longest_run(), D == 3 ? axes[D - 1].longest_run() : 1);
+  auto each_block = [&](auto&& f) {
+    if (steps_of_one)
+      for (std::size_t i0 = 0; i0 < nx; i0 += bx) f(i0, std::min(bx, nx - i0));
+    else
+      for (std::size_t xr = 0; xr < axes[0].runs(); ++xr)
+        f(axes[0].run_start[xr], axes[0].run_start[xr + 1] - axes[0].run_start[xr]);
+  };
   const std::size_t zruns = D == 3 ? axes[D - 1].runs() : 1;
   for (std::size_t zr = 0; zr < zruns; ++zr) {
     const std::size_t k0 = D == 3 ? axes[D - 1].run_start[zr] : 0;
     const std::size_t k1 = D == 3 ? axes[D - 1].run_start[zr + 1] : 1;
     for (std::size_t yr = 0; yr < axes[1].runs(); ++yr) {
       const std::size_t j0 = axes[1].run_start[yr], j1 = axes[1].run_start[yr + 1];
-      for (std::size_t i0 = 0; i0 < nx; i0 += bx)
-        kernel.block(axes.data(), i0, std::min(bx, nx - i0), j0, j1 - j0, k0, k1 - k0, gr, value,
-                     grad);
+      each_block([&](std::size_t i0, std::size_t n) {
+        kernel.block(axes.data(), i0, n, j0, j1 - j0, k0, k1 - k0, gr, value, grad);
+      });
     }
   }
 }
