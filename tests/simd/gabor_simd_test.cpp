@@ -9,11 +9,13 @@
 // gabor.hpp. Covered: random points with every tail length up to three
 // vectors and the hard cases in every lane position, points crowded in a few
 // cells (the shared-cell path) beside far and NaN ones, grids near and far, with
-// negative and coarse steps (the points path) and fine ones (the block path),
+// negative and coarse steps (the points path) and fine ones (the block path:
+// blocks across cells, several blocks per row, rows overflowing to Inf halfway),
 // 2D and 3D, every kind, samples with footprints and with normals (surface noise:
 // unit, tiny, zero and non-finite normals, with and without footprints).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -193,10 +195,32 @@ TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, 
   finer.step = {1.0 / 300, 1.0 / 29};
   finer.size = {700, 9};
   check_grid(g2, finer);
-  hush::grid<2> far = fine;  // far from the origin, negative steps
+  hush::grid<2> far = fine;  // far from the origin, negative steps; rows of 2 blocks along x
   far.origin = {-1e9, 3.5e7};
   far.step = {-1.0 / 50, 1.0 / 64};
+  far.size = {300, 40};
   check_grid(g2, far);
+  // Rows that overflow to +Inf halfway (non-finite samples beside finite ones in one block:
+  // every finite x here is a multiple of 2^32, cell 0 with fraction 0, so the block path).
+  hush::grid<2> overflow = fine;
+  overflow.origin = {1.79e308, 0.5};
+  overflow.step = {1e305, 1.0 / 37};
+  overflow.size = {150, 5};
+  {
+    std::vector<float> v(overflow.count());
+    hush::evaluate_grid(g2, hush::exec::scalar, overflow, hush::span<float>(v));
+    const auto nans = std::count_if(v.begin(), v.end(), [](float x) { return std::isnan(x); });
+    REQUIRE(nans > 0);  // the premise: both kinds of sample in each row
+    REQUIRE(nans < static_cast<std::ptrdiff_t>(v.size()));
+  }
+  check_grid(g2, overflow);
+  // So far out that a double's spacing is 2^30 cells or more: ~21 samples per distinct
+  // position, neighbouring ones' cells 2^30 or more apart (mod 2^32): blocks of one cell's run.
+  hush::grid<2> huge = fine;
+  huge.origin = {1e25, 0.25};
+  huge.size = {200, 3};
+  huge.step = {1e8, 1.0 / 37};
+  check_grid(g2, huge);
   hush::grid<2> coarse = fine;  // about one sample per cell: the points path
   coarse.step = {0.9, -1.3};
   coarse.size = {40, 33};
@@ -209,6 +233,9 @@ TEST_CASE("gabor simd: grids agree with scalar evaluation (blocks, points path, 
   cube.size = {45, 23, 19};
   check_grid(g3, cube);
   check_grid(a3, cube);
+  hush::grid<3> wide = cube;  // 3 blocks along x, cut within cells
+  wide.size = {150, 7, 5};
+  check_grid(g3, wide);
 }
 
 namespace {
