@@ -9804,7 +9804,6 @@ HWY_AFTER_NAMESPACE();
 #include <limits>
 #include <vector>
 
-#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 // ---- begin hush/simd/batch-inl.h
@@ -11165,6 +11164,7 @@ struct shared_workspace {
 template <int D, bool G>
 struct shared_unfiltered {
   static constexpr bool kOffsets = G;
+  void prepare(const std::vector<sorted_point<D>>&) {}
   void operator()(const consts<D>& c, shared_pairs& t, const std::vector<std::uint32_t>&,
                   const std::vector<std::size_t>&) const {
     const DF df;
@@ -11188,6 +11188,8 @@ struct shared_unfiltered {
   }
 };
 
+// prepare(sorted) sees the points in the order in which they reach the kernel.
+//
 // The filtered kernel (gabor<D>::filtered_eval) with each point's footprint fps[point]:
 // its filter computed once per point (in double, rounded to float as the scalar code
 // rounds it) and spread over the point's pairs, then filtered_pair over the pairs in
@@ -11195,10 +11197,22 @@ struct shared_unfiltered {
 template <int D, bool G>
 struct shared_filtered {
   static constexpr bool kOffsets = true;
+  shared_filtered(const footprint<D>* f, double a, double inv_r)
+      : fps(f), envelope(a), inv(inv_r) {}
   const footprint<D>* fps;
   double envelope, inv;  // A, 1 / r
-  // Per pair its point's Q, M (row-major) and amplitude.
-  std::vector<float> q[D * D], m[D * D], amp;
+  // The footprints in sorted order, and the sorted position of the next pending point.
+  std::vector<footprint<D>> sorted_fps;
+  std::size_t next = 0;
+  // Per pair its point's Q, M (row-major) and amplitude; per pending point the same.
+  std::vector<float> q[D * D], m[D * D], amp, coef;
+  // Gathered in one loop of independent loads (in cell order they are read at random:
+  // one cache miss each, which the kernel's loop, long per point, would wait for).
+  void prepare(const std::vector<sorted_point<D>>& sorted) {
+    sorted_fps.resize(sorted.size());
+    for (std::size_t k = 0; k < sorted.size(); ++k) sorted_fps[k] = fps[sorted[k].point];
+    next = 0;
+  }
   void operator()(const consts<D>& c, shared_pairs& t, const std::vector<std::uint32_t>& pend,
                   const std::vector<std::size_t>& pend_end) {
     const DF df;
@@ -11210,25 +11224,36 @@ struct shared_filtered {
       }
       amp.resize(t.val.size());
     }
-    // The footprints are read in cell order, i.e. at random: all requested first.
-    for (const std::uint32_t p : pend) hwy::Prefetch(fps + p);
-    // Whole vectors of one value per point (the buffers have a vector of slack):
-    // the next point's overwrite what one writes beyond its pairs.
-    for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
-      if (b == pend_end[p]) continue;
-      const gabor_filter<D> fl(fps[pend[p]], envelope, inv);
+    // Each pending point's filter first, in a loop of independent iterations (the
+    // filter's divisions and square roots overlap across points), then spread over
+    // its pairs: whole vectors of one value (the buffers have a vector of slack), the
+    // next point's overwrite what one writes beyond its pairs.
+    constexpr int kCoef = 2 * D * D + 1;  // Q, M, amplitude
+    coef.resize(pend.size() * kCoef);
+    for (std::size_t p = 0; p < pend.size(); ++p) {
+      const gabor_filter<D> fl(sorted_fps[next + p], envelope, inv);
+      float* cp = coef.data() + p * kCoef;
       for (int r = 0; r < D; ++r)
         for (int col = 0; col < D; ++col) {
-          const VF qv = hn::Set(df, static_cast<float>(fl.q[r][col]));
-          const VF mv = hn::Set(df, static_cast<float>(fl.m[r][col]));
-          for (std::size_t i = b; i < pend_end[p]; i += lanes) {
-            hn::StoreU(qv, df, q[r * D + col].data() + i);
-            hn::StoreU(mv, df, m[r * D + col].data() + i);
-          }
+          cp[r * D + col] = static_cast<float>(fl.q[r][col]);
+          cp[D * D + r * D + col] = static_cast<float>(fl.m[r][col]);
         }
-      const VF av = hn::Set(df, static_cast<float>(fl.amplitude));
-      for (std::size_t i = b; i < pend_end[p]; i += lanes) hn::StoreU(av, df, amp.data() + i);
+      cp[2 * D * D] = static_cast<float>(fl.amplitude);
     }
+    float* dst[kCoef];
+    for (int e = 0; e < D * D; ++e) {
+      dst[e] = q[e].data();
+      dst[D * D + e] = m[e].data();
+    }
+    dst[2 * D * D] = amp.data();
+    for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
+      const float* cp = coef.data() + p * kCoef;
+      for (int e = 0; e < kCoef; ++e) {
+        const VF v = hn::Set(df, cp[e]);
+        for (std::size_t i = b; i < pend_end[p]; i += lanes) hn::StoreU(v, df, dst[e] + i);
+      }
+    }
+    next += pend.size();
     for (std::size_t i = 0; i < t.n; i += lanes) {
       VF d[3], phi[3], qv[D * D], mv[D * D];
       for (int a = 0; a < D; ++a) {
@@ -11333,6 +11358,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     const consts<D> c(g);
     box_impulses& im = ws.im;
     draw_box<D>(g, c, pc, need, im);
+    eval.prepare(sorted);
 
     shared_pairs& t = ws.t;
     t.n = 0;
@@ -11882,10 +11908,10 @@ void gabor_filtered(const gabor<D>& g, const float* pts, const footprint<D>* fps
     auto lockstep = [&g, f](const float* lp, const std::size_t* index, std::size_t lm, float* v,
                             float* gr) { gabor_filtered_lockstep<D>(g, lp, f, index, lm, v, gr); };
     if (grad) {
-      gabor_simd::shared_filtered<D, true> eval{f, a, inv, {}, {}, {}};
+      gabor_simd::shared_filtered<D, true> eval(f, a, inv);
       gabor_simd::shared_points<D, true>(g, p, m, value + first, grad + first * D, lockstep, eval);
     } else {
-      gabor_simd::shared_filtered<D, false> eval{f, a, inv, {}, {}, {}};
+      gabor_simd::shared_filtered<D, false> eval(f, a, inv);
       gabor_simd::shared_points<D, false>(g, p, m, value + first, nullptr, lockstep, eval);
     }
   }
