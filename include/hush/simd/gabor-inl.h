@@ -1432,7 +1432,7 @@ struct shared_filtered {
     // filter's divisions and square roots overlap across points), then spread over
     // its pairs: whole vectors of one value (the buffers have a vector of slack), the
     // next point's overwrite what one writes beyond its pairs.
-    constexpr int kCoef = 2 * D * D + 1;  // Q, M, amplitude
+    constexpr std::size_t kAmp = std::size_t{2} * D * D, kCoef = kAmp + 1;  // Q, M, amplitude
     coef.resize(pend.size() * kCoef);
     for (std::size_t p = 0; p < pend.size(); ++p) {
       const gabor_filter<D> fl(sorted_fps[next + p], envelope, inv);
@@ -1442,20 +1442,21 @@ struct shared_filtered {
           cp[r * D + col] = static_cast<float>(fl.q[r][col]);
           cp[D * D + r * D + col] = static_cast<float>(fl.m[r][col]);
         }
-      cp[2 * D * D] = static_cast<float>(fl.amplitude);
+      cp[kAmp] = static_cast<float>(fl.amplitude);
     }
     float* dst[kCoef];
     for (int e = 0; e < D * D; ++e) {
       dst[e] = q[e].data();
       dst[D * D + e] = m[e].data();
     }
-    dst[2 * D * D] = amp.data();
-    for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
+    dst[kAmp] = amp.data();
+    // The ends in locals: through the vectors the compiler reloads them after every store.
+    const std::size_t* const ends = pend_end.data();
+    for (std::size_t p = 0, b = 0; p < pend.size(); b = ends[p++]) {
       const float* cp = coef.data() + p * kCoef;
-      for (int e = 0; e < kCoef; ++e) {
-        const VF v = hn::Set(df, cp[e]);
-        for (std::size_t i = b; i < pend_end[p]; i += lanes) hn::StoreU(v, df, dst[e] + i);
-      }
+      const std::size_t e = ends[p];
+      for (std::size_t i = b; i < e; i += lanes)
+        for (std::size_t k = 0; k < kCoef; ++k) hn::StoreU(hn::Set(df, cp[k]), df, dst[k] + i);
     }
     next += pend.size();
     for (std::size_t i = 0; i < t.n; i += lanes) {
