@@ -9775,10 +9775,10 @@ HWY_AFTER_NAMESPACE();
 //    double and spread over its pairs) then runs over the list (shared_points below);
 //  - other points and filtered samples, and samples with normals: one lane per point
 //    (samples: each lane's filter, and for surface noise its tangent frame, computed in double
-//    as the scalar code does, and gathered per term); per cell and impulse the lanes draw in lockstep (the
-//    counter's hash is shared), and only impulses within a lane's support are kept, compressed
-//    into a list that the kernel then evaluates in full vectors; each point's terms are summed
-//    in stream order. The unfiltered kernel of kept impulses skips exp's and sin/cos's range
+//    as the scalar code does, and gathered per term); per cell and impulse the lanes draw in
+//    lockstep (the counter's hash is shared), and only impulses within a lane's support are
+//    kept, compressed into a list that the kernel then evaluates in full vectors; each
+//    point's terms are summed in stream order. The unfiltered kernel of kept impulses skips exp's and sin/cos's range
 //    handling (identities within the support: exp_neg_in_range, sincos_turns_in_range);
 //  - grids: samples in blocks that share their cell (up to 64 per row, 64 rows; 3D 64 x 32 x
 //    16), each impulse of the block's 3^D cells evaluated once per block: its factors along y
