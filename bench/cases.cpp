@@ -291,8 +291,8 @@ void add_spectrum_note(std::vector<bench_case>& cases, std::size_t from,
 }
 
 // Gabor rows on `ex`: N' = 16 grid and points (value, value + gradient); N' = 32,
-// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16; 3D
-// surface noise (samples with normals and the filtered rows' footprints). The
+// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16 (2D and
+// 3D); 3D surface noise (samples with normals and the filtered rows' footprints). The
 // unfiltered rows, 2D and 3D, carry the spectrum error.
 template <class Exec>
 void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex) {
@@ -327,6 +327,11 @@ void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& 
   c.note = "footprints: isotropic, 0.001 ... 1 units";
   c.prepare = [ex, n = s.points] {
     return prepare_gabor_samples(make_gabor<2>(kGaborImpulses[0]), ex, n);
+  };
+  cases.push_back(c);
+  c.noise = "gabor 3D filtered";
+  c.prepare = [ex, n = s.points] {
+    return prepare_gabor_samples(make_gabor<3>(kGaborImpulses[0]), ex, n);
   };
   cases.push_back(c);
   c.noise = "gabor 3D surface";

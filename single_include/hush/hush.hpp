@@ -9963,17 +9963,19 @@ HWY_AFTER_NAMESPACE();
 //  - otherwise multiply-adds may be fused, within the float budget of
 //    gabor.hpp.
 // How they are fast:
-//  - points where the call crowds them (at least kShareMinPointsPerCell per cell of their
-//    range): sorted by cell, each cell's impulses drawn once for all the points that see it;
-//    per cell its 3^D cells' impulses copied once into one candidate list in the summation
-//    order, which each of its points tests in full vectors (lanes across impulses, no branch)
-//    and compresses the kept ones into a pair list (shared_points below);
-//  - other points, filtered samples and samples with normals: one lane per point (samples: each
-//    lane's filter, and for surface noise its tangent frame, computed in double as the scalar
-//    code does, and gathered per term); per cell and impulse the lanes draw in lockstep (the
-//    counter's hash is shared), and only impulses within a lane's support are kept, compressed
-//    into a list that the kernel then evaluates in full vectors; each point's terms are summed
-//    in stream order. The unfiltered kernel of kept impulses skips exp's and sin/cos's range
+//  - points and filtered samples where the call crowds them (at least
+//    kShareMinPointsPerCell per cell of their range): sorted by cell, each cell's impulses
+//    drawn once for all the points that see it; per cell its 3^D cells' impulses copied once
+//    into one candidate list in the summation order, which each of its points tests in full
+//    vectors (lanes across impulses, no branch) and compresses the kept ones into a pair
+//    list; the kernel (unfiltered, or filtered with each point's filter computed once in
+//    double and spread over its pairs) then runs over the list (shared_points below);
+//  - other points and filtered samples, and samples with normals: one lane per point
+//    (samples: each lane's filter, and for surface noise its tangent frame, computed in double
+//    as the scalar code does, and gathered per term); per cell and impulse the lanes draw in
+//    lockstep (the counter's hash is shared), and only impulses within a lane's support are
+//    kept, compressed into a list that the kernel then evaluates in full vectors; each
+//    point's terms are summed in stream order. The unfiltered kernel of kept impulses skips exp's and sin/cos's range
 //    handling (identities within the support: exp_neg_in_range, sincos_turns_in_range);
 //  - grids: samples in blocks that share their cell along y (and z) and span several cells
 //    along x (kBlockX: 256 samples per row, up to 64 rows; 3D 64 x 32 x 16), each impulse of
@@ -10689,10 +10691,14 @@ HWY_INLINE void filtered_pair(const consts<D>& c, const VF* q, const VF* m, VF a
     dqd = mul_add(d[r], z, dqd);
   }
   for (int r = 0; r < E; ++r) theta = mul_add(mu[r], d[r], theta);
+  // d^T Q d is in [0, s] up to rounding (Q's eigenvalues in (0, 1]; Q rounded to
+  // float may be slightly indefinite, hence the clamp at 0, exp_neg's own): the
+  // envelope's exponent is in range; att >= 0 is not bounded. |theta| <= |Q Phi| |d|
+  // < |Phi| (sincos_kept).
   const VF p = hn::Mul(hn::Mul(hn::Mul(w, amplitude), exp_neg(hn::Neg(att))),
-                       exp_neg(hn::Mul(c.neg_a, dqd)));
+                       exp_neg_in_range(hn::Min(hn::Mul(c.neg_a, dqd), zero)));
   VF sn, cs;
-  sincos_turns(theta, sn, cs);
+  sincos_kept(c, theta, sn, cs);
   if constexpr (G) {
     VF tau, dtau;
     taper_derivative(s, c.k, tau, dtau);
@@ -11352,17 +11358,137 @@ struct shared_workspace {
   std::vector<std::size_t> rest, pend_end;
 };
 
-// Unfiltered solid noise at the n points pts (D interleaved floats), values
-// into value, interleaved gradients into grad with G; lockstep(pts, m, value,
-// grad) evaluates the finite points outside the box.
-template <int D, bool G, class Lockstep>
+// shared_points' kernels (Eval): t's pairs [0, t.n), point pend[p]'s in
+// [pend_end[p - 1], pend_end[p]), into t.val (and with G the gradient terms into t.g).
+// kOffsets: the pairs carry d and phi (else s and theta: the unfiltered values).
+//
+// The unfiltered kernel (gabor<D>::eval) in the point form.
+template <int D, bool G>
+struct shared_unfiltered {
+  static constexpr bool kOffsets = G;
+  void prepare(const std::vector<sorted_point<D>>&) {}
+  void operator()(const consts<D>& c, shared_pairs& t, const std::vector<std::uint32_t>&,
+                  const std::vector<std::size_t>&) const {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    for (std::size_t i = 0; i < t.n; i += lanes) {
+      const VF wt = hn::LoadU(df, t.w.data() + i);
+      if constexpr (!G) {
+        hn::StoreU(point_value(c, wt, hn::LoadU(df, t.s.data() + i),
+                               hn::LoadU(df, t.theta.data() + i)),
+                   df, t.val.data() + i);
+        continue;
+      }
+      VF d[3], phi[3];
+      for (int a = 0; a < D; ++a) {
+        d[a] = hn::LoadU(df, t.d[a].data() + i);
+        phi[a] = hn::LoadU(df, t.phi[a].data() + i);
+      }
+      float* const gp[3] = {t.g[0].data() + i, t.g[1].data() + i, t.g[2].data() + i};
+      unfiltered_terms<D, G, false>(c, wt, phi, d, t.val.data() + i, gp);
+    }
+  }
+};
+
+// prepare(sorted) sees the points in the order in which they reach the kernel.
+//
+// The filtered kernel (gabor<D>::filtered_eval) with each point's footprint fps[point]:
+// its filter computed once per point (in double, rounded to float as the scalar code
+// rounds it) and spread over the point's pairs, then filtered_pair over the pairs in
+// full vectors.
+template <int D, bool G>
+struct shared_filtered {
+  static constexpr bool kOffsets = true;
+  shared_filtered(const footprint<D>* f, double a, double inv_r)
+      : fps(f), envelope(a), inv(inv_r) {}
+  const footprint<D>* fps;
+  double envelope, inv;  // A, 1 / r
+  // The footprints in sorted order, and the sorted position of the next pending point.
+  std::vector<footprint<D>> sorted_fps;
+  std::size_t next = 0;
+  // Per pair its point's Q, M (row-major) and amplitude; per pending point the same.
+  std::vector<float> q[D * D], m[D * D], amp, coef;
+  // Gathered in one loop of independent loads (in cell order they are read at random:
+  // one cache miss each, which the kernel's loop, long per point, would wait for).
+  void prepare(const std::vector<sorted_point<D>>& sorted) {
+    sorted_fps.resize(sorted.size());
+    for (std::size_t k = 0; k < sorted.size(); ++k) sorted_fps[k] = fps[sorted[k].point];
+    next = 0;
+  }
+  void operator()(const consts<D>& c, shared_pairs& t, const std::vector<std::uint32_t>& pend,
+                  const std::vector<std::size_t>& pend_end) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    if (amp.size() < t.val.size()) {
+      for (int e = 0; e < D * D; ++e) {
+        q[e].resize(t.val.size());
+        m[e].resize(t.val.size());
+      }
+      amp.resize(t.val.size());
+    }
+    // Each pending point's filter first, in a loop of independent iterations (the
+    // filter's divisions and square roots overlap across points), then spread over
+    // its pairs: whole vectors of one value (the buffers have a vector of slack), the
+    // next point's overwrite what one writes beyond its pairs.
+    constexpr std::size_t kAmp = std::size_t{2} * D * D, kCoef = kAmp + 1;  // Q, M, amplitude
+    coef.resize(pend.size() * kCoef);
+    for (std::size_t p = 0; p < pend.size(); ++p) {
+      const gabor_filter<D> fl(sorted_fps[next + p], envelope, inv);
+      float* cp = coef.data() + p * kCoef;
+      for (int r = 0; r < D; ++r)
+        for (int col = 0; col < D; ++col) {
+          cp[r * D + col] = static_cast<float>(fl.q[r][col]);
+          cp[D * D + r * D + col] = static_cast<float>(fl.m[r][col]);
+        }
+      cp[kAmp] = static_cast<float>(fl.amplitude);
+    }
+    float* dst[kCoef];
+    for (int e = 0; e < D * D; ++e) {
+      dst[e] = q[e].data();
+      dst[D * D + e] = m[e].data();
+    }
+    dst[kAmp] = amp.data();
+    // The ends in locals: through the vectors the compiler reloads them after every store.
+    const std::size_t* const ends = pend_end.data();
+    for (std::size_t p = 0, b = 0; p < pend.size(); b = ends[p++]) {
+      const float* cp = coef.data() + p * kCoef;
+      const std::size_t e = ends[p];
+      for (std::size_t i = b; i < e; i += lanes)
+        for (std::size_t k = 0; k < kCoef; ++k) hn::StoreU(hn::Set(df, cp[k]), df, dst[k] + i);
+    }
+    next += pend.size();
+    for (std::size_t i = 0; i < t.n; i += lanes) {
+      VF d[3], phi[3], qv[D * D], mv[D * D];
+      for (int a = 0; a < D; ++a) {
+        d[a] = hn::LoadU(df, t.d[a].data() + i);
+        phi[a] = hn::LoadU(df, t.phi[a].data() + i);
+      }
+      for (int e = 0; e < D * D; ++e) {
+        qv[e] = hn::LoadU(df, q[e].data() + i);
+        mv[e] = hn::LoadU(df, m[e].data() + i);
+      }
+      VF value, gr[3];
+      filtered_pair<D, D, G>(c, qv, mv, hn::LoadU(df, amp.data() + i), d, point_s<D>(d),
+                             hn::LoadU(df, t.w.data() + i), phi, value, gr);
+      hn::StoreU(value, df, t.val.data() + i);
+      if constexpr (G)
+        for (int a = 0; a < D; ++a) hn::StoreU(gr[a], df, t.g[a].data() + i);
+    }
+  }
+};
+
+// Solid noise at the n points pts (D interleaved floats) with the kernel eval
+// (shared_unfiltered, shared_filtered), values into value, interleaved gradients into
+// grad with G; lockstep(p, index, m, value, grad) evaluates on the lockstep path the m
+// points p (gathered), the call's points index[0 .. m) (null: the call's first m).
+template <int D, bool G, class Lockstep, class Eval>
 void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad,
-                   Lockstep lockstep) {
+                   Lockstep lockstep, Eval& eval) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   if (clearly_sparse<D>(pts, n, g.inverse_cell())) {
-    lockstep(pts, n, value, grad);
+    lockstep(pts, nullptr, n, value, grad);
     return;
   }
   static thread_local shared_workspace<D> ws;
@@ -11387,7 +11513,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   double interior = 1.0;
   for (int a = 0; a < D; ++a) interior *= double(pc.hi[a] - pc.lo[a] + 1);
   if (pc.box == 0 || double(inside) < kShareMinPointsPerCell[D - 2] * interior) {
-    lockstep(pts, n, value, grad);
+    lockstep(pts, nullptr, n, value, grad);
     return;
   }
   first.assign(pc.box + 1, 0);
@@ -11435,6 +11561,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     const consts<D> c(g);
     box_impulses& im = ws.im;
     draw_box<D>(g, c, pc, need, im);
+    eval.prepare(sorted);
 
     shared_pairs& t = ws.t;
     t.n = 0;
@@ -11445,22 +11572,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     pend_end.clear();
     const float scale = float(g.scale()), grad_scale = float(g.scale() * g.inverse_cell());
     auto flush = [&] {
-      for (std::size_t i = 0; i < t.n; i += lanes) {
-        const VF wt = hn::LoadU(df, t.w.data() + i);
-        if constexpr (!G) {
-          hn::StoreU(point_value(c, wt, hn::LoadU(df, t.s.data() + i),
-                                 hn::LoadU(df, t.theta.data() + i)),
-                     df, t.val.data() + i);
-          continue;
-        }
-        VF d[3], phi[3];
-        for (int a = 0; a < D; ++a) {
-          d[a] = hn::LoadU(df, t.d[a].data() + i);
-          phi[a] = hn::LoadU(df, t.phi[a].data() + i);
-        }
-        float* const gp[3] = {t.g[0].data() + i, t.g[1].data() + i, t.g[2].data() + i};
-        unfiltered_terms<D, G, false>(c, wt, phi, d, t.val.data() + i, gp);
-      }
+      eval(c, t, pend, pend_end);
       for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
         float sum = 0.0f, gs[3] = {0.0f, 0.0f, 0.0f};
         for (std::size_t q = b; q < pend_end[p]; ++q) {
@@ -11542,7 +11654,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
           }
           const VF s = point_s<D>(d);
           const MF in = hn::Lt(s, one);
-          if constexpr (G) {
+          if constexpr (Eval::kOffsets) {
             for (int a = 0; a < D; ++a) {
               hn::StoreU(compress(d[a], in), df, td[a] + to);
               hn::StoreU(compress(ph[a], in), df, tphi[a] + to);
@@ -11569,7 +11681,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   std::vector<float> rp(m * D), v(m), gv(G ? m * D : 0);
   for (std::size_t j = 0; j < m; ++j)
     for (int a = 0; a < D; ++a) rp[j * D + a] = pts[rest[j] * D + a];
-  lockstep(rp.data(), m, v.data(), G ? gv.data() : nullptr);
+  lockstep(rp.data(), rest.data(), m, v.data(), G ? gv.data() : nullptr);
   for (std::size_t j = 0; j < m; ++j) {
     value[rest[j]] = v[j];
     if (G)
@@ -12015,16 +12127,19 @@ void gabor_points_lockstep(const gabor<D>& g, const float* pts, std::size_t n, f
 // into grad[D n] unless grad is null.
 template <int D>
 void gabor_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad) {
-  auto lockstep = [&g](const float* p, std::size_t m, float* v, float* gr) {
+  auto lockstep = [&g](const float* p, const std::size_t*, std::size_t m, float* v, float* gr) {
     gabor_points_lockstep<D>(g, p, m, v, gr);
   };
   for (std::size_t first = 0; first < n; first += gabor_simd::kShareMaxPoints) {
     const std::size_t m = std::min(gabor_simd::kShareMaxPoints, n - first);
     const float* p = pts + first * D;
-    if (grad)
-      gabor_simd::shared_points<D, true>(g, p, m, value + first, grad + first * D, lockstep);
-    else
-      gabor_simd::shared_points<D, false>(g, p, m, value + first, nullptr, lockstep);
+    if (grad) {
+      gabor_simd::shared_unfiltered<D, true> eval;
+      gabor_simd::shared_points<D, true>(g, p, m, value + first, grad + first * D, lockstep, eval);
+    } else {
+      gabor_simd::shared_unfiltered<D, false> eval;
+      gabor_simd::shared_points<D, false>(g, p, m, value + first, nullptr, lockstep, eval);
+    }
   }
 }
 inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
@@ -12036,12 +12151,13 @@ inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, fl
   gabor_points<3>(g, xyz, n, value, grad);
 }
 
-// Gabor noise filtered over footprints (gabor<D>::sample(p, fp), no normals) at n
-// interleaved float points; values into value[n], interleaved gradients into grad[D n]
-// unless grad is null.
+// Gabor noise filtered over footprints on the lockstep path (one lane per point): the
+// n interleaved float points pts with the footprints fps[index[i]] (index null:
+// fps[i]); values into value[n], interleaved gradients into grad[D n] unless grad is
+// null.
 template <int D>
-void gabor_filtered(const gabor<D>& g, const float* pts, const footprint<D>* fps, std::size_t n,
-                    float* value, float* grad) {
+void gabor_filtered_lockstep(const gabor<D>& g, const float* pts, const footprint<D>* fps,
+                             const std::size_t* index, std::size_t n, float* value, float* grad) {
   namespace gs = gabor_simd;
   const gs::DF df;
   const std::size_t lanes = hn::Lanes(df);
@@ -12049,17 +12165,14 @@ void gabor_filtered(const gabor<D>& g, const float* pts, const footprint<D>* fps
   gs::lanes_split sp;
   gs::lanes_filter filt;
   auto split = [&](std::size_t first, std::size_t used) {
-    gs::split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
-      for (int c = 0; c < D; ++c)
-        x[c] = static_cast<double>(pts[i * D + static_cast<std::size_t>(c)]);
-    });
+    gs::split_batch<D>(sp, pts, first, used, inv);
     for (std::size_t l = 0; l < lanes; ++l) {
       if (l >= used) {  // unused lanes keep no impulse (bad): any finite filter
         for (int e = 0; e < D * D; ++e) filt.q[e][l] = filt.m[e][l] = 0.0f;
         filt.amp[l] = 0.0f;
         continue;
       }
-      const gabor_filter<D> fl(fps[first + l], a, inv);
+      const gabor_filter<D> fl(fps[index ? index[first + l] : first + l], a, inv);
       for (int r = 0; r < D; ++r)
         for (int c = 0; c < D; ++c) {
           filt.q[r * D + c][l] = static_cast<float>(fl.q[r][c]);
@@ -12078,6 +12191,30 @@ void gabor_filtered(const gabor<D>& g, const float* pts, const footprint<D>* fps
                               [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
                                 gs::eval_filtered<D, false>(c, filt, t);
                               });
+}
+
+// Gabor noise filtered over footprints (gabor<D>::sample(p, fp), no normals) at n
+// interleaved float points, as gabor_points: the shared-cell path with the filtered
+// kernel, its box's outliers on the lockstep path; values into value[n], interleaved
+// gradients into grad[D n] unless grad is null.
+template <int D>
+void gabor_filtered(const gabor<D>& g, const float* pts, const footprint<D>* fps, std::size_t n,
+                    float* value, float* grad) {
+  const double a = g.kernel().envelope_exponent(), inv = g.inverse_cell();
+  for (std::size_t first = 0; first < n; first += gabor_simd::kShareMaxPoints) {
+    const std::size_t m = std::min(gabor_simd::kShareMaxPoints, n - first);
+    const float* p = pts + first * D;
+    const footprint<D>* f = fps + first;
+    auto lockstep = [&g, f](const float* lp, const std::size_t* index, std::size_t lm, float* v,
+                            float* gr) { gabor_filtered_lockstep<D>(g, lp, f, index, lm, v, gr); };
+    if (grad) {
+      gabor_simd::shared_filtered<D, true> eval(f, a, inv);
+      gabor_simd::shared_points<D, true>(g, p, m, value + first, grad + first * D, lockstep, eval);
+    } else {
+      gabor_simd::shared_filtered<D, false> eval(f, a, inv);
+      gabor_simd::shared_points<D, false>(g, p, m, value + first, nullptr, lockstep, eval);
+    }
+  }
 }
 inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
                             std::size_t n, float* value, float* grad) {

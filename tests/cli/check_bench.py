@@ -144,7 +144,7 @@ def main():
              for n in ("wavelet 3D projected", "wavelet 3D projected approx")}
     want |= {("gabor 3D", b, w, "value") for b in ("scalar", "simd") for w in ("grid", "points")}
     want |= {("gabor %s" % n, b, "samples", "value") for b in ("scalar", "simd")
-             for n in ("2D filtered", "3D surface")}
+             for n in ("2D filtered", "3D filtered", "3D surface")}
     # wavelet 3D points' memory bounds (SIMD only): tile reads L1-resident, a 32^3 tile.
     bounds = ("points-L1", "points-L2")
     want |= {("wavelet 3D", "simd", w, "value") for w in bounds}

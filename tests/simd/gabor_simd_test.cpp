@@ -11,8 +11,8 @@
 // cells (the shared-cell path) beside far and NaN ones, grids near and far, with
 // negative and coarse steps (the points path) and fine ones (the block path:
 // blocks across cells, several blocks per row, rows overflowing to Inf halfway),
-// 2D and 3D, every kind, samples with footprints and with normals (surface noise:
-// unit, tiny, zero and non-finite normals, with and without footprints).
+// 2D and 3D, every kind, samples with footprints (sparse and crowded) and with normals
+// (surface noise: unit, tiny, zero and non-finite normals, with and without footprints).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -242,10 +242,12 @@ namespace {
 
 // Samples with footprints of every size (and HARD_CASES row 12's degenerate ones), and,
 // in 3D, the same with normals (surface noise; zero normals: the solid noise, non-finite
-// ones: NaN, tiny ones: their direction) and with normals but no footprints.
+// ones: NaN, tiny ones: their direction) and with normals but no footprints. A small
+// half crowds the points (filtered samples: the shared-cell path).
 template <int D>
-void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed) {
-  const std::vector<hush::vec<float, D>> pts = test_points<D>(n, seed);
+void check_samples(const hush::gabor<D>& g, std::size_t n, std::uint32_t seed,
+                   float half = 40.0f) {
+  const std::vector<hush::vec<float, D>> pts = test_points<D>(n, seed, half);
   std::vector<hush::footprint<D>> fps(n);
   std::vector<hush::vec3> nrm(n);
   hush::rng r(seed + 1000);
@@ -307,5 +309,9 @@ TEST_CASE("gabor simd: filtered samples agree with scalar evaluation, every kind
       check_samples(g2, n, static_cast<std::uint32_t>(n));
       check_samples(g3, n, static_cast<std::uint32_t>(n + 50));
     }
+    // Crowded (~90 points per cell in 2D, ~6 in 3D) beside far and non-finite ones:
+    // filtered samples on the shared-cell path, its outliers on the lockstep path.
+    check_samples(g2, 1500, 3, 2.0f);
+    check_samples(g3, 400, 4, 2.0f);
   }
 }
