@@ -11424,29 +11424,30 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
     const VD off = hn::Mul(a01, a01);
     const VD diag = hn::Add(hn::Mul(a00, a00), hn::Mul(a11, a11));
     const auto rot = hn::Gt(off, hn::Mul(hn::Set(dd, 1e-34), diag));
-    const VD theta = hn::Div(hn::Sub(a11, a00), hn::Mul(hn::Set(dd, 2.0), a01));
-    const VD at = hn::Abs(theta);
-    const VD root = hn::IfThenElse(hn::Lt(at, hn::Set(dd, 1e150)),
-                                   hn::Sqrt(hn::Add(hn::Mul(at, at), one)), at);
-    const VD t = hn::Div(hn::IfThenElse(hn::Ge(theta, zero), one, hn::Set(dd, -1.0)),
-                         hn::Add(at, root));
-    const VD cs = hn::Div(one, hn::Sqrt(hn::Add(hn::Mul(t, t), one))), sn = hn::Mul(t, cs);
-    // Columns 0 and 1 (S symmetric: a10 = a01), then rows 0 and 1 (their diagonal).
-    const VD b00 = hn::Sub(hn::Mul(cs, a00), hn::Mul(sn, a01));
-    const VD b01 = hn::Add(hn::Mul(sn, a00), hn::Mul(cs, a01));
-    const VD b10 = hn::Sub(hn::Mul(cs, a01), hn::Mul(sn, a11));
-    const VD b11 = hn::Add(hn::Mul(sn, a01), hn::Mul(cs, a11));
-    const VD e0 = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, b00), hn::Mul(sn, b10)), a00);
-    const VD e1 = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, b01), hn::Mul(cs, b11)), a11);
-    // V = I rotated, as jacobi_eigen<2> computes it (c * 1 - s * 0, ...: signed zeros alike).
-    VD v[2][2] = {{hn::Sub(hn::Mul(cs, one), hn::Mul(sn, zero)),
-                   hn::Add(hn::Mul(sn, one), hn::Mul(cs, zero))},
-                  {hn::Sub(hn::Mul(cs, zero), hn::Mul(sn, one)),
-                   hn::Add(hn::Mul(sn, zero), hn::Mul(cs, one))}};
-    v[0][0] = hn::IfThenElse(rot, v[0][0], one);
-    v[0][1] = hn::IfThenElse(rot, v[0][1], zero);
-    v[1][0] = hn::IfThenElse(rot, v[1][0], zero);
-    v[1][1] = hn::IfThenElse(rot, v[1][1], one);
+    // Without a rotating lane (isotropic and axis-aligned footprints) S's diagonal and I.
+    VD e0 = a00, e1 = a11;
+    VD v[2][2] = {{one, zero}, {zero, one}};
+    if (!hn::AllFalse(dd, rot)) {
+      const VD theta = hn::Div(hn::Sub(a11, a00), hn::Mul(hn::Set(dd, 2.0), a01));
+      const VD at = hn::Abs(theta);
+      const VD root = hn::IfThenElse(hn::Lt(at, hn::Set(dd, 1e150)),
+                                     hn::Sqrt(hn::Add(hn::Mul(at, at), one)), at);
+      const VD t = hn::Div(hn::IfThenElse(hn::Ge(theta, zero), one, hn::Set(dd, -1.0)),
+                           hn::Add(at, root));
+      const VD cs = hn::Div(one, hn::Sqrt(hn::Add(hn::Mul(t, t), one))), sn = hn::Mul(t, cs);
+      // Columns 0 and 1 (S symmetric: a10 = a01), then rows 0 and 1 (their diagonal).
+      const VD b00 = hn::Sub(hn::Mul(cs, a00), hn::Mul(sn, a01));
+      const VD b01 = hn::Add(hn::Mul(sn, a00), hn::Mul(cs, a01));
+      const VD b10 = hn::Sub(hn::Mul(cs, a01), hn::Mul(sn, a11));
+      const VD b11 = hn::Add(hn::Mul(sn, a01), hn::Mul(cs, a11));
+      e0 = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, b00), hn::Mul(sn, b10)), a00);
+      e1 = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, b01), hn::Mul(cs, b11)), a11);
+      // V = I rotated as jacobi_eigen<2> computes it (c * 1 - s * 0, ...: signed zeros alike).
+      v[0][0] = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, one), hn::Mul(sn, zero)), one);
+      v[0][1] = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, one), hn::Mul(cs, zero)), zero);
+      v[1][0] = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, zero), hn::Mul(sn, one)), zero);
+      v[1][1] = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, zero), hn::Mul(cs, one)), one);
+    }
     // gabor_filter<2>: eigenvalues clamped at 0 (NaN too), Q and M from them.
     VD qd[2], md[2];
     const VD e[2] = {e0, e1};
