@@ -492,8 +492,9 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
         if (a[p][q] == 0.0) continue;
         // The rotation that zeroes a[p][q]: t = tan, the smaller root.
         const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
-        const double c = 1.0 / std::hypot(t, 1.0), sn = t * c;
+        const double at = std::fabs(theta);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (at + (at < 1e150 ? std::sqrt(at * at + 1.0) : at));
+        const double c = 1.0 / std::sqrt(t * t + 1.0), sn = t * c;
         for (int k = 0; k < D; ++k) {  // columns p and q
           const double akp = a[k][p], akq = a[k][q];
           a[k][p] = c * akp - sn * akq;
@@ -509,6 +510,7 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
           v[k][p] = c * vkp - sn * vkq;
           v[k][q] = sn * vkp + c * vkq;
         }
+        a[p][q] = a[q][p] = 0.0;  // zero by construction; rounding leaves a residue
       }
   }
 }
@@ -546,7 +548,7 @@ struct gabor_filter {
     amplitude = 1.0;
     const double mk = c::kPi * c::kPi / a;
     for (int i = 0; i < D; ++i) {
-      const double kl = k * std::fmax(s[i][i], 0.0);
+      const double kl = k * (s[i][i] > 0.0 ? s[i][i] : 0.0);
       qd[i] = 1.0 / (1.0 + kl);
       md[i] = mk * (kl / (1.0 + kl));
       amplitude *= std::sqrt(qd[i]);

@@ -5325,8 +5325,9 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
         if (a[p][q] == 0.0) continue;
         // The rotation that zeroes a[p][q]: t = tan, the smaller root.
         const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::hypot(theta, 1.0));
-        const double c = 1.0 / std::hypot(t, 1.0), sn = t * c;
+        const double at = std::fabs(theta);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (at + (at < 1e150 ? std::sqrt(at * at + 1.0) : at));
+        const double c = 1.0 / std::sqrt(t * t + 1.0), sn = t * c;
         for (int k = 0; k < D; ++k) {  // columns p and q
           const double akp = a[k][p], akq = a[k][q];
           a[k][p] = c * akp - sn * akq;
@@ -5342,6 +5343,7 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
           v[k][p] = c * vkp - sn * vkq;
           v[k][q] = sn * vkp + c * vkq;
         }
+        a[p][q] = a[q][p] = 0.0;  // zero by construction; rounding leaves a residue
       }
   }
 }
@@ -5379,7 +5381,7 @@ struct gabor_filter {
     amplitude = 1.0;
     const double mk = c::kPi * c::kPi / a;
     for (int i = 0; i < D; ++i) {
-      const double kl = k * std::fmax(s[i][i], 0.0);
+      const double kl = k * (s[i][i] > 0.0 ? s[i][i] : 0.0);
       qd[i] = 1.0 / (1.0 + kl);
       md[i] = mk * (kl / (1.0 + kl));
       amplitude *= std::sqrt(qd[i]);
@@ -11390,6 +11392,86 @@ struct shared_unfiltered {
   }
 };
 
+// gabor_filter<2> of the n footprints fps in lanes of doubles: its operations in its
+// order (jacobi_eigen<2>'s one rotation, then the filter's), so the same values bit for bit
+// under HUSH_STRICT_FP (IEEE division and square root are correctly rounded; no fused
+// operations here). The scalar branches are masks: a lane that jacobi_eigen<2> leaves
+// unrotated (off-diagonal zero, tiny against the diagonal, or NaN) keeps S's diagonal and
+// V = I. out[e * stride + p]: point p's Q (row-major), M, amplitude, rounded to float;
+// stride >= n rounded up to whole vectors of doubles.
+inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double inv_r, float* out,
+                       std::size_t stride) {
+  using DD = hn::ScalableTag<double>;
+  using VD = hn::Vec<DD>;
+  const DD dd;
+  const hn::Rebind<float, DD> dfh;
+  const std::size_t lanes = hn::Lanes(dd);
+  const double k = 2.0 * a * detail::constants::kPixelFilterSigma *
+                   detail::constants::kPixelFilterSigma * inv_r * inv_r;
+  const double mk = detail::constants::kPi * detail::constants::kPi / a;
+  const VD zero = hn::Zero(dd), one = hn::Set(dd, 1.0);
+  HWY_ALIGN double cov[3][kMaxLanes];  // S's entries (0,0), (0,1), (1,1); zero past n
+  for (std::size_t p0 = 0; p0 < n; p0 += lanes) {
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const bool in = p0 + l < n;
+      cov[0][l] = in ? static_cast<double>(fps[p0 + l].covariance(0, 0)) : 0.0;
+      cov[1][l] = in ? static_cast<double>(fps[p0 + l].covariance(0, 1)) : 0.0;
+      cov[2][l] = in ? static_cast<double>(fps[p0 + l].covariance(1, 1)) : 0.0;
+    }
+    const VD a00 = hn::Load(dd, cov[0]), a01 = hn::Load(dd, cov[1]), a11 = hn::Load(dd, cov[2]);
+    // jacobi_eigen<2>: sweep 0 rotates where off > 1e-34 diag; sweep 1 finds the
+    // off-diagonal set to 0 and ends.
+    const VD off = hn::Mul(a01, a01);
+    const VD diag = hn::Add(hn::Mul(a00, a00), hn::Mul(a11, a11));
+    const auto rot = hn::Gt(off, hn::Mul(hn::Set(dd, 1e-34), diag));
+    // Without a rotating lane (isotropic and axis-aligned footprints) S's diagonal and I.
+    VD e0 = a00, e1 = a11;
+    VD v[2][2] = {{one, zero}, {zero, one}};
+    if (!hn::AllFalse(dd, rot)) {
+      const VD theta = hn::Div(hn::Sub(a11, a00), hn::Mul(hn::Set(dd, 2.0), a01));
+      const VD at = hn::Abs(theta);
+      const VD root = hn::IfThenElse(hn::Lt(at, hn::Set(dd, 1e150)),
+                                     hn::Sqrt(hn::Add(hn::Mul(at, at), one)), at);
+      const VD t = hn::Div(hn::IfThenElse(hn::Ge(theta, zero), one, hn::Set(dd, -1.0)),
+                           hn::Add(at, root));
+      const VD cs = hn::Div(one, hn::Sqrt(hn::Add(hn::Mul(t, t), one))), sn = hn::Mul(t, cs);
+      // Columns 0 and 1 (S symmetric: a10 = a01), then rows 0 and 1 (their diagonal).
+      const VD b00 = hn::Sub(hn::Mul(cs, a00), hn::Mul(sn, a01));
+      const VD b01 = hn::Add(hn::Mul(sn, a00), hn::Mul(cs, a01));
+      const VD b10 = hn::Sub(hn::Mul(cs, a01), hn::Mul(sn, a11));
+      const VD b11 = hn::Add(hn::Mul(sn, a01), hn::Mul(cs, a11));
+      e0 = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, b00), hn::Mul(sn, b10)), a00);
+      e1 = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, b01), hn::Mul(cs, b11)), a11);
+      // V = I rotated as jacobi_eigen<2> computes it (c * 1 - s * 0, ...: signed zeros alike).
+      v[0][0] = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, one), hn::Mul(sn, zero)), one);
+      v[0][1] = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, one), hn::Mul(cs, zero)), zero);
+      v[1][0] = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, zero), hn::Mul(sn, one)), zero);
+      v[1][1] = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, zero), hn::Mul(cs, one)), one);
+    }
+    // gabor_filter<2>: eigenvalues clamped at 0 (NaN too), Q and M from them.
+    VD qd[2], md[2];
+    const VD e[2] = {e0, e1};
+    for (int i = 0; i < 2; ++i) {
+      const VD kl = hn::Mul(hn::Set(dd, k), hn::IfThenElseZero(hn::Gt(e[i], zero), e[i]));
+      const VD den = hn::Add(one, kl);
+      qd[i] = hn::Div(one, den);
+      md[i] = hn::Mul(hn::Set(dd, mk), hn::Div(kl, den));
+    }
+    const VD amp = hn::Mul(hn::Mul(one, hn::Sqrt(qd[0])), hn::Sqrt(qd[1]));
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        VD qq = zero, mm = zero;
+        for (int x = 0; x < 2; ++x) {
+          qq = hn::Add(qq, hn::Mul(hn::Mul(v[i][x], qd[x]), v[j][x]));
+          mm = hn::Add(mm, hn::Mul(hn::Mul(v[i][x], md[x]), v[j][x]));
+        }
+        hn::StoreU(hn::DemoteTo(dfh, qq), dfh, out + (i * 2 + j) * stride + p0);
+        hn::StoreU(hn::DemoteTo(dfh, mm), dfh, out + (4 + i * 2 + j) * stride + p0);
+      }
+    hn::StoreU(hn::DemoteTo(dfh, amp), dfh, out + 8 * stride + p0);
+  }
+}
+
 // prepare(sorted) sees the points in the order in which they reach the kernel.
 //
 // The filtered kernel (gabor<D>::filtered_eval) with each point's footprint fps[point]:
@@ -11427,20 +11509,27 @@ struct shared_filtered {
       amp.resize(t.val.size());
     }
     // Each pending point's filter first, in a loop of independent iterations (the
-    // filter's divisions and square roots overlap across points), then spread over
+    // filter's divisions and square roots overlap across points; 2D in lanes of doubles,
+    // filters_2d: in scalar double it was half of this kernel's time), then spread over
     // its pairs: whole vectors of one value (the buffers have a vector of slack), the
     // next point's overwrite what one writes beyond its pairs.
     constexpr std::size_t kAmp = std::size_t{2} * D * D, kCoef = kAmp + 1;  // Q, M, amplitude
-    coef.resize(pend.size() * kCoef);
-    for (std::size_t p = 0; p < pend.size(); ++p) {
-      const gabor_filter<D> fl(sorted_fps[next + p], envelope, inv);
-      float* cp = coef.data() + p * kCoef;
-      for (int r = 0; r < D; ++r)
-        for (int col = 0; col < D; ++col) {
-          cp[r * D + col] = static_cast<float>(fl.q[r][col]);
-          cp[D * D + r * D + col] = static_cast<float>(fl.m[r][col]);
-        }
-      cp[kAmp] = static_cast<float>(fl.amplitude);
+    // coef[k * stride + p]: entry k of pending point p's filter (whole vectors of doubles
+    // of slack, which filters_2d writes).
+    const std::size_t stride = (pend.size() + lanes) / lanes * lanes;
+    coef.resize(kCoef * stride);
+    if constexpr (D == 2) {
+      filters_2d(sorted_fps.data() + next, pend.size(), envelope, inv, coef.data(), stride);
+    } else {
+      for (std::size_t p = 0; p < pend.size(); ++p) {
+        const gabor_filter<D> fl(sorted_fps[next + p], envelope, inv);
+        for (int r = 0; r < D; ++r)
+          for (int col = 0; col < D; ++col) {
+            coef[(r * D + col) * stride + p] = static_cast<float>(fl.q[r][col]);
+            coef[(D * D + r * D + col) * stride + p] = static_cast<float>(fl.m[r][col]);
+          }
+        coef[kAmp * stride + p] = static_cast<float>(fl.amplitude);
+      }
     }
     float* dst[kCoef];
     for (int e = 0; e < D * D; ++e) {
@@ -11450,11 +11539,12 @@ struct shared_filtered {
     dst[kAmp] = amp.data();
     // The ends in locals: through the vectors the compiler reloads them after every store.
     const std::size_t* const ends = pend_end.data();
+    const float* const cf = coef.data();
     for (std::size_t p = 0, b = 0; p < pend.size(); b = ends[p++]) {
-      const float* cp = coef.data() + p * kCoef;
       const std::size_t e = ends[p];
       for (std::size_t i = b; i < e; i += lanes)
-        for (std::size_t k = 0; k < kCoef; ++k) hn::StoreU(hn::Set(df, cp[k]), df, dst[k] + i);
+        for (std::size_t k = 0; k < kCoef; ++k)
+          hn::StoreU(hn::Set(df, cf[k * stride + p]), df, dst[k] + i);
     }
     next += pend.size();
     for (std::size_t i = 0; i < t.n; i += lanes) {
