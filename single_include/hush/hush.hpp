@@ -11510,7 +11510,7 @@ struct shared_filtered {
     }
     // Each pending point's filter first, in a loop of independent iterations (the
     // filter's divisions and square roots overlap across points; 2D in lanes of doubles,
-    // filters_2d: in scalar double it was half of this kernel's time), then spread over
+    // filters_2d: in scalar double ~20% of this kernel's samples), then spread over
     // its pairs: whole vectors of one value (the buffers have a vector of slack), the
     // next point's overwrite what one writes beyond its pairs.
     constexpr std::size_t kAmp = std::size_t{2} * D * D, kCoef = kAmp + 1;  // Q, M, amplitude
