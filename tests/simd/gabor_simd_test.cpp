@@ -163,6 +163,12 @@ TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail 
     check_points(g3, test_points<3>(500, 2));
     check_points(g2, test_points<2>(1500, 3, 2.0f));  // ~90 points per cell
     check_points(g3, test_points<3>(400, 4, 2.0f));   // ~6 points per cell
+    // Boxes about 9 cells wide: the padding lanes of a cell's candidate list (past its last
+    // candidate) must stay outside every support wherever the cell sits in the box (they
+    // once kept a stale cell offset, up to the box's width, and reached points near its
+    // right edge: 70 of these 1500 points wrong by up to 1.1 on AVX3).
+    check_points(g2, test_points<2>(1500, 5, 4.0f));
+    check_points(g3, test_points<3>(800, 4, 4.0f));
   }
 }
 
@@ -321,5 +327,6 @@ TEST_CASE("gabor simd: filtered samples agree with scalar evaluation, every kind
     // filtered samples on the shared-cell path, its outliers on the lockstep path.
     check_samples(g2, 1500, 3, 2.0f);
     check_samples(g3, 400, 4, 2.0f);
+    check_samples(g2, 1500, 5, 4.0f);  // boxes ~9 cells wide (check_points' padding case)
   }
 }

@@ -1733,8 +1733,12 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
         }
         nc += e - b;
       }
-      // Pad to whole vectors with candidates far outside every support.
+      // Pad to whole vectors with candidates far outside every support: position 8 at
+      // cell offset 0 (d_x = frac - 8). The offset too: the lanes past nc hold what the
+      // last row's whole vectors (or an earlier cell's) left there, cell offsets up to the
+      // box's width, which brought position 8 back within reach of points near its edge.
       hn::StoreU(hn::Set(df, 8.0f), df, cpos[0] + nc);
+      for (int a = 0; a < D; ++a) hn::StoreU(hn::Zero(df), df, co[a] + nc);
       for (std::size_t sp = run; sp < run_end; ++sp) {
         VF f[3];
         for (int a = 0; a < D; ++a) f[a] = hn::Set(df, sorted[sp].frac[a]);
