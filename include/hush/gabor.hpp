@@ -945,8 +945,8 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
 
   // One impulse of a filtered (or tangent-plane) kernel in E dimensions:
-  // w amplitude e^{-Phi^T M Phi} e^{-A d^T Q d} cos(2 pi <Q Phi, d>) tau(s),
-  // added to sum and, with G, its derivative by d to grad.
+  // w amplitude e^{-A d^T Q d - Phi^T M Phi} cos(2 pi <Q Phi, d>) tau(s) (one exponential
+  // of the summed exponents), added to sum and, with G, its derivative by d to grad.
   template <class T, int E, bool G>
   static void filtered_pair(const T (&q)[E][E], const T (&m)[E][E], T amplitude, T neg_a, T a,
                             T taper_k, const T* d, T s, T w, const T* phi, T& sum, T* grad) {
@@ -965,7 +965,7 @@ class gabor : public sample_noise<gabor<D>, D> {
       dqd += d[i] * z;
     }
     for (int i = 0; i < E; ++i) theta += mu[i] * d[i];
-    const T p = ((w * amplitude) * detail::exp_neg(-att)) * detail::exp_neg(neg_a * dqd);
+    const T p = (w * amplitude) * detail::exp_neg(neg_a * dqd - att);
     const detail::sin_cos<T> sc = detail::sincos_turns(theta);
     if constexpr (G) {
       const detail::gabor_taper_value<T> tw = detail::gabor_taper_derivative(s, taper_k);

@@ -23,7 +23,8 @@
 //    into one candidate list in the summation order, which each of its points tests in full
 //    vectors (lanes across impulses, no branch) and compresses the kept ones into a pair
 //    list; the kernel (unfiltered, or filtered with each point's filter computed once in
-//    double and spread over its pairs) then runs over the list (shared_points below);
+//    double, each lane taking its point's by a permutation) then runs over the list
+//    (shared_points below);
 //  - other points and filtered samples, and samples with normals: one lane per point
 //    (samples: each lane's filter, and for surface noise its tangent frame, computed in double
 //    as the scalar code does, and gathered per term); per cell and impulse the lanes draw in
@@ -698,12 +699,13 @@ HWY_INLINE void filtered_pair(const consts<D>& c, const VF* q, const VF* m, VF a
     dqd = mul_add(d[r], z, dqd);
   }
   for (int r = 0; r < E; ++r) theta = mul_add(mu[r], d[r], theta);
-  // d^T Q d is in [0, s] up to rounding (Q's eigenvalues in (0, 1]; Q rounded to
-  // float may be slightly indefinite, hence the clamp at 0, exp_neg's own): the
-  // envelope's exponent is in range; att >= 0 is not bounded. |theta| <= |Q Phi| |d|
-  // < |Phi| (sincos_kept).
-  const VF p = hn::Mul(hn::Mul(hn::Mul(w, amplitude), exp_neg(hn::Neg(att))),
-                       exp_neg_in_range(hn::Min(hn::Mul(c.neg_a, dqd), zero)));
+  // One exponential of the summed exponents -A d^T Q d - Phi^T M Phi: d^T Q d in [0, s]
+  // and att in [0, pi^2 |Phi|^2 / A) up to rounding (Q's eigenvalues in (0, 1], M's in
+  // [0, pi^2 / A); rounded to float either may be slightly indefinite: exp_neg clamps a
+  // positive sum at 0). Both are finite for every footprint (gabor_filter's eigenvalues
+  // are clamped, NaN too), so the sum is finite; where it is large it underflows to 0 as
+  // the product of the two exponentials did. |theta| <= |Q Phi| |d| < |Phi| (sincos_kept).
+  const VF p = hn::Mul(hn::Mul(w, amplitude), exp_neg(mul_add(c.neg_a, dqd, hn::Neg(att))));
   VF sn, cs;
   sincos_kept(c, theta, sn, cs);
   if constexpr (G) {
@@ -1481,8 +1483,8 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
 //
 // The filtered kernel (gabor<D>::filtered_eval) with each point's footprint fps[point]:
 // its filter computed once per point (in double, rounded to float as the scalar code
-// rounds it) and spread over the point's pairs, then filtered_pair over the pairs in
-// full vectors.
+// rounds it), then filtered_pair over the pairs in full vectors, each lane taking its
+// point's filter from a vector of the filters of consecutive points (a permutation).
 template <int D, bool G>
 struct shared_filtered {
   static constexpr bool kOffsets = true;
@@ -1493,8 +1495,8 @@ struct shared_filtered {
   // The footprints in sorted order, and the sorted position of the next pending point.
   std::vector<footprint<D>> sorted_fps;
   std::size_t next = 0;
-  // Per pair its point's Q, M (row-major) and amplitude; per pending point the same.
-  std::vector<float> q[D * D], m[D * D], amp, coef;
+  // Per pending point its Q, M (row-major) and amplitude (coef[k * stride + p]).
+  std::vector<float> coef;
   // Gathered in one loop of independent loads (in cell order they are read at random:
   // one cache miss each, which the kernel's loop, long per point, would wait for).
   void prepare(const std::vector<sorted_point<D>>& sorted) {
@@ -1505,28 +1507,21 @@ struct shared_filtered {
   void operator()(const consts<D>& c, shared_pairs& t, const std::vector<std::uint32_t>& pend,
                   const std::vector<std::size_t>& pend_end) {
     const DF df;
+    const DI di;
     const std::size_t lanes = hn::Lanes(df);
-    if (amp.size() < t.val.size()) {
-      for (int e = 0; e < D * D; ++e) {
-        q[e].resize(t.val.size());
-        m[e].resize(t.val.size());
-      }
-      amp.resize(t.val.size());
-    }
     // Each pending point's filter first, in a loop of independent iterations (the
     // filter's divisions and square roots overlap across points; 2D in lanes of doubles,
-    // filters_2d: in scalar double ~20% of this kernel's samples), then spread over
-    // its pairs: whole vectors of one value (the buffers have a vector of slack), the
-    // next point's overwrite what one writes beyond its pairs.
+    // filters_2d).
     constexpr std::size_t kAmp = std::size_t{2} * D * D, kCoef = kAmp + 1;  // Q, M, amplitude
-    // coef[k * stride + p]: entry k of pending point p's filter (whole vectors of doubles
-    // of slack, which filters_2d writes).
-    const std::size_t stride = (pend.size() + lanes) / lanes * lanes;
-    coef.resize(kCoef * stride);
+    const std::size_t np = pend.size();
+    // Whole vectors of doubles of slack (filters_2d writes them), and a vector of
+    // floats past the last entry (the loads below start at any pending point).
+    const std::size_t stride = (np + lanes) / lanes * lanes;
+    coef.resize(kCoef * stride + lanes);
     if constexpr (D == 2) {
-      filters_2d(sorted_fps.data() + next, pend.size(), envelope, inv, coef.data(), stride);
+      filters_2d(sorted_fps.data() + next, np, envelope, inv, coef.data(), stride);
     } else {
-      for (std::size_t p = 0; p < pend.size(); ++p) {
+      for (std::size_t p = 0; p < np; ++p) {
         const gabor_filter<D> fl(sorted_fps[next + p], envelope, inv);
         for (int r = 0; r < D; ++r)
           for (int col = 0; col < D; ++col) {
@@ -1536,34 +1531,44 @@ struct shared_filtered {
         coef[kAmp * stride + p] = static_cast<float>(fl.amplitude);
       }
     }
-    float* dst[kCoef];
-    for (int e = 0; e < D * D; ++e) {
-      dst[e] = q[e].data();
-      dst[D * D + e] = m[e].data();
-    }
-    dst[kAmp] = amp.data();
-    // The ends in locals: through the vectors the compiler reloads them after every store.
+    next += np;
+    // The ends in locals: through the vectors the compiler reloads them after every load.
     const std::size_t* const ends = pend_end.data();
     const float* const cf = coef.data();
-    for (std::size_t p = 0, b = 0; p < pend.size(); b = ends[p++]) {
-      const std::size_t e = ends[p];
-      for (std::size_t i = b; i < e; i += lanes)
-        for (std::size_t k = 0; k < kCoef; ++k)
-          hn::StoreU(hn::Set(df, cf[k * stride + p]), df, dst[k] + i);
-    }
-    next += pend.size();
+    const VI iota = hn::Iota(di, 0), one = hn::Set(di, 1);
+    std::size_t p = 0;  // the first pending point with pairs at or past i
     for (std::size_t i = 0; i < t.n; i += lanes) {
-      VF d[3], phi[3], qv[D * D], mv[D * D];
+      while (ends[p] <= i) ++p;  // t.n = ends[np - 1] > i: stops at a point
+      // Each lane's point as p + local: the number of points from p on whose pairs
+      // end at or before the lane's pair (lanes past t.n: the points' count, a valid
+      // index into coef's slack; their values are never summed).
+      const VI pair = hn::Add(iota, hn::Set(di, static_cast<std::int32_t>(i)));
+      VI local = hn::Zero(di);
+      std::size_t q = p;
+      for (; q < np && ends[q] < i + lanes; ++q)
+        local = hn::Add(local, hn::IfThenZeroElse(
+                                   hn::Gt(hn::Set(di, static_cast<std::int32_t>(ends[q])), pair),
+                                   one));
+      // The same entries either way: each lane's point's, bit for bit. local <= q - p:
+      // a permutation of the entries of points p ... p + lanes - 1 while fewer points
+      // than lanes end within this vector (more only where many points have no pairs:
+      // gathered).
+      VF ent[kCoef];
+      if (q - p < lanes) {
+        const auto idx = hn::IndicesFromVec(df, local);
+        for (std::size_t k = 0; k < kCoef; ++k)
+          ent[k] = hn::TableLookupLanes(hn::LoadU(df, cf + k * stride + p), idx);
+      } else {
+        for (std::size_t k = 0; k < kCoef; ++k)
+          ent[k] = hn::GatherIndex(df, cf + k * stride + p, local);
+      }
+      VF d[3], phi[3];
       for (int a = 0; a < D; ++a) {
         d[a] = hn::LoadU(df, t.d[a].data() + i);
         phi[a] = hn::LoadU(df, t.phi[a].data() + i);
       }
-      for (int e = 0; e < D * D; ++e) {
-        qv[e] = hn::LoadU(df, q[e].data() + i);
-        mv[e] = hn::LoadU(df, m[e].data() + i);
-      }
       VF value, gr[3];
-      filtered_pair<D, D, G>(c, qv, mv, hn::LoadU(df, amp.data() + i), d, point_s<D>(d),
+      filtered_pair<D, D, G>(c, ent, ent + D * D, ent[kAmp], d, point_s<D>(d),
                              hn::LoadU(df, t.w.data() + i), phi, value, gr);
       hn::StoreU(value, df, t.val.data() + i);
       if constexpr (G)

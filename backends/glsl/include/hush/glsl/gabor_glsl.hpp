@@ -204,7 +204,7 @@ float hush_gabor_marks(uint w0, uint w1, uint w2, out vec3 phi) {
   return w;
 }
 // gabor<D>::filtered_pair in `dim` dimensions: the term (value, d/dd) of one impulse,
-// w amp e^{-Phi^T M Phi} e^{-A d^T Q d} cos(2 pi <Q Phi, d>) tau(s).
+// w amp e^{-A d^T Q d - Phi^T M Phi} cos(2 pi <Q Phi, d>) tau(s) (one exponential).
 vec4 hush_gabor_filtered_pair(mat3 q, mat3 m, float amp, vec3 d, float s, float w, vec3 phi,
                               uint dim, bool grad) {
   float neg_a = hush_gp(hush_gp_NEG_A), a = hush_gp(hush_gp_A), tk = hush_gp(hush_gp_TAPER_K);
@@ -223,7 +223,7 @@ vec4 hush_gabor_filtered_pair(mat3 q, mat3 m, float amp, vec3 d, float s, float 
     dqd += d[i] * z;
   }
   for (uint i = 0u; i < dim; ++i) theta += mu[i] * d[i];
-  float p = ((w * amp) * hush_exp_neg(-att)) * hush_exp_neg(neg_a * dqd);
+  float p = (w * amp) * hush_exp_neg(neg_a * dqd - att);
   vec2 sc = hush_sincos_turns(theta);
   vec4 r = vec4(0.0);
   if (grad) {
