@@ -5371,11 +5371,27 @@ struct gabor_filter {
 
   // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
   gabor_filter(const footprint<D>& fp, double a, double inv_r) {
-    namespace c = detail::constants;
-    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
-    double s[D][D], v[D][D];
+    double s[D][D];
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
+    build(s, a, inv_r);
+  }
+  // The same for S given in double (symmetric, finite, positive semi-definite up
+  // to rounding): surface noise's footprint projected onto the tangent plane,
+  // which is not rounded to float (gabor<3>::surface_frame).
+  gabor_filter(const double (&cov)[D][D], double a, double inv_r) {
+    double s[D][D];
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) s[i][j] = cov[i][j];
+    build(s, a, inv_r);
+  }
+
+ private:
+  // s is overwritten (jacobi_eigen).
+  void build(double (&s)[D][D], double a, double inv_r) {
+    namespace c = detail::constants;
+    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
+    double v[D][D];
     detail::jacobi_eigen<D>(s, v);
     double qd[D], md[D];
     amplitude = 1.0;
@@ -5823,21 +5839,26 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
   // surface_frame: the tangent frame (t, b) of unit normal n and the filter of
   // footprint fp projected onto the plane ([t b]^T S [t b], in the kernel's units).
+  // The projection stays in double (entries within 3 W^2, as S's are within
+  // W^2: finite, no cap needed). It used to be stored as a footprint<2> (float)
+  // and read back: GCC 12's SLP vectorizer drops such double -> float -> double
+  // round trips in code built for AVX and later (the SIMD kernels inline this
+  // function), so scalar and SIMD filters differed for ill-conditioned
+  // projections (huge footprints).
   gabor_filter<2> surface_frame(const vec<double, 3>& n, const footprint<3>& fp,
                                 vec<double, 3>& t, vec<double, 3>& b) const {
     detail::orthonormal_basis(n, t, b);
-    float upper[3];
+    double s[2][2];
     const vec<double, 3>* axes[2] = {&t, &b};
-    for (int i = 0, e = 0; i < 2; ++i)
-      for (int j = i; j < 2; ++j, ++e) {
+    for (int i = 0; i < 2; ++i)
+      for (int j = i; j < 2; ++j) {
         double v = 0;
         for (int r = 0; r < 3; ++r)
           for (int k = 0; k < 3; ++k)
             v += (*axes[i])[r] * static_cast<double>(fp.covariance(r, k)) * (*axes[j])[k];
-        upper[e] = static_cast<float>(v);
+        s[i][j] = s[j][i] = v;
       }
-    return gabor_filter<2>(footprint<2>::from_covariance(upper), kernel_.envelope_exponent(),
-                           inv_cell_);
+    return gabor_filter<2>(s, kernel_.envelope_exponent(), inv_cell_);
   }
 
   // Variance 1 and mean 0 over space and seeds (see the file comment).
