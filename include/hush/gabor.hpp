@@ -52,6 +52,9 @@
 //    double reference (each kernel within 2^-21 (1 + 2 pi Phi) of its double
 //    value, gabor_kernel.hpp, and ~N' kernels reach a point); measured in
 //    tests/gabor_test.cpp ("float evaluation stays within the stated budget").
+//    The per-kernel figure is measured (gabor_kernel_test); the worst-case
+//    rounding analysis exceeds it for Phi < 0.9 (up to 4.5x at Phi = 0 in 3D;
+//    docs/gabor.md "Float accuracy").
 //  - domain: every finite coordinate (positions are split into cell and
 //    fraction in double, so precision does not degrade far from the origin);
 //    NaN or +-Inf in a coordinate gives NaN (value and gradient).
@@ -336,21 +339,26 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
   // surface_frame: the tangent frame (t, b) of unit normal n and the filter of
   // footprint fp projected onto the plane ([t b]^T S [t b], in the kernel's units).
+  // The projection stays in double (entries within 3 W^2, as S's are within
+  // W^2: finite, no cap needed). It used to be stored as a footprint<2> (float)
+  // and read back: GCC 12's SLP vectorizer drops such double -> float -> double
+  // round trips in code built for AVX and later (the SIMD kernels inline this
+  // function), so scalar and SIMD filters differed for ill-conditioned
+  // projections (huge footprints).
   gabor_filter<2> surface_frame(const vec<double, 3>& n, const footprint<3>& fp,
                                 vec<double, 3>& t, vec<double, 3>& b) const {
     detail::orthonormal_basis(n, t, b);
-    float upper[3];
+    double s[2][2];
     const vec<double, 3>* axes[2] = {&t, &b};
-    for (int i = 0, e = 0; i < 2; ++i)
-      for (int j = i; j < 2; ++j, ++e) {
+    for (int i = 0; i < 2; ++i)
+      for (int j = i; j < 2; ++j) {
         double v = 0;
         for (int r = 0; r < 3; ++r)
           for (int k = 0; k < 3; ++k)
             v += (*axes[i])[r] * static_cast<double>(fp.covariance(r, k)) * (*axes[j])[k];
-        upper[e] = static_cast<float>(v);
+        s[i][j] = s[j][i] = v;
       }
-    return gabor_filter<2>(footprint<2>::from_covariance(upper), kernel_.envelope_exponent(),
-                           inv_cell_);
+    return gabor_filter<2>(s, kernel_.envelope_exponent(), inv_cell_);
   }
 
   // Variance 1 and mean 0 over space and seeds (see the file comment).
@@ -369,7 +377,8 @@ class gabor : public sample_noise<gabor<D>, D> {
   // the kernel transform for each call (isotropic: <= 1344 of them;
   // anisotropic: 2). Hybrid noise averages over millions of values of H (2D:
   // <= 6.6e6 in the frequency and orientation windows, <= 6.7e7 below them,
-  // |Phi| <= 64; 3D: <= 1296 spheres of <= 2144 nodes, two values each: 5.6e6),
+  // |Phi| <= 64; 3D: <= 1296 spheres of <= 2144 nodes, two values each: 5.6e6;
+  // 1.4e7 with rim_cuts' pieces, f within ~0.22 rad of the cap's rim),
   // so it tabulates H once per call
   // (<= 1217 quadratures, up to kGaborSpectrumWindowCycles; beyond, H's
   // asymptotic term, as gabor_spectrum): within 1e-15 of H(0) up to 64 cycles
@@ -404,9 +413,10 @@ class gabor : public sample_noise<gabor<D>, D> {
   // (cycles per cell): isotropic and hybrid noise integrate only the Phi
   // that bring a blob within `window` of f r; the default bounds every call
   // whatever F0, a and the spreads (calls of h: isotropic <= 1344; hybrid 2D
-  // <= 6.6e6, 3D <= 5.6e6; isotropic_mean, hybrid_window_2d, frequency_window,
-  // cap_mean); infinity takes every Phi (isotropic: same cost; hybrid: the full
-  // average, cost ~ |Phi|^2 in 2D, ~ |Phi| |f r| in 3D).
+  // <= 6.6e6, 3D <= 5.6e6, 1.4e7 near the cap's rim; isotropic_mean,
+  // hybrid_window_2d, frequency_window, cap_mean); infinity takes every Phi
+  // (isotropic: same cost; hybrid: the full average, cost ~ |Phi|^2 in 2D,
+  // ~ |Phi| |f r| in 3D).
   template <class H>
   double spectrum_with(const vec<double, D>& f, H h,
                        double window = detail::constants::kGaborSpectrumWindowCycles) const {
@@ -741,7 +751,8 @@ class gabor : public sample_noise<gabor<D>, D> {
   // ends where the circle touches the cap's rim, gamma = beta -+ theta
   // (cos theta = cap): the rule is cut there and each piece integrated by
   // integrate_ends. Nodes per half <= 16 (1 + 2 + ceil(4 pi) + ceil(window pi
-  // / 4)) = 1072 with the window (two calls of h each).
+  // / 4)) = 1072 with the window (two calls of h each), plus <= 48 pieces of 32
+  // nodes where a rim is near a pole (rim_cuts).
   template <class H>
   double cap_mean(double x, double ph, double cb, H& h, double window) const {
     const double cap = marks_.cos_cap();
@@ -768,7 +779,7 @@ class gabor : public sample_noise<gabor<D>, D> {
           const double cg = side * c;
           return blob_pair(h, base - 2.0 * xp * cg, base + 2.0 * xp * cg) * weight(cg);
         };
-        sum += cut_rule(g, c_lo, 1.0, 1.0, {side * rim[0], side * rim[1]}, 1.0);
+        sum += cut_rule(g, c_lo, 1.0, 1.0, rim_cuts(rim, side), 1.0);
       }
       return sum / (1.0 - cap);
     }
@@ -779,23 +790,52 @@ class gabor : public sample_noise<gabor<D>, D> {
         const double cg = side * (base - k2) / (2.0 * xp);
         return k * (side > 0 ? blob_pair(h, k2, far2) : blob_pair(h, far2, k2)) * weight(cg);
       };
-      auto at_rim = [&](double c) {  // k where cos gamma = c on this side
-        return std::sqrt(std::fmax(base - 2.0 * xp * side * c, 0.0));
-      };
-      sum += cut_rule(g, kmin, k_hi, kmin + 4.0, {at_rim(rim[0]), at_rim(rim[1])}, 0.5);
+      // k where side * cos gamma = c (c = 1, the pole: k = kmin).
+      cap_cuts cuts = rim_cuts(rim, side);
+      for (double& c : cuts) c = std::sqrt(std::fmax(base - 2.0 * xp * c, 0.0));
+      sum += cut_rule(g, kmin, k_hi, kmin + 4.0, cuts, 0.5);
     }
     return sum / ((1.0 - cap) * xp);
+  }
+
+  // cap_mean's cuts on one side, in c = side cos gamma (the side's pole, gamma = 0
+  // or pi, at c = 1): the two rims, and where a rim is within d < 0.025 of the
+  // pole, cuts at c = 1 - 4^j d (j >= 1, up to 1 - 0.1). There the circle of
+  // directions at gamma ~ sqrt(2 (1 - c)) is small and the rim ~sqrt(2 d) from its
+  // centre, so beyond the rim w ~ acos(-sqrt(d / (1 - c))) / pi changes on the
+  // scale d, with the pole's singularity d beyond the rim: one piece from the
+  // rim on (the sine map resolves the rim's square root, not that) was off by
+  // up to 2.3e-6 of the value at d ~ 5e-6 (xi 3e-3 rad from the rim);
+  // pieces spanning a factor 4 in 1 - c (2 in gamma) keep it analytic around
+  // each piece, as far from the pole as the piece is long: <= 2 x 25 cuts
+  // (d >= 2^-53), 1e-11 of the value (docs/gabor.md "Cost of the spectra").
+  // Unused entries repeat the first rim (empty pieces).
+  static constexpr std::size_t kCapCuts = 52;  // 2 rims x (the rim, <= 24 cuts, a spare)
+  using cap_cuts = std::array<double, kCapCuts>;
+  static cap_cuts rim_cuts(const double (&rim)[2], double side) {
+    cap_cuts cuts{};
+    std::size_t n = 0;
+    for (const double r : rim) {
+      const double c = side * r, d = 1.0 - c;
+      cuts[n++] = c;
+      if (d > 0.0 && d < 0.025)
+        for (double e = 4.0 * d; e < 0.1 && n < kCapCuts; e *= 4.0) cuts[n++] = 1.0 - e;
+    }
+    for (; n < kCapCuts; ++n) cuts[n] = cuts[0];
+    return cuts;
   }
 
   // integrate_ends over [lo, hi] cut at `cuts` (those inside) and at `core`:
   // panels per unit 2 below core, `per` beyond (H oscillates at <= 1 cycle per
   // unit k, its core is within 4 of k = 0), pi / 2 times that for the map.
-  template <class G>
-  static double cut_rule(G& g, double lo, double hi, double core, std::array<double, 2> cuts,
+  template <class G, std::size_t N>
+  static double cut_rule(G& g, double lo, double hi, double core, const std::array<double, N>& cuts,
                          double per) {
-    std::array<double, 5> at = {lo, hi, std::fmin(std::fmax(core, lo), hi),
-                                std::fmin(std::fmax(cuts[0], lo), hi),
-                                std::fmin(std::fmax(cuts[1], lo), hi)};
+    std::array<double, N + 3> at{};
+    at[0] = lo;
+    at[1] = hi;
+    at[2] = std::fmin(std::fmax(core, lo), hi);
+    for (std::size_t i = 0; i < N; ++i) at[3 + i] = std::fmin(std::fmax(cuts[i], lo), hi);
     std::sort(at.begin(), at.end());
     double sum = 0;
     for (std::size_t i = 0; i + 1 < at.size(); ++i) {
@@ -1131,11 +1171,18 @@ class gabor : public sample_noise<gabor<D>, D> {
 // frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
 // kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
 // the largest |f r| + |Phi| needed but at most kGaborSpectrumWindowCycles
-// (4100 values, whatever F0 and a), and interpolated with Catmull-Rom cubics
-// (within 3e-5 of the peak of the exact spectrum); beyond the table H is its
-// leading asymptotic term (its error there, 1.1e-13 (1024 / k)^4.5 of H(0) in
-// 2D, < 3e-8 at k = 64, multiplies a tail below 1.7 k^-3.5 H(0) < 1e-6 H(0):
-// < 3e-14 of H(0)^2, the squared peak). Isotropic noise's spectrum is radial: it
+// (4100 values, whatever F0 and a), and interpolated with Catmull-Rom cubics:
+// H within 1.8e-6 H(0) in 2D and 1.4e-6 in 3D (t = 0.5, the worst of t in
+// [1e-9, 0.5]; checked every 1/3200 cycle), so each ((H(k-) + H(k+)) / 2)^2
+// within 3.6e-6 H(0)^2, and the spectrum within 3e-5 of its peak (measured
+// against power_spectrum, every kind, 2D and 3D, F0 1e-6 ... 1e6, t 0.05 and
+// 0.5, spreads and caps, 45 f each: <= 4.5e-6; docs/gabor.md "Exact
+// statistics"). Beyond the table H is its leading asymptotic term, within
+// 3.0e-8 H(0) (2D) and 3.1e-9 H(0) (3D) at k = 64, falling as k^-4.5: with
+// the near blob in its core and the far one beyond the table (|Phi| > 32
+// cycles per cell) that multiplies H(k-) <= H(0), so <= 1.5e-8 of H(0)^2
+// there (not a tail: the earlier bound, 3e-14, assumed both blobs beyond
+// the table). Isotropic noise's spectrum is radial: it
 // is tabulated the same way against |f| (64 max_frequency r + 4 values: the
 // caller's range). Frequencies above max_frequency (cycles per noise unit, any
 // direction) give 0.

@@ -538,11 +538,27 @@ struct gabor_filter {
 
   // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
   gabor_filter(const footprint<D>& fp, double a, double inv_r) {
-    namespace c = detail::constants;
-    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
-    double s[D][D], v[D][D];
+    double s[D][D];
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
+    build(s, a, inv_r);
+  }
+  // The same for S given in double (symmetric, finite, positive semi-definite up
+  // to rounding): surface noise's footprint projected onto the tangent plane,
+  // which is not rounded to float (gabor<3>::surface_frame).
+  gabor_filter(const double (&cov)[D][D], double a, double inv_r) {
+    double s[D][D];
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) s[i][j] = cov[i][j];
+    build(s, a, inv_r);
+  }
+
+ private:
+  // s is overwritten (jacobi_eigen).
+  void build(double (&s)[D][D], double a, double inv_r) {
+    namespace c = detail::constants;
+    const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
+    double v[D][D];
     detail::jacobi_eigen<D>(s, v);
     double qd[D], md[D];
     amplitude = 1.0;
