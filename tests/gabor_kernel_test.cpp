@@ -151,6 +151,31 @@ TEST_CASE("gabor_kernel: the float taper is exactly 0 from s = 1 on, exactly 1 w
   CHECK(hush::detail::gabor_taper(std::numeric_limits<float>::infinity(), k) == 0.0f);
 }
 
+TEST_CASE("gabor_kernel: the point form's sum is four partial sums by kept index, then paired") {
+  // gabor_point_sum defines the float sum that scalar points, the SIMD lockstep and shared
+  // paths and GLSL repeat (term k into partial k mod 4, then (s0 + s1) + (s2 + s3)).
+  // Terms chosen so that each order rounds differently: 1e8 absorbs a 1 (float spacing 8
+  // there) in one running sum but not when the 1s fall in partials of their own.
+  const float t[6] = {1e8f, 1.0f, -1e8f, 1.0f, 0.5f, 0.25f};
+  hush::detail::gabor_point_sum<float> ps;
+  float chain = 0.0f;
+  for (float v : t) {
+    ps.add(v);
+    chain += v;
+  }
+  // Partials: (1e8 + 0.5), (1 + 0.25), -1e8, 1 -> (1e8 + 1.25) + (-1e8 + 1) = 1e8 - 1e8 = 0.
+  const float s0 = 1e8f + 0.5f, s1 = 1.0f + 0.25f, s2 = -1e8f, s3 = 1.0f;
+  CHECK(ps.total() == (s0 + s1) + (s2 + s3));
+  CHECK(ps.total() != chain);  // the running sum: ((1e8 + 1) - 1e8) + 1 + 0.5 + 0.25 = 1.75
+  CHECK(chain == 1.75f);
+  // Partials start at +0: an empty or cancelling sum is +0, never -0.
+  hush::detail::gabor_point_sum<float> cancel;
+  cancel.add(-0.0f);
+  cancel.add(-0.0f);
+  CHECK(!std::signbit(cancel.total()));
+  CHECK(!std::signbit(hush::detail::gabor_point_sum<float>{}.total()));
+}
+
 TEST_CASE("gabor_kernel: C1 across the taper and the support edge, gradient is the derivative") {
   const hush::gabor_kernel<2> k(0.8, 0.05);
   const hush::dvec2 F{0.9, -0.4};

@@ -951,6 +951,8 @@ class gabor : public sample_noise<gabor<D>, D> {
     const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
     const T taper_k = taper_k_<T>();
     T sum = 0, g[D] = {};
+    // The point form sums by fours (detail::gabor_point_sum), value and gradient alike.
+    detail::gabor_point_sum<T> psum, pg_sum[D];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
       if constexpr (!Grid) {
         T ph[D];
@@ -958,10 +960,10 @@ class gabor : public sample_noise<gabor<D>, D> {
         const T theta = detail::gabor_point_phase<T, D>(ph, d);
         if constexpr (G) {
           const auto pg = detail::gabor_point_term_with_gradient(w, s, theta, neg_a, taper_k, a);
-          sum += pg.value;
-          for (int i = 0; i < D; ++i) g[i] += pg.u * d[i] - pg.v * phi[i];
+          psum.add(pg.value);
+          for (int i = 0; i < D; ++i) pg_sum[i].add(pg.u * d[i] - pg.v * phi[i]);
         } else {
-          sum += detail::gabor_point_term(w, s, theta, neg_a, taper_k);
+          psum.add(detail::gabor_point_term(w, s, theta, neg_a, taper_k));
         }
         return;
       }
@@ -981,6 +983,10 @@ class gabor : public sample_noise<gabor<D>, D> {
       }
     });
     if (!ok) return nan_result<T>();
+    if constexpr (!Grid) {
+      sum = psum.total();
+      for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total();
+    }
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
 

@@ -204,6 +204,24 @@ HUSH_INLINE gabor_pair_gradient<T> gabor_point_term_with_gradient(T w, T s, T th
   return gabor_gradient_of_harmonics(p * sc.cos, p * sc.sin, s, taper_k, a);
 }
 
+// The point form's sum of one point's terms (random points, unfiltered; grids
+// and filtered samples add in one chain): the k-th term in the summation order
+// (cells in raster order, impulses in stream order, kept ones counted) goes to
+// partial sum k mod 4, the total is (s0 + s1) + (s2 + s3). Four independent
+// chains of adds instead of one; the SIMD paths hold the four partial sums in
+// one 4-lane vector and repeat this bit for bit. Each partial sum starts at +0
+// and so never becomes -0: the SIMD paths may add +0 for missing terms.
+template <class T>
+struct gabor_point_sum {
+  T part[4] = {T(0), T(0), T(0), T(0)};
+  unsigned k = 0;
+  HUSH_INLINE void add(T v) {
+    part[k & 3u] += v;
+    ++k;
+  }
+  HUSH_INLINE T total() const { return (part[0] + part[1]) + (part[2] + part[3]); }
+};
+
 // ---- Closed forms and quadratures in cell units (double).
 
 // The radially symmetric part of an integral over the unit ball: int phi(|d|) dd

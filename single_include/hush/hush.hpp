@@ -5037,6 +5037,24 @@ HUSH_INLINE gabor_pair_gradient<T> gabor_point_term_with_gradient(T w, T s, T th
   return gabor_gradient_of_harmonics(p * sc.cos, p * sc.sin, s, taper_k, a);
 }
 
+// The point form's sum of one point's terms (random points, unfiltered; grids
+// and filtered samples add in one chain): the k-th term in the summation order
+// (cells in raster order, impulses in stream order, kept ones counted) goes to
+// partial sum k mod 4, the total is (s0 + s1) + (s2 + s3). Four independent
+// chains of adds instead of one; the SIMD paths hold the four partial sums in
+// one 4-lane vector and repeat this bit for bit. Each partial sum starts at +0
+// and so never becomes -0: the SIMD paths may add +0 for missing terms.
+template <class T>
+struct gabor_point_sum {
+  T part[4] = {T(0), T(0), T(0), T(0)};
+  unsigned k = 0;
+  HUSH_INLINE void add(T v) {
+    part[k & 3u] += v;
+    ++k;
+  }
+  HUSH_INLINE T total() const { return (part[0] + part[1]) + (part[2] + part[3]); }
+};
+
 // ---- Closed forms and quadratures in cell units (double).
 
 // The radially symmetric part of an integral over the unit ball: int phi(|d|) dd
@@ -6454,6 +6472,8 @@ class gabor : public sample_noise<gabor<D>, D> {
     const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
     const T taper_k = taper_k_<T>();
     T sum = 0, g[D] = {};
+    // The point form sums by fours (detail::gabor_point_sum), value and gradient alike.
+    detail::gabor_point_sum<T> psum, pg_sum[D];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
       if constexpr (!Grid) {
         T ph[D];
@@ -6461,10 +6481,10 @@ class gabor : public sample_noise<gabor<D>, D> {
         const T theta = detail::gabor_point_phase<T, D>(ph, d);
         if constexpr (G) {
           const auto pg = detail::gabor_point_term_with_gradient(w, s, theta, neg_a, taper_k, a);
-          sum += pg.value;
-          for (int i = 0; i < D; ++i) g[i] += pg.u * d[i] - pg.v * phi[i];
+          psum.add(pg.value);
+          for (int i = 0; i < D; ++i) pg_sum[i].add(pg.u * d[i] - pg.v * phi[i]);
         } else {
-          sum += detail::gabor_point_term(w, s, theta, neg_a, taper_k);
+          psum.add(detail::gabor_point_term(w, s, theta, neg_a, taper_k));
         }
         return;
       }
@@ -6484,6 +6504,10 @@ class gabor : public sample_noise<gabor<D>, D> {
       }
     });
     if (!ok) return nan_result<T>();
+    if constexpr (!Grid) {
+      sum = psum.total();
+      for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total();
+    }
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
 
@@ -10066,6 +10090,7 @@ HWY_AFTER_NAMESPACE();
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include <hwy/highway.h>
@@ -10911,9 +10936,30 @@ void eval_surface(const consts<3>& c, const lanes_filter& f, const lanes_frame& 
   }
 }
 
+// detail::gabor_point_sum of the n terms v[0, n): term q into partial sum
+// q mod 4 (one 4-lane vector; the last vector's missing terms are +0, which
+// changes no partial sum), then (s0 + s1) + (s2 + s3). v may be read up to 3
+// floats beyond n.
+HWY_INLINE float point_sum(const float* HWY_RESTRICT v, std::size_t n) {
+  const hn::CappedTag<float, 4> d4;
+  HWY_ALIGN float part[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  if (hn::Lanes(d4) == 4) {
+    auto acc = hn::Zero(d4);
+    std::size_t q = 0;
+    for (; q + 4 <= n; q += 4) acc = hn::Add(acc, hn::LoadU(d4, v + q));
+    if (q < n) acc = hn::Add(acc, hn::IfThenElseZero(hn::FirstN(d4, n - q), hn::LoadU(d4, v + q)));
+    hn::Store(acc, d4, part);
+  } else {  // HWY_SCALAR: one lane
+    for (std::size_t q = 0; q < n; ++q) part[q & 3] += v[q];
+  }
+  return (part[0] + part[1]) + (part[2] + part[3]);
+}
+
 // Sums each lane's terms in their order and writes value = sum * scale (and
 // gradient = g * gradient scale), NaN for bad lanes. `used` lanes are written.
-template <int D, bool G>
+// Fours: the point form's sum by fours (detail::gabor_point_sum; a lane's
+// q-th term into its partial sum q mod 4), else one chain per lane.
+template <int D, bool G, bool Fours = false>
 void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scale, float grad_scale,
             float* value, float* grad) {
   float sum[kMaxLanes], g[3][kMaxLanes];
@@ -10921,11 +10967,34 @@ void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scal
   std::fill(sum, sum + lanes, 0.0f);
   if constexpr (G)
     for (int a = 0; a < D; ++a) std::fill(g[a], g[a] + lanes, 0.0f);
-  for (std::size_t i = 0; i < t.n; ++i) {
-    const std::uint32_t l = t.lane[i];
-    sum[l] += t.val[i];
-    if constexpr (G)
-      for (int a = 0; a < D; ++a) g[a][l] += t.g[a][i];
+  if constexpr (Fours) {
+    float part[4][kMaxLanes], gpart[3][4][kMaxLanes];
+    std::uint32_t k[kMaxLanes];
+    std::fill(k, k + lanes, 0u);
+    for (int j = 0; j < 4; ++j) {
+      std::fill(part[j], part[j] + lanes, 0.0f);
+      if constexpr (G)
+        for (int a = 0; a < D; ++a) std::fill(gpart[a][j], gpart[a][j] + lanes, 0.0f);
+    }
+    for (std::size_t i = 0; i < t.n; ++i) {
+      const std::uint32_t l = t.lane[i], j = k[l]++ & 3u;
+      part[j][l] += t.val[i];
+      if constexpr (G)
+        for (int a = 0; a < D; ++a) gpart[a][j][l] += t.g[a][i];
+    }
+    for (std::size_t l = 0; l < lanes; ++l) {
+      sum[l] = (part[0][l] + part[1][l]) + (part[2][l] + part[3][l]);
+      if constexpr (G)
+        for (int a = 0; a < D; ++a)
+          g[a][l] = (gpart[a][0][l] + gpart[a][1][l]) + (gpart[a][2][l] + gpart[a][3][l]);
+    }
+  } else {
+    for (std::size_t i = 0; i < t.n; ++i) {
+      const std::uint32_t l = t.lane[i];
+      sum[l] += t.val[i];
+      if constexpr (G)
+        for (int a = 0; a < D; ++a) g[a][l] += t.g[a][i];
+    }
   }
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (std::size_t l = 0; l < used; ++l) {
@@ -11027,7 +11096,8 @@ process solid_process(const gabor<D>& g) {
 // Noise of process `pr` at `count` positions: split(first, used) fills `sp`
 // for the batch of lanes starting at position `first`, keep(d, d2) is the
 // support test, and eval(consts, tuples, first) fills t.val (and t.g).
-template <int D, int E, bool G, class Split, class Keep, class Eval>
+// Fours: the point form's sum by fours (finish).
+template <int D, int E, bool G, bool Fours = false, class Split, class Keep, class Eval>
 void process_points(const gabor<D>& g, const process& pr, std::size_t count, lanes_split& sp,
                     Split split, Keep keep, float* value, float* grad, Eval eval) {
   const DF df;
@@ -11042,19 +11112,19 @@ void process_points(const gabor<D>& g, const process& pr, std::size_t count, lan
     collect<E>(g.key(), pr.stream, flipped, pr.words, sp, t, keep);
     eval(c, t, first);
     float* gr = G ? grad + first * E : nullptr;
-    finish<E, G>(t, sp, used, pr.scale, pr.grad_scale, value + first, gr);
+    finish<E, G, Fours>(t, sp, used, pr.scale, pr.grad_scale, value + first, gr);
   }
 }
 
 // Unfiltered (or, with eval, filtered) solid noise at `count` positions.
-template <int D, bool G, class Split, class Eval>
+template <int D, bool G, bool Fours = false, class Split, class Eval>
 void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
                  float* grad, Eval eval) {
   auto keep = [](const VF*, const VF* d2) {
     const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
     return hn::Lt(s, hn::Set(DF(), 1.0f));
   };
-  process_points<D, D, G>(g, solid_process(g), count, sp, split, keep, value, grad, eval);
+  process_points<D, D, G, Fours>(g, solid_process(g), count, sp, split, keep, value, grad, eval);
 }
 
 // Unfiltered solid noise at `count` positions: random points, or with Grid a
@@ -11062,7 +11132,7 @@ void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split sp
 template <int D, bool G, bool Grid, class Split>
 void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
             float* grad) {
-  points_with<D, G>(
+  points_with<D, G, !Grid>(
       g, count, sp, split, value, grad,
       [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G, Grid>(c, t); });
 }
@@ -11733,10 +11803,17 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
       eval(c, t, pend, pend_end);
       for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
         float sum = 0.0f, gs[3] = {0.0f, 0.0f, 0.0f};
-        for (std::size_t q = b; q < pend_end[p]; ++q) {
-          sum += t.val[q];
+        if constexpr (std::is_same_v<Eval, shared_unfiltered<D, G>>) {
+          // The point form sums by fours (detail::gabor_point_sum).
+          sum = point_sum(t.val.data() + b, pend_end[p] - b);
           if constexpr (G)
-            for (int a = 0; a < D; ++a) gs[a] += t.g[a][q];
+            for (int a = 0; a < D; ++a) gs[a] = point_sum(t.g[a].data() + b, pend_end[p] - b);
+        } else {
+          for (std::size_t q = b; q < pend_end[p]; ++q) {
+            sum += t.val[q];
+            if constexpr (G)
+              for (int a = 0; a < D; ++a) gs[a] += t.g[a][q];
+          }
         }
         value[pend[p]] = sum * scale;
         if constexpr (G)

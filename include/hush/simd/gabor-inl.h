@@ -55,6 +55,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include <hwy/highway.h>
@@ -853,9 +854,30 @@ void eval_surface(const consts<3>& c, const lanes_filter& f, const lanes_frame& 
   }
 }
 
+// detail::gabor_point_sum of the n terms v[0, n): term q into partial sum
+// q mod 4 (one 4-lane vector; the last vector's missing terms are +0, which
+// changes no partial sum), then (s0 + s1) + (s2 + s3). v may be read up to 3
+// floats beyond n.
+HWY_INLINE float point_sum(const float* HWY_RESTRICT v, std::size_t n) {
+  const hn::CappedTag<float, 4> d4;
+  HWY_ALIGN float part[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  if (hn::Lanes(d4) == 4) {
+    auto acc = hn::Zero(d4);
+    std::size_t q = 0;
+    for (; q + 4 <= n; q += 4) acc = hn::Add(acc, hn::LoadU(d4, v + q));
+    if (q < n) acc = hn::Add(acc, hn::IfThenElseZero(hn::FirstN(d4, n - q), hn::LoadU(d4, v + q)));
+    hn::Store(acc, d4, part);
+  } else {  // HWY_SCALAR: one lane
+    for (std::size_t q = 0; q < n; ++q) part[q & 3] += v[q];
+  }
+  return (part[0] + part[1]) + (part[2] + part[3]);
+}
+
 // Sums each lane's terms in their order and writes value = sum * scale (and
 // gradient = g * gradient scale), NaN for bad lanes. `used` lanes are written.
-template <int D, bool G>
+// Fours: the point form's sum by fours (detail::gabor_point_sum; a lane's
+// q-th term into its partial sum q mod 4), else one chain per lane.
+template <int D, bool G, bool Fours = false>
 void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scale, float grad_scale,
             float* value, float* grad) {
   float sum[kMaxLanes], g[3][kMaxLanes];
@@ -863,11 +885,34 @@ void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scal
   std::fill(sum, sum + lanes, 0.0f);
   if constexpr (G)
     for (int a = 0; a < D; ++a) std::fill(g[a], g[a] + lanes, 0.0f);
-  for (std::size_t i = 0; i < t.n; ++i) {
-    const std::uint32_t l = t.lane[i];
-    sum[l] += t.val[i];
-    if constexpr (G)
-      for (int a = 0; a < D; ++a) g[a][l] += t.g[a][i];
+  if constexpr (Fours) {
+    float part[4][kMaxLanes], gpart[3][4][kMaxLanes];
+    std::uint32_t k[kMaxLanes];
+    std::fill(k, k + lanes, 0u);
+    for (int j = 0; j < 4; ++j) {
+      std::fill(part[j], part[j] + lanes, 0.0f);
+      if constexpr (G)
+        for (int a = 0; a < D; ++a) std::fill(gpart[a][j], gpart[a][j] + lanes, 0.0f);
+    }
+    for (std::size_t i = 0; i < t.n; ++i) {
+      const std::uint32_t l = t.lane[i], j = k[l]++ & 3u;
+      part[j][l] += t.val[i];
+      if constexpr (G)
+        for (int a = 0; a < D; ++a) gpart[a][j][l] += t.g[a][i];
+    }
+    for (std::size_t l = 0; l < lanes; ++l) {
+      sum[l] = (part[0][l] + part[1][l]) + (part[2][l] + part[3][l]);
+      if constexpr (G)
+        for (int a = 0; a < D; ++a)
+          g[a][l] = (gpart[a][0][l] + gpart[a][1][l]) + (gpart[a][2][l] + gpart[a][3][l]);
+    }
+  } else {
+    for (std::size_t i = 0; i < t.n; ++i) {
+      const std::uint32_t l = t.lane[i];
+      sum[l] += t.val[i];
+      if constexpr (G)
+        for (int a = 0; a < D; ++a) g[a][l] += t.g[a][i];
+    }
   }
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (std::size_t l = 0; l < used; ++l) {
@@ -969,7 +1014,8 @@ process solid_process(const gabor<D>& g) {
 // Noise of process `pr` at `count` positions: split(first, used) fills `sp`
 // for the batch of lanes starting at position `first`, keep(d, d2) is the
 // support test, and eval(consts, tuples, first) fills t.val (and t.g).
-template <int D, int E, bool G, class Split, class Keep, class Eval>
+// Fours: the point form's sum by fours (finish).
+template <int D, int E, bool G, bool Fours = false, class Split, class Keep, class Eval>
 void process_points(const gabor<D>& g, const process& pr, std::size_t count, lanes_split& sp,
                     Split split, Keep keep, float* value, float* grad, Eval eval) {
   const DF df;
@@ -984,19 +1030,19 @@ void process_points(const gabor<D>& g, const process& pr, std::size_t count, lan
     collect<E>(g.key(), pr.stream, flipped, pr.words, sp, t, keep);
     eval(c, t, first);
     float* gr = G ? grad + first * E : nullptr;
-    finish<E, G>(t, sp, used, pr.scale, pr.grad_scale, value + first, gr);
+    finish<E, G, Fours>(t, sp, used, pr.scale, pr.grad_scale, value + first, gr);
   }
 }
 
 // Unfiltered (or, with eval, filtered) solid noise at `count` positions.
-template <int D, bool G, class Split, class Eval>
+template <int D, bool G, bool Fours = false, class Split, class Eval>
 void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
                  float* grad, Eval eval) {
   auto keep = [](const VF*, const VF* d2) {
     const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
     return hn::Lt(s, hn::Set(DF(), 1.0f));
   };
-  process_points<D, D, G>(g, solid_process(g), count, sp, split, keep, value, grad, eval);
+  process_points<D, D, G, Fours>(g, solid_process(g), count, sp, split, keep, value, grad, eval);
 }
 
 // Unfiltered solid noise at `count` positions: random points, or with Grid a
@@ -1004,7 +1050,7 @@ void points_with(const gabor<D>& g, std::size_t count, lanes_split& sp, Split sp
 template <int D, bool G, bool Grid, class Split>
 void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, float* value,
             float* grad) {
-  points_with<D, G>(
+  points_with<D, G, !Grid>(
       g, count, sp, split, value, grad,
       [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G, Grid>(c, t); });
 }
@@ -1675,10 +1721,17 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
       eval(c, t, pend, pend_end);
       for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
         float sum = 0.0f, gs[3] = {0.0f, 0.0f, 0.0f};
-        for (std::size_t q = b; q < pend_end[p]; ++q) {
-          sum += t.val[q];
+        if constexpr (std::is_same_v<Eval, shared_unfiltered<D, G>>) {
+          // The point form sums by fours (detail::gabor_point_sum).
+          sum = point_sum(t.val.data() + b, pend_end[p] - b);
           if constexpr (G)
-            for (int a = 0; a < D; ++a) gs[a] += t.g[a][q];
+            for (int a = 0; a < D; ++a) gs[a] = point_sum(t.g[a].data() + b, pend_end[p] - b);
+        } else {
+          for (std::size_t q = b; q < pend_end[p]; ++q) {
+            sum += t.val[q];
+            if constexpr (G)
+              for (int a = 0; a < D; ++a) gs[a] += t.g[a][q];
+          }
         }
         value[pend[p]] = sum * scale;
         if constexpr (G)

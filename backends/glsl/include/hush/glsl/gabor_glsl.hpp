@@ -245,6 +245,10 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat
   float neg_a = hush_gp(hush_gp_NEG_A), a = hush_gp(hush_gp_A), tk = hush_gp(hush_gp_TAPER_K);
   float sum = 0.0;
   vec3 g = vec3(0.0);
+  // The point form sums by fours (gabor_point_sum): kept term k into partial sum k mod 4.
+  bool fours = !separable && !filtered;
+  vec4 part = vec4(0.0), gpart[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
+  uint kept = 0u;
   uint cells = hush_gabor_dim == 2u ? 9u : 27u;
   for (uint n = 0u; n < cells; ++n) {
     int o[3];
@@ -288,6 +292,14 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat
           pg = grad ? hush_gabor_point_term_gradient(w, s, theta, neg_a, tk, a)
                     : vec3(hush_gabor_point_term(w, s, theta, neg_a, tk), 0.0, 0.0);
         }
+        if (fours) {
+          uint j = kept & 3u;
+          ++kept;
+          part[j] += pg.x;
+          if (grad)
+            for (uint i = 0u; i < hush_gabor_dim; ++i) gpart[i][j] += pg.y * d[i] - pg.z * phi[i];
+          continue;
+        }
         sum += pg.x;
         if (grad)
           for (uint i = 0u; i < hush_gabor_dim; ++i) g[i] += pg.y * d[i] - pg.z * phi[i];
@@ -299,6 +311,11 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat
       if (grad)
         for (uint i = 0u; i < hush_gabor_dim; ++i) g[i] += t[1u + i];
     }
+  }
+  if (fours) {
+    sum = (part.x + part.y) + (part.z + part.w);
+    for (uint i = 0u; i < hush_gabor_dim; ++i)
+      g[i] = (gpart[i].x + gpart[i].y) + (gpart[i].z + gpart[i].w);
   }
   return vec4(sum, g);
 }
