@@ -1036,13 +1036,19 @@ class gabor : public sample_noise<gabor<D>, D> {
       }
     const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
     const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
-    T sum = 0, g[D] = {};
+    // Sums by fours as the point form (detail::gabor_point_sum), value and gradient alike.
+    detail::gabor_point_sum<T> psum, pg_sum[D];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
-      T ph[D];
+      T ph[D], term = 0, gterm[D] = {};
       for (int i = 0; i < D; ++i) ph[i] = phi[i];
-      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, sum, g);
+      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, term, gterm);
+      psum.add(term);
+      if constexpr (G)
+        for (int i = 0; i < D; ++i) pg_sum[i].add(gterm[i]);
     });
     if (!ok) return nan_result<T>();
+    T sum = psum.total(), g[D];
+    for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total();
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
 

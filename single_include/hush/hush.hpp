@@ -5037,13 +5037,15 @@ HUSH_INLINE gabor_pair_gradient<T> gabor_point_term_with_gradient(T w, T s, T th
   return gabor_gradient_of_harmonics(p * sc.cos, p * sc.sin, s, taper_k, a);
 }
 
-// The point form's sum of one point's terms (random points, unfiltered; grids
-// and filtered samples add in one chain): the k-th term in the summation order
-// (cells in raster order, impulses in stream order, kept ones counted) goes to
-// partial sum k mod 4, the total is (s0 + s1) + (s2 + s3). Four independent
-// chains of adds instead of one; the SIMD paths hold the four partial sums in
-// one 4-lane vector and repeat this bit for bit. Each partial sum starts at +0
-// and so never becomes -0: the SIMD paths may add +0 for missing terms.
+// The sum of one point's terms at solid points, unfiltered and filtered (grids'
+// separable form and surface samples add in one chain): the k-th term in the
+// summation order (cells in raster order, impulses in stream order, kept ones
+// counted) goes to partial sum k mod 4, the total is (s0 + s1) + (s2 + s3). The
+// SIMD paths hold the four partial sums in one 4-lane vector and add a point's
+// terms four at a time without a branch on their count (a loop's exit,
+// mispredicted once per point, cost ~7 ns of ~77 per 2D point on AVX3); GLSL
+// keeps a vec4. Each partial sum starts at +0 and so never becomes -0: the SIMD
+// paths may add +0 for missing terms.
 template <class T>
 struct gabor_point_sum {
   T part[4] = {T(0), T(0), T(0), T(0)};
@@ -6557,13 +6559,19 @@ class gabor : public sample_noise<gabor<D>, D> {
       }
     const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
     const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
-    T sum = 0, g[D] = {};
+    // Sums by fours as the point form (detail::gabor_point_sum), value and gradient alike.
+    detail::gabor_point_sum<T> psum, pg_sum[D];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
-      T ph[D];
+      T ph[D], term = 0, gterm[D] = {};
       for (int i = 0; i < D; ++i) ph[i] = phi[i];
-      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, sum, g);
+      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, term, gterm);
+      psum.add(term);
+      if constexpr (G)
+        for (int i = 0; i < D; ++i) pg_sum[i].add(gterm[i]);
     });
     if (!ok) return nan_result<T>();
+    T sum = psum.total(), g[D];
+    for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total();
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
 
@@ -10090,7 +10098,6 @@ HWY_AFTER_NAMESPACE();
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <type_traits>
 #include <vector>
 
 #include <hwy/highway.h>
@@ -10937,17 +10944,27 @@ void eval_surface(const consts<3>& c, const lanes_filter& f, const lanes_frame& 
 }
 
 // detail::gabor_point_sum of the n terms v[0, n): term q into partial sum
-// q mod 4 (one 4-lane vector; the last vector's missing terms are +0, which
-// changes no partial sum), then (s0 + s1) + (s2 + s3). v may be read up to 3
-// floats beyond n.
+// q mod 4 (one 4-lane vector; missing terms are +0, which changes no partial
+// sum), then (s0 + s1) + (s2 + s3). The first kPointSumChunks chunks of four
+// without a branch on n (a loop's exit, mispredicted once per point, cost ~7 ns
+// per 2D point); v is read up to 4 kPointSumChunks floats from v, whatever n.
+constexpr std::size_t kPointSumChunks = 6;  // 24 terms: a point's 16 (N' = 16) and more
 HWY_INLINE float point_sum(const float* HWY_RESTRICT v, std::size_t n) {
   const hn::CappedTag<float, 4> d4;
   HWY_ALIGN float part[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   if (hn::Lanes(d4) == 4) {
+    const hn::RebindToSigned<decltype(d4)> i4;
+    const auto lane = hn::Iota(i4, 0);
+    const auto count =
+        hn::Set(i4, static_cast<std::int32_t>(std::min<std::size_t>(n, 4 * kPointSumChunks)));
     auto acc = hn::Zero(d4);
-    std::size_t q = 0;
-    for (; q + 4 <= n; q += 4) acc = hn::Add(acc, hn::LoadU(d4, v + q));
-    if (q < n) acc = hn::Add(acc, hn::IfThenElseZero(hn::FirstN(d4, n - q), hn::LoadU(d4, v + q)));
+    HWY_UNROLL(6)
+    for (std::size_t k = 0; k < kPointSumChunks; ++k) {
+      const auto in = hn::Lt(hn::Add(lane, hn::Set(i4, static_cast<std::int32_t>(4 * k))), count);
+      acc = hn::Add(acc, hn::IfThenElseZero(hn::RebindMask(d4, in), hn::LoadU(d4, v + 4 * k)));
+    }
+    for (std::size_t q = 4 * kPointSumChunks; HWY_UNLIKELY(q < n); q += 4)
+      acc = hn::Add(acc, hn::IfThenElseZero(hn::FirstN(d4, n - q), hn::LoadU(d4, v + q)));
     hn::Store(acc, d4, part);
   } else {  // HWY_SCALAR: one lane
     for (std::size_t q = 0; q < n; ++q) part[q & 3] += v[q];
@@ -11802,19 +11819,11 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     auto flush = [&] {
       eval(c, t, pend, pend_end);
       for (std::size_t p = 0, b = 0; p < pend.size(); b = pend_end[p++]) {
-        float sum = 0.0f, gs[3] = {0.0f, 0.0f, 0.0f};
-        if constexpr (std::is_same_v<Eval, shared_unfiltered<D, G>>) {
-          // The point form sums by fours (detail::gabor_point_sum).
-          sum = point_sum(t.val.data() + b, pend_end[p] - b);
-          if constexpr (G)
-            for (int a = 0; a < D; ++a) gs[a] = point_sum(t.g[a].data() + b, pend_end[p] - b);
-        } else {
-          for (std::size_t q = b; q < pend_end[p]; ++q) {
-            sum += t.val[q];
-            if constexpr (G)
-              for (int a = 0; a < D; ++a) gs[a] += t.g[a][q];
-          }
-        }
+        // Sums by fours (detail::gabor_point_sum), unfiltered and filtered alike.
+        const float sum = point_sum(t.val.data() + b, pend_end[p] - b);
+        float gs[3] = {0.0f, 0.0f, 0.0f};
+        if constexpr (G)
+          for (int a = 0; a < D; ++a) gs[a] = point_sum(t.g[a].data() + b, pend_end[p] - b);
         value[pend[p]] = sum * scale;
         if constexpr (G)
           for (int a = 0; a < D; ++a) grad[pend[p] * D + a] = gs[a] * grad_scale;
@@ -12421,15 +12430,15 @@ void gabor_filtered_lockstep(const gabor<D>& g, const float* pts, const footprin
     }
   };
   if (grad)
-    gs::points_with<D, true>(g, n, sp, split, value, grad,
-                             [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
-                               gs::eval_filtered<D, true>(c, filt, t);
-                             });
+    gs::points_with<D, true, true>(g, n, sp, split, value, grad,
+                                   [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
+                                     gs::eval_filtered<D, true>(c, filt, t);
+                                   });
   else
-    gs::points_with<D, false>(g, n, sp, split, value, nullptr,
-                              [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
-                                gs::eval_filtered<D, false>(c, filt, t);
-                              });
+    gs::points_with<D, false, true>(g, n, sp, split, value, nullptr,
+                                    [&filt](const gs::consts<D>& c, gs::tuples& t, std::size_t) {
+                                      gs::eval_filtered<D, false>(c, filt, t);
+                                    });
 }
 
 // Gabor noise filtered over footprints (gabor<D>::sample(p, fp), no normals) at n

@@ -245,8 +245,9 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat
   float neg_a = hush_gp(hush_gp_NEG_A), a = hush_gp(hush_gp_A), tk = hush_gp(hush_gp_TAPER_K);
   float sum = 0.0;
   vec3 g = vec3(0.0);
-  // The point form sums by fours (gabor_point_sum): kept term k into partial sum k mod 4.
-  bool fours = !separable && !filtered;
+  // Points (unfiltered and filtered) sum by fours (gabor_point_sum): kept term k into
+  // partial sum k mod 4; the separable form in one chain.
+  bool fours = !separable;
   vec4 part = vec4(0.0), gpart[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
   uint kept = 0u;
   uint cells = hush_gabor_dim == 2u ? 9u : 27u;
@@ -307,9 +308,11 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat
       }
       vec4 t = hush_gabor_filtered_pair(q, m, amp, vec3(d[0], d[1], d[2]), s, w, phi,
                                         hush_gabor_dim, grad);
-      sum += t.x;
+      uint j = kept & 3u;
+      ++kept;
+      part[j] += t.x;
       if (grad)
-        for (uint i = 0u; i < hush_gabor_dim; ++i) g[i] += t[1u + i];
+        for (uint i = 0u; i < hush_gabor_dim; ++i) gpart[i][j] += t[1u + i];
     }
   }
   if (fours) {
