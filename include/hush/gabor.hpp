@@ -125,6 +125,15 @@ HUSH_INLINE T gabor_byte(std::uint32_t w, unsigned i) {
   const std::uint32_t m = (w >> (c::kGaborByteBits * (3u - i))) & c::kGaborByteMask;
   return T((m << 1) | 1u) * T(c::kGaborByteScale);
 }
+// An impulse's offset along one axis from a point at fraction f of its cell,
+// the impulse at position u (gabor_byte) of the cell o cells away: f - (o + u),
+// one rounding (o + u is exact: a multiple of 2^-9 below 4 in magnitude for the
+// |o| <= 2 of every path), so the SIMD paths may keep o + u per impulse and the
+// point's f per lane (one subtraction and one list per axis in the SIMD test).
+template <class T>
+HUSH_INLINE T gabor_offset(T f, int o, T u) {
+  return f - (T(o) + u);
+}
 template <class T>
 HUSH_INLINE T gabor_half(std::uint32_t w, unsigned i) {
   namespace c = constants;
@@ -927,7 +936,7 @@ class gabor : public sample_noise<gabor<D>, D> {
       for_each_impulse(cell, [&](const std::uint32_t* words) {
         T d[D], d2[D];
         for (int ax = 0; ax < D; ++ax) {
-          d[ax] = (c[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
+          d[ax] = detail::gabor_offset(c[ax].f, o[ax], impulse_position<T>(words, ax));
           d2[ax] = d[ax] * d[ax];
         }
         const T s = D == 2 ? d2[0] + d2[1] : d2[0] + (d2[1] + d2[2]);
@@ -1090,7 +1099,7 @@ class gabor : public sample_noise<gabor<D>, D> {
       for_each_surface_impulse(cell, [&](const std::uint32_t* words) {
         T d[3];
         for (int ax = 0; ax < 3; ++ax)
-          d[ax] = (cc[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
+          d[ax] = detail::gabor_offset(cc[ax].f, o[ax], impulse_position<T>(words, ax));
         const T zn = (nt[0] * d[0] + nt[1] * d[1]) + nt[2] * d[2];
         const T z2 = (zn * zn) * inv_h2;
         if (!(z2 < T(1))) return;

@@ -5648,6 +5648,15 @@ HUSH_INLINE T gabor_byte(std::uint32_t w, unsigned i) {
   const std::uint32_t m = (w >> (c::kGaborByteBits * (3u - i))) & c::kGaborByteMask;
   return T((m << 1) | 1u) * T(c::kGaborByteScale);
 }
+// An impulse's offset along one axis from a point at fraction f of its cell,
+// the impulse at position u (gabor_byte) of the cell o cells away: f - (o + u),
+// one rounding (o + u is exact: a multiple of 2^-9 below 4 in magnitude for the
+// |o| <= 2 of every path), so the SIMD paths may keep o + u per impulse and the
+// point's f per lane (one subtraction and one list per axis in the SIMD test).
+template <class T>
+HUSH_INLINE T gabor_offset(T f, int o, T u) {
+  return f - (T(o) + u);
+}
 template <class T>
 HUSH_INLINE T gabor_half(std::uint32_t w, unsigned i) {
   namespace c = constants;
@@ -6450,7 +6459,7 @@ class gabor : public sample_noise<gabor<D>, D> {
       for_each_impulse(cell, [&](const std::uint32_t* words) {
         T d[D], d2[D];
         for (int ax = 0; ax < D; ++ax) {
-          d[ax] = (c[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
+          d[ax] = detail::gabor_offset(c[ax].f, o[ax], impulse_position<T>(words, ax));
           d2[ax] = d[ax] * d[ax];
         }
         const T s = D == 2 ? d2[0] + d2[1] : d2[0] + (d2[1] + d2[2]);
@@ -6613,7 +6622,7 @@ class gabor : public sample_noise<gabor<D>, D> {
       for_each_surface_impulse(cell, [&](const std::uint32_t* words) {
         T d[3];
         for (int ax = 0; ax < 3; ++ax)
-          d[ax] = (cc[ax].f - T(o[ax])) - impulse_position<T>(words, ax);
+          d[ax] = detail::gabor_offset(cc[ax].f, o[ax], impulse_position<T>(words, ax));
         const T zn = (nt[0] * d[0] + nt[1] * d[1]) + nt[2] * d[2];
         const T z2 = (zn * zn) * inv_h2;
         if (!(z2 < T(1))) return;
@@ -10637,14 +10646,14 @@ void collect(std::uint32_t key, std::uint32_t stream, const std::vector<std::int
     const VU count = nthr == 0 ? hn::Zero(du) : table_count(thr, nthr, draw(skey, 0));
     const std::uint32_t kmax = hn::GetLane(hn::MaxOfLanes(du, count));
     VF off[3];
-    for (int a = 0; a < E; ++a) off[a] = hn::Sub(frac[a], hn::Set(df, float(o[a])));
+    for (int a = 0; a < E; ++a) off[a] = hn::Set(df, float(o[a]));
     for (std::uint32_t k = 0; k < kmax; ++k) {
       const std::uint32_t counter = 1 + k * static_cast<std::uint32_t>(words);
       VU w[3];
       w[0] = draw(skey, counter);
       VF d[3], d2[3];
       for (int a = 0; a < E; ++a) {
-        d[a] = hn::Sub(off[a], byte_value(w[0], static_cast<unsigned>(a)));
+        d[a] = hn::Sub(frac[a], hn::Add(off[a], byte_value(w[0], static_cast<unsigned>(a))));
         d2[a] = hn::Mul(d[a], d[a]);
       }
       const auto active =
@@ -11481,12 +11490,12 @@ bool clearly_sparse(const float* pts, std::size_t n, double inv) {
 // fresh allocation per call cost a fifth of the time in page faults (262144
 // points, ~50 bytes each; the memory stays with the thread).
 // The candidate impulses of one cell's points (shared_points): per impulse
-// its cell's offset o along each axis, position in the cell, frequency and
-// weight, in the points' summation order.
+// o + u along each axis (its cell's offset plus its position in the cell,
+// exact: detail::gabor_offset), frequency and weight, in the points' summation order.
 struct cell_candidates {
-  std::vector<float> o[3], pos[3], phi[3], w;
+  std::vector<float> pos[3], phi[3], w;
   void reserve(std::size_t cap) {
-    for (auto* v : {&o[0], &o[1], &o[2], &pos[0], &pos[1], &pos[2], &phi[0], &phi[1], &phi[2], &w})
+    for (auto* v : {&pos[0], &pos[1], &pos[2], &phi[0], &phi[1], &phi[2], &w})
       if (v->size() < cap) v->resize(cap);
   }
 };
@@ -11847,10 +11856,9 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     float* const tphi[3] = {t.phi[0].data(), t.phi[1].data(), t.phi[2].data()};
     // The candidates of the points of one cell, in their order (rows of 3
     // cells in raster order, impulses in stream order), copied once per cell
-    // into one list: per impulse its cell offsets o (float) and its marks.
+    // into one list: per impulse o + u (float) and its marks.
     cell_candidates& cc = ws.cc;
     cc.reserve(static_cast<std::size_t>(kCells) * g.table().max_count() + 2 * lanes);
-    float* const co[3] = {cc.o[0].data(), cc.o[1].data(), cc.o[2].data()};
     float* const cpos[3] = {cc.pos[0].data(), cc.pos[1].data(), cc.pos[2].data()};
     float* const cphi[3] = {cc.phi[0].data(), cc.phi[1].data(), cc.phi[2].data()};
     float* const cw = cc.w.data();
@@ -11872,32 +11880,29 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
         // copy overwrites what this one writes beyond its end.
         for (std::size_t k = b; k < e; k += lanes) {
           const std::size_t dst = nc + (k - b);
-          hn::StoreU(hn::Sub(hn::LoadU(df, bx + k), bxp), df, co[0] + dst);
-          for (int a = 1; a < D; ++a) hn::StoreU(orow[a], df, co[a] + dst);
-          for (int a = 0; a < D; ++a) {
-            hn::StoreU(hn::LoadU(df, pos[a] + k), df, cpos[a] + dst);
-            hn::StoreU(hn::LoadU(df, iphi[a] + k), df, cphi[a] + dst);
-          }
+          // o + u per axis, exact (detail::gabor_offset).
+          hn::StoreU(hn::Add(hn::Sub(hn::LoadU(df, bx + k), bxp), hn::LoadU(df, pos[0] + k)), df,
+                     cpos[0] + dst);
+          for (int a = 1; a < D; ++a)
+            hn::StoreU(hn::Add(orow[a], hn::LoadU(df, pos[a] + k)), df, cpos[a] + dst);
+          for (int a = 0; a < D; ++a) hn::StoreU(hn::LoadU(df, iphi[a] + k), df, cphi[a] + dst);
           hn::StoreU(hn::LoadU(df, iw + k), df, cw + dst);
         }
         nc += e - b;
       }
-      // Pad to whole vectors with candidates far outside every support: position 8 at
-      // cell offset 0 (d_x = frac - 8). The offset too: the lanes past nc hold what the
-      // last row's whole vectors (or an earlier cell's) left there, cell offsets up to the
-      // box's width, which brought position 8 back within reach of points near its edge.
+      // Pad to whole vectors with candidates far outside every support: o + u = 8
+      // along x (d_x = frac - 8; the other axes keep finite values of earlier rows).
       hn::StoreU(hn::Set(df, 8.0f), df, cpos[0] + nc);
-      for (int a = 0; a < D; ++a) hn::StoreU(hn::Zero(df), df, co[a] + nc);
       for (std::size_t sp = run; sp < run_end; ++sp) {
         VF f[3];
         for (int a = 0; a < D; ++a) f[a] = hn::Set(df, sorted[sp].frac[a]);
         std::size_t to = t.n;
         for (std::size_t k = 0; k < nc; k += lanes) {
-          // (frac - o) - position, as the scalar code. No branch on an empty
+          // frac - (o + u), as the scalar code. No branch on an empty
           // mask (storing nothing is cheaper than a mispredicted branch).
           VF d[3], ph[3];
           for (int a = 0; a < D; ++a) {
-            d[a] = hn::Sub(hn::Sub(f[a], hn::LoadU(df, co[a] + k)), hn::LoadU(df, cpos[a] + k));
+            d[a] = hn::Sub(f[a], hn::LoadU(df, cpos[a] + k));
             ph[a] = hn::LoadU(df, cphi[a] + k);
           }
           const VF s = point_s<D>(d);
@@ -11972,7 +11977,7 @@ struct grid_axis {
 
 // The factors of one impulse along one axis of a block: for the block's
 // samples [from, n) (padded to whole vectors with fractions far outside), offset
-// d = (frac - o) - u, d^2 and the axis factors; `lo`, `hi`: the range of
+// d = frac - (o + u) (detail::gabor_offset), d^2 and the axis factors; `lo`, `hi`: the range of
 // samples with d^2 < 1 (contiguous: frac is monotonic within a cell); along
 // x (`ox`: each sample's o, the impulse's cell relative to the sample's) also
 // the products e c and e s (gabor_pair_of_products' x side).
@@ -11992,7 +11997,7 @@ struct block_factors {
     lo = n_pad;
     hi = 0;
     for (std::size_t i = from; i < n_pad; i += lanes) {
-      const VF dv = hn::Sub(hn::Sub(hn::LoadU(df, frac + i), ox ? hn::LoadU(df, ox + i) : ou), uu);
+      const VF dv = hn::Sub(hn::LoadU(df, frac + i), hn::Add(ox ? hn::LoadU(df, ox + i) : ou, uu));
       const VF d2v = hn::Mul(dv, dv);
       hn::StoreU(dv, df, d.data() + i);
       hn::StoreU(d2v, df, d2.data() + i);

@@ -266,7 +266,7 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat
       uint w0 = hush_stream_word(key, counter);
       float d[3], d2[3];
       for (uint ax = 0u; ax < 3u; ++ax) {
-        d[ax] = ax < hush_gabor_dim ? (f[ax] - float(o[ax])) - hush_gabor_byte(w0, ax) : 0.0;
+        d[ax] = ax < hush_gabor_dim ? f[ax] - (float(o[ax]) + hush_gabor_byte(w0, ax)) : 0.0;
         d2[ax] = d[ax] * d[ax];
       }
       float s = hush_gabor_dim == 2u ? d2[0] + d2[1] : d2[0] + (d2[1] + d2[2]);
@@ -334,7 +334,8 @@ vec4 hush_gabor_eval(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 fp, b
   return vec4(r.x * hush_gp(hush_gp_SCALE), r.yzw * hush_gp(hush_gp_GRAD_SCALE));
 }
 )glsl";
-    if (D == 3) s += R"glsl(// ---- Surface noise (3D; gabor<3>::sample_eval with a normal, surface_eval).
+    if (D == 3)
+      s += R"glsl(// ---- Surface noise (3D; gabor<3>::sample_eval with a normal, surface_eval).
 // The surface process's unscaled sum and gradient sum at surface cell i0 + fraction f
 // for unit normal n, tangents t, b and the plane's filter q, m, amp (gabor<3>::surface_eval,
 // operation by operation).
@@ -361,7 +362,7 @@ vec4 hush_gabor_surface_sum(uvec3 i0, vec3 f, vec3 n, vec3 t, vec3 b, mat3 q, ma
       uint counter = 1u + k * hush_words;
       uint w0 = hush_stream_word(key, counter);
       vec3 d;
-      for (uint ax = 0u; ax < 3u; ++ax) d[ax] = (f[ax] - float(o[ax])) - hush_gabor_byte(w0, ax);
+      for (uint ax = 0u; ax < 3u; ++ax) d[ax] = f[ax] - (float(o[ax]) + hush_gabor_byte(w0, ax));
       vec4 o4 = hush_gabor_plane_offsets(d, n, t, b);  // zn, z2, dk
       float zn = o4.x, z2 = o4.y;
       if (!(z2 < 1.0)) continue;
