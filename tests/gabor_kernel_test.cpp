@@ -176,6 +176,21 @@ TEST_CASE("gabor_kernel: the point form's sum is four partial sums by kept index
   CHECK(!std::signbit(hush::detail::gabor_point_sum<float>{}.total()));
 }
 
+TEST_CASE("gabor_kernel: an impulse's offset f - (o + u) is rounded once") {
+  // detail::gabor_offset: o + u is exact in float (u a multiple of 2^-9, |o| <= 2), so the
+  // float offset is the double difference rounded once; (f - o) - u, the former definition,
+  // rounds f - o first and differs (here f = 2^-20 + 2^-25: f + 1 loses its last bit).
+  for (int o = -2; o <= 2; ++o)
+    for (std::uint32_t m = 0; m < 256; m += 17)
+      for (float f : {0.0f, 0x1.0p-20f + 0x1.0p-25f, 0.3333333f, 0.5f, 0.99999994f}) {
+        const float u = hush::detail::gabor_byte<float>(m << 24, 0);
+        const double exact = double(f) - (double(o) + double(u));
+        CHECK(hush::detail::gabor_offset(f, o, u) == static_cast<float>(exact));
+      }
+  const float f = 0x1.0p-20f + 0x1.0p-25f, u = hush::detail::gabor_byte<float>(255u << 24, 0);
+  CHECK(hush::detail::gabor_offset(f, -1, u) != (f + 1.0f) - u);
+}
+
 TEST_CASE("gabor_kernel: C1 across the taper and the support edge, gradient is the derivative") {
   const hush::gabor_kernel<2> k(0.8, 0.05);
   const hush::dvec2 F{0.9, -0.4};
