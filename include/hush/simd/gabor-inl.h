@@ -1196,76 +1196,155 @@ struct point_cells {
   }
 };
 
+// The cells of a box next to an occupied one (first[b] < first[b + 1], first:
+// the counting sort's offsets, box + 1 + a vector of them readable), marked
+// all ones in need[0, box), zero elsewhere: the occupied cells dilated by one
+// cell along each axis in turn, whole vectors over flat box indices. A shift
+// by stride[a] never reaches a wrong cell: the box's margin cells are never
+// occupied, and zero padding lies beyond the box on both sides. Returns need's
+// first box cell (a vector of zeros readable past the box).
+template <int D>
+std::uint32_t* mark_needed(const point_cells<D>& pc, const std::uint32_t* first,
+                           std::vector<std::uint32_t>& need, std::vector<std::uint32_t>& scratch) {
+  const DU du;
+  const std::size_t lanes = hn::Lanes(du);
+  const std::size_t box = pc.box;
+  const std::size_t pad = static_cast<std::size_t>(pc.stride[D - 1]) + lanes;
+  // The D passes alternate between the buffers and end in need.
+  std::vector<std::uint32_t>* buf[2] = {D % 2 == 0 ? &need : &scratch,
+                                        D % 2 == 0 ? &scratch : &need};
+  std::uint32_t* p[2];
+  for (int k = 0; k < 2; ++k) {
+    buf[k]->resize(box + 2 * pad);
+    p[k] = buf[k]->data() + pad;
+    std::fill(p[k] - pad, p[k], 0u);
+  }
+  for (std::size_t i = 0; i < box; i += lanes)
+    hn::StoreU(hn::VecFromMask(du, hn::Ne(hn::LoadU(du, first + i + 1), hn::LoadU(du, first + i))),
+               du, p[0] + i);
+  std::fill(p[0] + box, p[0] + box + pad, 0u);  // whole vectors wrote past the box
+  for (int a = 0; a < D; ++a) {
+    const std::uint32_t* in = p[a % 2];
+    std::uint32_t* out = p[1 - a % 2];
+    const auto s = static_cast<std::size_t>(pc.stride[a]);
+    for (std::size_t i = 0; i < box; i += lanes)
+      hn::StoreU(hn::Or(hn::Or(hn::LoadU(du, in + i - s), hn::LoadU(du, in + i)),
+                        hn::LoadU(du, in + i + s)),
+                 du, out + i);
+    std::fill(out + box, out + box + pad, 0u);
+  }
+  return p[D % 2];
+}
+
 // The impulses of the cells of a box next to an occupied one, in box order:
 // start[idx] ... start[idx + 1] are cell idx's; per impulse its position in
 // the cell, its cell's box x coordinate, weight and frequency (marks).
 struct box_impulses {
   std::vector<std::uint32_t> start;
   std::vector<float> pos[3], bx, w, phi[3];
-  // draw_box's scratch: the needed cells, their lattice coordinates, stream
-  // keys and counts; per impulse its stream key and counter.
-  std::vector<std::uint32_t> cells, coord[3], key, count, ikey, ictr;
+  // draw_box's scratch: the needed cells (box index and x), their lattice
+  // coordinates along y (z), stream keys and counts; per impulse its stream key
+  // and counter.
+  std::vector<std::uint32_t> cells, cx, coord[3], key, count, ikey, ictr;
 };
 
+// Draws the impulses of the cells marked in need (mark_needed; need is
+// overwritten with the cells' counts). Every list is written in whole vectors
+// and sized to a whole number of vectors past its end: what lies there is
+// finite (zeros or an earlier call's values) and never summed.
 template <int D>
 void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
-              const std::vector<std::uint8_t>& need, box_impulses& out) {
+              std::uint32_t* need, box_impulses& out) {
   const DF df;
   const DU du;
   const std::size_t lanes = hn::Lanes(df);
-  std::vector<std::uint32_t>& cells = out.cells;  // box indices of the needed cells, increasing
-  cells.clear();
-  for (std::size_t idx = 0; idx < pc.box; ++idx)
-    if (need[idx]) cells.push_back(static_cast<std::uint32_t>(idx));
-  const std::size_t nc = cells.size();
-  // Counts and stream keys, lanes across cells (collect's hash, operation by operation).
-  std::vector<std::uint32_t>*coord = out.coord, &key = out.key, &count = out.count;
-  key.resize(nc + lanes);
-  count.resize(nc + lanes);
-  for (int a = 0; a < D; ++a) coord[a].assign(nc + lanes, 0);
-  for (std::size_t j = 0; j < nc; ++j) {
-    std::int64_t rest = cells[j];
-    for (int a = 0; a < D; ++a) {
-      coord[a][j] = pc.lattice(a, rest % pc.side[a]);
+  // The needed cells in increasing box index, row by row (a row's coordinates
+  // along y and z once, no division per cell).
+  const auto side0 = static_cast<std::size_t>(pc.side[0]);
+  const std::size_t rows = pc.box / side0;
+  for (auto* v : {&out.cells, &out.cx, &out.coord[1], &out.coord[2]}) v->resize(pc.box + lanes);
+  std::uint32_t* const cells = out.cells.data();
+  std::uint32_t* const cx = out.cx.data();
+  std::uint32_t* const coord[3] = {nullptr, out.coord[1].data(), out.coord[2].data()};
+  const VU iota = hn::Iota(du, 0), vside = hn::Set(du, static_cast<std::uint32_t>(side0));
+  std::size_t nc = 0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const std::size_t row_first = nc, base = r * side0;
+    for (std::size_t x = 0; x < side0; x += lanes) {
+      const VU xs = hn::Add(iota, hn::Set(du, static_cast<std::uint32_t>(x)));
+      const auto m = hn::And(hn::Ne(hn::LoadU(du, need + base + x), hn::Zero(du)), hn::Lt(xs, vside));
+      hn::StoreU(compress(hn::Add(xs, hn::Set(du, static_cast<std::uint32_t>(base))), m), du,
+                 cells + nc);
+      hn::StoreU(compress(xs, m), du, cx + nc);
+      nc += hn::CountTrue(du, m);
+    }
+    std::int64_t rest = static_cast<std::int64_t>(r);
+    for (int a = 1; a < D; ++a) {
+      std::fill(coord[a] + row_first, coord[a] + nc, pc.lattice(a, rest % pc.side[a]));
       rest /= pc.side[a];
     }
   }
+  // Counts and stream keys, lanes across cells (collect's hash, operation by operation).
+  std::vector<std::uint32_t>&key = out.key, &count = out.count;
+  key.resize(nc + lanes);
+  count.resize(nc + lanes);
   const std::vector<std::int32_t> flipped = flipped_thresholds(g.table());
   const auto nthr = static_cast<std::uint32_t>(flipped.size() - 1);
+  const VU x0 = hn::Set(du, pc.lattice(0, 0));
   for (std::size_t j = 0; j < nc; j += lanes) {
-    VU h = hn::Xor(hn::Set(du, g.key()), word_x(hn::LoadU(du, coord[0].data() + j)));
-    h = hn::Xor(h, word_y(hn::LoadU(du, coord[1].data() + j)));
-    if constexpr (D == 3) h = hn::Xor(h, word_z(hn::LoadU(du, coord[2].data() + j)));
+    VU h = hn::Xor(hn::Set(du, g.key()), word_x(hn::Add(x0, hn::LoadU(du, cx + j))));
+    h = hn::Xor(h, word_y(hn::LoadU(du, coord[1] + j)));
+    if constexpr (D == 3) h = hn::Xor(h, word_z(hn::LoadU(du, coord[2] + j)));
     const VU skey = stream_key(hash32(h), detail::constants::kGaborSolidStream);
     hn::StoreU(skey, du, key.data() + j);
     hn::StoreU(nthr == 0 ? hn::Zero(du) : table_count(flipped.data(), nthr, draw(skey, 0)), du,
                count.data() + j);
   }
-  // Offsets per box cell, and per impulse its stream key, counter and box x.
-  out.start.assign(pc.box + 1, 0);
-  std::size_t total = 0;
-  for (std::size_t j = 0, idx = 0; idx < pc.box; ++idx) {
-    out.start[idx] = static_cast<std::uint32_t>(total);
-    if (j < nc && cells[j] == idx) total += count[j++];
+  // Offsets per box cell: the counts in need (its other cells are zero), summed.
+  for (std::size_t j = 0; j < nc; ++j) need[cells[j]] = count[j];
+  out.start.resize(pc.box + 1);
+  std::uint32_t* const start = out.start.data();
+  std::uint32_t total = 0;
+  for (std::size_t idx = 0; idx < pc.box; ++idx) {
+    start[idx] = total;
+    total += need[idx];
   }
-  out.start[pc.box] = static_cast<std::uint32_t>(total);
-  std::vector<std::uint32_t>&ikey = out.ikey, &ictr = out.ictr;
-  ikey.assign(total + lanes, 0);
-  ictr.assign(total + lanes, 0);
-  out.bx.assign(total + lanes, 0.0f);
+  start[pc.box] = total;
+  // Per impulse its stream key, counter and box x: two whole vectors per cell
+  // without a branch (a later cell overwrites what reaches past a cell), more
+  // for a longer cell.
+  const std::size_t size = total + 2 * lanes;
+  for (auto* v : {&out.ikey, &out.ictr}) v->resize(size);
+  for (auto* v : {&out.bx, &out.pos[0], &out.pos[1], &out.pos[2], &out.w, &out.phi[0], &out.phi[1],
+                  &out.phi[2]})
+    v->resize(size);
+  std::uint32_t* const ikey = out.ikey.data();
+  std::uint32_t* const ictr = out.ictr.data();
+  float* const bx = out.bx.data();
   const auto words = static_cast<std::uint32_t>(g.words_per_impulse());
-  for (std::size_t j = 0, o = 0; j < nc; ++j)
-    for (std::uint32_t k = 0; k < count[j]; ++k, ++o) {
-      ikey[o] = key[j];
-      ictr[o] = 1 + k * words;
-      out.bx[o] = static_cast<float>(cells[j] % static_cast<std::uint32_t>(pc.side[0]));
+  const VU ctr0 = hn::Add(hn::Mul(iota, hn::Set(du, words)), hn::Set(du, 1u));
+  const VU step = hn::Set(du, static_cast<std::uint32_t>(lanes) * words);
+  for (std::size_t j = 0; j < nc; ++j) {
+    const std::size_t o = start[cells[j]];
+    const VU k = hn::Set(du, key[j]);
+    const VF b = hn::Set(df, static_cast<float>(cx[j]));
+    VU ctr = ctr0;
+    for (std::size_t e = 0; e < 2 * lanes; e += lanes) {  // unrolled: no branch
+      hn::StoreU(k, du, ikey + o + e);
+      hn::StoreU(ctr, du, ictr + o + e);
+      hn::StoreU(b, df, bx + o + e);
+      ctr = hn::Add(ctr, step);
     }
-  for (int a = 0; a < D; ++a) out.pos[a].assign(total + lanes, 0.0f);
-  out.w.assign(total + lanes, 0.0f);
-  for (int a = 0; a < D; ++a) out.phi[a].assign(total + lanes, 0.0f);
+    for (std::size_t e = 2 * lanes; e < count[j]; e += lanes) {
+      hn::StoreU(k, du, ikey + o + e);
+      hn::StoreU(ctr, du, ictr + o + e);
+      hn::StoreU(b, df, bx + o + e);
+      ctr = hn::Add(ctr, step);
+    }
+  }
   // Words, positions and marks, lanes across impulses.
   for (std::size_t i = 0; i < total; i += lanes) {
-    const VU k = hn::LoadU(du, ikey.data() + i), ctr = hn::LoadU(du, ictr.data() + i);
+    const VU k = hn::LoadU(du, ikey + i), ctr = hn::LoadU(du, ictr + i);
     VU wd[3] = {hn::Zero(du), hn::Zero(du), hn::Zero(du)};
     for (std::uint32_t j = 0; j < words; ++j)
       wd[j] = hash32(hn::Xor(k, hash32(hn::Add(ctr, hn::Set(du, j)))));
@@ -1363,7 +1442,7 @@ struct shared_workspace {
   cell_candidates cc;
   std::vector<std::uint32_t> at, first, fill, pend;
   std::vector<sorted_point<D>> sorted;
-  std::vector<std::uint8_t> need;
+  std::vector<std::uint32_t> need, need_scratch;
   std::vector<std::size_t> rest, pend_end;
 };
 
@@ -1616,7 +1695,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     lockstep(pts, nullptr, n, value, grad);
     return;
   }
-  first.assign(pc.box + 1, 0);
+  first.assign(pc.box + 1 + lanes, 0);  // a vector past the end for mark_needed
   for (std::size_t i = 0; i < n; ++i) {
     if (at[i] != kOut) {
       ++first[at[i] + 1];
@@ -1634,7 +1713,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     // gathering them per point would miss the cache on every point).
     sorted.resize(inside);
     std::vector<std::uint32_t>& fill = ws.fill;
-    fill.assign(first.begin(), first.end() - 1);
+    fill.assign(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(pc.box));
     for (std::size_t i = 0; i < n; ++i)
       if (at[i] != kOut) {
         sorted_point<D>& sp = sorted[fill[at[i]]++];
@@ -1651,13 +1730,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
       offset[m] = 0;
       for (int a = 0, r = m; a < D; ++a, r /= 3) offset[m] += (r % 3 - 1) * pc.stride[a];
     }
-    std::vector<std::uint8_t>& need = ws.need;
-    need.assign(pc.box, 0);
-    for (std::size_t s = 0; s < sorted.size(); ++s) {
-      const std::uint32_t idx = sorted[s].at;
-      if (s > 0 && sorted[s - 1].at == idx) continue;
-      for (int m = 0; m < kCells; ++m) need[static_cast<std::size_t>(idx + offset[m])] = 1;
-    }
+    std::uint32_t* const need = mark_needed<D>(pc, first.data(), ws.need, ws.need_scratch);
     const consts<D> c(g);
     box_impulses& im = ws.im;
     draw_box<D>(g, c, pc, need, im);
