@@ -918,10 +918,10 @@ HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
   const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
   const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
                            hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
-  hn::Store(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
+  hn::StoreU(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
   const DI di;
   const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
-  hn::Store(hn::BitCast(DU(), c), DU(), cell);
+  hn::StoreU(hn::BitCast(DU(), c), DU(), cell);
   return true;
 #else
   (void)x;
@@ -1096,40 +1096,84 @@ struct point_cells {
   }
   std::vector<std::int64_t> v;  // median scratch
 
+  // Splits the n points (whole batches straight into cell, frac, ok; others
+  // lane by lane through split_batch) and finds ref (the first finite point's
+  // cell) and lo, hi (min and max of rel: in int32 vectors, as rel's wrapping
+  // differences). Every list has a vector of slack; ok's is zero.
   void build(const float* pts, std::size_t n, double inv) {
-    const std::size_t lanes = hn::Lanes(DF());
+    const DF df;
+    const DU du;
+    const DI di;
+    const std::size_t lanes = hn::Lanes(df);
     box = 0;
     for (int a = 0; a < D; ++a) {
-      cell[a].resize(n);
-      frac[a].resize(n);
+      cell[a].resize(n + lanes);
+      frac[a].resize(n + lanes);
     }
-    ok.resize(n);
-    lanes_split sp;
-    for (std::size_t first = 0; first < n; first += lanes) {
-      const std::size_t used = std::min(lanes, n - first);
-      split_batch<D>(sp, pts, first, used, inv);
-      for (std::size_t l = 0; l < used; ++l) {
-        for (int a = 0; a < D; ++a) {
-          cell[a][first + l] = sp.cell[a][l];
-          frac[a][first + l] = sp.frac[a][l];
-        }
-        ok[first + l] = !sp.bad[l];
-      }
-    }
-    std::size_t r = 0;
-    while (r < n && !ok[r]) ++r;
-    if (r == n) return;
+    ok.resize(n + lanes);
+    std::fill(ok.begin() + static_cast<std::ptrdiff_t>(n), ok.end(), std::uint8_t{0});
+    bool found = false;  // ref set
+    VI vlo[D], vhi[D];
     for (int a = 0; a < D; ++a) {
-      ref[a] = cell[a][r];
+      vlo[a] = hn::Set(di, std::numeric_limits<std::int32_t>::max());
+      vhi[a] = hn::Set(di, std::numeric_limits<std::int32_t>::min());
       lo[a] = std::numeric_limits<std::int64_t>::max();
       hi[a] = std::numeric_limits<std::int64_t>::min();
     }
-    for (std::size_t i = 0; i < n; ++i)
-      if (ok[i])
+    lanes_split sp;
+    for (std::size_t first = 0; first < n; first += lanes) {
+      const std::size_t used = std::min(lanes, n - first);
+      bool whole = used == lanes;
+      if (whole) {
+        VF c[3];
+        if constexpr (D == 2)
+          hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
+        else
+          hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
+        for (int a = 0; a < D && whole; ++a)
+          whole = split_axis(c[a], inv, cell[a].data() + first, frac[a].data() + first);
+      }
+      if (whole) {
+        std::fill(ok.begin() + static_cast<std::ptrdiff_t>(first),
+                  ok.begin() + static_cast<std::ptrdiff_t>(first + lanes), std::uint8_t{1});
+        if (!found) {
+          found = true;
+          for (int a = 0; a < D; ++a) ref[a] = cell[a][first];
+        }
+        for (int a = 0; a < D; ++a) {
+          const VI r = hn::BitCast(
+              di, hn::Sub(hn::LoadU(du, cell[a].data() + first), hn::Set(du, ref[a])));
+          vlo[a] = hn::Min(vlo[a], r);
+          vhi[a] = hn::Max(vhi[a], r);
+        }
+        continue;
+      }
+      split_batch<D>(sp, pts, first, used, inv);
+      for (std::size_t l = 0; l < used; ++l) {
+        const std::size_t i = first + l;
+        for (int a = 0; a < D; ++a) {
+          cell[a][i] = sp.cell[a][l];
+          frac[a][i] = sp.frac[a][l];
+        }
+        ok[i] = !sp.bad[l];
+        if (!ok[i]) continue;
+        if (!found) {
+          found = true;
+          for (int a = 0; a < D; ++a) ref[a] = cell[a][i];
+        }
         for (int a = 0; a < D; ++a) {
           lo[a] = std::min(lo[a], rel(a, i));
           hi[a] = std::max(hi[a], rel(a, i));
         }
+      }
+    }
+    if (!found) return;
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::min<std::int64_t>(lo[a], hn::GetLane(hn::MinOfLanes(di, vlo[a])));
+      hi[a] = std::max<std::int64_t>(hi[a], hn::GetLane(hn::MaxOfLanes(di, vhi[a])));
+    }
+    std::size_t r = 0;  // the first finite point (the median's fallback)
+    while (!ok[r]) ++r;
     const double budget = kShareBoxPerPoint * double(n) + kShareBoxMin;
     double cells = 1.0;
     for (int a = 0; a < D; ++a) cells *= double(hi[a] - lo[a] + 3);
