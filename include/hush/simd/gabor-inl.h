@@ -57,6 +57,7 @@
 #include <limits>
 #include <vector>
 
+#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 #include "hush/config.hpp"
@@ -1224,16 +1225,25 @@ struct point_cells {
       box *= static_cast<std::size_t>(side[a]);
     }
   }
-  // Point i's cell's index in the box, or -1 outside it.
-  std::int64_t index(std::size_t i) const {
-    std::int64_t idx = 0;
+  // The box indices of points i ... i + lanes - 1 (kOut outside the box or not
+  // finite: ok's slack lanes are outside), and which are inside. In unsigned
+  // lanes: x in [lo, hi] exactly where (x - lo) mod 2^32 <= hi - lo.
+  hn::Mask<DU> box_index(std::size_t i, VU& idx) const {
+    const DU du;
+    const hn::Rebind<std::uint8_t, DU> d8;
+    auto in = hn::Ne(hn::PromoteTo(du, hn::LoadU(d8, ok.data() + i)), hn::Zero(du));
+    idx = hn::Zero(du);
     for (int a = 0; a < D; ++a) {
-      const std::int64_t x = rel(a, i);
-      if (x < lo[a] || x > hi[a]) return -1;
-      idx += (x - lo[a] + 1) * stride[a];
+      const VU x = hn::Sub(hn::LoadU(du, cell[a].data() + i),
+                           hn::Set(du, ref[a] + static_cast<std::uint32_t>(lo[a])));
+      in = hn::And(in, hn::Lt(x, hn::Set(du, static_cast<std::uint32_t>(hi[a] - lo[a] + 1))));
+      idx = hn::Add(idx, hn::Mul(hn::Add(x, hn::Set(du, 1u)),
+                                 hn::Set(du, static_cast<std::uint32_t>(stride[a]))));
     }
-    return idx;
+    idx = hn::IfThenElse(in, idx, hn::Set(du, kOut));
+    return in;
   }
+  static constexpr std::uint32_t kOut = std::numeric_limits<std::uint32_t>::max();
   // The lattice cell along axis a of box coordinate x.
   std::uint32_t lattice(int a, std::int64_t x) const {
     return ref[a] + static_cast<std::uint32_t>(lo[a] - 1 + x);
@@ -1708,6 +1718,7 @@ template <int D, bool G, class Lockstep, class Eval>
 void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad,
                    Lockstep lockstep, Eval& eval) {
   const DF df;
+  const DU du;
   const std::size_t lanes = hn::Lanes(df);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   if (clearly_sparse<D>(pts, n, g.inverse_cell())) {
@@ -1722,34 +1733,49 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   std::vector<std::uint32_t>& first = ws.first;
   std::vector<sorted_point<D>>& sorted = ws.sorted;
   std::vector<std::size_t>& rest = ws.rest;
-  at.resize(n);
   sorted.clear();
   rest.clear();
-  constexpr auto kOut = std::numeric_limits<std::uint32_t>::max();
-  std::size_t inside = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t idx = pc.ok[i] ? pc.index(i) : -1;
-    at[i] = idx < 0 ? kOut : static_cast<std::uint32_t>(idx);
-    inside += idx < 0 ? 0 : 1;
-  }
-  // Too few points per cell to share the draws: the lockstep path for all.
+  constexpr auto kOut = point_cells<D>::kOut;
+  // Too few points per cell to share the draws: the lockstep path for all
+  // (decided before the sort where even n points are too few).
   double interior = 1.0;
   for (int a = 0; a < D; ++a) interior *= double(pc.hi[a] - pc.lo[a] + 1);
-  if (pc.box == 0 || double(inside) < kShareMinPointsPerCell[D - 2] * interior) {
+  const double too_few = kShareMinPointsPerCell[D - 2] * interior;
+  if (pc.box == 0 || double(n) < too_few) {
     lockstep(pts, nullptr, n, value, grad);
     return;
   }
+  // Box indices in vectors, the histogram of the inside (first[b + 1]: cell b's points).
+  at.resize(n + lanes);
   first.assign(pc.box + 1 + lanes, 0);  // a vector past the end for mark_needed
-  for (std::size_t i = 0; i < n; ++i) {
-    if (at[i] != kOut) {
-      ++first[at[i] + 1];
-    } else if (pc.ok[i]) {
-      rest.push_back(i);
-    } else {
-      value[i] = nan;
-      if (G)
-        for (int a = 0; a < D; ++a) grad[i * D + a] = nan;
+  std::uint32_t* const count = first.data() + 1;
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < n; i += lanes) {
+    VU idx;
+    const auto in = pc.box_index(i, idx);
+    hn::StoreU(idx, du, at.data() + i);
+    const std::size_t k = hn::CountTrue(du, in);
+    inside += k;
+    if (k == lanes) {
+      for (std::size_t l = 0; l < lanes; ++l) ++count[at[i + l]];
+      continue;
     }
+    for (std::size_t l = 0, used = std::min(lanes, n - i); l < used; ++l) {
+      const std::size_t p = i + l;
+      if (at[p] != kOut) {
+        ++count[at[p]];
+      } else if (pc.ok[p]) {
+        rest.push_back(p);
+      } else {
+        value[p] = nan;
+        if (G)
+          for (int a = 0; a < D; ++a) grad[p * D + a] = nan;
+      }
+    }
+  }
+  if (double(inside) < too_few) {
+    lockstep(pts, nullptr, n, value, grad);
+    return;
   }
   {
     for (std::size_t b = 0; b < pc.box; ++b) first[b + 1] += first[b];
@@ -1758,13 +1784,16 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     sorted.resize(inside);
     std::vector<std::uint32_t>& fill = ws.fill;
     fill.assign(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(pc.box));
-    for (std::size_t i = 0; i < n; ++i)
+    constexpr std::size_t kAhead = 16;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i + kAhead < n && at[i + kAhead] != kOut) hwy::Prefetch(sorted.data() + fill[at[i + kAhead]]);
       if (at[i] != kOut) {
         sorted_point<D>& sp = sorted[fill[at[i]]++];
         sp.point = static_cast<std::uint32_t>(i);
         sp.at = at[i];
         for (int a = 0; a < D; ++a) sp.frac[a] = pc.frac[a][i];
       }
+    }
   }
   if (!sorted.empty()) {
     // The cells each occupied cell's points see, in raster order (x fastest).
