@@ -1364,10 +1364,9 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
     total += need[idx];
   }
   start[pc.box] = total;
-  // Per impulse its stream key, counter and box x: two whole vectors per cell
-  // without a branch (a later cell overwrites what reaches past a cell), more
-  // for a longer cell.
-  const std::size_t size = total + 2 * lanes;
+  // Per impulse its stream key, counter and box x: a whole vector per cell (a
+  // later cell overwrites what reaches past a cell), more for a longer one.
+  const std::size_t size = total + lanes;
   for (auto* v : {&out.ikey, &out.ictr}) v->resize(size);
   for (auto* v : {&out.bx, &out.pos[0], &out.pos[1], &out.pos[2], &out.w, &out.phi[0], &out.phi[1],
                   &out.phi[2]})
@@ -1383,17 +1382,14 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
     const VU k = hn::Set(du, key[j]);
     const VF b = hn::Set(df, static_cast<float>(cx[j]));
     VU ctr = ctr0;
-    for (std::size_t e = 0; e < 2 * lanes; e += lanes) {  // unrolled: no branch
+    hn::StoreU(k, du, ikey + o);
+    hn::StoreU(ctr, du, ictr + o);
+    hn::StoreU(b, df, bx + o);
+    for (std::size_t e = lanes; e < count[j]; e += lanes) {
+      ctr = hn::Add(ctr, step);
       hn::StoreU(k, du, ikey + o + e);
       hn::StoreU(ctr, du, ictr + o + e);
       hn::StoreU(b, df, bx + o + e);
-      ctr = hn::Add(ctr, step);
-    }
-    for (std::size_t e = 2 * lanes; e < count[j]; e += lanes) {
-      hn::StoreU(k, du, ikey + o + e);
-      hn::StoreU(ctr, du, ictr + o + e);
-      hn::StoreU(b, df, bx + o + e);
-      ctr = hn::Add(ctr, step);
     }
   }
   // Words, positions and marks, lanes across impulses.
