@@ -1036,6 +1036,8 @@ constexpr double kShareMinPointsPerCell[2] = {2.0, 0.5};
 constexpr double kShareBoxMin = 1024.0;
 // Kept pairs evaluated at once (the pair list is flushed beyond this).
 constexpr std::size_t kSharePairs = 4096;
+// Impulses whose stream keys and counters draw_box hashes at once (a chunk in L1).
+constexpr std::size_t kDrawChunk = 1024;
 // Points per shared_points call (larger calls are cut): keeps box indices and
 // impulse offsets within 32 bits for every N' (a point's value does not
 // depend on the cut).
@@ -1297,8 +1299,8 @@ struct box_impulses {
   std::vector<std::uint32_t> start;
   std::vector<float> pos[3], bx, w, phi[3];
   // draw_box's scratch: the needed cells (box index and x), their lattice
-  // coordinates along y (z), stream keys and counts; per impulse its stream key
-  // and counter.
+  // coordinates along y (z), stream keys and counts; per impulse of a chunk
+  // (kDrawChunk) its stream key and counter.
   std::vector<std::uint32_t> cells, cx, coord[3], key, count, ikey, ictr;
 };
 
@@ -1364,48 +1366,64 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
     total += need[idx];
   }
   start[pc.box] = total;
-  // Per impulse its stream key, counter and box x: a whole vector per cell (a
-  // later cell overwrites what reaches past a cell), more for a longer one.
+  // Per impulse its box x, and its stream key and counter in a chunk of about
+  // kDrawChunk impulses (in L1, not a list of the box's ~n of them): a whole
+  // vector per cell (a later cell overwrites what reaches past a cell), more for
+  // a longer one; each chunk's whole vectors hashed into words, positions and
+  // marks, lanes across impulses.
   const std::size_t size = total + lanes;
-  for (auto* v : {&out.ikey, &out.ictr}) v->resize(size);
   for (auto* v : {&out.bx, &out.pos[0], &out.pos[1], &out.pos[2], &out.w, &out.phi[0], &out.phi[1],
                   &out.phi[2]})
     v->resize(size);
+  for (auto* v : {&out.ikey, &out.ictr}) v->resize(kDrawChunk + g.table().max_count() + 2 * lanes);
   std::uint32_t* const ikey = out.ikey.data();
   std::uint32_t* const ictr = out.ictr.data();
   float* const bx = out.bx.data();
   const auto words = static_cast<std::uint32_t>(g.words_per_impulse());
+  // The impulses [base, base + m) (m: whole vectors, or the rest past total).
+  auto hash_chunk = [&](std::size_t base, std::size_t m) {
+    for (std::size_t i = 0; i < m; i += lanes) {
+      const VU k = hn::LoadU(du, ikey + i), ctr = hn::LoadU(du, ictr + i);
+      VU wd[3] = {hn::Zero(du), hn::Zero(du), hn::Zero(du)};
+      for (std::uint32_t j = 0; j < words; ++j)
+        wd[j] = hash32(hn::Xor(k, hash32(hn::Add(ctr, hn::Set(du, j)))));
+      VF wt, phi[3];
+      marks<D>(c, wd, wt, phi);
+      for (int a = 0; a < D; ++a) {
+        hn::StoreU(byte_value(wd[0], static_cast<unsigned>(a)), df, out.pos[a].data() + base + i);
+        hn::StoreU(phi[a], df, out.phi[a].data() + base + i);
+      }
+      hn::StoreU(wt, df, out.w.data() + base + i);
+    }
+  };
   const VU ctr0 = hn::Add(hn::Mul(iota, hn::Set(du, words)), hn::Set(du, 1u));
   const VU step = hn::Set(du, static_cast<std::uint32_t>(lanes) * words);
-  for (std::size_t j = 0; j < nc; ++j) {
-    const std::size_t o = start[cells[j]];
+  std::size_t base = 0;  // the chunk's first impulse (a whole number of vectors)
+  for (std::size_t j = 0, o = 0; j < nc; ++j) {
     const VU k = hn::Set(du, key[j]);
     const VF b = hn::Set(df, static_cast<float>(cx[j]));
     VU ctr = ctr0;
-    hn::StoreU(k, du, ikey + o);
-    hn::StoreU(ctr, du, ictr + o);
+    const std::size_t local = o - base;
+    hn::StoreU(k, du, ikey + local);
+    hn::StoreU(ctr, du, ictr + local);
     hn::StoreU(b, df, bx + o);
     for (std::size_t e = lanes; e < count[j]; e += lanes) {
       ctr = hn::Add(ctr, step);
-      hn::StoreU(k, du, ikey + o + e);
-      hn::StoreU(ctr, du, ictr + o + e);
+      hn::StoreU(k, du, ikey + local + e);
+      hn::StoreU(ctr, du, ictr + local + e);
       hn::StoreU(b, df, bx + o + e);
     }
-  }
-  // Words, positions and marks, lanes across impulses.
-  for (std::size_t i = 0; i < total; i += lanes) {
-    const VU k = hn::LoadU(du, ikey + i), ctr = hn::LoadU(du, ictr + i);
-    VU wd[3] = {hn::Zero(du), hn::Zero(du), hn::Zero(du)};
-    for (std::uint32_t j = 0; j < words; ++j)
-      wd[j] = hash32(hn::Xor(k, hash32(hn::Add(ctr, hn::Set(du, j)))));
-    VF wt, phi[3];
-    marks<D>(c, wd, wt, phi);
-    for (int a = 0; a < D; ++a) {
-      hn::StoreU(byte_value(wd[0], static_cast<unsigned>(a)), df, out.pos[a].data() + i);
-      hn::StoreU(phi[a], df, out.phi[a].data() + i);
+    o += count[j];
+    if (o - base >= kDrawChunk) {
+      const std::size_t m = (o - base) / lanes * lanes;
+      hash_chunk(base, m);
+      // The rest (under a vector) to the chunk's front.
+      hn::StoreU(hn::LoadU(du, ikey + m), du, ikey);
+      hn::StoreU(hn::LoadU(du, ictr + m), du, ictr);
+      base += m;
     }
-    hn::StoreU(wt, df, out.w.data() + i);
   }
+  hash_chunk(base, total - base);
 }
 
 // Whether a call's points are clearly too sparse to share their cells, judged
