@@ -11202,8 +11202,8 @@ struct point_cells {
           for (int a = 0; a < D; ++a) ref[a] = cell[a][first];
         }
         for (int a = 0; a < D; ++a) {
-          const VI r = hn::BitCast(
-              di, hn::Sub(hn::LoadU(du, cell[a].data() + first), hn::Set(du, ref[a])));
+          const VI r =
+              hn::BitCast(di, hn::Sub(hn::LoadU(du, cell[a].data() + first), hn::Set(du, ref[a])));
           vlo[a] = hn::Min(vlo[a], r);
           vhi[a] = hn::Max(vhi[a], r);
         }
@@ -11367,8 +11367,8 @@ struct box_impulses {
 // and sized to a whole number of vectors past its end: what lies there is
 // finite (zeros or an earlier call's values) and never summed.
 template <int D>
-void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
-              std::uint32_t* need, box_impulses& out) {
+void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc, std::uint32_t* need,
+              box_impulses& out) {
   const DF df;
   const DU du;
   const std::size_t lanes = hn::Lanes(df);
@@ -11386,7 +11386,8 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
     const std::size_t row_first = nc, base = r * side0;
     for (std::size_t x = 0; x < side0; x += lanes) {
       const VU xs = hn::Add(iota, hn::Set(du, static_cast<std::uint32_t>(x)));
-      const auto m = hn::And(hn::Ne(hn::LoadU(du, need + base + x), hn::Zero(du)), hn::Lt(xs, vside));
+      const auto m =
+          hn::And(hn::Ne(hn::LoadU(du, need + base + x), hn::Zero(du)), hn::Lt(xs, vside));
       hn::StoreU(compress(hn::Add(xs, hn::Set(du, static_cast<std::uint32_t>(base))), m), du,
                  cells + nc);
       hn::StoreU(compress(xs, m), du, cx + nc);
@@ -11858,7 +11859,8 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     fill.assign(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(pc.box));
     constexpr std::size_t kAhead = 16;
     for (std::size_t i = 0; i < n; ++i) {
-      if (i + kAhead < n && at[i + kAhead] != kOut) hwy::Prefetch(sorted.data() + fill[at[i + kAhead]]);
+      if (i + kAhead < n && at[i + kAhead] != kOut)
+        hwy::Prefetch(sorted.data() + fill[at[i + kAhead]]);
       if (at[i] != kOut) {
         sorted_point<D>& sp = sorted[fill[at[i]]++];
         sp.point = static_cast<std::uint32_t>(i);
