@@ -1799,6 +1799,8 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     sorted.resize(inside);
     std::vector<std::uint32_t>& fill = ws.fill;
     fill.assign(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(pc.box));
+    // Each record goes to a random place in the list (a cache miss): the
+    // destination kAhead points on is fetched early.
     constexpr std::size_t kAhead = 16;
     for (std::size_t i = 0; i < n; ++i) {
       if (i + kAhead < n && at[i + kAhead] != kOut)
