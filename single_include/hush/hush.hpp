@@ -10109,6 +10109,7 @@ HWY_AFTER_NAMESPACE();
 #include <limits>
 #include <vector>
 
+#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 // ---- begin hush/simd/batch-inl.h
@@ -11071,10 +11072,10 @@ HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
   const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
   const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
                            hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
-  hn::Store(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
+  hn::StoreU(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
   const DI di;
   const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
-  hn::Store(hn::BitCast(DU(), c), DU(), cell);
+  hn::StoreU(hn::BitCast(DU(), c), DU(), cell);
   return true;
 #else
   (void)x;
@@ -11189,6 +11190,8 @@ constexpr double kShareMinPointsPerCell[2] = {2.0, 0.5};
 constexpr double kShareBoxMin = 1024.0;
 // Kept pairs evaluated at once (the pair list is flushed beyond this).
 constexpr std::size_t kSharePairs = 4096;
+// Impulses whose stream keys and counters draw_box hashes at once (a chunk in L1).
+constexpr std::size_t kDrawChunk = 1024;
 // Points per shared_points call (larger calls are cut): keeps box indices and
 // impulse offsets within 32 bits for every N' (a point's value does not
 // depend on the cut).
@@ -11250,40 +11253,84 @@ struct point_cells {
   }
   std::vector<std::int64_t> v;  // median scratch
 
+  // Splits the n points (whole batches straight into cell, frac, ok; others
+  // lane by lane through split_batch) and finds ref (the first finite point's
+  // cell) and lo, hi (min and max of rel: in int32 vectors, as rel's wrapping
+  // differences). Every list has a vector of slack; ok's is zero.
   void build(const float* pts, std::size_t n, double inv) {
-    const std::size_t lanes = hn::Lanes(DF());
+    const DF df;
+    const DU du;
+    const DI di;
+    const std::size_t lanes = hn::Lanes(df);
     box = 0;
     for (int a = 0; a < D; ++a) {
-      cell[a].resize(n);
-      frac[a].resize(n);
+      cell[a].resize(n + lanes);
+      frac[a].resize(n + lanes);
     }
-    ok.resize(n);
-    lanes_split sp;
-    for (std::size_t first = 0; first < n; first += lanes) {
-      const std::size_t used = std::min(lanes, n - first);
-      split_batch<D>(sp, pts, first, used, inv);
-      for (std::size_t l = 0; l < used; ++l) {
-        for (int a = 0; a < D; ++a) {
-          cell[a][first + l] = sp.cell[a][l];
-          frac[a][first + l] = sp.frac[a][l];
-        }
-        ok[first + l] = !sp.bad[l];
-      }
-    }
-    std::size_t r = 0;
-    while (r < n && !ok[r]) ++r;
-    if (r == n) return;
+    ok.resize(n + lanes);
+    std::fill(ok.begin() + static_cast<std::ptrdiff_t>(n), ok.end(), std::uint8_t{0});
+    bool found = false;  // ref set
+    VI vlo[D], vhi[D];
     for (int a = 0; a < D; ++a) {
-      ref[a] = cell[a][r];
+      vlo[a] = hn::Set(di, std::numeric_limits<std::int32_t>::max());
+      vhi[a] = hn::Set(di, std::numeric_limits<std::int32_t>::min());
       lo[a] = std::numeric_limits<std::int64_t>::max();
       hi[a] = std::numeric_limits<std::int64_t>::min();
     }
-    for (std::size_t i = 0; i < n; ++i)
-      if (ok[i])
+    lanes_split sp;
+    for (std::size_t first = 0; first < n; first += lanes) {
+      const std::size_t used = std::min(lanes, n - first);
+      bool whole = used == lanes;
+      if (whole) {
+        VF c[3];
+        if constexpr (D == 2)
+          hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
+        else
+          hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
+        for (int a = 0; a < D && whole; ++a)
+          whole = split_axis(c[a], inv, cell[a].data() + first, frac[a].data() + first);
+      }
+      if (whole) {
+        std::fill(ok.begin() + static_cast<std::ptrdiff_t>(first),
+                  ok.begin() + static_cast<std::ptrdiff_t>(first + lanes), std::uint8_t{1});
+        if (!found) {
+          found = true;
+          for (int a = 0; a < D; ++a) ref[a] = cell[a][first];
+        }
+        for (int a = 0; a < D; ++a) {
+          const VI r =
+              hn::BitCast(di, hn::Sub(hn::LoadU(du, cell[a].data() + first), hn::Set(du, ref[a])));
+          vlo[a] = hn::Min(vlo[a], r);
+          vhi[a] = hn::Max(vhi[a], r);
+        }
+        continue;
+      }
+      split_batch<D>(sp, pts, first, used, inv);
+      for (std::size_t l = 0; l < used; ++l) {
+        const std::size_t i = first + l;
+        for (int a = 0; a < D; ++a) {
+          cell[a][i] = sp.cell[a][l];
+          frac[a][i] = sp.frac[a][l];
+        }
+        ok[i] = !sp.bad[l];
+        if (!ok[i]) continue;
+        if (!found) {
+          found = true;
+          for (int a = 0; a < D; ++a) ref[a] = cell[a][i];
+        }
         for (int a = 0; a < D; ++a) {
           lo[a] = std::min(lo[a], rel(a, i));
           hi[a] = std::max(hi[a], rel(a, i));
         }
+      }
+    }
+    if (!found) return;
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::min<std::int64_t>(lo[a], hn::GetLane(hn::MinOfLanes(di, vlo[a])));
+      hi[a] = std::max<std::int64_t>(hi[a], hn::GetLane(hn::MaxOfLanes(di, vhi[a])));
+    }
+    std::size_t r = 0;  // the first finite point (the median's fallback)
+    while (!ok[r]) ++r;
     const double budget = kShareBoxPerPoint * double(n) + kShareBoxMin;
     double cells = 1.0;
     for (int a = 0; a < D; ++a) cells *= double(hi[a] - lo[a] + 3);
@@ -11334,21 +11381,70 @@ struct point_cells {
       box *= static_cast<std::size_t>(side[a]);
     }
   }
-  // Point i's cell's index in the box, or -1 outside it.
-  std::int64_t index(std::size_t i) const {
-    std::int64_t idx = 0;
+  // The box indices of points i ... i + lanes - 1 (kOut outside the box or not
+  // finite: ok's slack lanes are outside), and which are inside. In unsigned
+  // lanes: x in [lo, hi] exactly where (x - lo) mod 2^32 <= hi - lo.
+  hn::Mask<DU> box_index(std::size_t i, VU& idx) const {
+    const DU du;
+    const hn::Rebind<std::uint8_t, DU> d8;
+    auto in = hn::Ne(hn::PromoteTo(du, hn::LoadU(d8, ok.data() + i)), hn::Zero(du));
+    idx = hn::Zero(du);
     for (int a = 0; a < D; ++a) {
-      const std::int64_t x = rel(a, i);
-      if (x < lo[a] || x > hi[a]) return -1;
-      idx += (x - lo[a] + 1) * stride[a];
+      const VU x = hn::Sub(hn::LoadU(du, cell[a].data() + i),
+                           hn::Set(du, ref[a] + static_cast<std::uint32_t>(lo[a])));
+      in = hn::And(in, hn::Lt(x, hn::Set(du, static_cast<std::uint32_t>(hi[a] - lo[a] + 1))));
+      idx = hn::Add(idx, hn::Mul(hn::Add(x, hn::Set(du, 1u)),
+                                 hn::Set(du, static_cast<std::uint32_t>(stride[a]))));
     }
-    return idx;
+    idx = hn::IfThenElse(in, idx, hn::Set(du, kOut));
+    return in;
   }
+  static constexpr std::uint32_t kOut = std::numeric_limits<std::uint32_t>::max();
   // The lattice cell along axis a of box coordinate x.
   std::uint32_t lattice(int a, std::int64_t x) const {
     return ref[a] + static_cast<std::uint32_t>(lo[a] - 1 + x);
   }
 };
+
+// The cells of a box next to an occupied one (first[b] < first[b + 1], first:
+// the counting sort's offsets, box + 1 + a vector of them readable), marked
+// all ones in need[0, box), zero elsewhere: the occupied cells dilated by one
+// cell along each axis in turn, whole vectors over flat box indices. A shift
+// by stride[a] never reaches a wrong cell: the box's margin cells are never
+// occupied, and zero padding lies beyond the box on both sides. Returns need's
+// first box cell (a vector of zeros readable past the box).
+template <int D>
+std::uint32_t* mark_needed(const point_cells<D>& pc, const std::uint32_t* first,
+                           std::vector<std::uint32_t>& need, std::vector<std::uint32_t>& scratch) {
+  const DU du;
+  const std::size_t lanes = hn::Lanes(du);
+  const std::size_t box = pc.box;
+  const std::size_t pad = static_cast<std::size_t>(pc.stride[D - 1]) + lanes;
+  // The D passes alternate between the buffers and end in need.
+  std::vector<std::uint32_t>* buf[2] = {D % 2 == 0 ? &need : &scratch,
+                                        D % 2 == 0 ? &scratch : &need};
+  std::uint32_t* p[2];
+  for (int k = 0; k < 2; ++k) {
+    buf[k]->resize(box + 2 * pad);
+    p[k] = buf[k]->data() + pad;
+    std::fill(p[k] - pad, p[k], 0u);
+  }
+  for (std::size_t i = 0; i < box; i += lanes)
+    hn::StoreU(hn::VecFromMask(du, hn::Ne(hn::LoadU(du, first + i + 1), hn::LoadU(du, first + i))),
+               du, p[0] + i);
+  std::fill(p[0] + box, p[0] + box + pad, 0u);  // whole vectors wrote past the box
+  for (int a = 0; a < D; ++a) {
+    const std::uint32_t* in = p[a % 2];
+    std::uint32_t* out = p[1 - a % 2];
+    const auto s = static_cast<std::size_t>(pc.stride[a]);
+    for (std::size_t i = 0; i < box; i += lanes)
+      hn::StoreU(hn::Or(hn::Or(hn::LoadU(du, in + i - s), hn::LoadU(du, in + i)),
+                        hn::LoadU(du, in + i + s)),
+                 du, out + i);
+    std::fill(out + box, out + box + pad, 0u);
+  }
+  return p[D % 2];
+}
 
 // The impulses of the cells of a box next to an occupied one, in box order:
 // start[idx] ... start[idx + 1] are cell idx's; per impulse its position in
@@ -11356,81 +11452,133 @@ struct point_cells {
 struct box_impulses {
   std::vector<std::uint32_t> start;
   std::vector<float> pos[3], bx, w, phi[3];
-  // draw_box's scratch: the needed cells, their lattice coordinates, stream
-  // keys and counts; per impulse its stream key and counter.
-  std::vector<std::uint32_t> cells, coord[3], key, count, ikey, ictr;
+  // draw_box's scratch: the needed cells (box index and x), their lattice
+  // coordinates along y (z), stream keys and counts; per impulse of a chunk
+  // (kDrawChunk) its stream key and counter.
+  std::vector<std::uint32_t> cells, cx, coord[3], key, count, ikey, ictr;
 };
 
+// Draws the impulses of the cells marked in need (mark_needed; need is
+// overwritten with the cells' counts). Every list is written in whole vectors
+// and sized to a whole number of vectors past its end: what lies there is
+// finite (zeros or an earlier call's values) and never summed.
 template <int D>
-void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc,
-              const std::vector<std::uint8_t>& need, box_impulses& out) {
+void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc, std::uint32_t* need,
+              box_impulses& out) {
   const DF df;
   const DU du;
   const std::size_t lanes = hn::Lanes(df);
-  std::vector<std::uint32_t>& cells = out.cells;  // box indices of the needed cells, increasing
-  cells.clear();
-  for (std::size_t idx = 0; idx < pc.box; ++idx)
-    if (need[idx]) cells.push_back(static_cast<std::uint32_t>(idx));
-  const std::size_t nc = cells.size();
-  // Counts and stream keys, lanes across cells (collect's hash, operation by operation).
-  std::vector<std::uint32_t>*coord = out.coord, &key = out.key, &count = out.count;
-  key.resize(nc + lanes);
-  count.resize(nc + lanes);
-  for (int a = 0; a < D; ++a) coord[a].assign(nc + lanes, 0);
-  for (std::size_t j = 0; j < nc; ++j) {
-    std::int64_t rest = cells[j];
-    for (int a = 0; a < D; ++a) {
-      coord[a][j] = pc.lattice(a, rest % pc.side[a]);
+  // The needed cells in increasing box index, row by row (a row's coordinates
+  // along y and z once, no division per cell).
+  const auto side0 = static_cast<std::size_t>(pc.side[0]);
+  const std::size_t rows = pc.box / side0;
+  for (auto* v : {&out.cells, &out.cx, &out.coord[1], &out.coord[2]}) v->resize(pc.box + lanes);
+  std::uint32_t* const cells = out.cells.data();
+  std::uint32_t* const cx = out.cx.data();
+  std::uint32_t* const coord[3] = {nullptr, out.coord[1].data(), out.coord[2].data()};
+  const VU iota = hn::Iota(du, 0), vside = hn::Set(du, static_cast<std::uint32_t>(side0));
+  std::size_t nc = 0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const std::size_t row_first = nc, base = r * side0;
+    for (std::size_t x = 0; x < side0; x += lanes) {
+      const VU xs = hn::Add(iota, hn::Set(du, static_cast<std::uint32_t>(x)));
+      const auto m =
+          hn::And(hn::Ne(hn::LoadU(du, need + base + x), hn::Zero(du)), hn::Lt(xs, vside));
+      hn::StoreU(compress(hn::Add(xs, hn::Set(du, static_cast<std::uint32_t>(base))), m), du,
+                 cells + nc);
+      hn::StoreU(compress(xs, m), du, cx + nc);
+      nc += hn::CountTrue(du, m);
+    }
+    std::int64_t rest = static_cast<std::int64_t>(r);
+    for (int a = 1; a < D; ++a) {
+      std::fill(coord[a] + row_first, coord[a] + nc, pc.lattice(a, rest % pc.side[a]));
       rest /= pc.side[a];
     }
   }
+  // Counts and stream keys, lanes across cells (collect's hash, operation by operation).
+  std::vector<std::uint32_t>&key = out.key, &count = out.count;
+  key.resize(nc + lanes);
+  count.resize(nc + lanes);
   const std::vector<std::int32_t> flipped = flipped_thresholds(g.table());
   const auto nthr = static_cast<std::uint32_t>(flipped.size() - 1);
+  const VU x0 = hn::Set(du, pc.lattice(0, 0));
   for (std::size_t j = 0; j < nc; j += lanes) {
-    VU h = hn::Xor(hn::Set(du, g.key()), word_x(hn::LoadU(du, coord[0].data() + j)));
-    h = hn::Xor(h, word_y(hn::LoadU(du, coord[1].data() + j)));
-    if constexpr (D == 3) h = hn::Xor(h, word_z(hn::LoadU(du, coord[2].data() + j)));
+    VU h = hn::Xor(hn::Set(du, g.key()), word_x(hn::Add(x0, hn::LoadU(du, cx + j))));
+    h = hn::Xor(h, word_y(hn::LoadU(du, coord[1] + j)));
+    if constexpr (D == 3) h = hn::Xor(h, word_z(hn::LoadU(du, coord[2] + j)));
     const VU skey = stream_key(hash32(h), detail::constants::kGaborSolidStream);
     hn::StoreU(skey, du, key.data() + j);
     hn::StoreU(nthr == 0 ? hn::Zero(du) : table_count(flipped.data(), nthr, draw(skey, 0)), du,
                count.data() + j);
   }
-  // Offsets per box cell, and per impulse its stream key, counter and box x.
-  out.start.assign(pc.box + 1, 0);
-  std::size_t total = 0;
-  for (std::size_t j = 0, idx = 0; idx < pc.box; ++idx) {
-    out.start[idx] = static_cast<std::uint32_t>(total);
-    if (j < nc && cells[j] == idx) total += count[j++];
+  // Offsets per box cell: the counts in need (its other cells are zero), summed.
+  for (std::size_t j = 0; j < nc; ++j) need[cells[j]] = count[j];
+  out.start.resize(pc.box + 1);
+  std::uint32_t* const start = out.start.data();
+  std::uint32_t total = 0;
+  for (std::size_t idx = 0; idx < pc.box; ++idx) {
+    start[idx] = total;
+    total += need[idx];
   }
-  out.start[pc.box] = static_cast<std::uint32_t>(total);
-  std::vector<std::uint32_t>&ikey = out.ikey, &ictr = out.ictr;
-  ikey.assign(total + lanes, 0);
-  ictr.assign(total + lanes, 0);
-  out.bx.assign(total + lanes, 0.0f);
+  start[pc.box] = total;
+  // Per impulse its box x, and its stream key and counter in a chunk of about
+  // kDrawChunk impulses (in L1, not a list of the box's ~n of them): a whole
+  // vector per cell (a later cell overwrites what reaches past a cell), more for
+  // a longer one; each chunk's whole vectors hashed into words, positions and
+  // marks, lanes across impulses.
+  const std::size_t size = total + lanes;
+  for (auto* v : {&out.bx, &out.pos[0], &out.pos[1], &out.pos[2], &out.w, &out.phi[0], &out.phi[1],
+                  &out.phi[2]})
+    v->resize(size);
+  for (auto* v : {&out.ikey, &out.ictr}) v->resize(kDrawChunk + g.table().max_count() + 2 * lanes);
+  std::uint32_t* const ikey = out.ikey.data();
+  std::uint32_t* const ictr = out.ictr.data();
+  float* const bx = out.bx.data();
   const auto words = static_cast<std::uint32_t>(g.words_per_impulse());
-  for (std::size_t j = 0, o = 0; j < nc; ++j)
-    for (std::uint32_t k = 0; k < count[j]; ++k, ++o) {
-      ikey[o] = key[j];
-      ictr[o] = 1 + k * words;
-      out.bx[o] = static_cast<float>(cells[j] % static_cast<std::uint32_t>(pc.side[0]));
+  // The impulses [base, base + m) (m: whole vectors, or the rest past total).
+  auto hash_chunk = [&](std::size_t base, std::size_t m) {
+    for (std::size_t i = 0; i < m; i += lanes) {
+      const VU k = hn::LoadU(du, ikey + i), ctr = hn::LoadU(du, ictr + i);
+      VU wd[3] = {hn::Zero(du), hn::Zero(du), hn::Zero(du)};
+      for (std::uint32_t j = 0; j < words; ++j)
+        wd[j] = hash32(hn::Xor(k, hash32(hn::Add(ctr, hn::Set(du, j)))));
+      VF wt, phi[3];
+      marks<D>(c, wd, wt, phi);
+      for (int a = 0; a < D; ++a) {
+        hn::StoreU(byte_value(wd[0], static_cast<unsigned>(a)), df, out.pos[a].data() + base + i);
+        hn::StoreU(phi[a], df, out.phi[a].data() + base + i);
+      }
+      hn::StoreU(wt, df, out.w.data() + base + i);
     }
-  for (int a = 0; a < D; ++a) out.pos[a].assign(total + lanes, 0.0f);
-  out.w.assign(total + lanes, 0.0f);
-  for (int a = 0; a < D; ++a) out.phi[a].assign(total + lanes, 0.0f);
-  // Words, positions and marks, lanes across impulses.
-  for (std::size_t i = 0; i < total; i += lanes) {
-    const VU k = hn::LoadU(du, ikey.data() + i), ctr = hn::LoadU(du, ictr.data() + i);
-    VU wd[3] = {hn::Zero(du), hn::Zero(du), hn::Zero(du)};
-    for (std::uint32_t j = 0; j < words; ++j)
-      wd[j] = hash32(hn::Xor(k, hash32(hn::Add(ctr, hn::Set(du, j)))));
-    VF wt, phi[3];
-    marks<D>(c, wd, wt, phi);
-    for (int a = 0; a < D; ++a) {
-      hn::StoreU(byte_value(wd[0], static_cast<unsigned>(a)), df, out.pos[a].data() + i);
-      hn::StoreU(phi[a], df, out.phi[a].data() + i);
+  };
+  const VU ctr0 = hn::Add(hn::Mul(iota, hn::Set(du, words)), hn::Set(du, 1u));
+  const VU step = hn::Set(du, static_cast<std::uint32_t>(lanes) * words);
+  std::size_t base = 0;  // the chunk's first impulse (a whole number of vectors)
+  for (std::size_t j = 0, o = 0; j < nc; ++j) {
+    const VU k = hn::Set(du, key[j]);
+    const VF b = hn::Set(df, static_cast<float>(cx[j]));
+    VU ctr = ctr0;
+    const std::size_t local = o - base;
+    hn::StoreU(k, du, ikey + local);
+    hn::StoreU(ctr, du, ictr + local);
+    hn::StoreU(b, df, bx + o);
+    for (std::size_t e = lanes; e < count[j]; e += lanes) {
+      ctr = hn::Add(ctr, step);
+      hn::StoreU(k, du, ikey + local + e);
+      hn::StoreU(ctr, du, ictr + local + e);
+      hn::StoreU(b, df, bx + o + e);
     }
-    hn::StoreU(wt, df, out.w.data() + i);
+    o += count[j];
+    if (o - base >= kDrawChunk) {
+      const std::size_t m = (o - base) / lanes * lanes;
+      hash_chunk(base, m);
+      // The rest (under a vector) to the chunk's front.
+      hn::StoreU(hn::LoadU(du, ikey + m), du, ikey);
+      hn::StoreU(hn::LoadU(du, ictr + m), du, ictr);
+      base += m;
+    }
   }
+  hash_chunk(base, total - base);
 }
 
 // Whether a call's points are clearly too sparse to share their cells, judged
@@ -11517,7 +11665,7 @@ struct shared_workspace {
   cell_candidates cc;
   std::vector<std::uint32_t> at, first, fill, pend;
   std::vector<sorted_point<D>> sorted;
-  std::vector<std::uint8_t> need;
+  std::vector<std::uint32_t> need, need_scratch;
   std::vector<std::size_t> rest, pend_end;
 };
 
@@ -11739,6 +11887,7 @@ template <int D, bool G, class Lockstep, class Eval>
 void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* value, float* grad,
                    Lockstep lockstep, Eval& eval) {
   const DF df;
+  const DU du;
   const std::size_t lanes = hn::Lanes(df);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   if (clearly_sparse<D>(pts, n, g.inverse_cell())) {
@@ -11753,34 +11902,49 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   std::vector<std::uint32_t>& first = ws.first;
   std::vector<sorted_point<D>>& sorted = ws.sorted;
   std::vector<std::size_t>& rest = ws.rest;
-  at.resize(n);
   sorted.clear();
   rest.clear();
-  constexpr auto kOut = std::numeric_limits<std::uint32_t>::max();
-  std::size_t inside = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t idx = pc.ok[i] ? pc.index(i) : -1;
-    at[i] = idx < 0 ? kOut : static_cast<std::uint32_t>(idx);
-    inside += idx < 0 ? 0 : 1;
-  }
-  // Too few points per cell to share the draws: the lockstep path for all.
+  constexpr auto kOut = point_cells<D>::kOut;
+  // Too few points per cell to share the draws: the lockstep path for all
+  // (decided before the sort where even n points are too few).
   double interior = 1.0;
   for (int a = 0; a < D; ++a) interior *= double(pc.hi[a] - pc.lo[a] + 1);
-  if (pc.box == 0 || double(inside) < kShareMinPointsPerCell[D - 2] * interior) {
+  const double too_few = kShareMinPointsPerCell[D - 2] * interior;
+  if (pc.box == 0 || double(n) < too_few) {
     lockstep(pts, nullptr, n, value, grad);
     return;
   }
-  first.assign(pc.box + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (at[i] != kOut) {
-      ++first[at[i] + 1];
-    } else if (pc.ok[i]) {
-      rest.push_back(i);
-    } else {
-      value[i] = nan;
-      if (G)
-        for (int a = 0; a < D; ++a) grad[i * D + a] = nan;
+  // Box indices in vectors, the histogram of the inside (first[b + 1]: cell b's points).
+  at.resize(n + lanes);
+  first.assign(pc.box + 1 + lanes, 0);  // a vector past the end for mark_needed
+  std::uint32_t* const count = first.data() + 1;
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < n; i += lanes) {
+    VU idx;
+    const auto in = pc.box_index(i, idx);
+    hn::StoreU(idx, du, at.data() + i);
+    const std::size_t k = hn::CountTrue(du, in);
+    inside += k;
+    if (k == lanes) {
+      for (std::size_t l = 0; l < lanes; ++l) ++count[at[i + l]];
+      continue;
     }
+    for (std::size_t l = 0, used = std::min(lanes, n - i); l < used; ++l) {
+      const std::size_t p = i + l;
+      if (at[p] != kOut) {
+        ++count[at[p]];
+      } else if (pc.ok[p]) {
+        rest.push_back(p);
+      } else {
+        value[p] = nan;
+        if (G)
+          for (int a = 0; a < D; ++a) grad[p * D + a] = nan;
+      }
+    }
+  }
+  if (double(inside) < too_few) {
+    lockstep(pts, nullptr, n, value, grad);
+    return;
   }
   {
     for (std::size_t b = 0; b < pc.box; ++b) first[b + 1] += first[b];
@@ -11788,14 +11952,20 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     // gathering them per point would miss the cache on every point).
     sorted.resize(inside);
     std::vector<std::uint32_t>& fill = ws.fill;
-    fill.assign(first.begin(), first.end() - 1);
-    for (std::size_t i = 0; i < n; ++i)
+    fill.assign(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(pc.box));
+    // Each record goes to a random place in the list (a cache miss): the
+    // destination kAhead points on is fetched early.
+    constexpr std::size_t kAhead = 16;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i + kAhead < n && at[i + kAhead] != kOut)
+        hwy::Prefetch(sorted.data() + fill[at[i + kAhead]]);
       if (at[i] != kOut) {
         sorted_point<D>& sp = sorted[fill[at[i]]++];
         sp.point = static_cast<std::uint32_t>(i);
         sp.at = at[i];
         for (int a = 0; a < D; ++a) sp.frac[a] = pc.frac[a][i];
       }
+    }
   }
   if (!sorted.empty()) {
     // The cells each occupied cell's points see, in raster order (x fastest).
@@ -11805,13 +11975,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
       offset[m] = 0;
       for (int a = 0, r = m; a < D; ++a, r /= 3) offset[m] += (r % 3 - 1) * pc.stride[a];
     }
-    std::vector<std::uint8_t>& need = ws.need;
-    need.assign(pc.box, 0);
-    for (std::size_t s = 0; s < sorted.size(); ++s) {
-      const std::uint32_t idx = sorted[s].at;
-      if (s > 0 && sorted[s - 1].at == idx) continue;
-      for (int m = 0; m < kCells; ++m) need[static_cast<std::size_t>(idx + offset[m])] = 1;
-    }
+    std::uint32_t* const need = mark_needed<D>(pc, first.data(), ws.need, ws.need_scratch);
     const consts<D> c(g);
     box_impulses& im = ws.im;
     draw_box<D>(g, c, pc, need, im);

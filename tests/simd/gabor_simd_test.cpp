@@ -169,6 +169,11 @@ TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail 
     // right edge: 70 of these 1500 points wrong by up to 1.1 on AVX3).
     check_points(g2, test_points<2>(1500, 5, 4.0f));
     check_points(g3, test_points<3>(800, 4, 4.0f));
+    // Boxes of ~1200 cells (2D, ~4 points per cell) and ~2700 (3D, ~1.2) at N' = 16:
+    // draw_box hashes their ~6000 and ~14000 impulses in several chunks of kDrawChunk, from
+    // cells of ~5 impulses (one vector each; the N' = 128 case below has longer ones).
+    check_points(g2, test_points<2>(4000, 6, 16.0f));
+    check_points(g3, test_points<3>(2000, 7, 6.0f));
   }
 }
 
