@@ -1620,15 +1620,30 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
                    detail::constants::kPixelFilterSigma * inv_r * inv_r;
   const double mk = detail::constants::kPi * detail::constants::kPi / a;
   const VD zero = hn::Zero(dd), one = hn::Set(dd, 1.0);
-  HWY_ALIGN double cov[3][kMaxLanes];  // S's entries (0,0), (0,1), (1,1); zero past n
+  // Whole batches read the footprints' stored upper triangles (S's entries (0,0),
+  // (0,1), (1,1), in this order) as one interleaved load: lanes filled one by one and
+  // loaded back as a vector stalled on store forwarding (~10 cycles per point).
+  static_assert(sizeof(footprint<2>) == 3 * sizeof(float), "footprint<2>: 3 floats, no padding");
+  HWY_ALIGN double cov[3][kMaxLanes];  // the last batch's entries; zero past n
   for (std::size_t p0 = 0; p0 < n; p0 += lanes) {
-    for (std::size_t l = 0; l < lanes; ++l) {
-      const bool in = p0 + l < n;
-      cov[0][l] = in ? static_cast<double>(fps[p0 + l].covariance(0, 0)) : 0.0;
-      cov[1][l] = in ? static_cast<double>(fps[p0 + l].covariance(0, 1)) : 0.0;
-      cov[2][l] = in ? static_cast<double>(fps[p0 + l].covariance(1, 1)) : 0.0;
+    VD a00, a01, a11;
+    if (p0 + lanes <= n) {
+      hn::Vec<decltype(dfh)> s00, s01, s11;
+      hn::LoadInterleaved3(dfh, fps[p0].data(), s00, s01, s11);
+      a00 = hn::PromoteTo(dd, s00);
+      a01 = hn::PromoteTo(dd, s01);
+      a11 = hn::PromoteTo(dd, s11);
+    } else {
+      for (std::size_t l = 0; l < lanes; ++l) {
+        const bool in = p0 + l < n;
+        cov[0][l] = in ? static_cast<double>(fps[p0 + l].covariance(0, 0)) : 0.0;
+        cov[1][l] = in ? static_cast<double>(fps[p0 + l].covariance(0, 1)) : 0.0;
+        cov[2][l] = in ? static_cast<double>(fps[p0 + l].covariance(1, 1)) : 0.0;
+      }
+      a00 = hn::Load(dd, cov[0]);
+      a01 = hn::Load(dd, cov[1]);
+      a11 = hn::Load(dd, cov[2]);
     }
-    const VD a00 = hn::Load(dd, cov[0]), a01 = hn::Load(dd, cov[1]), a11 = hn::Load(dd, cov[2]);
     // jacobi_eigen<2>: sweep 0 rotates where off > 1e-34 diag; sweep 1 finds the
     // off-diagonal set to 0 and ends.
     const VD off = hn::Mul(a01, a01);
