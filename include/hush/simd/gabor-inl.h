@@ -547,15 +547,15 @@ void collect(std::uint32_t key, std::uint32_t stream, const std::vector<std::int
     const VU skey = stream_key(hash32(h), stream);
     const VU count = nthr == 0 ? hn::Zero(du) : table_count(thr, nthr, draw(skey, 0));
     const std::uint32_t kmax = hn::GetLane(hn::MaxOfLanes(du, count));
-    VF off[3];
-    for (int a = 0; a < E; ++a) off[a] = hn::Set(df, float(o[a]));
+    VF ov[3];  // the cell offset o; an impulse's offset is frac - (o + u) (detail::gabor_offset)
+    for (int a = 0; a < E; ++a) ov[a] = hn::Set(df, float(o[a]));
     for (std::uint32_t k = 0; k < kmax; ++k) {
       const std::uint32_t counter = 1 + k * static_cast<std::uint32_t>(words);
       VU w[3];
       w[0] = draw(skey, counter);
       VF d[3], d2[3];
       for (int a = 0; a < E; ++a) {
-        d[a] = hn::Sub(frac[a], hn::Add(off[a], byte_value(w[0], static_cast<unsigned>(a))));
+        d[a] = hn::Sub(frac[a], hn::Add(ov[a], byte_value(w[0], static_cast<unsigned>(a))));
         d2[a] = hn::Mul(d[a], d[a]);
       }
       const auto active =
@@ -892,9 +892,6 @@ void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scal
             float* value, float* grad) {
   float sum[kMaxLanes], g[3][kMaxLanes];
   const std::size_t lanes = hn::Lanes(DF());
-  std::fill(sum, sum + lanes, 0.0f);
-  if constexpr (G)
-    for (int a = 0; a < D; ++a) std::fill(g[a], g[a] + lanes, 0.0f);
   if constexpr (Fours) {
     float part[4][kMaxLanes], gpart[3][4][kMaxLanes];
     std::uint32_t k[kMaxLanes];
@@ -917,6 +914,9 @@ void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scal
           g[a][l] = (gpart[a][0][l] + gpart[a][1][l]) + (gpart[a][2][l] + gpart[a][3][l]);
     }
   } else {
+    std::fill(sum, sum + lanes, 0.0f);
+    if constexpr (G)
+      for (int a = 0; a < D; ++a) std::fill(g[a], g[a] + lanes, 0.0f);
     for (std::size_t i = 0; i < t.n; ++i) {
       const std::uint32_t l = t.lane[i];
       sum[l] += t.val[i];
@@ -1110,26 +1110,36 @@ struct shared_pairs {
   }
 };
 
+// Splits the whole batch of points pts[first...] (D interleaved floats, a
+// vector's worth) in lanes into cell[a] and frac[a] (a vector each, any
+// alignment); false where some lane is not ordinary (split_axis; the outputs
+// are then partial).
+template <int D>
+HWY_INLINE bool split_whole(const float* pts, std::size_t first, double inv,
+                            std::uint32_t* const* cell, float* const* frac) {
+  const DF df;
+  VF c[3];
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
+  else
+    hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
+  bool ok = true;
+  for (int a = 0; a < D && ok; ++a) ok = split_axis(c[a], inv, cell[a], frac[a]);
+  return ok;
+}
+
 // Splits lanes [0, used) of the batch of points pts[first...] (D interleaved
 // floats) into sp: in lanes when the batch is whole and every lane ordinary,
 // else lane by lane (lattice_split in double, as gabor<D>::eval).
 template <int D>
 void split_batch(lanes_split& sp, const float* pts, std::size_t first, std::size_t used,
                  double inv) {
-  const DF df;
-  const std::size_t lanes = hn::Lanes(df);
-  if (used == lanes) {
-    VF c[3];
-    if constexpr (D == 2)
-      hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
-    else
-      hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
-    bool ok = true;
-    for (int a = 0; a < D && ok; ++a) ok = split_axis(c[a], inv, sp.cell[a], sp.frac[a]);
-    if (ok) {
-      std::fill(sp.bad, sp.bad + lanes, false);
-      return;
-    }
+  const std::size_t lanes = hn::Lanes(DF());
+  std::uint32_t* const cell[3] = {sp.cell[0], sp.cell[1], sp.cell[2]};
+  float* const frac[3] = {sp.frac[0], sp.frac[1], sp.frac[2]};
+  if (used == lanes && split_whole<D>(pts, first, inv, cell, frac)) {
+    std::fill(sp.bad, sp.bad + lanes, false);
+    return;
   }
   split_lanes<D>(sp, first, used, inv, [pts](std::size_t i, double* x) {
     for (int a = 0; a < D; ++a)
@@ -1181,17 +1191,13 @@ struct point_cells {
     lanes_split sp;
     for (std::size_t first = 0; first < n; first += lanes) {
       const std::size_t used = std::min(lanes, n - first);
-      bool whole = used == lanes;
-      if (whole) {
-        VF c[3];
-        if constexpr (D == 2)
-          hn::LoadInterleaved2(df, pts + first * D, c[0], c[1]);
-        else
-          hn::LoadInterleaved3(df, pts + first * D, c[0], c[1], c[2]);
-        for (int a = 0; a < D && whole; ++a)
-          whole = split_axis(c[a], inv, cell[a].data() + first, frac[a].data() + first);
+      std::uint32_t* cl[3] = {};
+      float* fr[3] = {};
+      for (int a = 0; a < D; ++a) {
+        cl[a] = cell[a].data() + first;
+        fr[a] = frac[a].data() + first;
       }
-      if (whole) {
+      if (used == lanes && split_whole<D>(pts, first, inv, cl, fr)) {
         std::fill(ok.begin() + static_cast<std::ptrdiff_t>(first),
                   ok.begin() + static_cast<std::ptrdiff_t>(first + lanes), std::uint8_t{1});
         if (!found) {
@@ -1373,7 +1379,8 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc, s
   // along y and z once, no division per cell).
   const auto side0 = static_cast<std::size_t>(pc.side[0]);
   const std::size_t rows = pc.box / side0;
-  for (auto* v : {&out.cells, &out.cx, &out.coord[1], &out.coord[2]}) v->resize(pc.box + lanes);
+  for (auto* v : {&out.cells, &out.cx}) v->resize(pc.box + lanes);
+  for (int a = 1; a < D; ++a) out.coord[a].resize(pc.box + lanes);
   std::uint32_t* const cells = out.cells.data();
   std::uint32_t* const cx = out.cx.data();
   std::uint32_t* const coord[3] = {nullptr, out.coord[1].data(), out.coord[2].data()};
