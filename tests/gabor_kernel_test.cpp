@@ -547,6 +547,53 @@ TEST_CASE(
   CHECK(none.m[1][1] == 0.0);
 }
 
+TEST_CASE(
+    "gabor_filter_coefs: the upper triangles with M's off-diagonal doubled give Q's and M's "
+    "quadratic forms") {
+  // What filtered_pair reads in every backend: d^T Q d, <Phi, Q d> and Phi^T M Phi from
+  // q (upper triangle) and m2 (M's, off-diagonal doubled), against the full double
+  // matrices. Anisotropic footprints (off-diagonal entries), the coefficients in double:
+  // only double rounding (16 ulp of the terms' magnitude) separates the two; a missing
+  // doubling or a wrong entry is off by O(1).
+  hush::rng r(91);
+  const double ulp = std::ldexp(1.0, -52);
+  for (int trial = 0; trial < 200; ++trial) {
+    const hush::dvec3 du{r.uniform<double>(-2.0, 2.0), r.uniform<double>(-2.0, 2.0), r.uniform<double>(-2.0, 2.0)};
+    const hush::dvec3 dv{r.uniform<double>(-2.0, 2.0), r.uniform<double>(-2.0, 2.0), r.uniform<double>(-2.0, 2.0)};
+    const hush::gabor_filter<3> f(hush::footprint<3>::from_derivatives(du, dv), 2.5, 1.3);
+    const hush::detail::gabor_filter_coefs<double, 3> c(f);
+    CHECK(c.amplitude == f.amplitude);
+    double d[3], phi[3];
+    for (int i = 0; i < 3; ++i) {
+      d[i] = r.uniform<double>(-1.0, 1.0);
+      phi[i] = r.uniform<double>(-3.0, 3.0);
+    }
+    double dqd = 0, dqd_sym = 0, th = 0, th_sym = 0, att = 0, att_sym = 0, scale = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        dqd += d[i] * f.q[i][j] * d[j];
+        th += phi[i] * f.q[i][j] * d[j];
+        att += phi[i] * f.m[i][j] * phi[j];
+        scale += std::fabs(phi[i] * f.m[i][j] * phi[j]) + std::fabs(phi[i] * f.q[i][j] * d[j]);
+        const int k = hush::detail::gabor_sym<3>(i, j);
+        dqd_sym += d[i] * c.q[k] * d[j];
+        th_sym += phi[i] * c.q[k] * d[j];
+        if (i <= j) att_sym += c.m2[k] * (phi[i] * phi[j]);
+      }
+    const double tol = 16 * ulp * (scale + 1);
+    CHECK(std::fabs(dqd_sym - dqd) <= tol);
+    CHECK(std::fabs(th_sym - th) <= tol);
+    CHECK(std::fabs(att_sym - att) <= tol);
+  }
+  // gabor_sym: row by row, each entry once.
+  CHECK(hush::detail::gabor_sym<2>(0, 1) == 1);
+  CHECK(hush::detail::gabor_sym<2>(1, 0) == 1);
+  CHECK(hush::detail::gabor_sym<2>(1, 1) == 2);
+  CHECK(hush::detail::gabor_sym<3>(1, 1) == 3);
+  CHECK(hush::detail::gabor_sym<3>(2, 1) == 4);
+  CHECK(hush::detail::gabor_sym<3>(2, 2) == 5);
+}
+
 namespace {
 
 // The orientation average of ((h(|xi - Phi|) + h(|xi + Phi|)) / 2)^2 by brute

@@ -999,35 +999,43 @@ class gabor : public sample_noise<gabor<D>, D> {
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
 
-  // One impulse of a filtered (or tangent-plane) kernel in E dimensions:
-  // w amplitude e^{-A d^T Q d - Phi^T M Phi} cos(2 pi <Q Phi, d>) tau(s) (one exponential
-  // of the summed exponents), added to sum and, with G, its derivative by d to grad.
+  // One impulse of a filtered (or tangent-plane) kernel in E dimensions, without the
+  // filter's amplitude (which scales the sum): w e^{-A d^T Q d - Phi^T M Phi}
+  // cos(2 pi <Phi, Q d>) tau(s) (one exponential of the summed exponents), added to sum
+  // and, with G, its derivative by d to grad. In this order in every backend: v = Q d,
+  // d^T Q d = <d, v>, theta = <Phi, v>, Phi^T M Phi = sum of m2_rc Phi_r Phi_c (r <= c).
   template <class T, int E, bool G>
-  static void filtered_pair(const T (&q)[E][E], const T (&m)[E][E], T amplitude, T neg_a, T a,
-                            T taper_k, const T* d, T s, T w, const T* phi, T& sum, T* grad) {
-    T mu[E], qd[E];
-    T att = 0, dqd = 0, theta = 0;
+  static void filtered_pair(const detail::gabor_filter_coefs<T, E>& f, T neg_a, T a, T taper_k,
+                            const T* d, T s, T w, const T* phi, T& sum, T* grad) {
+    using detail::gabor_sym;
+    T qd[E];
     for (int i = 0; i < E; ++i) {
-      T x = 0, y = 0, z = 0;
-      for (int j = 0; j < E; ++j) {
-        x += q[i][j] * phi[j];
-        y += m[i][j] * phi[j];
-        z += q[i][j] * d[j];
-      }
-      mu[i] = x;
-      att += phi[i] * y;
+      T z = f.q[gabor_sym<E>(i, 0)] * d[0];
+      for (int j = 1; j < E; ++j) z += f.q[gabor_sym<E>(i, j)] * d[j];
       qd[i] = z;
-      dqd += d[i] * z;
     }
-    for (int i = 0; i < E; ++i) theta += mu[i] * d[i];
-    const T p = (w * amplitude) * detail::exp_neg(neg_a * dqd - att);
+    T dqd = d[0] * qd[0], theta = phi[0] * qd[0];
+    for (int i = 1; i < E; ++i) {
+      dqd += d[i] * qd[i];
+      theta += phi[i] * qd[i];
+    }
+    T att = f.m2[0] * (phi[0] * phi[0]);
+    for (int i = 0, k = 0; i < E; ++i)
+      for (int j = i; j < E; ++j, ++k)
+        if (k > 0) att += f.m2[k] * (phi[i] * phi[j]);
+    // d^T Q d and att are finite for every footprint (gabor_filter): exp_neg's NaN
+    // case never arises; a slightly positive sum (rounding) gives 1.
+    const T p = w * detail::exp_neg(neg_a * dqd - att);
     const detail::sin_cos<T> sc = detail::sincos_turns(theta);
     if constexpr (G) {
       const detail::gabor_taper_value<T> tw = detail::gabor_taper_derivative(s, taper_k);
       const T pc = p * sc.cos, ps = T(detail::constants::kTwoPi) * ((p * tw.tau) * sc.sin);
       sum += pc * tw.tau;
-      for (int i = 0; i < E; ++i)
-        grad[i] += pc * ((tw.dtau + tw.dtau) * d[i] - (a + a) * (tw.tau * qd[i])) - ps * mu[i];
+      for (int i = 0; i < E; ++i) {
+        T mu = f.q[gabor_sym<E>(i, 0)] * phi[0];  // (Q Phi)_i
+        for (int j = 1; j < E; ++j) mu += f.q[gabor_sym<E>(i, j)] * phi[j];
+        grad[i] += pc * ((tw.dtau + tw.dtau) * d[i] - (a + a) * (tw.tau * qd[i])) - ps * mu;
+      }
     } else {
       sum += (p * sc.cos) * detail::gabor_taper(s, taper_k);
     }
@@ -1036,28 +1044,24 @@ class gabor : public sample_noise<gabor<D>, D> {
   // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
   template <class T, bool G>
   value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
-    const gabor_filter<D> flt(fp, kernel_.envelope_exponent(), inv_cell_);
-    T q[D][D], m[D][D];
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) {
-        q[i][j] = T(flt.q[i][j]);
-        m[i][j] = T(flt.m[i][j]);
-      }
-    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
+    const detail::gabor_filter_coefs<T, D> flt(
+        gabor_filter<D>(fp, kernel_.envelope_exponent(), inv_cell_));
+    const T neg_a = T(-kernel_.envelope_exponent());
     const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
     // Sums by fours as the point form (detail::gabor_point_sum), value and gradient alike.
     detail::gabor_point_sum<T> psum, pg_sum[D];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
       T ph[D], term = 0, gterm[D] = {};
       for (int i = 0; i < D; ++i) ph[i] = phi[i];
-      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, term, gterm);
+      filtered_pair<T, D, G>(flt, neg_a, a, taper_k, d, s, w, ph, term, gterm);
       psum.add(term);
       if constexpr (G)
         for (int i = 0; i < D; ++i) pg_sum[i].add(gterm[i]);
     });
     if (!ok) return nan_result<T>();
-    T sum = psum.total(), g[D];
-    for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total();
+    // The amplitude scales the sums (every backend: (sum * amplitude) * scale).
+    T sum = psum.total() * flt.amplitude, g[D];
+    for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total() * flt.amplitude;
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
 
@@ -1067,14 +1071,8 @@ class gabor : public sample_noise<gabor<D>, D> {
                                     const footprint<3>& fp) const {
     namespace c = detail::constants;
     vec<double, 3> t, b;
-    const gabor_filter<2> flt = surface_frame(n, fp, t, b);
-    T q[2][2], m[2][2];
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) {
-        q[i][j] = T(flt.q[i][j]);
-        m[i][j] = T(flt.m[i][j]);
-      }
-    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
+    const detail::gabor_filter_coefs<T, 2> flt(surface_frame(n, fp, t, b));
+    const T neg_a = T(-kernel_.envelope_exponent());
     const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
     const T nt[3] = {T(n.x), T(n.y), T(n.z)}, tt[3] = {T(t.x), T(t.y), T(t.z)},
             bt[3] = {T(b.x), T(b.y), T(b.z)};
@@ -1130,7 +1128,7 @@ class gabor : public sample_noise<gabor<D>, D> {
         const T ph[2] = {f * vt, f * vb};
         const detail::gabor_taper_value<T> slab = detail::gabor_taper_derivative(z2, taper_k);
         T gs = 0, gk[2] = {0, 0};
-        filtered_pair<T, 2, G>(q, m, amplitude, neg_a, a, taper_k, dk, s, w, ph, gs, gk);
+        filtered_pair<T, 2, G>(flt, neg_a, a, taper_k, dk, s, w, ph, gs, gk);
         sum += gs * slab.tau;
         if constexpr (G) {
           // d/dd of (kernel * slab taper): the kernel's in-plane derivative
@@ -1141,6 +1139,8 @@ class gabor : public sample_noise<gabor<D>, D> {
         }
       });
     }
+    sum *= flt.amplitude;
+    for (int ax = 0; ax < 3; ++ax) g[ax] *= flt.amplitude;
     return finish<T, G>(sum, g, T(surface_scale_), T(surface_scale_ * inv_surface_cell_));
   }
 

@@ -545,7 +545,7 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
 //   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
 // Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
 // l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
-// below 0): Q = V diag(1 / (1 + k l)) V^T and I - Q = V diag(k l / (1 + k l))
+// below 0): Q = V diag(q) V^T, q = 1 / (1 + k l), and I - Q = V diag(k l q)
 // V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
 // footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
 // gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
@@ -581,14 +581,15 @@ struct gabor_filter {
     double v[D][D];
     detail::jacobi_eigen<D>(s, v);
     double qd[D], md[D];
-    amplitude = 1.0;
+    double det = 1.0;  // det Q
     const double mk = c::kPi * c::kPi / a;
     for (int i = 0; i < D; ++i) {
       const double kl = k * (s[i][i] > 0.0 ? s[i][i] : 0.0);
       qd[i] = 1.0 / (1.0 + kl);
-      md[i] = mk * (kl / (1.0 + kl));
-      amplitude *= std::sqrt(qd[i]);
+      md[i] = mk * (kl * qd[i]);  // kl / (1 + kl) with one division per eigenvalue
+      det *= qd[i];
     }
+    amplitude = std::sqrt(det);  // one square root; det Q of a float S is far above underflow
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) {
         double qq = 0, mm = 0;
@@ -601,6 +602,34 @@ struct gabor_filter {
       }
   }
 };
+
+namespace detail {
+
+// Index of entry (r, c) of a symmetric E x E matrix's upper triangle, stored
+// row by row: (0,0), (0,1), [(0,2),] (1,1), [(1,2), (2,2)].
+template <int E>
+constexpr int gabor_sym(int r, int c) {
+  return r <= c ? r * E - r * (r - 1) / 2 + (c - r) : gabor_sym<E>(c, r);
+}
+
+// A gabor_filter as the filtered kernel reads it, rounded to T once (every
+// backend the same): Q's upper triangle q, M's with the off-diagonal doubled (m2:
+// Phi^T M Phi = sum over r <= c of m2_rc Phi_r Phi_c) and the amplitude.
+template <class T, int E>
+struct gabor_filter_coefs {
+  static constexpr int kSize = E * (E + 1) / 2;
+  T q[kSize], m2[kSize];
+  T amplitude;
+  explicit gabor_filter_coefs(const gabor_filter<E>& f) : amplitude(static_cast<T>(f.amplitude)) {
+    for (int r = 0; r < E; ++r)
+      for (int c = r; c < E; ++c) {
+        q[gabor_sym<E>(r, c)] = static_cast<T>(f.q[r][c]);
+        m2[gabor_sym<E>(r, c)] = static_cast<T>(f.m[r][c]) * (r == c ? T(1) : T(2));
+      }
+  }
+};
+
+}  // namespace detail
 
 }  // namespace hush
 

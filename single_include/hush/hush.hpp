@@ -5378,7 +5378,7 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
 //   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
 // Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
 // l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
-// below 0): Q = V diag(1 / (1 + k l)) V^T and I - Q = V diag(k l / (1 + k l))
+// below 0): Q = V diag(q) V^T, q = 1 / (1 + k l), and I - Q = V diag(k l q)
 // V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
 // footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
 // gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
@@ -5414,14 +5414,15 @@ struct gabor_filter {
     double v[D][D];
     detail::jacobi_eigen<D>(s, v);
     double qd[D], md[D];
-    amplitude = 1.0;
+    double det = 1.0;  // det Q
     const double mk = c::kPi * c::kPi / a;
     for (int i = 0; i < D; ++i) {
       const double kl = k * (s[i][i] > 0.0 ? s[i][i] : 0.0);
       qd[i] = 1.0 / (1.0 + kl);
-      md[i] = mk * (kl / (1.0 + kl));
-      amplitude *= std::sqrt(qd[i]);
+      md[i] = mk * (kl * qd[i]);  // kl / (1 + kl) with one division per eigenvalue
+      det *= qd[i];
     }
+    amplitude = std::sqrt(det);  // one square root; det Q of a float S is far above underflow
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) {
         double qq = 0, mm = 0;
@@ -5434,6 +5435,34 @@ struct gabor_filter {
       }
   }
 };
+
+namespace detail {
+
+// Index of entry (r, c) of a symmetric E x E matrix's upper triangle, stored
+// row by row: (0,0), (0,1), [(0,2),] (1,1), [(1,2), (2,2)].
+template <int E>
+constexpr int gabor_sym(int r, int c) {
+  return r <= c ? r * E - r * (r - 1) / 2 + (c - r) : gabor_sym<E>(c, r);
+}
+
+// A gabor_filter as the filtered kernel reads it, rounded to T once (every
+// backend the same): Q's upper triangle q, M's with the off-diagonal doubled (m2:
+// Phi^T M Phi = sum over r <= c of m2_rc Phi_r Phi_c) and the amplitude.
+template <class T, int E>
+struct gabor_filter_coefs {
+  static constexpr int kSize = E * (E + 1) / 2;
+  T q[kSize], m2[kSize];
+  T amplitude;
+  explicit gabor_filter_coefs(const gabor_filter<E>& f) : amplitude(static_cast<T>(f.amplitude)) {
+    for (int r = 0; r < E; ++r)
+      for (int c = r; c < E; ++c) {
+        q[gabor_sym<E>(r, c)] = static_cast<T>(f.q[r][c]);
+        m2[gabor_sym<E>(r, c)] = static_cast<T>(f.m[r][c]) * (r == c ? T(1) : T(2));
+      }
+  }
+};
+
+}  // namespace detail
 
 }  // namespace hush
 
@@ -6522,35 +6551,43 @@ class gabor : public sample_noise<gabor<D>, D> {
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
 
-  // One impulse of a filtered (or tangent-plane) kernel in E dimensions:
-  // w amplitude e^{-A d^T Q d - Phi^T M Phi} cos(2 pi <Q Phi, d>) tau(s) (one exponential
-  // of the summed exponents), added to sum and, with G, its derivative by d to grad.
+  // One impulse of a filtered (or tangent-plane) kernel in E dimensions, without the
+  // filter's amplitude (which scales the sum): w e^{-A d^T Q d - Phi^T M Phi}
+  // cos(2 pi <Phi, Q d>) tau(s) (one exponential of the summed exponents), added to sum
+  // and, with G, its derivative by d to grad. In this order in every backend: v = Q d,
+  // d^T Q d = <d, v>, theta = <Phi, v>, Phi^T M Phi = sum of m2_rc Phi_r Phi_c (r <= c).
   template <class T, int E, bool G>
-  static void filtered_pair(const T (&q)[E][E], const T (&m)[E][E], T amplitude, T neg_a, T a,
-                            T taper_k, const T* d, T s, T w, const T* phi, T& sum, T* grad) {
-    T mu[E], qd[E];
-    T att = 0, dqd = 0, theta = 0;
+  static void filtered_pair(const detail::gabor_filter_coefs<T, E>& f, T neg_a, T a, T taper_k,
+                            const T* d, T s, T w, const T* phi, T& sum, T* grad) {
+    using detail::gabor_sym;
+    T qd[E];
     for (int i = 0; i < E; ++i) {
-      T x = 0, y = 0, z = 0;
-      for (int j = 0; j < E; ++j) {
-        x += q[i][j] * phi[j];
-        y += m[i][j] * phi[j];
-        z += q[i][j] * d[j];
-      }
-      mu[i] = x;
-      att += phi[i] * y;
+      T z = f.q[gabor_sym<E>(i, 0)] * d[0];
+      for (int j = 1; j < E; ++j) z += f.q[gabor_sym<E>(i, j)] * d[j];
       qd[i] = z;
-      dqd += d[i] * z;
     }
-    for (int i = 0; i < E; ++i) theta += mu[i] * d[i];
-    const T p = (w * amplitude) * detail::exp_neg(neg_a * dqd - att);
+    T dqd = d[0] * qd[0], theta = phi[0] * qd[0];
+    for (int i = 1; i < E; ++i) {
+      dqd += d[i] * qd[i];
+      theta += phi[i] * qd[i];
+    }
+    T att = f.m2[0] * (phi[0] * phi[0]);
+    for (int i = 0, k = 0; i < E; ++i)
+      for (int j = i; j < E; ++j, ++k)
+        if (k > 0) att += f.m2[k] * (phi[i] * phi[j]);
+    // d^T Q d and att are finite for every footprint (gabor_filter): exp_neg's NaN
+    // case never arises; a slightly positive sum (rounding) gives 1.
+    const T p = w * detail::exp_neg(neg_a * dqd - att);
     const detail::sin_cos<T> sc = detail::sincos_turns(theta);
     if constexpr (G) {
       const detail::gabor_taper_value<T> tw = detail::gabor_taper_derivative(s, taper_k);
       const T pc = p * sc.cos, ps = T(detail::constants::kTwoPi) * ((p * tw.tau) * sc.sin);
       sum += pc * tw.tau;
-      for (int i = 0; i < E; ++i)
-        grad[i] += pc * ((tw.dtau + tw.dtau) * d[i] - (a + a) * (tw.tau * qd[i])) - ps * mu[i];
+      for (int i = 0; i < E; ++i) {
+        T mu = f.q[gabor_sym<E>(i, 0)] * phi[0];  // (Q Phi)_i
+        for (int j = 1; j < E; ++j) mu += f.q[gabor_sym<E>(i, j)] * phi[j];
+        grad[i] += pc * ((tw.dtau + tw.dtau) * d[i] - (a + a) * (tw.tau * qd[i])) - ps * mu;
+      }
     } else {
       sum += (p * sc.cos) * detail::gabor_taper(s, taper_k);
     }
@@ -6559,28 +6596,24 @@ class gabor : public sample_noise<gabor<D>, D> {
   // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
   template <class T, bool G>
   value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
-    const gabor_filter<D> flt(fp, kernel_.envelope_exponent(), inv_cell_);
-    T q[D][D], m[D][D];
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j) {
-        q[i][j] = T(flt.q[i][j]);
-        m[i][j] = T(flt.m[i][j]);
-      }
-    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
+    const detail::gabor_filter_coefs<T, D> flt(
+        gabor_filter<D>(fp, kernel_.envelope_exponent(), inv_cell_));
+    const T neg_a = T(-kernel_.envelope_exponent());
     const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
     // Sums by fours as the point form (detail::gabor_point_sum), value and gradient alike.
     detail::gabor_point_sum<T> psum, pg_sum[D];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
       T ph[D], term = 0, gterm[D] = {};
       for (int i = 0; i < D; ++i) ph[i] = phi[i];
-      filtered_pair<T, D, G>(q, m, amplitude, neg_a, a, taper_k, d, s, w, ph, term, gterm);
+      filtered_pair<T, D, G>(flt, neg_a, a, taper_k, d, s, w, ph, term, gterm);
       psum.add(term);
       if constexpr (G)
         for (int i = 0; i < D; ++i) pg_sum[i].add(gterm[i]);
     });
     if (!ok) return nan_result<T>();
-    T sum = psum.total(), g[D];
-    for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total();
+    // The amplitude scales the sums (every backend: (sum * amplitude) * scale).
+    T sum = psum.total() * flt.amplitude, g[D];
+    for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total() * flt.amplitude;
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
 
@@ -6590,14 +6623,8 @@ class gabor : public sample_noise<gabor<D>, D> {
                                     const footprint<3>& fp) const {
     namespace c = detail::constants;
     vec<double, 3> t, b;
-    const gabor_filter<2> flt = surface_frame(n, fp, t, b);
-    T q[2][2], m[2][2];
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) {
-        q[i][j] = T(flt.q[i][j]);
-        m[i][j] = T(flt.m[i][j]);
-      }
-    const T amplitude = T(flt.amplitude), neg_a = T(-kernel_.envelope_exponent());
+    const detail::gabor_filter_coefs<T, 2> flt(surface_frame(n, fp, t, b));
+    const T neg_a = T(-kernel_.envelope_exponent());
     const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
     const T nt[3] = {T(n.x), T(n.y), T(n.z)}, tt[3] = {T(t.x), T(t.y), T(t.z)},
             bt[3] = {T(b.x), T(b.y), T(b.z)};
@@ -6653,7 +6680,7 @@ class gabor : public sample_noise<gabor<D>, D> {
         const T ph[2] = {f * vt, f * vb};
         const detail::gabor_taper_value<T> slab = detail::gabor_taper_derivative(z2, taper_k);
         T gs = 0, gk[2] = {0, 0};
-        filtered_pair<T, 2, G>(q, m, amplitude, neg_a, a, taper_k, dk, s, w, ph, gs, gk);
+        filtered_pair<T, 2, G>(flt, neg_a, a, taper_k, dk, s, w, ph, gs, gk);
         sum += gs * slab.tau;
         if constexpr (G) {
           // d/dd of (kernel * slab taper): the kernel's in-plane derivative
@@ -6664,6 +6691,8 @@ class gabor : public sample_noise<gabor<D>, D> {
         }
       });
     }
+    sum *= flt.amplitude;
+    for (int ax = 0; ax < 3; ++ax) g[ax] *= flt.amplitude;
     return finish<T, G>(sum, g, T(surface_scale_), T(surface_scale_ * inv_surface_cell_));
   }
 
@@ -10074,9 +10103,11 @@ HWY_AFTER_NAMESPACE();
 //    drawn once for all the points that see it; per cell its 3^D cells' impulses copied once
 //    into one candidate list in the summation order, which each of its points tests in full
 //    vectors (lanes across impulses, no branch) and compresses the kept ones into a pair
-//    list; the kernel (unfiltered, or filtered with each point's filter computed once in
-//    double, each lane taking its point's by a permutation) then runs over the list
-//    (shared_points below);
+//    list; the kernel then runs over the list (shared_points below). Filtered samples:
+//    each point's filter computed once in double; in 2D (values) the test also computes
+//    each candidate's exponent and phase with the point's filter, in 3D and with
+//    gradients each lane of the kernel takes its point's filter by a permutation
+//    (shared_filtered);
 //  - other points and filtered samples, and samples with normals: one lane per point
 //    (samples: each lane's filter, and for surface noise its tangent frame, computed in double
 //    as the scalar code does, and gathered per term); per cell and impulse the lanes draw in
@@ -10234,6 +10265,13 @@ HWY_INLINE VF exp_neg(VF x) {
   const VF v = exp_neg_in_range(hn::Max(hn::IfThenElse(hn::Gt(x, zero), zero, x), lo));
   // Below the floor: 0; NaN: the NaN itself (as the scalar code returns x).
   return hn::IfThenElse(hn::IsNaN(x), x, hn::IfThenElseZero(hn::Ge(x, lo), v));
+}
+// exp_neg for finite x (the filtered kernel's exponent, finite by construction):
+// without its NaN case.
+HWY_INLINE VF exp_neg_finite(VF x) {
+  const DF df;
+  const VF lo = hn::Set(df, float(detail::constants::kExpFloor));
+  return hn::IfThenZeroElse(hn::Lt(x, lo), exp_neg_in_range(hn::Max(hn::Min(x, hn::Zero(df)), lo)));
 }
 
 // sin/cos of 2 pi u for |u| < 1/2 + kTurnsReduceLimit: the quadrant q (an
@@ -10612,6 +10650,9 @@ struct lanes_split {
   HWY_ALIGN std::uint32_t cell[3][kMaxLanes];
   HWY_ALIGN float frac[3][kMaxLanes];
   bool bad[kMaxLanes];  // a non-finite coordinate: the result is NaN
+  // Filtered samples: each lane's filter amplitude, which scales its sums (1: unfiltered).
+  float amp[kMaxLanes];
+  lanes_split() { std::fill(amp, amp + kMaxLanes, 1.0f); }
 };
 
 // Appends to `t` every impulse of the process (solid: `table`, `stream`, the
@@ -10768,47 +10809,73 @@ void eval_unfiltered(const consts<D>& c, tuples& t) {
 }
 
 // Per-lane filters of a batch (gabor<D>::filtered_eval): gabor_filter<D> of each lane's
-// footprint in double, rounded to float as the scalar code rounds it. Q and M row-major.
+// footprint in double, as detail::gabor_filter_coefs<float, E> (Q's upper triangle q, M's
+// with its off-diagonal doubled m2); the amplitude goes to lanes_split::amp.
 struct lanes_filter {
-  HWY_ALIGN float q[9][kMaxLanes];
-  HWY_ALIGN float m[9][kMaxLanes];
-  HWY_ALIGN float amp[kMaxLanes];
+  HWY_ALIGN float q[6][kMaxLanes];
+  HWY_ALIGN float m2[6][kMaxLanes];
+  template <int E>
+  void set(std::size_t l, const detail::gabor_filter_coefs<float, E>& f) {
+    for (int e = 0; e < f.kSize; ++e) {
+      q[e][l] = f.q[e];
+      m2[e][l] = f.m2[e];
+    }
+  }
 };
 
-// gabor<D>::filtered_pair in lanes, operation by operation, in E dimensions:
-// filter q, m (row-major E x E) and amplitude per lane, offsets d, s = |d|^2,
-// weight w, frequency phi; the term into value and, with G, its derivative by
-// d into grad.
-template <int D, int E, bool G>
-HWY_INLINE void filtered_pair(const consts<D>& c, const VF* q, const VF* m, VF amplitude,
-                              const VF* d, VF s, VF w, const VF* phi, VF& value, VF* grad) {
-  const DF df;
-  const VF zero = hn::Zero(df);
-  VF mu[E], qd[E];
-  VF att = zero, dqd = zero, theta = zero;
+// The filtered kernel's exponent -A d^T Q d - Phi^T M Phi and phase <Phi, Q d>
+// (gabor<D>::filtered_pair's order) of offsets d and frequencies phi; qd = Q d.
+// pp: Phi_r Phi_c for r <= c (detail::gabor_sym order).
+template <int E>
+HWY_INLINE void filtered_exponent(VF neg_a, const VF* q, const VF* m2, const VF* d, const VF* phi,
+                                  const VF* pp, VF* qd, VF& x, VF& theta) {
   for (int r = 0; r < E; ++r) {
-    VF x = zero, y = zero, z = zero;
-    for (int col = 0; col < E; ++col) {
-      x = mul_add(q[r * E + col], phi[col], x);
-      y = mul_add(m[r * E + col], phi[col], y);
-      z = mul_add(q[r * E + col], d[col], z);
-    }
-    mu[r] = x;
-    att = mul_add(phi[r], y, att);
+    VF z = hn::Mul(q[detail::gabor_sym<E>(r, 0)], d[0]);
+    for (int col = 1; col < E; ++col) z = mul_add(q[detail::gabor_sym<E>(r, col)], d[col], z);
     qd[r] = z;
-    dqd = mul_add(d[r], z, dqd);
   }
-  for (int r = 0; r < E; ++r) theta = mul_add(mu[r], d[r], theta);
-  // One exponential of the summed exponents -A d^T Q d - Phi^T M Phi: d^T Q d in [0, s]
-  // and att in [0, pi^2 |Phi|^2 / A) up to rounding (Q's eigenvalues in (0, 1], M's in
-  // [0, pi^2 / A); rounded to float either may be slightly indefinite: exp_neg clamps a
-  // positive sum at 0). Both are finite for every footprint (gabor_filter's eigenvalues
-  // are clamped, NaN too), so the sum is finite; where it is large it underflows to 0 as
-  // the product of the two exponentials did. |theta| <= |Q Phi| |d| < |Phi| (sincos_kept).
-  const VF p = hn::Mul(hn::Mul(w, amplitude), exp_neg(mul_add(c.neg_a, dqd, hn::Neg(att))));
+  VF dqd = hn::Mul(d[0], qd[0]);
+  theta = hn::Mul(phi[0], qd[0]);
+  for (int r = 1; r < E; ++r) {
+    dqd = mul_add(d[r], qd[r], dqd);
+    theta = mul_add(phi[r], qd[r], theta);
+  }
+  VF att = hn::Mul(m2[0], pp[0]);
+  for (int k = 1; k < E * (E + 1) / 2; ++k) att = mul_add(m2[k], pp[k], att);
+  // d^T Q d in [0, s] and att in [0, pi^2 |Phi|^2 / A) up to rounding (Q's eigenvalues
+  // in (0, 1], M's in [0, pi^2 / A); rounded to float either may be slightly
+  // indefinite: exp_neg_finite takes a positive sum as 0). Both are finite for every
+  // footprint (gabor_filter clamps the eigenvalues, NaN too). |theta| <= |Q Phi| |d| <
+  // |Phi| (sincos_kept).
+  x = mul_add(neg_a, dqd, hn::Neg(att));
+}
+template <int E>
+HWY_INLINE void phi_products(const VF* phi, VF* pp) {
+  for (int r = 0, k = 0; r < E; ++r)
+    for (int col = r; col < E; ++col, ++k) pp[k] = hn::Mul(phi[r], phi[col]);
+}
+
+// gabor<D>::filtered_pair in lanes, operation by operation, in E dimensions:
+// filter q, m2 (detail::gabor_filter_coefs) per lane, offsets d, s = |d|^2,
+// weight w, frequency phi; the term (without the amplitude) into value and, with G, its
+// derivative by d into grad.
+template <int D, int E, bool G>
+HWY_INLINE void filtered_pair(const consts<D>& c, const VF* q, const VF* m2, const VF* d, VF s,
+                              VF w, const VF* phi, VF& value, VF* grad) {
+  const DF df;
+  VF qd[E], pp[E * (E + 1) / 2], x, theta;
+  phi_products<E>(phi, pp);
+  filtered_exponent<E>(c.neg_a, q, m2, d, phi, pp, qd, x, theta);
+  const VF p = hn::Mul(w, exp_neg_finite(x));
   VF sn, cs;
   sincos_kept(c, theta, sn, cs);
   if constexpr (G) {
+    VF mu[E];  // Q Phi
+    for (int r = 0; r < E; ++r) {
+      mu[r] = hn::Mul(q[detail::gabor_sym<E>(r, 0)], phi[0]);
+      for (int col = 1; col < E; ++col)
+        mu[r] = mul_add(q[detail::gabor_sym<E>(r, col)], phi[col], mu[r]);
+    }
     VF tau, dtau;
     taper_derivative(s, c.k, tau, dtau);
     const VF pc = hn::Mul(p, cs);
@@ -10837,19 +10904,19 @@ void eval_filtered(const consts<D>& c, const lanes_filter& f, tuples& t) {
     VU w[3] = {hn::LoadU(du, t.w0.data() + i), hn::LoadU(du, t.w1.data() + i),
                hn::LoadU(du, t.w2.data() + i)};
     const VI li = hn::BitCast(di, hn::LoadU(du, t.lane.data() + i));
-    VF wt, phi[3], d[3], d2[3], q[D * D], m[D * D];
+    VF wt, phi[3], d[3], d2[3], q[D * (D + 1) / 2], m[D * (D + 1) / 2];
     marks<D>(c, w, wt, phi);
     for (int a = 0; a < D; ++a) {
       d[a] = hn::LoadU(df, t.d[a].data() + i);
       d2[a] = hn::Mul(d[a], d[a]);
     }
     const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
-    for (int e = 0; e < D * D; ++e) {
+    for (int e = 0; e < D * (D + 1) / 2; ++e) {
       q[e] = hn::GatherIndex(df, f.q[e], li);
-      m[e] = hn::GatherIndex(df, f.m[e], li);
+      m[e] = hn::GatherIndex(df, f.m2[e], li);
     }
     VF value, g[3];
-    filtered_pair<D, D, G>(c, q, m, hn::GatherIndex(df, f.amp, li), d, s, wt, phi, value, g);
+    filtered_pair<D, D, G>(c, q, m, d, s, wt, phi, value, g);
     hn::StoreU(value, df, t.val.data() + i);
     if constexpr (G)
       for (int a = 0; a < D; ++a) hn::StoreU(g[a], df, t.g[a].data() + i);
@@ -10932,15 +10999,15 @@ void eval_surface(const consts<3>& c, const lanes_filter& f, const lanes_frame& 
       fq = hn::IfThenElseZero(hn::Gt(len2, zero), hn::Div(phi, hn::Sqrt(len2)));
     }
     const VF ph[2] = {hn::Mul(fq, vt), hn::Mul(fq, vb)};
-    VF q[4], m[4];
-    for (int e = 0; e < 4; ++e) {
+    VF q[3], m[3];
+    for (int e = 0; e < 3; ++e) {
       q[e] = hn::GatherIndex(df, f.q[e], li);
-      m[e] = hn::GatherIndex(df, f.m[e], li);
+      m[e] = hn::GatherIndex(df, f.m2[e], li);
     }
     VF slab_tau, slab_dtau;
     taper_derivative(o.z2, c.k, slab_tau, slab_dtau);
     VF gs, gk[2];
-    filtered_pair<3, 2, G>(c, q, m, hn::GatherIndex(df, f.amp, li), o.dk, o.s, wt, ph, gs, gk);
+    filtered_pair<3, 2, G>(c, q, m, o.dk, o.s, wt, ph, gs, gk);
     hn::StoreU(hn::Mul(gs, slab_tau), df, t.val.data() + i);
     if constexpr (G) {
       // d/dd of (kernel * slab taper): in the plane through dk, along n through z2.
@@ -11024,10 +11091,12 @@ void finish(const tuples& t, const lanes_split& sp, std::size_t used, float scal
     }
   }
   const float nan = std::numeric_limits<float>::quiet_NaN();
+  // (sum * amplitude) * scale as the scalar code (amplitude 1 unfiltered: the same value).
   for (std::size_t l = 0; l < used; ++l) {
-    value[l] = sp.bad[l] ? nan : sum[l] * scale;
+    value[l] = sp.bad[l] ? nan : (sum[l] * sp.amp[l]) * scale;
     if constexpr (G)
-      for (int a = 0; a < D; ++a) grad[l * D + a] = sp.bad[l] ? nan : g[a][l] * grad_scale;
+      for (int a = 0; a < D; ++a)
+        grad[l * D + a] = sp.bad[l] ? nan : (g[a][l] * sp.amp[l]) * grad_scale;
   }
 }
 
@@ -11199,12 +11268,13 @@ constexpr std::size_t kShareMaxPoints = std::size_t(1) << 20;
 
 // Pairs (point, impulse) within the support, each point's in its order.
 struct shared_pairs {
-  // Values only: s, theta and w of each kept impulse; with gradients: d, phi and w.
-  std::vector<float> d[3], w, phi[3], val, g[3], s, theta;
+  // Values only: s, theta and w of each kept impulse (filtered 2D: and the exponent x);
+  // with gradients (and filtered 3D): d, phi and w.
+  std::vector<float> d[3], w, phi[3], val, g[3], s, theta, x;
   std::size_t n = 0;
   void reserve(std::size_t cap) {
     for (auto* v : {&d[0], &d[1], &d[2], &w, &phi[0], &phi[1], &phi[2], &val, &g[0], &g[1], &g[2],
-                    &s, &theta})
+                    &s, &theta, &x})
       v->resize(cap + kMaxLanes);
   }
 };
@@ -11649,8 +11719,9 @@ bool clearly_sparse(const float* pts, std::size_t n, double inv) {
 // exact: detail::gabor_offset), frequency and weight, in the points' summation order.
 struct cell_candidates {
   std::vector<float> pos[3], phi[3], w;
+  std::vector<float> pp[3];  // 2D filtered values: Phi_r Phi_c, r <= c (phi_products)
   void reserve(std::size_t cap) {
-    for (auto* v : {&pos[0], &pos[1], &pos[2], &phi[0], &phi[1], &phi[2], &w})
+    for (auto* v : {&pos[0], &pos[1], &pos[2], &phi[0], &phi[1], &phi[2], &w, &pp[0], &pp[1], &pp[2]})
       if (v->size() < cap) v->resize(cap);
   }
 };
@@ -11678,13 +11749,21 @@ struct shared_workspace {
 
 // shared_points' kernels (Eval): t's pairs [0, t.n), point pend[p]'s in
 // [pend_end[p - 1], pend_end[p]), into t.val (and with G the gradient terms into t.g).
-// kOffsets: the pairs carry d and phi (else s and theta: the unfiltered values).
+// kOffsets: the pairs carry d and phi (else s and theta: the unfiltered values);
+// kExponent: and the exponent x, computed in the test with filter_of(the point's sorted
+// position). point_scale(p): pending point p's factor on its sums; flushed(np) after
+// each flush.
 //
 // The unfiltered kernel (gabor<D>::eval) in the point form.
 template <int D, bool G>
 struct shared_unfiltered {
   static constexpr bool kOffsets = G;
+  static constexpr bool kExponent = false;
   void prepare(const std::vector<sorted_point<D>>&) {}
+  struct point_filter {};
+  point_filter filter_of(std::size_t) const { return {}; }
+  float point_scale(std::size_t) const { return 1.0f; }
+  void flushed(std::size_t) {}
   void operator()(const consts<D>& c, shared_pairs& t, const std::vector<std::uint32_t>&,
                   const std::vector<std::size_t>&) const {
     const DF df;
@@ -11713,8 +11792,8 @@ struct shared_unfiltered {
 // under HUSH_STRICT_FP (IEEE division and square root are correctly rounded; no fused
 // operations here). The scalar branches are masks: a lane that jacobi_eigen<2> leaves
 // unrotated (off-diagonal zero, tiny against the diagonal, or NaN) keeps S's diagonal and
-// V = I. out[e * stride + p]: point p's Q (row-major), M, amplitude, rounded to float;
-// stride >= n rounded up to whole vectors of doubles.
+// V = I. out[e * stride + p]: point p's detail::gabor_filter_coefs<float, 2> (q, m2,
+// amplitude: 7 entries); stride >= n rounded up to whole vectors of doubles.
 inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double inv_r, float* out,
                        std::size_t stride) {
   using DD = hn::ScalableTag<double>;
@@ -11786,104 +11865,152 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
       const VD kl = hn::Mul(hn::Set(dd, k), hn::IfThenElseZero(hn::Gt(e[i], zero), e[i]));
       const VD den = hn::Add(one, kl);
       qd[i] = hn::Div(one, den);
-      md[i] = hn::Mul(hn::Set(dd, mk), hn::Div(kl, den));
+      md[i] = hn::Mul(hn::Set(dd, mk), hn::Mul(kl, qd[i]));
     }
-    const VD amp = hn::Mul(hn::Mul(one, hn::Sqrt(qd[0])), hn::Sqrt(qd[1]));
+    const VD amp = hn::Sqrt(hn::Mul(hn::Mul(one, qd[0]), qd[1]));
+    // The upper triangles (detail::gabor_filter_coefs): q, then m2 (M's off-diagonal doubled).
     for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) {
+      for (int j = i; j < 2; ++j) {
         VD qq = zero, mm = zero;
         for (int x = 0; x < 2; ++x) {
           qq = hn::Add(qq, hn::Mul(hn::Mul(v[i][x], qd[x]), v[j][x]));
           mm = hn::Add(mm, hn::Mul(hn::Mul(v[i][x], md[x]), v[j][x]));
         }
-        hn::StoreU(hn::DemoteTo(dfh, qq), dfh, out + (i * 2 + j) * stride + p0);
-        hn::StoreU(hn::DemoteTo(dfh, mm), dfh, out + (4 + i * 2 + j) * stride + p0);
+        const auto m2 = hn::DemoteTo(dfh, mm);
+        hn::StoreU(hn::DemoteTo(dfh, qq), dfh, out + detail::gabor_sym<2>(i, j) * stride + p0);
+        hn::StoreU(i == j ? m2 : hn::Add(m2, m2), dfh,
+                   out + (3 + detail::gabor_sym<2>(i, j)) * stride + p0);
       }
-    hn::StoreU(hn::DemoteTo(dfh, amp), dfh, out + 8 * stride + p0);
+    hn::StoreU(hn::DemoteTo(dfh, amp), dfh, out + 6 * stride + p0);
   }
 }
 
 // prepare(sorted) sees the points in the order in which they reach the kernel.
 //
 // The filtered kernel (gabor<D>::filtered_eval) with each point's footprint fps[point]:
-// its filter computed once per point (in double, rounded to float as the scalar code
-// rounds it), then filtered_pair over the pairs in full vectors, each lane taking its
-// point's filter from a vector of the filters of consecutive points (a permutation).
+// its filter computed once per point in prepare (in double, rounded to float as
+// detail::gabor_filter_coefs rounds it; 2D in lanes of doubles, filters_2d), its
+// amplitude applied to the point's sums (point_scale). The terms:
+//  - 2D values (kExponent): each candidate's exponent and phase in the test, with the
+//    point's filter in registers (filter_of), then the point form's kernel over the kept
+//    pairs (exp, cos, taper only). In 2D about a third of the candidates are kept (pi / 9
+//    of the 3 x 3 cells): cheaper than fetching each pair's filter;
+//  - 3D (4 pi / 81 kept) and gradients: filtered_pair over the pairs in full vectors, each
+//    lane taking its point's filter from a vector of the filters of consecutive points (a
+//    permutation).
 template <int D, bool G>
 struct shared_filtered {
-  static constexpr bool kOffsets = true;
+  static constexpr bool kExponent = D == 2 && !G;
+  static constexpr bool kOffsets = !kExponent;
+  static constexpr std::size_t kSym = D * (D + 1) / 2, kAmp = 2 * kSym, kCoef = kAmp + 1;
   shared_filtered(const footprint<D>* f, double a, double inv_r)
       : fps(f), envelope(a), inv(inv_r) {}
   const footprint<D>* fps;
   double envelope, inv;  // A, 1 / r
-  // The footprints in sorted order, and the sorted position of the next pending point.
-  std::vector<footprint<D>> sorted_fps;
-  std::size_t next = 0;
-  // Per pending point its Q, M (row-major) and amplitude (coef[k * stride + p]).
+  std::vector<footprint<D>> sorted_fps;  // the footprints in sorted order
+  // Per point in sorted order: q, m2 (detail::gabor_filter_coefs) and the amplitude,
+  // coef[k * stride + point].
   std::vector<float> coef;
-  // Gathered in one loop of independent loads (in cell order they are read at random:
-  // one cache miss each, which the kernel's loop, long per point, would wait for).
+  std::size_t stride = 0;
+  std::size_t next = 0;  // the sorted position of the first pending point
+  std::vector<std::int32_t> ends;  // the pending points' ends, then kWindow sentinels
+
+  // The footprints gathered in one loop of independent loads (in cell order they are
+  // read at random: one cache miss each), then every filter in a loop of independent
+  // iterations (the divisions and square roots overlap across points).
   void prepare(const std::vector<sorted_point<D>>& sorted) {
-    sorted_fps.resize(sorted.size());
-    for (std::size_t k = 0; k < sorted.size(); ++k) sorted_fps[k] = fps[sorted[k].point];
+    const std::size_t n = sorted.size(), lanes = hn::Lanes(DF());
+    sorted_fps.resize(n);
+    for (std::size_t k = 0; k < n; ++k) sorted_fps[k] = fps[sorted[k].point];
+    // Whole vectors of doubles of slack (filters_2d writes them), and a vector of
+    // floats past the last entry (the kernel's loads start at any pending point).
+    stride = (n + lanes) / lanes * lanes;
+    coef.resize(kCoef * stride + lanes);
+    if constexpr (D == 2) {
+      filters_2d(sorted_fps.data(), n, envelope, inv, coef.data(), stride);
+    } else {
+      for (std::size_t p = 0; p < n; ++p) {
+        const detail::gabor_filter_coefs<float, D> f(gabor_filter<D>(sorted_fps[p], envelope, inv));
+        for (std::size_t k = 0; k < kSym; ++k) {
+          coef[k * stride + p] = f.q[k];
+          coef[(kSym + k) * stride + p] = f.m2[k];
+        }
+        coef[kAmp * stride + p] = f.amplitude;
+      }
+    }
     next = 0;
   }
+  // The filter of the point at sorted position sp in every lane (the test's terms).
+  struct point_filter {
+    VF q[kSym], m2[kSym];
+  };
+  point_filter filter_of(std::size_t sp) const {
+    const DF df;
+    point_filter f;
+    for (std::size_t k = 0; k < kSym; ++k) {
+      f.q[k] = hn::Set(df, coef[k * stride + sp]);
+      f.m2[k] = hn::Set(df, coef[(kSym + k) * stride + sp]);
+    }
+    return f;
+  }
+  // Pending point p's factor on its sums, and the end of a flush of np points.
+  float point_scale(std::size_t p) const { return coef[kAmp * stride + next + p]; }
+  void flushed(std::size_t np) { next += np; }
+
   void operator()(const consts<D>& c, shared_pairs& t, const std::vector<std::uint32_t>& pend,
                   const std::vector<std::size_t>& pend_end) {
     const DF df;
     const DI di;
     const std::size_t lanes = hn::Lanes(df);
-    // Each pending point's filter first, in a loop of independent iterations (the
-    // filter's divisions and square roots overlap across points; 2D in lanes of doubles,
-    // filters_2d).
-    constexpr std::size_t kAmp = std::size_t{2} * D * D, kCoef = kAmp + 1;  // Q, M, amplitude
-    const std::size_t np = pend.size();
-    // Whole vectors of doubles of slack (filters_2d writes them), and a vector of
-    // floats past the last entry (the loads below start at any pending point).
-    const std::size_t stride = (np + lanes) / lanes * lanes;
-    coef.resize(kCoef * stride + lanes);
-    if constexpr (D == 2) {
-      filters_2d(sorted_fps.data() + next, np, envelope, inv, coef.data(), stride);
-    } else {
-      for (std::size_t p = 0; p < np; ++p) {
-        const gabor_filter<D> fl(sorted_fps[next + p], envelope, inv);
-        for (int r = 0; r < D; ++r)
-          for (int col = 0; col < D; ++col) {
-            coef[(r * D + col) * stride + p] = static_cast<float>(fl.q[r][col]);
-            coef[(D * D + r * D + col) * stride + p] = static_cast<float>(fl.m[r][col]);
-          }
-        coef[kAmp * stride + p] = static_cast<float>(fl.amplitude);
+    if constexpr (kExponent) {
+      // w e^x cos(2 pi theta) tau(s) (gabor<D>::filtered_pair's value).
+      for (std::size_t i = 0; i < t.n; i += lanes) {
+        VF sn, cs;
+        sincos_kept(c, hn::LoadU(df, t.theta.data() + i), sn, cs);
+        const VF p =
+            hn::Mul(hn::LoadU(df, t.w.data() + i), exp_neg_finite(hn::LoadU(df, t.x.data() + i)));
+        hn::StoreU(hn::Mul(hn::Mul(p, cs), taper(hn::LoadU(df, t.s.data() + i), c.k)), df,
+                   t.val.data() + i);
       }
+      return;
     }
-    next += np;
-    // The ends in locals: through the vectors the compiler reloads them after every load.
-    const std::size_t* const ends = pend_end.data();
-    const float* const cf = coef.data();
-    const VI iota = hn::Iota(di, 0), one = hn::Set(di, 1);
+    // Each pending point's end as int32, then kWindow sentinels (never <= a pair).
+    constexpr std::size_t kWindow = 3;
+    const std::size_t np = pend.size();
+    ends.resize(np + kWindow);
+    for (std::size_t q = 0; q < np; ++q) ends[q] = static_cast<std::int32_t>(pend_end[q]);
+    for (std::size_t q = np; q < np + kWindow; ++q)
+      ends[q] = std::numeric_limits<std::int32_t>::max();
+    const std::int32_t* const e = ends.data();
+    const float* const cf = coef.data() + next;
+    const VI iota = hn::Iota(di, 0);
+    const std::int32_t width = static_cast<std::int32_t>(lanes);
     std::size_t p = 0;  // the first pending point with pairs at or past i
     for (std::size_t i = 0; i < t.n; i += lanes) {
-      while (ends[p] <= i) ++p;  // t.n = ends[np - 1] > i: stops at a point
-      // Each lane's point as p + local: the number of points from p on whose pairs
-      // end at or before the lane's pair (lanes past t.n: the points' count, a valid
-      // index into coef's slack; their values are never summed).
-      const VI pair = hn::Add(iota, hn::Set(di, static_cast<std::int32_t>(i)));
+      const std::int32_t i32 = static_cast<std::int32_t>(i);
+      const VI pair = hn::Add(iota, hn::Set(di, i32));
+      // Each lane's point as p + local, local = #{q >= p : ends[q] <= pair}, from a fixed
+      // window of kWindow points (a loop on how many end here would mispredict about
+      // once per vector); `done`: the window's points that end within this vector.
       VI local = hn::Zero(di);
-      std::size_t q = p;
-      for (; q < np && ends[q] < i + lanes; ++q)
-        local = hn::Add(local, hn::IfThenZeroElse(
-                                   hn::Gt(hn::Set(di, static_cast<std::int32_t>(ends[q])), pair),
-                                   one));
-      // The same entries either way: each lane's point's, bit for bit. local <= q - p:
-      // a permutation of the entries of points p ... p + lanes - 1 while fewer points
-      // than lanes end within this vector (more only where many points have no pairs:
-      // gathered).
-      VF ent[kCoef];
-      if (q - p < lanes) {
+      std::size_t done = 0;
+      HWY_UNROLL(3)
+      for (std::size_t k = 0; k < kWindow; ++k) {
+        local = hn::Sub(local, hn::VecFromMask(di, hn::Gt(pair, hn::Set(di, e[p + k] - 1))));
+        done += e[p + k] <= i32 + width ? 1 : 0;
+      }
+      // The same entries either way: each lane's point's, bit for bit. While fewer than
+      // kWindow points end here, local < kWindow <= lanes: a permutation of the entries
+      // of points p ... p + lanes - 1 (more only where points have no pairs: gathered).
+      VF ent[kAmp];
+      if (HWY_LIKELY(done < kWindow)) {
         const auto idx = hn::IndicesFromVec(df, local);
-        for (std::size_t k = 0; k < kCoef; ++k)
+        for (std::size_t k = 0; k < kAmp; ++k)
           ent[k] = hn::TableLookupLanes(hn::LoadU(df, cf + k * stride + p), idx);
       } else {
-        for (std::size_t k = 0; k < kCoef; ++k)
+        for (std::size_t q = p + kWindow; q < np && e[q] <= i32 + width; ++q, ++done)
+          local = hn::Sub(local, hn::VecFromMask(di, hn::Gt(pair, hn::Set(di, e[q] - 1))));
+        for (std::size_t k = 0; k < kAmp; ++k)
           ent[k] = hn::GatherIndex(df, cf + k * stride + p, local);
       }
       VF d[3], phi[3];
@@ -11892,11 +12019,12 @@ struct shared_filtered {
         phi[a] = hn::LoadU(df, t.phi[a].data() + i);
       }
       VF value, gr[3];
-      filtered_pair<D, D, G>(c, ent, ent + D * D, ent[kAmp], d, point_s<D>(d),
-                             hn::LoadU(df, t.w.data() + i), phi, value, gr);
+      filtered_pair<D, D, G>(c, ent, ent + kSym, d, point_s<D>(d), hn::LoadU(df, t.w.data() + i),
+                             phi, value, gr);
       hn::StoreU(value, df, t.val.data() + i);
       if constexpr (G)
         for (int a = 0; a < D; ++a) hn::StoreU(gr[a], df, t.g[a].data() + i);
+      p += done;
     }
   }
 };
@@ -11924,7 +12052,8 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   std::vector<std::uint32_t>& first = ws.first;
   std::vector<sorted_point<D>>& sorted = ws.sorted;
   std::vector<std::size_t>& rest = ws.rest;
-  sorted.clear();
+  // `sorted` is only resized below, never cleared: growing an emptied vector would
+  // zero-fill every record on every call (~5% of a call).
   rest.clear();
   constexpr auto kOut = point_cells<D>::kOut;
   // Too few points per cell to share the draws: the lockstep path for all
@@ -12019,10 +12148,13 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
         float gs[3] = {0.0f, 0.0f, 0.0f};
         if constexpr (G)
           for (int a = 0; a < D; ++a) gs[a] = point_sum(t.g[a].data() + b, pend_end[p] - b);
-        value[pend[p]] = sum * scale;
+        // (sum * amplitude) * scale as the scalar code (unfiltered: * 1, the same value).
+        const float amp = eval.point_scale(p);
+        value[pend[p]] = (sum * amp) * scale;
         if constexpr (G)
-          for (int a = 0; a < D; ++a) grad[pend[p] * D + a] = gs[a] * grad_scale;
+          for (int a = 0; a < D; ++a) grad[pend[p] * D + a] = (gs[a] * amp) * grad_scale;
       }
+      eval.flushed(pend.size());
       t.n = 0;
       pend.clear();
       pend_end.clear();
@@ -12039,6 +12171,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     float* const tw = t.w.data();
     float* const ts = t.s.data();
     float* const ttheta = t.theta.data();
+    float* const tx = t.x.data();
     float* const tphi[3] = {t.phi[0].data(), t.phi[1].data(), t.phi[2].data()};
     // The candidates of the points of one cell, in their order (rows of 3
     // cells in raster order, impulses in stream order), copied once per cell
@@ -12048,6 +12181,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     float* const cpos[3] = {cc.pos[0].data(), cc.pos[1].data(), cc.pos[2].data()};
     float* const cphi[3] = {cc.phi[0].data(), cc.phi[1].data(), cc.phi[2].data()};
     float* const cw = cc.w.data();
+    float* const cpp[3] = {cc.pp[0].data(), cc.pp[1].data(), cc.pp[2].data()};
     for (std::size_t run = 0; run < sorted.size();) {
       const std::int64_t idx = sorted[run].at;
       std::size_t run_end = run + 1;
@@ -12071,7 +12205,16 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
                      cpos[0] + dst);
           for (int a = 1; a < D; ++a)
             hn::StoreU(hn::Add(orow[a], hn::LoadU(df, pos[a] + k)), df, cpos[a] + dst);
-          for (int a = 0; a < D; ++a) hn::StoreU(hn::LoadU(df, iphi[a] + k), df, cphi[a] + dst);
+          VF ph[3];
+          for (int a = 0; a < D; ++a) {
+            ph[a] = hn::LoadU(df, iphi[a] + k);
+            hn::StoreU(ph[a], df, cphi[a] + dst);
+          }
+          if constexpr (Eval::kExponent) {
+            VF pp[3];
+            phi_products<D>(ph, pp);
+            for (int j = 0; j < D * (D + 1) / 2; ++j) hn::StoreU(pp[j], df, cpp[j] + dst);
+          }
           hn::StoreU(hn::LoadU(df, iw + k), df, cw + dst);
         }
         nc += e - b;
@@ -12082,6 +12225,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
       for (std::size_t sp = run; sp < run_end; ++sp) {
         VF f[3];
         for (int a = 0; a < D; ++a) f[a] = hn::Set(df, sorted[sp].frac[a]);
+        const typename Eval::point_filter pf = eval.filter_of(sp);
         std::size_t to = t.n;
         for (std::size_t k = 0; k < nc; k += lanes) {
           // frac - (o + u), as the scalar code. No branch on an empty
@@ -12093,7 +12237,14 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
           }
           const VF s = point_s<D>(d);
           const MF in = hn::Lt(s, one);
-          if constexpr (Eval::kOffsets) {
+          if constexpr (Eval::kExponent) {
+            VF pp[3], qd[3], x, theta;
+            for (int e = 0; e < D * (D + 1) / 2; ++e) pp[e] = hn::LoadU(df, cpp[e] + k);
+            filtered_exponent<D>(c.neg_a, pf.q, pf.m2, d, ph, pp, qd, x, theta);
+            hn::StoreU(compress(s, in), df, ts + to);
+            hn::StoreU(compress(theta, in), df, ttheta + to);
+            hn::StoreU(compress(x, in), df, tx + to);
+          } else if constexpr (Eval::kOffsets) {
             for (int a = 0; a < D; ++a) {
               hn::StoreU(compress(d[a], in), df, td[a] + to);
               hn::StoreU(compress(ph[a], in), df, tphi[a] + to);
@@ -12607,17 +12758,14 @@ void gabor_filtered_lockstep(const gabor<D>& g, const float* pts, const footprin
     gs::split_batch<D>(sp, pts, first, used, inv);
     for (std::size_t l = 0; l < lanes; ++l) {
       if (l >= used) {  // unused lanes keep no impulse (bad): any finite filter
-        for (int e = 0; e < D * D; ++e) filt.q[e][l] = filt.m[e][l] = 0.0f;
-        filt.amp[l] = 0.0f;
+        for (int e = 0; e < 6; ++e) filt.q[e][l] = filt.m2[e][l] = 0.0f;
+        sp.amp[l] = 0.0f;
         continue;
       }
-      const gabor_filter<D> fl(fps[index ? index[first + l] : first + l], a, inv);
-      for (int r = 0; r < D; ++r)
-        for (int c = 0; c < D; ++c) {
-          filt.q[r * D + c][l] = static_cast<float>(fl.q[r][c]);
-          filt.m[r * D + c][l] = static_cast<float>(fl.m[r][c]);
-        }
-      filt.amp[l] = static_cast<float>(fl.amplitude);
+      const detail::gabor_filter_coefs<float, D> f(
+          gabor_filter<D>(fps[index ? index[first + l] : first + l], a, inv));
+      filt.set<D>(l, f);
+      sp.amp[l] = f.amplitude;
     }
   };
   if (grad)
@@ -12720,24 +12868,20 @@ inline void gabor3_surface(const gabor<3>& g, const float* xyz, const float* nor
     for (std::size_t l = 0; l < lanes; ++l) {
       if (l >= used) {  // unused lanes: any finite frame and filter (their sums are dropped)
         for (int a = 0; a < 3; ++a) frame.n[a][l] = frame.t[a][l] = frame.b[a][l] = 0.0f;
-        for (int e = 0; e < 4; ++e) filt.q[e][l] = filt.m[e][l] = 0.0f;
-        filt.amp[l] = 0.0f;
+        for (int e = 0; e < 3; ++e) filt.q[e][l] = filt.m2[e][l] = 0.0f;
+        sp.amp[l] = 0.0f;
         continue;
       }
       vec<double, 3> t, b;
       const std::size_t j = first + l;
-      const gabor_filter<2> fl = g.surface_frame(unit[j], fp_of(surface[j]), t, b);
+      const detail::gabor_filter_coefs<float, 2> fl(g.surface_frame(unit[j], fp_of(surface[j]), t, b));
       for (int a = 0; a < 3; ++a) {
         frame.n[a][l] = static_cast<float>(unit[j][a]);
         frame.t[a][l] = static_cast<float>(t[a]);
         frame.b[a][l] = static_cast<float>(b[a]);
       }
-      for (int r = 0; r < 2; ++r)
-        for (int c = 0; c < 2; ++c) {
-          filt.q[r * 2 + c][l] = static_cast<float>(fl.q[r][c]);
-          filt.m[r * 2 + c][l] = static_cast<float>(fl.m[r][c]);
-        }
-      filt.amp[l] = static_cast<float>(fl.amplitude);
+      filt.set<2>(l, fl);
+      sp.amp[l] = fl.amplitude;
     }
   };
   // The slab and disk tests of surface_eval, per lane of the batch.

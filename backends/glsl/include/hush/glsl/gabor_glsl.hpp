@@ -203,35 +203,41 @@ float hush_gabor_marks(uint w0, uint w1, uint w2, out vec3 phi) {
   }
   return w;
 }
-// gabor<D>::filtered_pair in `dim` dimensions: the term (value, d/dd) of one impulse,
-// w amp e^{-A d^T Q d - Phi^T M Phi} cos(2 pi <Q Phi, d>) tau(s) (one exponential).
-vec4 hush_gabor_filtered_pair(mat3 q, mat3 m, float amp, vec3 d, float s, float w, vec3 phi,
-                              uint dim, bool grad) {
+// gabor<D>::filtered_pair in `dim` dimensions: the term (value, d/dd) of one impulse
+// without the amplitude (which scales the sum), w e^{-A d^T Q d - Phi^T M Phi}
+// cos(2 pi <Phi, Q d>) tau(s) (one exponential), in its order: v = Q d, <d, v>,
+// <Phi, v>, Phi^T M Phi as the sum over i <= j of (M_ij, doubled off the diagonal)
+// Phi_i Phi_j, reading Q and M's upper triangles (gabor_filter_coefs).
+vec4 hush_gabor_filtered_pair(mat3 q, mat3 m, vec3 d, float s, float w, vec3 phi, uint dim,
+                              bool grad) {
   float neg_a = hush_gp(hush_gp_NEG_A), a = hush_gp(hush_gp_A), tk = hush_gp(hush_gp_TAPER_K);
-  float mu[3], qd[3];
-  float att = 0.0, dqd = 0.0, theta = 0.0;
+  float qd[3];
   for (uint i = 0u; i < dim; ++i) {
-    float x = 0.0, y = 0.0, z = 0.0;
-    for (uint j = 0u; j < dim; ++j) {
-      x += q[j][i] * phi[j];
-      y += m[j][i] * phi[j];
-      z += q[j][i] * d[j];
-    }
-    mu[i] = x;
-    att += phi[i] * y;
+    float z = q[i][0] * d[0];  // entry (min(i, j), max(i, j)): q[max][min] (column, row)
+    for (uint j = 1u; j < dim; ++j) z += q[max(i, j)][min(i, j)] * d[j];
     qd[i] = z;
-    dqd += d[i] * z;
   }
-  for (uint i = 0u; i < dim; ++i) theta += mu[i] * d[i];
-  float p = (w * amp) * hush_exp_neg(neg_a * dqd - att);
+  float dqd = d[0] * qd[0], theta = phi[0] * qd[0];
+  for (uint i = 1u; i < dim; ++i) {
+    dqd += d[i] * qd[i];
+    theta += phi[i] * qd[i];
+  }
+  float att = m[0][0] * (phi[0] * phi[0]);
+  for (uint i = 0u; i < dim; ++i)
+    for (uint j = i; j < dim; ++j)
+      if (i + j > 0u) att += (j == i ? m[j][i] : float(2) * m[j][i]) * (phi[i] * phi[j]);
+  float p = w * hush_exp_neg(neg_a * dqd - att);
   vec2 sc = hush_sincos_turns(theta);
   vec4 r = vec4(0.0);
   if (grad) {
     vec2 tw = hush_gabor_taper_derivative(s, tk);
     float pc = p * sc.y, ps = HUSH_TWO_PI * ((p * tw.x) * sc.x);
     r.x = pc * tw.x;
-    for (uint i = 0u; i < dim; ++i)
-      r[1u + i] = pc * ((tw.y + tw.y) * d[i] - (a + a) * (tw.x * qd[i])) - ps * mu[i];
+    for (uint i = 0u; i < dim; ++i) {
+      float mu = q[i][0] * phi[0];  // (Q Phi)_i
+      for (uint j = 1u; j < dim; ++j) mu += q[max(i, j)][min(i, j)] * phi[j];
+      r[1u + i] = pc * ((tw.y + tw.y) * d[i] - (a + a) * (tw.x * qd[i])) - ps * mu;
+    }
   } else {
     r.x = (p * sc.y) * hush_gabor_taper(s, tk);
   }
@@ -239,9 +245,8 @@ vec4 hush_gabor_filtered_pair(mat3 q, mat3 m, float amp, vec3 d, float s, float 
 }
 // The solid noise's unscaled sum and gradient sum at cell i0 + fraction f
 // (gabor<D>::eval: the separable form on a grid's samples (`separable`), the point form
-// at points; or filtered_eval with filter q, m, amp when `filtered`).
-vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat3 m, float amp,
-                    bool grad) {
+// at points; or filtered_eval with filter q, m when `filtered`, without its amplitude).
+vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat3 m, bool grad) {
   float neg_a = hush_gp(hush_gp_NEG_A), a = hush_gp(hush_gp_A), tk = hush_gp(hush_gp_TAPER_K);
   float sum = 0.0;
   vec3 g = vec3(0.0);
@@ -306,8 +311,8 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat
           for (uint i = 0u; i < hush_gabor_dim; ++i) g[i] += pg.y * d[i] - pg.z * phi[i];
         continue;
       }
-      vec4 t = hush_gabor_filtered_pair(q, m, amp, vec3(d[0], d[1], d[2]), s, w, phi,
-                                        hush_gabor_dim, grad);
+      vec4 t = hush_gabor_filtered_pair(q, m, vec3(d[0], d[1], d[2]), s, w, phi, hush_gabor_dim,
+                                        grad);
       uint j = kept & 3u;
       ++kept;
       part[j] += t.x;
@@ -330,17 +335,17 @@ vec4 hush_gabor_eval(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 fp, b
   if (filtered)
     amp = hush_gabor_filter(fp, hush_gabor_dim, hush_gp(hush_gp_FILTER_K), hush_gp(hush_gp_FILTER_M),
                             q, m);
-  vec4 r = hush_gabor_sum(i0, f, separable, filtered, q, m, amp, grad);
+  // (sum * amplitude) * scale (unfiltered: amplitude 1).
+  vec4 r = hush_gabor_sum(i0, f, separable, filtered, q, m, grad) * amp;
   return vec4(r.x * hush_gp(hush_gp_SCALE), r.yzw * hush_gp(hush_gp_GRAD_SCALE));
 }
 )glsl";
     if (D == 3)
       s += R"glsl(// ---- Surface noise (3D; gabor<3>::sample_eval with a normal, surface_eval).
 // The surface process's unscaled sum and gradient sum at surface cell i0 + fraction f
-// for unit normal n, tangents t, b and the plane's filter q, m, amp (gabor<3>::surface_eval,
-// operation by operation).
-vec4 hush_gabor_surface_sum(uvec3 i0, vec3 f, vec3 n, vec3 t, vec3 b, mat3 q, mat3 m, float amp,
-                            bool grad) {
+// for unit normal n, tangents t, b and the plane's filter q, m without its amplitude
+// (gabor<3>::surface_eval, operation by operation).
+vec4 hush_gabor_surface_sum(uvec3 i0, vec3 f, vec3 n, vec3 t, vec3 b, mat3 q, mat3 m, bool grad) {
   float tk = hush_gp(hush_gp_TAPER_K);
   bool normalise = hush_kind != 1u;
   bool hybrid = hush_kind == 2u;
@@ -390,7 +395,7 @@ vec4 hush_gabor_surface_sum(uvec3 i0, vec3 f, vec3 n, vec3 t, vec3 b, mat3 q, ma
         fq = len2 > 0.0 ? phi / sqrt(len2) : 0.0;
       }
       vec2 slab = hush_gabor_taper_derivative(z2, tk);
-      vec4 r = hush_gabor_filtered_pair(q, m, amp, dk, s, w, vec3(fq * vt, fq * vb, 0.0), 2u, grad);
+      vec4 r = hush_gabor_filtered_pair(q, m, dk, s, w, vec3(fq * vt, fq * vb, 0.0), 2u, grad);
       sum += r.x * slab.x;
       if (grad) {
         // d/dd of (kernel * slab taper): in the plane through dk, along n through z2.
@@ -420,7 +425,7 @@ vec4 hush_gabor_surface_eval(uvec3 i0, vec3 f, vec3 n, mat3 fp, bool grad) {
   mat3 q, m;
   float amp =
       hush_gabor_filter(plane, 2u, hush_gp(hush_gp_FILTER_K), hush_gp(hush_gp_FILTER_M), q, m);
-  vec4 r = hush_gabor_surface_sum(i0, f, n, t, b, q, m, amp, grad);
+  vec4 r = hush_gabor_surface_sum(i0, f, n, t, b, q, m, grad) * amp;
   return vec4(r.x * hush_gp(hush_gp_SURFACE_SCALE), r.yzw * hush_gp(hush_gp_SURFACE_GRAD_SCALE));
 }
 )glsl";
