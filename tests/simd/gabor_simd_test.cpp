@@ -338,9 +338,10 @@ TEST_CASE("gabor simd: filtered samples agree with scalar evaluation, every kind
   }
   // Sparse impulses (N' = 0.5: a cell's 3 x 3 neighbourhood empty with probability
   // e^{-9 N' / pi} ~ 0.24) under crowded points (~90 per cell): runs of points without
-  // pairs, more than a vector's lanes ending within one vector of pairs, where
-  // shared_filtered gathers each lane's filter instead of permuting those of consecutive
-  // points (176 such vectors over the targets in this call, counted when it was added).
+  // pairs, several ending within one vector of pairs, where shared_filtered's kernel
+  // (gradients; 2D values compute the filter's terms in the test) gathers each lane's
+  // filter instead of permuting those of consecutive points (3 or more points within one
+  // vector since its window of point ends: the loop past the window).
   auto sparse = gabor_params<2>(hush::gabor_kind::isotropic);
   sparse.impulses = 0.5;
   check_samples(hush::gabor<2>(sparse), 1500, 5, 2.0f);
