@@ -11888,9 +11888,10 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
 // prepare(sorted) sees the points in the order in which they reach the kernel.
 //
 // The filtered kernel (gabor<D>::filtered_eval) with each point's footprint fps[point]:
-// its filter computed once per point in prepare (in double, rounded to float as
-// detail::gabor_filter_coefs rounds it; 2D in lanes of doubles, filters_2d), its
-// amplitude applied to the point's sums (point_scale). The terms:
+// its filter computed once per point, a chunk of points at a time as the test reaches
+// them (in double, rounded to float as detail::gabor_filter_coefs rounds it; 2D in lanes
+// of doubles, filters_2d), its amplitude applied to the point's sums (point_scale). The
+// terms:
 //  - 2D values (kExponent): each candidate's exponent and phase in the test, with the
 //    point's filter in registers (filter_of), then the point form's kernel over the kept
 //    pairs (exp, cos, taper only). In 2D about a third of the candidates are kept (pi / 9
@@ -11907,44 +11908,56 @@ struct shared_filtered {
       : fps(f), envelope(a), inv(inv_r) {}
   const footprint<D>* fps;
   double envelope, inv;  // A, 1 / r
-  std::vector<footprint<D>> sorted_fps;  // the footprints in sorted order
+  const std::vector<sorted_point<D>>* sorted = nullptr;
+  std::vector<footprint<D>> chunk_fps;  // the footprints of one chunk, in sorted order
   // Per point in sorted order: q, m2 (detail::gabor_filter_coefs) and the amplitude,
-  // coef[k * stride + point].
+  // coef[k * stride + point], computed a chunk at a time as the test reaches the points.
   std::vector<float> coef;
   std::size_t stride = 0;
-  std::size_t next = 0;  // the sorted position of the first pending point
+  std::size_t ready = 0;  // the points before this sorted position have their filters
+  std::size_t next = 0;   // the sorted position of the first pending point
   std::vector<std::int32_t> ends;  // the pending points' ends, then kWindow sentinels
+  static constexpr std::size_t kChunk = 512;  // points: their coefficients stay in L1 / L2
 
-  // The footprints gathered in one loop of independent loads (in cell order they are
-  // read at random: one cache miss each), then every filter in a loop of independent
-  // iterations (the divisions and square roots overlap across points).
-  void prepare(const std::vector<sorted_point<D>>& sorted) {
-    const std::size_t n = sorted.size(), lanes = hn::Lanes(DF());
-    sorted_fps.resize(n);
-    for (std::size_t k = 0; k < n; ++k) sorted_fps[k] = fps[sorted[k].point];
+  void prepare(const std::vector<sorted_point<D>>& s) {
+    const std::size_t lanes = hn::Lanes(DF());
+    sorted = &s;
     // Whole vectors of doubles of slack (filters_2d writes them), and a vector of
     // floats past the last entry (the kernel's loads start at any pending point).
-    stride = (n + lanes) / lanes * lanes;
+    stride = (s.size() + lanes) / lanes * lanes;
     coef.resize(kCoef * stride + lanes);
+    ready = next = 0;
+  }
+  // The filters of the chunk from sorted position `ready`: its footprints gathered in one
+  // loop of independent loads (in cell order they are read at random: one cache miss
+  // each), then the filters in a loop of independent iterations (the divisions and
+  // square roots overlap across points). A chunk at a time, just before the test needs
+  // it: the coefficients are read from L1 / L2, not written to memory and read back.
+  void compute_chunk() {
+    const std::size_t from = ready, m = std::min(kChunk, sorted->size() - from);
+    chunk_fps.resize(m);
+    for (std::size_t k = 0; k < m; ++k) chunk_fps[k] = fps[(*sorted)[from + k].point];
     if constexpr (D == 2) {
-      filters_2d(sorted_fps.data(), n, envelope, inv, coef.data(), stride);
+      filters_2d(chunk_fps.data(), m, envelope, inv, coef.data() + from, stride);
     } else {
-      for (std::size_t p = 0; p < n; ++p) {
-        const detail::gabor_filter_coefs<float, D> f(gabor_filter<D>(sorted_fps[p], envelope, inv));
-        for (std::size_t k = 0; k < kSym; ++k) {
-          coef[k * stride + p] = f.q[k];
-          coef[(kSym + k) * stride + p] = f.m2[k];
+      for (std::size_t k = 0; k < m; ++k) {
+        const detail::gabor_filter_coefs<float, D> f(gabor_filter<D>(chunk_fps[k], envelope, inv));
+        for (std::size_t e = 0; e < kSym; ++e) {
+          coef[e * stride + from + k] = f.q[e];
+          coef[(kSym + e) * stride + from + k] = f.m2[e];
         }
-        coef[kAmp * stride + p] = f.amplitude;
+        coef[kAmp * stride + from + k] = f.amplitude;
       }
     }
-    next = 0;
+    ready = from + m;
   }
-  // The filter of the point at sorted position sp in every lane (the test's terms).
+  // The filter of the point at sorted position sp in every lane (the test's terms); the
+  // test reaches the points in sorted order, and a pending point's filter is ready.
   struct point_filter {
     VF q[kSym], m2[kSym];
   };
-  point_filter filter_of(std::size_t sp) const {
+  point_filter filter_of(std::size_t sp) {
+    if (sp >= ready) compute_chunk();
     const DF df;
     point_filter f;
     for (std::size_t k = 0; k < kSym; ++k) {

@@ -1760,9 +1760,10 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
 // prepare(sorted) sees the points in the order in which they reach the kernel.
 //
 // The filtered kernel (gabor<D>::filtered_eval) with each point's footprint fps[point]:
-// its filter computed once per point in prepare (in double, rounded to float as
-// detail::gabor_filter_coefs rounds it; 2D in lanes of doubles, filters_2d), its
-// amplitude applied to the point's sums (point_scale). The terms:
+// its filter computed once per point, a chunk of points at a time as the test reaches
+// them (in double, rounded to float as detail::gabor_filter_coefs rounds it; 2D in lanes
+// of doubles, filters_2d), its amplitude applied to the point's sums (point_scale). The
+// terms:
 //  - 2D values (kExponent): each candidate's exponent and phase in the test, with the
 //    point's filter in registers (filter_of), then the point form's kernel over the kept
 //    pairs (exp, cos, taper only). In 2D about a third of the candidates are kept (pi / 9
