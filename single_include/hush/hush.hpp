@@ -11261,6 +11261,11 @@ constexpr double kShareBoxMin = 1024.0;
 constexpr std::size_t kSharePairs = 4096;
 // Impulses whose stream keys and counters draw_box hashes at once (a chunk in L1).
 constexpr std::size_t kDrawChunk = 1024;
+// Impulses drawn per band of slabs (shared_points): ~400 KB of them, in L2. At least
+// kShareBandMinSlabs slabs per band: each band draws its two neighbouring slabs again, which
+// one-slab bands of a large 3D box made 3 draws per slab (sparse 3D points ~17% slower).
+constexpr std::size_t kShareBandImpulses = 16384;
+constexpr std::size_t kShareBandMinSlabs = 8;
 // Points per shared_points call (larger calls are cut): keeps box indices and
 // impulse offsets within 32 bits for every N' (a point's value does not
 // depend on the cut).
@@ -11534,28 +11539,29 @@ struct box_impulses {
   std::vector<std::uint32_t> cells, cx, coord[3], key, count, ikey, ictr;
 };
 
-// Draws the impulses of the cells marked in need (mark_needed; need is
-// overwritten with the cells' counts). Every list is written in whole vectors
-// and sized to a whole number of vectors past its end: what lies there is
-// finite (zeros or an earlier call's values) and never summed.
+// Draws the impulses of the cells of box indices [lo, hi) (whole rows of
+// side[0] cells) marked in need (mark_needed; need is overwritten there with the
+// cells' counts, so a later call over some of the same cells draws them again
+// alike): start[idx] for idx in [lo, hi], from 0. Every list is written in whole
+// vectors and sized to a whole number of vectors past its end: what lies there
+// is finite (zeros or an earlier call's values) and never summed.
 template <int D>
 void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc, std::uint32_t* need,
-              box_impulses& out) {
+              std::size_t lo, std::size_t hi, box_impulses& out) {
   const DF df;
   const DU du;
   const std::size_t lanes = hn::Lanes(df);
   // The needed cells in increasing box index, row by row (a row's coordinates
   // along y and z once, no division per cell).
   const auto side0 = static_cast<std::size_t>(pc.side[0]);
-  const std::size_t rows = pc.box / side0;
-  for (auto* v : {&out.cells, &out.cx}) v->resize(pc.box + lanes);
-  for (int a = 1; a < D; ++a) out.coord[a].resize(pc.box + lanes);
+  for (auto* v : {&out.cells, &out.cx}) v->resize(hi - lo + lanes);
+  for (int a = 1; a < D; ++a) out.coord[a].resize(hi - lo + lanes);
   std::uint32_t* const cells = out.cells.data();
   std::uint32_t* const cx = out.cx.data();
   std::uint32_t* const coord[3] = {nullptr, out.coord[1].data(), out.coord[2].data()};
   const VU iota = hn::Iota(du, 0), vside = hn::Set(du, static_cast<std::uint32_t>(side0));
   std::size_t nc = 0;
-  for (std::size_t r = 0; r < rows; ++r) {
+  for (std::size_t r = lo / side0; r < hi / side0; ++r) {
     const std::size_t row_first = nc, base = r * side0;
     for (std::size_t x = 0; x < side0; x += lanes) {
       const VU xs = hn::Add(iota, hn::Set(du, static_cast<std::uint32_t>(x)));
@@ -11593,11 +11599,11 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc, s
   out.start.resize(pc.box + 1);
   std::uint32_t* const start = out.start.data();
   std::uint32_t total = 0;
-  for (std::size_t idx = 0; idx < pc.box; ++idx) {
+  for (std::size_t idx = lo; idx < hi; ++idx) {
     start[idx] = total;
     total += need[idx];
   }
-  start[pc.box] = total;
+  start[hi] = total;
   // Per impulse its box x, and its stream key and counter in a chunk of about
   // kDrawChunk impulses (in L1, not a list of the box's ~n of them): a whole
   // vector per cell (a later cell overwrites what reaches past a cell), more for
@@ -11755,6 +11761,16 @@ struct shared_workspace {
 // each flush.
 //
 // The unfiltered kernel (gabor<D>::eval) in the point form.
+// The calling thread's workspace, returned from a call that is not inlined: with the
+// thread_local in shared_points itself, GCC recomputed its address where it would
+// otherwise keep it (in code built for a shared library, a __tls_get_addr call: 9% of
+// a 2D call of 262144 points).
+template <int D>
+HWY_NOINLINE shared_workspace<D>& thread_workspace() {
+  static thread_local shared_workspace<D> ws;
+  return ws;
+}
+
 template <int D, bool G>
 struct shared_unfiltered {
   static constexpr bool kOffsets = G;
@@ -12057,7 +12073,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     lockstep(pts, nullptr, n, value, grad);
     return;
   }
-  static thread_local shared_workspace<D> ws;
+  shared_workspace<D>& ws = thread_workspace<D>();
   ws.pc.build(pts, n, g.inverse_cell());
   const point_cells<D>& pc = ws.pc;
   // Counting sort of the box's points by cell; the rest: NaN, or the lockstep path.
@@ -12142,7 +12158,6 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     std::uint32_t* const need = mark_needed<D>(pc, first.data(), ws.need, ws.need_scratch);
     const consts<D> c(g);
     box_impulses& im = ws.im;
-    draw_box<D>(g, c, pc, need, im);
     eval.prepare(sorted);
 
     shared_pairs& t = ws.t;
@@ -12174,12 +12189,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     };
     const VF one = hn::Set(df, 1.0f);
     // Raw pointers and a local pair count: the compiler would reload the
-    // vectors' pointers (thread-local) after every store otherwise.
-    const std::uint32_t* const start = im.start.data();
-    const float* const bx = im.bx.data();
-    const float* const pos[3] = {im.pos[0].data(), im.pos[1].data(), im.pos[D - 1].data()};
-    const float* const iw = im.w.data();
-    const float* const iphi[3] = {im.phi[0].data(), im.phi[1].data(), im.phi[D - 1].data()};
+    // vectors' pointers after every store otherwise.
     float* const td[3] = {t.d[0].data(), t.d[1].data(), t.d[2].data()};
     float* const tw = t.w.data();
     float* const ts = t.s.data();
@@ -12195,8 +12205,33 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     float* const cphi[3] = {cc.phi[0].data(), cc.phi[1].data(), cc.phi[2].data()};
     float* const cw = cc.w.data();
     float* const cpp[3] = {cc.pp[0].data(), cc.pp[1].data(), cc.pp[2].data()};
+    // The impulses are drawn a band of slabs (rows in 2D, planes in 3D) at a time, with the
+    // band's two neighbouring slabs, when the points reach it: they stay in L2 between the
+    // draw and their three reads (the whole box drawn first read them back from memory:
+    // ~10% of a 2D call of 262144 points on AVX3). The margin slabs hold no points.
+    const auto slab = static_cast<std::size_t>(pc.stride[D - 1]);
+    const std::size_t band = std::max<std::size_t>(
+        kShareBandMinSlabs,
+        static_cast<std::size_t>(double(kShareBandImpulses) /
+                                 std::max(double(slab) * g.table().mean(), 1.0)));
+    std::size_t band_end = 0;  // the sorted position where the drawn band's points end
+    const std::uint32_t* start = nullptr;
+    const float *bx = nullptr, *iw = nullptr, *pos[3] = {}, *iphi[3] = {};
     for (std::size_t run = 0; run < sorted.size();) {
       const std::int64_t idx = sorted[run].at;
+      if (run == band_end) {
+        const std::size_t s0 = static_cast<std::size_t>(idx) / slab;
+        const std::size_t s1 = std::min(s0 + band, pc.box / slab - 1);
+        band_end = first[s1 * slab];
+        draw_box<D>(g, c, pc, need, (s0 - 1) * slab, (s1 + 1) * slab, im);
+        start = im.start.data();
+        bx = im.bx.data();
+        iw = im.w.data();
+        for (int a = 0; a < 3; ++a) {
+          pos[a] = im.pos[a < D ? a : D - 1].data();
+          iphi[a] = im.phi[a < D ? a : D - 1].data();
+        }
+      }
       std::size_t run_end = run + 1;
       while (run_end < sorted.size() && sorted[run_end].at == sorted[run].at) ++run_end;
       const VF bxp = hn::Set(df, static_cast<float>(idx % pc.side[0]));

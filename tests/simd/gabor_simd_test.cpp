@@ -175,6 +175,14 @@ TEST_CASE("gabor simd: points agree with scalar evaluation, every kind and tail 
     check_points(g2, test_points<2>(4000, 6, 16.0f));
     check_points(g3, test_points<3>(2000, 7, 6.0f));
   }
+  // Boxes of several bands: shared_points draws kShareBandImpulses' worth of slabs (at least
+  // kShareBandMinSlabs) at a time, each band with its two neighbouring slabs, just before
+  // its points. 2D: ~80 x 80 cells of ~5 impulses, 40 rows per band, 2 bands (~3.7 points per
+  // cell); 3D: ~22^3 cells of ~3.8 impulses, 8 slabs per band, 3 bands (~0.8 points per cell).
+  const hush::gabor<2> g2(gabor_params<2>(hush::gabor_kind::isotropic));
+  const hush::gabor<3> g3(gabor_params<3>(hush::gabor_kind::isotropic));
+  check_points(g2, test_points<2>(24000, 8, 48.0f));
+  check_points(g3, test_points<3>(8000, 9, 12.0f));
 }
 
 TEST_CASE("gabor simd: crowded points with many cycles and impulses per cell agree with scalar") {
