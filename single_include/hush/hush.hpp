@@ -11755,14 +11755,6 @@ struct shared_workspace {
   std::vector<std::size_t> rest, pend_end;
 };
 
-// shared_points' kernels (Eval): t's pairs [0, t.n), point pend[p]'s in
-// [pend_end[p - 1], pend_end[p]), into t.val (and with G the gradient terms into t.g).
-// kOffsets: the pairs carry d and phi (else s and theta: the unfiltered values);
-// kExponent: and the exponent x, computed in the test with filter_of(the point's sorted
-// position). point_scale(p): pending point p's factor on its sums; flushed(np) after
-// each flush.
-//
-// The unfiltered kernel (gabor<D>::eval) in the point form.
 // The calling thread's workspace, returned from a call that is not inlined: with the
 // thread_local in shared_points itself, GCC recomputed its address where it would
 // otherwise keep it (in code built for a shared library, a __tls_get_addr call: 9% of
@@ -11773,6 +11765,14 @@ HWY_NOINLINE shared_workspace<D>& thread_workspace() {
   return ws;
 }
 
+// shared_points' kernels (Eval): t's pairs [0, t.n), point pend[p]'s in
+// [pend_end[p - 1], pend_end[p]), into t.val (and with G the gradient terms into t.g).
+// kOffsets: the pairs carry d and phi (else s and theta: the unfiltered values);
+// kExponent: and the exponent x, computed in the test with filter_of(the point's sorted
+// position). point_scale(p): pending point p's factor on its sums; flushed(np) after
+// each flush.
+//
+// The unfiltered kernel (gabor<D>::eval) in the point form.
 template <int D, bool G>
 struct shared_unfiltered {
   static constexpr bool kOffsets = G;
