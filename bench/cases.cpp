@@ -218,8 +218,13 @@ hush::fractal<hush::perlin<D>> make_fbm() {
 // across a cell), unit variance, N' kernels per point.
 constexpr double kGaborImpulses[] = {16, 32, 64};  // N': the first on every backend
 // The filtered rows' footprints: a receding-plane-like range of pixel sizes,
-// isotropic widths 10^u noise units, u uniform in [kGaborFootprintLog10Lo, Hi].
+// isotropic widths 10^u noise units, u uniform in [kGaborFootprintLog10Lo, Hi]. The
+// anisotropic row's pixels are that wide across and 1 ... kGaborFootprintElongationHi
+// times longer (uniform) along a uniform direction, as on a receding plane: the filter's
+// general form (an eigen-decomposition per footprint, a full 2 x 2 quadratic form).
 constexpr double kGaborFootprintLog10Lo = -3, kGaborFootprintLog10Hi = 0;
+constexpr double kGaborFootprintElongationHi = 8;
+enum class gabor_footprints { isotropic, anisotropic };
 
 template <int D>
 hush::gabor<D> make_gabor(double impulses) {
@@ -229,11 +234,12 @@ hush::gabor<D> make_gabor(double impulses) {
   return hush::gabor<D>(prm);
 }
 
-// Filtered evaluation (samples with footprints) against the double reference; with
-// `normals` (3D), surface noise: each sample also has a random unit normal.
+// Filtered evaluation (samples with footprints of the kind `shape`) against the double
+// reference; with `normals` (3D), surface noise: each sample also has a random unit normal.
 template <int D, class Exec>
 prepared_case prepare_gabor_samples(const hush::gabor<D>& noise, const Exec& ex, std::size_t n,
-                                    bool normals = false) {
+                                    bool normals = false,
+                                    gabor_footprints shape = gabor_footprints::isotropic) {
   struct sample_buffers {
     std::vector<fvec<D>> points;
     std::vector<hush::footprint<D>> fps;
@@ -243,9 +249,21 @@ prepared_case prepare_gabor_samples(const hush::gabor<D>& noise, const Exec& ex,
   auto b = std::make_shared<sample_buffers>();
   b->points = make_points<D>(n);
   hush::rng r(kPointSeed + 1);
-  for (std::size_t i = 0; i < n; ++i)
-    b->fps.push_back(hush::footprint<D>::isotropic(
-        std::pow(10.0, r.uniform<double>(kGaborFootprintLog10Lo, kGaborFootprintLog10Hi))));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w =
+        std::pow(10.0, r.uniform<double>(kGaborFootprintLog10Lo, kGaborFootprintLog10Hi));
+    if constexpr (D == 2) {
+      if (shape == gabor_footprints::anisotropic) {
+        const double t = r.uniform<double>(0, hush::detail::constants::kTwoPi);
+        const double e = r.uniform<double>(1, kGaborFootprintElongationHi);
+        b->fps.push_back(hush::footprint<2>::from_derivatives(
+            hush::vec<double, 2>{w * std::cos(t), w * std::sin(t)},
+            hush::vec<double, 2>{-w * e * std::sin(t), w * e * std::cos(t)}));
+        continue;
+      }
+    }
+    b->fps.push_back(hush::footprint<D>::isotropic(w));
+  }
   // Uniform on the sphere: z uniform in [-1, 1], azimuth uniform.
   for (std::size_t i = 0; normals && i < n; ++i) {
     const double z = r.uniform<double>(-1, 1), phi = r.uniform<double>(0, hush::detail::constants::kTwoPi);
@@ -291,9 +309,9 @@ void add_spectrum_note(std::vector<bench_case>& cases, std::size_t from,
 }
 
 // Gabor rows on `ex`: N' = 16 grid and points (value, value + gradient); N' = 32,
-// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16 (2D and
-// 3D); 3D surface noise (samples with normals and the filtered rows' footprints). The
-// unfiltered rows, 2D and 3D, carry the spectrum error.
+// 64 values (cost linear in N'); filtered vs unfiltered points at N' = 16 (2D with
+// isotropic and anisotropic footprints, 3D); 3D surface noise (samples with normals and the
+// filtered rows' footprints). The unfiltered rows, 2D and 3D, carry the spectrum error.
 template <class Exec>
 void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex) {
   const std::size_t first_2d = cases.size();
@@ -329,7 +347,15 @@ void add_gabor_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& 
     return prepare_gabor_samples(make_gabor<2>(kGaborImpulses[0]), ex, n);
   };
   cases.push_back(c);
+  c.noise = "gabor 2D filtered anisotropic";
+  c.note = "footprints: 0.001 ... 1 units across, 1 ... 8 times longer along a random direction";
+  c.prepare = [ex, n = s.points] {
+    return prepare_gabor_samples(make_gabor<2>(kGaborImpulses[0]), ex, n, false,
+                                 gabor_footprints::anisotropic);
+  };
+  cases.push_back(c);
   c.noise = "gabor 3D filtered";
+  c.note = "footprints: isotropic, 0.001 ... 1 units";
   c.prepare = [ex, n = s.points] {
     return prepare_gabor_samples(make_gabor<3>(kGaborImpulses[0]), ex, n);
   };

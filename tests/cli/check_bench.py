@@ -130,7 +130,7 @@ def main():
             check(gmx is None and grms is None, name + ": gradient error without gradient")
         hush_keys.add((r["noise"], r["backend"], r["workload"].split()[0], r["output"]))
         if (r["noise"].startswith(("gabor 2D", "gabor 3D"))
-                and not r["noise"].endswith(("filtered", "surface"))):
+                and not any(k in r["noise"] for k in ("filtered", "surface"))):
             check_spectrum_note(name, r.get("quality", ""))
     want = {(n, b, w, o) for n in ("perlin 2D", "perlin 3D", "fbm 2D", "fbm 3D")
             for b in ("scalar", "simd") for w in ("grid", "points")
@@ -144,7 +144,7 @@ def main():
              for n in ("wavelet 3D projected", "wavelet 3D projected approx")}
     want |= {("gabor 3D", b, w, "value") for b in ("scalar", "simd") for w in ("grid", "points")}
     want |= {("gabor %s" % n, b, "samples", "value") for b in ("scalar", "simd")
-             for n in ("2D filtered", "3D filtered", "3D surface")}
+             for n in ("2D filtered", "2D filtered anisotropic", "3D filtered", "3D surface")}
     # wavelet 3D points' memory bounds (SIMD only): tile reads L1-resident, a 32^3 tile.
     bounds = ("points-L1", "points-L2")
     want |= {("wavelet 3D", "simd", w, "value") for w in bounds}

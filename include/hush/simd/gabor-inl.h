@@ -466,6 +466,7 @@ HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
 // in one instruction (Highway's Compress); Highway 1.0.3's 4- and 8-lane
 // versions copy a 1 KiB table onto the stack on every call, so for up to 8
 // lanes the lane indices come from a table of our own, built at compile time.
+// Either way the indices serve every vector compressed by the same mask.
 template <int N>
 struct compress_indices {
   std::int32_t idx[1 << N][N];
@@ -485,21 +486,31 @@ constexpr compress_indices<N> make_compress_indices() {
 alignas(64) inline constexpr compress_indices<8> kCompress8 = make_compress_indices<8>();
 alignas(64) inline constexpr compress_indices<4> kCompress4 = make_compress_indices<4>();
 
-// The selected lanes of each vector of `v` (count `n`) moved to the front, by
-// the same mask.
-template <class V, class M>
-HWY_INLINE V compress(V v, M m) {
-  using D = hn::DFromV<V>;
-  const D d;
-  const std::size_t lanes = hn::Lanes(d);
-  if (lanes == 8 || lanes == 4) {
-    std::uint8_t bits[8] = {};
-    hn::StoreMaskBits(d, m, bits);
-    const std::int32_t* idx = lanes == 8 ? kCompress8.idx[bits[0]] : kCompress4.idx[bits[0] & 15];
-    return hn::TableLookupLanes(v, hn::SetTableIndices(d, idx));
+// The selected lanes of vectors (floats or words) moved to the front by one mask: the
+// lane indices found once per mask (AVX-512: one compress of the lane numbers, then a
+// one-uop permutation per vector instead of a two-uop compress each; 2D points 9%
+// faster on AVX3), from the tables above for 4 and 8 lanes.
+struct compressor {
+  using indices = decltype(hn::IndicesFromVec(DF(), hn::Zero(DI())));
+  static indices of(MF m) {
+    const DF df;
+    const DI di;
+    const std::size_t lanes = hn::Lanes(df);
+    if (lanes == 8 || lanes == 4) {
+      std::uint8_t bits[8] = {};
+      hn::StoreMaskBits(df, m, bits);
+      const std::int32_t* i = lanes == 8 ? kCompress8.idx[bits[0]] : kCompress4.idx[bits[0] & 15];
+      return hn::SetTableIndices(df, i);
+    }
+    return hn::IndicesFromVec(df, hn::Compress(hn::Iota(di, 0), hn::RebindMask(di, m)));
   }
-  return hn::Compress(v, m);
-}
+  explicit compressor(MF m) : idx(of(m)) {}
+  VF operator()(VF v) const { return hn::TableLookupLanes(v, idx); }
+  VU operator()(VU v) const {
+    return hn::BitCast(DU(), hn::TableLookupLanes(hn::BitCast(DF(), v), idx));
+  }
+  indices idx;
+};
 
 // ---- One lane per point: candidates, then the kernel over the kept ones.
 
@@ -578,12 +589,12 @@ void collect(std::uint32_t key, std::uint32_t stream, const std::vector<std::int
       // Compress in registers, then store whole vectors (the buffers have a
       // vector of slack): the memory form of compress is microcoded and slow
       // on some CPUs (AMD Zen 4).
-      const auto inu = hn::RebindMask(du, in);
+      const compressor kept(in);
       const std::size_t at = t.n;
-      hn::StoreU(compress(lane_ids, inu), du, t.lane.data() + at);
-      for (int a = 0; a < E; ++a) hn::StoreU(compress(d[a], in), df, t.d[a].data() + at);
+      hn::StoreU(kept(lane_ids), du, t.lane.data() + at);
+      for (int a = 0; a < E; ++a) hn::StoreU(kept(d[a]), df, t.d[a].data() + at);
       std::uint32_t* wd[3] = {t.w0.data(), t.w1.data(), t.w2.data()};
-      for (int j = 0; j < words; ++j) hn::StoreU(compress(w[j], inu), du, wd[j] + at);
+      for (int j = 0; j < words; ++j) hn::StoreU(kept(w[j]), du, wd[j] + at);
       t.n = at + hn::CountTrue(df, in);
     }
   }
@@ -683,23 +694,26 @@ void eval_unfiltered(const consts<D>& c, tuples& t) {
 // Per-lane filters of a batch (gabor<D>::filtered_eval): gabor_filter<D> of each lane's
 // footprint in double, as detail::gabor_filter_coefs<float, E> (Q's upper triangle q, M's
 // with its off-diagonal doubled m2); the amplitude goes to lanes_split::amp.
+// Per lane: q and -m2 (detail::gabor_filter_coefs, m2 negated: see filtered_exponent).
 struct lanes_filter {
   HWY_ALIGN float q[6][kMaxLanes];
-  HWY_ALIGN float m2[6][kMaxLanes];
+  HWY_ALIGN float nm2[6][kMaxLanes];
   template <int E>
   void set(std::size_t l, const detail::gabor_filter_coefs<float, E>& f) {
     for (int e = 0; e < f.kSize; ++e) {
       q[e][l] = f.q[e];
-      m2[e][l] = f.m2[e];
+      nm2[e][l] = -f.m2[e];
     }
   }
 };
 
 // The filtered kernel's exponent -A d^T Q d - Phi^T M Phi and phase <Phi, Q d>
 // (gabor<D>::filtered_pair's order) of offsets d and frequencies phi; qd = Q d.
-// pp: Phi_r Phi_c for r <= c (detail::gabor_sym order).
+// pp: Phi_r Phi_c for r <= c (detail::gabor_sym order). nm2: -m2, so that the sum is
+// -Phi^T M Phi itself (negation is exact: the same x as the scalar order, one
+// operation fewer).
 template <int E>
-HWY_INLINE void filtered_exponent(VF neg_a, const VF* q, const VF* m2, const VF* d, const VF* phi,
+HWY_INLINE void filtered_exponent(VF neg_a, const VF* q, const VF* nm2, const VF* d, const VF* phi,
                                   const VF* pp, VF* qd, VF& x, VF& theta) {
   for (int r = 0; r < E; ++r) {
     VF z = hn::Mul(q[detail::gabor_sym<E>(r, 0)], d[0]);
@@ -712,14 +726,14 @@ HWY_INLINE void filtered_exponent(VF neg_a, const VF* q, const VF* m2, const VF*
     dqd = mul_add(d[r], qd[r], dqd);
     theta = mul_add(phi[r], qd[r], theta);
   }
-  VF att = hn::Mul(m2[0], pp[0]);
-  for (int k = 1; k < E * (E + 1) / 2; ++k) att = mul_add(m2[k], pp[k], att);
+  VF natt = hn::Mul(nm2[0], pp[0]);
+  for (int k = 1; k < E * (E + 1) / 2; ++k) natt = mul_add(nm2[k], pp[k], natt);
   // d^T Q d in [0, s] and att in [0, pi^2 |Phi|^2 / A) up to rounding (Q's eigenvalues
   // in (0, 1], M's in [0, pi^2 / A); rounded to float either may be slightly
   // indefinite: exp_neg_finite takes a positive sum as 0). Both are finite for every
   // footprint (gabor_filter clamps the eigenvalues, NaN too). |theta| <= |Q Phi| |d| <
   // |Phi| (sincos_kept).
-  x = mul_add(neg_a, dqd, hn::Neg(att));
+  x = mul_add(neg_a, dqd, natt);
 }
 template <int E>
 HWY_INLINE void phi_products(const VF* phi, VF* pp) {
@@ -728,16 +742,16 @@ HWY_INLINE void phi_products(const VF* phi, VF* pp) {
 }
 
 // gabor<D>::filtered_pair in lanes, operation by operation, in E dimensions:
-// filter q, m2 (detail::gabor_filter_coefs) per lane, offsets d, s = |d|^2,
+// filter q, -m2 (detail::gabor_filter_coefs; filtered_exponent) per lane, offsets d, s = |d|^2,
 // weight w, frequency phi; the term (without the amplitude) into value and, with G, its
 // derivative by d into grad.
 template <int D, int E, bool G>
-HWY_INLINE void filtered_pair(const consts<D>& c, const VF* q, const VF* m2, const VF* d, VF s,
+HWY_INLINE void filtered_pair(const consts<D>& c, const VF* q, const VF* nm2, const VF* d, VF s,
                               VF w, const VF* phi, VF& value, VF* grad) {
   const DF df;
   VF qd[E], pp[E * (E + 1) / 2], x, theta;
   phi_products<E>(phi, pp);
-  filtered_exponent<E>(c.neg_a, q, m2, d, phi, pp, qd, x, theta);
+  filtered_exponent<E>(c.neg_a, q, nm2, d, phi, pp, qd, x, theta);
   const VF p = hn::Mul(w, exp_neg_finite(x));
   VF sn, cs;
   sincos_kept(c, theta, sn, cs);
@@ -785,7 +799,7 @@ void eval_filtered(const consts<D>& c, const lanes_filter& f, tuples& t) {
     const VF s = D == 2 ? hn::Add(d2[0], d2[1]) : hn::Add(d2[0], hn::Add(d2[1], d2[2]));
     for (int e = 0; e < D * (D + 1) / 2; ++e) {
       q[e] = hn::GatherIndex(df, f.q[e], li);
-      m[e] = hn::GatherIndex(df, f.m2[e], li);
+      m[e] = hn::GatherIndex(df, f.nm2[e], li);
     }
     VF value, g[3];
     filtered_pair<D, D, G>(c, q, m, d, s, wt, phi, value, g);
@@ -874,7 +888,7 @@ void eval_surface(const consts<3>& c, const lanes_filter& f, const lanes_frame& 
     VF q[3], m[3];
     for (int e = 0; e < 3; ++e) {
       q[e] = hn::GatherIndex(df, f.q[e], li);
-      m[e] = hn::GatherIndex(df, f.m2[e], li);
+      m[e] = hn::GatherIndex(df, f.nm2[e], li);
     }
     VF slab_tau, slab_dtau;
     taper_derivative(o.z2, c.k, slab_tau, slab_dtau);
@@ -1441,9 +1455,9 @@ void draw_box(const gabor<D>& g, const consts<D>& c, const point_cells<D>& pc, s
       const VU xs = hn::Add(iota, hn::Set(du, static_cast<std::uint32_t>(x)));
       const auto m =
           hn::And(hn::Ne(hn::LoadU(du, need + base + x), hn::Zero(du)), hn::Lt(xs, vside));
-      hn::StoreU(compress(hn::Add(xs, hn::Set(du, static_cast<std::uint32_t>(base))), m), du,
-                 cells + nc);
-      hn::StoreU(compress(xs, m), du, cx + nc);
+      const compressor kept(hn::RebindMask(df, m));
+      hn::StoreU(kept(hn::Add(xs, hn::Set(du, static_cast<std::uint32_t>(base)))), du, cells + nc);
+      hn::StoreU(kept(xs), du, cx + nc);
       nc += hn::CountTrue(du, m);
     }
     std::int64_t rest = static_cast<std::int64_t>(r);
@@ -1627,13 +1641,14 @@ struct shared_workspace {
   std::vector<std::size_t> rest, pend_end;
 };
 
-// The calling thread's workspace, returned from a call that is not inlined: with the
-// thread_local in shared_points itself, GCC recomputed its address where it would
-// otherwise keep it (in code built for a shared library, a __tls_get_addr call: 9% of
-// a 2D call of 262144 points).
-template <int D>
-HWY_NOINLINE shared_workspace<D>& thread_workspace() {
-  static thread_local shared_workspace<D> ws;
+// The calling thread's T (a workspace, kept between calls: no allocation or zero-fill
+// per call), returned from a call that is not inlined: with the thread_local in
+// shared_points itself, GCC recomputed its address where it would otherwise keep it (in
+// code built for a shared library, a __tls_get_addr call: 9% of a 2D call of 262144
+// points).
+template <class T>
+HWY_NOINLINE T& thread_local_of() {
+  static thread_local T ws;
   return ws;
 }
 
@@ -1683,7 +1698,8 @@ struct shared_unfiltered {
 // operations here). The scalar branches are masks: a lane that jacobi_eigen<2> leaves
 // unrotated (off-diagonal zero, tiny against the diagonal, or NaN) keeps S's diagonal and
 // V = I. out[e * stride + p]: point p's detail::gabor_filter_coefs<float, 2> (q, m2,
-// amplitude: 7 entries); stride >= n rounded up to whole vectors of doubles.
+// amplitude: 7 entries; m2 negated, as filtered_exponent takes it); stride >= n rounded
+// up to whole vectors of doubles.
 inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double inv_r, float* out,
                        std::size_t stride) {
   using DD = hn::ScalableTag<double>;
@@ -1758,7 +1774,8 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
       md[i] = hn::Mul(hn::Set(dd, mk), hn::Mul(kl, qd[i]));
     }
     const VD amp = hn::Sqrt(hn::Mul(hn::Mul(one, qd[0]), qd[1]));
-    // The upper triangles (detail::gabor_filter_coefs): q, then m2 (M's off-diagonal doubled).
+    // The upper triangles (detail::gabor_filter_coefs): q, then -m2 (M's off-diagonal
+    // doubled).
     for (int i = 0; i < 2; ++i)
       for (int j = i; j < 2; ++j) {
         VD qq = zero, mm = zero;
@@ -1768,7 +1785,7 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
         }
         const auto m2 = hn::DemoteTo(dfh, mm);
         hn::StoreU(hn::DemoteTo(dfh, qq), dfh, out + detail::gabor_sym<2>(i, j) * stride + p0);
-        hn::StoreU(i == j ? m2 : hn::Add(m2, m2), dfh,
+        hn::StoreU(hn::Neg(i == j ? m2 : hn::Add(m2, m2)), dfh,
                    out + (3 + detail::gabor_sym<2>(i, j)) * stride + p0);
       }
     hn::StoreU(hn::DemoteTo(dfh, amp), dfh, out + 6 * stride + p0);
@@ -1779,9 +1796,9 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
 //
 // The filtered kernel (gabor<D>::filtered_eval) with each point's footprint fps[point]:
 // its filter computed once per point, a chunk of points at a time as the test reaches
-// them (in double, rounded to float as detail::gabor_filter_coefs rounds it; 2D in lanes
-// of doubles, filters_2d), its amplitude applied to the point's sums (point_scale). The
-// terms:
+// them (in double, rounded to float as
+// detail::gabor_filter_coefs rounds it; 2D in lanes of doubles, filters_2d), its
+// amplitude applied to the point's sums (point_scale). The terms:
 //  - 2D values (kExponent): each candidate's exponent and phase in the test, with the
 //    point's filter in registers (filter_of), then the point form's kernel over the kept
 //    pairs (exp, cos, taper only). In 2D about a third of the candidates are kept (pi / 9
@@ -1794,70 +1811,105 @@ struct shared_filtered {
   static constexpr bool kExponent = D == 2 && !G;
   static constexpr bool kOffsets = !kExponent;
   static constexpr std::size_t kSym = D * (D + 1) / 2, kAmp = 2 * kSym, kCoef = kAmp + 1;
+  static constexpr std::size_t kChunk = 512;  // points: their coefficients stay in L1 / L2
+  // Kept between calls (thread_local_of): a call allocates and zero-fills nothing.
+  struct buffers {
+    std::vector<footprint<D>> chunk_fps;  // the footprints of one chunk, in sorted order
+    // Per point from sorted position `base` on: q, -m2 (detail::gabor_filter_coefs) and
+    // the amplitude, coef[k * stride + (position - base)], for the pending points and
+    // the chunk the test is in.
+    std::vector<float> coef;
+    std::size_t stride = 0;
+    std::vector<std::int32_t> ends;  // the pending points' ends, then kWindow sentinels
+  };
   shared_filtered(const footprint<D>* f, double a, double inv_r)
-      : fps(f), envelope(a), inv(inv_r) {}
+      : fps(f), envelope(a), inv(inv_r), buf(thread_local_of<buffers>()) {}
   const footprint<D>* fps;
   double envelope, inv;  // A, 1 / r
+  buffers& buf;
   const std::vector<sorted_point<D>>* sorted = nullptr;
-  std::vector<footprint<D>> chunk_fps;  // the footprints of one chunk, in sorted order
-  // Per point in sorted order: q, m2 (detail::gabor_filter_coefs) and the amplitude,
-  // coef[k * stride + point], computed a chunk at a time as the test reaches the points.
-  std::vector<float> coef;
-  std::size_t stride = 0;
+  std::size_t base = 0;   // the sorted position of coef's first column
   std::size_t ready = 0;  // the points before this sorted position have their filters
   std::size_t next = 0;   // the sorted position of the first pending point
-  std::vector<std::int32_t> ends;  // the pending points' ends, then kWindow sentinels
-  static constexpr std::size_t kChunk = 512;  // points: their coefficients stay in L1 / L2
 
   void prepare(const std::vector<sorted_point<D>>& s) {
-    const std::size_t lanes = hn::Lanes(DF());
     sorted = &s;
-    // Whole vectors of doubles of slack (filters_2d writes them), and a vector of
-    // floats past the last entry (the kernel's loads start at any pending point).
-    stride = (s.size() + lanes) / lanes * lanes;
-    coef.resize(kCoef * stride + lanes);
-    ready = next = 0;
+    base = ready = next = 0;
+    reserve(0);
   }
-  // The filters of the chunk from sorted position `ready`: its footprints gathered in one
-  // loop of independent loads (in cell order they are read at random: one cache miss
-  // each), then the filters in a loop of independent iterations (the divisions and
+  // Room for `keep` columns and a chunk: whole vectors of doubles of slack (filters_2d
+  // writes them), and a vector of floats past the last column (the kernel's loads start
+  // at any pending point). The first `keep` columns are kept.
+  void reserve(std::size_t keep) {
+    const std::size_t lanes = hn::Lanes(DF());
+    const std::size_t need = (keep + kChunk + lanes) / lanes * lanes + lanes;
+    if (need <= buf.stride) return;
+    const std::size_t wide = std::max(need, 2 * buf.stride);
+    std::vector<float> grown(kCoef * wide);
+    for (std::size_t k = 0; k < kCoef && keep > 0; ++k)
+      std::copy_n(buf.coef.data() + k * buf.stride, keep, grown.data() + k * wide);
+    buf.coef.swap(grown);
+    buf.stride = wide;
+  }
+  // The filters of the chunk from sorted position `ready`, the pending points' moved to
+  // the front first (a flush holds ~64 of them). Its footprints are gathered in one loop
+  // (in cell order they are read at random: fetched one chunk ahead), then the filters
+  // computed in a loop of independent iterations (the divisions and
   // square roots overlap across points). A chunk at a time, just before the test needs
   // it: the coefficients are read from L1 / L2, not written to memory and read back.
   void compute_chunk() {
-    const std::size_t from = ready, m = std::min(kChunk, sorted->size() - from);
-    chunk_fps.resize(m);
-    for (std::size_t k = 0; k < m; ++k) chunk_fps[k] = fps[(*sorted)[from + k].point];
+    const std::size_t keep = ready - next, m = std::min(kChunk, sorted->size() - ready);
+    if (next > base)
+      for (std::size_t k = 0; k < kCoef; ++k) {
+        float* row = buf.coef.data() + k * buf.stride;
+        std::memmove(row, row + (next - base), keep * sizeof(float));
+      }
+    base = next;
+    reserve(keep);
+    std::vector<footprint<D>>& cf = buf.chunk_fps;
+    cf.resize(m);
+    for (std::size_t k = 0; k < m; ++k) cf[k] = fps[(*sorted)[ready + k].point];
+    // The next chunk's footprints fetched while this one is tested: gathered cold, each
+    // was a cache miss (11% of a 2D call of 262144 samples on AVX3). One prefetch per
+    // point in filter_of instead cost more than it saved (its load of the record a
+    // chunk ahead).
+    for (std::size_t k = ready + m, e = std::min(ready + m + kChunk, sorted->size()); k < e; ++k)
+      hwy::Prefetch(fps + (*sorted)[k].point);
+    float* const out = buf.coef.data() + keep;
+    const std::size_t stride = buf.stride;
     if constexpr (D == 2) {
-      filters_2d(chunk_fps.data(), m, envelope, inv, coef.data() + from, stride);
+      filters_2d(cf.data(), m, envelope, inv, out, stride);
     } else {
       for (std::size_t k = 0; k < m; ++k) {
-        const detail::gabor_filter_coefs<float, D> f(gabor_filter<D>(chunk_fps[k], envelope, inv));
+        const detail::gabor_filter_coefs<float, D> f(gabor_filter<D>(cf[k], envelope, inv));
         for (std::size_t e = 0; e < kSym; ++e) {
-          coef[e * stride + from + k] = f.q[e];
-          coef[(kSym + e) * stride + from + k] = f.m2[e];
+          out[e * stride + k] = f.q[e];
+          out[(kSym + e) * stride + k] = -f.m2[e];
         }
-        coef[kAmp * stride + from + k] = f.amplitude;
+        out[kAmp * stride + k] = f.amplitude;
       }
     }
-    ready = from + m;
+    ready += m;
   }
   // The filter of the point at sorted position sp in every lane (the test's terms); the
   // test reaches the points in sorted order, and a pending point's filter is ready.
   struct point_filter {
-    VF q[kSym], m2[kSym];
+    VF q[kSym], nm2[kSym];
   };
   point_filter filter_of(std::size_t sp) {
     if (sp >= ready) compute_chunk();
     const DF df;
+    const float* const col = buf.coef.data() + (sp - base);
+    const std::size_t stride = buf.stride;
     point_filter f;
     for (std::size_t k = 0; k < kSym; ++k) {
-      f.q[k] = hn::Set(df, coef[k * stride + sp]);
-      f.m2[k] = hn::Set(df, coef[(kSym + k) * stride + sp]);
+      f.q[k] = hn::Set(df, col[k * stride]);
+      f.nm2[k] = hn::Set(df, col[(kSym + k) * stride]);
     }
     return f;
   }
   // Pending point p's factor on its sums, and the end of a flush of np points.
-  float point_scale(std::size_t p) const { return coef[kAmp * stride + next + p]; }
+  float point_scale(std::size_t p) const { return buf.coef[kAmp * buf.stride + (next - base) + p]; }
   void flushed(std::size_t np) { next += np; }
 
   void operator()(const consts<D>& c, shared_pairs& t, const std::vector<std::uint32_t>& pend,
@@ -1880,12 +1932,14 @@ struct shared_filtered {
     // Each pending point's end as int32, then kWindow sentinels (never <= a pair).
     constexpr std::size_t kWindow = 3;
     const std::size_t np = pend.size();
+    std::vector<std::int32_t>& ends = buf.ends;
     ends.resize(np + kWindow);
     for (std::size_t q = 0; q < np; ++q) ends[q] = static_cast<std::int32_t>(pend_end[q]);
     for (std::size_t q = np; q < np + kWindow; ++q)
       ends[q] = std::numeric_limits<std::int32_t>::max();
     const std::int32_t* const e = ends.data();
-    const float* const cf = coef.data() + next;
+    const float* const cf = buf.coef.data() + (next - base);
+    const std::size_t stride = buf.stride;
     const VI iota = hn::Iota(di, 0);
     const std::int32_t width = static_cast<std::int32_t>(lanes);
     std::size_t p = 0;  // the first pending point with pairs at or past i
@@ -1947,7 +2001,7 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
     lockstep(pts, nullptr, n, value, grad);
     return;
   }
-  shared_workspace<D>& ws = thread_workspace<D>();
+  shared_workspace<D>& ws = thread_local_of<shared_workspace<D>>();
   ws.pc.build(pts, n, g.inverse_cell());
   const point_cells<D>& pc = ws.pc;
   // Counting sort of the box's points by cell; the rest: NaN, or the lockstep path.
@@ -2159,24 +2213,25 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
           }
           const VF s = point_s<D>(d);
           const MF in = hn::Lt(s, one);
+          const compressor kept(in);
           if constexpr (Eval::kExponent) {
             VF pp[3], qd[3], x, theta;
             for (int e = 0; e < D * (D + 1) / 2; ++e) pp[e] = hn::LoadU(df, cpp[e] + k);
-            filtered_exponent<D>(c.neg_a, pf.q, pf.m2, d, ph, pp, qd, x, theta);
-            hn::StoreU(compress(s, in), df, ts + to);
-            hn::StoreU(compress(theta, in), df, ttheta + to);
-            hn::StoreU(compress(x, in), df, tx + to);
+            filtered_exponent<D>(c.neg_a, pf.q, pf.nm2, d, ph, pp, qd, x, theta);
+            hn::StoreU(kept(s), df, ts + to);
+            hn::StoreU(kept(theta), df, ttheta + to);
+            hn::StoreU(kept(x), df, tx + to);
           } else if constexpr (Eval::kOffsets) {
             for (int a = 0; a < D; ++a) {
-              hn::StoreU(compress(d[a], in), df, td[a] + to);
-              hn::StoreU(compress(ph[a], in), df, tphi[a] + to);
+              hn::StoreU(kept(d[a]), df, td[a] + to);
+              hn::StoreU(kept(ph[a]), df, tphi[a] + to);
             }
           } else {
             // Values need only s and theta: two lists instead of 2 D.
-            hn::StoreU(compress(s, in), df, ts + to);
-            hn::StoreU(compress(point_phase<D>(ph, d), in), df, ttheta + to);
+            hn::StoreU(kept(s), df, ts + to);
+            hn::StoreU(kept(point_phase<D>(ph, d)), df, ttheta + to);
           }
-          hn::StoreU(compress(hn::LoadU(df, cw + k), in), df, tw + to);
+          hn::StoreU(kept(hn::LoadU(df, cw + k)), df, tw + to);
           to += hn::CountTrue(df, in);
         }
         t.n = to;
@@ -2680,7 +2735,7 @@ void gabor_filtered_lockstep(const gabor<D>& g, const float* pts, const footprin
     gs::split_batch<D>(sp, pts, first, used, inv);
     for (std::size_t l = 0; l < lanes; ++l) {
       if (l >= used) {  // unused lanes keep no impulse (bad): any finite filter
-        for (int e = 0; e < 6; ++e) filt.q[e][l] = filt.m2[e][l] = 0.0f;
+        for (int e = 0; e < 6; ++e) filt.q[e][l] = filt.nm2[e][l] = 0.0f;
         sp.amp[l] = 0.0f;
         continue;
       }
@@ -2790,7 +2845,7 @@ inline void gabor3_surface(const gabor<3>& g, const float* xyz, const float* nor
     for (std::size_t l = 0; l < lanes; ++l) {
       if (l >= used) {  // unused lanes: any finite frame and filter (their sums are dropped)
         for (int a = 0; a < 3; ++a) frame.n[a][l] = frame.t[a][l] = frame.b[a][l] = 0.0f;
-        for (int e = 0; e < 3; ++e) filt.q[e][l] = filt.m2[e][l] = 0.0f;
+        for (int e = 0; e < 3; ++e) filt.q[e][l] = filt.nm2[e][l] = 0.0f;
         sp.amp[l] = 0.0f;
         continue;
       }
