@@ -832,31 +832,25 @@ std::vector<bench_case> all_cases(const sizes& s) {
 
 namespace {
 
-// Runs one case under Google Benchmark. A case is prepared on its first call (Google
-// Benchmark calls again per repetition and while it sizes the iteration count) and its
-// buffers are freed when the next case starts, so one case's memory is held at a time.
-void run_case(benchmark::State& state, const bench_case& c) {
-  static const bench_case* current = nullptr;
-  static prepared_case prepared;
-  if (current != &c) {
-    prepared = prepared_case{};
-    prepared = c.prepare();
-    current = &c;
-    *c.quality = prepared.quality;
-  }
+// Runs one case under Google Benchmark, which calls it again per repetition and while it
+// sizes the iteration count; `prepared` prepares the case on its first call.
+void run_case(benchmark::State& state, const bench_case& c, prepared_cases& prepared,
+              const loop_observer& after_loop) {
+  prepared_case& p = prepared.get(c);
   for (auto _ : state)  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's idiom
-    prepared.run();
-  const double samples = static_cast<double>(prepared.samples);
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(prepared.samples));
+    p.run();
+  if (after_loop) after_loop(c, static_cast<std::int64_t>(state.iterations()));
+  const double samples = static_cast<double>(p.samples);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(p.samples));
   // Samples per iteration as a rate, inverted: CPU seconds per sample (printed "25.8ns").
   state.counters[kSecondsPerSample] = benchmark::Counter(
       samples, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   if (c.reference == error_reference::none || c.reference == error_reference::weights) return;
-  state.counters[kMaxAbs] = prepared.value_error.max_abs;
-  state.counters[kRms] = prepared.value_error.rms();
-  if (prepared.gradient_error.count) {
-    state.counters[kGradMaxAbs] = prepared.gradient_error.max_abs;
-    state.counters[kGradRms] = prepared.gradient_error.rms();
+  state.counters[kMaxAbs] = p.value_error.max_abs;
+  state.counters[kRms] = p.value_error.rms();
+  if (p.gradient_error.count) {
+    state.counters[kGradMaxAbs] = p.gradient_error.max_abs;
+    state.counters[kGradRms] = p.gradient_error.rms();
   }
 }
 
@@ -873,13 +867,26 @@ std::string cpu_model() {
 
 }  // namespace
 
-void register_benchmarks(const std::vector<bench_case>& cases, double min_time, int repetitions) {
+prepared_case& prepared_cases::get(const bench_case& c) {
+  const auto it = held_.find(&c);
+  if (it != held_.end()) return it->second;
+  // Free the held case before preparing the next, so that two are never held together.
+  if (keep_ == keep_prepared::latest) held_.clear();
+  prepared_case& p = held_.emplace(&c, c.prepare()).first->second;
+  *c.quality = p.quality;
+  return p;
+}
+
+void register_benchmarks(const std::vector<bench_case>& cases, double min_time, int repetitions,
+                         prepared_cases& prepared, const loop_observer& after_loop) {
   for (const bench_case& c : cases) {
     // Google Benchmark's registry owns what RegisterBenchmark allocates; the analyzer cannot
     // see that (the registry is in the compiled library).
     // NOLINTNEXTLINE(clang-analyzer-cplusplus.NewDeleteLeaks)
     benchmark::internal::Benchmark* b = benchmark::RegisterBenchmark(
-        c.id().c_str(), [&c](benchmark::State& state) { run_case(state, c); });
+        c.id().c_str(), [&c, &prepared, after_loop](benchmark::State& state) {
+          run_case(state, c, prepared, after_loop);
+        });
     b->Unit(benchmark::kMillisecond);
     if (c.wall_clock) b->UseRealTime();
     if (repetitions > 0) b->Repetitions(repetitions);

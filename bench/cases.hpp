@@ -11,7 +11,9 @@
 #define HUSH_BENCH_CASES_HPP
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -109,11 +111,40 @@ inline constexpr const char* kRms = "rms";
 inline constexpr const char* kGradMaxAbs = "grad_max_abs";
 inline constexpr const char* kGradRms = "grad_rms";
 
-// Registers `cases` with Google Benchmark under their id(), reporting the counters above.
-// `cases` must outlive the run.
+// Which prepared cases a run keeps in memory. Preparing a case can take seconds (it evaluates
+// the double-precision reference), and the full table's buffers together are large.
+enum class keep_prepared {
+  latest,  // the case running now only: cases run one after another, so each is prepared once
+  all,     // every case until the run ends: for interleaved repetitions, where cases alternate
+};
+
+// The prepared cases of one run: register_benchmarks' cases take their buffers from here.
+// Destroying it (after the run) frees every buffer it holds.
+class prepared_cases {
+ public:
+  explicit prepared_cases(keep_prepared keep) : keep_(keep) {}
+  // `c` ready to time, prepared on its first use here (which also sets *c.quality). Under
+  // keep_prepared::latest, preparing a case first frees the one held, so one case's memory is
+  // held at a time; under keep_prepared::all every case stays until destruction.
+  prepared_case& get(const bench_case& c);
+
+ private:
+  keep_prepared keep_;
+  std::map<const bench_case*, prepared_case> held_;
+};
+
+// Called after each timed loop of a case with the loop's iteration count (e.g. for progress).
+using loop_observer = std::function<void(const bench_case& c, std::int64_t iterations)>;
+
+// Registers `cases` with Google Benchmark under their id(), reporting the counters above;
+// each case takes its buffers from `prepared` (whose keep_prepared suits the run's order:
+// keep_prepared::all when Google Benchmark interleaves the repetitions, else latest).
+// `cases` and `prepared` must outlive the run.
 // min_time: seconds per repetition; repetitions: > 1 reports only the aggregates (mean,
-// median, ...). Either <= 0 leaves it to Google Benchmark's flags.
-void register_benchmarks(const std::vector<bench_case>& cases, double min_time, int repetitions);
+// median, ...). Either <= 0 leaves it to Google Benchmark's flags. after_loop: called after
+// every timed loop, or nothing when empty.
+void register_benchmarks(const std::vector<bench_case>& cases, double min_time, int repetitions,
+                         prepared_cases& prepared, const loop_observer& after_loop = {});
 
 // The machine a run measured, for the report.
 struct machine_info {

@@ -30,7 +30,11 @@ int main(int argc, char** argv) {
   // Repetitions and min time come from Google Benchmark's flags (1 and its default).
   const std::vector<hush_bench::bench_case> cases =
       hush_bench::all_cases(quick ? hush_bench::quick_sizes() : hush_bench::full_sizes());
-  hush_bench::register_benchmarks(cases, 0.0, 0);
+  // One case's buffers at a time: Google Benchmark runs the cases one after another unless
+  // given --benchmark_enable_random_interleaving=true, which then re-prepares a case (seconds)
+  // whenever the next repetition is another case's; `hush bench --interleave` keeps them all.
+  hush_bench::prepared_cases prepared(hush_bench::keep_prepared::latest);
+  hush_bench::register_benchmarks(cases, 0.0, 0, prepared);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -1,12 +1,15 @@
-// hush — the `hush` program: `hush bench [--quick] [--json FILE] [--markdown FILE]
-// [--plot FILE.svg] [--repetitions n] [--filter TEXT]`, the speed-vs-error table
-// (DESIGN.md principle 4).
+// hush — the `hush` program: `hush bench [--quick] [--interleave] [--json FILE]
+// [--markdown FILE] [--plot FILE.svg] [--repetitions n] [--filter TEXT]`, the speed-vs-error
+// table (DESIGN.md principle 4).
 //
 // It runs bench/'s cases (the ones bench/hush_speed_vs_error runs) through Google
 // Benchmark's library with a reporter that keeps, per case, the median over the repetitions
 // of the CPU time per sample, and the case's error counters. The Markdown table goes to
 // stdout (and --markdown FILE), the same rows with machine information to --json FILE, and a
-// speed-vs-error scatter plot to --plot FILE.svg. Progress goes to stderr.
+// speed-vs-error scatter plot to --plot FILE.svg. Progress goes to stderr. --interleave runs
+// the repetitions of all cases in random order (Google Benchmark's random interleaving), so
+// that rows compared with each other are measured over the same stretch of time.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -44,6 +47,7 @@ constexpr double kQuickMinTime = 0.002;
 
 struct bench_request {
   bool quick = false;
+  bool interleave = false;  // repetitions of all cases in random order
   int repetitions = kRepetitions;
   std::string filter;
   std::string json, markdown, plot;
@@ -57,7 +61,9 @@ bench_request parse_bench(const std::vector<std::string>& args) {
   for (const std::string& a : args) {
     r.command += " " + a;
     if (a == "--quick")
-      r.quick = true;  // the one flag without a value
+      r.quick = true;  // the flags, which take no value
+    else if (a == "--interleave")
+      r.interleave = true;
     else
       rest.push_back(a);
   }
@@ -66,8 +72,10 @@ bench_request parse_bench(const std::vector<std::string>& args) {
   while (!in.done()) {
     const std::string name = in.option(bench_options()).name;
     const std::string v = in.value();
-    if (name == "--quick")
-      throw usage_error("--quick is a flag and takes no value; got '" + v + "'");
+    if (name == "--quick" || name == "--interleave") {
+      std::string what = name + " is a flag and takes no value; got '";
+      throw usage_error(what.append(v).append("'"));
+    }
     if (name == "--json") r.json = v;
     if (name == "--markdown") r.markdown = v;
     if (name == "--filter") r.filter = v;
@@ -101,9 +109,11 @@ struct bench_row {
 };
 
 // Keeps the median aggregate of each case (or its only run when there is one repetition).
+// Google Benchmark 1.7 reports a case once, after its last repetition, also when it
+// interleaves the repetitions of several cases (benchmark.cc, RunBenchmarks).
 class row_reporter : public benchmark::BenchmarkReporter {
  public:
-  row_reporter(const std::vector<hush_bench::bench_case>& cases, progress& bar) : bar_(bar) {
+  explicit row_reporter(const std::vector<hush_bench::bench_case>& cases) {
     for (const hush_bench::bench_case& c : cases) {
       index_[c.id()] = rows_.size();
       rows_.push_back(bench_row{&c});
@@ -132,18 +142,40 @@ class row_reporter : public benchmark::BenchmarkReporter {
       row.rms = counter(hush_bench::kRms);
       row.grad_max_abs = counter(hush_bench::kGradMaxAbs);
       row.grad_rms = counter(hush_bench::kGradRms);
-      bar_.update(++done_);
     }
   }
   const std::vector<bench_row>& rows() const { return rows_; }
   const std::string& error() const { return error_; }  // the first failed case, or ""
 
  private:
-  progress& bar_;
   std::map<std::string, std::size_t> index_;
   std::vector<bench_row> rows_;
-  std::uint64_t done_ = 0;
   std::string error_;
+};
+
+// Progress in repetitions, counted from the timed loops: the reporter hears of a case only
+// after its last repetition, which under --interleave comes near the end of the run for most
+// cases. Google Benchmark 1.7 (benchmark_runner.cc, DoOneRepetition) sizes a case's first
+// repetition by loops of growing iteration counts, back to back, and runs each later
+// repetition as one loop of the final count; so a loop starts a repetition when it belongs to
+// another case than the loop before, or its count did not grow.
+class repetition_progress {
+ public:
+  repetition_progress(progress& bar, std::uint64_t total) : bar_(bar), total_(total) {}
+  void loop_done(const hush_bench::bench_case& c, std::int64_t iterations) {
+    if (last_ && (&c != last_ || iterations <= last_iterations_))
+      bar_.update(std::min(++finished_, total_ - 1));  // 100% only when the run has ended
+    last_ = &c;
+    last_iterations_ = iterations;
+  }
+  void run_ended() { bar_.update(total_); }
+
+ private:
+  progress& bar_;
+  std::uint64_t total_;
+  std::uint64_t finished_ = 0;
+  const hush_bench::bench_case* last_ = nullptr;
+  std::int64_t last_iterations_ = 0;
 };
 
 std::string format(const char* fmt, double v) {
@@ -182,7 +214,9 @@ std::string markdown(const std::vector<bench_row>& rows, const hush_bench::machi
   os << "Measured " << date << " by `" << r.command << "` on " << m.cpu << " (" << m.cpus
      << " logical CPUs, load average " << m.load << "), " << m.compiler << ", " << m.build
      << "; SIMD target: " << m.simd_target << ". ns/sample: median of " << r.repetitions
-     << " repetition(s), CPU time, one thread (GLSL rows: wall time; llvmpipe runs its own "
+     << " repetition(s)"
+     << (r.interleave ? " (the repetitions of all rows interleaved in random order)" : "")
+     << ", CPU time, one thread (GLSL rows: wall time; llvmpipe runs its own "
         "threads). Errors: against the double-precision reference"
         " named in the last column, at the same positions.\n\n"
      << "| noise | backend | workload | output | ns/sample | max abs error | RMS error | "
@@ -233,6 +267,7 @@ std::string json(const std::vector<bench_row>& rows, const hush_bench::machine_i
      << ", \"peers\": " << json_string(m.peers) << ", \"load_average\": " << json_string(m.load)
      << "},\n"
      << "  \"settings\": {\"quick\": " << (r.quick ? "true" : "false")
+     << ", \"interleave\": " << (r.interleave ? "true" : "false")
      << ", \"repetitions\": " << r.repetitions
      << ", \"min_time_s\": " << json_number(r.quick ? kQuickMinTime : kMinTime)
      << ", \"statistic\": \"median\", \"timer\": \"CPU time, one thread; wall time for GLSL rows\""
@@ -299,6 +334,22 @@ scatter_plot plot(const std::vector<bench_row>& rows, const hush_bench::machine_
   return p;
 }
 
+// Google Benchmark reads its flags once, from this argv: none from us (the cases set their
+// own minimum time and repetitions) but the random interleaving of repetitions.
+void initialize_benchmark(bool interleave) {
+  char name[] = "hush";
+  char interleave_flag[] = "--benchmark_enable_random_interleaving=true";
+  std::vector<char*> argv = {name};
+  if (interleave) argv.push_back(interleave_flag);
+  int argc = static_cast<int>(argv.size());
+  argv.push_back(nullptr);
+  benchmark::Initialize(&argc, argv.data());
+  // It removes the flags it knows; one left over means a library older than 1.6.
+  if (argc != 1)
+    throw run_error("--interleave needs Google Benchmark 1.6 or later (its " +
+                    std::string(interleave_flag) + ")");
+}
+
 void write_file(const std::string& path, const std::string& text) {
   output_file f(path);
   f.write(text.data(), text.size());
@@ -314,6 +365,11 @@ const std::vector<option_spec>& bench_options() {
   static const std::vector<option_spec> options = {
       {"--quick", "",
        "small workloads, 1 repetition: a few seconds in all (a flag: takes no value)"},
+      {"--interleave", "",
+       "run the repetitions of all matched cases in random order, so that every row's median "
+       "spans the same stretch of time (rows compared with each other see the same machine "
+       "load); holds every matched case's buffers at once, so it is meant for a --filter'ed "
+       "set of rows (a flag: takes no value)"},
       {"--json", "FILE", "also write the rows and the machine as JSON to FILE"},
       {"--markdown", "FILE", "also write the Markdown table to FILE"},
       {"--plot", "FILE.svg", "write the speed-vs-error scatter plot (SVG) to FILE.svg"},
@@ -342,19 +398,27 @@ int run_bench(const std::vector<std::string>& args) {
     throw_bad_value("--filter", r.filter,
                     "text that some case name contains, e.g. perlin2D, simd, grid, gradient");
 
-  // Google Benchmark reads its flags once; it gets none from us (the cases set their own).
-  int argc = 1;
-  char name[] = "hush";
-  char* argv[] = {name, nullptr};
-  benchmark::Initialize(&argc, argv);
-  hush_bench::register_benchmarks(cases, r.quick ? kQuickMinTime : kMinTime, r.repetitions);
+  initialize_benchmark(r.interleave);
   std::cerr << "hush bench: " << cases.size() << " cases, " << r.repetitions
-            << " repetition(s) each\n";
+            << " repetition(s) each" << (r.interleave ? ", interleaved in random order" : "")
+            << '\n';
   std::vector<bench_row> rows;
   {
-    progress bar("hush bench", cases.size());
-    row_reporter reporter(cases, bar);
+    // Interleaved, the cases alternate: each stays prepared until the run ends.
+    hush_bench::prepared_cases prepared(r.interleave ? hush_bench::keep_prepared::all
+                                                     : hush_bench::keep_prepared::latest);
+    const std::uint64_t total = cases.size() * static_cast<std::uint64_t>(r.repetitions);
+    progress bar("hush bench", total);
+    repetition_progress counter(bar, total);
+    hush_bench::register_benchmarks(
+        cases, r.quick ? kQuickMinTime : kMinTime, r.repetitions, prepared,
+        [&counter](const hush_bench::bench_case& c, std::int64_t iterations) {
+          counter.loop_done(c, iterations);
+        });
+    row_reporter reporter(cases);
     benchmark::RunSpecifiedBenchmarks(&reporter);
+    benchmark::ClearRegisteredBenchmarks();  // they refer to `prepared` and `counter`
+    counter.run_ended();
     if (!reporter.error().empty()) throw run_error(reporter.error());
     rows = reporter.rows();
   }

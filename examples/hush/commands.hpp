@@ -34,7 +34,8 @@ int run_glsl_export(const std::vector<std::string>& args);
 // The GLSL backend's line in `hush info`: the GL renderer and version of an
 // OSMesa context, or "unavailable: <reason>".
 std::string glsl_status();
-// hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]: speed vs error.
+// hush bench [--quick] [--interleave] [--json FILE] [--markdown FILE] [--plot FILE.svg]: speed
+// vs error.
 int run_bench(const std::vector<std::string>& args);
 const std::vector<option_spec>& bench_options();
 // hush render NOISE --gbuffer DIR --out DIR [options]: scene-driven noises over G-buffers.

@@ -5,7 +5,7 @@
 //                     [--seed n] [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
 //   hush gallery [--out DIR]
 //   hush glsl-export DIR
-//   hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]
+//   hush bench [--quick] [--interleave] [--json FILE] [--markdown FILE] [--plot FILE.svg]
 //   hush scene list | hush scene render --scene NAME [--frames N] [--size WxH]
 //                                       [--backend cpu|gl] --out DIR
 //   hush render NOISE --gbuffer DIR --out DIR [--frames N] [--seed n]
@@ -46,7 +46,8 @@ const std::vector<command>& commands() {
        "temporal-coherence metrics of noise frames (docs/coherence.md)", run_coherence},
       {"glsl-export", "hush glsl-export DIR", "write the generated GLSL library and runners",
        run_glsl_export},
-      {"bench", "hush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]",
+      {"bench",
+       "hush bench [--quick] [--interleave] [--json FILE] [--markdown FILE] [--plot FILE.svg]",
        "speed-vs-error table of every noise and backend", run_bench},
       {"scene", "hush scene list | render --scene NAME [options] --out DIR",
        "render test scenes to G-buffer files (.npy per channel)", run_scene},
@@ -106,7 +107,7 @@ void print_usage(std::ostream& os) {
   os << "\nhush glsl-export DIR\n"
         "  Writes hush_noise.glsl (the function library, no #version line) and the compute\n"
         "  runners (*.comp) into DIR, created if needed.\n";
-  os << "\nhush bench [--quick] [--json FILE] [--markdown FILE] [--plot FILE.svg]\n"
+  os << "\nhush bench [--quick] [--interleave] [--json FILE] [--markdown FILE] [--plot FILE.svg]\n"
         "  Times every noise x backend x workload (ns/sample, median of repetitions, one\n"
         "  thread) next to its error against the double reference; Markdown on stdout.\n";
   print_options(os, bench_options());
@@ -124,8 +125,8 @@ void print_usage(std::ostream& os) {
     print_options(os, n.options);
     print_options(os, n.flags);
   }
-  os << "\nEvery option takes one value: '--seed 7' or '--seed=7' (bench --quick is the one "
-        "flag).\n"
+  os << "\nEvery option takes one value: '--seed 7' or '--seed=7' (bench --quick and\n"
+        "--interleave are the flags, which take none).\n"
         "Exit codes: 0 success, 1 failure (e.g. unwritable output), 2 usage error.\n";
 }
 

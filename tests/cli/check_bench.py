@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Smoke test of `hush bench --quick` (DESIGN.md principle 4): runs it once with every output
-and checks what it wrote.
+and checks what it wrote; with --interleave, a short interleaved run instead (see
+check_interleaved).
 
   - JSON parses; every row has a finite ns_per_sample > 0 and the error fields; hush rows have
     finite errors (rms <= max abs) within the noise's float budget, gradient rows gradient
@@ -9,7 +10,7 @@ and checks what it wrote.
   - stdout and --markdown hold the same Markdown table, one line per JSON row.
   - the SVG parses as XML and draws one marker per row plus one per legend entry.
 
-Usage: check_bench.py HUSH_EXE SCRATCH_DIR   (exit 0: all checks pass)
+Usage: check_bench.py HUSH_EXE SCRATCH_DIR [--interleave]   (exit 0: all checks pass)
 """
 import json
 import math
@@ -79,10 +80,56 @@ def check_spectrum_note(name, note):
               name + ": spectrum error %g (sampling alone %g)" % (err, alone))
 
 
+# `hush bench --quick --repetitions 3 --interleave` on two small rows (about a second): each
+# matched row appears once in the JSON and the table, with the median of its 3 repetitions,
+# a finite time and its errors, and the report says the run was interleaved.
+INTERLEAVE_FILTER = "perlin2D/simd/grid"
+INTERLEAVE_ROWS = {"perlin2D/simd/grid/value", "perlin2D/simd/grid/value+gradient"}
+
+
+def check_interleaved(exe, scratch):
+    paths = {k: os.path.join(scratch, "interleaved." + k) for k in ("json", "md")}
+    cmd = [exe, "bench", "--quick", "--repetitions", "3", "--interleave", "--filter",
+           INTERLEAVE_FILTER, "--json", paths["json"], "--markdown", paths["md"]]
+    run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+    check(run.returncode == 0, "exit code %d, stderr: %s" % (run.returncode, run.stderr))
+    if run.returncode != 0:
+        return
+    with open(paths["json"]) as f:
+        doc = json.load(f)
+    check("--interleave" in doc["command"], "command %r" % doc["command"])
+    settings = doc["settings"]
+    check(settings["interleave"] is True and settings["repetitions"] == 3
+          and settings["filter"] == INTERLEAVE_FILTER, "settings %r" % settings)
+    ids = [r["id"] for r in doc["rows"]]
+    check(sorted(ids) == sorted(INTERLEAVE_ROWS), "rows %r, want each of %r once"
+          % (ids, sorted(INTERLEAVE_ROWS)))
+    for r in doc["rows"]:
+        ns, mx = r["ns_per_sample"], r["max_abs_error"]
+        check(isinstance(ns, (int, float)) and math.isfinite(ns) and ns > 0,
+              r["id"] + ": ns_per_sample %r" % ns)
+        check(r["repetitions"] == 3, r["id"] + ": repetitions %r" % r["repetitions"])
+        check(isinstance(mx, (int, float)) and 0 <= mx <= PERLIN_VALUE,
+              r["id"] + ": max abs error %r" % mx)
+    with open(paths["md"]) as f:
+        md = f.read()
+    check(md == run.stdout, "--markdown differs from stdout")
+    check("interleaved in random order" in md and "--interleave" in md,
+          "the table does not say it was interleaved")
+    table = [line for line in md.splitlines() if line.startswith("|")]
+    check(len(table) == len(INTERLEAVE_ROWS) + 2, "markdown has %d table lines for %d rows"
+          % (len(table), len(INTERLEAVE_ROWS)))
+
+
 def main():
+    if len(sys.argv) < 3 or sys.argv[3:] not in ([], ["--interleave"]):
+        sys.exit("usage: check_bench.py HUSH_EXE SCRATCH_DIR [--interleave]")
     exe, scratch = sys.argv[1], sys.argv[2]
     shutil.rmtree(scratch, ignore_errors=True)
     os.makedirs(scratch)
+    if sys.argv[3:] == ["--interleave"]:
+        check_interleaved(exe, scratch)
+        return
     paths = {k: os.path.join(scratch, "bench." + k) for k in ("json", "md", "svg")}
     cmd = [exe, "bench", "--quick", "--json", paths["json"], "--markdown", paths["md"],
            "--plot", paths["svg"]]
@@ -96,7 +143,8 @@ def main():
     for key in ("cpu", "compiler", "build", "simd_target", "peers"):
         check(isinstance(doc["machine"].get(key), str) and doc["machine"][key],
               "machine." + key)
-    check(doc["settings"]["quick"] is True and doc["settings"]["repetitions"] == 1, "settings")
+    check(doc["settings"]["quick"] is True and doc["settings"]["repetitions"] == 1
+          and doc["settings"]["interleave"] is False, "settings")
     rows = doc["rows"]
     fields = ("ns_per_sample", "max_abs_error", "rms_error", "gradient_max_abs_error",
               "gradient_rms_error", "error_reference")

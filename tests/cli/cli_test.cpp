@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -834,8 +835,8 @@ TEST_CASE("gallery in a build without stb_image_write or Eigen fails, saying wha
 }
 #endif
 
-// ---- (f) hush bench: its options (the timing run itself is the bench_quick_json smoke test,
-// tests/cli/check_bench.py, in Release builds only).
+// ---- (f) hush bench: its options (the timing runs themselves are the bench_quick_json and
+// bench_interleave_json smoke tests, tests/cli/check_bench.py, in Release builds only).
 
 TEST_CASE("bench rejects each bad option with exit code 2 and one line naming it") {
   const fs::path dir = scratch("bench_bad_input");
@@ -850,6 +851,10 @@ TEST_CASE("bench rejects each bad option with exit code 2 and one line naming it
       {"--plot x.png", "--plot"},
       {"--plot .svg", "--plot"},
       {"--quick=1", "--quick"},
+      {"--quick 3", "'3'"},  // a flag takes no value: 3 is an argument of its own
+      {"--interleave=1", "--interleave"},
+      {"--interleave=", "--interleave"},
+      {"--interleave 3", "'3'"},
       {"--json", "--json"},  // the value is missing
       {"--bogus 3", "--bogus"},
       {"--json a.json --json b.json", "--json"},
@@ -864,6 +869,36 @@ TEST_CASE("bench rejects each bad option with exit code 2 and one line naming it
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     CHECK(r.out.empty());
   }
+}
+
+TEST_CASE("bench --interleave is a flag: parsed with the other options, listed in --help") {
+  const fs::path dir = scratch("bench_interleave");
+  // Accepted anywhere among the options (the --filter then fails before measuring).
+  for (const char* args : {"--interleave --quick --filter no_such_case",
+                           "--quick --filter no_such_case --interleave"}) {
+    CAPTURE(args);
+    const result r = run_hush(std::string("bench ") + args, dir);
+    CHECK(r.exit_code == 2);
+#if HUSH_CLI_TEST_BENCH
+    CHECK(r.err.find("--filter") != std::string::npos);
+#else
+    CHECK(r.err.find("libbenchmark-dev") != std::string::npos);
+#endif
+    CHECK(r.err.find("--interleave") == std::string::npos);
+  }
+  // The help says what it costs: every matched case's buffers at once.
+  const result help = run_hush("bench --help", dir);
+  CHECK(help.exit_code == 0);
+  const std::size_t at = help.out.find("  --interleave");
+  REQUIRE(at != std::string::npos);
+  std::string entry;  // its help, unwrapped: runs of spaces and line breaks as one space
+  for (const char ch : help.out.substr(at, help.out.find("\n  --", at + 1) - at))
+    if (!(std::isspace(static_cast<unsigned char>(ch)) && !entry.empty() && entry.back() == ' '))
+      entry += std::isspace(static_cast<unsigned char>(ch)) ? ' ' : ch;
+  CHECK(entry.find("random order") != std::string::npos);
+  CHECK(entry.find("buffers") != std::string::npos);
+  CHECK(entry.find("--filter") != std::string::npos);
+  CHECK(entry.find("takes no value") != std::string::npos);
 }
 
 TEST_CASE("bench --filter matching no case and an uncreatable output fail before measuring") {
