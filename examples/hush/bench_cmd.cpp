@@ -357,6 +357,22 @@ void write_file(const std::string& path, const std::string& text) {
   std::cerr << "hush bench: wrote " << path << '\n';
 }
 
+// --filter's texts: TEXT split at each '|' (several rows of different names in one run, e.g.
+// for --interleave); an empty text would match every case, so it is refused.
+std::vector<std::string> filter_texts(const std::string& filter) {
+  std::vector<std::string> texts;
+  for (std::size_t from = 0;;) {
+    const std::size_t bar = filter.find('|', from);
+    texts.push_back(filter.substr(from, bar == std::string::npos ? bar : bar - from));
+    if (bar == std::string::npos) break;
+    from = bar + 1;
+  }
+  if (texts.size() > 1 &&
+      std::any_of(texts.begin(), texts.end(), [](const std::string& t) { return t.empty(); }))
+    throw_bad_value("--filter", filter, "texts separated by '|', none of them empty");
+  return texts;
+}
+
 #endif  // HUSH_CLI_HAVE_BENCH
 
 }  // namespace
@@ -376,7 +392,8 @@ const std::vector<option_spec>& bench_options() {
       {"--repetitions", "n",
        "repetitions per case, 1 ... 100; the table shows their median (default 5, --quick 1)"},
       {"--filter", "TEXT",
-       "run only the cases whose name contains TEXT, e.g. perlin2D/simd (names: "
+       "run only the cases whose name contains TEXT, or one of several texts separated by '|', "
+       "e.g. perlin2D/simd or 'gabor2D/simd/points|gabor2Dfiltered/simd' (names: "
        "noise/backend/workload/output)"},
   };
   return options;
@@ -392,8 +409,11 @@ int run_bench(const std::vector<std::string>& args) {
 #else
   const hush_bench::sizes s = r.quick ? hush_bench::quick_sizes() : hush_bench::full_sizes();
   std::vector<hush_bench::bench_case> cases;
+  const std::vector<std::string> texts = filter_texts(r.filter);
   for (hush_bench::bench_case& c : hush_bench::all_cases(s))
-    if (c.id().find(r.filter) != std::string::npos) cases.push_back(std::move(c));
+    if (std::any_of(texts.begin(), texts.end(),
+                    [&c](const std::string& t) { return c.id().find(t) != std::string::npos; }))
+      cases.push_back(std::move(c));
   if (cases.empty())
     throw_bad_value("--filter", r.filter,
                     "text that some case name contains, e.g. perlin2D, simd, grid, gradient");

@@ -80,11 +80,13 @@ def check_spectrum_note(name, note):
               name + ": spectrum error %g (sampling alone %g)" % (err, alone))
 
 
-# `hush bench --quick --repetitions 3 --interleave` on two small rows (about a second): each
-# matched row appears once in the JSON and the table, with the median of its 3 repetitions,
-# a finite time and its errors, and the report says the run was interleaved.
-INTERLEAVE_FILTER = "perlin2D/simd/grid"
-INTERLEAVE_ROWS = {"perlin2D/simd/grid/value", "perlin2D/simd/grid/value+gradient"}
+# `hush bench --quick --repetitions 3 --interleave` on four small rows of two names (a
+# --filter of two texts; about two seconds): each matched row appears once in the JSON and the
+# table, with the median of its 3 repetitions, a finite time and its errors, and the report
+# says the run was interleaved.
+INTERLEAVE_FILTER = "perlin2D/simd/grid|fbm2D/simd/grid"
+INTERLEAVE_ROWS = {"%s2D/simd/grid/%s" % (n, o) for n in ("perlin", "fbm")
+                   for o in ("value", "value+gradient")}
 
 
 def check_interleaved(exe, scratch):

@@ -913,6 +913,16 @@ TEST_CASE("bench --filter matching no case and an uncreatable output fail before
 #endif
   CHECK(std::count(none.err.begin(), none.err.end(), '\n') == 1);
   CHECK(none.out.empty());
+  // Several texts separated by '|': none matching, or an empty one (it would match every case).
+  for (const char* filter : {"no_such_case|nor_this", "perlin2D/simd/grid|", "|perlin2D"}) {
+    CAPTURE(filter);
+    const result r = run_hush(std::string("bench --quick --filter '") + filter + "'", dir);
+    CHECK(r.exit_code == 2);
+#if HUSH_CLI_TEST_BENCH
+    CHECK(r.err.find("--filter") != std::string::npos);
+#endif
+    CHECK(r.out.empty());
+  }
   const std::string path = (dir / "no_such_dir" / "b.json").string();
   const result unwritable = run_hush("bench --quick --json '" + path + "'", dir);
   CHECK(unwritable.exit_code == 1);

@@ -1821,6 +1821,7 @@ struct shared_filtered {
     std::vector<float> coef;
     std::size_t stride = 0;
     std::vector<std::int32_t> ends;  // the pending points' ends, then kWindow sentinels
+    std::vector<std::uint32_t> ahead;  // the next chunk's points (their call indices)
   };
   shared_filtered(const footprint<D>* f, double a, double inv_r)
       : fps(f), envelope(a), inv(inv_r), buf(thread_local_of<buffers>()) {}
@@ -1831,10 +1832,12 @@ struct shared_filtered {
   std::size_t base = 0;   // the sorted position of coef's first column
   std::size_t ready = 0;  // the points before this sorted position have their filters
   std::size_t next = 0;   // the sorted position of the first pending point
+  std::size_t chunk_first = 0;  // the sorted position of the chunk computed last
 
   void prepare(const std::vector<sorted_point<D>>& s) {
     sorted = &s;
-    base = ready = next = 0;
+    base = ready = next = chunk_first = 0;
+    buf.ahead.clear();
     reserve(0);
   }
   // Room for `keep` columns and a chunk: whole vectors of doubles of slack (filters_2d
@@ -1853,8 +1856,8 @@ struct shared_filtered {
   }
   // The filters of the chunk from sorted position `ready`, the pending points' moved to
   // the front first (a flush holds ~64 of them). Its footprints are gathered in one loop
-  // (in cell order they are read at random: fetched one chunk ahead), then the filters
-  // computed in a loop of independent iterations (the divisions and
+  // (in cell order they are read at random: filter_of fetched them during the chunk
+  // before), then the filters computed in a loop of independent iterations (the divisions and
   // square roots overlap across points). A chunk at a time, just before the test needs
   // it: the coefficients are read from L1 / L2, not written to memory and read back.
   void compute_chunk() {
@@ -1869,12 +1872,11 @@ struct shared_filtered {
     std::vector<footprint<D>>& cf = buf.chunk_fps;
     cf.resize(m);
     for (std::size_t k = 0; k < m; ++k) cf[k] = fps[(*sorted)[ready + k].point];
-    // The next chunk's footprints fetched while this one is tested: gathered cold, each
-    // was a cache miss (11% of a 2D call of 262144 samples on AVX3). One prefetch per
-    // point in filter_of instead cost more than it saved (its load of the record a
-    // chunk ahead).
+    // The next chunk's points, whose footprints filter_of fetches while this one is tested.
+    buf.ahead.clear();
     for (std::size_t k = ready + m, e = std::min(ready + m + kChunk, sorted->size()); k < e; ++k)
-      hwy::Prefetch(fps + (*sorted)[k].point);
+      buf.ahead.push_back((*sorted)[k].point);
+    chunk_first = ready;
     float* const out = buf.coef.data() + keep;
     const std::size_t stride = buf.stride;
     if constexpr (D == 2) {
@@ -1898,6 +1900,11 @@ struct shared_filtered {
   };
   point_filter filter_of(std::size_t sp) {
     if (sp >= ready) compute_chunk();
+    // One footprint of the next chunk per point: gathered cold, each was a cache miss (11%
+    // of a 2D call of 262144 samples on AVX3). All of them fetched at once when the chunk
+    // starts cost 2 to 4% more on AVX2 (a burst of misses), and fetching through the
+    // record a chunk ahead (not yet in cache) cost more than it saved.
+    if (sp - chunk_first < buf.ahead.size()) hwy::Prefetch(fps + buf.ahead[sp - chunk_first]);
     const DF df;
     const float* const col = buf.coef.data() + (sp - base);
     const std::size_t stride = buf.stride;
