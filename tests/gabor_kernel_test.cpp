@@ -4,6 +4,7 @@
 // computation.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -516,6 +517,25 @@ TEST_CASE("gabor_filter: the closed form is the Gabor kernel convolved with the 
   }
 }
 
+namespace {
+// gabor_filter of fp for envelopes A from 1e-6 to 1e6: finite Q and M, amplitude in (0, 1].
+template <int D>
+void check_filter_finite(const hush::footprint<D>& fp) {
+  for (const double a : {1e-6, 0.8, 1e6}) {
+    const hush::gabor_kernel<D> k(a, 0.05);
+    const hush::gabor_filter<D> f(fp, k.envelope_exponent(), 1.0 / k.radius());
+    CHECK(std::isfinite(f.amplitude));
+    CHECK(f.amplitude > 0.0);
+    CHECK(f.amplitude <= 1.0);
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) {
+        CHECK(std::isfinite(f.q[i][j]));
+        CHECK(std::isfinite(f.m[i][j]));
+      }
+  }
+}
+}  // namespace
+
 TEST_CASE(
     "gabor_filter: degenerate footprints give finite Q and an amplitude in 0 ... 1 (HARD_CASES row 12)") {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -526,25 +546,80 @@ TEST_CASE(
       hush::footprint<3>::from_derivatives(hush::dvec3{1e15, 3e14, 0}, hush::dvec3{0, 1e15, 2e14}),
       hush::footprint<3>::from_derivatives(hush::dvec3{nan, 0, 0}, hush::dvec3{0, 1, 0}),
       hush::footprint<3>::isotropic(1e300)};
-  for (const auto& fp : cases)
-    for (const double a : {1e-6, 0.8, 1e6}) {
-      const hush::gabor_kernel<3> k(a, 0.05);
-      const hush::gabor_filter<3> f(fp, k.envelope_exponent(), 1.0 / k.radius());
-      CHECK(std::isfinite(f.amplitude));
-      CHECK(f.amplitude > 0.0);
-      CHECK(f.amplitude <= 1.0);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          CHECK(std::isfinite(f.q[i][j]));
-          CHECK(std::isfinite(f.m[i][j]));
-        }
-    }
+  for (const auto& fp : cases) check_filter_finite(fp);
+  // The same in 2D, where gabor_filter<2> takes the closed form (adj / det).
+  const hush::footprint<2> cases2[] = {
+      hush::footprint<2>{},
+      hush::footprint<2>::from_derivatives(hush::dvec2{1, 2}, hush::dvec2{0, 0}),  // rank 1
+      hush::footprint<2>::from_derivatives(hush::dvec2{1e-15, 0}, hush::dvec2{0, 1e-15}),
+      hush::footprint<2>::from_derivatives(hush::dvec2{1e15, 3e14}, hush::dvec2{3e14, 9e13}),
+      hush::footprint<2>::from_derivatives(hush::dvec2{1e15, 3e14}, hush::dvec2{-3e14, 1e15}),
+      hush::footprint<2>::from_derivatives(hush::dvec2{nan, 0}, hush::dvec2{0, 1}),
+      hush::footprint<2>::isotropic(1e300)};
+  for (const auto& fp : cases2) check_filter_finite(fp);
   // A point footprint leaves the kernel as it is.
   const hush::gabor_filter<2> none(hush::footprint<2>{}, 3.0, 1.0);
   CHECK(none.amplitude == 1.0);
   CHECK(none.q[0][0] == 1.0);
   CHECK(none.q[0][1] == 0.0);
   CHECK(none.m[1][1] == 0.0);
+}
+
+TEST_CASE(
+    "gabor_filter<2>: the closed form equals the eigensystem's; an S off the positive "
+    "semi-definite matrices is filtered as its projection, a NaN entry as 0") {
+  const double a = 0.8, inv_r = 0.7;
+  const double k = 2.0 * a * hush::detail::constants::kPixelFilterSigma *
+                   hush::detail::constants::kPixelFilterSigma * inv_r * inv_r;
+  const double mk = hush::detail::constants::kPi * hush::detail::constants::kPi / a;
+  // S = R diag(l0, l1) R^T at angle t; the expected filter from the eigensystem directly:
+  // Q = R diag(1 / (1 + k l+)) R^T, M = R diag(mk k l+ / (1 + k l+)) R^T, l+ = max(l, 0).
+  auto check = [&](double t, double l0, double l1) {
+    CAPTURE(t);
+    CAPTURE(l0);
+    CAPTURE(l1);
+    const double c = std::cos(t), sn = std::sin(t);
+    const double v[2][2] = {{c, -sn}, {sn, c}};  // columns: the eigenvectors
+    const double l[2] = {l0, l1};
+    double cov[2][2], q[2][2], m[2][2], det_q = 1;
+    double qd[2], md[2];
+    for (int e = 0; e < 2; ++e) {
+      const double kl = k * std::max(l[e], 0.0);
+      qd[e] = 1 / (1 + kl);
+      md[e] = mk * kl / (1 + kl);
+      det_q *= qd[e];
+    }
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        cov[i][j] = q[i][j] = m[i][j] = 0;
+        for (int e = 0; e < 2; ++e) {
+          cov[i][j] += v[i][e] * l[e] * v[j][e];
+          q[i][j] += v[i][e] * qd[e] * v[j][e];
+          m[i][j] += v[i][e] * md[e] * v[j][e];
+        }
+      }
+    const hush::gabor_filter<2> f(cov, a, inv_r);
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        CHECK(f.q[i][j] == doctest::Approx(q[i][j]).epsilon(1e-12).scale(1.0));
+        CHECK(f.m[i][j] == doctest::Approx(m[i][j]).epsilon(1e-12).scale(mk));
+      }
+    CHECK(f.amplitude == doctest::Approx(std::sqrt(det_q)).epsilon(1e-12));
+  };
+  for (const double t : {0.0, 0.3, 1.1, 2.5})
+    for (const double l0 : {0.0, 1e-3, 0.7, 4.0, 50.0})
+      for (const double l1 : {0.0, 0.2, 3.0, -0.5, -20.0}) check(t, l0, l1);
+  check(0.4, -1.0, -3.0);  // negative definite: projected to 0, the kernel as it is
+  // A NaN entry counts as 0.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double with_nan[2][2] = {{nan, 0.0}, {0.0, 2.0}}, zeroed[2][2] = {{0.0, 0.0}, {0.0, 2.0}};
+  const hush::gabor_filter<2> fn(with_nan, a, inv_r), fz(zeroed, a, inv_r);
+  CHECK(fn.amplitude == fz.amplitude);
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      CHECK(fn.q[i][j] == fz.q[i][j]);
+      CHECK(fn.m[i][j] == fz.m[i][j]);
+    }
 }
 
 TEST_CASE(

@@ -543,11 +543,18 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
 //       kPixelFilterSigma pixels: the Gaussian pixel filter N(0, sigma^2 S)),
 //   amplitude = sqrt(det Q),  attenuation(Phi) = e^{-Phi^T M Phi},
 //   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
-// Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
+// 3D: computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
 // l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
 // below 0): Q = V diag(q) V^T, q = 1 / (1 + k l), and I - Q = V diag(k l q)
-// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
-// footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
+// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l.
+// 2D: in closed form, Q = adj(I + k S) / det(I + k S), det(I + k S) = 1 + k tr S +
+// k^2 det S, I - Q = (k S + k^2 det S I) / det(I + k S) (nothing cancels either), and
+// amplitude = 1 / sqrt(det(I + k S)): one division and one square root instead of
+// Jacobi's rotation. det S = ac - b^2 is exact to one rounding for a float S (a c and
+// b^2 are exact in doubles). An S that is not positive semi-definite (rounding, or
+// from_covariance's unchecked input) is first projected onto those matrices, its
+// eigenvalues clamped at 0 as the 3D form does; a NaN entry counts as 0. Every
+// footprint (zero, rank 1, det 1e-30 or 1e30, the "everything" footprint)
 // gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
 // footprints the amplitude underflows towards 0: the filtered noise is its mean.
 template <int D>
@@ -578,6 +585,10 @@ struct gabor_filter {
   void build(double (&s)[D][D], double a, double inv_r) {
     namespace c = detail::constants;
     const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
+    if constexpr (D == 2) {
+      build_2d(s[0][0], s[0][1], s[1][1], k, c::kPi * c::kPi / a);
+      return;
+    }
     double v[D][D];
     detail::jacobi_eigen<D>(s, v);
     double qd[D], md[D];
@@ -600,6 +611,35 @@ struct gabor_filter {
         q[i][j] = qq;
         m[i][j] = mm;
       }
+  }
+  // The 2D closed form (above) of S = [[sa, sb], [sb, sc]], in this order of double
+  // operations, no fused ones (filters_2d in simd/gabor-inl.h repeats it in lanes).
+  void build_2d(double sa, double sb, double sc, double k, double mk) {
+    sa = sa == sa ? sa : 0.0;  // NaN counts as 0
+    sb = sb == sb ? sb : 0.0;
+    sc = sc == sc ? sc : 0.0;
+    double det = sa * sc - sb * sb;
+    if (!(sa >= 0.0 && sc >= 0.0 && det >= 0.0)) {
+      // Onto the positive semi-definite matrices: the eigenvalues mean +- rad, the
+      // smaller clamped at 0 (S - lo I = (hi - lo) v v^T; rad > 0 here), or S = 0.
+      const double mean = 0.5 * (sa + sc), half = 0.5 * (sa - sc);
+      const double rad = std::sqrt(half * half + sb * sb);
+      const double hi = mean + rad, lo = mean - rad;
+      const double f = hi > 0.0 ? hi / (rad + rad) : 0.0;
+      sa = (sa - lo) * f;
+      sb = sb * f;
+      sc = (sc - lo) * f;
+      det = 0.0;
+    }
+    const double ka = k * sa, kb = k * sb, kc = k * sc, kkd = (k * k) * det;
+    const double inv = 1.0 / (((1.0 + ka) + kc) + kkd);  // 1 / det(I + k S)
+    q[0][0] = (1.0 + kc) * inv;
+    q[0][1] = q[1][0] = -(kb * inv);
+    q[1][1] = (1.0 + ka) * inv;
+    m[0][0] = mk * ((ka + kkd) * inv);
+    m[0][1] = m[1][0] = mk * (kb * inv);
+    m[1][1] = mk * ((kc + kkd) * inv);
+    amplitude = std::sqrt(inv);
   }
 };
 

@@ -5376,11 +5376,18 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
 //       kPixelFilterSigma pixels: the Gaussian pixel filter N(0, sigma^2 S)),
 //   amplitude = sqrt(det Q),  attenuation(Phi) = e^{-Phi^T M Phi},
 //   M = (pi^2 / A) (I - Q),  frequency Q Phi,  envelope e^{-A d^T Q d}.
-// Computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
+// 3D: computed from S's eigen-decomposition S = V diag(l) V^T (Jacobi), with
 // l clamped at 0 (rounding can leave a singular S an eigenvalue a few ulp
 // below 0): Q = V diag(q) V^T, q = 1 / (1 + k l), and I - Q = V diag(k l q)
-// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l. Every
-// footprint (zero, rank 1, det 1e-30 or 1e30, the NaN "everything" footprint)
+// V^T, k = 2 A sigma^2 / r^2, so nothing cancels however large k l.
+// 2D: in closed form, Q = adj(I + k S) / det(I + k S), det(I + k S) = 1 + k tr S +
+// k^2 det S, I - Q = (k S + k^2 det S I) / det(I + k S) (nothing cancels either), and
+// amplitude = 1 / sqrt(det(I + k S)): one division and one square root instead of
+// Jacobi's rotation. det S = ac - b^2 is exact to one rounding for a float S (a c and
+// b^2 are exact in doubles). An S that is not positive semi-definite (rounding, or
+// from_covariance's unchecked input) is first projected onto those matrices, its
+// eigenvalues clamped at 0 as the 3D form does; a NaN entry counts as 0. Every
+// footprint (zero, rank 1, det 1e-30 or 1e30, the "everything" footprint)
 // gives Q with eigenvalues in (0, 1]: nothing here is NaN, and for the widest
 // footprints the amplitude underflows towards 0: the filtered noise is its mean.
 template <int D>
@@ -5411,6 +5418,10 @@ struct gabor_filter {
   void build(double (&s)[D][D], double a, double inv_r) {
     namespace c = detail::constants;
     const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
+    if constexpr (D == 2) {
+      build_2d(s[0][0], s[0][1], s[1][1], k, c::kPi * c::kPi / a);
+      return;
+    }
     double v[D][D];
     detail::jacobi_eigen<D>(s, v);
     double qd[D], md[D];
@@ -5433,6 +5444,35 @@ struct gabor_filter {
         q[i][j] = qq;
         m[i][j] = mm;
       }
+  }
+  // The 2D closed form (above) of S = [[sa, sb], [sb, sc]], in this order of double
+  // operations, no fused ones (filters_2d in simd/gabor-inl.h repeats it in lanes).
+  void build_2d(double sa, double sb, double sc, double k, double mk) {
+    sa = sa == sa ? sa : 0.0;  // NaN counts as 0
+    sb = sb == sb ? sb : 0.0;
+    sc = sc == sc ? sc : 0.0;
+    double det = sa * sc - sb * sb;
+    if (!(sa >= 0.0 && sc >= 0.0 && det >= 0.0)) {
+      // Onto the positive semi-definite matrices: the eigenvalues mean +- rad, the
+      // smaller clamped at 0 (S - lo I = (hi - lo) v v^T; rad > 0 here), or S = 0.
+      const double mean = 0.5 * (sa + sc), half = 0.5 * (sa - sc);
+      const double rad = std::sqrt(half * half + sb * sb);
+      const double hi = mean + rad, lo = mean - rad;
+      const double f = hi > 0.0 ? hi / (rad + rad) : 0.0;
+      sa = (sa - lo) * f;
+      sb = sb * f;
+      sc = (sc - lo) * f;
+      det = 0.0;
+    }
+    const double ka = k * sa, kb = k * sb, kc = k * sc, kkd = (k * k) * det;
+    const double inv = 1.0 / (((1.0 + ka) + kc) + kkd);  // 1 / det(I + k S)
+    q[0][0] = (1.0 + kc) * inv;
+    q[0][1] = q[1][0] = -(kb * inv);
+    q[1][1] = (1.0 + ka) * inv;
+    m[0][0] = mk * ((ka + kkd) * inv);
+    m[0][1] = m[1][0] = mk * (kb * inv);
+    m[1][1] = mk * ((kc + kkd) * inv);
+    amplitude = std::sqrt(inv);
   }
 };
 
@@ -11821,11 +11861,11 @@ struct shared_unfiltered {
 };
 
 // gabor_filter<2> of the n footprints fps in lanes of doubles: its operations in its
-// order (jacobi_eigen<2>'s one rotation, then the filter's), so the same values bit for bit
-// under HUSH_STRICT_FP (IEEE division and square root are correctly rounded; no fused
-// operations here). The scalar branches are masks: a lane that jacobi_eigen<2> leaves
-// unrotated (off-diagonal zero, tiny against the diagonal, or NaN) keeps S's diagonal and
-// V = I. out[e * stride + p]: point p's detail::gabor_filter_coefs<float, 2> (q, m2,
+// order (build_2d's closed form), so the same values bit for bit under HUSH_STRICT_FP
+// (IEEE division and square root are correctly rounded; no fused operations here). The
+// scalar branches are masks (the projection onto the positive semi-definite matrices
+// computed only where some lane needs it). out[e * stride + p]: point p's
+// detail::gabor_filter_coefs<float, 2> (q, m2,
 // amplitude: 7 entries; m2 negated, as filtered_exponent takes it); stride >= n rounded
 // up to whole vectors of doubles.
 inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double inv_r, float* out,
@@ -11863,59 +11903,44 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
       a01 = hn::Load(dd, cov[1]);
       a11 = hn::Load(dd, cov[2]);
     }
-    // jacobi_eigen<2>: sweep 0 rotates where off > 1e-34 diag; sweep 1 finds the
-    // off-diagonal set to 0 and ends.
-    const VD off = hn::Mul(a01, a01);
-    const VD diag = hn::Add(hn::Mul(a00, a00), hn::Mul(a11, a11));
-    const auto rot = hn::Gt(off, hn::Mul(hn::Set(dd, 1e-34), diag));
-    // Without a rotating lane (isotropic and axis-aligned footprints) S's diagonal and I.
-    VD e0 = a00, e1 = a11;
-    VD v[2][2] = {{one, zero}, {zero, one}};
-    if (!hn::AllFalse(dd, rot)) {
-      const VD theta = hn::Div(hn::Sub(a11, a00), hn::Mul(hn::Set(dd, 2.0), a01));
-      const VD at = hn::Abs(theta);
-      const VD root = hn::IfThenElse(hn::Lt(at, hn::Set(dd, 1e150)),
-                                     hn::Sqrt(hn::Add(hn::Mul(at, at), one)), at);
-      const VD t = hn::Div(hn::IfThenElse(hn::Ge(theta, zero), one, hn::Set(dd, -1.0)),
-                           hn::Add(at, root));
-      const VD cs = hn::Div(one, hn::Sqrt(hn::Add(hn::Mul(t, t), one))), sn = hn::Mul(t, cs);
-      // Columns 0 and 1 (S symmetric: a10 = a01), then rows 0 and 1 (their diagonal).
-      const VD b00 = hn::Sub(hn::Mul(cs, a00), hn::Mul(sn, a01));
-      const VD b01 = hn::Add(hn::Mul(sn, a00), hn::Mul(cs, a01));
-      const VD b10 = hn::Sub(hn::Mul(cs, a01), hn::Mul(sn, a11));
-      const VD b11 = hn::Add(hn::Mul(sn, a01), hn::Mul(cs, a11));
-      e0 = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, b00), hn::Mul(sn, b10)), a00);
-      e1 = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, b01), hn::Mul(cs, b11)), a11);
-      // V = I rotated as jacobi_eigen<2> computes it (c * 1 - s * 0, ...: signed zeros alike).
-      v[0][0] = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, one), hn::Mul(sn, zero)), one);
-      v[0][1] = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, one), hn::Mul(cs, zero)), zero);
-      v[1][0] = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, zero), hn::Mul(sn, one)), zero);
-      v[1][1] = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, zero), hn::Mul(cs, one)), one);
+    // gabor_filter<2>::build_2d, operation by operation: NaN counts as 0.
+    VD sa = hn::IfThenElseZero(hn::Eq(a00, a00), a00);
+    VD sb = hn::IfThenElseZero(hn::Eq(a01, a01), a01);
+    VD sc = hn::IfThenElseZero(hn::Eq(a11, a11), a11);
+    VD det = hn::Sub(hn::Mul(sa, sc), hn::Mul(sb, sb));
+    const auto psd = hn::And(hn::And(hn::Ge(sa, zero), hn::Ge(sc, zero)), hn::Ge(det, zero));
+    // Without a lane off the positive semi-definite matrices (every footprint but
+    // rounding's near-singular ones and unchecked input): no square root.
+    if (!hn::AllTrue(dd, psd)) {
+      const VD halfv = hn::Set(dd, 0.5);
+      const VD mean = hn::Mul(halfv, hn::Add(sa, sc)), half = hn::Mul(halfv, hn::Sub(sa, sc));
+      const VD rad = hn::Sqrt(hn::Add(hn::Mul(half, half), hn::Mul(sb, sb)));
+      const VD hi = hn::Add(mean, rad), lo = hn::Sub(mean, rad);
+      // hi / (rad + rad) only where hi > 0 (rad > 0 there); 0 elsewhere.
+      const auto pos = hn::Gt(hi, zero);
+      const VD f =
+          hn::IfThenElseZero(pos, hn::Div(hi, hn::IfThenElse(pos, hn::Add(rad, rad), one)));
+      sa = hn::IfThenElse(psd, sa, hn::Mul(hn::Sub(sa, lo), f));
+      sb = hn::IfThenElse(psd, sb, hn::Mul(sb, f));
+      sc = hn::IfThenElse(psd, sc, hn::Mul(hn::Sub(sc, lo), f));
+      det = hn::IfThenElseZero(psd, det);
     }
-    // gabor_filter<2>: eigenvalues clamped at 0 (NaN too), Q and M from them.
-    VD qd[2], md[2];
-    const VD e[2] = {e0, e1};
-    for (int i = 0; i < 2; ++i) {
-      const VD kl = hn::Mul(hn::Set(dd, k), hn::IfThenElseZero(hn::Gt(e[i], zero), e[i]));
-      const VD den = hn::Add(one, kl);
-      qd[i] = hn::Div(one, den);
-      md[i] = hn::Mul(hn::Set(dd, mk), hn::Mul(kl, qd[i]));
-    }
-    const VD amp = hn::Sqrt(hn::Mul(hn::Mul(one, qd[0]), qd[1]));
+    const VD vk = hn::Set(dd, k), vmk = hn::Set(dd, mk);
+    const VD ka = hn::Mul(vk, sa), kb = hn::Mul(vk, sb), kc = hn::Mul(vk, sc);
+    const VD kkd = hn::Mul(hn::Mul(vk, vk), det);
+    const VD inv = hn::Div(one, hn::Add(hn::Add(hn::Add(one, ka), kc), kkd));
     // The upper triangles (detail::gabor_filter_coefs): q, then -m2 (M's off-diagonal
     // doubled).
-    for (int i = 0; i < 2; ++i)
-      for (int j = i; j < 2; ++j) {
-        VD qq = zero, mm = zero;
-        for (int x = 0; x < 2; ++x) {
-          qq = hn::Add(qq, hn::Mul(hn::Mul(v[i][x], qd[x]), v[j][x]));
-          mm = hn::Add(mm, hn::Mul(hn::Mul(v[i][x], md[x]), v[j][x]));
-        }
-        const auto m2 = hn::DemoteTo(dfh, mm);
-        hn::StoreU(hn::DemoteTo(dfh, qq), dfh, out + detail::gabor_sym<2>(i, j) * stride + p0);
-        hn::StoreU(hn::Neg(i == j ? m2 : hn::Add(m2, m2)), dfh,
-                   out + (3 + detail::gabor_sym<2>(i, j)) * stride + p0);
-      }
+    const VD q[3] = {hn::Mul(hn::Add(one, kc), inv), hn::Neg(hn::Mul(kb, inv)),
+                     hn::Mul(hn::Add(one, ka), inv)};
+    const VD m[3] = {hn::Mul(vmk, hn::Mul(hn::Add(ka, kkd), inv)), hn::Mul(vmk, hn::Mul(kb, inv)),
+                     hn::Mul(vmk, hn::Mul(hn::Add(kc, kkd), inv))};
+    for (int e = 0; e < 3; ++e) {
+      const auto m2 = hn::DemoteTo(dfh, m[e]);
+      hn::StoreU(hn::DemoteTo(dfh, q[e]), dfh, out + e * stride + p0);
+      hn::StoreU(hn::Neg(e == 1 ? hn::Add(m2, m2) : m2), dfh, out + (3 + e) * stride + p0);
+    }
+    const VD amp = hn::Sqrt(inv);
     hn::StoreU(hn::DemoteTo(dfh, amp), dfh, out + 6 * stride + p0);
   }
 }

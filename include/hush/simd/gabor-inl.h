@@ -1693,11 +1693,11 @@ struct shared_unfiltered {
 };
 
 // gabor_filter<2> of the n footprints fps in lanes of doubles: its operations in its
-// order (jacobi_eigen<2>'s one rotation, then the filter's), so the same values bit for bit
-// under HUSH_STRICT_FP (IEEE division and square root are correctly rounded; no fused
-// operations here). The scalar branches are masks: a lane that jacobi_eigen<2> leaves
-// unrotated (off-diagonal zero, tiny against the diagonal, or NaN) keeps S's diagonal and
-// V = I. out[e * stride + p]: point p's detail::gabor_filter_coefs<float, 2> (q, m2,
+// order (build_2d's closed form), so the same values bit for bit under HUSH_STRICT_FP
+// (IEEE division and square root are correctly rounded; no fused operations here). The
+// scalar branches are masks (the projection onto the positive semi-definite matrices
+// computed only where some lane needs it). out[e * stride + p]: point p's
+// detail::gabor_filter_coefs<float, 2> (q, m2,
 // amplitude: 7 entries; m2 negated, as filtered_exponent takes it); stride >= n rounded
 // up to whole vectors of doubles.
 inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double inv_r, float* out,
@@ -1735,59 +1735,44 @@ inline void filters_2d(const footprint<2>* fps, std::size_t n, double a, double 
       a01 = hn::Load(dd, cov[1]);
       a11 = hn::Load(dd, cov[2]);
     }
-    // jacobi_eigen<2>: sweep 0 rotates where off > 1e-34 diag; sweep 1 finds the
-    // off-diagonal set to 0 and ends.
-    const VD off = hn::Mul(a01, a01);
-    const VD diag = hn::Add(hn::Mul(a00, a00), hn::Mul(a11, a11));
-    const auto rot = hn::Gt(off, hn::Mul(hn::Set(dd, 1e-34), diag));
-    // Without a rotating lane (isotropic and axis-aligned footprints) S's diagonal and I.
-    VD e0 = a00, e1 = a11;
-    VD v[2][2] = {{one, zero}, {zero, one}};
-    if (!hn::AllFalse(dd, rot)) {
-      const VD theta = hn::Div(hn::Sub(a11, a00), hn::Mul(hn::Set(dd, 2.0), a01));
-      const VD at = hn::Abs(theta);
-      const VD root = hn::IfThenElse(hn::Lt(at, hn::Set(dd, 1e150)),
-                                     hn::Sqrt(hn::Add(hn::Mul(at, at), one)), at);
-      const VD t = hn::Div(hn::IfThenElse(hn::Ge(theta, zero), one, hn::Set(dd, -1.0)),
-                           hn::Add(at, root));
-      const VD cs = hn::Div(one, hn::Sqrt(hn::Add(hn::Mul(t, t), one))), sn = hn::Mul(t, cs);
-      // Columns 0 and 1 (S symmetric: a10 = a01), then rows 0 and 1 (their diagonal).
-      const VD b00 = hn::Sub(hn::Mul(cs, a00), hn::Mul(sn, a01));
-      const VD b01 = hn::Add(hn::Mul(sn, a00), hn::Mul(cs, a01));
-      const VD b10 = hn::Sub(hn::Mul(cs, a01), hn::Mul(sn, a11));
-      const VD b11 = hn::Add(hn::Mul(sn, a01), hn::Mul(cs, a11));
-      e0 = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, b00), hn::Mul(sn, b10)), a00);
-      e1 = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, b01), hn::Mul(cs, b11)), a11);
-      // V = I rotated as jacobi_eigen<2> computes it (c * 1 - s * 0, ...: signed zeros alike).
-      v[0][0] = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, one), hn::Mul(sn, zero)), one);
-      v[0][1] = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, one), hn::Mul(cs, zero)), zero);
-      v[1][0] = hn::IfThenElse(rot, hn::Sub(hn::Mul(cs, zero), hn::Mul(sn, one)), zero);
-      v[1][1] = hn::IfThenElse(rot, hn::Add(hn::Mul(sn, zero), hn::Mul(cs, one)), one);
+    // gabor_filter<2>::build_2d, operation by operation: NaN counts as 0.
+    VD sa = hn::IfThenElseZero(hn::Eq(a00, a00), a00);
+    VD sb = hn::IfThenElseZero(hn::Eq(a01, a01), a01);
+    VD sc = hn::IfThenElseZero(hn::Eq(a11, a11), a11);
+    VD det = hn::Sub(hn::Mul(sa, sc), hn::Mul(sb, sb));
+    const auto psd = hn::And(hn::And(hn::Ge(sa, zero), hn::Ge(sc, zero)), hn::Ge(det, zero));
+    // Without a lane off the positive semi-definite matrices (every footprint but
+    // rounding's near-singular ones and unchecked input): no square root.
+    if (!hn::AllTrue(dd, psd)) {
+      const VD halfv = hn::Set(dd, 0.5);
+      const VD mean = hn::Mul(halfv, hn::Add(sa, sc)), half = hn::Mul(halfv, hn::Sub(sa, sc));
+      const VD rad = hn::Sqrt(hn::Add(hn::Mul(half, half), hn::Mul(sb, sb)));
+      const VD hi = hn::Add(mean, rad), lo = hn::Sub(mean, rad);
+      // hi / (rad + rad) only where hi > 0 (rad > 0 there); 0 elsewhere.
+      const auto pos = hn::Gt(hi, zero);
+      const VD f =
+          hn::IfThenElseZero(pos, hn::Div(hi, hn::IfThenElse(pos, hn::Add(rad, rad), one)));
+      sa = hn::IfThenElse(psd, sa, hn::Mul(hn::Sub(sa, lo), f));
+      sb = hn::IfThenElse(psd, sb, hn::Mul(sb, f));
+      sc = hn::IfThenElse(psd, sc, hn::Mul(hn::Sub(sc, lo), f));
+      det = hn::IfThenElseZero(psd, det);
     }
-    // gabor_filter<2>: eigenvalues clamped at 0 (NaN too), Q and M from them.
-    VD qd[2], md[2];
-    const VD e[2] = {e0, e1};
-    for (int i = 0; i < 2; ++i) {
-      const VD kl = hn::Mul(hn::Set(dd, k), hn::IfThenElseZero(hn::Gt(e[i], zero), e[i]));
-      const VD den = hn::Add(one, kl);
-      qd[i] = hn::Div(one, den);
-      md[i] = hn::Mul(hn::Set(dd, mk), hn::Mul(kl, qd[i]));
-    }
-    const VD amp = hn::Sqrt(hn::Mul(hn::Mul(one, qd[0]), qd[1]));
+    const VD vk = hn::Set(dd, k), vmk = hn::Set(dd, mk);
+    const VD ka = hn::Mul(vk, sa), kb = hn::Mul(vk, sb), kc = hn::Mul(vk, sc);
+    const VD kkd = hn::Mul(hn::Mul(vk, vk), det);
+    const VD inv = hn::Div(one, hn::Add(hn::Add(hn::Add(one, ka), kc), kkd));
     // The upper triangles (detail::gabor_filter_coefs): q, then -m2 (M's off-diagonal
     // doubled).
-    for (int i = 0; i < 2; ++i)
-      for (int j = i; j < 2; ++j) {
-        VD qq = zero, mm = zero;
-        for (int x = 0; x < 2; ++x) {
-          qq = hn::Add(qq, hn::Mul(hn::Mul(v[i][x], qd[x]), v[j][x]));
-          mm = hn::Add(mm, hn::Mul(hn::Mul(v[i][x], md[x]), v[j][x]));
-        }
-        const auto m2 = hn::DemoteTo(dfh, mm);
-        hn::StoreU(hn::DemoteTo(dfh, qq), dfh, out + detail::gabor_sym<2>(i, j) * stride + p0);
-        hn::StoreU(hn::Neg(i == j ? m2 : hn::Add(m2, m2)), dfh,
-                   out + (3 + detail::gabor_sym<2>(i, j)) * stride + p0);
-      }
+    const VD q[3] = {hn::Mul(hn::Add(one, kc), inv), hn::Neg(hn::Mul(kb, inv)),
+                     hn::Mul(hn::Add(one, ka), inv)};
+    const VD m[3] = {hn::Mul(vmk, hn::Mul(hn::Add(ka, kkd), inv)), hn::Mul(vmk, hn::Mul(kb, inv)),
+                     hn::Mul(vmk, hn::Mul(hn::Add(kc, kkd), inv))};
+    for (int e = 0; e < 3; ++e) {
+      const auto m2 = hn::DemoteTo(dfh, m[e]);
+      hn::StoreU(hn::DemoteTo(dfh, q[e]), dfh, out + e * stride + p0);
+      hn::StoreU(hn::Neg(e == 1 ? hn::Add(m2, m2) : m2), dfh, out + (3 + e) * stride + p0);
+    }
+    const VD amp = hn::Sqrt(inv);
     hn::StoreU(hn::DemoteTo(dfh, amp), dfh, out + 6 * stride + p0);
   }
 }
