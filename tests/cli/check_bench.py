@@ -89,16 +89,24 @@ INTERLEAVE_ROWS = {"%s2D/simd/grid/%s" % (n, o) for n in ("perlin", "fbm")
                    for o in ("value", "value+gradient")}
 
 
-def check_interleaved(exe, scratch):
-    paths = {k: os.path.join(scratch, "interleaved." + k) for k in ("json", "md")}
-    cmd = [exe, "bench", "--quick", "--repetitions", "3", "--interleave", "--filter",
-           INTERLEAVE_FILTER, "--json", paths["json"], "--markdown", paths["md"]]
-    run = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+def run_bench(exe, args, json_path, timeout):
+    """Runs `hush bench ARGS`; returns (the finished process, the JSON document) or (run, None)
+    after recording the failure when it exited non-zero."""
+    run = subprocess.run([exe, "bench"] + args, capture_output=True, text=True, timeout=timeout)
     check(run.returncode == 0, "exit code %d, stderr: %s" % (run.returncode, run.stderr))
     if run.returncode != 0:
+        return run, None
+    with open(json_path) as f:
+        return run, json.load(f)
+
+
+def check_interleaved(exe, scratch):
+    paths = {k: os.path.join(scratch, "interleaved." + k) for k in ("json", "md")}
+    run, doc = run_bench(exe, ["--quick", "--repetitions", "3", "--interleave", "--filter",
+                               INTERLEAVE_FILTER, "--json", paths["json"], "--markdown",
+                               paths["md"]], paths["json"], 120)
+    if doc is None:
         return
-    with open(paths["json"]) as f:
-        doc = json.load(f)
     check("--interleave" in doc["command"], "command %r" % doc["command"])
     settings = doc["settings"]
     check(settings["interleave"] is True and settings["repetitions"] == 3
@@ -133,15 +141,11 @@ def main():
         check_interleaved(exe, scratch)
         return
     paths = {k: os.path.join(scratch, "bench." + k) for k in ("json", "md", "svg")}
-    cmd = [exe, "bench", "--quick", "--json", paths["json"], "--markdown", paths["md"],
-           "--plot", paths["svg"]]
-    run = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    check(run.returncode == 0, "exit code %d, stderr: %s" % (run.returncode, run.stderr))
-    if run.returncode != 0:
+    run, doc = run_bench(exe, ["--quick", "--json", paths["json"], "--markdown", paths["md"],
+                               "--plot", paths["svg"]], paths["json"], 300)
+    if doc is None:
         return
 
-    with open(paths["json"]) as f:
-        doc = json.load(f)
     for key in ("cpu", "compiler", "build", "simd_target", "peers"):
         check(isinstance(doc["machine"].get(key), str) and doc["machine"][key],
               "machine." + key)
