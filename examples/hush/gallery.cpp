@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "caption.hpp"
 #include "commands.hpp"
 #include "gallery_anisotropic.hpp"
 #include "gallery_coherent.hpp"
@@ -267,14 +268,22 @@ gray_image gabor_plane(std::string& errors) {
     for (std::size_t k = 0; k < n; ++k) e += (double(a[k]) - ref[k]) * (double(a[k]) - ref[k]);
     return std::sqrt(e / static_cast<double>(n));
   };
+  const double rms_plain = rms(plain), rms_filtered = rms(filtered);
   char buf[160];
   std::snprintf(buf, sizeof buf, "RMS error vs reference: unfiltered %.3f, filtered %.3f",
-                rms(plain), rms(filtered));
+                rms_plain, rms_filtered);
   errors = buf;
   auto show = [&](const std::vector<float>& a) {
     return to_gray_image(a, w, h, -kGaborShownRange, kGaborShownRange);
   };
-  return side_by_side(side_by_side(show(plain), show(filtered)), show(ref));
+  // Each image's error against the reference under it, in the image itself.
+  char under_plain[48], under_filtered[48], under_ref[48];
+  std::snprintf(under_plain, sizeof under_plain, "unfiltered: RMS error %.3f", rms_plain);
+  std::snprintf(under_filtered, sizeof under_filtered, "filtered: RMS error %.3f", rms_filtered);
+  std::snprintf(under_ref, sizeof under_ref, "reference: %d x %d samples", kPlaneSuper,
+                kPlaneSuper);
+  return with_captions(side_by_side(side_by_side(show(plain), show(filtered)), show(ref)),
+                       {under_plain, under_filtered, under_ref});
 }
 
 // The last gabor_filtering() image's errors, printed under its line.

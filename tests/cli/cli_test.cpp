@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "caption.hpp"
 #include "hush/hush.hpp"
 #include "run_hush.hpp"
 
@@ -740,7 +741,7 @@ TEST_CASE("gallery writes its PNGs with the expected sizes and lists them") {
                              {"turbulence.png", 1024, 512},
                              {"perlin_periodic_tiled.png", 256, 256},
                              {"gabor_kinds.png", 768, 768},
-                             {"gabor_filtering.png", 1152, 256},
+                             {"gabor_filtering.png", 1152, 256 + 30},  // the captions' strip
                              {"wavelet_fig8.png", 512, 1024},
                              {"wavelet_plane.png", 768, 384}};
   for (const expected& e : images) {
@@ -804,6 +805,60 @@ TEST_CASE("gallery writes its PNGs with the expected sizes and lists them") {
     };
     CHECK(centre(1) < centre(2));  // wavelet 2D below the slice of 3D
     CHECK(centre(3) < centre(2));  // projection empties the centre again
+  }
+  SUBCASE("the receding plane's images carry the printed errors under them") {
+    // The strip under the three 384 x 256 images is exactly the captions redrawn from the
+    // errors the program printed (caption_test checks the drawing itself).
+    const std::string key = "RMS error vs reference: unfiltered ";
+    const std::size_t at = r.out.find(key);
+    REQUIRE(at != std::string::npos);
+    double plain = -1, filtered = -1;
+    REQUIRE(std::sscanf(r.out.c_str() + at + key.size(), "%lf, filtered %lf", &plain, &filtered) ==
+            2);
+    char under_plain[48], under_filtered[48];
+    std::snprintf(under_plain, sizeof under_plain, "unfiltered: RMS error %.3f", plain);
+    std::snprintf(under_filtered, sizeof under_filtered, "filtered: RMS error %.3f", filtered);
+    const hush_cli::gray_image want =
+        hush_cli::with_captions(hush_cli::gray_image(1152, 256),
+                                {under_plain, under_filtered, "reference: 16 x 16 samples"});
+    const gray_pixels g = decode_png(out / "gabor_filtering.png");
+    REQUIRE(g.height == static_cast<int>(want.height));
+    int differing = 0, ink = 0;
+    for (int y = 256; y < g.height; ++y)
+      for (int x = 0; x < g.width; ++x) {
+        const int w = want.at(static_cast<std::size_t>(x), static_cast<std::size_t>(y));
+        differing += g.at(x, y) != w;
+        ink += w == 0;
+      }
+    CHECK(differing == 0);
+    CHECK(ink > 0);
+  }
+  SUBCASE("the checked-in gallery images are what the program draws") {
+    // docs/gallery holds the images of the README and docs/gallery.md: each PNG there must
+    // match the one just drawn, to within the last bits of float noise (a gray level or two
+    // where a value sits at a rounding boundary; the SIMD target and compiler may move them),
+    // so that a changed noise whose images were not regenerated fails here.
+    int compared = 0;
+    for (const auto& entry : fs::directory_iterator(HUSH_CLI_DOCS_GALLERY)) {
+      if (entry.path().extension() != ".png") continue;
+      const fs::path drawn = out / entry.path().filename();
+      CAPTURE(entry.path().filename().string());
+      REQUIRE(fs::exists(drawn));
+      const gray_pixels want = decode_png(entry.path()), got = decode_png(drawn);
+      REQUIRE(got.width == want.width);
+      REQUIRE(got.height == want.height);
+      int worst = 0;
+      std::size_t differing = 0;
+      for (std::size_t k = 0; k < got.pixels.size(); ++k) {
+        const int d = std::abs(got.pixels[k] - want.pixels[k]);
+        worst = std::max(worst, d);
+        differing += d != 0;
+      }
+      CHECK(worst <= 3);
+      CHECK(differing * 200 <= got.pixels.size());  // at most 0.5% of the pixels
+      ++compared;
+    }
+    CHECK(compared >= 10);
   }
   SUBCASE("the periodic tiles meet without a seam") {
     const gray_pixels g = decode_png(out / "perlin_periodic_tiled.png");
