@@ -60,9 +60,10 @@ if [ "$pass" != files ]; then
   [ "$shard" = 1/1 ] || units_dir="$build/tidy_units_${shard_i}of${shard_n}"
   while IFS= read -r u; do items+=("u:$u"); done < <(python3 tools/tidy_units.py "$build" "$units_dir" "${files[@]}")
 fi
-# Shards of about equal time: the items by size, largest first, each to the shard with the
-# fewest bytes so far (source bytes track clang-tidy's time per file; every n-th item had put
-# 237 of 492 KB, and 354 of 573 s, into one of three shards).
+# Shards of about equal size: the items by size, largest first, each to the shard with the
+# fewest bytes so far (every n-th item had put 237 of 492 KB into one of three shards). Bytes
+# are a rough proxy for clang-tidy's time: bench/cases.cpp alone takes ~224 s of CPU, about
+# 40% of the files pass, so its shard stays the longest (docs/design.md "Testing").
 mine=()
 while IFS= read -r item; do mine+=("$item"); done < <(
   for item in "${items[@]}"; do printf '%s %s\n' "$(wc -c <"${item#?:}")" "$item"; done |
