@@ -33,12 +33,11 @@ fi
 # The translation units to check: the examples, the program, the scene, coherence and
 # anisotropic-figures libraries, and bench/ -- each where this build compiles it (bench needs Google Benchmark,
 # raster_gl.cpp needs OSMesa). Third-party implementation files are left out.
-# Not here: the SIMD kernels (include/hush/simd/*-inl.h), which only src/simd_dispatch.cpp
-# compiles; checking it costs about 21 s of CPU (32 s wall here), which the CI's tidy tests
-# cannot spare.
-# After changing a kernel, check it by hand:
+# Not here: the SIMD kernels (include/hush/simd/*-inl.h), which the dispatch units
+# src/simd/*.cpp compile; checking them costs more CPU than the CI's tidy tests can spare.
+# After changing a kernel, check its unit by hand, e.g.:
 #   clang-tidy -p build/release --quiet --extra-arg=-std=c++17 \
-#     --header-filter='.*/include/hush/simd/.*-inl\.h' src/simd_dispatch.cpp
+#     --header-filter='.*/include/hush/simd/.*-inl\.h' src/simd/perlin.cpp
 files=()
 if [ -n "${HUSH_TIDY_FILES:-}" ]; then
   read -r -a files <<<"$HUSH_TIDY_FILES"

@@ -2,7 +2,7 @@
 // [--markdown FILE] [--plot FILE.svg] [--repetitions n] [--filter TEXT]`, the speed-vs-error
 // table (DESIGN.md principle 4).
 //
-// It runs bench/'s cases (the ones bench/hush_speed_vs_error runs) through Google
+// It runs bench/'s cases (the ones the hush_speed_vs_error program runs) through Google
 // Benchmark's library with a reporter that keeps, per case, the median over the repetitions
 // of the CPU time per sample, and the case's error counters. The Markdown table goes to
 // stdout (and --markdown FILE), the same rows with machine information to --json FILE, and a

@@ -680,4 +680,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 
 }  // namespace hush
 
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+#include "hush/anisotropic/simd_kernel.hpp"  // IWYU pragma: export
+
 #endif  // HUSH_ANISOTROPIC_HPP

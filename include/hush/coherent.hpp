@@ -77,6 +77,7 @@
 #include <utility>
 #include <vector>
 
+#include "hush/coherent/simd_kernel.hpp"
 #include "hush/config.hpp"
 #include "hush/core/error.hpp"
 #include "hush/core/frame.hpp"

@@ -41,8 +41,8 @@
 
 // HUSH_CONFIG_SIMD: 1 when exec::simd runs the Highway kernels (hush/simd/),
 // 0 when it runs the scalar loop. The user opts in with HUSH_SIMD_DYNAMIC
-// (run-time dispatch; one .cpp includes hush/simd/dispatch_impl.hpp, as the
-// CMake target hush::simd does) or HUSH_SIMD_STATIC (compile-time target,
+// (run-time dispatch: the CMake target hush::simd, or one .cpp including
+// hush/simd/dispatch_impl.hpp) or HUSH_SIMD_STATIC (compile-time target,
 // e.g. -march=native builds); HUSH_NO_SIMD overrides both. Opt-in, so that a
 // header-only user never has to link Highway without asking for it.
 // HUSH_CONFIG_SIMD_STATIC tells the two routes apart.

@@ -61,7 +61,7 @@
 #include "hush/core/samples.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
-#include "hush/simd/dispatch.hpp"  // detail::simd_kernel and its specialisations
+#include "hush/simd/dispatch.hpp"  // detail::simd_kernel (each noise specialises it)
 #include "hush/thread_pool.hpp"
 
 namespace hush {

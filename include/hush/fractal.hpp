@@ -289,4 +289,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
 
 }  // namespace hush
 
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+#include "hush/fractal/simd_kernel.hpp"  // IWYU pragma: export
+
 #endif  // HUSH_FRACTAL_HPP

@@ -1281,4 +1281,7 @@ class gabor_spectrum {
 
 }  // namespace hush
 
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+#include "hush/gabor/simd_kernel.hpp"  // IWYU pragma: export
+
 #endif  // HUSH_GABOR_HPP

@@ -157,6 +157,7 @@
 #include "hush/exec.hpp"
 #include "hush/gabor.hpp"
 #include "hush/gabor_kernel.hpp"
+#include "hush/npr_gabor/simd_kernel.hpp"
 
 namespace hush {
 

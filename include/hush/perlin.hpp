@@ -494,4 +494,7 @@ class perlin : public point_noise<perlin<D>, D> {
 
 }  // namespace hush
 
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+#include "hush/perlin/simd_kernel.hpp"  // IWYU pragma: export
+
 #endif  // HUSH_PERLIN_HPP

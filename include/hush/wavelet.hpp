@@ -1143,4 +1143,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
 }  // namespace hush
 
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+#include "hush/wavelet/simd_kernel.hpp"  // IWYU pragma: export
+
 #endif  // HUSH_WAVELET_HPP

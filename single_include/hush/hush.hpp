@@ -243,8 +243,8 @@ inline void require_in_range(const char* where, const std::string& name, const T
 
 // HUSH_CONFIG_SIMD: 1 when exec::simd runs the Highway kernels (hush/simd/),
 // 0 when it runs the scalar loop. The user opts in with HUSH_SIMD_DYNAMIC
-// (run-time dispatch; one .cpp includes hush/simd/dispatch_impl.hpp, as the
-// CMake target hush::simd does) or HUSH_SIMD_STATIC (compile-time target,
+// (run-time dispatch: the CMake target hush::simd, or one .cpp including
+// hush/simd/dispatch_impl.hpp) or HUSH_SIMD_STATIC (compile-time target,
 // e.g. -march=native builds); HUSH_NO_SIMD overrides both. Opt-in, so that a
 // header-only user never has to link Highway without asking for it.
 // HUSH_CONFIG_SIMD_STATIC tells the two routes apart.
@@ -2550,6 +2550,2291 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
 
 }  // namespace hush
 
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+// ---- begin hush/fractal/simd_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The SIMD entry points of fractal sums of Perlin noise (kernels:
+// hush/simd/fractal-inl.h) and detail::simd_kernel<fractal<perlin<D>>>, which
+// exec::simd calls; other bases run the scalar loop. Included at the end of
+// hush/fractal.hpp, after the class its kernels use; not on its own.
+// Layout conventions as Perlin's (hush/perlin/simd_kernel.hpp).
+#ifndef HUSH_FRACTAL_SIMD_KERNEL_HPP
+#define HUSH_FRACTAL_SIMD_KERNEL_HPP
+
+#include <cstddef>
+
+// ---- begin hush/simd/dispatch.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The SIMD backend's target-independent machinery: what turns a noise's list
+// of SIMD entry points into dispatch code, the kernel trait exec.hpp asks,
+// and which SIMD targets were compiled and which one runs. It names no noise:
+// each noise declares its entry points and specialises detail::simd_kernel in
+// its own hush/<noise>/simd_kernel.hpp.
+//
+// Three ways to build, chosen by macro (config.hpp normalises them into
+// HUSH_CONFIG_SIMD and HUSH_CONFIG_SIMD_STATIC):
+//  - HUSH_SIMD_DYNAMIC: kernels for every target Highway compiles (SSE4,
+//    AVX2, AVX-512 on x86), the best one the CPU supports chosen at run time.
+//    The CMake target hush::simd is one translation unit per noise
+//    (src/simd/<noise>.cpp, hush/simd/dispatch_unit.hpp) and defines the
+//    macro; without CMake, exactly one .cpp of the program includes
+//    hush/simd/dispatch_impl.hpp (every noise in one unit) and links Highway.
+//    This is the route for portable binaries.
+//  - HUSH_SIMD_STATIC: kernels for the compiler's baseline target only
+//    (HWY_STATIC_TARGET; AVX2 under -march=haswell or -march=native), inlined
+//    where called; no extra translation unit. The route for -march=native
+//    builds and for the single header.
+//  - neither (or HUSH_NO_SIMD): exec::simd runs the scalar loop, and nothing
+//    needs Highway.
+//
+// A noise's entry points are one X-macro list (Highway's HWY_EXPORT needs a
+// name per function, so the list is a macro, as FastNoise2's build list is):
+//   #define HUSH_SIMD_ENTRIES_PERLIN(X)
+//     X(perlin2_points, (std::uint32_t key, ..., float* grad), (key, ..., grad)) ...
+//   HUSH_SIMD_DECLARE(HUSH_SIMD_ENTRIES_PERLIN)
+// Each entry returns void; its kernel is hush::HWY_NAMESPACE::<name> in the
+// noise's -inl.h, and hush::simd::<name> calls it. HUSH_SIMD_DECLARE gives the
+// declarations (dynamic) or the inline wrappers (static); the dispatch unit
+// gives HWY_EXPORT and the dynamic wrappers from the same list.
+#ifndef HUSH_SIMD_DISPATCH_HPP
+#define HUSH_SIMD_DISPATCH_HPP
+
+#include <string>
+#include <vector>
+
+
+namespace hush {
+namespace detail {
+
+// The SIMD kernels of a noise type (used by exec.hpp). Noises with kernels
+// specialise it in their hush/<noise>/simd_kernel.hpp with
+//   static constexpr bool available = true;
+//   static void points(noise, const vec<float, D>* pts, size_t n, float* out, vec<float, D>* grad);
+//   static void grid(noise, const grid<D>&, float* out, vec<float, D>* grad);
+// and optionally has_grid_slab + grid_slab(noise, grid, first, count, out, grad) (slabs along
+// the slowest axis, for exec::parallel) and has_samples + samples(noise, samples, out, grad).
+// The primary template says "none", and exec::simd then runs the scalar loop.
+template <class Noise>
+struct simd_kernel {
+  static constexpr bool available = false;
+};
+
+}  // namespace detail
+}  // namespace hush
+
+#if HUSH_CONFIG_SIMD
+
+#if HUSH_CONFIG_SIMD_STATIC
+// Highway 1.0.3 leaves AVX3_DL out of its target list even when it is the
+// compiler's baseline (-march=native on Ice Lake or Zen 4), then stops with
+// "best baseline should be included in dynamic targets". Opting in fixes it.
+#ifndef HWY_WANT_AVX3_DL
+#define HWY_WANT_AVX3_DL
+#endif
+#include <hwy/highway.h>
+
+// Static route: hush::simd::<name> calls the baseline target's kernel inline.
+#define HUSH_SIMD_DECLARE_ONE(name, params, args) \
+  inline void name params { HWY_STATIC_DISPATCH(name) args; }
+#else
+// Dynamic route: declared here, defined once by the noise's dispatch unit.
+#define HUSH_SIMD_DECLARE_ONE(name, params, args) void name params;
+#endif
+
+// The entry points of `list` (an X-macro list, above) in namespace hush::simd.
+#define HUSH_SIMD_DECLARE(list) \
+  namespace hush {              \
+  namespace simd {              \
+  list(HUSH_SIMD_DECLARE_ONE)   \
+  } /* namespace simd */        \
+  } /* namespace hush */
+
+namespace hush {
+namespace simd {
+
+// Names of the targets compiled into this program ("AVX2", "SSE4", ...),
+// best first, and of the one the kernels run on, on this CPU.
+#if HUSH_CONFIG_SIMD_STATIC
+inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
+inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
+#else
+std::vector<std::string> compiled_targets();  // defined by hush/simd/dispatch_targets.hpp
+std::string chosen_target();
+#endif
+// "dynamic" or "static".
+inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" : "dynamic"; }
+
+}  // namespace simd
+}  // namespace hush
+
+#else  // no SIMD: the lists declare nothing, simd_kernel stays "none"
+
+#define HUSH_SIMD_DECLARE(list)
+
+#endif  // HUSH_CONFIG_SIMD
+
+#endif  // HUSH_SIMD_DISPATCH_HPP
+// ---- end hush/simd/dispatch.hpp
+
+#if HUSH_CONFIG_SIMD
+// ---- begin hush/perlin.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Improved Perlin noise (Ken Perlin, "Improving Noise", SIGGRAPH 2002) in 2D
+// and 3D: gradient noise on the integer lattice with the quintic fade, seeded
+// through hush's lattice hash (any 32-bit seed gives an independent field, not
+// a reshuffle of one 256-entry table), optionally periodic per axis.
+//
+//   hush::perlin<3> p{7};                        // seed 7
+//   float v = p(hush::vec3{x, y, z});            // in [-1, 1]
+//   auto [v2, g] = p.gradient(hush::vec3{x, y, z});
+//   double r = p(hush::dvec3{x, y, z});          // the double-precision reference
+//
+// Contract (both dimensions, float and double):
+//  - range: [-1, 1]; the bound is attained (constants.hpp, docs/design.md).
+//    Float results may exceed it by the float error budget below.
+//  - mean 0 and variance variance() over space and seeds (0.0931 in 2D,
+//    0.0679 in 3D; derived in docs/design.md, measured in the tests).
+//  - C2 in position; gradient() returns the exact analytic derivative.
+//  - zero at every lattice point.
+//  - float evaluation is within 2^-16 (1.5e-5, a forward error bound) of the
+//    double reference at the same position; measured max 2.4e-6, RMS 1.9e-7
+//    (tests/perlin_test.cpp).
+//  - domain: every finite coordinate (core/lattice.hpp); NaN or +-Inf in any
+//    coordinate gives NaN (value and gradient). Evaluation never throws.
+//  - periodic mode: with period[a] = p > 0, noise(x + p e_a) == noise(x)
+//    exactly (bit for bit where x and x + p are both representable).
+#ifndef HUSH_PERLIN_HPP
+#define HUSH_PERLIN_HPP
+
+#include <array>
+#include <climits>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+
+namespace hush {
+namespace detail {
+
+// Quintic fade s(t) and its derivative, from the coefficients in constants.hpp.
+template <class T>
+HUSH_INLINE T fade(T t) {
+  namespace c = constants;
+  return t * t * t * (t * (t * T(c::kFade5) + T(c::kFade4)) + T(c::kFade3));
+}
+template <class T>
+HUSH_INLINE T fade_derivative(T t) {
+  namespace c = constants;
+  return t * t * (t * (t * T(5 * c::kFade5) + T(4 * c::kFade4)) + T(3 * c::kFade3));
+}
+template <class T>
+HUSH_INLINE T lerp(T a, T b, T t) {
+  return a + t * (b - a);
+}
+
+// Gradient tables in T, converted at compile time from the double constants.
+template <class T, int N>
+constexpr std::array<T, N> table_cast(const double (&src)[N]) {
+  std::array<T, N> r{};
+  for (int i = 0; i < N; ++i) r[i] = static_cast<T>(src[i]);
+  return r;
+}
+template <class T>
+struct perlin_tables {
+  static constexpr auto g2x = table_cast<T>(constants::kPerlin2GradX);
+  static constexpr auto g2y = table_cast<T>(constants::kPerlin2GradY);
+  static constexpr auto g3x = table_cast<T>(constants::kPerlin3GradX);
+  static constexpr auto g3y = table_cast<T>(constants::kPerlin3GradY);
+  static constexpr auto g3z = table_cast<T>(constants::kPerlin3GradZ);
+};
+
+// Gradient index of a lattice hash: 2D takes the top 3 bits (uniform over 8);
+// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply. Both
+// read only bits 16 ... 31, so lattice_hash_high serves (core/hash.hpp).
+static_assert(constants::kPerlin2GradShift >= 16 && constants::kPerlin3IndexShift >= 16,
+              "the gradient index may read only the bits lattice_hash_high shares");
+HUSH_INLINE constexpr std::uint32_t perlin2_grad_index(std::uint32_t h) {
+  return h >> constants::kPerlin2GradShift;
+}
+HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
+  return ((h >> constants::kPerlin3IndexShift) * std::uint32_t(constants::kPerlin3GradCount)) >>
+         constants::kPerlin3IndexShift;
+}
+
+// 3D grid rows with gradients (docs/design.md, "Grid gradients, affine in x"):
+// within one row (fixed y, z) and one x cell, each gradient component is
+// lerp(P(f_x), Q(f_x), u) (plus u' (Q_v - P_v) for d/dx) with P, Q affine in
+// the x fraction f_x. The coefficients, per (row, cell), by index:
+//   kEA, kEB      slope and intercept of V1 - V0 (the value's x-lerp ends)
+//   kX0           d/dx's interpolated gradient at a = 0 (its a = 1 - a = 0 is kEA),
+//                 which is also the slope of V0; kV0B: V0's intercept
+//   kY0A, kY0B    d/dy at a = 0, slope and intercept; kDYA, kDYB: a = 1 minus a = 0
+//   kZ0A ... kDZB the same for d/dz.
+enum row_gradient_coef : int {
+  kEA,
+  kEB,
+  kX0,
+  kV0B,
+  kY0A,
+  kY0B,
+  kDYA,
+  kDYB,
+  kZ0A,
+  kZ0B,
+  kDZA,
+  kDZB,
+  kRowGradientCoefs
+};
+// They are formed from per-(slice, cell) data, blended in z once for all the
+// rows of a z slice and y cell (the corner gradients and the slice's z
+// fraction are fixed there), then in y per row. For corner (a, b, c), split
+// its dot product's x-free part as gy (f_y - b) + e with e = gz (f_z - c) -
+// a gx; per side a and y offset b, blended in z with the slice's fade w and
+// slope w':
+//   kZgx, kZgy, kZgz, kZe   lerp(q_ab0, q_ab1, w) of q = gx, gy, gz, e
+//   kWgx, kWgy, kWe         w' (q_ab1 - q_ab0) of q = gx, gy, e
+// at index slice_gradient_coef_index(q, a, b).
+enum slice_gradient_coef : int { kZgx, kZgy, kZgz, kZe, kWgx, kWgy, kWe, kSliceGradientKinds };
+constexpr int kSliceGradientCoefs = 4 * kSliceGradientKinds;
+HUSH_INLINE constexpr int slice_gradient_coef_index(int q, int a, int b) {
+  return 4 * q + 2 * a + b;
+}
+// Rows take the per-cell path (shared corner data) when cells hold at least
+// two columns on average; scalar and SIMD grids decide alike, so both use the
+// same gradient algorithm on every grid.
+HUSH_INLINE constexpr bool grid_cells_shared(std::size_t cells, std::size_t columns) {
+  return 2 * cells <= columns;
+}
+
+}  // namespace detail
+
+template <int D>
+class perlin : public point_noise<perlin<D>, D> {
+  static_assert(D == 2 || D == 3, "hush::perlin is 2D or 3D");
+
+ public:
+  struct params {
+    std::uint32_t seed = 0;
+    // Per-axis period in lattice units: 0 = not periodic, p in 1 ... INT_MAX =
+    // the noise repeats every p units along that axis (tileable noise).
+    std::array<int, D> period{};
+  };
+
+  perlin() : perlin(params{}) {}
+  explicit perlin(std::uint32_t seed) : perlin(params{seed, {}}) {}
+  // Throws hush::invalid_argument when a period is negative.
+  explicit perlin(const params& prm) : prm_(prm), key_(seed_key(prm.seed)) {
+    for (int a = 0; a < D; ++a)
+      if (prm.period[a] < 0)
+        detail::throw_out_of_range("hush::perlin", "period[" + std::to_string(a) + "]",
+                                   prm.period[a], "0 (not periodic) or 1 ... 2147483647");
+  }
+
+  const params& parameters() const { return prm_; }
+
+  // Output bound and variance of the noise over space and seeds (see header comment).
+  static constexpr double bound() { return 1.0; }
+  static constexpr double variance() {
+    return D == 2 ? detail::constants::kPerlin2Variance : detail::constants::kPerlin3Variance;
+  }
+
+  // p(vec) -> value and p.gradient(vec) -> value and analytic gradient, in
+  // float or double (the reference), come from core/point_noise.hpp.
+
+  // Evaluation at a double-precision position with arithmetic in T: the
+  // position is split into cell and fraction in double, the rest runs in T.
+  // This is what grids far from the origin use.
+  template <class T>
+  T value(const vec<double, D>& p) const {
+    return eval<T, false>(p).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
+    return eval<T, true>(p);
+  }
+
+  // The samples of `g` with slowest-axis index (j in 2D, k in 3D) in
+  // [first, first + count), in C order, into out (and gradients into grad
+  // unless null); out starts at the slab's first sample. exec::scalar calls
+  // this for grids (exec.hpp). The x axis is split once per column, y and z
+  // once per row, and a row hashes its lattice points once per cell, not
+  // once per sample. Values alone, and 2D values with gradients, are what
+  // value<float> / value_and_gradient<float> give at g.position(...), bit for
+  // bit (unless the compiler contracts multiply-adds, which HUSH_STRICT_FP
+  // forbids). 3D values with gradients on rows whose cells hold two or more
+  // columns on average take the affine-in-x form (docs/design.md, "Grid
+  // gradients, affine in x"): within 2^-17 (values) and 2^-15 (gradients) of
+  // point evaluation, and within the float budget of the double reference
+  // (tests/perlin_test.cpp); hush/simd computes the same, bit for bit under
+  // HUSH_STRICT_FP.
+  void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
+                   vec<float, D>* grad) const {
+    auto at = [&g](int a) {
+      return [&g, a](std::size_t index) { return g.origin[a] + g.step[a] * double(index); };
+    };
+    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+    grid_rows_at(g.size[0], at(0), j0, j1, at(1), k0, k1, at(D - 1), out, grad);
+  }
+
+  // grid_values over positions given per axis: column i at x_at(i), row j at
+  // y_at(j), slice k at z_at(k) (doubles; 2D: z_at unused, k in [0, 1)), for
+  // rows j in [j0, j1) and slices k in [k0, k1), in C order into out (and
+  // grad unless null). fractal.hpp runs its bands' grids (positions f x + o)
+  // through it. 3D gradients of rows whose cells hold two or more columns on
+  // average take the affine-in-x form (docs/design.md); everything else is
+  // point evaluation's result, as grid_values states.
+  template <class X, class Y, class Z>
+  void grid_rows_at(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
+                    std::size_t k0, std::size_t k1, const Z& z_at, float* out,
+                    vec<float, D>* grad) const {
+    if (grad)
+      grid_rows<true>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, grad);
+    else
+      grid_rows<false>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, nullptr);
+  }
+
+ private:
+  static constexpr int kCorners = 1 << D;
+
+  // One axis of a lookup as the blend needs it: the fraction f, f - 1, the
+  // fade s(f) and, for gradients, its derivative.
+  template <class T>
+  struct axis {
+    T f, f1, s, ds;
+  };
+  template <class T, bool WithGradient>
+  static axis<T> make_axis(T f) {
+    return {f, f - T(1), detail::fade(f), WithGradient ? detail::fade_derivative(f) : T(0)};
+  }
+  // Per corner n = a + 2b + 4c (offset (a, b, c) from the cell's origin):
+  // the gradient g and the dot product d = g . (x - corner).
+  template <class T>
+  struct corners {
+    T d[kCorners], gx[kCorners], gy[kCorners], gz[kCorners];
+  };
+
+  // Corner n's gradient from the top half of its lattice hash, and the part
+  // of its dot product that does not depend on x:
+  //   2D: k = gy f_y;   3D: k = gy f_y + gz f_z,
+  // so that d = gx f_x + k. In 3D every product is exact (components 0 or
+  // +-1): d is the single rounding of +-f_p +- f_q however it is summed.
+  template <class T>
+  static void corner_gradient(std::uint32_t h, T fy, T fz, corners<T>& c, int n, T& k) {
+    using tab = detail::perlin_tables<T>;
+    if constexpr (D == 2) {
+      (void)fz;
+      const std::uint32_t i = detail::perlin2_grad_index(h);
+      c.gx[n] = tab::g2x[i];
+      c.gy[n] = tab::g2y[i];
+      k = c.gy[n] * fy;
+    } else {
+      const std::uint32_t i = detail::perlin3_grad_index(h);
+      c.gx[n] = tab::g3x[i];
+      c.gy[n] = tab::g3y[i];
+      c.gz[n] = tab::g3z[i];
+      k = c.gy[n] * fy + c.gz[n] * fz;
+    }
+  }
+
+  template <class T, bool WithGradient>
+  value_gradient<T, D> eval(const vec<double, D>& p) const {
+    lattice_coord<T> lc[D];
+    for (int a = 0; a < D; ++a)
+      lc[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
+    axis<T> ax[3]{};
+    for (int a = 0; a < D; ++a) ax[a] = make_axis<T, WithGradient>(lc[a].f);
+    corners<T> c;
+    for (int n = 0; n < kCorners; ++n) {
+      const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
+      const std::uint32_t i = a ? lc[0].i1 : lc[0].i0, j = b ? lc[1].i1 : lc[1].i0;
+      std::uint32_t h;
+      if constexpr (D == 2)
+        h = lattice_hash_high(key_, i, j);
+      else
+        h = lattice_hash_high(key_, i, j, cc ? lc[2].i1 : lc[2].i0);
+      T k;
+      corner_gradient<T>(h, b ? ax[1].f1 : ax[1].f, cc ? ax[2].f1 : ax[2].f, c, n, k);
+      c.d[n] = c.gx[n] * (a ? ax[0].f1 : ax[0].f) + k;
+    }
+    return blend<T, WithGradient>(c, ax);
+  }
+
+  // The fade-weighted blend of the corners' dot products, and its analytic
+  // derivative (product rule on the fade weights).
+  template <class T, bool WithGradient>
+  static value_gradient<T, D> blend(const corners<T>& c, const axis<T>* ax) {
+    const T* d = c.d;
+    const T u = ax[0].s, v = ax[1].s;
+    if constexpr (D == 2) {
+      const T x0 = detail::lerp(d[0], d[1], u), x1 = detail::lerp(d[2], d[3], u);
+      constexpr T kScale = T(detail::constants::kPerlin2Scale);
+      value_gradient<T, 2> r{kScale * detail::lerp(x0, x1, v), {}};
+      if constexpr (WithGradient) {
+        // d/dx: interpolated gradients plus the fade's derivative times the
+        // difference of the contributions it blends.
+        const T gx =
+            detail::lerp(detail::lerp(c.gx[0], c.gx[1], u), detail::lerp(c.gx[2], c.gx[3], u), v) +
+            ax[0].ds * detail::lerp(d[1] - d[0], d[3] - d[2], v);
+        const T gy =
+            detail::lerp(detail::lerp(c.gy[0], c.gy[1], u), detail::lerp(c.gy[2], c.gy[3], u), v) +
+            ax[1].ds * (x1 - x0);
+        r.gradient = {kScale * gx, kScale * gy};
+      }
+      return r;
+    } else {
+      const T w = ax[2].s;
+      const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
+      const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
+      const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
+      constexpr T kScale = T(detail::constants::kPerlin3Scale);
+      // "+ 0" turns a zero result into +0: kernels that form the same dot
+      // products another way (sign flips instead of products) can differ only
+      // in the sign of zeros, and this makes every backend agree bit for bit.
+      value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w) + T(0), {}};
+      if constexpr (WithGradient) {
+        // Trilinear blend of a per-corner quantity q[n] with the fade weights.
+        auto trilinear = [&](const T* q) {
+          return detail::lerp(
+              detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
+              detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
+        };
+        // d/dx of the lerp over x: ds_x * (d[a=1] - d[a=0]), blended in y and z.
+        const T ex = detail::lerp(detail::lerp(d[1] - d[0], d[3] - d[2], v),
+                                  detail::lerp(d[5] - d[4], d[7] - d[6], v), w);
+        const T ey = detail::lerp(x10 - x00, x11 - x01, w);
+        const T ez = y1 - y0;
+        r.gradient = {kScale * (trilinear(c.gx) + ax[0].ds * ex) + T(0),
+                      kScale * (trilinear(c.gy) + ax[1].ds * ey) + T(0),
+                      kScale * (trilinear(c.gz) + ax[2].ds * ez) + T(0)};
+      }
+      return r;
+    }
+  }
+
+  // The slice_gradient_coef data of one cell (corner gradients c) in the
+  // slice of z axis az. Mirrored op for op by simd/perlin-inl.h.
+  template <class T>
+  static void slice_gradient_coefs(const corners<T>& c, const axis<T>& az, T* out) {
+    namespace d = detail;
+    const T w = az.s, dw = az.ds;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const int n0 = a + 2 * b, n1 = n0 + 4;
+        // gz (f_z - c) is exact (components are 0 or +-1): one rounding.
+        auto e = [&](int n, T fz) { return c.gz[n] * fz - (a ? c.gx[n] : T(0)); };
+        const T e0 = e(n0, az.f), e1 = e(n1, az.f1);
+        auto at = [&](int q) -> T& { return out[d::slice_gradient_coef_index(q, a, b)]; };
+        at(d::kZgx) = detail::lerp(c.gx[n0], c.gx[n1], w);
+        at(d::kZgy) = detail::lerp(c.gy[n0], c.gy[n1], w);
+        at(d::kZgz) = detail::lerp(c.gz[n0], c.gz[n1], w);
+        at(d::kZe) = detail::lerp(e0, e1, w);
+        at(d::kWgx) = dw * (c.gx[n1] - c.gx[n0]);
+        at(d::kWgy) = dw * (c.gy[n1] - c.gy[n0]);
+        at(d::kWe) = dw * (e1 - e0);
+      }
+  }
+  // The row_gradient_coef coefficients of one cell from its slice data sc and
+  // the row's y axis ay (fade v, slope v'). Per side a, with Z_b(q) the slice
+  // data: L(q) = lerp(Z_0, Z_1, v) is q's bilinear blend, Z_1 - Z_0 its v
+  // slope, and the dot products' x-free parts c_b = Z_b(gy) (f_y - b) + Z_b(e).
+  // Mirrored op for op by simd/perlin-inl.h.
+  template <class T>
+  static void row_gradient_coefs(const T* sc, const axis<T>& ay, T* out) {
+    namespace d = detail;
+    const T v = ay.s, dv = ay.ds, fy0 = ay.f, fy1 = ay.f1;
+    T lgx[2], lc[2], ya[2], yb[2], za[2], zb[2];
+    for (int a = 0; a < 2; ++a) {
+      auto q = [&](int kind, int b) { return sc[d::slice_gradient_coef_index(kind, a, b)]; };
+      lgx[a] = detail::lerp(q(d::kZgx, 0), q(d::kZgx, 1), v);
+      const T mygx = q(d::kZgx, 1) - q(d::kZgx, 0);
+      const T zc0 = q(d::kZgy, 0) * fy0 + q(d::kZe, 0), zc1 = q(d::kZgy, 1) * fy1 + q(d::kZe, 1);
+      lc[a] = detail::lerp(zc0, zc1, v);
+      const T myc = zc1 - zc0;
+      const T lgy = detail::lerp(q(d::kZgy, 0), q(d::kZgy, 1), v);
+      const T lgz = detail::lerp(q(d::kZgz, 0), q(d::kZgz, 1), v);
+      za[a] = detail::lerp(q(d::kWgx, 0), q(d::kWgx, 1), v);
+      const T wc0 = q(d::kWgy, 0) * fy0 + q(d::kWe, 0), wc1 = q(d::kWgy, 1) * fy1 + q(d::kWe, 1);
+      zb[a] = detail::lerp(wc0, wc1, v) + lgz;
+      ya[a] = dv * mygx;
+      yb[a] = dv * myc + lgy;
+    }
+    out[d::kEA] = lgx[1] - lgx[0];
+    out[d::kEB] = lc[1] - lc[0];
+    out[d::kX0] = lgx[0];
+    out[d::kV0B] = lc[0];
+    out[d::kY0A] = ya[0];
+    out[d::kY0B] = yb[0];
+    out[d::kDYA] = ya[1] - ya[0];
+    out[d::kDYB] = yb[1] - yb[0];
+    out[d::kZ0A] = za[0];
+    out[d::kZ0B] = zb[0];
+    out[d::kDZA] = za[1] - za[0];
+    out[d::kDZB] = zb[1] - zb[0];
+  }
+  // A sample's value and gradient from its cell's coefficients: u = s(f_x),
+  // u' = s'(f_x).
+  template <class T>
+  static value_gradient<T, 3> row_gradient(const T* co, const axis<T>& x) {
+    namespace d = detail;
+    const T f = x.f, u = x.s, du = x.ds;
+    const T delta = co[d::kEA] * f + co[d::kEB];
+    const T gx = du * delta + (u * co[d::kEA] + co[d::kX0]);
+    const T gy = u * (co[d::kDYA] * f + co[d::kDYB]) + (co[d::kY0A] * f + co[d::kY0B]);
+    const T gz = u * (co[d::kDZA] * f + co[d::kDZB]) + (co[d::kZ0A] * f + co[d::kZ0B]);
+    const T value = u * delta + (co[d::kX0] * f + co[d::kV0B]);
+    constexpr T kScale = T(detail::constants::kPerlin3Scale);
+    return {kScale * value + T(0), {kScale * gx + T(0), kScale * gy + T(0), kScale * gz + T(0)}};
+  }
+
+  // grid_values: the columns' splits are kept; a row walks them, taking new
+  // corner gradients (and their x-free parts k) where the cell changes.
+  template <bool WithGradient, class X, class Y, class Z>
+  void grid_rows(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
+                 std::size_t k0, std::size_t k1, const Z& z_at, float* out,
+                 vec<float, D>* grad) const {
+    using T = float;
+    std::vector<lattice_coord<T>> cells(nx);
+    std::vector<axis<T>> cols(nx);
+    std::size_t cell_count = 0;
+    for (std::size_t i = 0; i < nx; ++i) {
+      cells[i] = lattice_split<T>(x_at(i), static_cast<std::uint32_t>(prm_.period[0]));
+      cols[i] = make_axis<T, WithGradient>(cells[i].f);
+      if (i == 0 || cells[i].i0 != cells[i - 1].i0) ++cell_count;
+    }
+    // 3D gradients of rows with shared cells: the affine-in-x form.
+    const bool affine = D == 3 && WithGradient && detail::grid_cells_shared(cell_count, nx);
+    T coef[detail::kRowGradientCoefs]{};
+    std::size_t idx = 0;
+    axis<T> ax[3]{};
+    for (std::size_t kk = k0; kk < k1; ++kk) {
+      lattice_coord<T> cz{};
+      if constexpr (D == 3) {
+        cz = lattice_split<T>(z_at(kk), static_cast<std::uint32_t>(prm_.period[D - 1]));
+        ax[2] = make_axis<T, WithGradient>(cz.f);
+      }
+      for (std::size_t j = j0; j < j1; ++j) {
+        const lattice_coord<T> cy =
+            lattice_split<T>(y_at(j), static_cast<std::uint32_t>(prm_.period[1]));
+        ax[1] = make_axis<T, WithGradient>(cy.f);
+        // key ^ word_y ^ word_z per corner offset (b, c): lattice_hash_high's fold.
+        std::uint32_t kyz[4];
+        for (int m = 0; m < 4; ++m)
+          kyz[m] = key_ ^ lattice_word_y((m & 1) ? cy.i1 : cy.i0) ^
+                   (D == 3 ? lattice_word_z((m & 2) ? cz.i1 : cz.i0) : 0u);
+        corners<T> c{};
+        T k[kCorners]{};
+        for (std::size_t i = 0; i < nx; ++i, ++idx) {
+          const lattice_coord<T>& cx = cells[i];
+          if (i == 0 || cx.i0 != cells[i - 1].i0) {
+            for (int n = 0; n < kCorners; ++n) {
+              const std::uint32_t h =
+                  hash32_high(kyz[n >> 1] ^ lattice_word_x((n & 1) ? cx.i1 : cx.i0));
+              corner_gradient<T>(h, ((n >> 1) & 1) ? ax[1].f1 : ax[1].f,
+                                 (n >> 2) ? ax[2].f1 : ax[2].f, c, n, k[n]);
+            }
+            if constexpr (D == 3)
+              if (affine) {
+                T slice[detail::kSliceGradientCoefs];
+                slice_gradient_coefs<T>(c, ax[2], slice);
+                row_gradient_coefs<T>(slice, ax[1], coef);
+              }
+          }
+          ax[0] = cols[i];
+          if constexpr (D == 3 && WithGradient) {
+            if (affine) {
+              const value_gradient<T, 3> r = row_gradient<T>(coef, ax[0]);
+              out[idx] = r.value;
+              grad[idx] = r.gradient;
+              continue;
+            }
+          }
+          for (int n = 0; n < kCorners; ++n)
+            c.d[n] = c.gx[n] * ((n & 1) ? ax[0].f1 : ax[0].f) + k[n];
+          const value_gradient<T, D> r = blend<T, WithGradient>(c, ax);
+          out[idx] = r.value;
+          if constexpr (WithGradient) grad[idx] = r.gradient;
+        }
+      }
+    }
+  }
+
+  params prm_;
+  std::uint32_t key_;
+};
+
+}  // namespace hush
+
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+// ---- begin hush/perlin/simd_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Perlin noise's SIMD entry points (kernels: hush/simd/perlin-inl.h) and
+// detail::simd_kernel<perlin<D>>, which exec::simd calls. Included at the end
+// of hush/perlin.hpp, after the class its kernels use; not on its own.
+//
+// Points are interleaved floats (x0, y0[, z0], x1, ...), gradients are
+// written interleaved the same way unless `grad` is null. `period` has one
+// entry per axis (0 = not periodic). Grid entries evaluate the slab of
+// slowest-axis indices (j in 2D, k in 3D) [first, first + count) into value
+// (and grad), which start at that slab's first sample; (0, g.size[D - 1]) is
+// the whole grid. Results follow hush::perlin's contract; perlin-inl.h states
+// the agreement with scalar evaluation.
+#ifndef HUSH_PERLIN_SIMD_KERNEL_HPP
+#define HUSH_PERLIN_SIMD_KERNEL_HPP
+
+#include <cstddef>
+#include <cstdint>
+
+
+#if HUSH_CONFIG_SIMD_STATIC
+// ---- begin hush/simd/perlin-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for improved Perlin noise in 2D and 3D: batches of points
+// and uniform grids, values and optionally analytic gradients. Compiled once
+// per SIMD target (the "-inl.h" convention: toggle include guard below, no
+// normal guard); reached through hush/simd/dispatch.hpp, never included
+// directly by users.
+//
+// The kernels compute perlin.hpp's float algorithm: same lattice split (in
+// double for grids, exact float floor for points), same hash words, gradient
+// index and table, Horner fade, lerp a + t(b - a), dot products and final
+// scale. Where they take another route to the same number it is exact:
+//  - the gradient index reads the top bits of the lattice hash, which
+//    lowbias32's last step leaves alone, so it is skipped (hash32_high);
+//  - the 3D index ((h >> 16) * 12) >> 16 is one 16-bit high multiply;
+//  - 3D corner dot products g . f are one rounding of +-f_p +- f_q (gradient
+//    components are 0 or +-1); targets narrower than 16 lanes form them by
+//    selects and sign flips instead of table lookups, and grids split them
+//    into a per-row part g_y f_y + g_z f_z and the x term;
+//  - grid rows hash once per lattice point, not once per sample and corner;
+//  - 3D grid rows with gradients (and fractal grids' bands) use the
+//    affine-in-x form per (row, cell) that perlin.hpp's grid_values uses
+//    too, its corner data blended in z once per (slice, y cell)
+//    (slice_gradient_coefs / row_gradient_coefs / row_gradient, op for op).
+// So:
+//  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
+//    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
+//    compiled target; zeros are +0 on every path, see perlin.hpp);
+//  - otherwise multiply-adds are fused where that is faster, and results
+//    stay within perlin.hpp's float budget of the double reference (2^-16);
+//    measured differences to scalar are a few float ulps (docs/design.md).
+// Points whose coordinates are all finite and below 2^22 in magnitude take
+// the vector split; other vectors (NaN, Inf, huge, or periodic noise) split
+// lane by lane through core/lattice.hpp, so hard cases behave exactly like
+// scalar evaluation (NaN in gives NaN out).
+
+// Toggle guard: included once per target by foreach_target.h (Highway's
+// hwy/examples/skeleton-inl.h pattern).
+#if defined(HUSH_SIMD_PERLIN_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_PERLIN_INL_H_
+#undef HUSH_SIMD_PERLIN_INL_H_
+#else
+#define HUSH_SIMD_PERLIN_INL_H_
+#endif
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+// ---- begin hush/simd/batch-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The batch driver the SIMD point kernels share (simd/perlin-inl.h,
+// simd/wavelet-inl.h): fn(first, pts, value, grad) over n points of D floats, one
+// vector of lanes at a time from point `first`; the last partial vector goes
+// through zero-padded buffers, so no lane reads or writes out of bounds (its
+// lanes past n read zeros, their results are dropped). grad may be null (values
+// only; fn then gets null). Compiled once per SIMD target (the "-inl.h"
+// convention: toggle guard below); reached through hush/simd/dispatch.hpp.
+#if defined(HUSH_SIMD_BATCH_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_BATCH_INL_H_
+#undef HUSH_SIMD_BATCH_INL_H_
+#else
+#define HUSH_SIMD_BATCH_INL_H_
+#endif
+
+#include <cstddef>
+#include <cstring>
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace simd_batch {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Largest float lane count of any target (SVE's 2048 bits), for buffers and
+// table padding sized once for every target; every kernel uses this one.
+constexpr std::size_t kMaxLanes = 64;
+
+template <int D, class Fn>
+HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad,
+                                const Fn& fn) {
+  constexpr std::size_t kMax = kMaxLanes;
+  const std::size_t lanes = hn::Lanes(hn::ScalableTag<float>());
+  std::size_t i = 0;
+  for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);
+  if (i == n) return;
+  const std::size_t rest = n - i;
+  HWY_ALIGN float in[kMax * D] = {}, out[kMax] = {}, g[kMax * D] = {};
+  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+  fn(i, in, out, grad ? g : nullptr);
+  std::memcpy(value + i, out, rest * sizeof(float));
+  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
+}
+
+}  // namespace simd_batch
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_BATCH_INL_H_ toggle
+// ---- end hush/simd/batch-inl.h
+
+// The noise class comes first, not from here: hush/perlin.hpp includes these
+// kernels at its end (hush/perlin/simd_kernel.hpp), as src/simd/perlin.cpp does.
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace perlin_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+#if HWY_TARGET != HWY_SCALAR
+using DU16 = hn::Repartition<std::uint16_t, DU>;
+#endif
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+
+// Lookup tables are padded to kMaxLanes so every chunk load is in bounds.
+using simd_batch::kMaxLanes;
+
+// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
+// compiled), one fused rounding otherwise.
+// Any float vector width (3D grid rows form their cells' coefficients in
+// vectors narrower than VF where a row has few cells).
+template <class V>
+HWY_INLINE V mul_add(V a, V b, V c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), c);
+#else
+  return hn::MulAdd(a, b, c);
+#endif
+}
+// lerp(a, b, t) = a + t * (b - a), as detail::lerp.
+template <class V>
+HWY_INLINE V lerp(V a, V b, V t) {
+  return mul_add(t, hn::Sub(b, a), a);
+}
+// scale * v + 0 (perlin.hpp's 3D output: zeros become +0). Adding 0 to the
+// exact product rounds nothing, so the fused form equals the two-step one
+// and may be used under strict FP too.
+HWY_INLINE VF scale_plus_zero(VF scale, VF v) { return hn::MulAdd(scale, v, hn::Zero(DF())); }
+
+// detail::fade: t^3 (t (6t - 15) + 10), Horner form in the same order.
+HWY_INLINE VF fade(VF t) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF inner =
+      mul_add(t, mul_add(t, hn::Set(df, float(c::kFade5)), hn::Set(df, float(c::kFade4))),
+              hn::Set(df, float(c::kFade3)));
+  return hn::Mul(hn::Mul(hn::Mul(t, t), t), inner);
+}
+HWY_INLINE VF fade_derivative(VF t) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF inner =
+      mul_add(t, mul_add(t, hn::Set(df, float(5 * c::kFade5)), hn::Set(df, float(4 * c::kFade4))),
+              hn::Set(df, float(3 * c::kFade3)));
+  return hn::Mul(hn::Mul(t, t), inner);
+}
+
+// hash32 (core/hash.hpp) in 32-bit lanes without its last step x ^= x >> 16,
+// which changes only bits 0 ... 15: bits 16 ... 31 equal hash32's, and they
+// are all Perlin's gradient index reads (2D: 29 ... 31; 3D: 16 ... 31).
+static_assert(detail::constants::kHashShift3 >= 16 && detail::constants::kPerlin2GradShift >= 16 &&
+                  detail::constants::kPerlin3IndexShift >= 16,
+              "the gradient index must read only hash bits the last xorshift leaves alone");
+HWY_INLINE VU hash32_high(VU x) {
+  namespace c = detail::constants;
+  const DU du;
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
+  return hn::Mul(x, hn::Set(du, c::kHashMul2));
+}
+
+// lattice_word_x/y/z (core/hash.hpp) in lanes: i * P_x, rotl(j * P_y, R_y),
+// rotl(k * P_z, R_z).
+HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
+HWY_INLINE VU word_y(VU j) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
+}
+HWY_INLINE VU word_z(VU k) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
+}
+template <int kAxis>
+HWY_INLINE VU word(VU i) {
+  if constexpr (kAxis == 0) return word_x(i);
+  if constexpr (kAxis == 1) return word_y(i);
+  if constexpr (kAxis == 2) return word_z(i);
+}
+
+// perlin.hpp's float gradient tables, padded to kMaxLanes with zeros so that
+// every chunk load in lookup() stays in bounds. Constant data at fixed
+// addresses: loops load them once.
+struct padded_table {
+  float v[kMaxLanes];
+};
+template <std::size_t N>
+constexpr padded_table pad(const std::array<float, N>& src) {
+  padded_table t{};
+  for (std::size_t i = 0; i < N; ++i) t.v[i] = src[i];
+  return t;
+}
+using float_tables = detail::perlin_tables<float>;
+alignas(64) constexpr padded_table kG2x = pad(float_tables::g2x);
+alignas(64) constexpr padded_table kG2y = pad(float_tables::g2y);
+alignas(64) constexpr padded_table kG3x = pad(float_tables::g3x);
+alignas(64) constexpr padded_table kG3y = pad(float_tables::g3y);
+alignas(64) constexpr padded_table kG3z = pad(float_tables::g3z);
+
+// table[idx] per lane for idx < kEntries: one in-register permute per chunk
+// of Lanes entries (one for 8 entries on AVX2, two for 12), then a select.
+template <int kEntries>
+HWY_INLINE VF lookup(const padded_table& table, VU idx) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t n = hn::Lanes(df);
+  // Within-chunk positions; an index below the lane count already is one.
+  const VU in = static_cast<std::size_t>(kEntries) <= hn::MaxLanes(df)
+                    ? idx
+                    : hn::And(idx, hn::Set(du, static_cast<std::uint32_t>(n - 1)));
+  const auto within = hn::IndicesFromVec(df, hn::BitCast(di, in));
+  VF r = hn::TableLookupLanes(hn::LoadU(df, table.v), within);
+  for (std::size_t base = n; base < static_cast<std::size_t>(kEntries); base += n) {
+    // Indices are small, so a signed compare (the one every target has) is exact.
+    const auto in_chunk = hn::RebindMask(
+        df, hn::Gt(hn::BitCast(di, idx), hn::Set(di, static_cast<std::int32_t>(base) - 1)));
+    r = hn::IfThenElse(in_chunk, hn::TableLookupLanes(hn::LoadU(df, table.v + base), within), r);
+  }
+  return r;
+}
+
+// 2D gradient index: the top 3 hash bits.
+HWY_INLINE VU grad_index2(VU h) { return hn::ShiftRight<detail::constants::kPerlin2GradShift>(h); }
+
+// 3D: ((h >> 16) * 12) >> 16 is the high half of the 16-bit product of h's
+// top half and 12, so MulHigh on 16-bit lanes leaves the index in bits
+// 16 ... 19 of each 32-bit lane (bits 0 ... 15 hold the low half's product,
+// which nothing reads).
+HWY_INLINE VU grad_index3_high(VU h) {
+  namespace c = detail::constants;
+  static_assert(c::kPerlin3IndexShift == 16, "the 16-bit high multiply needs a shift of 16");
+#if HWY_TARGET == HWY_SCALAR
+  // One-lane vectors cannot be reinterpreted as 16-bit lanes: (h >> 16) * 12
+  // has the index in the same bits.
+  return hn::Mul(hn::ShiftRight<16>(h), hn::Set(DU(), std::uint32_t(c::kPerlin3GradCount)));
+#else
+  const DU16 d16;
+  return hn::BitCast(
+      DU(), hn::MulHigh(hn::BitCast(d16, h), hn::Set(d16, std::uint16_t(c::kPerlin3GradCount))));
+#endif
+}
+HWY_INLINE VU grad_index3(VU h) { return hn::ShiftRight<16>(grad_index3_high(h)); }
+
+// The 3D gradients are the 12 cube edges, index n -> (x, y, z):
+//   n < 4: (+-1, +-1, 0), n < 8: (+-1, 0, +-1), else (0, +-1, +-1),
+// first sign from bit 0 of n, second from bit 1 (constants.hpp's tables).
+static_assert(
+    [] {
+      for (int n = 0; n < detail::constants::kPerlin3GradCount; ++n) {
+        const double s0 = (n & 1) ? -1 : 1, s1 = (n & 2) ? -1 : 1;
+        const double want[3] = {n < 8 ? s0 : 0, n < 4 ? s1 : (n < 8 ? 0 : s0), n < 4 ? 0 : s1};
+        if (detail::constants::kPerlin3GradX[n] != want[0] ||
+            detail::constants::kPerlin3GradY[n] != want[1] ||
+            detail::constants::kPerlin3GradZ[n] != want[2])
+          return false;
+      }
+      return true;
+    }(),
+    "dot3_select assumes the cube-edge layout of the 3D gradient table");
+
+// g . (fx, fy, fz) for the 3D gradient of hash h without a table: pick the
+// two coordinates the edge uses, flip their signs and add. The sum is the
+// rounding of the same exact real as gx fx + (gy fy + gz fz); only the sign
+// of a zero result can differ, and outputs are +0-canonical (perlin.hpp).
+HWY_INLINE VF dot3_select(VU h, VF fx, VF fy, VF fz) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const VU k = grad_index3_high(h);  // index in bits 16 ... 19
+  const auto below8 = hn::RebindMask(df, hn::Lt(hn::BitCast(di, k), hn::Set(di, 8 << 16)));
+  const auto below4 = hn::RebindMask(df, hn::Lt(hn::BitCast(di, k), hn::Set(di, 4 << 16)));
+  const VF p = hn::IfThenElse(below8, fx, fy);
+  const VF q = hn::IfThenElse(below4, fy, fz);
+  const VU sign = hn::Set(du, 0x80000000u);
+  const VF sp = hn::BitCast(df, hn::And(hn::ShiftLeft<15>(k), sign));  // bit 0 of the index
+  const VF sq = hn::BitCast(df, hn::And(hn::ShiftLeft<14>(k), sign));  // bit 1
+  return hn::Add(hn::Xor(p, sp), hn::Xor(q, sq));
+}
+
+// Targets whose vector holds the whole 12-entry table look gradients up with
+// one permute per component; narrower ones select (dot3_select).
+constexpr bool kOnePermuteTable3 =
+    hn::MaxLanes(DF()) >= static_cast<std::size_t>(detail::constants::kPerlin3GradCount);
+
+// One axis of a batch of lattice lookups: hash words of the two cells, the
+// fraction f, f - 1, the fade and (for gradients) the fade's derivative.
+struct axis {
+  VU w0, w1;
+  VF f, f1, s, ds;
+};
+
+// Per-corner inputs of the blend: dot products d and, for gradients, the
+// gradient components. Corner n = a + 2b + 4c is at offset (a, b, c).
+struct corners {
+  VF d[8], gx[8], gy[8], gz[8];
+};
+
+// Corner dot products from hashes: kyz[b + 2c] = key ^ word_y(j_b) ^
+// word_z(k_c) (2D: kyz[0], kyz[1]).
+template <bool kGradient, int D>
+HWY_INLINE void hashed_corners(const axis& x, const VU* kyz, const axis& y, const axis& z,
+                               corners& k) {
+  constexpr int kCorners = 1 << D;
+  HWY_UNROLL(8)
+  for (int n = 0; n < kCorners; ++n) {
+    const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+    const VU h = hash32_high(hn::Xor(a ? x.w1 : x.w0, kyz[b + 2 * c]));
+    const VF fx = a ? x.f1 : x.f, fy = b ? y.f1 : y.f;
+    if constexpr (D == 2) {
+      constexpr int kN = detail::constants::kPerlin2GradCount;
+      const VU g = grad_index2(h);
+      k.gx[n] = lookup<kN>(kG2x, g);
+      k.gy[n] = lookup<kN>(kG2y, g);
+      k.d[n] = mul_add(k.gx[n], fx, hn::Mul(k.gy[n], fy));
+    } else {
+      constexpr int kN = detail::constants::kPerlin3GradCount;
+      const VF fz = c ? z.f1 : z.f;
+      if constexpr (kGradient || kOnePermuteTable3) {
+        const VU g = grad_index3(h);
+        k.gx[n] = lookup<kN>(kG3x, g);
+        k.gy[n] = lookup<kN>(kG3y, g);
+        k.gz[n] = lookup<kN>(kG3z, g);
+        // gx fx + (gy fy + gz fz), as perlin.hpp sums it.
+        k.d[n] = mul_add(k.gx[n], fx, mul_add(k.gy[n], fy, hn::Mul(k.gz[n], fz)));
+      } else {
+        k.d[n] = dot3_select(h, fx, fy, fz);
+      }
+    }
+  }
+}
+
+// ---- The blend: perlin<D>::eval2 / eval3 after the dot products, in lanes.
+template <bool kGradient>
+HWY_INLINE void finish2(const corners& k, const axis& x, const axis& y, VF& value, VF* grad) {
+  const DF df;
+  const VF u = x.s, v = y.s;
+  const VF x0 = lerp(k.d[0], k.d[1], u), x1 = lerp(k.d[2], k.d[3], u);
+  const VF scale = hn::Set(df, float(detail::constants::kPerlin2Scale));
+  value = hn::Mul(scale, lerp(x0, x1, v));
+  if constexpr (kGradient) {
+    const VF gx = mul_add(x.ds, lerp(hn::Sub(k.d[1], k.d[0]), hn::Sub(k.d[3], k.d[2]), v),
+                          lerp(lerp(k.gx[0], k.gx[1], u), lerp(k.gx[2], k.gx[3], u), v));
+    const VF gy = mul_add(y.ds, hn::Sub(x1, x0),
+                          lerp(lerp(k.gy[0], k.gy[1], u), lerp(k.gy[2], k.gy[3], u), v));
+    grad[0] = hn::Mul(scale, gx);
+    grad[1] = hn::Mul(scale, gy);
+  } else {
+    (void)grad;
+  }
+}
+
+template <bool kGradient>
+HWY_INLINE void finish3(const corners& k, const axis& x, const axis& y, const axis& z, VF& value,
+                        VF* grad) {
+  const DF df;
+  const VF* d = k.d;
+  const VF u = x.s, v = y.s, w = z.s;
+  const VF x00 = lerp(d[0], d[1], u), x10 = lerp(d[2], d[3], u);
+  const VF x01 = lerp(d[4], d[5], u), x11 = lerp(d[6], d[7], u);
+  const VF y0 = lerp(x00, x10, v), y1 = lerp(x01, x11, v);
+  const VF scale = hn::Set(df, float(detail::constants::kPerlin3Scale));
+  value = scale_plus_zero(scale, lerp(y0, y1, w));
+  if constexpr (kGradient) {
+    auto blend = [&](const VF* q) {
+      return lerp(lerp(lerp(q[0], q[1], u), lerp(q[2], q[3], u), v),
+                  lerp(lerp(q[4], q[5], u), lerp(q[6], q[7], u), v), w);
+    };
+    const VF ex = lerp(lerp(hn::Sub(d[1], d[0]), hn::Sub(d[3], d[2]), v),
+                       lerp(hn::Sub(d[5], d[4]), hn::Sub(d[7], d[6]), v), w);
+    const VF ey = lerp(hn::Sub(x10, x00), hn::Sub(x11, x01), w);
+    const VF ez = hn::Sub(y1, y0);
+    grad[0] = scale_plus_zero(scale, mul_add(x.ds, ex, blend(k.gx)));
+    grad[1] = scale_plus_zero(scale, mul_add(y.ds, ey, blend(k.gy)));
+    grad[2] = scale_plus_zero(scale, mul_add(z.ds, ez, blend(k.gz)));
+  } else {
+    (void)grad;
+  }
+}
+
+template <bool kGradient, int D>
+HWY_INLINE void finish(const corners& k, const axis& x, const axis& y, const axis& z, VF& value,
+                       VF* grad) {
+  if constexpr (D == 2) {
+    (void)z;
+    finish2<kGradient>(k, x, y, value, grad);
+  } else {
+    finish3<kGradient>(k, x, y, z, value, grad);
+  }
+}
+
+// ---- 3D grid rows with gradients: perlin.hpp's slice_gradient_coefs,
+// row_gradient_coefs and row_gradient (the affine-in-x form, docs/design.md),
+// op for op, in lanes over cells (coefficients, in vectors of descriptor DC)
+// and over columns (samples). Tables hold entry m of cell rank r at
+// [m * stride + r].
+
+// The slice data (detail::slice_gradient_coef) of cells [r, r + Lanes(dc))
+// from their corner gradients (gx, gy, gz per corner n at [n * stride + r])
+// and the slice's z axis (fraction f, f - 1, fade w and slope w').
+template <class DC>
+HWY_INLINE void slice_coefs(DC dc, std::size_t stride, std::size_t r, const float* gx,
+                            const float* gy, const float* gz, float fz, float fz1, float w_s,
+                            float w_ds, float* out) {
+  namespace d = detail;
+  using V = hn::Vec<DC>;
+  const V w = hn::Set(dc, w_s), dw = hn::Set(dc, w_ds);
+  const V fzc[2] = {hn::Set(dc, fz), hn::Set(dc, fz1)};
+  auto load = [&](const float* t, int n)
+                  HWY_ATTR { return hn::LoadU(dc, t + static_cast<std::size_t>(n) * stride + r); };
+  HWY_UNROLL(2)
+  for (int a = 0; a < 2; ++a) {
+    HWY_UNROLL(2)
+    for (int b = 0; b < 2; ++b) {
+      const int n[2] = {a + 2 * b, a + 2 * b + 4};
+      V qx[2], qy[2], qz[2], e[2];
+      for (int c = 0; c < 2; ++c) {
+        qx[c] = load(gx, n[c]);
+        qy[c] = load(gy, n[c]);
+        qz[c] = load(gz, n[c]);
+        // gz (f_z - c) is exact (components are 0 or +-1): one rounding.
+        e[c] = hn::Sub(hn::Mul(qz[c], fzc[c]), a ? qx[c] : hn::Zero(dc));
+      }
+      auto store = [&](int q, V x) HWY_ATTR {
+        hn::StoreU(
+            x, dc,
+            out + static_cast<std::size_t>(d::slice_gradient_coef_index(q, a, b)) * stride + r);
+      };
+      store(d::kZgx, lerp(qx[0], qx[1], w));
+      store(d::kZgy, lerp(qy[0], qy[1], w));
+      store(d::kZgz, lerp(qz[0], qz[1], w));
+      store(d::kZe, lerp(e[0], e[1], w));
+      store(d::kWgx, hn::Mul(dw, hn::Sub(qx[1], qx[0])));
+      store(d::kWgy, hn::Mul(dw, hn::Sub(qy[1], qy[0])));
+      store(d::kWe, hn::Mul(dw, hn::Sub(e[1], e[0])));
+    }
+  }
+}
+
+// The row_gradient_coef coefficients of cells [r, r + Lanes(dc)) from their
+// slice data sc and the row's y axis (fraction f, f - 1, fade v, slope v').
+template <class DC>
+HWY_INLINE void row_coefs(DC dc, std::size_t stride, std::size_t r, const float* sc, float fy_f,
+                          float fy_f1, float v_s, float v_ds, float* out) {
+  namespace d = detail;
+  using V = hn::Vec<DC>;
+  const V v = hn::Set(dc, v_s), dv = hn::Set(dc, v_ds);
+  const V fy0 = hn::Set(dc, fy_f), fy1 = hn::Set(dc, fy_f1);
+  V lgx[2], lc[2], ya[2], yb[2], za[2], zb[2];
+  HWY_UNROLL(2)
+  for (int a = 0; a < 2; ++a) {
+    auto q = [&](int kind, int b) HWY_ATTR {
+      return hn::LoadU(
+          dc, sc + static_cast<std::size_t>(d::slice_gradient_coef_index(kind, a, b)) * stride + r);
+    };
+    const V zgx0 = q(d::kZgx, 0), zgx1 = q(d::kZgx, 1);
+    const V zgy0 = q(d::kZgy, 0), zgy1 = q(d::kZgy, 1);
+    lgx[a] = lerp(zgx0, zgx1, v);
+    const V mygx = hn::Sub(zgx1, zgx0);
+    const V zc0 = mul_add(zgy0, fy0, q(d::kZe, 0)), zc1 = mul_add(zgy1, fy1, q(d::kZe, 1));
+    lc[a] = lerp(zc0, zc1, v);
+    const V myc = hn::Sub(zc1, zc0);
+    const V lgy = lerp(zgy0, zgy1, v);
+    const V lgz = lerp(q(d::kZgz, 0), q(d::kZgz, 1), v);
+    za[a] = lerp(q(d::kWgx, 0), q(d::kWgx, 1), v);
+    const V wc0 = mul_add(q(d::kWgy, 0), fy0, q(d::kWe, 0));
+    const V wc1 = mul_add(q(d::kWgy, 1), fy1, q(d::kWe, 1));
+    zb[a] = hn::Add(lerp(wc0, wc1, v), lgz);
+    ya[a] = hn::Mul(dv, mygx);
+    yb[a] = mul_add(dv, myc, lgy);
+  }
+  auto store = [&](int m, V x)
+                   HWY_ATTR { hn::StoreU(x, dc, out + static_cast<std::size_t>(m) * stride + r); };
+  store(d::kEA, hn::Sub(lgx[1], lgx[0]));
+  store(d::kEB, hn::Sub(lc[1], lc[0]));
+  store(d::kX0, lgx[0]);
+  store(d::kV0B, lc[0]);
+  store(d::kY0A, ya[0]);
+  store(d::kY0B, yb[0]);
+  store(d::kDYA, hn::Sub(ya[1], ya[0]));
+  store(d::kDYB, hn::Sub(yb[1], yb[0]));
+  store(d::kZ0A, za[0]);
+  store(d::kZ0B, zb[0]);
+  store(d::kDZA, hn::Sub(za[1], za[0]));
+  store(d::kDZB, hn::Sub(zb[1], zb[0]));
+}
+HWY_INLINE void row_gradient(const VF* co, const axis& x, VF& value, VF* grad) {
+  namespace d = detail;
+  const VF f = x.f, u = x.s;
+  const VF delta = mul_add(co[d::kEA], f, co[d::kEB]);
+  const VF gx = mul_add(x.ds, delta, mul_add(u, co[d::kEA], co[d::kX0]));
+  const VF gy =
+      mul_add(u, mul_add(co[d::kDYA], f, co[d::kDYB]), mul_add(co[d::kY0A], f, co[d::kY0B]));
+  const VF gz =
+      mul_add(u, mul_add(co[d::kDZA], f, co[d::kDZB]), mul_add(co[d::kZ0A], f, co[d::kZ0B]));
+  const VF scale = hn::Set(DF(), float(d::constants::kPerlin3Scale));
+  value = scale_plus_zero(scale, mul_add(u, delta, mul_add(co[d::kX0], f, co[d::kV0B])));
+  grad[0] = scale_plus_zero(scale, gx);
+  grad[1] = scale_plus_zero(scale, gy);
+  grad[2] = scale_plus_zero(scale, gz);
+}
+
+// kyz for hashed_corners() from per-lane axes (points) ...
+template <int D>
+HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
+  kyz[0] = hn::Xor(key, y.w0);
+  kyz[1] = hn::Xor(key, y.w1);
+  if constexpr (D == 3) {
+    kyz[2] = hn::Xor(kyz[0], z.w1);
+    kyz[3] = hn::Xor(kyz[1], z.w1);
+    kyz[0] = hn::Xor(kyz[0], z.w0);
+    kyz[1] = hn::Xor(kyz[1], z.w0);
+  } else {
+    (void)z;
+  }
+}
+
+// D interleaved vectors (gradients) to dst.
+template <int D>
+HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
+  const DF df;
+  if constexpr (D == 2)
+    hn::StoreInterleaved2(g[0], g[1], df, dst);
+  else
+    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
+}
+
+// ---- Points: splitting float coordinates into lattice axes.
+
+// Fractions, fades and the second cell's word of an axis whose first word
+// and fraction are known.
+template <bool kGradient>
+HWY_INLINE void fill_axis(VF f, axis& a) {
+  a.f = f;
+  a.f1 = hn::Sub(f, hn::Set(DF(), 1.0f));
+  a.s = fade(f);
+  if constexpr (kGradient) a.ds = fade_derivative(f);
+}
+
+// Vector split, valid when every lane is finite with |x| < 2^22: floor and
+// x - floor(x) are exact in float, so this equals lattice_split's double
+// computation (including its clamp below 1 for tiny negative x). The cell
+// comes from the float's bits: floor(x) + 1.5 * 2^23 is exact for
+// |floor(x)| <= 2^22 and its bit pattern is 0x4B400000 + floor(x), two's
+// complement (cheaper than a conversion with overflow handling).
+constexpr float kFastSplitLimit = 4194304.0f;  // 2^22
+constexpr float kCellMagic = 12582912.0f;      // 1.5 * 2^23
+constexpr std::uint32_t kCellMagicBits = 0x4B400000u;
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split_fast(VF xv) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  const VF fl = hn::Floor(xv);
+  const VU i0 =
+      hn::Sub(hn::BitCast(du, hn::Add(fl, hn::Set(df, kCellMagic))), hn::Set(du, kCellMagicBits));
+  // (i + 1) P = i P + P: the second cell's product is one add away.
+  constexpr std::uint32_t kPrime = kAxis == 0   ? c::kLatticePrimeX
+                                   : kAxis == 1 ? c::kLatticePrimeY
+                                                : c::kLatticePrimeZ;
+  const VU m0 = hn::Mul(i0, hn::Set(du, kPrime));
+  const VU m1 = hn::Add(m0, hn::Set(du, kPrime));
+  axis a;
+  if constexpr (kAxis == 0) {
+    a.w0 = m0;
+    a.w1 = m1;
+  } else {
+    constexpr int kRotate = kAxis == 1 ? c::kLatticeRotateY : c::kLatticeRotateZ;
+    a.w0 = hn::RotateRight<32 - kRotate>(m0);
+    a.w1 = hn::RotateRight<32 - kRotate>(m1);
+  }
+  fill_axis<kGradient>(hn::Min(hn::Sub(xv, fl), hn::Set(df, detail::one_minus_ulp<float>())), a);
+  return a;
+}
+static_assert(detail::constants::kLatticeRotateY > 0 && detail::constants::kLatticeRotateZ > 0,
+              "split_fast rotates by 32 - R");
+
+// Lane-by-lane split of double coordinates q[lane] through core/lattice.hpp:
+// exactly what scalar evaluation computes.
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split_doubles(const double* q, std::uint32_t period) {
+  const DF df;
+  const DU du;
+  HWY_ALIGN float fs[kMaxLanes];
+  HWY_ALIGN std::uint32_t i0s[kMaxLanes], i1s[kMaxLanes];
+  for (std::size_t l = 0; l < hn::Lanes(df); ++l) {
+    const lattice_coord<float> c = lattice_split<float>(q[l], period);
+    i0s[l] = c.i0;
+    i1s[l] = c.i1;
+    fs[l] = c.f;
+  }
+  axis a;
+  a.w0 = word<kAxis>(hn::Load(du, i0s));
+  a.w1 = word<kAxis>(hn::Load(du, i1s));
+  fill_axis<kGradient>(hn::Load(df, fs), a);
+  return a;
+}
+
+// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^22 and
+// periodic axes. Same result as scalar evaluation by construction.
+template <bool kGradient, int kAxis>
+HWY_NOINLINE axis split_lanes(VF xv, std::uint32_t period) {
+  const DF df;
+  HWY_ALIGN float xs[kMaxLanes];
+  double q[kMaxLanes];
+  hn::Store(xv, df, xs);
+  for (std::size_t l = 0; l < hn::Lanes(df); ++l) q[l] = double(xs[l]);
+  return split_doubles<kGradient, kAxis>(q, period);
+}
+
+// Lanes with |x| < 2^22 (false for NaN): where the vector split is exact.
+HWY_INLINE hn::Mask<DF> in_fast_range(VF x) {
+  const DF df;
+  return hn::Lt(hn::Abs(x), hn::Set(df, kFastSplitLimit));
+}
+
+template <bool kGradient, int kAxis>
+HWY_INLINE axis split(VF xv, std::uint32_t period) {
+  if (period == 0 && hn::AllTrue(DF(), in_fast_range(xv))) return split_fast<kGradient, kAxis>(xv);
+  return split_lanes<kGradient, kAxis>(xv, period);
+}
+
+// Split points -> values (and interleaved gradients) of one vector.
+template <bool kGradient, int D>
+HWY_INLINE void points_from_axes(VU key, const axis& ax, const axis& ay, const axis& az,
+                                 float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
+  VU kyz[4];
+  key_words<D>(key, ay, az, kyz);
+  corners k;
+  hashed_corners<kGradient, D>(ax, kyz, ay, az, k);
+  VF v, g[3];
+  finish<kGradient, D>(k, ax, ay, az, v, g);
+  hn::StoreU(v, DF(), value);
+  if constexpr (kGradient) store_interleaved<D>(g, grad);
+}
+
+// A vector with a lane the fast split cannot take, or periodic noise: each
+// axis splits by the vector or lane by lane, whichever is exact. Out of line,
+// so that the common path keeps its registers.
+template <bool kGradient, int D>
+HWY_NOINLINE void points_vector_lanes(VU key, const std::uint32_t* period, VF x, VF y, VF z,
+                                      float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
+  const axis ax = split<kGradient, 0>(x, period[0]);
+  const axis ay = split<kGradient, 1>(y, period[1]);
+  axis az{};
+  if constexpr (D == 3) az = split<kGradient, 2>(z, period[2]);
+  points_from_axes<kGradient, D>(key, ax, ay, az, value, grad);
+}
+
+// One vector of D-dimensional points (interleaved) -> values (and
+// interleaved gradients), if every lane can take the vector split: returns
+// false, writing nothing, if one cannot (then points_vector_lanes does it).
+template <bool kGradient, int D>
+HWY_INLINE bool points_vector_fast(VU key, const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                                   float* HWY_RESTRICT grad) {
+  const DF df;
+  VF x, y, z = hn::Zero(df);
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, x, y);
+  else
+    hn::LoadInterleaved3(df, pts, x, y, z);
+  auto fast = hn::And(in_fast_range(x), in_fast_range(y));
+  if constexpr (D == 3) fast = hn::And(fast, in_fast_range(z));
+  if (HWY_UNLIKELY(!hn::AllTrue(df, fast))) return false;
+  axis az{};
+  if constexpr (D == 3) az = split_fast<kGradient, 2>(z);
+  points_from_axes<kGradient, D>(key, split_fast<kGradient, 0>(x), split_fast<kGradient, 1>(y), az,
+                                 value, grad);
+  return true;
+}
+
+// Any vector of points, periodic noise included.
+template <bool kGradient, int D>
+HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
+                              const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                              float* HWY_RESTRICT grad) {
+  if (plain && points_vector_fast<kGradient, D>(key, pts, value, grad)) return;
+  const DF df;
+  VF x, y, z = hn::Zero(df);
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, x, y);
+  else
+    hn::LoadInterleaved3(df, pts, x, y, z);
+  points_vector_lanes<kGradient, D>(key, period, x, y, z, value, grad);
+}
+
+// Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
+// vector at a time (simd/batch-inl.h: the tail through zero-padded buffers).
+// One call site, so the vector function inlines into the loop.
+template <bool kGradient, int D, class Fn>
+HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
+                                      const Fn& vector_fn) {
+  simd_batch::for_each_vector<D>(n, pts, value, kGradient ? grad : nullptr,
+                                 [&](std::size_t, const float* p, float* v, float* g)
+                                     HWY_ATTR { vector_fn(p, v, g); });
+}
+
+template <bool kGradient, int D>
+HWY_NOINLINE void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts,
+                                std::size_t n, float* value, float* grad) {
+  const VU vkey = hn::Set(DU(), key);
+  bool plain = true;
+  for (int a = 0; a < D; ++a) plain = plain && period[a] == 0;
+  // Whole vectors, then the rest through zero-padded buffers (no lane reads
+  // or writes out of bounds). points_vector inlines at both sites.
+  const std::size_t lanes = hn::Lanes(DF());
+  std::size_t i = 0;
+  while (i + lanes <= n) {
+    // The common case runs in a loop without calls, which keeps its constants
+    // in registers; a vector it cannot take leaves it for points_vector.
+    if (plain)
+      for (; i + lanes <= n; i += lanes)
+        if (!points_vector_fast<kGradient, D>(vkey, pts + i * D, value + i,
+                                              kGradient ? grad + i * D : nullptr))
+          break;
+    if (i + lanes > n) break;
+    points_vector<kGradient, D>(vkey, plain, period, pts + i * D, value + i,
+                                kGradient ? grad + i * D : nullptr);
+    i += lanes;
+  }
+  if (i == n) return;
+  const std::size_t rest = n - i;
+  HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
+  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
+  points_vector<kGradient, D>(vkey, plain, period, in, out, g);
+  std::memcpy(value + i, out, rest * sizeof(float));
+  if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
+}
+
+}  // namespace perlin_simd
+
+// Perlin at n interleaved points (x0, y0[, z0], x1, ...); values into
+// `value[n]`, and interleaved gradients into `grad[D n]` unless grad is null.
+template <int D>
+void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts, std::size_t n,
+                   float* value, float* grad) {
+  if (grad)
+    perlin_simd::perlin_points<true, D>(key, period, pts, n, value, grad);
+  else
+    perlin_simd::perlin_points<false, D>(key, period, pts, n, value, nullptr);
+}
+inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
+                           std::size_t n, float* value, float* grad) {
+  perlin_points<2>(key, period, xy, n, value, grad);
+}
+inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float* xyz,
+                           std::size_t n, float* value, float* grad) {
+  perlin_points<3>(key, period, xyz, n, value, grad);
+}
+
+namespace perlin_simd {
+
+// ---- Grids. The x axis is split once per column (in double, by
+// lattice_split, exactly as scalar evaluation does) and reused by every row;
+// y (and z) are split once per row and broadcast.
+//
+// Consecutive columns share cells (the benchmark has 37 per cell), and the
+// corner gradients of a cell are the same for every sample of a row in it.
+// So each row hashes its lattice points once and keeps, per cell and corner,
+// the gradient's x component gx and the row-constant rest of the dot product
+//   K = gy f_y (2D),  K = gy f_y + gz f_z (3D),
+// and a sample needs d = gx f_x + K: exactly the scalar sums (perlin.hpp).
+// A vector of columns spans at most Lanes cells, so its cells' entries are
+// one unaligned load and a permute away. Rows whose cells are not shared
+// (steps near or above one cell) hash per sample instead.
+struct grid_columns {
+  std::size_t n = 0, padded = 0, cells = 0;
+  std::vector<float> f, s, ds;
+  std::vector<std::uint32_t> w0, w1;    // per column: x words of its cell's two lattice points
+  std::vector<std::uint32_t> local;     // per column: its cell's rank minus its vector's base
+  std::vector<std::uint32_t> base;      // per vector of columns: the rank of its first cell
+  std::vector<std::uint32_t> cw0, cw1;  // per cell rank: x words, padded to whole vectors
+  bool shared = false;                  // at least two columns per cell on average
+
+  // Column i's x coordinate is position(i), a double.
+  template <class Position>
+  grid_columns(std::size_t count, std::uint32_t period, bool gradient, Position position)
+      : n(count) {
+    const std::size_t lanes = hn::Lanes(DF());
+    padded = (n + lanes - 1) / lanes * lanes;
+    f.assign(padded, 0.0f);
+    s.assign(padded, 0.0f);
+    w0.assign(padded, 0u);
+    w1.assign(padded, 0u);
+    local.assign(padded, 0u);
+    base.assign(padded / lanes, 0u);
+    if (gradient) ds.assign(padded, 0.0f);
+    std::uint32_t rank = 0, prev_i0 = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const lattice_coord<float> c = lattice_split<float>(position(i), period);
+      f[i] = c.f;
+      s[i] = detail::fade(c.f);
+      if (gradient) ds[i] = detail::fade_derivative(c.f);
+      w0[i] = lattice_word_x(c.i0);
+      w1[i] = lattice_word_x(c.i1);
+      // A new cell starts where i0 changes (i1 follows from i0 and the period).
+      if (i > 0 && c.i0 != prev_i0) ++rank;
+      if (i == 0 || c.i0 != prev_i0) {
+        cw0.push_back(w0[i]);
+        cw1.push_back(w1[i]);
+      }
+      prev_i0 = c.i0;
+      if (i % lanes == 0) base[i / lanes] = rank;
+      local[i] = rank - base[i / lanes];  // < lanes: each column adds at most one cell
+    }
+    // Padding lanes repeat the last column's cell: a vector's lanes then share
+    // one cell exactly when its last lane's local rank is 0 (corners_at).
+    for (std::size_t i = n; i < padded; ++i) local[i] = local[n - 1];
+    cells = cw0.size();
+    cw0.resize((cells + lanes - 1) / lanes * lanes, 0u);
+    cw1.resize(cw0.size(), 0u);
+    shared = detail::grid_cells_shared(cells, n);
+  }
+
+  template <bool kGradient>
+  HWY_INLINE axis load(std::size_t i) const {
+    const DU du;
+    axis a;
+    a.w0 = hn::LoadU(du, w0.data() + i);
+    a.w1 = hn::LoadU(du, w1.data() + i);
+    fill_axis_loaded<kGradient>(i, a);
+    return a;
+  }
+  // Fractions and fades only (the table path needs no words).
+  template <bool kGradient>
+  HWY_INLINE void fill_axis_loaded(std::size_t i, axis& a) const {
+    const DF df;
+    a.f = hn::LoadU(df, f.data() + i);
+    a.f1 = hn::Sub(a.f, hn::Set(df, 1.0f));
+    a.s = hn::LoadU(df, s.data() + i);
+    if constexpr (kGradient) a.ds = hn::LoadU(df, ds.data() + i);
+  }
+};
+
+// A row-constant axis (y or z): scalar split broadcast to all lanes.
+struct row_axis {
+  std::uint32_t w0 = 0, w1 = 0;
+  float f = 0, f1 = 0, s = 0, ds = 0;
+  axis a;
+};
+template <bool kGradient, int kAxis>
+HWY_INLINE row_axis broadcast_axis(double p, std::uint32_t period) {
+  const DF df;
+  const lattice_coord<float> c = lattice_split<float>(p, period);
+  row_axis r;
+  r.w0 = kAxis == 1 ? lattice_word_y(c.i0) : lattice_word_z(c.i0);
+  r.w1 = kAxis == 1 ? lattice_word_y(c.i1) : lattice_word_z(c.i1);
+  r.f = c.f;
+  r.f1 = c.f - 1.0f;
+  r.s = detail::fade(c.f);
+  if constexpr (kGradient) r.ds = detail::fade_derivative(c.f);
+  r.a.f = hn::Set(df, r.f);
+  r.a.f1 = hn::Set(df, r.f1);
+  r.a.s = hn::Set(df, r.s);
+  if constexpr (kGradient) r.a.ds = hn::Set(df, r.ds);
+  return r;
+}
+
+// The lattice words and fractions of one grid row (2D: z unused).
+struct grid_row {
+  std::uint32_t key;
+  row_axis y, z;
+  // key ^ word_y(j_b) ^ word_z(k_c) for corner offsets (b, c), index b + 2c.
+  std::uint32_t kyz(int b, int c) const { return key ^ (b ? y.w1 : y.w0) ^ (c ? z.w1 : z.w0); }
+};
+
+// Per-row, per-cell corner data for the shared-cell path: for corner n and
+// cell rank r, gx (and for gradients gy, gz) and K, at [n * stride + r].
+// kAffine (3D with gradients): instead of K, the cells' slice data
+// (detail::slice_gradient_coef, rebuilt when the slice or the y cell
+// changes) and the row's gradient coefficients (detail::row_gradient_coef)
+// at [m * stride + r]; samples then read only those.
+template <bool kGradient, int D, bool kAffine = kGradient&& D == 3>
+struct row_tables {
+  static_assert(!kAffine || (kGradient && D == 3), "the affine row gradient is 3D");
+  static constexpr int kCorners = 1 << D;
+  std::size_t stride = 0;
+  std::vector<float> gx, k, gy, gz, slice, coef;
+  // The y/z words the gradients were hashed for: consecutive rows in the same
+  // y (and z) cell keep them and only recompute k (the benchmark's grids have
+  // 37 rows per cell); kAffine: the z fraction the slice data is for.
+  std::uint32_t hashed_kyz[4] = {};
+  bool hashed = false;
+  float slice_fz = 0;
+
+  explicit row_tables(const grid_columns& cols) {
+    const std::size_t lanes = hn::Lanes(DF());
+    stride = cols.cw0.size() + lanes;  // a vector's load at its base rank stays inside
+    const std::size_t size = stride * kCorners;
+    gx.assign(size, 0.0f);
+    if (!kAffine) k.assign(size, 0.0f);
+    gy.assign(size, 0.0f);
+    if (D == 3) gz.assign(size, 0.0f);
+    if (kAffine) {
+      slice.assign(stride * detail::kSliceGradientCoefs, 0.0f);
+      coef.assign(stride * detail::kRowGradientCoefs, 0.0f);
+    }
+  }
+
+  // The corner gradients of cells [r, r + lanes) (x words wx) against the
+  // row's y/z words.
+  HWY_INLINE void hash_cells(const VU* wx, const std::uint32_t* words, std::size_t r) {
+    const DF df;
+    const DU du;
+    HWY_UNROLL(8)
+    for (int n = 0; n < kCorners; ++n) {
+      const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
+      const std::size_t at = static_cast<std::size_t>(n) * stride + r;
+      const VU h = hash32_high(hn::Xor(wx[a], hn::Set(du, words[b + 2 * c])));
+      if constexpr (D == 2) {
+        constexpr int kN = detail::constants::kPerlin2GradCount;
+        const VU g = grad_index2(h);
+        hn::StoreU(lookup<kN>(kG2x, g), df, gx.data() + at);
+        hn::StoreU(lookup<kN>(kG2y, g), df, gy.data() + at);
+      } else {
+        constexpr int kN = detail::constants::kPerlin3GradCount;
+        const VU g = grad_index3(h);
+        hn::StoreU(lookup<kN>(kG3x, g), df, gx.data() + at);
+        hn::StoreU(lookup<kN>(kG3y, g), df, gy.data() + at);
+        hn::StoreU(lookup<kN>(kG3z, g), df, gz.data() + at);
+      }
+    }
+  }
+
+  // fn(dc, r) for every chunk of cells [r, r + Lanes(dc)): chunks of at most
+  // 8 lanes where the row's cells fit in one (a 64-sample row of the
+  // benchmark has 2 or 3 cells, and this machine's 512-bit operations cost
+  // two 256-bit ones), whole vectors otherwise.
+  template <class Fn>
+  static HWY_INLINE void for_each_cell_chunk(std::size_t cells, const Fn& fn) {
+    using DC = hn::CappedTag<float, 8>;
+    if (hn::MaxLanes(DC()) < hn::MaxLanes(DF()) && cells <= hn::Lanes(DC())) {
+      fn(DC(), std::size_t(0));
+      return;
+    }
+    for (std::size_t r = 0; r < cells; r += hn::Lanes(DF())) fn(DF(), r);
+  }
+
+  // Hashes the row's lattice points (cells' x words against the row's y/z
+  // words) unless the previous row had the same ones, then forms k (or, for
+  // kAffine, the slice data where the slice changed and the row's
+  // coefficients).
+  HWY_INLINE void build(const grid_columns& cols, const grid_row& row) {
+    const DF df;
+    const DU du;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::uint32_t words[4] = {row.kyz(0, 0), row.kyz(1, 0), row.kyz(0, 1), row.kyz(1, 1)};
+    const bool same = hashed && std::equal(words, words + 4, hashed_kyz);
+    std::copy(words, words + 4, hashed_kyz);
+    hashed = true;
+    if constexpr (kAffine) {
+      if (!same)
+        for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
+          const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
+          hash_cells(wx, words, r);
+        }
+      // NaN fractions never compare equal: such slices are rebuilt every row.
+      const bool new_slice = !same || !(row.z.f == slice_fz);
+      slice_fz = row.z.f;
+      for_each_cell_chunk(cols.cells, [&](auto dc, std::size_t r) HWY_ATTR {
+        if (new_slice)
+          slice_coefs(dc, stride, r, gx.data(), gy.data(), gz.data(), row.z.f, row.z.f1, row.z.s,
+                      row.z.ds, slice.data());
+        row_coefs(dc, stride, r, slice.data(), row.y.f, row.y.f1, row.y.s, row.y.ds, coef.data());
+      });
+      return;
+    }
+    for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
+      if (!same) {
+        const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
+        hash_cells(wx, words, r);
+      }
+      HWY_UNROLL(8)
+      for (int n = 0; n < kCorners; ++n) {
+        const int b = (n >> 1) & 1, c = n >> 2;
+        const std::size_t at = static_cast<std::size_t>(n) * stride + r;
+        const VF cy = hn::LoadU(df, gy.data() + at);
+        const VF fy = hn::Set(df, b ? row.y.f1 : row.y.f);
+        VF kk;
+        if constexpr (D == 2)
+          kk = hn::Mul(cy, fy);
+        else
+          kk = mul_add(cy, fy,
+                       hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
+        hn::StoreU(kk, df, k.data() + at);
+      }
+    }
+  }
+
+  // Calls fn(b, entry) for the vector of columns starting at column i, with
+  // b its first cell's rank and entry(table, at) giving each lane the entry
+  // of its cell. Where all lanes share one cell (most vectors when cells hold
+  // many samples) a broadcast replaces the permute. fn inlines into each
+  // branch on its own, so the entries stay in registers.
+  template <class Fn>
+  HWY_INLINE void with_entries(const grid_columns& cols, std::size_t i, const Fn& fn) const {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::size_t b = cols.base[i / lanes];
+    if (cols.local[i + lanes - 1] == 0) {
+      fn(b,
+         [&](const std::vector<float>& t, std::size_t at) HWY_ATTR { return hn::Set(df, t[at]); });
+    } else {
+      const DU du;
+      const DI di;
+      const auto idx =
+          hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
+      fn(b, [&](const std::vector<float>& t, std::size_t at)
+                HWY_ATTR { return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx); });
+    }
+  }
+  // out from the entries at cell rank b, read per corner by entry(table, index).
+  template <class Entry>
+  HWY_INLINE void corners_from(std::size_t b, const axis& x, corners& out,
+                               const Entry& entry) const {
+    HWY_UNROLL(8)
+    for (int n = 0; n < kCorners; ++n) {
+      const std::size_t at = static_cast<std::size_t>(n) * stride + b;
+      const VF cx = entry(gx, at);
+      out.d[n] = mul_add(cx, (n & 1) ? x.f1 : x.f, entry(k, at));
+      if constexpr (kGradient) {
+        out.gx[n] = cx;
+        out.gy[n] = entry(gy, at);
+        if constexpr (D == 3) out.gz[n] = entry(gz, at);
+      }
+    }
+  }
+  // kAffine: the value and gradient from the cell coefficients at rank b.
+  template <class Entry>
+  HWY_INLINE void affine_from(std::size_t b, const axis& x, const Entry& entry, VF& value,
+                              VF* grad) const {
+    VF co[detail::kRowGradientCoefs];
+    HWY_UNROLL(12)
+    for (int m = 0; m < detail::kRowGradientCoefs; ++m)
+      co[m] = entry(coef, static_cast<std::size_t>(m) * stride + b);
+    row_gradient(co, x, value, grad);
+  }
+};
+
+// One grid row's evaluation, either path: vector_out(i, value, gradient)
+// receives each vector of columns [i, i + lanes).
+template <bool kGradient, int D, bool kAffine = kGradient&& D == 3>
+struct row_evaluator {
+  const grid_columns& cols;
+  row_tables<kGradient, D, kAffine> tables;
+
+  explicit row_evaluator(const grid_columns& c) : cols(c), tables(c) {}
+
+  // Makes `row` current (the shared path builds its cell tables).
+  HWY_INLINE void prepare(const grid_row& row) {
+    if (cols.shared) tables.build(cols, row);
+  }
+  // out(value, gradient) for the vector of columns [i, i + lanes) of the
+  // prepared row; out inlines into each branch, keeping its inputs in registers.
+  template <class Out>
+  HWY_INLINE void vector(const grid_row& row, std::size_t i, const Out& out) const {
+    VF v, g[3];
+    corners k;
+    if (cols.shared) {
+      axis x;
+      cols.fill_axis_loaded<kGradient>(i, x);
+      tables.with_entries(cols, i, [&](std::size_t b, const auto& entry) HWY_ATTR {
+        if constexpr (kAffine) {
+          tables.affine_from(b, x, entry, v, g);
+        } else {
+          tables.corners_from(b, x, k, entry);
+          finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+        }
+        out(v, g);
+      });
+    } else {
+      const DU du;
+      const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
+                         hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
+      const axis x = cols.load<kGradient>(i);
+      hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
+      finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
+      out(v, g);
+    }
+  }
+  // vector_out(i, value, gradient) for every vector of columns of `row`.
+  template <class Out>
+  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
+    prepare(row);
+    for (std::size_t i = 0; i < cols.n; i += hn::Lanes(DF()))
+      vector(row, i, [&](VF v, const VF* g) HWY_ATTR { vector_out(i, v, g); });
+  }
+};
+
+// Stores one vector of results for columns [i, i + lanes) of a row, through
+// a buffer when the row ends inside the vector.
+template <int D>
+HWY_INLINE void store_row(std::size_t i, std::size_t nx, VF v, const VF* g, float* row_value,
+                          float* row_grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const bool full = i + lanes <= nx;
+  HWY_ALIGN float vb[kMaxLanes], gb[kMaxLanes * D];
+  hn::StoreU(v, df, full ? row_value + i : vb);
+  if (row_grad) store_interleaved<D>(g, full ? row_grad + i * D : gb);
+  if (full) return;
+  std::memcpy(row_value + i, vb, (nx - i) * sizeof(float));
+  if (row_grad) std::memcpy(row_grad + i * D, gb, (nx - i) * D * sizeof(float));
+}
+
+// The rows (j, k) of the slab [first, first + count) of the slowest axis, in
+// output order: f(j, k, r) with r the row's index inside the slab.
+template <int D, class F>
+HWY_INLINE void for_each_row(const grid<D>& g, std::size_t first, std::size_t count, const F& f) {
+  const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
+  const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
+  std::size_t r = 0;
+  for (std::size_t k = k0; k < k1; ++k)
+    for (std::size_t j = j0; j < j1; ++j, ++r) f(j, k, r);
+}
+
+template <bool kGradient, int D>
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
+                 std::size_t first, std::size_t count, float* value, float* grad) {
+  const std::size_t nx = g.size[0];
+  const grid_columns cols(nx, period[0], kGradient,
+                          [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
+  row_evaluator<kGradient, D> rows(cols);
+  grid_row row{key, {}, {}};
+  std::size_t split_k = ~std::size_t(0);  // the slice row.z holds
+  for_each_row<D>(g, first, count, [&](std::size_t j, std::size_t k, std::size_t r) HWY_ATTR {
+    if constexpr (D == 3) {
+      if (k != split_k)
+        row.z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
+      split_k = k;
+    }
+    row.y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
+    float* row_value = value + r * nx;
+    float* row_grad = kGradient ? grad + r * nx * D : nullptr;
+    rows.run(row, [&](std::size_t i, VF v, const VF* gr)
+                      HWY_ATTR { store_row<D>(i, nx, v, gr, row_value, row_grad); });
+  });
+}
+
+}  // namespace perlin_simd
+
+// Perlin on a uniform grid (C order, i fastest); gradients interleaved (D
+// per sample) unless grad is null; the slab [first, first + count) of the
+// slowest axis (hush/simd/dispatch.hpp).
+template <int D>
+void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
+                 std::size_t first, std::size_t count, float* value, float* grad) {
+  if (grad)
+    perlin_simd::perlin_grid<true, D>(key, period, g, first, count, value, grad);
+  else
+    perlin_simd::perlin_grid<false, D>(key, period, g, first, count, value, nullptr);
+}
+inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  perlin_grid<2>(key, period, g, first, count, value, grad);
+}
+inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
+                         std::size_t first, std::size_t count, float* value, float* grad) {
+  perlin_grid<3>(key, period, g, first, count, value, grad);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_PERLIN_INL_H_ toggle
+// ---- end hush/simd/perlin-inl.h
+#endif
+
+#define HUSH_SIMD_ENTRIES_PERLIN(X)                                                                \
+  X(perlin2_points,                                                                                \
+    (std::uint32_t key, const std::uint32_t* period, const float* xy, std::size_t n, float* value, \
+     float* grad),                                                                                 \
+    (key, period, xy, n, value, grad))                                                             \
+  X(perlin3_points,                                                                                \
+    (std::uint32_t key, const std::uint32_t* period, const float* xyz, std::size_t n,              \
+     float* value, float* grad),                                                                   \
+    (key, period, xyz, n, value, grad))                                                            \
+  X(perlin2_grid,                                                                                  \
+    (std::uint32_t key, const std::uint32_t* period, const grid<2>& g, std::size_t first,          \
+     std::size_t count, float* value, float* grad),                                                \
+    (key, period, g, first, count, value, grad))                                                   \
+  X(perlin3_grid,                                                                                  \
+    (std::uint32_t key, const std::uint32_t* period, const grid<3>& g, std::size_t first,          \
+     std::size_t count, float* value, float* grad),                                                \
+    (key, period, g, first, count, value, grad))
+
+HUSH_SIMD_DECLARE(HUSH_SIMD_ENTRIES_PERLIN)
+
+#if HUSH_CONFIG_SIMD
+namespace hush {
+namespace detail {
+
+template <int D>
+struct simd_kernel<perlin<D>> {
+  static constexpr bool available = true;
+  static_assert(sizeof(vec<float, D>) == D * sizeof(float),
+                "vec<float, D> must be D packed floats");
+
+  static void config(const perlin<D>& n, std::uint32_t& key, std::uint32_t (&period)[3]) {
+    key = seed_key(n.parameters().seed);
+    for (int a = 0; a < 3; ++a)
+      period[a] = a < D ? static_cast<std::uint32_t>(n.parameters().period[a]) : 0u;
+  }
+  static void points(const perlin<D>& n, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    std::uint32_t key, period[3];
+    config(n, key, period);
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::perlin2_points(key, period, p, count, out, g);
+    else
+      simd::perlin3_points(key, period, p, count, out, g);
+  }
+  // Slabs along the slowest axis (exec::parallel; exec.hpp).
+  static constexpr bool has_grid_slab = true;
+  static void grid_slab(const perlin<D>& n, const hush::grid<D>& gr, std::size_t first,
+                        std::size_t count, float* out, vec<float, D>* grad) {
+    std::uint32_t key, period[3];
+    config(n, key, period);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::perlin2_grid(key, period, gr, first, count, out, g);
+    else
+      simd::perlin3_grid(key, period, gr, first, count, out, g);
+  }
+  static void grid(const perlin<D>& n, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    grid_slab(n, gr, 0, gr.size[D - 1], out, grad);
+  }
+};
+
+}  // namespace detail
+}  // namespace hush
+#endif  // HUSH_CONFIG_SIMD
+
+#endif  // HUSH_PERLIN_SIMD_KERNEL_HPP
+// ---- end hush/perlin/simd_kernel.hpp
+
+#endif  // HUSH_PERLIN_HPP
+// ---- end hush/perlin.hpp
+#endif
+#if HUSH_CONFIG_SIMD_STATIC
+// ---- begin hush/simd/fractal-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for fractal sums of Perlin noise (hush/fractal.hpp over
+// hush::perlin<D>): batches of points and uniform grids, values and optionally
+// gradients. Compiled once per SIMD target (the "-inl.h" convention: toggle
+// include guard below, no normal guard); reached through
+// hush/fractal/simd_kernel.hpp, never included directly by users.
+//
+// Each band is a Perlin field evaluated by perlin-inl.h's vector code at the
+// band position, formed as scalar evaluation forms it, and the bands are
+// summed in the same order with the same operations: under HUSH_STRICT_FP
+// every value and gradient is bit for bit the scalar result
+// (tests/simd/perlin_simd_test.cpp, every compiled target); otherwise within
+// fractal.hpp's float budget of the double reference.
+
+// Toggle guard: included once per target by foreach_target.h (Highway's
+// hwy/examples/skeleton-inl.h pattern).
+#if defined(HUSH_SIMD_FRACTAL_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_FRACTAL_INL_H_
+#undef HUSH_SIMD_FRACTAL_INL_H_
+#else
+#define HUSH_SIMD_FRACTAL_INL_H_
+#endif
+
+#include <cstddef>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+// The classes come first, not from here: hush/fractal.hpp includes these
+// kernels at its end (hush/fractal/simd_kernel.hpp, after hush/perlin.hpp), as
+// src/simd/fractal.cpp does.
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace perlin_simd {
+
+// ---- Fractal sums of Perlin bands (fractal.hpp): each band is a Perlin
+// field evaluated by the code above at the band position f_i x + o_i, which
+// fractal::band_position forms in double exactly as scalar evaluation does;
+// the weighted sum is accumulated band by band in the same order and with
+// the same operations as fractal::value / value_and_gradient.
+template <int D>
+struct band_config {
+  std::uint32_t key;
+  std::uint32_t period[3];
+  float weight;      // T(w_i)
+  float chain;       // T(w_i f_i): the band gradient's factor
+  double frequency;  // f_i and o_i of the band position f_i x + o_i
+  double offset[3];
+  bool plain;  // no axis periodic: the vector split may take the band
+};
+
+template <int D>
+std::vector<band_config<D>> band_configs(const fractal<perlin<D>>& fr) {
+  std::vector<band_config<D>> r(static_cast<std::size_t>(fr.band_count()));
+  for (int b = 0; b < fr.band_count(); ++b) {
+    const auto& prm = fr.band_noise(b).parameters();
+    band_config<D>& c = r[static_cast<std::size_t>(b)];
+    c.key = seed_key(prm.seed);
+    for (int a = 0; a < 3; ++a)
+      c.period[a] = a < D ? static_cast<std::uint32_t>(prm.period[a]) : 0u;
+    c.weight = float(fr.band_raw_weight(b));
+    c.chain = float(fr.band_raw_weight(b) * fr.band_frequency(b));
+    c.frequency = fr.band_frequency(b);
+    // f_i 0 + o_i = o_i exactly: the band's offset as the scalar code adds it.
+    const vec<double, D> o = fr.band_position(b, vec<double, D>{});
+    c.plain = true;
+    for (int a = 0; a < 3; ++a) {
+      c.offset[a] = a < D ? o[a] : 0.0;
+      c.plain = c.plain && c.period[a] == 0;
+    }
+  }
+  return r;
+}
+
+// The vector split of one axis of a band position, q = x f + o, formed in
+// double as fractal's band position is and split as lattice_split<float>
+// splits it, bit for bit, when every lane's q is finite with |q| < 2^31
+// (the cell then fits an int32, whose two's complement low word is the cell
+// modulo 2^32). Returns false, writing nothing, otherwise: the caller splits
+// lane by lane. The per-lane path cost ~40 ns per point for 4 bands.
+template <bool kGradient, int kAxis>
+HWY_INLINE bool split_band(VF x, double f, double o, axis& a) {
+#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
+  const DF df;
+  const hn::Half<DF> dh;
+  const hn::Repartition<double, DF> dd;
+  const hn::Rebind<float, decltype(dd)> df_of_d;
+  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
+  const auto vf = hn::Set(dd, f), vo = hn::Set(dd, o);
+  const auto position = [&](hn::Vec<decltype(dd)> p) HWY_ATTR {
+#if HUSH_CONFIG_STRICT_FP
+    return hn::Add(hn::Mul(p, vf), vo);
+#else
+    return hn::MulAdd(p, vf, vo);
+#endif
+  };
+  const auto lo = position(hn::PromoteTo(dd, hn::LowerHalf(dh, x)));
+  const auto hi = position(hn::PromoteTo(dd, hn::UpperHalf(dh, x)));
+  const auto limit = hn::Set(dd, 2147483648.0);  // 2^31; false for NaN
+  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
+    return false;
+  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
+  const VF frac = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
+                              hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
+  const DI di;
+  const VU i0 =
+      hn::BitCast(DU(), hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo)));
+  a.w0 = word<kAxis>(i0);
+  a.w1 = word<kAxis>(hn::Add(i0, hn::Set(DU(), 1u)));
+  fill_axis<kGradient>(hn::Min(frac, hn::Set(df, detail::one_minus_ulp<float>())), a);
+  return true;
+#else
+  (void)x;
+  (void)f;
+  (void)o;
+  (void)a;
+  return false;
+#endif
+}
+
+// acc += band value (and gradient) with fractal.hpp's operations.
+template <bool kGradient, int D>
+HWY_INLINE void accumulate(bool turbulence, const band_config<D>& c, VF v, const VF* g, VF& acc,
+                           VF* gacc) {
+  const DF df;
+  const VF w = hn::Set(df, c.weight);
+  if constexpr (kGradient) {
+    // sign = -1 where turbulence folds a negative value; w sign v, chain sign g.
+    const VF sign =
+        turbulence ? hn::IfThenElse(hn::Lt(v, hn::Zero(df)), hn::Set(df, -1.0f), hn::Set(df, 1.0f))
+                   : hn::Set(df, 1.0f);
+    acc = hn::Add(acc, hn::Mul(hn::Mul(w, sign), v));
+    const VF chain = hn::Mul(hn::Set(df, c.chain), sign);
+    for (int a = 0; a < D; ++a) gacc[a] = hn::Add(gacc[a], hn::Mul(chain, g[a]));
+  } else {
+    (void)g;
+    (void)gacc;
+    acc = hn::Add(acc, hn::Mul(w, turbulence ? hn::Abs(v) : v));
+  }
+}
+
+// One vector of fractal points: band positions split by the vector where
+// split_band can, else per lane in double (NaN, Inf, huge, periodic bands).
+template <bool kGradient, int D>
+HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
+                                      const std::vector<band_config<D>>& bands,
+                                      const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
+                                      float* HWY_RESTRICT grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
+  VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+  VF xs[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+  if constexpr (D == 2)
+    hn::LoadInterleaved2(df, pts, xs[0], xs[1]);
+  else
+    hn::LoadInterleaved3(df, pts, xs[0], xs[1], xs[2]);
+  vec<double, D> p[kMaxLanes];  // the lanes' points in double, once, when a band needs them
+  bool have_p = false;
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    const band_config<D>& c = bands[b];
+    axis ax{}, ay{}, az{};
+    bool split = c.plain && split_band<kGradient, 0>(xs[0], c.frequency, c.offset[0], ax) &&
+                 split_band<kGradient, 1>(xs[1], c.frequency, c.offset[1], ay);
+    if constexpr (D == 3)
+      split = split && split_band<kGradient, 2>(xs[2], c.frequency, c.offset[2], az);
+    if (HWY_UNLIKELY(!split)) {
+      if (!have_p) {
+        for (std::size_t l = 0; l < lanes; ++l)
+          for (int a = 0; a < D; ++a) p[l][a] = double(pts[l * D + a]);
+        have_p = true;
+      }
+      double q[3][kMaxLanes];
+      for (std::size_t l = 0; l < lanes; ++l) {
+        const vec<double, D> qb = fr.band_position(static_cast<int>(b), p[l]);
+        for (int a = 0; a < D; ++a) q[a][l] = qb[a];
+      }
+      ax = split_doubles<kGradient, 0>(q[0], c.period[0]);
+      ay = split_doubles<kGradient, 1>(q[1], c.period[1]);
+      if constexpr (D == 3) az = split_doubles<kGradient, 2>(q[2], c.period[2]);
+    }
+    VU kyz[4];
+    key_words<D>(hn::Set(DU(), c.key), ay, az, kyz);
+    corners k;
+    hashed_corners<kGradient, D>(ax, kyz, ay, az, k);
+    VF v, g[3];
+    finish<kGradient, D>(k, ax, ay, az, v, g);
+    accumulate<kGradient, D>(turbulence, c, v, g, acc, gacc);
+  }
+  const VF scale = hn::Set(df, float(fr.scale()));
+  if constexpr (kGradient) {
+    hn::StoreU(hn::Mul(acc, scale), df, value);
+    for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], scale);
+    store_interleaved<D>(gacc, grad);
+  } else {
+    hn::StoreU(hn::Mul(scale, acc), df, value);
+  }
+}
+
+// A fractal on a grid: per band, the column layout of the band's x positions
+// and a per-row split of its y (and z) positions, evaluated like a Perlin
+// grid row and accumulated into the row's sums.
+template <bool kGradient, int D>
+void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t first,
+                  std::size_t count, float* value, float* grad) {
+  const DF df;
+  const std::vector<band_config<D>> bands = band_configs(fr);
+  const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
+  const std::size_t nx = g.size[0];
+  const std::size_t lanes = hn::Lanes(df);
+  auto position = [&](int b, int axis_index, double coordinate) {
+    vec<double, D> p;  // axes are independent in f x + o: the other coordinates do not matter
+    p[axis_index] = coordinate;
+    return fr.band_position(b, p)[axis_index];
+  };
+  std::vector<grid_columns> cols;
+  cols.reserve(bands.size());
+  for (std::size_t b = 0; b < bands.size(); ++b)
+    cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
+      return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
+    });
+  std::vector<row_evaluator<kGradient, D>> rows;
+  rows.reserve(bands.size());
+  for (const grid_columns& c : cols) rows.emplace_back(c);
+  // Per band, the current row's words and fractions (z kept while the slice
+  // is). On the stack: grid_row holds vectors, whose alignment a
+  // std::vector's storage need not have.
+  grid_row band_rows[fractal<perlin<D>>::kMaxOctaves];
+  std::size_t split_k = ~std::size_t(0);
+  const VF scale = hn::Set(df, float(fr.scale()));
+  for_each_row<D>(
+      g, first, count, [&](std::size_t j, std::size_t k, std::size_t row_index) HWY_ATTR {
+        for (std::size_t b = 0; b < bands.size(); ++b) {
+          const band_config<D>& c = bands[b];
+          const int bi = static_cast<int>(b);
+          grid_row& row = band_rows[b];
+          row.key = c.key;
+          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
+                                               c.period[1]);
+          if constexpr (D == 3)
+            if (k != split_k)
+              row.z = broadcast_axis<kGradient, 2>(
+                  position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+          rows[b].prepare(row);
+        }
+        split_k = k;
+        // Per vector of columns, the bands in order, summed in registers.
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          VF a = hn::Zero(df), ga[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+          for (std::size_t b = 0; b < bands.size(); ++b)
+            rows[b].vector(band_rows[b], i, [&](VF v, const VF* gr) HWY_ATTR {
+              accumulate<kGradient, D>(turbulence, bands[b], v, gr, a, ga);
+            });
+          VF gs[3];
+          if constexpr (kGradient)
+            for (int d = 0; d < D; ++d) gs[d] = hn::Mul(ga[d], scale);
+          store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
+                       value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
+        }
+      });
+}
+
+}  // namespace perlin_simd
+
+// Fractal sums of Perlin (fBm, turbulence) at interleaved points or on a
+// grid; same layout conventions as the Perlin entry points above.
+template <int D>
+void fractal_points(const fractal<perlin<D>>& fr, const float* pts, std::size_t n, float* value,
+                    float* grad) {
+  const std::vector<perlin_simd::band_config<D>> bands = perlin_simd::band_configs(fr);
+  if (grad)
+    perlin_simd::for_each_point_vector<true, D>(
+        n, pts, value, grad, [&](const float* p, float* v, float* g) HWY_ATTR {
+          perlin_simd::fractal_points_vector<true, D>(fr, bands, p, v, g);
+        });
+  else
+    perlin_simd::for_each_point_vector<false, D>(
+        n, pts, value, nullptr, [&](const float* p, float* v, float*) HWY_ATTR {
+          perlin_simd::fractal_points_vector<false, D>(fr, bands, p, v, nullptr);
+        });
+}
+inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
+                            float* value, float* grad) {
+  fractal_points<2>(fr, xy, n, value, grad);
+}
+inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
+                            float* value, float* grad) {
+  fractal_points<3>(fr, xyz, n, value, grad);
+}
+inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
+  if (grad)
+    perlin_simd::fractal_grid<true, 2>(fr, g, first, count, value, grad);
+  else
+    perlin_simd::fractal_grid<false, 2>(fr, g, first, count, value, nullptr);
+}
+inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
+                          std::size_t count, float* value, float* grad) {
+  if (grad)
+    perlin_simd::fractal_grid<true, 3>(fr, g, first, count, value, grad);
+  else
+    perlin_simd::fractal_grid<false, 3>(fr, g, first, count, value, nullptr);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_FRACTAL_INL_H_ toggle
+// ---- end hush/simd/fractal-inl.h
+#endif
+
+#define HUSH_SIMD_ENTRIES_FRACTAL(X)                                                            \
+  X(fractal2_points,                                                                            \
+    (const fractal<perlin<2>>& fr, const float* xy, std::size_t n, float* value, float* grad),  \
+    (fr, xy, n, value, grad))                                                                   \
+  X(fractal3_points,                                                                            \
+    (const fractal<perlin<3>>& fr, const float* xyz, std::size_t n, float* value, float* grad), \
+    (fr, xyz, n, value, grad))                                                                  \
+  X(fractal2_grid,                                                                              \
+    (const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first, std::size_t count,      \
+     float* value, float* grad),                                                                \
+    (fr, g, first, count, value, grad))                                                         \
+  X(fractal3_grid,                                                                              \
+    (const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first, std::size_t count,      \
+     float* value, float* grad),                                                                \
+    (fr, g, first, count, value, grad))
+
+HUSH_SIMD_DECLARE(HUSH_SIMD_ENTRIES_FRACTAL)
+
+#if HUSH_CONFIG_SIMD
+namespace hush {
+namespace detail {
+
+template <int D>
+struct simd_kernel<fractal<perlin<D>>> {
+  static constexpr bool available = true;
+
+  static void points(const fractal<perlin<D>>& fr, const vec<float, D>* pts, std::size_t count,
+                     float* out, vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::fractal2_points(fr, p, count, out, g);
+    else
+      simd::fractal3_points(fr, p, count, out, g);
+  }
+  static constexpr bool has_grid_slab = true;
+  static void grid_slab(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, std::size_t first,
+                        std::size_t count, float* out, vec<float, D>* grad) {
+    auto* g = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::fractal2_grid(fr, gr, first, count, out, g);
+    else
+      simd::fractal3_grid(fr, gr, first, count, out, g);
+  }
+  static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
+                   vec<float, D>* grad) {
+    grid_slab(fr, gr, 0, gr.size[D - 1], out, grad);
+  }
+};
+
+}  // namespace detail
+}  // namespace hush
+#endif  // HUSH_CONFIG_SIMD
+
+#endif  // HUSH_FRACTAL_SIMD_KERNEL_HPP
+// ---- end hush/fractal/simd_kernel.hpp
+
 #endif  // HUSH_FRACTAL_HPP
 // ---- end hush/fractal.hpp
 // ---- begin hush/steerable.hpp
@@ -3613,6 +5898,895 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 
 }  // namespace hush
 
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+// ---- begin hush/anisotropic/simd_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Anisotropic noise's SIMD entry points (kernels: hush/simd/anisotropic-inl.h)
+// and detail::simd_kernel<anisotropic>, which exec::simd calls: n samples at
+// interleaved positions xy, with footprints fp (3 floats each, null = points)
+// and surface maps (4 floats each, null = none), or a uniform grid; gradients
+// (interleaved x, y: the bilinear lookups' slopes) into grad unless null.
+// Included at the end of hush/anisotropic.hpp, after the class its kernels
+// use; not on its own.
+#ifndef HUSH_ANISOTROPIC_SIMD_KERNEL_HPP
+#define HUSH_ANISOTROPIC_SIMD_KERNEL_HPP
+
+#include <cstddef>
+
+
+#if HUSH_CONFIG_SIMD_STATIC
+// ---- begin hush/simd/anisotropic-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernels for anisotropic noise (hush/anisotropic.hpp): batches of
+// samples (positions with optional footprints and surface maps), points and
+// uniform grids; values, and gradients on request (weights held fixed).
+// Compiled once per SIMD target (toggle include guard); reached through
+// hush/simd/dispatch.hpp, never included directly by users.
+//
+// A block of kBlock samples goes through two phases:
+//  1. weights and tile coordinates, lanes = samples: the filter weights
+//     lambda (pixel filter per subband: exp2 polynomial of approx_math.hpp),
+//     the compensation weights gamma (log2 and band-profile polynomials), the
+//     octave sums, and per scale the lattice split of the tile coordinate
+//     p f_s / band + offset, in double lanes (exactly lattice_split<float>,
+//     lane by lane through core/lattice.hpp beyond 2^31 texels);
+//  2. lookups, lanes = channels (orientations): per sample and scale, the
+//     four texels of the bilinear footprint are two runs of 2 * channels
+//     floats; the blend and the weighted accumulation run on 4-channel
+//     chunks, the final channel sum in anisotropic.hpp's tree order.
+// Every operation repeats anisotropic.hpp's float algorithm in the same
+// order, so under HUSH_STRICT_FP the results are bit for bit the scalar ones
+// (tests/simd/anisotropic_simd_test.cpp, every compiled target); otherwise
+// multiply-adds are fused and results stay within the noise's float budget.
+// Least-squares weight rules take the scalar weight code per sample
+// (phase 1) and the vector lookups (phase 2): the same bits as well.
+// Gradients go through the general per-sample lookup, which also forms the
+// slopes of each bilinear lookup (anisotropic.hpp's accumulate).
+
+// Toggle guard: included once per target by foreach_target.h.
+#if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_ANISOTROPIC_INL_H_
+#undef HUSH_SIMD_ANISOTROPIC_INL_H_
+#else
+#define HUSH_SIMD_ANISOTROPIC_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+// The noise class comes first, not from here: hush/anisotropic.hpp includes these
+// kernels at its end (hush/anisotropic/simd_kernel.hpp), as src/simd/anisotropic.cpp does.
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace aniso_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using DD = hn::ScalableTag<double>;
+using VD = hn::Vec<DD>;
+using DFH = hn::Rebind<float, DD>;     // as many floats as DD has doubles
+using DIH = hn::Rebind<int32_t, DD>;   // ... and int32
+using DUH = hn::Rebind<uint32_t, DD>;  // ... and uint32
+using D4 = hn::CappedTag<float, 4>;    // one chunk of channels (1 lane on HWY_SCALAR)
+using V4 = hn::Vec<D4>;
+
+namespace c = detail::constants;
+
+// Samples per block: a multiple of every target's lane count (AVX-512: 16
+// floats; SVE at most 64) and small enough for the block buffers to stay in L1/L2.
+constexpr std::size_t kBlock = 64;
+constexpr int kMaxScales = c::kAnisoMaxScales;
+constexpr int kMaxChannels = anisotropic::kMaxChannels;
+
+// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
+// compiled), fused otherwise.
+template <class V>
+HWY_INLINE V mul_add(V a, V b, V cc) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), cc);
+#else
+  return hn::MulAdd(a, b, cc);
+#endif
+}
+
+// The polynomial coefficients of approx_math.hpp, rounded to float as the
+// scalar code rounds them (float(c)), at compile time.
+template <int N>
+struct float_coefficients {
+  float v[N];
+};
+template <int N>
+constexpr float_coefficients<N> to_float(const double (&d)[N]) {
+  float_coefficients<N> r{};
+  for (int i = 0; i < N; ++i) r.v[i] = static_cast<float>(d[i]);
+  return r;
+}
+constexpr auto kExp2 = to_float(c::kAnisoSeries.exp2);
+constexpr auto kLog2 = to_float(c::kAnisoSeries.log2);
+constexpr auto kSinPi = to_float(c::kAnisoSeries.sinpi);
+
+// Horner's rule p = (...(k[N-1] x + k[N-2]) x + ...) x + k[0], unrolled.
+template <int N, int M = N - 1>
+HWY_INLINE VF horner(const float_coefficients<N>& k, VF x, VF p) {
+  const DF df;
+  p = mul_add(p, x, hn::Set(df, k.v[M - 1]));
+  if constexpr (M - 1 > 0)
+    return horner<N, M - 1>(k, x, p);
+  else
+    return p;
+}
+template <int N>
+HWY_INLINE VF horner(const float_coefficients<N>& k, VF x) {
+  return horner<N>(k, x, hn::Set(DF(), k.v[N - 1]));
+}
+
+// detail::exp2_nonpositive for y in [-126, 0] (callers select the cutoff).
+HWY_INLINE VF exp2_nonpositive(VF y) {
+  const DF df;
+  const DI di;
+  const VF n = hn::Floor(hn::Add(y, hn::Set(df, 0.5f)));
+  const VF r = hn::Sub(y, n);
+  const VF p = horner(kExp2, r);
+  // 2^n from exponent bits; n < -126 (beyond the cutoff) is clamped, the
+  // caller discards those lanes.
+  const VF nc = hn::Max(n, hn::Set(df, -126.0f));
+  const auto e = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, nc), hn::Set(di, 127)));
+  return hn::Mul(p, hn::BitCast(df, e));
+}
+
+// detail::log2_positive: -inf below the smallest normal float, +inf stays.
+HWY_INLINE VF log2_positive(VF m) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const auto tiny = hn::Not(hn::Ge(m, hn::Set(df, std::numeric_limits<float>::min())));
+  const auto huge = hn::Not(hn::Lt(m, hn::Set(df, std::numeric_limits<float>::infinity())));
+  const VU b = hn::BitCast(du, m);
+  auto e = hn::Sub(hn::BitCast(di, hn::ShiftRight<23>(b)), hn::Set(di, 127));
+  VF a = hn::BitCast(df, hn::Or(hn::And(b, hn::Set(du, 0x007fffffu)), hn::Set(du, 0x3f800000u)));
+  const auto big = hn::Gt(a, hn::Set(df, float(c::kSqrt2)));
+  a = hn::IfThenElse(big, hn::Mul(a, hn::Set(df, 0.5f)), a);
+  e = hn::IfThenElse(hn::RebindMask(di, big), hn::Add(e, hn::Set(di, 1)), e);
+  const VF z = hn::Div(hn::Sub(a, hn::Set(df, 1.0f)), hn::Add(a, hn::Set(df, 1.0f)));
+  const VF p = horner(kLog2, hn::Mul(z, z));
+  VF r = mul_add(p, z, hn::ConvertTo(df, e));
+  r = hn::IfThenElse(tiny, hn::Set(df, -std::numeric_limits<float>::infinity()), r);
+  return hn::IfThenElse(huge, m, r);
+}
+
+// detail::band_profile: cos^2(pi x / 2) for |x| < 1, else 0 (x is never NaN here).
+HWY_INLINE VF band_profile(VF x) {
+  const DF df;
+  const VF ax = hn::Abs(x);
+  const VF z = hn::Sub(ax, hn::Set(df, 0.5f));
+  const VF p = horner(kSinPi, hn::Mul(z, z));
+  const VF half = hn::Set(df, 0.5f);
+  const VF v = hn::Sub(half, hn::Mul(half, hn::Mul(p, z)));
+  return hn::IfThenElseZero(hn::Lt(ax, hn::Set(df, 1.0f)), v);
+}
+
+// The noise's constants in float, once per call.
+struct config {
+  int k = 4, kc = 4, scales = 3, base = 0, octaves = 3;
+  bool fbm = true, lsq = false;
+  weight_rule filtering = weight_rule::centre, compensation = weight_rule::centre;
+  std::uint32_t n = 256;
+  std::size_t stride = 0;
+  const float* texels = nullptr;
+  double dxx[kMaxChannels] = {}, dyy[kMaxChannels] = {}, dxy2[kMaxChannels] = {};
+  double dx[kMaxChannels] = {}, dy[kMaxChannels] = {}, kappa[kMaxScales] = {};
+  float ow[kMaxScales] = {}, gain[kMaxScales] = {};
+  float norm = 1, cap = 1, cut = 0;
+  // pow4: kappa_s = 4^s kappa_0 exactly (the scales' frequencies are f_0 2^s), so
+  // float(kappa_s q) = 4^s float(kappa_0 q): scaling by a power of two commutes with
+  // rounding, overflow included; below float's normal range (z < 2^-126) the two may
+  // differ, but exp2's polynomial then returns its constant term for both: the same
+  // lambda. Checked here rather than assumed.
+  bool pow4 = true;
+  float four_s[kMaxScales] = {};
+  double tpu[kMaxScales] = {}, off[kMaxScales][2] = {};
+
+  explicit config(const anisotropic& a) {
+    const auto& p = a.parameters();
+    k = p.orientations;
+    kc = a.channels();
+    scales = p.scales;
+    base = p.base_scale;
+    octaves = p.octaves;
+    fbm = p.kind == fractal_kind::fbm;
+    filtering = p.filtering;
+    compensation = p.compensation;
+    lsq = filtering == weight_rule::least_squares || compensation == weight_rule::least_squares;
+    n = static_cast<std::uint32_t>(p.tile_size);
+    stride = a.tile().row_stride();
+    texels = a.tile().texels().data();
+    for (int i = 0; i < k; ++i) {
+      const dvec2 d = a.direction(i);
+      dxx[i] = d.x * d.x;
+      dyy[i] = d.y * d.y;
+      dxy2[i] = 2.0 * d.x * d.y;
+      dx[i] = d.x;
+      dy[i] = d.y;
+    }
+    for (int s = 0; s < scales; ++s) {
+      kappa[s] = a.kappa(s);
+      tpu[s] = a.texels_per_unit(s);
+      off[s][0] = a.offset(s).x;
+      off[s][1] = a.offset(s).y;
+    }
+    for (int s = 0; s < scales; ++s) {
+      four_s[s] = std::ldexp(1.0f, 2 * s);
+      pow4 = pow4 && kappa[s] == std::ldexp(kappa[0], 2 * s);
+    }
+    double g = 1.0;
+    for (int o = 0; o < octaves; ++o, g *= p.gain) {
+      ow[o] = float(a.octave_weight(o));
+      gain[o] = float(g);
+    }
+    norm = float(a.normalization());
+    cap = float(a.gamma_cap());
+    cut = float(c::kAnisoWeightCutoff * c::kLog2E);
+  }
+  // Octave passes of phase 2: 1 for fbm (octaves summed into the weights).
+  int passes() const { return fbm ? 1 : octaves; }
+};
+
+// One block's phase-1 results.
+struct block {
+  // w[((pass * scales + s) * chunks + h) * kBlock * 4 + sample * 4 + q]:
+  // channel 4h + q of the weights of scale s in octave pass `pass`.
+  std::vector<float> w;
+  // Per scale and sample: the offset of texel (x0, y0) in the tile's float
+  // array, and the fractions.
+  HWY_ALIGN std::uint32_t offset[kMaxScales][kBlock];
+  HWY_ALIGN float fx[kMaxScales][kBlock];
+  HWY_ALIGN float fy[kMaxScales][kBlock];
+  // active[s][j] != 0: some weight of scale s (any pass) is not 0 for sample j.
+  HWY_ALIGN std::uint32_t active[kMaxScales][kBlock];
+  bool bad[kBlock];
+  // The samples' coordinates in double (x, y).
+  HWY_ALIGN double x[kBlock], y[kBlock];
+  // Phase 1's double-precision parts, rounded to float: the filter exponents
+  // z[(s * kc + i) * kBlock + j], |T^T w_i|^2 in m2[i * kBlock + j], |det T| in det[j].
+  std::vector<float> z, m2;
+  HWY_ALIGN float det[kBlock];
+  explicit block(const config& cf)
+      : w(static_cast<std::size_t>(cf.passes() * cf.scales * cf.kc) * kBlock, 0.0f),
+        z(static_cast<std::size_t>(cf.scales * cf.kc) * kBlock, 0.0f),
+        m2(static_cast<std::size_t>(cf.kc) * kBlock, 0.0f) {}
+  float* weights(const config& cf, int pass, int s, int h) {
+    return w.data() + index(cf, pass, s, h);
+  }
+  const float* weights(const config& cf, int pass, int s, int h) const {
+    return w.data() + index(cf, pass, s, h);
+  }
+  static std::size_t index(const config& cf, int pass, int s, int h) {
+    return static_cast<std::size_t>((pass * cf.scales + s) * (cf.kc / 4) + h) * kBlock * 4;
+  }
+};
+
+// The scalar algorithm's lambda for z = kappa_s q: 0 beyond the cutoff.
+HWY_INLINE VF lambda1(VF z, VF cut) {
+  return hn::IfThenZeroElse(hn::Gt(z, cut), exp2_nonpositive(hn::Neg(z)));
+}
+HWY_INLINE VF lambda(VF z, VF cut, bool three) {
+  const DF df;
+  // Beyond the cutoff in every lane, also at the three-point rule's lowest
+  // radius (a far scale): 0, as lane by lane.
+  if (hn::AllTrue(df, hn::Gt(three ? hn::Mul(z, hn::Set(df, 0.5f)) : z, cut))) return hn::Zero(df);
+  if (!three) return lambda1(z, cut);
+  const VF lo = lambda1(hn::Mul(z, hn::Set(df, 0.5f)), cut);
+  const VF mid = lambda1(z, cut);
+  const VF hi = lambda1(hn::Mul(z, hn::Set(df, 2.0f)), cut);
+  const VF side = hn::Set(df, float(c::kAnisoThreePointSide));
+  return mul_add(side, hi,
+                 mul_add(side, lo, hn::Mul(hn::Set(df, float(c::kAnisoThreePointCentre)), mid)));
+}
+
+// Stores channel vectors ch[0 ... kc-1] (lanes = samples first ... first +
+// lanes - 1) into the block's interleaved weight rows of (pass, s).
+HWY_INLINE void store_weights(const config& cf, block& b, int pass, int s, std::size_t first,
+                              const VF* ch) {
+  const DF df;
+  for (int h = 0; h < cf.kc / 4; ++h) {
+    const VF* c4 = ch + static_cast<std::size_t>(4 * h);
+    hn::StoreInterleaved4(c4[0], c4[1], c4[2], c4[3], df, b.weights(cf, pass, s, h) + first * 4);
+  }
+}
+
+// Phase 1, weights, for samples [first, first + lanes) of the block; fp and
+// map point at the block's first sample (null when not given).
+HWY_INLINE void weights_vector(const config& cf, block& b, std::size_t first, const float* fp,
+                               const float* map) {
+  const DF df;
+  const DD dd;
+  const DFH dfh;
+  const VF zero = hn::Zero(df);
+  // The quadratic forms and the determinant in double (anisotropic.hpp: they
+  // cancel at grazing angles and for nearly singular maps), rounded to float.
+  for (std::size_t h = first; h < first + hn::Lanes(df); h += hn::Lanes(dd)) {
+    if (fp) {
+      hn::Vec<DFH> a, bb, cc;
+      hn::LoadInterleaved3(dfh, fp + h * 3, a, bb, cc);
+      const VD sxx = hn::PromoteTo(dd, a), sxy = hn::PromoteTo(dd, bb), syy = hn::PromoteTo(dd, cc);
+      for (int i = 0; i < cf.k; ++i) {
+        // anisotropic::filter_form: clamped at 0 (S rounded to float may be indefinite).
+        const VD q = hn::Max(
+            mul_add(syy, hn::Set(dd, cf.dyy[i]),
+                    mul_add(sxy, hn::Set(dd, cf.dxy2[i]), hn::Mul(sxx, hn::Set(dd, cf.dxx[i])))),
+            hn::Zero(dd));
+        for (int s = 0; s < cf.scales; ++s)
+          hn::StoreU(hn::DemoteTo(dfh, hn::Mul(hn::Set(dd, cf.kappa[s]), q)), dfh,
+                     b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock + h);
+      }
+    }
+    if (map) {
+      hn::Vec<DFH> a00, a01, a10, a11;
+      hn::LoadInterleaved4(dfh, map + h * 4, a00, a01, a10, a11);
+      VD m00 = hn::PromoteTo(dd, a00), m01 = hn::PromoteTo(dd, a01);
+      VD m10 = hn::PromoteTo(dd, a10), m11 = hn::PromoteTo(dd, a11);
+      // A map with a non-finite entry counts as the zero map.
+      const auto ok = hn::And(hn::And(hn::IsFinite(m00), hn::IsFinite(m01)),
+                              hn::And(hn::IsFinite(m10), hn::IsFinite(m11)));
+      m00 = hn::IfThenElseZero(ok, m00);
+      m01 = hn::IfThenElseZero(ok, m01);
+      m10 = hn::IfThenElseZero(ok, m10);
+      m11 = hn::IfThenElseZero(ok, m11);
+      hn::StoreU(hn::DemoteTo(dfh, hn::Abs(hn::Sub(hn::Mul(m00, m11), hn::Mul(m01, m10)))), dfh,
+                 b.det + h);
+      for (int i = 0; i < cf.k; ++i) {
+        const VD dxv = hn::Set(dd, cf.dx[i]), dyv = hn::Set(dd, cf.dy[i]);
+        const VD tu = mul_add(m10, dyv, hn::Mul(m00, dxv));
+        const VD tv = mul_add(m11, dyv, hn::Mul(m01, dxv));
+        hn::StoreU(hn::DemoteTo(dfh, mul_add(tv, tv, hn::Mul(tu, tu))), dfh,
+                   b.m2.data() + static_cast<std::size_t>(i) * kBlock + h);
+      }
+    }
+  }
+  VF half_log[kMaxChannels], sd = zero;
+  if (map) {
+    sd = hn::Sqrt(hn::LoadU(df, b.det + first));
+    for (int i = 0; i < cf.k; ++i)
+      half_log[i] = hn::Mul(
+          hn::Set(df, 0.5f),
+          log2_positive(hn::LoadU(df, b.m2.data() + static_cast<std::size_t>(i) * kBlock + first)));
+  }
+  const VF cut = hn::Set(df, cf.cut), cap = hn::Set(df, cf.cap);
+  const bool three_l = cf.filtering == weight_rule::three_point;
+  const bool three_c = cf.compensation == weight_rule::three_point;
+  const VF side = hn::Set(df, float(c::kAnisoThreePointSide));
+  const VF centre = hn::Set(df, float(c::kAnisoThreePointCentre));
+  const VF halfv = hn::Set(df, 0.5f);
+  const DU du;
+  const VU magnitude = hn::Set(du, 0x7fffffffu);
+  for (int s = 0; s < cf.scales; ++s) {
+    VU any = hn::Zero(du);
+    VF lam[kMaxChannels];
+    for (int i = 0; i < cf.k; ++i)
+      lam[i] =
+          fp ? lambda(hn::LoadU(df, b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock +
+                                        first),
+                      cut, three_l)
+             : hn::Set(df, 1.0f);
+    for (int pass = 0; pass < cf.passes(); ++pass) {
+      VF ch[kMaxChannels];
+      for (int i = 0; i < cf.kc; ++i) ch[i] = zero;
+      const int k0 = cf.fbm ? 0 : pass, k1 = cf.fbm ? cf.octaves : pass + 1;
+      for (int i = 0; i < cf.k; ++i) {
+        if (!map) {
+          const int o = s - cf.base;
+          if (o >= k0 && o < k1) ch[i] = hn::Mul(hn::Set(df, cf.fbm ? cf.ow[o] : cf.norm), lam[i]);
+          continue;
+        }
+        VF acc = zero;
+        for (int o = k0; o < k1; ++o) {
+          const VF x = hn::Add(hn::Set(df, float(s - cf.base - o)), half_log[i]);
+          const VF prof = three_c ? mul_add(side, band_profile(hn::Add(x, halfv)),
+                                            mul_add(side, band_profile(hn::Sub(x, halfv)),
+                                                    hn::Mul(centre, band_profile(x))))
+                                  : band_profile(x);
+          const VF g = hn::Min(
+              hn::Mul(hn::Set(df, float(std::ldexp(1.0, s - cf.base - o))), hn::Mul(sd, prof)),
+              cap);
+          const VF gamma = hn::IfThenElseZero(hn::Gt(prof, zero), g);
+          acc = mul_add(hn::Set(df, cf.fbm ? cf.ow[o] : cf.norm), gamma, acc);
+        }
+        ch[i] = hn::Mul(acc, lam[i]);
+      }
+      for (int i = 0; i < cf.k; ++i) any = hn::Or(any, hn::And(hn::BitCast(du, ch[i]), magnitude));
+      store_weights(cf, b, pass, s, first, ch);
+    }
+    hn::StoreU(any, du, b.active[s] + first);
+  }
+}
+
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR
+// Phase 1, weights, in the most frequent case (fbm, footprints, no surface
+// maps, centre filtering: the bench frame, hush render without --scene): the
+// operations of weights_vector in the same order, without its map and
+// octave-pass machinery. Lanes = samples; the double quadratic forms of the
+// two halves are demoted and joined in registers rather than through b.z.
+HWY_INLINE void weights_filter(const config& cf, block& b, std::size_t first, const float* fp) {
+  const DF df;
+  const DD dd;
+  const DFH dfh;
+  const DU du;
+  const std::size_t half = hn::Lanes(dd);
+  static_assert(hn::MaxLanes(DF()) == 2 * hn::MaxLanes(DD()), "two double halves per float vector");
+  hn::Vec<DFH> a0, b0, c0, a1, b1, c1;
+  hn::LoadInterleaved3(dfh, fp + first * 3, a0, b0, c0);
+  hn::LoadInterleaved3(dfh, fp + (first + half) * 3, a1, b1, c1);
+  const VD sxx0 = hn::PromoteTo(dd, a0), sxy0 = hn::PromoteTo(dd, b0), syy0 = hn::PromoteTo(dd, c0);
+  const VD sxx1 = hn::PromoteTo(dd, a1), sxy1 = hn::PromoteTo(dd, b1), syy1 = hn::PromoteTo(dd, c1);
+  VD q0[kMaxChannels], q1[kMaxChannels];
+  for (int i = 0; i < cf.k; ++i) {
+    const VD dxx = hn::Set(dd, cf.dxx[i]), dxy2 = hn::Set(dd, cf.dxy2[i]),
+             dyy = hn::Set(dd, cf.dyy[i]);
+    q0[i] = hn::Max(mul_add(syy0, dyy, mul_add(sxy0, dxy2, hn::Mul(sxx0, dxx))), hn::Zero(dd));
+    q1[i] = hn::Max(mul_add(syy1, dyy, mul_add(sxy1, dxy2, hn::Mul(sxx1, dxx))), hn::Zero(dd));
+  }
+  // The filter exponents of scale 0; the others are 4^s times them (config::pow4).
+  VF z0[kMaxChannels];
+  if (cf.pow4) {
+    const VD kappa = hn::Set(dd, cf.kappa[0]);
+    for (int i = 0; i < cf.k; ++i)
+      z0[i] = hn::Combine(df, hn::DemoteTo(dfh, hn::Mul(kappa, q1[i])),
+                          hn::DemoteTo(dfh, hn::Mul(kappa, q0[i])));
+  }
+  const VF cut = hn::Set(df, cf.cut);
+  const VU magnitude = hn::Set(du, 0x7fffffffu);
+  for (int s = 0; s < cf.scales; ++s) {
+    VF ch[kMaxChannels];
+    for (int i = 0; i < cf.kc; ++i) ch[i] = hn::Zero(df);
+    VU any = hn::Zero(du);
+    const int o = s - cf.base;
+    if (o >= 0 && o < cf.octaves) {
+      const VD kappa = hn::Set(dd, cf.kappa[s]);
+      const VF four_s = hn::Set(df, cf.four_s[s]);
+      const VF ow = hn::Set(df, cf.ow[o]);
+      for (int i = 0; i < cf.k; ++i) {
+        const VF z = cf.pow4 ? hn::Mul(z0[i], four_s)
+                             : hn::Combine(df, hn::DemoteTo(dfh, hn::Mul(kappa, q1[i])),
+                                           hn::DemoteTo(dfh, hn::Mul(kappa, q0[i])));
+        ch[i] = hn::Mul(ow, lambda(z, cut, false));
+        any = hn::Or(any, hn::And(hn::BitCast(du, ch[i]), magnitude));
+      }
+    }
+    store_weights(cf, b, 0, s, first, ch);
+    hn::StoreU(any, du, b.active[s] + first);
+  }
+}
+#endif
+
+// Phase 1, tile coordinates of scale s for the block's `count` samples (the
+// coordinates b.x, b.y, padded to whole vectors): lattice_split<float>(p tpu + off, n).
+HWY_INLINE void split_scale(const config& cf, block& b, int s, std::size_t count) {
+  const DD dd;
+  const DFH dfh;
+  const DIH dih;
+  const DUH duh;
+  const std::size_t lanes = hn::Lanes(dd);
+  const VD tpu = hn::Set(dd, cf.tpu[s]);
+  const VD limit = hn::Set(dd, 2147483648.0);
+  const auto ulp = hn::Set(dfh, detail::one_minus_ulp<float>());
+  const auto mask = hn::Set(duh, cf.n - 1u);
+  HWY_ALIGN std::uint32_t cells[2][kBlock];
+  for (int axis = 0; axis < 2; ++axis) {
+    std::uint32_t* cell = cells[axis];
+    float* frac = axis == 0 ? b.fx[s] : b.fy[s];
+    const double* coord = axis == 0 ? b.x : b.y;
+    const VD off = hn::Set(dd, cf.off[s][axis]);
+    for (std::size_t j = 0; j < count; j += lanes) {
+      VD qv = hn::Mul(hn::Load(dd, coord + j), tpu);
+      qv = hn::Add(hn::IfThenElseZero(hn::IsFinite(qv), qv), off);
+      const VD fl = hn::Floor(qv);
+      if (HWY_LIKELY(hn::AllTrue(dd, hn::Lt(hn::Abs(fl), limit)))) {
+        hn::StoreU(hn::Min(hn::DemoteTo(dfh, hn::Sub(qv, fl)), ulp), dfh, frac + j);
+        hn::StoreU(hn::And(hn::BitCast(duh, hn::DemoteTo(dih, fl)), mask), duh, cell + j);
+      } else {
+        HWY_ALIGN double qs[kBlock];
+        hn::Store(qv, dd, qs);
+        for (std::size_t l = 0; l < lanes; ++l) {
+          // NaN positions (bad samples) land here too: cell 0, never read.
+          const lattice_coord<float> lc = lattice_split<float>(qs[l], cf.n);
+          cell[j + l] = std::isfinite(qs[l]) ? lc.i0 : 0u;
+          frac[j + l] = std::isfinite(qs[l]) ? lc.f : 0.0f;
+        }
+      }
+    }
+  }
+  const DU du;
+  const VU stride = hn::Set(du, static_cast<std::uint32_t>(cf.stride));
+  const VU kc = hn::Set(du, static_cast<std::uint32_t>(cf.kc));
+  for (std::size_t j = 0; j < count; j += hn::Lanes(du))
+    hn::StoreU(hn::Add(hn::Mul(hn::LoadU(du, cells[1] + j), stride),
+                       hn::Mul(hn::LoadU(du, cells[0] + j), kc)),
+               du, b.offset[s] + j);
+}
+
+// Phase 2 for one sample: the weighted bilinear lookups of every scale
+// (general: any channel count and octave passes, 4-channel chunks). With
+// Gradient, also the gradient into g[0], g[1]: the bilinear lookups' slopes
+// times the scale's texels per unit, weights held fixed (anisotropic.hpp's
+// accumulate, the same operations in the same order).
+template <bool Gradient>
+HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j, float* g) {
+  const D4 d4;
+  const std::size_t n4 = hn::Lanes(d4);
+  const int passes = cf.passes();
+  // Accumulators of octave pass p start at row(p) (size_t: no int products as offsets).
+  const auto row = [&](int p) {
+    return static_cast<std::size_t>(p) * static_cast<std::size_t>(cf.kc);
+  };
+  HWY_ALIGN float acc[kMaxScales * kMaxChannels];
+  HWY_ALIGN float gx[Gradient ? kMaxScales * kMaxChannels : 1];
+  HWY_ALIGN float gy[Gradient ? kMaxScales * kMaxChannels : 1];
+  std::fill(acc, acc + row(passes), 0.0f);
+  if constexpr (Gradient) {
+    std::fill(gx, gx + row(passes), 0.0f);
+    std::fill(gy, gy + row(passes), 0.0f);
+  }
+  for (int s = 0; s < cf.scales; ++s) {
+    if (!b.active[s][j]) continue;
+    const float* t00 = cf.texels + b.offset[s][j];
+    const float* t01 = t00 + cf.stride;
+    const V4 fx = hn::Set(d4, b.fx[s][j]), fy = hn::Set(d4, b.fy[s][j]);
+    const V4 scale = hn::Set(d4, float(cf.tpu[s]));
+    for (int cc = 0; cc < cf.kc; cc += static_cast<int>(n4)) {
+      const V4 c00 = hn::LoadU(d4, t00 + cc), c10 = hn::LoadU(d4, t00 + cf.kc + cc);
+      const V4 c01 = hn::LoadU(d4, t01 + cc), c11 = hn::LoadU(d4, t01 + cf.kc + cc);
+      const V4 d0 = hn::Sub(c01, c00), d1 = hn::Sub(c11, c10);
+      const V4 r0 = mul_add(fy, d0, c00);
+      const V4 r1 = mul_add(fy, d1, c10);
+      const V4 v = mul_add(fx, hn::Sub(r1, r0), r0);
+      V4 sx, sy;
+      if constexpr (Gradient) {
+        sx = hn::Mul(scale, hn::Sub(r1, r0));
+        sy = hn::Mul(scale, mul_add(fx, hn::Sub(d1, d0), d0));
+      }
+      for (int pass = 0; pass < passes; ++pass) {
+        const V4 w = hn::LoadU(d4, b.weights(cf, pass, s, cc / 4) + j * 4 + cc % 4);
+        const std::size_t at = row(pass) + static_cast<std::size_t>(cc);
+        hn::Store(mul_add(w, v, hn::Load(d4, acc + at)), d4, acc + at);
+        if constexpr (Gradient) {
+          hn::Store(mul_add(w, sx, hn::Load(d4, gx + at)), d4, gx + at);
+          hn::Store(mul_add(w, sy, hn::Load(d4, gy + at)), d4, gy + at);
+        }
+      }
+    }
+  }
+  auto tree = [&](const float* a) {
+    const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
+    return cf.kc == 4 ? s4 : s4 + ((a[4] + a[5]) + (a[6] + a[7]));
+  };
+  if (cf.fbm) {
+    if constexpr (Gradient) {
+      g[0] = tree(gx);
+      g[1] = tree(gy);
+    }
+    return tree(acc);
+  }
+  float r = 0.0f, rx = 0.0f, ry = 0.0f;
+  for (int pass = 0; pass < passes; ++pass) {
+    const float v = tree(acc + row(pass));
+    r = r + cf.gain[pass] * std::fabs(v);
+    if constexpr (Gradient) {
+      const float gs = cf.gain[pass] * (v < 0.0f ? -1.0f : 1.0f);
+      rx = rx + gs * tree(gx + row(pass));
+      ry = ry + gs * tree(gy + row(pass));
+    }
+  }
+  if constexpr (Gradient) {
+    g[0] = rx;
+    g[1] = ry;
+  }
+  return r;
+}
+
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+// Phase 2 for fbm with KC channels on targets whose vectors hold two texels
+// (2 KC floats): each row of the bilinear footprint is one load, blended in
+// y across both texels at once, then in x between the halves. Same
+// operations as lookup_sample, fewer instructions.
+template <int KC>
+HWY_INLINE void lookup_block_pairs(const config& cf, const block& b, std::size_t count,
+                                   float* out) {
+  const hn::FixedTag<float, 2 * KC> dp;
+  const hn::FixedTag<float, KC> dk;
+  using VK = hn::Vec<decltype(dk)>;
+  const int scales = cf.scales;
+  const std::size_t stride = cf.stride;
+  for (std::size_t j = 0; j < count; ++j) {
+    if (b.bad[j]) {
+      out[j] = std::numeric_limits<float>::quiet_NaN();
+      continue;
+    }
+    VK acc = hn::Zero(dk);
+    for (int s = 0; s < scales; ++s) {
+      if (!b.active[s][j]) continue;
+      const float* t00 = cf.texels + b.offset[s][j];
+      const auto row0 = hn::LoadU(dp, t00), row1 = hn::LoadU(dp, t00 + stride);
+      const auto r = mul_add(hn::Set(dp, b.fy[s][j]), hn::Sub(row1, row0), row0);
+      const VK r0 = hn::LowerHalf(dk, r), r1 = hn::UpperHalf(dk, r);
+      const VK v = mul_add(hn::Set(dk, b.fx[s][j]), hn::Sub(r1, r0), r0);
+      const float* w = b.w.data() + (static_cast<std::size_t>(s) * (KC / 4) * kBlock) * 4;
+      VK wk;
+      if constexpr (KC == 4) {
+        wk = hn::LoadU(dk, w + j * 4);
+      } else {
+        // Channels 0-3 and 4-7 sit in two interleaved rows of the block.
+        const hn::FixedTag<float, 4> d4f;
+        wk = hn::Combine(dk, hn::LoadU(d4f, w + kBlock * 4 + j * 4), hn::LoadU(d4f, w + j * 4));
+      }
+      acc = mul_add(wk, v, acc);
+    }
+    HWY_ALIGN float a[KC];
+    hn::Store(acc, dk, a);
+    const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
+    if constexpr (KC == 4)
+      out[j] = s4;
+    else
+      out[j] = s4 + ((a[4] + a[5]) + (a[6] + a[7]));
+  }
+}
+#endif
+
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+// Phase 2 for fbm with 8 channels where a vector holds one texel (AVX2):
+// four loads per scale, the blend on whole texels.
+HWY_INLINE void lookup_block_texels8(const config& cf, const block& b, std::size_t count,
+                                     float* out) {
+  const hn::FixedTag<float, 8> d8;
+  const hn::FixedTag<float, 4> d4f;
+  using V8 = hn::Vec<decltype(d8)>;
+  const std::size_t stride = cf.stride;
+  for (std::size_t j = 0; j < count; ++j) {
+    if (b.bad[j]) {
+      out[j] = std::numeric_limits<float>::quiet_NaN();
+      continue;
+    }
+    V8 acc = hn::Zero(d8);
+    for (int s = 0; s < cf.scales; ++s) {
+      if (!b.active[s][j]) continue;
+      const float* t00 = cf.texels + b.offset[s][j];
+      const float* t01 = t00 + stride;
+      const V8 fy = hn::Set(d8, b.fy[s][j]);
+      const V8 c00 = hn::LoadU(d8, t00), c10 = hn::LoadU(d8, t00 + 8);
+      const V8 r0 = mul_add(fy, hn::Sub(hn::LoadU(d8, t01), c00), c00);
+      const V8 r1 = mul_add(fy, hn::Sub(hn::LoadU(d8, t01 + 8), c10), c10);
+      const V8 v = mul_add(hn::Set(d8, b.fx[s][j]), hn::Sub(r1, r0), r0);
+      const float* w = b.w.data() + static_cast<std::size_t>(s) * 2 * kBlock * 4;
+      const V8 wk =
+          hn::Combine(d8, hn::LoadU(d4f, w + kBlock * 4 + j * 4), hn::LoadU(d4f, w + j * 4));
+      acc = mul_add(wk, v, acc);
+    }
+    HWY_ALIGN float a[8];
+    hn::Store(acc, d8, a);
+    out[j] = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+  }
+}
+#endif
+
+// Phase 2 for a block: with gradients (grad: interleaved x, y) per sample;
+// values only through the paired fast path where the target allows, else per sample.
+HWY_INLINE void lookup_block(const config& cf, const block& b, std::size_t count, float* out,
+                             float* grad) {
+  if (grad) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (std::size_t j = 0; j < count; ++j) {
+      if (b.bad[j]) {
+        out[j] = grad[2 * j] = grad[2 * j + 1] = nan;
+        continue;
+      }
+      out[j] = lookup_sample<true>(cf, b, j, grad + 2 * j);
+    }
+    return;
+  }
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
+  if (cf.fbm && cf.kc == 4) return lookup_block_pairs<4>(cf, b, count, out);
+#if HWY_MAX_BYTES >= 64
+  if (cf.fbm && cf.kc == 8) return lookup_block_pairs<8>(cf, b, count, out);
+#else
+  if (cf.fbm && cf.kc == 8) return lookup_block_texels8(cf, b, count, out);
+#endif
+#endif
+  for (std::size_t j = 0; j < count; ++j)
+    out[j] = b.bad[j] ? std::numeric_limits<float>::quiet_NaN()
+                      : lookup_sample<false>(cf, b, j, nullptr);
+}
+
+// Least-squares rules: phase-1 weights of sample j from the scalar code.
+inline void scalar_weights(const anisotropic& a, const config& cf, block& b, std::size_t j,
+                           const sample_input<2>& in) {
+  float w[kMaxScales * kMaxChannels];
+  for (int pass = 0; pass < cf.passes(); ++pass) {
+    if (cf.fbm)
+      a.weights<float>(in, w);
+    else
+      a.octave_weights<float>(in, pass, w);
+    for (int s = 0; s < cf.scales; ++s)
+      for (int h = 0; h < cf.kc / 4; ++h)
+        std::memcpy(b.weights(cf, pass, s, h) + j * 4,
+                    w + static_cast<std::size_t>(s * cf.kc + 4 * h), 4 * sizeof(float));
+  }
+}
+
+// A block of `count` <= kBlock samples whose coordinates are in b.x, b.y
+// (padded to whole vectors), with footprints fp and maps (null: not given) at
+// the block's first sample; gradients into grad (interleaved x, y) unless null.
+inline void run_block(const anisotropic& a, const config& cf, block& b, std::size_t count,
+                      const float* fp, const float* map, float* out, float* grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const std::size_t padded = (count + lanes - 1) / lanes * lanes;
+  // Pad the block's inputs to whole vectors (copies of the last sample).
+  HWY_ALIGN float fpb[kBlock * 3], mapb[kBlock * 4];
+  if (padded > count) {
+    if (fp) {
+      for (std::size_t j = 0; j < padded; ++j)
+        std::memcpy(fpb + 3 * j, fp + 3 * std::min(j, count - 1), 3 * sizeof(float));
+      fp = fpb;
+    }
+    if (map) {
+      for (std::size_t j = 0; j < padded; ++j)
+        std::memcpy(mapb + 4 * j, map + 4 * std::min(j, count - 1), 4 * sizeof(float));
+      map = mapb;
+    }
+  }
+  for (std::size_t j = count; j < padded; ++j) {
+    b.x[j] = b.x[count - 1];
+    b.y[j] = b.y[count - 1];
+  }
+  for (std::size_t j = 0; j < count; ++j)
+    b.bad[j] = !(std::isfinite(b.x[j]) && std::isfinite(b.y[j]));
+  if (!cf.lsq) {
+#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR
+    if (cf.fbm && fp && !map && cf.filtering == weight_rule::centre) {
+      for (std::size_t j = 0; j < padded; j += lanes) weights_filter(cf, b, j, fp);
+    } else
+#endif
+      for (std::size_t j = 0; j < padded; j += lanes) weights_vector(cf, b, j, fp, map);
+  } else {
+    for (std::size_t j = 0; j < count; ++j) {
+      sample_input<2> in;
+      in.position = {b.x[j], b.y[j]};
+      if (fp) {
+        const float u[3] = {fp[3 * j], fp[3 * j + 1], fp[3 * j + 2]};
+        in.fp = footprint<2>::from_covariance(u);
+      }
+      if (map) {
+        in.map = {map[4 * j], map[4 * j + 1], map[4 * j + 2], map[4 * j + 3]};
+        in.has_map = true;
+      }
+      scalar_weights(a, cf, b, j, in);
+      for (int s = 0; s < cf.scales; ++s) b.active[s][j] = 1;
+    }
+  }
+  // Tile coordinates only for scales some sample reads (far from the
+  // camera, the pixel filter zeroes the fine scales of whole blocks).
+  for (int s = 0; s < cf.scales; ++s)
+    if (std::any_of(b.active[s], b.active[s] + count, [](std::uint32_t v) { return v != 0; }))
+      split_scale(cf, b, s, padded);
+  lookup_block(cf, b, count, out, grad);
+}
+
+}  // namespace aniso_simd
+
+// Anisotropic noise at n samples: positions xy (interleaved), footprints fp
+// (3 floats each: the stored upper triangle; null = points) and surface
+// maps (4 floats each; null = none); values into `value`, gradients
+// (interleaved x, y, weights held fixed as in anisotropic.hpp) into grad
+// unless null.
+inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
+                                const float* map, std::size_t n, float* value, float* grad) {
+  using namespace aniso_simd;
+  const config cf(a);
+  block b(cf);
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t count = std::min(kBlock, n - first);
+    const float* p = xy + 2 * first;
+    for (std::size_t j = 0; j < count; ++j) {
+      b.x[j] = double(p[2 * j]);
+      b.y[j] = double(p[2 * j + 1]);
+    }
+    run_block(a, cf, b, count, fp ? fp + 3 * first : nullptr, map ? map + 4 * first : nullptr,
+              value + first, grad ? grad + 2 * first : nullptr);
+  }
+}
+
+// Anisotropic noise on a uniform 2D grid (C order, i fastest); positions
+// origin + step * (i, j) in double, as the scalar grid path forms them;
+// gradients (interleaved x, y) into grad unless null.
+inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
+  using namespace aniso_simd;
+  const config cf(a);
+  block b(cf);
+  const std::size_t nx = g.size[0], ny = g.size[1];
+  for (std::size_t j = 0; j < ny; ++j) {
+    const double y = g.origin[1] + g.step[1] * double(j);
+    for (std::size_t first = 0; first < nx; first += kBlock) {
+      const std::size_t count = std::min(kBlock, nx - first);
+      for (std::size_t i = 0; i < count; ++i) {
+        b.x[i] = g.origin[0] + g.step[0] * double(first + i);
+        b.y[i] = y;
+      }
+      run_block(a, cf, b, count, nullptr, nullptr, value + j * nx + first,
+                grad ? grad + 2 * (j * nx + first) : nullptr);
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_ANISOTROPIC_INL_H_ toggle
+// ---- end hush/simd/anisotropic-inl.h
+#endif
+
+#define HUSH_SIMD_ENTRIES_ANISOTROPIC(X)                                                      \
+  X(anisotropic_samples,                                                                      \
+    (const anisotropic& a, const float* xy, const float* fp, const float* map, std::size_t n, \
+     float* value, float* grad),                                                              \
+    (a, xy, fp, map, n, value, grad))                                                         \
+  X(anisotropic_grid, (const anisotropic& a, const grid<2>& g, float* value, float* grad),    \
+    (a, g, value, grad))
+
+HUSH_SIMD_DECLARE(HUSH_SIMD_ENTRIES_ANISOTROPIC)
+
+#if HUSH_CONFIG_SIMD
+namespace hush {
+namespace detail {
+
+template <>
+struct simd_kernel<anisotropic> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
+
+  static void points(const anisotropic& a, const vec<float, 2>* pts, std::size_t count, float* out,
+                     vec<float, 2>* grad) {
+    simd::anisotropic_samples(a, reinterpret_cast<const float*>(pts), nullptr, nullptr, count, out,
+                              reinterpret_cast<float*>(grad));
+  }
+  static void grid(const anisotropic& a, const hush::grid<2>& g, float* out, vec<float, 2>* grad) {
+    simd::anisotropic_grid(a, g, out, reinterpret_cast<float*>(grad));
+  }
+  static void samples(const anisotropic& a, const hush::samples<2>& s, float* out,
+                      vec<float, 2>* grad) {
+    static_assert(sizeof(footprint<2>) == 3 * sizeof(float), "footprint<2> is 3 packed floats");
+    static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
+    static_assert(sizeof(vec<float, 2>) == 2 * sizeof(float), "vec<float, 2> is 2 packed floats");
+    simd::anisotropic_samples(
+        a, reinterpret_cast<const float*>(s.positions.data()),
+        s.has_footprints() ? reinterpret_cast<const float*>(s.footprints.data()) : nullptr,
+        s.has_surface_maps() ? reinterpret_cast<const float*>(s.surface_maps.data()) : nullptr,
+        s.size(), out, reinterpret_cast<float*>(grad));
+  }
+};
+
+}  // namespace detail
+}  // namespace hush
+#endif  // HUSH_CONFIG_SIMD
+
+#endif  // HUSH_ANISOTROPIC_SIMD_KERNEL_HPP
+// ---- end hush/anisotropic/simd_kernel.hpp
+
 #endif  // HUSH_ANISOTROPIC_HPP
 // ---- end hush/anisotropic.hpp
 // ---- begin hush/core/bspline.hpp
@@ -4227,392 +7401,685 @@ struct triangle_list {
 #include <utility>
 #include <vector>
 
-// ---- begin hush/simd/dispatch.hpp
+// ---- begin hush/thread_pool.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The SIMD backend's target-independent face: the entry points exec::simd
-// calls, which SIMD targets were compiled and which one runs.
+// hush::thread_pool: worker threads that live as long as the pool, for
+// hush::exec::parallel(inner, pool). Starting a std::thread costs tens of
+// microseconds, as long as a whole small batch (a 512 x 512 Perlin grid takes
+// ~90 us on one core), so exec::parallel(inner, threads), which starts its
+// threads per call, only pays for large batches. A pool's workers wait for
+// the next batch spinning a few tens of microseconds, then asleep, so batches
+// that follow each other closely start at once (docs/performance.md has both
+// measured).
 //
-// Three ways to build, chosen by macro (config.hpp normalises them into
-// HUSH_CONFIG_SIMD and HUSH_CONFIG_SIMD_STATIC):
-//  - HUSH_SIMD_DYNAMIC: kernels for every target Highway compiles (SSE4,
-//    AVX2, AVX-512 on x86), the best one the CPU supports chosen at run time.
-//    Exactly one .cpp of the program includes hush/simd/dispatch_impl.hpp;
-//    the CMake target hush::simd is that file, defines the macro and links
-//    Highway. This is the route for portable binaries.
-//  - HUSH_SIMD_STATIC: kernels for the compiler's baseline target only
-//    (HWY_STATIC_TARGET; AVX2 under -march=haswell or -march=native), inlined
-//    where called; no extra translation unit. The route for -march=native
-//    builds and for the single header.
-//  - neither (or HUSH_NO_SIMD): exec::simd runs the scalar loop, and nothing
-//    needs Highway.
-#ifndef HUSH_SIMD_DISPATCH_HPP
-#define HUSH_SIMD_DISPATCH_HPP
+//   hush::thread_pool pool(4);  // the calling thread plus 3 workers
+//   hush::evaluate_grid(noise, hush::exec::parallel(hush::exec::simd, pool), g, out);
+//
+// Contract:
+//  - thread_pool(threads): threads in 0 ... 1024, 0 meaning one per hardware
+//    thread (std::thread::hardware_concurrency(), at least 1); else
+//    hush::invalid_argument naming `threads`. It starts threads - 1 workers:
+//    the thread that calls run() is the first. If the system refuses a
+//    thread, the pool keeps the workers it got (size() says how many run).
+//  - run(parts, body): calls body(0) ... body(parts - 1), each exactly once,
+//    on whichever of the pool's threads and the calling thread takes it first
+//    (the caller takes parts too, so a worker that is not running delays only
+//    the parts it took), and returns when all have returned. body must not throw (hush's batch
+//    bodies do not: they run after validation). Calls from several threads
+//    are serialised (one batch at a time); a call from inside a body of the
+//    same pool runs all its parts on the calling thread instead of waiting
+//    for itself.
+//  - The destructor wakes and joins the workers; a pool must not be destroyed
+//    while a run() is in progress.
+//  - The pool is not copyable or movable (workers hold its address).
+#ifndef HUSH_THREAD_POOL_HPP
+#define HUSH_THREAD_POOL_HPP
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
-#include <string>
+#include <functional>
+#include <mutex>
+#include <thread>
 #include <vector>
 
-// ---- begin hush/detail/coherent_kernel.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
-// data and one scalar loop: what a recursive-filter pass does for every pixel
-// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
-// program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
-// operation; include hush/coherent.hpp, not this.
-//
-// One pass step, frame i against its reference frame r (i - 1 for the causal
-// filter, i + 1 for the backward pass of the time-symmetric one), for pixel
-// p = (x, y) (Kass & Pesare 2011, sec. 3.2; the refill term is hush's):
-//   reprojection, in float (identical in every backend):
-//     u = x - s m_x, v = y - s m_y      (m = velocity, s = +1; forward velocity, s = -1)
-//     e = depth - s m_z                 (the point's expected depth in frame r)
-//     i0 = min(floor(u), W - 2), tx = u - i0 (likewise j0, ty): bilinear taps and weights
-//   visible when: the pixel has a surface (finite depth >= FLT_MIN, finite motion), (u, v)
-//     lies within the outer pixel centres of frame r, every tap with a non-zero weight shows
-//     a surface (and, when both frames carry object ids, the same id), e >= FLT_MIN, and the
-//     bilinear depth d' of frame r satisfies |d' - e| <= eps_rel e + eps_abs;
-//   value, per channel, in T (float, or double for the reference):
-//     visible, paper filter:       c = alpha h + (1 - alpha) w         (eq. 7)
-//     visible, stationary filter:  c = alpha (h + d) + (1 - alpha) w   (docs/coherent.md)
-//     otherwise (disoccluded):     c = k(alpha) w                      (eq. 6)
-//   with h the bilinear history of frame r at (u, v), w the input noise at p, and d the
-//   refill: k (sqrt(tx (1 - tx)) ((1 - ty) D_x(p) + ty D_x(p + e_y)) + sqrt(ty (1 - ty)) D_y(p)),
-//   D_x(q) = X(q) - X(q + e_x), D_y(q) = Y(q) - Y(q + e_y), X and Y two more fields drawn
-//   like the input (independent). The output is gain * c.
-#ifndef HUSH_DETAIL_COHERENT_KERNEL_HPP
-#define HUSH_DETAIL_COHERENT_KERNEL_HPP
 
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <limits>
-
+#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
+#include <immintrin.h>  // _mm_pause
+#endif
 
 namespace hush {
-namespace detail {
 
-// ---- The hashed white-noise fields.
+class thread_pool {
+ public:
+  static constexpr int kMaxThreads = 1024;
 
-// Key of field `field` of channel `channel` in frame `frame`, for noise seed `seed`.
-HUSH_INLINE constexpr std::uint32_t coherent_frame_key(std::uint32_t seed, unsigned channel,
-                                                       unsigned field, std::uint32_t frame) {
-  return hash32(hash32(seed_key(seed), channel * constants::kCoherentFields + field), frame);
-}
-// Per-row key of a field: hash32(frame_key, y).
-HUSH_INLINE constexpr std::uint32_t coherent_row_key(std::uint32_t frame_key, std::uint32_t y) {
-  return hash32(frame_key, y);
-}
-// The white value of pixel x in a row: unit variance, mean 0, odd multiples of
-// sqrt(3) 2^-24 (constants.hpp). Every operation is exact but the last multiply.
-HUSH_INLINE float coherent_white(std::uint32_t row_key, std::uint32_t x) {
-  namespace c = constants;
-  const std::uint32_t h = hash32(row_key ^ (x * c::kCoherentPixelPrime));
-  const float centred = static_cast<float>(2u * (h >> c::kCoherentWhiteShift)) -
-                        static_cast<float>(c::kCoherentWhiteCentre);  // 2n + 1 - 2^24, exact
-  return centred * static_cast<float>(c::kCoherentWhiteScale);
-}
-
-// Where one field's values come from: hashed white noise of `key` (a frame key), or a
-// plane of floats (band-pass noise, or the caller's input) where value (x, y) is
-// plane[y * stride + x]. Planes of the refill fields cover (width + 1) x (height + 1)
-// values (X) and width x (height + 1) values (Y).
-struct coherent_field {
-  std::uint32_t key = 0;
-  const float* plane = nullptr;
-  std::size_t stride = 0;
-};
-
-// One pass over one frame: every pointer the loop reads or writes. Planes the
-// stream owns are packed (row stride = width); the caller's views keep their strides
-// (in elements; the motion view's in vec3 elements, i.e. 3 floats each).
-template <class T>
-struct coherent_pass_job {
-  std::uint32_t width = 0, height = 0;
-  // This frame.
-  const float* depth = nullptr;
-  std::size_t depth_stride = 0;
-  const float* motion = nullptr;  // 3 floats per pixel: velocity, or forward velocity
-  std::size_t motion_stride = 0;  // in pixels
-  float motion_sign = 1.0f;       // +1: velocity (causal); -1: forward velocity (backward pass)
-  const std::uint32_t* ids = nullptr;  // null: no id test
-  std::size_t ids_stride = 0;
-  // The reference frame (stored by the stream, packed); null depth: no reference, all fresh.
-  const float* ref_depth = nullptr;
-  const std::uint32_t* ref_ids = nullptr;
-  // Parameters.
-  float eps_rel = 0, eps_abs = 0;
-  T alpha = 0, beta = 0, k = 0, gain = 0;  // beta = 1 - alpha, k = k(alpha)
-  bool stationary = true;
-  int channels = 1;
-  coherent_field input[constants::kCoherentMaxChannels];
-  coherent_field refill_x[constants::kCoherentMaxChannels];
-  coherent_field refill_y[constants::kCoherentMaxChannels];
-  const T* ref_history[constants::kCoherentMaxChannels] = {};  // packed planes (with ref_depth)
-  T* history[constants::kCoherentMaxChannels] = {};            // packed planes, written
-  T* out[constants::kCoherentMaxChannels] = {};                // null: not written
-  std::size_t out_stride = 0;
-  std::uint8_t* fresh = nullptr;  // packed: 1 where the pixel took fresh noise, else 0
-  // Packed copies of this frame's depth and ids (the next frame's reference), or null.
-  float* depth_copy = nullptr;
-  std::uint32_t* ids_copy = nullptr;
-};
-
-// ---- The reprojection, in float: the same operations in every backend.
-
-struct coherent_taps {
-  bool visible = false;
-  std::uint32_t t00 = 0, t10 = 0, t01 = 0, t11 = 0;  // pixel indices in the reference frame
-  float w00 = 0, w10 = 0, w01 = 0, w11 = 0;          // bilinear weights
-  float tx = 0, ty = 0;                              // fractions of the bilinear cell
-};
-
-// A depth is a surface when finite and at least the smallest normal float (denormal,
-// zero, negative, NaN and infinite depths are not: no denormal arithmetic follows).
-HUSH_INLINE bool coherent_surface(float d) {
-  return d >= std::numeric_limits<float>::min() && d <= std::numeric_limits<float>::max();
-}
-HUSH_INLINE bool coherent_finite(float v) {
-  return v >= -std::numeric_limits<float>::max() && v <= std::numeric_limits<float>::max();
-}
-
-// Motion components below the smallest normal float are read as 0 (no denormal arithmetic);
-// NaN stays NaN (the pixel is then not visible).
-HUSH_INLINE float coherent_flush(float v) {
-  return std::fabs(v) < std::numeric_limits<float>::min() ? 0.0f : v;
-}
-// History values below the smallest normal T are stored as 0: with an input of zeros (the
-// caller's) the history decays as alpha^i and would otherwise go denormal.
-template <class T>
-HUSH_INLINE T coherent_flush_value(T v) {
-  return std::fabs(v) < std::numeric_limits<T>::min() ? T(0) : v;
-}
-
-template <class T>
-HUSH_INLINE coherent_taps coherent_reproject(const coherent_pass_job<T>& j, std::uint32_t x,
-                                             std::uint32_t y) {
-  coherent_taps r;
-  if (!j.ref_depth) return r;
-  const float depth = j.depth[y * j.depth_stride + x];
-  const float* m = j.motion + 3 * (y * j.motion_stride + x);
-  const float mx = coherent_flush(j.motion_sign * m[0]), my = coherent_flush(j.motion_sign * m[1]),
-              mz = coherent_flush(j.motion_sign * m[2]);
-  if (!coherent_surface(depth) || !coherent_finite(mx) || !coherent_finite(my) ||
-      !coherent_finite(mz))
-    return r;
-  const float u = static_cast<float>(x) - mx, v = static_cast<float>(y) - my;
-  const float max_u = static_cast<float>(j.width - 1), max_v = static_cast<float>(j.height - 1);
-  if (!(u >= 0.0f && u <= max_u && v >= 0.0f && v <= max_v)) return r;
-  // The cell's lower corner; on the last row/column the cell before it, with the upper
-  // taps weighted 1. A 1-pixel-wide frame has one column: both taps are it, tx = 0.
-  const float i0 = std::fmin(std::floor(u), static_cast<float>(j.width > 1 ? j.width - 2 : 0));
-  const float j0 = std::fmin(std::floor(v), static_cast<float>(j.height > 1 ? j.height - 2 : 0));
-  r.tx = u - i0;  // exact
-  r.ty = v - j0;
-  const float a = 1.0f - r.tx, b = 1.0f - r.ty;
-  r.w00 = a * b;
-  r.w10 = r.tx * b;
-  r.w01 = a * r.ty;
-  r.w11 = r.tx * r.ty;
-  const std::uint32_t step_x = j.width > 1 ? 1u : 0u, step_y = j.height > 1 ? j.width : 0u;
-  r.t00 = static_cast<std::uint32_t>(j0) * j.width + static_cast<std::uint32_t>(i0);
-  r.t10 = r.t00 + step_x;
-  r.t01 = r.t00 + step_y;
-  r.t11 = r.t01 + step_x;
-  const std::uint32_t id = j.ids ? j.ids[y * j.ids_stride + x] : 0u;
-  const bool use_ids = j.ids && j.ref_ids;
-  const std::uint32_t taps[4] = {r.t00, r.t10, r.t01, r.t11};
-  const float weights[4] = {r.w00, r.w10, r.w01, r.w11};
-  float interpolated = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    if (weights[k] == 0.0f) continue;  // never read: a background tap must not matter
-    const float d = j.ref_depth[taps[k]];
-    if (!coherent_surface(d) || (use_ids && j.ref_ids[taps[k]] != id)) return r;
-    interpolated = interpolated + weights[k] * d;
+  explicit thread_pool(int threads = 0) {
+    detail::require_in_range("hush::thread_pool", "threads", threads, 0, kMaxThreads,
+                             "0 (one per hardware thread) ... 1024");
+    const unsigned n =
+        threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : unsigned(threads);
+    workers_.reserve(n - 1);
+    try {
+      for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this] { work(); });
+    } catch (...) {  // no more threads to be had: the pool runs with those it has
+    }
   }
-  const float expected = depth - mz;
-  if (!coherent_surface(expected)) return r;
-  const float tolerance = j.eps_rel * expected + j.eps_abs;
-  r.visible = std::fabs(interpolated - expected) <= tolerance;
-  return r;
-}
-
-// Value of a field at (x, y): the hash, or the plane (a non-finite plane value reads as 0,
-// so no NaN can enter the history).
-HUSH_INLINE float coherent_field_value(const coherent_field& f, std::uint32_t row_key,
-                                       std::uint32_t x, std::uint32_t y) {
-  if (!f.plane) return coherent_white(row_key, x);
-  const float v = f.plane[y * f.stride + x];
-  return coherent_finite(v) ? v : 0.0f;
-}
-
-// ---- The scalar pass: the reference every other backend is tested against.
-
-// Row keys of every field of every channel for row y (and y + 1 for the refill fields).
-struct coherent_row_keys {
-  std::uint32_t input[constants::kCoherentMaxChannels];
-  std::uint32_t x0[constants::kCoherentMaxChannels], x1[constants::kCoherentMaxChannels];
-  std::uint32_t y0[constants::kCoherentMaxChannels], y1[constants::kCoherentMaxChannels];
-};
-template <class T>
-HUSH_INLINE coherent_row_keys coherent_keys(const coherent_pass_job<T>& j, std::uint32_t y) {
-  coherent_row_keys k{};
-  for (int c = 0; c < j.channels; ++c) {
-    k.input[c] = coherent_row_key(j.input[c].key, y);
-    k.x0[c] = coherent_row_key(j.refill_x[c].key, y);
-    k.x1[c] = coherent_row_key(j.refill_x[c].key, y + 1);
-    k.y0[c] = coherent_row_key(j.refill_y[c].key, y);
-    k.y1[c] = coherent_row_key(j.refill_y[c].key, y + 1);
+  thread_pool(const thread_pool&) = delete;
+  thread_pool& operator=(const thread_pool&) = delete;
+  ~thread_pool() {
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      stop_.store(true, std::memory_order_release);
+    }
+    wake_.notify_all();
+    for (std::thread& t : workers_) t.join();
   }
-  return k;
-}
 
-// Pixel (x, y) of a pass: fresh flag, history and output of every channel.
-template <class T>
-HUSH_INLINE void coherent_pixel(const coherent_pass_job<T>& j, const coherent_row_keys& keys,
-                                std::uint32_t x, std::uint32_t y) {
-  const coherent_taps g = coherent_reproject(j, x, y);
-  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
-  if (j.fresh) j.fresh[p] = g.visible ? 0u : 1u;
-  if (j.depth_copy) j.depth_copy[p] = j.depth[y * j.depth_stride + x];
-  if (j.ids_copy) j.ids_copy[p] = j.ids[y * j.ids_stride + x];
-  for (int c = 0; c < j.channels; ++c) {
-    const T w = T(coherent_field_value(j.input[c], keys.input[c], x, y));
-    T value;
-    if (!g.visible) {
-      value = j.k * w;
-    } else {
-      const T* hist = j.ref_history[c];
-      const T h = T(g.w00) * hist[g.t00] + T(g.w10) * hist[g.t10] + T(g.w01) * hist[g.t01] +
-                  T(g.w11) * hist[g.t11];
-      if (!j.stationary) {
-        value = j.alpha * h + j.beta * w;
-      } else {
-        const T tx = T(g.tx), ty = T(g.ty);
-        const T sx = std::sqrt(tx * (T(1) - tx)), sy = std::sqrt(ty * (T(1) - ty));
-        const T x00 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x, y));
-        const T x10 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x + 1, y));
-        const T x01 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x, y + 1));
-        const T x11 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x + 1, y + 1));
-        const T y00 = T(coherent_field_value(j.refill_y[c], keys.y0[c], x, y));
-        const T y01 = T(coherent_field_value(j.refill_y[c], keys.y1[c], x, y + 1));
-        const T dx = (T(1) - ty) * (x00 - x10) + ty * (x01 - x11);
-        // The refill has the history's scale: k(alpha) (the fields have unit variance).
-        const T d = j.k * (sx * dx + sy * (y00 - y01));
-        value = j.alpha * (h + d) + j.beta * w;
+  // Threads that run parts: the workers plus the calling thread.
+  unsigned size() const { return unsigned(workers_.size()) + 1; }
+
+  template <class Body>
+  void run(std::size_t parts, const Body& body) {
+    if (parts == 0) return;
+    if (parts == 1 || workers_.empty() || inside_ == this) {
+      for (std::size_t p = 0; p < parts; ++p) body(p);
+      return;
+    }
+    for (std::size_t base = 0; base < parts; base += kMaxParts) {  // a word holds 2^32 - 1
+      const std::size_t n = std::min<std::size_t>(parts - base, kMaxParts);
+      batch(n, [&body, base](std::size_t p) { body(base + p); });
+    }
+  }
+
+ private:
+  static constexpr std::size_t kMaxParts = 0xffffffffu;
+  // Waking a sleeping thread takes a system call and a trip through the
+  // scheduler (tens of microseconds on a busy machine); a batch's end and the
+  // next batch often come sooner. So waiters first spin for this long, then
+  // sleep.
+  static constexpr std::chrono::microseconds kSpin{50};
+
+  template <class Body>
+  void batch(std::size_t parts, const Body& body) {
+    const std::lock_guard<std::mutex> one_batch(run_m_);
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      body_ = [&body](std::size_t p) { body(p); };
+      pending_.store(parts, std::memory_order_relaxed);
+      next_.store(std::uint64_t(parts) << 32, std::memory_order_release);  // publishes body_
+    }
+    wake_.notify_all();
+    // The caller takes parts too: a worker that is not running (asleep, or
+    // waiting for a core) holds up only the parts it has already taken.
+    const thread_pool* outer = inside_;
+    inside_ = this;
+    run_parts();
+    inside_ = outer;
+    if (!spin_until([this] { return pending_.load(std::memory_order_acquire) == 0; })) {
+      std::unique_lock<std::mutex> lock(m_);
+      done_.wait(lock, [this] { return pending_.load(std::memory_order_acquire) == 0; });
+    }
+    body_ = nullptr;
+  }
+
+  // next_ holds the batch's part count (high 32 bits) and the next part to
+  // take (low 32 bits): one compare-and-swap takes a part of the batch the
+  // word describes, and body_ is that batch's until all its parts returned.
+  bool take(std::size_t& part) {
+    std::uint64_t w = next_.load(std::memory_order_acquire);
+    while ((w & 0xffffffffu) < (w >> 32))
+      if (next_.compare_exchange_weak(w, w + 1, std::memory_order_acq_rel,
+                                      std::memory_order_acquire)) {
+        part = std::size_t(w & 0xffffffffu);
+        return true;
+      }
+    return false;
+  }
+  bool work_left() const {
+    const std::uint64_t w = next_.load(std::memory_order_acquire);
+    return (w & 0xffffffffu) < (w >> 32);
+  }
+  void run_parts() {
+    std::size_t p = 0;
+    while (take(p)) {
+      body_(p);
+      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        const std::lock_guard<std::mutex> lock(m_);  // the caller may be about to sleep
+        done_.notify_one();
       }
     }
-    value = coherent_flush_value(value);
-    j.history[c][p] = value;
-    if (j.out[c]) j.out[c][static_cast<std::size_t>(y) * j.out_stride + x] = j.gain * value;
+  }
+
+  static void pause() {
+#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
+    _mm_pause();
+#elif defined(__aarch64__) || defined(__arm__)
+    __asm__ __volatile__("yield");
+#endif
+  }
+  template <class Ready>
+  static bool spin_until(const Ready& ready) {
+    const auto until = std::chrono::steady_clock::now() + kSpin;
+    for (;;) {
+      for (int s = 0; s < 64; ++s) {
+        if (ready()) return true;
+        pause();
+      }
+      if (std::chrono::steady_clock::now() > until) return ready();
+    }
+  }
+
+  void work() {
+    inside_ = this;
+    auto ready = [this] { return stop_.load(std::memory_order_acquire) || work_left(); };
+    for (;;) {
+      if (!spin_until(ready)) {
+        std::unique_lock<std::mutex> lock(m_);
+        wake_.wait(lock, ready);
+      }
+      if (stop_.load(std::memory_order_acquire)) return;
+      run_parts();
+    }
+  }
+
+  std::vector<std::thread> workers_;
+  std::mutex run_m_;  // serialises run()
+  std::mutex m_;      // with wake_ and done_: sleeping and waking
+  std::condition_variable wake_, done_;
+  std::function<void(std::size_t)> body_;  // set before next_ is published
+  std::atomic<std::uint64_t> next_{0};
+  std::atomic<std::size_t> pending_{0};  // parts of the batch not yet returned
+  std::atomic<bool> stop_{false};
+  static inline thread_local const thread_pool* inside_ = nullptr;  // the pool this thread serves
+};
+
+}  // namespace hush
+
+#endif  // HUSH_THREAD_POOL_HPP
+// ---- end hush/thread_pool.hpp
+
+namespace hush {
+namespace exec {
+
+// Plain C++ loop over the noise's point evaluation: the reference backend.
+struct scalar_t {
+  static constexpr const char* name = "scalar";
+};
+// Highway SIMD kernels, dynamically dispatched to the best compiled target
+// (or statically, see hush/simd/dispatch.hpp).
+struct simd_t {
+  static constexpr const char* name = "simd";
+};
+inline constexpr scalar_t scalar{};
+inline constexpr simd_t simd{};
+
+// GLSL compute shaders on a GL device: hush::exec::glsl{device}. Device is
+// any type with the batch members hush::glsl::device has; the core does not
+// depend on GL.
+template <class Device>
+struct glsl {
+  static constexpr const char* name = "glsl";
+  Device& device;
+};
+template <class Device>
+glsl(Device&) -> glsl<Device>;
+
+// Multi-threaded batches: hush::exec::parallel(hush::exec::simd, threads)
+// evaluates a batch on `threads` std::threads (0: one per hardware thread,
+// std::thread::hardware_concurrency()), each running the inner policy on a
+// contiguous part, and returns when all are done. Results are those of the
+// inner policy on the whole batch, bit for bit: points and samples are
+// evaluated independently of their neighbours, and a grid slab is the same
+// rows of the same grid (the kernels take a row range, so every sample's
+// position is formed exactly as in the whole-grid call). Batches too small to
+// give every thread kParallelGrain samples use fewer threads.
+// With a hush::thread_pool instead of a count, the pool's threads run the
+// parts (no thread start per call: worth it for batches under ~1 ms; the pool
+// must outlive the call, and batches on one pool run one at a time).
+template <class Inner>
+struct parallel_t {
+  static_assert(std::is_same<Inner, scalar_t>::value || std::is_same<Inner, simd_t>::value,
+                "hush::exec::parallel runs the scalar or simd policy");
+  static constexpr const char* name = "parallel";
+  static constexpr int kMaxThreads = 1024;
+  static constexpr std::size_t kParallelGrain = 4096;  // samples per thread, at least
+  Inner inner;
+  unsigned threads;             // >= 1, resolved at construction
+  thread_pool* pool = nullptr;  // null: threads started per call
+};
+// Throws hush::invalid_argument when threads is outside 0 ... 1024.
+template <class Inner>
+parallel_t<Inner> parallel(Inner inner, int threads = 0) {
+  detail::require_in_range("hush::exec::parallel", "threads", threads, 0,
+                           parallel_t<Inner>::kMaxThreads, "0 (one per hardware thread) ... 1024");
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  return {inner, threads == 0 ? hw : static_cast<unsigned>(threads), nullptr};
+}
+// The pool's threads (pool.size(), the calling thread included) run the parts.
+template <class Inner>
+parallel_t<Inner> parallel(Inner inner, thread_pool& pool) {
+  return {inner, pool.size(), &pool};
+}
+
+}  // namespace exec
+
+namespace detail {
+
+template <class Noise>
+using point_span = span<const vec<float, Noise::dimension>>;
+template <class Noise>
+using gradient_span = span<vec<float, Noise::dimension>>;
+
+inline void require_same_size(const char* where, const char* name, std::size_t got,
+                              std::size_t want) {
+  if (got != want)
+    throw_out_of_range(where, name, got,
+                       ("exactly " + std::to_string(want) + " elements (one per sample)").c_str());
+}
+
+// The parallel policy's overloads (defined at the end of this namespace).
+template <class Noise, class Inner>
+void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
+                float* out, vec<float, Noise::dimension>* grad);
+template <class Noise, class Inner>
+void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
+                 const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad);
+template <class Noise, class Inner>
+void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
+              float* out, vec<float, Noise::dimension>* grad);
+
+template <class Noise>
+void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
+                   vec<float, Noise::dimension>* grad) {
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (grad) {
+      const auto r = n.gradient(pts[i]);
+      out[i] = r.value;
+      grad[i] = r.gradient;
+    } else {
+      out[i] = n(pts[i]);
+    }
   }
 }
 
-template <class T>
-void coherent_pass_scalar(const coherent_pass_job<T>& j) {
-  for (std::uint32_t y = 0; y < j.height; ++y) {
-    const coherent_row_keys keys = coherent_keys(j, y);
-    for (std::uint32_t x = 0; x < j.width; ++x) coherent_pixel(j, keys, x, y);
+// Whether Noise evaluates grid slabs itself: a member
+//   void grid_values(const grid<D>& g, std::size_t first, std::size_t count,
+//                    float* out, vec<float, D>* grad) const;
+// with the values and gradients of its point evaluation at every sample (bit
+// for bit unless the compiler contracts multiply-adds, or within the bound the
+// noise states: gabor.hpp), faster than the sample loop below by sharing work
+// between samples (perlin.hpp).
+template <class Noise, class = void>
+struct has_grid_values : std::false_type {};
+template <class Noise>
+struct has_grid_values<
+    Noise, std::void_t<decltype(std::declval<const Noise&>().grid_values(
+               std::declval<const grid<Noise::dimension>&>(), std::size_t{}, std::size_t{},
+               std::declval<float*>(), std::declval<vec<float, Noise::dimension>*>()))>>
+    : std::true_type {};
+
+// The grid's samples with slowest-axis index (j in 2D, k in 3D) in
+// [first, first + count) into out, which starts at sample (0, 0[, 0]) of that slab.
+template <class Noise>
+void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, std::size_t first,
+                 std::size_t count, float* out, vec<float, Noise::dimension>* grad) {
+  constexpr int D = Noise::dimension;
+  if constexpr (has_grid_values<Noise>::value) {
+    n.grid_values(g, first, count, out, grad);
+  } else {
+    g.for_each_in_slab(first, count, [&](std::size_t idx, const vec<double, D>& p) {
+      if (grad) {
+        const auto r = n.template value_and_gradient<float>(p);
+        out[idx] = r.value;
+        grad[idx] = r.gradient;
+      } else {
+        out[idx] = n.template value<float>(p);
+      }
+    });
+  }
+}
+template <class Noise>
+void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  scalar_grid(n, g, 0, g.size[Noise::dimension - 1], out, grad);
+}
+
+template <class Noise, class Exec>
+void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* out,
+                vec<float, Noise::dimension>* grad) {
+  if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
+    scalar_points(n, pts, out, grad);
+  } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+    if constexpr (simd_kernel<Noise>::available)
+      simd_kernel<Noise>::points(n, pts.data(), pts.size(), out, grad);
+    else
+      scalar_points(n, pts, out, grad);
+  } else {
+    ex.device.evaluate_points(n, pts.data(), pts.size(), out, grad);
+  }
+}
+
+// The scalar loop over samples with extra inputs (footprints, normals, maps).
+template <class Noise>
+void scalar_samples(const Noise& n, const samples<Noise::dimension>& s, float* out,
+                    vec<float, Noise::dimension>* grad) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const sample_input<Noise::dimension> in = s.at(i);
+    if (grad) {
+      const auto r = n.template sample_value_and_gradient<float>(in);
+      out[i] = r.value;
+      grad[i] = r.gradient;
+    } else {
+      out[i] = n.template sample_value<float>(in);
+    }
+  }
+}
+
+// Whether the SIMD kernels of Noise take per-sample inputs (simd_kernel<Noise>::samples).
+template <class Kernel, class = void>
+struct has_simd_samples : std::false_type {};
+template <class Kernel>
+struct has_simd_samples<Kernel, std::void_t<decltype(Kernel::has_samples)>>
+    : std::integral_constant<bool, Kernel::has_samples> {};
+
+// Samples with extra inputs on backend ex; positions-only batches go to run_points.
+template <class Noise, class Exec>
+void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  // Positions only (always so for a noise that takes no extras: validated) is a points batch.
+  constexpr bool kExtras = takes_sample_inputs<Noise>::value;
+  if (!kExtras || !s.has_extras()) {
+    run_points(n, ex, s.positions, out, grad);
+    return;
+  }
+  if constexpr (kExtras) {
+    if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
+      scalar_samples(n, s, out, grad);
+    } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+      if constexpr (has_simd_samples<simd_kernel<Noise>>::value)
+        simd_kernel<Noise>::samples(n, s, out, grad);
+      else
+        scalar_samples(n, s, out, grad);
+    } else {
+      ex.device.evaluate_samples(n, s, out, grad);
+    }
+  }
+}
+
+template <class Noise, class Exec>
+void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, float* out,
+              vec<float, Noise::dimension>* grad) {
+  if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
+    scalar_grid(n, g, out, grad);
+  } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
+    if constexpr (simd_kernel<Noise>::available)
+      simd_kernel<Noise>::grid(n, g, out, grad);
+    else
+      scalar_grid(n, g, out, grad);
+  } else {
+    ex.device.evaluate_grid(n, g, out, grad);
+  }
+}
+
+// ---- exec::parallel.
+
+// Runs body(begin, end) over [0, n) split into at most `threads` contiguous
+// parts of whole `unit`s (n is a multiple of unit), each at least `grain`
+// long: on `pool`'s threads and the calling thread, whichever takes a part, or
+// on threads started here when pool is null.
+template <class Body>
+void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned threads,
+                    thread_pool* workers, const Body& body) {
+  const std::size_t units = n / unit, grain_units = std::max<std::size_t>(1, grain / unit);
+  const std::size_t parts =
+      std::max<std::size_t>(1, std::min<std::size_t>(threads, units / grain_units));
+  auto part = [&](std::size_t t) {
+    body(t * units / parts * unit, (t + 1) * units / parts * unit);
+  };
+  if (workers) {
+    workers->run(parts, part);
+    return;
+  }
+  std::vector<std::thread> pool;
+  pool.reserve(parts - 1);
+  std::size_t started = 1;
+  try {
+    for (; started < parts; ++started) pool.emplace_back(part, started);
+  } catch (...) {  // no more threads to be had: the calling thread does the rest
+  }
+  part(0);
+  for (std::size_t t = started; t < parts; ++t) part(t);
+  for (std::thread& th : pool) th.join();
+}
+
+// Whether simd_kernel<Noise> evaluates grid slabs (grid_slab(n, g, first, count, out, grad)).
+template <class Kernel, class = void>
+struct has_simd_grid_slab : std::false_type {};
+template <class Kernel>
+struct has_simd_grid_slab<Kernel, std::void_t<decltype(Kernel::has_grid_slab)>>
+    : std::integral_constant<bool, Kernel::has_grid_slab> {};
+
+template <class Noise, class Inner>
+void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
+                float* out, vec<float, Noise::dimension>* grad) {
+  parallel_parts(pts.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
+                 [&](std::size_t b, std::size_t e) {
+                   run_points(n, ex.inner, pts.subspan(b, e - b), out + b, grad ? grad + b : grad);
+                 });
+}
+
+template <class Noise, class Inner>
+void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
+                 const samples<Noise::dimension>& s, float* out,
+                 vec<float, Noise::dimension>* grad) {
+  parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
+                 [&](std::size_t b, std::size_t e) {
+                   samples<Noise::dimension> part = s;
+                   part.positions = s.positions.subspan(b, e - b);
+                   if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
+                   if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
+                   run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
+                 });
+}
+
+// Slabs along the slowest axis. A SIMD kernel without slab support gets the
+// whole grid on one thread: a slab re-based as a grid of its own would form
+// its positions with other roundings.
+template <class Noise, class Inner>
+void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
+              float* out, vec<float, Noise::dimension>* grad) {
+  constexpr int D = Noise::dimension;
+  constexpr bool kSlabs = std::is_same<Inner, exec::scalar_t>::value ||
+                          !simd_kernel<Noise>::available ||
+                          has_simd_grid_slab<simd_kernel<Noise>>::value;
+  if constexpr (!kSlabs) {
+    run_grid(n, ex.inner, g, out, grad);
+  } else {
+    const std::size_t slab = g.count() / g.size[D - 1];  // samples per slowest-axis index
+    parallel_parts(
+        g.count(), slab, ex.kParallelGrain, ex.threads, ex.pool, [&](std::size_t b, std::size_t e) {
+          float* o = out + b;
+          vec<float, D>* gr = grad ? grad + b : grad;
+          if constexpr (std::is_same<Inner, exec::simd_t>::value && simd_kernel<Noise>::available)
+            simd_kernel<Noise>::grid_slab(n, g, b / slab, (e - b) / slab, o, gr);
+          else
+            scalar_grid(n, g, b / slab, (e - b) / slab, o, gr);
+        });
   }
 }
 
 }  // namespace detail
+
+// Values of `noise` at `points` into `out` (same size), on backend `ex`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points,
+              span<float> out) {
+  detail::require_same_size("hush::evaluate", "out", out.size(), points.size());
+  if (points.empty()) return;
+  detail::run_points(noise, ex, points, out.data(), nullptr);
+}
+
+// Values and analytic gradients (d noise / d position) at `points`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points, span<float> out,
+              detail::gradient_span<Noise> gradients) {
+  detail::require_same_size("hush::evaluate", "out", out.size(), points.size());
+  detail::require_same_size("hush::evaluate", "gradients", gradients.size(), points.size());
+  if (points.empty()) return;
+  detail::run_points(noise, ex, points, out.data(), gradients.data());
+}
+
+// Values of `noise` at `s` (positions with optional footprints, normals and
+// surface maps, core/samples.hpp) into `out` (one per position), on backend `ex`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
+              span<float> out) {
+  detail::validate_samples<Noise>("hush::evaluate", s);
+  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
+  if (s.size() == 0) return;
+  detail::run_samples(noise, ex, s, out.data(), nullptr);
+}
+
+// Values and gradients (d value / d position, the footprint held fixed) at `s`.
+template <class Noise, class Exec>
+void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
+              span<float> out, detail::gradient_span<Noise> gradients) {
+  detail::validate_samples<Noise>("hush::evaluate", s);
+  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
+  detail::require_same_size("hush::evaluate", "gradients", gradients.size(), s.size());
+  if (s.size() == 0) return;
+  detail::run_samples(noise, ex, s, out.data(), gradients.data());
+}
+
+// Values of `noise` on the uniform grid `g` into `out` (g.count() elements,
+// C order, i fastest).
+template <class Noise, class Exec>
+void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimension>& g,
+                   span<float> out) {
+  g.validate("hush::evaluate_grid");
+  detail::require_same_size("hush::evaluate_grid", "out", out.size(), g.count());
+  if (g.count() == 0) return;
+  detail::run_grid(noise, ex, g, out.data(), nullptr);
+}
+
+// Values and analytic gradients on the uniform grid `g`.
+template <class Noise, class Exec>
+void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimension>& g,
+                   span<float> out, detail::gradient_span<Noise> gradients) {
+  g.validate("hush::evaluate_grid");
+  detail::require_same_size("hush::evaluate_grid", "out", out.size(), g.count());
+  detail::require_same_size("hush::evaluate_grid", "gradients", gradients.size(), g.count());
+  if (g.count() == 0) return;
+  detail::run_grid(noise, ex, g, out.data(), gradients.data());
+}
+
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
-// ---- end hush/detail/coherent_kernel.hpp
-// ---- begin hush/detail/npr_gabor_splat.hpp
+#endif  // HUSH_EXEC_HPP
+// ---- end hush/exec.hpp
+// ---- begin hush/gabor.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The splat list of NPR Gabor noise (hush/npr_gabor.hpp) and its second
-// stage, the splatting. npr_gabor::render runs in two stages:
-//  1. npr_gabor::make_splats: per triangle, its points (paper sec. 3.3) become
-//     records, one per point, in triangle order then point order, each with
-//     everything the kernel and the visibility tests need (its own frequency
-//     vector and radius, so parameters may differ per splat);
-//  2. splatting: every record's kernel is added at the pixel centres of its
-//     range that pass the tests (sec. 3.4), per pixel in record order.
-// Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
-// or double) and once in lanes (hush/simd/npr_gabor-inl.h, float), which
-// repeats it operation by operation.
-#ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
-#define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
-
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <vector>
-
-// ---- begin hush/gabor_kernel.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
+// Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
+// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
+// weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
+// analytic anti-aliasing.
 //
-// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
-// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
+//   hush::gabor<2>::params prm;                  // isotropic, F0 = 1, a = 0.8, N' = 16
+//   prm.kind = hush::gabor_kind::anisotropic;
+//   prm.orientation = 0.25 * 3.14159;            // omega0, radians
+//   hush::gabor<2> noise{prm};
+//   float v = noise(hush::vec2{x, y});                              // unit variance
+//   float f = noise.sample(hush::vec2{x, y},                        // filtered over a pixel
+//                          hush::footprint<2>::from_derivatives(dpdx, dpdy));
+//   hush::gabor<3> solid{hush::gabor<3>::params{}};
+//   float s = solid.sample(p, normal, fp);       // surface noise (sec. 4.3)
 //
-//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
+// The noise (paper sec. 3.2, eq. 6): n(x) = scale sum_i w_i g_{F_i}(x - x_i),
+//  - impulses x_i: a Poisson process of density lambda = N' / (V_D r^D), so
+//    that N' kernels overlap a point on average (N' = `impulses`; V_D the
+//    volume of the unit ball, r the kernel radius). Space is cut into cells of
+//    side r; cell c's impulses come from its own stream
+//    hush::rng(lattice_hash(key, c), kGaborSolidStream), key = seed_key(seed):
+//    the count from the first word through hush::poisson_table (integer
+//    comparisons, so every backend draws the same counts), then per impulse
+//    16-bit halves of the next words: position in the cell, weight, then the
+//    orientation and frequency its kind draws (gabor_marks below). Cells are
+//    32-bit (core/lattice.hpp): any seed, any cell, period 2^32 cells.
+//  - weights w_i uniform in (-1, 1) (symmetric 16-bit values, E[w^2] =
+//    (1 - 2^-32) / 3), so the noise has mean 0;
+//  - kinds (paper sec. 3.3): anisotropic (every F_i = F0 omega0), isotropic
+//    (omega_i uniform on the circle or sphere), hybrid (omega_i uniform in an
+//    orientation range around omega0 of width orientation_spread: an arc in 2D,
+//    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
+//    frequency_spread / 2).
 //
-// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
-// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
-// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
-// what NPR Gabor noise splats, so it lives here once, for both:
+// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
+//  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
+//    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
+//    make it independent of the count distribution beyond its mean, which is
+//    the Poisson table's exact mean), with the kernel energy integrated by
+//    quadrature (exact, not the paper's approximation K^2 / 4a^2).
+//  - power spectrum: lambda E[w^2] E[|g^_F(f)|^2] scale^2 (paper eq. 8),
+//    power_spectrum(f); isotropic noise's is a ring at |f| = F0, anisotropic
+//    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
+//  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
+//    magnitude); the observed maximum is far smaller (tests).
+//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
+//    analytic derivative.
+//  - float evaluation is within scale 2^-21 (1 + 2 pi Phi) (N' + 1) of the
+//    double reference (each kernel within 2^-21 (1 + 2 pi Phi) of its double
+//    value, gabor_kernel.hpp, and ~N' kernels reach a point); measured in
+//    tests/gabor_test.cpp ("float evaluation stays within the stated budget").
+//    The per-kernel figure is measured (gabor_kernel_test); the worst-case
+//    rounding analysis exceeds it for Phi < 0.9 (up to 4.5x at Phi = 0 in 3D;
+//    docs/gabor.md "Float accuracy").
+//  - domain: every finite coordinate (positions are split into cell and
+//    fraction in double, so precision does not degrade far from the origin);
+//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
 //
-//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
-//   double r = k.radius();                               // support radius
-//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
-//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
-//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
+// Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
+// convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
+// (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
+// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
+// kept within the kernel's support. A point footprint gives exactly the
+// unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
+// HARD_CASES row 12) gives a finite result, continuous in the footprint, which
+// tends to the mean 0 as the footprint grows.
 //
-// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
-// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
-// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
-// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
-// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
-// every noise built on it are C1:
-//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
-//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
-//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
-//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
-//     and F >> a (tests/gabor_kernel_test.cpp).
-//
-// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
-// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
-// frequency is Phi = F r cycles per cell. The float path is separable:
-//   g = Re[(e_x c_x + i e_x s_x)(w e_yz c_yz + i w e_yz s_yz)] * tau, with
-//   e_yz c_yz + i e_yz s_yz = (e_y e_z)(c_y + i s_y)(c_z + i s_z),
-//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
-// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
-// share each axis's factors between samples and SIMD repeats it bit for bit.
-// value<double> is the reference (C library exp, sin, cos); float values are
-// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
-// measured 3e-7 (tests/gabor_kernel_test.cpp).
-//
-// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
-// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
-// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
-// (untruncated_power_spectrum). The tapered kernel's transform is
-// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
-// envelope, computed by quadrature (envelope_transform, power_spectrum,
-// energy): exact to ~1e-13 relative, no closed form exists; above
-// kGaborAsymptoticCycles cycles per cell by the leading asymptotic term,
-// within 2e-13 there (radial_transform_tail), so each costs bounded time.
-//
-// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
-// covariance Sigma (noise units) is again a Gabor kernel,
-//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
-//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
-//   Q = (I + 2 pi a^2 Sigma)^-1,
-// derived in docs/gabor.md (complete the square in the product of the two
-// transforms). gabor_filter<D> computes Q and the constants from a footprint;
-// the taper is kept at the unfiltered support.
-#ifndef HUSH_GABOR_KERNEL_HPP
-#define HUSH_GABOR_KERNEL_HPP
+// Surface noise (3D, paper sec. 4.3): sample(p, normal[, footprint]) evaluates
+// 2D kernels in the tangent plane of the surface at p. The impulses of a
+// second 3D process (stream kGaborSurfaceStream, cells of side r sqrt(3/2))
+// that lie in the slab |<n, x - x_i>| < h = r / sqrt 2 contribute the 2D
+// kernel of their projection onto the plane, weighted by the taper of their
+// distance to it. The projection of a Poisson process in a slab is a 2D
+// Poisson process, so on a plane the surface noise has exactly the 2D noise's
+// spectrum and unit variance, with no slicing of a 3D spectrum. Isotropic and
+// hybrid impulses carry a 3D direction whose projection (normalised) is their
+// orientation in the plane (uniform on the circle for isotropic noise, for
+// every normal); anisotropic noise projects omega0 without normalising
+// (frequency F0 |P omega0|: the asked-for spectrum where omega0 lies in the
+// tangent plane, continuous everywhere). Footprints are projected onto the
+// tangent plane. A zero normal evaluates the solid noise; a non-finite normal
+// gives NaN.
+#ifndef HUSH_GABOR_HPP
+#define HUSH_GABOR_HPP
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
-#include <type_traits>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
 
 // ---- begin hush/detail/elementary.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
@@ -4906,6 +8373,75 @@ inline double bessel_j0(double z) {
 
 #endif  // HUSH_DETAIL_QUADRATURE_HPP
 // ---- end hush/detail/quadrature.hpp
+// ---- begin hush/gabor_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
+// sparse Gabor convolution", SIGGRAPH 2009, sec. 3.1, eq. 4), 2D and 3D:
+//
+//   g(x) = e^{-pi a^2 |x|^2} cos(2 pi <F, x>) tau(|x|^2 / r^2),
+//
+// a Gaussian envelope of bandwidth a (1/noise units) times a harmonic of
+// frequency vector F (cycles per noise unit; F = F0 omega0 in the paper), with
+// K = 1 (noises scale their sum instead). It is what hush::gabor<D> sums and
+// what NPR Gabor noise splats, so it lives here once, for both:
+//
+//   hush::gabor_kernel<2> k{/*bandwidth a=*/0.8, /*truncation t=*/0.05};
+//   double r = k.radius();                               // support radius
+//   float g = k.value(hush::vec2{0.1f, 0.2f}, hush::dvec2{1.0, 0.0});
+//   auto [g2, grad] = k.value_and_gradient(hush::dvec2{0.1, 0.2}, hush::dvec2{1.0, 0.0});
+//   double p = k.power_spectrum(hush::dvec2{1.0, 0.0}, hush::dvec2{1.0, 0.0});
+//
+// Truncation (Lagae 2009 sec. 3.1; the error analysis of Lagae, Lefebvre,
+// Dutre, "Improving Gabor noise", TVCG 2011): the support radius is where the
+// envelope falls to t, r = sqrt(ln(1/t) / pi) / a. The paper cuts the kernel
+// there, a jump of t; hush tapers it with a smoothstep over s = |x|^2 / r^2 in
+// [s0, 1], s0 = kGaborTaperStart = 0.8 (constants.hpp), so that the kernel and
+// every noise built on it are C1:
+//   - g equals the Gabor kernel for |x| <= r sqrt(s0) and g = 0 for |x| >= r;
+//   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
+//   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
+//     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
+//     and F >> a (tests/gabor_kernel_test.cpp).
+//
+// Evaluation happens in cell units d = x / r (the noise's cells are r wide),
+// where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
+// frequency is Phi = F r cycles per cell. The float path is separable:
+//   g = Re[(e_x c_x + i e_x s_x)(w e_yz c_yz + i w e_yz s_yz)] * tau, with
+//   e_yz c_yz + i e_yz s_yz = (e_y e_z)(c_y + i s_y)(c_z + i s_z),
+//   e_a = e^{-A d_a^2},  (s_a, c_a) = sin/cos(2 pi Phi_a d_a),
+// with hush's own exp and sin/cos (detail/elementary.hpp), so a grid can
+// share each axis's factors between samples and SIMD repeats it bit for bit.
+// value<double> is the reference (C library exp, sin, cos); float values are
+// within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
+// measured 3e-7 (tests/gabor_kernel_test.cpp).
+//
+// Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
+// kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
+// Gaussians at +-F (Lagae 2009 eq. 5); its power spectrum is the square
+// (untruncated_power_spectrum). The tapered kernel's transform is
+// (H(f - F) + H(f + F)) / 2 with H the radial transform of the tapered
+// envelope, computed by quadrature (envelope_transform, power_spectrum,
+// energy): exact to ~1e-13 relative, no closed form exists; above
+// kGaborAsymptoticCycles cycles per cell by the leading asymptotic term,
+// within 2e-13 there (radial_transform_tail), so each costs bounded time.
+//
+// Filtering (Lagae 2009 sec. 5): the kernel convolved with a Gaussian of
+// covariance Sigma (noise units) is again a Gabor kernel,
+//   (g_Gabor * N(0, Sigma))(x) = sqrt(det Q) e^{-pi F^T (I - Q) F / a^2}
+//                                e^{-pi a^2 x^T Q x} cos(2 pi <Q F, x>),
+//   Q = (I + 2 pi a^2 Sigma)^-1,
+// derived in docs/gabor.md (complete the square in the product of the two
+// transforms). gabor_filter<D> computes Q and the constants from a footprint;
+// the taper is kept at the unfiltered support.
+#ifndef HUSH_GABOR_KERNEL_HPP
+#define HUSH_GABOR_KERNEL_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+
 
 namespace hush {
 namespace detail {
@@ -5508,199 +9044,6 @@ struct gabor_filter_coefs {
 
 #endif  // HUSH_GABOR_KERNEL_HPP
 // ---- end hush/gabor_kernel.hpp
-
-namespace hush {
-
-// One point's kernel, ready to splat (stage 1's output). The kernel is
-// weight g_F(p - (x, y)) with g gabor_kernel<2>'s tapered kernel of radius
-// `radius` (from the bandwidth a: r = sqrt(ln(1/t) / pi) / a) and frequency
-// vector F = (fx, fy) = F0 (cos omega, sin omega); it covers the pixels
-// x0 ... x1, y0 ... y1 (inclusive, clamped to the image, never empty): the
-// centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
-// qy y in screen pixels, gives the depth test its reference depth at every
-// pixel (the point's own depth is 1 / (q0 + qx x + qy y)). `index` is the
-// point's J in its triangle's sequence (detail/npr_gabor_tree.hpp): stage 2
-// does not read it; it names the point (tests, GPU stage 1 comparisons).
-struct npr_gabor_splat {
-  double x = 0, y = 0;            // position, pixels (x right, y down)
-  double fx = 0, fy = 0;          // F, cycles per pixel
-  double bandwidth = 0;           // a, 1/pixel
-  double radius = 0;              // r, pixels
-  double weight = 0;              // w_i v_i scale (paper eq. 1, LOD weight eq. 4)
-  double q0 = 0, qx = 0, qy = 0;  // the triangle's plane of 1/z
-  std::uint32_t object = 0, triangle = 0;
-  std::int32_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // pixel range, inclusive
-  std::uint64_t index = 0;  // J: the point's index in its triangle's sequence
-};
-
-namespace detail {
-
-// Everything stage 2 reads: the records, the frame's views the enabled tests
-// need (the others may be empty), the tests, and the output.
-struct npr_gabor_splat_job {
-  const npr_gabor_splat* splats = nullptr;
-  std::size_t count = 0;
-  image_view<const float> depth;
-  image_view<const std::uint32_t> object_id, triangle_id;
-  bool object_test = true, triangle_test = false, depth_test = true, soft_depth = false;
-  double depth_tolerance = 0;
-  double envelope_exponent = 0;  // A = ln(1/t): the envelope is e^{-A d^2}, d in radii
-};
-
-// The visibility factor of a fragment at pixel (x, y) of splat s (sec. 3.4):
-// 0 where a test fails, 1 where all pass, 2 - rel / tol in the soft band.
-template <class T>
-HUSH_INLINE T npr_gabor_visibility(const npr_gabor_splat_job& j, const npr_gabor_splat& s,
-                                   std::size_t x, std::size_t y) {
-  if (j.object_test && j.object_id(x, y) != s.object) return T(0);
-  if (j.triangle_test && j.triangle_id(x, y) != s.triangle) return T(0);
-  if (!j.depth_test) return T(1);
-  const double zp = static_cast<double>(j.depth(x, y));
-  if (!(zp > 0.0) || !std::isfinite(zp)) return T(0);
-  // Relative difference of the pixel's depth and the plane's there.
-  const double plane =
-      s.q0 + s.qx * (static_cast<double>(x) + 0.5) + s.qy * (static_cast<double>(y) + 0.5);
-  const double rel = std::fabs(zp * plane - 1.0);
-  const double tol = j.depth_tolerance;
-  if (!(rel <= (j.soft_depth ? 2.0 * tol : tol))) return T(0);
-  return j.soft_depth && rel > tol ? T(2.0 - rel / tol) : T(1);
-}
-
-// Stage 2, scalar: adds every record's kernel to `out` (frame-sized), per
-// pixel in record order. `columns` is scratch.
-template <class T>
-void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& out,
-                            std::vector<gabor_axis<T>>& columns) {
-  namespace c = constants;
-  const T neg_a = T(-j.envelope_exponent), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
-  for (std::size_t i = 0; i < j.count; ++i) {
-    const npr_gabor_splat& s = j.splats[i];
-    const double inv_r = 1.0 / s.radius;
-    const T phi_x = T(s.fx * s.radius), phi_y = T(s.fy * s.radius);
-    const std::size_t ix0 = static_cast<std::size_t>(s.x0), ix1 = static_cast<std::size_t>(s.x1);
-    columns.resize(ix1 - ix0 + 1);
-    for (std::size_t x = ix0; x <= ix1; ++x)
-      columns[x - ix0] =
-          gabor_axis_factors(T((static_cast<double>(x) + 0.5 - s.x) * inv_r), neg_a, phi_x);
-    for (std::size_t y = static_cast<std::size_t>(s.y0); y <= static_cast<std::size_t>(s.y1); ++y) {
-      const gabor_axis<T> ay =
-          gabor_axis_factors(T((static_cast<double>(y) + 0.5 - s.y) * inv_r), neg_a, phi_y);
-      const gabor_row<T> row = gabor_row_of(T(s.weight), ay);
-      T* o = out.row(y);
-      for (std::size_t x = ix0; x <= ix1; ++x) {
-        const gabor_axis<T>& ax = columns[x - ix0];
-        if (!(ax.d2 + row.d2 < T(1))) continue;
-        const T vis = npr_gabor_visibility<T>(j, s, x, y);
-        if (vis == T(0)) continue;  // adding vis * g = +-0 would change nothing
-        o[x] += vis * gabor_pair(ax, row, taper_k);
-      }
-    }
-  }
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
-// ---- end hush/detail/npr_gabor_splat.hpp
-// ---- begin hush/gabor.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
-// sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
-// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
-// weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
-// analytic anti-aliasing.
-//
-//   hush::gabor<2>::params prm;                  // isotropic, F0 = 1, a = 0.8, N' = 16
-//   prm.kind = hush::gabor_kind::anisotropic;
-//   prm.orientation = 0.25 * 3.14159;            // omega0, radians
-//   hush::gabor<2> noise{prm};
-//   float v = noise(hush::vec2{x, y});                              // unit variance
-//   float f = noise.sample(hush::vec2{x, y},                        // filtered over a pixel
-//                          hush::footprint<2>::from_derivatives(dpdx, dpdy));
-//   hush::gabor<3> solid{hush::gabor<3>::params{}};
-//   float s = solid.sample(p, normal, fp);       // surface noise (sec. 4.3)
-//
-// The noise (paper sec. 3.2, eq. 6): n(x) = scale sum_i w_i g_{F_i}(x - x_i),
-//  - impulses x_i: a Poisson process of density lambda = N' / (V_D r^D), so
-//    that N' kernels overlap a point on average (N' = `impulses`; V_D the
-//    volume of the unit ball, r the kernel radius). Space is cut into cells of
-//    side r; cell c's impulses come from its own stream
-//    hush::rng(lattice_hash(key, c), kGaborSolidStream), key = seed_key(seed):
-//    the count from the first word through hush::poisson_table (integer
-//    comparisons, so every backend draws the same counts), then per impulse
-//    16-bit halves of the next words: position in the cell, weight, then the
-//    orientation and frequency its kind draws (gabor_marks below). Cells are
-//    32-bit (core/lattice.hpp): any seed, any cell, period 2^32 cells.
-//  - weights w_i uniform in (-1, 1) (symmetric 16-bit values, E[w^2] =
-//    (1 - 2^-32) / 3), so the noise has mean 0;
-//  - kinds (paper sec. 3.3): anisotropic (every F_i = F0 omega0), isotropic
-//    (omega_i uniform on the circle or sphere), hybrid (omega_i uniform in an
-//    orientation range around omega0 of width orientation_spread: an arc in 2D,
-//    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
-//    frequency_spread / 2).
-//
-// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
-//  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
-//    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
-//    make it independent of the count distribution beyond its mean, which is
-//    the Poisson table's exact mean), with the kernel energy integrated by
-//    quadrature (exact, not the paper's approximation K^2 / 4a^2).
-//  - power spectrum: lambda E[w^2] E[|g^_F(f)|^2] scale^2 (paper eq. 8),
-//    power_spectrum(f); isotropic noise's is a ring at |f| = F0, anisotropic
-//    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
-//  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
-//    magnitude); the observed maximum is far smaller (tests).
-//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
-//    analytic derivative.
-//  - float evaluation is within scale 2^-21 (1 + 2 pi Phi) (N' + 1) of the
-//    double reference (each kernel within 2^-21 (1 + 2 pi Phi) of its double
-//    value, gabor_kernel.hpp, and ~N' kernels reach a point); measured in
-//    tests/gabor_test.cpp ("float evaluation stays within the stated budget").
-//    The per-kernel figure is measured (gabor_kernel_test); the worst-case
-//    rounding analysis exceeds it for Phi < 0.9 (up to 4.5x at Phi = 0 in 3D;
-//    docs/gabor.md "Float accuracy").
-//  - domain: every finite coordinate (positions are split into cell and
-//    fraction in double, so precision does not degrade far from the origin);
-//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
-//
-// Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
-// convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
-// (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
-// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
-// kept within the kernel's support. A point footprint gives exactly the
-// unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
-// HARD_CASES row 12) gives a finite result, continuous in the footprint, which
-// tends to the mean 0 as the footprint grows.
-//
-// Surface noise (3D, paper sec. 4.3): sample(p, normal[, footprint]) evaluates
-// 2D kernels in the tangent plane of the surface at p. The impulses of a
-// second 3D process (stream kGaborSurfaceStream, cells of side r sqrt(3/2))
-// that lie in the slab |<n, x - x_i>| < h = r / sqrt 2 contribute the 2D
-// kernel of their projection onto the plane, weighted by the taper of their
-// distance to it. The projection of a Poisson process in a slab is a 2D
-// Poisson process, so on a plane the surface noise has exactly the 2D noise's
-// spectrum and unit variance, with no slicing of a 3D spectrum. Isotropic and
-// hybrid impulses carry a 3D direction whose projection (normalised) is their
-// orientation in the plane (uniform on the circle for isotropic noise, for
-// every normal); anisotropic noise projects omega0 without normalising
-// (frequency F0 |P omega0|: the asked-for spectrum where omega0 lies in the
-// tangent plane, continuous everywhere). Footprints are projected onto the
-// tangent plane. A zero normal evaluates the solid noise; a non-finite normal
-// gives NaN.
-#ifndef HUSH_GABOR_HPP
-#define HUSH_GABOR_HPP
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstdint>
-#include <limits>
-#include <memory>
-#include <string>
-#include <vector>
-
 
 namespace hush {
 
@@ -6873,3251 +10216,24 @@ class gabor_spectrum {
 
 }  // namespace hush
 
-#endif  // HUSH_GABOR_HPP
-// ---- end hush/gabor.hpp
-// ---- begin hush/perlin.hpp
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+// ---- begin hush/gabor/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Improved Perlin noise (Ken Perlin, "Improving Noise", SIGGRAPH 2002) in 2D
-// and 3D: gradient noise on the integer lattice with the quintic fade, seeded
-// through hush's lattice hash (any 32-bit seed gives an independent field, not
-// a reshuffle of one 256-entry table), optionally periodic per axis.
-//
-//   hush::perlin<3> p{7};                        // seed 7
-//   float v = p(hush::vec3{x, y, z});            // in [-1, 1]
-//   auto [v2, g] = p.gradient(hush::vec3{x, y, z});
-//   double r = p(hush::dvec3{x, y, z});          // the double-precision reference
-//
-// Contract (both dimensions, float and double):
-//  - range: [-1, 1]; the bound is attained (constants.hpp, docs/design.md).
-//    Float results may exceed it by the float error budget below.
-//  - mean 0 and variance variance() over space and seeds (0.0931 in 2D,
-//    0.0679 in 3D; derived in docs/design.md, measured in the tests).
-//  - C2 in position; gradient() returns the exact analytic derivative.
-//  - zero at every lattice point.
-//  - float evaluation is within 2^-16 (1.5e-5, a forward error bound) of the
-//    double reference at the same position; measured max 2.4e-6, RMS 1.9e-7
-//    (tests/perlin_test.cpp).
-//  - domain: every finite coordinate (core/lattice.hpp); NaN or +-Inf in any
-//    coordinate gives NaN (value and gradient). Evaluation never throws.
-//  - periodic mode: with period[a] = p > 0, noise(x + p e_a) == noise(x)
-//    exactly (bit for bit where x and x + p are both representable).
-#ifndef HUSH_PERLIN_HPP
-#define HUSH_PERLIN_HPP
+// Gabor noise's SIMD entry points (kernels: hush/simd/gabor-inl.h, which
+// states the agreement with scalar evaluation) and detail::simd_kernel<gabor<D>>,
+// which exec::simd calls: points (interleaved), grid slabs (as Perlin's,
+// hush/perlin/simd_kernel.hpp), points with footprints (filtered samples) and,
+// in 3D, samples with normals (surface noise; interleaved normals, fps null:
+// point footprints). Included at the end of hush/gabor.hpp, after the class its
+// kernels use; not on its own.
+#ifndef HUSH_GABOR_SIMD_KERNEL_HPP
+#define HUSH_GABOR_SIMD_KERNEL_HPP
 
-#include <array>
-#include <climits>
-#include <cstdint>
-#include <string>
-#include <vector>
-
-
-namespace hush {
-namespace detail {
-
-// Quintic fade s(t) and its derivative, from the coefficients in constants.hpp.
-template <class T>
-HUSH_INLINE T fade(T t) {
-  namespace c = constants;
-  return t * t * t * (t * (t * T(c::kFade5) + T(c::kFade4)) + T(c::kFade3));
-}
-template <class T>
-HUSH_INLINE T fade_derivative(T t) {
-  namespace c = constants;
-  return t * t * (t * (t * T(5 * c::kFade5) + T(4 * c::kFade4)) + T(3 * c::kFade3));
-}
-template <class T>
-HUSH_INLINE T lerp(T a, T b, T t) {
-  return a + t * (b - a);
-}
-
-// Gradient tables in T, converted at compile time from the double constants.
-template <class T, int N>
-constexpr std::array<T, N> table_cast(const double (&src)[N]) {
-  std::array<T, N> r{};
-  for (int i = 0; i < N; ++i) r[i] = static_cast<T>(src[i]);
-  return r;
-}
-template <class T>
-struct perlin_tables {
-  static constexpr auto g2x = table_cast<T>(constants::kPerlin2GradX);
-  static constexpr auto g2y = table_cast<T>(constants::kPerlin2GradY);
-  static constexpr auto g3x = table_cast<T>(constants::kPerlin3GradX);
-  static constexpr auto g3y = table_cast<T>(constants::kPerlin3GradY);
-  static constexpr auto g3z = table_cast<T>(constants::kPerlin3GradZ);
-};
-
-// Gradient index of a lattice hash: 2D takes the top 3 bits (uniform over 8);
-// 3D maps the top 16 bits onto 12 buckets by a fixed-point multiply. Both
-// read only bits 16 ... 31, so lattice_hash_high serves (core/hash.hpp).
-static_assert(constants::kPerlin2GradShift >= 16 && constants::kPerlin3IndexShift >= 16,
-              "the gradient index may read only the bits lattice_hash_high shares");
-HUSH_INLINE constexpr std::uint32_t perlin2_grad_index(std::uint32_t h) {
-  return h >> constants::kPerlin2GradShift;
-}
-HUSH_INLINE constexpr std::uint32_t perlin3_grad_index(std::uint32_t h) {
-  return ((h >> constants::kPerlin3IndexShift) * std::uint32_t(constants::kPerlin3GradCount)) >>
-         constants::kPerlin3IndexShift;
-}
-
-// 3D grid rows with gradients (docs/design.md, "Grid gradients, affine in x"):
-// within one row (fixed y, z) and one x cell, each gradient component is
-// lerp(P(f_x), Q(f_x), u) (plus u' (Q_v - P_v) for d/dx) with P, Q affine in
-// the x fraction f_x. The coefficients, per (row, cell), by index:
-//   kEA, kEB      slope and intercept of V1 - V0 (the value's x-lerp ends)
-//   kX0           d/dx's interpolated gradient at a = 0 (its a = 1 - a = 0 is kEA),
-//                 which is also the slope of V0; kV0B: V0's intercept
-//   kY0A, kY0B    d/dy at a = 0, slope and intercept; kDYA, kDYB: a = 1 minus a = 0
-//   kZ0A ... kDZB the same for d/dz.
-enum row_gradient_coef : int {
-  kEA,
-  kEB,
-  kX0,
-  kV0B,
-  kY0A,
-  kY0B,
-  kDYA,
-  kDYB,
-  kZ0A,
-  kZ0B,
-  kDZA,
-  kDZB,
-  kRowGradientCoefs
-};
-// They are formed from per-(slice, cell) data, blended in z once for all the
-// rows of a z slice and y cell (the corner gradients and the slice's z
-// fraction are fixed there), then in y per row. For corner (a, b, c), split
-// its dot product's x-free part as gy (f_y - b) + e with e = gz (f_z - c) -
-// a gx; per side a and y offset b, blended in z with the slice's fade w and
-// slope w':
-//   kZgx, kZgy, kZgz, kZe   lerp(q_ab0, q_ab1, w) of q = gx, gy, gz, e
-//   kWgx, kWgy, kWe         w' (q_ab1 - q_ab0) of q = gx, gy, e
-// at index slice_gradient_coef_index(q, a, b).
-enum slice_gradient_coef : int { kZgx, kZgy, kZgz, kZe, kWgx, kWgy, kWe, kSliceGradientKinds };
-constexpr int kSliceGradientCoefs = 4 * kSliceGradientKinds;
-HUSH_INLINE constexpr int slice_gradient_coef_index(int q, int a, int b) {
-  return 4 * q + 2 * a + b;
-}
-// Rows take the per-cell path (shared corner data) when cells hold at least
-// two columns on average; scalar and SIMD grids decide alike, so both use the
-// same gradient algorithm on every grid.
-HUSH_INLINE constexpr bool grid_cells_shared(std::size_t cells, std::size_t columns) {
-  return 2 * cells <= columns;
-}
-
-}  // namespace detail
-
-template <int D>
-class perlin : public point_noise<perlin<D>, D> {
-  static_assert(D == 2 || D == 3, "hush::perlin is 2D or 3D");
-
- public:
-  struct params {
-    std::uint32_t seed = 0;
-    // Per-axis period in lattice units: 0 = not periodic, p in 1 ... INT_MAX =
-    // the noise repeats every p units along that axis (tileable noise).
-    std::array<int, D> period{};
-  };
-
-  perlin() : perlin(params{}) {}
-  explicit perlin(std::uint32_t seed) : perlin(params{seed, {}}) {}
-  // Throws hush::invalid_argument when a period is negative.
-  explicit perlin(const params& prm) : prm_(prm), key_(seed_key(prm.seed)) {
-    for (int a = 0; a < D; ++a)
-      if (prm.period[a] < 0)
-        detail::throw_out_of_range("hush::perlin", "period[" + std::to_string(a) + "]",
-                                   prm.period[a], "0 (not periodic) or 1 ... 2147483647");
-  }
-
-  const params& parameters() const { return prm_; }
-
-  // Output bound and variance of the noise over space and seeds (see header comment).
-  static constexpr double bound() { return 1.0; }
-  static constexpr double variance() {
-    return D == 2 ? detail::constants::kPerlin2Variance : detail::constants::kPerlin3Variance;
-  }
-
-  // p(vec) -> value and p.gradient(vec) -> value and analytic gradient, in
-  // float or double (the reference), come from core/point_noise.hpp.
-
-  // Evaluation at a double-precision position with arithmetic in T: the
-  // position is split into cell and fraction in double, the rest runs in T.
-  // This is what grids far from the origin use.
-  template <class T>
-  T value(const vec<double, D>& p) const {
-    return eval<T, false>(p).value;
-  }
-  template <class T>
-  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
-    return eval<T, true>(p);
-  }
-
-  // The samples of `g` with slowest-axis index (j in 2D, k in 3D) in
-  // [first, first + count), in C order, into out (and gradients into grad
-  // unless null); out starts at the slab's first sample. exec::scalar calls
-  // this for grids (exec.hpp). The x axis is split once per column, y and z
-  // once per row, and a row hashes its lattice points once per cell, not
-  // once per sample. Values alone, and 2D values with gradients, are what
-  // value<float> / value_and_gradient<float> give at g.position(...), bit for
-  // bit (unless the compiler contracts multiply-adds, which HUSH_STRICT_FP
-  // forbids). 3D values with gradients on rows whose cells hold two or more
-  // columns on average take the affine-in-x form (docs/design.md, "Grid
-  // gradients, affine in x"): within 2^-17 (values) and 2^-15 (gradients) of
-  // point evaluation, and within the float budget of the double reference
-  // (tests/perlin_test.cpp); hush/simd computes the same, bit for bit under
-  // HUSH_STRICT_FP.
-  void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
-                   vec<float, D>* grad) const {
-    auto at = [&g](int a) {
-      return [&g, a](std::size_t index) { return g.origin[a] + g.step[a] * double(index); };
-    };
-    const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
-    const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
-    grid_rows_at(g.size[0], at(0), j0, j1, at(1), k0, k1, at(D - 1), out, grad);
-  }
-
-  // grid_values over positions given per axis: column i at x_at(i), row j at
-  // y_at(j), slice k at z_at(k) (doubles; 2D: z_at unused, k in [0, 1)), for
-  // rows j in [j0, j1) and slices k in [k0, k1), in C order into out (and
-  // grad unless null). fractal.hpp runs its bands' grids (positions f x + o)
-  // through it. 3D gradients of rows whose cells hold two or more columns on
-  // average take the affine-in-x form (docs/design.md); everything else is
-  // point evaluation's result, as grid_values states.
-  template <class X, class Y, class Z>
-  void grid_rows_at(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
-                    std::size_t k0, std::size_t k1, const Z& z_at, float* out,
-                    vec<float, D>* grad) const {
-    if (grad)
-      grid_rows<true>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, grad);
-    else
-      grid_rows<false>(nx, x_at, j0, j1, y_at, k0, k1, z_at, out, nullptr);
-  }
-
- private:
-  static constexpr int kCorners = 1 << D;
-
-  // One axis of a lookup as the blend needs it: the fraction f, f - 1, the
-  // fade s(f) and, for gradients, its derivative.
-  template <class T>
-  struct axis {
-    T f, f1, s, ds;
-  };
-  template <class T, bool WithGradient>
-  static axis<T> make_axis(T f) {
-    return {f, f - T(1), detail::fade(f), WithGradient ? detail::fade_derivative(f) : T(0)};
-  }
-  // Per corner n = a + 2b + 4c (offset (a, b, c) from the cell's origin):
-  // the gradient g and the dot product d = g . (x - corner).
-  template <class T>
-  struct corners {
-    T d[kCorners], gx[kCorners], gy[kCorners], gz[kCorners];
-  };
-
-  // Corner n's gradient from the top half of its lattice hash, and the part
-  // of its dot product that does not depend on x:
-  //   2D: k = gy f_y;   3D: k = gy f_y + gz f_z,
-  // so that d = gx f_x + k. In 3D every product is exact (components 0 or
-  // +-1): d is the single rounding of +-f_p +- f_q however it is summed.
-  template <class T>
-  static void corner_gradient(std::uint32_t h, T fy, T fz, corners<T>& c, int n, T& k) {
-    using tab = detail::perlin_tables<T>;
-    if constexpr (D == 2) {
-      (void)fz;
-      const std::uint32_t i = detail::perlin2_grad_index(h);
-      c.gx[n] = tab::g2x[i];
-      c.gy[n] = tab::g2y[i];
-      k = c.gy[n] * fy;
-    } else {
-      const std::uint32_t i = detail::perlin3_grad_index(h);
-      c.gx[n] = tab::g3x[i];
-      c.gy[n] = tab::g3y[i];
-      c.gz[n] = tab::g3z[i];
-      k = c.gy[n] * fy + c.gz[n] * fz;
-    }
-  }
-
-  template <class T, bool WithGradient>
-  value_gradient<T, D> eval(const vec<double, D>& p) const {
-    lattice_coord<T> lc[D];
-    for (int a = 0; a < D; ++a)
-      lc[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
-    axis<T> ax[3]{};
-    for (int a = 0; a < D; ++a) ax[a] = make_axis<T, WithGradient>(lc[a].f);
-    corners<T> c;
-    for (int n = 0; n < kCorners; ++n) {
-      const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
-      const std::uint32_t i = a ? lc[0].i1 : lc[0].i0, j = b ? lc[1].i1 : lc[1].i0;
-      std::uint32_t h;
-      if constexpr (D == 2)
-        h = lattice_hash_high(key_, i, j);
-      else
-        h = lattice_hash_high(key_, i, j, cc ? lc[2].i1 : lc[2].i0);
-      T k;
-      corner_gradient<T>(h, b ? ax[1].f1 : ax[1].f, cc ? ax[2].f1 : ax[2].f, c, n, k);
-      c.d[n] = c.gx[n] * (a ? ax[0].f1 : ax[0].f) + k;
-    }
-    return blend<T, WithGradient>(c, ax);
-  }
-
-  // The fade-weighted blend of the corners' dot products, and its analytic
-  // derivative (product rule on the fade weights).
-  template <class T, bool WithGradient>
-  static value_gradient<T, D> blend(const corners<T>& c, const axis<T>* ax) {
-    const T* d = c.d;
-    const T u = ax[0].s, v = ax[1].s;
-    if constexpr (D == 2) {
-      const T x0 = detail::lerp(d[0], d[1], u), x1 = detail::lerp(d[2], d[3], u);
-      constexpr T kScale = T(detail::constants::kPerlin2Scale);
-      value_gradient<T, 2> r{kScale * detail::lerp(x0, x1, v), {}};
-      if constexpr (WithGradient) {
-        // d/dx: interpolated gradients plus the fade's derivative times the
-        // difference of the contributions it blends.
-        const T gx =
-            detail::lerp(detail::lerp(c.gx[0], c.gx[1], u), detail::lerp(c.gx[2], c.gx[3], u), v) +
-            ax[0].ds * detail::lerp(d[1] - d[0], d[3] - d[2], v);
-        const T gy =
-            detail::lerp(detail::lerp(c.gy[0], c.gy[1], u), detail::lerp(c.gy[2], c.gy[3], u), v) +
-            ax[1].ds * (x1 - x0);
-        r.gradient = {kScale * gx, kScale * gy};
-      }
-      return r;
-    } else {
-      const T w = ax[2].s;
-      const T x00 = detail::lerp(d[0], d[1], u), x10 = detail::lerp(d[2], d[3], u);
-      const T x01 = detail::lerp(d[4], d[5], u), x11 = detail::lerp(d[6], d[7], u);
-      const T y0 = detail::lerp(x00, x10, v), y1 = detail::lerp(x01, x11, v);
-      constexpr T kScale = T(detail::constants::kPerlin3Scale);
-      // "+ 0" turns a zero result into +0: kernels that form the same dot
-      // products another way (sign flips instead of products) can differ only
-      // in the sign of zeros, and this makes every backend agree bit for bit.
-      value_gradient<T, 3> r{kScale * detail::lerp(y0, y1, w) + T(0), {}};
-      if constexpr (WithGradient) {
-        // Trilinear blend of a per-corner quantity q[n] with the fade weights.
-        auto trilinear = [&](const T* q) {
-          return detail::lerp(
-              detail::lerp(detail::lerp(q[0], q[1], u), detail::lerp(q[2], q[3], u), v),
-              detail::lerp(detail::lerp(q[4], q[5], u), detail::lerp(q[6], q[7], u), v), w);
-        };
-        // d/dx of the lerp over x: ds_x * (d[a=1] - d[a=0]), blended in y and z.
-        const T ex = detail::lerp(detail::lerp(d[1] - d[0], d[3] - d[2], v),
-                                  detail::lerp(d[5] - d[4], d[7] - d[6], v), w);
-        const T ey = detail::lerp(x10 - x00, x11 - x01, w);
-        const T ez = y1 - y0;
-        r.gradient = {kScale * (trilinear(c.gx) + ax[0].ds * ex) + T(0),
-                      kScale * (trilinear(c.gy) + ax[1].ds * ey) + T(0),
-                      kScale * (trilinear(c.gz) + ax[2].ds * ez) + T(0)};
-      }
-      return r;
-    }
-  }
-
-  // The slice_gradient_coef data of one cell (corner gradients c) in the
-  // slice of z axis az. Mirrored op for op by simd/perlin-inl.h.
-  template <class T>
-  static void slice_gradient_coefs(const corners<T>& c, const axis<T>& az, T* out) {
-    namespace d = detail;
-    const T w = az.s, dw = az.ds;
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b) {
-        const int n0 = a + 2 * b, n1 = n0 + 4;
-        // gz (f_z - c) is exact (components are 0 or +-1): one rounding.
-        auto e = [&](int n, T fz) { return c.gz[n] * fz - (a ? c.gx[n] : T(0)); };
-        const T e0 = e(n0, az.f), e1 = e(n1, az.f1);
-        auto at = [&](int q) -> T& { return out[d::slice_gradient_coef_index(q, a, b)]; };
-        at(d::kZgx) = detail::lerp(c.gx[n0], c.gx[n1], w);
-        at(d::kZgy) = detail::lerp(c.gy[n0], c.gy[n1], w);
-        at(d::kZgz) = detail::lerp(c.gz[n0], c.gz[n1], w);
-        at(d::kZe) = detail::lerp(e0, e1, w);
-        at(d::kWgx) = dw * (c.gx[n1] - c.gx[n0]);
-        at(d::kWgy) = dw * (c.gy[n1] - c.gy[n0]);
-        at(d::kWe) = dw * (e1 - e0);
-      }
-  }
-  // The row_gradient_coef coefficients of one cell from its slice data sc and
-  // the row's y axis ay (fade v, slope v'). Per side a, with Z_b(q) the slice
-  // data: L(q) = lerp(Z_0, Z_1, v) is q's bilinear blend, Z_1 - Z_0 its v
-  // slope, and the dot products' x-free parts c_b = Z_b(gy) (f_y - b) + Z_b(e).
-  // Mirrored op for op by simd/perlin-inl.h.
-  template <class T>
-  static void row_gradient_coefs(const T* sc, const axis<T>& ay, T* out) {
-    namespace d = detail;
-    const T v = ay.s, dv = ay.ds, fy0 = ay.f, fy1 = ay.f1;
-    T lgx[2], lc[2], ya[2], yb[2], za[2], zb[2];
-    for (int a = 0; a < 2; ++a) {
-      auto q = [&](int kind, int b) { return sc[d::slice_gradient_coef_index(kind, a, b)]; };
-      lgx[a] = detail::lerp(q(d::kZgx, 0), q(d::kZgx, 1), v);
-      const T mygx = q(d::kZgx, 1) - q(d::kZgx, 0);
-      const T zc0 = q(d::kZgy, 0) * fy0 + q(d::kZe, 0), zc1 = q(d::kZgy, 1) * fy1 + q(d::kZe, 1);
-      lc[a] = detail::lerp(zc0, zc1, v);
-      const T myc = zc1 - zc0;
-      const T lgy = detail::lerp(q(d::kZgy, 0), q(d::kZgy, 1), v);
-      const T lgz = detail::lerp(q(d::kZgz, 0), q(d::kZgz, 1), v);
-      za[a] = detail::lerp(q(d::kWgx, 0), q(d::kWgx, 1), v);
-      const T wc0 = q(d::kWgy, 0) * fy0 + q(d::kWe, 0), wc1 = q(d::kWgy, 1) * fy1 + q(d::kWe, 1);
-      zb[a] = detail::lerp(wc0, wc1, v) + lgz;
-      ya[a] = dv * mygx;
-      yb[a] = dv * myc + lgy;
-    }
-    out[d::kEA] = lgx[1] - lgx[0];
-    out[d::kEB] = lc[1] - lc[0];
-    out[d::kX0] = lgx[0];
-    out[d::kV0B] = lc[0];
-    out[d::kY0A] = ya[0];
-    out[d::kY0B] = yb[0];
-    out[d::kDYA] = ya[1] - ya[0];
-    out[d::kDYB] = yb[1] - yb[0];
-    out[d::kZ0A] = za[0];
-    out[d::kZ0B] = zb[0];
-    out[d::kDZA] = za[1] - za[0];
-    out[d::kDZB] = zb[1] - zb[0];
-  }
-  // A sample's value and gradient from its cell's coefficients: u = s(f_x),
-  // u' = s'(f_x).
-  template <class T>
-  static value_gradient<T, 3> row_gradient(const T* co, const axis<T>& x) {
-    namespace d = detail;
-    const T f = x.f, u = x.s, du = x.ds;
-    const T delta = co[d::kEA] * f + co[d::kEB];
-    const T gx = du * delta + (u * co[d::kEA] + co[d::kX0]);
-    const T gy = u * (co[d::kDYA] * f + co[d::kDYB]) + (co[d::kY0A] * f + co[d::kY0B]);
-    const T gz = u * (co[d::kDZA] * f + co[d::kDZB]) + (co[d::kZ0A] * f + co[d::kZ0B]);
-    const T value = u * delta + (co[d::kX0] * f + co[d::kV0B]);
-    constexpr T kScale = T(detail::constants::kPerlin3Scale);
-    return {kScale * value + T(0), {kScale * gx + T(0), kScale * gy + T(0), kScale * gz + T(0)}};
-  }
-
-  // grid_values: the columns' splits are kept; a row walks them, taking new
-  // corner gradients (and their x-free parts k) where the cell changes.
-  template <bool WithGradient, class X, class Y, class Z>
-  void grid_rows(std::size_t nx, const X& x_at, std::size_t j0, std::size_t j1, const Y& y_at,
-                 std::size_t k0, std::size_t k1, const Z& z_at, float* out,
-                 vec<float, D>* grad) const {
-    using T = float;
-    std::vector<lattice_coord<T>> cells(nx);
-    std::vector<axis<T>> cols(nx);
-    std::size_t cell_count = 0;
-    for (std::size_t i = 0; i < nx; ++i) {
-      cells[i] = lattice_split<T>(x_at(i), static_cast<std::uint32_t>(prm_.period[0]));
-      cols[i] = make_axis<T, WithGradient>(cells[i].f);
-      if (i == 0 || cells[i].i0 != cells[i - 1].i0) ++cell_count;
-    }
-    // 3D gradients of rows with shared cells: the affine-in-x form.
-    const bool affine = D == 3 && WithGradient && detail::grid_cells_shared(cell_count, nx);
-    T coef[detail::kRowGradientCoefs]{};
-    std::size_t idx = 0;
-    axis<T> ax[3]{};
-    for (std::size_t kk = k0; kk < k1; ++kk) {
-      lattice_coord<T> cz{};
-      if constexpr (D == 3) {
-        cz = lattice_split<T>(z_at(kk), static_cast<std::uint32_t>(prm_.period[D - 1]));
-        ax[2] = make_axis<T, WithGradient>(cz.f);
-      }
-      for (std::size_t j = j0; j < j1; ++j) {
-        const lattice_coord<T> cy =
-            lattice_split<T>(y_at(j), static_cast<std::uint32_t>(prm_.period[1]));
-        ax[1] = make_axis<T, WithGradient>(cy.f);
-        // key ^ word_y ^ word_z per corner offset (b, c): lattice_hash_high's fold.
-        std::uint32_t kyz[4];
-        for (int m = 0; m < 4; ++m)
-          kyz[m] = key_ ^ lattice_word_y((m & 1) ? cy.i1 : cy.i0) ^
-                   (D == 3 ? lattice_word_z((m & 2) ? cz.i1 : cz.i0) : 0u);
-        corners<T> c{};
-        T k[kCorners]{};
-        for (std::size_t i = 0; i < nx; ++i, ++idx) {
-          const lattice_coord<T>& cx = cells[i];
-          if (i == 0 || cx.i0 != cells[i - 1].i0) {
-            for (int n = 0; n < kCorners; ++n) {
-              const std::uint32_t h =
-                  hash32_high(kyz[n >> 1] ^ lattice_word_x((n & 1) ? cx.i1 : cx.i0));
-              corner_gradient<T>(h, ((n >> 1) & 1) ? ax[1].f1 : ax[1].f,
-                                 (n >> 2) ? ax[2].f1 : ax[2].f, c, n, k[n]);
-            }
-            if constexpr (D == 3)
-              if (affine) {
-                T slice[detail::kSliceGradientCoefs];
-                slice_gradient_coefs<T>(c, ax[2], slice);
-                row_gradient_coefs<T>(slice, ax[1], coef);
-              }
-          }
-          ax[0] = cols[i];
-          if constexpr (D == 3 && WithGradient) {
-            if (affine) {
-              const value_gradient<T, 3> r = row_gradient<T>(coef, ax[0]);
-              out[idx] = r.value;
-              grad[idx] = r.gradient;
-              continue;
-            }
-          }
-          for (int n = 0; n < kCorners; ++n)
-            c.d[n] = c.gx[n] * ((n & 1) ? ax[0].f1 : ax[0].f) + k[n];
-          const value_gradient<T, D> r = blend<T, WithGradient>(c, ax);
-          out[idx] = r.value;
-          if constexpr (WithGradient) grad[idx] = r.gradient;
-        }
-      }
-    }
-  }
-
-  params prm_;
-  std::uint32_t key_;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_PERLIN_HPP
-// ---- end hush/perlin.hpp
-// ---- begin hush/wavelet.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Wavelet noise (Robert L. Cook and Tony DeRose, "Wavelet Noise", SIGGRAPH 2005),
-// 2D and 3D: band-limited noise from a tile of quadratic B-spline coefficients
-// with the coarser half of its spectrum projected out (wavelet_tile.hpp), summed
-// over octave bands, anti-aliased by the sample's footprint, and, in 3D,
-// projectable onto a surface so that the band limit survives texturing a
-// surface with a 3D noise.
-//
-//   hush::wavelet<2>::params prm;            // one band, 128^2 tile, seed 0
-//   prm.weights = {1, 0.5, 0.25};            // bands 0, 1, 2 (frequencies 1, 2, 4)
-//   hush::wavelet<2> w{prm};
-//   float v = w(hush::vec2{x, y});                               // all bands
-//   float a = w.sample(hush::vec2{x, y}, hush::footprint<2>::from_derivatives(dpdx, dpdy));
-//   hush::wavelet<3> s{7};
-//   float b = s.sample(hush::vec3{x, y, z}, normal, fp);         // projected onto the surface
-//
-// Definitions (paper symbols in brackets). A band is
-//   N(y) = sum_i n_i B(y - i)                    [eq. 27, 29]
-// over the tile's coefficients n_i (periodic, period n = tile_size) with the
-// centred quadratic B-spline B; it holds frequencies between 1/4 and 1/2 cycle
-// per coefficient. Band b of the noise is N at y = 2^b x + o_b (frequency 2^b,
-// decorrelating offset o_b), so band 0 has one coefficient per unit, like
-// Perlin noise has one lattice cell per unit. The noise is
-//   M(x) = K sum_b w_b N(2^b x + o_b)            [eq. 1]
-// with K = 1 / sqrt(sigma_N^2 sum_b w_b^2)      [eq. 39]
-// so that M has variance 1 (sigma_N^2 is computed by hush from its own tile:
-// wavelet_tile<D>::variance()), followed by the distribution remapping
-// (sec. 4.2): a Gaussian scale, erf to the uniform distribution on (-1, 1), or
-// a user table of the inverse CDF.
-//
-// Footprints (n.sample(p, footprint); core/footprint.hpp; paper sec. 3.1, 3.5):
-// with w the footprint's largest width (noise units per pixel), band b's
-// coefficients are c = 2^b w pixels apart. The band is fully representable for
-// c <= 1 (its highest frequency, 2^(b-1), is at most the Nyquist frequency
-// 1 / (2w)), and entirely above Nyquist for c >= 2 (the paper's j >= 0, which the
-// renderer's B-spline pixel filter removes exactly, eq. 6). hush keeps the band
-// with weight s(1 - log2 c) (s = the quintic fade of constants.hpp, clamped to
-// [0, 1]): 1 below c = 1, 0 from c = 2 on, C2 in between, so a continuous zoom
-// never pops and bands with weight 0 cost nothing. K is not renormalised: the
-// filtered noise has less variance, as the pixel's average of the noise has.
-// Why the largest width: a band is kept only where it is representable along
-// every direction of the pixel, which excludes aliasing; along the footprint's
-// short axis this loses detail (anisotropic filtering would need anisotropic
-// noise, hush::anisotropic). A NaN, infinite or wider-than-2^32 footprint
-// ("everything", core/footprint.hpp) gives the mean, 0, in every mode.
-//
-// Basis widening (params::widen, paper sec. 4.1): for renderers that take one
-// sample per pixel, each kept band is interpolated with B widened along tile
-// axis a by s_a = sqrt(1 + max(0, c_a^2 - c0^2)) (c_a the pixel's extent along
-// axis a in band coefficients, c0 = 1/2), so that the basis' variance grows
-// like that of B convolved with the Gaussian pixel filter (sigma = 1/2 pixel,
-// kPixelFilterSigma) from the paper's j = -2 on. The widened weights are
-// normalised to sum to 1. With a surface normal, the footprint is first
-// projected onto the tangent plane.
-//
-// Infinite noise (params::relative_weights, paper sec. 5.4): weights[k] is the
-// weight of the band k octaves below the finest representable one, i.e. band b
-// gets W(o) with o = -(b + log2 w), linearly... (quintic) interpolated between
-// integer o, faded in over o in [-1, 0] (the anti-aliasing fade above) and out
-// over o in [K - 1, K], and the sum is normalised per sample by
-// 1 / sqrt(sigma^2 sum W^2): zooming never changes the look, low octaves fade out
-// as fine ones fade in. Bands b run over [first_band, first_band + relative_bands).
-// Point evaluation (no footprint) uses w = 1.
-//
-// Projection (3D, n.sample(p, normal, fp); paper sec. 3.7, 4.1, eq. 32-36): the
-// band is averaged along the unit normal u with the B-spline at half its
-// resolution, B2(t) = B(t / 2) / 2:
-//   N_u(y) = integral N(y + t u) B2(t) dt.
-// For an axis-aligned u this is sum_i n_i B(.)B(.) beta(.) with the exact
-// quintic beta = B * B2 along the normal (9 coefficients wide, eq. 36).
-// projection::exact evaluates N_u exactly for any u: separably with beta when u
-// is axis-aligned, otherwise by splitting the line integral where its
-// polynomial pieces change and integrating each piece with 5-point
-// Gauss-Legendre quadrature (exact: degree <= 8; with basis widening, over B2's
-// three pieces only, docs/wavelet.md). projection::approximate is
-// the paper's: B2 in place of beta along the normal (6 coefficients wide), and
-// for any u the tensor B-spline at the coefficient moved halfway towards the
-// position along u (Appendix 2), normalised to weights summing to 1. The
-// approximation's error against the exact projection is measured in
-// docs/wavelet.md. The normal may have any length (it is normalised); a zero,
-// NaN or infinite normal gives the unprojected 3D noise (a point not on a
-// surface). The projected noise is normalised by its own variance
-// (tile.projected_variance along axis a, sum_a u_a^2 sigma_a^2 for other u).
-//
-// No repetition (params::variant_overlap > 0, paper sec. 4.3): the tile is laid
-// out in cells of variants with blended overlaps (wavelet_blend_tile); the
-// noise then does not repeat (cells are hashed over 2^32 coefficients per
-// axis, where the global coefficient index wraps).
-//
-// Contract (D = 2, 3; float and double from one template):
-//  - mean 0; variance 1 over space for the point noise (exactly over a whole
-//    tile period with one band; the tests measure it within +-3 %), less where a
-//    footprint filters bands out; then the distribution's (gaussian_scale^2, 1/3
-//    for uniform).
-//  - range: |M| <= bound() (analytic: K sum|w_b| max_i |n_i|, every kernel being
-//    an average of coefficients); uniform: (-1, 1); table: its range.
-//  - C1 in position (the quadratic B-spline); gradient() and sample_gradient()
-//    return the exact derivative of what is evaluated (footprint held fixed).
-//  - periodic with period tile_size / 2^first_band along every axis when every
-//    band's offset is a multiple of... (offsets are exact multiples of 2^-24, so
-//    M(x + n / 2^b0) == M(x) wherever the band positions are exact in double,
-//    |2^b x| < 2^28), unless variant_overlap > 0.
-//  - float evaluation is within float_budget() of the double reference.
-//  - domain: every finite coordinate; a band coordinate 2^b x that overflows a
-//    double is taken as 0 (like hush::fractal). NaN or +-Inf in a coordinate
-//    gives NaN (value and gradient). Evaluation never throws.
-#ifndef HUSH_WAVELET_HPP
-#define HUSH_WAVELET_HPP
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstdint>
-#include <limits>
-#include <memory>
-#include <string>
-#include <vector>
-
-// ---- begin hush/wavelet_tile.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// hush::wavelet_tile<D>: the periodic tile of noise coefficients of wavelet noise
-// (Cook & DeRose, "Wavelet Noise", SIGGRAPH 2005, sec. 3.4, 3.6, 4.2, 4.3,
-// Appendix 1), 2D or 3D, built once per (size, seed, even/odd correction) and
-// shared (core/tile_cache.hpp).
-//
-// Construction (n = size, the tile is periodic with period n on every axis):
-//  1. R: n^D independent standard Gaussians r_i from hush::rng (seed, stream D),
-//     read in index order (x fastest). R(y) = sum_i r_i B(y - i) lies in the
-//     full-resolution space S^1 of the quadratic B-spline B (core/bspline.hpp).
-//  2. Along every axis in turn, each line is projected onto the half-resolution
-//     space S^0 spanned by B((y - 1/2)/2 - m), m = 0 ... n/2 - 1: the analysis
-//     (least-squares) filter c_m = sum_k a_(k - 2m) x_k (eq. 16), then refined
-//     back to S^1 by u_k = sum_m p_(k - 2m) c_m (eq. 12, p = constants.hpp
-//     kWaveletRefine). After all D axes this is the projection Q of R onto the
-//     coarse tensor space (S^0)^D.
-//  3. N = R - Q R (eq. 20, 26): the band, orthogonal to (S^0)^D (eq. 30, 31).
-//  4. The even/odd correction (sec. 4.3, Appendix 1): the analysis and
-//     refinement treat even and odd coefficients differently, so the variance of
-//     N(y) is periodic with period 2, not 1 (in 2D the cells [2m, 2m + 1) between
-//     coefficients, inside a coarse basis function, have 16 to 18 % less variance
-//     than their neighbours). Adding a copy of N shifted by an odd number of
-//     coefficients o (n/2, or n/2 + 1 when that is even) along every axis makes
-//     it 1-periodic (equal within 1 %; tests/wavelet_tile_test.cpp). The copy
-//     lies in a shifted wavelet space whose components near the coarse Nyquist
-//     frequency are no longer cancelled by the coarse basis, so the corrected
-//     tile is not orthogonal to (S^0)^D any more: 11 % of its energy projects
-//     onto it (2D, measured there), against 1e-15 without the correction. The
-//     spectrum, what a renderer sees, is unchanged by shifts. even_odd_fix =
-//     false keeps the exact orthogonality and the period-2 variance.
-//
-// The analysis filter (eq. 16). Let g(d) = <B(. - i), B(. - i - d)> be the
-// B-spline Gram entries (66, 26, 1 / 120 for d = 0, 1, 2; core/bspline.hpp) and
-// h_d = sum_i p_i g(i - d). The normal equations of the least-squares problem
-// min || sum_k x_k B(y - k) - sum_m c_m B((y - 1/2)/2 - m) ||^2 read
-//   2 sum_j g(m - j) c_j = sum_k h_(k - 2m) x_k,
-// so a_d = (1/2) sum_l G^-1(l) h_(d + 2l), with G^-1 the inverse of the Toeplitz
-// Gram matrix. Its symbol is 120 z^2 / Q(z), Q(z) = z^4 + 26 z^3 + 66 z^2 + 26 z
-// + 1, whose roots inside the unit circle are lambda = 2 / (w - sqrt(w^2 - 4)),
-// w = -13 +- sqrt(105) (Q / z^2 = w^2 + 26 w + 64, w = z + 1/z). By residues,
-//   G^-1(l) = 120 sum_lambda lambda^(|l| + 1) / Q'(lambda),
-// which converges to the last bit of a double; |a_d| decays as 0.656^|d|
-// (sqrt of the larger root) and is kept for |d| <= kWaveletAnalysisRadius (tail
-// below 2e-18). a is symmetric about 1/2 and sums to 1 (even and odd taps to 1/2
-// each); a composed with the refinement is the identity on S^0 (tested).
-// Against the paper's 6-digit table (Appendix 1, symmetric about -1/2 in its
-// indexing): every tap agrees within 8e-6 except the outermost pair, where the
-// table has 0.000334 and the exact value is -0.000173 (and the appendix's loop
-// over k = 2i - 16 ... 2i + 16 reads a 33rd tap past the end of its 32-entry
-// array); the table's 0.003546 against 0.003545 (exact 0.0035446) breaks its
-// symmetry. Effect, measured on 1D bands (mean of 20
-// seeds, n = 256; tests/wavelet_tile_test.cpp): the band keeps 4.7e-6 of its
-// energy in S^0 with the table, 2.8e-6 with the exact taps cut to the same 32,
-// and 1e-29 with hush's.
-//
-// Periodic tiles use the filter periodised to n (taps d and d + n summed), which
-// is the exact least-squares projection for periodic coefficient sequences.
-//
-// Statistics: the coefficients are Gaussian (linear in the r_i). variance() is
-// sigma_N^2, the spatial average of N(y)^2 over the whole tile, computed exactly
-// from the stored float coefficients: (1/n^D) sum_i n_i (G n)_i with G the
-// tensor Gram matrix. projected_variance(axis, exact) is the same for the noise
-// projected along that axis (beta or the double-width B-spline along it).
-// Expected values over seeds (n -> infinity) are in docs/wavelet.md beside the
-// paper's 0.265 (2D), 0.210 (3D), 0.296 (projected).
-#ifndef HUSH_WAVELET_TILE_HPP
-#define HUSH_WAVELET_TILE_HPP
-
-#include <algorithm>
-#include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <memory>
-#include <string>
-#include <vector>
 
-
-namespace hush {
-namespace detail {
-
-// G^-1(l): the inverse of the B-spline Gram matrix (Toeplitz, entries g(d)), by
-// the residue formula in the file comment.
-inline double bspline_gram_inverse(int l) {
-  const double q0 = bspline_gram(0), q1 = bspline_gram(1), q2 = bspline_gram(2);
-  // Q(z) = (q2 z^4 + q1 z^3 + q0 z^2 + q1 z + q2) / q2; Q / z^2 = w^2 + (q1/q2) w + q0/q2 - 2.
-  const double b = q1 / q2, c = q0 / q2 - 2.0;
-  const double disc = std::sqrt(b * b - 4.0 * c);
-  double sum = 0;
-  for (const double w : {(-b + disc) / 2.0, (-b - disc) / 2.0}) {
-    const double lambda = 2.0 / (w - std::sqrt(w * w - 4.0));  // the root inside |z| < 1
-    const double dq = 4.0 * lambda * lambda * lambda + 3.0 * b * lambda * lambda +
-                      2.0 * (q0 / q2) * lambda + b;  // Q'(lambda)
-    sum += std::pow(lambda, std::abs(l) + 1) / (q2 * dq);
-  }
-  return sum;
-}
-
-// The analysis filter a_d for d in [1 - R, R] (R = kWaveletAnalysisRadius), index d - 1 + R.
-inline const std::vector<double>& wavelet_analysis_filter() {
-  static const std::vector<double> taps = [] {
-    constexpr int R = constants::kWaveletAnalysisRadius;
-    constexpr int kFirst = constants::kWaveletRefineFirst;
-    auto h = [](int d) {
-      double s = 0;
-      for (int i = 0; i < 4; ++i) {
-        const int k = kFirst + i, lag = std::abs(k - d);
-        if (lag < kBsplineGramReach) s += constants::kWaveletRefine[i] * bspline_gram(lag);
-      }
-      return s;
-    };
-    std::vector<double> a(static_cast<std::size_t>(2 * R));
-    for (int d = 1 - R; d <= R; ++d) {
-      double s = 0;
-      // h is non-zero for |d - 1/2| < 4: the terms with |l| > R + 4 are below 1e-40.
-      for (int l = -R - 4; l <= R + 4; ++l) s += bspline_gram_inverse(l) * h(d + 2 * l);
-      a[static_cast<std::size_t>(d + R) - 1] = 0.5 * s;
-    }
-    return a;
-  }();
-  return taps;
-}
-
-inline int wavelet_mod(long long x, int n) {
-  const long long r = x % n;
-  return static_cast<int>(r < 0 ? r + n : r);
-}
-
-// Projects every line of `x` along one axis (stride, n coefficients, period n)
-// onto S^0 and back: x <- P A x, line by line.
-inline void wavelet_down_up(std::vector<double>& x, int n, std::size_t stride) {
-  const std::vector<double>& a = wavelet_analysis_filter();
-  constexpr int R = constants::kWaveletAnalysisRadius;
-  // The filter periodised to n: taps (offset mod n, weight), merged.
-  std::vector<double> per(static_cast<std::size_t>(n), 0.0);
-  for (int d = 1 - R; d <= R; ++d)
-    per[static_cast<std::size_t>(wavelet_mod(d, n))] += a[static_cast<std::size_t>(d + R) - 1];
-  std::vector<int> off;
-  std::vector<double> wt;
-  for (int j = 0; j < n; ++j)
-    if (per[static_cast<std::size_t>(j)] != 0.0) {
-      off.push_back(j);
-      wt.push_back(per[static_cast<std::size_t>(j)]);
-    }
-  const int half = n / 2;
-  std::vector<double> line(static_cast<std::size_t>(n)), coarse(static_cast<std::size_t>(half));
-  const std::size_t count = x.size();
-  for (std::size_t base = 0; base < count; ++base) {
-    if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;  // not a line start
-    for (int k = 0; k < n; ++k) line[static_cast<std::size_t>(k)] = x[base + k * stride];
-    for (int m = 0; m < half; ++m) {  // c_m = sum_j per_j x_(2m + j)
-      double s = 0;
-      for (std::size_t t = 0; t < off.size(); ++t) {
-        int k = 2 * m + off[t];
-        if (k >= n) k -= n;
-        s += wt[t] * line[static_cast<std::size_t>(k)];
-      }
-      coarse[static_cast<std::size_t>(m)] = s;
-    }
-    for (int k = 0; k < n; ++k) {  // u_k = sum_t p_t c_((k - t) / 2), k - t even
-      double s = 0;
-      for (int i = 0; i < 4; ++i) {
-        const int t = constants::kWaveletRefineFirst + i;
-        if (((k - t) & 1) != 0) continue;
-        s += constants::kWaveletRefine[i] *
-             coarse[static_cast<std::size_t>(wavelet_mod((k - t) / 2, half))];
-      }
-      x[base + k * stride] = s;
-    }
-  }
-}
-
-// Applies the circulant kernel k(d), |d| < reach, along one axis of the periodic array x.
-template <class Kernel>
-void wavelet_convolve_axis(std::vector<double>& x, int n, std::size_t stride, int reach, Kernel k) {
-  std::vector<double> line(static_cast<std::size_t>(n)), kd(static_cast<std::size_t>(reach));
-  for (int d = 0; d < reach; ++d) kd[static_cast<std::size_t>(d)] = k(d);
-  for (std::size_t base = 0; base < x.size(); ++base) {
-    if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;
-    for (int i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = x[base + i * stride];
-    for (int i = 0; i < n; ++i) {
-      double s = 0;
-      for (int d = 1 - reach; d < reach; ++d)
-        s += kd[static_cast<std::size_t>(std::abs(d))] *
-             line[static_cast<std::size_t>(wavelet_mod(i + d, n))];
-      x[base + i * stride] = s;
-    }
-  }
-}
-
-}  // namespace detail
-
-template <int D>
-class wavelet_tile {
-  static_assert(D == 2 || D == 3, "hush::wavelet_tile is 2D or 3D");
-
- public:
-  // What determines a tile: its size, its seed and whether the even/odd
-  // correction is applied.
-  struct key {
-    int size = 0;
-    std::uint32_t seed = 0;
-    bool even_odd_fix = true;
-    friend bool operator<(const key& a, const key& b) {
-      if (a.size != b.size) return a.size < b.size;
-      if (a.seed != b.seed) return a.seed < b.seed;
-      return a.even_odd_fix < b.even_odd_fix;
-    }
-  };
-
-  // The largest tile size of this dimension.
-  static constexpr int max_size() {
-    return D == 2 ? detail::constants::kWaveletMaxTile2 : detail::constants::kWaveletMaxTile3;
-  }
-  // Throws hush::invalid_argument (naming `where` and `name`) unless n is an even
-  // number in [kWaveletMinTile, max_size()] (HARD_CASES row 14).
-  static void validate_size(const char* where, const char* name, int n) {
-    const std::string valid = "an even number from " +
-                              std::to_string(detail::constants::kWaveletMinTile) + " to " +
-                              std::to_string(max_size()) +
-                              " (the tile must be even, Cook & DeRose footnote 4, and at least "
-                              "16 coefficients, wider than the widest kernel's reach)";
-    if (n < detail::constants::kWaveletMinTile || n > max_size() || n % 2 != 0)
-      detail::throw_out_of_range(where, name, n, valid.c_str());
-  }
-
-  // Builds the tile (see the file comment). Throws hush::invalid_argument for a bad size.
-  explicit wavelet_tile(const key& k) : key_(k) {
-    validate_size("hush::wavelet_tile", "size", k.size);
-    const int n = k.size;
-    std::size_t count = 1;
-    for (int a = 0; a < D; ++a) count *= static_cast<std::size_t>(n);
-    std::vector<double> r(count);
-    rng gen(k.seed, static_cast<std::uint32_t>(D));
-    for (double& v : r) v = gen.gaussian<double>();
-    std::vector<double> q = r;
-    std::size_t stride = 1;
-    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n))
-      detail::wavelet_down_up(q, n, stride);
-    for (std::size_t i = 0; i < count; ++i) q[i] = r[i] - q[i];  // N = R - Q R
-    r.clear();
-    r.shrink_to_fit();
-    const auto un = static_cast<std::size_t>(n), m = static_cast<std::size_t>(row_length());
-    coef_.resize(count / un * m);
-    int offset = n / 2;
-    if (offset % 2 == 0) ++offset;
-    for (std::size_t i = 0; i < count; ++i) {
-      double v = q[i];
-      if (k.even_odd_fix) {
-        std::size_t j = 0, s = 1, rest = i;
-        for (int a = 0; a < D; ++a, s *= static_cast<std::size_t>(n)) {
-          const std::size_t c = rest % static_cast<std::size_t>(n);
-          rest /= static_cast<std::size_t>(n);
-          j += ((c + static_cast<std::size_t>(offset)) % static_cast<std::size_t>(n)) * s;
-        }
-        v += q[j];
-      }
-      // Row i / n, column i % n; a padded row repeats its first columns after n.
-      const auto f = static_cast<float>(v);
-      for (std::size_t x = i % un; x < m; x += un) coef_[i / un * m + x] = f;
-      max_abs_ = std::max(max_abs_, std::fabs(static_cast<double>(f)));
-    }
-    variance_ = quadratic_form(-1, false);
-    if constexpr (D == 3)
-      for (int a = 0; a < 3; ++a) {
-        projected_[a][0] = quadratic_form(a, true);
-        projected_[a][1] = quadratic_form(a, false);
-      }
-  }
-
-  // The shared tile of `k` (built on first use; core/tile_cache.hpp).
-  static std::shared_ptr<const wavelet_tile> get(const key& k) {
-    return cache().get(k, [&] { return wavelet_tile(k); });
-  }
-  static tile_cache<key, wavelet_tile>& cache() {
-    static tile_cache<key, wavelet_tile> c;
-    return c;
-  }
-
-  const key& id() const { return key_; }
-  int size() const { return key_.size; }
-  // Coefficients per stored x row: n, plus kWaveletRowPad in 3D (see coefficients()).
-  int row_length() const { return key_.size + kRowPad; }
-  // The index step of tile axis `axis` in coefficients(): 1, row_length(),
-  // row_length() n.
-  int stride(int axis) const { return axis == 0 ? 1 : row_length() * (axis == 2 ? size() : 1); }
-  // The coefficients, the only copy: n^(D-1) x rows of row_length() floats,
-  // coefficient (i_x, i_y[, i_z]) at i_x + row_length() (i_y + n i_z), i_x < n. In 3D
-  // every row is followed by a repeat of its first kWaveletRowPad coefficients, so
-  // that the three x taps of any cell i_x < n and one float more are four adjacent
-  // floats: one unaligned 128-bit load in the SIMD kernels instead of three gathers
-  // (2D tiles are not padded: the largest, 2048^2, fills the 16 MiB a GPU buffer is
-  // guaranteed to hold). storage_size() floats.
-  const float* coefficients() const { return coef_.data(); }
-  std::size_t storage_size() const { return coef_.size(); }
-  // n^D: the number of distinct coefficients.
-  std::size_t count() const { return coef_.size() / static_cast<std::size_t>(row_length()) *
-                                     static_cast<std::size_t>(size()); }
-  // Coefficient i in the unpadded order, i = i_x + n (i_y + n i_z), i < count().
-  float coefficient(std::size_t i) const {
-    const auto n = static_cast<std::size_t>(size());
-    return coef_[i / n * static_cast<std::size_t>(row_length()) + i % n];
-  }
-  // max |n_i|: |N(y)| never exceeds it (every kernel is an average of coefficients).
-  double max_abs() const { return max_abs_; }
-  // sigma_N^2: the mean of N(y)^2 over the tile (file comment).
-  double variance() const { return variance_; }
-  // The same for the noise projected along tile axis `axis` (3D): with the exact
-  // kernel beta (exact = true) or the double-width B-spline.
-  double projected_variance(int axis, bool exact) const { return projected_[axis][exact ? 0 : 1]; }
-  // Memory held, in bytes.
-  std::size_t bytes() const { return sizeof(*this) + coef_.capacity() * sizeof(float); }
-
- private:
-  // (1/n^D) sum_i n_i (K n)_i with K the tensor product of the Gram kernel along
-  // every axis except `along`, where it is beta's (exact) or B2's autocorrelation.
-  double quadratic_form(int along, bool exact) const {
-    const int n = key_.size;
-    std::vector<double> x(count());
-    for (std::size_t i = 0; i < x.size(); ++i) x[i] = coefficient(i);
-    std::size_t stride = 1;
-    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
-      if (a != along)
-        detail::wavelet_convolve_axis(x, n, stride, detail::kBsplineGramReach,
-                                      detail::bspline_gram);
-      else if (exact)
-        detail::wavelet_convolve_axis(x, n, stride, detail::kBetaGramReach, detail::beta_gram);
-      else
-        detail::wavelet_convolve_axis(x, n, stride, detail::kBspline2GramReach,
-                                      detail::bspline2_gram);
-    }
-    double s = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) s += static_cast<double>(coefficient(i)) * x[i];
-    return s / static_cast<double>(x.size());
-  }
-
-  static constexpr int kRowPad = D == 3 ? detail::constants::kWaveletRowPad : 0;
-
-  key key_;
-  std::vector<float> coef_;
-  double max_abs_ = 0;
-  double variance_ = 0;
-  double projected_[3][2] = {};
-};
-
-// hush::wavelet_blend_tile<D>: the tile of wavelet_tile<D> prepared for hashed
-// tile variants without visible repetition (Cook & DeRose sec. 4.3).
-//
-// Space is covered by tile cells of L = n - m coefficients per axis (m = the
-// overlap); cell T holds a copy of the tile, transformed by its own variant (an
-// axis permutation and per-axis reflection chosen by a hash of T: 8 variants in
-// 2D, 48 in 3D), covering the global coefficients [T L, T L + n). Neighbouring
-// copies overlap by m coefficients and are cross-faded there with weights
-// sin(theta), cos(theta), theta = (j + 1/2) / m * pi / 2 for the j-th overlapping
-// coefficient, so the squared weights sum to 1 and the blend keeps the variance
-// (the paper divides an alpha / (1 - alpha) blend by sqrt(alpha^2 + (1 -
-// alpha)^2) for the same effect). As the paper suggests, the weights are
-// multiplied into the coefficients here, once: the profile is the same on every
-// axis and symmetric under reflection, so one premultiplied tile serves every
-// variant. Outside [0, n) a copy is 0.
-template <int D>
-class wavelet_blend_tile {
- public:
-  struct key {
-    typename wavelet_tile<D>::key tile;
-    int overlap = 0;
-    friend bool operator<(const key& a, const key& b) {
-      if (a.tile < b.tile) return true;
-      if (b.tile < a.tile) return false;
-      return a.overlap < b.overlap;
-    }
-  };
-  // Throws hush::invalid_argument unless 1 <= overlap <= size / 4.
-  static void validate_overlap(const char* where, const char* name, int size, int overlap) {
-    if (overlap < 1 || overlap > size / 4)
-      detail::throw_out_of_range(
-          where, name, overlap,
-          ("0 (no variants) or 1 ... tile_size / 4 = " + std::to_string(size / 4)).c_str());
-  }
-
-  explicit wavelet_blend_tile(const key& k) : key_(k) {
-    const std::shared_ptr<const wavelet_tile<D>> base = wavelet_tile<D>::get(k.tile);
-    const int n = base->size(), m = k.overlap;
-    validate_overlap("hush::wavelet_blend_tile", "overlap", n, m);
-    std::vector<double> alpha(static_cast<std::size_t>(n), 1.0);
-    constexpr double kQuarterTurn = 1.5707963267948966192;  // pi / 2
-    for (int j = 0; j < m; ++j) {
-      const double theta = (j + 0.5) / m * kQuarterTurn;
-      alpha[static_cast<std::size_t>(j)] = std::sin(theta);
-      alpha[static_cast<std::size_t>(n - m) + static_cast<std::size_t>(j)] = std::cos(theta);
-    }
-    coef_.resize(base->count());
-    for (std::size_t i = 0; i < coef_.size(); ++i) {
-      double w = 1;
-      std::size_t rest = i;
-      for (int a = 0; a < D; ++a) {
-        w *= alpha[rest % static_cast<std::size_t>(n)];
-        rest /= static_cast<std::size_t>(n);
-      }
-      coef_[i] = static_cast<float>(w * static_cast<double>(base->coefficient(i)));
-    }
-  }
-
-  static std::shared_ptr<const wavelet_blend_tile> get(const key& k) {
-    return cache().get(k, [&] { return wavelet_blend_tile(k); });
-  }
-  static tile_cache<key, wavelet_blend_tile>& cache() {
-    static tile_cache<key, wavelet_blend_tile> c;
-    return c;
-  }
-
-  int size() const { return key_.tile.size; }
-  int overlap() const { return key_.overlap; }
-  const float* coefficients() const { return coef_.data(); }
-  std::size_t count() const { return coef_.size(); }
-  std::size_t bytes() const { return sizeof(*this) + coef_.capacity() * sizeof(float); }
-
- private:
-  key key_;
-  std::vector<float> coef_;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_WAVELET_TILE_HPP
-// ---- end hush/wavelet_tile.hpp
-
-namespace hush {
-
-// How 3D wavelet noise is projected onto a surface (see wavelet.hpp).
-enum class wavelet_projection { exact, approximate };
-// The output distribution (paper sec. 4.2).
-enum class wavelet_distribution { gaussian, uniform, table };
-
-namespace detail {
-
-// One band's kernel along one axis: taps at cells i0 + first ... i0 + first + count - 1.
-template <class T>
-struct wavelet_axis {
-  int first = 0;
-  int count = 0;
-  T w[kWaveletMaxTaps] = {};
-  T dw[kWaveletMaxTaps] = {};  // d w / d y (y the position in coefficient units)
-};
-
-// The plain quadratic B-spline: taps 0, 1, 2 (core/bspline.hpp).
-template <class T, bool G>
-HUSH_INLINE void wavelet_axis_plain(T f, wavelet_axis<T>& ax) {
-  ax.first = 0;
-  ax.count = 3;
-  for (int j = 0; j < 3; ++j) ax.w[j] = piece_value(kBspline, 2 - j, f);
-  if constexpr (G)
-    for (int j = 0; j < 3; ++j) ax.dw[j] = piece_value(kBsplineDerivative, 2 - j, f);
-}
-
-// A fixed kernel k of support P (beta or B2, along the normal) at fraction f: tap
-// j sits at distance f + 1/2 - j; taps j = floor(1/2 - P/2) + 1 ... ceil(3/2 + P/2) - 1
-// cover every f in [0, 1) (some are 0).
-template <class T, bool G, int P, int O>
-HUSH_INLINE void wavelet_axis_fixed(T f, const piecewise_kernel<P, O>& k,
-                                    const piecewise_kernel<P, O - 1>& dk, wavelet_axis<T>& ax) {
-  constexpr int kFirst = fixed_kernel_first_tap<P>();
-  static_assert(fixed_kernel_taps<P>() <= kWaveletMaxTaps, "taps fit");
-  ax.first = kFirst;
-  ax.count = fixed_kernel_taps<P>();
-  for (int j = 0; j < ax.count; ++j) {
-    const T d = f + T(constants::kWaveletCellOffset) - T(kFirst + j);
-    ax.w[j] = kernel_at(k, d);
-    if constexpr (G) ax.dw[j] = kernel_at(dk, d);
-  }
-}
-
-// The quadratic B-spline widened by s >= 1 (B(d / s), weights normalised to sum
-// 1) at relative position y (coefficient k sits at k): taps k in (y - 3s/2, y + 3s/2).
-template <class T, bool G>
-HUSH_INLINE void wavelet_axis_widened(T y, T s, wavelet_axis<T>& ax) {
-  const T half = T(kBspline.half_support()) * s;
-  ax.first = static_cast<int>(std::floor(y - half)) + 1;
-  ax.count = std::min(static_cast<int>(std::ceil(y + half)) - ax.first, kWaveletMaxTaps);
-  const T inv = T(1) / s;
-  T sum = 0, dsum = 0;
-  for (int j = 0; j < ax.count; ++j) {
-    const T u = (y - T(ax.first + j)) * inv;
-    ax.w[j] = kernel_at(kBspline, u);
-    sum += ax.w[j];
-    if constexpr (G) {
-      ax.dw[j] = kernel_at(kBsplineDerivative, u) * inv;
-      dsum += ax.dw[j];
-    }
-  }
-  const T norm = T(1) / sum;
-  for (int j = 0; j < ax.count; ++j) {
-    if constexpr (G) ax.dw[j] = (ax.dw[j] - ax.w[j] * norm * dsum) * norm;
-    ax.w[j] *= norm;
-  }
-}
-
-// The plain B-spline at relative position y (any real): taps floor(y - 1/2) ... + 2.
-template <class T, bool G>
-HUSH_INLINE void wavelet_axis_at(T y, wavelet_axis<T>& ax) {
-  const T c = std::floor(y - T(constants::kWaveletCellOffset));
-  wavelet_axis_plain<T, G>(y - T(constants::kWaveletCellOffset) - c, ax);
-  ax.first = static_cast<int>(c);
-}
-
-// Coefficients of the periodic tile around cell i0 (relative offsets k).
-template <int D>
-struct wavelet_periodic_access {
-  const float* c;  // wavelet_tile::coefficients()
-  int n, m;        // tile size and row length (wavelet_tile::row_length())
-  std::uint32_t i0[3];
-  HUSH_INLINE int wrap(long long x) const {
-    long long r = x % n;
-    return static_cast<int>(r < 0 ? r + n : r);
-  }
-  HUSH_INLINE std::size_t index(int a, int k) const {
-    const std::size_t stride =
-        a == 0 ? 1 : static_cast<std::size_t>(m) * (a == 2 ? static_cast<std::size_t>(n) : 1);
-    return static_cast<std::size_t>(wrap(static_cast<long long>(i0[a]) + k)) * stride;
-  }
-  HUSH_INLINE float at(const int (&k)[D]) const {
-    std::size_t i = 0;
-    for (int a = 0; a < D; ++a) i += index(a, k[a]);
-    return c[i];
-  }
-};
-
-// Coefficients of the hashed tile variants (wavelet_blend_tile): the sum over the
-// (at most 2^D) overlapping cells that cover a global coefficient index. The
-// global index of tap 0 is the band cell modulo 2^32 (period 0); cell T and
-// offset l of i0 + k follow from i0 = T0 L + r0 with 32-bit unsigned arithmetic
-// (T = T0 + carry, the carry from r0 + k), as the GPU computes them.
-template <int D>
-struct wavelet_variant_access {
-  const float* c;
-  int n, cell;  // tile size and cell pitch L = n - overlap
-  std::uint32_t key;
-  std::uint32_t i0[3];
-  HUSH_INLINE float at(const int (&k)[D]) const {
-    std::uint32_t t[3][2] = {};
-    int l[3][2] = {}, count[3] = {};
-    const auto pitch = static_cast<std::uint32_t>(cell);
-    for (int a = 0; a < D; ++a) {
-      int r = static_cast<int>(i0[a] % pitch) + k[a];  // |k| < L: at most one carry
-      const int carry = r < 0 ? -1 : (r >= cell ? 1 : 0);
-      r -= carry * cell;
-      t[a][0] = i0[a] / pitch + static_cast<std::uint32_t>(carry);
-      l[a][0] = r;
-      t[a][1] = t[a][0] - 1u;  // the previous cell covers r + L when that is inside it
-      l[a][1] = r + cell;
-      count[a] = r + cell < n ? 2 : 1;
-    }
-    float sum = 0;
-    for (int m = 0; m < (1 << D); ++m) {
-      int pick[3] = {0, 0, 0};
-      bool ok = true;
-      for (int a = 0; a < D; ++a) {
-        pick[a] = (m >> a) & 1;
-        ok = ok && pick[a] < count[a];
-      }
-      if (!ok) continue;
-      std::uint32_t h;
-      if constexpr (D == 2)
-        h = lattice_hash(key, t[0][pick[0]], t[1][pick[1]]);
-      else
-        h = lattice_hash(key, t[0][pick[0]], t[1][pick[1]], t[2][pick[2]]);
-      int local[3] = {0, 0, 0};
-      for (int a = 0; a < D; ++a) local[a] = l[a][pick[a]];
-      sum += c[variant_index(h, local)];
-    }
-    return sum;
-  }
-  // Storage index of local coordinates (world axes) under variant h: the permutation
-  // of lexicographic rank p = ((h >> s) D!) >> s (storage axis a reads world axis
-  // src[a]), then storage axis a reflected (n - 1 - l) when bit a of h is set.
-  HUSH_INLINE std::size_t variant_index(std::uint32_t h, const int (&local)[3]) const {
-    constexpr unsigned kShift = constants::kWaveletVariantShift;
-    const std::uint32_t p = ((h >> kShift) * wavelet_permutations(D)) >> kShift;
-    int src[3] = {0, 1, 2};
-    if constexpr (D == 2) {
-      src[0] = static_cast<int>(p);
-      src[1] = 1 - src[0];
-    } else {
-      const int first = static_cast<int>(p / 2), lo = first == 0 ? 1 : 0, hi = first == 2 ? 1 : 2;
-      src[0] = first;
-      src[1] = (p & 1u) != 0 ? hi : lo;
-      src[2] = (p & 1u) != 0 ? lo : hi;
-    }
-    std::size_t idx = 0, stride = 1;
-    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
-      int v = local[src[a]];
-      if ((h >> a) & 1u) v = n - 1 - v;
-      idx += static_cast<std::size_t>(v) * stride;
-    }
-    return idx;
-  }
-};
-
-// Sum over separable taps: the value and the gradient in coefficient units, z
-// innermost (value = sum_a wx (sum_b wy (sum_c wz n))), the order every backend uses.
-template <class T, bool G, int D, class Access>
-HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
-                                                   const Access& acc) {
-  value_gradient<T, D> r{T(0), {}};
-  int k[D];
-  if constexpr (D == 2) {
-    for (int a = 0; a < ax[0].count; ++a) {
-      k[0] = ax[0].first + a;
-      T s = 0, sy = 0;
-      for (int b = 0; b < ax[1].count; ++b) {
-        k[1] = ax[1].first + b;
-        const T c = T(acc.at(k));
-        s += ax[1].w[b] * c;
-        if constexpr (G) sy += ax[1].dw[b] * c;
-      }
-      r.value += ax[0].w[a] * s;
-      if constexpr (G) {
-        r.gradient[0] += ax[0].dw[a] * s;
-        r.gradient[1] += ax[0].w[a] * sy;
-      }
-    }
-  } else {
-    for (int a = 0; a < ax[0].count; ++a) {
-      k[0] = ax[0].first + a;
-      T t = 0, ty = 0, tz = 0;
-      for (int b = 0; b < ax[1].count; ++b) {
-        k[1] = ax[1].first + b;
-        T s = 0, sz = 0;
-        for (int c = 0; c < ax[2].count; ++c) {
-          k[2] = ax[2].first + c;
-          const T v = T(acc.at(k));
-          s += ax[2].w[c] * v;
-          if constexpr (G) sz += ax[2].dw[c] * v;
-        }
-        t += ax[1].w[b] * s;
-        if constexpr (G) {
-          ty += ax[1].dw[b] * s;
-          tz += ax[1].w[b] * sz;
-        }
-      }
-      r.value += ax[0].w[a] * t;
-      if constexpr (G) {
-        r.gradient[0] += ax[0].dw[a] * t;
-        r.gradient[1] += ax[0].w[a] * ty;
-        r.gradient[2] += ax[0].w[a] * tz;
-      }
-    }
-  }
-  return r;
-}
-
-// The same over the periodic tile, with the wrapped, stride-scaled index of
-// every tap precomputed per axis (the sums are the generic ones, operation by operation).
-template <class T, bool G, int D>
-HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
-                                                   const wavelet_periodic_access<D>& acc) {
-  std::size_t off[D][kWaveletMaxTaps];
-  for (int a = 0; a < D; ++a)
-    for (int j = 0; j < ax[a].count; ++j) off[a][j] = acc.index(a, ax[a].first + j);
-  struct table_access {
-    const float* c;
-    const std::size_t (*off)[kWaveletMaxTaps];
-    const wavelet_axis<T>* ax;
-    HUSH_INLINE float at(const int (&k)[D]) const {
-      std::size_t i = 0;
-      for (int a = 0; a < D; ++a) i += off[a][k[a] - ax[a].first];
-      return c[i];
-    }
-  };
-  return wavelet_separable<T, G, D>(ax, table_access{acc.c, off, ax});
-}
-
-// The paper's approximate projection along a normal that is not axis-aligned
-// (Appendix 2, WProjectedNoise): the tensor B-spline at the offset d = y - k moved
-// halfway along the unit normal u, e_a = (d_a - u_a (u . d) / 2) / s_a (s_a the
-// widening), with weights normalised to sum 1. y: position relative to the
-// cell (coefficient offset k sits at k). Coefficients are visited per column
-// along the normal's dominant axis, over the interval where all three factors
-// are non-zero (a few extra zero-weight taps at the ends are harmless).
-template <class T, bool G, class Access>
-value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], const T (&s)[3],
-                                            const Access& acc) {
-  int w = 0;
-  for (int a = 1; a < 3; ++a)
-    if (std::fabs(u[a]) > std::fabs(u[w])) w = a;
-  const int ax_u = w == 0 ? 1 : 0, ax_v = w == 2 ? 1 : 2;
-  const T half = T(kBspline.half_support());
-  T l1 = 0;
-  for (int a = 0; a < 3; ++a) l1 += std::fabs(u[a]) * s[a];
-  T reach[3];
-  for (int a = 0; a < 3; ++a) reach[a] = half * (s[a] + std::fabs(u[a]) * l1);
-  const T stretch = T(1) / T(constants::kWaveletProjectionStretch);
-  T sw = 0, sv = 0, sdw[3] = {0, 0, 0}, sg[3] = {0, 0, 0};
-  const int u_lo = static_cast<int>(std::ceil(y[ax_u] - reach[ax_u]));
-  const int u_hi = static_cast<int>(std::floor(y[ax_u] + reach[ax_u]));
-  const int v_lo = static_cast<int>(std::ceil(y[ax_v] - reach[ax_v]));
-  const int v_hi = static_cast<int>(std::floor(y[ax_v] + reach[ax_v]));
-  int k[3];
-  T d[3];
-  for (int ku = u_lo; ku <= u_hi; ++ku) {
-    k[ax_u] = ku;
-    d[ax_u] = y[ax_u] - T(ku);
-    for (int kv = v_lo; kv <= v_hi; ++kv) {
-      k[ax_v] = kv;
-      d[ax_v] = y[ax_v] - T(kv);
-      // e_a = A_a + C_a d_w with d_u, d_v fixed; |e_a| < half.
-      const T p = u[ax_u] * d[ax_u] + u[ax_v] * d[ax_v];
-      T lo = -std::numeric_limits<T>::infinity(), hi = std::numeric_limits<T>::infinity();
-      bool empty = false;
-      for (int a = 0; a < 3; ++a) {
-        const T A = ((a == w ? T(0) : d[a]) - u[a] * p * stretch) / s[a];
-        const T C = ((a == w ? T(1) : T(0)) - u[a] * u[w] * stretch) / s[a];
-        if (C == T(0)) {
-          empty = empty || !(std::fabs(A) < half);
-          continue;
-        }
-        T e0 = (-half - A) / C, e1 = (half - A) / C;
-        if (e0 > e1) std::swap(e0, e1);
-        lo = std::max(lo, e0);
-        hi = std::min(hi, e1);
-      }
-      if (empty || !(lo < hi)) continue;
-      const int w_lo = static_cast<int>(std::floor(y[w] - hi));
-      const int w_hi = static_cast<int>(std::ceil(y[w] - lo));
-      for (int kw = w_lo; kw <= w_hi; ++kw) {
-        k[w] = kw;
-        d[w] = y[w] - T(kw);
-        const T ud = u[0] * d[0] + u[1] * d[1] + u[2] * d[2];
-        T e[3], b[3];
-        for (int a = 0; a < 3; ++a) {
-          e[a] = (d[a] - u[a] * ud * stretch) / s[a];
-          b[a] = kernel_at(kBspline, e[a]);
-        }
-        const T weight = b[0] * b[1] * b[2];
-        if (weight == T(0)) continue;
-        const T c = T(acc.at(k));
-        sw += weight;
-        sv += weight * c;
-        if constexpr (G) {
-          T q[3];
-          for (int a = 0; a < 3; ++a)
-            q[a] = kernel_at(kBsplineDerivative, e[a]) * b[(a + 1) % 3] * b[(a + 2) % 3] / s[a];
-          const T uq = u[0] * q[0] + u[1] * q[1] + u[2] * q[2];
-          for (int a = 0; a < 3; ++a) {
-            const T gw = q[a] - u[a] * uq * stretch;  // d weight / d y_a
-            sdw[a] += gw;
-            sg[a] += gw * c;
-          }
-        }
-      }
-    }
-  }
-  value_gradient<T, 3> r{T(0), {}};
-  if (!(sw > T(0))) return r;
-  const T inv = T(1) / sw;
-  r.value = sv * inv;
-  if constexpr (G)
-    for (int a = 0; a < 3; ++a) r.gradient[a] = (sg[a] - r.value * sdw[a]) * inv;
-  return r;
-}
-
-// The knots of the exact projection's line integral (below), sorted, into
-// knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
-// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
-template <class T>
-int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
-                        T (&knots)[constants::kWaveletMaxKnots]) {
-  constexpr int kMaxKnots = constants::kWaveletMaxKnots;
-  const T reach = T(kBspline2.half_support());
-  int nk = 0;
-  for (int j = 0; j <= kBspline2.pieces;
-       j += static_cast<int>(constants::kWaveletProjectionStretch))
-    knots[nk++] = T(j) - reach;  // B2's knots: -3, -1, 1, 3
-  const T half = T(kBspline.half_support());
-  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
-  for (int a = 0; a < 3; ++a) {
-    // Widened, only B2's pieces (5 nodes each): the widened basis' own knots would
-    // need 4 families per axis and up to 7^3 taps per node (the GPU's loop budget,
-    // hush/glsl/wavelet_glsl.hpp); widening is an approximation of the pixel filter.
-    if (u[a] == T(0) || !plain) continue;
-    const T span = reach * std::fabs(u[a]);
-    // Knot offsets of the widened B-spline about its centre, as fractions of a coefficient.
-    T deltas[4];
-    int nd = 0;
-    for (int m = 0; m < 4; ++m) {
-      const T delta = (T(m) - half) * s[a];  // -3/2, -1/2, 1/2, 3/2 times s
-      const T frac = delta - std::floor(delta);
-      bool seen = false;
-      for (int q = 0; q < nd; ++q) seen = seen || deltas[q] == frac;
-      if (!seen) deltas[nd++] = frac;
-    }
-    for (int q = 0; q < nd; ++q) {
-      const int lo = static_cast<int>(std::ceil(y[a] - span - deltas[q]));
-      const int hi = static_cast<int>(std::floor(y[a] + span - deltas[q]));
-      for (int k = lo; k <= hi && nk < kMaxKnots; ++k) {
-        const T t = (T(k) + deltas[q] - y[a]) / u[a];
-        if (t > -reach && t < reach) knots[nk++] = t;
-      }
-    }
-  }
-  std::sort(knots, knots + nk);
-  return nk;
-}
-
-// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
-// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
-// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
-// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
-// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
-// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
-// not exact: widening itself approximates the pixel filter); the widened knot
-// families would cost up to 7^3 taps at each of ~250 nodes.
-template <class T, bool G, class Access>
-value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
-                                           const Access& acc) {
-  T knots[constants::kWaveletMaxKnots];
-  const int nk = wavelet_exact_knots<T>(y, u, s, knots);
-  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
-  value_gradient<T, 3> r{T(0), {}};
-  for (int i = 0; i + 1 < nk; ++i) {
-    const T t0 = knots[i], t1 = knots[i + 1];
-    if (!(t1 > t0)) continue;
-    const T mid = (t0 + t1) / T(2), h = (t1 - t0) / T(2);
-    for (int q = 0; q < constants::kGaussLegendreOrder; ++q) {
-      const T t = mid + h * T(constants::kGaussLegendreNode[q]);
-      const T wq = h * T(constants::kGaussLegendreWeight[q]) * kernel_at(kBspline2, t);
-      wavelet_axis<T> ax[3];
-      for (int a = 0; a < 3; ++a) {
-        const T ya = y[a] + t * u[a];
-        if (plain)
-          wavelet_axis_at<T, G>(ya, ax[a]);
-        else
-          wavelet_axis_widened<T, G>(ya, s[a], ax[a]);
-      }
-      const value_gradient<T, 3> n = wavelet_separable<T, G, 3>(ax, acc);
-      r.value += wq * n.value;
-      if constexpr (G)
-        for (int a = 0; a < 3; ++a) r.gradient[a] += wq * n.gradient[a];
-    }
-  }
-  return r;
-}
-
-}  // namespace detail
-
-template <int D>
-class wavelet : public sample_noise<wavelet<D>, D> {
-  static_assert(D == 2 || D == 3, "hush::wavelet is 2D or 3D");
-
- public:
-  static constexpr bool takes_footprint = true;
-  static constexpr bool takes_normal = D == 3;
-  static constexpr int kMaxBands = detail::constants::kWaveletMaxBands;
-
-  struct params {
-    std::uint32_t seed = 0;
-    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet_tile.hpp).
-    int tile_size = D == 2 ? 128 : 64;
-    // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
-    int first_band = 0;
-    // Band weights w_i (1 ... 32 finite values, not all zero); one band by default.
-    // With relative_weights: the weight k octaves below the finest representable band.
-    std::vector<double> weights = {1.0};
-    // Per-band decorrelating offsets (sec. 3, footnote 1), in coefficient units:
-    // empty = derived from the seed (independent per band and axis), or one per band.
-    std::vector<vec<double, D>> offsets;
-    bool even_odd_fix = true;  // the paper's even/odd variance correction (sec. 4.3)
-    wavelet_distribution distribution = wavelet_distribution::gaussian;
-    double gaussian_scale = 1.0;  // standard deviation of the gaussian output; finite, > 0
-    // The inverse CDF of the wanted distribution at u = 0, 1/(m-1), ..., 1 (2 ... 65536
-    // finite values), for wavelet_distribution::table.
-    std::vector<double> table;
-    wavelet_projection projection = wavelet_projection::exact;  // 3D with a normal
-    bool widen = false;             // basis widening for one sample per pixel (sec. 4.1)
-    bool relative_weights = false;  // infinite noise (sec. 5.4)
-    int relative_bands = 16;        // with relative_weights: bands first_band ... + this - 1
-    // 0: the tile repeats (period tile_size); 1 ... tile_size / 4: hashed tile
-    // variants blended over this many coefficients (sec. 4.3), no repetition.
-    int variant_overlap = 0;
-  };
-
-  wavelet() : wavelet(params{}) {}
-  explicit wavelet(std::uint32_t seed) : wavelet(make_params(seed)) {}
-  // Throws hush::invalid_argument naming the first parameter out of range.
-  explicit wavelet(const params& prm) : prm_(prm) {
-    validate();
-    tile_ = wavelet_tile<D>::get({prm_.tile_size, prm_.seed, prm_.even_odd_fix});
-    if (prm_.distribution == wavelet_distribution::table) {
-      auto t = std::make_shared<std::vector<float>>();
-      for (double v : prm_.table) t->push_back(static_cast<float>(v));
-      table_ = std::move(t);
-    }
-    if (prm_.variant_overlap > 0)
-      blend_ = wavelet_blend_tile<D>::get(
-          {{prm_.tile_size, prm_.seed, prm_.even_odd_fix}, prm_.variant_overlap});
-    const int nb = band_count();
-    double sum_sq = 0, sum_abs = 0;
-    for (int i = 0; i < nb; ++i) {
-      band b;
-      b.index = prm_.first_band + i;
-      b.frequency = std::ldexp(1.0, b.index);
-      b.weight = prm_.relative_weights ? 0.0 : prm_.weights[static_cast<std::size_t>(i)];
-      const std::uint32_t band_seed = hash32(prm_.seed, static_cast<std::uint32_t>(b.index));
-      for (int a = 0; a < D; ++a) {
-        double o;
-        if (prm_.offsets.empty()) {
-          // A whole cell in [0, n) plus an exact 24-bit fraction.
-          const std::uint32_t h = hash32(band_seed, static_cast<std::uint32_t>(a));
-          o = static_cast<double>(hash32(h) % static_cast<std::uint32_t>(prm_.tile_size)) +
-              static_cast<double>(h >> 8) * 0x1p-24;
-        } else {
-          o = prm_.offsets[static_cast<std::size_t>(i)][a];
-        }
-        // The tap-0 cell of y is floor(y - 1/2): fold the half into the offset.
-        b.offset[a] = o - detail::constants::kWaveletCellOffset;
-      }
-      bands_.push_back(b);
-      sum_sq += b.weight * b.weight;
-      sum_abs += std::fabs(b.weight);
-    }
-    key_ = seed_key(prm_.seed);
-    // The smallest kernel variance (3D: projected noise has less) bounds every scale.
-    double smallest = tile_->variance();
-    if constexpr (D == 3)
-      for (int a = 0; a < 3; ++a)
-        for (bool exact : {true, false})
-          smallest = std::min(smallest, tile_->projected_variance(a, exact));
-    if (!prm_.relative_weights) {
-      scale_ = 1.0 / std::sqrt(tile_->variance() * sum_sq);
-      bound_ = sum_abs * tile_->max_abs() / std::sqrt(smallest * sum_sq);
-    } else {
-      // Per sample K = 1 / sqrt(sigma^2 sum W^2); at most K + 1 bands have W != 0
-      // (octaves o in (-1, K)), so sum |W| <= sqrt(K + 1) sqrt(sum W^2) (Cauchy-Schwarz).
-      scale_ = 1.0;
-      bound_ =
-          std::sqrt((static_cast<double>(prm_.weights.size()) + 1.0) / smallest) * tile_->max_abs();
-    }
-    pre_bound_ = bound_;
-    switch (prm_.distribution) {
-      case wavelet_distribution::gaussian:
-        slope_ = prm_.gaussian_scale;
-        bound_ *= prm_.gaussian_scale;
-        break;
-      case wavelet_distribution::uniform:
-        slope_ = 2 * detail::constants::kInvSqrt2Pi;  // erf(v / sqrt 2)' <= sqrt(2 / pi)
-        bound_ = 1.0;
-        break;
-      case wavelet_distribution::table: {
-        double steepest = 0;
-        bound_ = 0;
-        for (std::size_t i = 0; i < prm_.table.size(); ++i) {
-          bound_ = std::max(bound_, std::fabs(prm_.table[i]));
-          if (i + 1 < prm_.table.size())
-            steepest = std::max(steepest, std::fabs(prm_.table[i + 1] - prm_.table[i]));
-        }
-        // Phi'(v) <= 1 / sqrt(2 pi); the table's slope in u is steepest * (m - 1).
-        slope_ =
-            steepest * static_cast<double>(prm_.table.size() - 1) * detail::constants::kInvSqrt2Pi;
-        break;
-      }
-    }
-  }
-
-  const params& parameters() const { return prm_; }
-  // |output| <= bound() for every input (see the file comment).
-  double bound() const { return bound_; }
-  // The shared tile and the memory this noise holds (tiles shared with other noises count
-  // once per holder).
-  const wavelet_tile<D>& tile() const { return *tile_; }
-  std::shared_ptr<const wavelet_tile<D>> tile_ptr() const { return tile_; }
-  std::shared_ptr<const wavelet_blend_tile<D>> blend_tile_ptr() const { return blend_; }
-  // The distribution table in float (the float path's T(table[i])), shared with the GPU
-  // backend; null unless distribution == table.
-  std::shared_ptr<const std::vector<float>> table_floats() const { return table_; }
-  std::size_t memory_bytes() const {
-    return sizeof(*this) + tile_->bytes() + (blend_ ? blend_->bytes() : 0) +
-           bands_.capacity() * sizeof(band);
-  }
-
-  // The bands as evaluated, for the SIMD and GLSL backends: band i's index b
-  // (frequency 2^b), its raw weight (0 under relative_weights), and the
-  // position of tap 0 of p, 2^b p + o_b - 1/2 (double; component a depends on p[a] only).
-  int band_count() const {
-    return prm_.relative_weights ? prm_.relative_bands : static_cast<int>(prm_.weights.size());
-  }
-  int band_index(int i) const { return bands_[static_cast<std::size_t>(i)].index; }
-  double band_frequency(int i) const { return bands_[static_cast<std::size_t>(i)].frequency; }
-  double band_raw_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight; }
-  vec<double, D> band_position(int i, const vec<double, D>& p) const {
-    return bands_[static_cast<std::size_t>(i)].position(p);
-  }
-  // Tile variants: the key hashing band i's cells (hash32(seed_key, b)).
-  std::uint32_t variant_key(int i) const {
-    return hash32(key_, static_cast<std::uint32_t>(bands_[static_cast<std::size_t>(i)].index));
-  }
-  // The normalisation K of the point noise (1 under relative_weights: per sample).
-  double scale() const { return scale_; }
-  // The lattice period a backend splits band positions with: the tile size, or 0
-  // (2^32) with tile variants, which need the global coefficient index.
-  std::uint32_t split_period() const {
-    return prm_.variant_overlap > 0 ? 0u : static_cast<std::uint32_t>(prm_.tile_size);
-  }
-
-  // The float budget: |float - double| at any position (forward error analysis,
-  // docs/wavelet.md). A plain band is an average of coefficients (|n| <= max_abs)
-  // whose weights come from a degree-2 Horner step (error <= 6 u each, u = 2^-24)
-  // and whose D nested sums of 3 terms add 3 u each level on top of the weights'
-  // error: at most 21 D u max_abs per band. Summing nb bands and scaling adds
-  // nb + 2 roundings of the result, so |error| <= (21 D + nb + 2) u bound().
-  // Kernels with more taps and higher degree (projection, widening) get the
-  // loose constant 512 in place of 21 D (beta alone: 9 taps of degree 5).
-  double float_budget(bool plain_kernel = true) const {
-    const double per_band = plain_kernel ? 21.0 * D : 512.0;
-    // The remap multiplies the error by at most its slope and adds 8 roundings of its own
-    // (erf, erfc and exp are within a few ulp in float).
-    const double u = std::ldexp(1.0, -24);
-    return (per_band + static_cast<double>(band_count()) + 2.0) * u * pre_bound_ * slope_ +
-           8.0 * u * bound_;
-  }
-
-  // The same for the gradient: the derivative weights of a tap triple sum to at most 2
-  // in magnitude (|f - 1| + |1 - 2f| + |f|), and band b's gradient is multiplied by
-  // 2^b, so the bound is the value's with max_abs replaced by 2 max_abs 2^b per band.
-  double float_gradient_budget(bool plain_kernel = true) const {
-    double wf = 0, w = 0;
-    for (const band& b : bands_) {
-      wf += std::fabs(b.weight) * b.frequency;
-      w += std::fabs(b.weight);
-    }
-    if (prm_.relative_weights) {  // at most K + 1 bands, each up to the top frequency
-      wf = (static_cast<double>(prm_.weights.size()) + 1.0) * bands_.back().frequency;
-      w = static_cast<double>(prm_.weights.size()) + 1.0;
-    }
-    return 2.0 * float_budget(plain_kernel) * wf / std::max(w, 1e-300);
-  }
-
-  // ---- Evaluation (core/point_noise.hpp, core/samples.hpp give the public overloads).
-  template <class T>
-  T value(const vec<double, D>& p) const {
-    return eval<T, false>(point_input(p)).value;
-  }
-  template <class T>
-  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
-    return eval<T, true>(point_input(p));
-  }
-  template <class T>
-  T sample_value(const sample_input<D>& s) const {
-    return eval<T, false>(s).value;
-  }
-  template <class T>
-  value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s) const {
-    return eval<T, true>(s);
-  }
-
-  // ---- The per-sample plan, shared with the backends: what eval() does for one
-  // sample, as data. `weight[i]` is band i's weight in the sum (0: skipped),
-  // `scale` the normalisation (after the sum), `everything` a footprint that
-  // filters everything (output 0), and the kernel: the normal (unit, double;
-  // projected when `project`), its axis when axis-aligned (-1 otherwise), and
-  // the per-band widening factors.
-  struct plan {
-    double weight[kMaxBands] = {};
-    double scale = 0;
-    double sum_sq = 0;  // sum of weight^2
-    bool everything = false;
-    bool project = false;
-    int normal_axis = -1;
-    vec<double, 3> normal{};
-    double widen[kMaxBands][3] = {};
-  };
-  plan make_plan(const sample_input<D>& s) const {
-    plan pl;
-    const int nb = band_count();
-    // Footprint width: the largest extent (file comment).
-    double log2w = -std::numeric_limits<double>::infinity();
-    const double wmax = s.fp.max_width();
-    if (!(wmax < detail::constants::kFootprintMaxWidth)) {
-      pl.everything = true;
-      return pl;
-    }
-    if (wmax > 0) log2w = std::log2(wmax);
-    plan_normal(s, pl);
-    const double variance = plan_variance(pl);
-    // Tangent-plane extents per tile axis, for widening: (P S P)_aa, P = I - u u^T.
-    double extent2[3] = {0, 0, 0};
-    if (prm_.widen) {
-      for (int a = 0; a < D; ++a) {
-        double pa[D];
-        for (int c = 0; c < D; ++c) pa[c] = (c == a ? 1.0 : 0.0);
-        if constexpr (D == 3)
-          if (pl.project)
-            for (int c = 0; c < 3; ++c) pa[c] -= pl.normal[c] * pl.normal[a];
-        double q = 0;
-        for (int r = 0; r < D; ++r)
-          for (int c = 0; c < D; ++c)
-            q += pa[r] * static_cast<double>(s.fp.covariance(r, c)) * pa[c];
-        extent2[a] = std::max(q, 0.0);
-      }
-    }
-    double sum_sq = 0;
-    for (int i = 0; i < nb; ++i) {
-      const band& b = bands_[static_cast<std::size_t>(i)];
-      const double level = static_cast<double>(b.index) + log2w;  // log2 of c = 2^b w
-      double w;
-      if (prm_.relative_weights)
-        w = relative_weight(wmax > 0 ? level : static_cast<double>(b.index));
-      else
-        w = b.weight * fade_weight(level);
-      pl.weight[i] = w;
-      sum_sq += w * w;
-      for (int a = 0; a < 3; ++a) pl.widen[i][a] = 1.0;
-      if (prm_.widen && w != 0.0) {
-        const double c0 = detail::constants::kWaveletWidenStart;
-        const double c1 = detail::constants::kWaveletWidenEnd;  // where the fade reaches 0
-        const double smax2 = 1.0 + c1 * c1 - c0 * c0;
-        for (int a = 0; a < D; ++a) {
-          const double c2 = extent2[a] * b.frequency * b.frequency;
-          const double s2 = std::min(1.0 + std::max(0.0, c2 - c0 * c0), smax2);
-          pl.widen[i][a] = std::sqrt(s2);
-        }
-      }
-    }
-    pl.sum_sq = sum_sq;
-    pl.scale = plan_scale(pl, variance);
-    return pl;
-  }
-  // The plan's surface part (3D): project, the unit normal (normalised in double)
-  // and its axis when axis-aligned, from the sample's normal (a zero, NaN or
-  // infinite normal: no projection). make_plan's; a backend whose samples have no
-  // footprint reuses the bands' part and redoes only this, plan_variance and
-  // plan_scale per sample.
-  void plan_normal(const sample_input<D>& s, plan& pl) const {
-    pl.project = false;
-    pl.normal_axis = -1;
-    pl.normal = {};
-    if constexpr (D == 3) {
-      if (s.has_normal) {
-        double m = 0;
-        bool finite = true;
-        for (int a = 0; a < 3; ++a) {
-          finite = finite && std::isfinite(s.normal[a]);
-          m = std::max(m, std::fabs(s.normal[a]));
-        }
-        if (finite && m > 0) {
-          double len = 0;
-          for (int a = 0; a < 3; ++a) {
-            pl.normal[a] = s.normal[a] / m;
-            len += pl.normal[a] * pl.normal[a];
-          }
-          len = std::sqrt(len);
-          int zeros = 0, axis = 0;
-          for (int a = 0; a < 3; ++a) {
-            pl.normal[a] /= len;
-            if (pl.normal[a] == 0.0)
-              ++zeros;
-            else
-              axis = a;
-          }
-          pl.project = true;
-          if (zeros == 2) {
-            pl.normal_axis = axis;
-            pl.normal = {};
-            pl.normal[axis] = 1.0;
-          }
-        }
-      }
-    }
-  }
-  // The variance of one unit-weight band of the plan's kernel (projected or not).
-  double plan_variance(const plan& pl) const {
-    double variance = tile_->variance();
-    if constexpr (D == 3) {
-      if (pl.project) {
-        const bool exact = prm_.projection == wavelet_projection::exact;
-        variance = 0;
-        for (int a = 0; a < 3; ++a)
-          variance += pl.normal[a] * pl.normal[a] * tile_->projected_variance(a, exact);
-      }
-    }
-    return variance;
-  }
-  // The normalisation after the band sum (pl.sum_sq set).
-  double plan_scale(const plan& pl, double variance) const {
-    if (prm_.relative_weights)
-      return pl.sum_sq > 0 ? 1.0 / std::sqrt(variance * pl.sum_sq) : 0.0;
-    return scale_ * std::sqrt(tile_->variance() / variance);
-  }
-
-  // The distribution remapping of a unit-variance value v (and d/dv), in T.
-  template <class T>
-  void remap(T& v, T* dv) const {
-    switch (prm_.distribution) {
-      case wavelet_distribution::gaussian:
-        v *= T(prm_.gaussian_scale);
-        if (dv) *dv = T(prm_.gaussian_scale);
-        return;
-      case wavelet_distribution::uniform: {
-        const T x = v * T(detail::constants::kInvSqrt2);
-        if (dv) *dv = T(2 * detail::constants::kInvSqrt2Pi) * std::exp(-x * x);
-        v = std::erf(x);
-        return;
-      }
-      case wavelet_distribution::table: {
-        const T x = v * T(detail::constants::kInvSqrt2);
-        const T u = std::erfc(-x) / T(2);  // Phi(v)
-        const std::size_t m = prm_.table.size();
-        if (!(u >= T(0) && u <= T(1))) {  // NaN
-          if (dv) *dv = u;
-          v = u;
-          return;
-        }
-        const T pos = u * T(static_cast<double>(m - 1));
-        std::size_t i = static_cast<std::size_t>(pos);
-        if (i > m - 2) i = m - 2;
-        const T t = pos - T(static_cast<double>(i));
-        const T a = T(prm_.table[i]), b = T(prm_.table[i + 1]);
-        if (dv)
-          *dv = (b - a) * T(static_cast<double>(m - 1)) * T(detail::constants::kInvSqrt2Pi) *
-                std::exp(-x * x);
-        v = a + t * (b - a);
-        return;
-      }
-    }
-  }
-
- private:
-  struct band {
-    int index = 0;
-    double frequency = 1;
-    double weight = 0;
-    vec<double, D> offset{};
-    // 2^b p + o_b - 1/2 in double (exact products); a coordinate whose product
-    // overflows is taken as 0 (file comment).
-    vec<double, D> position(const vec<double, D>& p) const {
-      vec<double, D> q;
-      for (int a = 0; a < D; ++a) {
-        double x = p[a] * frequency;
-        if (!std::isfinite(x) && std::isfinite(p[a])) x = 0.0;
-        q[a] = x + offset[a];
-      }
-      return q;
-    }
-  };
-
-  static params make_params(std::uint32_t seed) {
-    params p;
-    p.seed = seed;
-    return p;
-  }
-  static sample_input<D> point_input(const vec<double, D>& p) {
-    sample_input<D> s;
-    s.position = p;
-    return s;
-  }
-
-  // The anti-aliasing fade of a band whose coefficients are 2^level pixels apart.
-  static double fade_weight(double level) {
-    if (!(level > 0)) return 1.0;  // also for -inf (a point footprint)
-    if (level >= 1) return 0.0;
-    return detail::fade(1.0 - level);
-  }
-  // Infinite noise: the weight of a band `level` = log2(2^b w) (octave -level
-  // below the finest representable band).
-  double relative_weight(double level) const {
-    const double o = -level;
-    const int k = static_cast<int>(prm_.weights.size());
-    if (!(o > -1.0) || !(o < static_cast<double>(k))) return 0.0;
-    if (o < 0) return prm_.weights[0] * detail::fade(o + 1.0);
-    if (o > k - 1) return prm_.weights[static_cast<std::size_t>(k - 1)] * detail::fade(k - o);
-    const int i = static_cast<int>(std::floor(o));
-    if (i >= k - 1) return prm_.weights[static_cast<std::size_t>(k - 1)];
-    const double t = detail::fade(o - i);
-    const double a = prm_.weights[static_cast<std::size_t>(i)];
-    const double b = prm_.weights[static_cast<std::size_t>(i) + 1];
-    return a + t * (b - a);
-  }
-
-  // One band at tile-coordinate position q (tap 0 at floor(q)), in coefficient units.
-  template <class T, bool G, class Access>
-  value_gradient<T, D> band_kernel(const lattice_coord<T> (&c)[D], const plan& pl, int i,
-                                   const Access& acc) const {
-    detail::wavelet_axis<T> ax[D];
-    bool widened = false;
-    for (int a = 0; a < D; ++a) widened = widened || pl.widen[i][a] != 1.0;
-    if constexpr (D == 3) {
-      if (pl.project && pl.normal_axis < 0) {
-        T y[3], u[3], s[3];
-        for (int a = 0; a < 3; ++a) {
-          y[a] = c[a].f + T(detail::constants::kWaveletCellOffset);
-          u[a] = T(pl.normal[a]);
-          s[a] = T(pl.widen[i][a]);
-        }
-        if (prm_.projection == wavelet_projection::exact)
-          return detail::wavelet_general_exact<T, G>(y, u, s, acc);
-        return detail::wavelet_general_approx<T, G>(y, u, s, acc);
-      }
-    }
-    for (int a = 0; a < D; ++a) {
-      if (D == 3 && pl.project && a == pl.normal_axis) {
-        if (prm_.projection == wavelet_projection::exact)
-          detail::wavelet_axis_fixed<T, G>(c[a].f, detail::kBeta, detail::kBetaDerivative, ax[a]);
-        else
-          detail::wavelet_axis_fixed<T, G>(c[a].f, detail::kBspline2, detail::kBspline2Derivative,
-                                           ax[a]);
-      } else if (widened && pl.widen[i][a] != 1.0) {
-        detail::wavelet_axis_widened<T, G>(c[a].f + T(detail::constants::kWaveletCellOffset),
-                                           T(pl.widen[i][a]), ax[a]);
-      } else {
-        detail::wavelet_axis_plain<T, G>(c[a].f, ax[a]);
-      }
-    }
-    return detail::wavelet_separable<T, G, D>(ax, acc);
-  }
-
-  // One band of the sample: the cells of its position, then the kernel on the
-  // periodic tile or on the hashed variants.
-  template <class T, bool G>
-  value_gradient<T, D> band_value(const vec<double, D>& p, const plan& pl, int i) const {
-    const band& b = bands_[static_cast<std::size_t>(i)];
-    const vec<double, D> q = b.position(p);
-    lattice_coord<T> c[D];
-    const std::uint32_t period = split_period();
-    for (int a = 0; a < D; ++a) c[a] = lattice_split<T>(q[a], period);
-    if (prm_.variant_overlap == 0) {
-      detail::wavelet_periodic_access<D> acc{tile_->coefficients(), prm_.tile_size,
-                                             tile_->row_length(), {0, 0, 0}};
-      for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
-      return band_kernel<T, G>(c, pl, i, acc);
-    }
-    detail::wavelet_variant_access<D> acc{blend_->coefficients(),
-                                          prm_.tile_size,
-                                          prm_.tile_size - prm_.variant_overlap,
-                                          variant_key(i),
-                                          {0, 0, 0}};
-    for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
-    return band_kernel<T, G>(c, pl, i, acc);
-  }
-
-  template <class T, bool G>
-  value_gradient<T, D> eval(const sample_input<D>& s) const {
-    value_gradient<T, D> r{T(0), {}};
-    for (int a = 0; a < D; ++a)
-      if (!std::isfinite(s.position[a])) {
-        r.value = std::numeric_limits<T>::quiet_NaN();
-        for (int c = 0; c < D; ++c) r.gradient[c] = r.value;
-        return r;
-      }
-    const plan pl = make_plan(s);
-    if (pl.everything) {  // filtered to the mean: 0 before the remapping, constant after
-      remap<T>(r.value, nullptr);
-      return r;
-    }
-    const int nb = band_count();
-    for (int i = 0; i < nb; ++i) {
-      if (pl.weight[i] == 0.0) continue;
-      const value_gradient<T, D> n = band_value<T, G>(s.position, pl, i);
-      r.value += T(pl.weight[i]) * n.value;
-      if constexpr (G) {
-        const T chain = T(pl.weight[i] * bands_[static_cast<std::size_t>(i)].frequency);
-        for (int a = 0; a < D; ++a) r.gradient[a] += chain * n.gradient[a];
-      }
-    }
-    r.value *= T(pl.scale);
-    if constexpr (G) {
-      for (int a = 0; a < D; ++a) r.gradient[a] *= T(pl.scale);
-      T dv = T(1);
-      remap<T>(r.value, &dv);
-      for (int a = 0; a < D; ++a) r.gradient[a] *= dv;
-    } else {
-      remap<T>(r.value, nullptr);
-    }
-    return r;
-  }
-
-  void validate() const {
-    const char* where = "hush::wavelet";
-    wavelet_tile<D>::validate_size(where, "tile_size", prm_.tile_size);
-    namespace c = detail::constants;
-    const std::string band_range =
-        std::to_string(c::kWaveletMinBand) + " ... " + std::to_string(c::kWaveletMaxBand);
-    detail::require_in_range(where, "first_band", prm_.first_band, c::kWaveletMinBand,
-                             c::kWaveletMaxBand, band_range.c_str());
-    const std::size_t nw = prm_.weights.size();
-    if (nw < 1 || nw > static_cast<std::size_t>(kMaxBands))
-      detail::throw_out_of_range(where, "weights.size()", nw, "1 ... 32");
-    bool any = false;
-    for (std::size_t i = 0; i < nw; ++i) {
-      if (!std::isfinite(prm_.weights[i]))
-        detail::throw_out_of_range(where, "weights[" + std::to_string(i) + "]", prm_.weights[i],
-                                   "a finite number");
-      any = any || prm_.weights[i] != 0.0;
-    }
-    if (!any)
-      throw hush::invalid_argument(
-          "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
-    if (prm_.relative_weights)
-      detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,
-                               "1 ... 32");
-    const int nb = prm_.relative_weights ? prm_.relative_bands : static_cast<int>(nw);
-    if (prm_.first_band + nb - 1 > c::kWaveletMaxBand)
-      detail::throw_out_of_range(
-          where, "first_band", prm_.first_band,
-          ("first_band + bands - 1 <= " + std::to_string(c::kWaveletMaxBand)).c_str());
-    if (!prm_.offsets.empty()) {
-      if (prm_.offsets.size() != static_cast<std::size_t>(nb))
-        detail::throw_out_of_range(where, "offsets.size()", prm_.offsets.size(),
-                                   "0 (derived from the seed) or one per band");
-      for (std::size_t i = 0; i < prm_.offsets.size(); ++i)
-        for (int a = 0; a < D; ++a)
-          if (!std::isfinite(prm_.offsets[i][a]))
-            detail::throw_out_of_range(
-                where, "offsets[" + std::to_string(i) + "][" + std::to_string(a) + "]",
-                prm_.offsets[i][a], "a finite number");
-    }
-    if (!(std::isfinite(prm_.gaussian_scale) && prm_.gaussian_scale > 0))
-      detail::throw_out_of_range(where, "gaussian_scale", prm_.gaussian_scale, "finite and > 0");
-    if (prm_.distribution == wavelet_distribution::table) {
-      if (prm_.table.size() < 2 || prm_.table.size() > 65536)
-        detail::throw_out_of_range(where, "table.size()", prm_.table.size(),
-                                   "2 ... 65536 values (with distribution = table)");
-      for (std::size_t i = 0; i < prm_.table.size(); ++i)
-        if (!std::isfinite(prm_.table[i]))
-          detail::throw_out_of_range(where, "table[" + std::to_string(i) + "]", prm_.table[i],
-                                     "a finite number");
-    }
-    if (prm_.variant_overlap != 0)
-      wavelet_blend_tile<D>::validate_overlap(where, "variant_overlap", prm_.tile_size,
-                                              prm_.variant_overlap);
-  }
-
-  params prm_;
-  std::shared_ptr<const wavelet_tile<D>> tile_;
-  std::shared_ptr<const wavelet_blend_tile<D>> blend_;
-  std::shared_ptr<const std::vector<float>> table_;
-  std::vector<band> bands_;
-  std::uint32_t key_ = 0;
-  double scale_ = 1, bound_ = 1, pre_bound_ = 1, slope_ = 1;
-};
-
-}  // namespace hush
-
-#endif  // HUSH_WAVELET_HPP
-// ---- end hush/wavelet.hpp
-
-namespace hush {
-namespace detail {
-
-// The SIMD kernels of a noise type (used by exec.hpp). Noises with kernels
-// specialise it below; the primary template says "none", and exec::simd then
-// runs the scalar loop.
-template <class Noise>
-struct simd_kernel {
-  static constexpr bool available = false;
-};
-
-}  // namespace detail
-}  // namespace hush
-
-#if HUSH_CONFIG_SIMD
 
 #if HUSH_CONFIG_SIMD_STATIC
-// Highway 1.0.3 leaves AVX3_DL out of its target list even when it is the
-// compiler's baseline (-march=native on Ice Lake or Zen 4), then stops with
-// "best baseline should be included in dynamic targets". Opting in fixes it.
-#ifndef HWY_WANT_AVX3_DL
-#define HWY_WANT_AVX3_DL
-#endif
-#include <hwy/highway.h>
-
-// ---- begin hush/simd/anisotropic-inl.h
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Highway kernels for anisotropic noise (hush/anisotropic.hpp): batches of
-// samples (positions with optional footprints and surface maps), points and
-// uniform grids; values, and gradients on request (weights held fixed).
-// Compiled once per SIMD target (toggle include guard); reached through
-// hush/simd/dispatch.hpp, never included directly by users.
-//
-// A block of kBlock samples goes through two phases:
-//  1. weights and tile coordinates, lanes = samples: the filter weights
-//     lambda (pixel filter per subband: exp2 polynomial of approx_math.hpp),
-//     the compensation weights gamma (log2 and band-profile polynomials), the
-//     octave sums, and per scale the lattice split of the tile coordinate
-//     p f_s / band + offset, in double lanes (exactly lattice_split<float>,
-//     lane by lane through core/lattice.hpp beyond 2^31 texels);
-//  2. lookups, lanes = channels (orientations): per sample and scale, the
-//     four texels of the bilinear footprint are two runs of 2 * channels
-//     floats; the blend and the weighted accumulation run on 4-channel
-//     chunks, the final channel sum in anisotropic.hpp's tree order.
-// Every operation repeats anisotropic.hpp's float algorithm in the same
-// order, so under HUSH_STRICT_FP the results are bit for bit the scalar ones
-// (tests/simd/anisotropic_simd_test.cpp, every compiled target); otherwise
-// multiply-adds are fused and results stay within the noise's float budget.
-// Least-squares weight rules take the scalar weight code per sample
-// (phase 1) and the vector lookups (phase 2): the same bits as well.
-// Gradients go through the general per-sample lookup, which also forms the
-// slopes of each bilinear lookup (anisotropic.hpp's accumulate).
-
-// Toggle guard: included once per target by foreach_target.h.
-#if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_ANISOTROPIC_INL_H_
-#undef HUSH_SIMD_ANISOTROPIC_INL_H_
-#else
-#define HUSH_SIMD_ANISOTROPIC_INL_H_
-#endif
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <cstring>
-#include <limits>
-#include <vector>
-
-#include <hwy/highway.h>
-
-
-HWY_BEFORE_NAMESPACE();
-namespace hush {
-namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-
-namespace aniso_simd {
-
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
-using DD = hn::ScalableTag<double>;
-using VD = hn::Vec<DD>;
-using DFH = hn::Rebind<float, DD>;     // as many floats as DD has doubles
-using DIH = hn::Rebind<int32_t, DD>;   // ... and int32
-using DUH = hn::Rebind<uint32_t, DD>;  // ... and uint32
-using D4 = hn::CappedTag<float, 4>;    // one chunk of channels (1 lane on HWY_SCALAR)
-using V4 = hn::Vec<D4>;
-
-namespace c = detail::constants;
-
-// Samples per block: a multiple of every target's lane count (AVX-512: 16
-// floats; SVE at most 64) and small enough for the block buffers to stay in L1/L2.
-constexpr std::size_t kBlock = 64;
-constexpr int kMaxScales = c::kAnisoMaxScales;
-constexpr int kMaxChannels = anisotropic::kMaxChannels;
-
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
-// compiled), fused otherwise.
-template <class V>
-HWY_INLINE V mul_add(V a, V b, V cc) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), cc);
-#else
-  return hn::MulAdd(a, b, cc);
-#endif
-}
-
-// The polynomial coefficients of approx_math.hpp, rounded to float as the
-// scalar code rounds them (float(c)), at compile time.
-template <int N>
-struct float_coefficients {
-  float v[N];
-};
-template <int N>
-constexpr float_coefficients<N> to_float(const double (&d)[N]) {
-  float_coefficients<N> r{};
-  for (int i = 0; i < N; ++i) r.v[i] = static_cast<float>(d[i]);
-  return r;
-}
-constexpr auto kExp2 = to_float(c::kAnisoSeries.exp2);
-constexpr auto kLog2 = to_float(c::kAnisoSeries.log2);
-constexpr auto kSinPi = to_float(c::kAnisoSeries.sinpi);
-
-// Horner's rule p = (...(k[N-1] x + k[N-2]) x + ...) x + k[0], unrolled.
-template <int N, int M = N - 1>
-HWY_INLINE VF horner(const float_coefficients<N>& k, VF x, VF p) {
-  const DF df;
-  p = mul_add(p, x, hn::Set(df, k.v[M - 1]));
-  if constexpr (M - 1 > 0)
-    return horner<N, M - 1>(k, x, p);
-  else
-    return p;
-}
-template <int N>
-HWY_INLINE VF horner(const float_coefficients<N>& k, VF x) {
-  return horner<N>(k, x, hn::Set(DF(), k.v[N - 1]));
-}
-
-// detail::exp2_nonpositive for y in [-126, 0] (callers select the cutoff).
-HWY_INLINE VF exp2_nonpositive(VF y) {
-  const DF df;
-  const DI di;
-  const VF n = hn::Floor(hn::Add(y, hn::Set(df, 0.5f)));
-  const VF r = hn::Sub(y, n);
-  const VF p = horner(kExp2, r);
-  // 2^n from exponent bits; n < -126 (beyond the cutoff) is clamped, the
-  // caller discards those lanes.
-  const VF nc = hn::Max(n, hn::Set(df, -126.0f));
-  const auto e = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, nc), hn::Set(di, 127)));
-  return hn::Mul(p, hn::BitCast(df, e));
-}
-
-// detail::log2_positive: -inf below the smallest normal float, +inf stays.
-HWY_INLINE VF log2_positive(VF m) {
-  const DF df;
-  const DU du;
-  const DI di;
-  const auto tiny = hn::Not(hn::Ge(m, hn::Set(df, std::numeric_limits<float>::min())));
-  const auto huge = hn::Not(hn::Lt(m, hn::Set(df, std::numeric_limits<float>::infinity())));
-  const VU b = hn::BitCast(du, m);
-  auto e = hn::Sub(hn::BitCast(di, hn::ShiftRight<23>(b)), hn::Set(di, 127));
-  VF a = hn::BitCast(df, hn::Or(hn::And(b, hn::Set(du, 0x007fffffu)), hn::Set(du, 0x3f800000u)));
-  const auto big = hn::Gt(a, hn::Set(df, float(c::kSqrt2)));
-  a = hn::IfThenElse(big, hn::Mul(a, hn::Set(df, 0.5f)), a);
-  e = hn::IfThenElse(hn::RebindMask(di, big), hn::Add(e, hn::Set(di, 1)), e);
-  const VF z = hn::Div(hn::Sub(a, hn::Set(df, 1.0f)), hn::Add(a, hn::Set(df, 1.0f)));
-  const VF p = horner(kLog2, hn::Mul(z, z));
-  VF r = mul_add(p, z, hn::ConvertTo(df, e));
-  r = hn::IfThenElse(tiny, hn::Set(df, -std::numeric_limits<float>::infinity()), r);
-  return hn::IfThenElse(huge, m, r);
-}
-
-// detail::band_profile: cos^2(pi x / 2) for |x| < 1, else 0 (x is never NaN here).
-HWY_INLINE VF band_profile(VF x) {
-  const DF df;
-  const VF ax = hn::Abs(x);
-  const VF z = hn::Sub(ax, hn::Set(df, 0.5f));
-  const VF p = horner(kSinPi, hn::Mul(z, z));
-  const VF half = hn::Set(df, 0.5f);
-  const VF v = hn::Sub(half, hn::Mul(half, hn::Mul(p, z)));
-  return hn::IfThenElseZero(hn::Lt(ax, hn::Set(df, 1.0f)), v);
-}
-
-// The noise's constants in float, once per call.
-struct config {
-  int k = 4, kc = 4, scales = 3, base = 0, octaves = 3;
-  bool fbm = true, lsq = false;
-  weight_rule filtering = weight_rule::centre, compensation = weight_rule::centre;
-  std::uint32_t n = 256;
-  std::size_t stride = 0;
-  const float* texels = nullptr;
-  double dxx[kMaxChannels] = {}, dyy[kMaxChannels] = {}, dxy2[kMaxChannels] = {};
-  double dx[kMaxChannels] = {}, dy[kMaxChannels] = {}, kappa[kMaxScales] = {};
-  float ow[kMaxScales] = {}, gain[kMaxScales] = {};
-  float norm = 1, cap = 1, cut = 0;
-  // pow4: kappa_s = 4^s kappa_0 exactly (the scales' frequencies are f_0 2^s), so
-  // float(kappa_s q) = 4^s float(kappa_0 q): scaling by a power of two commutes with
-  // rounding, overflow included; below float's normal range (z < 2^-126) the two may
-  // differ, but exp2's polynomial then returns its constant term for both: the same
-  // lambda. Checked here rather than assumed.
-  bool pow4 = true;
-  float four_s[kMaxScales] = {};
-  double tpu[kMaxScales] = {}, off[kMaxScales][2] = {};
-
-  explicit config(const anisotropic& a) {
-    const auto& p = a.parameters();
-    k = p.orientations;
-    kc = a.channels();
-    scales = p.scales;
-    base = p.base_scale;
-    octaves = p.octaves;
-    fbm = p.kind == fractal_kind::fbm;
-    filtering = p.filtering;
-    compensation = p.compensation;
-    lsq = filtering == weight_rule::least_squares || compensation == weight_rule::least_squares;
-    n = static_cast<std::uint32_t>(p.tile_size);
-    stride = a.tile().row_stride();
-    texels = a.tile().texels().data();
-    for (int i = 0; i < k; ++i) {
-      const dvec2 d = a.direction(i);
-      dxx[i] = d.x * d.x;
-      dyy[i] = d.y * d.y;
-      dxy2[i] = 2.0 * d.x * d.y;
-      dx[i] = d.x;
-      dy[i] = d.y;
-    }
-    for (int s = 0; s < scales; ++s) {
-      kappa[s] = a.kappa(s);
-      tpu[s] = a.texels_per_unit(s);
-      off[s][0] = a.offset(s).x;
-      off[s][1] = a.offset(s).y;
-    }
-    for (int s = 0; s < scales; ++s) {
-      four_s[s] = std::ldexp(1.0f, 2 * s);
-      pow4 = pow4 && kappa[s] == std::ldexp(kappa[0], 2 * s);
-    }
-    double g = 1.0;
-    for (int o = 0; o < octaves; ++o, g *= p.gain) {
-      ow[o] = float(a.octave_weight(o));
-      gain[o] = float(g);
-    }
-    norm = float(a.normalization());
-    cap = float(a.gamma_cap());
-    cut = float(c::kAnisoWeightCutoff * c::kLog2E);
-  }
-  // Octave passes of phase 2: 1 for fbm (octaves summed into the weights).
-  int passes() const { return fbm ? 1 : octaves; }
-};
-
-// One block's phase-1 results.
-struct block {
-  // w[((pass * scales + s) * chunks + h) * kBlock * 4 + sample * 4 + q]:
-  // channel 4h + q of the weights of scale s in octave pass `pass`.
-  std::vector<float> w;
-  // Per scale and sample: the offset of texel (x0, y0) in the tile's float
-  // array, and the fractions.
-  HWY_ALIGN std::uint32_t offset[kMaxScales][kBlock];
-  HWY_ALIGN float fx[kMaxScales][kBlock];
-  HWY_ALIGN float fy[kMaxScales][kBlock];
-  // active[s][j] != 0: some weight of scale s (any pass) is not 0 for sample j.
-  HWY_ALIGN std::uint32_t active[kMaxScales][kBlock];
-  bool bad[kBlock];
-  // The samples' coordinates in double (x, y).
-  HWY_ALIGN double x[kBlock], y[kBlock];
-  // Phase 1's double-precision parts, rounded to float: the filter exponents
-  // z[(s * kc + i) * kBlock + j], |T^T w_i|^2 in m2[i * kBlock + j], |det T| in det[j].
-  std::vector<float> z, m2;
-  HWY_ALIGN float det[kBlock];
-  explicit block(const config& cf)
-      : w(static_cast<std::size_t>(cf.passes() * cf.scales * cf.kc) * kBlock, 0.0f),
-        z(static_cast<std::size_t>(cf.scales * cf.kc) * kBlock, 0.0f),
-        m2(static_cast<std::size_t>(cf.kc) * kBlock, 0.0f) {}
-  float* weights(const config& cf, int pass, int s, int h) {
-    return w.data() + index(cf, pass, s, h);
-  }
-  const float* weights(const config& cf, int pass, int s, int h) const {
-    return w.data() + index(cf, pass, s, h);
-  }
-  static std::size_t index(const config& cf, int pass, int s, int h) {
-    return static_cast<std::size_t>((pass * cf.scales + s) * (cf.kc / 4) + h) * kBlock * 4;
-  }
-};
-
-// The scalar algorithm's lambda for z = kappa_s q: 0 beyond the cutoff.
-HWY_INLINE VF lambda1(VF z, VF cut) {
-  return hn::IfThenZeroElse(hn::Gt(z, cut), exp2_nonpositive(hn::Neg(z)));
-}
-HWY_INLINE VF lambda(VF z, VF cut, bool three) {
-  const DF df;
-  // Beyond the cutoff in every lane, also at the three-point rule's lowest
-  // radius (a far scale): 0, as lane by lane.
-  if (hn::AllTrue(df, hn::Gt(three ? hn::Mul(z, hn::Set(df, 0.5f)) : z, cut))) return hn::Zero(df);
-  if (!three) return lambda1(z, cut);
-  const VF lo = lambda1(hn::Mul(z, hn::Set(df, 0.5f)), cut);
-  const VF mid = lambda1(z, cut);
-  const VF hi = lambda1(hn::Mul(z, hn::Set(df, 2.0f)), cut);
-  const VF side = hn::Set(df, float(c::kAnisoThreePointSide));
-  return mul_add(side, hi,
-                 mul_add(side, lo, hn::Mul(hn::Set(df, float(c::kAnisoThreePointCentre)), mid)));
-}
-
-// Stores channel vectors ch[0 ... kc-1] (lanes = samples first ... first +
-// lanes - 1) into the block's interleaved weight rows of (pass, s).
-HWY_INLINE void store_weights(const config& cf, block& b, int pass, int s, std::size_t first,
-                              const VF* ch) {
-  const DF df;
-  for (int h = 0; h < cf.kc / 4; ++h) {
-    const VF* c4 = ch + static_cast<std::size_t>(4 * h);
-    hn::StoreInterleaved4(c4[0], c4[1], c4[2], c4[3], df, b.weights(cf, pass, s, h) + first * 4);
-  }
-}
-
-// Phase 1, weights, for samples [first, first + lanes) of the block; fp and
-// map point at the block's first sample (null when not given).
-HWY_INLINE void weights_vector(const config& cf, block& b, std::size_t first, const float* fp,
-                               const float* map) {
-  const DF df;
-  const DD dd;
-  const DFH dfh;
-  const VF zero = hn::Zero(df);
-  // The quadratic forms and the determinant in double (anisotropic.hpp: they
-  // cancel at grazing angles and for nearly singular maps), rounded to float.
-  for (std::size_t h = first; h < first + hn::Lanes(df); h += hn::Lanes(dd)) {
-    if (fp) {
-      hn::Vec<DFH> a, bb, cc;
-      hn::LoadInterleaved3(dfh, fp + h * 3, a, bb, cc);
-      const VD sxx = hn::PromoteTo(dd, a), sxy = hn::PromoteTo(dd, bb), syy = hn::PromoteTo(dd, cc);
-      for (int i = 0; i < cf.k; ++i) {
-        // anisotropic::filter_form: clamped at 0 (S rounded to float may be indefinite).
-        const VD q = hn::Max(
-            mul_add(syy, hn::Set(dd, cf.dyy[i]),
-                    mul_add(sxy, hn::Set(dd, cf.dxy2[i]), hn::Mul(sxx, hn::Set(dd, cf.dxx[i])))),
-            hn::Zero(dd));
-        for (int s = 0; s < cf.scales; ++s)
-          hn::StoreU(hn::DemoteTo(dfh, hn::Mul(hn::Set(dd, cf.kappa[s]), q)), dfh,
-                     b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock + h);
-      }
-    }
-    if (map) {
-      hn::Vec<DFH> a00, a01, a10, a11;
-      hn::LoadInterleaved4(dfh, map + h * 4, a00, a01, a10, a11);
-      VD m00 = hn::PromoteTo(dd, a00), m01 = hn::PromoteTo(dd, a01);
-      VD m10 = hn::PromoteTo(dd, a10), m11 = hn::PromoteTo(dd, a11);
-      // A map with a non-finite entry counts as the zero map.
-      const auto ok = hn::And(hn::And(hn::IsFinite(m00), hn::IsFinite(m01)),
-                              hn::And(hn::IsFinite(m10), hn::IsFinite(m11)));
-      m00 = hn::IfThenElseZero(ok, m00);
-      m01 = hn::IfThenElseZero(ok, m01);
-      m10 = hn::IfThenElseZero(ok, m10);
-      m11 = hn::IfThenElseZero(ok, m11);
-      hn::StoreU(hn::DemoteTo(dfh, hn::Abs(hn::Sub(hn::Mul(m00, m11), hn::Mul(m01, m10)))), dfh,
-                 b.det + h);
-      for (int i = 0; i < cf.k; ++i) {
-        const VD dxv = hn::Set(dd, cf.dx[i]), dyv = hn::Set(dd, cf.dy[i]);
-        const VD tu = mul_add(m10, dyv, hn::Mul(m00, dxv));
-        const VD tv = mul_add(m11, dyv, hn::Mul(m01, dxv));
-        hn::StoreU(hn::DemoteTo(dfh, mul_add(tv, tv, hn::Mul(tu, tu))), dfh,
-                   b.m2.data() + static_cast<std::size_t>(i) * kBlock + h);
-      }
-    }
-  }
-  VF half_log[kMaxChannels], sd = zero;
-  if (map) {
-    sd = hn::Sqrt(hn::LoadU(df, b.det + first));
-    for (int i = 0; i < cf.k; ++i)
-      half_log[i] = hn::Mul(
-          hn::Set(df, 0.5f),
-          log2_positive(hn::LoadU(df, b.m2.data() + static_cast<std::size_t>(i) * kBlock + first)));
-  }
-  const VF cut = hn::Set(df, cf.cut), cap = hn::Set(df, cf.cap);
-  const bool three_l = cf.filtering == weight_rule::three_point;
-  const bool three_c = cf.compensation == weight_rule::three_point;
-  const VF side = hn::Set(df, float(c::kAnisoThreePointSide));
-  const VF centre = hn::Set(df, float(c::kAnisoThreePointCentre));
-  const VF halfv = hn::Set(df, 0.5f);
-  const DU du;
-  const VU magnitude = hn::Set(du, 0x7fffffffu);
-  for (int s = 0; s < cf.scales; ++s) {
-    VU any = hn::Zero(du);
-    VF lam[kMaxChannels];
-    for (int i = 0; i < cf.k; ++i)
-      lam[i] =
-          fp ? lambda(hn::LoadU(df, b.z.data() + static_cast<std::size_t>(s * cf.kc + i) * kBlock +
-                                        first),
-                      cut, three_l)
-             : hn::Set(df, 1.0f);
-    for (int pass = 0; pass < cf.passes(); ++pass) {
-      VF ch[kMaxChannels];
-      for (int i = 0; i < cf.kc; ++i) ch[i] = zero;
-      const int k0 = cf.fbm ? 0 : pass, k1 = cf.fbm ? cf.octaves : pass + 1;
-      for (int i = 0; i < cf.k; ++i) {
-        if (!map) {
-          const int o = s - cf.base;
-          if (o >= k0 && o < k1) ch[i] = hn::Mul(hn::Set(df, cf.fbm ? cf.ow[o] : cf.norm), lam[i]);
-          continue;
-        }
-        VF acc = zero;
-        for (int o = k0; o < k1; ++o) {
-          const VF x = hn::Add(hn::Set(df, float(s - cf.base - o)), half_log[i]);
-          const VF prof = three_c ? mul_add(side, band_profile(hn::Add(x, halfv)),
-                                            mul_add(side, band_profile(hn::Sub(x, halfv)),
-                                                    hn::Mul(centre, band_profile(x))))
-                                  : band_profile(x);
-          const VF g = hn::Min(
-              hn::Mul(hn::Set(df, float(std::ldexp(1.0, s - cf.base - o))), hn::Mul(sd, prof)),
-              cap);
-          const VF gamma = hn::IfThenElseZero(hn::Gt(prof, zero), g);
-          acc = mul_add(hn::Set(df, cf.fbm ? cf.ow[o] : cf.norm), gamma, acc);
-        }
-        ch[i] = hn::Mul(acc, lam[i]);
-      }
-      for (int i = 0; i < cf.k; ++i) any = hn::Or(any, hn::And(hn::BitCast(du, ch[i]), magnitude));
-      store_weights(cf, b, pass, s, first, ch);
-    }
-    hn::StoreU(any, du, b.active[s] + first);
-  }
-}
-
-#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR
-// Phase 1, weights, in the most frequent case (fbm, footprints, no surface
-// maps, centre filtering: the bench frame, hush render without --scene): the
-// operations of weights_vector in the same order, without its map and
-// octave-pass machinery. Lanes = samples; the double quadratic forms of the
-// two halves are demoted and joined in registers rather than through b.z.
-HWY_INLINE void weights_filter(const config& cf, block& b, std::size_t first, const float* fp) {
-  const DF df;
-  const DD dd;
-  const DFH dfh;
-  const DU du;
-  const std::size_t half = hn::Lanes(dd);
-  static_assert(hn::MaxLanes(DF()) == 2 * hn::MaxLanes(DD()), "two double halves per float vector");
-  hn::Vec<DFH> a0, b0, c0, a1, b1, c1;
-  hn::LoadInterleaved3(dfh, fp + first * 3, a0, b0, c0);
-  hn::LoadInterleaved3(dfh, fp + (first + half) * 3, a1, b1, c1);
-  const VD sxx0 = hn::PromoteTo(dd, a0), sxy0 = hn::PromoteTo(dd, b0), syy0 = hn::PromoteTo(dd, c0);
-  const VD sxx1 = hn::PromoteTo(dd, a1), sxy1 = hn::PromoteTo(dd, b1), syy1 = hn::PromoteTo(dd, c1);
-  VD q0[kMaxChannels], q1[kMaxChannels];
-  for (int i = 0; i < cf.k; ++i) {
-    const VD dxx = hn::Set(dd, cf.dxx[i]), dxy2 = hn::Set(dd, cf.dxy2[i]),
-             dyy = hn::Set(dd, cf.dyy[i]);
-    q0[i] = hn::Max(mul_add(syy0, dyy, mul_add(sxy0, dxy2, hn::Mul(sxx0, dxx))), hn::Zero(dd));
-    q1[i] = hn::Max(mul_add(syy1, dyy, mul_add(sxy1, dxy2, hn::Mul(sxx1, dxx))), hn::Zero(dd));
-  }
-  // The filter exponents of scale 0; the others are 4^s times them (config::pow4).
-  VF z0[kMaxChannels];
-  if (cf.pow4) {
-    const VD kappa = hn::Set(dd, cf.kappa[0]);
-    for (int i = 0; i < cf.k; ++i)
-      z0[i] = hn::Combine(df, hn::DemoteTo(dfh, hn::Mul(kappa, q1[i])),
-                          hn::DemoteTo(dfh, hn::Mul(kappa, q0[i])));
-  }
-  const VF cut = hn::Set(df, cf.cut);
-  const VU magnitude = hn::Set(du, 0x7fffffffu);
-  for (int s = 0; s < cf.scales; ++s) {
-    VF ch[kMaxChannels];
-    for (int i = 0; i < cf.kc; ++i) ch[i] = hn::Zero(df);
-    VU any = hn::Zero(du);
-    const int o = s - cf.base;
-    if (o >= 0 && o < cf.octaves) {
-      const VD kappa = hn::Set(dd, cf.kappa[s]);
-      const VF four_s = hn::Set(df, cf.four_s[s]);
-      const VF ow = hn::Set(df, cf.ow[o]);
-      for (int i = 0; i < cf.k; ++i) {
-        const VF z = cf.pow4 ? hn::Mul(z0[i], four_s)
-                             : hn::Combine(df, hn::DemoteTo(dfh, hn::Mul(kappa, q1[i])),
-                                           hn::DemoteTo(dfh, hn::Mul(kappa, q0[i])));
-        ch[i] = hn::Mul(ow, lambda(z, cut, false));
-        any = hn::Or(any, hn::And(hn::BitCast(du, ch[i]), magnitude));
-      }
-    }
-    store_weights(cf, b, 0, s, first, ch);
-    hn::StoreU(any, du, b.active[s] + first);
-  }
-}
-#endif
-
-// Phase 1, tile coordinates of scale s for the block's `count` samples (the
-// coordinates b.x, b.y, padded to whole vectors): lattice_split<float>(p tpu + off, n).
-HWY_INLINE void split_scale(const config& cf, block& b, int s, std::size_t count) {
-  const DD dd;
-  const DFH dfh;
-  const DIH dih;
-  const DUH duh;
-  const std::size_t lanes = hn::Lanes(dd);
-  const VD tpu = hn::Set(dd, cf.tpu[s]);
-  const VD limit = hn::Set(dd, 2147483648.0);
-  const auto ulp = hn::Set(dfh, detail::one_minus_ulp<float>());
-  const auto mask = hn::Set(duh, cf.n - 1u);
-  HWY_ALIGN std::uint32_t cells[2][kBlock];
-  for (int axis = 0; axis < 2; ++axis) {
-    std::uint32_t* cell = cells[axis];
-    float* frac = axis == 0 ? b.fx[s] : b.fy[s];
-    const double* coord = axis == 0 ? b.x : b.y;
-    const VD off = hn::Set(dd, cf.off[s][axis]);
-    for (std::size_t j = 0; j < count; j += lanes) {
-      VD qv = hn::Mul(hn::Load(dd, coord + j), tpu);
-      qv = hn::Add(hn::IfThenElseZero(hn::IsFinite(qv), qv), off);
-      const VD fl = hn::Floor(qv);
-      if (HWY_LIKELY(hn::AllTrue(dd, hn::Lt(hn::Abs(fl), limit)))) {
-        hn::StoreU(hn::Min(hn::DemoteTo(dfh, hn::Sub(qv, fl)), ulp), dfh, frac + j);
-        hn::StoreU(hn::And(hn::BitCast(duh, hn::DemoteTo(dih, fl)), mask), duh, cell + j);
-      } else {
-        HWY_ALIGN double qs[kBlock];
-        hn::Store(qv, dd, qs);
-        for (std::size_t l = 0; l < lanes; ++l) {
-          // NaN positions (bad samples) land here too: cell 0, never read.
-          const lattice_coord<float> lc = lattice_split<float>(qs[l], cf.n);
-          cell[j + l] = std::isfinite(qs[l]) ? lc.i0 : 0u;
-          frac[j + l] = std::isfinite(qs[l]) ? lc.f : 0.0f;
-        }
-      }
-    }
-  }
-  const DU du;
-  const VU stride = hn::Set(du, static_cast<std::uint32_t>(cf.stride));
-  const VU kc = hn::Set(du, static_cast<std::uint32_t>(cf.kc));
-  for (std::size_t j = 0; j < count; j += hn::Lanes(du))
-    hn::StoreU(hn::Add(hn::Mul(hn::LoadU(du, cells[1] + j), stride),
-                       hn::Mul(hn::LoadU(du, cells[0] + j), kc)),
-               du, b.offset[s] + j);
-}
-
-// Phase 2 for one sample: the weighted bilinear lookups of every scale
-// (general: any channel count and octave passes, 4-channel chunks). With
-// Gradient, also the gradient into g[0], g[1]: the bilinear lookups' slopes
-// times the scale's texels per unit, weights held fixed (anisotropic.hpp's
-// accumulate, the same operations in the same order).
-template <bool Gradient>
-HWY_INLINE float lookup_sample(const config& cf, const block& b, std::size_t j, float* g) {
-  const D4 d4;
-  const std::size_t n4 = hn::Lanes(d4);
-  const int passes = cf.passes();
-  // Accumulators of octave pass p start at row(p) (size_t: no int products as offsets).
-  const auto row = [&](int p) {
-    return static_cast<std::size_t>(p) * static_cast<std::size_t>(cf.kc);
-  };
-  HWY_ALIGN float acc[kMaxScales * kMaxChannels];
-  HWY_ALIGN float gx[Gradient ? kMaxScales * kMaxChannels : 1];
-  HWY_ALIGN float gy[Gradient ? kMaxScales * kMaxChannels : 1];
-  std::fill(acc, acc + row(passes), 0.0f);
-  if constexpr (Gradient) {
-    std::fill(gx, gx + row(passes), 0.0f);
-    std::fill(gy, gy + row(passes), 0.0f);
-  }
-  for (int s = 0; s < cf.scales; ++s) {
-    if (!b.active[s][j]) continue;
-    const float* t00 = cf.texels + b.offset[s][j];
-    const float* t01 = t00 + cf.stride;
-    const V4 fx = hn::Set(d4, b.fx[s][j]), fy = hn::Set(d4, b.fy[s][j]);
-    const V4 scale = hn::Set(d4, float(cf.tpu[s]));
-    for (int cc = 0; cc < cf.kc; cc += static_cast<int>(n4)) {
-      const V4 c00 = hn::LoadU(d4, t00 + cc), c10 = hn::LoadU(d4, t00 + cf.kc + cc);
-      const V4 c01 = hn::LoadU(d4, t01 + cc), c11 = hn::LoadU(d4, t01 + cf.kc + cc);
-      const V4 d0 = hn::Sub(c01, c00), d1 = hn::Sub(c11, c10);
-      const V4 r0 = mul_add(fy, d0, c00);
-      const V4 r1 = mul_add(fy, d1, c10);
-      const V4 v = mul_add(fx, hn::Sub(r1, r0), r0);
-      V4 sx, sy;
-      if constexpr (Gradient) {
-        sx = hn::Mul(scale, hn::Sub(r1, r0));
-        sy = hn::Mul(scale, mul_add(fx, hn::Sub(d1, d0), d0));
-      }
-      for (int pass = 0; pass < passes; ++pass) {
-        const V4 w = hn::LoadU(d4, b.weights(cf, pass, s, cc / 4) + j * 4 + cc % 4);
-        const std::size_t at = row(pass) + static_cast<std::size_t>(cc);
-        hn::Store(mul_add(w, v, hn::Load(d4, acc + at)), d4, acc + at);
-        if constexpr (Gradient) {
-          hn::Store(mul_add(w, sx, hn::Load(d4, gx + at)), d4, gx + at);
-          hn::Store(mul_add(w, sy, hn::Load(d4, gy + at)), d4, gy + at);
-        }
-      }
-    }
-  }
-  auto tree = [&](const float* a) {
-    const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
-    return cf.kc == 4 ? s4 : s4 + ((a[4] + a[5]) + (a[6] + a[7]));
-  };
-  if (cf.fbm) {
-    if constexpr (Gradient) {
-      g[0] = tree(gx);
-      g[1] = tree(gy);
-    }
-    return tree(acc);
-  }
-  float r = 0.0f, rx = 0.0f, ry = 0.0f;
-  for (int pass = 0; pass < passes; ++pass) {
-    const float v = tree(acc + row(pass));
-    r = r + cf.gain[pass] * std::fabs(v);
-    if constexpr (Gradient) {
-      const float gs = cf.gain[pass] * (v < 0.0f ? -1.0f : 1.0f);
-      rx = rx + gs * tree(gx + row(pass));
-      ry = ry + gs * tree(gy + row(pass));
-    }
-  }
-  if constexpr (Gradient) {
-    g[0] = rx;
-    g[1] = ry;
-  }
-  return r;
-}
-
-#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
-// Phase 2 for fbm with KC channels on targets whose vectors hold two texels
-// (2 KC floats): each row of the bilinear footprint is one load, blended in
-// y across both texels at once, then in x between the halves. Same
-// operations as lookup_sample, fewer instructions.
-template <int KC>
-HWY_INLINE void lookup_block_pairs(const config& cf, const block& b, std::size_t count,
-                                   float* out) {
-  const hn::FixedTag<float, 2 * KC> dp;
-  const hn::FixedTag<float, KC> dk;
-  using VK = hn::Vec<decltype(dk)>;
-  const int scales = cf.scales;
-  const std::size_t stride = cf.stride;
-  for (std::size_t j = 0; j < count; ++j) {
-    if (b.bad[j]) {
-      out[j] = std::numeric_limits<float>::quiet_NaN();
-      continue;
-    }
-    VK acc = hn::Zero(dk);
-    for (int s = 0; s < scales; ++s) {
-      if (!b.active[s][j]) continue;
-      const float* t00 = cf.texels + b.offset[s][j];
-      const auto row0 = hn::LoadU(dp, t00), row1 = hn::LoadU(dp, t00 + stride);
-      const auto r = mul_add(hn::Set(dp, b.fy[s][j]), hn::Sub(row1, row0), row0);
-      const VK r0 = hn::LowerHalf(dk, r), r1 = hn::UpperHalf(dk, r);
-      const VK v = mul_add(hn::Set(dk, b.fx[s][j]), hn::Sub(r1, r0), r0);
-      const float* w = b.w.data() + (static_cast<std::size_t>(s) * (KC / 4) * kBlock) * 4;
-      VK wk;
-      if constexpr (KC == 4) {
-        wk = hn::LoadU(dk, w + j * 4);
-      } else {
-        // Channels 0-3 and 4-7 sit in two interleaved rows of the block.
-        const hn::FixedTag<float, 4> d4f;
-        wk = hn::Combine(dk, hn::LoadU(d4f, w + kBlock * 4 + j * 4), hn::LoadU(d4f, w + j * 4));
-      }
-      acc = mul_add(wk, v, acc);
-    }
-    HWY_ALIGN float a[KC];
-    hn::Store(acc, dk, a);
-    const float s4 = (a[0] + a[1]) + (a[2] + a[3]);
-    if constexpr (KC == 4)
-      out[j] = s4;
-    else
-      out[j] = s4 + ((a[4] + a[5]) + (a[6] + a[7]));
-  }
-}
-#endif
-
-#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
-// Phase 2 for fbm with 8 channels where a vector holds one texel (AVX2):
-// four loads per scale, the blend on whole texels.
-HWY_INLINE void lookup_block_texels8(const config& cf, const block& b, std::size_t count,
-                                     float* out) {
-  const hn::FixedTag<float, 8> d8;
-  const hn::FixedTag<float, 4> d4f;
-  using V8 = hn::Vec<decltype(d8)>;
-  const std::size_t stride = cf.stride;
-  for (std::size_t j = 0; j < count; ++j) {
-    if (b.bad[j]) {
-      out[j] = std::numeric_limits<float>::quiet_NaN();
-      continue;
-    }
-    V8 acc = hn::Zero(d8);
-    for (int s = 0; s < cf.scales; ++s) {
-      if (!b.active[s][j]) continue;
-      const float* t00 = cf.texels + b.offset[s][j];
-      const float* t01 = t00 + stride;
-      const V8 fy = hn::Set(d8, b.fy[s][j]);
-      const V8 c00 = hn::LoadU(d8, t00), c10 = hn::LoadU(d8, t00 + 8);
-      const V8 r0 = mul_add(fy, hn::Sub(hn::LoadU(d8, t01), c00), c00);
-      const V8 r1 = mul_add(fy, hn::Sub(hn::LoadU(d8, t01 + 8), c10), c10);
-      const V8 v = mul_add(hn::Set(d8, b.fx[s][j]), hn::Sub(r1, r0), r0);
-      const float* w = b.w.data() + static_cast<std::size_t>(s) * 2 * kBlock * 4;
-      const V8 wk =
-          hn::Combine(d8, hn::LoadU(d4f, w + kBlock * 4 + j * 4), hn::LoadU(d4f, w + j * 4));
-      acc = mul_add(wk, v, acc);
-    }
-    HWY_ALIGN float a[8];
-    hn::Store(acc, d8, a);
-    out[j] = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
-  }
-}
-#endif
-
-// Phase 2 for a block: with gradients (grad: interleaved x, y) per sample;
-// values only through the paired fast path where the target allows, else per sample.
-HWY_INLINE void lookup_block(const config& cf, const block& b, std::size_t count, float* out,
-                             float* grad) {
-  if (grad) {
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    for (std::size_t j = 0; j < count; ++j) {
-      if (b.bad[j]) {
-        out[j] = grad[2 * j] = grad[2 * j + 1] = nan;
-        continue;
-      }
-      out[j] = lookup_sample<true>(cf, b, j, grad + 2 * j);
-    }
-    return;
-  }
-#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES >= 32
-  if (cf.fbm && cf.kc == 4) return lookup_block_pairs<4>(cf, b, count, out);
-#if HWY_MAX_BYTES >= 64
-  if (cf.fbm && cf.kc == 8) return lookup_block_pairs<8>(cf, b, count, out);
-#else
-  if (cf.fbm && cf.kc == 8) return lookup_block_texels8(cf, b, count, out);
-#endif
-#endif
-  for (std::size_t j = 0; j < count; ++j)
-    out[j] = b.bad[j] ? std::numeric_limits<float>::quiet_NaN()
-                      : lookup_sample<false>(cf, b, j, nullptr);
-}
-
-// Least-squares rules: phase-1 weights of sample j from the scalar code.
-inline void scalar_weights(const anisotropic& a, const config& cf, block& b, std::size_t j,
-                           const sample_input<2>& in) {
-  float w[kMaxScales * kMaxChannels];
-  for (int pass = 0; pass < cf.passes(); ++pass) {
-    if (cf.fbm)
-      a.weights<float>(in, w);
-    else
-      a.octave_weights<float>(in, pass, w);
-    for (int s = 0; s < cf.scales; ++s)
-      for (int h = 0; h < cf.kc / 4; ++h)
-        std::memcpy(b.weights(cf, pass, s, h) + j * 4,
-                    w + static_cast<std::size_t>(s * cf.kc + 4 * h), 4 * sizeof(float));
-  }
-}
-
-// A block of `count` <= kBlock samples whose coordinates are in b.x, b.y
-// (padded to whole vectors), with footprints fp and maps (null: not given) at
-// the block's first sample; gradients into grad (interleaved x, y) unless null.
-inline void run_block(const anisotropic& a, const config& cf, block& b, std::size_t count,
-                      const float* fp, const float* map, float* out, float* grad) {
-  const DF df;
-  const std::size_t lanes = hn::Lanes(df);
-  const std::size_t padded = (count + lanes - 1) / lanes * lanes;
-  // Pad the block's inputs to whole vectors (copies of the last sample).
-  HWY_ALIGN float fpb[kBlock * 3], mapb[kBlock * 4];
-  if (padded > count) {
-    if (fp) {
-      for (std::size_t j = 0; j < padded; ++j)
-        std::memcpy(fpb + 3 * j, fp + 3 * std::min(j, count - 1), 3 * sizeof(float));
-      fp = fpb;
-    }
-    if (map) {
-      for (std::size_t j = 0; j < padded; ++j)
-        std::memcpy(mapb + 4 * j, map + 4 * std::min(j, count - 1), 4 * sizeof(float));
-      map = mapb;
-    }
-  }
-  for (std::size_t j = count; j < padded; ++j) {
-    b.x[j] = b.x[count - 1];
-    b.y[j] = b.y[count - 1];
-  }
-  for (std::size_t j = 0; j < count; ++j)
-    b.bad[j] = !(std::isfinite(b.x[j]) && std::isfinite(b.y[j]));
-  if (!cf.lsq) {
-#if !HWY_HAVE_SCALABLE && HWY_TARGET != HWY_SCALAR
-    if (cf.fbm && fp && !map && cf.filtering == weight_rule::centre) {
-      for (std::size_t j = 0; j < padded; j += lanes) weights_filter(cf, b, j, fp);
-    } else
-#endif
-      for (std::size_t j = 0; j < padded; j += lanes) weights_vector(cf, b, j, fp, map);
-  } else {
-    for (std::size_t j = 0; j < count; ++j) {
-      sample_input<2> in;
-      in.position = {b.x[j], b.y[j]};
-      if (fp) {
-        const float u[3] = {fp[3 * j], fp[3 * j + 1], fp[3 * j + 2]};
-        in.fp = footprint<2>::from_covariance(u);
-      }
-      if (map) {
-        in.map = {map[4 * j], map[4 * j + 1], map[4 * j + 2], map[4 * j + 3]};
-        in.has_map = true;
-      }
-      scalar_weights(a, cf, b, j, in);
-      for (int s = 0; s < cf.scales; ++s) b.active[s][j] = 1;
-    }
-  }
-  // Tile coordinates only for scales some sample reads (far from the
-  // camera, the pixel filter zeroes the fine scales of whole blocks).
-  for (int s = 0; s < cf.scales; ++s)
-    if (std::any_of(b.active[s], b.active[s] + count, [](std::uint32_t v) { return v != 0; }))
-      split_scale(cf, b, s, padded);
-  lookup_block(cf, b, count, out, grad);
-}
-
-}  // namespace aniso_simd
-
-// Anisotropic noise at n samples: positions xy (interleaved), footprints fp
-// (3 floats each: the stored upper triangle; null = points) and surface
-// maps (4 floats each; null = none); values into `value`, gradients
-// (interleaved x, y, weights held fixed as in anisotropic.hpp) into grad
-// unless null.
-inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
-                                const float* map, std::size_t n, float* value, float* grad) {
-  using namespace aniso_simd;
-  const config cf(a);
-  block b(cf);
-  for (std::size_t first = 0; first < n; first += kBlock) {
-    const std::size_t count = std::min(kBlock, n - first);
-    const float* p = xy + 2 * first;
-    for (std::size_t j = 0; j < count; ++j) {
-      b.x[j] = double(p[2 * j]);
-      b.y[j] = double(p[2 * j + 1]);
-    }
-    run_block(a, cf, b, count, fp ? fp + 3 * first : nullptr, map ? map + 4 * first : nullptr,
-              value + first, grad ? grad + 2 * first : nullptr);
-  }
-}
-
-// Anisotropic noise on a uniform 2D grid (C order, i fastest); positions
-// origin + step * (i, j) in double, as the scalar grid path forms them;
-// gradients (interleaved x, y) into grad unless null.
-inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
-  using namespace aniso_simd;
-  const config cf(a);
-  block b(cf);
-  const std::size_t nx = g.size[0], ny = g.size[1];
-  for (std::size_t j = 0; j < ny; ++j) {
-    const double y = g.origin[1] + g.step[1] * double(j);
-    for (std::size_t first = 0; first < nx; first += kBlock) {
-      const std::size_t count = std::min(kBlock, nx - first);
-      for (std::size_t i = 0; i < count; ++i) {
-        b.x[i] = g.origin[0] + g.step[0] * double(first + i);
-        b.y[i] = y;
-      }
-      run_block(a, cf, b, count, nullptr, nullptr, value + j * nx + first,
-                grad ? grad + 2 * (j * nx + first) : nullptr);
-    }
-  }
-}
-
-}  // namespace HWY_NAMESPACE
-}  // namespace hush
-HWY_AFTER_NAMESPACE();
-
-#endif  // HUSH_SIMD_ANISOTROPIC_INL_H_ toggle
-// ---- end hush/simd/anisotropic-inl.h
-// ---- begin hush/simd/coherent-inl.h
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Highway kernel of coherent noise (include/hush/coherent.hpp): one pass of
-// the recursive filter over a frame, a vector of pixels of a row at a time.
-// Compiled once per SIMD target (the "-inl.h" convention: toggle include
-// guard, no normal guard); reached through hush/simd/dispatch.hpp.
-//
-// It repeats detail::coherent_pass_scalar (hush/detail/coherent_kernel.hpp)
-// operation by operation: the reprojection in float with separate multiplies
-// and adds (never fused, so the visibility decisions equal the scalar ones on
-// every target), the hashed fields in 32-bit lanes, the taps gathered, the
-// bilinear history and the blend in the scalar order. Under HUSH_STRICT_FP
-// every output, history value and fresh flag equals the scalar pass bit for
-// bit (tests/simd/coherent_simd_test.cpp, every compiled target); otherwise
-// the value blends fuse multiply-adds and differ from scalar by float
-// rounding (a few ulp of the values, the decisions unchanged). A row's last
-// (width mod lanes) pixels run the scalar code itself; lanes of pixels that
-// are not visible read the reference frame at index 0, never out of bounds.
-
-#if defined(HUSH_SIMD_COHERENT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_COHERENT_INL_H_
-#undef HUSH_SIMD_COHERENT_INL_H_
-#else
-#define HUSH_SIMD_COHERENT_INL_H_
-#endif
-
-#include <cstddef>
-#include <cstdint>
-#include <limits>
-#include <utility>
-#include <vector>
-
-#include <hwy/highway.h>
-
-
-HWY_BEFORE_NAMESPACE();
-namespace hush {
-namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-
-namespace coherent_simd {
-
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
-using VI = hn::Vec<DI>;
-using MF = hn::Mask<DF>;
-
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is compiled),
-// one fused rounding otherwise. Used for the value blends only.
-HWY_INLINE VF mul_add(VF a, VF b, VF c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), c);
-#else
-  return hn::MulAdd(a, b, c);
-#endif
-}
-
-// hash32 (core/hash.hpp) in 32-bit lanes.
-HWY_INLINE VU hash32(VU x) {
-  namespace c = detail::constants;
-  const DU du;
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
-  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
-}
-
-// detail::coherent_white of pixels `x` (lanes) of a row.
-HWY_INLINE VF white(std::uint32_t row_key, VU x) {
-  namespace c = detail::constants;
-  const DF df;
-  const DU du;
-  const DI di;
-  const VU h =
-      hash32(hn::Xor(hn::Set(du, row_key), hn::Mul(x, hn::Set(du, c::kCoherentPixelPrime))));
-  // 2 (h >> 8) < 2^25 is even, so exact in float, and exact as an int32.
-  const VU twice = hn::ShiftLeft<1>(hn::ShiftRight<c::kCoherentWhiteShift>(h));
-  const VF centred = hn::Sub(hn::ConvertTo(df, hn::BitCast(di, twice)),
-                             hn::Set(df, static_cast<float>(c::kCoherentWhiteCentre)));
-  return hn::Mul(centred, hn::Set(df, static_cast<float>(c::kCoherentWhiteScale)));
-}
-
-HWY_INLINE MF is_finite(VF v) {
-  const DF df;
-  const VF big = hn::Set(df, std::numeric_limits<float>::max());
-  return hn::And(hn::Ge(v, hn::Neg(big)), hn::Le(v, big));
-}
-HWY_INLINE MF is_surface(VF d) {
-  const DF df;
-  return hn::And(hn::Ge(d, hn::Set(df, std::numeric_limits<float>::min())),
-                 hn::Le(d, hn::Set(df, std::numeric_limits<float>::max())));
-}
-
-// detail::coherent_flush / coherent_flush_value: |v| below the smallest normal -> 0 (NaN
-// stays NaN).
-HWY_INLINE VF flush(VF v) {
-  const DF df;
-  return hn::IfThenZeroElse(hn::Lt(hn::Abs(v), hn::Set(df, std::numeric_limits<float>::min())), v);
-}
-
-// detail::coherent_field_value for pixels x (+ dx) of row y.
-HWY_INLINE VF field(const detail::coherent_field& f, std::uint32_t row_key, std::uint32_t x,
-                    std::uint32_t dx, std::uint32_t y) {
-  const DF df;
-  const DU du;
-  if (!f.plane) return white(row_key, hn::Iota(du, x + dx));
-  const VF v = hn::LoadU(df, f.plane + static_cast<std::size_t>(y) * f.stride + x + dx);
-  return hn::IfThenElseZero(is_finite(v), v);
-}
-
-// The refill fields' values of rows y and y + 1 when they are hashed white noise: each
-// value is used by four pixels (x, x - 1 and the rows y - 1, y), so a row is hashed once
-// into a buffer and read by both rows (null: the field is a plane, read directly).
-struct refill_rows {
-  const float* x0[detail::constants::kCoherentMaxChannels] = {};  // X, row y (width + 1)
-  const float* x1[detail::constants::kCoherentMaxChannels] = {};  // X, row y + 1
-  const float* y0[detail::constants::kCoherentMaxChannels] = {};  // Y, row y (width)
-  const float* y1[detail::constants::kCoherentMaxChannels] = {};  // Y, row y + 1
-};
-
-// Values of a white field in row y, pixels 0 ... count - 1 (count rounded up to lanes).
-HWY_INLINE void white_row(std::uint32_t row_key, std::size_t count, float* out) {
-  const DF df;
-  const DU du;
-  const std::size_t lanes = hn::Lanes(df);
-  for (std::size_t x = 0; x < count; x += lanes)
-    hn::StoreU(white(row_key, hn::Iota(du, static_cast<std::uint32_t>(x))), df, out + x);
-}
-
-// Pixels x ... x + lanes - 1 of row y (all inside the row).
-HWY_INLINE void pixels(const detail::coherent_pass_job<float>& j,
-                       const detail::coherent_row_keys& keys, const refill_rows& rows,
-                       std::uint32_t x, std::uint32_t y) {
-  const DF df;
-  const DU du;
-  const DI di;
-  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
-  // ---- Reprojection (coherent_reproject), in float, never fused.
-  const VF depth = hn::LoadU(df, j.depth + static_cast<std::size_t>(y) * j.depth_stride + x);
-  if (j.depth_copy) hn::StoreU(depth, df, j.depth_copy + p);
-  VF mx, my, mz;
-  hn::LoadInterleaved3(df, j.motion + 3 * (static_cast<std::size_t>(y) * j.motion_stride + x), mx,
-                       my, mz);
-  const VF sign = hn::Set(df, j.motion_sign);
-  mx = flush(hn::Mul(sign, mx));
-  my = flush(hn::Mul(sign, my));
-  mz = flush(hn::Mul(sign, mz));
-  const VF u = hn::Sub(hn::Iota(df, static_cast<float>(x)), mx);  // x + lane: exact
-  const VF v = hn::Sub(hn::Set(df, static_cast<float>(y)), my);
-  const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
-  MF ok = hn::And(hn::And(is_surface(depth), is_finite(mx)), hn::And(is_finite(my), is_finite(mz)));
-  ok = hn::And(ok, hn::And(hn::And(hn::Ge(u, zero), hn::Le(u, hn::Set(df, float(j.width - 1)))),
-                           hn::And(hn::Ge(v, zero), hn::Le(v, hn::Set(df, float(j.height - 1))))));
-  const VF i0 = hn::Min(hn::Floor(u), hn::Set(df, float(j.width > 1 ? j.width - 2 : 0)));
-  const VF j0 = hn::Min(hn::Floor(v), hn::Set(df, float(j.height > 1 ? j.height - 2 : 0)));
-  const VF tx = hn::Sub(u, i0), ty = hn::Sub(v, j0);
-  const VF a = hn::Sub(one, tx), b = hn::Sub(one, ty);
-  const VF w[4] = {hn::Mul(a, b), hn::Mul(tx, b), hn::Mul(a, ty), hn::Mul(tx, ty)};
-  // Tap indices (int32: frames are at most 16384^2 pixels); lanes that are not ok read 0.
-  const auto ok_i = hn::RebindMask(di, ok);
-  const VI i0i = hn::IfThenElseZero(ok_i, hn::ConvertTo(di, hn::IfThenElseZero(ok, i0)));
-  const VI j0i = hn::IfThenElseZero(ok_i, hn::ConvertTo(di, hn::IfThenElseZero(ok, j0)));
-  const VI sx = hn::IfThenElseZero(ok_i, hn::Set(di, j.width > 1 ? 1 : 0));
-  const VI sy = hn::IfThenElseZero(ok_i, hn::Set(di, j.height > 1 ? int(j.width) : 0));
-  VI t[4];
-  t[0] = hn::Add(hn::Mul(j0i, hn::Set(di, static_cast<std::int32_t>(j.width))), i0i);
-  t[1] = hn::Add(t[0], sx);
-  t[2] = hn::Add(t[0], sy);
-  t[3] = hn::Add(t[2], sx);
-  // The taps of most vectors are contiguous: every lane's cell is its neighbour's plus one
-  // column, in one row (smooth motion moves neighbouring pixels alike). Then each tap is one
-  // unaligned load instead of a gather; the values are the same.
-  const std::int32_t i_first = hn::GetLane(i0i), j_first = hn::GetLane(j0i);
-  const bool contiguous =
-      hn::AllTrue(di, ok_i) &&
-      hn::AllTrue(di, hn::Eq(hn::Sub(i0i, hn::Iota(di, 0)), hn::Set(di, i_first))) &&
-      hn::AllTrue(di, hn::Eq(j0i, hn::Set(di, j_first)));
-  const std::size_t base =
-      static_cast<std::size_t>(j_first) * j.width + static_cast<std::size_t>(i_first);
-  const std::size_t offset[4] = {0, j.width > 1 ? 1u : 0u, j.height > 1 ? j.width : 0u,
-                                 (j.height > 1 ? j.width : 0u) + (j.width > 1 ? 1u : 0u)};
-  auto tap = [&](auto d, const auto* plane, int k) {
-    return contiguous ? hn::LoadU(d, plane + base + offset[k]) : hn::GatherIndex(d, plane, t[k]);
-  };
-  const bool use_ids = j.ids && j.ref_ids;
-  VU id = hn::Zero(du);
-  if (j.ids) {
-    id = hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x);
-    if (j.ids_copy) hn::StoreU(id, du, j.ids_copy + p);
-  }
-  VF interpolated = zero;
-  for (int k = 0; k < 4; ++k) {
-    const MF used = hn::Ne(w[k], zero);
-    const VF d = tap(df, j.ref_depth, k);
-    MF tap_ok = is_surface(d);
-    if (use_ids) tap_ok = hn::And(tap_ok, hn::RebindMask(df, hn::Eq(tap(du, j.ref_ids, k), id)));
-    ok = hn::And(ok, hn::Or(hn::Not(used), tap_ok));
-    interpolated = hn::IfThenElse(used, hn::Add(interpolated, hn::Mul(w[k], d)), interpolated);
-  }
-  const VF expected = hn::Sub(depth, mz);
-  const VF tolerance = hn::Add(hn::Mul(hn::Set(df, j.eps_rel), expected), hn::Set(df, j.eps_abs));
-  const MF visible = hn::And(hn::And(ok, is_surface(expected)),
-                             hn::Le(hn::Abs(hn::Sub(interpolated, expected)), tolerance));
-  if (j.fresh) {
-    const VI flag = hn::IfThenZeroElse(hn::RebindMask(di, visible), hn::Set(di, 1));
-    hn::StoreU(hn::DemoteTo(hn::Rebind<std::uint8_t, DI>(), flag), hn::Rebind<std::uint8_t, DI>(),
-               j.fresh + p);
-  }
-  // ---- Values, per channel.
-  const VF alpha = hn::Set(df, j.alpha), beta = hn::Set(df, j.beta), kk = hn::Set(df, j.k);
-  const VF sqx = hn::Sqrt(hn::Mul(tx, a)), sqy = hn::Sqrt(hn::Mul(ty, b));
-  for (int c = 0; c < j.channels; ++c) {
-    const VF wv = field(j.input[c], keys.input[c], x, 0, y);
-    const float* hist = j.ref_history[c];
-    const VF h = mul_add(w[3], tap(df, hist, 3),
-                         mul_add(w[2], tap(df, hist, 2),
-                                 mul_add(w[1], tap(df, hist, 1), hn::Mul(w[0], tap(df, hist, 0)))));
-    VF value;
-    if (!j.stationary) {
-      value = mul_add(alpha, h, hn::Mul(beta, wv));
-    } else {
-      VF x00, x10, x01, x11, y00, y01;
-      if (rows.x0[c]) {
-        x00 = hn::LoadU(df, rows.x0[c] + x);
-        x10 = hn::LoadU(df, rows.x0[c] + x + 1);
-        x01 = hn::LoadU(df, rows.x1[c] + x);
-        x11 = hn::LoadU(df, rows.x1[c] + x + 1);
-      } else {
-        x00 = field(j.refill_x[c], keys.x0[c], x, 0, y);
-        x10 = field(j.refill_x[c], keys.x0[c], x, 1, y);
-        x01 = field(j.refill_x[c], keys.x1[c], x, 0, y + 1);
-        x11 = field(j.refill_x[c], keys.x1[c], x, 1, y + 1);
-      }
-      if (rows.y0[c]) {
-        y00 = hn::LoadU(df, rows.y0[c] + x);
-        y01 = hn::LoadU(df, rows.y1[c] + x);
-      } else {
-        y00 = field(j.refill_y[c], keys.y0[c], x, 0, y);
-        y01 = field(j.refill_y[c], keys.y1[c], x, 0, y + 1);
-      }
-      const VF dx = mul_add(ty, hn::Sub(x01, x11), hn::Mul(b, hn::Sub(x00, x10)));
-      const VF d = hn::Mul(kk, mul_add(sqy, hn::Sub(y00, y01), hn::Mul(sqx, dx)));
-      value = mul_add(alpha, hn::Add(h, d), hn::Mul(beta, wv));
-    }
-    value = flush(hn::IfThenElse(visible, value, hn::Mul(kk, wv)));
-    hn::StoreU(value, df, j.history[c] + p);
-    if (j.out[c])
-      hn::StoreU(hn::Mul(hn::Set(df, j.gain), value), df,
-                 j.out[c] + static_cast<std::size_t>(y) * j.out_stride + x);
-  }
-}
-
-// The same when there is no reference frame (the first frame): every pixel fresh.
-HWY_INLINE void fresh_pixels(const detail::coherent_pass_job<float>& j,
-                             const detail::coherent_row_keys& keys, std::uint32_t x,
-                             std::uint32_t y) {
-  const DF df;
-  const DU du;
-  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
-  if (j.fresh) {
-    const hn::Rebind<std::uint8_t, DF> d8;
-    hn::StoreU(hn::Set(d8, std::uint8_t{1}), d8, j.fresh + p);
-  }
-  if (j.depth_copy)
-    hn::StoreU(hn::LoadU(df, j.depth + static_cast<std::size_t>(y) * j.depth_stride + x), df,
-               j.depth_copy + p);
-  if (j.ids_copy)
-    hn::StoreU(hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x), du,
-               j.ids_copy + p);
-  for (int c = 0; c < j.channels; ++c) {
-    const VF value = flush(hn::Mul(hn::Set(df, j.k), field(j.input[c], keys.input[c], x, 0, y)));
-    hn::StoreU(value, df, j.history[c] + p);
-    if (j.out[c])
-      hn::StoreU(hn::Mul(hn::Set(df, j.gain), value), df,
-                 j.out[c] + static_cast<std::size_t>(y) * j.out_stride + x);
-  }
-}
-
-}  // namespace coherent_simd
-
-// One pass over a frame (detail::coherent_pass_job): full vectors of each row in
-// lanes, the rest of the row (fewer pixels than lanes) through the scalar pixel code.
-inline void coherent_pass(const detail::coherent_pass_job<float>& j) {
-  namespace cs = coherent_simd;
-  const std::size_t lanes = hn::Lanes(cs::DF());
-  const std::uint32_t full = static_cast<std::uint32_t>(j.width / lanes * lanes);
-  // Row buffers of the white refill fields (stationary filter, with a reference frame).
-  const std::size_t padded = (j.width + 1 + lanes - 1) / lanes * lanes;
-  const bool refill = j.stationary && j.ref_depth;
-  std::vector<float> buffers;
-  float* rows_of[detail::constants::kCoherentMaxChannels][4] = {};  // x0, x1, y0, y1
-  if (refill) {
-    buffers.resize(4 * padded * static_cast<std::size_t>(j.channels));
-    for (int c = 0; c < j.channels; ++c)
-      for (int k = 0; k < 4; ++k)
-        rows_of[c][k] = buffers.data() + (4 * static_cast<std::size_t>(c) + k) * padded;
-  }
-  for (std::uint32_t y = 0; y < j.height; ++y) {
-    const detail::coherent_row_keys keys = detail::coherent_keys(j, y);
-    cs::refill_rows rows;
-    for (int c = 0; refill && c < j.channels; ++c) {
-      // Row y is the previous row's y + 1 (swapped in), except on the first row.
-      if (y == 0) {
-        if (!j.refill_x[c].plane) cs::white_row(keys.x0[c], j.width + 1, rows_of[c][0]);
-        if (!j.refill_y[c].plane) cs::white_row(keys.y0[c], j.width, rows_of[c][2]);
-      } else {
-        std::swap(rows_of[c][0], rows_of[c][1]);
-        std::swap(rows_of[c][2], rows_of[c][3]);
-      }
-      if (!j.refill_x[c].plane) {
-        cs::white_row(keys.x1[c], j.width + 1, rows_of[c][1]);
-        rows.x0[c] = rows_of[c][0];
-        rows.x1[c] = rows_of[c][1];
-      }
-      if (!j.refill_y[c].plane) {
-        cs::white_row(keys.y1[c], j.width, rows_of[c][3]);
-        rows.y0[c] = rows_of[c][2];
-        rows.y1[c] = rows_of[c][3];
-      }
-    }
-    std::uint32_t x = 0;
-    for (; x < full; x += static_cast<std::uint32_t>(lanes)) {
-      if (j.ref_depth)
-        cs::pixels(j, keys, rows, x, y);
-      else
-        cs::fresh_pixels(j, keys, x, y);
-    }
-    for (; x < j.width; ++x) detail::coherent_pixel(j, keys, x, y);
-  }
-}
-
-}  // namespace HWY_NAMESPACE
-}  // namespace hush
-HWY_AFTER_NAMESPACE();
-
-#endif  // HUSH_SIMD_COHERENT_INL_H_ toggle
-// ---- end hush/simd/coherent-inl.h
 // ---- begin hush/simd/gabor-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -10183,62 +10299,9 @@ HWY_AFTER_NAMESPACE();
 #include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
-// ---- begin hush/simd/batch-inl.h
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// The batch driver the SIMD point kernels share (simd/perlin-inl.h,
-// simd/wavelet-inl.h): fn(first, pts, value, grad) over n points of D floats, one
-// vector of lanes at a time from point `first`; the last partial vector goes
-// through zero-padded buffers, so no lane reads or writes out of bounds (its
-// lanes past n read zeros, their results are dropped). grad may be null (values
-// only; fn then gets null). Compiled once per SIMD target (the "-inl.h"
-// convention: toggle guard below); reached through hush/simd/dispatch.hpp.
-#if defined(HUSH_SIMD_BATCH_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_BATCH_INL_H_
-#undef HUSH_SIMD_BATCH_INL_H_
-#else
-#define HUSH_SIMD_BATCH_INL_H_
-#endif
 
-#include <cstddef>
-#include <cstring>
-
-#include <hwy/highway.h>
-
-HWY_BEFORE_NAMESPACE();
-namespace hush {
-namespace HWY_NAMESPACE {
-namespace simd_batch {
-namespace hn = hwy::HWY_NAMESPACE;
-
-// Largest float lane count of any target (SVE's 2048 bits), for buffers and
-// table padding sized once for every target; every kernel uses this one.
-constexpr std::size_t kMaxLanes = 64;
-
-template <int D, class Fn>
-HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad,
-                                const Fn& fn) {
-  constexpr std::size_t kMax = kMaxLanes;
-  const std::size_t lanes = hn::Lanes(hn::ScalableTag<float>());
-  std::size_t i = 0;
-  for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);
-  if (i == n) return;
-  const std::size_t rest = n - i;
-  HWY_ALIGN float in[kMax * D] = {}, out[kMax] = {}, g[kMax * D] = {};
-  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
-  fn(i, in, out, grad ? g : nullptr);
-  std::memcpy(value + i, out, rest * sizeof(float));
-  if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
-}
-
-}  // namespace simd_batch
-}  // namespace HWY_NAMESPACE
-}  // namespace hush
-HWY_AFTER_NAMESPACE();
-
-#endif  // HUSH_SIMD_BATCH_INL_H_ toggle
-// ---- end hush/simd/batch-inl.h
-
+// The noise class comes first, not from here: hush/gabor.hpp includes these
+// kernels at its end (hush/gabor/simd_kernel.hpp), as src/simd/gabor.cpp does.
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {
@@ -13082,1739 +13145,1674 @@ HWY_AFTER_NAMESPACE();
 
 #endif  // HUSH_SIMD_GABOR_INL_H_ toggle
 // ---- end hush/simd/gabor-inl.h
-// ---- begin hush/simd/npr_gabor-inl.h
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Highway kernel of NPR Gabor noise's stage 2 (hush/npr_gabor.hpp,
-// hush/detail/npr_gabor_splat.hpp): the splat records added into a float
-// image. Compiled once per SIMD target (the "-inl.h" convention: toggle include
-// guard below); reached through hush/simd/dispatch.hpp.
-//
-// How: the image is cut into tiles of 32 x 32 pixels; every record is
-// binned (counting sort, so each tile keeps its records in record order) to
-// every tile its pixel range touches. Per tile, its G-buffer views are copied
-// into padded tile buffers and its sums kept in a tile accumulator; per
-// (record, tile) the kernel's x factors (gabor_kernel.hpp's separable form) are
-// computed once per tile column in lanes, its y factors once per tile row, and
-// per pixel only their product, the taper and the tests, lanes along x: the
-// object and triangle tests in 32-bit lanes, the depth test in double lanes as
-// the scalar code computes it (pixel depth times the plane's 1/z, relative
-// tolerance, soft band). A record touches tiles whose own ids and depths show
-// it cannot pass a test anywhere in them (tile_summary): those pairs are
-// skipped, which changes nothing (every fragment there fails).
-//
-// Agreement with detail::npr_gabor_splat_scalar: the same offsets (in double,
-// rounded to float), hush's own exp and sin/cos in lanes (gabor-inl.h), the
-// same products and taper, and per pixel the same records in the same order;
-// a fragment that fails a test adds +0 (or vis 0 times the kernel, +-0), which
-// leaves the sum as it is (it starts at +0 and a round-to-nearest sum is -0
-// only when both terms are). Under HUSH_STRICT_FP every pixel equals the
-// scalar result bit for bit (tests/simd/npr_gabor_simd_test.cpp, every
-// compiled target); otherwise products may fuse with sums on either side,
-// within the kernel's float budget, and a depth decision may flip where the
-// relative difference is within an ulp of the tolerance.
-
-#if defined(HUSH_SIMD_NPR_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_NPR_GABOR_INL_H_
-#undef HUSH_SIMD_NPR_GABOR_INL_H_
-#else
-#define HUSH_SIMD_NPR_GABOR_INL_H_
 #endif
 
-#include <algorithm>
-#include <cstddef>
-#include <cstdint>
-#include <limits>
-#include <vector>
+#define HUSH_SIMD_ENTRIES_GABOR(X)                                                                 \
+  X(gabor2_points, (const gabor<2>& g, const float* xy, std::size_t n, float* value, float* grad), \
+    (g, xy, n, value, grad))                                                                       \
+  X(gabor3_points,                                                                                 \
+    (const gabor<3>& g, const float* xyz, std::size_t n, float* value, float* grad),               \
+    (g, xyz, n, value, grad))                                                                      \
+  X(gabor2_grid,                                                                                   \
+    (const gabor<2>& g, const grid<2>& gr, std::size_t first, std::size_t count, float* value,     \
+     float* grad),                                                                                 \
+    (g, gr, first, count, value, grad))                                                            \
+  X(gabor3_grid,                                                                                   \
+    (const gabor<3>& g, const grid<3>& gr, std::size_t first, std::size_t count, float* value,     \
+     float* grad),                                                                                 \
+    (g, gr, first, count, value, grad))                                                            \
+  X(gabor2_filtered,                                                                               \
+    (const gabor<2>& g, const float* xy, const footprint<2>* fps, std::size_t n, float* value,     \
+     float* grad),                                                                                 \
+    (g, xy, fps, n, value, grad))                                                                  \
+  X(gabor3_filtered,                                                                               \
+    (const gabor<3>& g, const float* xyz, const footprint<3>* fps, std::size_t n, float* value,    \
+     float* grad),                                                                                 \
+    (g, xyz, fps, n, value, grad))                                                                 \
+  X(gabor3_surface,                                                                                \
+    (const gabor<3>& g, const float* xyz, const float* normals, const footprint<3>* fps,           \
+     std::size_t n, float* value, float* grad),                                                    \
+    (g, xyz, normals, fps, n, value, grad))
 
-#include <hwy/highway.h>
+HUSH_SIMD_DECLARE(HUSH_SIMD_ENTRIES_GABOR)
 
-
-HWY_BEFORE_NAMESPACE();
+#if HUSH_CONFIG_SIMD
 namespace hush {
-namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
+namespace detail {
 
-namespace npr_gabor_simd {
+template <int D>
+struct simd_kernel<gabor<D>> {
+  static constexpr bool available = true;
+  static constexpr bool has_samples = true;
 
-using gabor_simd::DF;
-using gabor_simd::DI;
-using gabor_simd::DU;
-using gabor_simd::MF;
-using gabor_simd::VF;
-using gabor_simd::VI;
-using gabor_simd::VU;
-using DD = hn::ScalableTag<double>;
-using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
-using VD = hn::Vec<DD>;
+  static void samples(const gabor<D>& g, const hush::samples<D>& s, float* out,
+                      vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(s.positions.data());
+    auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 3) {
+      if (s.has_normals()) {  // surface noise
+        simd::gabor3_surface(g, p, reinterpret_cast<const float*>(s.normals.data()),
+                             s.has_footprints() ? s.footprints.data() : nullptr, s.size(), out, gr);
+        return;
+      }
+    }
+    if constexpr (D == 2)
+      simd::gabor2_filtered(g, p, s.footprints.data(), s.size(), out, gr);
+    else
+      simd::gabor3_filtered(g, p, s.footprints.data(), s.size(), out, gr);
+  }
 
-// Tile height; the width is max(32, lanes), a whole number of vectors (32 x 32 measured
-// fastest of 16 x 16, 32 x 16, 64 x 16 and 32 x 32 on the dense scene, AVX3).
-constexpr std::size_t kTileH = 32;
-constexpr std::size_t kMaxTileW = gabor_simd::kMaxLanes;
-constexpr std::size_t kMaxTile = kMaxTileW * kTileH;
-
-// A tile's copy of the G-buffer (padded with zeros past the image) and its sums.
-struct tile {
-  std::size_t x0 = 0, y0 = 0, w = 0, h = 0;  // pixels covered (w, h < tile size at the edges)
-  alignas(64) double depth[kMaxTile];  // NaN where the depth test fails whatever the plane
-  alignas(64) std::uint32_t object[kMaxTile];
-  alignas(64) std::uint32_t triangle[kMaxTile];
-  alignas(64) float acc[kMaxTile];
-  // Per record: the x factors of the tile's columns, the plane's column part, visibility.
-  alignas(64) float dx[kMaxTileW], cd2[kMaxTileW], ce[kMaxTileW], cs[kMaxTileW], cc[kMaxTileW];
-  alignas(64) float dy[kTileH > kMaxTileW ? kTileH : kMaxTileW];
-  alignas(64) float rd2[kMaxTileW], re[kMaxTileW], rs[kMaxTileW], rc[kMaxTileW];
-  alignas(64) double pc[kMaxTileW];
-  // What can pass: the ids present (one bit per id mod 64) and the depth range.
-  std::uint64_t objects = 0, triangles = 0;
-  double zmin = 0, zmax = 0;
-  bool any_depth = false;
+  static void points(const gabor<D>& g, const vec<float, D>* pts, std::size_t count, float* out,
+                     vec<float, D>* grad) {
+    const auto* p = reinterpret_cast<const float*>(pts);
+    auto* gr = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_points(g, p, count, out, gr);
+    else
+      simd::gabor3_points(g, p, count, out, gr);
+  }
+  // Slabs along the slowest axis (exec::parallel; exec.hpp).
+  static constexpr bool has_grid_slab = true;
+  static void grid_slab(const gabor<D>& g, const hush::grid<D>& gr, std::size_t first,
+                        std::size_t count, float* out, vec<float, D>* grad) {
+    auto* gp = reinterpret_cast<float*>(grad);
+    if constexpr (D == 2)
+      simd::gabor2_grid(g, gr, first, count, out, gp);
+    else
+      simd::gabor3_grid(g, gr, first, count, out, gp);
+  }
+  static void grid(const gabor<D>& g, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
+    grid_slab(g, gr, 0, gr.size[D - 1], out, grad);
+  }
 };
 
-// The job's constants as the scalar code rounds them: T(-A), T(1 / (1 - s0)), and the
-// depth test's limit (tol, or 2 tol with the soft band).
-struct consts {
-  float neg_a = 0, taper_k = 0;
-  double limit = 0;
-};
-inline consts consts_of(const detail::npr_gabor_splat_job& j) {
-  consts c;
-  c.neg_a = static_cast<float>(-j.envelope_exponent);
-  c.taper_k = static_cast<float>(1.0 / (1.0 - detail::constants::kGaborTaperStart));
-  c.limit = j.soft_depth ? 2.0 * j.depth_tolerance : j.depth_tolerance;
-  return c;
-}
-
-inline std::uint64_t id_bit(std::uint32_t id) { return std::uint64_t{1} << (id & 63u); }
-
-inline void load_tile(const detail::npr_gabor_splat_job& j, std::size_t tw, tile& t) {
-  std::fill(t.depth, t.depth + tw * kTileH, std::numeric_limits<double>::quiet_NaN());
-  std::fill(t.object, t.object + tw * kTileH, 0u);
-  std::fill(t.triangle, t.triangle + tw * kTileH, 0u);
-  std::fill(t.acc, t.acc + tw * kTileH, 0.0f);
-  t.objects = t.triangles = 0;
-  t.zmin = std::numeric_limits<double>::infinity();
-  t.zmax = 0;
-  t.any_depth = false;
-  for (std::size_t r = 0; r < t.h; ++r) {
-    const std::size_t y = t.y0 + r;
-    for (std::size_t i = 0; i < t.w; ++i) {
-      const std::size_t x = t.x0 + i;
-      if (j.depth_test) {
-        const float z = j.depth(x, y);
-        // Pixels that can pass: depth > 0 and finite (else NaN: every comparison fails).
-        if (z > 0.0f && z <= std::numeric_limits<float>::max()) {
-          t.depth[r * tw + i] = static_cast<double>(z);
-          t.zmin = std::min(t.zmin, static_cast<double>(z));
-          t.zmax = std::max(t.zmax, static_cast<double>(z));
-          t.any_depth = true;
-        }
-      }
-      if (j.object_test) {
-        t.object[r * tw + i] = j.object_id(x, y);
-        t.objects |= id_bit(t.object[r * tw + i]);
-      }
-      if (j.triangle_test) {
-        t.triangle[r * tw + i] = j.triangle_id(x, y);
-        t.triangles |= id_bit(t.triangle[r * tw + i]);
-      }
-    }
-  }
-}
-
-// False when no fragment of record s in tile t can pass the tests: its ids are
-// absent, or every pixel's relative depth difference to the plane exceeds the
-// limit with a margin far above the rounding of the per-pixel test (1e-6).
-inline bool may_pass(const detail::npr_gabor_splat_job& j, const consts& info,
-              const hush::npr_gabor_splat& s, const tile& t) {
-  if (j.object_test && !(t.objects & id_bit(s.object))) return false;
-  if (j.triangle_test && !(t.triangles & id_bit(s.triangle))) return false;
-  if (!j.depth_test) return true;
-  if (!t.any_depth) return false;
-  // The plane's 1/z over the tile's pixel centres: affine, extremes at the corners.
-  const double xa = static_cast<double>(t.x0) + 0.5, xb = xa + static_cast<double>(t.w - 1);
-  const double ya = static_cast<double>(t.y0) + 0.5, yb = ya + static_cast<double>(t.h - 1);
-  const double p00 = s.q0 + s.qx * xa + s.qy * ya, p10 = s.q0 + s.qx * xb + s.qy * ya;
-  const double p01 = s.q0 + s.qx * xa + s.qy * yb, p11 = s.q0 + s.qx * xb + s.qy * yb;
-  const double pmin = std::min(std::min(p00, p10), std::min(p01, p11));
-  const double pmax = std::max(std::max(p00, p10), std::max(p01, p11));
-  if (!(pmin > 0.0) || !(pmax < std::numeric_limits<double>::infinity())) return true;
-  // zp plane ranges over [zmin pmin, zmax pmax] (all positive).
-  const double lo = t.zmin * pmin, hi = t.zmax * pmax, lim = info.limit + 1e-6;
-  return !(lo - 1.0 > lim || 1.0 - hi > lim);
-}
-
-// npr_gabor_visibility of one vector of pixels (depth: the tile's doubles, NaN where no
-// plane can pass; pc: the plane's column part q0 + qx x; qy: its row part), in double
-// lanes as the scalar code computes it, rounded to float once.
-HWY_INLINE VD visibility_d(const detail::npr_gabor_splat_job& j, const consts& info,
-                           const double* depth, const double* pc, VD qy) {
-  const DD dd;
-  const VD one = hn::Set(dd, 1.0);
-  const VD rel = hn::Abs(hn::Sub(hn::Mul(hn::LoadU(dd, depth), hn::Add(hn::LoadU(dd, pc), qy)), one));
-  VD v = one;
-  if (j.soft_depth) {
-    const VD tol = hn::Set(dd, j.depth_tolerance);
-    v = hn::IfThenElse(hn::Gt(rel, tol), hn::Sub(hn::Set(dd, 2.0), hn::Div(rel, tol)), one);
-  }
-  return hn::IfThenElseZero(hn::Le(rel, hn::Set(dd, info.limit)), v);
-}
-HWY_INLINE VF visibility(const detail::npr_gabor_splat_job& j, const consts& info,
-                         const double* depth, const double* pc, VD qy) {
-  const DF df;
-#if HWY_TARGET == HWY_SCALAR
-  return hn::Set(df, static_cast<float>(hn::GetLane(visibility_d(j, info, depth, pc, qy))));
-#else
-  // Two double vectors per float vector: demoted halves, combined in registers.
-  const hn::Half<DF> dh;
-  const std::size_t nd = hn::Lanes(DD());
-  const auto lo = hn::DemoteTo(dh, visibility_d(j, info, depth, pc, qy));
-  const auto hi = hn::DemoteTo(dh, visibility_d(j, info, depth + nd, pc + nd, qy));
-  return hn::Combine(df, hi, lo);
-#endif
-}
-
-// Record s over the part of tile t it covers.
-inline void splat_tile(const detail::npr_gabor_splat_job& j, const consts& info,
-                const hush::npr_gabor_splat& s, std::size_t tw, tile& t) {
-  const DF df;
-  const DU du;
-  const DI di;
-  const DD dd;
-  const DFD dfd;
-  const std::size_t n = hn::Lanes(df), nd = hn::Lanes(dd);
-  const std::size_t x0 = t.x0, y0 = t.y0;
-  // Covered columns ia ... ib and rows ra ... rb, tile-relative.
-  const std::size_t ia = static_cast<std::size_t>(s.x0) > x0 ? static_cast<std::size_t>(s.x0) - x0 : 0;
-  const std::size_t ib = std::min(static_cast<std::size_t>(s.x1) - x0, t.w - 1);
-  const std::size_t ra = static_cast<std::size_t>(s.y0) > y0 ? static_cast<std::size_t>(s.y0) - y0 : 0;
-  const std::size_t rb = std::min(static_cast<std::size_t>(s.y1) - y0, t.h - 1);
-  const std::size_t va = ia / n * n, vb = ib / n * n + n;  // vectors covering ia ... ib
-  const std::size_t wa = ra / n * n, wb = rb / n * n + n;  // the same for the rows
-  // The offsets of the columns and rows in radii, in double and rounded to float as the
-  // scalar code does: ((x + 1/2) - s.x) / r.
-  const VD inv_r = hn::Set(dd, 1.0 / s.radius), sx = hn::Set(dd, s.x), sy = hn::Set(dd, s.y);
-  for (std::size_t i = va; i < vb; i += nd) {
-    const VD xc = hn::Iota(dd, static_cast<double>(x0 + i) + 0.5);
-    hn::StoreU(hn::DemoteTo(dfd, hn::Mul(hn::Sub(xc, sx), inv_r)), dfd, t.dx + i);
-    if (j.depth_test) hn::StoreU(hn::Add(hn::Set(dd, s.q0), hn::Mul(hn::Set(dd, s.qx), xc)), dd, t.pc + i);
-  }
-  for (std::size_t r = wa; r < wb; r += nd) {
-    const VD yc = hn::Iota(dd, static_cast<double>(y0 + r) + 0.5);
-    hn::StoreU(hn::DemoteTo(dfd, hn::Mul(hn::Sub(yc, sy), inv_r)), dfd, t.dy + r);
-  }
-  const VF neg_a = hn::Set(df, info.neg_a), taper_k = hn::Set(df, info.taper_k);
-  const VF phi_x = hn::Set(df, static_cast<float>(s.fx * s.radius));
-  const VF phi_y = hn::Set(df, static_cast<float>(s.fy * s.radius));
-  // Columns outside ia ... ib get d^2 = 2: s = dx^2 + dy^2 >= 1 fails there as it does
-  // outside the disc, so the kernel's own test masks them.
-  const VI lane = hn::Iota(di, 0);
-  const VI before_first = hn::Set(di, static_cast<std::int32_t>(ia) - 1);
-  const VI after_last = hn::Set(di, static_cast<std::int32_t>(ib) + 1);
-  for (std::size_t i = va; i < vb; i += n) {
-    const gabor_simd::axis a = gabor_simd::axis_factors(hn::LoadU(df, t.dx + i), neg_a, phi_x);
-    const VI col = hn::Add(lane, hn::Set(di, static_cast<std::int32_t>(i)));
-    const MF in = hn::RebindMask(df, hn::And(hn::Gt(col, before_first), hn::Lt(col, after_last)));
-    hn::StoreU(hn::IfThenElse(in, a.d2, hn::Set(df, 2.0f)), df, t.cd2 + i);
-    hn::StoreU(a.e, df, t.ce + i);
-    hn::StoreU(a.s, df, t.cs + i);
-    hn::StoreU(a.c, df, t.cc + i);
-  }
-  for (std::size_t r = wa; r < wb; r += n) {
-    const gabor_simd::axis a = gabor_simd::axis_factors(hn::LoadU(df, t.dy + r), neg_a, phi_y);
-    hn::StoreU(a.d2, df, t.rd2 + r);
-    hn::StoreU(a.e, df, t.re + r);
-    hn::StoreU(a.s, df, t.rs + r);
-    hn::StoreU(a.c, df, t.rc + r);
-  }
-  const float weight = static_cast<float>(s.weight);
-  const VF one = hn::Set(df, 1.0f);
-  const VU object = hn::Set(du, s.object), triangle = hn::Set(du, s.triangle);
-  for (std::size_t r = ra; r <= rb; ++r) {
-    const gabor_simd::row row{hn::Set(df, weight * t.re[r]), hn::Set(df, t.rc[r]),
-                              hn::Set(df, t.rs[r]), hn::Set(df, t.rd2[r])};
-    const std::size_t base = r * tw;
-    const VD qy = hn::Set(dd, s.qy * (static_cast<double>(y0 + r) + 0.5));
-    for (std::size_t i = va; i < vb; i += n) {
-      const gabor_simd::axis ax{hn::Zero(df), hn::LoadU(df, t.cd2 + i), hn::LoadU(df, t.ce + i),
-                                hn::LoadU(df, t.cs + i), hn::LoadU(df, t.cc + i)};
-      MF m = hn::Lt(hn::Add(ax.d2, row.d2), one);
-      if (j.object_test)
-        m = hn::And(m, hn::RebindMask(df, hn::Eq(hn::LoadU(du, t.object + base + i), object)));
-      if (j.triangle_test)
-        m = hn::And(m, hn::RebindMask(df, hn::Eq(hn::LoadU(du, t.triangle + base + i), triangle)));
-      VF g = gabor_simd::pair(ax, row, taper_k);
-      if (j.depth_test) g = hn::Mul(visibility(j, info, t.depth + base + i, t.pc + i, qy), g);
-      float* acc = t.acc + base + i;
-      hn::StoreU(hn::Add(hn::LoadU(df, acc), hn::IfThenElseZero(m, g)), df, acc);
-    }
-  }
-}
-
-inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_view<float>& out) {
-  const DF df;
-  const std::size_t tw = std::max<std::size_t>(32, hn::Lanes(df));
-  const std::size_t width = out.width, height = out.height;
-  if (width == 0 || height == 0 || j.count == 0) return;
-  const std::size_t ntx = (width + tw - 1) / tw, nty = (height + kTileH - 1) / kTileH;
-  // Bin the records: counting sort by tile, record order kept within a tile.
-  std::vector<std::uint32_t> start(ntx * nty + 1, 0);
-  auto tiles_of = [&](const hush::npr_gabor_splat& s, auto&& f) {
-    for (std::size_t ty = static_cast<std::size_t>(s.y0) / kTileH;
-         ty <= static_cast<std::size_t>(s.y1) / kTileH; ++ty)
-      for (std::size_t tx = static_cast<std::size_t>(s.x0) / tw;
-           tx <= static_cast<std::size_t>(s.x1) / tw; ++tx)
-        f(ty * ntx + tx);
-  };
-  for (std::size_t k = 0; k < j.count; ++k) tiles_of(j.splats[k], [&](std::size_t t) { ++start[t + 1]; });
-  for (std::size_t t = 0; t < ntx * nty; ++t) start[t + 1] += start[t];
-  std::vector<std::uint32_t> list(start.back());
-  {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t k = 0; k < j.count; ++k)
-      tiles_of(j.splats[k], [&](std::size_t t) { list[next[t]++] = static_cast<std::uint32_t>(k); });
-  }
-  consts info = consts_of(j);
-  std::vector<tile> storage(1);  // ~40 KB: on the heap
-  tile& t = storage[0];
-  for (std::size_t ty = 0; ty < nty; ++ty)
-    for (std::size_t tx = 0; tx < ntx; ++tx) {
-      const std::size_t id = ty * ntx + tx;
-      if (start[id] == start[id + 1]) continue;  // out is already 0 there
-      t.x0 = tx * tw;
-      t.y0 = ty * kTileH;
-      t.w = std::min(tw, width - t.x0);
-      t.h = std::min(kTileH, height - t.y0);
-      load_tile(j, tw, t);
-      for (std::uint32_t k = start[id]; k < start[id + 1]; ++k) {
-        const hush::npr_gabor_splat& s = j.splats[list[k]];
-        if (may_pass(j, info, s, t)) splat_tile(j, info, s, tw, t);
-      }
-      for (std::size_t r = 0; r < t.h; ++r)
-        std::copy(t.acc + r * tw, t.acc + r * tw + t.w, out.row(t.y0 + r) + t.x0);
-    }
-}
-
-}  // namespace npr_gabor_simd
-
-inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_view<float>& out) {
-  npr_gabor_simd::npr_gabor_splat(j, out);
-}
-
-}  // namespace HWY_NAMESPACE
+}  // namespace detail
 }  // namespace hush
-HWY_AFTER_NAMESPACE();
+#endif  // HUSH_CONFIG_SIMD
 
-#endif  // HUSH_SIMD_NPR_GABOR_INL_H_
-// ---- end hush/simd/npr_gabor-inl.h
-// ---- begin hush/simd/perlin-inl.h
+#endif  // HUSH_GABOR_SIMD_KERNEL_HPP
+// ---- end hush/gabor/simd_kernel.hpp
+
+#endif  // HUSH_GABOR_HPP
+// ---- end hush/gabor.hpp
+// ---- begin hush/wavelet.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Highway kernels for improved Perlin noise in 2D and 3D: batches of points
-// and uniform grids, values and optionally analytic gradients. Compiled once
-// per SIMD target (the "-inl.h" convention: toggle include guard below, no
-// normal guard); reached through hush/simd/dispatch.hpp, never included
-// directly by users.
+// Wavelet noise (Robert L. Cook and Tony DeRose, "Wavelet Noise", SIGGRAPH 2005),
+// 2D and 3D: band-limited noise from a tile of quadratic B-spline coefficients
+// with the coarser half of its spectrum projected out (wavelet_tile.hpp), summed
+// over octave bands, anti-aliased by the sample's footprint, and, in 3D,
+// projectable onto a surface so that the band limit survives texturing a
+// surface with a 3D noise.
 //
-// The kernels compute perlin.hpp's float algorithm: same lattice split (in
-// double for grids, exact float floor for points), same hash words, gradient
-// index and table, Horner fade, lerp a + t(b - a), dot products and final
-// scale. Where they take another route to the same number it is exact:
-//  - the gradient index reads the top bits of the lattice hash, which
-//    lowbias32's last step leaves alone, so it is skipped (hash32_high);
-//  - the 3D index ((h >> 16) * 12) >> 16 is one 16-bit high multiply;
-//  - 3D corner dot products g . f are one rounding of +-f_p +- f_q (gradient
-//    components are 0 or +-1); targets narrower than 16 lanes form them by
-//    selects and sign flips instead of table lookups, and grids split them
-//    into a per-row part g_y f_y + g_z f_z and the x term;
-//  - grid rows hash once per lattice point, not once per sample and corner;
-//  - 3D grid rows with gradients (and fractal grids' bands) use the
-//    affine-in-x form per (row, cell) that perlin.hpp's grid_values uses
-//    too, its corner data blended in z once per (slice, y cell)
-//    (slice_gradient_coefs / row_gradient_coefs / row_gradient, op for op).
-// So:
-//  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
-//    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
-//    compiled target; zeros are +0 on every path, see perlin.hpp);
-//  - otherwise multiply-adds are fused where that is faster, and results
-//    stay within perlin.hpp's float budget of the double reference (2^-16);
-//    measured differences to scalar are a few float ulps (docs/design.md).
-// Points whose coordinates are all finite and below 2^22 in magnitude take
-// the vector split; other vectors (NaN, Inf, huge, or periodic noise) split
-// lane by lane through core/lattice.hpp, so hard cases behave exactly like
-// scalar evaluation (NaN in gives NaN out).
-
-// Toggle guard: included once per target by foreach_target.h (Highway's
-// hwy/examples/skeleton-inl.h pattern).
-#if defined(HUSH_SIMD_PERLIN_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_PERLIN_INL_H_
-#undef HUSH_SIMD_PERLIN_INL_H_
-#else
-#define HUSH_SIMD_PERLIN_INL_H_
-#endif
+//   hush::wavelet<2>::params prm;            // one band, 128^2 tile, seed 0
+//   prm.weights = {1, 0.5, 0.25};            // bands 0, 1, 2 (frequencies 1, 2, 4)
+//   hush::wavelet<2> w{prm};
+//   float v = w(hush::vec2{x, y});                               // all bands
+//   float a = w.sample(hush::vec2{x, y}, hush::footprint<2>::from_derivatives(dpdx, dpdy));
+//   hush::wavelet<3> s{7};
+//   float b = s.sample(hush::vec3{x, y, z}, normal, fp);         // projected onto the surface
+//
+// Definitions (paper symbols in brackets). A band is
+//   N(y) = sum_i n_i B(y - i)                    [eq. 27, 29]
+// over the tile's coefficients n_i (periodic, period n = tile_size) with the
+// centred quadratic B-spline B; it holds frequencies between 1/4 and 1/2 cycle
+// per coefficient. Band b of the noise is N at y = 2^b x + o_b (frequency 2^b,
+// decorrelating offset o_b), so band 0 has one coefficient per unit, like
+// Perlin noise has one lattice cell per unit. The noise is
+//   M(x) = K sum_b w_b N(2^b x + o_b)            [eq. 1]
+// with K = 1 / sqrt(sigma_N^2 sum_b w_b^2)      [eq. 39]
+// so that M has variance 1 (sigma_N^2 is computed by hush from its own tile:
+// wavelet_tile<D>::variance()), followed by the distribution remapping
+// (sec. 4.2): a Gaussian scale, erf to the uniform distribution on (-1, 1), or
+// a user table of the inverse CDF.
+//
+// Footprints (n.sample(p, footprint); core/footprint.hpp; paper sec. 3.1, 3.5):
+// with w the footprint's largest width (noise units per pixel), band b's
+// coefficients are c = 2^b w pixels apart. The band is fully representable for
+// c <= 1 (its highest frequency, 2^(b-1), is at most the Nyquist frequency
+// 1 / (2w)), and entirely above Nyquist for c >= 2 (the paper's j >= 0, which the
+// renderer's B-spline pixel filter removes exactly, eq. 6). hush keeps the band
+// with weight s(1 - log2 c) (s = the quintic fade of constants.hpp, clamped to
+// [0, 1]): 1 below c = 1, 0 from c = 2 on, C2 in between, so a continuous zoom
+// never pops and bands with weight 0 cost nothing. K is not renormalised: the
+// filtered noise has less variance, as the pixel's average of the noise has.
+// Why the largest width: a band is kept only where it is representable along
+// every direction of the pixel, which excludes aliasing; along the footprint's
+// short axis this loses detail (anisotropic filtering would need anisotropic
+// noise, hush::anisotropic). A NaN, infinite or wider-than-2^32 footprint
+// ("everything", core/footprint.hpp) gives the mean, 0, in every mode.
+//
+// Basis widening (params::widen, paper sec. 4.1): for renderers that take one
+// sample per pixel, each kept band is interpolated with B widened along tile
+// axis a by s_a = sqrt(1 + max(0, c_a^2 - c0^2)) (c_a the pixel's extent along
+// axis a in band coefficients, c0 = 1/2), so that the basis' variance grows
+// like that of B convolved with the Gaussian pixel filter (sigma = 1/2 pixel,
+// kPixelFilterSigma) from the paper's j = -2 on. The widened weights are
+// normalised to sum to 1. With a surface normal, the footprint is first
+// projected onto the tangent plane.
+//
+// Infinite noise (params::relative_weights, paper sec. 5.4): weights[k] is the
+// weight of the band k octaves below the finest representable one, i.e. band b
+// gets W(o) with o = -(b + log2 w), linearly... (quintic) interpolated between
+// integer o, faded in over o in [-1, 0] (the anti-aliasing fade above) and out
+// over o in [K - 1, K], and the sum is normalised per sample by
+// 1 / sqrt(sigma^2 sum W^2): zooming never changes the look, low octaves fade out
+// as fine ones fade in. Bands b run over [first_band, first_band + relative_bands).
+// Point evaluation (no footprint) uses w = 1.
+//
+// Projection (3D, n.sample(p, normal, fp); paper sec. 3.7, 4.1, eq. 32-36): the
+// band is averaged along the unit normal u with the B-spline at half its
+// resolution, B2(t) = B(t / 2) / 2:
+//   N_u(y) = integral N(y + t u) B2(t) dt.
+// For an axis-aligned u this is sum_i n_i B(.)B(.) beta(.) with the exact
+// quintic beta = B * B2 along the normal (9 coefficients wide, eq. 36).
+// projection::exact evaluates N_u exactly for any u: separably with beta when u
+// is axis-aligned, otherwise by splitting the line integral where its
+// polynomial pieces change and integrating each piece with 5-point
+// Gauss-Legendre quadrature (exact: degree <= 8; with basis widening, over B2's
+// three pieces only, docs/wavelet.md). projection::approximate is
+// the paper's: B2 in place of beta along the normal (6 coefficients wide), and
+// for any u the tensor B-spline at the coefficient moved halfway towards the
+// position along u (Appendix 2), normalised to weights summing to 1. The
+// approximation's error against the exact projection is measured in
+// docs/wavelet.md. The normal may have any length (it is normalised); a zero,
+// NaN or infinite normal gives the unprojected 3D noise (a point not on a
+// surface). The projected noise is normalised by its own variance
+// (tile.projected_variance along axis a, sum_a u_a^2 sigma_a^2 for other u).
+//
+// No repetition (params::variant_overlap > 0, paper sec. 4.3): the tile is laid
+// out in cells of variants with blended overlaps (wavelet_blend_tile); the
+// noise then does not repeat (cells are hashed over 2^32 coefficients per
+// axis, where the global coefficient index wraps).
+//
+// Contract (D = 2, 3; float and double from one template):
+//  - mean 0; variance 1 over space for the point noise (exactly over a whole
+//    tile period with one band; the tests measure it within +-3 %), less where a
+//    footprint filters bands out; then the distribution's (gaussian_scale^2, 1/3
+//    for uniform).
+//  - range: |M| <= bound() (analytic: K sum|w_b| max_i |n_i|, every kernel being
+//    an average of coefficients); uniform: (-1, 1); table: its range.
+//  - C1 in position (the quadratic B-spline); gradient() and sample_gradient()
+//    return the exact derivative of what is evaluated (footprint held fixed).
+//  - periodic with period tile_size / 2^first_band along every axis when every
+//    band's offset is a multiple of... (offsets are exact multiples of 2^-24, so
+//    M(x + n / 2^b0) == M(x) wherever the band positions are exact in double,
+//    |2^b x| < 2^28), unless variant_overlap > 0.
+//  - float evaluation is within float_budget() of the double reference.
+//  - domain: every finite coordinate; a band coordinate 2^b x that overflows a
+//    double is taken as 0 (like hush::fractal). NaN or +-Inf in a coordinate
+//    gives NaN (value and gradient). Evaluation never throws.
+#ifndef HUSH_WAVELET_HPP
+#define HUSH_WAVELET_HPP
 
 #include <algorithm>
 #include <array>
-#include <cstddef>
+#include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <type_traits>
+#include <limits>
+#include <memory>
+#include <string>
 #include <vector>
 
-#include <hwy/highway.h>
-
-
-HWY_BEFORE_NAMESPACE();
-namespace hush {
-namespace HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-
-namespace perlin_simd {
-
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-#if HWY_TARGET != HWY_SCALAR
-using DU16 = hn::Repartition<std::uint16_t, DU>;
-#endif
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
-
-// Lookup tables are padded to kMaxLanes so every chunk load is in bounds.
-using simd_batch::kMaxLanes;
-
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
-// compiled), one fused rounding otherwise.
-// Any float vector width (3D grid rows form their cells' coefficients in
-// vectors narrower than VF where a row has few cells).
-template <class V>
-HWY_INLINE V mul_add(V a, V b, V c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), c);
-#else
-  return hn::MulAdd(a, b, c);
-#endif
-}
-// lerp(a, b, t) = a + t * (b - a), as detail::lerp.
-template <class V>
-HWY_INLINE V lerp(V a, V b, V t) {
-  return mul_add(t, hn::Sub(b, a), a);
-}
-// scale * v + 0 (perlin.hpp's 3D output: zeros become +0). Adding 0 to the
-// exact product rounds nothing, so the fused form equals the two-step one
-// and may be used under strict FP too.
-HWY_INLINE VF scale_plus_zero(VF scale, VF v) { return hn::MulAdd(scale, v, hn::Zero(DF())); }
-
-// detail::fade: t^3 (t (6t - 15) + 10), Horner form in the same order.
-HWY_INLINE VF fade(VF t) {
-  namespace c = detail::constants;
-  const DF df;
-  const VF inner =
-      mul_add(t, mul_add(t, hn::Set(df, float(c::kFade5)), hn::Set(df, float(c::kFade4))),
-              hn::Set(df, float(c::kFade3)));
-  return hn::Mul(hn::Mul(hn::Mul(t, t), t), inner);
-}
-HWY_INLINE VF fade_derivative(VF t) {
-  namespace c = detail::constants;
-  const DF df;
-  const VF inner =
-      mul_add(t, mul_add(t, hn::Set(df, float(5 * c::kFade5)), hn::Set(df, float(4 * c::kFade4))),
-              hn::Set(df, float(3 * c::kFade3)));
-  return hn::Mul(hn::Mul(t, t), inner);
-}
-
-// hash32 (core/hash.hpp) in 32-bit lanes without its last step x ^= x >> 16,
-// which changes only bits 0 ... 15: bits 16 ... 31 equal hash32's, and they
-// are all Perlin's gradient index reads (2D: 29 ... 31; 3D: 16 ... 31).
-static_assert(detail::constants::kHashShift3 >= 16 && detail::constants::kPerlin2GradShift >= 16 &&
-                  detail::constants::kPerlin3IndexShift >= 16,
-              "the gradient index must read only hash bits the last xorshift leaves alone");
-HWY_INLINE VU hash32_high(VU x) {
-  namespace c = detail::constants;
-  const DU du;
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  return hn::Mul(x, hn::Set(du, c::kHashMul2));
-}
-
-// lattice_word_x/y/z (core/hash.hpp) in lanes: i * P_x, rotl(j * P_y, R_y),
-// rotl(k * P_z, R_z).
-HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
-HWY_INLINE VU word_y(VU j) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
-}
-HWY_INLINE VU word_z(VU k) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
-}
-template <int kAxis>
-HWY_INLINE VU word(VU i) {
-  if constexpr (kAxis == 0) return word_x(i);
-  if constexpr (kAxis == 1) return word_y(i);
-  if constexpr (kAxis == 2) return word_z(i);
-}
-
-// perlin.hpp's float gradient tables, padded to kMaxLanes with zeros so that
-// every chunk load in lookup() stays in bounds. Constant data at fixed
-// addresses: loops load them once.
-struct padded_table {
-  float v[kMaxLanes];
-};
-template <std::size_t N>
-constexpr padded_table pad(const std::array<float, N>& src) {
-  padded_table t{};
-  for (std::size_t i = 0; i < N; ++i) t.v[i] = src[i];
-  return t;
-}
-using float_tables = detail::perlin_tables<float>;
-alignas(64) constexpr padded_table kG2x = pad(float_tables::g2x);
-alignas(64) constexpr padded_table kG2y = pad(float_tables::g2y);
-alignas(64) constexpr padded_table kG3x = pad(float_tables::g3x);
-alignas(64) constexpr padded_table kG3y = pad(float_tables::g3y);
-alignas(64) constexpr padded_table kG3z = pad(float_tables::g3z);
-
-// table[idx] per lane for idx < kEntries: one in-register permute per chunk
-// of Lanes entries (one for 8 entries on AVX2, two for 12), then a select.
-template <int kEntries>
-HWY_INLINE VF lookup(const padded_table& table, VU idx) {
-  const DF df;
-  const DU du;
-  const DI di;
-  const std::size_t n = hn::Lanes(df);
-  // Within-chunk positions; an index below the lane count already is one.
-  const VU in = static_cast<std::size_t>(kEntries) <= hn::MaxLanes(df)
-                    ? idx
-                    : hn::And(idx, hn::Set(du, static_cast<std::uint32_t>(n - 1)));
-  const auto within = hn::IndicesFromVec(df, hn::BitCast(di, in));
-  VF r = hn::TableLookupLanes(hn::LoadU(df, table.v), within);
-  for (std::size_t base = n; base < static_cast<std::size_t>(kEntries); base += n) {
-    // Indices are small, so a signed compare (the one every target has) is exact.
-    const auto in_chunk = hn::RebindMask(
-        df, hn::Gt(hn::BitCast(di, idx), hn::Set(di, static_cast<std::int32_t>(base) - 1)));
-    r = hn::IfThenElse(in_chunk, hn::TableLookupLanes(hn::LoadU(df, table.v + base), within), r);
-  }
-  return r;
-}
-
-// 2D gradient index: the top 3 hash bits.
-HWY_INLINE VU grad_index2(VU h) { return hn::ShiftRight<detail::constants::kPerlin2GradShift>(h); }
-
-// 3D: ((h >> 16) * 12) >> 16 is the high half of the 16-bit product of h's
-// top half and 12, so MulHigh on 16-bit lanes leaves the index in bits
-// 16 ... 19 of each 32-bit lane (bits 0 ... 15 hold the low half's product,
-// which nothing reads).
-HWY_INLINE VU grad_index3_high(VU h) {
-  namespace c = detail::constants;
-  static_assert(c::kPerlin3IndexShift == 16, "the 16-bit high multiply needs a shift of 16");
-#if HWY_TARGET == HWY_SCALAR
-  // One-lane vectors cannot be reinterpreted as 16-bit lanes: (h >> 16) * 12
-  // has the index in the same bits.
-  return hn::Mul(hn::ShiftRight<16>(h), hn::Set(DU(), std::uint32_t(c::kPerlin3GradCount)));
-#else
-  const DU16 d16;
-  return hn::BitCast(
-      DU(), hn::MulHigh(hn::BitCast(d16, h), hn::Set(d16, std::uint16_t(c::kPerlin3GradCount))));
-#endif
-}
-HWY_INLINE VU grad_index3(VU h) { return hn::ShiftRight<16>(grad_index3_high(h)); }
-
-// The 3D gradients are the 12 cube edges, index n -> (x, y, z):
-//   n < 4: (+-1, +-1, 0), n < 8: (+-1, 0, +-1), else (0, +-1, +-1),
-// first sign from bit 0 of n, second from bit 1 (constants.hpp's tables).
-static_assert(
-    [] {
-      for (int n = 0; n < detail::constants::kPerlin3GradCount; ++n) {
-        const double s0 = (n & 1) ? -1 : 1, s1 = (n & 2) ? -1 : 1;
-        const double want[3] = {n < 8 ? s0 : 0, n < 4 ? s1 : (n < 8 ? 0 : s0), n < 4 ? 0 : s1};
-        if (detail::constants::kPerlin3GradX[n] != want[0] ||
-            detail::constants::kPerlin3GradY[n] != want[1] ||
-            detail::constants::kPerlin3GradZ[n] != want[2])
-          return false;
-      }
-      return true;
-    }(),
-    "dot3_select assumes the cube-edge layout of the 3D gradient table");
-
-// g . (fx, fy, fz) for the 3D gradient of hash h without a table: pick the
-// two coordinates the edge uses, flip their signs and add. The sum is the
-// rounding of the same exact real as gx fx + (gy fy + gz fz); only the sign
-// of a zero result can differ, and outputs are +0-canonical (perlin.hpp).
-HWY_INLINE VF dot3_select(VU h, VF fx, VF fy, VF fz) {
-  const DF df;
-  const DU du;
-  const DI di;
-  const VU k = grad_index3_high(h);  // index in bits 16 ... 19
-  const auto below8 = hn::RebindMask(df, hn::Lt(hn::BitCast(di, k), hn::Set(di, 8 << 16)));
-  const auto below4 = hn::RebindMask(df, hn::Lt(hn::BitCast(di, k), hn::Set(di, 4 << 16)));
-  const VF p = hn::IfThenElse(below8, fx, fy);
-  const VF q = hn::IfThenElse(below4, fy, fz);
-  const VU sign = hn::Set(du, 0x80000000u);
-  const VF sp = hn::BitCast(df, hn::And(hn::ShiftLeft<15>(k), sign));  // bit 0 of the index
-  const VF sq = hn::BitCast(df, hn::And(hn::ShiftLeft<14>(k), sign));  // bit 1
-  return hn::Add(hn::Xor(p, sp), hn::Xor(q, sq));
-}
-
-// Targets whose vector holds the whole 12-entry table look gradients up with
-// one permute per component; narrower ones select (dot3_select).
-constexpr bool kOnePermuteTable3 =
-    hn::MaxLanes(DF()) >= static_cast<std::size_t>(detail::constants::kPerlin3GradCount);
-
-// One axis of a batch of lattice lookups: hash words of the two cells, the
-// fraction f, f - 1, the fade and (for gradients) the fade's derivative.
-struct axis {
-  VU w0, w1;
-  VF f, f1, s, ds;
-};
-
-// Per-corner inputs of the blend: dot products d and, for gradients, the
-// gradient components. Corner n = a + 2b + 4c is at offset (a, b, c).
-struct corners {
-  VF d[8], gx[8], gy[8], gz[8];
-};
-
-// Corner dot products from hashes: kyz[b + 2c] = key ^ word_y(j_b) ^
-// word_z(k_c) (2D: kyz[0], kyz[1]).
-template <bool kGradient, int D>
-HWY_INLINE void hashed_corners(const axis& x, const VU* kyz, const axis& y, const axis& z,
-                               corners& k) {
-  constexpr int kCorners = 1 << D;
-  HWY_UNROLL(8)
-  for (int n = 0; n < kCorners; ++n) {
-    const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
-    const VU h = hash32_high(hn::Xor(a ? x.w1 : x.w0, kyz[b + 2 * c]));
-    const VF fx = a ? x.f1 : x.f, fy = b ? y.f1 : y.f;
-    if constexpr (D == 2) {
-      constexpr int kN = detail::constants::kPerlin2GradCount;
-      const VU g = grad_index2(h);
-      k.gx[n] = lookup<kN>(kG2x, g);
-      k.gy[n] = lookup<kN>(kG2y, g);
-      k.d[n] = mul_add(k.gx[n], fx, hn::Mul(k.gy[n], fy));
-    } else {
-      constexpr int kN = detail::constants::kPerlin3GradCount;
-      const VF fz = c ? z.f1 : z.f;
-      if constexpr (kGradient || kOnePermuteTable3) {
-        const VU g = grad_index3(h);
-        k.gx[n] = lookup<kN>(kG3x, g);
-        k.gy[n] = lookup<kN>(kG3y, g);
-        k.gz[n] = lookup<kN>(kG3z, g);
-        // gx fx + (gy fy + gz fz), as perlin.hpp sums it.
-        k.d[n] = mul_add(k.gx[n], fx, mul_add(k.gy[n], fy, hn::Mul(k.gz[n], fz)));
-      } else {
-        k.d[n] = dot3_select(h, fx, fy, fz);
-      }
-    }
-  }
-}
-
-// ---- The blend: perlin<D>::eval2 / eval3 after the dot products, in lanes.
-template <bool kGradient>
-HWY_INLINE void finish2(const corners& k, const axis& x, const axis& y, VF& value, VF* grad) {
-  const DF df;
-  const VF u = x.s, v = y.s;
-  const VF x0 = lerp(k.d[0], k.d[1], u), x1 = lerp(k.d[2], k.d[3], u);
-  const VF scale = hn::Set(df, float(detail::constants::kPerlin2Scale));
-  value = hn::Mul(scale, lerp(x0, x1, v));
-  if constexpr (kGradient) {
-    const VF gx = mul_add(x.ds, lerp(hn::Sub(k.d[1], k.d[0]), hn::Sub(k.d[3], k.d[2]), v),
-                          lerp(lerp(k.gx[0], k.gx[1], u), lerp(k.gx[2], k.gx[3], u), v));
-    const VF gy = mul_add(y.ds, hn::Sub(x1, x0),
-                          lerp(lerp(k.gy[0], k.gy[1], u), lerp(k.gy[2], k.gy[3], u), v));
-    grad[0] = hn::Mul(scale, gx);
-    grad[1] = hn::Mul(scale, gy);
-  } else {
-    (void)grad;
-  }
-}
-
-template <bool kGradient>
-HWY_INLINE void finish3(const corners& k, const axis& x, const axis& y, const axis& z, VF& value,
-                        VF* grad) {
-  const DF df;
-  const VF* d = k.d;
-  const VF u = x.s, v = y.s, w = z.s;
-  const VF x00 = lerp(d[0], d[1], u), x10 = lerp(d[2], d[3], u);
-  const VF x01 = lerp(d[4], d[5], u), x11 = lerp(d[6], d[7], u);
-  const VF y0 = lerp(x00, x10, v), y1 = lerp(x01, x11, v);
-  const VF scale = hn::Set(df, float(detail::constants::kPerlin3Scale));
-  value = scale_plus_zero(scale, lerp(y0, y1, w));
-  if constexpr (kGradient) {
-    auto blend = [&](const VF* q) {
-      return lerp(lerp(lerp(q[0], q[1], u), lerp(q[2], q[3], u), v),
-                  lerp(lerp(q[4], q[5], u), lerp(q[6], q[7], u), v), w);
-    };
-    const VF ex = lerp(lerp(hn::Sub(d[1], d[0]), hn::Sub(d[3], d[2]), v),
-                       lerp(hn::Sub(d[5], d[4]), hn::Sub(d[7], d[6]), v), w);
-    const VF ey = lerp(hn::Sub(x10, x00), hn::Sub(x11, x01), w);
-    const VF ez = hn::Sub(y1, y0);
-    grad[0] = scale_plus_zero(scale, mul_add(x.ds, ex, blend(k.gx)));
-    grad[1] = scale_plus_zero(scale, mul_add(y.ds, ey, blend(k.gy)));
-    grad[2] = scale_plus_zero(scale, mul_add(z.ds, ez, blend(k.gz)));
-  } else {
-    (void)grad;
-  }
-}
-
-template <bool kGradient, int D>
-HWY_INLINE void finish(const corners& k, const axis& x, const axis& y, const axis& z, VF& value,
-                       VF* grad) {
-  if constexpr (D == 2) {
-    (void)z;
-    finish2<kGradient>(k, x, y, value, grad);
-  } else {
-    finish3<kGradient>(k, x, y, z, value, grad);
-  }
-}
-
-// ---- 3D grid rows with gradients: perlin.hpp's slice_gradient_coefs,
-// row_gradient_coefs and row_gradient (the affine-in-x form, docs/design.md),
-// op for op, in lanes over cells (coefficients, in vectors of descriptor DC)
-// and over columns (samples). Tables hold entry m of cell rank r at
-// [m * stride + r].
-
-// The slice data (detail::slice_gradient_coef) of cells [r, r + Lanes(dc))
-// from their corner gradients (gx, gy, gz per corner n at [n * stride + r])
-// and the slice's z axis (fraction f, f - 1, fade w and slope w').
-template <class DC>
-HWY_INLINE void slice_coefs(DC dc, std::size_t stride, std::size_t r, const float* gx,
-                            const float* gy, const float* gz, float fz, float fz1, float w_s,
-                            float w_ds, float* out) {
-  namespace d = detail;
-  using V = hn::Vec<DC>;
-  const V w = hn::Set(dc, w_s), dw = hn::Set(dc, w_ds);
-  const V fzc[2] = {hn::Set(dc, fz), hn::Set(dc, fz1)};
-  auto load = [&](const float* t, int n)
-                  HWY_ATTR { return hn::LoadU(dc, t + static_cast<std::size_t>(n) * stride + r); };
-  HWY_UNROLL(2)
-  for (int a = 0; a < 2; ++a) {
-    HWY_UNROLL(2)
-    for (int b = 0; b < 2; ++b) {
-      const int n[2] = {a + 2 * b, a + 2 * b + 4};
-      V qx[2], qy[2], qz[2], e[2];
-      for (int c = 0; c < 2; ++c) {
-        qx[c] = load(gx, n[c]);
-        qy[c] = load(gy, n[c]);
-        qz[c] = load(gz, n[c]);
-        // gz (f_z - c) is exact (components are 0 or +-1): one rounding.
-        e[c] = hn::Sub(hn::Mul(qz[c], fzc[c]), a ? qx[c] : hn::Zero(dc));
-      }
-      auto store = [&](int q, V x) HWY_ATTR {
-        hn::StoreU(
-            x, dc,
-            out + static_cast<std::size_t>(d::slice_gradient_coef_index(q, a, b)) * stride + r);
-      };
-      store(d::kZgx, lerp(qx[0], qx[1], w));
-      store(d::kZgy, lerp(qy[0], qy[1], w));
-      store(d::kZgz, lerp(qz[0], qz[1], w));
-      store(d::kZe, lerp(e[0], e[1], w));
-      store(d::kWgx, hn::Mul(dw, hn::Sub(qx[1], qx[0])));
-      store(d::kWgy, hn::Mul(dw, hn::Sub(qy[1], qy[0])));
-      store(d::kWe, hn::Mul(dw, hn::Sub(e[1], e[0])));
-    }
-  }
-}
-
-// The row_gradient_coef coefficients of cells [r, r + Lanes(dc)) from their
-// slice data sc and the row's y axis (fraction f, f - 1, fade v, slope v').
-template <class DC>
-HWY_INLINE void row_coefs(DC dc, std::size_t stride, std::size_t r, const float* sc, float fy_f,
-                          float fy_f1, float v_s, float v_ds, float* out) {
-  namespace d = detail;
-  using V = hn::Vec<DC>;
-  const V v = hn::Set(dc, v_s), dv = hn::Set(dc, v_ds);
-  const V fy0 = hn::Set(dc, fy_f), fy1 = hn::Set(dc, fy_f1);
-  V lgx[2], lc[2], ya[2], yb[2], za[2], zb[2];
-  HWY_UNROLL(2)
-  for (int a = 0; a < 2; ++a) {
-    auto q = [&](int kind, int b) HWY_ATTR {
-      return hn::LoadU(
-          dc, sc + static_cast<std::size_t>(d::slice_gradient_coef_index(kind, a, b)) * stride + r);
-    };
-    const V zgx0 = q(d::kZgx, 0), zgx1 = q(d::kZgx, 1);
-    const V zgy0 = q(d::kZgy, 0), zgy1 = q(d::kZgy, 1);
-    lgx[a] = lerp(zgx0, zgx1, v);
-    const V mygx = hn::Sub(zgx1, zgx0);
-    const V zc0 = mul_add(zgy0, fy0, q(d::kZe, 0)), zc1 = mul_add(zgy1, fy1, q(d::kZe, 1));
-    lc[a] = lerp(zc0, zc1, v);
-    const V myc = hn::Sub(zc1, zc0);
-    const V lgy = lerp(zgy0, zgy1, v);
-    const V lgz = lerp(q(d::kZgz, 0), q(d::kZgz, 1), v);
-    za[a] = lerp(q(d::kWgx, 0), q(d::kWgx, 1), v);
-    const V wc0 = mul_add(q(d::kWgy, 0), fy0, q(d::kWe, 0));
-    const V wc1 = mul_add(q(d::kWgy, 1), fy1, q(d::kWe, 1));
-    zb[a] = hn::Add(lerp(wc0, wc1, v), lgz);
-    ya[a] = hn::Mul(dv, mygx);
-    yb[a] = mul_add(dv, myc, lgy);
-  }
-  auto store = [&](int m, V x)
-                   HWY_ATTR { hn::StoreU(x, dc, out + static_cast<std::size_t>(m) * stride + r); };
-  store(d::kEA, hn::Sub(lgx[1], lgx[0]));
-  store(d::kEB, hn::Sub(lc[1], lc[0]));
-  store(d::kX0, lgx[0]);
-  store(d::kV0B, lc[0]);
-  store(d::kY0A, ya[0]);
-  store(d::kY0B, yb[0]);
-  store(d::kDYA, hn::Sub(ya[1], ya[0]));
-  store(d::kDYB, hn::Sub(yb[1], yb[0]));
-  store(d::kZ0A, za[0]);
-  store(d::kZ0B, zb[0]);
-  store(d::kDZA, hn::Sub(za[1], za[0]));
-  store(d::kDZB, hn::Sub(zb[1], zb[0]));
-}
-HWY_INLINE void row_gradient(const VF* co, const axis& x, VF& value, VF* grad) {
-  namespace d = detail;
-  const VF f = x.f, u = x.s;
-  const VF delta = mul_add(co[d::kEA], f, co[d::kEB]);
-  const VF gx = mul_add(x.ds, delta, mul_add(u, co[d::kEA], co[d::kX0]));
-  const VF gy =
-      mul_add(u, mul_add(co[d::kDYA], f, co[d::kDYB]), mul_add(co[d::kY0A], f, co[d::kY0B]));
-  const VF gz =
-      mul_add(u, mul_add(co[d::kDZA], f, co[d::kDZB]), mul_add(co[d::kZ0A], f, co[d::kZ0B]));
-  const VF scale = hn::Set(DF(), float(d::constants::kPerlin3Scale));
-  value = scale_plus_zero(scale, mul_add(u, delta, mul_add(co[d::kX0], f, co[d::kV0B])));
-  grad[0] = scale_plus_zero(scale, gx);
-  grad[1] = scale_plus_zero(scale, gy);
-  grad[2] = scale_plus_zero(scale, gz);
-}
-
-// kyz for hashed_corners() from per-lane axes (points) ...
-template <int D>
-HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
-  kyz[0] = hn::Xor(key, y.w0);
-  kyz[1] = hn::Xor(key, y.w1);
-  if constexpr (D == 3) {
-    kyz[2] = hn::Xor(kyz[0], z.w1);
-    kyz[3] = hn::Xor(kyz[1], z.w1);
-    kyz[0] = hn::Xor(kyz[0], z.w0);
-    kyz[1] = hn::Xor(kyz[1], z.w0);
-  } else {
-    (void)z;
-  }
-}
-
-// D interleaved vectors (gradients) to dst.
-template <int D>
-HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
-  const DF df;
-  if constexpr (D == 2)
-    hn::StoreInterleaved2(g[0], g[1], df, dst);
-  else
-    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
-}
-
-// ---- Points: splitting float coordinates into lattice axes.
-
-// Fractions, fades and the second cell's word of an axis whose first word
-// and fraction are known.
-template <bool kGradient>
-HWY_INLINE void fill_axis(VF f, axis& a) {
-  a.f = f;
-  a.f1 = hn::Sub(f, hn::Set(DF(), 1.0f));
-  a.s = fade(f);
-  if constexpr (kGradient) a.ds = fade_derivative(f);
-}
-
-// Vector split, valid when every lane is finite with |x| < 2^22: floor and
-// x - floor(x) are exact in float, so this equals lattice_split's double
-// computation (including its clamp below 1 for tiny negative x). The cell
-// comes from the float's bits: floor(x) + 1.5 * 2^23 is exact for
-// |floor(x)| <= 2^22 and its bit pattern is 0x4B400000 + floor(x), two's
-// complement (cheaper than a conversion with overflow handling).
-constexpr float kFastSplitLimit = 4194304.0f;  // 2^22
-constexpr float kCellMagic = 12582912.0f;      // 1.5 * 2^23
-constexpr std::uint32_t kCellMagicBits = 0x4B400000u;
-template <bool kGradient, int kAxis>
-HWY_INLINE axis split_fast(VF xv) {
-  namespace c = detail::constants;
-  const DF df;
-  const DU du;
-  const VF fl = hn::Floor(xv);
-  const VU i0 =
-      hn::Sub(hn::BitCast(du, hn::Add(fl, hn::Set(df, kCellMagic))), hn::Set(du, kCellMagicBits));
-  // (i + 1) P = i P + P: the second cell's product is one add away.
-  constexpr std::uint32_t kPrime = kAxis == 0   ? c::kLatticePrimeX
-                                   : kAxis == 1 ? c::kLatticePrimeY
-                                                : c::kLatticePrimeZ;
-  const VU m0 = hn::Mul(i0, hn::Set(du, kPrime));
-  const VU m1 = hn::Add(m0, hn::Set(du, kPrime));
-  axis a;
-  if constexpr (kAxis == 0) {
-    a.w0 = m0;
-    a.w1 = m1;
-  } else {
-    constexpr int kRotate = kAxis == 1 ? c::kLatticeRotateY : c::kLatticeRotateZ;
-    a.w0 = hn::RotateRight<32 - kRotate>(m0);
-    a.w1 = hn::RotateRight<32 - kRotate>(m1);
-  }
-  fill_axis<kGradient>(hn::Min(hn::Sub(xv, fl), hn::Set(df, detail::one_minus_ulp<float>())), a);
-  return a;
-}
-static_assert(detail::constants::kLatticeRotateY > 0 && detail::constants::kLatticeRotateZ > 0,
-              "split_fast rotates by 32 - R");
-
-// Lane-by-lane split of double coordinates q[lane] through core/lattice.hpp:
-// exactly what scalar evaluation computes.
-template <bool kGradient, int kAxis>
-HWY_INLINE axis split_doubles(const double* q, std::uint32_t period) {
-  const DF df;
-  const DU du;
-  HWY_ALIGN float fs[kMaxLanes];
-  HWY_ALIGN std::uint32_t i0s[kMaxLanes], i1s[kMaxLanes];
-  for (std::size_t l = 0; l < hn::Lanes(df); ++l) {
-    const lattice_coord<float> c = lattice_split<float>(q[l], period);
-    i0s[l] = c.i0;
-    i1s[l] = c.i1;
-    fs[l] = c.f;
-  }
-  axis a;
-  a.w0 = word<kAxis>(hn::Load(du, i0s));
-  a.w1 = word<kAxis>(hn::Load(du, i1s));
-  fill_axis<kGradient>(hn::Load(df, fs), a);
-  return a;
-}
-
-// Lane-by-lane split of float coordinates: NaN, Inf, |x| >= 2^22 and
-// periodic axes. Same result as scalar evaluation by construction.
-template <bool kGradient, int kAxis>
-HWY_NOINLINE axis split_lanes(VF xv, std::uint32_t period) {
-  const DF df;
-  HWY_ALIGN float xs[kMaxLanes];
-  double q[kMaxLanes];
-  hn::Store(xv, df, xs);
-  for (std::size_t l = 0; l < hn::Lanes(df); ++l) q[l] = double(xs[l]);
-  return split_doubles<kGradient, kAxis>(q, period);
-}
-
-// Lanes with |x| < 2^22 (false for NaN): where the vector split is exact.
-HWY_INLINE hn::Mask<DF> in_fast_range(VF x) {
-  const DF df;
-  return hn::Lt(hn::Abs(x), hn::Set(df, kFastSplitLimit));
-}
-
-template <bool kGradient, int kAxis>
-HWY_INLINE axis split(VF xv, std::uint32_t period) {
-  if (period == 0 && hn::AllTrue(DF(), in_fast_range(xv))) return split_fast<kGradient, kAxis>(xv);
-  return split_lanes<kGradient, kAxis>(xv, period);
-}
-
-// Split points -> values (and interleaved gradients) of one vector.
-template <bool kGradient, int D>
-HWY_INLINE void points_from_axes(VU key, const axis& ax, const axis& ay, const axis& az,
-                                 float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
-  VU kyz[4];
-  key_words<D>(key, ay, az, kyz);
-  corners k;
-  hashed_corners<kGradient, D>(ax, kyz, ay, az, k);
-  VF v, g[3];
-  finish<kGradient, D>(k, ax, ay, az, v, g);
-  hn::StoreU(v, DF(), value);
-  if constexpr (kGradient) store_interleaved<D>(g, grad);
-}
-
-// A vector with a lane the fast split cannot take, or periodic noise: each
-// axis splits by the vector or lane by lane, whichever is exact. Out of line,
-// so that the common path keeps its registers.
-template <bool kGradient, int D>
-HWY_NOINLINE void points_vector_lanes(VU key, const std::uint32_t* period, VF x, VF y, VF z,
-                                      float* HWY_RESTRICT value, float* HWY_RESTRICT grad) {
-  const axis ax = split<kGradient, 0>(x, period[0]);
-  const axis ay = split<kGradient, 1>(y, period[1]);
-  axis az{};
-  if constexpr (D == 3) az = split<kGradient, 2>(z, period[2]);
-  points_from_axes<kGradient, D>(key, ax, ay, az, value, grad);
-}
-
-// One vector of D-dimensional points (interleaved) -> values (and
-// interleaved gradients), if every lane can take the vector split: returns
-// false, writing nothing, if one cannot (then points_vector_lanes does it).
-template <bool kGradient, int D>
-HWY_INLINE bool points_vector_fast(VU key, const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
-                                   float* HWY_RESTRICT grad) {
-  const DF df;
-  VF x, y, z = hn::Zero(df);
-  if constexpr (D == 2)
-    hn::LoadInterleaved2(df, pts, x, y);
-  else
-    hn::LoadInterleaved3(df, pts, x, y, z);
-  auto fast = hn::And(in_fast_range(x), in_fast_range(y));
-  if constexpr (D == 3) fast = hn::And(fast, in_fast_range(z));
-  if (HWY_UNLIKELY(!hn::AllTrue(df, fast))) return false;
-  axis az{};
-  if constexpr (D == 3) az = split_fast<kGradient, 2>(z);
-  points_from_axes<kGradient, D>(key, split_fast<kGradient, 0>(x), split_fast<kGradient, 1>(y), az,
-                                 value, grad);
-  return true;
-}
-
-// Any vector of points, periodic noise included.
-template <bool kGradient, int D>
-HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
-                              const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
-                              float* HWY_RESTRICT grad) {
-  if (plain && points_vector_fast<kGradient, D>(key, pts, value, grad)) return;
-  const DF df;
-  VF x, y, z = hn::Zero(df);
-  if constexpr (D == 2)
-    hn::LoadInterleaved2(df, pts, x, y);
-  else
-    hn::LoadInterleaved3(df, pts, x, y, z);
-  points_vector_lanes<kGradient, D>(key, period, x, y, z, value, grad);
-}
-
-// Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
-// vector at a time (simd/batch-inl.h: the tail through zero-padded buffers).
-// One call site, so the vector function inlines into the loop.
-template <bool kGradient, int D, class Fn>
-HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
-                                      const Fn& vector_fn) {
-  simd_batch::for_each_vector<D>(n, pts, value, kGradient ? grad : nullptr,
-                                 [&](std::size_t, const float* p, float* v, float* g)
-                                     HWY_ATTR { vector_fn(p, v, g); });
-}
-
-template <bool kGradient, int D>
-HWY_NOINLINE void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts,
-                                std::size_t n, float* value, float* grad) {
-  const VU vkey = hn::Set(DU(), key);
-  bool plain = true;
-  for (int a = 0; a < D; ++a) plain = plain && period[a] == 0;
-  // Whole vectors, then the rest through zero-padded buffers (no lane reads
-  // or writes out of bounds). points_vector inlines at both sites.
-  const std::size_t lanes = hn::Lanes(DF());
-  std::size_t i = 0;
-  while (i + lanes <= n) {
-    // The common case runs in a loop without calls, which keeps its constants
-    // in registers; a vector it cannot take leaves it for points_vector.
-    if (plain)
-      for (; i + lanes <= n; i += lanes)
-        if (!points_vector_fast<kGradient, D>(vkey, pts + i * D, value + i,
-                                              kGradient ? grad + i * D : nullptr))
-          break;
-    if (i + lanes > n) break;
-    points_vector<kGradient, D>(vkey, plain, period, pts + i * D, value + i,
-                                kGradient ? grad + i * D : nullptr);
-    i += lanes;
-  }
-  if (i == n) return;
-  const std::size_t rest = n - i;
-  HWY_ALIGN float in[kMaxLanes * D] = {}, out[kMaxLanes], g[kMaxLanes * D];
-  std::memcpy(in, pts + i * D, rest * D * sizeof(float));
-  points_vector<kGradient, D>(vkey, plain, period, in, out, g);
-  std::memcpy(value + i, out, rest * sizeof(float));
-  if constexpr (kGradient) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
-}
-
-}  // namespace perlin_simd
-
-// Perlin at n interleaved points (x0, y0[, z0], x1, ...); values into
-// `value[n]`, and interleaved gradients into `grad[D n]` unless grad is null.
-template <int D>
-void perlin_points(std::uint32_t key, const std::uint32_t* period, const float* pts, std::size_t n,
-                   float* value, float* grad) {
-  if (grad)
-    perlin_simd::perlin_points<true, D>(key, period, pts, n, value, grad);
-  else
-    perlin_simd::perlin_points<false, D>(key, period, pts, n, value, nullptr);
-}
-inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
-                           std::size_t n, float* value, float* grad) {
-  perlin_points<2>(key, period, xy, n, value, grad);
-}
-inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float* xyz,
-                           std::size_t n, float* value, float* grad) {
-  perlin_points<3>(key, period, xyz, n, value, grad);
-}
-
-namespace perlin_simd {
-
-// ---- Grids. The x axis is split once per column (in double, by
-// lattice_split, exactly as scalar evaluation does) and reused by every row;
-// y (and z) are split once per row and broadcast.
+// ---- begin hush/wavelet_tile.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Consecutive columns share cells (the benchmark has 37 per cell), and the
-// corner gradients of a cell are the same for every sample of a row in it.
-// So each row hashes its lattice points once and keeps, per cell and corner,
-// the gradient's x component gx and the row-constant rest of the dot product
-//   K = gy f_y (2D),  K = gy f_y + gz f_z (3D),
-// and a sample needs d = gx f_x + K: exactly the scalar sums (perlin.hpp).
-// A vector of columns spans at most Lanes cells, so its cells' entries are
-// one unaligned load and a permute away. Rows whose cells are not shared
-// (steps near or above one cell) hash per sample instead.
-struct grid_columns {
-  std::size_t n = 0, padded = 0, cells = 0;
-  std::vector<float> f, s, ds;
-  std::vector<std::uint32_t> w0, w1;    // per column: x words of its cell's two lattice points
-  std::vector<std::uint32_t> local;     // per column: its cell's rank minus its vector's base
-  std::vector<std::uint32_t> base;      // per vector of columns: the rank of its first cell
-  std::vector<std::uint32_t> cw0, cw1;  // per cell rank: x words, padded to whole vectors
-  bool shared = false;                  // at least two columns per cell on average
+// hush::wavelet_tile<D>: the periodic tile of noise coefficients of wavelet noise
+// (Cook & DeRose, "Wavelet Noise", SIGGRAPH 2005, sec. 3.4, 3.6, 4.2, 4.3,
+// Appendix 1), 2D or 3D, built once per (size, seed, even/odd correction) and
+// shared (core/tile_cache.hpp).
+//
+// Construction (n = size, the tile is periodic with period n on every axis):
+//  1. R: n^D independent standard Gaussians r_i from hush::rng (seed, stream D),
+//     read in index order (x fastest). R(y) = sum_i r_i B(y - i) lies in the
+//     full-resolution space S^1 of the quadratic B-spline B (core/bspline.hpp).
+//  2. Along every axis in turn, each line is projected onto the half-resolution
+//     space S^0 spanned by B((y - 1/2)/2 - m), m = 0 ... n/2 - 1: the analysis
+//     (least-squares) filter c_m = sum_k a_(k - 2m) x_k (eq. 16), then refined
+//     back to S^1 by u_k = sum_m p_(k - 2m) c_m (eq. 12, p = constants.hpp
+//     kWaveletRefine). After all D axes this is the projection Q of R onto the
+//     coarse tensor space (S^0)^D.
+//  3. N = R - Q R (eq. 20, 26): the band, orthogonal to (S^0)^D (eq. 30, 31).
+//  4. The even/odd correction (sec. 4.3, Appendix 1): the analysis and
+//     refinement treat even and odd coefficients differently, so the variance of
+//     N(y) is periodic with period 2, not 1 (in 2D the cells [2m, 2m + 1) between
+//     coefficients, inside a coarse basis function, have 16 to 18 % less variance
+//     than their neighbours). Adding a copy of N shifted by an odd number of
+//     coefficients o (n/2, or n/2 + 1 when that is even) along every axis makes
+//     it 1-periodic (equal within 1 %; tests/wavelet_tile_test.cpp). The copy
+//     lies in a shifted wavelet space whose components near the coarse Nyquist
+//     frequency are no longer cancelled by the coarse basis, so the corrected
+//     tile is not orthogonal to (S^0)^D any more: 11 % of its energy projects
+//     onto it (2D, measured there), against 1e-15 without the correction. The
+//     spectrum, what a renderer sees, is unchanged by shifts. even_odd_fix =
+//     false keeps the exact orthogonality and the period-2 variance.
+//
+// The analysis filter (eq. 16). Let g(d) = <B(. - i), B(. - i - d)> be the
+// B-spline Gram entries (66, 26, 1 / 120 for d = 0, 1, 2; core/bspline.hpp) and
+// h_d = sum_i p_i g(i - d). The normal equations of the least-squares problem
+// min || sum_k x_k B(y - k) - sum_m c_m B((y - 1/2)/2 - m) ||^2 read
+//   2 sum_j g(m - j) c_j = sum_k h_(k - 2m) x_k,
+// so a_d = (1/2) sum_l G^-1(l) h_(d + 2l), with G^-1 the inverse of the Toeplitz
+// Gram matrix. Its symbol is 120 z^2 / Q(z), Q(z) = z^4 + 26 z^3 + 66 z^2 + 26 z
+// + 1, whose roots inside the unit circle are lambda = 2 / (w - sqrt(w^2 - 4)),
+// w = -13 +- sqrt(105) (Q / z^2 = w^2 + 26 w + 64, w = z + 1/z). By residues,
+//   G^-1(l) = 120 sum_lambda lambda^(|l| + 1) / Q'(lambda),
+// which converges to the last bit of a double; |a_d| decays as 0.656^|d|
+// (sqrt of the larger root) and is kept for |d| <= kWaveletAnalysisRadius (tail
+// below 2e-18). a is symmetric about 1/2 and sums to 1 (even and odd taps to 1/2
+// each); a composed with the refinement is the identity on S^0 (tested).
+// Against the paper's 6-digit table (Appendix 1, symmetric about -1/2 in its
+// indexing): every tap agrees within 8e-6 except the outermost pair, where the
+// table has 0.000334 and the exact value is -0.000173 (and the appendix's loop
+// over k = 2i - 16 ... 2i + 16 reads a 33rd tap past the end of its 32-entry
+// array); the table's 0.003546 against 0.003545 (exact 0.0035446) breaks its
+// symmetry. Effect, measured on 1D bands (mean of 20
+// seeds, n = 256; tests/wavelet_tile_test.cpp): the band keeps 4.7e-6 of its
+// energy in S^0 with the table, 2.8e-6 with the exact taps cut to the same 32,
+// and 1e-29 with hush's.
+//
+// Periodic tiles use the filter periodised to n (taps d and d + n summed), which
+// is the exact least-squares projection for periodic coefficient sequences.
+//
+// Statistics: the coefficients are Gaussian (linear in the r_i). variance() is
+// sigma_N^2, the spatial average of N(y)^2 over the whole tile, computed exactly
+// from the stored float coefficients: (1/n^D) sum_i n_i (G n)_i with G the
+// tensor Gram matrix. projected_variance(axis, exact) is the same for the noise
+// projected along that axis (beta or the double-width B-spline along it).
+// Expected values over seeds (n -> infinity) are in docs/wavelet.md beside the
+// paper's 0.265 (2D), 0.210 (3D), 0.296 (projected).
+#ifndef HUSH_WAVELET_TILE_HPP
+#define HUSH_WAVELET_TILE_HPP
 
-  // Column i's x coordinate is position(i), a double.
-  template <class Position>
-  grid_columns(std::size_t count, std::uint32_t period, bool gradient, Position position)
-      : n(count) {
-    const std::size_t lanes = hn::Lanes(DF());
-    padded = (n + lanes - 1) / lanes * lanes;
-    f.assign(padded, 0.0f);
-    s.assign(padded, 0.0f);
-    w0.assign(padded, 0u);
-    w1.assign(padded, 0u);
-    local.assign(padded, 0u);
-    base.assign(padded / lanes, 0u);
-    if (gradient) ds.assign(padded, 0.0f);
-    std::uint32_t rank = 0, prev_i0 = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const lattice_coord<float> c = lattice_split<float>(position(i), period);
-      f[i] = c.f;
-      s[i] = detail::fade(c.f);
-      if (gradient) ds[i] = detail::fade_derivative(c.f);
-      w0[i] = lattice_word_x(c.i0);
-      w1[i] = lattice_word_x(c.i1);
-      // A new cell starts where i0 changes (i1 follows from i0 and the period).
-      if (i > 0 && c.i0 != prev_i0) ++rank;
-      if (i == 0 || c.i0 != prev_i0) {
-        cw0.push_back(w0[i]);
-        cw1.push_back(w1[i]);
-      }
-      prev_i0 = c.i0;
-      if (i % lanes == 0) base[i / lanes] = rank;
-      local[i] = rank - base[i / lanes];  // < lanes: each column adds at most one cell
-    }
-    // Padding lanes repeat the last column's cell: a vector's lanes then share
-    // one cell exactly when its last lane's local rank is 0 (corners_at).
-    for (std::size_t i = n; i < padded; ++i) local[i] = local[n - 1];
-    cells = cw0.size();
-    cw0.resize((cells + lanes - 1) / lanes * lanes, 0u);
-    cw1.resize(cw0.size(), 0u);
-    shared = detail::grid_cells_shared(cells, n);
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+
+namespace hush {
+namespace detail {
+
+// G^-1(l): the inverse of the B-spline Gram matrix (Toeplitz, entries g(d)), by
+// the residue formula in the file comment.
+inline double bspline_gram_inverse(int l) {
+  const double q0 = bspline_gram(0), q1 = bspline_gram(1), q2 = bspline_gram(2);
+  // Q(z) = (q2 z^4 + q1 z^3 + q0 z^2 + q1 z + q2) / q2; Q / z^2 = w^2 + (q1/q2) w + q0/q2 - 2.
+  const double b = q1 / q2, c = q0 / q2 - 2.0;
+  const double disc = std::sqrt(b * b - 4.0 * c);
+  double sum = 0;
+  for (const double w : {(-b + disc) / 2.0, (-b - disc) / 2.0}) {
+    const double lambda = 2.0 / (w - std::sqrt(w * w - 4.0));  // the root inside |z| < 1
+    const double dq = 4.0 * lambda * lambda * lambda + 3.0 * b * lambda * lambda +
+                      2.0 * (q0 / q2) * lambda + b;  // Q'(lambda)
+    sum += std::pow(lambda, std::abs(l) + 1) / (q2 * dq);
   }
+  return sum;
+}
 
-  template <bool kGradient>
-  HWY_INLINE axis load(std::size_t i) const {
-    const DU du;
-    axis a;
-    a.w0 = hn::LoadU(du, w0.data() + i);
-    a.w1 = hn::LoadU(du, w1.data() + i);
-    fill_axis_loaded<kGradient>(i, a);
+// The analysis filter a_d for d in [1 - R, R] (R = kWaveletAnalysisRadius), index d - 1 + R.
+inline const std::vector<double>& wavelet_analysis_filter() {
+  static const std::vector<double> taps = [] {
+    constexpr int R = constants::kWaveletAnalysisRadius;
+    constexpr int kFirst = constants::kWaveletRefineFirst;
+    auto h = [](int d) {
+      double s = 0;
+      for (int i = 0; i < 4; ++i) {
+        const int k = kFirst + i, lag = std::abs(k - d);
+        if (lag < kBsplineGramReach) s += constants::kWaveletRefine[i] * bspline_gram(lag);
+      }
+      return s;
+    };
+    std::vector<double> a(static_cast<std::size_t>(2 * R));
+    for (int d = 1 - R; d <= R; ++d) {
+      double s = 0;
+      // h is non-zero for |d - 1/2| < 4: the terms with |l| > R + 4 are below 1e-40.
+      for (int l = -R - 4; l <= R + 4; ++l) s += bspline_gram_inverse(l) * h(d + 2 * l);
+      a[static_cast<std::size_t>(d + R) - 1] = 0.5 * s;
+    }
     return a;
-  }
-  // Fractions and fades only (the table path needs no words).
-  template <bool kGradient>
-  HWY_INLINE void fill_axis_loaded(std::size_t i, axis& a) const {
-    const DF df;
-    a.f = hn::LoadU(df, f.data() + i);
-    a.f1 = hn::Sub(a.f, hn::Set(df, 1.0f));
-    a.s = hn::LoadU(df, s.data() + i);
-    if constexpr (kGradient) a.ds = hn::LoadU(df, ds.data() + i);
-  }
-};
-
-// A row-constant axis (y or z): scalar split broadcast to all lanes.
-struct row_axis {
-  std::uint32_t w0 = 0, w1 = 0;
-  float f = 0, f1 = 0, s = 0, ds = 0;
-  axis a;
-};
-template <bool kGradient, int kAxis>
-HWY_INLINE row_axis broadcast_axis(double p, std::uint32_t period) {
-  const DF df;
-  const lattice_coord<float> c = lattice_split<float>(p, period);
-  row_axis r;
-  r.w0 = kAxis == 1 ? lattice_word_y(c.i0) : lattice_word_z(c.i0);
-  r.w1 = kAxis == 1 ? lattice_word_y(c.i1) : lattice_word_z(c.i1);
-  r.f = c.f;
-  r.f1 = c.f - 1.0f;
-  r.s = detail::fade(c.f);
-  if constexpr (kGradient) r.ds = detail::fade_derivative(c.f);
-  r.a.f = hn::Set(df, r.f);
-  r.a.f1 = hn::Set(df, r.f1);
-  r.a.s = hn::Set(df, r.s);
-  if constexpr (kGradient) r.a.ds = hn::Set(df, r.ds);
-  return r;
+  }();
+  return taps;
 }
 
-// The lattice words and fractions of one grid row (2D: z unused).
-struct grid_row {
-  std::uint32_t key;
-  row_axis y, z;
-  // key ^ word_y(j_b) ^ word_z(k_c) for corner offsets (b, c), index b + 2c.
-  std::uint32_t kyz(int b, int c) const { return key ^ (b ? y.w1 : y.w0) ^ (c ? z.w1 : z.w0); }
-};
+inline int wavelet_mod(long long x, int n) {
+  const long long r = x % n;
+  return static_cast<int>(r < 0 ? r + n : r);
+}
 
-// Per-row, per-cell corner data for the shared-cell path: for corner n and
-// cell rank r, gx (and for gradients gy, gz) and K, at [n * stride + r].
-// kAffine (3D with gradients): instead of K, the cells' slice data
-// (detail::slice_gradient_coef, rebuilt when the slice or the y cell
-// changes) and the row's gradient coefficients (detail::row_gradient_coef)
-// at [m * stride + r]; samples then read only those.
-template <bool kGradient, int D, bool kAffine = kGradient&& D == 3>
-struct row_tables {
-  static_assert(!kAffine || (kGradient && D == 3), "the affine row gradient is 3D");
-  static constexpr int kCorners = 1 << D;
-  std::size_t stride = 0;
-  std::vector<float> gx, k, gy, gz, slice, coef;
-  // The y/z words the gradients were hashed for: consecutive rows in the same
-  // y (and z) cell keep them and only recompute k (the benchmark's grids have
-  // 37 rows per cell); kAffine: the z fraction the slice data is for.
-  std::uint32_t hashed_kyz[4] = {};
-  bool hashed = false;
-  float slice_fz = 0;
-
-  explicit row_tables(const grid_columns& cols) {
-    const std::size_t lanes = hn::Lanes(DF());
-    stride = cols.cw0.size() + lanes;  // a vector's load at its base rank stays inside
-    const std::size_t size = stride * kCorners;
-    gx.assign(size, 0.0f);
-    if (!kAffine) k.assign(size, 0.0f);
-    gy.assign(size, 0.0f);
-    if (D == 3) gz.assign(size, 0.0f);
-    if (kAffine) {
-      slice.assign(stride * detail::kSliceGradientCoefs, 0.0f);
-      coef.assign(stride * detail::kRowGradientCoefs, 0.0f);
+// Projects every line of `x` along one axis (stride, n coefficients, period n)
+// onto S^0 and back: x <- P A x, line by line.
+inline void wavelet_down_up(std::vector<double>& x, int n, std::size_t stride) {
+  const std::vector<double>& a = wavelet_analysis_filter();
+  constexpr int R = constants::kWaveletAnalysisRadius;
+  // The filter periodised to n: taps (offset mod n, weight), merged.
+  std::vector<double> per(static_cast<std::size_t>(n), 0.0);
+  for (int d = 1 - R; d <= R; ++d)
+    per[static_cast<std::size_t>(wavelet_mod(d, n))] += a[static_cast<std::size_t>(d + R) - 1];
+  std::vector<int> off;
+  std::vector<double> wt;
+  for (int j = 0; j < n; ++j)
+    if (per[static_cast<std::size_t>(j)] != 0.0) {
+      off.push_back(j);
+      wt.push_back(per[static_cast<std::size_t>(j)]);
     }
-  }
-
-  // The corner gradients of cells [r, r + lanes) (x words wx) against the
-  // row's y/z words.
-  HWY_INLINE void hash_cells(const VU* wx, const std::uint32_t* words, std::size_t r) {
-    const DF df;
-    const DU du;
-    HWY_UNROLL(8)
-    for (int n = 0; n < kCorners; ++n) {
-      const int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
-      const std::size_t at = static_cast<std::size_t>(n) * stride + r;
-      const VU h = hash32_high(hn::Xor(wx[a], hn::Set(du, words[b + 2 * c])));
-      if constexpr (D == 2) {
-        constexpr int kN = detail::constants::kPerlin2GradCount;
-        const VU g = grad_index2(h);
-        hn::StoreU(lookup<kN>(kG2x, g), df, gx.data() + at);
-        hn::StoreU(lookup<kN>(kG2y, g), df, gy.data() + at);
-      } else {
-        constexpr int kN = detail::constants::kPerlin3GradCount;
-        const VU g = grad_index3(h);
-        hn::StoreU(lookup<kN>(kG3x, g), df, gx.data() + at);
-        hn::StoreU(lookup<kN>(kG3y, g), df, gy.data() + at);
-        hn::StoreU(lookup<kN>(kG3z, g), df, gz.data() + at);
+  const int half = n / 2;
+  std::vector<double> line(static_cast<std::size_t>(n)), coarse(static_cast<std::size_t>(half));
+  const std::size_t count = x.size();
+  for (std::size_t base = 0; base < count; ++base) {
+    if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;  // not a line start
+    for (int k = 0; k < n; ++k) line[static_cast<std::size_t>(k)] = x[base + k * stride];
+    for (int m = 0; m < half; ++m) {  // c_m = sum_j per_j x_(2m + j)
+      double s = 0;
+      for (std::size_t t = 0; t < off.size(); ++t) {
+        int k = 2 * m + off[t];
+        if (k >= n) k -= n;
+        s += wt[t] * line[static_cast<std::size_t>(k)];
       }
+      coarse[static_cast<std::size_t>(m)] = s;
     }
-  }
-
-  // fn(dc, r) for every chunk of cells [r, r + Lanes(dc)): chunks of at most
-  // 8 lanes where the row's cells fit in one (a 64-sample row of the
-  // benchmark has 2 or 3 cells, and this machine's 512-bit operations cost
-  // two 256-bit ones), whole vectors otherwise.
-  template <class Fn>
-  static HWY_INLINE void for_each_cell_chunk(std::size_t cells, const Fn& fn) {
-    using DC = hn::CappedTag<float, 8>;
-    if (hn::MaxLanes(DC()) < hn::MaxLanes(DF()) && cells <= hn::Lanes(DC())) {
-      fn(DC(), std::size_t(0));
-      return;
-    }
-    for (std::size_t r = 0; r < cells; r += hn::Lanes(DF())) fn(DF(), r);
-  }
-
-  // Hashes the row's lattice points (cells' x words against the row's y/z
-  // words) unless the previous row had the same ones, then forms k (or, for
-  // kAffine, the slice data where the slice changed and the row's
-  // coefficients).
-  HWY_INLINE void build(const grid_columns& cols, const grid_row& row) {
-    const DF df;
-    const DU du;
-    const std::size_t lanes = hn::Lanes(df);
-    const std::uint32_t words[4] = {row.kyz(0, 0), row.kyz(1, 0), row.kyz(0, 1), row.kyz(1, 1)};
-    const bool same = hashed && std::equal(words, words + 4, hashed_kyz);
-    std::copy(words, words + 4, hashed_kyz);
-    hashed = true;
-    if constexpr (kAffine) {
-      if (!same)
-        for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
-          const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
-          hash_cells(wx, words, r);
-        }
-      // NaN fractions never compare equal: such slices are rebuilt every row.
-      const bool new_slice = !same || !(row.z.f == slice_fz);
-      slice_fz = row.z.f;
-      for_each_cell_chunk(cols.cells, [&](auto dc, std::size_t r) HWY_ATTR {
-        if (new_slice)
-          slice_coefs(dc, stride, r, gx.data(), gy.data(), gz.data(), row.z.f, row.z.f1, row.z.s,
-                      row.z.ds, slice.data());
-        row_coefs(dc, stride, r, slice.data(), row.y.f, row.y.f1, row.y.s, row.y.ds, coef.data());
-      });
-      return;
-    }
-    for (std::size_t r = 0; r < cols.cw0.size(); r += lanes) {
-      if (!same) {
-        const VU wx[2] = {hn::LoadU(du, cols.cw0.data() + r), hn::LoadU(du, cols.cw1.data() + r)};
-        hash_cells(wx, words, r);
+    for (int k = 0; k < n; ++k) {  // u_k = sum_t p_t c_((k - t) / 2), k - t even
+      double s = 0;
+      for (int i = 0; i < 4; ++i) {
+        const int t = constants::kWaveletRefineFirst + i;
+        if (((k - t) & 1) != 0) continue;
+        s += constants::kWaveletRefine[i] *
+             coarse[static_cast<std::size_t>(wavelet_mod((k - t) / 2, half))];
       }
-      HWY_UNROLL(8)
-      for (int n = 0; n < kCorners; ++n) {
-        const int b = (n >> 1) & 1, c = n >> 2;
-        const std::size_t at = static_cast<std::size_t>(n) * stride + r;
-        const VF cy = hn::LoadU(df, gy.data() + at);
-        const VF fy = hn::Set(df, b ? row.y.f1 : row.y.f);
-        VF kk;
-        if constexpr (D == 2)
-          kk = hn::Mul(cy, fy);
-        else
-          kk = mul_add(cy, fy,
-                       hn::Mul(hn::LoadU(df, gz.data() + at), hn::Set(df, c ? row.z.f1 : row.z.f)));
-        hn::StoreU(kk, df, k.data() + at);
-      }
+      x[base + k * stride] = s;
     }
   }
+}
 
-  // Calls fn(b, entry) for the vector of columns starting at column i, with
-  // b its first cell's rank and entry(table, at) giving each lane the entry
-  // of its cell. Where all lanes share one cell (most vectors when cells hold
-  // many samples) a broadcast replaces the permute. fn inlines into each
-  // branch on its own, so the entries stay in registers.
-  template <class Fn>
-  HWY_INLINE void with_entries(const grid_columns& cols, std::size_t i, const Fn& fn) const {
-    const DF df;
-    const std::size_t lanes = hn::Lanes(df);
-    const std::size_t b = cols.base[i / lanes];
-    if (cols.local[i + lanes - 1] == 0) {
-      fn(b,
-         [&](const std::vector<float>& t, std::size_t at) HWY_ATTR { return hn::Set(df, t[at]); });
-    } else {
-      const DU du;
-      const DI di;
-      const auto idx =
-          hn::IndicesFromVec(df, hn::BitCast(di, hn::LoadU(du, cols.local.data() + i)));
-      fn(b, [&](const std::vector<float>& t, std::size_t at)
-                HWY_ATTR { return hn::TableLookupLanes(hn::LoadU(df, t.data() + at), idx); });
+// Applies the circulant kernel k(d), |d| < reach, along one axis of the periodic array x.
+template <class Kernel>
+void wavelet_convolve_axis(std::vector<double>& x, int n, std::size_t stride, int reach, Kernel k) {
+  std::vector<double> line(static_cast<std::size_t>(n)), kd(static_cast<std::size_t>(reach));
+  for (int d = 0; d < reach; ++d) kd[static_cast<std::size_t>(d)] = k(d);
+  for (std::size_t base = 0; base < x.size(); ++base) {
+    if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;
+    for (int i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = x[base + i * stride];
+    for (int i = 0; i < n; ++i) {
+      double s = 0;
+      for (int d = 1 - reach; d < reach; ++d)
+        s += kd[static_cast<std::size_t>(std::abs(d))] *
+             line[static_cast<std::size_t>(wavelet_mod(i + d, n))];
+      x[base + i * stride] = s;
     }
   }
-  // out from the entries at cell rank b, read per corner by entry(table, index).
-  template <class Entry>
-  HWY_INLINE void corners_from(std::size_t b, const axis& x, corners& out,
-                               const Entry& entry) const {
-    HWY_UNROLL(8)
-    for (int n = 0; n < kCorners; ++n) {
-      const std::size_t at = static_cast<std::size_t>(n) * stride + b;
-      const VF cx = entry(gx, at);
-      out.d[n] = mul_add(cx, (n & 1) ? x.f1 : x.f, entry(k, at));
-      if constexpr (kGradient) {
-        out.gx[n] = cx;
-        out.gy[n] = entry(gy, at);
-        if constexpr (D == 3) out.gz[n] = entry(gz, at);
-      }
-    }
-  }
-  // kAffine: the value and gradient from the cell coefficients at rank b.
-  template <class Entry>
-  HWY_INLINE void affine_from(std::size_t b, const axis& x, const Entry& entry, VF& value,
-                              VF* grad) const {
-    VF co[detail::kRowGradientCoefs];
-    HWY_UNROLL(12)
-    for (int m = 0; m < detail::kRowGradientCoefs; ++m)
-      co[m] = entry(coef, static_cast<std::size_t>(m) * stride + b);
-    row_gradient(co, x, value, grad);
-  }
-};
-
-// One grid row's evaluation, either path: vector_out(i, value, gradient)
-// receives each vector of columns [i, i + lanes).
-template <bool kGradient, int D, bool kAffine = kGradient&& D == 3>
-struct row_evaluator {
-  const grid_columns& cols;
-  row_tables<kGradient, D, kAffine> tables;
-
-  explicit row_evaluator(const grid_columns& c) : cols(c), tables(c) {}
-
-  // Makes `row` current (the shared path builds its cell tables).
-  HWY_INLINE void prepare(const grid_row& row) {
-    if (cols.shared) tables.build(cols, row);
-  }
-  // out(value, gradient) for the vector of columns [i, i + lanes) of the
-  // prepared row; out inlines into each branch, keeping its inputs in registers.
-  template <class Out>
-  HWY_INLINE void vector(const grid_row& row, std::size_t i, const Out& out) const {
-    VF v, g[3];
-    corners k;
-    if (cols.shared) {
-      axis x;
-      cols.fill_axis_loaded<kGradient>(i, x);
-      tables.with_entries(cols, i, [&](std::size_t b, const auto& entry) HWY_ATTR {
-        if constexpr (kAffine) {
-          tables.affine_from(b, x, entry, v, g);
-        } else {
-          tables.corners_from(b, x, k, entry);
-          finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-        }
-        out(v, g);
-      });
-    } else {
-      const DU du;
-      const VU kyz[4] = {hn::Set(du, row.kyz(0, 0)), hn::Set(du, row.kyz(1, 0)),
-                         hn::Set(du, row.kyz(0, 1)), hn::Set(du, row.kyz(1, 1))};
-      const axis x = cols.load<kGradient>(i);
-      hashed_corners<kGradient, D>(x, kyz, row.y.a, row.z.a, k);
-      finish<kGradient, D>(k, x, row.y.a, row.z.a, v, g);
-      out(v, g);
-    }
-  }
-  // vector_out(i, value, gradient) for every vector of columns of `row`.
-  template <class Out>
-  HWY_INLINE void run(const grid_row& row, const Out& vector_out) {
-    prepare(row);
-    for (std::size_t i = 0; i < cols.n; i += hn::Lanes(DF()))
-      vector(row, i, [&](VF v, const VF* g) HWY_ATTR { vector_out(i, v, g); });
-  }
-};
-
-// Stores one vector of results for columns [i, i + lanes) of a row, through
-// a buffer when the row ends inside the vector.
-template <int D>
-HWY_INLINE void store_row(std::size_t i, std::size_t nx, VF v, const VF* g, float* row_value,
-                          float* row_grad) {
-  const DF df;
-  const std::size_t lanes = hn::Lanes(df);
-  const bool full = i + lanes <= nx;
-  HWY_ALIGN float vb[kMaxLanes], gb[kMaxLanes * D];
-  hn::StoreU(v, df, full ? row_value + i : vb);
-  if (row_grad) store_interleaved<D>(g, full ? row_grad + i * D : gb);
-  if (full) return;
-  std::memcpy(row_value + i, vb, (nx - i) * sizeof(float));
-  if (row_grad) std::memcpy(row_grad + i * D, gb, (nx - i) * D * sizeof(float));
 }
 
-// The rows (j, k) of the slab [first, first + count) of the slowest axis, in
-// output order: f(j, k, r) with r the row's index inside the slab.
-template <int D, class F>
-HWY_INLINE void for_each_row(const grid<D>& g, std::size_t first, std::size_t count, const F& f) {
-  const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
-  const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
-  std::size_t r = 0;
-  for (std::size_t k = k0; k < k1; ++k)
-    for (std::size_t j = j0; j < j1; ++j, ++r) f(j, k, r);
-}
-
-template <bool kGradient, int D>
-void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
-                 std::size_t first, std::size_t count, float* value, float* grad) {
-  const std::size_t nx = g.size[0];
-  const grid_columns cols(nx, period[0], kGradient,
-                          [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
-  row_evaluator<kGradient, D> rows(cols);
-  grid_row row{key, {}, {}};
-  std::size_t split_k = ~std::size_t(0);  // the slice row.z holds
-  for_each_row<D>(g, first, count, [&](std::size_t j, std::size_t k, std::size_t r) HWY_ATTR {
-    if constexpr (D == 3) {
-      if (k != split_k)
-        row.z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
-      split_k = k;
-    }
-    row.y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
-    float* row_value = value + r * nx;
-    float* row_grad = kGradient ? grad + r * nx * D : nullptr;
-    rows.run(row, [&](std::size_t i, VF v, const VF* gr)
-                      HWY_ATTR { store_row<D>(i, nx, v, gr, row_value, row_grad); });
-  });
-}
-
-}  // namespace perlin_simd
-
-// Perlin on a uniform grid (C order, i fastest); gradients interleaved (D
-// per sample) unless grad is null; the slab [first, first + count) of the
-// slowest axis (hush/simd/dispatch.hpp).
-template <int D>
-void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& g,
-                 std::size_t first, std::size_t count, float* value, float* grad) {
-  if (grad)
-    perlin_simd::perlin_grid<true, D>(key, period, g, first, count, value, grad);
-  else
-    perlin_simd::perlin_grid<false, D>(key, period, g, first, count, value, nullptr);
-}
-inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                         std::size_t first, std::size_t count, float* value, float* grad) {
-  perlin_grid<2>(key, period, g, first, count, value, grad);
-}
-inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                         std::size_t first, std::size_t count, float* value, float* grad) {
-  perlin_grid<3>(key, period, g, first, count, value, grad);
-}
-
-namespace perlin_simd {
-
-// ---- Fractal sums of Perlin bands (fractal.hpp): each band is a Perlin
-// field evaluated by the code above at the band position f_i x + o_i, which
-// fractal::band_position forms in double exactly as scalar evaluation does;
-// the weighted sum is accumulated band by band in the same order and with
-// the same operations as fractal::value / value_and_gradient.
-template <int D>
-struct band_config {
-  std::uint32_t key;
-  std::uint32_t period[3];
-  float weight;      // T(w_i)
-  float chain;       // T(w_i f_i): the band gradient's factor
-  double frequency;  // f_i and o_i of the band position f_i x + o_i
-  double offset[3];
-  bool plain;  // no axis periodic: the vector split may take the band
-};
+}  // namespace detail
 
 template <int D>
-std::vector<band_config<D>> band_configs(const fractal<perlin<D>>& fr) {
-  std::vector<band_config<D>> r(static_cast<std::size_t>(fr.band_count()));
-  for (int b = 0; b < fr.band_count(); ++b) {
-    const auto& prm = fr.band_noise(b).parameters();
-    band_config<D>& c = r[static_cast<std::size_t>(b)];
-    c.key = seed_key(prm.seed);
-    for (int a = 0; a < 3; ++a)
-      c.period[a] = a < D ? static_cast<std::uint32_t>(prm.period[a]) : 0u;
-    c.weight = float(fr.band_raw_weight(b));
-    c.chain = float(fr.band_raw_weight(b) * fr.band_frequency(b));
-    c.frequency = fr.band_frequency(b);
-    // f_i 0 + o_i = o_i exactly: the band's offset as the scalar code adds it.
-    const vec<double, D> o = fr.band_position(b, vec<double, D>{});
-    c.plain = true;
-    for (int a = 0; a < 3; ++a) {
-      c.offset[a] = a < D ? o[a] : 0.0;
-      c.plain = c.plain && c.period[a] == 0;
-    }
-  }
-  return r;
-}
+class wavelet_tile {
+  static_assert(D == 2 || D == 3, "hush::wavelet_tile is 2D or 3D");
 
-// The vector split of one axis of a band position, q = x f + o, formed in
-// double as fractal's band position is and split as lattice_split<float>
-// splits it, bit for bit, when every lane's q is finite with |q| < 2^31
-// (the cell then fits an int32, whose two's complement low word is the cell
-// modulo 2^32). Returns false, writing nothing, otherwise: the caller splits
-// lane by lane. The per-lane path cost ~40 ns per point for 4 bands.
-template <bool kGradient, int kAxis>
-HWY_INLINE bool split_band(VF x, double f, double o, axis& a) {
-#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
-  const DF df;
-  const hn::Half<DF> dh;
-  const hn::Repartition<double, DF> dd;
-  const hn::Rebind<float, decltype(dd)> df_of_d;
-  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
-  const auto vf = hn::Set(dd, f), vo = hn::Set(dd, o);
-  const auto position = [&](hn::Vec<decltype(dd)> p) HWY_ATTR {
-#if HUSH_CONFIG_STRICT_FP
-    return hn::Add(hn::Mul(p, vf), vo);
-#else
-    return hn::MulAdd(p, vf, vo);
-#endif
+ public:
+  // What determines a tile: its size, its seed and whether the even/odd
+  // correction is applied.
+  struct key {
+    int size = 0;
+    std::uint32_t seed = 0;
+    bool even_odd_fix = true;
+    friend bool operator<(const key& a, const key& b) {
+      if (a.size != b.size) return a.size < b.size;
+      if (a.seed != b.seed) return a.seed < b.seed;
+      return a.even_odd_fix < b.even_odd_fix;
+    }
   };
-  const auto lo = position(hn::PromoteTo(dd, hn::LowerHalf(dh, x)));
-  const auto hi = position(hn::PromoteTo(dd, hn::UpperHalf(dh, x)));
-  const auto limit = hn::Set(dd, 2147483648.0);  // 2^31; false for NaN
-  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
-    return false;
-  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
-  const VF frac = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
-                              hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
-  const DI di;
-  const VU i0 =
-      hn::BitCast(DU(), hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo)));
-  a.w0 = word<kAxis>(i0);
-  a.w1 = word<kAxis>(hn::Add(i0, hn::Set(DU(), 1u)));
-  fill_axis<kGradient>(hn::Min(frac, hn::Set(df, detail::one_minus_ulp<float>())), a);
-  return true;
-#else
-  (void)x;
-  (void)f;
-  (void)o;
-  (void)a;
-  return false;
-#endif
-}
 
-// acc += band value (and gradient) with fractal.hpp's operations.
-template <bool kGradient, int D>
-HWY_INLINE void accumulate(bool turbulence, const band_config<D>& c, VF v, const VF* g, VF& acc,
-                           VF* gacc) {
-  const DF df;
-  const VF w = hn::Set(df, c.weight);
-  if constexpr (kGradient) {
-    // sign = -1 where turbulence folds a negative value; w sign v, chain sign g.
-    const VF sign =
-        turbulence ? hn::IfThenElse(hn::Lt(v, hn::Zero(df)), hn::Set(df, -1.0f), hn::Set(df, 1.0f))
-                   : hn::Set(df, 1.0f);
-    acc = hn::Add(acc, hn::Mul(hn::Mul(w, sign), v));
-    const VF chain = hn::Mul(hn::Set(df, c.chain), sign);
-    for (int a = 0; a < D; ++a) gacc[a] = hn::Add(gacc[a], hn::Mul(chain, g[a]));
-  } else {
-    (void)g;
-    (void)gacc;
-    acc = hn::Add(acc, hn::Mul(w, turbulence ? hn::Abs(v) : v));
+  // The largest tile size of this dimension.
+  static constexpr int max_size() {
+    return D == 2 ? detail::constants::kWaveletMaxTile2 : detail::constants::kWaveletMaxTile3;
   }
-}
+  // Throws hush::invalid_argument (naming `where` and `name`) unless n is an even
+  // number in [kWaveletMinTile, max_size()] (HARD_CASES row 14).
+  static void validate_size(const char* where, const char* name, int n) {
+    const std::string valid = "an even number from " +
+                              std::to_string(detail::constants::kWaveletMinTile) + " to " +
+                              std::to_string(max_size()) +
+                              " (the tile must be even, Cook & DeRose footnote 4, and at least "
+                              "16 coefficients, wider than the widest kernel's reach)";
+    if (n < detail::constants::kWaveletMinTile || n > max_size() || n % 2 != 0)
+      detail::throw_out_of_range(where, name, n, valid.c_str());
+  }
 
-// One vector of fractal points: band positions split by the vector where
-// split_band can, else per lane in double (NaN, Inf, huge, periodic bands).
-template <bool kGradient, int D>
-HWY_INLINE void fractal_points_vector(const fractal<perlin<D>>& fr,
-                                      const std::vector<band_config<D>>& bands,
-                                      const float* HWY_RESTRICT pts, float* HWY_RESTRICT value,
-                                      float* HWY_RESTRICT grad) {
-  const DF df;
-  const std::size_t lanes = hn::Lanes(df);
-  const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
-  VF acc = hn::Zero(df), gacc[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
-  VF xs[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
-  if constexpr (D == 2)
-    hn::LoadInterleaved2(df, pts, xs[0], xs[1]);
-  else
-    hn::LoadInterleaved3(df, pts, xs[0], xs[1], xs[2]);
-  vec<double, D> p[kMaxLanes];  // the lanes' points in double, once, when a band needs them
-  bool have_p = false;
-  for (std::size_t b = 0; b < bands.size(); ++b) {
-    const band_config<D>& c = bands[b];
-    axis ax{}, ay{}, az{};
-    bool split = c.plain && split_band<kGradient, 0>(xs[0], c.frequency, c.offset[0], ax) &&
-                 split_band<kGradient, 1>(xs[1], c.frequency, c.offset[1], ay);
+  // Builds the tile (see the file comment). Throws hush::invalid_argument for a bad size.
+  explicit wavelet_tile(const key& k) : key_(k) {
+    validate_size("hush::wavelet_tile", "size", k.size);
+    const int n = k.size;
+    std::size_t count = 1;
+    for (int a = 0; a < D; ++a) count *= static_cast<std::size_t>(n);
+    std::vector<double> r(count);
+    rng gen(k.seed, static_cast<std::uint32_t>(D));
+    for (double& v : r) v = gen.gaussian<double>();
+    std::vector<double> q = r;
+    std::size_t stride = 1;
+    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n))
+      detail::wavelet_down_up(q, n, stride);
+    for (std::size_t i = 0; i < count; ++i) q[i] = r[i] - q[i];  // N = R - Q R
+    r.clear();
+    r.shrink_to_fit();
+    const auto un = static_cast<std::size_t>(n), m = static_cast<std::size_t>(row_length());
+    coef_.resize(count / un * m);
+    int offset = n / 2;
+    if (offset % 2 == 0) ++offset;
+    for (std::size_t i = 0; i < count; ++i) {
+      double v = q[i];
+      if (k.even_odd_fix) {
+        std::size_t j = 0, s = 1, rest = i;
+        for (int a = 0; a < D; ++a, s *= static_cast<std::size_t>(n)) {
+          const std::size_t c = rest % static_cast<std::size_t>(n);
+          rest /= static_cast<std::size_t>(n);
+          j += ((c + static_cast<std::size_t>(offset)) % static_cast<std::size_t>(n)) * s;
+        }
+        v += q[j];
+      }
+      // Row i / n, column i % n; a padded row repeats its first columns after n.
+      const auto f = static_cast<float>(v);
+      for (std::size_t x = i % un; x < m; x += un) coef_[i / un * m + x] = f;
+      max_abs_ = std::max(max_abs_, std::fabs(static_cast<double>(f)));
+    }
+    variance_ = quadratic_form(-1, false);
     if constexpr (D == 3)
-      split = split && split_band<kGradient, 2>(xs[2], c.frequency, c.offset[2], az);
-    if (HWY_UNLIKELY(!split)) {
-      if (!have_p) {
-        for (std::size_t l = 0; l < lanes; ++l)
-          for (int a = 0; a < D; ++a) p[l][a] = double(pts[l * D + a]);
-        have_p = true;
+      for (int a = 0; a < 3; ++a) {
+        projected_[a][0] = quadratic_form(a, true);
+        projected_[a][1] = quadratic_form(a, false);
       }
-      double q[3][kMaxLanes];
-      for (std::size_t l = 0; l < lanes; ++l) {
-        const vec<double, D> qb = fr.band_position(static_cast<int>(b), p[l]);
-        for (int a = 0; a < D; ++a) q[a][l] = qb[a];
-      }
-      ax = split_doubles<kGradient, 0>(q[0], c.period[0]);
-      ay = split_doubles<kGradient, 1>(q[1], c.period[1]);
-      if constexpr (D == 3) az = split_doubles<kGradient, 2>(q[2], c.period[2]);
+  }
+
+  // The shared tile of `k` (built on first use; core/tile_cache.hpp).
+  static std::shared_ptr<const wavelet_tile> get(const key& k) {
+    return cache().get(k, [&] { return wavelet_tile(k); });
+  }
+  static tile_cache<key, wavelet_tile>& cache() {
+    static tile_cache<key, wavelet_tile> c;
+    return c;
+  }
+
+  const key& id() const { return key_; }
+  int size() const { return key_.size; }
+  // Coefficients per stored x row: n, plus kWaveletRowPad in 3D (see coefficients()).
+  int row_length() const { return key_.size + kRowPad; }
+  // The index step of tile axis `axis` in coefficients(): 1, row_length(),
+  // row_length() n.
+  int stride(int axis) const { return axis == 0 ? 1 : row_length() * (axis == 2 ? size() : 1); }
+  // The coefficients, the only copy: n^(D-1) x rows of row_length() floats,
+  // coefficient (i_x, i_y[, i_z]) at i_x + row_length() (i_y + n i_z), i_x < n. In 3D
+  // every row is followed by a repeat of its first kWaveletRowPad coefficients, so
+  // that the three x taps of any cell i_x < n and one float more are four adjacent
+  // floats: one unaligned 128-bit load in the SIMD kernels instead of three gathers
+  // (2D tiles are not padded: the largest, 2048^2, fills the 16 MiB a GPU buffer is
+  // guaranteed to hold). storage_size() floats.
+  const float* coefficients() const { return coef_.data(); }
+  std::size_t storage_size() const { return coef_.size(); }
+  // n^D: the number of distinct coefficients.
+  std::size_t count() const { return coef_.size() / static_cast<std::size_t>(row_length()) *
+                                     static_cast<std::size_t>(size()); }
+  // Coefficient i in the unpadded order, i = i_x + n (i_y + n i_z), i < count().
+  float coefficient(std::size_t i) const {
+    const auto n = static_cast<std::size_t>(size());
+    return coef_[i / n * static_cast<std::size_t>(row_length()) + i % n];
+  }
+  // max |n_i|: |N(y)| never exceeds it (every kernel is an average of coefficients).
+  double max_abs() const { return max_abs_; }
+  // sigma_N^2: the mean of N(y)^2 over the tile (file comment).
+  double variance() const { return variance_; }
+  // The same for the noise projected along tile axis `axis` (3D): with the exact
+  // kernel beta (exact = true) or the double-width B-spline.
+  double projected_variance(int axis, bool exact) const { return projected_[axis][exact ? 0 : 1]; }
+  // Memory held, in bytes.
+  std::size_t bytes() const { return sizeof(*this) + coef_.capacity() * sizeof(float); }
+
+ private:
+  // (1/n^D) sum_i n_i (K n)_i with K the tensor product of the Gram kernel along
+  // every axis except `along`, where it is beta's (exact) or B2's autocorrelation.
+  double quadratic_form(int along, bool exact) const {
+    const int n = key_.size;
+    std::vector<double> x(count());
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = coefficient(i);
+    std::size_t stride = 1;
+    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
+      if (a != along)
+        detail::wavelet_convolve_axis(x, n, stride, detail::kBsplineGramReach,
+                                      detail::bspline_gram);
+      else if (exact)
+        detail::wavelet_convolve_axis(x, n, stride, detail::kBetaGramReach, detail::beta_gram);
+      else
+        detail::wavelet_convolve_axis(x, n, stride, detail::kBspline2GramReach,
+                                      detail::bspline2_gram);
     }
-    VU kyz[4];
-    key_words<D>(hn::Set(DU(), c.key), ay, az, kyz);
-    corners k;
-    hashed_corners<kGradient, D>(ax, kyz, ay, az, k);
-    VF v, g[3];
-    finish<kGradient, D>(k, ax, ay, az, v, g);
-    accumulate<kGradient, D>(turbulence, c, v, g, acc, gacc);
+    double s = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) s += static_cast<double>(coefficient(i)) * x[i];
+    return s / static_cast<double>(x.size());
   }
-  const VF scale = hn::Set(df, float(fr.scale()));
-  if constexpr (kGradient) {
-    hn::StoreU(hn::Mul(acc, scale), df, value);
-    for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], scale);
-    store_interleaved<D>(gacc, grad);
-  } else {
-    hn::StoreU(hn::Mul(scale, acc), df, value);
-  }
-}
 
-// A fractal on a grid: per band, the column layout of the band's x positions
-// and a per-row split of its y (and z) positions, evaluated like a Perlin
-// grid row and accumulated into the row's sums.
-template <bool kGradient, int D>
-void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t first,
-                  std::size_t count, float* value, float* grad) {
-  const DF df;
-  const std::vector<band_config<D>> bands = band_configs(fr);
-  const bool turbulence = fr.parameters().kind == fractal_kind::turbulence;
-  const std::size_t nx = g.size[0];
-  const std::size_t lanes = hn::Lanes(df);
-  auto position = [&](int b, int axis_index, double coordinate) {
-    vec<double, D> p;  // axes are independent in f x + o: the other coordinates do not matter
-    p[axis_index] = coordinate;
-    return fr.band_position(b, p)[axis_index];
-  };
-  std::vector<grid_columns> cols;
-  cols.reserve(bands.size());
-  for (std::size_t b = 0; b < bands.size(); ++b)
-    cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
-      return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
-    });
-  std::vector<row_evaluator<kGradient, D>> rows;
-  rows.reserve(bands.size());
-  for (const grid_columns& c : cols) rows.emplace_back(c);
-  // Per band, the current row's words and fractions (z kept while the slice
-  // is). On the stack: grid_row holds vectors, whose alignment a
-  // std::vector's storage need not have.
-  grid_row band_rows[fractal<perlin<D>>::kMaxOctaves];
-  std::size_t split_k = ~std::size_t(0);
-  const VF scale = hn::Set(df, float(fr.scale()));
-  for_each_row<D>(
-      g, first, count, [&](std::size_t j, std::size_t k, std::size_t row_index) HWY_ATTR {
-        for (std::size_t b = 0; b < bands.size(); ++b) {
-          const band_config<D>& c = bands[b];
-          const int bi = static_cast<int>(b);
-          grid_row& row = band_rows[b];
-          row.key = c.key;
-          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
-                                               c.period[1]);
-          if constexpr (D == 3)
-            if (k != split_k)
-              row.z = broadcast_axis<kGradient, 2>(
-                  position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
-          rows[b].prepare(row);
-        }
-        split_k = k;
-        // Per vector of columns, the bands in order, summed in registers.
-        for (std::size_t i = 0; i < nx; i += lanes) {
-          VF a = hn::Zero(df), ga[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
-          for (std::size_t b = 0; b < bands.size(); ++b)
-            rows[b].vector(band_rows[b], i, [&](VF v, const VF* gr) HWY_ATTR {
-              accumulate<kGradient, D>(turbulence, bands[b], v, gr, a, ga);
-            });
-          VF gs[3];
-          if constexpr (kGradient)
-            for (int d = 0; d < D; ++d) gs[d] = hn::Mul(ga[d], scale);
-          store_row<D>(i, nx, kGradient ? hn::Mul(a, scale) : hn::Mul(scale, a), gs,
-                       value + row_index * nx, kGradient ? grad + row_index * nx * D : nullptr);
-        }
-      });
-}
+  static constexpr int kRowPad = D == 3 ? detail::constants::kWaveletRowPad : 0;
 
-}  // namespace perlin_simd
+  key key_;
+  std::vector<float> coef_;
+  double max_abs_ = 0;
+  double variance_ = 0;
+  double projected_[3][2] = {};
+};
 
-// Fractal sums of Perlin (fBm, turbulence) at interleaved points or on a
-// grid; same layout conventions as the Perlin entry points above.
+// hush::wavelet_blend_tile<D>: the tile of wavelet_tile<D> prepared for hashed
+// tile variants without visible repetition (Cook & DeRose sec. 4.3).
+//
+// Space is covered by tile cells of L = n - m coefficients per axis (m = the
+// overlap); cell T holds a copy of the tile, transformed by its own variant (an
+// axis permutation and per-axis reflection chosen by a hash of T: 8 variants in
+// 2D, 48 in 3D), covering the global coefficients [T L, T L + n). Neighbouring
+// copies overlap by m coefficients and are cross-faded there with weights
+// sin(theta), cos(theta), theta = (j + 1/2) / m * pi / 2 for the j-th overlapping
+// coefficient, so the squared weights sum to 1 and the blend keeps the variance
+// (the paper divides an alpha / (1 - alpha) blend by sqrt(alpha^2 + (1 -
+// alpha)^2) for the same effect). As the paper suggests, the weights are
+// multiplied into the coefficients here, once: the profile is the same on every
+// axis and symmetric under reflection, so one premultiplied tile serves every
+// variant. Outside [0, n) a copy is 0.
 template <int D>
-void fractal_points(const fractal<perlin<D>>& fr, const float* pts, std::size_t n, float* value,
-                    float* grad) {
-  const std::vector<perlin_simd::band_config<D>> bands = perlin_simd::band_configs(fr);
-  if (grad)
-    perlin_simd::for_each_point_vector<true, D>(
-        n, pts, value, grad, [&](const float* p, float* v, float* g) HWY_ATTR {
-          perlin_simd::fractal_points_vector<true, D>(fr, bands, p, v, g);
-        });
-  else
-    perlin_simd::for_each_point_vector<false, D>(
-        n, pts, value, nullptr, [&](const float* p, float* v, float*) HWY_ATTR {
-          perlin_simd::fractal_points_vector<false, D>(fr, bands, p, v, nullptr);
-        });
-}
-inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
-                            float* value, float* grad) {
-  fractal_points<2>(fr, xy, n, value, grad);
-}
-inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
-                            float* value, float* grad) {
-  fractal_points<3>(fr, xyz, n, value, grad);
-}
-inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
-                          std::size_t count, float* value, float* grad) {
-  if (grad)
-    perlin_simd::fractal_grid<true, 2>(fr, g, first, count, value, grad);
-  else
-    perlin_simd::fractal_grid<false, 2>(fr, g, first, count, value, nullptr);
-}
-inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
-                          std::size_t count, float* value, float* grad) {
-  if (grad)
-    perlin_simd::fractal_grid<true, 3>(fr, g, first, count, value, grad);
-  else
-    perlin_simd::fractal_grid<false, 3>(fr, g, first, count, value, nullptr);
-}
+class wavelet_blend_tile {
+ public:
+  struct key {
+    typename wavelet_tile<D>::key tile;
+    int overlap = 0;
+    friend bool operator<(const key& a, const key& b) {
+      if (a.tile < b.tile) return true;
+      if (b.tile < a.tile) return false;
+      return a.overlap < b.overlap;
+    }
+  };
+  // Throws hush::invalid_argument unless 1 <= overlap <= size / 4.
+  static void validate_overlap(const char* where, const char* name, int size, int overlap) {
+    if (overlap < 1 || overlap > size / 4)
+      detail::throw_out_of_range(
+          where, name, overlap,
+          ("0 (no variants) or 1 ... tile_size / 4 = " + std::to_string(size / 4)).c_str());
+  }
 
-}  // namespace HWY_NAMESPACE
+  explicit wavelet_blend_tile(const key& k) : key_(k) {
+    const std::shared_ptr<const wavelet_tile<D>> base = wavelet_tile<D>::get(k.tile);
+    const int n = base->size(), m = k.overlap;
+    validate_overlap("hush::wavelet_blend_tile", "overlap", n, m);
+    std::vector<double> alpha(static_cast<std::size_t>(n), 1.0);
+    constexpr double kQuarterTurn = 1.5707963267948966192;  // pi / 2
+    for (int j = 0; j < m; ++j) {
+      const double theta = (j + 0.5) / m * kQuarterTurn;
+      alpha[static_cast<std::size_t>(j)] = std::sin(theta);
+      alpha[static_cast<std::size_t>(n - m) + static_cast<std::size_t>(j)] = std::cos(theta);
+    }
+    coef_.resize(base->count());
+    for (std::size_t i = 0; i < coef_.size(); ++i) {
+      double w = 1;
+      std::size_t rest = i;
+      for (int a = 0; a < D; ++a) {
+        w *= alpha[rest % static_cast<std::size_t>(n)];
+        rest /= static_cast<std::size_t>(n);
+      }
+      coef_[i] = static_cast<float>(w * static_cast<double>(base->coefficient(i)));
+    }
+  }
+
+  static std::shared_ptr<const wavelet_blend_tile> get(const key& k) {
+    return cache().get(k, [&] { return wavelet_blend_tile(k); });
+  }
+  static tile_cache<key, wavelet_blend_tile>& cache() {
+    static tile_cache<key, wavelet_blend_tile> c;
+    return c;
+  }
+
+  int size() const { return key_.tile.size; }
+  int overlap() const { return key_.overlap; }
+  const float* coefficients() const { return coef_.data(); }
+  std::size_t count() const { return coef_.size(); }
+  std::size_t bytes() const { return sizeof(*this) + coef_.capacity() * sizeof(float); }
+
+ private:
+  key key_;
+  std::vector<float> coef_;
+};
+
 }  // namespace hush
-HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_PERLIN_INL_H_ toggle
-// ---- end hush/simd/perlin-inl.h
+#endif  // HUSH_WAVELET_TILE_HPP
+// ---- end hush/wavelet_tile.hpp
+
+namespace hush {
+
+// How 3D wavelet noise is projected onto a surface (see wavelet.hpp).
+enum class wavelet_projection { exact, approximate };
+// The output distribution (paper sec. 4.2).
+enum class wavelet_distribution { gaussian, uniform, table };
+
+namespace detail {
+
+// One band's kernel along one axis: taps at cells i0 + first ... i0 + first + count - 1.
+template <class T>
+struct wavelet_axis {
+  int first = 0;
+  int count = 0;
+  T w[kWaveletMaxTaps] = {};
+  T dw[kWaveletMaxTaps] = {};  // d w / d y (y the position in coefficient units)
+};
+
+// The plain quadratic B-spline: taps 0, 1, 2 (core/bspline.hpp).
+template <class T, bool G>
+HUSH_INLINE void wavelet_axis_plain(T f, wavelet_axis<T>& ax) {
+  ax.first = 0;
+  ax.count = 3;
+  for (int j = 0; j < 3; ++j) ax.w[j] = piece_value(kBspline, 2 - j, f);
+  if constexpr (G)
+    for (int j = 0; j < 3; ++j) ax.dw[j] = piece_value(kBsplineDerivative, 2 - j, f);
+}
+
+// A fixed kernel k of support P (beta or B2, along the normal) at fraction f: tap
+// j sits at distance f + 1/2 - j; taps j = floor(1/2 - P/2) + 1 ... ceil(3/2 + P/2) - 1
+// cover every f in [0, 1) (some are 0).
+template <class T, bool G, int P, int O>
+HUSH_INLINE void wavelet_axis_fixed(T f, const piecewise_kernel<P, O>& k,
+                                    const piecewise_kernel<P, O - 1>& dk, wavelet_axis<T>& ax) {
+  constexpr int kFirst = fixed_kernel_first_tap<P>();
+  static_assert(fixed_kernel_taps<P>() <= kWaveletMaxTaps, "taps fit");
+  ax.first = kFirst;
+  ax.count = fixed_kernel_taps<P>();
+  for (int j = 0; j < ax.count; ++j) {
+    const T d = f + T(constants::kWaveletCellOffset) - T(kFirst + j);
+    ax.w[j] = kernel_at(k, d);
+    if constexpr (G) ax.dw[j] = kernel_at(dk, d);
+  }
+}
+
+// The quadratic B-spline widened by s >= 1 (B(d / s), weights normalised to sum
+// 1) at relative position y (coefficient k sits at k): taps k in (y - 3s/2, y + 3s/2).
+template <class T, bool G>
+HUSH_INLINE void wavelet_axis_widened(T y, T s, wavelet_axis<T>& ax) {
+  const T half = T(kBspline.half_support()) * s;
+  ax.first = static_cast<int>(std::floor(y - half)) + 1;
+  ax.count = std::min(static_cast<int>(std::ceil(y + half)) - ax.first, kWaveletMaxTaps);
+  const T inv = T(1) / s;
+  T sum = 0, dsum = 0;
+  for (int j = 0; j < ax.count; ++j) {
+    const T u = (y - T(ax.first + j)) * inv;
+    ax.w[j] = kernel_at(kBspline, u);
+    sum += ax.w[j];
+    if constexpr (G) {
+      ax.dw[j] = kernel_at(kBsplineDerivative, u) * inv;
+      dsum += ax.dw[j];
+    }
+  }
+  const T norm = T(1) / sum;
+  for (int j = 0; j < ax.count; ++j) {
+    if constexpr (G) ax.dw[j] = (ax.dw[j] - ax.w[j] * norm * dsum) * norm;
+    ax.w[j] *= norm;
+  }
+}
+
+// The plain B-spline at relative position y (any real): taps floor(y - 1/2) ... + 2.
+template <class T, bool G>
+HUSH_INLINE void wavelet_axis_at(T y, wavelet_axis<T>& ax) {
+  const T c = std::floor(y - T(constants::kWaveletCellOffset));
+  wavelet_axis_plain<T, G>(y - T(constants::kWaveletCellOffset) - c, ax);
+  ax.first = static_cast<int>(c);
+}
+
+// Coefficients of the periodic tile around cell i0 (relative offsets k).
+template <int D>
+struct wavelet_periodic_access {
+  const float* c;  // wavelet_tile::coefficients()
+  int n, m;        // tile size and row length (wavelet_tile::row_length())
+  std::uint32_t i0[3];
+  HUSH_INLINE int wrap(long long x) const {
+    long long r = x % n;
+    return static_cast<int>(r < 0 ? r + n : r);
+  }
+  HUSH_INLINE std::size_t index(int a, int k) const {
+    const std::size_t stride =
+        a == 0 ? 1 : static_cast<std::size_t>(m) * (a == 2 ? static_cast<std::size_t>(n) : 1);
+    return static_cast<std::size_t>(wrap(static_cast<long long>(i0[a]) + k)) * stride;
+  }
+  HUSH_INLINE float at(const int (&k)[D]) const {
+    std::size_t i = 0;
+    for (int a = 0; a < D; ++a) i += index(a, k[a]);
+    return c[i];
+  }
+};
+
+// Coefficients of the hashed tile variants (wavelet_blend_tile): the sum over the
+// (at most 2^D) overlapping cells that cover a global coefficient index. The
+// global index of tap 0 is the band cell modulo 2^32 (period 0); cell T and
+// offset l of i0 + k follow from i0 = T0 L + r0 with 32-bit unsigned arithmetic
+// (T = T0 + carry, the carry from r0 + k), as the GPU computes them.
+template <int D>
+struct wavelet_variant_access {
+  const float* c;
+  int n, cell;  // tile size and cell pitch L = n - overlap
+  std::uint32_t key;
+  std::uint32_t i0[3];
+  HUSH_INLINE float at(const int (&k)[D]) const {
+    std::uint32_t t[3][2] = {};
+    int l[3][2] = {}, count[3] = {};
+    const auto pitch = static_cast<std::uint32_t>(cell);
+    for (int a = 0; a < D; ++a) {
+      int r = static_cast<int>(i0[a] % pitch) + k[a];  // |k| < L: at most one carry
+      const int carry = r < 0 ? -1 : (r >= cell ? 1 : 0);
+      r -= carry * cell;
+      t[a][0] = i0[a] / pitch + static_cast<std::uint32_t>(carry);
+      l[a][0] = r;
+      t[a][1] = t[a][0] - 1u;  // the previous cell covers r + L when that is inside it
+      l[a][1] = r + cell;
+      count[a] = r + cell < n ? 2 : 1;
+    }
+    float sum = 0;
+    for (int m = 0; m < (1 << D); ++m) {
+      int pick[3] = {0, 0, 0};
+      bool ok = true;
+      for (int a = 0; a < D; ++a) {
+        pick[a] = (m >> a) & 1;
+        ok = ok && pick[a] < count[a];
+      }
+      if (!ok) continue;
+      std::uint32_t h;
+      if constexpr (D == 2)
+        h = lattice_hash(key, t[0][pick[0]], t[1][pick[1]]);
+      else
+        h = lattice_hash(key, t[0][pick[0]], t[1][pick[1]], t[2][pick[2]]);
+      int local[3] = {0, 0, 0};
+      for (int a = 0; a < D; ++a) local[a] = l[a][pick[a]];
+      sum += c[variant_index(h, local)];
+    }
+    return sum;
+  }
+  // Storage index of local coordinates (world axes) under variant h: the permutation
+  // of lexicographic rank p = ((h >> s) D!) >> s (storage axis a reads world axis
+  // src[a]), then storage axis a reflected (n - 1 - l) when bit a of h is set.
+  HUSH_INLINE std::size_t variant_index(std::uint32_t h, const int (&local)[3]) const {
+    constexpr unsigned kShift = constants::kWaveletVariantShift;
+    const std::uint32_t p = ((h >> kShift) * wavelet_permutations(D)) >> kShift;
+    int src[3] = {0, 1, 2};
+    if constexpr (D == 2) {
+      src[0] = static_cast<int>(p);
+      src[1] = 1 - src[0];
+    } else {
+      const int first = static_cast<int>(p / 2), lo = first == 0 ? 1 : 0, hi = first == 2 ? 1 : 2;
+      src[0] = first;
+      src[1] = (p & 1u) != 0 ? hi : lo;
+      src[2] = (p & 1u) != 0 ? lo : hi;
+    }
+    std::size_t idx = 0, stride = 1;
+    for (int a = 0; a < D; ++a, stride *= static_cast<std::size_t>(n)) {
+      int v = local[src[a]];
+      if ((h >> a) & 1u) v = n - 1 - v;
+      idx += static_cast<std::size_t>(v) * stride;
+    }
+    return idx;
+  }
+};
+
+// Sum over separable taps: the value and the gradient in coefficient units, z
+// innermost (value = sum_a wx (sum_b wy (sum_c wz n))), the order every backend uses.
+template <class T, bool G, int D, class Access>
+HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
+                                                   const Access& acc) {
+  value_gradient<T, D> r{T(0), {}};
+  int k[D];
+  if constexpr (D == 2) {
+    for (int a = 0; a < ax[0].count; ++a) {
+      k[0] = ax[0].first + a;
+      T s = 0, sy = 0;
+      for (int b = 0; b < ax[1].count; ++b) {
+        k[1] = ax[1].first + b;
+        const T c = T(acc.at(k));
+        s += ax[1].w[b] * c;
+        if constexpr (G) sy += ax[1].dw[b] * c;
+      }
+      r.value += ax[0].w[a] * s;
+      if constexpr (G) {
+        r.gradient[0] += ax[0].dw[a] * s;
+        r.gradient[1] += ax[0].w[a] * sy;
+      }
+    }
+  } else {
+    for (int a = 0; a < ax[0].count; ++a) {
+      k[0] = ax[0].first + a;
+      T t = 0, ty = 0, tz = 0;
+      for (int b = 0; b < ax[1].count; ++b) {
+        k[1] = ax[1].first + b;
+        T s = 0, sz = 0;
+        for (int c = 0; c < ax[2].count; ++c) {
+          k[2] = ax[2].first + c;
+          const T v = T(acc.at(k));
+          s += ax[2].w[c] * v;
+          if constexpr (G) sz += ax[2].dw[c] * v;
+        }
+        t += ax[1].w[b] * s;
+        if constexpr (G) {
+          ty += ax[1].dw[b] * s;
+          tz += ax[1].w[b] * sz;
+        }
+      }
+      r.value += ax[0].w[a] * t;
+      if constexpr (G) {
+        r.gradient[0] += ax[0].dw[a] * t;
+        r.gradient[1] += ax[0].w[a] * ty;
+        r.gradient[2] += ax[0].w[a] * tz;
+      }
+    }
+  }
+  return r;
+}
+
+// The same over the periodic tile, with the wrapped, stride-scaled index of
+// every tap precomputed per axis (the sums are the generic ones, operation by operation).
+template <class T, bool G, int D>
+HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
+                                                   const wavelet_periodic_access<D>& acc) {
+  std::size_t off[D][kWaveletMaxTaps];
+  for (int a = 0; a < D; ++a)
+    for (int j = 0; j < ax[a].count; ++j) off[a][j] = acc.index(a, ax[a].first + j);
+  struct table_access {
+    const float* c;
+    const std::size_t (*off)[kWaveletMaxTaps];
+    const wavelet_axis<T>* ax;
+    HUSH_INLINE float at(const int (&k)[D]) const {
+      std::size_t i = 0;
+      for (int a = 0; a < D; ++a) i += off[a][k[a] - ax[a].first];
+      return c[i];
+    }
+  };
+  return wavelet_separable<T, G, D>(ax, table_access{acc.c, off, ax});
+}
+
+// The paper's approximate projection along a normal that is not axis-aligned
+// (Appendix 2, WProjectedNoise): the tensor B-spline at the offset d = y - k moved
+// halfway along the unit normal u, e_a = (d_a - u_a (u . d) / 2) / s_a (s_a the
+// widening), with weights normalised to sum 1. y: position relative to the
+// cell (coefficient offset k sits at k). Coefficients are visited per column
+// along the normal's dominant axis, over the interval where all three factors
+// are non-zero (a few extra zero-weight taps at the ends are harmless).
+template <class T, bool G, class Access>
+value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                                            const Access& acc) {
+  int w = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::fabs(u[a]) > std::fabs(u[w])) w = a;
+  const int ax_u = w == 0 ? 1 : 0, ax_v = w == 2 ? 1 : 2;
+  const T half = T(kBspline.half_support());
+  T l1 = 0;
+  for (int a = 0; a < 3; ++a) l1 += std::fabs(u[a]) * s[a];
+  T reach[3];
+  for (int a = 0; a < 3; ++a) reach[a] = half * (s[a] + std::fabs(u[a]) * l1);
+  const T stretch = T(1) / T(constants::kWaveletProjectionStretch);
+  T sw = 0, sv = 0, sdw[3] = {0, 0, 0}, sg[3] = {0, 0, 0};
+  const int u_lo = static_cast<int>(std::ceil(y[ax_u] - reach[ax_u]));
+  const int u_hi = static_cast<int>(std::floor(y[ax_u] + reach[ax_u]));
+  const int v_lo = static_cast<int>(std::ceil(y[ax_v] - reach[ax_v]));
+  const int v_hi = static_cast<int>(std::floor(y[ax_v] + reach[ax_v]));
+  int k[3];
+  T d[3];
+  for (int ku = u_lo; ku <= u_hi; ++ku) {
+    k[ax_u] = ku;
+    d[ax_u] = y[ax_u] - T(ku);
+    for (int kv = v_lo; kv <= v_hi; ++kv) {
+      k[ax_v] = kv;
+      d[ax_v] = y[ax_v] - T(kv);
+      // e_a = A_a + C_a d_w with d_u, d_v fixed; |e_a| < half.
+      const T p = u[ax_u] * d[ax_u] + u[ax_v] * d[ax_v];
+      T lo = -std::numeric_limits<T>::infinity(), hi = std::numeric_limits<T>::infinity();
+      bool empty = false;
+      for (int a = 0; a < 3; ++a) {
+        const T A = ((a == w ? T(0) : d[a]) - u[a] * p * stretch) / s[a];
+        const T C = ((a == w ? T(1) : T(0)) - u[a] * u[w] * stretch) / s[a];
+        if (C == T(0)) {
+          empty = empty || !(std::fabs(A) < half);
+          continue;
+        }
+        T e0 = (-half - A) / C, e1 = (half - A) / C;
+        if (e0 > e1) std::swap(e0, e1);
+        lo = std::max(lo, e0);
+        hi = std::min(hi, e1);
+      }
+      if (empty || !(lo < hi)) continue;
+      const int w_lo = static_cast<int>(std::floor(y[w] - hi));
+      const int w_hi = static_cast<int>(std::ceil(y[w] - lo));
+      for (int kw = w_lo; kw <= w_hi; ++kw) {
+        k[w] = kw;
+        d[w] = y[w] - T(kw);
+        const T ud = u[0] * d[0] + u[1] * d[1] + u[2] * d[2];
+        T e[3], b[3];
+        for (int a = 0; a < 3; ++a) {
+          e[a] = (d[a] - u[a] * ud * stretch) / s[a];
+          b[a] = kernel_at(kBspline, e[a]);
+        }
+        const T weight = b[0] * b[1] * b[2];
+        if (weight == T(0)) continue;
+        const T c = T(acc.at(k));
+        sw += weight;
+        sv += weight * c;
+        if constexpr (G) {
+          T q[3];
+          for (int a = 0; a < 3; ++a)
+            q[a] = kernel_at(kBsplineDerivative, e[a]) * b[(a + 1) % 3] * b[(a + 2) % 3] / s[a];
+          const T uq = u[0] * q[0] + u[1] * q[1] + u[2] * q[2];
+          for (int a = 0; a < 3; ++a) {
+            const T gw = q[a] - u[a] * uq * stretch;  // d weight / d y_a
+            sdw[a] += gw;
+            sg[a] += gw * c;
+          }
+        }
+      }
+    }
+  }
+  value_gradient<T, 3> r{T(0), {}};
+  if (!(sw > T(0))) return r;
+  const T inv = T(1) / sw;
+  r.value = sv * inv;
+  if constexpr (G)
+    for (int a = 0; a < 3; ++a) r.gradient[a] = (sg[a] - r.value * sdw[a]) * inv;
+  return r;
+}
+
+// The knots of the exact projection's line integral (below), sorted, into
+// knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
+// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
+template <class T>
+int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                        T (&knots)[constants::kWaveletMaxKnots]) {
+  constexpr int kMaxKnots = constants::kWaveletMaxKnots;
+  const T reach = T(kBspline2.half_support());
+  int nk = 0;
+  for (int j = 0; j <= kBspline2.pieces;
+       j += static_cast<int>(constants::kWaveletProjectionStretch))
+    knots[nk++] = T(j) - reach;  // B2's knots: -3, -1, 1, 3
+  const T half = T(kBspline.half_support());
+  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
+  for (int a = 0; a < 3; ++a) {
+    // Widened, only B2's pieces (5 nodes each): the widened basis' own knots would
+    // need 4 families per axis and up to 7^3 taps per node (the GPU's loop budget,
+    // hush/glsl/wavelet_glsl.hpp); widening is an approximation of the pixel filter.
+    if (u[a] == T(0) || !plain) continue;
+    const T span = reach * std::fabs(u[a]);
+    // Knot offsets of the widened B-spline about its centre, as fractions of a coefficient.
+    T deltas[4];
+    int nd = 0;
+    for (int m = 0; m < 4; ++m) {
+      const T delta = (T(m) - half) * s[a];  // -3/2, -1/2, 1/2, 3/2 times s
+      const T frac = delta - std::floor(delta);
+      bool seen = false;
+      for (int q = 0; q < nd; ++q) seen = seen || deltas[q] == frac;
+      if (!seen) deltas[nd++] = frac;
+    }
+    for (int q = 0; q < nd; ++q) {
+      const int lo = static_cast<int>(std::ceil(y[a] - span - deltas[q]));
+      const int hi = static_cast<int>(std::floor(y[a] + span - deltas[q]));
+      for (int k = lo; k <= hi && nk < kMaxKnots; ++k) {
+        const T t = (T(k) + deltas[q] - y[a]) / u[a];
+        if (t > -reach && t < reach) knots[nk++] = t;
+      }
+    }
+  }
+  std::sort(knots, knots + nk);
+  return nk;
+}
+
+// The exact projection along any unit normal u: integral N(y + t u) B2(t) dt over
+// t in [-3, 3]. The integrand is one polynomial between consecutive knots: those
+// of B2 (t = -3, -1, 1, 3) and the crossings of the knot planes of N along each
+// axis (y_a + t u_a = k + 1/2, k an integer); each piece gets 5-point
+// Gauss-Legendre quadrature, exact for its degree (<= 8). With a widened basis
+// N_s (s != 1) the line integral is taken over B2's three pieces only (15 nodes,
+// not exact: widening itself approximates the pixel filter); the widened knot
+// families would cost up to 7^3 taps at each of ~250 nodes.
+template <class T, bool G, class Access>
+value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], const T (&s)[3],
+                                           const Access& acc) {
+  T knots[constants::kWaveletMaxKnots];
+  const int nk = wavelet_exact_knots<T>(y, u, s, knots);
+  const bool plain = s[0] == T(1) && s[1] == T(1) && s[2] == T(1);
+  value_gradient<T, 3> r{T(0), {}};
+  for (int i = 0; i + 1 < nk; ++i) {
+    const T t0 = knots[i], t1 = knots[i + 1];
+    if (!(t1 > t0)) continue;
+    const T mid = (t0 + t1) / T(2), h = (t1 - t0) / T(2);
+    for (int q = 0; q < constants::kGaussLegendreOrder; ++q) {
+      const T t = mid + h * T(constants::kGaussLegendreNode[q]);
+      const T wq = h * T(constants::kGaussLegendreWeight[q]) * kernel_at(kBspline2, t);
+      wavelet_axis<T> ax[3];
+      for (int a = 0; a < 3; ++a) {
+        const T ya = y[a] + t * u[a];
+        if (plain)
+          wavelet_axis_at<T, G>(ya, ax[a]);
+        else
+          wavelet_axis_widened<T, G>(ya, s[a], ax[a]);
+      }
+      const value_gradient<T, 3> n = wavelet_separable<T, G, 3>(ax, acc);
+      r.value += wq * n.value;
+      if constexpr (G)
+        for (int a = 0; a < 3; ++a) r.gradient[a] += wq * n.gradient[a];
+    }
+  }
+  return r;
+}
+
+}  // namespace detail
+
+template <int D>
+class wavelet : public sample_noise<wavelet<D>, D> {
+  static_assert(D == 2 || D == 3, "hush::wavelet is 2D or 3D");
+
+ public:
+  static constexpr bool takes_footprint = true;
+  static constexpr bool takes_normal = D == 3;
+  static constexpr int kMaxBands = detail::constants::kWaveletMaxBands;
+
+  struct params {
+    std::uint32_t seed = 0;
+    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet_tile.hpp).
+    int tile_size = D == 2 ? 128 : 64;
+    // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
+    int first_band = 0;
+    // Band weights w_i (1 ... 32 finite values, not all zero); one band by default.
+    // With relative_weights: the weight k octaves below the finest representable band.
+    std::vector<double> weights = {1.0};
+    // Per-band decorrelating offsets (sec. 3, footnote 1), in coefficient units:
+    // empty = derived from the seed (independent per band and axis), or one per band.
+    std::vector<vec<double, D>> offsets;
+    bool even_odd_fix = true;  // the paper's even/odd variance correction (sec. 4.3)
+    wavelet_distribution distribution = wavelet_distribution::gaussian;
+    double gaussian_scale = 1.0;  // standard deviation of the gaussian output; finite, > 0
+    // The inverse CDF of the wanted distribution at u = 0, 1/(m-1), ..., 1 (2 ... 65536
+    // finite values), for wavelet_distribution::table.
+    std::vector<double> table;
+    wavelet_projection projection = wavelet_projection::exact;  // 3D with a normal
+    bool widen = false;             // basis widening for one sample per pixel (sec. 4.1)
+    bool relative_weights = false;  // infinite noise (sec. 5.4)
+    int relative_bands = 16;        // with relative_weights: bands first_band ... + this - 1
+    // 0: the tile repeats (period tile_size); 1 ... tile_size / 4: hashed tile
+    // variants blended over this many coefficients (sec. 4.3), no repetition.
+    int variant_overlap = 0;
+  };
+
+  wavelet() : wavelet(params{}) {}
+  explicit wavelet(std::uint32_t seed) : wavelet(make_params(seed)) {}
+  // Throws hush::invalid_argument naming the first parameter out of range.
+  explicit wavelet(const params& prm) : prm_(prm) {
+    validate();
+    tile_ = wavelet_tile<D>::get({prm_.tile_size, prm_.seed, prm_.even_odd_fix});
+    if (prm_.distribution == wavelet_distribution::table) {
+      auto t = std::make_shared<std::vector<float>>();
+      for (double v : prm_.table) t->push_back(static_cast<float>(v));
+      table_ = std::move(t);
+    }
+    if (prm_.variant_overlap > 0)
+      blend_ = wavelet_blend_tile<D>::get(
+          {{prm_.tile_size, prm_.seed, prm_.even_odd_fix}, prm_.variant_overlap});
+    const int nb = band_count();
+    double sum_sq = 0, sum_abs = 0;
+    for (int i = 0; i < nb; ++i) {
+      band b;
+      b.index = prm_.first_band + i;
+      b.frequency = std::ldexp(1.0, b.index);
+      b.weight = prm_.relative_weights ? 0.0 : prm_.weights[static_cast<std::size_t>(i)];
+      const std::uint32_t band_seed = hash32(prm_.seed, static_cast<std::uint32_t>(b.index));
+      for (int a = 0; a < D; ++a) {
+        double o;
+        if (prm_.offsets.empty()) {
+          // A whole cell in [0, n) plus an exact 24-bit fraction.
+          const std::uint32_t h = hash32(band_seed, static_cast<std::uint32_t>(a));
+          o = static_cast<double>(hash32(h) % static_cast<std::uint32_t>(prm_.tile_size)) +
+              static_cast<double>(h >> 8) * 0x1p-24;
+        } else {
+          o = prm_.offsets[static_cast<std::size_t>(i)][a];
+        }
+        // The tap-0 cell of y is floor(y - 1/2): fold the half into the offset.
+        b.offset[a] = o - detail::constants::kWaveletCellOffset;
+      }
+      bands_.push_back(b);
+      sum_sq += b.weight * b.weight;
+      sum_abs += std::fabs(b.weight);
+    }
+    key_ = seed_key(prm_.seed);
+    // The smallest kernel variance (3D: projected noise has less) bounds every scale.
+    double smallest = tile_->variance();
+    if constexpr (D == 3)
+      for (int a = 0; a < 3; ++a)
+        for (bool exact : {true, false})
+          smallest = std::min(smallest, tile_->projected_variance(a, exact));
+    if (!prm_.relative_weights) {
+      scale_ = 1.0 / std::sqrt(tile_->variance() * sum_sq);
+      bound_ = sum_abs * tile_->max_abs() / std::sqrt(smallest * sum_sq);
+    } else {
+      // Per sample K = 1 / sqrt(sigma^2 sum W^2); at most K + 1 bands have W != 0
+      // (octaves o in (-1, K)), so sum |W| <= sqrt(K + 1) sqrt(sum W^2) (Cauchy-Schwarz).
+      scale_ = 1.0;
+      bound_ =
+          std::sqrt((static_cast<double>(prm_.weights.size()) + 1.0) / smallest) * tile_->max_abs();
+    }
+    pre_bound_ = bound_;
+    switch (prm_.distribution) {
+      case wavelet_distribution::gaussian:
+        slope_ = prm_.gaussian_scale;
+        bound_ *= prm_.gaussian_scale;
+        break;
+      case wavelet_distribution::uniform:
+        slope_ = 2 * detail::constants::kInvSqrt2Pi;  // erf(v / sqrt 2)' <= sqrt(2 / pi)
+        bound_ = 1.0;
+        break;
+      case wavelet_distribution::table: {
+        double steepest = 0;
+        bound_ = 0;
+        for (std::size_t i = 0; i < prm_.table.size(); ++i) {
+          bound_ = std::max(bound_, std::fabs(prm_.table[i]));
+          if (i + 1 < prm_.table.size())
+            steepest = std::max(steepest, std::fabs(prm_.table[i + 1] - prm_.table[i]));
+        }
+        // Phi'(v) <= 1 / sqrt(2 pi); the table's slope in u is steepest * (m - 1).
+        slope_ =
+            steepest * static_cast<double>(prm_.table.size() - 1) * detail::constants::kInvSqrt2Pi;
+        break;
+      }
+    }
+  }
+
+  const params& parameters() const { return prm_; }
+  // |output| <= bound() for every input (see the file comment).
+  double bound() const { return bound_; }
+  // The shared tile and the memory this noise holds (tiles shared with other noises count
+  // once per holder).
+  const wavelet_tile<D>& tile() const { return *tile_; }
+  std::shared_ptr<const wavelet_tile<D>> tile_ptr() const { return tile_; }
+  std::shared_ptr<const wavelet_blend_tile<D>> blend_tile_ptr() const { return blend_; }
+  // The distribution table in float (the float path's T(table[i])), shared with the GPU
+  // backend; null unless distribution == table.
+  std::shared_ptr<const std::vector<float>> table_floats() const { return table_; }
+  std::size_t memory_bytes() const {
+    return sizeof(*this) + tile_->bytes() + (blend_ ? blend_->bytes() : 0) +
+           bands_.capacity() * sizeof(band);
+  }
+
+  // The bands as evaluated, for the SIMD and GLSL backends: band i's index b
+  // (frequency 2^b), its raw weight (0 under relative_weights), and the
+  // position of tap 0 of p, 2^b p + o_b - 1/2 (double; component a depends on p[a] only).
+  int band_count() const {
+    return prm_.relative_weights ? prm_.relative_bands : static_cast<int>(prm_.weights.size());
+  }
+  int band_index(int i) const { return bands_[static_cast<std::size_t>(i)].index; }
+  double band_frequency(int i) const { return bands_[static_cast<std::size_t>(i)].frequency; }
+  double band_raw_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight; }
+  vec<double, D> band_position(int i, const vec<double, D>& p) const {
+    return bands_[static_cast<std::size_t>(i)].position(p);
+  }
+  // Tile variants: the key hashing band i's cells (hash32(seed_key, b)).
+  std::uint32_t variant_key(int i) const {
+    return hash32(key_, static_cast<std::uint32_t>(bands_[static_cast<std::size_t>(i)].index));
+  }
+  // The normalisation K of the point noise (1 under relative_weights: per sample).
+  double scale() const { return scale_; }
+  // The lattice period a backend splits band positions with: the tile size, or 0
+  // (2^32) with tile variants, which need the global coefficient index.
+  std::uint32_t split_period() const {
+    return prm_.variant_overlap > 0 ? 0u : static_cast<std::uint32_t>(prm_.tile_size);
+  }
+
+  // The float budget: |float - double| at any position (forward error analysis,
+  // docs/wavelet.md). A plain band is an average of coefficients (|n| <= max_abs)
+  // whose weights come from a degree-2 Horner step (error <= 6 u each, u = 2^-24)
+  // and whose D nested sums of 3 terms add 3 u each level on top of the weights'
+  // error: at most 21 D u max_abs per band. Summing nb bands and scaling adds
+  // nb + 2 roundings of the result, so |error| <= (21 D + nb + 2) u bound().
+  // Kernels with more taps and higher degree (projection, widening) get the
+  // loose constant 512 in place of 21 D (beta alone: 9 taps of degree 5).
+  double float_budget(bool plain_kernel = true) const {
+    const double per_band = plain_kernel ? 21.0 * D : 512.0;
+    // The remap multiplies the error by at most its slope and adds 8 roundings of its own
+    // (erf, erfc and exp are within a few ulp in float).
+    const double u = std::ldexp(1.0, -24);
+    return (per_band + static_cast<double>(band_count()) + 2.0) * u * pre_bound_ * slope_ +
+           8.0 * u * bound_;
+  }
+
+  // The same for the gradient: the derivative weights of a tap triple sum to at most 2
+  // in magnitude (|f - 1| + |1 - 2f| + |f|), and band b's gradient is multiplied by
+  // 2^b, so the bound is the value's with max_abs replaced by 2 max_abs 2^b per band.
+  double float_gradient_budget(bool plain_kernel = true) const {
+    double wf = 0, w = 0;
+    for (const band& b : bands_) {
+      wf += std::fabs(b.weight) * b.frequency;
+      w += std::fabs(b.weight);
+    }
+    if (prm_.relative_weights) {  // at most K + 1 bands, each up to the top frequency
+      wf = (static_cast<double>(prm_.weights.size()) + 1.0) * bands_.back().frequency;
+      w = static_cast<double>(prm_.weights.size()) + 1.0;
+    }
+    return 2.0 * float_budget(plain_kernel) * wf / std::max(w, 1e-300);
+  }
+
+  // ---- Evaluation (core/point_noise.hpp, core/samples.hpp give the public overloads).
+  template <class T>
+  T value(const vec<double, D>& p) const {
+    return eval<T, false>(point_input(p)).value;
+  }
+  template <class T>
+  value_gradient<T, D> value_and_gradient(const vec<double, D>& p) const {
+    return eval<T, true>(point_input(p));
+  }
+  template <class T>
+  T sample_value(const sample_input<D>& s) const {
+    return eval<T, false>(s).value;
+  }
+  template <class T>
+  value_gradient<T, D> sample_value_and_gradient(const sample_input<D>& s) const {
+    return eval<T, true>(s);
+  }
+
+  // ---- The per-sample plan, shared with the backends: what eval() does for one
+  // sample, as data. `weight[i]` is band i's weight in the sum (0: skipped),
+  // `scale` the normalisation (after the sum), `everything` a footprint that
+  // filters everything (output 0), and the kernel: the normal (unit, double;
+  // projected when `project`), its axis when axis-aligned (-1 otherwise), and
+  // the per-band widening factors.
+  struct plan {
+    double weight[kMaxBands] = {};
+    double scale = 0;
+    double sum_sq = 0;  // sum of weight^2
+    bool everything = false;
+    bool project = false;
+    int normal_axis = -1;
+    vec<double, 3> normal{};
+    double widen[kMaxBands][3] = {};
+  };
+  plan make_plan(const sample_input<D>& s) const {
+    plan pl;
+    const int nb = band_count();
+    // Footprint width: the largest extent (file comment).
+    double log2w = -std::numeric_limits<double>::infinity();
+    const double wmax = s.fp.max_width();
+    if (!(wmax < detail::constants::kFootprintMaxWidth)) {
+      pl.everything = true;
+      return pl;
+    }
+    if (wmax > 0) log2w = std::log2(wmax);
+    plan_normal(s, pl);
+    const double variance = plan_variance(pl);
+    // Tangent-plane extents per tile axis, for widening: (P S P)_aa, P = I - u u^T.
+    double extent2[3] = {0, 0, 0};
+    if (prm_.widen) {
+      for (int a = 0; a < D; ++a) {
+        double pa[D];
+        for (int c = 0; c < D; ++c) pa[c] = (c == a ? 1.0 : 0.0);
+        if constexpr (D == 3)
+          if (pl.project)
+            for (int c = 0; c < 3; ++c) pa[c] -= pl.normal[c] * pl.normal[a];
+        double q = 0;
+        for (int r = 0; r < D; ++r)
+          for (int c = 0; c < D; ++c)
+            q += pa[r] * static_cast<double>(s.fp.covariance(r, c)) * pa[c];
+        extent2[a] = std::max(q, 0.0);
+      }
+    }
+    double sum_sq = 0;
+    for (int i = 0; i < nb; ++i) {
+      const band& b = bands_[static_cast<std::size_t>(i)];
+      const double level = static_cast<double>(b.index) + log2w;  // log2 of c = 2^b w
+      double w;
+      if (prm_.relative_weights)
+        w = relative_weight(wmax > 0 ? level : static_cast<double>(b.index));
+      else
+        w = b.weight * fade_weight(level);
+      pl.weight[i] = w;
+      sum_sq += w * w;
+      for (int a = 0; a < 3; ++a) pl.widen[i][a] = 1.0;
+      if (prm_.widen && w != 0.0) {
+        const double c0 = detail::constants::kWaveletWidenStart;
+        const double c1 = detail::constants::kWaveletWidenEnd;  // where the fade reaches 0
+        const double smax2 = 1.0 + c1 * c1 - c0 * c0;
+        for (int a = 0; a < D; ++a) {
+          const double c2 = extent2[a] * b.frequency * b.frequency;
+          const double s2 = std::min(1.0 + std::max(0.0, c2 - c0 * c0), smax2);
+          pl.widen[i][a] = std::sqrt(s2);
+        }
+      }
+    }
+    pl.sum_sq = sum_sq;
+    pl.scale = plan_scale(pl, variance);
+    return pl;
+  }
+  // The plan's surface part (3D): project, the unit normal (normalised in double)
+  // and its axis when axis-aligned, from the sample's normal (a zero, NaN or
+  // infinite normal: no projection). make_plan's; a backend whose samples have no
+  // footprint reuses the bands' part and redoes only this, plan_variance and
+  // plan_scale per sample.
+  void plan_normal(const sample_input<D>& s, plan& pl) const {
+    pl.project = false;
+    pl.normal_axis = -1;
+    pl.normal = {};
+    if constexpr (D == 3) {
+      if (s.has_normal) {
+        double m = 0;
+        bool finite = true;
+        for (int a = 0; a < 3; ++a) {
+          finite = finite && std::isfinite(s.normal[a]);
+          m = std::max(m, std::fabs(s.normal[a]));
+        }
+        if (finite && m > 0) {
+          double len = 0;
+          for (int a = 0; a < 3; ++a) {
+            pl.normal[a] = s.normal[a] / m;
+            len += pl.normal[a] * pl.normal[a];
+          }
+          len = std::sqrt(len);
+          int zeros = 0, axis = 0;
+          for (int a = 0; a < 3; ++a) {
+            pl.normal[a] /= len;
+            if (pl.normal[a] == 0.0)
+              ++zeros;
+            else
+              axis = a;
+          }
+          pl.project = true;
+          if (zeros == 2) {
+            pl.normal_axis = axis;
+            pl.normal = {};
+            pl.normal[axis] = 1.0;
+          }
+        }
+      }
+    }
+  }
+  // The variance of one unit-weight band of the plan's kernel (projected or not).
+  double plan_variance(const plan& pl) const {
+    double variance = tile_->variance();
+    if constexpr (D == 3) {
+      if (pl.project) {
+        const bool exact = prm_.projection == wavelet_projection::exact;
+        variance = 0;
+        for (int a = 0; a < 3; ++a)
+          variance += pl.normal[a] * pl.normal[a] * tile_->projected_variance(a, exact);
+      }
+    }
+    return variance;
+  }
+  // The normalisation after the band sum (pl.sum_sq set).
+  double plan_scale(const plan& pl, double variance) const {
+    if (prm_.relative_weights)
+      return pl.sum_sq > 0 ? 1.0 / std::sqrt(variance * pl.sum_sq) : 0.0;
+    return scale_ * std::sqrt(tile_->variance() / variance);
+  }
+
+  // The distribution remapping of a unit-variance value v (and d/dv), in T.
+  template <class T>
+  void remap(T& v, T* dv) const {
+    switch (prm_.distribution) {
+      case wavelet_distribution::gaussian:
+        v *= T(prm_.gaussian_scale);
+        if (dv) *dv = T(prm_.gaussian_scale);
+        return;
+      case wavelet_distribution::uniform: {
+        const T x = v * T(detail::constants::kInvSqrt2);
+        if (dv) *dv = T(2 * detail::constants::kInvSqrt2Pi) * std::exp(-x * x);
+        v = std::erf(x);
+        return;
+      }
+      case wavelet_distribution::table: {
+        const T x = v * T(detail::constants::kInvSqrt2);
+        const T u = std::erfc(-x) / T(2);  // Phi(v)
+        const std::size_t m = prm_.table.size();
+        if (!(u >= T(0) && u <= T(1))) {  // NaN
+          if (dv) *dv = u;
+          v = u;
+          return;
+        }
+        const T pos = u * T(static_cast<double>(m - 1));
+        std::size_t i = static_cast<std::size_t>(pos);
+        if (i > m - 2) i = m - 2;
+        const T t = pos - T(static_cast<double>(i));
+        const T a = T(prm_.table[i]), b = T(prm_.table[i + 1]);
+        if (dv)
+          *dv = (b - a) * T(static_cast<double>(m - 1)) * T(detail::constants::kInvSqrt2Pi) *
+                std::exp(-x * x);
+        v = a + t * (b - a);
+        return;
+      }
+    }
+  }
+
+ private:
+  struct band {
+    int index = 0;
+    double frequency = 1;
+    double weight = 0;
+    vec<double, D> offset{};
+    // 2^b p + o_b - 1/2 in double (exact products); a coordinate whose product
+    // overflows is taken as 0 (file comment).
+    vec<double, D> position(const vec<double, D>& p) const {
+      vec<double, D> q;
+      for (int a = 0; a < D; ++a) {
+        double x = p[a] * frequency;
+        if (!std::isfinite(x) && std::isfinite(p[a])) x = 0.0;
+        q[a] = x + offset[a];
+      }
+      return q;
+    }
+  };
+
+  static params make_params(std::uint32_t seed) {
+    params p;
+    p.seed = seed;
+    return p;
+  }
+  static sample_input<D> point_input(const vec<double, D>& p) {
+    sample_input<D> s;
+    s.position = p;
+    return s;
+  }
+
+  // The anti-aliasing fade of a band whose coefficients are 2^level pixels apart.
+  static double fade_weight(double level) {
+    if (!(level > 0)) return 1.0;  // also for -inf (a point footprint)
+    if (level >= 1) return 0.0;
+    return detail::fade(1.0 - level);
+  }
+  // Infinite noise: the weight of a band `level` = log2(2^b w) (octave -level
+  // below the finest representable band).
+  double relative_weight(double level) const {
+    const double o = -level;
+    const int k = static_cast<int>(prm_.weights.size());
+    if (!(o > -1.0) || !(o < static_cast<double>(k))) return 0.0;
+    if (o < 0) return prm_.weights[0] * detail::fade(o + 1.0);
+    if (o > k - 1) return prm_.weights[static_cast<std::size_t>(k - 1)] * detail::fade(k - o);
+    const int i = static_cast<int>(std::floor(o));
+    if (i >= k - 1) return prm_.weights[static_cast<std::size_t>(k - 1)];
+    const double t = detail::fade(o - i);
+    const double a = prm_.weights[static_cast<std::size_t>(i)];
+    const double b = prm_.weights[static_cast<std::size_t>(i) + 1];
+    return a + t * (b - a);
+  }
+
+  // One band at tile-coordinate position q (tap 0 at floor(q)), in coefficient units.
+  template <class T, bool G, class Access>
+  value_gradient<T, D> band_kernel(const lattice_coord<T> (&c)[D], const plan& pl, int i,
+                                   const Access& acc) const {
+    detail::wavelet_axis<T> ax[D];
+    bool widened = false;
+    for (int a = 0; a < D; ++a) widened = widened || pl.widen[i][a] != 1.0;
+    if constexpr (D == 3) {
+      if (pl.project && pl.normal_axis < 0) {
+        T y[3], u[3], s[3];
+        for (int a = 0; a < 3; ++a) {
+          y[a] = c[a].f + T(detail::constants::kWaveletCellOffset);
+          u[a] = T(pl.normal[a]);
+          s[a] = T(pl.widen[i][a]);
+        }
+        if (prm_.projection == wavelet_projection::exact)
+          return detail::wavelet_general_exact<T, G>(y, u, s, acc);
+        return detail::wavelet_general_approx<T, G>(y, u, s, acc);
+      }
+    }
+    for (int a = 0; a < D; ++a) {
+      if (D == 3 && pl.project && a == pl.normal_axis) {
+        if (prm_.projection == wavelet_projection::exact)
+          detail::wavelet_axis_fixed<T, G>(c[a].f, detail::kBeta, detail::kBetaDerivative, ax[a]);
+        else
+          detail::wavelet_axis_fixed<T, G>(c[a].f, detail::kBspline2, detail::kBspline2Derivative,
+                                           ax[a]);
+      } else if (widened && pl.widen[i][a] != 1.0) {
+        detail::wavelet_axis_widened<T, G>(c[a].f + T(detail::constants::kWaveletCellOffset),
+                                           T(pl.widen[i][a]), ax[a]);
+      } else {
+        detail::wavelet_axis_plain<T, G>(c[a].f, ax[a]);
+      }
+    }
+    return detail::wavelet_separable<T, G, D>(ax, acc);
+  }
+
+  // One band of the sample: the cells of its position, then the kernel on the
+  // periodic tile or on the hashed variants.
+  template <class T, bool G>
+  value_gradient<T, D> band_value(const vec<double, D>& p, const plan& pl, int i) const {
+    const band& b = bands_[static_cast<std::size_t>(i)];
+    const vec<double, D> q = b.position(p);
+    lattice_coord<T> c[D];
+    const std::uint32_t period = split_period();
+    for (int a = 0; a < D; ++a) c[a] = lattice_split<T>(q[a], period);
+    if (prm_.variant_overlap == 0) {
+      detail::wavelet_periodic_access<D> acc{tile_->coefficients(), prm_.tile_size,
+                                             tile_->row_length(), {0, 0, 0}};
+      for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
+      return band_kernel<T, G>(c, pl, i, acc);
+    }
+    detail::wavelet_variant_access<D> acc{blend_->coefficients(),
+                                          prm_.tile_size,
+                                          prm_.tile_size - prm_.variant_overlap,
+                                          variant_key(i),
+                                          {0, 0, 0}};
+    for (int a = 0; a < D; ++a) acc.i0[a] = c[a].i0;
+    return band_kernel<T, G>(c, pl, i, acc);
+  }
+
+  template <class T, bool G>
+  value_gradient<T, D> eval(const sample_input<D>& s) const {
+    value_gradient<T, D> r{T(0), {}};
+    for (int a = 0; a < D; ++a)
+      if (!std::isfinite(s.position[a])) {
+        r.value = std::numeric_limits<T>::quiet_NaN();
+        for (int c = 0; c < D; ++c) r.gradient[c] = r.value;
+        return r;
+      }
+    const plan pl = make_plan(s);
+    if (pl.everything) {  // filtered to the mean: 0 before the remapping, constant after
+      remap<T>(r.value, nullptr);
+      return r;
+    }
+    const int nb = band_count();
+    for (int i = 0; i < nb; ++i) {
+      if (pl.weight[i] == 0.0) continue;
+      const value_gradient<T, D> n = band_value<T, G>(s.position, pl, i);
+      r.value += T(pl.weight[i]) * n.value;
+      if constexpr (G) {
+        const T chain = T(pl.weight[i] * bands_[static_cast<std::size_t>(i)].frequency);
+        for (int a = 0; a < D; ++a) r.gradient[a] += chain * n.gradient[a];
+      }
+    }
+    r.value *= T(pl.scale);
+    if constexpr (G) {
+      for (int a = 0; a < D; ++a) r.gradient[a] *= T(pl.scale);
+      T dv = T(1);
+      remap<T>(r.value, &dv);
+      for (int a = 0; a < D; ++a) r.gradient[a] *= dv;
+    } else {
+      remap<T>(r.value, nullptr);
+    }
+    return r;
+  }
+
+  void validate() const {
+    const char* where = "hush::wavelet";
+    wavelet_tile<D>::validate_size(where, "tile_size", prm_.tile_size);
+    namespace c = detail::constants;
+    const std::string band_range =
+        std::to_string(c::kWaveletMinBand) + " ... " + std::to_string(c::kWaveletMaxBand);
+    detail::require_in_range(where, "first_band", prm_.first_band, c::kWaveletMinBand,
+                             c::kWaveletMaxBand, band_range.c_str());
+    const std::size_t nw = prm_.weights.size();
+    if (nw < 1 || nw > static_cast<std::size_t>(kMaxBands))
+      detail::throw_out_of_range(where, "weights.size()", nw, "1 ... 32");
+    bool any = false;
+    for (std::size_t i = 0; i < nw; ++i) {
+      if (!std::isfinite(prm_.weights[i]))
+        detail::throw_out_of_range(where, "weights[" + std::to_string(i) + "]", prm_.weights[i],
+                                   "a finite number");
+      any = any || prm_.weights[i] != 0.0;
+    }
+    if (!any)
+      throw hush::invalid_argument(
+          "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
+    if (prm_.relative_weights)
+      detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,
+                               "1 ... 32");
+    const int nb = prm_.relative_weights ? prm_.relative_bands : static_cast<int>(nw);
+    if (prm_.first_band + nb - 1 > c::kWaveletMaxBand)
+      detail::throw_out_of_range(
+          where, "first_band", prm_.first_band,
+          ("first_band + bands - 1 <= " + std::to_string(c::kWaveletMaxBand)).c_str());
+    if (!prm_.offsets.empty()) {
+      if (prm_.offsets.size() != static_cast<std::size_t>(nb))
+        detail::throw_out_of_range(where, "offsets.size()", prm_.offsets.size(),
+                                   "0 (derived from the seed) or one per band");
+      for (std::size_t i = 0; i < prm_.offsets.size(); ++i)
+        for (int a = 0; a < D; ++a)
+          if (!std::isfinite(prm_.offsets[i][a]))
+            detail::throw_out_of_range(
+                where, "offsets[" + std::to_string(i) + "][" + std::to_string(a) + "]",
+                prm_.offsets[i][a], "a finite number");
+    }
+    if (!(std::isfinite(prm_.gaussian_scale) && prm_.gaussian_scale > 0))
+      detail::throw_out_of_range(where, "gaussian_scale", prm_.gaussian_scale, "finite and > 0");
+    if (prm_.distribution == wavelet_distribution::table) {
+      if (prm_.table.size() < 2 || prm_.table.size() > 65536)
+        detail::throw_out_of_range(where, "table.size()", prm_.table.size(),
+                                   "2 ... 65536 values (with distribution = table)");
+      for (std::size_t i = 0; i < prm_.table.size(); ++i)
+        if (!std::isfinite(prm_.table[i]))
+          detail::throw_out_of_range(where, "table[" + std::to_string(i) + "]", prm_.table[i],
+                                     "a finite number");
+    }
+    if (prm_.variant_overlap != 0)
+      wavelet_blend_tile<D>::validate_overlap(where, "variant_overlap", prm_.tile_size,
+                                              prm_.variant_overlap);
+  }
+
+  params prm_;
+  std::shared_ptr<const wavelet_tile<D>> tile_;
+  std::shared_ptr<const wavelet_blend_tile<D>> blend_;
+  std::shared_ptr<const std::vector<float>> table_;
+  std::vector<band> bands_;
+  std::uint32_t key_ = 0;
+  double scale_ = 1, bound_ = 1, pre_bound_ = 1, slope_ = 1;
+};
+
+}  // namespace hush
+
+// The SIMD backend's entry points and exec::simd binding, after the class they use.
+// ---- begin hush/wavelet/simd_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Wavelet noise's SIMD entry points (kernels: hush/simd/wavelet-inl.h) and
+// detail::simd_kernel<wavelet<D>>, which exec::simd calls: points, grids and
+// samples (footprints, normals). Included at the end of hush/wavelet.hpp, after
+// the class its kernels use; not on its own. Points and gradients are
+// interleaved floats as Perlin's (hush/perlin/simd_kernel.hpp).
+#ifndef HUSH_WAVELET_SIMD_KERNEL_HPP
+#define HUSH_WAVELET_SIMD_KERNEL_HPP
+
+#include <cstddef>
+
+
+#if HUSH_CONFIG_SIMD_STATIC
 // ---- begin hush/simd/wavelet-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -14870,6 +14868,8 @@ HWY_AFTER_NAMESPACE();
 #include <hwy/highway.h>
 
 
+// The noise class comes first, not from here: hush/wavelet.hpp includes these
+// kernels at its end (hush/wavelet/simd_kernel.hpp), as src/simd/wavelet.cpp does.
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {
@@ -16182,268 +16182,28 @@ HWY_AFTER_NAMESPACE();
 // ---- end hush/simd/wavelet-inl.h
 #endif
 
+#define HUSH_SIMD_ENTRIES_WAVELET(X)                                                         \
+  X(wavelet2_points,                                                                         \
+    (const wavelet<2>& w, const float* xy, std::size_t n, float* value, float* grad),        \
+    (w, xy, n, value, grad))                                                                 \
+  X(wavelet3_points,                                                                         \
+    (const wavelet<3>& w, const float* xyz, std::size_t n, float* value, float* grad),       \
+    (w, xyz, n, value, grad))                                                                \
+  X(wavelet2_grid, (const wavelet<2>& w, const grid<2>& g, float* value, float* grad),       \
+    (w, g, value, grad))                                                                     \
+  X(wavelet3_grid, (const wavelet<3>& w, const grid<3>& g, float* value, float* grad),       \
+    (w, g, value, grad))                                                                     \
+  X(wavelet2_samples, (const wavelet<2>& w, const samples<2>& s, float* value, float* grad), \
+    (w, s, value, grad))                                                                     \
+  X(wavelet3_samples, (const wavelet<3>& w, const samples<3>& s, float* value, float* grad), \
+    (w, s, value, grad))
+
+HUSH_SIMD_DECLARE(HUSH_SIMD_ENTRIES_WAVELET)
+
+#if HUSH_CONFIG_SIMD
 namespace hush {
-namespace simd {
-
-// Kernel entry points. Points are interleaved floats (x0, y0[, z0], x1, ...),
-// gradients are written interleaved the same way unless `grad` is null.
-// `period` has one entry per axis (0 = not periodic). Results follow
-// hush::perlin's contract; see hush/simd/perlin-inl.h for the agreement with
-// scalar evaluation. Grid entries evaluate the slab of slowest-axis indices
-// (j in 2D, k in 3D) [first, first + count) into value (and grad), which
-// start at that slab's first sample; (0, g.size[D - 1]) is the whole grid.
-#if HUSH_CONFIG_SIMD_STATIC
-#define HUSH_SIMD_ENTRY inline
-#else
-#define HUSH_SIMD_ENTRY
-#endif
-HUSH_SIMD_ENTRY void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
-                                    std::size_t n, float* value, float* grad);
-HUSH_SIMD_ENTRY void perlin3_points(std::uint32_t key, const std::uint32_t* period,
-                                    const float* xyz, std::size_t n, float* value, float* grad);
-HUSH_SIMD_ENTRY void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                                  std::size_t first, std::size_t count, float* value, float* grad);
-HUSH_SIMD_ENTRY void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                                  std::size_t first, std::size_t count, float* value, float* grad);
-HUSH_SIMD_ENTRY void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
-                                     float* value, float* grad);
-HUSH_SIMD_ENTRY void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
-                                     float* value, float* grad);
-// Wavelet noise (hush/simd/wavelet-inl.h): points and gradients interleaved as above;
-// samples as hush::samples (footprints, normals).
-HUSH_SIMD_ENTRY void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n,
-                                     float* value, float* grad);
-HUSH_SIMD_ENTRY void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n,
-                                     float* value, float* grad);
-HUSH_SIMD_ENTRY void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value,
-                                   float* grad);
-HUSH_SIMD_ENTRY void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value,
-                                   float* grad);
-HUSH_SIMD_ENTRY void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value,
-                                      float* grad);
-HUSH_SIMD_ENTRY void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value,
-                                      float* grad);
-HUSH_SIMD_ENTRY void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g,
-                                   std::size_t first, std::size_t count, float* value, float* grad);
-HUSH_SIMD_ENTRY void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g,
-                                   std::size_t first, std::size_t count, float* value, float* grad);
-// Coherent noise: one recursive-filter pass over a frame (hush/simd/coherent-inl.h;
-// the same result as detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP).
-HUSH_SIMD_ENTRY void coherent_pass(const detail::coherent_pass_job<float>& job);
-// Gabor noise (hush/gabor.hpp): points (interleaved), grid slabs (as Perlin's), and
-// points with footprints (filtered samples); same conventions. hush/simd/gabor-inl.h states
-// the agreement with scalar evaluation.
-HUSH_SIMD_ENTRY void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
-                                   float* grad);
-HUSH_SIMD_ENTRY void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
-                                   float* grad);
-HUSH_SIMD_ENTRY void gabor2_grid(const gabor<2>& g, const grid<2>& gr, std::size_t first,
-                                 std::size_t count, float* value, float* grad);
-HUSH_SIMD_ENTRY void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
-                                     std::size_t n, float* value, float* grad);
-HUSH_SIMD_ENTRY void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
-                                     std::size_t n, float* value, float* grad);
-HUSH_SIMD_ENTRY void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
-                                 std::size_t count, float* value, float* grad);
-// Samples with normals (surface noise), interleaved normals; fps null: point footprints.
-HUSH_SIMD_ENTRY void gabor3_surface(const gabor<3>& g, const float* xyz, const float* normals,
-                                    const footprint<3>* fps, std::size_t n, float* value,
-                                    float* grad);
-
-// Anisotropic noise (hush/simd/anisotropic-inl.h): n samples at interleaved
-// positions xy, with footprints fp (3 floats each, null = points) and surface
-// maps (4 floats each, null = none); or a uniform grid. Gradients
-// (interleaved x, y) into grad unless null.
-HUSH_SIMD_ENTRY void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
-                                         const float* map, std::size_t n, float* value,
-                                         float* grad);
-HUSH_SIMD_ENTRY void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value,
-                                      float* grad);
-
-// NPR Gabor noise's stage 2 (hush/simd/npr_gabor-inl.h): the job's records added into
-// out (frame-sized, zeroed by the caller), per pixel in record order; bit for bit
-// detail::npr_gabor_splat_scalar<float> under HUSH_STRICT_FP.
-HUSH_SIMD_ENTRY void npr_gabor_splat(const detail::npr_gabor_splat_job& job,
-                                     const image_view<float>& out);
-
-// Names of the targets compiled into this program ("AVX2", "SSE4", ...),
-// best first, and of the one the kernels run on, on this CPU.
-HUSH_SIMD_ENTRY std::vector<std::string> compiled_targets();
-HUSH_SIMD_ENTRY std::string chosen_target();
-// "dynamic" or "static".
-inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" : "dynamic"; }
-
-#if HUSH_CONFIG_SIMD_STATIC
-inline void perlin2_points(std::uint32_t key, const std::uint32_t* period, const float* xy,
-                           std::size_t n, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(perlin2_points)(key, period, xy, n, value, grad);
-}
-inline void perlin3_points(std::uint32_t key, const std::uint32_t* period, const float* xyz,
-                           std::size_t n, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(perlin3_points)(key, period, xyz, n, value, grad);
-}
-inline void perlin2_grid(std::uint32_t key, const std::uint32_t* period, const grid<2>& g,
-                         std::size_t first, std::size_t count, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(perlin2_grid)(key, period, g, first, count, value, grad);
-}
-inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const grid<3>& g,
-                         std::size_t first, std::size_t count, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(perlin3_grid)(key, period, g, first, count, value, grad);
-}
-inline void fractal2_points(const fractal<perlin<2>>& fr, const float* xy, std::size_t n,
-                            float* value, float* grad) {
-  HWY_STATIC_DISPATCH(fractal2_points)(fr, xy, n, value, grad);
-}
-inline void fractal3_points(const fractal<perlin<3>>& fr, const float* xyz, std::size_t n,
-                            float* value, float* grad) {
-  HWY_STATIC_DISPATCH(fractal3_points)(fr, xyz, n, value, grad);
-}
-inline void fractal2_grid(const fractal<perlin<2>>& fr, const grid<2>& g, std::size_t first,
-                          std::size_t count, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(fractal2_grid)(fr, g, first, count, value, grad);
-}
-inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::size_t first,
-                          std::size_t count, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(fractal3_grid)(fr, g, first, count, value, grad);
-}
-inline void coherent_pass(const detail::coherent_pass_job<float>& job) {
-  HWY_STATIC_DISPATCH(coherent_pass)(job);
-}
-inline void wavelet2_points(const wavelet<2>& w, const float* xy, std::size_t n, float* value,
-                            float* grad) {
-  HWY_STATIC_DISPATCH(wavelet2_points)(w, xy, n, value, grad);
-}
-inline void wavelet3_points(const wavelet<3>& w, const float* xyz, std::size_t n, float* value,
-                            float* grad) {
-  HWY_STATIC_DISPATCH(wavelet3_points)(w, xyz, n, value, grad);
-}
-inline void wavelet2_grid(const wavelet<2>& w, const grid<2>& g, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(wavelet2_grid)(w, g, value, grad);
-}
-inline void wavelet3_grid(const wavelet<3>& w, const grid<3>& g, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(wavelet3_grid)(w, g, value, grad);
-}
-inline void wavelet2_samples(const wavelet<2>& w, const samples<2>& s, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(wavelet2_samples)(w, s, value, grad);
-}
-inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(wavelet3_samples)(w, s, value, grad);
-}
-inline void anisotropic_samples(const anisotropic& a, const float* xy, const float* fp,
-                                const float* map, std::size_t n, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(anisotropic_samples)(a, xy, fp, map, n, value, grad);
-}
-inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(anisotropic_grid)(a, g, value, grad);
-}
-inline void gabor2_points(const gabor<2>& g, const float* xy, std::size_t n, float* value,
-                          float* grad) {
-  HWY_STATIC_DISPATCH(gabor2_points)(g, xy, n, value, grad);
-}
-inline void gabor3_points(const gabor<3>& g, const float* xyz, std::size_t n, float* value,
-                          float* grad) {
-  HWY_STATIC_DISPATCH(gabor3_points)(g, xyz, n, value, grad);
-}
-inline void gabor2_grid(const gabor<2>& g, const grid<2>& gr, std::size_t first,
-                        std::size_t count, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(gabor2_grid)(g, gr, first, count, value, grad);
-}
-inline void gabor2_filtered(const gabor<2>& g, const float* xy, const footprint<2>* fps,
-                            std::size_t n, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(gabor2_filtered)(g, xy, fps, n, value, grad);
-}
-inline void gabor3_filtered(const gabor<3>& g, const float* xyz, const footprint<3>* fps,
-                            std::size_t n, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(gabor3_filtered)(g, xyz, fps, n, value, grad);
-}
-inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
-                        std::size_t count, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(gabor3_grid)(g, gr, first, count, value, grad);
-}
-inline void gabor3_surface(const gabor<3>& g, const float* xyz, const float* normals,
-                           const footprint<3>* fps, std::size_t n, float* value, float* grad) {
-  HWY_STATIC_DISPATCH(gabor3_surface)(g, xyz, normals, fps, n, value, grad);
-}
-inline void npr_gabor_splat(const detail::npr_gabor_splat_job& job, const image_view<float>& out) {
-  HWY_STATIC_DISPATCH(npr_gabor_splat)(job, out);
-}
-inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
-inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
-#endif
-#undef HUSH_SIMD_ENTRY
-
-}  // namespace simd
-
 namespace detail {
 
-template <int D>
-struct simd_kernel<perlin<D>> {
-  static constexpr bool available = true;
-  static_assert(sizeof(vec<float, D>) == D * sizeof(float),
-                "vec<float, D> must be D packed floats");
-
-  static void config(const perlin<D>& n, std::uint32_t& key, std::uint32_t (&period)[3]) {
-    key = seed_key(n.parameters().seed);
-    for (int a = 0; a < 3; ++a)
-      period[a] = a < D ? static_cast<std::uint32_t>(n.parameters().period[a]) : 0u;
-  }
-  static void points(const perlin<D>& n, const vec<float, D>* pts, std::size_t count, float* out,
-                     vec<float, D>* grad) {
-    std::uint32_t key, period[3];
-    config(n, key, period);
-    const auto* p = reinterpret_cast<const float*>(pts);
-    auto* g = reinterpret_cast<float*>(grad);
-    if constexpr (D == 2)
-      simd::perlin2_points(key, period, p, count, out, g);
-    else
-      simd::perlin3_points(key, period, p, count, out, g);
-  }
-  // Slabs along the slowest axis (exec::parallel; exec.hpp).
-  static constexpr bool has_grid_slab = true;
-  static void grid_slab(const perlin<D>& n, const hush::grid<D>& gr, std::size_t first,
-                        std::size_t count, float* out, vec<float, D>* grad) {
-    std::uint32_t key, period[3];
-    config(n, key, period);
-    auto* g = reinterpret_cast<float*>(grad);
-    if constexpr (D == 2)
-      simd::perlin2_grid(key, period, gr, first, count, out, g);
-    else
-      simd::perlin3_grid(key, period, gr, first, count, out, g);
-  }
-  static void grid(const perlin<D>& n, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
-    grid_slab(n, gr, 0, gr.size[D - 1], out, grad);
-  }
-};
-
-template <int D>
-struct simd_kernel<fractal<perlin<D>>> {
-  static constexpr bool available = true;
-
-  static void points(const fractal<perlin<D>>& fr, const vec<float, D>* pts, std::size_t count,
-                     float* out, vec<float, D>* grad) {
-    const auto* p = reinterpret_cast<const float*>(pts);
-    auto* g = reinterpret_cast<float*>(grad);
-    if constexpr (D == 2)
-      simd::fractal2_points(fr, p, count, out, g);
-    else
-      simd::fractal3_points(fr, p, count, out, g);
-  }
-  static constexpr bool has_grid_slab = true;
-  static void grid_slab(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, std::size_t first,
-                        std::size_t count, float* out, vec<float, D>* grad) {
-    auto* g = reinterpret_cast<float*>(grad);
-    if constexpr (D == 2)
-      simd::fractal2_grid(fr, gr, first, count, out, g);
-    else
-      simd::fractal3_grid(fr, gr, first, count, out, g);
-  }
-  static void grid(const fractal<perlin<D>>& fr, const hush::grid<D>& gr, float* out,
-                   vec<float, D>* grad) {
-    grid_slab(fr, gr, 0, gr.size[D - 1], out, grad);
-  }
-};
-
-// Wavelet noise: points, grids and samples (footprints, normals) have kernels.
 template <int D>
 struct simd_kernel<wavelet<D>> {
   static constexpr bool available = true;
@@ -16475,670 +16235,15 @@ struct simd_kernel<wavelet<D>> {
   }
 };
 
-// Anisotropic noise: samples (footprints, surface maps), points and grids,
-// values and gradients in SIMD (gradients: the bilinear lookups' slopes).
-template <>
-struct simd_kernel<anisotropic> {
-  static constexpr bool available = true;
-  static constexpr bool has_samples = true;
-
-  static void points(const anisotropic& a, const vec<float, 2>* pts, std::size_t count, float* out,
-                     vec<float, 2>* grad) {
-    simd::anisotropic_samples(a, reinterpret_cast<const float*>(pts), nullptr, nullptr, count, out,
-                              reinterpret_cast<float*>(grad));
-  }
-  static void grid(const anisotropic& a, const hush::grid<2>& g, float* out, vec<float, 2>* grad) {
-    simd::anisotropic_grid(a, g, out, reinterpret_cast<float*>(grad));
-  }
-  static void samples(const anisotropic& a, const hush::samples<2>& s, float* out,
-                      vec<float, 2>* grad) {
-    static_assert(sizeof(footprint<2>) == 3 * sizeof(float), "footprint<2> is 3 packed floats");
-    static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
-    static_assert(sizeof(vec<float, 2>) == 2 * sizeof(float), "vec<float, 2> is 2 packed floats");
-    simd::anisotropic_samples(
-        a, reinterpret_cast<const float*>(s.positions.data()),
-        s.has_footprints() ? reinterpret_cast<const float*>(s.footprints.data()) : nullptr,
-        s.has_surface_maps() ? reinterpret_cast<const float*>(s.surface_maps.data()) : nullptr,
-        s.size(), out, reinterpret_cast<float*>(grad));
-  }
-};
-
-// Gabor noise: points, grids, and samples with footprints and (3D) normals.
-template <int D>
-struct simd_kernel<gabor<D>> {
-  static constexpr bool available = true;
-  static constexpr bool has_samples = true;
-
-  static void samples(const gabor<D>& g, const hush::samples<D>& s, float* out,
-                      vec<float, D>* grad) {
-    const auto* p = reinterpret_cast<const float*>(s.positions.data());
-    auto* gr = reinterpret_cast<float*>(grad);
-    if constexpr (D == 3) {
-      if (s.has_normals()) {  // surface noise
-        simd::gabor3_surface(g, p, reinterpret_cast<const float*>(s.normals.data()),
-                             s.has_footprints() ? s.footprints.data() : nullptr, s.size(), out, gr);
-        return;
-      }
-    }
-    if constexpr (D == 2)
-      simd::gabor2_filtered(g, p, s.footprints.data(), s.size(), out, gr);
-    else
-      simd::gabor3_filtered(g, p, s.footprints.data(), s.size(), out, gr);
-  }
-
-  static void points(const gabor<D>& g, const vec<float, D>* pts, std::size_t count, float* out,
-                     vec<float, D>* grad) {
-    const auto* p = reinterpret_cast<const float*>(pts);
-    auto* gr = reinterpret_cast<float*>(grad);
-    if constexpr (D == 2)
-      simd::gabor2_points(g, p, count, out, gr);
-    else
-      simd::gabor3_points(g, p, count, out, gr);
-  }
-  // Slabs along the slowest axis (exec::parallel; exec.hpp).
-  static constexpr bool has_grid_slab = true;
-  static void grid_slab(const gabor<D>& g, const hush::grid<D>& gr, std::size_t first,
-                        std::size_t count, float* out, vec<float, D>* grad) {
-    auto* gp = reinterpret_cast<float*>(grad);
-    if constexpr (D == 2)
-      simd::gabor2_grid(g, gr, first, count, out, gp);
-    else
-      simd::gabor3_grid(g, gr, first, count, out, gp);
-  }
-  static void grid(const gabor<D>& g, const hush::grid<D>& gr, float* out, vec<float, D>* grad) {
-    grid_slab(g, gr, 0, gr.size[D - 1], out, grad);
-  }
-};
-
 }  // namespace detail
 }  // namespace hush
-
 #endif  // HUSH_CONFIG_SIMD
 
-#endif  // HUSH_SIMD_DISPATCH_HPP
-// ---- end hush/simd/dispatch.hpp
-// ---- begin hush/thread_pool.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// hush::thread_pool: worker threads that live as long as the pool, for
-// hush::exec::parallel(inner, pool). Starting a std::thread costs tens of
-// microseconds, as long as a whole small batch (a 512 x 512 Perlin grid takes
-// ~90 us on one core), so exec::parallel(inner, threads), which starts its
-// threads per call, only pays for large batches. A pool's workers wait for
-// the next batch spinning a few tens of microseconds, then asleep, so batches
-// that follow each other closely start at once (docs/performance.md has both
-// measured).
-//
-//   hush::thread_pool pool(4);  // the calling thread plus 3 workers
-//   hush::evaluate_grid(noise, hush::exec::parallel(hush::exec::simd, pool), g, out);
-//
-// Contract:
-//  - thread_pool(threads): threads in 0 ... 1024, 0 meaning one per hardware
-//    thread (std::thread::hardware_concurrency(), at least 1); else
-//    hush::invalid_argument naming `threads`. It starts threads - 1 workers:
-//    the thread that calls run() is the first. If the system refuses a
-//    thread, the pool keeps the workers it got (size() says how many run).
-//  - run(parts, body): calls body(0) ... body(parts - 1), each exactly once,
-//    on whichever of the pool's threads and the calling thread takes it first
-//    (the caller takes parts too, so a worker that is not running delays only
-//    the parts it took), and returns when all have returned. body must not throw (hush's batch
-//    bodies do not: they run after validation). Calls from several threads
-//    are serialised (one batch at a time); a call from inside a body of the
-//    same pool runs all its parts on the calling thread instead of waiting
-//    for itself.
-//  - The destructor wakes and joins the workers; a pool must not be destroyed
-//    while a run() is in progress.
-//  - The pool is not copyable or movable (workers hold its address).
-#ifndef HUSH_THREAD_POOL_HPP
-#define HUSH_THREAD_POOL_HPP
+#endif  // HUSH_WAVELET_SIMD_KERNEL_HPP
+// ---- end hush/wavelet/simd_kernel.hpp
 
-#include <algorithm>
-#include <atomic>
-#include <chrono>
-#include <condition_variable>
-#include <cstddef>
-#include <cstdint>
-#include <functional>
-#include <mutex>
-#include <thread>
-#include <vector>
-
-
-#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
-#include <immintrin.h>  // _mm_pause
-#endif
-
-namespace hush {
-
-class thread_pool {
- public:
-  static constexpr int kMaxThreads = 1024;
-
-  explicit thread_pool(int threads = 0) {
-    detail::require_in_range("hush::thread_pool", "threads", threads, 0, kMaxThreads,
-                             "0 (one per hardware thread) ... 1024");
-    const unsigned n =
-        threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : unsigned(threads);
-    workers_.reserve(n - 1);
-    try {
-      for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this] { work(); });
-    } catch (...) {  // no more threads to be had: the pool runs with those it has
-    }
-  }
-  thread_pool(const thread_pool&) = delete;
-  thread_pool& operator=(const thread_pool&) = delete;
-  ~thread_pool() {
-    {
-      const std::lock_guard<std::mutex> lock(m_);
-      stop_.store(true, std::memory_order_release);
-    }
-    wake_.notify_all();
-    for (std::thread& t : workers_) t.join();
-  }
-
-  // Threads that run parts: the workers plus the calling thread.
-  unsigned size() const { return unsigned(workers_.size()) + 1; }
-
-  template <class Body>
-  void run(std::size_t parts, const Body& body) {
-    if (parts == 0) return;
-    if (parts == 1 || workers_.empty() || inside_ == this) {
-      for (std::size_t p = 0; p < parts; ++p) body(p);
-      return;
-    }
-    for (std::size_t base = 0; base < parts; base += kMaxParts) {  // a word holds 2^32 - 1
-      const std::size_t n = std::min<std::size_t>(parts - base, kMaxParts);
-      batch(n, [&body, base](std::size_t p) { body(base + p); });
-    }
-  }
-
- private:
-  static constexpr std::size_t kMaxParts = 0xffffffffu;
-  // Waking a sleeping thread takes a system call and a trip through the
-  // scheduler (tens of microseconds on a busy machine); a batch's end and the
-  // next batch often come sooner. So waiters first spin for this long, then
-  // sleep.
-  static constexpr std::chrono::microseconds kSpin{50};
-
-  template <class Body>
-  void batch(std::size_t parts, const Body& body) {
-    const std::lock_guard<std::mutex> one_batch(run_m_);
-    {
-      const std::lock_guard<std::mutex> lock(m_);
-      body_ = [&body](std::size_t p) { body(p); };
-      pending_.store(parts, std::memory_order_relaxed);
-      next_.store(std::uint64_t(parts) << 32, std::memory_order_release);  // publishes body_
-    }
-    wake_.notify_all();
-    // The caller takes parts too: a worker that is not running (asleep, or
-    // waiting for a core) holds up only the parts it has already taken.
-    const thread_pool* outer = inside_;
-    inside_ = this;
-    run_parts();
-    inside_ = outer;
-    if (!spin_until([this] { return pending_.load(std::memory_order_acquire) == 0; })) {
-      std::unique_lock<std::mutex> lock(m_);
-      done_.wait(lock, [this] { return pending_.load(std::memory_order_acquire) == 0; });
-    }
-    body_ = nullptr;
-  }
-
-  // next_ holds the batch's part count (high 32 bits) and the next part to
-  // take (low 32 bits): one compare-and-swap takes a part of the batch the
-  // word describes, and body_ is that batch's until all its parts returned.
-  bool take(std::size_t& part) {
-    std::uint64_t w = next_.load(std::memory_order_acquire);
-    while ((w & 0xffffffffu) < (w >> 32))
-      if (next_.compare_exchange_weak(w, w + 1, std::memory_order_acq_rel,
-                                      std::memory_order_acquire)) {
-        part = std::size_t(w & 0xffffffffu);
-        return true;
-      }
-    return false;
-  }
-  bool work_left() const {
-    const std::uint64_t w = next_.load(std::memory_order_acquire);
-    return (w & 0xffffffffu) < (w >> 32);
-  }
-  void run_parts() {
-    std::size_t p = 0;
-    while (take(p)) {
-      body_(p);
-      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
-        const std::lock_guard<std::mutex> lock(m_);  // the caller may be about to sleep
-        done_.notify_one();
-      }
-    }
-  }
-
-  static void pause() {
-#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
-    _mm_pause();
-#elif defined(__aarch64__) || defined(__arm__)
-    __asm__ __volatile__("yield");
-#endif
-  }
-  template <class Ready>
-  static bool spin_until(const Ready& ready) {
-    const auto until = std::chrono::steady_clock::now() + kSpin;
-    for (;;) {
-      for (int s = 0; s < 64; ++s) {
-        if (ready()) return true;
-        pause();
-      }
-      if (std::chrono::steady_clock::now() > until) return ready();
-    }
-  }
-
-  void work() {
-    inside_ = this;
-    auto ready = [this] { return stop_.load(std::memory_order_acquire) || work_left(); };
-    for (;;) {
-      if (!spin_until(ready)) {
-        std::unique_lock<std::mutex> lock(m_);
-        wake_.wait(lock, ready);
-      }
-      if (stop_.load(std::memory_order_acquire)) return;
-      run_parts();
-    }
-  }
-
-  std::vector<std::thread> workers_;
-  std::mutex run_m_;  // serialises run()
-  std::mutex m_;      // with wake_ and done_: sleeping and waking
-  std::condition_variable wake_, done_;
-  std::function<void(std::size_t)> body_;  // set before next_ is published
-  std::atomic<std::uint64_t> next_{0};
-  std::atomic<std::size_t> pending_{0};  // parts of the batch not yet returned
-  std::atomic<bool> stop_{false};
-  static inline thread_local const thread_pool* inside_ = nullptr;  // the pool this thread serves
-};
-
-}  // namespace hush
-
-#endif  // HUSH_THREAD_POOL_HPP
-// ---- end hush/thread_pool.hpp
-
-namespace hush {
-namespace exec {
-
-// Plain C++ loop over the noise's point evaluation: the reference backend.
-struct scalar_t {
-  static constexpr const char* name = "scalar";
-};
-// Highway SIMD kernels, dynamically dispatched to the best compiled target
-// (or statically, see hush/simd/dispatch.hpp).
-struct simd_t {
-  static constexpr const char* name = "simd";
-};
-inline constexpr scalar_t scalar{};
-inline constexpr simd_t simd{};
-
-// GLSL compute shaders on a GL device: hush::exec::glsl{device}. Device is
-// any type with the batch members hush::glsl::device has; the core does not
-// depend on GL.
-template <class Device>
-struct glsl {
-  static constexpr const char* name = "glsl";
-  Device& device;
-};
-template <class Device>
-glsl(Device&) -> glsl<Device>;
-
-// Multi-threaded batches: hush::exec::parallel(hush::exec::simd, threads)
-// evaluates a batch on `threads` std::threads (0: one per hardware thread,
-// std::thread::hardware_concurrency()), each running the inner policy on a
-// contiguous part, and returns when all are done. Results are those of the
-// inner policy on the whole batch, bit for bit: points and samples are
-// evaluated independently of their neighbours, and a grid slab is the same
-// rows of the same grid (the kernels take a row range, so every sample's
-// position is formed exactly as in the whole-grid call). Batches too small to
-// give every thread kParallelGrain samples use fewer threads.
-// With a hush::thread_pool instead of a count, the pool's threads run the
-// parts (no thread start per call: worth it for batches under ~1 ms; the pool
-// must outlive the call, and batches on one pool run one at a time).
-template <class Inner>
-struct parallel_t {
-  static_assert(std::is_same<Inner, scalar_t>::value || std::is_same<Inner, simd_t>::value,
-                "hush::exec::parallel runs the scalar or simd policy");
-  static constexpr const char* name = "parallel";
-  static constexpr int kMaxThreads = 1024;
-  static constexpr std::size_t kParallelGrain = 4096;  // samples per thread, at least
-  Inner inner;
-  unsigned threads;             // >= 1, resolved at construction
-  thread_pool* pool = nullptr;  // null: threads started per call
-};
-// Throws hush::invalid_argument when threads is outside 0 ... 1024.
-template <class Inner>
-parallel_t<Inner> parallel(Inner inner, int threads = 0) {
-  detail::require_in_range("hush::exec::parallel", "threads", threads, 0,
-                           parallel_t<Inner>::kMaxThreads, "0 (one per hardware thread) ... 1024");
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  return {inner, threads == 0 ? hw : static_cast<unsigned>(threads), nullptr};
-}
-// The pool's threads (pool.size(), the calling thread included) run the parts.
-template <class Inner>
-parallel_t<Inner> parallel(Inner inner, thread_pool& pool) {
-  return {inner, pool.size(), &pool};
-}
-
-}  // namespace exec
-
-namespace detail {
-
-template <class Noise>
-using point_span = span<const vec<float, Noise::dimension>>;
-template <class Noise>
-using gradient_span = span<vec<float, Noise::dimension>>;
-
-inline void require_same_size(const char* where, const char* name, std::size_t got,
-                              std::size_t want) {
-  if (got != want)
-    throw_out_of_range(where, name, got,
-                       ("exactly " + std::to_string(want) + " elements (one per sample)").c_str());
-}
-
-// The parallel policy's overloads (defined at the end of this namespace).
-template <class Noise, class Inner>
-void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
-                float* out, vec<float, Noise::dimension>* grad);
-template <class Noise, class Inner>
-void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
-                 const samples<Noise::dimension>& s, float* out,
-                 vec<float, Noise::dimension>* grad);
-template <class Noise, class Inner>
-void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
-              float* out, vec<float, Noise::dimension>* grad);
-
-template <class Noise>
-void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
-                   vec<float, Noise::dimension>* grad) {
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    if (grad) {
-      const auto r = n.gradient(pts[i]);
-      out[i] = r.value;
-      grad[i] = r.gradient;
-    } else {
-      out[i] = n(pts[i]);
-    }
-  }
-}
-
-// Whether Noise evaluates grid slabs itself: a member
-//   void grid_values(const grid<D>& g, std::size_t first, std::size_t count,
-//                    float* out, vec<float, D>* grad) const;
-// with the values and gradients of its point evaluation at every sample (bit
-// for bit unless the compiler contracts multiply-adds, or within the bound the
-// noise states: gabor.hpp), faster than the sample loop below by sharing work
-// between samples (perlin.hpp).
-template <class Noise, class = void>
-struct has_grid_values : std::false_type {};
-template <class Noise>
-struct has_grid_values<
-    Noise, std::void_t<decltype(std::declval<const Noise&>().grid_values(
-               std::declval<const grid<Noise::dimension>&>(), std::size_t{}, std::size_t{},
-               std::declval<float*>(), std::declval<vec<float, Noise::dimension>*>()))>>
-    : std::true_type {};
-
-// The grid's samples with slowest-axis index (j in 2D, k in 3D) in
-// [first, first + count) into out, which starts at sample (0, 0[, 0]) of that slab.
-template <class Noise>
-void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, std::size_t first,
-                 std::size_t count, float* out, vec<float, Noise::dimension>* grad) {
-  constexpr int D = Noise::dimension;
-  if constexpr (has_grid_values<Noise>::value) {
-    n.grid_values(g, first, count, out, grad);
-  } else {
-    g.for_each_in_slab(first, count, [&](std::size_t idx, const vec<double, D>& p) {
-      if (grad) {
-        const auto r = n.template value_and_gradient<float>(p);
-        out[idx] = r.value;
-        grad[idx] = r.gradient;
-      } else {
-        out[idx] = n.template value<float>(p);
-      }
-    });
-  }
-}
-template <class Noise>
-void scalar_grid(const Noise& n, const grid<Noise::dimension>& g, float* out,
-                 vec<float, Noise::dimension>* grad) {
-  scalar_grid(n, g, 0, g.size[Noise::dimension - 1], out, grad);
-}
-
-template <class Noise, class Exec>
-void run_points(const Noise& n, const Exec& ex, point_span<Noise> pts, float* out,
-                vec<float, Noise::dimension>* grad) {
-  if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
-    scalar_points(n, pts, out, grad);
-  } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
-    if constexpr (simd_kernel<Noise>::available)
-      simd_kernel<Noise>::points(n, pts.data(), pts.size(), out, grad);
-    else
-      scalar_points(n, pts, out, grad);
-  } else {
-    ex.device.evaluate_points(n, pts.data(), pts.size(), out, grad);
-  }
-}
-
-// The scalar loop over samples with extra inputs (footprints, normals, maps).
-template <class Noise>
-void scalar_samples(const Noise& n, const samples<Noise::dimension>& s, float* out,
-                    vec<float, Noise::dimension>* grad) {
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const sample_input<Noise::dimension> in = s.at(i);
-    if (grad) {
-      const auto r = n.template sample_value_and_gradient<float>(in);
-      out[i] = r.value;
-      grad[i] = r.gradient;
-    } else {
-      out[i] = n.template sample_value<float>(in);
-    }
-  }
-}
-
-// Whether the SIMD kernels of Noise take per-sample inputs (simd_kernel<Noise>::samples).
-template <class Kernel, class = void>
-struct has_simd_samples : std::false_type {};
-template <class Kernel>
-struct has_simd_samples<Kernel, std::void_t<decltype(Kernel::has_samples)>>
-    : std::integral_constant<bool, Kernel::has_samples> {};
-
-// Samples with extra inputs on backend ex; positions-only batches go to run_points.
-template <class Noise, class Exec>
-void run_samples(const Noise& n, const Exec& ex, const samples<Noise::dimension>& s, float* out,
-                 vec<float, Noise::dimension>* grad) {
-  // Positions only (always so for a noise that takes no extras: validated) is a points batch.
-  constexpr bool kExtras = takes_sample_inputs<Noise>::value;
-  if (!kExtras || !s.has_extras()) {
-    run_points(n, ex, s.positions, out, grad);
-    return;
-  }
-  if constexpr (kExtras) {
-    if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
-      scalar_samples(n, s, out, grad);
-    } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
-      if constexpr (has_simd_samples<simd_kernel<Noise>>::value)
-        simd_kernel<Noise>::samples(n, s, out, grad);
-      else
-        scalar_samples(n, s, out, grad);
-    } else {
-      ex.device.evaluate_samples(n, s, out, grad);
-    }
-  }
-}
-
-template <class Noise, class Exec>
-void run_grid(const Noise& n, const Exec& ex, const grid<Noise::dimension>& g, float* out,
-              vec<float, Noise::dimension>* grad) {
-  if constexpr (std::is_same<Exec, exec::scalar_t>::value) {
-    scalar_grid(n, g, out, grad);
-  } else if constexpr (std::is_same<Exec, exec::simd_t>::value) {
-    if constexpr (simd_kernel<Noise>::available)
-      simd_kernel<Noise>::grid(n, g, out, grad);
-    else
-      scalar_grid(n, g, out, grad);
-  } else {
-    ex.device.evaluate_grid(n, g, out, grad);
-  }
-}
-
-// ---- exec::parallel.
-
-// Runs body(begin, end) over [0, n) split into at most `threads` contiguous
-// parts of whole `unit`s (n is a multiple of unit), each at least `grain`
-// long: on `pool`'s threads and the calling thread, whichever takes a part, or
-// on threads started here when pool is null.
-template <class Body>
-void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned threads,
-                    thread_pool* workers, const Body& body) {
-  const std::size_t units = n / unit, grain_units = std::max<std::size_t>(1, grain / unit);
-  const std::size_t parts =
-      std::max<std::size_t>(1, std::min<std::size_t>(threads, units / grain_units));
-  auto part = [&](std::size_t t) {
-    body(t * units / parts * unit, (t + 1) * units / parts * unit);
-  };
-  if (workers) {
-    workers->run(parts, part);
-    return;
-  }
-  std::vector<std::thread> pool;
-  pool.reserve(parts - 1);
-  std::size_t started = 1;
-  try {
-    for (; started < parts; ++started) pool.emplace_back(part, started);
-  } catch (...) {  // no more threads to be had: the calling thread does the rest
-  }
-  part(0);
-  for (std::size_t t = started; t < parts; ++t) part(t);
-  for (std::thread& th : pool) th.join();
-}
-
-// Whether simd_kernel<Noise> evaluates grid slabs (grid_slab(n, g, first, count, out, grad)).
-template <class Kernel, class = void>
-struct has_simd_grid_slab : std::false_type {};
-template <class Kernel>
-struct has_simd_grid_slab<Kernel, std::void_t<decltype(Kernel::has_grid_slab)>>
-    : std::integral_constant<bool, Kernel::has_grid_slab> {};
-
-template <class Noise, class Inner>
-void run_points(const Noise& n, const exec::parallel_t<Inner>& ex, point_span<Noise> pts,
-                float* out, vec<float, Noise::dimension>* grad) {
-  parallel_parts(pts.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
-                 [&](std::size_t b, std::size_t e) {
-                   run_points(n, ex.inner, pts.subspan(b, e - b), out + b, grad ? grad + b : grad);
-                 });
-}
-
-template <class Noise, class Inner>
-void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
-                 const samples<Noise::dimension>& s, float* out,
-                 vec<float, Noise::dimension>* grad) {
-  parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
-                 [&](std::size_t b, std::size_t e) {
-                   samples<Noise::dimension> part = s;
-                   part.positions = s.positions.subspan(b, e - b);
-                   if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
-                   if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
-                   run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
-                 });
-}
-
-// Slabs along the slowest axis. A SIMD kernel without slab support gets the
-// whole grid on one thread: a slab re-based as a grid of its own would form
-// its positions with other roundings.
-template <class Noise, class Inner>
-void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
-              float* out, vec<float, Noise::dimension>* grad) {
-  constexpr int D = Noise::dimension;
-  constexpr bool kSlabs = std::is_same<Inner, exec::scalar_t>::value ||
-                          !simd_kernel<Noise>::available ||
-                          has_simd_grid_slab<simd_kernel<Noise>>::value;
-  if constexpr (!kSlabs) {
-    run_grid(n, ex.inner, g, out, grad);
-  } else {
-    const std::size_t slab = g.count() / g.size[D - 1];  // samples per slowest-axis index
-    parallel_parts(
-        g.count(), slab, ex.kParallelGrain, ex.threads, ex.pool, [&](std::size_t b, std::size_t e) {
-          float* o = out + b;
-          vec<float, D>* gr = grad ? grad + b : grad;
-          if constexpr (std::is_same<Inner, exec::simd_t>::value && simd_kernel<Noise>::available)
-            simd_kernel<Noise>::grid_slab(n, g, b / slab, (e - b) / slab, o, gr);
-          else
-            scalar_grid(n, g, b / slab, (e - b) / slab, o, gr);
-        });
-  }
-}
-
-}  // namespace detail
-
-// Values of `noise` at `points` into `out` (same size), on backend `ex`.
-template <class Noise, class Exec>
-void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points,
-              span<float> out) {
-  detail::require_same_size("hush::evaluate", "out", out.size(), points.size());
-  if (points.empty()) return;
-  detail::run_points(noise, ex, points, out.data(), nullptr);
-}
-
-// Values and analytic gradients (d noise / d position) at `points`.
-template <class Noise, class Exec>
-void evaluate(const Noise& noise, const Exec& ex, detail::point_span<Noise> points, span<float> out,
-              detail::gradient_span<Noise> gradients) {
-  detail::require_same_size("hush::evaluate", "out", out.size(), points.size());
-  detail::require_same_size("hush::evaluate", "gradients", gradients.size(), points.size());
-  if (points.empty()) return;
-  detail::run_points(noise, ex, points, out.data(), gradients.data());
-}
-
-// Values of `noise` at `s` (positions with optional footprints, normals and
-// surface maps, core/samples.hpp) into `out` (one per position), on backend `ex`.
-template <class Noise, class Exec>
-void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
-              span<float> out) {
-  detail::validate_samples<Noise>("hush::evaluate", s);
-  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
-  if (s.size() == 0) return;
-  detail::run_samples(noise, ex, s, out.data(), nullptr);
-}
-
-// Values and gradients (d value / d position, the footprint held fixed) at `s`.
-template <class Noise, class Exec>
-void evaluate(const Noise& noise, const Exec& ex, const samples<Noise::dimension>& s,
-              span<float> out, detail::gradient_span<Noise> gradients) {
-  detail::validate_samples<Noise>("hush::evaluate", s);
-  detail::require_same_size("hush::evaluate", "out", out.size(), s.size());
-  detail::require_same_size("hush::evaluate", "gradients", gradients.size(), s.size());
-  if (s.size() == 0) return;
-  detail::run_samples(noise, ex, s, out.data(), gradients.data());
-}
-
-// Values of `noise` on the uniform grid `g` into `out` (g.count() elements,
-// C order, i fastest).
-template <class Noise, class Exec>
-void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimension>& g,
-                   span<float> out) {
-  g.validate("hush::evaluate_grid");
-  detail::require_same_size("hush::evaluate_grid", "out", out.size(), g.count());
-  if (g.count() == 0) return;
-  detail::run_grid(noise, ex, g, out.data(), nullptr);
-}
-
-// Values and analytic gradients on the uniform grid `g`.
-template <class Noise, class Exec>
-void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimension>& g,
-                   span<float> out, detail::gradient_span<Noise> gradients) {
-  g.validate("hush::evaluate_grid");
-  detail::require_same_size("hush::evaluate_grid", "out", out.size(), g.count());
-  detail::require_same_size("hush::evaluate_grid", "gradients", gradients.size(), g.count());
-  if (g.count() == 0) return;
-  detail::run_grid(noise, ex, g, out.data(), gradients.data());
-}
-
-}  // namespace hush
-
-#endif  // HUSH_EXEC_HPP
-// ---- end hush/exec.hpp
+#endif  // HUSH_WAVELET_HPP
+// ---- end hush/wavelet.hpp
 
 // Scene-driven noises (hush::frame: per-frame G-buffer views).
 // ---- begin hush/coherent.hpp
@@ -17221,6 +16326,638 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 #include <utility>
 #include <vector>
 
+// ---- begin hush/coherent/simd_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Coherent noise's SIMD entry point (kernel: hush/simd/coherent-inl.h): one
+// recursive-filter pass over a frame, the same result as
+// detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP.
+// hush/coherent.hpp calls it on exec::simd.
+#ifndef HUSH_COHERENT_SIMD_KERNEL_HPP
+#define HUSH_COHERENT_SIMD_KERNEL_HPP
+
+// ---- begin hush/detail/coherent_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
+// data and one scalar loop: what a recursive-filter pass does for every pixel
+// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
+// program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
+// operation; include hush/coherent.hpp, not this.
+//
+// One pass step, frame i against its reference frame r (i - 1 for the causal
+// filter, i + 1 for the backward pass of the time-symmetric one), for pixel
+// p = (x, y) (Kass & Pesare 2011, sec. 3.2; the refill term is hush's):
+//   reprojection, in float (identical in every backend):
+//     u = x - s m_x, v = y - s m_y      (m = velocity, s = +1; forward velocity, s = -1)
+//     e = depth - s m_z                 (the point's expected depth in frame r)
+//     i0 = min(floor(u), W - 2), tx = u - i0 (likewise j0, ty): bilinear taps and weights
+//   visible when: the pixel has a surface (finite depth >= FLT_MIN, finite motion), (u, v)
+//     lies within the outer pixel centres of frame r, every tap with a non-zero weight shows
+//     a surface (and, when both frames carry object ids, the same id), e >= FLT_MIN, and the
+//     bilinear depth d' of frame r satisfies |d' - e| <= eps_rel e + eps_abs;
+//   value, per channel, in T (float, or double for the reference):
+//     visible, paper filter:       c = alpha h + (1 - alpha) w         (eq. 7)
+//     visible, stationary filter:  c = alpha (h + d) + (1 - alpha) w   (docs/coherent.md)
+//     otherwise (disoccluded):     c = k(alpha) w                      (eq. 6)
+//   with h the bilinear history of frame r at (u, v), w the input noise at p, and d the
+//   refill: k (sqrt(tx (1 - tx)) ((1 - ty) D_x(p) + ty D_x(p + e_y)) + sqrt(ty (1 - ty)) D_y(p)),
+//   D_x(q) = X(q) - X(q + e_x), D_y(q) = Y(q) - Y(q + e_y), X and Y two more fields drawn
+//   like the input (independent). The output is gain * c.
+#ifndef HUSH_DETAIL_COHERENT_KERNEL_HPP
+#define HUSH_DETAIL_COHERENT_KERNEL_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+
+namespace hush {
+namespace detail {
+
+// ---- The hashed white-noise fields.
+
+// Key of field `field` of channel `channel` in frame `frame`, for noise seed `seed`.
+HUSH_INLINE constexpr std::uint32_t coherent_frame_key(std::uint32_t seed, unsigned channel,
+                                                       unsigned field, std::uint32_t frame) {
+  return hash32(hash32(seed_key(seed), channel * constants::kCoherentFields + field), frame);
+}
+// Per-row key of a field: hash32(frame_key, y).
+HUSH_INLINE constexpr std::uint32_t coherent_row_key(std::uint32_t frame_key, std::uint32_t y) {
+  return hash32(frame_key, y);
+}
+// The white value of pixel x in a row: unit variance, mean 0, odd multiples of
+// sqrt(3) 2^-24 (constants.hpp). Every operation is exact but the last multiply.
+HUSH_INLINE float coherent_white(std::uint32_t row_key, std::uint32_t x) {
+  namespace c = constants;
+  const std::uint32_t h = hash32(row_key ^ (x * c::kCoherentPixelPrime));
+  const float centred = static_cast<float>(2u * (h >> c::kCoherentWhiteShift)) -
+                        static_cast<float>(c::kCoherentWhiteCentre);  // 2n + 1 - 2^24, exact
+  return centred * static_cast<float>(c::kCoherentWhiteScale);
+}
+
+// Where one field's values come from: hashed white noise of `key` (a frame key), or a
+// plane of floats (band-pass noise, or the caller's input) where value (x, y) is
+// plane[y * stride + x]. Planes of the refill fields cover (width + 1) x (height + 1)
+// values (X) and width x (height + 1) values (Y).
+struct coherent_field {
+  std::uint32_t key = 0;
+  const float* plane = nullptr;
+  std::size_t stride = 0;
+};
+
+// One pass over one frame: every pointer the loop reads or writes. Planes the
+// stream owns are packed (row stride = width); the caller's views keep their strides
+// (in elements; the motion view's in vec3 elements, i.e. 3 floats each).
+template <class T>
+struct coherent_pass_job {
+  std::uint32_t width = 0, height = 0;
+  // This frame.
+  const float* depth = nullptr;
+  std::size_t depth_stride = 0;
+  const float* motion = nullptr;  // 3 floats per pixel: velocity, or forward velocity
+  std::size_t motion_stride = 0;  // in pixels
+  float motion_sign = 1.0f;       // +1: velocity (causal); -1: forward velocity (backward pass)
+  const std::uint32_t* ids = nullptr;  // null: no id test
+  std::size_t ids_stride = 0;
+  // The reference frame (stored by the stream, packed); null depth: no reference, all fresh.
+  const float* ref_depth = nullptr;
+  const std::uint32_t* ref_ids = nullptr;
+  // Parameters.
+  float eps_rel = 0, eps_abs = 0;
+  T alpha = 0, beta = 0, k = 0, gain = 0;  // beta = 1 - alpha, k = k(alpha)
+  bool stationary = true;
+  int channels = 1;
+  coherent_field input[constants::kCoherentMaxChannels];
+  coherent_field refill_x[constants::kCoherentMaxChannels];
+  coherent_field refill_y[constants::kCoherentMaxChannels];
+  const T* ref_history[constants::kCoherentMaxChannels] = {};  // packed planes (with ref_depth)
+  T* history[constants::kCoherentMaxChannels] = {};            // packed planes, written
+  T* out[constants::kCoherentMaxChannels] = {};                // null: not written
+  std::size_t out_stride = 0;
+  std::uint8_t* fresh = nullptr;  // packed: 1 where the pixel took fresh noise, else 0
+  // Packed copies of this frame's depth and ids (the next frame's reference), or null.
+  float* depth_copy = nullptr;
+  std::uint32_t* ids_copy = nullptr;
+};
+
+// ---- The reprojection, in float: the same operations in every backend.
+
+struct coherent_taps {
+  bool visible = false;
+  std::uint32_t t00 = 0, t10 = 0, t01 = 0, t11 = 0;  // pixel indices in the reference frame
+  float w00 = 0, w10 = 0, w01 = 0, w11 = 0;          // bilinear weights
+  float tx = 0, ty = 0;                              // fractions of the bilinear cell
+};
+
+// A depth is a surface when finite and at least the smallest normal float (denormal,
+// zero, negative, NaN and infinite depths are not: no denormal arithmetic follows).
+HUSH_INLINE bool coherent_surface(float d) {
+  return d >= std::numeric_limits<float>::min() && d <= std::numeric_limits<float>::max();
+}
+HUSH_INLINE bool coherent_finite(float v) {
+  return v >= -std::numeric_limits<float>::max() && v <= std::numeric_limits<float>::max();
+}
+
+// Motion components below the smallest normal float are read as 0 (no denormal arithmetic);
+// NaN stays NaN (the pixel is then not visible).
+HUSH_INLINE float coherent_flush(float v) {
+  return std::fabs(v) < std::numeric_limits<float>::min() ? 0.0f : v;
+}
+// History values below the smallest normal T are stored as 0: with an input of zeros (the
+// caller's) the history decays as alpha^i and would otherwise go denormal.
+template <class T>
+HUSH_INLINE T coherent_flush_value(T v) {
+  return std::fabs(v) < std::numeric_limits<T>::min() ? T(0) : v;
+}
+
+template <class T>
+HUSH_INLINE coherent_taps coherent_reproject(const coherent_pass_job<T>& j, std::uint32_t x,
+                                             std::uint32_t y) {
+  coherent_taps r;
+  if (!j.ref_depth) return r;
+  const float depth = j.depth[y * j.depth_stride + x];
+  const float* m = j.motion + 3 * (y * j.motion_stride + x);
+  const float mx = coherent_flush(j.motion_sign * m[0]), my = coherent_flush(j.motion_sign * m[1]),
+              mz = coherent_flush(j.motion_sign * m[2]);
+  if (!coherent_surface(depth) || !coherent_finite(mx) || !coherent_finite(my) ||
+      !coherent_finite(mz))
+    return r;
+  const float u = static_cast<float>(x) - mx, v = static_cast<float>(y) - my;
+  const float max_u = static_cast<float>(j.width - 1), max_v = static_cast<float>(j.height - 1);
+  if (!(u >= 0.0f && u <= max_u && v >= 0.0f && v <= max_v)) return r;
+  // The cell's lower corner; on the last row/column the cell before it, with the upper
+  // taps weighted 1. A 1-pixel-wide frame has one column: both taps are it, tx = 0.
+  const float i0 = std::fmin(std::floor(u), static_cast<float>(j.width > 1 ? j.width - 2 : 0));
+  const float j0 = std::fmin(std::floor(v), static_cast<float>(j.height > 1 ? j.height - 2 : 0));
+  r.tx = u - i0;  // exact
+  r.ty = v - j0;
+  const float a = 1.0f - r.tx, b = 1.0f - r.ty;
+  r.w00 = a * b;
+  r.w10 = r.tx * b;
+  r.w01 = a * r.ty;
+  r.w11 = r.tx * r.ty;
+  const std::uint32_t step_x = j.width > 1 ? 1u : 0u, step_y = j.height > 1 ? j.width : 0u;
+  r.t00 = static_cast<std::uint32_t>(j0) * j.width + static_cast<std::uint32_t>(i0);
+  r.t10 = r.t00 + step_x;
+  r.t01 = r.t00 + step_y;
+  r.t11 = r.t01 + step_x;
+  const std::uint32_t id = j.ids ? j.ids[y * j.ids_stride + x] : 0u;
+  const bool use_ids = j.ids && j.ref_ids;
+  const std::uint32_t taps[4] = {r.t00, r.t10, r.t01, r.t11};
+  const float weights[4] = {r.w00, r.w10, r.w01, r.w11};
+  float interpolated = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    if (weights[k] == 0.0f) continue;  // never read: a background tap must not matter
+    const float d = j.ref_depth[taps[k]];
+    if (!coherent_surface(d) || (use_ids && j.ref_ids[taps[k]] != id)) return r;
+    interpolated = interpolated + weights[k] * d;
+  }
+  const float expected = depth - mz;
+  if (!coherent_surface(expected)) return r;
+  const float tolerance = j.eps_rel * expected + j.eps_abs;
+  r.visible = std::fabs(interpolated - expected) <= tolerance;
+  return r;
+}
+
+// Value of a field at (x, y): the hash, or the plane (a non-finite plane value reads as 0,
+// so no NaN can enter the history).
+HUSH_INLINE float coherent_field_value(const coherent_field& f, std::uint32_t row_key,
+                                       std::uint32_t x, std::uint32_t y) {
+  if (!f.plane) return coherent_white(row_key, x);
+  const float v = f.plane[y * f.stride + x];
+  return coherent_finite(v) ? v : 0.0f;
+}
+
+// ---- The scalar pass: the reference every other backend is tested against.
+
+// Row keys of every field of every channel for row y (and y + 1 for the refill fields).
+struct coherent_row_keys {
+  std::uint32_t input[constants::kCoherentMaxChannels];
+  std::uint32_t x0[constants::kCoherentMaxChannels], x1[constants::kCoherentMaxChannels];
+  std::uint32_t y0[constants::kCoherentMaxChannels], y1[constants::kCoherentMaxChannels];
+};
+template <class T>
+HUSH_INLINE coherent_row_keys coherent_keys(const coherent_pass_job<T>& j, std::uint32_t y) {
+  coherent_row_keys k{};
+  for (int c = 0; c < j.channels; ++c) {
+    k.input[c] = coherent_row_key(j.input[c].key, y);
+    k.x0[c] = coherent_row_key(j.refill_x[c].key, y);
+    k.x1[c] = coherent_row_key(j.refill_x[c].key, y + 1);
+    k.y0[c] = coherent_row_key(j.refill_y[c].key, y);
+    k.y1[c] = coherent_row_key(j.refill_y[c].key, y + 1);
+  }
+  return k;
+}
+
+// Pixel (x, y) of a pass: fresh flag, history and output of every channel.
+template <class T>
+HUSH_INLINE void coherent_pixel(const coherent_pass_job<T>& j, const coherent_row_keys& keys,
+                                std::uint32_t x, std::uint32_t y) {
+  const coherent_taps g = coherent_reproject(j, x, y);
+  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
+  if (j.fresh) j.fresh[p] = g.visible ? 0u : 1u;
+  if (j.depth_copy) j.depth_copy[p] = j.depth[y * j.depth_stride + x];
+  if (j.ids_copy) j.ids_copy[p] = j.ids[y * j.ids_stride + x];
+  for (int c = 0; c < j.channels; ++c) {
+    const T w = T(coherent_field_value(j.input[c], keys.input[c], x, y));
+    T value;
+    if (!g.visible) {
+      value = j.k * w;
+    } else {
+      const T* hist = j.ref_history[c];
+      const T h = T(g.w00) * hist[g.t00] + T(g.w10) * hist[g.t10] + T(g.w01) * hist[g.t01] +
+                  T(g.w11) * hist[g.t11];
+      if (!j.stationary) {
+        value = j.alpha * h + j.beta * w;
+      } else {
+        const T tx = T(g.tx), ty = T(g.ty);
+        const T sx = std::sqrt(tx * (T(1) - tx)), sy = std::sqrt(ty * (T(1) - ty));
+        const T x00 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x, y));
+        const T x10 = T(coherent_field_value(j.refill_x[c], keys.x0[c], x + 1, y));
+        const T x01 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x, y + 1));
+        const T x11 = T(coherent_field_value(j.refill_x[c], keys.x1[c], x + 1, y + 1));
+        const T y00 = T(coherent_field_value(j.refill_y[c], keys.y0[c], x, y));
+        const T y01 = T(coherent_field_value(j.refill_y[c], keys.y1[c], x, y + 1));
+        const T dx = (T(1) - ty) * (x00 - x10) + ty * (x01 - x11);
+        // The refill has the history's scale: k(alpha) (the fields have unit variance).
+        const T d = j.k * (sx * dx + sy * (y00 - y01));
+        value = j.alpha * (h + d) + j.beta * w;
+      }
+    }
+    value = coherent_flush_value(value);
+    j.history[c][p] = value;
+    if (j.out[c]) j.out[c][static_cast<std::size_t>(y) * j.out_stride + x] = j.gain * value;
+  }
+}
+
+template <class T>
+void coherent_pass_scalar(const coherent_pass_job<T>& j) {
+  for (std::uint32_t y = 0; y < j.height; ++y) {
+    const coherent_row_keys keys = coherent_keys(j, y);
+    for (std::uint32_t x = 0; x < j.width; ++x) coherent_pixel(j, keys, x, y);
+  }
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
+// ---- end hush/detail/coherent_kernel.hpp
+
+#if HUSH_CONFIG_SIMD_STATIC
+// ---- begin hush/simd/coherent-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernel of coherent noise (include/hush/coherent.hpp): one pass of
+// the recursive filter over a frame, a vector of pixels of a row at a time.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include
+// guard, no normal guard); reached through hush/simd/dispatch.hpp.
+//
+// It repeats detail::coherent_pass_scalar (hush/detail/coherent_kernel.hpp)
+// operation by operation: the reprojection in float with separate multiplies
+// and adds (never fused, so the visibility decisions equal the scalar ones on
+// every target), the hashed fields in 32-bit lanes, the taps gathered, the
+// bilinear history and the blend in the scalar order. Under HUSH_STRICT_FP
+// every output, history value and fresh flag equals the scalar pass bit for
+// bit (tests/simd/coherent_simd_test.cpp, every compiled target); otherwise
+// the value blends fuse multiply-adds and differ from scalar by float
+// rounding (a few ulp of the values, the decisions unchanged). A row's last
+// (width mod lanes) pixels run the scalar code itself; lanes of pixels that
+// are not visible read the reference frame at index 0, never out of bounds.
+
+#if defined(HUSH_SIMD_COHERENT_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_COHERENT_INL_H_
+#undef HUSH_SIMD_COHERENT_INL_H_
+#else
+#define HUSH_SIMD_COHERENT_INL_H_
+#endif
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace coherent_simd {
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using VI = hn::Vec<DI>;
+using MF = hn::Mask<DF>;
+
+// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is compiled),
+// one fused rounding otherwise. Used for the value blends only.
+HWY_INLINE VF mul_add(VF a, VF b, VF c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), c);
+#else
+  return hn::MulAdd(a, b, c);
+#endif
+}
+
+// hash32 (core/hash.hpp) in 32-bit lanes.
+HWY_INLINE VU hash32(VU x) {
+  namespace c = detail::constants;
+  const DU du;
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
+  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
+}
+
+// detail::coherent_white of pixels `x` (lanes) of a row.
+HWY_INLINE VF white(std::uint32_t row_key, VU x) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  const DI di;
+  const VU h =
+      hash32(hn::Xor(hn::Set(du, row_key), hn::Mul(x, hn::Set(du, c::kCoherentPixelPrime))));
+  // 2 (h >> 8) < 2^25 is even, so exact in float, and exact as an int32.
+  const VU twice = hn::ShiftLeft<1>(hn::ShiftRight<c::kCoherentWhiteShift>(h));
+  const VF centred = hn::Sub(hn::ConvertTo(df, hn::BitCast(di, twice)),
+                             hn::Set(df, static_cast<float>(c::kCoherentWhiteCentre)));
+  return hn::Mul(centred, hn::Set(df, static_cast<float>(c::kCoherentWhiteScale)));
+}
+
+HWY_INLINE MF is_finite(VF v) {
+  const DF df;
+  const VF big = hn::Set(df, std::numeric_limits<float>::max());
+  return hn::And(hn::Ge(v, hn::Neg(big)), hn::Le(v, big));
+}
+HWY_INLINE MF is_surface(VF d) {
+  const DF df;
+  return hn::And(hn::Ge(d, hn::Set(df, std::numeric_limits<float>::min())),
+                 hn::Le(d, hn::Set(df, std::numeric_limits<float>::max())));
+}
+
+// detail::coherent_flush / coherent_flush_value: |v| below the smallest normal -> 0 (NaN
+// stays NaN).
+HWY_INLINE VF flush(VF v) {
+  const DF df;
+  return hn::IfThenZeroElse(hn::Lt(hn::Abs(v), hn::Set(df, std::numeric_limits<float>::min())), v);
+}
+
+// detail::coherent_field_value for pixels x (+ dx) of row y.
+HWY_INLINE VF field(const detail::coherent_field& f, std::uint32_t row_key, std::uint32_t x,
+                    std::uint32_t dx, std::uint32_t y) {
+  const DF df;
+  const DU du;
+  if (!f.plane) return white(row_key, hn::Iota(du, x + dx));
+  const VF v = hn::LoadU(df, f.plane + static_cast<std::size_t>(y) * f.stride + x + dx);
+  return hn::IfThenElseZero(is_finite(v), v);
+}
+
+// The refill fields' values of rows y and y + 1 when they are hashed white noise: each
+// value is used by four pixels (x, x - 1 and the rows y - 1, y), so a row is hashed once
+// into a buffer and read by both rows (null: the field is a plane, read directly).
+struct refill_rows {
+  const float* x0[detail::constants::kCoherentMaxChannels] = {};  // X, row y (width + 1)
+  const float* x1[detail::constants::kCoherentMaxChannels] = {};  // X, row y + 1
+  const float* y0[detail::constants::kCoherentMaxChannels] = {};  // Y, row y (width)
+  const float* y1[detail::constants::kCoherentMaxChannels] = {};  // Y, row y + 1
+};
+
+// Values of a white field in row y, pixels 0 ... count - 1 (count rounded up to lanes).
+HWY_INLINE void white_row(std::uint32_t row_key, std::size_t count, float* out) {
+  const DF df;
+  const DU du;
+  const std::size_t lanes = hn::Lanes(df);
+  for (std::size_t x = 0; x < count; x += lanes)
+    hn::StoreU(white(row_key, hn::Iota(du, static_cast<std::uint32_t>(x))), df, out + x);
+}
+
+// Pixels x ... x + lanes - 1 of row y (all inside the row).
+HWY_INLINE void pixels(const detail::coherent_pass_job<float>& j,
+                       const detail::coherent_row_keys& keys, const refill_rows& rows,
+                       std::uint32_t x, std::uint32_t y) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
+  // ---- Reprojection (coherent_reproject), in float, never fused.
+  const VF depth = hn::LoadU(df, j.depth + static_cast<std::size_t>(y) * j.depth_stride + x);
+  if (j.depth_copy) hn::StoreU(depth, df, j.depth_copy + p);
+  VF mx, my, mz;
+  hn::LoadInterleaved3(df, j.motion + 3 * (static_cast<std::size_t>(y) * j.motion_stride + x), mx,
+                       my, mz);
+  const VF sign = hn::Set(df, j.motion_sign);
+  mx = flush(hn::Mul(sign, mx));
+  my = flush(hn::Mul(sign, my));
+  mz = flush(hn::Mul(sign, mz));
+  const VF u = hn::Sub(hn::Iota(df, static_cast<float>(x)), mx);  // x + lane: exact
+  const VF v = hn::Sub(hn::Set(df, static_cast<float>(y)), my);
+  const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
+  MF ok = hn::And(hn::And(is_surface(depth), is_finite(mx)), hn::And(is_finite(my), is_finite(mz)));
+  ok = hn::And(ok, hn::And(hn::And(hn::Ge(u, zero), hn::Le(u, hn::Set(df, float(j.width - 1)))),
+                           hn::And(hn::Ge(v, zero), hn::Le(v, hn::Set(df, float(j.height - 1))))));
+  const VF i0 = hn::Min(hn::Floor(u), hn::Set(df, float(j.width > 1 ? j.width - 2 : 0)));
+  const VF j0 = hn::Min(hn::Floor(v), hn::Set(df, float(j.height > 1 ? j.height - 2 : 0)));
+  const VF tx = hn::Sub(u, i0), ty = hn::Sub(v, j0);
+  const VF a = hn::Sub(one, tx), b = hn::Sub(one, ty);
+  const VF w[4] = {hn::Mul(a, b), hn::Mul(tx, b), hn::Mul(a, ty), hn::Mul(tx, ty)};
+  // Tap indices (int32: frames are at most 16384^2 pixels); lanes that are not ok read 0.
+  const auto ok_i = hn::RebindMask(di, ok);
+  const VI i0i = hn::IfThenElseZero(ok_i, hn::ConvertTo(di, hn::IfThenElseZero(ok, i0)));
+  const VI j0i = hn::IfThenElseZero(ok_i, hn::ConvertTo(di, hn::IfThenElseZero(ok, j0)));
+  const VI sx = hn::IfThenElseZero(ok_i, hn::Set(di, j.width > 1 ? 1 : 0));
+  const VI sy = hn::IfThenElseZero(ok_i, hn::Set(di, j.height > 1 ? int(j.width) : 0));
+  VI t[4];
+  t[0] = hn::Add(hn::Mul(j0i, hn::Set(di, static_cast<std::int32_t>(j.width))), i0i);
+  t[1] = hn::Add(t[0], sx);
+  t[2] = hn::Add(t[0], sy);
+  t[3] = hn::Add(t[2], sx);
+  // The taps of most vectors are contiguous: every lane's cell is its neighbour's plus one
+  // column, in one row (smooth motion moves neighbouring pixels alike). Then each tap is one
+  // unaligned load instead of a gather; the values are the same.
+  const std::int32_t i_first = hn::GetLane(i0i), j_first = hn::GetLane(j0i);
+  const bool contiguous =
+      hn::AllTrue(di, ok_i) &&
+      hn::AllTrue(di, hn::Eq(hn::Sub(i0i, hn::Iota(di, 0)), hn::Set(di, i_first))) &&
+      hn::AllTrue(di, hn::Eq(j0i, hn::Set(di, j_first)));
+  const std::size_t base =
+      static_cast<std::size_t>(j_first) * j.width + static_cast<std::size_t>(i_first);
+  const std::size_t offset[4] = {0, j.width > 1 ? 1u : 0u, j.height > 1 ? j.width : 0u,
+                                 (j.height > 1 ? j.width : 0u) + (j.width > 1 ? 1u : 0u)};
+  auto tap = [&](auto d, const auto* plane, int k) {
+    return contiguous ? hn::LoadU(d, plane + base + offset[k]) : hn::GatherIndex(d, plane, t[k]);
+  };
+  const bool use_ids = j.ids && j.ref_ids;
+  VU id = hn::Zero(du);
+  if (j.ids) {
+    id = hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x);
+    if (j.ids_copy) hn::StoreU(id, du, j.ids_copy + p);
+  }
+  VF interpolated = zero;
+  for (int k = 0; k < 4; ++k) {
+    const MF used = hn::Ne(w[k], zero);
+    const VF d = tap(df, j.ref_depth, k);
+    MF tap_ok = is_surface(d);
+    if (use_ids) tap_ok = hn::And(tap_ok, hn::RebindMask(df, hn::Eq(tap(du, j.ref_ids, k), id)));
+    ok = hn::And(ok, hn::Or(hn::Not(used), tap_ok));
+    interpolated = hn::IfThenElse(used, hn::Add(interpolated, hn::Mul(w[k], d)), interpolated);
+  }
+  const VF expected = hn::Sub(depth, mz);
+  const VF tolerance = hn::Add(hn::Mul(hn::Set(df, j.eps_rel), expected), hn::Set(df, j.eps_abs));
+  const MF visible = hn::And(hn::And(ok, is_surface(expected)),
+                             hn::Le(hn::Abs(hn::Sub(interpolated, expected)), tolerance));
+  if (j.fresh) {
+    const VI flag = hn::IfThenZeroElse(hn::RebindMask(di, visible), hn::Set(di, 1));
+    hn::StoreU(hn::DemoteTo(hn::Rebind<std::uint8_t, DI>(), flag), hn::Rebind<std::uint8_t, DI>(),
+               j.fresh + p);
+  }
+  // ---- Values, per channel.
+  const VF alpha = hn::Set(df, j.alpha), beta = hn::Set(df, j.beta), kk = hn::Set(df, j.k);
+  const VF sqx = hn::Sqrt(hn::Mul(tx, a)), sqy = hn::Sqrt(hn::Mul(ty, b));
+  for (int c = 0; c < j.channels; ++c) {
+    const VF wv = field(j.input[c], keys.input[c], x, 0, y);
+    const float* hist = j.ref_history[c];
+    const VF h = mul_add(w[3], tap(df, hist, 3),
+                         mul_add(w[2], tap(df, hist, 2),
+                                 mul_add(w[1], tap(df, hist, 1), hn::Mul(w[0], tap(df, hist, 0)))));
+    VF value;
+    if (!j.stationary) {
+      value = mul_add(alpha, h, hn::Mul(beta, wv));
+    } else {
+      VF x00, x10, x01, x11, y00, y01;
+      if (rows.x0[c]) {
+        x00 = hn::LoadU(df, rows.x0[c] + x);
+        x10 = hn::LoadU(df, rows.x0[c] + x + 1);
+        x01 = hn::LoadU(df, rows.x1[c] + x);
+        x11 = hn::LoadU(df, rows.x1[c] + x + 1);
+      } else {
+        x00 = field(j.refill_x[c], keys.x0[c], x, 0, y);
+        x10 = field(j.refill_x[c], keys.x0[c], x, 1, y);
+        x01 = field(j.refill_x[c], keys.x1[c], x, 0, y + 1);
+        x11 = field(j.refill_x[c], keys.x1[c], x, 1, y + 1);
+      }
+      if (rows.y0[c]) {
+        y00 = hn::LoadU(df, rows.y0[c] + x);
+        y01 = hn::LoadU(df, rows.y1[c] + x);
+      } else {
+        y00 = field(j.refill_y[c], keys.y0[c], x, 0, y);
+        y01 = field(j.refill_y[c], keys.y1[c], x, 0, y + 1);
+      }
+      const VF dx = mul_add(ty, hn::Sub(x01, x11), hn::Mul(b, hn::Sub(x00, x10)));
+      const VF d = hn::Mul(kk, mul_add(sqy, hn::Sub(y00, y01), hn::Mul(sqx, dx)));
+      value = mul_add(alpha, hn::Add(h, d), hn::Mul(beta, wv));
+    }
+    value = flush(hn::IfThenElse(visible, value, hn::Mul(kk, wv)));
+    hn::StoreU(value, df, j.history[c] + p);
+    if (j.out[c])
+      hn::StoreU(hn::Mul(hn::Set(df, j.gain), value), df,
+                 j.out[c] + static_cast<std::size_t>(y) * j.out_stride + x);
+  }
+}
+
+// The same when there is no reference frame (the first frame): every pixel fresh.
+HWY_INLINE void fresh_pixels(const detail::coherent_pass_job<float>& j,
+                             const detail::coherent_row_keys& keys, std::uint32_t x,
+                             std::uint32_t y) {
+  const DF df;
+  const DU du;
+  const std::size_t p = static_cast<std::size_t>(y) * j.width + x;
+  if (j.fresh) {
+    const hn::Rebind<std::uint8_t, DF> d8;
+    hn::StoreU(hn::Set(d8, std::uint8_t{1}), d8, j.fresh + p);
+  }
+  if (j.depth_copy)
+    hn::StoreU(hn::LoadU(df, j.depth + static_cast<std::size_t>(y) * j.depth_stride + x), df,
+               j.depth_copy + p);
+  if (j.ids_copy)
+    hn::StoreU(hn::LoadU(du, j.ids + static_cast<std::size_t>(y) * j.ids_stride + x), du,
+               j.ids_copy + p);
+  for (int c = 0; c < j.channels; ++c) {
+    const VF value = flush(hn::Mul(hn::Set(df, j.k), field(j.input[c], keys.input[c], x, 0, y)));
+    hn::StoreU(value, df, j.history[c] + p);
+    if (j.out[c])
+      hn::StoreU(hn::Mul(hn::Set(df, j.gain), value), df,
+                 j.out[c] + static_cast<std::size_t>(y) * j.out_stride + x);
+  }
+}
+
+}  // namespace coherent_simd
+
+// One pass over a frame (detail::coherent_pass_job): full vectors of each row in
+// lanes, the rest of the row (fewer pixels than lanes) through the scalar pixel code.
+inline void coherent_pass(const detail::coherent_pass_job<float>& j) {
+  namespace cs = coherent_simd;
+  const std::size_t lanes = hn::Lanes(cs::DF());
+  const std::uint32_t full = static_cast<std::uint32_t>(j.width / lanes * lanes);
+  // Row buffers of the white refill fields (stationary filter, with a reference frame).
+  const std::size_t padded = (j.width + 1 + lanes - 1) / lanes * lanes;
+  const bool refill = j.stationary && j.ref_depth;
+  std::vector<float> buffers;
+  float* rows_of[detail::constants::kCoherentMaxChannels][4] = {};  // x0, x1, y0, y1
+  if (refill) {
+    buffers.resize(4 * padded * static_cast<std::size_t>(j.channels));
+    for (int c = 0; c < j.channels; ++c)
+      for (int k = 0; k < 4; ++k)
+        rows_of[c][k] = buffers.data() + (4 * static_cast<std::size_t>(c) + k) * padded;
+  }
+  for (std::uint32_t y = 0; y < j.height; ++y) {
+    const detail::coherent_row_keys keys = detail::coherent_keys(j, y);
+    cs::refill_rows rows;
+    for (int c = 0; refill && c < j.channels; ++c) {
+      // Row y is the previous row's y + 1 (swapped in), except on the first row.
+      if (y == 0) {
+        if (!j.refill_x[c].plane) cs::white_row(keys.x0[c], j.width + 1, rows_of[c][0]);
+        if (!j.refill_y[c].plane) cs::white_row(keys.y0[c], j.width, rows_of[c][2]);
+      } else {
+        std::swap(rows_of[c][0], rows_of[c][1]);
+        std::swap(rows_of[c][2], rows_of[c][3]);
+      }
+      if (!j.refill_x[c].plane) {
+        cs::white_row(keys.x1[c], j.width + 1, rows_of[c][1]);
+        rows.x0[c] = rows_of[c][0];
+        rows.x1[c] = rows_of[c][1];
+      }
+      if (!j.refill_y[c].plane) {
+        cs::white_row(keys.y1[c], j.width, rows_of[c][3]);
+        rows.y0[c] = rows_of[c][2];
+        rows.y1[c] = rows_of[c][3];
+      }
+    }
+    std::uint32_t x = 0;
+    for (; x < full; x += static_cast<std::uint32_t>(lanes)) {
+      if (j.ref_depth)
+        cs::pixels(j, keys, rows, x, y);
+      else
+        cs::fresh_pixels(j, keys, x, y);
+    }
+    for (; x < j.width; ++x) detail::coherent_pixel(j, keys, x, y);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_COHERENT_INL_H_ toggle
+// ---- end hush/simd/coherent-inl.h
+#endif
+
+#define HUSH_SIMD_ENTRIES_COHERENT(X) \
+  X(coherent_pass, (const detail::coherent_pass_job<float>& job), (job))
+
+HUSH_SIMD_DECLARE(HUSH_SIMD_ENTRIES_COHERENT)
+
+#endif  // HUSH_COHERENT_SIMD_KERNEL_HPP
+// ---- end hush/coherent/simd_kernel.hpp
 
 namespace hush {
 
@@ -18440,6 +18177,123 @@ class param_source {
 
 #endif  // HUSH_CORE_PARAM_SOURCE_HPP
 // ---- end hush/core/param_source.hpp
+// ---- begin hush/detail/npr_gabor_splat.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The splat list of NPR Gabor noise (hush/npr_gabor.hpp) and its second
+// stage, the splatting. npr_gabor::render runs in two stages:
+//  1. npr_gabor::make_splats: per triangle, its points (paper sec. 3.3) become
+//     records, one per point, in triangle order then point order, each with
+//     everything the kernel and the visibility tests need (its own frequency
+//     vector and radius, so parameters may differ per splat);
+//  2. splatting: every record's kernel is added at the pixel centres of its
+//     range that pass the tests (sec. 3.4), per pixel in record order.
+// Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
+// or double) and once in lanes (hush/simd/npr_gabor-inl.h, float), which
+// repeats it operation by operation.
+#ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+#define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+
+namespace hush {
+
+// One point's kernel, ready to splat (stage 1's output). The kernel is
+// weight g_F(p - (x, y)) with g gabor_kernel<2>'s tapered kernel of radius
+// `radius` (from the bandwidth a: r = sqrt(ln(1/t) / pi) / a) and frequency
+// vector F = (fx, fy) = F0 (cos omega, sin omega); it covers the pixels
+// x0 ... x1, y0 ... y1 (inclusive, clamped to the image, never empty): the
+// centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
+// qy y in screen pixels, gives the depth test its reference depth at every
+// pixel (the point's own depth is 1 / (q0 + qx x + qy y)). `index` is the
+// point's J in its triangle's sequence (detail/npr_gabor_tree.hpp): stage 2
+// does not read it; it names the point (tests, GPU stage 1 comparisons).
+struct npr_gabor_splat {
+  double x = 0, y = 0;            // position, pixels (x right, y down)
+  double fx = 0, fy = 0;          // F, cycles per pixel
+  double bandwidth = 0;           // a, 1/pixel
+  double radius = 0;              // r, pixels
+  double weight = 0;              // w_i v_i scale (paper eq. 1, LOD weight eq. 4)
+  double q0 = 0, qx = 0, qy = 0;  // the triangle's plane of 1/z
+  std::uint32_t object = 0, triangle = 0;
+  std::int32_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // pixel range, inclusive
+  std::uint64_t index = 0;  // J: the point's index in its triangle's sequence
+};
+
+namespace detail {
+
+// Everything stage 2 reads: the records, the frame's views the enabled tests
+// need (the others may be empty), the tests, and the output.
+struct npr_gabor_splat_job {
+  const npr_gabor_splat* splats = nullptr;
+  std::size_t count = 0;
+  image_view<const float> depth;
+  image_view<const std::uint32_t> object_id, triangle_id;
+  bool object_test = true, triangle_test = false, depth_test = true, soft_depth = false;
+  double depth_tolerance = 0;
+  double envelope_exponent = 0;  // A = ln(1/t): the envelope is e^{-A d^2}, d in radii
+};
+
+// The visibility factor of a fragment at pixel (x, y) of splat s (sec. 3.4):
+// 0 where a test fails, 1 where all pass, 2 - rel / tol in the soft band.
+template <class T>
+HUSH_INLINE T npr_gabor_visibility(const npr_gabor_splat_job& j, const npr_gabor_splat& s,
+                                   std::size_t x, std::size_t y) {
+  if (j.object_test && j.object_id(x, y) != s.object) return T(0);
+  if (j.triangle_test && j.triangle_id(x, y) != s.triangle) return T(0);
+  if (!j.depth_test) return T(1);
+  const double zp = static_cast<double>(j.depth(x, y));
+  if (!(zp > 0.0) || !std::isfinite(zp)) return T(0);
+  // Relative difference of the pixel's depth and the plane's there.
+  const double plane =
+      s.q0 + s.qx * (static_cast<double>(x) + 0.5) + s.qy * (static_cast<double>(y) + 0.5);
+  const double rel = std::fabs(zp * plane - 1.0);
+  const double tol = j.depth_tolerance;
+  if (!(rel <= (j.soft_depth ? 2.0 * tol : tol))) return T(0);
+  return j.soft_depth && rel > tol ? T(2.0 - rel / tol) : T(1);
+}
+
+// Stage 2, scalar: adds every record's kernel to `out` (frame-sized), per
+// pixel in record order. `columns` is scratch.
+template <class T>
+void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& out,
+                            std::vector<gabor_axis<T>>& columns) {
+  namespace c = constants;
+  const T neg_a = T(-j.envelope_exponent), taper_k = T(1.0 / (1.0 - c::kGaborTaperStart));
+  for (std::size_t i = 0; i < j.count; ++i) {
+    const npr_gabor_splat& s = j.splats[i];
+    const double inv_r = 1.0 / s.radius;
+    const T phi_x = T(s.fx * s.radius), phi_y = T(s.fy * s.radius);
+    const std::size_t ix0 = static_cast<std::size_t>(s.x0), ix1 = static_cast<std::size_t>(s.x1);
+    columns.resize(ix1 - ix0 + 1);
+    for (std::size_t x = ix0; x <= ix1; ++x)
+      columns[x - ix0] =
+          gabor_axis_factors(T((static_cast<double>(x) + 0.5 - s.x) * inv_r), neg_a, phi_x);
+    for (std::size_t y = static_cast<std::size_t>(s.y0); y <= static_cast<std::size_t>(s.y1); ++y) {
+      const gabor_axis<T> ay =
+          gabor_axis_factors(T((static_cast<double>(y) + 0.5 - s.y) * inv_r), neg_a, phi_y);
+      const gabor_row<T> row = gabor_row_of(T(s.weight), ay);
+      T* o = out.row(y);
+      for (std::size_t x = ix0; x <= ix1; ++x) {
+        const gabor_axis<T>& ax = columns[x - ix0];
+        if (!(ax.d2 + row.d2 < T(1))) continue;
+        const T vis = npr_gabor_visibility<T>(j, s, x, y);
+        if (vis == T(0)) continue;  // adding vis * g = +-0 would change nothing
+        o[x] += vis * gabor_pair(ax, row, taper_k);
+      }
+    }
+  }
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+// ---- end hush/detail/npr_gabor_splat.hpp
 // ---- begin hush/detail/npr_gabor_tree.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -18540,6 +18394,355 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 
 #endif  // HUSH_DETAIL_NPR_GABOR_TREE_HPP
 // ---- end hush/detail/npr_gabor_tree.hpp
+// ---- begin hush/npr_gabor/simd_kernel.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// NPR Gabor noise's SIMD entry point (kernel: hush/simd/npr_gabor-inl.h):
+// stage 2, the job's records added into out (frame-sized, zeroed by the
+// caller), per pixel in record order; bit for bit
+// detail::npr_gabor_splat_scalar<float> under HUSH_STRICT_FP.
+// hush/npr_gabor.hpp calls it on exec::simd.
+#ifndef HUSH_NPR_GABOR_SIMD_KERNEL_HPP
+#define HUSH_NPR_GABOR_SIMD_KERNEL_HPP
+
+
+#if HUSH_CONFIG_SIMD_STATIC
+// ---- begin hush/simd/npr_gabor-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Highway kernel of NPR Gabor noise's stage 2 (hush/npr_gabor.hpp,
+// hush/detail/npr_gabor_splat.hpp): the splat records added into a float
+// image. Compiled once per SIMD target (the "-inl.h" convention: toggle include
+// guard below); reached through hush/simd/dispatch.hpp.
+//
+// How: the image is cut into tiles of 32 x 32 pixels; every record is
+// binned (counting sort, so each tile keeps its records in record order) to
+// every tile its pixel range touches. Per tile, its G-buffer views are copied
+// into padded tile buffers and its sums kept in a tile accumulator; per
+// (record, tile) the kernel's x factors (gabor_kernel.hpp's separable form) are
+// computed once per tile column in lanes, its y factors once per tile row, and
+// per pixel only their product, the taper and the tests, lanes along x: the
+// object and triangle tests in 32-bit lanes, the depth test in double lanes as
+// the scalar code computes it (pixel depth times the plane's 1/z, relative
+// tolerance, soft band). A record touches tiles whose own ids and depths show
+// it cannot pass a test anywhere in them (tile_summary): those pairs are
+// skipped, which changes nothing (every fragment there fails).
+//
+// Agreement with detail::npr_gabor_splat_scalar: the same offsets (in double,
+// rounded to float), hush's own exp and sin/cos in lanes (gabor-inl.h), the
+// same products and taper, and per pixel the same records in the same order;
+// a fragment that fails a test adds +0 (or vis 0 times the kernel, +-0), which
+// leaves the sum as it is (it starts at +0 and a round-to-nearest sum is -0
+// only when both terms are). Under HUSH_STRICT_FP every pixel equals the
+// scalar result bit for bit (tests/simd/npr_gabor_simd_test.cpp, every
+// compiled target); otherwise products may fuse with sums on either side,
+// within the kernel's float budget, and a depth decision may flip where the
+// relative difference is within an ulp of the tolerance.
+
+#if defined(HUSH_SIMD_NPR_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_NPR_GABOR_INL_H_
+#undef HUSH_SIMD_NPR_GABOR_INL_H_
+#else
+#define HUSH_SIMD_NPR_GABOR_INL_H_
+#endif
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace npr_gabor_simd {
+
+using gabor_simd::DF;
+using gabor_simd::DI;
+using gabor_simd::DU;
+using gabor_simd::MF;
+using gabor_simd::VF;
+using gabor_simd::VI;
+using gabor_simd::VU;
+using DD = hn::ScalableTag<double>;
+using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
+using VD = hn::Vec<DD>;
+
+// Tile height; the width is max(32, lanes), a whole number of vectors (32 x 32 measured
+// fastest of 16 x 16, 32 x 16, 64 x 16 and 32 x 32 on the dense scene, AVX3).
+constexpr std::size_t kTileH = 32;
+constexpr std::size_t kMaxTileW = gabor_simd::kMaxLanes;
+constexpr std::size_t kMaxTile = kMaxTileW * kTileH;
+
+// A tile's copy of the G-buffer (padded with zeros past the image) and its sums.
+struct tile {
+  std::size_t x0 = 0, y0 = 0, w = 0, h = 0;  // pixels covered (w, h < tile size at the edges)
+  alignas(64) double depth[kMaxTile];  // NaN where the depth test fails whatever the plane
+  alignas(64) std::uint32_t object[kMaxTile];
+  alignas(64) std::uint32_t triangle[kMaxTile];
+  alignas(64) float acc[kMaxTile];
+  // Per record: the x factors of the tile's columns, the plane's column part, visibility.
+  alignas(64) float dx[kMaxTileW], cd2[kMaxTileW], ce[kMaxTileW], cs[kMaxTileW], cc[kMaxTileW];
+  alignas(64) float dy[kTileH > kMaxTileW ? kTileH : kMaxTileW];
+  alignas(64) float rd2[kMaxTileW], re[kMaxTileW], rs[kMaxTileW], rc[kMaxTileW];
+  alignas(64) double pc[kMaxTileW];
+  // What can pass: the ids present (one bit per id mod 64) and the depth range.
+  std::uint64_t objects = 0, triangles = 0;
+  double zmin = 0, zmax = 0;
+  bool any_depth = false;
+};
+
+// The job's constants as the scalar code rounds them: T(-A), T(1 / (1 - s0)), and the
+// depth test's limit (tol, or 2 tol with the soft band).
+struct consts {
+  float neg_a = 0, taper_k = 0;
+  double limit = 0;
+};
+inline consts consts_of(const detail::npr_gabor_splat_job& j) {
+  consts c;
+  c.neg_a = static_cast<float>(-j.envelope_exponent);
+  c.taper_k = static_cast<float>(1.0 / (1.0 - detail::constants::kGaborTaperStart));
+  c.limit = j.soft_depth ? 2.0 * j.depth_tolerance : j.depth_tolerance;
+  return c;
+}
+
+inline std::uint64_t id_bit(std::uint32_t id) { return std::uint64_t{1} << (id & 63u); }
+
+inline void load_tile(const detail::npr_gabor_splat_job& j, std::size_t tw, tile& t) {
+  std::fill(t.depth, t.depth + tw * kTileH, std::numeric_limits<double>::quiet_NaN());
+  std::fill(t.object, t.object + tw * kTileH, 0u);
+  std::fill(t.triangle, t.triangle + tw * kTileH, 0u);
+  std::fill(t.acc, t.acc + tw * kTileH, 0.0f);
+  t.objects = t.triangles = 0;
+  t.zmin = std::numeric_limits<double>::infinity();
+  t.zmax = 0;
+  t.any_depth = false;
+  for (std::size_t r = 0; r < t.h; ++r) {
+    const std::size_t y = t.y0 + r;
+    for (std::size_t i = 0; i < t.w; ++i) {
+      const std::size_t x = t.x0 + i;
+      if (j.depth_test) {
+        const float z = j.depth(x, y);
+        // Pixels that can pass: depth > 0 and finite (else NaN: every comparison fails).
+        if (z > 0.0f && z <= std::numeric_limits<float>::max()) {
+          t.depth[r * tw + i] = static_cast<double>(z);
+          t.zmin = std::min(t.zmin, static_cast<double>(z));
+          t.zmax = std::max(t.zmax, static_cast<double>(z));
+          t.any_depth = true;
+        }
+      }
+      if (j.object_test) {
+        t.object[r * tw + i] = j.object_id(x, y);
+        t.objects |= id_bit(t.object[r * tw + i]);
+      }
+      if (j.triangle_test) {
+        t.triangle[r * tw + i] = j.triangle_id(x, y);
+        t.triangles |= id_bit(t.triangle[r * tw + i]);
+      }
+    }
+  }
+}
+
+// False when no fragment of record s in tile t can pass the tests: its ids are
+// absent, or every pixel's relative depth difference to the plane exceeds the
+// limit with a margin far above the rounding of the per-pixel test (1e-6).
+inline bool may_pass(const detail::npr_gabor_splat_job& j, const consts& info,
+              const hush::npr_gabor_splat& s, const tile& t) {
+  if (j.object_test && !(t.objects & id_bit(s.object))) return false;
+  if (j.triangle_test && !(t.triangles & id_bit(s.triangle))) return false;
+  if (!j.depth_test) return true;
+  if (!t.any_depth) return false;
+  // The plane's 1/z over the tile's pixel centres: affine, extremes at the corners.
+  const double xa = static_cast<double>(t.x0) + 0.5, xb = xa + static_cast<double>(t.w - 1);
+  const double ya = static_cast<double>(t.y0) + 0.5, yb = ya + static_cast<double>(t.h - 1);
+  const double p00 = s.q0 + s.qx * xa + s.qy * ya, p10 = s.q0 + s.qx * xb + s.qy * ya;
+  const double p01 = s.q0 + s.qx * xa + s.qy * yb, p11 = s.q0 + s.qx * xb + s.qy * yb;
+  const double pmin = std::min(std::min(p00, p10), std::min(p01, p11));
+  const double pmax = std::max(std::max(p00, p10), std::max(p01, p11));
+  if (!(pmin > 0.0) || !(pmax < std::numeric_limits<double>::infinity())) return true;
+  // zp plane ranges over [zmin pmin, zmax pmax] (all positive).
+  const double lo = t.zmin * pmin, hi = t.zmax * pmax, lim = info.limit + 1e-6;
+  return !(lo - 1.0 > lim || 1.0 - hi > lim);
+}
+
+// npr_gabor_visibility of one vector of pixels (depth: the tile's doubles, NaN where no
+// plane can pass; pc: the plane's column part q0 + qx x; qy: its row part), in double
+// lanes as the scalar code computes it, rounded to float once.
+HWY_INLINE VD visibility_d(const detail::npr_gabor_splat_job& j, const consts& info,
+                           const double* depth, const double* pc, VD qy) {
+  const DD dd;
+  const VD one = hn::Set(dd, 1.0);
+  const VD rel = hn::Abs(hn::Sub(hn::Mul(hn::LoadU(dd, depth), hn::Add(hn::LoadU(dd, pc), qy)), one));
+  VD v = one;
+  if (j.soft_depth) {
+    const VD tol = hn::Set(dd, j.depth_tolerance);
+    v = hn::IfThenElse(hn::Gt(rel, tol), hn::Sub(hn::Set(dd, 2.0), hn::Div(rel, tol)), one);
+  }
+  return hn::IfThenElseZero(hn::Le(rel, hn::Set(dd, info.limit)), v);
+}
+HWY_INLINE VF visibility(const detail::npr_gabor_splat_job& j, const consts& info,
+                         const double* depth, const double* pc, VD qy) {
+  const DF df;
+#if HWY_TARGET == HWY_SCALAR
+  return hn::Set(df, static_cast<float>(hn::GetLane(visibility_d(j, info, depth, pc, qy))));
+#else
+  // Two double vectors per float vector: demoted halves, combined in registers.
+  const hn::Half<DF> dh;
+  const std::size_t nd = hn::Lanes(DD());
+  const auto lo = hn::DemoteTo(dh, visibility_d(j, info, depth, pc, qy));
+  const auto hi = hn::DemoteTo(dh, visibility_d(j, info, depth + nd, pc + nd, qy));
+  return hn::Combine(df, hi, lo);
+#endif
+}
+
+// Record s over the part of tile t it covers.
+inline void splat_tile(const detail::npr_gabor_splat_job& j, const consts& info,
+                const hush::npr_gabor_splat& s, std::size_t tw, tile& t) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const DD dd;
+  const DFD dfd;
+  const std::size_t n = hn::Lanes(df), nd = hn::Lanes(dd);
+  const std::size_t x0 = t.x0, y0 = t.y0;
+  // Covered columns ia ... ib and rows ra ... rb, tile-relative.
+  const std::size_t ia = static_cast<std::size_t>(s.x0) > x0 ? static_cast<std::size_t>(s.x0) - x0 : 0;
+  const std::size_t ib = std::min(static_cast<std::size_t>(s.x1) - x0, t.w - 1);
+  const std::size_t ra = static_cast<std::size_t>(s.y0) > y0 ? static_cast<std::size_t>(s.y0) - y0 : 0;
+  const std::size_t rb = std::min(static_cast<std::size_t>(s.y1) - y0, t.h - 1);
+  const std::size_t va = ia / n * n, vb = ib / n * n + n;  // vectors covering ia ... ib
+  const std::size_t wa = ra / n * n, wb = rb / n * n + n;  // the same for the rows
+  // The offsets of the columns and rows in radii, in double and rounded to float as the
+  // scalar code does: ((x + 1/2) - s.x) / r.
+  const VD inv_r = hn::Set(dd, 1.0 / s.radius), sx = hn::Set(dd, s.x), sy = hn::Set(dd, s.y);
+  for (std::size_t i = va; i < vb; i += nd) {
+    const VD xc = hn::Iota(dd, static_cast<double>(x0 + i) + 0.5);
+    hn::StoreU(hn::DemoteTo(dfd, hn::Mul(hn::Sub(xc, sx), inv_r)), dfd, t.dx + i);
+    if (j.depth_test) hn::StoreU(hn::Add(hn::Set(dd, s.q0), hn::Mul(hn::Set(dd, s.qx), xc)), dd, t.pc + i);
+  }
+  for (std::size_t r = wa; r < wb; r += nd) {
+    const VD yc = hn::Iota(dd, static_cast<double>(y0 + r) + 0.5);
+    hn::StoreU(hn::DemoteTo(dfd, hn::Mul(hn::Sub(yc, sy), inv_r)), dfd, t.dy + r);
+  }
+  const VF neg_a = hn::Set(df, info.neg_a), taper_k = hn::Set(df, info.taper_k);
+  const VF phi_x = hn::Set(df, static_cast<float>(s.fx * s.radius));
+  const VF phi_y = hn::Set(df, static_cast<float>(s.fy * s.radius));
+  // Columns outside ia ... ib get d^2 = 2: s = dx^2 + dy^2 >= 1 fails there as it does
+  // outside the disc, so the kernel's own test masks them.
+  const VI lane = hn::Iota(di, 0);
+  const VI before_first = hn::Set(di, static_cast<std::int32_t>(ia) - 1);
+  const VI after_last = hn::Set(di, static_cast<std::int32_t>(ib) + 1);
+  for (std::size_t i = va; i < vb; i += n) {
+    const gabor_simd::axis a = gabor_simd::axis_factors(hn::LoadU(df, t.dx + i), neg_a, phi_x);
+    const VI col = hn::Add(lane, hn::Set(di, static_cast<std::int32_t>(i)));
+    const MF in = hn::RebindMask(df, hn::And(hn::Gt(col, before_first), hn::Lt(col, after_last)));
+    hn::StoreU(hn::IfThenElse(in, a.d2, hn::Set(df, 2.0f)), df, t.cd2 + i);
+    hn::StoreU(a.e, df, t.ce + i);
+    hn::StoreU(a.s, df, t.cs + i);
+    hn::StoreU(a.c, df, t.cc + i);
+  }
+  for (std::size_t r = wa; r < wb; r += n) {
+    const gabor_simd::axis a = gabor_simd::axis_factors(hn::LoadU(df, t.dy + r), neg_a, phi_y);
+    hn::StoreU(a.d2, df, t.rd2 + r);
+    hn::StoreU(a.e, df, t.re + r);
+    hn::StoreU(a.s, df, t.rs + r);
+    hn::StoreU(a.c, df, t.rc + r);
+  }
+  const float weight = static_cast<float>(s.weight);
+  const VF one = hn::Set(df, 1.0f);
+  const VU object = hn::Set(du, s.object), triangle = hn::Set(du, s.triangle);
+  for (std::size_t r = ra; r <= rb; ++r) {
+    const gabor_simd::row row{hn::Set(df, weight * t.re[r]), hn::Set(df, t.rc[r]),
+                              hn::Set(df, t.rs[r]), hn::Set(df, t.rd2[r])};
+    const std::size_t base = r * tw;
+    const VD qy = hn::Set(dd, s.qy * (static_cast<double>(y0 + r) + 0.5));
+    for (std::size_t i = va; i < vb; i += n) {
+      const gabor_simd::axis ax{hn::Zero(df), hn::LoadU(df, t.cd2 + i), hn::LoadU(df, t.ce + i),
+                                hn::LoadU(df, t.cs + i), hn::LoadU(df, t.cc + i)};
+      MF m = hn::Lt(hn::Add(ax.d2, row.d2), one);
+      if (j.object_test)
+        m = hn::And(m, hn::RebindMask(df, hn::Eq(hn::LoadU(du, t.object + base + i), object)));
+      if (j.triangle_test)
+        m = hn::And(m, hn::RebindMask(df, hn::Eq(hn::LoadU(du, t.triangle + base + i), triangle)));
+      VF g = gabor_simd::pair(ax, row, taper_k);
+      if (j.depth_test) g = hn::Mul(visibility(j, info, t.depth + base + i, t.pc + i, qy), g);
+      float* acc = t.acc + base + i;
+      hn::StoreU(hn::Add(hn::LoadU(df, acc), hn::IfThenElseZero(m, g)), df, acc);
+    }
+  }
+}
+
+inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_view<float>& out) {
+  const DF df;
+  const std::size_t tw = std::max<std::size_t>(32, hn::Lanes(df));
+  const std::size_t width = out.width, height = out.height;
+  if (width == 0 || height == 0 || j.count == 0) return;
+  const std::size_t ntx = (width + tw - 1) / tw, nty = (height + kTileH - 1) / kTileH;
+  // Bin the records: counting sort by tile, record order kept within a tile.
+  std::vector<std::uint32_t> start(ntx * nty + 1, 0);
+  auto tiles_of = [&](const hush::npr_gabor_splat& s, auto&& f) {
+    for (std::size_t ty = static_cast<std::size_t>(s.y0) / kTileH;
+         ty <= static_cast<std::size_t>(s.y1) / kTileH; ++ty)
+      for (std::size_t tx = static_cast<std::size_t>(s.x0) / tw;
+           tx <= static_cast<std::size_t>(s.x1) / tw; ++tx)
+        f(ty * ntx + tx);
+  };
+  for (std::size_t k = 0; k < j.count; ++k) tiles_of(j.splats[k], [&](std::size_t t) { ++start[t + 1]; });
+  for (std::size_t t = 0; t < ntx * nty; ++t) start[t + 1] += start[t];
+  std::vector<std::uint32_t> list(start.back());
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < j.count; ++k)
+      tiles_of(j.splats[k], [&](std::size_t t) { list[next[t]++] = static_cast<std::uint32_t>(k); });
+  }
+  consts info = consts_of(j);
+  std::vector<tile> storage(1);  // ~40 KB: on the heap
+  tile& t = storage[0];
+  for (std::size_t ty = 0; ty < nty; ++ty)
+    for (std::size_t tx = 0; tx < ntx; ++tx) {
+      const std::size_t id = ty * ntx + tx;
+      if (start[id] == start[id + 1]) continue;  // out is already 0 there
+      t.x0 = tx * tw;
+      t.y0 = ty * kTileH;
+      t.w = std::min(tw, width - t.x0);
+      t.h = std::min(kTileH, height - t.y0);
+      load_tile(j, tw, t);
+      for (std::uint32_t k = start[id]; k < start[id + 1]; ++k) {
+        const hush::npr_gabor_splat& s = j.splats[list[k]];
+        if (may_pass(j, info, s, t)) splat_tile(j, info, s, tw, t);
+      }
+      for (std::size_t r = 0; r < t.h; ++r)
+        std::copy(t.acc + r * tw, t.acc + r * tw + t.w, out.row(t.y0 + r) + t.x0);
+    }
+}
+
+}  // namespace npr_gabor_simd
+
+inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_view<float>& out) {
+  npr_gabor_simd::npr_gabor_splat(j, out);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_SIMD_NPR_GABOR_INL_H_
+// ---- end hush/simd/npr_gabor-inl.h
+#endif
+
+#define HUSH_SIMD_ENTRIES_NPR_GABOR(X)                                                       \
+  X(npr_gabor_splat, (const detail::npr_gabor_splat_job& job, const image_view<float>& out), \
+    (job, out))
+
+HUSH_SIMD_DECLARE(HUSH_SIMD_ENTRIES_NPR_GABOR)
+
+#endif  // HUSH_NPR_GABOR_SIMD_KERNEL_HPP
+// ---- end hush/npr_gabor/simd_kernel.hpp
 
 namespace hush {
 

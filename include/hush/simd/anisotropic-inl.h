@@ -44,7 +44,6 @@
 
 #include <hwy/highway.h>
 
-#include "hush/anisotropic.hpp"
 #include "hush/config.hpp"
 #include "hush/core/lattice.hpp"
 #include "hush/core/samples.hpp"
@@ -52,6 +51,8 @@
 #include "hush/detail/approx_math.hpp"
 #include "hush/detail/constants.hpp"
 
+// The noise class comes first, not from here: hush/anisotropic.hpp includes these
+// kernels at its end (hush/anisotropic/simd_kernel.hpp), as src/simd/anisotropic.cpp does.
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {

@@ -68,9 +68,10 @@
 #include "hush/core/samples.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
-#include "hush/gabor.hpp"
 #include "hush/simd/batch-inl.h"  // simd_batch::kMaxLanes
 
+// The noise class comes first, not from here: hush/gabor.hpp includes these
+// kernels at its end (hush/gabor/simd_kernel.hpp), as src/simd/gabor.cpp does.
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {

@@ -56,8 +56,9 @@
 #include "hush/core/views.hpp"
 #include "hush/simd/batch-inl.h"  // simd_batch::for_each_vector
 #include "hush/simd/perlin-inl.h"  // perlin_simd::mul_add, kMaxLanes, store_interleaved
-#include "hush/wavelet.hpp"
 
+// The noise class comes first, not from here: hush/wavelet.hpp includes these
+// kernels at its end (hush/wavelet/simd_kernel.hpp), as src/simd/wavelet.cpp does.
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {
