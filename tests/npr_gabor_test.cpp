@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <string>
@@ -887,4 +889,108 @@ TEST_CASE("near plane: no pop as a triangle's depth ratio passes 4 or a vertex p
   CHECK(r2 < r1 / 5);
   CHECK(n2 < n1 / 5);
   CHECK(z2 < z1 / 5);
+}
+
+namespace {
+
+// FNV-1a (64 bits) over the float bits of every pixel, row by row.
+std::uint64_t frame_digest(const std::vector<double>& img) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const double v : img) {
+    const float f = static_cast<float>(v);
+    std::uint32_t u = 0;
+    std::memcpy(&u, &f, sizeof u);
+    for (int b = 0; b < 4; ++b) h = (h ^ ((u >> (8 * b)) & 0xffU)) * 1099511628211ULL;
+  }
+  return h;
+}
+
+// v as exact decimal (%.17g round-trips a double), for regenerating the golden values.
+std::string exact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+TEST_CASE("npr_gabor golden: values and frame digests per seed never change") {
+  // Like tests/golden_test.cpp: a change here changes every user's images; say so in the
+  // changelog and regenerate deliberately. Three 48 x 40 frames on exec::scalar, double
+  // reference: (0) default params, orientation 0.4, a plane of 10-pixel cells; (1) a small
+  // kernel with thinning and the triangle test on 3-pixel cells (N < 1), orientation per
+  // pixel and frequency per vertex; (2) isotropic, local density, bandwidth per object, on a
+  // foreshortened plane (depth ratio 4). Pinned: the record count (stage 1), three pixels
+  // within 2^-40 (FMA contraction moves last bits only) and FNV-1a over the float-rounded
+  // frame (the double's last-bit changes flip a float only with probability ~2^-29 per pixel).
+  // The float render stays within 2^-12 of the reference frame (its budget is far smaller).
+  const std::size_t w = 48, h = 40;
+  const std::size_t pixels[3][2] = {{5, 5}, {24, 20}, {40, 33}};
+  const std::uint32_t seeds[2] = {0, 7};
+  const std::size_t expected_records[3][2] = {{184, 178}, {1131, 1139}, {3205, 3209}};
+  const double expected[3][2][3] = {
+      {{-1.0929173595171142, -0.31542156772137497, 0.031226015527319267},
+       {-0.39007166842447211, -0.34956549573830903, 1.4678932713847042}},
+      {{0.20742508185936429, 0.15907909335029002, -0.28879126623145479},
+       {-0.15351539182831708, -1.8512275595971044, -0.55095790853611271}},
+      {{1.676089387872298, -2.3789336234812861, 0.20583661952768889},
+       {0.82019976376486847, 0.13963573026736648, -0.37420604288063469}}};
+  const std::uint64_t digests[3][2] = {{0xe525c4c9f94b67a1ULL, 0x57bdc25b16bcee9cULL},
+                                       {0x0ad5ddab12ed3845ULL, 0x46bb1aadc05bff69ULL},
+                                       {0xb3553787be833ddbULL, 0x67bb7ecd26302896ULL}};
+
+  std::vector<float> field(w * h);
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x)
+      field[y * w + x] = 0.03f * static_cast<float>(x) - 0.05f * static_cast<float>(y);
+  const std::vector<double> band = {0.1, 0.3};  // objects 0 (background) and 1
+  const grid_scene scenes[3] = {npr_test::covering(w, h, 10.0, 16.0),
+                                npr_test::covering(w, h, 3.0, 8.0), ground_plane(w, h, 8.0, 4.0f)};
+  std::vector<float> vertex_freq(scenes[1].screen.size());
+  for (std::size_t v = 0; v < vertex_freq.size(); ++v)
+    vertex_freq[v] = 0.15f + 0.01f * static_cast<float>(v % 7);
+  for (int c = 0; c < 3; ++c) {
+    hush::npr_gabor::params p = c == 0 ? hush::npr_gabor::params{} : small_kernel();
+    hush::npr_gabor::sources src;
+    if (c == 0) p.orientation = 0.4;
+    if (c == 1) {
+      p.thinning = true;
+      p.triangle_test = true;
+      src.orientation = hush::param_source::per_pixel({field.data(), w, h});
+      src.frequency = hush::param_source::per_vertex(vertex_freq);
+    }
+    if (c == 2) {
+      p.isotropic = true;
+      p.local_density = true;
+      p.depth_test = false;  // the grid scene's depth buffer is flat
+      src.bandwidth = hush::param_source::per_object(band);
+    }
+    const grid_scene& sc = scenes[c];
+    for (int s = 0; s < 2; ++s) {
+      p.seed = seeds[s];
+      const hush::npr_gabor noise{p};
+      std::vector<hush::npr_gabor_splat> records;
+      noise.make_splats(sc.frame(), sc.triangles(), records, src);
+      std::vector<double> ref(w * h);
+      noise.render(hush::exec::scalar, sc.frame(), sc.triangles(),
+                   hush::image_view<double>(ref.data(), w, h), src);
+      std::vector<float> f(w * h);
+      noise.render(hush::exec::scalar, sc.frame(), sc.triangles(),
+                   hush::image_view<float>(f.data(), w, h), src);
+      CAPTURE(c);
+      CAPTURE(s);
+      CHECK(records.size() == expected_records[c][s]);
+      for (int i = 0; i < 3; ++i) {
+        const double v = ref[pixels[i][1] * w + pixels[i][0]];
+        CHECK_MESSAGE(std::fabs(v - expected[c][s][i]) <= std::ldexp(1.0, -40), exact(v));
+      }
+      const std::uint64_t digest = frame_digest(ref);
+      char hex[24];
+      std::snprintf(hex, sizeof hex, "0x%016llxULL", static_cast<unsigned long long>(digest));
+      CHECK_MESSAGE(digest == digests[c][s], hex);
+      double worst = 0;
+      for (std::size_t i = 0; i < w * h; ++i) worst = std::max(worst, std::fabs(f[i] - ref[i]));
+      CHECK(worst <= std::ldexp(1.0, -12));
+    }
+  }
 }

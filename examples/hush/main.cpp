@@ -105,8 +105,9 @@ void print_usage(std::ostream& os) {
         "  Writes a calibration baseline's noise frames OUT/NNNN.npy for the G-buffers.\n";
   print_options(os, coherence_baseline_options());
   os << "\nhush glsl-export DIR\n"
-        "  Writes hush_noise.glsl (the function library, no #version line) and the compute\n"
-        "  runners (*.comp) into DIR, created if needed.\n";
+        "  Writes hush_noise.glsl (the function library, no #version line), the compute\n"
+        "  runners of every GLSL noise (hush_NOISE_points|grid|samples[_gradient].comp) and\n"
+        "  coherent and NPR Gabor noise's shaders into DIR, created if needed.\n";
   os << "\nhush bench [--quick] [--interleave] [--json FILE] [--markdown FILE] [--plot FILE.svg]\n"
         "  Times every noise x backend x workload (ns/sample, median of repetitions, one\n"
         "  thread) next to its error against the double reference; Markdown on stdout.\n";

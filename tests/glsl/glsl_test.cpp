@@ -28,12 +28,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <memory>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "glsl_test_util.hpp"
@@ -805,6 +807,12 @@ std::string slurp(const std::filesystem::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// (name, has a samples runner) of every program in the list.
+template <class... Noise>
+std::vector<std::pair<std::string, bool>> program_list(const std::tuple<Noise...>*) {
+  return {{hush::glsl::noise_program<Noise>::name, hush::glsl::has_samples_runner<Noise>()}...};
+}
+
 TEST_CASE("hush glsl-export writes the library and runners, which compile") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(HUSH_GLSL_SCRATCH) / "export";
@@ -829,9 +837,30 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
                                    "out vec4 c;\nvoid main() { c = "
                                    "hush_perlin3_gradient(gl_FragCoord.xyz, 1u, uvec3(0u)); }\n"}});
   const auto files = hush::glsl::export_files();
-  // The library, 4 runners each of perlin2, perlin3, their fractals, wavelet2 and wavelet3,
-  // the coherent pass, NPR Gabor noise's three stages and the six passes of its stage 1.
-  CHECK(files.size() == 35);
+  // Every program's runners, named here rather than derived from program_noises, so that a
+  // program the export drops (or the list loses) fails: points and grid, values and
+  // gradients, for every noise; samples too for those that take per-sample inputs.
+  const std::vector<std::pair<std::string, bool>> programs = {
+      {"perlin2", false},         {"perlin3", false}, {"fractal_perlin2", false},
+      {"fractal_perlin3", false}, {"wavelet2", true}, {"wavelet3", true},
+      {"gabor2", true},           {"gabor3", true},   {"anisotropic", true}};
+  CHECK(program_list(static_cast<const hush::glsl::program_noises*>(nullptr)) == programs);
+  std::vector<std::string> expected = {"hush_noise.glsl", "hush_coherent_pass.comp",
+                                       "hush_npr_gabor_splat.vert", "hush_npr_gabor_splat.geom",
+                                       "hush_npr_gabor_splat.frag"};
+  for (const char* pass : {"lods", "scan", "roots", "expand", "children", "records"})
+    expected.push_back(std::string("hush_npr_gabor_") + pass + ".comp");
+  for (const auto& [name, samples] : programs)
+    for (const char* layout : {"points", "grid", "samples"})
+      if (samples || std::string(layout) != "samples")
+        for (const char* gradient : {"", "_gradient"})
+          expected.push_back("hush_" + name + "_" + layout + gradient + ".comp");
+  std::vector<std::string> names;
+  for (const auto& f : files) names.push_back(f.name);
+  std::sort(expected.begin(), expected.end());
+  std::sort(names.begin(), names.end());
+  CHECK(names == expected);  // 57 files: 46 runners and the 11 others
+  CHECK(names.size() == 57);
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);

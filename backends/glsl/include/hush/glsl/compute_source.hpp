@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The `#version 430 core` compute shaders hush::glsl::device runs, one per
-// (noise, values or values + gradient, points or grid). They are plain text,
+// (noise, values or values + gradient, points, grid or samples). They are plain text,
 // so `hush glsl-export` writes the same sources for engines that dispatch
 // them themselves. Interface of every runner (std430 SSBOs, 1D dispatch of
 // kLocalSize-wide groups):
@@ -49,6 +49,7 @@
 
 #include <string>
 
+#include "hush/core/samples.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/glsl/noise_program.hpp"
 
@@ -70,6 +71,14 @@ inline const char* layout_name(batch_layout layout) {
       return "samples";
   }
   return "?";
+}
+
+// Whether hush::glsl::device runs Noise's samples runner: only for a noise that takes
+// per-sample inputs (footprints, normals or surface maps); any other noise's samples
+// are its points (the extras are never given).
+template <class Noise>
+constexpr bool has_samples_runner() {
+  return hush::detail::takes_sample_inputs<Noise>::value;
 }
 
 // Invocations per work group of every runner (a multiple of the SIMD widths

@@ -9,8 +9,8 @@
 //   hush::evaluate_grid(p, hush::exec::glsl{dev}, grid, out, gradients);
 //
 // GL functions come from the loader (name -> address); no GL library is linked.
-// The device compiles one program per (noise, values or gradients, points or
-// grid) on first use and caches it, uploads the inputs to SSBOs, dispatches in
+// The device compiles one program per (noise, values or gradients, points, grid
+// or samples) on first use and caches it, uploads the inputs to SSBOs, dispatches in
 // chunks of at most GL_MAX_COMPUTE_WORK_GROUP_COUNT groups, splits batches
 // larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE, and reads the results back
 // (synchronously). It leaves the current program, the generic
@@ -229,7 +229,7 @@ class device {
     const std::size_t n = s.size();
     if (n == 0) return;
     static_assert(sizeof(surface_map) == 4 * sizeof(float), "surface_map is 4 packed floats");
-    if constexpr (!hush::detail::takes_sample_inputs<Noise>::value) {
+    if constexpr (!has_samples_runner<Noise>()) {
       evaluate_points(noise, s.positions.data(), n, out, grad);  // no extras can be given
     } else {
       using np = noise_program<Noise>;

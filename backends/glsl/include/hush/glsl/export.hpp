@@ -8,16 +8,14 @@
 #define HUSH_GLSL_EXPORT_HPP
 
 #include <string>
-#include <utility>
+#include <tuple>
 #include <vector>
 
-#include "hush/fractal.hpp"
 #include "hush/glsl/coherent.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
+#include "hush/glsl/noise_program.hpp"
 #include "hush/glsl/npr_gabor.hpp"
-#include "hush/perlin.hpp"
-#include "hush/wavelet.hpp"
 
 namespace hush {
 namespace glsl {
@@ -30,21 +28,34 @@ struct export_file {
 
 namespace detail {
 
+// The runners of Noise: every (layout, values or gradients) hush::glsl::device runs.
 template <class Noise>
 void add_runners(std::vector<export_file>& files) {
-  const std::string base = std::string("hush_") + noise_program<Noise>::name;
-  for (batch_layout layout : {batch_layout::points, batch_layout::grid})
+  static_assert(has_program_v<Noise>, "program_noises lists only noises with a noise_program");
+  const std::string base = std::string("hush_") + noise_program<Noise>::name + "_";
+  for (batch_layout layout : {batch_layout::points, batch_layout::grid, batch_layout::samples}) {
+    if (layout == batch_layout::samples && !has_samples_runner<Noise>()) continue;
     for (bool gradient : {false, true})
-      files.push_back({base + (layout == batch_layout::points ? "_points" : "_grid") +
-                           (gradient ? "_gradient" : "") + ".comp",
+      files.push_back({base + layout_name(layout) + (gradient ? "_gradient" : "") + ".comp",
                        compute_source<Noise>(layout, gradient)});
+  }
+}
+
+template <class... Noise>
+void add_all_runners(std::vector<export_file>& files, const std::tuple<Noise...>*) {
+  (add_runners<Noise>(files), ...);
 }
 
 }  // namespace detail
 
-// hush_noise.glsl, then hush_<noise>_<points|grid>[_gradient].comp for every
-// noise with a GLSL program (perlin2, perlin3, fractal_perlin2, fractal_perlin3,
-// wavelet2, wavelet3), and
+// hush_noise.glsl, then for every noise with a GLSL program (program_noises in
+// noise_program.hpp: perlin2, perlin3, fractal_perlin2, fractal_perlin3, wavelet2,
+// wavelet3, gabor2, gabor3, anisotropic) its runners
+// hush_<noise>_<points|grid>[_gradient].comp and, for the noises that take
+// per-sample inputs (wavelet, gabor, anisotropic),
+// hush_<noise>_samples[_gradient].comp (positions with optional footprints, normals
+// and surface maps, compute_source.hpp's samples layout: one runner for every
+// combination, told apart by its uniforms), and
 // hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent.hpp), and
 // hush_npr_gabor_splat.vert, .geom, .frag (NPR Gabor noise's point sprites, one program,
 // hush/glsl/npr_gabor.hpp) and hush_npr_gabor_lods.comp, _scan.comp, _roots.comp,
@@ -71,17 +82,19 @@ inline std::vector<export_file> export_files() {
        "// hush_fractal_perlin* runners (fBm, turbulence) read band coordinates split on\n"
        "// the CPU (hush::fractal::band_position, hush::lattice_split<float>); so do the\n"
        "// hush_wavelet* runners (hush::wavelet::band_position), which also read the tile at\n"
-       "// SSBO binding 5 (and variants at 6, the distribution table at 7). The wavelet\n"
+       "// SSBO binding 5 (and variants at 6, the distribution table at 7), the hush_gabor*\n"
+       "// runners (hush::gabor, cells of p / r; in 3D also p / (r sqrt(3/2)), the surface\n"
+       "// process) and the hush_anisotropic* runners (hush::anisotropic, a band per scale),\n"
+       "// which sample the tiles as RGBA32F textures hush_tile0 and hush_tile1. Runner names:\n"
+       "// hush_<noise>_<points|grid|samples>[_gradient].comp; the *_samples runners (noises\n"
+       "// that filter or take normals) read per-sample footprints at SSBO binding 2,\n"
+       "// normals at 3, surface maps at 4, each where its hush_has_* uniform is 1u\n"
+       "// (anisotropic: the CPU-formed per-sample data at 5 instead). The wavelet\n"
        "// functions of this library exist where the shader defines HUSH_WAVELET_TILE(i)\n"
        "// before it (hush/glsl/wavelet_glsl.hpp).\n"
        "// Regenerate with the same hush version instead of editing by hand.\n" +
            library()});
-  detail::add_runners<perlin<2>>(files);
-  detail::add_runners<perlin<3>>(files);
-  detail::add_runners<fractal<perlin<2>>>(files);
-  detail::add_runners<fractal<perlin<3>>>(files);
-  detail::add_runners<wavelet<2>>(files);
-  detail::add_runners<wavelet<3>>(files);
+  detail::add_all_runners(files, static_cast<const program_noises*>(nullptr));
   files.push_back({"hush_coherent_pass.comp", coherent_source()});
   files.push_back({"hush_npr_gabor_splat.vert", npr_gabor_vertex_source()});
   files.push_back({"hush_npr_gabor_splat.geom", npr_gabor_geometry_source()});

@@ -73,6 +73,8 @@
 // lives) and binds to texture units 0, 1, ... before every dispatch, setting
 // each sampler2D uniform to its unit.
 // The runner validates nothing about a noise: noise objects are valid by construction.
+// Every noise type with a specialisation is listed once, in program_noises (end of
+// this file): `hush glsl-export` writes the runners of exactly those.
 #ifndef HUSH_GLSL_NOISE_PROGRAM_HPP
 #define HUSH_GLSL_NOISE_PROGRAM_HPP
 
@@ -83,6 +85,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -310,5 +313,16 @@ inline constexpr bool has_program_v = has_program<Noise>::value;
 #include "hush/glsl/anisotropic_program.hpp"
 #include "hush/glsl/gabor_glsl.hpp"  // IWYU pragma: export
 #include "hush/glsl/wavelet_program.hpp"
+
+namespace hush {
+namespace glsl {
+
+// Every noise type that has a noise_program: the one list that `hush glsl-export`
+// (export.hpp) and the tests enumerate, so that a new program is exported with it.
+using program_noises = std::tuple<perlin<2>, perlin<3>, fractal<perlin<2>>, fractal<perlin<3>>,
+                                  wavelet<2>, wavelet<3>, gabor<2>, gabor<3>, anisotropic>;
+
+}  // namespace glsl
+}  // namespace hush
 
 #endif  // HUSH_GLSL_NOISE_PROGRAM_HPP
