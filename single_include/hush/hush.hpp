@@ -2030,7 +2030,8 @@ class tile_cache {
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The transcendental functions the anisotropic noise's weights need, in a
-// form SIMD code can repeat operation by operation (hush/simd/anisotropic-inl.h):
+// form SIMD code can repeat operation by operation (hush/simd/lanes-inl.h;
+// band_profile in hush/simd/anisotropic-inl.h):
 //   exp2_nonpositive(y) = 2^y for y <= 0      (filtering weights, exp(-x))
 //   log2_positive(m)     = log2(m) for m > 0   (distortion: the map's stretch)
 //   band_profile(x)      = cos^2(pi x / 2) for |x| < 1, else 0
@@ -3247,43 +3248,349 @@ class perlin : public point_noise<perlin<D>, D> {
 
 #include <hwy/highway.h>
 
-// ---- begin hush/simd/batch-inl.h
+// ---- begin hush/simd/lanes-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The batch driver the SIMD point kernels share (simd/perlin-inl.h,
-// simd/wavelet-inl.h): fn(first, pts, value, grad) over n points of D floats, one
-// vector of lanes at a time from point `first`; the last partial vector goes
-// through zero-padded buffers, so no lane reads or writes out of bounds (its
-// lanes past n read zeros, their results are dropped). grad may be null (values
-// only; fn then gets null). Compiled once per SIMD target (the "-inl.h"
-// convention: toggle guard below); reached through hush/simd/dispatch.hpp.
-#if defined(HUSH_SIMD_BATCH_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_BATCH_INL_H_
-#undef HUSH_SIMD_BATCH_INL_H_
+// The lane toolbox the SIMD kernels share (simd/*-inl.h): float lane types,
+// multiply-adds as the scalar code is compiled, core/hash.hpp's hashes,
+// detail/elementary.hpp's exp and sin/cos, detail/approx_math.hpp's exp2 and
+// log2, compression of selected lanes, interleaved stores and the batch
+// driver. Only generic lane maths lives here; each noise's own algorithm stays
+// in its kernel. Every function repeats its scalar counterpart operation by
+// operation, so under HUSH_STRICT_FP a kernel built on them gives the scalar
+// bits on every target. Compiled once per SIMD target (the "-inl.h"
+// convention: toggle guard below); included by the kernels, never by users.
+#if defined(HUSH_SIMD_LANES_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_SIMD_LANES_INL_H_
+#undef HUSH_SIMD_LANES_INL_H_
 #else
-#define HUSH_SIMD_BATCH_INL_H_
+#define HUSH_SIMD_LANES_INL_H_
 #endif
 
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include <hwy/highway.h>
+
 
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {
-namespace simd_batch {
+namespace lanes {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// Full vectors of floats and of their 32-bit integers; kernels take them with
+// `using namespace lanes::types;`.
+namespace types {
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using VI = hn::Vec<DI>;
+using MF = hn::Mask<DF>;
+}  // namespace types
+using namespace types;
+
 // Largest float lane count of any target (SVE's 2048 bits), for buffers and
-// table padding sized once for every target; every kernel uses this one.
+// table padding sized once for every target.
 constexpr std::size_t kMaxLanes = 64;
 
+// ---- Arithmetic as the scalar code is compiled.
+
+// a * b + c for any float or double vector: two roundings under HUSH_STRICT_FP
+// (the scalar code is compiled without contraction there), one fused rounding
+// otherwise.
+template <class V>
+HWY_INLINE V mul_add(V a, V b, V c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Add(hn::Mul(a, b), c);
+#else
+  return hn::MulAdd(a, b, c);
+#endif
+}
+// c - a * b, rounded as mul_add.
+template <class V>
+HWY_INLINE V neg_mul_add(V a, V b, V c) {
+#if HUSH_CONFIG_STRICT_FP
+  return hn::Sub(c, hn::Mul(a, b));
+#else
+  return hn::NegMulAdd(a, b, c);
+#endif
+}
+
+// ---- core/hash.hpp in 32-bit lanes.
+
+// hash32 without its last step x ^= x >> kHashShift3, which changes only the
+// low kHashShift3 bits: bits kHashShift3 ... 31 equal hash32's, the rest do
+// not. For callers that read only the high bits.
+HWY_INLINE VU hash32_high(VU x) {
+  namespace c = detail::constants;
+  const DU du;
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
+  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
+  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
+  return hn::Mul(x, hn::Set(du, c::kHashMul2));
+}
+// hash32(x): every bit of the scalar hash.
+HWY_INLINE VU hash32(VU x) {
+  const VU h = hash32_high(x);
+  return hn::Xor(h, hn::ShiftRight<detail::constants::kHashShift3>(h));
+}
+
+// lattice_word_x/y/z: i * P_x, rotl(j * P_y, R_y), rotl(k * P_z, R_z), mod 2^32.
+HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
+HWY_INLINE VU word_y(VU j) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
+}
+HWY_INLINE VU word_z(VU k) {
+  namespace c = detail::constants;
+  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
+}
+// The lattice word of axis kAxis (0: x, 1: y, 2: z).
+template <int kAxis>
+HWY_INLINE VU word(VU i) {
+  if constexpr (kAxis == 0) return word_x(i);
+  if constexpr (kAxis == 1) return word_y(i);
+  if constexpr (kAxis == 2) return word_z(i);
+}
+
+// ---- detail/elementary.hpp in lanes (the float branch, op for op).
+
+// e^x for x in [kExpFloor, 0] (no NaN): exp_neg without its clamps, which are
+// identities there. Within 2^-22 relative, as exp_neg.
+HWY_INLINE VF exp_neg_in_range(VF x) {
+  namespace c = detail::constants;
+  const DF df;
+  const DI di;
+  const VF n = hn::Floor(mul_add(x, hn::Set(df, float(c::kLog2E)), hn::Set(df, 0.5f)));
+  const VF r = neg_mul_add(n, hn::Set(df, float(c::kLn2Lo)),
+                           neg_mul_add(n, hn::Set(df, float(c::kLn2Hi)), x));
+  VF p = hn::Set(df, float(c::kExpPoly[c::kExpDegree]));
+  for (int i = c::kExpDegree - 1; i >= 0; --i)
+    p = mul_add(p, r, hn::Set(df, float(c::kExpPoly[i])));
+  const VI bits = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, n), hn::Set(di, 127)));
+  return hn::Mul(p, hn::BitCast(df, bits));
+}
+// exp_neg: e^x for any x; x > 0 is taken as 0, x < kExpFloor gives 0, NaN
+// gives that NaN. Within 2^-22 relative.
+HWY_INLINE VF exp_neg(VF x) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF zero = hn::Zero(df), lo = hn::Set(df, float(c::kExpFloor));
+  const VF v = exp_neg_in_range(hn::Max(hn::IfThenElse(hn::Gt(x, zero), zero, x), lo));
+  // Below the floor: 0; NaN: the NaN itself (as the scalar code returns x).
+  return hn::IfThenElse(hn::IsNaN(x), x, hn::IfThenElseZero(hn::Ge(x, lo), v));
+}
+// exp_neg for x that is not NaN: the same values without its NaN case.
+HWY_INLINE VF exp_neg_finite(VF x) {
+  const DF df;
+  const VF lo = hn::Set(df, float(detail::constants::kExpFloor));
+  return hn::IfThenZeroElse(hn::Lt(x, lo), exp_neg_in_range(hn::Max(hn::Min(x, hn::Zero(df)), lo)));
+}
+
+// sin/cos of 2 pi u for |u| < 1/2 + kTurnsReduceLimit: the quadrant q (an
+// integer), r = u - q / 4, and the polynomials s ~ sin(2 pi r), pc ~ cos(2 pi r).
+HWY_INLINE void sincos_quadrant(VF u, VF& q, VF& s, VF& pc) {
+  namespace c = detail::constants;
+  const DF df;
+  q = hn::Floor(mul_add(u, hn::Set(df, 4.0f), hn::Set(df, 0.5f)));
+  const VF r = neg_mul_add(q, hn::Set(df, 0.25f), u);
+  const VF z = hn::Mul(r, r);
+  VF ps = hn::Set(df, float(c::kSinPoly[c::kSinDegree]));
+  for (int i = c::kSinDegree - 1; i >= 0; --i)
+    ps = mul_add(ps, z, hn::Set(df, float(c::kSinPoly[i])));
+  pc = hn::Set(df, float(c::kCosPoly[c::kCosDegree]));
+  for (int i = c::kCosDegree - 1; i >= 0; --i)
+    pc = mul_add(pc, z, hn::Set(df, float(c::kCosPoly[i])));
+  s = hn::Mul(r, ps);
+}
+// sincos_turns: sin(2 pi t), cos(2 pi t) for any finite t (t in turns),
+// within 2^-23 absolute; non-finite t gives NaN.
+HWY_INLINE void sincos_turns(VF t, VF& sin_out, VF& cos_out) {
+  namespace c = detail::constants;
+  const DF df;
+  const VF u = hn::IfThenElse(hn::Lt(hn::Abs(t), hn::Set(df, float(c::kTurnsReduceLimit))), t,
+                              hn::Sub(t, hn::Floor(t)));
+  VF q, s, pc;
+  sincos_quadrant(u, q, s, pc);
+  const VF k = neg_mul_add(hn::Set(df, 4.0f), hn::Floor(hn::Mul(q, hn::Set(df, 0.25f))), q);
+  const VF one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f), three = hn::Set(df, 3.0f);
+  const MF k1 = hn::Eq(k, one), k2 = hn::Eq(k, two), k3 = hn::Eq(k, three);
+  const MF odd = hn::Or(k1, k3);
+  const VF sin_sign = hn::IfThenElse(hn::Ge(k, two), hn::Set(df, -1.0f), one);
+  const VF cos_sign = hn::IfThenElse(hn::Or(k1, k2), hn::Set(df, -1.0f), one);
+  sin_out = hn::Mul(hn::IfThenElse(odd, pc, s), sin_sign);
+  cos_out = hn::Mul(hn::IfThenElse(odd, s, pc), cos_sign);
+}
+// sincos_turns for finite |t| < kTurnsReduceLimit: no reduction (the identity
+// there), and the quadrant's signs as sign bits from its integer (multiplying
+// by +-1 and flipping the sign bit agree on every non-NaN value). The same
+// values as sincos_turns.
+HWY_INLINE void sincos_turns_in_range(VF t, VF& sin_out, VF& cos_out) {
+  const DF df;
+  const DI di;
+  VF q, s, pc;
+  sincos_quadrant(t, q, s, pc);
+  // k = q mod 4 (|q| < 2^24: exact as an integer): sin < 0 for k = 2, 3; cos
+  // < 0 for k = 1, 2; the two swap for odd k.
+  const VI k = hn::ConvertTo(di, q);
+  const VI two = hn::Set(di, 2);
+  const VF sin_sign = hn::BitCast(df, hn::ShiftLeft<30>(hn::And(k, two)));
+  const VF cos_sign = hn::BitCast(df, hn::ShiftLeft<30>(hn::And(hn::Add(k, hn::Set(di, 1)), two)));
+  const MF odd = hn::RebindMask(df, hn::TestBit(k, hn::Set(di, 1)));
+  sin_out = hn::Xor(hn::IfThenElse(odd, pc, s), sin_sign);
+  cos_out = hn::Xor(hn::IfThenElse(odd, s, pc), cos_sign);
+}
+
+// ---- detail/approx_math.hpp in lanes (the float branch, op for op).
+
+// Polynomial coefficients rounded to float as the scalar code rounds them
+// (float(c)), at compile time.
+template <int N>
+struct float_coefficients {
+  float v[N];
+};
+template <int N>
+constexpr float_coefficients<N> to_float(const double (&d)[N]) {
+  float_coefficients<N> r{};
+  for (int i = 0; i < N; ++i) r.v[i] = static_cast<float>(d[i]);
+  return r;
+}
+constexpr auto kExp2 = to_float(detail::constants::kAnisoSeries.exp2);
+constexpr auto kLog2 = to_float(detail::constants::kAnisoSeries.log2);
+
+// Horner's rule p = (...(k[N-1] x + k[N-2]) x + ...) x + k[0], unrolled, each
+// step one mul_add.
+template <int N, int M = N - 1>
+HWY_INLINE VF horner(const float_coefficients<N>& k, VF x, VF p) {
+  const DF df;
+  p = mul_add(p, x, hn::Set(df, k.v[M - 1]));
+  if constexpr (M - 1 > 0)
+    return horner<N, M - 1>(k, x, p);
+  else
+    return p;
+}
+template <int N>
+HWY_INLINE VF horner(const float_coefficients<N>& k, VF x) {
+  return horner<N>(k, x, hn::Set(DF(), k.v[N - 1]));
+}
+
+// exp2_nonpositive: 2^y for y in [-126, 0], within 4 ulp relative for y in
+// [-25, 0]; NaN gives NaN. y < -126 gives an unspecified value: callers
+// select their cutoff and discard those lanes.
+HWY_INLINE VF exp2_nonpositive(VF y) {
+  const DF df;
+  const DI di;
+  const VF n = hn::Floor(hn::Add(y, hn::Set(df, 0.5f)));
+  const VF r = hn::Sub(y, n);
+  const VF p = horner(kExp2, r);
+  // 2^n from exponent bits; n < -126 (beyond the cutoff) is clamped, the
+  // caller discards those lanes.
+  const VF nc = hn::Max(n, hn::Set(df, -126.0f));
+  const auto e = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, nc), hn::Set(di, 127)));
+  return hn::Mul(p, hn::BitCast(df, e));
+}
+
+// log2_positive: log2(m) for m > 0, within 2^-21 absolute plus 2 ulp of the
+// result; -inf below the smallest normal float, +inf stays +inf.
+HWY_INLINE VF log2_positive(VF m) {
+  namespace c = detail::constants;
+  const DF df;
+  const DU du;
+  const DI di;
+  const auto tiny = hn::Not(hn::Ge(m, hn::Set(df, std::numeric_limits<float>::min())));
+  const auto huge = hn::Not(hn::Lt(m, hn::Set(df, std::numeric_limits<float>::infinity())));
+  const VU b = hn::BitCast(du, m);
+  auto e = hn::Sub(hn::BitCast(di, hn::ShiftRight<23>(b)), hn::Set(di, 127));
+  VF a = hn::BitCast(df, hn::Or(hn::And(b, hn::Set(du, 0x007fffffu)), hn::Set(du, 0x3f800000u)));
+  const auto big = hn::Gt(a, hn::Set(df, float(c::kSqrt2)));
+  a = hn::IfThenElse(big, hn::Mul(a, hn::Set(df, 0.5f)), a);
+  e = hn::IfThenElse(hn::RebindMask(di, big), hn::Add(e, hn::Set(di, 1)), e);
+  const VF z = hn::Div(hn::Sub(a, hn::Set(df, 1.0f)), hn::Add(a, hn::Set(df, 1.0f)));
+  const VF p = horner(kLog2, hn::Mul(z, z));
+  VF r = mul_add(p, z, hn::ConvertTo(df, e));
+  r = hn::IfThenElse(tiny, hn::Set(df, -std::numeric_limits<float>::infinity()), r);
+  return hn::IfThenElse(huge, m, r);
+}
+
+// ---- Compression of selected lanes to the front of a vector. AVX-512 has it
+// in one instruction (Highway's Compress); Highway 1.0.3's 4- and 8-lane
+// versions copy a 1 KiB table onto the stack on every call, so for up to 8
+// lanes the lane indices come from a table of our own, built at compile time.
+// Either way the indices serve every vector compressed by the same mask.
+template <int N>
+struct compress_indices {
+  std::int32_t idx[1 << N][N];
+};
+template <int N>
+constexpr compress_indices<N> make_compress_indices() {
+  compress_indices<N> t{};
+  for (int bits = 0; bits < (1 << N); ++bits) {
+    int k = 0;
+    for (int l = 0; l < N; ++l)
+      if (bits & (1 << l)) t.idx[bits][k++] = l;
+    for (int l = 0; l < N; ++l)
+      if (!(bits & (1 << l))) t.idx[bits][k++] = l;
+  }
+  return t;
+}
+alignas(64) inline constexpr compress_indices<8> kCompress8 = make_compress_indices<8>();
+alignas(64) inline constexpr compress_indices<4> kCompress4 = make_compress_indices<4>();
+
+// The selected lanes of vectors (floats or words) moved to the front by one
+// mask, in lane order; the other lanes follow (their order unspecified). The
+// lane indices are found once per mask (AVX-512: one compress of the lane
+// numbers, then a one-uop permutation per vector instead of a two-uop
+// compress each), from the tables above for 4 and 8 lanes.
+struct compressor {
+  using indices = decltype(hn::IndicesFromVec(DF(), hn::Zero(DI())));
+  static indices of(MF m) {
+    const DF df;
+    const DI di;
+    const std::size_t lanes = hn::Lanes(df);
+    if (lanes == 8 || lanes == 4) {
+      std::uint8_t bits[8] = {};
+      hn::StoreMaskBits(df, m, bits);
+      const std::int32_t* i = lanes == 8 ? kCompress8.idx[bits[0]] : kCompress4.idx[bits[0] & 15];
+      return hn::SetTableIndices(df, i);
+    }
+    return hn::IndicesFromVec(df, hn::Compress(hn::Iota(di, 0), hn::RebindMask(di, m)));
+  }
+  explicit compressor(MF m) : idx(of(m)) {}
+  VF operator()(VF v) const { return hn::TableLookupLanes(v, idx); }
+  VU operator()(VU v) const {
+    return hn::BitCast(DU(), hn::TableLookupLanes(hn::BitCast(DF(), v), idx));
+  }
+  indices idx;
+};
+
+// ---- Points in memory.
+
+// g[0 .. D) (D = 2 or 3, lane l of each vector: point l) stored interleaved
+// to dst[0 .. D Lanes): x0, y0[, z0], x1, ...
+template <int D>
+HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
+  const DF df;
+  if constexpr (D == 2)
+    hn::StoreInterleaved2(g[0], g[1], df, dst);
+  else
+    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
+}
+
+// The batch driver: fn(first, pts, value, grad) over n points of D floats,
+// one vector of lanes at a time from point `first`; the last partial vector
+// goes through zero-padded buffers, so no lane reads or writes out of bounds
+// (its lanes past n read zeros, their results are dropped). grad may be null
+// (values only; fn then gets null).
 template <int D, class Fn>
 HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, float* grad,
                                 const Fn& fn) {
   constexpr std::size_t kMax = kMaxLanes;
-  const std::size_t lanes = hn::Lanes(hn::ScalableTag<float>());
+  const std::size_t lanes = hn::Lanes(DF());
   std::size_t i = 0;
   for (; i + lanes <= n; i += lanes) fn(i, pts + i * D, value + i, grad ? grad + i * D : nullptr);
   if (i == n) return;
@@ -3295,13 +3602,13 @@ HWY_INLINE void for_each_vector(std::size_t n, const float* pts, float* value, f
   if (grad) std::memcpy(grad + i * D, g, rest * D * sizeof(float));
 }
 
-}  // namespace simd_batch
+}  // namespace lanes
 }  // namespace HWY_NAMESPACE
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_BATCH_INL_H_ toggle
-// ---- end hush/simd/batch-inl.h
+#endif  // HUSH_SIMD_LANES_INL_H_ toggle
+// ---- end hush/simd/lanes-inl.h
 
 // The noise class comes first, not from here: hush/perlin.hpp includes these
 // kernels at its end (hush/perlin/simd_kernel.hpp), as src/simd/perlin.cpp does.
@@ -3312,30 +3619,22 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace perlin_simd {
 
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
+// Generic lane maths: simd/lanes-inl.h. mul_add takes any float vector width
+// (3D grid rows form their cells' coefficients in vectors narrower than VF
+// where a row has few cells). Lookup tables are padded to kMaxLanes so every
+// chunk load is in bounds.
+using namespace lanes::types;
 #if HWY_TARGET != HWY_SCALAR
 using DU16 = hn::Repartition<std::uint16_t, DU>;
 #endif
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
 
-// Lookup tables are padded to kMaxLanes so every chunk load is in bounds.
-using simd_batch::kMaxLanes;
+using lanes::for_each_vector;
+using lanes::hash32_high;
+using lanes::kMaxLanes;
+using lanes::mul_add;
+using lanes::store_interleaved;
+using lanes::word;
 
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
-// compiled), one fused rounding otherwise.
-// Any float vector width (3D grid rows form their cells' coefficients in
-// vectors narrower than VF where a row has few cells).
-template <class V>
-HWY_INLINE V mul_add(V a, V b, V c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), c);
-#else
-  return hn::MulAdd(a, b, c);
-#endif
-}
 // lerp(a, b, t) = a + t * (b - a), as detail::lerp.
 template <class V>
 HWY_INLINE V lerp(V a, V b, V t) {
@@ -3364,38 +3663,13 @@ HWY_INLINE VF fade_derivative(VF t) {
   return hn::Mul(hn::Mul(t, t), inner);
 }
 
-// hash32 (core/hash.hpp) in 32-bit lanes without its last step x ^= x >> 16,
-// which changes only bits 0 ... 15: bits 16 ... 31 equal hash32's, and they
-// are all Perlin's gradient index reads (2D: 29 ... 31; 3D: 16 ... 31).
+// The gradient index reads the top bits of the lattice hash, so it uses
+// lanes::hash32_high, which skips hash32's last step x ^= x >> 16: bits
+// 16 ... 31 equal hash32's, and they are all Perlin's gradient index reads
+// (2D: 29 ... 31; 3D: 16 ... 31).
 static_assert(detail::constants::kHashShift3 >= 16 && detail::constants::kPerlin2GradShift >= 16 &&
                   detail::constants::kPerlin3IndexShift >= 16,
               "the gradient index must read only hash bits the last xorshift leaves alone");
-HWY_INLINE VU hash32_high(VU x) {
-  namespace c = detail::constants;
-  const DU du;
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  return hn::Mul(x, hn::Set(du, c::kHashMul2));
-}
-
-// lattice_word_x/y/z (core/hash.hpp) in lanes: i * P_x, rotl(j * P_y, R_y),
-// rotl(k * P_z, R_z).
-HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
-HWY_INLINE VU word_y(VU j) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
-}
-HWY_INLINE VU word_z(VU k) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
-}
-template <int kAxis>
-HWY_INLINE VU word(VU i) {
-  if constexpr (kAxis == 0) return word_x(i);
-  if constexpr (kAxis == 1) return word_y(i);
-  if constexpr (kAxis == 2) return word_z(i);
-}
 
 // perlin.hpp's float gradient tables, padded to kMaxLanes with zeros so that
 // every chunk load in lookup() stays in bounds. Constant data at fixed
@@ -3734,16 +4008,6 @@ HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
   }
 }
 
-// D interleaved vectors (gradients) to dst.
-template <int D>
-HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
-  const DF df;
-  if constexpr (D == 2)
-    hn::StoreInterleaved2(g[0], g[1], df, dst);
-  else
-    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
-}
-
 // ---- Points: splitting float coordinates into lattice axes.
 
 // Fractions, fades and the second cell's word of an axis whose first word
@@ -3904,14 +4168,14 @@ HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
 }
 
 // Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
-// vector at a time (simd/batch-inl.h: the tail through zero-padded buffers).
+// vector at a time (lanes::for_each_vector: the tail through zero-padded buffers).
 // One call site, so the vector function inlines into the loop.
 template <bool kGradient, int D, class Fn>
 HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
                                       const Fn& vector_fn) {
-  simd_batch::for_each_vector<D>(n, pts, value, kGradient ? grad : nullptr,
-                                 [&](std::size_t, const float* p, float* v, float* g)
-                                     HWY_ATTR { vector_fn(p, v, g); });
+  for_each_vector<D>(n, pts, value, kGradient ? grad : nullptr,
+                     [&](std::size_t, const float* p, float* v, float* g)
+                         HWY_ATTR { vector_fn(p, v, g); });
 }
 
 template <bool kGradient, int D>
@@ -4555,13 +4819,7 @@ HWY_INLINE bool split_band(VF x, double f, double o, axis& a) {
   const hn::Rebind<float, decltype(dd)> df_of_d;
   const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
   const auto vf = hn::Set(dd, f), vo = hn::Set(dd, o);
-  const auto position = [&](hn::Vec<decltype(dd)> p) HWY_ATTR {
-#if HUSH_CONFIG_STRICT_FP
-    return hn::Add(hn::Mul(p, vf), vo);
-#else
-    return hn::MulAdd(p, vf, vo);
-#endif
-  };
+  const auto position = [&](hn::Vec<decltype(dd)> p) HWY_ATTR { return mul_add(p, vf, vo); };
   const auto lo = position(hn::PromoteTo(dd, hn::LowerHalf(dh, x)));
   const auto hi = position(hn::PromoteTo(dd, hn::UpperHalf(dh, x)));
   const auto limit = hn::Set(dd, 2147483648.0);  // 2^31; false for NaN
@@ -5973,11 +6231,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace aniso_simd {
 
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
+using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using VD = hn::Vec<DD>;
 using DFH = hn::Rebind<float, DD>;     // as many floats as DD has doubles
@@ -5994,81 +6248,14 @@ constexpr std::size_t kBlock = 64;
 constexpr int kMaxScales = c::kAnisoMaxScales;
 constexpr int kMaxChannels = anisotropic::kMaxChannels;
 
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
-// compiled), fused otherwise.
-template <class V>
-HWY_INLINE V mul_add(V a, V b, V cc) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), cc);
-#else
-  return hn::MulAdd(a, b, cc);
-#endif
-}
+// Generic lane maths: simd/lanes-inl.h (mul_add for float and double
+// vectors of any width; exp2 and log2 as detail/approx_math.hpp).
+using lanes::exp2_nonpositive;
+using lanes::horner;
+using lanes::log2_positive;
+using lanes::mul_add;
 
-// The polynomial coefficients of approx_math.hpp, rounded to float as the
-// scalar code rounds them (float(c)), at compile time.
-template <int N>
-struct float_coefficients {
-  float v[N];
-};
-template <int N>
-constexpr float_coefficients<N> to_float(const double (&d)[N]) {
-  float_coefficients<N> r{};
-  for (int i = 0; i < N; ++i) r.v[i] = static_cast<float>(d[i]);
-  return r;
-}
-constexpr auto kExp2 = to_float(c::kAnisoSeries.exp2);
-constexpr auto kLog2 = to_float(c::kAnisoSeries.log2);
-constexpr auto kSinPi = to_float(c::kAnisoSeries.sinpi);
-
-// Horner's rule p = (...(k[N-1] x + k[N-2]) x + ...) x + k[0], unrolled.
-template <int N, int M = N - 1>
-HWY_INLINE VF horner(const float_coefficients<N>& k, VF x, VF p) {
-  const DF df;
-  p = mul_add(p, x, hn::Set(df, k.v[M - 1]));
-  if constexpr (M - 1 > 0)
-    return horner<N, M - 1>(k, x, p);
-  else
-    return p;
-}
-template <int N>
-HWY_INLINE VF horner(const float_coefficients<N>& k, VF x) {
-  return horner<N>(k, x, hn::Set(DF(), k.v[N - 1]));
-}
-
-// detail::exp2_nonpositive for y in [-126, 0] (callers select the cutoff).
-HWY_INLINE VF exp2_nonpositive(VF y) {
-  const DF df;
-  const DI di;
-  const VF n = hn::Floor(hn::Add(y, hn::Set(df, 0.5f)));
-  const VF r = hn::Sub(y, n);
-  const VF p = horner(kExp2, r);
-  // 2^n from exponent bits; n < -126 (beyond the cutoff) is clamped, the
-  // caller discards those lanes.
-  const VF nc = hn::Max(n, hn::Set(df, -126.0f));
-  const auto e = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, nc), hn::Set(di, 127)));
-  return hn::Mul(p, hn::BitCast(df, e));
-}
-
-// detail::log2_positive: -inf below the smallest normal float, +inf stays.
-HWY_INLINE VF log2_positive(VF m) {
-  const DF df;
-  const DU du;
-  const DI di;
-  const auto tiny = hn::Not(hn::Ge(m, hn::Set(df, std::numeric_limits<float>::min())));
-  const auto huge = hn::Not(hn::Lt(m, hn::Set(df, std::numeric_limits<float>::infinity())));
-  const VU b = hn::BitCast(du, m);
-  auto e = hn::Sub(hn::BitCast(di, hn::ShiftRight<23>(b)), hn::Set(di, 127));
-  VF a = hn::BitCast(df, hn::Or(hn::And(b, hn::Set(du, 0x007fffffu)), hn::Set(du, 0x3f800000u)));
-  const auto big = hn::Gt(a, hn::Set(df, float(c::kSqrt2)));
-  a = hn::IfThenElse(big, hn::Mul(a, hn::Set(df, 0.5f)), a);
-  e = hn::IfThenElse(hn::RebindMask(di, big), hn::Add(e, hn::Set(di, 1)), e);
-  const VF z = hn::Div(hn::Sub(a, hn::Set(df, 1.0f)), hn::Add(a, hn::Set(df, 1.0f)));
-  const VF p = horner(kLog2, hn::Mul(z, z));
-  VF r = mul_add(p, z, hn::ConvertTo(df, e));
-  r = hn::IfThenElse(tiny, hn::Set(df, -std::numeric_limits<float>::infinity()), r);
-  return hn::IfThenElse(huge, m, r);
-}
+constexpr auto kSinPi = lanes::to_float(c::kAnisoSeries.sinpi);
 
 // detail::band_profile: cos^2(pi x / 2) for |x| < 1, else 0 (x is never NaN here).
 HWY_INLINE VF band_profile(VF x) {
@@ -8085,7 +8272,7 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // exp and sin/cos that evaluate the same operations in scalar code, in every
-// SIMD target (hush/simd/elementary-inl.h mirrors them operation by
+// SIMD target (hush/simd/lanes-inl.h mirrors them operation by
 // operation) and in GLSL (hush/glsl/gabor_glsl.hpp), so that noises built on
 // them can be bit-identical between scalar and SIMD evaluation (std::exp and
 // Highway's Exp differ in their last bits). In double they are the C
@@ -10246,7 +10433,7 @@ class gabor_spectrum {
 // They repeat gabor.hpp's float algorithm operation by operation: the same
 // lattice split (in double), per-cell hush::rng streams and Poisson table
 // counts (integer comparisons), the same word fields and marks, hush's own exp
-// and sin/cos (elementary functions below, mirroring detail/elementary.hpp),
+// and sin/cos (simd/lanes-inl.h, mirroring detail/elementary.hpp),
 // the same separable kernel products and taper, and, per sample, the same
 // order of accumulation (cells in raster order, impulses in stream order):
 //  - under HUSH_STRICT_FP every value and gradient is bit for bit the scalar
@@ -10309,15 +10496,24 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace gabor_simd {
 
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
-using VI = hn::Vec<DI>;
-using MF = hn::Mask<DF>;
+// Generic lane maths (types, multiply-adds, hashes, exp, sin/cos, compression).
+using namespace lanes::types;
 
-using simd_batch::kMaxLanes;
+using lanes::compressor;
+using lanes::exp_neg;
+using lanes::exp_neg_finite;
+using lanes::exp_neg_in_range;
+using lanes::hash32;
+using lanes::kMaxLanes;
+using lanes::mul_add;
+using lanes::neg_mul_add;
+using lanes::sincos_turns;
+using lanes::sincos_turns_in_range;
+using lanes::store_interleaved;
+using lanes::word_x;
+using lanes::word_y;
+using lanes::word_z;
+
 // Grids with fewer samples per cell along x than this take the points path.
 constexpr double kMinRun = 8.0;
 // Grid blocks' width along x (2D, 3D): several cells, so that an impulse's
@@ -10325,128 +10521,7 @@ constexpr double kMinRun = 8.0;
 // L1/L2 (2D: rows of one cell, ~64 x 256 floats; 3D: 32 x 16 rows).
 constexpr std::size_t kBlockX[2] = {256, 64};
 
-// ---- Arithmetic as the scalar code is compiled: a * b + c in two roundings
-// under HUSH_STRICT_FP, fused otherwise.
-HWY_INLINE VF mul_add(VF a, VF b, VF c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), c);
-#else
-  return hn::MulAdd(a, b, c);
-#endif
-}
-// c - a * b.
-HWY_INLINE VF neg_mul_add(VF a, VF b, VF c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Sub(c, hn::Mul(a, b));
-#else
-  return hn::NegMulAdd(a, b, c);
-#endif
-}
-
-// ---- detail/elementary.hpp in lanes.
-
-// e^x for x in [kExpFloor, 0] (no NaN): exp_neg without its clamps, which are
-// identities there (the kernel of an impulse within the support: x = -A d^2,
-// d^2 < 1, A = ln(1/t) <= 21).
-HWY_INLINE VF exp_neg_in_range(VF x) {
-  namespace c = detail::constants;
-  const DF df;
-  const DI di;
-  const VF n = hn::Floor(mul_add(x, hn::Set(df, float(c::kLog2E)), hn::Set(df, 0.5f)));
-  const VF r = neg_mul_add(n, hn::Set(df, float(c::kLn2Lo)),
-                           neg_mul_add(n, hn::Set(df, float(c::kLn2Hi)), x));
-  VF p = hn::Set(df, float(c::kExpPoly[c::kExpDegree]));
-  for (int i = c::kExpDegree - 1; i >= 0; --i)
-    p = mul_add(p, r, hn::Set(df, float(c::kExpPoly[i])));
-  const VI bits = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, n), hn::Set(di, 127)));
-  return hn::Mul(p, hn::BitCast(df, bits));
-}
-HWY_INLINE VF exp_neg(VF x) {
-  namespace c = detail::constants;
-  const DF df;
-  const VF zero = hn::Zero(df), lo = hn::Set(df, float(c::kExpFloor));
-  const VF v = exp_neg_in_range(hn::Max(hn::IfThenElse(hn::Gt(x, zero), zero, x), lo));
-  // Below the floor: 0; NaN: the NaN itself (as the scalar code returns x).
-  return hn::IfThenElse(hn::IsNaN(x), x, hn::IfThenElseZero(hn::Ge(x, lo), v));
-}
-// exp_neg for finite x (the filtered kernel's exponent, finite by construction):
-// without its NaN case.
-HWY_INLINE VF exp_neg_finite(VF x) {
-  const DF df;
-  const VF lo = hn::Set(df, float(detail::constants::kExpFloor));
-  return hn::IfThenZeroElse(hn::Lt(x, lo), exp_neg_in_range(hn::Max(hn::Min(x, hn::Zero(df)), lo)));
-}
-
-// sin/cos of 2 pi u for |u| < 1/2 + kTurnsReduceLimit: the quadrant q (an
-// integer), r = u - q / 4, and the polynomials s ~ sin(2 pi r), pc ~ cos(2 pi r).
-HWY_INLINE void sincos_quadrant(VF u, VF& q, VF& s, VF& pc) {
-  namespace c = detail::constants;
-  const DF df;
-  q = hn::Floor(mul_add(u, hn::Set(df, 4.0f), hn::Set(df, 0.5f)));
-  const VF r = neg_mul_add(q, hn::Set(df, 0.25f), u);
-  const VF z = hn::Mul(r, r);
-  VF ps = hn::Set(df, float(c::kSinPoly[c::kSinDegree]));
-  for (int i = c::kSinDegree - 1; i >= 0; --i)
-    ps = mul_add(ps, z, hn::Set(df, float(c::kSinPoly[i])));
-  pc = hn::Set(df, float(c::kCosPoly[c::kCosDegree]));
-  for (int i = c::kCosDegree - 1; i >= 0; --i)
-    pc = mul_add(pc, z, hn::Set(df, float(c::kCosPoly[i])));
-  s = hn::Mul(r, ps);
-}
-HWY_INLINE void sincos_turns(VF t, VF& sin_out, VF& cos_out) {
-  namespace c = detail::constants;
-  const DF df;
-  const VF u = hn::IfThenElse(hn::Lt(hn::Abs(t), hn::Set(df, float(c::kTurnsReduceLimit))), t,
-                              hn::Sub(t, hn::Floor(t)));
-  VF q, s, pc;
-  sincos_quadrant(u, q, s, pc);
-  const VF k = neg_mul_add(hn::Set(df, 4.0f), hn::Floor(hn::Mul(q, hn::Set(df, 0.25f))), q);
-  const VF one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f), three = hn::Set(df, 3.0f);
-  const MF k1 = hn::Eq(k, one), k2 = hn::Eq(k, two), k3 = hn::Eq(k, three);
-  const MF odd = hn::Or(k1, k3);
-  const VF sin_sign = hn::IfThenElse(hn::Ge(k, two), hn::Set(df, -1.0f), one);
-  const VF cos_sign = hn::IfThenElse(hn::Or(k1, k2), hn::Set(df, -1.0f), one);
-  sin_out = hn::Mul(hn::IfThenElse(odd, pc, s), sin_sign);
-  cos_out = hn::Mul(hn::IfThenElse(odd, s, pc), cos_sign);
-}
-// sincos_turns for finite |t| < kTurnsReduceLimit: no reduction (the identity
-// there), and the quadrant's signs as sign bits from its integer (multiplying
-// by +-1 and flipping the sign bit agree on every non-NaN value).
-HWY_INLINE void sincos_turns_in_range(VF t, VF& sin_out, VF& cos_out) {
-  const DF df;
-  const DI di;
-  VF q, s, pc;
-  sincos_quadrant(t, q, s, pc);
-  // k = q mod 4 (|q| < 2^24: exact as an integer): sin < 0 for k = 2, 3; cos
-  // < 0 for k = 1, 2; the two swap for odd k.
-  const VI k = hn::ConvertTo(di, q);
-  const VI two = hn::Set(di, 2);
-  const VF sin_sign = hn::BitCast(df, hn::ShiftLeft<30>(hn::And(k, two)));
-  const VF cos_sign = hn::BitCast(df, hn::ShiftLeft<30>(hn::And(hn::Add(k, hn::Set(di, 1)), two)));
-  const MF odd = hn::RebindMask(df, hn::TestBit(k, hn::Set(di, 1)));
-  sin_out = hn::Xor(hn::IfThenElse(odd, pc, s), sin_sign);
-  cos_out = hn::Xor(hn::IfThenElse(odd, s, pc), cos_sign);
-}
-
-// ---- core/hash.hpp in lanes.
-HWY_INLINE VU hash32(VU x) {
-  namespace c = detail::constants;
-  const DU du;
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
-  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
-}
-HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
-HWY_INLINE VU word_y(VU j) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
-}
-HWY_INLINE VU word_z(VU k) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
-}
+// ---- hush::rng in lanes.
 // hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
 HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
   const DU du;
@@ -10682,66 +10757,6 @@ HWY_INLINE void marks(const consts<D>& c, const VU* words, VF& w, VF* phi) {
     for (int i = 0; i < 3; ++i) phi[i] = hn::Mul(f, dir[i]);
   }
 }
-
-// D interleaved gradients to dst.
-template <int D>
-HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
-  const DF df;
-  if constexpr (D == 2)
-    hn::StoreInterleaved2(g[0], g[1], df, dst);
-  else
-    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
-}
-
-// ---- Compression of selected lanes to the front of a vector. AVX-512 has it
-// in one instruction (Highway's Compress); Highway 1.0.3's 4- and 8-lane
-// versions copy a 1 KiB table onto the stack on every call, so for up to 8
-// lanes the lane indices come from a table of our own, built at compile time.
-// Either way the indices serve every vector compressed by the same mask.
-template <int N>
-struct compress_indices {
-  std::int32_t idx[1 << N][N];
-};
-template <int N>
-constexpr compress_indices<N> make_compress_indices() {
-  compress_indices<N> t{};
-  for (int bits = 0; bits < (1 << N); ++bits) {
-    int k = 0;
-    for (int l = 0; l < N; ++l)
-      if (bits & (1 << l)) t.idx[bits][k++] = l;
-    for (int l = 0; l < N; ++l)
-      if (!(bits & (1 << l))) t.idx[bits][k++] = l;
-  }
-  return t;
-}
-alignas(64) inline constexpr compress_indices<8> kCompress8 = make_compress_indices<8>();
-alignas(64) inline constexpr compress_indices<4> kCompress4 = make_compress_indices<4>();
-
-// The selected lanes of vectors (floats or words) moved to the front by one mask: the
-// lane indices found once per mask (AVX-512: one compress of the lane numbers, then a
-// one-uop permutation per vector instead of a two-uop compress each; 2D points 9%
-// faster on AVX3), from the tables above for 4 and 8 lanes.
-struct compressor {
-  using indices = decltype(hn::IndicesFromVec(DF(), hn::Zero(DI())));
-  static indices of(MF m) {
-    const DF df;
-    const DI di;
-    const std::size_t lanes = hn::Lanes(df);
-    if (lanes == 8 || lanes == 4) {
-      std::uint8_t bits[8] = {};
-      hn::StoreMaskBits(df, m, bits);
-      const std::int32_t* i = lanes == 8 ? kCompress8.idx[bits[0]] : kCompress4.idx[bits[0] & 15];
-      return hn::SetTableIndices(df, i);
-    }
-    return hn::IndicesFromVec(df, hn::Compress(hn::Iota(di, 0), hn::RebindMask(di, m)));
-  }
-  explicit compressor(MF m) : idx(of(m)) {}
-  VF operator()(VF v) const { return hn::TableLookupLanes(v, idx); }
-  VU operator()(VU v) const {
-    return hn::BitCast(DU(), hn::TableLookupLanes(hn::BitCast(DF(), v), idx));
-  }
-  indices idx;
-};
 
 // ---- One lane per point: candidates, then the kernel over the kept ones.
 
@@ -14877,12 +14892,12 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace wavelet_simd {
 
-using DF = hn::ScalableTag<float>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VI = hn::Vec<DI>;
-using perlin_simd::kMaxLanes;
-using perlin_simd::mul_add;
+// Generic lane maths: simd/lanes-inl.h.
+using namespace lanes::types;
+
+using lanes::kMaxLanes;
+using lanes::mul_add;
+using lanes::store_interleaved;
 
 // detail::piece_value in lanes: Horner, highest power first.
 template <int P, int O>
@@ -15296,7 +15311,6 @@ HWY_INLINE void general_approx(const wavelet_tile<3>& tl, const VI* cell, const 
                                VF& v, VF* g) {
   const DF df;
   const DI di;
-  using MF = hn::Mask<DF>;
   const float* tile = tl.coefficients();
   const int n = tl.size();
   const VF half = hn::Set(df, static_cast<float>(detail::kBspline.half_support()));
@@ -15588,13 +15602,13 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
     hn::StoreU(hn::Mul(acc, gs), df, value);
     if constexpr (kGradient) {
       for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], gs);
-      perlin_simd::store_interleaved<D>(gacc, grad);
+      store_interleaved<D>(gacc, grad);
     }
     return;
   }
   // Other distributions: the scalar remap, lane by lane.
   hn::StoreU(acc, df, value);
-  if constexpr (kGradient) perlin_simd::store_interleaved<D>(gacc, grad);
+  if constexpr (kGradient) store_interleaved<D>(gacc, grad);
   for (std::size_t l = 0; l < lanes; ++l) {
     float dv = 1.0f;
     w.template remap<float>(value[l], kGradient ? &dv : nullptr);
@@ -15668,32 +15682,32 @@ void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float*
   }
   const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
   const std::size_t lanes = hn::Lanes(ws::DF());
-  double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
+  double weight[wavelet<D>::kMaxBands][lanes::kMaxLanes], scale[lanes::kMaxLanes];
   for (int b = 0; b < w.band_count(); ++b)
     for (std::size_t l = 0; l < lanes; ++l) weight[b][l] = pl.weight[b];
   for (std::size_t l = 0; l < lanes; ++l) scale[l] = pl.scale;
   ws::lane_weights lw;
   lw.set(w, weight, scale);
-  simd_batch::for_each_vector<D>(n, pts, value, grad,
-                         [&](std::size_t first, const float* p, float* v, float* g) {
-                           // Non-finite lanes: the scalar code (its NaN, exactly).
-                           const bool finite = ws::all_finite<D>(p);
-                           if (g)
-                             ws::points_vector<true, D>(w, p, lw, v, g);
-                           else
-                             ws::points_vector<false, D>(w, p, lw, v, nullptr);
-                           if (finite) return;
-                           for (std::size_t l = 0; l < lanes && first + l < n; ++l) {
-                             sample_input<D> s;
-                             bool lane_finite = true;
-                             for (int a = 0; a < D; ++a) {
-                               s.position[a] = static_cast<double>(p[l * D + a]);
-                               lane_finite = lane_finite && std::isfinite(s.position[a]);
-                             }
-                             if (!lane_finite)
-                               ws::scalar_sample<D>(w, s, v + l, g ? g + l * D : nullptr);
-                           }
-                         });
+  lanes::for_each_vector<D>(n, pts, value, grad,
+                            [&](std::size_t first, const float* p, float* v, float* g) {
+                              // Non-finite lanes: the scalar code (its NaN, exactly).
+                              const bool finite = ws::all_finite<D>(p);
+                              if (g)
+                                ws::points_vector<true, D>(w, p, lw, v, g);
+                              else
+                                ws::points_vector<false, D>(w, p, lw, v, nullptr);
+                              if (finite) return;
+                              for (std::size_t l = 0; l < lanes && first + l < n; ++l) {
+                                sample_input<D> s;
+                                bool lane_finite = true;
+                                for (int a = 0; a < D; ++a) {
+                                  s.position[a] = static_cast<double>(p[l * D + a]);
+                                  lane_finite = lane_finite && std::isfinite(s.position[a]);
+                                }
+                                if (!lane_finite)
+                                  ws::scalar_sample<D>(w, s, v + l, g ? g + l * D : nullptr);
+                              }
+                            });
 }
 
 // Samples with footprints and normals (core/samples.hpp).
@@ -15708,11 +15722,11 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
   }
   const float* pts = reinterpret_cast<const float*>(s.positions.data());
   const int nb = w.band_count();
-  double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
-  double kind_weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes];
-  double kind_scale[perlin_simd::kMaxLanes];
-  int kind[perlin_simd::kMaxLanes];
-  HWY_ALIGN float normal[3][perlin_simd::kMaxLanes];
+  double weight[wavelet<D>::kMaxBands][lanes::kMaxLanes], scale[lanes::kMaxLanes];
+  double kind_weight[wavelet<D>::kMaxBands][lanes::kMaxLanes];
+  double kind_scale[lanes::kMaxLanes];
+  int kind[lanes::kMaxLanes];
+  HWY_ALIGN float normal[3][lanes::kMaxLanes];
   ws::lane_weights lw;
   // Without footprints the bands' part of the plan is every sample's: made once; per
   // sample only its surface part (wavelet::plan_normal, plan_variance, plan_scale,
@@ -15727,10 +15741,10 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
   float last_u[3] = {0, 0, 1};
   // The weights and scales lw was last set from (lw.set converts them per lane and band:
   // skipped while a run of vectors repeats them, the usual case without footprints).
-  double set_weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], set_scale[perlin_simd::kMaxLanes];
+  double set_weight[wavelet<D>::kMaxBands][lanes::kMaxLanes], set_scale[lanes::kMaxLanes];
   bool lw_set = false;
   const std::size_t row_bytes = lanes * sizeof(double);
-  simd_batch::for_each_vector<D>(
+  lanes::for_each_vector<D>(
       n, pts, value, grad, [&](std::size_t first, const float* p, float* v, float* g) {
         unsigned present = 0;  // bit k: some lane has kind k
         unsigned seen = 0;     // the same, scalar lanes and lanes past n included
@@ -15779,10 +15793,10 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
           // Every lane of kind k (the usual case): the lanes' own points, weights and
           // scales; else copies with the other lanes' zeroed.
           const bool all = seen == (1u << k);
-          const double(*kw)[perlin_simd::kMaxLanes] = weight;
+          const double(*kw)[lanes::kMaxLanes] = weight;
           const double* ks = scale;
           const float* pk = p;
-          HWY_ALIGN float pv[perlin_simd::kMaxLanes * 3];
+          HWY_ALIGN float pv[lanes::kMaxLanes * 3];
           if (!all) {
             std::fill(pv, pv + lanes * D, 0.0f);
             for (std::size_t l = 0; l < lanes; ++l) {
@@ -15805,7 +15819,7 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
             std::memcpy(set_scale, ks, row_bytes);
             lw_set = true;
           }
-          HWY_ALIGN float vt[perlin_simd::kMaxLanes], gt[perlin_simd::kMaxLanes * 3];
+          HWY_ALIGN float vt[lanes::kMaxLanes], gt[lanes::kMaxLanes * 3];
           float* vo = alone ? v : vt;
           float* go = g == nullptr ? nullptr : (alone ? g : gt);
           if (g)
@@ -16100,7 +16114,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
             VF gs[3];
             for (int a = 0; a < D; ++a)
               gs[a] = hn::Mul(hn::Mul(hn::LoadU(df, gacc[a].data() + done), sv), gv);
-            perlin_simd::store_interleaved<D>(gs, gout + done * D);
+            store_interleaved<D>(gs, gout + done * D);
           }
         }
       }
@@ -16650,34 +16664,12 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace coherent_simd {
 
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
-using VI = hn::Vec<DI>;
-using MF = hn::Mask<DF>;
+// Generic lane maths: simd/lanes-inl.h. mul_add is used for the value blends
+// only.
+using namespace lanes::types;
 
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is compiled),
-// one fused rounding otherwise. Used for the value blends only.
-HWY_INLINE VF mul_add(VF a, VF b, VF c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), c);
-#else
-  return hn::MulAdd(a, b, c);
-#endif
-}
-
-// hash32 (core/hash.hpp) in 32-bit lanes.
-HWY_INLINE VU hash32(VU x) {
-  namespace c = detail::constants;
-  const DU du;
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
-  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
-}
+using lanes::hash32;
+using lanes::mul_add;
 
 // detail::coherent_white of pixels `x` (lanes) of a row.
 HWY_INLINE VF white(std::uint32_t row_key, VU x) {
@@ -18429,7 +18421,7 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 // skipped, which changes nothing (every fragment there fails).
 //
 // Agreement with detail::npr_gabor_splat_scalar: the same offsets (in double,
-// rounded to float), hush's own exp and sin/cos in lanes (gabor-inl.h), the
+// rounded to float), hush's own exp and sin/cos in lanes (lanes-inl.h), the
 // same products and taper, and per pixel the same records in the same order;
 // a fragment that fails a test adds +0 (or vis 0 times the kernel, +-0), which
 // leaves the sum as it is (it starts at +0 and a round-to-nearest sum is -0
@@ -18462,13 +18454,9 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace npr_gabor_simd {
 
-using gabor_simd::DF;
-using gabor_simd::DI;
-using gabor_simd::DU;
-using gabor_simd::MF;
-using gabor_simd::VF;
-using gabor_simd::VI;
-using gabor_simd::VU;
+// Generic lane types: simd/lanes-inl.h; the Gabor kernel's factors and pair
+// products: gabor_simd (simd/gabor-inl.h).
+using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
 using VD = hn::Vec<DD>;
@@ -18476,7 +18464,7 @@ using VD = hn::Vec<DD>;
 // Tile height; the width is max(32, lanes), a whole number of vectors (32 x 32 measured
 // fastest of 16 x 16, 32 x 16, 64 x 16 and 32 x 32 on the dense scene, AVX3).
 constexpr std::size_t kTileH = 32;
-constexpr std::size_t kMaxTileW = gabor_simd::kMaxLanes;
+constexpr std::size_t kMaxTileW = lanes::kMaxLanes;
 constexpr std::size_t kMaxTile = kMaxTileW * kTileH;
 
 // A tile's copy of the G-buffer (padded with zeros past the image) and its sums.

@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // exp and sin/cos that evaluate the same operations in scalar code, in every
-// SIMD target (hush/simd/elementary-inl.h mirrors them operation by
+// SIMD target (hush/simd/lanes-inl.h mirrors them operation by
 // operation) and in GLSL (hush/glsl/gabor_glsl.hpp), so that noises built on
 // them can be bit-identical between scalar and SIMD evaluation (std::exp and
 // Highway's Exp differ in their last bits). In double they are the C

@@ -50,6 +50,7 @@
 #include "hush/core/views.hpp"
 #include "hush/detail/approx_math.hpp"
 #include "hush/detail/constants.hpp"
+#include "hush/simd/lanes-inl.h"
 
 // The noise class comes first, not from here: hush/anisotropic.hpp includes these
 // kernels at its end (hush/anisotropic/simd_kernel.hpp), as src/simd/anisotropic.cpp does.
@@ -60,11 +61,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace aniso_simd {
 
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
+using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using VD = hn::Vec<DD>;
 using DFH = hn::Rebind<float, DD>;     // as many floats as DD has doubles
@@ -81,81 +78,14 @@ constexpr std::size_t kBlock = 64;
 constexpr int kMaxScales = c::kAnisoMaxScales;
 constexpr int kMaxChannels = anisotropic::kMaxChannels;
 
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
-// compiled), fused otherwise.
-template <class V>
-HWY_INLINE V mul_add(V a, V b, V cc) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), cc);
-#else
-  return hn::MulAdd(a, b, cc);
-#endif
-}
+// Generic lane maths: simd/lanes-inl.h (mul_add for float and double
+// vectors of any width; exp2 and log2 as detail/approx_math.hpp).
+using lanes::exp2_nonpositive;
+using lanes::horner;
+using lanes::log2_positive;
+using lanes::mul_add;
 
-// The polynomial coefficients of approx_math.hpp, rounded to float as the
-// scalar code rounds them (float(c)), at compile time.
-template <int N>
-struct float_coefficients {
-  float v[N];
-};
-template <int N>
-constexpr float_coefficients<N> to_float(const double (&d)[N]) {
-  float_coefficients<N> r{};
-  for (int i = 0; i < N; ++i) r.v[i] = static_cast<float>(d[i]);
-  return r;
-}
-constexpr auto kExp2 = to_float(c::kAnisoSeries.exp2);
-constexpr auto kLog2 = to_float(c::kAnisoSeries.log2);
-constexpr auto kSinPi = to_float(c::kAnisoSeries.sinpi);
-
-// Horner's rule p = (...(k[N-1] x + k[N-2]) x + ...) x + k[0], unrolled.
-template <int N, int M = N - 1>
-HWY_INLINE VF horner(const float_coefficients<N>& k, VF x, VF p) {
-  const DF df;
-  p = mul_add(p, x, hn::Set(df, k.v[M - 1]));
-  if constexpr (M - 1 > 0)
-    return horner<N, M - 1>(k, x, p);
-  else
-    return p;
-}
-template <int N>
-HWY_INLINE VF horner(const float_coefficients<N>& k, VF x) {
-  return horner<N>(k, x, hn::Set(DF(), k.v[N - 1]));
-}
-
-// detail::exp2_nonpositive for y in [-126, 0] (callers select the cutoff).
-HWY_INLINE VF exp2_nonpositive(VF y) {
-  const DF df;
-  const DI di;
-  const VF n = hn::Floor(hn::Add(y, hn::Set(df, 0.5f)));
-  const VF r = hn::Sub(y, n);
-  const VF p = horner(kExp2, r);
-  // 2^n from exponent bits; n < -126 (beyond the cutoff) is clamped, the
-  // caller discards those lanes.
-  const VF nc = hn::Max(n, hn::Set(df, -126.0f));
-  const auto e = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, nc), hn::Set(di, 127)));
-  return hn::Mul(p, hn::BitCast(df, e));
-}
-
-// detail::log2_positive: -inf below the smallest normal float, +inf stays.
-HWY_INLINE VF log2_positive(VF m) {
-  const DF df;
-  const DU du;
-  const DI di;
-  const auto tiny = hn::Not(hn::Ge(m, hn::Set(df, std::numeric_limits<float>::min())));
-  const auto huge = hn::Not(hn::Lt(m, hn::Set(df, std::numeric_limits<float>::infinity())));
-  const VU b = hn::BitCast(du, m);
-  auto e = hn::Sub(hn::BitCast(di, hn::ShiftRight<23>(b)), hn::Set(di, 127));
-  VF a = hn::BitCast(df, hn::Or(hn::And(b, hn::Set(du, 0x007fffffu)), hn::Set(du, 0x3f800000u)));
-  const auto big = hn::Gt(a, hn::Set(df, float(c::kSqrt2)));
-  a = hn::IfThenElse(big, hn::Mul(a, hn::Set(df, 0.5f)), a);
-  e = hn::IfThenElse(hn::RebindMask(di, big), hn::Add(e, hn::Set(di, 1)), e);
-  const VF z = hn::Div(hn::Sub(a, hn::Set(df, 1.0f)), hn::Add(a, hn::Set(df, 1.0f)));
-  const VF p = horner(kLog2, hn::Mul(z, z));
-  VF r = mul_add(p, z, hn::ConvertTo(df, e));
-  r = hn::IfThenElse(tiny, hn::Set(df, -std::numeric_limits<float>::infinity()), r);
-  return hn::IfThenElse(huge, m, r);
-}
+constexpr auto kSinPi = lanes::to_float(c::kAnisoSeries.sinpi);
 
 // detail::band_profile: cos^2(pi x / 2) for |x| < 1, else 0 (x is never NaN here).
 HWY_INLINE VF band_profile(VF x) {

@@ -35,6 +35,7 @@
 #include "hush/config.hpp"
 #include "hush/detail/coherent_kernel.hpp"
 #include "hush/detail/constants.hpp"
+#include "hush/simd/lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace hush {
@@ -43,34 +44,12 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace coherent_simd {
 
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
-using VI = hn::Vec<DI>;
-using MF = hn::Mask<DF>;
+// Generic lane maths: simd/lanes-inl.h. mul_add is used for the value blends
+// only.
+using namespace lanes::types;
 
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is compiled),
-// one fused rounding otherwise. Used for the value blends only.
-HWY_INLINE VF mul_add(VF a, VF b, VF c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), c);
-#else
-  return hn::MulAdd(a, b, c);
-#endif
-}
-
-// hash32 (core/hash.hpp) in 32-bit lanes.
-HWY_INLINE VU hash32(VU x) {
-  namespace c = detail::constants;
-  const DU du;
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
-  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
-}
+using lanes::hash32;
+using lanes::mul_add;
 
 // detail::coherent_white of pixels `x` (lanes) of a row.
 HWY_INLINE VF white(std::uint32_t row_key, VU x) {

@@ -28,6 +28,7 @@
 #include <hwy/highway.h>
 
 #include "hush/core/views.hpp"
+#include "hush/simd/lanes-inl.h"
 #include "hush/simd/perlin-inl.h"  // the bands' Perlin vectors and rows
 
 // The classes come first, not from here: hush/fractal.hpp includes these
@@ -94,13 +95,7 @@ HWY_INLINE bool split_band(VF x, double f, double o, axis& a) {
   const hn::Rebind<float, decltype(dd)> df_of_d;
   const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
   const auto vf = hn::Set(dd, f), vo = hn::Set(dd, o);
-  const auto position = [&](hn::Vec<decltype(dd)> p) HWY_ATTR {
-#if HUSH_CONFIG_STRICT_FP
-    return hn::Add(hn::Mul(p, vf), vo);
-#else
-    return hn::MulAdd(p, vf, vo);
-#endif
-  };
+  const auto position = [&](hn::Vec<decltype(dd)> p) HWY_ATTR { return mul_add(p, vf, vo); };
   const auto lo = position(hn::PromoteTo(dd, hn::LowerHalf(dh, x)));
   const auto hi = position(hn::PromoteTo(dd, hn::UpperHalf(dh, x)));
   const auto limit = hn::Set(dd, 2147483648.0);  // 2^31; false for NaN

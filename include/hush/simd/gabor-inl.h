@@ -9,7 +9,7 @@
 // They repeat gabor.hpp's float algorithm operation by operation: the same
 // lattice split (in double), per-cell hush::rng streams and Poisson table
 // counts (integer comparisons), the same word fields and marks, hush's own exp
-// and sin/cos (elementary functions below, mirroring detail/elementary.hpp),
+// and sin/cos (simd/lanes-inl.h, mirroring detail/elementary.hpp),
 // the same separable kernel products and taper, and, per sample, the same
 // order of accumulation (cells in raster order, impulses in stream order):
 //  - under HUSH_STRICT_FP every value and gradient is bit for bit the scalar
@@ -68,7 +68,7 @@
 #include "hush/core/samples.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
-#include "hush/simd/batch-inl.h"  // simd_batch::kMaxLanes
+#include "hush/simd/lanes-inl.h"
 
 // The noise class comes first, not from here: hush/gabor.hpp includes these
 // kernels at its end (hush/gabor/simd_kernel.hpp), as src/simd/gabor.cpp does.
@@ -79,15 +79,24 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace gabor_simd {
 
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
-using VI = hn::Vec<DI>;
-using MF = hn::Mask<DF>;
+// Generic lane maths (types, multiply-adds, hashes, exp, sin/cos, compression).
+using namespace lanes::types;
 
-using simd_batch::kMaxLanes;
+using lanes::compressor;
+using lanes::exp_neg;
+using lanes::exp_neg_finite;
+using lanes::exp_neg_in_range;
+using lanes::hash32;
+using lanes::kMaxLanes;
+using lanes::mul_add;
+using lanes::neg_mul_add;
+using lanes::sincos_turns;
+using lanes::sincos_turns_in_range;
+using lanes::store_interleaved;
+using lanes::word_x;
+using lanes::word_y;
+using lanes::word_z;
+
 // Grids with fewer samples per cell along x than this take the points path.
 constexpr double kMinRun = 8.0;
 // Grid blocks' width along x (2D, 3D): several cells, so that an impulse's
@@ -95,128 +104,7 @@ constexpr double kMinRun = 8.0;
 // L1/L2 (2D: rows of one cell, ~64 x 256 floats; 3D: 32 x 16 rows).
 constexpr std::size_t kBlockX[2] = {256, 64};
 
-// ---- Arithmetic as the scalar code is compiled: a * b + c in two roundings
-// under HUSH_STRICT_FP, fused otherwise.
-HWY_INLINE VF mul_add(VF a, VF b, VF c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), c);
-#else
-  return hn::MulAdd(a, b, c);
-#endif
-}
-// c - a * b.
-HWY_INLINE VF neg_mul_add(VF a, VF b, VF c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Sub(c, hn::Mul(a, b));
-#else
-  return hn::NegMulAdd(a, b, c);
-#endif
-}
-
-// ---- detail/elementary.hpp in lanes.
-
-// e^x for x in [kExpFloor, 0] (no NaN): exp_neg without its clamps, which are
-// identities there (the kernel of an impulse within the support: x = -A d^2,
-// d^2 < 1, A = ln(1/t) <= 21).
-HWY_INLINE VF exp_neg_in_range(VF x) {
-  namespace c = detail::constants;
-  const DF df;
-  const DI di;
-  const VF n = hn::Floor(mul_add(x, hn::Set(df, float(c::kLog2E)), hn::Set(df, 0.5f)));
-  const VF r = neg_mul_add(n, hn::Set(df, float(c::kLn2Lo)),
-                           neg_mul_add(n, hn::Set(df, float(c::kLn2Hi)), x));
-  VF p = hn::Set(df, float(c::kExpPoly[c::kExpDegree]));
-  for (int i = c::kExpDegree - 1; i >= 0; --i)
-    p = mul_add(p, r, hn::Set(df, float(c::kExpPoly[i])));
-  const VI bits = hn::ShiftLeft<23>(hn::Add(hn::ConvertTo(di, n), hn::Set(di, 127)));
-  return hn::Mul(p, hn::BitCast(df, bits));
-}
-HWY_INLINE VF exp_neg(VF x) {
-  namespace c = detail::constants;
-  const DF df;
-  const VF zero = hn::Zero(df), lo = hn::Set(df, float(c::kExpFloor));
-  const VF v = exp_neg_in_range(hn::Max(hn::IfThenElse(hn::Gt(x, zero), zero, x), lo));
-  // Below the floor: 0; NaN: the NaN itself (as the scalar code returns x).
-  return hn::IfThenElse(hn::IsNaN(x), x, hn::IfThenElseZero(hn::Ge(x, lo), v));
-}
-// exp_neg for finite x (the filtered kernel's exponent, finite by construction):
-// without its NaN case.
-HWY_INLINE VF exp_neg_finite(VF x) {
-  const DF df;
-  const VF lo = hn::Set(df, float(detail::constants::kExpFloor));
-  return hn::IfThenZeroElse(hn::Lt(x, lo), exp_neg_in_range(hn::Max(hn::Min(x, hn::Zero(df)), lo)));
-}
-
-// sin/cos of 2 pi u for |u| < 1/2 + kTurnsReduceLimit: the quadrant q (an
-// integer), r = u - q / 4, and the polynomials s ~ sin(2 pi r), pc ~ cos(2 pi r).
-HWY_INLINE void sincos_quadrant(VF u, VF& q, VF& s, VF& pc) {
-  namespace c = detail::constants;
-  const DF df;
-  q = hn::Floor(mul_add(u, hn::Set(df, 4.0f), hn::Set(df, 0.5f)));
-  const VF r = neg_mul_add(q, hn::Set(df, 0.25f), u);
-  const VF z = hn::Mul(r, r);
-  VF ps = hn::Set(df, float(c::kSinPoly[c::kSinDegree]));
-  for (int i = c::kSinDegree - 1; i >= 0; --i)
-    ps = mul_add(ps, z, hn::Set(df, float(c::kSinPoly[i])));
-  pc = hn::Set(df, float(c::kCosPoly[c::kCosDegree]));
-  for (int i = c::kCosDegree - 1; i >= 0; --i)
-    pc = mul_add(pc, z, hn::Set(df, float(c::kCosPoly[i])));
-  s = hn::Mul(r, ps);
-}
-HWY_INLINE void sincos_turns(VF t, VF& sin_out, VF& cos_out) {
-  namespace c = detail::constants;
-  const DF df;
-  const VF u = hn::IfThenElse(hn::Lt(hn::Abs(t), hn::Set(df, float(c::kTurnsReduceLimit))), t,
-                              hn::Sub(t, hn::Floor(t)));
-  VF q, s, pc;
-  sincos_quadrant(u, q, s, pc);
-  const VF k = neg_mul_add(hn::Set(df, 4.0f), hn::Floor(hn::Mul(q, hn::Set(df, 0.25f))), q);
-  const VF one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f), three = hn::Set(df, 3.0f);
-  const MF k1 = hn::Eq(k, one), k2 = hn::Eq(k, two), k3 = hn::Eq(k, three);
-  const MF odd = hn::Or(k1, k3);
-  const VF sin_sign = hn::IfThenElse(hn::Ge(k, two), hn::Set(df, -1.0f), one);
-  const VF cos_sign = hn::IfThenElse(hn::Or(k1, k2), hn::Set(df, -1.0f), one);
-  sin_out = hn::Mul(hn::IfThenElse(odd, pc, s), sin_sign);
-  cos_out = hn::Mul(hn::IfThenElse(odd, s, pc), cos_sign);
-}
-// sincos_turns for finite |t| < kTurnsReduceLimit: no reduction (the identity
-// there), and the quadrant's signs as sign bits from its integer (multiplying
-// by +-1 and flipping the sign bit agree on every non-NaN value).
-HWY_INLINE void sincos_turns_in_range(VF t, VF& sin_out, VF& cos_out) {
-  const DF df;
-  const DI di;
-  VF q, s, pc;
-  sincos_quadrant(t, q, s, pc);
-  // k = q mod 4 (|q| < 2^24: exact as an integer): sin < 0 for k = 2, 3; cos
-  // < 0 for k = 1, 2; the two swap for odd k.
-  const VI k = hn::ConvertTo(di, q);
-  const VI two = hn::Set(di, 2);
-  const VF sin_sign = hn::BitCast(df, hn::ShiftLeft<30>(hn::And(k, two)));
-  const VF cos_sign = hn::BitCast(df, hn::ShiftLeft<30>(hn::And(hn::Add(k, hn::Set(di, 1)), two)));
-  const MF odd = hn::RebindMask(df, hn::TestBit(k, hn::Set(di, 1)));
-  sin_out = hn::Xor(hn::IfThenElse(odd, pc, s), sin_sign);
-  cos_out = hn::Xor(hn::IfThenElse(odd, s, pc), cos_sign);
-}
-
-// ---- core/hash.hpp in lanes.
-HWY_INLINE VU hash32(VU x) {
-  namespace c = detail::constants;
-  const DU du;
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul2));
-  return hn::Xor(x, hn::ShiftRight<c::kHashShift3>(x));
-}
-HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
-HWY_INLINE VU word_y(VU j) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
-}
-HWY_INLINE VU word_z(VU k) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
-}
+// ---- hush::rng in lanes.
 // hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
 HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
   const DU du;
@@ -452,66 +340,6 @@ HWY_INLINE void marks(const consts<D>& c, const VU* words, VF& w, VF* phi) {
     for (int i = 0; i < 3; ++i) phi[i] = hn::Mul(f, dir[i]);
   }
 }
-
-// D interleaved gradients to dst.
-template <int D>
-HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
-  const DF df;
-  if constexpr (D == 2)
-    hn::StoreInterleaved2(g[0], g[1], df, dst);
-  else
-    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
-}
-
-// ---- Compression of selected lanes to the front of a vector. AVX-512 has it
-// in one instruction (Highway's Compress); Highway 1.0.3's 4- and 8-lane
-// versions copy a 1 KiB table onto the stack on every call, so for up to 8
-// lanes the lane indices come from a table of our own, built at compile time.
-// Either way the indices serve every vector compressed by the same mask.
-template <int N>
-struct compress_indices {
-  std::int32_t idx[1 << N][N];
-};
-template <int N>
-constexpr compress_indices<N> make_compress_indices() {
-  compress_indices<N> t{};
-  for (int bits = 0; bits < (1 << N); ++bits) {
-    int k = 0;
-    for (int l = 0; l < N; ++l)
-      if (bits & (1 << l)) t.idx[bits][k++] = l;
-    for (int l = 0; l < N; ++l)
-      if (!(bits & (1 << l))) t.idx[bits][k++] = l;
-  }
-  return t;
-}
-alignas(64) inline constexpr compress_indices<8> kCompress8 = make_compress_indices<8>();
-alignas(64) inline constexpr compress_indices<4> kCompress4 = make_compress_indices<4>();
-
-// The selected lanes of vectors (floats or words) moved to the front by one mask: the
-// lane indices found once per mask (AVX-512: one compress of the lane numbers, then a
-// one-uop permutation per vector instead of a two-uop compress each; 2D points 9%
-// faster on AVX3), from the tables above for 4 and 8 lanes.
-struct compressor {
-  using indices = decltype(hn::IndicesFromVec(DF(), hn::Zero(DI())));
-  static indices of(MF m) {
-    const DF df;
-    const DI di;
-    const std::size_t lanes = hn::Lanes(df);
-    if (lanes == 8 || lanes == 4) {
-      std::uint8_t bits[8] = {};
-      hn::StoreMaskBits(df, m, bits);
-      const std::int32_t* i = lanes == 8 ? kCompress8.idx[bits[0]] : kCompress4.idx[bits[0] & 15];
-      return hn::SetTableIndices(df, i);
-    }
-    return hn::IndicesFromVec(df, hn::Compress(hn::Iota(di, 0), hn::RebindMask(di, m)));
-  }
-  explicit compressor(MF m) : idx(of(m)) {}
-  VF operator()(VF v) const { return hn::TableLookupLanes(v, idx); }
-  VU operator()(VU v) const {
-    return hn::BitCast(DU(), hn::TableLookupLanes(hn::BitCast(DF(), v), idx));
-  }
-  indices idx;
-};
 
 // ---- One lane per point: candidates, then the kernel over the kept ones.
 

@@ -19,7 +19,7 @@
 // skipped, which changes nothing (every fragment there fails).
 //
 // Agreement with detail::npr_gabor_splat_scalar: the same offsets (in double,
-// rounded to float), hush's own exp and sin/cos in lanes (gabor-inl.h), the
+// rounded to float), hush's own exp and sin/cos in lanes (lanes-inl.h), the
 // same products and taper, and per pixel the same records in the same order;
 // a fragment that fails a test adds +0 (or vis 0 times the kernel, +-0), which
 // leaves the sum as it is (it starts at +0 and a round-to-nearest sum is -0
@@ -49,6 +49,7 @@
 #include "hush/detail/constants.hpp"
 #include "hush/detail/npr_gabor_splat.hpp"
 #include "hush/simd/gabor-inl.h"
+#include "hush/simd/lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace hush {
@@ -57,13 +58,9 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace npr_gabor_simd {
 
-using gabor_simd::DF;
-using gabor_simd::DI;
-using gabor_simd::DU;
-using gabor_simd::MF;
-using gabor_simd::VF;
-using gabor_simd::VI;
-using gabor_simd::VU;
+// Generic lane types: simd/lanes-inl.h; the Gabor kernel's factors and pair
+// products: gabor_simd (simd/gabor-inl.h).
+using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
 using VD = hn::Vec<DD>;
@@ -71,7 +68,7 @@ using VD = hn::Vec<DD>;
 // Tile height; the width is max(32, lanes), a whole number of vectors (32 x 32 measured
 // fastest of 16 x 16, 32 x 16, 64 x 16 and 32 x 32 on the dense scene, AVX3).
 constexpr std::size_t kTileH = 32;
-constexpr std::size_t kMaxTileW = gabor_simd::kMaxLanes;
+constexpr std::size_t kMaxTileW = lanes::kMaxLanes;
 constexpr std::size_t kMaxTile = kMaxTileW * kTileH;
 
 // A tile's copy of the G-buffer (padded with zeros past the image) and its sums.

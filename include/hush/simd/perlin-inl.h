@@ -58,7 +58,7 @@
 #include "hush/core/lattice.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
-#include "hush/simd/batch-inl.h"  // simd_batch::for_each_vector
+#include "hush/simd/lanes-inl.h"
 
 // The noise class comes first, not from here: hush/perlin.hpp includes these
 // kernels at its end (hush/perlin/simd_kernel.hpp), as src/simd/perlin.cpp does.
@@ -69,30 +69,22 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace perlin_simd {
 
-using DF = hn::ScalableTag<float>;
-using DU = hn::RebindToUnsigned<DF>;
-using DI = hn::RebindToSigned<DF>;
+// Generic lane maths: simd/lanes-inl.h. mul_add takes any float vector width
+// (3D grid rows form their cells' coefficients in vectors narrower than VF
+// where a row has few cells). Lookup tables are padded to kMaxLanes so every
+// chunk load is in bounds.
+using namespace lanes::types;
 #if HWY_TARGET != HWY_SCALAR
 using DU16 = hn::Repartition<std::uint16_t, DU>;
 #endif
-using VF = hn::Vec<DF>;
-using VU = hn::Vec<DU>;
 
-// Lookup tables are padded to kMaxLanes so every chunk load is in bounds.
-using simd_batch::kMaxLanes;
+using lanes::for_each_vector;
+using lanes::hash32_high;
+using lanes::kMaxLanes;
+using lanes::mul_add;
+using lanes::store_interleaved;
+using lanes::word;
 
-// a * b + c: two roundings under HUSH_STRICT_FP (as the scalar code is
-// compiled), one fused rounding otherwise.
-// Any float vector width (3D grid rows form their cells' coefficients in
-// vectors narrower than VF where a row has few cells).
-template <class V>
-HWY_INLINE V mul_add(V a, V b, V c) {
-#if HUSH_CONFIG_STRICT_FP
-  return hn::Add(hn::Mul(a, b), c);
-#else
-  return hn::MulAdd(a, b, c);
-#endif
-}
 // lerp(a, b, t) = a + t * (b - a), as detail::lerp.
 template <class V>
 HWY_INLINE V lerp(V a, V b, V t) {
@@ -121,38 +113,13 @@ HWY_INLINE VF fade_derivative(VF t) {
   return hn::Mul(hn::Mul(t, t), inner);
 }
 
-// hash32 (core/hash.hpp) in 32-bit lanes without its last step x ^= x >> 16,
-// which changes only bits 0 ... 15: bits 16 ... 31 equal hash32's, and they
-// are all Perlin's gradient index reads (2D: 29 ... 31; 3D: 16 ... 31).
+// The gradient index reads the top bits of the lattice hash, so it uses
+// lanes::hash32_high, which skips hash32's last step x ^= x >> 16: bits
+// 16 ... 31 equal hash32's, and they are all Perlin's gradient index reads
+// (2D: 29 ... 31; 3D: 16 ... 31).
 static_assert(detail::constants::kHashShift3 >= 16 && detail::constants::kPerlin2GradShift >= 16 &&
                   detail::constants::kPerlin3IndexShift >= 16,
               "the gradient index must read only hash bits the last xorshift leaves alone");
-HWY_INLINE VU hash32_high(VU x) {
-  namespace c = detail::constants;
-  const DU du;
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift1>(x));
-  x = hn::Mul(x, hn::Set(du, c::kHashMul1));
-  x = hn::Xor(x, hn::ShiftRight<c::kHashShift2>(x));
-  return hn::Mul(x, hn::Set(du, c::kHashMul2));
-}
-
-// lattice_word_x/y/z (core/hash.hpp) in lanes: i * P_x, rotl(j * P_y, R_y),
-// rotl(k * P_z, R_z).
-HWY_INLINE VU word_x(VU i) { return hn::Mul(i, hn::Set(DU(), detail::constants::kLatticePrimeX)); }
-HWY_INLINE VU word_y(VU j) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateY>(hn::Mul(j, hn::Set(DU(), c::kLatticePrimeY)));
-}
-HWY_INLINE VU word_z(VU k) {
-  namespace c = detail::constants;
-  return hn::RotateRight<32 - c::kLatticeRotateZ>(hn::Mul(k, hn::Set(DU(), c::kLatticePrimeZ)));
-}
-template <int kAxis>
-HWY_INLINE VU word(VU i) {
-  if constexpr (kAxis == 0) return word_x(i);
-  if constexpr (kAxis == 1) return word_y(i);
-  if constexpr (kAxis == 2) return word_z(i);
-}
 
 // perlin.hpp's float gradient tables, padded to kMaxLanes with zeros so that
 // every chunk load in lookup() stays in bounds. Constant data at fixed
@@ -491,16 +458,6 @@ HWY_INLINE void key_words(VU key, const axis& y, const axis& z, VU* kyz) {
   }
 }
 
-// D interleaved vectors (gradients) to dst.
-template <int D>
-HWY_INLINE void store_interleaved(const VF* g, float* HWY_RESTRICT dst) {
-  const DF df;
-  if constexpr (D == 2)
-    hn::StoreInterleaved2(g[0], g[1], df, dst);
-  else
-    hn::StoreInterleaved3(g[0], g[1], g[2], df, dst);
-}
-
 // ---- Points: splitting float coordinates into lattice axes.
 
 // Fractions, fades and the second cell's word of an axis whose first word
@@ -661,14 +618,14 @@ HWY_INLINE void points_vector(VU key, bool plain, const std::uint32_t* period,
 }
 
 // Runs `vector_fn(pts, value, grad)` over n points of D floats each, one
-// vector at a time (simd/batch-inl.h: the tail through zero-padded buffers).
+// vector at a time (lanes::for_each_vector: the tail through zero-padded buffers).
 // One call site, so the vector function inlines into the loop.
 template <bool kGradient, int D, class Fn>
 HWY_INLINE void for_each_point_vector(std::size_t n, const float* pts, float* value, float* grad,
                                       const Fn& vector_fn) {
-  simd_batch::for_each_vector<D>(n, pts, value, kGradient ? grad : nullptr,
-                                 [&](std::size_t, const float* p, float* v, float* g)
-                                     HWY_ATTR { vector_fn(p, v, g); });
+  for_each_vector<D>(n, pts, value, kGradient ? grad : nullptr,
+                     [&](std::size_t, const float* p, float* v, float* g)
+                         HWY_ATTR { vector_fn(p, v, g); });
 }
 
 template <bool kGradient, int D>

@@ -54,8 +54,7 @@
 #include "hush/core/lattice.hpp"
 #include "hush/core/samples.hpp"
 #include "hush/core/views.hpp"
-#include "hush/simd/batch-inl.h"  // simd_batch::for_each_vector
-#include "hush/simd/perlin-inl.h"  // perlin_simd::mul_add, kMaxLanes, store_interleaved
+#include "hush/simd/lanes-inl.h"
 
 // The noise class comes first, not from here: hush/wavelet.hpp includes these
 // kernels at its end (hush/wavelet/simd_kernel.hpp), as src/simd/wavelet.cpp does.
@@ -66,12 +65,12 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace wavelet_simd {
 
-using DF = hn::ScalableTag<float>;
-using DI = hn::RebindToSigned<DF>;
-using VF = hn::Vec<DF>;
-using VI = hn::Vec<DI>;
-using perlin_simd::kMaxLanes;
-using perlin_simd::mul_add;
+// Generic lane maths: simd/lanes-inl.h.
+using namespace lanes::types;
+
+using lanes::kMaxLanes;
+using lanes::mul_add;
+using lanes::store_interleaved;
 
 // detail::piece_value in lanes: Horner, highest power first.
 template <int P, int O>
@@ -485,7 +484,6 @@ HWY_INLINE void general_approx(const wavelet_tile<3>& tl, const VI* cell, const 
                                VF& v, VF* g) {
   const DF df;
   const DI di;
-  using MF = hn::Mask<DF>;
   const float* tile = tl.coefficients();
   const int n = tl.size();
   const VF half = hn::Set(df, static_cast<float>(detail::kBspline.half_support()));
@@ -777,13 +775,13 @@ HWY_INLINE void points_vector(const wavelet<D>& w, const float* HWY_RESTRICT pts
     hn::StoreU(hn::Mul(acc, gs), df, value);
     if constexpr (kGradient) {
       for (int a = 0; a < D; ++a) gacc[a] = hn::Mul(gacc[a], gs);
-      perlin_simd::store_interleaved<D>(gacc, grad);
+      store_interleaved<D>(gacc, grad);
     }
     return;
   }
   // Other distributions: the scalar remap, lane by lane.
   hn::StoreU(acc, df, value);
-  if constexpr (kGradient) perlin_simd::store_interleaved<D>(gacc, grad);
+  if constexpr (kGradient) store_interleaved<D>(gacc, grad);
   for (std::size_t l = 0; l < lanes; ++l) {
     float dv = 1.0f;
     w.template remap<float>(value[l], kGradient ? &dv : nullptr);
@@ -857,32 +855,32 @@ void wavelet_points(const wavelet<D>& w, const float* pts, std::size_t n, float*
   }
   const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
   const std::size_t lanes = hn::Lanes(ws::DF());
-  double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
+  double weight[wavelet<D>::kMaxBands][lanes::kMaxLanes], scale[lanes::kMaxLanes];
   for (int b = 0; b < w.band_count(); ++b)
     for (std::size_t l = 0; l < lanes; ++l) weight[b][l] = pl.weight[b];
   for (std::size_t l = 0; l < lanes; ++l) scale[l] = pl.scale;
   ws::lane_weights lw;
   lw.set(w, weight, scale);
-  simd_batch::for_each_vector<D>(n, pts, value, grad,
-                         [&](std::size_t first, const float* p, float* v, float* g) {
-                           // Non-finite lanes: the scalar code (its NaN, exactly).
-                           const bool finite = ws::all_finite<D>(p);
-                           if (g)
-                             ws::points_vector<true, D>(w, p, lw, v, g);
-                           else
-                             ws::points_vector<false, D>(w, p, lw, v, nullptr);
-                           if (finite) return;
-                           for (std::size_t l = 0; l < lanes && first + l < n; ++l) {
-                             sample_input<D> s;
-                             bool lane_finite = true;
-                             for (int a = 0; a < D; ++a) {
-                               s.position[a] = static_cast<double>(p[l * D + a]);
-                               lane_finite = lane_finite && std::isfinite(s.position[a]);
-                             }
-                             if (!lane_finite)
-                               ws::scalar_sample<D>(w, s, v + l, g ? g + l * D : nullptr);
-                           }
-                         });
+  lanes::for_each_vector<D>(n, pts, value, grad,
+                            [&](std::size_t first, const float* p, float* v, float* g) {
+                              // Non-finite lanes: the scalar code (its NaN, exactly).
+                              const bool finite = ws::all_finite<D>(p);
+                              if (g)
+                                ws::points_vector<true, D>(w, p, lw, v, g);
+                              else
+                                ws::points_vector<false, D>(w, p, lw, v, nullptr);
+                              if (finite) return;
+                              for (std::size_t l = 0; l < lanes && first + l < n; ++l) {
+                                sample_input<D> s;
+                                bool lane_finite = true;
+                                for (int a = 0; a < D; ++a) {
+                                  s.position[a] = static_cast<double>(p[l * D + a]);
+                                  lane_finite = lane_finite && std::isfinite(s.position[a]);
+                                }
+                                if (!lane_finite)
+                                  ws::scalar_sample<D>(w, s, v + l, g ? g + l * D : nullptr);
+                              }
+                            });
 }
 
 // Samples with footprints and normals (core/samples.hpp).
@@ -897,11 +895,11 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
   }
   const float* pts = reinterpret_cast<const float*>(s.positions.data());
   const int nb = w.band_count();
-  double weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], scale[perlin_simd::kMaxLanes];
-  double kind_weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes];
-  double kind_scale[perlin_simd::kMaxLanes];
-  int kind[perlin_simd::kMaxLanes];
-  HWY_ALIGN float normal[3][perlin_simd::kMaxLanes];
+  double weight[wavelet<D>::kMaxBands][lanes::kMaxLanes], scale[lanes::kMaxLanes];
+  double kind_weight[wavelet<D>::kMaxBands][lanes::kMaxLanes];
+  double kind_scale[lanes::kMaxLanes];
+  int kind[lanes::kMaxLanes];
+  HWY_ALIGN float normal[3][lanes::kMaxLanes];
   ws::lane_weights lw;
   // Without footprints the bands' part of the plan is every sample's: made once; per
   // sample only its surface part (wavelet::plan_normal, plan_variance, plan_scale,
@@ -916,10 +914,10 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
   float last_u[3] = {0, 0, 1};
   // The weights and scales lw was last set from (lw.set converts them per lane and band:
   // skipped while a run of vectors repeats them, the usual case without footprints).
-  double set_weight[wavelet<D>::kMaxBands][perlin_simd::kMaxLanes], set_scale[perlin_simd::kMaxLanes];
+  double set_weight[wavelet<D>::kMaxBands][lanes::kMaxLanes], set_scale[lanes::kMaxLanes];
   bool lw_set = false;
   const std::size_t row_bytes = lanes * sizeof(double);
-  simd_batch::for_each_vector<D>(
+  lanes::for_each_vector<D>(
       n, pts, value, grad, [&](std::size_t first, const float* p, float* v, float* g) {
         unsigned present = 0;  // bit k: some lane has kind k
         unsigned seen = 0;     // the same, scalar lanes and lanes past n included
@@ -968,10 +966,10 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
           // Every lane of kind k (the usual case): the lanes' own points, weights and
           // scales; else copies with the other lanes' zeroed.
           const bool all = seen == (1u << k);
-          const double(*kw)[perlin_simd::kMaxLanes] = weight;
+          const double(*kw)[lanes::kMaxLanes] = weight;
           const double* ks = scale;
           const float* pk = p;
-          HWY_ALIGN float pv[perlin_simd::kMaxLanes * 3];
+          HWY_ALIGN float pv[lanes::kMaxLanes * 3];
           if (!all) {
             std::fill(pv, pv + lanes * D, 0.0f);
             for (std::size_t l = 0; l < lanes; ++l) {
@@ -994,7 +992,7 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
             std::memcpy(set_scale, ks, row_bytes);
             lw_set = true;
           }
-          HWY_ALIGN float vt[perlin_simd::kMaxLanes], gt[perlin_simd::kMaxLanes * 3];
+          HWY_ALIGN float vt[lanes::kMaxLanes], gt[lanes::kMaxLanes * 3];
           float* vo = alone ? v : vt;
           float* go = g == nullptr ? nullptr : (alone ? g : gt);
           if (g)
@@ -1289,7 +1287,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
             VF gs[3];
             for (int a = 0; a < D; ++a)
               gs[a] = hn::Mul(hn::Mul(hn::LoadU(df, gacc[a].data() + done), sv), gv);
-            perlin_simd::store_interleaved<D>(gs, gout + done * D);
+            store_interleaved<D>(gs, gout + done * D);
           }
         }
       }
