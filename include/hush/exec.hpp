@@ -341,11 +341,7 @@ void run_samples(const Noise& n, const exec::parallel_t<Inner>& ex,
                  vec<float, Noise::dimension>* grad) {
   parallel_parts(s.size(), 1, ex.kParallelGrain, ex.threads, ex.pool,
                  [&](std::size_t b, std::size_t e) {
-                   samples<Noise::dimension> part = s;
-                   part.positions = s.positions.subspan(b, e - b);
-                   if (s.has_footprints()) part.footprints = s.footprints.subspan(b, e - b);
-                   if (s.has_normals()) part.normals = s.normals.subspan(b, e - b);
-                   run_samples(n, ex.inner, part, out + b, grad ? grad + b : grad);
+                   run_samples(n, ex.inner, s.subrange(b, e - b), out + b, grad ? grad + b : grad);
                  });
 }
 

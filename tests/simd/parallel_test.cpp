@@ -4,7 +4,9 @@
 // the inner policy's results on the whole batch, bit for bit, for points,
 // per-sample batches and grids (slabs along the slowest axis), values and
 // gradients, on the scalar and SIMD policies (Perlin, fractal and Gabor noise,
-// whose SIMD grid kernels take slabs); bad thread counts are rejected
+// whose SIMD grid kernels take slabs; every noise with each per-sample input
+// it takes, so a part never reads another part's footprints, normals or
+// surface maps); bad thread counts are rejected
 // with a message naming the parameter; the same through hush::thread_pool,
 // whose run() calls every part exactly once, serialises concurrent callers
 // and runs nested calls inline. Built with hush::simd (dynamic
@@ -12,6 +14,7 @@
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -55,22 +58,27 @@ std::vector<hush::vec<float, D>> random_points(std::size_t n, std::uint32_t seed
   return pts;
 }
 
-// Every thread count against the inner policy alone, values and gradients.
+const int kAllPools[] = {0, 1, 2, 3};
+
+// Every thread count (and pool: indices of test_pool) against the inner
+// policy alone, values and gradients.
 template <class Noise, class Inner, class Run>
-void check_parallel(const Noise& noise, Inner inner, std::size_t n, const Run& run) {
+void check_parallel(const Noise& noise, Inner inner, std::size_t n, const Run& run,
+                    hush::span<const int> threads = kThreads,
+                    hush::span<const int> pools = kAllPools) {
   constexpr int D = Noise::dimension;
   std::vector<float> want(n), got(n);
   std::vector<hush::vec<float, D>> want_g(n), got_g(n);
   run(noise, inner, want, want_g);
-  for (int t : kThreads) {
-    INFO("threads " << t << ", policy " << Inner::name);
+  for (int t : threads) {
+    INFO("threads " << t << ", policy " << std::string(Inner::name));
     std::fill(got.begin(), got.end(), -7.0f);
     run(noise, hush::exec::parallel(inner, t), got, got_g);
     CHECK(same_bits(got, want));
     CHECK(same_bits<D>(got_g, want_g));
   }
-  for (int i = 0; i < 4; ++i) {
-    INFO("pool of " << test_pool(i).size() << ", policy " << Inner::name);
+  for (int i : pools) {
+    INFO("pool of " << test_pool(i).size() << ", policy " << std::string(Inner::name));
     std::fill(got.begin(), got.end(), -7.0f);
     run(noise, hush::exec::parallel(inner, test_pool(i)), got, got_g);
     CHECK(same_bits(got, want));
@@ -101,6 +109,82 @@ void check_all(const Noise& noise, const hush::grid<Noise::dimension>& g) {
       check_parallel(noise, hush::exec::scalar, g.count(), grids);
     }
   }
+}
+
+// Per-sample batches: enough samples that 7 threads get 7 parts
+// (kParallelGrain each) plus a ragged tail, and inputs that differ at every
+// sample, so a part reading another part's footprint, normal or map changes
+// its result.
+constexpr std::size_t kSampleCount =
+    7 * hush::exec::parallel_t<hush::exec::scalar_t>::kParallelGrain + 13;
+
+template <int D>
+struct sample_batch {
+  std::vector<hush::vec<float, D>> positions = random_points<D>(kSampleCount, 40 + D);
+  std::vector<hush::footprint<D>> footprints;
+  std::vector<hush::vec3> normals;
+  std::vector<hush::surface_map> maps;
+
+  sample_batch() {
+    hush::rng r(41, D);
+    for (std::size_t i = 0; i < kSampleCount; ++i) {
+      const double width = std::pow(10.0, r.uniform<double>(-3.0, 0.3));
+      hush::vec<double, D> dx, dy;
+      for (int a = 0; a < D; ++a) {
+        dx[a] = width * r.uniform<double>(-1, 1);
+        dy[a] = width * r.uniform<double>(-1, 1);
+      }
+      footprints.push_back(hush::footprint<D>::from_derivatives(dx, dy));
+      normals.push_back({r.uniform(-1.0f, 1.0f), r.uniform(-1.0f, 1.0f), r.uniform(-1.0f, 1.0f)});
+      maps.push_back(
+          hush::surface_map::from_matrix(r.uniform<double>(-3, 3), r.uniform<double>(-3, 3),
+                                         r.uniform<double>(-3, 3), r.uniform<double>(-3, 3)));
+    }
+  }
+};
+
+// The splits of a per-sample batch: one part, two, an odd count, seven (one
+// per kParallelGrain), and seven on a pool.
+const int kSampleThreads[] = {1, 2, 3, 7};
+const int kSamplePool[] = {3};
+
+// Which spans of a batch are given (bits).
+constexpr int kPositionsOnly = 0, kFootprints = 1, kNormals = 2, kMaps = 4;
+
+// The noise on the batch with the given inputs, values alone and with
+// gradients, split over every thread count and pool of both inner policies.
+template <class Noise>
+void check_sample_split(const Noise& noise, const sample_batch<Noise::dimension>& b, int inputs) {
+  constexpr int D = Noise::dimension;
+  INFO("footprints " << bool(inputs & kFootprints) << ", normals " << bool(inputs & kNormals)
+                     << ", surface maps " << bool(inputs & kMaps));
+  hush::samples<D> s;
+  s.positions = b.positions;
+  if (inputs & kFootprints) s.footprints = b.footprints;
+  if (inputs & kNormals) s.normals = b.normals;
+  if (inputs & kMaps) s.surface_maps = b.maps;
+  auto values = [&](const Noise& n, auto policy, std::vector<float>& out, auto&) {
+    hush::evaluate(n, policy, s, out);
+  };
+  auto with_gradients = [&](const Noise& n, auto policy, std::vector<float>& out, auto& grad) {
+    hush::evaluate(n, policy, s, out, grad);
+  };
+  check_parallel(noise, hush::exec::scalar, s.size(), values, kSampleThreads, kSamplePool);
+  check_parallel(noise, hush::exec::scalar, s.size(), with_gradients, kSampleThreads, kSamplePool);
+  check_parallel(noise, hush::exec::simd, s.size(), values, kSampleThreads, kSamplePool);
+  check_parallel(noise, hush::exec::simd, s.size(), with_gradients, kSampleThreads, kSamplePool);
+}
+
+// A noise that filters in 2D and 3D and takes normals in 3D (wavelet, gabor):
+// every input combination it accepts.
+template <template <int> class Noise>
+void check_footprints_and_normals(const typename Noise<2>::params& p2,
+                                  const typename Noise<3>::params& p3) {
+  check_sample_split(Noise<2>{p2}, sample_batch<2>(), kFootprints);
+  const Noise<3> noise{p3};
+  const sample_batch<3> b;
+  for (int inputs : {kFootprints, kNormals, kFootprints | kNormals})
+    check_sample_split(noise, b, inputs);
 }
 
 template <int D>
@@ -247,4 +331,52 @@ TEST_CASE("thread_pool: thread counts outside 0 ... 1024 are rejected, naming th
   }
   CHECK(hush::thread_pool(0).size() >= 1);
   CHECK(hush::exec::parallel(hush::exec::simd, test_pool(2)).threads == 3);
+}
+
+TEST_CASE(
+    "exec::parallel: positions-only sample batches equal the single-thread call bit for bit") {
+  const sample_batch<2> b2;
+  const sample_batch<3> b3;
+  check_sample_split(hush::perlin<2>{31}, b2, kPositionsOnly);
+  check_sample_split(hush::perlin<3>{32}, b3, kPositionsOnly);
+  hush::fractal<hush::perlin<2>>::params p2;
+  p2.seed = 33;
+  p2.octaves = 3;
+  check_sample_split(hush::fractal<hush::perlin<2>>{p2}, b2, kPositionsOnly);
+  hush::fractal<hush::perlin<3>>::params p3;
+  p3.seed = 34;
+  p3.octaves = 3;
+  check_sample_split(hush::fractal<hush::perlin<3>>{p3}, b3, kPositionsOnly);
+}
+
+TEST_CASE("exec::parallel: wavelet samples keep each footprint and normal with its position") {
+  hush::wavelet<2>::params p2;
+  p2.seed = 35;
+  p2.tile_size = 32;
+  hush::wavelet<3>::params p3;
+  p3.seed = 36;
+  p3.tile_size = 32;
+  p3.projection = hush::wavelet_projection::approximate;  // half the exact one's scalar time
+  check_footprints_and_normals<hush::wavelet>(p2, p3);
+}
+
+TEST_CASE("exec::parallel: gabor samples keep each footprint and normal with its position") {
+  hush::gabor<2>::params p2;
+  p2.seed = 37;
+  p2.impulses = 4;  // few kernels per sample: the split is under test, not the noise
+  hush::gabor<3>::params p3;
+  p3.seed = 38;
+  p3.impulses = 4;
+  check_footprints_and_normals<hush::gabor>(p2, p3);
+}
+
+TEST_CASE(
+    "exec::parallel: anisotropic samples keep each footprint and surface map with its position") {
+  hush::anisotropic::params p;
+  p.seed = 39;
+  p.tile_size = 64;
+  p.octaves = 2;
+  const hush::anisotropic a{p};
+  const sample_batch<2> b;
+  for (int inputs : {kFootprints, kMaps, kFootprints | kMaps}) check_sample_split(a, b, inputs);
 }

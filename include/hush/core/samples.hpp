@@ -76,7 +76,38 @@ struct samples {
   bool has_normals() const { return !normals.empty(); }
   bool has_surface_maps() const { return !surface_maps.empty(); }
   // True when anything beside the positions is given.
-  bool has_extras() const { return has_footprints() || has_normals() || has_surface_maps(); }
+  bool has_extras() const {
+    bool any = false;
+    for_each_extra([&](const char*, const auto& in) { any = any || !in.empty(); });
+    return any;
+  }
+
+  // Calls f(name, span) for each per-sample input beside the positions, given
+  // or not, name being the member's ("footprints", ...). It and visit_extras
+  // are the only code that lists the members, so what walks a batch
+  // (subrange, has_extras, validate_samples) cannot miss one.
+  template <class F>
+  constexpr void for_each_extra(F&& f) const {
+    visit_extras(*this, f);
+  }
+  // The number of per-sample inputs beside the positions.
+  static constexpr std::size_t extra_count() {
+    std::size_t n = 0;
+    samples<D>{}.for_each_extra([&](const char*, const auto&) { ++n; });
+    return n;
+  }
+
+  // Samples [offset, offset + count) of the batch: every given span cut to
+  // that range, every empty one left empty. Requires offset + count <= size()
+  // and each given span to have size() elements (as validate_samples checks).
+  samples subrange(std::size_t offset, std::size_t count) const {
+    samples part = *this;
+    part.positions = positions.subspan(offset, count);
+    visit_extras(part, [&](const char*, auto& in) {
+      if (!in.empty()) in = in.subspan(offset, count);
+    });
+    return part;
+  }
 
   // Sample i as the scalar code sees it.
   sample_input<D> at(std::size_t i) const {
@@ -93,9 +124,26 @@ struct samples {
     }
     return s;
   }
+
+ private:
+  // The members beside the positions, each once; Self is samples or const samples.
+  template <class Self, class F>
+  static constexpr void visit_extras(Self& s, F&& f) {
+    f("footprints", s.footprints);
+    f("normals", s.normals);
+    f("surface_maps", s.surface_maps);
+  }
 };
 
 namespace detail {
+// Every member of samples<D> is the positions or an input visit_extras lists:
+// a span added to the struct but not to that list fails here.
+template <int D>
+constexpr bool samples_lists_every_span() {
+  return sizeof(samples<D>) == (1 + samples<D>::extra_count()) * sizeof(span<const float>);
+}
+static_assert(samples_lists_every_span<2>() && samples_lists_every_span<3>(),
+              "hush::samples: a member is missing from samples::visit_extras");
 
 // What a noise type takes per sample (false for noises that do not say).
 template <class Noise, class = void>
@@ -120,36 +168,29 @@ struct takes_sample_inputs
                                        takes_surface_map<Noise>::value> {};
 
 // Throws hush::invalid_argument naming the first span that does not fit:
-// footprints, normals and surface maps must be empty or have one element per
-// position, and only inputs the noise takes may be given.
+// only inputs the noise takes may be given, and every given span must have
+// one element per position. Which inputs a noise takes is per input; the
+// sizes are checked over every span (samples::for_each_extra).
 template <class Noise>
 void validate_samples(const char* where, const samples<Noise::dimension>& s) {
+  if (s.has_footprints() && !takes_footprint<Noise>::value)
+    throw hush::invalid_argument(std::string(where) +
+                                 ": samples.footprints given, but this noise does not filter; "
+                                 "valid: none (an empty span)");
+  if (s.has_normals() && !takes_normal<Noise>::value)
+    throw hush::invalid_argument(std::string(where) +
+                                 ": samples.normals given, but this noise takes no normal; "
+                                 "valid: none (an empty span)");
+  if (s.has_surface_maps() && !takes_surface_map<Noise>::value)
+    throw hush::invalid_argument(std::string(where) +
+                                 ": samples.surface_maps given, but this noise takes no surface "
+                                 "map; valid: none (an empty span)");
   const std::size_t n = s.positions.size();
-  const std::string per = "exactly " + std::to_string(n) + " elements (one per position) or none";
-  if (s.has_footprints()) {
-    if (!takes_footprint<Noise>::value)
-      throw hush::invalid_argument(std::string(where) +
-                                   ": samples.footprints given, but this noise does not filter; "
-                                   "valid: none (an empty span)");
-    if (s.footprints.size() != n)
-      throw_out_of_range(where, "samples.footprints.size()", s.footprints.size(), per.c_str());
-  }
-  if (s.has_normals()) {
-    if (!takes_normal<Noise>::value)
-      throw hush::invalid_argument(std::string(where) +
-                                   ": samples.normals given, but this noise takes no normal; "
-                                   "valid: none (an empty span)");
-    if (s.normals.size() != n)
-      throw_out_of_range(where, "samples.normals.size()", s.normals.size(), per.c_str());
-  }
-  if (s.has_surface_maps()) {
-    if (!takes_surface_map<Noise>::value)
-      throw hush::invalid_argument(std::string(where) +
-                                   ": samples.surface_maps given, but this noise takes no surface "
-                                   "map; valid: none (an empty span)");
-    if (s.surface_maps.size() != n)
-      throw_out_of_range(where, "samples.surface_maps.size()", s.surface_maps.size(), per.c_str());
-  }
+  s.for_each_extra([&](const char* name, const auto& in) {
+    if (in.empty() || in.size() == n) return;
+    const std::string per = "exactly " + std::to_string(n) + " elements (one per position) or none";
+    throw_out_of_range(where, std::string("samples.") + name + ".size()", in.size(), per.c_str());
+  });
 }
 
 }  // namespace detail
