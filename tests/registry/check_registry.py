@@ -1,0 +1,306 @@
+#!/usr/bin/env python3
+"""The registry test: every registered noise has every layer it ships with, and no
+doc, comment or CMake file names a repository file that does not exist.
+
+The registry is HUSH_NOISES in the top-level CMakeLists.txt. EXPECT below is what each
+registered noise ships with (DESIGN.md "What every noise ships with"), one entry per
+noise; a noise in the registry without an entry, or an entry for a noise not in the
+registry, fails too. docs/design.md "Adding a noise" lists the shared files a new noise
+touches.
+
+  check_registry.py [--program PATH/TO/hush]
+
+With --program, the program's own answers are checked too (its `sample`/`render`
+entries and `glsl-export`'s files); without it, only the sources. Prints one line per
+problem and exits 1 when there is any, else prints what it checked and exits 0.
+Python standard library only.
+"""
+import argparse
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+
+# What each noise ships with. Paths are relative to the repository root.
+#  program:  the `hush` command that runs it (argv after `hush`, without --help)
+#  glsl:     its GLSL program's header (backends/glsl/include/hush/glsl/...) and the
+#            name prefixes of files `hush glsl-export` writes for it
+#  bench:    a text in bench/'s sources naming its rows
+#  golden / hard_case: regular expressions matched against the names of the doctest
+#            cases in tests/ (golden values per seed; NaN/Inf and degenerate inputs)
+#  doc:      its user page
+EXPECT = {
+    "perlin": dict(
+        program=["sample", "perlin"],
+        glsl=("noise_program.hpp", ["hush_perlin2_", "hush_perlin3_"]),
+        bench='"perlin 2D"',
+        golden=r"^golden: perlin values",
+        hard_case=r"^hard cases row 5: NaN and Inf give NaN",
+        doc="docs/perlin.md"),
+    "fractal": dict(
+        program=["sample", "perlin", "--octaves", "4"],
+        glsl=("noise_program.hpp", ["hush_fractal_perlin2_", "hush_fractal_perlin3_"]),
+        bench='"fbm "',
+        golden=r"^golden: fractal values",
+        hard_case=r"^fractal perlin: NaN and infinite coordinates",
+        doc="docs/fractal.md"),
+    "wavelet": dict(
+        program=["sample", "wavelet"],
+        glsl=("wavelet_program.hpp", ["hush_wavelet2_", "hush_wavelet3_"]),
+        bench='"wavelet',
+        golden=r"^golden: wavelet values",
+        hard_case=r"^wavelet: NaN and infinite input",
+        doc="docs/wavelet.md"),
+    "gabor": dict(
+        program=["sample", "gabor"],
+        glsl=("gabor_glsl.hpp", ["hush_gabor2_", "hush_gabor3_"]),
+        bench='"gabor',
+        golden=r"^golden: gabor ",
+        hard_case=r"^gabor: NaN and infinite positions",
+        doc="docs/gabor.md"),
+    "anisotropic": dict(
+        program=["sample", "anisotropic"],
+        glsl=("anisotropic_program.hpp", ["hush_anisotropic_"]),
+        bench='"anisotropic',
+        golden=r"^anisotropic: golden values",
+        hard_case=r"^anisotropic: hard cases: NaN and Inf",
+        doc="docs/anisotropic.md"),
+    "coherent": dict(
+        program=["render", "coherent"],
+        glsl=("coherent.hpp", ["hush_coherent_pass"]),
+        bench='"coherent',
+        golden=r"^coherent golden:",
+        hard_case=r"^coherent robustness: NaN, Inf",
+        doc="docs/coherent.md"),
+    "npr_gabor": dict(
+        program=["render", "npr-gabor"],
+        glsl=("npr_gabor.hpp", ["hush_npr_gabor_splat", "hush_npr_gabor_records"]),
+        bench='"npr',
+        golden=r"^npr_gabor golden:",
+        hard_case=r"^hard inputs: NaN, behind-camera",
+        doc="docs/npr-gabor.md"),
+}
+
+problems = []
+
+
+def problem(text):
+    problems.append(text)
+
+
+def read(rel):
+    return (ROOT / rel).read_text(encoding="utf-8")
+
+
+def registry():
+    text = read("CMakeLists.txt")
+    m = re.search(r"^set\(HUSH_NOISES ([^)]*)\)", text, re.M)
+    if not m:
+        problem("CMakeLists.txt: no `set(HUSH_NOISES ...)`, the registry of noises")
+        return []
+    return m.group(1).split()
+
+
+def test_case_names():
+    """Every doctest case name under tests/, adjacent string literals joined."""
+    names = []
+    for path in sorted((ROOT / "tests").rglob("*.cpp")):
+        text = path.read_text(encoding="utf-8")
+        for m in re.finditer(r"TEST_CASE(?:_TEMPLATE)?\(\s*((?:\"(?:[^\"\\]|\\.)*\"\s*)+)", text):
+            names.append("".join(re.findall(r"\"((?:[^\"\\]|\\.)*)\"", m.group(1))))
+    return names
+
+
+def check_simd(noise):
+    """include/hush/<noise>/simd_kernel.hpp's entry list, its unit, and the all-in-one unit."""
+    macro = "HUSH_SIMD_ENTRIES_" + noise.upper()
+    kernel = f"include/hush/{noise}/simd_kernel.hpp"
+    inl = f"hush/simd/{noise}-inl.h"
+    if not (ROOT / kernel).is_file():
+        problem(f"{noise}: no {kernel} (its SIMD entry list and simd_kernel)")
+        return
+    text = read(kernel)
+    m = re.search(r"#define " + macro + r"\(X\)(.*?)\n\n", text, re.S)
+    if not m:
+        problem(f"{noise}: {kernel} does not define {macro}(X)")
+        return
+    if f"HUSH_SIMD_DECLARE({macro})" not in text:
+        problem(f"{noise}: {kernel} does not declare its list: HUSH_SIMD_DECLARE({macro})")
+    entries = re.findall(r"\bX\(\s*(\w+)", m.group(1))
+    if not entries:
+        problem(f"{noise}: {macro} lists no entry point")
+    if not (ROOT / "include" / inl).is_file():
+        problem(f"{noise}: no include/{inl} (its kernels)")
+    else:
+        kernels = read("include/" + inl)
+        for e in entries:
+            if not re.search(r"\bvoid " + e + r"\(", kernels):
+                problem(f"{noise}: entry {e} of {macro} has no kernel in include/{inl}")
+    unit = f"src/simd/{noise}.cpp"
+    if not (ROOT / unit).is_file():
+        problem(f"{noise}: no {unit} (its dispatch unit)")
+    else:
+        text = read(unit)
+        for want in (f'#include "hush/{noise}.hpp"', f'#define HUSH_SIMD_UNIT_INL "{inl}"',
+                     f"#define HUSH_SIMD_UNIT_ENTRIES {macro}",
+                     '#include "hush/simd/dispatch_unit.hpp"'):
+            if want not in text:
+                problem(f"{noise}: {unit} lacks `{want}`")
+    every = read("include/hush/simd/all-inl.h")
+    if f'#include "{inl}"' not in every:
+        problem(f"{noise}: include/hush/simd/all-inl.h does not include {inl}")
+    if macro + "(X)" not in every.split("#define HUSH_SIMD_ENTRIES_ALL(X)")[-1]:
+        problem(f"{noise}: HUSH_SIMD_ENTRIES_ALL (include/hush/simd/all-inl.h) lacks {macro}")
+
+
+def check_noise(noise, want, cases, program, exported):
+    header = f"include/hush/{noise}.hpp"
+    if not (ROOT / header).is_file():
+        problem(f"{noise}: no public header {header}")
+    if f'#include "hush/{noise}.hpp"' not in read("include/hush/hush.hpp"):
+        problem(f"{noise}: include/hush/hush.hpp does not include hush/{noise}.hpp")
+    check_simd(noise)
+    if not ((ROOT / f"tests/{noise}_test.cpp").is_file() or (ROOT / f"tests/{noise}").is_dir()):
+        problem(f"{noise}: no tests/{noise}_test.cpp or tests/{noise}/")
+    glsl_header, prefixes = want["glsl"]
+    if not (ROOT / "backends/glsl/include/hush/glsl" / glsl_header).is_file():
+        problem(f"{noise}: no GLSL program backends/glsl/include/hush/glsl/{glsl_header}")
+    if exported is not None:
+        for prefix in prefixes:
+            if not any(name.startswith(prefix) for name in exported):
+                problem(f"{noise}: `hush glsl-export` writes no {prefix}* file")
+    bench = "".join(p.read_text(encoding="utf-8") for p in sorted((ROOT / "bench").glob("*.cpp")))
+    if want["bench"] not in bench:
+        problem(f"{noise}: no bench row: bench/*.cpp never names {want['bench']}")
+    for kind in ("golden", "hard_case"):
+        if not any(re.search(want[kind], name) for name in cases):
+            problem(f"{noise}: no test case in tests/ named like /{want[kind]}/ ({kind})")
+    doc = want["doc"]
+    if not (ROOT / doc).is_file():
+        problem(f"{noise}: no user page {doc}")
+    elif f"({doc})" not in read("README.md"):
+        problem(f"{noise}: README.md does not link {doc}")
+    if program:
+        argv = [program] + want["program"] + ["--help"]
+        run = subprocess.run(argv, capture_output=True, text=True, timeout=60)
+        if run.returncode != 0:
+            problem(f"{noise}: `hush {' '.join(want['program'])} --help` exits {run.returncode}: "
+                    f"{(run.stderr or run.stdout).strip()[:200]}")
+
+
+# ---- Names of files that do not exist.
+# Paths from the repository root, and include paths as `#include "hush/..."` names them.
+REPO_PATH = re.compile(r"(?<![\w./-])((?:include|src|tests|bench|examples|tools|docs|backends|"
+                       r"cmake|single_include)/[\w./-]*[\w])")
+INCLUDE_PATH = re.compile(r"(?<![\w./-])(hush/[\w./-]+\.(?:hpp|h))\b")
+INCLUDE_ROOTS = [ROOT / "include"] + sorted(ROOT.glob("backends/*/include"))
+SCANNED_SUFFIXES = {".md", ".hpp", ".h", ".cpp", ".py", ".sh", ".cmake", ".in", ".txt"}
+# Not sources: made by builds and programs, or named as examples of output.
+SKIPPED = re.compile(r"[*<>{}$]|\.\.\.|/NAME|/NOISE|/DIR|/FILE|/N$")
+
+
+def tracked_files():
+    out = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"], cwd=ROOT, capture_output=True, text=True)
+    if out.returncode != 0:  # not a checkout: every file below the root
+        return [p.relative_to(ROOT).as_posix() for p in ROOT.rglob("*") if p.is_file()]
+    return [rel for rel in out.stdout.split() if (ROOT / rel).is_file()]  # deleted ones: no
+
+
+def check_named_files():
+    files = tracked_files()
+    existing = set(files)
+    dirs = {str(Path(f).parent.as_posix()) for f in files}
+    for parent in list(dirs):
+        p = Path(parent)
+        while p.as_posix() not in (".", ""):
+            dirs.add(p.as_posix())
+            p = p.parent
+    for rel in files:
+        path = Path(rel)
+        if path.suffix not in SCANNED_SUFFIXES and path.name != "CMakeLists.txt":
+            continue
+        if rel.startswith("single_include/"):
+            continue  # generated from include/
+        text = (ROOT / rel).read_text(encoding="utf-8", errors="replace")
+        for number, line in enumerate(text.splitlines(), 1):
+            if "://" in line:
+                line = re.sub(r"\S+://\S+", "", line)
+            for m in REPO_PATH.finditer(line):
+                name = m.group(1).rstrip(".")
+                if SKIPPED.search(name) or name in existing or name in dirs:
+                    continue
+                problem(f"{rel}:{number}: names {name}, which does not exist")
+            for m in INCLUDE_PATH.finditer(line):
+                name = m.group(1)
+                if SKIPPED.search(name) or any((r / name).is_file() for r in INCLUDE_ROOTS):
+                    continue
+                problem(f"{rel}:{number}: names {name}, which no include directory holds")
+
+
+# No hand-written header over MAX_HEADER_LINES lines: one that grows past it holds two
+# concepts. OVER_LIMIT lists the headers still to be split, so the list can only shrink: a
+# header over the limit that is not listed fails, and so does a listed one that is under it.
+MAX_HEADER_LINES = 1200
+OVER_LIMIT = {
+    "include/hush/gabor.hpp",
+    "include/hush/simd/gabor-inl.h",
+    "include/hush/simd/wavelet-inl.h",
+    "backends/glsl/include/hush/glsl/npr_gabor.hpp",
+}
+
+
+def check_header_sizes():
+    for rel in tracked_files():
+        if not rel.endswith((".hpp", ".h")) or rel.startswith("single_include/"):
+            continue
+        lines = (ROOT / rel).read_text(encoding="utf-8", errors="replace").count("\n")
+        if lines > MAX_HEADER_LINES and rel not in OVER_LIMIT:
+            problem(f"{rel}: {lines} lines, over {MAX_HEADER_LINES}: split it by concept")
+        elif lines <= MAX_HEADER_LINES and rel in OVER_LIMIT:
+            problem(f"{rel}: {lines} lines, within {MAX_HEADER_LINES}: take it off OVER_LIMIT")
+    for rel in OVER_LIMIT:
+        if not (ROOT / rel).is_file():
+            problem(f"OVER_LIMIT names {rel}, which does not exist")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--program", help="the hush program, to check its entries and export")
+    args = parser.parse_args()
+    noises = registry()
+    for noise in noises:
+        if noise not in EXPECT:
+            problem(f"{noise}: registered in CMakeLists.txt but has no EXPECT entry here")
+    for noise in EXPECT:
+        if noise not in noises:
+            problem(f"{noise}: has an EXPECT entry here but is not in HUSH_NOISES")
+    exported = None
+    if args.program:
+        with tempfile.TemporaryDirectory() as tmp:
+            run = subprocess.run([args.program, "glsl-export", tmp], capture_output=True,
+                                 text=True, timeout=120)
+            if run.returncode != 0:
+                problem(f"`hush glsl-export` exits {run.returncode}: {run.stderr.strip()[:200]}")
+            exported = [p.name for p in Path(tmp).iterdir()]
+    cases = test_case_names()
+    for noise in noises:
+        if noise in EXPECT:
+            check_noise(noise, EXPECT[noise], cases, args.program, exported)
+    check_named_files()
+    check_header_sizes()
+    for p in problems:
+        print(p)
+    if problems:
+        print(f"registry: {len(problems)} problem(s)")
+        return 1
+    print(f"registry: {len(noises)} noises, every layer present"
+          f"{' (with the program)' if args.program else ''}; every named file exists; "
+          f"no header over {MAX_HEADER_LINES} lines but {len(OVER_LIMIT)} listed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
