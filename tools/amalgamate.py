@@ -47,13 +47,44 @@ def read_header(name, included_from=""):
     return text if text.endswith("\n") else text + "\n"
 
 
-def inline(name, out, seen, stack, included_from=""):
-    """Appends header `name` to `out` with its hush includes inlined."""
+CONDITIONAL_RE = re.compile(r"^\s*#\s*(if|ifdef|ifndef|endif)\b")
+
+
+def guard_depth(text, name):
+    """1 when the header's first conditional is its guard (an include guard, or an
+    -inl.h file's toggle guard), which the preprocessor always enters; else 0."""
+    lines = text.splitlines()
+    for i, line in enumerate(lines):
+        m = CONDITIONAL_RE.match(line)
+        if not m:
+            continue
+        if name.endswith("-inl.h"):
+            return 1
+        guard = re.match(r"^\s*#\s*ifndef\s+(\w+)", line)
+        if guard and i + 1 < len(lines) and re.match(r"^\s*#\s*define\s+" + guard.group(1) +
+                                                     r"\b", lines[i + 1]):
+            return 1
+        return 0
+    return 0
+
+
+def inline(name, out, seen, stack, included_from="", outer_depth=0):
+    """Appends header `name` to `out` with its hush includes inlined.
+
+    A header is inlined once, where it is first included. Where that is inside a
+    preprocessor conditional (#if ... of its includer, not an include guard), it would
+    vanish from every configuration that skips the conditional although later includes
+    of it are dropped: refused, except for -inl.h kernels, which only such a
+    conditional (the SIMD static route) may include."""
     text = read_header(name, included_from)
     stack.append(name)
     seen.add(name)
     out.append(f"// ---- begin {name}\n")
+    depth = -guard_depth(text, name)
     for number, line in enumerate(text.splitlines(keepends=True), 1):
+        cond = CONDITIONAL_RE.match(line)
+        if cond:
+            depth += -1 if cond.group(1) == "endif" else 1
         match = INCLUDE_RE.match(line)
         if not match:
             out.append(line)
@@ -64,7 +95,13 @@ def inline(name, out, seen, stack, included_from=""):
             raise AmalgamationError(f"include cycle: {cycle}")
         if target in seen:
             continue  # inlined already, where it was first included
-        inline(target, out, seen, stack, f" (included from include/{name}:{number})")
+        inner = outer_depth + max(depth, 0)
+        if inner > 0 and not target.endswith("-inl.h"):
+            raise AmalgamationError(
+                f"include/{target} is first included inside a conditional (include/{name}:"
+                f"{number}); include it unconditionally before, or it is lost where the "
+                "conditional is false")
+        inline(target, out, seen, stack, f" (included from include/{name}:{number})", inner)
     out.append(f"// ---- end {name}\n")
     stack.pop()
 

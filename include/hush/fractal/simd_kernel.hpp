@@ -13,11 +13,9 @@
 #include "hush/config.hpp"
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
+#include "hush/perlin.hpp"  // the bands' noise, and its kernels
 #include "hush/simd/dispatch.hpp"
 
-#if HUSH_CONFIG_SIMD
-#include "hush/perlin.hpp"  // the bands' noise, and its kernels
-#endif
 #if HUSH_CONFIG_SIMD_STATIC
 #include "hush/simd/fractal-inl.h"
 #endif

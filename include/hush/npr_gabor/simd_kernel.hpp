@@ -11,10 +11,10 @@
 #include "hush/config.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/gabor.hpp"  // the Gabor kernels the splat shares
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC
-#include "hush/gabor.hpp"  // the Gabor kernels the splat shares
 #include "hush/simd/npr_gabor-inl.h"
 #endif
 
