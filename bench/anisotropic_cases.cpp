@@ -48,7 +48,7 @@ hush::anisotropic make_noise(int k, hush::weight_rule compensation = hush::weigh
 }
 
 struct frame_buffers {
-  hush_aniso::receding_plane plane;
+  hush_tools::aniso::receding_plane plane;
   std::vector<float> out;
 };
 
@@ -57,7 +57,7 @@ struct frame_buffers {
 std::string quality_note(const hush::anisotropic& noise, const frame_buffers& b) {
   std::vector<std::size_t> pixels;
   for (std::size_t q = 0; q < b.out.size(); q += kQualityStride) pixels.push_back(q);
-  const std::vector<double> ref = hush_aniso::supersampled(noise, b.plane, pixels);
+  const std::vector<double> ref = hush_tools::aniso::supersampled(noise, b.plane, pixels);
   double e = 0, eu = 0;
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const std::size_t q = pixels[i];
@@ -111,7 +111,7 @@ void add_frame_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& 
 
 void add_anisotropic_cases(std::vector<bench_case>& cases, const sizes& s) {
   auto shared = std::make_shared<frame_buffers>();
-  shared->plane = hush_aniso::make_receding_plane(s.frame_width, s.frame_height);
+  shared->plane = hush_tools::aniso::make_receding_plane(s.frame_width, s.frame_height);
   shared->out.assign(s.frame_width * s.frame_height, 0.0f);
   add_frame_rows(cases, s, hush::exec::scalar, shared);
   add_frame_rows(cases, s, hush::exec::simd, shared);

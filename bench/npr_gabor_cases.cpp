@@ -47,14 +47,15 @@ namespace {
 struct dense_frame {
   long triangles = 0;
   int width = 0, height = 0;
-  hush::scene::gbuffer g;
-  hush::scene::triangle_frame t;
+  hush_tools::scene::gbuffer g;
+  hush_tools::scene::triangle_frame t;
   bool ready = false;
   void make() {
     if (ready) return;
-    const hush::scene::scene s = hush::scene::make_scene("dense:" + std::to_string(triangles));
-    g = hush::scene::render_cpu(s, 0, width, height);
-    t = hush::scene::project_triangles(s, 0, width, height);
+    const hush_tools::scene::scene s =
+        hush_tools::scene::make_scene("dense:" + std::to_string(triangles));
+    g = hush_tools::scene::render_cpu(s, 0, width, height);
+    t = hush_tools::scene::project_triangles(s, 0, width, height);
     ready = true;
   }
 };
@@ -94,7 +95,7 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
         prepared_case p;
         p.samples = w * h;
         p.run = [noise, ex, fr, out, w, h, cpu_points] {
-          const hush::frame f = hush::scene::as_frame(fr->g);
+          const hush::frame f = hush_tools::scene::as_frame(fr->g);
           if (cpu_points) {  // stage 1 here, stage 2 on ex
             std::vector<hush::npr_gabor_splat> splats;
             noise.make_splats(f, fr->t.view(), splats);
@@ -108,11 +109,11 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
         };
         p.run();
         std::vector<double> ref(w * h);
-        noise.render(hush::exec::scalar, hush::scene::as_frame(fr->g), fr->t.view(),
+        noise.render(hush::exec::scalar, hush_tools::scene::as_frame(fr->g), fr->t.view(),
                      hush::image_view<double>(ref.data(), w, h));
         for (std::size_t q = 0; q < ref.size(); ++q) p.value_error.add((*out)[q], ref[q]);
         std::vector<hush::npr_gabor_splat> splats;
-        noise.make_splats(hush::scene::as_frame(fr->g), fr->t.view(), splats);
+        noise.make_splats(hush_tools::scene::as_frame(fr->g), fr->t.view(), splats);
         char text[160];
         std::snprintf(text, sizeof text, "%zu triangles, %zu splats; object and depth tests",
                       fr->t.triangle_id.size(), splats.size());

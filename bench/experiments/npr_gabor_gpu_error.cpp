@@ -26,7 +26,7 @@
 #include "triangles.hpp"
 
 int main(int argc, char** argv) {
-  namespace hs = hush::scene;
+  namespace hs = hush_tools::scene;
   const long n = argc > 1 ? std::atol(argv[1]) : 5000;
   const bool local = argc > 2 && std::strcmp(argv[2], "--local") == 0;
   const int w = 1280, h = 720;

@@ -8,7 +8,7 @@
 #include <set>
 #include <utility>
 
-namespace hush_aniso {
+namespace hush_tools::aniso {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -580,4 +580,4 @@ std::vector<image> figure2(int orientations, int size, std::uint32_t seed) {
   return out;
 }
 
-}  // namespace hush_aniso
+}  // namespace hush_tools::aniso

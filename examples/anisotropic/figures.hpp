@@ -13,7 +13,7 @@
 
 #include "hush/hush.hpp"
 
-namespace hush_aniso {
+namespace hush_tools::aniso {
 
 // A float image, row-major, row 0 at the top.
 struct image {
@@ -127,6 +127,6 @@ image figure13(std::size_t size = 384, double stretch = 4.0);
 // The tile's K orientation images (size x size texels) and their sum.
 std::vector<image> figure2(int orientations = 4, int size = 256, std::uint32_t seed = 7);
 
-}  // namespace hush_aniso
+}  // namespace hush_tools::aniso
 
 #endif  // HUSH_ANISO_FIGURES_HPP

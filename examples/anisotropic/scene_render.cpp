@@ -1,12 +1,12 @@
 // hush — anisotropic noise on the test scenes' G-buffers (see scene_render.hpp).
 #include "scene_render.hpp"
 
-namespace hush_aniso {
+namespace hush_tools::aniso {
 
-std::vector<std::vector<hush::surface_map>> scene_surface_maps(const hush::scene::scene& s) {
+std::vector<std::vector<hush::surface_map>> scene_surface_maps(const hush_tools::scene::scene& s) {
   std::vector<std::vector<hush::surface_map>> out;
-  for (const hush::scene::object& o : s.objects) {
-    const hush::scene::mesh& m = *o.shape;
+  for (const hush_tools::scene::object& o : s.objects) {
+    const hush_tools::scene::mesh& m = *o.shape;
     std::vector<hush::surface_map> maps;
     for (std::size_t t = 0; t < m.triangles(); ++t) {
       hush::dvec3 p[3];
@@ -33,7 +33,7 @@ hush::samples<2> gbuffer_samples::samples(bool compensate) const {
 
 gbuffer_samples collect_samples(const hush::frame& f,
                                 const std::vector<std::vector<hush::surface_map>>& maps) {
-  f.validate("hush_aniso::collect_samples",
+  f.validate("hush_tools::aniso::collect_samples",
              hush::frame_view::uv | hush::frame_view::uv_jacobian | hush::frame_view::object_id |
                  hush::frame_view::triangle_id,
              std::size_t(1) << 16);
@@ -54,4 +54,4 @@ gbuffer_samples collect_samples(const hush::frame& f,
   return b;
 }
 
-}  // namespace hush_aniso
+}  // namespace hush_tools::aniso

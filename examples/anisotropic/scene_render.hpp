@@ -16,10 +16,10 @@
 #include "hush/hush.hpp"
 #include "scene.hpp"
 
-namespace hush_aniso {
+namespace hush_tools::aniso {
 
 // T per triangle of every object of `s` (objects[k] has id k + 1), in mesh order.
-std::vector<std::vector<hush::surface_map>> scene_surface_maps(const hush::scene::scene& s);
+std::vector<std::vector<hush::surface_map>> scene_surface_maps(const hush_tools::scene::scene& s);
 
 // The batch of one frame: covered pixels' uvs, footprints and maps, and their pixel index.
 struct gbuffer_samples {
@@ -33,9 +33,9 @@ struct gbuffer_samples {
 // triangle_id views (hush::frame; examples/scene's as_frame gives them).
 gbuffer_samples collect_samples(const hush::frame& f,
                                 const std::vector<std::vector<hush::surface_map>>& maps);
-inline gbuffer_samples collect_samples(const hush::scene::gbuffer& g,
+inline gbuffer_samples collect_samples(const hush_tools::scene::gbuffer& g,
                                        const std::vector<std::vector<hush::surface_map>>& maps) {
-  return collect_samples(hush::scene::as_frame(g), maps);
+  return collect_samples(hush_tools::scene::as_frame(g), maps);
 }
 
 // The frame's noise (width * height floats, row-major) on backend `ex`; without
@@ -51,12 +51,13 @@ std::vector<float> render_frame(const hush::anisotropic& noise, const hush::fram
   return out;
 }
 template <class Exec>
-std::vector<float> render_gbuffer(const hush::anisotropic& noise, const hush::scene::gbuffer& g,
+std::vector<float> render_gbuffer(const hush::anisotropic& noise,
+                                  const hush_tools::scene::gbuffer& g,
                                   const std::vector<std::vector<hush::surface_map>>& maps,
                                   const Exec& ex, bool compensate = true) {
-  return render_frame(noise, hush::scene::as_frame(g), maps, ex, compensate);
+  return render_frame(noise, hush_tools::scene::as_frame(g), maps, ex, compensate);
 }
 
-}  // namespace hush_aniso
+}  // namespace hush_tools::aniso
 
 #endif  // HUSH_ANISO_SCENE_RENDER_HPP

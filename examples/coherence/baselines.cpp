@@ -10,11 +10,11 @@
 #include "hush/exec.hpp"
 #include "hush/perlin.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 namespace {
 
-constexpr const char* kWhere = "hush::coherence::make_baseline";
+constexpr const char* kWhere = "hush_tools::coherence::make_baseline";
 
 void check_size(std::size_t got, std::size_t want, std::size_t frame, const char* channel) {
   if (got != want)
@@ -98,14 +98,15 @@ const char* baseline_name(baseline_kind kind) {
 baseline_kind parse_baseline(const std::string& name) {
   for (baseline_kind k : {baseline_kind::white, baseline_kind::shower_door, baseline_kind::texture})
     if (name == baseline_name(k)) return k;
-  throw hush::invalid_argument("hush::coherence: kind '" + name +
+  throw hush::invalid_argument("hush_tools::coherence: kind '" + name +
                                "' is invalid; valid: white, shower-door, texture");
 }
 
 std::vector<noise_frame> make_baseline(baseline_kind kind,
                                        const std::vector<scene::gbuffer>& gbuffers,
                                        const baseline_options& o) {
-  detail::require_in_range(kWhere, "feature_pixels", o.feature_pixels, 1.0, 4096.0, "1 ... 4096");
+  hush::detail::require_in_range(kWhere, "feature_pixels", o.feature_pixels, 1.0, 4096.0,
+                                 "1 ... 4096");
   for (std::size_t i = 0; i < gbuffers.size(); ++i) {
     const scene::gbuffer& g = gbuffers[i];
     if (g.width <= 0 || g.height <= 0)
@@ -176,4 +177,4 @@ std::vector<noise_frame> make_baseline(baseline_kind kind,
 }
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools

@@ -23,7 +23,7 @@
 #include "coherence/temporal.hpp"
 #include "scene/gbuffer.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 
 enum class baseline_kind { white, shower_door, texture };
@@ -53,6 +53,6 @@ std::vector<noise_frame> make_baseline(baseline_kind kind,
                                        const baseline_options& o = {});
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_COHERENCE_BASELINES_HPP

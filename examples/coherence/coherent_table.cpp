@@ -18,7 +18,7 @@
 #include "scene.hpp"
 
 int main(int argc, char** argv) {
-  namespace hc = hush::coherence;
+  namespace hc = hush_tools::coherence;
   const hc::table_args args = hc::parse_table_args(argc, argv, "hush_coherent_table");
   const int width = args.width, height = args.height, first = args.first, count = args.count;
   const std::vector<std::string>& scenes = args.scenes;
@@ -26,14 +26,14 @@ int main(int argc, char** argv) {
   try {
     hc::print_metrics_header();
     for (const std::string& name : scenes) {
-      const hush::scene::scene s = hush::scene::make_scene(name);
-      std::vector<hush::scene::gbuffer> all;
+      const hush_tools::scene::scene s = hush_tools::scene::make_scene(name);
+      std::vector<hush_tools::scene::gbuffer> all;
       for (int i = 0; i < first + count; ++i) {
-        all.push_back(hush::scene::render_cpu(s, i, width, height));
-        hush::scene::gbuffer& g = all.back();
+        all.push_back(hush_tools::scene::render_cpu(s, i, width, height));
+        hush_tools::scene::gbuffer& g = all.back();
         if (i < first) g.barycentric = g.uv = g.uv_jacobian = g.normal = g.position = {};
       }
-      const std::vector<hush::scene::gbuffer> g(all.begin() + first, all.end());
+      const std::vector<hush_tools::scene::gbuffer> g(all.begin() + first, all.end());
       for (auto kind :
            {hc::baseline_kind::white, hc::baseline_kind::shower_door, hc::baseline_kind::texture})
         hc::print_metrics_row(name, hc::baseline_name(kind), hc::make_baseline(kind, g), g);
@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
           std::vector<hc::noise_frame> causal;
           std::vector<float> out(pixels);
           for (int i = 0; i < first + count; ++i) {
-            st.advance(hush::exec::simd, hush::scene::as_frame(all[static_cast<std::size_t>(i)]),
+            st.advance(hush::exec::simd,
+                       hush_tools::scene::as_frame(all[static_cast<std::size_t>(i)]),
                        hush::image_view<float>(out.data(), static_cast<std::size_t>(width),
                                                static_cast<std::size_t>(height)));
             if (i >= first) causal.push_back(out);
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
           hc::print_metrics_row(name, "coherent causal, " + label, causal, g);
           hush::coherent_sequence<float> io;
           io.frames = all.size();
-          io.frame_at = [&](std::size_t i) { return hush::scene::as_frame(all[i]); };
+          io.frame_at = [&](std::size_t i) { return hush_tools::scene::as_frame(all[i]); };
           std::vector<hc::noise_frame> symmetric(static_cast<std::size_t>(count));
           io.write = [&](std::size_t i, hush::span<const hush::image_view<float>> r) {
             if (i >= static_cast<std::size_t>(first))

@@ -8,7 +8,7 @@
 #include <tuple>
 #include <unsupported/Eigen/FFT>
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 namespace {
 
@@ -261,4 +261,4 @@ flatness_metrics measure_flatness(const std::vector<noise_frame>& frames,
 }
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools

@@ -36,7 +36,7 @@
 #include "coherence/temporal.hpp"
 #include "scene/gbuffer.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 
 struct flatness_region {
@@ -78,6 +78,6 @@ flatness_metrics measure_flatness(const std::vector<noise_frame>& frames,
                                   const options& o = {});
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_COHERENCE_FLATNESS_HPP

@@ -13,7 +13,7 @@
 #include "hush/core/error.hpp"
 #include "npy/npy.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 namespace {
 
@@ -83,11 +83,11 @@ noise_sequence load_noise_frames(const std::string& dir) {
 void save_noise_frame(const std::string& path, const noise_frame& f, int width, int height) {
   if (width <= 0 || height <= 0 ||
       f.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
-    throw hush::invalid_argument("hush::coherence::save_noise_frame: " + std::to_string(f.size()) +
-                                 " values for " + std::to_string(width) + "x" +
-                                 std::to_string(height) + " pixels");
+    throw hush::invalid_argument(
+        "hush_tools::coherence::save_noise_frame: " + std::to_string(f.size()) + " values for " +
+        std::to_string(width) + "x" + std::to_string(height) + " pixels");
   npy::save(path, {static_cast<std::size_t>(height), static_cast<std::size_t>(width)}, f);
 }
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools

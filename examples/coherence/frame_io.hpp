@@ -12,7 +12,7 @@
 
 #include "coherence/temporal.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 
 struct noise_sequence {
@@ -21,7 +21,7 @@ struct noise_sequence {
   std::vector<noise_frame> frames;  // consecutive indices first, first + 1, ...
 };
 
-// Reads one (H, W) float32 NPY file (hush::npy::load). Throws std::runtime_error
+// Reads one (H, W) float32 NPY file (hush_tools::npy::load). Throws std::runtime_error
 // "'<path>': <what>" when it cannot be read, is not NPY 1.0 '<f4' C-order 2D with
 // 1 <= H, W <= 2^20, or its data size disagrees with its shape.
 noise_frame load_noise_frame(const std::string& path, int& width, int& height);
@@ -34,12 +34,12 @@ noise_sequence load_noise_frames(const std::string& dir);
 // "DIR/NNNN.npy" for frame `index` (>= 0), at least 4 digits.
 std::string noise_frame_path(const std::string& dir, int index);
 
-// Writes `f` (width * height values) as an (H, W) '<f4' NPY 1.0 file (hush::npy::save);
+// Writes `f` (width * height values) as an (H, W) '<f4' NPY 1.0 file (hush_tools::npy::save);
 // throws std::runtime_error naming the file when it cannot be written completely (the file
 // is then removed), hush::invalid_argument when f.size() != width * height.
 void save_noise_frame(const std::string& path, const noise_frame& f, int width, int height);
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_COHERENCE_FRAME_IO_HPP

@@ -32,7 +32,7 @@
 #include "triangles.hpp"
 
 int main(int argc, char** argv) {
-  namespace hc = hush::coherence;
+  namespace hc = hush_tools::coherence;
   const hc::table_args args = hc::parse_table_args(argc, argv, "hush_npr_gabor_table");
   const int width = args.width, height = args.height, first = args.first, count = args.count;
   const std::vector<std::string>& scenes = args.scenes;
@@ -40,17 +40,18 @@ int main(int argc, char** argv) {
   try {
     hc::print_metrics_header();
     for (const std::string& name : scenes) {
-      const hush::scene::scene s = hush::scene::make_scene(name);
+      const hush_tools::scene::scene s = hush_tools::scene::make_scene(name);
       hush::coherent_params cprm;
       cprm.input = hush::coherent_input::bandpass;
       hush::coherent_stream coherent(cprm);
-      std::vector<hush::scene::gbuffer> g;
+      std::vector<hush_tools::scene::gbuffer> g;
       std::vector<hc::noise_frame> coh;
       std::vector<float> out(w * h);
-      hush::scene::gbuffer frame;
+      hush_tools::scene::gbuffer frame;
       for (int i = 0; i < first + count; ++i) {
-        hush::scene::render_cpu(s, i, width, height, hush::scene::raster_options{}, frame);
-        coherent.advance(hush::exec::scalar, hush::scene::as_frame(frame),
+        hush_tools::scene::render_cpu(s, i, width, height, hush_tools::scene::raster_options{},
+                                      frame);
+        coherent.advance(hush::exec::scalar, hush_tools::scene::as_frame(frame),
                          hush::image_view<float>(out.data(), w, h));
         if (i >= first) {
           g.push_back(frame);
@@ -80,9 +81,10 @@ int main(int argc, char** argv) {
         const hush::npr_gabor noise{p};
         std::vector<hc::noise_frame> npr;
         for (int i = first; i < first + count; ++i) {
-          const hush::scene::triangle_frame t = hush::scene::project_triangles(s, i, width, height);
-          noise.render(hush::scene::as_frame(g[static_cast<std::size_t>(i - first)]), t.view(),
-                       hush::image_view<float>(out.data(), w, h));
+          const hush_tools::scene::triangle_frame t =
+              hush_tools::scene::project_triangles(s, i, width, height);
+          noise.render(hush_tools::scene::as_frame(g[static_cast<std::size_t>(i - first)]),
+                       t.view(), hush::image_view<float>(out.data(), w, h));
           npr.push_back(out);
         }
         hc::print_metrics_row(name, v.label, npr, g);
@@ -92,9 +94,9 @@ int main(int argc, char** argv) {
       const hush::npr_gabor::params defaults;
       const int radius = static_cast<int>(
           std::ceil(hush::gabor_kernel<2>{defaults.bandwidth, defaults.truncation}.radius()));
-      std::vector<hush::scene::gbuffer> band;
+      std::vector<hush_tools::scene::gbuffer> band;
       band.reserve(g.size());
-      for (const hush::scene::gbuffer& f : g)
+      for (const hush_tools::scene::gbuffer& f : g)
         band.push_back(hc::silhouette_band(f, radius, defaults.depth_tolerance));
       const std::string suffix = ", silhouette band " + std::to_string(radius) + " px";
       hc::print_metrics_row(name, "NPR Gabor, anisotropic" + suffix, band_frames[0], band);

@@ -7,7 +7,7 @@
 
 #include <cstddef>
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 
 struct options {
@@ -43,6 +43,6 @@ constexpr double kFollowingMinLoss = 1e-9;
 void validate(const options& o);
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_COHERENCE_OPTIONS_HPP

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 namespace {
 
@@ -157,4 +157,4 @@ std::string to_json(const report& r) {
 }
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools

@@ -10,7 +10,7 @@
 #include "coherence/temporal.hpp"
 #include "scene/gbuffer.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 
 struct report {
@@ -32,6 +32,6 @@ std::string to_markdown(const report& r);
 std::string to_json(const report& r);
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_COHERENCE_REPORT_HPP

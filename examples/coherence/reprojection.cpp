@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 
 reprojection reproject(const scene::gbuffer& previous, const scene::gbuffer& current, int x, int y,
@@ -59,4 +59,4 @@ reprojection reproject(const scene::gbuffer& previous, const scene::gbuffer& cur
 }
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools

@@ -12,7 +12,7 @@
 
 #include "scene/gbuffer.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 
 enum class visibility {
@@ -48,6 +48,6 @@ inline double sample(const float* image, const reprojection& r) {
 }
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_COHERENCE_REPROJECTION_HPP

@@ -14,13 +14,13 @@
 
 #include "scene/gbuffer.hpp"
 
-namespace hush::coherence {
+namespace hush_tools::coherence {
 
 // `g` with object_id set to 0 (background) outside the band, so that the metrics
 // (measure(), temporal.hpp) count only band pixels: a pixel enters a frame pair when it is
 // in the band of both frames. radius >= 0; relative_depth >= 0.
-inline hush::scene::gbuffer silhouette_band(const hush::scene::gbuffer& g, int radius,
-                                            double relative_depth) {
+inline hush_tools::scene::gbuffer silhouette_band(const hush_tools::scene::gbuffer& g, int radius,
+                                                  double relative_depth) {
   const int w = g.width, h = g.height;
   const auto at = [w](int x, int y) { return static_cast<std::size_t>(y) * w + x; };
   std::vector<char> edge(g.pixels(), 0);
@@ -38,7 +38,7 @@ inline hush::scene::gbuffer silhouette_band(const hush::scene::gbuffer& g, int r
           edge[p] = 1;
       }
     }
-  hush::scene::gbuffer band = g;
+  hush_tools::scene::gbuffer band = g;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       bool near = false;
@@ -53,6 +53,6 @@ inline hush::scene::gbuffer silhouette_band(const hush::scene::gbuffer& g, int r
   return band;
 }
 
-}  // namespace hush::coherence
+}  // namespace hush_tools::coherence
 
 #endif  // HUSH_EXAMPLES_COHERENCE_SILHOUETTE_BAND_HPP

@@ -14,7 +14,7 @@
 #include "coherence/report.hpp"
 #include "scene.hpp"
 
-namespace hush::coherence {
+namespace hush_tools::coherence {
 
 struct table_args {
   int width = 320, height = 240, first = 90, count = 10;
@@ -56,7 +56,7 @@ inline void print_metrics_header() {
 }
 inline void print_metrics_row(const std::string& scene, const std::string& noise,
                               const std::vector<noise_frame>& frames,
-                              const std::vector<hush::scene::gbuffer>& g) {
+                              const std::vector<hush_tools::scene::gbuffer>& g) {
   const report r = measure(frames, g);
   const auto& t = r.temporal;
   const auto& f = r.flatness;
@@ -66,6 +66,6 @@ inline void print_metrics_row(const std::string& scene, const std::string& noise
               f.pooled_frequency_cv);
 }
 
-}  // namespace hush::coherence
+}  // namespace hush_tools::coherence
 
 #endif  // HUSH_EXAMPLES_COHERENCE_TABLE_CLI_HPP

@@ -16,7 +16,7 @@
 #include "scene.hpp"
 
 int main(int argc, char** argv) {
-  namespace hc = hush::coherence;
+  namespace hc = hush_tools::coherence;
   const hc::table_args args = hc::parse_table_args(argc, argv, "hush_coherence_table");
   const int width = args.width, height = args.height, first = args.first, count = args.count;
   const std::vector<std::string>& scenes = args.scenes;
@@ -26,10 +26,10 @@ int main(int argc, char** argv) {
         "popping | freq CV | freq max/min | var CV | pooled freq CV |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const std::string& name : scenes) {
-      const hush::scene::scene s = hush::scene::make_scene(name);
-      std::vector<hush::scene::gbuffer> g;
+      const hush_tools::scene::scene s = hush_tools::scene::make_scene(name);
+      std::vector<hush_tools::scene::gbuffer> g;
       for (int i = first; i < first + count; ++i)
-        g.push_back(hush::scene::render_cpu(s, i, width, height));
+        g.push_back(hush_tools::scene::render_cpu(s, i, width, height));
       for (auto kind :
            {hc::baseline_kind::white, hc::baseline_kind::shower_door, hc::baseline_kind::texture}) {
         const std::vector<hc::noise_frame> frames = hc::make_baseline(kind, g);

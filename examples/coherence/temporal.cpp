@@ -9,14 +9,14 @@
 #include "coherence/reprojection.hpp"
 #include "hush/core/error.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] void throw_sequence(const std::string& what) {
-  throw hush::invalid_argument("hush::coherence: " + what);
+  throw hush::invalid_argument("hush_tools::coherence: " + what);
 }
 
 void check_channel(std::size_t got, std::size_t want, std::size_t frame, const char* name) {
@@ -227,4 +227,4 @@ temporal_metrics measure_temporal(const std::vector<noise_frame>& frames,
 }
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools

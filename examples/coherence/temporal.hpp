@@ -25,7 +25,7 @@
 #include "coherence/options.hpp"
 #include "scene/gbuffer.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace coherence {
 
 // One noise frame: gbuffer.width * gbuffer.height values, row-major, row 0 at the top (the
@@ -90,6 +90,6 @@ void validate_sequence(const std::vector<noise_frame>& frames,
                        const std::vector<scene::gbuffer>& gbuffers);
 
 }  // namespace coherence
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_COHERENCE_TEMPORAL_HPP

@@ -14,7 +14,7 @@
 #include "hush/core/error.hpp"
 #include "npy/output_file.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace gif {
 namespace {
 
@@ -161,7 +161,7 @@ int level(std::uint8_t c, int levels, double t) {
 }
 
 void write(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  hush::npy::output_file f(path);
+  hush_tools::npy::output_file f(path);
   f.write(bytes.data(), bytes.size());
   f.close();
 }
@@ -170,7 +170,7 @@ void write(const std::string& path, const std::vector<std::uint8_t>& bytes) {
 
 std::vector<std::uint8_t> encode(const std::vector<std::vector<std::uint8_t>>& frames, int width,
                                  int height, int delay_cs) {
-  check("hush::gif::encode", frames, width, height, delay_cs, 1);
+  check("hush_tools::gif::encode", frames, width, height, delay_cs, 1);
   std::vector<std::uint8_t> gray;
   for (unsigned g = 0; g < 256; ++g)
     gray.insert(gray.end(), {static_cast<std::uint8_t>(g), static_cast<std::uint8_t>(g),
@@ -208,7 +208,7 @@ std::uint8_t dither(std::uint8_t r, std::uint8_t g, std::uint8_t b, std::size_t 
 
 std::vector<std::uint8_t> encode_rgb(const std::vector<std::vector<std::uint8_t>>& frames,
                                      int width, int height, int delay_cs) {
-  check("hush::gif::encode_rgb", frames, width, height, delay_cs, 3);
+  check("hush_tools::gif::encode_rgb", frames, width, height, delay_cs, 3);
   const std::size_t w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height);
   std::vector<std::vector<std::uint8_t>> indices(frames.size(), std::vector<std::uint8_t>(w * h));
   for (std::size_t f = 0; f < frames.size(); ++f)
@@ -231,4 +231,4 @@ void save_rgb(const std::string& path, const std::vector<std::vector<std::uint8_
 }
 
 }  // namespace gif
-}  // namespace hush
+}  // namespace hush_tools

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-namespace hush {
+namespace hush_tools {
 namespace gif {
 
 // The whole GIF file. Throws hush::invalid_argument when there are no frames, a size is 0 or
@@ -53,6 +53,6 @@ void save_rgb(const std::string& path, const std::vector<std::vector<std::uint8_
               int width, int height, int delay_cs);
 
 }  // namespace gif
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_GIF_GIF_HPP

@@ -57,7 +57,7 @@ const std::vector<option_spec>& coherence_baseline_options() {
 namespace {
 
 namespace fs = std::filesystem;
-namespace hc = hush::coherence;
+namespace hc = hush_tools::coherence;
 
 option_values read_options(const std::vector<std::string>& args,
                            const std::vector<option_spec>& specs) {
@@ -78,19 +78,20 @@ const std::string& required(const option_values& given, const char* name, const 
 
 // frame_NNNN directories `first`, first + 1, ... (count of them, or all consecutive ones
 // from `first` when count < 0).
-std::vector<hush::scene::gbuffer> load_gbuffers(const std::string& dir, int first, int count) {
+std::vector<hush_tools::scene::gbuffer> load_gbuffers(const std::string& dir, int first,
+                                                      int count) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw usage_error("--gbuffer '" + dir + "' is not a directory");
-  std::vector<hush::scene::gbuffer> g;
+  std::vector<hush_tools::scene::gbuffer> g;
   for (int i = first; count < 0 || i < first + count; ++i) {
-    const std::string frame = hush::scene::frame_directory(dir, i);
+    const std::string frame = hush_tools::scene::frame_directory(dir, i);
     if (!fs::is_directory(frame, ec)) {
       if (count < 0) break;
       throw usage_error("--gbuffer '" + dir + "' has no " + fs::path(frame).filename().string() +
                         " for noise frame " + std::to_string(i));
     }
     try {
-      g.push_back(hush::scene::load_gbuffer(frame));
+      g.push_back(hush_tools::scene::load_gbuffer(frame));
     } catch (const std::runtime_error& e) {
       throw usage_error(std::string("--gbuffer: ") + e.what());
     }
@@ -119,7 +120,7 @@ int run_baseline(const std::vector<std::string>& args) {
     if (!(o.feature_pixels >= 1 && o.feature_pixels <= 4096))
       throw_bad_value("--feature-pixels", *v, "a number in 1 ... 4096");
   }
-  const std::vector<hush::scene::gbuffer> g = load_gbuffers(gdir, 0, -1);
+  const std::vector<hush_tools::scene::gbuffer> g = load_gbuffers(gdir, 0, -1);
   std::vector<hc::noise_frame> frames;
   try {
     frames = hc::make_baseline(kind, g, o);
@@ -177,7 +178,7 @@ int run_coherence(const std::vector<std::string>& args) {
   }
   if (noise.frames.size() < 2)
     throw usage_error("--frames '" + fdir + "' holds 1 frame; the metrics need at least 2");
-  const std::vector<hush::scene::gbuffer> g =
+  const std::vector<hush_tools::scene::gbuffer> g =
       load_gbuffers(gdir, noise.first, static_cast<int>(noise.frames.size()));
   if (g[0].width != noise.width || g[0].height != noise.height)
     throw usage_error("--frames are " + std::to_string(noise.width) + "x" +

@@ -381,7 +381,7 @@ int run_gallery(const std::vector<std::string>& args) {
       write_png(path, still);
     } else {
       try {
-        (e.render_rgb ? hush::gif::save_rgb : hush::gif::save)(
+        (e.render_rgb ? hush_tools::gif::save_rgb : hush_tools::gif::save)(
             path, bytes, static_cast<int>(width), static_cast<int>(height), e.delay_cs);
       } catch (const std::runtime_error& err) {
         throw run_error(err.what());

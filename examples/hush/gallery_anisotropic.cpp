@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 // Shown over +- this many standard deviations.
 constexpr double kShownSigmas = 3.0;
 
-double stddev(const hush_aniso::image& im) {
+double stddev(const hush_tools::aniso::image& im) {
   double s = 0, s2 = 0;
   for (float v : im.v) {
     s += v;
@@ -29,7 +29,7 @@ double stddev(const hush_aniso::image& im) {
   return std::sqrt(std::max(s2 / n - (s / n) * (s / n), 1e-30));
 }
 
-gray_image gray(const hush_aniso::image& im, double half_range) {
+gray_image gray(const hush_tools::aniso::image& im, double half_range) {
   return to_gray_image(im.v, im.width, im.height, -half_range, half_range);
 }
 
@@ -58,7 +58,7 @@ std::string fixed(double v, int digits) {
 // Figures 2 and 3: the four orientation subbands of one scale and their isotropic sum,
 // spectra below.
 gray_image subbands(std::string& caption) {
-  const std::vector<hush_aniso::image> tiles = hush_aniso::figure2(4, 256, 7);
+  const std::vector<hush_tools::aniso::image> tiles = hush_tools::aniso::figure2(4, 256, 7);
   std::vector<gray_image> top, bottom;
   for (const auto& t : tiles) {
     top.push_back(gray(t, kShownSigmas * stddev(t)));
@@ -72,7 +72,7 @@ gray_image subbands(std::string& caption) {
 
 // Figure 6: two octaves on a trapezoid: none, least squares, heuristic.
 gray_image trapezoid(std::string& caption) {
-  const std::vector<hush_aniso::image> v = hush_aniso::figure6(384, 192);
+  const std::vector<hush_tools::aniso::image> v = hush_tools::aniso::figure6(384, 192);
   const double r = kShownSigmas * stddev(v[1]);
   caption =
       "a square of texture on a trapezoid, 2 octaves, K = 4, 5 scales (paper fig. 6): "
@@ -82,7 +82,7 @@ gray_image trapezoid(std::string& caption) {
 
 // Figure 8: resampling a high-frequency image under shear and non-uniform scale.
 gray_image resampling(std::string& caption) {
-  const std::vector<hush_aniso::resampling_result> r = hush_aniso::figure8();
+  const std::vector<hush_tools::aniso::resampling_result> r = hush_tools::aniso::figure8();
   const double range = kShownSigmas * stddev(r.front().result);
   std::vector<gray_image> panels;
   caption =
@@ -98,7 +98,7 @@ gray_image resampling(std::string& caption) {
 
 // Figure 9: a receding plane, 2 octaves.
 gray_image receding(std::string& caption) {
-  const hush_aniso::receding_result r = hush_aniso::figure9(512, 256);
+  const hush_tools::aniso::receding_result r = hush_tools::aniso::figure9(512, 256);
   const double range = kShownSigmas * stddev(r.unfiltered4);
   caption = "receding plane, 2 octaves (paper fig. 9), top to bottom: K = 4 (RMS " +
             fixed(r.rms4, 3) + " against the reference) | K = 8 (" + fixed(r.rms8, 3) +
@@ -110,7 +110,7 @@ gray_image receding(std::string& caption) {
 
 // Figure 13: steered by an orientation field.
 gray_image field(std::string& caption) {
-  const hush_aniso::image im = hush_aniso::figure13(384, 4.0);
+  const hush_tools::aniso::image im = hush_tools::aniso::figure13(384, 4.0);
   caption =
       "noise steered by a vortex orientation field, features 4 x longer along it "
       "(paper fig. 13; per-sample targets as surface maps) | log power spectrum";

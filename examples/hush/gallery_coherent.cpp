@@ -18,7 +18,7 @@ namespace hush_cli {
 #if HUSH_CLI_HAVE_SCENE
 namespace {
 
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 
 constexpr std::size_t kW = 128, kH = 96;  // one panel
 constexpr int kFrames = 32;               // animations: 32 frames, 8 cs each (12.5 fps)

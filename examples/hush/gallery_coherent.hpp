@@ -35,7 +35,7 @@ std::vector<gallery_item> coherent_gallery_items();
 #if HUSH_CLI_HAVE_SCENE
 // Noise values `v` (one per pixel of g) on g's surfaces, shown over [-range, range];
 // background black. Shared by the scene-driven noises' gallery entries.
-gray_image noise_on_surfaces(const std::vector<float>& v, const hush::scene::gbuffer& g,
+gray_image noise_on_surfaces(const std::vector<float>& v, const hush_tools::scene::gbuffer& g,
                              double range);
 #endif
 

@@ -20,7 +20,7 @@ namespace hush_cli {
 #if HUSH_CLI_HAVE_SCENE
 namespace {
 
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 
 constexpr std::size_t kW = 128, kH = 96;  // one panel
 constexpr int kFrames = 24;               // 24 frames, 8 cs each (12.5 fps)

@@ -1,6 +1,6 @@
 // hush — the `hush` program: an output file that is either completely written or absent.
 //
-// hush::npy::output_file (examples/npy/output_file.hpp) with the program's error type:
+// hush_tools::npy::output_file (examples/npy/output_file.hpp) with the program's error type:
 // opening, writing and closing report failures as run_error naming the path and the
 // system's reason. A file that is not closed successfully (an error, an exception
 // unwinding past it) is removed, so a failed run never leaves a truncated .npy or .png.
@@ -16,7 +16,7 @@
 
 namespace hush_cli {
 
-// Runs `io`, a call of hush::npy (files): its failures, std::runtime_error, are run errors
+// Runs `io`, a call of hush_tools::npy (files): its failures, std::runtime_error, are run errors
 // of the program (exit code 1) with the same message.
 template <class Io>
 void as_run_error(Io io) {
@@ -38,7 +38,7 @@ class output_file {
   const std::string& path() const { return file_.path(); }
 
  private:
-  hush::npy::output_file file_;
+  hush_tools::npy::output_file file_;
 };
 
 }  // namespace hush_cli

@@ -52,7 +52,8 @@ class anisotropic_scene_noise final : public scene_noise {
                                    hush::frame_view::object_id | hush::frame_view::triangle_id;
     for (std::size_t i = 0; i < n; ++i) {
       const hush::frame f = frames.frame(i, needs);
-      const std::vector<float> out = hush_aniso::render_frame(noise_, f, maps_, ex, compensate_);
+      const std::vector<float> out =
+          hush_tools::aniso::render_frame(noise_, f, maps_, ex, compensate_);
       sink.write(i, {hush::image_view<const float>(out.data(), w, h)});
       sink.progress("anisotropic", i + 1, n);
     }
@@ -78,7 +79,7 @@ std::unique_ptr<scene_noise> make_render(const render_setup& setup, const option
   const std::string* scene = find_value(given, "--scene");
   if (scene) {
     try {
-      maps = hush_aniso::scene_surface_maps(hush::scene::make_scene(*scene));
+      maps = hush_tools::aniso::scene_surface_maps(hush_tools::scene::make_scene(*scene));
     } catch (const hush::invalid_argument& e) {
       throw usage_error("--scene '" + *scene + "' is invalid: " + e.what());
     }

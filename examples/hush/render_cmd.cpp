@@ -55,11 +55,12 @@ class directory_sequence final : public gbuffer_sequence {
     if (frames > 0) {
       size_ = static_cast<std::size_t>(frames);
       for (std::size_t i = 0; i < size_; ++i)
-        if (!fs::is_directory(hush::scene::frame_directory(dir_, static_cast<int>(i)), ec))
+        if (!fs::is_directory(hush_tools::scene::frame_directory(dir_, static_cast<int>(i)), ec))
           throw usage_error("--gbuffer '" + dir_ + "' has no frame_" + four(i) + " (--frames " +
                             std::to_string(frames) + ")");
     } else {
-      while (fs::is_directory(hush::scene::frame_directory(dir_, static_cast<int>(size_)), ec))
+      while (
+          fs::is_directory(hush_tools::scene::frame_directory(dir_, static_cast<int>(size_)), ec))
         ++size_;
       if (size_ == 0) throw usage_error("--gbuffer '" + dir_ + "' holds no frame_0000 directory");
     }
@@ -80,17 +81,17 @@ class directory_sequence final : public gbuffer_sequence {
         current_.forward_velocity.empty())
       throw usage_error("--gbuffer frame_" + four(i) +
                         " has no forward_velocity.npy (render the scene again with this hush)");
-    return hush::scene::as_frame(current_);
+    return hush_tools::scene::as_frame(current_);
   }
   hush::triangle_list triangles(std::size_t i) override {
     if (triangles_loaded_ != static_cast<long long>(i)) {
-      const std::string dir = hush::scene::frame_directory(dir_, static_cast<int>(i));
-      if (!hush::scene::has_triangles(dir))
+      const std::string dir = hush_tools::scene::frame_directory(dir_, static_cast<int>(i));
+      if (!hush_tools::scene::has_triangles(dir))
         throw usage_error("--gbuffer frame_" + four(i) +
                           " has no tri_*.npy triangle files (render the scene again with this "
                           "hush)");
       try {
-        triangles_ = hush::scene::load_triangles(dir);
+        triangles_ = hush_tools::scene::load_triangles(dir);
       } catch (const std::runtime_error& e) {
         throw run_error(e.what());
       }
@@ -104,13 +105,13 @@ class directory_sequence final : public gbuffer_sequence {
             static_cast<std::size_t>(current_.width), static_cast<std::size_t>(current_.height)};
   }
   field_file field(std::size_t i, const std::string& name) override {
-    const fs::path path = fs::path(hush::scene::frame_directory(dir_, static_cast<int>(i))) /
-                          (name + ".npy");
+    const fs::path path =
+        fs::path(hush_tools::scene::frame_directory(dir_, static_cast<int>(i))) / (name + ".npy");
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
       throw usage_error("--gbuffer frame_" + four(i) + " has no " + name + ".npy");
     try {
-      hush::npy::array<float> a = hush::npy::load<float>(path.string());
+      hush_tools::npy::array<float> a = hush_tools::npy::load<float>(path.string());
       return {std::move(a.shape), std::move(a.values)};
     } catch (const std::runtime_error& e) {
       throw run_error(e.what());
@@ -126,7 +127,8 @@ class directory_sequence final : public gbuffer_sequence {
   void load(std::size_t i) {
     if (loaded_ == static_cast<long long>(i)) return;
     try {
-      current_ = hush::scene::load_gbuffer(hush::scene::frame_directory(dir_, static_cast<int>(i)));
+      current_ = hush_tools::scene::load_gbuffer(
+          hush_tools::scene::frame_directory(dir_, static_cast<int>(i)));
     } catch (const std::runtime_error& e) {
       throw run_error(e.what());
     }
@@ -136,9 +138,9 @@ class directory_sequence final : public gbuffer_sequence {
   std::string dir_;
   std::size_t size_ = 0;
   int width_ = 0, height_ = 0;
-  hush::scene::gbuffer current_;
+  hush_tools::scene::gbuffer current_;
   long long loaded_ = -1;
-  hush::scene::triangle_frame triangles_;
+  hush_tools::scene::triangle_frame triangles_;
   long long triangles_loaded_ = -1;
 };
 
@@ -159,7 +161,7 @@ class directory_sink final : public render_sink {
     std::snprintf(name, sizeof name, "%04zu.npy", i);
     const std::string path = (fs::path(dir_) / name).string();
     as_run_error([&] {
-      hush::npy::writer out(path, hush::npy::dtype::float32, shape);
+      hush_tools::npy::writer out(path, hush_tools::npy::dtype::float32, shape);
       for (std::size_t y = 0; y < h; ++y) {
         for (std::size_t x = 0; x < w; ++x)
           for (std::size_t c = 0; c < nc; ++c) row[x * nc + c] = channels[c](x, y);
@@ -174,10 +176,10 @@ class directory_sink final : public render_sink {
     char name[32];
     std::snprintf(name, sizeof name, "%04zu.png", i);
     const std::string path = (fs::path(dir_) / name).string();
-    if (!hush::scene::detail::png_available())
+    if (!hush_tools::scene::detail::png_available())
       throw run_error("cannot write '" + path + "': this build has no PNG output (libstb-dev)");
-    if (!hush::scene::detail::write_png(path, static_cast<int>(width), static_cast<int>(height), 3,
-                                        rgb))
+    if (!hush_tools::scene::detail::write_png(path, static_cast<int>(width),
+                                              static_cast<int>(height), 3, rgb))
       throw run_error("cannot write '" + path + "'");
     ++written_;
   }

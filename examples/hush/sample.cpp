@@ -176,8 +176,8 @@ int run_sample(const std::vector<std::string>& args) {
     throw usage_error(std::string("--backend ") + backend_name(r.where) + ": " + why_not);
   const std::size_t nx = r.grid.size[0];
   if (r.out_format == format::npy) {
-    std::optional<hush::npy::writer> npy;  // streamed by rows: any size without holding it
-    as_run_error([&] { npy.emplace(r.out, hush::npy::dtype::float32, r.shape); });
+    std::optional<hush_tools::npy::writer> npy;  // streamed by rows: any size without holding it
+    as_run_error([&] { npy.emplace(r.out, hush_tools::npy::dtype::float32, r.shape); });
     for_each_row(*field, r, [&](std::size_t, const float* row, std::size_t n) {
       as_run_error([&] { npy->write(row, n); });
     });

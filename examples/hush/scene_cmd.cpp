@@ -62,7 +62,7 @@ double thread_cpu_ms() {
 }
 
 int run_list() {
-  for (const hush::scene::scene_info& s : hush::scene::scene_list()) {
+  for (const hush_tools::scene::scene_info& s : hush_tools::scene::scene_list()) {
     std::string name = s.name;
     name.resize(std::max<std::size_t>(name.size() + 2, 14), ' ');
     std::cout << name << s.description << '\n';
@@ -72,22 +72,22 @@ int run_list() {
 
 void parse_size(const std::string& token, int& width, int& height) {
   const std::string valid =
-      "WxH, width and height integers in 1 ... " + std::to_string(hush::scene::kMaxImageSize);
+      "WxH, width and height integers in 1 ... " + std::to_string(hush_tools::scene::kMaxImageSize);
   const std::vector<std::string> parts = split(token, 'x');
   long long w = 0, h = 0;
   if (parts.size() != 2 || !to_integer(parts[0], w) || !to_integer(parts[1], h) || w < 1 || h < 1 ||
-      w > hush::scene::kMaxImageSize || h > hush::scene::kMaxImageSize)
+      w > hush_tools::scene::kMaxImageSize || h > hush_tools::scene::kMaxImageSize)
     throw_bad_value("--size", token, valid);
   width = static_cast<int>(w);
   height = static_cast<int>(h);
 }
 
-hush::scene::scene load_scene(const std::string& name) {
+hush_tools::scene::scene load_scene(const std::string& name) {
   try {
-    return hush::scene::make_scene(name);
+    return hush_tools::scene::make_scene(name);
   } catch (const hush::invalid_argument&) {
     std::string valid;
-    for (const hush::scene::scene_info& s : hush::scene::scene_list())
+    for (const hush_tools::scene::scene_info& s : hush_tools::scene::scene_list())
       valid += (valid.empty() ? "" : ", ") + s.name;
     throw_bad_value("--scene", name, valid + ", dense:N (N in 1000 ... 10000000)");
   } catch (const std::exception& e) {  // an OBJ file that cannot be read
@@ -122,20 +122,20 @@ int run_render(const std::vector<std::string>& args) {
         "--backend 'gl' is unavailable: this build has no OSMesa (apt-get install "
         "libosmesa6-dev, then re-run cmake); valid: cpu");
 #endif
-  const hush::scene::scene s = load_scene(*scene_name);
+  const hush_tools::scene::scene s = load_scene(*scene_name);
 
 #if HUSH_SCENE_HAVE_GL
-  std::unique_ptr<hush::scene::gl_rasterizer> gl_raster;
+  std::unique_ptr<hush_tools::scene::gl_rasterizer> gl_raster;
   if (gl) {
     try {
-      gl_raster = std::make_unique<hush::scene::gl_rasterizer>();
+      gl_raster = std::make_unique<hush_tools::scene::gl_rasterizer>();
     } catch (const std::runtime_error& e) {
       throw run_error(e.what());
     }
   }
 #endif
   std::vector<double> times, cpu_times;
-  hush::scene::gbuffer g;
+  hush_tools::scene::gbuffer g;
   for (int f = 0; f < frames; ++f) {
     const auto start = std::chrono::steady_clock::now();
     const double cpu_start = thread_cpu_ms();
@@ -144,14 +144,15 @@ int run_render(const std::vector<std::string>& args) {
       g = gl_raster->render(s, f, width, height);
     else
 #endif
-      hush::scene::render_cpu(s, f, width, height, hush::scene::raster_options{}, g);
+      hush_tools::scene::render_cpu(s, f, width, height, hush_tools::scene::raster_options{}, g);
     cpu_times.push_back(thread_cpu_ms() - cpu_start);
     const auto stop = std::chrono::steady_clock::now();
     times.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
-    const std::string dir = hush::scene::frame_directory(*out, f);
+    const std::string dir = hush_tools::scene::frame_directory(*out, f);
     try {
-      hush::scene::save_gbuffer(g, dir);
-      hush::scene::save_triangles(hush::scene::project_triangles(s, f, width, height), dir);
+      hush_tools::scene::save_gbuffer(g, dir);
+      hush_tools::scene::save_triangles(hush_tools::scene::project_triangles(s, f, width, height),
+                                        dir);
     } catch (const std::runtime_error& e) {
       throw run_error(e.what());
     }

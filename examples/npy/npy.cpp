@@ -10,7 +10,7 @@
 
 #include "hush/core/error.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace npy {
 namespace {
 
@@ -122,7 +122,7 @@ std::string shape_text(const std::vector<std::size_t>& shape) {
 std::size_t element_count(const std::vector<std::size_t>& shape) {
   std::size_t count = 0;
   if (!checked_count(shape, count))
-    throw hush::invalid_argument("hush::npy: shape " + shape_text(shape) +
+    throw hush::invalid_argument("hush_tools::npy: shape " + shape_text(shape) +
                                  " is out of range; valid: at most SIZE_MAX / 4 elements");
   return count;
 }
@@ -134,7 +134,7 @@ std::string header(dtype type, const std::vector<std::size_t>& shape) {
   dict.append((kAlignment - unpadded % kAlignment) % kAlignment, ' ');
   dict += '\n';
   if (dict.size() > kMaxHeader)
-    throw hush::invalid_argument("hush::npy: shape of " + std::to_string(shape.size()) +
+    throw hush::invalid_argument("hush_tools::npy: shape of " + std::to_string(shape.size()) +
                                  " axes is out of range; valid: a header of at most 65535 bytes");
   std::string out(kMagic, kMagicSize);
   out += '\x01';  // version 1.0
@@ -153,13 +153,13 @@ writer::writer(std::string path, dtype type, const std::vector<std::size_t>& sha
 
 void writer::write(const float* values, std::size_t count) {
   if (type_ != dtype::float32)
-    throw hush::invalid_argument("hush::npy::writer: float values for a '<u4' file");
+    throw hush::invalid_argument("hush_tools::npy::writer: float values for a '<u4' file");
   write_words(values, count);
 }
 
 void writer::write(const std::uint32_t* values, std::size_t count) {
   if (type_ != dtype::uint32)
-    throw hush::invalid_argument("hush::npy::writer: uint32 values for a '<f4' file");
+    throw hush::invalid_argument("hush_tools::npy::writer: uint32 values for a '<f4' file");
   write_words(values, count);
 }
 
@@ -183,7 +183,7 @@ template <class T>
 void save(const std::string& path, const std::vector<std::size_t>& shape,
           const std::vector<T>& values) {
   if (values.size() != element_count(shape))
-    throw hush::invalid_argument("hush::npy::save: " + std::to_string(values.size()) +
+    throw hush::invalid_argument("hush_tools::npy::save: " + std::to_string(values.size()) +
                                  " values for shape " + shape_text(shape) + " of '" + path + "'");
   writer out(path, dtype_of<T>(), shape);
   out.write(values.data(), values.size());
@@ -242,4 +242,4 @@ template array<float> load<float>(const std::string&);
 template array<std::uint32_t> load<std::uint32_t>(const std::string&);
 
 }  // namespace npy
-}  // namespace hush
+}  // namespace hush_tools

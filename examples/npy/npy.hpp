@@ -24,7 +24,7 @@
 
 #include "npy/output_file.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace npy {
 
 // The element type of an array: its NPY 'descr' is '<f4' or '<u4'.
@@ -113,6 +113,6 @@ template <class T>
 array<T> load(const std::string& path);
 
 }  // namespace npy
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_NPY_NPY_HPP

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
-namespace hush {
+namespace hush_tools {
 namespace npy {
 
 output_file::output_file(std::string path) : path_(std::move(path)) {
@@ -54,4 +54,4 @@ void output_file::fail(const std::string& what) {
 }
 
 }  // namespace npy
-}  // namespace hush
+}  // namespace hush_tools

@@ -1,4 +1,4 @@
-// hush — an output file that is either completely written or absent: what hush::npy::writer
+// hush — an output file that is either completely written or absent: what hush_tools::npy::writer
 // writes to, and what the hush program writes its other files (PNG, JSON, GLSL) with.
 //
 // Opening, writing and closing report failures as std::runtime_error naming the path and the
@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <string>
 
-namespace hush {
+namespace hush_tools {
 namespace npy {
 
 class output_file {
@@ -42,6 +42,6 @@ class output_file {
 };
 
 }  // namespace npy
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_NPY_OUTPUT_FILE_HPP

@@ -47,7 +47,7 @@
 
 #include "hush/core/frame.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 
 struct gbuffer {
@@ -87,6 +87,6 @@ inline hush::frame as_frame(const gbuffer& g) {
 }
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_SCENE_GBUFFER_HPP

@@ -15,7 +15,7 @@
 #include "npy/npy.hpp"
 #include "png_write.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 namespace {
 
@@ -218,4 +218,4 @@ std::string frame_directory(const std::string& dir, int frame) {
 bool previews_supported() { return detail::png_available(); }
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools

@@ -19,7 +19,7 @@
 
 #include "gbuffer.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 
 // Writes `g` into `frame_dir` (created with its parents if missing; existing channel
@@ -40,6 +40,6 @@ std::string frame_directory(const std::string& dir, int frame);
 bool previews_supported();
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_SCENE_GBUFFER_IO_HPP

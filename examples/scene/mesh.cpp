@@ -15,7 +15,7 @@
 
 #include "hush/core/error.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 namespace {
 
@@ -290,4 +290,4 @@ mesh load_obj(const std::string& path) {
 }
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools

@@ -16,7 +16,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 
 struct mesh {
@@ -80,6 +80,6 @@ mesh make_pitcher(int segments);
 mesh load_obj(const std::string& path);
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_SCENE_MESH_HPP

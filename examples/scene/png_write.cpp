@@ -8,7 +8,7 @@
 #include "stb_image_write.h"
 #endif
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 namespace detail {
 
@@ -27,4 +27,4 @@ bool png_available() { return HUSH_SCENE_HAVE_PNG != 0; }
 
 }  // namespace detail
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools

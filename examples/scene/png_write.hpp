@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 namespace detail {
 
@@ -18,6 +18,6 @@ bool png_available();
 
 }  // namespace detail
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_SCENE_PNG_WRITE_HPP

@@ -17,7 +17,7 @@
 
 #include "hush/core/error.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 namespace {
 
@@ -429,4 +429,4 @@ void render_cpu(const scene& s, int frame, int width, int height, const raster_o
 }
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools

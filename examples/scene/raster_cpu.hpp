@@ -34,7 +34,7 @@
 #include "gbuffer.hpp"
 #include "scene.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 
 // Largest width and height the rasterizers accept (keeps the 1/256-pixel fixed-point
@@ -74,6 +74,6 @@ void check_scene(const scene& s, const camera_pose& pose);
 gbuffer make_background(int width, int height);
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_SCENE_RASTER_CPU_HPP

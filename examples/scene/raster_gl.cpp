@@ -20,7 +20,7 @@
 #include "hush/glsl/osmesa_context.hpp"
 #include "raster_cpu.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 namespace {
 
@@ -418,4 +418,4 @@ gbuffer render_gl(const scene& s, int frame, int width, int height) {
 }
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools

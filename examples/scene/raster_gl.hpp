@@ -26,7 +26,7 @@
 #include "gbuffer.hpp"
 #include "scene.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 
 class gl_rasterizer {
@@ -58,6 +58,6 @@ class gl_rasterizer {
 gbuffer render_gl(const scene& s, int frame, int width, int height);
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_SCENE_RASTER_GL_HPP

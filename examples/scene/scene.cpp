@@ -11,7 +11,7 @@
 
 #include "hush/core/error.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 namespace {
 
@@ -235,4 +235,4 @@ scene make_scene(const std::string& name) {
 }
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools

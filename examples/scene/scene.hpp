@@ -19,7 +19,7 @@
 
 #include "mesh.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 
 // Where the camera is in one frame. Right-handed world, y up; the camera looks from
@@ -76,6 +76,6 @@ const std::vector<scene_info>& scene_list();
 scene make_scene(const std::string& name);
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_SCENE_SCENE_HPP

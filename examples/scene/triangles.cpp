@@ -15,7 +15,7 @@
 #include "npy/npy.hpp"
 #include "raster_cpu.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 namespace {
 
@@ -127,4 +127,4 @@ triangle_frame load_triangles(const std::string& frame_dir) {
 }
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools

@@ -27,7 +27,7 @@
 #include "hush/core/vec.hpp"
 #include "scene.hpp"
 
-namespace hush {
+namespace hush_tools {
 namespace scene {
 
 struct triangle_frame {
@@ -62,6 +62,6 @@ bool has_triangles(const std::string& frame_dir);
 triangle_frame load_triangles(const std::string& frame_dir);
 
 }  // namespace scene
-}  // namespace hush
+}  // namespace hush_tools
 
 #endif  // HUSH_SCENE_TRIANGLES_HPP

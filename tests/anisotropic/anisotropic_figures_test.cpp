@@ -11,7 +11,7 @@
 #include "figures.hpp"
 
 TEST_CASE("figure 8: LSQ-8 < LSQ-4 <= heuristic-4 < bilinear, heuristic-8 within 1.5 LSQ-8") {
-  const std::vector<hush_aniso::resampling_result> r = hush_aniso::figure8();
+  const std::vector<hush_tools::aniso::resampling_result> r = hush_tools::aniso::figure8();
   auto mse = [&](const std::string& name) {
     for (const auto& x : r)
       if (x.name == name) return x.mse;
@@ -30,8 +30,8 @@ TEST_CASE("figure 8: LSQ-8 < LSQ-4 <= heuristic-4 < bilinear, heuristic-8 within
 }
 
 TEST_CASE("distortion compensation: the local frequency in surface space varies far less") {
-  for (const hush_aniso::distortion_result& d :
-       {hush_aniso::trapezoid_distortion(), hush_aniso::sphere_distortion()}) {
+  for (const hush_tools::aniso::distortion_result& d :
+       {hush_tools::aniso::trapezoid_distortion(), hush_tools::aniso::sphere_distortion()}) {
     CAPTURE(d.surface);
     MESSAGE(d.surface << ": coefficient of variation of the radial frequency over " << d.windows
                       << " windows: none " << d.cv_none << ", centre " << d.cv_centre
@@ -45,7 +45,7 @@ TEST_CASE("distortion compensation: the local frequency in surface space varies 
   }
   // The walkthrough ground plane has one T everywhere: both are uniform (at the sampling
   // floor), and compensation moves the frequency to the target.
-  const hush_aniso::distortion_result g = hush_aniso::ground_plane_distortion();
+  const hush_tools::aniso::distortion_result g = hush_tools::aniso::ground_plane_distortion();
   MESSAGE(g.surface << ": cv none " << g.cv_none << ", centre " << g.cv_centre << ", lsq "
                     << g.cv_lsq << "; mean none " << g.mean_none << ", compensated "
                     << g.mean_centre << " (target " << g.target << ")");
@@ -56,7 +56,7 @@ TEST_CASE("distortion compensation: the local frequency in surface space varies 
 }
 
 TEST_CASE("figure 9: filtered noise approaches the supersampled reference, 8 orientations best") {
-  const hush_aniso::receding_result r = hush_aniso::figure9(128, 64);
+  const hush_tools::aniso::receding_result r = hush_tools::aniso::figure9(128, 64);
   MESSAGE("RMS against the supersampled reference: K = 4 " << r.rms4 << ", K = 8 " << r.rms8
                                                            << ", unfiltered " << r.rms_unfiltered4);
   CHECK(r.rms8 < r.rms4);

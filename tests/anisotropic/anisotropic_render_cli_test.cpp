@@ -21,7 +21,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 using hush_cli_test::result;
 using hush_cli_test::run_hush;
 using hush_cli_test::scratch;
@@ -43,7 +43,7 @@ std::vector<hs::gbuffer> walkthrough_frames(const fs::path& dir) {
 std::vector<float> frame_file(const fs::path& dir, int i) {
   char name[16];
   std::snprintf(name, sizeof name, "%04d.npy", i);
-  const hush::npy::array<float> a = hush::npy::load<float>((dir / name).string());
+  const hush_tools::npy::array<float> a = hush_tools::npy::load<float>((dir / name).string());
   REQUIRE(a.shape == std::vector<std::size_t>{std::size_t(kH), std::size_t(kW)});
   return a.values;
 }
@@ -66,7 +66,7 @@ TEST_CASE("render anisotropic writes the library's frames bit for bit, compensat
   p.frequency = 2;
   p.tile_size = 64;
   const hush::anisotropic noise(p);
-  const auto maps = hush_aniso::scene_surface_maps(hs::make_scene("walkthrough"));
+  const auto maps = hush_tools::aniso::scene_surface_maps(hs::make_scene("walkthrough"));
   const std::string common = " --gbuffer '" + (dir / "g").string() +
                              "' --seed 5 --orientations 8 --scales 5 --base-scale 1 --octaves 2 "
                              "--frequency 2 --tile-size 64";
@@ -79,8 +79,8 @@ TEST_CASE("render anisotropic writes the library's frames bit for bit, compensat
     CHECK(r.exit_code == 0);
     CHECK(r.out.find("wrote 2 anisotropic frames (48x27, 1 channel, scalar)") != std::string::npos);
     for (int i = 0; i < kFrames; ++i) {
-      const std::vector<float> expect = hush_aniso::render_gbuffer(noise, g[std::size_t(i)], maps,
-                                                                   hush::exec::scalar, compensate);
+      const std::vector<float> expect = hush_tools::aniso::render_gbuffer(
+          noise, g[std::size_t(i)], maps, hush::exec::scalar, compensate);
       CHECK(same(frame_file(out, i), expect));
     }
   }

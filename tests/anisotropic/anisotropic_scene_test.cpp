@@ -9,9 +9,9 @@
 #include "scene_render.hpp"
 
 TEST_CASE("anisotropic scene render: walkthrough frame, compensated, every backend agrees") {
-  const hush::scene::scene s = hush::scene::make_scene("walkthrough");
-  const hush::scene::gbuffer g = hush::scene::render_cpu(s, 3, 96, 54);
-  const auto maps = hush_aniso::scene_surface_maps(s);
+  const hush_tools::scene::scene s = hush_tools::scene::make_scene("walkthrough");
+  const hush_tools::scene::gbuffer g = hush_tools::scene::render_cpu(s, 3, 96, 54);
+  const auto maps = hush_tools::aniso::scene_surface_maps(s);
   REQUIRE(maps.size() == s.objects.size());
   hush::anisotropic::params p;
   p.scales = 6;
@@ -20,8 +20,10 @@ TEST_CASE("anisotropic scene render: walkthrough frame, compensated, every backe
   p.frequency = 4;
   p.tile_size = 64;
   const hush::anisotropic noise(p);
-  const std::vector<float> scalar = hush_aniso::render_gbuffer(noise, g, maps, hush::exec::scalar);
-  const std::vector<float> simd = hush_aniso::render_gbuffer(noise, g, maps, hush::exec::simd);
+  const std::vector<float> scalar =
+      hush_tools::aniso::render_gbuffer(noise, g, maps, hush::exec::scalar);
+  const std::vector<float> simd =
+      hush_tools::aniso::render_gbuffer(noise, g, maps, hush::exec::simd);
   std::size_t covered = 0, nonzero = 0;
   for (std::size_t q = 0; q < g.pixels(); ++q) {
     REQUIRE(std::isfinite(scalar[q]));

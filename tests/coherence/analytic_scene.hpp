@@ -32,8 +32,8 @@ struct plane_scene {
   int frames = 2;
 };
 
-inline hush::scene::gbuffer plane_frame(const plane_scene& s, int i) {
-  hush::scene::gbuffer g;
+inline hush_tools::scene::gbuffer plane_frame(const plane_scene& s, int i) {
+  hush_tools::scene::gbuffer g;
   g.width = s.width;
   g.height = s.height;
   const std::size_t n = g.pixels();
@@ -76,8 +76,8 @@ inline hush::scene::gbuffer plane_frame(const plane_scene& s, int i) {
   return g;
 }
 
-inline std::vector<hush::scene::gbuffer> plane_sequence(const plane_scene& s) {
-  std::vector<hush::scene::gbuffer> seq;
+inline std::vector<hush_tools::scene::gbuffer> plane_sequence(const plane_scene& s) {
+  std::vector<hush_tools::scene::gbuffer> seq;
   for (int i = 0; i < s.frames; ++i) seq.push_back(plane_frame(s, i));
   return seq;
 }

@@ -16,7 +16,7 @@
 
 namespace {
 
-using hush::coherence::baseline_kind;
+using hush_tools::coherence::baseline_kind;
 
 }  // namespace
 
@@ -27,8 +27,8 @@ TEST_CASE("baselines are deterministic, zero on background, and sized like the g
   s.frames = 3;
   const auto g = hush_test::plane_sequence(s);
   for (auto kind : {baseline_kind::white, baseline_kind::shower_door, baseline_kind::texture}) {
-    const auto a = hush::coherence::make_baseline(kind, g);
-    const auto b = hush::coherence::make_baseline(kind, g);
+    const auto a = hush_tools::coherence::make_baseline(kind, g);
+    const auto b = hush_tools::coherence::make_baseline(kind, g);
     REQUIRE(a.size() == 3);
     CHECK(a == b);
     for (const auto& f : a) {
@@ -38,15 +38,15 @@ TEST_CASE("baselines are deterministic, zero on background, and sized like the g
     }
   }
   // Shower door: identical frames; white: different frames.
-  const auto sd = hush::coherence::make_baseline(baseline_kind::shower_door, g);
+  const auto sd = hush_tools::coherence::make_baseline(baseline_kind::shower_door, g);
   CHECK(sd[0] == sd[2]);
-  const auto w = hush::coherence::make_baseline(baseline_kind::white, g);
+  const auto w = hush_tools::coherence::make_baseline(baseline_kind::white, g);
   CHECK(w[0] != w[1]);
-  CHECK(hush::coherence::parse_baseline("shower-door") == baseline_kind::shower_door);
-  CHECK_THROWS_AS(hush::coherence::parse_baseline("grey"), hush::invalid_argument);
-  hush::coherence::baseline_options o;
+  CHECK(hush_tools::coherence::parse_baseline("shower-door") == baseline_kind::shower_door);
+  CHECK_THROWS_AS(hush_tools::coherence::parse_baseline("grey"), hush::invalid_argument);
+  hush_tools::coherence::baseline_options o;
   o.feature_pixels = 0;
-  CHECK_THROWS_AS(hush::coherence::make_baseline(baseline_kind::white, g, o),
+  CHECK_THROWS_AS(hush_tools::coherence::make_baseline(baseline_kind::white, g, o),
                   hush::invalid_argument);
 }
 
@@ -56,7 +56,7 @@ TEST_CASE("texture calibration gives features of feature_pixels on screen in the
   // 5 * position (seed 1 + object id 1).
   hush_test::plane_scene s;
   const auto g = hush_test::plane_sequence(s);
-  const auto f = hush::coherence::make_baseline(baseline_kind::texture, g);
+  const auto f = hush_tools::coherence::make_baseline(baseline_kind::texture, g);
   const hush::perlin<3> p(2);
   const std::size_t px = 57 * 160 + 33;
   const float want = p(hush::vec3{static_cast<float>(g[0].position[3 * px] * 5.0),
@@ -78,13 +78,13 @@ TEST_CASE("Table 1 ordering on a translating and zooming plane pair") {
   s.b.dz = -0.04;
   s.frames = 8;
   const auto g = hush_test::plane_sequence(s);
-  const hush::coherence::options o;
-  const auto white =
-      hush::coherence::measure(hush::coherence::make_baseline(baseline_kind::white, g), g, o);
-  const auto sd =
-      hush::coherence::measure(hush::coherence::make_baseline(baseline_kind::shower_door, g), g, o);
-  const auto tex =
-      hush::coherence::measure(hush::coherence::make_baseline(baseline_kind::texture, g), g, o);
+  const hush_tools::coherence::options o;
+  const auto white = hush_tools::coherence::measure(
+      hush_tools::coherence::make_baseline(baseline_kind::white, g), g, o);
+  const auto sd = hush_tools::coherence::measure(
+      hush_tools::coherence::make_baseline(baseline_kind::shower_door, g), g, o);
+  const auto tex = hush_tools::coherence::measure(
+      hush_tools::coherence::make_baseline(baseline_kind::texture, g), g, o);
   // Coherent motion: texture ~1 (bilinear resampling only); shower door correlates better
   // with the unmoved screen (S = 1) than with the surfaces (C = its autocorrelation at lags
   // of 1.6 ... 3.4 pixels, 0.2 ... 0.4 cells: about 0.6 ... 0.85); white ~0 (4 standard errors
@@ -135,10 +135,10 @@ TEST_CASE("shower door coherence is the noise's autocorrelation at the motion's 
   s.a.tx = 3 * s.a.depth / s.focal;
   s.frames = 3;
   const auto g = hush_test::plane_sequence(s);
-  const auto sd = hush::coherence::measure_temporal(
-      hush::coherence::make_baseline(baseline_kind::shower_door, g), g);
-  const auto tex = hush::coherence::measure_temporal(
-      hush::coherence::make_baseline(baseline_kind::texture, g), g);
+  const auto sd = hush_tools::coherence::measure_temporal(
+      hush_tools::coherence::make_baseline(baseline_kind::shower_door, g), g);
+  const auto tex = hush_tools::coherence::measure_temporal(
+      hush_tools::coherence::make_baseline(baseline_kind::texture, g), g);
   const double r = perlin_autocorrelation(1, 3.0 / 8);
   // The frames hold ~20 x 15 = 300 cells: a correlation estimated from them scatters by about
   // (1 - R^2) / sqrt(300) ~ 0.04; allow 2.5 times that.

@@ -20,7 +20,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-namespace hc = hush::coherence;
+namespace hc = hush_tools::coherence;
 
 using hush_cli_test::result;
 using hush_cli_test::run_hush;
@@ -28,13 +28,13 @@ using hush_cli_test::scratch;
 using hush_cli_test::slurp;
 
 // Frames 0 ... 3 of the translate scene at 96x72, written as G-buffer files and read back.
-std::vector<hush::scene::gbuffer> write_gbuffers(const fs::path& dir) {
-  const hush::scene::scene s = hush::scene::make_scene("translate");
-  std::vector<hush::scene::gbuffer> g;
+std::vector<hush_tools::scene::gbuffer> write_gbuffers(const fs::path& dir) {
+  const hush_tools::scene::scene s = hush_tools::scene::make_scene("translate");
+  std::vector<hush_tools::scene::gbuffer> g;
   for (int i = 0; i < 4; ++i) {
-    const std::string frame = hush::scene::frame_directory(dir.string(), i);
-    hush::scene::save_gbuffer(hush::scene::render_cpu(s, i, 96, 72), frame);
-    g.push_back(hush::scene::load_gbuffer(frame));
+    const std::string frame = hush_tools::scene::frame_directory(dir.string(), i);
+    hush_tools::scene::save_gbuffer(hush_tools::scene::render_cpu(s, i, 96, 72), frame);
+    g.push_back(hush_tools::scene::load_gbuffer(frame));
   }
   return g;
 }

@@ -24,7 +24,7 @@
 
 namespace {
 
-namespace hc = hush::coherence;
+namespace hc = hush_tools::coherence;
 
 constexpr int kWidth = 320, kHeight = 240, kFirst = 90, kFrames = 10;
 
@@ -41,18 +41,18 @@ hush::coherent_params params(hush::coherent_filter filter) {
 // sequence is never held: the causal pass reads it once, the symmetric one twice.
 class frames_on_demand {
  public:
-  explicit frames_on_demand(const hush::scene::scene& s) : s_(s) {}
-  const hush::scene::gbuffer& operator()(int i) {
+  explicit frames_on_demand(const hush_tools::scene::scene& s) : s_(s) {}
+  const hush_tools::scene::gbuffer& operator()(int i) {
     if (i != current_) {
-      hush::scene::render_cpu(s_, i, kWidth, kHeight, {}, g_);
+      hush_tools::scene::render_cpu(s_, i, kWidth, kHeight, {}, g_);
       current_ = i;
     }
     return g_;
   }
 
  private:
-  const hush::scene::scene& s_;
-  hush::scene::gbuffer g_;
+  const hush_tools::scene::scene& s_;
+  hush_tools::scene::gbuffer g_;
   int current_ = -1;
 };
 
@@ -61,7 +61,7 @@ std::vector<hc::noise_frame> causal(frames_on_demand& frames, hush::coherent_fil
   std::vector<hc::noise_frame> result;
   std::vector<float> out(std::size_t(kWidth) * kHeight);
   for (int i = 0; i < kFirst + kFrames; ++i) {
-    st.advance(hush::exec::simd, hush::scene::as_frame(frames(i)),
+    st.advance(hush::exec::simd, hush_tools::scene::as_frame(frames(i)),
                hush::image_view<float>(out.data(), kWidth, kHeight));
     if (i >= kFirst) result.push_back(out);
   }
@@ -71,7 +71,7 @@ std::vector<hc::noise_frame> causal(frames_on_demand& frames, hush::coherent_fil
 std::vector<hc::noise_frame> symmetric(frames_on_demand& frames) {
   hush::coherent_sequence<float> io;
   io.frames = kFirst + kFrames;
-  io.frame_at = [&](std::size_t i) { return hush::scene::as_frame(frames(int(i))); };
+  io.frame_at = [&](std::size_t i) { return hush_tools::scene::as_frame(frames(int(i))); };
   std::vector<hc::noise_frame> result(kFrames);
   io.write = [&](std::size_t i, hush::span<const hush::image_view<float>> r) {
     if (i < std::size_t(kFirst)) return;
@@ -83,10 +83,10 @@ std::vector<hc::noise_frame> symmetric(frames_on_demand& frames) {
 
 void check_scene(const std::string& name) {
   CAPTURE(name);
-  const hush::scene::scene s = hush::scene::make_scene(name);
-  std::vector<hush::scene::gbuffer> g;  // the measured frames
+  const hush_tools::scene::scene s = hush_tools::scene::make_scene(name);
+  std::vector<hush_tools::scene::gbuffer> g;  // the measured frames
   for (int i = kFirst; i < kFirst + kFrames; ++i)
-    g.push_back(hush::scene::render_cpu(s, i, kWidth, kHeight));
+    g.push_back(hush_tools::scene::render_cpu(s, i, kWidth, kHeight));
   frames_on_demand all(s);
   const hc::report white = hc::measure(hc::make_baseline(hc::baseline_kind::white, g), g);
   const hc::report sd = hc::measure(hc::make_baseline(hc::baseline_kind::shower_door, g), g);
@@ -153,18 +153,18 @@ TEST_CASE(
   // frames 100 ... 9999 on pixels whose 4-neighbours show the same object. The torus turns
   // 2 degrees per frame (180 frames per turn), so 10,000 frames hold ~55 turns: the ratios'
   // standard errors are below 0.005.
-  const hush::scene::scene s = hush::scene::make_scene("rotate");
+  const hush_tools::scene::scene s = hush_tools::scene::make_scene("rotate");
   const int w = 64, h = 48, frames = 10000;
   for (auto filter : {hush::coherent_filter::stationary, hush::coherent_filter::paper}) {
     hush::coherent_params p;
     p.filter = filter;
     hush::coherent_stream st(p);
-    hush::scene::gbuffer g;
+    hush_tools::scene::gbuffer g;
     std::vector<float> out(std::size_t(w) * h);
     double sum[2] = {0, 0}, count[2] = {0, 0}, diff[2] = {0, 0}, pairs[2] = {0, 0};
     for (int i = 0; i < frames; ++i) {
-      hush::scene::render_cpu(s, i, w, h, {}, g);
-      st.advance(hush::exec::simd, hush::scene::as_frame(g),
+      hush_tools::scene::render_cpu(s, i, w, h, {}, g);
+      st.advance(hush::exec::simd, hush_tools::scene::as_frame(g),
                  hush::image_view<float>(out.data(), w, h));
       if (i < 100) continue;
       for (int y = 1; y + 1 < h; ++y)

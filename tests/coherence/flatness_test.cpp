@@ -15,11 +15,11 @@ TEST_CASE("stationary noise on a fronto-parallel plane has flatness spread near 
   hush_test::plane_scene s;
   s.frames = 3;
   const auto g = hush_test::plane_sequence(s);
-  const hush::coherence::options o;
-  for (auto kind :
-       {hush::coherence::baseline_kind::shower_door, hush::coherence::baseline_kind::texture}) {
-    const auto frames = hush::coherence::make_baseline(kind, g);
-    const auto f = hush::coherence::measure_flatness(frames, g, o);
+  const hush_tools::coherence::options o;
+  for (auto kind : {hush_tools::coherence::baseline_kind::shower_door,
+                    hush_tools::coherence::baseline_kind::texture}) {
+    const auto frames = hush_tools::coherence::make_baseline(kind, g);
+    const auto f = hush_tools::coherence::measure_flatness(frames, g, o);
     REQUIRE(f.reason.empty());
     REQUIRE(f.frames[0].regions.size() == 3);
     // 54 windows in 3 regions of 18; windows overlap by half, so ~8 independent ones per
@@ -40,11 +40,12 @@ TEST_CASE("texture noise on planes at depths 2 and 4 has a 2x frequency spread, 
   s.b.depth = 4;
   s.frames = 2;
   const auto g = hush_test::plane_sequence(s);
-  const hush::coherence::options o;
-  const auto tex = hush::coherence::measure_flatness(
-      hush::coherence::make_baseline(hush::coherence::baseline_kind::texture, g), g, o);
-  const auto sd = hush::coherence::measure_flatness(
-      hush::coherence::make_baseline(hush::coherence::baseline_kind::shower_door, g), g, o);
+  const hush_tools::coherence::options o;
+  const auto tex = hush_tools::coherence::measure_flatness(
+      hush_tools::coherence::make_baseline(hush_tools::coherence::baseline_kind::texture, g), g, o);
+  const auto sd = hush_tools::coherence::measure_flatness(
+      hush_tools::coherence::make_baseline(hush_tools::coherence::baseline_kind::shower_door, g), g,
+      o);
   REQUIRE(tex.reason.empty());
   REQUIRE(sd.reason.empty());
   REQUIRE(tex.frames[0].regions.size() == 6);  // 2 objects x 3 depth bins of 8 windows
@@ -66,13 +67,13 @@ TEST_CASE("flatness without two measurable regions is NaN with a reason") {
   s.height = 30;
   const auto g = hush_test::plane_sequence(s);
   const auto frames =
-      hush::coherence::make_baseline(hush::coherence::baseline_kind::shower_door, g);
-  const auto f = hush::coherence::measure_flatness(frames, g);  // windows of 32: only 1 fits
+      hush_tools::coherence::make_baseline(hush_tools::coherence::baseline_kind::shower_door, g);
+  const auto f = hush_tools::coherence::measure_flatness(frames, g);  // windows of 32: only 1 fits
   CHECK(std::isnan(f.frequency_cv));
   CHECK(std::isnan(f.variance_ratio));
   CHECK(!f.reason.empty());
   CHECK(!f.frames[0].reason.empty());
-  hush::coherence::options o;
+  hush_tools::coherence::options o;
   o.window = 2;
-  CHECK_THROWS_AS(hush::coherence::measure_flatness(frames, g, o), hush::invalid_argument);
+  CHECK_THROWS_AS(hush_tools::coherence::measure_flatness(frames, g, o), hush::invalid_argument);
 }

@@ -18,21 +18,22 @@
 
 namespace {
 
-namespace hc = hush::coherence;
+namespace hc = hush_tools::coherence;
 
 constexpr int kWidth = 320, kHeight = 240, kFirst = 90, kFrames = 10;
 
 void check_ordering(const std::string& name) {
   CAPTURE(name);
-  const hush::scene::scene s = hush::scene::make_scene(name);
-  std::vector<hush::scene::gbuffer> g;
+  const hush_tools::scene::scene s = hush_tools::scene::make_scene(name);
+  std::vector<hush_tools::scene::gbuffer> g;
   std::vector<hc::noise_frame> npr;
   const hush::npr_gabor noise{hush::npr_gabor::params{}};
   std::vector<float> out(std::size_t(kWidth) * kHeight);
   for (int i = kFirst; i < kFirst + kFrames; ++i) {
-    g.push_back(hush::scene::render_cpu(s, i, kWidth, kHeight));
-    const hush::scene::triangle_frame t = hush::scene::project_triangles(s, i, kWidth, kHeight);
-    noise.render(hush::scene::as_frame(g.back()), t.view(),
+    g.push_back(hush_tools::scene::render_cpu(s, i, kWidth, kHeight));
+    const hush_tools::scene::triangle_frame t =
+        hush_tools::scene::project_triangles(s, i, kWidth, kHeight);
+    noise.render(hush_tools::scene::as_frame(g.back()), t.view(),
                  hush::image_view<float>(out.data(), kWidth, kHeight));
     npr.push_back(out);
   }

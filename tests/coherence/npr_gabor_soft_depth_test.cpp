@@ -30,17 +30,17 @@
 
 namespace {
 
-namespace hc = hush::coherence;
+namespace hc = hush_tools::coherence;
 
 constexpr int kWidth = 320, kHeight = 240, kFirst = 90, kFrames = 10;
 
 struct sequences {
-  std::vector<hush::scene::gbuffer> band;
+  std::vector<hush_tools::scene::gbuffer> band;
   std::vector<hc::noise_frame> binary, soft;
 };
 
 sequences render(const std::string& name) {
-  const hush::scene::scene s = hush::scene::make_scene(name);
+  const hush_tools::scene::scene s = hush_tools::scene::make_scene(name);
   hush::npr_gabor::params p;
   const hush::npr_gabor binary{p};
   p.soft_depth = true;
@@ -51,12 +51,13 @@ sequences render(const std::string& name) {
   sequences q;
   std::vector<float> out(std::size_t(kWidth) * kHeight);
   for (int i = kFirst; i < kFirst + kFrames; ++i) {
-    const hush::scene::gbuffer g = hush::scene::render_cpu(s, i, kWidth, kHeight);
-    const hush::scene::triangle_frame t = hush::scene::project_triangles(s, i, kWidth, kHeight);
+    const hush_tools::scene::gbuffer g = hush_tools::scene::render_cpu(s, i, kWidth, kHeight);
+    const hush_tools::scene::triangle_frame t =
+        hush_tools::scene::project_triangles(s, i, kWidth, kHeight);
     const hush::image_view<float> view(out.data(), kWidth, kHeight);
-    binary.render(hush::scene::as_frame(g), t.view(), view);
+    binary.render(hush_tools::scene::as_frame(g), t.view(), view);
     q.binary.push_back(out);
-    soft.render(hush::scene::as_frame(g), t.view(), view);
+    soft.render(hush_tools::scene::as_frame(g), t.view(), view);
     q.soft.push_back(out);
     q.band.push_back(hc::silhouette_band(g, radius, p.depth_tolerance));
   }

@@ -19,15 +19,15 @@
 
 namespace {
 
-namespace hc = hush::coherence;
+namespace hc = hush_tools::coherence;
 
 constexpr int kWidth = 320, kHeight = 240, kFirst = 90, kFrames = 10;
 
-std::vector<hush::scene::gbuffer> render(const std::string& name) {
-  const hush::scene::scene s = hush::scene::make_scene(name);
-  std::vector<hush::scene::gbuffer> g;
+std::vector<hush_tools::scene::gbuffer> render(const std::string& name) {
+  const hush_tools::scene::scene s = hush_tools::scene::make_scene(name);
+  std::vector<hush_tools::scene::gbuffer> g;
   for (int i = kFirst; i < kFirst + kFrames; ++i)
-    g.push_back(hush::scene::render_cpu(s, i, kWidth, kHeight));
+    g.push_back(hush_tools::scene::render_cpu(s, i, kWidth, kHeight));
   return g;
 }
 

@@ -13,14 +13,14 @@
 
 namespace {
 
-using hush::coherence::noise_frame;
+using hush_tools::coherence::noise_frame;
 
 // A full-screen plane at depth 1 whose every pixel moves by the integer (vx, vy).
-std::vector<hush::scene::gbuffer> shift_sequence(int w, int h, float vx, float vy) {
+std::vector<hush_tools::scene::gbuffer> shift_sequence(int w, int h, float vx, float vy) {
   hush_test::plane_scene s;
   s.width = w;
   s.height = h;
-  std::vector<hush::scene::gbuffer> g = hush_test::plane_sequence(s);
+  std::vector<hush_tools::scene::gbuffer> g = hush_test::plane_sequence(s);
   for (std::size_t p = 0; p < g[1].pixels(); ++p) {
     g[1].velocity[3 * p] = vx;
     g[1].velocity[3 * p + 1] = vy;
@@ -47,12 +47,12 @@ TEST_CASE("an exactly shifted image with the matching velocity has coherence 1 a
       if (x - vx >= 0 && x - vx < w && y - vy >= 0 && y - vy < h)
         f1[static_cast<std::size_t>(y * w + x)] =
             f0[static_cast<std::size_t>((y - vy) * w + x - vx)];
-  const auto t = hush::coherence::measure_temporal({f0, f1}, g);
+  const auto t = hush_tools::coherence::measure_temporal({f0, f1}, g);
   REQUIRE(t.pairs.size() == 1);
   // Only rounding of the correlation sums separates it from 1.
   CHECK(t.coherence_mean == doctest::Approx(1).epsilon(1e-12));
   CHECK(t.change_mean == 0);
-  CHECK(t.change_p999 < 1.0 / hush::coherence::kChangeBinsPerSigma);
+  CHECK(t.change_p999 < 1.0 / hush_tools::coherence::kChangeBinsPerSigma);
   CHECK(t.popping == 0);
   // The pixels whose source column x - 3 < 0 or source row y + 2 > h - 1 are off-screen.
   CHECK(t.pairs[0].offscreen == static_cast<std::size_t>(vx * h + (-vy) * w - vx * (-vy)));
@@ -63,7 +63,7 @@ TEST_CASE("an exactly shifted image with the matching velocity has coherence 1 a
 TEST_CASE("independent white frames have coherence within 4 standard errors of 0") {
   const int w = 160, h = 120;
   const auto g = shift_sequence(w, h, 0, 0);
-  const auto t = hush::coherence::measure_temporal({white(w, h, 0), white(w, h, 1)}, g);
+  const auto t = hush_tools::coherence::measure_temporal({white(w, h, 0), white(w, h, 1)}, g);
   const double n = static_cast<double>(t.pairs[0].compared);
   REQUIRE(n == w * h);
   // The sample correlation of independent variables has standard error 1 / sqrt(n).
@@ -101,7 +101,7 @@ TEST_CASE("a sub-pixel translation of a smooth image keeps coherence near 1") {
     }
     frames.push_back(f);
   }
-  const auto t = hush::coherence::measure_temporal(frames, g);
+  const auto t = hush_tools::coherence::measure_temporal(frames, g);
   CHECK(t.coherence_min > 0.99);
   CHECK(t.change_p999 < 0.1);
   CHECK(t.popping == 0);
@@ -116,7 +116,8 @@ TEST_CASE("pixels reprojected off the image are off-screen and a depth mismatch 
   s.b.id = 2;
   s.b.depth = 8;
   const auto g = hush_test::plane_sequence(s);
-  const auto t = hush::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g);
+  const auto t =
+      hush_tools::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g);
   // Columns 78, 79 of A reproject to 76, 77 (still A): fine. B's pixels have velocity 0:
   // fine. A's columns 0, 1 reproject to x < 0.5: off-screen.
   CHECK(t.pairs[0].offscreen == 2 * 120);
@@ -125,14 +126,16 @@ TEST_CASE("pixels reprojected off the image are off-screen and a depth mismatch 
   // B now slides left by 2 pixels per frame too.
   s.b.tx = -2 * s.b.depth / s.focal;
   const auto g2 = hush_test::plane_sequence(s);
-  const auto t2 = hush::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g2);
+  const auto t2 =
+      hush_tools::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g2);
   // B's columns 80, 81 came from columns 82, 83 (B): fine; B's last 2 columns from x > w - 0.5.
   CHECK(t2.pairs[0].offscreen == 4 * 120);
 
   // A depth step: frame 1's depth disagrees with frame 0's by 5% > depth_epsilon (2%).
   auto g3 = g;
   for (float& d : g3[0].depth) d *= 1.05f;
-  const auto t3 = hush::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g3);
+  const auto t3 =
+      hush_tools::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g3);
   CHECK(t3.pairs[0].disoccluded == t3.pairs[0].covered - t3.pairs[0].offscreen);
   CHECK(std::isnan(t3.coherence_mean));
   CHECK(!t3.pairs[0].reason.empty());
@@ -145,7 +148,8 @@ TEST_CASE("an object seen where the previous frame saw another is excluded by ob
   auto g = hush_test::plane_sequence(s);
   // Every pixel of frame 1 moves 3 pixels right: columns 80 ... 82 of B came from A's 77 ... 79.
   for (std::size_t p = 0; p < g[1].pixels(); ++p) g[1].velocity[3 * p] = 3;
-  const auto t = hush::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g);
+  const auto t =
+      hush_tools::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g);
   CHECK(t.pairs[0].offscreen == 3 * 120);
   CHECK(t.pairs[0].disoccluded == 3 * 120);
 }
@@ -154,7 +158,8 @@ TEST_CASE("background-only frames give NaN with a reason and no crash") {
   hush_test::plane_scene s;
   auto g = hush_test::plane_sequence(s);
   for (auto& gb : g) std::fill(gb.object_id.begin(), gb.object_id.end(), 0u);
-  const auto t = hush::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g);
+  const auto t =
+      hush_tools::coherence::measure_temporal({white(160, 120, 0), white(160, 120, 1)}, g);
   CHECK(std::isnan(t.coherence_mean));
   CHECK(std::isnan(t.change_mean));
   CHECK(std::isnan(t.popping));
@@ -166,18 +171,18 @@ TEST_CASE("mismatched sequences and options are rejected with hush::invalid_argu
   hush_test::plane_scene s;
   const auto g = hush_test::plane_sequence(s);
   const noise_frame f = white(160, 120, 0);
-  CHECK_THROWS_AS(hush::coherence::measure_temporal({f}, g), hush::invalid_argument);
-  CHECK_THROWS_AS(hush::coherence::measure_temporal({f, noise_frame(7)}, g),
+  CHECK_THROWS_AS(hush_tools::coherence::measure_temporal({f}, g), hush::invalid_argument);
+  CHECK_THROWS_AS(hush_tools::coherence::measure_temporal({f, noise_frame(7)}, g),
                   hush::invalid_argument);
-  CHECK_THROWS_AS(hush::coherence::measure_temporal({f}, {g[0]}), hush::invalid_argument);
+  CHECK_THROWS_AS(hush_tools::coherence::measure_temporal({f}, {g[0]}), hush::invalid_argument);
   noise_frame bad = f;
   bad[5] = NAN;
-  CHECK_THROWS_AS(hush::coherence::measure_temporal({f, bad}, g), hush::invalid_argument);
-  hush::coherence::options o;
+  CHECK_THROWS_AS(hush_tools::coherence::measure_temporal({f, bad}, g), hush::invalid_argument);
+  hush_tools::coherence::options o;
   o.depth_epsilon = -1;
-  CHECK_THROWS_AS(hush::coherence::measure_temporal({f, f}, g, o), hush::invalid_argument);
+  CHECK_THROWS_AS(hush_tools::coherence::measure_temporal({f, f}, g, o), hush::invalid_argument);
   auto short_velocity = g;
   short_velocity[1].velocity.pop_back();
-  CHECK_THROWS_AS(hush::coherence::measure_temporal({f, f}, short_velocity),
+  CHECK_THROWS_AS(hush_tools::coherence::measure_temporal({f, f}, short_velocity),
                   hush::invalid_argument);
 }

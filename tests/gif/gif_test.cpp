@@ -63,7 +63,7 @@ void round_trip(int w, int h, int n, bool noise) {
   CAPTURE(h);
   CAPTURE(noise);
   const auto in = frames(w, h, n, 7, noise);
-  const std::vector<stbi_uc> out = decode(hush::gif::encode(in, w, h, 4), w, h, n);
+  const std::vector<stbi_uc> out = decode(hush_tools::gif::encode(in, w, h, 4), w, h, n);
   std::size_t bad = 0;
   for (int k = 0; k < n; ++k)
     for (int p = 0; p < w * h; ++p) {
@@ -83,15 +83,16 @@ TEST_CASE("RGB GIF frames decode to the palette colour of each pixel's dithered 
   std::vector<std::vector<std::uint8_t>> in(n);
   for (auto& f : in)
     for (int p = 0; p < 3 * w * h; ++p) f.push_back(static_cast<std::uint8_t>(r.next_u32() >> 24));
-  const std::vector<stbi_uc> px = decode(hush::gif::encode_rgb(in, w, h, 4), w, h, n);
-  const std::vector<std::uint8_t>& pal = hush::gif::palette();
+  const std::vector<stbi_uc> px = decode(hush_tools::gif::encode_rgb(in, w, h, 4), w, h, n);
+  const std::vector<std::uint8_t>& pal = hush_tools::gif::palette();
   std::size_t bad = 0, far = 0;
   for (int k = 0; k < n; ++k)
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
         const std::uint8_t* c = &in[std::size_t(k)][3 * p];
-        const std::size_t i = hush::gif::dither(c[0], c[1], c[2], std::size_t(x), std::size_t(y));
+        const std::size_t i =
+            hush_tools::gif::dither(c[0], c[1], c[2], std::size_t(x), std::size_t(y));
         const stbi_uc* d = &px[(std::size_t(k) * std::size_t(w * h) + p) * 4];
         bad += i >= 252 || d[0] != pal[3 * i] || d[1] != pal[3 * i + 1] ||
                d[2] != pal[3 * i + 2] || d[3] != 255;
@@ -115,7 +116,7 @@ TEST_CASE("RGB dithering: each 4 x 4 block of one colour averages to it within s
     for (int x = 0; x < w; ++x)
       for (int ch = 0; ch < 3; ++ch)
         f[3 * std::size_t(y * w + x) + std::size_t(ch)] = colour(x / 4, y / 4, ch);
-  const std::vector<stbi_uc> px = decode(hush::gif::encode_rgb({f}, w, h, 4), w, h, 1);
+  const std::vector<stbi_uc> px = decode(hush_tools::gif::encode_rgb({f}, w, h, 4), w, h, 1);
   const double levels[3] = {6, 7, 6};
   double worst[3] = {0, 0, 0};
   for (int by = 0; by < 16; ++by)
@@ -143,12 +144,12 @@ TEST_CASE("GIF frames decode to the same gray levels: noise, smooth ramps, odd s
 
 TEST_CASE("GIF encoding refuses what the format cannot hold") {
   const auto f = frames(4, 4, 1, 1, true);
-  CHECK_THROWS_AS(hush::gif::encode({}, 4, 4, 4), hush::invalid_argument);
-  CHECK_THROWS_AS(hush::gif::encode(f, 0, 4, 4), hush::invalid_argument);
-  CHECK_THROWS_AS(hush::gif::encode(f, 4, 70000, 4), hush::invalid_argument);
-  CHECK_THROWS_AS(hush::gif::encode(f, 4, 3, 4), hush::invalid_argument);  // 16 != 12 bytes
-  CHECK_THROWS_AS(hush::gif::encode(f, 4, 4, -1), hush::invalid_argument);
-  CHECK_THROWS_WITH_AS(hush::gif::encode_rgb(f, 4, 4, 4),  // 16 != 48 bytes
+  CHECK_THROWS_AS(hush_tools::gif::encode({}, 4, 4, 4), hush::invalid_argument);
+  CHECK_THROWS_AS(hush_tools::gif::encode(f, 0, 4, 4), hush::invalid_argument);
+  CHECK_THROWS_AS(hush_tools::gif::encode(f, 4, 70000, 4), hush::invalid_argument);
+  CHECK_THROWS_AS(hush_tools::gif::encode(f, 4, 3, 4), hush::invalid_argument);  // 16 != 12 bytes
+  CHECK_THROWS_AS(hush_tools::gif::encode(f, 4, 4, -1), hush::invalid_argument);
+  CHECK_THROWS_WITH_AS(hush_tools::gif::encode_rgb(f, 4, 4, 4),  // 16 != 48 bytes
                        doctest::Contains("3 * width * height"), hush::invalid_argument);
-  CHECK_THROWS_AS(hush::gif::encode_rgb({}, 4, 4, 4), hush::invalid_argument);
+  CHECK_THROWS_AS(hush_tools::gif::encode_rgb({}, 4, 4, 4), hush::invalid_argument);
 }

@@ -21,7 +21,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-namespace npy = hush::npy;
+namespace npy = hush_tools::npy;
 
 // A fresh scratch directory per test case, so that test cases may run in parallel.
 fs::path scratch(const std::string& name) {

@@ -23,7 +23,7 @@
 
 namespace {
 
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
@@ -150,11 +150,12 @@ TEST_CASE("projected triangles agree with the G-buffer: coverage, depth plane an
        {std::pair<const char*, int>{"rotate", 2}, {"walkthrough", 80}}) {
     const std::string scene_name = name;
     CAPTURE(scene_name);
-    const hush::scene::scene s = hush::scene::make_scene(name);
+    const hush_tools::scene::scene s = hush_tools::scene::make_scene(name);
     const int w = 80, h = 60;
     std::size_t crossing = 0;
-    const hush::scene::gbuffer g = hush::scene::render_cpu(s, frame, w, h);
-    const hush::scene::triangle_frame t = hush::scene::project_triangles(s, frame, w, h);
+    const hush_tools::scene::gbuffer g = hush_tools::scene::render_cpu(s, frame, w, h);
+    const hush_tools::scene::triangle_frame t =
+        hush_tools::scene::project_triangles(s, frame, w, h);
     const hush::triangle_list list = t.view();
     REQUIRE_NOTHROW(list.validate("test", 1u << 28));
     CHECK(list.triangles() == s.triangles());
@@ -206,12 +207,12 @@ TEST_CASE("projected triangles agree with the G-buffer: coverage, depth plane an
 }
 
 TEST_CASE("triangle files round-trip and malformed ones are refused naming the file") {
-  const hush::scene::scene s = hush::scene::make_scene("translate");
-  const hush::scene::triangle_frame t = hush::scene::project_triangles(s, 1, 32, 24);
+  const hush_tools::scene::scene s = hush_tools::scene::make_scene("translate");
+  const hush_tools::scene::triangle_frame t = hush_tools::scene::project_triangles(s, 1, 32, 24);
   const fs::path dir = scratch("triangles");
-  hush::scene::save_triangles(t, dir.string());
-  REQUIRE(hush::scene::has_triangles(dir.string()));
-  const hush::scene::triangle_frame u = hush::scene::load_triangles(dir.string());
+  hush_tools::scene::save_triangles(t, dir.string());
+  REQUIRE(hush_tools::scene::has_triangles(dir.string()));
+  const hush_tools::scene::triangle_frame u = hush_tools::scene::load_triangles(dir.string());
   CHECK(u.indices == t.indices);
   CHECK(u.depth == t.depth);
   CHECK(u.triangle_id == t.triangle_id);
@@ -221,15 +222,15 @@ TEST_CASE("triangle files round-trip and malformed ones are refused naming the f
     CHECK(std::memcmp(&u.screen[i].x, &t.screen[i].x, sizeof(float)) == 0);
     CHECK(std::memcmp(&u.screen[i].y, &t.screen[i].y, sizeof(float)) == 0);
   }
-  hush::scene::triangle_frame bad = t;
+  hush_tools::scene::triangle_frame bad = t;
   bad.triangle_id.pop_back();
-  hush::scene::save_triangles(bad, dir.string());
-  CHECK_THROWS_WITH_AS(hush::scene::load_triangles(dir.string()), doctest::Contains("tri_id.npy"),
-                       std::runtime_error);
+  hush_tools::scene::save_triangles(bad, dir.string());
+  CHECK_THROWS_WITH_AS(hush_tools::scene::load_triangles(dir.string()),
+                       doctest::Contains("tri_id.npy"), std::runtime_error);
   bad = t;
   bad.indices[5] = 1u << 30;
-  hush::scene::save_triangles(bad, dir.string());
-  CHECK_THROWS_WITH_AS(hush::scene::load_triangles(dir.string()),
+  hush_tools::scene::save_triangles(bad, dir.string());
+  CHECK_THROWS_WITH_AS(hush_tools::scene::load_triangles(dir.string()),
                        doctest::Contains("tri_indices.npy"), std::runtime_error);
-  CHECK_FALSE(hush::scene::has_triangles((dir / "none").string()));
+  CHECK_FALSE(hush_tools::scene::has_triangles((dir / "none").string()));
 }

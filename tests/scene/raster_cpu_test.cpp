@@ -24,7 +24,7 @@
 
 namespace {
 
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 using glm::dmat4;
 using glm::dvec3;
 using glm::dvec4;

@@ -34,7 +34,7 @@
 
 namespace {
 
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 
 constexpr double kEps = 1.0 / (1 << 24);
 constexpr double kKappa = 32.0;

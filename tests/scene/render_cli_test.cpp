@@ -30,7 +30,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 
 using hush_cli_test::result;
 using hush_cli_test::run_hush;
@@ -70,7 +70,7 @@ std::vector<unsigned char> png_rgb(const fs::path& path) {
 std::vector<float> frame_file(const fs::path& dir, int i, std::size_t expect_channels) {
   char name[16];
   std::snprintf(name, sizeof name, "%04d.npy", i);
-  const hush::npy::array<float> a = hush::npy::load<float>((dir / name).string());
+  const hush_tools::npy::array<float> a = hush_tools::npy::load<float>((dir / name).string());
   std::vector<std::size_t> shape = {std::size_t(kH), std::size_t(kW)};
   if (expect_channels > 1) shape.push_back(expect_channels);
   REQUIRE(a.shape == shape);
@@ -403,8 +403,9 @@ TEST_CASE("render npr-gabor --frequency-field and friends are the library's per-
       for (std::size_t v = 0; v < t.screen.size(); ++v)  // F0 by vertex, moves with the surface
         freq[std::size_t(i)].push_back(0.1f + 0.2f * float(v % 7) / 6);
       const std::string fdir = hs::frame_directory(gdir, i);
-      hush::npy::save(fdir + "/my_a.npy", {std::size_t(kH), std::size_t(kW)}, band[std::size_t(i)]);
-      hush::npy::save(fdir + "/my_f.npy", {t.screen.size()}, freq[std::size_t(i)]);
+      hush_tools::npy::save(fdir + "/my_a.npy", {std::size_t(kH), std::size_t(kW)},
+                            band[std::size_t(i)]);
+      hush_tools::npy::save(fdir + "/my_f.npy", {t.screen.size()}, freq[std::size_t(i)]);
     }
     const result r = run_hush("render npr-gabor --gbuffer '" + gdir + "' --out '" +
                                   (dir / "nf").string() +
@@ -429,8 +430,8 @@ TEST_CASE("render npr-gabor --frequency-field and friends are the library's per-
     CHECK(st.exit_code == 0);
     CHECK(st.out.find("wrote 5 npr-gabor frames (40x30, 3 channels, scalar)") != std::string::npos);
     // A file of another shape is refused naming the option and the valid shapes.
-    hush::npy::save(hs::frame_directory(gdir, 2) + "/my_a.npy", {std::size_t(kW), std::size_t(kH)},
-                    band[0]);
+    hush_tools::npy::save(hs::frame_directory(gdir, 2) + "/my_a.npy",
+                          {std::size_t(kW), std::size_t(kH)}, band[0]);
     const result bad = run_hush("render npr-gabor --gbuffer '" + gdir + "' --out '" +
                                     (dir / "bad").string() + "' --bandwidth-field file:my_a",
                                 dir);

@@ -18,7 +18,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 
 using hush_cli_test::result;
 using hush_cli_test::run_hush;

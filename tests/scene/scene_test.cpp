@@ -17,7 +17,7 @@
 
 namespace {
 
-namespace hs = hush::scene;
+namespace hs = hush_tools::scene;
 namespace fs = std::filesystem;
 
 void check_mesh(const hs::mesh& m) {

@@ -13,13 +13,13 @@
 namespace hush_scene_test {
 
 // A scene of one static mesh seen by a static camera.
-inline hush::scene::scene single(hush::scene::mesh m, const glm::dmat4& model,
-                                 const hush::scene::camera_pose& pose) {
-  hush::scene::scene s;
+inline hush_tools::scene::scene single(hush_tools::scene::mesh m, const glm::dmat4& model,
+                                       const hush_tools::scene::camera_pose& pose) {
+  hush_tools::scene::scene s;
   s.name = "test";
-  s.objects.push_back(hush::scene::object{"mesh",
-                                          std::make_shared<const hush::scene::mesh>(std::move(m)),
-                                          [model](int) { return model; }});
+  s.objects.push_back(hush_tools::scene::object{
+      "mesh", std::make_shared<const hush_tools::scene::mesh>(std::move(m)),
+      [model](int) { return model; }});
   s.camera = [pose](int) { return pose; };
   return s;
 }
@@ -31,7 +31,7 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 }
 
 // Every channel bit for bit (NaN payloads included).
-inline bool same_bits(const hush::scene::gbuffer& a, const hush::scene::gbuffer& b) {
+inline bool same_bits(const hush_tools::scene::gbuffer& a, const hush_tools::scene::gbuffer& b) {
   return a.width == b.width && a.height == b.height && same_bits(a.depth, b.depth) &&
          same_bits(a.velocity, b.velocity) && same_bits(a.forward_velocity, b.forward_velocity) &&
          same_bits(a.object_id, b.object_id) && same_bits(a.triangle_id, b.triangle_id) &&

@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
   const int reps = argc > 2 ? std::atoi(argv[2]) : 7;
   const int scales = argc > 3 ? std::atoi(argv[3]) : 3;
   // The bench's frame (bench/anisotropic_cases.cpp).
-  const hush_aniso::receding_plane plane = hush_aniso::make_receding_plane(1920, 1080);
+  const hush_tools::aniso::receding_plane plane =
+      hush_tools::aniso::make_receding_plane(1920, 1080);
   const std::size_t n = plane.positions.size();
   static_assert(sizeof(hush::vec2) == 8 && sizeof(hush::footprint<2>) == 12, "packed floats");
   const auto* xy = reinterpret_cast<const float*>(plane.positions.data());
