@@ -136,3 +136,27 @@ TEST_CASE("samples: mismatched spans and inputs the noise does not take are refu
   std::vector<float> empty;
   hush::evaluate(probe, hush::exec::scalar, hush::samples<3>{}, empty);
 }
+
+TEST_CASE("samples: subrange cuts every given span and refuses a range past the batch") {
+  const batch<3> b(10);
+  const hush::samples<3> all{b.positions, b.footprints, {}};
+  const hush::samples<3> part = all.subrange(3, 4);
+  REQUIRE(part.size() == 4);
+  CHECK(part.positions.data() == all.positions.data() + 3);
+  CHECK(part.footprints.data() == all.footprints.data() + 3);
+  CHECK(part.footprints.size() == 4);
+  CHECK(part.normals.empty());
+  CHECK(all.subrange(10, 0).size() == 0);
+  CHECK_THROWS_WITH_AS(all.subrange(7, 4),
+                       doctest::Contains("offset = 7, count = 4 is out of range; valid: "
+                                         "offset + count <= size() = 10"),
+                       hush::invalid_argument);
+  CHECK_THROWS_WITH_AS(all.subrange(11, 0), doctest::Contains("offset = 11, count = 0"),
+                       hush::invalid_argument);
+  // An offset near SIZE_MAX cannot wrap the check around.
+  CHECK_THROWS_AS(all.subrange(3, static_cast<std::size_t>(-1)), hush::invalid_argument);
+  const std::vector<hush::footprint<3>> short_fp(b.footprints.begin(), b.footprints.begin() + 9);
+  CHECK_THROWS_WITH_AS((hush::samples<3>{b.positions, short_fp, {}}.subrange(0, 5)),
+                       doctest::Contains("footprints.size() = 9 is out of range"),
+                       hush::invalid_argument);
+}
