@@ -1789,13 +1789,26 @@ struct samples {
   }
 
   // Samples [offset, offset + count) of the batch: every given span cut to
-  // that range, every empty one left empty. Requires offset + count <= size()
-  // and each given span to have size() elements (as validate_samples checks).
+  // that range, every empty one left empty. Throws hush::invalid_argument,
+  // naming the parameter, when offset + count exceeds size() or a given span
+  // does not have size() elements; nothing is read.
   samples subrange(std::size_t offset, std::size_t count) const {
+    const char* where = "hush::samples::subrange";
+    if (offset > size() || count > size() - offset) {
+      const std::string valid = "offset + count <= size() = " + std::to_string(size());
+      detail::throw_out_of_range(where, "offset = " + std::to_string(offset) + ", count",
+                                 count, valid.c_str());
+    }
     samples part = *this;
     part.positions = positions.subspan(offset, count);
-    visit_extras(part, [&](const char*, auto& in) {
-      if (!in.empty()) in = in.subspan(offset, count);
+    visit_extras(part, [&](const char* name, auto& in) {
+      if (in.empty()) return;
+      if (in.size() != size()) {
+        const std::string valid = "0 (not given) or size() = " + std::to_string(size());
+        detail::throw_out_of_range(where, std::string(name) + ".size()", in.size(),
+                                   valid.c_str());
+      }
+      in = in.subspan(offset, count);
     });
     return part;
   }
