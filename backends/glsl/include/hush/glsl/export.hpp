@@ -11,11 +11,11 @@
 #include <tuple>
 #include <vector>
 
-#include "hush/glsl/coherent.hpp"
+#include "hush/glsl/coherent/renderer.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/glsl/noise_program.hpp"
-#include "hush/glsl/npr_gabor.hpp"
+#include "hush/glsl/npr_gabor/renderer.hpp"
 
 namespace hush {
 namespace glsl {
@@ -91,7 +91,7 @@ inline std::vector<export_file> export_files() {
        "// normals at 3, surface maps at 4, each where its hush_has_* uniform is 1u\n"
        "// (anisotropic: the CPU-formed per-sample data at 5 instead). The wavelet\n"
        "// functions of this library exist where the shader defines HUSH_WAVELET_TILE(i)\n"
-       "// before it (hush/glsl/wavelet_glsl.hpp).\n"
+       "// before it (hush/glsl/wavelet/glsl.hpp).\n"
        "// Regenerate with the same hush version instead of editing by hand.\n" +
            library()});
   detail::add_all_runners(files, static_cast<const program_noises*>(nullptr));
