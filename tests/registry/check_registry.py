@@ -252,7 +252,6 @@ OVER_LIMIT = {
     "include/hush/gabor.hpp",
     "include/hush/simd/gabor-inl.h",
     "include/hush/simd/wavelet-inl.h",
-    "backends/glsl/include/hush/glsl/npr_gabor/renderer.hpp",
 }
 
 
