@@ -26,7 +26,8 @@ ROOT = Path(__file__).resolve().parent.parent.parent
 
 # What each noise ships with. Paths are relative to the repository root.
 #  program:  the `hush` command that runs it (argv after `hush`, without --help)
-#  glsl:     its GLSL program's header (backends/glsl/include/hush/glsl/...) and the
+#  glsl:     its GLSL runner's header in its folder backends/glsl/include/hush/glsl/<noise>/
+#            (program.hpp: a noise_program; renderer.hpp: a scene-driven renderer) and the
 #            name prefixes of files `hush glsl-export` writes for it
 #  bench:    a text in bench/'s sources naming its rows
 #  golden / hard_case: regular expressions matched against the names of the doctest
@@ -35,49 +36,49 @@ ROOT = Path(__file__).resolve().parent.parent.parent
 EXPECT = {
     "perlin": dict(
         program=["sample", "perlin"],
-        glsl=("noise_program.hpp", ["hush_perlin2_", "hush_perlin3_"]),
+        glsl=("program.hpp", ["hush_perlin2_", "hush_perlin3_"]),
         bench='"perlin 2D"',
         golden=r"^golden: perlin values",
         hard_case=r"^hard cases row 5: NaN and Inf give NaN",
         doc="docs/perlin.md"),
     "fractal": dict(
         program=["sample", "perlin", "--octaves", "4"],
-        glsl=("noise_program.hpp", ["hush_fractal_perlin2_", "hush_fractal_perlin3_"]),
+        glsl=("program.hpp", ["hush_fractal_perlin2_", "hush_fractal_perlin3_"]),
         bench='"fbm "',
         golden=r"^golden: fractal values",
         hard_case=r"^fractal perlin: NaN and infinite coordinates",
         doc="docs/fractal.md"),
     "wavelet": dict(
         program=["sample", "wavelet"],
-        glsl=("wavelet_program.hpp", ["hush_wavelet2_", "hush_wavelet3_"]),
+        glsl=("program.hpp", ["hush_wavelet2_", "hush_wavelet3_"]),
         bench='"wavelet',
         golden=r"^golden: wavelet values",
         hard_case=r"^wavelet: NaN and infinite input",
         doc="docs/wavelet.md"),
     "gabor": dict(
         program=["sample", "gabor"],
-        glsl=("gabor_glsl.hpp", ["hush_gabor2_", "hush_gabor3_"]),
+        glsl=("program.hpp", ["hush_gabor2_", "hush_gabor3_"]),
         bench='"gabor',
         golden=r"^golden: gabor ",
         hard_case=r"^gabor: NaN and infinite positions",
         doc="docs/gabor.md"),
     "anisotropic": dict(
         program=["sample", "anisotropic"],
-        glsl=("anisotropic_program.hpp", ["hush_anisotropic_"]),
+        glsl=("program.hpp", ["hush_anisotropic_"]),
         bench='"anisotropic',
         golden=r"^anisotropic: golden values",
         hard_case=r"^anisotropic: hard cases: NaN and Inf",
         doc="docs/anisotropic.md"),
     "coherent": dict(
         program=["render", "coherent"],
-        glsl=("coherent.hpp", ["hush_coherent_pass"]),
+        glsl=("renderer.hpp", ["hush_coherent_pass"]),
         bench='"coherent',
         golden=r"^coherent golden:",
         hard_case=r"^coherent robustness: NaN, Inf",
         doc="docs/coherent.md"),
     "npr_gabor": dict(
         program=["render", "npr-gabor"],
-        glsl=("npr_gabor.hpp", ["hush_npr_gabor_splat", "hush_npr_gabor_records"]),
+        glsl=("renderer.hpp", ["hush_npr_gabor_splat", "hush_npr_gabor_records"]),
         bench='"npr',
         golden=r"^npr_gabor golden:",
         hard_case=r"^hard inputs: NaN, behind-camera",
@@ -166,8 +167,9 @@ def check_noise(noise, want, cases, program, exported):
     if not ((ROOT / f"tests/{noise}_test.cpp").is_file() or (ROOT / f"tests/{noise}").is_dir()):
         problem(f"{noise}: no tests/{noise}_test.cpp or tests/{noise}/")
     glsl_header, prefixes = want["glsl"]
-    if not (ROOT / "backends/glsl/include/hush/glsl" / glsl_header).is_file():
-        problem(f"{noise}: no GLSL program backends/glsl/include/hush/glsl/{glsl_header}")
+    glsl_dir = f"backends/glsl/include/hush/glsl/{noise}"
+    if not (ROOT / glsl_dir / glsl_header).is_file():
+        problem(f"{noise}: no GLSL runner {glsl_dir}/{glsl_header}")
     if exported is not None:
         for prefix in prefixes:
             if not any(name.startswith(prefix) for name in exported):
@@ -250,7 +252,6 @@ OVER_LIMIT = {
     "include/hush/gabor.hpp",
     "include/hush/simd/gabor-inl.h",
     "include/hush/simd/wavelet-inl.h",
-    "backends/glsl/include/hush/glsl/npr_gabor.hpp",
 }
 
 

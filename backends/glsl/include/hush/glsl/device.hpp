@@ -181,7 +181,7 @@ class device {
   // The loaded GL functions (for code that adds its own shaders to the context).
   const detail::gl_api& gl() const { return *gl_; }
   // State another GLSL program keeps on this device between calls (its compiled
-  // programs, framebuffer, buffers; e.g. hush/glsl/npr_gabor.hpp): made by make(),
+  // programs, framebuffer, buffers; e.g. hush/glsl/npr_gabor/renderer.hpp): made by make(),
   // a std::shared_ptr<T>, on the first call with `key`, and destroyed with the device
   // (before its GL functions are unloaded). Every call with one key must name one T.
   template <class T, class Make>

@@ -11,11 +11,11 @@
 #include <tuple>
 #include <vector>
 
-#include "hush/glsl/coherent.hpp"
+#include "hush/glsl/coherent/glsl.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/glsl/noise_program.hpp"
-#include "hush/glsl/npr_gabor.hpp"
+#include "hush/glsl/npr_gabor/glsl.hpp"
 
 namespace hush {
 namespace glsl {
@@ -56,9 +56,9 @@ void add_all_runners(std::vector<export_file>& files, const std::tuple<Noise...>
 // hush_<noise>_samples[_gradient].comp (positions with optional footprints, normals
 // and surface maps, compute_source.hpp's samples layout: one runner for every
 // combination, told apart by its uniforms), and
-// hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent.hpp), and
+// hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent/glsl.hpp), and
 // hush_npr_gabor_splat.vert, .geom, .frag (NPR Gabor noise's point sprites, one program,
-// hush/glsl/npr_gabor.hpp) and hush_npr_gabor_lods.comp, _scan.comp, _roots.comp,
+// hush/glsl/npr_gabor/glsl.hpp) and hush_npr_gabor_lods.comp, _scan.comp, _roots.comp,
 // _expand.comp, _children.comp, _records.comp (its stage 1: the compute passes that walk
 // each triangle's point sequence level by level and write the records the sprites draw).
 inline std::vector<export_file> export_files() {
@@ -91,19 +91,13 @@ inline std::vector<export_file> export_files() {
        "// normals at 3, surface maps at 4, each where its hush_has_* uniform is 1u\n"
        "// (anisotropic: the CPU-formed per-sample data at 5 instead). The wavelet\n"
        "// functions of this library exist where the shader defines HUSH_WAVELET_TILE(i)\n"
-       "// before it (hush/glsl/wavelet_glsl.hpp).\n"
+       "// before it (hush/glsl/wavelet/glsl.hpp).\n"
        "// Regenerate with the same hush version instead of editing by hand.\n" +
            library()});
   detail::add_all_runners(files, static_cast<const program_noises*>(nullptr));
-  files.push_back({"hush_coherent_pass.comp", coherent_source()});
-  files.push_back({"hush_npr_gabor_splat.vert", npr_gabor_vertex_source()});
-  files.push_back({"hush_npr_gabor_splat.geom", npr_gabor_geometry_source()});
-  files.push_back({"hush_npr_gabor_splat.frag", npr_gabor_fragment_source()});
-  const char* const stage1[kNprGaborStage1Passes] = {"lods",   "scan",     "roots",
-                                                     "expand", "children", "records"};
-  for (int i = 0; i < kNprGaborStage1Passes; ++i)
-    files.push_back(
-        {std::string("hush_npr_gabor_") + stage1[i] + ".comp", npr_gabor_stage1_source(i)});
+  // The scene-driven noises' renderer sources, from each noise's hush/glsl/<noise>/glsl.hpp.
+  for (const auto& exports : {detail::coherent_exports(), detail::npr_gabor_exports()})
+    for (const auto& [name, text] : exports) files.push_back({name, text});
   return files;
 }
 

@@ -86,7 +86,7 @@ glsl_constant kernel_table(const char* name, const hush::detail::piecewise_kerne
   return c;
 }
 
-// Wavelet noise (include/hush/wavelet.hpp, hush/glsl/wavelet_glsl.hpp): its kernels'
+// Wavelet noise (include/hush/wavelet.hpp, hush/glsl/wavelet/glsl.hpp): its kernels'
 // piece tables and layout, quadrature and erf constants.
 inline std::vector<glsl_constant> wavelet_constants() {
   namespace c = hush::detail::constants;

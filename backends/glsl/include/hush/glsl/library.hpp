@@ -25,9 +25,9 @@
 //   vecD+1 hush_fractal_add_gradient(acc, vecD+1 ng, float w, float chain, bool turbulence)
 //   one band's term of a fractal sum (include/hush/fractal.hpp), the CPU's operations.
 //   hush_wavelet_*: wavelet noise (include/hush/wavelet.hpp), present only where the
-//   including shader defines HUSH_WAVELET_TILE(i) (hush/glsl/wavelet_glsl.hpp).
+//   including shader defines HUSH_WAVELET_TILE(i) (hush/glsl/wavelet/glsl.hpp).
 //   hush_exp_neg, hush_sincos_turns, hush_stream_key/word, hush_gabor_*: Gabor
-//   noise's pieces (hush/glsl/gabor_glsl.hpp states them and their contract).
+//   noise's pieces (hush/glsl/gabor/program.hpp states them and their contract).
 //
 // Contract: the bodies mirror the CPU float algorithm (include/hush/perlin.hpp,
 // core/hash.hpp, core/lattice.hpp) operation by operation: the same gradient
@@ -56,9 +56,11 @@
 
 #include <string>
 
-#include "hush/glsl/detail/gabor_body.hpp"
+#include "hush/glsl/fractal/glsl.hpp"
+#include "hush/glsl/gabor/glsl.hpp"
 #include "hush/glsl/generator.hpp"
-#include "hush/glsl/wavelet_glsl.hpp"
+#include "hush/glsl/perlin/glsl.hpp"
+#include "hush/glsl/wavelet/glsl.hpp"
 
 namespace hush {
 namespace glsl {
@@ -146,137 +148,11 @@ hush_lattice_coord hush_lattice_split(float x, uint period) {
 }
 )glsl";
 
-// Improved Perlin noise: include/hush/perlin.hpp eval2 / eval3.
-constexpr const char* kPerlinBody = R"glsl(
-// ---- Improved Perlin noise (Perlin 2002; include/hush/perlin.hpp).
-float hush_fade(float t) {
-  return t * t * t * (t * (t * HUSH_FADE5 + HUSH_FADE4) + HUSH_FADE3);
-}
-float hush_fade_derivative(float t) {
-  return t * t * (t * (t * HUSH_FADE_DERIV4 + HUSH_FADE_DERIV3) + HUSH_FADE_DERIV2);
-}
-float hush_lerp(float a, float b, float t) { return a + t * (b - a); }
-uint hush_perlin2_grad_index(uint h) { return h >> HUSH_PERLIN2_GRAD_SHIFT; }
-uint hush_perlin3_grad_index(uint h) {
-  return ((h >> HUSH_PERLIN3_INDEX_SHIFT) * HUSH_PERLIN3_GRAD_COUNT) >> HUSH_PERLIN3_INDEX_SHIFT;
-}
-
-// (value, d/dx, d/dy) from cells i0, i1 and fraction f; the value alone is .x
-// (the compiler drops the gradient terms when only .x is used).
-vec3 hush_perlin2_cells_gradient(uvec2 i0, uvec2 i1, vec2 f, uint key) {
-  float fx = f.x, fy = f.y, fx1 = fx - 1.0, fy1 = fy - 1.0;
-  uint g00 = hush_perlin2_grad_index(hush_lattice_hash(key, i0.x, i0.y));
-  uint g10 = hush_perlin2_grad_index(hush_lattice_hash(key, i1.x, i0.y));
-  uint g01 = hush_perlin2_grad_index(hush_lattice_hash(key, i0.x, i1.y));
-  uint g11 = hush_perlin2_grad_index(hush_lattice_hash(key, i1.x, i1.y));
-  float d00 = HUSH_PERLIN2_GRAD_X[g00] * fx + HUSH_PERLIN2_GRAD_Y[g00] * fy;
-  float d10 = HUSH_PERLIN2_GRAD_X[g10] * fx1 + HUSH_PERLIN2_GRAD_Y[g10] * fy;
-  float d01 = HUSH_PERLIN2_GRAD_X[g01] * fx + HUSH_PERLIN2_GRAD_Y[g01] * fy1;
-  float d11 = HUSH_PERLIN2_GRAD_X[g11] * fx1 + HUSH_PERLIN2_GRAD_Y[g11] * fy1;
-  float u = hush_fade(fx), v = hush_fade(fy);
-  float x0 = hush_lerp(d00, d10, u), x1 = hush_lerp(d01, d11, u);
-  float value = HUSH_PERLIN2_SCALE * hush_lerp(x0, x1, v);
-  float du = hush_fade_derivative(fx), dv = hush_fade_derivative(fy);
-  float gx = hush_lerp(hush_lerp(HUSH_PERLIN2_GRAD_X[g00], HUSH_PERLIN2_GRAD_X[g10], u),
-                       hush_lerp(HUSH_PERLIN2_GRAD_X[g01], HUSH_PERLIN2_GRAD_X[g11], u), v) +
-             du * hush_lerp(d10 - d00, d11 - d01, v);
-  float gy = hush_lerp(hush_lerp(HUSH_PERLIN2_GRAD_Y[g00], HUSH_PERLIN2_GRAD_Y[g10], u),
-                       hush_lerp(HUSH_PERLIN2_GRAD_Y[g01], HUSH_PERLIN2_GRAD_Y[g11], u), v) +
-             dv * (x1 - x0);
-  return vec3(value, HUSH_PERLIN2_SCALE * gx, HUSH_PERLIN2_SCALE * gy);
-}
-float hush_perlin2_cells(uvec2 i0, uvec2 i1, vec2 f, uint key) {
-  return hush_perlin2_cells_gradient(i0, i1, f, key).x;
-}
-
-// Trilinear blend of eight corner quantities (corner n = a + 2b + 4c).
-float hush_blend8(float q[8], float u, float v, float w) {
-  return hush_lerp(hush_lerp(hush_lerp(q[0], q[1], u), hush_lerp(q[2], q[3], u), v),
-                   hush_lerp(hush_lerp(q[4], q[5], u), hush_lerp(q[6], q[7], u), v), w);
-}
-// (value, d/dx, d/dy, d/dz); corner n = a + 2b + 4c sits at offset (a, b, c).
-vec4 hush_perlin3_cells_gradient(uvec3 i0, uvec3 i1, vec3 f, uint key) {
-  vec3 fo[2] = vec3[2](f, f - vec3(1.0));
-  uvec3 io[2] = uvec3[2](i0, i1);
-  float d[8], gxs[8], gys[8], gzs[8];
-  for (int n = 0; n < 8; ++n) {
-    int a = n & 1, b = (n >> 1) & 1, c = n >> 2;
-    uint g = hush_perlin3_grad_index(hush_lattice_hash(key, io[a].x, io[b].y, io[c].z));
-    gxs[n] = HUSH_PERLIN3_GRAD_X[g];
-    gys[n] = HUSH_PERLIN3_GRAD_Y[g];
-    gzs[n] = HUSH_PERLIN3_GRAD_Z[g];
-    d[n] = gxs[n] * fo[a].x + gys[n] * fo[b].y + gzs[n] * fo[c].z;
-  }
-  float u = hush_fade(f.x), v = hush_fade(f.y), w = hush_fade(f.z);
-  float x00 = hush_lerp(d[0], d[1], u), x10 = hush_lerp(d[2], d[3], u);
-  float x01 = hush_lerp(d[4], d[5], u), x11 = hush_lerp(d[6], d[7], u);
-  float y0 = hush_lerp(x00, x10, v), y1 = hush_lerp(x01, x11, v);
-  float value = HUSH_PERLIN3_SCALE * hush_lerp(y0, y1, w);
-  float du = hush_fade_derivative(f.x), dv = hush_fade_derivative(f.y);
-  float dw = hush_fade_derivative(f.z);
-  // d/dx of the lerp over x: du * (d[a=1] - d[a=0]), blended in y and z.
-  float ex = hush_lerp(hush_lerp(d[1] - d[0], d[3] - d[2], v), hush_lerp(d[5] - d[4], d[7] - d[6], v), w);
-  float ey = hush_lerp(x10 - x00, x11 - x01, w);
-  float ez = y1 - y0;
-  return vec4(value, HUSH_PERLIN3_SCALE * (hush_blend8(gxs, u, v, w) + du * ex),
-              HUSH_PERLIN3_SCALE * (hush_blend8(gys, u, v, w) + dv * ey),
-              HUSH_PERLIN3_SCALE * (hush_blend8(gzs, u, v, w) + dw * ez));
-}
-float hush_perlin3_cells(uvec3 i0, uvec3 i1, vec3 f, uint key) {
-  return hush_perlin3_cells_gradient(i0, i1, f, key).x;
-}
-
-// Point evaluation: split each coordinate, then evaluate; NaN for non-finite input.
-vec3 hush_perlin2_gradient(vec2 p, uint key, uvec2 period) {
-  if (hush_is_nonfinite(p.x) || hush_is_nonfinite(p.y)) return vec3(hush_nan());
-  hush_lattice_coord cx = hush_lattice_split(p.x, period.x);
-  hush_lattice_coord cy = hush_lattice_split(p.y, period.y);
-  return hush_perlin2_cells_gradient(uvec2(cx.i0, cy.i0), uvec2(cx.i1, cy.i1), vec2(cx.f, cy.f), key);
-}
-float hush_perlin2(vec2 p, uint key, uvec2 period) {
-  return hush_perlin2_gradient(p, key, period).x;
-}
-vec4 hush_perlin3_gradient(vec3 p, uint key, uvec3 period) {
-  if (hush_is_nonfinite(p.x) || hush_is_nonfinite(p.y) || hush_is_nonfinite(p.z))
-    return vec4(hush_nan());
-  hush_lattice_coord cx = hush_lattice_split(p.x, period.x);
-  hush_lattice_coord cy = hush_lattice_split(p.y, period.y);
-  hush_lattice_coord cz = hush_lattice_split(p.z, period.z);
-  return hush_perlin3_cells_gradient(uvec3(cx.i0, cy.i0, cz.i0), uvec3(cx.i1, cy.i1, cz.i1),
-                                     vec3(cx.f, cy.f, cz.f), key);
-}
-float hush_perlin3(vec3 p, uint key, uvec3 period) {
-  return hush_perlin3_gradient(p, key, period).x;
-}
-)glsl";
-
-// Fractal sums: include/hush/fractal.hpp value / value_and_gradient, one band at a time.
-constexpr const char* kFractalBody = R"glsl(
-// ---- Fractal sums (include/hush/fractal.hpp): one band's term, in the CPU's order.
-bool hush_any_nonfinite(vec2 v) { return hush_is_nonfinite(v.x) || hush_is_nonfinite(v.y); }
-bool hush_any_nonfinite(vec3 v) {
-  return hush_is_nonfinite(v.x) || hush_is_nonfinite(v.y) || hush_is_nonfinite(v.z);
-}
-// sum + w * n (fBm) or sum + w * |n| (turbulence), as fractal::value.
-float hush_fractal_add(float sum, float n, float weight, bool turbulence) {
-  return sum + weight * (turbulence ? abs(n) : n);
-}
-// (value, gradient) + the band's (w n, chain g), chain = w f; turbulence
-// negates a band whose value is negative (the CPU's sign -1: exact).
-vec3 hush_fractal_add_gradient(vec3 acc, vec3 ng, float weight, float chain, bool turbulence) {
-  if (turbulence && ng.x < 0.0) ng = -ng;
-  return vec3(acc.x + weight * ng.x, acc.yz + chain * ng.yz);
-}
-vec4 hush_fractal_add_gradient(vec4 acc, vec4 ng, float weight, float chain, bool turbulence) {
-  if (turbulence && ng.x < 0.0) ng = -ng;
-  return vec4(acc.x + weight * ng.x, acc.yzw + chain * ng.yzw);
-}
-)glsl";
-
 }  // namespace detail
 
-// The hand-written bodies, in order; tests check they hold no numeric literal
-// besides the 2^D-cell structure integers (0, 1, 2, 4, 8).
+// The hand-written bodies, in order: hashing and the lattice split, then each noise's
+// (hush/glsl/<noise>/glsl.hpp); tests check they hold no numeric literal besides the
+// 2^D-cell structure integers (0, 1, 2, 4, 8).
 inline std::string library_bodies() {
   return std::string(detail::kHashBody) + detail::kLatticeBody + detail::kPerlinBody +
          detail::kFractalBody + detail::wavelet_body() + detail::kGaborBody;

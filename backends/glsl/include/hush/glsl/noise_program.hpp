@@ -89,10 +89,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "hush/core/hash.hpp"
+#include "hush/anisotropic.hpp"
 #include "hush/fractal.hpp"
+#include "hush/gabor.hpp"
 #include "hush/glsl/detail/gl.hpp"
 #include "hush/perlin.hpp"
+#include "hush/wavelet.hpp"
 
 namespace hush {
 namespace glsl {
@@ -130,123 +132,6 @@ struct noise_texture {
 // Primary template: not a GLSL-capable noise (no specialisation).
 template <class Noise>
 struct noise_program;
-
-// Improved Perlin noise, 2D and 3D: uniforms hush_key = hush::seed_key(seed)
-// and hush_period (uvecD; the CPU's params::period, 0 = not periodic).
-template <int D>
-struct noise_program<perlin<D>> {
-  static constexpr int dimension = D;
-  static constexpr const char* name = D == 2 ? "perlin2" : "perlin3";
-
-  static std::string uniforms() {
-    return std::string("uniform uint hush_key;\nuniform uvec") + std::to_string(D) +
-           " hush_period;\n";
-  }
-  static std::string point_call(bool gradient) {
-    return std::string("hush_") + name + (gradient ? "_gradient" : "") +
-           "(p, hush_key, hush_period)";
-  }
-  static std::string cells_call(bool gradient) {
-    return std::string("hush_") + name + (gradient ? "_cells_gradient" : "_cells") +
-           "(i0, i1, f, hush_key)";
-  }
-  static std::uint32_t period(const perlin<D>& noise, int axis) {
-    return static_cast<std::uint32_t>(noise.parameters().period[static_cast<std::size_t>(axis)]);
-  }
-  static void set_uniforms(const detail::gl_api& gl, detail::gl_uint program,
-                           const perlin<D>& noise) {
-    gl.Uniform1ui(gl.GetUniformLocation(program, "hush_key"), seed_key(noise.parameters().seed));
-    const detail::gl_int loc = gl.GetUniformLocation(program, "hush_period");
-    if constexpr (D == 2)
-      gl.Uniform2ui(loc, period(noise, 0), period(noise, 1));
-    else
-      gl.Uniform3ui(loc, period(noise, 0), period(noise, 1), period(noise, 2));
-  }
-};
-
-// Fractal sums (fBm, turbulence) of Perlin noise, include/hush/fractal.hpp.
-// Band b has its own key (seed_key of the band's seed) and period; its
-// coordinate f_b x + o_b is formed and split on the CPU in double
-// (fractal::band_position), so the GPU sees the CPU's cells and fractions bit
-// for bit. Uniforms: hush_key[], hush_weight[] (float bits of float(w_b)),
-// hush_chain[] (float bits of float(w_b f_b), the gradient's chain factor),
-// hush_scale (float bits of float(scale())) and hush_turbulence; the arrays
-// have fractal::kMaxOctaves entries, the first band_count() set.
-template <int D>
-struct noise_program<fractal<perlin<D>>> {
-  using noise_type = fractal<perlin<D>>;
-  static constexpr int dimension = D;
-  static constexpr const char* name = D == 2 ? "fractal_perlin2" : "fractal_perlin3";
-  static constexpr bool banded = true;
-
-  static std::string uniforms() {
-    const std::string n = "[" + std::to_string(noise_type::kMaxOctaves) + "]";
-    return "uniform uint hush_key" + n + ";     // seed_key of each band's seed\n" +
-           "uniform uint hush_weight" + n + ";  // floatBitsToUint(float(w_b))\n" +
-           "uniform uint hush_chain" + n + ";   // floatBitsToUint(float(w_b * f_b))\n" +
-           "uniform uint hush_scale;        // floatBitsToUint(float(scale()))\n"
-           "uniform uint hush_turbulence;   // 1u: sum |n_b| (turbulence), 0u: fBm\n";
-  }
-  static int band_count(const noise_type& fr) { return fr.band_count(); }
-  static std::uint32_t band_period(const noise_type& fr, int band, int axis) {
-    return static_cast<std::uint32_t>(
-        fr.band_noise(band).parameters().period[static_cast<std::size_t>(axis)]);
-  }
-  static vec<double, D> band_position(const noise_type& fr, int band, const vec<double, D>& p) {
-    return fr.band_position(band, p);
-  }
-  static std::string band_begin(bool gradient) {
-    return gradient ? "  vec" + std::to_string(D + 1) + " acc = vec" + std::to_string(D + 1) +
-                          "(0.0);\n  bool bad = false;\n"
-                    : "  float acc = 0.0;\n  bool bad = false;\n";
-  }
-  static std::string band_step(bool gradient) {
-    const std::string cells = std::string("hush_perlin") + std::to_string(D) +
-                              (gradient ? "_cells_gradient" : "_cells") +
-                              "(i0, i1, f, hush_key[b])";
-    std::string s = "    bad = bad || hush_any_nonfinite(f);\n";
-    if (gradient)
-      s += "    acc = hush_fractal_add_gradient(acc, " + cells +
-           ", uintBitsToFloat(hush_weight[b]), uintBitsToFloat(hush_chain[b]), "
-           "hush_turbulence != 0u);\n";
-    else
-      s += "    acc = hush_fractal_add(acc, " + cells +
-           ", uintBitsToFloat(hush_weight[b]), hush_turbulence != 0u);\n";
-    return s;
-  }
-  static std::string band_result(bool gradient) {
-    const std::string t = gradient ? "vec" + std::to_string(D + 1) : std::string("float");
-    return "bad ? " + t + "(hush_nan()) : uintBitsToFloat(hush_scale) * acc";
-  }
-  static void set_uniforms(const detail::gl_api& gl, detail::gl_uint program,
-                           const noise_type& fr) {
-    const int nb = fr.band_count();
-    std::uint32_t key[noise_type::kMaxOctaves] = {}, weight[noise_type::kMaxOctaves] = {},
-                  chain[noise_type::kMaxOctaves] = {};
-    for (int b = 0; b < nb; ++b) {
-      const std::size_t i = static_cast<std::size_t>(b);
-      key[i] = seed_key(fr.band_noise(b).parameters().seed);
-      // The CPU's float constants: T(w) and T(w * f) (fractal::value_and_gradient).
-      weight[i] = bits(static_cast<float>(fr.band_raw_weight(b)));
-      chain[i] = bits(static_cast<float>(fr.band_raw_weight(b) * fr.band_frequency(b)));
-    }
-    const auto n = static_cast<detail::gl_sizei>(nb);
-    gl.Uniform1uiv(gl.GetUniformLocation(program, "hush_key"), n, key);
-    gl.Uniform1uiv(gl.GetUniformLocation(program, "hush_weight"), n, weight);
-    gl.Uniform1uiv(gl.GetUniformLocation(program, "hush_chain"), n, chain);
-    gl.Uniform1ui(gl.GetUniformLocation(program, "hush_scale"),
-                  bits(static_cast<float>(fr.scale())));
-    gl.Uniform1ui(gl.GetUniformLocation(program, "hush_turbulence"),
-                  fr.parameters().kind == fractal_kind::turbulence ? 1u : 0u);
-  }
-
- private:
-  static std::uint32_t bits(float f) {
-    std::uint32_t u = 0;
-    std::memcpy(&u, &f, sizeof u);
-    return u;
-  }
-};
 
 // Whether noise_program<Noise> is banded (declares banded = true).
 template <class Program, class = void>
@@ -309,10 +194,13 @@ inline constexpr bool has_program_v = has_program<Noise>::value;
 }  // namespace glsl
 }  // namespace hush
 
-// The programs of the noises that live in their own headers (they include this one first).
-#include "hush/glsl/anisotropic_program.hpp"
-#include "hush/glsl/gabor_glsl.hpp"  // IWYU pragma: export
-#include "hush/glsl/wavelet_program.hpp"
+// The programs of the noises, each in its folder hush/glsl/<noise>/ (each includes this
+// header first).
+#include "hush/glsl/anisotropic/program.hpp"
+#include "hush/glsl/fractal/program.hpp"
+#include "hush/glsl/gabor/program.hpp"  // IWYU pragma: export
+#include "hush/glsl/perlin/program.hpp"
+#include "hush/glsl/wavelet/program.hpp"
 
 namespace hush {
 namespace glsl {

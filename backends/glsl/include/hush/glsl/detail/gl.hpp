@@ -124,7 +124,7 @@ struct gl_api {
   void(HUSH_GLAPI* DispatchCompute)(gl_uint, gl_uint, gl_uint) = nullptr;
   void(HUSH_GLAPI* MemoryBarrier)(gl_bitfield) = nullptr;
   void(HUSH_GLAPI* Finish)() = nullptr;
-  // The loader these came from: programs that draw (hush/glsl/npr_gabor.hpp) load
+  // The loader these came from: programs that draw (hush/glsl/npr_gabor/renderer.hpp) load
   // their own entry points from it.
   loader_fn loader = nullptr;
 

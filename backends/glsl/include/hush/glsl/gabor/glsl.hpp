@@ -1,13 +1,13 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The GLSL library bodies of Gabor-type noises (hush/glsl/gabor_glsl.hpp lists
+// The GLSL library bodies of Gabor-type noises (hush/glsl/gabor/program.hpp lists
 // them and states their contract): detail/elementary.hpp's exp and sin/cos,
 // hush::rng streams, gabor.hpp's word fields and gabor_kernel.hpp's taper,
 // separable kernel (grids) and point form (points), operation by operation.
 // Part of library(); references only generated constants (generator.hpp) and
 // hashing/lattice functions.
-#ifndef HUSH_GLSL_DETAIL_GABOR_BODY_HPP
-#define HUSH_GLSL_DETAIL_GABOR_BODY_HPP
+#ifndef HUSH_GLSL_GABOR_GLSL_HPP
+#define HUSH_GLSL_GABOR_GLSL_HPP
 
 namespace hush {
 namespace glsl {
@@ -241,4 +241,4 @@ float hush_gabor_filter(mat3 fp, uint dim, float k, float mk, out mat3 q, out ma
 }  // namespace glsl
 }  // namespace hush
 
-#endif  // HUSH_GLSL_DETAIL_GABOR_BODY_HPP
+#endif  // HUSH_GLSL_GABOR_GLSL_HPP

@@ -1,0 +1,819 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// NPR Gabor noise (include/hush/npr_gabor.hpp) on the GPU, the paper's way (Benard et al.
+// 2010, sec. 3.4 and 5): stage 1 (the points) in compute passes, stage 2 (the splatting) as
+// point sprites. Include this header to use hush::exec::glsl{device} with
+// hush::npr_gabor::render and ::splat:
+//
+//   hush::glsl::headless_device gpu;                // or a device on the application's context
+//   noise.render(hush::exec::glsl{gpu.device}, frame, triangles, out);
+//
+// Stage 1 (render): where every parameter source is constant or per object, the triangle list
+// (vertices: screen x, y, depth; triangles: indices, id, object) and a per-object kernel table
+// (npr_gabor::kernel_of_object, double, rounded once) go to storage buffers and compute passes
+// walk each triangle's hierarchical point sequence (hush/detail/npr_gabor_tree.hpp) level by
+// level, as the CPU walks it depth first: per triangle its count and LOD weights in float
+// (npr_gabor_lod, the thinning, the plane of 1/z) and its root node (level 0, at a scanned
+// offset); per level one pass decides for each node whether its own point reaches the frame
+// and which children to keep (index below the count, or with a count per node -- params::
+// local_density, a triangle crossing the near plane or of depth ratio above 4 -- the node's
+// own count n = lambda A above 1/4, its weight sqrt(n h(n)) per node as on the CPU, blended
+// with the per-triangle LOD's for ratios 4 - 8; a crossing triangle's nodes carry homogeneous
+// corners (z (s - o), z), clipped at w_near = far / 1024; screen triangle grown by r, or the
+// clipped part's projection, meeting the frame), a multi-level prefix sum gives every record and child its offset, a second pass
+// writes the children as the next level's list. The host reads back each level's two totals
+// (8 bytes) to size the next level; nothing is dropped (a level beyond one storage block runs
+// stage 1 on the CPU instead). Then one pass per level writes the records at their scanned
+// offsets, batch by batch: level by level, each in its list's order, the same order every run
+// (no atomics), hence the same image. J (up to 2^41) is a uvec2; node corners are carried down
+// as perspective-correct midpoints in float (homogeneous: plain midpoints). Per-pixel or
+// per-vertex sources, buffers beyond one storage block, or more than 2^32 - 1 records: stage 1
+// on the CPU (make_splats), automatically. Float instead of double changes positions, weights and planes within the
+// tolerance derived in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and
+// double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
+// float error) exist on one side only; with params::local_density, likewise a node whose float
+// and double counts straddle a cut of the hat (1/4, 4): its record (weight <= sqrt((1 +
+// 1/ln 4) nu_P n + n 2^-21), nu_P its count's relative error) exists on one side only; near the
+// near plane also a node with a corner within its float depth error of w_near (crossing, weight
+// 0, on one side). The homogeneous corners' float error: docs/npr-gabor.md "Triangles crossing
+// the near plane", GPU.
+//
+// Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
+// buffers, 64 + 16 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
+// geometry shader turns each into one screen-aligned quad covering the record's pixel range x0 ...
+// x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the image), a fragment shader runs the
+// visibility tests against the G-buffer (object id, triangle id, depth with its tolerance, soft
+// depth; SSBOs uploaded by frame_upload.hpp) and evaluates the tapered Gabor kernel with the
+// library's float functions (the CPU's float operations, hush/glsl/gabor/program.hpp), and additive
+// blending (GL_ONE, GL_ONE) sums the fragments into a GL_R32F framebuffer texture, read back into
+// `out`. The normalisation is the CPU's: the weights in the records.
+//
+// The GL geometry-output limit: one input point emits one quad, 4 vertices of 5 components
+// (gl_Position and the record index), a fixed max_vertices = 4 that no GL can refuse
+// (GL_MAX_GEOMETRY_OUTPUT_VERTICES >= 256 and GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS >= 1024
+// are the GL 3.2 minimums); a kernel's size never changes the vertex count, only the quad's
+// size. npr_gabor_gl_limits() queries the limits; the renderer checks them once anyway.
+// Records beyond one storage block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE / 64) are drawn in
+// several draws, in order. Frames up to GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS and
+// GL_MAX_RENDERBUFFER_SIZE (hush::invalid_argument naming the frame size otherwise).
+//
+// Agreement with the CPU (tests/glsl/glsl_gabor_test.cpp, "npr"): GL blends the fragments of
+// one draw in primitive order, so every pixel sums the same kernels in the CPU's record order;
+// what differs is each kernel's float value: the offsets are formed relative to the record's
+// first pixel (in double on the CPU, then rounded: no large coordinate reaches the GPU, which
+// has no fp64), and GLSL may fuse multiply-adds. Per pixel p reached by kernels i with weights
+// w_i, the image is within S(p) (2 K + 2^-24 n(p)) of the double reference, S(p) = sum |w_i|,
+//   K = 2^-21 (1 + 2 pi F0 r) + 2 2^-21 (2 A + 2 pi F0 r + 2 / (1 - s0)) [+ 4 2^-24 / tolerance]
+// (A = ln(1/t), s0 the taper start): the kernel's float budget of gabor_kernel.hpp; the
+// offsets' rounding (<= 2^-21 in units of r per axis) times the kernel's slope (envelope,
+// harmonic, taper) on both axes; with the soft test, the fade's rounding. 2 K for GPUs whose
+// float ops err by 2 ulp; n(p) 2^-24 S(p) the sums' rounding. The visibility decisions are the
+// CPU's except at ties: the depth test's relative difference is formed in float (the plane relative
+// to the first pixel), so a fragment whose relative depth difference is within 2^-18 of the
+// tolerance (or of twice it, soft) may be decided the other way; object and triangle tests compare
+// integers (exact).
+//
+// Depths: a pixel's depth must be positive and finite, as on the CPU; a denormal depth reads as
+// 0 (fails) on GPUs that flush denormals, where the CPU passes it to the plane comparison. The
+// same holds for vertex depths in GPU stage 1: a triangle with a denormal vertex depth emits
+// nothing there.
+//
+// Throws std::runtime_error for GL errors (and when the context lacks storage blocks in the
+// geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
+// driver has them). Leaves the current program, vertex array, framebuffers, viewport, blend and
+// the enables it touches (blend, depth, stencil, scissor, cull face) as it found them; rebinds
+// the indexed storage-buffer bindings 0 to 7 (as hush::glsl::device does).
+#ifndef HUSH_GLSL_NPR_GABOR_RENDERER_HPP
+#define HUSH_GLSL_NPR_GABOR_RENDERER_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hush/detail/constants.hpp"
+#include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/glsl/detail/gl.hpp"
+#include "hush/glsl/device.hpp"
+#include "hush/glsl/frame_upload.hpp"
+#include "hush/glsl/npr_gabor/glsl.hpp"
+#include "hush/npr_gabor.hpp"
+
+namespace hush {
+namespace glsl {
+
+// The GL limits the renderer depends on, as the context reports them.
+struct npr_gabor_limits {
+  int max_geometry_output_vertices = 0;    // GL_MAX_GEOMETRY_OUTPUT_VERTICES
+  int max_geometry_output_components = 0;  // GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS
+  int max_geometry_storage_blocks = 0;     // GL_MAX_GEOMETRY_SHADER_STORAGE_BLOCKS
+  int max_fragment_storage_blocks = 0;     // GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS
+  int max_frame_side =
+      0;  // min(GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS, GL_MAX_RENDERBUFFER_SIZE)
+  // Whether one quad per input point fits the geometry-output limits.
+  bool sprites_fit() const {
+    return kNprGaborSpriteVertices <= max_geometry_output_vertices &&
+           kNprGaborSpriteVertices * kNprGaborSpriteComponents <= max_geometry_output_components;
+  }
+};
+
+namespace detail {
+
+// GL enums of the raster path (Khronos gl.xml).
+constexpr gl_enum kGlFramebuffer = 0x8D40;
+constexpr gl_enum kGlColorAttachment0 = 0x8CE0;
+constexpr gl_enum kGlFramebufferComplete = 0x8CD5;
+constexpr gl_enum kGlDrawFramebufferBinding = 0x8CA6;
+constexpr gl_enum kGlReadFramebufferBinding = 0x8CAA;
+constexpr gl_enum kGlDrawFramebuffer = 0x8CA9;
+constexpr gl_enum kGlReadFramebuffer = 0x8CA8;
+constexpr gl_enum kGlR32f = 0x822E;
+constexpr gl_enum kGlRed = 0x1903;
+constexpr gl_enum kGlPoints = 0x0000;
+constexpr gl_enum kGlBlend = 0x0BE2;
+constexpr gl_enum kGlOne = 1;
+constexpr gl_enum kGlFuncAdd = 0x8006;
+constexpr gl_enum kGlDepthTest = 0x0B71;
+constexpr gl_enum kGlScissorTest = 0x0C11;
+constexpr gl_enum kGlCullFace = 0x0B44;
+constexpr gl_enum kGlStencilTest = 0x0B90;
+constexpr gl_bitfield kGlColorBufferBit = 0x4000;
+constexpr gl_enum kGlViewport = 0x0BA2;
+constexpr gl_enum kGlMaxGeometryOutputVertices = 0x8DE0;
+constexpr gl_enum kGlMaxGeometryTotalOutputComponents = 0x8DE1;
+constexpr gl_enum kGlMaxGeometryShaderStorageBlocks = 0x90D7;
+constexpr gl_enum kGlMaxFragmentShaderStorageBlocks = 0x90DA;
+constexpr gl_enum kGlMaxViewportDims = 0x0D3A;
+constexpr gl_enum kGlMaxRenderbufferSize = 0x84E8;
+constexpr gl_enum kGlPackAlignment = 0x0D05;
+constexpr gl_enum kGlVertexArrayBinding = 0x85B5;
+constexpr gl_enum kGlNearest = 0x2600;
+constexpr gl_enum kGlBlendSrcRgb = 0x80C9;
+constexpr gl_enum kGlBlendDstRgb = 0x80C8;
+constexpr gl_enum kGlBlendSrcAlpha = 0x80CB;
+constexpr gl_enum kGlBlendDstAlpha = 0x80CA;
+constexpr gl_enum kGlBlendEquationRgb = 0x8009;
+constexpr gl_enum kGlBlendEquationAlpha = 0x883D;
+
+// The entry points of the raster path (GL 3.x core), loaded from the device's loader.
+struct gl_raster_api {
+  void(HUSH_GLAPI* GenFramebuffers)(gl_sizei, gl_uint*) = nullptr;
+  void(HUSH_GLAPI* DeleteFramebuffers)(gl_sizei, const gl_uint*) = nullptr;
+  void(HUSH_GLAPI* BindFramebuffer)(gl_enum, gl_uint) = nullptr;
+  void(HUSH_GLAPI* FramebufferTexture2D)(gl_enum, gl_enum, gl_enum, gl_uint, gl_int) = nullptr;
+  gl_enum(HUSH_GLAPI* CheckFramebufferStatus)(gl_enum) = nullptr;
+  void(HUSH_GLAPI* GenVertexArrays)(gl_sizei, gl_uint*) = nullptr;
+  void(HUSH_GLAPI* DeleteVertexArrays)(gl_sizei, const gl_uint*) = nullptr;
+  void(HUSH_GLAPI* BindVertexArray)(gl_uint) = nullptr;
+  void(HUSH_GLAPI* DrawArrays)(gl_enum, gl_int, gl_sizei) = nullptr;
+  void(HUSH_GLAPI* Viewport)(gl_int, gl_int, gl_sizei, gl_sizei) = nullptr;
+  void(HUSH_GLAPI* Enable)(gl_enum) = nullptr;
+  void(HUSH_GLAPI* Disable)(gl_enum) = nullptr;
+  unsigned char(HUSH_GLAPI* IsEnabled)(gl_enum) = nullptr;
+  void(HUSH_GLAPI* BlendFuncSeparate)(gl_enum, gl_enum, gl_enum, gl_enum) = nullptr;
+  void(HUSH_GLAPI* BlendEquationSeparate)(gl_enum, gl_enum) = nullptr;
+  void(HUSH_GLAPI* ClearColor)(float, float, float, float) = nullptr;
+  void(HUSH_GLAPI* Clear)(gl_bitfield) = nullptr;
+  void(HUSH_GLAPI* ReadPixels)(gl_int, gl_int, gl_sizei, gl_sizei, gl_enum, gl_enum,
+                               void*) = nullptr;
+
+  explicit gl_raster_api(loader_fn loader) {
+    gl_api::load(loader, GenFramebuffers, "glGenFramebuffers");
+    gl_api::load(loader, DeleteFramebuffers, "glDeleteFramebuffers");
+    gl_api::load(loader, BindFramebuffer, "glBindFramebuffer");
+    gl_api::load(loader, FramebufferTexture2D, "glFramebufferTexture2D");
+    gl_api::load(loader, CheckFramebufferStatus, "glCheckFramebufferStatus");
+    gl_api::load(loader, GenVertexArrays, "glGenVertexArrays");
+    gl_api::load(loader, DeleteVertexArrays, "glDeleteVertexArrays");
+    gl_api::load(loader, BindVertexArray, "glBindVertexArray");
+    gl_api::load(loader, DrawArrays, "glDrawArrays");
+    gl_api::load(loader, Viewport, "glViewport");
+    gl_api::load(loader, Enable, "glEnable");
+    gl_api::load(loader, Disable, "glDisable");
+    gl_api::load(loader, IsEnabled, "glIsEnabled");
+    gl_api::load(loader, BlendFuncSeparate, "glBlendFuncSeparate");
+    gl_api::load(loader, BlendEquationSeparate, "glBlendEquationSeparate");
+    gl_api::load(loader, ClearColor, "glClearColor");
+    gl_api::load(loader, Clear, "glClear");
+    gl_api::load(loader, ReadPixels, "glReadPixels");
+  }
+};
+
+}  // namespace detail
+
+// The limits of the context current on this thread (see npr_gabor_limits).
+inline npr_gabor_limits npr_gabor_gl_limits(const detail::gl_api& gl) {
+  npr_gabor_limits l;
+  gl.GetIntegerv(detail::kGlMaxGeometryOutputVertices, &l.max_geometry_output_vertices);
+  gl.GetIntegerv(detail::kGlMaxGeometryTotalOutputComponents, &l.max_geometry_output_components);
+  gl.GetIntegerv(detail::kGlMaxGeometryShaderStorageBlocks, &l.max_geometry_storage_blocks);
+  gl.GetIntegerv(detail::kGlMaxFragmentShaderStorageBlocks, &l.max_fragment_storage_blocks);
+  detail::gl_int tex = 0, rb = 0, vp[2] = {0, 0};
+  gl.GetIntegerv(detail::kGlMaxTextureSize, &tex);
+  gl.GetIntegerv(detail::kGlMaxRenderbufferSize, &rb);
+  gl.GetIntegerv(detail::kGlMaxViewportDims, vp);
+  l.max_frame_side = std::min({tex, rb, vp[0], vp[1]});
+  gl.check("hush::glsl::npr_gabor: querying limits");
+  return l;
+}
+
+// One record as the shaders read it (std430, 64 bytes): the pixel range; the first pixel
+// centre's offset from the point (cx, cy) = (x0 + 1/2, y0 + 1/2) - position, 1/r and the
+// weight; (F_x r, F_y r); the plane of 1/z at the first pixel centre and its slopes.
+struct npr_gabor_gpu_record {
+  std::int32_t box[4];  // x0, y0, x1, y1 (x0 > x1: empty, drawn as nothing)
+  float kern[4];        // cx, cy, 1/r, weight
+  float freq[4];        // F_x r, F_y r, -, -
+  float plane[4];       // 1/z at (x0 + 1/2, y0 + 1/2), d(1/z)/dx, d(1/z)/dy, -
+  // The CPU record's form: offsets and the plane formed in double and rounded once.
+  static npr_gabor_gpu_record of(const npr_gabor_splat& r) {
+    const double fx0 = static_cast<double>(r.x0) + 0.5, fy0 = static_cast<double>(r.y0) + 0.5;
+    return {{r.x0, r.y0, r.x1, r.y1},
+            {static_cast<float>(fx0 - r.x), static_cast<float>(fy0 - r.y),
+             static_cast<float>(1.0 / r.radius), static_cast<float>(r.weight)},
+            {static_cast<float>(r.fx * r.radius), static_cast<float>(r.fy * r.radius), 0.0f, 0.0f},
+            {static_cast<float>(r.q0 + r.qx * fx0 + r.qy * fy0), static_cast<float>(r.qx),
+             static_cast<float>(r.qy), 0.0f}};
+  }
+};
+static_assert(sizeof(npr_gabor_gpu_record) == kNprGaborRecordBytes, "std430 record layout");
+
+namespace detail {
+
+// The GPU side of NPR Gabor splatting on one device: program, framebuffer, buffers.
+class npr_gabor_gpu {
+ public:
+  explicit npr_gabor_gpu(glsl::device& dev)
+      : dev_(dev), gl_(dev.gl()), gr_(dev.gl().loader), frame_(gl_, dev.max_buffer_bytes()) {
+    limits_ = npr_gabor_gl_limits(gl_);
+    if (!limits_.sprites_fit() || limits_.max_geometry_storage_blocks < 1 ||
+        limits_.max_fragment_storage_blocks < 5)
+      throw std::runtime_error(
+          "hush::glsl::npr_gabor: the context lacks what the splatting needs (a quad of 4 "
+          "vertices from the geometry stage, 1 storage block there and 5 in the fragment stage)");
+    program_ = link_program(gl_, {{kGlVertexShader, npr_gabor_vertex_source()},
+                                  {kGlGeometryShader, npr_gabor_geometry_source()},
+                                  {kGlFragmentShader, npr_gabor_fragment_source()}});
+    for (int i = 0; i < kNprGaborStage1Passes; ++i)
+      stage1_[i] = link_program(gl_, {{kGlComputeShader, npr_gabor_stage1_source(i)}});
+    gl_.GenBuffers(2, buffers_);
+    gl_.GenBuffers(kStage1Buffers, stage1_buffers_);
+    gl_.GenTextures(1, &texture_);
+    gr_.GenFramebuffers(1, &fbo_);
+    gr_.GenVertexArrays(1, &vao_);
+    gl_.check("hush::glsl::npr_gabor: setting up");
+  }
+  npr_gabor_gpu(const npr_gabor_gpu&) = delete;
+  npr_gabor_gpu& operator=(const npr_gabor_gpu&) = delete;
+  ~npr_gabor_gpu() {
+    gr_.DeleteVertexArrays(1, &vao_);
+    gr_.DeleteFramebuffers(1, &fbo_);
+    gl_.DeleteTextures(1, &texture_);
+    gl_.DeleteBuffers(kStage1Buffers, stage1_buffers_);
+    for (const std::vector<gl_uint>* v : {&level_nodes_, &level_flags_, &scan_sums_})
+      if (!v->empty()) gl_.DeleteBuffers(static_cast<gl_sizei>(v->size()), v->data());
+    gl_.DeleteBuffers(2, buffers_);
+  }
+
+  const npr_gabor_limits& limits() const { return limits_; }
+  std::size_t draws() const { return draws_; }
+  // Frames whose stage 1 ran on the GPU (render), and those it handed back to the CPU.
+  std::size_t gpu_stage1_frames() const { return gpu_frames_; }
+  std::size_t cpu_stage1_frames() const { return cpu_frames_; }
+  // The last GPU stage 1's walk: nodes visited (every level's list) and levels.
+  std::uint64_t stage1_nodes() const { return nodes_; }
+  std::size_t stage1_levels() const { return levels_; }
+
+  // Stage 2 of `j` into out (frame-sized, validated by npr_gabor::splat).
+  void splat(const hush::detail::npr_gabor_splat_job& j, const image_view<float>& out) {
+    draw(j, out, j.count, [&](std::size_t b0, std::size_t m) { pack(j.splats + b0, m); });
+  }
+
+  // Both stages of noise.render on the GPU (arguments validated by render); stage 1 on the
+  // CPU where the GPU cannot run it (a per-pixel or per-vertex source, buffers beyond one
+  // storage block: a level's nodes included; more than 2^32 - 1 records or nodes).
+  void render(const npr_gabor& noise, const frame& f, const triangle_list& tris,
+              const npr_gabor::sources& src, const image_view<float>& out) {
+    std::size_t total = 0;
+    if (!stage1(noise, f, tris, src, total)) {
+      ++cpu_frames_;
+      std::vector<npr_gabor_splat> splats;
+      noise.make_splats(f, tris, splats, src);
+      splat(noise.splat_job(f, splats.data(), splats.size()), out);
+      return;
+    }
+    ++gpu_frames_;
+    const state_guard guard(gl_, gr_);  // generate() switches programs between the draws
+    draw(noise.splat_job(f, nullptr, 0), out, total,
+         [&](std::size_t b0, std::size_t m) { generate(b0, m); });
+  }
+
+  // Stage 1 on the GPU alone, its records read back: for each record in order whose pixel
+  // range is not empty, the 16 words of npr_gabor_gpu_record (box, kern, freq, plane) and 4
+  // ids (object, triangle id, J low, J high); `empty` counts the others (a record whose box,
+  // recomputed by the records pass, came out empty: none expected). Records come level by
+  // level, each level in its list's order. False (nothing written) where render would run
+  // stage 1 on the CPU. For tests and debugging.
+  bool records(const npr_gabor& noise, const frame& f, const triangle_list& tris,
+               const npr_gabor::sources& src, std::vector<std::uint32_t>& words,
+               std::vector<std::uint32_t>& ids, std::size_t& empty) {
+    std::size_t total = 0;
+    if (!stage1(noise, f, tris, src, total)) return false;
+    const state_guard guard(gl_, gr_);
+    words.clear();
+    ids.clear();
+    empty = 0;
+    const std::size_t batch = batch_records();
+    std::vector<std::uint32_t> w, d;
+    for (std::size_t b0 = 0; b0 < total; b0 += batch) {
+      const std::size_t m = std::min(batch, total - b0);
+      generate(b0, m);
+      gl_.MemoryBarrier(kGlBufferUpdateBarrierBit);
+      w.resize(m * 16);
+      d.resize(m * 4);
+      gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 64), w.data());
+      gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, static_cast<gl_sizeiptr>(m * 16), d.data());
+      for (std::size_t k = 0; k < m; ++k) {
+        npr_gabor_gpu_record r;
+        std::memcpy(&r, &w[16 * k], sizeof r);
+        if (r.box[0] > r.box[2] || r.box[1] > r.box[3]) {
+          ++empty;
+          continue;
+        }
+        words.insert(words.end(), w.begin() + static_cast<std::ptrdiff_t>(16 * k),
+                     w.begin() + static_cast<std::ptrdiff_t>(16 * k + 16));
+        ids.insert(ids.end(), d.begin() + static_cast<std::ptrdiff_t>(4 * k),
+                   d.begin() + static_cast<std::ptrdiff_t>(4 * k + 4));
+      }
+    }
+    gl_.check("hush::glsl::npr_gabor: reading stage 1's records");
+    return true;
+  }
+
+ private:
+  // Records per batch: one storage block.
+  std::size_t batch_records() const {
+    return std::max<std::size_t>(1, dev_.max_buffer_bytes() / kNprGaborRecordBytes);
+  }
+
+  // Stage 2: the records [0, total) of the frame in batches; fill(b0, m) puts records
+  // b0 ... b0 + m - 1 into buffers_[0] (and their ids into buffers_[1]).
+  template <class Fill>
+  void draw(const hush::detail::npr_gabor_splat_job& j, const image_view<float>& out,
+            std::size_t total, Fill fill) {
+    namespace c = hush::detail::constants;
+    const std::size_t w = out.width, h = out.height;
+    if (w > static_cast<std::size_t>(limits_.max_frame_side) ||
+        h > static_cast<std::size_t>(limits_.max_frame_side))
+      hush::detail::throw_out_of_range(
+          "hush::glsl::npr_gabor", "frame size", std::to_string(w) + "x" + std::to_string(h),
+          ("sides up to " + std::to_string(limits_.max_frame_side) +
+           " (GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS, GL_MAX_RENDERBUFFER_SIZE)")
+              .c_str());
+    // The G-buffer views the tests read.
+    frame f;
+    f.depth = j.depth;
+    f.object_id = j.object_id;
+    f.triangle_id = j.triangle_id;
+    frame_view which = frame_view::none;
+    if (j.depth_test) which = which | frame_view::depth;
+    if (j.object_test) which = which | frame_view::object_id;
+    if (j.triangle_test) which = which | frame_view::triangle_id;
+    if (which != frame_view::none) frame_.upload(f, which);
+    const state_guard guard(gl_, gr_);
+    target(w, h);
+    gl_.UseProgram(program_.id());
+    const gl_uint prog = program_.id();
+    gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), static_cast<gl_uint>(w),
+                   static_cast<gl_uint>(h));
+    gl_.Uniform1ui(gl_.GetUniformLocation(prog, "hush_flags"),
+                   (j.object_test ? 1u : 0u) | (j.triangle_test ? 2u : 0u) |
+                       (j.depth_test ? 4u : 0u) | (j.soft_depth ? 8u : 0u));
+    gl_.Uniform1f(gl_.GetUniformLocation(prog, "hush_tolerance"),
+                  static_cast<float>(j.depth_tolerance));
+    gl_.Uniform1f(gl_.GetUniformLocation(prog, "hush_neg_a"),
+                  static_cast<float>(-j.envelope_exponent));
+    gl_.Uniform1f(gl_.GetUniformLocation(prog, "hush_taper_k"),
+                  static_cast<float>(1.0 / (1.0 - c::kGaborTaperStart)));
+    // Unused views: any valid buffer (never read).
+    const frame_view any = j.depth_test    ? frame_view::depth
+                           : j.object_test ? frame_view::object_id
+                                           : frame_view::triangle_id;
+    // Records in batches of one storage block, drawn in order.
+    const std::size_t batch = batch_records();
+    for (std::size_t b0 = 0; b0 < total; b0 += batch) {
+      const std::size_t m = std::min(batch, total - b0);
+      fill(b0, m);
+      gl_.UseProgram(program_.id());
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 0, buffers_[0]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, buffers_[1]);
+      if (which == frame_view::none) {  // no test: bind the records' buffer (never read)
+        for (gl_uint b = 1; b <= 3; ++b) gl_.BindBufferBase(kGlShaderStorageBuffer, b, buffers_[0]);
+      } else {
+        frame_.bind(j.depth_test ? frame_view::depth : any, 1);
+        frame_.bind(j.object_test ? frame_view::object_id : any, 2);
+        frame_.bind(j.triangle_test ? frame_view::triangle_id : any, 3);
+      }
+      gr_.DrawArrays(kGlPoints, 0, static_cast<gl_sizei>(m));
+      ++draws_;
+    }
+    // Read back (row y of the texture is image row y).
+    pixels_.resize(w * h);
+    gl_.PixelStorei(kGlPackAlignment, 4);
+    gr_.ReadPixels(0, 0, static_cast<gl_sizei>(w), static_cast<gl_sizei>(h), kGlRed, kGlFloat,
+                   pixels_.data());
+    gl_.check("hush::glsl::npr_gabor: splatting");
+    for (std::size_t y = 0; y < h; ++y)
+      std::copy(pixels_.begin() + static_cast<std::ptrdiff_t>(y * w),
+                pixels_.begin() + static_cast<std::ptrdiff_t>((y + 1) * w), out.row(y));
+  }
+
+ private:
+  // Saves and restores the state the pass changes.
+  class state_guard {
+   public:
+    state_guard(const gl_api& gl, const gl_raster_api& gr) : gl_(gl), gr_(gr) {
+      gl.GetIntegerv(kGlCurrentProgram, &program_);
+      gl.GetIntegerv(kGlVertexArrayBinding, &vao_);
+      gl.GetIntegerv(kGlDrawFramebufferBinding, &draw_);
+      gl.GetIntegerv(kGlReadFramebufferBinding, &read_);
+      gl.GetIntegerv(kGlViewport, viewport_);
+      gl.GetIntegerv(kGlShaderStorageBufferBinding, &buffer_);
+      gl.GetIntegerv(kGlTextureBinding2d, &texture_);
+      gl.GetIntegerv(kGlPackAlignment, &pack_);
+      for (int i = 0; i < 4; ++i) gl.GetIntegerv(kBlendQueries[i], &blend_[i]);
+      gl.GetIntegerv(kGlBlendEquationRgb, &equation_[0]);
+      gl.GetIntegerv(kGlBlendEquationAlpha, &equation_[1]);
+      for (int i = 0; i < 5; ++i) enabled_[i] = gr.IsEnabled(kCaps[i]) != 0;
+    }
+    state_guard(const state_guard&) = delete;
+    state_guard& operator=(const state_guard&) = delete;
+    ~state_guard() {
+      gl_.UseProgram(static_cast<gl_uint>(program_));
+      gr_.BindVertexArray(static_cast<gl_uint>(vao_));
+      gr_.BindFramebuffer(kGlDrawFramebuffer, static_cast<gl_uint>(draw_));
+      gr_.BindFramebuffer(kGlReadFramebuffer, static_cast<gl_uint>(read_));
+      gr_.Viewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+      gl_.BindBuffer(kGlShaderStorageBuffer, static_cast<gl_uint>(buffer_));
+      gl_.BindTexture(kGlTexture2d, static_cast<gl_uint>(texture_));
+      gl_.PixelStorei(kGlPackAlignment, pack_);
+      gr_.BlendFuncSeparate(static_cast<gl_enum>(blend_[0]), static_cast<gl_enum>(blend_[1]),
+                            static_cast<gl_enum>(blend_[2]), static_cast<gl_enum>(blend_[3]));
+      gr_.BlendEquationSeparate(static_cast<gl_enum>(equation_[0]),
+                                static_cast<gl_enum>(equation_[1]));
+      for (int i = 0; i < 5; ++i) (enabled_[i] ? gr_.Enable : gr_.Disable)(kCaps[i]);
+    }
+
+   private:
+    static constexpr gl_enum kBlendQueries[4] = {kGlBlendSrcRgb, kGlBlendDstRgb, kGlBlendSrcAlpha,
+                                                 kGlBlendDstAlpha};
+    static constexpr gl_enum kCaps[5] = {kGlBlend, kGlDepthTest, kGlStencilTest, kGlScissorTest,
+                                         kGlCullFace};
+    const gl_api& gl_;
+    const gl_raster_api& gr_;
+    gl_int program_ = 0, vao_ = 0, draw_ = 0, read_ = 0, buffer_ = 0, texture_ = 0, pack_ = 4;
+    gl_int viewport_[4] = {0, 0, 0, 0}, blend_[4] = {1, 0, 1, 0}, equation_[2] = {0, 0};
+    bool enabled_[5] = {false, false, false, false, false};
+  };
+
+  // The R32F target, sized w x h and cleared to 0; blending set to a plain sum.
+  void target(std::size_t w, std::size_t h) {
+    gl_.BindTexture(kGlTexture2d, texture_);
+    if (w != width_ || h != height_) {
+      gl_.TexImage2D(kGlTexture2d, 0, static_cast<gl_int>(kGlR32f), static_cast<gl_sizei>(w),
+                     static_cast<gl_sizei>(h), 0, kGlRed, kGlFloat, nullptr);
+      for (const gl_enum p : {kGlTextureMinFilter, kGlTextureMagFilter})
+        gl_.TexParameteri(kGlTexture2d, p, static_cast<gl_int>(kGlNearest));
+      width_ = w;
+      height_ = h;
+    }
+    gr_.BindFramebuffer(kGlFramebuffer, fbo_);
+    gr_.FramebufferTexture2D(kGlFramebuffer, kGlColorAttachment0, kGlTexture2d, texture_, 0);
+    if (gr_.CheckFramebufferStatus(kGlFramebuffer) != kGlFramebufferComplete)
+      throw std::runtime_error(
+          "hush::glsl::npr_gabor: the GL_R32F framebuffer is incomplete on this context");
+    gr_.Viewport(0, 0, static_cast<gl_sizei>(w), static_cast<gl_sizei>(h));
+    for (const gl_enum cap : {kGlDepthTest, kGlStencilTest, kGlScissorTest, kGlCullFace})
+      gr_.Disable(cap);
+    gr_.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gr_.Clear(kGlColorBufferBit);
+    gr_.Enable(kGlBlend);
+    gr_.BlendFuncSeparate(kGlOne, kGlOne, kGlOne, kGlOne);
+    gr_.BlendEquationSeparate(kGlFuncAdd, kGlFuncAdd);
+    gr_.BindVertexArray(vao_);
+  }
+
+  // Records [0, m) of `s` into the two record buffers, bound at 0 and 4: offsets relative to
+  // the first pixel, formed in double and rounded once.
+  void pack(const npr_gabor_splat* s, std::size_t m) {
+    words_.resize(m * 16);
+    ids_.resize(m * 4);
+    for (std::size_t i = 0; i < m; ++i) {
+      const npr_gabor_gpu_record g = npr_gabor_gpu_record::of(s[i]);
+      std::memcpy(words_.data() + 16 * i, &g, sizeof g);
+      ids_[4 * i] = s[i].object;
+      ids_[4 * i + 1] = s[i].triangle;
+      ids_[4 * i + 2] = static_cast<std::uint32_t>(s[i].index);
+      ids_[4 * i + 3] = static_cast<std::uint32_t>(s[i].index >> 32);
+    }
+    gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(words_.size() * 4),
+                   words_.data(), kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 0, buffers_[0]);
+    gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(ids_.size() * 4), ids_.data(),
+                   kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 4, buffers_[1]);
+  }
+
+  void set(gl_uint prog, const char* name, gl_uint v) const {
+    gl_.Uniform1ui(gl_.GetUniformLocation(prog, name), v);
+  }
+  // Runs `prog` over `items` invocations in groups of `group`, at most 65535 groups (GL 4.3's
+  // minimum GL_MAX_COMPUTE_WORK_GROUP_COUNT) per dispatch; hush_group_base says where a
+  // dispatch starts.
+  void dispatch(gl_uint prog, std::size_t items, std::size_t group) const {
+    constexpr std::size_t kMaxGroups = 65535;
+    const std::size_t groups = (items + group - 1) / group;
+    for (std::size_t g0 = 0; g0 < groups; g0 += kMaxGroups) {
+      set(prog, "hush_group_base", static_cast<gl_uint>(g0));
+      gl_.DispatchCompute(static_cast<gl_uint>(std::min(kMaxGroups, groups - g0)), 1, 1);
+    }
+  }
+  void upload(int which, const void* data, std::size_t bytes, gl_uint binding) const {
+    gl_.BindBuffer(kGlShaderStorageBuffer, stage1_buffers_[which]);
+    gl_.BufferData(kGlShaderStorageBuffer,
+                   static_cast<gl_sizeiptr>(std::max<std::size_t>(bytes, 4)), data, kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, binding, stage1_buffers_[which]);
+  }
+  void bind_stage1() const {
+    for (int b = 0; b < kStage1Buffers; ++b)
+      gl_.BindBufferBase(kGlShaderStorageBuffer, static_cast<gl_uint>(b), stage1_buffers_[b]);
+  }
+  // Buffer i of `v`, made on first use.
+  gl_uint buffer_at(std::vector<gl_uint>& v, std::size_t i) const {
+    while (v.size() <= i) {
+      gl_uint b = 0;
+      gl_.GenBuffers(1, &b);
+      v.push_back(b);
+    }
+    return v[i];
+  }
+  void allocate(gl_uint buffer, std::size_t bytes) const {
+    gl_.BindBuffer(kGlShaderStorageBuffer, buffer);
+    gl_.BufferData(kGlShaderStorageBuffer,
+                   static_cast<gl_sizeiptr>(std::max<std::size_t>(bytes, 16)), nullptr,
+                   kGlStreamDraw);
+  }
+  void run(int pass, std::size_t items, std::size_t group) const {
+    dispatch(stage1_[pass].id(), items, group);
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit | kGlBufferUpdateBarrierBit);
+  }
+
+  // The exclusive prefix sum of the n uvec2 items of `data`, in place; `total` gets their sum
+  // (8 bytes read back). Blocks of kNprGaborScanBlock items per work group, then the blocks'
+  // totals scanned the same way (recursively: depth d holds n / 1024^d totals) and added back.
+  void scan(gl_uint data, std::size_t n, std::size_t depth, std::uint32_t total[2]) {
+    total[0] = total[1] = 0;
+    if (n == 0) return;
+    const gl_uint prog = stage1_[kScanPass].id();
+    const std::size_t groups = (n + kNprGaborScanBlock - 1) / kNprGaborScanBlock;
+    const gl_uint sums = buffer_at(scan_sums_, depth);
+    allocate(sums, groups * 8);
+    const auto pass = [&](gl_uint add) {
+      gl_.UseProgram(prog);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 0, data);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 1, sums);
+      set(prog, "hush_items", static_cast<gl_uint>(n));
+      set(prog, "hush_add", add);
+      run(kScanPass, groups * kNprGaborScanSize, kNprGaborScanSize);
+    };
+    pass(0);
+    if (groups > 1) {
+      scan(sums, groups, depth + 1, total);
+      pass(1);
+    } else {
+      gl_.BindBuffer(kGlShaderStorageBuffer, sums);
+      gl_.GetBufferSubData(kGlShaderStorageBuffer, 0, 8, total);
+    }
+  }
+
+  // Stage 1 up to the records: uploads the triangles and the per-object kernels, computes each
+  // triangle's LOD, its root node, then walks the point sequence level by level (expand, scan,
+  // children) keeping every level's nodes and scanned offsets for generate(); `total` the
+  // number of records. False where the GPU cannot run stage 1 (see render).
+  bool stage1(const npr_gabor& noise, const frame& f, const triangle_list& tris,
+              const npr_gabor::sources& src, std::size_t& total) {
+    // Per-pixel or per-vertex sources run on the CPU.
+    if (!npr_gabor::per_object_at_most(src)) return false;
+    const std::size_t nt = tris.triangles(), nv = tris.vertices();
+    std::size_t objects = 0;  // table entries before the constants' one
+    for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
+      objects = std::max(objects, p->table_size());
+    const std::size_t most = dev_.max_buffer_bytes();
+    if (nt * kNprGaborLodBytes > most || nv * 16 > most || nt * 20 > most || (objects + 1) * 32 > most ||
+        nt * kNprGaborNodeBytes > most || nt > 0xFFFFFFFFu)
+      return false;
+    const state_guard guard(gl_, gr_);
+    // Vertices (x, y, depth, -), triangles (3 indices, id, object), the kernel table.
+    floats_.assign(std::max<std::size_t>(nv, 1) * 4, 0.0f);
+    for (std::size_t v = 0; v < nv; ++v) {
+      floats_[4 * v] = tris.screen[v].x;
+      floats_[4 * v + 1] = tris.screen[v].y;
+      floats_[4 * v + 2] = tris.depth[v];
+    }
+    upload(0, floats_.data(), nv * 16, 0);
+    words_.assign(std::max<std::size_t>(nt, 1) * 5, 0u);
+    for (std::size_t t = 0; t < nt; ++t) {
+      for (std::size_t i = 0; i < 3; ++i) words_[5 * t + i] = tris.indices[3 * t + i];
+      words_[5 * t + 3] = tris.triangle_id[t];
+      words_[5 * t + 4] = tris.object_of(t);
+    }
+    upload(1, words_.data(), nt * 20, 1);
+    floats_.assign((objects + 1) * 8, 0.0f);
+    for (std::size_t o = 0; o <= objects; ++o) {
+      const npr_gabor::object_kernel k = noise.kernel_of_object(static_cast<std::uint32_t>(o), src);
+      const double e[8] = {k.F.x * k.radius,
+                           k.F.y * k.radius,
+                           std::hypot(k.F.x, k.F.y) * k.radius,
+                           1.0 / k.radius,
+                           k.radius,
+                           k.density,
+                           k.scale,
+                           0.0};
+      for (int i = 0; i < 8; ++i)
+        floats_[8 * o + static_cast<std::size_t>(i)] = static_cast<float>(e[i]);
+    }
+    upload(2, floats_.data(), floats_.size() * 4, 2);
+    upload(3, nullptr, nt * kNprGaborLodBytes, 3);
+    upload(4, nullptr, nt * 8, 4);
+    const npr_gabor::params& p = noise.parameters();
+    for (int pass = 0; pass < kNprGaborStage1Passes; ++pass) {
+      const gl_uint prog = stage1_[pass].id();
+      gl_.UseProgram(prog);
+      set(prog, "hush_tris", static_cast<gl_uint>(nt));
+      set(prog, "hush_table_last", static_cast<gl_uint>(objects));
+      gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), static_cast<gl_uint>(f.width()),
+                     static_cast<gl_uint>(f.height()));
+      set(prog, "hush_key", seed_key(p.seed));
+      set(prog, "hush_opts", (p.cull_back_faces ? 1u : 0u) | (p.thinning ? 2u : 0u));
+      set(prog, "hush_isotropic", p.isotropic ? 1u : 0u);
+      set(prog, "hush_local", p.local_density ? 1u : 0u);
+    }
+    level_nodes_count_.clear();
+    level_first_.clear();
+    level_records_.clear();
+    nodes_ = 0;
+    levels_ = 0;
+    total = 0;
+    if (nt == 0) return true;
+    // Level 0: the LOD of every triangle, the roots at their scanned offsets.
+    gl_.UseProgram(stage1_[kLodsPass].id());
+    run(kLodsPass, nt, kNprGaborGroupSize);
+    std::uint32_t sum[2];
+    scan(stage1_buffers_[4], nt, 0, sum);
+    std::size_t n = sum[1];
+    gl_.UseProgram(stage1_[kRootsPass].id());
+    bind_stage1();
+    allocate(buffer_at(level_nodes_, 0), n * kNprGaborNodeBytes);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 6, level_nodes_[0]);
+    run(kRootsPass, nt, kNprGaborGroupSize);
+    // Level k -> k + 1: each node's record flag and kept children, scanned; the children at
+    // their offsets. The count below 2^41 bounds the depth: (4^k - 1) / 3 <= J < 2^41, k <= 21
+    // (local density: level 21, npr_gabor::max_depth(), keeps no children).
+    std::size_t records = 0;
+    for (std::size_t k = 0; n > 0; ++k) {
+      if (k > kMaxLevels || n * 8 > most) return false;
+      const gl_uint nodes = level_nodes_[k], flags = buffer_at(level_flags_, k);
+      allocate(flags, n * 8);
+      for (const int pass : {kExpandPass, kChildrenPass, kRecordsPass}) {
+        gl_.UseProgram(stage1_[pass].id());
+        set(stage1_[pass].id(), "hush_nodes", static_cast<gl_uint>(n));
+        set(stage1_[pass].id(), "hush_level", static_cast<gl_uint>(k));
+      }
+      gl_.UseProgram(stage1_[kExpandPass].id());
+      bind_stage1();
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, flags);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, nodes);
+      run(kExpandPass, n, kNprGaborGroupSize);
+      scan(flags, n, 0, sum);
+      level_nodes_count_.push_back(n);
+      level_first_.push_back(records);
+      level_records_.push_back(sum[0]);
+      records += sum[0];
+      nodes_ += n;
+      n = sum[1];
+      if (n == 0) break;
+      if (n * kNprGaborNodeBytes > most || n > 0xFFFFFFFFu) return false;
+      allocate(buffer_at(level_nodes_, k + 1), n * kNprGaborNodeBytes);
+      gl_.UseProgram(stage1_[kChildrenPass].id());
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, flags);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, nodes);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 6, level_nodes_[k + 1]);
+      run(kChildrenPass, level_nodes_count_.back(), kNprGaborGroupSize);
+    }
+    gl_.check("hush::glsl::npr_gabor: stage 1 (the walk)");
+    levels_ = level_nodes_count_.size();
+    if (records > 0xFFFFFFFFu) return false;
+    total = records;
+    return true;
+  }
+
+  // Stage 1's last pass for records b0 ... b0 + m - 1 (the frame's records level by level):
+  // into buffers_[0] and buffers_[1], from every level whose records meet the batch.
+  void generate(std::size_t b0, std::size_t m) {
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit);  // the last draw's reads come first
+    const gl_uint prog = stage1_[kRecordsPass].id();
+    gl_.UseProgram(prog);
+    bind_stage1();
+    gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 64), nullptr,
+                   kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 6, buffers_[0]);
+    gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[1]);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 16), nullptr,
+                   kGlStreamDraw);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 7, buffers_[1]);
+    set(prog, "hush_base", static_cast<gl_uint>(b0));
+    set(prog, "hush_batch", static_cast<gl_uint>(m));
+    for (std::size_t k = 0; k < level_nodes_count_.size(); ++k) {
+      if (level_first_[k] + level_records_[k] <= b0 || level_first_[k] >= b0 + m) continue;
+      set(prog, "hush_nodes", static_cast<gl_uint>(level_nodes_count_[k]));
+      set(prog, "hush_first", static_cast<gl_uint>(level_first_[k]));
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, level_flags_[k]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, level_nodes_[k]);
+      dispatch(prog, level_nodes_count_[k], kNprGaborGroupSize);
+    }
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit);
+    gl_.check("hush::glsl::npr_gabor: stage 1 (records)");
+  }
+
+  // Stage 1's buffers: vertices, triangles, kernel table, LOD per triangle, the triangles'
+  // scan (roots).
+  static constexpr int kStage1Buffers = 5;
+  // The passes (npr_gabor_stage1_source).
+  static constexpr int kLodsPass = 0, kScanPass = 1, kRootsPass = 2, kExpandPass = 3,
+                       kChildrenPass = 4, kRecordsPass = 5;
+  // Deeper than any J below 2^41 reaches (21): a guard, never taken.
+  static constexpr std::size_t kMaxLevels = 24;
+
+  glsl::device& dev_;
+  const gl_api& gl_;
+  gl_raster_api gr_;
+  frame_upload frame_;
+  npr_gabor_limits limits_;
+  gl_program program_;
+  gl_program stage1_[kNprGaborStage1Passes];
+  gl_uint buffers_[2] = {0, 0};  // records, ids
+  gl_uint stage1_buffers_[kStage1Buffers] = {0, 0, 0, 0, 0};
+  // Per level of the walk: its nodes, its scanned (records, children) offsets; per depth of
+  // the scan's recursion: the blocks' totals.
+  std::vector<gl_uint> level_nodes_, level_flags_;
+  mutable std::vector<gl_uint> scan_sums_;
+  std::vector<std::size_t> level_nodes_count_, level_first_, level_records_;
+  std::uint64_t nodes_ = 0;
+  std::size_t levels_ = 0;
+  std::size_t gpu_frames_ = 0, cpu_frames_ = 0;
+  std::vector<float> floats_;
+  gl_uint texture_ = 0, fbo_ = 0, vao_ = 0;
+  std::size_t width_ = 0, height_ = 0, draws_ = 0;
+  std::vector<std::uint32_t> words_, ids_;
+  std::vector<float> pixels_;
+};
+
+}  // namespace detail
+
+// The device's NPR Gabor splatting state (made on first use, kept with the device).
+inline detail::npr_gabor_gpu& npr_gabor_state(device& dev) {
+  return dev.extension<detail::npr_gabor_gpu>(
+      "npr_gabor", [&] { return std::make_shared<detail::npr_gabor_gpu>(dev); });
+}
+
+// Stage 2 of NPR Gabor noise on `dev` (what hush::npr_gabor::splat and ::render call for
+// exec::glsl, found by argument-dependent lookup): out (frame-sized, checked by the caller)
+// receives the job's records' kernels, within the tolerance above of exec::scalar's.
+inline void npr_gabor_glsl_splat(device& dev, const hush::detail::npr_gabor_splat_job& j,
+                                 const image_view<float>& out) {
+  npr_gabor_state(dev).splat(j, out);
+}
+
+// Both stages of NPR Gabor noise on `dev` (what hush::npr_gabor::render calls for exec::glsl;
+// arguments validated by render): stage 1 by the compute passes above where every source is
+// constant or per object, else on the CPU (make_splats), then stage 2.
+inline void npr_gabor_glsl_render(device& dev, const npr_gabor& noise, const frame& f,
+                                  const triangle_list& tris, const npr_gabor::sources& src,
+                                  const image_view<float>& out) {
+  npr_gabor_state(dev).render(noise, f, tris, src, out);
+}
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_NPR_GABOR_RENDERER_HPP
