@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "each_target.hpp"
 #include "hush/hush.hpp"
 #include "npr_gabor_scenes.hpp"
+#include "simd/each_target.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
 #include <hwy/targets.h>
