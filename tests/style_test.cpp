@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "hush/hush.hpp"  // the umbrella: the suite also runs against the single header
-#include "npr_gabor_scenes.hpp"
+#include "npr_gabor/npr_gabor_scenes.hpp"
 
 namespace {
 

@@ -24,7 +24,15 @@ suites="glsl_test glsl_fractal_test glsl_gabor_test glsl_wavelet_test glsl_aniso
 if [ "${1:-}" = "--stage" ]; then
   rm -rf .devlib .devbuild && mkdir -p .devlib .devbuild/examples .devbuild/tests/glsl
   cp "$build/examples/hush" .devbuild/examples/
-  for t in $suites glsl_timing; do cp "$build/tests/glsl/$t" .devbuild/tests/glsl/; done
+  # A noise's GLSL suite is built in tests/<noise>/ (glsl_<noise>_test), the backend-wide ones
+  # in tests/glsl/; staged side by side.
+  for t in $suites glsl_timing; do
+    case "$t" in
+      glsl_test | glsl_samples_test | glsl_timing) dir=glsl ;;
+      *) dir=${t#glsl_} && dir=${dir%_test} ;;
+    esac
+    cp "$build/tests/$dir/$t" .devbuild/tests/glsl/
+  done
   # Everything the binaries link beyond the C library, the loader and libEGL (the GPU
   # machine's glvnd provides libEGL; the C++ runtime goes along in case its is older).
   for exe in .devbuild/examples/hush .devbuild/tests/glsl/*; do

@@ -42,7 +42,7 @@ PERLIN_VALUE, PERLIN_GRADIENT, FBM_SCALE = 2.0 ** -16, 8 * 2.0 ** -16, 4 * 3.4
 # so a pixel where the double reference sits on a decision boundary (the depth test's tolerance,
 # or a kernel's pixel box at its truncation radius, where the kernel is e^-pi of its peak) can
 # take the other side: that pixel misses or gains one kernel's term, up to one kernel's amplitude
-# (the tests count such pixels: tests/glsl/glsl_gabor_test.cpp "npr"; measured 7.3e-3 at one
+# (the tests count such pixels: tests/gabor/glsl_gabor_test.cpp "npr"; measured 7.3e-3 at one
 # pixel of `hush bench --quick`'s 192 x 108 frame). These rows are held to the budget in RMS,
 # which a few such pixels barely move and a wrong record or kernel exceeds at once, and their
 # max to one kernel's amplitude at unit variance.
@@ -55,7 +55,7 @@ GRADIENT_BUDGET = {"perlin": PERLIN_GRADIENT, "fbm": FBM_SCALE * PERLIN_GRADIENT
 # as their quality note; the issue's figures are ~0.0002 and ~0.02: wavelet 2D must leak at
 # most a tenth of Perlin's (measured 0.0003 vs 0.010), and the 3D noise projected onto the
 # slice plane at most a quarter of what the slice leaks (measured 0.0068 vs 0.079), as in
-# tests/wavelet_spectrum_test.cpp.
+# tests/wavelet/wavelet_spectrum_test.cpp.
 WAVELET_LEAK_RATIO, PROJECTED_LEAK_RATIO = 0.1, 0.25
 
 failures = []

@@ -624,7 +624,7 @@ TEST_CASE("sample --backend simd equals scalar sampling within the SIMD budget, 
   const fs::path dir = scratch("backend");
   // Both are within the float budget 2^-16 of the double reference
   // (hush/simd/perlin-inl.h), hence within 2^-15 of each other; bit for bit
-  // under HUSH_STRICT_FP (tests/simd).
+  // under HUSH_STRICT_FP (tests/perlin/perlin_simd_test.cpp).
   for (int dim : {2, 3}) CHECK(backend_vs_scalar("simd", dim, dir) <= std::ldexp(1.0, -15));
 #if !HUSH_CLI_TEST_SIMD
   // Without Highway the program says so instead of silently running scalar code.
@@ -659,8 +659,9 @@ TEST_CASE("sample --backend glsl with --octaves equals scalar sampling within th
               .exit_code == 0);
       const npy_file a = read_npy(dir / "glsl.npy"), b = read_npy(dir / "scalar.npy");
       REQUIRE(a.values.size() == b.values.size());
-      // Within twice the fractal budget of the CPU float path (tests/glsl/glsl_fractal_test.cpp):
-      // bound() (2^-16 + (octaves + 4) 2^-24), bound() = K sum |w_i|.
+      // Within twice the fractal budget of the CPU float path
+      // (tests/fractal/glsl_fractal_test.cpp): bound() (2^-16 + (octaves + 4) 2^-24),
+      // bound() = K sum |w_i|.
       hush::fractal<hush::perlin<2>>::params prm;
       prm.octaves = 6;
       if (std::string(kind) == "turbulence") {

@@ -6,7 +6,7 @@
 // Tolerances. llvmpipe evaluates GLSL float +, -, * with IEEE correct rounding
 // (LLVM on the host's SIMD units) but may fuse a * b + c into one fma, which
 // rounds once where the CPU rounds twice. The forward error analysis behind
-// the CPU float budget (perlin.hpp, tests/perlin_test.cpp: 2^-16 of the double
+// the CPU float budget (perlin.hpp, tests/perlin/perlin_test.cpp: 2^-16 of the double
 // reference for values) bounds every rounding by 2^-24 relative; a fused op
 // meets the same bound, so the GPU values are within the same 2^-16 of the
 // double reference, and within 2^-15 of the CPU float values (triangle

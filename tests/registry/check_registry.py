@@ -164,8 +164,8 @@ def check_noise(noise, want, cases, program, exported):
     if f'#include "hush/{noise}.hpp"' not in read("include/hush/hush.hpp"):
         problem(f"{noise}: include/hush/hush.hpp does not include hush/{noise}.hpp")
     check_simd(noise)
-    if not ((ROOT / f"tests/{noise}_test.cpp").is_file() or (ROOT / f"tests/{noise}").is_dir()):
-        problem(f"{noise}: no tests/{noise}_test.cpp or tests/{noise}/")
+    if not any((ROOT / f"tests/{noise}").glob("*_test.cpp")):
+        problem(f"{noise}: no tests/{noise}/*_test.cpp (its suites)")
     glsl_header, prefixes = want["glsl"]
     glsl_dir = f"backends/glsl/include/hush/glsl/{noise}"
     if not (ROOT / glsl_dir / glsl_header).is_file():

@@ -284,7 +284,7 @@ TEST_CASE("render npr-gabor writes the library's frames bit for bit from the tri
   // --backend glsl: points (stage 1) and splatting as compute passes and point sprites on OSMesa
   // (hush/glsl/npr_gabor.hpp). Float differences from the scalar frames are ~1e-6 (up to ~1e-4
   // where stage 1's float positions span triangles hundreds of pixels wide; the bounds are
-  // derived and checked in tests/glsl/glsl_gabor_test.cpp); a wrong pixel,
+  // derived and checked in tests/gabor/glsl_gabor_test.cpp); a wrong pixel,
   // offset or visibility decision would move a pixel by a kernel's amplitude (~0.1), so 1e-3
   // separates the two.
   CHECK(worst_against_scalar("glsl", "l") < 1e-3);
@@ -297,7 +297,7 @@ TEST_CASE("render npr-gabor writes the library's frames bit for bit from the tri
   {  // --backend glsl --local-density: GPU stage 1 with a count per node (frame 0) against
      // the library's scalar frame; the same 1e-3 separates float differences from a wrong
      // record (a boundary node, present on one backend only, weighs at most ~1e-3 of a
-     // kernel: tests/glsl/glsl_gabor_test.cpp).
+     // kernel: tests/gabor/glsl_gabor_test.cpp).
     const result l = run_hush("render npr-gabor --backend glsl --gbuffer '" +
                                   (dir / "g").string() + "' --out '" + (dir / "gl").string() +
                                   "'" + dense_options,

@@ -1,6 +1,7 @@
 // Runs a check once per SIMD target the dispatch can pick (each compiled and supported target,
 // forced in turn), or once for the static route or a build without SIMD, with the target's
-// name in every failure message. Shared by the tests/simd suites.
+// name in every failure message. Shared by the SIMD suites
+// (tests/<noise>/*_simd_test.cpp).
 #ifndef HUSH_TESTS_SIMD_EACH_TARGET_HPP
 #define HUSH_TESTS_SIMD_EACH_TARGET_HPP
 

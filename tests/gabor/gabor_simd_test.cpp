@@ -23,8 +23,8 @@
 #include <limits>
 #include <vector>
 
-#include "each_target.hpp"
 #include "hush/hush.hpp"
+#include "simd/each_target.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
 #include <hwy/targets.h>
@@ -48,7 +48,7 @@ typename hush::gabor<D>::params gabor_params(hush::gabor_kind kind) {
   return p;
 }
 
-// gabor.hpp's float budget (tests/gabor_test.cpp): scale 2^-21 (1 + 2 pi Phi)
+// gabor.hpp's float budget (tests/gabor/gabor_test.cpp): scale 2^-21 (1 + 2 pi Phi)
 // (N' + 1); SIMD and scalar are each within it of the double reference. The
 // gradient's: the same times (1 + the per-kernel slope bound in noise units,
 // (2A + 2 pi Phi + 3 / (1 - s0)) / r).

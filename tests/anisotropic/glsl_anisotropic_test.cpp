@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "glsl_test_util.hpp"
+#include "glsl/glsl_test_util.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/device.hpp"
 

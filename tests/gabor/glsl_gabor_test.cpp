@@ -46,9 +46,9 @@
 #include <utility>
 #include <vector>
 
-#include "glsl_test_util.hpp"
+#include "glsl/glsl_test_util.hpp"
 #include "hush/glsl/npr_gabor.hpp"
-#include "npr_gabor_scenes.hpp"
+#include "npr_gabor/npr_gabor_scenes.hpp"
 
 namespace {
 

@@ -103,7 +103,7 @@ std::vector<float> flatten(const std::vector<hush::vec<float, D>>& g) {
 
 // Non-strict budgets against scalar: both sides are within the float budget
 // of the double reference (perlin.hpp), so they are within twice it of each
-// other; gradients likewise with the gradient budget of tests/perlin_test.cpp.
+// other; gradients likewise with the gradient budget of tests/perlin/perlin_test.cpp.
 template <int D>
 double value_budget() {
   return 2 * kFloatBudget;

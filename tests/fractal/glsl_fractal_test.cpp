@@ -39,7 +39,7 @@
 #include <string>
 #include <vector>
 
-#include "glsl_test_util.hpp"
+#include "glsl/glsl_test_util.hpp"
 #include "hush/exec.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/device.hpp"

@@ -3,7 +3,7 @@
 // +-3% of still ones in every quarter of the run and their sharpness >= 0.85 of still ones;
 // the paper's filter (Kass & Pesare eq. 7) loses both. Label `slow` (Release run only).
 //
-// 64 x 64 synthetic frames (tests/coherent_scenes.hpp), alpha 0.98 (the paper's), white
+// 64 x 64 synthetic frames (tests/coherent/coherent_scenes.hpp), alpha 0.98 (the paper's), white
 // input. Statistics: frame values are correlated over (1 + alpha^2) / (1 - alpha^2) = 49
 // frames, so a quarter (2500 frames) holds ~51 independent frames of ~2000 moving and ~1500
 // still pixels (interior, 2 pixels from an edge): standard error of a variance

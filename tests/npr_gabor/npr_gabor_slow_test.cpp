@@ -14,7 +14,7 @@
 TEST_CASE("variance within +-2% across triangle areas N = 0.25 ... 45 (no pops at M switches)") {
   // Per zoom level the sample variance over `seeds` independent images of n pixels each
   // has standard error se = sqrt((2 sum_d rho(d)^2 + 9 / (5 lambda)) / (seeds n)) (see
-  // tests/npr_gabor_test.cpp); every level must be within 4.5 se of 1, and 4.5 se must be
+  // tests/npr_gabor/npr_gabor_test.cpp); every level must be within 4.5 se of 1, and 4.5 se must be
   // below 2% so that passing establishes the +-2% bound.
   hush::npr_gabor::params p;
   p.frequency = 0.25;

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "coherent_scenes.hpp"
-#include "glsl_test_util.hpp"
+#include "glsl/glsl_test_util.hpp"
 #include "hush/glsl/coherent.hpp"
 
 namespace {

@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "each_target.hpp"
 #include "hush/hush.hpp"
 #include "npr_gabor_scenes.hpp"
+#include "simd/each_target.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
 #include <hwy/targets.h>
@@ -30,7 +30,7 @@
 
 namespace {
 
-// A grid scene (tests/npr_gabor_scenes.hpp) made harder: 1/z affine but slanted, the
+// A grid scene (tests/npr_gabor/npr_gabor_scenes.hpp) made harder: 1/z affine but slanted, the
 // G-buffer depth off the plane by up to +-6% (the default tolerance is 2%: pass, soft band
 // and fail all occur), some pixels showing another object or triangle, and bad depths.
 struct hard_scene {

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "coherent_scenes.hpp"
-#include "each_target.hpp"
 #include "hush/hush.hpp"
+#include "simd/each_target.hpp"
 
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
 #include <hwy/targets.h>
