@@ -8,7 +8,6 @@
 #ifndef HUSH_CLI_NOISES_HPP
 #define HUSH_CLI_NOISES_HPP
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
