@@ -1,4 +1,4 @@
-// hush — the speed-vs-error benchmark: anisotropic noise's rows (see cases.hpp).
+// hush — the speed-vs-error benchmark: anisotropic noise's rows (include/hush/anisotropic.hpp).
 //
 // The workload: one frame of a receding plane (1920 x 1080; every pixel sees the
 // plane, out to the horizon's grazing angles), K = 4 and 8 orientations, 3 scales, the
@@ -19,16 +19,13 @@
 #include "figures.hpp"
 #include "hush/exec.hpp"
 #include "hush/hush.hpp"
+#include "rows.hpp"
 
 #if HUSH_BENCH_HAVE_GLSL
 #include "hush/glsl/device.hpp"
 #endif
 
 namespace hush_bench {
-
-#if HUSH_BENCH_HAVE_GLSL
-hush::glsl::device& bench_glsl_device();  // cases.cpp
-#endif
 
 namespace {
 
@@ -109,7 +106,10 @@ void add_frame_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& 
 
 }  // namespace
 
-void add_anisotropic_cases(std::vector<bench_case>& cases, const sizes& s) {
+// Its rows are all in the frames pass: the frame rows on every backend (their SIMD rows pinned
+// to AVX2 with the others), then the least-squares weights.
+void add_anisotropic_cases(std::vector<bench_case>& cases, const sizes& s, bench_pass pass) {
+  if (pass != bench_pass::frames) return;
   auto shared = std::make_shared<frame_buffers>();
   shared->plane = hush_tools::aniso::make_receding_plane(s.frame_width, s.frame_height);
   shared->out.assign(s.frame_width * s.frame_height, 0.0f);

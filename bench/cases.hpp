@@ -2,11 +2,13 @@
 // (bench/speed_vs_error.cpp) and `hush bench` run (DESIGN.md principle 4: throughput is
 // reported next to the error against the double-precision reference).
 //
-// A case is one row of the table: a noise (Perlin 2D/3D, fBm of 4 Perlin octaves 2D/3D), a
-// backend (hush::exec::scalar, hush::exec::simd, or a peer library), a workload (a uniform
-// grid or random points) and an output (value, or value + gradient). Preparing a case
-// allocates its buffers, evaluates it once and measures its error against the reference;
-// the timed loop then only re-runs the evaluation.
+// A case is one row of the table: a noise (one of the registry's, or a variant of one: "perlin
+// 2D", "fbm 3D", "gabor 2D filtered", "coherent causal", ...), a backend (hush::exec::scalar,
+// simd, parallel or glsl, or a peer library), a workload (a uniform grid, random points or
+// samples, a frame) and an output (value, or value + gradient). Each noise's rows are in its
+// own file, bench/<noise>_cases.cpp (rows.hpp). Preparing a case allocates its buffers,
+// evaluates it once and measures its error against the reference; the timed loop then only
+// re-runs the evaluation.
 #ifndef HUSH_BENCH_CASES_HPP
 #define HUSH_BENCH_CASES_HPP
 
@@ -87,19 +89,9 @@ struct bench_case {
   std::string id() const;
 };
 
-// Every case: hush's noises on each backend, then the peer libraries found at build time.
+// Every case: hush's noises on each backend (bench/<noise>_cases.cpp, one pass per backend
+// over the registry's noises), then the peer libraries found at build time.
 std::vector<bench_case> all_cases(const sizes& s);
-// Anisotropic noise's rows (bench/anisotropic_cases.cpp): a receding plane per frame on
-// scalar, simd and (with OSMesa) glsl, and the least-squares preprocessing per triangle.
-void add_anisotropic_cases(std::vector<bench_case>& cases, const sizes& s);
-
-// NPR Gabor noise's rows (npr_gabor_cases.cpp): frames of the dense scene, scalar and simd
-// (only where the build has the scene library, HUSH_BENCH_HAVE_SCENE).
-void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s);
-
-// Coherent noise's rows (coherent_cases.cpp): scalar and SIMD frames, and the memory-bound
-// pass they are measured against.
-void add_coherent_rows(std::vector<bench_case>& cases, const sizes& s);
 
 // The Google Benchmark counters each case reports: CPU seconds per sample (single thread; wall
 // seconds for wall_clock cases), and

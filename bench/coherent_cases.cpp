@@ -26,6 +26,7 @@
 #include "cases.hpp"
 #include "hush/coherent.hpp"
 #include "hush/exec.hpp"
+#include "rows.hpp"
 
 #if HUSH_BENCH_HAVE_HWY
 #include "coherent_memory.hpp"
@@ -241,9 +242,9 @@ bench_case row(const char* noise, const char* backend, const sizes& s) {
   return c;
 }
 
-}  // namespace
-
-void add_coherent_rows(std::vector<bench_case>& cases, const sizes& s) {
+// The frames pass: scalar and SIMD frames, and the memory-bound pass they are measured against
+// (pinned to AVX2 with the other SIMD rows).
+void add_coherent_frame_rows(std::vector<bench_case>& cases, const sizes& s) {
   using hush::coherent_filter;
   for (const bool simd : {false, true}) {
     bench_case c = row("coherent causal", simd ? "simd" : "scalar", s);
@@ -293,8 +294,8 @@ void add_coherent_rows(std::vector<bench_case>& cases, const sizes& s) {
 }
 
 #if HUSH_BENCH_HAVE_GLSL
-void add_coherent_glsl_rows(std::vector<bench_case>& cases, const sizes& s,
-                            hush::glsl::device& device) {
+void add_coherent_glsl_row(std::vector<bench_case>& cases, const sizes& s,
+                           hush::glsl::device& device) {
   bench_case c = row("coherent causal", "glsl", s);
   c.wall_clock = true;
   c.note = "stationary filter, alpha 0.98; uploads the frame, reads the output back";
@@ -306,5 +307,14 @@ void add_coherent_glsl_rows(std::vector<bench_case>& cases, const sizes& s,
   cases.push_back(c);
 }
 #endif
+
+}  // namespace
+
+void add_coherent_cases(std::vector<bench_case>& cases, const sizes& s, bench_pass pass) {
+  if (pass == bench_pass::frames) add_coherent_frame_rows(cases, s);
+#if HUSH_BENCH_HAVE_GLSL
+  if (pass == bench_pass::glsl) add_coherent_glsl_row(cases, s, bench_glsl_device());
+#endif
+}
 
 }  // namespace hush_bench

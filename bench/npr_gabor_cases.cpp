@@ -1,4 +1,4 @@
-// hush — the speed-vs-error benchmark: NPR Gabor noise's rows (see cases.hpp).
+// hush — the speed-vs-error benchmark: NPR Gabor noise's rows (include/hush/npr_gabor.hpp).
 //
 // The workload: one frame (frame 0) of the `dense` scene (examples/scene: a sphere
 // and a torus over a plane) with about 5k, 50k and 200k triangles, rasterized by the CPU
@@ -24,23 +24,23 @@
 #include <benchmark/benchmark.h>
 
 #include "cases.hpp"
-#include "gbuffer.hpp"
 #include "hush/exec.hpp"
 #include "hush/npr_gabor.hpp"
+#include "rows.hpp"
+
+#if HUSH_BENCH_HAVE_SCENE
+#include "gbuffer.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"
 #include "triangles.hpp"
-
+#endif
 #if HUSH_BENCH_HAVE_GLSL
 #include "hush/glsl/npr_gabor.hpp"
 #endif
 
 namespace hush_bench {
 
-#if HUSH_BENCH_HAVE_GLSL
-hush::glsl::device& bench_glsl_device();  // cases.cpp
-#endif
-
+#if HUSH_BENCH_HAVE_SCENE
 namespace {
 
 // One rasterized frame of a dense scene, made on first use (rows share it).
@@ -125,8 +125,14 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
 }
 
 }  // namespace
+#endif
 
-void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s) {
+// Its rows are all in the frames pass (their SIMD rows pinned to AVX2 with the others), where
+// the build has the scene library (HUSH_BENCH_HAVE_SCENE); without it, none.
+void add_npr_gabor_cases([[maybe_unused]] std::vector<bench_case>& cases,
+                         [[maybe_unused]] const sizes& s, [[maybe_unused]] bench_pass pass) {
+#if HUSH_BENCH_HAVE_SCENE
+  if (pass != bench_pass::frames) return;
   std::vector<std::shared_ptr<dense_frame>> frames;
   for (long n : s.npr_triangles) {
     auto f = std::make_shared<dense_frame>();
@@ -145,6 +151,7 @@ void add_npr_gabor_cases(std::vector<bench_case>& cases, const sizes& s) {
              lod::paper, {16.0}, cpu_points);
   add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames,
            lod::local_density, {16.0});
+#endif
 #endif
 }
 

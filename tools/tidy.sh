@@ -61,8 +61,7 @@ if [ "$pass" != files ]; then
 fi
 # Shards of about equal size: the items by size, largest first, each to the shard with the
 # fewest bytes so far (every n-th item had put 237 of 492 KB into one of three shards). Bytes
-# are a rough proxy for clang-tidy's time: bench/cases.cpp alone takes ~224 s of CPU, about
-# 40% of the files pass, so its shard stays the longest (docs/design.md "Testing").
+# are a rough proxy for clang-tidy's time (docs/design.md "Testing").
 mine=()
 while IFS= read -r item; do mine+=("$item"); done < <(
   for item in "${items[@]}"; do printf '%s %s\n' "$(wc -c <"${item#?:}")" "$item"; done |

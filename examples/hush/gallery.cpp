@@ -24,6 +24,7 @@
 #include "gallery_wavelet.hpp"
 #include "gif/gif.hpp"
 #include "image.hpp"
+#include "noise_perlin.hpp"
 #include "noises.hpp"
 #include "spectrum.hpp"
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "glsl_device.hpp"
+#include "noise_entries.hpp"
 #include "noises.hpp"
 
 namespace hush_cli {
@@ -98,8 +99,6 @@ std::unique_ptr<noise_field> make_wavelet_d(const noise_setup& setup, const opti
   return std::make_unique<wavelet_field<D>>(hush::wavelet<D>(prm), so);
 }
 
-}  // namespace
-
 std::unique_ptr<noise_field> make_wavelet_from_options(const noise_setup& setup,
                                                        const option_values& given) {
   wavelet_sample_options so;
@@ -110,6 +109,42 @@ std::unique_ptr<noise_field> make_wavelet_from_options(const noise_setup& setup,
   so.normal = parse_normal(setup, given);
   if (setup.dim == 2) return make_wavelet_d<2>(setup, given, so);
   return make_wavelet_d<3>(setup, given, so);
+}
+
+}  // namespace
+
+void add_wavelet_entries(program_entries& entries) {
+  entries.sample.push_back(
+      {"wavelet",
+       "wavelet noise (Cook & DeRose 2005): band-limited, multiband, anti-aliased from a footprint",
+       {{"--tile-size", "N",
+         "coefficients per tile side, even, 16 ... 2048 (2D) / 128 (3D) "
+         "(default 128 in 2D, 64 in 3D)",
+         "tile_size"},
+        {"--first-band", "B", "frequency of the first band is 2^B, -32 ... 32 (default 0)",
+         "first_band"},
+        {"--bands", "N", "N bands with weights 1, 1/2, 1/4, ..., 1 ... 32 (default 1)", nullptr},
+        {"--weights", "w0,w1,...",
+         "band weights, 1 ... 32 finite numbers not all 0 (instead of "
+         "--bands)",
+         "weights"},
+        {"--footprint", "W",
+         "every sample's pixel: an isotropic footprint W noise units wide, "
+         "W >= 0; bands finer than it are faded out (default: none)",
+         nullptr},
+        {"--normal", "x,y,z",
+         "with --dim 3: project onto the surface with this normal, "
+         "not all zero (default: none, plain 3D noise)",
+         nullptr},
+        {"--projection", "exact|approximate", "projection kernel along the normal (default exact)",
+         nullptr},
+        {"--widen", "on|off", "basis widening for one sample per pixel (default off)", "widen"},
+        {"--distribution", "gaussian|uniform", "output distribution (default gaussian)", nullptr},
+        {"--variants", "K",
+         "0: the tile repeats; 1 ... tile_size/4: hashed tile variants "
+         "blended over K coefficients (default 0)",
+         "variant_overlap"}},
+       make_wavelet_from_options});
 }
 
 }  // namespace hush_cli

@@ -1,18 +1,19 @@
-// hush — the `hush` program: the noises it samples, one table entry each.
+// hush — the `hush` program: what the noises it samples share.
 //
 // A noise_entry names a noise, lists its own options and builds a noise_field from them.
-// `hush sample NOISE` looks NOISE up in noise_table(), and usage text and option errors
-// are generated from the entries, so adding a noise to the program is one entry plus the
-// function that builds it.
+// `hush sample NOISE` looks NOISE up in noise_table(), and usage text and option errors are
+// generated from the entries. Each noise's entry is in its own file, noise_<noise>.cpp
+// (noise_entries.hpp), so adding a noise to the program is that file: its entry plus the
+// function that builds it, often a grid_field below.
 #ifndef HUSH_CLI_NOISES_HPP
 #define HUSH_CLI_NOISES_HPP
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "args.hpp"
@@ -85,6 +86,7 @@ struct noise_entry {
   std::unique_ptr<noise_field> (*make)(const noise_setup& setup, const option_values& given);
 };
 
+// Every noise's `hush sample` entry, as usage lists them (noise_entries.cpp).
 const std::vector<noise_entry>& noise_table();
 // "perlin, ..." for messages.
 std::string noise_names();
@@ -128,25 +130,66 @@ void sample_rows_as_samples(const Noise& noise, const sample_grid& grid, std::si
 std::unique_ptr<noise_field> make_noise(const noise_entry& entry, const noise_setup& setup,
                                         const option_values& given);
 
-// ---- Perlin noise (hush/perlin.hpp), plain or summed over octaves (hush/fractal.hpp).
-struct perlin_options {
-  std::array<int, 3> period{};  // per axis, the first `dim` are used; 0 = not periodic
-  // Sum octaves with hush::fractal; otherwise plain hush::perlin (the fields below unused).
-  bool fractal = false;
-  hush::fractal_kind kind = hush::fractal_kind::fbm;
-  int octaves = 1;
-  double lacunarity = hush::fractal<hush::perlin<2>>::params{}.lacunarity;
-  double gain = hush::fractal<hush::perlin<2>>::params{}.gain;
-  // Default: unit_variance for fBm, unit_range for turbulence (which has no unit_variance).
-  std::optional<hush::normalization> norm;
+// Whether the GLSL backend has a program for Noise (false where this build has no GLSL).
+template <class Noise>
+constexpr bool has_glsl_program() {
+#if HUSH_CLI_HAVE_GLSL
+  return hush::glsl::has_program_v<Noise>;
+#else
+  return false;
+#endif
+}
+
+// Any hush noise of dimension D that hush::evaluate_grid takes, sampled through it on every
+// backend that has it: values symmetric about 0 when `is_signed`, else >= 0.
+template <class Noise, int D>
+class grid_field final : public noise_field {
+ public:
+  grid_field(Noise noise, bool is_signed) : noise_(std::move(noise)), signed_(is_signed) {}
+  bool is_signed() const override { return signed_; }
+  std::string unsupported_reason(backend b) const override {
+    if (b == backend::glsl) {
+      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (neither OSMesa nor EGL found)";
+      if (!has_glsl_program<Noise>())
+        return "the GLSL backend has no program for this noise (hush::glsl::has_program_v)";
+    }
+    if (b == backend::simd && !HUSH_CONFIG_SIMD)
+      return "the SIMD backend is not in this build (Highway, libhwy-dev, was not found)";
+    return "";
+  }
+  void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
+                   float* out, backend b) const override {
+    // The block as a grid of its own: its origin is the exact double position
+    // of sample (0, j0, k), so every sample keeps the position it has in `grid`.
+    hush::grid<D> block;
+    const hush::dvec3 o = grid.position({0, j0, k});
+    for (int a = 0; a < D; ++a) {
+      block.origin[a] = o[a];
+      block.step[a] = grid.step[a];
+    }
+    block.size[0] = grid.size[0];
+    block.size[1] = rows;
+    if constexpr (D == 3) block.size[2] = 1;
+    const hush::span<float> dst(out, block.count());
+    if (b == backend::simd) {
+      hush::evaluate_grid(noise_, hush::exec::simd, block, dst);
+      return;
+    }
+#if HUSH_CLI_HAVE_GLSL
+    if constexpr (has_glsl_program<Noise>()) {
+      if (b == backend::glsl) {
+        hush::evaluate_grid(noise_, hush::exec::glsl{glsl_device()}, block, dst);
+        return;
+      }
+    }
+#endif
+    hush::evaluate_grid(noise_, hush::exec::scalar, block, dst);
+  }
+
+ private:
+  Noise noise_;
+  bool signed_;
 };
-
-// Throws hush::invalid_argument for parameters the library refuses.
-std::unique_ptr<noise_field> make_perlin(const noise_setup& setup, const perlin_options& options);
-
-// ---- Wavelet noise (hush/wavelet.hpp): `hush sample wavelet` (noise_wavelet.cpp).
-std::unique_ptr<noise_field> make_wavelet_from_options(const noise_setup& setup,
-                                                       const option_values& given);
 
 }  // namespace hush_cli
 

@@ -1,9 +1,10 @@
-// hush — the `hush` program: the scene-driven noises `hush render` runs, one table entry each.
+// hush — the `hush` program: what the scene-driven noises `hush render` runs share.
 //
 // A render_entry names a noise, lists its own options (and flags, options without a value)
 // and builds a scene_noise from them. `hush render NOISE` looks NOISE up in render_table();
-// usage text and option errors come from the entries, so adding a scene-driven noise to the
-// program is one entry plus the class that renders it.
+// usage text and option errors come from the entries. Each noise's entry is in its own file,
+// noise_<noise>.cpp (noise_entries.hpp), so adding a scene-driven noise to the program is that
+// file: its entry plus the class that renders it.
 //
 // A scene_noise renders a sequence of G-buffer frames (hush scene render's layout,
 // examples/scene/gbuffer_io.hpp) into noise frames. It reads frames through
@@ -81,7 +82,6 @@ class scene_noise {
   virtual void render(gbuffer_sequence& frames, render_sink& sink, backend b) = 0;
 };
 
-
 struct render_setup {
   std::uint32_t seed = 0;
 };
@@ -97,6 +97,7 @@ struct render_entry {
                                        const std::vector<std::string>& flags);
 };
 
+// Every noise's `hush render` entry, as usage lists them (noise_entries.cpp).
 const std::vector<render_entry>& render_table();
 std::string render_names();
 const render_entry& find_render(const std::string& name);
@@ -105,6 +106,11 @@ const render_entry& find_render(const std::string& name);
 std::unique_ptr<scene_noise> make_scene_noise(const render_entry& entry, const render_setup& setup,
                                               const option_values& given,
                                               const std::vector<std::string>& flags);
+
+// Option `name` as a finite number in [lo, hi] ([lo, hi) with hi_open), `fallback` when not
+// given. Throws usage_error naming `valid` otherwise.
+double parse_range(const option_values& given, const char* name, double lo, double hi, bool hi_open,
+                   const char* valid, double fallback);
 
 }  // namespace hush_cli
 

@@ -1,4 +1,4 @@
-// `hush render anisotropic` (examples/hush/render_anisotropic.cpp): the program's frames equal
+// `hush render anisotropic` (examples/hush/noise_anisotropic.cpp): the program's frames equal
 // the library's anisotropic noise on the same G-buffers (examples/anisotropic/scene_render.hpp)
 // bit for bit, with and without --scene compensation, and bad options fail with exit code 2 and
 // one line naming the option.

@@ -29,7 +29,7 @@ ROOT = Path(__file__).resolve().parent.parent.parent
 #  glsl:     its GLSL runner's header in its folder backends/glsl/include/hush/glsl/<noise>/
 #            (program.hpp: a noise_program; renderer.hpp: a scene-driven renderer) and the
 #            name prefixes of files `hush glsl-export` writes for it
-#  bench:    a text in bench/'s sources naming its rows
+#  bench:    a text in its rows file, bench/<noise>_cases.cpp, naming its rows
 #  golden / hard_case: regular expressions matched against the names of the doctest
 #            cases in tests/ (golden values per seed; NaN/Inf and degenerate inputs)
 #  doc:      its user page
@@ -44,7 +44,7 @@ EXPECT = {
     "fractal": dict(
         program=["sample", "perlin", "--octaves", "4"],
         glsl=("program.hpp", ["hush_fractal_perlin2_", "hush_fractal_perlin3_"]),
-        bench='"fbm "',
+        bench='"fbm 2D"',
         golden=r"^golden: fractal values",
         hard_case=r"^fractal perlin: NaN and infinite coordinates",
         doc="docs/fractal.md"),
@@ -174,9 +174,17 @@ def check_noise(noise, want, cases, program, exported):
         for prefix in prefixes:
             if not any(name.startswith(prefix) for name in exported):
                 problem(f"{noise}: `hush glsl-export` writes no {prefix}* file")
-    bench = "".join(p.read_text(encoding="utf-8") for p in sorted((ROOT / "bench").glob("*.cpp")))
-    if want["bench"] not in bench:
-        problem(f"{noise}: no bench row: bench/*.cpp never names {want['bench']}")
+    # Its program entry and its bench rows, each in one file of its own, defining the function
+    # the program's tables and the bench's passes call for every noise of HUSH_NOISE_LIST.
+    for rel, function in ((f"examples/hush/noise_{noise}.cpp", f"add_{noise}_entries"),
+                          (f"bench/{noise}_cases.cpp", f"add_{noise}_cases")):
+        if not (ROOT / rel).is_file():
+            problem(f"{noise}: no {rel} (defining {function})")
+        elif not re.search(r"^void " + function + r"\(", read(rel), re.M):
+            problem(f"{noise}: {rel} does not define {function}")
+    bench = f"bench/{noise}_cases.cpp"
+    if (ROOT / bench).is_file() and want["bench"] not in read(bench):
+        problem(f"{noise}: no bench row: {bench} never names {want['bench']}")
     for kind in ("golden", "hard_case"):
         if not any(re.search(want[kind], name) for name in cases):
             problem(f"{noise}: no test case in tests/ named like /{want[kind]}/ ({kind})")
@@ -236,6 +244,8 @@ def check_named_files():
                 name = m.group(1).rstrip(".")
                 if SKIPPED.search(name) or name in existing or name in dirs:
                     continue
+                if line[m.end():m.end() + 1] in ("<", "{", "*"):
+                    continue  # a pattern's fixed part: examples/hush/noise_<noise>.cpp
                 problem(f"{rel}:{number}: names {name}, which does not exist")
             for m in INCLUDE_PATH.finditer(line):
                 name = m.group(1)

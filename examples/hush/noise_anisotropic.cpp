@@ -1,14 +1,48 @@
-// hush — the `hush` program: anisotropic noise in the noise table (see anisotropic_noise.hpp).
-#include "anisotropic_noise.hpp"
-
+// hush — the `hush` program: anisotropic noise (hush/anisotropic.hpp), its `hush sample` and
+// `hush render` entries.
+//
+// `hush sample anisotropic`: 2D texture-space noise on the grid, through evaluate_grid without
+// per-sample inputs and through hush::samples (float positions) with a footprint or a map.
+//
+// `hush render anisotropic --gbuffer DIR --out DIR [options]`: the noise over a G-buffer
+// sequence: per covered pixel the noise at its uv, filtered by the footprint of its
+// screen-to-uv Jacobian, and with --scene NAME compensated by its triangle's surface map from
+// the scene's meshes (examples/anisotropic/scene_render.hpp). One channel per frame,
+// background 0. The options are `hush sample anisotropic`'s, less --footprint and --map (the
+// G-buffer and the scene give them per pixel).
 #include <cmath>
+#include <cstddef>
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "glsl_device.hpp"
+#include "hush/anisotropic.hpp"
+#include "hush/exec.hpp"
+#include "noise_entries.hpp"
+#include "noises.hpp"
+#include "scene_noises.hpp"
+
+#if HUSH_CLI_HAVE_ANISO_SCENE
+#include "scene.hpp"
+#include "scene_render.hpp"
+#endif
 
 namespace hush_cli {
 namespace {
+
+// What `hush sample anisotropic` takes beside the noise's parameters: the
+// footprint given to every sample (none: point samples; pixel: the grid
+// step's width; or a width in noise units) and one surface map for every
+// sample (none: the identity).
+struct anisotropic_options {
+  hush::anisotropic::params params;
+  bool pixel_footprint = false;
+  std::optional<double> footprint_width;
+  std::optional<hush::surface_map> map;
+};
 
 class anisotropic_field final : public noise_field {
  public:
@@ -16,7 +50,8 @@ class anisotropic_field final : public noise_field {
   bool is_signed() const override { return options_.params.kind == hush::fractal_kind::fbm; }
   std::string unsupported_reason(backend b) const override {
     if (b == backend::glsl) {
-      if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (neither OSMesa nor EGL found)";
+      if (!HUSH_CLI_HAVE_GLSL)
+        return "the GLSL backend is not in this build (neither OSMesa nor EGL found)";
       const auto& p = options_.params;
       if (p.filtering == hush::weight_rule::least_squares ||
           p.compensation == hush::weight_rule::least_squares)
@@ -89,8 +124,7 @@ hush::weight_rule parse_rule(const char* option, const std::string& v) {
                                           {"least_squares", hush::weight_rule::least_squares}});
 }
 
-}  // namespace
-
+// The noise's options (`hush render anisotropic` takes them less --footprint and --map).
 std::vector<option_spec> anisotropic_option_specs() {
   return {
       {"--orientations", "K", "orientations of the subband tiles, 2 ... 8 (default 4)",
@@ -122,6 +156,7 @@ std::vector<option_spec> anisotropic_option_specs() {
   };
 }
 
+// Parses them; throws usage_error (library refusals go through make_noise).
 anisotropic_options parse_anisotropic(const noise_setup& setup, const option_values& given) {
   if (setup.dim != 2)
     throw usage_error("--dim " + std::to_string(setup.dim) +
@@ -169,13 +204,109 @@ anisotropic_options parse_anisotropic(const noise_setup& setup, const option_val
   return o;
 }
 
-std::unique_ptr<noise_field> make_anisotropic(const anisotropic_options& options) {
-  return std::make_unique<anisotropic_field>(options);
-}
-
 std::unique_ptr<noise_field> make_anisotropic_from_options(const noise_setup& setup,
                                                            const option_values& given) {
-  return make_anisotropic(parse_anisotropic(setup, given));
+  return std::make_unique<anisotropic_field>(parse_anisotropic(setup, given));
+}
+
+#if HUSH_CLI_HAVE_ANISO_SCENE
+class anisotropic_scene_noise final : public scene_noise {
+ public:
+  // maps: per object and triangle (empty: no compensation).
+  anisotropic_scene_noise(const hush::anisotropic::params& p,
+                          std::vector<std::vector<hush::surface_map>> maps, bool compensate)
+      : noise_(p), maps_(std::move(maps)), compensate_(compensate) {}
+  int channels() const override { return 1; }
+  std::string unsupported_reason(backend b) const override {
+    if (b == backend::glsl && HUSH_CLI_HAVE_GLSL) {
+      const auto& p = noise_.parameters();
+      if (p.filtering == hush::weight_rule::least_squares ||
+          (compensate_ && p.compensation == hush::weight_rule::least_squares))
+        return "least-squares weights run on the CPU only (--filtering and --compensation "
+               "centre or three_point on the GPU)";
+    }
+    return backend_missing(b);
+  }
+  void render(gbuffer_sequence& frames, render_sink& sink, backend b) override {
+    with_exec(b, [&](const auto& ex) { run(ex, frames, sink); });
+  }
+
+ private:
+  template <class Exec>
+  void run(const Exec& ex, gbuffer_sequence& frames, render_sink& sink) {
+    const std::size_t n = frames.size();
+    const auto w = static_cast<std::size_t>(frames.width());
+    const auto h = static_cast<std::size_t>(frames.height());
+    const hush::frame_view needs = hush::frame_view::uv | hush::frame_view::uv_jacobian |
+                                   hush::frame_view::object_id | hush::frame_view::triangle_id;
+    for (std::size_t i = 0; i < n; ++i) {
+      const hush::frame f = frames.frame(i, needs);
+      const std::vector<float> out =
+          hush_tools::aniso::render_frame(noise_, f, maps_, ex, compensate_);
+      sink.write(i, {hush::image_view<const float>(out.data(), w, h)});
+      sink.progress("anisotropic", i + 1, n);
+    }
+  }
+
+  hush::anisotropic noise_;
+  std::vector<std::vector<hush::surface_map>> maps_;
+  bool compensate_;
+};
+#endif
+
+std::unique_ptr<scene_noise> make_anisotropic_render(const render_setup& setup,
+                                                     const option_values& given,
+                                                     const std::vector<std::string>&) {
+  noise_setup ns;
+  ns.dim = 2;
+  ns.seed = setup.seed;
+  option_values noise_options;
+  for (const auto& [name, value] : given)
+    if (name != "--scene") noise_options[name] = value;
+  const anisotropic_options o = parse_anisotropic(ns, noise_options);
+#if HUSH_CLI_HAVE_ANISO_SCENE
+  std::vector<std::vector<hush::surface_map>> maps;
+  const std::string* scene = find_value(given, "--scene");
+  if (scene) {
+    try {
+      maps = hush_tools::aniso::scene_surface_maps(hush_tools::scene::make_scene(*scene));
+    } catch (const hush::invalid_argument& e) {
+      throw usage_error("--scene '" + *scene + "' is invalid: " + e.what());
+    }
+  }
+  return std::make_unique<anisotropic_scene_noise>(o.params, std::move(maps), scene != nullptr);
+#else
+  (void)o;
+  throw usage_error("hush render anisotropic is not in this build (needs the scene library)");
+#endif
+}
+
+}  // namespace
+
+void add_anisotropic_entries(program_entries& entries) {
+  entries.sample.push_back(
+      {"anisotropic",
+       "anisotropic noise (Goldberg, Zwicker & Durand 2008): oriented subband tiles, filtered "
+       "per footprint, compensated per surface map",
+       anisotropic_option_specs(), make_anisotropic_from_options});
+  std::vector<option_spec> options;
+  for (const option_spec& s : anisotropic_option_specs()) {
+    const std::string name = s.name;
+    if (name == "--footprint" || name == "--map") continue;  // from the G-buffer and the scene
+    options.push_back(s);
+  }
+  options.push_back({"--scene", "NAME",
+                     "the scene the G-buffers show (hush scene list): each triangle's surface "
+                     "map from its mesh compensates the UV distortion, frequencies in object "
+                     "units; without it, plain texture-space noise (frequencies in uv units)"});
+  entries.render.push_back(
+      {"anisotropic",
+       "anisotropic noise (Goldberg, Zwicker & Durand 2008) at each pixel's uv, filtered "
+       "by its screen-to-uv Jacobian; with --scene, compensated per triangle; needs uv, "
+       "uv_jacobian, object_id and triangle_id",
+       options,
+       {},
+       make_anisotropic_render});
 }
 
 }  // namespace hush_cli
