@@ -476,7 +476,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return sample_eval<T, true>(s);
   }
 
-  // ---- The pieces every backend repeats (hush/simd/gabor-inl.h, GLSL).
+  // ---- The pieces every backend repeats (hush/gabor/simd-inl.h, GLSL).
 
   // The impulses of solid cell `cell` (32-bit lattice indices), in stream
   // order: f(words), the impulse's words_per_impulse() stream words, whose

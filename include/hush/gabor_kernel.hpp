@@ -78,7 +78,7 @@ namespace hush {
 namespace detail {
 
 // ---- The kernel in cell units, operation by operation as the SIMD kernels
-// (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
+// (hush/gabor/simd-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
 
 // The taper tau(s) = v^2 (3 - 2v), v = clamp((1 - s) k, 0, 1), k = 1 / (1 - s0),
 // and its derivative dtau/ds = -6 k v (1 - v). tau and dtau are exactly 0 for
@@ -613,7 +613,7 @@ struct gabor_filter {
       }
   }
   // The 2D closed form (above) of S = [[sa, sb], [sb, sc]], in this order of double
-  // operations, no fused ones (filters_2d in simd/gabor-inl.h repeats it in lanes).
+  // operations, no fused ones (filters_2d in gabor/simd-inl.h repeats it in lanes).
   void build_2d(double sa, double sb, double sc, double k, double mk) {
     sa = sa == sa ? sa : 0.0;  // NaN counts as 0
     sb = sb == sb ? sb : 0.0;

@@ -57,7 +57,7 @@
 //  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
 //    record per point (position, F, radius, weight, plane, ids, pixel range);
 //    splat adds the records' kernels, on exec::scalar or exec::simd (screen
-//    tiles, hush/simd/npr_gabor-inl.h, bit for bit scalar under HUSH_STRICT_FP).
+//    tiles, hush/npr_gabor/simd-inl.h, bit for bit scalar under HUSH_STRICT_FP).
 //  - amplitudes v_i uniform in (-1, 1) (16-bit symmetric, E[v^2] =
 //    (1 - 2^-32) / 3); kernel g of gabor_kernel<2> (bandwidth a, truncation
 //    t, C1 taper) with F_i = F0 (cos theta, sin theta), theta = orientation
@@ -336,7 +336,7 @@ class npr_gabor {
   // the noise of this frame: stage 1 (make_splats) then stage 2 (the kernels
   // added per pixel in record order). `ex` picks stage 2's backend:
   // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
-  // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
+  // hush/npr_gabor/simd-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
   // the scalar loop where the build has no SIMD), or exec::glsl{device}
   // (float only; include hush/glsl/npr_gabor.hpp: both stages on the GPU where
   // every source is constant or per object, stage 1 here otherwise; within the

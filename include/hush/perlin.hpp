@@ -342,7 +342,7 @@ class perlin : public point_noise<perlin<D>, D> {
   }
 
   // The slice_gradient_coef data of one cell (corner gradients c) in the
-  // slice of z axis az. Mirrored op for op by simd/perlin-inl.h.
+  // slice of z axis az. Mirrored op for op by perlin/simd-inl.h.
   template <class T>
   static void slice_gradient_coefs(const corners<T>& c, const axis<T>& az, T* out) {
     namespace d = detail;
@@ -367,7 +367,7 @@ class perlin : public point_noise<perlin<D>, D> {
   // the row's y axis ay (fade v, slope v'). Per side a, with Z_b(q) the slice
   // data: L(q) = lerp(Z_0, Z_1, v) is q's bilinear blend, Z_1 - Z_0 its v
   // slope, and the dot products' x-free parts c_b = Z_b(gy) (f_y - b) + Z_b(e).
-  // Mirrored op for op by simd/perlin-inl.h.
+  // Mirrored op for op by perlin/simd-inl.h.
   template <class T>
   static void row_gradient_coefs(const T* sc, const axis<T>& ay, T* out) {
     namespace d = detail;

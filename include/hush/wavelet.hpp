@@ -465,7 +465,7 @@ value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], co
 
 // The knots of the exact projection's line integral (below), sorted, into
 // knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
-// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
+// by the scalar and SIMD kernels (wavelet/simd-inl.h computes them per lane).
 template <class T>
 int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
                         T (&knots)[constants::kWaveletMaxKnots]) {

@@ -2072,7 +2072,7 @@ class tile_cache {
 //
 // The transcendental functions the anisotropic noise's weights need, in a
 // form SIMD code can repeat operation by operation (hush/simd/lanes-inl.h;
-// band_profile in hush/simd/anisotropic-inl.h):
+// band_profile in hush/anisotropic/simd-inl.h):
 //   exp2_nonpositive(y) = 2^y for y <= 0      (filtering weights, exp(-x))
 //   log2_positive(m)     = log2(m) for m > 0   (distortion: the map's stretch)
 //   band_profile(x)      = cos^2(pi x / 2) for |x| < 1, else 0
@@ -2597,7 +2597,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The SIMD entry points of fractal sums of Perlin noise (kernels:
-// hush/simd/fractal-inl.h) and detail::simd_kernel<fractal<perlin<D>>>, which
+// hush/fractal/simd-inl.h) and detail::simd_kernel<fractal<perlin<D>>>, which
 // exec::simd calls; other bases run the scalar loop. Included at the end of
 // hush/fractal.hpp, after the class its kernels use; not on its own.
 // Layout conventions as Perlin's (hush/perlin/simd_kernel.hpp).
@@ -2943,7 +2943,7 @@ class perlin : public point_noise<perlin<D>, D> {
   }
 
   // The slice_gradient_coef data of one cell (corner gradients c) in the
-  // slice of z axis az. Mirrored op for op by simd/perlin-inl.h.
+  // slice of z axis az. Mirrored op for op by perlin/simd-inl.h.
   template <class T>
   static void slice_gradient_coefs(const corners<T>& c, const axis<T>& az, T* out) {
     namespace d = detail;
@@ -2968,7 +2968,7 @@ class perlin : public point_noise<perlin<D>, D> {
   // the row's y axis ay (fade v, slope v'). Per side a, with Z_b(q) the slice
   // data: L(q) = lerp(Z_0, Z_1, v) is q's bilinear blend, Z_1 - Z_0 its v
   // slope, and the dot products' x-free parts c_b = Z_b(gy) (f_y - b) + Z_b(e).
-  // Mirrored op for op by simd/perlin-inl.h.
+  // Mirrored op for op by perlin/simd-inl.h.
   template <class T>
   static void row_gradient_coefs(const T* sc, const axis<T>& ay, T* out) {
     namespace d = detail;
@@ -3099,7 +3099,7 @@ class perlin : public point_noise<perlin<D>, D> {
 // ---- begin hush/perlin/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Perlin noise's SIMD entry points (kernels: hush/simd/perlin-inl.h) and
+// Perlin noise's SIMD entry points (kernels: hush/perlin/simd-inl.h) and
 // detail::simd_kernel<perlin<D>>, which exec::simd calls. Included at the end
 // of hush/perlin.hpp, after the class its kernels use; not on its own.
 //
@@ -3108,7 +3108,7 @@ class perlin : public point_noise<perlin<D>, D> {
 // entry per axis (0 = not periodic). Grid entries evaluate the slab of
 // slowest-axis indices (j in 2D, k in 3D) [first, first + count) into value
 // (and grad), which start at that slab's first sample; (0, g.size[D - 1]) is
-// the whole grid. Results follow hush::perlin's contract; perlin-inl.h states
+// the whole grid. Results follow hush::perlin's contract; perlin/simd-inl.h states
 // the agreement with scalar evaluation.
 #ifndef HUSH_PERLIN_SIMD_KERNEL_HPP
 #define HUSH_PERLIN_SIMD_KERNEL_HPP
@@ -3231,7 +3231,7 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 // ---- end hush/simd/dispatch.hpp
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/perlin-inl.h
+// ---- begin hush/perlin/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for improved Perlin noise in 2D and 3D: batches of points
@@ -3270,11 +3270,11 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 
 // Toggle guard: included once per target by foreach_target.h (Highway's
 // hwy/examples/skeleton-inl.h pattern).
-#if defined(HUSH_SIMD_PERLIN_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_PERLIN_INL_H_
-#undef HUSH_SIMD_PERLIN_INL_H_
+#if defined(HUSH_PERLIN_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_PERLIN_SIMD_INL_H_
+#undef HUSH_PERLIN_SIMD_INL_H_
 #else
-#define HUSH_SIMD_PERLIN_INL_H_
+#define HUSH_PERLIN_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -4685,8 +4685,8 @@ inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const g
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_PERLIN_INL_H_ toggle
-// ---- end hush/simd/perlin-inl.h
+#endif  // HUSH_PERLIN_SIMD_INL_H_ toggle
+// ---- end hush/perlin/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_PERLIN(X)                                                                \
@@ -4763,7 +4763,7 @@ struct simd_kernel<perlin<D>> {
 // ---- end hush/perlin.hpp
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/fractal-inl.h
+// ---- begin hush/fractal/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for fractal sums of Perlin noise (hush/fractal.hpp over
@@ -4772,7 +4772,7 @@ struct simd_kernel<perlin<D>> {
 // include guard below, no normal guard); reached through
 // hush/fractal/simd_kernel.hpp, never included directly by users.
 //
-// Each band is a Perlin field evaluated by perlin-inl.h's vector code at the
+// Each band is a Perlin field evaluated by perlin/simd-inl.h's vector code at the
 // band position, formed as scalar evaluation forms it, and the bands are
 // summed in the same order with the same operations: under HUSH_STRICT_FP
 // every value and gradient is bit for bit the scalar result
@@ -4781,11 +4781,11 @@ struct simd_kernel<perlin<D>> {
 
 // Toggle guard: included once per target by foreach_target.h (Highway's
 // hwy/examples/skeleton-inl.h pattern).
-#if defined(HUSH_SIMD_FRACTAL_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_FRACTAL_INL_H_
-#undef HUSH_SIMD_FRACTAL_INL_H_
+#if defined(HUSH_FRACTAL_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_FRACTAL_SIMD_INL_H_
+#undef HUSH_FRACTAL_SIMD_INL_H_
 #else
-#define HUSH_SIMD_FRACTAL_INL_H_
+#define HUSH_FRACTAL_SIMD_INL_H_
 #endif
 
 #include <cstddef>
@@ -5071,8 +5071,8 @@ inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::s
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_FRACTAL_INL_H_ toggle
-// ---- end hush/simd/fractal-inl.h
+#endif  // HUSH_FRACTAL_SIMD_INL_H_ toggle
+// ---- end hush/fractal/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_FRACTAL(X)                                                            \
@@ -6199,7 +6199,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 // ---- begin hush/anisotropic/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Anisotropic noise's SIMD entry points (kernels: hush/simd/anisotropic-inl.h)
+// Anisotropic noise's SIMD entry points (kernels: hush/anisotropic/simd-inl.h)
 // and detail::simd_kernel<anisotropic>, which exec::simd calls: n samples at
 // interleaved positions xy, with footprints fp (3 floats each, null = points)
 // and surface maps (4 floats each, null = none), or a uniform grid; gradients
@@ -6213,7 +6213,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/anisotropic-inl.h
+// ---- begin hush/anisotropic/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for anisotropic noise (hush/anisotropic.hpp): batches of
@@ -6243,11 +6243,11 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 // slopes of each bilinear lookup (anisotropic.hpp's accumulate).
 
 // Toggle guard: included once per target by foreach_target.h.
-#if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_ANISOTROPIC_INL_H_
-#undef HUSH_SIMD_ANISOTROPIC_INL_H_
+#if defined(HUSH_ANISOTROPIC_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_ANISOTROPIC_SIMD_INL_H_
+#undef HUSH_ANISOTROPIC_SIMD_INL_H_
 #else
-#define HUSH_SIMD_ANISOTROPIC_INL_H_
+#define HUSH_ANISOTROPIC_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -6962,8 +6962,8 @@ inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* valu
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_ANISOTROPIC_INL_H_ toggle
-// ---- end hush/simd/anisotropic-inl.h
+#endif  // HUSH_ANISOTROPIC_SIMD_INL_H_ toggle
+// ---- end hush/anisotropic/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_ANISOTROPIC(X)                                                      \
@@ -7596,7 +7596,7 @@ struct triangle_list {
 //    gabor.hpp grid_values, docs/gabor.md "Float accuracy").
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
-//    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
+//    hush/perlin/simd-inl.h, docs/design.md "Backends"). Without SIMD
 //    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
 //  - glsl: within the GLSL tolerance stated by the backend
 //    (backends/glsl/include/hush/glsl/device.hpp).
@@ -8669,7 +8669,7 @@ namespace hush {
 namespace detail {
 
 // ---- The kernel in cell units, operation by operation as the SIMD kernels
-// (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
+// (hush/gabor/simd-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
 
 // The taper tau(s) = v^2 (3 - 2v), v = clamp((1 - s) k, 0, 1), k = 1 / (1 - s0),
 // and its derivative dtau/ds = -6 k v (1 - v). tau and dtau are exactly 0 for
@@ -9204,7 +9204,7 @@ struct gabor_filter {
       }
   }
   // The 2D closed form (above) of S = [[sa, sb], [sb, sc]], in this order of double
-  // operations, no fused ones (filters_2d in simd/gabor-inl.h repeats it in lanes).
+  // operations, no fused ones (filters_2d in gabor/simd-inl.h repeats it in lanes).
   void build_2d(double sa, double sb, double sc, double k, double mk) {
     sa = sa == sa ? sa : 0.0;  // NaN counts as 0
     sb = sb == sb ? sb : 0.0;
@@ -9633,7 +9633,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return sample_eval<T, true>(s);
   }
 
-  // ---- The pieces every backend repeats (hush/simd/gabor-inl.h, GLSL).
+  // ---- The pieces every backend repeats (hush/gabor/simd-inl.h, GLSL).
 
   // The impulses of solid cell `cell` (32-bit lattice indices), in stream
   // order: f(words), the impulse's words_per_impulse() stream words, whose
@@ -10442,7 +10442,7 @@ class gabor_spectrum {
 // ---- begin hush/gabor/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Gabor noise's SIMD entry points (kernels: hush/simd/gabor-inl.h, which
+// Gabor noise's SIMD entry points (kernels: hush/gabor/simd-inl.h, which
 // states the agreement with scalar evaluation) and detail::simd_kernel<gabor<D>>,
 // which exec::simd calls: points (interleaved), grid slabs (as Perlin's,
 // hush/perlin/simd_kernel.hpp), points with footprints (filtered samples) and,
@@ -10456,7 +10456,7 @@ class gabor_spectrum {
 
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/gabor-inl.h
+// ---- begin hush/gabor/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for Gabor noise (hush/gabor.hpp): points, uniform grids and
@@ -10503,11 +10503,11 @@ class gabor_spectrum {
 //    cache). Grids with fewer than kMinRun samples per cell along x go through the points
 //    path instead.
 
-#if defined(HUSH_SIMD_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_GABOR_INL_H_
-#undef HUSH_SIMD_GABOR_INL_H_
+#if defined(HUSH_GABOR_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_SIMD_INL_H_
+#undef HUSH_GABOR_SIMD_INL_H_
 #else
-#define HUSH_SIMD_GABOR_INL_H_
+#define HUSH_GABOR_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -13193,8 +13193,8 @@ inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_GABOR_INL_H_ toggle
-// ---- end hush/simd/gabor-inl.h
+#endif  // HUSH_GABOR_SIMD_INL_H_ toggle
+// ---- end hush/gabor/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_GABOR(X)                                                                 \
@@ -14169,7 +14169,7 @@ value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], co
 
 // The knots of the exact projection's line integral (below), sorted, into
 // knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
-// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
+// by the scalar and SIMD kernels (wavelet/simd-inl.h computes them per lane).
 template <class T>
 int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
                         T (&knots)[constants::kWaveletMaxKnots]) {
@@ -14851,7 +14851,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 // ---- begin hush/wavelet/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Wavelet noise's SIMD entry points (kernels: hush/simd/wavelet-inl.h) and
+// Wavelet noise's SIMD entry points (kernels: hush/wavelet/simd-inl.h) and
 // detail::simd_kernel<wavelet<D>>, which exec::simd calls: points, grids and
 // samples (footprints, normals). Included at the end of hush/wavelet.hpp, after
 // the class its kernels use; not on its own. Points and gradients are
@@ -14863,7 +14863,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/wavelet-inl.h
+// ---- begin hush/wavelet/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for wavelet noise (include/hush/wavelet.hpp), 2D and 3D:
@@ -14900,11 +14900,11 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 // Lanes that widen the basis or see a footprint that filters everything are
 // evaluated lane by lane by the scalar code, and so is any batch of a noise with
 // tile variants (variant_overlap > 0): correct everywhere but not vectorised.
-#if defined(HUSH_SIMD_WAVELET_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_WAVELET_INL_H_
-#undef HUSH_SIMD_WAVELET_INL_H_
+#if defined(HUSH_WAVELET_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_SIMD_INL_H_
+#undef HUSH_WAVELET_SIMD_INL_H_
 #else
-#define HUSH_SIMD_WAVELET_INL_H_
+#define HUSH_WAVELET_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -16227,8 +16227,8 @@ inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* va
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_WAVELET_INL_H_ toggle
-// ---- end hush/simd/wavelet-inl.h
+#endif  // HUSH_WAVELET_SIMD_INL_H_ toggle
+// ---- end hush/wavelet/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_WAVELET(X)                                                         \
@@ -16356,7 +16356,7 @@ struct simd_kernel<wavelet<D>> {
 //    by alpha: within (12 / (1 - alpha) + 1) 2^-24 M for outputs of magnitude <= M
 //    (tests/coherent_test.cpp; measured 2.4e-6 at alpha 0.98 against a budget of 1.4e-4).
 //  - backends: exec::scalar is the reference; exec::simd equals it bit for bit under
-//    HUSH_STRICT_FP (hush/simd/coherent-inl.h); exec::glsl{device} (include
+//    HUSH_STRICT_FP (hush/coherent/simd-inl.h); exec::glsl{device} (include
 //    hush/glsl/coherent.hpp) keeps the history on the GPU; tolerance there.
 #ifndef HUSH_COHERENT_HPP
 #define HUSH_COHERENT_HPP
@@ -16378,7 +16378,7 @@ struct simd_kernel<wavelet<D>> {
 // ---- begin hush/coherent/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Coherent noise's SIMD entry point (kernel: hush/simd/coherent-inl.h): one
+// Coherent noise's SIMD entry point (kernel: hush/coherent/simd-inl.h): one
 // recursive-filter pass over a frame, the same result as
 // detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP.
 // hush/coherent.hpp calls it on exec::simd.
@@ -16390,7 +16390,7 @@ struct simd_kernel<wavelet<D>> {
 //
 // The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
 // data and one scalar loop: what a recursive-filter pass does for every pixel
-// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
+// of one frame. The SIMD kernel (hush/coherent/simd-inl.h) and the GLSL
 // program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
 // operation; include hush/coherent.hpp, not this.
 //
@@ -16656,7 +16656,7 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 // ---- end hush/detail/coherent_kernel.hpp
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/coherent-inl.h
+// ---- begin hush/coherent/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernel of coherent noise (include/hush/coherent.hpp): one pass of
@@ -16676,11 +16676,11 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 // (width mod lanes) pixels run the scalar code itself; lanes of pixels that
 // are not visible read the reference frame at index 0, never out of bounds.
 
-#if defined(HUSH_SIMD_COHERENT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_COHERENT_INL_H_
-#undef HUSH_SIMD_COHERENT_INL_H_
+#if defined(HUSH_COHERENT_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_COHERENT_SIMD_INL_H_
+#undef HUSH_COHERENT_SIMD_INL_H_
 #else
-#define HUSH_SIMD_COHERENT_INL_H_
+#define HUSH_COHERENT_SIMD_INL_H_
 #endif
 
 #include <cstddef>
@@ -16974,8 +16974,8 @@ inline void coherent_pass(const detail::coherent_pass_job<float>& j) {
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_COHERENT_INL_H_ toggle
-// ---- end hush/simd/coherent-inl.h
+#endif  // HUSH_COHERENT_SIMD_INL_H_ toggle
+// ---- end hush/coherent/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_COHERENT(X) \
@@ -17955,7 +17955,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
 //    record per point (position, F, radius, weight, plane, ids, pixel range);
 //    splat adds the records' kernels, on exec::scalar or exec::simd (screen
-//    tiles, hush/simd/npr_gabor-inl.h, bit for bit scalar under HUSH_STRICT_FP).
+//    tiles, hush/npr_gabor/simd-inl.h, bit for bit scalar under HUSH_STRICT_FP).
 //  - amplitudes v_i uniform in (-1, 1) (16-bit symmetric, E[v^2] =
 //    (1 - 2^-32) / 3); kernel g of gabor_kernel<2> (bandwidth a, truncation
 //    t, C1 taper) with F_i = F0 (cos theta, sin theta), theta = orientation
@@ -18216,7 +18216,7 @@ class param_source {
 //  2. splatting: every record's kernel is added at the pixel centres of its
 //     range that pass the tests (sec. 3.4), per pixel in record order.
 // Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
-// or double) and once in lanes (hush/simd/npr_gabor-inl.h, float), which
+// or double) and once in lanes (hush/npr_gabor/simd-inl.h, float), which
 // repeats it operation by operation.
 #ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
 #define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
@@ -18424,7 +18424,7 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 // ---- begin hush/npr_gabor/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// NPR Gabor noise's SIMD entry point (kernel: hush/simd/npr_gabor-inl.h):
+// NPR Gabor noise's SIMD entry point (kernel: hush/npr_gabor/simd-inl.h):
 // stage 2, the job's records added into out (frame-sized, zeroed by the
 // caller), per pixel in record order; bit for bit
 // detail::npr_gabor_splat_scalar<float> under HUSH_STRICT_FP.
@@ -18434,7 +18434,7 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/npr_gabor-inl.h
+// ---- begin hush/npr_gabor/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernel of NPR Gabor noise's stage 2 (hush/npr_gabor.hpp,
@@ -18466,11 +18466,11 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 // within the kernel's float budget, and a depth decision may flip where the
 // relative difference is within an ulp of the tolerance.
 
-#if defined(HUSH_SIMD_NPR_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_NPR_GABOR_INL_H_
-#undef HUSH_SIMD_NPR_GABOR_INL_H_
+#if defined(HUSH_NPR_GABOR_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_NPR_GABOR_SIMD_INL_H_
+#undef HUSH_NPR_GABOR_SIMD_INL_H_
 #else
-#define HUSH_SIMD_NPR_GABOR_INL_H_
+#define HUSH_NPR_GABOR_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -18490,7 +18490,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace npr_gabor_simd {
 
 // Generic lane types: simd/lanes-inl.h; the Gabor kernel's factors and pair
-// products: gabor_simd (simd/gabor-inl.h).
+// products: gabor_simd (gabor/simd-inl.h).
 using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
@@ -18754,8 +18754,8 @@ inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_vi
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_NPR_GABOR_INL_H_
-// ---- end hush/simd/npr_gabor-inl.h
+#endif  // HUSH_NPR_GABOR_SIMD_INL_H_
+// ---- end hush/npr_gabor/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_NPR_GABOR(X)                                                       \
@@ -18944,7 +18944,7 @@ class npr_gabor {
   // the noise of this frame: stage 1 (make_splats) then stage 2 (the kernels
   // added per pixel in record order). `ex` picks stage 2's backend:
   // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
-  // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
+  // hush/npr_gabor/simd-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
   // the scalar loop where the build has no SIMD), or exec::glsl{device}
   // (float only; include hush/glsl/npr_gabor.hpp: both stages on the GPU where
   // every source is constant or per object, stage 1 here otherwise; within the

@@ -2,7 +2,7 @@
 //
 // The transcendental functions the anisotropic noise's weights need, in a
 // form SIMD code can repeat operation by operation (hush/simd/lanes-inl.h;
-// band_profile in hush/simd/anisotropic-inl.h):
+// band_profile in hush/anisotropic/simd-inl.h):
 //   exp2_nonpositive(y) = 2^y for y <= 0      (filtering weights, exp(-x))
 //   log2_positive(m)     = log2(m) for m > 0   (distortion: the map's stretch)
 //   band_profile(x)      = cos^2(pi x / 2) for |x| < 1, else 0

@@ -2,7 +2,7 @@
 //
 // The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
 // data and one scalar loop: what a recursive-filter pass does for every pixel
-// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
+// of one frame. The SIMD kernel (hush/coherent/simd-inl.h) and the GLSL
 // program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
 // operation; include hush/coherent.hpp, not this.
 //

@@ -9,7 +9,7 @@
 //  2. splatting: every record's kernel is added at the pixel centres of its
 //     range that pass the tests (sec. 3.4), per pixel in record order.
 // Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
-// or double) and once in lanes (hush/simd/npr_gabor-inl.h, float), which
+// or double) and once in lanes (hush/npr_gabor/simd-inl.h, float), which
 // repeats it operation by operation.
 #ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
 #define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP

@@ -34,11 +34,11 @@
 // Lanes that widen the basis or see a footprint that filters everything are
 // evaluated lane by lane by the scalar code, and so is any batch of a noise with
 // tile variants (variant_overlap > 0): correct everywhere but not vectorised.
-#if defined(HUSH_SIMD_WAVELET_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_WAVELET_INL_H_
-#undef HUSH_SIMD_WAVELET_INL_H_
+#if defined(HUSH_WAVELET_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_SIMD_INL_H_
+#undef HUSH_WAVELET_SIMD_INL_H_
 #else
-#define HUSH_SIMD_WAVELET_INL_H_
+#define HUSH_WAVELET_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -1365,4 +1365,4 @@ inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* va
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_WAVELET_INL_H_ toggle
+#endif  // HUSH_WAVELET_SIMD_INL_H_ toggle

@@ -17,11 +17,11 @@
 // (width mod lanes) pixels run the scalar code itself; lanes of pixels that
 // are not visible read the reference frame at index 0, never out of bounds.
 
-#if defined(HUSH_SIMD_COHERENT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_COHERENT_INL_H_
-#undef HUSH_SIMD_COHERENT_INL_H_
+#if defined(HUSH_COHERENT_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_COHERENT_SIMD_INL_H_
+#undef HUSH_COHERENT_SIMD_INL_H_
 #else
-#define HUSH_SIMD_COHERENT_INL_H_
+#define HUSH_COHERENT_SIMD_INL_H_
 #endif
 
 #include <cstddef>
@@ -319,4 +319,4 @@ inline void coherent_pass(const detail::coherent_pass_job<float>& j) {
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_COHERENT_INL_H_ toggle
+#endif  // HUSH_COHERENT_SIMD_INL_H_ toggle

@@ -27,11 +27,11 @@
 // slopes of each bilinear lookup (anisotropic.hpp's accumulate).
 
 // Toggle guard: included once per target by foreach_target.h.
-#if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_ANISOTROPIC_INL_H_
-#undef HUSH_SIMD_ANISOTROPIC_INL_H_
+#if defined(HUSH_ANISOTROPIC_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_ANISOTROPIC_SIMD_INL_H_
+#undef HUSH_ANISOTROPIC_SIMD_INL_H_
 #else
-#define HUSH_SIMD_ANISOTROPIC_INL_H_
+#define HUSH_ANISOTROPIC_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -753,4 +753,4 @@ inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* valu
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_ANISOTROPIC_INL_H_ toggle
+#endif  // HUSH_ANISOTROPIC_SIMD_INL_H_ toggle

@@ -29,11 +29,11 @@
 // within the kernel's float budget, and a depth decision may flip where the
 // relative difference is within an ulp of the tolerance.
 
-#if defined(HUSH_SIMD_NPR_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_NPR_GABOR_INL_H_
-#undef HUSH_SIMD_NPR_GABOR_INL_H_
+#if defined(HUSH_NPR_GABOR_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_NPR_GABOR_SIMD_INL_H_
+#undef HUSH_NPR_GABOR_SIMD_INL_H_
 #else
-#define HUSH_SIMD_NPR_GABOR_INL_H_
+#define HUSH_NPR_GABOR_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -48,7 +48,7 @@
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/detail/npr_gabor_splat.hpp"
-#include "hush/simd/gabor-inl.h"
+#include "hush/gabor/simd-inl.h"
 #include "hush/simd/lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -59,7 +59,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace npr_gabor_simd {
 
 // Generic lane types: simd/lanes-inl.h; the Gabor kernel's factors and pair
-// products: gabor_simd (simd/gabor-inl.h).
+// products: gabor_simd (gabor/simd-inl.h).
 using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
@@ -323,4 +323,4 @@ inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_vi
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_NPR_GABOR_INL_H_
+#endif  // HUSH_NPR_GABOR_SIMD_INL_H_

@@ -44,11 +44,11 @@
 //    cache). Grids with fewer than kMinRun samples per cell along x go through the points
 //    path instead.
 
-#if defined(HUSH_SIMD_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_GABOR_INL_H_
-#undef HUSH_SIMD_GABOR_INL_H_
+#if defined(HUSH_GABOR_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_SIMD_INL_H_
+#undef HUSH_GABOR_SIMD_INL_H_
 #else
-#define HUSH_SIMD_GABOR_INL_H_
+#define HUSH_GABOR_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -2741,4 +2741,4 @@ inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_GABOR_INL_H_ toggle
+#endif  // HUSH_GABOR_SIMD_INL_H_ toggle

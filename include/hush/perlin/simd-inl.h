@@ -36,11 +36,11 @@
 
 // Toggle guard: included once per target by foreach_target.h (Highway's
 // hwy/examples/skeleton-inl.h pattern).
-#if defined(HUSH_SIMD_PERLIN_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_PERLIN_INL_H_
-#undef HUSH_SIMD_PERLIN_INL_H_
+#if defined(HUSH_PERLIN_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_PERLIN_SIMD_INL_H_
+#undef HUSH_PERLIN_SIMD_INL_H_
 #else
-#define HUSH_SIMD_PERLIN_INL_H_
+#define HUSH_PERLIN_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -1096,4 +1096,4 @@ inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const g
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_PERLIN_INL_H_ toggle
+#endif  // HUSH_PERLIN_SIMD_INL_H_ toggle
