@@ -3290,8 +3290,9 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 // ---- begin hush/simd/lanes-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The lane toolbox the SIMD kernels share (simd/*-inl.h): float lane types,
-// multiply-adds as the scalar code is compiled, core/hash.hpp's hashes,
+// The lane toolbox the SIMD kernels share (hush/<noise>/*-inl.h): float lane
+// types, multiply-adds as the scalar code is compiled, core/hash.hpp's hashes,
+// core/rng.hpp's stream keys and draws, core/lattice.hpp's split of an axis,
 // detail/elementary.hpp's exp and sin/cos, detail/approx_math.hpp's exp2 and
 // log2, compression of selected lanes, interleaved stores and the batch
 // driver. Only generic lane maths lives here; each noise's own algorithm stays
@@ -3395,6 +3396,52 @@ HWY_INLINE VU word(VU i) {
   if constexpr (kAxis == 0) return word_x(i);
   if constexpr (kAxis == 1) return word_y(i);
   if constexpr (kAxis == 2) return word_z(i);
+}
+
+// ---- core/rng.hpp in 32-bit lanes: hush::rng streams drawn per lane.
+// hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
+HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
+  const DU du;
+  return hash32(hn::Xor(hash32(hn::Add(seed, hn::Set(du, detail::constants::kGoldenGamma))),
+                        hn::Set(du, stream)));
+}
+// Draw `counter` of the streams with keys `key`: hash32(key ^ hash32(counter)).
+HWY_INLINE VU draw(VU key, std::uint32_t counter) {
+  return hash32(hn::Xor(key, hn::Set(DU(), hush::hash32(counter))));
+}
+
+// ---- core/lattice.hpp in lanes.
+// The vector split of one axis (lattice_split<float>(x * inv) of every lane,
+// bit for bit), valid when every lane's x * inv is finite with |x inv| < 2^31;
+// false (nothing written) otherwise: the caller splits lane by lane.
+HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
+#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
+  const DF df;
+  const hn::Half<DF> dh;
+  const hn::Repartition<double, DF> dd;
+  const hn::Rebind<float, decltype(dd)> df_of_d;
+  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
+  const auto vinv = hn::Set(dd, inv);
+  const auto limit = hn::Set(dd, 2147483648.0);
+  const auto lo = hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), vinv);
+  const auto hi = hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), vinv);
+  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
+    return false;
+  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
+  const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
+                           hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
+  hn::StoreU(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
+  const DI di;
+  const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
+  hn::StoreU(hn::BitCast(DU(), c), DU(), cell);
+  return true;
+#else
+  (void)x;
+  (void)inv;
+  (void)cell;
+  (void)frac;
+  return false;
+#endif
 }
 
 // ---- detail/elementary.hpp in lanes (the float branch, op for op).
@@ -10502,6 +10549,11 @@ class gabor_spectrum {
 //    each cell's impulses drawn once into a small cache for the blocks that see it (the draw
 //    cache). Grids with fewer than kMinRun samples per cell along x go through the points
 //    path instead.
+//
+// Its parts, one per path: hush/gabor/kernel-inl.h (the kernel and the constants in
+// lanes), hush/gabor/lockstep-inl.h, hush/gabor/shared_cells-inl.h and
+// hush/gabor/shared_points-inl.h (the shared-cell path), hush/gabor/grid-inl.h; this
+// file holds the entry points.
 
 #if defined(HUSH_GABOR_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef HUSH_GABOR_SIMD_INL_H_
@@ -10513,17 +10565,87 @@ class gabor_spectrum {
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <vector>
 
-#include <hwy/cache_control.h>
+#include <hwy/highway.h>
+
+// ---- begin hush/gabor/grid-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise on uniform grids: samples in blocks that share their cell along y
+// (and z), each impulse's factors along y (and z) computed once per row, along x
+// once per column, and per sample only their products; each cell's impulses
+// drawn once into a cache for the blocks that see it. Grids too sparse for blocks
+// take the lockstep path (hush/gabor/lockstep-inl.h).
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_GRID_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_GRID_INL_H_
+#undef HUSH_GABOR_GRID_INL_H_
+#else
+#define HUSH_GABOR_GRID_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+// ---- begin hush/gabor/lockstep-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise's lockstep path (one lane per point): per cell and impulse the lanes
+// draw in lockstep, the impulses within each lane's support are compressed into a
+// list, and the unfiltered, filtered or surface kernel runs over it in full
+// vectors; each lane sums its terms in stream order (finish). It evaluates points
+// and filtered samples that the shared-cell path leaves, and samples with normals.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_LOCKSTEP_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_LOCKSTEP_INL_H_
+#undef HUSH_GABOR_LOCKSTEP_INL_H_
+#else
+#define HUSH_GABOR_LOCKSTEP_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+// ---- begin hush/gabor/kernel-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The pieces of Gabor noise's Highway kernels (hush/gabor/simd-inl.h) that every
+// path repeats: Poisson counts and word fields of the impulses' draws, the
+// separable kernel (gabor_kernel.hpp) with its taper and products in lanes, and the
+// noise's constants, directions and marks as lanes. NPR Gabor noise's splats
+// (hush/npr_gabor/simd-inl.h) use the kernel too.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_KERNEL_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_KERNEL_INL_H_
+#undef HUSH_GABOR_KERNEL_INL_H_
+#else
+#define HUSH_GABOR_KERNEL_INL_H_
+#endif
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
 #include <hwy/highway.h>
 
 
-// The noise class comes first, not from here: hush/gabor.hpp includes these
-// kernels at its end (hush/gabor/simd_kernel.hpp), as src/simd/gabor.cpp does.
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {
@@ -10531,10 +10653,12 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace gabor_simd {
 
-// Generic lane maths (types, multiply-adds, hashes, exp, sin/cos, compression).
+// Generic lane maths (types, multiply-adds, hashes and draws, exp, sin/cos,
+// the lattice split, compression).
 using namespace lanes::types;
 
 using lanes::compressor;
+using lanes::draw;
 using lanes::exp_neg;
 using lanes::exp_neg_finite;
 using lanes::exp_neg_in_range;
@@ -10544,29 +10668,12 @@ using lanes::mul_add;
 using lanes::neg_mul_add;
 using lanes::sincos_turns;
 using lanes::sincos_turns_in_range;
+using lanes::split_axis;
 using lanes::store_interleaved;
+using lanes::stream_key;
 using lanes::word_x;
 using lanes::word_y;
 using lanes::word_z;
-
-// Grids with fewer samples per cell along x than this take the points path.
-constexpr double kMinRun = 8.0;
-// Grid blocks' width along x (2D, 3D): several cells, so that an impulse's
-// factors along y (and z) serve that many samples; the block's sums stay in
-// L1/L2 (2D: rows of one cell, ~64 x 256 floats; 3D: 32 x 16 rows).
-constexpr std::size_t kBlockX[2] = {256, 64};
-
-// ---- hush::rng in lanes.
-// hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
-HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
-  const DU du;
-  return hash32(hn::Xor(hash32(hn::Add(seed, hn::Set(du, detail::constants::kGoldenGamma))),
-                        hn::Set(du, stream)));
-}
-// Draw `counter` of the streams with keys `key`: hash32(key ^ hash32(counter)).
-HWY_INLINE VU draw(VU key, std::uint32_t counter) {
-  return hash32(hn::Xor(key, hn::Set(DU(), hush::hash32(counter))));
-}
 
 // Poisson counts of words u (poisson_table::count): the number of thresholds
 // <= u. Short tables (the common case: 25 thresholds for N' = 16 in 2D) are
@@ -10792,6 +10899,21 @@ HWY_INLINE void marks(const consts<D>& c, const VU* words, VF& w, VF* phi) {
     for (int i = 0; i < 3; ++i) phi[i] = hn::Mul(f, dir[i]);
   }
 }
+
+}  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_KERNEL_INL_H_ toggle
+// ---- end hush/gabor/kernel-inl.h
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
 
 // ---- One lane per point: candidates, then the kernel over the kept ones.
 
@@ -11289,39 +11411,6 @@ HWY_INLINE void clear_lane(lanes_split& sp, std::size_t l) {
   sp.bad[l] = true;
 }
 
-// The vector split of one axis (lattice_split<float>(x * inv) of every lane,
-// bit for bit), valid when every lane's x * inv is finite with |x inv| < 2^31;
-// false (nothing written) otherwise: the caller splits lane by lane.
-HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
-#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
-  const DF df;
-  const hn::Half<DF> dh;
-  const hn::Repartition<double, DF> dd;
-  const hn::Rebind<float, decltype(dd)> df_of_d;
-  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
-  const auto vinv = hn::Set(dd, inv);
-  const auto limit = hn::Set(dd, 2147483648.0);
-  const auto lo = hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), vinv);
-  const auto hi = hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), vinv);
-  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
-    return false;
-  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
-  const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
-                           hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
-  hn::StoreU(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
-  const DI di;
-  const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
-  hn::StoreU(hn::BitCast(DU(), c), DU(), cell);
-  return true;
-#else
-  (void)x;
-  (void)inv;
-  (void)cell;
-  (void)frac;
-  return false;
-#endif
-}
-
 // Splits lanes [0, used) of a batch with split_lane (positions pos(i, x), x:
 // D doubles) and marks the rest unused.
 template <int D, class Position>
@@ -11399,6 +11488,509 @@ void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, 
       g, count, sp, split, value, grad,
       [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G, Grid>(c, t); });
 }
+
+}  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_LOCKSTEP_INL_H_ toggle
+// ---- end hush/gabor/lockstep-inl.h
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
+
+// Grids with fewer samples per cell along x than this take the points path.
+constexpr double kMinRun = 8.0;
+// Grid blocks' width along x (2D, 3D): several cells, so that an impulse's
+// factors along y (and z) serve that many samples; the block's sums stay in
+// L1/L2 (2D: rows of one cell, ~64 x 256 floats; 3D: 32 x 16 rows).
+constexpr std::size_t kBlockX[2] = {256, 64};
+
+// ---- Grids: blocks of samples that share their cell.
+
+// One axis of a grid, split as scalar evaluation splits grid.position(): the
+// cell and fraction of (origin + step (first + i)) * inverse cell for i in [0, n),
+// and runs of equal cells (at most `cap` long).
+struct grid_axis {
+  std::vector<std::uint32_t> cell;
+  std::vector<float> frac;
+  std::vector<char> bad;
+  std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
+  grid_axis(double origin, double step, std::size_t first, std::size_t n, double inv,
+            std::size_t cap)
+      : cell(n), frac(n), bad(n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const lattice_coord<float> c =
+          lattice_split<float>((origin + step * static_cast<double>(first + i)) * inv);
+      cell[i] = c.i0;
+      frac[i] = c.f;
+      bad[i] = std::isnan(c.f) ? 1 : 0;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (i == 0 || cell[i] != cell[i - 1] || i - run_start.back() == cap) run_start.push_back(i);
+    run_start.push_back(n);
+  }
+  std::size_t runs() const { return run_start.size() - 1; }
+  std::size_t longest_run() const {
+    std::size_t m = 0;
+    for (std::size_t r = 0; r + 1 < run_start.size(); ++r)
+      m = std::max(m, run_start[r + 1] - run_start[r]);
+    return m;
+  }
+};
+
+// The factors of one impulse along one axis of a block: for the block's
+// samples [from, n) (padded to whole vectors with fractions far outside), offset
+// d = frac - (o + u) (detail::gabor_offset), d^2 and the axis factors; `lo`, `hi`: the range of
+// samples with d^2 < 1 (contiguous: frac is monotonic within a cell); along
+// x (`ox`: each sample's o, the impulse's cell relative to the sample's) also
+// the products e c and e s (gabor_pair_of_products' x side).
+struct block_factors {
+  std::vector<float> d, d2, e, s, c, ec, es;
+  // Along x, per vector: the least d^2 of its lanes (a NaN lane counts as 0:
+  // such a vector is never skipped).
+  std::vector<float> vmin;
+  std::size_t lo = 0, hi = 0;
+  explicit block_factors(std::size_t cap)
+      : d(cap), d2(cap), e(cap), s(cap), c(cap), ec(cap), es(cap), vmin(cap) {}
+  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi,
+               const float* ox = nullptr, std::size_t from = 0) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const VF ou = hn::Set(df, o), uu = hn::Set(df, u);
+    lo = n_pad;
+    hi = 0;
+    for (std::size_t i = from; i < n_pad; i += lanes) {
+      const VF dv = hn::Sub(hn::LoadU(df, frac + i), hn::Add(ox ? hn::LoadU(df, ox + i) : ou, uu));
+      const VF d2v = hn::Mul(dv, dv);
+      hn::StoreU(dv, df, d.data() + i);
+      hn::StoreU(d2v, df, d2.data() + i);
+      if (ox)
+        vmin[i / lanes] = hn::GetLane(hn::MinOfLanes(df, hn::IfThenZeroElse(hn::IsNaN(d2v), d2v)));
+      if (hn::AllFalse(df, hn::Lt(d2v, hn::Set(df, 1.0f)))) continue;
+      lo = std::min(lo, i);
+      hi = i + lanes;
+      const axis f = axis_factors(dv, neg_a, phi);
+      hn::StoreU(f.e, df, e.data() + i);
+      hn::StoreU(f.s, df, s.data() + i);
+      hn::StoreU(f.c, df, c.data() + i);
+      hn::StoreU(hn::Mul(f.e, f.c), df, ec.data() + i);
+      hn::StoreU(hn::Mul(f.e, f.s), df, es.data() + i);
+    }
+  }
+};
+
+template <int D, bool G>
+struct grid_kernel {
+  const gabor<D>& g;
+  const consts<D> c;
+  std::size_t cap[3];
+  std::vector<float> acc, gacc[3];
+  std::size_t stride = 0;  // floats per block row
+  // The block's fractions per axis, padded (x to whole vectors).
+  std::vector<float> frac[3];
+  block_factors fx, fy, fz;
+  // Along x: each sample's cell relative to the block's first (padded), the
+  // runs of equal cells, the cells to visit, and o per sample for one of them.
+  struct xrun {
+    std::int32_t rel;
+    std::size_t begin, end;
+  };
+  std::vector<std::int32_t> rel;
+  static constexpr std::int32_t kFar = 1 << 20;  // rel of non-finite samples and padding
+  std::vector<float> ox;
+  std::vector<xrun> xruns;
+  std::vector<std::int32_t> visits;
+
+  // Each cell's impulses (positions, weight, frequency: stream order) drawn
+  // once for the blocks that see it, in a direct-mapped cache keyed by the
+  // cell (the low bits of its indices pick the slot: blocks go along x, so the
+  // cells in use stay apart); a slot shared by two cells in use only repeats
+  // a draw.
+  struct drawn {
+    float u[3], wt, phi[3];
+  };
+  struct slot {
+    bool used = false;
+    std::uint32_t key[3] = {};
+    std::vector<drawn> imp;
+  };
+  static constexpr std::uint32_t kSlotsX = 64, kSlotsYZ = 4;
+  std::vector<slot> cache{kSlotsX * kSlotsYZ * (D == 3 ? kSlotsYZ : 1)};
+  const std::vector<drawn>& impulses(const std::uint32_t (&cell)[D]) {
+    std::size_t i = cell[0] % kSlotsX + kSlotsX * (cell[1] % kSlotsYZ);
+    if (D == 3) i += kSlotsX * kSlotsYZ * (cell[D - 1] % kSlotsYZ);
+    slot& sl = cache[i];
+    bool hit = sl.used;
+    for (int a = 0; a < D; ++a) hit = hit && sl.key[a] == cell[a];
+    if (hit) return sl.imp;
+    sl.used = true;
+    for (int a = 0; a < D; ++a) sl.key[a] = cell[a];
+    sl.imp.clear();
+    g.for_each_impulse(cell, [&](const std::uint32_t* w) {
+      drawn d{};
+      for (int a = 0; a < D; ++a) d.u[a] = gabor<D>::template impulse_position<float>(w, a);
+      float mv[4] = {};
+      vec<float, D> phi;
+      g.template mark_values<float>(w, mv);
+      g.marks().template draw<float>(mv, d.wt, phi);
+      for (int a = 0; a < D; ++a) d.phi[a] = phi[a];
+      sl.imp.push_back(d);
+    });
+    return sl.imp;
+  }
+
+  explicit grid_kernel(const gabor<D>& noise, std::size_t cx, std::size_t cy, std::size_t cz)
+      : g(noise),
+        c(noise),
+        cap{cx, cy, cz},
+        fx(cx + kMaxLanes),
+        fy(cy + kMaxLanes),
+        fz(cz + kMaxLanes) {
+    stride = cx + kMaxLanes;
+    const std::size_t cells = stride * cy * cz;
+    acc.resize(cells);
+    if (G)
+      for (int a = 0; a < D; ++a) gacc[a].resize(cells);
+    for (int a = 0; a < 3; ++a) frac[a].resize(cap[a] + kMaxLanes);
+    rel.resize(stride);
+    ox.resize(stride);
+  }
+
+  // Adds one impulse's terms (factors along each axis in fx, fy, fz) to the
+  // block's sums: per row the row's side of gabor_pair_of_products, per
+  // sample only the products and the taper, which is 0 outside the support
+  // (no mask: adding +-0 leaves every sum as the scalar path's).
+  void add_impulse(const float* phi, float wt, std::size_t ny, std::size_t nz) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const VF phx = hn::Set(df, phi[0]);
+    for (std::size_t kk = 0; kk < nz; ++kk) {
+      if constexpr (D == 3)
+        if (!(fz.d2[kk] < 1.0f)) continue;
+      for (std::size_t jj = std::min(fy.lo, ny); jj < std::min(fy.hi, ny); ++jj) {
+        if (!(fy.d2[jj] < 1.0f)) continue;
+        detail::gabor_row<float> r;
+        if constexpr (D == 2) {
+          r = detail::gabor_row_of(
+              wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]});
+        } else {
+          r = detail::gabor_row_of(
+              wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]},
+              detail::gabor_axis<float>{fz.d[kk], fz.d2[kk], fz.e[kk], fz.s[kk], fz.c[kk]});
+        }
+        const VF b = hn::Set(df, r.we * r.c), q = hn::Set(df, r.we * r.s);
+        const VF rd2 = hn::Set(df, r.d2);
+        // Local restrict pointers: the sums' stores alias no factor, so the
+        // loop keeps them in registers.
+        float* HWY_RESTRICT arow = acc.data() + (kk * ny + jj) * stride;
+        const float* HWY_RESTRICT xec = fx.ec.data();
+        const float* HWY_RESTRICT xes = fx.es.data();
+        const float* HWY_RESTRICT xd2 = fx.d2.data();
+        // The row's chord of the support, by whole vectors: a vector whose
+        // least d^2 plus the row's is >= 1 only adds +-0 (float addition and
+        // the taper's steps are monotonic), so skipping it changes nothing.
+        std::size_t ib = fx.lo, ie = fx.hi;
+        while (ib < ie && !(fx.vmin[ib / lanes] + r.d2 < 1.0f)) ib += lanes;
+        while (ie > ib && !(fx.vmin[ie / lanes - 1] + r.d2 < 1.0f)) ie -= lanes;
+        for (std::size_t ii = ib; ii < ie; ii += lanes) {
+          const VF ec = hn::LoadU(df, xec + ii), es = hn::LoadU(df, xes + ii);
+          const VF s2 = hn::Add(hn::LoadU(df, xd2 + ii), rd2);
+          if constexpr (G) {
+            VF v, uu, vv;
+            pair_gradient_of_products(ec, es, b, q, s2, c.k, c.a, v, uu, vv);
+            hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), v), df, arow + ii);
+            const VF dd[3] = {hn::LoadU(df, fx.d.data() + ii), hn::Set(df, fy.d[jj]),
+                              hn::Set(df, D == 3 ? fz.d[kk] : 0.0f)};
+            const VF ph[3] = {phx, hn::Set(df, phi[1]), hn::Set(df, D == 3 ? phi[D - 1] : 0.0f)};
+            for (int a = 0; a < D; ++a) {
+              float* grow = gacc[a].data() + (kk * ny + jj) * stride;
+              const VF term = hn::Sub(hn::Mul(uu, dd[a]), hn::Mul(vv, ph[a]));
+              hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), term), df, grow + ii);
+            }
+          } else {
+            hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)),
+                       df, arow + ii);
+          }
+        }
+      }
+    }
+  }
+
+  // One block: samples [i0, i0 + nx) x [j0, j0 + ny) x [k0, k0 + nz) of the
+  // axes, along y (and z) all in the cell (ay.cell[j0], az.cell[k0]), along x
+  // in any cells: each impulse's factors along y (and z) are computed once for
+  // the whole width, and its chord of each row is cut by no block edge but the
+  // block's.
+  void block(const grid_axis* axes, std::size_t i0, std::size_t nx, std::size_t j0, std::size_t ny,
+             std::size_t k0, std::size_t nz, const hush::grid<D>& gr, float* value, float* grad) {
+    const DF df;
+    const DI di;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::size_t nx_pad = (nx + lanes - 1) / lanes * lanes;
+    const std::size_t n[3] = {nx, ny, nz}, first[3] = {i0, j0, k0};
+    for (int a = 0; a < D; ++a) {
+      std::copy(axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a]),
+                axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a] + n[a]),
+                frac[a].begin());
+      std::fill(frac[a].begin() + static_cast<std::ptrdiff_t>(n[a]), frac[a].end(),
+                4.0f);  // d^2 > 1
+    }
+    const std::size_t rows = ny * nz;
+    std::fill(acc.begin(), acc.begin() + static_cast<std::ptrdiff_t>(rows * stride), 0.0f);
+    if constexpr (G)
+      for (int a = 0; a < D; ++a)
+        std::fill(gacc[a].begin(), gacc[a].begin() + static_cast<std::ptrdiff_t>(rows * stride),
+                  0.0f);
+    // Along x: each sample's cell relative to the first finite sample's (a
+    // non-finite sample, or padding, far away: its value is NaN or unused),
+    // the runs of equal cells, and the cells to visit (each run's and its
+    // neighbours, ascending: per sample the scalar order o = -1, 0, 1).
+    std::size_t f0 = 0;
+    while (f0 < nx && axes[0].bad[i0 + f0]) ++f0;
+    const std::uint32_t ref = f0 < nx ? axes[0].cell[i0 + f0] : 0u;
+    xruns.clear();
+    visits.clear();
+    for (std::size_t i = 0; i < nx_pad; ++i) {
+      if (i >= nx || axes[0].bad[i0 + i]) {
+        rel[i] = kFar;
+        continue;
+      }
+      rel[i] = static_cast<std::int32_t>(axes[0].cell[i0 + i] - ref);
+      if (xruns.empty() || xruns.back().rel != rel[i] || xruns.back().end != i)
+        xruns.push_back({rel[i], i, i + 1});
+      else
+        xruns.back().end = i + 1;
+    }
+    for (const xrun& x : xruns)
+      for (std::int32_t o = -1; o <= 1; ++o) visits.push_back(x.rel + o);
+    std::sort(visits.begin(), visits.end());
+    visits.erase(std::unique(visits.begin(), visits.end()), visits.end());
+    const std::uint32_t base[3] = {ref, axes[1].cell[j0], D == 3 ? axes[D - 1].cell[k0] : 0u};
+    for (int oz = D == 3 ? -1 : 0; oz <= (D == 3 ? 1 : 0); ++oz)
+      for (int oy = -1; oy <= 1; ++oy)
+        for (const std::int32_t X : visits) {
+          // The samples within one cell of X (contiguous: cells are monotonic
+          // along x), by whole vectors, and their o = X - rel (clamped: from 2
+          // on, d^2 >= 1 exactly).
+          std::size_t lo = nx_pad, hi = 0;
+          for (const xrun& x : xruns)
+            if (x.rel >= X - 1 && x.rel <= X + 1) {
+              lo = std::min(lo, x.begin);
+              hi = std::max(hi, x.end);
+            }
+          if (lo >= hi) continue;
+          lo = lo / lanes * lanes;
+          hi = (hi + lanes - 1) / lanes * lanes;
+          const VI xv = hn::Set(di, X), two = hn::Set(di, 2);
+          for (std::size_t i = lo; i < hi; i += lanes) {
+            const VI o = hn::Sub(xv, hn::LoadU(di, rel.data() + i));
+            hn::StoreU(hn::ConvertTo(df, hn::Min(hn::Max(o, hn::Neg(two)), two)), df,
+                       ox.data() + i);
+          }
+          std::uint32_t cell[D];
+          cell[0] = ref + static_cast<std::uint32_t>(X);
+          cell[1] = base[1] + static_cast<std::uint32_t>(oy);
+          if constexpr (D == 3) cell[2] = base[2] + static_cast<std::uint32_t>(oz);
+          for (const drawn& im : impulses(cell)) {
+            const float* u = im.u;
+            const float* phi = im.phi;
+            const float wt = im.wt;
+            fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(oy), u[1], c.neg_a,
+                       hn::Set(df, phi[1]));
+            if (fy.lo >= fy.hi) continue;
+            if constexpr (D == 3) {
+              fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(oz), u[2], c.neg_a,
+                         hn::Set(df, phi[2]));
+              if (fz.lo >= fz.hi) continue;
+            }
+            fx.compute(frac[0].data(), hi, 0.0f, u[0], c.neg_a, hn::Set(df, phi[0]), ox.data(), lo);
+            if (fx.lo >= fx.hi) continue;
+            add_impulse(phi, wt, ny, nz);
+          }
+        }
+    // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
+    // coordinate of the sample is not finite.
+    const float scale = float(g.scale()), gscale = float(g.scale() * g.inverse_cell());
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::size_t gx = gr.size[0], gy = gr.size[1];
+    const VF vscale = hn::Set(df, scale), vnan = hn::Set(df, nan);
+    const VI far = hn::Set(di, kFar);
+    for (std::size_t kk = 0; kk < nz; ++kk)
+      for (std::size_t jj = 0; jj < ny; ++jj) {
+        const bool row_bad = axes[1].bad[j0 + jj] || (D == 3 && axes[D - 1].bad[k0 + kk]);
+        const std::size_t out_row = ((k0 + kk) * gy + (j0 + jj)) * gx + i0;
+        const float* arow = acc.data() + (kk * ny + jj) * stride;
+        std::size_t ii = 0;
+        if (!row_bad)  // whole vectors; rel marks the non-finite samples
+          for (; ii + lanes <= nx; ii += lanes) {
+            const MF bad = hn::RebindMask(df, hn::Eq(hn::LoadU(di, rel.data() + ii), far));
+            hn::StoreU(hn::IfThenElse(bad, vnan, hn::Mul(hn::LoadU(df, arow + ii), vscale)), df,
+                       value + out_row + ii);
+          }
+        for (; ii < nx; ++ii)
+          value[out_row + ii] = row_bad || axes[0].bad[i0 + ii] ? nan : arow[ii] * scale;
+        if constexpr (G)
+          for (ii = 0; ii < nx; ++ii) {
+            const bool bad = row_bad || axes[0].bad[i0 + ii];
+            for (int a = 0; a < D; ++a)
+              grad[(out_row + ii) * D + static_cast<std::size_t>(a)] =
+                  bad ? nan : gacc[a][(kk * ny + jj) * stride + ii] * gscale;
+          }
+      }
+  }
+};
+
+// The slab [first, first + count) of a grid's slowest axis (value and grad
+// start at its first sample): blocks of shared cells when there are enough
+// samples per cell along x, else the points path on the grid's positions.
+template <int D, bool G>
+void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std::size_t count,
+          float* value, float* grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell();
+  const std::size_t caps[3] = {64, D == 2 ? 64u : 32u, 16};
+  hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
+  gr.size[D - 1] = count;
+  std::vector<grid_axis> axes;
+  axes.reserve(D);
+  for (int a = 0; a < D; ++a)
+    axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
+                      caps[a]);
+  const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
+  const std::size_t nx = gr.size[0], ny = gr.size[1];
+  if (per_cell < kMinRun) {
+    lanes_split sp;
+    auto split = [&](std::size_t batch, std::size_t used) {
+      for (std::size_t l = 0; l < lanes; ++l) {
+        if (l >= used) {
+          clear_lane<D>(sp, l);
+          continue;
+        }
+        const std::size_t idx = batch + l, i = idx % nx, j = (idx / nx) % ny, k = idx / (nx * ny);
+        const std::size_t ijk[3] = {i, j, k};
+        bool bad = false;
+        for (int a = 0; a < D; ++a) {
+          sp.cell[a][l] = axes[a].cell[ijk[a]];
+          sp.frac[a][l] = axes[a].frac[ijk[a]];
+          bad = bad || axes[a].bad[ijk[a]];
+        }
+        sp.bad[l] = bad;
+      }
+    };
+    points<D, G, true>(g, gr.count(), sp, split, value, grad);
+    return;
+  }
+  // Block buffers sized by the longest runs, not the caps: small grids do not pay for
+  // (and page-fault in) buffers they never fill.
+  // Along x, blocks of kBlockX samples whatever their cells (see block()) where
+  // the finite samples' cells step by at most one (so a block's cells relative to
+  // its first are small and ascend or descend); else (only where coordinates are
+  // so large that a double's spacing exceeds a cell) blocks of one cell's run.
+  bool steps_of_one = true;
+  for (std::size_t i = 0, last = nx; i < nx && steps_of_one; ++i) {
+    if (axes[0].bad[i]) continue;
+    if (last < nx) {
+      const auto step = static_cast<std::int32_t>(axes[0].cell[i] - axes[0].cell[last]);
+      steps_of_one = step >= -1 && step <= 1;
+    }
+    last = i;
+  }
+  const std::size_t bx = std::min(nx, kBlockX[D - 2]);
+  grid_kernel<D, G> kernel(g, bx, axes[1].longest_run(), D == 3 ? axes[D - 1].longest_run() : 1);
+  auto each_block = [&](auto&& f) {
+    if (steps_of_one)
+      for (std::size_t i0 = 0; i0 < nx; i0 += bx) f(i0, std::min(bx, nx - i0));
+    else
+      for (std::size_t xr = 0; xr < axes[0].runs(); ++xr)
+        f(axes[0].run_start[xr], axes[0].run_start[xr + 1] - axes[0].run_start[xr]);
+  };
+  const std::size_t zruns = D == 3 ? axes[D - 1].runs() : 1;
+  for (std::size_t zr = 0; zr < zruns; ++zr) {
+    const std::size_t k0 = D == 3 ? axes[D - 1].run_start[zr] : 0;
+    const std::size_t k1 = D == 3 ? axes[D - 1].run_start[zr + 1] : 1;
+    for (std::size_t yr = 0; yr < axes[1].runs(); ++yr) {
+      const std::size_t j0 = axes[1].run_start[yr], j1 = axes[1].run_start[yr + 1];
+      each_block([&](std::size_t i0, std::size_t n) {
+        kernel.block(axes.data(), i0, n, j0, j1 - j0, k0, k1 - k0, gr, value, grad);
+      });
+    }
+  }
+}
+
+}  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_GRID_INL_H_ toggle
+// ---- end hush/gabor/grid-inl.h
+// ---- begin hush/gabor/shared_points-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise's shared-cell path, its kernels: per point the candidate impulses
+// of its cells (hush/gabor/shared_cells-inl.h) tested in full vectors and the kept
+// ones compressed into a pair list; the unfiltered and filtered kernels over the
+// list (shared_unfiltered, shared_filtered; filters_2d computes 2D filters in lanes
+// of doubles); and shared_points, which runs them and sends the box's outliers to
+// the lockstep path.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_SHARED_POINTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_SHARED_POINTS_INL_H_
+#undef HUSH_GABOR_SHARED_POINTS_INL_H_
+#else
+#define HUSH_GABOR_SHARED_POINTS_INL_H_
+#endif
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <hwy/cache_control.h>
+#include <hwy/highway.h>
+
+// ---- begin hush/gabor/shared_cells-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise's shared-cell path, its cells: a call's points counting-sorted by
+// cell within a box of cells, each cell's impulses drawn once per call (draw_box),
+// and the workspace each thread keeps between calls. The kernels that run over
+// them are in hush/gabor/shared_points-inl.h.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_SHARED_CELLS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_SHARED_CELLS_INL_H_
+#undef HUSH_GABOR_SHARED_CELLS_INL_H_
+#else
+#define HUSH_GABOR_SHARED_CELLS_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
 
 // ---- Points that share cells (gabor_points): each cell's impulses drawn once per call.
 //
@@ -11932,6 +12524,21 @@ HWY_NOINLINE T& thread_local_of() {
   static thread_local T ws;
   return ws;
 }
+
+}  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_SHARED_CELLS_INL_H_ toggle
+// ---- end hush/gabor/shared_cells-inl.h
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
 
 // shared_points' kernels (Eval): t's pairs [0, t.n), point pend[p]'s in
 // [pend_end[p - 1], pend_end[p]), into t.val (and with G the gradient terms into t.g).
@@ -12529,420 +13136,20 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   }
 }
 
-// ---- Grids: blocks of samples that share their cell.
-
-// One axis of a grid, split as scalar evaluation splits grid.position(): the
-// cell and fraction of (origin + step (first + i)) * inverse cell for i in [0, n),
-// and runs of equal cells (at most `cap` long).
-struct grid_axis {
-  std::vector<std::uint32_t> cell;
-  std::vector<float> frac;
-  std::vector<char> bad;
-  std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
-  grid_axis(double origin, double step, std::size_t first, std::size_t n, double inv,
-            std::size_t cap)
-      : cell(n), frac(n), bad(n) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const lattice_coord<float> c =
-          lattice_split<float>((origin + step * static_cast<double>(first + i)) * inv);
-      cell[i] = c.i0;
-      frac[i] = c.f;
-      bad[i] = std::isnan(c.f) ? 1 : 0;
-    }
-    for (std::size_t i = 0; i < n; ++i)
-      if (i == 0 || cell[i] != cell[i - 1] || i - run_start.back() == cap) run_start.push_back(i);
-    run_start.push_back(n);
-  }
-  std::size_t runs() const { return run_start.size() - 1; }
-  std::size_t longest_run() const {
-    std::size_t m = 0;
-    for (std::size_t r = 0; r + 1 < run_start.size(); ++r)
-      m = std::max(m, run_start[r + 1] - run_start[r]);
-    return m;
-  }
-};
-
-// The factors of one impulse along one axis of a block: for the block's
-// samples [from, n) (padded to whole vectors with fractions far outside), offset
-// d = frac - (o + u) (detail::gabor_offset), d^2 and the axis factors; `lo`, `hi`: the range of
-// samples with d^2 < 1 (contiguous: frac is monotonic within a cell); along
-// x (`ox`: each sample's o, the impulse's cell relative to the sample's) also
-// the products e c and e s (gabor_pair_of_products' x side).
-struct block_factors {
-  std::vector<float> d, d2, e, s, c, ec, es;
-  // Along x, per vector: the least d^2 of its lanes (a NaN lane counts as 0:
-  // such a vector is never skipped).
-  std::vector<float> vmin;
-  std::size_t lo = 0, hi = 0;
-  explicit block_factors(std::size_t cap)
-      : d(cap), d2(cap), e(cap), s(cap), c(cap), ec(cap), es(cap), vmin(cap) {}
-  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi,
-               const float* ox = nullptr, std::size_t from = 0) {
-    const DF df;
-    const std::size_t lanes = hn::Lanes(df);
-    const VF ou = hn::Set(df, o), uu = hn::Set(df, u);
-    lo = n_pad;
-    hi = 0;
-    for (std::size_t i = from; i < n_pad; i += lanes) {
-      const VF dv = hn::Sub(hn::LoadU(df, frac + i), hn::Add(ox ? hn::LoadU(df, ox + i) : ou, uu));
-      const VF d2v = hn::Mul(dv, dv);
-      hn::StoreU(dv, df, d.data() + i);
-      hn::StoreU(d2v, df, d2.data() + i);
-      if (ox)
-        vmin[i / lanes] = hn::GetLane(hn::MinOfLanes(df, hn::IfThenZeroElse(hn::IsNaN(d2v), d2v)));
-      if (hn::AllFalse(df, hn::Lt(d2v, hn::Set(df, 1.0f)))) continue;
-      lo = std::min(lo, i);
-      hi = i + lanes;
-      const axis f = axis_factors(dv, neg_a, phi);
-      hn::StoreU(f.e, df, e.data() + i);
-      hn::StoreU(f.s, df, s.data() + i);
-      hn::StoreU(f.c, df, c.data() + i);
-      hn::StoreU(hn::Mul(f.e, f.c), df, ec.data() + i);
-      hn::StoreU(hn::Mul(f.e, f.s), df, es.data() + i);
-    }
-  }
-};
-
-template <int D, bool G>
-struct grid_kernel {
-  const gabor<D>& g;
-  const consts<D> c;
-  std::size_t cap[3];
-  std::vector<float> acc, gacc[3];
-  std::size_t stride = 0;  // floats per block row
-  // The block's fractions per axis, padded (x to whole vectors).
-  std::vector<float> frac[3];
-  block_factors fx, fy, fz;
-  // Along x: each sample's cell relative to the block's first (padded), the
-  // runs of equal cells, the cells to visit, and o per sample for one of them.
-  struct xrun {
-    std::int32_t rel;
-    std::size_t begin, end;
-  };
-  std::vector<std::int32_t> rel;
-  static constexpr std::int32_t kFar = 1 << 20;  // rel of non-finite samples and padding
-  std::vector<float> ox;
-  std::vector<xrun> xruns;
-  std::vector<std::int32_t> visits;
-
-  // Each cell's impulses (positions, weight, frequency: stream order) drawn
-  // once for the blocks that see it, in a direct-mapped cache keyed by the
-  // cell (the low bits of its indices pick the slot: blocks go along x, so the
-  // cells in use stay apart); a slot shared by two cells in use only repeats
-  // a draw.
-  struct drawn {
-    float u[3], wt, phi[3];
-  };
-  struct slot {
-    bool used = false;
-    std::uint32_t key[3] = {};
-    std::vector<drawn> imp;
-  };
-  static constexpr std::uint32_t kSlotsX = 64, kSlotsYZ = 4;
-  std::vector<slot> cache{kSlotsX * kSlotsYZ * (D == 3 ? kSlotsYZ : 1)};
-  const std::vector<drawn>& impulses(const std::uint32_t (&cell)[D]) {
-    std::size_t i = cell[0] % kSlotsX + kSlotsX * (cell[1] % kSlotsYZ);
-    if (D == 3) i += kSlotsX * kSlotsYZ * (cell[D - 1] % kSlotsYZ);
-    slot& sl = cache[i];
-    bool hit = sl.used;
-    for (int a = 0; a < D; ++a) hit = hit && sl.key[a] == cell[a];
-    if (hit) return sl.imp;
-    sl.used = true;
-    for (int a = 0; a < D; ++a) sl.key[a] = cell[a];
-    sl.imp.clear();
-    g.for_each_impulse(cell, [&](const std::uint32_t* w) {
-      drawn d{};
-      for (int a = 0; a < D; ++a) d.u[a] = gabor<D>::template impulse_position<float>(w, a);
-      float mv[4] = {};
-      vec<float, D> phi;
-      g.template mark_values<float>(w, mv);
-      g.marks().template draw<float>(mv, d.wt, phi);
-      for (int a = 0; a < D; ++a) d.phi[a] = phi[a];
-      sl.imp.push_back(d);
-    });
-    return sl.imp;
-  }
-
-  explicit grid_kernel(const gabor<D>& noise, std::size_t cx, std::size_t cy, std::size_t cz)
-      : g(noise),
-        c(noise),
-        cap{cx, cy, cz},
-        fx(cx + kMaxLanes),
-        fy(cy + kMaxLanes),
-        fz(cz + kMaxLanes) {
-    stride = cx + kMaxLanes;
-    const std::size_t cells = stride * cy * cz;
-    acc.resize(cells);
-    if (G)
-      for (int a = 0; a < D; ++a) gacc[a].resize(cells);
-    for (int a = 0; a < 3; ++a) frac[a].resize(cap[a] + kMaxLanes);
-    rel.resize(stride);
-    ox.resize(stride);
-  }
-
-  // Adds one impulse's terms (factors along each axis in fx, fy, fz) to the
-  // block's sums: per row the row's side of gabor_pair_of_products, per
-  // sample only the products and the taper, which is 0 outside the support
-  // (no mask: adding +-0 leaves every sum as the scalar path's).
-  void add_impulse(const float* phi, float wt, std::size_t ny, std::size_t nz) {
-    const DF df;
-    const std::size_t lanes = hn::Lanes(df);
-    const VF phx = hn::Set(df, phi[0]);
-    for (std::size_t kk = 0; kk < nz; ++kk) {
-      if constexpr (D == 3)
-        if (!(fz.d2[kk] < 1.0f)) continue;
-      for (std::size_t jj = std::min(fy.lo, ny); jj < std::min(fy.hi, ny); ++jj) {
-        if (!(fy.d2[jj] < 1.0f)) continue;
-        detail::gabor_row<float> r;
-        if constexpr (D == 2) {
-          r = detail::gabor_row_of(
-              wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]});
-        } else {
-          r = detail::gabor_row_of(
-              wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]},
-              detail::gabor_axis<float>{fz.d[kk], fz.d2[kk], fz.e[kk], fz.s[kk], fz.c[kk]});
-        }
-        const VF b = hn::Set(df, r.we * r.c), q = hn::Set(df, r.we * r.s);
-        const VF rd2 = hn::Set(df, r.d2);
-        // Local restrict pointers: the sums' stores alias no factor, so the
-        // loop keeps them in registers.
-        float* HWY_RESTRICT arow = acc.data() + (kk * ny + jj) * stride;
-        const float* HWY_RESTRICT xec = fx.ec.data();
-        const float* HWY_RESTRICT xes = fx.es.data();
-        const float* HWY_RESTRICT xd2 = fx.d2.data();
-        // The row's chord of the support, by whole vectors: a vector whose
-        // least d^2 plus the row's is >= 1 only adds +-0 (float addition and
-        // the taper's steps are monotonic), so skipping it changes nothing.
-        std::size_t ib = fx.lo, ie = fx.hi;
-        while (ib < ie && !(fx.vmin[ib / lanes] + r.d2 < 1.0f)) ib += lanes;
-        while (ie > ib && !(fx.vmin[ie / lanes - 1] + r.d2 < 1.0f)) ie -= lanes;
-        for (std::size_t ii = ib; ii < ie; ii += lanes) {
-          const VF ec = hn::LoadU(df, xec + ii), es = hn::LoadU(df, xes + ii);
-          const VF s2 = hn::Add(hn::LoadU(df, xd2 + ii), rd2);
-          if constexpr (G) {
-            VF v, uu, vv;
-            pair_gradient_of_products(ec, es, b, q, s2, c.k, c.a, v, uu, vv);
-            hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), v), df, arow + ii);
-            const VF dd[3] = {hn::LoadU(df, fx.d.data() + ii), hn::Set(df, fy.d[jj]),
-                              hn::Set(df, D == 3 ? fz.d[kk] : 0.0f)};
-            const VF ph[3] = {phx, hn::Set(df, phi[1]), hn::Set(df, D == 3 ? phi[D - 1] : 0.0f)};
-            for (int a = 0; a < D; ++a) {
-              float* grow = gacc[a].data() + (kk * ny + jj) * stride;
-              const VF term = hn::Sub(hn::Mul(uu, dd[a]), hn::Mul(vv, ph[a]));
-              hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), term), df, grow + ii);
-            }
-          } else {
-            hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)),
-                       df, arow + ii);
-          }
-        }
-      }
-    }
-  }
-
-  // One block: samples [i0, i0 + nx) x [j0, j0 + ny) x [k0, k0 + nz) of the
-  // axes, along y (and z) all in the cell (ay.cell[j0], az.cell[k0]), along x
-  // in any cells: each impulse's factors along y (and z) are computed once for
-  // the whole width, and its chord of each row is cut by no block edge but the
-  // block's.
-  void block(const grid_axis* axes, std::size_t i0, std::size_t nx, std::size_t j0, std::size_t ny,
-             std::size_t k0, std::size_t nz, const hush::grid<D>& gr, float* value, float* grad) {
-    const DF df;
-    const DI di;
-    const std::size_t lanes = hn::Lanes(df);
-    const std::size_t nx_pad = (nx + lanes - 1) / lanes * lanes;
-    const std::size_t n[3] = {nx, ny, nz}, first[3] = {i0, j0, k0};
-    for (int a = 0; a < D; ++a) {
-      std::copy(axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a]),
-                axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a] + n[a]),
-                frac[a].begin());
-      std::fill(frac[a].begin() + static_cast<std::ptrdiff_t>(n[a]), frac[a].end(),
-                4.0f);  // d^2 > 1
-    }
-    const std::size_t rows = ny * nz;
-    std::fill(acc.begin(), acc.begin() + static_cast<std::ptrdiff_t>(rows * stride), 0.0f);
-    if constexpr (G)
-      for (int a = 0; a < D; ++a)
-        std::fill(gacc[a].begin(), gacc[a].begin() + static_cast<std::ptrdiff_t>(rows * stride),
-                  0.0f);
-    // Along x: each sample's cell relative to the first finite sample's (a
-    // non-finite sample, or padding, far away: its value is NaN or unused),
-    // the runs of equal cells, and the cells to visit (each run's and its
-    // neighbours, ascending: per sample the scalar order o = -1, 0, 1).
-    std::size_t f0 = 0;
-    while (f0 < nx && axes[0].bad[i0 + f0]) ++f0;
-    const std::uint32_t ref = f0 < nx ? axes[0].cell[i0 + f0] : 0u;
-    xruns.clear();
-    visits.clear();
-    for (std::size_t i = 0; i < nx_pad; ++i) {
-      if (i >= nx || axes[0].bad[i0 + i]) {
-        rel[i] = kFar;
-        continue;
-      }
-      rel[i] = static_cast<std::int32_t>(axes[0].cell[i0 + i] - ref);
-      if (xruns.empty() || xruns.back().rel != rel[i] || xruns.back().end != i)
-        xruns.push_back({rel[i], i, i + 1});
-      else
-        xruns.back().end = i + 1;
-    }
-    for (const xrun& x : xruns)
-      for (std::int32_t o = -1; o <= 1; ++o) visits.push_back(x.rel + o);
-    std::sort(visits.begin(), visits.end());
-    visits.erase(std::unique(visits.begin(), visits.end()), visits.end());
-    const std::uint32_t base[3] = {ref, axes[1].cell[j0], D == 3 ? axes[D - 1].cell[k0] : 0u};
-    for (int oz = D == 3 ? -1 : 0; oz <= (D == 3 ? 1 : 0); ++oz)
-      for (int oy = -1; oy <= 1; ++oy)
-        for (const std::int32_t X : visits) {
-          // The samples within one cell of X (contiguous: cells are monotonic
-          // along x), by whole vectors, and their o = X - rel (clamped: from 2
-          // on, d^2 >= 1 exactly).
-          std::size_t lo = nx_pad, hi = 0;
-          for (const xrun& x : xruns)
-            if (x.rel >= X - 1 && x.rel <= X + 1) {
-              lo = std::min(lo, x.begin);
-              hi = std::max(hi, x.end);
-            }
-          if (lo >= hi) continue;
-          lo = lo / lanes * lanes;
-          hi = (hi + lanes - 1) / lanes * lanes;
-          const VI xv = hn::Set(di, X), two = hn::Set(di, 2);
-          for (std::size_t i = lo; i < hi; i += lanes) {
-            const VI o = hn::Sub(xv, hn::LoadU(di, rel.data() + i));
-            hn::StoreU(hn::ConvertTo(df, hn::Min(hn::Max(o, hn::Neg(two)), two)), df,
-                       ox.data() + i);
-          }
-          std::uint32_t cell[D];
-          cell[0] = ref + static_cast<std::uint32_t>(X);
-          cell[1] = base[1] + static_cast<std::uint32_t>(oy);
-          if constexpr (D == 3) cell[2] = base[2] + static_cast<std::uint32_t>(oz);
-          for (const drawn& im : impulses(cell)) {
-            const float* u = im.u;
-            const float* phi = im.phi;
-            const float wt = im.wt;
-            fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(oy), u[1], c.neg_a,
-                       hn::Set(df, phi[1]));
-            if (fy.lo >= fy.hi) continue;
-            if constexpr (D == 3) {
-              fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(oz), u[2], c.neg_a,
-                         hn::Set(df, phi[2]));
-              if (fz.lo >= fz.hi) continue;
-            }
-            fx.compute(frac[0].data(), hi, 0.0f, u[0], c.neg_a, hn::Set(df, phi[0]), ox.data(), lo);
-            if (fx.lo >= fx.hi) continue;
-            add_impulse(phi, wt, ny, nz);
-          }
-        }
-    // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
-    // coordinate of the sample is not finite.
-    const float scale = float(g.scale()), gscale = float(g.scale() * g.inverse_cell());
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    const std::size_t gx = gr.size[0], gy = gr.size[1];
-    const VF vscale = hn::Set(df, scale), vnan = hn::Set(df, nan);
-    const VI far = hn::Set(di, kFar);
-    for (std::size_t kk = 0; kk < nz; ++kk)
-      for (std::size_t jj = 0; jj < ny; ++jj) {
-        const bool row_bad = axes[1].bad[j0 + jj] || (D == 3 && axes[D - 1].bad[k0 + kk]);
-        const std::size_t out_row = ((k0 + kk) * gy + (j0 + jj)) * gx + i0;
-        const float* arow = acc.data() + (kk * ny + jj) * stride;
-        std::size_t ii = 0;
-        if (!row_bad)  // whole vectors; rel marks the non-finite samples
-          for (; ii + lanes <= nx; ii += lanes) {
-            const MF bad = hn::RebindMask(df, hn::Eq(hn::LoadU(di, rel.data() + ii), far));
-            hn::StoreU(hn::IfThenElse(bad, vnan, hn::Mul(hn::LoadU(df, arow + ii), vscale)), df,
-                       value + out_row + ii);
-          }
-        for (; ii < nx; ++ii)
-          value[out_row + ii] = row_bad || axes[0].bad[i0 + ii] ? nan : arow[ii] * scale;
-        if constexpr (G)
-          for (ii = 0; ii < nx; ++ii) {
-            const bool bad = row_bad || axes[0].bad[i0 + ii];
-            for (int a = 0; a < D; ++a)
-              grad[(out_row + ii) * D + static_cast<std::size_t>(a)] =
-                  bad ? nan : gacc[a][(kk * ny + jj) * stride + ii] * gscale;
-          }
-      }
-  }
-};
-
-// The slab [first, first + count) of a grid's slowest axis (value and grad
-// start at its first sample): blocks of shared cells when there are enough
-// samples per cell along x, else the points path on the grid's positions.
-template <int D, bool G>
-void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std::size_t count,
-          float* value, float* grad) {
-  const DF df;
-  const std::size_t lanes = hn::Lanes(df);
-  const double inv = g.inverse_cell();
-  const std::size_t caps[3] = {64, D == 2 ? 64u : 32u, 16};
-  hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
-  gr.size[D - 1] = count;
-  std::vector<grid_axis> axes;
-  axes.reserve(D);
-  for (int a = 0; a < D; ++a)
-    axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
-                      caps[a]);
-  const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
-  const std::size_t nx = gr.size[0], ny = gr.size[1];
-  if (per_cell < kMinRun) {
-    lanes_split sp;
-    auto split = [&](std::size_t batch, std::size_t used) {
-      for (std::size_t l = 0; l < lanes; ++l) {
-        if (l >= used) {
-          clear_lane<D>(sp, l);
-          continue;
-        }
-        const std::size_t idx = batch + l, i = idx % nx, j = (idx / nx) % ny, k = idx / (nx * ny);
-        const std::size_t ijk[3] = {i, j, k};
-        bool bad = false;
-        for (int a = 0; a < D; ++a) {
-          sp.cell[a][l] = axes[a].cell[ijk[a]];
-          sp.frac[a][l] = axes[a].frac[ijk[a]];
-          bad = bad || axes[a].bad[ijk[a]];
-        }
-        sp.bad[l] = bad;
-      }
-    };
-    points<D, G, true>(g, gr.count(), sp, split, value, grad);
-    return;
-  }
-  // Block buffers sized by the longest runs, not the caps: small grids do not pay for
-  // (and page-fault in) buffers they never fill.
-  // Along x, blocks of kBlockX samples whatever their cells (see block()) where
-  // the finite samples' cells step by at most one (so a block's cells relative to
-  // its first are small and ascend or descend); else (only where coordinates are
-  // so large that a double's spacing exceeds a cell) blocks of one cell's run.
-  bool steps_of_one = true;
-  for (std::size_t i = 0, last = nx; i < nx && steps_of_one; ++i) {
-    if (axes[0].bad[i]) continue;
-    if (last < nx) {
-      const auto step = static_cast<std::int32_t>(axes[0].cell[i] - axes[0].cell[last]);
-      steps_of_one = step >= -1 && step <= 1;
-    }
-    last = i;
-  }
-  const std::size_t bx = std::min(nx, kBlockX[D - 2]);
-  grid_kernel<D, G> kernel(g, bx, axes[1].longest_run(), D == 3 ? axes[D - 1].longest_run() : 1);
-  auto each_block = [&](auto&& f) {
-    if (steps_of_one)
-      for (std::size_t i0 = 0; i0 < nx; i0 += bx) f(i0, std::min(bx, nx - i0));
-    else
-      for (std::size_t xr = 0; xr < axes[0].runs(); ++xr)
-        f(axes[0].run_start[xr], axes[0].run_start[xr + 1] - axes[0].run_start[xr]);
-  };
-  const std::size_t zruns = D == 3 ? axes[D - 1].runs() : 1;
-  for (std::size_t zr = 0; zr < zruns; ++zr) {
-    const std::size_t k0 = D == 3 ? axes[D - 1].run_start[zr] : 0;
-    const std::size_t k1 = D == 3 ? axes[D - 1].run_start[zr + 1] : 1;
-    for (std::size_t yr = 0; yr < axes[1].runs(); ++yr) {
-      const std::size_t j0 = axes[1].run_start[yr], j1 = axes[1].run_start[yr + 1];
-      each_block([&](std::size_t i0, std::size_t n) {
-        kernel.block(axes.data(), i0, n, j0, j1 - j0, k0, k1 - k0, gr, value, grad);
-      });
-    }
-  }
-}
-
 }  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_SHARED_POINTS_INL_H_ toggle
+// ---- end hush/gabor/shared_points-inl.h
+
+// The noise class comes first, not from here: hush/gabor.hpp includes these
+// kernels at its end (hush/gabor/simd_kernel.hpp), as src/simd/gabor.cpp does.
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
 
 // Gabor noise at n interleaved float points on the lockstep path (one lane per
 // point); values into value[n], interleaved gradients into grad[D n] unless
@@ -14900,6 +15107,10 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 // Lanes that widen the basis or see a footprint that filters everything are
 // evaluated lane by lane by the scalar code, and so is any batch of a noise with
 // tile variants (variant_overlap > 0): correct everywhere but not vectorised.
+//
+// Its parts: hush/wavelet/separable-inl.h (the bands in lanes, separable),
+// hush/wavelet/projected-inl.h (projection onto a surface) and hush/wavelet/grid-inl.h
+// (grids); this file holds the points and samples kernels and the entry points.
 #if defined(HUSH_WAVELET_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef HUSH_WAVELET_SIMD_INL_H_
 #undef HUSH_WAVELET_SIMD_INL_H_
@@ -14913,13 +15124,55 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+
+#include <hwy/highway.h>
+
+// ---- begin hush/wavelet/grid-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Wavelet noise on uniform grids in lanes, by the separability of the basis: per
+// band the x axis split once per column, y once per row, z once per slice, and the
+// contraction in the scalar code's order (hush/wavelet/simd-inl.h says how).
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/wavelet/simd-inl.h, never included directly by users.
+#if defined(HUSH_WAVELET_GRID_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_GRID_INL_H_
+#undef HUSH_WAVELET_GRID_INL_H_
+#else
+#define HUSH_WAVELET_GRID_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <hwy/highway.h>
 
+// ---- begin hush/wavelet/separable-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Wavelet noise's bands in lanes, separable: each band's positions split into cell
+// and fraction as lattice_split<float> does, the B-spline weights of each axis, and
+// the nested sums over the tile's taps (separable3; in 3D a 4-float row load per
+// lane and (y, z) row, rows3). The kernels of hush/wavelet/simd-inl.h build on it.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/wavelet/simd-inl.h, never included directly by users.
+#if defined(HUSH_WAVELET_SEPARABLE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_SEPARABLE_INL_H_
+#undef HUSH_WAVELET_SEPARABLE_INL_H_
+#else
+#define HUSH_WAVELET_SEPARABLE_INL_H_
+#endif
 
-// The noise class comes first, not from here: hush/wavelet.hpp includes these
-// kernels at its end (hush/wavelet/simd_kernel.hpp), as src/simd/wavelet.cpp does.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include <hwy/highway.h>
+
+
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {
@@ -15275,6 +15528,355 @@ HWY_INLINE void separable(const float* tile, const axis* ax, VF& v, VF* g) {
   }
 }
 
+}  // namespace wavelet_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_WAVELET_SEPARABLE_INL_H_ toggle
+// ---- end hush/wavelet/separable-inl.h
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace wavelet_simd {
+
+// ---- Grids: per band, the x axis split once per column (lattice_split<float> in
+// double, as scalar evaluation does), y once per row, z once per slice; the
+// contraction follows the separable order (file comment).
+// Two layouts of the row's contraction T that columns read:
+//  - unwrapped (the grid spans at most max(n, nx) + 3 cells): T[r] is x cell
+//    (first + r) mod n, r = 0 ... span - 1, so a vector of columns reads a few
+//    consecutive T values: when they fit in one vector (lane0 + 2 < lanes, i.e.
+//    at least ~1 column per cell), one load and three in-register lane lookups
+//    (TableLookupLanes) replace the three gathers;
+//  - wrapped (sparse grids): T[x cell], gathered.
+// Either way the same T values meet the same weights in the same order.
+struct column_table {
+  std::vector<std::int32_t> idx[3];  // T index of each tap
+  std::vector<float> w[3], dw[3];
+  std::vector<char> needed;  // x cells some column reads
+  std::size_t padded = 0;
+  bool unwrapped = false;
+  int first = 0;          // unwrapped: the x cell of T[0]
+  std::size_t span = 0;   // unwrapped: T's length
+  std::vector<std::int32_t> lane0;  // unwrapped: idx[0] - base of the column's vector
+  std::vector<std::int32_t> base;   // per vector: the smallest idx[0] of its columns
+  std::vector<char> fits;           // per vector: every tap within one vector of T
+};
+
+template <bool kGradient>
+column_table make_columns(std::size_t nx, int n, std::uint32_t period, double freq, double off,
+                          double origin, double step) {
+  column_table t;
+  const std::size_t lanes = hn::Lanes(DF());
+  t.padded = (nx + lanes - 1) / lanes * lanes;
+  for (int j = 0; j < 3; ++j) {
+    t.idx[j].assign(t.padded, 0);
+    t.w[j].assign(t.padded, 0.0f);
+    if (kGradient) t.dw[j].assign(t.padded, 0.0f);
+  }
+  t.needed.assign(static_cast<std::size_t>(n), 0);
+  // rel: tap 0's cell, unwrapped column to column (any representative of the cell
+  // modulo n serves: T's index only has to name the right cell).
+  std::vector<long long> rel(t.padded, 0);
+  long long prev = 0, lo = 0, hi = 0;
+  const auto un = static_cast<std::uint32_t>(n);
+  for (std::size_t i = 0; i < nx; ++i) {
+    double x = (origin + step * static_cast<double>(i)) * freq;
+    if (!std::isfinite(x)) x = 0.0;  // as wavelet::band::position for finite input
+    const lattice_coord<float> c = lattice_split<float>(x + off, period);
+    detail::wavelet_axis<float> ax;
+    detail::wavelet_axis_plain<float, kGradient>(c.f, ax);
+    const long long cell0 = static_cast<long long>(c.i0 % un);
+    if (i == 0) {
+      rel[i] = cell0;
+    } else {
+      long long d = (cell0 - prev % n + n) % n;  // in [0, n): the step modulo n
+      if (2 * d > n) d -= n;
+      rel[i] = rel[i - 1] + d;
+    }
+    prev = cell0;
+    lo = i == 0 ? rel[i] : std::min(lo, rel[i]);
+    hi = i == 0 ? rel[i] : std::max(hi, rel[i]);
+    for (int j = 0; j < 3; ++j) {
+      const int cell = static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % un);
+      t.idx[j][i] = cell;
+      t.needed[static_cast<std::size_t>(cell)] = 1;
+      t.w[j][i] = ax.w[j];
+      if (kGradient) t.dw[j][i] = ax.dw[j];
+    }
+  }
+  for (std::size_t i = nx; i < t.padded; ++i) rel[i] = nx ? rel[nx - 1] : 0;  // weight 0
+  const auto limit = static_cast<long long>(std::max(static_cast<std::size_t>(n), nx));
+  if (nx == 0 || hi - lo > limit) return t;
+  t.unwrapped = true;
+  t.first = static_cast<int>(((lo % n) + n) % n);
+  t.span = static_cast<std::size_t>(hi - lo) + 3;
+  t.lane0.assign(t.padded, 0);
+  for (std::size_t v = 0; v < t.padded; v += lanes) {
+    long long b = rel[v] - lo, top = b;
+    for (std::size_t l = 0; l < lanes; ++l) {
+      b = std::min(b, rel[v + l] - lo);
+      top = std::max(top, rel[v + l] - lo);
+    }
+    t.base.push_back(static_cast<std::int32_t>(b));
+    t.fits.push_back(top - b + 2 < static_cast<long long>(lanes) ? 1 : 0);
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const auto r = static_cast<std::int32_t>(rel[v + l] - lo);
+      t.lane0[v + l] = static_cast<std::int32_t>(r - b);
+      for (int j = 0; j < 3; ++j) t.idx[j][v + l] = r + j;
+    }
+  }
+  return t;
+}
+
+// One row or slice coordinate of a band: three wrapped cells and their weights.
+struct line_axis {
+  int cell[3];
+  detail::wavelet_axis<float> ax;
+};
+template <bool kGradient>
+line_axis make_line(int n, std::uint32_t period, double freq, double off, double coordinate) {
+  line_axis r;
+  double x = coordinate * freq;
+  if (!std::isfinite(x)) x = 0.0;
+  const lattice_coord<float> c = lattice_split<float>(x + off, period);
+  detail::wavelet_axis_plain<float, kGradient>(c.f, r.ax);
+  for (int j = 0; j < 3; ++j)
+    r.cell[j] =
+        static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % static_cast<std::uint32_t>(n));
+  return r;
+}
+
+template <bool kGradient, int D>
+void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* grad) {
+  const DF df;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const int n = w.parameters().tile_size;
+  const std::size_t un = static_cast<std::size_t>(n);
+  const auto um = static_cast<std::size_t>(w.tile().row_length());  // row stride of the tile
+  const std::uint32_t period = w.split_period();
+  const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
+  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  const float* tile = w.tile().coefficients();
+  std::vector<int> bands;
+  for (int b = 0; b < w.band_count(); ++b)
+    if (pl.weight[b] != 0.0) bands.push_back(b);
+  const vec<double, D> zero{};
+  std::vector<column_table> cols;
+  cols.reserve(bands.size());
+  for (int b : bands)
+    cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
+                                           w.band_position(b, zero)[0], g.origin[0], g.step[0]));
+  const std::size_t padded = cols.empty() ? nx : cols[0].padded;
+  // Per band: S (3D: the z contraction per (x, y) cell, and its z derivative) and T
+  // (the row's contraction per x cell: value, d/dy, d/dz).
+  std::vector<std::vector<float>> S(bands.size()), Sz(bands.size());
+  std::size_t t_len = un;
+  for (const column_table& ct : cols) t_len = std::max(t_len, ct.span + lanes);
+  std::vector<float> T(t_len), Ty(t_len), Tz(t_len);
+  std::vector<float> acc(padded), gacc[3];
+  for (int a = 0; a < D; ++a) gacc[a].assign(kGradient ? padded : 0, 0.0f);
+  // Per band: the row lines (the same in every slice) and, in 3D, the x and y
+  // cells some sample reads (the slice contraction S is needed there only).
+  std::vector<std::vector<line_axis>> ylines(bands.size());
+  std::vector<std::vector<std::size_t>> xcells(bands.size()), ycells(bands.size());
+  for (std::size_t q = 0; q < bands.size(); ++q) {
+    const int b = bands[q];
+    std::vector<char> yneeded(un, 0);
+    for (std::size_t j = 0; j < ny; ++j) {
+      ylines[q].push_back(
+          make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
+                               g.origin[1] + g.step[1] * static_cast<double>(j)));
+      for (int c : ylines[q].back().cell) yneeded[static_cast<std::size_t>(c)] = 1;
+    }
+    for (std::size_t c = 0; c < un; ++c) {
+      if (yneeded[c]) ycells[q].push_back(c);
+      if (cols[q].needed[c]) xcells[q].push_back(c);
+    }
+    if constexpr (D == 3) {
+      S[q].assign(un * un, 0.0f);
+      if (kGradient) Sz[q].assign(un * un, 0.0f);
+    }
+  }
+  for (std::size_t k = 0; k < nz; ++k) {
+    if constexpr (D == 3) {
+      for (std::size_t q = 0; q < bands.size(); ++q) {
+        const int b = bands[q];
+        const line_axis z =
+            make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[2],
+                                 g.origin[2] + g.step[2] * static_cast<double>(k));
+        for (const std::size_t yc : ycells[q]) {
+          for (const std::size_t xc : xcells[q]) {
+            float s = 0, sz = 0;
+            for (int c = 0; c < 3; ++c) {
+              const float v = tile[xc + um * (yc + un * static_cast<std::size_t>(z.cell[c]))];
+              s += z.ax.w[c] * v;
+              if (kGradient) sz += z.ax.dw[c] * v;
+            }
+            S[q][yc * un + xc] = s;
+            if (kGradient) Sz[q][yc * un + xc] = sz;
+          }
+        }
+      }
+    }
+    for (std::size_t j = 0; j < ny; ++j) {
+      std::fill(acc.begin(), acc.end(), 0.0f);
+      for (int a = 0; a < D; ++a) std::fill(gacc[a].begin(), gacc[a].end(), 0.0f);
+      for (std::size_t q = 0; q < bands.size(); ++q) {
+        const int b = bands[q];
+        const line_axis& y = ylines[q][j];
+        // T(x) = sum_b wy_b S(x, y_b) (2D: S(x, y) is the coefficient itself), at T
+        // index r: x cell (first + r) mod n unwrapped, x cell r wrapped.
+        const column_table& ct = cols[q];
+        const std::size_t t_count = ct.unwrapped ? ct.span : un;
+        for (std::size_t r = 0; r < t_count; ++r) {
+          const std::size_t xc = ct.unwrapped ? (static_cast<std::size_t>(ct.first) + r) % un : r;
+          if (!ct.unwrapped && !ct.needed[xc]) continue;
+          float t = 0, ty = 0, tz = 0;
+          for (int bb = 0; bb < 3; ++bb) {
+            const std::size_t yc = static_cast<std::size_t>(y.cell[bb]);
+            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + um * yc];
+            t += y.ax.w[bb] * s;
+            if (kGradient) {
+              ty += y.ax.dw[bb] * s;
+              if (D == 3) tz += y.ax.w[bb] * Sz[q][yc * un + xc];
+            }
+          }
+          T[r] = t;
+          if (kGradient) {
+            Ty[r] = ty;
+            Tz[r] = tz;
+          }
+        }
+        const float wb = static_cast<float>(pl.weight[b]);
+        const float chain = static_cast<float>(pl.weight[b] * w.band_frequency(b));
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          VF v = hn::Zero(df), gx = hn::Zero(df), gy = hn::Zero(df), gz = hn::Zero(df);
+          const std::size_t vec = i / lanes;
+          if (ct.unwrapped && ct.fits[vec]) {
+            // The taps of these columns lie in T[base, base + lanes): lane lookups.
+            const auto base = static_cast<std::size_t>(ct.base[vec]);
+            const VF tv = hn::LoadU(df, T.data() + base);
+            const VF tyv = kGradient ? hn::LoadU(df, Ty.data() + base) : tv;
+            const VF tzv = kGradient && D == 3 ? hn::LoadU(df, Tz.data() + base) : tv;
+            const VI l0 = hn::LoadU(di, ct.lane0.data() + i);
+            for (int a = 0; a < 3; ++a) {
+              const auto ind = hn::IndicesFromVec(df, hn::Add(l0, hn::Set(di, a)));
+              const VF wa = hn::LoadU(df, ct.w[a].data() + i);
+              const VF t = hn::TableLookupLanes(tv, ind);
+              v = mul_add(wa, t, v);
+              if constexpr (kGradient) {
+                gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
+                gy = mul_add(wa, hn::TableLookupLanes(tyv, ind), gy);
+                if (D == 3) gz = mul_add(wa, hn::TableLookupLanes(tzv, ind), gz);
+              }
+            }
+          } else {
+            for (int a = 0; a < 3; ++a) {
+              const VI idx = hn::LoadU(di, ct.idx[a].data() + i);
+              const VF wa = hn::LoadU(df, ct.w[a].data() + i);
+              const VF t = hn::GatherIndex(df, T.data(), idx);
+              v = mul_add(wa, t, v);
+              if constexpr (kGradient) {
+                gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
+                gy = mul_add(wa, hn::GatherIndex(df, Ty.data(), idx), gy);
+                if (D == 3) gz = mul_add(wa, hn::GatherIndex(df, Tz.data(), idx), gz);
+              }
+            }
+          }
+          hn::StoreU(mul_add(hn::Set(df, wb), v, hn::LoadU(df, acc.data() + i)), df,
+                     acc.data() + i);
+          if constexpr (kGradient) {
+            const VF cv = hn::Set(df, chain);
+            const VF gs[3] = {gx, gy, gz};
+            for (int a = 0; a < D; ++a)
+              hn::StoreU(mul_add(cv, gs[a], hn::LoadU(df, gacc[a].data() + i)), df,
+                         gacc[a].data() + i);
+          }
+        }
+      }
+      // Scale and remap, as wavelet::eval.
+      const std::size_t row = k * ny + j;
+      float* out = value + row * nx;
+      float* gout = kGradient ? grad + row * nx * D : nullptr;
+      const float scale = static_cast<float>(pl.scale);
+      const auto& prm = w.parameters();
+      std::size_t done = 0;
+      if (prm.distribution == wavelet_distribution::gaussian) {  // whole vectors in lanes
+        const VF sv = hn::Set(df, scale), gv = hn::Set(df, static_cast<float>(prm.gaussian_scale));
+        for (; done + lanes <= nx; done += lanes) {
+          hn::StoreU(hn::Mul(hn::Mul(hn::LoadU(df, acc.data() + done), sv), gv), df, out + done);
+          if constexpr (kGradient) {
+            VF gs[3];
+            for (int a = 0; a < D; ++a)
+              gs[a] = hn::Mul(hn::Mul(hn::LoadU(df, gacc[a].data() + done), sv), gv);
+            store_interleaved<D>(gs, gout + done * D);
+          }
+        }
+      }
+      for (std::size_t i = done; i < nx; ++i) {
+        float v = acc[i] * scale;
+        float gr[3];
+        for (int a = 0; a < D; ++a) gr[a] = kGradient ? gacc[a][i] * scale : 0.0f;
+        if (prm.distribution == wavelet_distribution::gaussian) {
+          const float gs = static_cast<float>(prm.gaussian_scale);
+          v = v * gs;
+          for (int a = 0; a < D; ++a) gr[a] = gr[a] * gs;
+        } else {
+          float dv = 1.0f;
+          w.template remap<float>(v, kGradient ? &dv : nullptr);
+          for (int a = 0; a < D; ++a) gr[a] = gr[a] * dv;
+        }
+        out[i] = v;
+        if (kGradient)
+          for (int a = 0; a < D; ++a) gout[i * D + a] = gr[a];
+      }
+    }
+  }
+}
+
+}  // namespace wavelet_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_WAVELET_GRID_INL_H_ toggle
+// ---- end hush/wavelet/grid-inl.h
+// ---- begin hush/wavelet/projected-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Wavelet noise projected onto a surface (wavelet.hpp band_kernel, unwidened) in
+// lanes: the kinds of lanes a vector may hold, and per kind its kernel: the fixed
+// kernel along a tile axis for a normal along it, the exact projection
+// (general_exact) or the paper's approximation (general_approx) for any other.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/wavelet/simd-inl.h, never included directly by users.
+#if defined(HUSH_WAVELET_PROJECTED_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_PROJECTED_INL_H_
+#undef HUSH_WAVELET_PROJECTED_INL_H_
+#else
+#define HUSH_WAVELET_PROJECTED_INL_H_
+#endif
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace wavelet_simd {
+
 // ---- Projection onto a surface (wavelet.hpp band_kernel, unwidened): the kinds
 // of lanes a vector may hold, each with its kernel.
 enum lane_kind : int {
@@ -15524,6 +16126,23 @@ HWY_INLINE void general_exact(const wavelet_tile<3>& tl, const VI* cell, const V
     }
   }
 }
+
+}  // namespace wavelet_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_WAVELET_PROJECTED_INL_H_ toggle
+// ---- end hush/wavelet/projected-inl.h
+
+// The noise class comes first, not from here: hush/wavelet.hpp includes these
+// kernels at its end (hush/wavelet/simd_kernel.hpp), as src/simd/wavelet.cpp does.
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace wavelet_simd {
 
 // One band of one vector of points with the lanes' kernel `kind` (lane_kind; u: the
 // lanes' unit normals for kGeneral): value and gradient in coefficient units.
@@ -15874,307 +16493,6 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
             ws::scalar_sample<D>(w, s.at(first + l), v + l, g ? g + l * D : nullptr);
       });
 }
-
-namespace wavelet_simd {
-
-// ---- Grids: per band, the x axis split once per column (lattice_split<float> in
-// double, as scalar evaluation does), y once per row, z once per slice; the
-// contraction follows the separable order (file comment).
-// Two layouts of the row's contraction T that columns read:
-//  - unwrapped (the grid spans at most max(n, nx) + 3 cells): T[r] is x cell
-//    (first + r) mod n, r = 0 ... span - 1, so a vector of columns reads a few
-//    consecutive T values: when they fit in one vector (lane0 + 2 < lanes, i.e.
-//    at least ~1 column per cell), one load and three in-register lane lookups
-//    (TableLookupLanes) replace the three gathers;
-//  - wrapped (sparse grids): T[x cell], gathered.
-// Either way the same T values meet the same weights in the same order.
-struct column_table {
-  std::vector<std::int32_t> idx[3];  // T index of each tap
-  std::vector<float> w[3], dw[3];
-  std::vector<char> needed;  // x cells some column reads
-  std::size_t padded = 0;
-  bool unwrapped = false;
-  int first = 0;          // unwrapped: the x cell of T[0]
-  std::size_t span = 0;   // unwrapped: T's length
-  std::vector<std::int32_t> lane0;  // unwrapped: idx[0] - base of the column's vector
-  std::vector<std::int32_t> base;   // per vector: the smallest idx[0] of its columns
-  std::vector<char> fits;           // per vector: every tap within one vector of T
-};
-
-template <bool kGradient>
-column_table make_columns(std::size_t nx, int n, std::uint32_t period, double freq, double off,
-                          double origin, double step) {
-  column_table t;
-  const std::size_t lanes = hn::Lanes(DF());
-  t.padded = (nx + lanes - 1) / lanes * lanes;
-  for (int j = 0; j < 3; ++j) {
-    t.idx[j].assign(t.padded, 0);
-    t.w[j].assign(t.padded, 0.0f);
-    if (kGradient) t.dw[j].assign(t.padded, 0.0f);
-  }
-  t.needed.assign(static_cast<std::size_t>(n), 0);
-  // rel: tap 0's cell, unwrapped column to column (any representative of the cell
-  // modulo n serves: T's index only has to name the right cell).
-  std::vector<long long> rel(t.padded, 0);
-  long long prev = 0, lo = 0, hi = 0;
-  const auto un = static_cast<std::uint32_t>(n);
-  for (std::size_t i = 0; i < nx; ++i) {
-    double x = (origin + step * static_cast<double>(i)) * freq;
-    if (!std::isfinite(x)) x = 0.0;  // as wavelet::band::position for finite input
-    const lattice_coord<float> c = lattice_split<float>(x + off, period);
-    detail::wavelet_axis<float> ax;
-    detail::wavelet_axis_plain<float, kGradient>(c.f, ax);
-    const long long cell0 = static_cast<long long>(c.i0 % un);
-    if (i == 0) {
-      rel[i] = cell0;
-    } else {
-      long long d = (cell0 - prev % n + n) % n;  // in [0, n): the step modulo n
-      if (2 * d > n) d -= n;
-      rel[i] = rel[i - 1] + d;
-    }
-    prev = cell0;
-    lo = i == 0 ? rel[i] : std::min(lo, rel[i]);
-    hi = i == 0 ? rel[i] : std::max(hi, rel[i]);
-    for (int j = 0; j < 3; ++j) {
-      const int cell = static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % un);
-      t.idx[j][i] = cell;
-      t.needed[static_cast<std::size_t>(cell)] = 1;
-      t.w[j][i] = ax.w[j];
-      if (kGradient) t.dw[j][i] = ax.dw[j];
-    }
-  }
-  for (std::size_t i = nx; i < t.padded; ++i) rel[i] = nx ? rel[nx - 1] : 0;  // weight 0
-  const auto limit = static_cast<long long>(std::max(static_cast<std::size_t>(n), nx));
-  if (nx == 0 || hi - lo > limit) return t;
-  t.unwrapped = true;
-  t.first = static_cast<int>(((lo % n) + n) % n);
-  t.span = static_cast<std::size_t>(hi - lo) + 3;
-  t.lane0.assign(t.padded, 0);
-  for (std::size_t v = 0; v < t.padded; v += lanes) {
-    long long b = rel[v] - lo, top = b;
-    for (std::size_t l = 0; l < lanes; ++l) {
-      b = std::min(b, rel[v + l] - lo);
-      top = std::max(top, rel[v + l] - lo);
-    }
-    t.base.push_back(static_cast<std::int32_t>(b));
-    t.fits.push_back(top - b + 2 < static_cast<long long>(lanes) ? 1 : 0);
-    for (std::size_t l = 0; l < lanes; ++l) {
-      const auto r = static_cast<std::int32_t>(rel[v + l] - lo);
-      t.lane0[v + l] = static_cast<std::int32_t>(r - b);
-      for (int j = 0; j < 3; ++j) t.idx[j][v + l] = r + j;
-    }
-  }
-  return t;
-}
-
-// One row or slice coordinate of a band: three wrapped cells and their weights.
-struct line_axis {
-  int cell[3];
-  detail::wavelet_axis<float> ax;
-};
-template <bool kGradient>
-line_axis make_line(int n, std::uint32_t period, double freq, double off, double coordinate) {
-  line_axis r;
-  double x = coordinate * freq;
-  if (!std::isfinite(x)) x = 0.0;
-  const lattice_coord<float> c = lattice_split<float>(x + off, period);
-  detail::wavelet_axis_plain<float, kGradient>(c.f, r.ax);
-  for (int j = 0; j < 3; ++j)
-    r.cell[j] =
-        static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % static_cast<std::uint32_t>(n));
-  return r;
-}
-
-template <bool kGradient, int D>
-void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* grad) {
-  const DF df;
-  const DI di;
-  const std::size_t lanes = hn::Lanes(df);
-  const int n = w.parameters().tile_size;
-  const std::size_t un = static_cast<std::size_t>(n);
-  const auto um = static_cast<std::size_t>(w.tile().row_length());  // row stride of the tile
-  const std::uint32_t period = w.split_period();
-  const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
-  const float* tile = w.tile().coefficients();
-  std::vector<int> bands;
-  for (int b = 0; b < w.band_count(); ++b)
-    if (pl.weight[b] != 0.0) bands.push_back(b);
-  const vec<double, D> zero{};
-  std::vector<column_table> cols;
-  cols.reserve(bands.size());
-  for (int b : bands)
-    cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
-                                           w.band_position(b, zero)[0], g.origin[0], g.step[0]));
-  const std::size_t padded = cols.empty() ? nx : cols[0].padded;
-  // Per band: S (3D: the z contraction per (x, y) cell, and its z derivative) and T
-  // (the row's contraction per x cell: value, d/dy, d/dz).
-  std::vector<std::vector<float>> S(bands.size()), Sz(bands.size());
-  std::size_t t_len = un;
-  for (const column_table& ct : cols) t_len = std::max(t_len, ct.span + lanes);
-  std::vector<float> T(t_len), Ty(t_len), Tz(t_len);
-  std::vector<float> acc(padded), gacc[3];
-  for (int a = 0; a < D; ++a) gacc[a].assign(kGradient ? padded : 0, 0.0f);
-  // Per band: the row lines (the same in every slice) and, in 3D, the x and y
-  // cells some sample reads (the slice contraction S is needed there only).
-  std::vector<std::vector<line_axis>> ylines(bands.size());
-  std::vector<std::vector<std::size_t>> xcells(bands.size()), ycells(bands.size());
-  for (std::size_t q = 0; q < bands.size(); ++q) {
-    const int b = bands[q];
-    std::vector<char> yneeded(un, 0);
-    for (std::size_t j = 0; j < ny; ++j) {
-      ylines[q].push_back(
-          make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
-                               g.origin[1] + g.step[1] * static_cast<double>(j)));
-      for (int c : ylines[q].back().cell) yneeded[static_cast<std::size_t>(c)] = 1;
-    }
-    for (std::size_t c = 0; c < un; ++c) {
-      if (yneeded[c]) ycells[q].push_back(c);
-      if (cols[q].needed[c]) xcells[q].push_back(c);
-    }
-    if constexpr (D == 3) {
-      S[q].assign(un * un, 0.0f);
-      if (kGradient) Sz[q].assign(un * un, 0.0f);
-    }
-  }
-  for (std::size_t k = 0; k < nz; ++k) {
-    if constexpr (D == 3) {
-      for (std::size_t q = 0; q < bands.size(); ++q) {
-        const int b = bands[q];
-        const line_axis z =
-            make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[2],
-                                 g.origin[2] + g.step[2] * static_cast<double>(k));
-        for (const std::size_t yc : ycells[q]) {
-          for (const std::size_t xc : xcells[q]) {
-            float s = 0, sz = 0;
-            for (int c = 0; c < 3; ++c) {
-              const float v = tile[xc + um * (yc + un * static_cast<std::size_t>(z.cell[c]))];
-              s += z.ax.w[c] * v;
-              if (kGradient) sz += z.ax.dw[c] * v;
-            }
-            S[q][yc * un + xc] = s;
-            if (kGradient) Sz[q][yc * un + xc] = sz;
-          }
-        }
-      }
-    }
-    for (std::size_t j = 0; j < ny; ++j) {
-      std::fill(acc.begin(), acc.end(), 0.0f);
-      for (int a = 0; a < D; ++a) std::fill(gacc[a].begin(), gacc[a].end(), 0.0f);
-      for (std::size_t q = 0; q < bands.size(); ++q) {
-        const int b = bands[q];
-        const line_axis& y = ylines[q][j];
-        // T(x) = sum_b wy_b S(x, y_b) (2D: S(x, y) is the coefficient itself), at T
-        // index r: x cell (first + r) mod n unwrapped, x cell r wrapped.
-        const column_table& ct = cols[q];
-        const std::size_t t_count = ct.unwrapped ? ct.span : un;
-        for (std::size_t r = 0; r < t_count; ++r) {
-          const std::size_t xc = ct.unwrapped ? (static_cast<std::size_t>(ct.first) + r) % un : r;
-          if (!ct.unwrapped && !ct.needed[xc]) continue;
-          float t = 0, ty = 0, tz = 0;
-          for (int bb = 0; bb < 3; ++bb) {
-            const std::size_t yc = static_cast<std::size_t>(y.cell[bb]);
-            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + um * yc];
-            t += y.ax.w[bb] * s;
-            if (kGradient) {
-              ty += y.ax.dw[bb] * s;
-              if (D == 3) tz += y.ax.w[bb] * Sz[q][yc * un + xc];
-            }
-          }
-          T[r] = t;
-          if (kGradient) {
-            Ty[r] = ty;
-            Tz[r] = tz;
-          }
-        }
-        const float wb = static_cast<float>(pl.weight[b]);
-        const float chain = static_cast<float>(pl.weight[b] * w.band_frequency(b));
-        for (std::size_t i = 0; i < nx; i += lanes) {
-          VF v = hn::Zero(df), gx = hn::Zero(df), gy = hn::Zero(df), gz = hn::Zero(df);
-          const std::size_t vec = i / lanes;
-          if (ct.unwrapped && ct.fits[vec]) {
-            // The taps of these columns lie in T[base, base + lanes): lane lookups.
-            const auto base = static_cast<std::size_t>(ct.base[vec]);
-            const VF tv = hn::LoadU(df, T.data() + base);
-            const VF tyv = kGradient ? hn::LoadU(df, Ty.data() + base) : tv;
-            const VF tzv = kGradient && D == 3 ? hn::LoadU(df, Tz.data() + base) : tv;
-            const VI l0 = hn::LoadU(di, ct.lane0.data() + i);
-            for (int a = 0; a < 3; ++a) {
-              const auto ind = hn::IndicesFromVec(df, hn::Add(l0, hn::Set(di, a)));
-              const VF wa = hn::LoadU(df, ct.w[a].data() + i);
-              const VF t = hn::TableLookupLanes(tv, ind);
-              v = mul_add(wa, t, v);
-              if constexpr (kGradient) {
-                gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
-                gy = mul_add(wa, hn::TableLookupLanes(tyv, ind), gy);
-                if (D == 3) gz = mul_add(wa, hn::TableLookupLanes(tzv, ind), gz);
-              }
-            }
-          } else {
-            for (int a = 0; a < 3; ++a) {
-              const VI idx = hn::LoadU(di, ct.idx[a].data() + i);
-              const VF wa = hn::LoadU(df, ct.w[a].data() + i);
-              const VF t = hn::GatherIndex(df, T.data(), idx);
-              v = mul_add(wa, t, v);
-              if constexpr (kGradient) {
-                gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
-                gy = mul_add(wa, hn::GatherIndex(df, Ty.data(), idx), gy);
-                if (D == 3) gz = mul_add(wa, hn::GatherIndex(df, Tz.data(), idx), gz);
-              }
-            }
-          }
-          hn::StoreU(mul_add(hn::Set(df, wb), v, hn::LoadU(df, acc.data() + i)), df,
-                     acc.data() + i);
-          if constexpr (kGradient) {
-            const VF cv = hn::Set(df, chain);
-            const VF gs[3] = {gx, gy, gz};
-            for (int a = 0; a < D; ++a)
-              hn::StoreU(mul_add(cv, gs[a], hn::LoadU(df, gacc[a].data() + i)), df,
-                         gacc[a].data() + i);
-          }
-        }
-      }
-      // Scale and remap, as wavelet::eval.
-      const std::size_t row = k * ny + j;
-      float* out = value + row * nx;
-      float* gout = kGradient ? grad + row * nx * D : nullptr;
-      const float scale = static_cast<float>(pl.scale);
-      const auto& prm = w.parameters();
-      std::size_t done = 0;
-      if (prm.distribution == wavelet_distribution::gaussian) {  // whole vectors in lanes
-        const VF sv = hn::Set(df, scale), gv = hn::Set(df, static_cast<float>(prm.gaussian_scale));
-        for (; done + lanes <= nx; done += lanes) {
-          hn::StoreU(hn::Mul(hn::Mul(hn::LoadU(df, acc.data() + done), sv), gv), df, out + done);
-          if constexpr (kGradient) {
-            VF gs[3];
-            for (int a = 0; a < D; ++a)
-              gs[a] = hn::Mul(hn::Mul(hn::LoadU(df, gacc[a].data() + done), sv), gv);
-            store_interleaved<D>(gs, gout + done * D);
-          }
-        }
-      }
-      for (std::size_t i = done; i < nx; ++i) {
-        float v = acc[i] * scale;
-        float gr[3];
-        for (int a = 0; a < D; ++a) gr[a] = kGradient ? gacc[a][i] * scale : 0.0f;
-        if (prm.distribution == wavelet_distribution::gaussian) {
-          const float gs = static_cast<float>(prm.gaussian_scale);
-          v = v * gs;
-          for (int a = 0; a < D; ++a) gr[a] = gr[a] * gs;
-        } else {
-          float dv = 1.0f;
-          w.template remap<float>(v, kGradient ? &dv : nullptr);
-          for (int a = 0; a < D; ++a) gr[a] = gr[a] * dv;
-        }
-        out[i] = v;
-        if (kGradient)
-          for (int a = 0; a < D; ++a) gout[i * D + a] = gr[a];
-      }
-    }
-  }
-}
-
-}  // namespace wavelet_simd
 
 // Wavelet noise on a uniform grid (C order, i fastest); interleaved gradients unless
 // grad is null.
@@ -18490,7 +18808,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace npr_gabor_simd {
 
 // Generic lane types: simd/lanes-inl.h; the Gabor kernel's factors and pair
-// products: gabor_simd (gabor/simd-inl.h).
+// products: gabor_simd (gabor/kernel-inl.h).
 using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles

@@ -48,7 +48,7 @@
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/detail/npr_gabor_splat.hpp"
-#include "hush/gabor/simd-inl.h"
+#include "hush/gabor/kernel-inl.h"
 #include "hush/simd/lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -59,7 +59,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace npr_gabor_simd {
 
 // Generic lane types: simd/lanes-inl.h; the Gabor kernel's factors and pair
-// products: gabor_simd (gabor/simd-inl.h).
+// products: gabor_simd (gabor/kernel-inl.h).
 using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
