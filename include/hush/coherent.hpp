@@ -83,7 +83,7 @@
 #include "hush/core/frame.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/views.hpp"
-#include "hush/detail/coherent_kernel.hpp"
+#include "hush/coherent/kernel.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/exec.hpp"
 #include "hush/perlin.hpp"

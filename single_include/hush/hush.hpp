@@ -24,14 +24,14 @@
 //   n(u) = sum_k f_k( sum_{i,s} gamma_{k,i,s} lambda_{i,s} n_{i,s}(u) )      (sec. 5)
 //
 //  - n_{i,s}: subband tile i (orientation theta_i = pi i / K, filter D_{i,s}
-//    of steerable.hpp) looked up bilinearly at scale s, whose centre frequency
+//    of anisotropic/steerable.hpp) looked up bilinearly at scale s, whose centre frequency
 //    is f_s = frequency 2^(s - base_scale) cycles per texture unit. One tile
 //    per orientation serves every scale (the paper's single 256^2 RGBA
 //    texture for K = 4): scale s reads it at u f_s / kAnisoTileBand texels,
 //    offset per scale so the scales do not coincide at the origin.
 //  - lambda_{i,s}: the sample's pixel filter, H(J^T w) = exp(-2 pi^2 sigma^2
 //    w^T S w) with S = J J^T the footprint (core/footprint.hpp), sigma =
-//    kPixelFilterSigma, fitted by params::filtering (subband_fit.hpp rules:
+//    kPixelFilterSigma, fitted by params::filtering (anisotropic/subband_fit.hpp rules:
 //    centre = the paper's heuristic, three_point = its sec. 5 variant,
 //    least_squares = its eq. 5 fit, CPU only). A point footprint gives 1.
 //  - gamma_{k,i,s}: octave k's target, the isotropic band B of scale
@@ -509,7 +509,7 @@ constexpr double kHalfLog2Pi = 0.91893853320467274178;
 constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
 constexpr int kLogFactorialTable = 20;
 
-// ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp, wavelet_tile.hpp,
+// ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp, wavelet/tile.hpp,
 // core/bspline.hpp). The basis is the uniform quadratic B-spline B(u), centred (support
 // [-3/2, 3/2]): the density of a sum of three independent uniforms on [-1/2, 1/2]. Every
 // kernel of the noise is such a density (core/bspline.hpp derives their polynomial
@@ -524,7 +524,7 @@ constexpr int kWaveletRefineFirst = -1;
 constexpr double kWaveletRefine[4] = {0.25, 0.75, 0.75, 0.25};
 // The analysis (least-squares downsampling) filter a_d is infinite; hush keeps
 // |d| <= kWaveletAnalysisRadius, where |a_d| < 2e-18 (it decays as 0.656^|d|), and
-// periodises it to the tile (wavelet_tile.hpp derives it from the B-spline Gram matrix).
+// periodises it to the tile (wavelet/tile.hpp derives it from the B-spline Gram matrix).
 constexpr int kWaveletAnalysisRadius = 100;
 // Tile sizes: even (the half-resolution tile must have a whole number of coefficients,
 // paper footnote 4) and at least 16 (the widest evaluation kernel spans 9 coefficients;
@@ -653,7 +653,7 @@ constexpr double kTurnsReduceLimit = 4194304.0;
 constexpr double kTwoPi = 6.283185307179586476925;
 constexpr double kPi = 3.141592653589793238463;
 
-// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor_kernel.hpp,
+// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor/kernel.hpp,
 // gabor.hpp). Kernels are truncated where their envelope e^{-pi a^2 |x|^2}
 // falls to t (the `truncation` parameter): radius r = sqrt(ln(1/t) / pi) / a.
 // Instead of cutting there (a jump of t K, which the paper accepts), the
@@ -670,7 +670,7 @@ constexpr double kGaborMaxFrequency = 1e6;
 // transforms (energy, truncation error, envelope transform) is its leading
 // asymptotic term instead of a quadrature whose panels grow with the
 // frequency: the term left out is below 2e-13 of the result there
-// (gabor_kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
+// (gabor/kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
 constexpr double kGaborAsymptoticCycles = 1024.0;
 // Isotropic and hybrid noise's power spectrum at xi integrates the
 // frequency vectors Phi only where a blob (+-Phi) is within this many cycles
@@ -743,7 +743,7 @@ constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ..
 constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
 constexpr double kNprGaborMaxDepthTolerance = 1.0;
 // N is clamped here (2M <= 2^41 points per triangle). Not a work bound (stage 1
-// walks only the subtrees near the image, detail/npr_gabor_tree.hpp) but the
+// walks only the subtrees near the image, npr_gabor/tree.hpp) but the
 // input's: float screen positions have a 1-pixel ulp at 2^24 = 1.7e7 px, and a
 // triangle of 2^40 points at the default density (0.034 / px^2) already has
 // legs of 8e6 px, where the vertices are placed to half a pixel: beyond, the
@@ -771,7 +771,7 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 // kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
-// The hierarchical point sequence (detail/npr_gabor_tree.hpp): a node takes 3
+// The hierarchical point sequence (npr_gabor/tree.hpp): a node takes 3
 // words of its own stream (point, value, child order); its children's order is
 // one of the 24 permutations of {0, 1, 2, 3}, entry p holding in bits 2d, 2d + 1
 // the geometric child (0, 1, 2: the corner triangle at corner 0, 1, 2; 3: the
@@ -787,15 +787,15 @@ constexpr unsigned kNprGaborChildOrder[kNprGaborChildOrders] = {
 // linear interpolation within 1e-3 relative for t in [1e-9, 0.5].
 constexpr double kNprGaborEnergyStep = 1.0 / 64.0;
 
-// ---- Styles (style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
+// ---- Styles (npr_gabor/style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
 // in noise standard deviations (8 sigma: every pixel in the soft band), the
 // graphite style's fine-layer weight and the watercolour overlay's gain.
 constexpr double kStyleMaxWidth = 8.0;
 constexpr double kStyleMaxGrain = 8.0;
 constexpr double kStyleMaxGain = 4.0;
 
-// ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
-// subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
+// ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; anisotropic/steerable.hpp,
+// anisotropic/subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
 constexpr double kLn2 = 0.69314718055994530942;
 // Orientations K of the steerable filter bank (the paper uses 4 to 8; one
 // orientation has no angular selectivity) and scales (octaves of the bank).
@@ -822,7 +822,7 @@ constexpr double kAnisoThreePointCentre = 0.5;
 // A filtering weight exp(-x) with x above this is set to exactly 0 (and its
 // subband is skipped): exp(-17) = 4.1e-8 < 2^-24, below float resolution.
 constexpr double kAnisoWeightCutoff = 17.0;
-// Least-squares quadrature (subband_fit.hpp): midpoint nodes per octave of
+// Least-squares quadrature (anisotropic/subband_fit.hpp): midpoint nodes per octave of
 // radius, and angular nodes per orientation over a half turn (filters and
 // targets are even: D(-w) = D(w)).
 constexpr int kAnisoRadialNodesPerOctave = 16;
@@ -2211,7 +2211,7 @@ HUSH_INLINE T band_profile(T x) {
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // A small radix-2 FFT in double for power-of-two sizes: what the anisotropic
-// noise needs to build its subband tiles and decompose images (steerable.hpp),
+// noise needs to build its subband tiles and decompose images (anisotropic/steerable.hpp),
 // without a dependency. hush's own rather than Eigen's FFT (unsupported/Eigen/FFT,
 // which the tests use as the reference): it keeps hush/anisotropic.hpp in the
 // umbrella and single headers (Eigen lives outside the default include path and
@@ -5181,7 +5181,7 @@ struct simd_kernel<fractal<perlin<D>>> {
 
 #endif  // HUSH_FRACTAL_HPP
 // ---- end hush/fractal.hpp
-// ---- begin hush/steerable.hpp
+// ---- begin hush/anisotropic/steerable.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // hush::steerable_bank: the frequency-domain decomposition behind anisotropic
@@ -5219,8 +5219,8 @@ struct simd_kernel<fractal<perlin<D>>> {
 //    linearly; with K the best linear blend of the D_i approximates a rotated
 //    D (docs/anisotropic.md gives the measured error).
 // Pure math, no allocation except in decompose(); thread-safe.
-#ifndef HUSH_STEERABLE_HPP
-#define HUSH_STEERABLE_HPP
+#ifndef HUSH_ANISOTROPIC_STEERABLE_HPP
+#define HUSH_ANISOTROPIC_STEERABLE_HPP
 
 #include <cmath>
 #include <complex>
@@ -5398,12 +5398,12 @@ inline steerable_decomposition decompose(const std::vector<double>& image, std::
 
 }  // namespace hush
 
-#endif  // HUSH_STEERABLE_HPP
-// ---- end hush/steerable.hpp
-// ---- begin hush/subband_fit.hpp
+#endif  // HUSH_ANISOTROPIC_STEERABLE_HPP
+// ---- end hush/anisotropic/steerable.hpp
+// ---- begin hush/anisotropic/subband_fit.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// hush::subband_fit: weights w of a steerable bank's filters (steerable.hpp)
+// hush::subband_fit: weights w of a steerable bank's filters (anisotropic/steerable.hpp)
 // such that sum_j w_j D_j(w) approximates a target amplitude response t(w)
 // (Goldberg, Zwicker & Durand 2008: distortion compensation, sec. 3.1,
 // weights gamma; anisotropic filtering, sec. 4.2, weights lambda):
@@ -5435,8 +5435,8 @@ inline steerable_decomposition decompose(const std::vector<double>& image, std::
 // basis doubles; 4 MB for K = 8, S = 5 with residuals); fits are const and
 // thread-safe. A least-squares fit costs one target evaluation per node plus
 // a nodes x basis product (about 1 ms for K = 4, S = 3 here: hush bench).
-#ifndef HUSH_SUBBAND_FIT_HPP
-#define HUSH_SUBBAND_FIT_HPP
+#ifndef HUSH_ANISOTROPIC_SUBBAND_FIT_HPP
+#define HUSH_ANISOTROPIC_SUBBAND_FIT_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -5652,8 +5652,8 @@ class subband_fit {
 
 }  // namespace hush
 
-#endif  // HUSH_SUBBAND_FIT_HPP
-// ---- end hush/subband_fit.hpp
+#endif  // HUSH_ANISOTROPIC_SUBBAND_FIT_HPP
+// ---- end hush/anisotropic/subband_fit.hpp
 
 namespace hush {
 
@@ -8257,7 +8257,7 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 //
 // Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
 // sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
-// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
+// kernels (hush/gabor/kernel.hpp) at Poisson-distributed impulses with random
 // weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
 // analytic anti-aliasing.
 //
@@ -8301,11 +8301,11 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 //    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
 //  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
 //    magnitude); the observed maximum is far smaller (tests).
-//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
+//  - C1: the kernels are tapered to 0 (gabor/kernel.hpp); gradient() is the
 //    analytic derivative.
 //  - float evaluation is within scale 2^-21 (1 + 2 pi Phi) (N' + 1) of the
 //    double reference (each kernel within 2^-21 (1 + 2 pi Phi) of its double
-//    value, gabor_kernel.hpp, and ~N' kernels reach a point); measured in
+//    value, gabor/kernel.hpp, and ~N' kernels reach a point); measured in
 //    tests/gabor_test.cpp ("float evaluation stays within the stated budget").
 //    The per-kernel figure is measured (gabor_kernel_test); the worst-case
 //    rounding analysis exceeds it for Phi < 0.9 (up to 4.5x at Phi = 0 in 3D;
@@ -8317,7 +8317,7 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 // Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
 // convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
 // (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
-// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
+// kernel becomes the filtered Gabor kernel of gabor_filter (gabor/kernel.hpp),
 // kept within the kernel's support. A point footprint gives exactly the
 // unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
 // HARD_CASES row 12) gives a finite result, continuous in the footprint, which
@@ -8338,6 +8338,10 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 // tangent plane, continuous everywhere). Footprints are projected onto the
 // tangent plane. A zero normal evaluates the solid noise; a non-finite normal
 // gives NaN.
+//
+// Its parts: hush/gabor/kernel.hpp (the kernel and its filtered form), hush/gabor/marks.hpp
+// (impulse kinds and marks), hush/gabor/spectrum.hpp (gabor_spectrum), and the SIMD
+// kernels (hush/gabor/simd_kernel.hpp, hush/gabor/simd-inl.h).
 #ifndef HUSH_GABOR_HPP
 #define HUSH_GABOR_HPP
 
@@ -8642,7 +8646,7 @@ inline double bessel_j0(double z) {
 
 #endif  // HUSH_DETAIL_QUADRATURE_HPP
 // ---- end hush/detail/quadrature.hpp
-// ---- begin hush/gabor_kernel.hpp
+// ---- begin hush/gabor/kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
@@ -9251,7 +9255,7 @@ struct gabor_filter {
       }
   }
   // The 2D closed form (above) of S = [[sa, sb], [sb, sc]], in this order of double
-  // operations, no fused ones (filters_2d in gabor/simd-inl.h repeats it in lanes).
+  // operations, no fused ones (filters_2d in gabor/shared_points-inl.h repeats it in lanes).
   void build_2d(double sa, double sb, double sc, double k, double mk) {
     sa = sa == sa ? sa : 0.0;  // NaN counts as 0
     sb = sb == sb ? sb : 0.0;
@@ -9312,7 +9316,20 @@ struct gabor_filter_coefs {
 }  // namespace hush
 
 #endif  // HUSH_GABOR_KERNEL_HPP
-// ---- end hush/gabor_kernel.hpp
+// ---- end hush/gabor/kernel.hpp
+// ---- begin hush/gabor/marks.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// What Gabor noise's impulses carry (hush/gabor.hpp): the kinds of noise, the fields of
+// a stream word as values in (0, 1), and gabor_marks<D>: an impulse's weight and
+// frequency vector drawn from uniform values. Shared by gabor<D> and by NPR Gabor noise
+// (hush/npr_gabor.hpp).
+#ifndef HUSH_GABOR_MARKS_HPP
+#define HUSH_GABOR_MARKS_HPP
+
+#include <cmath>
+#include <cstdint>
+
 
 namespace hush {
 
@@ -9459,6 +9476,13 @@ class gabor_marks {
   double cos_cap_ = -1;             // 3D
   vec<double, 3> t_{}, b_{}, axis_frame_{};
 };
+
+}  // namespace hush
+
+#endif  // HUSH_GABOR_MARKS_HPP
+// ---- end hush/gabor/marks.hpp
+
+namespace hush {
 
 template <int D>
 class gabor : public sample_noise<gabor<D>, D> {
@@ -9780,7 +9804,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
 
   // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
-  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
+  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor/kernel.hpp).
   template <class H>
   double mean_kernel_spectrum(const vec<double, D>& xi, H h, double window) const {
     namespace c = detail::constants;
@@ -10155,7 +10179,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return true;
   }
 
-  // Unfiltered solid noise: at a point the point form (gabor_kernel.hpp,
+  // Unfiltered solid noise: at a point the point form (gabor/kernel.hpp,
   // gabor_point_term), on a grid's sample (Grid) the separable pair, which the
   // grid kernels share between rows and columns. Every backend chooses the
   // same way: grids always the separable form, points the point form.
@@ -10245,7 +10269,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     }
   }
 
-  // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
+  // Solid noise filtered over footprint fp (gabor_filter, gabor/kernel.hpp).
   template <class T, bool G>
   value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
     const detail::gabor_filter_coefs<T, D> flt(
@@ -10392,6 +10416,26 @@ class gabor : public sample_noise<gabor<D>, D> {
   double scale_ = 1, surface_scale_ = 1;
 };
 
+}  // namespace hush
+
+// gabor_spectrum, and the SIMD backend's entry points and exec::simd binding, after the
+// class they use.
+// ---- begin hush/gabor/spectrum.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// gabor_spectrum<D>: the power spectrum of a gabor<D> noise, tabulated for many
+// frequencies. Included at the end of hush/gabor.hpp, after the class it uses; not on
+// its own.
+#ifndef HUSH_GABOR_SPECTRUM_HPP
+#define HUSH_GABOR_SPECTRUM_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+
+namespace hush {
+
 // gabor_spectrum<D>: the power spectrum of a gabor<D> noise at many
 // frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
 // kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
@@ -10485,7 +10529,8 @@ class gabor_spectrum {
 
 }  // namespace hush
 
-// The SIMD backend's entry points and exec::simd binding, after the class they use.
+#endif  // HUSH_GABOR_SPECTRUM_HPP
+// ---- end hush/gabor/spectrum.hpp
 // ---- begin hush/gabor/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -10544,7 +10589,7 @@ class gabor_spectrum {
 //    along x (kBlockX: 256 samples per row, up to 64 rows; 3D 64 x 32 x 16), each impulse of
 //    the cells that the block's samples see evaluated once per block: its factors along y
 //    (and z) once per row (slice), along x once per column, and per sample only their products
-//    (gabor_kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
+//    (gabor/kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
 //    support) over the x-vectors that reach the impulse's disk in that row (the row skip);
 //    each cell's impulses drawn once into a small cache for the blocks that see it (the draw
 //    cache). Grids with fewer than kMinRun samples per cell along x go through the points
@@ -10627,7 +10672,7 @@ class gabor_spectrum {
 //
 // The pieces of Gabor noise's Highway kernels (hush/gabor/simd-inl.h) that every
 // path repeats: Poisson counts and word fields of the impulses' draws, the
-// separable kernel (gabor_kernel.hpp) with its taper and products in lanes, and the
+// separable kernel (gabor/kernel.hpp) with its taper and products in lanes, and the
 // noise's constants, directions and marks as lanes. NPR Gabor noise's splats
 // (hush/npr_gabor/simd-inl.h) use the kernel too.
 // Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
@@ -10740,7 +10785,7 @@ HWY_INLINE VF half_value(VU w, unsigned i) {
                  hn::Set(df, float(c::kGaborHalfScale)));
 }
 
-// ---- The kernel (gabor_kernel.hpp) in lanes.
+// ---- The kernel (gabor/kernel.hpp) in lanes.
 struct axis {
   VF d, d2, e, s, c;
 };
@@ -13497,7 +13542,7 @@ struct simd_kernel<gabor<D>> {
 //
 // Wavelet noise (Robert L. Cook and Tony DeRose, "Wavelet Noise", SIGGRAPH 2005),
 // 2D and 3D: band-limited noise from a tile of quadratic B-spline coefficients
-// with the coarser half of its spectrum projected out (wavelet_tile.hpp), summed
+// with the coarser half of its spectrum projected out (wavelet/tile.hpp), summed
 // over octave bands, anti-aliased by the sample's footprint, and, in 3D,
 // projectable onto a surface so that the band limit survives texturing a
 // surface with a 3D noise.
@@ -13612,7 +13657,7 @@ struct simd_kernel<gabor<D>> {
 #include <string>
 #include <vector>
 
-// ---- begin hush/wavelet_tile.hpp
+// ---- begin hush/wavelet/tile.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // hush::wavelet_tile<D>: the periodic tile of noise coefficients of wavelet noise
@@ -14038,7 +14083,7 @@ class wavelet_blend_tile {
 }  // namespace hush
 
 #endif  // HUSH_WAVELET_TILE_HPP
-// ---- end hush/wavelet_tile.hpp
+// ---- end hush/wavelet/tile.hpp
 
 namespace hush {
 
@@ -14469,7 +14514,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
   struct params {
     std::uint32_t seed = 0;
-    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet_tile.hpp).
+    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet/tile.hpp).
     int tile_size = D == 2 ? 128 : 64;
     // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
     int first_band = 0;
@@ -16703,7 +16748,7 @@ struct simd_kernel<wavelet<D>> {
 #ifndef HUSH_COHERENT_SIMD_KERNEL_HPP
 #define HUSH_COHERENT_SIMD_KERNEL_HPP
 
-// ---- begin hush/detail/coherent_kernel.hpp
+// ---- begin hush/coherent/kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
@@ -16731,8 +16776,8 @@ struct simd_kernel<wavelet<D>> {
 //   refill: k (sqrt(tx (1 - tx)) ((1 - ty) D_x(p) + ty D_x(p + e_y)) + sqrt(ty (1 - ty)) D_y(p)),
 //   D_x(q) = X(q) - X(q + e_x), D_y(q) = Y(q) - Y(q + e_y), X and Y two more fields drawn
 //   like the input (independent). The output is gain * c.
-#ifndef HUSH_DETAIL_COHERENT_KERNEL_HPP
-#define HUSH_DETAIL_COHERENT_KERNEL_HPP
+#ifndef HUSH_COHERENT_KERNEL_HPP
+#define HUSH_COHERENT_KERNEL_HPP
 
 #include <cmath>
 #include <cstddef>
@@ -16970,8 +17015,8 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
-// ---- end hush/detail/coherent_kernel.hpp
+#endif  // HUSH_COHERENT_KERNEL_HPP
+// ---- end hush/coherent/kernel.hpp
 
 #if HUSH_CONFIG_SIMD_STATIC
 // ---- begin hush/coherent/simd-inl.h
@@ -16982,7 +17027,7 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 // Compiled once per SIMD target (the "-inl.h" convention: toggle include
 // guard, no normal guard); reached through hush/simd/dispatch.hpp.
 //
-// It repeats detail::coherent_pass_scalar (hush/detail/coherent_kernel.hpp)
+// It repeats detail::coherent_pass_scalar (hush/coherent/kernel.hpp)
 // operation by operation: the reprojection in float with separate multiplies
 // and adds (never fused, so the visibility decisions equal the scalar ones on
 // every target), the hashed fields in 32-bit lanes, the taps gathered, the
@@ -18218,7 +18263,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //
 // NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot, "A
 // dynamic noise primitive for coherent stylization", EGSR 2010): Gabor
-// kernels (hush/gabor_kernel.hpp) defined and evaluated in 2D screen space
+// kernels (hush/gabor/kernel.hpp) defined and evaluated in 2D screen space
 // (a 2D look, like a shower door) at points attached to the surface (they move
 // with it, like a texture). A scene-driven noise: per frame it reads the
 // visibility G-buffer (hush::frame) and the triangles drawn (hush::triangle_list)
@@ -18232,7 +18277,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 // The noise (paper eq. 1, sec. 3.2-3.4), n(x) = scale sum_i w_i v_i g_{F_i}(x - x_i):
 //  - points (sec. 3.3): triangle t (key hash32(hash32(seed_key(seed),
 //    object), triangle)) has a hierarchical point sequence
-//    (detail/npr_gabor_tree.hpp): subdivided at its edge midpoints (object
+//    (npr_gabor/tree.hpp): subdivided at its edge midpoints (object
 //    space) into four children, recursively, each node holding its own point
 //    (uniform in the node: local barycentrics (1 - sqrt u, sqrt u (1 - v),
 //    sqrt u v)) and a random order of its children; point J is the root's own
@@ -18270,7 +18315,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    in log4 summing to 1 over the levels, so the screen density of squared
 //    weights is lambda across foreshortened triangles too (docs/npr-gabor.md
 //    "Local density"); continuous in n_P, so no pops.
-//  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
+//  - two stages (hush/npr_gabor/splat.hpp): make_splats lists one
 //    record per point (position, F, radius, weight, plane, ids, pixel range);
 //    splat adds the records' kernels, on exec::scalar or exec::simd (screen
 //    tiles, hush/npr_gabor/simd-inl.h, bit for bit scalar under HUSH_STRICT_FP).
@@ -18339,7 +18384,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    docs/npr-gabor.md.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
-//    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
+//    gabor/kernel.hpp); tests/npr_gabor_test.cpp measures it.
 //  - GLSL: render on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): stage 1 in
 //    compute passes (counts, prefix sum, one invocation per point, the CPU's record order)
 //    where every source is constant or per object, else on the CPU; the records drawn as
@@ -18522,7 +18567,7 @@ class param_source {
 
 #endif  // HUSH_CORE_PARAM_SOURCE_HPP
 // ---- end hush/core/param_source.hpp
-// ---- begin hush/detail/npr_gabor_splat.hpp
+// ---- begin hush/npr_gabor/splat.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The splat list of NPR Gabor noise (hush/npr_gabor.hpp) and its second
@@ -18536,8 +18581,8 @@ class param_source {
 // Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
 // or double) and once in lanes (hush/npr_gabor/simd-inl.h, float), which
 // repeats it operation by operation.
-#ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
-#define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+#ifndef HUSH_NPR_GABOR_SPLAT_HPP
+#define HUSH_NPR_GABOR_SPLAT_HPP
 
 #include <cmath>
 #include <cstddef>
@@ -18555,7 +18600,7 @@ namespace hush {
 // centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
 // qy y in screen pixels, gives the depth test its reference depth at every
 // pixel (the point's own depth is 1 / (q0 + qx x + qy y)). `index` is the
-// point's J in its triangle's sequence (detail/npr_gabor_tree.hpp): stage 2
+// point's J in its triangle's sequence (npr_gabor/tree.hpp): stage 2
 // does not read it; it names the point (tests, GPU stage 1 comparisons).
 struct npr_gabor_splat {
   double x = 0, y = 0;            // position, pixels (x right, y down)
@@ -18637,9 +18682,9 @@ void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& o
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
-// ---- end hush/detail/npr_gabor_splat.hpp
-// ---- begin hush/detail/npr_gabor_tree.hpp
+#endif  // HUSH_NPR_GABOR_SPLAT_HPP
+// ---- end hush/npr_gabor/splat.hpp
+// ---- begin hush/npr_gabor/tree.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The hierarchical point sequence of one NPR Gabor triangle (docs/npr-gabor.md,
@@ -18675,8 +18720,8 @@ void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& o
 // Midpoints of dyadic barycentrics are exact in floating point to depth 52
 // (double) and 23 (float), far beyond any index below kNprGaborMaxPoints.
 
-#ifndef HUSH_DETAIL_NPR_GABOR_TREE_HPP
-#define HUSH_DETAIL_NPR_GABOR_TREE_HPP
+#ifndef HUSH_NPR_GABOR_TREE_HPP
+#define HUSH_NPR_GABOR_TREE_HPP
 
 #include <cstdint>
 
@@ -18737,8 +18782,8 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_NPR_GABOR_TREE_HPP
-// ---- end hush/detail/npr_gabor_tree.hpp
+#endif  // HUSH_NPR_GABOR_TREE_HPP
+// ---- end hush/npr_gabor/tree.hpp
 // ---- begin hush/npr_gabor/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
@@ -18756,7 +18801,7 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernel of NPR Gabor noise's stage 2 (hush/npr_gabor.hpp,
-// hush/detail/npr_gabor_splat.hpp): the splat records added into a float
+// hush/npr_gabor/splat.hpp): the splat records added into a float
 // image. Compiled once per SIMD target (the "-inl.h" convention: toggle include
 // guard below); reached through hush/simd/dispatch.hpp.
 //
@@ -18764,7 +18809,7 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 // binned (counting sort, so each tile keeps its records in record order) to
 // every tile its pixel range touches. Per tile, its G-buffer views are copied
 // into padded tile buffers and its sums kept in a tile accumulator; per
-// (record, tile) the kernel's x factors (gabor_kernel.hpp's separable form) are
+// (record, tile) the kernel's x factors (gabor/kernel.hpp's separable form) are
 // computed once per tile column in lanes, its y factors once per tile row, and
 // per pixel only their product, the taper and the tests, lanes along x: the
 // object and triangle tests in 32-bit lanes, the depth test in double lanes as
@@ -19232,7 +19277,7 @@ class npr_gabor {
     double angle;
   };
   // The point J of a triangle (the hierarchical sequence of
-  // detail/npr_gabor_tree.hpp, J < 2^64) in the triangle's (object-space)
+  // npr_gabor/tree.hpp, J < 2^64) in the triangle's (object-space)
   // barycentric coordinates: the own point of the node reached from
   // the root by slots d = (J - 1) mod 4 with local index q = (J - 1) / 4, until
   // q = 0 (J = 0: the root's own point, words 0 and 1 of the triangle's stream).
@@ -19599,7 +19644,7 @@ class npr_gabor {
                                  "the frame's size (non-null)");
   }
 
-  // Stage 1 for triangle t: appends its points' records (npr_gabor_tree.hpp's
+  // Stage 1 for triangle t: appends its points' records (npr_gabor/tree.hpp's
   // sequence, walked depth first, culled per subtree, then sorted by J);
   // counts the nodes examined in *nodes if given.
   void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
@@ -19941,7 +19986,7 @@ class npr_gabor {
 
 #endif  // HUSH_NPR_GABOR_HPP
 // ---- end hush/npr_gabor.hpp
-// ---- begin hush/style.hpp
+// ---- begin hush/npr_gabor/style.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Styles: turning unit-variance noise images into drawings (Benard, Lagae et
@@ -19975,8 +20020,8 @@ class npr_gabor {
 // Phi(theta + w/2) - Phi(theta - w/2). Gabor noise with many kernels per pixel
 // (N' >= 16) is close to Gaussian (central limit), which is what makes the
 // tone map hold for it (tests/style_test.cpp measures both).
-#ifndef HUSH_STYLE_HPP
-#define HUSH_STYLE_HPP
+#ifndef HUSH_NPR_GABOR_STYLE_HPP
+#define HUSH_NPR_GABOR_STYLE_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -20257,8 +20302,8 @@ inline void curvature_field(const frame& f, const image_view<const vec3>& normal
 }  // namespace style
 }  // namespace hush
 
-#endif  // HUSH_STYLE_HPP
-// ---- end hush/style.hpp
+#endif  // HUSH_NPR_GABOR_STYLE_HPP
+// ---- end hush/npr_gabor/style.hpp
 
 #endif  // HUSH_HUSH_HPP
 // ---- end hush/hush.hpp

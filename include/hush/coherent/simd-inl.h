@@ -5,7 +5,7 @@
 // Compiled once per SIMD target (the "-inl.h" convention: toggle include
 // guard, no normal guard); reached through hush/simd/dispatch.hpp.
 //
-// It repeats detail::coherent_pass_scalar (hush/detail/coherent_kernel.hpp)
+// It repeats detail::coherent_pass_scalar (hush/coherent/kernel.hpp)
 // operation by operation: the reprojection in float with separate multiplies
 // and adds (never fused, so the visibility decisions equal the scalar ones on
 // every target), the hashed fields in 32-bit lanes, the taps gathered, the
@@ -33,7 +33,7 @@
 #include <hwy/highway.h>
 
 #include "hush/config.hpp"
-#include "hush/detail/coherent_kernel.hpp"
+#include "hush/coherent/kernel.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/simd/lanes-inl.h"
 

@@ -8,7 +8,7 @@
 #define HUSH_COHERENT_SIMD_KERNEL_HPP
 
 #include "hush/config.hpp"
-#include "hush/detail/coherent_kernel.hpp"
+#include "hush/coherent/kernel.hpp"
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC

@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // A small radix-2 FFT in double for power-of-two sizes: what the anisotropic
-// noise needs to build its subband tiles and decompose images (steerable.hpp),
+// noise needs to build its subband tiles and decompose images (anisotropic/steerable.hpp),
 // without a dependency. hush's own rather than Eigen's FFT (unsupported/Eigen/FFT,
 // which the tests use as the reference): it keeps hush/anisotropic.hpp in the
 // umbrella and single headers (Eigen lives outside the default include path and

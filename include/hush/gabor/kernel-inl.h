@@ -2,7 +2,7 @@
 //
 // The pieces of Gabor noise's Highway kernels (hush/gabor/simd-inl.h) that every
 // path repeats: Poisson counts and word fields of the impulses' draws, the
-// separable kernel (gabor_kernel.hpp) with its taper and products in lanes, and the
+// separable kernel (gabor/kernel.hpp) with its taper and products in lanes, and the
 // noise's constants, directions and marks as lanes. NPR Gabor noise's splats
 // (hush/npr_gabor/simd-inl.h) use the kernel too.
 // Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
@@ -119,7 +119,7 @@ HWY_INLINE VF half_value(VU w, unsigned i) {
                  hn::Set(df, float(c::kGaborHalfScale)));
 }
 
-// ---- The kernel (gabor_kernel.hpp) in lanes.
+// ---- The kernel (gabor/kernel.hpp) in lanes.
 struct axis {
   VF d, d2, e, s, c;
 };

@@ -38,7 +38,7 @@
 //    along x (kBlockX: 256 samples per row, up to 64 rows; 3D 64 x 32 x 16), each impulse of
 //    the cells that the block's samples see evaluated once per block: its factors along y
 //    (and z) once per row (slice), along x once per column, and per sample only their products
-//    (gabor_kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
+//    (gabor/kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
 //    support) over the x-vectors that reach the impulse's disk in that row (the row skip);
 //    each cell's impulses drawn once into a small cache for the blocks that see it (the draw
 //    cache). Grids with fewer than kMinRun samples per cell along x go through the points

@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernel of NPR Gabor noise's stage 2 (hush/npr_gabor.hpp,
-// hush/detail/npr_gabor_splat.hpp): the splat records added into a float
+// hush/npr_gabor/splat.hpp): the splat records added into a float
 // image. Compiled once per SIMD target (the "-inl.h" convention: toggle include
 // guard below); reached through hush/simd/dispatch.hpp.
 //
@@ -9,7 +9,7 @@
 // binned (counting sort, so each tile keeps its records in record order) to
 // every tile its pixel range touches. Per tile, its G-buffer views are copied
 // into padded tile buffers and its sums kept in a tile accumulator; per
-// (record, tile) the kernel's x factors (gabor_kernel.hpp's separable form) are
+// (record, tile) the kernel's x factors (gabor/kernel.hpp's separable form) are
 // computed once per tile column in lanes, its y factors once per tile row, and
 // per pixel only their product, the taper and the tests, lanes along x: the
 // object and triangle tests in 32-bit lanes, the depth test in double lanes as
@@ -47,7 +47,7 @@
 #include "hush/config.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
-#include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/npr_gabor/splat.hpp"
 #include "hush/gabor/kernel-inl.h"
 #include "hush/simd/lanes-inl.h"
 

@@ -10,7 +10,7 @@
 
 #include "hush/config.hpp"
 #include "hush/core/views.hpp"
-#include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/npr_gabor/splat.hpp"
 #include "hush/gabor.hpp"  // the Gabor kernels the splat shares
 #include "hush/simd/dispatch.hpp"
 

@@ -97,12 +97,12 @@
 #include <vector>
 
 #include "hush/detail/constants.hpp"
-#include "hush/detail/npr_gabor_splat.hpp"
 #include "hush/glsl/detail/gl.hpp"
 #include "hush/glsl/device.hpp"
 #include "hush/glsl/frame_upload.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/npr_gabor.hpp"
+#include "hush/npr_gabor/splat.hpp"
 
 namespace hush {
 namespace glsl {
