@@ -97,10 +97,10 @@ inline std::vector<glsl_constant> coherent_constant_table() {
 
 namespace detail {
 
-// The pass body: coherent_kernel.hpp's coherent_reproject and coherent_pixel, statement by
+// The pass body: coherent/kernel.hpp's coherent_reproject and coherent_pixel, statement by
 // statement. Reads only generated names and the uniforms below.
 constexpr const char* kCoherentBody = R"glsl(
-// ---- Coherent noise pass (hush/glsl/coherent.hpp; hush/detail/coherent_kernel.hpp).
+// ---- Coherent noise pass (hush/glsl/coherent.hpp; hush/coherent/kernel.hpp).
 // HUSH_COHERENT_INPUT and HUSH_COHERENT_REFILL (defined before this text) say where the input
 // and the refill fields come from: HUSH_COHERENT_WHITE (hashed), HUSH_COHERENT_BANDPASS (Perlin
 // of CPU-split lattice triples in hush_planes) or, for the input, HUSH_COHERENT_PLANE (the

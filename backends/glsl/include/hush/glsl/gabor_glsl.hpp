@@ -56,7 +56,7 @@
 //    tangent frame (Duff et al.) and the filter of the footprint projected
 //    onto the plane in float (the CPU: double, rounded to float), then sums
 //    the slab's impulses with the CPU's integer path and operation order
-//    (simd/gabor-inl.h eval_surface); within the float budget plus the float
+//    (gabor/lockstep-inl.h eval_surface); within the float budget plus the float
 //    frame's error of the double reference (the test). A zero normal is the
 //    solid noise, a NaN or +-Inf component gives NaN, as on the CPU. No fp64
 //    anywhere in the shader; exp and sin/cos are hush's polynomials (not the

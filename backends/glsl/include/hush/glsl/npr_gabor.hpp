@@ -11,7 +11,7 @@
 // Stage 1 (render): where every parameter source is constant or per object, the triangle list
 // (vertices: screen x, y, depth; triangles: indices, id, object) and a per-object kernel table
 // (npr_gabor::kernel_of_object, double, rounded once) go to storage buffers and compute passes
-// walk each triangle's hierarchical point sequence (hush/detail/npr_gabor_tree.hpp) level by
+// walk each triangle's hierarchical point sequence (hush/npr_gabor/tree.hpp) level by
 // level, as the CPU walks it depth first: per triangle its count and LOD weights in float
 // (npr_gabor_lod, the thinning, the plane of 1/z) and its root node (level 0, at a scanned
 // offset); per level one pass decides for each node whether its own point reaches the frame
@@ -298,14 +298,14 @@ void main() {
 }
 )glsl";
 
-// ---- Stage 1 on the GPU: the hierarchical point sequence (hush/detail/npr_gabor_tree.hpp)
+// ---- Stage 1 on the GPU: the hierarchical point sequence (hush/npr_gabor/tree.hpp)
 // walked level by level in compute passes (npr_gabor_stage1_source(pass)).
 // Inputs, uploaded once per frame: vertices (screen x, y, depth, -) and triangles (5 words:
 // three vertex indices, triangle id, object id); the per-object kernel table (entry
 // min(object, hush_table_last); the last entry is the params' constants). Every value read
 // from the table was computed on the CPU in double by npr_gabor::kernel_of_object.
 // A node (64 bytes): its seed, triangle, J (64 bits), its three screen corners and depths
-// (perspective-correct midpoints of its parent's: npr_gabor_tree.hpp's corners projected;
+// (perspective-correct midpoints of its parent's: npr_gabor/tree.hpp's corners projected;
 // corners relative to the triangle's origin, hush_npr_origin), and
 // `info`, written by the expand pass: bit 0 its own point reaches the frame, bit 1 + d its
 // child at slot d is a node of the next level.
@@ -399,7 +399,7 @@ uint hush_npr_triangle_key(uint t) {
   return hush_hash32(hush_hash32(hush_key, hush_npr_triangles[5u * t + 4u]),
                      hush_npr_triangles[5u * t + 3u]);
 }
-// The node's own point (npr_gabor_tree.hpp: word 0 of its stream, local barycentrics
+// The node's own point (npr_gabor/tree.hpp: word 0 of its stream, local barycentrics
 // (1 - sqrt u, sqrt u (1 - v), sqrt u v) of its corners) on the screen: origin + corner 0 + d
 // with d = sum l_i z_i (s_i - s_0) / sum l_i z_i (the projection of the object-space point,
 // rounded at the node's size); its pixel range p0 ... p1. The point relative to the origin is
@@ -422,7 +422,7 @@ void hush_npr_own_point(hush_npr_node nd, bool homog, vec2 origin, uint stream, 
   p0 = max(ceil(at - r - 0.5), vec2(0.0));
   p1 = min(floor(at + r - 0.5), vec2(hush_size) - 1.0);
 }
-// The child at `slot` (npr_gabor_tree.hpp's npr_tree_child): geometric child c from the order
+// The child at `slot` (npr_gabor/tree.hpp's npr_tree_child): geometric child c from the order
 // word's permutation, seed hash32(seed, c), index j; corner i of child c < 3 is corner c
 // (i == c) or the midpoint of corners c and i, of the middle child the midpoint opposite
 // corner i; perspective-correct: screen (z_a s_a + z_b s_b) / (z_a + z_b), depth (z_a + z_b) / 2;
