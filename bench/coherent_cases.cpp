@@ -32,7 +32,7 @@
 #include "coherent_memory.hpp"
 #endif
 #if HUSH_BENCH_HAVE_GLSL
-#include "hush/glsl/coherent.hpp"
+#include "hush/glsl/coherent/renderer.hpp"
 #include "hush/glsl/device.hpp"
 #endif
 

@@ -35,7 +35,7 @@
 #include "triangles.hpp"
 #endif
 #if HUSH_BENCH_HAVE_GLSL
-#include "hush/glsl/npr_gabor.hpp"
+#include "hush/glsl/npr_gabor/renderer.hpp"
 #endif
 
 namespace hush_bench {

@@ -33,11 +33,11 @@ fi
 # The translation units to check: the examples, the program, the scene, coherence and
 # anisotropic-figures libraries, and bench/ -- each where this build compiles it (bench needs Google Benchmark,
 # raster_gl.cpp needs OSMesa). Third-party implementation files are left out.
-# Not here: the SIMD kernels (include/hush/simd/*-inl.h), which the dispatch units
+# Not here: the SIMD kernels (include/hush/<noise>/*-inl.h), which the dispatch units
 # src/simd/*.cpp compile; checking them costs more CPU than the CI's tidy tests can spare.
 # After changing a kernel, check its unit by hand, e.g.:
 #   clang-tidy -p build/release --quiet --extra-arg=-std=c++17 \
-#     --header-filter='.*/include/hush/simd/.*-inl\.h' src/simd/perlin.cpp
+#     --header-filter='.*/include/hush/.*-inl\.h' src/simd/perlin.cpp
 files=()
 if [ -n "${HUSH_TIDY_FILES:-}" ]; then
   read -r -a files <<<"$HUSH_TIDY_FILES"

@@ -1,7 +1,7 @@
 // Throwaway experiment (not built by CMake): where the GLSL NPR Gabor image's error against the
 // double reference comes from on the bench's frame (bench/npr_gabor_cases.cpp: dense:N, frame
 // 0, 1280 x 720, N' = 16, omega0 = 0.5, object and depth tests), and how tight the derived
-// bound of tests/glsl/glsl_gabor_test.cpp is. Three images: GPU stage 1 + GPU splatting
+// bound of tests/gabor/glsl_gabor_test.cpp is. Three images: GPU stage 1 + GPU splatting
 // ("GPU points", render on exec::glsl), CPU stage 1 + GPU splatting ("CPU points"), the double
 // reference. Per pixel the GPU-points error splits into stage 1's float records (GPU points
 // - CPU points) and the splatting's float evaluation on llvmpipe (CPU points - double); the

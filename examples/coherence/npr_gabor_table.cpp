@@ -25,7 +25,7 @@
 #include "coherence/silhouette_band.hpp"
 #include "coherence/table_cli.hpp"
 #include "hush/coherent.hpp"
-#include "hush/gabor_kernel.hpp"
+#include "hush/gabor/kernel.hpp"
 #include "hush/npr_gabor.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"

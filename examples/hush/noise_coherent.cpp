@@ -17,7 +17,7 @@
 #include "scene_noises.hpp"
 
 #if HUSH_CLI_HAVE_GLSL
-#include "hush/glsl/coherent.hpp"
+#include "hush/glsl/coherent/renderer.hpp"
 #endif
 
 namespace hush_cli {

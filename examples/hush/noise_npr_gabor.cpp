@@ -17,7 +17,7 @@
 #include "scene_noises.hpp"
 
 #if HUSH_CLI_HAVE_GLSL
-#include "hush/glsl/npr_gabor.hpp"
+#include "hush/glsl/npr_gabor/renderer.hpp"
 #endif
 
 namespace hush_cli {

@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "hush/core/param_source.hpp"
-#include "hush/style.hpp"
+#include "hush/npr_gabor/style.hpp"
 
 namespace hush_cli {
 

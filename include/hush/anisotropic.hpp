@@ -8,14 +8,14 @@
 //   n(u) = sum_k f_k( sum_{i,s} gamma_{k,i,s} lambda_{i,s} n_{i,s}(u) )      (sec. 5)
 //
 //  - n_{i,s}: subband tile i (orientation theta_i = pi i / K, filter D_{i,s}
-//    of steerable.hpp) looked up bilinearly at scale s, whose centre frequency
+//    of anisotropic/steerable.hpp) looked up bilinearly at scale s, whose centre frequency
 //    is f_s = frequency 2^(s - base_scale) cycles per texture unit. One tile
 //    per orientation serves every scale (the paper's single 256^2 RGBA
 //    texture for K = 4): scale s reads it at u f_s / kAnisoTileBand texels,
 //    offset per scale so the scales do not coincide at the origin.
 //  - lambda_{i,s}: the sample's pixel filter, H(J^T w) = exp(-2 pi^2 sigma^2
 //    w^T S w) with S = J J^T the footprint (core/footprint.hpp), sigma =
-//    kPixelFilterSigma, fitted by params::filtering (subband_fit.hpp rules:
+//    kPixelFilterSigma, fitted by params::filtering (anisotropic/subband_fit.hpp rules:
 //    centre = the paper's heuristic, three_point = its sec. 5 variant,
 //    least_squares = its eq. 5 fit, CPU only). A point footprint gives 1.
 //  - gamma_{k,i,s}: octave k's target, the isotropic band B of scale
@@ -42,7 +42,7 @@
 //    set is normalised so that the sum of its orientations, bilinearly
 //    interpolated, has spatial variance exactly 1 over the continuous plane,
 //    and octaves are independent up to the tiles' finite size (measured in
-//    tests/anisotropic_test.cpp). Filtering lowers it (that is the point).
+//    tests/anisotropic/anisotropic_test.cpp). Filtering lowers it (that is the point).
 //  - range: |n| <= bound() without maps (lambda <= 1); bound_with_maps() with
 //    maps and the heuristic rules; least-squares weights have no a-priori bound.
 //  - float evaluation is within float_budget() of the double reference.
@@ -90,8 +90,8 @@
 #include "hush/detail/constants.hpp"
 #include "hush/detail/fft.hpp"
 #include "hush/fractal.hpp"  // fractal_kind
-#include "hush/steerable.hpp"
-#include "hush/subband_fit.hpp"
+#include "hush/anisotropic/steerable.hpp"
+#include "hush/anisotropic/subband_fit.hpp"
 
 namespace hush {
 

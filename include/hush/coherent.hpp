@@ -56,9 +56,9 @@
 //  - float vs the double reference (basic_coherent_stream<double>): the reprojection is
 //    the same float computation; values differ by rounding only, a recursion contracting
 //    by alpha: within (12 / (1 - alpha) + 1) 2^-24 M for outputs of magnitude <= M
-//    (tests/coherent_test.cpp; measured 2.4e-6 at alpha 0.98 against a budget of 1.4e-4).
+//    (tests/coherent/coherent_test.cpp; measured 2.4e-6 at alpha 0.98 against a budget of 1.4e-4).
 //  - backends: exec::scalar is the reference; exec::simd equals it bit for bit under
-//    HUSH_STRICT_FP (hush/simd/coherent-inl.h); exec::glsl{device} (include
+//    HUSH_STRICT_FP (hush/coherent/simd-inl.h); exec::glsl{device} (include
 //    hush/glsl/coherent.hpp) keeps the history on the GPU; tolerance there.
 #ifndef HUSH_COHERENT_HPP
 #define HUSH_COHERENT_HPP
@@ -83,7 +83,7 @@
 #include "hush/core/frame.hpp"
 #include "hush/core/hash.hpp"
 #include "hush/core/views.hpp"
-#include "hush/detail/coherent_kernel.hpp"
+#include "hush/coherent/kernel.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/exec.hpp"
 #include "hush/perlin.hpp"

@@ -25,7 +25,7 @@
 //    gabor.hpp grid_values, docs/gabor.md "Float accuracy").
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
-//    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
+//    hush/perlin/simd-inl.h, docs/design.md "Backends"). Without SIMD
 //    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
 //  - glsl: within the GLSL tolerance stated by the backend
 //    (backends/glsl/include/hush/glsl/device.hpp).

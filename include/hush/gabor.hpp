@@ -2,7 +2,7 @@
 //
 // Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
 // sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
-// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
+// kernels (hush/gabor/kernel.hpp) at Poisson-distributed impulses with random
 // weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
 // analytic anti-aliasing.
 //
@@ -35,7 +35,7 @@
 //    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
 //    frequency_spread / 2).
 //
-// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
+// Statistics (derived in docs/gabor.md; measured in tests/gabor/gabor_test.cpp):
 //  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
 //    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
 //    make it independent of the count distribution beyond its mean, which is
@@ -46,12 +46,12 @@
 //    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
 //  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
 //    magnitude); the observed maximum is far smaller (tests).
-//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
+//  - C1: the kernels are tapered to 0 (gabor/kernel.hpp); gradient() is the
 //    analytic derivative.
 //  - float evaluation is within scale 2^-21 (1 + 2 pi Phi) (N' + 1) of the
 //    double reference (each kernel within 2^-21 (1 + 2 pi Phi) of its double
-//    value, gabor_kernel.hpp, and ~N' kernels reach a point); measured in
-//    tests/gabor_test.cpp ("float evaluation stays within the stated budget").
+//    value, gabor/kernel.hpp, and ~N' kernels reach a point); measured in
+//    tests/gabor/gabor_test.cpp ("float evaluation stays within the stated budget").
 //    The per-kernel figure is measured (gabor_kernel_test); the worst-case
 //    rounding analysis exceeds it for Phi < 0.9 (up to 4.5x at Phi = 0 in 3D;
 //    docs/gabor.md "Float accuracy").
@@ -62,7 +62,7 @@
 // Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
 // convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
 // (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
-// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
+// kernel becomes the filtered Gabor kernel of gabor_filter (gabor/kernel.hpp),
 // kept within the kernel's support. A point footprint gives exactly the
 // unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
 // HARD_CASES row 12) gives a finite result, continuous in the footprint, which
@@ -83,6 +83,10 @@
 // tangent plane, continuous everywhere). Footprints are projected onto the
 // tangent plane. A zero normal evaluates the solid noise; a non-finite normal
 // gives NaN.
+//
+// Its parts: hush/gabor/kernel.hpp (the kernel and its filtered form), hush/gabor/marks.hpp
+// (impulse kinds and marks), hush/gabor/spectrum.hpp (gabor_spectrum), and the SIMD
+// kernels (hush/gabor/simd_kernel.hpp, hush/gabor/simd-inl.h).
 #ifndef HUSH_GABOR_HPP
 #define HUSH_GABOR_HPP
 
@@ -108,153 +112,10 @@
 #include "hush/detail/constants.hpp"
 #include "hush/detail/elementary.hpp"
 #include "hush/detail/quadrature.hpp"
-#include "hush/gabor_kernel.hpp"
+#include "hush/gabor/kernel.hpp"
+#include "hush/gabor/marks.hpp"
 
 namespace hush {
-
-enum class gabor_kind { isotropic, anisotropic, hybrid };
-
-namespace detail {
-
-// Fields of a stream word as values in (0, 1) (constants.hpp): byte i (0 =
-// highest) as (2m + 1) 2^-9, half i (0 = high) as (2m + 1) 2^-17. Exact in
-// float and in GLSL (an integer below 2^17 times a power of two).
-template <class T>
-HUSH_INLINE T gabor_byte(std::uint32_t w, unsigned i) {
-  namespace c = constants;
-  const std::uint32_t m = (w >> (c::kGaborByteBits * (3u - i))) & c::kGaborByteMask;
-  return T((m << 1) | 1u) * T(c::kGaborByteScale);
-}
-// An impulse's offset along one axis from a point at fraction f of its cell,
-// the impulse at position u (gabor_byte) of the cell o cells away: f - (o + u),
-// one rounding (o + u is exact: a multiple of 2^-9 below 4 in magnitude for the
-// |o| <= 2 of every path), so the SIMD paths may keep o + u per impulse and the
-// point's f per lane (one subtraction and one list per axis in the SIMD test).
-template <class T>
-HUSH_INLINE T gabor_offset(T f, int o, T u) {
-  return f - (T(o) + u);
-}
-template <class T>
-HUSH_INLINE T gabor_half(std::uint32_t w, unsigned i) {
-  namespace c = constants;
-  const std::uint32_t m = (w >> (c::kGaborHalfBits * (1u - i))) & c::kGaborHalfMask;
-  return T((m << 1) | 1u) * T(c::kGaborHalfScale);
-}
-
-// An orthonormal basis (t, b) of the plane orthogonal to unit n, by Duff et
-// al., "Building an orthonormal basis, revisited" (JCGT 2017), in double.
-inline void orthonormal_basis(const vec<double, 3>& n, vec<double, 3>& t, vec<double, 3>& b) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double c = n.x * n.y * a;
-  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
-  b = {c, sign + n.y * n.y * a, -n.y};
-}
-
-}  // namespace detail
-
-// gabor_marks<D>: what an impulse of each kind carries besides its position,
-// drawn from uniform values in (0, 1): its weight and its frequency vector
-// (cycles per cell). Shared by gabor<D> and by noises that place impulses
-// their own way (NPR Gabor noise). The values are consumed in this order:
-//   [0] weight w = 2 u - 1 (exact)
-//   isotropic, hybrid, 2D: [1] orientation theta = theta0 + spread (u - 1/2) turns
-//   isotropic, hybrid, 3D: [1] cos(polar) = 1 - (1 - cos(cap)) u, [2] azimuth u turns,
-//                          in the frame whose third axis is omega0
-//   hybrid:                [next] |F| = Phi0 + dPhi (u - 1/2)
-// anisotropic impulses take only the weight. values() is how many they take;
-// gabor<D> draws them from its cells' words (constants.hpp, "Impulse marks").
-template <int D>
-class gabor_marks {
- public:
-  gabor_marks() = default;
-  // phi0, dphi: frequency and its range's width in cycles per cell (F r);
-  // orientation, elevation, spread: radians (validated by gabor<D>).
-  gabor_marks(gabor_kind kind, double phi0, double dphi, double orientation, double elevation,
-              double spread)
-      : kind_(kind), phi0_(phi0), dphi_(dphi) {
-    namespace c = detail::constants;
-    const double ca = std::cos(orientation), sa = std::sin(orientation);
-    const double ce = std::cos(elevation), se = std::sin(elevation);
-    if constexpr (D == 2) {
-      axis_ = {ca, sa};
-      theta0_ = kind == gabor_kind::isotropic ? 0.0 : orientation / c::kTwoPi;
-      spread_ = kind == gabor_kind::isotropic ? 1.0 : spread / c::kTwoPi;
-    } else {
-      axis_ = {ce * ca, ce * sa, se};
-      cos_cap_ = kind == gabor_kind::isotropic ? -1.0 : std::cos(0.5 * spread);
-      if (kind == gabor_kind::isotropic) {
-        t_ = {1, 0, 0};
-        b_ = {0, 1, 0};
-        axis_frame_ = {0, 0, 1};
-      } else {
-        detail::orthonormal_basis(axis_, t_, b_);
-        axis_frame_ = axis_;
-      }
-    }
-    for (int i = 0; i < D; ++i) fixed_[i] = phi0 * axis_[i];
-  }
-
-  gabor_kind kind() const { return kind_; }
-  // How many uniform values one impulse's marks take.
-  int values() const {
-    if (kind_ == gabor_kind::anisotropic) return 1;
-    return 1 + (D == 2 ? 1 : 2) + (kind_ == gabor_kind::hybrid ? 1 : 0);
-  }
-
-  // The weight and frequency vector (cycles per cell) from uniform values u
-  // (values() of them), with float or double arithmetic.
-  template <class T>
-  void draw(const T* u, T& weight, vec<T, D>& frequency) const {
-    namespace c = detail::constants;
-    weight = T(2) * u[0] - T(1);
-    if (kind_ == gabor_kind::anisotropic) {
-      for (int i = 0; i < D; ++i) frequency[i] = T(fixed_[i]);
-      return;
-    }
-    const T phi = kind_ == gabor_kind::hybrid ? T(phi0_) + T(dphi_) * (u[D] - T(0.5)) : T(phi0_);
-    if constexpr (D == 2) {
-      const detail::sin_cos<T> sc = detail::sincos_turns(T(theta0_) + T(spread_) * (u[1] - T(0.5)));
-      frequency = {phi * sc.cos, phi * sc.sin};
-    } else {
-      vec<T, 3> dir;
-      direction(u[1], u[2], dir);
-      for (int i = 0; i < 3; ++i) frequency[i] = phi * dir[i];
-    }
-  }
-
-  // 3D: the unit direction of values (u1, u2): uniform in the cap around
-  // omega0 (the whole sphere for isotropic noise).
-  template <class T>
-  void direction(T u1, T u2, vec<T, 3>& dir) const {
-    const T ct = T(1) - T(1.0 - cos_cap_) * u1;
-    const T st = std::sqrt((T(1) - ct) * (T(1) + ct));
-    const detail::sin_cos<T> sc = detail::sincos_turns(u2);
-    const T lx = st * sc.cos, ly = st * sc.sin;
-    for (int i = 0; i < 3; ++i) dir[i] = (T(t_[i]) * lx + T(b_[i]) * ly) + T(axis_frame_[i]) * ct;
-  }
-
-  // Orientation omega0 (unit), its frequency vector Phi0 omega0, and the
-  // constants the SIMD and GLSL code read.
-  const vec<double, D>& axis() const { return axis_; }
-  const vec<double, D>& fixed_frequency() const { return fixed_; }
-  double phi0() const { return phi0_; }
-  double dphi() const { return dphi_; }
-  double theta0() const { return theta0_; }
-  double spread_turns() const { return spread_; }
-  double cos_cap() const { return cos_cap_; }
-  const vec<double, 3>& frame_t() const { return t_; }
-  const vec<double, 3>& frame_b() const { return b_; }
-  const vec<double, 3>& frame_axis() const { return axis_frame_; }
-
- private:
-  gabor_kind kind_ = gabor_kind::isotropic;
-  double phi0_ = 0, dphi_ = 0;
-  vec<double, D> axis_{}, fixed_{};
-  double theta0_ = 0, spread_ = 1;  // 2D, turns
-  double cos_cap_ = -1;             // 3D
-  vec<double, 3> t_{}, b_{}, axis_frame_{};
-};
 
 template <int D>
 class gabor : public sample_noise<gabor<D>, D> {
@@ -476,7 +337,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return sample_eval<T, true>(s);
   }
 
-  // ---- The pieces every backend repeats (hush/simd/gabor-inl.h, GLSL).
+  // ---- The pieces every backend repeats (hush/gabor/simd-inl.h, GLSL).
 
   // The impulses of solid cell `cell` (32-bit lattice indices), in stream
   // order: f(words), the impulse's words_per_impulse() stream words, whose
@@ -576,7 +437,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
 
   // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
-  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
+  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor/kernel.hpp).
   template <class H>
   double mean_kernel_spectrum(const vec<double, D>& xi, H h, double window) const {
     namespace c = detail::constants;
@@ -599,7 +460,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     // The blob centres +-Phi move by 2 pi |Phi| cycles per cell per turn, and H
     // is ~0.4 cycles per cell wide (t = 0.05): these node counts resolve it to
     // ~1e-10, less for narrower cores (the isotropic trapezoid rule with these
-    // counts was at 4e-5 of the peak for t = 0.5; tests/gabor_kernel_test.cpp).
+    // counts was at 4e-5 of the peak for t = 0.5; tests/gabor/gabor_kernel_test.cpp).
     const double reach = phi0 + 0.5 * dphi;
     // No blob within the window of xi (|xi| beyond the band by W or more,
     // infinite or NaN): 0, what the windows leave out everywhere.
@@ -951,7 +812,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return true;
   }
 
-  // Unfiltered solid noise: at a point the point form (gabor_kernel.hpp,
+  // Unfiltered solid noise: at a point the point form (gabor/kernel.hpp,
   // gabor_point_term), on a grid's sample (Grid) the separable pair, which the
   // grid kernels share between rows and columns. Every backend chooses the
   // same way: grids always the separable form, points the point form.
@@ -1041,7 +902,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     }
   }
 
-  // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
+  // Solid noise filtered over footprint fp (gabor_filter, gabor/kernel.hpp).
   template <class T, bool G>
   value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
     const detail::gabor_filter_coefs<T, D> flt(
@@ -1188,100 +1049,11 @@ class gabor : public sample_noise<gabor<D>, D> {
   double scale_ = 1, surface_scale_ = 1;
 };
 
-// gabor_spectrum<D>: the power spectrum of a gabor<D> noise at many
-// frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
-// kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
-// the largest |f r| + |Phi| needed but at most kGaborSpectrumWindowCycles
-// (4100 values, whatever F0 and a), and interpolated with Catmull-Rom cubics:
-// H within 1.8e-6 H(0) in 2D and 1.4e-6 in 3D (t = 0.5, the worst of t in
-// [1e-9, 0.5]; checked every 1/3200 cycle), so each ((H(k-) + H(k+)) / 2)^2
-// within 3.6e-6 H(0)^2, and the spectrum within 3e-5 of its peak (measured
-// against power_spectrum, every kind, 2D and 3D, F0 1e-6 ... 1e6, t 0.05 and
-// 0.5, spreads and caps, 45 f each: <= 4.5e-6; docs/gabor.md "Exact
-// statistics"). Beyond the table H is its leading asymptotic term, within
-// 3.0e-8 H(0) (2D) and 3.1e-9 H(0) (3D) at k = 64, falling as k^-4.5: with
-// the near blob in its core and the far one beyond the table (|Phi| > 32
-// cycles per cell) that multiplies H(k-) <= H(0), so <= 1.5e-8 of H(0)^2
-// there (not a tail: the earlier bound, 3e-14, assumed both blobs beyond
-// the table). Isotropic noise's spectrum is radial: it
-// is tabulated the same way against |f| (64 max_frequency r + 4 values: the
-// caller's range). Frequencies above max_frequency (cycles per noise unit, any
-// direction) give 0.
-template <int D>
-class gabor_spectrum {
- public:
-  gabor_spectrum(const gabor<D>& noise, double max_frequency) : noise_(noise) {
-    const double r = noise.kernel().radius();
-    max_f_ = max_frequency;
-    const double reach =
-        std::fmin(max_frequency * r + noise.marks().phi0() + noise.marks().dphi(),
-                  detail::constants::kGaborSpectrumWindowCycles);
-    const auto n = static_cast<std::size_t>(std::ceil(reach * kPerCycle)) + 4;
-    const double a = noise.kernel().envelope_exponent();
-    a_ = a;
-    h_.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      h_[i] = detail::gabor_envelope_transform<D>(a, static_cast<double>(i) / kPerCycle);
-    if (noise.parameters().kind == gabor_kind::isotropic) {
-      // Radial: S(|f|) every 1/64 cycle per cell, from the tabulated H, where
-      // it is not 0: from |Phi| - window on (spectrum_with leaves out |f r|
-      // further than the window from the ring once |Phi| > window) to
-      // max_frequency or |Phi| + window, at most 64 * 2 window + 4 values.
-      // Starting above 0, the first value's left neighbour is taken as its
-      // right one (evenness at 0): at the window's edge the values are ~1e-12
-      // of the peak, and so is that error.
-      const double window = detail::constants::kGaborSpectrumWindowCycles, phi = noise.marks().phi0();
-      radial_lo_ = std::floor(std::fmax(0.0, phi - window) * kPerCycle) / kPerCycle;
-      const double hi = std::fmin(max_frequency * r, phi + window);
-      radial_.resize(static_cast<std::size_t>(std::ceil(std::fmax(hi - radial_lo_, 0.0) * kPerCycle)) + 4);
-      for (std::size_t i = 0; i < radial_.size(); ++i) {
-        vec<double, D> f{};
-        f[0] = (radial_lo_ + static_cast<double>(i) / kPerCycle) / r;
-        radial_[i] = noise_.spectrum_with(f, [this](double k) { return h(k); });
-      }
-    }
-  }
-
-  double operator()(const vec<double, D>& f) const {
-    double len = 0;
-    for (int i = 0; i < D; ++i) len += f[i] * f[i];
-    len = std::sqrt(len);
-    if (!(len <= max_f_)) return 0.0;
-    if (!radial_.empty()) {
-      const double x = len * noise_.kernel().radius() - radial_lo_;
-      return x < 0.0 ? 0.0 : cubic(radial_, x);
-    }
-    return noise_.spectrum_with(f, [this](double k) { return h(k); });
-  }
-
- private:
-  static constexpr double kPerCycle = 64.0;
-  // H from the table, its asymptotic term beyond it.
-  double h(double k) const {
-    if (k * kPerCycle + 2.0 < static_cast<double>(h_.size())) return cubic(h_, k);
-    return detail::gabor_envelope_transform_tail<D>(a_, k);
-  }
-  // Catmull-Rom interpolation of an even function tabulated at k = i / 64
-  // (the evenness supplies the point left of 0).
-  static double cubic(const std::vector<double>& h, double k) {
-    const double x = k * kPerCycle;
-    const auto i = static_cast<std::size_t>(x);
-    if (i + 2 >= h.size()) return h.back();
-    const double t = x - static_cast<double>(i);
-    const double p0 = i == 0 ? h[1] : h[i - 1], p1 = h[i], p2 = h[i + 1], p3 = h[i + 2];
-    return p1 + 0.5 * t *
-                    (p2 - p0 +
-                     t * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + t * (3.0 * (p1 - p2) + p3 - p0)));
-  }
-
-  gabor<D> noise_;
-  double max_f_ = 0, a_ = 0, radial_lo_ = 0;
-  std::vector<double> h_, radial_;
-};
-
 }  // namespace hush
 
-// The SIMD backend's entry points and exec::simd binding, after the class they use.
+// gabor_spectrum, and the SIMD backend's entry points and exec::simd binding, after the
+// class they use.
+#include "hush/gabor/spectrum.hpp"     // IWYU pragma: export
 #include "hush/gabor/simd_kernel.hpp"  // IWYU pragma: export
 
 #endif  // HUSH_GABOR_HPP

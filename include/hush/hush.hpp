@@ -6,6 +6,8 @@
 #define HUSH_HUSH_HPP
 
 #include "hush/anisotropic.hpp"
+#include "hush/anisotropic/steerable.hpp"
+#include "hush/anisotropic/subband_fit.hpp"
 #include "hush/config.hpp"
 #include "hush/core/bspline.hpp"
 #include "hush/core/error.hpp"
@@ -25,16 +27,14 @@
 #include "hush/exec.hpp"
 #include "hush/fractal.hpp"
 #include "hush/gabor.hpp"
-#include "hush/gabor_kernel.hpp"
+#include "hush/gabor/kernel.hpp"
 #include "hush/perlin.hpp"
-#include "hush/steerable.hpp"
-#include "hush/subband_fit.hpp"
 #include "hush/wavelet.hpp"
-#include "hush/wavelet_tile.hpp"
+#include "hush/wavelet/tile.hpp"
 
 // Scene-driven noises (hush::frame: per-frame G-buffer views).
 #include "hush/coherent.hpp"
 #include "hush/npr_gabor.hpp"
-#include "hush/style.hpp"
+#include "hush/npr_gabor/style.hpp"
 
 #endif  // HUSH_HUSH_HPP

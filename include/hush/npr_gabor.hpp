@@ -2,7 +2,7 @@
 //
 // NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot, "A
 // dynamic noise primitive for coherent stylization", EGSR 2010): Gabor
-// kernels (hush/gabor_kernel.hpp) defined and evaluated in 2D screen space
+// kernels (hush/gabor/kernel.hpp) defined and evaluated in 2D screen space
 // (a 2D look, like a shower door) at points attached to the surface (they move
 // with it, like a texture). A scene-driven noise: per frame it reads the
 // visibility G-buffer (hush::frame) and the triangles drawn (hush::triangle_list)
@@ -16,7 +16,7 @@
 // The noise (paper eq. 1, sec. 3.2-3.4), n(x) = scale sum_i w_i v_i g_{F_i}(x - x_i):
 //  - points (sec. 3.3): triangle t (key hash32(hash32(seed_key(seed),
 //    object), triangle)) has a hierarchical point sequence
-//    (detail/npr_gabor_tree.hpp): subdivided at its edge midpoints (object
+//    (npr_gabor/tree.hpp): subdivided at its edge midpoints (object
 //    space) into four children, recursively, each node holding its own point
 //    (uniform in the node: local barycentrics (1 - sqrt u, sqrt u (1 - v),
 //    sqrt u v)) and a random order of its children; point J is the root's own
@@ -38,7 +38,7 @@
 //    theorem; paper eqs. 5-8 with M replaced by the weights), which is N for
 //    N unit-weight Poisson points; M (1 + alpha^2) = N above, and sqrt(N)^2 = N
 //    below. Weighting by N gives N^2: the variance of small triangles falls
-//    by a factor N (tests/npr_gabor_test.cpp shows both). Every weight is
+//    by a factor N (tests/npr_gabor/npr_gabor_test.cpp shows both). Every weight is
 //    continuous in N: alpha -> 1 as N -> 2M from below, where the next level
 //    starts with the same 2M points at weight 1; sqrt(N) -> 1 = the weight
 //    of the single point at N = 1 (alpha(1) = 0). No pops at the switches.
@@ -54,10 +54,10 @@
 //    in log4 summing to 1 over the levels, so the screen density of squared
 //    weights is lambda across foreshortened triangles too (docs/npr-gabor.md
 //    "Local density"); continuous in n_P, so no pops.
-//  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
+//  - two stages (hush/npr_gabor/splat.hpp): make_splats lists one
 //    record per point (position, F, radius, weight, plane, ids, pixel range);
 //    splat adds the records' kernels, on exec::scalar or exec::simd (screen
-//    tiles, hush/simd/npr_gabor-inl.h, bit for bit scalar under HUSH_STRICT_FP).
+//    tiles, hush/npr_gabor/simd-inl.h, bit for bit scalar under HUSH_STRICT_FP).
 //  - amplitudes v_i uniform in (-1, 1) (16-bit symmetric, E[v^2] =
 //    (1 - 2^-32) / 3); kernel g of gabor_kernel<2> (bandwidth a, truncation
 //    t, C1 taper) with F_i = F0 (cos theta, sin theta), theta = orientation
@@ -123,7 +123,7 @@
 //    docs/npr-gabor.md.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
-//    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
+//    gabor/kernel.hpp); tests/npr_gabor/npr_gabor_test.cpp measures it.
 //  - GLSL: render on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): stage 1 in
 //    compute passes (counts, prefix sum, one invocation per point, the CPU's record order)
 //    where every source is constant or per object, else on the CPU; the records drawn as
@@ -152,11 +152,11 @@
 #include "hush/core/vec.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
-#include "hush/detail/npr_gabor_splat.hpp"
-#include "hush/detail/npr_gabor_tree.hpp"
+#include "hush/npr_gabor/splat.hpp"
+#include "hush/npr_gabor/tree.hpp"
 #include "hush/exec.hpp"
 #include "hush/gabor.hpp"
-#include "hush/gabor_kernel.hpp"
+#include "hush/gabor/kernel.hpp"
 #include "hush/npr_gabor/simd_kernel.hpp"
 
 namespace hush {
@@ -306,7 +306,7 @@ class npr_gabor {
     double angle;
   };
   // The point J of a triangle (the hierarchical sequence of
-  // detail/npr_gabor_tree.hpp, J < 2^64) in the triangle's (object-space)
+  // npr_gabor/tree.hpp, J < 2^64) in the triangle's (object-space)
   // barycentric coordinates: the own point of the node reached from
   // the root by slots d = (J - 1) mod 4 with local index q = (J - 1) / 4, until
   // q = 0 (J = 0: the root's own point, words 0 and 1 of the triangle's stream).
@@ -336,7 +336,7 @@ class npr_gabor {
   // the noise of this frame: stage 1 (make_splats) then stage 2 (the kernels
   // added per pixel in record order). `ex` picks stage 2's backend:
   // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
-  // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
+  // hush/npr_gabor/simd-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
   // the scalar loop where the build has no SIMD), or exec::glsl{device}
   // (float only; include hush/glsl/npr_gabor.hpp: both stages on the GPU where
   // every source is constant or per object, stage 1 here otherwise; within the
@@ -479,7 +479,7 @@ class npr_gabor {
   // constant: the energy is r^2 E(F r) (substitute x = r u; E for a unit
   // radius and this truncation), E interpolated linearly between the nodes
   // F r = k kNprGaborEnergyStep, computed as kernel().energy at the nodes.
-  // Exact at the nodes; relative error below 1e-3 (tests/npr_gabor_sources_test.cpp
+  // Exact at the nodes; relative error below 1e-3 (tests/npr_gabor/npr_gabor_sources_test.cpp
   // measures it). `cache`: node energies (NaN = not computed yet), filled on
   // demand (one quadrature, ~0.5 ms, per node used).
   double interpolated_energy(double frequency, std::vector<double>& cache) const {
@@ -673,7 +673,7 @@ class npr_gabor {
                                  "the frame's size (non-null)");
   }
 
-  // Stage 1 for triangle t: appends its points' records (npr_gabor_tree.hpp's
+  // Stage 1 for triangle t: appends its points' records (npr_gabor/tree.hpp's
   // sequence, walked depth first, culled per subtree, then sorted by J);
   // counts the nodes examined in *nodes if given.
   void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,

@@ -19,7 +19,7 @@
 //  - zero at every lattice point.
 //  - float evaluation is within 2^-16 (1.5e-5, a forward error bound) of the
 //    double reference at the same position; measured max 2.4e-6, RMS 1.9e-7
-//    (tests/perlin_test.cpp).
+//    (tests/perlin/perlin_test.cpp).
 //  - domain: every finite coordinate (core/lattice.hpp); NaN or +-Inf in any
 //    coordinate gives NaN (value and gradient). Evaluation never throws.
 //  - periodic mode: with period[a] = p > 0, noise(x + p e_a) == noise(x)
@@ -194,7 +194,7 @@ class perlin : public point_noise<perlin<D>, D> {
   // columns on average take the affine-in-x form (docs/design.md, "Grid
   // gradients, affine in x"): within 2^-17 (values) and 2^-15 (gradients) of
   // point evaluation, and within the float budget of the double reference
-  // (tests/perlin_test.cpp); hush/simd computes the same, bit for bit under
+  // (tests/perlin/perlin_test.cpp); hush/simd computes the same, bit for bit under
   // HUSH_STRICT_FP.
   void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                    vec<float, D>* grad) const {
@@ -342,7 +342,7 @@ class perlin : public point_noise<perlin<D>, D> {
   }
 
   // The slice_gradient_coef data of one cell (corner gradients c) in the
-  // slice of z axis az. Mirrored op for op by simd/perlin-inl.h.
+  // slice of z axis az. Mirrored op for op by perlin/simd-inl.h.
   template <class T>
   static void slice_gradient_coefs(const corners<T>& c, const axis<T>& az, T* out) {
     namespace d = detail;
@@ -367,7 +367,7 @@ class perlin : public point_noise<perlin<D>, D> {
   // the row's y axis ay (fade v, slope v'). Per side a, with Z_b(q) the slice
   // data: L(q) = lerp(Z_0, Z_1, v) is q's bilinear blend, Z_1 - Z_0 its v
   // slope, and the dot products' x-free parts c_b = Z_b(gy) (f_y - b) + Z_b(e).
-  // Mirrored op for op by simd/perlin-inl.h.
+  // Mirrored op for op by perlin/simd-inl.h.
   template <class T>
   static void row_gradient_coefs(const T* sc, const axis<T>& ay, T* out) {
     namespace d = detail;

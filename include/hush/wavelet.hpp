@@ -2,7 +2,7 @@
 //
 // Wavelet noise (Robert L. Cook and Tony DeRose, "Wavelet Noise", SIGGRAPH 2005),
 // 2D and 3D: band-limited noise from a tile of quadratic B-spline coefficients
-// with the coarser half of its spectrum projected out (wavelet_tile.hpp), summed
+// with the coarser half of its spectrum projected out (wavelet/tile.hpp), summed
 // over octave bands, anti-aliased by the sample's footprint, and, in 3D,
 // projectable onto a surface so that the band limit survives texturing a
 // surface with a 3D noise.
@@ -127,7 +127,7 @@
 #include "hush/core/vec.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/perlin.hpp"  // detail::fade, the quintic fade shared by every noise
-#include "hush/wavelet_tile.hpp"
+#include "hush/wavelet/tile.hpp"
 
 namespace hush {
 
@@ -465,7 +465,7 @@ value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], co
 
 // The knots of the exact projection's line integral (below), sorted, into
 // knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
-// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
+// by the scalar and SIMD kernels (wavelet/simd-inl.h computes them per lane).
 template <class T>
 int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
                         T (&knots)[constants::kWaveletMaxKnots]) {
@@ -558,7 +558,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
   struct params {
     std::uint32_t seed = 0;
-    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet_tile.hpp).
+    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet/tile.hpp).
     int tile_size = D == 2 ? 128 : 64;
     // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
     int first_band = 0;

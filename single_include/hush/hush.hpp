@@ -24,14 +24,14 @@
 //   n(u) = sum_k f_k( sum_{i,s} gamma_{k,i,s} lambda_{i,s} n_{i,s}(u) )      (sec. 5)
 //
 //  - n_{i,s}: subband tile i (orientation theta_i = pi i / K, filter D_{i,s}
-//    of steerable.hpp) looked up bilinearly at scale s, whose centre frequency
+//    of anisotropic/steerable.hpp) looked up bilinearly at scale s, whose centre frequency
 //    is f_s = frequency 2^(s - base_scale) cycles per texture unit. One tile
 //    per orientation serves every scale (the paper's single 256^2 RGBA
 //    texture for K = 4): scale s reads it at u f_s / kAnisoTileBand texels,
 //    offset per scale so the scales do not coincide at the origin.
 //  - lambda_{i,s}: the sample's pixel filter, H(J^T w) = exp(-2 pi^2 sigma^2
 //    w^T S w) with S = J J^T the footprint (core/footprint.hpp), sigma =
-//    kPixelFilterSigma, fitted by params::filtering (subband_fit.hpp rules:
+//    kPixelFilterSigma, fitted by params::filtering (anisotropic/subband_fit.hpp rules:
 //    centre = the paper's heuristic, three_point = its sec. 5 variant,
 //    least_squares = its eq. 5 fit, CPU only). A point footprint gives 1.
 //  - gamma_{k,i,s}: octave k's target, the isotropic band B of scale
@@ -509,7 +509,7 @@ constexpr double kHalfLog2Pi = 0.91893853320467274178;
 constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
 constexpr int kLogFactorialTable = 20;
 
-// ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp, wavelet_tile.hpp,
+// ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp, wavelet/tile.hpp,
 // core/bspline.hpp). The basis is the uniform quadratic B-spline B(u), centred (support
 // [-3/2, 3/2]): the density of a sum of three independent uniforms on [-1/2, 1/2]. Every
 // kernel of the noise is such a density (core/bspline.hpp derives their polynomial
@@ -524,7 +524,7 @@ constexpr int kWaveletRefineFirst = -1;
 constexpr double kWaveletRefine[4] = {0.25, 0.75, 0.75, 0.25};
 // The analysis (least-squares downsampling) filter a_d is infinite; hush keeps
 // |d| <= kWaveletAnalysisRadius, where |a_d| < 2e-18 (it decays as 0.656^|d|), and
-// periodises it to the tile (wavelet_tile.hpp derives it from the B-spline Gram matrix).
+// periodises it to the tile (wavelet/tile.hpp derives it from the B-spline Gram matrix).
 constexpr int kWaveletAnalysisRadius = 100;
 // Tile sizes: even (the half-resolution tile must have a whole number of coefficients,
 // paper footnote 4) and at least 16 (the widest evaluation kernel spans 9 coefficients;
@@ -653,7 +653,7 @@ constexpr double kTurnsReduceLimit = 4194304.0;
 constexpr double kTwoPi = 6.283185307179586476925;
 constexpr double kPi = 3.141592653589793238463;
 
-// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor_kernel.hpp,
+// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor/kernel.hpp,
 // gabor.hpp). Kernels are truncated where their envelope e^{-pi a^2 |x|^2}
 // falls to t (the `truncation` parameter): radius r = sqrt(ln(1/t) / pi) / a.
 // Instead of cutting there (a jump of t K, which the paper accepts), the
@@ -670,7 +670,7 @@ constexpr double kGaborMaxFrequency = 1e6;
 // transforms (energy, truncation error, envelope transform) is its leading
 // asymptotic term instead of a quadrature whose panels grow with the
 // frequency: the term left out is below 2e-13 of the result there
-// (gabor_kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
+// (gabor/kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
 constexpr double kGaborAsymptoticCycles = 1024.0;
 // Isotropic and hybrid noise's power spectrum at xi integrates the
 // frequency vectors Phi only where a blob (+-Phi) is within this many cycles
@@ -743,7 +743,7 @@ constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ..
 constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
 constexpr double kNprGaborMaxDepthTolerance = 1.0;
 // N is clamped here (2M <= 2^41 points per triangle). Not a work bound (stage 1
-// walks only the subtrees near the image, detail/npr_gabor_tree.hpp) but the
+// walks only the subtrees near the image, npr_gabor/tree.hpp) but the
 // input's: float screen positions have a 1-pixel ulp at 2^24 = 1.7e7 px, and a
 // triangle of 2^40 points at the default density (0.034 / px^2) already has
 // legs of 8e6 px, where the vertices are placed to half a pixel: beyond, the
@@ -771,7 +771,7 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 // kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
-// The hierarchical point sequence (detail/npr_gabor_tree.hpp): a node takes 3
+// The hierarchical point sequence (npr_gabor/tree.hpp): a node takes 3
 // words of its own stream (point, value, child order); its children's order is
 // one of the 24 permutations of {0, 1, 2, 3}, entry p holding in bits 2d, 2d + 1
 // the geometric child (0, 1, 2: the corner triangle at corner 0, 1, 2; 3: the
@@ -787,15 +787,15 @@ constexpr unsigned kNprGaborChildOrder[kNprGaborChildOrders] = {
 // linear interpolation within 1e-3 relative for t in [1e-9, 0.5].
 constexpr double kNprGaborEnergyStep = 1.0 / 64.0;
 
-// ---- Styles (style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
+// ---- Styles (npr_gabor/style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
 // in noise standard deviations (8 sigma: every pixel in the soft band), the
 // graphite style's fine-layer weight and the watercolour overlay's gain.
 constexpr double kStyleMaxWidth = 8.0;
 constexpr double kStyleMaxGrain = 8.0;
 constexpr double kStyleMaxGain = 4.0;
 
-// ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
-// subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
+// ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; anisotropic/steerable.hpp,
+// anisotropic/subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
 constexpr double kLn2 = 0.69314718055994530942;
 // Orientations K of the steerable filter bank (the paper uses 4 to 8; one
 // orientation has no angular selectivity) and scales (octaves of the bank).
@@ -822,7 +822,7 @@ constexpr double kAnisoThreePointCentre = 0.5;
 // A filtering weight exp(-x) with x above this is set to exactly 0 (and its
 // subband is skipped): exp(-17) = 4.1e-8 < 2^-24, below float resolution.
 constexpr double kAnisoWeightCutoff = 17.0;
-// Least-squares quadrature (subband_fit.hpp): midpoint nodes per octave of
+// Least-squares quadrature (anisotropic/subband_fit.hpp): midpoint nodes per octave of
 // radius, and angular nodes per orientation over a half turn (filters and
 // targets are even: D(-w) = D(w)).
 constexpr int kAnisoRadialNodesPerOctave = 16;
@@ -2085,7 +2085,7 @@ class tile_cache {
 //
 // The transcendental functions the anisotropic noise's weights need, in a
 // form SIMD code can repeat operation by operation (hush/simd/lanes-inl.h;
-// band_profile in hush/simd/anisotropic-inl.h):
+// band_profile in hush/anisotropic/simd-inl.h):
 //   exp2_nonpositive(y) = 2^y for y <= 0      (filtering weights, exp(-x))
 //   log2_positive(m)     = log2(m) for m > 0   (distortion: the map's stretch)
 //   band_profile(x)      = cos^2(pi x / 2) for |x| < 1, else 0
@@ -2224,7 +2224,7 @@ HUSH_INLINE T band_profile(T x) {
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // A small radix-2 FFT in double for power-of-two sizes: what the anisotropic
-// noise needs to build its subband tiles and decompose images (steerable.hpp),
+// noise needs to build its subband tiles and decompose images (anisotropic/steerable.hpp),
 // without a dependency. hush's own rather than Eigen's FFT (unsupported/Eigen/FFT,
 // which the tests use as the reference): it keeps hush/anisotropic.hpp in the
 // umbrella and single headers (Eigen lives outside the default include path and
@@ -2610,7 +2610,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The SIMD entry points of fractal sums of Perlin noise (kernels:
-// hush/simd/fractal-inl.h) and detail::simd_kernel<fractal<perlin<D>>>, which
+// hush/fractal/simd-inl.h) and detail::simd_kernel<fractal<perlin<D>>>, which
 // exec::simd calls; other bases run the scalar loop. Included at the end of
 // hush/fractal.hpp, after the class its kernels use; not on its own.
 // Layout conventions as Perlin's (hush/perlin/simd_kernel.hpp).
@@ -2956,7 +2956,7 @@ class perlin : public point_noise<perlin<D>, D> {
   }
 
   // The slice_gradient_coef data of one cell (corner gradients c) in the
-  // slice of z axis az. Mirrored op for op by simd/perlin-inl.h.
+  // slice of z axis az. Mirrored op for op by perlin/simd-inl.h.
   template <class T>
   static void slice_gradient_coefs(const corners<T>& c, const axis<T>& az, T* out) {
     namespace d = detail;
@@ -2981,7 +2981,7 @@ class perlin : public point_noise<perlin<D>, D> {
   // the row's y axis ay (fade v, slope v'). Per side a, with Z_b(q) the slice
   // data: L(q) = lerp(Z_0, Z_1, v) is q's bilinear blend, Z_1 - Z_0 its v
   // slope, and the dot products' x-free parts c_b = Z_b(gy) (f_y - b) + Z_b(e).
-  // Mirrored op for op by simd/perlin-inl.h.
+  // Mirrored op for op by perlin/simd-inl.h.
   template <class T>
   static void row_gradient_coefs(const T* sc, const axis<T>& ay, T* out) {
     namespace d = detail;
@@ -3112,7 +3112,7 @@ class perlin : public point_noise<perlin<D>, D> {
 // ---- begin hush/perlin/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Perlin noise's SIMD entry points (kernels: hush/simd/perlin-inl.h) and
+// Perlin noise's SIMD entry points (kernels: hush/perlin/simd-inl.h) and
 // detail::simd_kernel<perlin<D>>, which exec::simd calls. Included at the end
 // of hush/perlin.hpp, after the class its kernels use; not on its own.
 //
@@ -3121,7 +3121,7 @@ class perlin : public point_noise<perlin<D>, D> {
 // entry per axis (0 = not periodic). Grid entries evaluate the slab of
 // slowest-axis indices (j in 2D, k in 3D) [first, first + count) into value
 // (and grad), which start at that slab's first sample; (0, g.size[D - 1]) is
-// the whole grid. Results follow hush::perlin's contract; perlin-inl.h states
+// the whole grid. Results follow hush::perlin's contract; perlin/simd-inl.h states
 // the agreement with scalar evaluation.
 #ifndef HUSH_PERLIN_SIMD_KERNEL_HPP
 #define HUSH_PERLIN_SIMD_KERNEL_HPP
@@ -3244,7 +3244,7 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 // ---- end hush/simd/dispatch.hpp
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/perlin-inl.h
+// ---- begin hush/perlin/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for improved Perlin noise in 2D and 3D: batches of points
@@ -3283,11 +3283,11 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 
 // Toggle guard: included once per target by foreach_target.h (Highway's
 // hwy/examples/skeleton-inl.h pattern).
-#if defined(HUSH_SIMD_PERLIN_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_PERLIN_INL_H_
-#undef HUSH_SIMD_PERLIN_INL_H_
+#if defined(HUSH_PERLIN_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_PERLIN_SIMD_INL_H_
+#undef HUSH_PERLIN_SIMD_INL_H_
 #else
-#define HUSH_SIMD_PERLIN_INL_H_
+#define HUSH_PERLIN_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -3303,8 +3303,9 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 // ---- begin hush/simd/lanes-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The lane toolbox the SIMD kernels share (simd/*-inl.h): float lane types,
-// multiply-adds as the scalar code is compiled, core/hash.hpp's hashes,
+// The lane toolbox the SIMD kernels share (hush/<noise>/*-inl.h): float lane
+// types, multiply-adds as the scalar code is compiled, core/hash.hpp's hashes,
+// core/rng.hpp's stream keys and draws, core/lattice.hpp's split of an axis,
 // detail/elementary.hpp's exp and sin/cos, detail/approx_math.hpp's exp2 and
 // log2, compression of selected lanes, interleaved stores and the batch
 // driver. Only generic lane maths lives here; each noise's own algorithm stays
@@ -3408,6 +3409,52 @@ HWY_INLINE VU word(VU i) {
   if constexpr (kAxis == 0) return word_x(i);
   if constexpr (kAxis == 1) return word_y(i);
   if constexpr (kAxis == 2) return word_z(i);
+}
+
+// ---- core/rng.hpp in 32-bit lanes: hush::rng streams drawn per lane.
+// hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
+HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
+  const DU du;
+  return hash32(hn::Xor(hash32(hn::Add(seed, hn::Set(du, detail::constants::kGoldenGamma))),
+                        hn::Set(du, stream)));
+}
+// Draw `counter` of the streams with keys `key`: hash32(key ^ hash32(counter)).
+HWY_INLINE VU draw(VU key, std::uint32_t counter) {
+  return hash32(hn::Xor(key, hn::Set(DU(), hush::hash32(counter))));
+}
+
+// ---- core/lattice.hpp in lanes.
+// The vector split of one axis (lattice_split<float>(x * inv) of every lane,
+// bit for bit), valid when every lane's x * inv is finite with |x inv| < 2^31;
+// false (nothing written) otherwise: the caller splits lane by lane.
+HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
+#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
+  const DF df;
+  const hn::Half<DF> dh;
+  const hn::Repartition<double, DF> dd;
+  const hn::Rebind<float, decltype(dd)> df_of_d;
+  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
+  const auto vinv = hn::Set(dd, inv);
+  const auto limit = hn::Set(dd, 2147483648.0);
+  const auto lo = hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), vinv);
+  const auto hi = hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), vinv);
+  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
+    return false;
+  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
+  const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
+                           hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
+  hn::StoreU(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
+  const DI di;
+  const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
+  hn::StoreU(hn::BitCast(DU(), c), DU(), cell);
+  return true;
+#else
+  (void)x;
+  (void)inv;
+  (void)cell;
+  (void)frac;
+  return false;
+#endif
 }
 
 // ---- detail/elementary.hpp in lanes (the float branch, op for op).
@@ -4698,8 +4745,8 @@ inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const g
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_PERLIN_INL_H_ toggle
-// ---- end hush/simd/perlin-inl.h
+#endif  // HUSH_PERLIN_SIMD_INL_H_ toggle
+// ---- end hush/perlin/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_PERLIN(X)                                                                \
@@ -4776,7 +4823,7 @@ struct simd_kernel<perlin<D>> {
 // ---- end hush/perlin.hpp
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/fractal-inl.h
+// ---- begin hush/fractal/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for fractal sums of Perlin noise (hush/fractal.hpp over
@@ -4785,7 +4832,7 @@ struct simd_kernel<perlin<D>> {
 // include guard below, no normal guard); reached through
 // hush/fractal/simd_kernel.hpp, never included directly by users.
 //
-// Each band is a Perlin field evaluated by perlin-inl.h's vector code at the
+// Each band is a Perlin field evaluated by perlin/simd-inl.h's vector code at the
 // band position, formed as scalar evaluation forms it, and the bands are
 // summed in the same order with the same operations: under HUSH_STRICT_FP
 // every value and gradient is bit for bit the scalar result
@@ -4794,11 +4841,11 @@ struct simd_kernel<perlin<D>> {
 
 // Toggle guard: included once per target by foreach_target.h (Highway's
 // hwy/examples/skeleton-inl.h pattern).
-#if defined(HUSH_SIMD_FRACTAL_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_FRACTAL_INL_H_
-#undef HUSH_SIMD_FRACTAL_INL_H_
+#if defined(HUSH_FRACTAL_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_FRACTAL_SIMD_INL_H_
+#undef HUSH_FRACTAL_SIMD_INL_H_
 #else
-#define HUSH_SIMD_FRACTAL_INL_H_
+#define HUSH_FRACTAL_SIMD_INL_H_
 #endif
 
 #include <cstddef>
@@ -5084,8 +5131,8 @@ inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::s
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_FRACTAL_INL_H_ toggle
-// ---- end hush/simd/fractal-inl.h
+#endif  // HUSH_FRACTAL_SIMD_INL_H_ toggle
+// ---- end hush/fractal/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_FRACTAL(X)                                                            \
@@ -5147,7 +5194,7 @@ struct simd_kernel<fractal<perlin<D>>> {
 
 #endif  // HUSH_FRACTAL_HPP
 // ---- end hush/fractal.hpp
-// ---- begin hush/steerable.hpp
+// ---- begin hush/anisotropic/steerable.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // hush::steerable_bank: the frequency-domain decomposition behind anisotropic
@@ -5185,8 +5232,8 @@ struct simd_kernel<fractal<perlin<D>>> {
 //    linearly; with K the best linear blend of the D_i approximates a rotated
 //    D (docs/anisotropic.md gives the measured error).
 // Pure math, no allocation except in decompose(); thread-safe.
-#ifndef HUSH_STEERABLE_HPP
-#define HUSH_STEERABLE_HPP
+#ifndef HUSH_ANISOTROPIC_STEERABLE_HPP
+#define HUSH_ANISOTROPIC_STEERABLE_HPP
 
 #include <cmath>
 #include <complex>
@@ -5364,12 +5411,12 @@ inline steerable_decomposition decompose(const std::vector<double>& image, std::
 
 }  // namespace hush
 
-#endif  // HUSH_STEERABLE_HPP
-// ---- end hush/steerable.hpp
-// ---- begin hush/subband_fit.hpp
+#endif  // HUSH_ANISOTROPIC_STEERABLE_HPP
+// ---- end hush/anisotropic/steerable.hpp
+// ---- begin hush/anisotropic/subband_fit.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// hush::subband_fit: weights w of a steerable bank's filters (steerable.hpp)
+// hush::subband_fit: weights w of a steerable bank's filters (anisotropic/steerable.hpp)
 // such that sum_j w_j D_j(w) approximates a target amplitude response t(w)
 // (Goldberg, Zwicker & Durand 2008: distortion compensation, sec. 3.1,
 // weights gamma; anisotropic filtering, sec. 4.2, weights lambda):
@@ -5401,8 +5448,8 @@ inline steerable_decomposition decompose(const std::vector<double>& image, std::
 // basis doubles; 4 MB for K = 8, S = 5 with residuals); fits are const and
 // thread-safe. A least-squares fit costs one target evaluation per node plus
 // a nodes x basis product (about 1 ms for K = 4, S = 3 here: hush bench).
-#ifndef HUSH_SUBBAND_FIT_HPP
-#define HUSH_SUBBAND_FIT_HPP
+#ifndef HUSH_ANISOTROPIC_SUBBAND_FIT_HPP
+#define HUSH_ANISOTROPIC_SUBBAND_FIT_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -5618,8 +5665,8 @@ class subband_fit {
 
 }  // namespace hush
 
-#endif  // HUSH_SUBBAND_FIT_HPP
-// ---- end hush/subband_fit.hpp
+#endif  // HUSH_ANISOTROPIC_SUBBAND_FIT_HPP
+// ---- end hush/anisotropic/subband_fit.hpp
 
 namespace hush {
 
@@ -6212,7 +6259,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 // ---- begin hush/anisotropic/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Anisotropic noise's SIMD entry points (kernels: hush/simd/anisotropic-inl.h)
+// Anisotropic noise's SIMD entry points (kernels: hush/anisotropic/simd-inl.h)
 // and detail::simd_kernel<anisotropic>, which exec::simd calls: n samples at
 // interleaved positions xy, with footprints fp (3 floats each, null = points)
 // and surface maps (4 floats each, null = none), or a uniform grid; gradients
@@ -6226,7 +6273,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/anisotropic-inl.h
+// ---- begin hush/anisotropic/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for anisotropic noise (hush/anisotropic.hpp): batches of
@@ -6256,11 +6303,11 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 // slopes of each bilinear lookup (anisotropic.hpp's accumulate).
 
 // Toggle guard: included once per target by foreach_target.h.
-#if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_ANISOTROPIC_INL_H_
-#undef HUSH_SIMD_ANISOTROPIC_INL_H_
+#if defined(HUSH_ANISOTROPIC_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_ANISOTROPIC_SIMD_INL_H_
+#undef HUSH_ANISOTROPIC_SIMD_INL_H_
 #else
-#define HUSH_SIMD_ANISOTROPIC_INL_H_
+#define HUSH_ANISOTROPIC_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -6975,8 +7022,8 @@ inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* valu
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_ANISOTROPIC_INL_H_ toggle
-// ---- end hush/simd/anisotropic-inl.h
+#endif  // HUSH_ANISOTROPIC_SIMD_INL_H_ toggle
+// ---- end hush/anisotropic/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_ANISOTROPIC(X)                                                      \
@@ -7609,7 +7656,7 @@ struct triangle_list {
 //    gabor.hpp grid_values, docs/gabor.md "Float accuracy").
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
-//    hush/simd/perlin-inl.h, docs/design.md "Backends"). Without SIMD
+//    hush/perlin/simd-inl.h, docs/design.md "Backends"). Without SIMD
 //    configured (HUSH_CONFIG_SIMD == 0) it runs the scalar loop.
 //  - glsl: within the GLSL tolerance stated by the backend
 //    (backends/glsl/include/hush/glsl/device.hpp).
@@ -8223,7 +8270,7 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 //
 // Gabor noise (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
 // sparse Gabor convolution", SIGGRAPH 2009): a sparse convolution of Gabor
-// kernels (hush/gabor_kernel.hpp) at Poisson-distributed impulses with random
+// kernels (hush/gabor/kernel.hpp) at Poisson-distributed impulses with random
 // weights, in 2D, 3D (solid) and on surfaces, with exact spectral control and
 // analytic anti-aliasing.
 //
@@ -8267,11 +8314,11 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 //    noise's two blobs at +-F0 omega0, hybrid noise's the arcs between.
 //  - bound(): |n| <= 3^D max_count scale (every kernel is at most 1 in
 //    magnitude); the observed maximum is far smaller (tests).
-//  - C1: the kernels are tapered to 0 (gabor_kernel.hpp); gradient() is the
+//  - C1: the kernels are tapered to 0 (gabor/kernel.hpp); gradient() is the
 //    analytic derivative.
 //  - float evaluation is within scale 2^-21 (1 + 2 pi Phi) (N' + 1) of the
 //    double reference (each kernel within 2^-21 (1 + 2 pi Phi) of its double
-//    value, gabor_kernel.hpp, and ~N' kernels reach a point); measured in
+//    value, gabor/kernel.hpp, and ~N' kernels reach a point); measured in
 //    tests/gabor_test.cpp ("float evaluation stays within the stated budget").
 //    The per-kernel figure is measured (gabor_kernel_test); the worst-case
 //    rounding analysis exceeds it for Phi < 0.9 (up to 4.5x at Phi = 0 in 3D;
@@ -8283,7 +8330,7 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 // Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
 // convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint
 // (sigma = kPixelFilterSigma pixels, core/footprint.hpp) in closed form: each
-// kernel becomes the filtered Gabor kernel of gabor_filter (gabor_kernel.hpp),
+// kernel becomes the filtered Gabor kernel of gabor_filter (gabor/kernel.hpp),
 // kept within the kernel's support. A point footprint gives exactly the
 // unfiltered noise; every footprint (zero, rank 1, det 1e-30 or 1e30, NaN:
 // HARD_CASES row 12) gives a finite result, continuous in the footprint, which
@@ -8304,6 +8351,10 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 // tangent plane, continuous everywhere). Footprints are projected onto the
 // tangent plane. A zero normal evaluates the solid noise; a non-finite normal
 // gives NaN.
+//
+// Its parts: hush/gabor/kernel.hpp (the kernel and its filtered form), hush/gabor/marks.hpp
+// (impulse kinds and marks), hush/gabor/spectrum.hpp (gabor_spectrum), and the SIMD
+// kernels (hush/gabor/simd_kernel.hpp, hush/gabor/simd-inl.h).
 #ifndef HUSH_GABOR_HPP
 #define HUSH_GABOR_HPP
 
@@ -8608,7 +8659,7 @@ inline double bessel_j0(double z) {
 
 #endif  // HUSH_DETAIL_QUADRATURE_HPP
 // ---- end hush/detail/quadrature.hpp
-// ---- begin hush/gabor_kernel.hpp
+// ---- begin hush/gabor/kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The Gabor kernel (Lagae, Lefebvre, Drettakis, Dutre, "Procedural noise using
@@ -8682,7 +8733,7 @@ namespace hush {
 namespace detail {
 
 // ---- The kernel in cell units, operation by operation as the SIMD kernels
-// (hush/simd/gabor-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
+// (hush/gabor/simd-inl.h) and GLSL (hush/glsl/gabor_glsl.hpp) repeat it.
 
 // The taper tau(s) = v^2 (3 - 2v), v = clamp((1 - s) k, 0, 1), k = 1 / (1 - s0),
 // and its derivative dtau/ds = -6 k v (1 - v). tau and dtau are exactly 0 for
@@ -9217,7 +9268,7 @@ struct gabor_filter {
       }
   }
   // The 2D closed form (above) of S = [[sa, sb], [sb, sc]], in this order of double
-  // operations, no fused ones (filters_2d in simd/gabor-inl.h repeats it in lanes).
+  // operations, no fused ones (filters_2d in gabor/shared_points-inl.h repeats it in lanes).
   void build_2d(double sa, double sb, double sc, double k, double mk) {
     sa = sa == sa ? sa : 0.0;  // NaN counts as 0
     sb = sb == sb ? sb : 0.0;
@@ -9278,7 +9329,20 @@ struct gabor_filter_coefs {
 }  // namespace hush
 
 #endif  // HUSH_GABOR_KERNEL_HPP
-// ---- end hush/gabor_kernel.hpp
+// ---- end hush/gabor/kernel.hpp
+// ---- begin hush/gabor/marks.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// What Gabor noise's impulses carry (hush/gabor.hpp): the kinds of noise, the fields of
+// a stream word as values in (0, 1), and gabor_marks<D>: an impulse's weight and
+// frequency vector drawn from uniform values. Shared by gabor<D> and by NPR Gabor noise
+// (hush/npr_gabor.hpp).
+#ifndef HUSH_GABOR_MARKS_HPP
+#define HUSH_GABOR_MARKS_HPP
+
+#include <cmath>
+#include <cstdint>
+
 
 namespace hush {
 
@@ -9425,6 +9489,13 @@ class gabor_marks {
   double cos_cap_ = -1;             // 3D
   vec<double, 3> t_{}, b_{}, axis_frame_{};
 };
+
+}  // namespace hush
+
+#endif  // HUSH_GABOR_MARKS_HPP
+// ---- end hush/gabor/marks.hpp
+
+namespace hush {
 
 template <int D>
 class gabor : public sample_noise<gabor<D>, D> {
@@ -9646,7 +9717,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return sample_eval<T, true>(s);
   }
 
-  // ---- The pieces every backend repeats (hush/simd/gabor-inl.h, GLSL).
+  // ---- The pieces every backend repeats (hush/gabor/simd-inl.h, GLSL).
 
   // The impulses of solid cell `cell` (32-bit lattice indices), in stream
   // order: f(words), the impulse's words_per_impulse() stream words, whose
@@ -9746,7 +9817,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
 
   // E over the kind's frequency vectors Phi of |g^_Phi(xi)|^2 (cell units), with
-  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor_kernel.hpp).
+  // |g^_Phi(xi)| = (H(|xi - Phi|) + H(|xi + Phi|)) / 2 (gabor/kernel.hpp).
   template <class H>
   double mean_kernel_spectrum(const vec<double, D>& xi, H h, double window) const {
     namespace c = detail::constants;
@@ -10121,7 +10192,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return true;
   }
 
-  // Unfiltered solid noise: at a point the point form (gabor_kernel.hpp,
+  // Unfiltered solid noise: at a point the point form (gabor/kernel.hpp,
   // gabor_point_term), on a grid's sample (Grid) the separable pair, which the
   // grid kernels share between rows and columns. Every backend chooses the
   // same way: grids always the separable form, points the point form.
@@ -10211,7 +10282,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     }
   }
 
-  // Solid noise filtered over footprint fp (gabor_filter, gabor_kernel.hpp).
+  // Solid noise filtered over footprint fp (gabor_filter, gabor/kernel.hpp).
   template <class T, bool G>
   value_gradient<T, D> filtered_eval(const vec<double, D>& p, const footprint<D>& fp) const {
     const detail::gabor_filter_coefs<T, D> flt(
@@ -10358,6 +10429,26 @@ class gabor : public sample_noise<gabor<D>, D> {
   double scale_ = 1, surface_scale_ = 1;
 };
 
+}  // namespace hush
+
+// gabor_spectrum, and the SIMD backend's entry points and exec::simd binding, after the
+// class they use.
+// ---- begin hush/gabor/spectrum.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// gabor_spectrum<D>: the power spectrum of a gabor<D> noise, tabulated for many
+// frequencies. Included at the end of hush/gabor.hpp, after the class it uses; not on
+// its own.
+#ifndef HUSH_GABOR_SPECTRUM_HPP
+#define HUSH_GABOR_SPECTRUM_HPP
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+
+namespace hush {
+
 // gabor_spectrum<D>: the power spectrum of a gabor<D> noise at many
 // frequencies (spectrum images, tests): gabor<D>::spectrum_with with the
 // kernel's envelope transform H tabulated once, every 1/64 cycle per cell up to
@@ -10451,11 +10542,12 @@ class gabor_spectrum {
 
 }  // namespace hush
 
-// The SIMD backend's entry points and exec::simd binding, after the class they use.
+#endif  // HUSH_GABOR_SPECTRUM_HPP
+// ---- end hush/gabor/spectrum.hpp
 // ---- begin hush/gabor/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Gabor noise's SIMD entry points (kernels: hush/simd/gabor-inl.h, which
+// Gabor noise's SIMD entry points (kernels: hush/gabor/simd-inl.h, which
 // states the agreement with scalar evaluation) and detail::simd_kernel<gabor<D>>,
 // which exec::simd calls: points (interleaved), grid slabs (as Perlin's,
 // hush/perlin/simd_kernel.hpp), points with footprints (filtered samples) and,
@@ -10469,7 +10561,7 @@ class gabor_spectrum {
 
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/gabor-inl.h
+// ---- begin hush/gabor/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for Gabor noise (hush/gabor.hpp): points, uniform grids and
@@ -10510,33 +10602,108 @@ class gabor_spectrum {
 //    along x (kBlockX: 256 samples per row, up to 64 rows; 3D 64 x 32 x 16), each impulse of
 //    the cells that the block's samples see evaluated once per block: its factors along y
 //    (and z) once per row (slice), along x once per column, and per sample only their products
-//    (gabor_kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
+//    (gabor/kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
 //    support) over the x-vectors that reach the impulse's disk in that row (the row skip);
 //    each cell's impulses drawn once into a small cache for the blocks that see it (the draw
 //    cache). Grids with fewer than kMinRun samples per cell along x go through the points
 //    path instead.
+//
+// Its parts, one per path: hush/gabor/kernel-inl.h (the kernel and the constants in
+// lanes), hush/gabor/lockstep-inl.h, hush/gabor/shared_cells-inl.h and
+// hush/gabor/shared_points-inl.h (the shared-cell path), hush/gabor/grid-inl.h; this
+// file holds the entry points.
 
-#if defined(HUSH_SIMD_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_GABOR_INL_H_
-#undef HUSH_SIMD_GABOR_INL_H_
+#if defined(HUSH_GABOR_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_SIMD_INL_H_
+#undef HUSH_GABOR_SIMD_INL_H_
 #else
-#define HUSH_SIMD_GABOR_INL_H_
+#define HUSH_GABOR_SIMD_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+// ---- begin hush/gabor/grid-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise on uniform grids: samples in blocks that share their cell along y
+// (and z), each impulse's factors along y (and z) computed once per row, along x
+// once per column, and per sample only their products; each cell's impulses
+// drawn once into a cache for the blocks that see it. Grids too sparse for blocks
+// take the lockstep path (hush/gabor/lockstep-inl.h).
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_GRID_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_GRID_INL_H_
+#undef HUSH_GABOR_GRID_INL_H_
+#else
+#define HUSH_GABOR_GRID_INL_H_
 #endif
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <vector>
 
-#include <hwy/cache_control.h>
+#include <hwy/highway.h>
+
+// ---- begin hush/gabor/lockstep-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise's lockstep path (one lane per point): per cell and impulse the lanes
+// draw in lockstep, the impulses within each lane's support are compressed into a
+// list, and the unfiltered, filtered or surface kernel runs over it in full
+// vectors; each lane sums its terms in stream order (finish). It evaluates points
+// and filtered samples that the shared-cell path leaves, and samples with normals.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_LOCKSTEP_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_LOCKSTEP_INL_H_
+#undef HUSH_GABOR_LOCKSTEP_INL_H_
+#else
+#define HUSH_GABOR_LOCKSTEP_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+// ---- begin hush/gabor/kernel-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// The pieces of Gabor noise's Highway kernels (hush/gabor/simd-inl.h) that every
+// path repeats: Poisson counts and word fields of the impulses' draws, the
+// separable kernel (gabor/kernel.hpp) with its taper and products in lanes, and the
+// noise's constants, directions and marks as lanes. NPR Gabor noise's splats
+// (hush/npr_gabor/simd-inl.h) use the kernel too.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_KERNEL_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_KERNEL_INL_H_
+#undef HUSH_GABOR_KERNEL_INL_H_
+#else
+#define HUSH_GABOR_KERNEL_INL_H_
+#endif
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
 #include <hwy/highway.h>
 
 
-// The noise class comes first, not from here: hush/gabor.hpp includes these
-// kernels at its end (hush/gabor/simd_kernel.hpp), as src/simd/gabor.cpp does.
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {
@@ -10544,10 +10711,12 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace gabor_simd {
 
-// Generic lane maths (types, multiply-adds, hashes, exp, sin/cos, compression).
+// Generic lane maths (types, multiply-adds, hashes and draws, exp, sin/cos,
+// the lattice split, compression).
 using namespace lanes::types;
 
 using lanes::compressor;
+using lanes::draw;
 using lanes::exp_neg;
 using lanes::exp_neg_finite;
 using lanes::exp_neg_in_range;
@@ -10557,29 +10726,12 @@ using lanes::mul_add;
 using lanes::neg_mul_add;
 using lanes::sincos_turns;
 using lanes::sincos_turns_in_range;
+using lanes::split_axis;
 using lanes::store_interleaved;
+using lanes::stream_key;
 using lanes::word_x;
 using lanes::word_y;
 using lanes::word_z;
-
-// Grids with fewer samples per cell along x than this take the points path.
-constexpr double kMinRun = 8.0;
-// Grid blocks' width along x (2D, 3D): several cells, so that an impulse's
-// factors along y (and z) serve that many samples; the block's sums stay in
-// L1/L2 (2D: rows of one cell, ~64 x 256 floats; 3D: 32 x 16 rows).
-constexpr std::size_t kBlockX[2] = {256, 64};
-
-// ---- hush::rng in lanes.
-// hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
-HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
-  const DU du;
-  return hash32(hn::Xor(hash32(hn::Add(seed, hn::Set(du, detail::constants::kGoldenGamma))),
-                        hn::Set(du, stream)));
-}
-// Draw `counter` of the streams with keys `key`: hash32(key ^ hash32(counter)).
-HWY_INLINE VU draw(VU key, std::uint32_t counter) {
-  return hash32(hn::Xor(key, hn::Set(DU(), hush::hash32(counter))));
-}
 
 // Poisson counts of words u (poisson_table::count): the number of thresholds
 // <= u. Short tables (the common case: 25 thresholds for N' = 16 in 2D) are
@@ -10646,7 +10798,7 @@ HWY_INLINE VF half_value(VU w, unsigned i) {
                  hn::Set(df, float(c::kGaborHalfScale)));
 }
 
-// ---- The kernel (gabor_kernel.hpp) in lanes.
+// ---- The kernel (gabor/kernel.hpp) in lanes.
 struct axis {
   VF d, d2, e, s, c;
 };
@@ -10805,6 +10957,21 @@ HWY_INLINE void marks(const consts<D>& c, const VU* words, VF& w, VF* phi) {
     for (int i = 0; i < 3; ++i) phi[i] = hn::Mul(f, dir[i]);
   }
 }
+
+}  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_KERNEL_INL_H_ toggle
+// ---- end hush/gabor/kernel-inl.h
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
 
 // ---- One lane per point: candidates, then the kernel over the kept ones.
 
@@ -11302,39 +11469,6 @@ HWY_INLINE void clear_lane(lanes_split& sp, std::size_t l) {
   sp.bad[l] = true;
 }
 
-// The vector split of one axis (lattice_split<float>(x * inv) of every lane,
-// bit for bit), valid when every lane's x * inv is finite with |x inv| < 2^31;
-// false (nothing written) otherwise: the caller splits lane by lane.
-HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
-#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
-  const DF df;
-  const hn::Half<DF> dh;
-  const hn::Repartition<double, DF> dd;
-  const hn::Rebind<float, decltype(dd)> df_of_d;
-  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
-  const auto vinv = hn::Set(dd, inv);
-  const auto limit = hn::Set(dd, 2147483648.0);
-  const auto lo = hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), vinv);
-  const auto hi = hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), vinv);
-  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
-    return false;
-  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
-  const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
-                           hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
-  hn::StoreU(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
-  const DI di;
-  const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
-  hn::StoreU(hn::BitCast(DU(), c), DU(), cell);
-  return true;
-#else
-  (void)x;
-  (void)inv;
-  (void)cell;
-  (void)frac;
-  return false;
-#endif
-}
-
 // Splits lanes [0, used) of a batch with split_lane (positions pos(i, x), x:
 // D doubles) and marks the rest unused.
 template <int D, class Position>
@@ -11412,6 +11546,509 @@ void points(const gabor<D>& g, std::size_t count, lanes_split& sp, Split split, 
       g, count, sp, split, value, grad,
       [](const consts<D>& c, tuples& t, std::size_t) { eval_unfiltered<D, G, Grid>(c, t); });
 }
+
+}  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_LOCKSTEP_INL_H_ toggle
+// ---- end hush/gabor/lockstep-inl.h
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
+
+// Grids with fewer samples per cell along x than this take the points path.
+constexpr double kMinRun = 8.0;
+// Grid blocks' width along x (2D, 3D): several cells, so that an impulse's
+// factors along y (and z) serve that many samples; the block's sums stay in
+// L1/L2 (2D: rows of one cell, ~64 x 256 floats; 3D: 32 x 16 rows).
+constexpr std::size_t kBlockX[2] = {256, 64};
+
+// ---- Grids: blocks of samples that share their cell.
+
+// One axis of a grid, split as scalar evaluation splits grid.position(): the
+// cell and fraction of (origin + step (first + i)) * inverse cell for i in [0, n),
+// and runs of equal cells (at most `cap` long).
+struct grid_axis {
+  std::vector<std::uint32_t> cell;
+  std::vector<float> frac;
+  std::vector<char> bad;
+  std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
+  grid_axis(double origin, double step, std::size_t first, std::size_t n, double inv,
+            std::size_t cap)
+      : cell(n), frac(n), bad(n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const lattice_coord<float> c =
+          lattice_split<float>((origin + step * static_cast<double>(first + i)) * inv);
+      cell[i] = c.i0;
+      frac[i] = c.f;
+      bad[i] = std::isnan(c.f) ? 1 : 0;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (i == 0 || cell[i] != cell[i - 1] || i - run_start.back() == cap) run_start.push_back(i);
+    run_start.push_back(n);
+  }
+  std::size_t runs() const { return run_start.size() - 1; }
+  std::size_t longest_run() const {
+    std::size_t m = 0;
+    for (std::size_t r = 0; r + 1 < run_start.size(); ++r)
+      m = std::max(m, run_start[r + 1] - run_start[r]);
+    return m;
+  }
+};
+
+// The factors of one impulse along one axis of a block: for the block's
+// samples [from, n) (padded to whole vectors with fractions far outside), offset
+// d = frac - (o + u) (detail::gabor_offset), d^2 and the axis factors; `lo`, `hi`: the range of
+// samples with d^2 < 1 (contiguous: frac is monotonic within a cell); along
+// x (`ox`: each sample's o, the impulse's cell relative to the sample's) also
+// the products e c and e s (gabor_pair_of_products' x side).
+struct block_factors {
+  std::vector<float> d, d2, e, s, c, ec, es;
+  // Along x, per vector: the least d^2 of its lanes (a NaN lane counts as 0:
+  // such a vector is never skipped).
+  std::vector<float> vmin;
+  std::size_t lo = 0, hi = 0;
+  explicit block_factors(std::size_t cap)
+      : d(cap), d2(cap), e(cap), s(cap), c(cap), ec(cap), es(cap), vmin(cap) {}
+  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi,
+               const float* ox = nullptr, std::size_t from = 0) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const VF ou = hn::Set(df, o), uu = hn::Set(df, u);
+    lo = n_pad;
+    hi = 0;
+    for (std::size_t i = from; i < n_pad; i += lanes) {
+      const VF dv = hn::Sub(hn::LoadU(df, frac + i), hn::Add(ox ? hn::LoadU(df, ox + i) : ou, uu));
+      const VF d2v = hn::Mul(dv, dv);
+      hn::StoreU(dv, df, d.data() + i);
+      hn::StoreU(d2v, df, d2.data() + i);
+      if (ox)
+        vmin[i / lanes] = hn::GetLane(hn::MinOfLanes(df, hn::IfThenZeroElse(hn::IsNaN(d2v), d2v)));
+      if (hn::AllFalse(df, hn::Lt(d2v, hn::Set(df, 1.0f)))) continue;
+      lo = std::min(lo, i);
+      hi = i + lanes;
+      const axis f = axis_factors(dv, neg_a, phi);
+      hn::StoreU(f.e, df, e.data() + i);
+      hn::StoreU(f.s, df, s.data() + i);
+      hn::StoreU(f.c, df, c.data() + i);
+      hn::StoreU(hn::Mul(f.e, f.c), df, ec.data() + i);
+      hn::StoreU(hn::Mul(f.e, f.s), df, es.data() + i);
+    }
+  }
+};
+
+template <int D, bool G>
+struct grid_kernel {
+  const gabor<D>& g;
+  const consts<D> c;
+  std::size_t cap[3];
+  std::vector<float> acc, gacc[3];
+  std::size_t stride = 0;  // floats per block row
+  // The block's fractions per axis, padded (x to whole vectors).
+  std::vector<float> frac[3];
+  block_factors fx, fy, fz;
+  // Along x: each sample's cell relative to the block's first (padded), the
+  // runs of equal cells, the cells to visit, and o per sample for one of them.
+  struct xrun {
+    std::int32_t rel;
+    std::size_t begin, end;
+  };
+  std::vector<std::int32_t> rel;
+  static constexpr std::int32_t kFar = 1 << 20;  // rel of non-finite samples and padding
+  std::vector<float> ox;
+  std::vector<xrun> xruns;
+  std::vector<std::int32_t> visits;
+
+  // Each cell's impulses (positions, weight, frequency: stream order) drawn
+  // once for the blocks that see it, in a direct-mapped cache keyed by the
+  // cell (the low bits of its indices pick the slot: blocks go along x, so the
+  // cells in use stay apart); a slot shared by two cells in use only repeats
+  // a draw.
+  struct drawn {
+    float u[3], wt, phi[3];
+  };
+  struct slot {
+    bool used = false;
+    std::uint32_t key[3] = {};
+    std::vector<drawn> imp;
+  };
+  static constexpr std::uint32_t kSlotsX = 64, kSlotsYZ = 4;
+  std::vector<slot> cache{kSlotsX * kSlotsYZ * (D == 3 ? kSlotsYZ : 1)};
+  const std::vector<drawn>& impulses(const std::uint32_t (&cell)[D]) {
+    std::size_t i = cell[0] % kSlotsX + kSlotsX * (cell[1] % kSlotsYZ);
+    if (D == 3) i += kSlotsX * kSlotsYZ * (cell[D - 1] % kSlotsYZ);
+    slot& sl = cache[i];
+    bool hit = sl.used;
+    for (int a = 0; a < D; ++a) hit = hit && sl.key[a] == cell[a];
+    if (hit) return sl.imp;
+    sl.used = true;
+    for (int a = 0; a < D; ++a) sl.key[a] = cell[a];
+    sl.imp.clear();
+    g.for_each_impulse(cell, [&](const std::uint32_t* w) {
+      drawn d{};
+      for (int a = 0; a < D; ++a) d.u[a] = gabor<D>::template impulse_position<float>(w, a);
+      float mv[4] = {};
+      vec<float, D> phi;
+      g.template mark_values<float>(w, mv);
+      g.marks().template draw<float>(mv, d.wt, phi);
+      for (int a = 0; a < D; ++a) d.phi[a] = phi[a];
+      sl.imp.push_back(d);
+    });
+    return sl.imp;
+  }
+
+  explicit grid_kernel(const gabor<D>& noise, std::size_t cx, std::size_t cy, std::size_t cz)
+      : g(noise),
+        c(noise),
+        cap{cx, cy, cz},
+        fx(cx + kMaxLanes),
+        fy(cy + kMaxLanes),
+        fz(cz + kMaxLanes) {
+    stride = cx + kMaxLanes;
+    const std::size_t cells = stride * cy * cz;
+    acc.resize(cells);
+    if (G)
+      for (int a = 0; a < D; ++a) gacc[a].resize(cells);
+    for (int a = 0; a < 3; ++a) frac[a].resize(cap[a] + kMaxLanes);
+    rel.resize(stride);
+    ox.resize(stride);
+  }
+
+  // Adds one impulse's terms (factors along each axis in fx, fy, fz) to the
+  // block's sums: per row the row's side of gabor_pair_of_products, per
+  // sample only the products and the taper, which is 0 outside the support
+  // (no mask: adding +-0 leaves every sum as the scalar path's).
+  void add_impulse(const float* phi, float wt, std::size_t ny, std::size_t nz) {
+    const DF df;
+    const std::size_t lanes = hn::Lanes(df);
+    const VF phx = hn::Set(df, phi[0]);
+    for (std::size_t kk = 0; kk < nz; ++kk) {
+      if constexpr (D == 3)
+        if (!(fz.d2[kk] < 1.0f)) continue;
+      for (std::size_t jj = std::min(fy.lo, ny); jj < std::min(fy.hi, ny); ++jj) {
+        if (!(fy.d2[jj] < 1.0f)) continue;
+        detail::gabor_row<float> r;
+        if constexpr (D == 2) {
+          r = detail::gabor_row_of(
+              wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]});
+        } else {
+          r = detail::gabor_row_of(
+              wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]},
+              detail::gabor_axis<float>{fz.d[kk], fz.d2[kk], fz.e[kk], fz.s[kk], fz.c[kk]});
+        }
+        const VF b = hn::Set(df, r.we * r.c), q = hn::Set(df, r.we * r.s);
+        const VF rd2 = hn::Set(df, r.d2);
+        // Local restrict pointers: the sums' stores alias no factor, so the
+        // loop keeps them in registers.
+        float* HWY_RESTRICT arow = acc.data() + (kk * ny + jj) * stride;
+        const float* HWY_RESTRICT xec = fx.ec.data();
+        const float* HWY_RESTRICT xes = fx.es.data();
+        const float* HWY_RESTRICT xd2 = fx.d2.data();
+        // The row's chord of the support, by whole vectors: a vector whose
+        // least d^2 plus the row's is >= 1 only adds +-0 (float addition and
+        // the taper's steps are monotonic), so skipping it changes nothing.
+        std::size_t ib = fx.lo, ie = fx.hi;
+        while (ib < ie && !(fx.vmin[ib / lanes] + r.d2 < 1.0f)) ib += lanes;
+        while (ie > ib && !(fx.vmin[ie / lanes - 1] + r.d2 < 1.0f)) ie -= lanes;
+        for (std::size_t ii = ib; ii < ie; ii += lanes) {
+          const VF ec = hn::LoadU(df, xec + ii), es = hn::LoadU(df, xes + ii);
+          const VF s2 = hn::Add(hn::LoadU(df, xd2 + ii), rd2);
+          if constexpr (G) {
+            VF v, uu, vv;
+            pair_gradient_of_products(ec, es, b, q, s2, c.k, c.a, v, uu, vv);
+            hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), v), df, arow + ii);
+            const VF dd[3] = {hn::LoadU(df, fx.d.data() + ii), hn::Set(df, fy.d[jj]),
+                              hn::Set(df, D == 3 ? fz.d[kk] : 0.0f)};
+            const VF ph[3] = {phx, hn::Set(df, phi[1]), hn::Set(df, D == 3 ? phi[D - 1] : 0.0f)};
+            for (int a = 0; a < D; ++a) {
+              float* grow = gacc[a].data() + (kk * ny + jj) * stride;
+              const VF term = hn::Sub(hn::Mul(uu, dd[a]), hn::Mul(vv, ph[a]));
+              hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), term), df, grow + ii);
+            }
+          } else {
+            hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)),
+                       df, arow + ii);
+          }
+        }
+      }
+    }
+  }
+
+  // One block: samples [i0, i0 + nx) x [j0, j0 + ny) x [k0, k0 + nz) of the
+  // axes, along y (and z) all in the cell (ay.cell[j0], az.cell[k0]), along x
+  // in any cells: each impulse's factors along y (and z) are computed once for
+  // the whole width, and its chord of each row is cut by no block edge but the
+  // block's.
+  void block(const grid_axis* axes, std::size_t i0, std::size_t nx, std::size_t j0, std::size_t ny,
+             std::size_t k0, std::size_t nz, const hush::grid<D>& gr, float* value, float* grad) {
+    const DF df;
+    const DI di;
+    const std::size_t lanes = hn::Lanes(df);
+    const std::size_t nx_pad = (nx + lanes - 1) / lanes * lanes;
+    const std::size_t n[3] = {nx, ny, nz}, first[3] = {i0, j0, k0};
+    for (int a = 0; a < D; ++a) {
+      std::copy(axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a]),
+                axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a] + n[a]),
+                frac[a].begin());
+      std::fill(frac[a].begin() + static_cast<std::ptrdiff_t>(n[a]), frac[a].end(),
+                4.0f);  // d^2 > 1
+    }
+    const std::size_t rows = ny * nz;
+    std::fill(acc.begin(), acc.begin() + static_cast<std::ptrdiff_t>(rows * stride), 0.0f);
+    if constexpr (G)
+      for (int a = 0; a < D; ++a)
+        std::fill(gacc[a].begin(), gacc[a].begin() + static_cast<std::ptrdiff_t>(rows * stride),
+                  0.0f);
+    // Along x: each sample's cell relative to the first finite sample's (a
+    // non-finite sample, or padding, far away: its value is NaN or unused),
+    // the runs of equal cells, and the cells to visit (each run's and its
+    // neighbours, ascending: per sample the scalar order o = -1, 0, 1).
+    std::size_t f0 = 0;
+    while (f0 < nx && axes[0].bad[i0 + f0]) ++f0;
+    const std::uint32_t ref = f0 < nx ? axes[0].cell[i0 + f0] : 0u;
+    xruns.clear();
+    visits.clear();
+    for (std::size_t i = 0; i < nx_pad; ++i) {
+      if (i >= nx || axes[0].bad[i0 + i]) {
+        rel[i] = kFar;
+        continue;
+      }
+      rel[i] = static_cast<std::int32_t>(axes[0].cell[i0 + i] - ref);
+      if (xruns.empty() || xruns.back().rel != rel[i] || xruns.back().end != i)
+        xruns.push_back({rel[i], i, i + 1});
+      else
+        xruns.back().end = i + 1;
+    }
+    for (const xrun& x : xruns)
+      for (std::int32_t o = -1; o <= 1; ++o) visits.push_back(x.rel + o);
+    std::sort(visits.begin(), visits.end());
+    visits.erase(std::unique(visits.begin(), visits.end()), visits.end());
+    const std::uint32_t base[3] = {ref, axes[1].cell[j0], D == 3 ? axes[D - 1].cell[k0] : 0u};
+    for (int oz = D == 3 ? -1 : 0; oz <= (D == 3 ? 1 : 0); ++oz)
+      for (int oy = -1; oy <= 1; ++oy)
+        for (const std::int32_t X : visits) {
+          // The samples within one cell of X (contiguous: cells are monotonic
+          // along x), by whole vectors, and their o = X - rel (clamped: from 2
+          // on, d^2 >= 1 exactly).
+          std::size_t lo = nx_pad, hi = 0;
+          for (const xrun& x : xruns)
+            if (x.rel >= X - 1 && x.rel <= X + 1) {
+              lo = std::min(lo, x.begin);
+              hi = std::max(hi, x.end);
+            }
+          if (lo >= hi) continue;
+          lo = lo / lanes * lanes;
+          hi = (hi + lanes - 1) / lanes * lanes;
+          const VI xv = hn::Set(di, X), two = hn::Set(di, 2);
+          for (std::size_t i = lo; i < hi; i += lanes) {
+            const VI o = hn::Sub(xv, hn::LoadU(di, rel.data() + i));
+            hn::StoreU(hn::ConvertTo(df, hn::Min(hn::Max(o, hn::Neg(two)), two)), df,
+                       ox.data() + i);
+          }
+          std::uint32_t cell[D];
+          cell[0] = ref + static_cast<std::uint32_t>(X);
+          cell[1] = base[1] + static_cast<std::uint32_t>(oy);
+          if constexpr (D == 3) cell[2] = base[2] + static_cast<std::uint32_t>(oz);
+          for (const drawn& im : impulses(cell)) {
+            const float* u = im.u;
+            const float* phi = im.phi;
+            const float wt = im.wt;
+            fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(oy), u[1], c.neg_a,
+                       hn::Set(df, phi[1]));
+            if (fy.lo >= fy.hi) continue;
+            if constexpr (D == 3) {
+              fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(oz), u[2], c.neg_a,
+                         hn::Set(df, phi[2]));
+              if (fz.lo >= fz.hi) continue;
+            }
+            fx.compute(frac[0].data(), hi, 0.0f, u[0], c.neg_a, hn::Set(df, phi[0]), ox.data(), lo);
+            if (fx.lo >= fx.hi) continue;
+            add_impulse(phi, wt, ny, nz);
+          }
+        }
+    // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
+    // coordinate of the sample is not finite.
+    const float scale = float(g.scale()), gscale = float(g.scale() * g.inverse_cell());
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::size_t gx = gr.size[0], gy = gr.size[1];
+    const VF vscale = hn::Set(df, scale), vnan = hn::Set(df, nan);
+    const VI far = hn::Set(di, kFar);
+    for (std::size_t kk = 0; kk < nz; ++kk)
+      for (std::size_t jj = 0; jj < ny; ++jj) {
+        const bool row_bad = axes[1].bad[j0 + jj] || (D == 3 && axes[D - 1].bad[k0 + kk]);
+        const std::size_t out_row = ((k0 + kk) * gy + (j0 + jj)) * gx + i0;
+        const float* arow = acc.data() + (kk * ny + jj) * stride;
+        std::size_t ii = 0;
+        if (!row_bad)  // whole vectors; rel marks the non-finite samples
+          for (; ii + lanes <= nx; ii += lanes) {
+            const MF bad = hn::RebindMask(df, hn::Eq(hn::LoadU(di, rel.data() + ii), far));
+            hn::StoreU(hn::IfThenElse(bad, vnan, hn::Mul(hn::LoadU(df, arow + ii), vscale)), df,
+                       value + out_row + ii);
+          }
+        for (; ii < nx; ++ii)
+          value[out_row + ii] = row_bad || axes[0].bad[i0 + ii] ? nan : arow[ii] * scale;
+        if constexpr (G)
+          for (ii = 0; ii < nx; ++ii) {
+            const bool bad = row_bad || axes[0].bad[i0 + ii];
+            for (int a = 0; a < D; ++a)
+              grad[(out_row + ii) * D + static_cast<std::size_t>(a)] =
+                  bad ? nan : gacc[a][(kk * ny + jj) * stride + ii] * gscale;
+          }
+      }
+  }
+};
+
+// The slab [first, first + count) of a grid's slowest axis (value and grad
+// start at its first sample): blocks of shared cells when there are enough
+// samples per cell along x, else the points path on the grid's positions.
+template <int D, bool G>
+void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std::size_t count,
+          float* value, float* grad) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const double inv = g.inverse_cell();
+  const std::size_t caps[3] = {64, D == 2 ? 64u : 32u, 16};
+  hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
+  gr.size[D - 1] = count;
+  std::vector<grid_axis> axes;
+  axes.reserve(D);
+  for (int a = 0; a < D; ++a)
+    axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
+                      caps[a]);
+  const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
+  const std::size_t nx = gr.size[0], ny = gr.size[1];
+  if (per_cell < kMinRun) {
+    lanes_split sp;
+    auto split = [&](std::size_t batch, std::size_t used) {
+      for (std::size_t l = 0; l < lanes; ++l) {
+        if (l >= used) {
+          clear_lane<D>(sp, l);
+          continue;
+        }
+        const std::size_t idx = batch + l, i = idx % nx, j = (idx / nx) % ny, k = idx / (nx * ny);
+        const std::size_t ijk[3] = {i, j, k};
+        bool bad = false;
+        for (int a = 0; a < D; ++a) {
+          sp.cell[a][l] = axes[a].cell[ijk[a]];
+          sp.frac[a][l] = axes[a].frac[ijk[a]];
+          bad = bad || axes[a].bad[ijk[a]];
+        }
+        sp.bad[l] = bad;
+      }
+    };
+    points<D, G, true>(g, gr.count(), sp, split, value, grad);
+    return;
+  }
+  // Block buffers sized by the longest runs, not the caps: small grids do not pay for
+  // (and page-fault in) buffers they never fill.
+  // Along x, blocks of kBlockX samples whatever their cells (see block()) where
+  // the finite samples' cells step by at most one (so a block's cells relative to
+  // its first are small and ascend or descend); else (only where coordinates are
+  // so large that a double's spacing exceeds a cell) blocks of one cell's run.
+  bool steps_of_one = true;
+  for (std::size_t i = 0, last = nx; i < nx && steps_of_one; ++i) {
+    if (axes[0].bad[i]) continue;
+    if (last < nx) {
+      const auto step = static_cast<std::int32_t>(axes[0].cell[i] - axes[0].cell[last]);
+      steps_of_one = step >= -1 && step <= 1;
+    }
+    last = i;
+  }
+  const std::size_t bx = std::min(nx, kBlockX[D - 2]);
+  grid_kernel<D, G> kernel(g, bx, axes[1].longest_run(), D == 3 ? axes[D - 1].longest_run() : 1);
+  auto each_block = [&](auto&& f) {
+    if (steps_of_one)
+      for (std::size_t i0 = 0; i0 < nx; i0 += bx) f(i0, std::min(bx, nx - i0));
+    else
+      for (std::size_t xr = 0; xr < axes[0].runs(); ++xr)
+        f(axes[0].run_start[xr], axes[0].run_start[xr + 1] - axes[0].run_start[xr]);
+  };
+  const std::size_t zruns = D == 3 ? axes[D - 1].runs() : 1;
+  for (std::size_t zr = 0; zr < zruns; ++zr) {
+    const std::size_t k0 = D == 3 ? axes[D - 1].run_start[zr] : 0;
+    const std::size_t k1 = D == 3 ? axes[D - 1].run_start[zr + 1] : 1;
+    for (std::size_t yr = 0; yr < axes[1].runs(); ++yr) {
+      const std::size_t j0 = axes[1].run_start[yr], j1 = axes[1].run_start[yr + 1];
+      each_block([&](std::size_t i0, std::size_t n) {
+        kernel.block(axes.data(), i0, n, j0, j1 - j0, k0, k1 - k0, gr, value, grad);
+      });
+    }
+  }
+}
+
+}  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_GRID_INL_H_ toggle
+// ---- end hush/gabor/grid-inl.h
+// ---- begin hush/gabor/shared_points-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise's shared-cell path, its kernels: per point the candidate impulses
+// of its cells (hush/gabor/shared_cells-inl.h) tested in full vectors and the kept
+// ones compressed into a pair list; the unfiltered and filtered kernels over the
+// list (shared_unfiltered, shared_filtered; filters_2d computes 2D filters in lanes
+// of doubles); and shared_points, which runs them and sends the box's outliers to
+// the lockstep path.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_SHARED_POINTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_SHARED_POINTS_INL_H_
+#undef HUSH_GABOR_SHARED_POINTS_INL_H_
+#else
+#define HUSH_GABOR_SHARED_POINTS_INL_H_
+#endif
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <hwy/cache_control.h>
+#include <hwy/highway.h>
+
+// ---- begin hush/gabor/shared_cells-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Gabor noise's shared-cell path, its cells: a call's points counting-sorted by
+// cell within a box of cells, each cell's impulses drawn once per call (draw_box),
+// and the workspace each thread keeps between calls. The kernels that run over
+// them are in hush/gabor/shared_points-inl.h.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/gabor/simd-inl.h, never included directly by users.
+#if defined(HUSH_GABOR_SHARED_CELLS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_GABOR_SHARED_CELLS_INL_H_
+#undef HUSH_GABOR_SHARED_CELLS_INL_H_
+#else
+#define HUSH_GABOR_SHARED_CELLS_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
 
 // ---- Points that share cells (gabor_points): each cell's impulses drawn once per call.
 //
@@ -11945,6 +12582,21 @@ HWY_NOINLINE T& thread_local_of() {
   static thread_local T ws;
   return ws;
 }
+
+}  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_SHARED_CELLS_INL_H_ toggle
+// ---- end hush/gabor/shared_cells-inl.h
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace gabor_simd {
 
 // shared_points' kernels (Eval): t's pairs [0, t.n), point pend[p]'s in
 // [pend_end[p - 1], pend_end[p]), into t.val (and with G the gradient terms into t.g).
@@ -12542,420 +13194,20 @@ void shared_points(const gabor<D>& g, const float* pts, std::size_t n, float* va
   }
 }
 
-// ---- Grids: blocks of samples that share their cell.
-
-// One axis of a grid, split as scalar evaluation splits grid.position(): the
-// cell and fraction of (origin + step (first + i)) * inverse cell for i in [0, n),
-// and runs of equal cells (at most `cap` long).
-struct grid_axis {
-  std::vector<std::uint32_t> cell;
-  std::vector<float> frac;
-  std::vector<char> bad;
-  std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
-  grid_axis(double origin, double step, std::size_t first, std::size_t n, double inv,
-            std::size_t cap)
-      : cell(n), frac(n), bad(n) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const lattice_coord<float> c =
-          lattice_split<float>((origin + step * static_cast<double>(first + i)) * inv);
-      cell[i] = c.i0;
-      frac[i] = c.f;
-      bad[i] = std::isnan(c.f) ? 1 : 0;
-    }
-    for (std::size_t i = 0; i < n; ++i)
-      if (i == 0 || cell[i] != cell[i - 1] || i - run_start.back() == cap) run_start.push_back(i);
-    run_start.push_back(n);
-  }
-  std::size_t runs() const { return run_start.size() - 1; }
-  std::size_t longest_run() const {
-    std::size_t m = 0;
-    for (std::size_t r = 0; r + 1 < run_start.size(); ++r)
-      m = std::max(m, run_start[r + 1] - run_start[r]);
-    return m;
-  }
-};
-
-// The factors of one impulse along one axis of a block: for the block's
-// samples [from, n) (padded to whole vectors with fractions far outside), offset
-// d = frac - (o + u) (detail::gabor_offset), d^2 and the axis factors; `lo`, `hi`: the range of
-// samples with d^2 < 1 (contiguous: frac is monotonic within a cell); along
-// x (`ox`: each sample's o, the impulse's cell relative to the sample's) also
-// the products e c and e s (gabor_pair_of_products' x side).
-struct block_factors {
-  std::vector<float> d, d2, e, s, c, ec, es;
-  // Along x, per vector: the least d^2 of its lanes (a NaN lane counts as 0:
-  // such a vector is never skipped).
-  std::vector<float> vmin;
-  std::size_t lo = 0, hi = 0;
-  explicit block_factors(std::size_t cap)
-      : d(cap), d2(cap), e(cap), s(cap), c(cap), ec(cap), es(cap), vmin(cap) {}
-  void compute(const float* frac, std::size_t n_pad, float o, float u, VF neg_a, VF phi,
-               const float* ox = nullptr, std::size_t from = 0) {
-    const DF df;
-    const std::size_t lanes = hn::Lanes(df);
-    const VF ou = hn::Set(df, o), uu = hn::Set(df, u);
-    lo = n_pad;
-    hi = 0;
-    for (std::size_t i = from; i < n_pad; i += lanes) {
-      const VF dv = hn::Sub(hn::LoadU(df, frac + i), hn::Add(ox ? hn::LoadU(df, ox + i) : ou, uu));
-      const VF d2v = hn::Mul(dv, dv);
-      hn::StoreU(dv, df, d.data() + i);
-      hn::StoreU(d2v, df, d2.data() + i);
-      if (ox)
-        vmin[i / lanes] = hn::GetLane(hn::MinOfLanes(df, hn::IfThenZeroElse(hn::IsNaN(d2v), d2v)));
-      if (hn::AllFalse(df, hn::Lt(d2v, hn::Set(df, 1.0f)))) continue;
-      lo = std::min(lo, i);
-      hi = i + lanes;
-      const axis f = axis_factors(dv, neg_a, phi);
-      hn::StoreU(f.e, df, e.data() + i);
-      hn::StoreU(f.s, df, s.data() + i);
-      hn::StoreU(f.c, df, c.data() + i);
-      hn::StoreU(hn::Mul(f.e, f.c), df, ec.data() + i);
-      hn::StoreU(hn::Mul(f.e, f.s), df, es.data() + i);
-    }
-  }
-};
-
-template <int D, bool G>
-struct grid_kernel {
-  const gabor<D>& g;
-  const consts<D> c;
-  std::size_t cap[3];
-  std::vector<float> acc, gacc[3];
-  std::size_t stride = 0;  // floats per block row
-  // The block's fractions per axis, padded (x to whole vectors).
-  std::vector<float> frac[3];
-  block_factors fx, fy, fz;
-  // Along x: each sample's cell relative to the block's first (padded), the
-  // runs of equal cells, the cells to visit, and o per sample for one of them.
-  struct xrun {
-    std::int32_t rel;
-    std::size_t begin, end;
-  };
-  std::vector<std::int32_t> rel;
-  static constexpr std::int32_t kFar = 1 << 20;  // rel of non-finite samples and padding
-  std::vector<float> ox;
-  std::vector<xrun> xruns;
-  std::vector<std::int32_t> visits;
-
-  // Each cell's impulses (positions, weight, frequency: stream order) drawn
-  // once for the blocks that see it, in a direct-mapped cache keyed by the
-  // cell (the low bits of its indices pick the slot: blocks go along x, so the
-  // cells in use stay apart); a slot shared by two cells in use only repeats
-  // a draw.
-  struct drawn {
-    float u[3], wt, phi[3];
-  };
-  struct slot {
-    bool used = false;
-    std::uint32_t key[3] = {};
-    std::vector<drawn> imp;
-  };
-  static constexpr std::uint32_t kSlotsX = 64, kSlotsYZ = 4;
-  std::vector<slot> cache{kSlotsX * kSlotsYZ * (D == 3 ? kSlotsYZ : 1)};
-  const std::vector<drawn>& impulses(const std::uint32_t (&cell)[D]) {
-    std::size_t i = cell[0] % kSlotsX + kSlotsX * (cell[1] % kSlotsYZ);
-    if (D == 3) i += kSlotsX * kSlotsYZ * (cell[D - 1] % kSlotsYZ);
-    slot& sl = cache[i];
-    bool hit = sl.used;
-    for (int a = 0; a < D; ++a) hit = hit && sl.key[a] == cell[a];
-    if (hit) return sl.imp;
-    sl.used = true;
-    for (int a = 0; a < D; ++a) sl.key[a] = cell[a];
-    sl.imp.clear();
-    g.for_each_impulse(cell, [&](const std::uint32_t* w) {
-      drawn d{};
-      for (int a = 0; a < D; ++a) d.u[a] = gabor<D>::template impulse_position<float>(w, a);
-      float mv[4] = {};
-      vec<float, D> phi;
-      g.template mark_values<float>(w, mv);
-      g.marks().template draw<float>(mv, d.wt, phi);
-      for (int a = 0; a < D; ++a) d.phi[a] = phi[a];
-      sl.imp.push_back(d);
-    });
-    return sl.imp;
-  }
-
-  explicit grid_kernel(const gabor<D>& noise, std::size_t cx, std::size_t cy, std::size_t cz)
-      : g(noise),
-        c(noise),
-        cap{cx, cy, cz},
-        fx(cx + kMaxLanes),
-        fy(cy + kMaxLanes),
-        fz(cz + kMaxLanes) {
-    stride = cx + kMaxLanes;
-    const std::size_t cells = stride * cy * cz;
-    acc.resize(cells);
-    if (G)
-      for (int a = 0; a < D; ++a) gacc[a].resize(cells);
-    for (int a = 0; a < 3; ++a) frac[a].resize(cap[a] + kMaxLanes);
-    rel.resize(stride);
-    ox.resize(stride);
-  }
-
-  // Adds one impulse's terms (factors along each axis in fx, fy, fz) to the
-  // block's sums: per row the row's side of gabor_pair_of_products, per
-  // sample only the products and the taper, which is 0 outside the support
-  // (no mask: adding +-0 leaves every sum as the scalar path's).
-  void add_impulse(const float* phi, float wt, std::size_t ny, std::size_t nz) {
-    const DF df;
-    const std::size_t lanes = hn::Lanes(df);
-    const VF phx = hn::Set(df, phi[0]);
-    for (std::size_t kk = 0; kk < nz; ++kk) {
-      if constexpr (D == 3)
-        if (!(fz.d2[kk] < 1.0f)) continue;
-      for (std::size_t jj = std::min(fy.lo, ny); jj < std::min(fy.hi, ny); ++jj) {
-        if (!(fy.d2[jj] < 1.0f)) continue;
-        detail::gabor_row<float> r;
-        if constexpr (D == 2) {
-          r = detail::gabor_row_of(
-              wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]});
-        } else {
-          r = detail::gabor_row_of(
-              wt, detail::gabor_axis<float>{fy.d[jj], fy.d2[jj], fy.e[jj], fy.s[jj], fy.c[jj]},
-              detail::gabor_axis<float>{fz.d[kk], fz.d2[kk], fz.e[kk], fz.s[kk], fz.c[kk]});
-        }
-        const VF b = hn::Set(df, r.we * r.c), q = hn::Set(df, r.we * r.s);
-        const VF rd2 = hn::Set(df, r.d2);
-        // Local restrict pointers: the sums' stores alias no factor, so the
-        // loop keeps them in registers.
-        float* HWY_RESTRICT arow = acc.data() + (kk * ny + jj) * stride;
-        const float* HWY_RESTRICT xec = fx.ec.data();
-        const float* HWY_RESTRICT xes = fx.es.data();
-        const float* HWY_RESTRICT xd2 = fx.d2.data();
-        // The row's chord of the support, by whole vectors: a vector whose
-        // least d^2 plus the row's is >= 1 only adds +-0 (float addition and
-        // the taper's steps are monotonic), so skipping it changes nothing.
-        std::size_t ib = fx.lo, ie = fx.hi;
-        while (ib < ie && !(fx.vmin[ib / lanes] + r.d2 < 1.0f)) ib += lanes;
-        while (ie > ib && !(fx.vmin[ie / lanes - 1] + r.d2 < 1.0f)) ie -= lanes;
-        for (std::size_t ii = ib; ii < ie; ii += lanes) {
-          const VF ec = hn::LoadU(df, xec + ii), es = hn::LoadU(df, xes + ii);
-          const VF s2 = hn::Add(hn::LoadU(df, xd2 + ii), rd2);
-          if constexpr (G) {
-            VF v, uu, vv;
-            pair_gradient_of_products(ec, es, b, q, s2, c.k, c.a, v, uu, vv);
-            hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), v), df, arow + ii);
-            const VF dd[3] = {hn::LoadU(df, fx.d.data() + ii), hn::Set(df, fy.d[jj]),
-                              hn::Set(df, D == 3 ? fz.d[kk] : 0.0f)};
-            const VF ph[3] = {phx, hn::Set(df, phi[1]), hn::Set(df, D == 3 ? phi[D - 1] : 0.0f)};
-            for (int a = 0; a < D; ++a) {
-              float* grow = gacc[a].data() + (kk * ny + jj) * stride;
-              const VF term = hn::Sub(hn::Mul(uu, dd[a]), hn::Mul(vv, ph[a]));
-              hn::StoreU(hn::Add(hn::LoadU(df, grow + ii), term), df, grow + ii);
-            }
-          } else {
-            hn::StoreU(hn::Add(hn::LoadU(df, arow + ii), pair_of_products(ec, es, b, q, s2, c.k)),
-                       df, arow + ii);
-          }
-        }
-      }
-    }
-  }
-
-  // One block: samples [i0, i0 + nx) x [j0, j0 + ny) x [k0, k0 + nz) of the
-  // axes, along y (and z) all in the cell (ay.cell[j0], az.cell[k0]), along x
-  // in any cells: each impulse's factors along y (and z) are computed once for
-  // the whole width, and its chord of each row is cut by no block edge but the
-  // block's.
-  void block(const grid_axis* axes, std::size_t i0, std::size_t nx, std::size_t j0, std::size_t ny,
-             std::size_t k0, std::size_t nz, const hush::grid<D>& gr, float* value, float* grad) {
-    const DF df;
-    const DI di;
-    const std::size_t lanes = hn::Lanes(df);
-    const std::size_t nx_pad = (nx + lanes - 1) / lanes * lanes;
-    const std::size_t n[3] = {nx, ny, nz}, first[3] = {i0, j0, k0};
-    for (int a = 0; a < D; ++a) {
-      std::copy(axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a]),
-                axes[a].frac.begin() + static_cast<std::ptrdiff_t>(first[a] + n[a]),
-                frac[a].begin());
-      std::fill(frac[a].begin() + static_cast<std::ptrdiff_t>(n[a]), frac[a].end(),
-                4.0f);  // d^2 > 1
-    }
-    const std::size_t rows = ny * nz;
-    std::fill(acc.begin(), acc.begin() + static_cast<std::ptrdiff_t>(rows * stride), 0.0f);
-    if constexpr (G)
-      for (int a = 0; a < D; ++a)
-        std::fill(gacc[a].begin(), gacc[a].begin() + static_cast<std::ptrdiff_t>(rows * stride),
-                  0.0f);
-    // Along x: each sample's cell relative to the first finite sample's (a
-    // non-finite sample, or padding, far away: its value is NaN or unused),
-    // the runs of equal cells, and the cells to visit (each run's and its
-    // neighbours, ascending: per sample the scalar order o = -1, 0, 1).
-    std::size_t f0 = 0;
-    while (f0 < nx && axes[0].bad[i0 + f0]) ++f0;
-    const std::uint32_t ref = f0 < nx ? axes[0].cell[i0 + f0] : 0u;
-    xruns.clear();
-    visits.clear();
-    for (std::size_t i = 0; i < nx_pad; ++i) {
-      if (i >= nx || axes[0].bad[i0 + i]) {
-        rel[i] = kFar;
-        continue;
-      }
-      rel[i] = static_cast<std::int32_t>(axes[0].cell[i0 + i] - ref);
-      if (xruns.empty() || xruns.back().rel != rel[i] || xruns.back().end != i)
-        xruns.push_back({rel[i], i, i + 1});
-      else
-        xruns.back().end = i + 1;
-    }
-    for (const xrun& x : xruns)
-      for (std::int32_t o = -1; o <= 1; ++o) visits.push_back(x.rel + o);
-    std::sort(visits.begin(), visits.end());
-    visits.erase(std::unique(visits.begin(), visits.end()), visits.end());
-    const std::uint32_t base[3] = {ref, axes[1].cell[j0], D == 3 ? axes[D - 1].cell[k0] : 0u};
-    for (int oz = D == 3 ? -1 : 0; oz <= (D == 3 ? 1 : 0); ++oz)
-      for (int oy = -1; oy <= 1; ++oy)
-        for (const std::int32_t X : visits) {
-          // The samples within one cell of X (contiguous: cells are monotonic
-          // along x), by whole vectors, and their o = X - rel (clamped: from 2
-          // on, d^2 >= 1 exactly).
-          std::size_t lo = nx_pad, hi = 0;
-          for (const xrun& x : xruns)
-            if (x.rel >= X - 1 && x.rel <= X + 1) {
-              lo = std::min(lo, x.begin);
-              hi = std::max(hi, x.end);
-            }
-          if (lo >= hi) continue;
-          lo = lo / lanes * lanes;
-          hi = (hi + lanes - 1) / lanes * lanes;
-          const VI xv = hn::Set(di, X), two = hn::Set(di, 2);
-          for (std::size_t i = lo; i < hi; i += lanes) {
-            const VI o = hn::Sub(xv, hn::LoadU(di, rel.data() + i));
-            hn::StoreU(hn::ConvertTo(df, hn::Min(hn::Max(o, hn::Neg(two)), two)), df,
-                       ox.data() + i);
-          }
-          std::uint32_t cell[D];
-          cell[0] = ref + static_cast<std::uint32_t>(X);
-          cell[1] = base[1] + static_cast<std::uint32_t>(oy);
-          if constexpr (D == 3) cell[2] = base[2] + static_cast<std::uint32_t>(oz);
-          for (const drawn& im : impulses(cell)) {
-            const float* u = im.u;
-            const float* phi = im.phi;
-            const float wt = im.wt;
-            fy.compute(frac[1].data(), (ny + lanes - 1) / lanes * lanes, float(oy), u[1], c.neg_a,
-                       hn::Set(df, phi[1]));
-            if (fy.lo >= fy.hi) continue;
-            if constexpr (D == 3) {
-              fz.compute(frac[2].data(), (nz + lanes - 1) / lanes * lanes, float(oz), u[2], c.neg_a,
-                         hn::Set(df, phi[2]));
-              if (fz.lo >= fz.hi) continue;
-            }
-            fx.compute(frac[0].data(), hi, 0.0f, u[0], c.neg_a, hn::Set(df, phi[0]), ox.data(), lo);
-            if (fx.lo >= fx.hi) continue;
-            add_impulse(phi, wt, ny, nz);
-          }
-        }
-    // Out: value = sum * scale, gradient = sum * (scale / cell); NaN where a
-    // coordinate of the sample is not finite.
-    const float scale = float(g.scale()), gscale = float(g.scale() * g.inverse_cell());
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    const std::size_t gx = gr.size[0], gy = gr.size[1];
-    const VF vscale = hn::Set(df, scale), vnan = hn::Set(df, nan);
-    const VI far = hn::Set(di, kFar);
-    for (std::size_t kk = 0; kk < nz; ++kk)
-      for (std::size_t jj = 0; jj < ny; ++jj) {
-        const bool row_bad = axes[1].bad[j0 + jj] || (D == 3 && axes[D - 1].bad[k0 + kk]);
-        const std::size_t out_row = ((k0 + kk) * gy + (j0 + jj)) * gx + i0;
-        const float* arow = acc.data() + (kk * ny + jj) * stride;
-        std::size_t ii = 0;
-        if (!row_bad)  // whole vectors; rel marks the non-finite samples
-          for (; ii + lanes <= nx; ii += lanes) {
-            const MF bad = hn::RebindMask(df, hn::Eq(hn::LoadU(di, rel.data() + ii), far));
-            hn::StoreU(hn::IfThenElse(bad, vnan, hn::Mul(hn::LoadU(df, arow + ii), vscale)), df,
-                       value + out_row + ii);
-          }
-        for (; ii < nx; ++ii)
-          value[out_row + ii] = row_bad || axes[0].bad[i0 + ii] ? nan : arow[ii] * scale;
-        if constexpr (G)
-          for (ii = 0; ii < nx; ++ii) {
-            const bool bad = row_bad || axes[0].bad[i0 + ii];
-            for (int a = 0; a < D; ++a)
-              grad[(out_row + ii) * D + static_cast<std::size_t>(a)] =
-                  bad ? nan : gacc[a][(kk * ny + jj) * stride + ii] * gscale;
-          }
-      }
-  }
-};
-
-// The slab [first, first + count) of a grid's slowest axis (value and grad
-// start at its first sample): blocks of shared cells when there are enough
-// samples per cell along x, else the points path on the grid's positions.
-template <int D, bool G>
-void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std::size_t count,
-          float* value, float* grad) {
-  const DF df;
-  const std::size_t lanes = hn::Lanes(df);
-  const double inv = g.inverse_cell();
-  const std::size_t caps[3] = {64, D == 2 ? 64u : 32u, 16};
-  hush::grid<D> gr = whole;  // the slab's sizes (output indexing); positions from `whole`
-  gr.size[D - 1] = count;
-  std::vector<grid_axis> axes;
-  axes.reserve(D);
-  for (int a = 0; a < D; ++a)
-    axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
-                      caps[a]);
-  const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
-  const std::size_t nx = gr.size[0], ny = gr.size[1];
-  if (per_cell < kMinRun) {
-    lanes_split sp;
-    auto split = [&](std::size_t batch, std::size_t used) {
-      for (std::size_t l = 0; l < lanes; ++l) {
-        if (l >= used) {
-          clear_lane<D>(sp, l);
-          continue;
-        }
-        const std::size_t idx = batch + l, i = idx % nx, j = (idx / nx) % ny, k = idx / (nx * ny);
-        const std::size_t ijk[3] = {i, j, k};
-        bool bad = false;
-        for (int a = 0; a < D; ++a) {
-          sp.cell[a][l] = axes[a].cell[ijk[a]];
-          sp.frac[a][l] = axes[a].frac[ijk[a]];
-          bad = bad || axes[a].bad[ijk[a]];
-        }
-        sp.bad[l] = bad;
-      }
-    };
-    points<D, G, true>(g, gr.count(), sp, split, value, grad);
-    return;
-  }
-  // Block buffers sized by the longest runs, not the caps: small grids do not pay for
-  // (and page-fault in) buffers they never fill.
-  // Along x, blocks of kBlockX samples whatever their cells (see block()) where
-  // the finite samples' cells step by at most one (so a block's cells relative to
-  // its first are small and ascend or descend); else (only where coordinates are
-  // so large that a double's spacing exceeds a cell) blocks of one cell's run.
-  bool steps_of_one = true;
-  for (std::size_t i = 0, last = nx; i < nx && steps_of_one; ++i) {
-    if (axes[0].bad[i]) continue;
-    if (last < nx) {
-      const auto step = static_cast<std::int32_t>(axes[0].cell[i] - axes[0].cell[last]);
-      steps_of_one = step >= -1 && step <= 1;
-    }
-    last = i;
-  }
-  const std::size_t bx = std::min(nx, kBlockX[D - 2]);
-  grid_kernel<D, G> kernel(g, bx, axes[1].longest_run(), D == 3 ? axes[D - 1].longest_run() : 1);
-  auto each_block = [&](auto&& f) {
-    if (steps_of_one)
-      for (std::size_t i0 = 0; i0 < nx; i0 += bx) f(i0, std::min(bx, nx - i0));
-    else
-      for (std::size_t xr = 0; xr < axes[0].runs(); ++xr)
-        f(axes[0].run_start[xr], axes[0].run_start[xr + 1] - axes[0].run_start[xr]);
-  };
-  const std::size_t zruns = D == 3 ? axes[D - 1].runs() : 1;
-  for (std::size_t zr = 0; zr < zruns; ++zr) {
-    const std::size_t k0 = D == 3 ? axes[D - 1].run_start[zr] : 0;
-    const std::size_t k1 = D == 3 ? axes[D - 1].run_start[zr + 1] : 1;
-    for (std::size_t yr = 0; yr < axes[1].runs(); ++yr) {
-      const std::size_t j0 = axes[1].run_start[yr], j1 = axes[1].run_start[yr + 1];
-      each_block([&](std::size_t i0, std::size_t n) {
-        kernel.block(axes.data(), i0, n, j0, j1 - j0, k0, k1 - k0, gr, value, grad);
-      });
-    }
-  }
-}
-
 }  // namespace gabor_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_GABOR_SHARED_POINTS_INL_H_ toggle
+// ---- end hush/gabor/shared_points-inl.h
+
+// The noise class comes first, not from here: hush/gabor.hpp includes these
+// kernels at its end (hush/gabor/simd_kernel.hpp), as src/simd/gabor.cpp does.
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
 
 // Gabor noise at n interleaved float points on the lockstep path (one lane per
 // point); values into value[n], interleaved gradients into grad[D n] unless
@@ -13206,8 +13458,8 @@ inline void gabor3_grid(const gabor<3>& g, const grid<3>& gr, std::size_t first,
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_GABOR_INL_H_ toggle
-// ---- end hush/simd/gabor-inl.h
+#endif  // HUSH_GABOR_SIMD_INL_H_ toggle
+// ---- end hush/gabor/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_GABOR(X)                                                                 \
@@ -13303,7 +13555,7 @@ struct simd_kernel<gabor<D>> {
 //
 // Wavelet noise (Robert L. Cook and Tony DeRose, "Wavelet Noise", SIGGRAPH 2005),
 // 2D and 3D: band-limited noise from a tile of quadratic B-spline coefficients
-// with the coarser half of its spectrum projected out (wavelet_tile.hpp), summed
+// with the coarser half of its spectrum projected out (wavelet/tile.hpp), summed
 // over octave bands, anti-aliased by the sample's footprint, and, in 3D,
 // projectable onto a surface so that the band limit survives texturing a
 // surface with a 3D noise.
@@ -13418,7 +13670,7 @@ struct simd_kernel<gabor<D>> {
 #include <string>
 #include <vector>
 
-// ---- begin hush/wavelet_tile.hpp
+// ---- begin hush/wavelet/tile.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // hush::wavelet_tile<D>: the periodic tile of noise coefficients of wavelet noise
@@ -13844,7 +14096,7 @@ class wavelet_blend_tile {
 }  // namespace hush
 
 #endif  // HUSH_WAVELET_TILE_HPP
-// ---- end hush/wavelet_tile.hpp
+// ---- end hush/wavelet/tile.hpp
 
 namespace hush {
 
@@ -14182,7 +14434,7 @@ value_gradient<T, 3> wavelet_general_approx(const T (&y)[3], const T (&u)[3], co
 
 // The knots of the exact projection's line integral (below), sorted, into
 // knots[0, return value): B2's knots and the crossings of N's knot planes. Shared
-// by the scalar and SIMD kernels (simd/wavelet-inl.h computes them per lane).
+// by the scalar and SIMD kernels (wavelet/simd-inl.h computes them per lane).
 template <class T>
 int wavelet_exact_knots(const T (&y)[3], const T (&u)[3], const T (&s)[3],
                         T (&knots)[constants::kWaveletMaxKnots]) {
@@ -14275,7 +14527,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
   struct params {
     std::uint32_t seed = 0;
-    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet_tile.hpp).
+    // Coefficients per tile side: even, 16 ... 2048 (2D) / 128 (3D) (wavelet/tile.hpp).
     int tile_size = D == 2 ? 128 : 64;
     // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
     int first_band = 0;
@@ -14864,7 +15116,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 // ---- begin hush/wavelet/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Wavelet noise's SIMD entry points (kernels: hush/simd/wavelet-inl.h) and
+// Wavelet noise's SIMD entry points (kernels: hush/wavelet/simd-inl.h) and
 // detail::simd_kernel<wavelet<D>>, which exec::simd calls: points, grids and
 // samples (footprints, normals). Included at the end of hush/wavelet.hpp, after
 // the class its kernels use; not on its own. Points and gradients are
@@ -14876,7 +15128,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/wavelet-inl.h
+// ---- begin hush/wavelet/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernels for wavelet noise (include/hush/wavelet.hpp), 2D and 3D:
@@ -14913,11 +15165,15 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 // Lanes that widen the basis or see a footprint that filters everything are
 // evaluated lane by lane by the scalar code, and so is any batch of a noise with
 // tile variants (variant_overlap > 0): correct everywhere but not vectorised.
-#if defined(HUSH_SIMD_WAVELET_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_WAVELET_INL_H_
-#undef HUSH_SIMD_WAVELET_INL_H_
+//
+// Its parts: hush/wavelet/separable-inl.h (the bands in lanes, separable),
+// hush/wavelet/projected-inl.h (projection onto a surface) and hush/wavelet/grid-inl.h
+// (grids); this file holds the points and samples kernels and the entry points.
+#if defined(HUSH_WAVELET_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_SIMD_INL_H_
+#undef HUSH_WAVELET_SIMD_INL_H_
 #else
-#define HUSH_SIMD_WAVELET_INL_H_
+#define HUSH_WAVELET_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -14926,13 +15182,55 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+
+#include <hwy/highway.h>
+
+// ---- begin hush/wavelet/grid-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Wavelet noise on uniform grids in lanes, by the separability of the basis: per
+// band the x axis split once per column, y once per row, z once per slice, and the
+// contraction in the scalar code's order (hush/wavelet/simd-inl.h says how).
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/wavelet/simd-inl.h, never included directly by users.
+#if defined(HUSH_WAVELET_GRID_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_GRID_INL_H_
+#undef HUSH_WAVELET_GRID_INL_H_
+#else
+#define HUSH_WAVELET_GRID_INL_H_
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <hwy/highway.h>
 
+// ---- begin hush/wavelet/separable-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Wavelet noise's bands in lanes, separable: each band's positions split into cell
+// and fraction as lattice_split<float> does, the B-spline weights of each axis, and
+// the nested sums over the tile's taps (separable3; in 3D a 4-float row load per
+// lane and (y, z) row, rows3). The kernels of hush/wavelet/simd-inl.h build on it.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/wavelet/simd-inl.h, never included directly by users.
+#if defined(HUSH_WAVELET_SEPARABLE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_SEPARABLE_INL_H_
+#undef HUSH_WAVELET_SEPARABLE_INL_H_
+#else
+#define HUSH_WAVELET_SEPARABLE_INL_H_
+#endif
 
-// The noise class comes first, not from here: hush/wavelet.hpp includes these
-// kernels at its end (hush/wavelet/simd_kernel.hpp), as src/simd/wavelet.cpp does.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include <hwy/highway.h>
+
+
 HWY_BEFORE_NAMESPACE();
 namespace hush {
 namespace HWY_NAMESPACE {
@@ -15288,6 +15586,355 @@ HWY_INLINE void separable(const float* tile, const axis* ax, VF& v, VF* g) {
   }
 }
 
+}  // namespace wavelet_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_WAVELET_SEPARABLE_INL_H_ toggle
+// ---- end hush/wavelet/separable-inl.h
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace wavelet_simd {
+
+// ---- Grids: per band, the x axis split once per column (lattice_split<float> in
+// double, as scalar evaluation does), y once per row, z once per slice; the
+// contraction follows the separable order (file comment).
+// Two layouts of the row's contraction T that columns read:
+//  - unwrapped (the grid spans at most max(n, nx) + 3 cells): T[r] is x cell
+//    (first + r) mod n, r = 0 ... span - 1, so a vector of columns reads a few
+//    consecutive T values: when they fit in one vector (lane0 + 2 < lanes, i.e.
+//    at least ~1 column per cell), one load and three in-register lane lookups
+//    (TableLookupLanes) replace the three gathers;
+//  - wrapped (sparse grids): T[x cell], gathered.
+// Either way the same T values meet the same weights in the same order.
+struct column_table {
+  std::vector<std::int32_t> idx[3];  // T index of each tap
+  std::vector<float> w[3], dw[3];
+  std::vector<char> needed;  // x cells some column reads
+  std::size_t padded = 0;
+  bool unwrapped = false;
+  int first = 0;          // unwrapped: the x cell of T[0]
+  std::size_t span = 0;   // unwrapped: T's length
+  std::vector<std::int32_t> lane0;  // unwrapped: idx[0] - base of the column's vector
+  std::vector<std::int32_t> base;   // per vector: the smallest idx[0] of its columns
+  std::vector<char> fits;           // per vector: every tap within one vector of T
+};
+
+template <bool kGradient>
+column_table make_columns(std::size_t nx, int n, std::uint32_t period, double freq, double off,
+                          double origin, double step) {
+  column_table t;
+  const std::size_t lanes = hn::Lanes(DF());
+  t.padded = (nx + lanes - 1) / lanes * lanes;
+  for (int j = 0; j < 3; ++j) {
+    t.idx[j].assign(t.padded, 0);
+    t.w[j].assign(t.padded, 0.0f);
+    if (kGradient) t.dw[j].assign(t.padded, 0.0f);
+  }
+  t.needed.assign(static_cast<std::size_t>(n), 0);
+  // rel: tap 0's cell, unwrapped column to column (any representative of the cell
+  // modulo n serves: T's index only has to name the right cell).
+  std::vector<long long> rel(t.padded, 0);
+  long long prev = 0, lo = 0, hi = 0;
+  const auto un = static_cast<std::uint32_t>(n);
+  for (std::size_t i = 0; i < nx; ++i) {
+    double x = (origin + step * static_cast<double>(i)) * freq;
+    if (!std::isfinite(x)) x = 0.0;  // as wavelet::band::position for finite input
+    const lattice_coord<float> c = lattice_split<float>(x + off, period);
+    detail::wavelet_axis<float> ax;
+    detail::wavelet_axis_plain<float, kGradient>(c.f, ax);
+    const long long cell0 = static_cast<long long>(c.i0 % un);
+    if (i == 0) {
+      rel[i] = cell0;
+    } else {
+      long long d = (cell0 - prev % n + n) % n;  // in [0, n): the step modulo n
+      if (2 * d > n) d -= n;
+      rel[i] = rel[i - 1] + d;
+    }
+    prev = cell0;
+    lo = i == 0 ? rel[i] : std::min(lo, rel[i]);
+    hi = i == 0 ? rel[i] : std::max(hi, rel[i]);
+    for (int j = 0; j < 3; ++j) {
+      const int cell = static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % un);
+      t.idx[j][i] = cell;
+      t.needed[static_cast<std::size_t>(cell)] = 1;
+      t.w[j][i] = ax.w[j];
+      if (kGradient) t.dw[j][i] = ax.dw[j];
+    }
+  }
+  for (std::size_t i = nx; i < t.padded; ++i) rel[i] = nx ? rel[nx - 1] : 0;  // weight 0
+  const auto limit = static_cast<long long>(std::max(static_cast<std::size_t>(n), nx));
+  if (nx == 0 || hi - lo > limit) return t;
+  t.unwrapped = true;
+  t.first = static_cast<int>(((lo % n) + n) % n);
+  t.span = static_cast<std::size_t>(hi - lo) + 3;
+  t.lane0.assign(t.padded, 0);
+  for (std::size_t v = 0; v < t.padded; v += lanes) {
+    long long b = rel[v] - lo, top = b;
+    for (std::size_t l = 0; l < lanes; ++l) {
+      b = std::min(b, rel[v + l] - lo);
+      top = std::max(top, rel[v + l] - lo);
+    }
+    t.base.push_back(static_cast<std::int32_t>(b));
+    t.fits.push_back(top - b + 2 < static_cast<long long>(lanes) ? 1 : 0);
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const auto r = static_cast<std::int32_t>(rel[v + l] - lo);
+      t.lane0[v + l] = static_cast<std::int32_t>(r - b);
+      for (int j = 0; j < 3; ++j) t.idx[j][v + l] = r + j;
+    }
+  }
+  return t;
+}
+
+// One row or slice coordinate of a band: three wrapped cells and their weights.
+struct line_axis {
+  int cell[3];
+  detail::wavelet_axis<float> ax;
+};
+template <bool kGradient>
+line_axis make_line(int n, std::uint32_t period, double freq, double off, double coordinate) {
+  line_axis r;
+  double x = coordinate * freq;
+  if (!std::isfinite(x)) x = 0.0;
+  const lattice_coord<float> c = lattice_split<float>(x + off, period);
+  detail::wavelet_axis_plain<float, kGradient>(c.f, r.ax);
+  for (int j = 0; j < 3; ++j)
+    r.cell[j] =
+        static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % static_cast<std::uint32_t>(n));
+  return r;
+}
+
+template <bool kGradient, int D>
+void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* grad) {
+  const DF df;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const int n = w.parameters().tile_size;
+  const std::size_t un = static_cast<std::size_t>(n);
+  const auto um = static_cast<std::size_t>(w.tile().row_length());  // row stride of the tile
+  const std::uint32_t period = w.split_period();
+  const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
+  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
+  const float* tile = w.tile().coefficients();
+  std::vector<int> bands;
+  for (int b = 0; b < w.band_count(); ++b)
+    if (pl.weight[b] != 0.0) bands.push_back(b);
+  const vec<double, D> zero{};
+  std::vector<column_table> cols;
+  cols.reserve(bands.size());
+  for (int b : bands)
+    cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
+                                           w.band_position(b, zero)[0], g.origin[0], g.step[0]));
+  const std::size_t padded = cols.empty() ? nx : cols[0].padded;
+  // Per band: S (3D: the z contraction per (x, y) cell, and its z derivative) and T
+  // (the row's contraction per x cell: value, d/dy, d/dz).
+  std::vector<std::vector<float>> S(bands.size()), Sz(bands.size());
+  std::size_t t_len = un;
+  for (const column_table& ct : cols) t_len = std::max(t_len, ct.span + lanes);
+  std::vector<float> T(t_len), Ty(t_len), Tz(t_len);
+  std::vector<float> acc(padded), gacc[3];
+  for (int a = 0; a < D; ++a) gacc[a].assign(kGradient ? padded : 0, 0.0f);
+  // Per band: the row lines (the same in every slice) and, in 3D, the x and y
+  // cells some sample reads (the slice contraction S is needed there only).
+  std::vector<std::vector<line_axis>> ylines(bands.size());
+  std::vector<std::vector<std::size_t>> xcells(bands.size()), ycells(bands.size());
+  for (std::size_t q = 0; q < bands.size(); ++q) {
+    const int b = bands[q];
+    std::vector<char> yneeded(un, 0);
+    for (std::size_t j = 0; j < ny; ++j) {
+      ylines[q].push_back(
+          make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
+                               g.origin[1] + g.step[1] * static_cast<double>(j)));
+      for (int c : ylines[q].back().cell) yneeded[static_cast<std::size_t>(c)] = 1;
+    }
+    for (std::size_t c = 0; c < un; ++c) {
+      if (yneeded[c]) ycells[q].push_back(c);
+      if (cols[q].needed[c]) xcells[q].push_back(c);
+    }
+    if constexpr (D == 3) {
+      S[q].assign(un * un, 0.0f);
+      if (kGradient) Sz[q].assign(un * un, 0.0f);
+    }
+  }
+  for (std::size_t k = 0; k < nz; ++k) {
+    if constexpr (D == 3) {
+      for (std::size_t q = 0; q < bands.size(); ++q) {
+        const int b = bands[q];
+        const line_axis z =
+            make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[2],
+                                 g.origin[2] + g.step[2] * static_cast<double>(k));
+        for (const std::size_t yc : ycells[q]) {
+          for (const std::size_t xc : xcells[q]) {
+            float s = 0, sz = 0;
+            for (int c = 0; c < 3; ++c) {
+              const float v = tile[xc + um * (yc + un * static_cast<std::size_t>(z.cell[c]))];
+              s += z.ax.w[c] * v;
+              if (kGradient) sz += z.ax.dw[c] * v;
+            }
+            S[q][yc * un + xc] = s;
+            if (kGradient) Sz[q][yc * un + xc] = sz;
+          }
+        }
+      }
+    }
+    for (std::size_t j = 0; j < ny; ++j) {
+      std::fill(acc.begin(), acc.end(), 0.0f);
+      for (int a = 0; a < D; ++a) std::fill(gacc[a].begin(), gacc[a].end(), 0.0f);
+      for (std::size_t q = 0; q < bands.size(); ++q) {
+        const int b = bands[q];
+        const line_axis& y = ylines[q][j];
+        // T(x) = sum_b wy_b S(x, y_b) (2D: S(x, y) is the coefficient itself), at T
+        // index r: x cell (first + r) mod n unwrapped, x cell r wrapped.
+        const column_table& ct = cols[q];
+        const std::size_t t_count = ct.unwrapped ? ct.span : un;
+        for (std::size_t r = 0; r < t_count; ++r) {
+          const std::size_t xc = ct.unwrapped ? (static_cast<std::size_t>(ct.first) + r) % un : r;
+          if (!ct.unwrapped && !ct.needed[xc]) continue;
+          float t = 0, ty = 0, tz = 0;
+          for (int bb = 0; bb < 3; ++bb) {
+            const std::size_t yc = static_cast<std::size_t>(y.cell[bb]);
+            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + um * yc];
+            t += y.ax.w[bb] * s;
+            if (kGradient) {
+              ty += y.ax.dw[bb] * s;
+              if (D == 3) tz += y.ax.w[bb] * Sz[q][yc * un + xc];
+            }
+          }
+          T[r] = t;
+          if (kGradient) {
+            Ty[r] = ty;
+            Tz[r] = tz;
+          }
+        }
+        const float wb = static_cast<float>(pl.weight[b]);
+        const float chain = static_cast<float>(pl.weight[b] * w.band_frequency(b));
+        for (std::size_t i = 0; i < nx; i += lanes) {
+          VF v = hn::Zero(df), gx = hn::Zero(df), gy = hn::Zero(df), gz = hn::Zero(df);
+          const std::size_t vec = i / lanes;
+          if (ct.unwrapped && ct.fits[vec]) {
+            // The taps of these columns lie in T[base, base + lanes): lane lookups.
+            const auto base = static_cast<std::size_t>(ct.base[vec]);
+            const VF tv = hn::LoadU(df, T.data() + base);
+            const VF tyv = kGradient ? hn::LoadU(df, Ty.data() + base) : tv;
+            const VF tzv = kGradient && D == 3 ? hn::LoadU(df, Tz.data() + base) : tv;
+            const VI l0 = hn::LoadU(di, ct.lane0.data() + i);
+            for (int a = 0; a < 3; ++a) {
+              const auto ind = hn::IndicesFromVec(df, hn::Add(l0, hn::Set(di, a)));
+              const VF wa = hn::LoadU(df, ct.w[a].data() + i);
+              const VF t = hn::TableLookupLanes(tv, ind);
+              v = mul_add(wa, t, v);
+              if constexpr (kGradient) {
+                gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
+                gy = mul_add(wa, hn::TableLookupLanes(tyv, ind), gy);
+                if (D == 3) gz = mul_add(wa, hn::TableLookupLanes(tzv, ind), gz);
+              }
+            }
+          } else {
+            for (int a = 0; a < 3; ++a) {
+              const VI idx = hn::LoadU(di, ct.idx[a].data() + i);
+              const VF wa = hn::LoadU(df, ct.w[a].data() + i);
+              const VF t = hn::GatherIndex(df, T.data(), idx);
+              v = mul_add(wa, t, v);
+              if constexpr (kGradient) {
+                gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
+                gy = mul_add(wa, hn::GatherIndex(df, Ty.data(), idx), gy);
+                if (D == 3) gz = mul_add(wa, hn::GatherIndex(df, Tz.data(), idx), gz);
+              }
+            }
+          }
+          hn::StoreU(mul_add(hn::Set(df, wb), v, hn::LoadU(df, acc.data() + i)), df,
+                     acc.data() + i);
+          if constexpr (kGradient) {
+            const VF cv = hn::Set(df, chain);
+            const VF gs[3] = {gx, gy, gz};
+            for (int a = 0; a < D; ++a)
+              hn::StoreU(mul_add(cv, gs[a], hn::LoadU(df, gacc[a].data() + i)), df,
+                         gacc[a].data() + i);
+          }
+        }
+      }
+      // Scale and remap, as wavelet::eval.
+      const std::size_t row = k * ny + j;
+      float* out = value + row * nx;
+      float* gout = kGradient ? grad + row * nx * D : nullptr;
+      const float scale = static_cast<float>(pl.scale);
+      const auto& prm = w.parameters();
+      std::size_t done = 0;
+      if (prm.distribution == wavelet_distribution::gaussian) {  // whole vectors in lanes
+        const VF sv = hn::Set(df, scale), gv = hn::Set(df, static_cast<float>(prm.gaussian_scale));
+        for (; done + lanes <= nx; done += lanes) {
+          hn::StoreU(hn::Mul(hn::Mul(hn::LoadU(df, acc.data() + done), sv), gv), df, out + done);
+          if constexpr (kGradient) {
+            VF gs[3];
+            for (int a = 0; a < D; ++a)
+              gs[a] = hn::Mul(hn::Mul(hn::LoadU(df, gacc[a].data() + done), sv), gv);
+            store_interleaved<D>(gs, gout + done * D);
+          }
+        }
+      }
+      for (std::size_t i = done; i < nx; ++i) {
+        float v = acc[i] * scale;
+        float gr[3];
+        for (int a = 0; a < D; ++a) gr[a] = kGradient ? gacc[a][i] * scale : 0.0f;
+        if (prm.distribution == wavelet_distribution::gaussian) {
+          const float gs = static_cast<float>(prm.gaussian_scale);
+          v = v * gs;
+          for (int a = 0; a < D; ++a) gr[a] = gr[a] * gs;
+        } else {
+          float dv = 1.0f;
+          w.template remap<float>(v, kGradient ? &dv : nullptr);
+          for (int a = 0; a < D; ++a) gr[a] = gr[a] * dv;
+        }
+        out[i] = v;
+        if (kGradient)
+          for (int a = 0; a < D; ++a) gout[i * D + a] = gr[a];
+      }
+    }
+  }
+}
+
+}  // namespace wavelet_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_WAVELET_GRID_INL_H_ toggle
+// ---- end hush/wavelet/grid-inl.h
+// ---- begin hush/wavelet/projected-inl.h
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Wavelet noise projected onto a surface (wavelet.hpp band_kernel, unwidened) in
+// lanes: the kinds of lanes a vector may hold, and per kind its kernel: the fixed
+// kernel along a tile axis for a normal along it, the exact projection
+// (general_exact) or the paper's approximation (general_approx) for any other.
+// Compiled once per SIMD target (the "-inl.h" convention: toggle include guard
+// below); a part of hush/wavelet/simd-inl.h, never included directly by users.
+#if defined(HUSH_WAVELET_PROJECTED_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_WAVELET_PROJECTED_INL_H_
+#undef HUSH_WAVELET_PROJECTED_INL_H_
+#else
+#define HUSH_WAVELET_PROJECTED_INL_H_
+#endif
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+
+#include <hwy/highway.h>
+
+
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace wavelet_simd {
+
 // ---- Projection onto a surface (wavelet.hpp band_kernel, unwidened): the kinds
 // of lanes a vector may hold, each with its kernel.
 enum lane_kind : int {
@@ -15537,6 +16184,23 @@ HWY_INLINE void general_exact(const wavelet_tile<3>& tl, const VI* cell, const V
     }
   }
 }
+
+}  // namespace wavelet_simd
+}  // namespace HWY_NAMESPACE
+}  // namespace hush
+HWY_AFTER_NAMESPACE();
+
+#endif  // HUSH_WAVELET_PROJECTED_INL_H_ toggle
+// ---- end hush/wavelet/projected-inl.h
+
+// The noise class comes first, not from here: hush/wavelet.hpp includes these
+// kernels at its end (hush/wavelet/simd_kernel.hpp), as src/simd/wavelet.cpp does.
+HWY_BEFORE_NAMESPACE();
+namespace hush {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+namespace wavelet_simd {
 
 // One band of one vector of points with the lanes' kernel `kind` (lane_kind; u: the
 // lanes' unit normals for kGeneral): value and gradient in coefficient units.
@@ -15888,307 +16552,6 @@ void wavelet_samples(const wavelet<D>& w, const samples<D>& s, float* value, flo
       });
 }
 
-namespace wavelet_simd {
-
-// ---- Grids: per band, the x axis split once per column (lattice_split<float> in
-// double, as scalar evaluation does), y once per row, z once per slice; the
-// contraction follows the separable order (file comment).
-// Two layouts of the row's contraction T that columns read:
-//  - unwrapped (the grid spans at most max(n, nx) + 3 cells): T[r] is x cell
-//    (first + r) mod n, r = 0 ... span - 1, so a vector of columns reads a few
-//    consecutive T values: when they fit in one vector (lane0 + 2 < lanes, i.e.
-//    at least ~1 column per cell), one load and three in-register lane lookups
-//    (TableLookupLanes) replace the three gathers;
-//  - wrapped (sparse grids): T[x cell], gathered.
-// Either way the same T values meet the same weights in the same order.
-struct column_table {
-  std::vector<std::int32_t> idx[3];  // T index of each tap
-  std::vector<float> w[3], dw[3];
-  std::vector<char> needed;  // x cells some column reads
-  std::size_t padded = 0;
-  bool unwrapped = false;
-  int first = 0;          // unwrapped: the x cell of T[0]
-  std::size_t span = 0;   // unwrapped: T's length
-  std::vector<std::int32_t> lane0;  // unwrapped: idx[0] - base of the column's vector
-  std::vector<std::int32_t> base;   // per vector: the smallest idx[0] of its columns
-  std::vector<char> fits;           // per vector: every tap within one vector of T
-};
-
-template <bool kGradient>
-column_table make_columns(std::size_t nx, int n, std::uint32_t period, double freq, double off,
-                          double origin, double step) {
-  column_table t;
-  const std::size_t lanes = hn::Lanes(DF());
-  t.padded = (nx + lanes - 1) / lanes * lanes;
-  for (int j = 0; j < 3; ++j) {
-    t.idx[j].assign(t.padded, 0);
-    t.w[j].assign(t.padded, 0.0f);
-    if (kGradient) t.dw[j].assign(t.padded, 0.0f);
-  }
-  t.needed.assign(static_cast<std::size_t>(n), 0);
-  // rel: tap 0's cell, unwrapped column to column (any representative of the cell
-  // modulo n serves: T's index only has to name the right cell).
-  std::vector<long long> rel(t.padded, 0);
-  long long prev = 0, lo = 0, hi = 0;
-  const auto un = static_cast<std::uint32_t>(n);
-  for (std::size_t i = 0; i < nx; ++i) {
-    double x = (origin + step * static_cast<double>(i)) * freq;
-    if (!std::isfinite(x)) x = 0.0;  // as wavelet::band::position for finite input
-    const lattice_coord<float> c = lattice_split<float>(x + off, period);
-    detail::wavelet_axis<float> ax;
-    detail::wavelet_axis_plain<float, kGradient>(c.f, ax);
-    const long long cell0 = static_cast<long long>(c.i0 % un);
-    if (i == 0) {
-      rel[i] = cell0;
-    } else {
-      long long d = (cell0 - prev % n + n) % n;  // in [0, n): the step modulo n
-      if (2 * d > n) d -= n;
-      rel[i] = rel[i - 1] + d;
-    }
-    prev = cell0;
-    lo = i == 0 ? rel[i] : std::min(lo, rel[i]);
-    hi = i == 0 ? rel[i] : std::max(hi, rel[i]);
-    for (int j = 0; j < 3; ++j) {
-      const int cell = static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % un);
-      t.idx[j][i] = cell;
-      t.needed[static_cast<std::size_t>(cell)] = 1;
-      t.w[j][i] = ax.w[j];
-      if (kGradient) t.dw[j][i] = ax.dw[j];
-    }
-  }
-  for (std::size_t i = nx; i < t.padded; ++i) rel[i] = nx ? rel[nx - 1] : 0;  // weight 0
-  const auto limit = static_cast<long long>(std::max(static_cast<std::size_t>(n), nx));
-  if (nx == 0 || hi - lo > limit) return t;
-  t.unwrapped = true;
-  t.first = static_cast<int>(((lo % n) + n) % n);
-  t.span = static_cast<std::size_t>(hi - lo) + 3;
-  t.lane0.assign(t.padded, 0);
-  for (std::size_t v = 0; v < t.padded; v += lanes) {
-    long long b = rel[v] - lo, top = b;
-    for (std::size_t l = 0; l < lanes; ++l) {
-      b = std::min(b, rel[v + l] - lo);
-      top = std::max(top, rel[v + l] - lo);
-    }
-    t.base.push_back(static_cast<std::int32_t>(b));
-    t.fits.push_back(top - b + 2 < static_cast<long long>(lanes) ? 1 : 0);
-    for (std::size_t l = 0; l < lanes; ++l) {
-      const auto r = static_cast<std::int32_t>(rel[v + l] - lo);
-      t.lane0[v + l] = static_cast<std::int32_t>(r - b);
-      for (int j = 0; j < 3; ++j) t.idx[j][v + l] = r + j;
-    }
-  }
-  return t;
-}
-
-// One row or slice coordinate of a band: three wrapped cells and their weights.
-struct line_axis {
-  int cell[3];
-  detail::wavelet_axis<float> ax;
-};
-template <bool kGradient>
-line_axis make_line(int n, std::uint32_t period, double freq, double off, double coordinate) {
-  line_axis r;
-  double x = coordinate * freq;
-  if (!std::isfinite(x)) x = 0.0;
-  const lattice_coord<float> c = lattice_split<float>(x + off, period);
-  detail::wavelet_axis_plain<float, kGradient>(c.f, r.ax);
-  for (int j = 0; j < 3; ++j)
-    r.cell[j] =
-        static_cast<int>((c.i0 + static_cast<std::uint32_t>(j)) % static_cast<std::uint32_t>(n));
-  return r;
-}
-
-template <bool kGradient, int D>
-void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* grad) {
-  const DF df;
-  const DI di;
-  const std::size_t lanes = hn::Lanes(df);
-  const int n = w.parameters().tile_size;
-  const std::size_t un = static_cast<std::size_t>(n);
-  const auto um = static_cast<std::size_t>(w.tile().row_length());  // row stride of the tile
-  const std::uint32_t period = w.split_period();
-  const typename wavelet<D>::plan pl = w.make_plan(sample_input<D>{});
-  const std::size_t nx = g.size[0], ny = g.size[1], nz = D == 3 ? g.size[D - 1] : 1;
-  const float* tile = w.tile().coefficients();
-  std::vector<int> bands;
-  for (int b = 0; b < w.band_count(); ++b)
-    if (pl.weight[b] != 0.0) bands.push_back(b);
-  const vec<double, D> zero{};
-  std::vector<column_table> cols;
-  cols.reserve(bands.size());
-  for (int b : bands)
-    cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
-                                           w.band_position(b, zero)[0], g.origin[0], g.step[0]));
-  const std::size_t padded = cols.empty() ? nx : cols[0].padded;
-  // Per band: S (3D: the z contraction per (x, y) cell, and its z derivative) and T
-  // (the row's contraction per x cell: value, d/dy, d/dz).
-  std::vector<std::vector<float>> S(bands.size()), Sz(bands.size());
-  std::size_t t_len = un;
-  for (const column_table& ct : cols) t_len = std::max(t_len, ct.span + lanes);
-  std::vector<float> T(t_len), Ty(t_len), Tz(t_len);
-  std::vector<float> acc(padded), gacc[3];
-  for (int a = 0; a < D; ++a) gacc[a].assign(kGradient ? padded : 0, 0.0f);
-  // Per band: the row lines (the same in every slice) and, in 3D, the x and y
-  // cells some sample reads (the slice contraction S is needed there only).
-  std::vector<std::vector<line_axis>> ylines(bands.size());
-  std::vector<std::vector<std::size_t>> xcells(bands.size()), ycells(bands.size());
-  for (std::size_t q = 0; q < bands.size(); ++q) {
-    const int b = bands[q];
-    std::vector<char> yneeded(un, 0);
-    for (std::size_t j = 0; j < ny; ++j) {
-      ylines[q].push_back(
-          make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
-                               g.origin[1] + g.step[1] * static_cast<double>(j)));
-      for (int c : ylines[q].back().cell) yneeded[static_cast<std::size_t>(c)] = 1;
-    }
-    for (std::size_t c = 0; c < un; ++c) {
-      if (yneeded[c]) ycells[q].push_back(c);
-      if (cols[q].needed[c]) xcells[q].push_back(c);
-    }
-    if constexpr (D == 3) {
-      S[q].assign(un * un, 0.0f);
-      if (kGradient) Sz[q].assign(un * un, 0.0f);
-    }
-  }
-  for (std::size_t k = 0; k < nz; ++k) {
-    if constexpr (D == 3) {
-      for (std::size_t q = 0; q < bands.size(); ++q) {
-        const int b = bands[q];
-        const line_axis z =
-            make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[2],
-                                 g.origin[2] + g.step[2] * static_cast<double>(k));
-        for (const std::size_t yc : ycells[q]) {
-          for (const std::size_t xc : xcells[q]) {
-            float s = 0, sz = 0;
-            for (int c = 0; c < 3; ++c) {
-              const float v = tile[xc + um * (yc + un * static_cast<std::size_t>(z.cell[c]))];
-              s += z.ax.w[c] * v;
-              if (kGradient) sz += z.ax.dw[c] * v;
-            }
-            S[q][yc * un + xc] = s;
-            if (kGradient) Sz[q][yc * un + xc] = sz;
-          }
-        }
-      }
-    }
-    for (std::size_t j = 0; j < ny; ++j) {
-      std::fill(acc.begin(), acc.end(), 0.0f);
-      for (int a = 0; a < D; ++a) std::fill(gacc[a].begin(), gacc[a].end(), 0.0f);
-      for (std::size_t q = 0; q < bands.size(); ++q) {
-        const int b = bands[q];
-        const line_axis& y = ylines[q][j];
-        // T(x) = sum_b wy_b S(x, y_b) (2D: S(x, y) is the coefficient itself), at T
-        // index r: x cell (first + r) mod n unwrapped, x cell r wrapped.
-        const column_table& ct = cols[q];
-        const std::size_t t_count = ct.unwrapped ? ct.span : un;
-        for (std::size_t r = 0; r < t_count; ++r) {
-          const std::size_t xc = ct.unwrapped ? (static_cast<std::size_t>(ct.first) + r) % un : r;
-          if (!ct.unwrapped && !ct.needed[xc]) continue;
-          float t = 0, ty = 0, tz = 0;
-          for (int bb = 0; bb < 3; ++bb) {
-            const std::size_t yc = static_cast<std::size_t>(y.cell[bb]);
-            const float s = D == 3 ? S[q][yc * un + xc] : tile[xc + um * yc];
-            t += y.ax.w[bb] * s;
-            if (kGradient) {
-              ty += y.ax.dw[bb] * s;
-              if (D == 3) tz += y.ax.w[bb] * Sz[q][yc * un + xc];
-            }
-          }
-          T[r] = t;
-          if (kGradient) {
-            Ty[r] = ty;
-            Tz[r] = tz;
-          }
-        }
-        const float wb = static_cast<float>(pl.weight[b]);
-        const float chain = static_cast<float>(pl.weight[b] * w.band_frequency(b));
-        for (std::size_t i = 0; i < nx; i += lanes) {
-          VF v = hn::Zero(df), gx = hn::Zero(df), gy = hn::Zero(df), gz = hn::Zero(df);
-          const std::size_t vec = i / lanes;
-          if (ct.unwrapped && ct.fits[vec]) {
-            // The taps of these columns lie in T[base, base + lanes): lane lookups.
-            const auto base = static_cast<std::size_t>(ct.base[vec]);
-            const VF tv = hn::LoadU(df, T.data() + base);
-            const VF tyv = kGradient ? hn::LoadU(df, Ty.data() + base) : tv;
-            const VF tzv = kGradient && D == 3 ? hn::LoadU(df, Tz.data() + base) : tv;
-            const VI l0 = hn::LoadU(di, ct.lane0.data() + i);
-            for (int a = 0; a < 3; ++a) {
-              const auto ind = hn::IndicesFromVec(df, hn::Add(l0, hn::Set(di, a)));
-              const VF wa = hn::LoadU(df, ct.w[a].data() + i);
-              const VF t = hn::TableLookupLanes(tv, ind);
-              v = mul_add(wa, t, v);
-              if constexpr (kGradient) {
-                gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
-                gy = mul_add(wa, hn::TableLookupLanes(tyv, ind), gy);
-                if (D == 3) gz = mul_add(wa, hn::TableLookupLanes(tzv, ind), gz);
-              }
-            }
-          } else {
-            for (int a = 0; a < 3; ++a) {
-              const VI idx = hn::LoadU(di, ct.idx[a].data() + i);
-              const VF wa = hn::LoadU(df, ct.w[a].data() + i);
-              const VF t = hn::GatherIndex(df, T.data(), idx);
-              v = mul_add(wa, t, v);
-              if constexpr (kGradient) {
-                gx = mul_add(hn::LoadU(df, ct.dw[a].data() + i), t, gx);
-                gy = mul_add(wa, hn::GatherIndex(df, Ty.data(), idx), gy);
-                if (D == 3) gz = mul_add(wa, hn::GatherIndex(df, Tz.data(), idx), gz);
-              }
-            }
-          }
-          hn::StoreU(mul_add(hn::Set(df, wb), v, hn::LoadU(df, acc.data() + i)), df,
-                     acc.data() + i);
-          if constexpr (kGradient) {
-            const VF cv = hn::Set(df, chain);
-            const VF gs[3] = {gx, gy, gz};
-            for (int a = 0; a < D; ++a)
-              hn::StoreU(mul_add(cv, gs[a], hn::LoadU(df, gacc[a].data() + i)), df,
-                         gacc[a].data() + i);
-          }
-        }
-      }
-      // Scale and remap, as wavelet::eval.
-      const std::size_t row = k * ny + j;
-      float* out = value + row * nx;
-      float* gout = kGradient ? grad + row * nx * D : nullptr;
-      const float scale = static_cast<float>(pl.scale);
-      const auto& prm = w.parameters();
-      std::size_t done = 0;
-      if (prm.distribution == wavelet_distribution::gaussian) {  // whole vectors in lanes
-        const VF sv = hn::Set(df, scale), gv = hn::Set(df, static_cast<float>(prm.gaussian_scale));
-        for (; done + lanes <= nx; done += lanes) {
-          hn::StoreU(hn::Mul(hn::Mul(hn::LoadU(df, acc.data() + done), sv), gv), df, out + done);
-          if constexpr (kGradient) {
-            VF gs[3];
-            for (int a = 0; a < D; ++a)
-              gs[a] = hn::Mul(hn::Mul(hn::LoadU(df, gacc[a].data() + done), sv), gv);
-            store_interleaved<D>(gs, gout + done * D);
-          }
-        }
-      }
-      for (std::size_t i = done; i < nx; ++i) {
-        float v = acc[i] * scale;
-        float gr[3];
-        for (int a = 0; a < D; ++a) gr[a] = kGradient ? gacc[a][i] * scale : 0.0f;
-        if (prm.distribution == wavelet_distribution::gaussian) {
-          const float gs = static_cast<float>(prm.gaussian_scale);
-          v = v * gs;
-          for (int a = 0; a < D; ++a) gr[a] = gr[a] * gs;
-        } else {
-          float dv = 1.0f;
-          w.template remap<float>(v, kGradient ? &dv : nullptr);
-          for (int a = 0; a < D; ++a) gr[a] = gr[a] * dv;
-        }
-        out[i] = v;
-        if (kGradient)
-          for (int a = 0; a < D; ++a) gout[i * D + a] = gr[a];
-      }
-    }
-  }
-}
-
-}  // namespace wavelet_simd
-
 // Wavelet noise on a uniform grid (C order, i fastest); interleaved gradients unless
 // grad is null.
 template <int D>
@@ -16240,8 +16603,8 @@ inline void wavelet3_samples(const wavelet<3>& w, const samples<3>& s, float* va
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_WAVELET_INL_H_ toggle
-// ---- end hush/simd/wavelet-inl.h
+#endif  // HUSH_WAVELET_SIMD_INL_H_ toggle
+// ---- end hush/wavelet/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_WAVELET(X)                                                         \
@@ -16369,7 +16732,7 @@ struct simd_kernel<wavelet<D>> {
 //    by alpha: within (12 / (1 - alpha) + 1) 2^-24 M for outputs of magnitude <= M
 //    (tests/coherent_test.cpp; measured 2.4e-6 at alpha 0.98 against a budget of 1.4e-4).
 //  - backends: exec::scalar is the reference; exec::simd equals it bit for bit under
-//    HUSH_STRICT_FP (hush/simd/coherent-inl.h); exec::glsl{device} (include
+//    HUSH_STRICT_FP (hush/coherent/simd-inl.h); exec::glsl{device} (include
 //    hush/glsl/coherent.hpp) keeps the history on the GPU; tolerance there.
 #ifndef HUSH_COHERENT_HPP
 #define HUSH_COHERENT_HPP
@@ -16391,19 +16754,19 @@ struct simd_kernel<wavelet<D>> {
 // ---- begin hush/coherent/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Coherent noise's SIMD entry point (kernel: hush/simd/coherent-inl.h): one
+// Coherent noise's SIMD entry point (kernel: hush/coherent/simd-inl.h): one
 // recursive-filter pass over a frame, the same result as
 // detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP.
 // hush/coherent.hpp calls it on exec::simd.
 #ifndef HUSH_COHERENT_SIMD_KERNEL_HPP
 #define HUSH_COHERENT_SIMD_KERNEL_HPP
 
-// ---- begin hush/detail/coherent_kernel.hpp
+// ---- begin hush/coherent/kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
 // data and one scalar loop: what a recursive-filter pass does for every pixel
-// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
+// of one frame. The SIMD kernel (hush/coherent/simd-inl.h) and the GLSL
 // program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
 // operation; include hush/coherent.hpp, not this.
 //
@@ -16426,8 +16789,8 @@ struct simd_kernel<wavelet<D>> {
 //   refill: k (sqrt(tx (1 - tx)) ((1 - ty) D_x(p) + ty D_x(p + e_y)) + sqrt(ty (1 - ty)) D_y(p)),
 //   D_x(q) = X(q) - X(q + e_x), D_y(q) = Y(q) - Y(q + e_y), X and Y two more fields drawn
 //   like the input (independent). The output is gain * c.
-#ifndef HUSH_DETAIL_COHERENT_KERNEL_HPP
-#define HUSH_DETAIL_COHERENT_KERNEL_HPP
+#ifndef HUSH_COHERENT_KERNEL_HPP
+#define HUSH_COHERENT_KERNEL_HPP
 
 #include <cmath>
 #include <cstddef>
@@ -16665,11 +17028,11 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
-// ---- end hush/detail/coherent_kernel.hpp
+#endif  // HUSH_COHERENT_KERNEL_HPP
+// ---- end hush/coherent/kernel.hpp
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/coherent-inl.h
+// ---- begin hush/coherent/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernel of coherent noise (include/hush/coherent.hpp): one pass of
@@ -16677,7 +17040,7 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 // Compiled once per SIMD target (the "-inl.h" convention: toggle include
 // guard, no normal guard); reached through hush/simd/dispatch.hpp.
 //
-// It repeats detail::coherent_pass_scalar (hush/detail/coherent_kernel.hpp)
+// It repeats detail::coherent_pass_scalar (hush/coherent/kernel.hpp)
 // operation by operation: the reprojection in float with separate multiplies
 // and adds (never fused, so the visibility decisions equal the scalar ones on
 // every target), the hashed fields in 32-bit lanes, the taps gathered, the
@@ -16689,11 +17052,11 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 // (width mod lanes) pixels run the scalar code itself; lanes of pixels that
 // are not visible read the reference frame at index 0, never out of bounds.
 
-#if defined(HUSH_SIMD_COHERENT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_COHERENT_INL_H_
-#undef HUSH_SIMD_COHERENT_INL_H_
+#if defined(HUSH_COHERENT_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_COHERENT_SIMD_INL_H_
+#undef HUSH_COHERENT_SIMD_INL_H_
 #else
-#define HUSH_SIMD_COHERENT_INL_H_
+#define HUSH_COHERENT_SIMD_INL_H_
 #endif
 
 #include <cstddef>
@@ -16987,8 +17350,8 @@ inline void coherent_pass(const detail::coherent_pass_job<float>& j) {
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_COHERENT_INL_H_ toggle
-// ---- end hush/simd/coherent-inl.h
+#endif  // HUSH_COHERENT_SIMD_INL_H_ toggle
+// ---- end hush/coherent/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_COHERENT(X) \
@@ -17913,7 +18276,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //
 // NPR Gabor noise (Benard, Lagae, Vangorp, Lefebvre, Drettakis, Thollot, "A
 // dynamic noise primitive for coherent stylization", EGSR 2010): Gabor
-// kernels (hush/gabor_kernel.hpp) defined and evaluated in 2D screen space
+// kernels (hush/gabor/kernel.hpp) defined and evaluated in 2D screen space
 // (a 2D look, like a shower door) at points attached to the surface (they move
 // with it, like a texture). A scene-driven noise: per frame it reads the
 // visibility G-buffer (hush::frame) and the triangles drawn (hush::triangle_list)
@@ -17927,7 +18290,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 // The noise (paper eq. 1, sec. 3.2-3.4), n(x) = scale sum_i w_i v_i g_{F_i}(x - x_i):
 //  - points (sec. 3.3): triangle t (key hash32(hash32(seed_key(seed),
 //    object), triangle)) has a hierarchical point sequence
-//    (detail/npr_gabor_tree.hpp): subdivided at its edge midpoints (object
+//    (npr_gabor/tree.hpp): subdivided at its edge midpoints (object
 //    space) into four children, recursively, each node holding its own point
 //    (uniform in the node: local barycentrics (1 - sqrt u, sqrt u (1 - v),
 //    sqrt u v)) and a random order of its children; point J is the root's own
@@ -17965,10 +18328,10 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    in log4 summing to 1 over the levels, so the screen density of squared
 //    weights is lambda across foreshortened triangles too (docs/npr-gabor.md
 //    "Local density"); continuous in n_P, so no pops.
-//  - two stages (hush/detail/npr_gabor_splat.hpp): make_splats lists one
+//  - two stages (hush/npr_gabor/splat.hpp): make_splats lists one
 //    record per point (position, F, radius, weight, plane, ids, pixel range);
 //    splat adds the records' kernels, on exec::scalar or exec::simd (screen
-//    tiles, hush/simd/npr_gabor-inl.h, bit for bit scalar under HUSH_STRICT_FP).
+//    tiles, hush/npr_gabor/simd-inl.h, bit for bit scalar under HUSH_STRICT_FP).
 //  - amplitudes v_i uniform in (-1, 1) (16-bit symmetric, E[v^2] =
 //    (1 - 2^-32) / 3); kernel g of gabor_kernel<2> (bandwidth a, truncation
 //    t, C1 taper) with F_i = F0 (cos theta, sin theta), theta = orientation
@@ -18034,7 +18397,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    docs/npr-gabor.md.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
-//    gabor_kernel.hpp); tests/npr_gabor_test.cpp measures it.
+//    gabor/kernel.hpp); tests/npr_gabor_test.cpp measures it.
 //  - GLSL: render on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): stage 1 in
 //    compute passes (counts, prefix sum, one invocation per point, the CPU's record order)
 //    where every source is constant or per object, else on the CPU; the records drawn as
@@ -18217,7 +18580,7 @@ class param_source {
 
 #endif  // HUSH_CORE_PARAM_SOURCE_HPP
 // ---- end hush/core/param_source.hpp
-// ---- begin hush/detail/npr_gabor_splat.hpp
+// ---- begin hush/npr_gabor/splat.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The splat list of NPR Gabor noise (hush/npr_gabor.hpp) and its second
@@ -18229,10 +18592,10 @@ class param_source {
 //  2. splatting: every record's kernel is added at the pixel centres of its
 //     range that pass the tests (sec. 3.4), per pixel in record order.
 // Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
-// or double) and once in lanes (hush/simd/npr_gabor-inl.h, float), which
+// or double) and once in lanes (hush/npr_gabor/simd-inl.h, float), which
 // repeats it operation by operation.
-#ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
-#define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+#ifndef HUSH_NPR_GABOR_SPLAT_HPP
+#define HUSH_NPR_GABOR_SPLAT_HPP
 
 #include <cmath>
 #include <cstddef>
@@ -18250,7 +18613,7 @@ namespace hush {
 // centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
 // qy y in screen pixels, gives the depth test its reference depth at every
 // pixel (the point's own depth is 1 / (q0 + qx x + qy y)). `index` is the
-// point's J in its triangle's sequence (detail/npr_gabor_tree.hpp): stage 2
+// point's J in its triangle's sequence (npr_gabor/tree.hpp): stage 2
 // does not read it; it names the point (tests, GPU stage 1 comparisons).
 struct npr_gabor_splat {
   double x = 0, y = 0;            // position, pixels (x right, y down)
@@ -18332,9 +18695,9 @@ void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& o
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
-// ---- end hush/detail/npr_gabor_splat.hpp
-// ---- begin hush/detail/npr_gabor_tree.hpp
+#endif  // HUSH_NPR_GABOR_SPLAT_HPP
+// ---- end hush/npr_gabor/splat.hpp
+// ---- begin hush/npr_gabor/tree.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The hierarchical point sequence of one NPR Gabor triangle (docs/npr-gabor.md,
@@ -18370,8 +18733,8 @@ void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& o
 // Midpoints of dyadic barycentrics are exact in floating point to depth 52
 // (double) and 23 (float), far beyond any index below kNprGaborMaxPoints.
 
-#ifndef HUSH_DETAIL_NPR_GABOR_TREE_HPP
-#define HUSH_DETAIL_NPR_GABOR_TREE_HPP
+#ifndef HUSH_NPR_GABOR_TREE_HPP
+#define HUSH_NPR_GABOR_TREE_HPP
 
 #include <cstdint>
 
@@ -18432,12 +18795,12 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_NPR_GABOR_TREE_HPP
-// ---- end hush/detail/npr_gabor_tree.hpp
+#endif  // HUSH_NPR_GABOR_TREE_HPP
+// ---- end hush/npr_gabor/tree.hpp
 // ---- begin hush/npr_gabor/simd_kernel.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// NPR Gabor noise's SIMD entry point (kernel: hush/simd/npr_gabor-inl.h):
+// NPR Gabor noise's SIMD entry point (kernel: hush/npr_gabor/simd-inl.h):
 // stage 2, the job's records added into out (frame-sized, zeroed by the
 // caller), per pixel in record order; bit for bit
 // detail::npr_gabor_splat_scalar<float> under HUSH_STRICT_FP.
@@ -18447,11 +18810,11 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 
 
 #if HUSH_CONFIG_SIMD_STATIC
-// ---- begin hush/simd/npr_gabor-inl.h
+// ---- begin hush/npr_gabor/simd-inl.h
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernel of NPR Gabor noise's stage 2 (hush/npr_gabor.hpp,
-// hush/detail/npr_gabor_splat.hpp): the splat records added into a float
+// hush/npr_gabor/splat.hpp): the splat records added into a float
 // image. Compiled once per SIMD target (the "-inl.h" convention: toggle include
 // guard below); reached through hush/simd/dispatch.hpp.
 //
@@ -18459,7 +18822,7 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 // binned (counting sort, so each tile keeps its records in record order) to
 // every tile its pixel range touches. Per tile, its G-buffer views are copied
 // into padded tile buffers and its sums kept in a tile accumulator; per
-// (record, tile) the kernel's x factors (gabor_kernel.hpp's separable form) are
+// (record, tile) the kernel's x factors (gabor/kernel.hpp's separable form) are
 // computed once per tile column in lanes, its y factors once per tile row, and
 // per pixel only their product, the taper and the tests, lanes along x: the
 // object and triangle tests in 32-bit lanes, the depth test in double lanes as
@@ -18479,11 +18842,11 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 // within the kernel's float budget, and a depth decision may flip where the
 // relative difference is within an ulp of the tolerance.
 
-#if defined(HUSH_SIMD_NPR_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_NPR_GABOR_INL_H_
-#undef HUSH_SIMD_NPR_GABOR_INL_H_
+#if defined(HUSH_NPR_GABOR_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_NPR_GABOR_SIMD_INL_H_
+#undef HUSH_NPR_GABOR_SIMD_INL_H_
 #else
-#define HUSH_SIMD_NPR_GABOR_INL_H_
+#define HUSH_NPR_GABOR_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -18503,7 +18866,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace npr_gabor_simd {
 
 // Generic lane types: simd/lanes-inl.h; the Gabor kernel's factors and pair
-// products: gabor_simd (simd/gabor-inl.h).
+// products: gabor_simd (gabor/kernel-inl.h).
 using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
@@ -18767,8 +19130,8 @@ inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_vi
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_NPR_GABOR_INL_H_
-// ---- end hush/simd/npr_gabor-inl.h
+#endif  // HUSH_NPR_GABOR_SIMD_INL_H_
+// ---- end hush/npr_gabor/simd-inl.h
 #endif
 
 #define HUSH_SIMD_ENTRIES_NPR_GABOR(X)                                                       \
@@ -18927,7 +19290,7 @@ class npr_gabor {
     double angle;
   };
   // The point J of a triangle (the hierarchical sequence of
-  // detail/npr_gabor_tree.hpp, J < 2^64) in the triangle's (object-space)
+  // npr_gabor/tree.hpp, J < 2^64) in the triangle's (object-space)
   // barycentric coordinates: the own point of the node reached from
   // the root by slots d = (J - 1) mod 4 with local index q = (J - 1) / 4, until
   // q = 0 (J = 0: the root's own point, words 0 and 1 of the triangle's stream).
@@ -18957,7 +19320,7 @@ class npr_gabor {
   // the noise of this frame: stage 1 (make_splats) then stage 2 (the kernels
   // added per pixel in record order). `ex` picks stage 2's backend:
   // exec::scalar, or exec::simd (float only; screen tiles, lanes along x,
-  // hush/simd/npr_gabor-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
+  // hush/npr_gabor/simd-inl.h: bit for bit exec::scalar under HUSH_STRICT_FP;
   // the scalar loop where the build has no SIMD), or exec::glsl{device}
   // (float only; include hush/glsl/npr_gabor.hpp: both stages on the GPU where
   // every source is constant or per object, stage 1 here otherwise; within the
@@ -19294,7 +19657,7 @@ class npr_gabor {
                                  "the frame's size (non-null)");
   }
 
-  // Stage 1 for triangle t: appends its points' records (npr_gabor_tree.hpp's
+  // Stage 1 for triangle t: appends its points' records (npr_gabor/tree.hpp's
   // sequence, walked depth first, culled per subtree, then sorted by J);
   // counts the nodes examined in *nodes if given.
   void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
@@ -19636,7 +19999,7 @@ class npr_gabor {
 
 #endif  // HUSH_NPR_GABOR_HPP
 // ---- end hush/npr_gabor.hpp
-// ---- begin hush/style.hpp
+// ---- begin hush/npr_gabor/style.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Styles: turning unit-variance noise images into drawings (Benard, Lagae et
@@ -19670,8 +20033,8 @@ class npr_gabor {
 // Phi(theta + w/2) - Phi(theta - w/2). Gabor noise with many kernels per pixel
 // (N' >= 16) is close to Gaussian (central limit), which is what makes the
 // tone map hold for it (tests/style_test.cpp measures both).
-#ifndef HUSH_STYLE_HPP
-#define HUSH_STYLE_HPP
+#ifndef HUSH_NPR_GABOR_STYLE_HPP
+#define HUSH_NPR_GABOR_STYLE_HPP
 
 #include <algorithm>
 #include <cmath>
@@ -19952,8 +20315,8 @@ inline void curvature_field(const frame& f, const image_view<const vec3>& normal
 }  // namespace style
 }  // namespace hush
 
-#endif  // HUSH_STYLE_HPP
-// ---- end hush/style.hpp
+#endif  // HUSH_NPR_GABOR_STYLE_HPP
+// ---- end hush/npr_gabor/style.hpp
 
 #endif  // HUSH_HUSH_HPP
 // ---- end hush/hush.hpp

@@ -3,6 +3,6 @@
 // The SIMD kernels of anisotropic noise for every target Highway compiles, with
 // run-time dispatch: one translation unit of the CMake target hush::simd.
 #include "hush/anisotropic.hpp"
-#define HUSH_SIMD_UNIT_INL "hush/simd/anisotropic-inl.h"
+#define HUSH_SIMD_UNIT_INL "hush/anisotropic/simd-inl.h"
 #define HUSH_SIMD_UNIT_ENTRIES HUSH_SIMD_ENTRIES_ANISOTROPIC
 #include "hush/simd/dispatch_unit.hpp"

@@ -3,6 +3,6 @@
 // The SIMD kernels of coherent noise for every target Highway compiles, with
 // run-time dispatch: one translation unit of the CMake target hush::simd.
 #include "hush/coherent.hpp"
-#define HUSH_SIMD_UNIT_INL "hush/simd/coherent-inl.h"
+#define HUSH_SIMD_UNIT_INL "hush/coherent/simd-inl.h"
 #define HUSH_SIMD_UNIT_ENTRIES HUSH_SIMD_ENTRIES_COHERENT
 #include "hush/simd/dispatch_unit.hpp"

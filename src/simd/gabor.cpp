@@ -3,6 +3,6 @@
 // The SIMD kernels of Gabor noise for every target Highway compiles, with
 // run-time dispatch: one translation unit of the CMake target hush::simd.
 #include "hush/gabor.hpp"
-#define HUSH_SIMD_UNIT_INL "hush/simd/gabor-inl.h"
+#define HUSH_SIMD_UNIT_INL "hush/gabor/simd-inl.h"
 #define HUSH_SIMD_UNIT_ENTRIES HUSH_SIMD_ENTRIES_GABOR
 #include "hush/simd/dispatch_unit.hpp"

@@ -3,6 +3,6 @@
 // The SIMD kernels of Perlin noise for every target Highway compiles, with
 // run-time dispatch: one translation unit of the CMake target hush::simd.
 #include "hush/perlin.hpp"
-#define HUSH_SIMD_UNIT_INL "hush/simd/perlin-inl.h"
+#define HUSH_SIMD_UNIT_INL "hush/perlin/simd-inl.h"
 #define HUSH_SIMD_UNIT_ENTRIES HUSH_SIMD_ENTRIES_PERLIN
 #include "hush/simd/dispatch_unit.hpp"

@@ -3,6 +3,6 @@
 // The SIMD kernels of wavelet noise for every target Highway compiles, with
 // run-time dispatch: one translation unit of the CMake target hush::simd.
 #include "hush/wavelet.hpp"
-#define HUSH_SIMD_UNIT_INL "hush/simd/wavelet-inl.h"
+#define HUSH_SIMD_UNIT_INL "hush/wavelet/simd-inl.h"
 #define HUSH_SIMD_UNIT_ENTRIES HUSH_SIMD_ENTRIES_WAVELET
 #include "hush/simd/dispatch_unit.hpp"

@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Anisotropic noise's SIMD kernels (hush/simd/anisotropic-inl.h) against
+// Anisotropic noise's SIMD kernels (hush/anisotropic/simd-inl.h) against
 // scalar evaluation, on every SIMD target compiled into the suite and
 // supported by this CPU. Built into the same four suites as
 // perlin_simd_test.cpp (tests/simd/CMakeLists.txt): under HUSH_STRICT_FP

@@ -623,7 +623,7 @@ double backend_vs_scalar(const std::string& backend, int dim, const fs::path& di
 TEST_CASE("sample --backend simd equals scalar sampling within the SIMD budget, 2D and 3D") {
   const fs::path dir = scratch("backend");
   // Both are within the float budget 2^-16 of the double reference
-  // (hush/simd/perlin-inl.h), hence within 2^-15 of each other; bit for bit
+  // (hush/perlin/simd-inl.h), hence within 2^-15 of each other; bit for bit
   // under HUSH_STRICT_FP (tests/perlin/perlin_simd_test.cpp).
   for (int dim : {2, 3}) CHECK(backend_vs_scalar("simd", dim, dir) <= std::ldexp(1.0, -15));
 #if !HUSH_CLI_TEST_SIMD

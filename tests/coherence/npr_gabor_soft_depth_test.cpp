@@ -22,7 +22,7 @@
 
 #include "coherence/silhouette_band.hpp"
 #include "coherence/temporal.hpp"
-#include "hush/gabor_kernel.hpp"
+#include "hush/gabor/kernel.hpp"
 #include "hush/npr_gabor.hpp"
 #include "raster_cpu.hpp"
 #include "scene.hpp"

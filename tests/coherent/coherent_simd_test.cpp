@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Coherent noise's SIMD kernel (hush/simd/coherent-inl.h) against the scalar pass, on every
+// Coherent noise's SIMD kernel (hush/coherent/simd-inl.h) against the scalar pass, on every
 // SIMD target compiled into this test and supported by this CPU. Built into the same four
 // suites as perlin_simd_test.cpp (tests/simd/CMakeLists.txt): under HUSH_STRICT_FP every
 // output value, history value and fresh flag must equal the scalar pass bit for bit; with

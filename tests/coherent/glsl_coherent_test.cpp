@@ -15,7 +15,7 @@
 
 #include "coherent_scenes.hpp"
 #include "glsl/glsl_test_util.hpp"
-#include "hush/glsl/coherent.hpp"
+#include "hush/glsl/coherent/renderer.hpp"
 
 namespace {
 

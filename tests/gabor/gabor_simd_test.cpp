@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Gabor noise's SIMD kernels (hush/simd/gabor-inl.h) against scalar
+// Gabor noise's SIMD kernels (hush/gabor/simd-inl.h) against scalar
 // evaluation, on every SIMD target compiled into this test and supported by
 // this CPU. Built into the same suites as perlin_simd_test.cpp
 // (tests/simd/CMakeLists.txt): under HUSH_STRICT_FP (simd_strict_test,

@@ -47,7 +47,7 @@
 #include <vector>
 
 #include "glsl/glsl_test_util.hpp"
-#include "hush/glsl/npr_gabor.hpp"
+#include "hush/glsl/npr_gabor/renderer.hpp"
 #include "npr_gabor/npr_gabor_scenes.hpp"
 
 namespace {
@@ -534,7 +534,7 @@ void npr_vertices_of(const hush::triangle_list& t, std::size_t tri, double (&sx)
     z[i] = t.depth[v];
   }
 }
-// J's node (npr_gabor_tree.hpp) in triangle tri, reached from the root: its depth, its corners
+// J's node (npr_gabor/tree.hpp) in triangle tri, reached from the root: its depth, its corners
 // projected in double (the CPU's), and the float corners' error terms of the position bound
 // below: corners = sum over m = 1 ... K of (4 A_m + m E_m), A_K and E_K.
 struct npr_node_path {

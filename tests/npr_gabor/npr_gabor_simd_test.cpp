@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// NPR Gabor noise's SIMD splatting (hush/simd/npr_gabor-inl.h) against the scalar stage 2,
+// NPR Gabor noise's SIMD splatting (hush/npr_gabor/simd-inl.h) against the scalar stage 2,
 // on every SIMD target compiled into this test and supported by this CPU. Built into the
 // four suites of tests/simd/CMakeLists.txt: under HUSH_STRICT_FP every pixel must equal
 // render<float> on exec::scalar bit for bit; with contraction allowed within twice the

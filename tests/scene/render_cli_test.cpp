@@ -16,7 +16,7 @@
 #include "hush/coherent.hpp"
 #include "hush/core/param_source.hpp"
 #include "hush/npr_gabor.hpp"
-#include "hush/style.hpp"
+#include "hush/npr_gabor/style.hpp"
 #include "npy/npy.hpp"
 #include "raster_cpu.hpp"
 #include "triangles.hpp"

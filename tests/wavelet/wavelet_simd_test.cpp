@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The SIMD kernels of wavelet noise (hush/simd/wavelet-inl.h) against scalar evaluation,
+// The SIMD kernels of wavelet noise (hush/wavelet/simd-inl.h) against scalar evaluation,
 // on every SIMD target compiled into the suite and supported by this CPU. Built like
 // perlin_simd_test.cpp (tests/simd/CMakeLists.txt): bit-identical to scalar under
 // HUSH_STRICT_FP (simd_strict_test, simd_static_test, simd_single_header_test), within

@@ -20,7 +20,7 @@
 #include <vector>
 #include "figures.hpp"  // examples/anisotropic: the receding plane
 #include "hush/hush.hpp"
-#include "hush/simd/anisotropic-inl.h"
+#include "hush/anisotropic/simd-inl.h"
 static double cpu_s() {
   timespec t;
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);

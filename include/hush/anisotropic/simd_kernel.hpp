@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Anisotropic noise's SIMD entry points (kernels: hush/simd/anisotropic-inl.h)
+// Anisotropic noise's SIMD entry points (kernels: hush/anisotropic/simd-inl.h)
 // and detail::simd_kernel<anisotropic>, which exec::simd calls: n samples at
 // interleaved positions xy, with footprints fp (3 floats each, null = points)
 // and surface maps (4 floats each, null = none), or a uniform grid; gradients
@@ -21,7 +21,7 @@
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC
-#include "hush/simd/anisotropic-inl.h"
+#include "hush/anisotropic/simd-inl.h"
 #endif
 
 #define HUSH_SIMD_ENTRIES_ANISOTROPIC(X)                                                      \

@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Coherent noise's SIMD entry point (kernel: hush/simd/coherent-inl.h): one
+// Coherent noise's SIMD entry point (kernel: hush/coherent/simd-inl.h): one
 // recursive-filter pass over a frame, the same result as
 // detail::coherent_pass_scalar, bit for bit under HUSH_STRICT_FP.
 // hush/coherent.hpp calls it on exec::simd.
@@ -8,11 +8,11 @@
 #define HUSH_COHERENT_SIMD_KERNEL_HPP
 
 #include "hush/config.hpp"
-#include "hush/detail/coherent_kernel.hpp"
+#include "hush/coherent/kernel.hpp"
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC
-#include "hush/simd/coherent-inl.h"
+#include "hush/coherent/simd-inl.h"
 #endif
 
 #define HUSH_SIMD_ENTRIES_COHERENT(X) \

@@ -2,7 +2,7 @@
 //
 // The transcendental functions the anisotropic noise's weights need, in a
 // form SIMD code can repeat operation by operation (hush/simd/lanes-inl.h;
-// band_profile in hush/simd/anisotropic-inl.h):
+// band_profile in hush/anisotropic/simd-inl.h):
 //   exp2_nonpositive(y) = 2^y for y <= 0      (filtering weights, exp(-x))
 //   log2_positive(m)     = log2(m) for m > 0   (distortion: the map's stretch)
 //   band_profile(x)      = cos^2(pi x / 2) for |x| < 1, else 0
@@ -11,7 +11,7 @@
 // For T = float they are polynomials in float with a fixed operation order
 // (coefficients in detail/constants.hpp, kAnisoSeries), so scalar and SIMD
 // code give the same bits under HUSH_STRICT_FP. Float error against the
-// double functions (tests/anisotropic_test.cpp measures them):
+// double functions (tests/anisotropic/anisotropic_test.cpp measures them):
 //   exp2_nonpositive: within 4 ulp relative for y in [-25, 0]; 0 below -126;
 //   log2_positive:    within 2^-21 absolute plus 2 ulp of the result;
 //   band_profile:     within 2^-22 absolute.

@@ -32,7 +32,7 @@ constexpr unsigned kHashShift3 = 16;
 // 0.56 there. Ry = 11, Rz = 21 (no rotation or difference of rotations is 16)
 // keep the gradient correlation at every lag 2^k, k = 0 ... 31, on every
 // subset of axes at the sampling noise floor (scan of 4e4 cells per lag;
-// tests/perlin_test.cpp checks the lags of HARD_CASES row 7).
+// tests/perlin/perlin_test.cpp checks the lags of HARD_CASES row 7).
 // The multipliers are the 32-bit xxHash primes 1, 2 and 3.
 constexpr unsigned kLatticePrimeX = 0x9E3779B1U;
 constexpr unsigned kLatticePrimeY = 0x85EBCA77U;
@@ -78,7 +78,7 @@ constexpr unsigned kPerlin3IndexShift = 16;
 // 3D, edge gradients: the maximum is NOT at the centre (value 1 there) but at
 // (1/2, 0.35526, 0.48149) and its mirror images, B = 1.0363538112118029,
 // found by grid search plus refinement and re-derived by
-// tests/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
+// tests/perlin/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
 // exactly [-1, 1].
 constexpr double kPerlin2RawBound = 0.70710678118654752440;  // sqrt(2)/2
 constexpr double kPerlin3RawBound = 1.0363538112118029;
@@ -130,7 +130,7 @@ constexpr double kHalfLog2Pi = 0.91893853320467274178;
 constexpr double kStirling[4] = {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0};
 constexpr int kLogFactorialTable = 20;
 
-// ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp, wavelet_tile.hpp,
+// ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp, wavelet/tile.hpp,
 // core/bspline.hpp). The basis is the uniform quadratic B-spline B(u), centred (support
 // [-3/2, 3/2]): the density of a sum of three independent uniforms on [-1/2, 1/2]. Every
 // kernel of the noise is such a density (core/bspline.hpp derives their polynomial
@@ -145,7 +145,7 @@ constexpr int kWaveletRefineFirst = -1;
 constexpr double kWaveletRefine[4] = {0.25, 0.75, 0.75, 0.25};
 // The analysis (least-squares downsampling) filter a_d is infinite; hush keeps
 // |d| <= kWaveletAnalysisRadius, where |a_d| < 2e-18 (it decays as 0.656^|d|), and
-// periodises it to the tile (wavelet_tile.hpp derives it from the B-spline Gram matrix).
+// periodises it to the tile (wavelet/tile.hpp derives it from the B-spline Gram matrix).
 constexpr int kWaveletAnalysisRadius = 100;
 // Tile sizes: even (the half-resolution tile must have a whole number of coefficients,
 // paper footnote 4) and at least 16 (the widest evaluation kernel spans 9 coefficients;
@@ -274,7 +274,7 @@ constexpr double kTurnsReduceLimit = 4194304.0;
 constexpr double kTwoPi = 6.283185307179586476925;
 constexpr double kPi = 3.141592653589793238463;
 
-// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor_kernel.hpp,
+// ---- Gabor noise (Lagae, Lefebvre, Drettakis, Dutre 2009; gabor/kernel.hpp,
 // gabor.hpp). Kernels are truncated where their envelope e^{-pi a^2 |x|^2}
 // falls to t (the `truncation` parameter): radius r = sqrt(ln(1/t) / pi) / a.
 // Instead of cutting there (a jump of t K, which the paper accepts), the
@@ -291,7 +291,7 @@ constexpr double kGaborMaxFrequency = 1e6;
 // transforms (energy, truncation error, envelope transform) is its leading
 // asymptotic term instead of a quadrature whose panels grow with the
 // frequency: the term left out is below 2e-13 of the result there
-// (gabor_kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
+// (gabor/kernel.hpp, docs/gabor.md "Cost of the kernel's statistics").
 constexpr double kGaborAsymptoticCycles = 1024.0;
 // Isotropic and hybrid noise's power spectrum at xi integrates the
 // frequency vectors Phi only where a blob (+-Phi) is within this many cycles
@@ -308,7 +308,7 @@ constexpr double kGaborSpectrumWindowCycles = 64.0;
 // kGaborSpectrumWindowCycles (<= 64 * 19 + 1 = 1217 quadratures), on panels
 // this wide (cycles per cell; H oscillates at <= 1 cycle per unit k) with this
 // many Chebyshev points each: measured within 1e-15 of H(0) (t = 1e-9 ... 0.5,
-// 2D and 3D: tests/gabor_kernel_test.cpp); beyond, H's asymptotic term, as
+// 2D and 3D: tests/gabor/gabor_kernel_test.cpp); beyond, H's asymptotic term, as
 // gabor_spectrum.
 constexpr double kGaborTransformTablePanel = 1.0;
 constexpr int kGaborTransformTableNodes = 20;
@@ -364,7 +364,7 @@ constexpr double kNprGaborDefaultImpulses = 16.0;        // N' (the paper: 16 ..
 constexpr double kNprGaborDefaultDepthTolerance = 0.02;  // relative depth difference
 constexpr double kNprGaborMaxDepthTolerance = 1.0;
 // N is clamped here (2M <= 2^41 points per triangle). Not a work bound (stage 1
-// walks only the subtrees near the image, detail/npr_gabor_tree.hpp) but the
+// walks only the subtrees near the image, npr_gabor/tree.hpp) but the
 // input's: float screen positions have a 1-pixel ulp at 2^24 = 1.7e7 px, and a
 // triangle of 2^40 points at the default density (0.034 / px^2) already has
 // legs of 8e6 px, where the vertices are placed to half a pixel: beyond, the
@@ -392,7 +392,7 @@ constexpr unsigned kNprGaborMaxImageSide = 32768;
 // kNprGaborStream): [u:16 | v:16] (barycentric), [weight:16 | orientation:16].
 constexpr unsigned kNprGaborWordsPerPoint = 2;
 constexpr unsigned kNprGaborStream = 2;
-// The hierarchical point sequence (detail/npr_gabor_tree.hpp): a node takes 3
+// The hierarchical point sequence (npr_gabor/tree.hpp): a node takes 3
 // words of its own stream (point, value, child order); its children's order is
 // one of the 24 permutations of {0, 1, 2, 3}, entry p holding in bits 2d, 2d + 1
 // the geometric child (0, 1, 2: the corner triangle at corner 0, 1, 2; 3: the
@@ -408,15 +408,15 @@ constexpr unsigned kNprGaborChildOrder[kNprGaborChildOrders] = {
 // linear interpolation within 1e-3 relative for t in [1e-9, 0.5].
 constexpr double kNprGaborEnergyStep = 1.0 / 64.0;
 
-// ---- Styles (style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
+// ---- Styles (npr_gabor/style.hpp; Benard et al. 2010 sec. 4): the smooth step's width
 // in noise standard deviations (8 sigma: every pixel in the soft band), the
 // graphite style's fine-layer weight and the watercolour overlay's gain.
 constexpr double kStyleMaxWidth = 8.0;
 constexpr double kStyleMaxGrain = 8.0;
 constexpr double kStyleMaxGain = 4.0;
 
-// ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; steerable.hpp,
-// subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
+// ---- Anisotropic noise (Goldberg, Zwicker & Durand 2008; anisotropic/steerable.hpp,
+// anisotropic/subband_fit.hpp, anisotropic.hpp; derivations in docs/anisotropic.md).
 constexpr double kLn2 = 0.69314718055994530942;
 // Orientations K of the steerable filter bank (the paper uses 4 to 8; one
 // orientation has no angular selectivity) and scales (octaves of the bank).
@@ -443,7 +443,7 @@ constexpr double kAnisoThreePointCentre = 0.5;
 // A filtering weight exp(-x) with x above this is set to exactly 0 (and its
 // subband is skipped): exp(-17) = 4.1e-8 < 2^-24, below float resolution.
 constexpr double kAnisoWeightCutoff = 17.0;
-// Least-squares quadrature (subband_fit.hpp): midpoint nodes per octave of
+// Least-squares quadrature (anisotropic/subband_fit.hpp): midpoint nodes per octave of
 // radius, and angular nodes per orientation over a half turn (filters and
 // targets are even: D(-w) = D(w)).
 constexpr int kAnisoRadialNodesPerOctave = 16;

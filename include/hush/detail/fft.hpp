@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // A small radix-2 FFT in double for power-of-two sizes: what the anisotropic
-// noise needs to build its subband tiles and decompose images (steerable.hpp),
+// noise needs to build its subband tiles and decompose images (anisotropic/steerable.hpp),
 // without a dependency. hush's own rather than Eigen's FFT (unsupported/Eigen/FFT,
 // which the tests use as the reference): it keeps hush/anisotropic.hpp in the
 // umbrella and single headers (Eigen lives outside the default include path and
@@ -14,7 +14,7 @@
 //   fft2(a, n, sign)  the same on an n x n row-major array: rows, then columns
 // Accuracy: iterative Cooley-Tukey with twiddles from std::cos / std::sin of
 // 2 pi k / n; the result is within about 2 log2(n) ulps (relative to the
-// largest magnitude) of the exact DFT (tests/steerable_test.cpp compares it
+// largest magnitude) of the exact DFT (tests/anisotropic/steerable_test.cpp compares it
 // with Eigen's FFT and a direct DFT).
 #ifndef HUSH_DETAIL_FFT_HPP
 #define HUSH_DETAIL_FFT_HPP

@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The SIMD entry points of fractal sums of Perlin noise (kernels:
-// hush/simd/fractal-inl.h) and detail::simd_kernel<fractal<perlin<D>>>, which
+// hush/fractal/simd-inl.h) and detail::simd_kernel<fractal<perlin<D>>>, which
 // exec::simd calls; other bases run the scalar loop. Included at the end of
 // hush/fractal.hpp, after the class its kernels use; not on its own.
 // Layout conventions as Perlin's (hush/perlin/simd_kernel.hpp).
@@ -17,7 +17,7 @@
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC
-#include "hush/simd/fractal-inl.h"
+#include "hush/fractal/simd-inl.h"
 #endif
 
 #define HUSH_SIMD_ENTRIES_FRACTAL(X)                                                            \

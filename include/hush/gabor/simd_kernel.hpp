@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Gabor noise's SIMD entry points (kernels: hush/simd/gabor-inl.h, which
+// Gabor noise's SIMD entry points (kernels: hush/gabor/simd-inl.h, which
 // states the agreement with scalar evaluation) and detail::simd_kernel<gabor<D>>,
 // which exec::simd calls: points (interleaved), grid slabs (as Perlin's,
 // hush/perlin/simd_kernel.hpp), points with footprints (filtered samples) and,
@@ -20,7 +20,7 @@
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC
-#include "hush/simd/gabor-inl.h"
+#include "hush/gabor/simd-inl.h"
 #endif
 
 #define HUSH_SIMD_ENTRIES_GABOR(X)                                                                 \

@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// NPR Gabor noise's SIMD entry point (kernel: hush/simd/npr_gabor-inl.h):
+// NPR Gabor noise's SIMD entry point (kernel: hush/npr_gabor/simd-inl.h):
 // stage 2, the job's records added into out (frame-sized, zeroed by the
 // caller), per pixel in record order; bit for bit
 // detail::npr_gabor_splat_scalar<float> under HUSH_STRICT_FP.
@@ -10,12 +10,12 @@
 
 #include "hush/config.hpp"
 #include "hush/core/views.hpp"
-#include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/npr_gabor/splat.hpp"
 #include "hush/gabor.hpp"  // the Gabor kernels the splat shares
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC
-#include "hush/simd/npr_gabor-inl.h"
+#include "hush/npr_gabor/simd-inl.h"
 #endif
 
 #define HUSH_SIMD_ENTRIES_NPR_GABOR(X)                                                       \

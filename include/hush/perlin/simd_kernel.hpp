@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Perlin noise's SIMD entry points (kernels: hush/simd/perlin-inl.h) and
+// Perlin noise's SIMD entry points (kernels: hush/perlin/simd-inl.h) and
 // detail::simd_kernel<perlin<D>>, which exec::simd calls. Included at the end
 // of hush/perlin.hpp, after the class its kernels use; not on its own.
 //
@@ -9,7 +9,7 @@
 // entry per axis (0 = not periodic). Grid entries evaluate the slab of
 // slowest-axis indices (j in 2D, k in 3D) [first, first + count) into value
 // (and grad), which start at that slab's first sample; (0, g.size[D - 1]) is
-// the whole grid. Results follow hush::perlin's contract; perlin-inl.h states
+// the whole grid. Results follow hush::perlin's contract; perlin/simd-inl.h states
 // the agreement with scalar evaluation.
 #ifndef HUSH_PERLIN_SIMD_KERNEL_HPP
 #define HUSH_PERLIN_SIMD_KERNEL_HPP
@@ -24,7 +24,7 @@
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC
-#include "hush/simd/perlin-inl.h"
+#include "hush/perlin/simd-inl.h"
 #endif
 
 #define HUSH_SIMD_ENTRIES_PERLIN(X)                                                                \

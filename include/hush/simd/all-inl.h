@@ -11,13 +11,13 @@
 #define HUSH_SIMD_ALL_INL_H_
 #endif
 
-#include "hush/simd/anisotropic-inl.h"
-#include "hush/simd/coherent-inl.h"
-#include "hush/simd/fractal-inl.h"
-#include "hush/simd/gabor-inl.h"
-#include "hush/simd/npr_gabor-inl.h"
-#include "hush/simd/perlin-inl.h"
-#include "hush/simd/wavelet-inl.h"
+#include "hush/anisotropic/simd-inl.h"
+#include "hush/coherent/simd-inl.h"
+#include "hush/fractal/simd-inl.h"
+#include "hush/gabor/simd-inl.h"
+#include "hush/npr_gabor/simd-inl.h"
+#include "hush/perlin/simd-inl.h"
+#include "hush/wavelet/simd-inl.h"
 
 #endif  // HUSH_SIMD_ALL_INL_H_ toggle
 

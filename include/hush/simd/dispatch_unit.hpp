@@ -9,7 +9,7 @@
 // public headers its kernels need, then names its kernels and list:
 //
 //   #include "hush/perlin.hpp"
-//   #define HUSH_SIMD_UNIT_INL "hush/simd/perlin-inl.h"
+//   #define HUSH_SIMD_UNIT_INL "hush/perlin/simd-inl.h"
 //   #define HUSH_SIMD_UNIT_ENTRIES HUSH_SIMD_ENTRIES_PERLIN
 //   #include "hush/simd/dispatch_unit.hpp"
 //

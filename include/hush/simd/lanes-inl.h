@@ -1,7 +1,8 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The lane toolbox the SIMD kernels share (simd/*-inl.h): float lane types,
-// multiply-adds as the scalar code is compiled, core/hash.hpp's hashes,
+// The lane toolbox the SIMD kernels share (hush/<noise>/*-inl.h): float lane
+// types, multiply-adds as the scalar code is compiled, core/hash.hpp's hashes,
+// core/rng.hpp's stream keys and draws, core/lattice.hpp's split of an axis,
 // detail/elementary.hpp's exp and sin/cos, detail/approx_math.hpp's exp2 and
 // log2, compression of selected lanes, interleaved stores and the batch
 // driver. Only generic lane maths lives here; each noise's own algorithm stays
@@ -24,6 +25,8 @@
 #include <hwy/highway.h>
 
 #include "hush/config.hpp"
+#include "hush/core/hash.hpp"
+#include "hush/core/lattice.hpp"
 #include "hush/detail/constants.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -107,6 +110,52 @@ HWY_INLINE VU word(VU i) {
   if constexpr (kAxis == 0) return word_x(i);
   if constexpr (kAxis == 1) return word_y(i);
   if constexpr (kAxis == 2) return word_z(i);
+}
+
+// ---- core/rng.hpp in 32-bit lanes: hush::rng streams drawn per lane.
+// hush::rng(seed, stream)'s key: hash32(seed, stream) = hash32(hash32(seed + gamma) ^ stream).
+HWY_INLINE VU stream_key(VU seed, std::uint32_t stream) {
+  const DU du;
+  return hash32(hn::Xor(hash32(hn::Add(seed, hn::Set(du, detail::constants::kGoldenGamma))),
+                        hn::Set(du, stream)));
+}
+// Draw `counter` of the streams with keys `key`: hash32(key ^ hash32(counter)).
+HWY_INLINE VU draw(VU key, std::uint32_t counter) {
+  return hash32(hn::Xor(key, hn::Set(DU(), hush::hash32(counter))));
+}
+
+// ---- core/lattice.hpp in lanes.
+// The vector split of one axis (lattice_split<float>(x * inv) of every lane,
+// bit for bit), valid when every lane's x * inv is finite with |x inv| < 2^31;
+// false (nothing written) otherwise: the caller splits lane by lane.
+HWY_INLINE bool split_axis(VF x, double inv, std::uint32_t* cell, float* frac) {
+#if HWY_HAVE_FLOAT64 && HWY_TARGET != HWY_SCALAR
+  const DF df;
+  const hn::Half<DF> dh;
+  const hn::Repartition<double, DF> dd;
+  const hn::Rebind<float, decltype(dd)> df_of_d;
+  const hn::Rebind<std::int32_t, decltype(dd)> di_of_d;
+  const auto vinv = hn::Set(dd, inv);
+  const auto limit = hn::Set(dd, 2147483648.0);
+  const auto lo = hn::Mul(hn::PromoteTo(dd, hn::LowerHalf(dh, x)), vinv);
+  const auto hi = hn::Mul(hn::PromoteTo(dd, hn::UpperHalf(dh, x)), vinv);
+  if (!hn::AllTrue(dd, hn::Lt(hn::Abs(lo), limit)) || !hn::AllTrue(dd, hn::Lt(hn::Abs(hi), limit)))
+    return false;
+  const auto flo = hn::Floor(lo), fhi = hn::Floor(hi);
+  const VF f = hn::Combine(df, hn::DemoteTo(df_of_d, hn::Sub(hi, fhi)),
+                           hn::DemoteTo(df_of_d, hn::Sub(lo, flo)));
+  hn::StoreU(hn::Min(f, hn::Set(df, detail::one_minus_ulp<float>())), df, frac);
+  const DI di;
+  const VI c = hn::Combine(di, hn::DemoteTo(di_of_d, fhi), hn::DemoteTo(di_of_d, flo));
+  hn::StoreU(hn::BitCast(DU(), c), DU(), cell);
+  return true;
+#else
+  (void)x;
+  (void)inv;
+  (void)cell;
+  (void)frac;
+  return false;
+#endif
 }
 
 // ---- detail/elementary.hpp in lanes (the float branch, op for op).

@@ -1,6 +1,6 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// Wavelet noise's SIMD entry points (kernels: hush/simd/wavelet-inl.h) and
+// Wavelet noise's SIMD entry points (kernels: hush/wavelet/simd-inl.h) and
 // detail::simd_kernel<wavelet<D>>, which exec::simd calls: points, grids and
 // samples (footprints, normals). Included at the end of hush/wavelet.hpp, after
 // the class its kernels use; not on its own. Points and gradients are
@@ -17,7 +17,7 @@
 #include "hush/simd/dispatch.hpp"
 
 #if HUSH_CONFIG_SIMD_STATIC
-#include "hush/simd/wavelet-inl.h"
+#include "hush/wavelet/simd-inl.h"
 #endif
 
 #define HUSH_SIMD_ENTRIES_WAVELET(X)                                                         \

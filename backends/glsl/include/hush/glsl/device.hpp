@@ -53,7 +53,7 @@
 //    as the CPU float path does, and uploaded as (i0, i1, fraction) triples:
 //    3 D words per band per point, nb (nx + ny [+ nz]) triples per grid.
 //    The GPU sums the bands in the CPU's order with the CPU's float weights.
-//    Tolerance (derived in tests/glsl/glsl_fractal_test.cpp), K = scale(),
+//    Tolerance (derived in tests/fractal/glsl_fractal_test.cpp), K = scale(),
 //    w_i, f_i the raw weights and frequencies, nb the band count:
 //      values    within K sum|w_i|     (2^-16 + (nb + 4) 2^-24) of the double reference,
 //      gradients within K sum|w_i| f_i (2^-16 + (nb + 4) 2^-24) (1 + L),

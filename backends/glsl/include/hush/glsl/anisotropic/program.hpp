@@ -24,7 +24,7 @@
 // sample; least squares: channels x scales x passes), batches split to the
 // GL's SSBO size limit by the device.
 //
-// Tolerance (tests/glsl/glsl_anisotropic_test.cpp): against the CPU float
+// Tolerance (tests/anisotropic/glsl_anisotropic_test.cpp): against the CPU float
 // path, |gpu - cpu| <= sum over subbands of |w| (2^-8 t_i + e_w m_i) +
 // 2 float_budget(), with w the sample's weights, t_i the largest texel step
 // and m_i the largest |texel| of orientation i (anisotropic_tile::max_step,
@@ -40,7 +40,7 @@
 // terms are the CPU's float inputs bit for bit, and least-squares weights are
 // the CPU's own. The float budget covers the rest. Gradient programs
 // (texelFetch, no filtering hardware) drop the 2^-8 term.
-// Measured on llvmpipe: tests/glsl/glsl_anisotropic_test.cpp prints it.
+// Measured on llvmpipe: tests/anisotropic/glsl_anisotropic_test.cpp prints it.
 //
 // The functions (hush/glsl/anisotropic/glsl.hpp) read the runner's per-sample
 // SSBO, so they live in the runner, not in the #version 330 library

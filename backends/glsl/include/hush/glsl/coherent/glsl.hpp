@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The GLSL source of coherent noise (include/hush/coherent.hpp) on the GPU: the compute pass
-// that runs one frame's step (hush/detail/coherent_kernel.hpp, statement by statement) and its
+// that runs one frame's step (hush/coherent/kernel.hpp, statement by statement) and its
 // generated constants. hush/glsl/coherent/renderer.hpp runs it and states its contract;
 // `hush glsl-export` writes it (hush/glsl/export.hpp).
 #ifndef HUSH_GLSL_COHERENT_GLSL_HPP
@@ -73,7 +73,7 @@ namespace detail {
 // The pass body: coherent_kernel.hpp's coherent_reproject and coherent_pixel, statement by
 // statement. Reads only generated names and the uniforms below.
 constexpr const char* kCoherentBody = R"glsl(
-// ---- Coherent noise pass (hush/glsl/coherent/glsl.hpp; hush/detail/coherent_kernel.hpp).
+// ---- Coherent noise pass (hush/glsl/coherent/glsl.hpp; hush/coherent/kernel.hpp).
 // HUSH_COHERENT_INPUT and HUSH_COHERENT_REFILL (defined before this text) say where the input
 // and the refill fields come from: HUSH_COHERENT_WHITE (hashed), HUSH_COHERENT_BANDPASS (Perlin
 // of CPU-split lattice triples in hush_planes) or, for the input, HUSH_COHERENT_PLANE (the

@@ -16,7 +16,7 @@
 // reference frame's depth and ids and the history stay on the GPU (ping-pong buffers); the
 // stream downloads them only when asked (serialize, copy, a CPU step, fresh(), history()).
 //
-// Tolerance against exec::scalar (tests/glsl/glsl_coherent_test.cpp): equal fresh flags
+// Tolerance against exec::scalar (tests/coherent/glsl_coherent_test.cpp): equal fresh flags
 // (disocclusions), and values whose difference is float rounding of the blends (GLSL may fuse
 // them) and, for band-pass input, of the Perlin evaluation (library.hpp: 2^-15): a recursion
 // contracting by alpha, so bounded in the frame count (derived and measured in the test;

@@ -138,7 +138,7 @@ uint hush_gabor_cell_stream(uint key, uvec3 cell, uint dim) {
 // false for a zero normal (the solid noise). n must be finite. GLSL allows x / y within
 // 2.5 ulp and sqrt within ~3 ulp (GLSL 4.30 sec. 4.7.1), so this and the basis below are
 // within ~2^-21 relative of the CPU's double frame rounded to float (the tolerance of
-// tests/glsl/glsl_gabor_test.cpp accounts for it).
+// tests/gabor/glsl_gabor_test.cpp accounts for it).
 bool hush_gabor_unit_normal(vec3 n, out vec3 u) {
   float big = max(abs(n.x), max(abs(n.y), abs(n.z)));
   u = vec3(0.0);

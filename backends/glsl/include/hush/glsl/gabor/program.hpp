@@ -44,7 +44,7 @@
 //    and asks only for correctly rounded +, -, * (library.hpp), so values
 //    differ from the CPU float result within twice gabor.hpp's float budget
 //    (each op's error is bounded the same way), measured in
-//    tests/glsl/glsl_gabor_test.cpp;
+//    tests/gabor/glsl_gabor_test.cpp;
 //  - samples with footprints (hush::samples): the filter of gabor_filter
 //    (gabor_kernel.hpp) computed per sample in float (cyclic Jacobi on the
 //    footprint matrix instead of the CPU's double Jacobi): within a stated

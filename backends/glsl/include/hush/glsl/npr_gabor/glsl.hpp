@@ -119,7 +119,7 @@ void main() {
 }
 )glsl";
 
-// ---- Stage 1 on the GPU: the hierarchical point sequence (hush/detail/npr_gabor_tree.hpp)
+// ---- Stage 1 on the GPU: the hierarchical point sequence (hush/npr_gabor/tree.hpp)
 // walked level by level in compute passes (npr_gabor_stage1_source(pass)).
 // Inputs, uploaded once per frame: vertices (screen x, y, depth, -) and triangles (5 words:
 // three vertex indices, triangle id, object id); the per-object kernel table (entry

@@ -11,7 +11,7 @@
 // Stage 1 (render): where every parameter source is constant or per object, the triangle list
 // (vertices: screen x, y, depth; triangles: indices, id, object) and a per-object kernel table
 // (npr_gabor::kernel_of_object, double, rounded once) go to storage buffers and compute passes
-// walk each triangle's hierarchical point sequence (hush/detail/npr_gabor_tree.hpp) level by
+// walk each triangle's hierarchical point sequence (hush/npr_gabor/tree.hpp) level by
 // level, as the CPU walks it depth first: per triangle its count and LOD weights in float
 // (npr_gabor_lod, the thinning, the plane of 1/z) and its root node (level 0, at a scanned
 // offset); per level one pass decides for each node whether its own point reaches the frame
@@ -29,7 +29,7 @@
 // as perspective-correct midpoints in float (homogeneous: plain midpoints). Per-pixel or
 // per-vertex sources, buffers beyond one storage block, or more than 2^32 - 1 records: stage 1
 // on the CPU (make_splats), automatically. Float instead of double changes positions, weights and planes within the
-// tolerance derived in tests/glsl/glsl_gabor_test.cpp (npr_tolerance_of); where float and
+// tolerance derived in tests/gabor/glsl_gabor_test.cpp (npr_tolerance_of); where float and
 // double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
 // float error) exist on one side only; with params::local_density, likewise a node whose float
 // and double counts straddle a cut of the hat (1/4, 4): its record (weight <= sqrt((1 +
@@ -57,7 +57,7 @@
 // several draws, in order. Frames up to GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS and
 // GL_MAX_RENDERBUFFER_SIZE (hush::invalid_argument naming the frame size otherwise).
 //
-// Agreement with the CPU (tests/glsl/glsl_gabor_test.cpp, "npr"): GL blends the fragments of
+// Agreement with the CPU (tests/gabor/glsl_gabor_test.cpp, "npr"): GL blends the fragments of
 // one draw in primitive order, so every pixel sums the same kernels in the CPU's record order;
 // what differs is each kernel's float value: the offsets are formed relative to the record's
 // first pixel (in double on the CPU, then rounded: no large coordinate reaches the GPU, which
@@ -97,7 +97,7 @@
 #include <vector>
 
 #include "hush/detail/constants.hpp"
-#include "hush/detail/npr_gabor_splat.hpp"
+#include "hush/npr_gabor/splat.hpp"
 #include "hush/glsl/detail/gl.hpp"
 #include "hush/glsl/device.hpp"
 #include "hush/glsl/frame_upload.hpp"

@@ -35,7 +35,7 @@
 // 3D sample runner take minutes, and Mesa 22.3's linker crash), so the exact
 // projection along a general normal costs about 3000 iterations per band:
 // llvmpipe evaluates up to 16 such bands correctly (asserted in
-// tests/glsl/glsl_wavelet_test.cpp; it truncates from about 21 on). Real GPUs
+// tests/wavelet/glsl_wavelet_test.cpp; it truncates from about 21 on). Real GPUs
 // have no such limit.
 #ifndef HUSH_GLSL_WAVELET_GLSL_HPP
 #define HUSH_GLSL_WAVELET_GLSL_HPP

@@ -19,7 +19,7 @@
 // get a 16-byte buffer of zeros. The largest tile (2048^2 or 128^3 floats) is
 // 16 MiB, the minimum GL_MAX_SHADER_STORAGE_BLOCK_SIZE of OpenGL 4.3.
 //
-// Tolerance (tests/glsl/glsl_wavelet_test.cpp): hashes, cells, fractions and
+// Tolerance (tests/wavelet/glsl_wavelet_test.cpp): hashes, cells, fractions and
 // tap indices are the CPU's; the float arithmetic is the CPU's, in its order,
 // except that GLSL may fuse multiply-adds, computes the per-sample plan (band
 // weights, widening, normal) in float where the CPU uses double, and takes

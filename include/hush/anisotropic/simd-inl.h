@@ -19,7 +19,7 @@
 //     chunks, the final channel sum in anisotropic.hpp's tree order.
 // Every operation repeats anisotropic.hpp's float algorithm in the same
 // order, so under HUSH_STRICT_FP the results are bit for bit the scalar ones
-// (tests/simd/anisotropic_simd_test.cpp, every compiled target); otherwise
+// (tests/anisotropic/anisotropic_simd_test.cpp, every compiled target); otherwise
 // multiply-adds are fused and results stay within the noise's float budget.
 // Least-squares weight rules take the scalar weight code per sample
 // (phase 1) and the vector lookups (phase 2): the same bits as well.
@@ -27,11 +27,11 @@
 // slopes of each bilinear lookup (anisotropic.hpp's accumulate).
 
 // Toggle guard: included once per target by foreach_target.h.
-#if defined(HUSH_SIMD_ANISOTROPIC_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_ANISOTROPIC_INL_H_
-#undef HUSH_SIMD_ANISOTROPIC_INL_H_
+#if defined(HUSH_ANISOTROPIC_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_ANISOTROPIC_SIMD_INL_H_
+#undef HUSH_ANISOTROPIC_SIMD_INL_H_
 #else
-#define HUSH_SIMD_ANISOTROPIC_INL_H_
+#define HUSH_ANISOTROPIC_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -753,4 +753,4 @@ inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* valu
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_ANISOTROPIC_INL_H_ toggle
+#endif  // HUSH_ANISOTROPIC_SIMD_INL_H_ toggle

@@ -5,23 +5,23 @@
 // Compiled once per SIMD target (the "-inl.h" convention: toggle include
 // guard, no normal guard); reached through hush/simd/dispatch.hpp.
 //
-// It repeats detail::coherent_pass_scalar (hush/detail/coherent_kernel.hpp)
+// It repeats detail::coherent_pass_scalar (hush/coherent/kernel.hpp)
 // operation by operation: the reprojection in float with separate multiplies
 // and adds (never fused, so the visibility decisions equal the scalar ones on
 // every target), the hashed fields in 32-bit lanes, the taps gathered, the
 // bilinear history and the blend in the scalar order. Under HUSH_STRICT_FP
 // every output, history value and fresh flag equals the scalar pass bit for
-// bit (tests/simd/coherent_simd_test.cpp, every compiled target); otherwise
+// bit (tests/coherent/coherent_simd_test.cpp, every compiled target); otherwise
 // the value blends fuse multiply-adds and differ from scalar by float
 // rounding (a few ulp of the values, the decisions unchanged). A row's last
 // (width mod lanes) pixels run the scalar code itself; lanes of pixels that
 // are not visible read the reference frame at index 0, never out of bounds.
 
-#if defined(HUSH_SIMD_COHERENT_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_COHERENT_INL_H_
-#undef HUSH_SIMD_COHERENT_INL_H_
+#if defined(HUSH_COHERENT_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_COHERENT_SIMD_INL_H_
+#undef HUSH_COHERENT_SIMD_INL_H_
 #else
-#define HUSH_SIMD_COHERENT_INL_H_
+#define HUSH_COHERENT_SIMD_INL_H_
 #endif
 
 #include <cstddef>
@@ -33,7 +33,7 @@
 #include <hwy/highway.h>
 
 #include "hush/config.hpp"
-#include "hush/detail/coherent_kernel.hpp"
+#include "hush/coherent/kernel.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/simd/lanes-inl.h"
 
@@ -319,4 +319,4 @@ inline void coherent_pass(const detail::coherent_pass_job<float>& j) {
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_COHERENT_INL_H_ toggle
+#endif  // HUSH_COHERENT_SIMD_INL_H_ toggle

@@ -9,10 +9,10 @@
 //  2. splatting: every record's kernel is added at the pixel centres of its
 //     range that pass the tests (sec. 3.4), per pixel in record order.
 // Stage 2 is here once for the scalar backends (npr_gabor_splat_scalar, float
-// or double) and once in lanes (hush/simd/npr_gabor-inl.h, float), which
+// or double) and once in lanes (hush/npr_gabor/simd-inl.h, float), which
 // repeats it operation by operation.
-#ifndef HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
-#define HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+#ifndef HUSH_NPR_GABOR_SPLAT_HPP
+#define HUSH_NPR_GABOR_SPLAT_HPP
 
 #include <cmath>
 #include <cstddef>
@@ -21,7 +21,7 @@
 
 #include "hush/config.hpp"
 #include "hush/core/views.hpp"
-#include "hush/gabor_kernel.hpp"
+#include "hush/gabor/kernel.hpp"
 
 namespace hush {
 
@@ -33,7 +33,7 @@ namespace hush {
 // centres within r of (x, y). The point's triangle's plane, 1/z = q0 + qx x +
 // qy y in screen pixels, gives the depth test its reference depth at every
 // pixel (the point's own depth is 1 / (q0 + qx x + qy y)). `index` is the
-// point's J in its triangle's sequence (detail/npr_gabor_tree.hpp): stage 2
+// point's J in its triangle's sequence (npr_gabor/tree.hpp): stage 2
 // does not read it; it names the point (tests, GPU stage 1 comparisons).
 struct npr_gabor_splat {
   double x = 0, y = 0;            // position, pixels (x right, y down)
@@ -115,4 +115,4 @@ void npr_gabor_splat_scalar(const npr_gabor_splat_job& j, const image_view<T>& o
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_NPR_GABOR_SPLAT_HPP
+#endif  // HUSH_NPR_GABOR_SPLAT_HPP

@@ -33,8 +33,8 @@
 // Midpoints of dyadic barycentrics are exact in floating point to depth 52
 // (double) and 23 (float), far beyond any index below kNprGaborMaxPoints.
 
-#ifndef HUSH_DETAIL_NPR_GABOR_TREE_HPP
-#define HUSH_DETAIL_NPR_GABOR_TREE_HPP
+#ifndef HUSH_NPR_GABOR_TREE_HPP
+#define HUSH_NPR_GABOR_TREE_HPP
 
 #include <cstdint>
 
@@ -99,4 +99,4 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_NPR_GABOR_TREE_HPP
+#endif  // HUSH_NPR_GABOR_TREE_HPP

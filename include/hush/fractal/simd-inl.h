@@ -6,20 +6,20 @@
 // include guard below, no normal guard); reached through
 // hush/fractal/simd_kernel.hpp, never included directly by users.
 //
-// Each band is a Perlin field evaluated by perlin-inl.h's vector code at the
+// Each band is a Perlin field evaluated by perlin/simd-inl.h's vector code at the
 // band position, formed as scalar evaluation forms it, and the bands are
 // summed in the same order with the same operations: under HUSH_STRICT_FP
 // every value and gradient is bit for bit the scalar result
-// (tests/simd/perlin_simd_test.cpp, every compiled target); otherwise within
+// (tests/perlin/perlin_simd_test.cpp, every compiled target); otherwise within
 // fractal.hpp's float budget of the double reference.
 
 // Toggle guard: included once per target by foreach_target.h (Highway's
 // hwy/examples/skeleton-inl.h pattern).
-#if defined(HUSH_SIMD_FRACTAL_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_FRACTAL_INL_H_
-#undef HUSH_SIMD_FRACTAL_INL_H_
+#if defined(HUSH_FRACTAL_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_FRACTAL_SIMD_INL_H_
+#undef HUSH_FRACTAL_SIMD_INL_H_
 #else
-#define HUSH_SIMD_FRACTAL_INL_H_
+#define HUSH_FRACTAL_SIMD_INL_H_
 #endif
 
 #include <cstddef>
@@ -29,7 +29,7 @@
 
 #include "hush/core/views.hpp"
 #include "hush/simd/lanes-inl.h"
-#include "hush/simd/perlin-inl.h"  // the bands' Perlin vectors and rows
+#include "hush/perlin/simd-inl.h"  // the bands' Perlin vectors and rows
 
 // The classes come first, not from here: hush/fractal.hpp includes these
 // kernels at its end (hush/fractal/simd_kernel.hpp, after hush/perlin.hpp), as
@@ -308,4 +308,4 @@ inline void fractal3_grid(const fractal<perlin<3>>& fr, const grid<3>& g, std::s
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_FRACTAL_INL_H_ toggle
+#endif  // HUSH_FRACTAL_SIMD_INL_H_ toggle

@@ -24,7 +24,7 @@
 //    (slice_gradient_coefs / row_gradient_coefs / row_gradient, op for op).
 // So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
-//    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
+//    for bit the scalar result (tests/perlin/perlin_simd_test.cpp, every
 //    compiled target; zeros are +0 on every path, see perlin.hpp);
 //  - otherwise multiply-adds are fused where that is faster, and results
 //    stay within perlin.hpp's float budget of the double reference (2^-16);
@@ -36,11 +36,11 @@
 
 // Toggle guard: included once per target by foreach_target.h (Highway's
 // hwy/examples/skeleton-inl.h pattern).
-#if defined(HUSH_SIMD_PERLIN_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_PERLIN_INL_H_
-#undef HUSH_SIMD_PERLIN_INL_H_
+#if defined(HUSH_PERLIN_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_PERLIN_SIMD_INL_H_
+#undef HUSH_PERLIN_SIMD_INL_H_
 #else
-#define HUSH_SIMD_PERLIN_INL_H_
+#define HUSH_PERLIN_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -1096,4 +1096,4 @@ inline void perlin3_grid(std::uint32_t key, const std::uint32_t* period, const g
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_PERLIN_INL_H_ toggle
+#endif  // HUSH_PERLIN_SIMD_INL_H_ toggle

@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Highway kernel of NPR Gabor noise's stage 2 (hush/npr_gabor.hpp,
-// hush/detail/npr_gabor_splat.hpp): the splat records added into a float
+// hush/npr_gabor/splat.hpp): the splat records added into a float
 // image. Compiled once per SIMD target (the "-inl.h" convention: toggle include
 // guard below); reached through hush/simd/dispatch.hpp.
 //
@@ -9,7 +9,7 @@
 // binned (counting sort, so each tile keeps its records in record order) to
 // every tile its pixel range touches. Per tile, its G-buffer views are copied
 // into padded tile buffers and its sums kept in a tile accumulator; per
-// (record, tile) the kernel's x factors (gabor_kernel.hpp's separable form) are
+// (record, tile) the kernel's x factors (gabor/kernel.hpp's separable form) are
 // computed once per tile column in lanes, its y factors once per tile row, and
 // per pixel only their product, the taper and the tests, lanes along x: the
 // object and triangle tests in 32-bit lanes, the depth test in double lanes as
@@ -24,16 +24,16 @@
 // a fragment that fails a test adds +0 (or vis 0 times the kernel, +-0), which
 // leaves the sum as it is (it starts at +0 and a round-to-nearest sum is -0
 // only when both terms are). Under HUSH_STRICT_FP every pixel equals the
-// scalar result bit for bit (tests/simd/npr_gabor_simd_test.cpp, every
+// scalar result bit for bit (tests/npr_gabor/npr_gabor_simd_test.cpp, every
 // compiled target); otherwise products may fuse with sums on either side,
 // within the kernel's float budget, and a depth decision may flip where the
 // relative difference is within an ulp of the tolerance.
 
-#if defined(HUSH_SIMD_NPR_GABOR_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef HUSH_SIMD_NPR_GABOR_INL_H_
-#undef HUSH_SIMD_NPR_GABOR_INL_H_
+#if defined(HUSH_NPR_GABOR_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef HUSH_NPR_GABOR_SIMD_INL_H_
+#undef HUSH_NPR_GABOR_SIMD_INL_H_
 #else
-#define HUSH_SIMD_NPR_GABOR_INL_H_
+#define HUSH_NPR_GABOR_SIMD_INL_H_
 #endif
 
 #include <algorithm>
@@ -47,8 +47,8 @@
 #include "hush/config.hpp"
 #include "hush/core/views.hpp"
 #include "hush/detail/constants.hpp"
-#include "hush/detail/npr_gabor_splat.hpp"
-#include "hush/simd/gabor-inl.h"
+#include "hush/npr_gabor/splat.hpp"
+#include "hush/gabor/kernel-inl.h"
 #include "hush/simd/lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -59,7 +59,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 namespace npr_gabor_simd {
 
 // Generic lane types: simd/lanes-inl.h; the Gabor kernel's factors and pair
-// products: gabor_simd (simd/gabor-inl.h).
+// products: gabor_simd (gabor/kernel-inl.h).
 using namespace lanes::types;
 using DD = hn::ScalableTag<double>;
 using DFD = hn::Rebind<float, DD>;  // as many floats as DD has doubles
@@ -323,4 +323,4 @@ inline void npr_gabor_splat(const detail::npr_gabor_splat_job& j, const image_vi
 }  // namespace hush
 HWY_AFTER_NAMESPACE();
 
-#endif  // HUSH_SIMD_NPR_GABOR_INL_H_
+#endif  // HUSH_NPR_GABOR_SIMD_INL_H_

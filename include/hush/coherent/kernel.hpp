@@ -2,7 +2,7 @@
 //
 // The per-frame work of coherent noise (include/hush/coherent.hpp), as plain
 // data and one scalar loop: what a recursive-filter pass does for every pixel
-// of one frame. The SIMD kernel (hush/simd/coherent-inl.h) and the GLSL
+// of one frame. The SIMD kernel (hush/coherent/simd-inl.h) and the GLSL
 // program (backends/glsl, hush/glsl/coherent.hpp) repeat it operation by
 // operation; include hush/coherent.hpp, not this.
 //
@@ -25,8 +25,8 @@
 //   refill: k (sqrt(tx (1 - tx)) ((1 - ty) D_x(p) + ty D_x(p + e_y)) + sqrt(ty (1 - ty)) D_y(p)),
 //   D_x(q) = X(q) - X(q + e_x), D_y(q) = Y(q) - Y(q + e_y), X and Y two more fields drawn
 //   like the input (independent). The output is gain * c.
-#ifndef HUSH_DETAIL_COHERENT_KERNEL_HPP
-#define HUSH_DETAIL_COHERENT_KERNEL_HPP
+#ifndef HUSH_COHERENT_KERNEL_HPP
+#define HUSH_COHERENT_KERNEL_HPP
 
 #include <cmath>
 #include <cstddef>
@@ -267,4 +267,4 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 }  // namespace detail
 }  // namespace hush
 
-#endif  // HUSH_DETAIL_COHERENT_KERNEL_HPP
+#endif  // HUSH_COHERENT_KERNEL_HPP
