@@ -58,7 +58,7 @@
 //    set is normalised so that the sum of its orientations, bilinearly
 //    interpolated, has spatial variance exactly 1 over the continuous plane,
 //    and octaves are independent up to the tiles' finite size (measured in
-//    tests/anisotropic_test.cpp). Filtering lowers it (that is the point).
+//    tests/anisotropic/anisotropic_test.cpp). Filtering lowers it (that is the point).
 //  - range: |n| <= bound() without maps (lambda <= 1); bound_with_maps() with
 //    maps and the heuristic rules; least-squares weights have no a-priori bound.
 //  - float evaluation is within float_budget() of the double reference.
@@ -411,7 +411,7 @@ constexpr unsigned kHashShift3 = 16;
 // 0.56 there. Ry = 11, Rz = 21 (no rotation or difference of rotations is 16)
 // keep the gradient correlation at every lag 2^k, k = 0 ... 31, on every
 // subset of axes at the sampling noise floor (scan of 4e4 cells per lag;
-// tests/perlin_test.cpp checks the lags of HARD_CASES row 7).
+// tests/perlin/perlin_test.cpp checks the lags of HARD_CASES row 7).
 // The multipliers are the 32-bit xxHash primes 1, 2 and 3.
 constexpr unsigned kLatticePrimeX = 0x9E3779B1U;
 constexpr unsigned kLatticePrimeY = 0x85EBCA77U;
@@ -457,7 +457,7 @@ constexpr unsigned kPerlin3IndexShift = 16;
 // 3D, edge gradients: the maximum is NOT at the centre (value 1 there) but at
 // (1/2, 0.35526, 0.48149) and its mirror images, B = 1.0363538112118029,
 // found by grid search plus refinement and re-derived by
-// tests/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
+// tests/perlin/perlin_test.cpp on every run. Scaling by 1/B maps the noise onto
 // exactly [-1, 1].
 constexpr double kPerlin2RawBound = 0.70710678118654752440;  // sqrt(2)/2
 constexpr double kPerlin3RawBound = 1.0363538112118029;
@@ -687,7 +687,7 @@ constexpr double kGaborSpectrumWindowCycles = 64.0;
 // kGaborSpectrumWindowCycles (<= 64 * 19 + 1 = 1217 quadratures), on panels
 // this wide (cycles per cell; H oscillates at <= 1 cycle per unit k) with this
 // many Chebyshev points each: measured within 1e-15 of H(0) (t = 1e-9 ... 0.5,
-// 2D and 3D: tests/gabor_kernel_test.cpp); beyond, H's asymptotic term, as
+// 2D and 3D: tests/gabor/gabor_kernel_test.cpp); beyond, H's asymptotic term, as
 // gabor_spectrum.
 constexpr double kGaborTransformTablePanel = 1.0;
 constexpr int kGaborTransformTableNodes = 20;
@@ -2094,7 +2094,7 @@ class tile_cache {
 // For T = float they are polynomials in float with a fixed operation order
 // (coefficients in detail/constants.hpp, kAnisoSeries), so scalar and SIMD
 // code give the same bits under HUSH_STRICT_FP. Float error against the
-// double functions (tests/anisotropic_test.cpp measures them):
+// double functions (tests/anisotropic/anisotropic_test.cpp measures them):
 //   exp2_nonpositive: within 4 ulp relative for y in [-25, 0]; 0 below -126;
 //   log2_positive:    within 2^-21 absolute plus 2 ulp of the result;
 //   band_profile:     within 2^-22 absolute.
@@ -2237,7 +2237,7 @@ HUSH_INLINE T band_profile(T x) {
 //   fft2(a, n, sign)  the same on an n x n row-major array: rows, then columns
 // Accuracy: iterative Cooley-Tukey with twiddles from std::cos / std::sin of
 // 2 pi k / n; the result is within about 2 log2(n) ulps (relative to the
-// largest magnitude) of the exact DFT (tests/steerable_test.cpp compares it
+// largest magnitude) of the exact DFT (tests/anisotropic/steerable_test.cpp compares it
 // with Eigen's FFT and a direct DFT).
 #ifndef HUSH_DETAIL_FFT_HPP
 #define HUSH_DETAIL_FFT_HPP
@@ -2641,7 +2641,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
 //  - zero at every lattice point.
 //  - float evaluation is within 2^-16 (1.5e-5, a forward error bound) of the
 //    double reference at the same position; measured max 2.4e-6, RMS 1.9e-7
-//    (tests/perlin_test.cpp).
+//    (tests/perlin/perlin_test.cpp).
 //  - domain: every finite coordinate (core/lattice.hpp); NaN or +-Inf in any
 //    coordinate gives NaN (value and gradient). Evaluation never throws.
 //  - periodic mode: with period[a] = p > 0, noise(x + p e_a) == noise(x)
@@ -2808,7 +2808,7 @@ class perlin : public point_noise<perlin<D>, D> {
   // columns on average take the affine-in-x form (docs/design.md, "Grid
   // gradients, affine in x"): within 2^-17 (values) and 2^-15 (gradients) of
   // point evaluation, and within the float budget of the double reference
-  // (tests/perlin_test.cpp); hush/simd computes the same, bit for bit under
+  // (tests/perlin/perlin_test.cpp); hush/simd computes the same, bit for bit under
   // HUSH_STRICT_FP.
   void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                    vec<float, D>* grad) const {
@@ -3271,7 +3271,7 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 //    (slice_gradient_coefs / row_gradient_coefs / row_gradient, op for op).
 // So:
 //  - under HUSH_STRICT_FP (no contraction) every value and gradient is bit
-//    for bit the scalar result (tests/simd/perlin_simd_test.cpp, every
+//    for bit the scalar result (tests/perlin/perlin_simd_test.cpp, every
 //    compiled target; zeros are +0 on every path, see perlin.hpp);
 //  - otherwise multiply-adds are fused where that is faster, and results
 //    stay within perlin.hpp's float budget of the double reference (2^-16);
@@ -4836,7 +4836,7 @@ struct simd_kernel<perlin<D>> {
 // band position, formed as scalar evaluation forms it, and the bands are
 // summed in the same order with the same operations: under HUSH_STRICT_FP
 // every value and gradient is bit for bit the scalar result
-// (tests/simd/perlin_simd_test.cpp, every compiled target); otherwise within
+// (tests/perlin/perlin_simd_test.cpp, every compiled target); otherwise within
 // fractal.hpp's float budget of the double reference.
 
 // Toggle guard: included once per target by foreach_target.h (Highway's
@@ -5219,7 +5219,7 @@ struct simd_kernel<fractal<perlin<D>>> {
 //   L(w)   = 1 - B(x_0) below f_0 (1 under f_0 / 2), R(w) = 1 - B(x_{S-1}) above
 //            f_{S-1} (1 over 2 f_{S-1}), x_s = log2(|w| / f_s).
 //
-// Properties (tests/steerable_test.cpp measures them):
+// Properties (tests/anisotropic/steerable_test.cpp measures them):
 //  - invertibility: L + sum_{i,s} D_{i,s} + R = 1 at every frequency (to 1e-15):
 //    the orientations sum to one because sum_i cos^{2(K-1)}(theta - pi i / K) =
 //    K C(2K-2, K-1) / 4^{K-1} for every theta, and adjacent scales because
@@ -6295,7 +6295,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
 //     chunks, the final channel sum in anisotropic.hpp's tree order.
 // Every operation repeats anisotropic.hpp's float algorithm in the same
 // order, so under HUSH_STRICT_FP the results are bit for bit the scalar ones
-// (tests/simd/anisotropic_simd_test.cpp, every compiled target); otherwise
+// (tests/anisotropic/anisotropic_simd_test.cpp, every compiled target); otherwise
 // multiply-adds are fused and results stay within the noise's float budget.
 // Least-squares weight rules take the scalar weight code per sample
 // (phase 1) and the vector lookups (phase 2): the same bits as well.
@@ -8303,7 +8303,7 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 //    a spherical cap of that apex angle in 3D; |F_i| uniform in F0 +-
 //    frequency_spread / 2).
 //
-// Statistics (derived in docs/gabor.md; measured in tests/gabor_test.cpp):
+// Statistics (derived in docs/gabor.md; measured in tests/gabor/gabor_test.cpp):
 //  - mean 0 and variance exactly 1 over space and seeds: scale = 1 / sqrt(
 //    lambda E[w^2] E[int g_F^2]) (Campbell's theorem: the zero-mean weights
 //    make it independent of the count distribution beyond its mean, which is
@@ -8319,7 +8319,7 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 //  - float evaluation is within scale 2^-21 (1 + 2 pi Phi) (N' + 1) of the
 //    double reference (each kernel within 2^-21 (1 + 2 pi Phi) of its double
 //    value, gabor/kernel.hpp, and ~N' kernels reach a point); measured in
-//    tests/gabor_test.cpp ("float evaluation stays within the stated budget").
+//    tests/gabor/gabor_test.cpp ("float evaluation stays within the stated budget").
 //    The per-kernel figure is measured (gabor_kernel_test); the worst-case
 //    rounding analysis exceeds it for Phi < 0.9 (up to 4.5x at Phi = 0 in 3D;
 //    docs/gabor.md "Float accuracy").
@@ -8688,7 +8688,7 @@ inline double bessel_j0(double z) {
 //   - |g - g_Gabor| <= t^s0 everywhere (0.091 for the default t = 0.05);
 //   - truncation_error(F) is the relative RMS difference, sqrt(int (g -
 //     g_Gabor)^2 / int g_Gabor^2): 0.068 in 2D and 0.11 in 3D for t = 0.05
-//     and F >> a (tests/gabor_kernel_test.cpp).
+//     and F >> a (tests/gabor/gabor_kernel_test.cpp).
 //
 // Evaluation happens in cell units d = x / r (the noise's cells are r wide),
 // where the envelope is e^{-A |d|^2} with A = pi a^2 r^2 = ln(1/t) and the
@@ -8700,7 +8700,7 @@ inline double bessel_j0(double z) {
 // share each axis's factors between samples and SIMD repeats it bit for bit.
 // value<double> is the reference (C library exp, sin, cos); float values are
 // within 2^-21 (1 + 2 pi |Phi|) of it for |d| < 1 (relative to K = 1),
-// measured 3e-7 (tests/gabor_kernel_test.cpp).
+// measured 3e-7 (tests/gabor/gabor_kernel_test.cpp).
 //
 // Spectra (noise units; D = 2, 3). The Fourier transform of the untruncated
 // kernel is a^-D (e^{-pi |f - F|^2 / a^2} + e^{-pi |f + F|^2 / a^2}) / 2, two
@@ -8914,7 +8914,7 @@ double angular_average(double z) {
 //   2D: 2 pi sum_j J_j sqrt(2 / (pi omega rho_j)) sin(omega rho_j - pi/4) / omega^3
 //                                                               = O(q^-3.5).
 // The rest is O(1/q) smaller: below 2e-13 of the energy, truncation error and
-// H(0) from q = kGaborAsymptoticCycles on (tests/gabor_kernel_test.cpp).
+// H(0) from q = kGaborAsymptoticCycles on (tests/gabor/gabor_kernel_test.cpp).
 template <int D>
 double radial_transform_tail(double c, double q, const double (&dw2)[2]) {
   const double s_j[2] = {constants::kGaborTaperStart, 1.0};
@@ -9840,7 +9840,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     // The blob centres +-Phi move by 2 pi |Phi| cycles per cell per turn, and H
     // is ~0.4 cycles per cell wide (t = 0.05): these node counts resolve it to
     // ~1e-10, less for narrower cores (the isotropic trapezoid rule with these
-    // counts was at 4e-5 of the peak for t = 0.5; tests/gabor_kernel_test.cpp).
+    // counts was at 4e-5 of the peak for t = 0.5; tests/gabor/gabor_kernel_test.cpp).
     const double reach = phi0 + 0.5 * dphi;
     // No blob within the window of xi (|xi| beyond the band by W or more,
     // infinite or NaN): 0, what the windows leave out everywhere.
@@ -10577,7 +10577,7 @@ class gabor_spectrum {
 // the same separable kernel products and taper, and, per sample, the same
 // order of accumulation (cells in raster order, impulses in stream order):
 //  - under HUSH_STRICT_FP every value and gradient is bit for bit the scalar
-//    result (tests/simd/gabor_simd_test.cpp, every compiled target);
+//    result (tests/gabor/gabor_simd_test.cpp, every compiled target);
 //  - otherwise multiply-adds may be fused, within the float budget of
 //    gabor.hpp.
 // How they are fast:
@@ -13695,7 +13695,7 @@ struct simd_kernel<gabor<D>> {
 //     coefficients, inside a coarse basis function, have 16 to 18 % less variance
 //     than their neighbours). Adding a copy of N shifted by an odd number of
 //     coefficients o (n/2, or n/2 + 1 when that is even) along every axis makes
-//     it 1-periodic (equal within 1 %; tests/wavelet_tile_test.cpp). The copy
+//     it 1-periodic (equal within 1 %; tests/wavelet/wavelet_tile_test.cpp). The copy
 //     lies in a shifted wavelet space whose components near the coarse Nyquist
 //     frequency are no longer cancelled by the coarse basis, so the corrected
 //     tile is not orthogonal to (S^0)^D any more: 11 % of its energy projects
@@ -13723,7 +13723,7 @@ struct simd_kernel<gabor<D>> {
 // over k = 2i - 16 ... 2i + 16 reads a 33rd tap past the end of its 32-entry
 // array); the table's 0.003546 against 0.003545 (exact 0.0035446) breaks its
 // symmetry. Effect, measured on 1D bands (mean of 20
-// seeds, n = 256; tests/wavelet_tile_test.cpp): the band keeps 4.7e-6 of its
+// seeds, n = 256; tests/wavelet/wavelet_tile_test.cpp): the band keeps 4.7e-6 of its
 // energy in S^0 with the table, 2.8e-6 with the exact taps cut to the same 32,
 // and 1e-29 with hush's.
 //
@@ -15138,7 +15138,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 //
 // The kernels repeat wavelet.hpp's float algorithm operation by operation, so
 // under HUSH_STRICT_FP every value and gradient is bit for bit the scalar
-// result (tests/simd/wavelet_simd_test.cpp, every compiled target):
+// result (tests/wavelet/wavelet_simd_test.cpp, every compiled target):
 //  - band positions 2^b x + o_b - 1/2 are formed in double and split into cell
 //    and fraction as lattice_split<float> does (in f64 lanes; lanes that are
 //    not finite or beyond 2^31 take core/lattice.hpp lane by lane);
@@ -16730,7 +16730,7 @@ struct simd_kernel<wavelet<D>> {
 //  - float vs the double reference (basic_coherent_stream<double>): the reprojection is
 //    the same float computation; values differ by rounding only, a recursion contracting
 //    by alpha: within (12 / (1 - alpha) + 1) 2^-24 M for outputs of magnitude <= M
-//    (tests/coherent_test.cpp; measured 2.4e-6 at alpha 0.98 against a budget of 1.4e-4).
+//    (tests/coherent/coherent_test.cpp; measured 2.4e-6 at alpha 0.98 against a budget of 1.4e-4).
 //  - backends: exec::scalar is the reference; exec::simd equals it bit for bit under
 //    HUSH_STRICT_FP (hush/coherent/simd-inl.h); exec::glsl{device} (include
 //    hush/glsl/coherent.hpp) keeps the history on the GPU; tolerance there.
@@ -17046,7 +17046,7 @@ void coherent_pass_scalar(const coherent_pass_job<T>& j) {
 // every target), the hashed fields in 32-bit lanes, the taps gathered, the
 // bilinear history and the blend in the scalar order. Under HUSH_STRICT_FP
 // every output, history value and fresh flag equals the scalar pass bit for
-// bit (tests/simd/coherent_simd_test.cpp, every compiled target); otherwise
+// bit (tests/coherent/coherent_simd_test.cpp, every compiled target); otherwise
 // the value blends fuse multiply-adds and differ from scalar by float
 // rounding (a few ulp of the values, the decisions unchanged). A row's last
 // (width mod lanes) pixels run the scalar code itself; lanes of pixels that
@@ -18312,7 +18312,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    theorem; paper eqs. 5-8 with M replaced by the weights), which is N for
 //    N unit-weight Poisson points; M (1 + alpha^2) = N above, and sqrt(N)^2 = N
 //    below. Weighting by N gives N^2: the variance of small triangles falls
-//    by a factor N (tests/npr_gabor_test.cpp shows both). Every weight is
+//    by a factor N (tests/npr_gabor/npr_gabor_test.cpp shows both). Every weight is
 //    continuous in N: alpha -> 1 as N -> 2M from below, where the next level
 //    starts with the same 2M points at weight 1; sqrt(N) -> 1 = the weight
 //    of the single point at N = 1 (alpha(1) = 0). No pops at the switches.
@@ -18397,7 +18397,7 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    docs/npr-gabor.md.
 //  - float render is within 2^-21 (1 + 2 pi F0 r) per kernel of the double
 //    reference times sum |w_i v_i| scale (the kernel's float budget,
-//    gabor/kernel.hpp); tests/npr_gabor_test.cpp measures it.
+//    gabor/kernel.hpp); tests/npr_gabor/npr_gabor_test.cpp measures it.
 //  - GLSL: render on exec::glsl{device} (include hush/glsl/npr_gabor.hpp): stage 1 in
 //    compute passes (counts, prefix sum, one invocation per point, the CPU's record order)
 //    where every source is constant or per object, else on the CPU; the records drawn as
@@ -18837,7 +18837,7 @@ HUSH_INLINE npr_tree_node npr_tree_child(const npr_tree_node& p, const npr_tree_
 // a fragment that fails a test adds +0 (or vis 0 times the kernel, +-0), which
 // leaves the sum as it is (it starts at +0 and a round-to-nearest sum is -0
 // only when both terms are). Under HUSH_STRICT_FP every pixel equals the
-// scalar result bit for bit (tests/simd/npr_gabor_simd_test.cpp, every
+// scalar result bit for bit (tests/npr_gabor/npr_gabor_simd_test.cpp, every
 // compiled target); otherwise products may fuse with sums on either side,
 // within the kernel's float budget, and a depth decision may flip where the
 // relative difference is within an ulp of the tolerance.
@@ -19463,7 +19463,7 @@ class npr_gabor {
   // constant: the energy is r^2 E(F r) (substitute x = r u; E for a unit
   // radius and this truncation), E interpolated linearly between the nodes
   // F r = k kNprGaborEnergyStep, computed as kernel().energy at the nodes.
-  // Exact at the nodes; relative error below 1e-3 (tests/npr_gabor_sources_test.cpp
+  // Exact at the nodes; relative error below 1e-3 (tests/npr_gabor/npr_gabor_sources_test.cpp
   // measures it). `cache`: node energies (NaN = not computed yet), filled on
   // demand (one quadrature, ~0.5 ms, per node used).
   double interpolated_energy(double frequency, std::vector<double>& cache) const {
