@@ -51,7 +51,8 @@ void add_perlin_entries(program_entries& entries) {
        "period per axis in lattice cells, one integer >= 0 per dimension; 0 = not periodic "
        "(default 0)",
        "period"}};
-  for (option_spec& o : fractal_option_specs()) options.push_back(std::move(o));
+  const std::vector<option_spec> fractal = fractal_option_specs();
+  options.insert(options.end(), fractal.begin(), fractal.end());
   entries.sample.push_back(
       {"perlin",
        "improved Perlin noise (Perlin 2002); with fractal options an fBm or turbulence sum",
