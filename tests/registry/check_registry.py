@@ -2,11 +2,11 @@
 """The registry test: every registered noise has every layer it ships with, and no
 doc, comment or CMake file names a repository file that does not exist.
 
-The registry is HUSH_NOISES in the top-level CMakeLists.txt. EXPECT below is what each
-registered noise ships with (DESIGN.md "What every noise ships with"), one entry per
-noise; a noise in the registry without an entry, or an entry for a noise not in the
-registry, fails too. docs/design.md "Adding a noise" lists the shared files a new noise
-touches.
+The registry is HUSH_NOISES in the top-level CMakeLists.txt. What a registered noise
+ships with (DESIGN.md "What every noise ships with") is in its own tests folder,
+tests/<noise>/ships_with.json (keys below); a noise in the registry without one, or one
+for a noise not in the registry, fails too. docs/design.md "Adding a noise" lists the
+shared files a new noise touches.
 
   check_registry.py [--program PATH/TO/hush]
 
@@ -16,6 +16,7 @@ problem and exits 1 when there is any, else prints what it checked and exits 0.
 Python standard library only.
 """
 import argparse
+import json
 import re
 import subprocess
 import sys
@@ -24,66 +25,39 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 
-# What each noise ships with. Paths are relative to the repository root.
-#  program:  the `hush` command that runs it (argv after `hush`, without --help)
-#  glsl:     its GLSL runner's header in its folder backends/glsl/include/hush/glsl/<noise>/
-#            (program.hpp: a noise_program; renderer.hpp: a scene-driven renderer) and the
-#            name prefixes of files `hush glsl-export` writes for it
-#  bench:    a text in its rows file, bench/<noise>_cases.cpp, naming its rows
-#  golden / hard_case: regular expressions matched against the names of the doctest
-#            cases in tests/ (golden values per seed; NaN/Inf and degenerate inputs)
-#  doc:      its user page
-EXPECT = {
-    "perlin": dict(
-        program=["sample", "perlin"],
-        glsl=("program.hpp", ["hush_perlin2_", "hush_perlin3_"]),
-        bench='"perlin 2D"',
-        golden=r"^golden: perlin values",
-        hard_case=r"^hard cases row 5: NaN and Inf give NaN",
-        doc="docs/perlin.md"),
-    "fractal": dict(
-        program=["sample", "perlin", "--octaves", "4"],
-        glsl=("program.hpp", ["hush_fractal_perlin2_", "hush_fractal_perlin3_"]),
-        bench='"fbm 2D"',
-        golden=r"^golden: fractal values",
-        hard_case=r"^fractal perlin: NaN and infinite coordinates",
-        doc="docs/fractal.md"),
-    "wavelet": dict(
-        program=["sample", "wavelet"],
-        glsl=("program.hpp", ["hush_wavelet2_", "hush_wavelet3_"]),
-        bench='"wavelet',
-        golden=r"^golden: wavelet values",
-        hard_case=r"^wavelet: NaN and infinite input",
-        doc="docs/wavelet.md"),
-    "gabor": dict(
-        program=["sample", "gabor"],
-        glsl=("program.hpp", ["hush_gabor2_", "hush_gabor3_"]),
-        bench='"gabor',
-        golden=r"^golden: gabor ",
-        hard_case=r"^gabor: NaN and infinite positions",
-        doc="docs/gabor.md"),
-    "anisotropic": dict(
-        program=["sample", "anisotropic"],
-        glsl=("program.hpp", ["hush_anisotropic_"]),
-        bench='"anisotropic',
-        golden=r"^anisotropic: golden values",
-        hard_case=r"^anisotropic: hard cases: NaN and Inf",
-        doc="docs/anisotropic.md"),
-    "coherent": dict(
-        program=["render", "coherent"],
-        glsl=("renderer.hpp", ["hush_coherent_pass"]),
-        bench='"coherent',
-        golden=r"^coherent golden:",
-        hard_case=r"^coherent robustness: NaN, Inf",
-        doc="docs/coherent.md"),
-    "npr_gabor": dict(
-        program=["render", "npr-gabor"],
-        glsl=("renderer.hpp", ["hush_npr_gabor_splat", "hush_npr_gabor_records"]),
-        bench='"npr',
-        golden=r"^npr_gabor golden:",
-        hard_case=r"^hard inputs: NaN, behind-camera",
-        doc="docs/npr-gabor.md"),
-}
+# What each noise ships with: tests/<noise>/ships_with.json, in the noise's own tests
+# folder, a JSON object with these keys (paths relative to the repository root):
+#  program:               the `hush` command that runs it (argv after `hush`, without --help)
+#  glsl_runner:           its GLSL runner's header in backends/glsl/include/hush/glsl/<noise>/
+#                         (program.hpp: a noise_program; renderer.hpp: a scene-driven renderer)
+#  glsl_export_prefixes:  name prefixes of the files `hush glsl-export` writes for it
+#  bench_text:            a text in its rows file, bench/<noise>_cases.cpp, naming its rows
+#  golden_case, hard_case: regular expressions matched against the names of the doctest
+#                         cases in tests/ (golden values per seed; NaN/Inf and degenerate inputs)
+#  doc:                   its user page
+SHIPS_WITH = "tests/{noise}/ships_with.json"
+KEYS = ("program", "glsl_runner", "glsl_export_prefixes", "bench_text", "golden_case",
+        "hard_case", "doc")
+
+
+def ships_with(noise):
+    """The noise's expectations, or None (after reporting why) when missing or malformed."""
+    rel = SHIPS_WITH.format(noise=noise)
+    if not (ROOT / rel).is_file():
+        problem(f"{noise}: registered in CMakeLists.txt but has no {rel}")
+        return None
+    try:
+        want = json.loads(read(rel))
+    except json.JSONDecodeError as e:
+        problem(f"{rel}: not JSON: {e}")
+        return None
+    missing = [k for k in KEYS if k not in want]
+    unknown = [k for k in want if k not in KEYS]
+    if missing or unknown:
+        problem(f"{rel}: missing keys {missing}, unknown keys {unknown}; see check_registry.py")
+        return None
+    return want
+
 
 problems = []
 
@@ -169,7 +143,7 @@ def check_noise(noise, want, cases, program, exported):
     check_simd(noise)
     if not any((ROOT / f"tests/{noise}").glob("*_test.cpp")):
         problem(f"{noise}: no tests/{noise}/*_test.cpp (its suites)")
-    glsl_header, prefixes = want["glsl"]
+    glsl_header, prefixes = want["glsl_runner"], want["glsl_export_prefixes"]
     glsl_dir = f"backends/glsl/include/hush/glsl/{noise}"
     if not (ROOT / glsl_dir / glsl_header).is_file():
         problem(f"{noise}: no GLSL runner {glsl_dir}/{glsl_header}")
@@ -186,9 +160,9 @@ def check_noise(noise, want, cases, program, exported):
         elif not re.search(r"^void " + function + r"\(", read(rel), re.M):
             problem(f"{noise}: {rel} does not define {function}")
     bench = f"bench/{noise}_cases.cpp"
-    if (ROOT / bench).is_file() and want["bench"] not in read(bench):
-        problem(f"{noise}: no bench row: {bench} never names {want['bench']}")
-    for kind in ("golden", "hard_case"):
+    if (ROOT / bench).is_file() and want["bench_text"] not in read(bench):
+        problem(f"{noise}: no bench row: {bench} never names {want['bench_text']}")
+    for kind in ("golden_case", "hard_case"):
         if not any(re.search(want[kind], name) for name in cases):
             problem(f"{noise}: no test case in tests/ named like /{want[kind]}/ ({kind})")
     doc = want["doc"]
@@ -276,12 +250,9 @@ def main():
     parser.add_argument("--program", help="the hush program, to check its entries and export")
     args = parser.parse_args()
     noises = registry()
-    for noise in noises:
-        if noise not in EXPECT:
-            problem(f"{noise}: registered in CMakeLists.txt but has no EXPECT entry here")
-    for noise in EXPECT:
-        if noise not in noises:
-            problem(f"{noise}: has an EXPECT entry here but is not in HUSH_NOISES")
+    for path in sorted(ROOT.glob(SHIPS_WITH.format(noise="*"))):
+        if path.parent.name not in noises:
+            problem(f"{path.relative_to(ROOT)}: {path.parent.name} is not in HUSH_NOISES")
     exported = None
     if args.program:
         with tempfile.TemporaryDirectory() as tmp:
@@ -292,8 +263,9 @@ def main():
             exported = [p.name for p in Path(tmp).iterdir()]
     cases = test_case_names()
     for noise in noises:
-        if noise in EXPECT:
-            check_noise(noise, EXPECT[noise], cases, args.program, exported)
+        want = ships_with(noise)
+        if want is not None:
+            check_noise(noise, want, cases, args.program, exported)
     check_named_files()
     check_header_sizes()
     for p in problems:
