@@ -147,6 +147,10 @@ def check_noise(noise, want, cases, program, exported):
     glsl_dir = f"backends/glsl/include/hush/glsl/{noise}"
     if not (ROOT / glsl_dir / glsl_header).is_file():
         problem(f"{noise}: no GLSL runner {glsl_dir}/{glsl_header}")
+    glsl_list = "backends/glsl/include/hush/glsl/noises.hpp"
+    if f'#include "hush/glsl/{noise}/' not in read(glsl_list):
+        problem(f"{noise}: {glsl_list}, the GLSL layer's list, includes no header of "
+                f"hush/glsl/{noise}/")
     if exported is not None:
         for prefix in prefixes:
             if not any(name.startswith(prefix) for name in exported):

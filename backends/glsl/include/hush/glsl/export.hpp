@@ -11,11 +11,15 @@
 #include <tuple>
 #include <vector>
 
-#include "hush/glsl/coherent/glsl.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/glsl/noise_program.hpp"
-#include "hush/glsl/npr_gabor/glsl.hpp"
+
+// The scene-driven noises' renderer sources, detail::renderer_exports(): the renderers
+// part of the GLSL layer's list of noises.
+#define HUSH_GLSL_NOISES_RENDERERS
+#include "hush/glsl/noises.hpp"
+#undef HUSH_GLSL_NOISES_RENDERERS
 
 namespace hush {
 namespace glsl {
@@ -48,14 +52,15 @@ void add_all_runners(std::vector<export_file>& files, const std::tuple<Noise...>
 
 }  // namespace detail
 
-// hush_noise.glsl, then for every noise with a GLSL program (program_noises in
-// noise_program.hpp: perlin2, perlin3, fractal_perlin2, fractal_perlin3, wavelet2,
-// wavelet3, gabor2, gabor3, anisotropic) its runners
+// hush_noise.glsl, then for every noise with a GLSL program (program_noises in the GLSL
+// layer's list of noises, hush/glsl/noises.hpp: perlin2, perlin3, fractal_perlin2,
+// fractal_perlin3, wavelet2, wavelet3, gabor2, gabor3, anisotropic) its runners
 // hush_<noise>_<points|grid>[_gradient].comp and, for the noises that take
 // per-sample inputs (wavelet, gabor, anisotropic),
 // hush_<noise>_samples[_gradient].comp (positions with optional footprints, normals
 // and surface maps, compute_source.hpp's samples layout: one runner for every
-// combination, told apart by its uniforms), and
+// combination, told apart by its uniforms), and then every scene-driven noise's sources
+// (detail::renderer_exports, the same list's renderers):
 // hush_coherent_pass.comp (one pass of coherent noise, hush/glsl/coherent/glsl.hpp), and
 // hush_npr_gabor_splat.vert, .geom, .frag (NPR Gabor noise's point sprites, one program,
 // hush/glsl/npr_gabor/glsl.hpp) and hush_npr_gabor_lods.comp, _scan.comp, _roots.comp,
@@ -96,7 +101,7 @@ inline std::vector<export_file> export_files() {
            library()});
   detail::add_all_runners(files, static_cast<const program_noises*>(nullptr));
   // The scene-driven noises' renderer sources, from each noise's hush/glsl/<noise>/glsl.hpp.
-  for (const auto& exports : {detail::coherent_exports(), detail::npr_gabor_exports()})
+  for (const auto& exports : detail::renderer_exports())
     for (const auto& [name, text] : exports) files.push_back({name, text});
   return files;
 }

@@ -56,11 +56,13 @@
 
 #include <string>
 
-#include "hush/glsl/fractal/glsl.hpp"
-#include "hush/glsl/gabor/glsl.hpp"
 #include "hush/glsl/generator.hpp"
-#include "hush/glsl/perlin/glsl.hpp"
-#include "hush/glsl/wavelet/glsl.hpp"
+
+// Each noise's bodies, detail::noise_bodies(): the library part of the GLSL layer's list
+// of noises.
+#define HUSH_GLSL_NOISES_LIBRARY
+#include "hush/glsl/noises.hpp"
+#undef HUSH_GLSL_NOISES_LIBRARY
 
 namespace hush {
 namespace glsl {
@@ -151,11 +153,11 @@ hush_lattice_coord hush_lattice_split(float x, uint period) {
 }  // namespace detail
 
 // The hand-written bodies, in order: hashing and the lattice split, then each noise's
-// (hush/glsl/<noise>/glsl.hpp); tests check they hold no numeric literal besides the
-// 2^D-cell structure integers (0, 1, 2, 4, 8).
+// (hush/glsl/<noise>/glsl.hpp, in the order of the list of noises, hush/glsl/noises.hpp);
+// tests check they hold no numeric literal besides the 2^D-cell structure integers
+// (0, 1, 2, 4, 8).
 inline std::string library_bodies() {
-  return std::string(detail::kHashBody) + detail::kLatticeBody + detail::kPerlinBody +
-         detail::kFractalBody + detail::wavelet_body() + detail::kGaborBody;
+  return std::string(detail::kHashBody) + detail::kLatticeBody + detail::noise_bodies();
 }
 
 // The whole function library: a header comment naming the hush version, the

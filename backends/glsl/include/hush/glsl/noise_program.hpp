@@ -73,8 +73,9 @@
 // lives) and binds to texture units 0, 1, ... before every dispatch, setting
 // each sampler2D uniform to its unit.
 // The runner validates nothing about a noise: noise objects are valid by construction.
-// Every noise type with a specialisation is listed once, in program_noises (end of
-// this file): `hush glsl-export` writes the runners of exactly those.
+// Every noise type with a specialisation is listed once, in program_noises (the GLSL
+// layer's list of noises, hush/glsl/noises.hpp, included at the end of this file):
+// `hush glsl-export` writes the runners of exactly those.
 #ifndef HUSH_GLSL_NOISE_PROGRAM_HPP
 #define HUSH_GLSL_NOISE_PROGRAM_HPP
 
@@ -85,16 +86,10 @@
 #include <functional>
 #include <memory>
 #include <string>
-#include <tuple>
 #include <type_traits>
 #include <vector>
 
-#include "hush/anisotropic.hpp"
-#include "hush/fractal.hpp"
-#include "hush/gabor.hpp"
 #include "hush/glsl/detail/gl.hpp"
-#include "hush/perlin.hpp"
-#include "hush/wavelet.hpp"
 
 namespace hush {
 namespace glsl {
@@ -195,22 +190,9 @@ inline constexpr bool has_program_v = has_program<Noise>::value;
 }  // namespace hush
 
 // The programs of the noises, each in its folder hush/glsl/<noise>/ (each includes this
-// header first).
-#include "hush/glsl/anisotropic/program.hpp"
-#include "hush/glsl/fractal/program.hpp"
-#include "hush/glsl/gabor/program.hpp"  // IWYU pragma: export
-#include "hush/glsl/perlin/program.hpp"
-#include "hush/glsl/wavelet/program.hpp"
-
-namespace hush {
-namespace glsl {
-
-// Every noise type that has a noise_program: the one list that `hush glsl-export`
-// (export.hpp) and the tests enumerate, so that a new program is exported with it.
-using program_noises = std::tuple<perlin<2>, perlin<3>, fractal<perlin<2>>, fractal<perlin<3>>,
-                                  wavelet<2>, wavelet<3>, gabor<2>, gabor<3>, anisotropic>;
-
-}  // namespace glsl
-}  // namespace hush
+// header first), and program_noises: the programs part of the GLSL layer's list of noises.
+#define HUSH_GLSL_NOISES_PROGRAMS
+#include "hush/glsl/noises.hpp"  // IWYU pragma: export
+#undef HUSH_GLSL_NOISES_PROGRAMS
 
 #endif  // HUSH_GLSL_NOISE_PROGRAM_HPP
