@@ -15,8 +15,8 @@
 // library.hpp and compute_source.hpp, which includes both. One include guard would put them
 // all at the lowest height, and a cycle through the renderers' sources. So each list is a part
 // with its own include guard (HUSH_GLSL_NOISES_<PART>_PART), which the header that derives the
-// list selects: it defines HUSH_GLSL_NOISES_<PART>, includes this file and undefines it. Included with no part selected, this file includes export.hpp, which
-// includes every part.
+// list selects: it defines HUSH_GLSL_NOISES_<PART>, includes this file and undefines it.
+// Included with no part selected, this file includes export.hpp, which includes every part.
 
 #if !defined(HUSH_GLSL_NOISES_LIBRARY) && !defined(HUSH_GLSL_NOISES_PROGRAMS) && \
     !defined(HUSH_GLSL_NOISES_RENDERERS)
