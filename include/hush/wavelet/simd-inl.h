@@ -16,7 +16,7 @@
 //  - the distribution remapping (erf, the table) runs lane by lane through
 //    wavelet::remap, the scalar code itself.
 // 3D points: a 4-float row load per lane and (y, z) row (rows3). Grids use the separability
-// of the basis (the "3D single band" fast path of the issue): per slice the
+// of the basis (the 3D single-band fast path): per slice the
 // z contraction S(x, y) = sum_c wz_c n(x, y, z_c) for the coefficients the grid
 // touches, per row T(x) = sum_b wy_b S(x, y_b), per sample sum_a wx_a T(x_a):
 // three reads of a small table per sample and band, whatever D is; where a
