@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -52,14 +53,9 @@ constexpr std::string_view kRowOrder[] = {"perlin",   "fractal",     "gabor",   
 
 // Every noise's rows of `pass`, in kRowOrder's order.
 void add_pass(std::vector<bench_case>& cases, const sizes& s, bench_pass pass) {
-  for (const std::string_view name : kRowOrder)
-    for (const noise_rows& n : kNoiseRows)
-      if (n.noise == name) n.add(cases, s, pass);
-  for (const noise_rows& n : kNoiseRows) {
-    bool listed = false;
-    for (const std::string_view name : kRowOrder) listed = listed || n.noise == name;
-    if (!listed) n.add(cases, s, pass);
-  }
+  std::vector<noise_rows> noises(std::begin(kNoiseRows), std::end(kNoiseRows));
+  hush_tools::put_in_order(noises, kRowOrder, [](const noise_rows& n) { return n.noise; });
+  for (const noise_rows& n : noises) n.add(cases, s, pass);
 }
 
 }  // namespace

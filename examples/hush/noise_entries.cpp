@@ -2,9 +2,6 @@
 // noise's entries (see noise_entries.hpp).
 #include "noise_entries.hpp"
 
-#include <algorithm>
-#include <cstddef>
-#include <iterator>
 #include <string_view>
 #include <vector>
 
@@ -16,23 +13,15 @@ namespace {
 constexpr std::string_view kSampleOrder[] = {"perlin", "wavelet", "anisotropic", "gabor"};
 constexpr std::string_view kRenderOrder[] = {"coherent", "npr-gabor", "anisotropic"};
 
-template <class Entry, std::size_t N>
-void put_in_order(std::vector<Entry>& entries, const std::string_view (&order)[N]) {
-  const auto rank = [&order](const Entry& e) {
-    return std::distance(std::begin(order), std::find(std::begin(order), std::end(order), e.name));
-  };
-  std::stable_sort(entries.begin(), entries.end(),
-                   [&rank](const Entry& a, const Entry& b) { return rank(a) < rank(b); });
-}
-
 const program_entries& all_entries() {
   static const program_entries entries = [] {
     program_entries e;
 #define HUSH_CLI_ADD_ENTRIES(noise) add_##noise##_entries(e);
     HUSH_NOISE_LIST(HUSH_CLI_ADD_ENTRIES)
 #undef HUSH_CLI_ADD_ENTRIES
-    put_in_order(e.sample, kSampleOrder);
-    put_in_order(e.render, kRenderOrder);
+    const auto name = [](const auto& entry) { return entry.name; };
+    hush_tools::put_in_order(e.sample, kSampleOrder, name);
+    hush_tools::put_in_order(e.render, kRenderOrder, name);
     return e;
   }();
   return entries;
