@@ -1,22 +1,42 @@
-# cmake -P driver of the package_* tests: builds tests/package/consumer, a
-# separate project, against hush and runs it.
+# cmake -P driver of the package_* tests: installs hush, or builds a consumer (a separate
+# project: CONSUMER_DIR) against hush and runs it.
+#   MODE=install           installs hush's build tree HUSH_BUILD_DIR (what its build compiled,
+#                          hush::simd included) into a staging prefix and moves it to PREFIX
+#                          (wiped first; the package must be relocatable). The others with
+#                          PREFIX need this done (a CTest fixture).
 #   MODE=add_subdirectory  the consumer add_subdirectory()s the hush sources;
-#   MODE=find_package      hush is configured fresh (tests, examples, benchmarks
-#                          off), installed into a staging prefix, the prefix is
-#                          moved (the package must be relocatable), and the
-#                          consumer finds it with find_package(hush x.y CONFIG).
-# Variables (-D): MODE, HUSH_SOURCE_DIR, CONSUMER_DIR, WORK_DIR (wiped first),
-# GENERATOR, CXX_COMPILER; optional BUILD_TYPE, MAKE_PROGRAM, GENERATOR_PLATFORM,
-# GENERATOR_TOOLSET. Any failing step stops the test with that step's output.
-foreach(var MODE HUSH_SOURCE_DIR CONSUMER_DIR WORK_DIR GENERATOR CXX_COMPILER)
+#   MODE=find_package      the consumer finds the package in PREFIX with
+#                          find_package(hush x.y CONFIG) (and COMPONENTS simd when
+#                          CONSUMER_SIMD is ON);
+#   MODE=header_only       the same with Highway unfindable
+#                          (-DCMAKE_DISABLE_FIND_PACKAGE_hwy=ON): hush::hush must be found and
+#                          work, and asking for simd must fail saying why;
+#   MODE=glsl              the consumer (consumer_glsl/) finds the GLSL backend in PREFIX with
+#                          find_package(hush CONFIG COMPONENTS glsl glsl_headless).
+# Variables (-D): MODE, HUSH_SOURCE_DIR, WORK_DIR (wiped first), GENERATOR, CXX_COMPILER;
+# CONSUMER_DIR and CONSUMER_PROGRAM except for install; HUSH_BUILD_DIR for install; PREFIX
+# except for add_subdirectory; optional BUILD_TYPE, MAKE_PROGRAM, GENERATOR_PLATFORM,
+# GENERATOR_TOOLSET, CONSUMER_SIMD. Any failing step stops the test with that step's output.
+cmake_minimum_required(VERSION 3.16)  # IN_LIST, as in the projects it drives
+set(_modes add_subdirectory install find_package header_only glsl)
+if(NOT MODE IN_LIST _modes)
+  string(REPLACE ";" ", " _modes "${_modes}")
+  message(FATAL_ERROR "run_package_test.cmake: MODE is one of ${_modes}, not '${MODE}'")
+endif()
+set(_required MODE HUSH_SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER)
+if(MODE STREQUAL "install")
+  list(APPEND _required HUSH_BUILD_DIR PREFIX)
+else()
+  list(APPEND _required CONSUMER_DIR CONSUMER_PROGRAM)
+  if(NOT MODE STREQUAL "add_subdirectory")
+    list(APPEND _required PREFIX)
+  endif()
+endif()
+foreach(var IN LISTS _required)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
-    message(FATAL_ERROR "run_package_test.cmake: -D${var}=... is required")
+    message(FATAL_ERROR "run_package_test.cmake: -D${var}=... is required for MODE=${MODE}")
   endif()
 endforeach()
-if(NOT MODE MATCHES "^(add_subdirectory|find_package)$")
-  message(FATAL_ERROR
-          "run_package_test.cmake: MODE is add_subdirectory or find_package, not ${MODE}")
-endif()
 
 # The version, read from config.hpp as the top-level CMakeLists.txt does.
 file(STRINGS "${HUSH_SOURCE_DIR}/include/hush/config.hpp" _line
@@ -58,44 +78,58 @@ endfunction()
 
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
-set(consumer_build "${WORK_DIR}/consumer-build")
-set(consumer_options -DHUSH_CONSUMER_MODE=${MODE} -DHUSH_EXPECTED_VERSION=${version})
 
-if(MODE STREQUAL "add_subdirectory")
-  list(APPEND consumer_options "-DHUSH_SOURCE_DIR=${HUSH_SOURCE_DIR}")
-else()
-  set(hush_build "${WORK_DIR}/hush-build")
+if(MODE STREQUAL "install")
   set(stage "${WORK_DIR}/stage")
-  set(prefix "${WORK_DIR}/prefix")
-  run_step("configure hush" "${CMAKE_COMMAND}" -S "${HUSH_SOURCE_DIR}" -B "${hush_build}"
-           ${configure_options} -DHUSH_BUILD_TESTS=OFF -DHUSH_BUILD_EXAMPLES=OFF
-           -DHUSH_BUILD_BENCH=OFF -DHUSH_INSTALL=ON)
-  run_step("build hush" "${CMAKE_COMMAND}" --build "${hush_build}" ${config_options})
-  run_step("install hush" "${CMAKE_COMMAND}" --install "${hush_build}" --prefix "${stage}"
+  file(REMOVE_RECURSE "${PREFIX}")
+  run_step("install hush" "${CMAKE_COMMAND}" --install "${HUSH_BUILD_DIR}" --prefix "${stage}"
            ${config_options})
   # Consumers must not depend on where the package was installed.
-  file(RENAME "${stage}" "${prefix}")
-  file(GLOB_RECURSE package_files RELATIVE "${prefix}" "${prefix}/*.cmake")
-  foreach(required include/hush/hush.hpp include/hush/config.hpp)
-    if(NOT EXISTS "${prefix}/${required}")
+  file(RENAME "${stage}" "${PREFIX}")
+  file(GLOB_RECURSE package_files RELATIVE "${PREFIX}" "${PREFIX}/*.cmake")
+  foreach(required include/hush/hush.hpp include/hush/config.hpp include/hush/glsl/device.hpp
+                   include/hush/glsl/headless.hpp include/hush/glsl/perlin)
+    if(NOT EXISTS "${PREFIX}/${required}")
       message(FATAL_ERROR "[${MODE}] ${required} was not installed")
     endif()
   endforeach()
-  foreach(required hushConfig.cmake hushConfigVersion.cmake hushTargets.cmake)
+  foreach(required hushConfig.cmake hushConfigVersion.cmake hushTargets.cmake
+                   hushGLLibraries.cmake hush_glslTargets.cmake)
     if(NOT package_files MATCHES "(^|;)[^;]*/${required}(;|$)")
       message(FATAL_ERROR "[${MODE}] ${required} was not installed; installed: ${package_files}")
     endif()
   endforeach()
-  list(APPEND consumer_options "-DCMAKE_PREFIX_PATH=${prefix}" "-DHUSH_EXPECTED_PREFIX=${prefix}"
-       -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+  message(STATUS "[${MODE}] hush installed in ${PREFIX}")
+  return()
+endif()
+
+set(consumer_build "${WORK_DIR}/consumer-build")
+if(MODE STREQUAL "add_subdirectory")
+  set(consumer_options -DHUSH_CONSUMER_MODE=add_subdirectory -DHUSH_EXPECTED_VERSION=${version}
+      "-DHUSH_SOURCE_DIR=${HUSH_SOURCE_DIR}")
+else()
+  if(NOT EXISTS "${PREFIX}/include/hush/hush.hpp")
+    message(FATAL_ERROR "[${MODE}] no hush installed in ${PREFIX}: run the package_install test")
+  endif()
+  set(consumer_options "-DCMAKE_PREFIX_PATH=${PREFIX}" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+  if(NOT MODE STREQUAL "glsl")  # consumer/: the version and where the headers come from
+    list(APPEND consumer_options -DHUSH_CONSUMER_MODE=find_package
+         -DHUSH_EXPECTED_VERSION=${version} "-DHUSH_EXPECTED_PREFIX=${PREFIX}")
+  endif()
+  if(MODE STREQUAL "header_only")
+    list(APPEND consumer_options -DCMAKE_DISABLE_FIND_PACKAGE_hwy=ON -DHUSH_CONSUMER_NO_HWY=ON)
+  elseif(MODE STREQUAL "find_package" AND CONSUMER_SIMD)
+    list(APPEND consumer_options -DHUSH_CONSUMER_SIMD=ON)
+  endif()
 endif()
 
 run_step("configure consumer" "${CMAKE_COMMAND}" -S "${CONSUMER_DIR}" -B "${consumer_build}"
          ${configure_options} ${consumer_options})
 run_step("build consumer" "${CMAKE_COMMAND}" --build "${consumer_build}" ${config_options})
-file(GLOB program "${consumer_build}/bin/hush_consumer" "${consumer_build}/bin/hush_consumer.exe")
+file(GLOB program "${consumer_build}/bin/${CONSUMER_PROGRAM}"
+     "${consumer_build}/bin/${CONSUMER_PROGRAM}.exe")
 if(NOT program)
-  message(FATAL_ERROR "[${MODE}] no hush_consumer program in ${consumer_build}/bin")
+  message(FATAL_ERROR "[${MODE}] no ${CONSUMER_PROGRAM} program in ${consumer_build}/bin")
 endif()
 run_step("run consumer" ${program})
 message(STATUS "[${MODE}] ${step_output}")
