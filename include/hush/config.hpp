@@ -45,7 +45,9 @@
 // hush/simd/dispatch_impl.hpp) or HUSH_SIMD_STATIC (compile-time target,
 // e.g. -march=native builds); HUSH_NO_SIMD overrides both. Opt-in, so that a
 // header-only user never has to link Highway without asking for it.
-// HUSH_CONFIG_SIMD_STATIC tells the two routes apart.
+// HUSH_CONFIG_SIMD_STATIC tells the two routes apart. Without SIMD, naming
+// hush::exec::simd draws a deprecation warning (hush/exec.hpp) unless HUSH_NO_SIMD or
+// HUSH_SIMD_ALLOW_SCALAR is defined.
 #if defined(HUSH_NO_SIMD) || !(defined(HUSH_SIMD_DYNAMIC) || defined(HUSH_SIMD_STATIC))
 #define HUSH_CONFIG_SIMD 0
 #define HUSH_CONFIG_SIMD_STATIC 0
@@ -57,6 +59,22 @@
 #else
 #define HUSH_CONFIG_SIMD 1
 #define HUSH_CONFIG_SIMD_STATIC 0
+#endif
+
+// Highway 1.0.3 compiles AVX3_DL (AVX-512 with VNNI, VBMI2, BITALG, VAES... and AVX-VNNI) only
+// when HWY_WANT_AVX3_DL is defined, even where that is the compiler's baseline target:
+// -march=native on Sapphire Rapids or Zen 5, -march=sapphirerapids. Its detect_targets.h then
+// stops every SIMD translation unit with "best baseline should be included in dynamic
+// targets". hush defines HWY_WANT_AVX3_DL before any Highway header when the baseline has
+// AVX3_DL's features (Highway's own test: detect_targets.h, HWY_BASELINE_AVX3_DL), so both SIMD
+// routes build there; other builds compile the targets they did. A translation unit that
+// includes Highway before hush must define HWY_WANT_AVX3_DL itself (or pass it to the compiler).
+#if HUSH_CONFIG_SIMD && !defined(HWY_WANT_AVX3_DL) && defined(__AVX512F__) &&              \
+    defined(__AVX512BW__) && defined(__AVX512DQ__) && defined(__AVX512VL__) &&             \
+    defined(__AVXVNNI__) && defined(__VAES__) && defined(__VPCLMULQDQ__) &&                \
+    defined(__AVX512VBMI__) && defined(__AVX512VBMI2__) && defined(__AVX512VPOPCNTDQ__) && \
+    defined(__AVX512BITALG__)
+#define HWY_WANT_AVX3_DL
 #endif
 
 #if defined(__GNUC__) || defined(__clang__)

@@ -72,12 +72,24 @@ struct scalar_t {
   static constexpr const char* name = "scalar";
 };
 // Highway SIMD kernels, dynamically dispatched to the best compiled target
-// (or statically, see hush/simd/dispatch.hpp).
+// (or statically, see hush/simd/dispatch.hpp); the scalar loop without SIMD.
 struct simd_t {
   static constexpr const char* name = "simd";
 };
 inline constexpr scalar_t scalar{};
+// Without SIMD compiled in (HUSH_CONFIG_SIMD == 0, hush/config.hpp), exec::simd runs
+// the scalar loop, and naming it draws a deprecation warning that says so (code that
+// never names it compiles as before, -Werror included). Defining HUSH_NO_SIMD (scalar
+// on purpose) or HUSH_SIMD_ALLOW_SCALAR (exec::simd may fall back quietly) silences it.
+#if HUSH_CONFIG_SIMD || defined(HUSH_NO_SIMD) || defined(HUSH_SIMD_ALLOW_SCALAR)
 inline constexpr simd_t simd{};
+#else
+[[deprecated(
+    "no SIMD compiled in: hush::exec::simd runs the scalar loop. Link hush::simd (CMake), or "
+    "define HUSH_SIMD_STATIC and link Highway (-lhwy), or define HUSH_SIMD_DYNAMIC and compile "
+    "hush/simd/dispatch_impl.hpp once; define HUSH_NO_SIMD or HUSH_SIMD_ALLOW_SCALAR to run "
+    "scalar code without this warning")]] inline constexpr simd_t simd{};
+#endif
 
 // GLSL compute shaders on a GL device: hush::exec::glsl{device}. Device is
 // any type with the batch members hush::glsl::device has; the core does not

@@ -247,7 +247,9 @@ inline void require_in_range(const char* where, const std::string& name, const T
 // hush/simd/dispatch_impl.hpp) or HUSH_SIMD_STATIC (compile-time target,
 // e.g. -march=native builds); HUSH_NO_SIMD overrides both. Opt-in, so that a
 // header-only user never has to link Highway without asking for it.
-// HUSH_CONFIG_SIMD_STATIC tells the two routes apart.
+// HUSH_CONFIG_SIMD_STATIC tells the two routes apart. Without SIMD, naming
+// hush::exec::simd draws a deprecation warning (hush/exec.hpp) unless HUSH_NO_SIMD or
+// HUSH_SIMD_ALLOW_SCALAR is defined.
 #if defined(HUSH_NO_SIMD) || !(defined(HUSH_SIMD_DYNAMIC) || defined(HUSH_SIMD_STATIC))
 #define HUSH_CONFIG_SIMD 0
 #define HUSH_CONFIG_SIMD_STATIC 0
@@ -259,6 +261,22 @@ inline void require_in_range(const char* where, const std::string& name, const T
 #else
 #define HUSH_CONFIG_SIMD 1
 #define HUSH_CONFIG_SIMD_STATIC 0
+#endif
+
+// Highway 1.0.3 compiles AVX3_DL (AVX-512 with VNNI, VBMI2, BITALG, VAES... and AVX-VNNI) only
+// when HWY_WANT_AVX3_DL is defined, even where that is the compiler's baseline target:
+// -march=native on Sapphire Rapids or Zen 5, -march=sapphirerapids. Its detect_targets.h then
+// stops every SIMD translation unit with "best baseline should be included in dynamic
+// targets". hush defines HWY_WANT_AVX3_DL before any Highway header when the baseline has
+// AVX3_DL's features (Highway's own test: detect_targets.h, HWY_BASELINE_AVX3_DL), so both SIMD
+// routes build there; other builds compile the targets they did. A translation unit that
+// includes Highway before hush must define HWY_WANT_AVX3_DL itself (or pass it to the compiler).
+#if HUSH_CONFIG_SIMD && !defined(HWY_WANT_AVX3_DL) && defined(__AVX512F__) &&              \
+    defined(__AVX512BW__) && defined(__AVX512DQ__) && defined(__AVX512VL__) &&             \
+    defined(__AVXVNNI__) && defined(__VAES__) && defined(__VPCLMULQDQ__) &&                \
+    defined(__AVX512VBMI__) && defined(__AVX512VBMI2__) && defined(__AVX512VPOPCNTDQ__) && \
+    defined(__AVX512BITALG__)
+#define HWY_WANT_AVX3_DL
 #endif
 
 #if defined(__GNUC__) || defined(__clang__)
@@ -3192,13 +3210,7 @@ struct simd_kernel {
 #if HUSH_CONFIG_SIMD
 
 #if HUSH_CONFIG_SIMD_STATIC
-// Highway 1.0.3 leaves AVX3_DL out of its target list even when it is the
-// compiler's baseline (-march=native on Ice Lake or Zen 4), then stops with
-// "best baseline should be included in dynamic targets". Opting in fixes it.
-#ifndef HWY_WANT_AVX3_DL
-#define HWY_WANT_AVX3_DL
-#endif
-#include <hwy/highway.h>
+#include <hwy/highway.h>  // after hush/config.hpp: see HWY_WANT_AVX3_DL there
 
 // Static route: hush::simd::<name> calls the baseline target's kernel inline.
 #define HUSH_SIMD_DECLARE_ONE(name, params, args) \
@@ -3220,7 +3232,8 @@ namespace hush {
 namespace simd {
 
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
-// best first, and of the one the kernels run on, on this CPU.
+// best first, and of the one the kernels run on, on this CPU. Without SIMD
+// (below): none, and "scalar (no SIMD compiled in)".
 #if HUSH_CONFIG_SIMD_STATIC
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -3228,7 +3241,7 @@ inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); 
 std::vector<std::string> compiled_targets();  // defined by hush/simd/dispatch_targets.hpp
 std::string chosen_target();
 #endif
-// "dynamic" or "static".
+// "dynamic" or "static" ("none" without SIMD).
 inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" : "dynamic"; }
 
 }  // namespace simd
@@ -3237,6 +3250,16 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 #else  // no SIMD: the lists declare nothing, simd_kernel stays "none"
 
 #define HUSH_SIMD_DECLARE(list)
+
+// What the SIMD build has (above), so that code printing it compiles in every build:
+// exec::simd runs the scalar loop here.
+namespace hush {
+namespace simd {
+inline std::vector<std::string> compiled_targets() { return {}; }
+inline std::string chosen_target() { return "scalar (no SIMD compiled in)"; }
+inline const char* dispatch_mode() { return "none"; }
+}  // namespace simd
+}  // namespace hush
 
 #endif  // HUSH_CONFIG_SIMD
 
@@ -7897,12 +7920,24 @@ struct scalar_t {
   static constexpr const char* name = "scalar";
 };
 // Highway SIMD kernels, dynamically dispatched to the best compiled target
-// (or statically, see hush/simd/dispatch.hpp).
+// (or statically, see hush/simd/dispatch.hpp); the scalar loop without SIMD.
 struct simd_t {
   static constexpr const char* name = "simd";
 };
 inline constexpr scalar_t scalar{};
+// Without SIMD compiled in (HUSH_CONFIG_SIMD == 0, hush/config.hpp), exec::simd runs
+// the scalar loop, and naming it draws a deprecation warning that says so (code that
+// never names it compiles as before, -Werror included). Defining HUSH_NO_SIMD (scalar
+// on purpose) or HUSH_SIMD_ALLOW_SCALAR (exec::simd may fall back quietly) silences it.
+#if HUSH_CONFIG_SIMD || defined(HUSH_NO_SIMD) || defined(HUSH_SIMD_ALLOW_SCALAR)
 inline constexpr simd_t simd{};
+#else
+[[deprecated(
+    "no SIMD compiled in: hush::exec::simd runs the scalar loop. Link hush::simd (CMake), or "
+    "define HUSH_SIMD_STATIC and link Highway (-lhwy), or define HUSH_SIMD_DYNAMIC and compile "
+    "hush/simd/dispatch_impl.hpp once; define HUSH_NO_SIMD or HUSH_SIMD_ALLOW_SCALAR to run "
+    "scalar code without this warning")]] inline constexpr simd_t simd{};
+#endif
 
 // GLSL compute shaders on a GL device: hush::exec::glsl{device}. Device is
 // any type with the batch members hush::glsl::device has; the core does not

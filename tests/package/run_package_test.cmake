@@ -87,10 +87,11 @@ if(MODE STREQUAL "install")
   # Consumers must not depend on where the package was installed.
   file(RENAME "${stage}" "${PREFIX}")
   file(GLOB_RECURSE package_files RELATIVE "${PREFIX}" "${PREFIX}/*.cmake")
-  foreach(required include/hush/hush.hpp include/hush/config.hpp include/hush/glsl/device.hpp
-                   include/hush/glsl/headless.hpp include/hush/glsl/perlin)
-    if(NOT EXISTS "${PREFIX}/${required}")
-      message(FATAL_ERROR "[${MODE}] ${required} was not installed")
+  # The core's headers and the GLSL backend's (hush/glsl/, its per-noise folders too).
+  foreach(required hush/hush.hpp hush/config.hpp hush/glsl/device.hpp hush/glsl/headless.hpp
+                   hush/glsl/perlin)
+    if(NOT EXISTS "${PREFIX}/include/${required}")
+      message(FATAL_ERROR "[${MODE}] include/${required} was not installed")
     endif()
   endforeach()
   foreach(required hushConfig.cmake hushConfigVersion.cmake hushTargets.cmake

@@ -61,13 +61,7 @@ struct simd_kernel {
 #if HUSH_CONFIG_SIMD
 
 #if HUSH_CONFIG_SIMD_STATIC
-// Highway 1.0.3 leaves AVX3_DL out of its target list even when it is the
-// compiler's baseline (-march=native on Ice Lake or Zen 4), then stops with
-// "best baseline should be included in dynamic targets". Opting in fixes it.
-#ifndef HWY_WANT_AVX3_DL
-#define HWY_WANT_AVX3_DL
-#endif
-#include <hwy/highway.h>
+#include <hwy/highway.h>  // after hush/config.hpp: see HWY_WANT_AVX3_DL there
 
 // Static route: hush::simd::<name> calls the baseline target's kernel inline.
 #define HUSH_SIMD_DECLARE_ONE(name, params, args) \
@@ -89,7 +83,8 @@ namespace hush {
 namespace simd {
 
 // Names of the targets compiled into this program ("AVX2", "SSE4", ...),
-// best first, and of the one the kernels run on, on this CPU.
+// best first, and of the one the kernels run on, on this CPU. Without SIMD
+// (below): none, and "scalar (no SIMD compiled in)".
 #if HUSH_CONFIG_SIMD_STATIC
 inline std::vector<std::string> compiled_targets() { return {hwy::TargetName(HWY_STATIC_TARGET)}; }
 inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
@@ -97,7 +92,7 @@ inline std::string chosen_target() { return hwy::TargetName(HWY_STATIC_TARGET); 
 std::vector<std::string> compiled_targets();  // defined by hush/simd/dispatch_targets.hpp
 std::string chosen_target();
 #endif
-// "dynamic" or "static".
+// "dynamic" or "static" ("none" without SIMD).
 inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" : "dynamic"; }
 
 }  // namespace simd
@@ -106,6 +101,16 @@ inline const char* dispatch_mode() { return HUSH_CONFIG_SIMD_STATIC ? "static" :
 #else  // no SIMD: the lists declare nothing, simd_kernel stays "none"
 
 #define HUSH_SIMD_DECLARE(list)
+
+// What the SIMD build has (above), so that code printing it compiles in every build:
+// exec::simd runs the scalar loop here.
+namespace hush {
+namespace simd {
+inline std::vector<std::string> compiled_targets() { return {}; }
+inline std::string chosen_target() { return "scalar (no SIMD compiled in)"; }
+inline const char* dispatch_mode() { return "none"; }
+}  // namespace simd
+}  // namespace hush
 
 #endif  // HUSH_CONFIG_SIMD
 

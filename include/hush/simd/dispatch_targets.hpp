@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "hush/config.hpp"  // before Highway: HWY_WANT_AVX3_DL
+
 #include <hwy/highway.h>
 #include <hwy/targets.h>
 

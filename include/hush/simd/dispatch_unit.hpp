@@ -27,6 +27,8 @@
     "define HUSH_SIMD_UNIT_INL and HUSH_SIMD_UNIT_ENTRIES before including hush/simd/dispatch_unit.hpp"
 #endif
 
+#include "hush/config.hpp"  // before Highway: HWY_WANT_AVX3_DL
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "hush/simd/dispatch_unit.hpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
