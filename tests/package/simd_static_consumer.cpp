@@ -1,7 +1,8 @@
 // A program on the SIMD backend's static route (HUSH_SIMD_STATIC: the compiler's baseline
-// target, kernels inline), compiled by the consumer_simd_baseline_static test under flags whose
-// baseline is Highway's AVX3_DL target (-march=sapphirerapids; -march=native on Sapphire Rapids
-// or Zen 5). Exits 0 when exec::simd agrees with exec::scalar within 2^-15.
+// target, kernels inline), compiled by the consumer_simd_baseline_avx3_dl_static test under flags
+// whose baseline is Highway's AVX3_DL target (-march=sapphirerapids; -march=native on Sapphire
+// Rapids or Zen 5), and compiled only: the machine running the tests may lack those instructions.
+// Run on such a CPU, it exits 0 when exec::simd agrees with exec::scalar within 2^-15.
 #include <hush/hush.hpp>
 
 #include <cmath>
