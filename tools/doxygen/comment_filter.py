@@ -42,8 +42,9 @@ def main(path):
                         and not stripped.startswith(("public:", "private:", "protected:")))
         if documentable and block:
             for i in block:
-                m = re.match(r"^(\s*)//(.*)$", lines[i])
-                out[i] = m.group(1) + "///" + escape(m.group(2))
+                m = re.match(r"^(\s*)//(?![/!])(.*)$", lines[i])
+                if m:  # lines already written for Doxygen (/// or //!) pass unchanged
+                    out[i] = m.group(1) + "///" + escape(m.group(2))
         block.clear()
 
     for i, line in enumerate(lines):
