@@ -4,8 +4,9 @@
 - Every relative link and image (Markdown `[text](target)`, `![alt](target)`, HTML `src=`/`href=`)
   names a file or folder of the repository, and a `#anchor` names a heading (GitHub's slugs) or an
   explicit `id`/`name` of the target page.
-- Every `hush ...` command line in a shell code block names a subcommand of the program, a noise
-  that subcommand takes, and only options the program's usage text (`hush --help`) lists for that
+- Every `hush ...` command line in a shell code block, and every inline code span that starts
+  with `hush ` (or a path to the program), names a subcommand of the program, a noise that
+  subcommand takes, and only options the program's usage text (`hush --help`) lists for that
   subcommand and noise. Scripts a command runs (`bash tools/NAME.sh`, `python3 tools/NAME.py`) exist.
 
 usage: check_docs.py [--root DIR] [--hush PROGRAM]   check the docs (exit 1 on any problem)
@@ -236,10 +237,17 @@ def split_commands(line):
     return commands
 
 
+def inline_commands(text):
+    """(line number, command) of the inline code spans outside code blocks that run the program."""
+    for number, line in enumerate(strip_code(text).split("\n"), 1):
+        for m in re.finditer(r"`((?:[\w.-]*/)*hush [^`]+)`", line):
+            yield number, m.group(1)
+
+
 def check_commands(page, root, usage):
     problems = []
     text = page.read_text(encoding="utf-8")
-    for number, line in code_lines(text):
+    for number, line in list(code_lines(text)) + list(inline_commands(text)):
         for words in split_commands(line):
             while words and re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*=\S*", words[0]):
                 words = words[1:]  # VAR=value prefixes
@@ -299,6 +307,8 @@ hush sample perlin --no-such-option 3 --out x.png
 hush sample no-such-noise --out x.png
 hush sample perlin --octaves 3 --out x.png
 ```
+
+Inline, `hush sample perlin --no-such-inline-option 2 --out x.png` is checked too.
 """
 
 
@@ -317,7 +327,8 @@ def self_test(hush):
     expected = ["no-such-heading", "gone.md", "gallery/none.png", "other.md#nope",
                 f"tools/{SCRIPT}"]
     if hush:
-        expected += ["no-such-command", "--no-such-option", "no-such-noise"]
+        expected += ["no-such-command", "--no-such-option", "no-such-noise",
+                     "--no-such-inline-option"]
     missed = [e for e in expected if not any(e in p for p in problems)]
     false = [p for p in problems if not any(e in p for e in expected)]
     for p in problems:
