@@ -1,6 +1,6 @@
 // hush — the speed-vs-error benchmark: anisotropic noise's rows (include/hush/anisotropic.hpp).
 //
-// The workload: one frame of a receding plane (1920 x 1080; every pixel sees the
+// The workload: one frame of a receding plane (1920 x 1080; every pixel sees the
 // plane, out to the horizon's grazing angles), K = 4 and 8 orientations, 3 scales, the
 // centre heuristic's filtering weights per pixel from the screen-to-texture Jacobian. Error
 // columns: the float path against the double reference at the same inputs. The quality

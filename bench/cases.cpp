@@ -149,7 +149,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
        {bench_pass::scalar, bench_pass::simd, bench_pass::parallel, bench_pass::frames})
     add_pass(cases, s, pass);
 #if HUSH_CONFIG_SIMD && !HUSH_CONFIG_SIMD_STATIC
-  // AVX2 pinned when the machine would pick something better: the targets are AVX2's.
+  // AVX2 pinned when the machine would pick something better (AVX2 is the common baseline).
   const std::int64_t usable = hwy::SupportedTargets() & HWY_TARGETS;
   if ((usable & HWY_AVX2) && (usable & (HWY_AVX2 - 1))) add_pinned_simd_rows(cases, HWY_AVX2);
 #endif

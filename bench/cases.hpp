@@ -22,19 +22,19 @@
 
 namespace hush_bench {
 
-// Workload sizes. The full sizes are the issue's: 2D grid 512x512, 3D grid 64x64x64, and as
+// Workload sizes. The full sizes: 2D grid 512x512, 3D grid 64x64x64, and as
 // many random points as a grid has samples (2^18), so every row does the same work.
 struct sizes {
   std::size_t grid2 = 512;      // 2D grid: grid2 x grid2
   std::size_t grid3 = 64;       // 3D grid: grid3^3
   std::size_t points = 262144;  // random points, per dimension
-  // Scene-driven noises: one frame of frame_width x frame_height pixels (the 1080p).
+  // Scene-driven noises: one frame of frame_width x frame_height pixels (1080p).
   std::size_t frame_width = 1920, frame_height = 1080;
   // Anisotropic noise: the triangles whose least-squares compensation weights are timed
   // (its frame rows use frame_width x frame_height, a receding plane).
   std::size_t triangles = 1024;
   // NPR Gabor noise: frames of the `dense` scene with about these many triangles, at
-  // npr_width x npr_height (the 1280x720 and 5k / 50k / 200k triangles).
+  // npr_width x npr_height (1280x720 and 5k / 50k / 200k triangles).
   std::size_t npr_width = 1280, npr_height = 720;
   std::vector<long> npr_triangles = {5000, 50000, 200000};
 };

@@ -12,7 +12,7 @@
 // squared neighbour difference over the variance) of the turning disc over those of the still
 // background, after kQualityFrames frames (1 and 1 are ideal; the paper's filter fades).
 // Peer row: the memory-bound pass (coherent_memory.cpp) over the same bytes, the yardstick of
-// the target (causal SIMD within 2x of it).
+// the target (causal SIMD within 2x of it).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
-// The spectrum error of Gabor noise (docs/gabor.md, "Performance"): the
-// quality note beside each unfiltered gabor 2D and 3D bench row (issue 10),
+// The spectrum error of Gabor noise (docs/gabor.md, "Measured figures"): the
+// quality note beside each unfiltered gabor 2D and 3D bench row,
 // measured on the row's backend while the case is prepared.
 //
 // Definition (2D and 3D alike): kImages fixed-seed images (3D: volumes) of

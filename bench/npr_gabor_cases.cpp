@@ -1,6 +1,6 @@
 // hush — the speed-vs-error benchmark: NPR Gabor noise's rows (include/hush/npr_gabor.hpp).
 //
-// The workload: one frame (frame 0) of the `dense` scene (examples/scene: a sphere
+// The workload: one frame (frame 0) of the `dense` scene (examples/scene: a sphere
 // and a torus over a plane) with about 5k, 50k and 200k triangles, rasterized by the CPU
 // rasterizer at npr_width x npr_height (1280 x 720), N' = 16 and 32, the default kernel
 // (F0 = 1/8 cycle/pixel, a = 0.08/pixel, radius 12.2 pixels), anisotropic, object and depth

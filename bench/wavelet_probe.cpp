@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // Where wavelet noise's 3D random points and projected samples spend their work
-// (issue 8's missed speed targets; the figures in docs/wavelet.md "Performance"):
+// (the costs behind docs/wavelet.md's "Limits" and measured figures):
 //  1. 3D points on the SIMD backend, thread CPU time (best of 7) per sample, 2^18 points:
 //     the bench's spread points, the same binned by (z, y) cell (with the binning and
 //     scatter-back costs), 32^3 and 16^3 tiles, and points confined to [0, 4]^3

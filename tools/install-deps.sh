@@ -16,6 +16,8 @@ packages=(
   libbenchmark-dev         # Google Benchmark: bench/
   libnoise-dev             # peer row in the benchmark (libnoise Perlin)
   libtinyobjloader-dev     # Wavefront OBJ scenes (examples/scene)
+  glslang-tools            # compiles the GLSL for OpenGL, Vulkan (SPIR-V) and GLSL ES in tests
+  doxygen                  # the API reference and its test (docs/Doxyfile, docs_doxygen)
 )
 
 missing=()

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # hush's value + gradient against FastNoise2's value (which has no gradients), side by side in
-# one process: the issue-13 rows "with gradients". It reuses ../shared/peers (run.sh builds
+# one process: the rows "with gradients". It reuses ../shared/peers (run.sh builds
 # FastNoise2 into /tmp/peers; its harness peer_speed.cpp times every contender interleaved):
 # this script adds hush contenders that also write analytic gradients (grids and random points,
 # 2D and 3D, best target and pinned to AVX2; fBm 4 octaves on grids) to a copy of the harness,

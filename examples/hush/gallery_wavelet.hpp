@@ -1,4 +1,4 @@
-// hush — the `hush` program: wavelet noise's gallery images (issue 8; Cook & DeRose 2005,
+// hush — the `hush` program: wavelet noise's gallery images (Cook & DeRose 2005,
 // Fig. 8 and 9, and a receding plane at one sample per pixel against supersampled references).
 #ifndef HUSH_CLI_GALLERY_WAVELET_HPP
 #define HUSH_CLI_GALLERY_WAVELET_HPP

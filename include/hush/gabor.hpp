@@ -210,11 +210,10 @@ class gabor : public sample_noise<gabor<D>, D> {
   // surface_frame: the tangent frame (t, b) of unit normal n and the filter of
   // footprint fp projected onto the plane ([t b]^T S [t b], in the kernel's units).
   // The projection stays in double (entries within 3 W^2, as S's are within
-  // W^2: finite, no cap needed). It used to be stored as a footprint<2> (float)
-  // and read back: GCC 12's SLP vectorizer drops such double -> float -> double
-  // round trips in code built for AVX and later (the SIMD kernels inline this
-  // function), so scalar and SIMD filters differed for ill-conditioned
-  // projections (huge footprints).
+  // W^2: finite, no cap needed), not rounded to a footprint<2> (float): GCC 12's
+  // SLP vectorizer drops double -> float -> double round trips in code built for
+  // AVX and later (the SIMD kernels inline this function), which would make scalar
+  // and SIMD filters differ for ill-conditioned projections (huge footprints).
   gabor_filter<2> surface_frame(const vec<double, 3>& n, const footprint<3>& fp,
                                 vec<double, 3>& t, vec<double, 3>& b) const {
     detail::orthonormal_basis(n, t, b);

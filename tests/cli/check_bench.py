@@ -52,7 +52,7 @@ VALUE_BUDGET = {"perlin": PERLIN_VALUE, "fbm": FBM_SCALE * PERLIN_VALUE, "cohere
 GRADIENT_BUDGET = {"perlin": PERLIN_GRADIENT, "fbm": FBM_SCALE * PERLIN_GRADIENT, "gabor": 1e-3,
                    "wavelet": 1e-3}
 # Wavelet rows carry the band leakage (hush/detail/band_limit.hpp) of band 0 beside Perlin's
-# as their quality note; the issue's figures are ~0.0002 and ~0.02: wavelet 2D must leak at
+# as their quality note; the expected figures are ~0.0002 and ~0.02: wavelet 2D must leak at
 # most a tenth of Perlin's (measured 0.0003 vs 0.010), and the 3D noise projected onto the
 # slice plane at most a quarter of what the slice leaks (measured 0.0068 vs 0.079), as in
 # tests/wavelet/wavelet_spectrum_test.cpp.

@@ -148,8 +148,8 @@ TEST_CASE("coherent noise on walkthrough: follows the motion, stays flat") {
 TEST_CASE(
     "coherent noise on the rotate scene at 64 x 48 over 10,000 frames: the torus keeps the "
     "wall's standard deviation and sharpness (the issue's measurement)") {
-  // The paper's filter (Kass & Pesare eq. 7) on this set-up measured, per the issue, an sd
-  // 0.43 of the wall's after 100 frames, sharpness 1.2 against 2.0. Measured here over
+  // The paper's filter (Kass & Pesare eq. 7) on this set-up has a reference measurement of an
+  // sd 0.43 of the wall's after 100 frames, sharpness 1.2 against 2.0. Measured here over
   // frames 100 ... 9999 on pixels whose 4-neighbours show the same object. The torus turns
   // 2 degrees per frame (180 frames per turn), so 10,000 frames hold ~55 turns: the ratios'
   // standard errors are below 0.005.

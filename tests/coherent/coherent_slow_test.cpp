@@ -7,7 +7,7 @@
 // input. Statistics: frame values are correlated over (1 + alpha^2) / (1 - alpha^2) = 49
 // frames, so a quarter (2500 frames) holds ~51 independent frames of ~2000 moving and ~1500
 // still pixels (interior, 2 pixels from an edge): standard error of a variance
-// sqrt(2 / (51 x 2000)) = 0.0044, of the sd ratio ~0.004; the bound 3% is the and
+// sqrt(2 / (51 x 2000)) = 0.0044, of the sd ratio ~0.004; the bound 3% is the stated one and
 // stands 7 standard errors clear of the noise.
 #include <doctest/doctest.h>
 

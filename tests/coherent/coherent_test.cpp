@@ -414,7 +414,7 @@ TEST_CASE(
   // alpha = 0.9, 64 x 64, frames 40 ... 599: the squared values are correlated over about
   // (1 + alpha^2) / (1 - alpha^2) = 17 frames, so each region holds n ~ 1200 px x 560 / 17
   // ~ 40000 independent values: standard error of a variance 0.007, of the sd ratio 0.005.
-  // The ratio's bound, 3%, is the issue's; the standard error is far below it.
+  // The ratio's bound, 3%, is the stated one; the standard error is far below it.
   struct motion {
     const char* kind;
     double amount;

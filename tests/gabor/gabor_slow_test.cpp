@@ -238,7 +238,7 @@ TEST_CASE("gabor: no repetition at cell lags 2^k along the axes and the diagonal
     }
 }
 
-// ---- Hybrid spectra against their references (issue 10: too slow for the
+// ---- Hybrid spectra against their references (too slow for the
 // sanitizer runs; the bounded-cost check at F0 = 1e6 is in gabor_kernel_test).
 
 TEST_CASE("gabor: hybrid 3D spectra over the caps equal the old sphere quadrature where it was cheap") {

@@ -1,5 +1,5 @@
 // hush::wavelet's anti-aliasing from the footprint against supersampled references
-// (issue 8; Cook & DeRose sec. 3.5, 5.4): a continuous zoom does not pop, and one sample
+// (Cook & DeRose sec. 3.5, 5.4): a continuous zoom does not pop, and one sample
 // per pixel of a receding plane is closer to the supersampled image than Perlin fBm's.
 // Fixed seeds; every bound is stated with the measured value beside it.
 #include <doctest/doctest.h>

@@ -75,7 +75,7 @@ TEST_CASE("wavelet: band 0 leaks far less power below half its peak than Perlin 
   MESSAGE("band leakage: perlin 2D " << perlin2 << ", perlin 3D slice " << perlin3
                                      << ", wavelet 2D " << wave2 << ", wavelet 3D slice " << slice
                                      << ", wavelet 3D projected " << projected);
-  // The issue's figures: wavelet 2D ~0.0002, improved Perlin ~0.02 (a factor 100). The
+  // The expected figures: wavelet 2D ~0.0002, improved Perlin ~0.02 (a factor 100). The
   // measured fractions have ~10 % relative noise (band_limit.hpp), so a factor 10 sits
   // far outside the noise on both sides.
   CHECK(wave2 < 0.1 * perlin2);

@@ -1,7 +1,7 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // How band-limited a sampled noise band is: the fraction of its power below
-// half its peak radial frequency (issue 8, Cook & DeRose sec. 1 and Fig. 8-9:
+// half its peak radial frequency (Cook & DeRose sec. 1 and Fig. 8-9:
 // Perlin noise leaks power into the octave below, wavelet noise does not).
 // A measurement for tests, `hush bench` and the gallery; not part of the
 // umbrella header.

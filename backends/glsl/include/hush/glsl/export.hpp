@@ -21,6 +21,11 @@
 #include "hush/glsl/noises.hpp"
 #undef HUSH_GLSL_NOISES_RENDERERS
 
+// Each noise's functions for the user's shader, detail::shader_exports(): the shaders part.
+#define HUSH_GLSL_NOISES_SHADERS
+#include "hush/glsl/noises.hpp"
+#undef HUSH_GLSL_NOISES_SHADERS
+
 namespace hush {
 namespace glsl {
 
@@ -102,6 +107,9 @@ inline std::vector<export_file> export_files() {
   detail::add_all_runners(files, static_cast<const program_noises*>(nullptr));
   // The scene-driven noises' renderer sources, from each noise's hush/glsl/<noise>/glsl.hpp.
   for (const auto& exports : detail::renderer_exports())
+    for (const auto& [name, text] : exports) files.push_back({name, text});
+  // The functions for the user's shader, from each noise's hush/glsl/<noise>/shader.hpp.
+  for (const auto& exports : detail::shader_exports())
     for (const auto& [name, text] : exports) files.push_back({name, text});
   return files;
 }

@@ -9,6 +9,8 @@
 //              which `hush glsl-export` and the tests enumerate (noise_program.hpp)
 //   renderers  a scene-driven noise's renderer sources (<noise>/glsl.hpp's exports), in export
 //              order: detail::renderer_exports(), which export_files() appends (export.hpp)
+//   shaders    its functions for the user's shader (<noise>/shader.hpp: shader_for(noise) and
+//              the kit sources): detail::shader_exports(), which export_files() appends
 //
 // The three lists sit at three heights of the include graph: the library's bodies include
 // nothing, a program.hpp includes noise_program.hpp first, and a renderer's sources include
@@ -19,7 +21,7 @@
 // Included with no part selected, this file includes export.hpp, which includes every part.
 
 #if !defined(HUSH_GLSL_NOISES_LIBRARY) && !defined(HUSH_GLSL_NOISES_PROGRAMS) && \
-    !defined(HUSH_GLSL_NOISES_RENDERERS)
+    !defined(HUSH_GLSL_NOISES_RENDERERS) && !defined(HUSH_GLSL_NOISES_SHADERS)
 #include "hush/glsl/export.hpp"
 #endif
 
@@ -108,3 +110,29 @@ inline std::vector<std::vector<std::pair<std::string, std::string>>> renderer_ex
 }  // namespace hush
 
 #endif  // HUSH_GLSL_NOISES_RENDERERS_PART
+
+// ---- Shaders: each noise's functions for the user's shader (hush/glsl/shader.hpp).
+#if defined(HUSH_GLSL_NOISES_SHADERS) && !defined(HUSH_GLSL_NOISES_SHADERS_PART)
+#define HUSH_GLSL_NOISES_SHADERS_PART
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hush/glsl/shader.hpp"
+
+namespace hush {
+namespace glsl {
+namespace detail {
+
+// The files `hush glsl-export` writes for the user's shader, as (file name, text), in export
+// order: each noise's <noise>_shader_exports() (hush_<noise>_shader.glsl files).
+inline std::vector<std::vector<std::pair<std::string, std::string>>> shader_exports() {
+  return {};
+}
+
+}  // namespace detail
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_NOISES_SHADERS_PART
