@@ -13,12 +13,16 @@
 #                          work, and asking for simd must fail saying why;
 #   MODE=glsl              the consumer (consumer_glsl/) finds the GLSL backend in PREFIX with
 #                          find_package(hush CONFIG COMPONENTS glsl glsl_headless).
+#   MODE=minimal           hush is configured fresh without its optional parts (no Highway, no
+#                          OSMesa or EGL; tests, examples, benchmarks off), installed into its
+#                          own prefix under WORK_DIR, and consumer/ checks that asking for
+#                          a component this hush was built without fails saying so.
 # Variables (-D): MODE, HUSH_SOURCE_DIR, WORK_DIR (wiped first), GENERATOR, CXX_COMPILER;
 # CONSUMER_DIR and CONSUMER_PROGRAM except for install; HUSH_BUILD_DIR for install; PREFIX
 # except for add_subdirectory; optional BUILD_TYPE, MAKE_PROGRAM, GENERATOR_PLATFORM,
 # GENERATOR_TOOLSET, CONSUMER_SIMD. Any failing step stops the test with that step's output.
 cmake_minimum_required(VERSION 3.16)  # IN_LIST, as in the projects it drives
-set(_modes add_subdirectory install find_package header_only glsl)
+set(_modes add_subdirectory install find_package header_only glsl minimal)
 if(NOT MODE IN_LIST _modes)
   string(REPLACE ";" ", " _modes "${_modes}")
   message(FATAL_ERROR "run_package_test.cmake: MODE is one of ${_modes}, not '${MODE}'")
@@ -28,7 +32,7 @@ if(MODE STREQUAL "install")
   list(APPEND _required HUSH_BUILD_DIR PREFIX)
 else()
   list(APPEND _required CONSUMER_DIR CONSUMER_PROGRAM)
-  if(NOT MODE STREQUAL "add_subdirectory")
+  if(NOT MODE MATCHES "^(add_subdirectory|minimal)$")
     list(APPEND _required PREFIX)
   endif()
 endif()
@@ -104,6 +108,18 @@ if(MODE STREQUAL "install")
   return()
 endif()
 
+if(MODE STREQUAL "minimal")
+  set(hush_build "${WORK_DIR}/hush-build")
+  set(PREFIX "${WORK_DIR}/prefix")
+  run_step("configure hush" "${CMAKE_COMMAND}" -S "${HUSH_SOURCE_DIR}" -B "${hush_build}"
+           ${configure_options} -DHUSH_BUILD_TESTS=OFF -DHUSH_BUILD_EXAMPLES=OFF
+           -DHUSH_BUILD_BENCH=OFF -DHUSH_INSTALL=ON -DCMAKE_DISABLE_FIND_PACKAGE_hwy=ON
+           -DHUSH_WITH_OSMESA=OFF -DHUSH_WITH_EGL=OFF)
+  run_step("build hush" "${CMAKE_COMMAND}" --build "${hush_build}" ${config_options})
+  run_step("install hush" "${CMAKE_COMMAND}" --install "${hush_build}" --prefix "${PREFIX}"
+           ${config_options})
+endif()
+
 set(consumer_build "${WORK_DIR}/consumer-build")
 if(MODE STREQUAL "add_subdirectory")
   set(consumer_options -DHUSH_CONSUMER_MODE=add_subdirectory -DHUSH_EXPECTED_VERSION=${version}
@@ -119,6 +135,8 @@ else()
   endif()
   if(MODE STREQUAL "header_only")
     list(APPEND consumer_options -DCMAKE_DISABLE_FIND_PACKAGE_hwy=ON -DHUSH_CONSUMER_NO_HWY=ON)
+  elseif(MODE STREQUAL "minimal")
+    list(APPEND consumer_options -DHUSH_CONSUMER_MINIMAL=ON)
   elseif(MODE STREQUAL "find_package" AND CONSUMER_SIMD)
     list(APPEND consumer_options -DHUSH_CONSUMER_SIMD=ON)
   endif()
