@@ -65,6 +65,7 @@
 #include "hush/glsl/coherent/glsl.hpp"
 #include "hush/glsl/compute_source.hpp"
 #include "hush/glsl/detail/gl.hpp"
+#include "hush/glsl/detail/gl_resident.hpp"
 #include "hush/glsl/device.hpp"
 
 namespace hush {
@@ -79,38 +80,6 @@ struct coherent_gl_frame {
 };
 
 namespace detail {
-
-constexpr gl_enum kGlNearestFilter = 0x2600;       // GL_NEAREST
-constexpr gl_enum kGlClampToEdge = 0x812F;
-constexpr gl_enum kGlWriteOnly = 0x88B9;
-constexpr gl_enum kGlR32fFormat = 0x822E;       // GL_R32F
-constexpr gl_enum kGlCopyReadBuffer = 0x8F36;   // GL_COPY_READ_BUFFER
-constexpr gl_enum kGlCopyWriteBuffer = 0x8F37;  // GL_COPY_WRITE_BUFFER
-constexpr gl_bitfield kGlAllBarrierBits = 0xFFFFFFFFu;
-
-// The entry points of the resident path beyond gl_api (GL 3.3 - 4.3 core).
-struct gl_resident_api {
-  void(HUSH_GLAPI* GenSamplers)(gl_sizei, gl_uint*) = nullptr;
-  void(HUSH_GLAPI* DeleteSamplers)(gl_sizei, const gl_uint*) = nullptr;
-  void(HUSH_GLAPI* BindSampler)(gl_uint, gl_uint) = nullptr;
-  void(HUSH_GLAPI* SamplerParameteri)(gl_uint, gl_enum, gl_int) = nullptr;
-  void(HUSH_GLAPI* BindImageTexture)(gl_uint, gl_uint, gl_int, unsigned char, gl_int, gl_enum,
-                                     gl_enum) = nullptr;
-  void(HUSH_GLAPI* TexSubImage2D)(gl_enum, gl_int, gl_int, gl_int, gl_sizei, gl_sizei, gl_enum,
-                                  gl_enum, const void*) = nullptr;
-  void(HUSH_GLAPI* CopyBufferSubData)(gl_enum, gl_enum, gl_intptr, gl_intptr,
-                                      gl_sizeiptr) = nullptr;
-
-  explicit gl_resident_api(loader_fn loader) {
-    gl_api::load(loader, GenSamplers, "glGenSamplers");
-    gl_api::load(loader, DeleteSamplers, "glDeleteSamplers");
-    gl_api::load(loader, BindSampler, "glBindSampler");
-    gl_api::load(loader, SamplerParameteri, "glSamplerParameteri");
-    gl_api::load(loader, BindImageTexture, "glBindImageTexture");
-    gl_api::load(loader, TexSubImage2D, "glTexSubImage2D");
-    gl_api::load(loader, CopyBufferSubData, "glCopyBufferSubData");
-  }
-};
 
 // The pass writes channel c into image unit c (hush_out0 ... hush_out3 in glsl.hpp).
 static_assert(hush::detail::constants::kCoherentMaxChannels == 4,
@@ -148,11 +117,7 @@ class coherent_gl_pass {
     }
     const std::uint32_t none = 0;
     set(buffers_[kPlanes], &none, 4);
-    gr_.GenSamplers(1, &sampler_);
-    for (gl_enum p : {kGlTextureMinFilter, kGlTextureMagFilter})
-      gr_.SamplerParameteri(sampler_, p, static_cast<gl_int>(kGlNearestFilter));
-    for (gl_enum p : {kGlTextureWrapS, kGlTextureWrapT})
-      gr_.SamplerParameteri(sampler_, p, static_cast<gl_int>(kGlClampToEdge));
+    sampler_ = gr_.nearest_sampler();
     gl_.check("hush::glsl::coherent: setting up");
   }
   coherent_gl_pass(const coherent_gl_pass&) = delete;

@@ -52,14 +52,6 @@ namespace glsl {
 
 namespace detail {
 
-constexpr gl_enum kGlR32uiFormat = 0x8236;     // GL_R32UI
-constexpr gl_enum kGlRgb32fFormat = 0x8815;    // GL_RGB32F
-constexpr gl_enum kGlRedChannel = 0x1903;      // GL_RED
-constexpr gl_enum kGlRedInteger = 0x8D94;      // GL_RED_INTEGER
-constexpr gl_enum kGlRgbChannels = 0x1907;     // GL_RGB
-constexpr gl_enum kGlUnsignedInt = 0x1405;     // GL_UNSIGNED_INT
-constexpr gl_enum kGlUnpackRowLength = 0x0CF2; // GL_UNPACK_ROW_LENGTH
-
 // The GPU side of a coherent stream's state: the pass (hush/glsl/coherent/frame.hpp, the
 // resident path) and the textures each CPU frame is uploaded into.
 class coherent_gpu_state final : public hush::detail::coherent_device_state {
@@ -67,18 +59,12 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
   coherent_gpu_state(glsl::device& dev, std::uint32_t width, std::uint32_t height, int channels)
       : pass_(dev, width, height, channels), gl_(dev.gl()), gr_(dev.gl().loader) {
     gl_.GenTextures(3, textures_);
-    const gl_enum formats[3] = {kGlR32fFormat, kGlR32uiFormat, kGlRgb32fFormat};
-    const gl_enum layouts[3] = {kGlRedChannel, kGlRedInteger, kGlRgbChannels};
-    const gl_enum types[3] = {kGlFloat, kGlUnsignedInt, kGlFloat};
-    gl_int previous = 0;
-    gl_.GetIntegerv(kGlTextureBinding2d, &previous);
-    for (int k = 0; k < 3; ++k) {
-      gl_.BindTexture(kGlTexture2d, textures_[k]);
-      gl_.TexImage2D(kGlTexture2d, 0, static_cast<gl_int>(formats[k]),
-                     static_cast<gl_sizei>(width), static_cast<gl_sizei>(height), 0, layouts[k],
-                     types[k], nullptr);
-    }
-    gl_.BindTexture(kGlTexture2d, static_cast<gl_uint>(previous));
+    allocate_texture(gl_, textures_[kDepth], width, height, kGlR32fFormat, kGlRedChannel,
+                     kGlFloat);
+    allocate_texture(gl_, textures_[kIds], width, height, kGlR32uiFormat, kGlRedInteger,
+                     kGlUnsignedInt);
+    allocate_texture(gl_, textures_[kMotion], width, height, kGlRgb32fFormat, kGlRgbChannels,
+                     kGlFloat);
     gl_.check("hush::glsl::coherent: setting up");
   }
   coherent_gpu_state(const coherent_gpu_state&) = delete;
@@ -136,21 +122,9 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
   enum : int { kDepth = 0, kIds = 1, kMotion = 2 };  // textures_
   static_assert(sizeof(vec3) == 3 * sizeof(float), "a velocity is one RGB32F texel");
 
-  // View v into texture k (rows of v.stride elements; one element is one texel).
   template <class T>
   void put(int k, const image_view<const T>& v, gl_enum layout, gl_enum type) {
-    gl_int previous = 0, row = 0, align = 0;
-    gl_.GetIntegerv(kGlTextureBinding2d, &previous);
-    gl_.GetIntegerv(kGlUnpackRowLength, &row);
-    gl_.GetIntegerv(kGlUnpackAlignment, &align);
-    gl_.BindTexture(kGlTexture2d, textures_[k]);
-    gl_.PixelStorei(kGlUnpackRowLength, static_cast<gl_int>(v.stride));
-    gl_.PixelStorei(kGlUnpackAlignment, 4);
-    gr_.TexSubImage2D(kGlTexture2d, 0, 0, 0, static_cast<gl_sizei>(v.width),
-                      static_cast<gl_sizei>(v.height), layout, type, v.data);
-    gl_.PixelStorei(kGlUnpackRowLength, row);
-    gl_.PixelStorei(kGlUnpackAlignment, align);
-    gl_.BindTexture(kGlTexture2d, static_cast<gl_uint>(previous));
+    upload_view(gl_, gr_, textures_[k], v, layout, type);
   }
 
   coherent_gl_pass pass_;
