@@ -14,128 +14,19 @@
 
 #include "coherent_scenes.hpp"
 #include "glsl/glsl_test_util.hpp"
+#include "glsl/readback_counter.hpp"
 #include "hush/glsl/coherent/frame.hpp"
 #include "hush/glsl/coherent/renderer.hpp"
 
 namespace {
 
 namespace gl = hush::glsl::detail;
+using hush_glsl_test::counted_device;
 using hush_glsl_test::headless;
+using hush_glsl_test::readback_counter;
+using hush_glsl_test::test_gl;
 using hush_test::make_synthetic;
 using hush_test::synthetic_frame;
-
-// A loader that hands out counting wrappers for every entry point that reads GL data back to
-// the host; the other names resolve as the real loader resolves them.
-struct readback_counter {
-  static int& count() {
-    static int n = 0;
-    return n;
-  }
-  using get_buffer_fn = void(HUSH_GLAPI*)(gl::gl_enum, gl::gl_intptr, gl::gl_sizeiptr, void*);
-  using read_pixels_fn = void(HUSH_GLAPI*)(gl::gl_int, gl::gl_int, gl::gl_sizei, gl::gl_sizei,
-                                           gl::gl_enum, gl::gl_enum, void*);
-  using get_tex_fn = void(HUSH_GLAPI*)(gl::gl_enum, gl::gl_int, gl::gl_enum, gl::gl_enum, void*);
-  using map_fn = void*(HUSH_GLAPI*)(gl::gl_enum, gl::gl_intptr, gl::gl_sizeiptr, gl::gl_bitfield);
-  static get_buffer_fn& get_buffer() {
-    static get_buffer_fn f = nullptr;
-    return f;
-  }
-  static read_pixels_fn& read_pixels() {
-    static read_pixels_fn f = nullptr;
-    return f;
-  }
-  static get_tex_fn& get_tex() {
-    static get_tex_fn f = nullptr;
-    return f;
-  }
-  static map_fn& map() {
-    static map_fn f = nullptr;
-    return f;
-  }
-  static void HUSH_GLAPI counted_get_buffer(gl::gl_enum t, gl::gl_intptr o, gl::gl_sizeiptr s,
-                                            void* d) {
-    ++count();
-    get_buffer()(t, o, s, d);
-  }
-  static void HUSH_GLAPI counted_read_pixels(gl::gl_int x, gl::gl_int y, gl::gl_sizei w,
-                                             gl::gl_sizei h, gl::gl_enum f, gl::gl_enum t,
-                                             void* d) {
-    ++count();
-    read_pixels()(x, y, w, h, f, t, d);
-  }
-  static void HUSH_GLAPI counted_get_tex(gl::gl_enum t, gl::gl_int l, gl::gl_enum f, gl::gl_enum ty,
-                                         void* d) {
-    ++count();
-    get_tex()(t, l, f, ty, d);
-  }
-  static void* HUSH_GLAPI counted_map(gl::gl_enum t, gl::gl_intptr o, gl::gl_sizeiptr s,
-                                      gl::gl_bitfield a) {
-    ++count();
-    return map()(t, o, s, a);
-  }
-  static void* loader(const char* name) {
-    const gl::loader_fn real = headless().context.loader();
-    void* p = real(name);
-    const std::string n = name;
-    auto swap = [&](auto& slot, auto counted) {
-      slot = reinterpret_cast<std::remove_reference_t<decltype(slot)>>(p);
-      return reinterpret_cast<void*>(counted);
-    };
-    if (!p) return p;
-    if (n == "glGetBufferSubData") return swap(get_buffer(), &counted_get_buffer);
-    if (n == "glReadPixels") return swap(read_pixels(), &counted_read_pixels);
-    if (n == "glGetTexImage") return swap(get_tex(), &counted_get_tex);
-    if (n == "glMapBufferRange") return swap(map(), &counted_map);
-    return p;
-  }
-};
-
-// The stream's device: its GL calls go through the counting loader.
-hush::glsl::device& counted_device() {
-  headless();
-  static hush::glsl::device d(&readback_counter::loader);
-  return d;
-}
-
-// The test's own GL: textures for the G-buffer and the outputs, and their read-back.
-struct test_gl {
-  const gl::gl_api& api = headless().device.gl();
-  void(HUSH_GLAPI* TexSubImage2D)(gl::gl_enum, gl::gl_int, gl::gl_int, gl::gl_int, gl::gl_sizei,
-                                  gl::gl_sizei, gl::gl_enum, gl::gl_enum, const void*) = nullptr;
-  void(HUSH_GLAPI* GetTexImage)(gl::gl_enum, gl::gl_int, gl::gl_enum, gl::gl_enum,
-                                void*) = nullptr;
-  test_gl() {
-    gl::gl_api::load(api.loader, TexSubImage2D, "glTexSubImage2D");
-    gl::gl_api::load(api.loader, GetTexImage, "glGetTexImage");
-  }
-  // A w x h texture of `internal` format; contents from `data` (layout, type) or none.
-  gl::gl_uint texture(gl::gl_enum internal, int w, int h, gl::gl_enum layout, gl::gl_enum type,
-                      const void* data = nullptr) const {
-    gl::gl_uint t = 0;
-    api.GenTextures(1, &t);
-    api.BindTexture(gl::kGlTexture2d, t);
-    api.TexImage2D(gl::kGlTexture2d, 0, static_cast<gl::gl_int>(internal), w, h, 0, layout, type,
-                   data);
-    api.BindTexture(gl::kGlTexture2d, 0);
-    api.check("test: a texture");
-    return t;
-  }
-  void update(gl::gl_uint t, int w, int h, gl::gl_enum layout, gl::gl_enum type,
-              const void* data) const {
-    api.BindTexture(gl::kGlTexture2d, t);
-    TexSubImage2D(gl::kGlTexture2d, 0, 0, 0, w, h, layout, type, data);
-    api.BindTexture(gl::kGlTexture2d, 0);
-  }
-  std::vector<float> read(gl::gl_uint t, int w, int h) const {
-    std::vector<float> v(static_cast<std::size_t>(w) * h);
-    api.BindTexture(gl::kGlTexture2d, t);
-    api.PixelStorei(0x0D05, 4);  // GL_PACK_ALIGNMENT
-    GetTexImage(gl::kGlTexture2d, 0, gl::kGlRedChannel, gl::kGlFloat, v.data());
-    api.BindTexture(gl::kGlTexture2d, 0);
-    api.check("test: reading a texture");
-    return v;
-  }
-};
 
 // A G-buffer in textures the test owns, updated from a synthetic frame.
 struct gbuffer {
@@ -143,7 +34,9 @@ struct gbuffer {
   int w, h;
   gl::gl_uint depth, velocity, ids;
   gbuffer(const test_gl& g, int w_, int h_)
-      : t(g), w(w_), h(h_),
+      : t(g),
+        w(w_),
+        h(h_),
         depth(g.texture(gl::kGlR32fFormat, w, h, gl::kGlRedChannel, gl::kGlFloat)),
         velocity(g.texture(gl::kGlRgb32fFormat, w, h, gl::kGlRgbChannels, gl::kGlFloat)),
         ids(g.texture(gl::kGlR32uiFormat, w, h, gl::kGlRedInteger, gl::kGlUnsignedInt)) {}

@@ -88,10 +88,10 @@ static_assert(hush::detail::constants::kCoherentMaxChannels == 4,
 // What one pass reads besides the state (coherent_gl_pass::run).
 struct coherent_pass_args {
   const coherent_params* prm = nullptr;
-  std::uint32_t frame_index = 0;  // seeds the fields (coherent_state::next_frame)
-  bool has_reference = false;     // false: start afresh
-  bool backward = false;          // forward velocity, the backward pass's refill fields
-  gl_uint depth = 0, motion = 0, ids = 0;          // textures (ids 0: none)
+  std::uint32_t frame_index = 0;           // seeds the fields (coherent_state::next_frame)
+  bool has_reference = false;              // false: start afresh
+  bool backward = false;                   // forward velocity, the backward pass's refill fields
+  gl_uint depth = 0, motion = 0, ids = 0;  // textures (ids 0: none)
   const image_view<const float>* input = nullptr;  // per channel, or null: prm->input
   const gl_uint* outputs = nullptr;                // R32F textures, or none
   std::size_t output_count = 0;
@@ -104,7 +104,11 @@ struct coherent_pass_args {
 class coherent_gl_pass {
  public:
   coherent_gl_pass(glsl::device& dev, std::uint32_t width, std::uint32_t height, int channels)
-      : dev_(dev), gl_(dev.gl()), gr_(dev.gl().loader), width_(width), height_(height),
+      : dev_(dev),
+        gl_(dev.gl()),
+        gr_(dev.gl().loader),
+        width_(width),
+        height_(height),
         channels_(channels) {
     const std::size_t n = pixels();
     require(n * (static_cast<std::size_t>(channels) + 1) * 4,
@@ -275,8 +279,7 @@ class coherent_gl_pass {
     };
     u("hush_count", static_cast<gl_uint>(n));
     gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), width_, height_);
-    u("hush_flags", (a.has_reference ? 1u : 0u) |
-                        (ids && ref_ids_ && a.has_reference ? 2u : 0u) |
+    u("hush_flags", (a.has_reference ? 1u : 0u) | (ids && ref_ids_ && a.has_reference ? 2u : 0u) |
                         (prm.filter == coherent_filter::stationary ? 4u : 0u));
     u("hush_frame_ids", ids ? 1u : 0u);
     u("hush_channels", static_cast<gl_uint>(prm.channels));
@@ -380,8 +383,7 @@ class coherent_gl_stream {
     if (st.has_reference) {
       if (st.width != width || st.height != height)
         hush::detail::throw_out_of_range(
-            kWhere, "stream size",
-            std::to_string(st.width) + "x" + std::to_string(st.height),
+            kWhere, "stream size", std::to_string(st.width) + "x" + std::to_string(st.height),
             ("the GL stream's size, " + std::to_string(width) + "x" + std::to_string(height))
                 .c_str());
       pass_->upload(st);
@@ -482,9 +484,8 @@ class coherent_gl_stream {
                                        "0 (smooth the output in your own pass)");
     const std::uint32_t most = hush::detail::constants::kCoherentMaxSide;
     if (w == 0 || h == 0 || w > most || h > most)
-      hush::detail::throw_out_of_range(
-          kWhere, "size", std::to_string(w) + "x" + std::to_string(h),
-          ("sides 1 ... " + std::to_string(most)).c_str());
+      hush::detail::throw_out_of_range(kWhere, "size", std::to_string(w) + "x" + std::to_string(h),
+                                       ("sides 1 ... " + std::to_string(most)).c_str());
     return prm;
   }
   static const hush::detail::coherent_state<float>& state_of(const coherent_stream& s) {

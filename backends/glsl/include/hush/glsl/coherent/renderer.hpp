@@ -59,8 +59,7 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
   coherent_gpu_state(glsl::device& dev, std::uint32_t width, std::uint32_t height, int channels)
       : pass_(dev, width, height, channels), gl_(dev.gl()), gr_(dev.gl().loader) {
     gl_.GenTextures(3, textures_);
-    allocate_texture(gl_, textures_[kDepth], width, height, kGlR32fFormat, kGlRedChannel,
-                     kGlFloat);
+    allocate_texture(gl_, textures_[kDepth], width, height, kGlR32fFormat, kGlRedChannel, kGlFloat);
     allocate_texture(gl_, textures_[kIds], width, height, kGlR32uiFormat, kGlRedInteger,
                      kGlUnsignedInt);
     allocate_texture(gl_, textures_[kMotion], width, height, kGlRgb32fFormat, kGlRgbChannels,
@@ -108,13 +107,11 @@ class coherent_gpu_state final : public hush::detail::coherent_device_state {
       out_.resize(pass_.history_bytes() / sizeof(float));
       gl_.BindBuffer(kGlShaderStorageBuffer, pass_.history_buffer());
       gl_.GetBufferSubData(kGlShaderStorageBuffer, 0,
-                           static_cast<gl_sizeiptr>(n * s.out_count * sizeof(float)),
-                           out_.data());
+                           static_cast<gl_sizeiptr>(n * s.out_count * sizeof(float)), out_.data());
       gl_.check("hush::glsl::coherent: reading a buffer");
       for (std::size_t ch = 0; ch < s.out_count; ++ch)
         for (std::size_t y = 0; y < h; ++y)
-          for (std::size_t x = 0; x < w; ++x)
-            s.out[ch](x, y) = s.gain * out_[ch * n + y * w + x];
+          for (std::size_t x = 0; x < w; ++x) s.out[ch](x, y) = s.gain * out_[ch * n + y * w + x];
     }
   }
 
