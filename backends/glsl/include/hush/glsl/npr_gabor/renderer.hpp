@@ -43,10 +43,12 @@
 // geometry shader turns each into one screen-aligned quad covering the record's pixel range x0 ...
 // x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the image), a fragment shader runs the
 // visibility tests against the G-buffer (object id, triangle id, depth with its tolerance, soft
-// depth; SSBOs uploaded by frame_upload.hpp) and evaluates the tapered Gabor kernel with the
-// library's float functions (the CPU's float operations, hush/glsl/gabor/program.hpp), and additive
-// blending (GL_ONE, GL_ONE) sums the fragments into a GL_R32F framebuffer texture, read back into
-// `out`. The normalisation is the CPU's: the weights in the records.
+// depth; R32F / R32UI textures read with texelFetch, uploaded from the frame's views) and
+// evaluates the tapered Gabor kernel with the library's float functions (the CPU's float
+// operations, hush/glsl/gabor/program.hpp), and additive blending (GL_ONE, GL_ONE) sums the
+// fragments into a GL_R32F framebuffer texture, read back into `out`. The normalisation is the
+// CPU's: the weights in the records. hush/glsl/npr_gabor/frame.hpp runs the same stages on the
+// caller's own textures and buffers into the caller's texture (no image read-back).
 //
 // The GL geometry-output limit: one input point emits one quad, 4 vertices of 5 components
 // (gl_Position and the record index), a fixed max_vertices = 4 that no GL can refuse
