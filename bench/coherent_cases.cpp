@@ -32,9 +32,7 @@
 #include "coherent_memory.hpp"
 #endif
 #if HUSH_BENCH_HAVE_GLSL
-#include <algorithm>
-#include <chrono>
-
+#include "gl_timing.hpp"
 #include "hush/glsl/coherent/frame.hpp"
 #include "hush/glsl/coherent/renderer.hpp"
 #include "hush/glsl/detail/gl_resident.hpp"
@@ -303,30 +301,19 @@ void add_coherent_frame_rows(std::vector<bench_case>& cases, const sizes& s) {
 // hush::glsl::coherent_gl_stream into an R32F texture; run() is one advance and a glFinish (the
 // wall clock then holds the GPU's work). While preparing: the error and quality from the
 // output texture read back, and over kTimedFrames frames the host time of advance() alone and
-// the GPU time of each frame's pass (GL_TIME_ELAPSED queries), medians, into the quality text.
+// the GPU time of each frame's pass (gl_timing.hpp), medians, into the quality text.
 constexpr int kTimedFrames = 20;
-constexpr hush::glsl::detail::gl_enum kGlTimeElapsed = 0x88BF, kGlQueryResult = 0x8866;
 
 prepared_case prepare_resident(hush::glsl::device& dev, const sizes& s) {
   namespace d = hush::glsl::detail;
   struct resources {
     const d::gl_api& gl;
     void(HUSH_GLAPI* GetTexImage)(d::gl_enum, d::gl_int, d::gl_enum, d::gl_enum, void*) = nullptr;
-    void(HUSH_GLAPI* GenQueries)(d::gl_sizei, d::gl_uint*) = nullptr;
-    void(HUSH_GLAPI* DeleteQueries)(d::gl_sizei, const d::gl_uint*) = nullptr;
-    void(HUSH_GLAPI* BeginQuery)(d::gl_enum, d::gl_uint) = nullptr;
-    void(HUSH_GLAPI* EndQuery)(d::gl_enum) = nullptr;
-    void(HUSH_GLAPI* GetQueryObjectui64v)(d::gl_uint, d::gl_enum, std::uint64_t*) = nullptr;
     d::gl_uint tex[4] = {0, 0, 0, 0};  // depth, velocity, ids, output
     std::unique_ptr<hush::glsl::coherent_gl_stream> stream;
     hush::glsl::coherent_gl_frame frame;
     explicit resources(hush::glsl::device& dv) : gl(dv.gl()) {
       d::gl_api::load(gl.loader, GetTexImage, "glGetTexImage");
-      d::gl_api::load(gl.loader, GenQueries, "glGenQueries");
-      d::gl_api::load(gl.loader, DeleteQueries, "glDeleteQueries");
-      d::gl_api::load(gl.loader, BeginQuery, "glBeginQuery");
-      d::gl_api::load(gl.loader, EndQuery, "glEndQuery");
-      d::gl_api::load(gl.loader, GetQueryObjectui64v, "glGetQueryObjectui64v");
       gl.GenTextures(4, tex);
     }
     resources(const resources&) = delete;
@@ -376,31 +363,9 @@ prepared_case prepare_resident(hush::glsl::device& dev, const sizes& s) {
     r->read(out);
     p.quality = quality(scene, out);
   }
-  // Host time of advance() alone, and the GPU's time of each frame.
-  std::vector<d::gl_uint> queries(kTimedFrames);
-  r->GenQueries(kTimedFrames, queries.data());
-  std::vector<double> host(kTimedFrames), gpu(kTimedFrames);
-  r->gl.Finish();
-  for (int i = 0; i < kTimedFrames; ++i) {
-    r->BeginQuery(kGlTimeElapsed, queries[std::size_t(i)]);
-    const auto t0 = std::chrono::steady_clock::now();
-    r->stream->advance(r->frame, r->tex[3]);
-    const auto t1 = std::chrono::steady_clock::now();
-    r->EndQuery(kGlTimeElapsed);
-    host[std::size_t(i)] = std::chrono::duration<double, std::milli>(t1 - t0).count();
-  }
-  r->gl.Finish();
-  for (int i = 0; i < kTimedFrames; ++i) {
-    std::uint64_t ns = 0;
-    r->GetQueryObjectui64v(queries[std::size_t(i)], kGlQueryResult, &ns);
-    gpu[std::size_t(i)] = double(ns) * 1e-6;
-  }
-  r->DeleteQueries(kTimedFrames, queries.data());
-  std::sort(host.begin(), host.end());
-  std::sort(gpu.begin(), gpu.end());
-  p.quality += format("; resident: host %.3f ms/frame in advance(), GPU %.3f ms/frame",
-                      host[kTimedFrames / 2], gpu[kTimedFrames / 2]) +
-               " (GL_TIME_ELAPSED), medians of " + std::to_string(kTimedFrames);
+  p.quality +=
+      "; resident: " + gl_timing(r->gl).measure([&] { r->stream->advance(r->frame, r->tex[3]); },
+                                                kTimedFrames, "advance()");
   p.run = [r] {
     r->stream->advance(r->frame, r->tex[3]);
     r->gl.Finish();
