@@ -240,3 +240,25 @@ TEST_CASE("GL-resident coherent stream: host time per frame at two sizes (report
                  << frames << " frames");
   }
 }
+
+TEST_CASE("GL-resident coherent stream: the caller's active unit, samplers and program stay") {
+  const test_gl g;
+  constexpr gl::gl_enum kSamplerBinding = 0x8919;  // GL_SAMPLER_BINDING
+  const gbuffer gb(g, 8, 8);
+  const outputs out(g, 1, 8, 8);
+  hush::glsl::coherent_gl_stream st(counted_device(), hush::coherent_params{}, 8, 8);
+  g.api.ActiveTexture(gl::kGlTexture0 + 5);
+  st.advance(gb.frame(true), out.tex[0]);
+  gl::gl_int active = 0, program = -1;
+  g.api.GetIntegerv(gl::kGlActiveTexture, &active);
+  g.api.GetIntegerv(gl::kGlCurrentProgram, &program);
+  CHECK(active == static_cast<gl::gl_int>(gl::kGlTexture0 + 5));
+  CHECK(program == 0);
+  for (gl::gl_uint u = 0; u < 3; ++u) {
+    g.api.ActiveTexture(gl::kGlTexture0 + u);
+    gl::gl_int sampler = -1;
+    g.api.GetIntegerv(kSamplerBinding, &sampler);
+    CHECK(sampler == 0);  // the caller's textures filter as they did
+  }
+  g.api.ActiveTexture(gl::kGlTexture0);
+}

@@ -42,12 +42,12 @@
 // CPU-split Perlin coordinates, hush/glsl/library.hpp) and uploads them: host time O(width +
 // height); white input: O(1).
 //
-// GL state: rebinds texture units 0 - 2 (and their sampler objects), image units 0 - 3, the
-// indexed shader-storage bindings 2 - 7 and GL_SHADER_STORAGE_BUFFER; restores the current
-// program. Throws std::runtime_error for GL errors, hush::invalid_argument for a frame whose
-// size differs from the stream's, a missing depth or velocity texture, more outputs than
-// channels, smoothing, or buffers beyond GL_MAX_SHADER_STORAGE_BLOCK_SIZE. Not thread-safe;
-// destroy it while its context is alive.
+// GL state: rebinds the textures of units 0 - 2 (its sampler object is bound there during the
+// pass only), image units 0 - 3, the indexed shader-storage bindings 2 - 7 and
+// GL_SHADER_STORAGE_BUFFER; restores the current program and active texture unit. Throws
+// std::runtime_error for GL errors, hush::invalid_argument for a frame whose size differs from the
+// stream's, a missing depth or velocity texture, more outputs than channels, smoothing, or buffers
+// beyond GL_MAX_SHADER_STORAGE_BLOCK_SIZE. Not thread-safe; destroy it while its context is alive.
 #ifndef HUSH_GLSL_COHERENT_FRAME_HPP
 #define HUSH_GLSL_COHERENT_FRAME_HPP
 
@@ -249,12 +249,14 @@ class coherent_gl_pass {
     }
     // Bindings: the frame's textures through the sampler, the state, the outputs.
     const gl_uint textures[3] = {a.depth, a.ids, a.motion};
+    gl_int active = 0;
+    gl_.GetIntegerv(kGlActiveTexture, &active);
     for (gl_uint u = 0; u < 3; ++u) {
       gl_.ActiveTexture(kGlTexture0 + u);
       gl_.BindTexture(kGlTexture2d, textures[u]);
       gr_.BindSampler(u, sampler_);
     }
-    gl_.ActiveTexture(kGlTexture0);
+    gl_.ActiveTexture(static_cast<gl_enum>(active));
     gl_.BindBufferBase(kGlShaderStorageBuffer, 2, buffers_[kReference + cur_]);
     gl_.BindBufferBase(kGlShaderStorageBuffer, 3, buffers_[kReference + 1 - cur_]);
     gl_.BindBufferBase(kGlShaderStorageBuffer, 5, buffers_[kHistory + cur_]);
@@ -304,6 +306,7 @@ class coherent_gl_pass {
     }
     gl_.MemoryBarrier(kGlAllBarrierBits);
     gl_.UseProgram(static_cast<gl_uint>(previous));
+    for (gl_uint u = 0; u < 3; ++u) gr_.BindSampler(u, 0);  // the caller's filtering again
     gl_.check("hush::glsl::coherent: running a pass");
     // The new history is current; this frame is the reference.
     cur_ = 1 - cur_;

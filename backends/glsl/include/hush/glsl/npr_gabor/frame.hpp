@@ -30,13 +30,15 @@
 // param_source::validate, as npr_gabor::render), for a missing texture a test reads, a missing
 // buffer (with triangles), or a buffer smaller than its count says (GL_BUFFER_SIZE); the
 // vertex indices are not checked (out-of-range indices read undefined values, as in any
-// shader). std::runtime_error for GL errors. GL state: as renderer.hpp's contract, and texture
-// units 0 - 2 (bindings and sampler objects) are rebound.
+// shader). std::runtime_error for GL errors. GL state: as renderer.hpp's contract, and the
+// textures of units 0 - 2 are rebound (the renderer's sampler object is bound there during the
+// draws only).
 #ifndef HUSH_GLSL_NPR_GABOR_FRAME_HPP
 #define HUSH_GLSL_NPR_GABOR_FRAME_HPP
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "hush/glsl/device.hpp"

@@ -83,8 +83,10 @@
 // Throws std::runtime_error for GL errors (and when the context lacks storage blocks in the
 // geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
 // driver has them). Leaves the current program, vertex array, framebuffers, viewport, blend and
-// the enables it touches (blend, depth, stencil, scissor, cull face) as it found them; rebinds
-// the indexed storage-buffer bindings 0 to 7 (as hush::glsl::device does).
+// the enables it touches (blend, depth, stencil, scissor, cull face) and the active texture unit
+// as it found them; rebinds the indexed storage-buffer bindings 0 to 7 (as hush::glsl::device
+// does) and the textures of units 0 - 2 (but the active unit's, restored; a sampler object of
+// the renderer's is bound to units 0 - 2 during the draws only).
 #ifndef HUSH_GLSL_NPR_GABOR_RENDERER_HPP
 #define HUSH_GLSL_NPR_GABOR_RENDERER_HPP
 
