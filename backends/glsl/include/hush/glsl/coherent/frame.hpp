@@ -306,7 +306,7 @@ class coherent_gl_pass {
     }
     gl_.MemoryBarrier(kGlAllBarrierBits);
     gl_.UseProgram(static_cast<gl_uint>(previous));
-    for (gl_uint u = 0; u < 3; ++u) gr_.BindSampler(u, 0);  // the caller's filtering again
+    for (gl_uint unit = 0; unit < 3; ++unit) gr_.BindSampler(unit, 0);  // the caller's filtering
     gl_.check("hush::glsl::coherent: running a pass");
     // The new history is current; this frame is the reference.
     cur_ = 1 - cur_;
