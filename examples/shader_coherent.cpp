@@ -14,7 +14,8 @@
 #include <cstdio>
 #include <vector>
 
-namespace {
+// Named (not anonymous): example programs share translation units in tools/tidy.sh.
+namespace shader_coherent_example {
 
 // The GL calls this program makes itself (GL 4.3 core), through the context's loader.
 using GLuint = unsigned int;
@@ -78,9 +79,7 @@ struct gbuffer {
   }
 };
 
-}  // namespace
-
-int main() {
+int run() {
   hush::glsl::headless_device gpu;  // or hush::glsl::device on your own current context
   const gl_calls gl(gpu.context.loader());
   const int w = 160, h = 120, frames = 8;
@@ -130,3 +129,7 @@ int main() {
   gl.DeleteTextures(4, names);
   return worst <= bound ? 0 : 1;
 }
+
+}  // namespace shader_coherent_example
+
+int main() { return shader_coherent_example::run(); }

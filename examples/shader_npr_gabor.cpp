@@ -16,7 +16,8 @@
 #include <limits>
 #include <vector>
 
-namespace {
+// Named (not anonymous): example programs share translation units in tools/tidy.sh.
+namespace shader_npr_gabor_example {
 
 // The GL calls this program makes itself (GL 4.3 core), through the context's loader.
 using GLuint = unsigned int;
@@ -68,9 +69,7 @@ struct gl_calls {
   }
 };
 
-}  // namespace
-
-int main() {
+int run() {
   hush::glsl::headless_device gpu;  // or hush::glsl::device on your own current context
   const gl_calls gl(gpu.context.loader());
   const int w = 128, h = 96, nx = 7, ny = 5;
@@ -165,3 +164,7 @@ int main() {
   gl.DeleteBuffers(2, buffers);
   return worst <= bound ? 0 : 1;
 }
+
+}  // namespace shader_npr_gabor_example
+
+int main() { return shader_npr_gabor_example::run(); }

@@ -157,7 +157,8 @@ class coherent_gl_pass {
     set(buffers_[kHistory + cur_], all.data(), history_bytes());
     std::vector<std::uint32_t> ref(2 * n, 0u);
     std::memcpy(ref.data(), st.ref_depth.data(), n * 4);
-    if (st.reference_has_ids) std::copy(st.ref_ids.begin(), st.ref_ids.end(), ref.begin() + n);
+    if (st.reference_has_ids)
+      std::copy(st.ref_ids.begin(), st.ref_ids.end(), ref.begin() + static_cast<std::ptrdiff_t>(n));
     set(buffers_[kReference + cur_], ref.data(), reference_bytes());
     ref_ids_ = st.reference_has_ids;
   }
