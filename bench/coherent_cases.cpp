@@ -32,7 +32,10 @@
 #include "coherent_memory.hpp"
 #endif
 #if HUSH_BENCH_HAVE_GLSL
+#include "gl_timing.hpp"
+#include "hush/glsl/coherent/frame.hpp"
 #include "hush/glsl/coherent/renderer.hpp"
+#include "hush/glsl/detail/gl_resident.hpp"
 #include "hush/glsl/device.hpp"
 #endif
 
@@ -294,6 +297,82 @@ void add_coherent_frame_rows(std::vector<bench_case>& cases, const sizes& s) {
 }
 
 #if HUSH_BENCH_HAVE_GLSL
+// The resident row: the scene's G-buffer in textures (uploaded once: the frames are alike),
+// hush::glsl::coherent_gl_stream into an R32F texture; run() is one advance and a glFinish (the
+// wall clock then holds the GPU's work). While preparing: the error and quality from the
+// output texture read back, and over kTimedFrames frames the host time of advance() alone and
+// the GPU time of each frame's pass (gl_timing.hpp), medians, into the quality text.
+constexpr int kTimedFrames = 20;
+
+prepared_case prepare_resident(hush::glsl::device& dev, const sizes& s) {
+  namespace d = hush::glsl::detail;
+  struct resources {
+    const d::gl_api& gl;
+    void(HUSH_GLAPI* GetTexImage)(d::gl_enum, d::gl_int, d::gl_enum, d::gl_enum, void*) = nullptr;
+    d::gl_uint tex[4] = {0, 0, 0, 0};  // depth, velocity, ids, output
+    std::unique_ptr<hush::glsl::coherent_gl_stream> stream;
+    hush::glsl::coherent_gl_frame frame;
+    explicit resources(hush::glsl::device& dv) : gl(dv.gl()) {
+      d::gl_api::load(gl.loader, GetTexImage, "glGetTexImage");
+      gl.GenTextures(4, tex);
+    }
+    resources(const resources&) = delete;
+    resources& operator=(const resources&) = delete;
+    ~resources() {
+      stream.reset();
+      gl.DeleteTextures(4, tex);
+    }
+    void read(std::vector<float>& out) const {
+      gl.BindTexture(d::kGlTexture2d, tex[3]);
+      gl.PixelStorei(0x0D05, 4);  // GL_PACK_ALIGNMENT
+      GetTexImage(d::kGlTexture2d, 0, d::kGlRedChannel, d::kGlFloat, out.data());
+      gl.BindTexture(d::kGlTexture2d, 0);
+    }
+  };
+  const turning_disc scene(s.frame_width, s.frame_height);
+  const std::size_t w = scene.width, h = scene.height;
+  auto r = std::make_shared<resources>(dev);
+  const d::gl_resident_api gr(r->gl.loader);
+  const hush::frame f = scene.view();
+  d::allocate_texture(r->gl, r->tex[0], w, h, d::kGlR32fFormat, d::kGlRedChannel, d::kGlFloat);
+  d::allocate_texture(r->gl, r->tex[1], w, h, d::kGlRgb32fFormat, d::kGlRgbChannels, d::kGlFloat);
+  d::allocate_texture(r->gl, r->tex[2], w, h, d::kGlR32uiFormat, d::kGlRedInteger,
+                      d::kGlUnsignedInt);
+  d::allocate_texture(r->gl, r->tex[3], w, h, d::kGlR32fFormat, d::kGlRedChannel, d::kGlFloat);
+  d::upload_view(r->gl, gr, r->tex[0], f.depth, d::kGlRedChannel, d::kGlFloat);
+  d::upload_view(r->gl, gr, r->tex[1], f.velocity, d::kGlRgbChannels, d::kGlFloat);
+  d::upload_view(r->gl, gr, r->tex[2], f.object_id, d::kGlRedInteger, d::kGlUnsignedInt);
+  r->frame = {r->tex[0], r->tex[1], r->tex[2], static_cast<std::uint32_t>(w),
+              static_cast<std::uint32_t>(h)};
+  r->stream = std::make_unique<hush::glsl::coherent_gl_stream>(
+      dev, params(hush::coherent_filter::stationary, 0.98), static_cast<std::uint32_t>(w),
+      static_cast<std::uint32_t>(h));
+  prepared_case p;
+  p.samples = w * h;
+  std::vector<float> out(w * h);
+  {
+    hush::basic_coherent_stream<double> reference(params(hush::coherent_filter::stationary, 0.98));
+    std::vector<double> ref(w * h);
+    for (int i = 0; i < kErrorFrames; ++i) {
+      r->stream->advance(r->frame, r->tex[3]);
+      r->read(out);
+      reference.advance(hush::exec::scalar, f, hush::image_view<double>(ref.data(), w, h));
+      for (std::size_t k = 0; k < ref.size(); ++k) p.value_error.add(out[k], ref[k]);
+    }
+    for (int i = kErrorFrames; i < kQualityFrames; ++i) r->stream->advance(r->frame, r->tex[3]);
+    r->read(out);
+    p.quality = quality(scene, out);
+  }
+  p.quality +=
+      "; resident: " + gl_timing(r->gl).measure([&] { r->stream->advance(r->frame, r->tex[3]); },
+                                                kTimedFrames, "advance()");
+  p.run = [r] {
+    r->stream->advance(r->frame, r->tex[3]);
+    r->gl.Finish();
+  };
+  return p;
+}
+
 void add_coherent_glsl_row(std::vector<bench_case>& cases, const sizes& s,
                            hush::glsl::device& device) {
   bench_case c = row("coherent causal", "glsl", s);
@@ -305,6 +384,13 @@ void add_coherent_glsl_row(std::vector<bench_case>& cases, const sizes& s,
                           hush::coherent_filter::stationary, 0.98);
   };
   cases.push_back(c);
+  bench_case resident = row("coherent causal", "glsl resident", s);
+  resident.wall_clock = true;
+  resident.note =
+      "stationary filter, alpha 0.98; G-buffer and output in GL textures "
+      "(coherent_gl_stream), a glFinish per frame, no read-back";
+  resident.prepare = [s, dev] { return prepare_resident(*dev, s); };
+  cases.push_back(resident);
 }
 #endif
 

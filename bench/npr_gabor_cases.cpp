@@ -35,6 +35,9 @@
 #include "triangles.hpp"
 #endif
 #if HUSH_BENCH_HAVE_GLSL
+#include "gl_timing.hpp"
+#include "hush/glsl/detail/gl_resident.hpp"
+#include "hush/glsl/npr_gabor/frame.hpp"
 #include "hush/glsl/npr_gabor/renderer.hpp"
 #endif
 
@@ -124,6 +127,113 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
     }
 }
 
+#if HUSH_BENCH_HAVE_GLSL
+// "glsl resident" rows (N' = 16): the frame's G-buffer in textures and its triangles in
+// buffers (made once, the layouts of hush/glsl/npr_gabor/gl_frame.hpp), npr_gabor_gl_render
+// into an R32F texture, a glFinish per run(); error from the texture read back; the note adds
+// the host time of the call alone and the GPU time of a frame (gl_timing.hpp).
+void add_resident_rows(std::vector<bench_case>& cases, const sizes& s, hush::glsl::device& dev,
+                       const std::vector<std::shared_ptr<dense_frame>>& frames) {
+  namespace d = hush::glsl::detail;
+  constexpr int kTimedFrames = 10;
+  for (const std::shared_ptr<dense_frame>& fr : frames) {
+    bench_case c;
+    c.wall_clock = true;
+    c.noise = "npr-gabor N'=16";
+    c.backend = "glsl resident";
+    c.workload = "dense:" + std::to_string(fr->triangles) + " " + std::to_string(s.npr_width) +
+                 "x" + std::to_string(s.npr_height);
+    c.frame_pixels = s.npr_width * s.npr_height;
+    hush::npr_gabor::params prm;
+    prm.impulses = 16;
+    prm.orientation = 0.5;
+    const hush::npr_gabor noise{prm};
+    hush::glsl::device* device = &dev;
+    c.prepare = [noise, fr, device] {
+      fr->make();
+      const std::size_t w = static_cast<std::size_t>(fr->width);
+      const std::size_t h = static_cast<std::size_t>(fr->height);
+      // The GL objects, deleted with the case.
+      struct objects {
+        const d::gl_api& gl;
+        d::gl_uint tex[4] = {0, 0, 0, 0};  // depth, object ids, triangle ids, output
+        d::gl_uint buf[2] = {0, 0};        // vertices, triangles
+        hush::glsl::npr_gabor_gl_frame f;
+        explicit objects(const d::gl_api& g) : gl(g) {
+          gl.GenTextures(4, tex);
+          gl.GenBuffers(2, buf);
+        }
+        objects(const objects&) = delete;
+        objects& operator=(const objects&) = delete;
+        ~objects() {
+          gl.DeleteTextures(4, tex);
+          gl.DeleteBuffers(2, buf);
+        }
+      };
+      auto o = std::make_shared<objects>(device->gl());
+      const d::gl_api& gl = o->gl;
+      const d::gl_resident_api gr(gl.loader);
+      const hush::frame f = hush_tools::scene::as_frame(fr->g);
+      d::allocate_texture(gl, o->tex[0], w, h, d::kGlR32fFormat, d::kGlRedChannel, d::kGlFloat);
+      for (int k = 1; k < 3; ++k)
+        d::allocate_texture(gl, o->tex[k], w, h, d::kGlR32uiFormat, d::kGlRedInteger,
+                            d::kGlUnsignedInt);
+      d::allocate_texture(gl, o->tex[3], w, h, d::kGlR32fFormat, d::kGlRedChannel, d::kGlFloat);
+      d::upload_view(gl, gr, o->tex[0], f.depth, d::kGlRedChannel, d::kGlFloat);
+      d::upload_view(gl, gr, o->tex[1], f.object_id, d::kGlRedInteger, d::kGlUnsignedInt);
+      d::upload_view(gl, gr, o->tex[2], f.triangle_id, d::kGlRedInteger, d::kGlUnsignedInt);
+      std::vector<float> vertices;
+      std::vector<std::uint32_t> triangles;
+      const hush::triangle_list tris = fr->t.view();
+      hush::glsl::npr_gabor_gl_pack(tris, vertices, triangles);
+      for (int k = 0; k < 2; ++k) {
+        gl.BindBuffer(d::kGlShaderStorageBuffer, o->buf[k]);
+        gl.BufferData(
+            d::kGlShaderStorageBuffer,
+            static_cast<d::gl_sizeiptr>(k == 0 ? vertices.size() * 4 : triangles.size() * 4),
+            k == 0 ? static_cast<const void*>(vertices.data()) : triangles.data(),
+            d::kGlStaticDraw);
+      }
+      gl.BindBuffer(d::kGlShaderStorageBuffer, 0);
+      o->f = {o->tex[0],
+              o->tex[1],
+              o->tex[2],
+              static_cast<std::uint32_t>(w),
+              static_cast<std::uint32_t>(h),
+              o->buf[0],
+              o->buf[1],
+              static_cast<std::uint32_t>(tris.vertices()),
+              static_cast<std::uint32_t>(tris.triangles())};
+      prepared_case p;
+      p.samples = w * h;
+      p.run = [noise, device, o] {
+        hush::glsl::npr_gabor_gl_render(*device, noise, o->f, o->tex[3]);
+        o->gl.Finish();
+      };
+      p.run();
+      std::vector<float> out(w * h);
+      void(HUSH_GLAPI * get_tex)(d::gl_enum, d::gl_int, d::gl_enum, d::gl_enum, void*) = nullptr;
+      d::gl_api::load(gl.loader, get_tex, "glGetTexImage");
+      gl.BindTexture(d::kGlTexture2d, o->tex[3]);
+      gl.PixelStorei(0x0D05, 4);  // GL_PACK_ALIGNMENT
+      get_tex(d::kGlTexture2d, 0, d::kGlRedChannel, d::kGlFloat, out.data());
+      gl.BindTexture(d::kGlTexture2d, 0);
+      std::vector<double> ref(w * h);
+      noise.render(hush::exec::scalar, f, tris, hush::image_view<double>(ref.data(), w, h));
+      for (std::size_t q = 0; q < ref.size(); ++q) p.value_error.add(out[q], ref[q]);
+      p.quality = std::to_string(tris.triangles()) +
+                  " triangles; G-buffer, triangles and output in GL objects "
+                  "(npr_gabor_gl_render); " +
+                  gl_timing(gl).measure(
+                      [&] { hush::glsl::npr_gabor_gl_render(*device, noise, o->f, o->tex[3]); },
+                      kTimedFrames, "npr_gabor_gl_render");
+      return p;
+    };
+    cases.push_back(c);
+  }
+}
+#endif
+
 }  // namespace
 #endif
 
@@ -151,6 +261,7 @@ void add_npr_gabor_cases([[maybe_unused]] std::vector<bench_case>& cases,
              lod::paper, {16.0}, cpu_points);
   add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames,
            lod::local_density, {16.0});
+  add_resident_rows(cases, s, bench_glsl_device(), frames);
 #endif
 #endif
 }

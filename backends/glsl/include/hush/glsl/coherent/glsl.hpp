@@ -84,6 +84,7 @@ uniform uint hush_count;       // pixels of the frame
 uniform uvec2 hush_size;       // width, height
 uniform uint hush_flags;       // 1: reference frame, 2: ids in both frames, 4: stationary
 uniform uint hush_channels;
+uniform uint hush_frame_ids;   // 1: this frame has object ids (hush_ids_tex), 0: none
 uniform uint hush_sign;        // floatBitsToUint(motion sign): +1 velocity, -1 forward velocity
 uniform uint hush_eps_rel;     // float bits
 uniform uint hush_eps_abs;
@@ -96,16 +97,34 @@ uniform uint hush_scale;       // band-pass scale 1 / sqrt(Perlin variance), flo
 // (band-pass: (width + 1) column triples, then (height + 1) row triples; plane: width x height).
 uniform uint hush_field_key[HUSH_COHERENT_FIELD_SLOTS];
 uniform uint hush_field_offset[HUSH_COHERENT_FIELD_SLOTS];
-layout(std430, binding = 0) readonly buffer hush_depth_b { float hush_depth[]; };
-layout(std430, binding = 1) readonly buffer hush_ids_b { uint hush_ids[]; };
-layout(std430, binding = 2) readonly buffer hush_ref_depth_b { float hush_ref_depth[]; };
-layout(std430, binding = 3) readonly buffer hush_ref_ids_b { uint hush_ref_ids[]; };
-layout(std430, binding = 4) readonly buffer hush_motion_b { float hush_motion[]; };
+// The frame: textures read with texelFetch, texel (x, y) = pixel (x, y) (hush/glsl/coherent/
+// frame.hpp: depth R32F, object ids R32UI, motion (dx, dy, dz) in .xyz of an RGB(A)32F).
+layout(binding = 0) uniform sampler2D hush_depth_tex;
+layout(binding = 1) uniform usampler2D hush_ids_tex;
+layout(binding = 2) uniform sampler2D hush_motion_tex;
+// The reference frame (the previous one): depth bits, then ids; and this frame's, written for
+// the next.
+layout(std430, binding = 2) readonly buffer hush_ref_in_b { uint hush_ref_in[]; };
+layout(std430, binding = 3) writeonly buffer hush_ref_out_b { uint hush_ref_out[]; };
 layout(std430, binding = 5) readonly buffer hush_history_in_b { float hush_history_in[]; };
 // The new history: channels planes, then the fresh flags (0.0 or 1.0).
 layout(std430, binding = 6) writeonly buffer hush_history_out_b { float hush_history_out[]; };
 layout(std430, binding = 7) readonly buffer hush_planes_b { uint hush_planes[]; };
+// The output: gain times the new history of channel c into image c, for c < hush_outputs.
+uniform uint hush_outputs;
+uniform uint hush_gain;        // float bits
+layout(r32f, binding = 0) writeonly uniform image2D hush_out0;
+layout(r32f, binding = 1) writeonly uniform image2D hush_out1;
+layout(r32f, binding = 2) writeonly uniform image2D hush_out2;
+layout(r32f, binding = 3) writeonly uniform image2D hush_out3;
 
+void hush_coherent_store(uint c, ivec2 p, float v) {
+  vec4 t = vec4(v * uintBitsToFloat(hush_gain));
+  if (c == 0u) imageStore(hush_out0, p, t);
+  else if (c == 1u) imageStore(hush_out1, p, t);
+  else if (c == 2u) imageStore(hush_out2, p, t);
+  else imageStore(hush_out3, p, t);
+}
 bool hush_coherent_surface(float d) { return d >= HUSH_COHERENT_FLT_MIN && d <= HUSH_COHERENT_FLT_MAX; }
 bool hush_coherent_finite(float v) { return v >= -HUSH_COHERENT_FLT_MAX && v <= HUSH_COHERENT_FLT_MAX; }
 float hush_coherent_flush(float v) { return abs(v) < HUSH_COHERENT_FLT_MIN ? 0.0 : v; }
@@ -138,10 +157,17 @@ void main() {
   uint x = n % width, y = n / width;
   // ---- Reprojection: never fused (precise), so the decisions are the CPU's.
   precise float sgn = uintBitsToFloat(hush_sign);
-  precise float depth = hush_depth[n];
-  precise float mx = hush_coherent_flush(sgn * hush_motion[3u * n]);
-  precise float my = hush_coherent_flush(sgn * hush_motion[3u * n + 1u]);
-  precise float mz = hush_coherent_flush(sgn * hush_motion[3u * n + 2u]);
+  ivec2 pixel = ivec2(int(x), int(y));
+  precise float depth = texelFetch(hush_depth_tex, pixel, 0).x;
+  vec3 motion = texelFetch(hush_motion_tex, pixel, 0).xyz;
+  precise float mx = hush_coherent_flush(sgn * motion.x);
+  precise float my = hush_coherent_flush(sgn * motion.y);
+  precise float mz = hush_coherent_flush(sgn * motion.z);
+  bool use_ids = (hush_flags & 2u) != 0u;
+  uint id = hush_frame_ids != 0u ? texelFetch(hush_ids_tex, pixel, 0).x : 0u;
+  uint plane = width * height;
+  hush_ref_out[n] = floatBitsToUint(depth);
+  hush_ref_out[plane + n] = id;
   bool visible = false;
   uint t00 = 0u, t10 = 0u, t01 = 0u, t11 = 0u;
   precise float w00 = 0.0, w10 = 0.0, w01 = 0.0, w11 = 0.0;
@@ -165,30 +191,28 @@ void main() {
       t10 = t00 + (width > 1u ? 1u : 0u);
       t01 = t00 + (height > 1u ? width : 0u);
       t11 = t01 + (t10 - t00);
-      bool use_ids = (hush_flags & 2u) != 0u;
-      uint id = use_ids ? hush_ids[n] : 0u;
       bool ok = true;
       // Taps with weight 0 are never read (a background tap must not matter).
       precise float interpolated = 0.0;
       float d;
       if (w00 != 0.0) {
-        d = hush_ref_depth[t00];
-        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_ids[t00] == id);
+        d = uintBitsToFloat(hush_ref_in[t00]);
+        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_in[plane + t00] == id);
         interpolated = interpolated + w00 * d;
       }
       if (w10 != 0.0) {
-        d = hush_ref_depth[t10];
-        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_ids[t10] == id);
+        d = uintBitsToFloat(hush_ref_in[t10]);
+        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_in[plane + t10] == id);
         interpolated = interpolated + w10 * d;
       }
       if (w01 != 0.0) {
-        d = hush_ref_depth[t01];
-        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_ids[t01] == id);
+        d = uintBitsToFloat(hush_ref_in[t01]);
+        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_in[plane + t01] == id);
         interpolated = interpolated + w01 * d;
       }
       if (w11 != 0.0) {
-        d = hush_ref_depth[t11];
-        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_ids[t11] == id);
+        d = uintBitsToFloat(hush_ref_in[t11]);
+        ok = ok && hush_coherent_surface(d) && (!use_ids || hush_ref_in[plane + t11] == id);
         interpolated = interpolated + w11 * d;
       }
       precise float expected = depth - mz;
@@ -196,7 +220,6 @@ void main() {
       visible = ok && hush_coherent_surface(expected) && abs(interpolated - expected) <= tolerance;
     }
   }
-  uint plane = width * height;
   hush_history_out[hush_channels * plane + n] = visible ? 0.0 : 1.0;
   // ---- Values, per channel (the blends may fuse: the tolerance's part).
   float alpha = uintBitsToFloat(hush_alpha), beta = uintBitsToFloat(hush_beta);
@@ -225,7 +248,9 @@ void main() {
         value = alpha * (h + dd) + beta * wv;
       }
     }
-    hush_history_out[c * plane + n] = hush_coherent_flush(value);
+    value = hush_coherent_flush(value);
+    hush_history_out[c * plane + n] = value;
+    if (c < hush_outputs) hush_coherent_store(c, pixel, value);
   }
 }
 )glsl";

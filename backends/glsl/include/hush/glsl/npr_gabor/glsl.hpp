@@ -87,9 +87,11 @@ uniform float hush_tolerance;
 uniform float hush_neg_a;     // -ln(1/t)
 uniform float hush_taper_k;   // 1 / (1 - taper start)
 layout(std430, binding = 4) readonly buffer hush_npr_ids_b { uvec4 hush_npr_ids[]; };
-layout(std430, binding = 1) readonly buffer hush_npr_depth_b { float hush_npr_depth[]; };
-layout(std430, binding = 2) readonly buffer hush_npr_object_b { uint hush_npr_object[]; };
-layout(std430, binding = 3) readonly buffer hush_npr_triangle_b { uint hush_npr_triangle[]; };
+// The G-buffer: textures read with texelFetch, texel (x, y) = pixel (x, y) (hush/glsl/
+// npr_gabor/frame.hpp: depth R32F, object and triangle ids R32UI); only the tested ones are read.
+layout(binding = 0) uniform sampler2D hush_npr_depth_tex;
+layout(binding = 1) uniform usampler2D hush_npr_object_tex;
+layout(binding = 2) uniform usampler2D hush_npr_triangle_tex;
 void main() {
   hush_npr_splat s = hush_npr_splats[hush_g_splat];
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -98,13 +100,12 @@ void main() {
   hush_gabor_axis ax = hush_gabor_axis_factors((s.kern.x + k.x) * s.kern.z, hush_neg_a, s.freq.x);
   hush_gabor_axis ay = hush_gabor_axis_factors((s.kern.y + k.y) * s.kern.z, hush_neg_a, s.freq.y);
   if (!(ax.d2 + ay.d2 < 1.0)) discard;
-  uint n = uint(p.y) * hush_size.x + uint(p.x);
   uvec2 ids = hush_npr_ids[hush_g_splat].xy;  // (object, triangle id, J low, J high)
-  if ((hush_flags & 1u) != 0u && hush_npr_object[n] != ids.x) discard;
-  if ((hush_flags & 2u) != 0u && hush_npr_triangle[n] != ids.y) discard;
+  if ((hush_flags & 1u) != 0u && texelFetch(hush_npr_object_tex, p, 0).x != ids.x) discard;
+  if ((hush_flags & 2u) != 0u && texelFetch(hush_npr_triangle_tex, p, 0).x != ids.y) discard;
   float vis = 1.0;
   if ((hush_flags & 4u) != 0u) {
-    precise float zp = hush_npr_depth[n];
+    precise float zp = texelFetch(hush_npr_depth_tex, p, 0).x;
     uint bits = floatBitsToUint(zp);
     // Not in front (<= 0, -0, negative), infinite or NaN: fails (exponent bits, so no
     // fast-math folding of NaN compares can change it).

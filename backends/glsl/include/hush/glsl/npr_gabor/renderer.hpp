@@ -43,10 +43,12 @@
 // geometry shader turns each into one screen-aligned quad covering the record's pixel range x0 ...
 // x1 + 1, y0 ... y1 + 1 (its kernel's disc, clamped to the image), a fragment shader runs the
 // visibility tests against the G-buffer (object id, triangle id, depth with its tolerance, soft
-// depth; SSBOs uploaded by frame_upload.hpp) and evaluates the tapered Gabor kernel with the
-// library's float functions (the CPU's float operations, hush/glsl/gabor/program.hpp), and additive
-// blending (GL_ONE, GL_ONE) sums the fragments into a GL_R32F framebuffer texture, read back into
-// `out`. The normalisation is the CPU's: the weights in the records.
+// depth; R32F / R32UI textures read with texelFetch, uploaded from the frame's views) and
+// evaluates the tapered Gabor kernel with the library's float functions (the CPU's float
+// operations, hush/glsl/gabor/program.hpp), and additive blending (GL_ONE, GL_ONE) sums the
+// fragments into a GL_R32F framebuffer texture, read back into `out`. The normalisation is the
+// CPU's: the weights in the records. hush/glsl/npr_gabor/frame.hpp runs the same stages on the
+// caller's own textures and buffers into the caller's texture (no image read-back).
 //
 // The GL geometry-output limit: one input point emits one quad, 4 vertices of 5 components
 // (gl_Position and the record index), a fixed max_vertices = 4 that no GL can refuse
@@ -81,8 +83,10 @@
 // Throws std::runtime_error for GL errors (and when the context lacks storage blocks in the
 // geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
 // driver has them). Leaves the current program, vertex array, framebuffers, viewport, blend and
-// the enables it touches (blend, depth, stencil, scissor, cull face) as it found them; rebinds
-// the indexed storage-buffer bindings 0 to 7 (as hush::glsl::device does).
+// the enables it touches (blend, depth, stencil, scissor, cull face) and the active texture unit
+// as it found them; rebinds the indexed storage-buffer bindings 0 to 7 (as hush::glsl::device
+// does) and the textures of units 0 - 2 (but the active unit's, restored; a sampler object of
+// the renderer's is bound to units 0 - 2 during the draws only).
 #ifndef HUSH_GLSL_NPR_GABOR_RENDERER_HPP
 #define HUSH_GLSL_NPR_GABOR_RENDERER_HPP
 
@@ -100,7 +104,8 @@
 #include "hush/npr_gabor/splat.hpp"
 #include "hush/glsl/detail/gl.hpp"
 #include "hush/glsl/device.hpp"
-#include "hush/glsl/frame_upload.hpp"
+#include "hush/glsl/detail/gl_resident.hpp"
+#include "hush/glsl/npr_gabor/gl_frame.hpp"
 #include "hush/glsl/npr_gabor/glsl.hpp"
 #include "hush/npr_gabor.hpp"
 
@@ -249,13 +254,13 @@ namespace detail {
 class npr_gabor_gpu {
  public:
   explicit npr_gabor_gpu(glsl::device& dev)
-      : dev_(dev), gl_(dev.gl()), gr_(dev.gl().loader), frame_(gl_, dev.max_buffer_bytes()) {
+      : dev_(dev), gl_(dev.gl()), gr_(dev.gl().loader), rs_(dev.gl().loader) {
     limits_ = npr_gabor_gl_limits(gl_);
     if (!limits_.sprites_fit() || limits_.max_geometry_storage_blocks < 1 ||
-        limits_.max_fragment_storage_blocks < 5)
+        limits_.max_fragment_storage_blocks < 2)
       throw std::runtime_error(
           "hush::glsl::npr_gabor: the context lacks what the splatting needs (a quad of 4 "
-          "vertices from the geometry stage, 1 storage block there and 5 in the fragment stage)");
+          "vertices from the geometry stage, 1 storage block there and 2 in the fragment stage)");
     program_ = link_program(gl_, {{kGlVertexShader, npr_gabor_vertex_source()},
                                   {kGlGeometryShader, npr_gabor_geometry_source()},
                                   {kGlFragmentShader, npr_gabor_fragment_source()}});
@@ -264,6 +269,8 @@ class npr_gabor_gpu {
     gl_.GenBuffers(2, buffers_);
     gl_.GenBuffers(kStage1Buffers, stage1_buffers_);
     gl_.GenTextures(1, &texture_);
+    gl_.GenTextures(3, gbuffer_);
+    sampler_ = rs_.nearest_sampler();
     gr_.GenFramebuffers(1, &fbo_);
     gr_.GenVertexArrays(1, &vao_);
     gl_.check("hush::glsl::npr_gabor: setting up");
@@ -274,6 +281,8 @@ class npr_gabor_gpu {
     gr_.DeleteVertexArrays(1, &vao_);
     gr_.DeleteFramebuffers(1, &fbo_);
     gl_.DeleteTextures(1, &texture_);
+    gl_.DeleteTextures(3, gbuffer_);
+    rs_.DeleteSamplers(1, &sampler_);
     gl_.DeleteBuffers(kStage1Buffers, stage1_buffers_);
     for (const std::vector<gl_uint>* v : {&level_nodes_, &level_flags_, &scan_sums_})
       if (!v->empty()) gl_.DeleteBuffers(static_cast<gl_sizei>(v->size()), v->data());
@@ -357,6 +366,36 @@ class npr_gabor_gpu {
     return true;
   }
 
+  // Both stages from the caller's GL objects into the caller's R32F texture (hush/glsl/
+  // npr_gabor/frame.hpp states the contract; arguments checked there). False (nothing drawn)
+  // where stage 1 cannot run on the GPU (stage1_fits, or a level beyond one storage block).
+  bool render_resident(const npr_gabor& noise, const npr_gabor_gl_frame& g,
+                       const npr_gabor::sources& src, gl_uint output) {
+    const std::size_t w = g.width, h = g.height;
+    check_frame(w, h);
+    if (!stage1_fits(src, g.vertex_count, g.triangle_count)) return false;
+    const state_guard guard(gl_, gr_);
+    triangle_buffers_[0] = g.vertices;
+    triangle_buffers_[1] = g.triangles;
+    std::size_t total = 0;
+    const bool ok = walk(noise, w, h, g.triangle_count, src, total);
+    if (ok) {
+      ++gpu_frames_;
+      // The job's tests and kernel constants (its views are not read: the textures are).
+      frame f;
+      f.depth = image_view<const float>(nullptr, w, h);
+      const gl_uint gbuffer[3] = {g.depth, g.object_id, g.triangle_id};
+      draw_into(noise.splat_job(f, nullptr, 0), w, h, gbuffer, output, total,
+                [&](std::size_t b0, std::size_t m) { generate(b0, m); });
+    }
+    triangle_buffers_[0] = stage1_buffers_[0];  // the records pass read the caller's until here
+    triangle_buffers_[1] = stage1_buffers_[1];
+    if (!ok) return false;
+    gr_.FramebufferTexture2D(kGlFramebuffer, kGlColorAttachment0, kGlTexture2d, 0, 0);
+    gl_.check("hush::glsl::npr_gabor: splatting");
+    return true;
+  }
+
  private:
   // Records per batch: one storage block.
   std::size_t batch_records() const {
@@ -364,12 +403,52 @@ class npr_gabor_gpu {
   }
 
   // Stage 2: the records [0, total) of the frame in batches; fill(b0, m) puts records
-  // b0 ... b0 + m - 1 into buffers_[0] (and their ids into buffers_[1]).
+  // b0 ... b0 + m - 1 into buffers_[0] (and their ids into buffers_[1]). The job's G-buffer
+  // views go into textures, the frame into the device's R32F target, read back into out.
   template <class Fill>
   void draw(const hush::detail::npr_gabor_splat_job& j, const image_view<float>& out,
             std::size_t total, Fill fill) {
-    namespace c = hush::detail::constants;
     const std::size_t w = out.width, h = out.height;
+    check_frame(w, h);
+    // The G-buffer views the tests read (0: not read).
+    if (w != gbuffer_width_ || h != gbuffer_height_) {
+      allocate_texture(gl_, gbuffer_[0], w, h, kGlR32fFormat, kGlRedChannel, kGlFloat);
+      for (int k = 1; k < 3; ++k)
+        allocate_texture(gl_, gbuffer_[k], w, h, kGlR32uiFormat, kGlRedInteger, kGlUnsignedInt);
+      gbuffer_width_ = w;
+      gbuffer_height_ = h;
+    }
+    if (j.depth_test) upload_view(gl_, rs_, gbuffer_[0], j.depth, kGlRedChannel, kGlFloat);
+    if (j.object_test)
+      upload_view(gl_, rs_, gbuffer_[1], j.object_id, kGlRedInteger, kGlUnsignedInt);
+    if (j.triangle_test)
+      upload_view(gl_, rs_, gbuffer_[2], j.triangle_id, kGlRedInteger, kGlUnsignedInt);
+    gl_.check("hush::glsl::npr_gabor: uploading the G-buffer");
+    const gl_uint g[3] = {gbuffer_[0], gbuffer_[1], gbuffer_[2]};
+    const state_guard guard(gl_, gr_);
+    gl_.BindTexture(kGlTexture2d, texture_);
+    if (w != width_ || h != height_) {
+      gl_.TexImage2D(kGlTexture2d, 0, static_cast<gl_int>(kGlR32f), static_cast<gl_sizei>(w),
+                     static_cast<gl_sizei>(h), 0, kGlRed, kGlFloat, nullptr);
+      for (const gl_enum p : {kGlTextureMinFilter, kGlTextureMagFilter})
+        gl_.TexParameteri(kGlTexture2d, p, static_cast<gl_int>(kGlNearest));
+      width_ = w;
+      height_ = h;
+    }
+    draw_into(j, w, h, g, texture_, total, fill);
+    // Read back (row y of the texture is image row y).
+    pixels_.resize(w * h);
+    gl_.PixelStorei(kGlPackAlignment, 4);
+    gr_.ReadPixels(0, 0, static_cast<gl_sizei>(w), static_cast<gl_sizei>(h), kGlRed, kGlFloat,
+                   pixels_.data());
+    gl_.check("hush::glsl::npr_gabor: splatting");
+    for (std::size_t y = 0; y < h; ++y)
+      std::copy(pixels_.begin() + static_cast<std::ptrdiff_t>(y * w),
+                pixels_.begin() + static_cast<std::ptrdiff_t>((y + 1) * w), out.row(y));
+  }
+
+  // Throws hush::invalid_argument for a frame beyond the GL limits.
+  void check_frame(std::size_t w, std::size_t h) const {
     if (w > static_cast<std::size_t>(limits_.max_frame_side) ||
         h > static_cast<std::size_t>(limits_.max_frame_side))
       hush::detail::throw_out_of_range(
@@ -377,18 +456,17 @@ class npr_gabor_gpu {
           ("sides up to " + std::to_string(limits_.max_frame_side) +
            " (GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS, GL_MAX_RENDERBUFFER_SIZE)")
               .c_str());
-    // The G-buffer views the tests read.
-    frame f;
-    f.depth = j.depth;
-    f.object_id = j.object_id;
-    f.triangle_id = j.triangle_id;
-    frame_view which = frame_view::none;
-    if (j.depth_test) which = which | frame_view::depth;
-    if (j.object_test) which = which | frame_view::object_id;
-    if (j.triangle_test) which = which | frame_view::triangle_id;
-    if (which != frame_view::none) frame_.upload(f, which);
-    const state_guard guard(gl_, gr_);
-    target(w, h);
+  }
+
+  // The splatting proper (the state guarded by the caller): the records in batches into
+  // `target` (R32F, w x h, cleared first), the G-buffer read from the textures g (depth, object
+  // ids, triangle ids; those of tests the job does not run are not read). Both the CPU-image
+  // path (draw) and the resident one (render_resident) splat here.
+  template <class Fill>
+  void draw_into(const hush::detail::npr_gabor_splat_job& j, std::size_t w, std::size_t h,
+                 const gl_uint g[3], gl_uint target_texture, std::size_t total, Fill fill) {
+    namespace c = hush::detail::constants;
+    target(target_texture, w, h);
     gl_.UseProgram(program_.id());
     const gl_uint prog = program_.id();
     gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), static_cast<gl_uint>(w),
@@ -402,10 +480,15 @@ class npr_gabor_gpu {
                   static_cast<float>(-j.envelope_exponent));
     gl_.Uniform1f(gl_.GetUniformLocation(prog, "hush_taper_k"),
                   static_cast<float>(1.0 / (1.0 - c::kGaborTaperStart)));
-    // Unused views: any valid buffer (never read).
-    const frame_view any = j.depth_test    ? frame_view::depth
-                           : j.object_test ? frame_view::object_id
-                                           : frame_view::triangle_id;
+    const bool read[3] = {j.depth_test, j.object_test, j.triangle_test};
+    gl_int active = 0;
+    gl_.GetIntegerv(kGlActiveTexture, &active);
+    for (gl_uint u = 0; u < 3; ++u) {
+      gl_.ActiveTexture(kGlTexture0 + u);
+      gl_.BindTexture(kGlTexture2d, read[u] ? g[u] : 0u);
+      rs_.BindSampler(u, sampler_);
+    }
+    gl_.ActiveTexture(static_cast<gl_enum>(active));
     // Records in batches of one storage block, drawn in order.
     const std::size_t batch = batch_records();
     for (std::size_t b0 = 0; b0 < total; b0 += batch) {
@@ -414,25 +497,10 @@ class npr_gabor_gpu {
       gl_.UseProgram(program_.id());
       gl_.BindBufferBase(kGlShaderStorageBuffer, 0, buffers_[0]);
       gl_.BindBufferBase(kGlShaderStorageBuffer, 4, buffers_[1]);
-      if (which == frame_view::none) {  // no test: bind the records' buffer (never read)
-        for (gl_uint b = 1; b <= 3; ++b) gl_.BindBufferBase(kGlShaderStorageBuffer, b, buffers_[0]);
-      } else {
-        frame_.bind(j.depth_test ? frame_view::depth : any, 1);
-        frame_.bind(j.object_test ? frame_view::object_id : any, 2);
-        frame_.bind(j.triangle_test ? frame_view::triangle_id : any, 3);
-      }
       gr_.DrawArrays(kGlPoints, 0, static_cast<gl_sizei>(m));
       ++draws_;
     }
-    // Read back (row y of the texture is image row y).
-    pixels_.resize(w * h);
-    gl_.PixelStorei(kGlPackAlignment, 4);
-    gr_.ReadPixels(0, 0, static_cast<gl_sizei>(w), static_cast<gl_sizei>(h), kGlRed, kGlFloat,
-                   pixels_.data());
-    gl_.check("hush::glsl::npr_gabor: splatting");
-    for (std::size_t y = 0; y < h; ++y)
-      std::copy(pixels_.begin() + static_cast<std::ptrdiff_t>(y * w),
-                pixels_.begin() + static_cast<std::ptrdiff_t>((y + 1) * w), out.row(y));
+    for (gl_uint u = 0; u < 3; ++u) rs_.BindSampler(u, 0);
   }
 
  private:
@@ -483,19 +551,10 @@ class npr_gabor_gpu {
     bool enabled_[5] = {false, false, false, false, false};
   };
 
-  // The R32F target, sized w x h and cleared to 0; blending set to a plain sum.
-  void target(std::size_t w, std::size_t h) {
-    gl_.BindTexture(kGlTexture2d, texture_);
-    if (w != width_ || h != height_) {
-      gl_.TexImage2D(kGlTexture2d, 0, static_cast<gl_int>(kGlR32f), static_cast<gl_sizei>(w),
-                     static_cast<gl_sizei>(h), 0, kGlRed, kGlFloat, nullptr);
-      for (const gl_enum p : {kGlTextureMinFilter, kGlTextureMagFilter})
-        gl_.TexParameteri(kGlTexture2d, p, static_cast<gl_int>(kGlNearest));
-      width_ = w;
-      height_ = h;
-    }
+  // The R32F texture t (w x h) as the target, cleared to 0; blending set to a plain sum.
+  void target(gl_uint t, std::size_t w, std::size_t h) {
     gr_.BindFramebuffer(kGlFramebuffer, fbo_);
-    gr_.FramebufferTexture2D(kGlFramebuffer, kGlColorAttachment0, kGlTexture2d, texture_, 0);
+    gr_.FramebufferTexture2D(kGlFramebuffer, kGlColorAttachment0, kGlTexture2d, t, 0);
     if (gr_.CheckFramebufferStatus(kGlFramebuffer) != kGlFramebufferComplete)
       throw std::runtime_error(
           "hush::glsl::npr_gabor: the GL_R32F framebuffer is incomplete on this context");
@@ -555,7 +614,8 @@ class npr_gabor_gpu {
   }
   void bind_stage1() const {
     for (int b = 0; b < kStage1Buffers; ++b)
-      gl_.BindBufferBase(kGlShaderStorageBuffer, static_cast<gl_uint>(b), stage1_buffers_[b]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, static_cast<gl_uint>(b),
+                         b < 2 ? triangle_buffers_[b] : stage1_buffers_[b]);
   }
   // Buffer i of `v`, made on first use.
   gl_uint buffer_at(std::vector<gl_uint>& v, std::size_t i) const {
@@ -611,32 +671,42 @@ class npr_gabor_gpu {
   // number of records. False where the GPU cannot run stage 1 (see render).
   bool stage1(const npr_gabor& noise, const frame& f, const triangle_list& tris,
               const npr_gabor::sources& src, std::size_t& total) {
-    // Per-pixel or per-vertex sources run on the CPU.
-    if (!npr_gabor::per_object_at_most(src)) return false;
     const std::size_t nt = tris.triangles(), nv = tris.vertices();
-    std::size_t objects = 0;  // table entries before the constants' one
+    if (!stage1_fits(src, nv, nt)) return false;
+    const state_guard guard(gl_, gr_);
+    // Vertices and triangles in the layouts of npr_gabor_gl_frame (gl_frame.hpp).
+    npr_gabor_gl_pack(tris, floats_, words_);
+    upload(0, floats_.data(), nv * kNprGaborVertexBytes, 0);
+    triangle_buffers_[0] = stage1_buffers_[0];
+    upload(1, words_.data(), nt * kNprGaborTriangleBytes, 1);
+    triangle_buffers_[1] = stage1_buffers_[1];
+    return walk(noise, f.width(), f.height(), nt, src, total);
+  }
+
+  // Whether stage 1 can run on the GPU: sources constant or per object, every buffer within
+  // one storage block.
+  bool stage1_fits(const npr_gabor::sources& src, std::size_t nv, std::size_t nt) const {
+    if (!npr_gabor::per_object_at_most(src)) return false;  // per pixel or vertex: the CPU
+    const std::size_t most = dev_.max_buffer_bytes();
+    return !(nt * kNprGaborLodBytes > most || nv * kNprGaborVertexBytes > most ||
+             nt * kNprGaborTriangleBytes > most ||
+             (table_entries(src) + 1) * 32 > most || nt * kNprGaborNodeBytes > most ||
+             nt > 0xFFFFFFFFu);
+  }
+  // Kernel table entries before the constants' one.
+  static std::size_t table_entries(const npr_gabor::sources& src) {
+    std::size_t objects = 0;
     for (const param_source* p : {&src.frequency, &src.orientation, &src.bandwidth, &src.impulses})
       objects = std::max(objects, p->table_size());
+    return objects;
+  }
+
+  // Stage 1 from the triangles in triangle_buffers_ (vertices, triangles; the layouts of
+  // npr_gabor_gl_frame): the kernel table, the LODs, the walk (state guarded by the caller).
+  bool walk(const npr_gabor& noise, std::size_t width, std::size_t height, std::size_t nt,
+            const npr_gabor::sources& src, std::size_t& total) {
     const std::size_t most = dev_.max_buffer_bytes();
-    if (nt * kNprGaborLodBytes > most || nv * 16 > most || nt * 20 > most || (objects + 1) * 32 > most ||
-        nt * kNprGaborNodeBytes > most || nt > 0xFFFFFFFFu)
-      return false;
-    const state_guard guard(gl_, gr_);
-    // Vertices (x, y, depth, -), triangles (3 indices, id, object), the kernel table.
-    floats_.assign(std::max<std::size_t>(nv, 1) * 4, 0.0f);
-    for (std::size_t v = 0; v < nv; ++v) {
-      floats_[4 * v] = tris.screen[v].x;
-      floats_[4 * v + 1] = tris.screen[v].y;
-      floats_[4 * v + 2] = tris.depth[v];
-    }
-    upload(0, floats_.data(), nv * 16, 0);
-    words_.assign(std::max<std::size_t>(nt, 1) * 5, 0u);
-    for (std::size_t t = 0; t < nt; ++t) {
-      for (std::size_t i = 0; i < 3; ++i) words_[5 * t + i] = tris.indices[3 * t + i];
-      words_[5 * t + 3] = tris.triangle_id[t];
-      words_[5 * t + 4] = tris.object_of(t);
-    }
-    upload(1, words_.data(), nt * 20, 1);
+    const std::size_t objects = table_entries(src);
     floats_.assign((objects + 1) * 8, 0.0f);
     for (std::size_t o = 0; o <= objects; ++o) {
       const npr_gabor::object_kernel k = noise.kernel_of_object(static_cast<std::uint32_t>(o), src);
@@ -660,8 +730,8 @@ class npr_gabor_gpu {
       gl_.UseProgram(prog);
       set(prog, "hush_tris", static_cast<gl_uint>(nt));
       set(prog, "hush_table_last", static_cast<gl_uint>(objects));
-      gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), static_cast<gl_uint>(f.width()),
-                     static_cast<gl_uint>(f.height()));
+      gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), static_cast<gl_uint>(width),
+                     static_cast<gl_uint>(height));
       set(prog, "hush_key", seed_key(p.seed));
       set(prog, "hush_opts", (p.cull_back_faces ? 1u : 0u) | (p.thinning ? 2u : 0u));
       set(prog, "hush_isotropic", p.isotropic ? 1u : 0u);
@@ -676,6 +746,7 @@ class npr_gabor_gpu {
     if (nt == 0) return true;
     // Level 0: the LOD of every triangle, the roots at their scanned offsets.
     gl_.UseProgram(stage1_[kLodsPass].id());
+    bind_stage1();
     run(kLodsPass, nt, kNprGaborGroupSize);
     std::uint32_t sum[2];
     scan(stage1_buffers_[4], nt, 0, sum);
@@ -767,12 +838,14 @@ class npr_gabor_gpu {
   glsl::device& dev_;
   const gl_api& gl_;
   gl_raster_api gr_;
-  frame_upload frame_;
+  gl_resident_api rs_;
   npr_gabor_limits limits_;
   gl_program program_;
   gl_program stage1_[kNprGaborStage1Passes];
   gl_uint buffers_[2] = {0, 0};  // records, ids
   gl_uint stage1_buffers_[kStage1Buffers] = {0, 0, 0, 0, 0};
+  // The vertices and triangles stage 1 reads: stage1_buffers_[0, 1] or the caller's.
+  gl_uint triangle_buffers_[2] = {0, 0};
   // Per level of the walk: its nodes, its scanned (records, children) offsets; per depth of
   // the scan's recursion: the blocks' totals.
   std::vector<gl_uint> level_nodes_, level_flags_;
@@ -783,6 +856,9 @@ class npr_gabor_gpu {
   std::size_t gpu_frames_ = 0, cpu_frames_ = 0;
   std::vector<float> floats_;
   gl_uint texture_ = 0, fbo_ = 0, vao_ = 0;
+  gl_uint gbuffer_[3] = {0, 0, 0};  // the CPU-image path's G-buffer: depth, object, triangle ids
+  gl_uint sampler_ = 0;
+  std::size_t gbuffer_width_ = 0, gbuffer_height_ = 0;
   std::size_t width_ = 0, height_ = 0, draws_ = 0;
   std::vector<std::uint32_t> words_, ids_;
   std::vector<float> pixels_;
