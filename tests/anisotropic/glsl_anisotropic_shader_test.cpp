@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -332,6 +333,32 @@ TEST_CASE("anisotropic shader: the kit's tiles are the runner's texels, its sour
   hush::anisotropic::params p = a4.parameters();
   p.compensation = hush::weight_rule::least_squares;
   CHECK_THROWS_AS(hush::glsl::shader_for(hush::anisotropic(p)), hush::invalid_argument);
+}
+
+// Every number of the kit's functions comes from the generated constants or the block: the
+// hand-written GLSL holds only structural literals (0, 1, 2 for halving and doubling, the
+// channel indices 0 ... 7 of two RGBA texels, 4 channels per texel), outside comments.
+TEST_CASE("anisotropic shader: the kit's functions hold no number of their own") {
+  std::string body = hush::glsl::detail::kAnisotropicShaderBody;
+  body = std::regex_replace(body, std::regex("//[^\n]*"), "");
+  const std::regex literal("(^|[^A-Za-z0-9_.])([0-9]+[.]?[0-9]*(e[-+]?[0-9]+)?u?)");
+  const std::vector<std::string> allowed = {"0", "1",  "2",  "3",  "4",   "5",   "6",
+                                            "7", "0u", "1u", "4u", "0.0", "1.0", "2.0"};
+  int found = 0;
+  for (auto it = std::sregex_iterator(body.begin(), body.end(), literal);
+       it != std::sregex_iterator(); ++it) {
+    const std::string lit = (*it)[2];
+    INFO("literal " << lit);
+    CHECK(std::find(allowed.begin(), allowed.end(), lit) != allowed.end());
+    ++found;
+  }
+  CHECK(found > 10);  // the scan sees the body's literals
+  const std::string planted = "x = 0.5 * y + 17u;";
+  int stray = 0;
+  for (auto it = std::sregex_iterator(planted.begin(), planted.end(), literal);
+       it != std::sregex_iterator(); ++it)
+    stray += std::find(allowed.begin(), allowed.end(), std::string((*it)[2])) == allowed.end();
+  CHECK(stray == 2);
 }
 
 #ifdef HUSH_GLSLANG_VALIDATOR
