@@ -28,6 +28,9 @@
 //   hush_anisotropic_tile1   sampler2D, unit HUSH_ANISOTROPIC_TILE1_BINDING (2): orientations
 //                            4-7 (K > 4, anisotropic_tile::rgba(1)); K <= 4: one texel of
 //                            zeros (the source reads it only for K > 4)
+// The source carries the generated constants (generator.hpp) under the guard
+// HUSH_GLSL_CONSTANTS, so that kits share one copy; a shader that also pastes
+// hush::glsl::library() (its own copy, unguarded) defines HUSH_GLSL_CONSTANTS before the kit.
 // Both tiles are read with texelFetch, so their filtering does not matter (GL_NEAREST: RGBA32F
 // is not filterable in GLSL ES 3.00) and the kit compiles for GL 4.30 core, Vulkan 450 and
 // GLSL ES 3.00 (no SSBO, ldexp or frexp: powers of two and the exponent split by bits).
