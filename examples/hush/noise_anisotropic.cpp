@@ -8,10 +8,12 @@
 // sequence: per covered pixel the noise at its uv, filtered by the footprint of its
 // screen-to-uv Jacobian, and with --scene NAME compensated by its triangle's surface map from
 // the scene's meshes (examples/anisotropic/scene_render.hpp). One channel per frame,
-// background 0. The options are `hush sample anisotropic`'s, less --footprint and --map (the
+// background 0 (--backend glsl: whole frames on the GPU, hush/glsl/anisotropic/frame.hpp). The
+// options are `hush sample anisotropic`'s, less --footprint and --map (the
 // G-buffer and the scene give them per pixel).
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -25,6 +27,9 @@
 #include "noises.hpp"
 #include "scene_noises.hpp"
 
+#if HUSH_CLI_HAVE_GLSL
+#include "hush/glsl/anisotropic/frame.hpp"
+#endif
 #if HUSH_CLI_HAVE_ANISO_SCENE
 #include "scene.hpp"
 #include "scene_render.hpp"
@@ -228,6 +233,9 @@ class anisotropic_scene_noise final : public scene_noise {
     return backend_missing(b);
   }
   void render(gbuffer_sequence& frames, render_sink& sink, backend b) override {
+#if HUSH_CLI_HAVE_GLSL
+    if (b == backend::glsl) return run_resident(frames, sink);
+#endif
     with_exec(b, [&](const auto& ex) { run(ex, frames, sink); });
   }
 
@@ -247,6 +255,38 @@ class anisotropic_scene_noise final : public scene_noise {
       sink.progress("anisotropic", i + 1, n);
     }
   }
+
+#if HUSH_CLI_HAVE_GLSL
+  // The GPU: each frame through hush::glsl::anisotropic_frame (uv, Jacobian and, compensated,
+  // each pixel's triangle map as textures; one draw per frame, the image read back), the
+  // weights formed in the shader rather than per sample on the CPU.
+  void run_resident(gbuffer_sequence& frames, render_sink& sink) {
+    hush::glsl::anisotropic_frame gpu(glsl_device().gl().loader, noise_);
+    const std::size_t n = frames.size();
+    const auto w = static_cast<std::size_t>(frames.width());
+    const auto h = static_cast<std::size_t>(frames.height());
+    const hush::frame_view needs = hush::frame_view::uv | hush::frame_view::uv_jacobian |
+                                   hush::frame_view::object_id | hush::frame_view::triangle_id;
+    std::vector<hush::surface_map> pixel_maps;
+    for (std::size_t i = 0; i < n; ++i) {
+      const hush::frame f = frames.frame(i, needs);
+      pixel_maps.clear();
+      if (compensate_) {
+        // As collect_samples: the pixel's triangle's map, the identity for unknown ids.
+        pixel_maps.assign(w * h, hush::surface_map::identity());
+        for (std::size_t y = 0; y < h; ++y)
+          for (std::size_t x = 0; x < w; ++x) {
+            const std::uint32_t object = f.object_id(x, y), tri = f.triangle_id(x, y);
+            if (object != 0 && object - 1 < maps_.size() && tri < maps_[object - 1].size())
+              pixel_maps[y * w + x] = maps_[object - 1][tri];
+          }
+      }
+      const std::vector<float> out = gpu.render_image(f, pixel_maps);
+      sink.write(i, {hush::image_view<const float>(out.data(), w, h)});
+      sink.progress("anisotropic", i + 1, n);
+    }
+  }
+#endif
 
   hush::anisotropic noise_;
   std::vector<std::vector<hush::surface_map>> maps_;

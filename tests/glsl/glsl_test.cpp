@@ -855,12 +855,13 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
       if (samples || std::string(layout) != "samples")
         for (const char* gradient : {"", "_gradient"})
           expected.push_back("hush_" + name + "_" + layout + gradient + ".comp");
+  expected.push_back("hush_anisotropic_shader.glsl");  // the user-shader kits
   std::vector<std::string> names;
   for (const auto& f : files) names.push_back(f.name);
   std::sort(expected.begin(), expected.end());
   std::sort(names.begin(), names.end());
-  CHECK(names == expected);  // 57 files: 46 runners and the 11 others
-  CHECK(names.size() == 57);
+  CHECK(names == expected);  // 58 files: 46 runners, 1 user-shader kit and the 11 others
+  CHECK(names.size() == 58);
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);

@@ -121,6 +121,8 @@ inline std::vector<std::vector<std::pair<std::string, std::string>>> renderer_ex
 
 #include "hush/glsl/shader.hpp"
 
+#include "hush/glsl/anisotropic/shader.hpp"
+
 namespace hush {
 namespace glsl {
 namespace detail {
@@ -128,7 +130,7 @@ namespace detail {
 // The files `hush glsl-export` writes for the user's shader, as (file name, text), in export
 // order: each noise's <noise>_shader_exports() (hush_<noise>_shader.glsl files).
 inline std::vector<std::vector<std::pair<std::string, std::string>>> shader_exports() {
-  return {};
+  return {anisotropic_shader_exports()};
 }
 
 }  // namespace detail
