@@ -38,6 +38,9 @@ ROOT = Path(__file__).resolve().parent.parent.parent
 SHIPS_WITH = "tests/{noise}/ships_with.json"
 KEYS = ("program", "glsl_runner", "glsl_export_prefixes", "bench_text", "golden_case",
         "hard_case", "doc")
+# Optional: shader, shader_example: its kit for the user's shader (hush/glsl/<noise>/shader.hpp)
+# and that kit's example program, paths that must exist when given.
+OPTIONAL_KEYS = ("shader", "shader_example")
 
 
 def ships_with(noise):
@@ -52,7 +55,7 @@ def ships_with(noise):
         problem(f"{rel}: not JSON: {e}")
         return None
     missing = [k for k in KEYS if k not in want]
-    unknown = [k for k in want if k not in KEYS]
+    unknown = [k for k in want if k not in KEYS + OPTIONAL_KEYS]
     if missing or unknown:
         problem(f"{rel}: missing keys {missing}, unknown keys {unknown}; see check_registry.py")
         return None
@@ -169,6 +172,9 @@ def check_noise(noise, want, cases, program, exported):
     for kind in ("golden_case", "hard_case"):
         if not any(re.search(want[kind], name) for name in cases):
             problem(f"{noise}: no test case in tests/ named like /{want[kind]}/ ({kind})")
+    for key in OPTIONAL_KEYS:
+        if key in want and not (ROOT / want[key]).is_file():
+            problem(f"{noise}: {key} {want[key]} does not exist")
     doc = want["doc"]
     if not (ROOT / doc).is_file():
         problem(f"{noise}: no user page {doc}")
