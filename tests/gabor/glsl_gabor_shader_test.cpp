@@ -502,6 +502,10 @@ TEST_CASE("gabor shader: the kit's source depends on D only and is what glsl-exp
   CHECK(k1.resources[0].words != k2.resources[0].words);
   const auto k3 = hush::glsl::shader_for(hush::gabor<3>(params_of<3>(hush::gabor_kind::hybrid)));
   CHECK(k3.source != k1.source);
+  // The block's std140 size (docs/gpu.md): 32 bytes of scalars, vec4 1 / r, 7 uvec4 of
+  // constants, the thresholds (192 per table) 4 to a uvec4.
+  CHECK(k1.resources[0].words.size() * 4 == 928u);
+  CHECK(k3.resources[0].words.size() * 4 == 1696u);
   const auto files = hush::glsl::gabor_shader_exports();
   REQUIRE(files.size() == 2u);
   CHECK(files[0].first == "hush_gabor2_shader.glsl");
