@@ -151,7 +151,8 @@ int main() {
   // The program: #version, then hush's kit source, then the user's fragment shader.
   const GLuint program = gl.CreateProgram();
   gl.AttachShader(program, compile(gl, kVertexShader, kVertex));
-  gl.AttachShader(program, compile(gl, kFragmentShader, "#version 430 core\n" + kit.source + kFragment));
+  gl.AttachShader(program,
+                  compile(gl, kFragmentShader, "#version 430 core\n" + kit.source + kFragment));
   gl.LinkProgram(program);
   GLint linked = 0;
   gl.GetProgramiv(program, kLinkStatus, &linked);
@@ -187,7 +188,8 @@ int main() {
   gl.BindVertexArray(vao);
   gl.Viewport(0, 0, width, height);
   gl.UseProgram(program);
-  auto* uniform2f = reinterpret_cast<void (*)(GLint, float, float)>(context.loader()("glUniform2f"));
+  auto* uniform2f =
+      reinterpret_cast<void (*)(GLint, float, float)>(context.loader()("glUniform2f"));
   auto* location =
       reinterpret_cast<GLint (*)(GLuint, const char*)>(context.loader()("glGetUniformLocation"));
   uniform2f(location(program, "size"), float(width), float(height));
@@ -208,8 +210,8 @@ int main() {
       const float* n = &noise_px[std::size_t(4 * (j * width + i))];
       const float* d = &deriv_px[std::size_t(4 * (j * width + i))];
       const hush::vec2 p{n[2], n[3]};
-      const auto fp = hush::footprint<2>::from_derivatives(hush::vec2{d[0], d[1]},
-                                                           hush::vec2{d[2], d[3]});
+      const auto fp =
+          hush::footprint<2>::from_derivatives(hush::vec2{d[0], d[1]}, hush::vec2{d[2], d[3]});
       worst = std::max(worst, std::fabs(double(n[0]) - noise.sample(p, fp)));
       worst = std::max(worst, std::fabs(double(n[1]) - noise(p)));
       x = std::max({x, std::fabs(double(p.x)), std::fabs(double(p.y))});
@@ -235,9 +237,10 @@ int main() {
                        (2 * std::ldexp(1.0, -21) * (1 + two_pi * phi) * f +
                         (std::ldexp(1.0, -24) + std::ldexp(x, -33)) * (2 * a + two_pi * phi + k));
   const double q = double(width) * (height / 4);
-  std::printf("hush_gabor2_filtered in a %dx%d fragment shader: largest |GPU - CPU| %.3g "
-              "(bound %.3g at %.0f cells from the origin)\n",
-              width, height, worst, bound, x);
+  std::printf(
+      "hush_gabor2_filtered in a %dx%d fragment shader: largest |GPU - CPU| %.3g "
+      "(bound %.3g at %.0f cells from the origin)\n",
+      width, height, worst, bound, x);
   std::printf("rms near rows: point %.3f, filtered %.3f; far rows: point %.3f, filtered %.3f\n",
               std::sqrt(near_point / q), std::sqrt(near_filtered / q), std::sqrt(far_point / q),
               std::sqrt(far_filtered / q));

@@ -8,10 +8,10 @@
 // within gabor.hpp's float budget, scale 2^-21 (1 + 2 pi Phi) (N' + 1), of the double
 // reference, plus the split of p / r in float (hush_gabor_split): the fraction within
 // 2^-24 + 2^-33 x of the exact one (x = max |p_i| / r), which moves each of ~N' + 1 kernels
-// by at most its slope per cell, 2A + 2 pi Phi + 3 / (1 - s0). Against the CPU's float path, the budget counts twice.
-// Filtered values: the budget times filter_factor (Q and M from Jacobi in float). Gradients:
-// each bound times 1 + the slope per noise unit. A differing Poisson count or mark would move
-// a value by up to a whole kernel (~scale), hundreds of times these bounds.
+// by at most its slope per cell, 2A + 2 pi Phi + 3 / (1 - s0). Against the CPU's float path, the
+// budget counts twice. Filtered values: the budget times filter_factor (Q and M from Jacobi in
+// float). Gradients: each bound times 1 + the slope per noise unit. A differing Poisson count or
+// mark would move a value by up to a whole kernel (~scale), hundreds of times these bounds.
 //
 // Positions are dyadic (origin + i step, step = 53/64 or a power of two apart), so the
 // shader's float p is exact and the CPU evaluates the same point.
@@ -62,8 +62,7 @@ double slope(const hush::gabor<D>& g) {
 // gabor.hpp's float budget against the double reference (scale: scale() or surface_scale()).
 template <int D>
 double budget(const hush::gabor<D>& g, double scale) {
-  return scale * std::ldexp(1.0, -21) * (1 + 2 * kPi * phi_max(g)) *
-         (g.parameters().impulses + 1);
+  return scale * std::ldexp(1.0, -21) * (1 + 2 * kPi * phi_max(g)) * (g.parameters().impulses + 1);
 }
 // The float split of p / r at x = max |p_i| / r.
 template <int D>
@@ -106,9 +105,9 @@ hush_glsl_test::fragment_harness& harness() {
 // Draws a fragment shader over width x height pixels: kit.source, then main() with
 // `vec2 ij` (the pixel within its block, integers from 0), `int test_block` (rows
 // kSide b ... kSide b + kSide - 1 are block b) and the uniforms test_ox, test_oy, test_oz,
-// test_step, test_far (float), then `body`, which sets `colour`. Each draw compiles a program (llvmpipe:
-// seconds for a 3D one), and GLSL compilers inline every call: so one draw per noise, its
-// blocks computing different functions of the same p, and few calls in each.
+// test_step, test_far (float), then `body`, which sets `colour`. Each draw compiles a program
+// (llvmpipe: seconds for a 3D one), and GLSL compilers inline every call: so one draw per noise,
+// its blocks computing different functions of the same p, and few calls in each.
 struct draw_args {
   double origin[3] = {0, 0, 0};
   double step = 1, far = 0;
@@ -120,9 +119,11 @@ std::vector<float> draw(const hush::glsl::shader_kit& kit, const std::string& bo
                          "uniform float test_ox, test_oy, test_oz, test_step, test_far;\n"
                          "out vec4 colour;\nvoid main() {\n"
                          "  vec2 ij = gl_FragCoord.xy - 0.5;\n"
-                         "  int test_block = int(ij.y) / " + std::to_string(kSide) + ";\n"
-                         "  ij.y -= float(test_block * " + std::to_string(kSide) + ");\n" +
-                         body + "}\n";
+                         "  int test_block = int(ij.y) / " +
+                         std::to_string(kSide) +
+                         ";\n"
+                         "  ij.y -= float(test_block * " +
+                         std::to_string(kSide) + ");\n" + body + "}\n";
   auto& h = harness();
   return h.draw(fs, kit, a.width, a.height, [&](hush::glsl::detail::gl_uint prog) {
     const auto& gl = h.gl();
@@ -159,8 +160,9 @@ double extent(const hush::vec<double, D>& p) {
 }
 
 std::string kind_name(hush::gabor_kind k) {
-  return k == hush::gabor_kind::isotropic ? "isotropic"
-         : k == hush::gabor_kind::anisotropic ? "anisotropic" : "hybrid";
+  return k == hush::gabor_kind::isotropic     ? "isotropic"
+         : k == hush::gabor_kind::anisotropic ? "anisotropic"
+                                              : "hybrid";
 }
 
 constexpr hush::gabor_kind kKinds[] = {hush::gabor_kind::isotropic, hush::gabor_kind::anisotropic,
@@ -178,8 +180,9 @@ double frame_error(const hush::gabor<3>& g) {
 
 }  // namespace
 
-TEST_CASE("gabor shader: 2D point noise and gradient equal the double reference, every kind, "
-          "near the origin and at x = 2^12 and 2^20 cells") {
+TEST_CASE(
+    "gabor shader: 2D point noise and gradient equal the double reference, every kind, "
+    "near the origin and at x = 2^12 and 2^20 cells") {
   for (const auto kind : kKinds) {
     const hush::gabor<2> noise(params_of<2>(kind));
     const hush::glsl::shader_kit kit = hush::glsl::shader_for(noise);
@@ -194,12 +197,13 @@ TEST_CASE("gabor shader: 2D point noise and gradient equal the double reference,
     a.step = 53.0 / 64.0;
     a.height = 3 * kSide;
     REQUIRE(a.far + 32 < 4194304.0);  // |p| < 2^22: multiples of 1/4 are floats
-    const auto img = draw(kit,
-                          "  vec2 p = vec2(test_ox, test_oy) + ij * test_step;\n"
-                          "  if (test_block == 1) p += vec2(test_oz, -0.5 * test_oz);\n"
-                          "  if (test_block == 2) p = vec2(test_far, -0.5 * test_far) + ij * 0.75;\n"
-                          "  colour = vec4(hush_gabor2(p), hush_gabor2_gradient(p));\n",
-                          a);
+    const auto img =
+        draw(kit,
+             "  vec2 p = vec2(test_ox, test_oy) + ij * test_step;\n"
+             "  if (test_block == 1) p += vec2(test_oz, -0.5 * test_oz);\n"
+             "  if (test_block == 2) p = vec2(test_far, -0.5 * test_far) + ij * 0.75;\n"
+             "  colour = vec4(hush_gabor2(p), hush_gabor2_gradient(p));\n",
+             a);
     for (int b = 0; b < 3; ++b) {
       errors e;
       double x = 0, same = 0;
@@ -218,8 +222,8 @@ TEST_CASE("gabor shader: 2D point noise and gradient equal the double reference,
       const double s = noise.scale();
       const double vt = budget(noise, s) + split_error(noise, s, x);
       MESSAGE("2D " << kind_name(kind) << " x <= " << x << ": |GLSL - double| " << e.value
-                    << " (bound " << vt << "), |GLSL - CPU float| " << e.value_cpu
-                    << ", gradient " << e.grad << " (" << vt * gradient_factor(noise) << ")");
+                    << " (bound " << vt << "), |GLSL - CPU float| " << e.value_cpu << ", gradient "
+                    << e.grad << " (" << vt * gradient_factor(noise) << ")");
       CHECK(e.compared == kSide * kSide);
       CHECK(e.value <= vt);
       CHECK(e.value_cpu <= vt + budget(noise, s));
@@ -232,11 +236,12 @@ TEST_CASE("gabor shader: 2D point noise and gradient equal the double reference,
 TEST_CASE("gabor shader: hush_gabor2_cell takes the engine's split: the CPU's field at 4e6 cells") {
   const hush::gabor<2> noise(params_of<2>(hush::gabor_kind::hybrid));
   const hush::glsl::shader_kit kit = hush::glsl::shader_for(noise);
-  const auto img = draw(kit,
-                        "  uvec2 cell = uvec2(ij) + uvec2(3000000u, 4000000u);\n"
-                        "  vec2 f = fract(ij * 0.203125 + vec2(0.1328125, 0.5078125));  // never an integer\n"
-                        "  colour = vec4(hush_gabor2_cell(cell, f), f, 0.0);\n",
-                        draw_args{});
+  const auto img =
+      draw(kit,
+           "  uvec2 cell = uvec2(ij) + uvec2(3000000u, 4000000u);\n"
+           "  vec2 f = fract(ij * 0.203125 + vec2(0.1328125, 0.5078125));  // never an integer\n"
+           "  colour = vec4(hush_gabor2_cell(cell, f), f, 0.0);\n",
+           draw_args{});
   errors e;
   for (int j = 0; j < kSide; ++j)
     for (int i = 0; i < kSide; ++i) {
@@ -264,7 +269,8 @@ constexpr const char* kGroundPlane =
     "  vec2 p = vec2(test_ox, test_oy) + 4.0 * t * vec2(2.0 * uv.x - 1.0, 1.0);\n"
     "  vec2 dx = dFdx(p), dy = dFdy(p);\n"
     "  if (test_block == 0)\n"
-    "    colour = vec4(hush_gabor2_filtered(p, dx, dy), hush_gabor2_filtered_gradient(p, dx, dy));\n"
+    "    colour = vec4(hush_gabor2_filtered(p, dx, dy), hush_gabor2_filtered_gradient(p, dx, "
+    "dy));\n"
     "  else if (test_block == 1)\n"
     "    colour = vec4(p, dx);\n"
     "  else\n"
@@ -272,8 +278,9 @@ constexpr const char* kGroundPlane =
 
 }  // namespace
 
-TEST_CASE("gabor shader: 2D filtered noise with the shader's dFdx / dFdy on a receding plane "
-          "equals sample(p, footprint) of the same Jacobian") {
+TEST_CASE(
+    "gabor shader: 2D filtered noise with the shader's dFdx / dFdy on a receding plane "
+    "equals sample(p, footprint) of the same Jacobian") {
   for (const auto kind : {hush::gabor_kind::anisotropic, hush::gabor_kind::isotropic}) {
     const hush::gabor<2> noise(params_of<2>(kind));
     const hush::glsl::shader_kit kit = hush::glsl::shader_for(noise);
@@ -340,8 +347,8 @@ TEST_CASE("gabor shader: degenerate footprints and NaN positions give the CPU's 
   const auto img = draw(kit, body, a);
   const double nan = std::numeric_limits<double>::quiet_NaN(),
                inf = std::numeric_limits<double>::infinity();
-  const hush::vec<double, 2> dxs[7] = {{0, 0}, {0.3, 0.2}, {1e-15, 0}, {1e15, 0},
-                                       {nan, 0}, {inf, 0},  {1e6, 1e6}};
+  const hush::vec<double, 2> dxs[7] = {{0, 0},   {0.3, 0.2}, {1e-15, 0}, {1e15, 0},
+                                       {nan, 0}, {inf, 0},   {1e6, 1e6}};
   const hush::vec<double, 2> dys[7] = {{0, 0}, {0.6, 0.4}, {0, 1e-15}, {0, 1e15},
                                        {0, 1}, {0, 1},     {1e6, 1e6}};
   const double vt = budget(noise, noise.scale()) * filter_factor(noise) +
@@ -394,10 +401,11 @@ TEST_CASE("gabor shader: 3D point, filtered and surface noise equal the double r
   // img[0]: the solid functions; img[1]: surface noise.
   const std::vector<float> img[2] = {
       draw(kit,
-           bent_plane("  if (test_block == 0)\n"
-                      "    colour = vec4(hush_gabor3(p), hush_gabor3_filtered(p, dx, dy), 0.0, 0.0);\n"
-                      "  else if (test_block == 1) colour = hush_gabor3_gradient(p);\n"
-                      "  else if (test_block == 2) colour = hush_gabor3_filtered_gradient(p, dx, dy);\n"),
+           bent_plane(
+               "  if (test_block == 0)\n"
+               "    colour = vec4(hush_gabor3(p), hush_gabor3_filtered(p, dx, dy), 0.0, 0.0);\n"
+               "  else if (test_block == 1) colour = hush_gabor3_gradient(p);\n"
+               "  else if (test_block == 2) colour = hush_gabor3_filtered_gradient(p, dx, dy);\n"),
            a),
       draw(kit,
            bent_plane("  if (test_block == 0)\n"
@@ -441,10 +449,10 @@ TEST_CASE("gabor shader: 3D point, filtered and surface noise equal the double r
     }
   const double s = noise.scale(), ss = std::max(noise.scale(), noise.surface_scale());
   const double ff = filter_factor(noise);
-  const double bound[4] = {
-      budget(noise, s) + split_error(noise, s, x), budget(noise, s) * ff + split_error(noise, s, x),
-      budget(noise, ss) + split_error(noise, ss, x) + frame_error(noise),
-      budget(noise, ss) * ff + split_error(noise, ss, x) + frame_error(noise)};
+  const double bound[4] = {budget(noise, s) + split_error(noise, s, x),
+                           budget(noise, s) * ff + split_error(noise, s, x),
+                           budget(noise, ss) + split_error(noise, ss, x) + frame_error(noise),
+                           budget(noise, ss) * ff + split_error(noise, ss, x) + frame_error(noise)};
   const std::string what[4] = {"point", "filtered", "surface", "filtered surface"};
   const double gf = 1 + slope(noise) * std::max(noise.inverse_cell(), noise.inverse_surface_cell());
   for (int f = 0; f < 4; ++f) {
@@ -464,17 +472,20 @@ TEST_CASE("gabor shader: 3D surface normals: zero gives the solid noise, NaN and
   const std::string body =
       "  int i = int(ij.x);\n"
       "  float nan = uintBitsToFloat(0x7fc00000u), inf = uintBitsToFloat(0x7f800000u);\n"
-      "  vec3 ns[4] = vec3[4](vec3(0.0), vec3(nan, 0.0, 1.0), vec3(0.0, inf, 0.0), vec3(0.0, 0.0, -1.0));\n"
+      "  vec3 ns[4] = vec3[4](vec3(0.0), vec3(nan, 0.0, 1.0), vec3(0.0, inf, 0.0), vec3(0.0, 0.0, "
+      "-1.0));\n"
       "  vec3 p = vec3(1.25, -2.5, 0.625);\n"
       "  colour = vec4(hush_gabor3_surface(p, ns[i]),\n"
-      "                hush_gabor3_surface_filtered(p, ns[i], vec3(0.5, 0.0, 0.0), vec3(0.0, 0.5, 0.0)),\n"
+      "                hush_gabor3_surface_filtered(p, ns[i], vec3(0.5, 0.0, 0.0), vec3(0.0, 0.5, "
+      "0.0)),\n"
       "                0.0, 0.0);\n";
   draw_args a;
   a.width = 4;
   a.height = 1;
   const auto img = draw(kit, body, a);
   const hush::vec<double, 3> p{1.25, -2.5, 0.625};
-  const auto fp = hush::footprint<3>::from_derivatives(hush::vec<double, 3>{0.5, 0, 0}, {0, 0.5, 0});
+  const auto fp =
+      hush::footprint<3>::from_derivatives(hush::vec<double, 3>{0.5, 0, 0}, {0, 0.5, 0});
   // Zero normal: the solid noise, sample(p, footprint), unfiltered and filtered.
   const double solid = budget(noise, noise.scale()) * filter_factor(noise);
   CHECK(std::fabs(img[0] - noise.sample(p, hush::footprint<3>{})) <= solid);
@@ -484,7 +495,8 @@ TEST_CASE("gabor shader: 3D surface normals: zero gives the solid noise, NaN and
     CHECK(std::isnan(img[std::size_t(4 * i + 1)]));
   }
   const hush::vec<double, 3> down{0, 0, -1};
-  const double surface = budget(noise, noise.surface_scale()) * filter_factor(noise) + frame_error(noise);
+  const double surface =
+      budget(noise, noise.surface_scale()) * filter_factor(noise) + frame_error(noise);
   CHECK(std::fabs(img[12] - noise.sample(p, down)) <= surface);
   CHECK(std::fabs(img[13] - noise.sample(p, down, fp)) <= surface);
 }
@@ -514,14 +526,16 @@ TEST_CASE("gabor shader: the kit's source depends on D only and is what glsl-exp
 }
 
 #ifdef HUSH_GLSLANG_VALIDATOR
-TEST_CASE("gabor shader: the 2D and 3D kits compile for GL 4.30 core, Vulkan 450 and GLSL ES 3.00") {
+TEST_CASE(
+    "gabor shader: the 2D and 3D kits compile for GL 4.30 core, Vulkan 450 and GLSL ES 3.00") {
   using hush_glsl_test::dialect;
   const std::string main2 =
       "layout(location = 0) out highp vec4 colour;\n"
       "void main() {\n"
       "  vec2 q = gl_FragCoord.xy * 0.37;\n"
       "  colour = vec4(hush_gabor2(q), hush_gabor2_filtered(q, dFdx(q), dFdy(q)),\n"
-      "                hush_gabor2_gradient(q).y + hush_gabor2_filtered_gradient(q, dFdx(q), dFdy(q)).z,\n"
+      "                hush_gabor2_gradient(q).y + hush_gabor2_filtered_gradient(q, dFdx(q), "
+      "dFdy(q)).z,\n"
       "                hush_gabor2_cell(uvec2(q), fract(q)));\n"
       "}\n";
   const std::string main3 =
@@ -530,9 +544,12 @@ TEST_CASE("gabor shader: the 2D and 3D kits compile for GL 4.30 core, Vulkan 450
       "  vec3 q = gl_FragCoord.xyz * 0.37;\n"
       "  vec3 n = vec3(0.0, 0.0, 1.0);\n"
       "  colour = vec4(hush_gabor3(q) + hush_gabor3_filtered(q, dFdx(q), dFdy(q)),\n"
-      "                hush_gabor3_surface(q, n) + hush_gabor3_surface_filtered(q, n, dFdx(q), dFdy(q)),\n"
-      "                hush_gabor3_gradient(q).y + hush_gabor3_filtered_gradient(q, dFdx(q), dFdy(q)).z,\n"
-      "                hush_gabor3_surface_gradient(q, n).w + hush_gabor3_cell(uvec3(q), fract(q)) +\n"
+      "                hush_gabor3_surface(q, n) + hush_gabor3_surface_filtered(q, n, dFdx(q), "
+      "dFdy(q)),\n"
+      "                hush_gabor3_gradient(q).y + hush_gabor3_filtered_gradient(q, dFdx(q), "
+      "dFdy(q)).z,\n"
+      "                hush_gabor3_surface_gradient(q, n).w + hush_gabor3_cell(uvec3(q), fract(q)) "
+      "+\n"
       "                hush_gabor3_surface_filtered_gradient(q, n, dFdx(q), dFdy(q)).x);\n"
       "}\n";
   const auto k2 = hush::glsl::shader_for(hush::gabor<2>(params_of<2>(hush::gabor_kind::isotropic)));

@@ -27,7 +27,8 @@
 //   3D only, surface noise (gabor<3>::sample(p, normal[, footprint])):
 //   float hush_gabor3_surface(vec3 p, vec3 n)
 //   float hush_gabor3_surface_filtered(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
-//   vec4  hush_gabor3_surface_gradient(p, n), hush_gabor3_surface_filtered_gradient(p, n, dpdx, dpdy)
+//   vec4  hush_gabor3_surface_gradient(p, n)
+//   vec4  hush_gabor3_surface_filtered_gradient(p, n, dpdx, dpdy)
 //
 // Contract:
 //  - The same impulses as the CPU: cells, hash streams, Poisson counts and marks are integer
@@ -42,8 +43,8 @@
 //    (Phi = |F| r, the largest cell frequency; A = the envelope exponent; k = 3 / (1 - s0),
 //    the taper's slope): the first term is gabor.hpp's float budget (the walk repeats the
 //    CPU's float operations), the second the split of p / r in float (hush_gabor_split: the
-//    fraction within 2^-24 + 2^-33 x, times the kernel's slope per cell). Filtered values: the first
-//    term times (1 + 2 pi Phi + pi^2 Phi^2 / A) for the float filter (Jacobi in float).
+//    fraction within 2^-24 + 2^-33 x, times the kernel's slope per cell). Filtered values: the
+//    first term times (1 + 2 pi Phi + pi^2 Phi^2 / A) for the float filter (Jacobi in float).
 //    Gradients: each bound times (1 + (2A + 2 pi Phi + k) / r). Surface noise: the same
 //    with surface_scale, plus the float tangent frame's error (tests/gabor/
 //    glsl_gabor_test.cpp frame_error). Tested for x <= 2^20 (tests/gabor/
@@ -157,8 +158,12 @@ vec4 hush_gabor_at(vec3 p, bool filtered, mat3 fp, bool grad) {
 }
 )glsl";
   if (dim == 2) {
-    s += R"glsl(float hush_gabor2(vec2 p) { return hush_gabor_at(vec3(p, 0.0), false, mat3(0.0), false).x; }
-vec3 hush_gabor2_gradient(vec2 p) { return hush_gabor_at(vec3(p, 0.0), false, mat3(0.0), true).xyz; }
+    s += R"glsl(float hush_gabor2(vec2 p) {
+  return hush_gabor_at(vec3(p, 0.0), false, mat3(0.0), false).x;
+}
+vec3 hush_gabor2_gradient(vec2 p) {
+  return hush_gabor_at(vec3(p, 0.0), false, mat3(0.0), true).xyz;
+}
 float hush_gabor2_filtered(vec2 p, vec2 dpdx, vec2 dpdy) {
   mat3 fp = hush_gabor_footprint(vec3(dpdx, 0.0), vec3(dpdy, 0.0));
   return hush_gabor_at(vec3(p, 0.0), true, fp, false).x;
@@ -202,7 +207,9 @@ vec4 hush_gabor_surface_at(vec3 p, vec3 n, mat3 fp, bool grad) {
   }
   return hush_gabor_surface_eval(i0, f, u, fp, grad);
 }
-float hush_gabor3_surface(vec3 p, vec3 n) { return hush_gabor_surface_at(p, n, mat3(0.0), false).x; }
+float hush_gabor3_surface(vec3 p, vec3 n) {
+  return hush_gabor_surface_at(p, n, mat3(0.0), false).x;
+}
 vec4 hush_gabor3_surface_gradient(vec3 p, vec3 n) {
   return hush_gabor_surface_at(p, n, mat3(0.0), true);
 }
@@ -231,13 +238,13 @@ inline std::string gabor_shader_source(int dim) {
          "  uint hush_gabor_surface_table_size;  // surface Poisson thresholds (3D)\n"
          "  uint hush_gabor_split_mask;          // clears a float's low 12 mantissa bits\n"
          "  float hush_gabor_max_width;          // footprint's cap W\n"
-         "  vec4 hush_gabor_inv_cell;  // 1 / r, 1 / (r sqrt(3/2)) (3D), each as (high 12 bits, rest)\n"
+         "  vec4 hush_gabor_inv_cell;  // 1 / r, 1 / (r sqrt(3/2)) (3D), each as (high 12 bits, "
+         "rest)\n"
          "  uvec4 hush_gabor_par[" +
          std::to_string(gabor_par_slots()) +
          "];     // float bits of the CPU's float constants\n"
          "  uvec4 hush_gabor_table[" +
-         std::to_string(table_slots) +
-         "];  // Poisson thresholds (3D: surface table at " +
+         std::to_string(table_slots) + "];  // Poisson thresholds (3D: surface table at " +
          std::to_string(hush::detail::constants::kGaborMaxThresholds) +
          ")\n};\n"
          "float hush_gp(uint i) { return uintBitsToFloat(hush_gabor_par[i >> 2u][i & 3u]); }\n"
@@ -251,11 +258,14 @@ inline std::string gabor_shader_usage(int dim) {
       "// hush Gabor noise " + d +
       "D in your shader (hush/glsl/gabor/shader.hpp). p in noise units; dpdx, dpdy = dFdx(p),\n"
       "// dFdy(p) or a Jacobian's columns; gradients d/dp.\n"
-      "//   float hush_gabor" + d + "(" + v + " p); " + g + " hush_gabor" + d + "_gradient(" + v +
+      "//   float hush_gabor" +
+      d + "(" + v + " p); " + g + " hush_gabor" + d + "_gradient(" + v +
       " p)\n"
-      "//   float hush_gabor" + d + "_filtered(" + v + " p, " + v + " dpdx, " + v + " dpdy); " +
-      g + " hush_gabor" + d + "_filtered_gradient(...)\n"
-      "//   float hush_gabor" + d + "_cell(uvec" + d + " cell, " + v +
+      "//   float hush_gabor" +
+      d + "_filtered(" + v + " p, " + v + " dpdx, " + v + " dpdy); " + g + " hush_gabor" + d +
+      "_filtered_gradient(...)\n"
+      "//   float hush_gabor" +
+      d + "_cell(uvec" + d + " cell, " + v +
       " f): the noise at (cell + f) r, cells split by the engine\n";
   if (dim == 3)
     s += "//   float hush_gabor3_surface(vec3 p, vec3 n), hush_gabor3_surface_filtered(p, n, dpdx, "
@@ -265,7 +275,8 @@ inline std::string gabor_shader_usage(int dim) {
   s += "// Resource: uniform block hush_gabor_params (std140) at HUSH_GABOR_PARAMS_BINDING "
        "(default 4).\n"
        "// Error against hush's double reference, x = max |p_i| / r:\n"
-       "//   scale (N' + 1) [2^-21 (1 + 2 pi Phi) + (2^-24 + 2^-33 x) (2A + 2 pi Phi + 3 / (1 - s0))]\n"
+       "//   scale (N' + 1) [2^-21 (1 + 2 pi Phi) + (2^-24 + 2^-33 x) (2A + 2 pi Phi + 3 / (1 - "
+       "s0))]\n"
        "// (filtered: first term times 1 + 2 pi Phi + pi^2 Phi^2 / A), tested for x <= 2^20;\n"
        "// _cell: the first term at any cell. NaN p gives NaN. One Gabor kit per program.\n";
   return s;

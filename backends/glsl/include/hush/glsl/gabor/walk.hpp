@@ -119,8 +119,7 @@ std::array<std::uint32_t, gabor_table_entries<D>()> gabor_table_words(const gabo
   std::copy(t.begin(), t.end(), table.begin());
   if constexpr (D == 3) {
     const auto& st = g.surface_table().thresholds();
-    std::copy(st.begin(), st.end(),
-              table.begin() + hush::detail::constants::kGaborMaxThresholds);
+    std::copy(st.begin(), st.end(), table.begin() + hush::detail::constants::kGaborMaxThresholds);
   }
   return table;
 }
@@ -151,7 +150,8 @@ inline std::string gabor_walk_body(int dim) {
                              {"SURFACE_SCALE", P::kSurfaceScale},
                              {"SURFACE_GRAD_SCALE", P::kSurfaceGradScale}})
     s += std::string("const uint hush_gp_") + n + " = " + std::to_string(i) + "u;\n";
-  s += R"glsl(// poisson_table::count: the number of thresholds <= u (sorted: stop at the first above),
+  s +=
+      R"glsl(// poisson_table::count: the number of thresholds <= u (sorted: stop at the first above),
 // of the table at hush_gabor_threshold(base), `size` entries.
 uint hush_gabor_count(uint u, uint base, uint size) {
   uint n = 0u;
@@ -257,7 +257,8 @@ vec4 hush_gabor_sum(uvec3 i0, vec3 f, bool separable, bool filtered, mat3 q, mat
       rest /= 3u;
       cell[ax] = i0[ax] + uint(o[ax]);
     }
-    uint key = hush_gabor_cell_stream(hush_gabor_key, uvec3(cell[0], cell[1], cell[2]), hush_gabor_dim);
+    uint key =
+        hush_gabor_cell_stream(hush_gabor_key, uvec3(cell[0], cell[1], cell[2]), hush_gabor_dim);
     uint count = hush_gabor_count(hush_stream_word(key, 0u), 0u, hush_gabor_table_size);
     for (uint k = 0u; k < count; ++k) {
       uint counter = 1u + k * hush_gabor_words;
@@ -355,7 +356,8 @@ vec4 hush_gabor_surface_sum(uvec3 i0, vec3 f, vec3 n, vec3 t, vec3 b, mat3 q, ma
     }
     uint key = hush_gabor_surface_stream(hush_gabor_key, uvec3(cell[0], cell[1], cell[2]));
     uint count =
-        hush_gabor_count(hush_stream_word(key, 0u), hush_surface_table, hush_gabor_surface_table_size);
+        hush_gabor_count(hush_stream_word(key, 0u), hush_surface_table,
+                         hush_gabor_surface_table_size);
     for (uint k = 0u; k < count; ++k) {
       uint counter = 1u + k * hush_gabor_words;
       uint w0 = hush_stream_word(key, counter);
