@@ -38,7 +38,8 @@ ROOT = Path(__file__).resolve().parent.parent.parent
 SHIPS_WITH = "tests/{noise}/ships_with.json"
 KEYS = ("program", "glsl_runner", "glsl_export_prefixes", "bench_text", "golden_case",
         "hard_case", "doc")
-# Optional keys: its header for the user's shader and the example that uses it (paths).
+# Optional: shader, shader_example: its kit for the user's shader (hush/glsl/<noise>/shader.hpp)
+# and that kit's example program, paths that must exist when given.
 OPTIONAL_KEYS = ("shader", "shader_example")
 
 
@@ -173,7 +174,7 @@ def check_noise(noise, want, cases, program, exported):
             problem(f"{noise}: no test case in tests/ named like /{want[kind]}/ ({kind})")
     for key in OPTIONAL_KEYS:
         if key in want and not (ROOT / want[key]).is_file():
-            problem(f"{noise}: no {want[key]} ({key})")
+            problem(f"{noise}: {key} {want[key]} does not exist")
     doc = want["doc"]
     if not (ROOT / doc).is_file():
         problem(f"{noise}: no user page {doc}")

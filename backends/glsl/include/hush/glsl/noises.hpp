@@ -120,7 +120,7 @@ inline std::vector<std::vector<std::pair<std::string, std::string>>> renderer_ex
 #include <vector>
 
 #include "hush/glsl/shader.hpp"
-
+#include "hush/glsl/gabor/shader.hpp"
 #include "hush/glsl/anisotropic/shader.hpp"
 
 namespace hush {
@@ -130,7 +130,7 @@ namespace detail {
 // The files `hush glsl-export` writes for the user's shader, as (file name, text), in export
 // order: each noise's <noise>_shader_exports() (hush_<noise>_shader.glsl files).
 inline std::vector<std::vector<std::pair<std::string, std::string>>> shader_exports() {
-  return {anisotropic_shader_exports()};
+  return {gabor_shader_exports(), anisotropic_shader_exports()};
 }
 
 }  // namespace detail
