@@ -468,7 +468,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
     if (n < c::kAnisoMinTileSize || n > c::kAnisoMaxTileSize || (n & (n - 1)) != 0)
       detail::throw_out_of_range(w, "tile_size", n, "a power of two, 16 ... 2048");
     if (prm_.kind != fractal_kind::fbm && prm_.kind != fractal_kind::turbulence)
-      throw hush::invalid_argument(std::string(w) + ": kind is not fbm or turbulence");
+      hush::detail::raise_error(std::string(w) + ": kind is not fbm or turbulence");
   }
 
   // Least-squares compensation weights of octaves [k0, k1) for map m (each

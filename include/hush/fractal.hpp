@@ -260,11 +260,11 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
         any = any || prm_.weights[i] != 0.0;
       }
       if (!any)
-        throw hush::invalid_argument(
+        hush::detail::raise_error(
             "hush::fractal: weights are all zero; valid: at least one non-zero weight");
     }
     if (prm_.kind == fractal_kind::turbulence && prm_.norm == normalization::unit_variance)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::fractal: norm = unit_variance is not available for turbulence; valid: "
           "unit_range or none");
     for (int a = 0; a < D; ++a) {

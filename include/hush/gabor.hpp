@@ -172,7 +172,7 @@ class gabor : public sample_noise<gabor<D>, D> {
                                        mean_energy_2d() * surface_geometry());
       for (const auto& t : {table_, surface_table_})
         if (t->max_count() > static_cast<std::uint32_t>(c::kGaborMaxThresholds))
-          throw hush::invalid_argument("hush::gabor: internal Poisson table too long");
+          hush::detail::raise_error("hush::gabor: internal Poisson table too long");
     }
   }
 

@@ -1095,7 +1095,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       any = any || prm_.weights[i] != 0.0;
     }
     if (!any)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
     if (prm_.relative_weights)
       detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,

@@ -96,16 +96,128 @@
 // ---- begin hush/core/error.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
+// How hush reports errors.
+//
 // hush::invalid_argument: the one exception hush throws, for parameters outside
 // their documented domain. Messages name the parameter, the value received and
 // the valid range, e.g. "hush::perlin: period[1] = -3 is out of range; valid:
-// 0 (not periodic) or 1 ... 16777216". Evaluation itself never throws.
+// 0 (not periodic) or 1 ... 16777216". Evaluation itself never throws. (The GLSL
+// backend also throws std::runtime_error when GL fails, hush/glsl/detail/gl.hpp.)
+//
+// Without exceptions (compiled with -fno-exceptions, or with HUSH_NO_EXCEPTIONS
+// defined; hush/config.hpp), every place that would throw calls the error handler
+// instead, with the same message:
+//  - hush::error_handler: void (*)(const char* message). The message is valid only
+//    during the call.
+//  - The default handler writes the message and a newline to stderr, then calls
+//    std::abort().
+//  - hush::set_error_handler(h) installs h for the whole program and returns the
+//    handler it replaces; nullptr restores the default. hush::get_error_handler()
+//    returns the current one. Both are thread-safe (an atomic), so a handler may
+//    be swapped while other threads construct noises.
+//  - A handler must not return: it ends the program (std::exit, std::_Exit,
+//    std::abort) or leaves by longjmp to a point that abandons the failed call.
+//    If it returns anyway, hush calls std::abort(): the code after a failed check
+//    assumes the check passed.
+// With exceptions on, hush throws and never calls the handler.
 #ifndef HUSH_CORE_ERROR_HPP
 #define HUSH_CORE_ERROR_HPP
 
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+// ---- begin hush/config.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Version and configuration. User-facing switches are HUSH_* macros that a
+// program may define before including hush; they are normalised here, once,
+// into HUSH_CONFIG_* macros that are always defined (0 or 1), so the rest of
+// the library never asks `#ifdef` twice (the GLM `detail/setup.hpp` idea).
+#ifndef HUSH_CONFIG_HPP
+#define HUSH_CONFIG_HPP
+
+// The version lives here and nowhere else; CMake reads it from this file.
+#define HUSH_VERSION_MAJOR 0
+#define HUSH_VERSION_MINOR 1
+#define HUSH_VERSION_PATCH 0
+#define HUSH_VERSION_STRING "0.1.0"
+
+// HUSH_NO_GLM: define to keep hush from converting to and from glm vectors even
+// when GLM's headers are reachable. Otherwise the conversions are enabled when
+// <glm/vec2.hpp> can be found (libglm-dev), and can be forced with HUSH_FORCE_GLM.
+#if defined(HUSH_NO_GLM)
+#define HUSH_CONFIG_GLM 0
+#elif defined(HUSH_FORCE_GLM)
+#define HUSH_CONFIG_GLM 1
+#elif defined(__has_include)
+#if __has_include(<glm/vec2.hpp>)
+#define HUSH_CONFIG_GLM 1
+#else
+#define HUSH_CONFIG_GLM 0
+#endif
+#else
+#define HUSH_CONFIG_GLM 0
+#endif
+
+// HUSH_STRICT_FP: the build promises no floating-point contraction (the CMake
+// option of the same name adds -ffp-contract=off). Code may rely on it to
+// claim bit-identical results between evaluation paths.
+#if defined(HUSH_STRICT_FP)
+#define HUSH_CONFIG_STRICT_FP 1
+#else
+#define HUSH_CONFIG_STRICT_FP 0
+#endif
+
+// HUSH_CONFIG_SIMD: 1 when exec::simd runs the Highway kernels (hush/simd/),
+// 0 when it runs the scalar loop. The user opts in with HUSH_SIMD_DYNAMIC
+// (run-time dispatch: the CMake target hush::simd, or one .cpp including
+// hush/simd/dispatch_impl.hpp) or HUSH_SIMD_STATIC (compile-time target,
+// e.g. -march=native builds); HUSH_NO_SIMD overrides both. Opt-in, so that a
+// header-only user never has to link Highway without asking for it.
+// HUSH_CONFIG_SIMD_STATIC tells the two routes apart.
+#if defined(HUSH_NO_SIMD) || !(defined(HUSH_SIMD_DYNAMIC) || defined(HUSH_SIMD_STATIC))
+#define HUSH_CONFIG_SIMD 0
+#define HUSH_CONFIG_SIMD_STATIC 0
+#elif defined(HUSH_SIMD_DYNAMIC) && defined(HUSH_SIMD_STATIC)
+#error "hush: define one of HUSH_SIMD_DYNAMIC and HUSH_SIMD_STATIC, not both"
+#elif defined(HUSH_SIMD_STATIC)
+#define HUSH_CONFIG_SIMD 1
+#define HUSH_CONFIG_SIMD_STATIC 1
+#else
+#define HUSH_CONFIG_SIMD 1
+#define HUSH_CONFIG_SIMD_STATIC 0
+#endif
+
+// HUSH_NO_EXCEPTIONS: define to have hush report errors through its error handler
+// (hush::set_error_handler, hush/core/error.hpp) instead of throwing. Builds without
+// exceptions (-fno-exceptions) get the handler without asking. HUSH_CONFIG_CXX_EXCEPTIONS
+// says whether the compiler accepts try and throw at all; HUSH_CONFIG_EXCEPTIONS whether
+// hush throws. Define HUSH_NO_EXCEPTIONS alike in every translation unit of a program.
+#if defined(__cpp_exceptions) || defined(__EXCEPTIONS) || defined(_CPPUNWIND)
+#define HUSH_CONFIG_CXX_EXCEPTIONS 1
+#else
+#define HUSH_CONFIG_CXX_EXCEPTIONS 0
+#endif
+#if defined(HUSH_NO_EXCEPTIONS) || !HUSH_CONFIG_CXX_EXCEPTIONS
+#define HUSH_CONFIG_EXCEPTIONS 0
+#else
+#define HUSH_CONFIG_EXCEPTIONS 1
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define HUSH_INLINE inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define HUSH_INLINE __forceinline
+#else
+#define HUSH_INLINE inline
+#endif
+
+#endif  // HUSH_CONFIG_HPP
+// ---- end hush/config.hpp
 
 namespace hush {
 
@@ -114,16 +226,59 @@ class invalid_argument : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+using error_handler = void (*)(const char* message);
+
 namespace detail {
 
-// Builds the standard message: "<where>: <name> = <value> is out of range; valid: <range>".
+inline void default_error_handler(const char* message) {
+  std::fputs(message, stderr);
+  std::fputc('\n', stderr);
+  std::abort();
+}
+
+// Null means the default; an inline variable, so one slot for the whole program. Constant
+// initialised, so a handler set during another object's dynamic initialisation stays set.
+inline std::atomic<error_handler> installed_error_handler{nullptr};
+
+}  // namespace detail
+
+// Installs `handler` (nullptr: the default) and returns the one it replaces.
+inline error_handler set_error_handler(error_handler handler) noexcept {
+  const error_handler previous =
+      detail::installed_error_handler.exchange(handler, std::memory_order_acq_rel);
+  return previous ? previous : &detail::default_error_handler;
+}
+
+// The handler hush calls on an error when it does not throw (never null).
+inline error_handler get_error_handler() noexcept {
+  const error_handler h = detail::installed_error_handler.load(std::memory_order_acquire);
+  return h ? h : &detail::default_error_handler;
+}
+
+namespace detail {
+
+// Every error hush reports goes through here: throws E(message) with exceptions on,
+// else calls the error handler and aborts should it return. E is hush::invalid_argument
+// for parameters; the GLSL backend passes std::runtime_error for GL failures.
+template <class E = hush::invalid_argument>
+[[noreturn]] inline void raise_error(const std::string& message) {
+#if HUSH_CONFIG_EXCEPTIONS
+  throw E(message);
+#else
+  get_error_handler()(message.c_str());
+  std::abort();  // the handler returned: nothing after a failed check may run
+#endif
+}
+
+// Builds the standard message: "<where>: <name> = <value> is out of range; valid: <range>",
+// and reports it (raise_error).
 template <class T>
 [[noreturn]] inline void throw_out_of_range(const char* where, const std::string& name,
                                             const T& value, const char* valid) {
   std::ostringstream os;
   os.precision(17);
   os << where << ": " << name << " = " << value << " is out of range; valid: " << valid;
-  throw hush::invalid_argument(os.str());
+  raise_error(os.str());
 }
 
 // Checks lo <= value <= hi, rejecting NaN (the comparisons are false for NaN).
@@ -199,78 +354,6 @@ inline void require_in_range(const char* where, const std::string& name, const T
 
 #include <cstddef>
 
-// ---- begin hush/config.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Version and configuration. User-facing switches are HUSH_* macros that a
-// program may define before including hush; they are normalised here, once,
-// into HUSH_CONFIG_* macros that are always defined (0 or 1), so the rest of
-// the library never asks `#ifdef` twice (the GLM `detail/setup.hpp` idea).
-#ifndef HUSH_CONFIG_HPP
-#define HUSH_CONFIG_HPP
-
-// The version lives here and nowhere else; CMake reads it from this file.
-#define HUSH_VERSION_MAJOR 0
-#define HUSH_VERSION_MINOR 1
-#define HUSH_VERSION_PATCH 0
-#define HUSH_VERSION_STRING "0.1.0"
-
-// HUSH_NO_GLM: define to keep hush from converting to and from glm vectors even
-// when GLM's headers are reachable. Otherwise the conversions are enabled when
-// <glm/vec2.hpp> can be found (libglm-dev), and can be forced with HUSH_FORCE_GLM.
-#if defined(HUSH_NO_GLM)
-#define HUSH_CONFIG_GLM 0
-#elif defined(HUSH_FORCE_GLM)
-#define HUSH_CONFIG_GLM 1
-#elif defined(__has_include)
-#if __has_include(<glm/vec2.hpp>)
-#define HUSH_CONFIG_GLM 1
-#else
-#define HUSH_CONFIG_GLM 0
-#endif
-#else
-#define HUSH_CONFIG_GLM 0
-#endif
-
-// HUSH_STRICT_FP: the build promises no floating-point contraction (the CMake
-// option of the same name adds -ffp-contract=off). Code may rely on it to
-// claim bit-identical results between evaluation paths.
-#if defined(HUSH_STRICT_FP)
-#define HUSH_CONFIG_STRICT_FP 1
-#else
-#define HUSH_CONFIG_STRICT_FP 0
-#endif
-
-// HUSH_CONFIG_SIMD: 1 when exec::simd runs the Highway kernels (hush/simd/),
-// 0 when it runs the scalar loop. The user opts in with HUSH_SIMD_DYNAMIC
-// (run-time dispatch: the CMake target hush::simd, or one .cpp including
-// hush/simd/dispatch_impl.hpp) or HUSH_SIMD_STATIC (compile-time target,
-// e.g. -march=native builds); HUSH_NO_SIMD overrides both. Opt-in, so that a
-// header-only user never has to link Highway without asking for it.
-// HUSH_CONFIG_SIMD_STATIC tells the two routes apart.
-#if defined(HUSH_NO_SIMD) || !(defined(HUSH_SIMD_DYNAMIC) || defined(HUSH_SIMD_STATIC))
-#define HUSH_CONFIG_SIMD 0
-#define HUSH_CONFIG_SIMD_STATIC 0
-#elif defined(HUSH_SIMD_DYNAMIC) && defined(HUSH_SIMD_STATIC)
-#error "hush: define one of HUSH_SIMD_DYNAMIC and HUSH_SIMD_STATIC, not both"
-#elif defined(HUSH_SIMD_STATIC)
-#define HUSH_CONFIG_SIMD 1
-#define HUSH_CONFIG_SIMD_STATIC 1
-#else
-#define HUSH_CONFIG_SIMD 1
-#define HUSH_CONFIG_SIMD_STATIC 0
-#endif
-
-#if defined(__GNUC__) || defined(__clang__)
-#define HUSH_INLINE inline __attribute__((always_inline))
-#elif defined(_MSC_VER)
-#define HUSH_INLINE __forceinline
-#else
-#define HUSH_INLINE inline
-#endif
-
-#endif  // HUSH_CONFIG_HPP
-// ---- end hush/config.hpp
 
 #if HUSH_CONFIG_GLM
 #include <glm/vec2.hpp>
@@ -1878,15 +1961,15 @@ struct takes_sample_inputs
 template <class Noise>
 void validate_samples(const char* where, const samples<Noise::dimension>& s) {
   if (s.has_footprints() && !takes_footprint<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.footprints given, but this noise does not filter; "
                                  "valid: none (an empty span)");
   if (s.has_normals() && !takes_normal<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.normals given, but this noise takes no normal; "
                                  "valid: none (an empty span)");
   if (s.has_surface_maps() && !takes_surface_map<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.surface_maps given, but this noise takes no surface "
                                  "map; valid: none (an empty span)");
   const std::size_t n = s.positions.size();
@@ -2576,11 +2659,11 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
         any = any || prm_.weights[i] != 0.0;
       }
       if (!any)
-        throw hush::invalid_argument(
+        hush::detail::raise_error(
             "hush::fractal: weights are all zero; valid: at least one non-zero weight");
     }
     if (prm_.kind == fractal_kind::turbulence && prm_.norm == normalization::unit_variance)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::fractal: norm = unit_variance is not available for turbulence; valid: "
           "unit_range or none");
     for (int a = 0; a < D; ++a) {
@@ -5380,7 +5463,7 @@ struct steerable_decomposition {
 inline steerable_decomposition decompose(const std::vector<double>& image, std::size_t n,
                                          const steerable_bank& bank) {
   if (!detail::is_power_of_two(n) || n < 2 || image.size() != n * n)
-    throw hush::invalid_argument(
+    hush::detail::raise_error(
         "hush::decompose: the image must be n x n with n a power of two >= 2 (got " +
         std::to_string(image.size()) + " pixels, n = " + std::to_string(n) + ")");
   using cd = std::complex<double>;
@@ -6043,7 +6126,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
     if (n < c::kAnisoMinTileSize || n > c::kAnisoMaxTileSize || (n & (n - 1)) != 0)
       detail::throw_out_of_range(w, "tile_size", n, "a power of two, 16 ... 2048");
     if (prm_.kind != fractal_kind::fbm && prm_.kind != fractal_kind::turbulence)
-      throw hush::invalid_argument(std::string(w) + ": kind is not fbm or turbulence");
+      hush::detail::raise_error(std::string(w) + ": kind is not fbm or turbulence");
   }
 
   // Least-squares compensation weights of octaves [k0, k1) for map m (each
@@ -7411,7 +7494,7 @@ struct frame {
     return std::to_string(v.width) + "x" + std::to_string(v.height);
   }
   [[noreturn]] static void missing(const char* where, const char* name) {
-    throw hush::invalid_argument(std::string(where) + ": frame." + name +
+    hush::detail::raise_error(std::string(where) + ": frame." + name +
                                  " is required but missing (null data)");
   }
   template <class T>
@@ -7708,11 +7791,14 @@ struct triangle_list {
 //    hush::invalid_argument naming `threads`. It starts threads - 1 workers:
 //    the thread that calls run() is the first. If the system refuses a
 //    thread, the pool keeps the workers it got (size() says how many run).
+//    Built without exceptions, std::thread cannot report a refusal but ends
+//    the program (the standard library's behaviour, e.g. libstdc++ aborts).
 //  - run(parts, body): calls body(0) ... body(parts - 1), each exactly once,
 //    on whichever of the pool's threads and the calling thread takes it first
 //    (the caller takes parts too, so a worker that is not running delays only
 //    the parts it took), and returns when all have returned. body must not throw (hush's batch
-//    bodies do not: they run after validation). Calls from several threads
+//    bodies do not: they run after validation); the pool neither catches nor rethrows: an
+//    exception leaving a body on a worker ends the program (std::terminate). Calls from several threads
 //    are serialised (one batch at a time); a call from inside a body of the
 //    same pool runs all its parts on the calling thread instead of waiting
 //    for itself.
@@ -7750,10 +7836,14 @@ class thread_pool {
     const unsigned n =
         threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : unsigned(threads);
     workers_.reserve(n - 1);
+#if HUSH_CONFIG_CXX_EXCEPTIONS
     try {
       for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this] { work(); });
     } catch (...) {  // no more threads to be had: the pool runs with those it has
     }
+#else
+    for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this] { work(); });
+#endif
   }
   thread_pool(const thread_pool&) = delete;
   thread_pool& operator=(const thread_pool&) = delete;
@@ -8135,10 +8225,14 @@ void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned
   std::vector<std::thread> pool;
   pool.reserve(parts - 1);
   std::size_t started = 1;
+#if HUSH_CONFIG_CXX_EXCEPTIONS
   try {
     for (; started < parts; ++started) pool.emplace_back(part, started);
   } catch (...) {  // no more threads to be had: the calling thread does the rest
   }
+#else  // std::thread ends the program when the system refuses a thread
+  for (; started < parts; ++started) pool.emplace_back(part, started);
+#endif
   part(0);
   for (std::size_t t = started; t < parts; ++t) part(t);
   for (std::thread& th : pool) th.join();
@@ -9552,7 +9646,7 @@ class gabor : public sample_noise<gabor<D>, D> {
                                        mean_energy_2d() * surface_geometry());
       for (const auto& t : {table_, surface_table_})
         if (t->max_count() > static_cast<std::uint32_t>(c::kGaborMaxThresholds))
-          throw hush::invalid_argument("hush::gabor: internal Poisson table too long");
+          hush::detail::raise_error("hush::gabor: internal Poisson table too long");
     }
   }
 
@@ -15064,7 +15158,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       any = any || prm_.weights[i] != 0.0;
     }
     if (!any)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
     if (prm_.relative_weights)
       detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,
@@ -17613,7 +17707,7 @@ void coherent_check_views(const char* where, const char* name, const V* views, s
   for (std::size_t c = 0; c < given; ++c) {
     const V& v = views[c];
     const std::string n = std::string(name) + "[" + std::to_string(c) + "]";
-    if (!v.data) throw hush::invalid_argument(std::string(where) + ": " + n + " has null data");
+    if (!v.data) hush::detail::raise_error(std::string(where) + ": " + n + " has null data");
     if (v.width != width || v.height != height)
       throw_out_of_range(
           where, n + " size", std::to_string(v.width) + "x" + std::to_string(v.height),
@@ -17906,7 +18000,7 @@ class byte_reader {
   explicit byte_reader(span<const std::uint8_t> b) : b_(b) {}
   void need(std::size_t n) const {
     if (b_.size() - pos_ < n)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::coherent_stream::deserialize: the data is truncated (a state of " +
           std::to_string(b_.size()) + " bytes ends early)");
   }
@@ -17989,13 +18083,13 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
   detail::byte_reader r(bytes);
   r.need(sizeof detail::kCoherentMagic);
   if (std::memcmp(bytes.data(), detail::kCoherentMagic, sizeof detail::kCoherentMagic) != 0)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": not a coherent-noise state (no HUSHCOH1 header)");
   std::vector<std::uint8_t> skip;
   r.values(skip, sizeof detail::kCoherentMagic);
   const std::uint32_t size = r.u32();
   if (size != sizeof(T))
-    throw hush::invalid_argument(std::string(where) + ": the state holds " +
+    hush::detail::raise_error(std::string(where) + ": the state holds " +
                                  std::to_string(8 * size) + "-bit values; this stream holds " +
                                  std::to_string(8 * sizeof(T)) + "-bit values");
   params p;
@@ -18012,7 +18106,7 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
   detail::coherent_state<T>& st = s.st_;
   st.next_frame = r.u32();
   const std::uint32_t has = r.u32();
-  if (has > 1u) throw hush::invalid_argument(std::string(where) + ": corrupt history flag");
+  if (has > 1u) hush::detail::raise_error(std::string(where) + ": corrupt history flag");
   if (has) {
     st.width = r.u32();
     st.height = r.u32();
@@ -18022,7 +18116,7 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
                                  std::to_string(st.width) + "x" + std::to_string(st.height),
                                  "1 ... 16384 pixels per side");
     const std::uint32_t ids = r.u32();
-    if (ids > 1u) throw hush::invalid_argument(std::string(where) + ": corrupt id flag");
+    if (ids > 1u) hush::detail::raise_error(std::string(where) + ": corrupt id flag");
     const std::size_t n = st.pixels();
     r.values(st.ref_depth, n);
     st.reference_has_ids = ids != 0;
@@ -18031,11 +18125,11 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
     r.values(st.history, n * static_cast<std::size_t>(p.channels));
     for (const T& v : st.history)
       if (!std::isfinite(v))
-        throw hush::invalid_argument(std::string(where) + ": the history holds a non-finite value");
+        hush::detail::raise_error(std::string(where) + ": the history holds a non-finite value");
     st.has_reference = true;
   }
   if (!r.done())
-    throw hush::invalid_argument(std::string(where) + ": " +
+    hush::detail::raise_error(std::string(where) + ": " +
                                  std::to_string(bytes.size() - r.position()) +
                                  " bytes follow the state");
   return s;
@@ -18137,9 +18231,9 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm,
   validate(prm);
   if (io.frames == 0) detail::throw_out_of_range(where, "frames", 0, "at least 1");
   if (!io.frame_at || !io.write)
-    throw hush::invalid_argument(std::string(where) + ": frame_at and write are required");
+    hush::detail::raise_error(std::string(where) + ": frame_at and write are required");
   if (static_cast<bool>(io.keep) != static_cast<bool>(io.recall))
-    throw hush::invalid_argument(std::string(where) + ": set both keep and recall, or neither");
+    hush::detail::raise_error(std::string(where) + ": set both keep and recall, or neither");
   const frame_view needs = frame_view::depth | frame_view::velocity | frame_view::forward_velocity;
   const std::size_t nc = static_cast<std::size_t>(prm.channels);
   std::size_t w = 0, h = 0;

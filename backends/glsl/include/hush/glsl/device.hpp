@@ -129,7 +129,7 @@ class device {
     }  // a pre-3.0 context rejects the version queries
     renderer_ = gl_->string(detail::kGlRenderer) + ", OpenGL " + gl_->string(detail::kGlVersion);
     if (major < 4 || (major == 4 && minor < 3))
-      throw std::runtime_error(
+      hush::detail::raise_error<std::runtime_error>(
           "hush::glsl::device: needs OpenGL >= 4.3 (compute shaders); the "
           "current context is " +
           renderer_);
@@ -145,7 +145,7 @@ class device {
     max_bytes_ = static_cast<std::size_t>(block);
     if (opt.max_buffer_bytes != 0) max_bytes_ = std::min(max_bytes_, opt.max_buffer_bytes);
     if (max_groups_ == 0 || max_bytes_ < 4 * sizeof(float))
-      throw std::runtime_error("hush::glsl::device: the GL limits leave no room for a batch");
+      hush::detail::raise_error<std::runtime_error>("hush::glsl::device: the GL limits leave no room for a batch");
     gl_->GenBuffers(kBuffers, buffers_);
     gl_->check("hush::glsl::device: creating buffers");
   }

@@ -29,6 +29,7 @@
 
 #include "hush/config.hpp"
 #include "hush/core/bspline.hpp"
+#include "hush/core/error.hpp"
 #include "hush/core/footprint.hpp"
 #include "hush/core/lattice.hpp"
 #include "hush/detail/constants.hpp"
@@ -292,7 +293,7 @@ inline std::string glsl_literal(glsl_constant::type kind, std::uint32_t bits) {
     return buf;
   }
   const float f = detail::bits_float(bits);
-  if (!std::isfinite(f)) throw std::logic_error("hush::glsl: non-finite float constant");
+  if (!std::isfinite(f)) hush::detail::raise_error<std::logic_error>("hush::glsl: non-finite float constant");
   if (std::floor(f) == f && std::fabs(f) <= 4294967296.0f) {
     std::snprintf(buf, sizeof buf, "%.1f", static_cast<double>(f));  // exact: "-15.0"
     return buf;
