@@ -362,7 +362,7 @@ class device {
     using np = noise_program<Noise>;
     constexpr int D = Noise::dimension;
     const auto nb = static_cast<std::size_t>(bands);
-    std::vector<std::array<std::uint32_t, D>> period(nb);
+    std::vector<std::array<std::uint32_t, std::size_t{D}>> period(nb);
     for (std::size_t b = 0; b < nb; ++b)
       for (int a = 0; a < D; ++a)
         period[b][static_cast<std::size_t>(a)] = np::band_period(noise, static_cast<int>(b), a);

@@ -496,7 +496,7 @@ vec4 hush_gabor_surface_eval(uvec3 i0, vec3 f, vec3 n, mat3 fp, bool grad) {
     const auto& t = g.table().thresholds();
     gl.Uniform1ui(loc("hush_table_size"), static_cast<std::uint32_t>(t.size()));
     // Both tables in one array (the surface table at kGaborMaxThresholds).
-    std::uint32_t table[kTableEntries] = {};
+    std::uint32_t table[std::size_t{kTableEntries}] = {};
     std::copy(t.begin(), t.end(), table);
     if constexpr (D == 3) {
       const auto& st = g.surface_table().thresholds();
