@@ -1,10 +1,11 @@
-# cmake -P script behind the strict_* and no_exceptions_* tests: checks that hush's headers
+# cmake -P script behind the strict_warnings_* and no_exceptions_* tests: checks that hush's headers
 # compile cleanly under the warning flags a strict consumer uses, with hush on the include path
 # as ordinary headers (-I, not -isystem, so hush's own warnings count):
 #   -std=c++STD -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion -Werror
 # It compiles each example (examples/*.cpp) with -fsyntax-only: the conversion and shadowing
 # warnings come from the front end, which -fsyntax-only runs in full, templates instantiated
-# (GCC and Clang both report them so), and skipping code generation keeps the test short.
+# (GCC and Clang both report them so; a full g++ -O2 -c of basic_usage reports nothing more),
+# and skipping code generation keeps the test short.
 #   -DCXX_COMPILER=...  the compiler (g++ or clang++ command line)
 #   -DSTD=17|20         the language standard
 #   -DTREE=include|single  hush through the vendored include/ tree, or through the single
@@ -13,11 +14,10 @@
 #                       header's include guards make empty)
 #   -DSOURCE_DIR=...    hush's source tree
 #   -DEXTRA_FLAGS=...   more flags, ;-separated (e.g. -fno-exceptions)
-#   -DHWY_INCLUDE_DIR=... Highway's include directory, passed with -isystem (third-party): the
-#                       examples that use hush::simd compile with HUSH_SIMD_DYNAMIC; empty:
-#                       batch_simd is skipped, gabor_usage compiles without HUSH_SIMD_DYNAMIC
-#   -DHAVE_HWY=ON|OFF, -DHAVE_OSMESA=ON|OFF  which optional examples can compile
-#   -DOSMESA_INCLUDE_DIR=... GL/osmesa.h's directory (-isystem), for glsl_headless
+#   -DHAVE_HWY=ON       compile batch_simd, and gabor_usage with HUSH_SIMD_DYNAMIC (as hush::simd's
+#                       users do); -DHWY_INCLUDE_DIR=... Highway's include directory (-isystem)
+#   -DHAVE_OSMESA=ON    compile glsl_headless; -DOSMESA_INCLUDE_DIR=... GL/osmesa.h's directory
+#                       (-isystem)
 foreach(var CXX_COMPILER STD TREE SOURCE_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "strict_compile.cmake: -D${var}=... is required")
