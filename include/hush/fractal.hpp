@@ -109,8 +109,8 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   // Variance over space and seeds of fBm (1 under unit_variance); turbulence: -1 (not derived).
   double variance() const { return variance_; }
   // The weight and frequency of band i, after normalisation.
-  double band_weight(int i) const { return bands_[i].weight * scale_; }
-  double band_frequency(int i) const { return bands_[i].frequency; }
+  double band_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight * scale_; }
+  double band_frequency(int i) const { return bands_[static_cast<std::size_t>(i)].frequency; }
 
   // The bands as evaluated, for backends that run them themselves (hush/simd):
   // band i's noise, its raw weight w_i (before the normalisation scale()),

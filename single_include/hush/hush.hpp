@@ -1778,7 +1778,7 @@ struct grid {
   // Position of the sample with index (i, j[, k]).
   vec<double, N> position(const std::array<std::size_t, std::size_t{N}>& ijk) const {
     vec<double, N> p;
-    for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
+    for (std::size_t a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
     return p;
   }
   // f(idx, position) for the samples of the slab whose slowest-axis index (j in
@@ -2533,8 +2533,8 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   // Variance over space and seeds of fBm (1 under unit_variance); turbulence: -1 (not derived).
   double variance() const { return variance_; }
   // The weight and frequency of band i, after normalisation.
-  double band_weight(int i) const { return bands_[i].weight * scale_; }
-  double band_frequency(int i) const { return bands_[i].frequency; }
+  double band_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight * scale_; }
+  double band_frequency(int i) const { return bands_[static_cast<std::size_t>(i)].frequency; }
 
   // The bands as evaluated, for backends that run them themselves (hush/simd):
   // band i's noise, its raw weight w_i (before the normalisation scale()),
@@ -7366,8 +7366,9 @@ inline constexpr auto kBetaDerivative = derivative(kBeta);
 // Piece p of kernel k at local t, Horner form (highest power first), in T.
 template <class T, int P, int O>
 HUSH_INLINE T piece_value(const piecewise_kernel<P, O>& k, int p, T t) {
-  T r = T(k.c[p][O - 1]);
-  for (int j = O - 2; j >= 0; --j) r = r * t + T(k.c[p][j]);
+  const auto& c = k.c[static_cast<std::size_t>(p)];
+  T r = T(c.back());
+  for (int j = O - 2; j >= 0; --j) r = r * t + T(c[static_cast<std::size_t>(j)]);
   return r;
 }
 

@@ -175,8 +175,9 @@ inline constexpr auto kBetaDerivative = derivative(kBeta);
 // Piece p of kernel k at local t, Horner form (highest power first), in T.
 template <class T, int P, int O>
 HUSH_INLINE T piece_value(const piecewise_kernel<P, O>& k, int p, T t) {
-  T r = T(k.c[p][O - 1]);
-  for (int j = O - 2; j >= 0; --j) r = r * t + T(k.c[p][j]);
+  const auto& c = k.c[static_cast<std::size_t>(p)];
+  T r = T(c.back());
+  for (int j = O - 2; j >= 0; --j) r = r * t + T(c[static_cast<std::size_t>(j)]);
   return r;
 }
 

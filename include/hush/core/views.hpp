@@ -80,7 +80,7 @@ struct grid {
   // Position of the sample with index (i, j[, k]).
   vec<double, N> position(const std::array<std::size_t, std::size_t{N}>& ijk) const {
     vec<double, N> p;
-    for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
+    for (std::size_t a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
     return p;
   }
   // f(idx, position) for the samples of the slab whose slowest-axis index (j in
