@@ -121,10 +121,14 @@ class anisotropic_tile {
   int channels() const { return channels_; }
   // Texel (x, y), x and y in 0 ... size() (size() wraps to 0): `channels()` floats.
   const float* texel(std::uint32_t x, std::uint32_t y) const {
-    return texels_.data() + (static_cast<std::size_t>(y) * (size_ + 1) + x) * channels_;
+    return texels_.data() +
+           (static_cast<std::size_t>(y) * static_cast<std::size_t>(size_ + 1) + x) *
+               static_cast<std::size_t>(channels_);
   }
   // Floats between the starts of two texel rows.
-  std::size_t row_stride() const { return static_cast<std::size_t>(size_ + 1) * channels_; }
+  std::size_t row_stride() const {
+    return static_cast<std::size_t>(size_ + 1) * static_cast<std::size_t>(channels_);
+  }
   const std::vector<float>& texels() const { return texels_; }
   // Largest |value| of orientation i's tile, and largest difference between
   // neighbouring texels (bilinear weight precision on GPUs scales with it).
@@ -132,12 +136,13 @@ class anisotropic_tile {
   float max_step(int i) const { return max_step_[static_cast<std::size_t>(i)]; }
   // The size() x size() RGBA texture of channels 4t ... 4t + 3 (t = 0 or 1), row-major.
   std::vector<float> rgba(int t) const {
-    std::vector<float> out(static_cast<std::size_t>(size_) * size_ * 4);
-    for (int y = 0; y < size_; ++y)
-      for (int x = 0; x < size_; ++x)
-        for (int c = 0; c < 4; ++c)
-          out[(static_cast<std::size_t>(y) * size_ + x) * 4 + c] =
-              texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y))[4 * t + c];
+    const auto n = static_cast<std::size_t>(size_), first = static_cast<std::size_t>(4 * t);
+    std::vector<float> out(n * n * 4);
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x)
+        for (std::size_t c = 0; c < 4; ++c)
+          out[(y * n + x) * 4 + c] =
+              texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y))[first + c];
     return out;
   }
   // Memory held, in bytes.
@@ -468,7 +473,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
     if (n < c::kAnisoMinTileSize || n > c::kAnisoMaxTileSize || (n & (n - 1)) != 0)
       detail::throw_out_of_range(w, "tile_size", n, "a power of two, 16 ... 2048");
     if (prm_.kind != fractal_kind::fbm && prm_.kind != fractal_kind::turbulence)
-      throw hush::invalid_argument(std::string(w) + ": kind is not fbm or turbulence");
+      hush::detail::raise_error(std::string(w) + ": kind is not fbm or turbulence");
   }
 
   // Least-squares compensation weights of octaves [k0, k1) for map m (each

@@ -339,7 +339,7 @@ void coherent_check_views(const char* where, const char* name, const V* views, s
   for (std::size_t c = 0; c < given; ++c) {
     const V& v = views[c];
     const std::string n = std::string(name) + "[" + std::to_string(c) + "]";
-    if (!v.data) throw hush::invalid_argument(std::string(where) + ": " + n + " has null data");
+    if (!v.data) hush::detail::raise_error(std::string(where) + ": " + n + " has null data");
     if (v.width != width || v.height != height)
       throw_out_of_range(
           where, n + " size", std::to_string(v.width) + "x" + std::to_string(v.height),
@@ -632,7 +632,7 @@ class byte_reader {
   explicit byte_reader(span<const std::uint8_t> b) : b_(b) {}
   void need(std::size_t n) const {
     if (b_.size() - pos_ < n)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::coherent_stream::deserialize: the data is truncated (a state of " +
           std::to_string(b_.size()) + " bytes ends early)");
   }
@@ -715,13 +715,13 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
   detail::byte_reader r(bytes);
   r.need(sizeof detail::kCoherentMagic);
   if (std::memcmp(bytes.data(), detail::kCoherentMagic, sizeof detail::kCoherentMagic) != 0)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": not a coherent-noise state (no HUSHCOH1 header)");
   std::vector<std::uint8_t> skip;
   r.values(skip, sizeof detail::kCoherentMagic);
   const std::uint32_t size = r.u32();
   if (size != sizeof(T))
-    throw hush::invalid_argument(std::string(where) + ": the state holds " +
+    hush::detail::raise_error(std::string(where) + ": the state holds " +
                                  std::to_string(8 * size) + "-bit values; this stream holds " +
                                  std::to_string(8 * sizeof(T)) + "-bit values");
   params p;
@@ -738,7 +738,7 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
   detail::coherent_state<T>& st = s.st_;
   st.next_frame = r.u32();
   const std::uint32_t has = r.u32();
-  if (has > 1u) throw hush::invalid_argument(std::string(where) + ": corrupt history flag");
+  if (has > 1u) hush::detail::raise_error(std::string(where) + ": corrupt history flag");
   if (has) {
     st.width = r.u32();
     st.height = r.u32();
@@ -748,7 +748,7 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
                                  std::to_string(st.width) + "x" + std::to_string(st.height),
                                  "1 ... 16384 pixels per side");
     const std::uint32_t ids = r.u32();
-    if (ids > 1u) throw hush::invalid_argument(std::string(where) + ": corrupt id flag");
+    if (ids > 1u) hush::detail::raise_error(std::string(where) + ": corrupt id flag");
     const std::size_t n = st.pixels();
     r.values(st.ref_depth, n);
     st.reference_has_ids = ids != 0;
@@ -757,11 +757,11 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
     r.values(st.history, n * static_cast<std::size_t>(p.channels));
     for (const T& v : st.history)
       if (!std::isfinite(v))
-        throw hush::invalid_argument(std::string(where) + ": the history holds a non-finite value");
+        hush::detail::raise_error(std::string(where) + ": the history holds a non-finite value");
     st.has_reference = true;
   }
   if (!r.done())
-    throw hush::invalid_argument(std::string(where) + ": " +
+    hush::detail::raise_error(std::string(where) + ": " +
                                  std::to_string(bytes.size() - r.position()) +
                                  " bytes follow the state");
   return s;
@@ -863,9 +863,9 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm,
   validate(prm);
   if (io.frames == 0) detail::throw_out_of_range(where, "frames", 0, "at least 1");
   if (!io.frame_at || !io.write)
-    throw hush::invalid_argument(std::string(where) + ": frame_at and write are required");
+    hush::detail::raise_error(std::string(where) + ": frame_at and write are required");
   if (static_cast<bool>(io.keep) != static_cast<bool>(io.recall))
-    throw hush::invalid_argument(std::string(where) + ": set both keep and recall, or neither");
+    hush::detail::raise_error(std::string(where) + ": set both keep and recall, or neither");
   const frame_view needs = frame_view::depth | frame_view::velocity | frame_view::forward_velocity;
   const std::size_t nc = static_cast<std::size_t>(prm.channels);
   std::size_t w = 0, h = 0;

@@ -77,6 +77,22 @@
 #define HWY_WANT_AVX3_DL
 #endif
 
+// HUSH_NO_EXCEPTIONS: define to have hush report errors through its error handler
+// (hush::set_error_handler, hush/core/error.hpp) instead of throwing. Builds without
+// exceptions (-fno-exceptions) get the handler without asking. HUSH_CONFIG_CXX_EXCEPTIONS
+// says whether the compiler accepts try and throw at all; HUSH_CONFIG_EXCEPTIONS whether
+// hush throws. Define HUSH_NO_EXCEPTIONS alike in every translation unit of a program.
+#if defined(__cpp_exceptions) || defined(__EXCEPTIONS) || defined(_CPPUNWIND)
+#define HUSH_CONFIG_CXX_EXCEPTIONS 1
+#else
+#define HUSH_CONFIG_CXX_EXCEPTIONS 0
+#endif
+#if defined(HUSH_NO_EXCEPTIONS) || !HUSH_CONFIG_CXX_EXCEPTIONS
+#define HUSH_CONFIG_EXCEPTIONS 0
+#else
+#define HUSH_CONFIG_EXCEPTIONS 1
+#endif
+
 #if defined(__GNUC__) || defined(__clang__)
 #define HUSH_INLINE inline __attribute__((always_inline))
 #elif defined(_MSC_VER)

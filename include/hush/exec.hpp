@@ -322,10 +322,14 @@ void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned
   std::vector<std::thread> pool;
   pool.reserve(parts - 1);
   std::size_t started = 1;
+#if HUSH_CONFIG_CXX_EXCEPTIONS
   try {
     for (; started < parts; ++started) pool.emplace_back(part, started);
   } catch (...) {  // no more threads to be had: the calling thread does the rest
   }
+#else  // std::thread ends the program when the system refuses a thread
+  for (; started < parts; ++started) pool.emplace_back(part, started);
+#endif
   part(0);
   for (std::size_t t = started; t < parts; ++t) part(t);
   for (std::thread& th : pool) th.join();

@@ -62,7 +62,8 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
     double gain = 0.5;            // w_i = gain^i when weights is empty; finite, > 0
     std::vector<double> weights;  // explicit band weights: empty, or `octaves` finite values
     normalization norm = normalization::unit_variance;
-    std::array<int, D> period{};  // per axis, in band-0 lattice units; 0 = not periodic
+    // Per axis, in band-0 lattice units; 0 = not periodic.
+    std::array<int, std::size_t{D}> period{};
   };
 
   fractal() : fractal(params{}) {}  // 5 octaves of fBm, unit variance, seed 0
@@ -74,11 +75,11 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
     // the same everywhere, libm's pow is not (determinism across platforms).
     double gain_i = 1.0, lac_i = 1.0;
     for (int i = 0; i < prm_.octaves; ++i, gain_i *= prm_.gain, lac_i *= prm_.lacunarity) {
-      const double w = prm_.weights.empty() ? gain_i : prm_.weights[i];
+      const double w = prm_.weights.empty() ? gain_i : prm_.weights[static_cast<std::size_t>(i)];
       const std::uint32_t band_seed = hash32(prm_.seed, static_cast<std::uint32_t>(i));
       typename Noise::params np{};
       np.seed = band_seed;
-      for (int a = 0; a < D; ++a)
+      for (std::size_t a = 0; a < D; ++a)
         np.period[a] = prm_.period[a] == 0 ? 0 : static_cast<int>(prm_.period[a] * lac_i);
       vec<double, D> offset;
       for (int a = 0; a < D; ++a)  // 24 hash bits: an exact fraction in [0, 1)
@@ -108,8 +109,8 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   // Variance over space and seeds of fBm (1 under unit_variance); turbulence: -1 (not derived).
   double variance() const { return variance_; }
   // The weight and frequency of band i, after normalisation.
-  double band_weight(int i) const { return bands_[i].weight * scale_; }
-  double band_frequency(int i) const { return bands_[i].frequency; }
+  double band_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight * scale_; }
+  double band_frequency(int i) const { return bands_[static_cast<std::size_t>(i)].frequency; }
 
   // The bands as evaluated, for backends that run them themselves (hush/simd):
   // band i's noise, its raw weight w_i (before the normalisation scale()),
@@ -260,14 +261,14 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
         any = any || prm_.weights[i] != 0.0;
       }
       if (!any)
-        throw hush::invalid_argument(
+        hush::detail::raise_error(
             "hush::fractal: weights are all zero; valid: at least one non-zero weight");
     }
     if (prm_.kind == fractal_kind::turbulence && prm_.norm == normalization::unit_variance)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::fractal: norm = unit_variance is not available for turbulence; valid: "
           "unit_range or none");
-    for (int a = 0; a < D; ++a) {
+    for (std::size_t a = 0; a < D; ++a) {
       const std::string name = "period[" + std::to_string(a) + "]";
       if (prm_.period[a] < 0)
         detail::throw_out_of_range(where, name, prm_.period[a], "0 (not periodic) or >= 1");

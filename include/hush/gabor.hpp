@@ -172,7 +172,7 @@ class gabor : public sample_noise<gabor<D>, D> {
                                        mean_energy_2d() * surface_geometry());
       for (const auto& t : {table_, surface_table_})
         if (t->max_count() > static_cast<std::uint32_t>(c::kGaborMaxThresholds))
-          throw hush::invalid_argument("hush::gabor: internal Poisson table too long");
+          hush::detail::raise_error("hush::gabor: internal Poisson table too long");
     }
   }
 
@@ -343,7 +343,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   // fields impulse_position() and mark_values() decode (constants.hpp,
   // "Impulse marks"): decoding only what is needed is what every backend does.
   template <class F>
-  void for_each_impulse(const std::uint32_t (&cell)[D], F f) const {
+  void for_each_impulse(const std::uint32_t (&cell)[std::size_t{D}], F f) const {
     rng r(cell_seed(cell), detail::constants::kGaborSolidStream);
     const std::uint32_t n = table_->count(r.next_u32());
     const int words = words_per_impulse();
@@ -419,7 +419,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return p;
   }
 
-  std::uint32_t cell_seed(const std::uint32_t (&cell)[D]) const {
+  std::uint32_t cell_seed(const std::uint32_t (&cell)[std::size_t{D}]) const {
     if constexpr (D == 2)
       return lattice_hash(key_, cell[0], cell[1]);
     else
@@ -780,21 +780,21 @@ class gabor : public sample_noise<gabor<D>, D> {
   // the order the grid kernels accumulate in. False for a non-finite p.
   template <class T, class Pair>
   bool for_each_pair(const vec<double, D>& p, Pair pair) const {
-    lattice_coord<T> c[D];
+    lattice_coord<T> c[std::size_t{D}];
     for (int a = 0; a < D; ++a) {
       c[a] = lattice_split<T>(p[a] * inv_cell_);
       if (std::isnan(c[a].f)) return false;
     }
     constexpr int kCells = D == 2 ? 9 : 27;
     for (int n = 0; n < kCells; ++n) {
-      int o[D];
-      std::uint32_t cell[D];
+      int o[std::size_t{D}];
+      std::uint32_t cell[std::size_t{D}];
       for (int ax = 0, m = n; ax < D; ++ax, m /= 3) {
         o[ax] = m % 3 - 1;
         cell[ax] = c[ax].i0 + static_cast<std::uint32_t>(o[ax]);
       }
       for_each_impulse(cell, [&](const std::uint32_t* words) {
-        T d[D], d2[D];
+        T d[std::size_t{D}], d2[std::size_t{D}];
         for (int ax = 0; ax < D; ++ax) {
           d[ax] = detail::gabor_offset(c[ax].f, o[ax], impulse_position<T>(words, ax));
           d2[ax] = d[ax] * d[ax];
@@ -819,12 +819,12 @@ class gabor : public sample_noise<gabor<D>, D> {
   value_gradient<T, D> eval(const vec<double, D>& p) const {
     const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
     const T taper_k = taper_k_<T>();
-    T sum = 0, g[D] = {};
+    T sum = 0, g[std::size_t{D}] = {};
     // The point form sums by fours (detail::gabor_point_sum), value and gradient alike.
-    detail::gabor_point_sum<T> psum, pg_sum[D];
+    detail::gabor_point_sum<T> psum, pg_sum[std::size_t{D}];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
       if constexpr (!Grid) {
-        T ph[D];
+        T ph[std::size_t{D}];
         for (int i = 0; i < D; ++i) ph[i] = phi[i];
         const T theta = detail::gabor_point_phase<T, D>(ph, d);
         if constexpr (G) {
@@ -836,7 +836,7 @@ class gabor : public sample_noise<gabor<D>, D> {
         }
         return;
       }
-      detail::gabor_axis<T> ax[D];
+      detail::gabor_axis<T> ax[std::size_t{D}];
       for (int i = 0; i < D; ++i) ax[i] = detail::gabor_axis_factors(d[i], neg_a, phi[i]);
       detail::gabor_row<T> row;
       if constexpr (D == 2)
@@ -868,7 +868,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   static void filtered_pair(const detail::gabor_filter_coefs<T, E>& f, T neg_a, T a, T taper_k,
                             const T* d, T s, T w, const T* phi, T& sum, T* grad) {
     using detail::gabor_sym;
-    T qd[E];
+    T qd[std::size_t{E}];
     for (int i = 0; i < E; ++i) {
       T z = f.q[gabor_sym<E>(i, 0)] * d[0];
       for (int j = 1; j < E; ++j) z += f.q[gabor_sym<E>(i, j)] * d[j];
@@ -909,9 +909,9 @@ class gabor : public sample_noise<gabor<D>, D> {
     const T neg_a = T(-kernel_.envelope_exponent());
     const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
     // Sums by fours as the point form (detail::gabor_point_sum), value and gradient alike.
-    detail::gabor_point_sum<T> psum, pg_sum[D];
+    detail::gabor_point_sum<T> psum, pg_sum[std::size_t{D}];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
-      T ph[D], term = 0, gterm[D] = {};
+      T ph[std::size_t{D}], term = 0, gterm[std::size_t{D}] = {};
       for (int i = 0; i < D; ++i) ph[i] = phi[i];
       filtered_pair<T, D, G>(flt, neg_a, a, taper_k, d, s, w, ph, term, gterm);
       psum.add(term);
@@ -920,7 +920,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     });
     if (!ok) return nan_result<T>();
     // The amplitude scales the sums (every backend: (sum * amplitude) * scale).
-    T sum = psum.total() * flt.amplitude, g[D];
+    T sum = psum.total() * flt.amplitude, g[std::size_t{D}];
     for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total() * flt.amplitude;
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }

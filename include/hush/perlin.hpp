@@ -62,10 +62,10 @@ HUSH_INLINE T lerp(T a, T b, T t) {
 }
 
 // Gradient tables in T, converted at compile time from the double constants.
-template <class T, int N>
+template <class T, std::size_t N>
 constexpr std::array<T, N> table_cast(const double (&src)[N]) {
   std::array<T, N> r{};
-  for (int i = 0; i < N; ++i) r[i] = static_cast<T>(src[i]);
+  for (std::size_t i = 0; i < N; ++i) r[i] = static_cast<T>(src[i]);
   return r;
 }
 template <class T>
@@ -146,14 +146,14 @@ class perlin : public point_noise<perlin<D>, D> {
     std::uint32_t seed = 0;
     // Per-axis period in lattice units: 0 = not periodic, p in 1 ... INT_MAX =
     // the noise repeats every p units along that axis (tileable noise).
-    std::array<int, D> period{};
+    std::array<int, std::size_t{D}> period{};
   };
 
   perlin() : perlin(params{}) {}
   explicit perlin(std::uint32_t seed) : perlin(params{seed, {}}) {}
   // Throws hush::invalid_argument when a period is negative.
   explicit perlin(const params& prm) : prm_(prm), key_(seed_key(prm.seed)) {
-    for (int a = 0; a < D; ++a)
+    for (std::size_t a = 0; a < D; ++a)
       if (prm.period[a] < 0)
         detail::throw_out_of_range("hush::perlin", "period[" + std::to_string(a) + "]",
                                    prm.period[a], "0 (not periodic) or 1 ... 2147483647");
@@ -240,7 +240,8 @@ class perlin : public point_noise<perlin<D>, D> {
   // the gradient g and the dot product d = g . (x - corner).
   template <class T>
   struct corners {
-    T d[kCorners], gx[kCorners], gy[kCorners], gz[kCorners];
+    T d[std::size_t{kCorners}], gx[std::size_t{kCorners}], gy[std::size_t{kCorners}],
+        gz[std::size_t{kCorners}];
   };
 
   // Corner n's gradient from the top half of its lattice hash, and the part
@@ -268,8 +269,8 @@ class perlin : public point_noise<perlin<D>, D> {
 
   template <class T, bool WithGradient>
   value_gradient<T, D> eval(const vec<double, D>& p) const {
-    lattice_coord<T> lc[D];
-    for (int a = 0; a < D; ++a)
+    lattice_coord<T> lc[std::size_t{D}];
+    for (std::size_t a = 0; a < D; ++a)
       lc[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
     axis<T> ax[3]{};
     for (int a = 0; a < D; ++a) ax[a] = make_axis<T, WithGradient>(lc[a].f);
@@ -452,7 +453,7 @@ class perlin : public point_noise<perlin<D>, D> {
           kyz[m] = key_ ^ lattice_word_y((m & 1) ? cy.i1 : cy.i0) ^
                    (D == 3 ? lattice_word_z((m & 2) ? cz.i1 : cz.i0) : 0u);
         corners<T> c{};
-        T k[kCorners]{};
+        T k[std::size_t{kCorners}]{};
         for (std::size_t i = 0; i < nx; ++i, ++idx) {
           const lattice_coord<T>& cx = cells[i];
           if (i == 0 || cx.i0 != cells[i - 1].i0) {

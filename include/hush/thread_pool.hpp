@@ -18,11 +18,14 @@
 //    hush::invalid_argument naming `threads`. It starts threads - 1 workers:
 //    the thread that calls run() is the first. If the system refuses a
 //    thread, the pool keeps the workers it got (size() says how many run).
+//    Built without exceptions, std::thread cannot report a refusal but ends
+//    the program (the standard library's behaviour, e.g. libstdc++ aborts).
 //  - run(parts, body): calls body(0) ... body(parts - 1), each exactly once,
 //    on whichever of the pool's threads and the calling thread takes it first
 //    (the caller takes parts too, so a worker that is not running delays only
 //    the parts it took), and returns when all have returned. body must not throw (hush's batch
-//    bodies do not: they run after validation). Calls from several threads
+//    bodies do not: they run after validation); the pool neither catches nor rethrows: an
+//    exception leaving a body on a worker ends the program (std::terminate). Calls from several threads
 //    are serialised (one batch at a time); a call from inside a body of the
 //    same pool runs all its parts on the calling thread instead of waiting
 //    for itself.
@@ -61,10 +64,14 @@ class thread_pool {
     const unsigned n =
         threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : unsigned(threads);
     workers_.reserve(n - 1);
+#if HUSH_CONFIG_CXX_EXCEPTIONS
     try {
       for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this] { work(); });
     } catch (...) {  // no more threads to be had: the pool runs with those it has
     }
+#else
+    for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this] { work(); });
+#endif
   }
   thread_pool(const thread_pool&) = delete;
   thread_pool& operator=(const thread_pool&) = delete;

@@ -222,7 +222,7 @@ struct wavelet_periodic_access {
         a == 0 ? 1 : static_cast<std::size_t>(m) * (a == 2 ? static_cast<std::size_t>(n) : 1);
     return static_cast<std::size_t>(wrap(static_cast<long long>(i0[a]) + k)) * stride;
   }
-  HUSH_INLINE float at(const int (&k)[D]) const {
+  HUSH_INLINE float at(const int (&k)[std::size_t{D}]) const {
     std::size_t i = 0;
     for (int a = 0; a < D; ++a) i += index(a, k[a]);
     return c[i];
@@ -240,7 +240,7 @@ struct wavelet_variant_access {
   int n, cell;  // tile size and cell pitch L = n - overlap
   std::uint32_t key;
   std::uint32_t i0[3];
-  HUSH_INLINE float at(const int (&k)[D]) const {
+  HUSH_INLINE float at(const int (&k)[std::size_t{D}]) const {
     std::uint32_t t[3][2] = {};
     int l[3][2] = {}, count[3] = {};
     const auto pitch = static_cast<std::uint32_t>(cell);
@@ -302,11 +302,14 @@ struct wavelet_variant_access {
 
 // Sum over separable taps: the value and the gradient in coefficient units, z
 // innermost (value = sum_a wx (sum_b wy (sum_c wz n))), the order every backend uses.
-template <class T, bool G, int D, class Access>
-HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
+// (N, the array's extent, equals D: a std::size_t parameter, deduced, so the bound needs no
+// conversion and the periodic overload below stays the more specialised one.)
+template <class T, bool G, int D, class Access, std::size_t N>
+HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[N],
                                                    const Access& acc) {
+  static_assert(N == D, "one axis per dimension");
   value_gradient<T, D> r{T(0), {}};
-  int k[D];
+  int k[std::size_t{D}];
   if constexpr (D == 2) {
     for (int a = 0; a < ax[0].count; ++a) {
       k[0] = ax[0].first + a;
@@ -355,17 +358,18 @@ HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D
 
 // The same over the periodic tile, with the wrapped, stride-scaled index of
 // every tap precomputed per axis (the sums are the generic ones, operation by operation).
-template <class T, bool G, int D>
-HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
+template <class T, bool G, int D, std::size_t N>
+HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[N],
                                                    const wavelet_periodic_access<D>& acc) {
-  std::size_t off[D][kWaveletMaxTaps];
+  static_assert(N == D, "one axis per dimension");
+  std::size_t off[std::size_t{D}][kWaveletMaxTaps];
   for (int a = 0; a < D; ++a)
     for (int j = 0; j < ax[a].count; ++j) off[a][j] = acc.index(a, ax[a].first + j);
   struct table_access {
     const float* c;
     const std::size_t (*off)[kWaveletMaxTaps];
     const wavelet_axis<T>* ax;
-    HUSH_INLINE float at(const int (&k)[D]) const {
+    HUSH_INLINE float at(const int (&k)[std::size_t{D}]) const {
       std::size_t i = 0;
       for (int a = 0; a < D; ++a) i += off[a][k[a] - ax[a].first];
       return c[i];
@@ -789,7 +793,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     double extent2[3] = {0, 0, 0};
     if (prm_.widen) {
       for (int a = 0; a < D; ++a) {
-        double pa[D];
+        double pa[std::size_t{D}];
         for (int c = 0; c < D; ++c) pa[c] = (c == a ? 1.0 : 0.0);
         if constexpr (D == 3)
           if (pl.project)
@@ -981,9 +985,9 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
   // One band at tile-coordinate position q (tap 0 at floor(q)), in coefficient units.
   template <class T, bool G, class Access>
-  value_gradient<T, D> band_kernel(const lattice_coord<T> (&c)[D], const plan& pl, int i,
-                                   const Access& acc) const {
-    detail::wavelet_axis<T> ax[D];
+  value_gradient<T, D> band_kernel(const lattice_coord<T> (&c)[std::size_t{D}], const plan& pl,
+                                   int i, const Access& acc) const {
+    detail::wavelet_axis<T> ax[std::size_t{D}];
     bool widened = false;
     for (int a = 0; a < D; ++a) widened = widened || pl.widen[i][a] != 1.0;
     if constexpr (D == 3) {
@@ -1022,7 +1026,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
   value_gradient<T, D> band_value(const vec<double, D>& p, const plan& pl, int i) const {
     const band& b = bands_[static_cast<std::size_t>(i)];
     const vec<double, D> q = b.position(p);
-    lattice_coord<T> c[D];
+    lattice_coord<T> c[std::size_t{D}];
     const std::uint32_t period = split_period();
     for (int a = 0; a < D; ++a) c[a] = lattice_split<T>(q[a], period);
     if (prm_.variant_overlap == 0) {
@@ -1095,7 +1099,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       any = any || prm_.weights[i] != 0.0;
     }
     if (!any)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
     if (prm_.relative_weights)
       detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,

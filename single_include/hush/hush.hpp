@@ -96,108 +96,39 @@
 // ---- begin hush/core/error.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
+// How hush reports errors.
+//
 // hush::invalid_argument: the one exception hush throws, for parameters outside
 // their documented domain. Messages name the parameter, the value received and
 // the valid range, e.g. "hush::perlin: period[1] = -3 is out of range; valid:
-// 0 (not periodic) or 1 ... 16777216". Evaluation itself never throws.
+// 0 (not periodic) or 1 ... 16777216". Evaluation itself never throws. (The GLSL
+// backend also throws std::runtime_error when GL fails, hush/glsl/detail/gl.hpp.)
+//
+// Without exceptions (compiled with -fno-exceptions, or with HUSH_NO_EXCEPTIONS
+// defined; hush/config.hpp), every place that would throw calls the error handler
+// instead, with the same message:
+//  - hush::error_handler: void (*)(const char* message). The message is valid only
+//    during the call.
+//  - The default handler writes the message and a newline to stderr, then calls
+//    std::abort().
+//  - hush::set_error_handler(h) installs h for the whole program and returns the
+//    handler it replaces; nullptr restores the default. hush::get_error_handler()
+//    returns the current one. Both are thread-safe (an atomic), so a handler may
+//    be swapped while other threads construct noises.
+//  - A handler must not return: it ends the program (std::exit, std::_Exit,
+//    std::abort) or leaves by longjmp to a point that abandons the failed call.
+//    If it returns anyway, hush calls std::abort(): the code after a failed check
+//    assumes the check passed.
+// With exceptions on, hush throws and never calls the handler.
 #ifndef HUSH_CORE_ERROR_HPP
 #define HUSH_CORE_ERROR_HPP
 
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-
-namespace hush {
-
-class invalid_argument : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
-
-namespace detail {
-
-// Builds the standard message: "<where>: <name> = <value> is out of range; valid: <range>".
-template <class T>
-[[noreturn]] inline void throw_out_of_range(const char* where, const std::string& name,
-                                            const T& value, const char* valid) {
-  std::ostringstream os;
-  os.precision(17);
-  os << where << ": " << name << " = " << value << " is out of range; valid: " << valid;
-  throw hush::invalid_argument(os.str());
-}
-
-// Checks lo <= value <= hi, rejecting NaN (the comparisons are false for NaN).
-template <class T>
-inline void require_in_range(const char* where, const std::string& name, const T& value,
-                             const T& lo, const T& hi, const char* valid) {
-  if (!(value >= lo && value <= hi)) throw_out_of_range(where, name, value, valid);
-}
-
-}  // namespace detail
-}  // namespace hush
-
-#endif  // HUSH_CORE_ERROR_HPP
-// ---- end hush/core/error.hpp
-// ---- begin hush/core/footprint.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// hush::footprint<D>: a sample's filter footprint in noise space, built from
-// what a shader has at that sample (DESIGN.md "Per-sample inputs").
-//
-// A renderer knows, per sample, how noise-space position changes from one
-// pixel to the next: the screen-to-noise Jacobian J = [dP/dx  dP/dy] (D x 2;
-// in GLSL, dFdx(P) and dFdy(P)), or at least a width w, the noise-space size
-// of one pixel. The footprint stores the one quantity every filtering noise
-// needs from that, the symmetric positive semi-definite D x D matrix
-//
-//   S = J J^T = dP/dx dP/dx^T + dP/dy dP/dy^T     (from derivatives), or
-//   S = w^2 I                                      (isotropic width w),
-//
-// in squared noise units per pixel: a screen offset d (in pixels) moves the
-// noise position by J d, and |J^T u|^2 = u^T S u is the squared pixel extent
-// along unit direction u. A Gaussian pixel filter of standard deviation sigma
-// pixels maps to the noise-space Gaussian of covariance sigma^2 S, and its
-// frequency response at noise frequency k is exp(-2 pi^2 sigma^2 k^T S k).
-// hush's noises filter with sigma = constants::kPixelFilterSigma (1/2 pixel)
-// unless they say otherwise; each states which bands or kernels it keeps.
-//
-// The default footprint is a point (S = 0): nothing is filtered.
-//
-// Robustness (HARD_CASES row 12; footprints are per-sample data, so nothing
-// here throws): every input gives a finite footprint.
-//  - NaN or +-Inf in a derivative or width: the footprint is "everything",
-//    S = W^2 I with W = constants::kFootprintMaxWidth (2^32, the lattice's
-//    period: nothing narrower survives filtering), so filtering noises return
-//    their mean (0) there, the limit of an ever larger footprint.
-//  - a footprint wider than W is scaled down (same shape) until its largest
-//    entry is W^2 (for derivatives: until no component exceeds W), so its
-//    largest width lies in [W, sqrt(D) W]: again everything is filtered.
-//  - zero, rank 1 (e.g. dP/dy = 0, an edge-on surface) and nearly singular
-//    footprints are stored as they are; consumers must accept singular S.
-//  - a negative width means its magnitude.
-// S is formed in double and rounded to float once; entries lie in
-// [-2^64, 2^64], so consumers compute determinants and inverses in double,
-// or scale first (float overflows beyond 2^128).
-#ifndef HUSH_CORE_FOOTPRINT_HPP
-#define HUSH_CORE_FOOTPRINT_HPP
-
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-
-// ---- begin hush/core/vec.hpp
-// hush — procedural noise for rendering. MIT License, see LICENSE.
-//
-// Tiny fixed-size vectors: just enough to pass points, gradients and steps.
-// hush::vec<T, N> holds N values of T (N = 2, 3, 4) with members x, y, z, w and
-// indexing; vec2/vec3/vec4 are float, dvec2/dvec3/dvec4 double. When GLM is
-// available (config.hpp) they convert implicitly from and to glm::vec<N, T, Q>,
-// so `noise(glm::vec3{...})` works and a hush vector assigns to a glm one.
-// Arithmetic is deliberately minimal: this is not a math library.
-#ifndef HUSH_CORE_VEC_HPP
-#define HUSH_CORE_VEC_HPP
-
-#include <cstddef>
 
 // ---- begin hush/config.hpp
 // hush — procedural noise for rendering. MIT License, see LICENSE.
@@ -279,6 +210,22 @@ inline void require_in_range(const char* where, const std::string& name, const T
 #define HWY_WANT_AVX3_DL
 #endif
 
+// HUSH_NO_EXCEPTIONS: define to have hush report errors through its error handler
+// (hush::set_error_handler, hush/core/error.hpp) instead of throwing. Builds without
+// exceptions (-fno-exceptions) get the handler without asking. HUSH_CONFIG_CXX_EXCEPTIONS
+// says whether the compiler accepts try and throw at all; HUSH_CONFIG_EXCEPTIONS whether
+// hush throws. Define HUSH_NO_EXCEPTIONS alike in every translation unit of a program.
+#if defined(__cpp_exceptions) || defined(__EXCEPTIONS) || defined(_CPPUNWIND)
+#define HUSH_CONFIG_CXX_EXCEPTIONS 1
+#else
+#define HUSH_CONFIG_CXX_EXCEPTIONS 0
+#endif
+#if defined(HUSH_NO_EXCEPTIONS) || !HUSH_CONFIG_CXX_EXCEPTIONS
+#define HUSH_CONFIG_EXCEPTIONS 0
+#else
+#define HUSH_CONFIG_EXCEPTIONS 1
+#endif
+
 #if defined(__GNUC__) || defined(__clang__)
 #define HUSH_INLINE inline __attribute__((always_inline))
 #elif defined(_MSC_VER)
@@ -289,6 +236,143 @@ inline void require_in_range(const char* where, const std::string& name, const T
 
 #endif  // HUSH_CONFIG_HPP
 // ---- end hush/config.hpp
+
+namespace hush {
+
+class invalid_argument : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+using error_handler = void (*)(const char* message);
+
+namespace detail {
+
+inline void default_error_handler(const char* message) {
+  std::fputs(message, stderr);
+  std::fputc('\n', stderr);
+  std::abort();
+}
+
+// Null means the default; an inline variable, so one slot for the whole program. Constant
+// initialised, so a handler set during another object's dynamic initialisation stays set.
+inline std::atomic<error_handler> installed_error_handler{nullptr};
+
+}  // namespace detail
+
+// Installs `handler` (nullptr: the default) and returns the one it replaces.
+inline error_handler set_error_handler(error_handler handler) noexcept {
+  const error_handler previous =
+      detail::installed_error_handler.exchange(handler, std::memory_order_acq_rel);
+  return previous ? previous : &detail::default_error_handler;
+}
+
+// The handler hush calls on an error when it does not throw (never null).
+inline error_handler get_error_handler() noexcept {
+  const error_handler h = detail::installed_error_handler.load(std::memory_order_acquire);
+  return h ? h : &detail::default_error_handler;
+}
+
+namespace detail {
+
+// Every error hush reports goes through here: throws E(message) with exceptions on,
+// else calls the error handler and aborts should it return. E is hush::invalid_argument
+// for parameters; the GLSL backend passes std::runtime_error for GL failures.
+template <class E = hush::invalid_argument>
+[[noreturn]] inline void raise_error(const std::string& message) {
+#if HUSH_CONFIG_EXCEPTIONS
+  throw E(message);
+#else
+  get_error_handler()(message.c_str());
+  std::abort();  // the handler returned: nothing after a failed check may run
+#endif
+}
+
+// Builds the standard message: "<where>: <name> = <value> is out of range; valid: <range>",
+// and reports it (raise_error).
+template <class T>
+[[noreturn]] inline void throw_out_of_range(const char* where, const std::string& name,
+                                            const T& value, const char* valid) {
+  std::ostringstream os;
+  os.precision(17);
+  os << where << ": " << name << " = " << value << " is out of range; valid: " << valid;
+  raise_error(os.str());
+}
+
+// Checks lo <= value <= hi, rejecting NaN (the comparisons are false for NaN).
+template <class T>
+inline void require_in_range(const char* where, const std::string& name, const T& value,
+                             const T& lo, const T& hi, const char* valid) {
+  if (!(value >= lo && value <= hi)) throw_out_of_range(where, name, value, valid);
+}
+
+}  // namespace detail
+}  // namespace hush
+
+#endif  // HUSH_CORE_ERROR_HPP
+// ---- end hush/core/error.hpp
+// ---- begin hush/core/footprint.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// hush::footprint<D>: a sample's filter footprint in noise space, built from
+// what a shader has at that sample (DESIGN.md "Per-sample inputs").
+//
+// A renderer knows, per sample, how noise-space position changes from one
+// pixel to the next: the screen-to-noise Jacobian J = [dP/dx  dP/dy] (D x 2;
+// in GLSL, dFdx(P) and dFdy(P)), or at least a width w, the noise-space size
+// of one pixel. The footprint stores the one quantity every filtering noise
+// needs from that, the symmetric positive semi-definite D x D matrix
+//
+//   S = J J^T = dP/dx dP/dx^T + dP/dy dP/dy^T     (from derivatives), or
+//   S = w^2 I                                      (isotropic width w),
+//
+// in squared noise units per pixel: a screen offset d (in pixels) moves the
+// noise position by J d, and |J^T u|^2 = u^T S u is the squared pixel extent
+// along unit direction u. A Gaussian pixel filter of standard deviation sigma
+// pixels maps to the noise-space Gaussian of covariance sigma^2 S, and its
+// frequency response at noise frequency k is exp(-2 pi^2 sigma^2 k^T S k).
+// hush's noises filter with sigma = constants::kPixelFilterSigma (1/2 pixel)
+// unless they say otherwise; each states which bands or kernels it keeps.
+//
+// The default footprint is a point (S = 0): nothing is filtered.
+//
+// Robustness (HARD_CASES row 12; footprints are per-sample data, so nothing
+// here throws): every input gives a finite footprint.
+//  - NaN or +-Inf in a derivative or width: the footprint is "everything",
+//    S = W^2 I with W = constants::kFootprintMaxWidth (2^32, the lattice's
+//    period: nothing narrower survives filtering), so filtering noises return
+//    their mean (0) there, the limit of an ever larger footprint.
+//  - a footprint wider than W is scaled down (same shape) until its largest
+//    entry is W^2 (for derivatives: until no component exceeds W), so its
+//    largest width lies in [W, sqrt(D) W]: again everything is filtered.
+//  - zero, rank 1 (e.g. dP/dy = 0, an edge-on surface) and nearly singular
+//    footprints are stored as they are; consumers must accept singular S.
+//  - a negative width means its magnitude.
+// S is formed in double and rounded to float once; entries lie in
+// [-2^64, 2^64], so consumers compute determinants and inverses in double,
+// or scale first (float overflows beyond 2^128).
+#ifndef HUSH_CORE_FOOTPRINT_HPP
+#define HUSH_CORE_FOOTPRINT_HPP
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+// ---- begin hush/core/vec.hpp
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// Tiny fixed-size vectors: just enough to pass points, gradients and steps.
+// hush::vec<T, N> holds N values of T (N = 2, 3, 4) with members x, y, z, w and
+// indexing; vec2/vec3/vec4 are float, dvec2/dvec3/dvec4 double. When GLM is
+// available (config.hpp) they convert implicitly from and to glm::vec<N, T, Q>,
+// so `noise(glm::vec3{...})` works and a hush vector assigns to a glm one.
+// Arithmetic is deliberately minimal: this is not a math library.
+#ifndef HUSH_CORE_VEC_HPP
+#define HUSH_CORE_VEC_HPP
+
+#include <cstddef>
+#include <type_traits>
+
 
 #if HUSH_CONFIG_GLM
 #include <glm/vec2.hpp>
@@ -317,6 +401,14 @@ inline void require_in_range(const char* where, const std::string& name, const T
 
 namespace hush {
 
+namespace detail {
+// vec's subscript takes any integer type, i in 0 ... N - 1: hush loops over axes with int
+// and over containers with std::size_t, and neither needs a cast (nor warns under
+// -Wsign-conversion) to index a vector.
+template <class I>
+using index_type = std::enable_if_t<std::is_integral<I>::value>;
+}  // namespace detail
+
 template <class T, int N>
 struct vec;
 
@@ -325,8 +417,14 @@ struct vec<T, 2> {
   T x{}, y{};
   constexpr vec() = default;
   constexpr vec(T x_, T y_) : x(x_), y(y_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : y; }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : y; }
+  template <class I, class = detail::index_type<I>>
+  constexpr T& operator[](I i) {
+    return i == 0 ? x : y;
+  }
+  template <class I, class = detail::index_type<I>>
+  constexpr const T& operator[](I i) const {
+    return i == 0 ? x : y;
+  }
   HUSH_VEC_COMMON(2)
 };
 
@@ -335,8 +433,14 @@ struct vec<T, 3> {
   T x{}, y{}, z{};
   constexpr vec() = default;
   constexpr vec(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  template <class I, class = detail::index_type<I>>
+  constexpr T& operator[](I i) {
+    return i == 0 ? x : (i == 1 ? y : z);
+  }
+  template <class I, class = detail::index_type<I>>
+  constexpr const T& operator[](I i) const {
+    return i == 0 ? x : (i == 1 ? y : z);
+  }
   HUSH_VEC_COMMON(3)
 };
 
@@ -345,8 +449,12 @@ struct vec<T, 4> {
   T x{}, y{}, z{}, w{};
   constexpr vec() = default;
   constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
-  constexpr const T& operator[](std::size_t i) const {
+  template <class I, class = detail::index_type<I>>
+  constexpr T& operator[](I i) {
+    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
+  }
+  template <class I, class = detail::index_type<I>>
+  constexpr const T& operator[](I i) const {
     return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
   }
   HUSH_VEC_COMMON(4)
@@ -914,7 +1022,7 @@ class footprint {
     double m = 0;  // largest magnitude: both columns are scaled by one factor to the cap
     for (int a = 0; a < D; ++a) m = std::max({m, std::fabs(dpdx[a]), std::fabs(dpdy[a])});
     const double k = m > kMaxWidth() ? kMaxWidth() / m : 1.0;
-    double upper[kEntries];
+    double upper[std::size_t{kEntries}];
     for (int r = 0; r < D; ++r)
       for (int c = r; c < D; ++c)
         upper[index(r, c)] = (k * dpdx[r]) * (k * dpdx[c]) + (k * dpdy[r]) * (k * dpdy[c]);
@@ -928,8 +1036,8 @@ class footprint {
   // Non-finite entries give "everything"; a matrix with an entry beyond W^2
   // is scaled down until its largest entry is W^2. Not checked for positive
   // semi-definiteness: pass one.
-  static footprint from_covariance(const float (&upper)[kEntries]) {
-    double u[kEntries];
+  static footprint from_covariance(const float (&upper)[std::size_t{kEntries}]) {
+    double u[std::size_t{kEntries}];
     for (int e = 0; e < kEntries; ++e) u[e] = static_cast<double>(upper[e]);
     return from_upper(u);
   }
@@ -964,7 +1072,7 @@ class footprint {
   // The footprint of the same pixel for a noise evaluated at s * P (a band of
   // frequency s): S s^2, capped like every footprint.
   footprint scaled(double s) const {
-    double u[kEntries];
+    double u[std::size_t{kEntries}];
     for (int e = 0; e < kEntries; ++e) u[e] = static_cast<double>(s_[e]) * s * s;
     return from_upper(u);
   }
@@ -1001,7 +1109,7 @@ class footprint {
   // The footprint of upper triangle u (double): "everything" when an entry is
   // not finite, scaled down (shape kept) when an entry exceeds W^2, then
   // rounded to float once.
-  static footprint from_upper(const double (&u)[kEntries]) {
+  static footprint from_upper(const double (&u)[std::size_t{kEntries}]) {
     double m = 0;
     for (int e = 0; e < kEntries; ++e) {
       if (!std::isfinite(u[e])) return isotropic(kMaxWidth());
@@ -1037,7 +1145,7 @@ class footprint {
     return {lo, mid, hi};
   }
 
-  float s_[kEntries] = {};
+  float s_[std::size_t{kEntries}] = {};
 };
 
 }  // namespace hush
@@ -1677,18 +1785,18 @@ template <int N>
 struct grid {
   vec<double, N> origin;              // position of sample (0, 0[, 0])
   vec<double, N> step;                // spacing along each axis (may be negative, not zero)
-  std::array<std::size_t, N> size{};  // samples along each axis (nx, ny[, nz])
+  std::array<std::size_t, std::size_t{N}> size{};  // samples along each axis (nx, ny[, nz])
 
   // Number of samples; 0 when any axis is empty.
   std::size_t count() const {
     std::size_t n = 1;
-    for (int a = 0; a < N; ++a) n *= size[a];
+    for (std::size_t a = 0; a < N; ++a) n *= size[a];
     return n;
   }
   // Position of the sample with index (i, j[, k]).
-  vec<double, N> position(const std::array<std::size_t, N>& ijk) const {
+  vec<double, N> position(const std::array<std::size_t, std::size_t{N}>& ijk) const {
     vec<double, N> p;
-    for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
+    for (std::size_t a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
     return p;
   }
   // f(idx, position) for the samples of the slab whose slowest-axis index (j in
@@ -1702,7 +1810,7 @@ struct grid {
     for (std::size_t k = k0; k < nz; ++k)
       for (std::size_t j = j0; j < ny; ++j)
         for (std::size_t i = 0; i < size[0]; ++i, ++idx) {
-          std::array<std::size_t, N> ijk{};
+          std::array<std::size_t, std::size_t{N}> ijk{};
           ijk[0] = i;
           ijk[1] = j;
           if constexpr (N == 3) ijk[N - 1] = k;
@@ -1721,7 +1829,7 @@ struct grid {
                                    "a finite non-zero number");
     }
     std::size_t n = 1;
-    for (int a = 0; a < N; ++a) {
+    for (std::size_t a = 0; a < N; ++a) {
       if (size[a] != 0 && n > SIZE_MAX / size[a])
         detail::throw_out_of_range(where, "grid.size[" + std::to_string(a) + "]", size[a],
                                    "a count whose product with the other axes fits in size_t");
@@ -1896,15 +2004,15 @@ struct takes_sample_inputs
 template <class Noise>
 void validate_samples(const char* where, const samples<Noise::dimension>& s) {
   if (s.has_footprints() && !takes_footprint<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.footprints given, but this noise does not filter; "
                                  "valid: none (an empty span)");
   if (s.has_normals() && !takes_normal<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.normals given, but this noise takes no normal; "
                                  "valid: none (an empty span)");
   if (s.has_surface_maps() && !takes_surface_map<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.surface_maps given, but this noise takes no surface "
                                  "map; valid: none (an empty span)");
   const std::size_t n = s.positions.size();
@@ -2396,7 +2504,8 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
     double gain = 0.5;            // w_i = gain^i when weights is empty; finite, > 0
     std::vector<double> weights;  // explicit band weights: empty, or `octaves` finite values
     normalization norm = normalization::unit_variance;
-    std::array<int, D> period{};  // per axis, in band-0 lattice units; 0 = not periodic
+    // Per axis, in band-0 lattice units; 0 = not periodic.
+    std::array<int, std::size_t{D}> period{};
   };
 
   fractal() : fractal(params{}) {}  // 5 octaves of fBm, unit variance, seed 0
@@ -2408,11 +2517,11 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
     // the same everywhere, libm's pow is not (determinism across platforms).
     double gain_i = 1.0, lac_i = 1.0;
     for (int i = 0; i < prm_.octaves; ++i, gain_i *= prm_.gain, lac_i *= prm_.lacunarity) {
-      const double w = prm_.weights.empty() ? gain_i : prm_.weights[i];
+      const double w = prm_.weights.empty() ? gain_i : prm_.weights[static_cast<std::size_t>(i)];
       const std::uint32_t band_seed = hash32(prm_.seed, static_cast<std::uint32_t>(i));
       typename Noise::params np{};
       np.seed = band_seed;
-      for (int a = 0; a < D; ++a)
+      for (std::size_t a = 0; a < D; ++a)
         np.period[a] = prm_.period[a] == 0 ? 0 : static_cast<int>(prm_.period[a] * lac_i);
       vec<double, D> offset;
       for (int a = 0; a < D; ++a)  // 24 hash bits: an exact fraction in [0, 1)
@@ -2442,8 +2551,8 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   // Variance over space and seeds of fBm (1 under unit_variance); turbulence: -1 (not derived).
   double variance() const { return variance_; }
   // The weight and frequency of band i, after normalisation.
-  double band_weight(int i) const { return bands_[i].weight * scale_; }
-  double band_frequency(int i) const { return bands_[i].frequency; }
+  double band_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight * scale_; }
+  double band_frequency(int i) const { return bands_[static_cast<std::size_t>(i)].frequency; }
 
   // The bands as evaluated, for backends that run them themselves (hush/simd):
   // band i's noise, its raw weight w_i (before the normalisation scale()),
@@ -2594,14 +2703,14 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
         any = any || prm_.weights[i] != 0.0;
       }
       if (!any)
-        throw hush::invalid_argument(
+        hush::detail::raise_error(
             "hush::fractal: weights are all zero; valid: at least one non-zero weight");
     }
     if (prm_.kind == fractal_kind::turbulence && prm_.norm == normalization::unit_variance)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::fractal: norm = unit_variance is not available for turbulence; valid: "
           "unit_range or none");
-    for (int a = 0; a < D; ++a) {
+    for (std::size_t a = 0; a < D; ++a) {
       const std::string name = "period[" + std::to_string(a) + "]";
       if (prm_.period[a] < 0)
         detail::throw_out_of_range(where, name, prm_.period[a], "0 (not periodic) or >= 1");
@@ -2694,10 +2803,10 @@ HUSH_INLINE T lerp(T a, T b, T t) {
 }
 
 // Gradient tables in T, converted at compile time from the double constants.
-template <class T, int N>
+template <class T, std::size_t N>
 constexpr std::array<T, N> table_cast(const double (&src)[N]) {
   std::array<T, N> r{};
-  for (int i = 0; i < N; ++i) r[i] = static_cast<T>(src[i]);
+  for (std::size_t i = 0; i < N; ++i) r[i] = static_cast<T>(src[i]);
   return r;
 }
 template <class T>
@@ -2778,14 +2887,14 @@ class perlin : public point_noise<perlin<D>, D> {
     std::uint32_t seed = 0;
     // Per-axis period in lattice units: 0 = not periodic, p in 1 ... INT_MAX =
     // the noise repeats every p units along that axis (tileable noise).
-    std::array<int, D> period{};
+    std::array<int, std::size_t{D}> period{};
   };
 
   perlin() : perlin(params{}) {}
   explicit perlin(std::uint32_t seed) : perlin(params{seed, {}}) {}
   // Throws hush::invalid_argument when a period is negative.
   explicit perlin(const params& prm) : prm_(prm), key_(seed_key(prm.seed)) {
-    for (int a = 0; a < D; ++a)
+    for (std::size_t a = 0; a < D; ++a)
       if (prm.period[a] < 0)
         detail::throw_out_of_range("hush::perlin", "period[" + std::to_string(a) + "]",
                                    prm.period[a], "0 (not periodic) or 1 ... 2147483647");
@@ -2872,7 +2981,8 @@ class perlin : public point_noise<perlin<D>, D> {
   // the gradient g and the dot product d = g . (x - corner).
   template <class T>
   struct corners {
-    T d[kCorners], gx[kCorners], gy[kCorners], gz[kCorners];
+    T d[std::size_t{kCorners}], gx[std::size_t{kCorners}], gy[std::size_t{kCorners}],
+        gz[std::size_t{kCorners}];
   };
 
   // Corner n's gradient from the top half of its lattice hash, and the part
@@ -2900,8 +3010,8 @@ class perlin : public point_noise<perlin<D>, D> {
 
   template <class T, bool WithGradient>
   value_gradient<T, D> eval(const vec<double, D>& p) const {
-    lattice_coord<T> lc[D];
-    for (int a = 0; a < D; ++a)
+    lattice_coord<T> lc[std::size_t{D}];
+    for (std::size_t a = 0; a < D; ++a)
       lc[a] = lattice_split<T>(p[a], static_cast<std::uint32_t>(prm_.period[a]));
     axis<T> ax[3]{};
     for (int a = 0; a < D; ++a) ax[a] = make_axis<T, WithGradient>(lc[a].f);
@@ -3084,7 +3194,7 @@ class perlin : public point_noise<perlin<D>, D> {
           kyz[m] = key_ ^ lattice_word_y((m & 1) ? cy.i1 : cy.i0) ^
                    (D == 3 ? lattice_word_z((m & 2) ? cz.i1 : cz.i0) : 0u);
         corners<T> c{};
-        T k[kCorners]{};
+        T k[std::size_t{kCorners}]{};
         for (std::size_t i = 0; i < nx; ++i, ++idx) {
           const lattice_coord<T>& cx = cells[i];
           if (i == 0 || cx.i0 != cells[i - 1].i0) {
@@ -4804,7 +4914,7 @@ struct simd_kernel<perlin<D>> {
 
   static void config(const perlin<D>& n, std::uint32_t& key, std::uint32_t (&period)[3]) {
     key = seed_key(n.parameters().seed);
-    for (int a = 0; a < 3; ++a)
+    for (std::size_t a = 0; a < 3; ++a)
       period[a] = a < D ? static_cast<std::uint32_t>(n.parameters().period[a]) : 0u;
   }
   static void points(const perlin<D>& n, const vec<float, D>* pts, std::size_t count, float* out,
@@ -5403,7 +5513,7 @@ struct steerable_decomposition {
 inline steerable_decomposition decompose(const std::vector<double>& image, std::size_t n,
                                          const steerable_bank& bank) {
   if (!detail::is_power_of_two(n) || n < 2 || image.size() != n * n)
-    throw hush::invalid_argument(
+    hush::detail::raise_error(
         "hush::decompose: the image must be n x n with n a power of two >= 2 (got " +
         std::to_string(image.size()) + " pixels, n = " + std::to_string(n) + ")");
   using cd = std::complex<double>;
@@ -5719,10 +5829,14 @@ class anisotropic_tile {
   int channels() const { return channels_; }
   // Texel (x, y), x and y in 0 ... size() (size() wraps to 0): `channels()` floats.
   const float* texel(std::uint32_t x, std::uint32_t y) const {
-    return texels_.data() + (static_cast<std::size_t>(y) * (size_ + 1) + x) * channels_;
+    return texels_.data() +
+           (static_cast<std::size_t>(y) * static_cast<std::size_t>(size_ + 1) + x) *
+               static_cast<std::size_t>(channels_);
   }
   // Floats between the starts of two texel rows.
-  std::size_t row_stride() const { return static_cast<std::size_t>(size_ + 1) * channels_; }
+  std::size_t row_stride() const {
+    return static_cast<std::size_t>(size_ + 1) * static_cast<std::size_t>(channels_);
+  }
   const std::vector<float>& texels() const { return texels_; }
   // Largest |value| of orientation i's tile, and largest difference between
   // neighbouring texels (bilinear weight precision on GPUs scales with it).
@@ -5730,12 +5844,13 @@ class anisotropic_tile {
   float max_step(int i) const { return max_step_[static_cast<std::size_t>(i)]; }
   // The size() x size() RGBA texture of channels 4t ... 4t + 3 (t = 0 or 1), row-major.
   std::vector<float> rgba(int t) const {
-    std::vector<float> out(static_cast<std::size_t>(size_) * size_ * 4);
-    for (int y = 0; y < size_; ++y)
-      for (int x = 0; x < size_; ++x)
-        for (int c = 0; c < 4; ++c)
-          out[(static_cast<std::size_t>(y) * size_ + x) * 4 + c] =
-              texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y))[4 * t + c];
+    const auto n = static_cast<std::size_t>(size_), first = static_cast<std::size_t>(4 * t);
+    std::vector<float> out(n * n * 4);
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x)
+        for (std::size_t c = 0; c < 4; ++c)
+          out[(y * n + x) * 4 + c] =
+              texel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y))[first + c];
     return out;
   }
   // Memory held, in bytes.
@@ -6066,7 +6181,7 @@ class anisotropic : public sample_noise<anisotropic, 2> {
     if (n < c::kAnisoMinTileSize || n > c::kAnisoMaxTileSize || (n & (n - 1)) != 0)
       detail::throw_out_of_range(w, "tile_size", n, "a power of two, 16 ... 2048");
     if (prm_.kind != fractal_kind::fbm && prm_.kind != fractal_kind::turbulence)
-      throw hush::invalid_argument(std::string(w) + ": kind is not fbm or turbulence");
+      hush::detail::raise_error(std::string(w) + ": kind is not fbm or turbulence");
   }
 
   // Least-squares compensation weights of octaves [k0, k1) for map m (each
@@ -7141,7 +7256,7 @@ template <int Pieces, int Order>
 struct piecewise_kernel {
   static constexpr int pieces = Pieces;
   static constexpr int order = Order;
-  std::array<std::array<double, Order>, Pieces> c{};
+  std::array<std::array<double, std::size_t{Order}>, std::size_t{Pieces}> c{};
   static constexpr double half_support() { return Pieces / 2.0; }
 };
 
@@ -7159,18 +7274,18 @@ constexpr std::int64_t ipow(std::int64_t b, int e) {
 
 // The pieces of the density of a sum of M centred uniforms of integer widths w.
 template <int M, int S>
-constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w) {
+constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, std::size_t{M}>& w) {
   piecewise_kernel<S, M> r{};
   std::int64_t denom = 1;
   for (int i = 1; i < M; ++i) denom *= i;  // (M - 1)!
-  for (int i = 0; i < M; ++i) denom *= w[i];
+  for (std::size_t i = 0; i < M; ++i) denom *= w[i];
   for (int k = 0; k < S; ++k) {
-    std::int64_t num[M] = {};
+    std::int64_t num[std::size_t{M}] = {};
     for (unsigned e = 0; e < (1u << M); ++e) {
       int s = 0, sign = 1;
       for (int i = 0; i < M; ++i)
         if (e >> i & 1u) {
-          s += w[i];
+          s += w[static_cast<std::size_t>(i)];
           sign = -sign;
         }
       if (s > k) continue;  // (u - s)_+ vanishes on this piece
@@ -7178,7 +7293,8 @@ constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w)
       for (int j = 0; j < M; ++j) num[j] += sign * binomial(M - 1, j) * ipow(k - s, M - 1 - j);
     }
     for (int j = 0; j < M; ++j)
-      r.c[k][j] = static_cast<double>(num[j]) / static_cast<double>(denom);
+      r.c[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)] =
+          static_cast<double>(num[j]) / static_cast<double>(denom);
   }
   return r;
 }
@@ -7187,15 +7303,15 @@ constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w)
 // f = sum_e (-1)^|e| (u - s_e)_+^(M-1) / ((M-1)! prod w). Every term is an
 // integer below 2^47 for the kernels here, so the sum is exact in int64.
 template <int M>
-constexpr double uniform_sum_density_at(const std::array<int, M>& w, int u) {
+constexpr double uniform_sum_density_at(const std::array<int, std::size_t{M}>& w, int u) {
   std::int64_t num = 0, denom = 1;
   for (int i = 1; i < M; ++i) denom *= i;
-  for (int i = 0; i < M; ++i) denom *= w[i];
+  for (std::size_t i = 0; i < M; ++i) denom *= w[i];
   for (unsigned e = 0; e < (1u << M); ++e) {
     int s = 0, sign = 1;
     for (int i = 0; i < M; ++i)
       if (e >> i & 1u) {
-        s += w[i];
+        s += w[static_cast<std::size_t>(i)];
         sign = -sign;
       }
     if (u > s) num += sign * ipow(u - s, M - 1);
@@ -7208,16 +7324,17 @@ constexpr int kN = constants::kBsplineUniforms;
 constexpr int kStretch = static_cast<int>(constants::kWaveletProjectionStretch);
 static_assert(kStretch == constants::kWaveletProjectionStretch, "an integer stretch");
 template <int M>
-constexpr std::array<int, M> boxes(int width) {
-  std::array<int, M> r{};
-  for (int i = 0; i < M; ++i) r[i] = width;
+constexpr std::array<int, std::size_t{M}> boxes(int width) {
+  std::array<int, std::size_t{M}> r{};
+  for (std::size_t i = 0; i < M; ++i) r[i] = width;
   return r;
 }
 template <int A, int B>
-constexpr std::array<int, A + B> concat(const std::array<int, A>& a, const std::array<int, B>& b) {
-  std::array<int, A + B> r{};
-  for (int i = 0; i < A; ++i) r[i] = a[i];
-  for (int i = 0; i < B; ++i) r[A + i] = b[i];
+constexpr std::array<int, std::size_t{A + B}> concat(const std::array<int, std::size_t{A}>& a,
+                                                     const std::array<int, std::size_t{B}>& b) {
+  std::array<int, std::size_t{A + B}> r{};
+  for (std::size_t i = 0; i < A; ++i) r[i] = a[i];
+  for (std::size_t i = 0; i < B; ++i) r[std::size_t{A} + i] = b[i];
   return r;
 }
 constexpr auto kB = boxes<kN>(1);                              // B
@@ -7261,7 +7378,8 @@ template <int P, int O>
 constexpr piecewise_kernel<P, O - 1> derivative(const piecewise_kernel<P, O>& k) {
   piecewise_kernel<P, O - 1> r{};
   for (int p = 0; p < P; ++p)
-    for (int j = 1; j < O; ++j) r.c[p][j - 1] = k.c[p][j] * j;
+    for (std::size_t j = 1; j < O; ++j)
+      r.c[static_cast<std::size_t>(p)][j - 1] = k.c[static_cast<std::size_t>(p)][j] * double(j);
   return r;
 }
 inline constexpr auto kBsplineDerivative = derivative(kBspline);
@@ -7271,8 +7389,9 @@ inline constexpr auto kBetaDerivative = derivative(kBeta);
 // Piece p of kernel k at local t, Horner form (highest power first), in T.
 template <class T, int P, int O>
 HUSH_INLINE T piece_value(const piecewise_kernel<P, O>& k, int p, T t) {
-  T r = T(k.c[p][O - 1]);
-  for (int j = O - 2; j >= 0; --j) r = r * t + T(k.c[p][j]);
+  const auto& c = k.c[static_cast<std::size_t>(p)];
+  T r = T(c.back());
+  for (int j = O - 2; j >= 0; --j) r = r * t + T(c[static_cast<std::size_t>(j)]);
   return r;
 }
 
@@ -7434,7 +7553,7 @@ struct frame {
     return std::to_string(v.width) + "x" + std::to_string(v.height);
   }
   [[noreturn]] static void missing(const char* where, const char* name) {
-    throw hush::invalid_argument(std::string(where) + ": frame." + name +
+    hush::detail::raise_error(std::string(where) + ": frame." + name +
                                  " is required but missing (null data)");
   }
   template <class T>
@@ -7731,11 +7850,14 @@ struct triangle_list {
 //    hush::invalid_argument naming `threads`. It starts threads - 1 workers:
 //    the thread that calls run() is the first. If the system refuses a
 //    thread, the pool keeps the workers it got (size() says how many run).
+//    Built without exceptions, std::thread cannot report a refusal but ends
+//    the program (the standard library's behaviour, e.g. libstdc++ aborts).
 //  - run(parts, body): calls body(0) ... body(parts - 1), each exactly once,
 //    on whichever of the pool's threads and the calling thread takes it first
 //    (the caller takes parts too, so a worker that is not running delays only
 //    the parts it took), and returns when all have returned. body must not throw (hush's batch
-//    bodies do not: they run after validation). Calls from several threads
+//    bodies do not: they run after validation); the pool neither catches nor rethrows: an
+//    exception leaving a body on a worker ends the program (std::terminate). Calls from several threads
 //    are serialised (one batch at a time); a call from inside a body of the
 //    same pool runs all its parts on the calling thread instead of waiting
 //    for itself.
@@ -7773,10 +7895,14 @@ class thread_pool {
     const unsigned n =
         threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : unsigned(threads);
     workers_.reserve(n - 1);
+#if HUSH_CONFIG_CXX_EXCEPTIONS
     try {
       for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this] { work(); });
     } catch (...) {  // no more threads to be had: the pool runs with those it has
     }
+#else
+    for (unsigned w = 1; w < n; ++w) workers_.emplace_back([this] { work(); });
+#endif
   }
   thread_pool(const thread_pool&) = delete;
   thread_pool& operator=(const thread_pool&) = delete;
@@ -8170,10 +8296,14 @@ void parallel_parts(std::size_t n, std::size_t unit, std::size_t grain, unsigned
   std::vector<std::thread> pool;
   pool.reserve(parts - 1);
   std::size_t started = 1;
+#if HUSH_CONFIG_CXX_EXCEPTIONS
   try {
     for (; started < parts; ++started) pool.emplace_back(part, started);
   } catch (...) {  // no more threads to be had: the calling thread does the rest
   }
+#else  // std::thread ends the program when the system refuses a thread
+  for (; started < parts; ++started) pool.emplace_back(part, started);
+#endif
   part(0);
   for (std::size_t t = started; t < parts; ++t) part(t);
   for (std::thread& th : pool) th.join();
@@ -9151,8 +9281,8 @@ class gabor_kernel {
   value_gradient<T, D> eval(const vec<T, D>& x, const vec<double, D>& F) const {
     const T inv_r = T(1.0 / r_), neg_a = T(-exponent_);
     const T k = T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
-    detail::gabor_axis<T> ax[D];
-    T phi[D];
+    detail::gabor_axis<T> ax[std::size_t{D}];
+    T phi[std::size_t{D}];
     T s = 0;
     for (int i = 0; i < D; ++i) {
       phi[i] = T(F[i] * r_);
@@ -9187,7 +9317,8 @@ namespace detail {
 // cofactor formulas cancel catastrophically. a is overwritten (its diagonal
 // ends holding the eigenvalues); v's columns are the eigenvectors.
 template <int D>
-void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
+void jacobi_eigen(double (&a)[std::size_t{D}][std::size_t{D}],
+                  double (&v)[std::size_t{D}][std::size_t{D}]) {
   for (int i = 0; i < D; ++i)
     for (int j = 0; j < D; ++j) v[i][j] = i == j ? 1.0 : 0.0;
   for (int sweep = 0; sweep < 50; ++sweep) {
@@ -9249,13 +9380,14 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
 // footprints the amplitude underflows towards 0: the filtered noise is its mean.
 template <int D>
 struct gabor_filter {
-  double q[D][D];    // Q, symmetric
-  double m[D][D];    // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
+  double q[std::size_t{D}][std::size_t{D}];  // Q, symmetric
+  double m[std::size_t{D}]
+          [std::size_t{D}];  // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
   double amplitude;  // sqrt(det Q), in (0, 1]
 
   // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
   gabor_filter(const footprint<D>& fp, double a, double inv_r) {
-    double s[D][D];
+    double s[std::size_t{D}][std::size_t{D}];
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
     build(s, a, inv_r);
@@ -9263,8 +9395,8 @@ struct gabor_filter {
   // The same for S given in double (symmetric, finite, positive semi-definite up
   // to rounding): surface noise's footprint projected onto the tangent plane,
   // which is not rounded to float (gabor<3>::surface_frame).
-  gabor_filter(const double (&cov)[D][D], double a, double inv_r) {
-    double s[D][D];
+  gabor_filter(const double (&cov)[std::size_t{D}][std::size_t{D}], double a, double inv_r) {
+    double s[std::size_t{D}][std::size_t{D}];
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) s[i][j] = cov[i][j];
     build(s, a, inv_r);
@@ -9272,16 +9404,16 @@ struct gabor_filter {
 
  private:
   // s is overwritten (jacobi_eigen).
-  void build(double (&s)[D][D], double a, double inv_r) {
+  void build(double (&s)[std::size_t{D}][std::size_t{D}], double a, double inv_r) {
     namespace c = detail::constants;
     const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
     if constexpr (D == 2) {
       build_2d(s[0][0], s[0][1], s[1][1], k, c::kPi * c::kPi / a);
       return;
     }
-    double v[D][D];
+    double v[std::size_t{D}][std::size_t{D}];
     detail::jacobi_eigen<D>(s, v);
-    double qd[D], md[D];
+    double qd[std::size_t{D}], md[std::size_t{D}];
     double det = 1.0;  // det Q
     const double mk = c::kPi * c::kPi / a;
     for (int i = 0; i < D; ++i) {
@@ -9348,7 +9480,7 @@ constexpr int gabor_sym(int r, int c) {
 template <class T, int E>
 struct gabor_filter_coefs {
   static constexpr int kSize = E * (E + 1) / 2;
-  T q[kSize], m2[kSize];
+  T q[std::size_t{kSize}], m2[std::size_t{kSize}];
   T amplitude;
   explicit gabor_filter_coefs(const gabor_filter<E>& f) : amplitude(static_cast<T>(f.amplitude)) {
     for (int r = 0; r < E; ++r)
@@ -9587,7 +9719,7 @@ class gabor : public sample_noise<gabor<D>, D> {
                                        mean_energy_2d() * surface_geometry());
       for (const auto& t : {table_, surface_table_})
         if (t->max_count() > static_cast<std::uint32_t>(c::kGaborMaxThresholds))
-          throw hush::invalid_argument("hush::gabor: internal Poisson table too long");
+          hush::detail::raise_error("hush::gabor: internal Poisson table too long");
     }
   }
 
@@ -9758,7 +9890,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   // fields impulse_position() and mark_values() decode (constants.hpp,
   // "Impulse marks"): decoding only what is needed is what every backend does.
   template <class F>
-  void for_each_impulse(const std::uint32_t (&cell)[D], F f) const {
+  void for_each_impulse(const std::uint32_t (&cell)[std::size_t{D}], F f) const {
     rng r(cell_seed(cell), detail::constants::kGaborSolidStream);
     const std::uint32_t n = table_->count(r.next_u32());
     const int words = words_per_impulse();
@@ -9834,7 +9966,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     return p;
   }
 
-  std::uint32_t cell_seed(const std::uint32_t (&cell)[D]) const {
+  std::uint32_t cell_seed(const std::uint32_t (&cell)[std::size_t{D}]) const {
     if constexpr (D == 2)
       return lattice_hash(key_, cell[0], cell[1]);
     else
@@ -10195,21 +10327,21 @@ class gabor : public sample_noise<gabor<D>, D> {
   // the order the grid kernels accumulate in. False for a non-finite p.
   template <class T, class Pair>
   bool for_each_pair(const vec<double, D>& p, Pair pair) const {
-    lattice_coord<T> c[D];
+    lattice_coord<T> c[std::size_t{D}];
     for (int a = 0; a < D; ++a) {
       c[a] = lattice_split<T>(p[a] * inv_cell_);
       if (std::isnan(c[a].f)) return false;
     }
     constexpr int kCells = D == 2 ? 9 : 27;
     for (int n = 0; n < kCells; ++n) {
-      int o[D];
-      std::uint32_t cell[D];
+      int o[std::size_t{D}];
+      std::uint32_t cell[std::size_t{D}];
       for (int ax = 0, m = n; ax < D; ++ax, m /= 3) {
         o[ax] = m % 3 - 1;
         cell[ax] = c[ax].i0 + static_cast<std::uint32_t>(o[ax]);
       }
       for_each_impulse(cell, [&](const std::uint32_t* words) {
-        T d[D], d2[D];
+        T d[std::size_t{D}], d2[std::size_t{D}];
         for (int ax = 0; ax < D; ++ax) {
           d[ax] = detail::gabor_offset(c[ax].f, o[ax], impulse_position<T>(words, ax));
           d2[ax] = d[ax] * d[ax];
@@ -10234,12 +10366,12 @@ class gabor : public sample_noise<gabor<D>, D> {
   value_gradient<T, D> eval(const vec<double, D>& p) const {
     const T neg_a = T(-kernel_.envelope_exponent()), a = T(kernel_.envelope_exponent());
     const T taper_k = taper_k_<T>();
-    T sum = 0, g[D] = {};
+    T sum = 0, g[std::size_t{D}] = {};
     // The point form sums by fours (detail::gabor_point_sum), value and gradient alike.
-    detail::gabor_point_sum<T> psum, pg_sum[D];
+    detail::gabor_point_sum<T> psum, pg_sum[std::size_t{D}];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
       if constexpr (!Grid) {
-        T ph[D];
+        T ph[std::size_t{D}];
         for (int i = 0; i < D; ++i) ph[i] = phi[i];
         const T theta = detail::gabor_point_phase<T, D>(ph, d);
         if constexpr (G) {
@@ -10251,7 +10383,7 @@ class gabor : public sample_noise<gabor<D>, D> {
         }
         return;
       }
-      detail::gabor_axis<T> ax[D];
+      detail::gabor_axis<T> ax[std::size_t{D}];
       for (int i = 0; i < D; ++i) ax[i] = detail::gabor_axis_factors(d[i], neg_a, phi[i]);
       detail::gabor_row<T> row;
       if constexpr (D == 2)
@@ -10283,7 +10415,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   static void filtered_pair(const detail::gabor_filter_coefs<T, E>& f, T neg_a, T a, T taper_k,
                             const T* d, T s, T w, const T* phi, T& sum, T* grad) {
     using detail::gabor_sym;
-    T qd[E];
+    T qd[std::size_t{E}];
     for (int i = 0; i < E; ++i) {
       T z = f.q[gabor_sym<E>(i, 0)] * d[0];
       for (int j = 1; j < E; ++j) z += f.q[gabor_sym<E>(i, j)] * d[j];
@@ -10324,9 +10456,9 @@ class gabor : public sample_noise<gabor<D>, D> {
     const T neg_a = T(-kernel_.envelope_exponent());
     const T a = T(kernel_.envelope_exponent()), taper_k = taper_k_<T>();
     // Sums by fours as the point form (detail::gabor_point_sum), value and gradient alike.
-    detail::gabor_point_sum<T> psum, pg_sum[D];
+    detail::gabor_point_sum<T> psum, pg_sum[std::size_t{D}];
     const bool ok = for_each_pair<T>(p, [&](const T* d, const T*, T s, T w, const vec<T, D>& phi) {
-      T ph[D], term = 0, gterm[D] = {};
+      T ph[std::size_t{D}], term = 0, gterm[std::size_t{D}] = {};
       for (int i = 0; i < D; ++i) ph[i] = phi[i];
       filtered_pair<T, D, G>(flt, neg_a, a, taper_k, d, s, w, ph, term, gterm);
       psum.add(term);
@@ -10335,7 +10467,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     });
     if (!ok) return nan_result<T>();
     // The amplitude scales the sums (every backend: (sum * amplitude) * scale).
-    T sum = psum.total() * flt.amplitude, g[D];
+    T sum = psum.total() * flt.amplitude, g[std::size_t{D}];
     for (int i = 0; i < D; ++i) g[i] = pg_sum[i].total() * flt.amplitude;
     return finish<T, G>(sum, g, T(scale_), T(scale_ * inv_cell_));
   }
@@ -13854,7 +13986,8 @@ inline void wavelet_down_up(std::vector<double>& x, int n, std::size_t stride) {
   const std::size_t count = x.size();
   for (std::size_t base = 0; base < count; ++base) {
     if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;  // not a line start
-    for (int k = 0; k < n; ++k) line[static_cast<std::size_t>(k)] = x[base + k * stride];
+    for (int k = 0; k < n; ++k)
+      line[static_cast<std::size_t>(k)] = x[base + static_cast<std::size_t>(k) * stride];
     for (int m = 0; m < half; ++m) {  // c_m = sum_j per_j x_(2m + j)
       double s = 0;
       for (std::size_t t = 0; t < off.size(); ++t) {
@@ -13872,7 +14005,7 @@ inline void wavelet_down_up(std::vector<double>& x, int n, std::size_t stride) {
         s += constants::kWaveletRefine[i] *
              coarse[static_cast<std::size_t>(wavelet_mod((k - t) / 2, half))];
       }
-      x[base + k * stride] = s;
+      x[base + static_cast<std::size_t>(k) * stride] = s;
     }
   }
 }
@@ -13884,13 +14017,14 @@ void wavelet_convolve_axis(std::vector<double>& x, int n, std::size_t stride, in
   for (int d = 0; d < reach; ++d) kd[static_cast<std::size_t>(d)] = k(d);
   for (std::size_t base = 0; base < x.size(); ++base) {
     if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;
-    for (int i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = x[base + i * stride];
+    for (int i = 0; i < n; ++i)
+      line[static_cast<std::size_t>(i)] = x[base + static_cast<std::size_t>(i) * stride];
     for (int i = 0; i < n; ++i) {
       double s = 0;
       for (int d = 1 - reach; d < reach; ++d)
         s += kd[static_cast<std::size_t>(std::abs(d))] *
              line[static_cast<std::size_t>(wavelet_mod(i + d, n))];
-      x[base + i * stride] = s;
+      x[base + static_cast<std::size_t>(i) * stride] = s;
     }
   }
 }
@@ -14225,7 +14359,7 @@ struct wavelet_periodic_access {
         a == 0 ? 1 : static_cast<std::size_t>(m) * (a == 2 ? static_cast<std::size_t>(n) : 1);
     return static_cast<std::size_t>(wrap(static_cast<long long>(i0[a]) + k)) * stride;
   }
-  HUSH_INLINE float at(const int (&k)[D]) const {
+  HUSH_INLINE float at(const int (&k)[std::size_t{D}]) const {
     std::size_t i = 0;
     for (int a = 0; a < D; ++a) i += index(a, k[a]);
     return c[i];
@@ -14243,7 +14377,7 @@ struct wavelet_variant_access {
   int n, cell;  // tile size and cell pitch L = n - overlap
   std::uint32_t key;
   std::uint32_t i0[3];
-  HUSH_INLINE float at(const int (&k)[D]) const {
+  HUSH_INLINE float at(const int (&k)[std::size_t{D}]) const {
     std::uint32_t t[3][2] = {};
     int l[3][2] = {}, count[3] = {};
     const auto pitch = static_cast<std::uint32_t>(cell);
@@ -14305,11 +14439,14 @@ struct wavelet_variant_access {
 
 // Sum over separable taps: the value and the gradient in coefficient units, z
 // innermost (value = sum_a wx (sum_b wy (sum_c wz n))), the order every backend uses.
-template <class T, bool G, int D, class Access>
-HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
+// (N, the array's extent, equals D: a std::size_t parameter, deduced, so the bound needs no
+// conversion and the periodic overload below stays the more specialised one.)
+template <class T, bool G, int D, class Access, std::size_t N>
+HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[N],
                                                    const Access& acc) {
+  static_assert(N == D, "one axis per dimension");
   value_gradient<T, D> r{T(0), {}};
-  int k[D];
+  int k[std::size_t{D}];
   if constexpr (D == 2) {
     for (int a = 0; a < ax[0].count; ++a) {
       k[0] = ax[0].first + a;
@@ -14358,17 +14495,18 @@ HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D
 
 // The same over the periodic tile, with the wrapped, stride-scaled index of
 // every tap precomputed per axis (the sums are the generic ones, operation by operation).
-template <class T, bool G, int D>
-HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[D],
+template <class T, bool G, int D, std::size_t N>
+HUSH_INLINE value_gradient<T, D> wavelet_separable(const wavelet_axis<T> (&ax)[N],
                                                    const wavelet_periodic_access<D>& acc) {
-  std::size_t off[D][kWaveletMaxTaps];
+  static_assert(N == D, "one axis per dimension");
+  std::size_t off[std::size_t{D}][kWaveletMaxTaps];
   for (int a = 0; a < D; ++a)
     for (int j = 0; j < ax[a].count; ++j) off[a][j] = acc.index(a, ax[a].first + j);
   struct table_access {
     const float* c;
     const std::size_t (*off)[kWaveletMaxTaps];
     const wavelet_axis<T>* ax;
-    HUSH_INLINE float at(const int (&k)[D]) const {
+    HUSH_INLINE float at(const int (&k)[std::size_t{D}]) const {
       std::size_t i = 0;
       for (int a = 0; a < D; ++a) i += off[a][k[a] - ax[a].first];
       return c[i];
@@ -14792,7 +14930,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     double extent2[3] = {0, 0, 0};
     if (prm_.widen) {
       for (int a = 0; a < D; ++a) {
-        double pa[D];
+        double pa[std::size_t{D}];
         for (int c = 0; c < D; ++c) pa[c] = (c == a ? 1.0 : 0.0);
         if constexpr (D == 3)
           if (pl.project)
@@ -14984,9 +15122,9 @@ class wavelet : public sample_noise<wavelet<D>, D> {
 
   // One band at tile-coordinate position q (tap 0 at floor(q)), in coefficient units.
   template <class T, bool G, class Access>
-  value_gradient<T, D> band_kernel(const lattice_coord<T> (&c)[D], const plan& pl, int i,
-                                   const Access& acc) const {
-    detail::wavelet_axis<T> ax[D];
+  value_gradient<T, D> band_kernel(const lattice_coord<T> (&c)[std::size_t{D}], const plan& pl,
+                                   int i, const Access& acc) const {
+    detail::wavelet_axis<T> ax[std::size_t{D}];
     bool widened = false;
     for (int a = 0; a < D; ++a) widened = widened || pl.widen[i][a] != 1.0;
     if constexpr (D == 3) {
@@ -15025,7 +15163,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
   value_gradient<T, D> band_value(const vec<double, D>& p, const plan& pl, int i) const {
     const band& b = bands_[static_cast<std::size_t>(i)];
     const vec<double, D> q = b.position(p);
-    lattice_coord<T> c[D];
+    lattice_coord<T> c[std::size_t{D}];
     const std::uint32_t period = split_period();
     for (int a = 0; a < D; ++a) c[a] = lattice_split<T>(q[a], period);
     if (prm_.variant_overlap == 0) {
@@ -15098,7 +15236,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       any = any || prm_.weights[i] != 0.0;
     }
     if (!any)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
     if (prm_.relative_weights)
       detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,
@@ -17647,7 +17785,7 @@ void coherent_check_views(const char* where, const char* name, const V* views, s
   for (std::size_t c = 0; c < given; ++c) {
     const V& v = views[c];
     const std::string n = std::string(name) + "[" + std::to_string(c) + "]";
-    if (!v.data) throw hush::invalid_argument(std::string(where) + ": " + n + " has null data");
+    if (!v.data) hush::detail::raise_error(std::string(where) + ": " + n + " has null data");
     if (v.width != width || v.height != height)
       throw_out_of_range(
           where, n + " size", std::to_string(v.width) + "x" + std::to_string(v.height),
@@ -17940,7 +18078,7 @@ class byte_reader {
   explicit byte_reader(span<const std::uint8_t> b) : b_(b) {}
   void need(std::size_t n) const {
     if (b_.size() - pos_ < n)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::coherent_stream::deserialize: the data is truncated (a state of " +
           std::to_string(b_.size()) + " bytes ends early)");
   }
@@ -18023,13 +18161,13 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
   detail::byte_reader r(bytes);
   r.need(sizeof detail::kCoherentMagic);
   if (std::memcmp(bytes.data(), detail::kCoherentMagic, sizeof detail::kCoherentMagic) != 0)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": not a coherent-noise state (no HUSHCOH1 header)");
   std::vector<std::uint8_t> skip;
   r.values(skip, sizeof detail::kCoherentMagic);
   const std::uint32_t size = r.u32();
   if (size != sizeof(T))
-    throw hush::invalid_argument(std::string(where) + ": the state holds " +
+    hush::detail::raise_error(std::string(where) + ": the state holds " +
                                  std::to_string(8 * size) + "-bit values; this stream holds " +
                                  std::to_string(8 * sizeof(T)) + "-bit values");
   params p;
@@ -18046,7 +18184,7 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
   detail::coherent_state<T>& st = s.st_;
   st.next_frame = r.u32();
   const std::uint32_t has = r.u32();
-  if (has > 1u) throw hush::invalid_argument(std::string(where) + ": corrupt history flag");
+  if (has > 1u) hush::detail::raise_error(std::string(where) + ": corrupt history flag");
   if (has) {
     st.width = r.u32();
     st.height = r.u32();
@@ -18056,7 +18194,7 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
                                  std::to_string(st.width) + "x" + std::to_string(st.height),
                                  "1 ... 16384 pixels per side");
     const std::uint32_t ids = r.u32();
-    if (ids > 1u) throw hush::invalid_argument(std::string(where) + ": corrupt id flag");
+    if (ids > 1u) hush::detail::raise_error(std::string(where) + ": corrupt id flag");
     const std::size_t n = st.pixels();
     r.values(st.ref_depth, n);
     st.reference_has_ids = ids != 0;
@@ -18065,11 +18203,11 @@ basic_coherent_stream<T> basic_coherent_stream<T>::deserialize(span<const std::u
     r.values(st.history, n * static_cast<std::size_t>(p.channels));
     for (const T& v : st.history)
       if (!std::isfinite(v))
-        throw hush::invalid_argument(std::string(where) + ": the history holds a non-finite value");
+        hush::detail::raise_error(std::string(where) + ": the history holds a non-finite value");
     st.has_reference = true;
   }
   if (!r.done())
-    throw hush::invalid_argument(std::string(where) + ": " +
+    hush::detail::raise_error(std::string(where) + ": " +
                                  std::to_string(bytes.size() - r.position()) +
                                  " bytes follow the state");
   return s;
@@ -18171,9 +18309,9 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm,
   validate(prm);
   if (io.frames == 0) detail::throw_out_of_range(where, "frames", 0, "at least 1");
   if (!io.frame_at || !io.write)
-    throw hush::invalid_argument(std::string(where) + ": frame_at and write are required");
+    hush::detail::raise_error(std::string(where) + ": frame_at and write are required");
   if (static_cast<bool>(io.keep) != static_cast<bool>(io.recall))
-    throw hush::invalid_argument(std::string(where) + ": set both keep and recall, or neither");
+    hush::detail::raise_error(std::string(where) + ": set both keep and recall, or neither");
   const frame_view needs = frame_view::depth | frame_view::velocity | frame_view::forward_velocity;
   const std::size_t nc = static_cast<std::size_t>(prm.channels);
   std::size_t w = 0, h = 0;

@@ -187,7 +187,7 @@ struct steerable_decomposition {
 inline steerable_decomposition decompose(const std::vector<double>& image, std::size_t n,
                                          const steerable_bank& bank) {
   if (!detail::is_power_of_two(n) || n < 2 || image.size() != n * n)
-    throw hush::invalid_argument(
+    hush::detail::raise_error(
         "hush::decompose: the image must be n x n with n a power of two >= 2 (got " +
         std::to_string(image.size()) + " pixels, n = " + std::to_string(n) + ")");
   using cd = std::complex<double>;

@@ -42,7 +42,7 @@ template <int Pieces, int Order>
 struct piecewise_kernel {
   static constexpr int pieces = Pieces;
   static constexpr int order = Order;
-  std::array<std::array<double, Order>, Pieces> c{};
+  std::array<std::array<double, std::size_t{Order}>, std::size_t{Pieces}> c{};
   static constexpr double half_support() { return Pieces / 2.0; }
 };
 
@@ -60,18 +60,18 @@ constexpr std::int64_t ipow(std::int64_t b, int e) {
 
 // The pieces of the density of a sum of M centred uniforms of integer widths w.
 template <int M, int S>
-constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w) {
+constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, std::size_t{M}>& w) {
   piecewise_kernel<S, M> r{};
   std::int64_t denom = 1;
   for (int i = 1; i < M; ++i) denom *= i;  // (M - 1)!
-  for (int i = 0; i < M; ++i) denom *= w[i];
+  for (std::size_t i = 0; i < M; ++i) denom *= w[i];
   for (int k = 0; k < S; ++k) {
-    std::int64_t num[M] = {};
+    std::int64_t num[std::size_t{M}] = {};
     for (unsigned e = 0; e < (1u << M); ++e) {
       int s = 0, sign = 1;
       for (int i = 0; i < M; ++i)
         if (e >> i & 1u) {
-          s += w[i];
+          s += w[static_cast<std::size_t>(i)];
           sign = -sign;
         }
       if (s > k) continue;  // (u - s)_+ vanishes on this piece
@@ -79,7 +79,8 @@ constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w)
       for (int j = 0; j < M; ++j) num[j] += sign * binomial(M - 1, j) * ipow(k - s, M - 1 - j);
     }
     for (int j = 0; j < M; ++j)
-      r.c[k][j] = static_cast<double>(num[j]) / static_cast<double>(denom);
+      r.c[static_cast<std::size_t>(k)][static_cast<std::size_t>(j)] =
+          static_cast<double>(num[j]) / static_cast<double>(denom);
   }
   return r;
 }
@@ -88,15 +89,15 @@ constexpr piecewise_kernel<S, M> uniform_sum_kernel(const std::array<int, M>& w)
 // f = sum_e (-1)^|e| (u - s_e)_+^(M-1) / ((M-1)! prod w). Every term is an
 // integer below 2^47 for the kernels here, so the sum is exact in int64.
 template <int M>
-constexpr double uniform_sum_density_at(const std::array<int, M>& w, int u) {
+constexpr double uniform_sum_density_at(const std::array<int, std::size_t{M}>& w, int u) {
   std::int64_t num = 0, denom = 1;
   for (int i = 1; i < M; ++i) denom *= i;
-  for (int i = 0; i < M; ++i) denom *= w[i];
+  for (std::size_t i = 0; i < M; ++i) denom *= w[i];
   for (unsigned e = 0; e < (1u << M); ++e) {
     int s = 0, sign = 1;
     for (int i = 0; i < M; ++i)
       if (e >> i & 1u) {
-        s += w[i];
+        s += w[static_cast<std::size_t>(i)];
         sign = -sign;
       }
     if (u > s) num += sign * ipow(u - s, M - 1);
@@ -109,16 +110,17 @@ constexpr int kN = constants::kBsplineUniforms;
 constexpr int kStretch = static_cast<int>(constants::kWaveletProjectionStretch);
 static_assert(kStretch == constants::kWaveletProjectionStretch, "an integer stretch");
 template <int M>
-constexpr std::array<int, M> boxes(int width) {
-  std::array<int, M> r{};
-  for (int i = 0; i < M; ++i) r[i] = width;
+constexpr std::array<int, std::size_t{M}> boxes(int width) {
+  std::array<int, std::size_t{M}> r{};
+  for (std::size_t i = 0; i < M; ++i) r[i] = width;
   return r;
 }
 template <int A, int B>
-constexpr std::array<int, A + B> concat(const std::array<int, A>& a, const std::array<int, B>& b) {
-  std::array<int, A + B> r{};
-  for (int i = 0; i < A; ++i) r[i] = a[i];
-  for (int i = 0; i < B; ++i) r[A + i] = b[i];
+constexpr std::array<int, std::size_t{A + B}> concat(const std::array<int, std::size_t{A}>& a,
+                                                     const std::array<int, std::size_t{B}>& b) {
+  std::array<int, std::size_t{A + B}> r{};
+  for (std::size_t i = 0; i < A; ++i) r[i] = a[i];
+  for (std::size_t i = 0; i < B; ++i) r[std::size_t{A} + i] = b[i];
   return r;
 }
 constexpr auto kB = boxes<kN>(1);                              // B
@@ -162,7 +164,8 @@ template <int P, int O>
 constexpr piecewise_kernel<P, O - 1> derivative(const piecewise_kernel<P, O>& k) {
   piecewise_kernel<P, O - 1> r{};
   for (int p = 0; p < P; ++p)
-    for (int j = 1; j < O; ++j) r.c[p][j - 1] = k.c[p][j] * j;
+    for (std::size_t j = 1; j < O; ++j)
+      r.c[static_cast<std::size_t>(p)][j - 1] = k.c[static_cast<std::size_t>(p)][j] * double(j);
   return r;
 }
 inline constexpr auto kBsplineDerivative = derivative(kBspline);
@@ -172,8 +175,9 @@ inline constexpr auto kBetaDerivative = derivative(kBeta);
 // Piece p of kernel k at local t, Horner form (highest power first), in T.
 template <class T, int P, int O>
 HUSH_INLINE T piece_value(const piecewise_kernel<P, O>& k, int p, T t) {
-  T r = T(k.c[p][O - 1]);
-  for (int j = O - 2; j >= 0; --j) r = r * t + T(k.c[p][j]);
+  const auto& c = k.c[static_cast<std::size_t>(p)];
+  T r = T(c.back());
+  for (int j = O - 2; j >= 0; --j) r = r * t + T(c[static_cast<std::size_t>(j)]);
   return r;
 }
 

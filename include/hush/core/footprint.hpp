@@ -78,7 +78,7 @@ class footprint {
     double m = 0;  // largest magnitude: both columns are scaled by one factor to the cap
     for (int a = 0; a < D; ++a) m = std::max({m, std::fabs(dpdx[a]), std::fabs(dpdy[a])});
     const double k = m > kMaxWidth() ? kMaxWidth() / m : 1.0;
-    double upper[kEntries];
+    double upper[std::size_t{kEntries}];
     for (int r = 0; r < D; ++r)
       for (int c = r; c < D; ++c)
         upper[index(r, c)] = (k * dpdx[r]) * (k * dpdx[c]) + (k * dpdy[r]) * (k * dpdy[c]);
@@ -92,8 +92,8 @@ class footprint {
   // Non-finite entries give "everything"; a matrix with an entry beyond W^2
   // is scaled down until its largest entry is W^2. Not checked for positive
   // semi-definiteness: pass one.
-  static footprint from_covariance(const float (&upper)[kEntries]) {
-    double u[kEntries];
+  static footprint from_covariance(const float (&upper)[std::size_t{kEntries}]) {
+    double u[std::size_t{kEntries}];
     for (int e = 0; e < kEntries; ++e) u[e] = static_cast<double>(upper[e]);
     return from_upper(u);
   }
@@ -128,7 +128,7 @@ class footprint {
   // The footprint of the same pixel for a noise evaluated at s * P (a band of
   // frequency s): S s^2, capped like every footprint.
   footprint scaled(double s) const {
-    double u[kEntries];
+    double u[std::size_t{kEntries}];
     for (int e = 0; e < kEntries; ++e) u[e] = static_cast<double>(s_[e]) * s * s;
     return from_upper(u);
   }
@@ -165,7 +165,7 @@ class footprint {
   // The footprint of upper triangle u (double): "everything" when an entry is
   // not finite, scaled down (shape kept) when an entry exceeds W^2, then
   // rounded to float once.
-  static footprint from_upper(const double (&u)[kEntries]) {
+  static footprint from_upper(const double (&u)[std::size_t{kEntries}]) {
     double m = 0;
     for (int e = 0; e < kEntries; ++e) {
       if (!std::isfinite(u[e])) return isotropic(kMaxWidth());
@@ -201,7 +201,7 @@ class footprint {
     return {lo, mid, hi};
   }
 
-  float s_[kEntries] = {};
+  float s_[std::size_t{kEntries}] = {};
 };
 
 }  // namespace hush

@@ -113,7 +113,7 @@ struct frame {
     return std::to_string(v.width) + "x" + std::to_string(v.height);
   }
   [[noreturn]] static void missing(const char* where, const char* name) {
-    throw hush::invalid_argument(std::string(where) + ": frame." + name +
+    hush::detail::raise_error(std::string(where) + ": frame." + name +
                                  " is required but missing (null data)");
   }
   template <class T>

@@ -187,15 +187,15 @@ struct takes_sample_inputs
 template <class Noise>
 void validate_samples(const char* where, const samples<Noise::dimension>& s) {
   if (s.has_footprints() && !takes_footprint<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.footprints given, but this noise does not filter; "
                                  "valid: none (an empty span)");
   if (s.has_normals() && !takes_normal<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.normals given, but this noise takes no normal; "
                                  "valid: none (an empty span)");
   if (s.has_surface_maps() && !takes_surface_map<Noise>::value)
-    throw hush::invalid_argument(std::string(where) +
+    hush::detail::raise_error(std::string(where) +
                                  ": samples.surface_maps given, but this noise takes no surface "
                                  "map; valid: none (an empty span)");
   const std::size_t n = s.positions.size();

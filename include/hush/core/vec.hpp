@@ -10,6 +10,7 @@
 #define HUSH_CORE_VEC_HPP
 
 #include <cstddef>
+#include <type_traits>
 
 #include "hush/config.hpp"
 
@@ -40,6 +41,14 @@
 
 namespace hush {
 
+namespace detail {
+// vec's subscript takes any integer type, i in 0 ... N - 1: hush loops over axes with int
+// and over containers with std::size_t, and neither needs a cast (nor warns under
+// -Wsign-conversion) to index a vector.
+template <class I>
+using index_type = std::enable_if_t<std::is_integral<I>::value>;
+}  // namespace detail
+
 template <class T, int N>
 struct vec;
 
@@ -48,8 +57,14 @@ struct vec<T, 2> {
   T x{}, y{};
   constexpr vec() = default;
   constexpr vec(T x_, T y_) : x(x_), y(y_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : y; }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : y; }
+  template <class I, class = detail::index_type<I>>
+  constexpr T& operator[](I i) {
+    return i == 0 ? x : y;
+  }
+  template <class I, class = detail::index_type<I>>
+  constexpr const T& operator[](I i) const {
+    return i == 0 ? x : y;
+  }
   HUSH_VEC_COMMON(2)
 };
 
@@ -58,8 +73,14 @@ struct vec<T, 3> {
   T x{}, y{}, z{};
   constexpr vec() = default;
   constexpr vec(T x_, T y_, T z_) : x(x_), y(y_), z(z_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr const T& operator[](std::size_t i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  template <class I, class = detail::index_type<I>>
+  constexpr T& operator[](I i) {
+    return i == 0 ? x : (i == 1 ? y : z);
+  }
+  template <class I, class = detail::index_type<I>>
+  constexpr const T& operator[](I i) const {
+    return i == 0 ? x : (i == 1 ? y : z);
+  }
   HUSH_VEC_COMMON(3)
 };
 
@@ -68,8 +89,12 @@ struct vec<T, 4> {
   T x{}, y{}, z{}, w{};
   constexpr vec() = default;
   constexpr vec(T x_, T y_, T z_, T w_) : x(x_), y(y_), z(z_), w(w_) {}
-  constexpr T& operator[](std::size_t i) { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
-  constexpr const T& operator[](std::size_t i) const {
+  template <class I, class = detail::index_type<I>>
+  constexpr T& operator[](I i) {
+    return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
+  }
+  template <class I, class = detail::index_type<I>>
+  constexpr const T& operator[](I i) const {
     return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
   }
   HUSH_VEC_COMMON(4)

@@ -69,18 +69,18 @@ template <int N>
 struct grid {
   vec<double, N> origin;              // position of sample (0, 0[, 0])
   vec<double, N> step;                // spacing along each axis (may be negative, not zero)
-  std::array<std::size_t, N> size{};  // samples along each axis (nx, ny[, nz])
+  std::array<std::size_t, std::size_t{N}> size{};  // samples along each axis (nx, ny[, nz])
 
   // Number of samples; 0 when any axis is empty.
   std::size_t count() const {
     std::size_t n = 1;
-    for (int a = 0; a < N; ++a) n *= size[a];
+    for (std::size_t a = 0; a < N; ++a) n *= size[a];
     return n;
   }
   // Position of the sample with index (i, j[, k]).
-  vec<double, N> position(const std::array<std::size_t, N>& ijk) const {
+  vec<double, N> position(const std::array<std::size_t, std::size_t{N}>& ijk) const {
     vec<double, N> p;
-    for (int a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
+    for (std::size_t a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
     return p;
   }
   // f(idx, position) for the samples of the slab whose slowest-axis index (j in
@@ -94,7 +94,7 @@ struct grid {
     for (std::size_t k = k0; k < nz; ++k)
       for (std::size_t j = j0; j < ny; ++j)
         for (std::size_t i = 0; i < size[0]; ++i, ++idx) {
-          std::array<std::size_t, N> ijk{};
+          std::array<std::size_t, std::size_t{N}> ijk{};
           ijk[0] = i;
           ijk[1] = j;
           if constexpr (N == 3) ijk[N - 1] = k;
@@ -113,7 +113,7 @@ struct grid {
                                    "a finite non-zero number");
     }
     std::size_t n = 1;
-    for (int a = 0; a < N; ++a) {
+    for (std::size_t a = 0; a < N; ++a) {
       if (size[a] != 0 && n > SIZE_MAX / size[a])
         detail::throw_out_of_range(where, "grid.size[" + std::to_string(a) + "]", size[a],
                                    "a count whose product with the other axes fits in size_t");

@@ -461,8 +461,8 @@ class gabor_kernel {
   value_gradient<T, D> eval(const vec<T, D>& x, const vec<double, D>& F) const {
     const T inv_r = T(1.0 / r_), neg_a = T(-exponent_);
     const T k = T(1.0 / (1.0 - detail::constants::kGaborTaperStart));
-    detail::gabor_axis<T> ax[D];
-    T phi[D];
+    detail::gabor_axis<T> ax[std::size_t{D}];
+    T phi[std::size_t{D}];
     T s = 0;
     for (int i = 0; i < D; ++i) {
       phi[i] = T(F[i] * r_);
@@ -497,7 +497,8 @@ namespace detail {
 // cofactor formulas cancel catastrophically. a is overwritten (its diagonal
 // ends holding the eigenvalues); v's columns are the eigenvectors.
 template <int D>
-void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
+void jacobi_eigen(double (&a)[std::size_t{D}][std::size_t{D}],
+                  double (&v)[std::size_t{D}][std::size_t{D}]) {
   for (int i = 0; i < D; ++i)
     for (int j = 0; j < D; ++j) v[i][j] = i == j ? 1.0 : 0.0;
   for (int sweep = 0; sweep < 50; ++sweep) {
@@ -559,13 +560,14 @@ void jacobi_eigen(double (&a)[D][D], double (&v)[D][D]) {
 // footprints the amplitude underflows towards 0: the filtered noise is its mean.
 template <int D>
 struct gabor_filter {
-  double q[D][D];    // Q, symmetric
-  double m[D][D];    // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
+  double q[std::size_t{D}][std::size_t{D}];  // Q, symmetric
+  double m[std::size_t{D}]
+          [std::size_t{D}];  // M = (pi^2 / A) (I - Q), symmetric positive semi-definite
   double amplitude;  // sqrt(det Q), in (0, 1]
 
   // `a` = A = ln(1/t), `inv_r` = 1 / r, fp the footprint in noise units.
   gabor_filter(const footprint<D>& fp, double a, double inv_r) {
-    double s[D][D];
+    double s[std::size_t{D}][std::size_t{D}];
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) s[i][j] = static_cast<double>(fp.covariance(i, j));
     build(s, a, inv_r);
@@ -573,8 +575,8 @@ struct gabor_filter {
   // The same for S given in double (symmetric, finite, positive semi-definite up
   // to rounding): surface noise's footprint projected onto the tangent plane,
   // which is not rounded to float (gabor<3>::surface_frame).
-  gabor_filter(const double (&cov)[D][D], double a, double inv_r) {
-    double s[D][D];
+  gabor_filter(const double (&cov)[std::size_t{D}][std::size_t{D}], double a, double inv_r) {
+    double s[std::size_t{D}][std::size_t{D}];
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) s[i][j] = cov[i][j];
     build(s, a, inv_r);
@@ -582,16 +584,16 @@ struct gabor_filter {
 
  private:
   // s is overwritten (jacobi_eigen).
-  void build(double (&s)[D][D], double a, double inv_r) {
+  void build(double (&s)[std::size_t{D}][std::size_t{D}], double a, double inv_r) {
     namespace c = detail::constants;
     const double k = 2.0 * a * c::kPixelFilterSigma * c::kPixelFilterSigma * inv_r * inv_r;
     if constexpr (D == 2) {
       build_2d(s[0][0], s[0][1], s[1][1], k, c::kPi * c::kPi / a);
       return;
     }
-    double v[D][D];
+    double v[std::size_t{D}][std::size_t{D}];
     detail::jacobi_eigen<D>(s, v);
-    double qd[D], md[D];
+    double qd[std::size_t{D}], md[std::size_t{D}];
     double det = 1.0;  // det Q
     const double mk = c::kPi * c::kPi / a;
     for (int i = 0; i < D; ++i) {
@@ -658,7 +660,7 @@ constexpr int gabor_sym(int r, int c) {
 template <class T, int E>
 struct gabor_filter_coefs {
   static constexpr int kSize = E * (E + 1) / 2;
-  T q[kSize], m2[kSize];
+  T q[std::size_t{kSize}], m2[std::size_t{kSize}];
   T amplitude;
   explicit gabor_filter_coefs(const gabor_filter<E>& f) : amplitude(static_cast<T>(f.amplitude)) {
     for (int r = 0; r < E; ++r)

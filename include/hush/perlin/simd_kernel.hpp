@@ -59,7 +59,7 @@ struct simd_kernel<perlin<D>> {
 
   static void config(const perlin<D>& n, std::uint32_t& key, std::uint32_t (&period)[3]) {
     key = seed_key(n.parameters().seed);
-    for (int a = 0; a < 3; ++a)
+    for (std::size_t a = 0; a < 3; ++a)
       period[a] = a < D ? static_cast<std::uint32_t>(n.parameters().period[a]) : 0u;
   }
   static void points(const perlin<D>& n, const vec<float, D>* pts, std::size_t count, float* out,

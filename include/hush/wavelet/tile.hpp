@@ -152,7 +152,8 @@ inline void wavelet_down_up(std::vector<double>& x, int n, std::size_t stride) {
   const std::size_t count = x.size();
   for (std::size_t base = 0; base < count; ++base) {
     if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;  // not a line start
-    for (int k = 0; k < n; ++k) line[static_cast<std::size_t>(k)] = x[base + k * stride];
+    for (int k = 0; k < n; ++k)
+      line[static_cast<std::size_t>(k)] = x[base + static_cast<std::size_t>(k) * stride];
     for (int m = 0; m < half; ++m) {  // c_m = sum_j per_j x_(2m + j)
       double s = 0;
       for (std::size_t t = 0; t < off.size(); ++t) {
@@ -170,7 +171,7 @@ inline void wavelet_down_up(std::vector<double>& x, int n, std::size_t stride) {
         s += constants::kWaveletRefine[i] *
              coarse[static_cast<std::size_t>(wavelet_mod((k - t) / 2, half))];
       }
-      x[base + k * stride] = s;
+      x[base + static_cast<std::size_t>(k) * stride] = s;
     }
   }
 }
@@ -182,13 +183,14 @@ void wavelet_convolve_axis(std::vector<double>& x, int n, std::size_t stride, in
   for (int d = 0; d < reach; ++d) kd[static_cast<std::size_t>(d)] = k(d);
   for (std::size_t base = 0; base < x.size(); ++base) {
     if ((base / stride) % static_cast<std::size_t>(n) != 0) continue;
-    for (int i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = x[base + i * stride];
+    for (int i = 0; i < n; ++i)
+      line[static_cast<std::size_t>(i)] = x[base + static_cast<std::size_t>(i) * stride];
     for (int i = 0; i < n; ++i) {
       double s = 0;
       for (int d = 1 - reach; d < reach; ++d)
         s += kd[static_cast<std::size_t>(std::abs(d))] *
              line[static_cast<std::size_t>(wavelet_mod(i + d, n))];
-      x[base + i * stride] = s;
+      x[base + static_cast<std::size_t>(i) * stride] = s;
     }
   }
 }

@@ -129,7 +129,7 @@ class device {
     }  // a pre-3.0 context rejects the version queries
     renderer_ = gl_->string(detail::kGlRenderer) + ", OpenGL " + gl_->string(detail::kGlVersion);
     if (major < 4 || (major == 4 && minor < 3))
-      throw std::runtime_error(
+      hush::detail::raise_error<std::runtime_error>(
           "hush::glsl::device: needs OpenGL >= 4.3 (compute shaders); the "
           "current context is " +
           renderer_);
@@ -145,7 +145,7 @@ class device {
     max_bytes_ = static_cast<std::size_t>(block);
     if (opt.max_buffer_bytes != 0) max_bytes_ = std::min(max_bytes_, opt.max_buffer_bytes);
     if (max_groups_ == 0 || max_bytes_ < 4 * sizeof(float))
-      throw std::runtime_error("hush::glsl::device: the GL limits leave no room for a batch");
+      hush::detail::raise_error<std::runtime_error>("hush::glsl::device: the GL limits leave no room for a batch");
     gl_->GenBuffers(kBuffers, buffers_);
     gl_->check("hush::glsl::device: creating buffers");
   }
@@ -362,7 +362,7 @@ class device {
     using np = noise_program<Noise>;
     constexpr int D = Noise::dimension;
     const auto nb = static_cast<std::size_t>(bands);
-    std::vector<std::array<std::uint32_t, D>> period(nb);
+    std::vector<std::array<std::uint32_t, std::size_t{D}>> period(nb);
     for (std::size_t b = 0; b < nb; ++b)
       for (int a = 0; a < D; ++a)
         period[b][static_cast<std::size_t>(a)] = np::band_period(noise, static_cast<int>(b), a);

@@ -26,6 +26,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "hush/core/error.hpp"
+
 namespace hush {
 namespace glsl {
 
@@ -116,7 +118,7 @@ class egl_context {
     EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY);
     EGLint major = 0, minor = 0;
     if (d == EGL_NO_DISPLAY || !eglInitialize(d, &major, &minor))
-      throw std::runtime_error(
+      hush::detail::raise_error<std::runtime_error>(
           "hush::glsl::egl_context: no EGL display (no device display initialized, nor the "
           "default one; EGL error " +
           hex(eglGetError()) + ")");
@@ -133,7 +135,7 @@ class egl_context {
   [[noreturn]] void fail(const char* what) {
     const EGLint error = eglGetError();
     release();
-    throw std::runtime_error(std::string("hush::glsl::egl_context: ") + what +
+    hush::detail::raise_error<std::runtime_error>(std::string("hush::glsl::egl_context: ") + what +
                              " failed (EGL error " + hex(error) + ")");
   }
 

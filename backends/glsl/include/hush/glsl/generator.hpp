@@ -29,6 +29,7 @@
 
 #include "hush/config.hpp"
 #include "hush/core/bspline.hpp"
+#include "hush/core/error.hpp"
 #include "hush/core/footprint.hpp"
 #include "hush/core/lattice.hpp"
 #include "hush/detail/constants.hpp"
@@ -68,10 +69,10 @@ inline glsl_constant uint_constant(const char* name, std::uint32_t v, const char
 inline glsl_constant float_constant(const char* name, double v, const char* what) {
   return {name, glsl_constant::type::f32, false, {float_bits(static_cast<float>(v))}, what};
 }
-template <int N>
+template <std::size_t N>
 glsl_constant float_table(const char* name, const double (&v)[N], const char* what) {
   glsl_constant c{name, glsl_constant::type::f32, true, {}, what};
-  for (int i = 0; i < N; ++i) c.bits.push_back(float_bits(static_cast<float>(v[i])));
+  for (std::size_t i = 0; i < N; ++i) c.bits.push_back(float_bits(static_cast<float>(v[i])));
   return c;
 }
 
@@ -81,8 +82,8 @@ template <int P, int O>
 glsl_constant kernel_table(const char* name, const hush::detail::piecewise_kernel<P, O>& k,
                            const char* what) {
   glsl_constant c{name, glsl_constant::type::f32, true, {}, what};
-  for (int p = 0; p < P; ++p)
-    for (int j = 0; j < O; ++j) c.bits.push_back(float_bits(static_cast<float>(k.c[p][j])));
+  for (std::size_t p = 0; p < P; ++p)
+    for (std::size_t j = 0; j < O; ++j) c.bits.push_back(float_bits(static_cast<float>(k.c[p][j])));
   return c;
 }
 
@@ -292,7 +293,7 @@ inline std::string glsl_literal(glsl_constant::type kind, std::uint32_t bits) {
     return buf;
   }
   const float f = detail::bits_float(bits);
-  if (!std::isfinite(f)) throw std::logic_error("hush::glsl: non-finite float constant");
+  if (!std::isfinite(f)) hush::detail::raise_error<std::logic_error>("hush::glsl: non-finite float constant");
   if (std::floor(f) == f && std::fabs(f) <= 4294967296.0f) {
     std::snprintf(buf, sizeof buf, "%.1f", static_cast<double>(f));  // exact: "-15.0"
     return buf;

@@ -62,7 +62,7 @@ class headless_context {
       return;
     }
 #endif
-    throw hush::invalid_argument("hush::glsl::headless_context: HUSH_GL_CONTEXT = \"" + kind +
+    hush::detail::raise_error("hush::glsl::headless_context: HUSH_GL_CONTEXT = \"" + kind +
                                  "\"; this build accepts " + accepted());
   }
 

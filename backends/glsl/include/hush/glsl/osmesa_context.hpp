@@ -52,7 +52,7 @@ class osmesa_context {
                            0};
     ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!ctx_)
-      throw std::runtime_error(
+      hush::detail::raise_error<std::runtime_error>(
           "hush::glsl::osmesa_context: OSMesa could not create a GL 4.5 core context");
     make_current();
   }
@@ -65,7 +65,7 @@ class osmesa_context {
   // Makes this context current on the calling thread.
   void make_current() {
     if (!OSMesaMakeCurrent(ctx_, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_))
-      throw std::runtime_error("hush::glsl::osmesa_context: OSMesaMakeCurrent failed");
+      hush::detail::raise_error<std::runtime_error>("hush::glsl::osmesa_context: OSMesaMakeCurrent failed");
   }
 
   // GL function loader for this context (OSMesaGetProcAddress).

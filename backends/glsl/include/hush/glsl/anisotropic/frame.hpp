@@ -102,7 +102,7 @@ class anisotropic_frame {
   // std::runtime_error when the output cannot be a colour attachment.
   void render(const inputs& in, gl_uint output, int width, int height) {
     if (in.uv == 0u || output == 0u || width <= 0 || height <= 0)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::glsl::anisotropic_frame::render: a uv texture, an output texture and a "
           "positive size are needed");
     detail::gl_int old_fbo = 0, old_viewport[4] = {0, 0, 0, 0};
@@ -112,7 +112,7 @@ class anisotropic_frame {
     FramebufferTexture2D_(kDrawFramebuffer, kColorAttachment0, detail::kGlTexture2d, output, 0);
     if (CheckFramebufferStatus_(kDrawFramebuffer) != kFramebufferComplete) {
       BindFramebuffer_(kDrawFramebuffer, static_cast<gl_uint>(old_fbo));
-      throw std::runtime_error(
+      hush::detail::raise_error<std::runtime_error>(
           "hush::glsl::anisotropic_frame::render: the output texture is not renderable (R32F "
           "of the frame's size expected)");
     }
@@ -149,7 +149,7 @@ class anisotropic_frame {
                frame_view::uv | frame_view::uv_jacobian, std::size_t(1) << 14);
     const std::size_t w = f.width(), h = f.height(), n = w * h;
     if (!maps.empty() && maps.size() != n)
-      throw hush::invalid_argument(
+      hush::detail::raise_error(
           "hush::glsl::anisotropic_frame::render_image: maps must be empty or one per pixel");
     std::vector<float> uv(4 * n), jac(4 * n), map(maps.empty() ? 0 : 4 * n);
     const bool ids = f.object_id.data != nullptr;

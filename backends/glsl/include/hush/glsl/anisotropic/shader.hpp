@@ -349,7 +349,7 @@ inline std::vector<std::uint32_t> anisotropic_params_words(const anisotropic& no
 inline shader_kit shader_for(const anisotropic& noise) {
   const auto& p = noise.parameters();
   if (p.filtering == weight_rule::least_squares || p.compensation == weight_rule::least_squares)
-    throw hush::invalid_argument(
+    hush::detail::raise_error(
         "hush::glsl::shader_for(anisotropic): least-squares rules fit per sample on the CPU; "
         "use weight_rule::centre or three_point in a shader");
   const unsigned n = static_cast<unsigned>(p.tile_size);

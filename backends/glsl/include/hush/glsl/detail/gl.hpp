@@ -6,6 +6,9 @@
 // links no GL library and includes no GL header, so it sits beside whatever
 // loader (glad, GLEW, epoxy) the application already uses without clashing.
 // The enum values are the Khronos registry's (gl.xml); GL ABI values never change.
+// GL failures (a missing entry point, a GL error, a shader that does not compile or link)
+// throw std::runtime_error; without exceptions they go to hush's error handler with the
+// same message (hush/core/error.hpp), as the backend's parameter errors do.
 #ifndef HUSH_GLSL_DETAIL_GL_HPP
 #define HUSH_GLSL_DETAIL_GL_HPP
 
@@ -15,6 +18,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "hush/core/error.hpp"
 
 #if defined(_WIN32)
 #define HUSH_GLAPI __stdcall
@@ -131,7 +136,7 @@ struct gl_api {
   // Loads every entry point; throws std::runtime_error naming the first the
   // loader does not know (the context is missing or older than GL 4.3).
   explicit gl_api(loader_fn loader_) : loader(loader_) {
-    if (!loader) throw std::runtime_error("hush::glsl: the GL loader is null");
+    if (!loader) hush::detail::raise_error<std::runtime_error>("hush::glsl: the GL loader is null");
     load(loader, GetString, "glGetString");
     load(loader, GetIntegerv, "glGetIntegerv");
     load(loader, GetIntegeri_v, "glGetIntegeri_v");
@@ -185,7 +190,7 @@ struct gl_api {
     }  // drain the other queued flags
     char hex[16];
     std::snprintf(hex, sizeof hex, "0x%04X", e);
-    throw std::runtime_error(std::string(where) + ": GL error " + hex);
+    hush::detail::raise_error<std::runtime_error>(std::string(where) + ": GL error " + hex);
   }
 
   std::string string(gl_enum name) const {
@@ -198,7 +203,7 @@ struct gl_api {
   static void load(loader_fn loader, F& f, const char* name) {
     void* p = loader(name);
     if (!p)
-      throw std::runtime_error(std::string("hush::glsl: the GL loader has no ") + name +
+      hush::detail::raise_error<std::runtime_error>(std::string("hush::glsl: the GL loader has no ") + name +
                                " (needs an OpenGL 4.3 context current on this thread)");
     // Object-to-function pointer conversion: conditionally supported, and what
     // every GL loader relies on (POSIX dlsym guarantees it).
@@ -265,7 +270,7 @@ inline gl_program link_program(const gl_api& gl,
     const gl_uint s = gl.CreateShader(st.first);
     if (s == 0u) {
       cleanup();
-      throw std::runtime_error(std::string("hush::glsl: glCreateShader(") + stage_name(st.first) +
+      hush::detail::raise_error<std::runtime_error>(std::string("hush::glsl: glCreateShader(") + stage_name(st.first) +
                                ") failed");
     }
     shaders.push_back(s);
@@ -277,7 +282,7 @@ inline gl_program link_program(const gl_api& gl,
     if (!ok) {
       const std::string log = log_of(s, false);
       cleanup();
-      throw std::runtime_error(std::string("hush::glsl: the ") + stage_name(st.first) +
+      hush::detail::raise_error<std::runtime_error>(std::string("hush::glsl: the ") + stage_name(st.first) +
                                " shader does not compile:\n" + log);
     }
   }
@@ -288,7 +293,7 @@ inline gl_program link_program(const gl_api& gl,
   gl_int ok = 0;
   gl.GetProgramiv(prog.id(), kGlLinkStatus, &ok);
   if (!ok)
-    throw std::runtime_error("hush::glsl: the program does not link:\n" + log_of(prog.id(), true));
+    hush::detail::raise_error<std::runtime_error>("hush::glsl: the program does not link:\n" + log_of(prog.id(), true));
   gl.check("hush::glsl: linking a program");
   return prog;
 }

@@ -100,6 +100,7 @@
 #include <string>
 #include <vector>
 
+#include "hush/core/error.hpp"
 #include "hush/detail/constants.hpp"
 #include "hush/npr_gabor/splat.hpp"
 #include "hush/glsl/detail/gl.hpp"
@@ -258,7 +259,7 @@ class npr_gabor_gpu {
     limits_ = npr_gabor_gl_limits(gl_);
     if (!limits_.sprites_fit() || limits_.max_geometry_storage_blocks < 1 ||
         limits_.max_fragment_storage_blocks < 2)
-      throw std::runtime_error(
+      hush::detail::raise_error<std::runtime_error>(
           "hush::glsl::npr_gabor: the context lacks what the splatting needs (a quad of 4 "
           "vertices from the geometry stage, 1 storage block there and 2 in the fragment stage)");
     program_ = link_program(gl_, {{kGlVertexShader, npr_gabor_vertex_source()},
@@ -556,7 +557,7 @@ class npr_gabor_gpu {
     gr_.BindFramebuffer(kGlFramebuffer, fbo_);
     gr_.FramebufferTexture2D(kGlFramebuffer, kGlColorAttachment0, kGlTexture2d, t, 0);
     if (gr_.CheckFramebufferStatus(kGlFramebuffer) != kGlFramebufferComplete)
-      throw std::runtime_error(
+      hush::detail::raise_error<std::runtime_error>(
           "hush::glsl::npr_gabor: the GL_R32F framebuffer is incomplete on this context");
     gr_.Viewport(0, 0, static_cast<gl_sizei>(w), static_cast<gl_sizei>(h));
     for (const gl_enum cap : {kGlDepthTest, kGlStencilTest, kGlScissorTest, kGlCullFace})

@@ -196,8 +196,9 @@ struct noise_program<wavelet<D>> {
   static void set_uniforms(const detail::gl_api& gl, detail::gl_uint program, const noise_type& w) {
     const auto& prm = w.parameters();
     constexpr int kMax = noise_type::kMaxBands;
-    std::uint32_t weight[kMax] = {}, freq[kMax] = {}, index[kMax] = {}, key[kMax] = {},
-                  profile[kMax] = {};
+    std::uint32_t weight[std::size_t{kMax}] = {}, freq[std::size_t{kMax}] = {},
+                  index[std::size_t{kMax}] = {}, key[std::size_t{kMax}] = {},
+                  profile[std::size_t{kMax}] = {};
     const int nb = w.band_count();
     for (int b = 0; b < nb; ++b) {
       const auto i = static_cast<std::size_t>(b);
