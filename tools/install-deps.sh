@@ -16,6 +16,7 @@ packages=(
   libbenchmark-dev         # Google Benchmark: bench/
   libnoise-dev             # peer row in the benchmark (libnoise Perlin)
   libtinyobjloader-dev     # Wavefront OBJ scenes (examples/scene)
+  clang libclang-rt-14-dev # the fuzz targets (libFuzzer) and the clang half of the strict-flag builds
   glslang-tools            # compiles the GLSL for OpenGL, Vulkan (SPIR-V) and GLSL ES in tests
   doxygen                  # the API reference and its test (docs/Doxyfile, docs_doxygen)
 )

@@ -27,3 +27,12 @@ cmake --build build/sanitize -j"$jobs"
 # and 85 s under ASan on 2026-11-25, the sanitizer run's long pole); the
 # kernels they call are sanitized by their own tests.
 (cd build/sanitize && ctest --output-on-failure -j"$jobs" -E "^package_|: ?gallery writes" -LE slow)
+
+echo "== Fuzz targets (clang, libFuzzer + ASan + UBSan), each for 60 s from its corpus"
+# tests/fuzz/CMakeLists.txt: every noise's params, the NPY reader, the OBJ loader.
+CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHUSH_FUZZ=ON \
+  -DHUSH_BUILD_TESTS=OFF -DHUSH_BUILD_BENCH=OFF \
+  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
+cmake --build build/fuzz -j"$jobs" --target fuzz_params fuzz_npy fuzz_obj
+(cd build/fuzz && ctest --output-on-failure -j"$jobs" -L fuzz)

@@ -146,6 +146,12 @@ def check_noise(noise, want, cases, program, exported):
     check_simd(noise)
     if not any((ROOT / f"tests/{noise}").glob("*_test.cpp")):
         problem(f"{noise}: no tests/{noise}/*_test.cpp (its suites)")
+    # Its part of the params fuzz target, which tests/fuzz/fuzz_params.cpp calls for every noise.
+    fuzz = f"tests/{noise}/fuzz_{noise}.cpp"
+    if not (ROOT / fuzz).is_file():
+        problem(f"{noise}: no {fuzz} (defining hush_fuzz::fuzz_{noise}, tests/fuzz)")
+    elif not re.search(r"^void fuzz_" + noise + r"\(", read(fuzz), re.M):
+        problem(f"{noise}: {fuzz} does not define fuzz_{noise}")
     glsl_header, prefixes = want["glsl_runner"], want["glsl_export_prefixes"]
     glsl_dir = f"backends/glsl/include/hush/glsl/{noise}"
     if not (ROOT / glsl_dir / glsl_header).is_file():
