@@ -17,6 +17,8 @@ packages=(
   libnoise-dev             # peer row in the benchmark (libnoise Perlin)
   libtinyobjloader-dev     # Wavefront OBJ scenes (examples/scene)
   clang libclang-rt-14-dev # the fuzz targets (libFuzzer) and the clang half of the strict-flag builds
+  python3-dev pybind11-dev python3-numpy python3-pytest  # import hush (backends/python) and its tests
+  python3-dask python3-distributed python3-zarr          # hush.dask: chunked bakes past one machine
   glslang-tools            # compiles the GLSL for OpenGL, Vulkan (SPIR-V) and GLSL ES in tests
   doxygen                  # the API reference and its test (docs/Doxyfile, docs_doxygen)
 )

@@ -167,7 +167,8 @@ def check_noise(noise, want, cases, program, exported):
     # Its program entry and its bench rows, each in one file of its own, defining the function
     # the program's tables and the bench's passes call for every noise of HUSH_NOISE_LIST.
     for rel, function in ((f"examples/hush/noise_{noise}.cpp", f"add_{noise}_entries"),
-                          (f"bench/{noise}_cases.cpp", f"add_{noise}_cases")):
+                          (f"bench/{noise}_cases.cpp", f"add_{noise}_cases"),
+                          (f"backends/python/src/noise_{noise}.cpp", f"add_{noise}_python")):
         if not (ROOT / rel).is_file():
             problem(f"{noise}: no {rel} (defining {function})")
         elif not re.search(r"^void " + function + r"\(", read(rel), re.M):

@@ -1,0 +1,420 @@
+// hush's Python module: the machinery every noise's bindings share (one copy, used by
+// src/noise_<noise>.cpp): backends named per call, numpy arrays in and out, keyword parameters
+// checked by name, and hush's errors as Python exceptions.
+#ifndef HUSH_PYTHON_BINDINGS_HPP
+#define HUSH_PYTHON_BINDINGS_HPP
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hush/hush.hpp"
+
+namespace hush_python {
+
+namespace py = pybind11;
+
+// ---- Backends: backend="scalar" | "simd", threads=1 (one thread, the caller's), 0 (one per
+// hardware thread) or n; every combination gives the same values bit for bit (exec.hpp).
+struct backend {
+  bool simd = true;
+  int threads = 1;
+};
+
+inline backend parse_backend(const std::string& name, int threads) {
+  backend b;
+  if (name == "simd")
+    b.simd = true;
+  else if (name == "scalar")
+    b.simd = false;
+  else
+    throw py::value_error("backend '" + name + "' is invalid; valid: 'simd', 'scalar'");
+  if (threads < 0 || threads > hush::exec::parallel_t<hush::exec::simd_t>::kMaxThreads)
+    throw py::value_error("threads " + std::to_string(threads) +
+                          " is invalid; valid: 0 (one per hardware thread) ... 1024");
+  b.threads = threads;
+  return b;
+}
+
+// Calls f(exec) with the policy `b` names.
+template <class F>
+void with_exec(const backend& b, F&& f) {
+  if (b.threads == 1) {
+    if (b.simd)
+      f(hush::exec::simd);
+    else
+      f(hush::exec::scalar);
+  } else if (b.simd) {
+    f(hush::exec::parallel(hush::exec::simd, b.threads));
+  } else {
+    f(hush::exec::parallel(hush::exec::scalar, b.threads));
+  }
+}
+
+// ---- Arrays.
+using float_array = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// `a` as float32 in C order with a last axis of `cols`: the array itself when it already is
+// (no copy), else a converted copy of a real (integer or floating) array. A wrong dtype or
+// shape raises ValueError naming `name`.
+inline float_array as_rows(const py::handle& a, const char* name, py::ssize_t cols) {
+  py::array arr = py::array::ensure(a);
+  if (!arr) throw py::value_error(std::string(name) + ": expected an array-like of numbers");
+  const char kind = arr.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    throw py::value_error(std::string(name) + ": dtype " +
+                          py::str(arr.dtype()).cast<std::string>() +
+                          " is invalid; valid: a real dtype (float32 is used without a copy)");
+  if (arr.ndim() != 2 || arr.shape(1) != cols)
+    throw py::value_error(std::string(name) + ": shape " +
+                          py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
+                                      arr.shape(), arr.shape() + arr.ndim()))))
+                              .cast<std::string>() +
+                          " is invalid; valid: (N, " + std::to_string(cols) + ")");
+  float_array f = float_array::ensure(arr);
+  if (!f) throw py::error_already_set();
+  return f;
+}
+
+// The values at `points` ((N, D) positions) of a point noise, as a float32 array of N.
+template <class Noise>
+float_array evaluate_points(const Noise& n, const py::handle& points,
+                            const std::string& backend_name, int threads) {
+  constexpr int D = Noise::dimension;
+  const backend b = parse_backend(backend_name, threads);
+  const float_array p = as_rows(points, "points", D);
+  const auto count = static_cast<std::size_t>(p.shape(0));
+  float_array out(static_cast<py::ssize_t>(count));
+  const auto* pts = reinterpret_cast<const hush::vec<float, D>*>(p.data());
+  float* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    with_exec(b, [&](const auto& ex) {
+      hush::evaluate(n, ex, hush::span<const hush::vec<float, D>>(pts, count),
+                     hush::span<float>(o, count));
+    });
+  }
+  return out;
+}
+
+// Values and gradients at `points`: (values (N,), gradients (N, D)).
+template <class Noise>
+std::pair<float_array, float_array> evaluate_gradients(const Noise& n, const py::handle& points,
+                                                       const std::string& backend_name,
+                                                       int threads) {
+  constexpr int D = Noise::dimension;
+  const backend b = parse_backend(backend_name, threads);
+  const float_array p = as_rows(points, "points", D);
+  const auto count = static_cast<std::size_t>(p.shape(0));
+  float_array out(static_cast<py::ssize_t>(count));
+  float_array grad(std::vector<py::ssize_t>{static_cast<py::ssize_t>(count), D});
+  const auto* pts = reinterpret_cast<const hush::vec<float, D>*>(p.data());
+  float* o = out.mutable_data();
+  auto* g = reinterpret_cast<hush::vec<float, D>*>(grad.mutable_data());
+  {
+    py::gil_scoped_release release;
+    with_exec(b, [&](const auto& ex) {
+      hush::evaluate(n, ex, hush::span<const hush::vec<float, D>>(pts, count),
+                     hush::span<float>(o, count), hush::span<hush::vec<float, D>>(g, count));
+    });
+  }
+  return {out, grad};
+}
+
+// A D-vector from a number (every axis) or a sequence of D numbers.
+template <int D>
+hush::vec<double, D> as_vec(const py::handle& v, const char* name) {
+  hush::vec<double, D> r;
+  if (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)) {
+    for (int a = 0; a < D; ++a) r[a] = v.cast<double>();
+    return r;
+  }
+  std::vector<double> xs;
+  try {
+    xs = v.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw py::value_error(std::string(name) + ": expected a number or " + std::to_string(D) +
+                          " numbers");
+  }
+  if (xs.size() != static_cast<std::size_t>(D))
+    throw py::value_error(std::string(name) + ": " + std::to_string(xs.size()) +
+                          " numbers given; valid: " + std::to_string(D));
+  for (int a = 0; a < D; ++a) r[a] = xs[static_cast<std::size_t>(a)];
+  return r;
+}
+
+// The grid of `shape` (numpy order: (ny, nx) or (nz, ny, nx)) whose sample (i, j[, k]) is at
+// origin + step * (i, j[, k]), i along x: the layout of `hush sample`'s .npy output.
+template <int D>
+hush::grid<D> as_grid(const std::vector<py::ssize_t>& shape, const py::handle& origin,
+                      const py::handle& step) {
+  if (shape.size() != static_cast<std::size_t>(D))
+    throw py::value_error("shape: " + std::to_string(shape.size()) + " axes given; valid: " +
+                          std::to_string(D) + (D == 2 ? " (ny, nx)" : " (nz, ny, nx)"));
+  hush::grid<D> g;
+  g.origin = as_vec<D>(origin, "origin");
+  g.step = as_vec<D>(step, "step");
+  for (int a = 0; a < D; ++a) {
+    const py::ssize_t n = shape[static_cast<std::size_t>(D - 1 - a)];
+    if (n < 0) throw py::value_error("shape: a negative size; valid: sizes >= 0");
+    g.size[static_cast<std::size_t>(a)] = static_cast<std::size_t>(n);
+  }
+  return g;
+}
+
+template <class Noise>
+float_array evaluate_grid(const Noise& n, const std::vector<py::ssize_t>& shape,
+                          const py::handle& origin, const py::handle& step,
+                          const std::string& backend_name, int threads) {
+  constexpr int D = Noise::dimension;
+  const backend b = parse_backend(backend_name, threads);
+  const hush::grid<D> g = as_grid<D>(shape, origin, step);
+  float_array out(shape);
+  float* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    with_exec(
+        b, [&](const auto& ex) { hush::evaluate_grid(n, ex, g, hush::span<float>(o, g.count())); });
+  }
+  return out;
+}
+
+// ---- Samples: positions with footprints (widths (N,) or screen derivatives (N, 2, D): dp/dx,
+// dp/dy), normals (N, 3) and surface maps (N, 2, 2), each optional (None).
+template <class Noise>
+float_array evaluate_samples(const Noise& n, const py::handle& points, const py::object& footprints,
+                             const py::object& normals, const py::object& surface_maps,
+                             const std::string& backend_name, int threads) {
+  constexpr int D = Noise::dimension;
+  const backend b = parse_backend(backend_name, threads);
+  const float_array p = as_rows(points, "points", D);
+  const auto count = static_cast<std::size_t>(p.shape(0));
+  hush::samples<D> s;
+  s.positions = {reinterpret_cast<const hush::vec<float, D>*>(p.data()), count};
+  std::vector<hush::footprint<D>> fps;
+  if (!footprints.is_none()) {
+    py::array fa = py::array::ensure(footprints);
+    if (!fa || (fa.ndim() != 1 && fa.ndim() != 3))
+      throw py::value_error("footprints: valid: widths (N,) or derivatives (N, 2, " +
+                            std::to_string(D) + ")");
+    if (fa.ndim() == 1) {
+      const auto w = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(fa);
+      if (static_cast<std::size_t>(w.shape(0)) != count)
+        throw py::value_error("footprints: " + std::to_string(w.shape(0)) + " widths for " +
+                              std::to_string(count) + " points");
+      for (std::size_t i = 0; i < count; ++i)
+        fps.push_back(hush::footprint<D>::isotropic(w.data()[i]));
+    } else {
+      const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(fa);
+      if (static_cast<std::size_t>(d.shape(0)) != count || d.shape(1) != 2 || d.shape(2) != D)
+        throw py::value_error("footprints: derivatives must have shape (N, 2, " +
+                              std::to_string(D) + ") with N = " + std::to_string(count));
+      for (std::size_t i = 0; i < count; ++i) {
+        hush::vec<double, D> dx, dy;
+        for (int a = 0; a < D; ++a) {
+          dx[a] = d.data()[i * 2 * D + static_cast<std::size_t>(a)];
+          dy[a] = d.data()[i * 2 * D + D + static_cast<std::size_t>(a)];
+        }
+        fps.push_back(hush::footprint<D>::from_derivatives(dx, dy));
+      }
+    }
+    s.footprints = {fps.data(), fps.size()};
+  }
+  float_array nrm;
+  if (!normals.is_none()) {
+    nrm = as_rows(normals, "normals", 3);
+    s.normals = {reinterpret_cast<const hush::vec<float, 3>*>(nrm.data()),
+                 static_cast<std::size_t>(nrm.shape(0))};
+  }
+  std::vector<hush::surface_map> maps;
+  if (!surface_maps.is_none()) {
+    const auto m =
+        py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(surface_maps);
+    if (!m || m.ndim() != 3 || m.shape(1) != 2 || m.shape(2) != 2)
+      throw py::value_error("surface_maps: valid: shape (N, 2, 2)");
+    for (py::ssize_t i = 0; i < m.shape(0); ++i) {
+      const double* e = m.data() + i * 4;
+      maps.push_back(hush::surface_map::from_matrix(e[0], e[1], e[2], e[3]));
+    }
+    s.surface_maps = {maps.data(), maps.size()};
+  }
+  float_array out(static_cast<py::ssize_t>(count));
+  float* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    with_exec(b, [&](const auto& ex) { hush::evaluate(n, ex, s, hush::span<float>(o, count)); });
+  }
+  return out;
+}
+
+// ---- Keyword parameters: each noise reads its params struct's fields by name; a keyword that
+// names no field raises TypeError listing the valid ones, a value of the wrong type ValueError.
+class keywords {
+ public:
+  keywords(const char* where, py::kwargs kw) : where_(where), kw_(std::move(kw)) {}
+
+  template <class T>
+  void get(const char* name, T& field) {
+    names_.insert(name);
+    if (!kw_.contains(name)) return;
+    try {
+      field = kw_[name].cast<T>();
+    } catch (const py::cast_error&) {
+      throw py::value_error(std::string(where_) + ": " + name + "=" +
+                            py::repr(kw_[name]).cast<std::string>() + " has the wrong type");
+    }
+  }
+  // A per-axis array (periods) from a sequence of D values or one value for every axis.
+  template <class T, std::size_t D>
+  void get_axes(const char* name, std::array<T, D>& field) {
+    names_.insert(name);
+    if (!kw_.contains(name)) return;
+    const py::object v = kw_[name];
+    try {
+      if (py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v)) {
+        field.fill(v.cast<T>());
+      } else {
+        const auto xs = v.cast<std::vector<T>>();
+        if (xs.size() != D) throw py::cast_error();
+        for (std::size_t a = 0; a < D; ++a) field[a] = xs[a];
+      }
+    } catch (const py::cast_error&) {
+      throw py::value_error(std::string(where_) + ": " + name + " must be a number or " +
+                            std::to_string(D) + " numbers");
+    }
+  }
+  // An enum by its C++ name, e.g. kind="turbulence".
+  template <class E>
+  void get_enum(const char* name, E& field, const std::vector<std::pair<const char*, E>>& values) {
+    names_.insert(name);
+    if (!kw_.contains(name)) return;
+    std::string valid;
+    if (py::isinstance<py::str>(kw_[name])) {
+      const auto s = kw_[name].cast<std::string>();
+      for (const auto& [text, value] : values)
+        if (s == text) {
+          field = value;
+          return;
+        }
+    }
+    for (const auto& [text, value] : values)
+      valid += std::string(valid.empty() ? "'" : ", '") + text + "'";
+    throw py::value_error(std::string(where_) + ": " + name + "=" +
+                          py::repr(kw_[name]).cast<std::string>() + " is invalid; valid: " + valid);
+  }
+  // Raises TypeError for any keyword no get() asked for.
+  void finish() const {
+    for (const auto& item : kw_) {
+      const auto k = item.first.cast<std::string>();
+      if (names_.count(k)) continue;
+      std::string valid;
+      for (const auto& n : names_) valid += (valid.empty() ? "" : ", ") + n;
+      throw py::type_error(std::string(where_) + ": unknown parameter '" + k +
+                           "'; valid: " + valid);
+    }
+  }
+
+ private:
+  const char* where_;
+  py::kwargs kw_;
+  std::set<std::string> names_;
+};
+
+// A noise as Python holds it: the C++ object and the keyword parameters it was made from,
+// which are also its pickled state (so a dask worker rebuilds the same noise).
+template <class Noise>
+struct held {
+  Noise noise;
+  py::dict params;
+};
+
+// The Python class of a noise: made from keyword parameters by `make` (which reads them with
+// a `keywords` and returns the noise), picklable, with its parameters as `params`.
+template <class Noise, class Make>
+py::class_<held<Noise>> bind_noise(py::module_& m, const char* name, const char* doc, Make make) {
+  py::class_<held<Noise>> c(m, name, doc);
+  c.def(py::init([make](py::kwargs kw) { return held<Noise>{make(kw), py::dict(kw)}; }));
+  c.def_property_readonly(
+      "params", [](const held<Noise>& h) { return py::dict(h.params); },
+      "The keyword parameters this noise was made from.");
+  c.def(py::pickle([](const held<Noise>& h) { return py::dict(h.params); },
+                   [make](const py::dict& d) {
+                     py::kwargs kw;
+                     for (const auto& item : d) kw[item.first] = item.second;
+                     return held<Noise>{make(kw), py::dict(d)};
+                   }));
+  c.def("__repr__", [name](const held<Noise>& h) {
+    std::string text = std::string("hush.") + name + "(";
+    for (const auto& item : h.params) {
+      if (text.back() != '(') text += ", ";
+      text += py::str(item.first).template cast<std::string>() + "=" +
+              py::repr(item.second).template cast<std::string>();
+    }
+    return text + ")";
+  });
+  return c;
+}
+
+// The point-noise methods: __call__(points), gradient(points), grid(shape, origin, step).
+template <class Noise>
+void add_point_methods(py::class_<held<Noise>>& c) {
+  using H = held<Noise>;
+  c.def(
+      "__call__",
+      [](const H& h, const py::handle& points, const std::string& backend_name, int threads) {
+        return evaluate_points(h.noise, points, backend_name, threads);
+      },
+      py::arg("points"), py::arg("backend") = "simd", py::arg("threads") = 1,
+      "Values at points, an (N, D) array (float32 is used without a copy), as float32 (N,).");
+  c.def(
+      "gradient",
+      [](const H& h, const py::handle& points, const std::string& backend_name, int threads) {
+        return evaluate_gradients(h.noise, points, backend_name, threads);
+      },
+      py::arg("points"), py::arg("backend") = "simd", py::arg("threads") = 1,
+      "Values and analytic gradients at points: (values (N,), gradients (N, D)), float32.");
+  c.def(
+      "grid",
+      [](const H& h, const std::vector<py::ssize_t>& shape, const py::handle& origin,
+         const py::handle& step, const std::string& backend_name, int threads) {
+        return evaluate_grid(h.noise, shape, origin, step, backend_name, threads);
+      },
+      py::arg("shape"), py::arg("origin") = 0.0, py::arg("step") = 1.0, py::arg("backend") = "simd",
+      py::arg("threads") = 1,
+      "Values on a uniform grid: shape (ny, nx) or (nz, ny, nx); sample (i, j[, k]) is at "
+      "origin + step * (i, j[, k]), i along x (numpy's last axis), positions in double.");
+  c.def_property_readonly_static("dimension", [](py::object) { return Noise::dimension; });
+}
+
+// sample(points, footprints, normals, surface_maps) for the noises that filter or take normals
+// or surface maps (core/samples.hpp); inputs a noise does not take raise ValueError.
+template <class Noise>
+void add_sample_methods(py::class_<held<Noise>>& c) {
+  c.def(
+      "sample",
+      [](const held<Noise>& h, const py::handle& points, const py::object& footprints,
+         const py::object& normals, const py::object& surface_maps, const std::string& backend_name,
+         int threads) {
+        return evaluate_samples(h.noise, points, footprints, normals, surface_maps, backend_name,
+                                threads);
+      },
+      py::arg("points"), py::arg("footprints") = py::none(), py::arg("normals") = py::none(),
+      py::arg("surface_maps") = py::none(), py::arg("backend") = "simd", py::arg("threads") = 1,
+      "Filtered values at points: footprints as widths (N,) or screen derivatives (N, 2, D) "
+      "(dp/dx, dp/dy); normals (N, 3) for 3D noises that project; surface_maps (N, 2, 2) for "
+      "2D texture-space noises. Each None or one per point.");
+}
+
+}  // namespace hush_python
+
+#endif  // HUSH_PYTHON_BINDINGS_HPP
