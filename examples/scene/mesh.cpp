@@ -238,6 +238,8 @@ mesh load_obj(const std::string& path) {
                                  attrib.vertices[v + 2]);
         if (idx.normal_index >= 0) {
           const std::size_t q = 3 * static_cast<std::size_t>(idx.normal_index);
+          if (q + 2 >= attrib.normals.size())
+            throw std::runtime_error("OBJ file '" + path + "': normal index out of range");
           m.normals.emplace_back(attrib.normals[q], attrib.normals[q + 1], attrib.normals[q + 2]);
         } else {
           all_normals = false;
@@ -245,6 +247,8 @@ mesh load_obj(const std::string& path) {
         }
         if (idx.texcoord_index >= 0) {
           const std::size_t q = 2 * static_cast<std::size_t>(idx.texcoord_index);
+          if (q + 1 >= attrib.texcoords.size())
+            throw std::runtime_error("OBJ file '" + path + "': texture coordinate index out of range");
           m.uvs.emplace_back(attrib.texcoords[q], attrib.texcoords[q + 1]);
         } else {
           all_uvs = false;

@@ -134,6 +134,24 @@ TEST_CASE("OBJ files load through tinyobjloader, fitted to the unit sphere") {
   }
 }
 
+TEST_CASE("OBJ faces naming a normal or texture coordinate the file lacks are refused") {
+  // tinyobjloader keeps such indices; reading them would read past its arrays.
+  const fs::path dir = fs::path(HUSH_SCENE_SCRATCH) / "scene_test_obj";
+  fs::create_directories(dir);
+  const std::pair<const char*, const char*> cases[] = {
+      {"bad_uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/3\n"},
+      {"bad_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n"}};
+  for (const auto& [name, text] : cases) {
+    { std::ofstream(dir / name) << text; }
+    try {
+      hs::load_obj((dir / name).string());
+      FAIL(name << " loaded");
+    } catch (const std::runtime_error& e) {
+      CHECK(std::string(e.what()).find("index out of range") != std::string::npos);
+    }
+  }
+}
+
 TEST_CASE("every registered scene builds, has triangles and a camera in front of it") {
   int built = 0;
   for (const hs::scene_info& info : hs::scene_list()) {
