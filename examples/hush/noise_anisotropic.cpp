@@ -53,6 +53,9 @@ class anisotropic_field final : public noise_field {
  public:
   explicit anisotropic_field(const anisotropic_options& o) : options_(o), noise_(o.params) {}
   bool is_signed() const override { return options_.params.kind == hush::fractal_kind::fbm; }
+  std::pair<double, double> png_range() const override {
+    return is_signed() ? unit_variance_range() : noise_field::png_range();
+  }
   std::string unsupported_reason(backend b) const override {
     if (b == backend::glsl) {
       if (!HUSH_CLI_HAVE_GLSL)

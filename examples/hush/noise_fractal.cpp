@@ -24,7 +24,8 @@ std::unique_ptr<noise_field> make_fractal_perlin_d(std::uint32_t seed, const per
   prm.norm =
       o.norm.value_or(fbm ? hush::normalization::unit_variance : hush::normalization::unit_range);
   for (int a = 0; a < D; ++a) prm.period[a] = o.period[a];
-  return std::make_unique<grid_field<fractal, D>>(fractal(prm), fbm);
+  return std::make_unique<grid_field<fractal, D>>(
+      fractal(prm), fbm, fbm && prm.norm == hush::normalization::unit_variance);
 }
 
 }  // namespace

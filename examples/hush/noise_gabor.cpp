@@ -23,6 +23,7 @@ class gabor_surface_field final : public noise_field {
   gabor_surface_field(const hush::gabor<3>& noise, const hush::vec3& normal)
       : noise_(noise), normal_(normal) {}
   bool is_signed() const override { return true; }
+  std::pair<double, double> png_range() const override { return unit_variance_range(); }
   std::string unsupported_reason(backend b) const override { return backend_missing(b); }
   void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
                    float* out, backend b) const override {
@@ -36,7 +37,7 @@ class gabor_surface_field final : public noise_field {
 
 template <int D>
 std::unique_ptr<noise_field> make_gabor_d(const typename hush::gabor<D>::params& prm) {
-  return std::make_unique<grid_field<hush::gabor<D>, D>>(hush::gabor<D>(prm), true);
+  return std::make_unique<grid_field<hush::gabor<D>, D>>(hush::gabor<D>(prm), true, true);
 }
 
 // Degrees on the command line, radians in the library: an angle option in

@@ -1,8 +1,10 @@
 // hush — the `hush` program: `hush sample wavelet` (hush/wavelet.hpp), its noise_table entry.
 //
 // Without --footprint and --normal the grid goes through hush::evaluate_grid; with either,
-// every sample is evaluated through hush::evaluate over hush::samples (positions as floats,
-// the same isotropic footprint and normal for every sample), on the chosen backend.
+// every sample is evaluated through hush::evaluate over hush::samples (the same isotropic
+// footprint and normal for every sample), on the chosen backend, its position reduced
+// modulo the noise's period in double first (exact: as many distinct values at origin
+// 1e9 as at 0; the scalar backend takes the double positions themselves).
 #include <cmath>
 #include <cstddef>
 #include <memory>
@@ -29,6 +31,12 @@ class wavelet_field final : public noise_field {
   wavelet_field(hush::wavelet<D> noise, wavelet_sample_options o)
       : noise_(std::move(noise)), o_(o) {}
   bool is_signed() const override { return true; }
+  std::pair<double, double> png_range() const override {
+    // Gaussian: unit variance; uniform: (-1, 1).
+    return noise_.parameters().distribution == hush::wavelet_distribution::gaussian
+               ? unit_variance_range()
+               : noise_field::png_range();
+  }
   std::string unsupported_reason(backend b) const override { return backend_missing(b); }
   void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
                    float* out, backend b) const override {
@@ -48,7 +56,11 @@ class wavelet_field final : public noise_field {
     }
     std::optional<hush::footprint<D>> fp;
     if (o_.footprint >= 0) fp = hush::footprint<D>::isotropic(o_.footprint);
-    sample_rows_as_samples(noise_, grid, j0, rows, k, out, b, fp, o_.normal);
+    // Every band repeats with tile_size / 2^first_band unless tile variants are on.
+    const auto& prm = noise_.parameters();
+    const double period =
+        prm.variant_overlap > 0 ? 0.0 : std::ldexp(double(prm.tile_size), -prm.first_band);
+    sample_rows_as_samples(noise_, grid, j0, rows, k, out, b, fp, o_.normal, period);
   }
 
  private:
@@ -125,8 +137,8 @@ void add_wavelet_entries(program_entries& entries) {
          "first_band"},
         {"--bands", "N", "N bands with weights 1, 1/2, 1/4, ..., 1 ... 32 (default 1)", nullptr},
         {"--weights", "w0,w1,...",
-         "band weights, 1 ... 32 finite numbers not all 0 (instead of "
-         "--bands)",
+         "band weights, 1 ... 32 finite numbers, |w| <= 1e150, the largest >= 1e-150 (instead "
+         "of --bands)",
          "weights"},
         {"--footprint", "W",
          "every sample's pixel: an isotropic footprint W noise units wide, "

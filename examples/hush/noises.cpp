@@ -1,6 +1,8 @@
 // hush — the `hush` program: what the noises it samples share (see noises.hpp).
 #include "noises.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -66,9 +68,12 @@ std::optional<hush::vec3> parse_normal(const noise_setup& setup, const option_va
   if (!v) return std::nullopt;
   if (setup.dim != 3) throw usage_error("--normal needs --dim 3 (samples on a surface in 3D)");
   const std::vector<double> n = parse_finite_list("--normal", *v, 3);
-  if (n[0] == 0 && n[1] == 0 && n[2] == 0)
-    throw_bad_value("--normal", *v, "three finite numbers, not all zero");
-  return hush::vec3{static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
+  const double m = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
+  if (m == 0) throw_bad_value("--normal", *v, "three finite numbers, not all zero");
+  // Only the direction matters: scaled by the largest component in double first, so that
+  // 1e-50,0,0 and 1e39,1e39,0 keep their direction in float (no underflow to 0, no inf).
+  return hush::vec3{static_cast<float>(n[0] / m), static_cast<float>(n[1] / m),
+                    static_cast<float>(n[2] / m)};
 }
 
 std::string backend_missing(backend b) {

@@ -8,6 +8,7 @@
 #ifndef HUSH_CLI_NOISES_HPP
 #define HUSH_CLI_NOISES_HPP
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -55,9 +56,14 @@ void with_exec(backend b, Run&& run) {
 class noise_field {
  public:
   virtual ~noise_field() = default;
-  // True for values symmetric about 0; false for values >= 0 (turbulence). PNG output
-  // shows [-1, 1], respectively [0, 1], from black to white.
+  // True for values symmetric about 0; false for values >= 0 (turbulence).
   virtual bool is_signed() const = 0;
+  // The values a PNG shows from black to white unless --range says otherwise: [-1, 1] for
+  // signed noise bounded by 1, [0, 1] for turbulence; noises of unit variance override it
+  // with unit_variance_range.
+  virtual std::pair<double, double> png_range() const {
+    return {is_signed() ? -1.0 : 0.0, 1.0};
+  }
   // Empty when this noise runs on backend `b` in this build, else why not (one phrase).
   virtual std::string unsupported_reason(backend b) const = 0;
   // Rows j0 ... j0 + rows - 1 of z-plane k into out (rows * grid.size[0] floats, C order):
@@ -66,6 +72,14 @@ class noise_field {
   virtual void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
                            float* out, backend b) const = 0;
 };
+
+// The PNG range of signed unit-variance noise: +-3 (three standard deviations), which clips
+// 0.27 % of a unit Gaussian (2 (1 - Phi(3))), leaving room for heavier tails under the 1 %
+// that tests/cli checks on wavelet, Gabor and fBm images.
+constexpr double kUnitVarianceRange = 3.0;
+inline std::pair<double, double> unit_variance_range() {
+  return {-kUnitVarianceRange, kUnitVarianceRange};
+}
 
 // Every sample of `grid`, in C order (i fastest, then j, then k).
 std::vector<float> sample_all(const noise_field& field, const sample_grid& grid,
@@ -95,25 +109,54 @@ const noise_entry& find_noise(const std::string& name);
 
 // `--normal x,y,z` (3D surface noise: every sample evaluated with this normal, i.e. on the
 // plane through it): nullopt when not given. Throws usage_error when it is given without
-// --dim 3, is not three finite numbers, or is all zero.
+// --dim 3, is not three finite numbers, or is all zero. Returned scaled so that its largest
+// component is +-1 (only the direction matters).
 std::optional<hush::vec3> parse_normal(const noise_setup& setup, const option_values& given);
 
-// Rows j0 ... j0 + rows - 1 of z-plane k of `grid` into `out` through hush::evaluate over
-// hush::samples: positions rounded to float (the grid path keeps double origins), with the same
-// footprint (when given) and normal (when given, 3D) for every sample, on backend b.
+// Rows j0 ... j0 + rows - 1 of z-plane k of `grid` into `out`, with the same footprint (when
+// given) and normal (when given, 3D) for every sample, on backend b. Positions stay exact:
+// with `period` > 0 (the noise repeats with that period along every axis) each is first
+// reduced modulo the period in double, which is exact, so the float positions of
+// hush::samples keep every digit that matters at any origin; the scalar backend evaluates
+// the double position itself (noise.sample_value<float>, hush::evaluate's own scalar step).
+// Without a period, SIMD and GLSL get the positions rounded to float.
 template <class Noise>
 void sample_rows_as_samples(const Noise& noise, const sample_grid& grid, std::size_t j0,
                             std::size_t rows, std::size_t k, float* out, backend b,
                             const std::optional<hush::footprint<Noise::dimension>>& footprint,
-                            const std::optional<hush::vec3>& normal) {
+                            const std::optional<hush::vec3>& normal, double period = 0) {
   constexpr int D = Noise::dimension;
   const std::size_t nx = grid.size[0], n = nx * rows;
-  std::vector<hush::vec<float, D>> pos(n);
+  std::vector<hush::vec<double, D>> dpos(n);
   for (std::size_t j = 0; j < rows; ++j)
     for (std::size_t i = 0; i < nx; ++i) {
       const hush::dvec3 p = grid.position({i, j0 + j, k});
-      for (int a = 0; a < D; ++a) pos[j * nx + i][a] = static_cast<float>(p[a]);
+      for (int a = 0; a < D; ++a) {
+        double x = p[a];
+        // x - period floor(x / period): exact for |x| < 2^40 period (period floor(x / period)
+        // is exact, and so is the difference of two doubles this close).
+        if (period > 0) x -= period * std::floor(x / period);
+        dpos[j * nx + i][a] = x;
+      }
     }
+  if (b == backend::scalar) {
+    for (std::size_t i = 0; i < n; ++i) {
+      hush::sample_input<D> in;
+      in.position = dpos[i];
+      if (footprint) in.fp = *footprint;
+      if constexpr (D == 3) {
+        if (normal) {
+          in.normal = hush::vec_cast<double>(*normal);
+          in.has_normal = true;
+        }
+      }
+      out[i] = noise.template sample_value<float>(in);
+    }
+    return;
+  }
+  std::vector<hush::vec<float, D>> pos(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < D; ++a) pos[i][a] = static_cast<float>(dpos[i][a]);
   std::vector<hush::footprint<D>> fps;
   if (footprint) fps.assign(n, *footprint);
   std::vector<hush::vec3> nrm;
@@ -141,12 +184,17 @@ constexpr bool has_glsl_program() {
 }
 
 // Any hush noise of dimension D that hush::evaluate_grid takes, sampled through it on every
-// backend that has it: values symmetric about 0 when `is_signed`, else >= 0.
+// backend that has it: values symmetric about 0 when `is_signed`, else >= 0; `unit_variance`:
+// shown over unit_variance_range() in PNGs.
 template <class Noise, int D>
 class grid_field final : public noise_field {
  public:
-  grid_field(Noise noise, bool is_signed) : noise_(std::move(noise)), signed_(is_signed) {}
+  grid_field(Noise noise, bool is_signed, bool unit_variance = false)
+      : noise_(std::move(noise)), signed_(is_signed), unit_variance_(unit_variance) {}
   bool is_signed() const override { return signed_; }
+  std::pair<double, double> png_range() const override {
+    return unit_variance_ ? unit_variance_range() : noise_field::png_range();
+  }
   std::string unsupported_reason(backend b) const override {
     if (b == backend::glsl) {
       if (!HUSH_CLI_HAVE_GLSL) return "the GLSL backend is not in this build (neither OSMesa nor EGL found)";
@@ -189,6 +237,7 @@ class grid_field final : public noise_field {
  private:
   Noise noise_;
   bool signed_;
+  bool unit_variance_;
 };
 
 }  // namespace hush_cli

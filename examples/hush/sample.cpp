@@ -1,9 +1,11 @@
 // hush — the `hush` program: `hush sample NOISE [options] --out FILE.npy|FILE.png`.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -34,6 +36,7 @@ struct request {
   std::string out;
   format out_format = format::npy;
   backend where = backend::scalar;
+  std::optional<std::pair<double, double>> range;  // --range lo,hi (PNG only)
 };
 
 // --size N | NxM | NxMxK: grid.size and the output shape. N alone means N along every
@@ -120,6 +123,15 @@ request parse_request(const std::vector<std::string>& args) {
       throw usage_error("--out " + r.out + ": a PNG holds at most " +
                         std::to_string(kMaxPngPixels) + " pixels; write .npy instead");
   }
+  if (const std::string* v = take("--range")) {
+    const char* valid = "two finite numbers lo,hi with lo < hi";
+    const std::vector<double> lh = parse_finite_list("--range", *v, 2);
+    if (!(lh[0] < lh[1]) || !std::isfinite(lh[1] - lh[0])) throw_bad_value("--range", *v, valid);
+    if (r.out_format != format::png)
+      throw usage_error("--range '" + *v +
+                        "': only PNG output has a display range (--out FILE.png)");
+    r.range = std::make_pair(lh[0], lh[1]);
+  }
   // The noise's own options, as the noise entry parses them.
   for (const option_spec& o : r.noise->options)
     if (const std::string* v = take(o.name)) r.noise_options[o.name] = *v;
@@ -164,6 +176,11 @@ const std::vector<option_spec>& sample_options() {
        "the evaluation backend (default scalar): scalar C++, SIMD (Highway), or GLSL compute "
        "shaders"},
       {"--out", "FILE.npy|FILE.png", "the output file (required)"},
+      {"--range", "lo,hi",
+       "PNG only: the values shown black..white, finite, lo < hi, outside clipped (default per "
+       "noise: -3,3 for unit-variance noise: wavelet (gaussian), Gabor, fBm, anisotropic fbm "
+       "(3 standard deviations, 0.27 % of a Gaussian clipped); -1,1 for Perlin, uniform wavelet, "
+       "unit_range fractals; 0,1 for turbulence)"},
   };
   return options;
 }
@@ -184,9 +201,10 @@ int run_sample(const std::vector<std::string>& args) {
     as_run_error([&] { npy->close(); });
   } else {
     gray_image image(nx, r.grid.size[1]);
-    const double lo = field->is_signed() ? -1.0 : 0.0;  // shown over [lo, 1]
+    const std::pair<double, double> range = r.range.value_or(field->png_range());
     for_each_row(*field, r, [&](std::size_t j, const float* row, std::size_t) {
-      for (std::size_t i = 0; i < nx; ++i) image.at(i, j) = to_gray(row[i], lo, 1.0);
+      for (std::size_t i = 0; i < nx; ++i)
+        image.at(i, j) = to_gray(row[i], range.first, range.second);
     });
     write_png(r.out, image);
   }

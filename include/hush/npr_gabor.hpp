@@ -77,9 +77,10 @@
 //    surfaces and cuts kernels at depth discontinuities); soft depth test: the
 //    kernel fades out linearly between 1 and 2 tolerances instead of a cut.
 //  - skipped triangles (emit nothing): back faces when cull_back_faces
-//    (front = counter-clockwise in GL's y-up window coordinates, clockwise in
-//    these y-down ones; with a vertex behind the camera, by the homogeneous
-//    orientation z0 z1 z2 cross), degenerate ones, those with a vertex at depth
+//    (front_face: counter-clockwise by default, GL's front face, as seen on the
+//    displayed image; npr_gabor_front_face states the sign in these y-down pixel
+//    coordinates; with a vertex behind the camera, by the homogeneous
+//    orientation z0 z1 z2 cross; render returns how many), degenerate ones, those with a vertex at depth
 //    exactly 0 or a non-finite value, those entirely behind the camera, and
 //    those whose bounding box grown by r misses the image. Hidden triangles
 //    emit points whose fragments fail the tests (nothing is added).
@@ -169,6 +170,22 @@ template <class Device>
 struct is_glsl_exec<exec::glsl<Device>> : std::true_type {};
 }  // namespace detail
 
+// Which winding faces the camera (npr_gabor::params::front_face), as the triangle is seen on
+// the displayed image: counter_clockwise is GL's default front face (counter-clockwise in GL's
+// y-up window coordinates, and on the displayed image). In hush's y-down pixel coordinates
+// (row 0 at the top) a counter-clockwise triangle has e1.x e2.y - e1.y e2.x < 0 (e1, e2 its
+// edges from vertex 0): the formula's sign flips with the y axis, the picture does not.
+enum class npr_gabor_front_face { counter_clockwise, clockwise };
+
+// What one render did with the triangle list (npr_gabor::render's result).
+struct npr_gabor_render_stats {
+  std::size_t triangles = 0;  // in the list
+  // Skipped as back faces (params::cull_back_faces, params::front_face): triangles of non-zero
+  // finite screen area, every vertex at a finite non-zero depth, whose winding is not the front
+  // one. Equal to `triangles` when every triangle is wound the other way: the image is 0.
+  std::size_t back_faces_culled = 0;
+};
+
 // The LOD of one triangle (paper sec. 3.3, eqs. 2 and 4, and the N < 1 case
 // derived above): points 0 ... first - 1 weigh first_weight, points first ...
 // count - 1 weigh second_weight. sum of squared weights = N (for 0 <= N <=
@@ -252,6 +269,9 @@ class npr_gabor {
     bool soft_depth = false;
     double depth_tolerance = detail::constants::kNprGaborDefaultDepthTolerance;
     bool cull_back_faces = true;
+    // The winding of the triangles facing the camera, as seen on the displayed image
+    // (npr_gabor_front_face); the other winding is culled when cull_back_faces.
+    npr_gabor_front_face front_face = npr_gabor_front_face::counter_clockwise;
     // Thin the points of triangles with N < 1 (npr_gabor_lod::thinned_square):
     // same variance and spectrum, min(1, 2N) points per triangle instead of 1,
     // so that the cost follows N' and the covered pixels, not the triangle count.
@@ -346,12 +366,14 @@ class npr_gabor {
   // (triangle_list::validate), when out's size differs from the frame's, or
   // when a source is malformed (param_source::validate: "frequency[i]",
   // "orientation[i]", "bandwidth[i]", "impulses[i]", a field's size).
-  // Never reads outside the views.
+  // Never reads outside the views. Returns the triangle count and how many were culled as
+  // back faces (the same on every backend: counted here from the triangle list).
   template <class Exec, class T>
-  void render(const Exec& ex, const frame& f, const triangle_list& tris, const image_view<T>& out,
-              const sources& src = {}) const {
+  npr_gabor_render_stats render(const Exec& ex, const frame& f, const triangle_list& tris,
+                                const image_view<T>& out, const sources& src = {}) const {
     validate(f, tris, src);
     check_out(f, out);
+    const npr_gabor_render_stats stats = count_culled(tris);
     if constexpr (detail::is_glsl_exec<Exec>::value) {
       static_assert(std::is_same<T, float>::value, "exec::glsl renders into float images");
       // exec::glsl{device}: both stages on the GPU where the sources allow, else stage 1 here
@@ -362,11 +384,27 @@ class npr_gabor {
       splats_of(f, tris, splats, src);  // validated above
       splat(ex, f, splats.data(), splats.size(), out);
     }
+    return stats;
   }
   template <class T>
-  void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
-              const sources& src = {}) const {
-    render(exec::scalar, f, tris, out, src);
+  npr_gabor_render_stats render(const frame& f, const triangle_list& tris,
+                                const image_view<T>& out, const sources& src = {}) const {
+    return render(exec::scalar, f, tris, out, src);
+  }
+
+  // The triangles of `tris` (validated) that render skips as back faces (render's stats).
+  npr_gabor_render_stats count_culled(const triangle_list& tris) const {
+    npr_gabor_render_stats st;
+    st.triangles = tris.triangles();
+    if (!p_.cull_back_faces) return st;
+    for (std::size_t t = 0; t < st.triangles; ++t) {
+      dvec2 s[3];
+      double z[3], cross = 0, facing = 0;
+      if (orientation(tris, t, s, z, cross, facing) && cross != 0.0 && std::isfinite(cross) &&
+          !is_front(facing))
+        ++st.back_faces_culled;
+    }
+    return st;
   }
 
   // Stage 1: replaces `splats` with this frame's records (npr_gabor_splat),
@@ -673,14 +711,11 @@ class npr_gabor {
                                  "the frame's size (non-null)");
   }
 
-  // Stage 1 for triangle t: appends its points' records (npr_gabor/tree.hpp's
-  // sequence, walked depth first, culled per subtree, then sorted by J);
-  // counts the nodes examined in *nodes if given.
-  void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
-                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp,
-                       std::uint64_t* nodes) const {
-    dvec2 s[3];
-    double z[3];
+  // Triangle t's screen positions s, depths z, twice its signed screen area `cross` (y down)
+  // and its orientation `facing`; false when it emits nothing whatever its winding (a vertex
+  // at depth 0 or with a non-finite value).
+  static bool orientation(const triangle_list& tris, std::size_t t, dvec2 (&s)[3], double (&z)[3],
+                          double& cross, double& facing) {
     // A vertex behind the camera (depth < 0) has its screen position clip xy / w with w < 0,
     // so (z s, z) is its clip (xy, w) through the viewport, affine in object space.
     for (int i = 0; i < 3; ++i) {
@@ -690,16 +725,32 @@ class npr_gabor {
       // Depth 0 has no screen position ((z s, z) = 0 loses clip xy): emits nothing.
       if (!(z[i] != 0.0) || !std::isfinite(z[i]) || !std::isfinite(s[i].x) ||
           !std::isfinite(s[i].y))
-        return;
+        return false;
     }
-    // Twice the signed area, y down: front faces (GL's counter-clockwise) are negative. In
+    // Twice the signed area, y down (counter-clockwise on the displayed image: negative). In
     // homogeneous coordinates the orientation is det(z_i (s_i, 1)) = z0 z1 z2 cross: with a
     // vertex behind the camera (negative z) the projected triangle is turned over.
     const double e1x = s[1].x - s[0].x, e1y = s[1].y - s[0].y;
     const double e2x = s[2].x - s[0].x, e2y = s[2].y - s[0].y;
-    const double cross = e1x * e2y - e1y * e2x;
-    const double facing = z[0] * z[1] * z[2] < 0.0 ? -cross : cross;
-    if (p_.cull_back_faces && !(facing < 0.0)) return;
+    cross = e1x * e2y - e1y * e2x;
+    facing = z[0] * z[1] * z[2] < 0.0 ? -cross : cross;
+    return true;
+  }
+  // Whether orientation `facing` is params::front_face's (NaN: not).
+  bool is_front(double facing) const {
+    return p_.front_face == npr_gabor_front_face::counter_clockwise ? facing < 0.0 : facing > 0.0;
+  }
+
+  // Stage 1 for triangle t: appends its points' records (npr_gabor/tree.hpp's
+  // sequence, walked depth first, culled per subtree, then sorted by J);
+  // counts the nodes examined in *nodes if given.
+  void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
+                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp,
+                       std::uint64_t* nodes) const {
+    dvec2 s[3];
+    double z[3], cross = 0, facing = 0;
+    if (!orientation(tris, t, s, z, cross, facing)) return;
+    if (p_.cull_back_faces && !is_front(facing)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
     const double far = std::max({z[0], z[1], z[2]}), near = std::min({z[0], z[1], z[2]});
     if (!(far > 0.0)) return;  // entirely behind the camera
@@ -780,6 +831,8 @@ class npr_gabor {
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
     const double inv = 1.0 / cross;
+    const double e1x = s[1].x - s[0].x, e1y = s[1].y - s[0].y;
+    const double e2x = s[2].x - s[0].x, e2y = s[2].y - s[0].y;
     const double d1 = 1.0 / z[1] - 1.0 / z[0], d2 = 1.0 / z[2] - 1.0 / z[0];
     const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
     const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;

@@ -13800,7 +13800,9 @@ struct simd_kernel<gabor<D>> {
 // docs/wavelet.md. The normal may have any length (it is normalised); a zero,
 // NaN or infinite normal gives the unprojected 3D noise (a point not on a
 // surface). The projected noise is normalised by its own variance
-// (tile.projected_variance along axis a, sum_a u_a^2 sigma_a^2 for other u).
+// (tile.projected_variance along axis a; for other u, sum_a u_a^2 sigma_a^2, times
+// detail::wavelet_oblique_variance_ratio(u) for the exact projection: the basis' own
+// variance along u, up to 4 % below the axes').
 //
 // No repetition (params::variant_overlap > 0, paper sec. 4.3): the tile is laid
 // out in cells of variants with blended overlaps (wavelet_blend_tile); the
@@ -14686,6 +14688,30 @@ value_gradient<T, 3> wavelet_general_exact(const T (&y)[3], const T (&u)[3], con
   return r;
 }
 
+// The exact projection's variance along a unit normal u relative to its variance along a
+// tile axis, g(u) = sigma_u^2 / sigma_axis^2 (expected over seeds). The line integral
+// N_u = integral N(y + t u) B2(t) dt has, averaged over y, the variance
+//   sigma_u^2 = integral Q(r) C(r u) dr,   Q = B2 * B2 (B2's autocorrelation, [-6, 6]),
+// C(x) = sum_L R(L) P(x - L) the noise's autocovariance (R the coefficients' covariance at
+// lag L, P the tensor quintic B * B). The coefficients are (I - Qx Qy Qz) r plus the
+// even/odd copy (wavelet/tile.hpp), so the expected R is a sum of four tensor products of 1D
+// lag sequences and sigma_u^2 a 1D integral of products of 1D splines. g is 1 along an axis
+// and falls to 0.964 at (1, 1, 0), 0.959 at (1, 1, 1) and 0.967 at (1, 2, 3): the cubic
+// lattice is not isotropic, so interpolating the axes' variances (sum u_a^2 sigma_a^2)
+// overstates an oblique normal's by up to 4 %. With the cubic invariants
+// s2 = ux^2 uy^2 + uy^2 uz^2 + uz^2 ux^2 and s3 = ux^2 uy^2 uz^2,
+//   g(u) = 1 + c2 s2 + c3 s3,
+// c2, c3 the least-squares fit of the integral (64^3 tiles; the same within 1e-6 from 16^3
+// on) over 150 random normals; the fit is within 7e-4 of the integral at 150 others. The
+// per-seed scatter of a 64^3 tile's variance is about 0.6 %.
+constexpr double kWaveletObliqueS2 = -0.14070926;
+constexpr double kWaveletObliqueS3 = 0.15736712;
+template <class T>
+T wavelet_oblique_variance_ratio(const T (&u)[3]) {
+  const T x = u[0] * u[0], y = u[1] * u[1], z = u[2] * u[2];
+  return T(1) + T(kWaveletObliqueS2) * (x * y + y * z + z * x) + T(kWaveletObliqueS3) * (x * y * z);
+}
+
 }  // namespace detail
 
 template <int D>
@@ -14703,7 +14729,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     int tile_size = D == 2 ? 128 : 64;
     // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
     int first_band = 0;
-    // Band weights w_i (1 ... 32 finite values, not all zero); one band by default.
+    // Band weights w_i (1 ... 32 values, |w_i| <= 1e150, the largest |w_i| >= 1e-150, so
+    // that sum w_i^2 is a finite normal double); one band by default.
     // With relative_weights: the weight k octaves below the finest representable band.
     std::vector<double> weights = {1.0};
     // Per-band decorrelating offsets (sec. 3, footnote 1), in coefficient units:
@@ -15020,6 +15047,12 @@ class wavelet : public sample_noise<wavelet<D>, D> {
         variance = 0;
         for (int a = 0; a < 3; ++a)
           variance += pl.normal[a] * pl.normal[a] * tile_->projected_variance(a, exact);
+        // An oblique normal's exact projection has less variance than the axes' interpolation
+        // (detail::wavelet_oblique_variance_ratio; 1 along an axis).
+        if (exact) {
+          const double u[3] = {pl.normal[0], pl.normal[1], pl.normal[2]};
+          variance *= detail::wavelet_oblique_variance_ratio(u);
+        }
       }
     }
     return variance;
@@ -15228,16 +15261,24 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     const std::size_t nw = prm_.weights.size();
     if (nw < 1 || nw > static_cast<std::size_t>(kMaxBands))
       detail::throw_out_of_range(where, "weights.size()", nw, "1 ... 32");
-    bool any = false;
+    // K = 1 / sqrt(sigma^2 sum w^2) must be a finite non-zero number: |w| <= 1e150 keeps
+    // sum w^2 finite, and the largest |w| >= 1e-150 keeps it a normal double (> 0).
+    constexpr double kMaxWeight = 1e150, kMinLargestWeight = 1e-150;
+    const char* valid = "a finite number, |w| <= 1e150";
+    double largest = 0;
     for (std::size_t i = 0; i < nw; ++i) {
-      if (!std::isfinite(prm_.weights[i]))
+      if (!(std::fabs(prm_.weights[i]) <= kMaxWeight))
         detail::throw_out_of_range(where, "weights[" + std::to_string(i) + "]", prm_.weights[i],
-                                   "a finite number");
-      any = any || prm_.weights[i] != 0.0;
+                                   valid);
+      largest = std::max(largest, std::fabs(prm_.weights[i]));
     }
-    if (!any)
+    if (largest == 0.0)
       hush::detail::raise_error(
           "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
+    if (largest < kMinLargestWeight)
+      hush::detail::raise_error(
+          "hush::wavelet: weights are all below 1e-150 in magnitude; valid: the largest |w| in "
+          "1e-150 ... 1e150 (only the weights' ratios matter)");
     if (prm_.relative_weights)
       detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,
                                "1 ... 32");
@@ -18523,9 +18564,10 @@ void coherent_symmetric(const Exec& ex, const coherent_params& prm, span<const f
 //    surfaces and cuts kernels at depth discontinuities); soft depth test: the
 //    kernel fades out linearly between 1 and 2 tolerances instead of a cut.
 //  - skipped triangles (emit nothing): back faces when cull_back_faces
-//    (front = counter-clockwise in GL's y-up window coordinates, clockwise in
-//    these y-down ones; with a vertex behind the camera, by the homogeneous
-//    orientation z0 z1 z2 cross), degenerate ones, those with a vertex at depth
+//    (front_face: counter-clockwise by default, GL's front face, as seen on the
+//    displayed image; npr_gabor_front_face states the sign in these y-down pixel
+//    coordinates; with a vertex behind the camera, by the homogeneous
+//    orientation z0 z1 z2 cross; render returns how many), degenerate ones, those with a vertex at depth
 //    exactly 0 or a non-finite value, those entirely behind the camera, and
 //    those whose bounding box grown by r misses the image. Hidden triangles
 //    emit points whose fragments fail the tests (nothing is added).
@@ -19325,6 +19367,22 @@ template <class Device>
 struct is_glsl_exec<exec::glsl<Device>> : std::true_type {};
 }  // namespace detail
 
+// Which winding faces the camera (npr_gabor::params::front_face), as the triangle is seen on
+// the displayed image: counter_clockwise is GL's default front face (counter-clockwise in GL's
+// y-up window coordinates, and on the displayed image). In hush's y-down pixel coordinates
+// (row 0 at the top) a counter-clockwise triangle has e1.x e2.y - e1.y e2.x < 0 (e1, e2 its
+// edges from vertex 0): the formula's sign flips with the y axis, the picture does not.
+enum class npr_gabor_front_face { counter_clockwise, clockwise };
+
+// What one render did with the triangle list (npr_gabor::render's result).
+struct npr_gabor_render_stats {
+  std::size_t triangles = 0;  // in the list
+  // Skipped as back faces (params::cull_back_faces, params::front_face): triangles of non-zero
+  // finite screen area, every vertex at a finite non-zero depth, whose winding is not the front
+  // one. Equal to `triangles` when every triangle is wound the other way: the image is 0.
+  std::size_t back_faces_culled = 0;
+};
+
 // The LOD of one triangle (paper sec. 3.3, eqs. 2 and 4, and the N < 1 case
 // derived above): points 0 ... first - 1 weigh first_weight, points first ...
 // count - 1 weigh second_weight. sum of squared weights = N (for 0 <= N <=
@@ -19408,6 +19466,9 @@ class npr_gabor {
     bool soft_depth = false;
     double depth_tolerance = detail::constants::kNprGaborDefaultDepthTolerance;
     bool cull_back_faces = true;
+    // The winding of the triangles facing the camera, as seen on the displayed image
+    // (npr_gabor_front_face); the other winding is culled when cull_back_faces.
+    npr_gabor_front_face front_face = npr_gabor_front_face::counter_clockwise;
     // Thin the points of triangles with N < 1 (npr_gabor_lod::thinned_square):
     // same variance and spectrum, min(1, 2N) points per triangle instead of 1,
     // so that the cost follows N' and the covered pixels, not the triangle count.
@@ -19502,12 +19563,14 @@ class npr_gabor {
   // (triangle_list::validate), when out's size differs from the frame's, or
   // when a source is malformed (param_source::validate: "frequency[i]",
   // "orientation[i]", "bandwidth[i]", "impulses[i]", a field's size).
-  // Never reads outside the views.
+  // Never reads outside the views. Returns the triangle count and how many were culled as
+  // back faces (the same on every backend: counted here from the triangle list).
   template <class Exec, class T>
-  void render(const Exec& ex, const frame& f, const triangle_list& tris, const image_view<T>& out,
-              const sources& src = {}) const {
+  npr_gabor_render_stats render(const Exec& ex, const frame& f, const triangle_list& tris,
+                                const image_view<T>& out, const sources& src = {}) const {
     validate(f, tris, src);
     check_out(f, out);
+    const npr_gabor_render_stats stats = count_culled(tris);
     if constexpr (detail::is_glsl_exec<Exec>::value) {
       static_assert(std::is_same<T, float>::value, "exec::glsl renders into float images");
       // exec::glsl{device}: both stages on the GPU where the sources allow, else stage 1 here
@@ -19518,11 +19581,27 @@ class npr_gabor {
       splats_of(f, tris, splats, src);  // validated above
       splat(ex, f, splats.data(), splats.size(), out);
     }
+    return stats;
   }
   template <class T>
-  void render(const frame& f, const triangle_list& tris, const image_view<T>& out,
-              const sources& src = {}) const {
-    render(exec::scalar, f, tris, out, src);
+  npr_gabor_render_stats render(const frame& f, const triangle_list& tris,
+                                const image_view<T>& out, const sources& src = {}) const {
+    return render(exec::scalar, f, tris, out, src);
+  }
+
+  // The triangles of `tris` (validated) that render skips as back faces (render's stats).
+  npr_gabor_render_stats count_culled(const triangle_list& tris) const {
+    npr_gabor_render_stats st;
+    st.triangles = tris.triangles();
+    if (!p_.cull_back_faces) return st;
+    for (std::size_t t = 0; t < st.triangles; ++t) {
+      dvec2 s[3];
+      double z[3], cross = 0, facing = 0;
+      if (orientation(tris, t, s, z, cross, facing) && cross != 0.0 && std::isfinite(cross) &&
+          !is_front(facing))
+        ++st.back_faces_culled;
+    }
+    return st;
   }
 
   // Stage 1: replaces `splats` with this frame's records (npr_gabor_splat),
@@ -19829,14 +19908,11 @@ class npr_gabor {
                                  "the frame's size (non-null)");
   }
 
-  // Stage 1 for triangle t: appends its points' records (npr_gabor/tree.hpp's
-  // sequence, walked depth first, culled per subtree, then sorted by J);
-  // counts the nodes examined in *nodes if given.
-  void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
-                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp,
-                       std::uint64_t* nodes) const {
-    dvec2 s[3];
-    double z[3];
+  // Triangle t's screen positions s, depths z, twice its signed screen area `cross` (y down)
+  // and its orientation `facing`; false when it emits nothing whatever its winding (a vertex
+  // at depth 0 or with a non-finite value).
+  static bool orientation(const triangle_list& tris, std::size_t t, dvec2 (&s)[3], double (&z)[3],
+                          double& cross, double& facing) {
     // A vertex behind the camera (depth < 0) has its screen position clip xy / w with w < 0,
     // so (z s, z) is its clip (xy, w) through the viewport, affine in object space.
     for (int i = 0; i < 3; ++i) {
@@ -19846,16 +19922,32 @@ class npr_gabor {
       // Depth 0 has no screen position ((z s, z) = 0 loses clip xy): emits nothing.
       if (!(z[i] != 0.0) || !std::isfinite(z[i]) || !std::isfinite(s[i].x) ||
           !std::isfinite(s[i].y))
-        return;
+        return false;
     }
-    // Twice the signed area, y down: front faces (GL's counter-clockwise) are negative. In
+    // Twice the signed area, y down (counter-clockwise on the displayed image: negative). In
     // homogeneous coordinates the orientation is det(z_i (s_i, 1)) = z0 z1 z2 cross: with a
     // vertex behind the camera (negative z) the projected triangle is turned over.
     const double e1x = s[1].x - s[0].x, e1y = s[1].y - s[0].y;
     const double e2x = s[2].x - s[0].x, e2y = s[2].y - s[0].y;
-    const double cross = e1x * e2y - e1y * e2x;
-    const double facing = z[0] * z[1] * z[2] < 0.0 ? -cross : cross;
-    if (p_.cull_back_faces && !(facing < 0.0)) return;
+    cross = e1x * e2y - e1y * e2x;
+    facing = z[0] * z[1] * z[2] < 0.0 ? -cross : cross;
+    return true;
+  }
+  // Whether orientation `facing` is params::front_face's (NaN: not).
+  bool is_front(double facing) const {
+    return p_.front_face == npr_gabor_front_face::counter_clockwise ? facing < 0.0 : facing > 0.0;
+  }
+
+  // Stage 1 for triangle t: appends its points' records (npr_gabor/tree.hpp's
+  // sequence, walked depth first, culled per subtree, then sorted by J);
+  // counts the nodes examined in *nodes if given.
+  void triangle_splats(const frame& f, const triangle_list& tris, std::size_t t,
+                       std::vector<npr_gabor_splat>& splats, const point_parameters& pp,
+                       std::uint64_t* nodes) const {
+    dvec2 s[3];
+    double z[3], cross = 0, facing = 0;
+    if (!orientation(tris, t, s, z, cross, facing)) return;
+    if (p_.cull_back_faces && !is_front(facing)) return;
     if (!(cross != 0.0) || !std::isfinite(cross)) return;
     const double far = std::max({z[0], z[1], z[2]}), near = std::min({z[0], z[1], z[2]});
     if (!(far > 0.0)) return;  // entirely behind the camera
@@ -19936,6 +20028,8 @@ class npr_gabor {
     // The triangle's plane: 1/z affine in screen space, 1/z = q0 + qx x + qy y
     // (screen barycentrics of (x, y) weight the 1/z_i).
     const double inv = 1.0 / cross;
+    const double e1x = s[1].x - s[0].x, e1y = s[1].y - s[0].y;
+    const double e2x = s[2].x - s[0].x, e2y = s[2].y - s[0].y;
     const double d1 = 1.0 / z[1] - 1.0 / z[0], d2 = 1.0 / z[2] - 1.0 / z[0];
     const double qx = (d1 * e2y - d2 * e1y) * inv, qy = (d2 * e1x - d1 * e2x) * inv;
     const double q0 = 1.0 / z[0] - qx * s[0].x - qy * s[0].y;

@@ -1009,7 +1009,7 @@ TEST_CASE("sample wavelet 2D with --bands equals hush::wavelet<2>::value<float>,
   CHECK(f.values[1] != f.values[2]);
 }
 
-TEST_CASE("sample wavelet 3D with --normal and --footprint is hush::evaluate over samples") {
+TEST_CASE("sample wavelet 3D --normal --footprint: scalar sample_value at the double position") {
   const fs::path dir = scratch("wavelet_3d_samples");
   const fs::path out = dir / "w.npy";
   const result r = run_hush(
@@ -1025,18 +1025,15 @@ TEST_CASE("sample wavelet 3D with --normal and --footprint is hush::evaluate ove
   prm.tile_size = 16;
   prm.weights = {1, -0.5};
   const hush::wavelet<3> w{prm};
+  // hush::evaluate's scalar step (sample_value<float>) at the exact double position (inside
+  // the first period, so not reduced), the normal scaled to a largest component of 1.
   CHECK(count_mismatches(f, [&](double i, double j, double) {
-          const hush::vec3 p{static_cast<float>(0.5 + 0.3 * i), static_cast<float>(1 + 0.3 * j),
-                             2.0f};
-          const hush::vec3 n{1, 2, 0.5f};
-          const auto fp = hush::footprint<3>::isotropic(0.7);
-          hush::samples<3> s;
-          s.positions = hush::span<const hush::vec3>(&p, 1);
-          s.footprints = hush::span<const hush::footprint<3>>(&fp, 1);
-          s.normals = hush::span<const hush::vec3>(&n, 1);
-          float v = 0;
-          hush::evaluate(w, hush::exec::scalar, s, hush::span<float>(&v, 1));
-          return v;
+          hush::sample_input<3> in;
+          in.position = {0.5 + 0.3 * i, 1 + 0.3 * j, 2.0};
+          in.fp = hush::footprint<3>::isotropic(0.7);
+          in.normal = {0.5, 1, 0.25};
+          in.has_normal = true;
+          return w.sample_value<float>(in);
         }) == 0);
 }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hush/hush.hpp"
@@ -338,6 +339,8 @@ TEST_CASE("wavelet: the exact projection is the line integral of the band along 
     }
     double sigma2 = 0;
     for (int a = 0; a < 3; ++a) sigma2 += u[a] * u[a] * w.tile().projected_variance(a, true);
+    const double uu[3] = {u[0], u[1], u[2]};
+    sigma2 *= hush::detail::wavelet_oblique_variance_ratio(uu);
     CAPTURE(i);
     CHECK(w.sample(p, u, hush::footprint<3>{}) * std::sqrt(sigma2) ==
           doctest::Approx(ref).scale(1.0).epsilon(2e-6));
@@ -523,4 +526,45 @@ TEST_CASE(
     CHECK(out[i] == e.value);
     CHECK(grad[i][2] == e.gradient[2]);
   }
+}
+
+TEST_CASE("wavelet: weights whose squares leave the double range are refused, naming them") {
+  auto refused = [](std::vector<double> weights, const char* names) {
+    hush::wavelet<2>::params prm;
+    prm.tile_size = 16;
+    prm.weights = std::move(weights);
+    try {
+      const hush::wavelet<2> w{prm};
+      FAIL("accepted");
+    } catch (const hush::invalid_argument& e) {
+      CHECK(std::string(e.what()).find(names) != std::string::npos);
+    }
+  };
+  refused({1e308, 1e308}, "weights[0]");
+  refused({1, 1e151}, "weights[1]");
+  refused({1e-200, -1e-160}, "weights are all below 1e-150");
+  refused({0, 0}, "weights are all zero");
+  hush::wavelet<2>::params prm;
+  prm.tile_size = 16;
+  prm.weights = {1e150, -1e150};  // the extremes of the range: finite output
+  const hush::wavelet<2> w{prm};
+  CHECK(std::isfinite(w(hush::dvec2{0.3, 0.7})));
+}
+
+TEST_CASE("wavelet: a normal's length never matters; zero and NaN normals give plain 3D noise") {
+  const hush::wavelet<3> w{small<3>(5, 16)};
+  const hush::dvec3 p{1.3, -2.1, 0.4};
+  const hush::footprint<3> fp{};
+  CHECK(w.sample(p, hush::dvec3{1e-300, 0, 0}, fp) == w.sample(p, hush::dvec3{1, 0, 0}, fp));
+  CHECK(w.sample(p, hush::dvec3{1e300, 1e300, 0}, fp) == w.sample(p, hush::dvec3{1, 1, 0}, fp));
+  CHECK(w.sample(p, hush::dvec3{0, -1e-310, 0}, fp) == w.sample(p, hush::dvec3{0, -1, 0}, fp));
+  // float normals (hush::samples): denormal and near-FLT_MAX lengths
+  CHECK(w.sample(hush::vec3{1.3f, -2.1f, 0.4f}, hush::vec3{1e-40f, 0, 0}) ==
+        w.sample(hush::vec3{1.3f, -2.1f, 0.4f}, hush::vec3{1, 0, 0}));
+  CHECK(w.sample(hush::vec3{1.3f, -2.1f, 0.4f}, hush::vec3{3e38f, 3e38f, 0}) ==
+        w.sample(hush::vec3{1.3f, -2.1f, 0.4f}, hush::vec3{1, 1, 0}));
+  const double plain = w.sample(p, fp);
+  CHECK(w.sample(p, hush::dvec3{0, 0, 0}, fp) == plain);
+  CHECK(w.sample(p, hush::dvec3{std::nan(""), 1, 0}, fp) == plain);
+  CHECK(w.sample(p, hush::dvec3{HUGE_VAL, 1, 0}, fp) == plain);
 }

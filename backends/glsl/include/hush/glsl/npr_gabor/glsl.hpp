@@ -367,7 +367,7 @@ constexpr const char* kNprGaborLods = R"glsl(
 layout(local_size_x = HUSH_NPR_GROUP) in;
 layout(std430, binding = 3) writeonly buffer hush_npr_lods_b { hush_npr_lod hush_npr_lods[]; };
 layout(std430, binding = 4) writeonly buffer hush_npr_flags_b { uvec2 hush_npr_flags[]; };
-uniform uint hush_opts;  // 1 cull back faces, 2 thinning
+uniform uint hush_opts;  // 1 cull back faces, 2 thinning, 4 front faces clockwise
 void main() {
   uint t = hush_npr_item();
   if (t >= hush_tris) return;
@@ -385,7 +385,8 @@ void main() {
   float cross = e1.x * e2.y - e1.y * e2.x;
   bool turned = ((z.x < 0.0) != (z.y < 0.0)) != (z.z < 0.0);
   float facing = turned ? -cross : cross;
-  if ((hush_opts & 1u) != 0u && !(facing < 0.0)) { hush_npr_lods[t] = o; return; }
+  bool front = (hush_opts & 4u) != 0u ? facing > 0.0 : facing < 0.0;
+  if ((hush_opts & 1u) != 0u && !front) { hush_npr_lods[t] = o; return; }
   if (cross == 0.0 || hush_is_nonfinite(cross)) { hush_npr_lods[t] = o; return; }
   float zfar = max(max(z.x, z.y), z.z), nearest = min(min(z.x, z.y), z.z);
   if (!(zfar > 0.0)) { hush_npr_lods[t] = o; return; }  // entirely behind the camera

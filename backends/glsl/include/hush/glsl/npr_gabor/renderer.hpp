@@ -734,7 +734,8 @@ class npr_gabor_gpu {
       gl_.Uniform2ui(gl_.GetUniformLocation(prog, "hush_size"), static_cast<gl_uint>(width),
                      static_cast<gl_uint>(height));
       set(prog, "hush_key", seed_key(p.seed));
-      set(prog, "hush_opts", (p.cull_back_faces ? 1u : 0u) | (p.thinning ? 2u : 0u));
+      set(prog, "hush_opts", (p.cull_back_faces ? 1u : 0u) | (p.thinning ? 2u : 0u) |
+                                 (p.front_face == npr_gabor_front_face::clockwise ? 4u : 0u));
       set(prog, "hush_isotropic", p.isotropic ? 1u : 0u);
       set(prog, "hush_local", p.local_density ? 1u : 0u);
     }

@@ -150,6 +150,13 @@ struct noise_program<wavelet<D>> {
     s += "  float variance = uintBitsToFloat(hush_w_var);\n"
          "  if (project) variance = un.x * un.x * uintBitsToFloat(hush_w_pvar[0]) + un.y * un.y * "
          "uintBitsToFloat(hush_w_pvar[1]) + un.z * un.z * uintBitsToFloat(hush_w_pvar[2]);\n"
+         "  if (project && exact) {  // hush::detail::wavelet_oblique_variance_ratio\n"
+         "    vec3 q = un * un;\n"
+         "    variance *= 1.0 + uintBitsToFloat(" +
+         std::to_string(bits(static_cast<float>(hush::detail::kWaveletObliqueS2))) +
+         "u) * (q.x * q.y + q.y * q.z + q.z * q.x) + uintBitsToFloat(" +
+         std::to_string(bits(static_cast<float>(hush::detail::kWaveletObliqueS3))) +
+         "u) * (q.x * q.y * q.z);\n  }\n"
          "  vec3 extent2 = vec3(0.0);\n"
          "  if (widen) {\n"
          "    for (int a = 0; a < " +
