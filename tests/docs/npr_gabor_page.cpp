@@ -24,9 +24,10 @@ int main() {
   f.object_id = {object.data(), w, h};
 
   // The triangles drawn this frame: screen positions in pixels (y down), linear view depths,
-  // a stable id per triangle (the same in every frame) and its object. Front faces wind as
-  // GL's counter-clockwise front faces do (clockwise on the y-down screen, the signed area of
-  // (v1 - v0) x (v2 - v0) negative); back faces emit nothing unless cull_back_faces is off.
+  // a stable id per triangle (the same in every frame) and its object. Front faces are
+  // counter-clockwise as displayed (params::front_face, GL's default); in these y-down pixel
+  // coordinates that is (v1 - v0) x (v2 - v0) < 0. Back faces emit nothing unless
+  // cull_back_faces is off; render() returns how many it culled.
   const std::vector<hush::vec2> screen = {{16, 8}, {112, 8}, {112, 88}, {16, 88}};
   const std::vector<float> vertex_depth = {4, 4, 4, 4};
   const std::vector<std::uint32_t> indices = {0, 2, 1, 0, 3, 2};
