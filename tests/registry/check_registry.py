@@ -38,6 +38,9 @@ ROOT = Path(__file__).resolve().parent.parent.parent
 SHIPS_WITH = "tests/{noise}/ships_with.json"
 KEYS = ("program", "glsl_runner", "glsl_export_prefixes", "bench_text", "golden_case",
         "hard_case", "doc")
+# Optional keys, paths that must exist when given: shader (its kit header for the user's own
+# shader) and shader_example (the example that uses it).
+OPTIONAL_KEYS = ("shader", "shader_example")
 
 
 def ships_with(noise):
@@ -52,7 +55,7 @@ def ships_with(noise):
         problem(f"{rel}: not JSON: {e}")
         return None
     missing = [k for k in KEYS if k not in want]
-    unknown = [k for k in want if k not in KEYS]
+    unknown = [k for k in want if k not in KEYS + OPTIONAL_KEYS]
     if missing or unknown:
         problem(f"{rel}: missing keys {missing}, unknown keys {unknown}; see check_registry.py")
         return None
@@ -143,6 +146,9 @@ def check_noise(noise, want, cases, program, exported):
     check_simd(noise)
     if not any((ROOT / f"tests/{noise}").glob("*_test.cpp")):
         problem(f"{noise}: no tests/{noise}/*_test.cpp (its suites)")
+    for key in OPTIONAL_KEYS:
+        if key in want and not (ROOT / want[key]).is_file():
+            problem(f"{noise}: {key} {want[key]} does not exist")
     glsl_header, prefixes = want["glsl_runner"], want["glsl_export_prefixes"]
     glsl_dir = f"backends/glsl/include/hush/glsl/{noise}"
     if not (ROOT / glsl_dir / glsl_header).is_file():

@@ -120,6 +120,7 @@ inline std::vector<std::vector<std::pair<std::string, std::string>>> renderer_ex
 #include <vector>
 
 #include "hush/glsl/shader.hpp"
+#include "hush/glsl/perlin/shader.hpp"
 
 namespace hush {
 namespace glsl {
@@ -128,7 +129,7 @@ namespace detail {
 // The files `hush glsl-export` writes for the user's shader, as (file name, text), in export
 // order: each noise's <noise>_shader_exports() (hush_<noise>_shader.glsl files).
 inline std::vector<std::vector<std::pair<std::string, std::string>>> shader_exports() {
-  return {};
+  return {perlin_shader_exports()};
 }
 
 }  // namespace detail
