@@ -121,6 +121,8 @@ inline std::vector<std::vector<std::pair<std::string, std::string>>> renderer_ex
 
 #include "hush/glsl/shader.hpp"
 #include "hush/glsl/perlin/shader.hpp"
+#include "hush/glsl/wavelet/shader.hpp"
+#include "hush/glsl/fractal/shader.hpp"
 
 namespace hush {
 namespace glsl {
@@ -129,7 +131,7 @@ namespace detail {
 // The files `hush glsl-export` writes for the user's shader, as (file name, text), in export
 // order: each noise's <noise>_shader_exports() (hush_<noise>_shader.glsl files).
 inline std::vector<std::vector<std::pair<std::string, std::string>>> shader_exports() {
-  return {perlin_shader_exports()};
+  return {perlin_shader_exports(), wavelet_shader_exports(), fractal_shader_exports()};
 }
 
 }  // namespace detail
