@@ -30,10 +30,11 @@
 // in 3D) and H its Hessian bound (perlin_hessian_bound below), for |p_a| <= pmax:
 //   values    within K sum_i |w_i| (2 (2^-16 + (nb + 4) 2^-24) + L sqrt(D) delta_i)
 //   gradients within K sum_i |w_i| f_i (2 (2^-16 + (nb + 4) 2^-24) (1 + L) + H sqrt(D) delta_i)
-// of the CPU float path (shader_budget, shader_gradient_budget). Example, the default fBm
-// (5 octaves) at |p| <= 2^8: values within 7.6e-4; 8 octaves of lacunarity 2 at |p| <= 2^8:
-// 8.1e-3 (f_7 = 128: band coordinates near 2^15 keep 9 fraction bits). Measured on
-// llvmpipe: tests/fractal/glsl_fractal_shader_test.cpp. Turbulence's gradient follows the
+// of the CPU float path (shader_budget, shader_gradient_budget). At |p| <= 2^8 the default
+// fBm (5 octaves) is within 6.9e-3, 8 octaves of lacunarity 2 within 1.1e-2 (f_7 = 128:
+// band coordinates near 2^15 keep 9 fraction bits); measured on llvmpipe over a 40^2 grid
+// at |p| <= 2^8 (tests/fractal/glsl_fractal_shader_test.cpp): 8 octaves 1.4e-4 (2D),
+// 6 octaves 1.2e-4 (3D); near the origin 5e-6. Turbulence's gradient follows the
 // band's sign, undetermined where a band is within its error of 0. For larger coordinates
 // hush::evaluate with exec::glsl{device} splits band coordinates in double on the CPU.
 #ifndef HUSH_GLSL_FRACTAL_SHADER_HPP
