@@ -49,8 +49,9 @@
 //                    + (footprint: 2^-16 slope pre-bound, the plan in float)
 // where slope is the remap's (gaussian_scale, sqrt(2/pi), table slope); shader_budget()
 // below evaluates it, shader_gradient_budget() the gradient's (delta_b times 4 max_abs 2^b,
-// the second derivative). Example: one band, 128^2 tile, |p| <= 2^8: budget ~1e-5, measured
-// on llvmpipe ~1e-6 (tests/wavelet/glsl_wavelet_shader_test.cpp). For coordinates where
+// the second derivative). Example: one band of a 32^2 tile at |p| <= 200: budget 3.6e-4,
+// measured on llvmpipe 1.3e-5; footprints on a receding plane measured within 5e-6
+// (tests/wavelet/glsl_wavelet_shader_test.cpp). For coordinates where
 // this is too coarse, hush::evaluate with exec::glsl{device} splits band positions in
 // double on the CPU.
 #ifndef HUSH_GLSL_WAVELET_SHADER_HPP
