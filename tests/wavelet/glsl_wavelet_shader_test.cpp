@@ -15,6 +15,8 @@
 
 #include "glsl/glsl_test_util.hpp"
 #include "glsl/shader_harness.hpp"
+#include "hush/glsl/fractal/shader.hpp"
+#include "hush/glsl/perlin/shader.hpp"
 #include "hush/glsl/wavelet/shader.hpp"
 
 namespace {
@@ -288,8 +290,16 @@ TEST_CASE("wavelet shader: both kits compile for GL 4.30 core, Vulkan 450 and GL
       "           vec4(hush_wavelet3_projected_filtered(p, vec3(1.0), dFdx(p), dFdy(p)));\n}\n";
   const auto k2 = hush::glsl::shader_for(hush::wavelet<2>(base<2>()));
   const auto k3 = hush::glsl::shader_for(hush::wavelet<3>(base<3>()));
+  // The Perlin and fractal kits before the wavelet kit in one shader: the library once, the
+  // wavelet bodies after it.
+  const std::string shared =
+      hush::glsl::shader_for(hush::perlin<2>(1)).source +
+      hush::glsl::shader_for(hush::fractal<hush::perlin<3>>()).source + k2.source +
+      "layout(location = 0) out highp vec4 colour;\nvoid main() {\n"
+      "  vec2 p = gl_FragCoord.xy;\n"
+      "  colour = vec4(hush_perlin2(p), hush_fractal_perlin3(p.xyx), hush_wavelet2(p), 1.0);\n}\n";
   for (dialect d : {dialect::gl430, dialect::vulkan450, dialect::es300}) {
-    for (const auto& text : {k2.source + main2, k3.source + main3}) {
+    for (const auto& text : {k2.source + main2, k3.source + main3, shared}) {
       const auto r = hush_glsl_test::glslang_compile(text, d, "wavelet_shader_kit");
       INFO(hush_glsl_test::dialect_name(d) << ": " << r.log.substr(0, 3000));
       CHECK(r.ok);
