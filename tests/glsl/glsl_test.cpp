@@ -372,10 +372,12 @@ TEST_CASE("the bodies hold no number outside the generated block and use every c
   std::vector<std::string> names;
   for (const auto& k : hush::glsl::constant_table()) names.push_back(k.name);
   std::vector<std::string> used = referenced_names(bodies);
-  // The macros by which an including shader hands wavelet noise its tile (wavelet_glsl.hpp),
-  // and the runner's mark of the samples layout (compute_source.hpp).
-  const std::vector<std::string> hooks = {"HUSH_WAVELET_TILE", "HUSH_WAVELET_BLEND",
-                                          "HUSH_WAVELET_TABLE", "HUSH_SAMPLES"};
+  // The macros by which an including shader hands wavelet noise its tile (wavelet_glsl.hpp)
+  // and the wavelet bodies' include guard, and the runner's mark of the samples layout
+  // (compute_source.hpp).
+  const std::vector<std::string> hooks = {"HUSH_WAVELET_TILE", "HUSH_WAVELET_TILE_AT",
+                                          "HUSH_WAVELET_BLEND", "HUSH_WAVELET_TABLE",
+                                          "HUSH_WAVELET_BODY", "HUSH_SAMPLES"};
   used.erase(std::remove_if(used.begin(), used.end(),
                             [&](const std::string& u) {
                               return std::find(hooks.begin(), hooks.end(), u) != hooks.end();

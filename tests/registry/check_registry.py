@@ -38,8 +38,8 @@ ROOT = Path(__file__).resolve().parent.parent.parent
 SHIPS_WITH = "tests/{noise}/ships_with.json"
 KEYS = ("program", "glsl_runner", "glsl_export_prefixes", "bench_text", "golden_case",
         "hard_case", "doc")
-# Optional: shader, shader_example: its kit for the user's shader (hush/glsl/<noise>/shader.hpp)
-# and that kit's example program, paths that must exist when given.
+# Optional keys, paths that must exist when given: shader (its kit header for the user's own
+# shader) and shader_example (the example that uses it).
 OPTIONAL_KEYS = ("shader", "shader_example")
 
 
@@ -152,6 +152,9 @@ def check_noise(noise, want, cases, program, exported):
         problem(f"{noise}: no {fuzz} (defining hush_fuzz::fuzz_{noise}, tests/fuzz)")
     elif not re.search(r"^void fuzz_" + noise + r"\(", read(fuzz), re.M):
         problem(f"{noise}: {fuzz} does not define fuzz_{noise}")
+    for key in OPTIONAL_KEYS:
+        if key in want and not (ROOT / want[key]).is_file():
+            problem(f"{noise}: {key} {want[key]} does not exist")
     glsl_header, prefixes = want["glsl_runner"], want["glsl_export_prefixes"]
     glsl_dir = f"backends/glsl/include/hush/glsl/{noise}"
     if not (ROOT / glsl_dir / glsl_header).is_file():
@@ -179,9 +182,6 @@ def check_noise(noise, want, cases, program, exported):
     for kind in ("golden_case", "hard_case"):
         if not any(re.search(want[kind], name) for name in cases):
             problem(f"{noise}: no test case in tests/ named like /{want[kind]}/ ({kind})")
-    for key in OPTIONAL_KEYS:
-        if key in want and not (ROOT / want[key]).is_file():
-            problem(f"{noise}: {key} {want[key]} does not exist")
     doc = want["doc"]
     if not (ROOT / doc).is_file():
         problem(f"{noise}: no user page {doc}")

@@ -168,6 +168,22 @@ inline std::string library() {
          constants_block() + library_bodies();
 }
 
+namespace detail {
+
+// The generated constants and the library, each once per shader however many kits for the
+// user's shader (hush/glsl/shader.hpp) it holds: every kit starts with what it needs of them,
+// under these guards, so kits combine in one shader.
+inline std::string constants_once() {
+  return "#ifndef HUSH_GLSL_CONSTANTS\n#define HUSH_GLSL_CONSTANTS\n" + constants_block() +
+         "#endif  // HUSH_GLSL_CONSTANTS\n";
+}
+inline std::string library_once() {
+  return constants_once() + "#ifndef HUSH_GLSL_LIBRARY\n#define HUSH_GLSL_LIBRARY\n" +
+         library_bodies() + "#endif  // HUSH_GLSL_LIBRARY\n";
+}
+
+}  // namespace detail
+
 }  // namespace glsl
 }  // namespace hush
 

@@ -120,8 +120,11 @@ inline std::vector<std::vector<std::pair<std::string, std::string>>> renderer_ex
 #include <vector>
 
 #include "hush/glsl/shader.hpp"
-#include "hush/glsl/gabor/shader.hpp"
 #include "hush/glsl/anisotropic/shader.hpp"
+#include "hush/glsl/fractal/shader.hpp"
+#include "hush/glsl/gabor/shader.hpp"
+#include "hush/glsl/perlin/shader.hpp"
+#include "hush/glsl/wavelet/shader.hpp"
 
 namespace hush {
 namespace glsl {
@@ -130,7 +133,8 @@ namespace detail {
 // The files `hush glsl-export` writes for the user's shader, as (file name, text), in export
 // order: each noise's <noise>_shader_exports() (hush_<noise>_shader.glsl files).
 inline std::vector<std::vector<std::pair<std::string, std::string>>> shader_exports() {
-  return {gabor_shader_exports(), anisotropic_shader_exports()};
+  return {perlin_shader_exports(), fractal_shader_exports(), wavelet_shader_exports(),
+          gabor_shader_exports(), anisotropic_shader_exports()};
 }
 
 }  // namespace detail

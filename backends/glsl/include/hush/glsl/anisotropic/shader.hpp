@@ -395,8 +395,7 @@ inline shader_kit shader_for(const anisotropic& noise) {
   std::string src = kShaderPrelude;
   src += "#ifndef HUSH_ANISOTROPIC_KIT\n#define HUSH_ANISOTROPIC_KIT\n";
   // The generated constants, once per shader whichever kits it holds.
-  src +=
-      "#ifndef HUSH_GLSL_CONSTANTS\n#define HUSH_GLSL_CONSTANTS\n" + constants_block() + "#endif\n";
+  src += detail::constants_once();
   src += resource_layout("HUSH_ANISOTROPIC_PARAMS_BINDING", detail::kAnisotropicParamsBinding,
                          "std140") +
          detail::anisotropic_block_declaration();

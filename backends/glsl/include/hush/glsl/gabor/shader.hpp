@@ -227,9 +227,8 @@ vec4 hush_gabor3_surface_filtered_gradient(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
 // its accessors, the walk and the entry points.
 inline std::string gabor_shader_source(int dim) {
   const int table_slots = (dim == 3 ? gabor_table_slots<3>() : gabor_table_slots<2>());
-  return std::string(kShaderPrelude) +
-         "#ifndef HUSH_GLSL_LIBRARY_INCLUDED\n#define HUSH_GLSL_LIBRARY_INCLUDED\n" + library() +
-         "#endif\n" + resource_layout(kGaborParamsMacro, kGaborParamsBinding, "std140") +
+  return std::string(kShaderPrelude) + detail::library_once() +
+         resource_layout(kGaborParamsMacro, kGaborParamsBinding, "std140") +
          "uniform hush_gabor_params {\n"
          "  uint hush_gabor_key;                 // seed_key(seed)\n"
          "  uint hush_gabor_kind;                // 0 isotropic, 1 anisotropic, 2 hybrid\n"

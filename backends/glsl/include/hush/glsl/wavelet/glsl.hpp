@@ -16,8 +16,11 @@
 //                           (wavelet_blend_tile); without it variants read 0;
 //   HUSH_WAVELET_TABLE(i)  (optional) entry i of the distribution table (its size is an
 //                           argument of hush_wavelet_output).
-// Without HUSH_WAVELET_TILE the library holds no wavelet code at all, so it
-// still compiles in any stage under #version 330 core.
+//   or HUSH_WAVELET_TILE_AT(c) in place of HUSH_WAVELET_TILE: the coefficient at
+//                           ivec3 coordinates c, each in [0, n) (c.z = 0 in 2D);
+// Without either the library holds no wavelet code at all, so it still compiles in any
+// stage under #version 330 core. The bodies are guarded (HUSH_WAVELET_BODY): a shader may
+// hold them twice (the library and wavelet_body() again, hush/glsl/wavelet/shader.hpp).
 //
 // A band is evaluated from its tap-0 cells (hush_wv_i0, modulo the tile size,
 // or the global index modulo 2^32 with variants) and fractions, which the
@@ -47,7 +50,8 @@ namespace glsl {
 namespace detail {
 
 constexpr const char* kWaveletBody = R"glsl(
-#ifdef HUSH_WAVELET_TILE
+#if (defined(HUSH_WAVELET_TILE) || defined(HUSH_WAVELET_TILE_AT)) && !defined(HUSH_WAVELET_BODY)
+#define HUSH_WAVELET_BODY
 // ---- Wavelet noise (Cook & DeRose 2005; include/hush/wavelet.hpp), the CPU's float algorithm.
 // Kernel pieces, Horner from the highest power (core/bspline.hpp piece_value).
 float hush_bspline_piece(int p, float t) {
@@ -239,11 +243,17 @@ int hush_wavelet_variant_index(uint h, ivec3 l) {
 }
 // Coefficient at tap offsets k from the band's tap-0 cells of the periodic tile.
 // Rows of m = n (2D) or n + HUSH_WAVELET_ROW_PAD (3D) floats (wavelet_tile::coefficients).
+// With HUSH_WAVELET_TILE_AT(ivec3 c) the tile is read by its coefficient coordinates c
+// (c.z = 0 in 2D), e.g. texelFetch of an n^D texture (hush/glsl/wavelet/shader.hpp).
 float hush_wavelet_tile_coef(ivec3 k) {
+  ivec3 c = ivec3(hush_wavelet_wrap(hush_wv_i0.x, k.x), hush_wavelet_wrap(hush_wv_i0.y, k.y),
+                  hush_wavelet_wrap(hush_wv_i0.z, k.z));
+#ifdef HUSH_WAVELET_TILE_AT
+  return HUSH_WAVELET_TILE_AT(c);
+#else
   int n = int(hush_wv_n), m = n + (hush_wv_dim == 2u ? 0 : int(HUSH_WAVELET_ROW_PAD));
-  return HUSH_WAVELET_TILE(hush_wavelet_wrap(hush_wv_i0.x, k.x) +
-                           m * (hush_wavelet_wrap(hush_wv_i0.y, k.y) +
-                                n * hush_wavelet_wrap(hush_wv_i0.z, k.z)));
+  return HUSH_WAVELET_TILE(c.x + m * (c.y + n * c.z));
+#endif
 }
 // Coefficient at tap offsets k from the band's tap-0 cells (periodic tile or variants).
 float hush_wavelet_coef(ivec3 k) {
@@ -527,7 +537,7 @@ vec4 hush_wavelet_output(vec4 acc, bool everything, float scale, uint dist, floa
   }
   return vec4(v, g);
 }
-#endif  // HUSH_WAVELET_TILE
+#endif  // HUSH_WAVELET_TILE or HUSH_WAVELET_TILE_AT, once
 )glsl";
 
 // The plain B-spline's separable sums as straight-line GLSL (no loop: see the loop
