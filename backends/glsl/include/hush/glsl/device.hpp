@@ -321,7 +321,7 @@ class device {
     for (int a = 0; a < D; ++a) {
       const std::uint32_t period = noise_program<Noise>::period(noise, a);
       for (std::size_t i = 0; i < g.size[a]; ++i, w += 3)
-        split_into(w, g.origin[a] + g.step[a] * static_cast<double>(i), period);
+        split_into(w, g.coordinate(a, i), period);
     }
     const state_guard guard(*gl_);
     const detail::gl_uint prog = use_program<Noise>(noise, batch_layout::grid, grad != nullptr);
@@ -395,7 +395,7 @@ class device {
         for (std::size_t i = 0; i < g.size[a]; ++i, w += 3) {
           // Component a of the band position depends on component a of p only.
           vec<double, D> p;
-          for (int c = 0; c < D; ++c) p[c] = g.origin[a] + g.step[a] * static_cast<double>(i);
+          for (int c = 0; c < D; ++c) p[c] = g.coordinate(a, i);
           split_into(w, np::band_position(noise, b, p)[a], period);
         }
       }
