@@ -2,7 +2,8 @@
 //
 //   hush info
 //   hush sample NOISE [--dim 2|3] [--size N|NxM|NxMxK] [--origin x,y[,z]] [--step s]
-//                     [--seed n] [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
+//                     [--region x0,y0[,z0]:nx,ny[,nz]] [--seed n]
+//                     [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
 //   hush gallery [--out DIR]
 //   hush glsl-export DIR
 //   hush bench [--quick] [--interleave] [--json FILE] [--markdown FILE] [--plot FILE.svg]
@@ -89,7 +90,8 @@ void print_usage(std::ostream& os) {
         "  Sample (i, j, k) is at origin + step * (i, j, k), i along x. FILE.npy holds float32\n"
         "  (little-endian, C order) of shape (ny, nx) or (nz, ny, nx); FILE.png (one 2D image)\n"
         "  shows signed noise over [-1, 1] ((v + 1) / 2) and non-negative noise (turbulence)\n"
-        "  over [0, 1], from black to white, with j = 0 at the top.\n";
+        "  over [0, 1], from black to white, with j = 0 at the top. With --region, the file\n"
+        "  holds that block of the grid only, bit for bit as in the whole grid's file.\n";
   print_options(os, sample_options());
   for (const noise_entry& n : noise_table()) {
     os << "  NOISE " << n.name << ": " << n.summary << '\n';
