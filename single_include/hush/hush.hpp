@@ -7052,7 +7052,7 @@ inline void anisotropic_samples(const anisotropic& a, const float* xy, const flo
 }
 
 // Anisotropic noise on a uniform 2D grid (C order, i fastest); positions
-// origin + step * (i, j) in double, as the scalar grid path forms them;
+// g.coordinate() per axis in double, as the scalar grid path forms them;
 // gradients (interleaved x, y) into grad unless null.
 inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
   using namespace aniso_simd;

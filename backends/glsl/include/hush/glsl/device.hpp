@@ -28,7 +28,7 @@
 //
 // Accuracy (tests/glsl/glsl_test.cpp; see also hush/glsl/library.hpp):
 //  - points: the float position as given, split exactly on the GPU; grids: each
-//    axis position origin + step * i is formed and split into cell and fraction
+//    axis position grid::coordinate(axis, i) is formed and split into cell and fraction
 //    in double on the CPU (hush::lattice_split<float>, exactly as the scalar
 //    grid path does), so far-from-origin grids (1e6, -1e9) and negative steps
 //    lose nothing: cells and fractions equal the CPU's bit for bit.
