@@ -2,7 +2,8 @@
 //
 //   hush info
 //   hush sample NOISE [--dim 2|3] [--size N|NxM|NxMxK] [--origin x,y[,z]] [--step s]
-//                     [--seed n] [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
+//                     [--region x0,y0[,z0]:nx,ny[,nz]] [--seed n]
+//                     [--backend scalar|simd|glsl] [NOISE OPTIONS] --out FILE
 //   hush gallery [--out DIR]
 //   hush glsl-export DIR
 //   hush bench [--quick] [--interleave] [--json FILE] [--markdown FILE] [--plot FILE.svg]
@@ -87,7 +88,8 @@ void print_sample_help(std::ostream& os, const std::string& noise) {
         "  Sample (i, j, k) is at origin + step * (i, j, k), i along x. FILE.npy holds float32\n"
         "  (little-endian, C order) of shape (ny, nx) or (nz, ny, nx); FILE.png (one 2D image)\n"
         "  maps --range lo,hi to black..white (values outside clip), j = 0 at the top; the\n"
-        "  default range is per noise (below).\n";
+        "  default range is per noise (below). With --region, the file holds that block of the\n"
+        "  grid only, bit for bit as in the whole grid's file.\n";
   print_options(os, sample_options());
   bool known = false;
   for (const noise_entry& n : noise_table()) known = known || noise == n.name;

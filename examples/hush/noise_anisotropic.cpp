@@ -74,11 +74,7 @@ class anisotropic_field final : public noise_field {
                    float* out, backend b) const override {
     const bool extras = options_.pixel_footprint || options_.footprint_width || options_.map;
     if (!extras) {
-      hush::grid<2> block;  // exact double positions, as sample_rows promises
-      const hush::dvec3 o = grid.position({0, j0, k});
-      block.origin = {o.x, o.y};
-      block.step = {grid.step[0], grid.step[1]};
-      block.size = {grid.size[0], rows};
+      const hush::grid<2> block = row_block<2>(grid, j0, rows, k);
       run(
           [&](const auto& ex) {
             hush::evaluate_grid(noise_, ex, block, hush::span<float>(out, block.count()));

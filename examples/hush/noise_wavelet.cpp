@@ -42,15 +42,7 @@ class wavelet_field final : public noise_field {
                    float* out, backend b) const override {
     const hush::span<float> dst(out, grid.size[0] * rows);
     if (o_.footprint < 0 && !o_.normal) {
-      hush::grid<D> block;  // origin: the exact double position of sample (0, j0, k)
-      const hush::dvec3 org = grid.position({0, j0, k});
-      for (int a = 0; a < D; ++a) {
-        block.origin[a] = org[a];
-        block.step[a] = grid.step[a];
-      }
-      block.size[0] = grid.size[0];
-      block.size[1] = rows;
-      if constexpr (D == 3) block.size[2] = 1;
+      const hush::grid<D> block = row_block<D>(grid, j0, rows, k);
       with_exec(b, [&](const auto& ex) { hush::evaluate_grid(noise_, ex, block, dst); });
       return;
     }

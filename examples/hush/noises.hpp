@@ -24,8 +24,25 @@
 namespace hush_cli {
 
 // The samples a command asks for: sample (i, j, k) sits at grid.position({i, j, k}),
-// i.e. origin + step * (i, j, k) in double. 2D noises read x and y (size[2] is then 1).
+// i.e. origin + step * (first + (i, j, k)) in double (first: where a --region block
+// starts in the whole grid). 2D noises read x and y (size[2] is then 1).
 using sample_grid = hush::grid<3>;
+
+// Rows j0 ... j0 + rows - 1 of z-plane k of `grid` as a D-dimensional block of the
+// whole grid (hush::grid::block): every sample keeps its whole-grid position bit for bit.
+template <int D>
+hush::grid<D> row_block(const sample_grid& grid, std::size_t j0, std::size_t rows,
+                        std::size_t k) {
+  const sample_grid b = grid.block({0, j0, k}, {grid.size[0], rows, 1});
+  hush::grid<D> g;
+  for (int a = 0; a < D; ++a) {
+    g.origin[a] = b.origin[a];
+    g.step[a] = b.step[a];
+    g.first[a] = b.first[a];
+    g.size[a] = b.size[a];
+  }
+  return g;
+}
 
 // Where a noise is evaluated: hush::exec::scalar, hush::exec::simd or hush::exec::glsl.
 enum class backend { scalar, simd, glsl };
@@ -207,17 +224,7 @@ class grid_field final : public noise_field {
   }
   void sample_rows(const sample_grid& grid, std::size_t j0, std::size_t rows, std::size_t k,
                    float* out, backend b) const override {
-    // The block as a grid of its own: its origin is the exact double position
-    // of sample (0, j0, k), so every sample keeps the position it has in `grid`.
-    hush::grid<D> block;
-    const hush::dvec3 o = grid.position({0, j0, k});
-    for (int a = 0; a < D; ++a) {
-      block.origin[a] = o[a];
-      block.step[a] = grid.step[a];
-    }
-    block.size[0] = grid.size[0];
-    block.size[1] = rows;
-    if constexpr (D == 3) block.size[2] = 1;
+    const hush::grid<D> block = row_block<D>(grid, j0, rows, k);
     const hush::span<float> dst(out, block.count());
     if (b == backend::simd) {
       hush::evaluate_grid(noise_, hush::exec::simd, block, dst);

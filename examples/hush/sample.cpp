@@ -1,7 +1,9 @@
 // hush — the `hush` program: `hush sample NOISE [options] --out FILE.npy|FILE.png`.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -65,6 +67,40 @@ void parse_size(const std::string& token, request& r) {
   r.shape.assign(n.rbegin(), n.rend());
 }
 
+// --region x0,y0[,z0]:nx,ny[,nz]: the block of the --size grid to render (grid::block),
+// one first index and one extent per axis of that grid, each extent >= 1 and the block
+// inside the grid. Samples keep their whole-grid positions, so blocks rendered anywhere
+// equal the same samples of the whole grid bit for bit; the output holds the block only.
+void parse_region(const std::string& token, request& r) {
+  const std::size_t axes = r.shape.size();
+  const std::string form = axes == 2 ? "x0,y0:nx,ny" : "x0,y0,z0:nx,ny,nz";
+  const std::vector<std::string> halves = split(token, ':');
+  std::vector<std::size_t> v;
+  for (std::size_t h = 0; halves.size() == 2 && h < 2; ++h)
+    for (const std::string& p : split(halves[h], ',')) {
+      long long e = 0;
+      if (!to_integer(p, e) || e < (h == 0 ? 0 : 1) || e > static_cast<long long>(kMaxSamples))
+        v.push_back(SIZE_MAX);  // refused below with the form
+      else
+        v.push_back(static_cast<std::size_t>(e));
+    }
+  if (v.size() != 2 * axes || std::count(v.begin(), v.end(), SIZE_MAX) != 0)
+    throw_bad_value("--region", token,
+                    form + " (" + std::to_string(axes) +
+                        " first indices >= 0 and extents >= 1, one per axis of --size)");
+  std::array<std::size_t, 3> first{0, 0, 0}, size{1, 1, 1};
+  for (std::size_t a = 0; a < axes; ++a) {
+    first[a] = v[a];
+    size[a] = v[axes + a];
+    if (first[a] + size[a] > r.grid.size[a])
+      throw_bad_value("--region", token,
+                      form + " inside the --size grid: first + extent <= " +
+                          std::to_string(r.grid.size[a]) + " along " + "xyz"[a]);
+  }
+  r.grid = r.grid.block(first, size);
+  r.shape.assign(size.rbegin() + static_cast<std::ptrdiff_t>(3 - axes), size.rend());
+}
+
 format parse_out(const std::string& path) {
   std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -108,6 +144,7 @@ request parse_request(const std::vector<std::string>& args) {
     if (step == 0) throw_bad_value("--step", *v, valid);
   }
   r.grid.step = {step, step, step};
+  if (const std::string* v = take("--region")) parse_region(*v, r);
   const std::string* out = take("--out");
   if (!out) throw usage_error("missing --out FILE.npy|FILE.png (where to write the samples)");
   r.out = *out;
@@ -171,6 +208,10 @@ const std::vector<option_spec>& sample_options() {
       {"--origin", "x,y[,z]",
        "the position of sample (0, 0[, 0]), one finite number per dimension (default 0)"},
       {"--step", "s", "the spacing of the samples, finite and non-zero (default 0.03125 = 1/32)"},
+      {"--region", "x0,y0[,z0]:nx,ny[,nz]",
+       "render only the block of nx x ny[ x nz] samples starting at sample (x0, y0[, z0]) of the "
+       "--size grid (one number per axis of --size); blocks equal the same samples of the "
+       "whole grid bit for bit, so a job can be split over machines (default: the whole grid)"},
       {"--seed", "n", "an integer in 0 ... 4294967295 (default 0)"},
       {"--backend", "scalar|simd|glsl",
        "the evaluation backend (default scalar): scalar C++, SIMD (Highway), or GLSL compute "

@@ -170,7 +170,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
       auto at = [&](int a) {
         return [&, a](std::size_t index) {
           vec<double, D> p{};
-          p[a] = g.origin[a] + g.step[a] * double(index);
+          p[a] = g.coordinate(a, index);
           return b.position(p)[a];
         };
       };

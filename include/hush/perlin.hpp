@@ -199,7 +199,7 @@ class perlin : public point_noise<perlin<D>, D> {
   void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                    vec<float, D>* grad) const {
     auto at = [&g](int a) {
-      return [&g, a](std::size_t index) { return g.origin[a] + g.step[a] * double(index); };
+      return [&g, a](std::size_t index) { return g.coordinate(a, index); };
     };
     const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
     const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;

@@ -1720,9 +1720,11 @@ struct surface_map {
 //
 // Non-owning views for batch evaluation and per-pixel data:
 //  - span<T>:        contiguous array (pointer + count); C++17 has no std::span.
-//  - grid<N>:        a uniform sample grid: origin, step per axis, count per axis.
-//                    Sample (i, j, k) sits at origin + step * (i, j, k); its index
-//                    in C order is (k * ny + j) * nx + i (i along x, fastest).
+//  - grid<N>:        a uniform sample grid: origin, step per axis, count per axis,
+//                    and the index of its first sample in a larger grid it is a
+//                    block of (0 for a whole grid). Sample (i, j, k) sits at
+//                    origin + step * (first + (i, j, k)); its index in C order is
+//                    (k * ny + j) * nx + i (i along x, fastest).
 //  - image_view<T>:  a 2D pixel array with a row stride, e.g. one G-buffer channel.
 #ifndef HUSH_CORE_VIEWS_HPP
 #define HUSH_CORE_VIEWS_HPP
@@ -1781,11 +1783,28 @@ class span {
 // A uniform grid of N-dimensional sample positions. Origin and step are double
 // so that grids far from the origin keep their spacing exact; noises split each
 // position into lattice cell and fraction in double before going to float.
+//
+// A block of a larger grid (block(), for work split over threads, processes or
+// machines) keeps the whole grid's origin and step and says where it starts in
+// `first`: its sample (i, j, k) is the whole grid's sample first + (i, j, k),
+// at the same position bit for bit, so every backend gives a block exactly the
+// values the whole grid's call gives those samples. A block re-based as a grid
+// of its own (origin + step * first as its origin) would round its positions
+// differently.
 template <int N>
 struct grid {
-  vec<double, N> origin;              // position of sample (0, 0[, 0])
-  vec<double, N> step;                // spacing along each axis (may be negative, not zero)
-  std::array<std::size_t, std::size_t{N}> size{};  // samples along each axis (nx, ny[, nz])
+  vec<double, N> origin;  // position of the whole grid's sample (0, 0[, 0])
+  vec<double, N> step;    // spacing along each axis (may be negative, not zero)
+  std::array<std::size_t, std::size_t{N}> size{};   // samples along each axis (nx, ny[, nz])
+  std::array<std::size_t, std::size_t{N}> first{};  // index of this grid's sample 0 in the whole grid
+
+  // Position along `axis` of this grid's sample `index` on that axis:
+  // origin + step * (first + index), in double. Every backend forms grid
+  // positions with it, so a block's samples sit where the whole grid's do.
+  double coordinate(int axis, std::size_t index) const {
+    return origin[axis] +
+           step[axis] * static_cast<double>(first[static_cast<std::size_t>(axis)] + index);
+  }
 
   // Number of samples; 0 when any axis is empty.
   std::size_t count() const {
@@ -1793,19 +1812,51 @@ struct grid {
     for (std::size_t a = 0; a < N; ++a) n *= size[a];
     return n;
   }
-  // Position of the sample with index (i, j[, k]).
+  // Position of the sample with index (i, j[, k]) of this grid (coordinate() per axis).
   vec<double, N> position(const std::array<std::size_t, std::size_t{N}>& ijk) const {
     vec<double, N> p;
-    for (std::size_t a = 0; a < N; ++a) p[a] = origin[a] + step[a] * static_cast<double>(ijk[a]);
+    for (int a = 0; a < N; ++a) p[a] = coordinate(a, ijk[static_cast<std::size_t>(a)]);
     return p;
   }
+  // The block of this grid whose samples are this grid's (first_index +
+  // (i, j[, k])) for i < block_size[0], ...: same origin and step, `first`
+  // advanced by first_index, sizes block_size. Throws hush::invalid_argument
+  // naming the axis when the block does not lie inside this grid
+  // (first_index[a] + block_size[a] > size[a]); an empty block (a size of 0)
+  // is allowed anywhere inside. Evaluating the block gives, bit for bit, the
+  // values (and gradients) that evaluating this grid gives those samples, on
+  // every backend, with one exception that follows from the algorithm, not
+  // the positions: 3D Perlin and fBm gradients take the affine-in-x form on
+  // rows whose cells hold two columns on average (perlin.hpp grid_values), a
+  // choice made per grid from its x extent, so their blocks are bit-identical
+  // when they keep the whole grid's x extent (split along y and z) and
+  // otherwise within that form's stated bound of point evaluation.
+  grid block(const std::array<std::size_t, std::size_t{N}>& first_index,
+             const std::array<std::size_t, std::size_t{N}>& block_size) const {
+    grid b = *this;
+    for (std::size_t a = 0; a < std::size_t{N}; ++a) {
+      const std::string axis = "[" + std::to_string(a) + "]";
+      if (first_index[a] > size[a])
+        detail::throw_out_of_range("hush::grid::block", "first" + axis, first_index[a],
+                                   ("0 ... " + std::to_string(size[a])).c_str());
+      if (block_size[a] > size[a] - first_index[a])
+        detail::throw_out_of_range(
+            "hush::grid::block", "size" + axis, block_size[a],
+            ("0 ... " + std::to_string(size[a] - first_index[a]) + " (first + size <= " +
+             std::to_string(size[a]) + ")")
+                .c_str());
+      b.first[a] = first[a] + first_index[a];
+      b.size[a] = block_size[a];
+    }
+    return b;
+  }
   // f(idx, position) for the samples of the slab whose slowest-axis index (j in
-  // 2D, k in 3D) is in [first, first + count), idx counting from 0 in C order.
+  // 2D, k in 3D) is in [slab, slab + count), idx counting from 0 in C order.
   template <class F>
-  void for_each_in_slab(std::size_t first, std::size_t count, F f) const {
+  void for_each_in_slab(std::size_t slab, std::size_t count, F f) const {
     static_assert(N == 2 || N == 3, "grid slabs are 2D or 3D");
-    const std::size_t j0 = N == 2 ? first : 0, ny = N == 2 ? first + count : size[1];
-    const std::size_t k0 = N == 3 ? first : 0, nz = N == 3 ? first + count : 1;
+    const std::size_t j0 = N == 2 ? slab : 0, ny = N == 2 ? slab + count : size[1];
+    const std::size_t k0 = N == 3 ? slab : 0, nz = N == 3 ? slab + count : 1;
     std::size_t idx = 0;
     for (std::size_t k = k0; k < nz; ++k)
       for (std::size_t j = j0; j < ny; ++j)
@@ -1818,7 +1869,8 @@ struct grid {
         }
   }
   // Throws hush::invalid_argument naming the first bad field: origin and step must be
-  // finite, step non-zero, and the total count must fit in the address space.
+  // finite, step non-zero, first + size must fit in size_t on every axis, and the
+  // total count must fit in the address space.
   void validate(const char* where) const {
     for (int a = 0; a < N; ++a) {
       if (!std::isfinite(origin[a]))
@@ -1828,6 +1880,10 @@ struct grid {
         detail::throw_out_of_range(where, "grid.step[" + std::to_string(a) + "]", step[a],
                                    "a finite non-zero number");
     }
+    for (int a = 0; a < N; ++a)
+      if (first[a] > SIZE_MAX - size[a])
+        detail::throw_out_of_range(where, "grid.first[" + std::to_string(a) + "]", first[a],
+                                   "an index whose sum with grid.size fits in size_t");
     std::size_t n = 1;
     for (std::size_t a = 0; a < N; ++a) {
       if (size[a] != 0 && n > SIZE_MAX / size[a])
@@ -2612,7 +2668,7 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
       auto at = [&](int a) {
         return [&, a](std::size_t index) {
           vec<double, D> p{};
-          p[a] = g.origin[a] + g.step[a] * double(index);
+          p[a] = g.coordinate(a, index);
           return b.position(p)[a];
         };
       };
@@ -2940,7 +2996,7 @@ class perlin : public point_noise<perlin<D>, D> {
   void grid_values(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                    vec<float, D>* grad) const {
     auto at = [&g](int a) {
-      return [&g, a](std::size_t index) { return g.origin[a] + g.step[a] * double(index); };
+      return [&g, a](std::size_t index) { return g.coordinate(a, index); };
     };
     const std::size_t j0 = D == 2 ? first : 0, j1 = D == 2 ? first + count : g.size[1];
     const std::size_t k0 = D == 3 ? first : 0, k1 = D == 3 ? first + count : 1;
@@ -4834,17 +4890,17 @@ void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& 
                  std::size_t first, std::size_t count, float* value, float* grad) {
   const std::size_t nx = g.size[0];
   const grid_columns cols(nx, period[0], kGradient,
-                          [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
+                          [&](std::size_t i) { return g.coordinate(0, i); });
   row_evaluator<kGradient, D> rows(cols);
   grid_row row{key, {}, {}};
   std::size_t split_k = ~std::size_t(0);  // the slice row.z holds
   for_each_row<D>(g, first, count, [&](std::size_t j, std::size_t k, std::size_t r) HWY_ATTR {
     if constexpr (D == 3) {
       if (k != split_k)
-        row.z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
+        row.z = broadcast_axis<kGradient, 2>(g.coordinate(2, k), period[2]);
       split_k = k;
     }
-    row.y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
+    row.y = broadcast_axis<kGradient, 1>(g.coordinate(1, j), period[1]);
     float* row_value = value + r * nx;
     float* row_grad = kGradient ? grad + r * nx * D : nullptr;
     rows.run(row, [&](std::size_t i, VF v, const VF* gr)
@@ -5175,7 +5231,7 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
   cols.reserve(bands.size());
   for (std::size_t b = 0; b < bands.size(); ++b)
     cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
-      return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
+      return position(static_cast<int>(b), 0, g.coordinate(0, i));
     });
   std::vector<row_evaluator<kGradient, D>> rows;
   rows.reserve(bands.size());
@@ -5193,12 +5249,12 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
           const int bi = static_cast<int>(b);
           grid_row& row = band_rows[b];
           row.key = c.key;
-          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
+          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.coordinate(1, j)),
                                                c.period[1]);
           if constexpr (D == 3)
             if (k != split_k)
               row.z = broadcast_axis<kGradient, 2>(
-                  position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+                  position(bi, 2, g.coordinate(2, k)), c.period[2]);
           rows[b].prepare(row);
         }
         split_k = k;
@@ -7135,7 +7191,7 @@ inline void anisotropic_samples(const anisotropic& a, const float* xy, const flo
 }
 
 // Anisotropic noise on a uniform 2D grid (C order, i fastest); positions
-// origin + step * (i, j) in double, as the scalar grid path forms them;
+// g.coordinate() per axis in double, as the scalar grid path forms them;
 // gradients (interleaved x, y) into grad unless null.
 inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
   using namespace aniso_simd;
@@ -7143,11 +7199,11 @@ inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* valu
   block b(cf);
   const std::size_t nx = g.size[0], ny = g.size[1];
   for (std::size_t j = 0; j < ny; ++j) {
-    const double y = g.origin[1] + g.step[1] * double(j);
+    const double y = g.coordinate(1, j);
     for (std::size_t first = 0; first < nx; first += kBlock) {
       const std::size_t count = std::min(kBlock, nx - first);
       for (std::size_t i = 0; i < count; ++i) {
-        b.x[i] = g.origin[0] + g.step[0] * double(first + i);
+        b.x[i] = g.coordinate(0, first + i);
         b.y[i] = y;
       }
       run_block(a, cf, b, count, nullptr, nullptr, value + j * nx + first,
@@ -11738,19 +11794,20 @@ constexpr std::size_t kBlockX[2] = {256, 64};
 // ---- Grids: blocks of samples that share their cell.
 
 // One axis of a grid, split as scalar evaluation splits grid.position(): the
-// cell and fraction of (origin + step (first + i)) * inverse cell for i in [0, n),
-// and runs of equal cells (at most `cap` long).
+// cell and fraction of g.coordinate(axis, first + i) * inverse cell for i in
+// [0, n), and runs of equal cells (at most `cap` long).
 struct grid_axis {
   std::vector<std::uint32_t> cell;
   std::vector<float> frac;
   std::vector<char> bad;
   std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
-  grid_axis(double origin, double step, std::size_t first, std::size_t n, double inv,
+  template <int D>
+  grid_axis(const hush::grid<D>& g, int axis, std::size_t first, std::size_t n, double inv,
             std::size_t cap)
       : cell(n), frac(n), bad(n) {
     for (std::size_t i = 0; i < n; ++i) {
       const lattice_coord<float> c =
-          lattice_split<float>((origin + step * static_cast<double>(first + i)) * inv);
+          lattice_split<float>(g.coordinate(axis, first + i) * inv);
       cell[i] = c.i0;
       frac[i] = c.f;
       bad[i] = std::isnan(c.f) ? 1 : 0;
@@ -12085,8 +12142,7 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   std::vector<grid_axis> axes;
   axes.reserve(D);
   for (int a = 0; a < D; ++a)
-    axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
-                      caps[a]);
+    axes.emplace_back(whole, a, a == D - 1 ? first : 0, gr.size[a], inv, caps[a]);
   const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
   const std::size_t nx = gr.size[0], ny = gr.size[1];
   if (per_cell < kMinRun) {
@@ -15838,9 +15894,9 @@ struct column_table {
   std::vector<char> fits;           // per vector: every tap within one vector of T
 };
 
-template <bool kGradient>
+template <bool kGradient, int D>
 column_table make_columns(std::size_t nx, int n, std::uint32_t period, double freq, double off,
-                          double origin, double step) {
+                          const grid<D>& g) {
   column_table t;
   const std::size_t lanes = hn::Lanes(DF());
   t.padded = (nx + lanes - 1) / lanes * lanes;
@@ -15856,7 +15912,7 @@ column_table make_columns(std::size_t nx, int n, std::uint32_t period, double fr
   long long prev = 0, lo = 0, hi = 0;
   const auto un = static_cast<std::uint32_t>(n);
   for (std::size_t i = 0; i < nx; ++i) {
-    double x = (origin + step * static_cast<double>(i)) * freq;
+    double x = g.coordinate(0, i) * freq;
     if (!std::isfinite(x)) x = 0.0;  // as wavelet::band::position for finite input
     const lattice_coord<float> c = lattice_split<float>(x + off, period);
     detail::wavelet_axis<float> ax;
@@ -15942,7 +15998,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
   cols.reserve(bands.size());
   for (int b : bands)
     cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
-                                           w.band_position(b, zero)[0], g.origin[0], g.step[0]));
+                                           w.band_position(b, zero)[0], g));
   const std::size_t padded = cols.empty() ? nx : cols[0].padded;
   // Per band: S (3D: the z contraction per (x, y) cell, and its z derivative) and T
   // (the row's contraction per x cell: value, d/dy, d/dz).
@@ -15962,7 +16018,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
     for (std::size_t j = 0; j < ny; ++j) {
       ylines[q].push_back(
           make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
-                               g.origin[1] + g.step[1] * static_cast<double>(j)));
+                               g.coordinate(1, j)));
       for (int c : ylines[q].back().cell) yneeded[static_cast<std::size_t>(c)] = 1;
     }
     for (std::size_t c = 0; c < un; ++c) {
@@ -15980,7 +16036,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
         const int b = bands[q];
         const line_axis z =
             make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[2],
-                                 g.origin[2] + g.step[2] * static_cast<double>(k));
+                                 g.coordinate(2, k));
         for (const std::size_t yc : ycells[q]) {
           for (const std::size_t xc : xcells[q]) {
             float s = 0, sz = 0;

@@ -1142,3 +1142,124 @@ TEST_CASE("sample anisotropic: bad options exit 2 with one line naming the optio
   CHECK(lsq.err.find("least-squares") != std::string::npos);
 #endif
 }
+
+// ---- --region: one block of the --size grid (hush::grid::block).
+
+namespace {
+
+// The data bytes of an .npy file (after its header).
+std::string npy_data(const fs::path& path) {
+  const npy_file f = read_npy(path);
+  return slurp(path).substr(f.data_offset);
+}
+
+// `hush sample <args>` over the whole grid, and over the blocks `regions` (each a --region
+// value) that tile it, concatenated along the slowest axis they split: the blocks' data, put
+// back in place, equal the whole file's data byte for byte.
+void check_regions(const std::string& args, const std::vector<std::string>& regions,
+                   const fs::path& dir) {
+  CAPTURE(args);
+  const fs::path whole = dir / "whole.npy";
+  REQUIRE(run_hush("sample " + args + " --out '" + whole.string() + "'", dir).exit_code == 0);
+  const npy_file w = read_npy(whole);
+  const std::string want = npy_data(whole);
+  std::string got(want.size(), '\x55');
+  std::size_t covered = 0;
+  for (std::size_t b = 0; b < regions.size(); ++b) {
+    CAPTURE(regions[b]);
+    const fs::path part = dir / ("part" + std::to_string(b) + ".npy");
+    const result r =
+        run_hush("sample " + args + " --region " + regions[b] + " --out '" + part.string() + "'",
+                 dir);
+    REQUIRE(r.exit_code == 0);
+    // Where the block sits: "x0,y0[,z0]:nx,ny[,nz]".
+    std::vector<std::size_t> v;
+    std::string s = regions[b];
+    for (char& c : s)
+      if (c == ':') c = ',';
+    std::size_t at = 0;
+    while (at < s.size()) {
+      std::size_t used = 0;
+      v.push_back(std::stoul(s.substr(at), &used));
+      at += used + 1;
+    }
+    const std::size_t axes = v.size() / 2;
+    REQUIRE(axes == w.shape.size());
+    const npy_file f = read_npy(part);
+    std::vector<std::size_t> shape(v.rbegin(), v.rbegin() + static_cast<std::ptrdiff_t>(axes));
+    CHECK(f.shape == shape);
+    const std::string data = npy_data(part);
+    const std::size_t nx = w.shape.back(), ny = w.shape[axes - 2];
+    const std::size_t bx = v[axes], by = v[axes + 1], bz = axes == 3 ? v[5] : 1;
+    const std::size_t x0 = v[0], y0 = v[1], z0 = axes == 3 ? v[2] : 0;
+    for (std::size_t k = 0; k < bz; ++k)
+      for (std::size_t j = 0; j < by; ++j)
+        got.replace(4 * (((z0 + k) * ny + y0 + j) * nx + x0), 4 * bx, data,
+                    4 * ((k * by + j) * bx), 4 * bx);
+    covered += bx * by * bz;
+  }
+  CHECK(covered == w.values.size());
+  CHECK(got == want);
+}
+
+}  // namespace
+
+TEST_CASE("sample --region: blocks of the grid equal the whole grid's file, byte for byte") {
+  const fs::path dir = scratch("regions");
+  // Far from the origin, an origin that is not a multiple of the step, a step that rounds.
+  const std::string far2 = " --dim 2 --size 37x21 --origin 100000.1,-7.3 --step 0.3333333333333333";
+  const std::string far3 =
+      " --dim 3 --size 13x9x7 --origin 100000.1,-7.3,2.9 --step 0.3333333333333333";
+  const std::vector<std::string> halves_y = {"0,0:37,11", "0,11:37,10"};
+  const std::vector<std::string> halves_x = {"0,0:17,21", "17,0:20,21"};
+  const std::vector<std::string> quarters = {"0,0:5,3", "5,0:32,3", "0,3:5,18", "5,3:32,18"};
+  const std::vector<std::string> octants = {"0,0,0:13,9,3", "0,0,3:7,5,4", "7,0,3:6,5,4",
+                                            "0,5,3:13,4,4"};
+  std::vector<std::string> backends = {"scalar"};
+  if (HUSH_CONFIG_SIMD) backends.push_back("simd");
+  for (const std::string& b : backends) {
+    const std::string on = " --backend " + b;
+    for (const char* noise : {"perlin", "perlin --octaves 4", "wavelet --tile-size 32 --bands 3", "gabor",
+                              "anisotropic"}) {
+      check_regions(noise + far2 + on, halves_y, dir);
+      check_regions(noise + far2 + on, halves_x, dir);
+      check_regions(noise + far2 + on, quarters, dir);
+    }
+    for (const char* noise : {"perlin", "perlin --octaves 3", "wavelet --tile-size 16", "gabor"})
+      check_regions(noise + far3 + on, octants, dir);
+  }
+  // A negative step, and a 3D noise's z-plane (NxM with --dim 3: two axes in --region).
+  check_regions("perlin --dim 2 --size 30x12 --origin -5e4,3.7 --step -0.07",
+                {"0,0:11,5", "11,0:19,5", "0,5:30,7"}, dir);
+  check_regions("perlin --dim 3 --size 30x12 --origin 1.1,2.2,3.3 --step 0.1",
+                {"0,0:30,7", "0,7:30,5"}, dir);
+}
+
+TEST_CASE("sample --region: a bad region exits 2 with one line naming --region") {
+  const fs::path dir = scratch("bad_regions");
+  const std::string out = " --out '" + (dir / "never.npy").string() + "'";
+  const char* const bad[] = {
+      "--size 8x4 --region 0,0:9,4",          // past the grid along x
+      "--size 8x4 --region 5,0:4,4",          // first + extent past the grid
+      "--size 8x4 --region 0,4:8,1",          // starts past the last row
+      "--size 8x4 --region 0,0:0,4",          // an empty block
+      "--size 8x4 --region 0,0:8",            // too few numbers
+      "--size 8x4 --region 0,0,0:8,4,1",      // three axes for a 2D grid
+      "--dim 3 --size 4 --region 0,0:4,4",    // two axes for a 3D grid
+      "--size 8x4 --region -1,0:2,2",         // a negative index
+      "--size 8x4 --region 0,0",              // no extents
+      "--size 8x4 --region 0,0:2,2:2,2",      // two colons
+      "--size 8x4 --region a,0:2,2",          // not a number
+      "--size 8x4 --region 0,0:99999999999999999999,1",  // out of range
+  };
+  for (const char* args : bad) {
+    CAPTURE(args);
+    const result r = run_hush(std::string("sample perlin ") + args + out, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--region") != std::string::npos);
+    CHECK(r.err.rfind("hush sample: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.out.empty());
+  }
+  CHECK_FALSE(fs::exists(dir / "never.npy"));
+}

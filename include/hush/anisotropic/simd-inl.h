@@ -728,7 +728,7 @@ inline void anisotropic_samples(const anisotropic& a, const float* xy, const flo
 }
 
 // Anisotropic noise on a uniform 2D grid (C order, i fastest); positions
-// origin + step * (i, j) in double, as the scalar grid path forms them;
+// g.coordinate() per axis in double, as the scalar grid path forms them;
 // gradients (interleaved x, y) into grad unless null.
 inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* value, float* grad) {
   using namespace aniso_simd;
@@ -736,11 +736,11 @@ inline void anisotropic_grid(const anisotropic& a, const grid<2>& g, float* valu
   block b(cf);
   const std::size_t nx = g.size[0], ny = g.size[1];
   for (std::size_t j = 0; j < ny; ++j) {
-    const double y = g.origin[1] + g.step[1] * double(j);
+    const double y = g.coordinate(1, j);
     for (std::size_t first = 0; first < nx; first += kBlock) {
       const std::size_t count = std::min(kBlock, nx - first);
       for (std::size_t i = 0; i < count; ++i) {
-        b.x[i] = g.origin[0] + g.step[0] * double(first + i);
+        b.x[i] = g.coordinate(0, first + i);
         b.y[i] = y;
       }
       run_block(a, cf, b, count, nullptr, nullptr, value + j * nx + first,

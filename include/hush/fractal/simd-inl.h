@@ -219,7 +219,7 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
   cols.reserve(bands.size());
   for (std::size_t b = 0; b < bands.size(); ++b)
     cols.emplace_back(nx, bands[b].period[0], kGradient, [&](std::size_t i) {
-      return position(static_cast<int>(b), 0, g.origin[0] + g.step[0] * double(i));
+      return position(static_cast<int>(b), 0, g.coordinate(0, i));
     });
   std::vector<row_evaluator<kGradient, D>> rows;
   rows.reserve(bands.size());
@@ -237,12 +237,12 @@ void fractal_grid(const fractal<perlin<D>>& fr, const grid<D>& g, std::size_t fi
           const int bi = static_cast<int>(b);
           grid_row& row = band_rows[b];
           row.key = c.key;
-          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.origin[1] + g.step[1] * double(j)),
+          row.y = broadcast_axis<kGradient, 1>(position(bi, 1, g.coordinate(1, j)),
                                                c.period[1]);
           if constexpr (D == 3)
             if (k != split_k)
               row.z = broadcast_axis<kGradient, 2>(
-                  position(bi, 2, g.origin[2] + g.step[2] * double(k)), c.period[2]);
+                  position(bi, 2, g.coordinate(2, k)), c.period[2]);
           rows[b].prepare(row);
         }
         split_k = k;

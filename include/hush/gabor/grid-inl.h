@@ -44,19 +44,20 @@ constexpr std::size_t kBlockX[2] = {256, 64};
 // ---- Grids: blocks of samples that share their cell.
 
 // One axis of a grid, split as scalar evaluation splits grid.position(): the
-// cell and fraction of (origin + step (first + i)) * inverse cell for i in [0, n),
-// and runs of equal cells (at most `cap` long).
+// cell and fraction of g.coordinate(axis, first + i) * inverse cell for i in
+// [0, n), and runs of equal cells (at most `cap` long).
 struct grid_axis {
   std::vector<std::uint32_t> cell;
   std::vector<float> frac;
   std::vector<char> bad;
   std::vector<std::size_t> run_start;  // runs [run_start[r], run_start[r + 1])
-  grid_axis(double origin, double step, std::size_t first, std::size_t n, double inv,
+  template <int D>
+  grid_axis(const hush::grid<D>& g, int axis, std::size_t first, std::size_t n, double inv,
             std::size_t cap)
       : cell(n), frac(n), bad(n) {
     for (std::size_t i = 0; i < n; ++i) {
       const lattice_coord<float> c =
-          lattice_split<float>((origin + step * static_cast<double>(first + i)) * inv);
+          lattice_split<float>(g.coordinate(axis, first + i) * inv);
       cell[i] = c.i0;
       frac[i] = c.f;
       bad[i] = std::isnan(c.f) ? 1 : 0;
@@ -391,8 +392,7 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   std::vector<grid_axis> axes;
   axes.reserve(D);
   for (int a = 0; a < D; ++a)
-    axes.emplace_back(whole.origin[a], whole.step[a], a == D - 1 ? first : 0, gr.size[a], inv,
-                      caps[a]);
+    axes.emplace_back(whole, a, a == D - 1 ? first : 0, gr.size[a], inv, caps[a]);
   const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
   const std::size_t nx = gr.size[0], ny = gr.size[1];
   if (per_cell < kMinRun) {

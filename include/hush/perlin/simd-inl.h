@@ -1052,17 +1052,17 @@ void perlin_grid(std::uint32_t key, const std::uint32_t* period, const grid<D>& 
                  std::size_t first, std::size_t count, float* value, float* grad) {
   const std::size_t nx = g.size[0];
   const grid_columns cols(nx, period[0], kGradient,
-                          [&](std::size_t i) { return g.origin[0] + g.step[0] * double(i); });
+                          [&](std::size_t i) { return g.coordinate(0, i); });
   row_evaluator<kGradient, D> rows(cols);
   grid_row row{key, {}, {}};
   std::size_t split_k = ~std::size_t(0);  // the slice row.z holds
   for_each_row<D>(g, first, count, [&](std::size_t j, std::size_t k, std::size_t r) HWY_ATTR {
     if constexpr (D == 3) {
       if (k != split_k)
-        row.z = broadcast_axis<kGradient, 2>(g.origin[2] + g.step[2] * double(k), period[2]);
+        row.z = broadcast_axis<kGradient, 2>(g.coordinate(2, k), period[2]);
       split_k = k;
     }
-    row.y = broadcast_axis<kGradient, 1>(g.origin[1] + g.step[1] * double(j), period[1]);
+    row.y = broadcast_axis<kGradient, 1>(g.coordinate(1, j), period[1]);
     float* row_value = value + r * nx;
     float* row_grad = kGradient ? grad + r * nx * D : nullptr;
     rows.run(row, [&](std::size_t i, VF v, const VF* gr)

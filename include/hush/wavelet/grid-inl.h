@@ -55,9 +55,9 @@ struct column_table {
   std::vector<char> fits;           // per vector: every tap within one vector of T
 };
 
-template <bool kGradient>
+template <bool kGradient, int D>
 column_table make_columns(std::size_t nx, int n, std::uint32_t period, double freq, double off,
-                          double origin, double step) {
+                          const grid<D>& g) {
   column_table t;
   const std::size_t lanes = hn::Lanes(DF());
   t.padded = (nx + lanes - 1) / lanes * lanes;
@@ -73,7 +73,7 @@ column_table make_columns(std::size_t nx, int n, std::uint32_t period, double fr
   long long prev = 0, lo = 0, hi = 0;
   const auto un = static_cast<std::uint32_t>(n);
   for (std::size_t i = 0; i < nx; ++i) {
-    double x = (origin + step * static_cast<double>(i)) * freq;
+    double x = g.coordinate(0, i) * freq;
     if (!std::isfinite(x)) x = 0.0;  // as wavelet::band::position for finite input
     const lattice_coord<float> c = lattice_split<float>(x + off, period);
     detail::wavelet_axis<float> ax;
@@ -159,7 +159,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
   cols.reserve(bands.size());
   for (int b : bands)
     cols.push_back(make_columns<kGradient>(nx, n, period, w.band_frequency(b),
-                                           w.band_position(b, zero)[0], g.origin[0], g.step[0]));
+                                           w.band_position(b, zero)[0], g));
   const std::size_t padded = cols.empty() ? nx : cols[0].padded;
   // Per band: S (3D: the z contraction per (x, y) cell, and its z derivative) and T
   // (the row's contraction per x cell: value, d/dy, d/dz).
@@ -179,7 +179,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
     for (std::size_t j = 0; j < ny; ++j) {
       ylines[q].push_back(
           make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[1],
-                               g.origin[1] + g.step[1] * static_cast<double>(j)));
+                               g.coordinate(1, j)));
       for (int c : ylines[q].back().cell) yneeded[static_cast<std::size_t>(c)] = 1;
     }
     for (std::size_t c = 0; c < un; ++c) {
@@ -197,7 +197,7 @@ void wavelet_grid(const wavelet<D>& w, const grid<D>& g, float* value, float* gr
         const int b = bands[q];
         const line_axis z =
             make_line<kGradient>(n, period, w.band_frequency(b), w.band_position(b, zero)[2],
-                                 g.origin[2] + g.step[2] * static_cast<double>(k));
+                                 g.coordinate(2, k));
         for (const std::size_t yc : ycells[q]) {
           for (const std::size_t xc : xcells[q]) {
             float s = 0, sz = 0;

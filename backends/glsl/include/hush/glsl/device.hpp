@@ -28,7 +28,7 @@
 //
 // Accuracy (tests/glsl/glsl_test.cpp; see also hush/glsl/library.hpp):
 //  - points: the float position as given, split exactly on the GPU; grids: each
-//    axis position origin + step * i is formed and split into cell and fraction
+//    axis position grid::coordinate(axis, i) is formed and split into cell and fraction
 //    in double on the CPU (hush::lattice_split<float>, exactly as the scalar
 //    grid path does), so far-from-origin grids (1e6, -1e9) and negative steps
 //    lose nothing: cells and fractions equal the CPU's bit for bit.
@@ -321,7 +321,7 @@ class device {
     for (int a = 0; a < D; ++a) {
       const std::uint32_t period = noise_program<Noise>::period(noise, a);
       for (std::size_t i = 0; i < g.size[a]; ++i, w += 3)
-        split_into(w, g.origin[a] + g.step[a] * static_cast<double>(i), period);
+        split_into(w, g.coordinate(a, i), period);
     }
     const state_guard guard(*gl_);
     const detail::gl_uint prog = use_program<Noise>(noise, batch_layout::grid, grad != nullptr);
@@ -395,7 +395,7 @@ class device {
         for (std::size_t i = 0; i < g.size[a]; ++i, w += 3) {
           // Component a of the band position depends on component a of p only.
           vec<double, D> p;
-          for (int c = 0; c < D; ++c) p[c] = g.origin[a] + g.step[a] * static_cast<double>(i);
+          for (int c = 0; c < D; ++c) p[c] = g.coordinate(a, i);
           split_into(w, np::band_position(noise, b, p)[a], period);
         }
       }

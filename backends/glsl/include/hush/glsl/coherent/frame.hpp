@@ -236,7 +236,7 @@ class coherent_gl_pass {
           for (int axis = 0; axis < 2; ++axis)
             for (std::size_t j = 0; j < bp.g.size[static_cast<std::size_t>(axis)]; ++j) {
               const lattice_coord<float> lc = lattice_split<float>(
-                  bp.g.origin[axis] + bp.g.step[axis] * static_cast<double>(j), 0u);
+                  bp.g.coordinate(axis, j), 0u);
               std::uint32_t bits;
               std::memcpy(&bits, &lc.f, 4);
               planes_.insert(planes_.end(), {lc.i0, lc.i1, bits});
