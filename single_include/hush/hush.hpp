@@ -1880,7 +1880,7 @@ struct grid {
         detail::throw_out_of_range(where, "grid.step[" + std::to_string(a) + "]", step[a],
                                    "a finite non-zero number");
     }
-    for (int a = 0; a < N; ++a)
+    for (std::size_t a = 0; a < std::size_t{N}; ++a)
       if (first[a] > SIZE_MAX - size[a])
         detail::throw_out_of_range(where, "grid.first[" + std::to_string(a) + "]", first[a],
                                    "an index whose sum with grid.size fits in size_t");
