@@ -997,7 +997,8 @@ class gabor : public sample_noise<gabor<D>, D> {
         const lattice_coord<float> c = lattice_split<float>(x * inv_cell_);
         coord[a].push_back(c);
         const bool nan = std::isnan(c.f);
-        grid_run& last = runs[a].empty() ? runs[a].emplace_back(grid_run{i, i, nan}) : runs[a].back();
+        if (runs[a].empty()) runs[a].push_back(grid_run{i, i, nan});
+        const grid_run& last = runs[a].back();
         if (last.end > last.begin &&
             (nan || last.nan || coord[a][last.begin - lo[a]].i0 != c.i0 ||
              last.end - last.begin == kGridTile))
@@ -1038,12 +1039,12 @@ class gabor : public sample_noise<gabor<D>, D> {
           centre[1] = coord[1][ry.begin - lo[1]].i0;
           if constexpr (D == 3) centre[2] = coord[2][rz.begin - lo[2]].i0;
           fill_block<float>(centre, block);
-          grid_tile<G>(block, coord, lo, rx, ry, rz, cols, rows, [&](std::size_t i, std::size_t j,
-                                                                      std::size_t k,
-                                                                      const value_gradient<float, D>& r) {
+          auto put = [&](std::size_t i, std::size_t j, std::size_t k,
+                         const value_gradient<float, D>& r) {
             out[index(i, j, k)] = r.value;
             if constexpr (G) grad[index(i, j, k)] = r.gradient;
-          });
+          };
+          grid_tile<G>(block, coord, lo, rx, ry, rz, cols, rows, put);
         }
   }
 
