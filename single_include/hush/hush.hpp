@@ -7671,12 +7671,13 @@ struct triangle_list {
 //  - grids: grid<D> (origin and step in double); out has grid.count()
 //    elements in C order, i fastest (core/views.hpp). The grid is validated.
 //  - scalar: exactly noise(point) per element, in float. A noise may share
-//    work between the samples of a grid (detail::has_grid_values); its
-//    results are point evaluation's, bit for bit unless the compiler
-//    contracts multiply-adds (HUSH_STRICT_FP forbids it), or within a stated
-//    bound of them where it says so (Perlin and fBm 3D values with
-//    gradients: perlin.hpp grid_values; Gabor grids' separable form:
-//    gabor.hpp grid_values, docs/gabor.md "Float accuracy").
+//    work between neighbouring points of a batch (detail::has_point_values:
+//    bit for bit noise(point)) and between the samples of a grid
+//    (detail::has_grid_values); a grid's results are point evaluation's, bit
+//    for bit unless the compiler contracts multiply-adds (HUSH_STRICT_FP
+//    forbids it), or within a stated bound of them where it says so (Perlin
+//    and fBm 3D values with gradients: perlin.hpp grid_values; Gabor grids'
+//    separable form: gabor.hpp grid_values, docs/gabor.md "Float accuracy").
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/perlin/simd-inl.h, docs/design.md "Backends"). Without SIMD
