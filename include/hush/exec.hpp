@@ -17,12 +17,13 @@
 //  - grids: grid<D> (origin and step in double); out has grid.count()
 //    elements in C order, i fastest (core/views.hpp). The grid is validated.
 //  - scalar: exactly noise(point) per element, in float. A noise may share
-//    work between the samples of a grid (detail::has_grid_values); its
-//    results are point evaluation's, bit for bit unless the compiler
-//    contracts multiply-adds (HUSH_STRICT_FP forbids it), or within a stated
-//    bound of them where it says so (Perlin and fBm 3D values with
-//    gradients: perlin.hpp grid_values; Gabor grids' separable form:
-//    gabor.hpp grid_values, docs/gabor.md "Float accuracy").
+//    work between neighbouring points of a batch (detail::has_point_values:
+//    bit for bit noise(point)) and between the samples of a grid
+//    (detail::has_grid_values); a grid's results are point evaluation's, bit
+//    for bit unless the compiler contracts multiply-adds (HUSH_STRICT_FP
+//    forbids it), or within a stated bound of them where it says so (Perlin
+//    and fBm 3D values with gradients: perlin.hpp grid_values; Gabor grids'
+//    separable form: gabor.hpp grid_values, docs/gabor.md "Float accuracy").
 //  - simd: the same values bit for bit under HUSH_STRICT_FP; otherwise within
 //    the noise's float budget of the double reference (perlin, fractal:
 //    hush/perlin/simd-inl.h, docs/design.md "Backends"). Without SIMD
@@ -167,9 +168,27 @@ template <class Noise, class Inner>
 void run_grid(const Noise& n, const exec::parallel_t<Inner>& ex, const grid<Noise::dimension>& g,
               float* out, vec<float, Noise::dimension>* grad);
 
+// Whether Noise evaluates batches of points itself: a member
+//   void point_values(const vec<float, D>* pts, std::size_t count, float* out,
+//                     vec<float, D>* grad) const;
+// with exactly the values and gradients of its point evaluation, faster than the
+// loop below by sharing work between neighbouring points (gabor.hpp).
+template <class Noise, class = void>
+struct has_point_values : std::false_type {};
+template <class Noise>
+struct has_point_values<
+    Noise, std::void_t<decltype(std::declval<const Noise&>().point_values(
+               std::declval<const vec<float, Noise::dimension>*>(), std::size_t{},
+               std::declval<float*>(), std::declval<vec<float, Noise::dimension>*>()))>>
+    : std::true_type {};
+
 template <class Noise>
 void scalar_points(const Noise& n, point_span<Noise> pts, float* out,
                    vec<float, Noise::dimension>* grad) {
+  if constexpr (has_point_values<Noise>::value) {
+    n.point_values(pts.data(), pts.size(), out, grad);
+    return;
+  }
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (grad) {
       const auto r = n.gradient(pts[i]);

@@ -172,14 +172,41 @@ hush::grid<D> as_grid(const std::vector<py::ssize_t>& shape, const py::handle& o
   return g;
 }
 
+// The values of the grid `shape` (origin, step), or of its block (start, size) in numpy axis
+// order when `block` is given: the block's samples equal the whole grid's bit for bit
+// (hush::grid::block), so chunks computed anywhere assemble into the one-call result.
 template <class Noise>
 float_array evaluate_grid(const Noise& n, const std::vector<py::ssize_t>& shape,
-                          const py::handle& origin, const py::handle& step,
+                          const py::handle& origin, const py::handle& step, const py::object& block,
                           const std::string& backend_name, int threads) {
   constexpr int D = Noise::dimension;
   const backend b = parse_backend(backend_name, threads);
-  const hush::grid<D> g = as_grid<D>(shape, origin, step);
-  float_array out(shape);
+  hush::grid<D> g = as_grid<D>(shape, origin, step);
+  std::vector<py::ssize_t> out_shape = shape;
+  if (!block.is_none()) {
+    std::vector<py::ssize_t> start, size;
+    try {
+      const auto pair = block.cast<std::pair<std::vector<py::ssize_t>, std::vector<py::ssize_t>>>();
+      start = pair.first;
+      size = pair.second;
+    } catch (const py::cast_error&) {
+      throw py::value_error("block: valid: (start, size), each " + std::to_string(D) +
+                            " integers in numpy axis order");
+    }
+    if (start.size() != static_cast<std::size_t>(D) || size.size() != static_cast<std::size_t>(D))
+      throw py::value_error("block: start and size need " + std::to_string(D) + " integers each");
+    std::array<std::size_t, std::size_t{D}> first{}, count{};
+    for (int a = 0; a < D; ++a) {
+      const auto k = static_cast<std::size_t>(D - 1 - a);
+      if (start[k] < 0 || size[k] < 0)
+        throw py::value_error("block: negative start or size; valid: indices inside shape");
+      first[static_cast<std::size_t>(a)] = static_cast<std::size_t>(start[k]);
+      count[static_cast<std::size_t>(a)] = static_cast<std::size_t>(size[k]);
+    }
+    g = g.block(first, count);
+    out_shape = size;
+  }
+  float_array out(out_shape);
   float* o = out.mutable_data();
   {
     py::gil_scoped_release release;
