@@ -10502,7 +10502,7 @@ class gabor : public sample_noise<gabor<D>, D> {
   // offset from the block's centre cell), weight and frequency vector.
   template <class T>
   struct block_impulse {
-    T ou[D];
+    T ou[std::size_t{D}];
     T w;
     vec<T, D> phi;
   };
@@ -10511,16 +10511,16 @@ class gabor : public sample_noise<gabor<D>, D> {
   // the centre cell keeps those with s < 1.
   // An impulse a point keeps: its offsets, s = |d|^2 and its block entry.
   struct kept_impulse {
-    float d[D], s;
+    float d[std::size_t{D}], s;
     const block_impulse<float>* b;
   };
   template <class T>
-  void fill_block(const std::uint32_t (&centre)[D], std::vector<block_impulse<T>>& out) const {
+  void fill_block(const std::uint32_t (&centre)[std::size_t{D}], std::vector<block_impulse<T>>& out) const {
     out.clear();
     constexpr int kCells = D == 2 ? 9 : 27;
     for (int n = 0; n < kCells; ++n) {
-      int o[D];
-      std::uint32_t cell[D];
+      int o[std::size_t{D}];
+      std::uint32_t cell[std::size_t{D}];
       for (int ax = 0, m = n; ax < D; ++ax, m /= 3) {
         o[ax] = m % 3 - 1;
         cell[ax] = centre[ax] + static_cast<std::uint32_t>(o[ax]);
@@ -10545,11 +10545,11 @@ class gabor : public sample_noise<gabor<D>, D> {
                     vec<float, D>* grad) const {
     std::vector<block_impulse<float>> block;
     std::vector<kept_impulse> kept;
-    std::uint32_t centre[D] = {};
+    std::uint32_t centre[std::size_t{D}] = {};
     bool filled = false;
     for (std::size_t i = 0; i < count; ++i) {
       const vec<double, D> p = vec_cast<double>(pts[i]);
-      lattice_coord<float> c[D];
+      lattice_coord<float> c[std::size_t{D}];
       bool finite = true;
       for (int a = 0; a < D; ++a) {
         c[a] = lattice_split<float>(p[a] * inv_cell_);
@@ -10585,7 +10585,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     std::size_t n = 0;
     for (const block_impulse<float>& b : block) {
       kept_impulse& k = kept[n];
-      float d2[D];
+      float d2[std::size_t{D}];
       for (int ax = 0; ax < D; ++ax) {
         k.d[ax] = c[ax].f - b.ou[ax];
         d2[ax] = k.d[ax] * k.d[ax];
@@ -10621,9 +10621,9 @@ class gabor : public sample_noise<gabor<D>, D> {
   template <bool G>
   void grid_tiles(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                   vec<float, D>* grad) const {
-    std::size_t lo[D], hi[D];
-    std::vector<lattice_coord<float>> coord[D];
-    std::vector<grid_run> runs[D];
+    std::size_t lo[std::size_t{D}], hi[std::size_t{D}];
+    std::vector<lattice_coord<float>> coord[std::size_t{D}];
+    std::vector<grid_run> runs[std::size_t{D}];
     for (int a = 0; a < D; ++a) {
       lo[a] = a == D - 1 ? first : 0;
       hi[a] = a == D - 1 ? first + count : g.size[a];
@@ -10670,7 +10670,7 @@ class gabor : public sample_noise<gabor<D>, D> {
                 }
             continue;
           }
-          std::uint32_t centre[D];
+          std::uint32_t centre[std::size_t{D}];
           centre[0] = coord[0][rx.begin - lo[0]].i0;
           centre[1] = coord[1][ry.begin - lo[1]].i0;
           if constexpr (D == 3) centre[2] = coord[2][rz.begin - lo[2]].i0;
@@ -10686,7 +10686,7 @@ class gabor : public sample_noise<gabor<D>, D> {
 
   template <bool G, class Put>
   void grid_tile(const std::vector<block_impulse<float>>& block,
-                 const std::vector<lattice_coord<float>> (&coord)[D], const std::size_t (&lo)[D],
+                 const std::vector<lattice_coord<float>> (&coord)[std::size_t{D}], const std::size_t (&lo)[std::size_t{D}],
                  const grid_run& rx, const grid_run& ry, const grid_run& rz,
                  std::vector<grid_column>& cols, std::vector<grid_row>& rows, Put put) const {
     const float neg_a = float(-kernel_.envelope_exponent()), a = float(kernel_.envelope_exponent());
@@ -10741,7 +10741,7 @@ class gabor : public sample_noise<gabor<D>, D> {
         const grid_row* row = &rows[nr * nk];
         for (std::size_t i = rx.begin; i < rx.end; ++i) {
           const grid_column* col = &cols[(i - rx.begin) * nk];
-          float sum = 0, gs[D] = {};
+          float sum = 0, gs[std::size_t{D}] = {};
           for (std::size_t m = 0; m < nk; ++m) {
             // for_each_pair's test: s = d2_x + (d2_y [+ d2_z]) < 1.
             const float s = col[m].d2 + row[m].d2;
@@ -10750,7 +10750,7 @@ class gabor : public sample_noise<gabor<D>, D> {
               const auto pg = detail::gabor_pair_gradient_of_products(
                   col[m].ec, col[m].es, row[m].b, row[m].q, s, taper_k, a);
               sum += pg.value;
-              float d[D];
+              float d[std::size_t{D}];
               d[0] = col[m].d;
               for (int e = 1; e < D; ++e) d[e] = row[m].d[e - 1];
               for (int e = 0; e < D; ++e) gs[e] += pg.u * d[e] - pg.v * block[m].phi[e];
