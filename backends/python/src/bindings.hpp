@@ -413,13 +413,16 @@ void add_point_methods(py::class_<held<Noise>>& c) {
   c.def(
       "grid",
       [](const H& h, const std::vector<py::ssize_t>& shape, const py::handle& origin,
-         const py::handle& step, const std::string& backend_name, int threads) {
-        return evaluate_grid(h.noise, shape, origin, step, backend_name, threads);
+         const py::handle& step, const std::string& backend_name, int threads,
+         const py::object& block) {
+        return evaluate_grid(h.noise, shape, origin, step, block, backend_name, threads);
       },
       py::arg("shape"), py::arg("origin") = 0.0, py::arg("step") = 1.0, py::arg("backend") = "simd",
-      py::arg("threads") = 1,
+      py::arg("threads") = 1, py::arg("block") = py::none(),
       "Values on a uniform grid: shape (ny, nx) or (nz, ny, nx); sample (i, j[, k]) is at "
-      "origin + step * (i, j[, k]), i along x (numpy's last axis), positions in double.");
+      "origin + step * (i, j[, k]), i along x (numpy's last axis), positions in double. "
+      "block=(start, size) (numpy axis order) returns only that block of the grid, bit for bit "
+      "the same samples as the whole grid's call.");
   c.def_property_readonly_static("dimension", [](py::object) { return Noise::dimension; });
 }
 

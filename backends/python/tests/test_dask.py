@@ -46,8 +46,9 @@ def test_a_cluster_that_loses_a_worker_still_bakes_the_one_call_result(tmp_path)
         blocks = lazy.to_delayed().ravel()
         futures = client.compute(list(blocks))
         done = distributed.as_completed(futures)
-        next(done)  # some chunk finished: kill the worker that holds results
-        victim, pid = next(iter(client.run(os.getpid).items()))
+        first = next(done)  # a chunk finished: kill the worker that holds it
+        holder = next(iter(next(iter(client.who_has([first]).values()))))
+        pid = client.run(os.getpid, workers=[holder])[holder]
         os.kill(pid, signal.SIGKILL)
         parts = client.gather(futures)  # lost chunks are recomputed elsewhere
         assert len(parts) == 64
