@@ -858,15 +858,17 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
         for (const char* gradient : {"", "_gradient"})
           expected.push_back("hush_" + name + "_" + layout + gradient + ".comp");
   // The kits for the user's shader (hush/glsl/<noise>/shader.hpp), hush_<noise>..._shader.glsl.
-  for (const char* kit : {"hush_gabor2_shader.glsl", "hush_gabor3_shader.glsl"})
+  for (const char* kit :
+       {"hush_perlin2_shader.glsl", "hush_perlin3_shader.glsl", "hush_fractal_perlin2_shader.glsl",
+        "hush_fractal_perlin3_shader.glsl", "hush_wavelet2_shader.glsl", "hush_wavelet3_shader.glsl",
+        "hush_gabor2_shader.glsl", "hush_gabor3_shader.glsl", "hush_anisotropic_shader.glsl"})
     expected.push_back(kit);
-  expected.push_back("hush_anisotropic_shader.glsl");
   std::vector<std::string> names;
   for (const auto& f : files) names.push_back(f.name);
   std::sort(expected.begin(), expected.end());
   std::sort(names.begin(), names.end());
-  CHECK(names == expected);  // 60 files: 46 runners, 3 shader kits and the 11 others
-  CHECK(names.size() == 60);
+  CHECK(names == expected);  // 66 files: 46 runners, 9 shader kits and the 11 others
+  CHECK(names.size() == 66);
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);
