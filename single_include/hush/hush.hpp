@@ -10890,18 +10890,18 @@ void gabor<D>::grid_tiles(const grid<D>& g, std::size_t first, std::size_t count
   auto index = [&](std::size_t i, std::size_t j, std::size_t k) {
     return D == 2 ? (j - first) * nx + i : ((k - first) * ny + j) * nx + i;
   };
-  const std::size_t kruns = D == 3 ? runs[D - 1].size() : 1;
+  const std::size_t kruns = D == 3 ? runs[std::size_t{D} - 1].size() : 1;
   for (std::size_t rk = 0; rk < kruns; ++rk)
     for (const grid_run& ry : runs[1])
       for (const grid_run& rx : runs[0]) {
-        const grid_run rz = D == 3 ? runs[D - 1][rk] : grid_run{0, 1, false};
+        const grid_run rz = D == 3 ? runs[std::size_t{D} - 1][rk] : grid_run{0, 1, false};
         const std::size_t ncol = rx.end - rx.begin;
         const std::size_t nrow = (ry.end - ry.begin) * (rz.end - rz.begin);
         if (rx.nan || ry.nan || rz.nan || ncol * nrow < 2 * (ncol + nrow)) {
           for (std::size_t k = rz.begin; k < rz.end; ++k)
             for (std::size_t j = ry.begin; j < ry.end; ++j)
               for (std::size_t i = rx.begin; i < rx.end; ++i) {
-                std::array<std::size_t, D> ijk{};
+                std::array<std::size_t, std::size_t{D}> ijk{};
                 ijk[0] = i;
                 ijk[1] = j;
                 if constexpr (D == 3) ijk[2] = k;
@@ -10953,12 +10953,12 @@ void gabor<D>::grid_tile(const std::vector<block_impulse<float>>& block,
   std::size_t nr = 0;
   for (std::size_t k = rz.begin; k < rz.end; ++k)
     for (std::size_t j = ry.begin; j < ry.end; ++j, ++nr) {
-      float f[D - 1];
+      float f[std::size_t{D} - 1];
       f[0] = coord[1][j - lo[1]].f;
       if constexpr (D == 3) f[1] = coord[2][k - lo[2]].f;
       grid_row* row = &rows[nr * nk];
       for (std::size_t m = 0; m < nk; ++m) {
-        float d[D - 1], d2[D - 1];
+        float d[std::size_t{D} - 1], d2[std::size_t{D} - 1];
         for (int e = 0; e < D - 1; ++e) {
           d[e] = f[e] - block[m].ou[e + 1];
           d2[e] = d[e] * d[e];
@@ -10966,7 +10966,7 @@ void gabor<D>::grid_tile(const std::vector<block_impulse<float>>& block,
         }
         row[m].d2 = D == 2 ? d2[0] : d2[0] + d2[D - 2];
         if (!(row[m].d2 < 1.0f)) continue;
-        detail::gabor_axis<float> ax[D - 1];
+        detail::gabor_axis<float> ax[std::size_t{D} - 1];
         for (int e = 0; e < D - 1; ++e)
           ax[e] = detail::gabor_axis_factors(d[e], neg_a, block[m].phi[e + 1]);
         detail::gabor_row<float> r;
