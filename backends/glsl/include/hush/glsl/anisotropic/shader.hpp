@@ -67,6 +67,7 @@
 #include "hush/core/error.hpp"
 #include "hush/glsl/anisotropic/program.hpp"
 #include "hush/glsl/generator.hpp"
+#include "hush/glsl/library.hpp"
 #include "hush/glsl/shader.hpp"
 
 namespace hush {

@@ -48,6 +48,7 @@
 
 #include "hush/core/hash.hpp"
 #include "hush/fractal.hpp"
+#include "hush/glsl/library.hpp"
 #include "hush/glsl/perlin/shader.hpp"
 #include "hush/glsl/shader.hpp"
 #include "hush/perlin.hpp"

@@ -65,6 +65,7 @@
 #include <vector>
 
 #include "hush/glsl/perlin/shader.hpp"
+#include "hush/glsl/library.hpp"
 #include "hush/glsl/shader.hpp"
 #include "hush/glsl/wavelet/glsl.hpp"
 #include "hush/wavelet.hpp"
