@@ -118,7 +118,7 @@ void add_gabor_entries(program_entries& entries) {
         {"--frequency-spread", "dF", "hybrid: width of the frequency range, 0 ... 2 F (default 0)",
          "frequency_spread"},
         {"--impulses", "N",
-         "mean number of kernels overlapping a point N', 0 < N <= 256 (default 16)", "impulses"},
+         "mean number of kernels overlapping a point N', 1e-6 <= N <= 256 (default 16)", "impulses"},
         {"--truncation", "t",
          "kernel envelope at its truncation radius, 1e-9 ... 0.5 (default 0.05)", "truncation"},
         {"--normal", "x,y,z",

@@ -142,7 +142,7 @@ class gabor : public sample_noise<gabor<D>, D> {
     double orientation_spread = 0.0;
     // hybrid: width of the frequency range around F0, 0 ... 2 F0.
     double frequency_spread = 0.0;
-    // N': the mean number of kernels overlapping a point, (0, 256].
+    // N': the mean number of kernels overlapping a point, 1e-6 ... 256.
     double impulses = 16.0;
     // t: the kernel envelope's value at its support radius, 1e-9 ... 0.5.
     double truncation = detail::constants::kGaborDefaultTruncation;
@@ -402,8 +402,8 @@ class gabor : public sample_noise<gabor<D>, D> {
                              c::kGaborMaxBandwidth, "1e-06 <= bandwidth <= 1e+06 (1/noise units)");
     detail::require_in_range(w, "truncation", p.truncation, c::kGaborMinTruncation,
                              c::kGaborMaxTruncation, "1e-09 <= truncation <= 0.5");
-    if (!(p.impulses > 0.0 && p.impulses <= c::kGaborMaxImpulses))
-      detail::throw_out_of_range(w, "impulses", p.impulses, "0 < impulses <= 256");
+    detail::require_in_range(w, "impulses", p.impulses, c::kGaborMinImpulses, c::kGaborMaxImpulses,
+                             "1e-06 <= impulses <= 256");
     if (!std::isfinite(p.orientation))
       detail::throw_out_of_range(w, "orientation", p.orientation, "a finite angle in radians");
     if (!std::isfinite(p.elevation))

@@ -44,6 +44,8 @@ TEST_CASE("gabor: every parameter out of range is refused, naming it and its ran
   CHECK(refused([](P& p) { p.truncation = 0.7; }, "truncation"));
   CHECK(refused([](P& p) { p.truncation = 0; }, "truncation"));
   CHECK(refused([](P& p) { p.impulses = 0; }, "impulses"));
+  // So few kernels that the Poisson table holds no impulse: refused, not a NaN field.
+  CHECK(refused([](P& p) { p.impulses = 1e-10; }, "impulses"));
   CHECK(refused([](P& p) { p.impulses = 257; }, "impulses"));
   CHECK(refused([&](P& p) { p.impulses = nan; }, "impulses"));
   CHECK(refused([&](P& p) { p.orientation = inf; }, "orientation"));
@@ -67,6 +69,26 @@ TEST_CASE("gabor: every parameter out of range is refused, naming it and its ran
 }
 
 // ---- Statistics.
+
+TEST_CASE("gabor: the sparsest accepted noise (impulses 1e-6) is finite everywhere") {
+  for (auto kind : {hush::gabor_kind::isotropic, hush::gabor_kind::anisotropic}) {
+    hush::gabor<2>::params p2;
+    p2.kind = kind;
+    p2.impulses = 1e-6;
+    hush::gabor<3>::params p3;
+    p3.kind = kind;
+    p3.impulses = 1e-6;
+    const hush::gabor<2> g2(p2);
+    const hush::gabor<3> g3(p3);
+    CHECK(std::isfinite(g2.scale()));
+    CHECK(std::isfinite(g3.scale()));
+    CHECK(std::isfinite(g3.surface_scale()));
+    for (double x : {0.5, 1e3, 6e293}) {
+      CHECK(std::isfinite(g2(hush::dvec2{0.5, x})));
+      CHECK(std::isfinite(g3(hush::dvec3{0.5, x, -x})));
+    }
+  }
+}
 
 TEST_CASE("gabor: mean 0 and variance 1 over space and seeds, every kind, 2D and 3D") {
   // 20000 i.i.d. samples per configuration: |mean| <= 5 SE(mean) and

@@ -316,6 +316,9 @@ constexpr int kGaborTransformTableNodes = 20;
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
 constexpr double kGaborMaxImpulses = 256.0;
+// The fewest kernels per point a Poisson table of 32-bit thresholds represents: below about
+// 1e-10 per cell not one impulse can occur, the noise is 0 and its normalisation infinite.
+constexpr double kGaborMinImpulses = 1e-6;
 constexpr int kGaborMaxThresholds = 192;
 // Impulse marks from the cell stream's words, cut into fields: an 8-bit
 // field m is the value (2m + 1) 2^-9 in (0, 1), a 16-bit field (2m + 1) 2^-17;
