@@ -29,9 +29,9 @@ int main() {
   const auto px = gl.draw(gl.program(fs), size, 1)[0];
   double worst = 0, pmax = 0;
   for (int k = 0; k < size * size; ++k) {
-    const hush::vec2 p{px[std::size_t(4 * k + 1)], px[std::size_t(4 * k + 2)]};
+    const hush::vec2 p{px[4 * std::size_t(k) + 1], px[4 * std::size_t(k) + 2]};
     pmax = std::fmax(pmax, std::fmax(std::fabs(p[0]), std::fabs(p[1])));
-    worst = std::fmax(worst, std::fabs(px[std::size_t(4 * k)] - fbm(p)));
+    worst = std::fmax(worst, std::fabs(px[4 * std::size_t(k)] - fbm(p)));
   }
   const double budget = hush::glsl::shader_budget(fbm, pmax);
   std::printf("hush_fractal_perlin2 (6 octaves) in a fragment shader: largest |gpu - cpu| = %.3g "

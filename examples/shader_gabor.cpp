@@ -207,8 +207,8 @@ int main() {
   double near_point = 0, near_filtered = 0, far_point = 0, far_filtered = 0;
   for (int j = 0; j < height; ++j)
     for (int i = 0; i < width; ++i) {
-      const float* n = &noise_px[std::size_t(4 * (j * width + i))];
-      const float* d = &deriv_px[std::size_t(4 * (j * width + i))];
+      const float* n = &noise_px[4 * std::size_t(j * width + i)];
+      const float* d = &deriv_px[4 * std::size_t(j * width + i)];
       const hush::vec2 p{n[2], n[3]};
       const auto fp =
           hush::footprint<2>::from_derivatives(hush::vec2{d[0], d[1]}, hush::vec2{d[2], d[3]});

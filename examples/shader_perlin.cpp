@@ -29,7 +29,7 @@ int main() {
   for (int j = 0; j < size; ++j)
     for (int i = 0; i < size; ++i) {
       const hush::vec3 p{(float(i) + 0.5f) * 0.0625f, (float(j) + 0.5f) * 0.0625f, 2.5f};
-      worst = std::fmax(worst, std::fabs(px[std::size_t(4 * (j * size + i))] - noise(p)));
+      worst = std::fmax(worst, std::fabs(px[4 * std::size_t(j * size + i)] - noise(p)));
     }
   std::printf("hush_perlin3 in a fragment shader, %dx%d: largest |gpu - cpu| = %.3g\n", size,
               size, worst);

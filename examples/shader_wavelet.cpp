@@ -39,8 +39,8 @@ int main() {
   const auto out = gl.draw(gl.program(fs), size, 2);
   double worst = 0, pmax = 0;
   for (int k = 0; k < size * size; ++k) {
-    const float* c = &out[0][std::size_t(4 * k)];
-    const float* d = &out[1][std::size_t(4 * k)];
+    const float* c = &out[0][4 * std::size_t(k)];
+    const float* d = &out[1][4 * std::size_t(k)];
     const hush::vec2 p{c[1], c[2]};
     const auto fp = hush::footprint<2>::from_derivatives(hush::vec2{d[0], d[1]}, hush::vec2{d[2], d[3]});
     pmax = std::fmax(pmax, std::fmax(std::fabs(p[0]), std::fabs(p[1])));

@@ -19,6 +19,7 @@ share units too. Files that cannot share a unit, put apart:
 - SECOND_UNIT: files whose file-local names (anonymous namespace, static) clash
   with another file's of the same compile command. A new clash shows as a
   clang-diagnostic-error "redefinition of ..." in the tidy test: add the file here.
+- OWN_UNIT: files that clash with files of SECOND_UNIT too: a unit each.
 """
 import collections
 import json
@@ -29,10 +30,15 @@ import sys
 
 SECOND_UNIT = {
     "bench/coherent_cases.cpp",
+    "examples/shader_gabor.cpp",
     "examples/coherence/temporal.cpp",
     "examples/hush/gallery_anisotropic.cpp",
     "examples/hush/gallery_npr.cpp",
     "examples/hush/sample.cpp",
+}
+
+OWN_UNIT = {
+    "examples/shader_anisotropic.cpp",
 }
 
 HAS_MAIN = re.compile(r"^int main\(", re.MULTILINE)
@@ -61,7 +67,8 @@ def main():
     commands = {os.path.relpath(e["file"], root): flags_of(e) for e in db}
     units = collections.OrderedDict()  # (flags, apart) -> files
     for f in sorted(files):
-        units.setdefault((commands[f], f in SECOND_UNIT), []).append(f)
+        apart = f if f in OWN_UNIT else f in SECOND_UNIT
+        units.setdefault((commands[f], apart), []).append(f)
     os.makedirs(out_dir, exist_ok=True)
     for old in os.listdir(out_dir):
         if re.fullmatch(r"u\d+\.(cpp|args)", old):

@@ -182,7 +182,7 @@ void print_usage(std::ostream& os) {
 bool print_command_usage(std::ostream& os, const std::vector<std::string>& args) {
   for (const command_help& h : command_helps()) {
     if (args[0] != h.name) continue;
-    const std::string noise = args.size() > 1 && args[1].rfind("-", 0) != 0 ? args[1] : "";
+    const std::string noise = args.size() > 1 && args[1].rfind('-', 0) != 0 ? args[1] : "";
     h.print(os, noise);
     print_footer(os);
     return true;

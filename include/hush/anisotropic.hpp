@@ -136,7 +136,7 @@ class anisotropic_tile {
   float max_step(int i) const { return max_step_[static_cast<std::size_t>(i)]; }
   // The size() x size() RGBA texture of channels 4t ... 4t + 3 (t = 0 or 1), row-major.
   std::vector<float> rgba(int t) const {
-    const auto n = static_cast<std::size_t>(size_), first = static_cast<std::size_t>(4 * t);
+    const auto n = static_cast<std::size_t>(size_), first = 4 * static_cast<std::size_t>(t);
     std::vector<float> out(n * n * 4);
     for (std::size_t y = 0; y < n; ++y)
       for (std::size_t x = 0; x < n; ++x)

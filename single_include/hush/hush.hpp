@@ -5903,7 +5903,7 @@ class anisotropic_tile {
   float max_step(int i) const { return max_step_[static_cast<std::size_t>(i)]; }
   // The size() x size() RGBA texture of channels 4t ... 4t + 3 (t = 0 or 1), row-major.
   std::vector<float> rgba(int t) const {
-    const auto n = static_cast<std::size_t>(size_), first = static_cast<std::size_t>(4 * t);
+    const auto n = static_cast<std::size_t>(size_), first = 4 * static_cast<std::size_t>(t);
     std::vector<float> out(n * n * 4);
     for (std::size_t y = 0; y < n; ++y)
       for (std::size_t x = 0; x < n; ++x)
@@ -10874,7 +10874,7 @@ void gabor<D>::grid_tiles(const grid<D>& g, std::size_t first, std::size_t count
     hi[a] = a == D - 1 ? first + count : g.size[a];
     for (std::size_t i = lo[a]; i < hi[a]; ++i) {
       // grid::position's coordinate, split as for_each_pair splits it.
-      const double x = g.origin[a] + g.step[a] * static_cast<double>(i);
+      const double x = g.coordinate(a, i);
       const lattice_coord<float> c = lattice_split<float>(x * inv_cell_);
       coord[a].push_back(c);
       const bool nan = std::isnan(c.f);

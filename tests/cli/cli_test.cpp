@@ -479,8 +479,9 @@ TEST_CASE("sample gabor equals hush::gabor<D>::grid_sample with the options, bit
           }) == 0);
   }
   SUBCASE("3D surface noise: --normal gives every sample that normal (Lagae 2009 sec. 4.3)") {
-    // A slanted normal of length 3 (the library normalises it); the positions go through
-    // hush::evaluate's samples, in float. Solid noise (no normal) differs: the option counts.
+    // A slanted normal of length 3 (the program scales it to a largest component of 1, the
+    // library normalises it); the scalar backend evaluates each double position itself
+    // (examples/hush/noises.hpp). Solid noise (no normal) differs: the option counts.
     const std::string args = "sample gabor --dim 3 --size 6x5x2 --origin 3,-1,2 --step 0.21 "
                              "--seed 9 --kind anisotropic --orientation 30 --out '" +
                              out.string() + "'";
@@ -491,14 +492,11 @@ TEST_CASE("sample gabor equals hush::gabor<D>::grid_sample with the options, bit
     prm.orientation = 30 * hush::detail::constants::kPi / 180;
     const hush::gabor<3> g{prm};
     auto surface = [&](double i, double j, double k) {
-      const hush::vec<float, 3> p{float(3 + 0.21 * i), float(-1 + 0.21 * j), float(2 + 0.21 * k)};
-      const hush::vec<float, 3> nrm{1, 2, 2};
-      hush::samples<3> s;
-      s.positions = {&p, 1};
-      s.normals = {&nrm, 1};
-      float v = 0;
-      hush::evaluate(g, hush::exec::scalar, s, hush::span<float>(&v, 1));
-      return v;
+      hush::sample_input<3> in;
+      in.position = hush::dvec3{3 + 0.21 * i, -1 + 0.21 * j, 2 + 0.21 * k};
+      in.normal = hush::dvec3{0.5, 1, 1};
+      in.has_normal = true;
+      return g.sample_value<float>(in);
     };
     const npy_file f = read_npy(out);
     CHECK(count_mismatches(f, surface) == 0);

@@ -111,7 +111,7 @@ void gabor<D>::grid_tiles(const grid<D>& g, std::size_t first, std::size_t count
     hi[a] = a == D - 1 ? first + count : g.size[a];
     for (std::size_t i = lo[a]; i < hi[a]; ++i) {
       // grid::position's coordinate, split as for_each_pair splits it.
-      const double x = g.origin[a] + g.step[a] * static_cast<double>(i);
+      const double x = g.coordinate(a, i);
       const lattice_coord<float> c = lattice_split<float>(x * inv_cell_);
       coord[a].push_back(c);
       const bool nan = std::isnan(c.f);

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "hush/glsl/detail/gl.hpp"
+#include "hush/glsl/detail/gl_resident.hpp"  // the texture enums it shares
 
 namespace hush {
 namespace glsl {
@@ -189,15 +190,9 @@ namespace detail {
 constexpr gl_enum kGlUniformBuffer = 0x8A11;
 constexpr gl_enum kGlTexture3d = 0x806F;
 constexpr gl_enum kGlTextureWrapR = 0x8072;
-constexpr gl_enum kGlClampToEdge = 0x812F;
-constexpr gl_enum kGlNearestFilter = 0x2600;
-constexpr gl_enum kGlR32fFormat = 0x822E;
 constexpr gl_enum kGlRg32fFormat = 0x8230;
-constexpr gl_enum kGlR32uiFormat = 0x8236;
 constexpr gl_enum kGlRedFormat = 0x1903;
 constexpr gl_enum kGlRgFormat = 0x8227;
-constexpr gl_enum kGlRedInteger = 0x8D94;
-constexpr gl_enum kGlUnsignedInt = 0x1405;
 }  // namespace detail
 
 // GL objects holding a kit's resources, created from the kit's words on construction (a GL

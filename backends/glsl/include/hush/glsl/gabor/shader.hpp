@@ -301,7 +301,7 @@ shader_kit gabor_kit(const gabor<D>& g) {
   const auto par = gabor_par_words(g);
   for (int i = 0; i < gabor_par_slots() * 4; i += 4) {
     std::uint32_t q[4] = {};
-    for (int k = 0; k < 4; ++k) q[k] = i + k < gabor_par::kCount ? par[std::size_t(i + k)] : 0u;
+    for (int k = 0; k < 4; ++k) q[k] = i + k < gabor_par::kCount ? par[static_cast<std::size_t>(i) + static_cast<std::size_t>(k)] : 0u;
     w.uvec4(q[0], q[1], q[2], q[3]);
   }
   const auto table = gabor_table_words(g);

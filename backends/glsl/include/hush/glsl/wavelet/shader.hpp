@@ -112,8 +112,10 @@ std::string wavelet_shader_source() {
   for (int r = 1; r <= 3; ++r) {
     const char* what[4] = {"", "_TILE", "_BLEND", "_TABLE"};
     const char* name[4] = {"", "_tile", "_blend", "_table"};
-    s += resource_layout(W + what[r] + "_BINDING", bind[r], "") + "uniform highp " +
-         (r == 3 ? std::string("sampler2D") : sampler) + " " + w + name[r] + ";\n";
+    s += resource_layout(W + what[r] + "_BINDING", bind[r], "");
+    s += "uniform highp ";
+    s += r == 3 ? std::string("sampler2D") : sampler;
+    s += " " + w + name[r] + ";\n";
   }
   const std::string tw = std::to_string(kWaveletTableTextureWidth);
   s += "#define HUSH_WAVELET_TILE_AT(c) texelFetch(" + w + "_tile, (c)" +
@@ -192,6 +194,13 @@ std::string wavelet_shader_source() {
        "  if (project) variance = dot(un * un, " +
        P +
        ".pvar.xyz);\n"
+       "  if (project && exact) {  // hush::detail::wavelet_oblique_variance_ratio\n"
+       "    vec3 q = un * un;\n"
+       "    variance *= 1.0 + uintBitsToFloat(" +
+       std::to_string(float_word(static_cast<float>(hush::detail::kWaveletObliqueS2))) +
+       "u) * (q.x * q.y + q.y * q.z + q.z * q.x) + uintBitsToFloat(" +
+       std::to_string(float_word(static_cast<float>(hush::detail::kWaveletObliqueS3))) +
+       "u) * (q.x * q.y * q.z);\n  }\n"
        "  vec3 extent2 = vec3(0.0);\n"
        "  if (widen) {\n"
        "    for (int a = 0; a < " +
