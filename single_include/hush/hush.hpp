@@ -8566,9 +8566,10 @@ void evaluate_grid(const Noise& noise, const Exec& ex, const grid<Noise::dimensi
 //    The per-kernel figure is measured (gabor_kernel_test); the worst-case
 //    rounding analysis exceeds it for Phi < 0.9 (up to 4.5x at Phi = 0 in 3D;
 //    docs/gabor.md "Float accuracy").
-//  - domain: every finite coordinate (positions are split into cell and
-//    fraction in double, so precision does not degrade far from the origin);
-//    NaN or +-Inf in a coordinate gives NaN (value and gradient).
+//  - domain: every coordinate whose cell coordinate p / r is finite, |p| <= DBL_MAX r
+//    (positions are split into cell and fraction in double, so precision does not
+//    degrade far from the origin); NaN or +-Inf in a coordinate, or one beyond that,
+//    gives NaN (value and gradient).
 //
 // Filtering (paper sec. 5): sample(p, footprint) evaluates the noise
 // convolved with the Gaussian pixel filter N(0, sigma^2 S) of the footprint

@@ -17,7 +17,8 @@ void fuzz_gabor_d(FuzzedDataProvider& in) {
   prm.impulses = any_double(in);
   prm.truncation = any_double(in);
   const hush::gabor<D> n(prm);
-  probe_points(n, in);
+  // The documented domain: |p| / r finite (the cell coordinate).
+  probe_points(n, in, std::numeric_limits<double>::max() / n.inverse_cell());
   // A filtered sample with an arbitrary footprint width.
   const hush::vec<double, D> p = any_position<D>(in);
   const double w = any_double(in);
