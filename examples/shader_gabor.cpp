@@ -236,7 +236,8 @@ int main() {
   const double bound = noise.scale() * (prm.impulses + 1) *
                        (2 * std::ldexp(1.0, -21) * (1 + two_pi * phi) * f +
                         (std::ldexp(1.0, -24) + std::ldexp(x, -33)) * (2 * a + two_pi * phi + k));
-  const double q = double(width) * (height / 4);
+  const int quarter_rows = height / 4;  // whole rows
+  const double q = double(width) * double(quarter_rows);
   std::printf(
       "hush_gabor2_filtered in a %dx%d fragment shader: largest |GPU - CPU| %.3g "
       "(bound %.3g at %.0f cells from the origin)\n",
