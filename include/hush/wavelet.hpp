@@ -1126,7 +1126,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       detail::throw_out_of_range(where, "weights.size()", nw, "1 ... 32");
     // K = 1 / sqrt(sigma^2 sum w^2) must be a finite non-zero number: |w| <= 1e150 keeps
     // sum w^2 finite, and the largest |w| >= 1e-150 keeps it a normal double (> 0).
-    constexpr double kMaxWeight = 1e150, kMinLargestWeight = 1e-150;
+    constexpr double kMaxWeight = c::kMaxBandWeight, kMinLargestWeight = c::kMinLargestBandWeight;
     const char* valid = "a finite number, |w| <= 1e150";
     double largest = 0;
     for (std::size_t i = 0; i < nw; ++i) {

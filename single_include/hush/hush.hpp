@@ -821,6 +821,11 @@ constexpr int kGaborTransformTableNodes = 20;
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
 constexpr double kGaborMaxImpulses = 256.0;
+// Band weights of a sum of bands (fractal, wavelet): |w| <= 1e150 keeps the sums of w^2 and
+// |w| of up to 32 bands finite, the largest |w| >= 1e-150 keeps sum w^2 a normal double, so the
+// normalisation 1 / sqrt(sigma^2 sum w^2) and the bound sum |w| max |n| are finite, non-zero.
+constexpr double kMaxBandWeight = 1e150;
+constexpr double kMinLargestBandWeight = 1e-150;
 // The fewest kernels per point a Poisson table of 32-bit thresholds represents: below about
 // 1e-10 per cell not one impulse can occur, the noise is 0 and its normalisation infinite.
 constexpr double kGaborMinImpulses = 1e-6;
@@ -2589,6 +2594,23 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
       sum_sq += w * w;
       sum_abs += std::fabs(w);
     }
+    // Every weight (explicit or gain^i) within the band weights' range (detail/constants.hpp),
+    // so the sums, the normalisation and the bound are finite and non-zero.
+    double largest = 0;
+    for (std::size_t i = 0; i < bands_.size(); ++i) {
+      const double w = std::fabs(bands_[i].weight);
+      if (!(w <= detail::constants::kMaxBandWeight))
+        detail::throw_out_of_range(
+            "hush::fractal", prm_.weights.empty() ? std::string("gain") : "weights[" + std::to_string(i) + "]",
+            prm_.weights.empty() ? prm_.gain : prm_.weights[i],
+            prm_.weights.empty() ? "a gain whose powers gain^i (i < octaves) stay <= 1e150"
+                                 : "|w| <= 1e150");
+      largest = std::max(largest, w);
+    }
+    if (!(largest >= detail::constants::kMinLargestBandWeight))
+      hush::detail::raise_error(
+          "hush::fractal: every band weight is below 1e-150 in magnitude; valid: the largest "
+          "|w| in 1e-150 ... 1e150 (only the weights' ratios matter under normalisation)");
     switch (prm_.norm) {
       case normalization::unit_variance:
         scale_ = 1.0 / std::sqrt(Noise::variance() * sum_sq);
@@ -15682,7 +15704,7 @@ class wavelet : public sample_noise<wavelet<D>, D> {
       detail::throw_out_of_range(where, "weights.size()", nw, "1 ... 32");
     // K = 1 / sqrt(sigma^2 sum w^2) must be a finite non-zero number: |w| <= 1e150 keeps
     // sum w^2 finite, and the largest |w| >= 1e-150 keeps it a normal double (> 0).
-    constexpr double kMaxWeight = 1e150, kMinLargestWeight = 1e-150;
+    constexpr double kMaxWeight = c::kMaxBandWeight, kMinLargestWeight = c::kMinLargestBandWeight;
     const char* valid = "a finite number, |w| <= 1e150";
     double largest = 0;
     for (std::size_t i = 0; i < nw; ++i) {

@@ -316,6 +316,11 @@ constexpr int kGaborTransformTableNodes = 20;
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
 constexpr double kGaborMaxImpulses = 256.0;
+// Band weights of a sum of bands (fractal, wavelet): |w| <= 1e150 keeps the sums of w^2 and
+// |w| of up to 32 bands finite, the largest |w| >= 1e-150 keeps sum w^2 a normal double, so the
+// normalisation 1 / sqrt(sigma^2 sum w^2) and the bound sum |w| max |n| are finite, non-zero.
+constexpr double kMaxBandWeight = 1e150;
+constexpr double kMinLargestBandWeight = 1e-150;
 // The fewest kernels per point a Poisson table of 32-bit thresholds represents: below about
 // 1e-10 per cell not one impulse can occur, the noise is 0 and its normalisation infinite.
 constexpr double kGaborMinImpulses = 1e-6;
