@@ -1,9 +1,10 @@
 // A GL loader for the resident-path suites (tests/coherent/glsl_coherent_frame_test.cpp,
-// tests/npr_gabor/glsl_npr_gabor_frame_test.cpp): every entry point that reads GL data back to
-// the host is handed out as a wrapper that counts its calls (per entry point); the others
-// resolve as the headless context's loader resolves them. counted_device() is a
-// hush::glsl::device whose GL calls all go through it. test_gl: the test's own GL calls
-// (textures, their contents and read-back), through the plain loader.
+// tests/npr_gabor/glsl_npr_gabor_frame_test.cpp, tests/anisotropic/glsl_anisotropic_frame_test.cpp):
+// every entry point that reads GL data back to the host, and every one that uploads host data
+// (buffers, 2D textures), is handed out as a wrapper that counts its calls and, for uploads,
+// the amount; the others resolve as the headless context's loader resolves them.
+// counted_device() is a hush::glsl::device whose GL calls all go through it. test_gl: the
+// test's own GL calls (textures, their contents and read-back), through the plain loader.
 #ifndef HUSH_TESTS_GLSL_READBACK_COUNTER_HPP
 #define HUSH_TESTS_GLSL_READBACK_COUNTER_HPP
 
@@ -31,6 +32,64 @@ struct readback_counter {
   static int count() {
     return count(get_buffer_calls) + count(read_pixels_calls) + count(get_tex_calls) +
            count(map_calls);
+  }
+  // Host data sent to GL: calls of glBufferData / glBufferSubData / glTexImage2D /
+  // glTexSubImage2D with data, and their sizes (bytes for buffers, texels for textures).
+  struct uploads {
+    int calls = 0;
+    long long buffer_bytes = 0, texels = 0;
+    bool operator==(const uploads& o) const {
+      return calls == o.calls && buffer_bytes == o.buffer_bytes && texels == o.texels;
+    }
+  };
+  static uploads& uploaded() {
+    static uploads u;
+    return u;
+  }
+  using buffer_data_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_sizeiptr, const void*,
+                                           hgl::gl_enum);
+  using buffer_sub_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_intptr, hgl::gl_sizeiptr,
+                                          const void*);
+  using tex_image_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_int, hgl::gl_sizei,
+                                         hgl::gl_sizei, hgl::gl_int, hgl::gl_enum, hgl::gl_enum,
+                                         const void*);
+  using tex_sub_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_int, hgl::gl_int,
+                                       hgl::gl_sizei, hgl::gl_sizei, hgl::gl_enum, hgl::gl_enum,
+                                       const void*);
+  template <class Fn>
+  static Fn& slot() {
+    static Fn f = nullptr;
+    return f;
+  }
+  static void HUSH_GLAPI counted_buffer_data(hgl::gl_enum t, hgl::gl_sizeiptr s, const void* d,
+                                             hgl::gl_enum u) {
+    if (d) {
+      ++uploaded().calls;
+      uploaded().buffer_bytes += static_cast<long long>(s);
+    }
+    slot<buffer_data_fn>()(t, s, d, u);
+  }
+  static void HUSH_GLAPI counted_buffer_sub(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s,
+                                            const void* d) {
+    ++uploaded().calls;
+    uploaded().buffer_bytes += static_cast<long long>(s);
+    slot<buffer_sub_fn>()(t, o, s, d);
+  }
+  static void HUSH_GLAPI counted_tex_image(hgl::gl_enum t, hgl::gl_int l, hgl::gl_int i,
+                                           hgl::gl_sizei w, hgl::gl_sizei h, hgl::gl_int b,
+                                           hgl::gl_enum f, hgl::gl_enum ty, const void* d) {
+    if (d) {
+      ++uploaded().calls;
+      uploaded().texels += static_cast<long long>(w) * h;
+    }
+    slot<tex_image_fn>()(t, l, i, w, h, b, f, ty, d);
+  }
+  static void HUSH_GLAPI counted_tex_sub(hgl::gl_enum t, hgl::gl_int l, hgl::gl_int x,
+                                         hgl::gl_int y, hgl::gl_sizei w, hgl::gl_sizei h,
+                                         hgl::gl_enum f, hgl::gl_enum ty, const void* d) {
+    ++uploaded().calls;
+    uploaded().texels += static_cast<long long>(w) * h;
+    slot<tex_sub_fn>()(t, l, x, y, w, h, f, ty, d);
   }
   using get_buffer_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_intptr, hgl::gl_sizeiptr, void*);
   using read_pixels_fn = void(HUSH_GLAPI*)(hgl::gl_int, hgl::gl_int, hgl::gl_sizei, hgl::gl_sizei,
@@ -89,6 +148,10 @@ struct readback_counter {
     if (n == "glReadPixels") return swap(read_pixels(), &counted_read_pixels);
     if (n == "glGetTexImage") return swap(get_tex(), &counted_get_tex);
     if (n == "glMapBufferRange") return swap(map(), &counted_map);
+    if (n == "glBufferData") return swap(slot<buffer_data_fn>(), &counted_buffer_data);
+    if (n == "glBufferSubData") return swap(slot<buffer_sub_fn>(), &counted_buffer_sub);
+    if (n == "glTexImage2D") return swap(slot<tex_image_fn>(), &counted_tex_image);
+    if (n == "glTexSubImage2D") return swap(slot<tex_sub_fn>(), &counted_tex_sub);
     return p;
   }
 };

@@ -34,7 +34,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 namespace gabor_simd {
 
-// Grids with fewer samples per cell along x than this take the points path.
+// Grids with fewer samples per cell along x than this (cell / |step x|) take the points path.
 constexpr double kMinRun = 8.0;
 // Grid blocks' width along x (2D, 3D): several cells, so that an impulse's
 // factors along y (and z) serve that many samples; the block's sums stay in
@@ -393,9 +393,12 @@ void grid(const gabor<D>& g, const hush::grid<D>& whole, std::size_t first, std:
   axes.reserve(D);
   for (int a = 0; a < D; ++a)
     axes.emplace_back(whole, a, a == D - 1 ? first : 0, gr.size[a], inv, caps[a]);
-  const double per_cell = static_cast<double>(gr.size[0]) / static_cast<double>(axes[0].runs());
+  // Samples per cell along x from the step, not from this slab's size: a block of a grid
+  // (hush::grid::block) and every parallel slab take the path the whole grid takes, so each
+  // sample meets the same arithmetic (the two paths contract differently).
+  const double per_cell = 1.0 / (std::fabs(whole.step[0]) * inv);
   const std::size_t nx = gr.size[0], ny = gr.size[1];
-  if (per_cell < kMinRun) {
+  if (!(per_cell >= kMinRun)) {
     lanes_split sp;
     auto split = [&](std::size_t batch, std::size_t used) {
       for (std::size_t l = 0; l < lanes; ++l) {

@@ -41,8 +41,8 @@
 //    (gabor/kernel.hpp's separable form), unmasked (the float taper is exactly 0 outside the
 //    support) over the x-vectors that reach the impulse's disk in that row (the row skip);
 //    each cell's impulses drawn once into a small cache for the blocks that see it (the draw
-//    cache). Grids with fewer than kMinRun samples per cell along x go through the points
-//    path instead.
+//    cache). Grids with fewer than kMinRun samples per cell along x (by their step, so that
+//    blocks and slabs of a grid take its path) go through the points path instead.
 //
 // Its parts, one per path: hush/gabor/kernel-inl.h (the kernel and the constants in
 // lanes), hush/gabor/lockstep-inl.h, hush/gabor/shared_cells-inl.h and
