@@ -29,10 +29,11 @@ cmake --build build/sanitize -j"$jobs"
 (cd build/sanitize && ctest --output-on-failure -j"$jobs" -E "^package_|: ?gallery writes" -LE slow)
 
 echo "== Fuzz targets (clang, libFuzzer + ASan + UBSan), each for 60 s from its corpus"
-# tests/fuzz/CMakeLists.txt: every noise's params, the NPY reader, the OBJ loader.
+# tests/fuzz/CMakeLists.txt: every noise's params, the NPY reader, the OBJ loader, the program's
+# command-line parsing.
 CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHUSH_FUZZ=ON \
   -DHUSH_BUILD_TESTS=OFF -DHUSH_BUILD_BENCH=OFF \
   -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all" \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
-cmake --build build/fuzz -j"$jobs" --target fuzz_params fuzz_npy fuzz_obj
+cmake --build build/fuzz -j"$jobs" --target fuzz_params fuzz_npy fuzz_obj fuzz_args
 (cd build/fuzz && ctest --output-on-failure -j"$jobs" -L fuzz)

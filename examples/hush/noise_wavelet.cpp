@@ -129,7 +129,7 @@ void add_wavelet_entries(program_entries& entries) {
          "first_band"},
         {"--bands", "N", "N bands with weights 1, 1/2, 1/4, ..., 1 ... 32 (default 1)", nullptr},
         {"--weights", "w0,w1,...",
-         "band weights, 1 ... 32 finite numbers, |w| <= 1e150, the largest >= 1e-150 (instead "
+         "band weights, 1 ... 32 finite numbers, |w| <= 1e30, the largest >= 1e-30 (instead "
          "of --bands)",
          "weights"},
         {"--footprint", "W",

@@ -297,8 +297,10 @@ void coherent_smooth(const image_view<T>& img, double sigma) {
   double sum_sq = 0.0;
   std::vector<double> wd(weight.size());
   for (std::size_t i = 0; i < wd.size(); ++i) {
-    const double k = static_cast<double>(i) - radius;
-    wd[i] = std::exp(-0.5 * k * k / (sigma * sigma));
+    // (k / sigma)^2, not k^2 / sigma^2: a subnormal sigma squares to 0 (0 / 0 at the centre);
+    // k / sigma is 0 there and infinite elsewhere, so the kernel is the identity it tends to.
+    const double t = (static_cast<double>(i) - radius) / sigma;
+    wd[i] = std::exp(-0.5 * t * t);
     sum_sq += wd[i] * wd[i];
   }
   for (std::size_t i = 0; i < wd.size(); ++i) weight[i] = T(wd[i] / std::sqrt(sum_sq));

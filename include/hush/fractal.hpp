@@ -97,14 +97,14 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
         detail::throw_out_of_range(
             "hush::fractal", prm_.weights.empty() ? std::string("gain") : "weights[" + std::to_string(i) + "]",
             prm_.weights.empty() ? prm_.gain : prm_.weights[i],
-            prm_.weights.empty() ? "a gain whose powers gain^i (i < octaves) stay <= 1e150"
-                                 : "|w| <= 1e150");
+            prm_.weights.empty() ? "a gain whose powers gain^i (i < octaves) stay <= 1e30"
+                                 : "|w| <= 1e30");
       largest = std::max(largest, w);
     }
     if (!(largest >= detail::constants::kMinLargestBandWeight))
       hush::detail::raise_error(
-          "hush::fractal: every band weight is below 1e-150 in magnitude; valid: the largest "
-          "|w| in 1e-150 ... 1e150 (only the weights' ratios matter under normalisation)");
+          "hush::fractal: every band weight is below 1e-30 in magnitude; valid: the largest "
+          "|w| in 1e-30 ... 1e30 (only the weights' ratios matter under normalisation)");
     switch (prm_.norm) {
       case normalization::unit_variance:
         scale_ = 1.0 / std::sqrt(Noise::variance() * sum_sq);

@@ -394,6 +394,18 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
 
  private:
+  // Hybrid noise's |Phi| range [phi0 - dphi / 2, phi0 + dphi / 2] (cell units) as doubles hold
+  // it. Means over it divide by the held width hi - lo, not dphi: a dphi of a few ulps of phi0
+  // rounds the ends; when they meet (dphi 0, or below phi0's resolution) the mean is f(phi0).
+  struct phi_range {
+    double lo, hi;
+    bool single() const { return !(hi > lo); }
+    double width() const { return hi - lo; }
+  };
+  phi_range frequency_range() const {
+    const double p = marks_.phi0(), h = 0.5 * marks_.dphi();
+    return {p - h, p + h};
+  }
   static const params& check(const params& p) {
     namespace c = detail::constants;
     const char* w = "hush::gabor";
@@ -467,9 +479,10 @@ class gabor : public sample_noise<gabor<D>, D> {
     if (!(xi_len - reach < window)) return 0.0;
     // Average over |Phi| (hybrid) of f(|Phi|).
     auto over_frequency = [&](auto f) {
-      if (!hybrid || dphi == 0.0) return f(phi0);
+      const phi_range pr = frequency_range();
+      if (!hybrid || pr.single()) return f(phi0);
       const int panels = 1 + static_cast<int>(std::ceil(2.0 * dphi));
-      return detail::integrate(f, phi0 - 0.5 * dphi, phi0 + 0.5 * dphi, panels) / dphi;
+      return detail::integrate(f, pr.lo, pr.hi, panels) / pr.width();
     };
     if constexpr (D == 2) {
       if (reach > window) return hybrid_window_2d(xi, h, window);
@@ -598,12 +611,12 @@ class gabor : public sample_noise<gabor<D>, D> {
   // 81 panels of 16 nodes, 1296 (the whole range when window = infinity).
   template <class F>
   double frequency_window(F inner, double x, double window) const {
-    const double dphi = marks_.dphi(), phi0 = marks_.phi0();
-    if (dphi == 0.0) return inner(phi0);
-    const double lo = std::fmax(phi0 - 0.5 * dphi, x - window);
-    const double hi = std::fmin(phi0 + 0.5 * dphi, x + window);
+    const phi_range pr = frequency_range();
+    if (pr.single()) return inner(marks_.phi0());
+    const double lo = std::fmax(pr.lo, x - window);
+    const double hi = std::fmin(pr.hi, x + window);
     if (!(hi > lo)) return 0.0;
-    return core_rule(inner, lo, hi, x) / dphi;
+    return core_rule(inner, lo, hi, x) / pr.width();
   }
 
   // Hybrid 3D noise's mean of ((H(k_-) + H(k_+)) / 2)^2 over Phi uniform on the
@@ -750,12 +763,13 @@ class gabor : public sample_noise<gabor<D>, D> {
   template <int E>
   double mean_energy_of() const {
     namespace c = detail::constants;
-    const double a = kernel_.envelope_exponent(), phi = marks_.phi0(), dphi = marks_.dphi();
-    if (prm_.kind != gabor_kind::hybrid || dphi == 0.0) return detail::gabor_energy<E>(a, phi);
-    // |Phi| uniform over [phi - dphi/2, phi + dphi/2]; the energy is smooth in it.
-    return detail::integrate([&](double x) { return detail::gabor_energy<E>(a, x); },
-                             phi - 0.5 * dphi, phi + 0.5 * dphi, 2) /
-           dphi;
+    const double a = kernel_.envelope_exponent(), phi = marks_.phi0();
+    const phi_range pr = frequency_range();
+    if (prm_.kind != gabor_kind::hybrid || pr.single()) return detail::gabor_energy<E>(a, phi);
+    // |Phi| uniform over the range; the energy is smooth in it.
+    return detail::integrate([&](double x) { return detail::gabor_energy<E>(a, x); }, pr.lo,
+                             pr.hi, 2) /
+           pr.width();
   }
   double mean_energy_2d() const { return mean_energy_of<2>(); }
   // Surface noise's variance per (table mean * E[w^2] * 2D energy): the slab

@@ -592,8 +592,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     int tile_size = D == 2 ? 128 : 64;
     // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
     int first_band = 0;
-    // Band weights w_i (1 ... 32 values, |w_i| <= 1e150, the largest |w_i| >= 1e-150, so
-    // that sum w_i^2 is a finite normal double); one band by default.
+    // Band weights w_i (1 ... 32 values, |w_i| <= 1e30, the largest |w_i| >= 1e-30, so that
+    // the sums and the normalisation are finite in float); one band by default.
     // With relative_weights: the weight k octaves below the finest representable band.
     std::vector<double> weights = {1.0};
     // Per-band decorrelating offsets (sec. 3, footnote 1), in coefficient units:
@@ -601,9 +601,9 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     std::vector<vec<double, D>> offsets;
     bool even_odd_fix = true;  // the paper's even/odd variance correction (sec. 4.3)
     wavelet_distribution distribution = wavelet_distribution::gaussian;
-    double gaussian_scale = 1.0;  // standard deviation of the gaussian output; finite, > 0
+    double gaussian_scale = 1.0;  // standard deviation of the gaussian output; 0 < s <= 1e30
     // The inverse CDF of the wanted distribution at u = 0, 1/(m-1), ..., 1 (2 ... 65536
-    // finite values), for wavelet_distribution::table.
+    // values, |v| <= 1e30), for wavelet_distribution::table.
     std::vector<double> table;
     wavelet_projection projection = wavelet_projection::exact;  // 3D with a normal
     bool widen = false;             // basis widening for one sample per pixel (sec. 4.1)
@@ -1124,10 +1124,10 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     const std::size_t nw = prm_.weights.size();
     if (nw < 1 || nw > static_cast<std::size_t>(kMaxBands))
       detail::throw_out_of_range(where, "weights.size()", nw, "1 ... 32");
-    // K = 1 / sqrt(sigma^2 sum w^2) must be a finite non-zero number: |w| <= 1e150 keeps
-    // sum w^2 finite, and the largest |w| >= 1e-150 keeps it a normal double (> 0).
+    // K = 1 / sqrt(sigma^2 sum w^2) and every weight must be finite non-zero numbers in float
+    // (detail/constants.hpp kMaxBandWeight, kMinLargestBandWeight).
     constexpr double kMaxWeight = c::kMaxBandWeight, kMinLargestWeight = c::kMinLargestBandWeight;
-    const char* valid = "a finite number, |w| <= 1e150";
+    const char* valid = "a finite number, |w| <= 1e30";
     double largest = 0;
     for (std::size_t i = 0; i < nw; ++i) {
       if (!(std::fabs(prm_.weights[i]) <= kMaxWeight))
@@ -1140,8 +1140,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
           "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
     if (largest < kMinLargestWeight)
       hush::detail::raise_error(
-          "hush::wavelet: weights are all below 1e-150 in magnitude; valid: the largest |w| in "
-          "1e-150 ... 1e150 (only the weights' ratios matter)");
+          "hush::wavelet: weights are all below 1e-30 in magnitude; valid: the largest |w| in "
+          "1e-30 ... 1e30 (only the weights' ratios matter)");
     if (prm_.relative_weights)
       detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,
                                "1 ... 32");
@@ -1161,16 +1161,17 @@ class wavelet : public sample_noise<wavelet<D>, D> {
                 where, "offsets[" + std::to_string(i) + "][" + std::to_string(a) + "]",
                 prm_.offsets[i][a], "a finite number");
     }
-    if (!(std::isfinite(prm_.gaussian_scale) && prm_.gaussian_scale > 0))
-      detail::throw_out_of_range(where, "gaussian_scale", prm_.gaussian_scale, "finite and > 0");
+    // The output's scale stays within float's range (detail/constants.hpp kMaxOutputScale).
+    if (!(prm_.gaussian_scale > 0 && prm_.gaussian_scale <= c::kMaxOutputScale))
+      detail::throw_out_of_range(where, "gaussian_scale", prm_.gaussian_scale, "0 < s <= 1e30");
     if (prm_.distribution == wavelet_distribution::table) {
       if (prm_.table.size() < 2 || prm_.table.size() > 65536)
         detail::throw_out_of_range(where, "table.size()", prm_.table.size(),
                                    "2 ... 65536 values (with distribution = table)");
       for (std::size_t i = 0; i < prm_.table.size(); ++i)
-        if (!std::isfinite(prm_.table[i]))
+        if (!(std::fabs(prm_.table[i]) <= c::kMaxOutputScale))
           detail::throw_out_of_range(where, "table[" + std::to_string(i) + "]", prm_.table[i],
-                                     "a finite number");
+                                     "|v| <= 1e30");
     }
     if (prm_.variant_overlap != 0)
       wavelet_blend_tile<D>::validate_overlap(where, "variant_overlap", prm_.tile_size,

@@ -821,11 +821,15 @@ constexpr int kGaborTransformTableNodes = 20;
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
 constexpr double kGaborMaxImpulses = 256.0;
-// Band weights of a sum of bands (fractal, wavelet): |w| <= 1e150 keeps the sums of w^2 and
-// |w| of up to 32 bands finite, the largest |w| >= 1e-150 keeps sum w^2 a normal double, so the
-// normalisation 1 / sqrt(sigma^2 sum w^2) and the bound sum |w| max |n| are finite, non-zero.
-constexpr double kMaxBandWeight = 1e150;
-constexpr double kMinLargestBandWeight = 1e-150;
+// The largest magnitude a parameter that scales a noise's output may take (band weights, the
+// Gaussian scale, table values): every noise also evaluates in float, and 1e30 leaves float's
+// 3.4e38 room for a sum of 32 bands and its normalisation.
+constexpr double kMaxOutputScale = 1e30;
+// Band weights of a sum of bands (fractal, wavelet): |w| <= 1e30 keeps every weight, the sums of
+// w^2 and |w| of up to 32 bands and the bound sum |w| max |n| finite in float; the largest
+// |w| >= 1e-30 keeps it a normal float and the normalisation 1 / sqrt(sigma^2 sum w^2) finite.
+constexpr double kMaxBandWeight = kMaxOutputScale;
+constexpr double kMinLargestBandWeight = 1.0 / kMaxOutputScale;
 // The fewest kernels per point a Poisson table of 32-bit thresholds represents: below about
 // 1e-10 per cell not one impulse can occur, the noise is 0 and its normalisation infinite.
 constexpr double kGaborMinImpulses = 1e-6;
@@ -2603,14 +2607,14 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
         detail::throw_out_of_range(
             "hush::fractal", prm_.weights.empty() ? std::string("gain") : "weights[" + std::to_string(i) + "]",
             prm_.weights.empty() ? prm_.gain : prm_.weights[i],
-            prm_.weights.empty() ? "a gain whose powers gain^i (i < octaves) stay <= 1e150"
-                                 : "|w| <= 1e150");
+            prm_.weights.empty() ? "a gain whose powers gain^i (i < octaves) stay <= 1e30"
+                                 : "|w| <= 1e30");
       largest = std::max(largest, w);
     }
     if (!(largest >= detail::constants::kMinLargestBandWeight))
       hush::detail::raise_error(
-          "hush::fractal: every band weight is below 1e-150 in magnitude; valid: the largest "
-          "|w| in 1e-150 ... 1e150 (only the weights' ratios matter under normalisation)");
+          "hush::fractal: every band weight is below 1e-30 in magnitude; valid: the largest "
+          "|w| in 1e-30 ... 1e30 (only the weights' ratios matter under normalisation)");
     switch (prm_.norm) {
       case normalization::unit_variance:
         scale_ = 1.0 / std::sqrt(Noise::variance() * sum_sq);
@@ -10041,6 +10045,18 @@ class gabor : public sample_noise<gabor<D>, D> {
   }
 
  private:
+  // Hybrid noise's |Phi| range [phi0 - dphi / 2, phi0 + dphi / 2] (cell units) as doubles hold
+  // it. Means over it divide by the held width hi - lo, not dphi: a dphi of a few ulps of phi0
+  // rounds the ends; when they meet (dphi 0, or below phi0's resolution) the mean is f(phi0).
+  struct phi_range {
+    double lo, hi;
+    bool single() const { return !(hi > lo); }
+    double width() const { return hi - lo; }
+  };
+  phi_range frequency_range() const {
+    const double p = marks_.phi0(), h = 0.5 * marks_.dphi();
+    return {p - h, p + h};
+  }
   static const params& check(const params& p) {
     namespace c = detail::constants;
     const char* w = "hush::gabor";
@@ -10114,9 +10130,10 @@ class gabor : public sample_noise<gabor<D>, D> {
     if (!(xi_len - reach < window)) return 0.0;
     // Average over |Phi| (hybrid) of f(|Phi|).
     auto over_frequency = [&](auto f) {
-      if (!hybrid || dphi == 0.0) return f(phi0);
+      const phi_range pr = frequency_range();
+      if (!hybrid || pr.single()) return f(phi0);
       const int panels = 1 + static_cast<int>(std::ceil(2.0 * dphi));
-      return detail::integrate(f, phi0 - 0.5 * dphi, phi0 + 0.5 * dphi, panels) / dphi;
+      return detail::integrate(f, pr.lo, pr.hi, panels) / pr.width();
     };
     if constexpr (D == 2) {
       if (reach > window) return hybrid_window_2d(xi, h, window);
@@ -10245,12 +10262,12 @@ class gabor : public sample_noise<gabor<D>, D> {
   // 81 panels of 16 nodes, 1296 (the whole range when window = infinity).
   template <class F>
   double frequency_window(F inner, double x, double window) const {
-    const double dphi = marks_.dphi(), phi0 = marks_.phi0();
-    if (dphi == 0.0) return inner(phi0);
-    const double lo = std::fmax(phi0 - 0.5 * dphi, x - window);
-    const double hi = std::fmin(phi0 + 0.5 * dphi, x + window);
+    const phi_range pr = frequency_range();
+    if (pr.single()) return inner(marks_.phi0());
+    const double lo = std::fmax(pr.lo, x - window);
+    const double hi = std::fmin(pr.hi, x + window);
     if (!(hi > lo)) return 0.0;
-    return core_rule(inner, lo, hi, x) / dphi;
+    return core_rule(inner, lo, hi, x) / pr.width();
   }
 
   // Hybrid 3D noise's mean of ((H(k_-) + H(k_+)) / 2)^2 over Phi uniform on the
@@ -10397,12 +10414,13 @@ class gabor : public sample_noise<gabor<D>, D> {
   template <int E>
   double mean_energy_of() const {
     namespace c = detail::constants;
-    const double a = kernel_.envelope_exponent(), phi = marks_.phi0(), dphi = marks_.dphi();
-    if (prm_.kind != gabor_kind::hybrid || dphi == 0.0) return detail::gabor_energy<E>(a, phi);
-    // |Phi| uniform over [phi - dphi/2, phi + dphi/2]; the energy is smooth in it.
-    return detail::integrate([&](double x) { return detail::gabor_energy<E>(a, x); },
-                             phi - 0.5 * dphi, phi + 0.5 * dphi, 2) /
-           dphi;
+    const double a = kernel_.envelope_exponent(), phi = marks_.phi0();
+    const phi_range pr = frequency_range();
+    if (prm_.kind != gabor_kind::hybrid || pr.single()) return detail::gabor_energy<E>(a, phi);
+    // |Phi| uniform over the range; the energy is smooth in it.
+    return detail::integrate([&](double x) { return detail::gabor_energy<E>(a, x); }, pr.lo,
+                             pr.hi, 2) /
+           pr.width();
   }
   double mean_energy_2d() const { return mean_energy_of<2>(); }
   // Surface noise's variance per (table mean * E[w^2] * 2D energy): the slab
@@ -15173,8 +15191,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     int tile_size = D == 2 ? 128 : 64;
     // Band i has frequency 2^(first_band + i); first_band in [-32, 32].
     int first_band = 0;
-    // Band weights w_i (1 ... 32 values, |w_i| <= 1e150, the largest |w_i| >= 1e-150, so
-    // that sum w_i^2 is a finite normal double); one band by default.
+    // Band weights w_i (1 ... 32 values, |w_i| <= 1e30, the largest |w_i| >= 1e-30, so that
+    // the sums and the normalisation are finite in float); one band by default.
     // With relative_weights: the weight k octaves below the finest representable band.
     std::vector<double> weights = {1.0};
     // Per-band decorrelating offsets (sec. 3, footnote 1), in coefficient units:
@@ -15182,9 +15200,9 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     std::vector<vec<double, D>> offsets;
     bool even_odd_fix = true;  // the paper's even/odd variance correction (sec. 4.3)
     wavelet_distribution distribution = wavelet_distribution::gaussian;
-    double gaussian_scale = 1.0;  // standard deviation of the gaussian output; finite, > 0
+    double gaussian_scale = 1.0;  // standard deviation of the gaussian output; 0 < s <= 1e30
     // The inverse CDF of the wanted distribution at u = 0, 1/(m-1), ..., 1 (2 ... 65536
-    // finite values), for wavelet_distribution::table.
+    // values, |v| <= 1e30), for wavelet_distribution::table.
     std::vector<double> table;
     wavelet_projection projection = wavelet_projection::exact;  // 3D with a normal
     bool widen = false;             // basis widening for one sample per pixel (sec. 4.1)
@@ -15705,10 +15723,10 @@ class wavelet : public sample_noise<wavelet<D>, D> {
     const std::size_t nw = prm_.weights.size();
     if (nw < 1 || nw > static_cast<std::size_t>(kMaxBands))
       detail::throw_out_of_range(where, "weights.size()", nw, "1 ... 32");
-    // K = 1 / sqrt(sigma^2 sum w^2) must be a finite non-zero number: |w| <= 1e150 keeps
-    // sum w^2 finite, and the largest |w| >= 1e-150 keeps it a normal double (> 0).
+    // K = 1 / sqrt(sigma^2 sum w^2) and every weight must be finite non-zero numbers in float
+    // (detail/constants.hpp kMaxBandWeight, kMinLargestBandWeight).
     constexpr double kMaxWeight = c::kMaxBandWeight, kMinLargestWeight = c::kMinLargestBandWeight;
-    const char* valid = "a finite number, |w| <= 1e150";
+    const char* valid = "a finite number, |w| <= 1e30";
     double largest = 0;
     for (std::size_t i = 0; i < nw; ++i) {
       if (!(std::fabs(prm_.weights[i]) <= kMaxWeight))
@@ -15721,8 +15739,8 @@ class wavelet : public sample_noise<wavelet<D>, D> {
           "hush::wavelet: weights are all zero; valid: at least one non-zero weight");
     if (largest < kMinLargestWeight)
       hush::detail::raise_error(
-          "hush::wavelet: weights are all below 1e-150 in magnitude; valid: the largest |w| in "
-          "1e-150 ... 1e150 (only the weights' ratios matter)");
+          "hush::wavelet: weights are all below 1e-30 in magnitude; valid: the largest |w| in "
+          "1e-30 ... 1e30 (only the weights' ratios matter)");
     if (prm_.relative_weights)
       detail::require_in_range(where, "relative_bands", prm_.relative_bands, 1, kMaxBands,
                                "1 ... 32");
@@ -15742,16 +15760,17 @@ class wavelet : public sample_noise<wavelet<D>, D> {
                 where, "offsets[" + std::to_string(i) + "][" + std::to_string(a) + "]",
                 prm_.offsets[i][a], "a finite number");
     }
-    if (!(std::isfinite(prm_.gaussian_scale) && prm_.gaussian_scale > 0))
-      detail::throw_out_of_range(where, "gaussian_scale", prm_.gaussian_scale, "finite and > 0");
+    // The output's scale stays within float's range (detail/constants.hpp kMaxOutputScale).
+    if (!(prm_.gaussian_scale > 0 && prm_.gaussian_scale <= c::kMaxOutputScale))
+      detail::throw_out_of_range(where, "gaussian_scale", prm_.gaussian_scale, "0 < s <= 1e30");
     if (prm_.distribution == wavelet_distribution::table) {
       if (prm_.table.size() < 2 || prm_.table.size() > 65536)
         detail::throw_out_of_range(where, "table.size()", prm_.table.size(),
                                    "2 ... 65536 values (with distribution = table)");
       for (std::size_t i = 0; i < prm_.table.size(); ++i)
-        if (!std::isfinite(prm_.table[i]))
+        if (!(std::fabs(prm_.table[i]) <= c::kMaxOutputScale))
           detail::throw_out_of_range(where, "table[" + std::to_string(i) + "]", prm_.table[i],
-                                     "a finite number");
+                                     "|v| <= 1e30");
     }
     if (prm_.variant_overlap != 0)
       wavelet_blend_tile<D>::validate_overlap(where, "variant_overlap", prm_.tile_size,
@@ -18228,8 +18247,10 @@ void coherent_smooth(const image_view<T>& img, double sigma) {
   double sum_sq = 0.0;
   std::vector<double> wd(weight.size());
   for (std::size_t i = 0; i < wd.size(); ++i) {
-    const double k = static_cast<double>(i) - radius;
-    wd[i] = std::exp(-0.5 * k * k / (sigma * sigma));
+    // (k / sigma)^2, not k^2 / sigma^2: a subnormal sigma squares to 0 (0 / 0 at the centre);
+    // k / sigma is 0 there and infinite elsewhere, so the kernel is the identity it tends to.
+    const double t = (static_cast<double>(i) - radius) / sigma;
+    wd[i] = std::exp(-0.5 * t * t);
     sum_sq += wd[i] * wd[i];
   }
   for (std::size_t i = 0; i < wd.size(); ++i) weight[i] = T(wd[i] / std::sqrt(sum_sq));

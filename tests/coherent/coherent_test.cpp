@@ -797,6 +797,25 @@ TEST_CASE("coherent smoothing keeps unit variance and correlates neighbours") {
   CHECK(r.sharpness() < 0.6);  // a Gaussian of sigma 1: 2 (1 - exp(-1/4)) = 0.44
 }
 
+// The smoothing kernel tends to the identity as sigma goes to 0: the smallest positive sigma
+// (a subnormal, whose square is 0) gives the unsmoothed frames exactly, not NaN.
+TEST_CASE("coherent smoothing of a subnormal sigma is the identity") {
+  for (double sigma : {4.9406564584124654e-324, 1e-160, 0.01}) {
+    hush::coherent_params prm;
+    hush::coherent_params smoothed = prm;
+    smoothed.smoothing = sigma;
+    const synthetic_frame s = make_synthetic("still", 0, 8, 6);
+    hush::coherent_stream a(prm), b(smoothed);
+    std::vector<float> out_a(48), out_b(48);
+    for (int i = 0; i < 3; ++i) {
+      a.advance(hush::exec::scalar, s.view(), view_of(out_a, 8, 6));
+      b.advance(hush::exec::scalar, s.view(), view_of(out_b, 8, 6));
+      CAPTURE(sigma);
+      CHECK(out_a == out_b);
+    }
+  }
+}
+
 TEST_CASE("coherent: frames of 1 x 1, 1 x N and N x 1 pixels, moving, stay finite and in bounds") {
   for (auto [w, h] : {std::pair<int, int>{1, 1}, {1, 9}, {9, 1}, {2, 2}}) {
     synthetic_frame s = make_synthetic("still", 0, w, h);

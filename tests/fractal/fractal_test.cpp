@@ -202,6 +202,11 @@ TEST_CASE("fractal: bad parameters are rejected with a message naming them") {
   expect(prm, "weights are all zero");
   prm.weights = {1.0, NAN, 0.0};
   expect(prm, "weights[1] = nan");
+  prm.weights = {1.0, 2e30, 0.0};  // beyond what a float evaluation carries
+  expect(prm, "weights[1]");
+  prm = make_params<2>(0, 21);
+  prm.gain = 256;  // gain^20 = 1.5e48
+  expect(prm, "gain = 256");
   prm = make_params<2>(0, 3);
   prm.kind = hush::fractal_kind::turbulence;
   expect(prm, "unit_variance is not available for turbulence");
@@ -215,6 +220,30 @@ TEST_CASE("fractal: bad parameters are rejected with a message naming them") {
   prm.octaves = 8;
   prm.period = {1 << 20, 0};
   expect(prm, "period * lacunarity^(octaves-1) <= 2147483647");
+}
+
+// The weights' range (detail/constants.hpp kMaxBandWeight, kMinLargestBandWeight) is what a
+// float evaluation carries: at its ends, under every normalisation, values stay finite.
+TEST_CASE("fractal: band weights at the ends of their range give finite values in float") {
+  for (hush::normalization norm :
+       {hush::normalization::unit_variance, hush::normalization::unit_range,
+        hush::normalization::none})
+    for (const std::vector<double>& ws :
+         {std::vector<double>{1e30, -1e30, 1e30}, {1e-30, 1e-45, 0.0}}) {
+      auto prm = make_params<2>(3, 3);
+      prm.weights = ws;
+      prm.norm = norm;
+      const fractal<2> f(prm);
+      CHECK(std::isfinite(f.bound()));
+      hush::rng r(31);
+      for (int i = 0; i < 200; ++i) {
+        const auto x = random_point<2>(r, 100.0);
+        const float v = f(hush::vec_cast<float>(x));
+        INFO("norm " << int(norm) << " weights[0] " << ws[0] << " at " << x[0] << ", " << x[1]);
+        CHECK(std::isfinite(v));
+        CHECK(std::fabs(double(v)) <= f.bound() * (1 + 1e-5));
+      }
+    }
 }
 
 TEST_CASE(

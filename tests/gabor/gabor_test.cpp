@@ -90,6 +90,36 @@ TEST_CASE("gabor: the sparsest accepted noise (impulses 1e-6) is finite everywhe
   }
 }
 
+// Hybrid noise's normalisation averages the kernel energy over |Phi| in [F0 -+ spread / 2]: a
+// spread too narrow for doubles to separate the ends (or a few ulps of F0) is the single
+// frequency F0, so the noise equals spread 0's, not infinite or off by the ends' rounding.
+TEST_CASE("gabor: hybrid noise with a vanishing frequency spread is the spread-0 noise") {
+  hush::gabor<3>::params p;
+  p.kind = hush::gabor_kind::hybrid;
+  p.frequency = 256;
+  p.bandwidth = 2;
+  p.orientation_spread = 0.5;
+  const hush::gabor<3> none(p);
+  hush::gabor<2>::params p2;
+  p2.kind = hush::gabor_kind::hybrid;
+  p2.frequency = 7;
+  p2.orientation_spread = 1;
+  const hush::gabor<2> none2(p2);
+  for (double spread : {1e-300, 1e-100, 1e-10}) {
+    CAPTURE(spread);
+    p.frequency_spread = spread;
+    p2.frequency_spread = spread;
+    const hush::gabor<3> g(p);
+    const hush::gabor<2> g2(p2);
+    CHECK(g.scale() == doctest::Approx(none.scale()).epsilon(1e-12));
+    CHECK(g2.scale() == doctest::Approx(none2.scale()).epsilon(1e-12));
+    for (double x : {0.3, -539.0, 1e10}) {
+      CHECK(g(hush::dvec3{x, 0.4, 0.5}) == doctest::Approx(none(hush::dvec3{x, 0.4, 0.5})).epsilon(1e-6));
+      CHECK(g2(hush::dvec2{x, 0.4}) == doctest::Approx(none2(hush::dvec2{x, 0.4})).epsilon(1e-6));
+    }
+  }
+}
+
 TEST_CASE("gabor: mean 0 and variance 1 over space and seeds, every kind, 2D and 3D") {
   // 20000 i.i.d. samples per configuration: |mean| <= 5 SE(mean) and
   // |var - 1| <= 5 SE(var), the SEs from the samples (moments_of).

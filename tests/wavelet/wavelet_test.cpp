@@ -528,7 +528,7 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("wavelet: weights whose squares leave the double range are refused, naming them") {
+TEST_CASE("wavelet: weights beyond what a float evaluation carries are refused, naming them") {
   auto refused = [](std::vector<double> weights, const char* names) {
     hush::wavelet<2>::params prm;
     prm.tile_size = 16;
@@ -541,14 +541,18 @@ TEST_CASE("wavelet: weights whose squares leave the double range are refused, na
     }
   };
   refused({1e308, 1e308}, "weights[0]");
-  refused({1, 1e151}, "weights[1]");
-  refused({1e-200, -1e-160}, "weights are all below 1e-150");
+  refused({1, 1.01e30}, "weights[1]");
+  refused({1e-200, -0.99e-30}, "weights are all below 1e-30");
   refused({0, 0}, "weights are all zero");
   hush::wavelet<2>::params prm;
   prm.tile_size = 16;
-  prm.weights = {1e150, -1e150};  // the extremes of the range: finite output
-  const hush::wavelet<2> w{prm};
-  CHECK(std::isfinite(w(hush::dvec2{0.3, 0.7})));
+  // The extremes of the range: finite output in double and in float.
+  for (const std::vector<double>& ws : {std::vector<double>{1e30, -1e30}, {1e-30, 1e-40}}) {
+    prm.weights = ws;
+    const hush::wavelet<2> w{prm};
+    CHECK(std::isfinite(w(hush::dvec2{0.3, 0.7})));
+    CHECK(std::isfinite(w(hush::vec2{0.3f, 0.7f})));
+  }
 }
 
 TEST_CASE("wavelet: a normal's length never matters; zero and NaN normals give plain 3D noise") {

@@ -316,11 +316,15 @@ constexpr int kGaborTransformTableNodes = 20;
 // The cap keeps every Poisson table within kGaborMaxThresholds entries (the
 // GLSL uniform arrays).
 constexpr double kGaborMaxImpulses = 256.0;
-// Band weights of a sum of bands (fractal, wavelet): |w| <= 1e150 keeps the sums of w^2 and
-// |w| of up to 32 bands finite, the largest |w| >= 1e-150 keeps sum w^2 a normal double, so the
-// normalisation 1 / sqrt(sigma^2 sum w^2) and the bound sum |w| max |n| are finite, non-zero.
-constexpr double kMaxBandWeight = 1e150;
-constexpr double kMinLargestBandWeight = 1e-150;
+// The largest magnitude a parameter that scales a noise's output may take (band weights, the
+// Gaussian scale, table values): every noise also evaluates in float, and 1e30 leaves float's
+// 3.4e38 room for a sum of 32 bands and its normalisation.
+constexpr double kMaxOutputScale = 1e30;
+// Band weights of a sum of bands (fractal, wavelet): |w| <= 1e30 keeps every weight, the sums of
+// w^2 and |w| of up to 32 bands and the bound sum |w| max |n| finite in float; the largest
+// |w| >= 1e-30 keeps it a normal float and the normalisation 1 / sqrt(sigma^2 sum w^2) finite.
+constexpr double kMaxBandWeight = kMaxOutputScale;
+constexpr double kMinLargestBandWeight = 1.0 / kMaxOutputScale;
 // The fewest kernels per point a Poisson table of 32-bit thresholds represents: below about
 // 1e-10 per cell not one impulse can occur, the noise is 0 and its normalisation infinite.
 constexpr double kGaborMinImpulses = 1e-6;
