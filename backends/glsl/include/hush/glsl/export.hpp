@@ -5,8 +5,8 @@
 // so the engine prepends its own: 330 core or later, Vulkan 450, ES 3.00 where the
 // file says so) and the complete shaders hush::glsl::device and the renderers use
 // (#version 430 core; each compiles for Vulkan too, its Vulkan bindings in its header
-// comment, hush/glsl/dialect.hpp). Each starts with a comment naming the hush version
-// and how to use it.
+// comment, hush/glsl/dialect.hpp). The library and the complete shaders start with a
+// comment naming the hush version and how to use them.
 #ifndef HUSH_GLSL_EXPORT_HPP
 #define HUSH_GLSL_EXPORT_HPP
 
