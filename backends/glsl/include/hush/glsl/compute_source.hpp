@@ -50,6 +50,7 @@
 #include <string>
 
 #include "hush/core/samples.hpp"
+#include "hush/glsl/dialect.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/glsl/noise_program.hpp"
 
@@ -277,13 +278,25 @@ std::string plain_source(batch_layout layout, bool gradient) {
 
 }  // namespace detail
 
-// The compute shader source for Noise (see the file comment for its interface).
+// The name of a runner, also its file's name without `.comp`:
+// hush_<noise>_<points|grid|samples>[_gradient].
+template <class Noise>
+std::string runner_name(batch_layout layout, bool gradient) {
+  return std::string("hush_") + noise_program<Noise>::name + "_" + layout_name(layout) +
+         (gradient ? "_gradient" : "");
+}
+
+// The compute shader source for Noise (see the file comment for its interface), for OpenGL
+// 4.3 core and Vulkan alike (hush/glsl/dialect.hpp: under Vulkan its uniforms are the std140
+// block <runner name>_params at binding kVulkanParamsBinding).
 template <class Noise>
 std::string compute_source(batch_layout layout, bool gradient) {
+  std::string s;
   if constexpr (is_banded<noise_program<Noise>>::value)
-    return detail::banded_source<Noise>(layout, gradient);
+    s = detail::banded_source<Noise>(layout, gradient);
   else
-    return detail::plain_source<Noise>(layout, gradient);
+    s = detail::plain_source<Noise>(layout, gradient);
+  return dual_dialect(s, runner_name<Noise>(layout, gradient) + "_params");
 }
 
 }  // namespace glsl

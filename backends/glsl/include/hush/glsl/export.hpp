@@ -1,9 +1,12 @@
 // hush — procedural noise for rendering. MIT License, see LICENSE.
 //
 // The files `hush glsl-export DIR` writes, for engines that compile their own
-// shaders: the function library (no #version line, so the engine prepends its
-// own, 330 core or later) and the compute runners hush::glsl::device uses.
-// Each starts with a comment naming the hush version and how to use it.
+// shaders: the function library and the kits for the user's shader (no #version line,
+// so the engine prepends its own: 330 core or later, Vulkan 450, ES 3.00 where the
+// file says so) and the complete shaders hush::glsl::device and the renderers use
+// (#version 430 core; each compiles for Vulkan too, its Vulkan bindings in its header
+// comment, hush/glsl/dialect.hpp). The library and the complete shaders start with a
+// comment naming the hush version and how to use them.
 #ifndef HUSH_GLSL_EXPORT_HPP
 #define HUSH_GLSL_EXPORT_HPP
 
@@ -41,11 +44,10 @@ namespace detail {
 template <class Noise>
 void add_runners(std::vector<export_file>& files) {
   static_assert(has_program_v<Noise>, "program_noises lists only noises with a noise_program");
-  const std::string base = std::string("hush_") + noise_program<Noise>::name + "_";
   for (batch_layout layout : {batch_layout::points, batch_layout::grid, batch_layout::samples}) {
     if (layout == batch_layout::samples && !has_samples_runner<Noise>()) continue;
     for (bool gradient : {false, true})
-      files.push_back({base + layout_name(layout) + (gradient ? "_gradient" : "") + ".comp",
+      files.push_back({runner_name<Noise>(layout, gradient) + ".comp",
                        compute_source<Noise>(layout, gradient)});
   }
 }
@@ -77,7 +79,8 @@ inline std::vector<export_file> export_files() {
       {"hush_noise.glsl",
        "// hush " HUSH_VERSION_STRING " GLSL noise library, written by `hush glsl-export`.\n"
        "//\n"
-       "// Usage: prepend your own #version line (330 core or later; any shader stage):\n"
+       "// Usage: prepend your own #version line (330 core or later, 450 for Vulkan, or\n"
+       "// 300 es; any shader stage):\n"
        "//   #version 330 core\n"
        "//   #include or paste this file\n"
        "//   float n = hush_perlin3(p, hush_seed_key(7u), uvec3(0u));  // in [-1, 1]\n"
@@ -88,7 +91,8 @@ inline std::vector<export_file> export_files() {
        "// double reference where float +, -, * are correctly rounded (tested on\n"
        "// llvmpipe), 2^-15 where they err by up to 2 ulp; hush/glsl/library.hpp\n"
        "// derives the bounds. The *.comp files beside this one are the batch runners of\n"
-       "// hush::glsl::device (interface: hush/glsl/compute_source.hpp); the\n"
+       "// hush::glsl::device (interface: hush/glsl/compute_source.hpp; #version 430 core,\n"
+       "// and Vulkan with the bindings each states in its header comment); the\n"
        "// hush_fractal_perlin* runners (fBm, turbulence) read band coordinates split on\n"
        "// the CPU (hush::fractal::band_position, hush::lattice_split<float>); so do the\n"
        "// hush_wavelet* runners (hush::wavelet::band_position), which also read the tile at\n"
@@ -102,7 +106,9 @@ inline std::vector<export_file> export_files() {
        "// (anisotropic: the CPU-formed per-sample data at 5 instead). The wavelet\n"
        "// functions of this library exist where the shader defines HUSH_WAVELET_TILE(i)\n"
        "// before it (hush/glsl/wavelet/glsl.hpp).\n"
-       "// Regenerate with the same hush version instead of editing by hand.\n" +
+       "// Regenerate with the same hush version instead of editing by hand.\n"
+       "// GLSL ES 3.00 has no default float precision in fragment shaders: highp here.\n"
+       "#ifdef GL_ES\nprecision highp float;\nprecision highp int;\n#endif\n" +
            library()});
   detail::add_all_runners(files, static_cast<const program_noises*>(nullptr));
   // The scene-driven noises' renderer sources, from each noise's hush/glsl/<noise>/glsl.hpp.

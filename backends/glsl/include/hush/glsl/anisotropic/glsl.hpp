@@ -14,8 +14,8 @@ namespace detail {
 // The anisotropic noise's GLSL functions, uniforms and per-sample SSBO (runner only).
 constexpr const char* kAnisotropicBody = R"glsl(
 // ---- Anisotropic noise (include/hush/anisotropic.hpp, hush/glsl/anisotropic/glsl.hpp).
-uniform sampler2D hush_tile0;             // channels 0-3 of the subband tiles
-uniform sampler2D hush_tile1;             // channels 4-7 (K > 4)
+layout(binding = 0) uniform sampler2D hush_tile0;  // channels 0-3 of the subband tiles
+layout(binding = 1) uniform sampler2D hush_tile1;  // channels 4-7 (K > 4)
 uniform uint hush_aniso_k;                // orientations K
 uniform uint hush_aniso_kc;               // channels: 4 or 8
 uniform uint hush_aniso_base;             // scale of octave 0

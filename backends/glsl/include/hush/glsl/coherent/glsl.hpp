@@ -257,10 +257,10 @@ void main() {
 
 }  // namespace detail
 
-// The compute shader of the pass (#version 430 core) for input and refill fields taken from
-// `input` and `refill` (white or band-pass; the input also from the caller's plane): the
-// library, the coherent constants, the two field sources, the body. `hush glsl-export`
-// writes the white / white one as hush_coherent_pass.comp.
+// The compute shader of the pass (#version 430 core; Vulkan too, hush/glsl/dialect.hpp) for input
+// and refill fields taken from `input` and `refill` (white or band-pass; the input also from the
+// caller's plane): the library, the coherent constants, the two field sources, the body. `hush
+// glsl-export` writes the white / white one as hush_coherent_pass.comp.
 inline std::string coherent_source(coherent_field_mode input = coherent_field_mode::white,
                                    coherent_field_mode refill = coherent_field_mode::white) {
   std::string constants =
@@ -273,11 +273,13 @@ inline std::string coherent_source(coherent_field_mode input = coherent_field_mo
            : m == coherent_field_mode::bandpass ? "HUSH_COHERENT_BANDPASS"
                                                 : "HUSH_COHERENT_PLANE";
   };
-  return "#version 430 core\n// hush " HUSH_VERSION_STRING
-         " coherent-noise pass (hush/glsl/coherent/glsl.hpp).\nlayout(local_size_x = " +
-         std::to_string(kLocalSize) + ") in;\n" + library() + constants +
-         "#define HUSH_COHERENT_INPUT " + source(input) + "\n#define HUSH_COHERENT_REFILL " +
-         source(refill) + "\n" + detail::kCoherentBody;
+  return dual_dialect(
+      "#version 430 core\n// hush " HUSH_VERSION_STRING
+      " coherent-noise pass (hush/glsl/coherent/glsl.hpp).\nlayout(local_size_x = " +
+          std::to_string(kLocalSize) + ") in;\n" + library() + constants +
+          "#define HUSH_COHERENT_INPUT " + source(input) + "\n#define HUSH_COHERENT_REFILL " +
+          source(refill) + "\n" + detail::kCoherentBody,
+      "hush_coherent_params");
 }
 
 namespace detail {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "hush/detail/constants.hpp"
+#include "hush/glsl/dialect.hpp"
 #include "hush/glsl/generator.hpp"
 #include "hush/glsl/library.hpp"
 #include "hush/npr_gabor.hpp"
@@ -50,9 +51,14 @@ uniform uvec2 hush_size;  // frame width, height
 )glsl";
 
 constexpr const char* kNprGaborVertex = R"glsl(
-flat out uint hush_v_splat;
+#ifdef VULKAN
+#define HUSH_VERTEX_INDEX gl_VertexIndex  // both count from the draw's first vertex
+#else
+#define HUSH_VERTEX_INDEX gl_VertexID
+#endif
+layout(location = 0) flat out uint hush_v_splat;
 void main() {
-  hush_v_splat = uint(gl_VertexID);
+  hush_v_splat = uint(HUSH_VERTEX_INDEX);
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
 }
 )glsl";
@@ -62,8 +68,8 @@ void main() {
 constexpr const char* kNprGaborGeometry = R"glsl(
 layout(points) in;
 layout(triangle_strip, max_vertices = HUSH_NPR_SPRITE_VERTICES) out;
-flat in uint hush_v_splat[];
-flat out uint hush_g_splat;
+layout(location = 0) flat in uint hush_v_splat[];
+layout(location = 0) flat out uint hush_g_splat;
 void main() {
   uint i = hush_v_splat[0];
   ivec4 b = hush_npr_splats[i].box;
@@ -80,7 +86,7 @@ void main() {
 
 // npr_gabor_visibility and the kernel of npr_gabor_splat_scalar<float>, per fragment.
 constexpr const char* kNprGaborFragment = R"glsl(
-flat in uint hush_g_splat;
+layout(location = 0) flat in uint hush_g_splat;
 layout(location = 0) out float hush_npr_out;
 uniform uint hush_flags;      // 1 object test, 2 triangle test, 4 depth test, 8 soft
 uniform float hush_tolerance;
@@ -726,6 +732,14 @@ constexpr std::size_t kNprGaborNodeBytes = 64, kNprGaborLodBytes = 48;
 // The walk's cull margin in pixels (absolute, and relative to the corners' coordinates):
 // above the corners' float error, see hush_npr_meets_image.
 constexpr double kNprGaborCullMargin = 1.0, kNprGaborCullRelative = 0x1p-16;
+// The short name of stage 1's pass (0 ... kNprGaborStage1Passes - 1): its exported file is
+// hush_npr_gabor_<name>.comp, its Vulkan uniform block hush_npr_gabor_<name>_params.
+inline const char* npr_gabor_stage1_name(int pass) {
+  static const char* const names[kNprGaborStage1Passes] = {"lods",   "scan",     "roots",
+                                                           "expand", "children", "records"};
+  return names[std::min(std::max(pass, 0), kNprGaborStage1Passes - 1)];
+}
+// The compute shader of stage 1's pass (#version 430 core; Vulkan too, hush/glsl/dialect.hpp).
 inline std::string npr_gabor_stage1_source(int pass) {
   namespace c = hush::detail::constants;
   static const char* const names[kNprGaborStage1Passes] = {
@@ -741,41 +755,50 @@ inline std::string npr_gabor_stage1_source(int pass) {
   std::string table;
   for (unsigned i = 0; i < c::kNprGaborChildOrders; ++i)
     table += (i ? ", " : "") + std::to_string(c::kNprGaborChildOrder[i]) + "u";
-  return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING " NPR Gabor stage 1: ") +
-         names[p] + " (hush/glsl/npr_gabor/glsl.hpp).\n#define HUSH_NPR_GROUP " +
-         std::to_string(kNprGaborGroupSize) + "\n#define HUSH_NPR_SCAN " +
-         std::to_string(kNprGaborScanSize) + "\n#define HUSH_NPR_STREAM " +
-         std::to_string(c::kNprGaborStream) + "u\n#define HUSH_NPR_MAX_POINTS " +
-         f32(c::kNprGaborMaxPoints) + "\n#define HUSH_NPR_2M27 " + f32(0x1p-27) +
-         "\n#define HUSH_NPR_2M53 " + f32(0x1p-53) + "\n#define HUSH_NPR_ORDERS " +
-         std::to_string(c::kNprGaborChildOrders) + "\n#define HUSH_NPR_ORDER_TABLE " + table +
-         "\n#define HUSH_NPR_CULL_MARGIN " + f32(kNprGaborCullMargin) +
-         "\n#define HUSH_NPR_CULL_RELATIVE " + f32(kNprGaborCullRelative) +
-         "\n#define HUSH_NPR_FINEST " + std::to_string(npr_gabor::max_depth()) + "u" +
-         "\n#define HUSH_NPR_NEAR_FRACTION " + f32(c::kNprGaborNearFraction) +
-         "\n#define HUSH_NPR_RATIO_LOW " + f32(c::kNprGaborPerNodeRatioLow) +
-         "\n#define HUSH_NPR_RATIO_SCALE " +
-         f32(1.0 / std::log2(c::kNprGaborPerNodeRatioHigh / c::kNprGaborPerNodeRatioLow)) + "\n" +
-         library() +
-         detail::kNprGaborRecord + detail::kNprGaborStage1Common + bodies[p];
+  const std::string source =
+      std::string("#version 430 core\n// hush " HUSH_VERSION_STRING " NPR Gabor stage 1: ") +
+      names[p] + " (hush/glsl/npr_gabor/glsl.hpp).\n#define HUSH_NPR_GROUP " +
+      std::to_string(kNprGaborGroupSize) + "\n#define HUSH_NPR_SCAN " +
+      std::to_string(kNprGaborScanSize) + "\n#define HUSH_NPR_STREAM " +
+      std::to_string(c::kNprGaborStream) + "u\n#define HUSH_NPR_MAX_POINTS " +
+      f32(c::kNprGaborMaxPoints) + "\n#define HUSH_NPR_2M27 " + f32(0x1p-27) +
+      "\n#define HUSH_NPR_2M53 " + f32(0x1p-53) + "\n#define HUSH_NPR_ORDERS " +
+      std::to_string(c::kNprGaborChildOrders) + "\n#define HUSH_NPR_ORDER_TABLE " + table +
+      "\n#define HUSH_NPR_CULL_MARGIN " + f32(kNprGaborCullMargin) +
+      "\n#define HUSH_NPR_CULL_RELATIVE " + f32(kNprGaborCullRelative) +
+      "\n#define HUSH_NPR_FINEST " + std::to_string(npr_gabor::max_depth()) + "u" +
+      "\n#define HUSH_NPR_NEAR_FRACTION " + f32(c::kNprGaborNearFraction) +
+      "\n#define HUSH_NPR_RATIO_LOW " + f32(c::kNprGaborPerNodeRatioLow) +
+      "\n#define HUSH_NPR_RATIO_SCALE " +
+      f32(1.0 / std::log2(c::kNprGaborPerNodeRatioHigh / c::kNprGaborPerNodeRatioLow)) + "\n" +
+      library() + detail::kNprGaborRecord + detail::kNprGaborStage1Common + bodies[p];
+  return dual_dialect(source,
+                      std::string("hush_npr_gabor_") + npr_gabor_stage1_name(p) + "_params");
 }
-// The sources of the three stages (#version 430 core), for hush glsl-export and tests.
+// The sources of the three stages (#version 430 core; Vulkan too, hush/glsl/dialect.hpp), for
+// hush glsl-export and tests. Under Vulkan the geometry stage's uniform block
+// hush_npr_gabor_splat_params is a prefix of the fragment stage's (hush_size first): one
+// buffer at kVulkanParamsBinding serves both.
 inline std::string npr_gabor_vertex_source() {
   return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
                      " NPR Gabor splats: vertex stage (hush/glsl/npr_gabor/glsl.hpp).\n") +
          detail::kNprGaborVertex;
 }
 inline std::string npr_gabor_geometry_source() {
-  return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
-                     " NPR Gabor splats: geometry stage, one quad per record.\n#define "
-                     "HUSH_NPR_SPRITE_VERTICES ") +
-         std::to_string(kNprGaborSpriteVertices) + "\n" + detail::kNprGaborRecord +
-         detail::kNprGaborRecords + detail::kNprGaborGeometry;
+  return dual_dialect(
+      std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
+                  " NPR Gabor splats: geometry stage, one quad per record.\n#define "
+                  "HUSH_NPR_SPRITE_VERTICES ") +
+          std::to_string(kNprGaborSpriteVertices) + "\n" + detail::kNprGaborRecord +
+          detail::kNprGaborRecords + detail::kNprGaborGeometry,
+      "hush_npr_gabor_splat_params");
 }
 inline std::string npr_gabor_fragment_source() {
-  return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
-                     " NPR Gabor splats: fragment stage, tests and kernel.\n") +
-         library() + detail::kNprGaborRecord + detail::kNprGaborRecords + detail::kNprGaborFragment;
+  return dual_dialect(std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
+                                  " NPR Gabor splats: fragment stage, tests and kernel.\n") +
+                          library() + detail::kNprGaborRecord + detail::kNprGaborRecords +
+                          detail::kNprGaborFragment,
+                      "hush_npr_gabor_splat_params");
 }
 
 namespace detail {
@@ -787,10 +810,8 @@ inline std::vector<std::pair<std::string, std::string>> npr_gabor_exports() {
       {"hush_npr_gabor_splat.vert", npr_gabor_vertex_source()},
       {"hush_npr_gabor_splat.geom", npr_gabor_geometry_source()},
       {"hush_npr_gabor_splat.frag", npr_gabor_fragment_source()}};
-  const char* const stage1[kNprGaborStage1Passes] = {"lods",   "scan",     "roots",
-                                                     "expand", "children", "records"};
   for (int i = 0; i < kNprGaborStage1Passes; ++i)
-    files.emplace_back(std::string("hush_npr_gabor_") + stage1[i] + ".comp",
+    files.emplace_back(std::string("hush_npr_gabor_") + npr_gabor_stage1_name(i) + ".comp",
                        npr_gabor_stage1_source(i));
   return files;
 }

@@ -1,0 +1,182 @@
+// hush — procedural noise for rendering. MIT License, see LICENSE.
+//
+// One text, two dialects: every complete shader hush writes (the compute runners, coherent
+// noise's pass, NPR Gabor noise's passes and splat program) compiles as OpenGL 4.3 core and,
+// unchanged, as Vulkan GLSL (glslangValidator -V / shaderc, which predefine VULKAN).
+//
+// OpenGL sets loose uniforms one by one (glUniform*), hush's own device among them; Vulkan
+// has no loose non-opaque uniforms and one binding space per descriptor set, where OpenGL
+// has one per kind of resource. dual_dialect() turns a shader written for OpenGL into one
+// that is both:
+//   - the loose non-opaque uniforms stay as they are outside VULKAN (#ifndef VULKAN), and
+//     under VULKAN are the members, in declaration order, of one std140 uniform block
+//     `<block>` at binding kVulkanParamsBinding, declared where the first of them was;
+//   - storage buffers keep their bindings (all below kVulkanParamsBinding);
+//   - a sampler at texture unit u (its `layout(binding = u)`) is at binding
+//     kVulkanTextureBinding + u under VULKAN, an image at image unit u at
+//     kVulkanImageBinding + u; OpenGL sees the declaration as written;
+//   - everything is in descriptor set 0;
+//   - a comment after the file's first comment line states the file's Vulkan bindings.
+// Under OpenGL the text compiles to the same program as before (the same declarations in the
+// same order), so hush's GL results are the same bit for bit. User inputs and outputs between
+// stages carry `layout(location = N)` in the sources themselves (valid in GL 4.3 as well).
+#ifndef HUSH_GLSL_DIALECT_HPP
+#define HUSH_GLSL_DIALECT_HPP
+
+#include <algorithm>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hush/core/error.hpp"
+
+namespace hush {
+namespace glsl {
+
+// Descriptor bindings (set 0) of a complete shader under Vulkan (file comment).
+constexpr unsigned kVulkanParamsBinding = 16;   // the std140 block of the loose uniforms
+constexpr unsigned kVulkanTextureBinding = 20;  // + the sampler's GL texture unit
+constexpr unsigned kVulkanImageBinding = 28;    // + the image's GL image unit
+
+namespace detail {
+
+// Whether a GLSL type name is opaque (a sampler, image or atomic counter): such uniforms
+// stay loose in Vulkan too.
+inline bool opaque_glsl_type(const std::string& type) {
+  return type.find("sampler") != std::string::npos || type.find("image") != std::string::npos ||
+         type.find("texture") != std::string::npos || type == "atomic_uint";
+}
+
+// The `binding = N` of a declaration's layout, or -1 when it has none.
+inline int layout_binding(const std::string& line) {
+  const std::string key = "binding = ";
+  const std::size_t at = line.find(key);
+  if (at == std::string::npos || line.find("layout(") == std::string::npos) return -1;
+  return std::stoi(line.substr(at + key.size()));
+}
+
+// The line with its `binding = N` replaced by `binding = b`.
+inline std::string with_binding(const std::string& line, unsigned b) {
+  const std::string key = "binding = ";
+  const std::size_t at = line.find(key) + key.size();
+  std::size_t end = at;
+  while (end < line.size() && line[end] >= '0' && line[end] <= '9') ++end;
+  return line.substr(0, at) + std::to_string(b) + line.substr(end);
+}
+
+// The type of a `uniform TYPE NAME...` or `layout(...) [qualifiers] uniform TYPE NAME...`
+// declaration line, or "" when the line declares no uniform at file scope.
+inline std::string uniform_type(const std::string& line) {
+  std::size_t at = std::string::npos;
+  if (line.compare(0, 8, "uniform ") == 0)
+    at = 8;
+  else if (line.compare(0, 7, "layout(") == 0) {
+    const std::size_t u = line.find(" uniform ", line.find(')'));
+    if (u != std::string::npos && line.find(" buffer ") == std::string::npos) at = u + 9;
+  }
+  if (at == std::string::npos) return "";
+  const std::size_t end = line.find(' ', at);
+  return line.substr(at, end == std::string::npos ? std::string::npos : end - at);
+}
+
+}  // namespace detail
+
+// `source` (a complete shader for OpenGL 4.3 core: #version line, header comment, one
+// declaration per line) made to compile under Vulkan too, as the file comment says; `block`
+// names the uniform block (hush_<file>_params). A shader without loose uniforms, samplers or
+// images is returned as it is. Throws std::logic_error for a sampler or image without
+// `layout(binding = u)` (its Vulkan binding would be unknown) and for a uniform block (the
+// source must declare its uniforms loose).
+inline std::string dual_dialect(const std::string& source, const std::string& block) {
+  std::vector<std::string> lines;
+  for (std::size_t at = 0; at < source.size();) {
+    const std::size_t nl = source.find('\n', at);
+    const std::size_t end = nl == std::string::npos ? source.size() : nl;
+    lines.push_back(source.substr(at, end - at));
+    at = end + 1;
+  }
+  // The block's members and the Vulkan bindings of the samplers and images.
+  std::string members, note;
+  std::size_t first_uniform = lines.size();
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string type = detail::uniform_type(lines[i]);
+    if (type.empty()) continue;
+    if (!detail::opaque_glsl_type(type)) {
+      if (lines[i].compare(0, 8, "uniform ") != 0)
+        hush::detail::raise_error<std::logic_error>(
+            "hush::glsl::dual_dialect: a non-opaque uniform with a layout");
+      members += "  " + lines[i].substr(8) + "\n";
+      if (first_uniform == lines.size()) first_uniform = i;
+      continue;
+    }
+    const int unit = detail::layout_binding(lines[i]);
+    if (unit < 0)
+      hush::detail::raise_error<std::logic_error>(
+          "hush::glsl::dual_dialect: a sampler or image without layout(binding = unit)");
+    const bool image = type.find("image") != std::string::npos;
+    const unsigned vk =
+        (image ? kVulkanImageBinding : kVulkanTextureBinding) + static_cast<unsigned>(unit);
+    const std::size_t name_at = lines[i].find(' ', lines[i].find(type)) + 1;
+    const std::string name = lines[i].substr(name_at, lines[i].find(';') - name_at);
+    note += std::string(note.empty() ? "" : ", ") + name + " at " + std::to_string(vk) + " (" +
+            (image ? "image" : "texture") + " unit " + std::to_string(unit) + ")";
+    lines[i] = "#ifdef VULKAN\n" + detail::with_binding(lines[i], vk) + "\n#else\n" + lines[i] +
+               "\n#endif";
+  }
+  if (members.empty() && note.empty()) return source;
+
+  // Each run of loose uniforms is OpenGL's only; the block stands before the first run.
+  std::vector<char> loose(lines.size(), 0);
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    loose[i] = lines[i].compare(0, 8, "uniform ") == 0 && !detail::uniform_type(lines[i]).empty();
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (!loose[i]) continue;
+    const bool run_start = i == 0 || !loose[i - 1];
+    const bool run_end = i + 1 == lines.size() || !loose[i + 1];
+    if (run_start)
+      lines[i] =
+          (i == first_uniform
+               ? "#ifdef VULKAN\nlayout(std140, binding = " + std::to_string(kVulkanParamsBinding) +
+                     ") uniform " + block + " {\n" + members + "};\n#else\n"
+               : std::string("#ifndef VULKAN\n")) +
+          lines[i];
+    if (run_end) lines[i] += "\n#endif";
+  }
+
+  // The note, after the header comment's first line, as comment lines of at most 100 columns.
+  std::string vulkan =
+      "Vulkan (glslang -V and shaderc define VULKAN): descriptor set 0; storage buffers at their "
+      "OpenGL bindings";
+  if (!members.empty())
+    vulkan += "; the uniforms are the members of the std140 block " + block + " at binding " +
+              std::to_string(kVulkanParamsBinding);
+  if (!note.empty()) vulkan += "; " + note;
+  vulkan += " (hush/glsl/dialect.hpp).";
+  std::string wrapped, line = "//";
+  for (std::size_t at = 0; at < vulkan.size();) {
+    std::size_t end = vulkan.find(' ', at);
+    if (end == std::string::npos) end = vulkan.size();
+    const std::string word = vulkan.substr(at, end - at);
+    if (line.size() > 2 && line.size() + 1 + word.size() > 100) {
+      wrapped += line + "\n";
+      line = "//";
+    }
+    line += " " + word;
+    at = end + 1;
+  }
+  wrapped += line;
+  lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(2, lines.size())),
+               wrapped);
+
+  std::string out;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    out += lines[i] + (i + 1 < lines.size() ? "\n" : "");
+  if (!source.empty() && source.back() == '\n' && (out.empty() || out.back() != '\n')) out += '\n';
+  return out;
+}
+
+}  // namespace glsl
+}  // namespace hush
+
+#endif  // HUSH_GLSL_DIALECT_HPP
