@@ -30,9 +30,11 @@
 // A frame that needs more nodes at a level than its capacity keeps the nodes that fit (no
 // write out of bounds) and so is not exact; the GPU counts it in status words copied after
 // each frame into a fenced ring, which later calls read only once the fence has signalled
-// (never waiting); having seen one, the next call walks with read-backs again and sets the
-// capacities from that frame, exact from then on. resident_overflows() and
-// resident_capacity(k) of npr_gabor_state(dev) report them.
+// (never waiting; from the persistent mapping, or on a context without glBufferStorage with
+// glGetBufferSubData of those 128 finished bytes: then one such call per frame); having seen
+// one, the next call walks with read-backs again and sets the capacities from that frame,
+// exact from then on. resident_overflows() and resident_capacity(k) of npr_gabor_state(dev)
+// report them.
 // The output may be sampled, attached or read at once (GL orders rendering before later use).
 //
 // Requirements: the sources constant or per object (npr_gabor::per_object_at_most; per-pixel

@@ -358,7 +358,8 @@ class npr_gabor_gpu {
   // Frames whose stage 1 ran on the GPU (render), and those it handed back to the CPU.
   std::size_t gpu_stage1_frames() const { return gpu_frames_; }
   std::size_t cpu_stage1_frames() const { return cpu_frames_; }
-  // The last GPU stage 1's walk: nodes visited (every level's list) and levels.
+  // The last GPU stage 1's walk: nodes visited (every level's list) and levels (a resident
+  // frame after the first: 0 nodes, not known to the host, and the levels issued).
   std::uint64_t stage1_nodes() const { return nodes_; }
   std::size_t stage1_levels() const { return levels_; }
   // The resident path (render_resident): whether its capacities are set (the first frame sets
