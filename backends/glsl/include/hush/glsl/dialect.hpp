@@ -12,6 +12,8 @@
 //     under VULKAN are the members, in declaration order, of one std140 uniform block
 //     `<block>` at binding kVulkanParamsBinding, declared where the first of them was;
 //   - storage buffers keep their bindings (all below kVulkanParamsBinding);
+//   - a uniform block of the source at uniform-block binding b (OpenGL's own binding space)
+//     is at binding kVulkanBlockBinding + b under VULKAN (b < 3);
 //   - a sampler at texture unit u (its `layout(binding = u)`) is at binding
 //     kVulkanTextureBinding + u under VULKAN, an image at image unit u at
 //     kVulkanImageBinding + u; OpenGL sees the declaration as written;
@@ -36,6 +38,7 @@ namespace glsl {
 
 // Descriptor bindings (set 0) of a complete shader under Vulkan (file comment).
 constexpr unsigned kVulkanParamsBinding = 16;   // the std140 block of the loose uniforms
+constexpr unsigned kVulkanBlockBinding = 17;    // + the source's own uniform block's binding
 constexpr unsigned kVulkanTextureBinding = 20;  // + the sampler's GL texture unit
 constexpr unsigned kVulkanImageBinding = 28;    // + the image's GL image unit
 
@@ -65,6 +68,16 @@ inline std::string with_binding(const std::string& line, unsigned b) {
   return line.substr(0, at) + std::to_string(b) + line.substr(end);
 }
 
+// The name of a `layout(...) uniform NAME {` block declaration line, or "" when the line is
+// not one.
+inline std::string uniform_block_name(const std::string& line) {
+  if (line.compare(0, 7, "layout(") != 0 || line.find('{') == std::string::npos) return "";
+  const std::size_t u = line.find(" uniform ", line.find(')'));
+  if (u == std::string::npos) return "";
+  const std::size_t at = u + 9, end = line.find_first_of(" {", at);
+  return line.substr(at, end - at);
+}
+
 // The type of a `uniform TYPE NAME...` or `layout(...) [qualifiers] uniform TYPE NAME...`
 // declaration line, or "" when the line declares no uniform at file scope.
 inline std::string uniform_type(const std::string& line) {
@@ -85,9 +98,9 @@ inline std::string uniform_type(const std::string& line) {
 // `source` (a complete shader for OpenGL 4.3 core: #version line, header comment, one
 // declaration per line) made to compile under Vulkan too, as the file comment says; `block`
 // names the uniform block (hush_<file>_params). A shader without loose uniforms, samplers or
-// images is returned as it is. Throws std::logic_error for a sampler or image without
-// `layout(binding = u)` (its Vulkan binding would be unknown) and for a uniform block (the
-// source must declare its uniforms loose).
+// images is returned as it is. Throws std::logic_error for a sampler, image or uniform block
+// without `layout(binding = u)` (its Vulkan binding would be unknown), a block binding above 2
+// and a non-opaque loose uniform with a layout.
 inline std::string dual_dialect(const std::string& source, const std::string& block) {
   std::vector<std::string> lines;
   for (std::size_t at = 0; at < source.size();) {
@@ -100,6 +113,19 @@ inline std::string dual_dialect(const std::string& source, const std::string& bl
   std::string members, note;
   std::size_t first_uniform = lines.size();
   for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string block_name = detail::uniform_block_name(lines[i]);
+    if (!block_name.empty()) {
+      const int b = detail::layout_binding(lines[i]);
+      if (b < 0 || kVulkanBlockBinding + static_cast<unsigned>(b) >= kVulkanTextureBinding)
+        hush::detail::raise_error<std::logic_error>(
+            "hush::glsl::dual_dialect: a uniform block without layout(binding = 0 ... 2)");
+      const unsigned vk = kVulkanBlockBinding + static_cast<unsigned>(b);
+      note += std::string(note.empty() ? "" : ", ") + block_name + " at " + std::to_string(vk) +
+              " (uniform block binding " + std::to_string(b) + ")";
+      lines[i] = "#ifdef VULKAN\n" + detail::with_binding(lines[i], vk) + "\n#else\n" + lines[i] +
+                 "\n#endif";
+      continue;
+    }
     const std::string type = detail::uniform_type(lines[i]);
     if (type.empty()) continue;
     if (!detail::opaque_glsl_type(type)) {

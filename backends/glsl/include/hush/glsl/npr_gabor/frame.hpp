@@ -16,23 +16,38 @@
 // into buffers of these layouts and runs the same code), except that stage 1 reads the
 // caller's buffers and stage 2 the caller's textures and renders into `output` (cleared to 0,
 // then the kernels summed with additive blending; a framebuffer of the renderer's own,
-// detached again afterwards): no image read-back, no per-pixel or per-triangle host work. Host
-// work per frame: the per-object kernel table (npr_gabor::kernel_of_object, O(objects)), and
-// per level of the point walk (at most 22) the level's two totals read back (8 bytes, to size
-// the next level's buffers; glGetBufferSubData), then one draw per storage block of records.
+// detached again afterwards): no read-back and no per-pixel or per-triangle host work per
+// frame, and no wait for the GPU. Host work per frame: the per-object kernel table
+// (npr_gabor::kernel_of_object, O(objects), uploaded), then a command sequence whose length
+// depends on the capacities alone: per level of the point walk (all 22) the expand, prefix-sum,
+// plan and children passes, the records pass per level and one draw per storage block of
+// record capacity, each sized on the GPU (the plan pass writes every level's count, its
+// glDispatchComputeIndirect commands and the glDrawArraysIndirect counts; renderer.hpp).
+// Capacities (nodes per level, kept per device): the first call on a device walks with each
+// level's two totals read back (8 bytes per prefix sum) and sets each to twice that level's
+// nodes (at least 4096; level 0's at least the triangle count, known without a read); it also
+// maps a small status buffer once (persistently, where the context has glBufferStorage).
+// A frame that needs more nodes at a level than its capacity keeps the nodes that fit (no
+// write out of bounds) and so is not exact; the GPU counts it in status words copied after
+// each frame into a fenced ring, which later calls read only once the fence has signalled
+// (never waiting; from the persistent mapping, or on a context without glBufferStorage with
+// glGetBufferSubData of those 128 finished bytes: then one such call per frame); having seen
+// one, the next call walks with read-backs again and sets the capacities from that frame,
+// exact from then on. resident_overflows() and resident_capacity(k) of npr_gabor_state(dev)
+// report them.
 // The output may be sampled, attached or read at once (GL orders rendering before later use).
 //
 // Requirements: the sources constant or per object (npr_gabor::per_object_at_most; per-pixel
 // and per-vertex sources need the CPU-image path), every buffer of stage 1 within
-// GL_MAX_SHADER_STORAGE_BLOCK_SIZE; frame sides up to GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS
-// and GL_MAX_RENDERBUFFER_SIZE and kNprGaborMaxImageSide; at most kNprGaborMaxTriangles
-// triangles. Throws hush::invalid_argument where these fail (the sources by
-// param_source::validate, as npr_gabor::render), for a missing texture a test reads, a missing
-// buffer (with triangles), or a buffer smaller than its count says (GL_BUFFER_SIZE); the
-// vertex indices are not checked (out-of-range indices read undefined values, as in any
-// shader). std::runtime_error for GL errors. GL state: as renderer.hpp's contract, and the
-// textures of units 0 - 2 are rebound (the renderer's sampler object is bound there during the
-// draws only).
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE (each level's capacity included); frame sides up to
+// GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS and GL_MAX_RENDERBUFFER_SIZE and
+// kNprGaborMaxImageSide; at most kNprGaborMaxTriangles triangles. Throws hush::invalid_argument
+// where these fail (the sources by param_source::validate, as npr_gabor::render), for a missing
+// texture a test reads, a missing buffer (with triangles), or a buffer smaller than its count says
+// (GL_BUFFER_SIZE); the vertex indices are not checked (out-of-range indices read undefined values,
+// as in any shader). std::runtime_error for GL errors. GL state: as renderer.hpp's contract
+// (indexed uniform-buffer binding 0 included), and the textures of units 0 - 2 are rebound (the
+// renderer's sampler object is bound there during the draws only).
 #ifndef HUSH_GLSL_NPR_GABOR_FRAME_HPP
 #define HUSH_GLSL_NPR_GABOR_FRAME_HPP
 

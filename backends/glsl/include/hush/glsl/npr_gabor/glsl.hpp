@@ -171,7 +171,12 @@ uniform uint hush_table_last;  // the constants' entry
 uniform uint hush_group_base;  // first work group of this dispatch
 uniform uvec2 hush_size;       // frame width, height
 uniform uint hush_key;         // seed_key(seed)
-uniform uint hush_nodes;       // nodes of this level
+// Nodes of this level: the host's count, or with hush_nodes_host = 0xFFFFFFFF the GPU's, from
+// the walk's plan (kNprGaborPlan; the level's slot bound as this block: counts (nodes, first
+// record, records, -), the scan's items at depths 0 - 3).
+uniform uint hush_nodes_host;
+layout(std140, binding = 0) uniform hush_npr_plan_slot { uvec4 hush_plan_counts; uvec4 hush_plan_items; };
+#define hush_nodes (hush_nodes_host != 0xFFFFFFFFu ? hush_nodes_host : hush_plan_counts.x)
 uniform uint hush_level;       // the level: its nodes' stride is 4^level
 uniform uint hush_local;       // 1: params::local_density (a count per node)
 // Homogeneous node corners (triangles crossing the near plane): (z (s - origin), z) per corner in
@@ -487,7 +492,8 @@ constexpr const char* kNprGaborScan = R"glsl(
 layout(local_size_x = HUSH_NPR_SCAN) in;
 layout(std430, binding = 0) buffer hush_scan_data_b { uvec2 hush_scan_data[]; };
 layout(std430, binding = 1) buffer hush_scan_sums_b { uvec2 hush_scan_sums[]; };
-uniform uint hush_items, hush_add;
+uniform uint hush_items_host, hush_add, hush_depth;  // items: 0xFFFFFFFF the plan's, at hush_depth
+#define hush_items (hush_items_host != 0xFFFFFFFFu ? hush_items_host : hush_plan_items[hush_depth])
 shared uvec2 hush_part[HUSH_NPR_SCAN];
 void main() {
   uint g = hush_group_base + gl_WorkGroupID.x, i = gl_LocalInvocationID.x;
@@ -658,6 +664,7 @@ void main() {
   for (uint slot = 0u; slot < 4u; ++slot) {
     if ((nd.info & (2u << slot)) == 0u) continue;
     uvec2 j = hush_u64_add(nd.key.zw, hush_u64_shl(1u + slot, 2u * hush_level));
+    if (at >= uint(hush_npr_next.length())) return;  // beyond the level's capacity: the plan flags it
     hush_npr_next[at++] = hush_npr_child(nd, hush_npr_lods[nd.key.y].walk.z > 0.0, order, slot, j);
   }
 }
@@ -675,7 +682,8 @@ layout(std430, binding = 5) readonly buffer hush_npr_level_b { hush_npr_node hus
 layout(std430, binding = 6) writeonly buffer hush_npr_out_b { hush_npr_splat hush_npr_out[]; };
 layout(std430, binding = 7) writeonly buffer hush_npr_ids_b { uvec4 hush_npr_out_ids[]; };
 uniform uint hush_isotropic;  // 1: each point's own angle
-uniform uint hush_first;      // the level's first record in the frame
+uniform uint hush_first_host;  // the level's first record in the frame (0xFFFFFFFF: the plan's)
+#define hush_first (hush_first_host != 0xFFFFFFFFu ? hush_first_host : hush_plan_counts.y)
 uniform uint hush_base, hush_batch;
 void main() {
   uint i = hush_npr_item();
@@ -713,6 +721,70 @@ void main() {
   o.plane = vec4(l.plane.x + l.plane.y * q.x + l.plane.z * q.y, l.plane.y, l.plane.z, 0.0);
   hush_npr_out[k] = o;
   hush_npr_out_ids[k] = uvec4(object, hush_npr_triangles[5u * t + 3u], nd.key.zw);
+}
+)glsl";
+
+// The walk's plan, one invocation after each scan (npr_gabor_gl_render: no read-back): from the
+// scan's total (binding 0, first uvec2) it writes the next level's slot of the plan buffer
+// (binding 1, uints; slot s at s * hush_plan_stride): (nodes, first record, records, nodes
+// needed), the scan's items at depths 0 - 3 (words 4 - 7), the node passes' indirect dispatch
+// commands (words 8 + 3 s, HUSH_PLAN_MAX_GROUPS groups of HUSH_NPR_GROUP per slice s) and the
+// scan's (words 32 + 3 d, depth d); the level's own records (word 2 of its slot); in slot 0 the
+// records so far (word 1), a count of levels clamped to their capacity (word 0) and, per level
+// k, the most nodes it ever needed (word 8 + k); the draws' commands (hush_plan_draws: count,
+// 1, 0, 0 per batch of hush_plan_batch records). A level needing more nodes than its buffers
+// hold (hush_plan_cap) keeps the first hush_plan_cap (the children pass writes no further).
+constexpr const char* kNprGaborPlan = R"glsl(
+layout(local_size_x = 1) in;
+layout(std430, binding = 0) readonly buffer hush_plan_total_b { uvec2 hush_plan_total[]; };
+layout(std430, binding = 1) buffer hush_plan_b { uint hush_plan[]; };
+uniform uint hush_plan_level;   // the level whose scan ended; 0xFFFFFFFF: the triangles' (roots)
+uniform uint hush_plan_cap;     // nodes the next level's buffers hold
+uniform uint hush_plan_stride;  // words per slot
+uniform uint hush_plan_slices;  // indirect dispatches per node pass of the next level
+uniform uint hush_plan_batch, hush_plan_batches, hush_plan_draws;
+uint hush_plan_groups(uint n, uint size) { return n / size + (n % size != 0u ? 1u : 0u); }
+void main() {
+  uint s = hush_plan_stride, to = 1u, first = 0u;
+  uvec2 total = hush_plan_total[0];
+  if (hush_plan_level != 0xFFFFFFFFu) {
+    uint from = 1u + hush_plan_level;
+    to = from + 1u;
+    if (hush_plan[from * s] == 0u) total = uvec2(0u);
+    hush_plan[from * s + 2u] = total.x;
+    first = hush_plan[from * s + 1u] + total.x;
+  }
+  uint needed = total.y, n = min(needed, hush_plan_cap), b = to * s;
+  if (needed > hush_plan_cap) hush_plan[0] += 1u;
+  if (to - 1u < HUSH_PLAN_LEVELS) hush_plan[8u + to - 1u] = max(hush_plan[8u + to - 1u], needed);
+  hush_plan[b] = n;
+  hush_plan[b + 1u] = first;
+  hush_plan[b + 2u] = 0u;
+  hush_plan[b + 3u] = needed;
+  uint items = n;
+  for (uint d = 0u; d < 4u; ++d) {
+    uint groups = hush_plan_groups(items, uint(HUSH_PLAN_SCAN_BLOCK));
+    hush_plan[b + 4u + d] = items;
+    hush_plan[b + 32u + 3u * d] = groups;
+    hush_plan[b + 33u + 3u * d] = 1u;
+    hush_plan[b + 34u + 3u * d] = 1u;
+    items = groups;
+  }
+  uint groups = hush_plan_groups(n, uint(HUSH_NPR_GROUP));
+  for (uint i = 0u; i < hush_plan_slices; ++i) {
+    uint lo = i * uint(HUSH_PLAN_MAX_GROUPS);
+    hush_plan[b + 8u + 3u * i] = groups > lo ? min(groups - lo, uint(HUSH_PLAN_MAX_GROUPS)) : 0u;
+    hush_plan[b + 9u + 3u * i] = 1u;
+    hush_plan[b + 10u + 3u * i] = 1u;
+  }
+  hush_plan[1] = first;
+  for (uint i = 0u; i < hush_plan_batches; ++i) {
+    uint lo = i * hush_plan_batch, w = hush_plan_draws + 4u * i;
+    hush_plan[w] = first > lo ? min(first - lo, hush_plan_batch) : 0u;
+    hush_plan[w + 1u] = 1u;
+    hush_plan[w + 2u] = 0u;
+    hush_plan[w + 3u] = 0u;
+  }
 }
 )glsl";
 
@@ -774,6 +846,17 @@ inline std::string npr_gabor_stage1_source(int pass) {
       library() + detail::kNprGaborRecord + detail::kNprGaborStage1Common + bodies[p];
   return dual_dialect(source,
                       std::string("hush_npr_gabor_") + npr_gabor_stage1_name(p) + "_params");
+}
+// The walk's plan pass (kNprGaborPlan; #version 430 core): `levels` slots of needed counts in
+// slot 0, dispatches of at most `max_groups` groups.
+inline std::string npr_gabor_plan_source(std::size_t levels, std::size_t max_groups) {
+  return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
+                     " NPR Gabor stage 1: the walk's plan (hush/glsl/npr_gabor/glsl.hpp).\n"
+                     "#define HUSH_NPR_GROUP ") +
+         std::to_string(kNprGaborGroupSize) + "\n#define HUSH_PLAN_SCAN_BLOCK " +
+         std::to_string(kNprGaborScanBlock) + "\n#define HUSH_PLAN_MAX_GROUPS " +
+         std::to_string(max_groups) + "u\n#define HUSH_PLAN_LEVELS " + std::to_string(levels) +
+         "u\n" + detail::kNprGaborPlan;
 }
 // The sources of the three stages (#version 430 core; Vulkan too, hush/glsl/dialect.hpp), for
 // hush glsl-export and tests. Under Vulkan the geometry stage's uniform block

@@ -20,23 +20,30 @@
 // own count n = lambda A above 1/4, its weight sqrt(n h(n)) per node as on the CPU, blended
 // with the per-triangle LOD's for ratios 4 - 8; a crossing triangle's nodes carry homogeneous
 // corners (z (s - o), z), clipped at w_near = far / 1024; screen triangle grown by r, or the
-// clipped part's projection, meeting the frame), a multi-level prefix sum gives every record and child its offset, a second pass
-// writes the children as the next level's list. The host reads back each level's two totals
-// (8 bytes) to size the next level; nothing is dropped (a level beyond one storage block runs
-// stage 1 on the CPU instead). Then one pass per level writes the records at their scanned
-// offsets, batch by batch: level by level, each in its list's order, the same order every run
-// (no atomics), hence the same image. J (up to 2^41) is a uvec2; node corners are carried down
-// as perspective-correct midpoints in float (homogeneous: plain midpoints). Per-pixel or
-// per-vertex sources, buffers beyond one storage block, or more than 2^32 - 1 records: stage 1
-// on the CPU (make_splats), automatically. Float instead of double changes positions, weights and planes within the
-// tolerance derived in tests/gabor/glsl_gabor_test.cpp (npr_tolerance_of); where float and
-// double N straddle a power of two the second M points (weight <= sqrt(2 nu), nu N's relative
-// float error) exist on one side only; with params::local_density, likewise a node whose float
-// and double counts straddle a cut of the hat (1/4, 4): its record (weight <= sqrt((1 +
-// 1/ln 4) nu_P n + n 2^-21), nu_P its count's relative error) exists on one side only; near the
-// near plane also a node with a corner within its float depth error of w_near (crossing, weight
-// 0, on one side). The homogeneous corners' float error: docs/npr-gabor.md "Triangles crossing
-// the near plane", GPU.
+// clipped part's projection, meeting the frame), a multi-level prefix sum gives every record and
+// child its offset, a second pass writes the children as the next level's list. Here (exec::glsl)
+// the host reads back each level's two totals (8 bytes) to size the next level; nothing is dropped
+// (a level beyond one storage block runs stage 1 on the CPU instead). The resident path
+// (npr_gabor_gl_render, frame.hpp) reads nothing back: after each prefix sum a one-invocation plan
+// pass (kNprGaborPlan) writes the next level's count, its indirect dispatch commands and the draws'
+// counts into a plan buffer, the passes read the counts from it (the level's slot as a uniform
+// block) and run from glDispatchComputeIndirect / glDrawArraysIndirect, over buffers of capacities
+// the renderer keeps (set by its first frame, which reads the totals back as here; a level beyond
+// its capacity keeps the nodes that fit and is flagged in status words the host reads once the GPU
+// has finished that frame, after which the next frame sets the capacities again). Then one pass per
+// level writes the records at their scanned offsets, batch by batch: level by level, each in its
+// list's order, the same order every run (no atomics), hence the same image. J (up to 2^41) is a
+// uvec2; node corners are carried down as perspective-correct midpoints in float (homogeneous:
+// plain midpoints). Per-pixel or per-vertex sources, buffers beyond one storage block, or more than
+// 2^32 - 1 records: stage 1 on the CPU (make_splats), automatically. Float instead of double
+// changes positions, weights and planes within the tolerance derived in
+// tests/gabor/glsl_gabor_test.cpp (npr_tolerance_of); where float and double N straddle a power of
+// two the second M points (weight <= sqrt(2 nu), nu N's relative float error) exist on one side
+// only; with params::local_density, likewise a node whose float and double counts straddle a cut of
+// the hat (1/4, 4): its record (weight <= sqrt((1 + 1/ln 4) nu_P n + n 2^-21), nu_P its count's
+// relative error) exists on one side only; near the near plane also a node with a corner within its
+// float depth error of w_near (crossing, weight 0, on one side). The homogeneous corners' float
+// error: docs/npr-gabor.md "Triangles crossing the near plane", GPU.
 //
 // Stage 2: the records (made on the GPU or uploaded from the CPU's stage 1; shader storage
 // buffers, 64 + 16 bytes each) are drawn as GL_POINTS, one vertex per record, in record order. A
@@ -83,10 +90,13 @@
 // Throws std::runtime_error for GL errors (and when the context lacks storage blocks in the
 // geometry or fragment stage: GL 4.3 requires them only in compute shaders; every desktop
 // driver has them). Leaves the current program, vertex array, framebuffers, viewport, blend and
-// the enables it touches (blend, depth, stencil, scissor, cull face) and the active texture unit
-// as it found them; rebinds the indexed storage-buffer bindings 0 to 7 (as hush::glsl::device
-// does) and the textures of units 0 - 2 (but the active unit's, restored; a sampler object of
-// the renderer's is bound to units 0 - 2 during the draws only).
+// the enables it touches (blend, depth, stencil, scissor, cull face), the active texture unit and
+// the generic GL_SHADER_STORAGE_BUFFER, GL_DISPATCH_INDIRECT_BUFFER, GL_DRAW_INDIRECT_BUFFER,
+// GL_UNIFORM_BUFFER, GL_COPY_READ_BUFFER and GL_COPY_WRITE_BUFFER bindings as it found them;
+// rebinds the indexed storage-buffer bindings 0 to 7 (as hush::glsl::device does), the indexed
+// uniform-buffer binding 0 (the plan's level slot) and the textures of units 0 - 2 (but the
+// active unit's, restored; a sampler object of the renderer's is bound to units 0 - 2 during
+// the draws only).
 #ifndef HUSH_GLSL_NPR_GABOR_RENDERER_HPP
 #define HUSH_GLSL_NPR_GABOR_RENDERER_HPP
 
@@ -165,6 +175,22 @@ constexpr gl_enum kGlBlendSrcAlpha = 0x80CB;
 constexpr gl_enum kGlBlendDstAlpha = 0x80CA;
 constexpr gl_enum kGlBlendEquationRgb = 0x8009;
 constexpr gl_enum kGlBlendEquationAlpha = 0x883D;
+// The resident walk's plan: indirect commands, the level slots as a uniform block, the status.
+constexpr gl_enum kGlUniformBuffer = 0x8A11;
+constexpr gl_enum kGlUniformBufferBinding = 0x8A28;
+constexpr gl_enum kGlUniformBufferOffsetAlignment = 0x8A34;
+constexpr gl_enum kGlDispatchIndirectBuffer = 0x90EE;
+constexpr gl_enum kGlDispatchIndirectBufferBinding = 0x90EF;
+constexpr gl_enum kGlDrawIndirectBuffer = 0x8F3F;
+constexpr gl_enum kGlDrawIndirectBufferBinding = 0x8F43;
+constexpr gl_enum kGlSyncGpuCommandsComplete = 0x9117;
+constexpr gl_enum kGlAlreadySignaled = 0x911A;
+constexpr gl_enum kGlConditionSatisfied = 0x911C;
+constexpr gl_bitfield kGlUniformBarrierBit = 0x4;
+constexpr gl_bitfield kGlCommandBarrierBit = 0x40;
+constexpr gl_bitfield kGlMapReadBit = 0x1;
+constexpr gl_bitfield kGlMapPersistentBit = 0x40;
+constexpr gl_bitfield kGlMapCoherentBit = 0x80;
 
 // The entry points of the raster path (GL 3.x core), loaded from the device's loader.
 struct gl_raster_api {
@@ -187,6 +213,15 @@ struct gl_raster_api {
   void(HUSH_GLAPI* Clear)(gl_bitfield) = nullptr;
   void(HUSH_GLAPI* ReadPixels)(gl_int, gl_int, gl_sizei, gl_sizei, gl_enum, gl_enum,
                                void*) = nullptr;
+  // The resident walk (GL 4.3 core): indirect commands, ranges, copies and fences.
+  void(HUSH_GLAPI* BindBufferRange)(gl_enum, gl_uint, gl_uint, gl_intptr, gl_sizeiptr) = nullptr;
+  void(HUSH_GLAPI* DispatchComputeIndirect)(gl_intptr) = nullptr;
+  void(HUSH_GLAPI* DrawArraysIndirect)(gl_enum, const void*) = nullptr;
+  void(HUSH_GLAPI* CopyBufferSubData)(gl_enum, gl_enum, gl_intptr, gl_intptr,
+                                      gl_sizeiptr) = nullptr;
+  void*(HUSH_GLAPI* FenceSync)(gl_enum, gl_bitfield) = nullptr;
+  gl_enum(HUSH_GLAPI* ClientWaitSync)(void*, gl_bitfield, unsigned long long) = nullptr;
+  void(HUSH_GLAPI* DeleteSync)(void*) = nullptr;
 
   explicit gl_raster_api(loader_fn loader) {
     gl_api::load(loader, GenFramebuffers, "glGenFramebuffers");
@@ -207,6 +242,13 @@ struct gl_raster_api {
     gl_api::load(loader, ClearColor, "glClearColor");
     gl_api::load(loader, Clear, "glClear");
     gl_api::load(loader, ReadPixels, "glReadPixels");
+    gl_api::load(loader, BindBufferRange, "glBindBufferRange");
+    gl_api::load(loader, DispatchComputeIndirect, "glDispatchComputeIndirect");
+    gl_api::load(loader, DrawArraysIndirect, "glDrawArraysIndirect");
+    gl_api::load(loader, CopyBufferSubData, "glCopyBufferSubData");
+    gl_api::load(loader, FenceSync, "glFenceSync");
+    gl_api::load(loader, ClientWaitSync, "glClientWaitSync");
+    gl_api::load(loader, DeleteSync, "glDeleteSync");
   }
 };
 
@@ -267,6 +309,20 @@ class npr_gabor_gpu {
                                   {kGlFragmentShader, npr_gabor_fragment_source()}});
     for (int i = 0; i < kNprGaborStage1Passes; ++i)
       stage1_[i] = link_program(gl_, {{kGlComputeShader, npr_gabor_stage1_source(i)}});
+    plan_program_ =
+        link_program(gl_, {{kGlComputeShader, npr_gabor_plan_source(kPlanLevels + 1, kMaxGroups)}});
+    // The plan: slot 0 (status), the levels' slots, the draws; zeroed once (the sync walk binds
+    // a slot too, its uniform block unread there).
+    gl_int align = 256;
+    gl_.GetIntegerv(kGlUniformBufferOffsetAlignment, &align);
+    const std::size_t a = static_cast<std::size_t>(std::max<gl_int>(align, 4));
+    slot_words_ = ((256 + a - 1) / a) * a / 4;
+    gl_.GenBuffers(1, &plan_);
+    const std::vector<std::uint32_t> zeros((kDrawSlot + kDrawSlots) * slot_words_, 0u);
+    gl_.BindBuffer(kGlShaderStorageBuffer, plan_);
+    gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(zeros.size() * 4), zeros.data(),
+                   kGlStreamDraw);
+    gl_.GenBuffers(2, resident_records_);
     gl_.GenBuffers(2, buffers_);
     gl_.GenBuffers(kStage1Buffers, stage1_buffers_);
     gl_.GenTextures(1, &texture_);
@@ -288,6 +344,13 @@ class npr_gabor_gpu {
     for (const std::vector<gl_uint>* v : {&level_nodes_, &level_flags_, &scan_sums_})
       if (!v->empty()) gl_.DeleteBuffers(static_cast<gl_sizei>(v->size()), v->data());
     gl_.DeleteBuffers(2, buffers_);
+    gl_.DeleteBuffers(2, resident_records_);
+    gl_.DeleteBuffers(1, &plan_);
+    for (const std::vector<gl_uint>* v : {&res_nodes_, &res_flags_, &res_sums_})
+      if (!v->empty()) gl_.DeleteBuffers(static_cast<gl_sizei>(v->size()), v->data());
+    for (void*& f : status_fences_)
+      if (f) gr_.DeleteSync(f);
+    if (status_ != 0u) gl_.DeleteBuffers(1, &status_);
   }
 
   const npr_gabor_limits& limits() const { return limits_; }
@@ -295,9 +358,16 @@ class npr_gabor_gpu {
   // Frames whose stage 1 ran on the GPU (render), and those it handed back to the CPU.
   std::size_t gpu_stage1_frames() const { return gpu_frames_; }
   std::size_t cpu_stage1_frames() const { return cpu_frames_; }
-  // The last GPU stage 1's walk: nodes visited (every level's list) and levels.
+  // The last GPU stage 1's walk: nodes visited (every level's list) and levels (a resident
+  // frame after the first: 0 nodes, not known to the host, and the levels issued).
   std::uint64_t stage1_nodes() const { return nodes_; }
   std::size_t stage1_levels() const { return levels_; }
+  // The resident path (render_resident): whether its capacities are set (the first frame sets
+  // them, reading each level's totals back); levels clamped to their capacity that the host
+  // has seen so far (asynchronously, a frame or more later); the capacity of level k (nodes).
+  bool resident_sized() const { return !caps_.empty(); }
+  std::size_t resident_overflows() const { return overflows_seen_; }
+  std::size_t resident_capacity(std::size_t k) const { return k < caps_.size() ? caps_[k] : 0; }
 
   // Stage 2 of `j` into out (frame-sized, validated by npr_gabor::splat).
   void splat(const hush::detail::npr_gabor_splat_job& j, const image_view<float>& out) {
@@ -378,17 +448,38 @@ class npr_gabor_gpu {
     const state_guard guard(gl_, gr_);
     triangle_buffers_[0] = g.vertices;
     triangle_buffers_[1] = g.triangles;
-    std::size_t total = 0;
-    const bool ok = walk(noise, w, h, g.triangle_count, src, total);
-    if (ok) {
-      ++gpu_frames_;
-      // The job's tests and kernel constants (its views are not read: the textures are).
-      frame f;
-      f.depth = image_view<const float>(nullptr, w, h);
-      const gl_uint gbuffer[3] = {g.depth, g.object_id, g.triangle_id};
-      draw_into(noise.splat_job(f, nullptr, 0), w, h, gbuffer, output, total,
-                [&](std::size_t b0, std::size_t m) { generate(b0, m); });
+    // The job's tests and kernel constants (its views are not read: the textures are).
+    frame f;
+    f.depth = image_view<const float>(nullptr, w, h);
+    const gl_uint gbuffer[3] = {g.depth, g.object_id, g.triangle_id};
+    bool ok = true;
+    if (!caps_.empty()) poll_status();
+    if (caps_.empty() || resize_) {
+      // The first frame, and the first after a frame beyond the capacities was seen: the walk
+      // with each level's totals read back, which sets the capacities (twice each level's
+      // nodes, at least kMinCapacity; never less than before).
+      std::size_t total = 0;
+      ok = walk(noise, w, h, g.triangle_count, src, total);
+      if (ok) {
+        caps_.resize(kPlanLevels, kMinCapacity);
+        for (std::size_t k = 0; k < level_nodes_count_.size() && k < kPlanLevels; ++k)
+          caps_[k] = std::max(caps_[k], 2 * level_nodes_count_[k]);
+        resize_ = false;
+        make_status();
+        draw_into(noise.splat_job(f, nullptr, 0), w, h, gbuffer, output, total,
+                  [&](std::size_t b0, std::size_t m) { generate(b0, m); });
+      }
+    } else {
+      ok = walk_resident(noise, w, h, g.triangle_count, src);
+      if (ok) {
+        draw_into(
+            noise.splat_job(f, nullptr, 0), w, h, gbuffer, output,
+            g.triangle_count > 0 ? record_capacity() : 0,
+            [&](std::size_t b0, std::size_t m) { generate_resident(b0, m); }, true);
+        push_status();
+      }
     }
+    if (ok) ++gpu_frames_;
     triangle_buffers_[0] = stage1_buffers_[0];  // the records pass read the caller's until here
     triangle_buffers_[1] = stage1_buffers_[1];
     if (!ok) return false;
@@ -463,9 +554,12 @@ class npr_gabor_gpu {
   // `target` (R32F, w x h, cleared first), the G-buffer read from the textures g (depth, object
   // ids, triangle ids; those of tests the job does not run are not read). Both the CPU-image
   // path (draw) and the resident one (render_resident) splat here.
+  // indirect: `total` is the records' capacity, each batch drawn with the plan's count
+  // (glDrawArraysIndirect) from resident_records_.
   template <class Fill>
   void draw_into(const hush::detail::npr_gabor_splat_job& j, std::size_t w, std::size_t h,
-                 const gl_uint g[3], gl_uint target_texture, std::size_t total, Fill fill) {
+                 const gl_uint g[3], gl_uint target_texture, std::size_t total, Fill fill,
+                 bool indirect = false) {
     namespace c = hush::detail::constants;
     target(target_texture, w, h);
     gl_.UseProgram(program_.id());
@@ -492,13 +586,20 @@ class npr_gabor_gpu {
     gl_.ActiveTexture(static_cast<gl_enum>(active));
     // Records in batches of one storage block, drawn in order.
     const std::size_t batch = batch_records();
+    const gl_uint* records = indirect ? resident_records_ : buffers_;
     for (std::size_t b0 = 0; b0 < total; b0 += batch) {
       const std::size_t m = std::min(batch, total - b0);
       fill(b0, m);
       gl_.UseProgram(program_.id());
-      gl_.BindBufferBase(kGlShaderStorageBuffer, 0, buffers_[0]);
-      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, buffers_[1]);
-      gr_.DrawArrays(kGlPoints, 0, static_cast<gl_sizei>(m));
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 0, records[0]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, records[1]);
+      if (indirect) {
+        gl_.BindBuffer(kGlDrawIndirectBuffer, plan_);
+        const std::size_t at = (kDrawSlot * slot_words_ + 4 * (b0 / batch)) * 4;
+        gr_.DrawArraysIndirect(kGlPoints, reinterpret_cast<const void*>(at));
+      } else {
+        gr_.DrawArrays(kGlPoints, 0, static_cast<gl_sizei>(m));
+      }
       ++draws_;
     }
     for (gl_uint u = 0; u < 3; ++u) rs_.BindSampler(u, 0);
@@ -517,6 +618,7 @@ class npr_gabor_gpu {
       gl.GetIntegerv(kGlShaderStorageBufferBinding, &buffer_);
       gl.GetIntegerv(kGlTextureBinding2d, &texture_);
       gl.GetIntegerv(kGlPackAlignment, &pack_);
+      for (int i = 0; i < 5; ++i) gl.GetIntegerv(kBufferQueries[i], &buffers_[i]);
       for (int i = 0; i < 4; ++i) gl.GetIntegerv(kBlendQueries[i], &blend_[i]);
       gl.GetIntegerv(kGlBlendEquationRgb, &equation_[0]);
       gl.GetIntegerv(kGlBlendEquationAlpha, &equation_[1]);
@@ -533,6 +635,8 @@ class npr_gabor_gpu {
       gl_.BindBuffer(kGlShaderStorageBuffer, static_cast<gl_uint>(buffer_));
       gl_.BindTexture(kGlTexture2d, static_cast<gl_uint>(texture_));
       gl_.PixelStorei(kGlPackAlignment, pack_);
+      for (int i = 0; i < 5; ++i)
+        gl_.BindBuffer(kBufferTargets[i], static_cast<gl_uint>(buffers_[i]));
       gr_.BlendFuncSeparate(static_cast<gl_enum>(blend_[0]), static_cast<gl_enum>(blend_[1]),
                             static_cast<gl_enum>(blend_[2]), static_cast<gl_enum>(blend_[3]));
       gr_.BlendEquationSeparate(static_cast<gl_enum>(equation_[0]),
@@ -545,6 +649,15 @@ class npr_gabor_gpu {
                                                  kGlBlendDstAlpha};
     static constexpr gl_enum kCaps[5] = {kGlBlend, kGlDepthTest, kGlStencilTest, kGlScissorTest,
                                          kGlCullFace};
+    // The generic buffer bindings the resident walk uses (indirect commands, uniform block,
+    // copies), and their queries (GL_COPY_READ_BUFFER_BINDING is GL_COPY_READ_BUFFER's value).
+    static constexpr gl_enum kBufferTargets[5] = {kGlDispatchIndirectBuffer, kGlDrawIndirectBuffer,
+                                                  kGlUniformBuffer, kGlCopyReadBuffer,
+                                                  kGlCopyWriteBuffer};
+    static constexpr gl_enum kBufferQueries[5] = {
+        kGlDispatchIndirectBufferBinding, kGlDrawIndirectBufferBinding, kGlUniformBufferBinding,
+        kGlCopyReadBuffer, kGlCopyWriteBuffer};
+    gl_int buffers_[5] = {0, 0, 0, 0, 0};
     const gl_api& gl_;
     const gl_raster_api& gr_;
     gl_int program_ = 0, vao_ = 0, draw_ = 0, read_ = 0, buffer_ = 0, texture_ = 0, pack_ = 4;
@@ -600,7 +713,6 @@ class npr_gabor_gpu {
   // minimum GL_MAX_COMPUTE_WORK_GROUP_COUNT) per dispatch; hush_group_base says where a
   // dispatch starts.
   void dispatch(gl_uint prog, std::size_t items, std::size_t group) const {
-    constexpr std::size_t kMaxGroups = 65535;
     const std::size_t groups = (items + group - 1) / group;
     for (std::size_t g0 = 0; g0 < groups; g0 += kMaxGroups) {
       set(prog, "hush_group_base", static_cast<gl_uint>(g0));
@@ -652,7 +764,7 @@ class npr_gabor_gpu {
       gl_.UseProgram(prog);
       gl_.BindBufferBase(kGlShaderStorageBuffer, 0, data);
       gl_.BindBufferBase(kGlShaderStorageBuffer, 1, sums);
-      set(prog, "hush_items", static_cast<gl_uint>(n));
+      set(prog, "hush_items_host", static_cast<gl_uint>(n));
       set(prog, "hush_add", add);
       run(kScanPass, groups * kNprGaborScanSize, kNprGaborScanSize);
     };
@@ -702,11 +814,9 @@ class npr_gabor_gpu {
     return objects;
   }
 
-  // Stage 1 from the triangles in triangle_buffers_ (vertices, triangles; the layouts of
-  // npr_gabor_gl_frame): the kernel table, the LODs, the walk (state guarded by the caller).
-  bool walk(const npr_gabor& noise, std::size_t width, std::size_t height, std::size_t nt,
-            const npr_gabor::sources& src, std::size_t& total) {
-    const std::size_t most = dev_.max_buffer_bytes();
+  // The kernel table, the per-triangle buffers and every pass's frame uniforms (both walks).
+  void prepare(const npr_gabor& noise, std::size_t width, std::size_t height, std::size_t nt,
+               const npr_gabor::sources& src) {
     const std::size_t objects = table_entries(src);
     floats_.assign((objects + 1) * 8, 0.0f);
     for (std::size_t o = 0; o <= objects; ++o) {
@@ -725,6 +835,7 @@ class npr_gabor_gpu {
     upload(2, floats_.data(), floats_.size() * 4, 2);
     upload(3, nullptr, nt * kNprGaborLodBytes, 3);
     upload(4, nullptr, nt * 8, 4);
+    bind_slot(1);  // the plan's block is declared, not read (the host's counts)
     const npr_gabor::params& p = noise.parameters();
     for (int pass = 0; pass < kNprGaborStage1Passes; ++pass) {
       const gl_uint prog = stage1_[pass].id();
@@ -739,6 +850,15 @@ class npr_gabor_gpu {
       set(prog, "hush_isotropic", p.isotropic ? 1u : 0u);
       set(prog, "hush_local", p.local_density ? 1u : 0u);
     }
+  }
+
+  // Stage 1 from the triangles in triangle_buffers_ (vertices, triangles; the layouts of
+  // npr_gabor_gl_frame): the kernel table, the LODs, the walk (state guarded by the caller),
+  // each level's totals read back (8 bytes per scan) to size the next level exactly.
+  bool walk(const npr_gabor& noise, std::size_t width, std::size_t height, std::size_t nt,
+            const npr_gabor::sources& src, std::size_t& total) {
+    const std::size_t most = dev_.max_buffer_bytes();
+    prepare(noise, width, height, nt, src);
     level_nodes_count_.clear();
     level_first_.clear();
     level_records_.clear();
@@ -768,7 +888,7 @@ class npr_gabor_gpu {
       allocate(flags, n * 8);
       for (const int pass : {kExpandPass, kChildrenPass, kRecordsPass}) {
         gl_.UseProgram(stage1_[pass].id());
-        set(stage1_[pass].id(), "hush_nodes", static_cast<gl_uint>(n));
+        set(stage1_[pass].id(), "hush_nodes_host", static_cast<gl_uint>(n));
         set(stage1_[pass].id(), "hush_level", static_cast<gl_uint>(k));
       }
       gl_.UseProgram(stage1_[kExpandPass].id());
@@ -799,6 +919,266 @@ class npr_gabor_gpu {
     return true;
   }
 
+  // ---- The resident walk (render_resident after its first frame): no read-back. The host
+  // issues every level's passes (kPlanLevels, the deepest any walk reaches) over buffers of
+  // the capacities caps_; after each scan the plan pass (kNprGaborPlan) writes the next
+  // level's count, its dispatch commands and the draws' counts into plan_, and the passes run
+  // with glDispatchComputeIndirect / glDrawArraysIndirect (an empty level: zero work groups).
+
+  // Slices of kMaxGroups work groups that cover `nodes` nodes (GL 4.3's minimum count per
+  // dispatch dimension).
+  static std::size_t slices(std::size_t nodes) {
+    const std::size_t groups = (nodes + kNprGaborGroupSize - 1) / kNprGaborGroupSize;
+    return std::max<std::size_t>(1, (groups + kMaxGroups - 1) / kMaxGroups);
+  }
+  std::size_t slot_bytes(std::size_t slot) const { return slot * slot_words_ * 4; }
+  // Plan slot `slot` as the passes' uniform block (binding 0).
+  void bind_slot(std::size_t slot) const {
+    gr_.BindBufferRange(kGlUniformBuffer, 0, plan_, static_cast<gl_intptr>(slot_bytes(slot)), 32);
+  }
+  void barrier() const {
+    gl_.MemoryBarrier(kGlShaderStorageBarrierBit | kGlUniformBarrierBit | kGlCommandBarrierBit |
+                      kGlBufferUpdateBarrierBit);
+  }
+  // Records the capacities hold: every level's nodes (a node has at most one record).
+  std::size_t record_capacity() const {
+    std::size_t n = 0;
+    for (const std::size_t c : caps_) n += c;
+    return n;
+  }
+  std::size_t batches() const {
+    const std::size_t batch = batch_records();
+    return (record_capacity() + batch - 1) / batch;
+  }
+  // Whether the capacities fit: each level's buffers in one storage block, its node passes
+  // within kMaxSlices dispatches and its scans within one per depth, at most
+  // kDrawSlots * slot_words_ / 4 draws, records below 2^32.
+  bool capacities_fit() const {
+    const std::size_t most = dev_.max_buffer_bytes();
+    for (const std::size_t c : caps_)
+      if (c * kNprGaborNodeBytes > most || c > kMaxGroups * kNprGaborScanBlock ||
+          slices(c) > kMaxSlices)
+        return false;
+    return record_capacity() <= 0xFFFFFFFFu && batches() <= kDrawSlots * slot_words_ / 4;
+  }
+  // Buffers for the capacities (made or grown when they change, not per frame).
+  void allocate_resident(std::size_t nt) {
+    bool changed = res_caps_ != caps_ || res_triangles_ < nt;
+    if (!changed) return;
+    for (std::size_t k = 0; k < kPlanLevels; ++k) {
+      allocate(buffer_at(res_nodes_, k), caps_[k] * kNprGaborNodeBytes);
+      allocate(buffer_at(res_flags_, k), caps_[k] * 8);
+    }
+    // The scans' block totals per depth: the largest list (a level's or the triangles').
+    std::size_t items = std::max(nt, *std::max_element(caps_.begin(), caps_.end()));
+    std::size_t d = 0;
+    do {
+      items = (items + kNprGaborScanBlock - 1) / kNprGaborScanBlock;
+      allocate(buffer_at(res_sums_, d++), items * 8);
+    } while (items > 1);
+    const std::size_t m = std::min(batch_records(), record_capacity());
+    allocate(resident_records_[0], m * kNprGaborRecordBytes);
+    allocate(resident_records_[1], m * 16);
+    res_caps_ = caps_;
+    res_triangles_ = nt;
+  }
+  // The exclusive prefix sum of `data` in place, as scan() but without read-back: `items`
+  // counted by the host, or (gpu) at most `items`, the plan's count of the bound slot `slot`,
+  // dispatched from its commands. Returns the buffer whose first uvec2 is the total.
+  gl_uint scan_resident(gl_uint data, std::size_t items, std::size_t depth, bool gpu,
+                        std::size_t slot) {
+    const gl_uint prog = stage1_[kScanPass].id();
+    const std::size_t groups = (items + kNprGaborScanBlock - 1) / kNprGaborScanBlock;
+    const gl_uint sums = res_sums_[depth];
+    const auto pass = [&](gl_uint add) {
+      gl_.UseProgram(prog);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 0, data);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 1, sums);
+      set(prog, "hush_items_host", gpu ? kGpuCount : static_cast<gl_uint>(items));
+      set(prog, "hush_depth", static_cast<gl_uint>(depth));
+      set(prog, "hush_add", add);
+      set(prog, "hush_group_base", 0u);
+      if (gpu) {
+        gl_.BindBuffer(kGlDispatchIndirectBuffer, plan_);
+        gr_.DispatchComputeIndirect(
+            static_cast<gl_intptr>(slot_bytes(slot) + (kScanArgsWord + 3 * depth) * 4));
+      } else {
+        gl_.DispatchCompute(static_cast<gl_uint>(groups), 1, 1);
+      }
+      barrier();
+    };
+    pass(0);
+    if (groups <= 1) return sums;
+    const gl_uint total = scan_resident(sums, groups, depth + 1, gpu, slot);
+    pass(1);
+    return total;
+  }
+  // The plan pass after the scan of `level` (kGpuCount: the triangles'), whose total is the
+  // first uvec2 of `total`; the next level holds `cap` nodes.
+  void plan(gl_uint level, gl_uint total, std::size_t cap) {
+    const gl_uint prog = plan_program_.id();
+    gl_.UseProgram(prog);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 0, total);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 1, plan_);
+    set(prog, "hush_plan_level", level);
+    set(prog, "hush_plan_cap", static_cast<gl_uint>(cap));
+    set(prog, "hush_plan_stride", static_cast<gl_uint>(slot_words_));
+    set(prog, "hush_plan_slices", static_cast<gl_uint>(slices(cap)));
+    set(prog, "hush_plan_batch", static_cast<gl_uint>(batch_records()));
+    set(prog, "hush_plan_batches", static_cast<gl_uint>(batches()));
+    set(prog, "hush_plan_draws", static_cast<gl_uint>(kDrawSlot * slot_words_));
+    gl_.DispatchCompute(1, 1, 1);
+    barrier();
+  }
+  // Runs a node pass of level k (its slot bound) from the plan's commands.
+  void dispatch_level(gl_uint prog, std::size_t k) const {
+    gl_.BindBuffer(kGlDispatchIndirectBuffer, plan_);
+    for (std::size_t i = 0; i < slices(caps_[k]); ++i) {
+      set(prog, "hush_group_base", static_cast<gl_uint>(i * kMaxGroups));
+      gr_.DispatchComputeIndirect(
+          static_cast<gl_intptr>(slot_bytes(1 + k) + (kNodeArgsWord + 3 * i) * 4));
+    }
+    barrier();
+  }
+  // Stage 1 up to the records without read-back (the state guarded by the caller). False
+  // where the capacities exceed what one storage block or dispatch holds.
+  bool walk_resident(const npr_gabor& noise, std::size_t width, std::size_t height, std::size_t nt,
+                     const npr_gabor::sources& src) {
+    caps_[0] = std::max(caps_[0], nt);  // one root per triangle at most: known here
+    if (!capacities_fit()) return false;
+    allocate_resident(nt);
+    prepare(noise, width, height, nt, src);
+    levels_ = kPlanLevels;
+    nodes_ = 0;
+    if (nt == 0) return true;
+    // Level 0: the LOD of every triangle, the roots at their scanned offsets.
+    gl_.UseProgram(stage1_[kLodsPass].id());
+    bind_stage1();
+    run(kLodsPass, nt, kNprGaborGroupSize);
+    plan(kGpuCount, scan_resident(stage1_buffers_[4], nt, 0, false, 0), caps_[0]);
+    gl_.UseProgram(stage1_[kRootsPass].id());
+    bind_stage1();
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 6, res_nodes_[0]);
+    run(kRootsPass, nt, kNprGaborGroupSize);
+    for (std::size_t k = 0; k < kPlanLevels; ++k) {
+      bind_slot(1 + k);
+      for (const int pass : {kExpandPass, kChildrenPass}) {
+        gl_.UseProgram(stage1_[pass].id());
+        set(stage1_[pass].id(), "hush_nodes_host", kGpuCount);
+        set(stage1_[pass].id(), "hush_level", static_cast<gl_uint>(k));
+      }
+      gl_.UseProgram(stage1_[kExpandPass].id());
+      bind_stage1();
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, res_flags_[k]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, res_nodes_[k]);
+      dispatch_level(stage1_[kExpandPass].id(), k);
+      const gl_uint total = scan_resident(res_flags_[k], caps_[k], 0, true, 1 + k);
+      const bool last = k + 1 == kPlanLevels;
+      plan(static_cast<gl_uint>(k), total, last ? 0 : caps_[k + 1]);
+      if (last) break;
+      bind_slot(1 + k);
+      gl_.UseProgram(stage1_[kChildrenPass].id());
+      bind_stage1();
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, res_flags_[k]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, res_nodes_[k]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 6, res_nodes_[k + 1]);
+      dispatch_level(stage1_[kChildrenPass].id(), k);
+    }
+    gl_.check("hush::glsl::npr_gabor: stage 1 (the resident walk)");
+    return true;
+  }
+  // The records pass of the resident walk for records b0 ... b0 + m - 1 into
+  // resident_records_: every level, from the plan's commands (the shader skips records
+  // outside the batch).
+  void generate_resident(std::size_t b0, std::size_t m) {
+    barrier();  // the last draw's reads come first
+    const gl_uint prog = stage1_[kRecordsPass].id();
+    gl_.UseProgram(prog);
+    bind_stage1();
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 6, resident_records_[0]);
+    gl_.BindBufferBase(kGlShaderStorageBuffer, 7, resident_records_[1]);
+    set(prog, "hush_base", static_cast<gl_uint>(b0));
+    set(prog, "hush_batch", static_cast<gl_uint>(m));
+    set(prog, "hush_nodes_host", kGpuCount);
+    set(prog, "hush_first_host", kGpuCount);
+    for (std::size_t k = 0; k < kPlanLevels; ++k) {
+      bind_slot(1 + k);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 4, res_flags_[k]);
+      gl_.BindBufferBase(kGlShaderStorageBuffer, 5, res_nodes_[k]);
+      set(prog, "hush_level", static_cast<gl_uint>(k));
+      dispatch_level(prog, k);
+    }
+    gl_.check("hush::glsl::npr_gabor: stage 1 (resident records)");
+  }
+
+  // ---- The status: slot 0's first kStatusWords words (levels clamped, records, the most
+  // nodes each level needed), copied on the GPU after each resident frame into a ring of
+  // kStatusRing entries, each with a fence; the host reads an entry only once its fence has
+  // signalled (glClientWaitSync with timeout 0: never waits), from a persistently mapped
+  // buffer where the context has glBufferStorage (GL 4.4, ARB_buffer_storage), else with
+  // glGetBufferSubData (a read of 128 bytes the GPU has already written).
+  void make_status() {
+    if (status_ != 0u) return;
+    gl_.GenBuffers(1, &status_);
+    gl_.BindBuffer(kGlCopyWriteBuffer, status_);
+    const std::size_t bytes = kStatusRing * kStatusWords * 4;
+    using storage_fn = void(HUSH_GLAPI*)(gl_enum, gl_sizeiptr, const void*, gl_bitfield);
+    using map_fn = void*(HUSH_GLAPI*)(gl_enum, gl_intptr, gl_sizeiptr, gl_bitfield);
+    const auto storage = reinterpret_cast<storage_fn>(gl_.loader("glBufferStorage"));
+    const auto map = reinterpret_cast<map_fn>(gl_.loader("glMapBufferRange"));
+    gl_int major = 0, minor = 0;
+    gl_.GetIntegerv(kGlMajorVersion, &major);
+    gl_.GetIntegerv(kGlMinorVersion, &minor);
+    if (storage && map && (major > 4 || (major == 4 && minor >= 4))) {
+      const gl_bitfield flags = kGlMapReadBit | kGlMapPersistentBit | kGlMapCoherentBit;
+      storage(kGlCopyWriteBuffer, static_cast<gl_sizeiptr>(bytes), nullptr, flags);
+      status_map_ = static_cast<const std::uint32_t*>(
+          map(kGlCopyWriteBuffer, 0, static_cast<gl_sizeiptr>(bytes), flags));
+    }
+    if (!status_map_)
+      gl_.BufferData(kGlCopyWriteBuffer, static_cast<gl_sizeiptr>(bytes), nullptr, kGlDynamicRead);
+    gl_.check("hush::glsl::npr_gabor: the status buffer");
+  }
+  // After a resident frame: its status into the next ring entry, fenced (skipped while every
+  // entry waits for the GPU: the needed counts are maxima, a later copy carries them).
+  void push_status() {
+    void*& fence = status_fences_[status_next_];
+    if (fence) return;
+    gl_.BindBuffer(kGlCopyReadBuffer, plan_);
+    gl_.BindBuffer(kGlCopyWriteBuffer, status_);
+    gr_.CopyBufferSubData(kGlCopyReadBuffer, kGlCopyWriteBuffer, 0,
+                          static_cast<gl_intptr>(status_next_ * kStatusWords * 4),
+                          static_cast<gl_sizeiptr>(kStatusWords * 4));
+    fence = gr_.FenceSync(kGlSyncGpuCommandsComplete, 0);
+    status_next_ = (status_next_ + 1) % kStatusRing;
+  }
+  // Before a resident frame: every entry whose fence has signalled, oldest first; where a
+  // level needed more nodes than its capacity (its own count is exact, the deeper levels'
+  // only count the children of the nodes kept), the frame is walked with read-backs again.
+  void poll_status() {
+    for (std::size_t i = 0; i < kStatusRing; ++i) {
+      const std::size_t e = (status_next_ + i) % kStatusRing;
+      void*& fence = status_fences_[e];
+      if (!fence) continue;
+      const gl_enum r = gr_.ClientWaitSync(fence, 0, 0);
+      if (r != kGlAlreadySignaled && r != kGlConditionSatisfied) break;
+      gr_.DeleteSync(fence);
+      fence = nullptr;
+      std::uint32_t w[kStatusWords];
+      if (status_map_) {
+        std::memcpy(w, status_map_ + e * kStatusWords, sizeof w);
+      } else {
+        gl_.BindBuffer(kGlCopyReadBuffer, status_);
+        gl_.GetBufferSubData(kGlCopyReadBuffer, static_cast<gl_intptr>(e * kStatusWords * 4),
+                             sizeof w, w);
+      }
+      if (w[0] > overflows_seen_) {
+        overflows_seen_ = w[0];
+        resize_ = true;
+      }
+    }
+  }
+
   // Stage 1's last pass for records b0 ... b0 + m - 1 (the frame's records level by level):
   // into buffers_[0] and buffers_[1], from every level whose records meet the batch.
   void generate(std::size_t b0, std::size_t m) {
@@ -806,6 +1186,7 @@ class npr_gabor_gpu {
     const gl_uint prog = stage1_[kRecordsPass].id();
     gl_.UseProgram(prog);
     bind_stage1();
+    bind_slot(1);  // the plan's block is declared, not read (the host's counts)
     gl_.BindBuffer(kGlShaderStorageBuffer, buffers_[0]);
     gl_.BufferData(kGlShaderStorageBuffer, static_cast<gl_sizeiptr>(m * 64), nullptr,
                    kGlStreamDraw);
@@ -818,8 +1199,8 @@ class npr_gabor_gpu {
     set(prog, "hush_batch", static_cast<gl_uint>(m));
     for (std::size_t k = 0; k < level_nodes_count_.size(); ++k) {
       if (level_first_[k] + level_records_[k] <= b0 || level_first_[k] >= b0 + m) continue;
-      set(prog, "hush_nodes", static_cast<gl_uint>(level_nodes_count_[k]));
-      set(prog, "hush_first", static_cast<gl_uint>(level_first_[k]));
+      set(prog, "hush_nodes_host", static_cast<gl_uint>(level_nodes_count_[k]));
+      set(prog, "hush_first_host", static_cast<gl_uint>(level_first_[k]));
       gl_.BindBufferBase(kGlShaderStorageBuffer, 4, level_flags_[k]);
       gl_.BindBufferBase(kGlShaderStorageBuffer, 5, level_nodes_[k]);
       dispatch(prog, level_nodes_count_[k], kNprGaborGroupSize);
@@ -836,6 +1217,20 @@ class npr_gabor_gpu {
                        kChildrenPass = 4, kRecordsPass = 5;
   // Deeper than any J below 2^41 reaches (21): a guard, never taken.
   static constexpr std::size_t kMaxLevels = 24;
+  // The resident walk: levels 0 ... npr_gabor::max_depth() (the finest keeps no children);
+  // work groups per dispatch (GL 4.3's minimum GL_MAX_COMPUTE_WORK_GROUP_COUNT); a level's
+  // least capacity (nodes); "the plan's count" for the count uniforms.
+  static constexpr std::size_t kPlanLevels = 22;
+  static constexpr std::size_t kMaxGroups = 65535;
+  static constexpr std::size_t kMinCapacity = 4096;
+  static constexpr gl_uint kGpuCount = 0xFFFFFFFFu;
+  // Plan layout (words within a slot, kNprGaborPlan): node-pass commands, scan commands;
+  // slot 0's needed counts; the draws' slots after the levels' (0, 1 ... kPlanLevels + 1).
+  static constexpr std::size_t kNodeArgsWord = 8, kScanArgsWord = 32, kNeededWord = 8;
+  static constexpr std::size_t kMaxSlices = (kScanArgsWord - kNodeArgsWord) / 3;
+  static constexpr std::size_t kDrawSlot = kPlanLevels + 2, kDrawSlots = 2;
+  static constexpr std::size_t kStatusWords = 32, kStatusRing = 4;
+  static_assert(kNeededWord + kPlanLevels + 1 <= kStatusWords, "status layout");
 
   glsl::device& dev_;
   const gl_api& gl_;
@@ -844,6 +1239,20 @@ class npr_gabor_gpu {
   npr_gabor_limits limits_;
   gl_program program_;
   gl_program stage1_[kNprGaborStage1Passes];
+  gl_program plan_program_;
+  // The resident walk: the plan, capacities per level (empty: not sized yet) and the ones the
+  // buffers were made for, its buffers, the status ring.
+  gl_uint plan_ = 0;
+  std::size_t slot_words_ = 64;
+  std::vector<std::size_t> caps_, res_caps_;
+  std::size_t res_triangles_ = 0;
+  std::vector<gl_uint> res_nodes_, res_flags_, res_sums_;
+  gl_uint resident_records_[2] = {0, 0};
+  gl_uint status_ = 0;
+  const std::uint32_t* status_map_ = nullptr;
+  void* status_fences_[kStatusRing] = {nullptr, nullptr, nullptr, nullptr};
+  std::size_t status_next_ = 0, overflows_seen_ = 0;
+  bool resize_ = false;
   gl_uint buffers_[2] = {0, 0};  // records, ids
   gl_uint stage1_buffers_[kStage1Buffers] = {0, 0, 0, 0, 0};
   // The vertices and triangles stage 1 reads: stage1_buffers_[0, 1] or the caller's.
