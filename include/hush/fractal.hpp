@@ -134,10 +134,10 @@ class fractal : public point_noise<fractal<Noise>, Noise::dimension> {
   // its frequency, and its position f_i x + o_i in double, exactly as value()
   // forms it.
   int band_count() const { return static_cast<int>(bands_.size()); }
-  const Noise& band_noise(int i) const { return bands_[i].noise; }
-  double band_raw_weight(int i) const { return bands_[i].weight; }
+  const Noise& band_noise(int i) const { return bands_[static_cast<std::size_t>(i)].noise; }
+  double band_raw_weight(int i) const { return bands_[static_cast<std::size_t>(i)].weight; }
   vec<double, D> band_position(int i, const vec<double, D>& p) const {
-    return bands_[i].position(p);
+    return bands_[static_cast<std::size_t>(i)].position(p);
   }
   // The normalisation factor K applied to the weighted sum.
   double scale() const { return scale_; }

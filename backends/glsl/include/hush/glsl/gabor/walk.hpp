@@ -91,12 +91,14 @@ std::array<std::uint32_t, gabor_par::kCount> gabor_par_words(const gabor<D>& g) 
   par[P::kPhi0] = bits(float(m.phi0()));
   par[P::kDPhi] = bits(float(m.dphi()));
   if constexpr (D == 3) par[P::kOneMinusCap] = bits(float(1.0 - m.cos_cap()));
-  for (int i = 0; i < 3; ++i) {
-    par[P::kFixed + i] = bits(i < D ? float(m.fixed_frequency()[i]) : 0.0f);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const int axis = static_cast<int>(i);
+    par[static_cast<std::size_t>(P::kFixed) + i] =
+        bits(axis < D ? float(m.fixed_frequency()[axis]) : 0.0f);
     if constexpr (D == 3) {
-      par[P::kFrameT + i] = bits(float(m.frame_t()[i]));
-      par[P::kFrameB + i] = bits(float(m.frame_b()[i]));
-      par[P::kFrameAxis + i] = bits(float(m.frame_axis()[i]));
+      par[static_cast<std::size_t>(P::kFrameT) + i] = bits(float(m.frame_t()[axis]));
+      par[static_cast<std::size_t>(P::kFrameB) + i] = bits(float(m.frame_b()[axis]));
+      par[static_cast<std::size_t>(P::kFrameAxis) + i] = bits(float(m.frame_axis()[axis]));
     }
   }
   // gabor_filter's k = 2 A sigma^2 / r^2 and pi^2 / A.

@@ -415,8 +415,8 @@ shader_kit shader_for(const wavelet<D>& w) {
   }
   // Band i's offset o_b - 1/2 (its position at p = 0), split into its integer cell
   // modulo the split period and its fraction.
-  std::uint32_t cells[kMax][4] = {};
-  float fracs[kMax][4] = {};
+  std::uint32_t cells[static_cast<std::size_t>(kMax)][4] = {};
+  float fracs[static_cast<std::size_t>(kMax)][4] = {};
   for (int i = 0; i < nb; ++i) {
     const vec<double, D> o = w.band_position(i, vec<double, D>{});
     for (int a = 0; a < D; ++a) {
