@@ -155,6 +155,7 @@ std::vector<bench_case> all_cases(const sizes& s) {
 #endif
 #if HUSH_BENCH_HAVE_GLSL
   add_pass(cases, s, bench_pass::glsl);
+  add_kit_cases(cases, s);
 #endif
   add_peer_cases(cases, s);
   // Rows made by copying a case (the backend and pinned-target variants) copied its quality

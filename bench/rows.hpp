@@ -54,6 +54,9 @@ void add_peer_cases(std::vector<bench_case>& cases, const sizes& s);
 // The GLSL rows run on one headless context for the whole process (OSMesa's llvmpipe here;
 // HUSH_GL_CONTEXT=egl: the machine's GPU).
 hush::glsl::device& bench_glsl_device();
+// Each noise's shader kit in a user's fragment shader (kit_cases.cpp): the "glsl kit" rows,
+// after the glsl pass.
+void add_kit_cases(std::vector<bench_case>& cases, const sizes& s);
 #endif
 // The pool the parallel pass's rows run on (kBenchThreads threads, made on first use).
 hush::thread_pool& bench_thread_pool();
