@@ -45,6 +45,7 @@ ARGUMENTS = {
     "triangle_id": "npt.ArrayLike",
     "frame_object_id": "npt.ArrayLike | None",
     "frame_triangle_id": "npt.ArrayLike | None",
+    "out": "npt.NDArray[np.float32] | None",
 }
 
 ARRAY = "npt.NDArray[np.float32]"

@@ -113,15 +113,36 @@ inline float_array as_rows(const py::handle& a, const char* name, py::ssize_t co
   return f;
 }
 
+// The array a result is written to: a new one of `shape` when `out` is None, else `out` itself,
+// which must be a writable C-contiguous float32 array of that shape (reused across calls, it
+// saves the allocation and first touch of a new array: bench/overhead.py).
+inline float_array output(const py::object& out, const std::vector<py::ssize_t>& shape) {
+  if (out.is_none()) return float_array(shape);
+  std::string want = "(";
+  for (const py::ssize_t n : shape) want += std::to_string(n) + (shape.size() == 1 ? ",)" : ", ");
+  if (shape.size() != 1) want = want.substr(0, want.size() - 2) + ")";
+  const auto fail = [&] {
+    throw py::value_error("out: valid: None or a writable C-contiguous float32 array of shape " +
+                          want);
+  };
+  if (!py::isinstance<py::array_t<float, py::array::c_style>>(out)) fail();
+  auto a = py::reinterpret_borrow<float_array>(out);
+  if (!a.writeable() || a.ndim() != static_cast<py::ssize_t>(shape.size())) fail();
+  for (std::size_t i = 0; i < shape.size(); ++i)
+    if (a.shape(static_cast<py::ssize_t>(i)) != shape[i]) fail();
+  return a;
+}
+
 // The values at `points` ((N, D) positions) of a point noise, as a float32 array of N.
 template <class Noise>
 float_array evaluate_points(const Noise& n, const py::handle& points,
-                            const std::string& backend_name, int threads) {
+                            const std::string& backend_name, int threads,
+                            const py::object& out_arg = py::none()) {
   constexpr int D = Noise::dimension;
   const backend b = parse_backend(backend_name, threads);
   const float_array p = as_rows(points, "points", D);
   const auto count = static_cast<std::size_t>(p.shape(0));
-  float_array out(static_cast<py::ssize_t>(count));
+  float_array out = output(out_arg, {static_cast<py::ssize_t>(count)});
   const auto* pts = reinterpret_cast<const hush::vec<float, D>*>(p.data());
   float* o = out.mutable_data();
   {
@@ -205,7 +226,8 @@ hush::grid<D> as_grid(const std::vector<py::ssize_t>& shape, const py::handle& o
 template <class Noise>
 float_array evaluate_grid(const Noise& n, const std::vector<py::ssize_t>& shape,
                           const py::handle& origin, const py::handle& step, const py::object& block,
-                          const std::string& backend_name, int threads) {
+                          const std::string& backend_name, int threads,
+                          const py::object& out_arg = py::none()) {
   constexpr int D = Noise::dimension;
   const backend b = parse_backend(backend_name, threads);
   hush::grid<D> g = as_grid<D>(shape, origin, step);
@@ -233,7 +255,7 @@ float_array evaluate_grid(const Noise& n, const std::vector<py::ssize_t>& shape,
     g = g.block(first, count);
     out_shape = size;
   }
-  float_array out(out_shape);
+  float_array out = output(out_arg, out_shape);
   float* o = out.mutable_data();
   {
     py::gil_scoped_release release;
@@ -248,7 +270,8 @@ float_array evaluate_grid(const Noise& n, const std::vector<py::ssize_t>& shape,
 template <class Noise>
 float_array evaluate_samples(const Noise& n, const py::handle& points, const py::object& footprints,
                              const py::object& normals, const py::object& surface_maps,
-                             const std::string& backend_name, int threads) {
+                             const std::string& backend_name, int threads,
+                             const py::object& out_arg = py::none()) {
   constexpr int D = Noise::dimension;
   const backend b = parse_backend(backend_name, threads);
   const float_array p = as_rows(points, "points", D);
@@ -302,7 +325,7 @@ float_array evaluate_samples(const Noise& n, const py::handle& points, const py:
     }
     s.surface_maps = {maps.data(), maps.size()};
   }
-  float_array out(static_cast<py::ssize_t>(count));
+  float_array out = output(out_arg, {static_cast<py::ssize_t>(count)});
   float* o = out.mutable_data();
   {
     py::gil_scoped_release release;
@@ -462,13 +485,17 @@ void add_point_methods(py::class_<held<Noise>>& c) {
   using H = held<Noise>;
   c.def(
       "__call__",
-      [](const H& h, const py::handle& points, const std::string& backend_name, int threads) {
-        return evaluate_points(h.noise, points, backend_name, threads);
+      [](const H& h, const py::handle& points, const std::string& backend_name, int threads,
+         const py::object& out) {
+        return evaluate_points(h.noise, points, backend_name, threads, out);
       },
       py::arg("points"), py::arg("backend") = "simd", py::arg("threads") = 1,
+      py::arg("out") = py::none(),
       method_doc("Values at points, an (N, D) array (float32 is used without a copy), as float32 "
                  "(N,). backend: 'simd' (default), 'scalar' or 'glsl' (the process's GL device); "
-                 "threads: 1 (default), 0 (one per hardware thread) or n (scalar and simd).",
+                 "threads: 1 (default), 0 (one per hardware thread) or n (scalar and simd). "
+                 "out: None (a new array) or a writable C-contiguous float32 array of shape (N,), "
+                 "written and returned (no allocation per call).",
                  {docs::exec_points, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
                   docs::exec_parallel, docs::exec_NaN}));
   c.def(
@@ -485,38 +512,40 @@ void add_point_methods(py::class_<held<Noise>>& c) {
       "grid",
       [](const H& h, const std::vector<py::ssize_t>& shape, const py::handle& origin,
          const py::handle& step, const std::string& backend_name, int threads,
-         const py::object& block) {
-        return evaluate_grid(h.noise, shape, origin, step, block, backend_name, threads);
+         const py::object& block, const py::object& out) {
+        return evaluate_grid(h.noise, shape, origin, step, block, backend_name, threads, out);
       },
       py::arg("shape"), py::arg("origin") = 0.0, py::arg("step") = 1.0, py::arg("backend") = "simd",
-      py::arg("threads") = 1, py::arg("block") = py::none(),
+      py::arg("threads") = 1, py::arg("block") = py::none(), py::arg("out") = py::none(),
       method_doc(
           "Values on a uniform grid: shape (ny, nx) or (nz, ny, nx); sample (i, j[, k]) is at "
           "origin + step * (i, j[, k]), i along x (numpy's last axis), positions in double. "
           "block=(start, size) (numpy axis order) returns only that block of the grid, bit for "
-          "bit the same samples as the whole grid's call. backend and threads as for __call__.",
+          "bit the same samples as the whole grid's call. backend, threads and out (of the "
+          "returned shape) as for __call__.",
           {docs::exec_grids, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
            docs::exec_parallel, docs::exec_NaN}));
   // The C++ calls __call__ and grid make, timed without Python objects: the same inputs (the
-  // points converted once), a preallocated output, the GIL released; seconds per repeat. For
-  // bench/overhead.py, which compares them with the Python calls.
+  // points converted once), the output `out` (or one array for all repeats), the GIL released;
+  // seconds per repeat. For bench/overhead.py, which compares them with the Python calls.
   c.def(
       "_cpp_seconds_points",
       [](const H& h, const py::handle& points, const std::string& backend_name, int threads,
-         int repeats) {
+         int repeats, const py::object& out_arg) {
         constexpr int D = Noise::dimension;
         const backend b = parse_backend(backend_name, threads);
         const float_array p = as_rows(points, "points", D);
         const auto count = static_cast<std::size_t>(p.shape(0));
         const auto* pts = reinterpret_cast<const hush::vec<float, D>*>(p.data());
-        std::vector<float> out(count);
+        float_array out = output(out_arg, {static_cast<py::ssize_t>(count)});
+        float* o = out.mutable_data();
         std::vector<double> seconds;
         py::gil_scoped_release release;
         for (int r = 0; r < repeats; ++r) {
           const auto t0 = std::chrono::steady_clock::now();
           with_exec(b, [&](const auto& ex) {
             hush::evaluate(h.noise, ex, hush::span<const hush::vec<float, D>>(pts, count),
-                           hush::span<float>(out.data(), count));
+                           hush::span<float>(o, count));
           });
           seconds.push_back(
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -524,21 +553,23 @@ void add_point_methods(py::class_<held<Noise>>& c) {
         return seconds;
       },
       py::arg("points"), py::arg("backend") = "simd", py::arg("threads") = 1,
-      py::arg("repeats") = 1);
+      py::arg("repeats") = 1, py::arg("out") = py::none());
   c.def(
       "_cpp_seconds_grid",
       [](const H& h, const std::vector<py::ssize_t>& shape, const py::handle& origin,
-         const py::handle& step, const std::string& backend_name, int threads, int repeats) {
+         const py::handle& step, const std::string& backend_name, int threads, int repeats,
+         const py::object& out_arg) {
         constexpr int D = Noise::dimension;
         const backend b = parse_backend(backend_name, threads);
         const hush::grid<D> g = as_grid<D>(shape, origin, step);
-        std::vector<float> out(g.count());
+        float_array out = output(out_arg, shape);
+        float* o = out.mutable_data();
         std::vector<double> seconds;
         py::gil_scoped_release release;
         for (int r = 0; r < repeats; ++r) {
           const auto t0 = std::chrono::steady_clock::now();
           with_exec(b, [&](const auto& ex) {
-            hush::evaluate_grid(h.noise, ex, g, hush::span<float>(out.data(), out.size()));
+            hush::evaluate_grid(h.noise, ex, g, hush::span<float>(o, g.count()));
           });
           seconds.push_back(
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -546,7 +577,7 @@ void add_point_methods(py::class_<held<Noise>>& c) {
         return seconds;
       },
       py::arg("shape"), py::arg("origin") = 0.0, py::arg("step") = 1.0, py::arg("backend") = "simd",
-      py::arg("threads") = 1, py::arg("repeats") = 1);
+      py::arg("threads") = 1, py::arg("repeats") = 1, py::arg("out") = py::none());
   c.def_property_readonly_static("dimension", [](py::object) { return Noise::dimension; });
 }
 
@@ -558,16 +589,17 @@ void add_sample_methods(py::class_<held<Noise>>& c) {
       "sample",
       [](const held<Noise>& h, const py::handle& points, const py::object& footprints,
          const py::object& normals, const py::object& surface_maps, const std::string& backend_name,
-         int threads) {
+         int threads, const py::object& out) {
         return evaluate_samples(h.noise, points, footprints, normals, surface_maps, backend_name,
-                                threads);
+                                threads, out);
       },
       py::arg("points"), py::arg("footprints") = py::none(), py::arg("normals") = py::none(),
       py::arg("surface_maps") = py::none(), py::arg("backend") = "simd", py::arg("threads") = 1,
+      py::arg("out") = py::none(),
       method_doc("Filtered values at points: footprints as widths (N,) or screen derivatives "
                  "(N, 2, D) (dp/dx, dp/dy); normals (N, 3) for 3D noises that project; "
                  "surface_maps (N, 2, 2) for 2D texture-space noises. Each None or one per "
-                 "point. backend and threads as for __call__.",
+                 "point. backend, threads and out as for __call__.",
                  {docs::exec_samples, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
                   docs::exec_parallel, docs::exec_NaN}));
 }
