@@ -10,6 +10,8 @@
 #include <mutex>
 #include <thread>
 
+#include <unistd.h>
+
 #include "hush/glsl/headless.hpp"
 #endif
 
@@ -78,8 +80,26 @@ bool glsl_available() { return true; }
 void run_on_glsl_device(const std::function<void(hush::glsl::device&)>& job) {
   // Never destroyed: the thread waits for jobs until the process exits, and the context
   // outlives every call (a device destroyed at exit would race the interpreter's teardown).
-  static gl_thread* const t = new gl_thread();  // NOLINT(cppcoreguidelines-owning-memory)
-  t->run(job);
+  // A child process made by fork() has none of its parent's threads, and the GL library's
+  // state (llvmpipe's threads, locks) is not usable there: it gets an error, not a hang.
+  static std::mutex m;
+  static gl_thread* t = nullptr;
+  static pid_t owner = 0;
+  gl_thread* mine = nullptr;
+  {
+    const std::lock_guard<std::mutex> lock(m);
+    if (t && owner != getpid())
+      throw std::runtime_error(
+          "backend 'glsl': the GL device belongs to the parent of this forked process; start "
+          "worker processes with multiprocessing's 'spawn' or 'forkserver' method (dask's "
+          "default), or make no glsl call before fork()");
+    if (!t) {
+      t = new gl_thread();  // NOLINT(cppcoreguidelines-owning-memory): see above
+      owner = getpid();
+    }
+    mine = t;
+  }
+  mine->run(job);
 }
 
 #else

@@ -120,3 +120,17 @@ def test_npr_gabor_renders_on_glsl(gl):
     gpu = n.render(*args, backend="glsl", **kw)
     assert np.count_nonzero(cpu) > 100
     assert np.max(np.abs(gpu - cpu)) <= 1e-3 * max(1.0, np.max(np.abs(cpu)))
+
+
+def test_glsl_in_a_forked_child_raises_instead_of_hanging(gl):
+    import os
+    n = hush.perlin(dim=2)
+    n.grid((4, 4), backend="glsl")  # the device exists in this process
+    pid = os.fork()
+    if pid == 0:
+        try:
+            n.grid((4, 4), backend="glsl")
+        except RuntimeError as e:
+            os._exit(5 if "forked" in str(e) else 6)
+        os._exit(0)
+    assert os.waitpid(pid, 0)[1] >> 8 == 5
