@@ -115,7 +115,7 @@ inline float_array as_rows(const py::handle& a, const char* name, py::ssize_t co
 
 // The array a result is written to: a new one of `shape` when `out` is None, else `out` itself,
 // which must be a writable C-contiguous float32 array of that shape (reused across calls, it
-// saves the allocation and first touch of a new array: bench/overhead.py).
+// saves the allocation and first touch of a new array: backends/python/bench/overhead.py).
 inline float_array output(const py::object& out, const std::vector<py::ssize_t>& shape) {
   if (out.is_none()) return float_array(shape);
   std::string want = "(";
@@ -527,7 +527,8 @@ void add_point_methods(py::class_<held<Noise>>& c) {
            docs::exec_parallel, docs::exec_NaN}));
   // The C++ calls __call__ and grid make, timed without Python objects: the same inputs (the
   // points converted once), the output `out` (or one array for all repeats), the GIL released;
-  // seconds per repeat. For bench/overhead.py, which compares them with the Python calls.
+  // seconds per repeat. For backends/python/bench/overhead.py, which compares them with the Python
+  // calls.
   c.def(
       "_cpp_seconds_points",
       [](const H& h, const py::handle& points, const std::string& backend_name, int threads,

@@ -193,3 +193,9 @@ def test_out_is_written_and_returned():
                 np.empty((300, 2), np.float32)[:, 0], [0.0] * 300):
         with pytest.raises(ValueError, match="out"):
             n(pts, out=bad)
+
+
+@pytest.mark.skipif(hush.glsl_available(), reason="the module has the GL backend (test_glsl.py)")
+def test_glsl_without_the_gl_backend_says_so():
+    with pytest.raises(ValueError, match="built without the GL backend"):
+        hush.perlin(dim=2)(np.zeros((4, 2), np.float32), backend="glsl")
