@@ -1,8 +1,10 @@
 """hush: procedural noise for rendering, from Python.
 
 Every noise of the C++ library, evaluated by the same code (results equal the C++ API bit for
-bit), on the backend named per call: ``backend="simd"`` (default) or ``"scalar"``, and
-``threads=1`` (default), ``0`` (one per hardware thread) or ``n``::
+bit), on the backend named per call: ``backend="simd"`` (default), ``"scalar"`` or ``"glsl"``
+(GLSL compute shaders on one headless GL device per process, where the module was built with
+OSMesa or EGL: ``hush.glsl_available()``), and, on the CPU, ``threads=1`` (default), ``0``
+(one per hardware thread) or ``n``. The GIL is released while hush computes::
 
     import numpy as np, hush
     n = hush.wavelet(dim=3, seed=7, tile_size=64)
@@ -10,7 +12,8 @@ bit), on the backend named per call: ``backend="simd"`` (default) or ``"scalar"`
     volume = n.grid((64, 128, 128), step=0.05)                # (nz, ny, nx) float32
     terrain = hush.fractal(dim=2, octaves=8).grid((1024, 1024), step=1 / 256, threads=0)
 
-Parameters are the C++ params structs' fields as keywords (docs/<noise>.md lists them); a
+Parameters are the C++ params structs' fields as keywords (each class's docstring quotes their
+C++ contract comments, and ``Class.keywords`` maps each name to its type and comment); a
 value outside its domain raises ValueError naming it, an unknown keyword TypeError. Positions
 are float32 (N, D) arrays, used without a copy (other real dtypes are converted); grids take
 their origin and step in double. ``hush.dask`` builds dask arrays of any size in chunks.
@@ -28,6 +31,8 @@ from ._hush import (  # noqa: F401
     Perlin3,
     Wavelet2,
     Wavelet3,
+    glsl_available,
+    glsl_renderer,
     simd_target,
     version,
 )

@@ -9,47 +9,74 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
+#include <list>
 #include <map>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "glsl.hpp"
 #include "hush/hush.hpp"
+#include "hush_python/docstrings.hpp"
 
 namespace hush_python {
 
 namespace py = pybind11;
 
-// ---- Backends: backend="scalar" | "simd", threads=1 (one thread, the caller's), 0 (one per
-// hardware thread) or n; every combination gives the same values bit for bit (exec.hpp).
+// ---- Backends: backend="scalar" | "simd" | "glsl", threads=1 (one thread, the caller's), 0
+// (one per hardware thread) or n. Threads never change scalar's or simd's values, bit
+// for bit (exec.hpp); glsl runs on the process's GL device (glsl.hpp), one thread.
 struct backend {
   bool simd = true;
+  bool glsl = false;
   int threads = 1;
 };
 
-inline backend parse_backend(const std::string& name, int threads) {
+// `what` names the call for the error of a backend it does not run (glsl_ok false).
+inline backend parse_backend(const std::string& name, int threads, bool glsl_ok = true,
+                             const char* what = "") {
   backend b;
-  if (name == "simd")
+  if (name == "simd") {
     b.simd = true;
-  else if (name == "scalar")
+  } else if (name == "scalar") {
     b.simd = false;
-  else
-    throw py::value_error("backend '" + name + "' is invalid; valid: 'simd', 'scalar'");
+  } else if (name == "glsl" && glsl_ok) {
+    if (!glsl_available())
+      throw py::value_error(
+          "backend 'glsl': this hush module was built without the GL backend (CMake found "
+          "neither OSMesa nor EGL); valid: 'simd', 'scalar'");
+    b.simd = false;
+    b.glsl = true;
+  } else if (name == "glsl") {
+    throw py::value_error(std::string("backend 'glsl' is not available for ") + what +
+                          "; valid: 'simd', 'scalar'");
+  } else {
+    throw py::value_error("backend '" + name + "' is invalid; valid: 'simd', 'scalar'" +
+                          (glsl_ok ? ", 'glsl'" : ""));
+  }
   if (threads < 0 || threads > hush::exec::parallel_t<hush::exec::simd_t>::kMaxThreads)
     throw py::value_error("threads " + std::to_string(threads) +
                           " is invalid; valid: 0 (one per hardware thread) ... 1024");
+  if (b.glsl && threads != 1)
+    throw py::value_error(
+        "threads " + std::to_string(threads) +
+        " is invalid for backend 'glsl'; valid: 1 (the GL device runs the batch)");
   b.threads = threads;
   return b;
 }
 
-// Calls f(exec) with the policy `b` names.
+// Calls f(exec) with the policy `b` names (glsl: on the GL thread, glsl.hpp).
 template <class F>
 void with_exec(const backend& b, F&& f) {
-  if (b.threads == 1) {
+  if (b.glsl) {
+    run_on_glsl_device([&](hush::glsl::device& d) { f(hush::exec::glsl<hush::glsl::device>{d}); });
+  } else if (b.threads == 1) {
     if (b.simd)
       f(hush::exec::simd);
     else
@@ -86,15 +113,36 @@ inline float_array as_rows(const py::handle& a, const char* name, py::ssize_t co
   return f;
 }
 
+// The array a result is written to: a new one of `shape` when `out` is None, else `out` itself,
+// which must be a writable C-contiguous float32 array of that shape (reused across calls, it
+// saves the allocation and first touch of a new array: backends/python/bench/overhead.py).
+inline float_array output(const py::object& out, const std::vector<py::ssize_t>& shape) {
+  if (out.is_none()) return float_array(shape);
+  std::string want = "(";
+  for (const py::ssize_t n : shape) want += std::to_string(n) + (shape.size() == 1 ? ",)" : ", ");
+  if (shape.size() != 1) want = want.substr(0, want.size() - 2) + ")";
+  const auto fail = [&] {
+    throw py::value_error("out: valid: None or a writable C-contiguous float32 array of shape " +
+                          want);
+  };
+  if (!py::isinstance<py::array_t<float, py::array::c_style>>(out)) fail();
+  auto a = py::reinterpret_borrow<float_array>(out);
+  if (!a.writeable() || a.ndim() != static_cast<py::ssize_t>(shape.size())) fail();
+  for (std::size_t i = 0; i < shape.size(); ++i)
+    if (a.shape(static_cast<py::ssize_t>(i)) != shape[i]) fail();
+  return a;
+}
+
 // The values at `points` ((N, D) positions) of a point noise, as a float32 array of N.
 template <class Noise>
 float_array evaluate_points(const Noise& n, const py::handle& points,
-                            const std::string& backend_name, int threads) {
+                            const std::string& backend_name, int threads,
+                            const py::object& out_arg = py::none()) {
   constexpr int D = Noise::dimension;
   const backend b = parse_backend(backend_name, threads);
   const float_array p = as_rows(points, "points", D);
   const auto count = static_cast<std::size_t>(p.shape(0));
-  float_array out(static_cast<py::ssize_t>(count));
+  float_array out = output(out_arg, {static_cast<py::ssize_t>(count)});
   const auto* pts = reinterpret_cast<const hush::vec<float, D>*>(p.data());
   float* o = out.mutable_data();
   {
@@ -178,7 +226,8 @@ hush::grid<D> as_grid(const std::vector<py::ssize_t>& shape, const py::handle& o
 template <class Noise>
 float_array evaluate_grid(const Noise& n, const std::vector<py::ssize_t>& shape,
                           const py::handle& origin, const py::handle& step, const py::object& block,
-                          const std::string& backend_name, int threads) {
+                          const std::string& backend_name, int threads,
+                          const py::object& out_arg = py::none()) {
   constexpr int D = Noise::dimension;
   const backend b = parse_backend(backend_name, threads);
   hush::grid<D> g = as_grid<D>(shape, origin, step);
@@ -206,7 +255,7 @@ float_array evaluate_grid(const Noise& n, const std::vector<py::ssize_t>& shape,
     g = g.block(first, count);
     out_shape = size;
   }
-  float_array out(out_shape);
+  float_array out = output(out_arg, out_shape);
   float* o = out.mutable_data();
   {
     py::gil_scoped_release release;
@@ -221,7 +270,8 @@ float_array evaluate_grid(const Noise& n, const std::vector<py::ssize_t>& shape,
 template <class Noise>
 float_array evaluate_samples(const Noise& n, const py::handle& points, const py::object& footprints,
                              const py::object& normals, const py::object& surface_maps,
-                             const std::string& backend_name, int threads) {
+                             const std::string& backend_name, int threads,
+                             const py::object& out_arg = py::none()) {
   constexpr int D = Noise::dimension;
   const backend b = parse_backend(backend_name, threads);
   const float_array p = as_rows(points, "points", D);
@@ -275,7 +325,7 @@ float_array evaluate_samples(const Noise& n, const py::handle& points, const py:
     }
     s.surface_maps = {maps.data(), maps.size()};
   }
-  float_array out(static_cast<py::ssize_t>(count));
+  float_array out = output(out_arg, {static_cast<py::ssize_t>(count)});
   float* o = out.mutable_data();
   {
     py::gil_scoped_release release;
@@ -365,20 +415,57 @@ struct held {
   py::dict params;
 };
 
+// A docstring composed at bind time, kept for the module's life (pybind11 keeps the pointer).
+inline const char* kept(std::string text) {
+  static std::list<std::string> texts;
+  texts.push_back(std::move(text));
+  return texts.back().c_str();
+}
+
+// The docstring of a noise's class: `summary` (one Python line), then the C++ contract and each
+// params field's comment, as the generated docs:: tables hold them (tools/python_docstrings.py).
+inline std::string class_doc(const char* summary, const docs::noise& d) {
+  std::string text = std::string(summary) + "\n\n" + d.contract + "\n\nKeywords: the fields of " +
+                     d.header +
+                     "'s params (the same names, enums by name); a value outside its "
+                     "domain raises ValueError naming it, an unknown keyword TypeError.\n";
+  for (std::size_t i = 0; i < d.field_count; ++i) {
+    const docs::field& f = d.fields[i];
+    text += std::string("\n") + f.keyword + ": " + f.type;
+    if (*f.doc) text += std::string("\n    ") + f.doc;
+  }
+  return text;
+}
+
+// The docstring of an evaluation method: `what` (the Python call), then the C++ contract of
+// hush::evaluate that applies (the bullets of exec.hpp named in `bullets`).
+inline const char* method_doc(const std::string& what, std::initializer_list<const char*> bullets) {
+  std::string text = what + "\n\nC++ contract (include/hush/exec.hpp, hush::evaluate):";
+  for (const char* b : bullets) text += std::string("\n - ") + b;
+  return kept(text);
+}
+
 // The Python class of a noise: made from keyword parameters by `make` (which reads them with
-// a `keywords` and returns the noise), picklable, with its parameters as `params`.
+// a `keywords` and returns the noise), picklable, with its parameters as `params`; its
+// docstring from `summary` and the contract comments `d`, and `keywords`, the table of its
+// keyword parameters: {name: (python type, doc)} (the stubs are written from it).
 template <class Noise, class Make>
-py::class_<held<Noise>> bind_noise(py::module_& m, const char* name, const char* doc, Make make) {
-  py::class_<held<Noise>> c(m, name, doc);
+py::class_<held<Noise>> bind_noise(py::module_& m, const char* name, const char* summary,
+                                   const docs::noise& d, Make make) {
+  py::class_<held<Noise>> c(m, name, kept(class_doc(summary, d)));
+  py::dict table;
+  for (std::size_t i = 0; i < d.field_count; ++i)
+    table[d.fields[i].keyword] = py::make_tuple(d.fields[i].type, d.fields[i].doc);
+  c.attr("keywords") = table;
   c.def(py::init([make](py::kwargs kw) { return held<Noise>{make(kw), py::dict(kw)}; }));
   c.def_property_readonly(
       "params", [](const held<Noise>& h) { return py::dict(h.params); },
       "The keyword parameters this noise was made from.");
   c.def(py::pickle([](const held<Noise>& h) { return py::dict(h.params); },
-                   [make](const py::dict& d) {
+                   [make](const py::dict& dct) {
                      py::kwargs kw;
-                     for (const auto& item : d) kw[item.first] = item.second;
-                     return held<Noise>{make(kw), py::dict(d)};
+                     for (const auto& item : dct) kw[item.first] = item.second;
+                     return held<Noise>{make(kw), py::dict(dct)};
                    }));
   c.def("__repr__", [name](const held<Noise>& h) {
     std::string text = std::string("hush.") + name + "(";
@@ -398,31 +485,100 @@ void add_point_methods(py::class_<held<Noise>>& c) {
   using H = held<Noise>;
   c.def(
       "__call__",
-      [](const H& h, const py::handle& points, const std::string& backend_name, int threads) {
-        return evaluate_points(h.noise, points, backend_name, threads);
+      [](const H& h, const py::handle& points, const std::string& backend_name, int threads,
+         const py::object& out) {
+        return evaluate_points(h.noise, points, backend_name, threads, out);
       },
       py::arg("points"), py::arg("backend") = "simd", py::arg("threads") = 1,
-      "Values at points, an (N, D) array (float32 is used without a copy), as float32 (N,).");
+      py::arg("out") = py::none(),
+      method_doc("Values at points, an (N, D) array (float32 is used without a copy), as float32 "
+                 "(N,). backend: 'simd' (default), 'scalar' or 'glsl' (the process's GL device); "
+                 "threads: 1 (default), 0 (one per hardware thread) or n (scalar and simd). "
+                 "out: None (a new array) or a writable C-contiguous float32 array of shape (N,), "
+                 "written and returned (no allocation per call).",
+                 {docs::exec_points, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
+                  docs::exec_parallel, docs::exec_NaN}));
   c.def(
       "gradient",
       [](const H& h, const py::handle& points, const std::string& backend_name, int threads) {
         return evaluate_gradients(h.noise, points, backend_name, threads);
       },
       py::arg("points"), py::arg("backend") = "simd", py::arg("threads") = 1,
-      "Values and analytic gradients at points: (values (N,), gradients (N, D)), float32.");
+      method_doc("Values and analytic gradients at points: (values (N,), gradients (N, D)), "
+                 "float32. backend and threads as for __call__.",
+                 {docs::exec_points, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
+                  docs::exec_parallel, docs::exec_NaN}));
   c.def(
       "grid",
       [](const H& h, const std::vector<py::ssize_t>& shape, const py::handle& origin,
          const py::handle& step, const std::string& backend_name, int threads,
-         const py::object& block) {
-        return evaluate_grid(h.noise, shape, origin, step, block, backend_name, threads);
+         const py::object& block, const py::object& out) {
+        return evaluate_grid(h.noise, shape, origin, step, block, backend_name, threads, out);
       },
       py::arg("shape"), py::arg("origin") = 0.0, py::arg("step") = 1.0, py::arg("backend") = "simd",
-      py::arg("threads") = 1, py::arg("block") = py::none(),
-      "Values on a uniform grid: shape (ny, nx) or (nz, ny, nx); sample (i, j[, k]) is at "
-      "origin + step * (i, j[, k]), i along x (numpy's last axis), positions in double. "
-      "block=(start, size) (numpy axis order) returns only that block of the grid, bit for bit "
-      "the same samples as the whole grid's call.");
+      py::arg("threads") = 1, py::arg("block") = py::none(), py::arg("out") = py::none(),
+      method_doc(
+          "Values on a uniform grid: shape (ny, nx) or (nz, ny, nx); sample (i, j[, k]) is at "
+          "origin + step * (i, j[, k]), i along x (numpy's last axis), positions in double. "
+          "block=(start, size) (numpy axis order) returns only that block of the grid, bit for "
+          "bit the same samples as the whole grid's call. backend, threads and out (of the "
+          "returned shape) as for __call__.",
+          {docs::exec_grids, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
+           docs::exec_parallel, docs::exec_NaN}));
+  // The C++ calls __call__ and grid make, timed without Python objects: the same inputs (the
+  // points converted once), the output `out` (or one array for all repeats), the GIL released;
+  // seconds per repeat. For backends/python/bench/overhead.py, which compares them with the Python
+  // calls.
+  c.def(
+      "_cpp_seconds_points",
+      [](const H& h, const py::handle& points, const std::string& backend_name, int threads,
+         int repeats, const py::object& out_arg) {
+        constexpr int D = Noise::dimension;
+        const backend b = parse_backend(backend_name, threads);
+        const float_array p = as_rows(points, "points", D);
+        const auto count = static_cast<std::size_t>(p.shape(0));
+        const auto* pts = reinterpret_cast<const hush::vec<float, D>*>(p.data());
+        float_array out = output(out_arg, {static_cast<py::ssize_t>(count)});
+        float* o = out.mutable_data();
+        std::vector<double> seconds;
+        py::gil_scoped_release release;
+        for (int r = 0; r < repeats; ++r) {
+          const auto t0 = std::chrono::steady_clock::now();
+          with_exec(b, [&](const auto& ex) {
+            hush::evaluate(h.noise, ex, hush::span<const hush::vec<float, D>>(pts, count),
+                           hush::span<float>(o, count));
+          });
+          seconds.push_back(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        }
+        return seconds;
+      },
+      py::arg("points"), py::arg("backend") = "simd", py::arg("threads") = 1,
+      py::arg("repeats") = 1, py::arg("out") = py::none());
+  c.def(
+      "_cpp_seconds_grid",
+      [](const H& h, const std::vector<py::ssize_t>& shape, const py::handle& origin,
+         const py::handle& step, const std::string& backend_name, int threads, int repeats,
+         const py::object& out_arg) {
+        constexpr int D = Noise::dimension;
+        const backend b = parse_backend(backend_name, threads);
+        const hush::grid<D> g = as_grid<D>(shape, origin, step);
+        float_array out = output(out_arg, shape);
+        float* o = out.mutable_data();
+        std::vector<double> seconds;
+        py::gil_scoped_release release;
+        for (int r = 0; r < repeats; ++r) {
+          const auto t0 = std::chrono::steady_clock::now();
+          with_exec(b, [&](const auto& ex) {
+            hush::evaluate_grid(h.noise, ex, g, hush::span<float>(o, g.count()));
+          });
+          seconds.push_back(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        }
+        return seconds;
+      },
+      py::arg("shape"), py::arg("origin") = 0.0, py::arg("step") = 1.0, py::arg("backend") = "simd",
+      py::arg("threads") = 1, py::arg("repeats") = 1, py::arg("out") = py::none());
   c.def_property_readonly_static("dimension", [](py::object) { return Noise::dimension; });
 }
 
@@ -434,15 +590,19 @@ void add_sample_methods(py::class_<held<Noise>>& c) {
       "sample",
       [](const held<Noise>& h, const py::handle& points, const py::object& footprints,
          const py::object& normals, const py::object& surface_maps, const std::string& backend_name,
-         int threads) {
+         int threads, const py::object& out) {
         return evaluate_samples(h.noise, points, footprints, normals, surface_maps, backend_name,
-                                threads);
+                                threads, out);
       },
       py::arg("points"), py::arg("footprints") = py::none(), py::arg("normals") = py::none(),
       py::arg("surface_maps") = py::none(), py::arg("backend") = "simd", py::arg("threads") = 1,
-      "Filtered values at points: footprints as widths (N,) or screen derivatives (N, 2, D) "
-      "(dp/dx, dp/dy); normals (N, 3) for 3D noises that project; surface_maps (N, 2, 2) for "
-      "2D texture-space noises. Each None or one per point.");
+      py::arg("out") = py::none(),
+      method_doc("Filtered values at points: footprints as widths (N,) or screen derivatives "
+                 "(N, 2, D) (dp/dx, dp/dy); normals (N, 3) for 3D noises that project; "
+                 "surface_maps (N, 2, 2) for 2D texture-space noises. Each None or one per "
+                 "point. backend, threads and out as for __call__.",
+                 {docs::exec_samples, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
+                  docs::exec_parallel, docs::exec_NaN}));
 }
 
 }  // namespace hush_python

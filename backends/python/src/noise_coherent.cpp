@@ -6,38 +6,34 @@ namespace hush_python {
 
 void add_coherent_python(py::module_& m) {
   using stream = hush::coherent_stream;
-  auto c = bind_noise<stream>(
-      m, "CoherentStream",
-      "Coherent noise (hush::coherent_stream): the history of a frame sequence, "
-      "owned by the caller; advance() once per frame. A copy or a pickle holds the "
-      "parameters, not the history: it starts fresh."
-      " "
-      "Keywords: seed, alpha, epsilon, epsilon_absolute, filter ('paper' | 'stationary'), "
-      "input ('white' | 'bandpass'), bandpass_pixels, smoothing, channels (1 ... 4).",
-      [](py::kwargs kw) {
-        keywords k("hush.coherent", kw);
-        hush::coherent_params prm;
-        k.get("seed", prm.seed);
-        k.get("alpha", prm.alpha);
-        k.get("epsilon", prm.epsilon);
-        k.get("epsilon_absolute", prm.epsilon_absolute);
-        k.get_enum("filter", prm.filter,
-                   {{"paper", hush::coherent_filter::paper},
-                    {"stationary", hush::coherent_filter::stationary}});
-        k.get_enum(
-            "input", prm.input,
-            {{"white", hush::coherent_input::white}, {"bandpass", hush::coherent_input::bandpass}});
-        k.get("bandpass_pixels", prm.bandpass_pixels);
-        k.get("smoothing", prm.smoothing);
-        k.get("channels", prm.channels);
-        k.finish();
-        return stream(prm);
-      });
+  auto c = bind_noise<stream>(m, "CoherentStream",
+                              "Coherent noise (hush::coherent_stream): the history of a frame "
+                              "sequence, owned by the caller; advance() once per frame. A copy or "
+                              "a pickle holds the parameters, not the history: it starts fresh.",
+                              docs::coherent, [](py::kwargs kw) {
+                                keywords k("hush.coherent", kw);
+                                hush::coherent_params prm;
+                                k.get("seed", prm.seed);
+                                k.get("alpha", prm.alpha);
+                                k.get("epsilon", prm.epsilon);
+                                k.get("epsilon_absolute", prm.epsilon_absolute);
+                                k.get_enum("filter", prm.filter,
+                                           {{"paper", hush::coherent_filter::paper},
+                                            {"stationary", hush::coherent_filter::stationary}});
+                                k.get_enum("input", prm.input,
+                                           {{"white", hush::coherent_input::white},
+                                            {"bandpass", hush::coherent_input::bandpass}});
+                                k.get("bandpass_pixels", prm.bandpass_pixels);
+                                k.get("smoothing", prm.smoothing);
+                                k.get("channels", prm.channels);
+                                k.finish();
+                                return stream(prm);
+                              });
   c.def(
       "advance",
       [](held<stream>& self, const py::object& depth, const py::object& velocity,
          const py::object& object_id, const std::string& backend_name) {
-        const backend b = parse_backend(backend_name, 1);
+        const backend b = parse_backend(backend_name, 1, false, "CoherentStream.advance");
         frame_arrays fa(depth, velocity, py::none(), object_id, py::none());
         const std::size_t w = fa.frame.width(), h = fa.frame.height();
         hush::coherent_stream& s = self.noise;
@@ -60,13 +56,15 @@ void add_coherent_python(py::module_& m) {
       },
       py::arg("depth"), py::arg("velocity"), py::arg("object_id") = py::none(),
       py::arg("backend") = "simd",
-      "The next frame: depth (H, W) linear view depth, velocity (H, W, 3) motion from the "
-      "previous frame in pixels (dx, dy) and depth (dz), object_id (H, W) uint32 or None. "
-      "Returns (channels, H, W) float32, unit variance.");
+      kept(std::string(
+               "The next frame: depth (H, W) linear view depth, velocity (H, W, 3) motion from "
+               "the previous frame in pixels (dx, dy) and depth (dz), object_id (H, W) uint32 or "
+               "None. Returns (channels, H, W) float32, unit variance. backend: 'simd' "
+               "(default) or 'scalar'.\n\nC++ contract (hush::coherent_stream::advance):\n") +
+           docs::coherent_advance));
   c.def(
       "reset", [](held<stream>& h, std::uint32_t next_frame) { h.noise.reset(next_frame); },
-      py::arg("next_frame") = 0u,
-      "Forgets the history: the next frame starts fresh (a cut, a change of resolution).");
+      py::arg("next_frame") = 0u, docs::coherent_reset);
 }
 
 }  // namespace hush_python

@@ -8,12 +8,8 @@ template <int D>
 void add_fractal_d(py::module_& m, const char* name) {
   using noise = hush::fractal<hush::perlin<D>>;
   auto c = bind_noise<noise>(
-      m, name,
-      "A fractal sum of Perlin bands (hush::fractal): fBm or turbulence."
-      " "
-      "Keywords: seed, kind ('fbm' | 'turbulence'), octaves (1 ... 32), frequency, lacunarity, "
-      "gain, weights, normalization ('unit_variance' | 'unit_range' | 'none'), period.",
-      [](py::kwargs kw) {
+      m, name, "fBm or turbulence over Perlin noise (hush::fractal<hush::perlin<D>>).",
+      docs::fractal, [](py::kwargs kw) {
         keywords k("hush.fractal", kw);
         typename noise::params prm;
         k.get("seed", prm.seed);

@@ -7,31 +7,26 @@ namespace {
 template <int D>
 void add_gabor_d(py::module_& m, const char* name) {
   using noise = hush::gabor<D>;
-  auto c = bind_noise<noise>(
-      m, name,
-      "Gabor noise (hush::gabor): spectral control, filterable."
-      " "
-      "Keywords: seed, kind ('isotropic' | 'anisotropic' | 'hybrid'), frequency, bandwidth, "
-      "orientation, elevation, orientation_spread, frequency_spread, impulses, truncation.",
-      [](py::kwargs kw) {
-        keywords k("hush.gabor", kw);
-        typename noise::params prm;
-        k.get("seed", prm.seed);
-        k.get_enum("kind", prm.kind,
-                   {{"isotropic", hush::gabor_kind::isotropic},
-                    {"anisotropic", hush::gabor_kind::anisotropic},
-                    {"hybrid", hush::gabor_kind::hybrid}});
-        k.get("frequency", prm.frequency);
-        k.get("bandwidth", prm.bandwidth);
-        k.get("orientation", prm.orientation);
-        k.get("elevation", prm.elevation);
-        k.get("orientation_spread", prm.orientation_spread);
-        k.get("frequency_spread", prm.frequency_spread);
-        k.get("impulses", prm.impulses);
-        k.get("truncation", prm.truncation);
-        k.finish();
-        return noise(prm);
-      });
+  auto c = bind_noise<noise>(m, name, "Gabor noise (hush::gabor<D>): spectral control, filterable.",
+                             docs::gabor, [](py::kwargs kw) {
+                               keywords k("hush.gabor", kw);
+                               typename noise::params prm;
+                               k.get("seed", prm.seed);
+                               k.get_enum("kind", prm.kind,
+                                          {{"isotropic", hush::gabor_kind::isotropic},
+                                           {"anisotropic", hush::gabor_kind::anisotropic},
+                                           {"hybrid", hush::gabor_kind::hybrid}});
+                               k.get("frequency", prm.frequency);
+                               k.get("bandwidth", prm.bandwidth);
+                               k.get("orientation", prm.orientation);
+                               k.get("elevation", prm.elevation);
+                               k.get("orientation_spread", prm.orientation_spread);
+                               k.get("frequency_spread", prm.frequency_spread);
+                               k.get("impulses", prm.impulses);
+                               k.get("truncation", prm.truncation);
+                               k.finish();
+                               return noise(prm);
+                             });
   add_point_methods<noise>(c);
   add_sample_methods<noise>(c);
 }

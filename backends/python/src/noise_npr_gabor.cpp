@@ -1,6 +1,7 @@
 // hush.NprGabor: NPR Gabor noise (Benard et al.; include/hush/npr_gabor.hpp) from Python: a
 // frame rendered from G-buffer arrays and the frame's triangle list.
 #include "frame.hpp"
+#include "hush/glsl/npr_gabor.hpp"
 
 namespace hush_python {
 
@@ -8,13 +9,9 @@ void add_npr_gabor_python(py::module_& m) {
   using noise = hush::npr_gabor;
   auto c = bind_noise<noise>(
       m, "NprGabor",
-      "NPR Gabor noise (hush::npr_gabor): Gabor kernels attached to the "
-      "triangles a renderer drew, splatted in screen space."
-      " "
-      "Keywords: the fields of hush::npr_gabor::params (frequency, bandwidth, truncation, "
-      "impulses, orientation, isotropic, seed, object_test, triangle_test, depth_test, "
-      "soft_depth, depth_tolerance, cull_back_faces, thinning, local_density).",
-      [](py::kwargs kw) {
+      "NPR Gabor noise (hush::npr_gabor): Gabor kernels attached to the triangles a renderer drew, "
+      "splatted in screen space.",
+      docs::npr_gabor, [](py::kwargs kw) {
         keywords k("hush.npr_gabor", kw);
         noise::params prm;
         k.get("frequency", prm.frequency);
@@ -30,6 +27,9 @@ void add_npr_gabor_python(py::module_& m) {
         k.get("soft_depth", prm.soft_depth);
         k.get("depth_tolerance", prm.depth_tolerance);
         k.get("cull_back_faces", prm.cull_back_faces);
+        k.get_enum("front_face", prm.front_face,
+                   {{"counter_clockwise", hush::npr_gabor_front_face::counter_clockwise},
+                    {"clockwise", hush::npr_gabor_front_face::clockwise}});
         k.get("thinning", prm.thinning);
         k.get("local_density", prm.local_density);
         k.finish();
@@ -75,7 +75,11 @@ void add_npr_gabor_python(py::module_& m) {
         const hush::image_view<float> view(out.mutable_data(), w, h);
         {
           py::gil_scoped_release release;
-          if (b.simd)
+          if (b.glsl)
+            run_on_glsl_device([&](hush::glsl::device& d) {
+              n.render(hush::exec::glsl<hush::glsl::device>{d}, fa.frame, tris, view);
+            });
+          else if (b.simd)
             n.render(hush::exec::simd, fa.frame, tris, view);
           else
             n.render(hush::exec::scalar, fa.frame, tris, view);
@@ -86,9 +90,13 @@ void add_npr_gabor_python(py::module_& m) {
       py::arg("triangle_id"), py::arg("object_id") = py::none(),
       py::arg("frame_object_id") = py::none(), py::arg("frame_triangle_id") = py::none(),
       py::arg("backend") = "simd",
-      "One frame: depth (H, W); the triangles drawn: indices (T, 3), screen (V, 2) pixel "
-      "positions (x right, y down), vertex_depth (V,), triangle_id (T,), object_id (T,) or "
-      "None; the frame's id views (H, W) where the params' tests need them. Returns (H, W).");
+      kept(std::string(
+               "One frame: depth (H, W); the triangles drawn: indices (T, 3), screen (V, 2) "
+               "pixel positions (x right, y down), vertex_depth (V,), triangle_id (T,), "
+               "object_id (T,) or None; the frame's id views (H, W) where the params' tests need "
+               "them. Returns (H, W) float32. backend: 'simd' (default), 'scalar' or 'glsl'."
+               "\n\nC++ contract (hush::npr_gabor::render):\n") +
+           docs::npr_gabor_render));
 }
 
 }  // namespace hush_python

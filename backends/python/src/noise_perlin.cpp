@@ -7,19 +7,15 @@ namespace {
 template <int D>
 void add_perlin_d(py::module_& m, const char* name) {
   using noise = hush::perlin<D>;
-  auto c = bind_noise<noise>(
-      m, name,
-      "Perlin gradient noise (hush::perlin): values in [-1, 1]."
-      " "
-      "Keywords: seed (uint32), period (0 = not periodic, or lattice units per axis).",
-      [](py::kwargs kw) {
-        keywords k("hush.perlin", kw);
-        typename noise::params prm;
-        k.get("seed", prm.seed);
-        k.get_axes("period", prm.period);
-        k.finish();
-        return noise(prm);
-      });
+  auto c = bind_noise<noise>(m, name, "Perlin gradient noise (hush::perlin<D>): values in [-1, 1].",
+                             docs::perlin, [](py::kwargs kw) {
+                               keywords k("hush.perlin", kw);
+                               typename noise::params prm;
+                               k.get("seed", prm.seed);
+                               k.get_axes("period", prm.period);
+                               k.finish();
+                               return noise(prm);
+                             });
   add_point_methods<noise>(c);
 }
 

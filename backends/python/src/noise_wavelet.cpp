@@ -8,13 +8,8 @@ template <int D>
 void add_wavelet_d(py::module_& m, const char* name) {
   using noise = hush::wavelet<D>;
   auto c = bind_noise<noise>(
-      m, name,
-      "Wavelet noise (hush::wavelet): band-limited, unit variance."
-      " "
-      "Keywords: the fields of hush::wavelet<D>::params (seed, tile_size, first_band, weights, "
-      "offsets, even_odd_fix, distribution, gaussian_scale, table, projection, widen, "
-      "relative_weights, relative_bands, variant_overlap).",
-      [](py::kwargs kw) {
+      m, name, "Wavelet noise (hush::wavelet<D>): band-limited, unit variance, filterable.",
+      docs::wavelet, [](py::kwargs kw) {
         keywords k("hush.wavelet", kw);
         typename noise::params prm;
         k.get("seed", prm.seed);
@@ -49,8 +44,7 @@ void add_wavelet_d(py::module_& m, const char* name) {
         return noise(prm);
       });
   c.def_property_readonly(
-      "bound", [](const held<noise>& h) { return h.noise.bound(); },
-      "|value| <= bound for every input.");
+      "bound", [](const held<noise>& h) { return h.noise.bound(); }, docs::wavelet_bound);
   add_point_methods<noise>(c);
   add_sample_methods<noise>(c);
 }

@@ -9,8 +9,8 @@ import pytest
 def hush_program(tmp_path):
     """Runs the `hush` program (HUSH_CLI, set by CTest) and returns the .npy it wrote."""
     exe = os.environ.get("HUSH_CLI")
-    if not exe:
-        pytest.skip("the hush program was not built (HUSH_CLI unset)")
+    if not exe or not os.path.exists(exe):
+        pytest.skip("the hush program was not built (HUSH_CLI unset or missing)")
 
     def run(*args):
         out = tmp_path / "out.npy"

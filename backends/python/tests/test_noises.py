@@ -173,3 +173,29 @@ def test_npr_gabor_renders_a_visible_triangle():
     with pytest.raises(ValueError, match="indices"):
         n.render(depth, np.array([0, 1, 2]), screen, np.full(3, 5.0, np.float32),
                  np.array([0], np.uint32), frame_object_id=ids, frame_triangle_id=ids)
+
+
+# ---- out=: the result written into the caller's array, the values of a new one.
+def test_out_is_written_and_returned():
+    n = hush.wavelet(dim=2, seed=6, tile_size=32)
+    pts = np.random.default_rng(4).random((300, 2)).astype(np.float32) * 9
+    out = np.empty(300, np.float32)
+    assert n(pts, out=out) is out and np.array_equal(out, n(pts))
+    grid = np.empty((12, 20), np.float32)
+    assert n.grid((12, 20), step=0.3, out=grid) is grid
+    assert np.array_equal(grid, n.grid((12, 20), step=0.3))
+    assert np.array_equal(n.sample(pts, footprints=np.full(300, 0.5), out=out),
+                          n.sample(pts, footprints=np.full(300, 0.5)))
+    block = np.empty((5, 7), np.float32)
+    n.grid((12, 20), step=0.3, block=((2, 3), (5, 7)), out=block)
+    assert np.array_equal(block, grid[2:7, 3:10])
+    for bad in (np.empty(299, np.float32), np.empty(300, np.float64),
+                np.empty((300, 2), np.float32)[:, 0], [0.0] * 300):
+        with pytest.raises(ValueError, match="out"):
+            n(pts, out=bad)
+
+
+@pytest.mark.skipif(hush.glsl_available(), reason="the module has the GL backend (test_glsl.py)")
+def test_glsl_without_the_gl_backend_says_so():
+    with pytest.raises(ValueError, match="built without the GL backend"):
+        hush.perlin(dim=2)(np.zeros((4, 2), np.float32), backend="glsl")
