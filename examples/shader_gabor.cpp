@@ -12,11 +12,17 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <stdexcept>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 namespace {
+
+// A GL failure: the message, exit code 1 (the program builds with or without exceptions).
+[[noreturn]] void fail(const std::string& what) {
+  std::fprintf(stderr, "shader_gabor: %s\n", what.c_str());
+  std::exit(1);
+}
 
 // The few GL 4.3 entry points and enums this program uses, loaded by name.
 using GLenum = unsigned;
@@ -61,7 +67,7 @@ struct gl_functions {
   template <class F>
   static void load(void* (*loader)(const char*), F& f, const char* name) {
     f = reinterpret_cast<F>(loader(name));
-    if (!f) throw std::runtime_error(std::string("no GL function ") + name);
+    if (!f) fail(std::string("no GL function ") + name);
   }
   explicit gl_functions(void* (*l)(const char*)) {
     load(l, CreateShader, "glCreateShader");
@@ -105,7 +111,7 @@ GLuint compile(const gl_functions& gl, GLenum stage, const std::string& text) {
   if (!ok) {
     char log[4096] = {};
     gl.GetShaderInfoLog(s, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("shader: ") + log);
+    fail(std::string("shader: ") + log);
   }
   return s;
 }
@@ -156,12 +162,12 @@ int main() {
   gl.LinkProgram(program);
   GLint linked = 0;
   gl.GetProgramiv(program, kLinkStatus, &linked);
-  if (!linked) throw std::runtime_error("link failed");
+  if (!linked) fail("link failed");
 
   // hush's data: one uniform block, its std140 words at its binding (HUSH_GABOR_PARAMS_BINDING).
   for (const hush::glsl::shader_resource& r : kit.resources) {
     if (r.kind != hush::glsl::resource_kind::uniform_block)
-      throw std::runtime_error("this example binds uniform blocks only");
+      fail("this example binds uniform blocks only");
     GLuint buffer = 0;
     gl.GenBuffers(1, &buffer);
     gl.BindBuffer(kUniformBuffer, buffer);
@@ -200,7 +206,7 @@ int main() {
   gl.ReadPixels(0, 0, width, height, kRgba, kFloat, noise_px.data());
   gl.ReadBuffer(kColorAttachment0 + 1);
   gl.ReadPixels(0, 0, width, height, kRgba, kFloat, deriv_px.data());
-  if (gl.GetError() != 0) throw std::runtime_error("GL error");
+  if (gl.GetError() != 0) fail("GL error");
 
   // The CPU: the same sample, footprint from the shader's own derivatives.
   double worst = 0, x = 0;

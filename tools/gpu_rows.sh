@@ -69,7 +69,7 @@ for t in $suites; do
 done
 grep -E "^\[doctest\] (test cases|assertions)|: exit " "$OUT/tests.txt"
 
-timeout 240 "$build/examples/hush" bench --filter /glsl/ --repetitions 5 \
+timeout 420 "$build/examples/hush" bench --filter "/glsl/|/glslresident/|/glslkit/" --repetitions 5 \
   --json "$OUT/bench.json" --markdown "$OUT/bench.md" > /dev/null 2>&1 || status=1
 cat "$OUT/bench.md"
 "$build/tests/glsl/glsl_timing" 3 2>&1 | tee -a "$OUT/info.txt"

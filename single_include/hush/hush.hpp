@@ -10907,7 +10907,7 @@ template <int D>
 template <bool G>
 void gabor<D>::grid_tiles(const grid<D>& g, std::size_t first, std::size_t count, float* out,
                           vec<float, D>* grad) const {
-  std::size_t lo[std::size_t{D}], hi[std::size_t{D}];
+  std::size_t lo[std::size_t{D}] = {}, hi[std::size_t{D}] = {};
   std::vector<lattice_coord<float>> coord[std::size_t{D}];
   std::vector<grid_run> runs[std::size_t{D}];
   for (int a = 0; a < D; ++a) {

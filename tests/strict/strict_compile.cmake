@@ -16,7 +16,8 @@
 #   -DEXTRA_FLAGS=...   more flags, ;-separated (e.g. -fno-exceptions)
 #   -DHAVE_HWY=ON       compile batch_simd, and gabor_usage with HUSH_SIMD_DYNAMIC (as hush::simd's
 #                       users do); -DHWY_INCLUDE_DIR=... Highway's include directory (-isystem)
-#   -DHAVE_OSMESA=ON    compile glsl_headless; -DOSMESA_INCLUDE_DIR=... GL/osmesa.h's directory
+#   -DHAVE_OSMESA=ON    compile glsl_headless and shader_*; -DOSMESA_INCLUDE_DIR=... GL/osmesa.h's
+#                       directory
 #                       (-isystem)
 foreach(var CXX_COMPILER STD TREE SOURCE_DIR)
   if(NOT DEFINED ${var})
@@ -43,13 +44,18 @@ if(HAVE_HWY)
   list(APPEND examples batch_simd)
 endif()
 if(HAVE_OSMESA)
-  list(APPEND examples glsl_headless)
+  # glsl_headless and the shader_<noise> programs (each noise's kit in the user's own shader).
+  file(GLOB _shader_examples RELATIVE ${SOURCE_DIR}/examples ${SOURCE_DIR}/examples/shader_*.cpp)
+  string(REPLACE ".cpp" "" _shader_examples "${_shader_examples}")
+  list(APPEND examples glsl_headless ${_shader_examples})
 endif()
 set(failed "")
 foreach(example IN LISTS examples)
   set(defines "")
   if(HAVE_HWY AND example MATCHES "^(batch_simd|gabor_usage)$")
     set(defines -DHUSH_SIMD_DYNAMIC)  # as hush::simd's consumers compile
+  elseif(example MATCHES "^shader_")
+    set(defines -DHUSH_GLSL_HAVE_OSMESA=1)  # as hush::glsl_headless's consumers compile
   endif()
   set(command "${CXX_COMPILER}" ${flags} ${defines} "${SOURCE_DIR}/examples/${example}.cpp")
   string(REPLACE ";" " " shown "${command}")
