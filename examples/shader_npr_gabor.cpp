@@ -103,7 +103,8 @@ int run() {
       if (!(fx >= 0 && fy >= 0 && fx < nx && fy < ny)) continue;
       const int i = static_cast<int>(fx), j = static_cast<int>(fy);
       const auto q = static_cast<std::uint32_t>(j * nx + i);
-      const std::size_t p = static_cast<std::size_t>(y * w + x);
+      const std::size_t p =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
       depth[p] = z;
       object[p] = 1u;
       triangle[p] = (fx - i) + (fy - j) < 1.0 ? 2 * q : 2 * q + 1;

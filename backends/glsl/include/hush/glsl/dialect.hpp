@@ -155,18 +155,28 @@ inline std::string dual_dialect(const std::string& source, const std::string& bl
   // Each run of loose uniforms is OpenGL's only; the block stands before the first run.
   std::vector<char> loose(lines.size(), 0);
   for (std::size_t i = 0; i < lines.size(); ++i)
-    loose[i] = lines[i].compare(0, 8, "uniform ") == 0 && !detail::uniform_type(lines[i]).empty();
+    loose[i] = lines[i].compare(0, 8, "uniform ") == 0 && !detail::uniform_type(lines[i]).empty()
+                   ? char{1}
+                   : char{0};
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (!loose[i]) continue;
     const bool run_start = i == 0 || !loose[i - 1];
     const bool run_end = i + 1 == lines.size() || !loose[i + 1];
-    if (run_start)
-      lines[i] =
-          (i == first_uniform
-               ? "#ifdef VULKAN\nlayout(std140, binding = " + std::to_string(kVulkanParamsBinding) +
-                     ") uniform " + block + " {\n" + members + "};\n#else\n"
-               : std::string("#ifndef VULKAN\n")) +
-          lines[i];
+    if (run_start) {
+      std::string head;
+      if (i == first_uniform) {
+        head = "#ifdef VULKAN\nlayout(std140, binding = ";
+        head += std::to_string(kVulkanParamsBinding);
+        head += ") uniform ";
+        head += block;
+        head += " {\n";
+        head += members;
+        head += "};\n#else\n";
+      } else {
+        head = "#ifndef VULKAN\n";
+      }
+      lines[i] = head + lines[i];
+    }
     if (run_end) lines[i] += "\n#endif";
   }
 

@@ -187,7 +187,6 @@ precision highp usampler2D;
 )glsl";
 
 namespace detail {
-constexpr gl_enum kGlUniformBuffer = 0x8A11;
 constexpr gl_enum kGlTexture3d = 0x806F;
 constexpr gl_enum kGlTextureWrapR = 0x8072;
 constexpr gl_enum kGlRg32fFormat = 0x8230;

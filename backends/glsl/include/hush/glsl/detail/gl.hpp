@@ -53,6 +53,7 @@ constexpr gl_enum kGlCompileStatus = 0x8B81;
 constexpr gl_enum kGlLinkStatus = 0x8B82;
 constexpr gl_enum kGlInfoLogLength = 0x8B84;
 constexpr gl_enum kGlShaderStorageBuffer = 0x90D2;
+constexpr gl_enum kGlUniformBuffer = 0x8A11;
 constexpr gl_enum kGlShaderStorageBufferBinding = 0x90D3;
 constexpr gl_enum kGlCurrentProgram = 0x8B8D;
 constexpr gl_enum kGlStreamDraw = 0x88E0;

@@ -68,7 +68,6 @@ constexpr gl_enum kGlBlendDstAlpha = 0x80CA;
 constexpr gl_enum kGlBlendEquationRgb = 0x8009;
 constexpr gl_enum kGlBlendEquationAlpha = 0x883D;
 // The resident walk's plan: indirect commands, the level slots as a uniform block, the status.
-constexpr gl_enum kGlUniformBuffer = 0x8A11;
 constexpr gl_enum kGlUniformBufferBinding = 0x8A28;
 constexpr gl_enum kGlUniformBufferOffsetAlignment = 0x8A34;
 constexpr gl_enum kGlDispatchIndirectBuffer = 0x90EE;

@@ -450,6 +450,8 @@ class npr_gabor_gpu {
       if (indirect) {
         gl_.BindBuffer(kGlDrawIndirectBuffer, plan_);
         const std::size_t at = (kDrawSlot * slot_words_ + 4 * (b0 / batch)) * 4;
+        // GL takes the offset into the bound indirect buffer as a pointer.
+        // NOLINTNEXTLINE(performance-no-int-to-ptr)
         gr_.DrawArraysIndirect(kGlPoints, reinterpret_cast<const void*>(at));
       } else {
         gr_.DrawArrays(kGlPoints, 0, static_cast<gl_sizei>(m));
