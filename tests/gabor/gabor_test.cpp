@@ -120,6 +120,36 @@ TEST_CASE("gabor: hybrid noise with a vanishing frequency spread is the spread-0
   }
 }
 
+TEST_CASE("gabor: any finite orientation is the noise of its angle within one turn, float and double") {
+  // Hybrid 2D noise draws each impulse's angle around omega0 in turns: an orientation far beyond
+  // one turn must give the noise of its reduced angle, and float evaluation must stay within the
+  // float budget (see the float test below), not lose the fraction or overflow to NaN.
+  hush::gabor<2>::params p;
+  p.kind = gabor_kind::hybrid;
+  p.frequency = 4;
+  p.frequency_spread = 2;
+  p.orientation_spread = 0.5;
+  for (const double w : {7.5, -40.0, 1e10, 1e39, -8.2864457291795643e+307, 1.7e308}) {
+    CAPTURE(w);
+    p.orientation = w;
+    const hush::gabor<2> g(p);
+    p.orientation = std::atan2(std::sin(w), std::cos(w));
+    const hush::gabor<2> reduced(p);
+    const double phi = g.marks().phi0() + 0.5 * g.marks().dphi();
+    const double budget =
+        g.scale() * std::ldexp(1.0, -21) * (1 + 2 * kPi * phi) * (g.parameters().impulses + 1);
+    for (const double x : {0.3, -53.9, 1e4, 1e30}) {
+      const hush::dvec2 pd{x, 0.25 * x + 0.4};
+      // theta0 of the two differs by at most an ulp of a turn: far below the float budget.
+      CHECK(std::fabs(g(pd) - reduced(pd)) <= 1e-9);
+      const hush::vec2 pf = hush::vec_cast<float>(pd);
+      const double f = g(pf);
+      REQUIRE(std::isfinite(f));
+      CHECK(std::fabs(f - g(hush::vec_cast<double>(pf))) <= budget);
+    }
+  }
+}
+
 TEST_CASE("gabor: mean 0 and variance 1 over space and seeds, every kind, 2D and 3D") {
   // 20000 i.i.d. samples per configuration: |mean| <= 5 SE(mean) and
   // |var - 1| <= 5 SE(var), the SEs from the samples (moments_of).

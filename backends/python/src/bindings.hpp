@@ -38,27 +38,22 @@ struct backend {
   int threads = 1;
 };
 
-// `what` names the call for the error of a backend it does not run (glsl_ok false).
-inline backend parse_backend(const std::string& name, int threads, bool glsl_ok = true,
-                             const char* what = "") {
+// The backend a call names ('simd', 'scalar' or 'glsl') and its thread count; ValueError otherwise.
+inline backend parse_backend(const std::string& name, int threads) {
   backend b;
   if (name == "simd") {
     b.simd = true;
   } else if (name == "scalar") {
     b.simd = false;
-  } else if (name == "glsl" && glsl_ok) {
+  } else if (name == "glsl") {
     if (!glsl_available())
       throw py::value_error(
           "backend 'glsl': this hush module was built without the GL backend (CMake found "
           "neither OSMesa nor EGL); valid: 'simd', 'scalar'");
     b.simd = false;
     b.glsl = true;
-  } else if (name == "glsl") {
-    throw py::value_error(std::string("backend 'glsl' is not available for ") + what +
-                          "; valid: 'simd', 'scalar'");
   } else {
-    throw py::value_error("backend '" + name + "' is invalid; valid: 'simd', 'scalar'" +
-                          (glsl_ok ? ", 'glsl'" : ""));
+    throw py::value_error("backend '" + name + "' is invalid; valid: 'simd', 'scalar', 'glsl'");
   }
   if (threads < 0 || threads > hush::exec::parallel_t<hush::exec::simd_t>::kMaxThreads)
     throw py::value_error("threads " + std::to_string(threads) +

@@ -103,9 +103,37 @@ def test_glsl_errors_name_the_problem(gl):
     n = hush.perlin(dim=2)
     with pytest.raises(ValueError, match="threads.*glsl"):
         n(np.zeros((4, 2), np.float32), backend="glsl", threads=0)
-    with pytest.raises(ValueError, match="glsl.*CoherentStream"):
+    with pytest.raises(ValueError, match="backend 'vulkan' is invalid; valid: 'simd', 'scalar', 'glsl'"):
         hush.coherent().advance(np.ones((8, 8), np.float32), np.zeros((8, 8, 3), np.float32),
-                                backend="glsl")
+                                backend="vulkan")
+
+
+def test_coherent_stream_advances_on_glsl_within_tolerance_of_the_cpu(gl):
+    # A scene panning 1.5 pixels a frame, with an occluder's disocclusions: the GL stream's frames
+    # against the scalar stream's, within tests/coherent/glsl_coherent_test.cpp's bound for white
+    # input, 2 (12 / (1 - alpha) + 1) 2^-24 M with M = 8 (the value bound); then one stream that
+    # changes backend mid-sequence (its history comes back from the device) against both.
+    alpha = 0.9
+    tol = 2 * (12 / (1 - alpha) + 1) * 2.0 ** -24 * 8
+    h, w = 24, 32
+    gpu, cpu, mixed = (hush.coherent(seed=5, alpha=alpha, channels=2) for _ in range(3))
+    for i in range(6):
+        depth = np.full((h, w), 10.0, np.float32)
+        depth[6:14, 4 + 2 * i:12 + 2 * i] = 3.0  # the occluder moves 2 pixels a frame
+        velocity = np.zeros((h, w, 3), np.float32)
+        velocity[..., 0] = 1.5
+        velocity[6:14, 4 + 2 * i:12 + 2 * i, 0] = 2.0
+        g = gpu.advance(depth, velocity, backend="glsl")
+        c = cpu.advance(depth, velocity, backend="scalar")
+        m = mixed.advance(depth, velocity, backend="glsl" if i % 2 == 0 else "simd")
+        assert g.shape == c.shape == (2, h, w) and g.dtype == np.float32
+        assert np.std(c) > 0.3
+        assert np.max(np.abs(g - c)) <= tol
+        assert np.max(np.abs(m - c)) <= tol
+    del gpu, mixed  # their GL buffers are deleted on the GL thread
+    import gc
+    gc.collect()
+    assert hush.glsl_renderer()  # the device still answers
 
 
 def test_npr_gabor_renders_on_glsl(gl):
