@@ -30,6 +30,7 @@
 #include "gl_timing.hpp"
 #include "hush/glsl/anisotropic/shader.hpp"
 #include "hush/glsl/detail/gl.hpp"
+#include "hush/glsl/detail/gl_raster.hpp"
 #include "hush/glsl/detail/gl_resident.hpp"
 #include "hush/glsl/fractal/shader.hpp"
 #include "hush/glsl/gabor/shader.hpp"
@@ -165,19 +166,7 @@ std::string fragment_shader(const hush::glsl::shader_kit& kit, const std::string
 class kit_frame {
  public:
   kit_frame(const d::gl_api& gl, const kit_row& row, std::size_t width, std::size_t height)
-      : gl_(gl), kit_(row.kit()), bound_(gl.loader, kit_), w_(width), h_(height) {
-    d::gl_api::load(gl.loader, GenFramebuffers_, "glGenFramebuffers");
-    d::gl_api::load(gl.loader, DeleteFramebuffers_, "glDeleteFramebuffers");
-    d::gl_api::load(gl.loader, BindFramebuffer_, "glBindFramebuffer");
-    d::gl_api::load(gl.loader, FramebufferTexture2D_, "glFramebufferTexture2D");
-    d::gl_api::load(gl.loader, CheckFramebufferStatus_, "glCheckFramebufferStatus");
-    d::gl_api::load(gl.loader, DrawBuffers_, "glDrawBuffers");
-    d::gl_api::load(gl.loader, GenVertexArrays_, "glGenVertexArrays");
-    d::gl_api::load(gl.loader, DeleteVertexArrays_, "glDeleteVertexArrays");
-    d::gl_api::load(gl.loader, BindVertexArray_, "glBindVertexArray");
-    d::gl_api::load(gl.loader, Viewport_, "glViewport");
-    d::gl_api::load(gl.loader, DrawArrays_, "glDrawArrays");
-    d::gl_api::load(gl.loader, GetTexImage_, "glGetTexImage");
+      : gl_(gl), gr_(gl.loader), kit_(row.kit()), bound_(gl.loader, kit_), w_(width), h_(height) {
     for (const bool check : {false, true})
       program_[check ? 1 : 0] = d::link_program(
           gl_, {{d::kGlVertexShader, kVertexShader},
@@ -187,28 +176,28 @@ class kit_frame {
     d::allocate_texture(gl_, tex_[1], w_, h_, d::kGlR32fFormat, d::kGlRedChannel, d::kGlFloat);
     for (int t = 2; t < 4; ++t)
       d::allocate_texture(gl_, tex_[t], w_, h_, d::kGlRgba32f, d::kGlRgba, d::kGlFloat);
-    GenFramebuffers_(2, fbo_);
+    gr_.GenFramebuffers(2, fbo_);
     for (int f = 0; f < 2; ++f) {
-      BindFramebuffer_(kFramebuffer, fbo_[f]);
+      gr_.BindFramebuffer(d::kGlFramebuffer, fbo_[f]);
       const int attachments = f == 0 ? 1 : 3;  // the timed frame: tex_[0]; the check: tex_[1..3]
       d::gl_enum bufs[3];
       for (int a = 0; a < attachments; ++a) {
-        bufs[a] = kColorAttachment0 + static_cast<d::gl_enum>(a);
-        FramebufferTexture2D_(kFramebuffer, bufs[a], d::kGlTexture2d, tex_[f == 0 ? 0 : 1 + a], 0);
+        bufs[a] = d::kGlColorAttachment0 + static_cast<d::gl_enum>(a);
+        gr_.FramebufferTexture2D(d::kGlFramebuffer, bufs[a], d::kGlTexture2d, tex_[f == 0 ? 0 : 1 + a], 0);
       }
-      DrawBuffers_(attachments, bufs);
-      if (CheckFramebufferStatus_(kFramebuffer) != kFramebufferComplete)
+      gr_.DrawBuffers(attachments, bufs);
+      if (gr_.CheckFramebufferStatus(d::kGlFramebuffer) != d::kGlFramebufferComplete)
         throw std::runtime_error("hush bench: a kit row's framebuffer is incomplete");
     }
-    BindFramebuffer_(kFramebuffer, 0u);
-    GenVertexArrays_(1, &vao_);
+    gr_.BindFramebuffer(d::kGlFramebuffer, 0u);
+    gr_.GenVertexArrays(1, &vao_);
     gl_.check("hush bench: setting up a kit row");
   }
   kit_frame(const kit_frame&) = delete;
   kit_frame& operator=(const kit_frame&) = delete;
   ~kit_frame() {
-    DeleteVertexArrays_(1, &vao_);
-    DeleteFramebuffers_(2, fbo_);
+    gr_.DeleteVertexArrays(1, &vao_);
+    gr_.DeleteFramebuffers(2, fbo_);
     gl_.DeleteTextures(4, tex_);
   }
 
@@ -216,23 +205,23 @@ class kit_frame {
   // triangle into the R32F output (the check variant: into its three attachments). Issues the
   // commands and returns (no glFinish). Leaves the default framebuffer and no program bound.
   void draw(bool check = false) const {
-    BindFramebuffer_(kFramebuffer, fbo_[check ? 1 : 0]);
-    Viewport_(0, 0, static_cast<d::gl_sizei>(w_), static_cast<d::gl_sizei>(h_));
+    gr_.BindFramebuffer(d::kGlFramebuffer, fbo_[check ? 1 : 0]);
+    gr_.Viewport(0, 0, static_cast<d::gl_sizei>(w_), static_cast<d::gl_sizei>(h_));
     bound_.bind();
     gl_.UseProgram(program_[check ? 1 : 0].id());
-    BindVertexArray_(vao_);
-    DrawArrays_(kTriangles, 0, 3);
-    BindVertexArray_(0u);
+    gr_.BindVertexArray(vao_);
+    gr_.DrawArrays(d::kGlTriangles, 0, 3);
+    gr_.BindVertexArray(0u);
     gl_.UseProgram(0u);
-    BindFramebuffer_(kFramebuffer, 0u);
+    gr_.BindFramebuffer(d::kGlFramebuffer, 0u);
   }
 
   // Texture t's texels (t = 0: the output; 1 ... 3: the check's noise, p and derivatives).
   std::vector<float> read(int t) const {
     std::vector<float> texels(w_ * h_ * (t >= 2 ? 4u : 1u));
     gl_.BindTexture(d::kGlTexture2d, tex_[t]);
-    gl_.PixelStorei(kPackAlignment, 4);
-    GetTexImage_(d::kGlTexture2d, 0, t >= 2 ? d::kGlRgba : d::kGlRedChannel, d::kGlFloat,
+    gl_.PixelStorei(d::kGlPackAlignment, 4);
+    gr_.GetTexImage(d::kGlTexture2d, 0, t >= 2 ? d::kGlRgba : d::kGlRedChannel, d::kGlFloat,
                  texels.data());
     gl_.BindTexture(d::kGlTexture2d, 0u);
     gl_.check("hush bench: reading a kit row's textures");
@@ -242,10 +231,8 @@ class kit_frame {
   const d::gl_api& gl() const { return gl_; }
 
  private:
-  static constexpr d::gl_enum kFramebuffer = 0x8D40, kColorAttachment0 = 0x8CE0,
-                              kFramebufferComplete = 0x8CD5, kTriangles = 0x0004,
-                              kPackAlignment = 0x0D05;
   const d::gl_api& gl_;
+  d::gl_raster_api gr_;
   hush::glsl::shader_kit kit_;
   hush::glsl::bound_kit bound_;
   std::size_t w_, h_;
@@ -253,19 +240,6 @@ class kit_frame {
   d::gl_uint tex_[4] = {0, 0, 0, 0};
   d::gl_uint fbo_[2] = {0, 0};
   d::gl_uint vao_ = 0;
-  void(HUSH_GLAPI* GenFramebuffers_)(d::gl_sizei, d::gl_uint*) = nullptr;
-  void(HUSH_GLAPI* DeleteFramebuffers_)(d::gl_sizei, const d::gl_uint*) = nullptr;
-  void(HUSH_GLAPI* BindFramebuffer_)(d::gl_enum, d::gl_uint) = nullptr;
-  void(HUSH_GLAPI* FramebufferTexture2D_)(d::gl_enum, d::gl_enum, d::gl_enum, d::gl_uint,
-                                          d::gl_int) = nullptr;
-  d::gl_enum(HUSH_GLAPI* CheckFramebufferStatus_)(d::gl_enum) = nullptr;
-  void(HUSH_GLAPI* DrawBuffers_)(d::gl_sizei, const d::gl_enum*) = nullptr;
-  void(HUSH_GLAPI* GenVertexArrays_)(d::gl_sizei, d::gl_uint*) = nullptr;
-  void(HUSH_GLAPI* DeleteVertexArrays_)(d::gl_sizei, const d::gl_uint*) = nullptr;
-  void(HUSH_GLAPI* BindVertexArray_)(d::gl_uint) = nullptr;
-  void(HUSH_GLAPI* Viewport_)(d::gl_int, d::gl_int, d::gl_sizei, d::gl_sizei) = nullptr;
-  void(HUSH_GLAPI* DrawArrays_)(d::gl_enum, d::gl_int, d::gl_sizei) = nullptr;
-  void(HUSH_GLAPI* GetTexImage_)(d::gl_enum, d::gl_int, d::gl_enum, d::gl_enum, void*) = nullptr;
 };
 
 prepared_case prepare_kit_row(hush::glsl::device& dev, const kit_row& row, const sizes& s) {

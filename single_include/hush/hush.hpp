@@ -9684,7 +9684,9 @@ class gabor_marks {
     const double ce = std::cos(elevation), se = std::sin(elevation);
     if constexpr (D == 2) {
       axis_ = {ca, sa};
-      theta0_ = kind == gabor_kind::isotropic ? 0.0 : orientation / c::kTwoPi;
+      // omega0's angle reduced to (-1/2, 1/2] turns from its sine and cosine, as the axis is:
+      // unreduced, a large orientation loses its fraction (or overflows) in float.
+      theta0_ = kind == gabor_kind::isotropic ? 0.0 : std::atan2(sa, ca) / c::kTwoPi;
       spread_ = kind == gabor_kind::isotropic ? 1.0 : spread / c::kTwoPi;
     } else {
       axis_ = {ce * ca, ce * sa, se};

@@ -850,7 +850,7 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
   std::vector<std::string> expected = {"hush_noise.glsl", "hush_coherent_pass.comp",
                                        "hush_npr_gabor_splat.vert", "hush_npr_gabor_splat.geom",
                                        "hush_npr_gabor_splat.frag"};
-  for (const char* pass : {"lods", "scan", "roots", "expand", "children", "records"})
+  for (const char* pass : {"lods", "scan", "roots", "expand", "children", "records", "plan"})
     expected.push_back(std::string("hush_npr_gabor_") + pass + ".comp");
   for (const auto& [name, samples] : programs)
     for (const char* layout : {"points", "grid", "samples"})
@@ -867,8 +867,8 @@ TEST_CASE("hush glsl-export writes the library and runners, which compile") {
   for (const auto& f : files) names.push_back(f.name);
   std::sort(expected.begin(), expected.end());
   std::sort(names.begin(), names.end());
-  CHECK(names == expected);  // 66 files: 46 runners, 9 shader kits and the 11 others
-  CHECK(names.size() == 66);
+  CHECK(names == expected);  // 67 files: 46 runners, 9 shader kits and the 12 others
+  CHECK(names.size() == 67);
   for (const auto& f : files) {
     REQUIRE(fs::exists(dir / f.name));
     CHECK(slurp(dir / f.name) == f.content);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hush/glsl/detail/gl.hpp"
+#include "hush/glsl/detail/gl_raster.hpp"
 #include "hush/glsl/shader.hpp"
 
 namespace hush_glsl_test {
@@ -25,20 +26,7 @@ namespace hush_glsl_test {
 class fragment_harness {
  public:
   explicit fragment_harness(hush::glsl::detail::loader_fn gl_loader)
-      : loader_(gl_loader), gl_(gl_loader) {
-    const auto loader = gl_loader;
-    using hush::glsl::detail::gl_api;
-    gl_api::load(loader, GenFramebuffers, "glGenFramebuffers");
-    gl_api::load(loader, DeleteFramebuffers, "glDeleteFramebuffers");
-    gl_api::load(loader, BindFramebuffer, "glBindFramebuffer");
-    gl_api::load(loader, FramebufferTexture2D, "glFramebufferTexture2D");
-    gl_api::load(loader, CheckFramebufferStatus, "glCheckFramebufferStatus");
-    gl_api::load(loader, GenVertexArrays, "glGenVertexArrays");
-    gl_api::load(loader, DeleteVertexArrays, "glDeleteVertexArrays");
-    gl_api::load(loader, BindVertexArray, "glBindVertexArray");
-    gl_api::load(loader, DrawArrays, "glDrawArrays");
-    gl_api::load(loader, Viewport, "glViewport");
-    gl_api::load(loader, ReadPixels, "glReadPixels");
+      : loader_(gl_loader), gl_(gl_loader), gr_(gl_loader) {
   }
 
   const hush::glsl::detail::gl_api& gl() const { return gl_; }
@@ -61,27 +49,27 @@ class fragment_harness {
     gl_.BindTexture(kGlTexture2d, tex);
     gl_.TexImage2D(kGlTexture2d, 0, static_cast<gl_int>(kGlRgba32f), width, height, 0, kGlRgba,
                    kGlFloat, nullptr);
-    GenFramebuffers(1, &fbo);
-    BindFramebuffer(kFramebuffer, fbo);
-    FramebufferTexture2D(kFramebuffer, kColorAttachment0, kGlTexture2d, tex, 0);
-    const bool complete = CheckFramebufferStatus(kFramebuffer) == kFramebufferComplete;
+    gr_.GenFramebuffers(1, &fbo);
+    gr_.BindFramebuffer(kGlFramebuffer, fbo);
+    gr_.FramebufferTexture2D(kGlFramebuffer, kGlColorAttachment0, kGlTexture2d, tex, 0);
+    const bool complete = gr_.CheckFramebufferStatus(kGlFramebuffer) == kGlFramebufferComplete;
     std::vector<float> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4u);
     if (complete) {
-      GenVertexArrays(1, &vao);
-      BindVertexArray(vao);
-      Viewport(0, 0, width, height);
+      gr_.GenVertexArrays(1, &vao);
+      gr_.BindVertexArray(vao);
+      gr_.Viewport(0, 0, width, height);
       gl_.UseProgram(prog.id());
       bound.bind();
       set_uniforms(prog.id());
-      DrawArrays(kTriangles, 0, 3);
-      gl_.PixelStorei(kPackAlignment, 4);
-      ReadPixels(0, 0, width, height, kGlRgba, kGlFloat, pixels.data());
+      gr_.DrawArrays(kGlTriangles, 0, 3);
+      gl_.PixelStorei(kGlPackAlignment, 4);
+      gr_.ReadPixels(0, 0, width, height, kGlRgba, kGlFloat, pixels.data());
       gl_.UseProgram(0u);
-      BindVertexArray(0u);
-      DeleteVertexArrays(1, &vao);
+      gr_.BindVertexArray(0u);
+      gr_.DeleteVertexArrays(1, &vao);
     }
-    BindFramebuffer(kFramebuffer, 0u);
-    DeleteFramebuffers(1, &fbo);
+    gr_.BindFramebuffer(kGlFramebuffer, 0u);
+    gr_.DeleteFramebuffers(1, &fbo);
     gl_.DeleteTextures(1, &tex);
     if (!complete) throw std::runtime_error("fragment_harness: the framebuffer is incomplete");
     gl_.check("fragment_harness::draw");
@@ -98,26 +86,10 @@ class fragment_harness {
   using gl_uint = hush::glsl::detail::gl_uint;
   using gl_int = hush::glsl::detail::gl_int;
   using gl_sizei = hush::glsl::detail::gl_sizei;
-  static constexpr gl_enum kFramebuffer = 0x8D40;
-  static constexpr gl_enum kColorAttachment0 = 0x8CE0;
-  static constexpr gl_enum kFramebufferComplete = 0x8CD5;
-  static constexpr gl_enum kTriangles = 0x0004;
-  static constexpr gl_enum kPackAlignment = 0x0D05;
 
   hush::glsl::detail::loader_fn loader_;
   hush::glsl::detail::gl_api gl_;
-  void(HUSH_GLAPI* GenFramebuffers)(gl_sizei, gl_uint*) = nullptr;
-  void(HUSH_GLAPI* DeleteFramebuffers)(gl_sizei, const gl_uint*) = nullptr;
-  void(HUSH_GLAPI* BindFramebuffer)(gl_enum, gl_uint) = nullptr;
-  void(HUSH_GLAPI* FramebufferTexture2D)(gl_enum, gl_enum, gl_enum, gl_uint, gl_int) = nullptr;
-  gl_enum(HUSH_GLAPI* CheckFramebufferStatus)(gl_enum) = nullptr;
-  void(HUSH_GLAPI* GenVertexArrays)(gl_sizei, gl_uint*) = nullptr;
-  void(HUSH_GLAPI* DeleteVertexArrays)(gl_sizei, const gl_uint*) = nullptr;
-  void(HUSH_GLAPI* BindVertexArray)(gl_uint) = nullptr;
-  void(HUSH_GLAPI* DrawArrays)(gl_enum, gl_int, gl_sizei) = nullptr;
-  void(HUSH_GLAPI* Viewport)(gl_int, gl_int, gl_sizei, gl_sizei) = nullptr;
-  void(HUSH_GLAPI* ReadPixels)(gl_int, gl_int, gl_sizei, gl_sizei, gl_enum, gl_enum,
-                               void*) = nullptr;
+  hush::glsl::detail::gl_raster_api gr_;
 };
 
 // The GLSL dialects a kit is compiled for by glslangValidator.

@@ -433,10 +433,13 @@ inline std::string class_doc(const char* summary, const docs::noise& d) {
 }
 
 // The docstring of an evaluation method: `what` (the Python call), then the C++ contract of
-// hush::evaluate that applies (the bullets of exec.hpp named in `bullets`).
-inline const char* method_doc(const std::string& what, std::initializer_list<const char*> bullets) {
+// hush::evaluate that applies: `form` (exec.hpp's bullet for points, grids or samples), then
+// the bullets every backend argument shares.
+inline const char* method_doc(const std::string& what, const char* form) {
   std::string text = what + "\n\nC++ contract (include/hush/exec.hpp, hush::evaluate):";
-  for (const char* b : bullets) text += std::string("\n - ") + b;
+  for (const char* b : {form, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
+                        docs::exec_parallel, docs::exec_NaN})
+    text += std::string("\n - ") + b;
   return kept(text);
 }
 
@@ -491,8 +494,7 @@ void add_point_methods(py::class_<held<Noise>>& c) {
                  "threads: 1 (default), 0 (one per hardware thread) or n (scalar and simd). "
                  "out: None (a new array) or a writable C-contiguous float32 array of shape (N,), "
                  "written and returned (no allocation per call).",
-                 {docs::exec_points, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
-                  docs::exec_parallel, docs::exec_NaN}));
+                 docs::exec_points));
   c.def(
       "gradient",
       [](const H& h, const py::handle& points, const std::string& backend_name, int threads) {
@@ -501,8 +503,7 @@ void add_point_methods(py::class_<held<Noise>>& c) {
       py::arg("points"), py::arg("backend") = "simd", py::arg("threads") = 1,
       method_doc("Values and analytic gradients at points: (values (N,), gradients (N, D)), "
                  "float32. backend and threads as for __call__.",
-                 {docs::exec_points, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
-                  docs::exec_parallel, docs::exec_NaN}));
+                 docs::exec_points));
   c.def(
       "grid",
       [](const H& h, const std::vector<py::ssize_t>& shape, const py::handle& origin,
@@ -518,8 +519,7 @@ void add_point_methods(py::class_<held<Noise>>& c) {
           "block=(start, size) (numpy axis order) returns only that block of the grid, bit for "
           "bit the same samples as the whole grid's call. backend, threads and out (of the "
           "returned shape) as for __call__.",
-          {docs::exec_grids, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
-           docs::exec_parallel, docs::exec_NaN}));
+          docs::exec_grids));
   // The C++ calls __call__ and grid make, timed without Python objects: the same inputs (the
   // points converted once), the output `out` (or one array for all repeats), the GIL released;
   // seconds per repeat. For backends/python/bench/overhead.py, which compares them with the Python
@@ -596,8 +596,7 @@ void add_sample_methods(py::class_<held<Noise>>& c) {
                  "(N, 2, D) (dp/dx, dp/dy); normals (N, 3) for 3D noises that project; "
                  "surface_maps (N, 2, 2) for 2D texture-space noises. Each None or one per "
                  "point. backend, threads and out as for __call__.",
-                 {docs::exec_samples, docs::exec_scalar, docs::exec_simd, docs::exec_glsl,
-                  docs::exec_parallel, docs::exec_NaN}));
+                 docs::exec_samples));
 }
 
 }  // namespace hush_python

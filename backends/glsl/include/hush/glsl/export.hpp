@@ -72,7 +72,8 @@ void add_all_runners(std::vector<export_file>& files, const std::tuple<Noise...>
 // hush_npr_gabor_splat.vert, .geom, .frag (NPR Gabor noise's point sprites, one program,
 // hush/glsl/npr_gabor/glsl.hpp) and hush_npr_gabor_lods.comp, _scan.comp, _roots.comp,
 // _expand.comp, _children.comp, _records.comp (its stage 1: the compute passes that walk
-// each triangle's point sequence level by level and write the records the sprites draw).
+// each triangle's point sequence level by level and write the records the sprites draw) and
+// _plan.comp (the GPU-resident walk's counts and indirect commands, frame.hpp).
 inline std::vector<export_file> export_files() {
   std::vector<export_file> files;
   files.push_back(

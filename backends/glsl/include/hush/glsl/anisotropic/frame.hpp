@@ -45,6 +45,7 @@
 #include "hush/core/frame.hpp"
 #include "hush/glsl/anisotropic/shader.hpp"
 #include "hush/glsl/detail/gl.hpp"
+#include "hush/glsl/detail/gl_raster.hpp"
 #include "hush/glsl/shader.hpp"
 
 namespace hush {
@@ -63,18 +64,7 @@ class anisotropic_frame {
   // Compiles the program and uploads the kit of `noise` (its block and tiles). Throws
   // std::runtime_error on a GL error, hush::invalid_argument for least-squares rules.
   anisotropic_frame(detail::loader_fn loader, const anisotropic& noise)
-      : gl_(loader), kit_(shader_for(noise)), bound_(loader, kit_) {
-    detail::gl_api::load(loader, GenFramebuffers_, "glGenFramebuffers");
-    detail::gl_api::load(loader, DeleteFramebuffers_, "glDeleteFramebuffers");
-    detail::gl_api::load(loader, BindFramebuffer_, "glBindFramebuffer");
-    detail::gl_api::load(loader, FramebufferTexture2D_, "glFramebufferTexture2D");
-    detail::gl_api::load(loader, CheckFramebufferStatus_, "glCheckFramebufferStatus");
-    detail::gl_api::load(loader, GenVertexArrays_, "glGenVertexArrays");
-    detail::gl_api::load(loader, DeleteVertexArrays_, "glDeleteVertexArrays");
-    detail::gl_api::load(loader, BindVertexArray_, "glBindVertexArray");
-    detail::gl_api::load(loader, DrawArrays_, "glDrawArrays");
-    detail::gl_api::load(loader, Viewport_, "glViewport");
-    detail::gl_api::load(loader, ReadPixels_, "glReadPixels");
+      : gl_(loader), gr_(loader), kit_(shader_for(noise)), bound_(loader, kit_) {
     program_ = detail::link_program(
         gl_, {{detail::kGlVertexShader, kVertexShader},
               {detail::kGlFragmentShader, "#version 430 core\n" + kit_.source + kFragmentMain}});
@@ -84,15 +74,15 @@ class anisotropic_frame {
     loc_size_ = gl_.GetUniformLocation(program_.id(), "hush_frame_size");
     loc_flags_ = gl_.GetUniformLocation(program_.id(), "hush_frame_flags");
     gl_.UseProgram(0u);
-    GenFramebuffers_(1, &fbo_);
-    GenVertexArrays_(1, &vao_);
+    gr_.GenFramebuffers(1, &fbo_);
+    gr_.GenVertexArrays(1, &vao_);
     gl_.check("hush::glsl::anisotropic_frame: setting up");
   }
   anisotropic_frame(const anisotropic_frame&) = delete;
   anisotropic_frame& operator=(const anisotropic_frame&) = delete;
   ~anisotropic_frame() {
-    DeleteFramebuffers_(1, &fbo_);
-    DeleteVertexArrays_(1, &vao_);
+    gr_.DeleteFramebuffers(1, &fbo_);
+    gr_.DeleteVertexArrays(1, &vao_);
     gl_.DeleteTextures(static_cast<detail::gl_sizei>(own_.size()), own_.data());
   }
 
@@ -106,17 +96,17 @@ class anisotropic_frame {
           "hush::glsl::anisotropic_frame::render: a uv texture, an output texture and a "
           "positive size are needed");
     detail::gl_int old_fbo = 0, old_viewport[4] = {0, 0, 0, 0};
-    gl_.GetIntegerv(kDrawFramebufferBinding, &old_fbo);
-    gl_.GetIntegerv(kViewportEnum, old_viewport);
-    BindFramebuffer_(kDrawFramebuffer, fbo_);
-    FramebufferTexture2D_(kDrawFramebuffer, kColorAttachment0, detail::kGlTexture2d, output, 0);
-    if (CheckFramebufferStatus_(kDrawFramebuffer) != kFramebufferComplete) {
-      BindFramebuffer_(kDrawFramebuffer, static_cast<gl_uint>(old_fbo));
+    gl_.GetIntegerv(detail::kGlDrawFramebufferBinding, &old_fbo);
+    gl_.GetIntegerv(detail::kGlViewport, old_viewport);
+    gr_.BindFramebuffer(detail::kGlDrawFramebuffer, fbo_);
+    gr_.FramebufferTexture2D(detail::kGlDrawFramebuffer, detail::kGlColorAttachment0, detail::kGlTexture2d, output, 0);
+    if (gr_.CheckFramebufferStatus(detail::kGlDrawFramebuffer) != detail::kGlFramebufferComplete) {
+      gr_.BindFramebuffer(detail::kGlDrawFramebuffer, static_cast<gl_uint>(old_fbo));
       hush::detail::raise_error<std::runtime_error>(
           "hush::glsl::anisotropic_frame::render: the output texture is not renderable (R32F "
           "of the frame's size expected)");
     }
-    Viewport_(0, 0, width, height);
+    gr_.Viewport(0, 0, width, height);
     gl_.UseProgram(program_.id());
     bound_.bind();
     const gl_uint tex[3] = {in.uv, in.jacobian, in.surface_map};
@@ -126,18 +116,18 @@ class anisotropic_frame {
     }
     gl_.Uniform2ui(loc_size_, static_cast<gl_uint>(width), static_cast<gl_uint>(height));
     gl_.Uniform2ui(loc_flags_, in.jacobian != 0u ? 1u : 0u, in.surface_map != 0u ? 1u : 0u);
-    BindVertexArray_(vao_);
-    DrawArrays_(kTriangles, 0, 3);
-    BindVertexArray_(0u);
+    gr_.BindVertexArray(vao_);
+    gr_.DrawArrays(detail::kGlTriangles, 0, 3);
+    gr_.BindVertexArray(0u);
     for (int t = 0; t < 3 + 3; ++t) {
       gl_.ActiveTexture(detail::kGlTexture0 + static_cast<detail::gl_enum>(t));
       gl_.BindTexture(detail::kGlTexture2d, 0u);
     }
     gl_.ActiveTexture(detail::kGlTexture0);
     gl_.UseProgram(0u);
-    FramebufferTexture2D_(kDrawFramebuffer, kColorAttachment0, detail::kGlTexture2d, 0u, 0);
-    BindFramebuffer_(kDrawFramebuffer, static_cast<gl_uint>(old_fbo));
-    Viewport_(old_viewport[0], old_viewport[1], old_viewport[2], old_viewport[3]);
+    gr_.FramebufferTexture2D(detail::kGlDrawFramebuffer, detail::kGlColorAttachment0, detail::kGlTexture2d, 0u, 0);
+    gr_.BindFramebuffer(detail::kGlDrawFramebuffer, static_cast<gl_uint>(old_fbo));
+    gr_.Viewport(old_viewport[0], old_viewport[1], old_viewport[2], old_viewport[3]);
     gl_.check("hush::glsl::anisotropic_frame::render");
   }
 
@@ -188,13 +178,13 @@ class anisotropic_frame {
     render({own_[0], own_[1], maps.empty() ? 0u : own_[2]}, own_[3], gw, gh);
     std::vector<float> out(n);
     detail::gl_int old_fbo = 0;
-    gl_.GetIntegerv(kReadFramebufferBinding, &old_fbo);
-    BindFramebuffer_(kReadFramebuffer, fbo_);
-    FramebufferTexture2D_(kReadFramebuffer, kColorAttachment0, detail::kGlTexture2d, own_[3], 0);
-    gl_.PixelStorei(kPackAlignment, 4);
-    ReadPixels_(0, 0, gw, gh, kRed, detail::kGlFloat, out.data());
-    FramebufferTexture2D_(kReadFramebuffer, kColorAttachment0, detail::kGlTexture2d, 0u, 0);
-    BindFramebuffer_(kReadFramebuffer, static_cast<gl_uint>(old_fbo));
+    gl_.GetIntegerv(detail::kGlReadFramebufferBinding, &old_fbo);
+    gr_.BindFramebuffer(detail::kGlReadFramebuffer, fbo_);
+    gr_.FramebufferTexture2D(detail::kGlReadFramebuffer, detail::kGlColorAttachment0, detail::kGlTexture2d, own_[3], 0);
+    gl_.PixelStorei(detail::kGlPackAlignment, 4);
+    gr_.ReadPixels(0, 0, gw, gh, detail::kGlRedChannel, detail::kGlFloat, out.data());
+    gr_.FramebufferTexture2D(detail::kGlReadFramebuffer, detail::kGlColorAttachment0, detail::kGlTexture2d, 0u, 0);
+    gr_.BindFramebuffer(detail::kGlReadFramebuffer, static_cast<gl_uint>(old_fbo));
     gl_.check("hush::glsl::anisotropic_frame::render_image");
     return out;
   }
@@ -202,19 +192,6 @@ class anisotropic_frame {
   const shader_kit& kit() const { return kit_; }
 
  private:
-  using gl_enum = detail::gl_enum;
-  static constexpr gl_enum kDrawFramebuffer = 0x8CA9;
-  static constexpr gl_enum kReadFramebuffer = 0x8CA8;
-  static constexpr gl_enum kDrawFramebufferBinding = 0x8CA6;
-  static constexpr gl_enum kReadFramebufferBinding = 0x8CAA;
-  static constexpr gl_enum kColorAttachment0 = 0x8CE0;
-  static constexpr gl_enum kFramebufferComplete = 0x8CD5;
-  static constexpr gl_enum kViewportEnum = 0x0BA2;
-  static constexpr gl_enum kTriangles = 0x0004;
-  static constexpr gl_enum kPackAlignment = 0x0D05;
-  static constexpr gl_enum kRed = 0x1903;
-  static constexpr gl_enum kR32f = 0x822E;
-  static constexpr gl_enum kNearest = 0x2600;
   // The inputs' texture units, after the kit's (0-2).
   static constexpr int kFirstInputUnit = 3;
   static constexpr const char* kInputNames[3] = {"hush_frame_uv", "hush_frame_jacobian",
@@ -283,16 +260,17 @@ void main() {
     gl_.BindTexture(detail::kGlTexture2d, t);
     gl_.PixelStorei(detail::kGlUnpackAlignment, 4);
     gl_.TexImage2D(detail::kGlTexture2d, 0,
-                   static_cast<detail::gl_int>(r32f ? kR32f : detail::kGlRgba32f), w, h, 0,
-                   r32f ? kRed : detail::kGlRgba, detail::kGlFloat, data);
+                   static_cast<detail::gl_int>(r32f ? detail::kGlR32fFormat : detail::kGlRgba32f), w, h, 0,
+                   r32f ? detail::kGlRedChannel : detail::kGlRgba, detail::kGlFloat, data);
     gl_.TexParameteri(detail::kGlTexture2d, detail::kGlTextureMinFilter,
-                      static_cast<detail::gl_int>(kNearest));
+                      static_cast<detail::gl_int>(detail::kGlNearestFilter));
     gl_.TexParameteri(detail::kGlTexture2d, detail::kGlTextureMagFilter,
-                      static_cast<detail::gl_int>(kNearest));
+                      static_cast<detail::gl_int>(detail::kGlNearestFilter));
     gl_.BindTexture(detail::kGlTexture2d, 0u);
   }
 
   detail::gl_api gl_;
+  detail::gl_raster_api gr_;
   shader_kit kit_;
   bound_kit bound_;
   detail::gl_program program_;
@@ -300,20 +278,6 @@ void main() {
   gl_uint fbo_ = 0, vao_ = 0;
   std::vector<gl_uint> own_;  // render_image's uv, Jacobian, map and output textures
   int own_w_ = 0, own_h_ = 0;
-  void(HUSH_GLAPI* GenFramebuffers_)(detail::gl_sizei, gl_uint*) = nullptr;
-  void(HUSH_GLAPI* DeleteFramebuffers_)(detail::gl_sizei, const gl_uint*) = nullptr;
-  void(HUSH_GLAPI* BindFramebuffer_)(gl_enum, gl_uint) = nullptr;
-  void(HUSH_GLAPI* FramebufferTexture2D_)(gl_enum, gl_enum, gl_enum, gl_uint,
-                                          detail::gl_int) = nullptr;
-  gl_enum(HUSH_GLAPI* CheckFramebufferStatus_)(gl_enum) = nullptr;
-  void(HUSH_GLAPI* GenVertexArrays_)(detail::gl_sizei, gl_uint*) = nullptr;
-  void(HUSH_GLAPI* DeleteVertexArrays_)(detail::gl_sizei, const gl_uint*) = nullptr;
-  void(HUSH_GLAPI* BindVertexArray_)(gl_uint) = nullptr;
-  void(HUSH_GLAPI* DrawArrays_)(gl_enum, detail::gl_int, detail::gl_sizei) = nullptr;
-  void(HUSH_GLAPI* Viewport_)(detail::gl_int, detail::gl_int, detail::gl_sizei,
-                              detail::gl_sizei) = nullptr;
-  void(HUSH_GLAPI* ReadPixels_)(detail::gl_int, detail::gl_int, detail::gl_sizei, detail::gl_sizei,
-                                gl_enum, gl_enum, void*) = nullptr;
 };
 
 }  // namespace glsl

@@ -847,16 +847,26 @@ inline std::string npr_gabor_stage1_source(int pass) {
   return dual_dialect(source,
                       std::string("hush_npr_gabor_") + npr_gabor_stage1_name(p) + "_params");
 }
-// The walk's plan pass (kNprGaborPlan; #version 430 core): `levels` slots of needed counts in
-// slot 0, dispatches of at most `max_groups` groups.
-inline std::string npr_gabor_plan_source(std::size_t levels, std::size_t max_groups) {
-  return std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
-                     " NPR Gabor stage 1: the walk's plan (hush/glsl/npr_gabor/glsl.hpp).\n"
-                     "#define HUSH_NPR_GROUP ") +
-         std::to_string(kNprGaborGroupSize) + "\n#define HUSH_PLAN_SCAN_BLOCK " +
-         std::to_string(kNprGaborScanBlock) + "\n#define HUSH_PLAN_MAX_GROUPS " +
-         std::to_string(max_groups) + "u\n#define HUSH_PLAN_LEVELS " + std::to_string(levels) +
-         "u\n" + detail::kNprGaborPlan;
+// The GPU-resident walk (hush/glsl/npr_gabor/frame.hpp): its levels 0 ... npr_gabor::max_depth()
+// (the finest keeps no children), and the work groups per indirect dispatch (GL 4.3's minimum
+// GL_MAX_COMPUTE_WORK_GROUP_COUNT).
+constexpr std::size_t kNprGaborPlanLevels = 22;
+constexpr std::size_t kNprGaborMaxGroups = 65535;
+static_assert(kNprGaborPlanLevels == std::size_t{npr_gabor::max_depth()} + 1,
+              "the resident walk has a slot per level");
+// The walk's plan pass (kNprGaborPlan; #version 430 core; Vulkan too, hush/glsl/dialect.hpp):
+// kNprGaborPlanLevels + 1 slots of needed counts in slot 0, dispatches of at most
+// kNprGaborMaxGroups groups. Exported as hush_npr_gabor_plan.comp.
+inline std::string npr_gabor_plan_source() {
+  return dual_dialect(
+      std::string("#version 430 core\n// hush " HUSH_VERSION_STRING
+                  " NPR Gabor stage 1: the walk's plan (hush/glsl/npr_gabor/glsl.hpp).\n"
+                  "#define HUSH_NPR_GROUP ") +
+          std::to_string(kNprGaborGroupSize) + "\n#define HUSH_PLAN_SCAN_BLOCK " +
+          std::to_string(kNprGaborScanBlock) + "\n#define HUSH_PLAN_MAX_GROUPS " +
+          std::to_string(kNprGaborMaxGroups) + "u\n#define HUSH_PLAN_LEVELS " +
+          std::to_string(kNprGaborPlanLevels + 1) + "u\n" + detail::kNprGaborPlan,
+      "hush_npr_gabor_plan_params");
 }
 // The sources of the three stages (#version 430 core; Vulkan too, hush/glsl/dialect.hpp), for
 // hush glsl-export and tests. Under Vulkan the geometry stage's uniform block
@@ -887,7 +897,8 @@ inline std::string npr_gabor_fragment_source() {
 namespace detail {
 
 // The files `hush glsl-export` writes for NPR Gabor noise (hush/glsl/export.hpp), as
-// (file name, text): the splat program's three stages, then stage 1's passes in order.
+// (file name, text): the splat program's three stages, then stage 1's passes in order and
+// the resident walk's plan pass.
 inline std::vector<std::pair<std::string, std::string>> npr_gabor_exports() {
   std::vector<std::pair<std::string, std::string>> files = {
       {"hush_npr_gabor_splat.vert", npr_gabor_vertex_source()},
@@ -896,6 +907,7 @@ inline std::vector<std::pair<std::string, std::string>> npr_gabor_exports() {
   for (int i = 0; i < kNprGaborStage1Passes; ++i)
     files.emplace_back(std::string("hush_npr_gabor_") + npr_gabor_stage1_name(i) + ".comp",
                        npr_gabor_stage1_source(i));
+  files.emplace_back("hush_npr_gabor_plan.comp", npr_gabor_plan_source());
   return files;
 }
 

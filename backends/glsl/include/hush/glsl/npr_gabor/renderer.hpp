@@ -164,7 +164,7 @@ class npr_gabor_gpu {
     for (int i = 0; i < kNprGaborStage1Passes; ++i)
       stage1_[i] = link_program(gl_, {{kGlComputeShader, npr_gabor_stage1_source(i)}});
     plan_program_ =
-        link_program(gl_, {{kGlComputeShader, npr_gabor_plan_source(kPlanLevels + 1, kMaxGroups)}});
+        link_program(gl_, {{kGlComputeShader, npr_gabor_plan_source()}});
     // The plan: slot 0 (status), the levels' slots, the draws; zeroed once (the sync walk binds
     // a slot too, its uniform block unread there).
     gl_int align = 256;
@@ -374,10 +374,10 @@ class npr_gabor_gpu {
     const state_guard guard(gl_, gr_);
     gl_.BindTexture(kGlTexture2d, texture_);
     if (w != width_ || h != height_) {
-      gl_.TexImage2D(kGlTexture2d, 0, static_cast<gl_int>(kGlR32f), static_cast<gl_sizei>(w),
-                     static_cast<gl_sizei>(h), 0, kGlRed, kGlFloat, nullptr);
+      gl_.TexImage2D(kGlTexture2d, 0, static_cast<gl_int>(kGlR32fFormat), static_cast<gl_sizei>(w),
+                     static_cast<gl_sizei>(h), 0, kGlRedChannel, kGlFloat, nullptr);
       for (const gl_enum p : {kGlTextureMinFilter, kGlTextureMagFilter})
-        gl_.TexParameteri(kGlTexture2d, p, static_cast<gl_int>(kGlNearest));
+        gl_.TexParameteri(kGlTexture2d, p, static_cast<gl_int>(kGlNearestFilter));
       width_ = w;
       height_ = h;
     }
@@ -385,7 +385,7 @@ class npr_gabor_gpu {
     // Read back (row y of the texture is image row y).
     pixels_.resize(w * h);
     gl_.PixelStorei(kGlPackAlignment, 4);
-    gr_.ReadPixels(0, 0, static_cast<gl_sizei>(w), static_cast<gl_sizei>(h), kGlRed, kGlFloat,
+    gr_.ReadPixels(0, 0, static_cast<gl_sizei>(w), static_cast<gl_sizei>(h), kGlRedChannel, kGlFloat,
                    pixels_.data());
     gl_.check("hush::glsl::npr_gabor: splatting");
     for (std::size_t y = 0; y < h; ++y)
@@ -1002,7 +1002,7 @@ class npr_gabor_gpu {
     if (fence) return;
     gl_.BindBuffer(kGlCopyReadBuffer, plan_);
     gl_.BindBuffer(kGlCopyWriteBuffer, status_);
-    gr_.CopyBufferSubData(kGlCopyReadBuffer, kGlCopyWriteBuffer, 0,
+    rs_.CopyBufferSubData(kGlCopyReadBuffer, kGlCopyWriteBuffer, 0,
                           static_cast<gl_intptr>(status_next_ * kStatusWords * 4),
                           static_cast<gl_sizeiptr>(kStatusWords * 4));
     fence = gr_.FenceSync(kGlSyncGpuCommandsComplete, 0);
@@ -1073,11 +1073,10 @@ class npr_gabor_gpu {
                        kChildrenPass = 4, kRecordsPass = 5;
   // Deeper than any J below 2^41 reaches (21): a guard, never taken.
   static constexpr std::size_t kMaxLevels = 24;
-  // The resident walk: levels 0 ... npr_gabor::max_depth() (the finest keeps no children);
-  // work groups per dispatch (GL 4.3's minimum GL_MAX_COMPUTE_WORK_GROUP_COUNT); a level's
-  // least capacity (nodes); "the plan's count" for the count uniforms.
-  static constexpr std::size_t kPlanLevels = 22;
-  static constexpr std::size_t kMaxGroups = 65535;
+  // The resident walk's levels and work groups per dispatch (glsl.hpp); a level's least
+  // capacity (nodes); "the plan's count" for the count uniforms.
+  static constexpr std::size_t kPlanLevels = kNprGaborPlanLevels;
+  static constexpr std::size_t kMaxGroups = kNprGaborMaxGroups;
   static constexpr std::size_t kMinCapacity = 4096;
   static constexpr gl_uint kGpuCount = 0xFFFFFFFFu;
   // Plan layout (words within a slot, kNprGaborPlan): node-pass commands, scan commands;
