@@ -10,7 +10,8 @@
 // that is both:
 //   - the loose non-opaque uniforms stay as they are outside VULKAN (#ifndef VULKAN), and
 //     under VULKAN are the members, in declaration order, of one std140 uniform block
-//     `<block>` at binding kVulkanParamsBinding, declared where the first of them was;
+//     `<block>` at binding kVulkanParamsBinding, declared where the first of them was (its
+//     std140 layout, and a writer that fills it by name: hush/glsl/vulkan_params.hpp);
 //   - storage buffers keep their bindings (all below kVulkanParamsBinding);
 //   - a uniform block of the source at uniform-block binding b (OpenGL's own binding space)
 //     is at binding kVulkanBlockBinding + b under VULKAN (b < 3);
@@ -29,6 +30,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hush/core/error.hpp"
@@ -93,6 +95,45 @@ inline std::string uniform_type(const std::string& line) {
   return line.substr(at, end == std::string::npos ? std::string::npos : end - at);
 }
 
+// The lines of `text`, without their newlines.
+inline std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t nl = text.find('\n', at);
+    const std::size_t end = nl == std::string::npos ? text.size() : nl;
+    lines.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  return lines;
+}
+
+// A loose non-opaque uniform: a declaration dual_dialect moves into the Vulkan params block.
+struct params_declaration {
+  std::size_t line = 0;     // its line (0-based) in the text
+  std::string declaration;  // the line after `uniform `: `TYPE NAME[, NAME...];` and any comment
+  std::string type;         // TYPE
+};
+
+// The loose non-opaque uniforms of a shader's lines, in declaration order: the members of its
+// Vulkan params block. The one reading of those declarations: dual_dialect writes the block
+// from it and vulkan_params_layout_of (hush/glsl/vulkan_params.hpp) lays the block out from
+// it, in dual_dialect's source and in its output alike (there the moved lines stay, OpenGL's
+// branch; the block's members are indented, so not read again). Throws std::logic_error for a
+// non-opaque uniform with a layout (its place in the block would be unknown).
+inline std::vector<params_declaration> params_declarations(const std::vector<std::string>& lines) {
+  std::vector<params_declaration> out;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (!uniform_block_name(lines[i]).empty()) continue;
+    std::string type = uniform_type(lines[i]);
+    if (type.empty() || opaque_glsl_type(type)) continue;
+    if (lines[i].compare(0, 8, "uniform ") != 0)
+      hush::detail::raise_error<std::logic_error>(
+          "hush::glsl::dual_dialect: a non-opaque uniform with a layout");
+    out.push_back({i, lines[i].substr(8), std::move(type)});
+  }
+  return out;
+}
+
 }  // namespace detail
 
 // `source` (a complete shader for OpenGL 4.3 core: #version line, header comment, one
@@ -102,16 +143,11 @@ inline std::string uniform_type(const std::string& line) {
 // without `layout(binding = u)` (its Vulkan binding would be unknown), a block binding above 2
 // and a non-opaque loose uniform with a layout.
 inline std::string dual_dialect(const std::string& source, const std::string& block) {
-  std::vector<std::string> lines;
-  for (std::size_t at = 0; at < source.size();) {
-    const std::size_t nl = source.find('\n', at);
-    const std::size_t end = nl == std::string::npos ? source.size() : nl;
-    lines.push_back(source.substr(at, end - at));
-    at = end + 1;
-  }
-  // The block's members and the Vulkan bindings of the samplers and images.
+  std::vector<std::string> lines = detail::split_lines(source);
+  // The block's members, then the Vulkan bindings of the source's blocks, samplers and images.
+  const std::vector<detail::params_declaration> moved = detail::params_declarations(lines);
   std::string members, note;
-  std::size_t first_uniform = lines.size();
+  for (const detail::params_declaration& d : moved) members += "  " + d.declaration + "\n";
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string block_name = detail::uniform_block_name(lines[i]);
     if (!block_name.empty()) {
@@ -127,15 +163,7 @@ inline std::string dual_dialect(const std::string& source, const std::string& bl
       continue;
     }
     const std::string type = detail::uniform_type(lines[i]);
-    if (type.empty()) continue;
-    if (!detail::opaque_glsl_type(type)) {
-      if (lines[i].compare(0, 8, "uniform ") != 0)
-        hush::detail::raise_error<std::logic_error>(
-            "hush::glsl::dual_dialect: a non-opaque uniform with a layout");
-      members += "  " + lines[i].substr(8) + "\n";
-      if (first_uniform == lines.size()) first_uniform = i;
-      continue;
-    }
+    if (type.empty() || !detail::opaque_glsl_type(type)) continue;  // moved, above
     const int unit = detail::layout_binding(lines[i]);
     if (unit < 0)
       hush::detail::raise_error<std::logic_error>(
@@ -154,17 +182,14 @@ inline std::string dual_dialect(const std::string& source, const std::string& bl
 
   // Each run of loose uniforms is OpenGL's only; the block stands before the first run.
   std::vector<char> loose(lines.size(), 0);
-  for (std::size_t i = 0; i < lines.size(); ++i)
-    loose[i] = lines[i].compare(0, 8, "uniform ") == 0 && !detail::uniform_type(lines[i]).empty()
-                   ? char{1}
-                   : char{0};
+  for (const detail::params_declaration& d : moved) loose[d.line] = 1;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (!loose[i]) continue;
     const bool run_start = i == 0 || !loose[i - 1];
     const bool run_end = i + 1 == lines.size() || !loose[i + 1];
     if (run_start) {
       std::string head;
-      if (i == first_uniform) {
+      if (i == moved.front().line) {
         head = "#ifdef VULKAN\nlayout(std140, binding = ";
         head += std::to_string(kVulkanParamsBinding);
         head += ") uniform ";
