@@ -254,8 +254,8 @@ TEST_CASE(
                               << ", " << read_back[1] << "; uploads " << sent[0].calls << " calls, "
                               << sent[0].buffer_bytes << " buffer bytes, " << sent[0].texels
                               << " texels; " << sent[1].calls << ", " << sent[1].buffer_bytes
-                              << ", " << sent[1].texels << "; GL calls " << calls[0].real
-                              << ", " << calls[1].real);
+                              << ", " << sent[1].texels << "; GL calls " << calls[0].real << ", "
+                              << calls[1].real);
   CHECK(read_back[0] == 0);
   CHECK(read_back[1] == 0);
   CHECK(sent[0] == sent[1]);

@@ -270,7 +270,7 @@ TEST_CASE(
       calls[k] = hush_glsl_test::calls_per_frame(frame);
     }
     MESSAGE("GL calls per advance(), 64x64 then 1920x1080: " << calls[0].real << ", "
-                                                              << calls[1].real);
+                                                             << calls[1].real);
     CHECK(calls[0].real == calls[1].real);
     CHECK(calls[0].skipped == calls[0].real);
     CHECK(calls[1].skipped == calls[1].real);

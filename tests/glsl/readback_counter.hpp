@@ -1,10 +1,11 @@
 // The resident-path suites' GL loader (tests/coherent/glsl_coherent_frame_test.cpp,
-// tests/npr_gabor/glsl_npr_gabor_frame_test.cpp, tests/anisotropic/glsl_anisotropic_frame_test.cpp):
-// the wrapped loader of wrapped_loader.hpp (every GL call counted, GPU work skippable) with
-// replacements that count every entry point reading GL data back to the host, and every one
-// that uploads host data (buffers, 2D textures), with the amount uploaded.
-// counted_device() is a hush::glsl::device whose GL calls all go through it. test_gl: the
-// test's own GL calls (textures, their contents and read-back), through the plain loader.
+// tests/npr_gabor/glsl_npr_gabor_frame_test.cpp,
+// tests/anisotropic/glsl_anisotropic_frame_test.cpp): the wrapped loader of wrapped_loader.hpp
+// (every GL call counted, GPU work skippable) with replacements that count every entry point
+// reading GL data back to the host, and every one that uploads host data (buffers, 2D textures),
+// with the amount uploaded. counted_device() is a hush::glsl::device whose GL calls all go through
+// it. test_gl: the test's own GL calls (textures, their contents and read-back), through the plain
+// loader.
 #ifndef HUSH_TESTS_GLSL_READBACK_COUNTER_HPP
 #define HUSH_TESTS_GLSL_READBACK_COUNTER_HPP
 
@@ -73,24 +74,23 @@ struct readback_counter {
     entry<id::BufferSubData>::real(t, o, s, d);
   }
   static void HUSH_GLAPI tex_image(hgl::gl_enum t, hgl::gl_int l, hgl::gl_int i, hgl::gl_sizei w,
-                                   hgl::gl_sizei h, hgl::gl_int b, hgl::gl_enum f,
-                                   hgl::gl_enum ty, const void* d) {
+                                   hgl::gl_sizei h, hgl::gl_int b, hgl::gl_enum f, hgl::gl_enum ty,
+                                   const void* d) {
     if (d) upload(0, static_cast<long long>(w) * h);
     entry<id::TexImage2D>::real(t, l, i, w, h, b, f, ty, d);
   }
   static void HUSH_GLAPI tex_sub(hgl::gl_enum t, hgl::gl_int l, hgl::gl_int x, hgl::gl_int y,
-                                 hgl::gl_sizei w, hgl::gl_sizei h, hgl::gl_enum f,
-                                 hgl::gl_enum ty, const void* d) {
+                                 hgl::gl_sizei w, hgl::gl_sizei h, hgl::gl_enum f, hgl::gl_enum ty,
+                                 const void* d) {
     upload(0, static_cast<long long>(w) * h);
     entry<id::TexSubImage2D>::real(t, l, x, y, w, h, f, ty, d);
   }
-  static void HUSH_GLAPI get_buffer(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s,
-                                    void* d) {
+  static void HUSH_GLAPI get_buffer(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s, void* d) {
     ++count(get_buffer_calls);
     entry<id::GetBufferSubData>::real(t, o, s, d);
   }
-  static void HUSH_GLAPI read_pixels(hgl::gl_int x, hgl::gl_int y, hgl::gl_sizei w,
-                                     hgl::gl_sizei h, hgl::gl_enum f, hgl::gl_enum t, void* d) {
+  static void HUSH_GLAPI read_pixels(hgl::gl_int x, hgl::gl_int y, hgl::gl_sizei w, hgl::gl_sizei h,
+                                     hgl::gl_enum f, hgl::gl_enum t, void* d) {
     ++count(read_pixels_calls);
     entry<id::ReadPixels>::real(x, y, w, h, f, t, d);
   }

@@ -57,86 +57,86 @@ using get_tex_image = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_enum,
   X(name, decltype(::hush::glsl::detail::gl_resident_api::name), false)
 #define HUSH_TEST_GL_RASTER(X, name, work) \
   X(name, decltype(::hush::glsl::detail::gl_raster_api::name), work)
-#define HUSH_TEST_GL_ENTRIES(X)                                                                 \
-  HUSH_TEST_GL_API(X, GetString)                                                                \
-  HUSH_TEST_GL_API(X, GetIntegerv)                                                              \
-  HUSH_TEST_GL_API(X, GetIntegeri_v)                                                            \
-  HUSH_TEST_GL_API(X, GetInteger64v)                                                            \
-  HUSH_TEST_GL_API(X, GetError)                                                                 \
-  HUSH_TEST_GL_API(X, CreateShader)                                                             \
-  HUSH_TEST_GL_API(X, ShaderSource)                                                             \
-  HUSH_TEST_GL_API(X, CompileShader)                                                            \
-  HUSH_TEST_GL_API(X, GetShaderiv)                                                              \
-  HUSH_TEST_GL_API(X, GetShaderInfoLog)                                                         \
-  HUSH_TEST_GL_API(X, DeleteShader)                                                             \
-  HUSH_TEST_GL_API(X, CreateProgram)                                                            \
-  HUSH_TEST_GL_API(X, AttachShader)                                                             \
-  HUSH_TEST_GL_API(X, LinkProgram)                                                              \
-  HUSH_TEST_GL_API(X, GetProgramiv)                                                             \
-  HUSH_TEST_GL_API(X, GetProgramInfoLog)                                                        \
-  HUSH_TEST_GL_API(X, DeleteProgram)                                                            \
-  HUSH_TEST_GL_API(X, UseProgram)                                                               \
-  HUSH_TEST_GL_API(X, GetUniformLocation)                                                       \
-  HUSH_TEST_GL_API(X, Uniform1ui)                                                               \
-  HUSH_TEST_GL_API(X, Uniform2ui)                                                               \
-  HUSH_TEST_GL_API(X, Uniform3ui)                                                               \
-  HUSH_TEST_GL_API(X, Uniform1uiv)                                                              \
-  HUSH_TEST_GL_API(X, Uniform1i)                                                                \
-  HUSH_TEST_GL_API(X, Uniform1f)                                                                \
-  HUSH_TEST_GL_API(X, Uniform1fv)                                                               \
-  HUSH_TEST_GL_API(X, Uniform1dv)                                                               \
-  HUSH_TEST_GL_API(X, GenTextures)                                                              \
-  HUSH_TEST_GL_API(X, DeleteTextures)                                                           \
-  HUSH_TEST_GL_API(X, BindTexture)                                                              \
-  HUSH_TEST_GL_API(X, ActiveTexture)                                                            \
-  HUSH_TEST_GL_API(X, TexImage2D)                                                               \
-  HUSH_TEST_GL_API(X, TexParameteri)                                                            \
-  HUSH_TEST_GL_API(X, PixelStorei)                                                              \
-  HUSH_TEST_GL_API(X, GenBuffers)                                                               \
-  HUSH_TEST_GL_API(X, DeleteBuffers)                                                            \
-  HUSH_TEST_GL_API(X, BindBuffer)                                                               \
-  HUSH_TEST_GL_API(X, BindBufferBase)                                                           \
-  HUSH_TEST_GL_API(X, BufferData)                                                               \
-  HUSH_TEST_GL_API(X, GetBufferSubData)                                                         \
-  X(DispatchCompute, decltype(::hush::glsl::detail::gl_api::DispatchCompute), true)             \
-  HUSH_TEST_GL_API(X, MemoryBarrier)                                                            \
-  HUSH_TEST_GL_API(X, Finish)                                                                   \
-  HUSH_TEST_GL_RESIDENT(X, GenSamplers)                                                         \
-  HUSH_TEST_GL_RESIDENT(X, DeleteSamplers)                                                      \
-  HUSH_TEST_GL_RESIDENT(X, BindSampler)                                                         \
-  HUSH_TEST_GL_RESIDENT(X, SamplerParameteri)                                                   \
-  HUSH_TEST_GL_RESIDENT(X, BindImageTexture)                                                    \
-  HUSH_TEST_GL_RESIDENT(X, TexSubImage2D)                                                       \
-  HUSH_TEST_GL_RESIDENT(X, CopyBufferSubData)                                                   \
-  HUSH_TEST_GL_RASTER(X, GenFramebuffers, false)                                                \
-  HUSH_TEST_GL_RASTER(X, DeleteFramebuffers, false)                                             \
-  HUSH_TEST_GL_RASTER(X, BindFramebuffer, false)                                                \
-  HUSH_TEST_GL_RASTER(X, FramebufferTexture2D, false)                                           \
-  HUSH_TEST_GL_RASTER(X, CheckFramebufferStatus, false)                                         \
-  HUSH_TEST_GL_RASTER(X, GenVertexArrays, false)                                                \
-  HUSH_TEST_GL_RASTER(X, DeleteVertexArrays, false)                                             \
-  HUSH_TEST_GL_RASTER(X, BindVertexArray, false)                                                \
-  HUSH_TEST_GL_RASTER(X, DrawArrays, true)                                                      \
-  HUSH_TEST_GL_RASTER(X, Viewport, false)                                                       \
-  HUSH_TEST_GL_RASTER(X, Enable, false)                                                         \
-  HUSH_TEST_GL_RASTER(X, Disable, false)                                                        \
-  HUSH_TEST_GL_RASTER(X, IsEnabled, false)                                                      \
-  HUSH_TEST_GL_RASTER(X, BlendFuncSeparate, false)                                              \
-  HUSH_TEST_GL_RASTER(X, BlendEquationSeparate, false)                                          \
-  HUSH_TEST_GL_RASTER(X, ClearColor, false)                                                     \
-  HUSH_TEST_GL_RASTER(X, Clear, true)                                                           \
-  HUSH_TEST_GL_RASTER(X, ReadPixels, false)                                                     \
-  HUSH_TEST_GL_RASTER(X, BindBufferRange, false)                                                \
-  HUSH_TEST_GL_RASTER(X, DispatchComputeIndirect, true)                                         \
-  HUSH_TEST_GL_RASTER(X, DrawArraysIndirect, true)                                              \
-  HUSH_TEST_GL_RASTER(X, FenceSync, false)                                                      \
-  HUSH_TEST_GL_RASTER(X, ClientWaitSync, false)                                                 \
-  HUSH_TEST_GL_RASTER(X, DeleteSync, false)                                                     \
-  X(BufferStorage, ::hush_glsl_test::wrapped_types::buffer_storage, false)                      \
-  X(MapBufferRange, ::hush_glsl_test::wrapped_types::map_buffer_range, false)                   \
-  X(GetBufferParameteriv, ::hush_glsl_test::wrapped_types::get_buffer_parameteriv, false)       \
-  X(TexImage3D, ::hush_glsl_test::wrapped_types::tex_image_3d, false)                           \
-  X(BufferSubData, ::hush_glsl_test::wrapped_types::buffer_sub_data, false)                   \
+#define HUSH_TEST_GL_ENTRIES(X)                                                           \
+  HUSH_TEST_GL_API(X, GetString)                                                          \
+  HUSH_TEST_GL_API(X, GetIntegerv)                                                        \
+  HUSH_TEST_GL_API(X, GetIntegeri_v)                                                      \
+  HUSH_TEST_GL_API(X, GetInteger64v)                                                      \
+  HUSH_TEST_GL_API(X, GetError)                                                           \
+  HUSH_TEST_GL_API(X, CreateShader)                                                       \
+  HUSH_TEST_GL_API(X, ShaderSource)                                                       \
+  HUSH_TEST_GL_API(X, CompileShader)                                                      \
+  HUSH_TEST_GL_API(X, GetShaderiv)                                                        \
+  HUSH_TEST_GL_API(X, GetShaderInfoLog)                                                   \
+  HUSH_TEST_GL_API(X, DeleteShader)                                                       \
+  HUSH_TEST_GL_API(X, CreateProgram)                                                      \
+  HUSH_TEST_GL_API(X, AttachShader)                                                       \
+  HUSH_TEST_GL_API(X, LinkProgram)                                                        \
+  HUSH_TEST_GL_API(X, GetProgramiv)                                                       \
+  HUSH_TEST_GL_API(X, GetProgramInfoLog)                                                  \
+  HUSH_TEST_GL_API(X, DeleteProgram)                                                      \
+  HUSH_TEST_GL_API(X, UseProgram)                                                         \
+  HUSH_TEST_GL_API(X, GetUniformLocation)                                                 \
+  HUSH_TEST_GL_API(X, Uniform1ui)                                                         \
+  HUSH_TEST_GL_API(X, Uniform2ui)                                                         \
+  HUSH_TEST_GL_API(X, Uniform3ui)                                                         \
+  HUSH_TEST_GL_API(X, Uniform1uiv)                                                        \
+  HUSH_TEST_GL_API(X, Uniform1i)                                                          \
+  HUSH_TEST_GL_API(X, Uniform1f)                                                          \
+  HUSH_TEST_GL_API(X, Uniform1fv)                                                         \
+  HUSH_TEST_GL_API(X, Uniform1dv)                                                         \
+  HUSH_TEST_GL_API(X, GenTextures)                                                        \
+  HUSH_TEST_GL_API(X, DeleteTextures)                                                     \
+  HUSH_TEST_GL_API(X, BindTexture)                                                        \
+  HUSH_TEST_GL_API(X, ActiveTexture)                                                      \
+  HUSH_TEST_GL_API(X, TexImage2D)                                                         \
+  HUSH_TEST_GL_API(X, TexParameteri)                                                      \
+  HUSH_TEST_GL_API(X, PixelStorei)                                                        \
+  HUSH_TEST_GL_API(X, GenBuffers)                                                         \
+  HUSH_TEST_GL_API(X, DeleteBuffers)                                                      \
+  HUSH_TEST_GL_API(X, BindBuffer)                                                         \
+  HUSH_TEST_GL_API(X, BindBufferBase)                                                     \
+  HUSH_TEST_GL_API(X, BufferData)                                                         \
+  HUSH_TEST_GL_API(X, GetBufferSubData)                                                   \
+  X(DispatchCompute, decltype(::hush::glsl::detail::gl_api::DispatchCompute), true)       \
+  HUSH_TEST_GL_API(X, MemoryBarrier)                                                      \
+  HUSH_TEST_GL_API(X, Finish)                                                             \
+  HUSH_TEST_GL_RESIDENT(X, GenSamplers)                                                   \
+  HUSH_TEST_GL_RESIDENT(X, DeleteSamplers)                                                \
+  HUSH_TEST_GL_RESIDENT(X, BindSampler)                                                   \
+  HUSH_TEST_GL_RESIDENT(X, SamplerParameteri)                                             \
+  HUSH_TEST_GL_RESIDENT(X, BindImageTexture)                                              \
+  HUSH_TEST_GL_RESIDENT(X, TexSubImage2D)                                                 \
+  HUSH_TEST_GL_RESIDENT(X, CopyBufferSubData)                                             \
+  HUSH_TEST_GL_RASTER(X, GenFramebuffers, false)                                          \
+  HUSH_TEST_GL_RASTER(X, DeleteFramebuffers, false)                                       \
+  HUSH_TEST_GL_RASTER(X, BindFramebuffer, false)                                          \
+  HUSH_TEST_GL_RASTER(X, FramebufferTexture2D, false)                                     \
+  HUSH_TEST_GL_RASTER(X, CheckFramebufferStatus, false)                                   \
+  HUSH_TEST_GL_RASTER(X, GenVertexArrays, false)                                          \
+  HUSH_TEST_GL_RASTER(X, DeleteVertexArrays, false)                                       \
+  HUSH_TEST_GL_RASTER(X, BindVertexArray, false)                                          \
+  HUSH_TEST_GL_RASTER(X, DrawArrays, true)                                                \
+  HUSH_TEST_GL_RASTER(X, Viewport, false)                                                 \
+  HUSH_TEST_GL_RASTER(X, Enable, false)                                                   \
+  HUSH_TEST_GL_RASTER(X, Disable, false)                                                  \
+  HUSH_TEST_GL_RASTER(X, IsEnabled, false)                                                \
+  HUSH_TEST_GL_RASTER(X, BlendFuncSeparate, false)                                        \
+  HUSH_TEST_GL_RASTER(X, BlendEquationSeparate, false)                                    \
+  HUSH_TEST_GL_RASTER(X, ClearColor, false)                                               \
+  HUSH_TEST_GL_RASTER(X, Clear, true)                                                     \
+  HUSH_TEST_GL_RASTER(X, ReadPixels, false)                                               \
+  HUSH_TEST_GL_RASTER(X, BindBufferRange, false)                                          \
+  HUSH_TEST_GL_RASTER(X, DispatchComputeIndirect, true)                                   \
+  HUSH_TEST_GL_RASTER(X, DrawArraysIndirect, true)                                        \
+  HUSH_TEST_GL_RASTER(X, FenceSync, false)                                                \
+  HUSH_TEST_GL_RASTER(X, ClientWaitSync, false)                                           \
+  HUSH_TEST_GL_RASTER(X, DeleteSync, false)                                               \
+  X(BufferStorage, ::hush_glsl_test::wrapped_types::buffer_storage, false)                \
+  X(MapBufferRange, ::hush_glsl_test::wrapped_types::map_buffer_range, false)             \
+  X(GetBufferParameteriv, ::hush_glsl_test::wrapped_types::get_buffer_parameteriv, false) \
+  X(TexImage3D, ::hush_glsl_test::wrapped_types::tex_image_3d, false)                     \
+  X(BufferSubData, ::hush_glsl_test::wrapped_types::buffer_sub_data, false)               \
   X(GetTexImage, ::hush_glsl_test::wrapped_types::get_tex_image, false)
 
 // One id per entry point of the table.
@@ -149,12 +149,12 @@ enum class gl_entry_id {
 // An entry's type, GL name and whether it makes the GPU work.
 template <gl_entry_id Id>
 struct gl_entry_traits;
-#define HUSH_TEST_GL_TRAITS(name_, type, work)            \
-  template <>                                             \
-  struct gl_entry_traits<gl_entry_id::name_> {            \
-    using fn = type;                                      \
-    static constexpr const char* name = "gl" #name_;      \
-    static constexpr bool gpu_work = work;                \
+#define HUSH_TEST_GL_TRAITS(name_, type, work)       \
+  template <>                                        \
+  struct gl_entry_traits<gl_entry_id::name_> {       \
+    using fn = type;                                 \
+    static constexpr const char* name = "gl" #name_; \
+    static constexpr bool gpu_work = work;           \
   };
 HUSH_TEST_GL_ENTRIES(HUSH_TEST_GL_TRAITS)
 #undef HUSH_TEST_GL_TRAITS
@@ -163,6 +163,11 @@ HUSH_TEST_GL_ENTRIES(HUSH_TEST_GL_TRAITS)
 struct wrapped_gl {
   // GL calls made through the wrappers since the process started.
   static long long& calls() {
+    static long long n = 0;
+    return n;
+  }
+  // The calls of those that make the GPU work (draws, dispatches, clears), a part of calls().
+  static long long& gpu_work_calls() {
     static long long n = 0;
     return n;
   }
@@ -180,11 +185,11 @@ struct wrapped_gl {
     static hush::glsl::detail::loader_fn f = nullptr;
     return f;
   }
-  // Sets the real loader; throws std::logic_error for a second, different one (the wrappers
-  // hold one address per entry point).
+  // Sets the real loader; a second, different one is an error (std::logic_error through
+  // hush::detail::raise_error): the wrappers hold one address per entry point.
   static void install(hush::glsl::detail::loader_fn real) {
     if (real_loader() && real_loader() != real)
-      throw std::logic_error("wrapped_gl: one real GL loader per process");
+      hush::detail::raise_error<std::logic_error>("wrapped_gl: one real GL loader per process");
     real_loader() = real;
   }
   // The wrapped loader (hush::glsl::device's loader_fn): the wrapper for a name of the table,
@@ -205,6 +210,7 @@ struct gl_entry<Id, R(HUSH_GLAPI*)(A...)> {
     ++wrapped_gl::calls();
     if constexpr (gl_entry_traits<Id>::gpu_work) {
       static_assert(std::is_void_v<R>, "a skipped entry point returns nothing");
+      ++wrapped_gl::gpu_work_calls();
       if (wrapped_gl::skip_gpu_work()) return;
     }
     return (replacement ? replacement : real)(a...);
@@ -225,7 +231,8 @@ inline void* wrapped_gl::loader(const char* name) {
       HUSH_TEST_GL_ENTRIES(HUSH_TEST_GL_WRAP)
 #undef HUSH_TEST_GL_WRAP
   };
-  if (!real_loader()) throw std::logic_error("wrapped_gl: install() a real loader first");
+  if (!real_loader())
+    hush::detail::raise_error<std::logic_error>("wrapped_gl: install() a real loader first");
   void* p = real_loader()(name);
   if (!p) return p;
   const auto it = table.find(name);

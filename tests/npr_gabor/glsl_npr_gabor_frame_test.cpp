@@ -259,8 +259,9 @@ TEST_CASE(
       if (pass == 0 && k == 0) capacities = now;
       CHECK(now == capacities);
     }
-  MESSAGE("GL calls per npr_gabor_gl_render, 128x128 then 1920x1080 (" << scenes[0].triangles().triangles()
-          << " triangles): " << calls[0].real << ", " << calls[1].real);
+  MESSAGE("GL calls per npr_gabor_gl_render, 128x128 then 1920x1080 ("
+          << scenes[0].triangles().triangles() << " triangles): " << calls[0].real << ", "
+          << calls[1].real);
   CHECK(state.resident_overflows() == 0);
   CHECK(calls[0].real == calls[1].real);
   CHECK(calls[0].skipped == calls[0].real);
