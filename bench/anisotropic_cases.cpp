@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "gl_timing.hpp"
 #include "hush/glsl/anisotropic/frame.hpp"
 #include "hush/glsl/device.hpp"
 #endif
@@ -113,8 +114,10 @@ void add_frame_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& 
 // The GPU-resident frame (hush/glsl/anisotropic/frame.hpp): the plane's uv and Jacobian as
 // RGBA32F textures, the noise into an R32F texture, no read-back. A run is one render() and
 // glFinish (the table's wall time); the quality column has the host's time of render() alone
-// (glFinish excluded) and the GPU's time from a GL_TIME_ELAPSED query, best of 3 frames each.
-// Errors: the read-back image against the double reference at the same uv and Jacobian.
+// (glFinish excluded) and the GPU's time from a GL_TIME_ELAPSED query, best of 3 frames each,
+// then the host time with the GPU's work skipped and the GL calls per frame (gl_timing.hpp,
+// medians), on bench_resident_device() (its GL calls counted). Errors: the read-back image
+// against the double reference at the same uv and Jacobian.
 struct resident_frame {
   using gl_uint = hush::glsl::detail::gl_uint;
   const hush::glsl::detail::gl_api& gl;
@@ -132,7 +135,7 @@ struct resident_frame {
 
   resident_frame(const hush::anisotropic& noise, const std::vector<float>& uv,
                  const std::vector<float>& jac, int width, int height)
-      : gl(bench_glsl_device().gl()), frame(gl.loader, noise), w(width), h(height) {
+      : gl(bench_resident_device().gl()), frame(gl.loader, noise), w(width), h(height) {
     using namespace hush::glsl::detail;
     gl_api::load(gl.loader, GenQueries, "glGenQueries");
     gl_api::load(gl.loader, DeleteQueries, "glDeleteQueries");
@@ -239,7 +242,7 @@ void add_resident_rows(std::vector<bench_case>& cases, const sizes& s,
                     "per frame: host %.3f ms (render(), glFinish excluded), GPU %.3f ms "
                     "(GL_TIME_ELAPSED)",
                     t.first, t.second);
-      p.quality = text;
+      p.quality = text + ("; " + gl_timing(st->gl).host_only([&] { st->render(); }));
       p.run = [st] {
         st->render();
         st->gl.Finish();

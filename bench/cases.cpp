@@ -25,6 +25,7 @@
 #include <hwy/targets.h>
 #endif
 #if HUSH_BENCH_HAVE_GLSL
+#include "glsl/wrapped_loader.hpp"
 #include "hush/glsl/device.hpp"
 #include "hush/glsl/headless.hpp"
 #endif
@@ -132,9 +133,17 @@ void add_pinned_simd_rows(std::vector<bench_case>& cases, std::int64_t target) {
 #endif
 
 #if HUSH_BENCH_HAVE_GLSL
-hush::glsl::device& bench_glsl_device() {
+namespace {
+hush::glsl::headless_device& bench_headless() {
   static hush::glsl::headless_device h;
-  return h.device;
+  return h;
+}
+}  // namespace
+
+hush::glsl::device& bench_glsl_device() { return bench_headless().device; }
+
+hush::glsl::device& bench_resident_device() {
+  return hush_glsl_test::wrapped_device(bench_headless().context.loader());
 }
 #endif
 

@@ -301,7 +301,9 @@ void add_coherent_frame_rows(std::vector<bench_case>& cases, const sizes& s) {
 // hush::glsl::coherent_gl_stream into an R32F texture; run() is one advance and a glFinish (the
 // wall clock then holds the GPU's work). While preparing: the error and quality from the
 // output texture read back, and over kTimedFrames frames the host time of advance() alone and
-// the GPU time of each frame's pass (gl_timing.hpp), medians, into the quality text.
+// the GPU time of each frame's pass, then the host time with the GPU's work skipped and the GL
+// calls per frame (gl_timing.hpp), medians, into the quality text. The stream runs on
+// bench_resident_device() (its GL calls counted).
 constexpr int kTimedFrames = 20;
 
 prepared_case prepare_resident(hush::glsl::device& dev, const sizes& s) {
@@ -363,9 +365,10 @@ prepared_case prepare_resident(hush::glsl::device& dev, const sizes& s) {
     r->read(out);
     p.quality = quality(scene, out);
   }
-  p.quality +=
-      "; resident: " + gl_timing(r->gl).measure([&] { r->stream->advance(r->frame, r->tex[3]); },
-                                                kTimedFrames, "advance()");
+  const auto advance = [&] { r->stream->advance(r->frame, r->tex[3]); };
+  const gl_timing timing(r->gl);
+  p.quality += "; resident: " + timing.measure(advance, kTimedFrames, "advance()") + "; " +
+               timing.host_only(advance);
   p.run = [r] {
     r->stream->advance(r->frame, r->tex[3]);
     r->gl.Finish();
@@ -389,7 +392,7 @@ void add_coherent_glsl_row(std::vector<bench_case>& cases, const sizes& s,
   resident.note =
       "stationary filter, alpha 0.98; G-buffer and output in GL textures "
       "(coherent_gl_stream), a glFinish per frame, no read-back";
-  resident.prepare = [s, dev] { return prepare_resident(*dev, s); };
+  resident.prepare = [s] { return prepare_resident(bench_resident_device(), s); };
   cases.push_back(resident);
 }
 #endif

@@ -131,7 +131,9 @@ void add_rows(std::vector<bench_case>& cases, const sizes& s, const Exec& ex,
 // "glsl resident" rows (N' = 16): the frame's G-buffer in textures and its triangles in
 // buffers (made once, the layouts of hush/glsl/npr_gabor/gl_frame.hpp), npr_gabor_gl_render
 // into an R32F texture, a glFinish per run(); error from the texture read back; the note adds
-// the host time of the call alone and the GPU time of a frame (gl_timing.hpp).
+// the host time of the call alone and the GPU time of a frame, then the host time with the
+// GPU's work skipped and the GL calls per frame (gl_timing.hpp). On bench_resident_device()
+// (its GL calls counted).
 void add_resident_rows(std::vector<bench_case>& cases, const sizes& s, hush::glsl::device& dev,
                        const std::vector<std::shared_ptr<dense_frame>>& frames) {
   namespace d = hush::glsl::detail;
@@ -221,12 +223,13 @@ void add_resident_rows(std::vector<bench_case>& cases, const sizes& s, hush::gls
       std::vector<double> ref(w * h);
       noise.render(hush::exec::scalar, f, tris, hush::image_view<double>(ref.data(), w, h));
       for (std::size_t q = 0; q < ref.size(); ++q) p.value_error.add(out[q], ref[q]);
+      const auto render = [&] { hush::glsl::npr_gabor_gl_render(*device, noise, o->f, o->tex[3]); };
+      const gl_timing timing(gl);
       p.quality = std::to_string(tris.triangles()) +
                   " triangles; G-buffer, triangles and output in GL objects "
                   "(npr_gabor_gl_render); " +
-                  gl_timing(gl).measure(
-                      [&] { hush::glsl::npr_gabor_gl_render(*device, noise, o->f, o->tex[3]); },
-                      kTimedFrames, "npr_gabor_gl_render");
+                  timing.measure(render, kTimedFrames, "npr_gabor_gl_render") + "; " +
+                  timing.host_only(render);
       return p;
     };
     cases.push_back(c);
@@ -261,7 +264,7 @@ void add_npr_gabor_cases([[maybe_unused]] std::vector<bench_case>& cases,
              lod::paper, {16.0}, cpu_points);
   add_rows(cases, s, hush::exec::glsl<hush::glsl::device>{bench_glsl_device()}, frames,
            lod::local_density, {16.0});
-  add_resident_rows(cases, s, bench_glsl_device(), frames);
+  add_resident_rows(cases, s, bench_resident_device(), frames);
 #endif
 #endif
 }

@@ -54,6 +54,10 @@ void add_peer_cases(std::vector<bench_case>& cases, const sizes& s);
 // The GLSL rows run on one headless context for the whole process (OSMesa's llvmpipe here;
 // HUSH_GL_CONTEXT=egl: the machine's GPU).
 hush::glsl::device& bench_glsl_device();
+// The resident rows' device: on the same context, its GL calls through the wrapped loader
+// (tests/glsl/wrapped_loader.hpp), so gl_timing::host_only can count them and skip the GPU's
+// work.
+hush::glsl::device& bench_resident_device();
 // Each noise's shader kit in a user's fragment shader (kit_cases.cpp): the "glsl kit" rows,
 // after the glsl pass.
 void add_kit_cases(std::vector<bench_case>& cases, const sizes& s);

@@ -2,8 +2,8 @@
 // rendered from caller-owned textures into a caller-owned R32F texture agrees pixel by pixel
 // with the CPU's float sample at the same uv and Jacobian (given, or the central / one-sided
 // differences of neighbouring uvs), with and without per-pixel surface maps; background pixels
-// are 0; the CPU-image convenience gives the same image; the host's time per frame (glFinish
-// excluded) does not grow with the pixel count.
+// are 0; the CPU-image convenience gives the same image; a frame's read-backs, uploads and GL
+// calls do not grow with the pixel count.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -201,10 +201,13 @@ TEST_CASE("anisotropic frame: Jacobians from neighbouring uvs, one-sided at edge
 }
 
 // What render() sends between host and GPU at 256 x 256 and at 1920 x 1080 (32 times the
-// pixels): no read-back, and the same uploads (calls, buffer bytes, texels) at both sizes, so
-// no per-pixel data is formed on the CPU. The host's time per frame is the benchmark's row
-// (`hush bench --filter resident`, docs/gpu.md).
-TEST_CASE("anisotropic frame: a frame reads nothing back and uploads the same at any size") {
+// pixels): no read-back, the same uploads (calls, buffer bytes, texels) and the same GL calls
+// at both sizes, so no per-pixel data is formed on the CPU and no command is issued per row,
+// tile or pixel. The host's time per frame is the benchmark's row (`hush bench --filter
+// resident`, docs/gpu.md).
+TEST_CASE(
+    "anisotropic frame: a frame reads nothing back, uploads the same and makes the same GL calls "
+    "at 256 x 256 and 1920 x 1080 (no per-pixel or per-tile host work)") {
   auto& h = headless();
   const hush::anisotropic a = make_noise(4, hush::fractal_kind::fbm);
   hush::glsl::anisotropic_frame fr(&readback_counter::loader, a);
@@ -212,6 +215,7 @@ TEST_CASE("anisotropic frame: a frame reads nothing back and uploads the same at
   using namespace hush::glsl::detail;
   readback_counter::uploads sent[2];
   int read_back[2] = {-1, -1};
+  hush_glsl_test::frame_calls calls[2];
   const int sizes[2][2] = {{256, 256}, {1920, 1080}};
   for (int s = 0; s < 2; ++s) {
     const int w = sizes[s][0], ht = sizes[s][1];
@@ -235,22 +239,32 @@ TEST_CASE("anisotropic frame: a frame reads nothing back and uploads the same at
     gl.Finish();
     const int before = readback_counter::count();
     readback_counter::uploaded() = {};
-    fr.render({tex[0], 0u, 0u}, tex[1], w, ht);
+    const auto frame = [&] { fr.render({tex[0], 0u, 0u}, tex[1], w, ht); };
+    calls[s].real = hush_glsl_test::gl_calls_of(frame);
     gl.Finish();
     read_back[s] = readback_counter::count() - before;
     sent[s] = readback_counter::uploaded();
+    {
+      const hush_glsl_test::skipping_gpu_work skip;  // the same calls without the draw's work
+      calls[s].skipped = hush_glsl_test::gl_calls_of(frame);
+    }
     gl.DeleteTextures(2, tex);
   }
   MESSAGE(h.device.renderer() << ": per frame, 256x256 then 1920x1080: read-backs " << read_back[0]
                               << ", " << read_back[1] << "; uploads " << sent[0].calls << " calls, "
                               << sent[0].buffer_bytes << " buffer bytes, " << sent[0].texels
                               << " texels; " << sent[1].calls << ", " << sent[1].buffer_bytes
-                              << ", " << sent[1].texels);
+                              << ", " << sent[1].texels << "; GL calls " << calls[0].real << ", "
+                              << calls[1].real);
   CHECK(read_back[0] == 0);
   CHECK(read_back[1] == 0);
   CHECK(sent[0] == sent[1]);
   CHECK(sent[1].texels < 256);  // nothing image-sized
   CHECK(sent[1].buffer_bytes < 65536);
+  CHECK(calls[0].real == calls[1].real);
+  CHECK(calls[0].skipped == calls[0].real);
+  CHECK(calls[1].skipped == calls[1].real);
+  CHECK(hush_glsl_test::unwrapped_names() == "");
   // The counters see host traffic: render_image uploads the frame's uvs and reads the image back.
   const test_frame small = make_frame(24, 20);
   const int before = readback_counter::count();

@@ -241,6 +241,43 @@ TEST_CASE("GL-resident coherent stream: host time per frame at two sizes (report
   }
 }
 
+TEST_CASE(
+    "GL-resident coherent stream: a frame makes the same GL calls at 64 x 64 and at 1920 x 1080 "
+    "(no per-pixel or per-tile host work)") {
+  // The command sequence of advance() is set by the parameters, not by the pixel count: white
+  // input (uniforms and one dispatch) and band-pass input (its lattice tables are uploaded in
+  // one call each, O(width + height) bytes). A frame that issued calls per row, per tile or
+  // per pixel would differ between the sizes (1920 x 1080 is 506 times 64 x 64).
+  const test_gl g;
+  for (const hush::coherent_input input :
+       {hush::coherent_input::white, hush::coherent_input::bandpass}) {
+    CAPTURE(static_cast<int>(input));
+    hush::coherent_params prm;
+    prm.input = input;
+    prm.channels = 2;
+    hush_glsl_test::frame_calls calls[2];
+    const int sizes[2][2] = {{64, 64}, {1920, 1080}};
+    for (int k = 0; k < 2; ++k) {
+      const int w = sizes[k][0], h = sizes[k][1];
+      const gbuffer gb(g, w, h);
+      gb.put(make_synthetic("rotate", 0.04, w, h));
+      const outputs out(g, 2, w, h);
+      hush::glsl::coherent_gl_stream st(counted_device(), prm, w, h);
+      const auto frame = [&] {
+        st.advance(gb.frame(true), hush::span<const gl::gl_uint>(out.tex));
+      };
+      frame();  // the program compiled, the history begun
+      calls[k] = hush_glsl_test::calls_per_frame(frame);
+    }
+    MESSAGE("GL calls per advance(), 64x64 then 1920x1080: " << calls[0].real << ", "
+                                                             << calls[1].real);
+    CHECK(calls[0].real == calls[1].real);
+    CHECK(calls[0].skipped == calls[0].real);
+    CHECK(calls[1].skipped == calls[1].real);
+  }
+  CHECK(hush_glsl_test::unwrapped_names() == "");
+}
+
 TEST_CASE("GL-resident coherent stream: the caller's active unit, samplers and program stay") {
   const test_gl g;
   constexpr gl::gl_enum kSamplerBinding = 0x8919;  // GL_SAMPLER_BINDING

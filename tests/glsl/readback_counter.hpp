@@ -1,18 +1,19 @@
-// A GL loader for the resident-path suites (tests/coherent/glsl_coherent_frame_test.cpp,
-// tests/npr_gabor/glsl_npr_gabor_frame_test.cpp, tests/anisotropic/glsl_anisotropic_frame_test.cpp):
-// every entry point that reads GL data back to the host, and every one that uploads host data
-// (buffers, 2D textures), is handed out as a wrapper that counts its calls and, for uploads,
-// the amount; the others resolve as the headless context's loader resolves them.
-// counted_device() is a hush::glsl::device whose GL calls all go through it. test_gl: the
-// test's own GL calls (textures, their contents and read-back), through the plain loader.
+// The resident-path suites' GL loader (tests/coherent/glsl_coherent_frame_test.cpp,
+// tests/npr_gabor/glsl_npr_gabor_frame_test.cpp,
+// tests/anisotropic/glsl_anisotropic_frame_test.cpp): the wrapped loader of wrapped_loader.hpp
+// (every GL call counted, GPU work skippable) with replacements that count every entry point
+// reading GL data back to the host, and every one that uploads host data (buffers, 2D textures),
+// with the amount uploaded. counted_device() is a hush::glsl::device whose GL calls all go through
+// it. test_gl: the test's own GL calls (textures, their contents and read-back), through the plain
+// loader.
 #ifndef HUSH_TESTS_GLSL_READBACK_COUNTER_HPP
 #define HUSH_TESTS_GLSL_READBACK_COUNTER_HPP
 
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "glsl/glsl_test_util.hpp"
+#include "glsl/wrapped_loader.hpp"
 #include "hush/glsl/detail/gl_resident.hpp"
 #include "hush/glsl/device.hpp"
 
@@ -20,8 +21,7 @@ namespace hush_glsl_test {
 
 namespace hgl = hush::glsl::detail;
 
-// A loader that hands out counting wrappers for every entry point that reads GL data back to
-// the host; the other names resolve as the real loader resolves them.
+// The read-backs and uploads made through the wrapped loader.
 struct readback_counter {
   // Calls of glGetBufferSubData, glReadPixels, glGetTexImage, glMapBufferRange.
   enum which { get_buffer_calls, read_pixels_calls, get_tex_calls, map_calls };
@@ -46,113 +46,75 @@ struct readback_counter {
     static uploads u;
     return u;
   }
-  using buffer_data_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_sizeiptr, const void*,
-                                           hgl::gl_enum);
-  using buffer_sub_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_intptr, hgl::gl_sizeiptr,
-                                          const void*);
-  using tex_image_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_int, hgl::gl_sizei,
-                                         hgl::gl_sizei, hgl::gl_int, hgl::gl_enum, hgl::gl_enum,
-                                         const void*);
-  using tex_sub_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_int, hgl::gl_int,
-                                       hgl::gl_sizei, hgl::gl_sizei, hgl::gl_enum, hgl::gl_enum,
-                                       const void*);
-  template <class Fn>
-  static Fn& slot() {
-    static Fn f = nullptr;
-    return f;
-  }
-  static void HUSH_GLAPI counted_buffer_data(hgl::gl_enum t, hgl::gl_sizeiptr s, const void* d,
-                                             hgl::gl_enum u) {
-    if (d) {
-      ++uploaded().calls;
-      uploaded().buffer_bytes += static_cast<long long>(s);
-    }
-    slot<buffer_data_fn>()(t, s, d, u);
-  }
-  static void HUSH_GLAPI counted_buffer_sub(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s,
-                                            const void* d) {
-    ++uploaded().calls;
-    uploaded().buffer_bytes += static_cast<long long>(s);
-    slot<buffer_sub_fn>()(t, o, s, d);
-  }
-  static void HUSH_GLAPI counted_tex_image(hgl::gl_enum t, hgl::gl_int l, hgl::gl_int i,
-                                           hgl::gl_sizei w, hgl::gl_sizei h, hgl::gl_int b,
-                                           hgl::gl_enum f, hgl::gl_enum ty, const void* d) {
-    if (d) {
-      ++uploaded().calls;
-      uploaded().texels += static_cast<long long>(w) * h;
-    }
-    slot<tex_image_fn>()(t, l, i, w, h, b, f, ty, d);
-  }
-  static void HUSH_GLAPI counted_tex_sub(hgl::gl_enum t, hgl::gl_int l, hgl::gl_int x,
-                                         hgl::gl_int y, hgl::gl_sizei w, hgl::gl_sizei h,
-                                         hgl::gl_enum f, hgl::gl_enum ty, const void* d) {
-    ++uploaded().calls;
-    uploaded().texels += static_cast<long long>(w) * h;
-    slot<tex_sub_fn>()(t, l, x, y, w, h, f, ty, d);
-  }
-  using get_buffer_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_intptr, hgl::gl_sizeiptr, void*);
-  using read_pixels_fn = void(HUSH_GLAPI*)(hgl::gl_int, hgl::gl_int, hgl::gl_sizei, hgl::gl_sizei,
-                                           hgl::gl_enum, hgl::gl_enum, void*);
-  using get_tex_fn = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_enum, hgl::gl_enum,
-                                       void*);
-  using map_fn = void*(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_intptr, hgl::gl_sizeiptr,
-                                    hgl::gl_bitfield);
-  static get_buffer_fn& get_buffer() {
-    static get_buffer_fn f = nullptr;
-    return f;
-  }
-  static read_pixels_fn& read_pixels() {
-    static read_pixels_fn f = nullptr;
-    return f;
-  }
-  static get_tex_fn& get_tex() {
-    static get_tex_fn f = nullptr;
-    return f;
-  }
-  static map_fn& map() {
-    static map_fn f = nullptr;
-    return f;
-  }
-  static void HUSH_GLAPI counted_get_buffer(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s,
-                                            void* d) {
-    ++count(get_buffer_calls);
-    get_buffer()(t, o, s, d);
-  }
-  static void HUSH_GLAPI counted_read_pixels(hgl::gl_int x, hgl::gl_int y, hgl::gl_sizei w,
-                                             hgl::gl_sizei h, hgl::gl_enum f, hgl::gl_enum t,
-                                             void* d) {
-    ++count(read_pixels_calls);
-    read_pixels()(x, y, w, h, f, t, d);
-  }
-  static void HUSH_GLAPI counted_get_tex(hgl::gl_enum t, hgl::gl_int l, hgl::gl_enum f,
-                                         hgl::gl_enum ty, void* d) {
-    ++count(get_tex_calls);
-    get_tex()(t, l, f, ty, d);
-  }
-  static void* HUSH_GLAPI counted_map(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s,
-                                      hgl::gl_bitfield a) {
-    ++count(map_calls);
-    return map()(t, o, s, a);
-  }
+  // The wrapped loader, with the counting replacements set on first use; the real loader is
+  // the headless context's.
   static void* loader(const char* name) {
-    const hgl::loader_fn real = headless().context.loader();
-    void* p = real(name);
-    const std::string n = name;
-    auto swap = [&](auto& slot, auto counted) {
-      slot = reinterpret_cast<std::remove_reference_t<decltype(slot)>>(p);
-      return reinterpret_cast<void*>(counted);
-    };
-    if (!p) return p;
-    if (n == "glGetBufferSubData") return swap(get_buffer(), &counted_get_buffer);
-    if (n == "glReadPixels") return swap(read_pixels(), &counted_read_pixels);
-    if (n == "glGetTexImage") return swap(get_tex(), &counted_get_tex);
-    if (n == "glMapBufferRange") return swap(map(), &counted_map);
-    if (n == "glBufferData") return swap(slot<buffer_data_fn>(), &counted_buffer_data);
-    if (n == "glBufferSubData") return swap(slot<buffer_sub_fn>(), &counted_buffer_sub);
-    if (n == "glTexImage2D") return swap(slot<tex_image_fn>(), &counted_tex_image);
-    if (n == "glTexSubImage2D") return swap(slot<tex_sub_fn>(), &counted_tex_sub);
-    return p;
+    static const bool ready = install();
+    (void)ready;
+    return wrapped_gl::loader(name);
+  }
+
+ private:
+  template <gl_entry_id Id>
+  using entry = gl_entry<Id>;
+  using id = gl_entry_id;
+  static void upload(long long bytes, long long texels) {
+    ++uploaded().calls;
+    uploaded().buffer_bytes += bytes;
+    uploaded().texels += texels;
+  }
+  static void HUSH_GLAPI buffer_data(hgl::gl_enum t, hgl::gl_sizeiptr s, const void* d,
+                                     hgl::gl_enum u) {
+    if (d) upload(static_cast<long long>(s), 0);
+    entry<id::BufferData>::real(t, s, d, u);
+  }
+  static void HUSH_GLAPI buffer_sub(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s,
+                                    const void* d) {
+    upload(static_cast<long long>(s), 0);
+    entry<id::BufferSubData>::real(t, o, s, d);
+  }
+  static void HUSH_GLAPI tex_image(hgl::gl_enum t, hgl::gl_int l, hgl::gl_int i, hgl::gl_sizei w,
+                                   hgl::gl_sizei h, hgl::gl_int b, hgl::gl_enum f, hgl::gl_enum ty,
+                                   const void* d) {
+    if (d) upload(0, static_cast<long long>(w) * h);
+    entry<id::TexImage2D>::real(t, l, i, w, h, b, f, ty, d);
+  }
+  static void HUSH_GLAPI tex_sub(hgl::gl_enum t, hgl::gl_int l, hgl::gl_int x, hgl::gl_int y,
+                                 hgl::gl_sizei w, hgl::gl_sizei h, hgl::gl_enum f, hgl::gl_enum ty,
+                                 const void* d) {
+    upload(0, static_cast<long long>(w) * h);
+    entry<id::TexSubImage2D>::real(t, l, x, y, w, h, f, ty, d);
+  }
+  static void HUSH_GLAPI get_buffer(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s, void* d) {
+    ++count(get_buffer_calls);
+    entry<id::GetBufferSubData>::real(t, o, s, d);
+  }
+  static void HUSH_GLAPI read_pixels(hgl::gl_int x, hgl::gl_int y, hgl::gl_sizei w, hgl::gl_sizei h,
+                                     hgl::gl_enum f, hgl::gl_enum t, void* d) {
+    ++count(read_pixels_calls);
+    entry<id::ReadPixels>::real(x, y, w, h, f, t, d);
+  }
+  static void HUSH_GLAPI get_tex(hgl::gl_enum t, hgl::gl_int l, hgl::gl_enum f, hgl::gl_enum ty,
+                                 void* d) {
+    ++count(get_tex_calls);
+    entry<id::GetTexImage>::real(t, l, f, ty, d);
+  }
+  static void* HUSH_GLAPI map(hgl::gl_enum t, hgl::gl_intptr o, hgl::gl_sizeiptr s,
+                              hgl::gl_bitfield a) {
+    ++count(map_calls);
+    return entry<id::MapBufferRange>::real(t, o, s, a);
+  }
+  static bool install() {
+    wrapped_gl::install(headless().context.loader());
+    entry<id::BufferData>::replacement = &buffer_data;
+    entry<id::BufferSubData>::replacement = &buffer_sub;
+    entry<id::TexImage2D>::replacement = &tex_image;
+    entry<id::TexSubImage2D>::replacement = &tex_sub;
+    entry<id::GetBufferSubData>::replacement = &get_buffer;
+    entry<id::ReadPixels>::replacement = &read_pixels;
+    entry<id::GetTexImage>::replacement = &get_tex;
+    entry<id::MapBufferRange>::replacement = &map;
+    return true;
   }
 };
 
@@ -161,6 +123,29 @@ inline hush::glsl::device& counted_device() {
   headless();
   static hush::glsl::device d(&readback_counter::loader);
   return d;
+}
+
+// The GL calls of one frame `frame()` through the wrapped loader: run for real, and run with
+// the GPU's work skipped (which must change no call). Every entry point hush loaded must be
+// wrapped (wrapped_gl::unwrapped() empty), so these are all its GL calls.
+struct frame_calls {
+  long long real = 0, skipped = 0;
+};
+template <class F>
+frame_calls calls_per_frame(F&& frame) {
+  frame_calls c;
+  c.real = gl_calls_of(frame);
+  const skipping_gpu_work skip;
+  c.skipped = gl_calls_of(frame);
+  return c;
+}
+
+// The names hush loaded that the wrapped loader lacks, comma-separated ("" when every call is
+// counted), so that a failing check names them.
+inline std::string unwrapped_names() {
+  std::string names;
+  for (const std::string& n : wrapped_gl::unwrapped()) names += (names.empty() ? "" : ", ") + n;
+  return names;
 }
 
 // The test's own GL: textures for the G-buffer and the outputs, and their read-back.

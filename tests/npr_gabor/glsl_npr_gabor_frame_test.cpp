@@ -5,8 +5,8 @@
 // frame through the renderer's device (a counting loader) once its capacities are set (the
 // first resident frame of a device reads each level's totals back to set them, and maps its
 // status buffer); a frame that needs more than the capacities: seen a frame later, the next
-// frame equal to the CPU-image path again; refusals; host time per frame at two sizes
-// (reported).
+// frame equal to the CPU-image path again; the same triangles make the same GL calls per frame
+// at two frame sizes; refusals; host time per frame at two sizes (reported).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -215,6 +215,58 @@ TEST_CASE(
           << before << " -> " << after << "; the frame beyond it " << beyond << "; " << sizing
           << " read-backs setting them again");
   g.api.DeleteTextures(1, &out);
+}
+
+TEST_CASE(
+    "GL-resident NPR Gabor: the same triangles make the same GL calls per frame at 128 x 128 and "
+    "1920 x 1080 once the capacities are set (no per-pixel or per-tile host work)") {
+  // The command sequence follows the capacities (levels, storage blocks of records), which
+  // follow the triangles' kernels, not the frame's pixel count: the same 8 x 8 cells of 12
+  // pixels in a frame of 128 x 128 and of 1920 x 1080 (126 times the pixels). A device of its
+  // own, its capacities set by the first frame; the larger frame must leave them as they are.
+  const test_gl g;
+  hush::glsl::device dev(&readback_counter::loader);
+  const hush::glsl::detail::npr_gabor_gpu& state = hush::glsl::npr_gabor_state(dev);
+  const hush::npr_gabor noise(base_params());
+  const std::size_t sizes[2][2] = {{128, 128}, {1920, 1080}};
+  std::vector<npr_test::grid_scene> scenes;
+  for (const auto& wh : sizes) scenes.emplace_back(wh[0], wh[1], 5.0, 7.0, 12.0, 8, 8, 1.5f);
+  hush_glsl_test::frame_calls calls[2];
+  std::vector<std::size_t> capacities;
+  for (int pass = 0; pass < 2; ++pass)  // pass 0 sets the capacities, pass 1 counts
+    for (std::size_t k = 0; k < 2; ++k) {
+      const gl_scene gs(g, scenes[k]);
+      const int w = int(sizes[k][0]), h = int(sizes[k][1]);
+      const gl::gl_uint out = g.texture(gl::kGlR32fFormat, w, h, gl::kGlRedChannel, gl::kGlFloat);
+      // Each frame after a glFinish (the test's own, uncounted): the renderer polls the fences
+      // of earlier frames' status entries, one call per entry it finds finished and one for the
+      // first unfinished, so the count follows the GPU's progress; finished, it is the same.
+      const auto frame = [&] {
+        g.api.Finish();
+        hush::glsl::npr_gabor_gl_render(dev, noise, gs.f, out);
+      };
+      if (pass == 0) {
+        frame();  // programs, capacities, framebuffer at this size
+      } else {
+        const int reads = readback_counter::count();
+        calls[k] = hush_glsl_test::calls_per_frame(frame);
+        CHECK(readback_counter::count() == reads);
+      }
+      g.api.DeleteTextures(1, &out);
+      std::vector<std::size_t> now;
+      for (std::size_t level = 0; level < 22; ++level)
+        now.push_back(state.resident_capacity(level));
+      if (pass == 0 && k == 0) capacities = now;
+      CHECK(now == capacities);
+    }
+  MESSAGE("GL calls per npr_gabor_gl_render, 128x128 then 1920x1080 ("
+          << scenes[0].triangles().triangles() << " triangles): " << calls[0].real << ", "
+          << calls[1].real);
+  CHECK(state.resident_overflows() == 0);
+  CHECK(calls[0].real == calls[1].real);
+  CHECK(calls[0].skipped == calls[0].real);
+  CHECK(calls[1].skipped == calls[1].real);
+  CHECK(hush_glsl_test::unwrapped_names() == "");
 }
 
 TEST_CASE("GL-resident NPR Gabor: what it refuses") {
