@@ -14,6 +14,7 @@
 
 #include "glsl/glsl_test_util.hpp"
 #include "glsl/wrapped_loader.hpp"
+#include "hush/glsl/detail/gl_raster.hpp"
 #include "hush/glsl/detail/gl_resident.hpp"
 #include "hush/glsl/device.hpp"
 
@@ -151,15 +152,8 @@ inline std::string unwrapped_names() {
 // The test's own GL: textures for the G-buffer and the outputs, and their read-back.
 struct test_gl {
   const hgl::gl_api& api = headless().device.gl();
-  void(HUSH_GLAPI* TexSubImage2D)(hgl::gl_enum, hgl::gl_int, hgl::gl_int, hgl::gl_int,
-                                  hgl::gl_sizei, hgl::gl_sizei, hgl::gl_enum, hgl::gl_enum,
-                                  const void*) = nullptr;
-  void(HUSH_GLAPI* GetTexImage)(hgl::gl_enum, hgl::gl_int, hgl::gl_enum, hgl::gl_enum,
-                                void*) = nullptr;
-  test_gl() {
-    hgl::gl_api::load(api.loader, TexSubImage2D, "glTexSubImage2D");
-    hgl::gl_api::load(api.loader, GetTexImage, "glGetTexImage");
-  }
+  hgl::gl_resident_api rs{api.loader};
+  hgl::gl_raster_api gr{api.loader};
   // A w x h texture of `internal` format; contents from `data` (layout, type) or none.
   hgl::gl_uint texture(hgl::gl_enum internal, int w, int h, hgl::gl_enum layout, hgl::gl_enum type,
                        const void* data = nullptr) const {
@@ -175,14 +169,14 @@ struct test_gl {
   void update(hgl::gl_uint t, int w, int h, hgl::gl_enum layout, hgl::gl_enum type,
               const void* data) const {
     api.BindTexture(hgl::kGlTexture2d, t);
-    TexSubImage2D(hgl::kGlTexture2d, 0, 0, 0, w, h, layout, type, data);
+    rs.TexSubImage2D(hgl::kGlTexture2d, 0, 0, 0, w, h, layout, type, data);
     api.BindTexture(hgl::kGlTexture2d, 0);
   }
   std::vector<float> read(hgl::gl_uint t, int w, int h) const {
     std::vector<float> v(static_cast<std::size_t>(w) * h);
     api.BindTexture(hgl::kGlTexture2d, t);
-    api.PixelStorei(0x0D05, 4);  // GL_PACK_ALIGNMENT
-    GetTexImage(hgl::kGlTexture2d, 0, hgl::kGlRedChannel, hgl::kGlFloat, v.data());
+    api.PixelStorei(hgl::kGlPackAlignment, 4);
+    gr.GetTexImage(hgl::kGlTexture2d, 0, hgl::kGlRedChannel, hgl::kGlFloat, v.data());
     api.BindTexture(hgl::kGlTexture2d, 0);
     api.check("test: reading a texture");
     return v;

@@ -27,15 +27,15 @@
 #include "hush/glsl/detail/gl.hpp"
 #include "hush/glsl/detail/gl_resident.hpp"
 #include "hush/glsl/device.hpp"
-#include "hush/glsl/npr_gabor/gl_raster.hpp"
+#include "hush/glsl/detail/gl_raster.hpp"
 
 namespace hush_glsl_test {
 
 namespace wrapped_types {
 namespace hgl = hush::glsl::detail;
 // The entry points hush loads as locals, not as members of its API structs (their types as the
-// loading code spells them), and glBufferSubData and glGetTexImage, which only callers load
-// today (an upload and a read-back the suites count).
+// loading code spells them), and glBufferSubData, which only callers load today (an upload
+// the suites count).
 using buffer_storage = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_sizeiptr, const void*,
                                          hgl::gl_bitfield);
 using map_buffer_range = void*(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_intptr, hgl::gl_sizeiptr,
@@ -46,8 +46,6 @@ using tex_image_3d = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_int, h
                                        hgl::gl_enum, const void*);
 using buffer_sub_data = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_intptr, hgl::gl_sizeiptr,
                                           const void*);
-using get_tex_image = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_enum, hgl::gl_enum,
-                                        void*);
 }  // namespace wrapped_types
 
 // Every entry point hush's backend loads: X(name without "gl", type, makes the GPU work).
@@ -126,6 +124,8 @@ using get_tex_image = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_enum,
   HUSH_TEST_GL_RASTER(X, ClearColor, false)                                               \
   HUSH_TEST_GL_RASTER(X, Clear, true)                                                     \
   HUSH_TEST_GL_RASTER(X, ReadPixels, false)                                               \
+  HUSH_TEST_GL_RASTER(X, DrawBuffers, false)                                              \
+  HUSH_TEST_GL_RASTER(X, GetTexImage, false)                                              \
   HUSH_TEST_GL_RASTER(X, BindBufferRange, false)                                          \
   HUSH_TEST_GL_RASTER(X, DispatchComputeIndirect, true)                                   \
   HUSH_TEST_GL_RASTER(X, DrawArraysIndirect, true)                                        \
@@ -136,8 +136,7 @@ using get_tex_image = void(HUSH_GLAPI*)(hgl::gl_enum, hgl::gl_int, hgl::gl_enum,
   X(MapBufferRange, ::hush_glsl_test::wrapped_types::map_buffer_range, false)             \
   X(GetBufferParameteriv, ::hush_glsl_test::wrapped_types::get_buffer_parameteriv, false) \
   X(TexImage3D, ::hush_glsl_test::wrapped_types::tex_image_3d, false)                     \
-  X(BufferSubData, ::hush_glsl_test::wrapped_types::buffer_sub_data, false)               \
-  X(GetTexImage, ::hush_glsl_test::wrapped_types::get_tex_image, false)
+  X(BufferSubData, ::hush_glsl_test::wrapped_types::buffer_sub_data, false)
 
 // One id per entry point of the table.
 enum class gl_entry_id {

@@ -78,7 +78,8 @@ struct gl_scene {
 // Frame i of a grid of 12-pixel cells sliding right by 1.75 pixels per frame, over a
 // background (depth +inf, object 0): the G-buffer and triangles change every frame.
 npr_test::grid_scene sliding(std::size_t w, std::size_t h, int i, double cell = 12.0) {
-  const int nx = static_cast<int>(w / cell) - 2, ny = static_cast<int>(h / cell) - 2;
+  const int nx = static_cast<int>(static_cast<double>(w) / cell) - 2,
+            ny = static_cast<int>(static_cast<double>(h) / cell) - 2;
   return npr_test::grid_scene(w, h, 5.0 + 1.75 * i, 7.0, cell, nx, ny, 1.5f);
 }
 
