@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -215,6 +216,64 @@ TEST_CASE(
   MESSAGE("capacity (most nodes of a level) "
           << before << " -> " << after << "; the frame beyond it " << beyond << "; " << sizing
           << " read-backs setting them again");
+  g.api.DeleteTextures(1, &out);
+}
+
+TEST_CASE(
+    "GL-resident NPR Gabor: capacity reserved at every level keeps a growing scene's frames "
+    "exact, with no frame beyond the capacities; a reserve beyond a storage block is refused") {
+  // Devices size their capacities on a frame of 16 impulses per kernel area, then render one of
+  // 64, whose walk needs more nodes per level and a deeper level. Without a reserve that frame
+  // is beyond the capacities (seen a frame later, as the test above); with a reserve of the
+  // most nodes any level of the dense frame needs (measured on a third device sized by it)
+  // every frame equals the CPU-image path and no overflow is ever seen.
+  const test_gl g;
+  const std::size_t w = 320, h = 256;
+  const npr_test::grid_scene sc = sliding(w, h, 0, 20.0);
+  const gl_scene gs(g, sc);
+  const gl::gl_uint out =
+      g.texture(gl::kGlR32fFormat, int(w), int(h), gl::kGlRedChannel, gl::kGlFloat);
+  hush::npr_gabor::params p = base_params();
+  const hush::npr_gabor sparse(p);
+  p.impulses = 64;
+  const hush::npr_gabor dense(p);
+  std::vector<float> a(w * h);
+  dense.render(hush::exec::glsl{headless().device}, sc.frame(), sc.triangles(),
+               hush::image_view<float>(a.data(), w, h));
+  std::size_t need = 0;  // twice the most nodes a level of the dense frame needs
+  {
+    hush::glsl::device dev(&readback_counter::loader);
+    hush::glsl::npr_gabor_gl_render(dev, dense, gs.f, out);
+    for (std::size_t k = 0; k < hush::glsl::kNprGaborPlanLevels; ++k)
+      need = std::max(need, hush::glsl::npr_gabor_state(dev).resident_capacity(k));
+  }
+  std::size_t overflows[2] = {0, 0};
+  bool exact[2] = {true, true};
+  for (int i = 0; i < 2; ++i) {
+    hush::glsl::device dev(&readback_counter::loader);
+    hush::glsl::detail::npr_gabor_gpu& state = hush::glsl::npr_gabor_state(dev);
+    if (i == 1) state.reserve_resident(need / 2);
+    hush::glsl::npr_gabor_gl_render(dev, sparse, gs.f, out);
+    for (int frame = 0; frame < 3; ++frame) {
+      hush::glsl::npr_gabor_gl_render(dev, dense, gs.f, out);
+      const std::vector<float> r = g.read(out, int(w), int(h));
+      exact[i] = exact[i] && std::memcmp(r.data(), a.data(), a.size() * 4) == 0;
+      g.api.Finish();
+    }
+    overflows[i] = state.resident_overflows();
+    if (i == 1) CHECK(state.resident_reserved() == need / 2);
+  }
+  MESSAGE("the dense frame's most nodes at a level: " << need / 2);
+  CHECK(overflows[0] > 0);  // the growth is beyond the capacities the sparse frame set
+  CHECK_FALSE(exact[0]);
+  CHECK(overflows[1] == 0);
+  CHECK(exact[1]);
+  hush::glsl::detail::npr_gabor_gpu& state = hush::glsl::npr_gabor_state(headless().device);
+  const std::size_t reserved = state.resident_reserved();
+  CHECK_THROWS_WITH_AS(state.reserve_resident(std::size_t{1} << 40),
+                       doctest::Contains("nodes = 1099511627776 is out of range"),
+                       hush::invalid_argument);
+  CHECK(state.resident_reserved() == reserved);
   g.api.DeleteTextures(1, &out);
 }
 

@@ -25,16 +25,17 @@
 // glDispatchComputeIndirect commands and the glDrawArraysIndirect counts; renderer.hpp).
 // Capacities (nodes per level, kept per device): the first call on a device walks with each
 // level's two totals read back (8 bytes per prefix sum) and sets each to twice that level's
-// nodes (at least 4096; level 0's at least the triangle count, known without a read); it also
-// maps a small status buffer once (persistently, where the context has glBufferStorage).
+// nodes (at least 4096 and npr_gabor_state(dev).reserve_resident's nodes; level 0's at least the
+// triangle count, known without a read); it also maps a small status buffer once
+// (persistently, where the context has glBufferStorage).
 // A frame that needs more nodes at a level than its capacity keeps the nodes that fit (no
 // write out of bounds) and so is not exact; the GPU counts it in status words copied after
 // each frame into a fenced ring, which later calls read only once the fence has signalled
 // (never waiting; from the persistent mapping, or on a context without glBufferStorage with
 // glGetBufferSubData of those 128 finished bytes: then one such call per frame); having seen
 // one, the next call walks with read-backs again and sets the capacities from that frame,
-// exact from then on. resident_overflows() and resident_capacity(k) of npr_gabor_state(dev)
-// report them.
+// exact from then on (a scene that reserves enough nodes per level never has such a frame).
+// resident_overflows() and resident_capacity(k) of npr_gabor_state(dev) report them.
 // The output may be sampled, attached or read at once (GL orders rendering before later use).
 //
 // Requirements: the sources constant or per object (npr_gabor::per_object_at_most; per-pixel

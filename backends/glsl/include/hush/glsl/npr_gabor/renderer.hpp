@@ -222,6 +222,24 @@ class npr_gabor_gpu {
   bool resident_sized() const { return !caps_.empty(); }
   std::size_t resident_overflows() const { return overflows_seen_; }
   std::size_t resident_capacity(std::size_t k) const { return k < caps_.size() ? caps_[k] : 0; }
+  // Reserves `nodes` nodes of capacity at every level (on top of the sizing frame's twice its
+  // nodes): a walk none of whose levels needs more never overflows, so a scene that will grow
+  // (the camera closing in, denser kernels: more nodes per level and deeper levels) renders
+  // every frame exactly. Memory: kNprGaborNodeBytes + 8 bytes per node, at each of the
+  // kNprGaborPlanLevels levels. Takes effect at the next resident frame (no read-back); never
+  // shrinks a capacity. Throws hush::invalid_argument naming `nodes` beyond one storage block
+  // (GL_MAX_SHADER_STORAGE_BLOCK_SIZE / kNprGaborNodeBytes) or one prefix sum's reach.
+  void reserve_resident(std::size_t nodes) {
+    const std::size_t most =
+        std::min(dev_.max_buffer_bytes() / kNprGaborNodeBytes, kMaxGroups * kNprGaborScanBlock);
+    if (nodes > most)
+      hush::detail::throw_out_of_range(
+          "hush::glsl::npr_gabor_state(dev).reserve_resident", "nodes", nodes,
+          ("0 ... " + std::to_string(most) + " (one storage block per level)").c_str());
+    reserved_ = std::max(reserved_, nodes);
+    for (std::size_t& c : caps_) c = std::max(c, reserved_);
+  }
+  std::size_t resident_reserved() const { return reserved_; }
 
   // Stage 2 of `j` into out (frame-sized, validated by npr_gabor::splat).
   void splat(const hush::detail::npr_gabor_splat_job& j, const image_view<float>& out) {
@@ -311,11 +329,11 @@ class npr_gabor_gpu {
     if (caps_.empty() || resize_) {
       // The first frame, and the first after a frame beyond the capacities was seen: the walk
       // with each level's totals read back, which sets the capacities (twice each level's
-      // nodes, at least kMinCapacity; never less than before).
+      // nodes, at least kMinCapacity and the reserve; never less than before).
       std::size_t total = 0;
       ok = walk(noise, w, h, g.triangle_count, src, total);
       if (ok) {
-        caps_.resize(kPlanLevels, kMinCapacity);
+        caps_.resize(kPlanLevels, std::max(kMinCapacity, reserved_));
         for (std::size_t k = 0; k < level_nodes_count_.size() && k < kPlanLevels; ++k)
           caps_[k] = std::max(caps_[k], 2 * level_nodes_count_[k]);
         resize_ = false;
@@ -1108,6 +1126,7 @@ class npr_gabor_gpu {
   void* status_fences_[kStatusRing] = {nullptr, nullptr, nullptr, nullptr};
   std::size_t status_next_ = 0, overflows_seen_ = 0;
   bool resize_ = false;
+  std::size_t reserved_ = 0;  // reserve_resident's nodes per level
   gl_uint buffers_[2] = {0, 0};  // records, ids
   gl_uint stage1_buffers_[kStage1Buffers] = {0, 0, 0, 0, 0};
   // The vertices and triangles stage 1 reads: stage1_buffers_[0, 1] or the caller's.
